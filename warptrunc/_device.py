@@ -18,7 +18,7 @@ _initialised = False
 def _init() -> None:
     global _initialised
     if not _initialised:
-        wp.config.quiet = True
+        wp.config.log_level = wp.LOG_WARNING
         wp.init()
         _initialised = True
 

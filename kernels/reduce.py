@@ -1,0 +1,30 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Min/max reduction of a float32 height map.
+
+Launched by ``warptrunc.truncation.height_range``. Grid: ``stride`` threads, each walking the
+flattened map with a grid-stride loop (coalesced on the GPU), then one atomic min and max per
+thread into ``out[0]`` (min) and ``out[1]`` (max). Heights in metres, float32. The caller sets
+``out`` to (+inf, -inf). Min and max do not depend on order, so results are identical on every
+device.
+"""
+
+import warp as wp
+
+wp.set_module_options({"enable_backward": False})
+
+
+@wp.kernel
+def min_max_kernel(z: wp.array[wp.float32], stride: int, out: wp.array[wp.float32]):
+    """Grid-stride lanes over the flattened map; ``out = [min, max]``."""
+    i = wp.tid()
+    n = z.shape[0]
+    lo = float(3.4e38)
+    hi = float(-3.4e38)
+    while i < n:
+        v = z[i]
+        lo = wp.min(lo, v)
+        hi = wp.max(hi, v)
+        i += stride
+    wp.atomic_min(out, 0, lo)
+    wp.atomic_max(out, 1, hi)

@@ -1,0 +1,46 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Shared fixtures: the ``device`` fixture runs a test on the CPU and on cuda:0 when present.
+
+``WARPTRUNC_TEST_DEVICES=cpu`` (comma-separated) narrows the list.
+"""
+
+import os
+from pathlib import Path
+
+import matplotlib
+import pytest
+
+matplotlib.use("Agg")
+
+import warptrunc  # noqa: E402
+
+
+def _devices() -> list[str]:
+    want = os.environ.get("WARPTRUNC_TEST_DEVICES")
+    if want:
+        return [d.strip() for d in want.split(",") if d.strip()]
+    import warp as wp
+
+    warptrunc.resolve_device("cpu")  # initialises Warp quietly
+    return ["cpu"] + (["cuda:0"] if wp.get_cuda_device_count() > 0 else [])
+
+
+DEVICES = _devices()
+
+
+@pytest.fixture(params=DEVICES, ids=str)
+def device(request) -> str:
+    """A Warp device name: 'cpu' and, when present, 'cuda:0'."""
+    return request.param
+
+
+SCANS = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "scans"
+
+
+@pytest.fixture
+def scans_dir() -> Path:
+    """../shared/data/scans beside the checkout; skips when absent (users' clones)."""
+    if not SCANS.is_dir():
+        pytest.skip(f"measured scans not found at {SCANS}")
+    return SCANS

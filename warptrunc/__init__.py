@@ -1,0 +1,43 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""warptrunc: normal contact stiffness of rough multiscale surfaces by truncation analysis.
+
+Symbols (paper notation → code name, SI unit):
+
+======  =====================  ==========================================
+D       ``D``                  fractal dimension (dimensionless, 2 < D < 3)
+W_r     ``Wr``                 roll-off wavelength (m)
+W_c     ``Wc``                 cut-off wavelength (m)
+γ       ``gamma``              WM frequency density (dimensionless, > 1)
+M       ``M``                  number of superposed ridges
+G       ``G``                  topothesy (m)
+R_t     ``Rt`` / ``rt``        peak-to-valley height (m)
+ω       ``depth``              truncation depth from the top (m)
+A_c     ``contact_area``       truncated (contact) area (m²)
+A       ``apparent_area``      apparent area Lx·Ly (m²)
+k       ``stiffness``          normal contact stiffness (N/m)
+F       ``load``               normal load (N)
+E, ν    ``E``, ``nu``          Young's modulus (Pa), Poisson's ratio of the rough body
+α, β    ``alpha``, ``beta``    power-law exponent and amplitude of E_c/E = β[F/(EA)]^α
+======  =====================  ==========================================
+
+``import warptrunc`` loads NumPy and Warp only; plotting and rendering import matplotlib and
+pyvista when first used.
+"""
+
+from ._device import resolve_device
+from .surface import Surface, from_heights, load_surface
+from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Surface",
+    "TruncationCurve",
+    "contact_index_map",
+    "depth_grid",
+    "from_heights",
+    "load_surface",
+    "resolve_device",
+    "truncate",
+]

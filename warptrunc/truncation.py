@@ -1,0 +1,224 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Truncation analysis: truncated (contact) area A_c(ω) at increasing depth ω from the top.
+
+Kernels: ``warptrunc.kernels.truncation`` (histogram, contact index) and
+``warptrunc.kernels.reduce`` (min/max).
+
+Depths are ω_k = k·ω_max/n, k = 0..n. A pixel is in contact at depth ω_k when
+z ≥ z_top − ω_k, with z_top = max z; the comparison is made in float32 against float32
+thresholds, exactly as ``numpy.count_nonzero(z >= t_k)`` would.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import warp as wp
+
+from ._device import check_memory, resolve_device
+from ._validate import check_int, check_range
+from .kernels import reduce as _kr
+from .kernels import truncation as _k
+from .surface import Surface
+
+__all__ = ["TruncationCurve", "contact_index_map", "depth_grid", "height_range", "truncate"]
+
+_REDUCE_LANES = 65536
+
+
+@dataclass(frozen=True, eq=False)
+class TruncationCurve:
+    """Truncated area against truncation depth for one height map."""
+
+    depth: np.ndarray
+    """(n+1,) float64 truncation depths ω_k (m), ω_0 = 0."""
+    threshold: np.ndarray
+    """(n+1,) float32 height thresholds z_top − ω_k (m) used in the comparison."""
+    n_contact_pixels: np.ndarray
+    """(n+1,) int64 number of pixels with z ≥ threshold."""
+    contact_area: np.ndarray
+    """(n+1,) float64 truncated area A_c = pixel area × n_contact_pixels (m²)."""
+    apparent_area: float
+    """Apparent area A = Lx·Ly (m²)."""
+    pixel_area: float
+    """Area of one pixel (m²)."""
+    n_pixels: int
+    """Total number of pixels."""
+    z_top: float
+    """Highest height max z (m)."""
+    rt: float
+    """Peak-to-valley height R_t of the map (m)."""
+
+    @property
+    def area_fraction(self) -> np.ndarray:
+        """(n+1,) float64 A_c/A (dimensionless)."""
+        return self.n_contact_pixels / float(self.n_pixels)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Columns as 1-D arrays (one row per depth)."""
+        return {
+            "depth_m": self.depth,
+            "depth_fraction_of_Rt": self.depth / self.rt if self.rt > 0 else self.depth * 0,
+            "n_contact_pixels": self.n_contact_pixels,
+            "contact_area_m2": self.contact_area,
+            "area_fraction": self.area_fraction,
+        }
+
+
+def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, float]:
+    """Return (min z, max z) (m) of a flattened float32 Warp array, by a device reduction."""
+    device = resolve_device(device)
+    out = wp.array(np.array([np.inf, -np.inf], dtype=np.float32), device=device)
+    lanes = min(_REDUCE_LANES, max(1, z.shape[0]))
+    wp.launch(_kr.min_max_kernel, dim=lanes, inputs=[z, lanes], outputs=[out], device=device)
+    lo, hi = out.numpy()  # sync point
+    return float(lo), float(hi)
+
+
+def depth_grid(
+    rt: float,
+    n_increments: int = 200,
+    *,
+    max_depth: float | None = None,
+    max_depth_fraction: float = 0.1,
+) -> np.ndarray:
+    """Depths ω_k = k·ω_max/n, k = 0..n (m), float64.
+
+    Parameters
+    ----------
+    rt : float
+        Peak-to-valley height R_t (m).
+    n_increments : int
+        Number of increments n (≥ 1).
+    max_depth : float, optional
+        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
+    max_depth_fraction : float
+        Largest depth as a fraction of R_t, in (0, 1] (dimensionless).
+    """
+    n = check_int("n_increments", n_increments, 1, 10_000_000)
+    if max_depth is None:
+        frac = check_range("max_depth_fraction", max_depth_fraction, 0.0, 1.0, hi_open=False)
+        wmax = frac * rt
+    else:
+        wmax = check_range("max_depth", max_depth, 0.0, unit="m")
+    if not wmax > 0:
+        raise ValueError(f"the height map is flat (R_t = {rt!r} m): nothing to truncate")
+    return np.arange(n + 1, dtype=np.float64) * (wmax / n)
+
+
+def _prepare(surface: Surface, depth: np.ndarray, device):
+    z_np = surface.heights.reshape(-1)
+    check_memory(z_np.nbytes + 8 * depth.size, device, "truncation analysis")
+    z = wp.array(z_np, dtype=wp.float32, device=device)
+    lo, hi = height_range(z, device)
+    thr = (np.float64(hi) - depth).astype(np.float32)
+    if np.any(np.diff(thr) > 0):  # cannot happen for increasing depth; guard the kernel's premise
+        raise ValueError("depths must be non-decreasing")
+    step = float(depth[-1] / (depth.size - 1)) if depth.size > 1 and depth[-1] > 0 else 0.0
+    inv_step = 1.0 / step if step > 0 else 0.0
+    t = wp.array(thr, dtype=wp.float32, device=device)
+    return z, t, lo, hi, thr, inv_step
+
+
+def truncate(
+    surface: Surface,
+    n_increments: int = 200,
+    *,
+    max_depth: float | None = None,
+    max_depth_fraction: float = 0.1,
+    device: wp.DeviceLike = None,
+) -> TruncationCurve:
+    """Truncated area A_c(ω) of ``surface`` at n + 1 equally spaced depths.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m).
+    n_increments : int
+        Number of depth increments n; depths are ω_k = k·ω_max/n, k = 0..n.
+    max_depth : float, optional
+        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
+    max_depth_fraction : float
+        ω_max as a fraction of the map's R_t (dimensionless).
+    device : str, optional
+        Warp device; see :func:`warptrunc.resolve_device`.
+
+    Returns
+    -------
+    TruncationCurve
+
+    Notes
+    -----
+    One pass over the heights: each pixel's contact index (the first k with
+    z ≥ z_top − ω_k) is found in a Warp kernel and counted in an integer atomic histogram;
+    the cumulative sum gives the number of contact pixels at every depth.
+    """
+    device = resolve_device(device)
+    depth = depth_grid(
+        surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
+    )
+    z, t, lo, hi, thr, inv_step = _prepare(surface, depth, device)
+    hist = wp.zeros(depth.size, dtype=wp.int64, device=device)
+    wp.launch(
+        _k.contact_histogram_kernel,
+        dim=z.shape[0],
+        inputs=[z, t, hi, inv_step],
+        outputs=[hist],
+        device=device,
+    )
+    counts = np.cumsum(hist.numpy())  # sync point
+    return TruncationCurve(
+        depth=depth,
+        threshold=thr,
+        n_contact_pixels=counts.astype(np.int64),
+        contact_area=counts * surface.pixel_area,
+        apparent_area=surface.apparent_area,
+        pixel_area=surface.pixel_area,
+        n_pixels=surface.nx * surface.ny,
+        z_top=hi,
+        rt=float(np.float64(hi) - np.float64(lo)),
+    )
+
+
+def contact_index_map(
+    surface: Surface,
+    depth: np.ndarray,
+    *,
+    device: wp.DeviceLike = None,
+    as_warp: bool = False,
+):
+    """Per-pixel contact index: the first k with z ≥ z_top − depth[k], or len(depth) if none.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m).
+    depth : (n+1,) array_like
+        Non-decreasing, equally spaced truncation depths (m), starting at 0 (as from
+        :func:`depth_grid`).
+    as_warp : bool
+        Return the Warp array (on ``device``, shape (ny, nx), int32) instead of NumPy.
+
+    Returns
+    -------
+    (ny, nx) int32 ndarray (or Warp array)
+        The island labelling carries its union-find forest across depths in this order.
+    """
+    device = resolve_device(device)
+    depth = np.asarray(depth, dtype=np.float64)
+    if depth.ndim != 1 or depth.size < 1 or np.any(np.diff(depth) < 0) or depth[0] < 0:
+        raise ValueError("depth must be a 1-D non-decreasing array of depths ≥ 0 (m)")
+    z, t, _lo, hi, _thr, inv_step = _prepare(surface, depth, device)
+    index = wp.empty(z.shape[0], dtype=wp.int32, device=device)
+    wp.launch(
+        _k.contact_index_kernel,
+        dim=z.shape[0],
+        inputs=[z, t, hi, inv_step],
+        outputs=[index],
+        device=device,
+    )
+    index = index.reshape((surface.ny, surface.nx))
+    return index if as_warp else index.numpy()
