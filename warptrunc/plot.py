@@ -18,13 +18,7 @@ DPI = 150
 
 
 def _figure(figsize: tuple[float, float] = FIGSIZE, ncols: int = 1, nrows: int = 1):
-    import matplotlib
-
-    if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.backend_inline"):
-        try:
-            import matplotlib.pyplot as plt  # noqa: F401
-        except Exception:  # pragma: no cover - headless fallbacks
-            matplotlib.use("Agg")
+    """A pyplot-free Figure (renders with Agg, needs no display) and its axes grid."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(figsize[0] * ncols, figsize[1] * nrows), dpi=DPI, layout="constrained")
