@@ -1,0 +1,442 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Contact islands at every truncation depth from one carried union-find forest, and per-island
+area and perimeter.
+
+Launched by ``warptrunc.islands``. Union-find functions come from
+``warptrunc.kernels.label`` (roots are the smallest flat index of their island).
+
+Carried forest. Every pixel has a contact index ``idx[i]`` (first depth increment at which it
+touches; ``n1 = len(depth)`` when never). The driver sorts the pixels by contact index (stable
+radix sort, so each *bucket* of pixels sharing an index is in raster order) and, for
+k = 0, 1, ..., launches ``hook_depth_kernel`` over bucket k only: each new pixel unites with
+its already active neighbours. Islands only merge as the depth grows, so the forest is never
+rebuilt. A root that gets hooked at increment k records ``link[root] = k``; a pixel is then an
+island root for the increments ``idx[i] <= k < link[i]``, and ``island_count_diff_kernel``
+turns that into a difference array whose cumulative sum is the island count at every depth.
+
+Per-island statistics along the way (optional): integer accumulators ``area``,
+``edges_x``, ``edges_y`` live on the roots. After the unions of increment k, the
+accumulators of the roots hooked at k are added to their new roots
+(``merge_linked_kernel``), then each new pixel adds 1 to the area and its change of boundary
+edges (``add_pixels_kernel``). ``edges_x`` counts pixel edges crossed along x (vertical
+edges, length dy), ``edges_y`` edges crossed along y (length dx), between a contact pixel and a
+non-contact pixel or the domain border (unless periodic). Integer atomics only: results are
+identical on every device.
+
+Grids: 1-D, one thread per listed pixel (a bucket, or candidate roots), or 2-D one thread per
+(row, segment) for ``island_stats_kernel``.
+"""
+
+import warp as wp
+
+from warptrunc.kernels.label import find_root, find_root_readonly, unite, wrap_index
+
+wp.set_module_options({"enable_backward": False})
+
+
+@wp.func
+def offset_y(d: int) -> int:
+    """Row offset of neighbour d: 0 right, 1 up, 2 left, 3 down, 4..7 diagonals."""
+    r = int(0)
+    if d == 1 or d == 4 or d == 5:
+        r = 1
+    elif d == 3 or d == 6 or d == 7:
+        r = -1
+    return r
+
+
+@wp.func
+def offset_x(d: int) -> int:
+    """Column offset of neighbour d (see ``offset_y``)."""
+    r = int(0)
+    if d == 0 or d == 4 or d == 6:
+        r = 1
+    elif d == 2 or d == 5 or d == 7:
+        r = -1
+    return r
+
+
+@wp.kernel
+def init_forest_kernel(n1: int, parent: wp.array[wp.int32], link: wp.array[wp.int32]):
+    """One thread per pixel: every pixel its own root, never hooked (``link = n1``)."""
+    i = wp.tid()
+    parent[i] = i
+    link[i] = n1
+
+
+@wp.kernel
+def bucket_start_kernel(keys: wp.array[wp.int32], count: int, first: wp.array[wp.int32]):
+    """One thread per sorted position t: ``first[k]`` = first position with key >= k, for
+    k = 0..len(first) - 1 (``count`` when there is none)."""
+    t = wp.tid()
+    k = keys[t]
+    lo = int(0)
+    if t > 0:
+        lo = keys[t - 1] + 1
+    for kk in range(lo, wp.min(k, first.shape[0] - 1) + 1):
+        first[kk] = t
+    if t == count - 1:
+        for kk in range(k + 1, first.shape[0]):
+            first[kk] = count
+
+
+@wp.kernel
+def hook_depth_kernel(
+    order: wp.array[wp.int32],
+    start: int,
+    idx: wp.array[wp.int32],
+    k: int,
+    ny: int,
+    nx: int,
+    connectivity: int,
+    periodic: int,
+    parent: wp.array[wp.int32],
+    link: wp.array[wp.int32],
+):
+    """One thread per pixel of bucket k (``order[start + t]``): unite with every neighbour
+    already in contact (index < k), and with new neighbours (index == k) of smaller flat index,
+    so each edge is tried once; a root that gets hooked records ``link[root] = k``."""
+    t = wp.tid()
+    i = order[start + t]
+    iy = i // nx
+    ix = i - iy * nx
+    for d in range(connectivity):
+        j = wrap_index(iy + offset_y(d), ix + offset_x(d), ny, nx, periodic)
+        if j >= 0 and j != i:
+            kj = idx[j]
+            if kj < k or (kj == k and j < i):
+                hooked = unite(parent, i, j)
+                if hooked >= 0:
+                    link[hooked] = k
+
+
+@wp.kernel
+def island_count_diff_kernel(
+    idx: wp.array[wp.int32],
+    link: wp.array[wp.int32],
+    n1: int,
+    diff: wp.array[wp.int64],
+):
+    """One thread per pixel: a pixel is a root for ``idx <= k < link``: +1 at idx, -1 at link.
+    Only the pixels that start an island (few) issue atomics."""
+    i = wp.tid()
+    a = idx[i]
+    if a < n1:
+        l = link[i]
+        if l > a:
+            wp.atomic_add(diff, a, wp.int64(1))
+            if l < n1:
+                wp.atomic_add(diff, l, wp.int64(-1))
+
+
+@wp.func
+def candidate(
+    roots: wp.array[wp.int32], n_roots: int, order: wp.array[wp.int32], start: int, t: int
+) -> int:
+    """Candidate t: the previous roots first, then the pixels of the current bucket."""
+    c = int(0)
+    if t < n_roots:
+        c = roots[t]
+    else:
+        c = order[start + t - n_roots]
+    return c
+
+
+@wp.kernel
+def merge_linked_kernel(
+    roots: wp.array[wp.int32],
+    n_roots: int,
+    order: wp.array[wp.int32],
+    start: int,
+    link: wp.array[wp.int32],
+    k: int,
+    parent: wp.array[wp.int32],
+    area: wp.array[wp.int32],
+    edges_x: wp.array[wp.int32],
+    edges_y: wp.array[wp.int32],
+):
+    """One thread per candidate (previous roots, then bucket k): a root hooked at k adds its
+    accumulators to its current root. Current roots are never hooked at k, so no thread reads
+    an accumulator that another one is adding to."""
+    t = wp.tid()
+    c = candidate(roots, n_roots, order, start, t)
+    if link[c] == k:
+        a = area[c]
+        if a != 0:
+            r = find_root(parent, c)
+            wp.atomic_add(area, r, a)
+            wp.atomic_add(edges_x, r, edges_x[c])
+            wp.atomic_add(edges_y, r, edges_y[c])
+
+
+@wp.func
+def active_at(idx: wp.array[wp.int32], j: int, k: int) -> int:
+    """1 when pixel j (-1: outside the domain) is in contact at increment k."""
+    r = int(0)
+    if j >= 0:
+        if idx[j] <= k:
+            r = 1
+    return r
+
+
+@wp.func
+def active_before(idx: wp.array[wp.int32], j: int, k: int) -> int:
+    """1 when pixel j (-1: outside the domain) was in contact before increment k."""
+    r = int(0)
+    if j >= 0:
+        if idx[j] < k:
+            r = 1
+    return r
+
+
+@wp.kernel
+def add_pixels_kernel(
+    order: wp.array[wp.int32],
+    start: int,
+    idx: wp.array[wp.int32],
+    k: int,
+    ny: int,
+    nx: int,
+    periodic: int,
+    parent: wp.array[wp.int32],
+    area: wp.array[wp.int32],
+    edges_x: wp.array[wp.int32],
+    edges_y: wp.array[wp.int32],
+):
+    """One thread per pixel of bucket k: area += 1 and the change of boundary edges,
+    (2 − active neighbours − neighbours active before k) per axis, on the pixel's root."""
+    t = wp.tid()
+    i = order[start + t]
+    iy = i // nx
+    ix = i - iy * nx
+    r = find_root(parent, i)
+    jr = wrap_index(iy, ix + 1, ny, nx, periodic)
+    jl = wrap_index(iy, ix - 1, ny, nx, periodic)
+    ju = wrap_index(iy + 1, ix, ny, nx, periodic)
+    jd = wrap_index(iy - 1, ix, ny, nx, periodic)
+    dex = 2 - active_at(idx, jr, k) - active_at(idx, jl, k)
+    dex -= active_before(idx, jr, k) + active_before(idx, jl, k)
+    dey = 2 - active_at(idx, ju, k) - active_at(idx, jd, k)
+    dey -= active_before(idx, ju, k) + active_before(idx, jd, k)
+    wp.atomic_add(area, r, 1)
+    if dex != 0:
+        wp.atomic_add(edges_x, r, dex)
+    if dey != 0:
+        wp.atomic_add(edges_y, r, dey)
+
+
+@wp.kernel
+def root_flag_kernel(
+    roots: wp.array[wp.int32],
+    n_roots: int,
+    order: wp.array[wp.int32],
+    start: int,
+    parent: wp.array[wp.int32],
+    flag: wp.array[wp.int32],
+):
+    """One thread per candidate: ``flag[t] = 1`` when it is still a root (count step)."""
+    t = wp.tid()
+    c = candidate(roots, n_roots, order, start, t)
+    f = int(0)
+    if parent[c] == c:
+        f = 1
+    flag[t] = f
+
+
+@wp.kernel
+def write_roots_kernel(
+    roots: wp.array[wp.int32],
+    n_roots: int,
+    order: wp.array[wp.int32],
+    start: int,
+    flag: wp.array[wp.int32],
+    rank: wp.array[wp.int32],
+    out: wp.array[wp.int32],
+):
+    """One thread per candidate: write the surviving roots at ``rank[t] − 1`` (``rank`` is the
+    inclusive scan of ``flag``; the write step)."""
+    t = wp.tid()
+    if flag[t] != 0:
+        out[rank[t] - 1] = candidate(roots, n_roots, order, start, t)
+
+
+@wp.kernel
+def big_flag_kernel(
+    roots: wp.array[wp.int32],
+    area: wp.array[wp.int32],
+    min_pixels: int,
+    flag: wp.array[wp.int32],
+):
+    """One thread per root: ``flag[t] = 1`` when the island has at least ``min_pixels``."""
+    t = wp.tid()
+    f = int(0)
+    if area[roots[t]] >= min_pixels:
+        f = 1
+    flag[t] = f
+
+
+@wp.kernel
+def gather_stats_kernel(
+    roots: wp.array[wp.int32],
+    flag: wp.array[wp.int32],
+    rank: wp.array[wp.int32],
+    area: wp.array[wp.int32],
+    edges_x: wp.array[wp.int32],
+    edges_y: wp.array[wp.int32],
+    out_root: wp.array[wp.int32],
+    out_area: wp.array[wp.int32],
+    out_edges_x: wp.array[wp.int32],
+    out_edges_y: wp.array[wp.int32],
+):
+    """One thread per root: copy the flagged roots' accumulators to compact arrays at
+    ``rank[t] − 1`` (inclusive scan of ``flag``)."""
+    t = wp.tid()
+    if flag[t] != 0:
+        r = roots[t]
+        o = rank[t] - 1
+        out_root[o] = r
+        out_area[o] = area[r]
+        out_edges_x[o] = edges_x[r]
+        out_edges_y[o] = edges_y[r]
+
+
+@wp.kernel
+def area_histogram_kernel(
+    roots: wp.array[wp.int32],
+    area: wp.array[wp.int32],
+    k: int,
+    hist: wp.array2d[wp.int64],
+):
+    """One thread per root: ``hist[k, b] += 1`` with b = floor(log2(area in pixels))."""
+    t = wp.tid()
+    a = area[roots[t]]
+    b = int(0)
+    while (a >> (b + 1)) > 0:
+        b += 1
+    wp.atomic_add(hist, k, wp.min(b, hist.shape[1] - 1), wp.int64(1))
+
+
+@wp.kernel
+def active_labels_flag_kernel(
+    idx: wp.array[wp.int32],
+    k: int,
+    parent: wp.array[wp.int32],
+    flag: wp.array[wp.int32],
+):
+    """One thread per pixel, after the unions of increment k: contact pixels (index <= k) get
+    ``parent := root`` (read-only finds: one writer per slot) and ``flag = 1`` for roots,
+    0 elsewhere (the count step of count → scan → write)."""
+    i = wp.tid()
+    f = int(0)
+    if idx[i] <= k:
+        r = find_root_readonly(parent, i)
+        parent[i] = r
+        if r == i:
+            f = 1
+    flag[i] = f
+
+
+@wp.kernel
+def active_labels_write_kernel(
+    idx: wp.array[wp.int32],
+    k: int,
+    parent: wp.array[wp.int32],
+    rank: wp.array[wp.int32],
+    labels: wp.array[wp.int32],
+):
+    """One thread per pixel: ``labels = rank[root]`` for contact pixels, 0 elsewhere."""
+    i = wp.tid()
+    lab = int(0)
+    if idx[i] <= k:
+        lab = rank[parent[i]]
+    labels[i] = lab
+
+
+@wp.kernel
+def island_stats_kernel(
+    labels: wp.array[wp.int32],
+    ny: int,
+    nx: int,
+    periodic: int,
+    segment: int,
+    area: wp.array[wp.int64],
+    edges_x: wp.array[wp.int64],
+    edges_y: wp.array[wp.int64],
+):
+    """One thread per (row, segment of ``segment`` pixels): per-label pixel count and boundary
+    edges, accumulated along runs of one label and flushed with one atomic per run (a large
+    island is not hit by one atomic per pixel)."""
+    iy, s = wp.tid()
+    x0 = s * segment
+    x1 = wp.min(x0 + segment, nx)
+    cur = int(0)
+    ca = int(0)
+    cx = int(0)
+    cy = int(0)
+    for ix in range(x0, x1):
+        i = iy * nx + ix
+        lab = labels[i]
+        if lab != cur:
+            if cur > 0:
+                wp.atomic_add(area, cur, wp.int64(ca))
+                wp.atomic_add(edges_x, cur, wp.int64(cx))
+                wp.atomic_add(edges_y, cur, wp.int64(cy))
+            cur = lab
+            ca = 0
+            cx = 0
+            cy = 0
+        if lab > 0:
+            ca += 1
+            for d in range(4):
+                j = wrap_index(iy + offset_y(d), ix + offset_x(d), ny, nx, periodic)
+                outside = True
+                if j >= 0:
+                    outside = labels[j] == 0
+                if outside:
+                    if d == 0 or d == 2:
+                        cx += 1
+                    else:
+                        cy += 1
+    if cur > 0:
+        wp.atomic_add(area, cur, wp.int64(ca))
+        wp.atomic_add(edges_x, cur, wp.int64(cx))
+        wp.atomic_add(edges_y, cur, wp.int64(cy))
+
+
+@wp.kernel
+def iota_kernel(out: wp.array[wp.int32]):
+    """One thread per element: ``out[i] = i``."""
+    i = wp.tid()
+    out[i] = i
+
+
+@wp.kernel
+def contact_index_search_kernel(
+    z: wp.array[wp.float32],
+    t: wp.array[wp.float32],
+    idx: wp.array[wp.int32],
+):
+    """One thread per pixel: the first k with ``z >= t[k]`` (thresholds non-increasing,
+    float32, m) by binary search, or ``len(t)`` when there is none."""
+    i = wp.tid()
+    v = z[i]
+    lo = int(0)
+    hi = t.shape[0]
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if v >= t[mid]:
+            hi = mid
+        else:
+            lo = mid + 1
+    idx[i] = lo
+
+
+@wp.kernel
+def mask_to_index_kernel(mask: wp.array[wp.uint8], idx: wp.array[wp.int32]):
+    """One thread per pixel: contact index 0 for contact pixels, 1 (never) elsewhere."""
+    i = wp.tid()
+    v = int(1)
+    if mask[i] != wp.uint8(0):
+        v = 0
+    idx[i] = v

@@ -1,0 +1,208 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Connected-component labelling of one binary mask by lock-free union-find.
+
+Launched by ``warptrunc.islands`` (``label_device``, ``label_islands``); the union-find
+functions ``find_root``, ``find_root_readonly`` and ``unite`` are also called by the carried
+forest kernels in ``warptrunc.kernels.islands``.
+
+Data layout: all arrays are flattened in C order, pixel ``i = iy·nx + ix``; the mask is
+``uint8`` (non-zero = contact), ``parent`` is ``int32`` with ``parent[i] = -1`` for background
+pixels. Invariant: ``parent[i] <= i``, and a pixel is a root when ``parent[i] == i``. Roots are
+only ever hooked *onto a smaller index*, so every root is the smallest flat index of its tree;
+after all unions, the root of a component is its first pixel in raster order, whatever the
+order in which threads ran. That is what makes the final labels deterministic.
+
+Union: both roots are found, and the larger one is hooked under the smaller by a
+compare-and-swap that only succeeds while it is still a root (as ECL-CC, Jaiganesh & Burtscher
+2018, doi:10.1145/3208040.3208041); a failed CAS returns the new parent and the loop climbs on.
+Path halving in ``find_root`` uses plain stores: every store points a pixel at one of its
+ancestors, which is in the same set and has a smaller index, so races between such stores are
+benign (a stale store only leaves a longer path).
+
+Pipeline (one thread per pixel, 2-D launches ``iy, ix = wp.tid()``):
+``init_parent_kernel`` (link to the left neighbour when it is contact) → ``hook_kernel``
+(union with the forward neighbours) → ``compress_flag_kernel`` (parent := root, flag roots) →
+exclusive/inclusive scan of the flags (host: ``wp.utils.array_scan``) → ``write_labels_kernel``.
+"""
+
+import warp as wp
+
+wp.set_module_options({"enable_backward": False})
+
+
+@wp.func
+def find_root(parent: wp.array[wp.int32], i: int) -> int:
+    """Root of ``i``, halving the path on the way (benign races; see the module docstring)."""
+    prev = i
+    cur = parent[i]
+    if cur != i:
+        nxt = parent[cur]
+        while cur > nxt:
+            parent[prev] = nxt
+            prev = cur
+            cur = nxt
+            nxt = parent[cur]
+    return cur
+
+
+@wp.func
+def find_root_readonly(parent: wp.array[wp.int32], i: int) -> int:
+    """Root of ``i`` without writing (used where ``parent[i] := root`` is written per thread)."""
+    cur = i
+    nxt = parent[cur]
+    while cur != nxt:
+        cur = nxt
+        nxt = parent[cur]
+    return cur
+
+
+@wp.func
+def unite(parent: wp.array[wp.int32], a: int, b: int) -> int:
+    """Merge the sets of ``a`` and ``b``; return the root that was hooked, or -1 if none was.
+
+    Exactly one call returns each root that stops being a root, so callers can record when
+    islands merge.
+    """
+    ra = find_root(parent, a)
+    rb = find_root(parent, b)
+    hooked = int(-1)
+    while ra != rb:
+        if ra < rb:
+            old = wp.atomic_cas(parent, rb, rb, ra)
+            if old == rb:
+                hooked = rb
+                rb = ra
+            else:
+                rb = old
+        else:
+            old = wp.atomic_cas(parent, ra, ra, rb)
+            if old == ra:
+                hooked = ra
+                ra = rb
+            else:
+                ra = old
+    return hooked
+
+
+@wp.func
+def wrap_index(iy: int, ix: int, ny: int, nx: int, periodic: int) -> int:
+    """Flat index of pixel (iy, ix), wrapped when ``periodic``; -1 outside a bounded domain."""
+    j = int(-1)
+    if periodic != 0:
+        j = ((iy + ny) % ny) * nx + ((ix + nx) % nx)
+    elif iy >= 0 and iy < ny and ix >= 0 and ix < nx:
+        j = iy * nx + ix
+    return j
+
+
+@wp.func
+def is_contact(mask: wp.array[wp.uint8], j: int) -> bool:
+    """True for an in-domain contact pixel (``j >= 0`` and the mask is set)."""
+    r = False
+    if j >= 0:
+        r = mask[j] != wp.uint8(0)
+    return r
+
+
+@wp.kernel
+def init_parent_kernel(
+    mask: wp.array[wp.uint8],
+    nx: int,
+    parent: wp.array[wp.int32],
+):
+    """One thread per pixel: contact pixels point at their left neighbour when it is contact
+    (never across the periodic seam, which keeps ``parent[i] < i``), else at themselves;
+    background pixels get -1."""
+    iy, ix = wp.tid()
+    i = iy * nx + ix
+    p = int(-1)
+    if mask[i] != wp.uint8(0):
+        p = i
+        if ix > 0:
+            if mask[i - 1] != wp.uint8(0):
+                p = i - 1
+    parent[i] = p
+
+
+@wp.kernel
+def hook_kernel(
+    mask: wp.array[wp.uint8],
+    ny: int,
+    nx: int,
+    connectivity: int,
+    periodic: int,
+    parent: wp.array[wp.int32],
+):
+    """One thread per pixel: a contact pixel unites with its forward neighbours (up; up-left and
+    up-right for 8-connectivity; right across the periodic seam), skipping links that the left
+    neighbour already implies."""
+    iy, ix = wp.tid()
+    i = iy * nx + ix
+    if mask[i] == wp.uint8(0):
+        return
+    # the left neighbour (within the row) is already our parent or child after init
+    left = False
+    if ix > 0:
+        left = mask[i - 1] != wp.uint8(0)
+    if periodic != 0 and ix == nx - 1:
+        j = wrap_index(iy, ix + 1, ny, nx, periodic)
+        if is_contact(mask, j):
+            unite(parent, i, j)
+    up = wrap_index(iy + 1, ix, ny, nx, periodic)
+    if connectivity == 4:
+        # left and up-left both contact: up is already connected through them
+        up_left = False
+        if left:
+            up_left = is_contact(mask, wrap_index(iy + 1, ix - 1, ny, nx, periodic))
+        if not up_left and is_contact(mask, up):
+            unite(parent, i, up)
+    else:
+        # 8-connectivity: a contact left neighbour is diagonal to up and up-left, so both
+        # links are implied by the left neighbour's own up-right and up links
+        if not left:
+            if is_contact(mask, up):
+                unite(parent, i, up)
+            ul = wrap_index(iy + 1, ix - 1, ny, nx, periodic)
+            if is_contact(mask, ul):
+                unite(parent, i, ul)
+        ur = wrap_index(iy + 1, ix + 1, ny, nx, periodic)
+        if is_contact(mask, ur):
+            unite(parent, i, ur)
+
+
+@wp.kernel
+def compress_flag_kernel(
+    nx: int,
+    parent: wp.array[wp.int32],
+    flag: wp.array[wp.int32],
+):
+    """One thread per pixel: ``parent[i] := root`` (read-only finds, so each slot has one writer)
+    and ``flag[i] = 1`` for roots, 0 elsewhere."""
+    iy, ix = wp.tid()
+    i = iy * nx + ix
+    f = int(0)
+    if parent[i] >= 0:
+        r = find_root_readonly(parent, i)
+        parent[i] = r
+        if r == i:
+            f = 1
+    flag[i] = f
+
+
+@wp.kernel
+def write_labels_kernel(
+    parent: wp.array[wp.int32],
+    rank: wp.array[wp.int32],
+    nx: int,
+    labels: wp.array[wp.int32],
+):
+    """One thread per pixel: ``labels[i] = rank[root]`` (the inclusive scan of the root flags,
+    so labels are 1..n in raster order of each island's first pixel), 0 for background."""
+    iy, ix = wp.tid()
+    i = iy * nx + ix
+    p = parent[i]
+    lab = int(0)
+    if p >= 0:
+        lab = rank[p]
+    labels[i] = lab
