@@ -1,5 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
+# (Warp needs typed locals such as int(0) for variables that change in branches and loops)
 """Total perimeter and Euler characteristic of the contact set at every depth, by histograms.
 
 Launched by ``warptrunc.islands.topology_curve``; no labelling. Input: the per-pixel contact
@@ -25,7 +26,6 @@ Grids: one thread per pixel (``iy, ix = wp.tid()``), or per lattice vertex for t
 """
 
 import warp as wp
-
 from warptrunc.kernels.label import wrap_index
 
 wp.set_module_options({"enable_backward": False})

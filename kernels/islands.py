@@ -1,5 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
+# ruff: noqa: UP018, RUF046
+# (Warp needs typed locals such as int(0) for variables that change in branches and loops)
 """Contact islands at every truncation depth from one carried union-find forest, and per-island
 area and perimeter.
 
@@ -29,7 +31,6 @@ Grids: 1-D, one thread per listed pixel (a bucket, or candidate roots), or 2-D o
 """
 
 import warp as wp
-
 from warptrunc.kernels.label import find_root, find_root_readonly, unite, wrap_index
 
 wp.set_module_options({"enable_backward": False})

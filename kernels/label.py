@@ -1,5 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
+# ruff: noqa: UP018, RUF046
+# (Warp needs typed locals such as int(0) for variables that change in branches and loops)
 """Connected-component labelling of one binary mask by lock-free union-find.
 
 Launched by ``warptrunc.islands`` (``label_device``, ``label_islands``); the union-find

@@ -54,10 +54,10 @@ from .surface import Surface
 from .truncation import contact_index_map, depth_grid
 
 __all__ = [
+    "Indicators",
     "IslandCurve",
     "IslandSizes",
     "Islands",
-    "Indicators",
     "SlitIslandFit",
     "TopologyCurve",
     "applicable_depth",
@@ -80,7 +80,7 @@ MIN_ISLANDS = 5
 _SEGMENT = 32  # pixels per thread in island_stats_kernel
 
 
-# --- result objects -----------------------------------------------------------------------------
+# --- result objects -------------------------------------------------------------------------------
 
 
 @dataclass(frozen=True, eq=False)
@@ -894,7 +894,7 @@ def islands_at_depth(
     )[0]
 
 
-# --- slit-island analysis ---------------------------------------------------------------------------
+# --- slit-island analysis -------------------------------------------------------------------------
 
 
 def _fit_loglog(area: np.ndarray, perimeter: np.ndarray) -> tuple[float, float, float]:
@@ -952,7 +952,7 @@ def slit_island_fit(
     return SlitIslandFit(slope, c, r2, n, min_pixels)
 
 
-# --- topology by histograms --------------------------------------------------------------------------
+# --- topology by histograms -----------------------------------------------------------------------
 
 
 def _topology_hist(
@@ -1045,7 +1045,7 @@ def topology_curve(
     )
 
 
-# --- island curve ---------------------------------------------------------------------------------------
+# --- island curve ---------------------------------------------------------------------------------
 
 
 def island_curve(
@@ -1186,7 +1186,7 @@ def island_curve(
     )
 
 
-# --- applicable depth (Table 2) -----------------------------------------------------------------------
+# --- applicable depth (Table 2) -------------------------------------------------------------------
 
 
 def _running(values: np.ndarray, window: int, how: str) -> np.ndarray:

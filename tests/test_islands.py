@@ -1,0 +1,537 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Contact islands against independent references: scipy.ndimage.label, scipy.sparse.csgraph
+(periodic maps), NumPy edge counting, NumPy least squares, and analytic cases."""
+
+import math
+
+import numpy as np
+import pytest
+import scipy.ndimage as ndi
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
+import warptrunc
+from warptrunc.islands import (
+    MIN_ISLANDS,
+    IslandCurve,
+    applicable_depth,
+    island_curve,
+    islands_at_depth,
+    islands_at_depths,
+    label_islands,
+    slit_island_fit,
+    topology_curve,
+)
+
+# --- references -------------------------------------------------------------------------------
+
+
+def structure(connectivity):
+    return ndi.generate_binary_structure(2, 1 if connectivity == 4 else 2)
+
+
+def scipy_labels(mask, connectivity):
+    return ndi.label(mask, structure(connectivity))
+
+
+def graph_labels(mask, connectivity, periodic):
+    """Components by scipy.sparse.csgraph on the pixel graph, numbered 1..n in raster order of
+    first pixel (independent of ndimage and of our code; handles periodic maps)."""
+    ny, nx = mask.shape
+    ids = np.arange(ny * nx).reshape(ny, nx)
+    offsets = [(0, 1), (1, 0)] + ([(1, 1), (1, -1)] if connectivity == 8 else [])
+    rows, cols = [], []
+    for dy, dx in offsets:
+        if periodic:
+            other = np.roll(ids, (-dy, -dx), axis=(0, 1))
+            om = np.roll(mask, (-dy, -dx), axis=(0, 1))
+            ok = mask & om
+            rows.append(ids[ok])
+            cols.append(other[ok])
+        else:
+            y0, y1 = max(0, -dy), ny - max(0, dy)
+            x0, x1 = max(0, -dx), nx - max(0, dx)
+            a = ids[y0:y1, x0:x1]
+            b = ids[y0 + dy : y1 + dy, x0 + dx : x1 + dx]
+            ok = mask[y0:y1, x0:x1] & mask[y0 + dy : y1 + dy, x0 + dx : x1 + dx]
+            rows.append(a[ok])
+            cols.append(b[ok])
+    r, c = np.concatenate(rows), np.concatenate(cols)
+    g = coo_matrix((np.ones(r.size), (r, c)), shape=(ny * nx, ny * nx))
+    _, comp = connected_components(g, directed=False)
+    comp = comp.reshape(ny, nx)
+    out = np.zeros((ny, nx), np.int32)
+    flat_c, flat_m = comp.ravel(), mask.ravel()
+    seen = {}
+    for i in np.flatnonzero(flat_m):
+        seen.setdefault(flat_c[i], len(seen) + 1)
+    lut = np.zeros(comp.max() + 1, np.int32)
+    for cc, lab in seen.items():
+        lut[cc] = lab
+    out[mask] = lut[comp[mask]]
+    return out, len(seen)
+
+
+def edge_counts(labels, n, periodic):
+    """Per-label (pixels, edges crossed along x, edges crossed along y) by NumPy."""
+    fg = labels > 0
+    if periodic:
+        nb = {
+            "x": [np.roll(fg, 1, axis=1), np.roll(fg, -1, axis=1)],
+            "y": [np.roll(fg, 1, axis=0), np.roll(fg, -1, axis=0)],
+        }
+    else:
+        p = np.pad(fg, 1)
+        nb = {"x": [p[1:-1, :-2], p[1:-1, 2:]], "y": [p[:-2, 1:-1], p[2:, 1:-1]]}
+    ex = sum((fg & ~q).astype(int) for q in nb["x"])
+    ey = sum((fg & ~q).astype(int) for q in nb["y"])
+    area = np.bincount(labels.ravel(), minlength=n + 1)[1:]
+    ex = np.bincount(labels.ravel(), weights=ex.ravel(), minlength=n + 1)[1:]
+    ey = np.bincount(labels.ravel(), weights=ey.ravel(), minlength=n + 1)[1:]
+    return area, ex.astype(np.int64), ey.astype(np.int64)
+
+
+def islands_minus_holes(mask, connectivity):
+    _, n = scipy_labels(mask, connectivity)
+    bg, nb = ndi.label(~mask, structure(12 - connectivity))
+    border = np.unique(np.concatenate([bg[0], bg[-1], bg[:, 0], bg[:, -1]]))
+    return n - (nb - np.count_nonzero(border))
+
+
+def thresholds(surface, depth):
+    return (np.float64(surface.heights.max()) - np.asarray(depth)).astype(np.float32)
+
+
+# --- test masks and surfaces --------------------------------------------------------------------
+
+
+def spiral(n):
+    """A one-pixel-wide square spiral with one-pixel gaps (a single, very long island)."""
+    m = np.zeros((n, n), bool)
+    dirs = [(0, 1), (1, 0), (0, -1), (-1, 0)]
+    y = x = d = 0
+    m[0, 0] = True
+    path = [(0, 0)]
+    turns = 0
+    while turns < 2:
+        dy, dx = dirs[d]
+        y1, x1, y2, x2 = y + dy, x + dx, y + 2 * dy, x + 2 * dx
+        inside2 = 0 <= y2 < n and 0 <= x2 < n
+        if 0 <= y1 < n and 0 <= x1 < n and not m[y1, x1] and not (inside2 and m[y2, x2]):
+            y, x = y1, x1
+            m[y, x] = True
+            path.append((y, x))
+            turns = 0
+        else:
+            d = (d + 1) % 4
+            turns += 1
+    return m, path
+
+
+def rings(n=48):
+    yy, xx = np.mgrid[:n, :n] - (n - 1) / 2
+    r = np.hypot(yy, xx)
+    return ((r.astype(int) % 6) < 2) & (r < n / 2 - 1)
+
+
+def hand_masks():
+    checker = (np.add.outer(np.arange(16), np.arange(20)) % 2).astype(bool)
+    rect = np.zeros((20, 24), bool)
+    rect[2:7, 3:11] = True
+    rect[10:18, 15:22] = True
+    rect[12:14, 0:24] = True
+    diag = np.zeros((6, 6), bool)
+    diag[[0, 1, 2, 3, 4, 5], [0, 1, 2, 3, 4, 5]] = True
+    diag[0, 5] = diag[5, 0] = True
+    return {
+        "checkerboard": checker,
+        "rings": rings(),
+        "spiral": spiral(41)[0],
+        "empty": np.zeros((9, 13), bool),
+        "full": np.ones((9, 13), bool),
+        "rectangles": rect,
+        "diagonals": diag,
+        "single": np.ones((1, 1), bool),
+        "row": np.array([[1, 1, 0, 1, 0, 0, 1]], bool),
+        "column": np.array([[1], [0], [1], [1]], bool),
+    }
+
+
+def smooth_surface(n=64, nx=None, sigma=2.5, seed=0, dx=1e-6):
+    rng = np.random.default_rng(seed)
+    z = ndi.gaussian_filter(rng.standard_normal((n, nx or n)), sigma, mode="wrap")
+    return warptrunc.from_heights((z * 1e-6).astype(np.float32), dx)
+
+
+# --- labelling of one mask ----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize("density", [0.05, 0.2, 0.4, 0.5, 0.593, 0.7, 0.95])
+def test_labels_equal_scipy_random(device, connectivity, density):
+    rng = np.random.default_rng(int(density * 1000) + connectivity)
+    mask = rng.random((64, 72)) < density
+    isl = label_islands(mask, connectivity=connectivity, device=device)
+    ref, n = scipy_labels(mask, connectivity)
+    assert isl.n_islands == n
+    np.testing.assert_array_equal(isl.labels, ref)  # both number in raster order
+    assert isl.labels.dtype == np.int32
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize("name", list(hand_masks()))
+def test_labels_equal_scipy_hand_drawn(device, connectivity, name):
+    mask = hand_masks()[name]
+    isl = label_islands(mask, connectivity=connectivity, device=device)
+    ref, n = scipy_labels(mask, connectivity)
+    assert isl.n_islands == n
+    np.testing.assert_array_equal(isl.labels, ref)
+
+
+def test_known_counts():
+    m = hand_masks()
+    assert label_islands(m["spiral"], device="cpu").n_islands == 1
+    assert label_islands(m["checkerboard"], device="cpu").n_islands == 16 * 20 // 2
+    assert label_islands(m["checkerboard"], connectivity=8, device="cpu").n_islands == 1
+    assert label_islands(m["diagonals"], device="cpu").n_islands == 8
+    assert label_islands(m["diagonals"], connectivity=8, device="cpu").n_islands == 3
+    assert label_islands(m["empty"], device="cpu").n_islands == 0
+    full = label_islands(m["full"], 2e-6, 3e-6, device="cpu")
+    assert full.n_islands == 1
+    # the border counts as non-contact: a full 9×13 map is closed by its border
+    assert full.perimeter[0] == pytest.approx(2 * 13 * 2e-6 + 2 * 9 * 3e-6)
+    assert full.area[0] == pytest.approx(9 * 13 * 6e-12)
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize("periodic", [False, True])
+@pytest.mark.parametrize("density", [0.1, 0.45, 0.6, 0.9])
+def test_labels_equal_graph_reference(connectivity, periodic, density):
+    rng = np.random.default_rng(7 + int(density * 100))
+    mask = rng.random((33, 40)) < density
+    isl = label_islands(mask, connectivity=connectivity, periodic=periodic, device="cpu")
+    ref, n = graph_labels(mask, connectivity, periodic)
+    assert isl.n_islands == n
+    np.testing.assert_array_equal(isl.labels, ref)
+
+
+@pytest.mark.parametrize("periodic", [False, True])
+def test_periodic_seams(periodic):
+    mask = np.zeros((8, 10), bool)
+    mask[:, 0] = mask[:, -1] = True  # joined across the x seam
+    mask[0, 4] = mask[-1, 4] = True  # joined across the y seam
+    mask[0, 6] = mask[-1, 7] = True  # diagonal across the y seam
+    n4 = label_islands(mask, periodic=periodic, device="cpu").n_islands
+    n8 = label_islands(mask, connectivity=8, periodic=periodic, device="cpu").n_islands
+    assert (n4, n8) == ((4, 3) if periodic else (6, 6))
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize("periodic", [False, True])
+@pytest.mark.parametrize(
+    "name", ["random", "rings", "spiral", "rectangles", "full", "checkerboard"]
+)
+def test_areas_and_perimeters_equal_numpy(device, connectivity, periodic, name):
+    if name == "random":
+        mask = np.random.default_rng(3).random((40, 52)) < 0.55
+    else:
+        mask = hand_masks()[name]
+    dx, dy = 2e-6, 3e-6
+    isl = label_islands(mask, dx, dy, connectivity=connectivity, periodic=periodic, device=device)
+    ref, n = graph_labels(mask, connectivity, periodic)
+    area, ex, ey = edge_counts(ref, n, periodic)
+    np.testing.assert_array_equal(isl.area_pixels, area)
+    np.testing.assert_array_equal(isl.edges_x, ex)
+    np.testing.assert_array_equal(isl.edges_y, ey)
+    np.testing.assert_allclose(isl.area, area * dx * dy, rtol=1e-15)
+    np.testing.assert_allclose(isl.perimeter, ex * dy + ey * dx, rtol=1e-15)
+    cols = isl.to_dict()
+    assert {len(v) for v in cols.values()} == {n}
+
+
+def test_labels_transpose_invariant():
+    mask = np.random.default_rng(5).random((31, 47)) < 0.5
+    a = label_islands(mask, device="cpu")
+    b = label_islands(mask.T, device="cpu")
+    assert a.n_islands == b.n_islands
+    assert sorted(a.area_pixels) == sorted(b.area_pixels)
+    assert sorted(a.perimeter) == sorted(b.perimeter)
+
+
+# --- carried forest across depths ---------------------------------------------------------------
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize("kind", ["smooth", "noise", "quantised"])
+def test_carried_forest_equals_labelling_each_depth(device, connectivity, kind):
+    if kind == "smooth":
+        s = smooth_surface(48, 56, seed=1)
+    else:
+        z = np.random.default_rng(2).random((40, 44))
+        if kind == "quantised":  # many equal heights: pixels that touch at the same depth
+            z = np.floor(z * 6)
+        s = warptrunc.from_heights((z * 1e-6).astype(np.float32), 1e-6)
+    depths = np.array([0.45, 0.0, 0.1, 0.25, 0.25, 0.6, 0.95, 1.0]) * s.rt
+    got = islands_at_depths(s, depths, connectivity=connectivity, device=device)
+    thr = thresholds(s, depths)
+    for d, t, isl in zip(depths, thr, got, strict=True):
+        mask = s.heights >= t
+        scratch = label_islands(mask, s.dx, connectivity=connectivity, device=device)
+        ref, _ = scipy_labels(mask, connectivity)
+        np.testing.assert_array_equal(isl.labels, ref)
+        np.testing.assert_array_equal(isl.labels, scratch.labels)
+        np.testing.assert_array_equal(isl.perimeter, scratch.perimeter)
+        assert isl.depth == d
+    one = islands_at_depth(s, depths[0], connectivity=connectivity, device=device)
+    np.testing.assert_array_equal(one.labels, got[0].labels)
+
+
+def test_long_merge_chain_along_spiral(device):
+    """Pixels of a spiral touch one by one along the path: a merge chain as long as the map."""
+    mask, path = spiral(33)
+    z = np.full(mask.shape, -1.0)
+    for step, (y, x) in enumerate(path):
+        z[y, x] = -step / len(path) * 0.5  # the path's start is the top
+    s = warptrunc.from_heights(z.astype(np.float32), 1.0)
+    c = island_curve(s, 40, max_depth_fraction=0.6, device=device)
+    thr = thresholds(s, c.depth)
+    ref = [scipy_labels(s.heights >= t, 4)[1] for t in thr]
+    np.testing.assert_array_equal(c.n_islands, ref)
+    # reversed: the path's end touches first, so every new pixel has the smaller index
+    z_rev = np.full(mask.shape, -1.0)
+    for step, (y, x) in enumerate(path):
+        z_rev[y, x] = -(len(path) - step) / len(path) * 0.5
+    r = warptrunc.from_heights(z_rev.astype(np.float32), 1.0)
+    c2 = island_curve(r, 40, max_depth_fraction=1.0, connectivity=8, device=device)
+    thr2 = thresholds(r, c2.depth)
+    np.testing.assert_array_equal(c2.n_islands, [scipy_labels(r.heights >= t, 8)[1] for t in thr2])
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize("periodic", [False, True])
+def test_island_curve_against_references(device, connectivity, periodic):
+    s = smooth_surface(64, 72, seed=3)
+    min_pixels = 4
+    snaps = [0.2 * s.rt, 0.35 * s.rt]
+    c = island_curve(
+        s,
+        30,
+        max_depth_fraction=0.9,
+        connectivity=connectivity,
+        periodic=periodic,
+        min_pixels=min_pixels,
+        snapshot_depths=snaps,
+        device=device,
+    )
+    thr = thresholds(s, c.depth)
+    nbins = c.area_histogram.shape[1]
+    snap_k = sorted({int(np.argmin(np.abs(c.depth - v))) for v in snaps})
+    sizes = iter(c.sizes)
+    for k, t in enumerate(thr):
+        mask = s.heights >= t
+        ref, n = graph_labels(mask, connectivity, periodic)
+        assert c.n_islands[k] == n
+        assert c.n_contact_pixels[k] == np.count_nonzero(mask)
+        area, ex, ey = edge_counts(ref, n, periodic)
+        tot = ex.sum() * s.dy + ey.sum() * s.dx
+        assert c.total_perimeter[k] == pytest.approx(tot, rel=1e-12)
+        if not periodic:
+            assert c.euler_characteristic[k] == islands_minus_holes(mask, connectivity)
+        # area histogram in log2 bins of pixels
+        hist = np.bincount(np.floor(np.log2(area)).astype(int), minlength=nbins) if n else 0
+        np.testing.assert_array_equal(c.area_histogram[k], hist)
+        # slit-island fit by NumPy least squares over islands ≥ min_pixels
+        big = area >= min_pixels
+        assert c.slit_n_islands[k] == big.sum()
+        if big.sum() >= MIN_ISLANDS:
+            x = np.log10(area[big] * s.pixel_area)
+            y = np.log10(ex[big] * s.dy + ey[big] * s.dx)
+            slope, _ = np.polyfit(x, y, 1)
+            r2 = np.corrcoef(x, y)[0, 1] ** 2
+            assert c.slit_exponent[k] == pytest.approx(slope, rel=1e-9, abs=1e-12)
+            assert c.slit_r2[k] == pytest.approx(r2, rel=1e-9, abs=1e-12)
+        else:
+            assert math.isnan(c.slit_exponent[k])
+        if k in snap_k:
+            sz = next(sizes)
+            assert sz.depth == c.depth[k]
+            np.testing.assert_array_equal(sz.area_pixels, area)
+            np.testing.assert_allclose(sz.perimeter, ex * s.dy + ey * s.dx, rtol=1e-15)
+    assert len(c.sizes) == len(snap_k)
+
+
+def test_counts_only_equal_statistics_run(device):
+    s = smooth_surface(48, seed=4)
+    a = island_curve(s, 25, device=device)
+    b = island_curve(s, 25, statistics=False, device=device)
+    np.testing.assert_array_equal(a.n_islands, b.n_islands)
+    np.testing.assert_array_equal(a.euler_characteristic, b.euler_characteristic)
+    assert np.isnan(b.slit_exponent).all()
+    assert not b.area_histogram.any()
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_euler_periodic_equals_bounded_away_from_the_border(connectivity):
+    s = smooth_surface(56, seed=5)
+    z = np.full((64, 64), s.heights.min() - 1e-6, np.float32)
+    z[4:60, 4:60] = s.heights
+    s = warptrunc.from_heights(z, 1e-6)
+    a = topology_curve(s, 20, max_depth_fraction=0.6, connectivity=connectivity, device="cpu")
+    b = topology_curve(
+        s, 20, max_depth_fraction=0.6, connectivity=connectivity, periodic=True, device="cpu"
+    )
+    np.testing.assert_array_equal(a.euler_characteristic, b.euler_characteristic)
+    np.testing.assert_array_equal(a.total_perimeter, b.total_perimeter)
+    # a full torus: χ = 0; the full bounded square: χ = 1
+    full = warptrunc.from_heights(np.r_[np.zeros((1, 8)), np.ones((7, 8))].astype(np.float32), 1.0)
+    t = topology_curve(
+        full, 2, max_depth_fraction=1.0, connectivity=connectivity, periodic=True, device="cpu"
+    )
+    assert t.euler_characteristic[-1] == 0
+    t = topology_curve(full, 2, max_depth_fraction=1.0, connectivity=connectivity, device="cpu")
+    assert t.euler_characteristic[-1] == 1
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize("name", ["rings", "checkerboard", "spiral", "diagonals", "rectangles"])
+def test_euler_of_hand_drawn_masks(connectivity, name):
+    mask = hand_masks()[name]
+    z = np.where(mask, 1.0, 0.0).astype(np.float32)
+    s = warptrunc.from_heights(z, 1.0)
+    t = topology_curve(s, 1, max_depth_fraction=0.5, connectivity=connectivity, device="cpu")
+    assert t.euler_characteristic[-1] == islands_minus_holes(mask, connectivity)
+
+
+def test_curve_invariants():
+    s = smooth_surface(40, 52, seed=6)
+    a = island_curve(s, 20, device="cpu")
+    t = warptrunc.from_heights(s.heights.T.copy(), s.dx)
+    b = island_curve(t, 20, device="cpu")
+    np.testing.assert_array_equal(a.n_islands, b.n_islands)
+    np.testing.assert_array_equal(a.euler_characteristic, b.euler_characteristic)
+    assert np.diff(a.n_contact_pixels).min() >= 0
+    big = warptrunc.from_heights(s.heights, 3 * s.dx)
+    d = island_curve(big, 20, device="cpu")
+    np.testing.assert_allclose(d.contact_area, 9 * a.contact_area, rtol=1e-12)
+    np.testing.assert_allclose(d.total_perimeter, 3 * a.total_perimeter, rtol=1e-12)
+    np.testing.assert_allclose(d.slit_exponent, a.slit_exponent, rtol=1e-9)
+    cols = a.to_dict()
+    assert list(cols)[:8] == [
+        "depth_m",
+        "depth_fraction_of_Rt",
+        "n_islands",
+        "euler_characteristic",
+        "total_perimeter_m",
+        "contact_area_m2",
+        "slit_exponent",
+        "slit_r2",
+    ]
+    assert {len(v) for v in cols.values()} == {21}
+
+
+# --- slit-island fit and indicators -------------------------------------------------------------
+
+
+def test_slit_island_fit_recovers_a_power_law():
+    class Sizes:
+        area_pixels = np.array([3, 12, 40, 100, 400, 900, 2500])
+        area = area_pixels * 1e-12
+        perimeter = 7e-3 * area**0.75
+
+    f = slit_island_fit(Sizes, min_pixels=10)
+    assert f.n_islands == 6
+    assert f.exponent == pytest.approx(0.75, rel=1e-12)
+    assert f.dimension == pytest.approx(2.5, rel=1e-12)
+    assert f.r2 == pytest.approx(1.0, rel=1e-12)
+    assert f.intercept == pytest.approx(math.log10(7e-3), rel=1e-12)
+    assert math.isnan(slit_island_fit(Sizes, min_pixels=1000).exponent)
+    # compact squares: L = 4·sqrt(A) gives exactly 1/2
+    mask = np.zeros((12, 80), bool)
+    x = 0
+    for side in range(4, 10):
+        mask[1 : 1 + side, x : x + side] = True
+        x += side + 2
+    sq = slit_island_fit(label_islands(mask, 1e-6, device="cpu"))
+    assert sq.n_islands == 6
+    assert sq.exponent == pytest.approx(0.5, rel=1e-12)
+    assert sq.r2 == pytest.approx(1.0, rel=1e-12)
+
+
+def _synthetic_curve(n_islands, exponent, rt=1.0):
+    depth = np.linspace(0, 0.5, n_islands.size) * rt
+    z = np.zeros(depth.size)
+    return IslandCurve(
+        depth=depth,
+        n_islands=np.asarray(n_islands, np.int64),
+        n_contact_pixels=z.astype(np.int64),
+        contact_area=z,
+        total_perimeter=z,
+        euler_characteristic=z.astype(np.int64),
+        slit_exponent=np.asarray(exponent, float),
+        slit_r2=z + 1,
+        slit_n_islands=z.astype(np.int64) + 10,
+        area_histogram=np.zeros((depth.size, 4), np.int64),
+        sizes=(),
+        rt=rt,
+        dx=1.0,
+        dy=1.0,
+        connectivity=4,
+        periodic=False,
+        min_pixels=10,
+    )
+
+
+def test_indicators_on_a_synthetic_curve():
+    frac = np.linspace(0, 0.5, 101)  # steps of 0.5 % R_t
+    n = np.round(1000 * np.exp(-(((frac - 0.4) / 0.1) ** 2))).astype(int)  # peak at 40 %
+    beta = np.where(frac <= 0.3, 0.75, 0.75 - 2.0 * (frac - 0.3))  # drops after 30 %
+    beta[:3] = np.nan  # too few islands at the top
+    ind = applicable_depth(_synthetic_curve(n, beta, rt=2e-6), smooth=1)
+    # the Gaussian's steepest rise is one standard deviation... /sqrt(2) before the peak
+    assert ind.max_growth_depth / ind.rt == pytest.approx(0.4 - 0.1 / math.sqrt(2), abs=0.006)
+    assert ind.peak_depth / ind.rt == pytest.approx(0.4)
+    assert ind.plateau_exponent == pytest.approx(0.75)
+    # 5 % below 0.75 is 0.7125, crossed at 30 % + 0.01875 → last depth above: 31.5 %
+    assert ind.fractal_depth / ind.rt == pytest.approx(0.315)
+    assert not ind.fractal_depth_censored
+    d = ind.to_dict()
+    assert d["island_peak_depth_percent_Rt"] == pytest.approx(40.0)
+    flat = applicable_depth(_synthetic_curve(n, np.full(101, 0.7)))
+    assert flat.fractal_depth_censored and flat.fractal_depth == pytest.approx(0.5)
+
+
+# --- bad input ------------------------------------------------------------------------------------
+
+
+def test_bad_input_raises_clear_errors():
+    with pytest.raises(ValueError, match=r"mask must be 2-D.*\(2, 3, 4\)"):
+        label_islands(np.zeros((2, 3, 4), bool))
+    with pytest.raises(ValueError, match=r"mask must be boolean or integer.*float64"):
+        label_islands(np.zeros((3, 4)))
+    with pytest.raises(ValueError, match=r"mask must be boolean or integer.*float32"):
+        label_islands(np.full((3, 4), np.nan, np.float32))
+    with pytest.raises(ValueError, match="connectivity must be 4 or 8, got 6"):
+        label_islands(np.zeros((3, 4), bool), connectivity=6)
+    with pytest.raises(ValueError, match="dx must be"):
+        label_islands(np.zeros((3, 4), bool), dx=-1.0)
+    z = np.zeros((4, 4), np.float32)
+    z[1, 2] = np.nan
+    with pytest.raises(ValueError, match="NaN"):
+        warptrunc.from_heights(z, 1e-6)
+    with pytest.raises(TypeError, match=r"warptrunc\.Surface"):
+        island_curve(np.zeros((4, 4), np.float32))
+    s = smooth_surface(16)
+    with pytest.raises(ValueError, match="min_pixels must be an integer"):
+        island_curve(s, 5, min_pixels=0, device="cpu")
+    with pytest.raises(ValueError, match="connectivity must be 4 or 8, got 'four'"):
+        island_curve(s, 5, connectivity="four", device="cpu")
+    with pytest.raises(ValueError, match="depths must be finite"):
+        islands_at_depths(s, [0.1e-6, np.nan], device="cpu")
+    with pytest.raises(ValueError, match="depth must be in"):
+        islands_at_depth(s, -1.0, device="cpu")
+    c = _synthetic_curve(np.arange(5), np.full(5, 0.7))
+    with pytest.raises(ValueError, match="smooth must be odd, got 4"):
+        applicable_depth(c, smooth=4)
+    with pytest.raises(ValueError, match="exponent_tolerance must be in"):
+        applicable_depth(c, exponent_tolerance=1.5)
