@@ -115,3 +115,14 @@ def test_save_load_round_trip(tmp_path, suffix):
     assert (t.dx, t.dy) == (s.dx, s.dy)
     assert t.params == s.params
     assert math.isclose(t.lx, 1e-3) and math.isclose(t.ly, 0.5e-3)
+
+
+def test_cpu_and_cuda_surfaces_agree():
+    import warp as wp
+
+    if wp.get_cuda_device_count() == 0:
+        pytest.skip("no CUDA device")
+    kw = {"L": (1e-3, 0.7e-3), "n": (512, 384), "seed": 11}
+    a = wm_surface(2.5, 100e-6, device="cpu", **kw).heights
+    b = wm_surface(2.5, 100e-6, device="cuda:0", **kw).heights
+    assert np.abs(a - b).max() / np.ptp(a) <= 1e-5

@@ -30,7 +30,7 @@ __all__ = [
 
 #: Default fit range: increments with at least this many contact pixels (see README,
 #: "Fit range"); the first increments, where a handful of pixels touch, are left out.
-DEFAULT_MIN_PIXELS = 100
+DEFAULT_MIN_PIXELS = 10
 
 
 @dataclass(frozen=True)
