@@ -17,7 +17,7 @@ Kernels
 -------
 ``column_table_kernel`` / ``row_table_kernel``: one thread per (term, pixel).
 ``wm_tile_gemm_kernel``: one tile block per TILE_M × TILE_N output tile (``wp.launch_tiled``).
-``wm_rowblock_kernel``: CPU path, one thread per 4 rows × 16 columns (register blocking; no
+``wm_rowblock_kernel``: CPU path, one thread per 8 rows × 16 columns (register blocking; no
 tiles, whose CPU shared memory is a process-wide static buffer, so row bands can be launched
 from several host threads at once).
 ``wm_direct_kernel``: one thread per pixel, float64 phases, loop over terms (reference path).
@@ -31,7 +31,7 @@ wp.set_module_options({"enable_backward": False})
 TILE_M = wp.constant(64)
 TILE_N = wp.constant(64)
 TILE_K = wp.constant(32)
-ROWS = wp.constant(4)  # rows per thread in the CPU register-blocked product
+ROWS = wp.constant(8)  # rows per thread in the CPU register-blocked product
 COLS = 16  # columns per thread (one vec16)
 vec16 = wp.types.vector(length=COLS, dtype=wp.float32)
 
@@ -86,6 +86,16 @@ def wm_tile_gemm_kernel(
     wp.tile_store(z, out, offset=(row0 + i * TILE_M, j * TILE_N))
 
 
+@wp.func
+def store_row(z: wp.array2d[wp.float32], iy: int, jb: int, c0: wp.float32, acc: vec16):
+    """z[iy, 16·jb + c] = c0 − acc[c] for the columns and rows inside z."""
+    if iy < z.shape[0]:
+        for c in range(COLS):
+            ix = jb * COLS + c
+            if ix < z.shape[1]:
+                z[iy, ix] = c0 - acc[c]
+
+
 @wp.kernel
 def wm_rowblock_kernel(
     p: wp.array2d[wp.float32],
@@ -94,32 +104,35 @@ def wm_rowblock_kernel(
     row0: int,
     z: wp.array2d[wp.float32],
 ):
-    """One thread per ROWS × 16 block: z = c0 − P·Q (P rows padded to ROWS, Q to 16 columns)."""
+    """One thread per 8 × 16 block: z = c0 − P·Q (P rows padded to 8, Q columns to 16)."""
     i, jb = wp.tid()
     iy = row0 + i * ROWS
     a0 = vec16()
     a1 = vec16()
     a2 = vec16()
     a3 = vec16()
+    a4 = vec16()
+    a5 = vec16()
+    a6 = vec16()
+    a7 = vec16()
     for k in range(p.shape[1]):
         v = q[k, jb]
         a0 += p[iy, k] * v
         a1 += p[iy + 1, k] * v
         a2 += p[iy + 2, k] * v
         a3 += p[iy + 3, k] * v
-    ny = z.shape[0]
-    nx = z.shape[1]
-    for c in range(COLS):
-        ix = jb * COLS + c
-        if ix < nx:
-            if iy < ny:
-                z[iy, ix] = c0 - a0[c]
-            if iy + 1 < ny:
-                z[iy + 1, ix] = c0 - a1[c]
-            if iy + 2 < ny:
-                z[iy + 2, ix] = c0 - a2[c]
-            if iy + 3 < ny:
-                z[iy + 3, ix] = c0 - a3[c]
+        a4 += p[iy + 4, k] * v
+        a5 += p[iy + 5, k] * v
+        a6 += p[iy + 6, k] * v
+        a7 += p[iy + 7, k] * v
+    store_row(z, iy, jb, c0, a0)
+    store_row(z, iy + 1, jb, c0, a1)
+    store_row(z, iy + 2, jb, c0, a2)
+    store_row(z, iy + 3, jb, c0, a3)
+    store_row(z, iy + 4, jb, c0, a4)
+    store_row(z, iy + 5, jb, c0, a5)
+    store_row(z, iy + 6, jb, c0, a6)
+    store_row(z, iy + 7, jb, c0, a7)
 
 
 @wp.kernel

@@ -228,7 +228,9 @@ def fit_power_law(
     if depth_window is not None:
         lo, hi = (float(v) for v in depth_window)
         if not (0 <= lo < hi):
-            raise ValueError(f"depth_window must be (lo, hi) with 0 ≤ lo < hi (m), got {depth_window!r}")
+            raise ValueError(
+                f"depth_window must be (lo, hi) with 0 ≤ lo < hi (m), got {depth_window!r}"
+            )
         sel &= (sc.depth >= lo) & (sc.depth <= hi)
     if np.count_nonzero(sel) < 3:
         raise ValueError(
