@@ -470,7 +470,7 @@ def _synthetic_curve(n_islands, exponent, rt=1.0):
         euler_characteristic=z.astype(np.int64),
         slit_exponent=np.asarray(exponent, float),
         slit_r2=z + 1,
-        slit_n_islands=z.astype(np.int64) + 10,
+        slit_n_islands=z.astype(np.int64) + 100,
         area_histogram=np.zeros((depth.size, 4), np.int64),
         sizes=(),
         rt=rt,
@@ -497,8 +497,12 @@ def test_indicators_on_a_synthetic_curve():
     assert not ind.fractal_depth_censored
     d = ind.to_dict()
     assert d["island_peak_depth_percent_Rt"] == pytest.approx(40.0)
+    assert ind.plateau_range == pytest.approx((0.015, 0.115))
     flat = applicable_depth(_synthetic_curve(n, np.full(101, 0.7)))
     assert flat.fractal_depth_censored and flat.fractal_depth == pytest.approx(0.5)
+    few = _synthetic_curve(n, beta)
+    few.slit_n_islands[:] = 10  # too few islands everywhere: no exponent counts
+    assert math.isnan(applicable_depth(few).fractal_depth)
 
 
 # --- bad input ------------------------------------------------------------------------------------

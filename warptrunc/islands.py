@@ -329,6 +329,8 @@ class Indicators:
     """Peak-to-valley height R_t (m)."""
     exponent_tolerance: float
     """Allowed relative drop of the exponent below the plateau (dimensionless)."""
+    min_islands: int
+    """Fewest fitted islands for a depth's exponent to count."""
     plateau_range: tuple[float, float]
     """Depth range, as fractions of R_t, over which the plateau exponent is the median."""
     smooth: int
@@ -353,7 +355,8 @@ class Indicators:
             "fractality_depth_censored": bool(self.fractal_depth_censored),
             "rt_m": self.rt,
             "exponent_tolerance": self.exponent_tolerance,
-            "plateau_range_fraction_of_Rt": list(self.plateau_range),
+            "min_islands": self.min_islands,
+            "plateau_range_fraction_of_Rt": [num(v) for v in self.plateau_range],
             "smooth": self.smooth,
         }
 
@@ -1207,7 +1210,8 @@ def applicable_depth(
     curve: IslandCurve,
     *,
     exponent_tolerance: float = 0.05,
-    plateau_range: tuple[float, float] = (0.05, 0.2),
+    min_islands: int = 50,
+    plateau_width: float = 0.1,
     smooth: int = 5,
 ) -> Indicators:
     """Depths bounding the applicable range of the truncation method (Table 2, Fig. 8).
@@ -1219,8 +1223,11 @@ def applicable_depth(
     exponent_tolerance : float
         Relative drop X of the slit-island exponent below its plateau that ends fractality
         (dimensionless, 0 < X < 1).
-    plateau_range : (float, float)
-        Depth range (fractions of R_t) whose median exponent is the plateau.
+    min_islands : int
+        Fewest fitted islands (``curve.slit_n_islands``) for a depth's exponent to count; the
+        first few contact spots give noisy fits.
+    plateau_width : float
+        Width of the plateau window, as a fraction of R_t (dimensionless).
     smooth : int
         Odd window (depth samples) of a running mean of the growth rate and a running median
         of the exponent; 1 disables smoothing.
@@ -1233,33 +1240,37 @@ def applicable_depth(
     -----
     * Maximum growth rate: the depth at which d(n/n_max)/d(ω/R_t), smoothed, is largest (the
       dashed lines of Fig. 8a).
-    * Fractality depth: the plateau exponent β₀ is the median of the (running-median smoothed)
-      exponent β(ω) over ``plateau_range``. Going deeper from the start of that range, the
-      fractality depth is the last depth before β first falls below (1 − X)·β₀ (the "obvious
-      decrease" of §4.3). When it never does, it is the deepest depth with an exponent and
-      ``fractal_depth_censored`` is set.
-    * Island-count peak: the depth of the largest island count (first one when tied).
+    * Fractality depth ("the deepest depth at which the slit-island exponent stays
+      constant"): only depths whose fit uses at least ``min_islands`` islands count. The
+      plateau exponent β₀ is the median of the smoothed exponent over the first
+      ``plateau_width``·R_t of those depths. Going deeper, the fractality depth is the last
+      depth before the exponent first falls below (1 − X)·β₀ (the "obvious decrease" of
+      §4.3; a rise does not end it). When it never falls, it is the deepest counted depth and
+      ``fractal_depth_censored`` is set: the true value lies beyond the analysed range.
+    * Island-count peak: the depth of the largest island count (the first one when tied).
     """
     tol = check_range("exponent_tolerance", exponent_tolerance, 0.0, 1.0)
+    min_islands = check_int("min_islands", min_islands, MIN_ISLANDS)
+    width = check_range("plateau_width", plateau_width, 0.0, unit="(fraction of R_t)")
     smooth = check_int("smooth", smooth, 1)
     if smooth % 2 == 0:
         raise ValueError(f"smooth must be odd, got {smooth!r}")
-    lo, hi = (float(v) for v in plateau_range)
-    if not 0.0 <= lo < hi:
-        raise ValueError(f"plateau_range must be (lo, hi) with 0 ≤ lo < hi, got {plateau_range!r}")
     frac = curve.depth_fraction
     growth = _running(curve.island_growth_rate, smooth, "mean")
     k_growth = int(np.nanargmax(growth)) if np.isfinite(growth).any() else 0
     k_peak = int(np.argmax(curve.n_islands))
 
-    beta = _running(curve.slit_exponent, smooth, "median")
+    beta = np.where(curve.slit_n_islands >= min_islands, curve.slit_exponent, math.nan)
+    beta = _running(beta, smooth, "median")
+    beta[curve.slit_n_islands < min_islands] = math.nan
     fractal, plateau, censored = math.nan, math.nan, False
-    in_range = np.isfinite(beta) & (frac >= lo) & (frac <= hi)
-    if in_range.any():
-        plateau = float(np.median(beta[in_range]))
-        thr = (1.0 - tol) * plateau
-        ks = np.flatnonzero(np.isfinite(beta) & (frac >= lo))
-        below = ks[beta[ks] < thr]
+    lo = hi = math.nan
+    ks = np.flatnonzero(np.isfinite(beta))
+    if ks.size:
+        lo = float(frac[ks[0]])
+        hi = lo + width
+        plateau = float(np.median(beta[ks[frac[ks] <= hi]]))
+        below = ks[beta[ks] < (1.0 - tol) * plateau]
         if below.size:
             j = int(below[0])
             prev = ks[ks < j]
@@ -1274,6 +1285,7 @@ def applicable_depth(
         fractal_depth_censored=censored,
         rt=curve.rt,
         exponent_tolerance=tol,
+        min_islands=min_islands,
         plateau_range=(lo, hi),
         smooth=smooth,
     )
