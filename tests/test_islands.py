@@ -539,3 +539,15 @@ def test_bad_input_raises_clear_errors():
         applicable_depth(c, smooth=4)
     with pytest.raises(ValueError, match="exponent_tolerance must be in"):
         applicable_depth(c, exponent_tolerance=1.5)
+
+
+def test_indicators_ignore_a_short_dip():
+    frac = np.linspace(0, 0.5, 101)
+    n = np.arange(101)
+    beta = np.full(101, 0.7)
+    beta[40:42] = 0.6  # 1 % R_t dip: shorter than persist = 2 %
+    beta[80:] = 0.6  # a lasting drop from 40 % R_t
+    ind = applicable_depth(_synthetic_curve(n, beta), smooth=1)
+    assert ind.fractal_depth == pytest.approx(frac[79])
+    ind = applicable_depth(_synthetic_curve(n, beta), smooth=1, persist=0.0)
+    assert ind.fractal_depth == pytest.approx(frac[39])

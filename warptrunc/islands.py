@@ -331,6 +331,8 @@ class Indicators:
     """Allowed relative drop of the exponent below the plateau (dimensionless)."""
     min_islands: int
     """Fewest fitted islands for a depth's exponent to count."""
+    persist: float
+    """Depth span (fraction of R_t) a drop must last to count (dimensionless)."""
     plateau_range: tuple[float, float]
     """Depth range, as fractions of R_t, over which the plateau exponent is the median."""
     smooth: int
@@ -356,6 +358,7 @@ class Indicators:
             "rt_m": self.rt,
             "exponent_tolerance": self.exponent_tolerance,
             "min_islands": self.min_islands,
+            "persist_fraction_of_Rt": self.persist,
             "plateau_range_fraction_of_Rt": [num(v) for v in self.plateau_range],
             "smooth": self.smooth,
         }
@@ -1212,6 +1215,7 @@ def applicable_depth(
     exponent_tolerance: float = 0.05,
     min_islands: int = 50,
     plateau_width: float = 0.1,
+    persist: float = 0.02,
     smooth: int = 5,
 ) -> Indicators:
     """Depths bounding the applicable range of the truncation method (Table 2, Fig. 8).
@@ -1228,6 +1232,9 @@ def applicable_depth(
         first few contact spots give noisy fits.
     plateau_width : float
         Width of the plateau window, as a fraction of R_t (dimensionless).
+    persist : float
+        Depth span, as a fraction of R_t, over which the exponent must stay below the
+        threshold for a drop to count (dimensionless); 0 accepts a single sample.
     smooth : int
         Odd window (depth samples) of a running mean of the growth rate and a running median
         of the exponent; 1 disables smoothing.
@@ -1244,14 +1251,17 @@ def applicable_depth(
       constant"): only depths whose fit uses at least ``min_islands`` islands count. The
       plateau exponent β₀ is the median of the smoothed exponent over the first
       ``plateau_width``·R_t of those depths. Going deeper, the fractality depth is the last
-      depth before the exponent first falls below (1 − X)·β₀ (the "obvious decrease" of
-      §4.3; a rise does not end it). When it never falls, it is the deepest counted depth and
-      ``fractal_depth_censored`` is set: the true value lies beyond the analysed range.
+      counted depth before the exponent first falls below (1 − X)·β₀ and stays below for
+      every counted depth within the next ``persist``·R_t (the "obvious decrease" of §4.3; a
+      rise does not end it, nor does a one-sample dip of a noisy fit). When it never falls,
+      it is the deepest counted depth and ``fractal_depth_censored`` is set: the true value
+      lies beyond the analysed range.
     * Island-count peak: the depth of the largest island count (the first one when tied).
     """
     tol = check_range("exponent_tolerance", exponent_tolerance, 0.0, 1.0)
     min_islands = check_int("min_islands", min_islands, MIN_ISLANDS)
     width = check_range("plateau_width", plateau_width, 0.0, unit="(fraction of R_t)")
+    persist = check_range("persist", persist, 0.0, lo_open=False, unit="(fraction of R_t)")
     smooth = check_int("smooth", smooth, 1)
     if smooth % 2 == 0:
         raise ValueError(f"smooth must be odd, got {smooth!r}")
@@ -1270,11 +1280,15 @@ def applicable_depth(
         lo = float(frac[ks[0]])
         hi = lo + width
         plateau = float(np.median(beta[ks[frac[ks] <= hi]]))
-        below = ks[beta[ks] < (1.0 - tol) * plateau]
-        if below.size:
-            j = int(below[0])
-            prev = ks[ks < j]
-            fractal = float(curve.depth[prev[-1]]) if prev.size else float(curve.depth[j])
+        low = beta[ks] < (1.0 - tol) * plateau
+        drop = -1
+        for i in np.flatnonzero(low):
+            window = (frac[ks] >= frac[ks[i]]) & (frac[ks] <= frac[ks[i]] + persist + 1e-12)
+            if low[window].all():
+                drop = int(i)
+                break
+        if drop >= 0:
+            fractal = float(curve.depth[ks[max(drop - 1, 0)]])
         else:
             fractal, censored = float(curve.depth[ks[-1]]), True
     return Indicators(
@@ -1286,6 +1300,7 @@ def applicable_depth(
         rt=curve.rt,
         exponent_tolerance=tol,
         min_islands=min_islands,
+        persist=persist,
         plateau_range=(lo, hi),
         smooth=smooth,
     )

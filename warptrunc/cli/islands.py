@@ -68,6 +68,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--plateau-width", type=float, default=0.1,
         help="width of the plateau window (fraction of R_t)",
     )  # fmt: skip
+    i.add_argument(
+        "--persist", type=float, default=0.02,
+        help="depth span (fraction of R_t) a drop of the exponent must last to count",
+    )  # fmt: skip
     i.add_argument("--smooth", type=int, default=5, help="odd smoothing window (depth samples)")
     add_device(p)
     add_out(p)
@@ -98,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
     )  # fmt: skip
     ind = applicable_depth(
         curve, exponent_tolerance=args.exponent_tolerance, min_islands=args.min_islands,
-        plateau_width=args.plateau_width, smooth=args.smooth,
+        plateau_width=args.plateau_width, persist=args.persist, smooth=args.smooth,
     )  # fmt: skip
     args.out.mkdir(parents=True, exist_ok=True)
     write_csv(curve, args.out / "islands.csv")
