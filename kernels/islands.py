@@ -326,12 +326,12 @@ def active_labels_flag_kernel(
     flag: wp.array[wp.int32],
 ):
     """One thread per pixel, after the unions of increment k: contact pixels (index <= k) get
-    ``parent := root`` (read-only finds: one writer per slot) and ``flag = 1`` for roots,
-    0 elsewhere (the count step of count → scan → write)."""
+    ``parent := root`` (path halving) and ``flag = 1`` for roots, 0 elsewhere (the count step
+    of count → scan → write)."""
     i = wp.tid()
     f = int(0)
     if idx[i] <= k:
-        r = find_root_readonly(parent, i)
+        r = find_root(parent, i)
         parent[i] = r
         if r == i:
             f = 1
@@ -346,11 +346,12 @@ def active_labels_write_kernel(
     rank: wp.array[wp.int32],
     labels: wp.array[wp.int32],
 ):
-    """One thread per pixel: ``labels = rank[root]`` for contact pixels, 0 elsewhere."""
+    """One thread per pixel: ``labels = rank[root]`` for contact pixels, 0 elsewhere
+    (``labels`` may alias ``rank``, as in ``label.write_labels_kernel``)."""
     i = wp.tid()
     lab = int(0)
     if idx[i] <= k:
-        lab = rank[parent[i]]
+        lab = rank[find_root_readonly(parent, i)]
     labels[i] = lab
 
 

@@ -22,8 +22,8 @@ Path halving in ``find_root`` uses plain stores: every store points a pixel at o
 ancestors, which is in the same set and has a smaller index, so races between such stores are
 benign (a stale store only leaves a longer path).
 
-Pipeline (one thread per pixel, 2-D launches ``iy, ix = wp.tid()``):
-``init_parent_kernel`` (link to the left neighbour when it is contact) → ``hook_kernel``
+Pipeline (one thread per pixel, 2-D launches ``iy, ix = wp.tid()``, except the row segments of
+the first step): ``init_parent_kernel`` (runs of contact pixels in a row) → ``hook_kernel``
 (union with the forward neighbours) → ``compress_flag_kernel`` (parent := root, flag roots) →
 exclusive/inclusive scan of the flags (host: ``wp.utils.array_scan``) → ``write_labels_kernel``.
 """
@@ -111,20 +111,33 @@ def is_contact(mask: wp.array[wp.uint8], j: int) -> bool:
 def init_parent_kernel(
     mask: wp.array[wp.uint8],
     nx: int,
+    segment: int,
     parent: wp.array[wp.int32],
 ):
-    """One thread per pixel: contact pixels point at their left neighbour when it is contact
-    (never across the periodic seam, which keeps ``parent[i] < i``), else at themselves;
-    background pixels get -1."""
-    iy, ix = wp.tid()
-    i = iy * nx + ix
-    p = int(-1)
-    if mask[i] != wp.uint8(0):
-        p = i
-        if ix > 0:
-            if mask[i - 1] != wp.uint8(0):
-                p = i - 1
-    parent[i] = p
+    """One thread per (row, segment of ``segment`` pixels): the pixels of a run of contact
+    pixels inside the segment point at the run's first pixel, which points at its left
+    neighbour when the run continues from the previous segment (never across the periodic
+    seam, which keeps ``parent[i] < i``); background pixels get -1. Paths along a row are then
+    at most one hop per segment long."""
+    iy, s = wp.tid()
+    x0 = s * segment
+    x1 = wp.min(x0 + segment, nx)
+    start = int(-1)
+    for ix in range(x0, x1):
+        i = iy * nx + ix
+        p = int(-1)
+        if mask[i] != wp.uint8(0):
+            if start < 0:
+                start = i
+                p = i
+                if ix == x0 and ix > 0:
+                    if mask[i - 1] != wp.uint8(0):
+                        p = i - 1
+            else:
+                p = start
+        else:
+            start = -1
+        parent[i] = p
 
 
 @wp.kernel
@@ -179,13 +192,14 @@ def compress_flag_kernel(
     parent: wp.array[wp.int32],
     flag: wp.array[wp.int32],
 ):
-    """One thread per pixel: ``parent[i] := root`` (read-only finds, so each slot has one writer)
-    and ``flag[i] = 1`` for roots, 0 elsewhere."""
+    """One thread per pixel: ``parent[i] := root`` (path halving on the way) and ``flag[i] = 1``
+    for roots, 0 elsewhere. A concurrent halving store may put an intermediate ancestor back
+    into ``parent[i]``; ``write_labels_kernel`` therefore finds the root again (1–2 hops)."""
     iy, ix = wp.tid()
     i = iy * nx + ix
     f = int(0)
     if parent[i] >= 0:
-        r = find_root_readonly(parent, i)
+        r = find_root(parent, i)
         parent[i] = r
         if r == i:
             f = 1
@@ -200,11 +214,12 @@ def write_labels_kernel(
     labels: wp.array[wp.int32],
 ):
     """One thread per pixel: ``labels[i] = rank[root]`` (the inclusive scan of the root flags,
-    so labels are 1..n in raster order of each island's first pixel), 0 for background."""
+    so labels are 1..n in raster order of each island's first pixel), 0 for background.
+    ``labels`` may be ``rank`` itself: a root rewrites its own value, and no thread reads the
+    slot of a non-root."""
     iy, ix = wp.tid()
     i = iy * nx + ix
-    p = parent[i]
     lab = int(0)
-    if p >= 0:
-        lab = rank[p]
+    if parent[i] >= 0:
+        lab = rank[find_root_readonly(parent, i)]
     labels[i] = lab

@@ -551,3 +551,17 @@ def test_indicators_ignore_a_short_dip():
     assert ind.fractal_depth == pytest.approx(frac[79])
     ind = applicable_depth(_synthetic_curve(n, beta), smooth=1, persist=0.0)
     assert ind.fractal_depth == pytest.approx(frac[39])
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_island_counts_device_equal_scipy(device, connectivity):
+    s = smooth_surface(50, 61, seed=8)
+    depth = warptrunc.depth_grid(s.rt, 30, max_depth_fraction=1.0)
+    idx = warptrunc.contact_index_map(s, depth, device=device, as_warp=True)
+    from warptrunc.islands import island_counts_device
+
+    got = island_counts_device(idx, depth.size, connectivity)
+    ref = [scipy_labels(s.heights >= t, connectivity)[1] for t in thresholds(s, depth)]
+    np.testing.assert_array_equal(got, ref)
+    with pytest.raises(ValueError, match="index must be a 2-D warp array of int32"):
+        island_counts_device(idx.numpy(), depth.size)

@@ -130,7 +130,8 @@ def island_number(
                 if d == d:  # not NaN
                     ax.axvline(
                         100 * d / ind.rt, ls=style, lw=1.0, color=line.get_color(),
-                        label=f"{what}: {100 * d / ind.rt:.1f} % R$_t$" if i == 0 else None,
+                        label=(what if len(curves) > 1 else f"{what}: {100 * d / ind.rt:.1f} % R$_t$")
+                        if i == 0 else None,
                     )  # fmt: skip
     ax.set_xlabel("truncation depth ω (% R$_t$)")
     ax.set_ylabel("normalised island number n/n$_{max}$")
