@@ -1,6 +1,5 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-# (Warp needs typed locals such as int(0) for variables that change in branches and loops)
 """Total perimeter and Euler characteristic of the contact set at every depth, by histograms.
 
 Launched by ``warptrunc.islands.topology_curve``; no labelling. Input: the per-pixel contact

@@ -1,7 +1,5 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-# ruff: noqa: UP018, RUF046
-# (Warp needs typed locals such as int(0) for variables that change in branches and loops)
 """Contact islands at every truncation depth from one carried union-find forest, and per-island
 area and perimeter.
 

@@ -1,7 +1,5 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-# ruff: noqa: UP018, RUF046
-# (Warp needs typed locals such as int(0) for variables that change in branches and loops)
 """Connected-component labelling of one binary mask by lock-free union-find.
 
 Launched by ``warptrunc.islands`` (``label_device``, ``label_islands``); the union-find
@@ -223,3 +221,68 @@ def write_labels_kernel(
     if parent[i] >= 0:
         lab = rank[find_root_readonly(parent, i)]
     labels[i] = lab
+
+
+@wp.kernel
+def label_sequential_kernel(
+    mask: wp.array[wp.uint8],
+    ny: int,
+    nx: int,
+    connectivity: int,
+    periodic: int,
+    labels: wp.array[wp.int32],
+    count: wp.array[wp.int32],
+):
+    """One thread: the whole map in raster order, for the CPU, where a Warp launch runs on one
+    thread anyway. Pass 1 unites every contact pixel with its neighbours of smaller flat index
+    (each edge once, periodic seams included) in ``labels`` used as the parent array. Pass 2
+    replaces parents by labels in place: a root takes the next label, any other pixel the
+    label already written at its parent (parents have smaller indices). Same labels as the
+    parallel pipeline."""
+    for i in range(ny * nx):
+        p = int(-1)
+        if mask[i] != wp.uint8(0):
+            p = i
+        labels[i] = p
+    for iy in range(ny):
+        for ix in range(nx):
+            i = iy * nx + ix
+            if mask[i] != wp.uint8(0):
+                for d in range(connectivity):
+                    dy = int(0)
+                    dx = int(0)
+                    if d == 0:
+                        dx = -1
+                    elif d == 1:
+                        dy = -1
+                    elif d == 2:
+                        dx = 1
+                    elif d == 3:
+                        dy = 1
+                    elif d == 4:
+                        dy = -1
+                        dx = -1
+                    elif d == 5:
+                        dy = -1
+                        dx = 1
+                    elif d == 6:
+                        dy = 1
+                        dx = -1
+                    else:
+                        dy = 1
+                        dx = 1
+                    j = wrap_index(iy + dy, ix + dx, ny, nx, periodic)
+                    if j >= 0 and j < i:
+                        if mask[j] != wp.uint8(0):
+                            unite(labels, i, j)
+    n = int(0)
+    for i in range(ny * nx):
+        p = labels[i]
+        lab = int(0)
+        if p == i:
+            n += 1
+            lab = n
+        elif p >= 0:
+            lab = labels[p]
+        labels[i] = lab
+    count[0] = n

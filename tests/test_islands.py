@@ -8,10 +8,12 @@ import math
 import numpy as np
 import pytest
 import scipy.ndimage as ndi
+import warp as wp
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 import warptrunc
+from warptrunc import islands as _islands
 from warptrunc.islands import (
     MIN_ISLANDS,
     IslandCurve,
@@ -166,27 +168,44 @@ def smooth_surface(n=64, nx=None, sigma=2.5, seed=0, dx=1e-6):
 
 # --- labelling of one mask ----------------------------------------------------------------------
 
+METHODS = ["dispatch", "parallel", "sequential"]
 
+
+def labels_of(mask, connectivity, device, method, periodic=False):
+    """(labels, n) from ``label_islands`` (which picks the path for the device), or from the
+    parallel (GPU) or sequential (CPU) union-find forced on ``device``, so that both paths are
+    tested on every machine."""
+    if method == "dispatch":
+        isl = label_islands(mask, connectivity=connectivity, periodic=periodic, device=device)
+        return isl.labels, isl.n_islands
+    m = wp.array(np.ascontiguousarray(mask, np.uint8), dtype=wp.uint8, device=device)
+    fn = _islands._label_parallel if method == "parallel" else _islands._label_sequential
+    lab, n = fn(m, connectivity, periodic)
+    return lab.numpy(), n
+
+
+@pytest.mark.parametrize("method", METHODS)
 @pytest.mark.parametrize("connectivity", [4, 8])
 @pytest.mark.parametrize("density", [0.05, 0.2, 0.4, 0.5, 0.593, 0.7, 0.95])
-def test_labels_equal_scipy_random(device, connectivity, density):
+def test_labels_equal_scipy_random(device, connectivity, density, method):
     rng = np.random.default_rng(int(density * 1000) + connectivity)
     mask = rng.random((64, 72)) < density
-    isl = label_islands(mask, connectivity=connectivity, device=device)
+    labels, n_islands = labels_of(mask, connectivity, device, method)
     ref, n = scipy_labels(mask, connectivity)
-    assert isl.n_islands == n
-    np.testing.assert_array_equal(isl.labels, ref)  # both number in raster order
-    assert isl.labels.dtype == np.int32
+    assert n_islands == n
+    np.testing.assert_array_equal(labels, ref)  # both number in raster order
+    assert labels.dtype == np.int32
 
 
+@pytest.mark.parametrize("method", METHODS)
 @pytest.mark.parametrize("connectivity", [4, 8])
 @pytest.mark.parametrize("name", list(hand_masks()))
-def test_labels_equal_scipy_hand_drawn(device, connectivity, name):
+def test_labels_equal_scipy_hand_drawn(device, connectivity, name, method):
     mask = hand_masks()[name]
-    isl = label_islands(mask, connectivity=connectivity, device=device)
+    labels, n_islands = labels_of(mask, connectivity, device, method)
     ref, n = scipy_labels(mask, connectivity)
-    assert isl.n_islands == n
-    np.testing.assert_array_equal(isl.labels, ref)
+    assert n_islands == n
+    np.testing.assert_array_equal(labels, ref)
 
 
 def test_known_counts():
@@ -204,26 +223,28 @@ def test_known_counts():
     assert full.area[0] == pytest.approx(9 * 13 * 6e-12)
 
 
+@pytest.mark.parametrize("method", ["parallel", "sequential"])
 @pytest.mark.parametrize("connectivity", [4, 8])
 @pytest.mark.parametrize("periodic", [False, True])
 @pytest.mark.parametrize("density", [0.1, 0.45, 0.6, 0.9])
-def test_labels_equal_graph_reference(connectivity, periodic, density):
+def test_labels_equal_graph_reference(connectivity, periodic, density, method):
     rng = np.random.default_rng(7 + int(density * 100))
     mask = rng.random((33, 40)) < density
-    isl = label_islands(mask, connectivity=connectivity, periodic=periodic, device="cpu")
+    labels, n_islands = labels_of(mask, connectivity, "cpu", method, periodic)
     ref, n = graph_labels(mask, connectivity, periodic)
-    assert isl.n_islands == n
-    np.testing.assert_array_equal(isl.labels, ref)
+    assert n_islands == n
+    np.testing.assert_array_equal(labels, ref)
 
 
+@pytest.mark.parametrize("method", ["parallel", "sequential"])
 @pytest.mark.parametrize("periodic", [False, True])
-def test_periodic_seams(periodic):
+def test_periodic_seams(periodic, method):
     mask = np.zeros((8, 10), bool)
     mask[:, 0] = mask[:, -1] = True  # joined across the x seam
     mask[0, 4] = mask[-1, 4] = True  # joined across the y seam
     mask[0, 6] = mask[-1, 7] = True  # diagonal across the y seam
-    n4 = label_islands(mask, periodic=periodic, device="cpu").n_islands
-    n8 = label_islands(mask, connectivity=8, periodic=periodic, device="cpu").n_islands
+    n4 = labels_of(mask, 4, "cpu", method, periodic)[1]
+    n8 = labels_of(mask, 8, "cpu", method, periodic)[1]
     assert (n4, n8) == ((4, 3) if periodic else (6, 6))
 
 

@@ -427,8 +427,21 @@ def label_device(
         1..n in raster order of each island's first pixel, 0 for no contact (same device).
     n : int
         Number of islands (read back from the device: a sync point).
+
+    Notes
+    -----
+    On a GPU: lock-free parallel union-find (see :func:`label_islands`). On the CPU, where a
+    Warp launch runs on one thread, the same union-find runs as one raster-order pass followed
+    by an in-place relabelling pass, in a single launch. Both give identical labels.
     """
     connectivity = _check_connectivity(connectivity)
+    _check_mask_array(mask)
+    if mask.device.is_cpu:
+        return _label_sequential(mask, connectivity, periodic)
+    return _label_parallel(mask, connectivity, periodic)
+
+
+def _check_mask_array(mask: wp.array) -> None:
     if not isinstance(mask, wp.array) or mask.ndim != 2 or mask.dtype != wp.uint8:
         raise ValueError(
             f"mask must be a 2-D warp array of uint8, got {type(mask).__name__} "
@@ -436,9 +449,28 @@ def label_device(
         )
     if not mask.is_contiguous:
         raise ValueError("mask must be a contiguous warp array")
+    _check_index_size(mask.shape[0] * mask.shape[1])
+
+
+def _label_sequential(mask: wp.array, connectivity: int, periodic: bool) -> tuple[wp.array, int]:
+    """One-thread raster-order union-find (the CPU path of :func:`label_device`)."""
+    ny, nx = mask.shape
+    labels = wp.empty(ny * nx, dtype=wp.int32, device=mask.device)
+    count = wp.zeros(1, dtype=wp.int32, device=mask.device)
+    wp.launch(
+        _kl.label_sequential_kernel,
+        dim=1,
+        inputs=[mask.reshape((ny * nx,)), ny, nx, connectivity, int(bool(periodic))],
+        outputs=[labels, count],
+        device=mask.device,
+    )
+    return labels.reshape((ny, nx)), int(count.numpy()[0])  # sync point
+
+
+def _label_parallel(mask: wp.array, connectivity: int, periodic: bool) -> tuple[wp.array, int]:
+    """Lock-free parallel union-find (the GPU path of :func:`label_device`)."""
     ny, nx = mask.shape
     n = ny * nx
-    _check_index_size(n)
     device = mask.device
     flat = mask.reshape((n,))
     parent = wp.empty(n, dtype=wp.int32, device=device)
