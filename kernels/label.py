@@ -223,6 +223,49 @@ def write_labels_kernel(
     labels[i] = lab
 
 
+@wp.func
+def unite_smaller_neighbours(
+    mask: wp.array[wp.uint8],
+    iy: int,
+    ix: int,
+    ny: int,
+    nx: int,
+    connectivity: int,
+    periodic: int,
+    labels: wp.array[wp.int32],
+):
+    """Unite pixel (iy, ix) with every contact neighbour of smaller flat index (general case:
+    periodic seams)."""
+    i = iy * nx + ix
+    for d in range(connectivity):
+        dy = int(0)
+        dx = int(0)
+        if d == 0:
+            dx = -1
+        elif d == 1:
+            dy = -1
+        elif d == 2:
+            dx = 1
+        elif d == 3:
+            dy = 1
+        elif d == 4:
+            dy = -1
+            dx = -1
+        elif d == 5:
+            dy = -1
+            dx = 1
+        elif d == 6:
+            dy = 1
+            dx = -1
+        else:
+            dy = 1
+            dx = 1
+        j = wrap_index(iy + dy, ix + dx, ny, nx, periodic)
+        if j >= 0 and j < i:
+            if mask[j] != wp.uint8(0):
+                unite(labels, i, j)
+
+
 @wp.kernel
 def label_sequential_kernel(
     mask: wp.array[wp.uint8],
@@ -235,46 +278,47 @@ def label_sequential_kernel(
 ):
     """One thread: the whole map in raster order, for the CPU, where a Warp launch runs on one
     thread anyway. Pass 1 unites every contact pixel with its neighbours of smaller flat index
-    (each edge once, periodic seams included) in ``labels`` used as the parent array. Pass 2
-    replaces parents by labels in place: a root takes the next label, any other pixel the
-    label already written at its parent (parents have smaller indices). Same labels as the
-    parallel pipeline."""
-    for i in range(ny * nx):
-        p = int(-1)
-        if mask[i] != wp.uint8(0):
-            p = i
-        labels[i] = p
+    (each edge once, periodic seams included) in ``labels`` used as the parent array; a pixel
+    whose left neighbour is contact starts with that neighbour's parent, and links already
+    implied through it are skipped. Pass 2 replaces parents by labels in place: a root takes
+    the next label, any other pixel the label already written at its parent (parents have
+    smaller indices). Same labels as the parallel pipeline."""
+    zero = wp.uint8(0)
     for iy in range(ny):
         for ix in range(nx):
             i = iy * nx + ix
-            if mask[i] != wp.uint8(0):
-                for d in range(connectivity):
-                    dy = int(0)
-                    dx = int(0)
-                    if d == 0:
-                        dx = -1
-                    elif d == 1:
-                        dy = -1
-                    elif d == 2:
-                        dx = 1
-                    elif d == 3:
-                        dy = 1
-                    elif d == 4:
-                        dy = -1
-                        dx = -1
-                    elif d == 5:
-                        dy = -1
-                        dx = 1
-                    elif d == 6:
-                        dy = 1
-                        dx = -1
+            if mask[i] == zero:
+                labels[i] = -1
+            elif periodic != 0 and (ix == 0 or iy == 0 or ix == nx - 1 or iy == ny - 1):
+                labels[i] = i
+                unite_smaller_neighbours(mask, iy, ix, ny, nx, connectivity, periodic, labels)
+            else:
+                left = False
+                if ix > 0:
+                    left = mask[i - 1] != zero
+                labels[i] = i
+                if left:
+                    labels[i] = labels[i - 1]  # the left pixel's parent: a short path
+                if iy > 0:
+                    b = i - nx
+                    down = mask[b] != zero
+                    down_left = False
+                    if ix > 0:
+                        down_left = mask[b - 1] != zero
+                    if connectivity == 4:
+                        if down and not (left and down_left):
+                            unite(labels, i, b)
                     else:
-                        dy = 1
-                        dx = 1
-                    j = wrap_index(iy + dy, ix + dx, ny, nx, periodic)
-                    if j >= 0 and j < i:
-                        if mask[j] != wp.uint8(0):
-                            unite(labels, i, j)
+                        down_right = False
+                        if ix < nx - 1:
+                            down_right = mask[b + 1] != zero
+                        # left is diagonal to down; down is beside down-left and down-right
+                        if down and not left:
+                            unite(labels, i, b)
+                        if down_left and not left and not down:
+                            unite(labels, i, b - 1)
+                        if down_right and not down:
+                            unite(labels, i, b + 1)
     n = int(0)
     for i in range(ny * nx):
         p = labels[i]
