@@ -63,6 +63,7 @@ except ImportError:  # not installed: import the checkout, mapping kernels/ as w
 import warp as wp  # noqa: E402
 
 from warptrunc.islands import (  # noqa: E402
+    _Forest,
     _topology_hist,
     island_counts_device,
     island_curve,
@@ -106,6 +107,29 @@ def guarded(res: dict, key: str, fn):
         res.setdefault("errors", {})[key] = f"{type(exc).__name__}: {exc}"
         traceback.print_exc()
         return None
+
+
+def counts_breakdown(idx, n: int, n1: int, device, sync) -> dict:
+    """Median split of ``island_counts_device``: sort + buckets, the union passes, the
+    difference histogram."""
+    flat = idx.reshape((n * n,))
+    parts: dict[str, list[float]] = {"sort_and_buckets_s": [], "unions_s": [], "histogram_s": []}
+    for _ in range(4):  # the first run warms up
+        sync()
+        t0 = time.perf_counter()
+        forest = _Forest(flat, (n, n), n1, 4, False, False, device)
+        sync()
+        t1 = time.perf_counter()
+        for _ in range(n1):
+            forest.step()
+        sync()
+        t2 = time.perf_counter()
+        forest.island_counts()
+        t3 = time.perf_counter()
+        for key, v in zip(parts, (t1 - t0, t2 - t1, t3 - t2), strict=True):
+            parts[key].append(v)
+        del forest
+    return {k: statistics.median(v[1:]) for k, v in parts.items()}
 
 
 def run_case(n: int, device, args) -> dict:
@@ -206,6 +230,9 @@ def run_case(n: int, device, args) -> dict:
         )
     counts = island_counts_device(idx, n1, 4)
     res["max_islands"] = int(counts.max())
+    res["warp_counts_breakdown4"] = guarded(
+        res, "breakdown", lambda: counts_breakdown(idx, n, n1, device, sync)
+    )
     flat = idx.reshape((n * n,))
     res["warp_perimeter_euler_histograms_s"] = guarded(
         res,
