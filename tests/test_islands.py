@@ -4,6 +4,7 @@
 (periodic maps), NumPy edge counting, NumPy least squares, and analytic cases."""
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -586,3 +587,37 @@ def test_island_counts_device_equal_scipy(device, connectivity):
     np.testing.assert_array_equal(got, ref)
     with pytest.raises(ValueError, match="index must be a 2-D warp array of int32"):
         island_counts_device(idx.numpy(), depth.size)
+
+
+def _cuda_or_skip():
+    want = os.environ.get("WARPTRUNC_TEST_DEVICES")
+    if wp.get_cuda_device_count() == 0 or (want and "cuda:0" not in want):
+        pytest.skip("needs a CUDA device")
+
+
+@pytest.mark.gpu
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_gpu_labels_deterministic_and_equal_scipy(connectivity):
+    _cuda_or_skip()
+    rng = np.random.default_rng(12)
+    for density in (0.3, 0.5, 0.593, 0.7):
+        mask = rng.random((512, 640)) < density
+        ref, n = scipy_labels(mask, connectivity)
+        for _ in range(3):  # thread scheduling differs from run to run, labels must not
+            isl = label_islands(mask, connectivity=connectivity, device="cuda:0")
+            assert isl.n_islands == n
+            np.testing.assert_array_equal(isl.labels, ref)
+
+
+@pytest.mark.gpu
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_gpu_island_curve_equals_cpu(connectivity):
+    _cuda_or_skip()
+    s = smooth_surface(256, 200, sigma=3.0, seed=13)
+    kw = dict(connectivity=connectivity, min_pixels=4, snapshot_depths=[0.3 * s.rt])
+    a = island_curve(s, 60, device="cpu", **kw)
+    b = island_curve(s, 60, device="cuda:0", **kw)
+    for key, col in a.to_dict().items():
+        np.testing.assert_array_equal(col, b.to_dict()[key], err_msg=key)
+    np.testing.assert_array_equal(a.area_histogram, b.area_histogram)
+    np.testing.assert_array_equal(a.sizes[0].perimeter, b.sizes[0].perimeter)
