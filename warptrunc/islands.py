@@ -23,11 +23,12 @@ non-contact. They do not depend on the device or on thread scheduling, and equal
 ``scipy.ndimage.label`` with the matching structure.
 
 *Perimeter* of an island: the total length of the pixel edges between one of its pixels and a
-non-contact pixel, dy per edge crossed along x and dx per edge crossed along y. Outside a
-bounded domain counts as non-contact, so an island cut by the border is closed along it; with
-``periodic=True`` the map wraps around instead. This "city-block" length overestimates an
-oblique boundary by up to √2, by the same factor at every scale, which leaves slit-island
-exponents unchanged.
+non-contact pixel, dy per edge crossed along x and dx per edge crossed along y; the shores of
+enclosed holes count too. Outside a bounded domain counts as non-contact, so an island cut by
+the border is closed along it; with ``periodic=True`` the map wraps around instead. This
+"city-block" length overestimates an oblique boundary (by 4/π on average for isotropic
+boundaries, up to √2), a factor that does not depend on island size, so it moves the
+intercept of a slit-island fit, not its exponent.
 
 *Euler characteristic* χ of the contact set: islands minus enclosed holes (non-contact
 components not touching the border, connectivity 8 for contact connectivity 4 and vice
