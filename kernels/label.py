@@ -20,10 +20,11 @@ Path halving in ``find_root`` uses plain stores: every store points a pixel at o
 ancestors, which is in the same set and has a smaller index, so races between such stores are
 benign (a stale store only leaves a longer path).
 
-Pipeline (one thread per pixel, 2-D launches ``iy, ix = wp.tid()``, except the row segments of
-the first step): ``init_parent_kernel`` (runs of contact pixels in a row) → ``hook_kernel``
+Pipeline (one thread per pixel, 2-D launches ``iy, ix = wp.tid()``): ``init_parent_kernel``
+(runs of contact pixels in a row) → ``hook_kernel``
 (union with the forward neighbours) → ``compress_flag_kernel`` (parent := root, flag roots) →
-exclusive/inclusive scan of the flags (host: ``wp.utils.array_scan``) → ``write_labels_kernel``.
+inclusive scan of the flags (``wp.utils.array_scan``) → ``write_labels_kernel``. On the CPU,
+``label_sequential_kernel`` does the same union-find in raster order in one launch.
 """
 
 import warp as wp
@@ -112,30 +113,26 @@ def init_parent_kernel(
     segment: int,
     parent: wp.array[wp.int32],
 ):
-    """One thread per (row, segment of ``segment`` pixels): the pixels of a run of contact
-    pixels inside the segment point at the run's first pixel, which points at its left
-    neighbour when the run continues from the previous segment (never across the periodic
-    seam, which keeps ``parent[i] < i``); background pixels get -1. Paths along a row are then
-    at most one hop per segment long."""
-    iy, s = wp.tid()
-    x0 = s * segment
-    x1 = wp.min(x0 + segment, nx)
-    start = int(-1)
-    for ix in range(x0, x1):
-        i = iy * nx + ix
-        p = int(-1)
-        if mask[i] != wp.uint8(0):
-            if start < 0:
-                start = i
-                p = i
-                if ix == x0 and ix > 0:
-                    if mask[i - 1] != wp.uint8(0):
-                        p = i - 1
-            else:
-                p = start
-        else:
-            start = -1
-        parent[i] = p
+    """One thread per pixel: a contact pixel points at the first pixel of its run of contact
+    pixels within its aligned row segment of ``segment`` pixels (found by scanning left, at
+    most ``segment`` − 1 cached reads); that first pixel points at its left neighbour when the
+    run continues from the previous segment (never across the periodic seam, which keeps
+    ``parent[i] < i``), else at itself. Background pixels get -1. Paths along a row are then
+    at most one hop per segment long, and writes stay coalesced."""
+    iy, ix = wp.tid()
+    row = iy * nx
+    i = row + ix
+    p = int(-1)
+    if mask[i] != wp.uint8(0):
+        x0 = (ix // segment) * segment
+        s = ix
+        while s > x0 and mask[row + s - 1] != wp.uint8(0):
+            s -= 1
+        p = row + s
+        if s == ix and s == x0 and s > 0:
+            if mask[i - 1] != wp.uint8(0):
+                p = i - 1
+    parent[i] = p
 
 
 @wp.kernel

@@ -478,10 +478,9 @@ def _label_parallel(mask: wp.array, connectivity: int, periodic: bool) -> tuple[
     flag = wp.empty(n, dtype=wp.int32, device=device)
     rank = wp.empty(n, dtype=wp.int32, device=device)
     per = int(bool(periodic))
-    nseg = (nx + _SEGMENT - 1) // _SEGMENT
     wp.launch(
         _kl.init_parent_kernel,
-        dim=(ny, nseg),
+        dim=(ny, nx),
         inputs=[flat, nx, _SEGMENT],
         outputs=[parent],
         device=device,
