@@ -110,9 +110,13 @@ def depth_grid(
 
 
 def _prepare(surface: Surface, depth: np.ndarray, device):
-    z_np = surface.heights.reshape(-1)
-    check_memory(z_np.nbytes + 8 * depth.size, device, "truncation analysis")
-    z = wp.array(z_np, dtype=wp.float32, device=device)
+    cached = getattr(surface, "_device_heights", None)
+    if cached is not None and cached.device == device:
+        z = cached.flatten()  # generated on this device: no second upload
+    else:
+        z_np = surface.heights.reshape(-1)
+        check_memory(z_np.nbytes + 8 * depth.size, device, "truncation analysis")
+        z = wp.array(z_np, dtype=wp.float32, device=device)
     lo, hi = height_range(z, device)
     thr = (np.float64(hi) - depth).astype(np.float32)
     if np.any(np.diff(thr) > 0):  # cannot happen for increasing depth; guard the kernel's premise

@@ -1,0 +1,162 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Benchmark: WM generation and truncation analysis, against a reference in the same process.
+
+What it shows
+    Median times of warptrunc's generation (tables + product, then R_t scaling) and truncation
+    (min/max + atomic histogram over 200 increments) next to a reference on the same surface:
+    NumPy float64 and float32/BLAS on the CPU, CuPy (cuBLAS, ``cupy.histogram``) on a GPU.
+    Reports the accuracy of the float32 heights against a float64 evaluation.
+
+Run
+    python examples/benchmark_pipeline.py --device cpu --n 1024 4096
+    python examples/benchmark_pipeline.py --device cuda:0 --n 10240
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import statistics
+import subprocess
+import time
+from pathlib import Path
+
+import numpy as np
+import warp as wp
+
+import warptrunc
+from warptrunc.truncation import truncate
+from warptrunc.wm import wm_heights, wm_spec, wm_surface
+
+
+def timeit(fn, repeats: int, sync) -> float:
+    """Median wall time (s) of ``fn`` over ``repeats`` runs after one warm-up run."""
+    fn()
+    sync()
+    ts = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        sync()
+        ts.append(time.perf_counter() - t0)
+    return statistics.median(ts)
+
+
+def tables(xp, spec, dtype):
+    """Row and column tables of the separable WM sum, built with NumPy or CuPy."""
+    x = xp.arange(spec.nx, dtype=xp.float64) * spec.dx
+    y = xp.arange(spec.ny, dtype=xp.float64) * spec.dy
+    kx, ky, al, w = (xp.asarray(v) for v in (spec.kx, spec.ky, spec.alpha, spec.w))
+    a = kx[:, None] * x[None, :] + al[:, None]
+    q = xp.concatenate([xp.cos(a), xp.sin(a)]).astype(dtype)
+    b = y[:, None] * ky[None, :]
+    p = xp.concatenate([w * xp.cos(b), -w * xp.sin(b)], axis=1).astype(dtype)
+    return p, q
+
+
+def run_case(n: int, device, repeats: int) -> dict:
+    spec = wm_spec(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6)
+    sync = lambda: wp.synchronize_device(device)  # noqa: E731
+    res = {"n": n, "terms": spec.n_terms, "device": str(device), "device_name": device.name}
+    res["warp_product_s"] = timeit(lambda: wm_heights(spec, device), repeats, sync)
+    res["warp_generate_s"] = timeit(
+        lambda: wm_surface(2.5, 100e-6, L=1e-3, n=n, device=device), repeats, sync
+    )
+    s = wm_surface(2.5, 100e-6, L=1e-3, n=n, device=device)
+    res["warp_truncate_s"] = timeit(lambda: truncate(s, 200, device=device), repeats, sync)
+    c = truncate(s, 200, device=device)
+    z = s.heights
+    if device.is_cuda:
+        try:
+            import cupy as cp
+        except ImportError:
+            return res
+        csync = cp.cuda.Device().synchronize
+        p32, q32 = tables(cp, spec, cp.float32)
+        res["cupy_sgemm_s"] = timeit(lambda: p32 @ q32, repeats, csync)
+        res["cupy_tables_and_sgemm_s"] = timeit(
+            lambda: (lambda pq: pq[0] @ pq[1])(tables(cp, spec, cp.float32)), repeats, csync
+        )
+        p64, q64 = tables(cp, spec, cp.float64)
+        ref = p64 @ q64
+        raw = wm_heights(spec, device)
+        c0 = float(np.sum(spec.w * np.cos(spec.alpha)))
+        err = cp.abs(cp.asarray(raw.numpy()) - (c0 - ref)).max() / (ref.max() - ref.min())
+        res["max_rel_err_vs_float64"] = float(err)
+        zc = cp.asarray(z)
+        top = zc.max()
+        thr = cp.asarray(c.threshold)
+
+        def cupy_trunc():
+            depth_bins = cp.concatenate([thr[::-1], top[None] + 1])
+            h, _ = cp.histogram(zc, bins=depth_bins)
+            return cp.cumsum(h[::-1])
+
+        res["cupy_histogram_truncate_s"] = timeit(cupy_trunc, repeats, csync)
+        res["product_ratio_warp_over_cublas"] = res["warp_product_s"] / res["cupy_sgemm_s"]
+        return res
+    # CPU references: float64 NumPy evaluation (tables + BLAS dgemm) and float32 BLAS sgemm
+    p64, q64 = tables(np, spec, np.float64)
+    res["numpy_float64_generate_s"] = timeit(
+        lambda: (lambda pq: pq[0] @ pq[1])(tables(np, spec, np.float64)), max(1, repeats // 2), lambda: None
+    )
+    p32, q32 = tables(np, spec, np.float32)
+    res["numpy_sgemm_s"] = timeit(lambda: p32 @ q32, repeats, lambda: None)
+    c0 = float(np.sum(spec.w * np.cos(spec.alpha)))
+    raw = wm_heights(spec, device).numpy()
+    ref = c0 - p64 @ q64
+    res["max_rel_err_vs_float64"] = float(np.abs(raw - ref).max() / np.ptp(ref))
+    thr = c.threshold
+    res["numpy_searchsorted_truncate_s"] = timeit(
+        lambda: np.searchsorted(np.sort(z, axis=None), thr[::-1], side="left"), 1, lambda: None
+    )
+    res["numpy_histogram_truncate_s"] = timeit(
+        lambda: np.histogram(z, bins=np.concatenate([thr[::-1], [z.max() + 1]])), 1, lambda: None
+    )
+    res["product_ratio_warp_over_numpy_sgemm"] = res["warp_product_s"] / res["numpy_sgemm_s"]
+    return res
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    ap.add_argument("--device", default=None, help="cpu, cuda:0, ... (default: CUDA if present)")
+    ap.add_argument("--n", type=int, nargs="+", default=[1024, 4096], help="pixels per side")
+    ap.add_argument("--repeats", type=int, default=5, help="timed repeats per measurement")
+    ap.add_argument("--out", type=Path, default=Path("bench"), help="folder for the JSON")
+    ap.add_argument("--quick", action="store_true", help="one 256² case, 2 repeats")
+    ap.add_argument("--no-show", action="store_true", help="(no figures; accepted for symmetry)")
+    args = ap.parse_args(argv)
+    device = warptrunc.resolve_device(args.device)
+    sizes, repeats = ([256], 2) if args.quick else (args.n, args.repeats)
+    try:
+        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    except OSError:
+        commit = ""
+    meta = {"warp": wp.config.version, "numpy": np.__version__, "host": platform.processor() or platform.machine(), "commit": commit}
+    results = []
+    for n in sizes:
+        r = run_case(n, device, repeats)
+        results.append(r)
+        print(json.dumps(r))
+    args.out.mkdir(parents=True, exist_ok=True)
+    path = args.out / f"benchmark_pipeline_{str(device).replace(':', '')}.json"
+    path.write_text(json.dumps({"meta": meta, "results": results}, indent=2) + "\n")
+    print(f"\n{'n':>6} {'terms':>5} {'product':>10} {'generate':>10} {'truncate':>10}  reference")
+    for r in results:
+        ref = (
+            f"cuBLAS {r.get('cupy_sgemm_s', float('nan')) * 1e3:.2f} ms, cupy.histogram "
+            f"{r.get('cupy_histogram_truncate_s', float('nan')) * 1e3:.2f} ms"
+            if device.is_cuda
+            else f"numpy sgemm {r['numpy_sgemm_s'] * 1e3:.1f} ms, float64 {r['numpy_float64_generate_s'] * 1e3:.0f} ms, "
+            f"np.histogram {r['numpy_histogram_truncate_s'] * 1e3:.0f} ms"
+        )
+        print(f"{r['n']:>6} {r['terms']:>5} {r['warp_product_s'] * 1e3:>8.2f}ms {r['warp_generate_s'] * 1e3:>8.2f}ms "
+              f"{r['warp_truncate_s'] * 1e3:>8.2f}ms  {ref}; err {r.get('max_rel_err_vs_float64', float('nan')):.1e}")
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

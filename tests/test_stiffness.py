@@ -1,0 +1,102 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Stiffness, load and the power-law fit against closed forms."""
+
+import math
+
+import numpy as np
+import pytest
+
+from warptrunc.stiffness import Material, StiffnessCurve, fit_power_law, stiffness_curve
+from warptrunc.truncation import TruncationCurve
+
+
+def curve_from_area(depth, area, A=1e-6, pixel_area=1e-12):
+    n = np.round(np.asarray(area) / pixel_area).astype(np.int64)
+    return TruncationCurve(
+        depth=np.asarray(depth, float), threshold=np.zeros(len(depth), np.float32),
+        n_contact_pixels=n, contact_area=np.asarray(area, float), apparent_area=A,
+        pixel_area=pixel_area, n_pixels=int(A / pixel_area), z_top=0.0, rt=float(depth[-1]) * 10,
+    )  # fmt: skip
+
+
+def test_reduced_modulus():
+    assert Material(E=200e9, nu=0.3).reduced_modulus == pytest.approx(200e9 / (1 - 0.09))
+    m = Material(E=70e9, nu=0.33, E_i=1141e9, nu_i=0.07)  # aluminium on diamond
+    assert m.reduced_modulus == pytest.approx(1 / ((1 - 0.33**2) / 70e9 + (1 - 0.07**2) / 1141e9))
+
+
+def test_eq2_eq3_and_trapezoid_load():
+    # A_c = c·ω² → k = β'(2/√π)E_r'·√c·ω is linear in ω, so the trapezoidal rule is exact:
+    # F = β'(2/√π)E_r'·√c·ω²/2
+    depth = np.linspace(0, 1e-6, 11)
+    c = 4.0
+    mat = Material(E=100e9, nu=0.25)
+    sc = stiffness_curve(curve_from_area(depth, c * depth**2), mat, beta_prime=1.2)
+    k_expected = 1.2 * 2 / math.sqrt(math.pi) * mat.reduced_modulus * math.sqrt(c) * depth
+    np.testing.assert_allclose(sc.stiffness, k_expected, rtol=1e-12, atol=1e-30)
+    np.testing.assert_allclose(sc.load, k_expected * depth / 2, rtol=1e-12, atol=1e-30)
+    np.testing.assert_allclose(sc.Ec_over_E, 1.2 * np.sqrt(c * depth**2 / 1e-6), rtol=1e-12)
+    np.testing.assert_allclose(sc.F_over_EA, sc.load / (100e9 * 1e-6), rtol=1e-12)
+
+
+@pytest.mark.parametrize("alpha,beta", [(0.5, 2.0), (0.62, 35.0), (0.9, 0.1)])
+def test_fit_recovers_exact_power_law(alpha, beta):
+    f = np.geomspace(1e-8, 1e-3, 60)
+    n = np.arange(60, dtype=np.int64) + 1
+    z = np.zeros(60)
+    sc = StiffnessCurve(
+        depth=np.linspace(1e-9, 1e-6, 60), n_contact_pixels=n * 1000, contact_area=z, stiffness=z,
+        load=f, Ec_over_E=beta * f**alpha, F_over_EA=f, material=Material(), beta_prime=1.0,
+        apparent_area=1.0, rt=1e-5,
+    )  # fmt: skip
+    fit = fit_power_law(sc, min_pixels=1)
+    assert fit.alpha == pytest.approx(alpha, rel=1e-10)
+    assert fit.beta == pytest.approx(beta, rel=1e-9)
+    assert fit.r2 == pytest.approx(1.0)
+    assert fit.n_points == 60
+
+
+def test_fit_range_selection():
+    depth = np.linspace(0, 1e-6, 101)
+    area = 1e-12 * np.round(1 + 1e4 * (depth / 1e-6) ** 2)  # 1 … 10001 pixels
+    sc = stiffness_curve(curve_from_area(depth, area))
+    all_ = fit_power_law(sc, min_pixels=1)
+    assert all_.n_points == 100  # every increment with non-zero load
+    big = fit_power_law(sc, min_pixels=1000)
+    assert big.n_points == int(np.count_nonzero(sc.n_contact_pixels[1:] >= 1000))
+    assert big.depth_min >= 0.3e-6
+    win = fit_power_law(sc, min_pixels=1, depth_window=(0.5e-6, 0.8e-6))
+    sel = (depth >= 0.5e-6) & (depth <= 0.8e-6)
+    assert win.n_points == int(sel.sum())
+    assert (win.depth_min, win.depth_max) == (depth[sel].min(), depth[sel].max())
+    with pytest.raises(ValueError, match="only 0 increments"):
+        fit_power_law(sc, min_pixels=10**9)
+    with pytest.raises(ValueError, match="depth_window"):
+        fit_power_law(sc, depth_window=(1e-6, 0.5e-6))
+
+
+@pytest.mark.parametrize(
+    "kw, match",
+    [({"E": 0.0}, "E must be in"), ({"nu": 0.6}, "nu must be in"), ({"E_i": -1.0}, "E_i must be")],
+)
+def test_bad_material_raises(kw, match):
+    with pytest.raises(ValueError, match=match):
+        Material(**kw)
+
+
+def test_csv_and_json_export(tmp_path):
+    depth = np.linspace(0, 1e-6, 21)
+    sc = stiffness_curve(curve_from_area(depth, 1e-12 * (1 + np.round(1e3 * depth / 1e-6))))
+    p = sc.to_csv(tmp_path / "c.csv")
+    data = np.genfromtxt(p, delimiter=",", names=True)
+    assert data.dtype.names == (
+        "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
+        "Ec_over_E", "F_over_EA",
+    )  # fmt: skip
+    np.testing.assert_array_equal(data["load_N"], sc.load)
+    fit = fit_power_law(sc, min_pixels=1)
+    import json
+
+    d = json.loads(fit.to_json(tmp_path / "f.json").read_text())
+    assert d["alpha"] == fit.alpha and d["min_pixels"] == 1

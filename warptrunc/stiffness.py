@@ -1,0 +1,257 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Stiffness and load from truncated areas (paper Eqs. 1–3) and the power-law fit (§4.4).
+
+Host-side float64 arithmetic on a :class:`~warptrunc.truncation.TruncationCurve`.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ._validate import check_int, check_range
+from .truncation import TruncationCurve
+
+__all__ = [
+    "DEFAULT_MIN_PIXELS",
+    "Material",
+    "PowerLawFit",
+    "StiffnessCurve",
+    "fit_power_law",
+    "stiffness_curve",
+]
+
+#: Default fit range: increments with at least this many contact pixels (see README,
+#: "Fit range"); the first increments, where a handful of pixels touch, are left out.
+DEFAULT_MIN_PIXELS = 10
+
+
+@dataclass(frozen=True)
+class Material:
+    """Elastic constants of the rough body and of the flat that compresses it."""
+
+    E: float = 70e9
+    """Young's modulus of the rough body (Pa); default: aluminium alloy, as in the paper."""
+    nu: float = 0.33
+    """Poisson's ratio of the rough body (dimensionless)."""
+    E_i: float = math.inf
+    """Young's modulus of the flat (Pa); ``inf`` = rigid flat (default)."""
+    nu_i: float = 0.0
+    """Poisson's ratio of the flat (dimensionless); irrelevant for a rigid flat."""
+
+    def __post_init__(self) -> None:
+        check_range("E", self.E, 0.0, unit="Pa")
+        check_range("nu", self.nu, -1.0, 0.5, hi_open=False)
+        if not (self.E_i > 0):
+            raise ValueError(f"E_i must be in (0, inf] Pa, got {self.E_i!r}")
+        check_range("nu_i", self.nu_i, -1.0, 0.5, hi_open=False)
+
+    @property
+    def reduced_modulus(self) -> float:
+        """E_r' = [(1 − ν²)/E + (1 − ν_i²)/E_i]⁻¹ (Pa)."""
+        inv = (1.0 - self.nu**2) / self.E
+        if math.isfinite(self.E_i):
+            inv += (1.0 - self.nu_i**2) / self.E_i
+        return 1.0 / inv
+
+
+@dataclass(frozen=True, eq=False)
+class StiffnessCurve:
+    """Stiffness k(ω), load F(ω) and their normalised forms at every truncation depth."""
+
+    depth: np.ndarray
+    """(n+1,) truncation depth ω (m)."""
+    n_contact_pixels: np.ndarray
+    """(n+1,) int64 contact pixels."""
+    contact_area: np.ndarray
+    """(n+1,) truncated area A_c (m²)."""
+    stiffness: np.ndarray
+    """(n+1,) k = β'·(2/√π)·E_r'·√A_c (N/m), Eq. (2)."""
+    load: np.ndarray
+    """(n+1,) F(ω) = ∫₀^ω k dω' by the cumulative trapezoidal rule (N)."""
+    Ec_over_E: np.ndarray
+    """(n+1,) E_c/E = β'·√(A_c/A) (dimensionless), Eq. (3)."""
+    F_over_EA: np.ndarray
+    """(n+1,) F/(E·A) (dimensionless)."""
+    material: Material
+    """Elastic constants used."""
+    beta_prime: float
+    """Geometric factor β' (dimensionless)."""
+    apparent_area: float
+    """Apparent area A (m²)."""
+    rt: float
+    """Peak-to-valley height R_t of the map (m)."""
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """Columns in the order of ``curve.csv``."""
+        return {
+            "depth_m": self.depth,
+            "n_contact_pixels": self.n_contact_pixels,
+            "contact_area_m2": self.contact_area,
+            "stiffness_N_per_m": self.stiffness,
+            "load_N": self.load,
+            "Ec_over_E": self.Ec_over_E,
+            "F_over_EA": self.F_over_EA,
+        }
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write the columns of :meth:`to_dict` as CSV (full float64 precision)."""
+        path = Path(path)
+        cols = self.to_dict()
+        with path.open("w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(cols)
+            for row in zip(*cols.values(), strict=True):
+                w.writerow([int(v) if isinstance(v, np.integer) else repr(float(v)) for v in row])
+        return path
+
+
+@dataclass(frozen=True)
+class PowerLawFit:
+    """Least-squares fit of log(E_c/E) = log β + α·log(F/(E·A))."""
+
+    alpha: float
+    """Exponent α (dimensionless)."""
+    beta: float
+    """Amplitude β (dimensionless)."""
+    r2: float
+    """Coefficient of determination of the log–log fit."""
+    n_points: int
+    """Number of increments used."""
+    depth_min: float
+    """Smallest depth used (m)."""
+    depth_max: float
+    """Largest depth used (m)."""
+    F_over_EA_min: float
+    """Smallest F/(E·A) used (dimensionless)."""
+    F_over_EA_max: float
+    """Largest F/(E·A) used (dimensionless)."""
+    min_pixels: int
+    """Contact-pixel threshold of the fit range."""
+    depth_window: tuple[float, float] | None
+    """Depth window of the fit range (m), if one was given."""
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain dict (JSON-serialisable)."""
+        d = asdict(self)
+        d["depth_window"] = None if self.depth_window is None else list(self.depth_window)
+        return d
+
+    def to_json(self, path: str | Path) -> Path:
+        """Write :meth:`to_dict` as JSON."""
+        path = Path(path)
+        path.write_text(json.dumps(self.to_dict(), indent=2) + "\n")
+        return path
+
+
+def stiffness_curve(
+    curve: TruncationCurve,
+    material: Material | None = None,
+    *,
+    beta_prime: float = 1.0,
+) -> StiffnessCurve:
+    """Stiffness, load and normalised curves from a truncation curve.
+
+    Parameters
+    ----------
+    curve : TruncationCurve
+        Truncated areas A_c(ω) (m²).
+    material : Material, optional
+        Elastic constants; default aluminium (E = 70 GPa, ν = 0.33) against a rigid flat.
+    beta_prime : float
+        Geometric factor β' of Eq. (2) (dimensionless), default 1 (flat punch).
+
+    Notes
+    -----
+    k = β'·(2/√π)·E_r'·√A_c (Eq. 2); F(ω_k) = Σ_{j<k} ½(k_j + k_{j+1})(ω_{j+1} − ω_j) (cumulative
+    trapezoidal rule, F(0) = 0); E_c/E = β'·√(A_c/A) (Eq. 3); F/(E·A) with E the Young's
+    modulus of the rough body and A = Lx·Ly.
+    """
+    material = Material() if material is None else material
+    beta_prime = check_range("beta_prime", beta_prime, 0.0)
+    area = np.asarray(curve.contact_area, dtype=np.float64)
+    k = beta_prime * (2.0 / math.sqrt(math.pi)) * material.reduced_modulus * np.sqrt(area)
+    dw = np.diff(curve.depth)
+    load = np.concatenate([[0.0], np.cumsum(0.5 * (k[1:] + k[:-1]) * dw)])
+    A = curve.apparent_area
+    return StiffnessCurve(
+        depth=np.asarray(curve.depth, dtype=np.float64),
+        n_contact_pixels=np.asarray(curve.n_contact_pixels, dtype=np.int64),
+        contact_area=area,
+        stiffness=k,
+        load=load,
+        Ec_over_E=beta_prime * np.sqrt(area / A),
+        F_over_EA=load / (material.E * A),
+        material=material,
+        beta_prime=beta_prime,
+        apparent_area=A,
+        rt=curve.rt,
+    )
+
+
+def fit_power_law(
+    sc: StiffnessCurve,
+    *,
+    min_pixels: int = DEFAULT_MIN_PIXELS,
+    depth_window: tuple[float, float] | None = None,
+) -> PowerLawFit:
+    """Fit E_c/E = β·[F/(E·A)]^α by least squares in log–log space.
+
+    Parameters
+    ----------
+    sc : StiffnessCurve
+        The curves to fit.
+    min_pixels : int
+        Use only increments with at least this many contact pixels (≥ 1). ``1`` keeps every
+        increment with non-zero load. Default :data:`DEFAULT_MIN_PIXELS`.
+    depth_window : (float, float), optional
+        Use only depths ω with lo ≤ ω ≤ hi (m).
+
+    Returns
+    -------
+    PowerLawFit
+
+    Notes
+    -----
+    Increments with zero load (ω = 0) are always left out (log 0). r² is that of the linear
+    regression of log(E_c/E) on log(F/(E·A)).
+    """
+    min_pixels = check_int("min_pixels", min_pixels, 1)
+    sel = (sc.load > 0) & (sc.n_contact_pixels >= min_pixels)
+    if depth_window is not None:
+        lo, hi = (float(v) for v in depth_window)
+        if not (0 <= lo < hi):
+            raise ValueError(f"depth_window must be (lo, hi) with 0 ≤ lo < hi (m), got {depth_window!r}")
+        sel &= (sc.depth >= lo) & (sc.depth <= hi)
+    if np.count_nonzero(sel) < 3:
+        raise ValueError(
+            f"only {int(np.count_nonzero(sel))} increments in the fit range (min_pixels={min_pixels}, "
+            f"depth_window={depth_window}); need at least 3: lower min_pixels or widen the window"
+        )
+    x = np.log(sc.F_over_EA[sel])
+    y = np.log(sc.Ec_over_E[sel])
+    alpha, logb = np.polyfit(x, y, 1)
+    resid = y - (alpha * x + logb)
+    ss_tot = float(np.sum((y - y.mean()) ** 2))
+    r2 = 1.0 - float(np.sum(resid**2)) / ss_tot if ss_tot > 0 else 1.0
+    d = sc.depth[sel]
+    f = sc.F_over_EA[sel]
+    return PowerLawFit(
+        alpha=float(alpha),
+        beta=float(np.exp(logb)),
+        r2=r2,
+        n_points=int(sel.sum()),
+        depth_min=float(d.min()),
+        depth_max=float(d.max()),
+        F_over_EA_min=float(f.min()),
+        F_over_EA_max=float(f.max()),
+        min_pixels=min_pixels,
+        depth_window=None if depth_window is None else (lo, hi),
+    )

@@ -1,0 +1,274 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Weierstrass–Mandelbrot (WM) rough surfaces, Eq. (4) of the paper, synthesised with Warp.
+
+Kernels: ``warptrunc.kernels.wm`` (tables, tile GEMM, direct sum) and
+``warptrunc.kernels.reduce`` (min/max for the R_t scaling).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import warp as wp
+
+from ._device import check_memory, resolve_device
+from ._validate import check_int, check_range, pair
+from .kernels import reduce as _kr
+from .kernels import wm as _k
+from .surface import Surface
+
+__all__ = ["WMSpec", "wm_heights", "wm_spec", "wm_surface"]
+
+
+class WMSpec:
+    """Validated WM parameters and the per-term tables (host, float64).
+
+    Attributes are SI: ``Lx, Ly, dx, dy, Wr, Wc`` (m), ``G`` (m or None), ``Rt`` (m or None);
+    ``kx, ky`` (rad/m), ``alpha`` (rad), ``w`` (dimensionless) have one entry per term
+    t = (m − 1)·(n_max + 1) + n, m = 1..M, n = 0..n_max.
+    """
+
+    def __init__(self, **kw):
+        self.__dict__.update(kw)
+
+    def params(self) -> dict:
+        """JSON-serialisable generation parameters (SI units)."""
+        keys = (
+            "D Wr Lx Ly nx ny M gamma Wc cutoff n_max n_terms seed G Rt method"
+        ).split()
+        return {"generator": "weierstrass-mandelbrot", **{k: getattr(self, k) for k in keys}}
+
+
+def wm_spec(
+    D: float = 2.5,
+    Wr: float = 100e-6,
+    *,
+    L: float | tuple[float, float] = 1e-3,
+    n: int | tuple[int, int] = 1024,
+    Rt: float | None = 10e-6,
+    G: float | None = None,
+    M: int = 10,
+    gamma: float = 1.5,
+    Wc: float | None = None,
+    cutoff: str = "nyquist",
+    seed: int = 0,
+    method: str = "tile",
+) -> WMSpec:
+    """Validate the WM parameters and draw the phases on the host (see :func:`wm_surface`)."""
+    D = check_range("D", D, 2.0, 3.0)
+    Wr = check_range("Wr", Wr, 0.0, unit="m")
+    Lx, Ly = pair("L", L)
+    Lx = check_range("L (x)", Lx, 0.0, unit="m")
+    Ly = check_range("L (y)", Ly, 0.0, unit="m")
+    nx, ny = pair("n", n, cast=lambda v: v)
+    nx = check_int("n (x)", nx, 2, 1 << 20)
+    ny = check_int("n (y)", ny, 2, 1 << 20)
+    M = check_int("M", M, 1, 10_000)
+    gamma = check_range("gamma", gamma, 1.0, unit="(dimensionless)")
+    if cutoff not in ("nyquist", "pixel"):
+        raise ValueError(f"cutoff must be 'nyquist' or 'pixel', got {cutoff!r}")
+    if method not in ("tile", "direct"):
+        raise ValueError(f"method must be 'tile' or 'direct', got {method!r}")
+    dx, dy = Lx / nx, Ly / ny
+    if Wc is None:
+        Wc = (2.0 if cutoff == "nyquist" else 1.0) * max(dx, dy)
+        if Wc >= Wr:
+            raise ValueError(
+                f"the default cut-off W_c = {Wc:g} m ({cutoff}) is not below Wr = {Wr:g} m: "
+                "use more pixels, a larger Wr, or give Wc"
+            )
+    Wc = check_range("Wc", Wc, 0.0, Wr, unit=f"m (must be below Wr = {Wr:g} m)")
+    if Rt is not None and G is not None:
+        raise ValueError("give either Rt (rescale to a peak-to-valley height) or G, not both")
+    if Rt is None and G is None:
+        raise ValueError("give Rt (m) or G (m) to set the vertical scale")
+    if Rt is not None:
+        Rt = check_range("Rt", Rt, 0.0, unit="m")
+    if G is not None:
+        G = check_range("G", G, 0.0, unit="m")
+    seed = check_int("seed", seed, 0)
+    # n_max: the largest n with wavelength Wr/γ^n ≥ Wc (1e-9 guards exact powers)
+    n_max = int(math.floor(math.log(Wr / Wc) / math.log(gamma) + 1e-9))
+    n_f = n_max + 1
+    n_terms = M * n_f
+    rng = np.random.default_rng(seed)
+    alpha = rng.uniform(0.0, 2.0 * math.pi, size=(M, n_f)).reshape(-1)
+    m = np.repeat(np.arange(1, M + 1, dtype=np.float64), n_f)
+    nn = np.tile(np.arange(n_f, dtype=np.float64), M)
+    k = 2.0 * math.pi * gamma**nn / Wr
+    theta = math.pi * m / M
+    return WMSpec(
+        D=D, Wr=Wr, Lx=Lx, Ly=Ly, nx=nx, ny=ny, dx=dx, dy=dy, M=M, gamma=gamma, Wc=Wc,
+        cutoff=cutoff, n_max=n_max, n_terms=n_terms, seed=seed, G=G, Rt=Rt, method=method,
+        kx=k * np.cos(theta), ky=k * np.sin(theta), alpha=alpha, w=gamma ** ((D - 3.0) * nn),
+    )  # fmt: skip
+
+
+def _pad(v: int, t: int) -> int:
+    return -(-v // t) * t
+
+
+def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int | None = None):
+    """Evaluate the unscaled WM sum S (dimensionless) on ``device``; returns a (ny, nx) wp.array.
+
+    S = Σ_t w_t [cos α_t − cos(kx_t·x + ky_t·y + α_t)], so heights are z = scale·S.
+    """
+    device = resolve_device(device)
+    nx, ny, T = spec.nx, spec.ny, spec.n_terms
+    K = _pad(2 * T, _k.TILE_K)
+    need = 4 * (nx * ny + K * (_pad(nx, _k.TILE_N) + _pad(ny, _k.TILE_M)))
+    check_memory(need, device, f"a {nx}×{ny} WM surface with {T} terms")
+    z = wp.empty((ny, nx), dtype=wp.float32, device=device)
+    f64 = lambda a: wp.array(np.ascontiguousarray(a, dtype=np.float64), device=device)  # noqa: E731
+    kx, ky, alpha, w = f64(spec.kx), f64(spec.ky), f64(spec.alpha), f64(spec.w)
+    if spec.method == "direct":
+        wp.launch(
+            _k.wm_direct_kernel,
+            dim=(ny, nx),
+            inputs=[kx, ky, alpha, w, spec.dx, spec.dy],
+            outputs=[z],
+            device=device,
+        )
+        return z
+    gpu = device.is_cuda
+    ny_pad = _pad(ny, _k.TILE_M) if gpu else _pad(ny, _k.ROWS)
+    nx_pad = _pad(nx, _k.TILE_N) if gpu else _pad(nx, _k.COLS)
+    p = wp.zeros((ny_pad, K), dtype=wp.float32, device=device)
+    q = wp.zeros((K, nx_pad), dtype=wp.float32, device=device)
+    wp.launch(_k.column_table_kernel, dim=(T, nx), inputs=[kx, alpha, spec.dx, T], outputs=[q], device=device)
+    wp.launch(_k.row_table_kernel, dim=(ny, T), inputs=[ky, w, spec.dy, T], outputs=[p], device=device)
+    c0 = float(np.sum(spec.w * np.cos(spec.alpha)))
+    if gpu:
+        wp.launch_tiled(
+            _k.wm_tile_gemm_kernel,
+            dim=(ny_pad // _k.TILE_M, nx_pad // _k.TILE_N),
+            inputs=[p, q, c0, 0],
+            outputs=[z],
+            block_dim=128,
+            device=device,
+        )
+        return z
+    # A Warp CPU launch runs on one thread: launch row bands from Python threads (the ctypes
+    # call releases the GIL) so that every core works.
+    qv = wp.array(ptr=q.ptr, dtype=_k.vec16, shape=(K, nx_pad // _k.COLS), device=device)
+    blocks = ny_pad // _k.ROWS
+    n_threads = max(1, min(cpu_threads or os.cpu_count() or 1, blocks))
+    bounds = np.linspace(0, blocks, n_threads + 1).astype(int)
+
+    def band(b0: int, b1: int) -> None:
+        if b1 > b0:
+            wp.launch(
+                _k.wm_rowblock_kernel,
+                dim=(b1 - b0, nx_pad // _k.COLS),
+                inputs=[p, qv, c0, int(b0 * _k.ROWS)],
+                outputs=[z],
+                device=device,
+            )
+
+    wp.load_module(_k, device=device)  # compile/load once, before the fan-out
+    with ThreadPoolExecutor(n_threads) as ex:
+        list(ex.map(band, bounds[:-1], bounds[1:]))
+    del q  # qv aliases q's memory; q stays alive until the launches above have returned
+    return z
+
+
+def wm_surface(
+    D: float = 2.5,
+    Wr: float = 100e-6,
+    *,
+    L: float | tuple[float, float] = 1e-3,
+    n: int | tuple[int, int] = 1024,
+    Rt: float | None = 10e-6,
+    G: float | None = None,
+    M: int = 10,
+    gamma: float = 1.5,
+    Wc: float | None = None,
+    cutoff: str = "nyquist",
+    seed: int = 0,
+    method: str = "tile",
+    device: wp.DeviceLike = None,
+) -> Surface:
+    """Generate a Weierstrass–Mandelbrot rough surface (paper Eq. 4).
+
+    Parameters
+    ----------
+    D : float
+        Fractal dimension, 2 < D < 3 (dimensionless).
+    Wr : float
+        Roll-off wavelength W_r, the longest wavelength (m).
+    L : float or (float, float)
+        Side length, or (Lx, Ly) (m).
+    n : int or (int, int)
+        Pixels per side, or (nx, ny). Pixel spacing dx = Lx/nx, dy = Ly/ny (m).
+    Rt : float or None
+        Target peak-to-valley height R_t (m): heights are scaled so that max − min = R_t (the
+        paper's procedure, §3.2). Set ``Rt=None`` and give ``G`` for the unscaled formula.
+    G : float, optional
+        Topothesy G (m); heights are Eq. (4) with this G and are not rescaled.
+    M : int
+        Number of superposed ridges.
+    gamma : float
+        Frequency density γ > 1 (dimensionless).
+    Wc : float, optional
+        Cut-off wavelength W_c (m), 0 < W_c < W_r. Defaults by ``cutoff``.
+    cutoff : {"nyquist", "pixel"}
+        Default W_c: ``"nyquist"`` = 2·max(dx, dy), the shortest wavelength the grid resolves
+        (no term aliases); ``"pixel"`` = max(dx, dy), the paper's literal "smallest distance
+        between two adjacent pixels", whose finest terms alias onto longer wavelengths.
+    seed : int
+        Seed of ``numpy.random.default_rng`` that draws the phases α_mn uniformly in
+        [0, 2π) on the host, in (m, n) order: the same seed gives the same surface on every
+        device.
+    method : {"tile", "direct"}
+        ``"tile"``: separable tables and a Warp tile GEMM (fast); ``"direct"``: one thread
+        per pixel summing every term with float64 phases (reference).
+    device : str, optional
+        Warp device; see :func:`warptrunc.resolve_device`.
+
+    Returns
+    -------
+    Surface
+        Heights (m) and ``params`` holding every generation parameter, ``n_max`` (highest
+        frequency index, the largest n with W_r/γ^n ≥ W_c), ``n_terms`` = M·(n_max + 1),
+        ``scale`` (m per unit of the raw sum) and ``G_equivalent`` (the topothesy giving that
+        scale).
+
+    Notes
+    -----
+    z(x, y) = W_r (G/W_r)^{D−3} (ln γ/M)^{1/2} Σ_{m=1}^{M} Σ_{n=0}^{n_max} γ^{(D−3)n}
+    [cos α_mn − cos(2π γ^n r cos(θ − πm/M)/W_r + α_mn)], with r cos(θ − πm/M) =
+    x cos(πm/M) + y sin(πm/M).
+
+    References
+    ----------
+    Yan & Komvopoulos (1998), J. Appl. Phys. 84, 3617, doi:10.1063/1.368536.
+    """
+    spec = wm_spec(
+        D, Wr, L=L, n=n, Rt=Rt, G=G, M=M, gamma=gamma, Wc=Wc, cutoff=cutoff, seed=seed,
+        method=method,
+    )  # fmt: skip
+    device = resolve_device(device)
+    z = wm_heights(spec, device)
+    prefactor = spec.Wr * math.sqrt(math.log(spec.gamma) / spec.M)
+    if spec.Rt is not None:
+        out = wp.array(np.array([np.inf, -np.inf], dtype=np.float32), device=device)
+        flat = z.flatten()
+        lanes = min(65536, flat.shape[0])
+        wp.launch(_kr.min_max_kernel, dim=lanes, inputs=[flat, lanes], outputs=[out], device=device)
+        lo, hi = out.numpy().astype(np.float64)  # sync point
+        if not hi > lo:
+            raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
+        scale = spec.Rt / (hi - lo)
+    else:
+        scale = prefactor * (spec.G / spec.Wr) ** (spec.D - 3.0)
+    wp.launch(_k.scale_kernel, dim=z.shape, inputs=[z, float(scale)], device=device)
+    params = spec.params()
+    params["scale"] = scale
+    params["G_equivalent"] = spec.Wr * (scale / prefactor) ** (1.0 / (spec.D - 3.0))
+    surface = Surface(z.numpy(), spec.dx, spec.dy, params)  # sync point
+    object.__setattr__(surface, "_device_heights", z)  # reused by truncate() on this device
+    return surface
