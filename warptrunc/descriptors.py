@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import check_int
+from ._validate import check_int, check_range
 from .surface import Surface
 
 __all__ = [
@@ -69,8 +69,8 @@ class Descriptors:
     Wr: float
     """Roll-off wavelength W_r (m), see :func:`roll_off_wavelength`."""
     Wr_resolved: bool
-    """False when the spectrum peaks at the longest wavelengths of the map, so W_r ≳ max(Lx, Ly)
-    and ``Wr`` is only a lower bound."""
+    """False when W_r > min(Lx, Ly)/2: fewer than two roll-off wavelengths fit in the map and
+    ``Wr`` is only a lower bound of the order of the map size."""
     mean: float
     """Mean height z̄ (m)."""
 
@@ -147,7 +147,7 @@ def height_statistics(z: np.ndarray) -> dict[str, float]:
     }
 
 
-def describe(surface: Surface, *, bins_per_decade: int = 10) -> Descriptors:
+def describe(surface: Surface, *, smoothing: float = 0.05) -> Descriptors:
     """Descriptors of a surface: R_t, R_rms, R_a, skewness, kurtosis and W_r.
 
     Parameters
@@ -155,15 +155,15 @@ def describe(surface: Surface, *, bins_per_decade: int = 10) -> Descriptors:
     surface : Surface
         Height map (m). Statistics are about the mean height; level the map first
         (``warptrunc.io.level_plane``) when a tilt is not part of the roughness.
-    bins_per_decade : int
-        Logarithmic bands per decade used for W_r (see :func:`roll_off_wavelength`).
+    smoothing : float
+        Kernel width for W_r in decades (see :func:`roll_off_wavelength`).
 
     Returns
     -------
     Descriptors
     """
     st = height_statistics(surface.heights)
-    wr, resolved = roll_off_wavelength(surface, bins_per_decade=bins_per_decade)
+    wr, resolved = roll_off_wavelength(surface, smoothing=smoothing)
     return Descriptors(
         Rt=st["Rt"],
         Rrms=st["Rrms"],
@@ -355,7 +355,7 @@ def band_variance(
 
 
 def roll_off_wavelength(
-    surface: Surface, *, bins_per_decade: int = 10, window: str = "hann"
+    surface: Surface, *, smoothing: float = 0.05, window: str = "hann"
 ) -> tuple[float, bool]:
     """Roll-off wavelength W_r: the wavelength carrying the most variance per log-frequency.
 
@@ -363,8 +363,8 @@ def roll_off_wavelength(
     ----------
     surface : Surface
         Height map (m).
-    bins_per_decade : int
-        Logarithmic bands per decade of the radial band variance.
+    smoothing : float
+        Width σ of the Gaussian kernel in log₁₀ f (decades) that smooths the variance density.
     window : {"hann", "none"}
         Window of the periodogram.
 
@@ -373,30 +373,40 @@ def roll_off_wavelength(
     Wr : float
         W_r (m).
     resolved : bool
-        False when the maximum is in the lowest band (W_r at least the map size; ``Wr`` is then
-        the longest wavelength of that band, a lower bound).
+        False when W_r > min(Lx, Ly)/2: the map holds fewer than two roll-off wavelengths, the
+        spectrum may simply rise to its lowest frequency, and ``Wr`` is only a lower bound of
+        the order of the map size.
 
     Notes
     -----
     The paper estimates W_r as the average distance between asperities. Here that distance is
-    read from the spectrum: the band variance (see :func:`band_variance`) rises as f² below the
-    roll-off (flat PSD) and falls as f^−2H above it, so its maximum marks the roll-off, i.e. the
+    read from the spectrum: the variance carried per unit of log f rises as f² below the
+    roll-off (flat PSD) and falls as f^−2H above it, so its maximum marks the roll-off, the
     wavelength of the dominant (largest) asperities; for a Weierstrass–Mandelbrot surface it is
-    the n = 0 line at f = 1/W_r. The maximum is refined by a parabola through the largest band
-    and its neighbours in (log f, log variance). A Hann window keeps the edges of a
-    non-periodic scan from leaking power into the low bands.
+    the n = 0 line at f = 1/W_r. The density is a kernel estimate: every Fourier mode adds its
+    power at log₁₀|f| (radial frequency, up to 1/(4·max(dx, dy))), smoothed with a Gaussian of
+    width ``smoothing``; each WM line is then counted once however narrow it is, and lines
+    γ = 1.5 apart (0.18 decade) stay separate.
+
+    Accuracy, measured on 256² maps: within 1 % for WM surfaces with W_r ≤ L/8 and within
+    −20 % for random-phase surfaces with a roll-off at W_r ≤ L/8; when the map holds only a few
+    roll-off wavelengths (W_r ≈ L/3) the window's main lobe biases W_r low by up to 40 %.
     """
-    f, var, _ = band_variance(
-        surface, kind="radial", bins_per_decade=bins_per_decade, window=window
-    )
-    k = int(np.argmax(var))
-    if k == 0:
-        return 1.0 / (f[0] / 10 ** (0.5 / bins_per_decade)), False
-    lf = math.log10(f[k])
-    if k + 1 < f.size and var[k - 1] > 0 and var[k + 1] > 0:
-        y0, y1, y2 = np.log10(var[k - 1 : k + 2])
-        den = y0 - 2 * y1 + y2
-        if den < 0:
-            step = math.log10(f[k + 1] / f[k])
-            lf += float(np.clip(0.5 * (y0 - y2) / den, -0.5, 0.5)) * step
-    return 1.0 / 10**lf, True
+    sig = check_range("smoothing", smoothing, 0.0, 1.0, unit="decades")
+    c, fx, fy = periodogram(surface, window=window)
+    f = np.hypot(fx, fy).ravel()
+    p = c.ravel()
+    f0 = min(1.0 / surface.lx, 1.0 / surface.ly)
+    fmax = 1.0 / (4.0 * max(surface.dx, surface.dy))
+    keep = (f > 0) & (f <= fmax)
+    res = 200  # histogram bins per decade before smoothing
+    x = np.log10(f[keep] / f0)
+    nb = max(1, math.ceil(math.log10(max(fmax / f0, 1.0)) * res) + 1)
+    idx = np.minimum((x * res + 0.5).astype(np.int64), nb - 1)
+    hist = np.bincount(idx, weights=p[keep], minlength=nb)
+    half = int(4 * sig * res)
+    k = np.arange(-half, half + 1)
+    kernel = np.exp(-0.5 * (k / (sig * res)) ** 2)
+    dens = np.convolve(np.pad(hist, (half, half)), kernel, mode="valid")
+    wr = 1.0 / (f0 * 10 ** (int(np.argmax(dens)) / res))
+    return float(wr), bool(wr <= min(surface.lx, surface.ly) / 2.0)
