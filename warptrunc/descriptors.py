@@ -69,7 +69,7 @@ class Descriptors:
     Wr: float
     """Roll-off wavelength W_r (m), see :func:`roll_off_wavelength`."""
     Wr_resolved: bool
-    """False when W_r > min(Lx, Ly)/2: fewer than two roll-off wavelengths fit in the map and
+    """False when W_r > min(Lx, Ly)/3: fewer than three roll-off wavelengths fit in the map and
     ``Wr`` is only a lower bound of the order of the map size."""
     mean: float
     """Mean height z̄ (m)."""
@@ -326,7 +326,7 @@ def band_variance(
     variance : (k,) ndarray
         Variance in each band (m²).
     n_modes : (k,) ndarray
-        Fourier modes in each band.
+        Fourier modes (2-D) or profile frequencies in each band.
     """
     b = check_int("bins_per_decade", bins_per_decade, 1, 100)
     if kind == "radial":
@@ -373,9 +373,9 @@ def roll_off_wavelength(
     Wr : float
         W_r (m).
     resolved : bool
-        False when W_r > min(Lx, Ly)/2: the map holds fewer than two roll-off wavelengths, the
-        spectrum may simply rise to its lowest frequency, and ``Wr`` is only a lower bound of
-        the order of the map size.
+        False when W_r > min(Lx, Ly)/3: the map holds fewer than three roll-off wavelengths,
+        the spectrum may simply rise to its lowest frequencies (whose few modes scatter
+        strongly), and ``Wr`` is only a lower bound of the order of the map size.
 
     Notes
     -----
@@ -409,4 +409,4 @@ def roll_off_wavelength(
     kernel = np.exp(-0.5 * (k / (sig * res)) ** 2)
     dens = np.convolve(np.pad(hist, (half, half)), kernel, mode="valid")
     wr = 1.0 / (f0 * 10 ** (int(np.argmax(dens)) / res))
-    return float(wr), bool(wr <= min(surface.lx, surface.ly) / 2.0)
+    return float(wr), bool(wr <= min(surface.lx, surface.ly) / 3.0)
