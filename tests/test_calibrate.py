@@ -130,3 +130,48 @@ def test_root_search_out_of_evaluations():
 def test_root_search_unreachable_above():
     with pytest.raises(CalibrationError, match="cannot be reached"):
         _find_root(lambda x: 2.0 + 0.1 * (x - 2.0), 2.9, 0.01, (2.02, 2.98), 2.5, 10)
+
+
+# --- CLI and figure ------------------------------------------------------------------------------
+
+
+def test_cli_calibrate_typed_targets(tmp_path, capsys):
+    from warptrunc import load_surface
+    from warptrunc.cli import main
+
+    out = tmp_path / "cal"
+    rc = main(
+        ["calibrate", "--method", "sp", "--D", "2.4", "--Rrms", "2e-6", "--Rt", "15e-6",
+         "--Wr", str(WR), "--L", str(L), "--n", "128", "--seeds", "0", "1", "--n-out", "96",
+         "--no-progress", "--out", str(out), "--device", "cpu"]
+    )  # fmt: skip
+    assert rc == 0
+    info = json.loads((out / "calibration.json").read_text())
+    assert abs(info["D_out"] - 2.4) <= 0.05 * 2.4
+    assert info["target_source"] == "given"
+    s = load_surface(out / "surface.npz")
+    assert s.heights.shape == (96, 96)
+    assert s.rt == pytest.approx(info["Rt_m"], rel=1e-5)
+
+
+def test_cli_calibrate_from_file_and_errors(tmp_path, capsys):
+    from warptrunc.cli import main
+
+    p = _scan(n=64).save(tmp_path / "scan.npz")
+    rc = main(["calibrate", str(p), "--method", "vs", "--Wr", str(WR), "--seeds", "0",
+               "--no-progress", "--no-surface", "--out", str(tmp_path / "o")])  # fmt: skip
+    assert rc == 0
+    info = json.loads((tmp_path / "o" / "calibration.json").read_text())
+    assert info["target_nx"] == 64 and info["target_source"].endswith("scan.npz")
+    assert not (tmp_path / "o" / "surface.npz").exists()
+    assert main(["calibrate", "--D", "2.4", "--no-progress"]) == 2
+    assert "missing --Rrms, --Rt, --Wr, --L, --n" in capsys.readouterr().err
+
+
+def test_calibration_history_figure(tmp_path):
+    from warptrunc import plot
+
+    target = CalibrationTarget(D=2.45, method="vs", Rrms=2e-6, Rt=15e-6, Wr=WR, L=L, n=128)
+    cal = calibrate(target, seeds=(0,), rtol=0.005, progress=False, device="cpu")
+    fig = plot.calibration_history(cal, path=tmp_path / "h.png")
+    assert len(fig.axes) == 1 and (tmp_path / "h.png").stat().st_size > 0

@@ -124,3 +124,68 @@ def test_roll_off_unresolved():
         wr, ok = roll_off_wavelength(s)
         assert not ok and wr > L / 3
     assert not describe(s).Wr_resolved
+
+
+# --- CLI and figures ----------------------------------------------------------------------------
+
+
+def test_cli_describe_json(tmp_path, capsys):
+    from warptrunc.cli import main
+    from warptrunc.descriptors import describe as describe_fn
+    from warptrunc.fractal import fractal_dimensions
+    from warptrunc.io import write_height_map
+
+    s = self_affine_surface(0.5, 64, L, Rrms=2e-6, seed=3)
+    p = write_height_map(s, tmp_path / "map.csv")
+    assert main(["describe", str(p), "--json", "-", "--device", "cpu"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    for k in ("Rt_m", "Rrms_m", "Ra_m", "skewness", "kurtosis", "Wr_m"):
+        assert k in out
+    # the CLI reports what the library computes on the same map
+    ref = describe_fn(s).to_dict()
+    assert out["Rrms_m"] == pytest.approx(ref["Rrms_m"], rel=1e-12)
+    fits = fractal_dimensions(s, device="cpu")
+    for m in ("tri", "box", "vs", "sp"):
+        assert out[f"D_{m}"] == pytest.approx(fits[m].D, abs=1e-12)
+
+
+def test_cli_describe_table_and_figures(tmp_path, capsys):
+    from warptrunc.cli import main
+
+    s = self_affine_surface(0.5, 64, L, Rrms=2e-6, seed=3)
+    p = s.save(tmp_path / "s.npz")
+    rc = main(
+        ["describe", str(p), "--out", str(tmp_path / "o"), "--json", str(tmp_path / "d.json")]
+    )
+    assert rc == 0
+    text = capsys.readouterr().out
+    assert "D_tri" in text and "R_rms" in text
+    assert json.loads((tmp_path / "d.json").read_text())["Wr_resolved"] is False
+    assert (tmp_path / "o" / "psd.png").stat().st_size > 0
+    assert (tmp_path / "o" / "fractal_fits.png").stat().st_size > 0
+
+
+def test_cli_describe_errors(tmp_path, capsys):
+    from warptrunc.cli import main
+
+    z = np.ones((8, 8))
+    z[2, 3] = np.nan
+    np.save(tmp_path / "m.npy", z)
+    assert main(["describe", str(tmp_path / "m.npy"), "--dx", "1e-6"]) == 2
+    assert "1 of 64 points are missing" in capsys.readouterr().err
+    assert main(["describe", str(tmp_path / "m.npy")]) == 2
+    assert "no pixel spacing" in capsys.readouterr().err
+
+
+def test_cli_describe_measured_scan(scans_dir, capsys):
+    pytest.importorskip("SurfaceTopography")
+    from warptrunc.cli import main
+
+    rc = main(
+        ["describe", str(scans_dir / "sur-2.sur"), "--missing", "fill", "--level", "--json", "-"]
+    )
+    assert rc == 0
+    cap = capsys.readouterr()
+    assert "117 missing points filled" in cap.err
+    out = json.loads(cap.out)
+    assert (out["nx"], out["ny"]) == (563, 484)
