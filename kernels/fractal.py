@@ -18,6 +18,9 @@ Cells of side ``s`` pixels use the ``(s + 1) × (s + 1)`` grid points ``[j·s, (
 * :func:`structure_function_kernel` — vertical sections: grid ``(n_lags, nx)``, one thread per
   (lag, column); writes Σ (z(p + τ) − z(p))² (m²) over the pairs in that column, along x or y.
   Neighbouring threads read neighbouring columns, so GPU reads are coalesced.
+* :func:`structure_function_rows_kernel` — the same sums with one thread per (lag, row),
+  walking along the row: contiguous reads for the CPU, where a launch runs its threads one
+  after the other.
 """
 
 import warp as wp
@@ -128,3 +131,27 @@ def structure_function_kernel(
             d = wp.float64(z[iy + tau, ix]) - wp.float64(z[iy, ix])
             acc += d * d
     out[k, ix] = acc
+
+
+@wp.kernel
+def structure_function_rows_kernel(
+    z: wp.array2d[wp.float32],
+    lags: wp.array[wp.int32],
+    along_x: int,
+    out: wp.array2d[wp.float64],
+):
+    """One thread per (lag, row): Σ over the row's pairs of (z(p + τ) − z(p))² (m²)."""
+    k, iy = wp.tid()
+    tau = int(lags[k])
+    ny = z.shape[0]
+    nx = z.shape[1]
+    acc = wp.float64(0.0)
+    if along_x != 0:
+        for ix in range(nx - tau):
+            d = wp.float64(z[iy, ix + tau]) - wp.float64(z[iy, ix])
+            acc += d * d
+    elif iy + tau < ny:
+        for ix in range(nx):
+            d = wp.float64(z[iy + tau, ix]) - wp.float64(z[iy, ix])
+            acc += d * d
+    out[k, iy] = acc

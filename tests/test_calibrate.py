@@ -73,7 +73,8 @@ def test_unreachable_target():
         D=2.6, method="tri", Rrms=0.2e-6, Rt=1e-6, Wr=WR, L=L, n=64, source="given"
     )
     with pytest.raises(
-        CalibrationError, match=r"2\.6000 cannot be reached: D_in in \[2\.02, 2\.98\]"
+        CalibrationError,
+        match=r"2\.6000 cannot be reached with D_in in \[2\.02, 2\.98\]: the upper bound",
     ):
         calibrate(target, seeds=(0,), progress=False, device="cpu")
 

@@ -272,3 +272,22 @@ def test_self_affine_surface_spectrum():
     sel = (f > 0.02) & (f < 0.4)
     slope = np.polyfit(np.log(f[sel]), np.log(p[sel]), 1)[0]
     assert slope == pytest.approx(-2 * (1 + H), abs=0.1)  # χ² scatter of single modes
+
+
+def test_both_structure_function_layouts_agree(device):
+    """The per-column (GPU) and per-row (CPU) kernels give the same sums on any device."""
+    import warp as wp
+    from warptrunc.kernels import fractal as _k
+
+    rng = np.random.default_rng(5)
+    z = rng.normal(size=(23, 31)).astype(np.float32)
+    zd = wp.array(z, dtype=wp.float32, device=device)
+    lags = wp.array(np.array([1, 3, 7], np.int32), dtype=wp.int32, device=device)
+    for along_x in (1, 0):
+        cols = wp.zeros((3, 31), dtype=wp.float64, device=device)
+        rows = wp.zeros((3, 23), dtype=wp.float64, device=device)
+        wp.launch(_k.structure_function_kernel, (3, 31), inputs=[zd, lags, along_x],
+                  outputs=[cols], device=device)  # fmt: skip
+        wp.launch(_k.structure_function_rows_kernel, (3, 23), inputs=[zd, lags, along_x],
+                  outputs=[rows], device=device)  # fmt: skip
+        np.testing.assert_allclose(cols.numpy().sum(1), rows.numpy().sum(1), rtol=1e-12)

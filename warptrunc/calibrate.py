@@ -48,7 +48,15 @@ __all__ = [
 
 
 class CalibrationError(ValueError):
-    """The target cannot be reached, or the loop ran out of evaluations."""
+    """The target cannot be reached, or the loop ran out of evaluations.
+
+    ``d_in`` and ``d_out`` hold the evaluations of the failed D loop (dimensionless).
+    """
+
+    def __init__(self, message: str, d_in: Sequence[float] = (), d_out: Sequence[float] = ()):
+        super().__init__(message)
+        self.d_in = [float(v) for v in d_in]
+        self.d_out = [float(v) for v in d_out]
 
 
 @dataclass(frozen=True)
@@ -212,7 +220,9 @@ def target_from_surface(
             )
     if not 2.0 < d < 3.0:
         raise CalibrationError(
-            f"the scan's D by {method!r} is {d:.4f}, outside (2, 3): no WM surface reaches it"
+            f"the scan's D by {method!r} is {d:.4f}, outside (2, 3): no WM surface reaches it",
+            (),
+            (),
         )
     return CalibrationTarget(
         D=d,
@@ -394,7 +404,8 @@ def calibrated_surface(
     Notes
     -----
     R_t' is kept as calibrated at the scan's resolution (paper §3.2); at a higher resolution the
-    WM sum has more terms, so R_rms is slightly larger than the target.
+    WM sum has more (finer) terms, so R_rms at fixed R_t' differs slightly from the target
+    (−1.4 % from 1024² to 2048² in ``examples/calibrate_to_scan.py``).
     """
     from .wm import wm_surface
 
@@ -453,6 +464,7 @@ def _find_root(
     xs: list[float] = []
     ys: list[float] = []
     x = x0
+    streak = 0  # consecutive extrapolations in one direction: the minimum step doubles
     for it in range(max_iter):
         y = known[1] if (it == 0 and known is not None) else f(x)
         xs.append(x)
@@ -469,12 +481,17 @@ def _find_root(
         if target < sy[0]:
             if sx[0] <= lo + 1e-9:
                 _unreachable(what, target, atol, xs, ys, bounds)
-            nxt = max(lo, sx[0] - 1.2 * (sy[0] - target) / slope)
+            streak = min(streak, 0) - 1
+            step = max(1.2 * (sy[0] - target) / slope, 0.02 * 2 ** (-streak - 1))
+            nxt = max(lo, sx[0] - step)
         elif target > sy[-1]:
             if sx[-1] >= hi - 1e-9:
                 _unreachable(what, target, atol, xs, ys, bounds)
-            nxt = min(hi, sx[-1] + 1.2 * (target - sy[-1]) / slope)
+            streak = max(streak, 0) + 1
+            step = max(1.2 * (target - sy[-1]) / slope, 0.02 * 2 ** (streak - 1))
+            nxt = min(hi, sx[-1] + step)
         else:
+            streak = 0
             i = int(np.searchsorted(sy, target, side="left"))
             i = min(max(i, 1), sx.size - 1)
             x_a, x_b, y_a, y_b = sx[i - 1], sx[i], sy[i - 1], sy[i]
@@ -494,18 +511,23 @@ def _find_root(
         f"{what} did not reach {target:.4f} ± {atol:.4f} in {len(xs)} evaluations; closest: "
         f"D_in = {xs[best]:.4f} → {ys[best]:.4f}. Evaluations (D_in → D_out): "
         + ", ".join(f"{a:.4f}→{b:.4f}" for a, b in zip(xs, ys, strict=True))
-        + ". Raise max_iter, add seeds, or loosen rtol."
+        + ". Raise max_iter, add seeds, or loosen rtol.",
+        xs,
+        ys,
     )
 
 
 def _unreachable(what, target, atol, xs, ys, bounds) -> None:
-    order = np.argsort(xs)
-    lo_y, hi_y = ys[order[0]], ys[order[-1]]
+    i = int(np.argmin(xs)) if target < min(ys) else int(np.argmax(xs))
+    side = "lower" if target < min(ys) else "upper"
     raise CalibrationError(
-        f"{what} = {target:.4f} cannot be reached: D_in in [{bounds[0]:g}, {bounds[1]:g}] gives "
-        f"D_out from {lo_y:.4f} (D_in = {xs[order[0]]:.4f}) to {hi_y:.4f} "
-        f"(D_in = {xs[order[-1]]:.4f}), tolerance ± {atol:.4f}. Use another method, or check "
-        "the target (for 'tri'/'box' D depends on R_t relative to the pixel size)."
+        f"{what} = {target:.4f} cannot be reached with D_in in [{bounds[0]:g}, {bounds[1]:g}]: "
+        f"the {side} bound D_in = {xs[i]:.4f} gives {ys[i]:.4f} (tolerance ± {atol:.4f}); "
+        f"D_out over the {len(xs)} evaluations spans [{min(ys):.4f}, {max(ys):.4f}]. Use another "
+        "method, or check the target (for 'tri'/'box' D depends on R_t relative to the pixel "
+        "size).",
+        xs,
+        ys,
     )
 
 

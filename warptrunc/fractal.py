@@ -404,11 +404,17 @@ def _vs(zd, surface, lags, fit_range, axis) -> FractalFit:
     lag_d = wp.array(taus.astype(np.int32), dtype=wp.int32, device=zd.device)
     ny, nx = surface.ny, surface.nx
     parts = []
+    # GPU: one thread per column (coalesced); CPU: one per row (contiguous, threads run serially)
+    kernel, width = (
+        (_k.structure_function_rows_kernel, ny)
+        if zd.device.is_cpu
+        else (_k.structure_function_kernel, nx)
+    )
     for ax in ("x", "y") if axis == "both" else (axis,):
-        out = wp.zeros((taus.size, nx), dtype=wp.float64, device=zd.device)
+        out = wp.zeros((taus.size, width), dtype=wp.float64, device=zd.device)
         wp.launch(
-            _k.structure_function_kernel,
-            dim=(taus.size, nx),
+            kernel,
+            dim=(taus.size, width),
             inputs=[zd, lag_d, 1 if ax == "x" else 0],
             outputs=[out],
             device=zd.device,
