@@ -18,7 +18,7 @@ def test_environment_variable_sets_the_default(monkeypatch):
     monkeypatch.setenv("WARPTRUNC_DEVICE", "cpu")
     assert str(warptrunc.resolve_device(None)) == "cpu"
     monkeypatch.setenv("WARPTRUNC_DEVICE", "cuda:7")
-    with pytest.raises(ValueError, match="device must be one of .* got 'cuda:7'"):
+    with pytest.raises(ValueError, match=r"device must be one of .* got 'cuda:7'"):
         warptrunc.resolve_device(None)
 
 
