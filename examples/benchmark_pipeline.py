@@ -28,7 +28,7 @@ import warp as wp
 
 import warptrunc
 from warptrunc.truncation import truncate
-from warptrunc.wm import wm_heights, wm_spec, wm_surface
+from warptrunc.wm import generate_on_device, wm_heights, wm_product, wm_spec, wm_surface, wm_tables
 
 
 def timeit(fn, repeats: int, sync) -> float:
@@ -60,7 +60,15 @@ def run_case(n: int, device, repeats: int) -> dict:
     spec = wm_spec(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6)
     sync = lambda: wp.synchronize_device(device)  # noqa: E731
     res = {"n": n, "terms": spec.n_terms, "device": str(device), "device_name": device.name}
-    res["warp_product_s"] = timeit(lambda: wm_heights(spec, device), repeats, sync)
+    res["warp_tables_and_product_s"] = timeit(lambda: wm_heights(spec, device), repeats, sync)
+    p, q, c0 = wm_tables(spec, device)
+    zbuf = wp.empty((spec.ny, spec.nx), dtype=wp.float32, device=device)
+    res["warp_tables_s"] = timeit(lambda: wm_tables(spec, device), repeats, sync)
+    res["warp_product_s"] = timeit(lambda: wm_product(p, q, zbuf), repeats, sync)
+    p = q = zbuf = None  # free the buffers before the next measurement
+    res["warp_generate_on_device_s"] = timeit(
+        lambda: generate_on_device(spec, device), repeats, sync
+    )
     res["warp_generate_s"] = timeit(
         lambda: wm_surface(2.5, 100e-6, L=1e-3, n=n, device=device), repeats, sync
     )
@@ -100,10 +108,13 @@ def run_case(n: int, device, repeats: int) -> dict:
     # CPU references: float64 NumPy evaluation (tables + BLAS dgemm) and float32 BLAS sgemm
     p64, q64 = tables(np, spec, np.float64)
     res["numpy_float64_generate_s"] = timeit(
-        lambda: (lambda pq: pq[0] @ pq[1])(tables(np, spec, np.float64)), max(1, repeats // 2), lambda: None
+        lambda: (lambda pq: pq[0] @ pq[1])(tables(np, spec, np.float64)),
+        max(1, repeats // 2),
+        lambda: None,
     )
     p32, q32 = tables(np, spec, np.float32)
     res["numpy_sgemm_s"] = timeit(lambda: p32 @ q32, repeats, lambda: None)
+    res["numpy_tables_s"] = timeit(lambda: tables(np, spec, np.float32), repeats, lambda: None)
     c0 = float(np.sum(spec.w * np.cos(spec.alpha)))
     raw = wm_heights(spec, device).numpy()
     ref = c0 - p64 @ q64
@@ -120,7 +131,9 @@ def run_case(n: int, device, repeats: int) -> dict:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.ArgumentDefaultsHelpFormatter
+    )
     ap.add_argument("--device", default=None, help="cpu, cuda:0, ... (default: CUDA if present)")
     ap.add_argument("--n", type=int, nargs="+", default=[1024, 4096], help="pixels per side")
     ap.add_argument("--repeats", type=int, default=5, help="timed repeats per measurement")
@@ -131,10 +144,17 @@ def main(argv=None) -> int:
     device = warptrunc.resolve_device(args.device)
     sizes, repeats = ([256], 2) if args.quick else (args.n, args.repeats)
     try:
-        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+        commit = subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+        ).stdout.strip()
     except OSError:
         commit = ""
-    meta = {"warp": wp.config.version, "numpy": np.__version__, "host": platform.processor() or platform.machine(), "commit": commit}
+    meta = {
+        "warp": wp.config.version,
+        "numpy": np.__version__,
+        "host": platform.processor() or platform.machine(),
+        "commit": commit,
+    }
     results = []
     for n in sizes:
         r = run_case(n, device, repeats)
@@ -152,8 +172,10 @@ def main(argv=None) -> int:
             else f"numpy sgemm {r['numpy_sgemm_s'] * 1e3:.1f} ms, float64 {r['numpy_float64_generate_s'] * 1e3:.0f} ms, "
             f"np.histogram {r['numpy_histogram_truncate_s'] * 1e3:.0f} ms"
         )
-        print(f"{r['n']:>6} {r['terms']:>5} {r['warp_product_s'] * 1e3:>8.2f}ms {r['warp_generate_s'] * 1e3:>8.2f}ms "
-              f"{r['warp_truncate_s'] * 1e3:>8.2f}ms  {ref}; err {r.get('max_rel_err_vs_float64', float('nan')):.1e}")
+        print(
+            f"{r['n']:>6} {r['terms']:>5} {r['warp_product_s'] * 1e3:>8.2f}ms {r['warp_generate_s'] * 1e3:>8.2f}ms "
+            f"{r['warp_truncate_s'] * 1e3:>8.2f}ms  {ref}; err {r.get('max_rel_err_vs_float64', float('nan')):.1e}"
+        )
     print(f"wrote {path}")
     return 0
 

@@ -28,16 +28,24 @@ PAPER = {"slope": 0.209, "intercept": 0.090, "r": 0.940}
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.ArgumentDefaultsHelpFormatter
+    )
     ap.add_argument("--device", default=None, help="cpu, cuda:0, ...")
     ap.add_argument("--n", type=int, default=1024, help="pixels per side")
     ap.add_argument("--seeds", type=int, default=5, help="surfaces per D_in")
     ap.add_argument("--delta", type=float, default=0.01, help="relative roughness δ = R_t/W_r")
-    ap.add_argument("--D", type=float, nargs="+", default=[2.1, 2.3, 2.5, 2.7, 2.9], help="D_in values")
-    ap.add_argument("--min-pixels", type=int, nargs="+", default=[1, 10, 100, 1000], help="fit ranges")
+    ap.add_argument(
+        "--D", type=float, nargs="+", default=[2.1, 2.3, 2.5, 2.7, 2.9], help="D_in values"
+    )
+    ap.add_argument(
+        "--min-pixels", type=int, nargs="+", default=[1, 10, 100, 1000], help="fit ranges"
+    )
     ap.add_argument("--out", type=Path, default=Path("results/group2"), help="output folder")
     ap.add_argument("--quick", action="store_true", help="128², 2 seeds, 3 values of D")
-    ap.add_argument("--no-show", action="store_true", help="do not open a window (figures are saved)")
+    ap.add_argument(
+        "--no-show", action="store_true", help="do not open a window (figures are saved)"
+    )
     args = ap.parse_args(argv)
     if args.quick:
         args.n, args.seeds, args.D = 128, 2, [2.2, 2.5, 2.8]
@@ -46,16 +54,28 @@ def main(argv=None) -> int:
         args.D, [args.delta], range(args.seeds), n=args.n, min_pixels=args.min_pixels,
         csv_path=args.out / "sweep.csv", device=args.device,
     )  # fmt: skip
-    summary = {"n": args.n, "seeds": args.seeds, "delta": args.delta, "paper": PAPER, "fit_ranges": {}}
+    summary = {
+        "n": args.n,
+        "seeds": args.seeds,
+        "delta": args.delta,
+        "paper": PAPER,
+        "fit_ranges": {},
+    }
     for mp in args.min_pixels:
         sel = t.columns["min_pixels"] == mp
         stats = SweepTable({k: v[sel] for k, v in t.columns.items()}).group_stats(["D_in"], "alpha")
         ok = [r for r in stats if r["n"] > 0 and np.isfinite(r["alpha_mean"])]
-        line = linear_fit([r["D_in"] for r in ok], [r["alpha_mean"] for r in ok]) if len(ok) >= 2 else None
+        line = (
+            linear_fit([r["D_in"] for r in ok], [r["alpha_mean"] for r in ok])
+            if len(ok) >= 2
+            else None
+        )
         summary["fit_ranges"][str(mp)] = {"per_D": stats, "alpha_vs_D": line}
         print(f"\nmin_pixels = {mp}:")
         for r in stats:
-            print(f"  D_in = {r['D_in']:.1f}: α = {r['alpha_mean']:.3f} ± {r['alpha_sd']:.3f} ({r['n']} fits)")
+            print(
+                f"  D_in = {r['D_in']:.1f}: α = {r['alpha_mean']:.3f} ± {r['alpha_sd']:.3f} ({r['n']} fits)"
+            )
         if line:
             print(f"  α = {line['slope']:.3f}·D_in + {line['intercept']:.3f} (r = {line['r']:.3f});"
                   f" paper: α = 0.209·D_in + 0.090 (r = 0.940)")  # fmt: skip

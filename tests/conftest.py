@@ -13,7 +13,7 @@ import pytest
 
 matplotlib.use("Agg")
 
-import warptrunc  # noqa: E402
+import warptrunc
 
 
 def _devices() -> list[str]:

@@ -9,7 +9,7 @@ import numpy as np
 
 def wm_numpy(D, Wr, Lx, Ly, nx, ny, *, G, M=10, gamma=1.5, Wc, seed):
     """Eq. (4) literally, in polar form, float64: z(x, y) on x = ix·Lx/nx, y = iy·Ly/ny (m)."""
-    n_max = int(math.floor(math.log(Wr / Wc) / math.log(gamma) + 1e-9))
+    n_max = math.floor(math.log(Wr / Wc) / math.log(gamma) + 1e-9)
     # documented convention: phases ~ U[0, 2π) from default_rng(seed), shape (M, n_max + 1)
     alpha = np.random.default_rng(seed).uniform(0.0, 2.0 * math.pi, size=(M, n_max + 1))
     x = np.arange(nx) * (Lx / nx)

@@ -90,7 +90,9 @@ def test_invariants(device):
     rng = np.random.default_rng(2)
     z = (np.round(rng.normal(size=(48, 64)) * 64) / 64).astype(np.float32)  # exact binary fractions
     base = truncate(from_heights(z, 1e-6), 60, max_depth_fraction=0.7, device=device)
-    shifted = truncate(from_heights(z + np.float32(8.0), 1e-6), 60, max_depth_fraction=0.7, device=device)
+    shifted = truncate(
+        from_heights(z + np.float32(8.0), 1e-6), 60, max_depth_fraction=0.7, device=device
+    )
     transposed = truncate(from_heights(z.T.copy(), 1e-6), 60, max_depth_fraction=0.7, device=device)
     scaled = truncate(from_heights(z, 3e-6), 60, max_depth_fraction=0.7, device=device)
     np.testing.assert_array_equal(shifted.n_contact_pixels, base.n_contact_pixels)

@@ -27,7 +27,9 @@ def test_matches_float64_numpy(device, case, method):
     Wr, G, seed = 100e-6, 1e-9, 7
     Wc = 2 * max(Lx / nx, Ly / ny)
     ref, n_max = wm_numpy(D, Wr, Lx, Ly, nx, ny, G=G, Wc=Wc, seed=seed)
-    s = wm_surface(D, Wr, L=(Lx, Ly), n=(nx, ny), Rt=None, G=G, seed=seed, method=method, device=device)
+    s = wm_surface(
+        D, Wr, L=(Lx, Ly), n=(nx, ny), Rt=None, G=G, seed=seed, method=method, device=device
+    )
     assert s.heights.shape == (ny, nx) and s.heights.dtype == np.float32
     assert s.params["n_max"] == n_max
     err = np.abs(s.heights.astype(np.float64) - ref).max() / np.ptp(ref)

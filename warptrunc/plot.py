@@ -68,7 +68,7 @@ def stiffness_load(
     for i, c in enumerate(curves):
         sel = c.load > 0
         lab = labels[i] if labels is not None else None
-        (line,) = ax.loglog(c.F_over_EA[sel], c.Ec_over_E[sel], "-", lw=1.2, label=lab)
+        ax.loglog(c.F_over_EA[sel], c.Ec_over_E[sel], "-", lw=1.2, label=lab)
         if fits is not None and fits[i] is not None:
             f = fits[i]
             x = np.geomspace(f.F_over_EA_min, f.F_over_EA_max, 50)
@@ -83,6 +83,7 @@ def stiffness_load(
         ax.set_title(title)
     ax.legend(fontsize=7)
     return _finish(fig, path)
+
 
 # --- islands (Fig. 8) --------------------------------------------------------------------------
 

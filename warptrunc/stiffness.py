@@ -101,6 +101,15 @@ class StiffnessCurve:
             "F_over_EA": self.F_over_EA,
         }
 
+    def to_json(self, path: str | Path) -> Path:
+        """Write the columns of :meth:`to_dict` (lists) plus the material and β' as JSON."""
+        path = Path(path)
+        d = {k: v.tolist() for k, v in self.to_dict().items()}
+        d.update(material=asdict(self.material), beta_prime=self.beta_prime)
+        d.update(apparent_area_m2=self.apparent_area, rt_m=self.rt)
+        path.write_text(json.dumps(d, indent=1, default=str) + "\n")
+        return path
+
     def to_csv(self, path: str | Path) -> Path:
         """Write the columns of :meth:`to_dict` as CSV (full float64 precision)."""
         path = Path(path)
@@ -228,7 +237,9 @@ def fit_power_law(
     if depth_window is not None:
         lo, hi = (float(v) for v in depth_window)
         if not (0 <= lo < hi):
-            raise ValueError(f"depth_window must be (lo, hi) with 0 ≤ lo < hi (m), got {depth_window!r}")
+            raise ValueError(
+                f"depth_window must be (lo, hi) with 0 ≤ lo < hi (m), got {depth_window!r}"
+            )
         sel &= (sc.depth >= lo) & (sc.depth <= hi)
     if np.count_nonzero(sel) < 3:
         raise ValueError(

@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
@@ -75,7 +76,7 @@ class Surface:
         """Apparent (projected) area A = Lx·Ly (m²)."""
         return self.lx * self.ly
 
-    @property
+    @cached_property
     def rt(self) -> float:
         """Peak-to-valley height R_t = max z − min z (m), in float64."""
         z = self.heights
@@ -108,7 +109,11 @@ class Surface:
             path.with_suffix(".json").write_text(meta + "\n")
         else:
             if path.suffix != ".npz":
-                path = path.with_suffix(path.suffix + ".npz") if path.suffix else path.with_suffix(".npz")
+                path = (
+                    path.with_suffix(path.suffix + ".npz")
+                    if path.suffix
+                    else path.with_suffix(".npz")
+                )
             np.savez_compressed(path, heights=self.heights, metadata=np.array(meta))
         return path
 
@@ -128,7 +133,9 @@ def load_surface(path: str | Path) -> Surface:
     else:
         with np.load(path, allow_pickle=False) as f:
             if "heights" not in f or "metadata" not in f:
-                raise ValueError(f"{path}: not a warptrunc surface (needs 'heights' and 'metadata')")
+                raise ValueError(
+                    f"{path}: not a warptrunc surface (needs 'heights' and 'metadata')"
+                )
             z = f["heights"]
             meta = json.loads(str(f["metadata"]))
     return Surface(z, meta["dx"], meta["dy"], meta.get("params", {}))

@@ -109,22 +109,22 @@ def depth_grid(
     return np.arange(n + 1, dtype=np.float64) * (wmax / n)
 
 
-def _prepare(surface: Surface, depth: np.ndarray, device):
+def _upload(surface: Surface, device) -> wp.array:
+    """The flattened heights on ``device`` (reusing the generator's copy when it is there)."""
     cached = getattr(surface, "_device_heights", None)
     if cached is not None and cached.device == device:
-        z = cached.flatten()  # generated on this device: no second upload
-    else:
-        z_np = surface.heights.reshape(-1)
-        check_memory(z_np.nbytes + 8 * depth.size, device, "truncation analysis")
-        z = wp.array(z_np, dtype=wp.float32, device=device)
-    lo, hi = height_range(z, device)
+        return cached.flatten()  # generated on this device: no second upload
+    z_np = surface.heights.reshape(-1)
+    check_memory(z_np.nbytes, device, "truncation analysis")
+    return wp.array(z_np, dtype=wp.float32, device=device)
+
+
+def _thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
+    lo, hi = height_range(z, device) if lo_hi is None else lo_hi
     thr = (np.float64(hi) - depth).astype(np.float32)
-    if np.any(np.diff(thr) > 0):  # cannot happen for increasing depth; guard the kernel's premise
-        raise ValueError("depths must be non-decreasing")
     step = float(depth[-1] / (depth.size - 1)) if depth.size > 1 and depth[-1] > 0 else 0.0
     inv_step = 1.0 / step if step > 0 else 0.0
-    t = wp.array(thr, dtype=wp.float32, device=device)
-    return z, t, lo, hi, thr, inv_step
+    return wp.array(thr, dtype=wp.float32, device=device), lo, hi, thr, inv_step
 
 
 def truncate(
@@ -161,10 +161,13 @@ def truncate(
     the cumulative sum gives the number of contact pixels at every depth.
     """
     device = resolve_device(device)
+    z = _upload(surface, device)
+    lo, hi = height_range(z, device)
     depth = depth_grid(
-        surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
-    )
-    z, t, lo, hi, thr, inv_step = _prepare(surface, depth, device)
+        float(np.float64(hi) - np.float64(lo)), n_increments,
+        max_depth=max_depth, max_depth_fraction=max_depth_fraction,
+    )  # fmt: skip
+    t, lo, hi, thr, inv_step = _thresholds(z, depth, device, (lo, hi))
     hist = wp.zeros(depth.size, dtype=wp.int64, device=device)
     wp.launch(
         _k.contact_histogram_kernel,
@@ -215,7 +218,8 @@ def contact_index_map(
     depth = np.asarray(depth, dtype=np.float64)
     if depth.ndim != 1 or depth.size < 1 or np.any(np.diff(depth) < 0) or depth[0] < 0:
         raise ValueError("depth must be a 1-D non-decreasing array of depths ≥ 0 (m)")
-    z, t, _lo, hi, _thr, inv_step = _prepare(surface, depth, device)
+    z = _upload(surface, device)
+    t, _lo, hi, _thr, inv_step = _thresholds(z, depth, device)
     index = wp.empty(z.shape[0], dtype=wp.int32, device=device)
     wp.launch(
         _k.contact_index_kernel,

@@ -21,7 +21,15 @@ from .kernels import reduce as _kr
 from .kernels import wm as _k
 from .surface import Surface
 
-__all__ = ["WMSpec", "wm_heights", "wm_spec", "wm_surface"]
+__all__ = [
+    "WMSpec",
+    "generate_on_device",
+    "wm_heights",
+    "wm_product",
+    "wm_spec",
+    "wm_surface",
+    "wm_tables",
+]
 
 
 class WMSpec:
@@ -37,9 +45,7 @@ class WMSpec:
 
     def params(self) -> dict:
         """JSON-serialisable generation parameters (SI units)."""
-        keys = (
-            "D Wr Lx Ly nx ny M gamma Wc cutoff n_max n_terms seed G Rt method"
-        ).split()
+        keys = ("D Wr Lx Ly nx ny M gamma Wc cutoff n_max n_terms seed G Rt method").split()
         return {"generator": "weierstrass-mandelbrot", **{k: getattr(self, k) for k in keys}}
 
 
@@ -92,7 +98,7 @@ def wm_spec(
         G = check_range("G", G, 0.0, unit="m")
     seed = check_int("seed", seed, 0)
     # n_max: the largest n with wavelength Wr/γ^n ≥ Wc (1e-9 guards exact powers)
-    n_max = int(math.floor(math.log(Wr / Wc) / math.log(gamma) + 1e-9))
+    n_max = math.floor(math.log(Wr / Wc) / math.log(gamma) + 1e-9)
     n_f = n_max + 1
     n_terms = M * n_f
     rng = np.random.default_rng(seed)
@@ -112,50 +118,60 @@ def _pad(v: int, t: int) -> int:
     return -(-v // t) * t
 
 
-def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int | None = None):
-    """Evaluate the unscaled WM sum S (dimensionless) on ``device``; returns a (ny, nx) wp.array.
+def wm_tables(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, wp.array, float]:
+    """Row table P (ny_pad × K), column table Q (K × nx_pad) and c0: S = c0 + P·Q.
 
-    S = Σ_t w_t [cos α_t − cos(kx_t·x + ky_t·y + α_t)], so heights are z = scale·S.
+    K = 2·n_terms padded to the GEMM tile depth; rows/columns are padded for the product kernel
+    of the device. Built in float64, stored as float32.
     """
     device = resolve_device(device)
     nx, ny, T = spec.nx, spec.ny, spec.n_terms
-    K = _pad(2 * T, _k.TILE_K)
-    need = 4 * (nx * ny + K * (_pad(nx, _k.TILE_N) + _pad(ny, _k.TILE_M)))
-    check_memory(need, device, f"a {nx}×{ny} WM surface with {T} terms")
-    z = wp.empty((ny, nx), dtype=wp.float32, device=device)
-    f64 = lambda a: wp.array(np.ascontiguousarray(a, dtype=np.float64), device=device)  # noqa: E731
-    kx, ky, alpha, w = f64(spec.kx), f64(spec.ky), f64(spec.alpha), f64(spec.w)
-    if spec.method == "direct":
-        wp.launch(
-            _k.wm_direct_kernel,
-            dim=(ny, nx),
-            inputs=[kx, ky, alpha, w, spec.dx, spec.dy],
-            outputs=[z],
-            device=device,
-        )
-        return z
     gpu = device.is_cuda
+    K = _pad(2 * T, _k.TILE_K)
     ny_pad = _pad(ny, _k.TILE_M) if gpu else _pad(ny, _k.ROWS)
     nx_pad = _pad(nx, _k.TILE_N) if gpu else _pad(nx, _k.COLS)
+    check_memory(
+        4 * (nx * ny + K * (nx_pad + ny_pad)), device, f"a {nx}×{ny} WM surface with {T} terms"
+    )
+    f64 = lambda a: wp.array(np.ascontiguousarray(a, dtype=np.float64), device=device)  # noqa: E731
+    kx, ky, alpha, w = f64(spec.kx), f64(spec.ky), f64(spec.alpha), f64(spec.w)
     p = wp.zeros((ny_pad, K), dtype=wp.float32, device=device)
     q = wp.zeros((K, nx_pad), dtype=wp.float32, device=device)
-    wp.launch(_k.column_table_kernel, dim=(T, nx), inputs=[kx, alpha, spec.dx, T], outputs=[q], device=device)
-    wp.launch(_k.row_table_kernel, dim=(ny, T), inputs=[ky, w, spec.dy, T], outputs=[p], device=device)
-    c0 = float(np.sum(spec.w * np.cos(spec.alpha)))
+    launches = [
+        (_k.column_table_kernel, (T, nx), [kx, alpha, spec.dx, T], q),
+        (_k.row_table_kernel, (ny, T), [ky, w, spec.dy, T], p),
+    ]
+    run = lambda a: wp.launch(a[0], dim=a[1], inputs=a[2], outputs=[a[3]], device=device)  # noqa: E731
     if gpu:
+        for a in launches:
+            run(a)
+    else:  # one CPU thread each (a Warp CPU launch is single-threaded and releases the GIL)
+        wp.load_module(_k, device=device)
+        with ThreadPoolExecutor(2) as ex:
+            list(ex.map(run, launches))
+    return p, q, float(np.sum(spec.w * np.cos(spec.alpha)))
+
+
+def wm_product(
+    p: wp.array, q: wp.array, z: wp.array, *, cpu_threads: int | None = None
+) -> wp.array:
+    """z = P·Q on z's device (tile GEMM on CUDA; threaded row bands on the CPU)."""
+    device = z.device
+    K = p.shape[1]
+    if device.is_cuda:
         wp.launch_tiled(
             _k.wm_tile_gemm_kernel,
-            dim=(ny_pad // _k.TILE_M, nx_pad // _k.TILE_N),
-            inputs=[p, q, c0, 0],
+            dim=(p.shape[0] // _k.TILE_M, q.shape[1] // _k.TILE_N),
+            inputs=[p, q],
             outputs=[z],
-            block_dim=128,
+            block_dim=256,
             device=device,
         )
         return z
     # A Warp CPU launch runs on one thread: launch row bands from Python threads (the ctypes
     # call releases the GIL) so that every core works.
-    qv = wp.array(ptr=q.ptr, dtype=_k.vec16, shape=(K, nx_pad // _k.COLS), device=device)
-    blocks = ny_pad // _k.ROWS
+    qv = wp.array(ptr=q.ptr, dtype=_k.vec16, shape=(K, q.shape[1] // _k.COLS), device=device)
+    blocks = p.shape[0] // _k.ROWS
     n_threads = max(1, min(cpu_threads or os.cpu_count() or 1, blocks))
     bounds = np.linspace(0, blocks, n_threads + 1).astype(int)
 
@@ -163,8 +179,8 @@ def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int |
         if b1 > b0:
             wp.launch(
                 _k.wm_rowblock_kernel,
-                dim=(b1 - b0, nx_pad // _k.COLS),
-                inputs=[p, qv, c0, int(b0 * _k.ROWS)],
+                dim=(b1 - b0, q.shape[1] // _k.COLS),
+                inputs=[p, qv, int(b0 * _k.ROWS)],
                 outputs=[z],
                 device=device,
             )
@@ -172,8 +188,65 @@ def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int |
     wp.load_module(_k, device=device)  # compile/load once, before the fan-out
     with ThreadPoolExecutor(n_threads) as ex:
         list(ex.map(band, bounds[:-1], bounds[1:]))
-    del q  # qv aliases q's memory; q stays alive until the launches above have returned
     return z
+
+
+def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None) -> tuple[wp.array, float]:
+    """S − c0 as a (ny, nx) float32 Warp array, and c0 (the sum's constant Σ w·cos α)."""
+    c0 = float(np.sum(spec.w * np.cos(spec.alpha)))
+    z = None
+    if spec.method == "direct":
+        check_memory(4 * spec.nx * spec.ny, device, f"a {spec.nx}×{spec.ny} WM surface")
+        f64 = lambda a: wp.array(np.ascontiguousarray(a, dtype=np.float64), device=device)  # noqa: E731
+        z = wp.empty((spec.ny, spec.nx), dtype=wp.float32, device=device)
+        wp.launch(
+            _k.wm_direct_kernel,
+            dim=(spec.ny, spec.nx),
+            inputs=[f64(spec.kx), f64(spec.ky), f64(spec.alpha), f64(spec.w), spec.dx, spec.dy],
+            outputs=[z],
+            device=device,
+        )
+        return z, c0
+    p, q, c0 = wm_tables(spec, device)
+    z = wp.empty((spec.ny, spec.nx), dtype=wp.float32, device=device)
+    return wm_product(p, q, z, cpu_threads=cpu_threads), c0
+
+
+def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int | None = None):
+    """Evaluate the unscaled WM sum S (dimensionless) on ``device``; returns a (ny, nx) wp.array.
+
+    S = Σ_t w_t [cos α_t − cos(kx_t·x + ky_t·y + α_t)], so heights are z = scale·S.
+    """
+    device = resolve_device(device)
+    z, c0 = _raw_sum(spec, device, cpu_threads)
+    wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, 1.0], device=device)
+    return z
+
+
+def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, float]:
+    """Heights z = scale·S (m) as a (ny, nx) float32 Warp array on ``device``, and the scale.
+
+    With ``spec.Rt`` set, scale = R_t/(max S − min S); otherwise the prefactor of Eq. (4).
+    """
+    device = resolve_device(device)
+    z, c0 = _raw_sum(spec, device)
+    if spec.Rt is not None:
+        out = wp.array(np.array([np.inf, -np.inf], dtype=np.float32), device=device)
+        flat = z.flatten()
+        lanes = min(65536, flat.shape[0])
+        wp.launch(_kr.min_max_kernel, dim=lanes, inputs=[flat, lanes], outputs=[out], device=device)
+        lo, hi = out.numpy().astype(np.float64)  # sync point
+        if not hi > lo:
+            raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
+        scale = spec.Rt / (hi - lo)
+    else:
+        scale = _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
+    wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, float(scale)], device=device)
+    return z, scale
+
+
+def _prefactor(spec: WMSpec) -> float:
+    return spec.Wr * math.sqrt(math.log(spec.gamma) / spec.M)
 
 
 def wm_surface(
@@ -252,23 +325,10 @@ def wm_surface(
         method=method,
     )  # fmt: skip
     device = resolve_device(device)
-    z = wm_heights(spec, device)
-    prefactor = spec.Wr * math.sqrt(math.log(spec.gamma) / spec.M)
-    if spec.Rt is not None:
-        out = wp.array(np.array([np.inf, -np.inf], dtype=np.float32), device=device)
-        flat = z.flatten()
-        lanes = min(65536, flat.shape[0])
-        wp.launch(_kr.min_max_kernel, dim=lanes, inputs=[flat, lanes], outputs=[out], device=device)
-        lo, hi = out.numpy().astype(np.float64)  # sync point
-        if not hi > lo:
-            raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
-        scale = spec.Rt / (hi - lo)
-    else:
-        scale = prefactor * (spec.G / spec.Wr) ** (spec.D - 3.0)
-    wp.launch(_k.scale_kernel, dim=z.shape, inputs=[z, float(scale)], device=device)
+    z, scale = generate_on_device(spec, device)
     params = spec.params()
     params["scale"] = scale
-    params["G_equivalent"] = spec.Wr * (scale / prefactor) ** (1.0 / (spec.D - 3.0))
+    params["G_equivalent"] = spec.Wr * (scale / _prefactor(spec)) ** (1.0 / (spec.D - 3.0))
     surface = Surface(z.numpy(), spec.dx, spec.dy, params)  # sync point
     object.__setattr__(surface, "_device_heights", z)  # reused by truncate() on this device
     return surface

@@ -36,7 +36,9 @@ def add_surface_source(p: argparse.ArgumentParser) -> None:
         help="height map file (.npz/.npy written by warptrunc, .npy/.csv/.txt matrix with "
         "--dx, or an instrument file); overrides the generation parameters",
     )
-    g.add_argument("--dx", type=float, default=None, help="pixel spacing along x for plain matrices (m)")
+    g.add_argument(
+        "--dx", type=float, default=None, help="pixel spacing along x for plain matrices (m)"
+    )
     g.add_argument("--dy", type=float, default=None, help="pixel spacing along y (m); default dx")
     g.add_argument(
         "--height-unit",
@@ -44,7 +46,9 @@ def add_surface_source(p: argparse.ArgumentParser) -> None:
         default=1.0,
         help="multiply plain-matrix heights by this to get metres (e.g. 1e-6 for µm)",
     )
-    g.add_argument("--D", type=float, default=2.5, help="fractal dimension D, 2 < D < 3 (dimensionless)")
+    g.add_argument(
+        "--D", type=float, default=2.5, help="fractal dimension D, 2 < D < 3 (dimensionless)"
+    )
     g.add_argument("--Wr", type=float, default=100e-6, help="roll-off wavelength W_r (m)")
     g.add_argument("--L", type=float, nargs="+", default=[1e-3], help="side length L, or Lx Ly (m)")
     g.add_argument("--n", type=int, nargs="+", default=[1024], help="pixels per side, or nx ny")
@@ -56,7 +60,9 @@ def add_surface_source(p: argparse.ArgumentParser) -> None:
         help="topothesy G (m); when given, heights are not rescaled to --Rt",
     )
     g.add_argument("--M", type=int, default=10, help="number of superposed ridges M")
-    g.add_argument("--gamma", type=float, default=1.5, help="frequency density γ > 1 (dimensionless)")
+    g.add_argument(
+        "--gamma", type=float, default=1.5, help="frequency density γ > 1 (dimensionless)"
+    )
     g.add_argument(
         "--Wc",
         type=float,

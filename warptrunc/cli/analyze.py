@@ -30,10 +30,20 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--max-depth-fraction", type=float, default=0.1,
         help="largest depth ω_max as a fraction of R_t (dimensionless)",
     )  # fmt: skip
-    g.add_argument("--max-depth", type=float, default=None, help="largest depth ω_max (m); overrides the fraction")
+    g.add_argument(
+        "--max-depth",
+        type=float,
+        default=None,
+        help="largest depth ω_max (m); overrides the fraction",
+    )
     g.add_argument("--E", type=float, default=70e9, help="Young's modulus E of the rough body (Pa)")
     g.add_argument("--nu", type=float, default=0.33, help="Poisson's ratio ν of the rough body")
-    g.add_argument("--E-flat", type=float, default=math.inf, help="Young's modulus E_i of the flat (Pa); inf = rigid")
+    g.add_argument(
+        "--E-flat",
+        type=float,
+        default=math.inf,
+        help="Young's modulus E_i of the flat (Pa); inf = rigid",
+    )
     g.add_argument("--nu-flat", type=float, default=0.0, help="Poisson's ratio ν_i of the flat")
     g.add_argument("--beta-prime", type=float, default=1.0, help="geometric factor β' of Eq. 2")
     f = p.add_argument_group("fit range")
