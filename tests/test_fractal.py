@@ -291,3 +291,16 @@ def test_both_structure_function_layouts_agree(device):
         wp.launch(_k.structure_function_rows_kernel, (3, 23), inputs=[zd, lags, along_x],
                   outputs=[rows], device=device)  # fmt: skip
         np.testing.assert_allclose(cols.numpy().sum(1), rows.numpy().sum(1), rtol=1e-12)
+
+
+def test_figures(tmp_path):
+    from warptrunc import plot
+
+    s = self_affine_surface(0.5, 64, L, Rrms=20e-6, seed=1)
+    fits = fractal_dimensions(s)
+    fig = plot.fractal_fits(fits, path=tmp_path / "fits.png")
+    assert len([a for a in fig.axes if a.get_visible()]) == 4
+    fig = plot.d_out_vs_d_in([2.2, 2.5], {"tri": [2.1, 2.3], "sp": [2.2, 2.5]},
+                             path=tmp_path / "d.png")  # fmt: skip
+    assert len(fig.axes[0].lines) >= 1
+    assert (tmp_path / "fits.png").stat().st_size > 0 and (tmp_path / "d.png").stat().st_size > 0
