@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 
 from ..fractal import METHODS
+from ._common import add_reader_options, read_input
 
 NAME = "describe"
 HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four methods"
@@ -28,44 +29,12 @@ def add_scan_arguments(p: argparse.ArgumentParser, *, required: bool = True) -> 
         help="height map: .npz/.npy (warptrunc or plain), .csv/.txt matrix, or an instrument "
         "file (.sur, .x3p, .datx, ... needs the 'scans' extra)",
     )  # fmt: skip
-    g = p.add_argument_group("reading the file")
-    g.add_argument(
-        "--dx", type=float, default=None, help="pixel spacing along x (m) if not in FILE"
-    )
-    g.add_argument("--dy", type=float, default=None, help="pixel spacing along y (m); default dx")
-    g.add_argument(
-        "--height-unit", type=float, default=1.0,
-        help="metres per height unit, for files that declare none (e.g. 1e-6 for µm)",
-    )  # fmt: skip
-    g.add_argument(
-        "--missing", choices=["error", "fill"], default="error",
-        help="missing (NaN) points: stop with their count, or fill them",
-    )  # fmt: skip
-    g.add_argument(
-        "--fill", choices=["nearest", "harmonic", "mean"], default="nearest",
-        help="fill method with --missing fill",
-    )  # fmt: skip
-    g.add_argument("--level", action="store_true", help="subtract the least-squares plane")
-    g.add_argument(
-        "--engine", choices=["auto", "builtin", "surfacetopography"], default="auto",
-        help="reader: built-in for .npz/.npy/.csv/.txt/.tsv, SurfaceTopography otherwise",
-    )  # fmt: skip
-    g.add_argument("--channel", type=int, default=None, help="data channel of instrument files")
+    add_reader_options(p.add_argument_group("reading the file"))
 
 
 def read_scan_args(args: argparse.Namespace):
     """The Surface named by ``args.file`` with the reader options; reports missing points."""
-    from ..io import read_height_map
-
-    s = read_height_map(
-        args.file, dx=args.dx, dy=args.dy, height_unit=args.height_unit,
-        missing=args.missing, fill=args.fill, level=args.level, engine=args.engine,
-        channel=args.channel,
-    )  # fmt: skip
-    n_missing = s.params.get("n_missing", 0)
-    if n_missing:
-        print(f"{args.file}: {n_missing} missing points filled ({args.fill})", file=sys.stderr)
-    return s
+    return read_input(args.file, args)
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
