@@ -15,6 +15,9 @@ from typing import Any
 UM = 1e6  # m → µm on axes
 FIGSIZE = (5.0, 4.0)
 DPI = 150
+CONTACT_RGB = (214, 39, 40)  # contact (truncated) areas, as the paper's red; also in render.py
+CONTACT_COLOR = "#d62728"  # the same red for matplotlib
+SPREAD_ALPHA = 0.25  # shaded spread over seeds
 
 
 def _figure(figsize: tuple[float, float] = FIGSIZE, ncols: int = 1, nrows: int = 1):
