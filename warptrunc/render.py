@@ -339,7 +339,7 @@ class _Panel:
                         prop.SetFontFamily(VTK_FONT_FILE)
                         prop.SetFontFile(font)
             if caption:
-                self.caption = _text(pl, caption, "lower_left", 7, "dimgray")
+                self.caption = _text(pl, caption, "lower_left", 8, "dimgray")
         _camera(pl, top_view, size, fill=0.74 if annotate else 1.0)
 
     def frame(self, mask: np.ndarray, title: str | None, caption: bool = True) -> np.ndarray:
@@ -416,7 +416,7 @@ def _layout(n: int, ncols: int | None) -> tuple[int, int]:
 def _caption(surface: Surface, factor: int, shape: tuple[int, int], ve: float) -> str:
     s = (
         f"{surface.nx}×{surface.ny} px, {surface.lx * 1e6:.4g}×{surface.ly * 1e6:.4g} µm, "
-        f"R_t = {surface.rt * 1e6:.3g} µm; heights ×{ve:g}"
+        f"Rt = {surface.rt * 1e6:.3g} µm; heights ×{ve:g}"
     )
     if factor > 1:
         s += (
@@ -445,7 +445,7 @@ def _save_png(img: np.ndarray, path: Path, result_meta: str, caption: str) -> No
 
 
 def _depth_title(d: float, rt: float, frac: float) -> str:
-    return f"ω = {100 * d / rt:.3g} % R_t = {d * 1e6:.3g} µm\nA_c/A = {100 * frac:.3g} %"
+    return f"ω = {100 * d / rt:.3g} % Rt = {d * 1e6:.3g} µm\ncontact Ac/A = {100 * frac:.3g} %"
 
 
 def render_truncation(
