@@ -35,11 +35,17 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=1, help="phase seed")
     ap.add_argument("--D", type=float, default=2.5, help="fractal dimension D_in")
     ap.add_argument("--out", type=Path, default=Path("results/render"), help="output folder")
+    ap.add_argument("--size", type=int, nargs=2, default=[1560, 880], metavar=("W", "H"),
+                    help="picture size in pixels")  # fmt: skip
     ap.add_argument("--animate", action="store_true", help="also write truncation.gif")
+    ap.add_argument(
+        "--palette", action="store_true",
+        help="re-save the PNGs with 256 colours (about half the size; the docs/ images)",
+    )  # fmt: skip
     ap.add_argument("--quick", action="store_true", help="128², small pictures")
     ap.add_argument("--no-show", action="store_true", help="do not open the pictures")
     args = ap.parse_args(argv)
-    size = (1560, 880)
+    size = tuple(args.size)
     if args.quick:
         args.n, size = 128, (780, 440)
     args.out.mkdir(parents=True, exist_ok=True)
@@ -52,6 +58,9 @@ def main(argv=None) -> int:
     vti = export_vtk(s, args.out / "surface.vti", n_increments=50 if args.quick else 200,
                      device=args.device)  # fmt: skip
     written = [r.path, top.path, vti]
+    if args.palette:
+        for p in (r.path, top.path):
+            _palette(p)
     if args.animate:
         a = animate_truncation(
             s, args.out / "truncation.gif", n_frames=6 if args.quick else 26,
@@ -74,6 +83,19 @@ def main(argv=None) -> int:
             plt.axis("off")
         plt.show()
     return 0
+
+
+def _palette(path: Path) -> None:
+    """Re-save a PNG with an adaptive 256-colour palette, keeping its text chunks."""
+    from PIL import Image
+    from PIL.PngImagePlugin import PngInfo
+
+    with Image.open(path) as im:
+        info = PngInfo()
+        for k, v in im.text.items():
+            info.add_text(k, v)
+        q = im.convert("RGB").quantize(256, method=Image.Quantize.MEDIANCUT)
+    q.save(path, pnginfo=info, optimize=True)
 
 
 if __name__ == "__main__":

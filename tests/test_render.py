@@ -261,15 +261,19 @@ def test_downsampled_rendering_never_loses_contact_and_says_so(tmp_path):
         panel = r.image[:, k * 256 : (k + 1) * 256]
         assert _red(panel).sum() == 4 * pooled.sum()
         assert _red(panel).mean() >= r.area_fraction[k]  # max-pooling only adds red
-    # automatic factor from the panel size, written into the PNG
+    # automatic factor: every block gets at least one screen pixel
+    r = render_truncation_top(s, d[:1], 256)  # the map fills 256 px: 2 pixels per block
+    assert r.downsample == 2
+    pooled = _ref_pool(_ref_mask(s.heights, d[0]).astype(np.int64), 2, "max") > 0
+    assert _red(r.image).sum() == pooled.sum()  # one screen pixel per block: none lost
     from warptrunc.render import render_truncation
 
     p = tmp_path / "big.png"
     r2 = render_truncation(s, p, depth_fractions=[0.2], window_size=(200, 160), device="cpu")
-    assert r2.downsample == 3  # ceil(512 / 200)
+    assert r2.downsample == 4  # ceil(512 / 160): the panel's shorter side
     meta = Image.open(p).text
-    assert "down-sampled ×3" in meta["Description"]
-    assert json.loads(meta["warptrunc"])["downsample"] == 3
+    assert "down-sampled ×4" in meta["Description"]
+    assert json.loads(meta["warptrunc"])["downsample"] == 4
 
 
 def test_panel_picture_has_requested_size_and_is_not_blank(tmp_path, surf128):

@@ -169,8 +169,34 @@ def pool_blocks(a: np.ndarray, factor: int, how: str = "max") -> np.ndarray:
     return out
 
 
-def _auto_factor(shape: tuple[int, int], target: int) -> int:
-    return max(1, math.ceil(max(shape) / max(1, int(target))))
+def _auto_factor(
+    surface: Surface, panel: tuple[int, int], *, top_view: bool, annotate: bool, max_mesh: int
+) -> int:
+    """Smallest block side that gives every block at least one screen pixel.
+
+    Top view: over the map's footprint in the panel (so a red block always covers a pixel
+    centre); isometric view: over the panel's shorter side. Never more than ``max_mesh``
+    blocks per side.
+    """
+    pw, ph = panel
+    nx, ny = surface.nx, surface.ny
+    if top_view:
+        per_m = ph / (2.0 * _top_scale(surface.lx, surface.ly, pw, ph, _fill(annotate)))
+        f = max(nx / (surface.lx * per_m), ny / (surface.ly * per_m))
+    else:
+        f = max(nx, ny) / max(1, min(pw, ph))
+    f = max(f, max(nx, ny) / max(1, int(max_mesh)))
+    return max(1, math.ceil(f - 1e-9))
+
+
+def _fill(annotate: bool) -> float:
+    """Share of the panel's limiting side taken by the map in the top view."""
+    return 0.74 if annotate else 1.0
+
+
+def _top_scale(lx: float, ly: float, w: int, h: int, fill: float) -> float:
+    """Parallel scale (half the visible height) that fits an lx × ly map in a w × h panel."""
+    return max(ly, lx * h / w) / (2.0 * fill)
 
 
 def _check_depths(surface: Surface, depth_fractions, depths) -> np.ndarray:
@@ -312,6 +338,8 @@ class _Panel:
     def __init__(self, scene: _Scene, size, *, top_view, lighting, annotate, ve, caption=None):
         pv = _pyvista()
         self.scene, self.annotate = scene, annotate
+        # text sizes scale with the panel (VTK sizes are in points at a fixed DPI)
+        self.scale = max(0.6, min(1.5, min(size[0] / 520, size[1] / 440)))
         self.pl = pv.Plotter(off_screen=True, window_size=[int(size[0]), int(size[1])])
         pl = self.pl
         pl.set_background("white")
@@ -326,7 +354,7 @@ class _Panel:
         if annotate:
             axes = pl.show_bounds(
                 mesh=self.mesh, xtitle="x (µm)", ytitle="y (µm)", ztitle="z",
-                show_zaxis=False, show_zlabels=False, font_size=12, color="black", bold=False,
+                show_zaxis=False, show_zlabels=False, font_size=round(12 * self.scale), color="black", bold=False,
                 n_xlabels=3, n_ylabels=3, fmt="%.0f", location="front" if not top_view
                 else "outer", use_3d_text=False, use_2d=True,
             )  # fmt: skip
@@ -339,14 +367,14 @@ class _Panel:
                         prop.SetFontFamily(VTK_FONT_FILE)
                         prop.SetFontFile(font)
             if caption:
-                self.caption = _text(pl, caption, "lower_left", 8, "dimgray")
-        _camera(pl, top_view, size, fill=0.74 if annotate else 1.0)
+                self.caption = _text(pl, caption, "lower_left", round(8 * self.scale), "dimgray")
+        _camera(pl, top_view, size, fill=_fill(annotate))
 
     def frame(self, mask: np.ndarray, title: str | None, caption: bool = True) -> np.ndarray:
         self.mesh.cell_data["rgb"] = self.scene.colours(mask)
         if self.annotate:
             if title:
-                _text(self.pl, title, "upper_edge", 10, name="title")
+                _text(self.pl, title, "upper_edge", round(10 * self.scale), name="title")
             if hasattr(self, "caption"):
                 self.caption.SetVisibility(caption)
         self.pl.render()
@@ -364,8 +392,7 @@ def _camera(pl, top_view: bool, size, fill: float) -> None:
         pl.enable_parallel_projection()
         pl.reset_camera()
         b = pl.bounds
-        w, h = size
-        pl.camera.parallel_scale = max(b[3] - b[2], (b[1] - b[0]) * h / w) / (2.0 * fill)
+        pl.camera.parallel_scale = _top_scale(b[1] - b[0], b[3] - b[2], size[0], size[1], fill)
         return
     # from the −y side, 35° above the horizon, turned so that x runs along the front edge
     b = np.asarray(pl.bounds, dtype=float)
@@ -488,8 +515,9 @@ def render_truncation(
     vertical_exaggeration : float, optional
         Factor on heights (dimensionless); default :func:`auto_exaggeration`.
     downsample : int, optional
-        Block side f of the drawn mesh. Default: the smallest f that gives at most one block
-        per pixel of a panel's longer side and at most ``max_mesh`` blocks per side.
+        Block side f of the drawn mesh. Default: the smallest f that gives every block at
+        least one screen pixel (over the map's footprint in the top view, over the panel's
+        shorter side in the isometric view) and at most ``max_mesh`` blocks per side.
     max_mesh : int
         Largest number of blocks per side when ``downsample`` is not given.
     lighting : bool, optional
@@ -521,8 +549,10 @@ def render_truncation(
     if w < 16 or h < 16:
         raise ValueError(f"window_size must be at least 16×16 pixels, got {window_size!r}")
     if downsample is None:
-        panel = max(w // ncols, h // nrows)
-        downsample = _auto_factor(surface.heights.shape, min(panel, int(max_mesh)))
+        downsample = _auto_factor(
+            surface, (w // ncols, h // nrows), top_view=top_view, annotate=annotate,
+            max_mesh=max_mesh,
+        )  # fmt: skip
     f = int(downsample)
     if f < 1 or f != downsample:
         raise ValueError(f"downsample must be an integer ≥ 1, got {downsample!r}")
@@ -633,7 +663,9 @@ def animate_truncation(
         raise ValueError(f"fps must be > 0, got {fps!r}")
     w, h = (int(v) for v in window_size)
     if downsample is None:
-        downsample = _auto_factor(surface.heights.shape, min(max(w, h), int(max_mesh)))
+        downsample = _auto_factor(
+            surface, (w, h), top_view=top_view, annotate=True, max_mesh=max_mesh
+        )
     f = int(downsample)
     ve = (
         auto_exaggeration(surface)
