@@ -201,12 +201,12 @@ def test_top_view_red_pixels_equal_area_fraction_at_integer_scale(surf128):
     np.testing.assert_array_equal(r.area_fraction, curve.area_fraction[1:])
 
 
-def render_truncation_top(s, depths, px, **kw):
+def render_truncation_top(s, depths, px, window_size_override=None, **kw):
     from warptrunc.render import render_truncation
 
     return render_truncation(
         s, depths=depths, top_view=True, annotate=False, ncols=len(depths),
-        window_size=(px * len(depths), px), device="cpu", **kw,
+        window_size=window_size_override or (px * len(depths), px), device="cpu", **kw,
     )  # fmt: skip
 
 
@@ -232,6 +232,17 @@ def test_top_view_pixels_match_mask_at_non_integer_scale(surf128):
     frac_err = abs(red.mean() - mask.mean())
     # sampling error of ref plus the undecided pixels
     assert frac_err <= abs(ref.mean() - mask.mean()) + (~safe).mean()
+
+
+def test_top_view_of_a_rectangular_map_keeps_x_and_y_apart():
+    """96×64 pixels over 1.5×1 mm in a 192×128 window: 2×2 screen pixels per map pixel."""
+    pytest.importorskip("pyvista")
+    s = wm_surface(2.4, 100e-6, n=(96, 64), L=(1.5e-3, 1e-3), Rt=5e-6, seed=6, device="cpu")
+    d = 0.35 * s.rt
+    r = render_truncation_top(s, [d], 0, window_size_override=(192, 128))
+    mask = _ref_mask(s.heights, d)
+    expected = np.kron(mask[::-1], np.ones((2, 2), bool))  # image row 0 is y = Ly
+    np.testing.assert_array_equal(_red(r.image), expected)
 
 
 def test_top_view_orientation_on_a_tilted_plane():
@@ -319,6 +330,27 @@ def test_animation_gif(tmp_path):
     assert frames[0] < frames[-1]
     with pytest.raises(ValueError, match=r"\.gif or \.mp4"):
         animate_truncation(s, tmp_path / "a.avi", n_frames=2)
+
+
+def test_mp4_without_imageio_names_the_packages(tmp_path, monkeypatch):
+    pytest.importorskip("pyvista")
+    from warptrunc.render import animate_truncation
+
+    monkeypatch.setitem(sys.modules, "imageio", None)
+    monkeypatch.setitem(sys.modules, "imageio.v2", None)
+    s = wm_surface(2.5, 100e-6, n=32, Rt=10e-6, seed=3, device="cpu")
+    with pytest.raises(ImportError, match="pip install imageio imageio-ffmpeg"):
+        animate_truncation(s, tmp_path / "a.mp4", n_frames=2)
+
+
+def test_import_stays_light():
+    code = (
+        "import sys, warptrunc, warptrunc.render, warptrunc.plot, warptrunc.vtk_io;"
+        "bad = [m for m in ('pyvista', 'vtk', 'vtkmodules', 'matplotlib') if m in sys.modules];"
+        "sys.exit(str(bad) if bad else 0)"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stdout + r.stderr
 
 
 def test_cli_render_writes_picture_animation_vtk_and_json(tmp_path):
