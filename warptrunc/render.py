@@ -175,7 +175,7 @@ def _auto_factor(
     """Smallest block side that gives every block at least one screen pixel.
 
     Top view: over the map's footprint in the panel (so a red block always covers a pixel
-    centre); isometric view: over the panel's shorter side. Never more than ``max_mesh``
+    centre); oblique view: over the panel's shorter side. Never more than ``max_mesh``
     blocks per side.
     """
     pw, ph = panel
@@ -354,9 +354,9 @@ class _Panel:
         if annotate:
             axes = pl.show_bounds(
                 mesh=self.mesh, xtitle="x (µm)", ytitle="y (µm)", ztitle="z",
-                show_zaxis=False, show_zlabels=False, font_size=round(12 * self.scale), color="black", bold=False,
-                n_xlabels=3, n_ylabels=3, fmt="%.0f", location="front" if not top_view
-                else "outer", use_3d_text=False, use_2d=True,
+                show_zaxis=False, show_zlabels=False, font_size=round(12 * self.scale),
+                color="black", bold=False, n_xlabels=3, n_ylabels=3, fmt="%.0f",
+                location="outer" if top_view else "front", use_3d_text=False, use_2d=True,
             )  # fmt: skip
             font = _font_file()
             if font is not None:
@@ -507,7 +507,8 @@ def render_truncation(
         Depths ω (m); override ``depth_fractions``.
     top_view : bool
         View from above with an orthographic (parallel) projection, x to the right and y up
-        (as ``imshow(z, origin="lower")``); otherwise an isometric view.
+        (as ``imshow(z, origin="lower")``); otherwise an oblique view from the −y side,
+        35° above the horizon.
     window_size : (int, int), optional
         Picture size (width, height) in pixels. Default: 520×440 per panel.
     ncols : int, optional
@@ -517,11 +518,11 @@ def render_truncation(
     downsample : int, optional
         Block side f of the drawn mesh. Default: the smallest f that gives every block at
         least one screen pixel (over the map's footprint in the top view, over the panel's
-        shorter side in the isometric view) and at most ``max_mesh`` blocks per side.
+        shorter side in the oblique view) and at most ``max_mesh`` blocks per side.
     max_mesh : int
         Largest number of blocks per side when ``downsample`` is not given.
     lighting : bool, optional
-        Shade the surface by VTK lights. Default: on in the isometric view, off in the top
+        Shade the surface by VTK lights. Default: on in the oblique view, off in the top
         view (flat colours, so red pixels measure the contact area).
     annotate : bool
         Draw titles, axes in µm and the caption.
@@ -539,6 +540,17 @@ def render_truncation(
     Each pixel (or block) is one flat-coloured cell; corner heights are means of the adjacent
     cells. A pixel is in contact at ω when z ≥ float32(z_top − ω), as in
     :func:`warptrunc.truncate`. Rendering is off-screen and needs no display.
+
+    In the top view without annotations, a window of k·nx × k·ny pixels per panel shows every
+    map pixel as k×k screen pixels, so the red pixels count k²·N_c exactly.
+
+    Examples
+    --------
+    >>> from warptrunc.wm import wm_surface
+    >>> from warptrunc.render import render_truncation
+    >>> s = wm_surface(2.5, 100e-6, n=2048, Rt=10e-6, seed=1)
+    >>> r = render_truncation(s, "truncation.png")  # doctest: +SKIP
+    >>> r.downsample, r.area_fraction  # doctest: +SKIP
     """
     _pyvista()
     depth = _check_depths(surface, depth_fractions, depths)
