@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import warp as wp
 
 from .surface import Surface
 
@@ -232,7 +233,7 @@ def contact_masks(
     depth: Sequence[float],
     *,
     downsample: int = 1,
-    device: Any = None,
+    device: wp.DeviceLike = None,
 ) -> np.ndarray:
     """Contact masks at the given depths, max-pooled over blocks of ``downsample``² pixels.
 
@@ -489,7 +490,7 @@ def render_truncation(
     max_mesh: int = MAX_MESH,
     lighting: bool | None = None,
     annotate: bool = True,
-    device: Any = None,
+    device: wp.DeviceLike = None,
 ) -> Rendering:
     """Render truncation sections: the surface with its contact set at each depth in red.
 
@@ -627,7 +628,7 @@ def animate_truncation(
     vertical_exaggeration: float | None = None,
     downsample: int | None = None,
     max_mesh: int = MAX_MESH,
-    device: Any = None,
+    device: wp.DeviceLike = None,
 ) -> Rendering:
     """Animate the truncation deepening from ω = 0 to ``max_depth_fraction``·R_t.
 

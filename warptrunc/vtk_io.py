@@ -24,9 +24,9 @@ vertical exaggeration) and colour by ``first_contact_depth``, or *Threshold* it 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 import numpy as np
+import warp as wp
 
 from .surface import Surface
 
@@ -42,7 +42,7 @@ def export_vtk(
     n_increments: int = 200,
     max_depth: float | None = None,
     max_depth_fraction: float = 1.0,
-    device: Any = None,
+    device: wp.DeviceLike = None,
 ) -> Path:
     """Write ``surface`` with its first-contact depths as VTK image data.
 
