@@ -26,18 +26,26 @@ pyvista when first used.
 """
 
 from ._device import resolve_device
+from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
 from .surface import Surface, from_heights, load_surface
 from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
+from .wm import wm_surface
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "Material",
+    "PowerLawFit",
+    "StiffnessCurve",
     "Surface",
     "TruncationCurve",
     "contact_index_map",
     "depth_grid",
+    "fit_power_law",
     "from_heights",
     "load_surface",
     "resolve_device",
+    "stiffness_curve",
     "truncate",
+    "wm_surface",
 ]
