@@ -267,7 +267,7 @@ def auto_exaggeration(surface: Surface, relief: float = 0.1) -> float:
     rt = surface.rt
     if not rt > 0:
         return 1.0
-    v = relief * max(surface.lx, surface.ly) / rt
+    v = relief * max(surface.lx, surface.ly) / rt * (1 + 1e-6)  # R_t rescaled to 10 µm → 10
     if v <= 1:
         return 1.0
     e = 10 ** math.floor(math.log10(v))
