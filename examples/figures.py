@@ -12,6 +12,7 @@ What it shows
       shaded ±1 sd over seeds, with the fitted power laws (mean α ± sd);
     - ``alpha_vs_D.png``: α against D_in with the fitted line and the paper's
       α = 0.209·D_in + 0.090;
+    - ``psd.png``: profile power spectra of one surface per D_in, with W_r;
     - ``islands.png`` and ``slit_islands.png`` (Fig. 8) when ``warptrunc.islands`` is
       installed.
 
@@ -106,6 +107,16 @@ def main(argv=None) -> int:
     p = args.out / "alpha_vs_D.png"
     plot.alpha_vs_D(summary, title=f"δ = {args.delta}, {args.n}², {args.seeds} seeds", path=p)
     written.append(p)
+
+    if importlib.util.find_spec("warptrunc.descriptors") and hasattr(plot, "psd"):
+        from warptrunc.descriptors import profile_psd
+
+        p = args.out / "psd.png"
+        plot.psd(
+            [profile_psd(ss[0]) for ss in surfaces.values()],
+            labels=[f"D$_{{in}}$ = {D}" for D in surfaces], Wr=Wr, path=p,
+        )  # fmt: skip
+        written.append(p)
 
     if importlib.util.find_spec("warptrunc.islands") and hasattr(plot, "island_number"):
         from warptrunc import islands
