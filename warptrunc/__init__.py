@@ -33,6 +33,7 @@ from .io import read_height_map, write_height_map
 from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
 from .surface import Surface, from_heights, load_surface
 from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
+from .vtk_io import export_vtk
 from .wm import wm_surface
 
 __version__ = "0.1.0"
@@ -50,6 +51,7 @@ __all__ = [
     "contact_index_map",
     "depth_grid",
     "describe",
+    "export_vtk",
     "fit_power_law",
     "fractal_dimension",
     "fractal_dimensions",
