@@ -6,10 +6,12 @@ Launched by ``warptrunc.wm``. With r·cos(θ − πm/M) = x·cos(πm/M) + y·sin
 separates: cos(a_t(x) + b_t(y)) = cos a·cos b − sin a·sin b, where a_t = kx_t·x + α_t and
 b_t = ky_t·y. The sum over T = M·(n_max + 1) terms is then a matrix product
 
-    S[iy, ix] = c0 − Σ_j P[iy, j]·Q[j, ix],   j < 2T,
+    S[iy, ix] = c0 + Σ_j P[iy, j]·Q[j, ix],   j < 2T,
 
-with row tables P = [w·cos b, −w·sin b] (ny × 2T) and column tables Q = [cos a; sin a]
-(2T × nx), w_t = γ^{(D−3)n}, c0 = Σ_t w_t·cos α_t. The tables are built in float64 (phases up
+with row tables P = [−w·cos b, w·sin b] (ny × 2T) and column tables Q = [cos a; sin a]
+(2T × nx), w_t = γ^{(D−3)n}, c0 = Σ_t w_t·cos α_t. The product kernels compute P·Q; the
+constant c0 and the height scale are applied afterwards by ``affine_kernel``. The tables are
+built in float64 (phases up
 to ~10⁵ rad stay accurate to ~1e-11 rad) and stored as float32; the product accumulates in
 float32 over at most a few hundred terms. Heights are dimensionless here; the driver scales.
 
@@ -21,15 +23,15 @@ Kernels
 tiles, whose CPU shared memory is a process-wide static buffer, so row bands can be launched
 from several host threads at once).
 ``wm_direct_kernel``: one thread per pixel, float64 phases, loop over terms (reference path).
-``scale_kernel``: one thread per pixel, z *= s.
+``affine_kernel``: one thread per pixel, z = (z + offset)·scale.
 """
 
 import warp as wp
 
 wp.set_module_options({"enable_backward": False})
 
-TILE_M = wp.constant(64)
-TILE_N = wp.constant(64)
+TILE_M = wp.constant(128)
+TILE_N = wp.constant(128)
 TILE_K = wp.constant(32)
 ROWS = wp.constant(8)  # rows per thread in the CPU register-blocked product
 COLS = 16  # columns per thread (one vec16)
@@ -59,52 +61,47 @@ def row_table_kernel(
     n_terms: int,
     p: wp.array2d[wp.float32],
 ):
-    """One thread per (row iy, term t): P[iy, t] = w_t·cos(ky_t·y), P[iy, T+t] = −w_t·sin(...)."""
+    """One thread per (row iy, term t): P[iy, t] = −w_t·cos(ky_t·y), P[iy, T+t] = w_t·sin(...)."""
     iy, t = wp.tid()
     b = ky[t] * (wp.float64(iy) * dy)
-    p[iy, t] = wp.float32(w[t] * wp.cos(b))
-    p[iy, n_terms + t] = wp.float32(-w[t] * wp.sin(b))
+    p[iy, t] = wp.float32(-w[t] * wp.cos(b))
+    p[iy, n_terms + t] = wp.float32(w[t] * wp.sin(b))
 
 
 @wp.kernel
 def wm_tile_gemm_kernel(
     p: wp.array2d[wp.float32],
     q: wp.array2d[wp.float32],
-    c0: wp.float32,
-    row0: int,
     z: wp.array2d[wp.float32],
 ):
-    """One tile block per output tile: z = c0 − P·Q on rows row0 + TILE_M·i ..."""
+    """One tile block per TILE_M × TILE_N output tile: z = P·Q."""
     i, j = wp.tid()
     acc = wp.tile_zeros(shape=(TILE_M, TILE_N), dtype=wp.float32)
     for k in range(p.shape[1] // TILE_K):
-        a = wp.tile_load(p, shape=(TILE_M, TILE_K), offset=(row0 + i * TILE_M, k * TILE_K))
+        a = wp.tile_load(p, shape=(TILE_M, TILE_K), offset=(i * TILE_M, k * TILE_K))
         b = wp.tile_load(q, shape=(TILE_K, TILE_N), offset=(k * TILE_K, j * TILE_N))
         wp.tile_matmul(a, b, acc)
-    ones = wp.tile_ones(shape=(TILE_M, TILE_N), dtype=wp.float32)
-    out = ones * c0 - acc
-    wp.tile_store(z, out, offset=(row0 + i * TILE_M, j * TILE_N))
+    wp.tile_store(z, acc, offset=(i * TILE_M, j * TILE_N))
 
 
 @wp.func
-def store_row(z: wp.array2d[wp.float32], iy: int, jb: int, c0: wp.float32, acc: vec16):
-    """z[iy, 16·jb + c] = c0 − acc[c] for the columns and rows inside z."""
+def store_row(z: wp.array2d[wp.float32], iy: int, jb: int, acc: vec16):
+    """z[iy, 16·jb + c] = acc[c] for the columns and rows inside z."""
     if iy < z.shape[0]:
         for c in range(COLS):
             ix = jb * COLS + c
             if ix < z.shape[1]:
-                z[iy, ix] = c0 - acc[c]
+                z[iy, ix] = acc[c]
 
 
 @wp.kernel
 def wm_rowblock_kernel(
     p: wp.array2d[wp.float32],
     q: wp.array2d[vec16],
-    c0: wp.float32,
     row0: int,
     z: wp.array2d[wp.float32],
 ):
-    """One thread per 8 × 16 block: z = c0 − P·Q (P rows padded to 8, Q columns to 16)."""
+    """One thread per 8 × 16 block: z = P·Q (P rows padded to 8, Q columns to 16)."""
     i, jb = wp.tid()
     iy = row0 + i * ROWS
     a0 = vec16()
@@ -125,14 +122,14 @@ def wm_rowblock_kernel(
         a5 += p[iy + 5, k] * v
         a6 += p[iy + 6, k] * v
         a7 += p[iy + 7, k] * v
-    store_row(z, iy, jb, c0, a0)
-    store_row(z, iy + 1, jb, c0, a1)
-    store_row(z, iy + 2, jb, c0, a2)
-    store_row(z, iy + 3, jb, c0, a3)
-    store_row(z, iy + 4, jb, c0, a4)
-    store_row(z, iy + 5, jb, c0, a5)
-    store_row(z, iy + 6, jb, c0, a6)
-    store_row(z, iy + 7, jb, c0, a7)
+    store_row(z, iy, jb, a0)
+    store_row(z, iy + 1, jb, a1)
+    store_row(z, iy + 2, jb, a2)
+    store_row(z, iy + 3, jb, a3)
+    store_row(z, iy + 4, jb, a4)
+    store_row(z, iy + 5, jb, a5)
+    store_row(z, iy + 6, jb, a6)
+    store_row(z, iy + 7, jb, a7)
 
 
 @wp.kernel
@@ -145,18 +142,18 @@ def wm_direct_kernel(
     dy: wp.float64,
     z: wp.array2d[wp.float32],
 ):
-    """One thread per pixel: z = Σ_t w_t·[cos α_t − cos(kx_t·x + ky_t·y + α_t)] in float64."""
+    """One thread per pixel: z = −Σ_t w_t·cos(kx_t·x + ky_t·y + α_t), phases in float64."""
     iy, ix = wp.tid()
     x = wp.float64(ix) * dx
     y = wp.float64(iy) * dy
     s = wp.float64(0.0)
     for t in range(kx.shape[0]):
-        s += w[t] * (wp.cos(alpha[t]) - wp.cos(kx[t] * x + ky[t] * y + alpha[t]))  # Eq. (4)
+        s -= w[t] * wp.cos(kx[t] * x + ky[t] * y + alpha[t])  # Eq. (4) without cos α
     z[iy, ix] = wp.float32(s)
 
 
 @wp.kernel
-def scale_kernel(z: wp.array2d[wp.float32], s: wp.float32):
-    """One thread per pixel: z *= s."""
+def affine_kernel(z: wp.array2d[wp.float32], offset: wp.float64, scale: wp.float64):
+    """One thread per pixel: z = (z + offset)·scale, evaluated in float64."""
     iy, ix = wp.tid()
-    z[iy, ix] = z[iy, ix] * s
+    z[iy, ix] = wp.float32((wp.float64(z[iy, ix]) + offset) * scale)

@@ -100,3 +100,12 @@ def test_csv_and_json_export(tmp_path):
 
     d = json.loads(fit.to_json(tmp_path / "f.json").read_text())
     assert d["alpha"] == fit.alpha and d["min_pixels"] == 1
+
+
+def test_curve_json_export(tmp_path):
+    import json
+
+    depth = np.linspace(0, 1e-6, 5)
+    sc = stiffness_curve(curve_from_area(depth, 1e-12 * np.arange(1, 6)))
+    d = json.loads(sc.to_json(tmp_path / "c.json").read_text())
+    assert d["load_N"] == sc.load.tolist() and d["material"]["E"] == 70e9

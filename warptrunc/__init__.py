@@ -26,18 +26,41 @@ pyvista when first used.
 """
 
 from ._device import resolve_device
+from .calibrate import Calibration, CalibrationTarget, calibrate
+from .descriptors import describe
+from .fractal import FractalFit, fractal_dimension, fractal_dimensions
+from .io import read_height_map, write_height_map
+from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
 from .surface import Surface, from_heights, load_surface
 from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
+from .vtk_io import export_vtk
+from .wm import wm_surface
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "Calibration",
+    "CalibrationTarget",
+    "FractalFit",
+    "Material",
+    "PowerLawFit",
+    "StiffnessCurve",
     "Surface",
     "TruncationCurve",
+    "calibrate",
     "contact_index_map",
     "depth_grid",
+    "describe",
+    "export_vtk",
+    "fit_power_law",
+    "fractal_dimension",
+    "fractal_dimensions",
     "from_heights",
     "load_surface",
+    "read_height_map",
     "resolve_device",
+    "stiffness_curve",
     "truncate",
+    "wm_surface",
+    "write_height_map",
 ]

@@ -173,8 +173,8 @@ class Scan:
             iy, ix = np.argwhere(~valid)[0]
             raise ValueError(
                 f"{self.source}: {n_missing} of {z.size} points are missing (NaN; first at "
-                f"iy={iy}, ix={ix}); pass missing='fill' (fill={'|'.join(FILL_METHODS)}) to fill "
-                "them, or use warptrunc.io.read_scan to keep the mask"
+                f"iy={iy}, ix={ix}); pass missing='fill' (fill={'|'.join(FILL_METHODS)}; CLI: "
+                "--missing fill) to fill them, or use warptrunc.io.read_scan to keep the mask"
             )
         if level:
             z = level_plane(z, self.dx, self.dy, mask=valid)

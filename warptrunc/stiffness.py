@@ -101,6 +101,15 @@ class StiffnessCurve:
             "F_over_EA": self.F_over_EA,
         }
 
+    def to_json(self, path: str | Path) -> Path:
+        """Write the columns of :meth:`to_dict` (lists) plus the material and β' as JSON."""
+        path = Path(path)
+        d = {k: v.tolist() for k, v in self.to_dict().items()}
+        d.update(material=asdict(self.material), beta_prime=self.beta_prime)
+        d.update(apparent_area_m2=self.apparent_area, rt_m=self.rt)
+        path.write_text(json.dumps(d, indent=1, default=str) + "\n")
+        return path
+
     def to_csv(self, path: str | Path) -> Path:
         """Write the columns of :meth:`to_dict` as CSV (full float64 precision)."""
         path = Path(path)

@@ -119,7 +119,7 @@ def _pad(v: int, t: int) -> int:
 
 
 def wm_tables(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, wp.array, float]:
-    """Row table P (ny_pad × K), column table Q (K × nx_pad) and c0 of the separable WM sum.
+    """Row table P (ny_pad × K), column table Q (K × nx_pad) and c0: S = c0 + P·Q.
 
     K = 2·n_terms padded to the GEMM tile depth; rows/columns are padded for the product kernel
     of the device. Built in float64, stored as float32.
@@ -153,18 +153,18 @@ def wm_tables(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, wp.
 
 
 def wm_product(
-    p: wp.array, q: wp.array, c0: float, z: wp.array, *, cpu_threads: int | None = None
+    p: wp.array, q: wp.array, z: wp.array, *, cpu_threads: int | None = None
 ) -> wp.array:
-    """z = c0 − P·Q on z's device (tile GEMM on CUDA; threaded row bands on the CPU)."""
+    """z = P·Q on z's device (tile GEMM on CUDA; threaded row bands on the CPU)."""
     device = z.device
     K = p.shape[1]
     if device.is_cuda:
         wp.launch_tiled(
             _k.wm_tile_gemm_kernel,
             dim=(p.shape[0] // _k.TILE_M, q.shape[1] // _k.TILE_N),
-            inputs=[p, q, c0, 0],
+            inputs=[p, q],
             outputs=[z],
-            block_dim=128,
+            block_dim=256,
             device=device,
         )
         return z
@@ -180,7 +180,7 @@ def wm_product(
             wp.launch(
                 _k.wm_rowblock_kernel,
                 dim=(b1 - b0, q.shape[1] // _k.COLS),
-                inputs=[p, qv, c0, int(b0 * _k.ROWS)],
+                inputs=[p, qv, int(b0 * _k.ROWS)],
                 outputs=[z],
                 device=device,
             )
@@ -191,12 +191,10 @@ def wm_product(
     return z
 
 
-def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int | None = None):
-    """Evaluate the unscaled WM sum S (dimensionless) on ``device``; returns a (ny, nx) wp.array.
-
-    S = Σ_t w_t [cos α_t − cos(kx_t·x + ky_t·y + α_t)], so heights are z = scale·S.
-    """
-    device = resolve_device(device)
+def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None) -> tuple[wp.array, float]:
+    """S − c0 as a (ny, nx) float32 Warp array, and c0 (the sum's constant Σ w·cos α)."""
+    c0 = float(np.sum(spec.w * np.cos(spec.alpha)))
+    z = None
     if spec.method == "direct":
         check_memory(4 * spec.nx * spec.ny, device, f"a {spec.nx}×{spec.ny} WM surface")
         f64 = lambda a: wp.array(np.ascontiguousarray(a, dtype=np.float64), device=device)  # noqa: E731
@@ -208,10 +206,21 @@ def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int |
             outputs=[z],
             device=device,
         )
-        return z
+        return z, c0
     p, q, c0 = wm_tables(spec, device)
     z = wp.empty((spec.ny, spec.nx), dtype=wp.float32, device=device)
-    return wm_product(p, q, c0, z, cpu_threads=cpu_threads)
+    return wm_product(p, q, z, cpu_threads=cpu_threads), c0
+
+
+def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int | None = None):
+    """Evaluate the unscaled WM sum S (dimensionless) on ``device``; returns a (ny, nx) wp.array.
+
+    S = Σ_t w_t [cos α_t − cos(kx_t·x + ky_t·y + α_t)], so heights are z = scale·S.
+    """
+    device = resolve_device(device)
+    z, c0 = _raw_sum(spec, device, cpu_threads)
+    wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, 1.0], device=device)
+    return z
 
 
 def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, float]:
@@ -220,7 +229,7 @@ def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.a
     With ``spec.Rt`` set, scale = R_t/(max S − min S); otherwise the prefactor of Eq. (4).
     """
     device = resolve_device(device)
-    z = wm_heights(spec, device)
+    z, c0 = _raw_sum(spec, device)
     if spec.Rt is not None:
         out = wp.array(np.array([np.inf, -np.inf], dtype=np.float32), device=device)
         flat = z.flatten()
@@ -232,7 +241,7 @@ def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.a
         scale = spec.Rt / (hi - lo)
     else:
         scale = _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
-    wp.launch(_k.scale_kernel, dim=z.shape, inputs=[z, float(scale)], device=device)
+    wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, float(scale)], device=device)
     return z, scale
 
 

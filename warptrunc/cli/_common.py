@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from ..surface import Surface
@@ -36,16 +37,7 @@ def add_surface_source(p: argparse.ArgumentParser) -> None:
         help="height map file (.npz/.npy written by warptrunc, .npy/.csv/.txt matrix with "
         "--dx, or an instrument file); overrides the generation parameters",
     )
-    g.add_argument(
-        "--dx", type=float, default=None, help="pixel spacing along x for plain matrices (m)"
-    )
-    g.add_argument("--dy", type=float, default=None, help="pixel spacing along y (m); default dx")
-    g.add_argument(
-        "--height-unit",
-        type=float,
-        default=1.0,
-        help="multiply plain-matrix heights by this to get metres (e.g. 1e-6 for µm)",
-    )
+    add_reader_options(g)
     g.add_argument(
         "--D", type=float, default=2.5, help="fractal dimension D, 2 < D < 3 (dimensionless)"
     )
@@ -79,6 +71,46 @@ def add_surface_source(p: argparse.ArgumentParser) -> None:
     g.add_argument("--seed", type=int, default=0, help="seed of the random phases α_mn")
 
 
+def add_reader_options(g: argparse._ActionsContainer) -> None:
+    """Options for reading a height-map file (spacing, units, missing points, levelling)."""
+    g.add_argument(
+        "--dx", type=float, default=None, help="pixel spacing along x (m) if not in the file"
+    )
+    g.add_argument("--dy", type=float, default=None, help="pixel spacing along y (m); default dx")
+    g.add_argument(
+        "--height-unit", type=float, default=1.0,
+        help="metres per height unit, for files that declare none (e.g. 1e-6 for µm)",
+    )  # fmt: skip
+    g.add_argument(
+        "--missing", choices=["error", "fill"], default="error",
+        help="missing (NaN) points: stop with their count, or fill them",
+    )  # fmt: skip
+    g.add_argument(
+        "--fill", choices=["nearest", "harmonic", "mean"], default="nearest",
+        help="fill method with --missing fill",
+    )  # fmt: skip
+    g.add_argument("--level", action="store_true", help="subtract the least-squares plane")
+    g.add_argument(
+        "--engine", choices=["auto", "builtin", "surfacetopography"], default="auto",
+        help="reader: built-in for .npz/.npy/.csv/.txt/.tsv, SurfaceTopography otherwise",
+    )  # fmt: skip
+    g.add_argument("--channel", type=int, default=None, help="data channel of instrument files")
+
+
+def read_input(path: Path, args: argparse.Namespace) -> Surface:
+    """Read ``path`` with the options of :func:`add_reader_options`; reports filled points."""
+    from ..io import read_height_map
+
+    s = read_height_map(
+        path, dx=args.dx, dy=args.dy, height_unit=args.height_unit, missing=args.missing,
+        fill=args.fill, level=args.level, engine=args.engine, channel=args.channel,
+    )  # fmt: skip
+    n_missing = s.params.get("n_missing", 0)
+    if n_missing:
+        print(f"{path}: {n_missing} missing points filled ({args.fill})", file=sys.stderr)
+    return s
+
+
 def _pair(v: list) -> float | tuple:
     if len(v) == 1:
         return v[0]
@@ -90,9 +122,7 @@ def _pair(v: list) -> float | tuple:
 def surface_from_args(args: argparse.Namespace) -> Surface:
     """Read ``--input`` or generate a WM surface from the parameters."""
     if args.input is not None:
-        from ..io import read_height_map
-
-        return read_height_map(args.input, dx=args.dx, dy=args.dy, height_unit=args.height_unit)
+        return read_input(args.input, args)
     from ..wm import wm_surface
 
     return wm_surface(

@@ -3,8 +3,9 @@
 """Truncation analysis: contact area, stiffness and load against depth, and the power-law fit.
 
 Writes OUT/curve.csv (depth_m, n_contact_pixels, contact_area_m2, stiffness_N_per_m, load_N,
-Ec_over_E, F_over_EA), OUT/fit.json (alpha, beta, r2 and the fit range) and OUT/stiffness.png
-(E_c/E against F/(E·A), log–log, with the fitted line, as the paper's Fig. 9).
+Ec_over_E, F_over_EA), OUT/fit.json (alpha, beta, r2 and the fit range), OUT/stiffness.png
+(E_c/E against F/(E·A), log–log, with the fitted line, as the paper's Fig. 9) and
+OUT/area_fraction.png (A_c/A against depth).
 """
 
 from __future__ import annotations
@@ -81,11 +82,13 @@ def run(args: argparse.Namespace) -> int:
             sc, fit, labels=["truncation analysis"], path=args.out / "stiffness.png",
             title=f"{s.nx}×{s.ny}, R$_t$ = {s.rt * 1e6:.3g} µm",
         )  # fmt: skip
+        plot.area_fraction(curve, log=True, path=args.out / "area_fraction.png")
     print(
         f"{s.nx}×{s.ny} surface, R_t = {s.rt * 1e6:.4g} µm; {args.increments} increments to "
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; final contact {curve.area_fraction[-1]:.3%} of A\n"
         f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}, "
         f"{fit.n_points} increments with ≥ {fit.min_pixels} contact pixels)\n"
-        f"wrote {args.out}/curve.csv, fit.json" + ("" if args.no_plot else ", stiffness.png")
+        f"wrote {args.out}/curve.csv, fit.json"
+        + ("" if args.no_plot else ", stiffness.png, area_fraction.png")
     )
     return 0

@@ -1,0 +1,116 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Calibrate WM inputs (D_in, R_t') to a scan's descriptors (Fig. 4) and generate the surface.
+
+Targets come from FILE (D by --method, R_rms, R_t, W_r, size and resolution) or are typed in
+(--D, --Rrms, --Rt, --Wr, --L, --n); typed-in values override those of FILE. Writes
+OUT/calibration.json (the calibrated inputs, the targets and every evaluation) and
+OUT/surface.npz (the calibrated surface at --n-out pixels per side, default the scan's).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+from ..fractal import METHODS
+from .describe import add_scan_arguments, read_scan_args
+
+NAME = "calibrate"
+HELP = "find D_in and R_t' that reproduce a scan's D and R_rms (Fig. 4), then generate"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """Arguments of ``warptrunc calibrate``."""
+    add_scan_arguments(p, required=False)
+    t = p.add_argument_group("targets (typed in, or overriding those measured on FILE)")
+    t.add_argument("--method", choices=list(METHODS), default="tri", help="fractal method matched")
+    t.add_argument("--D", type=float, default=None, help="target fractal dimension (dimensionless)")
+    t.add_argument("--Rrms", type=float, default=None, help="target R_rms (m)")
+    t.add_argument("--Rt", type=float, default=None, help="scan's R_t, input of the D loop (m)")
+    t.add_argument("--Wr", type=float, default=None, help="roll-off wavelength W_r (m)")
+    t.add_argument("--L", type=float, nargs="+", default=None, help="scan side L, or Lx Ly (m)")
+    t.add_argument("--n", type=int, nargs="+", default=None, help="scan pixels per side (nx ny)")
+    c = p.add_argument_group("loop")
+    c.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], help="seeds per evaluation")
+    c.add_argument("--rtol", type=float, default=0.05, help="relative tolerance on D")
+    c.add_argument("--max-iter", type=int, default=12, help="evaluations per D loop")
+    c.add_argument("--no-progress", action="store_true", help="no progress bar")
+    o = p.add_argument_group("output surface")
+    o.add_argument(
+        "--n-out", type=int, nargs="+", default=None, help="output pixels per side (or nx ny)"
+    )
+    o.add_argument("--seed-out", type=int, default=0, help="seed of the output surface")
+    o.add_argument("--no-surface", action="store_true", help="write calibration.json only")
+    p.add_argument("--out", type=Path, default=Path("out"), help="output folder")
+    p.add_argument(
+        "--device", default=None,
+        help="Warp device: cpu, cuda:0, ... (default: $WARPTRUNC_DEVICE, else CUDA if present)",
+    )  # fmt: skip
+
+
+def _pair(v):
+    if v is None:
+        return None
+    if len(v) == 1:
+        return (v[0], v[0])
+    if len(v) == 2:
+        return (v[0], v[1])
+    raise ValueError(f"expected one or two values, got {v!r}")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Calibrate and write the outputs."""
+    from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
+
+    if args.file is not None:
+        s = read_scan_args(args)
+        t = target_from_surface(s, args.method, Wr=args.Wr, device=args.device)
+        fields = t.to_dict()
+        target = CalibrationTarget(
+            D=args.D if args.D is not None else t.D,
+            method=args.method,
+            Rrms=args.Rrms if args.Rrms is not None else t.Rrms,
+            Rt=args.Rt if args.Rt is not None else t.Rt,
+            Wr=t.Wr,
+            L=_pair(args.L) or t.L,
+            n=_pair(args.n) or t.n,
+            source=fields["source"] or str(args.file),
+        )
+    else:
+        missing = [k for k in ("D", "Rrms", "Rt", "Wr", "L", "n") if getattr(args, k) is None]
+        if missing:
+            raise ValueError(
+                "without FILE give every target: missing " + ", ".join(f"--{k}" for k in missing)
+            )
+        target = CalibrationTarget(
+            D=args.D, method=args.method, Rrms=args.Rrms, Rt=args.Rt, Wr=args.Wr,
+            L=_pair(args.L), n=_pair(args.n), source="given",
+        )  # fmt: skip
+    print(
+        f"targets: D_{target.method} = {target.D:.4f}, R_rms = {target.Rrms * 1e6:.4g} µm, "
+        f"R_t = {target.Rt * 1e6:.4g} µm, W_r = {target.Wr * 1e6:.4g} µm, "
+        f"{target.n[0]}×{target.n[1]} pixels over "
+        f"{target.L[0] * 1e6:.4g}×{target.L[1] * 1e6:.4g} µm"
+    )
+    cal = calibrate(
+        target, seeds=args.seeds, rtol=args.rtol, max_iter=args.max_iter,
+        progress=not args.no_progress, device=args.device,
+    )  # fmt: skip
+    args.out.mkdir(parents=True, exist_ok=True)
+    d = cal.to_dict()
+    d = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in d.items()}
+    (args.out / "calibration.json").write_text(json.dumps(d, indent=2) + "\n")
+    print(
+        f"D_in' = {cal.D_in:.4f}, R_t' = {cal.Rt * 1e6:.4g} µm → D_{target.method} = "
+        f"{cal.D_out:.4f} ± {cal.D_out_std:.4f}, R_rms = {cal.Rrms * 1e6:.4g} µm "
+        f"({cal.iterations} evaluations × {len(cal.seeds)} seeds)"
+    )
+    written = [str(args.out / "calibration.json")]
+    if not args.no_surface:
+        n_out = _pair(args.n_out)
+        surf = calibrated_surface(cal, n=n_out, seed=args.seed_out, device=args.device)
+        written.append(str(surf.save(args.out / "surface.npz")))
+    print("wrote " + ", ".join(written))
+    return 0

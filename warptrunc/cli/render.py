@@ -1,0 +1,121 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Pictures of truncation sections (the paper's Fig. 7), off-screen with pyvista.
+
+Writes OUT/truncation.png (the surface with its contact set in red at each depth, one panel per
+depth) and OUT/render.json (depths, full-resolution A_c/A, down-sampling factor, vertical
+exaggeration); optionally OUT/truncation.gif (or .mp4), an animation of the truncation
+deepening, and OUT/surface.vti, the heights and first-contact depths for ParaView.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from ._common import add_device, add_out, add_surface_source, surface_from_args
+
+NAME = "render"
+HELP = "render truncation sections (Fig. 7), an animation, a VTK file"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """Arguments of ``warptrunc render``."""
+    add_surface_source(p)
+    g = p.add_argument_group("picture")
+    g.add_argument(
+        "--depth-fractions", type=float, nargs="+", default=[0.1, 0.2, 0.3, 0.4, 0.5],
+        metavar="F", help="truncation depths as fractions of R_t, one panel each (dimensionless)",
+    )  # fmt: skip
+    g.add_argument(
+        "--depths", type=float, nargs="+", default=None, metavar="OMEGA",
+        help="truncation depths ω (m); override --depth-fractions",
+    )  # fmt: skip
+    g.add_argument("--top", action="store_true", help="orthographic view from above")
+    g.add_argument(
+        "--size", type=int, nargs=2, default=None, metavar=("W", "H"),
+        help="picture size in pixels (default 520×440 per panel)",
+    )  # fmt: skip
+    g.add_argument("--ncols", type=int, default=None, help="panels per row (default up to 3)")
+    g.add_argument(
+        "--exaggeration", type=float, default=None,
+        help="vertical exaggeration (dimensionless); default: R_t drawn as 1/10 of the side",
+    )  # fmt: skip
+    g.add_argument(
+        "--downsample", type=int, default=None,
+        help="block side of the drawn mesh in pixels (default: about one block per screen "
+        "pixel, at most 1024 blocks per side); a block is red when any of its pixels touches",
+    )  # fmt: skip
+    g.add_argument("--output", default="truncation.png", help="picture file name inside --out")
+    a = p.add_argument_group("animation and VTK export")
+    a.add_argument(
+        "--animate", nargs="?", const="truncation.gif", default=None, metavar="FILE",
+        help="also write an animation (.gif, or .mp4 with imageio-ffmpeg) inside --out",
+    )  # fmt: skip
+    a.add_argument("--frames", type=int, default=26, help="animation frames")
+    a.add_argument("--fps", type=float, default=8.0, help="animation frames per second")
+    a.add_argument(
+        "--max-depth-fraction", type=float, default=0.5,
+        help="last depth of the animation as a fraction of R_t (dimensionless)",
+    )  # fmt: skip
+    a.add_argument(
+        "--vtk", nargs="?", const="surface.vti", default=None, metavar="FILE",
+        help="also write heights and first-contact depths for ParaView (.vti or .vtk)",
+    )  # fmt: skip
+    a.add_argument(
+        "--vtk-increments", type=int, default=200,
+        help="depth increments n of the first-contact depths, up to ω = R_t",
+    )  # fmt: skip
+    add_device(p)
+    add_out(p)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Render and write the outputs."""
+    s = surface_from_args(args)
+    args.out.mkdir(parents=True, exist_ok=True)
+    written = []
+    if args.vtk:
+        from ..vtk_io import export_vtk
+
+        written.append(
+            export_vtk(s, args.out / args.vtk, n_increments=args.vtk_increments, device=args.device)
+        )
+    try:
+        from .. import render
+    except ImportError as exc:  # pragma: no cover
+        print(f"warptrunc render: error: {exc}", file=sys.stderr)
+        return 2
+    try:
+        r = render.render_truncation(
+            s, args.out / args.output, depth_fractions=args.depth_fractions, depths=args.depths,
+            top_view=args.top, window_size=args.size, ncols=args.ncols,
+            vertical_exaggeration=args.exaggeration, downsample=args.downsample,
+            device=args.device,
+        )  # fmt: skip
+        written.append(r.path)
+        info = {"picture": r.to_dict()}
+        if args.animate:
+            a = render.animate_truncation(
+                s, args.out / args.animate, max_depth_fraction=args.max_depth_fraction,
+                n_frames=args.frames, fps=args.fps, top_view=args.top,
+                vertical_exaggeration=args.exaggeration, downsample=args.downsample,
+                device=args.device,
+            )  # fmt: skip
+            written.append(a.path)
+            info["animation"] = a.to_dict()
+    except ImportError as exc:
+        print(f"warptrunc render: error: {exc}", file=sys.stderr)
+        return 2
+    for v in info.values():
+        for k in ("depth_m", "depth_fraction_of_Rt", "area_fraction"):
+            v[k] = [float(x) for x in v[k]]
+    info["surface"] = s.to_dict()
+    (args.out / "render.json").write_text(json.dumps(info, indent=2, default=str) + "\n")
+    written.append(args.out / "render.json")
+    print(r.caption)
+    for d, f, af in zip(r.depth, r.depth_fraction, r.area_fraction, strict=True):
+        print(f"  ω = {d * 1e6:.4g} µm ({100 * f:.3g} % R_t): A_c/A = {100 * af:.4g} %")
+    print("wrote " + ", ".join(str(p) for p in written))
+    return 0
