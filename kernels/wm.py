@@ -44,11 +44,14 @@ def column_table_kernel(
     alpha: wp.array[wp.float64],
     dx: wp.float64,
     n_terms: int,
+    nx: int,
     q: wp.array2d[wp.float32],
 ):
-    """One thread per (term t, column ix): Q[t, ix] = cos(kx_t·x + α_t), Q[T+t, ix] = sin(...)."""
+    """One thread per (term t, padded column ix): Q[t, ix] = cos(kx_t·x + α_t), Q[T+t, ix] =
+    sin(...). Padding columns ix ≥ nx repeat column nx − 1, so padded products repeat real
+    values and tile/block extremes need no mask."""
     t, ix = wp.tid()
-    a = kx[t] * (wp.float64(ix) * dx) + alpha[t]
+    a = kx[t] * (wp.float64(wp.min(ix, nx - 1)) * dx) + alpha[t]
     q[t, ix] = wp.float32(wp.cos(a))
     q[n_terms + t, ix] = wp.float32(wp.sin(a))
 
@@ -59,11 +62,13 @@ def row_table_kernel(
     w: wp.array[wp.float64],
     dy: wp.float64,
     n_terms: int,
+    ny: int,
     p: wp.array2d[wp.float32],
 ):
-    """One thread per (row iy, term t): P[iy, t] = −w_t·cos(ky_t·y), P[iy, T+t] = w_t·sin(...)."""
+    """One thread per (padded row iy, term t): P[iy, t] = −w_t·cos(ky_t·y), P[iy, T+t] =
+    w_t·sin(...). Padding rows iy ≥ ny repeat row ny − 1."""
     iy, t = wp.tid()
-    b = ky[t] * (wp.float64(iy) * dy)
+    b = ky[t] * (wp.float64(wp.min(iy, ny - 1)) * dy)
     p[iy, t] = wp.float32(-w[t] * wp.cos(b))
     p[iy, n_terms + t] = wp.float32(w[t] * wp.sin(b))
 
@@ -73,8 +78,11 @@ def wm_tile_gemm_kernel(
     p: wp.array2d[wp.float32],
     q: wp.array2d[wp.float32],
     z: wp.array2d[wp.float32],
+    lo: wp.array[wp.float32],
+    hi: wp.array[wp.float32],
 ):
-    """One tile block per TILE_M × TILE_N output tile: z = P·Q."""
+    """One tile block per TILE_M × TILE_N output tile: z = P·Q; the tile's min and max go to
+    lo/hi[i·tiles_x + j] (padding repeats real rows/columns, so they are extremes of z)."""
     i, j = wp.tid()
     acc = wp.tile_zeros(shape=(TILE_M, TILE_N), dtype=wp.float32)
     for k in range(p.shape[1] // TILE_K):
@@ -82,16 +90,16 @@ def wm_tile_gemm_kernel(
         b = wp.tile_load(q, shape=(TILE_K, TILE_N), offset=(k * TILE_K, j * TILE_N))
         wp.tile_matmul(a, b, acc)
     wp.tile_store(z, acc, offset=(i * TILE_M, j * TILE_N))
+    slot = i * (q.shape[1] // TILE_N) + j
+    wp.tile_store(lo, wp.tile_min(acc), offset=(slot,))
+    wp.tile_store(hi, wp.tile_max(acc), offset=(slot,))
 
 
 @wp.func
-def store_row(z: wp.array2d[wp.float32], iy: int, jb: int, acc: vec16):
-    """z[iy, 16·jb + c] = acc[c] for the columns and rows inside z."""
+def store_row(z: wp.array2d[vec16], iy: int, jb: int, acc: vec16):
+    """z[iy, jb] = acc for rows inside z (z is the output viewed as 16-wide vectors)."""
     if iy < z.shape[0]:
-        for c in range(COLS):
-            ix = jb * COLS + c
-            if ix < z.shape[1]:
-                z[iy, ix] = acc[c]
+        z[iy, jb] = acc
 
 
 @wp.kernel
@@ -99,9 +107,14 @@ def wm_rowblock_kernel(
     p: wp.array2d[wp.float32],
     q: wp.array2d[vec16],
     row0: int,
-    z: wp.array2d[wp.float32],
+    z: wp.array2d[vec16],
+    lo: wp.array2d[wp.float32],
+    hi: wp.array2d[wp.float32],
 ):
-    """One thread per 8 × 16 block: z = P·Q (P rows padded to 8, Q columns to 16)."""
+    """One thread per 8 × 16 block: z = P·Q (P rows padded to 8, Q and z columns to 16).
+
+    z is a vec16 view of the output: with a float32 output array the compiler cannot prove that
+    the stores do not alias P, and the kernel ran three times slower."""
     i, jb = wp.tid()
     iy = row0 + i * ROWS
     a0 = vec16()
@@ -130,6 +143,23 @@ def wm_rowblock_kernel(
     store_row(z, iy + 5, jb, a5)
     store_row(z, iy + 6, jb, a6)
     store_row(z, iy + 7, jb, a7)
+    # block extremes (padding repeats real rows/columns): one slot per thread, no atomics
+    b = iy // ROWS
+    lo[b, jb] = wp.min(
+        wp.min(wp.min(wp.min(a0), wp.min(a1)), wp.min(wp.min(a2), wp.min(a3))),
+        wp.min(wp.min(wp.min(a4), wp.min(a5)), wp.min(wp.min(a6), wp.min(a7))),
+    )
+    hi[b, jb] = wp.max(
+        wp.max(wp.max(wp.max(a0), wp.max(a1)), wp.max(wp.max(a2), wp.max(a3))),
+        wp.max(wp.max(wp.max(a4), wp.max(a5)), wp.max(wp.max(a6), wp.max(a7))),
+    )
+
+
+@wp.kernel
+def crop_kernel(src: wp.array2d[wp.float32], dst: wp.array2d[wp.float32]):
+    """One thread per output pixel: dst = src[:ny, :nx] (drops the padded columns)."""
+    iy, ix = wp.tid()
+    dst[iy, ix] = src[iy, ix]
 
 
 @wp.kernel

@@ -13,6 +13,7 @@ import os
 import warp as wp
 
 _initialised = False
+_mempool_kept: set = set()
 
 
 def _init() -> None:
@@ -38,10 +39,18 @@ def resolve_device(device: wp.DeviceLike = None) -> wp.context.Device:
     if device is None:
         device = "cuda:0" if wp.get_cuda_device_count() > 0 else "cpu"
     try:
-        return wp.get_device(device)
+        dev = wp.get_device(device)
     except Exception as exc:  # warp raises RuntimeError/ValueError depending on the case
         names = [str(d) for d in wp.get_devices()]
         raise ValueError(f"device must be one of {names}, got {device!r}") from exc
+    if dev.is_cuda and dev.is_mempool_supported and dev not in _mempool_kept:
+        # CUDA's default pool gives memory back at every synchronisation, so each new
+        # height map (hundreds of MB) is mapped afresh: measured 1–2.5 ms per 10240² array on
+        # an H200. Keep up to a quarter of the device's memory pooled, unless the user set it.
+        if wp.get_mempool_release_threshold(dev) == 0:
+            wp.set_mempool_release_threshold(dev, 0.25)
+        _mempool_kept.add(dev)
+    return dev
 
 
 def free_memory_bytes(device: wp.context.Device) -> int:

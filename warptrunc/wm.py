@@ -17,9 +17,9 @@ import warp as wp
 
 from ._device import check_memory, resolve_device
 from ._validate import check_int, check_range, pair
-from .kernels import reduce as _kr
 from .kernels import wm as _k
 from .surface import Surface
+from .truncation import height_range
 
 __all__ = [
     "WMSpec",
@@ -138,8 +138,8 @@ def wm_tables(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, wp.
     p = wp.zeros((ny_pad, K), dtype=wp.float32, device=device)
     q = wp.zeros((K, nx_pad), dtype=wp.float32, device=device)
     launches = [
-        (_k.column_table_kernel, (T, nx), [kx, alpha, spec.dx, T], q),
-        (_k.row_table_kernel, (ny, T), [ky, w, spec.dy, T], p),
+        (_k.column_table_kernel, (T, nx_pad), [kx, alpha, spec.dx, T, nx], q),
+        (_k.row_table_kernel, (ny_pad, T), [ky, w, spec.dy, T, ny], p),
     ]
     run = lambda a: wp.launch(a[0], dim=a[1], inputs=a[2], outputs=[a[3]], device=device)  # noqa: E731
     if gpu:
@@ -154,24 +154,38 @@ def wm_tables(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, wp.
 
 def wm_product(
     p: wp.array, q: wp.array, z: wp.array, *, cpu_threads: int | None = None
-) -> wp.array:
-    """z = P·Q on z's device (tile GEMM on CUDA; threaded row bands on the CPU)."""
+) -> tuple[wp.array, wp.array]:
+    """z = P·Q on z's device (tile GEMM on CUDA; threaded row bands on the CPU).
+
+    Returns the minima and maxima of z per output tile (GPU) or register block (CPU), whose
+    min and max are those of z: the R_t scaling needs no further pass over the heights.
+    """
     device = z.device
     K = p.shape[1]
     if device.is_cuda:
+        tiles = (p.shape[0] // _k.TILE_M, q.shape[1] // _k.TILE_N)
+        lo = wp.empty(tiles[0] * tiles[1], dtype=wp.float32, device=device)
+        hi = wp.empty_like(lo)
         wp.launch_tiled(
             _k.wm_tile_gemm_kernel,
-            dim=(p.shape[0] // _k.TILE_M, q.shape[1] // _k.TILE_N),
+            dim=tiles,
             inputs=[p, q],
-            outputs=[z],
+            outputs=[z, lo, hi],
             block_dim=256,
             device=device,
         )
-        return z
+        return lo, hi
     # A Warp CPU launch runs on one thread: launch row bands from Python threads (the ctypes
     # call releases the GIL) so that every core works.
     qv = wp.array(ptr=q.ptr, dtype=_k.vec16, shape=(K, q.shape[1] // _k.COLS), device=device)
+    ny, nx = z.shape
+    nx_pad = q.shape[1]
+    # the kernel stores 16-wide vectors: write straight into z when its rows are whole vectors
+    out = z if nx == nx_pad else wp.empty((ny, nx_pad), dtype=wp.float32, device=device)
+    outv = wp.array(ptr=out.ptr, dtype=_k.vec16, shape=(ny, nx_pad // _k.COLS), device=device)
     blocks = p.shape[0] // _k.ROWS
+    lo = wp.empty((blocks, nx_pad // _k.COLS), dtype=wp.float32, device=device)
+    hi = wp.empty_like(lo)
     n_threads = max(1, min(cpu_threads or os.cpu_count() or 1, blocks))
     bounds = np.linspace(0, blocks, n_threads + 1).astype(int)
 
@@ -181,20 +195,21 @@ def wm_product(
                 _k.wm_rowblock_kernel,
                 dim=(b1 - b0, q.shape[1] // _k.COLS),
                 inputs=[p, qv, int(b0 * _k.ROWS)],
-                outputs=[z],
+                outputs=[outv, lo, hi],
                 device=device,
             )
 
     wp.load_module(_k, device=device)  # compile/load once, before the fan-out
     with ThreadPoolExecutor(n_threads) as ex:
         list(ex.map(band, bounds[:-1], bounds[1:]))
-    return z
+    if out is not z:
+        wp.launch(_k.crop_kernel, dim=z.shape, inputs=[out], outputs=[z], device=device)
+    return lo, hi
 
 
-def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None) -> tuple[wp.array, float]:
-    """S − c0 as a (ny, nx) float32 Warp array, and c0 (the sum's constant Σ w·cos α)."""
-    c0 = float(np.sum(spec.w * np.cos(spec.alpha)))
-    z = None
+def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None):
+    """S − c0 as a (ny, nx) float32 Warp array, c0 (the constant Σ w·cos α), and per-block
+    minima and maxima of S − c0 (Warp arrays)."""
     if spec.method == "direct":
         check_memory(4 * spec.nx * spec.ny, device, f"a {spec.nx}×{spec.ny} WM surface")
         f64 = lambda a: wp.array(np.ascontiguousarray(a, dtype=np.float64), device=device)  # noqa: E731
@@ -206,10 +221,13 @@ def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None) -> tuple[wp.a
             outputs=[z],
             device=device,
         )
-        return z, c0
+        lo, hi = height_range(z.flatten(), device)
+        one = lambda v: wp.array([v], dtype=wp.float32, device=device)  # noqa: E731
+        return z, float(np.sum(spec.w * np.cos(spec.alpha))), one(lo), one(hi)
     p, q, c0 = wm_tables(spec, device)
     z = wp.empty((spec.ny, spec.nx), dtype=wp.float32, device=device)
-    return wm_product(p, q, z, cpu_threads=cpu_threads), c0
+    lo, hi = wm_product(p, q, z, cpu_threads=cpu_threads)
+    return z, c0, lo, hi
 
 
 def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int | None = None):
@@ -218,7 +236,7 @@ def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int |
     S = Σ_t w_t [cos α_t − cos(kx_t·x + ky_t·y + α_t)], so heights are z = scale·S.
     """
     device = resolve_device(device)
-    z, c0 = _raw_sum(spec, device, cpu_threads)
+    z, c0, _lo, _hi = _raw_sum(spec, device, cpu_threads)
     wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, 1.0], device=device)
     return z
 
@@ -229,16 +247,13 @@ def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.a
     With ``spec.Rt`` set, scale = R_t/(max S − min S); otherwise the prefactor of Eq. (4).
     """
     device = resolve_device(device)
-    z, c0 = _raw_sum(spec, device)
+    z, c0, lo, hi = _raw_sum(spec, device)
     if spec.Rt is not None:
-        out = wp.array(np.array([np.inf, -np.inf], dtype=np.float32), device=device)
-        flat = z.flatten()
-        lanes = min(65536, flat.shape[0])
-        wp.launch(_kr.min_max_kernel, dim=lanes, inputs=[flat, lanes], outputs=[out], device=device)
-        lo, hi = out.numpy().astype(np.float64)  # sync point
-        if not hi > lo:
+        zmin = float(lo.numpy().min())  # sync point (a few thousand values)
+        zmax = float(hi.numpy().max())
+        if not zmax > zmin:
             raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
-        scale = spec.Rt / (hi - lo)
+        scale = spec.Rt / (zmax - zmin)
     else:
         scale = _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
     wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, float(scale)], device=device)
