@@ -3,7 +3,8 @@
 """Min/max reduction of a float32 height map.
 
 Launched by ``warptrunc.truncation.height_range``. Grid: ``stride`` threads, each walking the
-flattened map with a grid-stride loop (coalesced on the GPU), then one atomic min and max per
+flattened map with a grid-stride loop (coalesced on the GPU) or a contiguous chunk (on the
+CPU), then one atomic min and max per
 thread into ``out[0]`` (min) and ``out[1]`` (max). Heights in metres, float32. The caller sets
 ``out`` to (+inf, -inf). Min and max do not depend on order, so results are identical on every
 device.
@@ -15,10 +16,16 @@ wp.set_module_options({"enable_backward": False})
 
 
 @wp.kernel
-def min_max_kernel(z: wp.array[wp.float32], stride: int, out: wp.array[wp.float32]):
-    """Grid-stride lanes over the flattened map; ``out = [min, max]``."""
+def min_max_kernel(z: wp.array[wp.float32], stride: int, chunk: int, out: wp.array[wp.float32]):
+    """Lanes over the flattened map; ``out = [min, max]``. GPU (``chunk == 0``): grid-stride
+    lanes, coalesced. CPU: lane i scans the contiguous chunk [i·chunk, (i+1)·chunk), which is
+    cache-friendly where a strided walk is not."""
     i = wp.tid()
     n = z.shape[0]
+    if chunk > 0:
+        i = i * chunk
+        n = wp.min(n, i + chunk)
+        stride = 1
     lo = float(3.4e38)
     hi = float(-3.4e38)
     while i < n:

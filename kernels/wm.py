@@ -108,8 +108,6 @@ def wm_rowblock_kernel(
     q: wp.array2d[vec16],
     row0: int,
     z: wp.array2d[vec16],
-    lo: wp.array2d[wp.float32],
-    hi: wp.array2d[wp.float32],
 ):
     """One thread per 8 × 16 block: z = P·Q (P rows padded to 8, Q and z columns to 16).
 
@@ -143,16 +141,6 @@ def wm_rowblock_kernel(
     store_row(z, iy + 5, jb, a5)
     store_row(z, iy + 6, jb, a6)
     store_row(z, iy + 7, jb, a7)
-    # block extremes (padding repeats real rows/columns): one slot per thread, no atomics
-    b = iy // ROWS
-    lo[b, jb] = wp.min(
-        wp.min(wp.min(wp.min(a0), wp.min(a1)), wp.min(wp.min(a2), wp.min(a3))),
-        wp.min(wp.min(wp.min(a4), wp.min(a5)), wp.min(wp.min(a6), wp.min(a7))),
-    )
-    hi[b, jb] = wp.max(
-        wp.max(wp.max(wp.max(a0), wp.max(a1)), wp.max(wp.max(a2), wp.max(a3))),
-        wp.max(wp.max(wp.max(a4), wp.max(a5)), wp.max(wp.max(a6), wp.max(a7))),
-    )
 
 
 @wp.kernel

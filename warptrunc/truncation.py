@@ -72,8 +72,10 @@ def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, floa
     """Return (min z, max z) (m) of a flattened float32 Warp array, by a device reduction."""
     device = resolve_device(device)
     out = wp.array(np.array([np.inf, -np.inf], dtype=np.float32), device=device)
-    lanes = min(_REDUCE_LANES, max(1, z.shape[0]))
-    wp.launch(_kr.min_max_kernel, dim=lanes, inputs=[z, lanes], outputs=[out], device=device)
+    n = max(1, z.shape[0])
+    lanes = min(_REDUCE_LANES, n)
+    chunk = 0 if device.is_cuda else -(-n // lanes)  # CPU: contiguous chunks per lane
+    wp.launch(_kr.min_max_kernel, dim=lanes, inputs=[z, lanes, chunk], outputs=[out], device=device)
     lo, hi = out.numpy()  # sync point
     return float(lo), float(hi)
 

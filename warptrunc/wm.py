@@ -157,8 +157,8 @@ def wm_product(
 ) -> tuple[wp.array, wp.array]:
     """z = P·Q on z's device (tile GEMM on CUDA; threaded row bands on the CPU).
 
-    Returns the minima and maxima of z per output tile (GPU) or register block (CPU), whose
-    min and max are those of z: the R_t scaling needs no further pass over the heights.
+    Returns arrays whose min and max are those of z: per output tile from the GEMM's epilogue on
+    the GPU (no further pass over the heights), from one reduction pass on the CPU.
     """
     device = z.device
     K = p.shape[1]
@@ -184,8 +184,6 @@ def wm_product(
     out = z if nx == nx_pad else wp.empty((ny, nx_pad), dtype=wp.float32, device=device)
     outv = wp.array(ptr=out.ptr, dtype=_k.vec16, shape=(ny, nx_pad // _k.COLS), device=device)
     blocks = p.shape[0] // _k.ROWS
-    lo = wp.empty((blocks, nx_pad // _k.COLS), dtype=wp.float32, device=device)
-    hi = wp.empty_like(lo)
     n_threads = max(1, min(cpu_threads or os.cpu_count() or 1, blocks))
     bounds = np.linspace(0, blocks, n_threads + 1).astype(int)
 
@@ -195,7 +193,7 @@ def wm_product(
                 _k.wm_rowblock_kernel,
                 dim=(b1 - b0, q.shape[1] // _k.COLS),
                 inputs=[p, qv, int(b0 * _k.ROWS)],
-                outputs=[outv, lo, hi],
+                outputs=[outv],
                 device=device,
             )
 
@@ -204,7 +202,11 @@ def wm_product(
         list(ex.map(band, bounds[:-1], bounds[1:]))
     if out is not z:
         wp.launch(_k.crop_kernel, dim=z.shape, inputs=[out], outputs=[z], device=device)
-    return lo, hi
+    # extremes by a separate pass: computing them in the register-blocked kernel pushed its
+    # accumulators out of registers (measured 2–15× slower)
+    lo, hi = height_range(z.flatten(), device)
+    one = lambda v: wp.array([v], dtype=wp.float32, device=device)  # noqa: E731
+    return one(lo), one(hi)
 
 
 def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None):
