@@ -43,13 +43,13 @@ def resolve_device(device: wp.DeviceLike = None) -> wp.context.Device:
     except Exception as exc:  # warp raises RuntimeError/ValueError depending on the case
         names = [str(d) for d in wp.get_devices()]
         raise ValueError(f"device must be one of {names}, got {device!r}") from exc
-    if dev.is_cuda and dev.is_mempool_supported and dev not in _mempool_kept:
+    if dev.is_cuda and dev.is_mempool_supported and str(dev) not in _mempool_kept:
         # CUDA's default pool gives memory back at every synchronisation, so each new
         # height map (hundreds of MB) is mapped afresh: measured 1–2.5 ms per 10240² array on
         # an H200. Keep up to a quarter of the device's memory pooled, unless the user set it.
         if wp.get_mempool_release_threshold(dev) == 0:
             wp.set_mempool_release_threshold(dev, 0.25)
-        _mempool_kept.add(dev)
+        _mempool_kept.add(str(dev))
     return dev
 
 
