@@ -22,9 +22,7 @@ import argparse
 import json
 import math
 import platform
-import statistics
 import subprocess
-import time
 from pathlib import Path
 
 import numpy as np
@@ -32,22 +30,10 @@ import warp as wp
 
 import warptrunc
 from warptrunc import fractal
+from warptrunc._bench import timeit
 from warptrunc.fractal import box_counting, power_spectrum, triangular_prism, vertical_sections
 
 L = 1e-3
-
-
-def timeit(fn, repeats: int, sync) -> float:
-    """Median wall time (s) of ``fn`` over ``repeats`` runs after one warm-up run."""
-    fn()
-    sync()
-    ts = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        sync()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
 
 
 # --- references: the same passes with array operations (xp = numpy or cupy) ---------------------

@@ -34,7 +34,6 @@ import argparse
 import json
 import platform
 import statistics
-import subprocess
 import sys
 import time
 import traceback
@@ -62,6 +61,7 @@ except ImportError:  # not installed: import the checkout, mapping kernels/ as w
 
 import warp as wp  # noqa: E402
 
+from warptrunc._bench import git_commit, timeit  # noqa: E402
 from warptrunc.islands import (  # noqa: E402
     _Forest,
     _topology_hist,
@@ -74,29 +74,6 @@ from warptrunc.truncation import contact_index_map, depth_grid  # noqa: E402
 from warptrunc.wm import wm_surface  # noqa: E402
 
 FRACTIONS = (0.1, 0.3, 0.5)
-
-
-def timeit(fn, repeats: int, sync) -> float:
-    """Median wall time (s) of ``fn`` over ``repeats`` runs after one warm-up run."""
-    fn()
-    sync()
-    ts = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        sync()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
-
-
-def git_commit() -> str | None:
-    try:
-        out = subprocess.run(
-            ["git", "-C", str(ROOT), "rev-parse", "HEAD"], capture_output=True, text=True
-        )
-        return out.stdout.strip() or None
-    except OSError:
-        return None
 
 
 def guarded(res: dict, key: str, fn):

@@ -18,30 +18,15 @@ from __future__ import annotations
 import argparse
 import json
 import platform
-import statistics
-import subprocess
-import time
 from pathlib import Path
 
 import numpy as np
 import warp as wp
 
 import warptrunc
+from warptrunc._bench import git_commit, timeit
 from warptrunc.truncation import truncate
 from warptrunc.wm import generate_on_device, wm_heights, wm_product, wm_spec, wm_surface, wm_tables
-
-
-def timeit(fn, repeats: int, sync) -> float:
-    """Median wall time (s) of ``fn`` over ``repeats`` runs after one warm-up run."""
-    fn()
-    sync()
-    ts = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        sync()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
 
 
 def tables(xp, spec, dtype):
@@ -143,17 +128,11 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     device = warptrunc.resolve_device(args.device)
     sizes, repeats = ([256], 2) if args.quick else (args.n, args.repeats)
-    try:
-        commit = subprocess.run(
-            ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True
-        ).stdout.strip()
-    except OSError:
-        commit = ""
     meta = {
         "warp": wp.config.version,
         "numpy": np.__version__,
         "host": platform.processor() or platform.machine(),
-        "commit": commit,
+        "commit": git_commit(),
     }
     results = []
     for n in sizes:

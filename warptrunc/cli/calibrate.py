@@ -15,6 +15,7 @@ import json
 from pathlib import Path
 
 from ..fractal import METHODS
+from ._common import add_device
 from .describe import add_scan_arguments, read_scan_args
 
 NAME = "calibrate"
@@ -44,10 +45,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     o.add_argument("--seed-out", type=int, default=0, help="seed of the output surface")
     o.add_argument("--no-surface", action="store_true", help="write calibration.json only")
     p.add_argument("--out", type=Path, default=Path("out"), help="output folder")
-    p.add_argument(
-        "--device", default=None,
-        help="Warp device: cpu, cuda:0, ... (default: $WARPTRUNC_DEVICE, else CUDA if present)",
-    )  # fmt: skip
+    add_device(p)
 
 
 def _pair(v):

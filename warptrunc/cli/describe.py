@@ -16,7 +16,7 @@ import sys
 from pathlib import Path
 
 from ..fractal import METHODS
-from ._common import add_reader_options, read_input
+from ._common import add_device, add_reader_options, read_input
 
 NAME = "describe"
 HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four methods"
@@ -55,10 +55,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )  # fmt: skip
     p.add_argument("--json", default=None, metavar="PATH", help="write JSON here ('-': stdout)")
     p.add_argument("--out", type=Path, default=None, help="folder for psd.png and fractal_fits.png")
-    p.add_argument(
-        "--device", default=None,
-        help="Warp device: cpu, cuda:0, ... (default: $WARPTRUNC_DEVICE, else CUDA if present)",
-    )  # fmt: skip
+    add_device(p)
 
 
 def describe_surface(s, methods, options, device) -> dict:

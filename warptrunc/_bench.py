@@ -1,0 +1,40 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Helpers shared by the benchmark scripts in ``examples/`` (timing and provenance)."""
+
+from __future__ import annotations
+
+import statistics
+import subprocess
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+
+def timeit(fn: Callable[[], object], repeats: int, sync: Callable[[], object]) -> float:
+    """Median wall time (s) of ``fn`` over ``repeats`` runs after one warm-up run.
+
+    ``sync`` is called after each run (e.g. ``wp.synchronize_device``) so that asynchronous
+    device work is inside the measurement.
+    """
+    fn()
+    sync()
+    ts = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        sync()
+        ts.append(time.perf_counter() - t0)
+    return statistics.median(ts)
+
+
+def git_commit(root: str | Path | None = None) -> str | None:
+    """The commit of the checkout at ``root`` (default: this package's), or None."""
+    root = Path(root) if root is not None else Path(__file__).resolve().parents[1]
+    try:
+        out = subprocess.run(
+            ["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True
+        )
+        return out.stdout.strip() or None
+    except OSError:
+        return None
