@@ -30,6 +30,7 @@ from .calibrate import Calibration, CalibrationTarget, calibrate
 from .descriptors import describe
 from .fractal import FractalFit, fractal_dimension, fractal_dimensions
 from .io import read_height_map, write_height_map
+from .islands import IslandCurve, Islands, applicable_depth, island_curve, label_islands
 from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
 from .surface import Surface, from_heights, load_surface
 from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
@@ -42,11 +43,14 @@ __all__ = [
     "Calibration",
     "CalibrationTarget",
     "FractalFit",
+    "IslandCurve",
+    "Islands",
     "Material",
     "PowerLawFit",
     "StiffnessCurve",
     "Surface",
     "TruncationCurve",
+    "applicable_depth",
     "calibrate",
     "contact_index_map",
     "depth_grid",
@@ -56,6 +60,8 @@ __all__ = [
     "fractal_dimension",
     "fractal_dimensions",
     "from_heights",
+    "island_curve",
+    "label_islands",
     "load_surface",
     "read_height_map",
     "resolve_device",

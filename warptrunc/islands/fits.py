@@ -1,0 +1,191 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Slit-island fits (Eq. 5) and the applicable-depth indicators of Table 2."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._validate import check_int, check_range
+from .results import (
+    MIN_ISLANDS,
+    MIN_PIXELS,
+    Indicators,
+    IslandCurve,
+    Islands,
+    IslandSizes,
+    SlitIslandFit,
+)
+
+# --- slit-island analysis -------------------------------------------------------------------------
+
+
+def _fit_loglog(area: np.ndarray, perimeter: np.ndarray) -> tuple[float, float, float]:
+    x = np.log10(area)
+    y = np.log10(perimeter)
+    xm, ym = x.mean(), y.mean()
+    sxx = float(np.sum((x - xm) ** 2))
+    if not sxx > 0:
+        return math.nan, math.nan, math.nan
+    sxy = float(np.sum((x - xm) * (y - ym)))
+    syy = float(np.sum((y - ym) ** 2))
+    slope = sxy / sxx
+    r2 = sxy * sxy / (sxx * syy) if syy > 0 else 1.0
+    return slope, float(ym - slope * xm), r2
+
+
+def slit_island_fit(
+    islands: Islands | IslandSizes,
+    *,
+    min_pixels: int = MIN_PIXELS,
+    min_islands: int = MIN_ISLANDS,
+) -> SlitIslandFit:
+    """Slit-island fit log10 L = exponent·log10 A + c over the islands at one depth (Eq. 5).
+
+    Parameters
+    ----------
+    islands : Islands or IslandSizes
+        Island areas A (m²) and perimeters L (m).
+    min_pixels : int
+        Smallest island used (pixels). Smaller islands have grid-dominated perimeters.
+    min_islands : int
+        Fewest islands for a fit; with fewer the result holds NaN.
+
+    Returns
+    -------
+    SlitIslandFit
+
+    Notes
+    -----
+    Mandelbrot's slit-island relation L ∝ A^((D−1)/2) for the sections of a self-affine surface
+    of dimension D (paper Eq. 5 with D_vs): the exponent is (D − 1)/2, so D = 2·exponent + 1.
+    Compact shapes give 0.5.
+
+    References
+    ----------
+    Mandelbrot, Passoja & Paullay (1984), Nature 308, 721–722, doi:10.1038/308721a0.
+    """
+    min_pixels = check_int("min_pixels", min_pixels, 1)
+    min_islands = check_int("min_islands", min_islands, 2)
+    keep = np.asarray(islands.area_pixels) >= min_pixels
+    n = int(keep.sum())
+    if n < min_islands:
+        return SlitIslandFit(math.nan, math.nan, math.nan, n, min_pixels)
+    slope, c, r2 = _fit_loglog(np.asarray(islands.area)[keep], np.asarray(islands.perimeter)[keep])
+    return SlitIslandFit(slope, c, r2, n, min_pixels)
+
+
+# --- applicable depth (Table 2) -------------------------------------------------------------------
+
+
+def _running(values: np.ndarray, window: int, how: str) -> np.ndarray:
+    """Centred running mean or nan-median over ``window`` samples (window 1: unchanged)."""
+    if window <= 1:
+        return values.astype(np.float64)
+    h = window // 2
+    out = np.full(values.size, math.nan)
+    for i in range(values.size):
+        w = values[max(0, i - h) : i + h + 1]
+        w = w[np.isfinite(w)]
+        if w.size:
+            out[i] = np.median(w) if how == "median" else w.mean()
+    return out
+
+
+def applicable_depth(
+    curve: IslandCurve,
+    *,
+    exponent_tolerance: float = 0.05,
+    min_islands: int = 50,
+    plateau_width: float = 0.1,
+    persist: float = 0.02,
+    smooth: int = 5,
+) -> Indicators:
+    """Depths bounding the applicable range of the truncation method (Table 2, Fig. 8).
+
+    Parameters
+    ----------
+    curve : IslandCurve
+        Island statistics against depth (with ``statistics=True`` for the fractality depth).
+    exponent_tolerance : float
+        Relative drop X of the slit-island exponent below its plateau that ends fractality
+        (dimensionless, 0 < X < 1).
+    min_islands : int
+        Fewest fitted islands (``curve.slit_n_islands``) for a depth's exponent to count; the
+        first few contact spots give noisy fits.
+    plateau_width : float
+        Width of the plateau window, as a fraction of R_t (dimensionless).
+    persist : float
+        Depth span, as a fraction of R_t, over which the exponent must stay below the
+        threshold for a drop to count (dimensionless); 0 accepts a single sample.
+    smooth : int
+        Odd window (depth samples) of a running mean of the growth rate and a running median
+        of the exponent; 1 disables smoothing.
+
+    Returns
+    -------
+    Indicators
+
+    Notes
+    -----
+    * Maximum growth rate: the depth at which d(n/n_max)/d(ω/R_t), smoothed, is largest (the
+      dashed lines of Fig. 8a).
+    * Fractality depth ("the deepest depth at which the slit-island exponent stays
+      constant"): only depths whose fit uses at least ``min_islands`` islands count. The
+      plateau exponent β₀ is the median of the smoothed exponent over the first
+      ``plateau_width``·R_t of those depths. Going deeper, the fractality depth is the last
+      counted depth before the exponent first falls below (1 − X)·β₀ and stays below for
+      every counted depth within the next ``persist``·R_t (the "obvious decrease" of §4.3; a
+      rise does not end it, nor does a one-sample dip of a noisy fit). When it never falls,
+      it is the deepest counted depth and ``fractal_depth_censored`` is set: the true value
+      lies beyond the analysed range.
+    * Island-count peak: the depth of the largest island count (the first one when tied).
+    """
+    tol = check_range("exponent_tolerance", exponent_tolerance, 0.0, 1.0)
+    min_islands = check_int("min_islands", min_islands, MIN_ISLANDS)
+    width = check_range("plateau_width", plateau_width, 0.0, unit="(fraction of R_t)")
+    persist = check_range("persist", persist, 0.0, lo_open=False, unit="(fraction of R_t)")
+    smooth = check_int("smooth", smooth, 1)
+    if smooth % 2 == 0:
+        raise ValueError(f"smooth must be odd, got {smooth!r}")
+    frac = curve.depth_fraction
+    growth = _running(curve.island_growth_rate, smooth, "mean")
+    k_growth = int(np.nanargmax(growth)) if np.isfinite(growth).any() else 0
+    k_peak = int(np.argmax(curve.n_islands))
+
+    beta = np.where(curve.slit_n_islands >= min_islands, curve.slit_exponent, math.nan)
+    beta = _running(beta, smooth, "median")
+    beta[curve.slit_n_islands < min_islands] = math.nan
+    fractal, plateau, censored = math.nan, math.nan, False
+    lo = hi = math.nan
+    ks = np.flatnonzero(np.isfinite(beta))
+    if ks.size:
+        lo = float(frac[ks[0]])
+        hi = lo + width
+        plateau = float(np.median(beta[ks[frac[ks] <= hi]]))
+        low = beta[ks] < (1.0 - tol) * plateau
+        drop = -1
+        for i in np.flatnonzero(low):
+            window = (frac[ks] >= frac[ks[i]]) & (frac[ks] <= frac[ks[i]] + persist + 1e-12)
+            if low[window].all():
+                drop = int(i)
+                break
+        if drop >= 0:
+            fractal = float(curve.depth[ks[max(drop - 1, 0)]])
+        else:
+            fractal, censored = float(curve.depth[ks[-1]]), True
+    return Indicators(
+        max_growth_depth=float(curve.depth[k_growth]),
+        fractal_depth=fractal,
+        peak_depth=float(curve.depth[k_peak]),
+        plateau_exponent=plateau,
+        fractal_depth_censored=censored,
+        rt=curve.rt,
+        exponent_tolerance=tol,
+        min_islands=min_islands,
+        persist=persist,
+        plateau_range=(lo, hi),
+        smooth=smooth,
+    )
