@@ -35,3 +35,19 @@ def min_max_kernel(z: wp.array[wp.float32], stride: int, chunk: int, out: wp.arr
         i += stride
     wp.atomic_min(out, 0, lo)
     wp.atomic_max(out, 1, hi)
+
+
+TILE = wp.constant(8192)  # elements per block in min_max_tile_kernel
+
+
+@wp.kernel
+def min_max_tile_kernel(
+    z: wp.array[wp.float32], lo: wp.array[wp.float32], hi: wp.array[wp.float32]
+):
+    """GPU: one tile block per TILE consecutive elements (whole tiles only; the caller reduces
+    the remainder): ``lo[b]``, ``hi[b]`` = the tile's min and max (a coalesced, block-wide
+    reduction, no atomics)."""
+    b = wp.tid()
+    t = wp.tile_load(z, shape=(TILE,), offset=(b * TILE,))
+    wp.tile_store(lo, wp.tile_min(t), offset=(b,))
+    wp.tile_store(hi, wp.tile_max(t), offset=(b,))

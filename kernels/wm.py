@@ -48,8 +48,8 @@ def column_table_kernel(
     q: wp.array2d[wp.float32],
 ):
     """One thread per (term t, padded column ix): Q[t, ix] = cos(kx_t·x + α_t), Q[T+t, ix] =
-    sin(...). Padding columns ix ≥ nx repeat column nx − 1, so padded products repeat real
-    values and tile/block extremes need no mask."""
+    sin(...). Padding columns ix ≥ nx repeat column nx − 1 (finite values; their products are
+    never stored)."""
     t, ix = wp.tid()
     a = kx[t] * (wp.float64(wp.min(ix, nx - 1)) * dx) + alpha[t]
     q[t, ix] = wp.float32(wp.cos(a))
@@ -78,11 +78,11 @@ def wm_tile_gemm_kernel(
     p: wp.array2d[wp.float32],
     q: wp.array2d[wp.float32],
     z: wp.array2d[wp.float32],
-    lo: wp.array[wp.float32],
-    hi: wp.array[wp.float32],
 ):
-    """One tile block per TILE_M × TILE_N output tile: z = P·Q; the tile's min and max go to
-    lo/hi[i·tiles_x + j] (padding repeats real rows/columns, so they are extremes of z)."""
+    """One tile block per TILE_M × TILE_N output tile: z = P·Q (stores outside z are masked).
+
+    Writing each tile's min and max here as well (``wp.tile_min``/``tile_max``) cost 0.55 ms
+    at 10240² on an H200, more than a separate tile reduction (0.29 ms)."""
     i, j = wp.tid()
     acc = wp.tile_zeros(shape=(TILE_M, TILE_N), dtype=wp.float32)
     for k in range(p.shape[1] // TILE_K):
@@ -90,9 +90,6 @@ def wm_tile_gemm_kernel(
         b = wp.tile_load(q, shape=(TILE_K, TILE_N), offset=(k * TILE_K, j * TILE_N))
         wp.tile_matmul(a, b, acc)
     wp.tile_store(z, acc, offset=(i * TILE_M, j * TILE_N))
-    slot = i * (q.shape[1] // TILE_N) + j
-    wp.tile_store(lo, wp.tile_min(acc), offset=(slot,))
-    wp.tile_store(hi, wp.tile_max(acc), offset=(slot,))
 
 
 @wp.func

@@ -71,13 +71,27 @@ class TruncationCurve:
 def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, float]:
     """Return (min z, max z) (m) of a flattened float32 Warp array, by a device reduction."""
     device = resolve_device(device)
+    n = z.shape[0]
+    if device.is_cuda and n >= _kr.TILE:
+        full = n // _kr.TILE
+        lo = wp.empty(full, dtype=wp.float32, device=device)
+        hi = wp.empty(full, dtype=wp.float32, device=device)
+        wp.launch_tiled(
+            _kr.min_max_tile_kernel, dim=full, inputs=[z], outputs=[lo, hi], block_dim=256,
+            device=device,
+        )  # fmt: skip
+        parts_lo, parts_hi = [lo.numpy()], [hi.numpy()]  # sync point
+        if n > full * _kr.TILE:  # the remainder (< TILE values) on the host
+            tail = z[full * _kr.TILE :].numpy()
+            parts_lo.append(tail)
+            parts_hi.append(tail)
+        return float(min(p.min() for p in parts_lo)), float(max(p.max() for p in parts_hi))
     out = wp.array(np.array([np.inf, -np.inf], dtype=np.float32), device=device)
-    n = max(1, z.shape[0])
-    lanes = min(_REDUCE_LANES, n)
-    chunk = 0 if device.is_cuda else -(-n // lanes)  # CPU: contiguous chunks per lane
+    lanes = min(_REDUCE_LANES, max(1, n))
+    chunk = 0 if device.is_cuda else -(-max(1, n) // lanes)  # CPU: contiguous chunks per lane
     wp.launch(_kr.min_max_kernel, dim=lanes, inputs=[z, lanes, chunk], outputs=[out], device=device)
-    lo, hi = out.numpy()  # sync point
-    return float(lo), float(hi)
+    lo_v, hi_v = out.numpy()  # sync point
+    return float(lo_v), float(hi_v)
 
 
 def depth_grid(

@@ -154,27 +154,23 @@ def wm_tables(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, wp.
 
 def wm_product(
     p: wp.array, q: wp.array, z: wp.array, *, cpu_threads: int | None = None
-) -> tuple[wp.array, wp.array]:
+) -> tuple[float, float]:
     """z = P·Q on z's device (tile GEMM on CUDA; threaded row bands on the CPU).
 
-    Returns arrays whose min and max are those of z: per output tile from the GEMM's epilogue on
-    the GPU (no further pass over the heights), from one reduction pass on the CPU.
+    Returns (min z, max z), from one reduction pass after the product (a sync point).
     """
     device = z.device
     K = p.shape[1]
     if device.is_cuda:
-        tiles = (p.shape[0] // _k.TILE_M, q.shape[1] // _k.TILE_N)
-        lo = wp.empty(tiles[0] * tiles[1], dtype=wp.float32, device=device)
-        hi = wp.empty_like(lo)
         wp.launch_tiled(
             _k.wm_tile_gemm_kernel,
-            dim=tiles,
+            dim=(p.shape[0] // _k.TILE_M, q.shape[1] // _k.TILE_N),
             inputs=[p, q],
-            outputs=[z, lo, hi],
+            outputs=[z],
             block_dim=256,
             device=device,
         )
-        return lo, hi
+        return _extremes(z)
     # A Warp CPU launch runs on one thread: launch row bands from Python threads (the ctypes
     # call releases the GIL) so that every core works.
     qv = wp.array(ptr=q.ptr, dtype=_k.vec16, shape=(K, q.shape[1] // _k.COLS), device=device)
@@ -204,14 +200,16 @@ def wm_product(
         wp.launch(_k.crop_kernel, dim=z.shape, inputs=[out], outputs=[z], device=device)
     # extremes by a separate pass: computing them in the register-blocked kernel pushed its
     # accumulators out of registers (measured 2–15× slower)
-    lo, hi = height_range(z.flatten(), device)
-    one = lambda v: wp.array([v], dtype=wp.float32, device=device)  # noqa: E731
-    return one(lo), one(hi)
+    return _extremes(z)
+
+
+def _extremes(z: wp.array) -> tuple[float, float]:
+    return height_range(z.flatten(), z.device)  # sync point
 
 
 def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None):
-    """S − c0 as a (ny, nx) float32 Warp array, c0 (the constant Σ w·cos α), and per-block
-    minima and maxima of S − c0 (Warp arrays)."""
+    """S − c0 as a (ny, nx) float32 Warp array, c0 (the constant Σ w·cos α), and the min and
+    max of S − c0."""
     if spec.method == "direct":
         check_memory(4 * spec.nx * spec.ny, device, f"a {spec.nx}×{spec.ny} WM surface")
         f64 = lambda a: wp.array(np.ascontiguousarray(a, dtype=np.float64), device=device)  # noqa: E731
@@ -223,9 +221,7 @@ def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None):
             outputs=[z],
             device=device,
         )
-        lo, hi = height_range(z.flatten(), device)
-        one = lambda v: wp.array([v], dtype=wp.float32, device=device)  # noqa: E731
-        return z, float(np.sum(spec.w * np.cos(spec.alpha))), one(lo), one(hi)
+        return z, float(np.sum(spec.w * np.cos(spec.alpha))), *_extremes(z)
     p, q, c0 = wm_tables(spec, device)
     z = wp.empty((spec.ny, spec.nx), dtype=wp.float32, device=device)
     lo, hi = wm_product(p, q, z, cpu_threads=cpu_threads)
@@ -251,11 +247,9 @@ def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.a
     device = resolve_device(device)
     z, c0, lo, hi = _raw_sum(spec, device)
     if spec.Rt is not None:
-        zmin = float(lo.numpy().min())  # sync point (a few thousand values)
-        zmax = float(hi.numpy().max())
-        if not zmax > zmin:
+        if not hi > lo:
             raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
-        scale = spec.Rt / (zmax - zmin)
+        scale = spec.Rt / (hi - lo)
     else:
         scale = _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
     wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, float(scale)], device=device)
