@@ -169,7 +169,7 @@ def smooth_surface(n=64, nx=None, sigma=2.5, seed=0, dx=1e-6):
 
 # --- labelling of one mask ----------------------------------------------------------------------
 
-METHODS = ["dispatch", "parallel", "sequential"]
+METHODS = ["dispatch", "parallel", "parallel-pixel", "sequential"]
 
 
 def labels_of(mask, connectivity, device, method, periodic=False):
@@ -180,8 +180,12 @@ def labels_of(mask, connectivity, device, method, periodic=False):
         isl = label_islands(mask, connectivity=connectivity, periodic=periodic, device=device)
         return isl.labels, isl.n_islands
     m = wp.array(np.ascontiguousarray(mask, np.uint8), dtype=wp.uint8, device=device)
-    fn = _islands._label_parallel if method == "parallel" else _islands._label_sequential
-    lab, n = fn(m, connectivity, periodic)
+    if method == "sequential":
+        lab, n = _islands._label_sequential(m, connectivity, periodic)
+    else:  # "parallel": 4 pixels per thread where rows allow it; "parallel-pixel": 1 per thread
+        lab, n = _islands._label_parallel(
+            m, connectivity, periodic, quads=None if method == "parallel" else False
+        )
     return lab.numpy(), n
 
 
