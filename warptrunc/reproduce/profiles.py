@@ -70,7 +70,7 @@ PROFILES = {
         name="tiny", n=256, seeds=2, group1_delta=(0.0025, 0.01, 0.04), group2_D=(2.2, 2.5, 2.8),
         fig5_sizes=(64, 128), fig5_seeds=1, fig5_increments=(50, 200), table1_n=64,
         table1_methods=("vs",), islands_n=128, islands_seeds=1, islands_increments=50,
-        asperity_n=256, asperity_increments=200, late_fit_area_fraction=2e-3,
+        asperity_n=256, asperity_increments=200, late_fit_area_fraction=5e-4,
     ),  # fmt: skip
     "quick": Profile(
         name="quick", n=1024, seeds=3, fig5_sizes=(256, 512, 1024, 2048), fig5_seeds=3,

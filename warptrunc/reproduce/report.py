@@ -194,7 +194,7 @@ def _f(v, fmt=".3f"):
 def _dev(ours, paper, fmt=".3f"):
     if ours is None or paper is None:
         return "—"
-    return f"{ours - paper:+{fmt[1:]}}" + (f" ({100 * (ours - paper) / abs(paper):+.0f} %)" if paper else "")
+    return format(ours - paper, "+" + fmt) + (f" ({100 * (ours - paper) / abs(paper):+.0f} %)" if paper else "")
 
 
 def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], names: list[str]) -> str:
