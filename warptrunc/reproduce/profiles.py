@@ -41,8 +41,9 @@ class Profile:
     group2_D: tuple[float, ...] = GROUP2_D
     fractal_on_group1: bool = False
     """Also measure the four D on group-1 surfaces (only group 2 enters Fig. 10a–e)."""
-    late_fit_area_fraction: float = 1e-3
-    """Second fit range: increments with A_c/A ≥ this (the first is the default ≥ 10 pixels)."""
+    late_fit_fraction: float = 0.05
+    """Second fit range: increments with ≥ this fraction of each surface's final contact pixels
+    (the first is the package default, ≥ 10 contact pixels)."""
     fig5_sizes: tuple[int, ...] = (512, 1024, 2048)
     fig5_seeds: int = 3
     fig5_increments: tuple[int, ...] = (200, 1000)
@@ -70,7 +71,7 @@ PROFILES = {
         name="tiny", n=256, seeds=2, group1_delta=(0.0025, 0.01, 0.04), group2_D=(2.2, 2.5, 2.8),
         fig5_sizes=(64, 128), fig5_seeds=1, fig5_increments=(50, 200), table1_n=64,
         table1_methods=("vs",), islands_n=128, islands_seeds=1, islands_increments=50,
-        asperity_n=256, asperity_increments=200, late_fit_area_fraction=5e-4,
+        asperity_n=256, asperity_increments=200,
     ),  # fmt: skip
     "quick": Profile(
         name="quick", n=1024, seeds=3, fig5_sizes=(256, 512, 1024, 2048), fig5_seeds=3,

@@ -265,7 +265,9 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
             a(f"![{nme}]({nme})\n")
     # Table 3
     a("## Fig. 9, Fig. 10, Table 3 — parametric groups\n")
-    a("Fit ranges: " + ", ".join(f"`{k}` = increments with ≥ {v} contact pixels" for k, v in res["group2"]["fit_ranges"].items()) + ".\n")
+    fr = res["group2"]["fit_ranges"]
+    a(f"Fit ranges: `default` = increments with ≥ {fr['default']} contact pixels (package default); `late` = increments with "
+      f"≥ {fr['late']:g} × the surface's final contact pixels.\n")
     a("| D | fit range | α = slope·D + intercept (r), ours | paper | slope dev |")
     a("|---|---|---|---|---|")
     for fit, per in ana["table3_alpha"].items():
@@ -288,7 +290,7 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
         f"`{fit}`: " + ", ".join(f"{k}: {v['mean']:.3f} ± {_f(v['sd'])}" for k, v in per.items())
         for fit, per in ana["group2_alpha"].items()) + ".\n")
     a("The α(D) slope depends on the fit range (two ranges above): the earliest increments, where a handful of pixels "
-      "touch, pull α; the `late` range starts where A_c/A ≥ " + f"{p['late_fit_area_fraction']:g}. "
+      "touch, pull α; the `late` range keeps only the deep part of each curve. "
       "D_tri and D_box depend on the height normalisation convention of those methods (options above): "
       "at δ = 0.01 their values sit near 2 when heights are not rescaled, which makes their α(D) lines degenerate.\n")
     for nme in names:

@@ -33,12 +33,12 @@ def _tqdm(it, desc, total=None):
     return tqdm(it, desc=desc, total=total, unit="surface", leave=False)
 
 
-def fit_ranges(profile: Profile, n: int) -> dict[str, int]:
-    """Fit ranges by minimum contact pixels: the package default, and A_c/A ≥ the late fraction."""
+def fit_ranges(profile: Profile, n: int) -> dict[str, int | float]:
+    """Fit ranges: ``default`` = the package's ≥ 10 contact pixels; ``late`` = a float f, meaning
+    increments with ≥ f × the surface's final contact pixels (the deep part of each curve)."""
     from ..stiffness import DEFAULT_MIN_PIXELS
 
-    late = max(DEFAULT_MIN_PIXELS + 1, int(math.ceil(profile.late_fit_area_fraction * n * n)))
-    return {"default": DEFAULT_MIN_PIXELS, "late": late}
+    return {"default": DEFAULT_MIN_PIXELS, "late": float(profile.late_fit_fraction)}
 
 
 def _fractal(surface, device) -> dict[str, Any]:
@@ -53,11 +53,11 @@ def _fractal(surface, device) -> dict[str, Any]:
 
 def run_case(
     D: float, delta: float, seed: int, *, n: int, L: float, Wr: float, increments: int,
-    max_depth_fraction: float, min_pixels: dict[str, int], fractal: bool, curve_points: int = 0,
+    max_depth_fraction: float, min_pixels: dict[str, int | float], fractal: bool, curve_points: int = 0,
     device=None,
 ) -> dict[str, Any]:  # fmt: skip
     """One WM surface (D_in = D, R_t = δ·W_r): power-law fits per fit range, optionally D."""
-    from ..stiffness import fit_power_law, stiffness_curve
+    from ..stiffness import DEFAULT_MIN_PIXELS, fit_power_law, stiffness_curve
     from ..truncation import truncate
     from ..wm import wm_surface
 
@@ -65,6 +65,8 @@ def run_case(
     sc = stiffness_curve(truncate(s, increments, max_depth_fraction=max_depth_fraction, device=device))
     row: dict[str, Any] = {"D_in": D, "delta": delta, "seed": seed, "Rt_m": s.rt, "fits": {}}
     for name, mp in min_pixels.items():
+        if isinstance(mp, float):  # a fraction of the final contact pixels
+            mp = max(DEFAULT_MIN_PIXELS, math.ceil(mp * int(sc.n_contact_pixels[-1])))
         try:
             f = fit_power_law(sc, min_pixels=mp)
             row["fits"][name] = {"alpha": f.alpha, "beta": f.beta, "r2": f.r2, "n_points": f.n_points,
@@ -209,13 +211,24 @@ def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, 
     """Run (or reuse) every stage; returns {stage: result} and the wall time per stage."""
     from tqdm.auto import tqdm
 
-    base = {"profile": profile.to_dict()}
+    full = profile.to_dict()
+    keys = {
+        "asperity": ("asperity_n", "asperity_increments"),
+        "fig5": ("fig5_sizes", "fig5_seeds", "fig5_increments"),
+        "table1": ("table1_n", "table1_seeds", "table1_methods", "table1_rtol"),
+        "islands": ("islands_n", "islands_L", "islands_seeds", "islands_increments"),
+        "group1": ("n", "seeds", "L", "Wr", "increments", "max_depth_fraction", "group1_delta",
+                   "fractal_on_group1", "late_fit_fraction"),
+        "group2": ("n", "seeds", "L", "Wr", "increments", "max_depth_fraction", "group2_D",
+                   "late_fit_fraction"),
+    }  # fmt: skip
     res: dict[str, Any] = {}
     wall: dict[str, float] = {}
     bar = tqdm(STAGES, desc="reproduce", unit="stage")
     for name in bar:
         bar.set_postfix_str(name)
         t0 = time.perf_counter()
+        base = {k: full[k] for k in keys[name]}
         if name == "islands":
             params = {**base, "table1": res["table1"]}
             fn = lambda: stage_islands(profile, res["table1"], device)  # noqa: E731
