@@ -1,0 +1,265 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Running the cases: one case (:func:`compute_case`), in-process, or on a Dask cluster.
+
+Cases are pure: a case returns its rows and curve and writes nothing, so a case that runs
+twice (a worker lost mid-case, its task rescheduled) cannot write twice; the client, the
+store's single writer, drops the second result.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import socket
+import time
+from collections.abc import Callable
+from datetime import datetime, timezone
+from typing import Any
+
+import numpy as np
+
+from .grid import Case, SweepOptions
+
+__all__ = ["PinDevice", "compute_case", "pinned_device", "run_dask", "run_inprocess"]
+
+Sink = Callable[[list[dict[str, Any]], "dict[str, np.ndarray] | None"], bool]
+
+
+@functools.cache
+def _provenance() -> tuple[str, str | None, str]:
+    from .. import __version__
+    from .._bench import git_commit
+
+    return __version__, git_commit(), socket.gethostname()
+
+
+def _base_row(case: Case, o: SweepOptions) -> dict[str, Any]:
+    Lx, Ly = (o.L, o.L) if isinstance(o.L, float) else o.L
+    nx, ny = (o.n, o.n) if isinstance(o.n, int) else o.n
+    lo, hi = o.depth_window if o.depth_window is not None else (np.nan, np.nan)
+    version, commit, host = _provenance()
+    return {
+        "case_id": case.case_id, "case_index": case.index, "D_in": case.D, "delta": case.delta,
+        "seed": case.seed, "Rt_m": case.delta * o.Wr, "Wr_m": o.Wr, "Lx_m": Lx, "Ly_m": Ly,
+        "nx": nx, "ny": ny, "M": o.M, "gamma": o.gamma,
+        "Wc_m": np.nan if o.Wc is None else o.Wc, "cutoff": o.cutoff,
+        "increments": o.increments, "max_depth_fraction": o.max_depth_fraction,
+        "max_depth_m": np.nan if o.max_depth is None else o.max_depth, "E_Pa": o.E, "nu": o.nu,
+        "E_flat_Pa": o.E_flat, "nu_flat": o.nu_flat, "beta_prime": o.beta_prime,
+        "depth_window_lo_m": lo, "depth_window_hi_m": hi, "alpha": np.nan, "beta": np.nan,
+        "r2": np.nan, "n_points": None, "fit_depth_min_m": np.nan, "fit_depth_max_m": np.nan,
+        "final_contact_pixels": None, "final_area_fraction": np.nan, "rt_measured_m": np.nan,
+        "fit_error": None, "error": None, "host": host, "warptrunc_version": version,
+        "git_commit": commit,
+    }  # fmt: skip
+
+
+def compute_case(
+    case: Case, options: SweepOptions, device: str | None = None
+) -> tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]:
+    """Generate, truncate and fit one case; never raises for a failing case.
+
+    Returns the case's rows (one per fit range) and its curve columns, or (rows with the
+    ``error`` column set, None) when generation or truncation raised.
+    """
+    from .._device import resolve_device
+    from ..stiffness import fit_power_law, stiffness_curve
+    from ..truncation import truncate
+    from ..wm import wm_surface
+
+    o = options
+    base = _base_row(case, o)
+    t0 = time.perf_counter()
+    curve = None
+    try:
+        dev = resolve_device(device)
+        base.update(device=str(dev), device_name=str(dev.name))
+        s = wm_surface(
+            case.D, o.Wr, L=o.L, n=o.n, Rt=case.delta * o.Wr, M=o.M, gamma=o.gamma, Wc=o.Wc,
+            cutoff=o.cutoff, seed=case.seed, device=dev,
+        )  # fmt: skip
+        tc = truncate(s, o.increments, max_depth=o.max_depth,
+                      max_depth_fraction=o.max_depth_fraction, device=dev)  # fmt: skip
+        sc = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
+        curve = sc.to_dict()
+        base.update(
+            final_contact_pixels=int(sc.n_contact_pixels[-1]),
+            final_area_fraction=float(sc.contact_area[-1] / sc.apparent_area),
+            rt_measured_m=float(sc.rt),
+        )
+    except Exception as exc:  # recorded, the sweep goes on
+        base.update(error=f"{type(exc).__name__}: {exc}")
+    rows = []
+    for mp in o.min_pixels:
+        row = {**base, "min_pixels": mp}
+        if curve is not None:
+            try:
+                f = fit_power_law(sc, min_pixels=mp, depth_window=o.depth_window)
+                row.update(alpha=f.alpha, beta=f.beta, r2=f.r2, n_points=f.n_points,
+                           fit_depth_min_m=f.depth_min, fit_depth_max_m=f.depth_max)  # fmt: skip
+            except ValueError as exc:  # too few increments in this range: recorded, not dropped
+                row.update(n_points=0, fit_error=str(exc))
+        rows.append(row)
+    seconds = time.perf_counter() - t0
+    stamp = datetime.now(timezone.utc).isoformat(timespec="seconds")
+    for r in rows:
+        r.update(seconds=seconds, finished_utc=stamp)
+        r.setdefault("device", str(device))
+        r.setdefault("device_name", None)
+    return rows, curve
+
+
+def _bar(total: int, initial: int, progress: bool, desc: str):
+    from tqdm.auto import tqdm
+
+    return tqdm(total=total, initial=initial, disable=not progress, desc=desc, unit="case")
+
+
+def run_inprocess(
+    cases: list[Case], options: SweepOptions, sink: Sink, *, device=None, total: int,
+    progress: bool = True,
+) -> None:  # fmt: skip
+    """Run ``cases`` one after another in this process, handing each result to ``sink``."""
+    from .._device import resolve_device
+
+    dev = str(resolve_device(device))
+    with _bar(total, total - len(cases), progress, f"sweep [{dev}]") as bar:
+        for case in cases:
+            sink(*compute_case(case, options, dev))
+            bar.update()
+
+
+def pinned_device(worker_name: Any, n_devices: int) -> str | None:
+    """The CUDA device of a LocalCluster worker: ``cuda:{name mod n_devices}``, or None."""
+    if n_devices <= 0:
+        return None
+    try:
+        i = int(worker_name)
+    except (TypeError, ValueError):
+        i = abs(hash(str(worker_name)))
+    return f"cuda:{i % n_devices}"
+
+
+def _cuda_device_count() -> int:
+    import warp as wp
+
+    from .._device import _init
+
+    _init()
+    return wp.get_cuda_device_count()
+
+
+class PinDevice:
+    """Dask worker plugin: sets WARPTRUNC_DEVICE in each worker process before any task.
+
+    Worker ``i`` of a LocalCluster (named 0..N-1, and a restarted worker keeps its name)
+    gets ``cuda:{i mod n_devices}``; ``n_devices=None`` asks Warp in the worker. With no
+    CUDA device nothing is set and the workers run on the CPU.
+    """
+
+    name = "warptrunc-pin-device"
+    idempotent = True
+
+    def __init__(self, n_devices: int | None = None) -> None:
+        self.n_devices = n_devices
+
+    def setup(self, worker) -> None:
+        n = self.n_devices if self.n_devices is not None else _cuda_device_count()
+        dev = pinned_device(worker.name, n)
+        if dev is not None:
+            os.environ["WARPTRUNC_DEVICE"] = dev
+
+    def teardown(self, worker) -> None:
+        pass
+
+    def transition(self, key, start, finish, **kwargs) -> None:
+        pass
+
+
+def require_dask() -> None:
+    """Import dask.distributed, or raise ImportError naming the extra to install."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError as exc:
+        raise ImportError(
+            f"--workers/--scheduler need dask.distributed ({exc.name} is missing): "
+            'pip install "warptrunc[sweep]"'
+        ) from None
+
+
+def run_dask(
+    cases: list[Case], options: SweepOptions, sink: Sink, *, workers: int | None = None,
+    scheduler: Any = None, device=None, total: int, progress: bool = True,
+    max_retries: int = 3,
+) -> None:  # fmt: skip
+    """Run ``cases`` on a Dask cluster; results reach ``sink`` in this process as they finish.
+
+    ``scheduler`` (an address or a ``distributed.Client``) uses an existing cluster; else a
+    LocalCluster of ``workers`` processes with one thread each, one per CUDA device when
+    ``device`` is None and CUDA devices exist (:class:`PinDevice`). A case whose worker died
+    or whose future was cancelled (``client.restart()``) is submitted again, up to
+    ``max_retries`` times, then recorded as failed.
+    """
+    require_dask()
+    import logging
+
+    from distributed import Client, LocalCluster, as_completed
+
+    cluster = None
+    own_client = True
+    if isinstance(scheduler, Client):
+        client, own_client = scheduler, False
+    elif scheduler is not None:
+        client = Client(scheduler)
+    else:
+        cluster = LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+            silence_logs=logging.ERROR,
+        )  # fmt: skip
+        client = Client(cluster)
+        if device is None and not os.environ.get("WARPTRUNC_DEVICE"):
+            client.register_plugin(PinDevice())
+    by_id = {c.case_id: c for c in cases}
+    attempts = dict.fromkeys(by_id, 0)
+    try:
+        futures = {}
+
+        def submit(cid: str):
+            attempts[cid] += 1
+            f = client.submit(compute_case, by_id[cid], options, device,
+                              key=f"warptrunc-case-{cid}-{attempts[cid]}", pure=False)  # fmt: skip
+            futures[f] = cid
+            return f
+
+        pending = as_completed([submit(c.case_id) for c in cases])
+        with _bar(total, total - len(cases), progress, "sweep [dask]") as bar:
+            for fut in pending:
+                cid = futures.pop(fut)
+                if fut.status == "finished":
+                    sink(*fut.result())
+                    bar.update()
+                elif attempts[cid] <= max_retries:
+                    pending.add(submit(cid))
+                else:
+                    try:
+                        exc = fut.exception()
+                        why = f"{type(exc).__name__}: {exc}"
+                    except Exception as e:  # cancelled futures raise here
+                        why = f"{type(e).__name__}: {e}"
+                    rows, _ = _failed(by_id[cid], options, f"lost {attempts[cid]} times: {why}")
+                    sink(rows, None)
+                    bar.update()
+                fut.release()
+    finally:
+        if own_client:
+            client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _failed(case: Case, options: SweepOptions, why: str):
+    base = _base_row(case, options)
+    stamp = datetime.now(timezone.utc).isoformat(timespec="seconds")
+    base.update(error=why, seconds=np.nan, finished_utc=stamp, device=None, device_name=None)
+    return [{**base, "min_pixels": mp} for mp in options.min_pixels], None
