@@ -219,3 +219,111 @@ def test_cli_refuses_other_grid(tmp_path):
         "warptrunc sweep: error: " + str(out) + " holds a sweep with another grid"
     )
     assert "--overwrite" in r.stderr and load(out)["case_id"].nunique() == 1
+
+
+# --- Dask: a local cluster of 2 worker processes ----------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def client():
+    distributed = pytest.importorskip("distributed")
+    import logging
+
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+        silence_logs=logging.ERROR,
+    )  # fmt: skip
+    c = distributed.Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+DASK_GRID = SweepGrid.from_values([2.3, 2.6], [0.01], "0-3")
+
+
+@pytest.fixture(scope="module")
+def dask_reference():
+    return run_sweep(DASK_GRID, None, progress=False, device="cpu", **OPTS)
+
+
+@pytest.mark.timeout(240)
+def test_two_local_workers_same_table_as_in_process(tmp_path, dask_reference):
+    pytest.importorskip("distributed")
+    df = run_sweep(DASK_GRID, tmp_path / "s", workers=2, progress=False, **OPTS)
+    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
+    assert df["host"].nunique() == 1 and (df["device"] == "cpu").all()
+
+
+def _slow_cases_plugin():
+    """A worker plugin that delays each case, so that kills land mid-sweep."""
+    from distributed import WorkerPlugin
+
+    class SlowCases(WorkerPlugin):
+        name = "test-slow-cases"
+        idempotent = True
+
+        def setup(self, worker):
+            import warptrunc.sweep.engines as e
+
+            if not getattr(e.compute_case, "_slow", False):
+                real = e.compute_case
+
+                def slow(*a, **kw):
+                    time.sleep(0.4)
+                    return real(*a, **kw)
+
+                slow._slow = True
+                e.compute_case = slow
+
+    return SlowCases()
+
+
+@pytest.mark.timeout(300)
+def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_reference):
+    import threading
+
+    client.register_plugin(_slow_cases_plugin())  # a local class: pickled by value
+    out = tmp_path / "s"
+    box = {}
+
+    def sweep():
+        try:
+            box["df"] = run_sweep(DASK_GRID, out, scheduler=client, progress=False, device="cpu",
+                                  **OPTS)  # fmt: skip
+        except BaseException as exc:  # pragma: no cover - reported below
+            box["exc"] = exc
+
+    def wait_for(k):
+        t0 = time.monotonic()
+        while len(list(out.glob("curves/*.parquet"))) < k and th.is_alive():
+            assert time.monotonic() - t0 < 200
+            time.sleep(0.01)
+        return len(list(out.glob("curves/*.parquet")))
+
+    th = threading.Thread(target=sweep)
+    th.start()
+    done_at_kill = wait_for(1)
+    pids = client.run(os.getpid)
+    os.kill(next(iter(pids.values())), signal.SIGKILL)  # one worker process dies
+    done_at_restart = wait_for(done_at_kill + 2)
+    client.restart()  # every worker dies; running cases are cancelled and submitted again
+    th.join(240)
+    assert not th.is_alive() and "exc" not in box, box.get("exc")
+    assert done_at_kill < 8 and done_at_restart < 8, "the kills came after the sweep finished"
+    df = box["df"]
+    assert not df.duplicated(["case_id", "min_pixels"]).any()
+    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
+    pd.testing.assert_frame_equal(load(out), df)
+
+
+@pytest.mark.timeout(120)
+def test_workers_pinned_one_device_each(client):
+    from warptrunc.sweep.cluster import PinDevice
+    from warptrunc.sweep.engines import pinned_device
+
+    assert [pinned_device(i, 2) for i in range(4)] == ["cuda:0", "cuda:1", "cuda:0", "cuda:1"]
+    assert pinned_device("3", 4) == "cuda:3" and pinned_device(0, 0) is None
+    client.register_plugin(PinDevice(n_devices=2))  # as on a node with 2 GPUs
+    got = client.run(lambda dask_worker: (dask_worker.name, os.environ["WARPTRUNC_DEVICE"]))
+    assert sorted(got.values()) == [(0, "cuda:0"), (1, "cuda:1")]

@@ -1,6 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Running the cases: one case (:func:`compute_case`), in-process, or on a Dask cluster.
+"""Running the cases: one case (:func:`compute_case`) and the in-process engine.
+
+The Dask engine is in :mod:`warptrunc.sweep.cluster` (imported only when used).
 
 Cases are pure: a case returns its rows and curve and writes nothing, so a case that runs
 twice (a worker lost mid-case, its task rescheduled) cannot write twice; the client, the
@@ -10,7 +12,6 @@ store's single writer, drops the second result.
 from __future__ import annotations
 
 import functools
-import os
 import socket
 import time
 from collections.abc import Callable
@@ -21,7 +22,7 @@ import numpy as np
 
 from .grid import Case, SweepOptions
 
-__all__ = ["PinDevice", "compute_case", "pinned_device", "run_dask", "run_inprocess"]
+__all__ = ["compute_case", "failed_case", "pinned_device", "run_inprocess"]
 
 Sink = Callable[[list[dict[str, Any]], "dict[str, np.ndarray] | None"], bool]
 
@@ -141,124 +142,7 @@ def pinned_device(worker_name: Any, n_devices: int) -> str | None:
     return f"cuda:{i % n_devices}"
 
 
-def _cuda_device_count() -> int:
-    import warp as wp
-
-    from .._device import _init
-
-    _init()
-    return wp.get_cuda_device_count()
-
-
-class PinDevice:
-    """Dask worker plugin: sets WARPTRUNC_DEVICE in each worker process before any task.
-
-    Worker ``i`` of a LocalCluster (named 0..N-1, and a restarted worker keeps its name)
-    gets ``cuda:{i mod n_devices}``; ``n_devices=None`` asks Warp in the worker. With no
-    CUDA device nothing is set and the workers run on the CPU.
-    """
-
-    name = "warptrunc-pin-device"
-    idempotent = True
-
-    def __init__(self, n_devices: int | None = None) -> None:
-        self.n_devices = n_devices
-
-    def setup(self, worker) -> None:
-        n = self.n_devices if self.n_devices is not None else _cuda_device_count()
-        dev = pinned_device(worker.name, n)
-        if dev is not None:
-            os.environ["WARPTRUNC_DEVICE"] = dev
-
-    def teardown(self, worker) -> None:
-        pass
-
-    def transition(self, key, start, finish, **kwargs) -> None:
-        pass
-
-
-def require_dask() -> None:
-    """Import dask.distributed, or raise ImportError naming the extra to install."""
-    try:
-        import distributed  # noqa: F401
-    except ImportError as exc:
-        raise ImportError(
-            f"--workers/--scheduler need dask.distributed ({exc.name} is missing): "
-            'pip install "warptrunc[sweep]"'
-        ) from None
-
-
-def run_dask(
-    cases: list[Case], options: SweepOptions, sink: Sink, *, workers: int | None = None,
-    scheduler: Any = None, device=None, total: int, progress: bool = True,
-    max_retries: int = 3,
-) -> None:  # fmt: skip
-    """Run ``cases`` on a Dask cluster; results reach ``sink`` in this process as they finish.
-
-    ``scheduler`` (an address or a ``distributed.Client``) uses an existing cluster; else a
-    LocalCluster of ``workers`` processes with one thread each, one per CUDA device when
-    ``device`` is None and CUDA devices exist (:class:`PinDevice`). A case whose worker died
-    or whose future was cancelled (``client.restart()``) is submitted again, up to
-    ``max_retries`` times, then recorded as failed.
-    """
-    require_dask()
-    import logging
-
-    from distributed import Client, LocalCluster, as_completed
-
-    cluster = None
-    own_client = True
-    if isinstance(scheduler, Client):
-        client, own_client = scheduler, False
-    elif scheduler is not None:
-        client = Client(scheduler)
-    else:
-        cluster = LocalCluster(
-            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
-            silence_logs=logging.ERROR,
-        )  # fmt: skip
-        client = Client(cluster)
-        if device is None and not os.environ.get("WARPTRUNC_DEVICE"):
-            client.register_plugin(PinDevice())
-    by_id = {c.case_id: c for c in cases}
-    attempts = dict.fromkeys(by_id, 0)
-    try:
-        futures = {}
-
-        def submit(cid: str):
-            attempts[cid] += 1
-            f = client.submit(compute_case, by_id[cid], options, device,
-                              key=f"warptrunc-case-{cid}-{attempts[cid]}", pure=False)  # fmt: skip
-            futures[f] = cid
-            return f
-
-        pending = as_completed([submit(c.case_id) for c in cases])
-        with _bar(total, total - len(cases), progress, "sweep [dask]") as bar:
-            for fut in pending:
-                cid = futures.pop(fut)
-                if fut.status == "finished":
-                    sink(*fut.result())
-                    bar.update()
-                elif attempts[cid] <= max_retries:
-                    pending.add(submit(cid))
-                else:
-                    try:
-                        exc = fut.exception()
-                        why = f"{type(exc).__name__}: {exc}"
-                    except Exception as e:  # cancelled futures raise here
-                        why = f"{type(e).__name__}: {e}"
-                    rows, _ = _failed(by_id[cid], options, f"lost {attempts[cid]} times: {why}")
-                    sink(rows, None)
-                    bar.update()
-                fut.release()
-    finally:
-        if own_client:
-            client.close()
-        if cluster is not None:
-            cluster.close()
-
-
-def _failed(case: Case, options: SweepOptions, why: str):
+def failed_case(case: Case, options: SweepOptions, why: str):
     base = _base_row(case, options)
     stamp = datetime.now(timezone.utc).isoformat(timespec="seconds")
     base.update(error=why, seconds=np.nan, finished_utc=stamp, device=None, device_name=None)

@@ -245,7 +245,10 @@ class SweepGrid:
     @classmethod
     def from_toml(cls, path: str | Path) -> SweepGrid:
         """From a TOML file with the keys D, delta and seeds."""
-        import tomllib
+        try:
+            import tomllib
+        except ImportError:  # Python 3.10: the sweep extra installs tomli
+            import tomli as tomllib
 
         path = Path(path)
         try:

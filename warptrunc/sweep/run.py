@@ -86,7 +86,13 @@ def run_sweep(
     todo = [c for c in grid.cases(opts) if c.case_id not in store.done]
     try:
         if todo and (workers is not None or scheduler is not None):
-            from .engines import run_dask
+            try:
+                from .cluster import run_dask
+            except ImportError as exc:
+                raise ImportError(
+                    f"workers/scheduler need dask.distributed ({exc.name} is missing): "
+                    'pip install "warptrunc[sweep]"'
+                ) from None
 
             run_dask(todo, opts, store.add, workers=workers, scheduler=scheduler,
                      device=device, total=len(grid), progress=progress)  # fmt: skip
