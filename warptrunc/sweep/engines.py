@@ -103,7 +103,7 @@ def compute_case(
                 row.update(n_points=0, fit_error=str(exc))
         rows.append(row)
     seconds = time.perf_counter() - t0
-    stamp = datetime.now(timezone.utc).isoformat(timespec="seconds")
+    stamp = datetime.now(timezone.utc).isoformat(timespec="milliseconds")
     for r in rows:
         r.update(seconds=seconds, finished_utc=stamp)
         r.setdefault("device", str(device))
@@ -121,13 +121,28 @@ def run_inprocess(
     cases: list[Case], options: SweepOptions, sink: Sink, *, device=None, total: int,
     progress: bool = True,
 ) -> None:  # fmt: skip
-    """Run ``cases`` one after another in this process, handing each result to ``sink``."""
+    """Run ``cases`` one after another in this process, handing each result to ``sink``.
+
+    ``sink`` (the store's write) runs in one background thread, so that writing a case
+    overlaps computing the next; at most one write is pending, and it completes before
+    this function returns or an interrupt propagates.
+    """
+    from concurrent.futures import ThreadPoolExecutor
+
     from .._device import resolve_device
 
     dev = str(resolve_device(device))
-    with _bar(total, total - len(cases), progress, f"sweep [{dev}]") as bar:
+    with _bar(total, total - len(cases), progress, f"sweep [{dev}]") as bar, \
+            ThreadPoolExecutor(1, thread_name_prefix="warptrunc-store") as pool:  # fmt: skip
+        pending = None
         for case in cases:
-            sink(*compute_case(case, options, dev))
+            result = compute_case(case, options, dev)
+            if pending is not None:
+                pending.result()
+                bar.update()
+            pending = pool.submit(sink, *result)
+        if pending is not None:
+            pending.result()
             bar.update()
 
 
@@ -144,6 +159,6 @@ def pinned_device(worker_name: Any, n_devices: int) -> str | None:
 
 def failed_case(case: Case, options: SweepOptions, why: str):
     base = _base_row(case, options)
-    stamp = datetime.now(timezone.utc).isoformat(timespec="seconds")
+    stamp = datetime.now(timezone.utc).isoformat(timespec="milliseconds")
     base.update(error=why, seconds=np.nan, finished_utc=stamp, device=None, device_name=None)
     return [{**base, "min_pixels": mp} for mp in options.min_pixels], None

@@ -99,13 +99,16 @@ def _write_atomic(path: Path, data: bytes) -> None:
     os.replace(tmp, path)
 
 
-def _parquet_bytes(df, metadata: dict[bytes, bytes] | None = None) -> bytes:
+def _parquet_bytes(df) -> bytes:
+    import pyarrow as pa
+
+    return _table_bytes(pa.Table.from_pandas(df, preserve_index=False))
+
+
+def _table_bytes(table) -> bytes:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    table = pa.Table.from_pandas(df, preserve_index=False)
-    if metadata:
-        table = table.replace_schema_metadata({**(table.schema.metadata or {}), **metadata})
     sink = pa.BufferOutputStream()
     pq.write_table(table, sink)
     return sink.getvalue().to_pybytes()
@@ -133,7 +136,8 @@ class Store:
     retry_failed : bool
         Forget cases recorded with an error so that they run again.
     flush_interval : float
-        Rewrite ``cases.parquet`` at most this often while cases stream in (s).
+        Rewrite ``cases.parquet`` at most this often while cases stream in (s); see
+        :meth:`flush`.
     """
 
     def __init__(
@@ -154,6 +158,7 @@ class Store:
         self.duplicates = 0
         self._dirty = False
         self._last_flush = time.monotonic()
+        self._interval = flush_interval
         if self.path is None:
             return
         self.curves = self.path / "curves"
@@ -230,16 +235,17 @@ class Store:
             return False
         rows = [{k: _jsonable(v) for k, v in r.items()} for r in rows]
         if self.path is not None:
-            import pandas as pd
+            import pyarrow as pa
 
-            df = pd.DataFrame({k: curve[k] for k in CURVE_COLUMNS} if curve else
-                              {k: np.zeros(0) for k in CURVE_COLUMNS})  # fmt: skip
-            df["n_contact_pixels"] = df["n_contact_pixels"].astype("int64")
-            meta = {_META_KEY: json.dumps(rows, allow_nan=True).encode()}
-            _write_atomic(self.curves / f"{cid}.parquet", _parquet_bytes(df, meta))
+            cols = {k: np.asarray(curve[k]) if curve else np.zeros(0) for k in CURVE_COLUMNS}
+            cols["n_contact_pixels"] = cols["n_contact_pixels"].astype(np.int64)
+            table = pa.table(cols).replace_schema_metadata(
+                {_META_KEY: json.dumps(rows, allow_nan=True).encode()}
+            )
+            _write_atomic(self.curves / f"{cid}.parquet", _table_bytes(table))
         self.rows[cid] = rows
         self._dirty = True
-        if time.monotonic() - self._last_flush >= self.flush_interval:
+        if time.monotonic() - self._last_flush >= self._interval:
             self.flush()
         return True
 
@@ -249,12 +255,18 @@ class Store:
         return _sorted(rows_frame(rows))
 
     def flush(self) -> None:
-        """Rewrite ``cases.parquet`` (atomically) if rows were added since the last flush."""
-        self._last_flush = time.monotonic()
+        """Rewrite ``cases.parquet`` (atomically) if rows were added since the last flush.
+
+        While streaming, the interval grows to 10× the time a flush takes, so that rewriting
+        a large table never dominates (the curve files hold every row meanwhile).
+        """
+        t0 = time.monotonic()
+        self._last_flush = t0
         if self.path is None or not self._dirty:
             return
         _write_atomic(self.path / "cases.parquet", _parquet_bytes(self.frame()))
         self._dirty = False
+        self._interval = max(self.flush_interval, 10 * (time.monotonic() - t0))
 
 
 def _isna(v: Any) -> bool:
