@@ -327,3 +327,26 @@ def test_workers_pinned_one_device_each(client):
     client.register_plugin(PinDevice(n_devices=2))  # as on a node with 2 GPUs
     got = client.run(lambda dask_worker: (dask_worker.name, os.environ["WARPTRUNC_DEVICE"]))
     assert sorted(got.values()) == [(0, "cuda:0"), (1, "cuda:1")]
+
+
+def test_parametric_sweep_example_and_refit_from_curves(tmp_path):
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "parametric_sweep.py"
+    spec = importlib.util.spec_from_file_location("parametric_sweep", path)
+    ex = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ex)
+    out = tmp_path / "g2"
+    args = ["--device", "cpu", "--n", "64", "--seeds", "2", "--D", "2.3", "2.7",
+            "--min-pixels", "1", "10", "--out", str(out)]  # fmt: skip
+    assert ex.main(args) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert set(summary["fit_ranges"]) == {"1", "10"}
+    assert (out / "alpha_vs_D.png").read_bytes()[:4] == b"\x89PNG"
+    assert ex.main(args) == 0  # resumed: nothing recomputed, same summary
+    assert json.loads((out / "summary.json").read_text()) == summary
+    refit = ex.refit(out, [10])  # NumPy fit of the stored curves = the sweep's fit
+    stored = load(out).query("min_pixels == 10").set_index("case_id")["alpha"]
+    np.testing.assert_allclose(refit.set_index("case_id")["alpha"][stored.index], stored,
+                               rtol=1e-12)  # fmt: skip
