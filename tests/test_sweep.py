@@ -64,7 +64,9 @@ def test_case_ids_identify_values_and_options():
     g = SweepGrid.from_values([2.2, 2.5], [1], "0-1")
     ids = [c.case_id for c in g.cases(SweepOptions(n=64))]
     assert len(set(ids)) == 4
-    assert ids == [c.case_id for c in SweepGrid([2.2, 2.5], [1.0], [0, 1]).cases(SweepOptions(n=64.0))]
+    assert ids == [
+        c.case_id for c in SweepGrid([2.2, 2.5], [1.0], [0, 1]).cases(SweepOptions(n=64.0))
+    ]
     assert not set(ids) & {c.case_id for c in g.cases(SweepOptions(n=128))}
     # the id does not depend on the position in the grid
     sub = SweepGrid.from_values([2.5], [1], "1").cases(SweepOptions(n=64))
@@ -89,7 +91,9 @@ def test_store_rows_and_curves_match_numpy(tmp_path):
     # counts against NumPy on the same surface
     z = wm_surface(2.7, 100e-6, n=64, Rt=0.02 * 100e-6, seed=1, device="cpu").heights
     thr = (np.float64(z.max()) - curve["depth_m"].to_numpy()).astype(np.float32)
-    np.testing.assert_array_equal(curve["n_contact_pixels"], [np.count_nonzero(z >= t) for t in thr])
+    np.testing.assert_array_equal(
+        curve["n_contact_pixels"], [np.count_nonzero(z >= t) for t in thr]
+    )
     assert row.final_contact_pixels == np.count_nonzero(z >= thr[-1])
     # the fit re-done from the stored curve with NumPy
     sel = (curve["load_N"] > 0) & (curve["n_contact_pixels"] >= 20)
@@ -186,7 +190,7 @@ def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
         assert time.monotonic() - t0 < 240, "the sweep did not start"
         time.sleep(0.01)
     p.send_signal(sig)
-    stdout, stderr = p.communicate(timeout=60)
+    _, stderr = p.communicate(timeout=60)
     assert p.returncode == (130 if sig == signal.SIGINT else 143), stderr
     assert "run the same command again" in stderr
     partial = load(out)
@@ -215,8 +219,10 @@ def test_cli_refuses_other_grid(tmp_path):
     r = subprocess.run([sys.executable, "-m", "warptrunc", "sweep", *args, "--seeds", "0-1"],
                        capture_output=True, text=True, timeout=120)  # fmt: skip
     assert r.returncode == 2
-    assert r.stderr.strip().splitlines()[-1].startswith(
-        "warptrunc sweep: error: " + str(out) + " holds a sweep with another grid"
+    assert (
+        r.stderr.strip()
+        .splitlines()[-1]
+        .startswith("warptrunc sweep: error: " + str(out) + " holds a sweep with another grid")
     )
     assert "--overwrite" in r.stderr and load(out)["case_id"].nunique() == 1
 

@@ -77,7 +77,14 @@ def run_sweep(
         A case that raised has its message in ``error`` and NaN results.
     """
     grid = as_grid(grid)
-    opts = SweepOptions(**options)
+    try:
+        opts = SweepOptions(**options)
+    except TypeError:
+        from dataclasses import fields
+
+        allowed = sorted(f.name for f in fields(SweepOptions))
+        bad = sorted(set(options) - set(allowed))
+        raise ValueError(f"unknown sweep options {bad}; allowed: {allowed}") from None
     if workers is not None:
         workers = check_int("workers", workers, 1)
     if workers is not None and scheduler is not None:
