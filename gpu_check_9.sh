@@ -21,29 +21,41 @@ status=0
 # 1. the sweep tests (CPU cases, Dask cluster, kills) on this machine
 WARPTRUNC_DEVICE=cpu python -m pytest -q tests/test_sweep.py 2>&1 | tail -5 || status=1
 # 2. a CUDA sweep: in-process on cuda:0 equals the CPU sweep in counts; workers pinned per GPU
-python - <<PY || status=1
+# (a file with a __main__ guard: Dask spawns its worker processes, which re-import __main__)
+cat > "$OUT/check_sweep_gpu.py" <<'PY'
+import sys
+
 import numpy as np
-from warptrunc.sweep import SweepGrid, RUN_COLUMNS, run_sweep, load_curves
-g = SweepGrid.from_values([2.3, 2.7], [0.01], "0-3")
-opts = dict(n=1024, min_pixels=(1, 10))
-gpu = run_sweep(g, "$OUT/store_gpu", device="cuda:0", progress=False, overwrite=True, **opts)
-cpu = run_sweep(g, "$OUT/store_cpu", device="cpu", progress=False, overwrite=True, **opts)
-assert gpu["error"].isna().all(), gpu["error"].dropna().unique()
-assert set(gpu["device"]) == {"cuda:0"}
-same = (gpu["final_contact_pixels"].to_numpy() == cpu["final_contact_pixels"].to_numpy()).mean()
-print(f"cuda:0 vs cpu: final contact pixels identical in {same:.0%} of rows; "
-      f"max |Δα| = {np.nanmax(np.abs(gpu.alpha - cpu.alpha)):.2e}")
-if $NGPU >= 2:
-    w = run_sweep(g, "$OUT/store_w2", workers=2, progress=False, overwrite=True, **opts)
-    print("--workers 2 devices:", sorted(set(w["device"])), set(w["device_name"]))
-    assert sorted(set(w["device"])) == ["cuda:0", "cuda:1"], "one worker per GPU"
-    cols = [c for c in gpu.columns if c not in RUN_COLUMNS]
-    assert gpu[cols].equals(w[cols]) or np.allclose(gpu.alpha, w.alpha, equal_nan=True)
-print("CUDA sweep checks passed")
+
+from warptrunc.sweep import RUN_COLUMNS, SweepGrid, run_sweep
+
+
+def main(out, ngpu):
+    g = SweepGrid.from_values([2.3, 2.7], [0.01], "0-3")
+    opts = dict(n=1024, min_pixels=(1, 10))
+    gpu = run_sweep(g, f"{out}/store_gpu", device="cuda:0", progress=False, overwrite=True, **opts)
+    cpu = run_sweep(g, f"{out}/store_cpu", device="cpu", progress=False, overwrite=True, **opts)
+    assert gpu["error"].isna().all(), gpu["error"].dropna().unique()
+    assert set(gpu["device"]) == {"cuda:0"}
+    same = (gpu["final_contact_pixels"].to_numpy() == cpu["final_contact_pixels"].to_numpy()).mean()
+    print(f"cuda:0 vs cpu: final contact pixels identical in {same:.0%} of rows; "
+          f"max |dalpha| = {np.nanmax(np.abs(gpu.alpha - cpu.alpha)):.2e}")
+    if ngpu >= 2:
+        w = run_sweep(g, f"{out}/store_w2", workers=2, progress=False, overwrite=True, **opts)
+        print("--workers 2 devices:", sorted(set(w["device"])), set(w["device_name"]))
+        assert sorted(set(w["device"])) == ["cuda:0", "cuda:1"], "one worker per GPU"
+        cols = [c for c in gpu.columns if c not in RUN_COLUMNS]
+        print("2 workers = in-process on cuda:0:", gpu[cols].equals(w[cols]))
+    print("CUDA sweep checks passed")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], int(sys.argv[2]))
 PY
+python "$OUT/check_sweep_gpu.py" "$OUT" "$NGPU" || status=1
 # 3. throughput (surfaces/s): in-process on one GPU, then --workers 2 (one per GPU)
 WORKERS="0"; [ "$NGPU" -ge 2 ] && WORKERS="0 2"
 python examples/benchmark_sweep.py --n 2048 --cases 48 --workers $WORKERS --json "$OUT/bench.jsonl" || status=1
 python examples/benchmark_sweep.py --n 10240 --cases 24 --workers $WORKERS --json "$OUT/bench.jsonl" || status=1
-rm -rf "$OUT"/store_*
+rm -rf "$OUT"/store_* "$OUT/check_sweep_gpu.py"
 exit $status

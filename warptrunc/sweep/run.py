@@ -51,7 +51,8 @@ def run_sweep(
     workers : int, optional
         Run on a ``dask.distributed.LocalCluster`` of this many worker processes (one thread
         each); with CUDA devices and ``device=None``, worker i is pinned to ``cuda:{i mod
-        n_gpus}``. Default: in this process.
+        n_gpus}``. Default: in this process. The workers are spawned processes, so a script
+        that passes ``workers`` needs the ``if __name__ == "__main__":`` guard.
     scheduler : str or distributed.Client, optional
         Use an existing Dask cluster (e.g. ``"tcp://host:8786"``, or a dask-jobqueue
         cluster's ``scheduler_address``) instead.

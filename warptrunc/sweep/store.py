@@ -200,7 +200,7 @@ class Store:
         if self.curves.exists():
             for f in self.curves.iterdir():
                 if f.suffix == ".parquet" or ".tmp-" in f.name:
-                    f.unlink()
+                    f.unlink(missing_ok=True)
 
     def _read_existing(self) -> None:
         import pyarrow.parquet as pq
