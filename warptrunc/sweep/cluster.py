@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 import os
+import sys
 from typing import Any
 
 from distributed import Client, LocalCluster, WorkerPlugin, as_completed
@@ -72,10 +73,12 @@ def run_dask(
         client = Client(scheduler)
     else:
         cluster = LocalCluster(
-            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
             silence_logs=logging.ERROR,
         )  # fmt: skip
         client = Client(cluster)
+        if progress:
+            print(f"Dask dashboard: {client.dashboard_link}", file=sys.stderr)
         if device is None and not os.environ.get("WARPTRUNC_DEVICE"):
             client.register_plugin(PinDevice())
     by_id = {c.case_id: c for c in cases}
