@@ -3,9 +3,9 @@
 #   bash gpu_check_9.sh            # results in $OUT (or ./gpu_check_9_out)
 # The GPU machine has pandas and pyarrow but not dask/distributed; install these wheels first
 # (pip install --no-deps <wheel files>). All are pure Python except tornado (one small abi3
-# C extension, manylinux x86_64 wheel for any CPython >= 3.9); importlib_metadata and zipp are
+# C extension: the cp39-abi3 manylinux x86_64 wheel, any CPython >= 3.9; 6.6 needs >= 3.11); importlib_metadata and zipp are
 # needed on Python < 3.12 only; pytest-timeout only arms the tests' hang guard.
-# WHEELS: dask==2026.8.0 distributed==2026.8.0 partd==1.4.2 locket==1.0.0 tblib==3.2.2 zict==3.0.0 tornado==6.6.1 importlib_metadata==8.7.0 zipp==3.23.0 pytest-timeout==2.4.0
+# WHEELS: dask==2026.8.0 distributed==2026.8.0 partd==1.4.2 locket==1.0.0 tblib==3.2.2 zict==3.0.0 tornado==6.5.2 importlib_metadata==8.7.0 zipp==3.23.0 pytest-timeout==2.4.0
 set -uo pipefail
 OUT=${OUT:-gpu_check_9_out}
 mkdir -p "$OUT"
