@@ -45,6 +45,11 @@ EXTRA_HINT = 'pip install "warptrunc[bem]"'
 DEFAULT_FRACTIONS = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4)
 
 SUBSTRATES = ("free", "periodic")
+_PADDING = {
+    "free": "zero-padded to 2nx × 2ny by FreeFFTElasticHalfSpace (Hockney): the map is an "
+    "isolated patch, no force outside it",
+    "periodic": "none: the map repeats periodically",
+}
 
 
 def require_bem() -> tuple[Any, Any, Any]:
@@ -199,9 +204,7 @@ def _ratio(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-def _approaches(
-    rt: float, depths: Any, fractions: Any
-) -> np.ndarray:
+def _approaches(rt: float, depths: Any, fractions: Any) -> np.ndarray:
     if depths is not None and fractions is not None:
         raise ValueError("give either depths (m) or fractions of R_t, not both")
     if depths is None:
@@ -323,6 +326,11 @@ def bem_check(
         half_space = Periodic(h.shape, e_star, sizes)
     system = System(half_space, topo)
     forcetol = pressure_tol * e_star * surface.pixel_area
+    if pentol is None:  # the library's heuristic, computed here (its own call is deprecated)
+        pentol = float(np.std(h)) / (10 * np.mean(h.shape))
+        pentol_note = "default: rms height/(10·mean n)"
+    else:
+        pentol_note = "given"
     h_max = float(h.max())
     m = d.size
     out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
@@ -332,11 +340,11 @@ def bem_check(
     solves: list[dict[str, Any]] = []
     u0 = None
 
-    def solve(delta: float) -> tuple[float, int, bool, dict[str, Any], Any]:
+    def solve(delta: float) -> tuple[float, dict[str, Any], np.ndarray]:
         nonlocal u0
-        kw: dict[str, Any] = {"offset": delta - h_max, "forcetol": forcetol, "maxiter": maxiter}
-        if pentol is not None:
-            kw["pentol"] = pentol
+        kw: dict[str, Any] = {
+            "offset": delta - h_max, "forcetol": forcetol, "pentol": pentol, "maxiter": maxiter,
+        }  # fmt: skip
         if u0 is not None:
             kw["initial_displacements"] = u0
         r = system.minimize_proxy(**kw)
@@ -346,24 +354,24 @@ def bem_check(
             "depth_m": delta, "success": bool(r.success), "n_iterations": int(r.nit),
             "message": str(r.message), "load_N": float(f.sum()),
         }  # fmt: skip
-        return float(f.sum()), int(r.nit), bool(r.success), info, f
+        return float(f.sum()), info, f
 
     bar = tqdm(total=3 * m, desc="BEM solves", unit="solve", disable=not progress)
     for i, delta in enumerate(d):
         t0 = time.perf_counter()
-        lo, n_lo, ok_lo, i_lo, _ = solve(delta * (1 - fd_step))
+        lo, i_lo, _ = solve(delta * (1 - fd_step))
         bar.update()
-        F, n_mid, ok_mid, i_mid, f = solve(delta)
+        F, i_mid, f = solve(delta)
         bar.update()
-        hi, n_hi, ok_hi, i_hi, _ = solve(delta * (1 + fd_step))
+        hi, i_hi, _ = solve(delta * (1 + fd_step))
         bar.update()
         out["t"][i] = time.perf_counter() - t0
         contact = f > 0
         out["F"][i] = F
         out["A"][i] = np.count_nonzero(contact) * surface.pixel_area
         out["k"][i] = (hi - lo) / (2 * fd_step * delta)
-        conv[i] = ok_lo and ok_mid and ok_hi
-        nit[i] = n_mid
+        conv[i] = i_lo["success"] and i_mid["success"] and i_hi["success"]
+        nit[i] = i_mid["n_iterations"]
         edge[i] = bool(
             contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any()
             or contact[:, -1].any()
@@ -375,10 +383,8 @@ def bem_check(
         "solver": "ContactMechanics NonSmoothContactSystem.minimize_proxy "
         "(constrained conjugate gradients, Polonsky & Keer 1999)",
         "substrate": substrate,
-        "half_space": "FreeFFTElasticHalfSpace" if substrate == "free" else
-        "PeriodicFFTElasticHalfSpace",
-        "padding": "zero-padded to 2nx × 2ny (non-periodic, no contact outside the map)"
-        if substrate == "free" else "none (periodic images)",
+        "half_space": type(half_space).__name__,
+        "padding": _PADDING[substrate],
         "contact_modulus_Pa": e_star,
         "material": asdict(material),
         "beta_prime": beta_prime,
@@ -386,7 +392,8 @@ def bem_check(
         "stiffness_method": "central difference of F over δ(1 ± fd_step)",
         "pressure_tol": pressure_tol,
         "forcetol_N": forcetol,
-        "pentol_m": pentol if pentol is not None else "library default (rms height/(10·mean n))",
+        "pentol_m": pentol,
+        "pentol_source": pentol_note,
         "maxiter": maxiter,
         "increments": increments,
         "rt_m": rt,
