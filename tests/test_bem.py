@@ -178,3 +178,29 @@ def test_missing_extra_names_it(monkeypatch, capsys):
 
     assert main(["bem-check", "--n", "16", "--out", "unused"]) == 2
     assert "warptrunc[bem]" in capsys.readouterr().err
+
+
+def test_periodic_westergaard():
+    """Periodic substrate on a y-constant cosine z = h₀cos(2πx/λ): Westergaard's partial contact.
+
+    Mean pressure against contact width 2a (Johnson 1985, §13.2): p̄ = (πE*h₀/λ)·sin²(πa/λ).
+    This relation does not involve δ (the periodic half-space's q = 0 mode is a convention).
+    The width is known to a pixel, so p̄ is allowed the error of a ± dx/2 shift of a,
+    (π·dx/λ)·cot(πa/λ), plus 1 %.
+    """
+    _needs_bem()
+    n, lam, h0 = 128, 1e-4, 1e-7
+    dx = lam / n
+    x = (np.arange(n) + 0.5) * dx
+    s = from_heights(np.tile(h0 * np.cos(2 * np.pi * x / lam), (4, 1)), dx)
+    res = bem.bem_check(
+        s, fractions=[0.2, 0.4], material=MATERIAL, substrate="periodic", progress=False,
+        device="cpu",
+    )  # fmt: skip
+    assert res.settings["half_space"] == "PeriodicFFTElasticHalfSpace"
+    assert res.all_converged
+    a = res.bem_area / s.apparent_area * lam / 2
+    p_mean = res.bem_load / s.apparent_area
+    p_ref = math.pi * MATERIAL.reduced_modulus * h0 / lam * np.sin(np.pi * a / lam) ** 2
+    tol = math.pi * dx / lam / np.tan(np.pi * a / lam) + 0.01
+    assert np.all(np.abs(p_mean / p_ref - 1) <= tol), (p_mean / p_ref, tol)

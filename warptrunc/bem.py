@@ -48,7 +48,8 @@ SUBSTRATES = ("free", "periodic")
 _PADDING = {
     "free": "zero-padded to 2nx × 2ny by FreeFFTElasticHalfSpace (Hockney): the map is an "
     "isolated patch, no force outside it",
-    "periodic": "none: the map repeats periodically",
+    "periodic": "none: the map repeats periodically; q = 0 mode given the stiffness of the "
+    "lowest non-zero wavevector (library default), so F(δ) depends on that convention",
 }
 
 
@@ -256,7 +257,10 @@ def bem_check(
     substrate : {"free", "periodic"}
         ``"free"``: non-periodic half-space (``FreeFFTElasticHalfSpace``, zero-padded to 2nx × 2ny,
         so the map is an isolated patch with no contact outside it). ``"periodic"``:
-        ``PeriodicFFTElasticHalfSpace``, for maps that are periodic.
+        ``PeriodicFFTElasticHalfSpace``, for maps that are periodic; the mean (q = 0)
+        displacement of a periodic half-space is undefined and ContactMechanics gives that mode
+        the stiffness of the lowest non-zero wavevector, so there F(δ) and k depend on that
+        convention while F against A_BEM does not.
     increments : int
         Depth increments of the truncation grid from 0 to the largest δ, for the load integral.
     fd_step : float
@@ -426,6 +430,7 @@ def plot_bem_check(res: BemCheck, path: str | Path | None = None, *, title: str 
     Returns the matplotlib Figure; saved to ``path`` when given.
     """
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import NullFormatter, ScalarFormatter
 
     dum = res.depth * 1e6
     fig, ax = plt.subplots(1, 3, figsize=(13, 4), constrained_layout=True)
@@ -440,6 +445,8 @@ def plot_bem_check(res: BemCheck, path: str | Path | None = None, *, title: str 
     ax[2].plot(dum, res.stiffness_ratio, "v-", label="k'/k$_{BEM}$")
     ax[2].axhline(1.0, color="0.6", lw=0.8)
     ax[2].set(xlabel="approach δ (µm)", ylabel="truncation / BEM", yscale="log")
+    ax[2].yaxis.set_major_formatter(ScalarFormatter())
+    ax[2].yaxis.set_minor_formatter(NullFormatter())
     bad = ~res.converged
     if bad.any():
         for a, y in ((ax[0], res.bem_load), (ax[1], res.bem_stiffness)):
