@@ -22,6 +22,48 @@ from pathlib import Path
 import numpy as np
 
 
+def tables(info: dict) -> str:
+    """Markdown: ranges over approaches and seeds per D, then seed means per approach."""
+    cases = info["cases"]
+    Ds = sorted({c["D"] for c in cases})
+
+    def rng(key: str, D: float) -> str:
+        v = [c[key] for c in cases if c["D"] == D and c[key] is not None]
+        return f"{min(x[0] for x in v):.2f}–{max(x[1] for x in v):.2f}" if v else "n/a"
+
+    lines = [
+        "| D | F'/F_BEM | k'/k_BEM | A'/A_BEM | converged | s per solve | s per case |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for D in Ds:
+        cs = [c for c in cases if c["D"] == D]
+        lines.append(
+            f"| {D} | {rng('load_ratio', D)} | {rng('stiffness_ratio', D)} | "
+            f"{rng('area_ratio', D)} | {sum(c['all_converged'] for c in cs)}/{len(cs)} | "
+            f"{np.mean([c['time_per_solve_s'] for c in cs]):.1f} | "
+            f"{np.mean([c['wall_s'] for c in cs]):.0f} |"
+        )
+    lines += [
+        "",
+        "| D | δ/R_t | F'/F_BEM | k'/k_BEM | A'/A_BEM | A_BEM/A |",
+        "|---|---|---|---|---|---|",
+    ]
+    for D in Ds:
+        cols = [c["columns"] for c in cases if c["D"] == D]
+        for i, f in enumerate(cols[0]["depth_fraction_of_Rt"]):
+
+            def ms(key: str, i: int = i, cols: list = cols) -> str:
+                v = np.array([c[key][i] for c in cols], dtype=float)
+                return f"{v.mean():.2f} ({v.min():.2f}–{v.max():.2f})"
+
+            frac = np.mean([c["bem_area_m2"][i] for c in cols]) / 1e-6  # A = 1 mm²
+            lines.append(
+                f"| {D} | {f:.2f} | {ms('load_ratio')} | {ms('stiffness_ratio')} | "
+                f"{ms('area_ratio')} | {frac:.2%} |"
+            )
+    return "\n".join(lines) + "\n"
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the cases and write the table."""
     p = argparse.ArgumentParser(
@@ -35,7 +77,15 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--out", type=Path, default=Path("out/bem_table"), help="output folder")
     p.add_argument("--quick", action="store_true", help="64², one D, one seed")
     p.add_argument("--no-show", action="store_true", help="no-op (no window is opened)")
+    p.add_argument(
+        "--tables-only", action="store_true", help="rewrite OUT/bem_table.md from its JSON"
+    )
     a = p.parse_args(argv)
+    if a.tables_only:
+        text = tables(json.loads((a.out / "bem_table.json").read_text()))
+        (a.out / "bem_table.md").write_text(text)
+        print(text)
+        return 0
 
     from warptrunc.bem import bem_check
     from warptrunc.stiffness import Material
@@ -71,24 +121,9 @@ def main(argv: list[str] | None = None) -> int:
     }
     (a.out / "bem_table.json").write_text(json.dumps(info, indent=1, default=str) + "\n")
 
-    def rng(key: str, D: float) -> str:
-        v = [c[key] for c in cases if c["D"] == D and c[key] is not None]
-        return f"{min(x[0] for x in v):.2f}–{max(x[1] for x in v):.2f}" if v else "n/a"
-
-    lines = [
-        "| D | F'/F_BEM | k'/k_BEM | A'/A_BEM | converged | s per solve | s per case |",
-        "|---|---|---|---|---|---|---|",
-    ]
-    for D in Ds:
-        cs = [c for c in cases if c["D"] == D]
-        lines.append(
-            f"| {D} | {rng('load_ratio', D)} | {rng('stiffness_ratio', D)} | "
-            f"{rng('area_ratio', D)} | {sum(c['all_converged'] for c in cs)}/{len(cs)} | "
-            f"{np.mean([c['time_per_solve_s'] for c in cs]):.1f} | "
-            f"{np.mean([c['wall_s'] for c in cs]):.0f} |"
-        )
-    (a.out / "bem_table.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    text = tables(info)
+    (a.out / "bem_table.md").write_text(text)
+    print(text)
     return 0
 
 
