@@ -59,7 +59,7 @@ def tables(info: dict) -> str:
             frac = np.mean([c["bem_area_m2"][i] for c in cols]) / 1e-6  # A = 1 mm²
             lines.append(
                 f"| {D} | {f:.2f} | {ms('load_ratio')} | {ms('stiffness_ratio')} | "
-                f"{ms('area_ratio')} | {frac:.2%} |"
+                f"{ms('area_ratio')} | {100 * frac:.2g} % |"
             )
     return "\n".join(lines) + "\n"
 

@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import warp as wp
 
 from ._validate import check_int, check_range
 from .stiffness import Material, stiffness_curve
@@ -53,7 +54,7 @@ _PADDING = {
 }
 
 
-def require_bem() -> tuple[Any, Any, Any]:
+def require_bem() -> tuple[Any, Any, Any, Any]:
     """Import ContactMechanics; raise ImportError naming the extra when it is missing.
 
     Returns
@@ -238,7 +239,7 @@ def bem_check(
     pentol: float | None = None,
     maxiter: int = 10000,
     progress: bool = True,
-    device: Any = None,
+    device: wp.DeviceLike = None,
 ) -> BemCheck:
     """Compare truncation with an elastic boundary-element contact solution at approaches δ.
 
