@@ -188,8 +188,19 @@ class BemCheck:
         path = Path(path)
         d: dict[str, Any] = {"summary": self.summary(), "settings": self.settings}
         d["columns"] = {k: v.tolist() for k, v in self.to_dict().items()}
-        path.write_text(json.dumps(d, indent=1, default=str) + "\n")
+        path.write_text(json.dumps(_strict(d), indent=1, default=str, allow_nan=False) + "\n")
         return path
+
+
+def _strict(v: Any) -> Any:
+    """Strict JSON: non-finite floats become None (NaN ratio: no BEM contact) or "inf"."""
+    if isinstance(v, dict):
+        return {k: _strict(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_strict(x) for x in v]
+    if isinstance(v, float) and not math.isfinite(v):
+        return None if math.isnan(v) else str(v)
+    return v
 
 
 def _cell(v: Any) -> Any:
