@@ -116,7 +116,7 @@ def main(argv: list[str] | None = None) -> int:
             )
     info = {
         "machine": f"{platform.processor() or platform.machine()}, shared 2-core CPU",
-        "material": material.__dict__,
+        "material": {k: (str(v) if v == float("inf") else v) for k, v in material.__dict__.items()},
         "cases": cases,
     }
     (a.out / "bem_table.json").write_text(json.dumps(info, indent=1, default=str) + "\n")
