@@ -132,7 +132,7 @@ def test_cli_streams_when_the_map_does_not_fit(tmp_path, monkeypatch):
     _analyze(tmp_path)
     info = json.loads((tmp_path / "fit.json").read_text())
     assert info["path"] == "streamed"
-    assert info["streaming"]["reason"] == "the map does not fit in free memory"
+    assert info["streaming"]["reason"] == "the map needs more than half of the free memory"
 
 
 def test_cli_stream_refuses_an_input_file(tmp_path, capsys):

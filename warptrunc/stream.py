@@ -112,12 +112,13 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
 
 
 def _fits(spec: WMSpec, device) -> bool:
+    # at most half of the free memory: the rest stays for the pool's slack, the plots, the
+    # islands; past that, streaming (two passes of the product, no host copy) is faster anyway
     dev, host = in_memory_bytes(spec, device)
     if device.is_cuda:
-        return dev < 0.9 * free_memory_bytes(device) and host < 0.8 * free_memory_bytes(
-            wp.get_device("cpu")
-        )
-    return dev + host < 0.8 * free_memory_bytes(device)
+        host_free = free_memory_bytes(wp.get_device("cpu"))
+        return dev <= 0.5 * free_memory_bytes(device) and host <= 0.5 * host_free
+    return dev + host <= 0.5 * free_memory_bytes(device)
 
 
 class _Bands:
@@ -305,6 +306,6 @@ def truncate_streamed(
 
 
 def fits_in_memory(spec_or_params, device: wp.DeviceLike = None) -> bool:
-    """Whether ``truncate(wm_surface(...))`` fits in the free memory of ``device`` (and of the
-    host, which holds the ``Surface`` copy), with 10–20 % to spare."""
+    """Whether ``truncate(wm_surface(...))`` needs at most half of the free memory of ``device``
+    and of the host (which holds the ``Surface`` copy); see :func:`in_memory_bytes`."""
     return _fits(_as_spec(spec_or_params), resolve_device(device))

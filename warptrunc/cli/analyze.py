@@ -7,8 +7,8 @@ Ec_over_E, F_over_EA), OUT/fit.json (alpha, beta, r2 and the fit range), OUT/sti
 (E_c/E against F/(E·A), log–log, with the fitted line, as the paper's Fig. 9) and
 OUT/area_fraction.png (A_c/A against depth).
 
-A generated surface that does not fit in the free memory of the device (or of the host, which
-holds the map's copy) is streamed: generated and truncated by row bands, never held whole
+A generated surface that needs more than half of the free memory of the device or of the host
+(which holds the map's copy) is streamed: generated and truncated by row bands, never held whole
 (``warptrunc.stream``; ``--stream`` forces it). The counts are those of the in-memory path.
 fit.json says which path ran (``"path": "in-memory"`` or ``"streamed"``).
 """
@@ -65,7 +65,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--stream", action="store_true",
         help="generate and truncate by row bands, never holding the map (default: only when "
-        "the map does not fit in free memory)",
+        "the map needs more than half of the free memory)",
     )  # fmt: skip
     p.add_argument(
         "--band-rows", type=int, default=None,
@@ -106,6 +106,9 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+_TOO_BIG = "the map needs more than half of the free memory"
+
+
 def _describe(path: dict) -> str:
     if path["path"] == "streamed":
         st = path["streaming"]
@@ -131,7 +134,7 @@ def _truncation(args: argparse.Namespace):
         max_depth_fraction=args.max_depth_fraction, band_rows=args.band_rows,
         device=args.device,
     )  # fmt: skip
-    reason = "--stream given" if args.stream else "the map does not fit in free memory"
+    reason = "--stream given" if args.stream else _TOO_BIG
     info = {"band_rows": st.band_rows, "n_bands": st.n_bands, "reason": reason}
     return st.curve, st.surface, {"path": "streamed", "streaming": info}
 
