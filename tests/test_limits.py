@@ -92,3 +92,18 @@ def test_side_limit_is_refused_before_allocating(capsys):
     rc = main(["generate", "--n", str(2**21), "-o", "unused.npz"])
     assert rc == 2
     assert "n (x) must be an integer in [2, 1048576], got 2097152" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("shape", [(32768, 32768), (46400, 46400)], ids=["2^30", "46400^2"])
+def test_island_labelling_limit_is_refused_before_touching_memory(shape):
+    """A (ny, nx) int32 view over a 16-element buffer: the size check must come first."""
+    from warptrunc.islands import island_counts_device, label_device
+
+    buf = wp.zeros(16, dtype=wp.int32, device="cpu")
+    index = wp.array(ptr=buf.ptr, shape=shape, dtype=wp.int32, device="cpu")
+    n = shape[0] * shape[1]
+    with pytest.raises(ValueError, match=rf"grid of {n} pixels is too large .*limit 2\*\*30"):
+        island_counts_device(index, 10)
+    mask = wp.array(ptr=buf.ptr, shape=shape, dtype=wp.uint8, device="cpu")
+    with pytest.raises(ValueError, match=rf"grid of {n} pixels is too large"):
+        label_device(mask)
