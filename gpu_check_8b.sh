@@ -31,7 +31,7 @@ nvidia-smi --query-gpu=name,memory.total,memory.used --format=csv 2>&1 | tee "$O
 
 # 1. tests on cpu and cuda:0 (the banded and streamed paths, and the truncation/WM suites)
 step tests bash -c "WARPTRUNC_TEST_DEVICES=$DEVS python -m pytest -q -p no:cacheprovider \
-    tests/test_stream.py tests/test_limits.py tests/test_truncation.py tests/test_wm.py \
+    tests/test_stream.py tests/test_limits.py tests/test_stream_islands.py tests/test_truncation.py tests/test_wm.py \
     2>&1 | tail -30 | tee '$OUT/tests_8b.txt'"
 
 # 2. generate + truncate, each case in its own process (peak memory per case)

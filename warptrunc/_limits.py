@@ -37,8 +37,9 @@ grids against the single-band result.
 Remaining limits (refused before allocating, with the value):
 - island labelling keeps flat ``int32`` pixel indices (union-find parents, the radix sort's
   2·N buffers): fewer than 2³⁰ pixels; ``warptrunc.islands`` refuses larger maps before
-  allocating, naming the limit and the size. Streaming islands are not implemented;
-  see :data:`STREAMING_ISLANDS`.
+  allocating, naming the limit and the size. Island counts and areas past it, or beyond
+  memory, come from the banded labelling of ``warptrunc.stream_islands`` (see
+  :data:`STREAMING_ISLANDS`).
 - a side of a WM surface is at most 2²⁰ pixels (``wm_spec``).
 """
 
@@ -65,16 +66,16 @@ _DEFAULT_BAND_PIXELS = 2**30
 _band_pixels = _DEFAULT_BAND_PIXELS
 
 STREAMING_ISLANDS = """\
-Streaming islands (not implemented). Labelling a map band by band would need: (1) label each
-row band on its own (the current in-memory labelling, local int32 indices); (2) offset the
-band's labels by a running int64 label count; (3) keep the first and last row of labels of
-every band (2·nx labels) and merge across each band border with a host or device union-find
-over the pairs (label above, label below) of 4-connected pixels that are both in contact;
-(4) relabel with the root of each label and accumulate per-island areas (int64 pixel counts)
-and perimeters (edge counts: an island's perimeter is the sum over its bands, minus twice the
-merged border edges, which are interior). Per depth this costs one extra pass over the
-border rows only; areas/perimeters of islands touching a border are finalised after the last
-band. Everything but step (3) is per band, so memory stays O(band + number of islands).
+Streaming islands: label each row band on its own (the in-memory labelling, local int32
+indices); offset the band's labels by the running label count (int64 on the host); keep the
+first and last row of labels of every band (2·nx labels) and merge across each band border by
+union-find over the pairs (label above, label below) of touching contact pixels; the smallest
+label of each merged set survives (first pixel in raster order) and the areas (int64 pixel
+counts, one device histogram per band) of the others are added to it. Memory stays
+O(band + number of islands). Built for island counts and areas in
+``warptrunc.stream_islands`` (``label_banded``, ``streamed_islands``); not built: periodic
+wrapping, perimeters (a perimeter would be the sum over bands minus twice the merged border
+edges) and the union-find forest carried across depths (each depth is labelled afresh).
 """
 
 

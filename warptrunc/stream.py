@@ -20,8 +20,8 @@ Device memory: the two tables (≈ 2·K·n·4 bytes, K = 2·n_terms padded) and 
 is the :class:`~warptrunc.truncation.TruncationCurve` that ``truncate(wm_surface(...))`` gives,
 count for count.
 
-Streaming islands are not implemented; ``warptrunc._limits.STREAMING_ISLANDS`` says what they
-would need (labels per band, border rows merged by union-find).
+Islands of a streamed surface (counts and areas, labels per band, border rows merged by
+union-find): ``warptrunc.stream_islands``.
 """
 
 from __future__ import annotations
