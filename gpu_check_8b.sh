@@ -17,8 +17,8 @@ mkdir -p "$OUT"
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 export WARPTRUNC_DEVICE=${DEVICE:-cuda:0}
-if [ "${SMALL:-0}" = 1 ]; then N1=512 N2=640 N3=768 N4=1024 DEVS=cpu; else
-    N1=32768 N2=46400 N3=65536 N4=131072 DEVS=cpu,cuda:0; fi
+if [ "${SMALL:-0}" = 1 ]; then N1=512 N2=640 N3=768 N4=1024 N5=256 B5=16 DEVS=cpu; else
+    N1=32768 N2=46400 N3=65536 N4=131072 N5=16384 B5=1024 DEVS=cpu,cuda:0; fi
 status=()
 step() { # name, command...
     local name=$1; shift
@@ -43,6 +43,12 @@ step large_$N3 python examples/benchmark_large.py --n $N3 --path auto stream \
     --json "$OUT/large_$N3.json"
 step large_${N3}_surface python examples/benchmark_large.py --n $N3 --path surface \
     --no-warmup --json "$OUT/large_${N3}_surface.json"
+
+# 2b. streamed islands: equal to the in-memory labelling at 16384² (16 bands), and past the
+#     in-memory labelling limit (2^30 pixels) at 46400²
+step islands_16384 python examples/stream_islands.py --n $N5 --band-rows $B5 \
+    --json "$OUT/stream_islands_16384.json"
+step islands_$N2 python examples/stream_islands.py --n $N2 --json "$OUT/stream_islands_$N2.json"
 
 # 3. the CLI at 46400² (2.15e9 pixels, past 2^31): generate and save a .npy (8.6 GB, temporary)
 step generate_$N2 bash -c "TIMEFORMAT='real %R s'; { time warptrunc generate --n $N2 \
@@ -76,6 +82,10 @@ for f in sorted(glob.glob(os.path.join(out, "large_*.json"))):
         print(f"{r['n']:>6}² {r['path']:<8} {r['seconds']:8.3f} s  "
               f"pool peak {r.get('mempool_high_GiB', float('nan')):6.2f} GiB  "
               f"host rss {r['host_maxrss_GiB']:6.2f} GiB  equal={d['counts_equal_across_paths']}")
+summary["stream_islands"] = [json.load(open(f)) for f in sorted(glob.glob(os.path.join(out, "stream_islands_*.json")))]
+for d in summary["stream_islands"]:
+    print(f"islands {d['n']:>6}² streamed {d['seconds']:8.3f} s  counts {d['n_islands']}  "
+          f"equal to in-memory: {d.get('equal_to_in_memory', 'n/a (past the limit)')}")
 fit = os.path.join(out, "analyze_big", "fit.json")
 if os.path.exists(fit):
     info = json.load(open(fit))
