@@ -56,7 +56,9 @@ def run_surface(spec, device):
 
 
 def run_stream(spec, device):
-    return stream_truncation(spec, N_INCREMENTS, device=device, progress=False).curve.n_contact_pixels
+    return stream_truncation(
+        spec, N_INCREMENTS, device=device, progress=False
+    ).curve.n_contact_pixels
 
 
 RUNS = {"device": run_device, "surface": run_surface, "stream": run_stream}

@@ -65,7 +65,7 @@ def main() -> None:
         s = wm_surface(n=args.n, device=device)
         ref = islands_at_depths(s, depths, device=device)
         out["equal_to_in_memory"] = all(
-            np.array_equal(a.area_pixels, b.area_pixels) for a, b in zip(res, ref)
+            np.array_equal(a.area_pixels, b.area_pixels) for a, b in zip(res, ref, strict=True)
         )
     print(json.dumps(out))
     if args.json:

@@ -3,6 +3,8 @@
 """The banded (> 2³¹ pixels) path, forced on small grids, against NumPy and the one-band path;
 limits refused with a message naming them."""
 
+import itertools
+
 import numpy as np
 import pytest
 import warp as wp
@@ -24,7 +26,7 @@ def test_row_bands_cover_the_map_within_the_cap(ny, nx, cap):
     with force_band_pixels(cap):
         bands = row_bands(ny, nx)
     assert bands[0][0] == 0 and bands[-1][1] == ny
-    assert all(a[1] == b[0] for a, b in zip(bands, bands[1:]))
+    assert all(a[1] == b[0] for a, b in itertools.pairwise(bands))
     # whole rows; several rows per band only while they fit under the cap
     assert all(r1 > r0 for r0, r1 in bands)
     assert all((r1 - r0) * nx <= cap for r0, r1 in bands) or cap < nx

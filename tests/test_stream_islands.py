@@ -77,7 +77,7 @@ def test_streamed_islands_equal_scipy_on_the_in_memory_map(device, band_rows, co
     got = streamed_islands(s.params, depths, band_rows=band_rows, connectivity=connectivity,
                            device=device, progress=False)  # fmt: skip
     thr = (np.float64(s.heights.max()) - depths).astype(np.float32)
-    for g, t, d in zip(got, thr, depths):
+    for g, t, d in zip(got, thr, depths, strict=True):
         np.testing.assert_array_equal(g.area_pixels, scipy_areas(s.heights >= t, connectivity))
         assert g.depth == d
 

@@ -98,7 +98,9 @@ def force_band_pixels(max_pixels: int) -> Iterator[None]:
         _band_pixels = old
 
 
-def row_bands(ny: int, nx: int, *, rows: int | None = None, align: int = 1) -> list[tuple[int, int]]:
+def row_bands(
+    ny: int, nx: int, *, rows: int | None = None, align: int = 1
+) -> list[tuple[int, int]]:
     """Row ranges ``[(r0, r1), ...]`` covering ``0..ny``.
 
     ``rows`` rows per band (default: as many whole rows as :func:`band_pixel_limit` allows),

@@ -199,7 +199,8 @@ def wm_bands(
     for r0, r1 in bands.bands:
         z, _, _ = bands.raw(r0, r1)
         wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale], device=device)
-        yield r0, r1, z.numpy().copy()  # sync point; copy: on the CPU numpy() is a view of the buffer
+        # sync point; copy: on the CPU, numpy() is a view of the reused buffer
+        yield r0, r1, z.numpy().copy()
 
 
 def stream_truncation(
@@ -219,9 +220,7 @@ def stream_truncation(
     bands = _Bands(spec, device, band_rows)
     _lo, _hi, scale, zlo, zhi = _pass1(bands, progress)
     rt = float(np.float64(zhi) - np.float64(zlo))
-    depth = depth_grid(
-        rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
-    )
+    depth = depth_grid(rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction)
     t, _, _, thr, inv_step = _thresholds(None, depth, device, (zlo, zhi))
     hist = wp.zeros(depth.size, dtype=wp.int64, device=device)
     with _progress(len(bands.bands), "stream pass 2/2 (histogram)", progress) as bar:

@@ -227,9 +227,9 @@ def streamed_islands(
             wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale],
                       device=device)  # fmt: skip
             m = mask[: r1 - r0]
-            for t, merger in zip(thr, mergers):
+            for t, merger in zip(thr, mergers, strict=True):
                 wp.launch(_k.contact_mask_kernel, dim=z.size, inputs=[z.flatten(), float(t)],
                           outputs=[m.flatten()], device=device)  # fmt: skip
                 merger.add(*label_device(m, connectivity))
             bar.update()
-    return [mg.finish(d) for mg, d in zip(mergers, depth)]
+    return [mg.finish(d) for mg, d in zip(mergers, depth, strict=True)]
