@@ -224,8 +224,10 @@ def stream_truncation(
     t, _, _, thr, inv_step = _thresholds(None, depth, device, (zlo, zhi))
     hist = wp.zeros(depth.size, dtype=wp.int64, device=device)
     with _progress(len(bands.bands), "stream pass 2/2 (histogram)", progress) as bar:
-        for r0, r1 in bands.bands:
-            z, _, _ = bands.raw(r0, r1)
+        # last band first: pass 1 left its raw sum in the buffer (one band fewer to generate;
+        # integer counts do not depend on the order)
+        for i, (r0, r1) in enumerate(reversed(bands.bands)):
+            z = bands.buffer[: r1 - r0] if i == 0 else bands.raw(r0, r1)[0]
             wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale],
                       device=device)  # fmt: skip
             histogram_bands(z, t, zhi, inv_step, hist)
@@ -294,8 +296,9 @@ def truncate_streamed(
     Notes
     -----
     Two passes (extremes, then histogram) regenerate the same bands with the same tables and
-    kernels, so the scaled heights of pass 2 are bit-identical to the in-memory map. Device
-    memory: the tables and one band; time: about twice the generation of the whole map.
+    kernels, so the scaled heights of pass 2 are bit-identical to the in-memory map (pass 2
+    starts with the last band, still in the buffer). Device memory: the tables and one band;
+    time: about twice the generation of the whole map (once, for a single band).
     """
     return stream_truncation(
         spec_or_params, n_increments, max_depth=max_depth,
