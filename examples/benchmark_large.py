@@ -44,9 +44,7 @@ def run_device(spec, device):
     lo, hi = height_range(z, device)
     depth = depth_grid(float(np.float64(hi) - np.float64(lo)), N_INCREMENTS)
     t, _, _, _, inv_step = _thresholds(None, depth, device, (lo, hi))
-    hist = wp.zeros(depth.size, dtype=wp.int64, device=device)
-    histogram_bands(z, t, hi, inv_step, hist)
-    return np.cumsum(hist.numpy())  # sync point
+    return np.cumsum(histogram_bands(z, t, hi, inv_step, device, deep=False))  # sync point
 
 
 def run_surface(spec, device):

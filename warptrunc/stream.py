@@ -39,7 +39,13 @@ from ._limits import band_pixel_limit, row_bands
 from ._validate import check_int
 from .kernels import wm as _kwm
 from .surface import _jsonable
-from .truncation import TruncationCurve, _thresholds, depth_grid, histogram_bands
+from .truncation import (
+    DEEP_FRACTION,
+    TruncationCurve,
+    _thresholds,
+    depth_grid,
+    histogram_bands,
+)
 from .wm import WMSpec, _pad, _prefactor, wm_product, wm_spec, wm_tables
 
 __all__ = [
@@ -222,7 +228,8 @@ def stream_truncation(
     rt = float(np.float64(zhi) - np.float64(zlo))
     depth = depth_grid(rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction)
     t, _, _, thr, inv_step = _thresholds(None, depth, device, (zlo, zhi))
-    hist = wp.zeros(depth.size, dtype=wp.int64, device=device)
+    hist = np.zeros(depth.size, dtype=np.int64)
+    deep = depth[-1] > DEEP_FRACTION * rt  # picks the GPU histogram kernel, as truncate() does
     with _progress(len(bands.bands), "stream pass 2/2 (histogram)", progress) as bar:
         # last band first: pass 1 left its raw sum in the buffer (one band fewer to generate;
         # integer counts do not depend on the order)
@@ -230,9 +237,9 @@ def stream_truncation(
             z = bands.buffer[: r1 - r0] if i == 0 else bands.raw(r0, r1)[0]
             wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale],
                       device=device)  # fmt: skip
-            histogram_bands(z, t, zhi, inv_step, hist)
+            hist += histogram_bands(z, t, zhi, inv_step, device, deep=deep)
             bar.update()
-    counts = np.cumsum(hist.numpy()).astype(np.int64)  # sync point
+    counts = np.cumsum(hist).astype(np.int64)
     lx, ly = spec.nx * spec.dx, spec.ny * spec.dy  # as Surface.lx, Surface.ly
     pixel_area = spec.dx * spec.dy
     curve = TruncationCurve(
