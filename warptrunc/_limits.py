@@ -115,12 +115,14 @@ def row_bands(
 
 def flat_row_bands(z: wp.array) -> Iterator[tuple[int, int, wp.array]]:
     """``(r0, r1, view)`` for the row bands of a 1-D or 2-D Warp array, ``view`` the flattened
-    band (1-D, fewer than :func:`band_pixel_limit` + 1 elements). A 1-D array is one band."""
+    band (1-D, at most :func:`band_pixel_limit` elements unless 4 rows exceed it). A 1-D array
+    is one band."""
     if z.ndim == 1:
         yield 0, z.shape[0], z  # one band (a 1-D Warp array is below 2³¹ by construction)
         return
     if z.ndim != 2:
         raise ValueError(f"expected a 1-D or 2-D array, got shape {z.shape}")
     ny, nx = z.shape
-    for r0, r1 in row_bands(ny, nx):
+    # bands start at multiples of 4 rows: 16-byte aligned, as the vec4/tile kernels want
+    for r0, r1 in row_bands(ny, nx, align=4):
         yield r0, r1, z[r0:r1].flatten()

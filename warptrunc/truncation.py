@@ -232,11 +232,7 @@ def histogram_bands(
     band histograms summed on the host (one sync point per band)."""
     n1 = t.shape[0]
     total = np.zeros(n1, dtype=np.int64)
-    if z.ndim == 2:
-        bands = ((z[r0:r1].flatten()) for r0, r1 in row_bands(*z.shape, align=4))
-    else:
-        bands = (v for _r0, _r1, v in flat_row_bands(z))
-    for v in bands:
+    for _r0, _r1, v in flat_row_bands(z):
         hist = contact_histogram(v, t, z_top, inv_step, device, deep=deep)
         total += hist.numpy()[:n1]  # sync point
     return total
