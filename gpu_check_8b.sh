@@ -91,6 +91,6 @@ if os.path.exists(fit):
     info = json.load(open(fit))
     summary["analyze_big"] = {k: info.get(k) for k in ("path", "streaming", "alpha", "beta", "r2")}
     summary["analyze_big"]["time"] = open(os.path.join(out, "analyze_big", "time.txt")).read()[-300:]
-    print("analyze (largest n, streamed):", summary["analyze_big"])
+    print("analyze (largest n):", summary["analyze_big"])
 json.dump(summary, open(os.path.join(out, "summary_8b.json"), "w"), indent=2)
 EOF
