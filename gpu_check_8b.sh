@@ -5,12 +5,14 @@
 #
 #   bash gpu_check_8b.sh            # tests + 32768², 46400², 65536² + 131072² streamed analyze
 #   SKIP_131072=1 bash gpu_check_8b.sh
+#   FULL=1 bash gpu_check_8b.sh      # also wm_surface (host copy) at 46400² and 65536² (+1-2 min)
 #   DEVICE=cpu SMALL=1 bash gpu_check_8b.sh   # dry run of the script logic on small grids
 #
 # Needs warptrunc installed in the active Python (pip install -e .). Results: $OUT (default
 # ./out_gpu_8b): tests_8b.txt, large_<n>.json, analyze_big/{fit.json,time.txt,smi_peak_MiB.txt} (n = 131072),
 # summary_8b.json. Big files (maps) go to a temporary folder that is deleted at the end.
-# Estimated on an H100: tests 1-3 min (cold kernel cache), benchmarks 2-3 min.
+# Estimated on an H100 (not run yet): tests 1-3 min (cold kernel cache), the 46400² test ~1 min,
+# benchmarks 2-3 min; each step has its own timeout.
 set -uo pipefail
 OUT=${OUT:-$PWD/out_gpu_8b}
 mkdir -p "$OUT"
@@ -34,15 +36,23 @@ step tests bash -c "WARPTRUNC_TEST_DEVICES=$DEVS python -m pytest -q -p no:cache
     tests/test_stream.py tests/test_limits.py tests/test_stream_islands.py tests/test_truncation.py tests/test_wm.py \
     2>&1 | tail -30 | tee '$OUT/tests_8b.txt'"
 
+# 1b. past 2^31 pixels in memory (46400²) against the streamed path and NumPy (~1 min)
+[ "${SMALL:-0}" = 1 ] || step test_46400 bash -c "WARPTRUNC_SLOW=1 python -m pytest -q \
+    -p no:cacheprovider tests/test_limits.py -k past_2_31 2>&1 | tail -5 | tee '$OUT/test_46400.txt'"
+
 # 2. generate + truncate, each case in its own process (peak memory per case)
-step large_$N1 python examples/benchmark_large.py --n $N1 --path device surface stream \
+step large_$N1 timeout 150 python examples/benchmark_large.py --n $N1 --path device surface stream \
     --json "$OUT/large_$N1.json"
-step large_$N2 python examples/benchmark_large.py --n $N2 --path device stream surface \
+step large_$N2 timeout 150 python examples/benchmark_large.py --n $N2 --path device stream \
     --json "$OUT/large_$N2.json"
-step large_$N3 python examples/benchmark_large.py --n $N3 --path auto stream \
+step large_$N3 timeout 150 python examples/benchmark_large.py --n $N3 --path auto stream \
     --json "$OUT/large_$N3.json"
-step large_${N3}_surface python examples/benchmark_large.py --n $N3 --path surface \
-    --no-warmup --json "$OUT/large_${N3}_surface.json"
+if [ "${FULL:-0}" = 1 ]; then  # the user path with the host copy (17 GB at 65536²), slower
+    step large_${N2}_surface timeout 150 python examples/benchmark_large.py --n $N2 \
+        --path surface --no-warmup --json "$OUT/large_${N2}_surface.json"
+    step large_${N3}_surface timeout 150 python examples/benchmark_large.py --n $N3 \
+        --path surface --no-warmup --json "$OUT/large_${N3}_surface.json"
+fi
 
 # 2b. streamed islands: equal to the in-memory labelling at 16384² (16 bands), and past the
 #     in-memory labelling limit (2^30 pixels) at 46400²

@@ -109,3 +109,29 @@ def test_island_labelling_limit_is_refused_before_touching_memory(shape):
     mask = wp.array(ptr=buf.ptr, shape=shape, dtype=wp.uint8, device="cpu")
     with pytest.raises(ValueError, match=rf"grid of {n} pixels is too large"):
         label_device(mask)
+
+
+@pytest.mark.gpu
+@pytest.mark.slow
+def test_gpu_past_2_31_pixels_in_memory_equals_streamed_and_numpy():
+    """46400² = 2.15·10⁹ pixels (> 2³¹ − 1), in memory on the GPU, against the streamed path
+    and NumPy at a few thresholds. ~9 GB of device memory and ~20 GB of host memory."""
+    import os
+
+    want = os.environ.get("WARPTRUNC_TEST_DEVICES")
+    if wp.get_cuda_device_count() == 0 or (want and "cuda:0" not in want):
+        pytest.skip("needs a CUDA device")
+    if os.environ.get("WARPTRUNC_SLOW") != "1":
+        pytest.skip("large case: set WARPTRUNC_SLOW=1")
+    from warptrunc.stream import truncate_streamed
+
+    n = 46400
+    s = wm_surface(n=n, seed=1, device="cuda:0")
+    assert s.heights.size > 2**31 - 1
+    c = truncate(s, 50, max_depth_fraction=0.3, device="cuda:0")
+    st = truncate_streamed(s.params, 50, max_depth_fraction=0.3, device="cuda:0", progress=False)
+    np.testing.assert_array_equal(st.n_contact_pixels, c.n_contact_pixels)
+    assert (st.z_top, st.rt) == (c.z_top, c.rt)
+    assert c.z_top == float(s.heights.max())
+    for k in (0, 10, 50):
+        assert c.n_contact_pixels[k] == np.count_nonzero(s.heights >= c.threshold[k])
