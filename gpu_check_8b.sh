@@ -32,12 +32,12 @@ step() { # name, command...
 nvidia-smi --query-gpu=name,memory.total,memory.used --format=csv 2>&1 | tee "$OUT/gpu.txt"
 
 # 1. tests on cpu and cuda:0 (the banded and streamed paths, and the truncation/WM suites)
-step tests bash -c "WARPTRUNC_TEST_DEVICES=$DEVS python -m pytest -q -p no:cacheprovider \
+step tests timeout 300 bash -c "WARPTRUNC_TEST_DEVICES=$DEVS python -m pytest -q -p no:cacheprovider \
     tests/test_stream.py tests/test_limits.py tests/test_stream_islands.py tests/test_truncation.py tests/test_wm.py \
     2>&1 | tail -30 | tee '$OUT/tests_8b.txt'"
 
 # 1b. past 2^31 pixels in memory (46400²) against the streamed path and NumPy (~1 min)
-[ "${SMALL:-0}" = 1 ] || step test_46400 bash -c "WARPTRUNC_SLOW=1 python -m pytest -q \
+[ "${SMALL:-0}" = 1 ] || step test_46400 timeout 180 bash -c "WARPTRUNC_SLOW=1 python -m pytest -q \
     -p no:cacheprovider tests/test_limits.py -k past_2_31 2>&1 | tail -5 | tee '$OUT/test_46400.txt'"
 
 # 2. generate + truncate, each case in its own process (peak memory per case)
@@ -56,12 +56,12 @@ fi
 
 # 2b. streamed islands: equal to the in-memory labelling at 16384² (16 bands), and past the
 #     in-memory labelling limit (2^30 pixels) at 46400²
-step islands_16384 python examples/stream_islands.py --n $N5 --band-rows $B5 \
+step islands_16384 timeout 120 python examples/stream_islands.py --n $N5 --band-rows $B5 \
     --json "$OUT/stream_islands_16384.json"
-step islands_$N2 python examples/stream_islands.py --n $N2 --json "$OUT/stream_islands_$N2.json"
+step islands_$N2 timeout 120 python examples/stream_islands.py --n $N2 --json "$OUT/stream_islands_$N2.json"
 
 # 3. the CLI at 46400² (2.15e9 pixels, past 2^31): generate and save a .npy (8.6 GB, temporary)
-step generate_$N2 bash -c "TIMEFORMAT='real %R s'; { time warptrunc generate --n $N2 \
+step generate_$N2 timeout 120 bash -c "TIMEFORMAT='real %R s'; { time warptrunc generate --n $N2 \
     -o '$TMP/s$N2.npy' ; } 2>&1 | tail -3 | tee '$OUT/generate_$N2.txt'; rm -f '$TMP'/s$N2.*"
 
 # 4. warptrunc analyze --n 131072 as a whole process (auto: streamed), with peak GPU memory
@@ -71,7 +71,7 @@ if [ "${SKIP_131072:-0}" != 1 ]; then
         > "$TMP/smi.txt" 2>/dev/null &
     smi=$!
     step analyze_big bash -c "TIMEFORMAT='real %R s, user %U s, sys %S s'; { time \
-        timeout 420 warptrunc analyze --n $N4 --no-plot --out '$TMP/abig' ; } \
+        timeout 240 warptrunc analyze --n $N4 --no-plot --out '$TMP/abig' ; } \
         > '$OUT/analyze_big/time.txt' 2>&1; rc=\$?; cat '$OUT/analyze_big/time.txt' \
         | tr '\r' '\n' | grep -v '^stream pass.*[0-9]%|' | tail -8; exit \$rc"
     kill "$smi" 2>/dev/null
