@@ -22,7 +22,10 @@ What is 32-bit in Warp 1.19 (read from its source: ``warp/_src/types.py``,
   grid-stride loop runs a ``size_t _idx``; a 2-D launch of 65536 × 65536 threads is valid.
 
 So no kernel here needs an int64 flat index as long as (a) 2-D maps are indexed as
-``z[iy, ix]`` and (b) every *1-D* (flattened) launch covers fewer than 2³¹ elements. The drivers
+``z[iy, ix]`` and (b) every *1-D* (flattened) launch covers fewer than 2³¹ elements. The only
+kernels that form flat indices ``iy·nx + ix`` in int32 are the island labelling and Euler
+kernels (``kernels/label.py``, ``islands.py``, ``euler.py``), all behind the labelling limit
+below. The drivers
 split a map into **row bands** (whole rows; a contiguous slice ``z[r0:r1]`` flattened is a
 valid 1-D view) of at most :func:`band_pixel_limit` pixels, launch the flat kernels once per
 band, and combine the partial results on the host in Python integers (int64 histograms; global
