@@ -126,6 +126,9 @@ def flat_row_bands(z: wp.array) -> Iterator[tuple[int, int, wp.array]]:
     if z.ndim != 2:
         raise ValueError(f"expected a 1-D or 2-D array, got shape {z.shape}")
     ny, nx = z.shape
+    if ny * nx <= band_pixel_limit():  # the common case: one band, no slicing
+        yield 0, ny, z.flatten()
+        return
     # bands start at multiples of 4 rows: 16-byte aligned, as the vec4/tile kernels want
     for r0, r1 in row_bands(ny, nx, align=4):
         yield r0, r1, z[r0:r1].flatten()
