@@ -30,6 +30,24 @@ HELP = "truncation analysis to the stiffness–load power law"
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc analyze``."""
     add_surface_source(p)
+    add_truncation_options(p)
+    add_fit_options(p)
+    add_device(p)
+    p.add_argument(
+        "--stream", action="store_true",
+        help="generate and truncate by row bands, never holding the map (default: only when "
+        "the map needs more than half of the free memory)",
+    )  # fmt: skip
+    p.add_argument(
+        "--band-rows", type=int, default=None,
+        help="rows per band when streaming (default: about 2**28 pixels per band)",
+    )  # fmt: skip
+    add_out(p)
+    p.add_argument("--no-plot", action="store_true", help="skip the PNG")
+
+
+def add_truncation_options(p: argparse.ArgumentParser) -> None:
+    """Depth increments, ω_max, material and β' (shared with ``warptrunc sweep``)."""
     g = p.add_argument_group("truncation and material")
     g.add_argument("--increments", type=int, default=200, help="number of depth increments n")
     g.add_argument(
@@ -52,27 +70,21 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     g.add_argument("--nu-flat", type=float, default=0.0, help="Poisson's ratio ν_i of the flat")
     g.add_argument("--beta-prime", type=float, default=1.0, help="geometric factor β' of Eq. 2")
+
+
+def add_fit_options(p: argparse.ArgumentParser, several: bool = False) -> None:
+    """``--min-pixels`` (one value, or several fit ranges) and ``--depth-window``."""
     f = p.add_argument_group("fit range")
     f.add_argument(
-        "--min-pixels", type=int, default=DEFAULT_MIN_PIXELS,
-        help="fit only increments with at least this many contact pixels (1 = all with load > 0)",
+        "--min-pixels", type=int, nargs="+" if several else None,
+        default=[DEFAULT_MIN_PIXELS] if several else DEFAULT_MIN_PIXELS,
+        help="fit only increments with at least this many contact pixels (1 = all with load > 0)"
+        + ("; several values: one fit (row) each" if several else ""),
     )  # fmt: skip
     f.add_argument(
         "--depth-window", type=float, nargs=2, default=None, metavar=("LO", "HI"),
         help="fit only depths LO ≤ ω ≤ HI (m)",
     )  # fmt: skip
-    add_device(p)
-    p.add_argument(
-        "--stream", action="store_true",
-        help="generate and truncate by row bands, never holding the map (default: only when "
-        "the map needs more than half of the free memory)",
-    )  # fmt: skip
-    p.add_argument(
-        "--band-rows", type=int, default=None,
-        help="rows per band when streaming (default: about 2**28 pixels per band)",
-    )  # fmt: skip
-    add_out(p)
-    p.add_argument("--no-plot", action="store_true", help="skip the PNG")
 
 
 def run(args: argparse.Namespace) -> int:
