@@ -52,6 +52,7 @@ from ._validate import check_range
 from .descriptors import band_variance, roll_off_wavelength
 from .kernels import fractal as _k
 from .surface import Surface
+from .truncation import surface_range
 
 __all__ = [
     "METHODS",
@@ -125,9 +126,7 @@ def _upload(surface: Surface, device: wp.DeviceLike) -> wp.array:
             f"surface must be a warptrunc.Surface, got {type(surface).__name__}; wrap a height "
             "array with warptrunc.from_heights(z, dx)"
         )
-    dev = resolve_device(device)
-    check_memory(surface.heights.nbytes, dev, "the height map")
-    return wp.array(surface.heights, dtype=wp.float32, device=dev)
+    return surface.device_heights(resolve_device(device))  # cached per device on the surface
 
 
 def _default_box_sizes(surface: Surface) -> np.ndarray:
@@ -146,7 +145,7 @@ def _check_sizes(name: str, sizes: Sequence[int] | None, surface: Surface, defau
     if s[0] < 1 or s[-1] > nmin - 1:
         raise ValueError(
             f"{name} must lie in [1, {nmin - 1}] pixels for a map of shape "
-            f"{surface.heights.shape}, got {sizes!r}"
+            f"{surface.shape}, got {sizes!r}"
         )
     return s
 
@@ -322,7 +321,7 @@ def box_counting(
 def _box(zd, surface, box_sizes, fit_range) -> FractalFit:
     sizes = _check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
     h = math.sqrt(surface.dx * surface.dy)
-    z0 = float(np.min(surface.heights))
+    z0 = surface_range(surface, zd.flatten(), zd.device)[0]
     counts = np.empty(sizes.size)
     for i, s in enumerate(sizes):
         ncy, ncx = (surface.ny - 1) // s, (surface.nx - 1) // s

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import check_memory, resolve_device
+from ._device import resolve_device
 from ._validate import check_int, check_range
 from .kernels import reduce as _kr
 from .kernels import truncation as _k
@@ -126,13 +126,24 @@ def depth_grid(
 
 
 def _upload(surface: Surface, device) -> wp.array:
-    """The flattened heights on ``device`` (reusing the generator's copy when it is there)."""
-    cached = getattr(surface, "_device_heights", None)
-    if cached is not None and cached.device == device:
-        return cached.flatten()  # generated on this device: no second upload
-    z_np = surface.heights.reshape(-1)
-    check_memory(z_np.nbytes, device, "truncation analysis")
-    return wp.array(z_np, dtype=wp.float32, device=device)
+    """The flattened heights on ``device``: the surface's own device array, or its copy there
+    (uploaded once per device and cached on the surface)."""
+    if not isinstance(surface, Surface):
+        raise TypeError(
+            f"surface must be a warptrunc.Surface, got {type(surface).__name__}; wrap a height "
+            "array with warptrunc.from_heights(z, dx)"
+        )
+    return surface.device_heights(device).flatten()
+
+
+def surface_range(surface: Surface, z: wp.array, device) -> tuple[float, float]:
+    """(min z, max z) (m) of a surface: cached from its validation, else a device reduction of
+    ``z`` (its flattened heights on ``device``), then cached."""
+    ext = surface._cached_extremes()
+    if ext is None:
+        ext = height_range(z, device)
+        surface._cache_extremes(*ext)
+    return ext
 
 
 def _thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
@@ -178,7 +189,7 @@ def truncate(
     """
     device = resolve_device(device)
     z = _upload(surface, device)
-    lo, hi = height_range(z, device)
+    lo, hi = surface_range(surface, z, device)
     depth = depth_grid(
         float(np.float64(hi) - np.float64(lo)), n_increments,
         max_depth=max_depth, max_depth_fraction=max_depth_fraction,
@@ -235,7 +246,7 @@ def contact_index_map(
     if depth.ndim != 1 or depth.size < 1 or np.any(np.diff(depth) < 0) or depth[0] < 0:
         raise ValueError("depth must be a 1-D non-decreasing array of depths ≥ 0 (m)")
     z = _upload(surface, device)
-    t, _lo, hi, _thr, inv_step = _thresholds(z, depth, device)
+    t, _lo, hi, _thr, inv_step = _thresholds(z, depth, device, surface_range(surface, z, device))
     index = wp.empty(z.shape[0], dtype=wp.int32, device=device)
     wp.launch(
         _k.contact_index_kernel,

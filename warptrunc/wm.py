@@ -340,6 +340,5 @@ def wm_surface(
     params = spec.params()
     params["scale"] = scale
     params["G_equivalent"] = spec.Wr * (scale / _prefactor(spec)) ** (1.0 / (spec.D - 3.0))
-    surface = Surface(z.numpy(), spec.dx, spec.dy, params)  # sync point
-    object.__setattr__(surface, "_device_heights", z)  # reused by truncate() on this device
-    return surface
+    # device-resident: validated by one device reduction, no host copy until one is asked for
+    return Surface(z, spec.dx, spec.dy, params)  # sync point (the validation read-back)

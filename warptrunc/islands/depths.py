@@ -16,7 +16,7 @@ from .._validate import check_int, check_range
 from ..kernels import euler as _ke
 from ..kernels import islands as _ki
 from ..surface import Surface
-from ..truncation import contact_index_map, depth_grid
+from ..truncation import contact_index_map, depth_grid, surface_range
 from .fits import _fit_loglog
 from .labelling import (
     _check_connectivity,
@@ -283,15 +283,11 @@ def island_counts_device(
     return forest.island_counts()
 
 
-def _thresholds(surface: Surface, depth: np.ndarray) -> tuple[np.ndarray, float]:
-    z_top = float(surface.heights.max())
-    return (np.float64(z_top) - depth).astype(np.float32), z_top
-
-
 def _index_at_depths(surface: Surface, depth: np.ndarray, device) -> wp.array:
     """Flat int32 contact index of every pixel against arbitrary non-decreasing depths."""
-    thr, _ = _thresholds(surface, depth)
-    z = wp.array(surface.heights.reshape(-1), dtype=wp.float32, device=device)
+    z = surface.device_heights(device).flatten()  # no host round trip for device surfaces
+    _lo, z_top = surface_range(surface, z, device)
+    thr = (np.float64(z_top) - depth).astype(np.float32)
     t = wp.array(thr, dtype=wp.float32, device=device)
     idx = wp.empty(z.shape[0], dtype=wp.int32, device=device)
     wp.launch(
