@@ -47,7 +47,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import check_memory, resolve_device
+from ._device import resolve_device
 from ._validate import check_range
 from .descriptors import band_variance, roll_off_wavelength
 from .kernels import fractal as _k

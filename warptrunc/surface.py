@@ -279,7 +279,9 @@ def _check_device_map(z: Any, name: str = "heights") -> Any:
     if z.shape[0] < 1 or z.shape[1] < 1:
         raise ValueError(f"{name} must not be empty, got shape {z.shape}")
     if z.dtype != wp.float32:
-        raise ValueError(f"a device {name} array must be float32, got {wp.types.type_repr(z.dtype)}")
+        raise ValueError(
+            f"a device {name} array must be float32, got {wp.types.type_repr(z.dtype)}"
+        )
     if not z.is_contiguous:
         raise ValueError(f"a device {name} array must be contiguous")
     return z

@@ -17,7 +17,6 @@ from ..kernels import euler as _ke
 from ..kernels import islands as _ki
 from ..surface import Surface
 from ..truncation import contact_index_map, depth_grid, surface_range
-from .fits import _fit_loglog
 from .labelling import (
     _check_connectivity,
     _check_index_size,
@@ -34,6 +33,9 @@ from .results import (
 )
 
 # --- carried forest across depths -----------------------------------------------------------------
+
+_BLOCK = 256  # threads per block of the statistics kernels (CUDA)
+_STRIDE_THREADS = 1 << 16  # most threads striding over the candidate roots of one increment
 
 
 class _Forest:
@@ -89,8 +91,15 @@ class _Forest:
             self.area = wp.zeros(n, dtype=wp.int32, device=device)
             self.edges_x = wp.zeros(n, dtype=wp.int32, device=device)
             self.edges_y = wp.zeros(n, dtype=wp.int32, device=device)
-            self.roots = wp.empty(1, dtype=wp.int32, device=device)
-            self.n_roots = 0
+            # roots live on the device only: a double buffer as large as the final contact set,
+            # their number per increment in ``root_counts`` (never read back during the loop)
+            cap = max(1, int(self.first[n1]))
+            self.roots = wp.empty(cap, dtype=wp.int32, device=device)
+            self.roots_next = wp.empty(cap, dtype=wp.int32, device=device)
+            self.root_counts = wp.zeros(n1, dtype=wp.int32, device=device)
+            self.hist = wp.zeros((n1, max(1, n.bit_length())), dtype=wp.int64, device=device)
+            self.slit_sums = wp.zeros((n1, 6), dtype=wp.float64, device=device)
+            self.min_pixels, self.aspect = 1, 1.0
 
     def bucket(self, k: int) -> tuple[int, int]:
         """(start, count) of bucket k in the sorted order."""
@@ -114,18 +123,27 @@ class _Forest:
         self.k = k
 
     def _update_statistics(self, k: int, start: int, count: int) -> None:
-        dev, n_roots = self.device, self.n_roots
-        ncand = n_roots + count
-        if ncand == 0:
+        """Merge the accumulators of the roots hooked at k, add the new pixels, compact the
+        surviving roots and add them to row k of the histogram and the slit sums: all on the
+        device, no read-back (the number of roots stays in ``root_counts``)."""
+        dev = self.device
+        bound = int(self.first[k + 1])  # candidates ≤ pixels in contact at k (host-known)
+        if bound == 0:
             return
         acc = [self.area, self.edges_x, self.edges_y]
+        if dev.is_cuda:
+            threads = min(bound, _STRIDE_THREADS)
+            blocks = -(-threads // _BLOCK)
+        else:  # a CPU launch runs its threads one after the other: one lane does it all
+            threads = blocks = 1
         wp.launch(
-            _ki.merge_linked_kernel,
-            dim=ncand,
-            inputs=[self.roots, n_roots, self.order, start, self.link, k],
+            _ki.merge_linked_stride_kernel,
+            dim=threads,
+            inputs=[self.roots, self.root_counts, k - 1, self.order, start, count, self.link, k,
+                    threads],
             outputs=[self.parent, *acc],
             device=dev,
-        )
+        )  # fmt: skip
         if count > 0:
             wp.launch(
                 _ki.add_pixels_kernel,
@@ -134,70 +152,16 @@ class _Forest:
                 outputs=[self.parent, *acc],
                 device=dev,
             )
-        flag = wp.empty(ncand, dtype=wp.int32, device=dev)
-        wp.launch(
-            _ki.root_flag_kernel,
-            dim=ncand,
-            inputs=[self.roots, n_roots, self.order, start, self.parent],
-            outputs=[flag],
+        wp.launch_tiled(
+            _ki.compact_roots_kernel,
+            dim=blocks,
+            inputs=[self.roots, k - 1, self.order, start, count, self.parent, *acc, k,
+                    self.min_pixels, self.aspect, blocks],
+            outputs=[self.root_counts, self.roots_next, self.hist, self.slit_sums],
+            block_dim=_BLOCK,
             device=dev,
-        )
-        rank = wp.empty(ncand, dtype=wp.int32, device=dev)
-        wp.utils.array_scan(flag, rank, inclusive=True)
-        n_new = int(rank[ncand - 1 : ncand].numpy()[0])  # sync point
-        roots = wp.empty(max(n_new, 1), dtype=wp.int32, device=dev)
-        wp.launch(
-            _ki.write_roots_kernel,
-            dim=ncand,
-            inputs=[self.roots, n_roots, self.order, start, flag, rank],
-            outputs=[roots],
-            device=dev,
-        )
-        self.roots, self.n_roots = roots, n_new
-
-    def root_stats(self, min_pixels: int) -> tuple[np.ndarray, ...]:
-        """(root, pixels, edges_x, edges_y) of the current islands with ≥ min_pixels, as int64
-        ndarrays sorted by root (= label order)."""
-        dev, nr = self.device, self.n_roots
-        if nr == 0:
-            e = np.zeros(0, dtype=np.int64)
-            return e, e, e, e
-        flag = wp.empty(nr, dtype=wp.int32, device=dev)
-        wp.launch(
-            _ki.big_flag_kernel,
-            dim=nr,
-            inputs=[self.roots, self.area, int(min_pixels)],
-            outputs=[flag],
-            device=dev,
-        )
-        rank = wp.empty(nr, dtype=wp.int32, device=dev)
-        wp.utils.array_scan(flag, rank, inclusive=True)
-        m = int(rank[nr - 1 : nr].numpy()[0])  # sync point
-        if m == 0:
-            e = np.zeros(0, dtype=np.int64)
-            return e, e, e, e
-        out = wp.empty((4, m), dtype=wp.int32, device=dev)
-        wp.launch(
-            _ki.gather_stats_kernel,
-            dim=nr,
-            inputs=[self.roots, flag, rank, self.area, self.edges_x, self.edges_y],
-            outputs=[out[0], out[1], out[2], out[3]],
-            device=dev,
-        )
-        a = out.numpy().astype(np.int64)  # sync point
-        o = np.argsort(a[0], kind="stable")
-        return a[0][o], a[1][o], a[2][o], a[3][o]
-
-    def area_histogram(self, hist: wp.array, k: int) -> None:
-        """Add the current islands to row k of the log2 area histogram."""
-        if self.n_roots > 0:
-            wp.launch(
-                _ki.area_histogram_kernel,
-                dim=self.n_roots,
-                inputs=[self.roots, self.area, k],
-                outputs=[hist],
-                device=self.device,
-            )
+        )  # fmt: skip
+        self.roots, self.roots_next = self.roots_next, self.roots
 
     def labels(self) -> tuple[wp.array, int]:
         """Labels (flat int32, 1..n raster order) of the contact set at the current increment."""
@@ -556,7 +520,7 @@ def island_curve(
     )
     n1 = depth.size
     ny, nx = surface.ny, surface.nx
-    check_memory(ny * nx * (44 if statistics else 32), device, "island curve")
+    check_memory(ny * nx * (52 if statistics else 32), device, "island curve")
     snaps: set[int] = set()
     if snapshot_depths is not None:
         sd = _check_depths(snapshot_depths, surface.rt)
@@ -565,11 +529,8 @@ def island_curve(
     topo = _topology_hist(idx, (ny, nx), n1, connectivity, periodic, device)
     forest = _Forest(idx, (ny, nx), n1, connectivity, periodic, statistics, device)
 
-    slit = np.full((n1, 2), math.nan)
-    slit_n = np.zeros(n1, dtype=np.int64)
-    nbins = max(1, (ny * nx).bit_length())
-    hist = wp.zeros((n1, nbins), dtype=wp.int64, device=device)
-    roots_count = np.zeros(n1, dtype=np.int64)
+    if statistics:
+        forest.min_pixels, forest.aspect = min_pixels, surface.dy / surface.dx
     sizes: list[IslandSizes] = []
     steps: Any = range(n1)
     if progress:
@@ -578,14 +539,6 @@ def island_curve(
         steps = tqdm(steps, desc="islands", unit="depth")
     for k in steps:
         forest.step()
-        if statistics:
-            roots_count[k] = forest.n_roots
-            forest.area_histogram(hist, k)
-            _, a, ex, ey = forest.root_stats(min_pixels)
-            slit_n[k] = a.size
-            if a.size >= MIN_ISLANDS:
-                s, _, r2 = _fit_loglog(a * surface.pixel_area, ex * surface.dy + ey * surface.dx)
-                slit[k] = s, r2
         if k in snaps:
             labels, n = forest.labels()
             sizes.append(
@@ -603,8 +556,17 @@ def island_curve(
                 )
             )
     n_islands = forest.island_counts()
-    if statistics and not np.array_equal(roots_count, n_islands):
-        raise RuntimeError("internal error: island counts of the two bookkeepings differ")
+    nbins = max(1, (ny * nx).bit_length())
+    slit = np.full((n1, 2), math.nan)
+    slit_n = np.zeros(n1, dtype=np.int64)
+    if statistics:  # the only read-backs of the statistics: once, after the last increment
+        roots_count = forest.root_counts.numpy().astype(np.int64)
+        if not np.array_equal(roots_count, n_islands):
+            raise RuntimeError("internal error: island counts of the two bookkeepings differ")
+        area_hist = forest.hist.numpy()
+        slit, slit_n = _slit_from_sums(forest.slit_sums.numpy())
+    else:
+        area_hist = np.zeros((n1, nbins), dtype=np.int64)
     return IslandCurve(
         depth=depth,
         n_islands=n_islands.astype(np.int64),
@@ -615,7 +577,7 @@ def island_curve(
         slit_exponent=slit[:, 0],
         slit_r2=slit[:, 1],
         slit_n_islands=slit_n,
-        area_histogram=hist.numpy(),
+        area_histogram=area_hist,
         sizes=tuple(sizes),
         rt=surface.rt,
         dx=surface.dx,
@@ -625,3 +587,26 @@ def island_curve(
         min_pixels=min_pixels,
         params=dict(surface.params),
     )
+
+
+def _slit_from_sums(sums: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(n1, 2) [slope, r²] and (n1,) island counts of the slit-island fits from the per-depth
+    sums [n, Σx, Σy, Σx², Σxy, Σy²] (x = log10 area, y = log10 perimeter, any units).
+
+    The same least-squares fit as ``fits._fit_loglog``; centred sums from raw float64 sums,
+    with the centred sum set to 0 (NaN slope, as there) when it is below 1e-12 of the raw one.
+    """
+    n = sums[:, 0]
+    slit_n = np.rint(n).astype(np.int64)
+    out = np.full((n.size, 2), math.nan)
+    for k in np.flatnonzero(slit_n >= MIN_ISLANDS):
+        c, sx, sy, sxx, sxy, syy = (float(v) for v in sums[k])
+        cxx = sxx - sx * sx / c
+        cxy = sxy - sx * sy / c
+        cyy = syy - sy * sy / c
+        if not cxx > 1e-12 * sxx:
+            continue
+        slope = cxy / cxx
+        r2 = cxy * cxy / (cxx * cyy) if cyy > 1e-12 * syy else 1.0
+        out[k] = slope, r2
+    return out, slit_n
