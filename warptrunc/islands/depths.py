@@ -333,6 +333,7 @@ def islands_at_depths(
                 device,
             )
         )
+        _ = found[-1].labels  # host copy now: one depth's labels on the device at a time
     out: list[Islands] = [None] * d.size  # type: ignore[list-item]
     for j, o in enumerate(order):
         out[o] = found[inverse[j]]
