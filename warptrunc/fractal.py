@@ -52,7 +52,7 @@ from ._validate import check_range
 from .descriptors import band_variance, roll_off_wavelength
 from .kernels import fractal as _k
 from .surface import Surface
-from .truncation import surface_range
+from .truncation import _where, surface_range
 
 __all__ = [
     "METHODS",
@@ -126,7 +126,8 @@ def _upload(surface: Surface, device: wp.DeviceLike) -> wp.array:
             f"surface must be a warptrunc.Surface, got {type(surface).__name__}; wrap a height "
             "array with warptrunc.from_heights(z, dx)"
         )
-    return surface.device_heights(resolve_device(device))  # cached per device on the surface
+    # where a device surface lives unless told otherwise; cached per device on the surface
+    return surface.device_heights(resolve_device(_where(surface, device)))
 
 
 def _default_box_sizes(surface: Surface) -> np.ndarray:

@@ -125,6 +125,11 @@ def depth_grid(
     return np.arange(n + 1, dtype=np.float64) * (wmax / n)
 
 
+def _where(surface: Surface, device: wp.DeviceLike) -> wp.DeviceLike:
+    """``device``, or where a device-resident surface lives when it is None."""
+    return getattr(surface, "device", None) if device is None else device
+
+
 def _upload(surface: Surface, device) -> wp.array:
     """The flattened heights on ``device``: the surface's own device array, or its copy there
     (uploaded once per device and cached on the surface)."""
@@ -175,7 +180,8 @@ def truncate(
     max_depth_fraction : float
         ω_max as a fraction of the map's R_t (dimensionless).
     device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
 
     Returns
     -------
@@ -187,7 +193,7 @@ def truncate(
     z ≥ z_top − ω_k) is found in a Warp kernel and counted in an integer atomic histogram;
     the cumulative sum gives the number of contact pixels at every depth.
     """
-    device = resolve_device(device)
+    device = resolve_device(_where(surface, device))
     z = _upload(surface, device)
     lo, hi = surface_range(surface, z, device)
     depth = depth_grid(
@@ -241,7 +247,7 @@ def contact_index_map(
     (ny, nx) int32 ndarray (or Warp array)
         The island labelling carries its union-find forest across depths in this order.
     """
-    device = resolve_device(device)
+    device = resolve_device(_where(surface, device))
     depth = np.asarray(depth, dtype=np.float64)
     if depth.ndim != 1 or depth.size < 1 or np.any(np.diff(depth) < 0) or depth[0] < 0:
         raise ValueError("depth must be a 1-D non-decreasing array of depths ≥ 0 (m)")

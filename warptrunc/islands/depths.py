@@ -16,7 +16,7 @@ from .._validate import check_int, check_range
 from ..kernels import euler as _ke
 from ..kernels import islands as _ki
 from ..surface import Surface
-from ..truncation import contact_index_map, depth_grid, surface_range
+from ..truncation import _where, contact_index_map, depth_grid, surface_range
 from .labelling import (
     _check_connectivity,
     _check_index_size,
@@ -291,7 +291,8 @@ def islands_at_depths(
     periodic : bool
         Wrap the map around in x and y.
     device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
 
     Returns
     -------
@@ -308,7 +309,7 @@ def islands_at_depths(
     surface = _check_surface(surface)
     connectivity = _check_connectivity(connectivity)
     d = _check_depths(depths, surface.rt)
-    device = resolve_device(device)
+    device = resolve_device(_where(surface, device))
     order = np.argsort(d, kind="stable")
     ds = d[order]
     uniq, inverse = np.unique(ds, return_inverse=True)
@@ -414,7 +415,8 @@ def topology_curve(
     periodic : bool
         Wrap the map around in x and y.
     device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
 
     Returns
     -------
@@ -430,7 +432,7 @@ def topology_curve(
     """
     surface = _check_surface(surface)
     connectivity = _check_connectivity(connectivity)
-    device = resolve_device(device)
+    device = resolve_device(_where(surface, device))
     depth = depth_grid(
         surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
@@ -496,7 +498,8 @@ def island_curve(
     progress : bool
         Show a tqdm progress bar over the increments.
     device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
 
     Returns
     -------
@@ -515,7 +518,7 @@ def island_curve(
     surface = _check_surface(surface)
     connectivity = _check_connectivity(connectivity)
     min_pixels = check_int("min_pixels", min_pixels, 1)
-    device = resolve_device(device)
+    device = resolve_device(_where(surface, device))
     depth = depth_grid(
         surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
