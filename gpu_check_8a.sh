@@ -18,3 +18,5 @@ python examples/benchmark_pipeline.py --device cuda:0 --n 10240 --repeats 7 \
 # 3. a smaller size for the ratio to 10240²
 python examples/benchmark_pipeline.py --device cuda:0 --n 4096 --repeats 7 --no-kernels \
     --out "$OUT/n4096" --json "$OUT/bench_4096.json" 2>&1 | tail -4
+# 4. labelling with per-island statistics from a NumPy mask and from a device mask (10240²)
+python examples/benchmark_islands.py --device cuda:0 --n 10240 --out "$OUT/islands" 2>&1 | tail -12
