@@ -34,7 +34,8 @@ class Surface:
     ----------
     heights : (ny, nx) ndarray or warp array
         Heights z (m). NumPy input is converted to C-contiguous float32; a Warp array must be a
-        contiguous 2-D float32 array and is not copied.
+        contiguous 2-D float32 array and is not copied (the surface then owns it: do not write
+        to it afterwards).
     dx, dy : float
         Pixel spacings along x and y (m).
     params : dict, optional

@@ -513,7 +513,12 @@ def island_curve(
     that gets hooked records the increment, and a pixel is an island root for
     idx ≤ k < link, so island counts at all depths follow from one difference histogram.
     Per-island areas and perimeters are integer accumulators on the roots, merged when roots
-    are hooked. Perimeter and χ come from :func:`topology_curve`'s histograms.
+    are hooked. The list of roots, its length, the log2 area histogram and the slit-island sums
+    (n, Σx, Σy, Σx², Σxy, Σy² of x = log10 A, y = log10 L over the islands ≥ ``min_pixels``,
+    float64) stay on the device and are read back once after the last increment: no increment
+    waits for the host. The fit is the least-squares fit of :func:`slit_island_fit` from those
+    sums (equal to it to ~1e-12 relative). Perimeter and χ come from :func:`topology_curve`'s
+    histograms.
     """
     surface = _check_surface(surface)
     connectivity = _check_connectivity(connectivity)
