@@ -50,8 +50,22 @@ def test_truncate_and_islands_make_no_host_copy(device):
     truncate(s, 50, device=device)
     warptrunc.contact_index_map(s, np.linspace(0, 0.3 * s.rt, 11), device=device, as_warp=True)
     island_curve(s, 20, device=device)
-    warptrunc.fractal_dimensions(s, ("tri", "box", "vs"), device=device)
+    warptrunc.islands.islands_at_depths(s, [0.1 * s.rt, 0.2 * s.rt], device=device)
     assert not s.has_host_copy
+    warptrunc.fractal_dimensions(s, ("tri", "box"), device=device)
+    assert not s.has_host_copy
+    warptrunc.fractal_dimensions(s, ("vs", "sp"), device=device)  # spectra: W_r, D_sp
+    warptrunc.describe(s)
+    if s.device == "cpu" or _has_cupy():  # CUDA without CuPy: NumPy FFT on the host copy
+        assert not s.has_host_copy
+
+
+def _has_cupy():
+    try:
+        import cupy  # noqa: F401
+    except ImportError:
+        return False
+    return True
 
 
 def test_device_surface_counts_equal_host_surface(device):
