@@ -69,6 +69,7 @@ __all__ = [
     "profile_psd",
     "radial_psd",
     "roll_off_wavelength",
+    "surface_statistics",
 ]
 
 WINDOWS = ("hann", "none")
