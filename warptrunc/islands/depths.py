@@ -122,46 +122,76 @@ class _Forest:
             self._update_statistics(k, start, count)
         self.k = k
 
+    def _record_statistics(self) -> None:
+        """Record the statistics launches once (replayed with new scalars at every increment,
+        which costs far less host time than a full ``wp.launch``): merge and compaction for
+        both parities of the roots double buffer, and the pixel additions. The merge and the
+        compaction have a fixed grid that strides over the candidates counted on the device."""
+        dev = self.device
+        if dev.is_cuda:
+            threads, blocks = _STRIDE_THREADS, _STRIDE_THREADS // _BLOCK
+        else:  # a CPU launch runs its threads one after the other: one lane does it all
+            threads = blocks = 1
+        acc = [self.area, self.edges_x, self.edges_y]
+        bufs = (self.roots, self.roots_next)
+        self._merge, self._compact = [], []
+        for src, dst in (bufs, bufs[::-1]):
+            self._merge.append(
+                wp.launch(
+                    _ki.merge_linked_stride_kernel,
+                    dim=threads,
+                    inputs=[src, self.root_counts, -1, self.order, 0, 0, self.link, 0, threads],
+                    outputs=[self.parent, *acc],
+                    device=dev,
+                    record_cmd=True,
+                )
+            )
+            self._compact.append(
+                wp.launch_tiled(
+                    _ki.compact_roots_kernel,
+                    dim=blocks,
+                    inputs=[src, -1, self.order, 0, 0, self.parent, *acc, 0, self.min_pixels,
+                            self.aspect, blocks],
+                    outputs=[self.root_counts, dst, self.hist, self.slit_sums],
+                    block_dim=_BLOCK,
+                    device=dev,
+                    record_cmd=True,
+                )
+            )  # fmt: skip
+        self._add = wp.launch(
+            _ki.add_pixels_kernel,
+            dim=1,
+            inputs=[self.order, 0, self.idx, 0, self.ny, self.nx, self.periodic],
+            outputs=[self.parent, *acc],
+            device=dev,
+            record_cmd=True,
+        )
+        self._parity = 0
+
     def _update_statistics(self, k: int, start: int, count: int) -> None:
         """Merge the accumulators of the roots hooked at k, add the new pixels, compact the
         surviving roots and add them to row k of the histogram and the slit sums: all on the
         device, no read-back (the number of roots stays in ``root_counts``)."""
-        dev = self.device
-        bound = int(self.first[k + 1])  # candidates ≤ pixels in contact at k (host-known)
-        if bound == 0:
+        if int(self.first[k + 1]) == 0:  # nothing in contact yet (host-known)
             return
-        acc = [self.area, self.edges_x, self.edges_y]
-        if dev.is_cuda:
-            threads = min(bound, _STRIDE_THREADS)
-            blocks = -(-threads // _BLOCK)
-        else:  # a CPU launch runs its threads one after the other: one lane does it all
-            threads = blocks = 1
-        wp.launch(
-            _ki.merge_linked_stride_kernel,
-            dim=threads,
-            inputs=[self.roots, self.root_counts, k - 1, self.order, start, count, self.link, k,
-                    threads],
-            outputs=[self.parent, *acc],
-            device=dev,
-        )  # fmt: skip
+        if not hasattr(self, "_merge"):
+            self._record_statistics()
+        p = self._parity
+        m = self._merge[p]
+        for name, v in (("kprev", k - 1), ("start", start), ("count", count), ("k", k)):
+            m.set_param_by_name(name, v)
+        m.launch()
         if count > 0:
-            wp.launch(
-                _ki.add_pixels_kernel,
-                dim=count,
-                inputs=[self.order, start, self.idx, k, self.ny, self.nx, self.periodic],
-                outputs=[self.parent, *acc],
-                device=dev,
-            )
-        wp.launch_tiled(
-            _ki.compact_roots_kernel,
-            dim=blocks,
-            inputs=[self.roots, k - 1, self.order, start, count, self.parent, *acc, k,
-                    self.min_pixels, self.aspect, blocks],
-            outputs=[self.root_counts, self.roots_next, self.hist, self.slit_sums],
-            block_dim=_BLOCK,
-            device=dev,
-        )  # fmt: skip
-        self.roots, self.roots_next = self.roots_next, self.roots
+            a = self._add
+            a.set_dim(count)
+            a.set_param_by_name("start", start)
+            a.set_param_by_name("k", k)
+            a.launch()
+        c = self._compact[p]
+        for name, v in (("kprev", k - 1), ("start", start), ("count", count), ("k", k)):
+            c.set_param_by_name(name, v)
+        c.launch()
+        self._parity = 1 - p
 
     def labels(self) -> tuple[wp.array, int]:
         """Labels (flat int32, 1..n raster order) of the contact set at the current increment."""
