@@ -14,7 +14,8 @@ method     name in the paper    measure M(r) at scale r                       D 
 The slope is the least-squares slope of log₁₀ M against log₁₀ r over the *fit range*, a
 subrange of the evaluated *scales*; both are user-settable and are returned in
 :class:`FractalFit` with r² of the fit. The per-box and per-pixel passes run in Warp kernels
-(``warptrunc.kernels.fractal``); the spectrum uses NumPy FFTs on the host.
+(``warptrunc.kernels.fractal``); the spectrum runs where the surface lives: CuPy's cuFFT on a
+CUDA surface when CuPy is installed, else NumPy (see :mod:`warptrunc.descriptors`).
 
 Heights and lengths are used in physical units (m), as measured. The triangulation and
 box-counting estimates therefore depend on the height amplitude relative to the pixel size:
@@ -541,7 +542,8 @@ def fractal_dimension(
     method : {"tri", "box", "vs", "sp"}
         Estimator (see the module docstring).
     device : str, optional
-        Warp device (ignored by ``"sp"``, which runs on the host).
+        Warp device (``"sp"`` ignores it and runs where the surface lives, see
+        :mod:`warptrunc.descriptors`).
     **options
         Keyword options of the method's function (:func:`triangular_prism`,
         :func:`box_counting`, :func:`vertical_sections`, :func:`power_spectrum`).
