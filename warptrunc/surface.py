@@ -67,6 +67,33 @@ class Surface:
         set_(self, "dy", check_range("dy", dy, 0.0, unit="m"))
         set_(self, "params", dict(params or {}))
 
+    @classmethod
+    def _on_device(
+        cls,
+        z: Any,
+        dx: float,
+        dy: float,
+        params: dict[str, Any],
+        extremes: tuple[float, float],
+    ) -> Surface:
+        """A device surface whose exact (min z, max z) are already known (the WM generator
+        records them): no validation reduction when both are finite, since every height lies
+        between them; otherwise the usual validation."""
+        lo, hi = (float(v) for v in extremes)
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
+            return cls(z, dx, dy, params)
+        self = cls.__new__(cls)
+        set_ = object.__setattr__
+        z = _check_device_map(z)
+        set_(self, "_dev", {str(z.device): z})
+        set_(self, "_host", None)
+        set_(self, "_home", str(z.device))
+        set_(self, "_extremes", (lo, hi))
+        set_(self, "dx", check_range("dx", dx, 0.0, unit="m"))
+        set_(self, "dy", check_range("dy", dy, 0.0, unit="m"))
+        set_(self, "params", dict(params or {}))
+        return self
+
     def __setattr__(self, name: str, value: Any) -> None:
         raise AttributeError(f"Surface is immutable; cannot set {name!r}")
 
