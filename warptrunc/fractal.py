@@ -14,7 +14,8 @@ method     name in the paper    measure M(r) at scale r                       D 
 The slope is the least-squares slope of log₁₀ M against log₁₀ r over the *fit range*, a
 subrange of the evaluated *scales*; both are user-settable and are returned in
 :class:`FractalFit` with r² of the fit. The per-box and per-pixel passes run in Warp kernels
-(``warptrunc.kernels.fractal``); the spectrum uses NumPy FFTs on the host.
+(``warptrunc.kernels.fractal``); the spectrum runs where the surface lives: CuPy's cuFFT on a
+CUDA surface when CuPy is installed, else NumPy (see :mod:`warptrunc.descriptors`).
 
 Heights and lengths are used in physical units (m), as measured. The triangulation and
 box-counting estimates therefore depend on the height amplitude relative to the pixel size:
@@ -47,11 +48,12 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import check_memory, resolve_device
+from ._device import resolve_device
 from ._validate import check_range
 from .descriptors import band_variance, roll_off_wavelength
 from .kernels import fractal as _k
 from .surface import Surface
+from .truncation import _where, surface_range
 
 __all__ = [
     "METHODS",
@@ -125,9 +127,8 @@ def _upload(surface: Surface, device: wp.DeviceLike) -> wp.array:
             f"surface must be a warptrunc.Surface, got {type(surface).__name__}; wrap a height "
             "array with warptrunc.from_heights(z, dx)"
         )
-    dev = resolve_device(device)
-    check_memory(surface.heights.nbytes, dev, "the height map")
-    return wp.array(surface.heights, dtype=wp.float32, device=dev)
+    # where a device surface lives unless told otherwise; cached per device on the surface
+    return surface.device_heights(resolve_device(_where(surface, device)))
 
 
 def _default_box_sizes(surface: Surface) -> np.ndarray:
@@ -146,7 +147,7 @@ def _check_sizes(name: str, sizes: Sequence[int] | None, surface: Surface, defau
     if s[0] < 1 or s[-1] > nmin - 1:
         raise ValueError(
             f"{name} must lie in [1, {nmin - 1}] pixels for a map of shape "
-            f"{surface.heights.shape}, got {sizes!r}"
+            f"{surface.shape}, got {sizes!r}"
         )
     return s
 
@@ -322,7 +323,7 @@ def box_counting(
 def _box(zd, surface, box_sizes, fit_range) -> FractalFit:
     sizes = _check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
     h = math.sqrt(surface.dx * surface.dy)
-    z0 = float(np.min(surface.heights))
+    z0 = surface_range(surface, zd.flatten(), zd.device)[0]
     counts = np.empty(sizes.size)
     for i, s in enumerate(sizes):
         ncy, ncx = (surface.ny - 1) // s, (surface.nx - 1) // s
@@ -541,7 +542,8 @@ def fractal_dimension(
     method : {"tri", "box", "vs", "sp"}
         Estimator (see the module docstring).
     device : str, optional
-        Warp device (ignored by ``"sp"``, which runs on the host).
+        Warp device (``"sp"`` ignores it and runs where the surface lives, see
+        :mod:`warptrunc.descriptors`).
     **options
         Keyword options of the method's function (:func:`triangular_prism`,
         :func:`box_counting`, :func:`vertical_sections`, :func:`power_spectrum`).
