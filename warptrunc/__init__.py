@@ -26,6 +26,7 @@ pyvista when first used.
 """
 
 from ._device import resolve_device
+from .bem import BemCheck, bem_check
 from .calibrate import Calibration, CalibrationTarget, calibrate
 from .descriptors import describe
 from .fractal import FractalFit, fractal_dimension, fractal_dimensions
@@ -40,6 +41,7 @@ from .wm import wm_surface
 __version__ = "0.1.0"
 
 __all__ = [
+    "BemCheck",
     "Calibration",
     "CalibrationTarget",
     "FractalFit",
@@ -51,6 +53,7 @@ __all__ = [
     "Surface",
     "TruncationCurve",
     "applicable_depth",
+    "bem_check",
     "calibrate",
     "contact_index_map",
     "depth_grid",
