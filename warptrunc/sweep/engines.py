@@ -65,10 +65,14 @@ def _fit_ranges(o: SweepOptions) -> list[tuple[int | None, float]]:
 
 
 def resolve_min_pixels(fraction: float, final_contact_pixels: int) -> int:
-    """max(DEFAULT_MIN_PIXELS, ⌈fraction·final_contact_pixels⌉): a relative fit range's count."""
+    """max(DEFAULT_MIN_PIXELS, ⌈fraction·final_contact_pixels⌉): a relative fit range's count.
+
+    The product is rounded to 9 decimals before the ceiling, so that float noise
+    (0.05·280 = 14.000000000000002) does not add a pixel.
+    """
     from ..stiffness import DEFAULT_MIN_PIXELS
 
-    return max(DEFAULT_MIN_PIXELS, math.ceil(fraction * final_contact_pixels))
+    return max(DEFAULT_MIN_PIXELS, math.ceil(round(fraction * final_contact_pixels, 9)))
 
 
 def fractal_record(fits: dict[str, Any]) -> dict[str, Any]:
