@@ -177,3 +177,4 @@ def test_tiny_group_stores_loadable_and_reused(tiny):
                                   before["group1"].drop(columns=list(RUN_COLUMNS)))  # fmt: skip
     assert again["stages"]["group2"] == doc["stages"]["group2"]
     assert again["analysis"]["table3_beta"] == doc["analysis"]["table3_beta"]
+    assert "sweeps/group2" in (out / "report.md").read_text()
