@@ -132,3 +132,49 @@ def test_tiny_rerun_reuses_and_conflict(tiny):
 
     with pytest.raises(StageConflict):
         reproduce(replace(get_profile("tiny"), seeds=1), out, device="cpu")
+
+
+def test_tiny_group_stores_loadable_and_reused(tiny):
+    pd = pytest.importorskip("pandas")
+    from warptrunc.sweep import load
+
+    out, doc = tiny
+    stores = {g: out / "sweeps" / g for g in ("group1", "group2")}
+    g2 = load(stores["group2"])
+    rows = doc["stages"]["group2"]["rows"]
+    # one row per surface × fit range (the package default and the late range), no failures,
+    # the four D measured on every group-2 surface (group 1 has none: fractal_on_group1 False)
+    assert len(g2) == 2 * len(rows) == 2 * 3 * 2 and g2["error"].isna().all()
+    assert g2[["D_tri", "D_box", "D_vs", "D_sp"]].notna().all().all()
+    assert load(stores["group1"])[["D_tri", "D_vs"]].isna().all().all()
+    for r in rows:  # the report's rows are the store's
+        part = g2[g2.case_id == r["case_id"]]
+        late = part[part.min_pixels_fraction == doc["stages"]["group2"]["fit_ranges"]["late"]]
+        for fit, sel in (("default", part[part.min_pixels_fraction.isna()]), ("late", late)):
+            a = sel.alpha.item()  # None in the stage where the range had < 3 points (NaN here)
+            assert r["fits"][fit]["alpha"] == a if np.isfinite(a) else "error" in r["fits"][fit]
+        assert r["fits"]["late"]["min_pixels"] == late.min_pixels.item()
+        assert r["D"]["vs"]["D"] == part.D_vs.iloc[0] and r["D"]["tri"]["D"] == part.D_tri.iloc[0]
+    assert np.isfinite(g2.alpha).sum() >= len(rows)  # the comparisons above are not all skipped
+    before = {g: load(p) for g, p in stores.items()}
+    # stage files lost and group 1 interrupted (cases.parquet and one curve gone): the rerun
+    # rebuilds both stages from the stores and computes only the missing surface
+    for g in stores:
+        (out / "stages" / f"{g}.json").unlink()
+    lost = before["group1"].case_id.iloc[-1]
+    (stores["group1"] / "cases.parquet").unlink()
+    (stores["group1"] / "curves" / f"{lost}.parquet").unlink()
+    again = reproduce("tiny", out, device="cpu")
+    assert set(again["meta"]["computed"]) == {"group1", "group2"}
+    pd.testing.assert_frame_equal(load(stores["group2"]), before["group2"])  # same stamps
+    g1 = load(stores["group1"])
+    kept = g1.case_id != lost
+    pd.testing.assert_frame_equal(g1[kept], before["group1"][kept])
+    assert (g1[~kept].finished_utc > before["group1"][~kept].finished_utc.max()).all()
+    from warptrunc.sweep import RUN_COLUMNS
+
+    pd.testing.assert_frame_equal(g1.drop(columns=list(RUN_COLUMNS)),
+                                  before["group1"].drop(columns=list(RUN_COLUMNS)))  # fmt: skip
+    assert again["stages"]["group2"] == doc["stages"]["group2"]
+    assert again["analysis"]["table3_beta"] == doc["analysis"]["table3_beta"]
+    assert "sweeps/group2" in (out / "report.md").read_text()

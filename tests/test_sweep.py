@@ -103,6 +103,62 @@ def test_store_rows_and_curves_match_numpy(tmp_path):
     assert len(load_curves(tmp_path / "s")) == 8 * 61
 
 
+def test_fractal_methods_and_relative_fit_range(tmp_path):
+    from warptrunc.fractal import fractal_dimensions
+
+    grid = SweepGrid.from_values([2.3, 2.7], [0.01], "0-1")
+    kw = dict(OPTS, min_pixels=(20,), min_pixels_fraction=(0.05, 0.5),
+              fractal_methods=("tri", "box", "vs", "sp"))  # fmt: skip
+    df = run_sweep(grid, tmp_path / "s", progress=False, device="cpu", **kw)
+    assert len(df) == 4 * 3 and df["error"].isna().all() and df["fit_error"].isna().all()
+    pd.testing.assert_frame_equal(load(tmp_path / "s"), df)
+    for (D, seed), part in df.groupby(["D_in", "seed"]):
+        # D columns: fractal_dimensions (default options) on the same surface, regenerated
+        s = wm_surface(D, 100e-6, n=64, Rt=0.01 * 100e-6, seed=int(seed), device="cpu")
+        ref = fractal_dimensions(s, device="cpu")
+        info = json.loads(part["fractal_options"].iloc[0])
+        for m, f in ref.items():
+            assert (part[f"D_{m}"] == f.D).all() and (part[f"D_{m}_r2"] == f.r2).all()
+            assert info[m]["options"] == json.loads(json.dumps(f.options))
+            assert (info[m]["fit_min_m"], info[m]["fit_max_m"]) == tuple(f.fit_range)
+        assert (part["fractal_seconds"] > 0).all()
+        # relative fit ranges: min_pixels = max(10, ⌈f·final pixels⌉), fit redone with NumPy
+        curve = load_curves(tmp_path / "s", part["case_id"].iloc[0])
+        final = int(curve["n_contact_pixels"].iloc[-1])
+        assert part["min_pixels_fraction"].isna().tolist() == [True, False, False]
+        for _, row in part.iterrows():
+            f = row.min_pixels_fraction
+            mp = 20 if np.isnan(f) else max(10, -(-final * round(f * 100) // 100))
+            assert row.min_pixels == mp
+            sel = (curve["load_N"] > 0) & (curve["n_contact_pixels"] >= mp)
+            a, _ = np.polyfit(np.log(curve["F_over_EA"][sel]), np.log(curve["Ec_over_E"][sel]), 1)
+            assert row.alpha == pytest.approx(a, rel=1e-12) and row.n_points == sel.sum()
+    # off by default and then not part of the case identity (older stores stay valid);
+    # part of it when on
+    assert "fractal_methods" not in SweepOptions(**OPTS).to_dict()
+    plain = {c.case_id for c in grid.cases(SweepOptions(**OPTS))}
+    assert plain.isdisjoint(df["case_id"])
+    assert plain.isdisjoint(c.case_id for c in grid.cases(SweepOptions(**OPTS, fractal_methods="vs")))
+    with pytest.raises(ValueError, match=r"fractal_methods must be among .*'dim'"):
+        SweepOptions(fractal_methods=("tri", "dim"))
+    with pytest.raises(ValueError, match=r"min_pixels_fraction must be in \(0, 1\]"):
+        SweepOptions(min_pixels_fraction=(1.5,))
+
+
+def test_cli_fractal_and_fraction_options(tmp_path, capsys):
+    from warptrunc.cli import main
+
+    out = tmp_path / "run"
+    rc = main(["sweep", "--D", "2.5", "--delta", "0.01", "--n", "64", "--increments", "30",
+               "--device", "cpu", "--no-progress", "--fractal", "vs", "sp",
+               "--min-pixels-fraction", "0.1", "--out", str(out)])  # fmt: skip
+    assert rc == 0 and "fraction=0.1: α" in capsys.readouterr().out
+    df = load(out)
+    assert df["D_vs"].notna().all() and df["D_tri"].isna().all() and len(df) == 2
+    spec = json.loads((out / "sweep.json").read_text())["options"]
+    assert spec["fractal_methods"] == ["vs", "sp"] and spec["min_pixels_fraction"] == [0.1]
+
+
 def test_rerun_skips_other_grid_refused_overwrite(tmp_path):
     out = tmp_path / "s"
     grid = SweepGrid.from_values([2.3], [0.01], "0-2")

@@ -34,7 +34,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run the study and print where the report is."""
     from ..reproduce import reproduce
+    from ..sweep.store import require_extra
 
+    try:  # the Table 3 groups run on the sweep store
+        require_extra()
+    except ImportError as exc:
+        raise ValueError(str(exc)) from None
     doc = reproduce(args.profile, args.out, overwrite=args.overwrite, device=args.device,
                     command="warptrunc " + " ".join(sys.argv[1:]))  # fmt: skip
     m = doc["meta"]

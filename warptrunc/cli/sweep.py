@@ -40,6 +40,15 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_wm_shape(s)
     add_truncation_options(p)
     add_fit_options(p, several=True)
+    m = p.add_argument_group("extra measurements and fit ranges")
+    m.add_argument("--min-pixels-fraction", type=float, nargs="+", default=[],
+                   help="more fit ranges relative to each case: increments with ≥ f × its final "
+                   "contact pixels (at least 10), f in (0, 1]")  # fmt: skip
+    m.add_argument("--fractal", nargs="+", default=[], choices=("tri", "box", "vs", "sp"),
+                   metavar="METHOD",
+                   help="measure D of each generated surface by these methods (tri box vs sp; "
+                   "fractal_dimensions' default options): columns D_<method>, D_<method>_r2, "
+                   "fractal_options")  # fmt: skip
     e = p.add_argument_group("execution")
     add_device(e)
     e.add_argument("--workers", type=int, default=None,
@@ -86,7 +95,8 @@ def options_from_args(args: argparse.Namespace) -> dict:
         cutoff=args.cutoff, increments=args.increments,
         max_depth_fraction=args.max_depth_fraction, max_depth=args.max_depth, E=args.E,
         nu=args.nu, E_flat=args.E_flat, nu_flat=args.nu_flat, beta_prime=args.beta_prime,
-        min_pixels=tuple(args.min_pixels),
+        min_pixels=tuple(args.min_pixels), min_pixels_fraction=tuple(args.min_pixels_fraction),
+        fractal_methods=tuple(args.fractal),
         depth_window=None if args.depth_window is None else tuple(args.depth_window),
     )  # fmt: skip
 
@@ -131,7 +141,8 @@ def run(args: argparse.Namespace) -> int:
         line = v["alpha_vs_D"]
         per_d = ", ".join(f"D={r['D_in']:g}: {r['alpha_mean']:.4f}±{r['alpha_sd']:.4f} (n={r['n']})"
                           for r in v["per_D"])  # fmt: skip
-        print(f"min_pixels={mp}: α {per_d}"
+        label = mp if mp.startswith("fraction") else f"min_pixels={mp}"
+        print(f"{label}: α {per_d}"
               + (f"; α = {line['slope']:.3f}·D + {line['intercept']:.3f} (r = {line['r']:.3f})"
                  if line else ""))  # fmt: skip
     return 0

@@ -268,6 +268,15 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
     fr = res["group2"]["fit_ranges"]
     a(f"Fit ranges: `default` = increments with ≥ {fr['default']} contact pixels (package default); `late` = increments with "
       f"≥ {fr['late']:g} × the surface's final contact pixels.\n")
+    stores = [res[g].get("store") for g in ("group1", "group2")]
+    if all(stores):  # groups run on the sweep result store
+        a(f"Every surface of the groups is in the sweep stores `{stores[0]}` and `{stores[1]}` "
+          f"(`warptrunc.sweep.load(\"{stores[1]}\")` reads one as a DataFrame; curves with "
+          "`load_curves`).\n")  # fmt: skip
+    for g in ("group1", "group2"):
+        for f in res[g].get("failed", []):
+            a(f"- **{g}: case D_in = {f['D_in']:g}, δ = {f['delta']:g}, seed {f['seed']} failed** "
+              f"and is left out: {f['error']}\n")  # fmt: skip
     a("| D | fit range | α = slope·D + intercept (r), ours | paper | slope dev |")
     a("|---|---|---|---|---|")
     for fit, per in ana["table3_alpha"].items():

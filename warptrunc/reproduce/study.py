@@ -4,15 +4,18 @@
 
 Every stage is a function of the profile returning a JSON-serialisable dict; :func:`run_study`
 runs them through a :class:`~warptrunc.reproduce.store.StageStore`, so a rerun reuses finished
-stages. :func:`run_case` is the per-surface unit of the parametric groups (one WM surface →
-stiffness fits for each fit range, and optionally its four fractal dimensions); it is small on
-purpose so that a sweep result store can replace it.
+stages. The parametric groups (Table 3, Figs. 9–10) run on :func:`warptrunc.sweep.run_sweep`
+with their result stores in ``<out>/sweeps/group1`` and ``<out>/sweeps/group2``: one row per
+surface × fit range, the four fractal dimensions of each group-2 surface, every curve; an
+interrupted group resumes from its store, and ``warptrunc.sweep.load`` reads it.
 """
 
 from __future__ import annotations
 
+import json
 import math
 import time
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -20,7 +23,7 @@ import numpy as np
 from .profiles import Profile
 from .store import StageStore
 
-__all__ = ["STAGES", "fit_ranges", "run_case", "run_study"]
+__all__ = ["STAGES", "fit_ranges", "group_sweep", "run_study"]
 
 UM = 1e-6
 LOADS = (1e-7, 1e-6, 1e-5, 1e-4)
@@ -49,36 +52,6 @@ def _fractal(surface, device) -> dict[str, Any]:
         opts = {kk: v for kk, v in f.options.items() if kk not in ("box_sizes", "lags")}
         out[k] = {"D": f.D, "r2": f.r2, "fit_range_m": list(f.fit_range), "options": opts}
     return out
-
-
-def run_case(
-    D: float, delta: float, seed: int, *, n: int, L: float, Wr: float, increments: int,
-    max_depth_fraction: float, min_pixels: dict[str, int | float], fractal: bool, curve_points: int = 0,
-    device=None,
-) -> dict[str, Any]:  # fmt: skip
-    """One WM surface (D_in = D, R_t = δ·W_r): power-law fits per fit range, optionally D."""
-    from ..stiffness import DEFAULT_MIN_PIXELS, fit_power_law, stiffness_curve
-    from ..truncation import truncate
-    from ..wm import wm_surface
-
-    s = wm_surface(D, Wr, L=L, n=n, Rt=delta * Wr, seed=seed, device=device)
-    sc = stiffness_curve(truncate(s, increments, max_depth_fraction=max_depth_fraction, device=device))
-    row: dict[str, Any] = {"D_in": D, "delta": delta, "seed": seed, "Rt_m": s.rt, "fits": {}}
-    for name, mp in min_pixels.items():
-        if isinstance(mp, float):  # a fraction of the final contact pixels
-            mp = max(DEFAULT_MIN_PIXELS, math.ceil(mp * int(sc.n_contact_pixels[-1])))
-        try:
-            f = fit_power_law(sc, min_pixels=mp)
-            row["fits"][name] = {"alpha": f.alpha, "beta": f.beta, "r2": f.r2, "n_points": f.n_points,
-                                 "min_pixels": mp}  # fmt: skip
-        except ValueError as exc:  # too few increments: recorded, not dropped
-            row["fits"][name] = {"alpha": None, "beta": None, "error": str(exc), "min_pixels": mp}
-    if fractal:
-        row["D"] = _fractal(s, device)
-    if curve_points:
-        k = np.unique(np.linspace(0, sc.depth.size - 1, curve_points).astype(int))
-        row["curve"] = {"F_over_EA": sc.F_over_EA[k], "Ec_over_E": sc.Ec_over_E[k]}
-    return row
 
 
 # --- stages --------------------------------------------------------------------------------------
@@ -185,23 +158,90 @@ def stage_islands(p: Profile, table1: dict[str, Any], device) -> dict[str, Any]:
     return out
 
 
-def stage_group(p: Profile, which: int, device) -> dict[str, Any]:
-    """Table 3 group 1 (D_in = 2.5, δ sweep) or group 2 (δ = 0.01, D_in sweep)."""
+def group_sweep(p: Profile, which: int) -> tuple[Any, dict[str, Any]]:
+    """The :class:`~warptrunc.sweep.SweepGrid` and :func:`~warptrunc.sweep.run_sweep` options
+    of Table 3 group 1 (D_in = 2.5, δ sweep) or group 2 (δ = 0.01, D_in sweep)."""
+    from ..fractal import METHODS
+    from ..sweep import SweepGrid
+
     ranges = fit_ranges(p, p.n)
+    seeds = tuple(range(p.seeds))
     if which == 1:
-        cases = [(2.5, d) for d in p.group1_delta]
+        grid = SweepGrid(D=(2.5,), delta=tuple(p.group1_delta), seeds=seeds)
         fractal = p.fractal_on_group1
     else:
-        cases = [(D, 0.01) for D in p.group2_D]
+        grid = SweepGrid(D=tuple(p.group2_D), delta=(0.01,), seeds=seeds)
         fractal = True
-    todo = [(D, d, s) for D, d in cases for s in range(p.seeds)]
-    rows = [
-        run_case(D, d, s, n=p.n, L=p.L, Wr=p.Wr, increments=p.increments,
-                 max_depth_fraction=p.max_depth_fraction, min_pixels=ranges, fractal=fractal,
-                 curve_points=60, device=device)
-        for D, d, s in _tqdm(todo, f"group {which}")
-    ]  # fmt: skip
-    return {"fit_ranges": ranges, "rows": rows}
+    opts = dict(
+        n=p.n, L=p.L, Wr=p.Wr, increments=p.increments, max_depth_fraction=p.max_depth_fraction,
+        min_pixels=(ranges["default"],), min_pixels_fraction=(ranges["late"],),
+        fractal_methods=METHODS if fractal else (),
+    )  # fmt: skip
+    return grid, opts
+
+
+def _row(case_rows, curve, ranges: dict[str, int | float], curve_points: int) -> dict[str, Any]:
+    """A stage row (as the report reads it) from a case's store rows and curve."""
+    first = case_rows[0]
+    row: dict[str, Any] = {"D_in": first["D_in"], "delta": first["delta"], "seed": first["seed"],
+                           "Rt_m": first["rt_measured_m"], "case_id": first["case_id"], "fits": {}}  # fmt: skip
+    for name, mp in ranges.items():
+        if isinstance(mp, int):  # an absolute fit range
+            r = next(x for x in case_rows if x["min_pixels_fraction"] is None and x["min_pixels"] == mp)
+        else:  # relative to the surface's final contact pixels
+            r = next(x for x in case_rows if x["min_pixels_fraction"] == mp)
+        if r["fit_error"] is None:
+            row["fits"][name] = {"alpha": r["alpha"], "beta": r["beta"], "r2": r["r2"],
+                                 "n_points": r["n_points"], "min_pixels": r["min_pixels"]}  # fmt: skip
+        else:  # too few increments: recorded, not dropped
+            row["fits"][name] = {"alpha": None, "beta": None, "error": r["fit_error"],
+                                 "min_pixels": r["min_pixels"]}  # fmt: skip
+    if first["fractal_options"] is not None:
+        info = json.loads(first["fractal_options"])
+        row["D"] = {
+            m: {"D": first[f"D_{m}"], "r2": first[f"D_{m}_r2"],
+                "fit_range_m": [v["fit_min_m"], v["fit_max_m"]],
+                "options": {k: o for k, o in v["options"].items() if k not in ("box_sizes", "lags")}}
+            for m, v in info.items()
+        }  # fmt: skip
+    k = np.unique(np.linspace(0, len(curve) - 1, curve_points).astype(int))
+    row["curve"] = {"F_over_EA": curve["F_over_EA"].to_numpy()[k],
+                    "Ec_over_E": curve["Ec_over_E"].to_numpy()[k]}  # fmt: skip
+    return row
+
+
+def stage_group(
+    p: Profile, which: int, out, device, *, overwrite: bool = False, curve_points: int = 60
+) -> dict[str, Any]:  # fmt: skip
+    """Table 3 group 1 or 2 through the sweep store ``<out>/sweeps/group<which>`` (resumed)."""
+    from ..sweep import load_curves, run_sweep
+    from ..sweep.grid import SweepOptions
+    from ..sweep.store import conflict
+    from .store import StageConflict
+
+    grid, opts = group_sweep(p, which)
+    path = Path(out) / "sweeps" / f"group{which}"
+    why = conflict(path, grid, SweepOptions(**opts))
+    if why is not None and not overwrite:
+        raise StageConflict(f"{why} (group {which} of warptrunc reproduce)")
+    df = run_sweep(grid, path, overwrite=why is not None, device=device,
+                   progress=True, **opts)  # fmt: skip
+    ranges = fit_ranges(p, p.n)
+    rows, failed = [], []
+    for cid, part in df.groupby("case_id", sort=False):
+        recs = [{k: (None if _isna(v) else v) for k, v in r.items()} for r in part.to_dict("records")]
+        if recs[0]["error"] is not None:
+            failed.append({k: recs[0][k] for k in ("case_id", "D_in", "delta", "seed", "error")})
+            continue
+        rows.append(_row(recs, load_curves(path, cid), ranges, curve_points))
+    return {"fit_ranges": ranges, "rows": rows, "failed": failed,
+            "store": str(Path("sweeps") / f"group{which}")}  # fmt: skip
+
+
+def _isna(v) -> bool:
+    import pandas as pd
+
+    return v is None or (not isinstance(v, (list, dict, str)) and bool(pd.isna(v)))
 
 
 STAGES = ("asperity", "fig5", "table1", "islands", "group1", "group2")
@@ -233,7 +273,9 @@ def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, 
             params = {**base, "table1": res["table1"]}
             fn = lambda: stage_islands(profile, res["table1"], device)  # noqa: E731
         elif name.startswith("group"):
-            params, fn = base, (lambda w=int(name[-1]): stage_group(profile, w, device))
+            params = base
+            fn = lambda w=int(name[-1]): stage_group(  # noqa: E731
+                profile, w, store.out, device, overwrite=store.overwrite)
         else:
             params = base
             fn = {"asperity": lambda: stage_asperity(profile, device),

@@ -12,6 +12,8 @@ store's single writer, drops the second result.
 from __future__ import annotations
 
 import functools
+import json
+import math
 import socket
 import time
 from collections.abc import Callable
@@ -20,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .grid import Case, SweepOptions
+from .grid import FRACTAL_METHODS, Case, SweepOptions
 
 __all__ = ["compute_case", "failed_case", "pinned_device", "run_inprocess"]
 
@@ -51,9 +53,51 @@ def _base_row(case: Case, o: SweepOptions) -> dict[str, Any]:
         "depth_window_lo_m": lo, "depth_window_hi_m": hi, "alpha": np.nan, "beta": np.nan,
         "r2": np.nan, "n_points": None, "fit_depth_min_m": np.nan, "fit_depth_max_m": np.nan,
         "final_contact_pixels": None, "final_area_fraction": np.nan, "rt_measured_m": np.nan,
-        "fit_error": None, "error": None, "host": host, "warptrunc_version": version,
+        **{f"D_{m}{s}": np.nan for m in FRACTAL_METHODS for s in ("", "_r2")},
+        "fractal_options": None, "fractal_seconds": np.nan, "fit_error": None, "error": None, "host": host, "warptrunc_version": version,
         "git_commit": commit,
     }  # fmt: skip
+
+
+def _fit_ranges(o: SweepOptions) -> list[tuple[int | None, float]]:
+    """(min_pixels, fraction) per fit range: (mp, NaN) absolute, (None, f) relative."""
+    return [(mp, math.nan) for mp in o.min_pixels] + [(None, f) for f in o.min_pixels_fraction]
+
+
+def resolve_min_pixels(fraction: float, final_contact_pixels: int) -> int:
+    """max(DEFAULT_MIN_PIXELS, ⌈fraction·final_contact_pixels⌉): a relative fit range's count.
+
+    The product is rounded to 9 decimals before the ceiling, so that float noise
+    (0.05·280 = 14.000000000000002) does not add a pixel.
+    """
+    from ..stiffness import DEFAULT_MIN_PIXELS
+
+    return max(DEFAULT_MIN_PIXELS, math.ceil(round(fraction * final_contact_pixels, 9)))
+
+
+def fractal_record(fits: dict[str, Any]) -> dict[str, Any]:
+    """Columns ``D_<m>``, ``D_<m>_r2`` and ``fractal_options`` (JSON) of ``{m: FractalFit}``.
+
+    ``fractal_options`` holds, per method, the scalars of :meth:`FractalFit.to_dict` (slope,
+    intercept, fit range in m), the number of fitted scales and the fit's ``options`` (the
+    convention it ran with); the per-scale arrays are left out to keep rows small.
+    """
+    out: dict[str, Any] = {}
+    info = {}
+    for m, f in fits.items():
+        out[f"D_{m}"], out[f"D_{m}_r2"] = float(f.D), float(f.r2)
+        d = {k: v for k, v in f.to_dict().items() if np.ndim(v) == 0 and k not in ("D", "r2")}
+        info[m] = {**d, "n_fitted": f.n_fitted, "options": f.options}
+    out["fractal_options"] = json.dumps(info, default=_json_default, allow_nan=True)
+    return out
+
+
+def _json_default(v: Any) -> Any:
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    if isinstance(v, np.generic):
+        return v.item()
+    raise TypeError(f"{type(v).__name__} is not JSON-serialisable")
 
 
 def compute_case(
@@ -62,7 +106,7 @@ def compute_case(
     """Generate, truncate and fit one case; never raises for a failing case.
 
     Returns the case's rows (one per fit range) and its curve columns, or (rows with the
-    ``error`` column set, None) when generation or truncation raised.
+    ``error`` column set, None) when generation, the fractal dimensions or truncation raised.
     """
     from .._device import resolve_device
     from ..stiffness import fit_power_law, stiffness_curve
@@ -80,6 +124,12 @@ def compute_case(
             case.D, o.Wr, L=o.L, n=o.n, Rt=case.delta * o.Wr, M=o.M, gamma=o.gamma, Wc=o.Wc,
             cutoff=o.cutoff, seed=case.seed, device=dev,
         )  # fmt: skip
+        if o.fractal_methods:
+            from ..fractal import fractal_dimensions
+
+            t1 = time.perf_counter()
+            base.update(fractal_record(fractal_dimensions(s, o.fractal_methods, device=dev)))
+            base["fractal_seconds"] = time.perf_counter() - t1
         tc = truncate(s, o.increments, max_depth=o.max_depth,
                       max_depth_fraction=o.max_depth_fraction, device=dev)  # fmt: skip
         sc = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
@@ -92,8 +142,10 @@ def compute_case(
     except Exception as exc:  # recorded, the sweep goes on
         base.update(error=f"{type(exc).__name__}: {exc}")
     rows = []
-    for mp in o.min_pixels:
-        row = {**base, "min_pixels": mp}
+    for mp, frac in _fit_ranges(o):
+        if mp is None:
+            mp = 0 if curve is None else resolve_min_pixels(frac, base["final_contact_pixels"])
+        row = {**base, "min_pixels": mp, "min_pixels_fraction": frac}
         if curve is not None:
             try:
                 f = fit_power_law(sc, min_pixels=mp, depth_window=o.depth_window)
@@ -161,4 +213,5 @@ def failed_case(case: Case, options: SweepOptions, why: str):
     base = _base_row(case, options)
     stamp = datetime.now(timezone.utc).isoformat(timespec="milliseconds")
     base.update(error=why, seconds=np.nan, finished_utc=stamp, device=None, device_name=None)
-    return [{**base, "min_pixels": mp} for mp in options.min_pixels], None
+    return [{**base, "min_pixels": mp or 0, "min_pixels_fraction": f}
+            for mp, f in _fit_ranges(options)], None  # fmt: skip

@@ -20,7 +20,12 @@ from typing import Any
 from .._validate import check_int, check_range
 from ..stiffness import DEFAULT_MIN_PIXELS
 
-__all__ = ["Case", "SweepGrid", "SweepOptions", "parse_seeds"]
+__all__ = ["FRACTAL_METHODS", "Case", "SweepGrid", "SweepOptions", "parse_seeds"]
+
+FRACTAL_METHODS = ("tri", "box", "vs", "sp")
+"""Methods of :func:`warptrunc.fractal_dimensions` that ``fractal_methods`` may name."""
+
+_OMIT_WHEN_EMPTY = ("min_pixels_fraction", "fractal_methods")
 
 FORMAT = "warptrunc-sweep/1"
 """Store format tag; part of every case id."""
@@ -130,6 +135,15 @@ class SweepOptions:
     """Fit ranges: one row per value (increments with at least this many contact pixels)."""
     depth_window: tuple[float, float] | None = None
     """Fit only depths lo ≤ ω ≤ hi (m)."""
+    min_pixels_fraction: tuple[float, ...] = ()
+    """More fit ranges, relative to each case: one row per value f in (0, 1], fitting the
+    increments with at least max(DEFAULT_MIN_PIXELS, ⌈f·final contact pixels⌉) contact pixels
+    (the deep part of each curve). Stored with ``min_pixels`` = that resolved count."""
+    fractal_methods: tuple[str, ...] = ()
+    """Measure the fractal dimension of each generated surface by these methods of
+    :func:`warptrunc.fractal_dimensions` (``"tri"``, ``"box"``, ``"vs"``, ``"sp"``; that
+    function's default options). Columns ``D_<method>``, ``D_<method>_r2`` and
+    ``fractal_options`` (JSON: each fit's scalars and options). Off by default."""
 
     def __post_init__(self) -> None:
         from ..stiffness import Material
@@ -176,10 +190,31 @@ class SweepOptions:
                     f"depth_window must be (lo, hi) with 0 ≤ lo < hi (m), got {self.depth_window!r}"
                 )
             s(self, "depth_window", (lo, hi))
+        fr = self.min_pixels_fraction
+        fr = (fr,) if isinstance(fr, (int, float)) else tuple(fr)
+        fr = tuple(check_range("min_pixels_fraction", v, 0, 1, hi_open=False) for v in fr)
+        if len(set(fr)) != len(fr):
+            raise ValueError(f"min_pixels_fraction must hold distinct values, got {fr!r}")
+        s(self, "min_pixels_fraction", fr)
+        fm = (self.fractal_methods,) if isinstance(self.fractal_methods, str) else tuple(self.fractal_methods)
+        for m in fm:
+            if m not in FRACTAL_METHODS:
+                raise ValueError(f"fractal_methods must be among {FRACTAL_METHODS}, got {m!r}")
+        if len(set(fm)) != len(fm):
+            raise ValueError(f"fractal_methods must not repeat, got {fm!r}")
+        s(self, "fractal_methods", fm)
 
     def to_dict(self) -> dict[str, Any]:
-        """The options as JSON-ready values (tuples as lists)."""
+        """The options as JSON-ready values (tuples as lists).
+
+        Options added after the store format was fixed (``min_pixels_fraction``,
+        ``fractal_methods``) appear only when set, so the case ids and ``sweep.json`` of
+        stores made without them stay valid.
+        """
         d = asdict(self)
+        for k in _OMIT_WHEN_EMPTY:
+            if not d[k]:
+                del d[k]
         return {k: list(v) if isinstance(v, tuple) else v for k, v in d.items()}
 
     @classmethod

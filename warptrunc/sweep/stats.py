@@ -50,6 +50,8 @@ def group_stats(df, by: Sequence[str], value: str) -> list[dict[str, Any]]:
 def alpha_summary(df) -> dict[str, Any]:
     """{"fit_ranges": {min_pixels: {"per_D": [...], "alpha_vs_D": line or None}}} of a table.
 
+    Fit ranges relative to each case (``min_pixels_fraction`` f) are keyed ``"fraction=f"``.
+
     ``df`` is a cases table (:func:`warptrunc.sweep.load`) or a :class:`SweepTable`.
     ``per_D`` holds ``D_in``, ``alpha_mean``, ``alpha_sd`` (over seeds and δ) and ``n``;
     ``alpha_vs_D`` is :func:`linear_fit` of the means against D_in (None below 2 points).
@@ -59,7 +61,13 @@ def alpha_summary(df) -> dict[str, Any]:
     if isinstance(df, SweepTable):
         df = pd.DataFrame(df.columns)
     out = {}
-    for mp, part in df.groupby("min_pixels", sort=True):
+    if "min_pixels_fraction" in df and df["min_pixels_fraction"].notna().any():
+        frac = df["min_pixels_fraction"].astype(float)
+        parts = [(str(int(mp)), p) for mp, p in df[frac.isna()].groupby("min_pixels", sort=True)]
+        parts += [(f"fraction={f:g}", p) for f, p in df[frac.notna()].groupby(frac[frac.notna()])]
+    else:
+        parts = [(str(int(mp)), p) for mp, p in df.groupby("min_pixels", sort=True)]
+    for key, part in parts:
         stats = group_stats(part, ["D_in"], "alpha")
         ok = [r for r in stats if r["n"] > 0 and np.isfinite(r["alpha_mean"])]
         line = (
@@ -67,7 +75,7 @@ def alpha_summary(df) -> dict[str, Any]:
             if len(ok) >= 2
             else None
         )
-        out[str(int(mp))] = {"per_D": stats, "alpha_vs_D": line}
+        out[key] = {"per_D": stats, "alpha_vs_D": line}
     return {"fit_ranges": out}
 
 

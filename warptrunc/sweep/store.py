@@ -29,20 +29,28 @@ import numpy as np
 
 from .grid import FORMAT, SweepGrid, SweepOptions
 
-__all__ = ["CASE_COLUMNS", "CURVE_COLUMNS", "RUN_COLUMNS", "Store", "load", "load_curves"]
+__all__ = [
+    "CASE_COLUMNS", "CURVE_COLUMNS", "RUN_COLUMNS", "Store", "conflict", "load", "load_curves",
+]  # fmt: skip
 
 CASE_COLUMNS = (
     "case_id", "case_index", "D_in", "delta", "seed", "Rt_m", "Wr_m", "Lx_m", "Ly_m", "nx",
     "ny", "M", "gamma", "Wc_m", "cutoff", "increments", "max_depth_fraction", "max_depth_m",
-    "E_Pa", "nu", "E_flat_Pa", "nu_flat", "beta_prime", "min_pixels", "depth_window_lo_m",
-    "depth_window_hi_m", "alpha", "beta", "r2", "n_points", "fit_depth_min_m",
-    "fit_depth_max_m", "final_contact_pixels", "final_area_fraction", "rt_measured_m",
-    "fit_error", "error", "seconds", "device", "device_name", "host", "finished_utc",
+    "E_Pa", "nu", "E_flat_Pa", "nu_flat", "beta_prime", "min_pixels", "min_pixels_fraction",
+    "depth_window_lo_m", "depth_window_hi_m", "alpha", "beta", "r2", "n_points",
+    "fit_depth_min_m", "fit_depth_max_m", "final_contact_pixels", "final_area_fraction",
+    "rt_measured_m", "D_tri", "D_tri_r2", "D_box", "D_box_r2", "D_vs", "D_vs_r2", "D_sp",
+    "D_sp_r2", "fractal_options", "fractal_seconds", "fit_error", "error", "seconds", "device", "device_name", "host", "finished_utc",
     "warptrunc_version", "git_commit",
 )  # fmt: skip
-"""Columns of ``cases.parquet``, in order; units in the names (SI)."""
+"""Columns of ``cases.parquet``, in order; units in the names (SI).
 
-RUN_COLUMNS = ("seconds", "device", "device_name", "host", "finished_utc", "git_commit")
+``min_pixels_fraction`` is NaN for a ``min_pixels`` fit range and f for a
+``min_pixels_fraction`` one (``min_pixels`` then holds the count it resolved to, 0 when the
+case failed). ``D_<method>``, ``D_<method>_r2``, ``fractal_options`` (JSON) and
+``fractal_seconds`` (s) are NaN/null unless the sweep ran with ``fractal_methods``."""
+
+RUN_COLUMNS = ("seconds", "fractal_seconds", "device", "device_name", "host", "finished_utc", "git_commit")
 """Columns that describe how and where a case ran rather than its result."""
 
 CURVE_COLUMNS = (
@@ -53,7 +61,7 @@ CURVE_COLUMNS = (
 
 _INT = ("case_index", "seed", "nx", "ny", "M", "increments", "min_pixels")
 _NULLABLE_INT = ("n_points", "final_contact_pixels")
-_STR = ("case_id", "cutoff", "fit_error", "error", "device", "device_name", "host",
+_STR = ("case_id", "cutoff", "fractal_options", "fit_error", "error", "device", "device_name", "host",
         "finished_utc", "warptrunc_version", "git_commit")  # fmt: skip
 _META_KEY = b"warptrunc.rows"
 
@@ -87,7 +95,10 @@ def rows_frame(rows: list[dict[str, Any]]):
 
 
 def _sorted(df):
-    return df.sort_values(["case_index", "min_pixels"], kind="stable").reset_index(drop=True)
+    if "min_pixels_fraction" not in df:  # a store written before that column existed
+        df = df.assign(min_pixels_fraction=np.nan)
+    keys = ["case_index", "min_pixels_fraction", "min_pixels"]
+    return df.sort_values(keys, kind="stable", na_position="first").reset_index(drop=True)
 
 
 def _write_atomic(path: Path, data: bytes) -> None:
@@ -298,6 +309,22 @@ def _check_same(path: Path, old: dict[str, Any], new: dict[str, Any]) -> None:
             f"{path} holds a sweep with another grid or options ({shown}); "
             "use --overwrite to replace it, or a new --out"
         )
+
+
+def conflict(path: str | Path, grid: SweepGrid, options: SweepOptions) -> str | None:
+    """Why the store at ``path`` cannot be resumed with ``grid`` and ``options``, or None.
+
+    None also when ``path`` holds no ``sweep.json`` yet (a new store).
+    """
+    meta = Path(path) / "sweep.json"
+    if not meta.exists():
+        return None
+    new = {"format": FORMAT, "grid": grid.to_dict(), "options": options.to_dict()}
+    try:
+        _check_same(Path(path), json.loads(meta.read_text()), new)
+    except ValueError as exc:
+        return str(exc)
+    return None
 
 
 def load(path: str | Path, *, _raw: bool = False):
