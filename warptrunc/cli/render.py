@@ -26,11 +26,14 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("picture")
     g.add_argument(
         "--depth-fractions", type=float, nargs="+", default=[0.1, 0.2, 0.3, 0.4, 0.5],
-        metavar="F", help="truncation depths as fractions of R_t, one panel each (dimensionless)",
+        metavar="F",
+        help="truncation depths as fractions of R_t, each in (0, 1], one panel each "
+        "(dimensionless)",
     )  # fmt: skip
     g.add_argument(
         "--depths", type=float, nargs="+", default=None, metavar="OMEGA",
-        help="truncation depths ω (m); override --depth-fractions",
+        help="truncation depths ω in metres, each in (0, R_t] of the map; override "
+        "--depth-fractions",
     )  # fmt: skip
     g.add_argument("--top", action="store_true", help="orthographic view from above")
     g.add_argument(
@@ -45,7 +48,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--downsample", type=int, default=None,
         help="block side of the drawn mesh in pixels (default: about one block per screen "
-        "pixel, at most 1024 blocks per side); a block is red when any of its pixels touches",
+        "pixel, at most 1024 blocks per side)",
+    )  # fmt: skip
+    g.add_argument(
+        "--pooling", choices=["area", "any"], default="area",
+        help="colour of a block of pixels: 'area' = share of red equal to the fraction of its "
+        "pixels in contact (red measures A_c/A); 'any' = max-pooling, red when any pixel "
+        "touches (shows every contact spot, overstates the area)",
     )  # fmt: skip
     g.add_argument("--output", default="truncation.png", help="picture file name inside --out")
     a = p.add_argument_group("animation and VTK export")
@@ -92,7 +101,7 @@ def run(args: argparse.Namespace) -> int:
             s, args.out / args.output, depth_fractions=args.depth_fractions, depths=args.depths,
             top_view=args.top, window_size=args.size, ncols=args.ncols,
             vertical_exaggeration=args.exaggeration, downsample=args.downsample,
-            device=args.device,
+            pooling=args.pooling, device=args.device,
         )  # fmt: skip
         written.append(r.path)
         info = {"picture": r.to_dict()}
@@ -101,7 +110,7 @@ def run(args: argparse.Namespace) -> int:
                 s, args.out / args.animate, max_depth_fraction=args.max_depth_fraction,
                 n_frames=args.frames, fps=args.fps, top_view=args.top,
                 vertical_exaggeration=args.exaggeration, downsample=args.downsample,
-                device=args.device,
+                pooling=args.pooling, device=args.device,
             )  # fmt: skip
             written.append(a.path)
             info["animation"] = a.to_dict()
