@@ -16,7 +16,7 @@ import sys
 from pathlib import Path
 
 from ..fractal import METHODS
-from ._common import add_device, add_reader_options, read_input
+from ._common import add_device, add_reader_options, input_file, output_dir, read_input
 
 NAME = "describe"
 HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four methods"
@@ -25,7 +25,7 @@ HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four
 def add_scan_arguments(p: argparse.ArgumentParser, *, required: bool = True) -> None:
     """FILE and the reader options shared by ``describe`` and ``calibrate``."""
     p.add_argument(
-        "file", type=Path, nargs=None if required else "?", default=None,
+        "file", type=input_file, nargs=None if required else "?", default=None,
         help="height map: .npz/.npy (warptrunc or plain), .csv/.txt matrix, or an instrument "
         "file (.sur, .x3p, .datx, ... needs the 'scans' extra)",
     )  # fmt: skip
@@ -53,9 +53,21 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--vs-axis", choices=["both", "x", "y"], default="both",
         help="profile direction of the vertical-sections method",
     )  # fmt: skip
-    p.add_argument("--json", default=None, metavar="PATH", help="write JSON here ('-': stdout)")
-    p.add_argument("--out", type=Path, default=None, help="folder for psd.png and fractal_fits.png")
+    p.add_argument(
+        "--json", type=_json_path, default=None, metavar="PATH",
+        help="write JSON here ('-': stdout)",
+    )  # fmt: skip
+    p.add_argument(
+        "--out", type=output_dir, default=None, help="folder for psd.png and fractal_fits.png"
+    )
     add_device(p)
+
+
+def _json_path(text: str) -> str:
+    """``-`` (stdout) or a file to write (see :func:`warptrunc.cli._common.output_file`)."""
+    from ._common import output_file
+
+    return text if text == "-" else str(output_file(text))
 
 
 def describe_surface(s, methods, options, device) -> dict:
