@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..fractal import METHODS
 from ._common import add_device, integer, output_dir, positive, real
-from .describe import add_scan_arguments, read_scan_args
+from .describe import add_height_scaling, add_scan_arguments, method_options, read_scan_args
 
 NAME = "calibrate"
 HELP = "find D_in and R_t' that reproduce a scan's D and R_rms (Fig. 4), then generate"
@@ -27,6 +27,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_scan_arguments(p, required=False)
     t = p.add_argument_group("targets (typed in, or overriding those measured on FILE)")
     t.add_argument("--method", choices=list(METHODS), default="tri", help="fractal method matched")
+    add_height_scaling(t)
     t.add_argument(
         "--D", type=real(2.0, 3.0), default=None,
         help="target fractal dimension, 2 < D < 3 (dimensionless)",
@@ -76,7 +77,10 @@ def run(args: argparse.Namespace) -> int:
 
     if args.file is not None:
         s = read_scan_args(args)
-        t = target_from_surface(s, args.method, Wr=args.Wr, device=args.device)
+        opts = method_options(args.method, args.height_scaling)
+        t = target_from_surface(
+            s, args.method, Wr=args.Wr, method_options=opts, device=args.device
+        )
         fields = t.to_dict()
         target = CalibrationTarget(
             D=args.D if args.D is not None else t.D,
@@ -87,6 +91,7 @@ def run(args: argparse.Namespace) -> int:
             L=_pair(args.L, "--L") or t.L,
             n=_pair(args.n, "--n") or t.n,
             source=fields["source"] or str(args.file),
+            method_options=opts,
         )
     else:
         missing = [k for k in ("D", "Rrms", "Rt", "Wr", "L", "n") if getattr(args, k) is None]
@@ -97,6 +102,7 @@ def run(args: argparse.Namespace) -> int:
         target = CalibrationTarget(
             D=args.D, method=args.method, Rrms=args.Rrms, Rt=args.Rt, Wr=args.Wr,
             L=_pair(args.L, "--L"), n=_pair(args.n, "--n"), source="given",
+            method_options=method_options(args.method, args.height_scaling),
         )  # fmt: skip
     print(
         f"targets: D_{target.method} = {target.D:.4f}, R_rms = {target.Rrms * 1e6:.4g} µm, "
