@@ -59,7 +59,8 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     from .._device import set_verbose
 
-    set_verbose(bool(getattr(args, "verbose", False)))
+    if getattr(args, "verbose", False):
+        set_verbose(True)  # otherwise $WARPTRUNC_VERBOSE decides
     try:
         return int(args._run(args) or 0)
     except (ValueError, MemoryError, OSError) as exc:
