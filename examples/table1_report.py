@@ -32,17 +32,11 @@ import numpy as np
 
 from warptrunc.calibrate import CalibrationError, CalibrationTarget, calibrate
 from warptrunc.fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
+from warptrunc.reproduce.paper import TABLE1
 from warptrunc.wm import wm_surface
 
 UM = 1e-6
-# Table 1, simulated rows: R_t' (µm), R_rms (µm), W_r (µm; None = "≫ 1024"), D_tri, D_box,
-# D_vs, D_sp (means; the ± are in the paper)
-PAPER = {
-    "Ps": (0.263, 0.053, None, 2.091, 2.025, 2.103, 2.315),
-    "SMATs": (16.210, 2.762, 120.0, 2.225, 2.161, 2.417, 2.421),
-    "GB300s": (36.865, 4.102, 60.0, 2.555, 2.417, 2.813, 2.282),
-    "GB50s": (26.239, 2.935, 25.0, 2.625, 2.351, 2.825, 2.284),
-}
+PAPER = TABLE1
 
 
 def _options(height_scaling):

@@ -8,9 +8,16 @@ increment k when ``z >= t[k]``; its *contact index* is the smallest such k, or n
 never touches. The guess ``k ≈ ceil((z_top − z)/Δω)`` is corrected with exact float32
 comparisons against ``t``, so counts equal ``numpy.count_nonzero(z >= t[k])`` bit for bit.
 
-Grid: one thread per pixel (flattened, C order). Counting uses integer atomics only, so results
-are identical on the CPU and the GPU. Pixels that never touch are not counted (no atomic), which
-keeps contention low at shallow depths.
+Grids: ``contact_histogram_kernel`` and ``contact_index_kernel``: one thread per pixel
+(flattened, C order). ``contact_histogram_vec4_kernel``: one thread per 4 pixels (a vec4 view of
+the map), with an early exit for pixels below the deepest threshold; the default on the CPU and
+for shallow truncations on the GPU. ``contact_histogram_block_kernel`` (GPU): persistent tile
+blocks, each walking a contiguous chunk of the map with a block-private histogram in shared
+memory, added to the global one once per block; the default on the GPU for deep truncations,
+where global atomics on a few hundred bins contend (measured on an H100 at 10240², 201 bins,
+ω_max = R_t: 18.6 ms with global atomics, 2.6 ms with one private histogram per 4096 pixels).
+Counting uses integer atomics only, so results are identical on the CPU and the GPU. Pixels that
+never touch are not counted (no atomic), which keeps contention low at shallow depths.
 """
 
 import warp as wp
@@ -62,3 +69,60 @@ def contact_index_kernel(
     """One thread per pixel; writes the pixel's contact index (n + 1 = never in contact)."""
     i = wp.tid()
     index[i] = contact_index(z[i], t, z_top, inv_step)
+
+
+HIST_BINS = wp.constant(256)  # bins of the block-private histogram (n + 1 ≤ HIST_BINS)
+
+
+@wp.kernel
+def contact_histogram_vec4_kernel(
+    z: wp.array[wp.vec4],
+    t: wp.array[wp.float32],
+    z_top: float,
+    inv_step: float,
+    hist: wp.array[wp.int64],
+):
+    """One thread per 4 pixels (z viewed as vec4); ``hist[k]`` += 1 per pixel of contact index
+    k ≤ n. Pixels below the deepest threshold exit before the index search."""
+    i = wp.tid()
+    v = z[i]
+    n1 = t.shape[0]
+    t_last = t[n1 - 1]
+    for c in range(4):
+        if v[c] >= t_last:
+            k = contact_index(v[c], t, z_top, inv_step)
+            if k < n1:
+                wp.atomic_add(hist, k, wp.int64(1))
+
+
+@wp.kernel
+def contact_histogram_block_kernel(
+    z: wp.array[wp.vec4],
+    chunk: int,
+    steps: int,
+    t: wp.array[wp.float32],
+    z_top: float,
+    inv_step: float,
+    hist: wp.array[wp.int64],
+):
+    """Tile blocks (GPU): block b counts the vec4s [b·chunk, (b+1)·chunk) into a shared
+    HIST_BINS-bin histogram (``steps`` = ⌈chunk/block_dim⌉ rounds, the same in every thread,
+    since the scatter is cooperative), then adds it to ``hist`` (HIST_BINS long) once."""
+    b, lane = wp.tid()
+    bins = wp.tile_zeros(shape=HIST_BINS, dtype=wp.int64, storage="shared")
+    n4 = z.shape[0]
+    n1 = t.shape[0]
+    t_last = t[n1 - 1]
+    end = wp.min(n4, (b + 1) * chunk)
+    i = b * chunk + lane
+    for _r in range(steps):
+        v = wp.vec4(-3.4e38, -3.4e38, -3.4e38, -3.4e38)
+        if i < end:
+            v = z[i]
+        for c in range(4):
+            k = n1
+            if v[c] >= t_last:
+                k = contact_index(v[c], t, z_top, inv_step)
+            wp.tile_scatter_add(bins, k, wp.int64(1), k < n1)
+        i += wp.block_dim()
+    wp.tile_atomic_add(hist, bins)

@@ -131,6 +131,8 @@ PATHS = [
     (["describe", "{f}", "--json", "{d}"], ["--json", "existing folder", "{d}"]),
     (["calibrate", "{m}"], ["file", "not found", "{m}"]),
     (["calibrate", "--out", "{f}", "--D", "2.5"], ["--out", "existing file", "{f}"]),
+    (["reproduce", "--out", "{f}"], ["--out", "existing file", "{f}"]),
+    (["reproduce", "--out", "{u}"], ["--out", "{u}"]),
 ]
 
 

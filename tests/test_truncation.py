@@ -150,3 +150,32 @@ def test_bad_spacing_and_device_raise():
         from_heights(np.ones((4, 4)), 0.0)
     with pytest.raises(ValueError, match="device must be one of"):
         truncate(from_heights(np.eye(4), 1e-6), device="tpu:3")
+
+
+@pytest.mark.parametrize("mode", ["auto", "block", "vec4", "pixel"])
+@pytest.mark.parametrize("n_inc", [200, 255, 300])
+def test_histogram_kernels_equal_numpy(device, monkeypatch, mode, n_inc):
+    """Every histogram kernel (block-private, 4 pixels per thread, one per pixel), with bins
+    beyond the shared histogram's size and a remainder of n mod 4 pixels, counts as NumPy."""
+    import warptrunc.truncation as tr
+
+    monkeypatch.setattr(tr, "GPU_HISTOGRAM", mode)
+    z = np.random.default_rng(5).normal(size=(61, 67)).astype(np.float32)  # 4087 pixels
+    for frac in (0.05, 1.0):
+        c = truncate(from_heights(z, 1e-6), n_inc, max_depth_fraction=frac, device=device)
+        np.testing.assert_array_equal(c.n_contact_pixels, numpy_counts(z, c.threshold))
+
+
+def test_histogram_of_unaligned_view_equals_numpy(device):
+    """A flat view that starts off a 16-byte boundary takes the one-pixel-per-thread path."""
+    import warp as wp
+
+    from warptrunc import resolve_device
+    from warptrunc.truncation import contact_histogram
+
+    dev = resolve_device(device)
+    z = np.random.default_rng(6).normal(size=1001).astype(np.float32)
+    zw = wp.array(z, device=dev)[1:]
+    thr = (np.float64(z[1:].max()) - np.linspace(0.0, 2.0, 101)).astype(np.float32)
+    hist = contact_histogram(zw, wp.array(thr, device=dev), float(z[1:].max()), 50.0, dev)
+    np.testing.assert_array_equal(np.cumsum(hist.numpy()[:101]), numpy_counts(z[1:], thr))

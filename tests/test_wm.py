@@ -128,3 +128,15 @@ def test_cpu_and_cuda_surfaces_agree():
     a = wm_surface(2.5, 100e-6, device="cpu", **kw).heights
     b = wm_surface(2.5, 100e-6, device="cuda:0", **kw).heights
     assert np.abs(a - b).max() / np.ptp(a) <= 1e-5
+
+
+@pytest.mark.parametrize("n", [64, (96, 80), 200])
+@pytest.mark.parametrize("seed", [0, 3])
+def test_recorded_extremes_equal_the_map(device, n, seed):
+    """The generator's (min, max), derived from the raw sum's extremes without a pass over the
+    scaled map, equal NumPy's min and max of the heights bit for bit (they set the truncation
+    thresholds, so an ulp off would change counts)."""
+    for kw in ({"Rt": 10e-6}, {"Rt": None, "G": 1e-9}):
+        s = wm_surface(2.4, 50e-6, L=1e-3, n=n, seed=seed, device=device, **kw)
+        lo, hi = s._device_extremes
+        assert np.float32(lo) == s.heights.min() and np.float32(hi) == s.heights.max()

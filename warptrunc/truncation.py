@@ -24,7 +24,14 @@ from .kernels import reduce as _kr
 from .kernels import truncation as _k
 from .surface import Surface
 
-__all__ = ["TruncationCurve", "contact_index_map", "depth_grid", "height_range", "truncate"]
+__all__ = [
+    "TruncationCurve",
+    "contact_histogram",
+    "contact_index_map",
+    "depth_grid",
+    "height_range",
+    "truncate",
+]
 
 _REDUCE_LANES = 65536
 
@@ -94,6 +101,73 @@ def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, floa
     return float(lo_v), float(hi_v)
 
 
+_BLOCKS_PER_SM = 8  # persistent blocks of the GPU histogram kernel
+GPU_HISTOGRAM = "auto"
+"""GPU histogram kernel: ``"auto"``, ``"block"`` (block-private shared-memory histogram),
+``"vec4"`` (global atomics, 4 pixels per thread) or ``"pixel"`` (one thread per pixel).
+
+``"auto"`` takes ``"vec4"`` when ω_max ≤ ``DEEP_FRACTION``·R_t (few pixels touch, so global
+atomics rarely contend) and ``"block"`` otherwise. Measured on an H100, 10240², 201 bins,
+``truncate`` with the generator's extremes: vec4 0.42 / 13.0 / 21.4 ms and block 0.54 / 1.09 /
+1.34 ms at ω_max = 0.1 / 0.5 / 1.0·R_t. Every kernel gives the same integer counts; only the
+speed depends on the choice."""
+DEEP_FRACTION = 0.25
+
+
+def contact_histogram(
+    z: wp.array, t: wp.array, z_top: float, inv_step: float, device, *, deep: bool = True
+) -> wp.array:
+    """Histogram of contact indices of the flattened float32 map ``z`` (int64, on ``device``).
+
+    Entry k (k < len(t)) counts the pixels whose first contact is at threshold ``t[k]``; the
+    array may be longer than ``t`` (the extra entries are zero). No host synchronisation.
+    ``deep``: whether many pixels are expected to touch (picks the GPU kernel under
+    ``GPU_HISTOGRAM = "auto"``).
+    """
+    n = z.shape[0]
+    n1 = t.shape[0]
+    n4 = n // 4 if z.ptr % 16 == 0 else 0
+    mode = GPU_HISTOGRAM if device.is_cuda else "vec4"
+    if mode == "auto":
+        mode = "block" if deep else "vec4"
+    if mode == "block" and (n1 > _k.HIST_BINS or n4 == 0):
+        mode = "vec4"
+    hist = wp.zeros(max(n1, int(_k.HIST_BINS)) if mode == "block" else n1, dtype=wp.int64,
+                    device=device)  # fmt: skip
+    if mode == "pixel" or n4 == 0:
+        n4 = 0
+    elif mode == "block":
+        z4 = wp.array(ptr=z.ptr, dtype=wp.vec4, shape=(n4,), device=device)
+        blocks = max(1, min(-(-n4 // 256), _BLOCKS_PER_SM * device.sm_count))
+        chunk = -(-n4 // blocks)
+        wp.launch_tiled(
+            _k.contact_histogram_block_kernel,
+            dim=blocks,
+            inputs=[z4, chunk, -(-chunk // 256), t, z_top, inv_step],
+            outputs=[hist],
+            block_dim=256,
+            device=device,
+        )
+    else:
+        z4 = wp.array(ptr=z.ptr, dtype=wp.vec4, shape=(n4,), device=device)
+        wp.launch(
+            _k.contact_histogram_vec4_kernel,
+            dim=n4,
+            inputs=[z4, t, z_top, inv_step],
+            outputs=[hist],
+            device=device,
+        )
+    if 4 * n4 < n:  # the remainder (or everything, unaligned), one thread per pixel
+        wp.launch(
+            _k.contact_histogram_kernel,
+            dim=n - 4 * n4,
+            inputs=[z[4 * n4 :], t, z_top, inv_step],
+            outputs=[hist],
+            device=device,
+        )
+    return hist
+
+
 def depth_grid(
     rt: float,
     n_increments: int = 200,
@@ -133,6 +207,14 @@ def _upload(surface: Surface, device) -> wp.array:
     z_np = surface.heights.reshape(-1)
     check_memory(z_np.nbytes, device, "truncation analysis")
     return wp.array(z_np, dtype=wp.float32, device=device)
+
+
+def _known_extremes(surface: Surface, device) -> tuple[float, float] | None:
+    """(min z, max z) recorded by the generator for its device copy, or None."""
+    cached = getattr(surface, "_device_heights", None)
+    if cached is not None and cached.device == device:
+        return getattr(surface, "_device_extremes", None)
+    return None
 
 
 def _thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
@@ -178,21 +260,15 @@ def truncate(
     """
     device = resolve_device(device)
     z = _upload(surface, device)
-    lo, hi = height_range(z, device)
+    lo, hi = _known_extremes(surface, device) or height_range(z, device)
     depth = depth_grid(
         float(np.float64(hi) - np.float64(lo)), n_increments,
         max_depth=max_depth, max_depth_fraction=max_depth_fraction,
     )  # fmt: skip
     t, lo, hi, thr, inv_step = _thresholds(z, depth, device, (lo, hi))
-    hist = wp.zeros(depth.size, dtype=wp.int64, device=device)
-    wp.launch(
-        _k.contact_histogram_kernel,
-        dim=z.shape[0],
-        inputs=[z, t, hi, inv_step],
-        outputs=[hist],
-        device=device,
-    )
-    counts = np.cumsum(hist.numpy())  # sync point
+    rt = float(np.float64(hi) - np.float64(lo))
+    hist = contact_histogram(z, t, hi, inv_step, device, deep=depth[-1] > DEEP_FRACTION * rt)
+    counts = np.cumsum(hist.numpy()[: depth.size])  # sync point
     return TruncationCurve(
         depth=depth,
         threshold=thr,

@@ -244,7 +244,17 @@ def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.a
 
     With ``spec.Rt`` set, scale = R_t/(max S − min S); otherwise the prefactor of Eq. (4).
     """
-    device = resolve_device(device)
+    z, scale, _ext = _generate(spec, resolve_device(device))
+    return z, scale
+
+
+def _generate(spec: WMSpec, device) -> tuple[wp.array, float, tuple[float, float]]:
+    """:func:`generate_on_device` plus the exact float32 (min z, max z) of the result (m).
+
+    The scaling kernel maps each raw value s to float32((float64(s) + c0)·scale), a monotone
+    function for scale > 0; applying the same float64 operations to the raw extremes on the
+    host therefore gives the extremes of the scaled map bit for bit, with no second pass.
+    """
     z, c0, lo, hi = _raw_sum(spec, device)
     if spec.Rt is not None:
         if not hi > lo:
@@ -253,7 +263,8 @@ def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.a
     else:
         scale = _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
     wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, float(scale)], device=device)
-    return z, scale
+    ext = tuple(float(np.float32((np.float64(v) + c0) * scale)) for v in (lo, hi))
+    return z, scale, ext
 
 
 def _prefactor(spec: WMSpec) -> float:
@@ -336,10 +347,11 @@ def wm_surface(
         method=method,
     )  # fmt: skip
     device = resolve_device(device)
-    z, scale = generate_on_device(spec, device)
+    z, scale, extremes = _generate(spec, device)
     params = spec.params()
     params["scale"] = scale
     params["G_equivalent"] = spec.Wr * (scale / _prefactor(spec)) ** (1.0 / (spec.D - 3.0))
     surface = Surface(z.numpy(), spec.dx, spec.dy, params)  # sync point
     object.__setattr__(surface, "_device_heights", z)  # reused by truncate() on this device
+    object.__setattr__(surface, "_device_extremes", extremes)  # exact (min, max), no pass
     return surface

@@ -1,0 +1,66 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Reproduce the paper in one call: :func:`reproduce` (CLI: ``warptrunc reproduce``).
+
+Stages (Fig. 2 single asperity, Fig. 5 convergence, Table 1 calibration, Figs. 7–8/Table 2
+islands, Table 3 groups 1 and 2 with Figs. 9–10) are computed by :mod:`.study`, stored and
+reused by :mod:`.store`, summarised by :mod:`.analysis` and written by :mod:`.report` as
+``report.md``, ``results.json`` and PNG figures.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from .profiles import PROFILES, Profile, get_profile
+from .store import StageConflict, StageStore, jsonable, write_atomic
+
+__all__ = ["PROFILES", "Profile", "StageConflict", "get_profile", "reproduce"]
+
+
+def reproduce(
+    profile: str | Profile = "quick",
+    out: str | Path = "reproduction",
+    *,
+    overwrite: bool = False,
+    device=None,
+    command: str | None = None,
+) -> dict[str, Any]:
+    """Run the study at ``profile`` into ``out``; returns the content of ``results.json``.
+
+    Finished stages in ``out/stages`` are reused when their parameters match; a stage stored
+    with other parameters raises :class:`StageConflict` unless ``overwrite``.
+    """
+    from .. import __version__
+    from .._bench import git_commit
+    from .._device import resolve_device
+    from .analysis import analyse
+    from .report import figures, markdown
+    from .study import run_study
+
+    p = get_profile(profile) if isinstance(profile, str) else profile
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    dev = resolve_device(device)
+    store = StageStore(out, overwrite=overwrite)
+    t0 = time.perf_counter()
+    study = run_study(p, store, device=dev)
+    res = study["results"]
+    ana = analyse(res)
+    names = figures(res, ana, out, device=dev)
+    meta = {
+        "profile": p.to_dict(), "version": __version__, "git_commit": git_commit(),
+        "device": f"{dev.alias} ({getattr(dev, 'name', '')})", "wall_s": time.perf_counter() - t0,
+        "stage_wall_s": study["wall_s"], "stage_seconds": {k: store.seconds(k) for k in res},
+        "reused": store.reused, "computed": store.computed,
+        "command": command or f"warptrunc reproduce --profile {p.name} --out {out}",
+        "python": sys.version.split()[0], "figures": names,
+    }  # fmt: skip
+    doc = {"meta": meta, "analysis": ana, "stages": res}
+    write_atomic(out / "results.json", json.dumps(jsonable(doc), indent=1, allow_nan=False) + "\n")
+    write_atomic(out / "report.md", markdown(meta, res, ana, names))
+    return jsonable(doc)

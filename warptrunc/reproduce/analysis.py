@@ -1,0 +1,144 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Numbers of the reproduction report, from the stage results (no computation on surfaces)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .paper import TABLE1, TABLE2, TABLE3
+
+__all__ = ["analyse", "line_fit", "power_fit"]
+
+D_KEYS = ("in", "tri", "box", "vs", "sp")
+
+
+def line_fit(x, y) -> dict[str, float] | None:
+    """y = slope·x + intercept with Pearson r; None with fewer than 2 distinct x."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    ok = np.isfinite(x) & np.isfinite(y)
+    x, y = x[ok], y[ok]
+    if x.size < 2 or np.ptp(x) == 0:
+        return None
+    slope, icpt = np.polyfit(x, y, 1)
+    r = float(np.corrcoef(x, y)[0, 1]) if np.ptp(y) > 0 else float("nan")
+    return {"slope": float(slope), "intercept": float(icpt), "r": r, "n": int(x.size)}
+
+
+def power_fit(x, y) -> dict[str, float] | None:
+    """y = b·x^p by a line in log–log; r of the logs."""
+    f = line_fit(np.log(np.asarray(x, float)), np.log(np.asarray(y, float)))
+    if f is None:
+        return None
+    return {"b": math.exp(f["intercept"]), "p": f["slope"], "r": f["r"], "n": f["n"]}
+
+
+def _points(rows, fit, key):
+    xs, a = [], []
+    for r in rows:
+        f = r["fits"][fit]
+        if f.get("alpha") is None:
+            continue
+        x = r["D_in"] if key == "in" else r.get("D", {}).get(key, {}).get("D")
+        if x is None:
+            continue
+        xs.append(x)
+        a.append(f["alpha"])
+    return xs, a
+
+
+def analyse(res: dict[str, Any]) -> dict[str, Any]:
+    """Every number the report prints, with the paper's value beside it where there is one."""
+    out: dict[str, Any] = {}
+    g1, g2 = res["group1"], res["group2"]
+    # Table 3, α(D) per fit range and D method, one point per generated surface
+    t3: dict[str, Any] = {}
+    for fit in g2["fit_ranges"]:
+        t3[fit] = {}
+        for k in D_KEYS:
+            f = line_fit(*_points(g2["rows"], fit, k))
+            t3[fit][k] = {"ours": f, "paper": dict(zip(("slope", "intercept", "r"), TABLE3["alpha"][k], strict=True))}
+    out["table3_alpha"] = t3
+    # group 1: β(δ) and the scaling argument β ∝ δ^−α
+    b1: dict[str, Any] = {}
+    for fit in g1["fit_ranges"]:
+        rows = [r for r in g1["rows"] if r["fits"][fit].get("beta") is not None]
+        pf = power_fit([r["delta"] for r in rows], [r["fits"][fit]["beta"] for r in rows])
+        alphas = np.array([r["fits"][fit]["alpha"] for r in rows])
+        b1[fit] = {
+            "ours": pf, "alpha_mean": float(alphas.mean()) if alphas.size else None,
+            "alpha_sd": float(alphas.std(ddof=1)) if alphas.size > 1 else None,
+            "minus_alpha": -float(alphas.mean()) if alphas.size else None,
+            "paper": {"b": TABLE3["beta"][0], "p": TABLE3["beta"][1], "r": TABLE3["beta"][2]},
+            "n_surfaces": len(rows),
+        }  # fmt: skip
+    out["table3_beta"] = b1
+    # α per D_in (group 2) and per δ (group 1), mean ± sd
+    for name, g, key in (("group2_alpha", g2, "D_in"), ("group1_alpha", g1, "delta")):
+        out[name] = {}
+        for fit in g["fit_ranges"]:
+            per = {}
+            for r in g["rows"]:
+                a = r["fits"][fit].get("alpha")
+                if a is not None:
+                    per.setdefault(r[key], []).append(a)
+            out[name][fit] = {str(k): {"mean": float(np.mean(v)), "sd": float(np.std(v, ddof=1)) if len(v) > 1 else None, "n": len(v)}
+                              for k, v in sorted(per.items())}  # fmt: skip
+    # D convention: the options each method ran with
+    first = next((r for r in g2["rows"] if "D" in r), None)
+    out["d_options"] = {k: v["options"] for k, v in first["D"].items()} if first else {}
+    # Fig. 5
+    f5 = res["fig5"]
+    conv: dict[str, Any] = {}
+    for r in f5["rows"]:
+        conv.setdefault(f"{r['n']}|{r['increments']}", []).append(r["Ec_over_E"])
+    out["fig5"] = {
+        k: [None if all(x[i] is None for x in v) else float(np.mean([x[i] for x in v if x[i] is not None]))
+            for i in range(len(f5["loads"]))]
+        for k, v in conv.items()
+    }  # fmt: skip
+    # Table 1
+    t1 = []
+    for r in res["table1"]["rows"]:
+        rt, rrms, wr, *d_paper = TABLE1[r["surface"]]
+        row = {"surface": r["surface"], "matched": r["matched"], "status": r["status"],
+               "paper": {"Rt_um": rt, "Rrms_um": rrms, "D": dict(zip(D_KEYS[1:], d_paper, strict=True))}}  # fmt: skip
+        if r["status"] == "ok":
+            row.update(D_in=r["D_in"], Rt_um=r["Rt_m"] / 1e-6, Rrms_um=r["Rrms_m"] / 1e-6, D_out=r["D_out"])
+        else:
+            row["message"] = r.get("message")
+        t1.append(row)
+    out["table1"] = t1
+    # Table 2 and the slit exponent's depth trend
+    t2 = {}
+    for name, s in res["islands"]["surfaces"].items():
+        inds = [x["indicators"] for x in s["seeds"]]
+
+        def m(key, inds=inds):
+            v = [i[key] for i in inds if i.get(key) is not None]
+            return float(np.mean(v)) if v else None
+
+        frac = np.asarray(s["seeds"][0]["depth_fraction"])
+        ex = np.array([[np.nan if v is None else v for v in x["slit_exponent"]] for x in s["seeds"]])
+        ok = np.isfinite(ex)
+        cnt = ok.sum(axis=0)
+        mean_ex = np.where(cnt > 0, np.where(ok, ex, 0.0).sum(axis=0) / np.maximum(cnt, 1), np.nan)
+        trend = {f"{int(p)}": (None if not np.isfinite(v) else float(v))
+                 for p in (5, 10, 20, 30, 40, 50)
+                 for v in [mean_ex[int(np.argmin(np.abs(frac - p / 100)))]]}  # fmt: skip
+        t2[name] = {
+            "max_growth_rate_depth_percent_Rt": m("max_growth_rate_depth_percent_Rt"),
+            "fractality_depth_percent_Rt": m("fractality_depth_percent_Rt"),
+            "island_peak_depth_percent_Rt": m("island_peak_depth_percent_Rt"),
+            "plateau_exponent": m("plateau_exponent"),
+            "slit_exponent_at_percent_Rt": trend,
+            "paper": dict(zip(("applicable", "max_growth", "fractality"), TABLE2[name], strict=True)),
+        }  # fmt: skip
+    out["table2"] = t2
+    out["asperity"] = {k: v for k, v in res["asperity"]["bounds"].items() if not isinstance(v, list)}
+    out["asperity"]["pixel_bound_holds"] = res["asperity"]["pixel_bound_holds"]
+    out["asperity"]["max_rel_area_error_last_half"] = res["asperity"]["max_rel_area_error_last_half"]
+    return out

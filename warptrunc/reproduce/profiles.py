@@ -1,0 +1,92 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Profiles of ``warptrunc reproduce``: resolutions, seed counts and increments per stage.
+
+``paper`` follows the paper (§3.3, §4.4: 10240² over 1 mm², five surfaces per case, 200
+increments, ω_max = 0.1·R_t) except where a GPU cannot finish in minutes: Fig. 5 goes to 10240²
+(the paper: 32760²) with 3 seeds (the paper: 10), and the islands of Fig. 8 are counted on
+10240² over 1 mm² (the paper: 30720² over 3 mm²). ``quick`` fits a 2-core CPU in minutes and
+``tiny`` is the CI check.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+__all__ = ["PROFILES", "Profile", "get_profile"]
+
+GROUP1_DELTA = (0.000625, 0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.08, 0.16)
+GROUP2_D = (2.1, 2.3, 2.5, 2.7, 2.9)
+
+
+@dataclass(frozen=True)
+class Profile:
+    """Sizes of one reproduction run. Lengths in m."""
+
+    name: str
+    n: int
+    """Pixels per side of the group-1/2 surfaces (over L)."""
+    seeds: int
+    """Surfaces per (D_in, δ) case."""
+    L: float = 1e-3
+    """Side of the group surfaces (m)."""
+    Wr: float = 100e-6
+    """Roll-off wavelength of the group surfaces (m)."""
+    increments: int = 200
+    """Truncation increments of the stiffness curves."""
+    max_depth_fraction: float = 0.1
+    """ω_max/R_t of the groups (§4.4)."""
+    group1_delta: tuple[float, ...] = GROUP1_DELTA
+    group2_D: tuple[float, ...] = GROUP2_D
+    fractal_on_group1: bool = False
+    """Also measure the four D on group-1 surfaces (only group 2 enters Fig. 10a–e)."""
+    late_fit_fraction: float = 0.05
+    """Second fit range: increments with ≥ this fraction of each surface's final contact pixels
+    (the first is the package default, ≥ 10 contact pixels)."""
+    fig5_sizes: tuple[int, ...] = (512, 1024, 2048)
+    fig5_seeds: int = 3
+    fig5_increments: tuple[int, ...] = (200, 1000)
+    table1_n: int = 256
+    """Pixels per side of the calibration surfaces (1 µm pixels, as the paper's 1024² scans)."""
+    table1_seeds: int = 1
+    table1_methods: tuple[str, ...] = ("vs",)
+    """Methods whose Table 1 value is the calibration target (Fig. 6 uses D_vs)."""
+    table1_rtol: float = 0.05
+    islands_n: int = 1024
+    islands_L: float = 1e-3
+    islands_seeds: int = 2
+    islands_increments: int = 200
+    asperity_n: int = 1024
+    asperity_increments: int = 1000
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain dict (JSON-serialisable)."""
+        return asdict(self)
+
+
+PROFILES = {
+    "tiny": Profile(
+        name="tiny", n=256, seeds=2, group1_delta=(0.0025, 0.01, 0.04), group2_D=(2.2, 2.5, 2.8),
+        fig5_sizes=(64, 128), fig5_seeds=1, fig5_increments=(50, 200), table1_n=64,
+        table1_methods=("vs",), islands_n=128, islands_seeds=1, islands_increments=50,
+        asperity_n=256, asperity_increments=200,
+    ),  # fmt: skip
+    "quick": Profile(
+        name="quick", n=1024, seeds=3, fig5_sizes=(256, 512, 1024, 2048), fig5_seeds=3,
+        table1_n=256, table1_seeds=1, islands_n=1024, islands_seeds=2, asperity_n=1024,
+    ),  # fmt: skip
+    "paper": Profile(
+        name="paper", n=10240, seeds=5, fig5_sizes=(1024, 2048, 4096, 8192, 10240),
+        fig5_seeds=3, table1_n=1024, table1_seeds=3, table1_methods=("tri", "box", "vs", "sp"),
+        islands_n=10240, islands_seeds=4, asperity_n=4096,
+    ),  # fmt: skip
+}
+
+
+def get_profile(name: str) -> Profile:
+    """The named profile; raises with the allowed names."""
+    if name not in PROFILES:
+        raise ValueError(f"profile must be one of {sorted(PROFILES)}, got {name!r}")
+    return PROFILES[name]
