@@ -162,7 +162,7 @@ def main(argv=None) -> int:
         "height_scaling": args.height_scaling,
     }  # fmt: skip
     (args.out / "table1.json").write_text(json.dumps({"meta": meta, "rows": rows}, indent=2) + "\n")
-    md = markdown(rows)
+    md = f"D_tri and D_box with height convention '{args.height_scaling}'.\n\n" + markdown(rows)
     (args.out / "table1.md").write_text(md)
     print("\n" + md + f"\nwrote {args.out}/table1.json, table1.md")
     return 0
