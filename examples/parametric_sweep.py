@@ -6,12 +6,16 @@ What it shows
     For D_in ∈ {2.1, 2.3, 2.5, 2.7, 2.9} and several seeds, WM surfaces with δ = R_t/W_r
     (W_r = 100 µm, L = 1 mm) are truncated to ω_max = 0.1·R_t in 200 increments; the power law
     E_c/E = β[F/(E·A)]^α is fitted for several fit ranges (minimum contact pixels), and the
-    linear fit α(D_in) is printed next to the paper's α = 0.209·D_in + 0.090. Rows go to
-    OUT/sweep.csv as they finish; the summary to OUT/summary.json; a Fig. 9b-style plot to
-    OUT/alpha_vs_D.png.
+    linear fit α(D_in) is printed next to the paper's α = 0.209·D_in + 0.090.
+    The cases go to a result store (OUT/sweep.json, OUT/cases.parquet, OUT/curves/): running
+    the script again resumes an interrupted run instead of starting over, and ``--refit``
+    fits other ranges from the stored curves without generating anything. The summary goes
+    to OUT/summary.json and a Fig. 9b-style plot to OUT/alpha_vs_D.png.
 
 Run
     python examples/parametric_sweep.py --n 1024 --seeds 5 --out results/group2
+    python examples/parametric_sweep.py --n 10240 --seeds 5 --workers 2   # one worker per GPU
+    python examples/parametric_sweep.py --out results/group2 --refit 30 300
 """
 
 from __future__ import annotations
@@ -20,11 +24,27 @@ import argparse
 import json
 from pathlib import Path
 
-import numpy as np
-
-from warptrunc.sweep import SweepTable, linear_fit, sweep
-
 PAPER = {"slope": 0.209, "intercept": 0.090, "r": 0.940}
+
+
+def refit(out: Path, min_pixels: list[int]):
+    """Fit other ranges from the stored curves (no surface is generated again)."""
+    import numpy as np
+    import pandas as pd
+
+    from warptrunc.sweep import load, load_curves
+
+    cases = load(out).drop_duplicates("case_id").set_index("case_id")
+    rows = []
+    for cid, c in load_curves(out).groupby("case_id"):
+        for mp in min_pixels:
+            sel = (c["load_N"] > 0) & (c["n_contact_pixels"] >= mp)
+            alpha = np.nan
+            if sel.sum() >= 3:
+                alpha = np.polyfit(np.log(c["F_over_EA"][sel]), np.log(c["Ec_over_E"][sel]), 1)[0]
+            rows.append({"case_id": cid, "D_in": cases.at[cid, "D_in"], "min_pixels": mp,
+                         "alpha": alpha})  # fmt: skip
+    return pd.DataFrame(rows)
 
 
 def main(argv=None) -> int:
@@ -41,7 +61,11 @@ def main(argv=None) -> int:
     ap.add_argument(
         "--min-pixels", type=int, nargs="+", default=[1, 10, 100, 1000], help="fit ranges"
     )
-    ap.add_argument("--out", type=Path, default=Path("results/group2"), help="output folder")
+    ap.add_argument("--workers", type=int, default=None, help="Dask workers (one per GPU)")
+    ap.add_argument("--out", type=Path, default=Path("results/group2"), help="result store")
+    ap.add_argument("--overwrite", action="store_true", help="replace a store of another run")
+    ap.add_argument("--refit", type=int, nargs="+", default=None, metavar="MIN_PIXELS",
+                    help="only re-fit the stored curves with these fit ranges")  # fmt: skip
     ap.add_argument("--quick", action="store_true", help="128², 2 seeds, 3 values of D")
     ap.add_argument(
         "--no-show", action="store_true", help="do not open a window (figures are saved)"
@@ -49,45 +73,37 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.quick:
         args.n, args.seeds, args.D = 128, 2, [2.2, 2.5, 2.8]
-    args.out.mkdir(parents=True, exist_ok=True)
-    t = sweep(
-        args.D, [args.delta], range(args.seeds), n=args.n, min_pixels=args.min_pixels,
-        csv_path=args.out / "sweep.csv", device=args.device,
-    )  # fmt: skip
-    summary = {
-        "n": args.n,
-        "seeds": args.seeds,
-        "delta": args.delta,
-        "paper": PAPER,
-        "fit_ranges": {},
-    }
-    for mp in args.min_pixels:
-        sel = t.columns["min_pixels"] == mp
-        stats = SweepTable({k: v[sel] for k, v in t.columns.items()}).group_stats(["D_in"], "alpha")
-        ok = [r for r in stats if r["n"] > 0 and np.isfinite(r["alpha_mean"])]
-        line = (
-            linear_fit([r["D_in"] for r in ok], [r["alpha_mean"] for r in ok])
-            if len(ok) >= 2
-            else None
-        )
-        summary["fit_ranges"][str(mp)] = {"per_D": stats, "alpha_vs_D": line}
+
+    from warptrunc.sweep import SweepGrid, alpha_summary, run_sweep
+
+    if args.refit:
+        df = refit(args.out, args.refit)
+        spec = json.loads((args.out / "sweep.json").read_text())
+        args.n, args.seeds = spec["options"]["n"], len(spec["grid"]["seeds"])
+        args.delta = spec["grid"]["delta"][0] if len(spec["grid"]["delta"]) == 1 else None
+    else:
+        grid = SweepGrid.from_values(args.D, [args.delta], range(args.seeds))
+        df = run_sweep(grid, args.out, n=args.n, min_pixels=tuple(args.min_pixels),
+                       workers=args.workers, device=args.device, overwrite=args.overwrite)  # fmt: skip
+        df = df[df["error"].isna()]
+    summary = {"n": args.n, "seeds": args.seeds, "delta": args.delta, "paper": PAPER,
+               **alpha_summary(df)}  # fmt: skip
+    for mp, v in summary["fit_ranges"].items():
         print(f"\nmin_pixels = {mp}:")
-        for r in stats:
-            print(
-                f"  D_in = {r['D_in']:.1f}: α = {r['alpha_mean']:.3f} ± {r['alpha_sd']:.3f} ({r['n']} fits)"
-            )
+        for r in v["per_D"]:
+            print(f"  D_in = {r['D_in']:.1f}: α = {r['alpha_mean']:.3f} ± {r['alpha_sd']:.3f} "
+                  f"({r['n']} fits)")  # fmt: skip
+        line = v["alpha_vs_D"]
         if line:
             print(f"  α = {line['slope']:.3f}·D_in + {line['intercept']:.3f} (r = {line['r']:.3f});"
                   f" paper: α = 0.209·D_in + 0.090 (r = 0.940)")  # fmt: skip
-    (args.out / "summary.json").write_text(json.dumps(summary, indent=2, default=float) + "\n")
-    try:
-        from warptrunc import plot
+    name = "summary_refit.json" if args.refit else "summary.json"
+    (args.out / name).write_text(json.dumps(summary, indent=2, default=float) + "\n")
+    from warptrunc import plot
 
-        if hasattr(plot, "alpha_vs_D"):
-            plot.alpha_vs_D(summary, path=args.out / "alpha_vs_D.png")
-    except ImportError:
-        pass
-    print(f"\nwrote {args.out}/sweep.csv, summary.json")
+    png = "alpha_vs_D_refit.png" if args.refit else "alpha_vs_D.png"
+    plot.alpha_vs_D(summary, path=args.out / png)
+    print(f"\nstore {args.out} (sweep.json, cases.parquet, curves/); wrote {name}, {png}")
     return 0
 
 

@@ -110,6 +110,12 @@ NUMERIC = [
     (["calibrate", "--max-iter", "0"], ["--max-iter", "[2, 1000]", "'0'"]),
     (["calibrate", "--n-out", "0"], ["--n-out", "[2, inf)", "'0'"]),
     (["calibrate", "--seed-out", "-2"], ["--seed-out", "[0, inf)", "-2"]),
+    # sweep
+    (["sweep", "--D", "2.5", "3.1"], ["--D", "(2, 3)", "3.1"]),
+    (["sweep", "--delta", "0"], ["--delta", "(0, inf)", "'0'"]),
+    (["sweep", "--workers", "0"], ["--workers", "[1, 4096]", "'0'"]),
+    (["sweep", "--min-pixels", "5", "0"], ["--min-pixels", "[1, inf)", "'0'"]),
+    (["sweep", "--n", "nan"], ["--n", "integer", "nan"]),
 ]
 
 PATHS = [
@@ -132,6 +138,8 @@ PATHS = [
     (["calibrate", "{m}"], ["file", "not found", "{m}"]),
     (["calibrate", "--out", "{f}", "--D", "2.5"], ["--out", "existing file", "{f}"]),
     (["reproduce", "--out", "{f}"], ["--out", "existing file", "{f}"]),
+    (["sweep", "--grid", "{m}"], ["--grid", "not found", "{m}"]),
+    (["sweep", "--out", "{f}"], ["--out", "existing file", "{f}"]),
     (["reproduce", "--out", "{u}"], ["--out", "{u}"]),
 ]
 

@@ -193,7 +193,8 @@ def alpha_vs_D(
     ----------
     summary : dict or SweepTable
         The ``summary.json`` content of ``examples/parametric_sweep.py`` (``fit_ranges`` →
-        {min_pixels: {"per_D": [...], "alpha_vs_D": {...}}}), or the sweep's table.
+        {min_pixels: {"per_D": [...], "alpha_vs_D": {...}}}), or a sweep's cases table
+        (:func:`warptrunc.sweep.load`, a DataFrame) or :class:`~warptrunc.sweep.SweepTable`.
     min_pixels : int, optional
         Draw this fit range only (default: every fit range in ``summary``).
     paper : bool
@@ -245,25 +246,11 @@ def alpha_vs_D(
 
 def _alpha_ranges(summary: Any) -> dict:
     """{min_pixels: {"per_D": [...], "alpha_vs_D": line or None}} from a summary or a table."""
-    import numpy as np
-
     if isinstance(summary, dict):
         return dict(summary["fit_ranges"])
-    from .sweep import SweepTable, linear_fit
+    from .sweep import alpha_summary
 
-    cols = summary.columns
-    out = {}
-    for mp in np.unique(cols["min_pixels"]):
-        sel = cols["min_pixels"] == mp
-        stats = SweepTable({k: v[sel] for k, v in cols.items()}).group_stats(["D_in"], "alpha")
-        ok = [r for r in stats if r["n"] > 0 and np.isfinite(r["alpha_mean"])]
-        line = (
-            linear_fit([r["D_in"] for r in ok], [r["alpha_mean"] for r in ok])
-            if len(ok) >= 2
-            else None
-        )
-        out[str(int(mp))] = {"per_D": stats, "alpha_vs_D": line}
-    return out
+    return alpha_summary(summary)["fit_ranges"]
 
 
 # --- islands (Fig. 8) --------------------------------------------------------------------------

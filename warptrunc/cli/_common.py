@@ -272,13 +272,7 @@ def add_surface_source(p: argparse.ArgumentParser) -> None:
         "--D", type=real(2.0, 3.0), default=2.5,
         help="fractal dimension D, 2 < D < 3 (dimensionless)",
     )  # fmt: skip
-    g.add_argument("--Wr", type=positive("m"), default=100e-6, help="roll-off wavelength W_r (m)")
-    g.add_argument(
-        "--L", type=positive("m"), nargs="+", default=[1e-3], help="side length L, or Lx Ly (m)"
-    )
-    g.add_argument(
-        "--n", type=integer(2), nargs="+", default=[1024], help="pixels per side, or nx ny"
-    )
+    add_wm_shape(g)
     g.add_argument(
         "--Rt", type=positive("m"), default=10e-6, help="target peak-to-valley height R_t (m)"
     )
@@ -287,6 +281,18 @@ def add_surface_source(p: argparse.ArgumentParser) -> None:
         type=positive("m"),
         default=None,
         help="topothesy G (m); when given, heights are not rescaled to --Rt",
+    )
+    g.add_argument("--seed", type=integer(0), default=0, help="seed of the random phases α_mn")
+
+
+def add_wm_shape(g: argparse._ActionsContainer) -> None:
+    """WM options other than D, R_t/G and the seed: W_r, L, n, M, γ, W_c, cut-off (SI)."""
+    g.add_argument("--Wr", type=positive("m"), default=100e-6, help="roll-off wavelength W_r (m)")
+    g.add_argument(
+        "--L", type=positive("m"), nargs="+", default=[1e-3], help="side length L, or Lx Ly (m)"
+    )
+    g.add_argument(
+        "--n", type=integer(2), nargs="+", default=[1024], help="pixels per side, or nx ny"
     )
     g.add_argument(
         "--M", type=integer(1, 10_000), default=10, help="number of superposed ridges M"
@@ -307,7 +313,6 @@ def add_surface_source(p: argparse.ArgumentParser) -> None:
         help="default W_c: 'nyquist' = 2 pixel spacings (no aliasing), 'pixel' = 1 spacing "
         "(the paper's literal reading)",
     )
-    g.add_argument("--seed", type=integer(0), default=0, help="seed of the random phases α_mn")
 
 
 def add_reader_options(g: argparse._ActionsContainer) -> None:

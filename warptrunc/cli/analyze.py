@@ -34,6 +34,15 @@ HELP = "truncation analysis to the stiffness–load power law"
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc analyze``."""
     add_surface_source(p)
+    add_truncation_options(p)
+    add_fit_options(p)
+    add_device(p)
+    add_out(p)
+    p.add_argument("--no-plot", action="store_true", help="skip the PNG")
+
+
+def add_truncation_options(p: argparse.ArgumentParser) -> None:
+    """Depth increments, ω_max, material and β' (shared with ``warptrunc sweep``)."""
     g = p.add_argument_group("truncation and material")
     g.add_argument(
         "--increments", type=integer(1, 10_000_000), default=200,
@@ -69,19 +78,22 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--beta-prime", type=positive(), default=1.0, help="geometric factor β' of Eq. 2"
     )
+
+
+def add_fit_options(p: argparse.ArgumentParser, several: bool = False) -> None:
+    """``--min-pixels`` (one value, or several fit ranges) and ``--depth-window``."""
     f = p.add_argument_group("fit range")
     f.add_argument(
-        "--min-pixels", type=integer(1), default=DEFAULT_MIN_PIXELS,
-        help="fit only increments with at least this many contact pixels (1 = all with load > 0)",
+        "--min-pixels", type=integer(1), nargs="+" if several else None,
+        default=[DEFAULT_MIN_PIXELS] if several else DEFAULT_MIN_PIXELS,
+        help="fit only increments with at least this many contact pixels (1 = all with load > 0)"
+        + ("; several values: one fit (row) each" if several else ""),
     )  # fmt: skip
     f.add_argument(
         "--depth-window", type=real(0.0, lo_open=False, unit="m"), nargs=2, default=None,
         metavar=("LO", "HI"),
         help="fit only depths LO ≤ ω ≤ HI (m)",
     )  # fmt: skip
-    add_device(p)
-    add_out(p)
-    p.add_argument("--no-plot", action="store_true", help="skip the PNG")
 
 
 def run(args: argparse.Namespace) -> int:

@@ -1,0 +1,370 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Sweeps: grid parsing, the Parquet store, resume after SIGINT/SIGTERM, refusal of another
+grid, failing cases, and the Dask engine (2 workers; a worker killed mid-sweep)."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+pd = pytest.importorskip("pandas")
+pytest.importorskip("pyarrow")
+
+from warptrunc.sweep import (  # noqa: E402
+    CURVE_COLUMNS,
+    RUN_COLUMNS,
+    SweepGrid,
+    SweepOptions,
+    load,
+    load_curves,
+    parse_seeds,
+    run_sweep,
+)
+from warptrunc.wm import wm_surface  # noqa: E402
+
+OPTS = dict(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
+
+
+def _results(df):
+    """The cases table without the columns that describe where and when a case ran."""
+    return df.drop(columns=list(RUN_COLUMNS)).reset_index(drop=True)
+
+
+def test_parse_seeds_and_grid_errors(tmp_path):
+    assert parse_seeds("0-4") == (0, 1, 2, 3, 4)
+    assert parse_seeds("0-2,9") == (0, 1, 2, 9)
+    assert parse_seeds([3, "5"]) == (3, 5)
+    assert parse_seeds(7) == (7,)
+    for bad, msg in (("4-2", "lo ≤ hi"), ("a", "integers or ranges"), ("1,1", "repeat"),
+                     ("", "at least one"), ("-3", "seed")):  # fmt: skip
+        with pytest.raises(ValueError, match=msg):
+            parse_seeds(bad)
+    with pytest.raises(ValueError, match=r"D must be in \(2, 3\).*3.2"):
+        SweepGrid.from_values([2.5, 3.2], [0.01], "0")
+    with pytest.raises(ValueError, match="delta must be in"):
+        SweepGrid.from_values([2.5], [-0.01], "0")
+    f = tmp_path / "grid.toml"
+    f.write_text('D = [2.1, 2.5]\ndelta = [0.01]\nseeds = "0-2"\n')
+    g = SweepGrid.from_toml(f)
+    assert g.to_dict() == {"D": [2.1, 2.5], "delta": [0.01], "seeds": [0, 1, 2]} and len(g) == 6
+    f.write_text('D = [2.1]\ndelta = [0.01]\nseed = "0-2"\n')
+    with pytest.raises(ValueError, match=r"grid.toml.*unknown \['seed'\], missing \['seeds'\]"):
+        SweepGrid.from_toml(f)
+    with pytest.raises(ValueError, match="min_pixels must be an integer in"):
+        SweepOptions(min_pixels=(0,))
+
+
+def test_case_ids_identify_values_and_options():
+    g = SweepGrid.from_values([2.2, 2.5], [1], "0-1")
+    ids = [c.case_id for c in g.cases(SweepOptions(n=64))]
+    assert len(set(ids)) == 4
+    assert ids == [
+        c.case_id for c in SweepGrid([2.2, 2.5], [1.0], [0, 1]).cases(SweepOptions(n=64.0))
+    ]
+    assert not set(ids) & {c.case_id for c in g.cases(SweepOptions(n=128))}
+    # the id does not depend on the position in the grid
+    sub = SweepGrid.from_values([2.5], [1], "1").cases(SweepOptions(n=64))
+    assert sub[0].case_id == ids[3]
+
+
+def test_store_rows_and_curves_match_numpy(tmp_path):
+    grid = SweepGrid.from_values([2.3, 2.7], [0.01, 0.02], "0-1")
+    df = run_sweep(grid, tmp_path / "s", progress=False, device="cpu", **OPTS)
+    assert len(df) == 8 * 2 and df["error"].isna().all()
+    assert sorted((tmp_path / "s").iterdir()) == [tmp_path / "s" / n for n in
+                                                  ("cases.parquet", "curves", "sweep.json")]  # fmt: skip
+    spec = json.loads((tmp_path / "s" / "sweep.json").read_text())
+    assert spec["grid"]["seeds"] == [0, 1] and spec["options"]["n"] == 64
+    pd.testing.assert_frame_equal(load(tmp_path / "s"), df)
+    row = df[(df.D_in == 2.7) & (df.delta == 0.02) & (df.seed == 1) & (df.min_pixels == 20)]
+    assert len(row) == 1
+    row = row.iloc[0]
+    assert row.Rt_m == pytest.approx(0.02 * 100e-6) and row.nx == 64 and row.Lx_m == 1e-3
+    curve = load_curves(tmp_path / "s", row.case_id)
+    assert list(curve.columns) == ["case_id", *CURVE_COLUMNS] and len(curve) == 61
+    # counts against NumPy on the same surface
+    z = wm_surface(2.7, 100e-6, n=64, Rt=0.02 * 100e-6, seed=1, device="cpu").heights
+    thr = (np.float64(z.max()) - curve["depth_m"].to_numpy()).astype(np.float32)
+    np.testing.assert_array_equal(
+        curve["n_contact_pixels"], [np.count_nonzero(z >= t) for t in thr]
+    )
+    assert row.final_contact_pixels == np.count_nonzero(z >= thr[-1])
+    # the fit re-done from the stored curve with NumPy
+    sel = (curve["load_N"] > 0) & (curve["n_contact_pixels"] >= 20)
+    a, logb = np.polyfit(np.log(curve["F_over_EA"][sel]), np.log(curve["Ec_over_E"][sel]), 1)
+    assert row.alpha == pytest.approx(a, rel=1e-12) and row.beta == pytest.approx(np.exp(logb))
+    assert row.n_points == sel.sum()
+    assert len(load_curves(tmp_path / "s")) == 8 * 61
+
+
+def test_rerun_skips_other_grid_refused_overwrite(tmp_path):
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3], [0.01], "0-2")
+    first = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    again = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    pd.testing.assert_frame_equal(first, again)  # nothing recomputed: same times and stamps
+    with pytest.raises(ValueError, match=r"another grid or options \(grid.seeds: \[0, 1, 2\] → "
+                       r"\[0, 1, 2, 3\]\); use --overwrite"):  # fmt: skip
+        run_sweep(SweepGrid.from_values([2.3], [0.01], "0-3"), out, progress=False, **OPTS)
+    with pytest.raises(ValueError, match=r"options.increments: 60 → 61"):
+        run_sweep(grid, out, progress=False, **{**OPTS, "increments": 61})
+    assert load(out)["case_id"].nunique() == 3  # the refused runs changed nothing
+    new = run_sweep(SweepGrid.from_values([2.3], [0.01], "0-3"), out, overwrite=True,
+                    progress=False, device="cpu", **OPTS)  # fmt: skip
+    assert new["case_id"].nunique() == 4 and len(list((out / "curves").iterdir())) == 4
+
+
+def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
+    """A process killed between a curve write and the next cases.parquet flush loses nothing."""
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1")
+    full = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    (out / "cases.parquet").unlink()
+    (out / "curves" / ".x.parquet.tmp-123").write_bytes(b"PAR1 trunc")  # a half-written file
+    pd.testing.assert_frame_equal(load(out), full)
+    resumed = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    pd.testing.assert_frame_equal(resumed, full)  # same stamps: nothing was recomputed
+    assert not list((out / "curves").glob(".*tmp*"))
+
+
+def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
+    import warptrunc.wm
+
+    real = warptrunc.wm.wm_surface
+
+    def flaky(D, *a, seed=0, **kw):
+        if seed == 1:
+            raise RuntimeError("injected failure")
+        return real(D, *a, seed=seed, **kw)
+
+    monkeypatch.setattr(warptrunc.wm, "wm_surface", flaky)
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-2")
+    df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    bad = df[df["seed"] == 1]
+    assert len(bad) == 4 and (bad["error"] == "RuntimeError: injected failure").all()
+    assert bad["alpha"].isna().all() and bad["final_contact_pixels"].isna().all()
+    good = df[df["seed"] != 1]
+    assert len(good) == 8 and good["error"].isna().all() and good["alpha"].notna().all()
+    assert len(load_curves(out)) == 4 * 61  # failed cases have empty curves
+    monkeypatch.setattr(warptrunc.wm, "wm_surface", real)
+    assert run_sweep(grid, out, progress=False, device="cpu", **OPTS)["error"].notna().sum() == 4
+    fixed = run_sweep(grid, out, retry_failed=True, progress=False, device="cpu", **OPTS)
+    assert fixed["error"].isna().all()
+    pd.testing.assert_frame_equal(_results(fixed[fixed.seed != 1]), _results(good))
+
+
+# --- the CLI killed by a signal, then resumed ---------------------------------------------------
+
+KILL_ARGS = ["--D", "2.2", "2.5", "2.8", "--delta", "0.01", "0.02", "--seeds", "0-2", "--n", "128",
+             "--increments", "60", "--max-depth-fraction", "0.3", "--min-pixels", "1", "20",
+             "--device", "cpu", "--no-progress"]  # fmt: skip
+
+
+def _cli(out, *extra):
+    return [sys.executable, "-m", "warptrunc", "sweep", *KILL_ARGS, "--out", str(out), *extra]
+
+
+@pytest.fixture(scope="module")
+def reference():
+    """The uninterrupted sweep of KILL_ARGS, in process."""
+    grid = SweepGrid.from_values([2.2, 2.5, 2.8], [0.01, 0.02], "0-2")
+    return run_sweep(grid, None, progress=False, device="cpu", n=128, increments=60,
+                     max_depth_fraction=0.3, min_pixels=(1, 20))  # fmt: skip
+
+
+@pytest.mark.timeout(300)
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
+    out = tmp_path / "run"
+    p = subprocess.Popen(_cli(out), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    t0 = time.monotonic()
+    while len(list(out.glob("curves/*.parquet"))) < 2:
+        assert p.poll() is None, p.communicate()
+        assert time.monotonic() - t0 < 240, "the sweep did not start"
+        time.sleep(0.01)
+    p.send_signal(sig)
+    _, stderr = p.communicate(timeout=60)
+    assert p.returncode == (130 if sig == signal.SIGINT else 143), stderr
+    assert "run the same command again" in stderr
+    partial = load(out)
+    n_done = partial["case_id"].nunique()
+    assert 2 <= n_done < 18, "the signal came after the sweep had finished"
+    assert not list(out.rglob(".*tmp*"))
+    r = subprocess.run(_cli(out), capture_output=True, text=True, timeout=240)
+    assert r.returncode == 0, r.stderr
+    assert "18 cases (0 failed)" in r.stdout
+    final = load(out)
+    assert len(final) == 36 and not final.duplicated(["case_id", "min_pixels"]).any()
+    pd.testing.assert_frame_equal(_results(final), _results(reference))
+    # the cases finished before the signal were not recomputed
+    kept = final[final.case_id.isin(partial.case_id)]
+    np.testing.assert_array_equal(kept["finished_utc"], partial["finished_utc"])
+    assert len(list(out.glob("curves/*.parquet"))) == 18
+
+
+def test_cli_refuses_other_grid(tmp_path):
+    out = tmp_path / "run"
+    args = ["--D", "2.5", "--delta", "0.01", "--n", "64", "--increments", "20", "--device", "cpu",
+            "--no-progress", "--out", str(out)]  # fmt: skip
+    r = subprocess.run([sys.executable, "-m", "warptrunc", "sweep", *args], capture_output=True,
+                       text=True, timeout=120)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    r = subprocess.run([sys.executable, "-m", "warptrunc", "sweep", *args, "--seeds", "0-1"],
+                       capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert r.returncode == 2
+    assert (
+        r.stderr.strip()
+        .splitlines()[-1]
+        .startswith("warptrunc sweep: error: " + str(out) + " holds a sweep with another grid")
+    )
+    assert "--overwrite" in r.stderr and load(out)["case_id"].nunique() == 1
+
+
+# --- Dask: a local cluster of 2 worker processes ----------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def client():
+    distributed = pytest.importorskip("distributed")
+    import logging
+
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
+        silence_logs=logging.ERROR,
+    )  # fmt: skip
+    c = distributed.Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+DASK_GRID = SweepGrid.from_values([2.3, 2.6], [0.01], "0-3")
+
+
+@pytest.fixture(scope="module")
+def dask_reference():
+    return run_sweep(DASK_GRID, None, progress=False, device="cpu", **OPTS)
+
+
+@pytest.mark.timeout(240)
+def test_two_local_workers_same_table_as_in_process(tmp_path, dask_reference):
+    pytest.importorskip("distributed")
+    df = run_sweep(DASK_GRID, tmp_path / "s", workers=2, progress=False, **OPTS)
+    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
+    assert df["host"].nunique() == 1 and (df["device"] == "cpu").all()
+
+
+def _slow_cases_plugin():
+    """A worker plugin that delays each case, so that kills land mid-sweep."""
+    from distributed import WorkerPlugin
+
+    class SlowCases(WorkerPlugin):
+        name = "test-slow-cases"
+        idempotent = True
+
+        def setup(self, worker):
+            import warptrunc.sweep.engines as e
+
+            if not getattr(e.compute_case, "_slow", False):
+                real = e.compute_case
+
+                def slow(*a, **kw):
+                    time.sleep(0.4)
+                    return real(*a, **kw)
+
+                slow._slow = True
+                e.compute_case = slow
+
+    return SlowCases()
+
+
+@pytest.mark.timeout(300)
+def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_reference):
+    import threading
+
+    client.register_plugin(_slow_cases_plugin())  # a local class: pickled by value
+    out = tmp_path / "s"
+    box = {}
+
+    def sweep():
+        try:
+            box["df"] = run_sweep(DASK_GRID, out, scheduler=client, progress=False, device="cpu",
+                                  **OPTS)  # fmt: skip
+        except BaseException as exc:  # pragma: no cover - reported below
+            box["exc"] = exc
+
+    def wait_for(k):
+        t0 = time.monotonic()
+        while len(list(out.glob("curves/*.parquet"))) < k and th.is_alive():
+            assert time.monotonic() - t0 < 200
+            time.sleep(0.01)
+        return len(list(out.glob("curves/*.parquet")))
+
+    th = threading.Thread(target=sweep)
+    th.start()
+    done_at_kill = wait_for(1)
+    pids = client.run(os.getpid)
+    os.kill(next(iter(pids.values())), signal.SIGKILL)  # one worker process dies
+    done_at_restart = wait_for(done_at_kill + 2)
+    client.restart()  # every worker dies; running cases are cancelled and submitted again
+    th.join(240)
+    assert not th.is_alive() and "exc" not in box, box.get("exc")
+    assert done_at_kill < 8 and done_at_restart < 8, "the kills came after the sweep finished"
+    df = box["df"]
+    assert not df.duplicated(["case_id", "min_pixels"]).any()
+    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
+    pd.testing.assert_frame_equal(load(out), df)
+
+
+@pytest.mark.timeout(120)
+def test_workers_pinned_one_device_each(client):
+    from warptrunc.sweep.cluster import PinDevice
+    from warptrunc.sweep.engines import pinned_device
+
+    assert [pinned_device(i, 2) for i in range(4)] == ["cuda:0", "cuda:1", "cuda:0", "cuda:1"]
+    assert pinned_device("3", 4) == "cuda:3" and pinned_device(0, 0) is None
+    client.register_plugin(PinDevice(n_devices=2))  # as on a node with 2 GPUs
+    got = client.run(lambda dask_worker: (dask_worker.name, os.environ["WARPTRUNC_DEVICE"]))
+    assert sorted(got.values()) == [(0, "cuda:0"), (1, "cuda:1")]
+
+
+def test_parametric_sweep_example_and_refit_from_curves(tmp_path):
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "parametric_sweep.py"
+    spec = importlib.util.spec_from_file_location("parametric_sweep", path)
+    ex = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ex)
+    out = tmp_path / "g2"
+    args = ["--device", "cpu", "--n", "64", "--seeds", "2", "--D", "2.3", "2.7",
+            "--min-pixels", "1", "10", "--out", str(out)]  # fmt: skip
+    assert ex.main(args) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert set(summary["fit_ranges"]) == {"1", "10"}
+    assert (out / "alpha_vs_D.png").read_bytes()[:4] == b"\x89PNG"
+    assert ex.main(args) == 0  # resumed: nothing recomputed, same summary
+    assert json.loads((out / "summary.json").read_text()) == summary
+    refit = ex.refit(out, [10])  # NumPy fit of the stored curves = the sweep's fit
+    stored = load(out).query("min_pixels == 10").set_index("case_id")["alpha"]
+    np.testing.assert_allclose(refit.set_index("case_id")["alpha"][stored.index], stored,
+                               rtol=1e-12)  # fmt: skip
+
+
+def test_import_stays_light_and_missing_extra_is_named(monkeypatch):
+    code = (
+        "import sys, warptrunc, warptrunc.sweep, warptrunc.cli.sweep; "
+        "print(sorted(m for m in ('pandas', 'pyarrow', 'dask', 'distributed') if m in sys.modules))"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and r.stdout.strip() == "[]", r.stdout + r.stderr
+    monkeypatch.setitem(sys.modules, "pyarrow", None)  # as if pyarrow were not installed
+    with pytest.raises(ImportError, match=r'pyarrow is missing.*pip install "warptrunc\[sweep\]"'):
+        run_sweep(SweepGrid.from_values([2.5], [0.01], "0"), None, progress=False, n=64)

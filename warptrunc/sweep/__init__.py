@@ -1,0 +1,38 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Parameter sweeps over D and δ = R_t/W_r (paper §4.4, Fig. 9, Table 3), with a result store.
+
+>>> from warptrunc.sweep import SweepGrid, run_sweep, load
+>>> grid = SweepGrid.from_values(D=[2.1, 2.5], delta=[0.01], seeds="0-4")
+>>> df = run_sweep(grid, "runs/g2", n=1024, min_pixels=[1, 100])   # doctest: +SKIP
+>>> load("runs/g2").groupby(["min_pixels", "D_in"]).alpha.agg(["mean", "std"])  # doctest: +SKIP
+
+Modules: ``grid`` (SweepGrid, SweepOptions, case ids), ``store`` (the Parquet store:
+sweep.json, cases.parquet, curves/), ``engines`` (one case; in-process and Dask execution),
+``run`` (:func:`run_sweep`), ``stats`` (pandas summaries, :func:`linear_fit`, and the older
+in-memory :func:`sweep`/:class:`SweepTable`). pandas, pyarrow and dask are imported only
+inside these functions: ``pip install "warptrunc[sweep]"``.
+"""
+
+from .grid import Case, SweepGrid, SweepOptions, parse_seeds
+from .run import run_sweep
+from .stats import SweepTable, alpha_summary, linear_fit, sweep
+from .store import CASE_COLUMNS, CURVE_COLUMNS, RUN_COLUMNS, Store, load, load_curves
+
+__all__ = [
+    "CASE_COLUMNS",
+    "CURVE_COLUMNS",
+    "RUN_COLUMNS",
+    "Case",
+    "Store",
+    "SweepGrid",
+    "SweepOptions",
+    "SweepTable",
+    "alpha_summary",
+    "linear_fit",
+    "load",
+    "load_curves",
+    "parse_seeds",
+    "run_sweep",
+    "sweep",
+]

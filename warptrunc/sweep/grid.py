@@ -1,0 +1,286 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The sweep grid (D × δ × seeds), the options shared by every case, and case identity.
+
+A case is one surface: (D_in, δ, seed) with the options. Its id is a hash of exactly these
+values, so a store can tell finished cases from missing ones whatever order they ran in.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import asdict, dataclass, fields
+from pathlib import Path
+from typing import Any
+
+from .._validate import check_int, check_range
+from ..stiffness import DEFAULT_MIN_PIXELS
+
+__all__ = ["Case", "SweepGrid", "SweepOptions", "parse_seeds"]
+
+FORMAT = "warptrunc-sweep/1"
+"""Store format tag; part of every case id."""
+
+
+def parse_seeds(spec: str | int | Iterable[int | str]) -> tuple[int, ...]:
+    """Seeds from ``"0-4"``, ``"0,2,7"``, ``"0-2,9"``, an int or a list of those.
+
+    Ranges are inclusive: ``"0-4"`` is 0, 1, 2, 3, 4.
+    """
+    if isinstance(spec, bool):
+        raise ValueError(f"seeds must be integers or ranges like '0-4', got {spec!r}")
+    if isinstance(spec, int):
+        items: list = [spec]
+    elif isinstance(spec, str):
+        items = [s for s in spec.replace(" ", "").split(",") if s]
+    else:
+        items = list(spec)
+    out: list[int] = []
+    for it in items:
+        m = re.fullmatch(r"(\d+)-(\d+)", it) if isinstance(it, str) else None
+        if m:
+            lo, hi = int(m[1]), int(m[2])
+            if hi < lo:
+                raise ValueError(f"seed range must have lo ≤ hi, got {it!r}")
+            out.extend(range(lo, hi + 1))
+            continue
+        try:
+            v = int(it) if isinstance(it, str) else it
+        except ValueError:
+            raise ValueError(f"seeds must be integers or ranges like '0-4', got {it!r}") from None
+        out.append(v)
+    for s in out:
+        check_int("seed", s, 0, 2**32 - 1)
+    if not out:
+        raise ValueError(f"seeds must name at least one seed, got {spec!r}")
+    if len(set(out)) != len(out):
+        raise ValueError(f"seeds must not repeat, got {spec!r}")
+    return tuple(out)
+
+
+def _floats(name: str, values: Any, lo: float, hi: float | None) -> tuple[float, ...]:
+    if isinstance(values, (int, float)):
+        values = [values]
+    out = tuple(check_range(name, v, lo, hi) for v in values)
+    if not out:
+        raise ValueError(f"{name} must hold at least one value, got {values!r}")
+    if len(set(out)) != len(out):
+        raise ValueError(f"{name} values must not repeat, got {values!r}")
+    return out
+
+
+@dataclass(frozen=True)
+class Case:
+    """One surface of the sweep."""
+
+    index: int
+    """Position in the grid's order (D slowest, then δ, then seed)."""
+    D: float
+    """Input fractal dimension D_in (dimensionless)."""
+    delta: float
+    """Relative roughness δ = R_t/W_r (dimensionless)."""
+    seed: int
+    """Phase seed."""
+    case_id: str
+    """Stable hash of (D, δ, seed) and the options."""
+
+
+@dataclass(frozen=True)
+class SweepOptions:
+    """Generation, truncation, material and fit options shared by every case (SI units).
+
+    Names follow ``warptrunc analyze``; R_t is not an option: each case has R_t = δ·W_r.
+    """
+
+    Wr: float = 100e-6
+    """Roll-off wavelength W_r (m)."""
+    L: float | tuple[float, float] = 1e-3
+    """Side length, or (Lx, Ly) (m)."""
+    n: int | tuple[int, int] = 1024
+    """Pixels per side, or (nx, ny)."""
+    M: int = 10
+    """Number of superposed ridges."""
+    gamma: float = 1.5
+    """WM frequency density γ > 1 (dimensionless)."""
+    Wc: float | None = None
+    """Cut-off wavelength W_c (m); default from ``cutoff``."""
+    cutoff: str = "nyquist"
+    """Default W_c: 'nyquist' (2 pixels) or 'pixel' (1 pixel)."""
+    increments: int = 200
+    """Number of depth increments n."""
+    max_depth_fraction: float = 0.1
+    """ω_max as a fraction of R_t (dimensionless)."""
+    max_depth: float | None = None
+    """ω_max (m); overrides the fraction."""
+    E: float = 70e9
+    """Young's modulus of the rough body (Pa)."""
+    nu: float = 0.33
+    """Poisson's ratio of the rough body."""
+    E_flat: float = math.inf
+    """Young's modulus of the flat (Pa); inf = rigid."""
+    nu_flat: float = 0.0
+    """Poisson's ratio of the flat."""
+    beta_prime: float = 1.0
+    """Geometric factor β' of Eq. 2."""
+    min_pixels: tuple[int, ...] = (DEFAULT_MIN_PIXELS,)
+    """Fit ranges: one row per value (increments with at least this many contact pixels)."""
+    depth_window: tuple[float, float] | None = None
+    """Fit only depths lo ≤ ω ≤ hi (m)."""
+
+    def __post_init__(self) -> None:
+        from ..stiffness import Material
+
+        s = object.__setattr__
+        s(self, "Wr", check_range("Wr", self.Wr, 0, None, unit="m"))
+        if isinstance(self.L, (int, float)):
+            s(self, "L", check_range("L", self.L, 0, None, unit="m"))
+        else:
+            s(self, "L", tuple(check_range("L", v, 0, None, unit="m") for v in self.L))
+            if len(self.L) != 2:
+                raise ValueError(f"L must be a length or an (Lx, Ly) pair (m), got {self.L!r}")
+        if isinstance(self.n, (int, float)):
+            s(self, "n", check_int("n", self.n, 8))
+        else:
+            s(self, "n", tuple(check_int("n", v, 8) for v in self.n))
+            if len(self.n) != 2:
+                raise ValueError(f"n must be an int or an (nx, ny) pair, got {self.n!r}")
+        s(self, "M", check_int("M", self.M, 1))
+        s(self, "gamma", check_range("gamma", self.gamma, 1, None))
+        if self.Wc is not None:
+            s(self, "Wc", check_range("Wc", self.Wc, 0, None, unit="m"))
+        if self.cutoff not in ("nyquist", "pixel"):
+            raise ValueError(f"cutoff must be 'nyquist' or 'pixel', got {self.cutoff!r}")
+        s(self, "increments", check_int("increments", self.increments, 1))
+        s(self, "max_depth_fraction",
+          check_range("max_depth_fraction", self.max_depth_fraction, 0, 1, hi_open=False))  # fmt: skip
+        if self.max_depth is not None:
+            s(self, "max_depth", check_range("max_depth", self.max_depth, 0, None, unit="m"))
+        Material(E=self.E, nu=self.nu, E_i=self.E_flat, nu_i=self.nu_flat)  # validates
+        s(self, "E", float(self.E))
+        s(self, "nu", float(self.nu))
+        s(self, "E_flat", float(self.E_flat))
+        s(self, "nu_flat", float(self.nu_flat))
+        s(self, "beta_prime", check_range("beta_prime", self.beta_prime, 0, None))
+        mp = (self.min_pixels,) if isinstance(self.min_pixels, int) else tuple(self.min_pixels)
+        if not mp or len(set(mp)) != len(mp):
+            raise ValueError(f"min_pixels must hold distinct values, got {self.min_pixels!r}")
+        s(self, "min_pixels", tuple(check_int("min_pixels", v, 1) for v in mp))
+        if self.depth_window is not None:
+            lo, hi = (float(v) for v in self.depth_window)
+            if not 0 <= lo < hi:
+                raise ValueError(
+                    f"depth_window must be (lo, hi) with 0 ≤ lo < hi (m), got {self.depth_window!r}"
+                )
+            s(self, "depth_window", (lo, hi))
+
+    def to_dict(self) -> dict[str, Any]:
+        """The options as JSON-ready values (tuples as lists)."""
+        d = asdict(self)
+        return {k: list(v) if isinstance(v, tuple) else v for k, v in d.items()}
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> SweepOptions:
+        """Inverse of :meth:`to_dict`; unknown names raise ValueError."""
+        names = {f.name for f in fields(cls)}
+        bad = sorted(set(d) - names)
+        if bad:
+            raise ValueError(f"unknown sweep options {bad}; allowed: {sorted(names)}")
+        kw = {k: tuple(v) if isinstance(v, list) else v for k, v in d.items()}
+        return cls(**kw)
+
+    def material(self):
+        """The :class:`warptrunc.Material`."""
+        from ..stiffness import Material
+
+        return Material(E=self.E, nu=self.nu, E_i=self.E_flat, nu_i=self.nu_flat)
+
+
+@dataclass(frozen=True)
+class SweepGrid:
+    """The cases of a sweep: every (D_in, δ, seed) combination.
+
+    Build it from values, from the CLI's ``--D ... --delta ... --seeds 0-4`` with
+    :meth:`from_values`, or from a TOML file with :meth:`from_toml`::
+
+        D = [2.1, 2.3, 2.5]      # input fractal dimensions (dimensionless)
+        delta = [0.005, 0.01]    # δ = R_t/W_r (dimensionless)
+        seeds = "0-4"            # or [0, 1, 2, 3, 4]
+    """
+
+    D: tuple[float, ...]
+    """Input fractal dimensions D_in, each in (2, 3) (dimensionless)."""
+    delta: tuple[float, ...]
+    """Relative roughness values δ = R_t/W_r > 0 (dimensionless)."""
+    seeds: tuple[int, ...]
+    """Phase seeds."""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "D", _floats("D", self.D, 2, 3))
+        object.__setattr__(self, "delta", _floats("delta", self.delta, 0, None))
+        object.__setattr__(self, "seeds", parse_seeds(self.seeds))
+
+    @classmethod
+    def from_values(
+        cls, D: Sequence[float] | float, delta: Sequence[float] | float, seeds: Any
+    ) -> SweepGrid:
+        """From values; ``seeds`` may be ``"0-4"``, ``"0,3"``, an int or a list."""
+        return cls(D=D, delta=delta, seeds=seeds)  # type: ignore[arg-type]
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> SweepGrid:
+        """From {"D": [...], "delta": [...], "seeds": ...}; other keys raise ValueError."""
+        bad = sorted(set(d) - {"D", "delta", "seeds"})
+        missing = sorted({"D", "delta", "seeds"} - set(d))
+        if bad or missing:
+            raise ValueError(
+                f"a sweep grid has exactly the keys D, delta, seeds; "
+                f"unknown {bad}, missing {missing}"
+            )
+        return cls(D=d["D"], delta=d["delta"], seeds=d["seeds"])
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> SweepGrid:
+        """From a TOML file with the keys D, delta and seeds."""
+        try:
+            import tomllib
+        except ImportError:  # Python 3.10: the sweep extra installs tomli
+            import tomli as tomllib
+
+        path = Path(path)
+        try:
+            d = tomllib.loads(path.read_text())
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{path}: not valid TOML: {exc}") from None
+        try:
+            return cls.from_dict(d)
+        except ValueError as exc:
+            raise ValueError(f"{path}: {exc}") from None
+
+    def to_dict(self) -> dict[str, list]:
+        """{"D": [...], "delta": [...], "seeds": [...]}."""
+        return {"D": list(self.D), "delta": list(self.delta), "seeds": list(self.seeds)}
+
+    def __len__(self) -> int:
+        return len(self.D) * len(self.delta) * len(self.seeds)
+
+    def cases(self, options: SweepOptions) -> list[Case]:
+        """Every case in grid order (D slowest, then δ, then seed)."""
+        opts = options.to_dict()
+        out = []
+        for D in self.D:
+            for delta in self.delta:
+                for seed in self.seeds:
+                    out.append(Case(len(out), D, delta, seed, case_id(D, delta, seed, opts)))
+        return out
+
+
+def case_id(D: float, delta: float, seed: int, options: dict[str, Any]) -> str:
+    """16 hex digits of SHA-256 over the format tag, the case values and the options."""
+    key = {"format": FORMAT, "D": float(D), "delta": float(delta), "seed": int(seed)}
+    key["options"] = options
+    blob = json.dumps(key, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(blob.encode()).hexdigest()[:16]

@@ -1,0 +1,114 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""``run_sweep``: the grid, the store and an engine put together."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from .._validate import check_int
+from .grid import SweepGrid, SweepOptions
+from .store import Store
+
+__all__ = ["as_grid", "run_sweep"]
+
+
+def as_grid(grid: Any) -> SweepGrid:
+    """A :class:`SweepGrid` from a grid, a dict {"D", "delta", "seeds"} or a TOML path."""
+    if isinstance(grid, SweepGrid):
+        return grid
+    if isinstance(grid, dict):
+        return SweepGrid.from_dict(grid)
+    if isinstance(grid, (str, Path)):
+        return SweepGrid.from_toml(grid)
+    raise ValueError(f"grid must be a SweepGrid, a dict or a TOML path, got {type(grid).__name__}")
+
+
+def run_sweep(
+    grid: Any,
+    out: str | Path | None = None,
+    *,
+    workers: int | None = None,
+    scheduler: Any = None,
+    overwrite: bool = False,
+    retry_failed: bool = False,
+    progress: bool = True,
+    device: Any = None,
+    **options: Any,
+):
+    """Run every case of ``grid`` (or those a store at ``out`` still lacks).
+
+    Parameters
+    ----------
+    grid : SweepGrid, dict or path
+        D_in × δ × seeds; a dict {"D": [...], "delta": [...], "seeds": "0-4"} or a TOML file
+        with those keys.
+    out : path, optional
+        Store folder (``sweep.json``, ``cases.parquet``, ``curves/``). An existing store made
+        by the same grid and options is resumed; another one is refused (ValueError) unless
+        ``overwrite``. ``None`` keeps the results in memory only.
+    workers : int, optional
+        Run on a ``dask.distributed.LocalCluster`` of this many worker processes (one thread
+        each); with CUDA devices and ``device=None``, worker i is pinned to ``cuda:{i mod
+        n_gpus}``. Default: in this process. The workers are spawned processes, so a script
+        that passes ``workers`` needs the ``if __name__ == "__main__":`` guard.
+    scheduler : str or distributed.Client, optional
+        Use an existing Dask cluster (e.g. ``"tcp://host:8786"``, or a dask-jobqueue
+        cluster's ``scheduler_address``) instead.
+    overwrite : bool
+        Replace an existing store's results.
+    retry_failed : bool
+        Run again the cases that the store records as failed.
+    progress : bool
+        tqdm progress bar (every engine).
+    device : str, optional
+        Warp device for every case; default ``$WARPTRUNC_DEVICE``, else CUDA when present
+        (per-worker pinning with ``workers``).
+    **options
+        Fields of :class:`SweepOptions` (as ``warptrunc analyze``): Wr (m), L (m), n, M,
+        gamma, Wc (m), cutoff, increments, max_depth_fraction, max_depth (m), E (Pa), nu,
+        E_flat (Pa), nu_flat, beta_prime, min_pixels (one or several fit ranges),
+        depth_window (m).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per case × fit range, in grid order; columns ``store.CASE_COLUMNS``.
+        A case that raised has its message in ``error`` and NaN results.
+    """
+    grid = as_grid(grid)
+    try:
+        opts = SweepOptions(**options)
+    except TypeError:
+        from dataclasses import fields
+
+        allowed = sorted(f.name for f in fields(SweepOptions))
+        bad = sorted(set(options) - set(allowed))
+        raise ValueError(f"unknown sweep options {bad}; allowed: {allowed}") from None
+    if workers is not None:
+        workers = check_int("workers", workers, 1)
+    if workers is not None and scheduler is not None:
+        raise ValueError("give workers (a local cluster) or scheduler (an existing one), not both")
+    store = Store(out, grid, opts, overwrite=overwrite, retry_failed=retry_failed)
+    todo = [c for c in grid.cases(opts) if c.case_id not in store.done]
+    try:
+        if todo and (workers is not None or scheduler is not None):
+            try:
+                from .cluster import run_dask
+            except ImportError as exc:
+                raise ImportError(
+                    f"workers/scheduler need dask.distributed ({exc.name} is missing): "
+                    'pip install "warptrunc[sweep]"'
+                ) from None
+
+            run_dask(todo, opts, store.add, workers=workers, scheduler=scheduler,
+                     device=device, total=len(grid), progress=progress)  # fmt: skip
+        elif todo:
+            from .engines import run_inprocess
+
+            run_inprocess(todo, opts, store.add, device=device, total=len(grid),
+                          progress=progress)  # fmt: skip
+    finally:
+        store.flush()
+    return store.frame()

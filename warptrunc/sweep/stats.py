@@ -1,0 +1,126 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Summaries of a sweep's cases table with pandas, the α(D) line, and the in-memory API.
+
+:func:`alpha_summary` gives, per fit range, the mean and standard deviation of α over the
+seeds at each D_in and the least-squares line α(D_in) (the paper's Table 3).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..stiffness import DEFAULT_MIN_PIXELS
+
+__all__ = ["SweepTable", "alpha_summary", "group_stats", "linear_fit", "sweep"]
+
+
+def linear_fit(x: Iterable[float], y: Iterable[float]) -> dict[str, float]:
+    """Least-squares line y = slope·x + intercept with Pearson r (as in the paper's Table 3)."""
+    x = np.asarray(list(x), dtype=float)
+    y = np.asarray(list(y), dtype=float)
+    slope, intercept = np.polyfit(x, y, 1)
+    r = float(np.corrcoef(x, y)[0, 1])
+    return {"slope": float(slope), "intercept": float(intercept), "r": r}
+
+
+def group_stats(df, by: Sequence[str], value: str) -> list[dict[str, Any]]:
+    """Mean and sample standard deviation (ddof=1) of the finite ``value`` per group of ``by``.
+
+    Groups whose values are all NaN are kept with n = 0 and NaN statistics.
+    """
+    from .store import require_extra
+
+    require_extra()
+    v = df[value].astype(float)
+    d = df.assign(_v=v.where(np.isfinite(v)))
+    g = d.groupby(list(by), sort=True, dropna=False)["_v"].agg(["mean", "std", "count"])
+    return [
+        {**dict(zip(by, key if isinstance(key, tuple) else (key,), strict=True)),
+         f"{value}_mean": float(r["mean"]), f"{value}_sd": float(r["std"]), "n": int(r["count"])}
+        for key, r in g.iterrows()
+    ]  # fmt: skip
+
+
+def alpha_summary(df) -> dict[str, Any]:
+    """{"fit_ranges": {min_pixels: {"per_D": [...], "alpha_vs_D": line or None}}} of a table.
+
+    ``df`` is a cases table (:func:`warptrunc.sweep.load`) or a :class:`SweepTable`.
+    ``per_D`` holds ``D_in``, ``alpha_mean``, ``alpha_sd`` (over seeds and δ) and ``n``;
+    ``alpha_vs_D`` is :func:`linear_fit` of the means against D_in (None below 2 points).
+    """
+    import pandas as pd
+
+    if isinstance(df, SweepTable):
+        df = pd.DataFrame(df.columns)
+    out = {}
+    for mp, part in df.groupby("min_pixels", sort=True):
+        stats = group_stats(part, ["D_in"], "alpha")
+        ok = [r for r in stats if r["n"] > 0 and np.isfinite(r["alpha_mean"])]
+        line = (
+            linear_fit([r["D_in"] for r in ok], [r["alpha_mean"] for r in ok])
+            if len(ok) >= 2
+            else None
+        )
+        out[str(int(mp))] = {"per_D": stats, "alpha_vs_D": line}
+    return {"fit_ranges": out}
+
+
+@dataclass(frozen=True, eq=False)
+class SweepTable:
+    """One row per (D, δ, seed, fit range); columns as 1-D arrays (the in-memory API)."""
+
+    columns: dict[str, np.ndarray]
+    """Column name → (n_rows,) array. Lengths in m."""
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """The columns."""
+        return dict(self.columns)
+
+    def group_stats(self, by: Sequence[str], value: str) -> list[dict[str, Any]]:
+        """Mean and sample standard deviation of ``value`` grouped by the columns ``by``."""
+        import pandas as pd
+
+        return group_stats(pd.DataFrame(self.columns), by, value)
+
+
+def sweep(
+    D_values: Sequence[float],
+    delta_values: Sequence[float],
+    seeds: Sequence[int],
+    *,
+    Wr: float = 100e-6,
+    L: float = 1e-3,
+    n: int = 1024,
+    n_increments: int = 200,
+    max_depth_fraction: float = 0.1,
+    min_pixels: Sequence[int] = (DEFAULT_MIN_PIXELS,),
+    material: Any = None,
+    out: str | Path | None = None,
+    progress: bool = True,
+    device: Any = None,
+    **wm_kwargs: Any,
+) -> SweepTable:
+    """Run truncation analyses over D × δ × seeds; the table as a :class:`SweepTable`.
+
+    A thin wrapper of :func:`warptrunc.sweep.run_sweep` (which returns a DataFrame and
+    takes every option); ``out`` is a result store folder, resumed when it exists.
+    ``wm_kwargs``: M, gamma, Wc, cutoff. ``material``: a :class:`warptrunc.Material`.
+    """
+    from .grid import SweepGrid
+    from .run import run_sweep
+
+    mat = {}
+    if material is not None:
+        mat = dict(E=material.E, nu=material.nu, E_flat=material.E_i, nu_flat=material.nu_i)
+    df = run_sweep(
+        SweepGrid(D=tuple(D_values), delta=tuple(delta_values), seeds=tuple(seeds)), out,
+        Wr=Wr, L=L, n=n, increments=n_increments, max_depth_fraction=max_depth_fraction,
+        min_pixels=tuple(min_pixels), progress=progress, device=device, **mat, **wm_kwargs,
+    )  # fmt: skip
+    return SweepTable({c: df[c].to_numpy() for c in df.columns})

@@ -1,0 +1,360 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The result store: a directory holding a sweep's grid, cases table and per-case curves.
+
+Layout::
+
+    OUT/sweep.json              format tag, grid, options (what made the store)
+    OUT/cases.parquet           one row per case × fit range (see CASE_COLUMNS)
+    OUT/curves/<case_id>.parquet  the case's curve (depth_m, n_contact_pixels, ...); its
+                                Parquet metadata also holds the case's rows, so the cases
+                                table can be rebuilt from the curve files alone
+
+Every file is written to a temporary name in the same folder, flushed to disk and renamed
+(atomic on POSIX), so a crash leaves either the old file or the new one. A case counts as
+finished once its curve file exists; ``cases.parquet`` is rewritten at most every
+``flush_interval`` seconds and on close, and rows missing from it after a hard kill are
+recovered from the curve files on the next open. One process (the sweep's client) writes.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .grid import FORMAT, SweepGrid, SweepOptions
+
+__all__ = ["CASE_COLUMNS", "CURVE_COLUMNS", "RUN_COLUMNS", "Store", "load", "load_curves"]
+
+CASE_COLUMNS = (
+    "case_id", "case_index", "D_in", "delta", "seed", "Rt_m", "Wr_m", "Lx_m", "Ly_m", "nx",
+    "ny", "M", "gamma", "Wc_m", "cutoff", "increments", "max_depth_fraction", "max_depth_m",
+    "E_Pa", "nu", "E_flat_Pa", "nu_flat", "beta_prime", "min_pixels", "depth_window_lo_m",
+    "depth_window_hi_m", "alpha", "beta", "r2", "n_points", "fit_depth_min_m",
+    "fit_depth_max_m", "final_contact_pixels", "final_area_fraction", "rt_measured_m",
+    "fit_error", "error", "seconds", "device", "device_name", "host", "finished_utc",
+    "warptrunc_version", "git_commit",
+)  # fmt: skip
+"""Columns of ``cases.parquet``, in order; units in the names (SI)."""
+
+RUN_COLUMNS = ("seconds", "device", "device_name", "host", "finished_utc", "git_commit")
+"""Columns that describe how and where a case ran rather than its result."""
+
+CURVE_COLUMNS = (
+    "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
+    "Ec_over_E", "F_over_EA",
+)  # fmt: skip
+"""Columns of a curve file (as ``warptrunc analyze``'s curve.csv)."""
+
+_INT = ("case_index", "seed", "nx", "ny", "M", "increments", "min_pixels")
+_NULLABLE_INT = ("n_points", "final_contact_pixels")
+_STR = ("case_id", "cutoff", "fit_error", "error", "device", "device_name", "host",
+        "finished_utc", "warptrunc_version", "git_commit")  # fmt: skip
+_META_KEY = b"warptrunc.rows"
+
+
+def require_extra() -> None:
+    """Import pandas and pyarrow, or raise ImportError naming the extra to install."""
+    try:
+        import pandas  # noqa: F401
+        import pyarrow  # noqa: F401
+    except ImportError as exc:
+        raise ImportError(
+            f"sweeps need pandas and pyarrow ({exc.name} is missing): "
+            'pip install "warptrunc[sweep]"'
+        ) from None
+
+
+def rows_frame(rows: list[dict[str, Any]]):
+    """The rows as a DataFrame with the columns and dtypes of ``cases.parquet``."""
+    import pandas as pd
+
+    df = pd.DataFrame.from_records(rows, columns=list(CASE_COLUMNS))
+    for c in _INT:
+        df[c] = df[c].astype("int64")
+    for c in _NULLABLE_INT:
+        df[c] = df[c].astype("Int64")
+    for c in _STR:
+        df[c] = df[c].astype("string")
+    for c in set(CASE_COLUMNS) - set(_INT) - set(_NULLABLE_INT) - set(_STR):
+        df[c] = df[c].astype("float64")
+    return df
+
+
+def _sorted(df):
+    return df.sort_values(["case_index", "min_pixels"], kind="stable").reset_index(drop=True)
+
+
+def _write_atomic(path: Path, data: bytes) -> None:
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    with open(tmp, "wb") as fh:
+        fh.write(data)
+        fh.flush()
+        os.fsync(fh.fileno())
+    os.replace(tmp, path)
+
+
+def _parquet_bytes(df) -> bytes:
+    import pyarrow as pa
+
+    return _table_bytes(pa.Table.from_pandas(df, preserve_index=False))
+
+
+def _table_bytes(table) -> bytes:
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    sink = pa.BufferOutputStream()
+    pq.write_table(table, sink)
+    return sink.getvalue().to_pybytes()
+
+
+def _jsonable(v: Any) -> Any:
+    if isinstance(v, (np.integer,)):
+        return int(v)
+    if isinstance(v, (np.floating,)):
+        return float(v)
+    return v
+
+
+class Store:
+    """A sweep's result directory (or, with ``path=None``, rows kept in memory only).
+
+    Parameters
+    ----------
+    path : path or None
+        The store folder; created if missing.
+    grid, options
+        What the sweep computes; compared with ``sweep.json`` of an existing store.
+    overwrite : bool
+        Delete an existing store's files (sweep.json, cases.parquet, curves/) first.
+    retry_failed : bool
+        Forget cases recorded with an error so that they run again.
+    flush_interval : float
+        Rewrite ``cases.parquet`` at most this often while cases stream in (s); see
+        :meth:`flush`.
+    """
+
+    def __init__(
+        self,
+        path: str | Path | None,
+        grid: SweepGrid,
+        options: SweepOptions,
+        *,
+        overwrite: bool = False,
+        retry_failed: bool = False,
+        flush_interval: float = 2.0,
+    ) -> None:
+        require_extra()
+        self.path = None if path is None else Path(path)
+        self.grid, self.options = grid, options
+        self.flush_interval = flush_interval
+        self.rows: dict[str, list[dict[str, Any]]] = {}
+        self.duplicates = 0
+        self._dirty = False
+        self._last_flush = time.monotonic()
+        self._interval = flush_interval
+        if self.path is None:
+            return
+        self.curves = self.path / "curves"
+        spec = self.spec()
+        meta = self.path / "sweep.json"
+        if overwrite:
+            self._remove()
+        elif meta.exists():
+            _check_same(self.path, json.loads(meta.read_text()), spec)
+        elif (self.path / "cases.parquet").exists() or self.curves.exists():
+            raise ValueError(
+                f"{self.path} holds sweep results but no sweep.json; use --overwrite or a new --out"
+            )
+        self.curves.mkdir(parents=True, exist_ok=True)
+        for tmp in [*self.path.glob(".*.tmp-*"), *self.curves.glob(".*.tmp-*")]:
+            tmp.unlink()  # left by a crash mid-write
+        if not meta.exists():
+            _write_atomic(meta, (json.dumps(spec, indent=2) + "\n").encode())
+        self._read_existing()
+        if retry_failed:
+            for cid in [c for c, r in self.rows.items() if r[0]["error"] is not None]:
+                del self.rows[cid]
+                (self.curves / f"{cid}.parquet").unlink(missing_ok=True)
+                self._dirty = True
+        self.flush()
+
+    def spec(self) -> dict[str, Any]:
+        """The content of ``sweep.json``."""
+        return {
+            "format": FORMAT,
+            "grid": self.grid.to_dict(),
+            "options": self.options.to_dict(),
+            "n_cases": len(self.grid),
+        }
+
+    def _remove(self) -> None:
+        for f in ("sweep.json", "cases.parquet"):
+            (self.path / f).unlink(missing_ok=True)
+        if self.curves.exists():
+            for f in self.curves.iterdir():
+                if f.suffix == ".parquet" or ".tmp-" in f.name:
+                    f.unlink(missing_ok=True)
+
+    def _read_existing(self) -> None:
+        import pyarrow.parquet as pq
+
+        wanted = {c.case_id for c in self.grid.cases(self.options)}
+        table = self.path / "cases.parquet"
+        if table.exists():
+            for r in load(self.path, _raw=True).to_dict("records"):
+                r = {k: (None if _isna(v) else _jsonable(v)) for k, v in r.items()}
+                self.rows.setdefault(r["case_id"], []).append(r)
+        for f in self.curves.glob("*.parquet"):
+            cid = f.stem
+            if cid in self.rows or cid not in wanted:
+                continue
+            meta = pq.read_schema(f).metadata or {}
+            if _META_KEY in meta:  # finished after the last cases.parquet flush
+                self.rows[cid] = json.loads(meta[_META_KEY])
+                self._dirty = True
+        for cid in set(self.rows) - wanted:
+            raise ValueError(f"{self.path}: case {cid} in cases.parquet is not in the grid")
+
+    @property
+    def done(self) -> set[str]:
+        """Ids of the finished cases (including recorded failures)."""
+        return set(self.rows)
+
+    def add(self, rows: list[dict[str, Any]], curve: dict[str, np.ndarray] | None) -> bool:
+        """Record one finished case; returns False (and writes nothing) for a duplicate."""
+        cid = rows[0]["case_id"]
+        if cid in self.rows:
+            self.duplicates += 1
+            return False
+        rows = [{k: _jsonable(v) for k, v in r.items()} for r in rows]
+        if self.path is not None:
+            import pyarrow as pa
+
+            cols = {k: np.asarray(curve[k]) if curve else np.zeros(0) for k in CURVE_COLUMNS}
+            cols["n_contact_pixels"] = cols["n_contact_pixels"].astype(np.int64)
+            table = pa.table(cols).replace_schema_metadata(
+                {_META_KEY: json.dumps(rows, allow_nan=True).encode()}
+            )
+            _write_atomic(self.curves / f"{cid}.parquet", _table_bytes(table))
+        self.rows[cid] = rows
+        self._dirty = True
+        if time.monotonic() - self._last_flush >= self._interval:
+            self.flush()
+        return True
+
+    def frame(self):
+        """The cases table (DataFrame) in grid order."""
+        rows = [r for rs in self.rows.values() for r in rs]
+        return _sorted(rows_frame(rows))
+
+    def flush(self) -> None:
+        """Rewrite ``cases.parquet`` (atomically) if rows were added since the last flush.
+
+        While streaming, the interval grows to 10× the time a flush takes, so that rewriting
+        a large table never dominates (the curve files hold every row meanwhile).
+        """
+        t0 = time.monotonic()
+        self._last_flush = t0
+        if self.path is None or not self._dirty:
+            return
+        _write_atomic(self.path / "cases.parquet", _parquet_bytes(self.frame()))
+        self._dirty = False
+        self._interval = max(self.flush_interval, 10 * (time.monotonic() - t0))
+
+
+def _isna(v: Any) -> bool:
+    import pandas as pd
+
+    return v is None or v is pd.NA
+
+
+def _diff(a: Any, b: Any, prefix: str = "") -> list[str]:
+    if isinstance(a, dict) and isinstance(b, dict):
+        out = []
+        for k in sorted(set(a) | set(b)):
+            out += _diff(a.get(k), b.get(k), f"{prefix}{k}.")
+        return out
+    return [] if a == b else [f"{prefix[:-1]}: {a!r} → {b!r}"]
+
+
+def _check_same(path: Path, old: dict[str, Any], new: dict[str, Any]) -> None:
+    if old.get("format") != new["format"]:
+        raise ValueError(
+            f"{path} is a store of format {old.get('format')!r}, not {new['format']!r}; "
+            "use --overwrite or a new --out"
+        )
+    diff = _diff({"grid": old.get("grid"), "options": old.get("options")},
+                 {"grid": new["grid"], "options": new["options"]})  # fmt: skip
+    if diff:
+        shown = "; ".join(diff[:4]) + (f"; and {len(diff) - 4} more" if len(diff) > 4 else "")
+        raise ValueError(
+            f"{path} holds a sweep with another grid or options ({shown}); "
+            "use --overwrite to replace it, or a new --out"
+        )
+
+
+def load(path: str | Path, *, _raw: bool = False):
+    """The cases table of the store at ``path`` as a pandas DataFrame, in grid order.
+
+    Rows of cases finished after the last flush of ``cases.parquet`` (a killed sweep) are
+    read from their curve files, so nothing that finished is missing.
+    """
+    require_extra()
+    import pyarrow.parquet as pq
+
+    path = Path(path)
+    if not (path / "sweep.json").exists():
+        raise FileNotFoundError(f"{path} is not a sweep store (no sweep.json)")
+    f = path / "cases.parquet"
+    df = pq.read_table(f).to_pandas() if f.exists() else rows_frame([])
+    if _raw:
+        return df
+    have = set(df["case_id"])
+    extra = []
+    for c in sorted((path / "curves").glob("*.parquet")):
+        if c.stem not in have:
+            meta = pq.read_schema(c).metadata or {}
+            if _META_KEY in meta:
+                extra += json.loads(meta[_META_KEY])
+    if extra:
+        import pandas as pd
+
+        df = pd.concat([df, rows_frame(extra)], ignore_index=True)
+    return _sorted(df)
+
+
+def load_curves(path: str | Path, case_id: str | None = None):
+    """Curves of the store at ``path``: one case's, or all (long format with ``case_id``).
+
+    Columns: ``case_id`` and CURVE_COLUMNS (SI units in the names). Failed cases have no rows.
+    """
+    require_extra()
+    import pandas as pd
+    import pyarrow.parquet as pq
+
+    path = Path(path)
+    curves = path / "curves"
+    if not (path / "sweep.json").exists():
+        raise FileNotFoundError(f"{path} is not a sweep store (no sweep.json)")
+    if case_id is not None:
+        f = curves / f"{case_id}.parquet"
+        if not f.exists():
+            raise ValueError(f"case_id {case_id!r} has no curve in {path}")
+        files = [f]
+    else:
+        files = sorted(curves.glob("*.parquet"))
+    parts = []
+    for f in files:
+        df = pq.read_table(f).to_pandas()
+        df.insert(0, "case_id", f.stem)
+        parts.append(df)
+    if not parts:
+        return pd.DataFrame(columns=["case_id", *CURVE_COLUMNS])
+    return pd.concat(parts, ignore_index=True)
