@@ -110,6 +110,14 @@ NUMERIC = [
     (["calibrate", "--max-iter", "0"], ["--max-iter", "[2, 1000]", "'0'"]),
     (["calibrate", "--n-out", "0"], ["--n-out", "[2, inf)", "'0'"]),
     (["calibrate", "--seed-out", "-2"], ["--seed-out", "[0, inf)", "-2"]),
+    # bem-check
+    (["bem-check", "--fractions", "0.1", "1.2"], ["--fractions", "(0, 1)", "1.2"]),
+    (["bem-check", "--depths", "-1e-6"], ["--depths", "(0, inf) m", "-1e-6"]),
+    (["bem-check", "--E", "nan"], ["--E", "(0, inf) Pa", "nan"]),
+    (["bem-check", "--fd-step", "0"], ["--fd-step", "(0, 1)", "'0'"]),
+    (["bem-check", "--pressure-tol", "-1"], ["--pressure-tol", "(0, inf)", "-1"]),
+    (["bem-check", "--maxiter", "0"], ["--maxiter", "[1, inf)", "'0'"]),
+    (["analyze", "--band-rows", "0"], ["--band-rows", "[1, inf)", "'0'"]),
     # sweep
     (["sweep", "--D", "2.5", "3.1"], ["--D", "(2, 3)", "3.1"]),
     (["sweep", "--delta", "0"], ["--delta", "(0, inf)", "'0'"]),
@@ -139,6 +147,7 @@ PATHS = [
     (["calibrate", "--out", "{f}", "--D", "2.5"], ["--out", "existing file", "{f}"]),
     (["reproduce", "--out", "{f}"], ["--out", "existing file", "{f}"]),
     (["sweep", "--grid", "{m}"], ["--grid", "not found", "{m}"]),
+    (["bem-check", "--out", "{f}"], ["--out", "existing file", "{f}"]),
     (["sweep", "--out", "{f}"], ["--out", "existing file", "{f}"]),
     (["reproduce", "--out", "{u}"], ["--out", "{u}"]),
 ]

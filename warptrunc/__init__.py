@@ -30,6 +30,7 @@ from ._source import map_source_kernels as _map_source_kernels
 _map_source_kernels(__name__, __path__)
 
 from ._device import resolve_device  # noqa: E402  (after the kernels mapping above)
+from .bem import BemCheck, bem_check  # noqa: E402
 from .calibrate import Calibration, CalibrationTarget, calibrate
 from .descriptors import describe
 from .fractal import FractalFit, fractal_dimension, fractal_dimensions
@@ -44,6 +45,7 @@ from .wm import wm_surface
 __version__ = "0.1.0"
 
 __all__ = [
+    "BemCheck",
     "Calibration",
     "CalibrationTarget",
     "FractalFit",
@@ -55,6 +57,7 @@ __all__ = [
     "Surface",
     "TruncationCurve",
     "applicable_depth",
+    "bem_check",
     "calibrate",
     "contact_index_map",
     "depth_grid",

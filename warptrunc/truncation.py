@@ -19,6 +19,7 @@ import numpy as np
 import warp as wp
 
 from ._device import check_memory, resolve_device
+from ._limits import flat_row_bands, row_bands
 from ._validate import check_int, check_range
 from .kernels import reduce as _kr
 from .kernels import truncation as _k
@@ -76,7 +77,16 @@ class TruncationCurve:
 
 
 def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, float]:
-    """Return (min z, max z) (m) of a flattened float32 Warp array, by a device reduction."""
+    """Return (min z, max z) (m) of a float32 Warp array, by a device reduction.
+
+    ``z`` is 1-D, or 2-D (reduced by row bands of fewer than 2³¹ pixels: any size works)."""
+    if z.ndim == 2:
+        parts = [_height_range_flat(v, device) for _r0, _r1, v in flat_row_bands(z)]
+        return min(p[0] for p in parts), max(p[1] for p in parts)
+    return _height_range_flat(z, device)
+
+
+def _height_range_flat(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, float]:
     device = resolve_device(device)
     n = z.shape[0]
     if device.is_cuda and n >= _kr.TILE:
@@ -200,13 +210,32 @@ def depth_grid(
 
 
 def _upload(surface: Surface, device) -> wp.array:
-    """The flattened heights on ``device`` (reusing the generator's copy when it is there)."""
+    """The (ny, nx) heights on ``device`` (reusing the generator's copy when it is there).
+
+    Kept 2-D: a flattened map of 2³¹ pixels or more is not a valid Warp array; the flat
+    kernels run over row bands (``warptrunc._limits``)."""
     cached = getattr(surface, "_device_heights", None)
     if cached is not None and cached.device == device:
-        return cached.flatten()  # generated on this device: no second upload
-    z_np = surface.heights.reshape(-1)
+        return cached  # generated on this device: no second upload
+    z_np = surface.heights
     check_memory(z_np.nbytes, device, "truncation analysis")
     return wp.array(z_np, dtype=wp.float32, device=device)
+
+
+def histogram_bands(
+    z: wp.array, t: wp.array, z_top: float, inv_step: float, device, *, deep: bool = True
+) -> np.ndarray:
+    """(len(t),) int64 host histogram of contact indices of ``z`` (1-D or 2-D, any size).
+
+    :func:`contact_histogram` once per row band (each below 2³¹ pixels; bands of whole rows
+    in multiples of 4, so that every band starts 16-byte aligned for the vec4 kernels), the
+    band histograms summed on the host (one sync point per band)."""
+    n1 = t.shape[0]
+    total = np.zeros(n1, dtype=np.int64)
+    for _r0, _r1, v in flat_row_bands(z):
+        hist = contact_histogram(v, t, z_top, inv_step, device, deep=deep)
+        total += hist.numpy()[:n1]  # sync point
+    return total
 
 
 def _known_extremes(surface: Surface, device) -> tuple[float, float] | None:
@@ -267,8 +296,8 @@ def truncate(
     )  # fmt: skip
     t, lo, hi, thr, inv_step = _thresholds(z, depth, device, (lo, hi))
     rt = float(np.float64(hi) - np.float64(lo))
-    hist = contact_histogram(z, t, hi, inv_step, device, deep=depth[-1] > DEEP_FRACTION * rt)
-    counts = np.cumsum(hist.numpy()[: depth.size])  # sync point
+    hist = histogram_bands(z, t, hi, inv_step, device, deep=depth[-1] > DEEP_FRACTION * rt)
+    counts = np.cumsum(hist)
     return TruncationCurve(
         depth=depth,
         threshold=thr,
@@ -312,13 +341,13 @@ def contact_index_map(
         raise ValueError("depth must be a 1-D non-decreasing array of depths ≥ 0 (m)")
     z = _upload(surface, device)
     t, _lo, hi, _thr, inv_step = _thresholds(z, depth, device)
-    index = wp.empty(z.shape[0], dtype=wp.int32, device=device)
-    wp.launch(
-        _k.contact_index_kernel,
-        dim=z.shape[0],
-        inputs=[z, t, hi, inv_step],
-        outputs=[index],
-        device=device,
-    )
-    index = index.reshape((surface.ny, surface.nx))
+    index = wp.empty((surface.ny, surface.nx), dtype=wp.int32, device=device)
+    for r0, r1 in row_bands(surface.ny, surface.nx):  # flat launches below 2³¹ pixels each
+        wp.launch(
+            _k.contact_index_kernel,
+            dim=(r1 - r0) * surface.nx,
+            inputs=[z[r0:r1].flatten(), t, hi, inv_step],
+            outputs=[index[r0:r1].flatten()],
+            device=device,
+        )
     return index if as_warp else index.numpy()

@@ -118,11 +118,15 @@ def _pad(v: int, t: int) -> int:
     return -(-v // t) * t
 
 
-def wm_tables(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, wp.array, float]:
+def wm_tables(
+    spec: WMSpec, device: wp.DeviceLike = None, *, map_bytes: int | None = None
+) -> tuple[wp.array, wp.array, float]:
     """Row table P (ny_pad × K), column table Q (K × nx_pad) and c0: S = c0 + P·Q.
 
     K = 2·n_terms padded to the GEMM tile depth; rows/columns are padded for the product kernel
-    of the device. Built in float64, stored as float32.
+    of the device. Built in float64, stored as float32. ``map_bytes`` is the memory the caller
+    will hold for heights besides the tables (default: the whole float32 map; the streamed
+    path passes one band), checked before allocating.
     """
     device = resolve_device(device)
     nx, ny, T = spec.nx, spec.ny, spec.n_terms
@@ -130,8 +134,9 @@ def wm_tables(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, wp.
     K = _pad(2 * T, _k.TILE_K)
     ny_pad = _pad(ny, _k.TILE_M) if gpu else _pad(ny, _k.ROWS)
     nx_pad = _pad(nx, _k.TILE_N) if gpu else _pad(nx, _k.COLS)
+    heights = 4 * nx * ny if map_bytes is None else map_bytes
     check_memory(
-        4 * (nx * ny + K * (nx_pad + ny_pad)), device, f"a {nx}×{ny} WM surface with {T} terms"
+        heights + 4 * K * (nx_pad + ny_pad), device, f"a {nx}×{ny} WM surface with {T} terms"
     )
     f64 = lambda a: wp.array(np.ascontiguousarray(a, dtype=np.float64), device=device)  # noqa: E731
     kx, ky, alpha, w = f64(spec.kx), f64(spec.ky), f64(spec.alpha), f64(spec.w)
@@ -204,7 +209,7 @@ def wm_product(
 
 
 def _extremes(z: wp.array) -> tuple[float, float]:
-    return height_range(z.flatten(), z.device)  # sync point
+    return height_range(z, z.device)  # sync point; 2-D: by row bands below 2³¹ pixels
 
 
 def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None):

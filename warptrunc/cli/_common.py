@@ -368,15 +368,11 @@ def _pair(v: list, option: str) -> float | tuple:
     raise ValueError(f"{option} takes one or two values, got {len(v)}: {v!r}")
 
 
-def surface_from_args(args: argparse.Namespace) -> Surface:
-    """Read ``--input`` or generate a WM surface from the parameters."""
-    if args.input is not None:
-        return read_input(args.input, args)
-    from ..wm import wm_surface
-
-    return wm_surface(
-        args.D,
-        args.Wr,
+def wm_kwargs(args: argparse.Namespace) -> dict:
+    """The WM generation keywords (``wm_spec``/``wm_surface``) of the parsed arguments."""
+    return dict(
+        D=args.D,
+        Wr=args.Wr,
         L=_pair(args.L, "--L"),
         n=_pair(args.n, "--n"),
         Rt=None if args.G is not None else args.Rt,
@@ -386,5 +382,13 @@ def surface_from_args(args: argparse.Namespace) -> Surface:
         Wc=args.Wc,
         cutoff=args.cutoff,
         seed=args.seed,
-        device=args.device,
     )
+
+
+def surface_from_args(args: argparse.Namespace) -> Surface:
+    """Read ``--input`` or generate a WM surface from the parameters."""
+    if args.input is not None:
+        return read_input(args.input, args)
+    from ..wm import wm_surface
+
+    return wm_surface(**wm_kwargs(args), device=args.device)

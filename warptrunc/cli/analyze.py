@@ -6,6 +6,11 @@ Writes OUT/curve.csv (depth_m, n_contact_pixels, contact_area_m2, stiffness_N_pe
 Ec_over_E, F_over_EA), OUT/fit.json (alpha, beta, r2 and the fit range), OUT/stiffness.png
 (E_c/E against F/(E·A), log–log, with the fitted line, as the paper's Fig. 9) and
 OUT/area_fraction.png (A_c/A against depth).
+
+A generated surface that needs more than half of the free memory of the device or of the host
+(which holds the map's copy) is streamed: generated and truncated by row bands, never held whole
+(``warptrunc.stream``; ``--stream`` forces it). The counts are those of the in-memory path.
+fit.json says which path ran (``"path": "in-memory"`` or ``"streamed"``).
 """
 
 from __future__ import annotations
@@ -25,6 +30,7 @@ from ._common import (
     positive,
     real,
     surface_from_args,
+    wm_kwargs,
 )
 
 NAME = "analyze"
@@ -37,6 +43,15 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_truncation_options(p)
     add_fit_options(p)
     add_device(p)
+    p.add_argument(
+        "--stream", action="store_true",
+        help="generate and truncate by row bands, never holding the map (default: only when "
+        "the map needs more than half of the free memory)",
+    )  # fmt: skip
+    p.add_argument(
+        "--band-rows", type=integer(1), default=None,
+        help="rows per band when streaming (default: about 2**28 pixels per band)",
+    )  # fmt: skip
     add_out(p)
     p.add_argument("--no-plot", action="store_true", help="skip the PNG")
 
@@ -102,27 +117,25 @@ def run(args: argparse.Namespace) -> int:
         lo, hi = args.depth_window
         raise ValueError(f"--depth-window LO HI needs LO < HI (m), got {lo!r} {hi!r}")
     material = Material(E=args.E, nu=args.nu, E_i=args.E_flat, nu_i=args.nu_flat)
-    s = surface_from_args(args)
-    curve = truncate(
-        s, args.increments, max_depth=args.max_depth,
-        max_depth_fraction=args.max_depth_fraction, device=args.device,
-    )  # fmt: skip
+    curve, meta, path = _truncation(args)
+    nx, ny, rt = meta["nx"], meta["ny"], meta["rt_m"]
     sc = stiffness_curve(curve, material, beta_prime=args.beta_prime)
     args.out.mkdir(parents=True, exist_ok=True)
     sc.to_csv(args.out / "curve.csv")
     fit = fit_power_law(sc, min_pixels=args.min_pixels, depth_window=args.depth_window)
-    info = {**fit.to_dict(), "surface": s.to_dict(), "material": material.__dict__}
+    info = {**fit.to_dict(), "surface": meta, "material": material.__dict__, **path}
     (args.out / "fit.json").write_text(json.dumps(info, indent=2, default=str) + "\n")
     if not args.no_plot:
         from .. import plot
 
         plot.stiffness_load(
             sc, fit, labels=["truncation analysis"], path=args.out / "stiffness.png",
-            title=f"{s.nx}×{s.ny}, R$_t$ = {s.rt * 1e6:.3g} µm",
+            title=f"{nx}×{ny}, R$_t$ = {rt * 1e6:.3g} µm",
         )  # fmt: skip
         plot.area_fraction(curve, log=True, path=args.out / "area_fraction.png")
     print(
-        f"{s.nx}×{s.ny} surface, R_t = {s.rt * 1e6:.4g} µm; {args.increments} increments to "
+        f"{nx}×{ny} surface ({_describe(path)}), R_t = {rt * 1e6:.4g} µm; "
+        f"{args.increments} increments to "
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; final contact {curve.area_fraction[-1]:.3%} of A\n"
         f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}, "
         f"{fit.n_points} increments with ≥ {fit.min_pixels} contact pixels)\n"
@@ -130,3 +143,46 @@ def run(args: argparse.Namespace) -> int:
         + ("" if args.no_plot else ", stiffness.png, area_fraction.png")
     )
     return 0
+
+
+_TOO_BIG = "the map needs more than half of the free memory"
+
+
+def _describe(path: dict) -> str:
+    if path["path"] == "streamed":
+        st = path["streaming"]
+        return f"streamed: {st['n_bands']} bands of {st['band_rows']} rows, {st['reason']}"
+    return "in memory"
+
+
+def _truncation(args: argparse.Namespace):
+    """(curve, surface metadata, {"path": ...}): in memory, or streamed by row bands."""
+    if args.input is not None or not _wants_stream(args):
+        if args.stream:
+            raise ValueError(f"--stream applies to generated surfaces, not to --input {args.input}")
+        s = surface_from_args(args)
+        curve = truncate(
+            s, args.increments, max_depth=args.max_depth,
+            max_depth_fraction=args.max_depth_fraction, device=args.device,
+        )  # fmt: skip
+        return curve, s.to_dict(), {"path": "in-memory"}
+    from ..stream import stream_truncation
+
+    st = stream_truncation(
+        wm_kwargs(args), args.increments, max_depth=args.max_depth,
+        max_depth_fraction=args.max_depth_fraction, band_rows=args.band_rows,
+        device=args.device,
+    )  # fmt: skip
+    reason = "--stream given" if args.stream else _TOO_BIG
+    info = {"band_rows": st.band_rows, "n_bands": st.n_bands, "reason": reason}
+    return st.curve, st.surface, {"path": "streamed", "streaming": info}
+
+
+def _wants_stream(args: argparse.Namespace) -> bool:
+    if args.input is not None:
+        return bool(args.stream)
+    if args.stream:
+        return True
+    from ..stream import fits_in_memory
+
+    return not fits_in_memory(wm_kwargs(args), args.device)

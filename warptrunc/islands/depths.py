@@ -276,6 +276,7 @@ def island_counts_device(
             f"{getattr(index, 'dtype', '')} with shape {getattr(index, 'shape', None)}"
         )
     ny, nx = index.shape
+    _check_index_size(ny * nx)  # before the flat view (Warp refuses 1-D arrays ≥ 2³¹)
     flat = index.reshape((ny * nx,))
     forest = _Forest(flat, (ny, nx), n1, connectivity, periodic, False, index.device)
     for _ in range(n1):
@@ -353,6 +354,7 @@ def islands_at_depths(
     ds = d[order]
     uniq, inverse = np.unique(ds, return_inverse=True)
     ny, nx = surface.ny, surface.nx
+    _check_index_size(ny * nx)  # before allocating
     check_memory(ny * nx * 40, device, "island labelling at several depths")
     idx = _index_at_depths(surface, uniq, device)
     forest = _Forest(idx, (ny, nx), uniq.size, connectivity, periodic, False, device)
@@ -474,6 +476,7 @@ def topology_curve(
         surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
     ny, nx = surface.ny, surface.nx
+    _check_index_size(ny * nx)  # before allocating
     idx = contact_index_map(surface, depth, device=device, as_warp=True).reshape((ny * nx,))
     h = _topology_hist(idx, (ny, nx), depth.size, connectivity, periodic, device)
     return TopologyCurve(
@@ -560,6 +563,7 @@ def island_curve(
     )
     n1 = depth.size
     ny, nx = surface.ny, surface.nx
+    _check_index_size(ny * nx)  # before allocating
     check_memory(ny * nx * (44 if statistics else 32), device, "island curve")
     snaps: set[int] = set()
     if snapshot_depths is not None:

@@ -316,6 +316,7 @@ def label_islands(
     dx = check_range("dx", dx, 0.0, unit="m")
     dy = dx if dy is None else check_range("dy", dy, 0.0, unit="m")
     device = resolve_device(device)
+    _check_index_size(m.size)  # before allocating
     check_memory(m.size * 29, device, "island labelling")
     mw = wp.array(m, dtype=wp.uint8, device=device)
     labels, n = label_device(mw, connectivity, periodic=periodic)

@@ -1,0 +1,473 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Elastic boundary-element cross-check of truncation analysis on the same height map.
+
+The elastic contact of the rough surface against a rigid flat is solved at given approaches δ
+with the boundary-element (FFT) half-space of ContactMechanics [1]_ and its constrained
+conjugate-gradient (Polonsky–Keer) solver [2]_; the same approaches are fed to the truncation
+formulas of :mod:`warptrunc.stiffness` and the two are compared.
+
+ContactMechanics and SurfaceTopography are an optional extra (``pip install "warptrunc[bem]"``),
+imported only inside :func:`bem_check`. Everything is host-side float64 NumPy.
+
+References
+----------
+.. [1] L. Pastewka, M.O. Robbins, Contact area of rough spheres: Large scale simulations and
+   simple scaling laws, Appl. Phys. Lett. 108, 221601 (2016). doi:10.1063/1.4950802
+.. [2] I.A. Polonsky, L.M. Keer, A numerical method for solving rough contact problems based on
+   the multi-level multi-summation and conjugate gradient techniques, Wear 231, 206 (1999).
+   doi:10.1016/S0043-1648(99)00113-1
+"""
+
+from __future__ import annotations
+
+import csv
+import importlib.metadata
+import json
+import math
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import warp as wp
+
+from ._validate import check_int, check_range
+from .stiffness import Material, stiffness_curve
+from .surface import Surface
+from .truncation import truncate
+
+__all__ = ["BemCheck", "bem_check", "plot_bem_check", "require_bem"]
+
+EXTRA_HINT = 'pip install "warptrunc[bem]"'
+
+#: Default approaches, as fractions of R_t (the range of the issue's measurement, 5–40 %).
+DEFAULT_FRACTIONS = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4)
+
+SUBSTRATES = ("free", "periodic")
+_PADDING = {
+    "free": "zero-padded to 2nx × 2ny by FreeFFTElasticHalfSpace (Hockney): the map is an "
+    "isolated patch, no force outside it",
+    "periodic": "none: the map repeats periodically; q = 0 mode given the stiffness of the "
+    "lowest non-zero wavevector (library default), so F(δ) depends on that convention",
+}
+
+
+def require_bem() -> tuple[Any, Any, Any, Any]:
+    """Import ContactMechanics; raise ImportError naming the extra when it is missing.
+
+    Returns
+    -------
+    (FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace, NonSmoothContactSystem, Topography)
+    """
+    try:
+        from ContactMechanics import FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace
+        from ContactMechanics.Systems import NonSmoothContactSystem
+        from SurfaceTopography import Topography
+    except ImportError as exc:
+        raise ImportError(
+            f"the elastic boundary-element check needs ContactMechanics and SurfaceTopography "
+            f"({exc}); install them with: {EXTRA_HINT}"
+        ) from exc
+    return FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace, NonSmoothContactSystem, Topography
+
+
+def _versions() -> dict[str, str]:
+    out = {}
+    for pkg in ("contactmechanics", "surfacetopography", "mugrid"):
+        try:
+            out[pkg] = importlib.metadata.version(pkg)
+        except importlib.metadata.PackageNotFoundError:
+            out[pkg] = "not installed"
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class BemCheck:
+    """Truncation against an elastic boundary-element solution, one row per approach δ."""
+
+    depth: np.ndarray
+    """(m,) approach δ of the rigid flat, measured from the first touch at the highest point (m);
+    the truncation depth ω of the same row is δ."""
+    depth_fraction: np.ndarray
+    """(m,) δ/R_t (dimensionless)."""
+    bem_load: np.ndarray
+    """(m,) BEM normal load F_BEM (N)."""
+    bem_area: np.ndarray
+    """(m,) BEM real contact area A_BEM = pixels with compressive force × pixel area (m²)."""
+    bem_stiffness: np.ndarray
+    """(m,) BEM stiffness k_BEM = dF/dδ by central differences (N/m)."""
+    trunc_area: np.ndarray
+    """(m,) truncated area A' (pixels with z ≥ z_top − δ, m²)."""
+    trunc_load: np.ndarray
+    """(m,) truncation load F' = ∫₀^δ k' dω (trapezoidal rule on the truncation grid, N)."""
+    trunc_stiffness: np.ndarray
+    """(m,) truncation stiffness k' = β'·(2/√π)·E*·√A' (N/m), Eq. (2)."""
+    converged: np.ndarray
+    """(m,) bool: the solve at δ and both finite-difference solves converged."""
+    n_iterations: np.ndarray
+    """(m,) int64 CG iterations of the solve at δ."""
+    solve_time: np.ndarray
+    """(m,) wall time of the three solves of the row (s)."""
+    edge_contact: np.ndarray
+    """(m,) bool: BEM contact reaches the border of the map (free boundary: the map ends there)."""
+    settings: dict[str, Any] = field(default_factory=dict)
+    """Solver settings, elastic constants, versions and the surface description (JSON-able)."""
+
+    @property
+    def load_ratio(self) -> np.ndarray:
+        """(m,) F'/F_BEM (dimensionless)."""
+        return _ratio(self.trunc_load, self.bem_load)
+
+    @property
+    def stiffness_ratio(self) -> np.ndarray:
+        """(m,) k'/k_BEM (dimensionless)."""
+        return _ratio(self.trunc_stiffness, self.bem_stiffness)
+
+    @property
+    def area_ratio(self) -> np.ndarray:
+        """(m,) A'/A_BEM (dimensionless)."""
+        return _ratio(self.trunc_area, self.bem_area)
+
+    @property
+    def all_converged(self) -> bool:
+        """True when every solve converged."""
+        return bool(np.all(self.converged))
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """Columns (SI units in the names) in the order of ``bem.csv``."""
+        return {
+            "depth_m": self.depth,
+            "depth_fraction_of_Rt": self.depth_fraction,
+            "bem_load_N": self.bem_load,
+            "bem_area_m2": self.bem_area,
+            "bem_stiffness_N_per_m": self.bem_stiffness,
+            "trunc_area_m2": self.trunc_area,
+            "trunc_load_N": self.trunc_load,
+            "trunc_stiffness_N_per_m": self.trunc_stiffness,
+            "load_ratio": self.load_ratio,
+            "stiffness_ratio": self.stiffness_ratio,
+            "area_ratio": self.area_ratio,
+            "converged": self.converged,
+            "n_iterations": self.n_iterations,
+            "solve_time_s": self.solve_time,
+            "edge_contact": self.edge_contact,
+        }
+
+    def summary(self) -> dict[str, Any]:
+        """Ranges of the ratios and the solve times (the numbers of the README table)."""
+        out: dict[str, Any] = {}
+        for name, r in (
+            ("load_ratio", self.load_ratio),
+            ("stiffness_ratio", self.stiffness_ratio),
+            ("area_ratio", self.area_ratio),
+        ):
+            ok = np.isfinite(r)
+            out[name] = [float(r[ok].min()), float(r[ok].max())] if ok.any() else None
+        out["all_converged"] = self.all_converged
+        out["n_not_converged"] = int(np.count_nonzero(~self.converged))
+        out["any_edge_contact"] = bool(np.any(self.edge_contact))
+        out["time_per_solve_s"] = float(self.solve_time.sum() / (3 * self.depth.size))
+        out["total_solve_time_s"] = float(self.solve_time.sum())
+        return out
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write :meth:`to_dict` as CSV (full float64 precision)."""
+        path = Path(path)
+        cols = self.to_dict()
+        with path.open("w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(cols)
+            for row in zip(*cols.values(), strict=True):
+                w.writerow([_cell(v) for v in row])
+        return path
+
+    def to_json(self, path: str | Path) -> Path:
+        """Write the columns, :meth:`summary` and the settings as JSON."""
+        path = Path(path)
+        d: dict[str, Any] = {"summary": self.summary(), "settings": self.settings}
+        d["columns"] = {k: v.tolist() for k, v in self.to_dict().items()}
+        path.write_text(json.dumps(_strict(d), indent=1, default=str, allow_nan=False) + "\n")
+        return path
+
+
+def _strict(v: Any) -> Any:
+    """Strict JSON: non-finite floats become None (NaN ratio: no BEM contact) or "inf"."""
+    if isinstance(v, dict):
+        return {k: _strict(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_strict(x) for x in v]
+    if isinstance(v, float) and not math.isfinite(v):
+        return None if math.isnan(v) else str(v)
+    return v
+
+
+def _cell(v: Any) -> Any:
+    if isinstance(v, (bool, np.bool_)):
+        return int(v)
+    if isinstance(v, np.integer):
+        return int(v)
+    return repr(float(v))
+
+
+def _ratio(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    out = np.full(a.shape, np.nan)
+    np.divide(a, b, out=out, where=b > 0)
+    return out
+
+
+def _approaches(rt: float, depths: Any, fractions: Any) -> np.ndarray:
+    if depths is not None and fractions is not None:
+        raise ValueError("give either depths (m) or fractions of R_t, not both")
+    if depths is None:
+        fr = np.asarray(DEFAULT_FRACTIONS if fractions is None else fractions, dtype=np.float64)
+        for f in np.atleast_1d(fr):
+            check_range("fraction", f, 0.0, 1.0)
+        d = np.atleast_1d(fr) * rt
+    else:
+        d = np.atleast_1d(np.asarray(depths, dtype=np.float64))
+        for v in d:
+            check_range("depth", v, 0.0, rt, unit="m")
+    if d.size == 0:
+        raise ValueError("at least one approach is needed, got none")
+    if np.any(np.diff(d) <= 0):
+        raise ValueError(f"approaches must increase strictly, got {d.tolist()!r}")
+    return d
+
+
+def bem_check(
+    surface: Surface,
+    depths: Any = None,
+    *,
+    fractions: Any = None,
+    material: Material | None = None,
+    beta_prime: float = 1.0,
+    substrate: str = "free",
+    increments: int = 400,
+    fd_step: float = 0.02,
+    pressure_tol: float = 1e-5,
+    pentol: float | None = None,
+    maxiter: int = 10000,
+    progress: bool = True,
+    device: wp.DeviceLike = None,
+) -> BemCheck:
+    """Compare truncation with an elastic boundary-element contact solution at approaches δ.
+
+    Parameters
+    ----------
+    surface : Surface
+        The rough height map (m). It is pressed against a rigid flat.
+    depths : sequence of float, optional
+        Approaches δ (m), strictly increasing, in (0, R_t).
+    fractions : sequence of float, optional
+        Approaches as fractions of R_t, in (0, 1); default :data:`DEFAULT_FRACTIONS`.
+    material : Material, optional
+        Elastic constants; E* = ``material.reduced_modulus`` is used by both methods.
+    beta_prime : float
+        Geometric factor β' of Eq. (2) (dimensionless), as in ``analyze``.
+    substrate : {"free", "periodic"}
+        ``"free"``: non-periodic half-space (``FreeFFTElasticHalfSpace``, zero-padded to 2nx × 2ny,
+        so the map is an isolated patch with no contact outside it). ``"periodic"``:
+        ``PeriodicFFTElasticHalfSpace``, for maps that are periodic; the mean (q = 0)
+        displacement of a periodic half-space is undefined and ContactMechanics gives that mode
+        the stiffness of the lowest non-zero wavevector, so there F(δ) and k depend on that
+        convention while F against A_BEM does not.
+    increments : int
+        Depth increments of the truncation grid from 0 to the largest δ, for the load integral.
+    fd_step : float
+        Relative step h of the central difference k_BEM = [F(δ(1+h)) − F(δ(1−h))]/(2hδ), in (0, 0.5).
+    pressure_tol : float
+        Solver tolerance on tensile/pad pressure, relative to E* (dimensionless); the solver's
+        absolute ``forcetol`` is ``pressure_tol·E*·dx·dy`` (N).
+    pentol : float, optional
+        Solver tolerance on penetration (m); default the library's rms height/(10·mean n).
+    maxiter : int
+        Largest number of CG iterations per solve.
+    progress : bool
+        Show a tqdm progress bar over the solves.
+    device : str, optional
+        Warp device for the truncation part.
+
+    Returns
+    -------
+    BemCheck
+
+    Notes
+    -----
+    ContactMechanics solves a rigid rough indenter on an elastic flat with the contact modulus;
+    within the half-space (small-slope) approximation this is the same problem as an elastic
+    rough body of reduced modulus E* on a rigid flat. The heights ``z[iy, ix]`` are passed
+    transposed (ContactMechanics puts x first). The flat's rigid-body offset is
+    δ − max z, so δ = 0 is first touch, the truncation depth's reference. Truncation uses the
+    formulas of :func:`warptrunc.stiffness.stiffness_curve`: k' at δ from the exact pixel count
+    A'(δ); F'(δ) by linear interpolation of its trapezoidal load on ``increments`` steps.
+    Every solve is warm-started from the displacement of the previous one.
+    """
+    from tqdm.auto import tqdm
+
+    Free, Periodic, System, Topography = require_bem()
+    material = Material() if material is None else material
+    beta_prime = check_range("beta_prime", beta_prime, 0.0)
+    if substrate not in SUBSTRATES:
+        raise ValueError(f"substrate must be one of {SUBSTRATES}, got {substrate!r}")
+    increments = check_int("increments", increments, 1, 10_000_000)
+    fd_step = check_range("fd_step", fd_step, 0.0, 0.5)
+    pressure_tol = check_range("pressure_tol", pressure_tol, 0.0)
+    if pentol is not None:
+        pentol = check_range("pentol", pentol, 0.0, unit="m")
+    maxiter = check_int("maxiter", maxiter, 1)
+
+    rt = float(surface.rt)
+    d = _approaches(rt, depths, fractions)
+    e_star = material.reduced_modulus
+
+    # truncation, the same formulas as `analyze`
+    curve = truncate(surface, increments, max_depth=float(d[-1]), device=device)
+    sc = stiffness_curve(curve, material, beta_prime=beta_prime)
+    z = surface.heights
+    z_top = np.float32(z.max())
+    n_trunc = np.array([np.count_nonzero(z >= np.float32(z_top - v)) for v in d], dtype=np.int64)
+    trunc_area = n_trunc * surface.pixel_area
+    trunc_stiffness = beta_prime * (2.0 / math.sqrt(math.pi)) * e_star * np.sqrt(trunc_area)
+    trunc_load = np.interp(d, sc.depth, sc.load)
+
+    # boundary elements
+    h = np.ascontiguousarray(z.T, dtype=np.float64)  # ContactMechanics: x first
+    sizes = (surface.lx, surface.ly)
+    topo = Topography(h, physical_sizes=sizes, periodic=substrate == "periodic")
+    if substrate == "free":
+        half_space = Free(h.shape, e_star, sizes)
+    else:
+        half_space = Periodic(h.shape, e_star, sizes)
+    system = System(half_space, topo)
+    forcetol = pressure_tol * e_star * surface.pixel_area
+    if pentol is None:  # the library's heuristic, computed here (its own call is deprecated)
+        pentol = float(np.std(h)) / (10 * np.mean(h.shape))
+        pentol_note = "default: rms height/(10·mean n)"
+    else:
+        pentol_note = "given"
+    h_max = float(h.max())
+    m = d.size
+    out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
+    conv = np.zeros(m, dtype=bool)
+    nit = np.zeros(m, dtype=np.int64)
+    edge = np.zeros(m, dtype=bool)
+    solves: list[dict[str, Any]] = []
+    u0 = None
+
+    def solve(delta: float) -> tuple[float, dict[str, Any], np.ndarray]:
+        nonlocal u0
+        kw: dict[str, Any] = {
+            "offset": delta - h_max, "forcetol": forcetol, "pentol": pentol, "maxiter": maxiter,
+        }  # fmt: skip
+        if u0 is not None:
+            kw["initial_displacements"] = u0
+        r = system.minimize_proxy(**kw)
+        u0 = r.x
+        f = np.asarray(r.jac)  # per-pixel force on the map, compressive > 0 (N)
+        info = {
+            "depth_m": delta, "success": bool(r.success), "n_iterations": int(r.nit),
+            "message": str(r.message), "load_N": float(f.sum()),
+        }  # fmt: skip
+        return float(f.sum()), info, f
+
+    bar = tqdm(total=3 * m, desc="BEM solves", unit="solve", disable=not progress)
+    for i, delta in enumerate(d):
+        t0 = time.perf_counter()
+        lo, i_lo, _ = solve(delta * (1 - fd_step))
+        bar.update()
+        F, i_mid, f = solve(delta)
+        bar.update()
+        hi, i_hi, _ = solve(delta * (1 + fd_step))
+        bar.update()
+        out["t"][i] = time.perf_counter() - t0
+        contact = f > 0
+        out["F"][i] = F
+        out["A"][i] = np.count_nonzero(contact) * surface.pixel_area
+        out["k"][i] = (hi - lo) / (2 * fd_step * delta)
+        conv[i] = i_lo["success"] and i_mid["success"] and i_hi["success"]
+        nit[i] = i_mid["n_iterations"]
+        edge[i] = bool(
+            contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any()
+            or contact[:, -1].any()
+        )  # fmt: skip
+        solves += [i_lo, i_mid, i_hi]
+    bar.close()
+
+    settings = {
+        "solver": "ContactMechanics NonSmoothContactSystem.minimize_proxy "
+        "(constrained conjugate gradients, Polonsky & Keer 1999)",
+        "substrate": substrate,
+        "half_space": type(half_space).__name__,
+        "padding": _PADDING[substrate],
+        "contact_modulus_Pa": e_star,
+        "material": asdict(material),
+        "beta_prime": beta_prime,
+        "fd_step": fd_step,
+        "stiffness_method": "central difference of F over δ(1 ± fd_step)",
+        "pressure_tol": pressure_tol,
+        "forcetol_N": forcetol,
+        "pentol_m": pentol,
+        "pentol_source": pentol_note,
+        "maxiter": maxiter,
+        "increments": increments,
+        "rt_m": rt,
+        "grid": [surface.nx, surface.ny],
+        "pixel_size_m": [surface.dx, surface.dy],
+        "versions": _versions(),
+        "surface": surface.to_dict(),
+        "solves": solves,
+    }
+    return BemCheck(
+        depth=d,
+        depth_fraction=d / rt,
+        bem_load=out["F"],
+        bem_area=out["A"],
+        bem_stiffness=out["k"],
+        trunc_area=trunc_area,
+        trunc_load=trunc_load,
+        trunc_stiffness=trunc_stiffness,
+        converged=conv,
+        n_iterations=nit,
+        solve_time=out["t"],
+        edge_contact=edge,
+        settings=settings,
+    )
+
+
+def plot_bem_check(res: BemCheck, path: str | Path | None = None, *, title: str | None = None):
+    """F and k against δ for both methods, and A'/A_BEM; non-converged rows marked with ×.
+
+    Returns the matplotlib Figure; saved to ``path`` when given.
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.ticker import NullFormatter, ScalarFormatter
+
+    dum = res.depth * 1e6
+    fig, ax = plt.subplots(1, 3, figsize=(13, 4), constrained_layout=True)
+    ax[0].plot(dum, res.bem_load, "o-", label="elastic BEM")
+    ax[0].plot(dum, res.trunc_load, "s--", label="truncation")
+    ax[0].set(xlabel="approach δ (µm)", ylabel="load F (N)", yscale="log")
+    ax[1].plot(dum, res.bem_stiffness, "o-", label="elastic BEM")
+    ax[1].plot(dum, res.trunc_stiffness, "s--", label="truncation")
+    ax[1].set(xlabel="approach δ (µm)", ylabel="stiffness k (N/m)", yscale="log")
+    ax[2].plot(dum, res.area_ratio, "o-", label="A'/A$_{BEM}$")
+    ax[2].plot(dum, res.load_ratio, "^-", label="F'/F$_{BEM}$")
+    ax[2].plot(dum, res.stiffness_ratio, "v-", label="k'/k$_{BEM}$")
+    ax[2].axhline(1.0, color="0.6", lw=0.8)
+    ax[2].set(xlabel="approach δ (µm)", ylabel="truncation / BEM", yscale="log")
+    ax[2].yaxis.set_major_formatter(ScalarFormatter())
+    ax[2].yaxis.set_minor_formatter(NullFormatter())
+    bad = ~res.converged
+    if bad.any():
+        for a, y in ((ax[0], res.bem_load), (ax[1], res.bem_stiffness)):
+            a.plot(dum[bad], y[bad], "rx", ms=10, label="not converged")
+    for a in ax:
+        a.legend(fontsize=8)
+        a.grid(True, which="both", alpha=0.3)
+    if title:
+        fig.suptitle(title)
+    if path is not None:
+        fig.savefig(path, dpi=120)
+    return fig

@@ -1,0 +1,320 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Streamed WM generation + truncation: maps larger than device (or host) memory.
+
+Kernels: ``warptrunc.kernels.wm`` (tables, tile GEMM / register-blocked product, affine) and
+``warptrunc.kernels.truncation`` (contact histogram), through the drivers of ``warptrunc.wm``
+and ``warptrunc.truncation``.
+
+The WM sum is a matrix product S = c0 + P·Q (``warptrunc.wm``): any row band of the map is
+P[r0:r1]·Q, so the map never needs to exist as a whole. Two passes over the row bands:
+
+1. generate each band's raw sum S − c0 and reduce it to its min and max (nothing kept);
+2. from the global extremes, fix the scale (R_t/(max S − min S), or Eq. 4's prefactor with G),
+   the top height z_top and the thresholds z_top − ω_k; then regenerate each band (same tables,
+   same kernels, bands starting at multiples of the product's row block, so the heights are
+   bit-identical to the in-memory map), scale it and add its contact histogram to one int64
+   histogram.
+
+Device memory: the two tables (≈ 2·K·n·4 bytes, K = 2·n_terms padded) and one band. The result
+is the :class:`~warptrunc.truncation.TruncationCurve` that ``truncate(wm_surface(...))`` gives,
+count for count.
+
+Islands of a streamed surface (counts and areas, labels per band, border rows merged by
+union-find): ``warptrunc.stream_islands``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import warp as wp
+
+from ._device import free_memory_bytes, resolve_device
+from ._limits import band_pixel_limit, row_bands
+from ._validate import check_int
+from .kernels import wm as _kwm
+from .surface import _jsonable
+from .truncation import (
+    DEEP_FRACTION,
+    TruncationCurve,
+    _thresholds,
+    depth_grid,
+    histogram_bands,
+)
+from .wm import WMSpec, _pad, _prefactor, wm_product, wm_spec, wm_tables
+
+__all__ = [
+    "StreamedTruncation",
+    "fits_in_memory",
+    "in_memory_bytes",
+    "stream_truncation",
+    "truncate_streamed",
+    "wm_bands",
+]
+
+_DEFAULT_BAND_PIXELS = 2**28  # 1 GiB of float32 per band: a progress step every few ms on a GPU
+
+
+@dataclass(frozen=True, eq=False)
+class StreamedTruncation:
+    """A streamed truncation analysis: the curve, the surface it describes, how it was run."""
+
+    curve: TruncationCurve
+    """The truncation curve, as ``truncate(wm_surface(...))`` would give it."""
+    surface: dict[str, Any] = field(default_factory=dict)
+    """Scalar metadata of the (never assembled) surface, as ``Surface.to_dict()``: grid (m),
+    ``rt_m`` (m), generation parameters, ``scale`` (m) and ``G_equivalent`` (m)."""
+    band_rows: int = 0
+    """Rows per band (the last band may be shorter)."""
+    n_bands: int = 0
+    """Number of row bands in each pass."""
+
+    def to_dict(self) -> dict[str, Any]:
+        """The curve's columns (one row per depth)."""
+        return self.curve.to_dict()
+
+
+def _as_spec(spec_or_params) -> WMSpec:
+    """A :class:`WMSpec`, from a spec, or a mapping of ``wm_spec`` keywords, or the ``params``
+    of a WM surface (``nx, ny, Lx, Ly`` are mapped to ``n`` and ``L``)."""
+    if isinstance(spec_or_params, WMSpec):
+        return spec_or_params
+    if not isinstance(spec_or_params, Mapping):
+        raise TypeError(
+            "spec_or_params must be a WMSpec or a mapping of wm_spec parameters, got "
+            f"{type(spec_or_params).__name__}"
+        )
+    kw = dict(spec_or_params)
+    if "nx" in kw or "ny" in kw:
+        kw["n"] = (kw.pop("nx"), kw.pop("ny"))
+    if "Lx" in kw or "Ly" in kw:
+        kw["L"] = (kw.pop("Lx"), kw.pop("Ly"))
+    keys = ("D", "Wr", "L", "n", "Rt", "G", "M", "gamma", "Wc", "cutoff", "seed", "method")
+    return wm_spec(**{k: kw[k] for k in keys if k in kw})
+
+
+def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, int]:
+    """(device bytes, host bytes) that ``truncate(wm_surface(...))`` needs at peak.
+
+    Device: the float32 map, the tables and, on the CPU, the padded product buffer. Host: the
+    ``Surface`` copy and its validation temporaries (a boolean mask); on the CPU device the two
+    add up in the same memory.
+    """
+    spec = _as_spec(spec_or_params)
+    device = resolve_device(device)
+    n = spec.nx * spec.ny
+    K = _pad(2 * spec.n_terms, _kwm.TILE_K)
+    tables = 4 * K * (spec.nx + spec.ny + 256)
+    dev = 4 * n + tables
+    host = 4 * n + n  # the Surface copy + np.isfinite mask
+    if not device.is_cuda:
+        dev += 4 * n if spec.nx % _kwm.COLS else 0
+    return dev, host
+
+
+def _fits(spec: WMSpec, device) -> bool:
+    # at most half of the free memory: the rest stays for the pool's slack, the plots, the
+    # islands; past that, streaming (two passes of the product, no host copy) is faster anyway
+    dev, host = in_memory_bytes(spec, device)
+    if device.is_cuda:
+        host_free = free_memory_bytes(wp.get_device("cpu"))
+        return dev <= 0.5 * free_memory_bytes(device) and host <= 0.5 * host_free
+    return dev + host <= 0.5 * free_memory_bytes(device)
+
+
+class _Bands:
+    """Tables on the device and a reusable band buffer: ``raw(r0, r1)`` = S − c0 on those rows."""
+
+    def __init__(self, spec: WMSpec, device, band_rows: int | None):
+        if spec.method != "tile":
+            raise ValueError(
+                f"streamed generation needs method='tile' (row bands of the table product), "
+                f"got method={spec.method!r}"
+            )
+        self.spec, self.device = spec, device
+        align = int(_kwm.TILE_M) if device.is_cuda else int(_kwm.ROWS)
+        if band_rows is None:
+            budget = min(band_pixel_limit(), _DEFAULT_BAND_PIXELS, free_memory_bytes(device) // 16)
+            band_rows = max(1, budget // spec.nx)
+        else:
+            band_rows = check_int("band_rows", band_rows, 1, spec.ny)
+        # bands start at multiples of the product's row block, so that each band's products are
+        # those of the in-memory map; rows beyond the flat-launch limit are not allowed
+        rows = max(align, -(-band_rows // align) * align)
+        while rows > align and rows * spec.nx > band_pixel_limit():
+            rows -= align
+        self.bands = row_bands(spec.ny, spec.nx, rows=rows, align=align)
+        self.rows, self.align = rows, align
+        band_bytes = 4 * rows * (spec.nx + _kwm.COLS)
+        self.p, self.q, self.c0 = wm_tables(spec, device, map_bytes=band_bytes)
+        self.buffer = wp.empty((min(rows, spec.ny), spec.nx), dtype=wp.float32, device=device)
+
+    def raw(self, r0: int, r1: int) -> tuple[wp.array, float, float]:
+        rows = r1 - r0
+        p = self.p[r0 : r0 + _pad(rows, self.align)]  # a view: the same rows of the same table
+        z = self.buffer[:rows]
+        lo, hi = wm_product(p, self.q, z)  # sync point
+        return z, lo, hi
+
+
+def _progress(total: int, desc: str, enabled: bool):
+    from tqdm.auto import tqdm
+
+    return tqdm(total=total, desc=desc, unit="band", disable=not enabled)
+
+
+def _pass1(bands: _Bands, progress: bool) -> tuple[float, float, float, float, float]:
+    """Global extremes of S − c0, then the scale and the extremes of the scaled heights (m)."""
+    spec = bands.spec
+    lo, hi = math.inf, -math.inf
+    with _progress(len(bands.bands), "stream pass 1/2 (extremes)", progress) as bar:
+        for r0, r1 in bands.bands:
+            _z, blo, bhi = bands.raw(r0, r1)
+            lo, hi = min(lo, blo), max(hi, bhi)
+            bar.update()
+    if spec.Rt is not None:
+        if not hi > lo:
+            raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
+        scale = spec.Rt / (hi - lo)
+    else:
+        scale = _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
+    # the scaled extremes by the same kernel as the heights (the affine map is monotone, so
+    # they are the scaled map's min and max bit for bit)
+    ext = wp.array(np.array([[lo, hi]], dtype=np.float32), device=bands.device)
+    wp.launch(_kwm.affine_kernel, dim=ext.shape, inputs=[ext, bands.c0, float(scale)],
+              device=bands.device)  # fmt: skip
+    zlo, zhi = (float(v) for v in ext.numpy()[0])  # sync point
+    return lo, hi, float(scale), zlo, zhi
+
+
+def wm_bands(
+    spec_or_params, *, band_rows: int | None = None, device: wp.DeviceLike = None
+) -> Iterator[tuple[int, int, np.ndarray]]:
+    """Yield ``(r0, r1, heights)``: the WM surface's rows r0..r1 (m, float32 host array), band
+    by band, equal bit for bit to ``wm_surface(...).heights[r0:r1]`` (a first pass over all
+    bands finds the extremes for the R_t scaling). For checks and for writing large maps."""
+    spec = _as_spec(spec_or_params)
+    device = resolve_device(device)
+    bands = _Bands(spec, device, band_rows)
+    _lo, _hi, scale, _zlo, _zhi = _pass1(bands, False)
+    for r0, r1 in bands.bands:
+        z, _, _ = bands.raw(r0, r1)
+        wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale], device=device)
+        # sync point; copy: on the CPU, numpy() is a view of the reused buffer
+        yield r0, r1, z.numpy().copy()
+
+
+def stream_truncation(
+    spec_or_params,
+    n_increments: int = 200,
+    *,
+    max_depth: float | None = None,
+    max_depth_fraction: float = 0.1,
+    band_rows: int | None = None,
+    device: wp.DeviceLike = None,
+    progress: bool = True,
+) -> StreamedTruncation:
+    """Truncation curve of a WM surface generated band by band (see :func:`truncate_streamed`);
+    returns the curve with the surface's metadata and the band layout."""
+    spec = _as_spec(spec_or_params)
+    device = resolve_device(device)
+    bands = _Bands(spec, device, band_rows)
+    _lo, _hi, scale, zlo, zhi = _pass1(bands, progress)
+    rt = float(np.float64(zhi) - np.float64(zlo))
+    depth = depth_grid(rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction)
+    t, _, _, thr, inv_step = _thresholds(None, depth, device, (zlo, zhi))
+    hist = np.zeros(depth.size, dtype=np.int64)
+    deep = depth[-1] > DEEP_FRACTION * rt  # picks the GPU histogram kernel, as truncate() does
+    with _progress(len(bands.bands), "stream pass 2/2 (histogram)", progress) as bar:
+        # last band first: pass 1 left its raw sum in the buffer (one band fewer to generate;
+        # integer counts do not depend on the order)
+        for i, (r0, r1) in enumerate(reversed(bands.bands)):
+            z = bands.buffer[: r1 - r0] if i == 0 else bands.raw(r0, r1)[0]
+            wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale],
+                      device=device)  # fmt: skip
+            hist += histogram_bands(z, t, zhi, inv_step, device, deep=deep)
+            bar.update()
+    counts = np.cumsum(hist).astype(np.int64)
+    lx, ly = spec.nx * spec.dx, spec.ny * spec.dy  # as Surface.lx, Surface.ly
+    pixel_area = spec.dx * spec.dy
+    curve = TruncationCurve(
+        depth=depth,
+        threshold=thr,
+        n_contact_pixels=counts,
+        contact_area=counts * pixel_area,
+        apparent_area=lx * ly,
+        pixel_area=pixel_area,
+        n_pixels=spec.nx * spec.ny,
+        z_top=zhi,
+        rt=rt,
+    )
+    params = spec.params()
+    params["scale"] = scale
+    params["G_equivalent"] = spec.Wr * (scale / _prefactor(spec)) ** (1.0 / (spec.D - 3.0))
+    meta = {
+        "nx": spec.nx, "ny": spec.ny, "dx_m": spec.dx, "dy_m": spec.dy, "lx_m": lx, "ly_m": ly,
+        "rt_m": rt, **{k: _jsonable(v) for k, v in params.items()},
+    }  # fmt: skip
+    return StreamedTruncation(curve, meta, bands.rows, len(bands.bands))
+
+
+def truncate_streamed(
+    spec_or_params,
+    n_increments: int = 200,
+    *,
+    max_depth: float | None = None,
+    max_depth_fraction: float = 0.1,
+    band_rows: int | None = None,
+    device: wp.DeviceLike = None,
+    progress: bool = True,
+) -> TruncationCurve:
+    """Truncated area A_c(ω) of a WM surface that is never held whole: generated by row bands.
+
+    Parameters
+    ----------
+    spec_or_params : WMSpec or mapping
+        The surface: a :func:`warptrunc.wm.wm_spec`, a mapping of its keywords (``D``, ``Wr``
+        (m), ``L`` (m), ``n``, ``Rt`` (m), ``G`` (m), ``M``, ``gamma``, ``Wc`` (m), ``cutoff``,
+        ``seed``), or the ``params`` of a surface from ``wm_surface``.
+    n_increments : int
+        Number of depth increments n; depths are ω_k = k·ω_max/n, k = 0..n.
+    max_depth : float, optional
+        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
+    max_depth_fraction : float
+        ω_max as a fraction of the map's R_t (dimensionless).
+    band_rows : int, optional
+        Rows per band, rounded up to the product's row block (128 on CUDA, 8 on the CPU).
+        Default: about 2²⁸ pixels per band, less where free memory is short.
+    device : str, optional
+        Warp device; see :func:`warptrunc.resolve_device`.
+    progress : bool
+        Show a tqdm progress bar over the bands of each pass.
+
+    Returns
+    -------
+    TruncationCurve
+        Equal, count for count, to ``truncate(wm_surface(...), n_increments, ...)``.
+
+    Notes
+    -----
+    Two passes (extremes, then histogram) regenerate the same bands with the same tables and
+    kernels, so the scaled heights of pass 2 are bit-identical to the in-memory map (pass 2
+    starts with the last band, still in the buffer). Device memory: the tables and one band;
+    time: about twice the generation of the whole map (once, for a single band).
+    """
+    return stream_truncation(
+        spec_or_params, n_increments, max_depth=max_depth,
+        max_depth_fraction=max_depth_fraction, band_rows=band_rows, device=device,
+        progress=progress,
+    ).curve  # fmt: skip
+
+
+def fits_in_memory(spec_or_params, device: wp.DeviceLike = None) -> bool:
+    """Whether ``truncate(wm_surface(...))`` needs at most half of the free memory of ``device``
+    and of the host (which holds the ``Surface`` copy); see :func:`in_memory_bytes`."""
+    return _fits(_as_spec(spec_or_params), resolve_device(device))
