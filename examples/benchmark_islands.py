@@ -181,6 +181,12 @@ def run_case(n: int, device, args) -> dict:
                 lambda: label_islands(m, s.dx, s.dy, device=device), max(1, rep // 2), sync
             ),
         )
+        # the same from the device mask: no host pass, labels left on the device
+        row["warp_label_islands_device_mask_with_stats_s"] = guarded(
+            row,
+            "label_islands_device",
+            lambda m=m_wp: timeit(lambda: label_islands(m, s.dx, s.dy), max(1, rep // 2), sync),
+        )
         del m_wp
         res["masks"].append(row)
         print(

@@ -8,9 +8,16 @@ What it shows
     NumPy float64 and float32/BLAS on the CPU, CuPy (cuBLAS, ``cupy.histogram``) on a GPU.
     Reports the accuracy of the float32 heights against a float64 evaluation.
 
+    End to end (``--e2e``, on by default): one surface as a sweep runs it, ``wm_surface`` →
+    ``truncate`` (200 increments) → ``stiffness_curve`` → ``fit_power_law``, median ms per surface
+    over ``--repeats`` surfaces (different seeds), with the time of each stage;
+    ``island_curve`` at 200 depths with and without statistics; ``describe`` and the four D
+    methods (``fractal_dimensions``) on the device-resident surface. On CUDA, CuPy references in
+    the same process where they exist (moments, 2-D float64 FFT).
+
 Run
     python examples/benchmark_pipeline.py --device cpu --n 1024 4096
-    python examples/benchmark_pipeline.py --device cuda:0 --n 10240
+    python examples/benchmark_pipeline.py --device cuda:0 --n 10240 --json $OUT/bench.json
 """
 
 from __future__ import annotations
@@ -18,6 +25,8 @@ from __future__ import annotations
 import argparse
 import json
 import platform
+import statistics
+import time
 from pathlib import Path
 
 import numpy as np
@@ -25,6 +34,10 @@ import warp as wp
 
 import warptrunc
 from warptrunc._bench import git_commit, timeit
+from warptrunc.descriptors import describe
+from warptrunc.fractal import fractal_dimensions
+from warptrunc.islands import island_curve
+from warptrunc.stiffness import fit_power_law, stiffness_curve
 from warptrunc.truncation import truncate
 from warptrunc.wm import generate_on_device, wm_heights, wm_product, wm_spec, wm_surface, wm_tables
 
@@ -115,6 +128,64 @@ def run_case(n: int, device, repeats: int) -> dict:
     return res
 
 
+def run_end_to_end(n: int, device, repeats: int) -> dict:
+    """One surface end to end, island curve with statistics, descriptors and four D methods."""
+    sync = lambda: wp.synchronize_device(device)  # noqa: E731
+    res: dict = {"n": n, "device": str(device), "device_name": device.name}
+    gen = lambda seed: wm_surface(2.5, 100e-6, L=1e-3, n=n, seed=seed, device=device)  # noqa: E731
+    one = lambda seed: fit_power_law(stiffness_curve(truncate(gen(seed), 200, device=device)))  # noqa: E731
+    one(0)  # warm-up: kernels loaded, memory pool filled
+    sync()
+    stages: dict[str, list[float]] = {"total": [], "generate": [], "truncate": [], "fit": []}
+    for seed in range(1, repeats + 1):
+        t0 = time.perf_counter()
+        s = gen(seed)
+        t1 = time.perf_counter()
+        c = truncate(s, 200, device=device)
+        t2 = time.perf_counter()
+        fit_power_law(stiffness_curve(c))
+        sync()
+        t3 = time.perf_counter()
+        for k, v in zip(stages, (t3 - t0, t1 - t0, t2 - t1, t3 - t2), strict=True):
+            stages[k].append(v)
+        del s, c
+    for k, v in stages.items():
+        res[f"e2e_{k}_s"] = statistics.median(v)
+    s = gen(0)
+    rep = max(1, repeats // 2)
+    res["island_curve_stats_200_s"] = timeit(
+        lambda: island_curve(s, 200, statistics=True, device=device), rep, sync
+    )
+    res["island_curve_counts_200_s"] = timeit(
+        lambda: island_curve(s, 200, statistics=False, device=device), rep, sync
+    )
+    res["describe_s"] = timeit(lambda: describe(s), rep, sync)
+    res["fractal_dimensions_s"] = timeit(lambda: fractal_dimensions(s, device=device), rep, sync)
+    res["describe_and_four_D_s"] = res["describe_s"] + res["fractal_dimensions_s"]
+    # False when everything ran on the device (None: a warptrunc without device surfaces)
+    res["surface_host_copy_made"] = getattr(s, "has_host_copy", None)
+    if device.is_cuda:
+        try:
+            import cupy as cp
+        except ImportError:
+            res["cupy"] = None
+            return res
+        res["cupy"] = cp.__version__
+        csync = cp.cuda.Device().synchronize
+        zc = cp.asarray(s.device_heights() if hasattr(s, "device_heights") else s.heights)
+
+        def moments():
+            z = zc.astype(cp.float64)
+            d = z - z.mean()
+            return [
+                float(v) for v in (cp.abs(d).mean(), (d**2).mean(), (d**3).mean(), (d**4).mean())
+            ]
+
+        res["cupy_moments_s"] = timeit(moments, rep, csync)
+        res["cupy_fft2_float64_s"] = timeit(lambda: cp.fft.fft2(zc.astype(cp.float64)), rep, csync)
+    return res
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.ArgumentDefaultsHelpFormatter
@@ -124,6 +195,13 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=5, help="timed repeats per measurement")
     ap.add_argument("--out", type=Path, default=Path("bench"), help="folder for the JSON")
     ap.add_argument("--quick", action="store_true", help="one 256² case, 2 repeats")
+    ap.add_argument("--json", type=Path, default=None, help="also write the JSON to this file")
+    ap.add_argument(
+        "--no-e2e", action="store_true", help="skip the end-to-end, island and descriptor timings"
+    )
+    ap.add_argument(
+        "--no-kernels", action="store_true", help="skip the per-kernel timings and references"
+    )
     ap.add_argument("--no-show", action="store_true", help="(no figures; accepted for symmetry)")
     args = ap.parse_args(argv)
     device = warptrunc.resolve_device(args.device)
@@ -134,14 +212,23 @@ def main(argv=None) -> int:
         "host": platform.processor() or platform.machine(),
         "commit": git_commit(),
     }
-    results = []
+    results, e2e = [], []
     for n in sizes:
-        r = run_case(n, device, repeats)
-        results.append(r)
-        print(json.dumps(r))
+        if not args.no_kernels:
+            r = run_case(n, device, repeats)
+            results.append(r)
+            print(json.dumps(r), flush=True)
+        if not args.no_e2e:
+            r = run_end_to_end(n, device, repeats)
+            e2e.append(r)
+            print(json.dumps(r), flush=True)
     args.out.mkdir(parents=True, exist_ok=True)
     path = args.out / f"benchmark_pipeline_{str(device).replace(':', '')}.json"
-    path.write_text(json.dumps({"meta": meta, "results": results}, indent=2) + "\n")
+    doc = json.dumps({"meta": meta, "results": results, "end_to_end": e2e}, indent=2) + "\n"
+    path.write_text(doc)
+    if args.json is not None:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(doc)
     print(f"\n{'n':>6} {'terms':>5} {'product':>10} {'generate':>10} {'truncate':>10}  reference")
     for r in results:
         ref = (
@@ -155,7 +242,20 @@ def main(argv=None) -> int:
             f"{r['n']:>6} {r['terms']:>5} {r['warp_product_s'] * 1e3:>8.2f}ms {r['warp_generate_s'] * 1e3:>8.2f}ms "
             f"{r['warp_truncate_s'] * 1e3:>8.2f}ms  {ref}; err {r.get('max_rel_err_vs_float64', float('nan')):.1e}"
         )
-    print(f"wrote {path}")
+    if e2e:
+        print(
+            f"\n{'n':>6} {'e2e/surface':>12} {'generate':>10} {'truncate':>10} {'fit':>8} "
+            f"{'islands+stats':>14} {'counts':>9} {'describe+4D':>12}"
+        )
+    for r in e2e:
+        ms = lambda k, r=r: r[k] * 1e3  # noqa: E731
+        print(
+            f"{r['n']:>6} {ms('e2e_total_s'):>10.2f}ms {ms('e2e_generate_s'):>8.2f}ms "
+            f"{ms('e2e_truncate_s'):>8.2f}ms {ms('e2e_fit_s'):>6.2f}ms "
+            f"{ms('island_curve_stats_200_s'):>12.2f}ms {ms('island_curve_counts_200_s'):>7.2f}ms "
+            f"{ms('describe_and_four_D_s'):>10.1f}ms"
+        )
+    print(f"wrote {path}" + (f" and {args.json}" if args.json else ""))
     return 0
 
 

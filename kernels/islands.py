@@ -18,8 +18,10 @@ turns that into a difference array whose cumulative sum is the island count at e
 Per-island statistics along the way (optional): integer accumulators ``area``,
 ``edges_x``, ``edges_y`` live on the roots. After the unions of increment k, the
 accumulators of the roots hooked at k are added to their new roots
-(``merge_linked_kernel``), then each new pixel adds 1 to the area and its change of boundary
-edges (``add_pixels_kernel``). ``edges_x`` counts pixel edges crossed along x (vertical
+(``merge_linked_stride_kernel``), then each new pixel adds 1 to the area and its change of
+boundary edges (``add_pixels_kernel``), then ``compact_roots_kernel`` keeps the surviving roots
+and adds them to the per-depth area histogram and slit-island sums. The number of roots stays
+on the device, so no increment waits for the host. ``edges_x`` counts pixel edges crossed along x (vertical
 edges, length dy), ``edges_y`` edges crossed along y (length dx), between a contact pixel and a
 non-contact pixel or the domain border (unless periodic). Integer atomics only: results are
 identical on every device.
@@ -142,33 +144,6 @@ def candidate(
     return c
 
 
-@wp.kernel
-def merge_linked_kernel(
-    roots: wp.array[wp.int32],
-    n_roots: int,
-    order: wp.array[wp.int32],
-    start: int,
-    link: wp.array[wp.int32],
-    k: int,
-    parent: wp.array[wp.int32],
-    area: wp.array[wp.int32],
-    edges_x: wp.array[wp.int32],
-    edges_y: wp.array[wp.int32],
-):
-    """One thread per candidate (previous roots, then bucket k): a root hooked at k adds its
-    accumulators to its current root. Current roots are never hooked at k, so no thread reads
-    an accumulator that another one is adding to."""
-    t = wp.tid()
-    c = candidate(roots, n_roots, order, start, t)
-    if link[c] == k:
-        a = area[c]
-        if a != 0:
-            r = find_root(parent, c)
-            wp.atomic_add(area, r, a)
-            wp.atomic_add(edges_x, r, edges_x[c])
-            wp.atomic_add(edges_y, r, edges_y[c])
-
-
 @wp.func
 def active_at(idx: wp.array[wp.int32], j: int, k: int) -> int:
     """1 when pixel j (-1: outside the domain) is in contact at increment k."""
@@ -226,94 +201,111 @@ def add_pixels_kernel(
 
 
 @wp.kernel
-def root_flag_kernel(
+def merge_linked_stride_kernel(
     roots: wp.array[wp.int32],
-    n_roots: int,
+    counts: wp.array[wp.int32],
+    kprev: int,
     order: wp.array[wp.int32],
     start: int,
+    count: int,
+    link: wp.array[wp.int32],
+    k: int,
+    n_threads: int,
     parent: wp.array[wp.int32],
-    flag: wp.array[wp.int32],
-):
-    """One thread per candidate: ``flag[t] = 1`` when it is still a root (count step)."""
-    t = wp.tid()
-    c = candidate(roots, n_roots, order, start, t)
-    f = int(0)
-    if parent[c] == c:
-        f = 1
-    flag[t] = f
-
-
-@wp.kernel
-def write_roots_kernel(
-    roots: wp.array[wp.int32],
-    n_roots: int,
-    order: wp.array[wp.int32],
-    start: int,
-    flag: wp.array[wp.int32],
-    rank: wp.array[wp.int32],
-    out: wp.array[wp.int32],
-):
-    """One thread per candidate: write the surviving roots at ``rank[t] − 1`` (``rank`` is the
-    inclusive scan of ``flag``; the write step)."""
-    t = wp.tid()
-    if flag[t] != 0:
-        out[rank[t] - 1] = candidate(roots, n_roots, order, start, t)
-
-
-@wp.kernel
-def big_flag_kernel(
-    roots: wp.array[wp.int32],
-    area: wp.array[wp.int32],
-    min_pixels: int,
-    flag: wp.array[wp.int32],
-):
-    """One thread per root: ``flag[t] = 1`` when the island has at least ``min_pixels``."""
-    t = wp.tid()
-    f = int(0)
-    if area[roots[t]] >= min_pixels:
-        f = 1
-    flag[t] = f
-
-
-@wp.kernel
-def gather_stats_kernel(
-    roots: wp.array[wp.int32],
-    flag: wp.array[wp.int32],
-    rank: wp.array[wp.int32],
     area: wp.array[wp.int32],
     edges_x: wp.array[wp.int32],
     edges_y: wp.array[wp.int32],
-    out_root: wp.array[wp.int32],
-    out_area: wp.array[wp.int32],
-    out_edges_x: wp.array[wp.int32],
-    out_edges_y: wp.array[wp.int32],
 ):
-    """One thread per root: copy the flagged roots' accumulators to compact arrays at
-    ``rank[t] − 1`` (inclusive scan of ``flag``)."""
-    t = wp.tid()
-    if flag[t] != 0:
-        r = roots[t]
-        o = rank[t] - 1
-        out_root[o] = r
-        out_area[o] = area[r]
-        out_edges_x[o] = edges_x[r]
-        out_edges_y[o] = edges_y[r]
+    """``merge_linked_kernel`` without a host-known candidate count: ``n_threads`` threads
+    stride over the ``counts[kprev]`` previous roots (read on the device; none when
+    ``kprev < 0``) and the ``count`` pixels of bucket k."""
+    g = wp.tid()
+    nr = int(0)
+    if kprev >= 0:
+        nr = counts[kprev]
+    for t in range(g, nr + count, n_threads):
+        c = candidate(roots, nr, order, start, t)
+        if link[c] == k:
+            a = area[c]
+            if a != 0:
+                r = find_root(parent, c)
+                wp.atomic_add(area, r, a)
+                wp.atomic_add(edges_x, r, edges_x[c])
+                wp.atomic_add(edges_y, r, edges_y[c])
 
 
 @wp.kernel
-def area_histogram_kernel(
+def compact_roots_kernel(
     roots: wp.array[wp.int32],
+    kprev: int,
+    order: wp.array[wp.int32],
+    start: int,
+    count: int,
+    parent: wp.array[wp.int32],
     area: wp.array[wp.int32],
+    edges_x: wp.array[wp.int32],
+    edges_y: wp.array[wp.int32],
     k: int,
+    min_pixels: int,
+    aspect: wp.float64,
+    n_blocks: int,
+    counts: wp.array[wp.int32],
+    out_roots: wp.array[wp.int32],
     hist: wp.array2d[wp.int64],
+    sums: wp.array2d[wp.float64],
 ):
-    """One thread per root: ``hist[k, b] += 1`` with b = floor(log2(area in pixels))."""
-    t = wp.tid()
-    a = area[roots[t]]
-    b = int(0)
-    while (a >> (b + 1)) > 0:
-        b += 1
-    wp.atomic_add(hist, k, wp.min(b, hist.shape[1] - 1), wp.int64(1))
+    """Tiled, ``n_blocks`` blocks striding over the candidates of increment k (previous roots,
+    ``counts[kprev]`` of them, then bucket k). Each candidate still a root is appended to
+    ``out_roots`` at ``atomic_add(counts, k, 1)`` (any order: every consumer is
+    order-free), counted in row k of the log2 area histogram, and, when it has at least
+    ``min_pixels`` pixels, added to the slit-island sums of row k:
+    ``sums[k] = [n, Σx, Σy, Σx², Σxy, Σy²]`` with x = log10(area in pixels) and
+    y = log10(edges_x·aspect + edges_y) (perimeter in units of dx; aspect = dy/dx), in
+    float64, reduced per block (tile sum) before one atomic per block and column."""
+    b, lane = wp.tid()
+    bd = wp.block_dim()
+    nr = int(0)
+    if kprev >= 0:
+        nr = counts[kprev]
+    s0 = wp.float64(0.0)
+    s1 = wp.float64(0.0)
+    s2 = wp.float64(0.0)
+    s3 = wp.float64(0.0)
+    s4 = wp.float64(0.0)
+    s5 = wp.float64(0.0)
+    for t in range(b * bd + lane, nr + count, n_blocks * bd):
+        c = candidate(roots, nr, order, start, t)
+        if parent[c] == c:
+            slot = wp.atomic_add(counts, k, 1)
+            out_roots[slot] = c
+            a = area[c]
+            e = int(0)
+            while (a >> (e + 1)) > 0:
+                e += 1
+            wp.atomic_add(hist, k, wp.min(e, hist.shape[1] - 1), wp.int64(1))
+            if a >= min_pixels:
+                x = wp.log10(wp.float64(a))
+                y = wp.log10(wp.float64(edges_x[c]) * aspect + wp.float64(edges_y[c]))
+                s0 += wp.float64(1.0)
+                s1 += x
+                s2 += y
+                s3 += x * x
+                s4 += x * y
+                s5 += y * y
+    r0 = wp.tile_extract(wp.tile_sum(wp.tile(s0)), 0)
+    if r0 > wp.float64(0.0):
+        r1 = wp.tile_extract(wp.tile_sum(wp.tile(s1)), 0)
+        r2 = wp.tile_extract(wp.tile_sum(wp.tile(s2)), 0)
+        r3 = wp.tile_extract(wp.tile_sum(wp.tile(s3)), 0)
+        r4 = wp.tile_extract(wp.tile_sum(wp.tile(s4)), 0)
+        r5 = wp.tile_extract(wp.tile_sum(wp.tile(s5)), 0)
+        if lane == 0:
+            wp.atomic_add(sums, k, 0, r0)
+            wp.atomic_add(sums, k, 1, r1)
+            wp.atomic_add(sums, k, 2, r2)
+            wp.atomic_add(sums, k, 3, r3)
+            wp.atomic_add(sums, k, 4, r4)
+            wp.atomic_add(sums, k, 5, r5)
 
 
 @wp.kernel

@@ -622,6 +622,11 @@ def test_gpu_island_curve_equals_cpu(connectivity):
     a = island_curve(s, 60, device="cpu", **kw)
     b = island_curve(s, 60, device="cuda:0", **kw)
     for key, col in a.to_dict().items():
-        np.testing.assert_array_equal(col, b.to_dict()[key], err_msg=key)
+        if key.startswith("slit_") and col.dtype.kind == "f":
+            # float64 sums accumulated on the device in a thread-dependent order (and log10 of
+            # the device's libm): equal to ~1e-15, not bit for bit
+            np.testing.assert_allclose(col, b.to_dict()[key], rtol=1e-12, equal_nan=True)
+        else:
+            np.testing.assert_array_equal(col, b.to_dict()[key], err_msg=key)
     np.testing.assert_array_equal(a.area_histogram, b.area_histogram)
     np.testing.assert_array_equal(a.sizes[0].perimeter, b.sizes[0].perimeter)

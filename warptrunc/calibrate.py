@@ -33,7 +33,7 @@ import numpy as np
 import warp as wp
 
 from ._validate import check_int, check_range, pair
-from .descriptors import height_statistics, roll_off_wavelength
+from .descriptors import roll_off_wavelength, surface_statistics
 from .fractal import METHODS, fractal_dimension
 from .surface import Surface
 
@@ -210,7 +210,7 @@ def target_from_surface(
     """
     opts = dict(method_options or {})
     d = fractal_dimension(surface, method, device=device, **opts).D
-    st = height_statistics(surface.heights)
+    st = surface_statistics(surface)
     if Wr is None:
         Wr, ok = roll_off_wavelength(surface)
         if not ok:
@@ -315,7 +315,7 @@ def calibrate(
                 d_in, target.Wr, L=target.L, n=target.n, Rt=rt, seed=seed, device=device, **wm_opts
             )
             ds.append(fractal_dimension(s, target.method, device=device, **target.method_options).D)
-            rms.append(height_statistics(s.heights)["Rrms"])
+            rms.append(surface_statistics(s)["Rrms"])  # on the device, no host copy
         out = (float(np.mean(ds)), float(np.std(ds)), float(np.mean(rms)))
         hist.append((d_in, rt, *out))
         bar.update(1)

@@ -3,8 +3,28 @@
 """Roughness descriptors of a height map: amplitude statistics, power spectra, roll-off W_r.
 
 Table 1 of the paper describes each surface by R_t, R_rms, the roll-off wavelength W_r and a
-fractal dimension D (see :mod:`warptrunc.fractal` for D). Everything here runs on the host in
-float64 (NumPy FFTs); the maps are at most a few 10⁷ points.
+fractal dimension D (see :mod:`warptrunc.fractal` for D). Everything is float64.
+
+Where it runs
+-------------
+A surface made from NumPy is analysed on the host with NumPy, as before. A device-resident
+surface (``surface.device`` set, e.g. from :func:`warptrunc.wm_surface`) is analysed where it
+lives, with no host copy of the map:
+
+* amplitude statistics (mean, R_rms, R_a, skewness, kurtosis) are two Warp reductions with
+  float64 accumulation (``warptrunc.kernels.reduce``); R_t comes from the surface's validation
+  reduction;
+* spectra (periodogram, profile PSD, band variances, W_r) use **CuPy's cuFFT** on the Warp array,
+  shared zero-copy through ``__cuda_array_interface__``, when the surface is on a CUDA device and
+  CuPy is installed; binning (``bincount``) also runs on the GPU and only the binned arrays come
+  back. Otherwise (CPU device, or no CuPy) NumPy's FFT runs on a host view (CPU device: the
+  Warp array's own memory, no copy) or on the surface's lazy host copy (CUDA without CuPy).
+
+Why cuFFT and not Warp's tile FFT: ``wp.tile_fft`` transforms one tile per block in shared
+memory, so a row must fit a block's shared memory as a power-of-two complex tile; a 10240-point
+float64 row (10240 is not a power of two, 160 KiB complex) does not, and the 2-D periodogram of
+W_r needs a full 2-D transform of the map. cuFFT handles any size and both transforms in float64
+at memory bandwidth, and CuPy is the standard way to reach it from Python.
 
 Conventions
 -----------
@@ -37,6 +57,8 @@ import numpy as np
 from ._validate import check_int, check_range
 from .surface import Surface
 
+_MOMENT_LANES = 65536
+
 __all__ = [
     "PSD",
     "Descriptors",
@@ -47,6 +69,7 @@ __all__ = [
     "profile_psd",
     "radial_psd",
     "roll_off_wavelength",
+    "surface_statistics",
 ]
 
 WINDOWS = ("hann", "none")
@@ -147,6 +170,83 @@ def height_statistics(z: np.ndarray) -> dict[str, float]:
     }
 
 
+def surface_statistics(surface: Surface) -> dict[str, float]:
+    """:func:`height_statistics` of a surface, where it lives.
+
+    A NumPy surface: :func:`height_statistics` of its heights. A device-resident surface: two
+    Warp reductions on its device (float64 sum, then float64 central moments about the mean),
+    R_t from its validation; no host copy of the map.
+    """
+    if surface.device is None:
+        return height_statistics(surface.heights)
+    import warp as wp
+
+    from .kernels import reduce as _kr
+
+    z = surface.device_heights()
+    dev = z.device
+    n = surface.nx * surface.ny
+    flat = z.flatten()
+    lanes = min(_MOMENT_LANES, n)
+    chunk = 0 if dev.is_cuda else -(-n // lanes)
+    acc = wp.zeros(1, dtype=wp.float64, device=dev)
+    wp.launch(_kr.sum_kernel, dim=lanes, inputs=[flat, lanes, chunk], outputs=[acc], device=dev)
+    mean = float(acc.numpy()[0]) / n  # sync point
+    mom = wp.zeros(4, dtype=wp.float64, device=dev)
+    wp.launch(
+        _kr.central_moments_kernel,
+        dim=lanes,
+        inputs=[flat, lanes, chunk, mean],
+        outputs=[mom],
+        device=dev,
+    )
+    a1, a2, a3, a4 = (float(v) / n for v in mom.numpy())  # sync point
+    rrms = math.sqrt(a2)
+    if a2 > 0.0:
+        skew, kurt = a3 / a2**1.5, a4 / a2**2
+    else:
+        skew, kurt = 0.0, 3.0
+    lo, hi = surface.extremes()
+    return {
+        "Rt": float(np.float64(hi) - np.float64(lo)),
+        "Rrms": rrms,
+        "Ra": a1,
+        "skewness": skew,
+        "kurtosis": kurt,
+        "mean": mean,
+    }
+
+
+def _array_module(surface: Surface):
+    """(xp, z): the array module and the (ny, nx) heights to run the spectra with (module
+    docstring: CuPy on the surface's CUDA device when available, else NumPy on a host view)."""
+    dev = surface.device
+    if dev is None:
+        return np, surface.heights
+    import warp as wp
+
+    zd = surface.device_heights()
+    if zd.device.is_cpu:
+        return np, zd.numpy()  # a view of the device memory, no copy
+    try:
+        import cupy as cp
+    except ImportError:
+        return np, surface.heights  # the lazy host copy
+    wp.synchronize_device(zd.device)  # CuPy works on its own stream
+    with cp.cuda.Device(zd.device.ordinal):
+        return cp, cp.asarray(zd)
+
+
+def _cupy():
+    import cupy
+
+    return cupy
+
+
+def _to_host(a):
+    return a.get() if hasattr(a, "get") and not isinstance(a, np.ndarray) else a
+
+
 def describe(surface: Surface, *, smoothing: float = 0.05) -> Descriptors:
     """Descriptors of a surface: R_t, R_rms, R_a, skewness, kurtosis and W_r.
 
@@ -162,7 +262,7 @@ def describe(surface: Surface, *, smoothing: float = 0.05) -> Descriptors:
     -------
     Descriptors
     """
-    st = height_statistics(surface.heights)
+    st = surface_statistics(surface)
     wr, resolved = roll_off_wavelength(surface, smoothing=smoothing)
     return Descriptors(
         Rt=st["Rt"],
@@ -176,11 +276,11 @@ def describe(surface: Surface, *, smoothing: float = 0.05) -> Descriptors:
     )
 
 
-def _window(n: int, kind: str) -> np.ndarray:
+def _window(n: int, kind: str, xp=np) -> np.ndarray:
     if kind == "none":
-        return np.ones(n)
+        return xp.ones(n)
     # periodic Hann: tapers both edges of a non-periodic scan to zero
-    return 0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(n) / n)
+    return 0.5 - 0.5 * xp.cos(2.0 * np.pi * xp.arange(n) / n)
 
 
 def periodogram(
@@ -203,16 +303,23 @@ def periodogram(
     fx, fy : (ny, nx) ndarray
         Frequencies of each entry (1/m).
     """
+    c, fx, fy = _periodogram(surface, window)
+    return _to_host(c), _to_host(fx), _to_host(fy)
+
+
+def _periodogram(surface: Surface, window: str):
+    """:func:`periodogram` where the surface lives (NumPy or CuPy arrays)."""
     if window not in WINDOWS:
         raise ValueError(f"window must be one of {WINDOWS}, got {window!r}")
-    z = np.asarray(surface.heights, dtype=np.float64)
+    xp, z = _array_module(surface)
+    z = xp.asarray(z, dtype=xp.float64)
     z = z - z.mean()
     ny, nx = z.shape
-    w = np.outer(_window(ny, window), _window(nx, window))
-    f = np.fft.fft2(z * w)
-    c = (f.real**2 + f.imag**2) * surface.dx * surface.dy / (nx * ny * float(np.mean(w * w)))
-    fy, fx = np.meshgrid(
-        np.fft.fftfreq(ny, surface.dy), np.fft.fftfreq(nx, surface.dx), indexing="ij"
+    w = xp.outer(_window(ny, window, xp), _window(nx, window, xp))
+    f = xp.fft.fft2(z * w)
+    c = (f.real**2 + f.imag**2) * surface.dx * surface.dy / (nx * ny * float(xp.mean(w * w)))
+    fy, fx = xp.meshgrid(
+        xp.fft.fftfreq(ny, surface.dy), xp.fft.fftfreq(nx, surface.dx), indexing="ij"
     )
     return c, fx, fy
 
@@ -229,15 +336,16 @@ def radial_psd(surface: Surface, *, window: str = "hann") -> PSD:
     PSD
         ``kind="radial"``.
     """
-    c, fx, fy = periodogram(surface, window=window)
-    fr = np.hypot(fx, fy).ravel()
+    c, fx, fy = _periodogram(surface, window)
+    xp = np if isinstance(c, np.ndarray) else _cupy()
+    fr = xp.hypot(fx, fy).ravel()
     df = min(1.0 / surface.lx, 1.0 / surface.ly)
     fmax = min(0.5 / surface.dx, 0.5 / surface.dy)
     nb = int(fmax / df)
-    idx = np.floor(fr / df + 0.5).astype(np.int64)  # bin k holds |f| in [(k−½)Δf, (k+½)Δf)
+    idx = xp.floor(fr / df + 0.5).astype(xp.int64)  # bin k holds |f| in [(k−½)Δf, (k+½)Δf)
     keep = (idx >= 1) & (idx <= nb)
-    counts = np.bincount(idx[keep], minlength=nb + 1)[1:]
-    sums = np.bincount(idx[keep], weights=c.ravel()[keep], minlength=nb + 1)[1:]
+    counts = _to_host(xp.bincount(idx[keep], minlength=nb + 1))[1:]
+    sums = _to_host(xp.bincount(idx[keep], weights=c.ravel()[keep], minlength=nb + 1))[1:]
     ok = counts > 0
     freq = (np.arange(1, nb + 1) * df)[ok]
     return PSD(freq, sums[ok] / counts[ok], counts[ok].astype(np.int64), "radial")
@@ -271,24 +379,25 @@ def profile_psd(surface: Surface, *, axis: str = "both", window: str = "hann") -
             f"axis='both' needs square pixels, got dx={surface.dx!r}, dy={surface.dy!r}; "
             "use axis='x' or 'y'"
         )
-    z = np.asarray(surface.heights, dtype=np.float64)
+    xp, z = _array_module(surface)
+    z = xp.asarray(z, dtype=xp.float64)
     parts = []
     for ax in ("x", "y") if axis == "both" else (axis,):
         prof = z if ax == "x" else z.T
         h = surface.dx if ax == "x" else surface.dy
         n = prof.shape[1]
-        w = _window(n, window)
+        w = _window(n, window, xp)
         p = prof - prof.mean(axis=1, keepdims=True)
-        f = np.fft.rfft(p * w, axis=1)
-        c = (f.real**2 + f.imag**2).mean(axis=0) * h / (n * float(np.mean(w * w)))
+        f = xp.fft.rfft(p * w, axis=1)
+        c = _to_host((f.real**2 + f.imag**2).mean(axis=0)) * h / (n * float(xp.mean(w * w)))
+        del f, p
         c[1:] *= 2.0  # one-sided
         if n % 2 == 0:
             c[-1] /= 2.0  # the Nyquist term has no negative twin
         parts.append((np.fft.rfftfreq(n, h)[1:], c[1:], prof.shape[0]))
     if len(parts) == 2 and parts[0][0].size != parts[1][0].size:
         raise ValueError(
-            f"axis='both' needs a square map, got (ny, nx) = {surface.heights.shape}; "
-            "use axis='x' or 'y'"
+            f"axis='both' needs a square map, got (ny, nx) = {surface.shape}; use axis='x' or 'y'"
         )
     freq = parts[0][0]
     psd = sum(p[1] * p[2] for p in parts) / sum(p[2] for p in parts)
@@ -330,8 +439,9 @@ def band_variance(
     """
     b = check_int("bins_per_decade", bins_per_decade, 1, 100)
     if kind == "radial":
-        c, fx, fy = periodogram(surface, window=window)
-        fr = np.hypot(fx, fy).ravel()
+        c, fx, fy = _periodogram(surface, window)
+        xp = np if isinstance(c, np.ndarray) else _cupy()
+        fr = xp.hypot(fx, fy).ravel()
         w = c.ravel() / (surface.lx * surface.ly)  # C Δf_x Δf_y
         f0 = min(1.0 / surface.lx, 1.0 / surface.ly)
         fmax = min(0.5 / surface.dx, 0.5 / surface.dy)
@@ -342,13 +452,14 @@ def band_variance(
         w = p.psd * (p.frequency[0])  # C₁ Δf
         f0 = p.frequency[0]
         fmax = p.frequency[-1]
+        xp = np
     else:
         raise ValueError(f"kind must be 'radial' or 'profile', got {kind!r}")
     keep = (fr > 0) & (fr <= fmax * (1 + 1e-12))
-    k = np.floor(np.log10(fr[keep] / f0) * b + 1e-9).astype(np.int64)
+    k = xp.floor(xp.log10(fr[keep] / f0) * b + 1e-9).astype(xp.int64)
     nb = int(k.max()) + 1
-    var = np.bincount(k, weights=w[keep], minlength=nb)
-    cnt = np.bincount(k, minlength=nb)
+    var = _to_host(xp.bincount(k, weights=w[keep], minlength=nb))
+    cnt = _to_host(xp.bincount(k, minlength=nb))
     ok = cnt > 0
     centres = f0 * 10 ** ((np.arange(nb) + 0.5) / b)
     return centres[ok], var[ok], cnt[ok].astype(np.int64)
@@ -393,17 +504,18 @@ def roll_off_wavelength(
     roll-off wavelengths (W_r ≈ L/3) the window's main lobe biases W_r low by up to 40 %.
     """
     sig = check_range("smoothing", smoothing, 0.0, 1.0, unit="decades")
-    c, fx, fy = periodogram(surface, window=window)
-    f = np.hypot(fx, fy).ravel()
+    c, fx, fy = _periodogram(surface, window)
+    xp = np if isinstance(c, np.ndarray) else _cupy()
+    f = xp.hypot(fx, fy).ravel()
     p = c.ravel()
     f0 = min(1.0 / surface.lx, 1.0 / surface.ly)
     fmax = 1.0 / (4.0 * max(surface.dx, surface.dy))
     keep = (f > 0) & (f <= fmax)
     res = 200  # histogram bins per decade before smoothing
-    x = np.log10(f[keep] / f0)
+    x = xp.log10(f[keep] / f0)
     nb = max(1, math.ceil(math.log10(max(fmax / f0, 1.0)) * res) + 1)
-    idx = np.minimum((x * res + 0.5).astype(np.int64), nb - 1)
-    hist = np.bincount(idx, weights=p[keep], minlength=nb)
+    idx = xp.minimum((x * res + 0.5).astype(xp.int64), nb - 1)
+    hist = _to_host(xp.bincount(idx, weights=p[keep], minlength=nb))
     half = int(4 * sig * res)
     k = np.arange(-half, half + 1)
     kernel = np.exp(-0.5 * (k / (sig * res)) ** 2)

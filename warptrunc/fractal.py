@@ -14,7 +14,8 @@ method     name in the paper    measure M(r) at scale r                       D 
 The slope is the least-squares slope of log₁₀ M against log₁₀ r over the *fit range*, a
 subrange of the evaluated *scales*; both are user-settable and are returned in
 :class:`FractalFit` with r² of the fit. The per-box and per-pixel passes run in Warp kernels
-(``warptrunc.kernels.fractal``); the spectrum uses NumPy FFTs on the host.
+(``warptrunc.kernels.fractal``); the spectrum runs where the surface lives: CuPy's cuFFT on a
+CUDA surface when CuPy is installed, else NumPy (see :mod:`warptrunc.descriptors`).
 
 Triangulation and box counting need heights and lengths in one unit, and the result depends
 on how heights compare with lengths. ``height_scaling`` chooses the convention
@@ -51,11 +52,12 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import check_memory, resolve_device
+from ._device import resolve_device
 from ._validate import check_range
 from .descriptors import band_variance, roll_off_wavelength
 from .kernels import fractal as _k
 from .surface import Surface
+from .truncation import _where, surface_range
 
 __all__ = [
     "DEFAULT_HEIGHT_SCALING",
@@ -104,25 +106,34 @@ def _check_scaling(height_scaling: str) -> str:
     return height_scaling
 
 
-def cube_height_factor(surface: Surface) -> float:
+def cube_height_factor(surface: Surface, z_min: float | None = None, z_max: float | None = None) -> float:
     """Factor of the ``"cube"`` convention: (N − 1)·√(dx·dy)/(max z − min z) (dimensionless).
 
     Heights times this factor span the map's lateral extent (N = max(nx, ny)); 1 for a flat map.
+    ``z_min``, ``z_max`` (m) default to the extremes of ``surface.heights``.
     """
-    z = surface.heights
-    rng = float(np.max(z)) - float(np.min(z))
+    if z_min is None or z_max is None:
+        z = surface.heights
+        z_min, z_max = float(np.min(z)), float(np.max(z))
+    rng = float(z_max) - float(z_min)
     if not rng > 0:
         return 1.0
     return (max(surface.nx, surface.ny) - 1) * math.sqrt(surface.dx * surface.dy) / rng
 
 
 def _scaled_upload(zd: wp.array, surface: Surface, height_scaling: str) -> wp.array:
-    """The device heights for a method: as measured ("si") or mapped into the cube."""
+    """The device heights for a method: as measured ("si") or mapped into the cube (on the
+    device, from the surface's recorded or reduced extremes)."""
     if height_scaling == "si":
         return zd
-    z = surface.heights.astype(np.float64)
-    z = (z - z.min()) * cube_height_factor(surface)
-    return wp.array(z.astype(np.float32), dtype=wp.float32, device=zd.device)
+    lo, hi = surface_range(surface, zd.flatten(), zd.device)
+    out = wp.empty(zd.shape, dtype=wp.float32, device=zd.device)
+    wp.launch(
+        _k.cube_scale_kernel, dim=zd.shape,
+        inputs=[zd, float(lo), cube_height_factor(surface, lo, hi)], outputs=[out],
+        device=zd.device,
+    )  # fmt: skip
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -181,9 +192,8 @@ def _upload(surface: Surface, device: wp.DeviceLike) -> wp.array:
             f"surface must be a warptrunc.Surface, got {type(surface).__name__}; wrap a height "
             "array with warptrunc.from_heights(z, dx)"
         )
-    dev = resolve_device(device)
-    check_memory(surface.heights.nbytes, dev, "the height map")
-    return wp.array(surface.heights, dtype=wp.float32, device=dev)
+    # where a device surface lives unless told otherwise; cached per device on the surface
+    return surface.device_heights(resolve_device(_where(surface, device)))
 
 
 def _default_box_sizes(surface: Surface) -> np.ndarray:
@@ -202,7 +212,7 @@ def _check_sizes(name: str, sizes: Sequence[int] | None, surface: Surface, defau
     if s[0] < 1 or s[-1] > nmin - 1:
         raise ValueError(
             f"{name} must lie in [1, {nmin - 1}] pixels for a map of shape "
-            f"{surface.heights.shape}, got {sizes!r}"
+            f"{surface.shape}, got {sizes!r}"
         )
     return s
 
@@ -389,7 +399,7 @@ def box_counting(
 def _box(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALING) -> FractalFit:
     sizes = _check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
     h = math.sqrt(surface.dx * surface.dy)
-    z0 = float(np.min(surface.heights))
+    z0 = surface_range(surface, zd.flatten(), zd.device)[0]
     if _check_scaling(height_scaling) == "cube":
         zd, z0 = _scaled_upload(zd, surface, height_scaling), 0.0
     counts = np.empty(sizes.size)
@@ -613,7 +623,8 @@ def fractal_dimension(
     method : {"tri", "box", "vs", "sp"}
         Estimator (see the module docstring).
     device : str, optional
-        Warp device (ignored by ``"sp"``, which runs on the host).
+        Warp device (``"sp"`` ignores it and runs where the surface lives, see
+        :mod:`warptrunc.descriptors`).
     **options
         Keyword options of the method's function (:func:`triangular_prism`,
         :func:`box_counting`, :func:`vertical_sections`, :func:`power_spectrum`).

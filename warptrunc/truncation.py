@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import check_memory, resolve_device
+from ._device import resolve_device
 from ._limits import flat_row_bands, row_bands
 from ._validate import check_int, check_range
 from .kernels import reduce as _kr
@@ -209,17 +209,23 @@ def depth_grid(
     return np.arange(n + 1, dtype=np.float64) * (wmax / n)
 
 
+def _where(surface: Surface, device: wp.DeviceLike) -> wp.DeviceLike:
+    """``device``, or where a device-resident surface lives when it is None."""
+    return getattr(surface, "device", None) if device is None else device
+
+
 def _upload(surface: Surface, device) -> wp.array:
-    """The (ny, nx) heights on ``device`` (reusing the generator's copy when it is there).
+    """The (ny, nx) heights on ``device``: the surface's own device array, or its copy there
+    (uploaded once per device and cached on the surface).
 
     Kept 2-D: a flattened map of 2³¹ pixels or more is not a valid Warp array; the flat
     kernels run over row bands (``warptrunc._limits``)."""
-    cached = getattr(surface, "_device_heights", None)
-    if cached is not None and cached.device == device:
-        return cached  # generated on this device: no second upload
-    z_np = surface.heights
-    check_memory(z_np.nbytes, device, "truncation analysis")
-    return wp.array(z_np, dtype=wp.float32, device=device)
+    if not isinstance(surface, Surface):
+        raise TypeError(
+            f"surface must be a warptrunc.Surface, got {type(surface).__name__}; wrap a height "
+            "array with warptrunc.from_heights(z, dx)"
+        )
+    return surface.device_heights(device)
 
 
 def histogram_bands(
@@ -238,12 +244,14 @@ def histogram_bands(
     return total
 
 
-def _known_extremes(surface: Surface, device) -> tuple[float, float] | None:
-    """(min z, max z) recorded by the generator for its device copy, or None."""
-    cached = getattr(surface, "_device_heights", None)
-    if cached is not None and cached.device == device:
-        return getattr(surface, "_device_extremes", None)
-    return None
+def surface_range(surface: Surface, z: wp.array, device) -> tuple[float, float]:
+    """(min z, max z) (m) of a surface: recorded by the generator or by its validation, else a
+    device reduction of ``z`` (its heights on ``device``, 1-D or 2-D), then cached."""
+    ext = surface._cached_extremes()
+    if ext is None:
+        ext = height_range(z, device)
+        surface._cache_extremes(*ext)
+    return ext
 
 
 def _thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
@@ -275,7 +283,8 @@ def truncate(
     max_depth_fraction : float
         ω_max as a fraction of the map's R_t (dimensionless).
     device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
 
     Returns
     -------
@@ -287,9 +296,9 @@ def truncate(
     z ≥ z_top − ω_k) is found in a Warp kernel and counted in an integer atomic histogram;
     the cumulative sum gives the number of contact pixels at every depth.
     """
-    device = resolve_device(device)
+    device = resolve_device(_where(surface, device))
     z = _upload(surface, device)
-    lo, hi = _known_extremes(surface, device) or height_range(z, device)
+    lo, hi = surface_range(surface, z, device)  # recorded by the generator, or one reduction
     depth = depth_grid(
         float(np.float64(hi) - np.float64(lo)), n_increments,
         max_depth=max_depth, max_depth_fraction=max_depth_fraction,
@@ -335,12 +344,12 @@ def contact_index_map(
     (ny, nx) int32 ndarray (or Warp array)
         The island labelling carries its union-find forest across depths in this order.
     """
-    device = resolve_device(device)
+    device = resolve_device(_where(surface, device))
     depth = np.asarray(depth, dtype=np.float64)
     if depth.ndim != 1 or depth.size < 1 or np.any(np.diff(depth) < 0) or depth[0] < 0:
         raise ValueError("depth must be a 1-D non-decreasing array of depths ≥ 0 (m)")
     z = _upload(surface, device)
-    t, _lo, hi, _thr, inv_step = _thresholds(z, depth, device)
+    t, _lo, hi, _thr, inv_step = _thresholds(z, depth, device, surface_range(surface, z, device))
     index = wp.empty((surface.ny, surface.nx), dtype=wp.int32, device=device)
     for r0, r1 in row_bands(surface.ny, surface.nx):  # flat launches below 2³¹ pixels each
         wp.launch(

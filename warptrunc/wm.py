@@ -356,7 +356,6 @@ def wm_surface(
     params = spec.params()
     params["scale"] = scale
     params["G_equivalent"] = spec.Wr * (scale / _prefactor(spec)) ** (1.0 / (spec.D - 3.0))
-    surface = Surface(z.numpy(), spec.dx, spec.dy, params)  # sync point
-    object.__setattr__(surface, "_device_heights", z)  # reused by truncate() on this device
-    object.__setattr__(surface, "_device_extremes", extremes)  # exact (min, max), no pass
-    return surface
+    # device-resident, no host copy until one is asked for; the recorded extremes are exact and
+    # finite, and every height lies between them, so no validation pass is needed
+    return Surface._on_device(z, spec.dx, spec.dy, params, extremes)

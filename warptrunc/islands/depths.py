@@ -16,8 +16,8 @@ from .._validate import check_int, check_range
 from ..kernels import euler as _ke
 from ..kernels import islands as _ki
 from ..surface import Surface
-from ..truncation import contact_index_map, depth_grid
-from .fits import _fit_loglog
+from ..truncation import _where, contact_index_map, depth_grid, surface_range
+from .fits import _slit_from_sums
 from .labelling import (
     _check_connectivity,
     _check_index_size,
@@ -25,7 +25,6 @@ from .labelling import (
     _islands,
 )
 from .results import (
-    MIN_ISLANDS,
     MIN_PIXELS,
     IslandCurve,
     Islands,
@@ -34,6 +33,9 @@ from .results import (
 )
 
 # --- carried forest across depths -----------------------------------------------------------------
+
+_BLOCK = 256  # threads per block of the statistics kernels (CUDA)
+_STRIDE_THREADS = 1 << 16  # most threads striding over the candidate roots of one increment
 
 
 class _Forest:
@@ -89,8 +91,15 @@ class _Forest:
             self.area = wp.zeros(n, dtype=wp.int32, device=device)
             self.edges_x = wp.zeros(n, dtype=wp.int32, device=device)
             self.edges_y = wp.zeros(n, dtype=wp.int32, device=device)
-            self.roots = wp.empty(1, dtype=wp.int32, device=device)
-            self.n_roots = 0
+            # roots live on the device only: a double buffer as large as the final contact set,
+            # their number per increment in ``root_counts`` (never read back during the loop)
+            cap = max(1, int(self.first[n1]))
+            self.roots = wp.empty(cap, dtype=wp.int32, device=device)
+            self.roots_next = wp.empty(cap, dtype=wp.int32, device=device)
+            self.root_counts = wp.zeros(n1, dtype=wp.int32, device=device)
+            self.hist = wp.zeros((n1, max(1, n.bit_length())), dtype=wp.int64, device=device)
+            self.slit_sums = wp.zeros((n1, 6), dtype=wp.float64, device=device)
+            self.min_pixels, self.aspect = 1, 1.0
 
     def bucket(self, k: int) -> tuple[int, int]:
         """(start, count) of bucket k in the sorted order."""
@@ -113,91 +122,76 @@ class _Forest:
             self._update_statistics(k, start, count)
         self.k = k
 
-    def _update_statistics(self, k: int, start: int, count: int) -> None:
-        dev, n_roots = self.device, self.n_roots
-        ncand = n_roots + count
-        if ncand == 0:
-            return
+    def _record_statistics(self) -> None:
+        """Record the statistics launches once (replayed with new scalars at every increment,
+        which costs far less host time than a full ``wp.launch``): merge and compaction for
+        both parities of the roots double buffer, and the pixel additions. The merge and the
+        compaction have a fixed grid that strides over the candidates counted on the device."""
+        dev = self.device
+        if dev.is_cuda:
+            threads, blocks = _STRIDE_THREADS, _STRIDE_THREADS // _BLOCK
+        else:  # a CPU launch runs its threads one after the other: one lane does it all
+            threads = blocks = 1
         acc = [self.area, self.edges_x, self.edges_y]
-        wp.launch(
-            _ki.merge_linked_kernel,
-            dim=ncand,
-            inputs=[self.roots, n_roots, self.order, start, self.link, k],
+        bufs = (self.roots, self.roots_next)
+        self._merge, self._compact = [], []
+        for src, dst in (bufs, bufs[::-1]):
+            self._merge.append(
+                wp.launch(
+                    _ki.merge_linked_stride_kernel,
+                    dim=threads,
+                    inputs=[src, self.root_counts, -1, self.order, 0, 0, self.link, 0, threads],
+                    outputs=[self.parent, *acc],
+                    device=dev,
+                    record_cmd=True,
+                )
+            )
+            self._compact.append(
+                wp.launch_tiled(
+                    _ki.compact_roots_kernel,
+                    dim=blocks,
+                    inputs=[src, -1, self.order, 0, 0, self.parent, *acc, 0, self.min_pixels,
+                            self.aspect, blocks],
+                    outputs=[self.root_counts, dst, self.hist, self.slit_sums],
+                    block_dim=_BLOCK,
+                    device=dev,
+                    record_cmd=True,
+                )
+            )  # fmt: skip
+        self._add = wp.launch(
+            _ki.add_pixels_kernel,
+            dim=1,
+            inputs=[self.order, 0, self.idx, 0, self.ny, self.nx, self.periodic],
             outputs=[self.parent, *acc],
             device=dev,
+            record_cmd=True,
         )
+        self._parity = 0
+
+    def _update_statistics(self, k: int, start: int, count: int) -> None:
+        """Merge the accumulators of the roots hooked at k, add the new pixels, compact the
+        surviving roots and add them to row k of the histogram and the slit sums: all on the
+        device, no read-back (the number of roots stays in ``root_counts``)."""
+        if int(self.first[k + 1]) == 0:  # nothing in contact yet (host-known)
+            return
+        if not hasattr(self, "_merge"):
+            self._record_statistics()
+        p = self._parity
+        m = self._merge[p]
+        for name, v in (("kprev", k - 1), ("start", start), ("count", count), ("k", k)):
+            m.set_param_by_name(name, v)
+        m.launch()
         if count > 0:
-            wp.launch(
-                _ki.add_pixels_kernel,
-                dim=count,
-                inputs=[self.order, start, self.idx, k, self.ny, self.nx, self.periodic],
-                outputs=[self.parent, *acc],
-                device=dev,
-            )
-        flag = wp.empty(ncand, dtype=wp.int32, device=dev)
-        wp.launch(
-            _ki.root_flag_kernel,
-            dim=ncand,
-            inputs=[self.roots, n_roots, self.order, start, self.parent],
-            outputs=[flag],
-            device=dev,
-        )
-        rank = wp.empty(ncand, dtype=wp.int32, device=dev)
-        wp.utils.array_scan(flag, rank, inclusive=True)
-        n_new = int(rank[ncand - 1 : ncand].numpy()[0])  # sync point
-        roots = wp.empty(max(n_new, 1), dtype=wp.int32, device=dev)
-        wp.launch(
-            _ki.write_roots_kernel,
-            dim=ncand,
-            inputs=[self.roots, n_roots, self.order, start, flag, rank],
-            outputs=[roots],
-            device=dev,
-        )
-        self.roots, self.n_roots = roots, n_new
-
-    def root_stats(self, min_pixels: int) -> tuple[np.ndarray, ...]:
-        """(root, pixels, edges_x, edges_y) of the current islands with ≥ min_pixels, as int64
-        ndarrays sorted by root (= label order)."""
-        dev, nr = self.device, self.n_roots
-        if nr == 0:
-            e = np.zeros(0, dtype=np.int64)
-            return e, e, e, e
-        flag = wp.empty(nr, dtype=wp.int32, device=dev)
-        wp.launch(
-            _ki.big_flag_kernel,
-            dim=nr,
-            inputs=[self.roots, self.area, int(min_pixels)],
-            outputs=[flag],
-            device=dev,
-        )
-        rank = wp.empty(nr, dtype=wp.int32, device=dev)
-        wp.utils.array_scan(flag, rank, inclusive=True)
-        m = int(rank[nr - 1 : nr].numpy()[0])  # sync point
-        if m == 0:
-            e = np.zeros(0, dtype=np.int64)
-            return e, e, e, e
-        out = wp.empty((4, m), dtype=wp.int32, device=dev)
-        wp.launch(
-            _ki.gather_stats_kernel,
-            dim=nr,
-            inputs=[self.roots, flag, rank, self.area, self.edges_x, self.edges_y],
-            outputs=[out[0], out[1], out[2], out[3]],
-            device=dev,
-        )
-        a = out.numpy().astype(np.int64)  # sync point
-        o = np.argsort(a[0], kind="stable")
-        return a[0][o], a[1][o], a[2][o], a[3][o]
-
-    def area_histogram(self, hist: wp.array, k: int) -> None:
-        """Add the current islands to row k of the log2 area histogram."""
-        if self.n_roots > 0:
-            wp.launch(
-                _ki.area_histogram_kernel,
-                dim=self.n_roots,
-                inputs=[self.roots, self.area, k],
-                outputs=[hist],
-                device=self.device,
-            )
+            a = self._add
+            a.set_dim(count)
+            a.set_param_by_name("start", start)
+            a.set_param_by_name("k", k)
+            a.launch()
+        c = self._compact[p]
+        for name, v in (("kprev", k - 1), ("start", start), ("count", count), ("k", k)):
+            c.set_param_by_name(name, v)
+        c.launch()
+        self._parity = 1 - p
 
     def labels(self) -> tuple[wp.array, int]:
         """Labels (flat int32, 1..n raster order) of the contact set at the current increment."""
@@ -284,15 +278,11 @@ def island_counts_device(
     return forest.island_counts()
 
 
-def _thresholds(surface: Surface, depth: np.ndarray) -> tuple[np.ndarray, float]:
-    z_top = float(surface.heights.max())
-    return (np.float64(z_top) - depth).astype(np.float32), z_top
-
-
 def _index_at_depths(surface: Surface, depth: np.ndarray, device) -> wp.array:
     """Flat int32 contact index of every pixel against arbitrary non-decreasing depths."""
-    thr, _ = _thresholds(surface, depth)
-    z = wp.array(surface.heights.reshape(-1), dtype=wp.float32, device=device)
+    z = surface.device_heights(device).flatten()  # no host round trip for device surfaces
+    _lo, z_top = surface_range(surface, z, device)
+    thr = (np.float64(z_top) - depth).astype(np.float32)
     t = wp.array(thr, dtype=wp.float32, device=device)
     idx = wp.empty(z.shape[0], dtype=wp.int32, device=device)
     wp.launch(
@@ -332,7 +322,8 @@ def islands_at_depths(
     periodic : bool
         Wrap the map around in x and y.
     device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
 
     Returns
     -------
@@ -349,7 +340,7 @@ def islands_at_depths(
     surface = _check_surface(surface)
     connectivity = _check_connectivity(connectivity)
     d = _check_depths(depths, surface.rt)
-    device = resolve_device(device)
+    device = resolve_device(_where(surface, device))
     order = np.argsort(d, kind="stable")
     ds = d[order]
     uniq, inverse = np.unique(ds, return_inverse=True)
@@ -375,6 +366,7 @@ def islands_at_depths(
                 device,
             )
         )
+        _ = found[-1].labels  # host copy now: one depth's labels on the device at a time
     out: list[Islands] = [None] * d.size  # type: ignore[list-item]
     for j, o in enumerate(order):
         out[o] = found[inverse[j]]
@@ -455,7 +447,8 @@ def topology_curve(
     periodic : bool
         Wrap the map around in x and y.
     device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
 
     Returns
     -------
@@ -471,7 +464,7 @@ def topology_curve(
     """
     surface = _check_surface(surface)
     connectivity = _check_connectivity(connectivity)
-    device = resolve_device(device)
+    device = resolve_device(_where(surface, device))
     depth = depth_grid(
         surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
@@ -538,7 +531,8 @@ def island_curve(
     progress : bool
         Show a tqdm progress bar over the increments.
     device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
 
     Returns
     -------
@@ -552,19 +546,24 @@ def island_curve(
     that gets hooked records the increment, and a pixel is an island root for
     idx ≤ k < link, so island counts at all depths follow from one difference histogram.
     Per-island areas and perimeters are integer accumulators on the roots, merged when roots
-    are hooked. Perimeter and χ come from :func:`topology_curve`'s histograms.
+    are hooked. The list of roots, its length, the log2 area histogram and the slit-island sums
+    (n, Σx, Σy, Σx², Σxy, Σy² of x = log10 A, y = log10 L over the islands ≥ ``min_pixels``,
+    float64) stay on the device and are read back once after the last increment: no increment
+    waits for the host. The fit is the least-squares fit of :func:`slit_island_fit` from those
+    sums (equal to it to ~1e-12 relative). Perimeter and χ come from :func:`topology_curve`'s
+    histograms.
     """
     surface = _check_surface(surface)
     connectivity = _check_connectivity(connectivity)
     min_pixels = check_int("min_pixels", min_pixels, 1)
-    device = resolve_device(device)
+    device = resolve_device(_where(surface, device))
     depth = depth_grid(
         surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
     n1 = depth.size
     ny, nx = surface.ny, surface.nx
     _check_index_size(ny * nx)  # before allocating
-    check_memory(ny * nx * (44 if statistics else 32), device, "island curve")
+    check_memory(ny * nx * (52 if statistics else 32), device, "island curve")
     snaps: set[int] = set()
     if snapshot_depths is not None:
         sd = _check_depths(snapshot_depths, surface.rt)
@@ -573,11 +572,8 @@ def island_curve(
     topo = _topology_hist(idx, (ny, nx), n1, connectivity, periodic, device)
     forest = _Forest(idx, (ny, nx), n1, connectivity, periodic, statistics, device)
 
-    slit = np.full((n1, 2), math.nan)
-    slit_n = np.zeros(n1, dtype=np.int64)
-    nbins = max(1, (ny * nx).bit_length())
-    hist = wp.zeros((n1, nbins), dtype=wp.int64, device=device)
-    roots_count = np.zeros(n1, dtype=np.int64)
+    if statistics:
+        forest.min_pixels, forest.aspect = min_pixels, surface.dy / surface.dx
     sizes: list[IslandSizes] = []
     steps: Any = range(n1)
     if progress:
@@ -586,14 +582,6 @@ def island_curve(
         steps = tqdm(steps, desc="islands", unit="depth")
     for k in steps:
         forest.step()
-        if statistics:
-            roots_count[k] = forest.n_roots
-            forest.area_histogram(hist, k)
-            _, a, ex, ey = forest.root_stats(min_pixels)
-            slit_n[k] = a.size
-            if a.size >= MIN_ISLANDS:
-                s, _, r2 = _fit_loglog(a * surface.pixel_area, ex * surface.dy + ey * surface.dx)
-                slit[k] = s, r2
         if k in snaps:
             labels, n = forest.labels()
             sizes.append(
@@ -611,8 +599,17 @@ def island_curve(
                 )
             )
     n_islands = forest.island_counts()
-    if statistics and not np.array_equal(roots_count, n_islands):
-        raise RuntimeError("internal error: island counts of the two bookkeepings differ")
+    nbins = max(1, (ny * nx).bit_length())
+    slit = np.full((n1, 2), math.nan)
+    slit_n = np.zeros(n1, dtype=np.int64)
+    if statistics:  # the only read-backs of the statistics: once, after the last increment
+        roots_count = forest.root_counts.numpy().astype(np.int64)
+        if not np.array_equal(roots_count, n_islands):
+            raise RuntimeError("internal error: island counts of the two bookkeepings differ")
+        area_hist = forest.hist.numpy()
+        slit, slit_n = _slit_from_sums(forest.slit_sums.numpy())
+    else:
+        area_hist = np.zeros((n1, nbins), dtype=np.int64)
     return IslandCurve(
         depth=depth,
         n_islands=n_islands.astype(np.int64),
@@ -623,7 +620,7 @@ def island_curve(
         slit_exponent=slit[:, 0],
         slit_r2=slit[:, 1],
         slit_n_islands=slit_n,
-        area_histogram=hist.numpy(),
+        area_histogram=area_hist,
         sizes=tuple(sizes),
         rt=surface.rt,
         dx=surface.dx,

@@ -189,3 +189,26 @@ def applicable_depth(
         plateau_range=(lo, hi),
         smooth=smooth,
     )
+
+
+def _slit_from_sums(sums: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(n1, 2) [slope, r²] and (n1,) island counts of the slit-island fits from the per-depth
+    sums [n, Σx, Σy, Σx², Σxy, Σy²] (x = log10 area, y = log10 perimeter, any units).
+
+    The same least-squares fit as ``fits._fit_loglog``; centred sums from raw float64 sums,
+    with the centred sum set to 0 (NaN slope, as there) when it is below 1e-12 of the raw one.
+    """
+    n = sums[:, 0]
+    slit_n = np.rint(n).astype(np.int64)
+    out = np.full((n.size, 2), math.nan)
+    for k in np.flatnonzero(slit_n >= MIN_ISLANDS):
+        c, sx, sy, sxx, sxy, syy = (float(v) for v in sums[k])
+        cxx = sxx - sx * sx / c
+        cxy = sxy - sx * sy / c
+        cyy = syy - sy * sy / c
+        if not cxx > 1e-12 * sxx:
+            continue
+        slope = cxy / cxx
+        r2 = cxy * cxy / (cxx * cyy) if cyy > 1e-12 * syy else 1.0
+        out[k] = slope, r2
+    return out, slit_n

@@ -250,7 +250,7 @@ def _islands(
     if not keep_labels:
         return IslandSizes(depth=depth, area_pixels=area_px, area=area, perimeter=perimeter)
     return Islands(
-        labels=labels.numpy().reshape(ny, nx),
+        labels=labels.reshape((ny, nx)),  # copied to the host only when read
         n_islands=n_islands,
         area_pixels=area_px,
         area=area,
@@ -278,8 +278,10 @@ def label_islands(
 
     Parameters
     ----------
-    mask : (ny, nx) ndarray of bool or int
-        Contact mask ``m[iy, ix]``, non-zero = contact.
+    mask : (ny, nx) ndarray of bool or int, or warp array of uint8
+        Contact mask ``m[iy, ix]``, non-zero = contact. A contiguous 2-D uint8 Warp array is
+        labelled where it lives (no host pass, no copy); ``labels`` of the result then stay on
+        that device until read.
     dx : float
         Pixel spacing along x (m). The default 1 makes areas and perimeters pixel units.
     dy : float, optional
@@ -311,13 +313,22 @@ def label_islands(
     >>> isl.n_islands, isl.area_pixels.tolist(), isl.perimeter.tolist()
     (2, [2, 1], [6.0, 4.0])
     """
-    m = _check_mask(mask)
     connectivity = _check_connectivity(connectivity)
     dx = check_range("dx", dx, 0.0, unit="m")
     dy = dx if dy is None else check_range("dy", dy, 0.0, unit="m")
-    device = resolve_device(device)
-    _check_index_size(m.size)  # before allocating
-    check_memory(m.size * 29, device, "island labelling")
-    mw = wp.array(m, dtype=wp.uint8, device=device)
+    if isinstance(mask, wp.array):  # device-resident mask: no host pass, no upload
+        _check_mask_array(mask)
+        device = mask.device if device is None else resolve_device(device)
+        shape = (int(mask.shape[0]), int(mask.shape[1]))
+        _check_index_size(shape[0] * shape[1])  # before allocating
+        check_memory(shape[0] * shape[1] * 28, device, "island labelling")
+        mw = mask if mask.device == device else mask.to(device)
+    else:
+        m = _check_mask(mask)
+        device = resolve_device(device)
+        shape = m.shape
+        _check_index_size(m.size)  # before allocating
+        check_memory(m.size * 29, device, "island labelling")
+        mw = wp.array(m, dtype=wp.uint8, device=device)
     labels, n = label_device(mw, connectivity, periodic=periodic)
-    return _islands(labels, n, m.shape, dx, dy, connectivity, periodic, math.nan, device)
+    return _islands(labels, n, shape, dx, dy, connectivity, periodic, math.nan, device)

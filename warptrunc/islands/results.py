@@ -20,6 +20,31 @@ MIN_ISLANDS = 5
 _SEGMENT = 32  # pixels per thread in island_stats_kernel
 
 
+class _LazyHostArray:
+    """Dataclass field holding a NumPy array or a device (Warp) array; reading it returns NumPy,
+    copying a device array to the host once, on first access (labels stay on the device until a
+    host consumer asks)."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self._key = f"_{name}_store"
+
+    def __get__(self, obj: Any, objtype: type | None = None) -> Any:
+        if obj is None:  # no class-level default: the field stays required
+            raise AttributeError(self._key)
+        v = obj.__dict__[self._key]
+        if not isinstance(v, np.ndarray):
+            src = v
+            v = np.array(src.numpy(), copy=True) if src.device.is_cpu else src.numpy()
+            obj.__dict__[self._key] = v  # sync point, once
+            obj.__dict__["_device_store"] = src
+        return v
+
+    def __set__(self, obj: Any, value: Any) -> None:
+        obj.__dict__[self._key] = value
+        if not isinstance(value, np.ndarray):
+            obj.__dict__["_device_store"] = value
+
+
 # --- result objects -------------------------------------------------------------------------------
 
 
@@ -27,8 +52,10 @@ _SEGMENT = 32  # pixels per thread in island_stats_kernel
 class Islands:
     """The islands of one contact mask: labels and per-island area and perimeter."""
 
-    labels: np.ndarray
-    """(ny, nx) int32 island labels 1..n in raster order of first pixel, 0 = no contact."""
+    labels: np.ndarray = _LazyHostArray()  # type: ignore[assignment]
+    """(ny, nx) int32 island labels 1..n in raster order of first pixel, 0 = no contact. Kept
+    on the device where they were computed and copied to the host on first access; see
+    :attr:`device_labels`."""
     n_islands: int
     """Number of islands n."""
     area_pixels: np.ndarray
@@ -51,6 +78,17 @@ class Islands:
     """Whether the map wraps around."""
     depth: float = math.nan
     """Truncation depth ω of the mask (m); NaN for a mask given directly."""
+
+    @property
+    def device_labels(self) -> Any:
+        """The labels as the (ny, nx) int32 Warp array they were computed in, or None when they
+        were given as NumPy."""
+        return self.__dict__.get("_device_store")
+
+    @property
+    def has_host_labels(self) -> bool:
+        """True once the NumPy labels exist (the lazy copy has been made)."""
+        return isinstance(self.__dict__.get("_labels_store"), np.ndarray)
 
     def to_dict(self) -> dict[str, Any]:
         """Columns as 1-D arrays, one row per island."""
