@@ -8,8 +8,10 @@ What it shows
     z ≥ z_top − ω in red over the grey surface, heights exaggerated, axes in µm. Also a top
     view (orthographic: its red pixels measure A_c/A), the VTK file for ParaView and,
     with ``--animate``, a GIF of the truncation deepening. Large maps are drawn in blocks of
-    f×f pixels; a block is red when any of its pixels touches, so no contact is lost, and f is
-    printed and written into the picture.
+    f×f pixels whose share of red is the fraction of their pixels in contact (so the red
+    measures A_c/A; ``--pooling any`` paints a block red when any pixel touches instead, which
+    shows every spot but overstates the area); f is printed and written into the picture.
+    docs/truncation_sections.png is ``--n 2048 --palette`` (truncation.png).
 
 Run
     python examples/render_truncated_section.py --n 2048 --out results/render
@@ -39,6 +41,10 @@ def main(argv=None) -> int:
                     help="picture size in pixels")  # fmt: skip
     ap.add_argument("--animate", action="store_true", help="also write truncation.gif")
     ap.add_argument(
+        "--pooling", choices=["area", "any"], default="area",
+        help="block colour: contact fraction ('area') or red when any pixel touches ('any')",
+    )  # fmt: skip
+    ap.add_argument(
         "--palette", action="store_true",
         help="re-save the PNGs with 256 colours (about half the size; the docs/ images)",
     )  # fmt: skip
@@ -51,10 +57,13 @@ def main(argv=None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
 
     s = wm_surface(args.D, 100e-6, L=1e-3, n=args.n, Rt=10e-6, seed=args.seed, device=args.device)
-    r = render_truncation(s, args.out / "truncation.png", window_size=size, device=args.device)
-    top = render_truncation(
-        s, args.out / "truncation_top.png", top_view=True, window_size=size, device=args.device
+    r = render_truncation(
+        s, args.out / "truncation.png", window_size=size, pooling=args.pooling, device=args.device
     )
+    top = render_truncation(
+        s, args.out / "truncation_top.png", top_view=True, window_size=size,
+        pooling=args.pooling, device=args.device,
+    )  # fmt: skip
     vti = export_vtk(s, args.out / "surface.vti", n_increments=50 if args.quick else 200,
                      device=args.device)  # fmt: skip
     written = [r.path, top.path, vti]

@@ -13,7 +13,8 @@ What it shows
     Choices: W_r = 2·L = 2.048 mm for Ps, whose W_r is "≫ 1024 µm" in Table 1 (the longest WM
     wavelength then exceeds the scan, so the spectrum has no roll-off inside it); M = 10,
     γ = 1.5, W_c = 2 pixels (no aliasing); the paper's R_t' is the starting R_t of the D loop;
-    all methods with their default options (see warptrunc.fractal).
+    all methods with their default options (see warptrunc.fractal), D_tri and D_box with the
+    height convention of --height-scaling ("cube", Gwyddion's, the default; or "si").
 
 Run
     python examples/table1_report.py --out out/table1          # 1024², 3 seeds, a few minutes
@@ -30,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from warptrunc.calibrate import CalibrationError, CalibrationTarget, calibrate
-from warptrunc.fractal import METHODS, fractal_dimensions
+from warptrunc.fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
 from warptrunc.reproduce.paper import TABLE1
 from warptrunc.wm import wm_surface
 
@@ -38,18 +39,24 @@ UM = 1e-6
 PAPER = TABLE1
 
 
-def report(n, L, seeds, rtol, methods, device, progress):
+def _options(height_scaling):
+    """Per-method options: the height convention of D_tri and D_box (warptrunc.fractal)."""
+    return {m: {"height_scaling": height_scaling} for m in ("tri", "box")}
+
+
+def report(n, L, seeds, rtol, methods, device, progress, height_scaling=DEFAULT_HEIGHT_SCALING):
     rows = []
+    opts = _options(height_scaling)
     for name, (rt, rrms, wr, *d_paper) in PAPER.items():
         wr_m = 2 * L if wr is None else wr * UM
         paper_d = dict(zip(METHODS, d_paper, strict=True))
         for m in methods:
             row = {"surface": name, "matched": m, "Wr_m": wr_m, "paper_Rt_m": rt * UM,
-                   "paper_Rrms_m": rrms * UM}  # fmt: skip
+                   "paper_Rrms_m": rrms * UM, "height_scaling": height_scaling}  # fmt: skip
             row.update({f"paper_D_{k}": v for k, v in paper_d.items()})
             target = CalibrationTarget(
                 D=paper_d[m], method=m, Rrms=rrms * UM, Rt=rt * UM, Wr=wr_m, L=L, n=n,
-                source=f"Table 1 {name}",
+                source=f"Table 1 {name}", method_options=opts.get(m, {}),
             )  # fmt: skip
             t0 = time.perf_counter()
             try:
@@ -68,7 +75,7 @@ def report(n, L, seeds, rtol, methods, device, progress):
             fits = [
                 fractal_dimensions(
                     wm_surface(cal.D_in, wr_m, L=L, n=n, Rt=cal.Rt, seed=s, device=device),
-                    device=device,
+                    options=opts, device=device,
                 )
                 for s in seeds
             ]
@@ -134,6 +141,10 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=0, help="first seed")
     ap.add_argument("--rtol", type=float, default=0.01, help="relative tolerance on D")
     ap.add_argument("--methods", nargs="+", choices=METHODS, default=list(METHODS))
+    ap.add_argument(
+        "--height-scaling", choices=HEIGHT_SCALINGS, default=DEFAULT_HEIGHT_SCALING,
+        help="height convention of D_tri and D_box: 'cube' (Gwyddion's) or 'si' (metres)",
+    )  # fmt: skip
     ap.add_argument("--device", default=None, help="Warp device (default: CUDA if present)")
     ap.add_argument("--out", type=Path, default=Path("out/table1"), help="output folder")
     ap.add_argument("--no-show", action="store_true", help="(no figures; accepted for symmetry)")
@@ -142,11 +153,16 @@ def main(argv=None) -> int:
     n, nseeds = (128, 1) if args.quick else (args.n, args.seeds)
     L = n * UM
     seeds = tuple(range(args.seed, args.seed + nseeds))
-    rows = report(n, L, seeds, args.rtol, args.methods, args.device, not args.quick)
+    rows = report(
+        n, L, seeds, args.rtol, args.methods, args.device, not args.quick, args.height_scaling
+    )
     args.out.mkdir(parents=True, exist_ok=True)
-    meta = {"n": n, "L_m": L, "seeds": list(seeds), "rtol": args.rtol}
+    meta = {
+        "n": n, "L_m": L, "seeds": list(seeds), "rtol": args.rtol,
+        "height_scaling": args.height_scaling,
+    }  # fmt: skip
     (args.out / "table1.json").write_text(json.dumps({"meta": meta, "rows": rows}, indent=2) + "\n")
-    md = markdown(rows)
+    md = f"D_tri and D_box with height convention '{args.height_scaling}'.\n\n" + markdown(rows)
     (args.out / "table1.md").write_text(md)
     print("\n" + md + f"\nwrote {args.out}/table1.json, table1.md")
     return 0

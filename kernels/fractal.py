@@ -155,3 +155,16 @@ def structure_function_rows_kernel(
             d = wp.float64(z[iy + tau, ix]) - wp.float64(z[iy, ix])
             acc += d * d
     out[k, iy] = acc
+
+
+@wp.kernel
+def cube_scale_kernel(
+    z: wp.array2d(dtype=wp.float32),
+    z0: wp.float64,
+    factor: wp.float64,
+    out: wp.array2d(dtype=wp.float32),
+):
+    """Heights mapped into the cube of the ``"cube"`` convention: (z − z0)·factor, in float64
+    (driver: ``warptrunc.fractal._scaled_upload``)."""
+    iy, ix = wp.tid()
+    out[iy, ix] = wp.float32((wp.float64(z[iy, ix]) - z0) * factor)

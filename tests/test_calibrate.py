@@ -68,10 +68,12 @@ def test_given_targets_and_high_resolution_surface():
 
 
 def test_unreachable_target():
-    """D_tri of a surface whose heights are tiny against the pixel size stays near 2."""
+    """D_tri in metres ("si") of a surface whose heights are tiny against the pixel size
+    stays near 2."""
     target = CalibrationTarget(
-        D=2.6, method="tri", Rrms=0.2e-6, Rt=1e-6, Wr=WR, L=L, n=64, source="given"
-    )
+        D=2.6, method="tri", Rrms=0.2e-6, Rt=1e-6, Wr=WR, L=L, n=64, source="given",
+        method_options={"height_scaling": "si"},
+    )  # fmt: skip
     with pytest.raises(
         CalibrationError,
         match=r"2\.6000 cannot be reached with D_in in \[2\.02, 2\.98\]: the upper bound",

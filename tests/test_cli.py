@@ -61,9 +61,9 @@ def test_analyze_generates_from_parameters_same_as_python(tmp_path):
 @pytest.mark.parametrize(
     "args, match",
     [
-        (["generate", "--D", "3.5", "-o", "x.npz"], "D must be in (2, 3), got 3.5"),
-        (["generate", "--gamma", "1", "-o", "x.npz"], "gamma must be in"),
-        (["analyze", "--n", "64", "--increments", "0"], "n_increments must be an integer"),
+        (["generate", "--D", "3.5", "-o", "x.npz"], "argument --D: must be in (2, 3), got '3.5'"),
+        (["generate", "--gamma", "1", "-o", "x.npz"], "argument --gamma: must be in (1, inf)"),
+        (["analyze", "--n", "64", "--increments", "0"], "--increments: must be an integer in"),
         (["analyze", "--input", "missing.npz"], "missing.npz"),
     ],
 )

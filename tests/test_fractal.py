@@ -81,8 +81,8 @@ def test_prism_and_box_kernels_match_numpy(device):
     z = (rng.normal(size=(37, 45)) * 2e-6).astype(np.float32)  # non-square, odd sizes
     s = from_heights(z, 1e-6, 1.5e-6)
     sizes = [1, 2, 3, 5, 8]
-    tri = triangular_prism(s, box_sizes=sizes, device=device)
-    box = box_counting(s, box_sizes=sizes, device=device)
+    tri = triangular_prism(s, box_sizes=sizes, height_scaling="si", device=device)
+    box = box_counting(s, box_sizes=sizes, height_scaling="si", device=device)
     h = np.sqrt(1e-6 * 1.5e-6)
     want_tri = [numpy_prism_ratio(z, k, 1e-6, 1.5e-6) for k in sizes]
     want_box = [numpy_box_count(z, k, k * h) for k in sizes]
@@ -90,6 +90,44 @@ def test_prism_and_box_kernels_match_numpy(device):
     np.testing.assert_allclose(tri.measure, want_tri, rtol=1e-12)
     np.testing.assert_allclose(box.measure, want_box, rtol=1e-12)
     np.testing.assert_allclose(tri.scale, np.array(sizes) * h)
+    assert tri.options["height_scaling"] == box.options["height_scaling"] == "si"
+
+
+def test_cube_convention_is_si_on_heights_mapped_onto_the_lateral_extent(device):
+    """Gwyddion's convention: the height range becomes the lateral extent (N − 1)·h."""
+    rng = np.random.default_rng(4)
+    z = (rng.normal(size=(37, 45)) * 2e-6).astype(np.float32)
+    s = from_heights(z, 1e-6, 1.5e-6)
+    h = np.sqrt(1e-6 * 1.5e-6)
+    z64 = z.astype(np.float64)
+    zc = ((z64 - z64.min()) * (44 * h / (z64.max() - z64.min()))).astype(np.float32)
+    assert np.ptp(zc.astype(np.float64)) == pytest.approx(44 * h, rel=1e-6)
+    sizes = [1, 2, 3, 5, 8]
+    tri = triangular_prism(s, box_sizes=sizes, device=device)  # default: cube
+    box = box_counting(s, box_sizes=sizes, device=device)
+    assert tri.options["height_scaling"] == box.options["height_scaling"] == "cube"
+    np.testing.assert_allclose(tri.measure, [numpy_prism_ratio(zc, k, 1e-6, 1.5e-6) for k in sizes], rtol=1e-6)
+    np.testing.assert_allclose(box.measure, [numpy_box_count(zc, k, k * h) for k in sizes], rtol=1e-6)
+
+
+@pytest.mark.parametrize("H", [0.2, 0.5, 0.8])
+def test_self_affine_in_si_units_recovers_known_d(H):
+    """Issue 11: R_rms = 1 µm over 1 mm (heights tiny against lengths) must not pin D to 2.
+
+    Independent surfaces (``fbm`` above), 256², two seeds. Tolerances as TOL below (prism:
+    ±0.15; cube counting underestimates: −0.45/+0.05). With ``"si"`` both stay near 2.
+    """
+    dx = L / 256
+    fits = []
+    for seed in (0, 1):
+        s = fbm(H, 256, seed, rms_px=1e-6 / dx)
+        fits.append((triangular_prism(s, device="cpu").D, box_counting(s, device="cpu").D,
+                     triangular_prism(s, height_scaling="si", device="cpu").D))  # fmt: skip
+    tri, box, tri_si = np.mean(fits, axis=0)
+    D = 3.0 - H
+    assert D - 0.15 < tri < D + 0.15, tri
+    assert D - 0.45 < box < D + 0.05, box
+    assert tri_si < 2.05  # the SI convention cannot see the relief: the reason for the default
 
 
 def test_structure_function_kernel_matches_numpy(device):
@@ -205,16 +243,30 @@ def test_height_scale(rough):
     scaled = _all(from_heights(rough.heights * 10.0, rough.dx))
     for m in ("vs", "sp"):
         assert scaled[m] == pytest.approx(base[m], abs=1e-6), m
-    # in physical units the prism and box methods see a rougher surface
+    # "cube" (default) maps the height range onto the lateral extent: a factor drops out
     for m in ("tri", "box"):
-        assert scaled[m] > base[m] + 0.02, m
+        assert scaled[m] == pytest.approx(base[m], abs=1e-4), m
+    # in metres ("si") the prism and box methods see a rougher surface
+    si = {"tri": {"height_scaling": "si"}, "box": {"height_scaling": "si"}}
+    b = fractal_dimensions(rough, ("tri", "box"), options=si, device="cpu")
+    sc = fractal_dimensions(
+        from_heights(rough.heights * 10.0, rough.dx), ("tri", "box"), options=si, device="cpu"
+    )
+    for m in ("tri", "box"):
+        assert sc[m].D > b[m].D + 0.02, m
 
 
 def test_tri_and_box_flat_limit():
-    """A surface whose heights are tiny against the pixel size has area ratio → 1: D → 2."""
+    """In metres, heights tiny against the pixel size give area ratio → 1: D → 2 ("si");
+    the cube convention gives the same D as for the same map at any amplitude."""
     s = fbm(0.2, 128, 1, rms_px=1e-3)
-    assert triangular_prism(s).D == pytest.approx(2.0, abs=0.01)
-    assert box_counting(s).D == pytest.approx(2.0, abs=0.01)
+    assert triangular_prism(s, height_scaling="si").D == pytest.approx(2.0, abs=0.01)
+    assert box_counting(s, height_scaling="si").D == pytest.approx(2.0, abs=0.01)
+    big = fbm(0.2, 128, 1, rms_px=20.0)
+    assert triangular_prism(s).D == pytest.approx(triangular_prism(big).D, abs=1e-4)
+    assert triangular_prism(s).D > 2.5
+    with pytest.raises(ValueError, match="height_scaling must be one of"):
+        triangular_prism(s, height_scaling="pixels")
 
 
 # --- options, results, errors ------------------------------------------------------------------

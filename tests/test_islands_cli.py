@@ -82,7 +82,7 @@ def test_islands_cli_generates_and_counts_only(tmp_path):
 def test_islands_cli_bad_connectivity(tmp_path):
     r = cli("--n", 32, "--connectivity", 6, "--device", "cpu", "--out", tmp_path)
     assert r.returncode == 2
-    assert "connectivity must be 4 or 8, got 6" in r.stderr
+    assert "--connectivity: invalid choice: 6 (choose from 4, 8)" in r.stderr
 
 
 def test_figures_from_python(tmp_path):

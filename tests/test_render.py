@@ -264,27 +264,88 @@ def test_downsampled_rendering_never_loses_contact_and_says_so(tmp_path):
 
     s = wm_surface(2.5, 100e-6, n=512, Rt=10e-6, seed=7, device="cpu")
     d = np.array([0.08, 0.25]) * s.rt
-    r = render_truncation_top(s, d, 256, downsample=4)
-    assert r.downsample == 4 and r.mesh_shape == (128, 128)
-    assert "down-sampled ×4" in r.caption and "any of its pixels" in r.caption
+    r = render_truncation_top(s, d, 256, downsample=4, pooling="any")
+    assert r.downsample == 4 and r.mesh_shape == (128, 128) and r.pooling == "any"
+    assert "down-sampled ×4" in r.caption and "max-pooling" in r.caption
+    assert "any of its pixels" in r.caption
     for k in range(2):
         pooled = _ref_pool(_ref_mask(s.heights, d[k]).astype(np.int64), 4, "max") > 0
         panel = r.image[:, k * 256 : (k + 1) * 256]
         assert _red(panel).sum() == 4 * pooled.sum()
         assert _red(panel).mean() >= r.area_fraction[k]  # max-pooling only adds red
     # automatic factor: every block gets at least one screen pixel
-    r = render_truncation_top(s, d[:1], 256)  # the map fills 256 px: 2 pixels per block
+    r = render_truncation_top(s, d[:1], 256, pooling="any")  # 256 px: 2 pixels per block
     assert r.downsample == 2
     pooled = _ref_pool(_ref_mask(s.heights, d[0]).astype(np.int64), 2, "max") > 0
     assert _red(r.image).sum() == pooled.sum()  # one screen pixel per block: none lost
     from warptrunc.render import render_truncation
 
     p = tmp_path / "big.png"
-    r2 = render_truncation(s, p, depth_fractions=[0.2], window_size=(200, 160), device="cpu")
+    r2 = render_truncation(
+        s, p, depth_fractions=[0.2], window_size=(200, 160), pooling="any", device="cpu"
+    )
     assert r2.downsample == 4  # ceil(512 / 160): the panel's shorter side
     meta = Image.open(p).text
     assert "down-sampled ×4" in meta["Description"]
     assert json.loads(meta["warptrunc"])["downsample"] == 4
+
+
+def _redness(img):
+    """Share of red per pixel: (R − G)/(R − G of pure contact red); 0 on grey (R = G = B).
+
+    A cell coloured grey + φ·(red − grey) has redness φ whatever its grey level.
+    """
+    img = img.astype(float)
+    return np.clip((img[..., 0] - img[..., 1]) / (214 - 39), 0.0, 1.0)
+
+
+@pytest.mark.parametrize("window", [200, 256, 333])
+def test_default_top_view_red_measures_contact_area_when_downsampled(window):
+    """512² WM (D 2.5) in blocks of f = 2 or 3: the red of the default picture is A_c/A.
+
+    Reference: A_c/A by NumPy at full resolution. The default (``pooling="area"``) must be
+    within 10 % of it; max-pooling (``"any"``) must overstate it, as its caption says.
+    """
+    pytest.importorskip("pyvista")
+    s = wm_surface(2.5, 100e-6, n=512, Rt=10e-6, seed=5, device="cpu")
+    d = np.array([0.2, 0.3]) * s.rt
+    ref = [_ref_mask(s.heights, x).mean() for x in d]
+    r = render_truncation_top(s, d, window)
+    assert r.downsample > 1 and r.pooling == "area" and "fraction of its pixels" in r.caption
+    a = render_truncation_top(s, d, window, pooling="any")
+    for k in range(2):
+        panel = r.image[:, k * window : (k + 1) * window]
+        assert _redness(panel).mean() == pytest.approx(ref[k], rel=0.10)
+        assert _red(a.image[:, k * window : (k + 1) * window]).mean() > 1.3 * ref[k]
+
+
+def test_annotated_top_view_red_fraction_and_caption_clear_of_the_axis_title():
+    """The picture a user gets: annotated top view, default panel, a 512² map (f = 2).
+
+    The red share inside the map's footprint is within 10 % of A_c/A; the caption's rows (grey
+    text at the left edge) do not share rows with the black axis labels below the map.
+    """
+    pytest.importorskip("pyvista")
+    from warptrunc.render import render_truncation
+
+    s = wm_surface(2.5, 100e-6, n=512, Rt=10e-6, seed=2, device="cpu")
+    r = render_truncation(s, depth_fractions=[0.3], top_view=True, device="cpu")
+    assert r.downsample > 1
+    img = r.image.astype(int)
+    grey = (np.abs(img[..., 1] - img[..., 2]) < 2) & (img.min(-1) > 60) & (img.max(-1) < 240)
+    surf = grey | (img[..., 0] - img[..., 1] > 5)
+    cols = np.nonzero(surf.mean(0) > 0.5)[0]
+    rows = np.nonzero(surf[:, cols.min() : cols.max() + 1].mean(1) > 0.9)[0]
+    box = img[rows.min() + 1 : rows.max(), cols.min() + 1 : cols.max()]
+    assert min(box.shape[:2]) > 200  # found the map
+    ref = _ref_mask(s.heights, 0.3 * s.rt).mean()
+    assert _redness(box).mean() == pytest.approx(ref, rel=0.10)
+    below = img[rows.max() + 2 :]
+    w = img.shape[1]
+    black_rows = set(np.nonzero((below.max(-1) < 60).any(1))[0])
+    caption_rows = set(np.nonzero((below[:, : int(0.15 * w)].max(-1) < 200).any(1))[0])
+    assert black_rows and caption_rows  # axis labels and the caption are both there
+    assert not black_rows & caption_rows
 
 
 def test_panel_picture_has_requested_size_and_is_not_blank(tmp_path, surf128):

@@ -25,8 +25,12 @@ E, ν    ``E``, ``nu``          Young's modulus (Pa), Poisson's ratio of the rou
 pyvista when first used.
 """
 
-from ._device import resolve_device
-from .bem import BemCheck, bem_check
+from ._source import map_source_kernels as _map_source_kernels
+
+_map_source_kernels(__name__, __path__)
+
+from ._device import resolve_device  # noqa: E402  (after the kernels mapping above)
+from .bem import BemCheck, bem_check  # noqa: E402
 from .calibrate import Calibration, CalibrationTarget, calibrate
 from .descriptors import describe
 from .fractal import FractalFit, fractal_dimension, fractal_dimensions

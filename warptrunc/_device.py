@@ -15,12 +15,77 @@ import warp as wp
 _initialised = False
 _mempool_kept: set = set()
 
+#: Lines that Warp's native library prints while it initialises on a machine without a CUDA
+#: driver. They are not errors for warptrunc (the CPU is a supported device), so they are
+#: shown only when verbose (``set_verbose(True)``, ``warptrunc --verbose``, or the environment
+#: variable ``WARPTRUNC_VERBOSE=1``).
+CPU_ONLY_NOTICES = (
+    "Could not find or load the NVIDIA CUDA driver",
+    "Unable to determine CUDA driver version",
+)
+_verbose: bool | None = None
+
+
+def set_verbose(flag: bool) -> None:
+    """Show (True) or hide (False) the notices of Warp and VTK on CPU-only machines."""
+    global _verbose
+    _verbose = bool(flag)
+
+
+def is_verbose() -> bool:
+    """True when :func:`set_verbose` asked for it, else when ``$WARPTRUNC_VERBOSE`` is set."""
+    if _verbose is not None:
+        return _verbose
+    return os.environ.get("WARPTRUNC_VERBOSE", "").strip().lower() not in ("", "0", "false", "no")
+
+
+def _run_filtering_native_output(fn, drop: tuple[str, ...]):
+    """Call ``fn()`` with the process's stdout/stderr file descriptors captured.
+
+    Native libraries write with C stdio, below Python's ``sys.stderr``, so the capture works on
+    file descriptors 1 and 2; C buffers are flushed before they are restored. Captured lines
+    that contain none of ``drop`` are written back to the same stream afterwards.
+    """
+    import ctypes
+    import sys
+    import tempfile
+
+    try:
+        libc = ctypes.CDLL(None)
+        flush_c = lambda: libc.fflush(None)  # noqa: E731
+        saved = {fd: os.dup(fd) for fd in (1, 2)}
+    except (OSError, AttributeError):  # no fd-level control (e.g. an embedded interpreter)
+        return fn()
+    tmp = {fd: tempfile.TemporaryFile() for fd in (1, 2)}
+    for stream in (sys.stdout, sys.stderr):
+        if stream is not None:
+            stream.flush()
+    try:
+        for fd, f in tmp.items():
+            os.dup2(f.fileno(), fd)
+        return fn()
+    finally:
+        flush_c()
+        for fd, old in saved.items():
+            os.dup2(old, fd)
+            os.close(old)
+        for fd, f in tmp.items():
+            f.seek(0)
+            text = f.read().decode(errors="replace")
+            f.close()
+            keep = [ln for ln in text.splitlines(keepends=True) if not any(d in ln for d in drop)]
+            if keep:
+                os.write(fd, "".join(keep).encode())
+
 
 def _init() -> None:
     global _initialised
     if not _initialised:
         wp.config.log_level = wp.LOG_WARNING
-        wp.init()
+        if is_verbose():
+            wp.init()
+        else:
+            _run_filtering_native_output(wp.init, CPU_ONLY_NOTICES)
         _initialised = True
 
 

@@ -17,12 +17,15 @@ subrange of the evaluated *scales*; both are user-settable and are returned in
 (``warptrunc.kernels.fractal``); the spectrum runs where the surface lives: CuPy's cuFFT on a
 CUDA surface when CuPy is installed, else NumPy (see :mod:`warptrunc.descriptors`).
 
-Heights and lengths are used in physical units (m), as measured. The triangulation and
-box-counting estimates therefore depend on the height amplitude relative to the pixel size:
-they approach 3 − H only where the surface is rough at the scale of the boxes (height
-increments larger than the box side) and drift to 2 on smooth, gently sloped surfaces. This is
-why the methods disagree in Table 1 and why the calibration loop of Fig. 4 matches D of
-simulated and measured surfaces with the *same* method and options.
+Triangulation and box counting need heights and lengths in one unit, and the result depends
+on how heights compare with lengths. ``height_scaling`` chooses the convention
+(:data:`HEIGHT_SCALINGS`): ``"cube"`` (default) maps the height range onto the lateral
+extent first, as Gwyddion does, so D is independent of units and amplitude; ``"si"`` uses
+metres as measured, so D approaches 3 − H only where the surface is rough at the scale of the
+boxes and drifts to 2 on smooth, gently sloped surfaces (a 1 µm-rms map over 1 mm gives
+D ≈ 2.0 whatever its H). Every :class:`FractalFit` of these two methods records the convention
+in ``options["height_scaling"]``. The calibration loop of Fig. 4 matches D of simulated and
+measured surfaces with the *same* method and options.
 
 Invariances (tested in ``tests/test_fractal.py``):
 
@@ -30,12 +33,13 @@ Invariances (tested in ``tests/test_fractal.py``):
 transformation          tri    box    vs     sp
 =====================  =====  =====  =====  =====
 z + constant            yes    yes¹   yes    yes
-a·z (a > 0)             no     no     yes    yes
+a·z (a > 0)             cube³  cube³  yes    yes
 transposition (z.T)     yes    yes    yes²   yes
 =====================  =====  =====  =====  =====
 
 ¹ cubes are stacked from the lowest point, so a shift changes only float32 rounding;
-² with ``axis="both"`` (x and y profiles pooled).
+² with ``axis="both"`` (x and y profiles pooled);
+³ yes with ``height_scaling="cube"`` (default), no with ``"si"``.
 """
 
 from __future__ import annotations
@@ -56,6 +60,8 @@ from .surface import Surface
 from .truncation import _where, surface_range
 
 __all__ = [
+    "DEFAULT_HEIGHT_SCALING",
+    "HEIGHT_SCALINGS",
     "METHODS",
     "FractalFit",
     "box_counting",
@@ -69,6 +75,65 @@ __all__ = [
 
 METHODS = ("tri", "box", "vs", "sp")
 """Method keys, in the order of Table 1."""
+
+HEIGHT_SCALINGS = ("cube", "si")
+"""Height conventions of the triangulation and cube-counting methods (``height_scaling=``):
+
+``"cube"``
+    Gwyddion's convention: before the prisms or cubes are built, the heights are mapped onto
+    the lateral extent — z′ = (z − min z)·(N − 1)·h/(max z − min z), with h = √(dx·dy) and
+    N = max(nx, ny) pixels per side — so the map fills a cube and D does not depend on the
+    height unit or amplitude (Gwyddion ``libprocess/fractals.c``,
+    ``gwy_data_field_fractal_triangulation`` scales height differences by
+    2^k/(max − min) on a (2^k + 1)² grid in pixel units, and
+    ``gwy_data_field_fractal_cubecounting`` cuts the height range into as many levels as there
+    are boxes per side).
+``"si"``
+    Heights and lengths as measured, in metres: D then depends on the height amplitude
+    relative to the pixel size (it drifts to 2 on gently sloped maps).
+"""
+
+DEFAULT_HEIGHT_SCALING = "cube"
+"""Default of ``height_scaling`` (see the README's evidence table: it recovers 3 − H of
+self-affine surfaces far better than ``"si"``)."""
+
+
+def _check_scaling(height_scaling: str) -> str:
+    if height_scaling not in HEIGHT_SCALINGS:
+        raise ValueError(
+            f"height_scaling must be one of {HEIGHT_SCALINGS}, got {height_scaling!r}"
+        )
+    return height_scaling
+
+
+def cube_height_factor(surface: Surface, z_min: float | None = None, z_max: float | None = None) -> float:
+    """Factor of the ``"cube"`` convention: (N − 1)·√(dx·dy)/(max z − min z) (dimensionless).
+
+    Heights times this factor span the map's lateral extent (N = max(nx, ny)); 1 for a flat map.
+    ``z_min``, ``z_max`` (m) default to the extremes of ``surface.heights``.
+    """
+    if z_min is None or z_max is None:
+        z = surface.heights
+        z_min, z_max = float(np.min(z)), float(np.max(z))
+    rng = float(z_max) - float(z_min)
+    if not rng > 0:
+        return 1.0
+    return (max(surface.nx, surface.ny) - 1) * math.sqrt(surface.dx * surface.dy) / rng
+
+
+def _scaled_upload(zd: wp.array, surface: Surface, height_scaling: str) -> wp.array:
+    """The device heights for a method: as measured ("si") or mapped into the cube (on the
+    device, from the surface's recorded or reduced extremes)."""
+    if height_scaling == "si":
+        return zd
+    lo, hi = surface_range(surface, zd.flatten(), zd.device)
+    out = wp.empty(zd.shape, dtype=wp.float32, device=zd.device)
+    wp.launch(
+        _k.cube_scale_kernel, dim=zd.shape,
+        inputs=[zd, float(lo), cube_height_factor(surface, lo, hi)], outputs=[out],
+        device=zd.device,
+    )  # fmt: skip
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -209,6 +274,7 @@ def triangular_prism(
     *,
     box_sizes: Sequence[int] | None = None,
     fit_range: tuple[float, float] | None = None,
+    height_scaling: str = DEFAULT_HEIGHT_SCALING,
     device: wp.DeviceLike = None,
 ) -> FractalFit:
     """D_tri by the triangular prism method (Clarke 1986).
@@ -222,6 +288,9 @@ def triangular_prism(
         max(4, (min(nx, ny) − 1) // 8).
     fit_range : (float, float), optional
         Range of cell sides r = s·√(dx·dy) used in the fit (m). Defaults to all evaluated sizes.
+    height_scaling : {"cube", "si"}
+        ``"cube"`` (default): heights mapped onto the lateral extent first, as Gwyddion does
+        (see :data:`HEIGHT_SCALINGS`); ``"si"``: heights in metres as measured.
     device : str, optional
         Warp device.
 
@@ -236,8 +305,9 @@ def triangular_prism(
     The map is divided into cells of s × s pixels whose corners are grid points; each cell is
     covered by four triangles joining two neighbouring corners to an apex above the cell centre
     at the mean height of the four corners. With A(r) ∝ r^(2 − D), D = 2 − slope of
-    log A(r) against log r. Heights and lengths are in metres, so D depends on the height
-    amplitude (see the module docstring); invariant to z + c and to transposition.
+    log A(r) against log r. With ``height_scaling="si"`` heights and lengths are in metres,
+    so D depends on the height amplitude (see the module docstring); with ``"cube"`` it does
+    not. Invariant to z + c and to transposition.
 
     References
     ----------
@@ -246,11 +316,12 @@ def triangular_prism(
     doi:10.1016/0098-3004(86)90047-6.
     """
     zd = _upload(surface, device)
-    return _tri(zd, surface, box_sizes, fit_range)
+    return _tri(zd, surface, box_sizes, fit_range, height_scaling)
 
 
-def _tri(zd, surface, box_sizes, fit_range) -> FractalFit:
+def _tri(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALING) -> FractalFit:
     sizes = _check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
+    zd = _scaled_upload(zd, surface, _check_scaling(height_scaling))
     ratio = np.empty(sizes.size)
     for i, s in enumerate(sizes):
         ncy, ncx = (surface.ny - 1) // s, (surface.nx - 1) // s
@@ -272,7 +343,7 @@ def _tri(zd, surface, box_sizes, fit_range) -> FractalFit:
         ratio,
         fit_range,
         lambda k: 2.0 - k,
-        {"box_sizes": sizes.tolist()},
+        {"box_sizes": sizes.tolist(), "height_scaling": height_scaling},
     )
 
 
@@ -281,6 +352,7 @@ def box_counting(
     *,
     box_sizes: Sequence[int] | None = None,
     fit_range: tuple[float, float] | None = None,
+    height_scaling: str = DEFAULT_HEIGHT_SCALING,
     device: wp.DeviceLike = None,
 ) -> FractalFit:
     """D_box by cube counting.
@@ -293,6 +365,10 @@ def box_counting(
         Cube sides s (pixels) to evaluate; default as :func:`triangular_prism`.
     fit_range : (float, float), optional
         Range of cube sides ε = s·√(dx·dy) used in the fit (m). Defaults to all.
+    height_scaling : {"cube", "si"}
+        ``"cube"`` (default): heights mapped onto the lateral extent first, so that the height
+        range holds as many cubes as a side holds boxes (Gwyddion's cube counting; see
+        :data:`HEIGHT_SCALINGS`); ``"si"``: heights in metres as measured.
     device : str, optional
         Warp device.
 
@@ -308,7 +384,7 @@ def box_counting(
     lowest point of the map. In each cell (the (s + 1)² grid points of :func:`triangular_prism`)
     the surface crosses ⌊(max − z_min)/ε⌋ − ⌊(min − z_min)/ε⌋ + 1 cubes. With N(ε) ∝ ε^−D,
     D = −slope of log N against log ε. Invariant to z + c (up to float32 rounding) and to
-    transposition; not to a height scale factor.
+    transposition; to a height scale factor only with ``height_scaling="cube"``.
 
     References
     ----------
@@ -317,13 +393,15 @@ def box_counting(
     dimension of image, IEEE Trans. Syst. Man Cybern. 24 (1994) 115–120, doi:10.1109/21.259692.
     """
     zd = _upload(surface, device)
-    return _box(zd, surface, box_sizes, fit_range)
+    return _box(zd, surface, box_sizes, fit_range, height_scaling)
 
 
-def _box(zd, surface, box_sizes, fit_range) -> FractalFit:
+def _box(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALING) -> FractalFit:
     sizes = _check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
     h = math.sqrt(surface.dx * surface.dy)
     z0 = surface_range(surface, zd.flatten(), zd.device)[0]
+    if _check_scaling(height_scaling) == "cube":
+        zd, z0 = _scaled_upload(zd, surface, height_scaling), 0.0
     counts = np.empty(sizes.size)
     for i, s in enumerate(sizes):
         ncy, ncx = (surface.ny - 1) // s, (surface.nx - 1) // s
@@ -338,7 +416,10 @@ def _box(zd, surface, box_sizes, fit_range) -> FractalFit:
         )
         n = int(out.numpy().sum())  # sync point
         counts[i] = n * ((surface.nx - 1) * (surface.ny - 1)) / (ncx * s * ncy * s)
-    return _fit("box", sizes * h, counts, fit_range, lambda k: -k, {"box_sizes": sizes.tolist()})
+    return _fit(
+        "box", sizes * h, counts, fit_range, lambda k: -k,
+        {"box_sizes": sizes.tolist(), "height_scaling": height_scaling},
+    )  # fmt: skip
 
 
 def _default_lags(surface: Surface) -> np.ndarray:
@@ -523,8 +604,8 @@ def power_spectrum(
 # --- all at once ---------------------------------------------------------------------------------
 
 _OPTION_NAMES = {
-    "tri": {"box_sizes", "fit_range"},
-    "box": {"box_sizes", "fit_range"},
+    "tri": {"box_sizes", "fit_range", "height_scaling"},
+    "box": {"box_sizes", "fit_range", "height_scaling"},
     "vs": {"lags", "fit_range", "axis"},
     "sp": {"kind", "bins_per_decade", "fit_range", "window"},
 }
@@ -606,10 +687,11 @@ def fractal_dimensions(
     out: dict[str, FractalFit] = {}
     for m in methods:
         o = options.get(m, {})
+        hs = o.get("height_scaling", DEFAULT_HEIGHT_SCALING)
         if m == "tri":
-            out[m] = _tri(zd, surface, o.get("box_sizes"), o.get("fit_range"))
+            out[m] = _tri(zd, surface, o.get("box_sizes"), o.get("fit_range"), hs)
         elif m == "box":
-            out[m] = _box(zd, surface, o.get("box_sizes"), o.get("fit_range"))
+            out[m] = _box(zd, surface, o.get("box_sizes"), o.get("fit_range"), hs)
         elif m == "vs":
             out[m] = _vs(zd, surface, o.get("lags"), o.get("fit_range"), o.get("axis", "both"))
         else:

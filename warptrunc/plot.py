@@ -541,6 +541,7 @@ def height_map(
     depth: float | None = None,
     depth_fraction: float | None = None,
     max_pixels: int = 1024,
+    pooling: str = "area",
     cmap: str | None = None,
     title: str | None = None,
     path: str | Path | None = None,
@@ -556,8 +557,11 @@ def height_map(
     depth_fraction : float, optional
         The same, with ω given as a fraction of R_t (dimensionless).
     max_pixels : int
-        Larger maps are shown in blocks (mean height; a block is red when any of its pixels
-        touches), and the title says so.
+        Larger maps are shown in blocks of mean height, and the title says so.
+    pooling : {"area", "any"}
+        Contact overlay of a block: ``"area"`` (default) red with an opacity equal to the
+        fraction of its pixels in contact, so the red measures A_c/A; ``"any"`` (max-pooling)
+        opaque red when any pixel touches, which shows every spot but overstates the area.
     cmap : str, optional
         Colour map of the heights (default viridis, grey under a contact overlay).
     title : str, optional
@@ -574,7 +578,9 @@ def height_map(
 
     import numpy as np
 
-    from .render import pool_blocks
+    from ._blocks import check_pooling, pool_blocks
+
+    check_pooling(pooling)
 
     if depth is not None and depth_fraction is not None:
         raise ValueError("give depth or depth_fraction, not both")
@@ -597,13 +603,20 @@ def height_map(
         mask = z >= thr  # as truncation.truncate compares
         frac = float(np.count_nonzero(mask)) / mask.size
         if f > 1:
-            mask = pool_blocks(mask, f, "max")
+            mask = pool_blocks(mask, f, "max" if pooling == "any" else "mean")
         rgba = np.zeros((*mask.shape, 4))
-        rgba[mask] = (*(c / 255 for c in CONTACT_RGB), 1.0)
+        rgba[..., :3] = [c / 255 for c in CONTACT_RGB]
+        rgba[..., 3] = mask
         ax.imshow(rgba, origin="lower", extent=ext, interpolation="nearest")
         label = f"contact at ω = {depth * UM:.3g} µm ({100 * depth / surface.rt:.3g} % R$_t$): A$_c$/A = {100 * frac:.3g} %"
     _length_axes(ax)
     note = f"{surface.nx}×{surface.ny} px" + (f", shown in {f}×{f} blocks" if f > 1 else "")
+    if f > 1 and depth is not None:
+        note += (
+            " (max-pooling: red where any pixel touches)"
+            if pooling == "any"
+            else " (red opacity = contact fraction)"
+        )
     ax.set_title("\n".join(t for t in (title, label, note) if t), fontsize=8)
     return _finish(fig, path)
 

@@ -9,10 +9,12 @@ light; without it these functions raise an ImportError naming ``pip install pyvi
 
 Each pixel of the height map is one cell of the rendered mesh, so the contact set is drawn
 pixel for pixel (no interpolation of the mask across cells). Large maps are down-sampled to at
-most about one block per screen pixel: a block of f×f pixels is drawn in contact when **any**
-of its pixels is (block minimum of the contact index, i.e. max-pooling of every mask), so a
-pixel in contact at full resolution is never lost; block heights are block means. The factor f
-is returned and written into the picture's caption and PNG metadata.
+most about one block per screen pixel (block heights are block means), and a block of f×f
+pixels is coloured by ``pooling`` (see :mod:`warptrunc._blocks`): by default (``"area"``) its
+share of red is the fraction of its pixels in contact, so the red in the picture measures
+A_c/A; ``"any"`` (max-pooling) paints a block red when any of its pixels touches, which shows
+every contact spot but overstates the area. The factor f and the pooling are returned and
+written into the picture's caption and PNG metadata.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -27,10 +30,12 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from ._blocks import POOLING, block_contact, check_depths, check_pooling, contact_masks, pool_blocks
 from .surface import Surface
 
 __all__ = [
     "DEFAULT_DEPTH_FRACTIONS",
+    "POOLING",
     "Rendering",
     "animate_truncation",
     "auto_exaggeration",
@@ -59,6 +64,27 @@ def _pyvista():
     return pv
 
 
+@contextmanager
+def _vtk_quiet():
+    """Hide VTK's warnings while rendering (e.g. "bad X server connection" on headless
+    machines, where off-screen rendering works regardless), unless verbose
+    (:func:`warptrunc._device.set_verbose`, ``warptrunc --verbose``, ``$WARPTRUNC_VERBOSE``).
+    The previous global setting of VTK is restored afterwards."""
+    from ._device import is_verbose
+
+    if is_verbose():
+        yield
+        return
+    from vtkmodules.vtkCommonCore import vtkObject
+
+    was = vtkObject.GetGlobalWarningDisplay()
+    vtkObject.GlobalWarningDisplayOff()
+    try:
+        yield
+    finally:
+        vtkObject.SetGlobalWarningDisplay(was)
+
+
 @dataclass(frozen=True, eq=False)
 class Rendering:
     """A rendered picture (or animation) of truncation sections."""
@@ -75,6 +101,9 @@ class Rendering:
     """(k,) float64 A_c/A at full resolution (dimensionless)."""
     downsample: int
     """Block size f: the mesh has one cell per f×f pixels (1 = full resolution)."""
+    pooling: str
+    """How a block is coloured: ``"area"`` (share of red = contact fraction) or ``"any"``
+    (red when any pixel touches; max-pooling)."""
     mesh_shape: tuple[int, int]
     """(rows, columns) of cells drawn."""
     surface_shape: tuple[int, int]
@@ -101,6 +130,7 @@ class Rendering:
             "image_height": int(self.image.shape[0]),
             "image_width": int(self.image.shape[1]),
             "downsample": self.downsample,
+            "pooling": self.pooling,
             "mesh_rows": self.mesh_shape[0],
             "mesh_columns": self.mesh_shape[1],
             "ny": self.surface_shape[0],
@@ -119,55 +149,6 @@ class Rendering:
 
 
 # --- down-sampling ------------------------------------------------------------------------------
-
-
-def pool_blocks(a: np.ndarray, factor: int, how: str = "max") -> np.ndarray:
-    """Reduce a 2-D array over blocks of ``factor``×``factor`` elements.
-
-    Parameters
-    ----------
-    a : (ny, nx) ndarray
-        Values (a bool mask, contact indices, or heights).
-    factor : int
-        Block side f ≥ 1. The last block row and column are partial when f does not divide
-        the size.
-    how : {"max", "min", "mean"}
-        Reduction. ``"max"`` of a bool mask is "any pixel of the block"; ``"min"`` of a contact
-        index map gives the block's first contact index; ``"mean"`` is computed in float64.
-
-    Returns
-    -------
-    (ceil(ny/f), ceil(nx/f)) ndarray
-        Same dtype as ``a`` for max/min, float64 for mean.
-
-    Notes
-    -----
-    Works one block row at a time, so the extra memory is one row of blocks, not a copy of a.
-    """
-    a = np.asarray(a)
-    if a.ndim != 2:
-        raise ValueError(f"a must be 2-D, got shape {a.shape}")
-    f = int(factor)
-    if f < 1 or f != factor:
-        raise ValueError(f"factor must be an integer ≥ 1, got {factor!r}")
-    if how not in ("max", "min", "mean"):
-        raise ValueError(f"how must be 'max', 'min' or 'mean', got {how!r}")
-    ny, nx = a.shape
-    if f == 1:
-        return a.astype(np.float64) if how == "mean" else a.copy()
-    xs = np.arange(0, nx, f)
-    my = -(-ny // f)
-    out = np.empty((my, xs.size), dtype=np.float64 if how == "mean" else a.dtype)
-    for j in range(my):
-        rows = a[j * f : (j + 1) * f]
-        if how == "max":
-            out[j] = np.maximum.reduceat(rows.max(axis=0), xs)
-        elif how == "min":
-            out[j] = np.minimum.reduceat(rows.min(axis=0), xs)
-        else:
-            s = np.add.reduceat(rows.sum(axis=0, dtype=np.float64), xs)
-            out[j] = s / (rows.shape[0] * np.diff(np.append(xs, nx)))
-    return out
 
 
 def _auto_factor(
@@ -192,71 +173,17 @@ def _auto_factor(
 
 def _fill(annotate: bool) -> float:
     """Share of the panel's limiting side taken by the map in the top view."""
-    return 0.74 if annotate else 1.0
+    return 0.66 if annotate else 1.0
+
+
+#: In the annotated top view the map is raised by this share of the panel height, so that the
+#: tick labels, the x-axis title and the caption below it do not overlap.
+_TOP_RAISE = 0.04
 
 
 def _top_scale(lx: float, ly: float, w: int, h: int, fill: float) -> float:
     """Parallel scale (half the visible height) that fits an lx × ly map in a w × h panel."""
     return max(ly, lx * h / w) / (2.0 * fill)
-
-
-def _check_depths(surface: Surface, depth_fractions, depths) -> np.ndarray:
-    rt = surface.rt
-    if not rt > 0:
-        raise ValueError(f"the height map is flat (R_t = {rt!r} m): nothing to truncate")
-    if depths is None:
-        fr = np.atleast_1d(np.asarray(depth_fractions, dtype=np.float64))
-        if fr.ndim != 1 or fr.size == 0 or not np.all((fr >= 0) & (fr <= 1)):
-            raise ValueError(f"depth_fractions must be in [0, 1] (of R_t), got {depth_fractions!r}")
-        return fr * rt
-    d = np.atleast_1d(np.asarray(depths, dtype=np.float64))
-    if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d) & (d >= 0)):
-        raise ValueError(f"depths must be finite and ≥ 0 (m), got {depths!r}")
-    return d
-
-
-def _pooled_index(surface: Surface, depth: np.ndarray, factor: int, device):
-    """Block-min contact index into the sorted unique depths, the map of ranks, and A_c/A."""
-    from .truncation import contact_index_map
-
-    uniq, rank = np.unique(depth, return_inverse=True)
-    index = contact_index_map(surface, uniq, device=device)  # (ny, nx) int32
-    counts = np.bincount(index.ravel(), minlength=uniq.size + 1)[: uniq.size]
-    frac = np.cumsum(counts) / float(index.size)
-    pooled = pool_blocks(index, factor, "min")
-    del index
-    return pooled, rank, frac[rank]
-
-
-def contact_masks(
-    surface: Surface,
-    depth: Sequence[float],
-    *,
-    downsample: int = 1,
-    device: wp.DeviceLike = None,
-) -> np.ndarray:
-    """Contact masks at the given depths, max-pooled over blocks of ``downsample``² pixels.
-
-    Parameters
-    ----------
-    surface : Surface
-        The height map (m).
-    depth : (k,) array_like
-        Truncation depths ω ≥ 0 (m), in any order.
-    downsample : int
-        Block side f; a block is in contact when any of its pixels is.
-    device : str, optional
-        Warp device for the contact index; see :func:`warptrunc.resolve_device`.
-
-    Returns
-    -------
-    (k, ceil(ny/f), ceil(nx/f)) bool ndarray
-        ``mask[i]`` at depth ``depth[i]``. A pixel is in contact when
-        z ≥ float32(z_top − ω), exactly as :func:`warptrunc.truncate` counts it.
-    """
-    d = _check_depths(surface, None, depth)
-    pooled, rank, _ = _pooled_index(surface, d, downsample, device)
-    return np.stack([pooled <= r for r in rank])
 
 
 def auto_exaggeration(surface: Surface, relief: float = 0.1) -> float:
@@ -306,10 +233,16 @@ class _Scene:
 
         self.red = np.asarray(CONTACT_RGB, dtype=np.uint8)
 
-    def colours(self, mask: np.ndarray) -> np.ndarray:
-        c = self.neutral.copy()
-        c[mask.ravel()] = self.red
-        return c
+    def colours(self, weight: np.ndarray) -> np.ndarray:
+        """Cell colours: a bool mask paints red; a float weight φ blends grey + φ·(red − grey)."""
+        if weight.dtype == bool:
+            c = self.neutral.copy()
+            c[weight.ravel()] = self.red
+            return c
+        w = np.clip(weight.ravel().astype(np.float32), 0.0, 1.0)[:, None]
+        c = self.neutral.astype(np.float32)
+        c += w * (self.red.astype(np.float32) - c)
+        return np.rint(c).astype(np.uint8)
 
 
 def _font_file() -> str | None:
@@ -369,7 +302,7 @@ class _Panel:
                         prop.SetFontFile(font)
             if caption:
                 self.caption = _text(pl, caption, "lower_left", round(8 * self.scale), "dimgray")
-        _camera(pl, top_view, size, fill=_fill(annotate))
+        _camera(pl, top_view, size, fill=_fill(annotate), raise_=_TOP_RAISE if annotate else 0.0)
 
     def frame(self, mask: np.ndarray, title: str | None, caption: bool = True) -> np.ndarray:
         self.mesh.cell_data["rgb"] = self.scene.colours(mask)
@@ -385,7 +318,7 @@ class _Panel:
         self.pl.close()
 
 
-def _camera(pl, top_view: bool, size, fill: float) -> None:
+def _camera(pl, top_view: bool, size, fill: float, raise_: float = 0.0) -> None:
     if top_view:
         # looking down −z, x to the right, y up; the surface spans ``fill`` of the limiting
         # side, so without annotations a k·nx × k·ny window shows each cell as k×k pixels
@@ -393,7 +326,14 @@ def _camera(pl, top_view: bool, size, fill: float) -> None:
         pl.enable_parallel_projection()
         pl.reset_camera()
         b = pl.bounds
-        pl.camera.parallel_scale = _top_scale(b[1] - b[0], b[3] - b[2], size[0], size[1], fill)
+        scale = _top_scale(b[1] - b[0], b[3] - b[2], size[0], size[1], fill)
+        pl.camera.parallel_scale = scale
+        if raise_:  # look at a point below the centre: the map moves up by raise_ × height
+            dy = 2.0 * scale * raise_
+            fx, fy, fz = pl.camera.focal_point
+            px, py, pz = pl.camera.position
+            pl.camera.focal_point = (fx, fy - dy, fz)
+            pl.camera.position = (px, py - dy, pz)
         return
     # from the −y side, 35° above the horizon, turned so that x runs along the front edge
     b = np.asarray(pl.bounds, dtype=float)
@@ -441,16 +381,22 @@ def _layout(n: int, ncols: int | None) -> tuple[int, int]:
     return -(-n // ncols), ncols
 
 
-def _caption(surface: Surface, factor: int, shape: tuple[int, int], ve: float) -> str:
+def _caption(
+    surface: Surface, factor: int, shape: tuple[int, int], ve: float, pooling: str = "area"
+) -> str:
     s = (
         f"{surface.nx}×{surface.ny} px, {surface.lx * 1e6:.4g}×{surface.ly * 1e6:.4g} µm, "
         f"Rt = {surface.rt * 1e6:.3g} µm; heights ×{ve:g}"
     )
     if factor > 1:
-        s += (
-            f"; mesh down-sampled ×{factor} ({shape[1]}×{shape[0]} blocks): a block is red "
-            "when any of its pixels touches"
-        )
+        s += f"; mesh down-sampled ×{factor} ({shape[1]}×{shape[0]} blocks): "
+        if pooling == "any":
+            s += (
+                "max-pooling shows every contact spot (a block is red when any of its pixels "
+                "touches), so red overstates Ac/A"
+            )
+        else:
+            s += "a block's share of red is the fraction of its pixels in contact (red = Ac/A)"
     return s + "; red: contact"
 
 
@@ -487,6 +433,7 @@ def render_truncation(
     ncols: int | None = None,
     vertical_exaggeration: float | None = None,
     downsample: int | None = None,
+    pooling: str = "area",
     max_mesh: int = MAX_MESH,
     lighting: bool | None = None,
     annotate: bool = True,
@@ -502,10 +449,10 @@ def render_truncation(
         Save the picture as PNG here (with the caption and the result's metadata in PNG text
         chunks).
     depth_fractions : sequence of float
-        Depths as fractions of R_t, one panel each (dimensionless); the paper's Fig. 7 uses
-        0.1–0.5.
+        Depths as fractions of R_t, in (0, 1], one panel each (dimensionless); the paper's
+        Fig. 7 uses 0.1–0.5.
     depths : sequence of float, optional
-        Depths ω (m); override ``depth_fractions``.
+        Depths ω in (0, R_t] (m); override ``depth_fractions``.
     top_view : bool
         View from above with an orthographic (parallel) projection, x to the right and y up
         (as ``imshow(z, origin="lower")``); otherwise an oblique view from the −y side,
@@ -520,6 +467,11 @@ def render_truncation(
         Block side f of the drawn mesh. Default: the smallest f that gives every block at
         least one screen pixel (over the map's footprint in the top view, over the panel's
         shorter side in the oblique view) and at most ``max_mesh`` blocks per side.
+    pooling : {"area", "any"}
+        How a block of f×f pixels is coloured when f > 1. ``"area"`` (default): its share of
+        red is the fraction of its pixels in contact, so the red in the picture measures A_c/A.
+        ``"any"``: max-pooling, red when any of its pixels touches; shows every contact spot
+        but overstates the area. The caption says which.
     max_mesh : int
         Largest number of blocks per side when ``downsample`` is not given.
     lighting : bool, optional
@@ -554,7 +506,8 @@ def render_truncation(
     >>> r.downsample, r.area_fraction  # doctest: +SKIP
     """
     _pyvista()
-    depth = _check_depths(surface, depth_fractions, depths)
+    depth = check_depths(surface, depth_fractions, depths, upto_rt=True)
+    check_pooling(pooling)
     nrows, ncols = _layout(depth.size, ncols)
     if window_size is None:
         window_size = (PANEL_SIZE[0] * ncols, PANEL_SIZE[1] * nrows)
@@ -576,23 +529,24 @@ def render_truncation(
     if lighting is None:
         lighting = not top_view
 
-    pooled, rank, frac = _pooled_index(surface, depth, f, device)
+    blocks, frac = block_contact(surface, depth, f, pooling, device)
     scene = _Scene(surface, f, ve)
-    caption = _caption(surface, f, scene.shape, ve)
+    caption = _caption(surface, f, scene.shape, ve, pooling)
     rt = surface.rt
     pw, ph = w // ncols, h // nrows
     spare = nrows * ncols > depth.size
-    panel = _Panel(
-        scene, (pw, ph), top_view=top_view, lighting=lighting, annotate=annotate, ve=ve,
-        caption=None if spare else _wrap(caption, max(30, pw // 7)),
-    )  # fmt: skip
-    try:
-        images = [
-            panel.frame(pooled <= rank[i], _depth_title(depth[i], rt, frac[i]), caption=i == 0)
-            for i in range(depth.size)
-        ]
-    finally:
-        panel.close()
+    with _vtk_quiet():
+        panel = _Panel(
+            scene, (pw, ph), top_view=top_view, lighting=lighting, annotate=annotate, ve=ve,
+            caption=None if spare else _wrap(caption, max(30, pw // 7)),
+        )  # fmt: skip
+        try:
+            images = [
+                panel.frame(blocks[i], _depth_title(depth[i], rt, frac[i]), caption=i == 0)
+                for i in range(depth.size)
+            ]
+        finally:
+            panel.close()
     img = _tile(images, nrows, ncols, (w, h))
     if annotate and spare:
         r, c = divmod(depth.size, ncols)
@@ -605,6 +559,7 @@ def render_truncation(
         depth_fraction=depth / rt,
         area_fraction=np.asarray(frac, dtype=np.float64),
         downsample=f,
+        pooling=pooling,
         mesh_shape=scene.shape,
         surface_shape=(surface.ny, surface.nx),
         vertical_exaggeration=ve,
@@ -627,6 +582,7 @@ def animate_truncation(
     window_size: tuple[int, int] = (640, 520),
     vertical_exaggeration: float | None = None,
     downsample: int | None = None,
+    pooling: str = "area",
     max_mesh: int = MAX_MESH,
     device: wp.DeviceLike = None,
 ) -> Rendering:
@@ -645,7 +601,7 @@ def animate_truncation(
         Number of frames (≥ 2); depths are equally spaced from 0.
     fps : float
         Frames per second.
-    top_view, window_size, vertical_exaggeration, downsample, max_mesh, device
+    top_view, window_size, vertical_exaggeration, downsample, pooling, max_mesh, device
         As in :func:`render_truncation`.
 
     Returns
@@ -686,20 +642,21 @@ def animate_truncation(
         else float(vertical_exaggeration)
     )
     depth = np.linspace(0.0, max_depth_fraction, n) * surface.rt
-    pooled, rank, frac = _pooled_index(surface, depth, f, device)
+    blocks, frac = block_contact(surface, depth, f, check_pooling(pooling), device)
     scene = _Scene(surface, f, ve)
-    caption = _caption(surface, f, scene.shape, ve)
+    caption = _caption(surface, f, scene.shape, ve, pooling)
     rt = surface.rt
-    panel = _Panel(
-        scene, (w, h), top_view=top_view, lighting=not top_view, annotate=True, ve=ve,
-        caption=_wrap(caption, max(30, w // 7)),
-    )  # fmt: skip
-    try:
-        frames = [
-            panel.frame(pooled <= rank[i], _depth_title(depth[i], rt, frac[i])) for i in range(n)
-        ]
-    finally:
-        panel.close()
+    with _vtk_quiet():
+        panel = _Panel(
+            scene, (w, h), top_view=top_view, lighting=not top_view, annotate=True, ve=ve,
+            caption=_wrap(caption, max(30, w // 7)),
+        )  # fmt: skip
+        try:
+            frames = [
+                panel.frame(blocks[i], _depth_title(depth[i], rt, frac[i])) for i in range(n)
+            ]
+        finally:
+            panel.close()
     path.parent.mkdir(parents=True, exist_ok=True)
     if suffix == ".gif":
         from PIL import Image
@@ -723,6 +680,7 @@ def animate_truncation(
         depth_fraction=depth / rt,
         area_fraction=np.asarray(frac, dtype=np.float64),
         downsample=f,
+        pooling=pooling,
         mesh_shape=scene.shape,
         surface_shape=(surface.ny, surface.nx),
         vertical_exaggeration=ve,

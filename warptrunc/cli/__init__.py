@@ -4,7 +4,10 @@
 
 Each sub-command is a module of this package defining ``NAME``, ``HELP``,
 ``add_arguments(parser)`` and ``run(args) -> int``; modules are discovered in name order,
-so adding a command needs no edit here.
+so adding a command needs no edit here. Every sub-command gets ``--verbose`` (show the
+notices of Warp and VTK that are hidden by default on CPU-only machines), one-line errors with
+exit status 2 (:class:`warptrunc.cli._common.Parser`) and the help formatter of
+:mod:`warptrunc.cli._common`, whose ``type=`` validators new commands should use.
 """
 
 from __future__ import annotations
@@ -15,13 +18,24 @@ import pkgutil
 import sys
 
 
+_VERBOSE_HELP = (
+    "show the notices of Warp and VTK that are hidden otherwise (e.g. no CUDA driver on a "
+    "CPU-only machine, no X server for off-screen rendering)"
+)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The top-level parser with every discovered sub-command."""
-    parser = argparse.ArgumentParser(
+    from ._common import HelpFormatter, Parser
+
+    parser = Parser(
         prog="warptrunc",
         description="Contact stiffness of rough multiscale surfaces by truncation analysis.",
     )
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    parser.add_argument("--verbose", "-v", action="store_true", help=_VERBOSE_HELP)
+    sub = parser.add_subparsers(
+        dest="command", required=True, metavar="COMMAND", parser_class=Parser
+    )
     for info in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
         if info.name.startswith("_"):
             continue
@@ -30,9 +44,12 @@ def build_parser() -> argparse.ArgumentParser:
             mod.NAME,
             help=mod.HELP,
             description=mod.__doc__,
-            formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+            formatter_class=HelpFormatter,
         )
         mod.add_arguments(p)
+        p.add_argument(
+            "--verbose", "-v", action="store_true", default=argparse.SUPPRESS, help=_VERBOSE_HELP
+        )
         p.set_defaults(_run=mod.run)
     return parser
 
@@ -40,10 +57,15 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     """Entry point; returns the exit status."""
     args = build_parser().parse_args(argv)
+    from .._device import set_verbose
+
+    if getattr(args, "verbose", False):
+        set_verbose(True)  # otherwise $WARPTRUNC_VERBOSE decides
     try:
         return int(args._run(args) or 0)
-    except (ValueError, MemoryError, FileNotFoundError) as exc:
-        print(f"warptrunc {args.command}: error: {exc}", file=sys.stderr)
+    except (ValueError, MemoryError, OSError) as exc:
+        msg = " ".join(str(exc).split())  # one line
+        print(f"warptrunc {args.command}: error: {msg}", file=sys.stderr)
         return 2
 
 

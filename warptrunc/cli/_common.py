@@ -1,18 +1,248 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Argument groups shared by the sub-commands: surface source, device, output folder."""
+"""Shared pieces of the sub-commands: argument groups (surface source, device, output folder),
+argparse ``type=`` validators, the help formatter and the parser class.
+
+Validators
+----------
+Every numeric or path option should be declared with one of the validators below as its
+``type=``, so that bad input stops while the command line is parsed, with one line that names
+the option, the value and the allowed range, and exit status 2::
+
+    warptrunc analyze: error: argument --Rt: must be in (0, inf) m, got '-1'
+
+=======================================  ===================================================
+validator                                accepts
+=======================================  ===================================================
+``real(lo, hi, lo_open=, hi_open=,       a finite float in the interval (``None`` = no bound;
+unit=, allow_inf=)``                     NaN always refused, ±inf only with ``allow_inf``)
+``positive(unit)``                       a finite float > 0
+``fraction(lo_open=True)``               a float in (0, 1] (or [0, 1])
+``integer(lo, hi=None)``                 an integer in [lo, hi] (no "2.5", no "1e3")
+``odd_integer(lo)``                      an odd integer ≥ lo
+``input_file``                           an existing regular file (not a folder)
+``output_file``                          a path that is not a folder and whose nearest existing
+                                         parent is a writable folder
+``output_dir``                           a path that is a folder or can be created as one
+                                         (not an existing file, writable parent)
+=======================================  ===================================================
+
+They raise :class:`argparse.ArgumentTypeError`, which argparse reports as
+``argument --OPTION: MESSAGE``. Checks that need several options or the surface (``--depths``
+up to R_t, LO < HI of a window) belong in ``run`` and raise ``ValueError`` naming the option;
+:func:`warptrunc.cli.main` turns ``ValueError``, ``MemoryError`` and ``OSError`` into the same
+one-line message with exit status 2. New sub-commands get all of this by importing from here.
+"""
 
 from __future__ import annotations
 
 import argparse
+import math
+import os
+import re
 import sys
 from pathlib import Path
 
 from ..surface import Surface
 
+# --- parser, help formatter -------------------------------------------------------------------
+
+
+class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Appends "(default: X)" to an option's help, except when the help already states its
+    default or the default is None (whose meaning the help text gives)."""
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = action.help or ""
+        if action.default is None or "default" in text.lower():
+            return text
+        if isinstance(action, argparse._StoreTrueAction):  # "(default: False)" says nothing
+            return text
+        return super()._get_help_string(action)
+
+
+class Parser(argparse.ArgumentParser):
+    """An ArgumentParser whose errors are one line: ``PROG: error: MESSAGE (see PROG --help)``,
+    exit status 2 (argparse's default also prints the usage, a dozen lines here).
+
+    Values such as ``-1e-6``, ``-inf`` and ``-nan`` are read as (negative) numbers, so that the
+    validators can name the allowed range, rather than as unknown options.
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(
+            r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE
+        )
+
+    def error(self, message: str):  # type: ignore[override]
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+# --- validators for ``type=`` -----------------------------------------------------------------
+
+
+def _interval(lo, hi, lo_open: bool, hi_open: bool) -> str:
+    lo_s = "-inf" if lo is None else f"{lo:g}"
+    hi_s = "inf" if hi is None else f"{hi:g}"
+    return f"{'(' if lo_open or lo is None else '['}{lo_s}, {hi_s}{')' if hi_open or hi is None else ']'}"
+
+
+def real(
+    lo: float | None = None,
+    hi: float | None = None,
+    *,
+    lo_open: bool = True,
+    hi_open: bool = True,
+    unit: str = "",
+    allow_inf: bool = False,
+):
+    """A ``type=`` for a float in an interval.
+
+    Parameters
+    ----------
+    lo, hi : float, optional
+        Bounds (None: unbounded on that side).
+    lo_open, hi_open : bool
+        Exclude the bound itself (default: both open).
+    unit : str
+        Unit named in the message (e.g. ``"m"``, ``"Pa"``, ``"(fraction of R_t)"``).
+    allow_inf : bool
+        Accept ``inf`` (e.g. the modulus of a rigid flat) when the interval reaches it;
+        the interval is then shown closed at inf.
+
+    Returns
+    -------
+    callable
+        ``parse(text) -> float``, raising :class:`argparse.ArgumentTypeError` with the allowed
+        interval and the value given. NaN is always refused.
+    """
+    rng = _interval(lo, hi, lo_open, hi_open)
+    if allow_inf and hi is None:
+        rng = rng[:-1] + "]"
+    u = f" {unit}" if unit else ""
+
+    def parse(text: str) -> float:
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be a number in {rng}{u}, got {text!r}") from None
+        bad = math.isnan(v) or (math.isinf(v) and not (allow_inf and v > 0))
+        if lo is not None:
+            bad |= v <= lo if lo_open else v < lo
+        if hi is not None:
+            bad |= v >= hi if hi_open else v > hi
+        if bad:
+            raise argparse.ArgumentTypeError(f"must be in {rng}{u}, got {text!r}")
+        return v
+
+    parse.__name__ = "number"
+    return parse
+
+
+def positive(unit: str = "") -> object:
+    """A ``type=`` for a finite float > 0 (``unit`` is named in the message)."""
+    return real(0.0, None, unit=unit)
+
+
+def fraction(lo_open: bool = True, unit: str = "(fraction of R_t)") -> object:
+    """A ``type=`` for a fraction in (0, 1] (``lo_open=False``: [0, 1])."""
+    return real(0.0, 1.0, lo_open=lo_open, hi_open=False, unit=unit)
+
+
+def integer(lo: int, hi: int | None = None):
+    """A ``type=`` for an integer in [lo, hi] (``hi=None``: no upper bound).
+
+    Only plain integer literals are accepted ("64", "-3"); "2.5", "1e3" and "nan" are refused
+    with the allowed range.
+    """
+    rng = f"[{lo}, {'inf)' if hi is None else f'{hi}]'}"
+
+    def parse(text: str) -> int:
+        try:
+            v = int(text, 10)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be an integer in {rng}, got {text!r}") from None
+        if v < lo or (hi is not None and v > hi):
+            raise argparse.ArgumentTypeError(f"must be an integer in {rng}, got {text!r}")
+        return v
+
+    parse.__name__ = "integer"
+    return parse
+
+
+def odd_integer(lo: int = 1):
+    """A ``type=`` for an odd integer ≥ ``lo``."""
+    base = integer(lo)
+
+    def parse(text: str) -> int:
+        v = base(text)
+        if v % 2 == 0:
+            raise argparse.ArgumentTypeError(f"must be an odd integer ≥ {lo}, got {text!r}")
+        return v
+
+    parse.__name__ = "odd integer"
+    return parse
+
+
+def _nearest_existing(p: Path) -> Path:
+    q = p.absolute()
+    while not q.exists() and q != q.parent:
+        q = q.parent
+    return q
+
+
+def _check_writable_parent(p: Path, text: str) -> None:
+    anc = _nearest_existing(p.parent if p.name else p)
+    if not anc.is_dir():
+        raise argparse.ArgumentTypeError(f"{str(anc)!r} is not a folder, so {text!r} cannot be written")
+    if not os.access(anc, os.W_OK | os.X_OK):
+        raise argparse.ArgumentTypeError(f"cannot write under {str(anc)!r} (no permission), got {text!r}")
+
+
+def input_file(text: str) -> Path:
+    """A ``type=`` for an existing regular file (not a folder)."""
+    p = Path(text)
+    if not text:
+        raise argparse.ArgumentTypeError("must be a file name, got ''")
+    if not p.exists():
+        raise argparse.ArgumentTypeError(f"file not found: {text!r}")
+    if not p.is_file():
+        raise argparse.ArgumentTypeError(f"must be a regular file, got a folder: {text!r}")
+    return p
+
+
+def output_file(text: str) -> Path:
+    """A ``type=`` for a file to write: not an existing folder, in a writable folder."""
+    p = Path(text)
+    if not text:
+        raise argparse.ArgumentTypeError("must be a file name, got ''")
+    if p.is_dir():
+        raise argparse.ArgumentTypeError(f"must be a file name, got an existing folder: {text!r}")
+    _check_writable_parent(p, text)
+    return p
+
+
+def output_dir(text: str) -> Path:
+    """A ``type=`` for an output folder: an existing folder, or one that can be created."""
+    p = Path(text)
+    if not text:
+        raise argparse.ArgumentTypeError("must be a folder name, got ''")
+    if p.exists() and not p.is_dir():
+        raise argparse.ArgumentTypeError(f"must be a folder, got an existing file: {text!r}")
+    if p.is_dir():
+        if not os.access(p, os.W_OK | os.X_OK):
+            raise argparse.ArgumentTypeError(f"folder is not writable: {text!r}")
+        return p
+    _check_writable_parent(p / "x", text)
+    return p
+
+
+# --- argument groups --------------------------------------------------------------------------
+
 
 def add_device(p: argparse.ArgumentParser) -> None:
-    """``--device``."""
+    """``--device`` (checked when the command runs, against the devices Warp finds)."""
     p.add_argument(
         "--device",
         default=None,
@@ -23,7 +253,7 @@ def add_device(p: argparse.ArgumentParser) -> None:
 
 def add_out(p: argparse.ArgumentParser, default: str = "out") -> None:
     """``--out DIR``."""
-    p.add_argument("--out", type=Path, default=Path(default), help="output folder")
+    p.add_argument("--out", type=output_dir, default=Path(default), help="output folder")
 
 
 def add_surface_source(p: argparse.ArgumentParser) -> None:
@@ -32,38 +262,47 @@ def add_surface_source(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--input",
         "-i",
-        type=Path,
+        type=input_file,
         default=None,
         help="height map file (.npz/.npy written by warptrunc, .npy/.csv/.txt matrix with "
         "--dx, or an instrument file); overrides the generation parameters",
     )
     add_reader_options(g)
     g.add_argument(
-        "--D", type=float, default=2.5, help="fractal dimension D, 2 < D < 3 (dimensionless)"
-    )
+        "--D", type=real(2.0, 3.0), default=2.5,
+        help="fractal dimension D, 2 < D < 3 (dimensionless)",
+    )  # fmt: skip
     add_wm_shape(g)
-    g.add_argument("--Rt", type=float, default=10e-6, help="target peak-to-valley height R_t (m)")
+    g.add_argument(
+        "--Rt", type=positive("m"), default=10e-6, help="target peak-to-valley height R_t (m)"
+    )
     g.add_argument(
         "--G",
-        type=float,
+        type=positive("m"),
         default=None,
         help="topothesy G (m); when given, heights are not rescaled to --Rt",
     )
-    g.add_argument("--seed", type=int, default=0, help="seed of the random phases α_mn")
+    g.add_argument("--seed", type=integer(0), default=0, help="seed of the random phases α_mn")
 
 
 def add_wm_shape(g: argparse._ActionsContainer) -> None:
     """WM options other than D, R_t/G and the seed: W_r, L, n, M, γ, W_c, cut-off (SI)."""
-    g.add_argument("--Wr", type=float, default=100e-6, help="roll-off wavelength W_r (m)")
-    g.add_argument("--L", type=float, nargs="+", default=[1e-3], help="side length L, or Lx Ly (m)")
-    g.add_argument("--n", type=int, nargs="+", default=[1024], help="pixels per side, or nx ny")
-    g.add_argument("--M", type=int, default=10, help="number of superposed ridges M")
+    g.add_argument("--Wr", type=positive("m"), default=100e-6, help="roll-off wavelength W_r (m)")
     g.add_argument(
-        "--gamma", type=float, default=1.5, help="frequency density γ > 1 (dimensionless)"
+        "--L", type=positive("m"), nargs="+", default=[1e-3], help="side length L, or Lx Ly (m)"
+    )
+    g.add_argument(
+        "--n", type=integer(2), nargs="+", default=[1024], help="pixels per side, or nx ny"
+    )
+    g.add_argument(
+        "--M", type=integer(1, 10_000), default=10, help="number of superposed ridges M"
+    )
+    g.add_argument(
+        "--gamma", type=real(1.0), default=1.5, help="frequency density γ > 1 (dimensionless)"
     )
     g.add_argument(
         "--Wc",
-        type=float,
+        type=positive("m"),
         default=None,
         help="cut-off wavelength W_c (m); default from --cutoff",
     )
@@ -79,11 +318,14 @@ def add_wm_shape(g: argparse._ActionsContainer) -> None:
 def add_reader_options(g: argparse._ActionsContainer) -> None:
     """Options for reading a height-map file (spacing, units, missing points, levelling)."""
     g.add_argument(
-        "--dx", type=float, default=None, help="pixel spacing along x (m) if not in the file"
-    )
-    g.add_argument("--dy", type=float, default=None, help="pixel spacing along y (m); default dx")
+        "--dx", type=positive("m"), default=None,
+        help="pixel spacing along x (m) if not in the file",
+    )  # fmt: skip
     g.add_argument(
-        "--height-unit", type=float, default=1.0,
+        "--dy", type=positive("m"), default=None, help="pixel spacing along y (m); default dx"
+    )
+    g.add_argument(
+        "--height-unit", type=positive("m"), default=1.0,
         help="metres per height unit, for files that declare none (e.g. 1e-6 for µm)",
     )  # fmt: skip
     g.add_argument(
@@ -99,7 +341,9 @@ def add_reader_options(g: argparse._ActionsContainer) -> None:
         "--engine", choices=["auto", "builtin", "surfacetopography"], default="auto",
         help="reader: built-in for .npz/.npy/.csv/.txt/.tsv, SurfaceTopography otherwise",
     )  # fmt: skip
-    g.add_argument("--channel", type=int, default=None, help="data channel of instrument files")
+    g.add_argument(
+        "--channel", type=integer(0), default=None, help="data channel of instrument files"
+    )
 
 
 def read_input(path: Path, args: argparse.Namespace) -> Surface:
@@ -116,12 +360,12 @@ def read_input(path: Path, args: argparse.Namespace) -> Surface:
     return s
 
 
-def _pair(v: list) -> float | tuple:
+def _pair(v: list, option: str) -> float | tuple:
     if len(v) == 1:
         return v[0]
     if len(v) == 2:
         return (v[0], v[1])
-    raise ValueError(f"expected one or two values, got {v!r}")
+    raise ValueError(f"{option} takes one or two values, got {len(v)}: {v!r}")
 
 
 def wm_kwargs(args: argparse.Namespace) -> dict:
@@ -129,8 +373,8 @@ def wm_kwargs(args: argparse.Namespace) -> dict:
     return dict(
         D=args.D,
         Wr=args.Wr,
-        L=_pair(args.L),
-        n=_pair(args.n),
+        L=_pair(args.L, "--L"),
+        n=_pair(args.n, "--n"),
         Rt=None if args.G is not None else args.Rt,
         G=args.G,
         M=args.M,

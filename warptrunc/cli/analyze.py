@@ -21,7 +21,17 @@ import math
 
 from ..stiffness import DEFAULT_MIN_PIXELS, Material, fit_power_law, stiffness_curve
 from ..truncation import truncate
-from ._common import add_device, add_out, add_surface_source, surface_from_args, wm_kwargs
+from ._common import (
+    add_device,
+    add_out,
+    add_surface_source,
+    fraction,
+    integer,
+    positive,
+    real,
+    surface_from_args,
+    wm_kwargs,
+)
 
 NAME = "analyze"
 HELP = "truncation analysis to the stiffness–load power law"
@@ -39,7 +49,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "the map needs more than half of the free memory)",
     )  # fmt: skip
     p.add_argument(
-        "--band-rows", type=int, default=None,
+        "--band-rows", type=integer(1), default=None,
         help="rows per band when streaming (default: about 2**28 pixels per band)",
     )  # fmt: skip
     add_out(p)
@@ -49,46 +59,63 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def add_truncation_options(p: argparse.ArgumentParser) -> None:
     """Depth increments, ω_max, material and β' (shared with ``warptrunc sweep``)."""
     g = p.add_argument_group("truncation and material")
-    g.add_argument("--increments", type=int, default=200, help="number of depth increments n")
     g.add_argument(
-        "--max-depth-fraction", type=float, default=0.1,
+        "--increments", type=integer(1, 10_000_000), default=200,
+        help="number of depth increments n",
+    )  # fmt: skip
+    g.add_argument(
+        "--max-depth-fraction", type=fraction(), default=0.1,
         help="largest depth ω_max as a fraction of R_t (dimensionless)",
     )  # fmt: skip
     g.add_argument(
         "--max-depth",
-        type=float,
+        type=positive("m"),
         default=None,
         help="largest depth ω_max (m); overrides the fraction",
     )
-    g.add_argument("--E", type=float, default=70e9, help="Young's modulus E of the rough body (Pa)")
-    g.add_argument("--nu", type=float, default=0.33, help="Poisson's ratio ν of the rough body")
+    g.add_argument(
+        "--E", type=positive("Pa"), default=70e9, help="Young's modulus E of the rough body (Pa)"
+    )
+    g.add_argument(
+        "--nu", type=real(-1.0, 0.5, hi_open=False), default=0.33,
+        help="Poisson's ratio ν of the rough body, −1 < ν ≤ 0.5",
+    )  # fmt: skip
     g.add_argument(
         "--E-flat",
-        type=float,
+        type=real(0.0, None, allow_inf=True, unit="Pa"),
         default=math.inf,
         help="Young's modulus E_i of the flat (Pa); inf = rigid",
     )
-    g.add_argument("--nu-flat", type=float, default=0.0, help="Poisson's ratio ν_i of the flat")
-    g.add_argument("--beta-prime", type=float, default=1.0, help="geometric factor β' of Eq. 2")
+    g.add_argument(
+        "--nu-flat", type=real(-1.0, 0.5, hi_open=False), default=0.0,
+        help="Poisson's ratio ν_i of the flat, −1 < ν_i ≤ 0.5",
+    )  # fmt: skip
+    g.add_argument(
+        "--beta-prime", type=positive(), default=1.0, help="geometric factor β' of Eq. 2"
+    )
 
 
 def add_fit_options(p: argparse.ArgumentParser, several: bool = False) -> None:
     """``--min-pixels`` (one value, or several fit ranges) and ``--depth-window``."""
     f = p.add_argument_group("fit range")
     f.add_argument(
-        "--min-pixels", type=int, nargs="+" if several else None,
+        "--min-pixels", type=integer(1), nargs="+" if several else None,
         default=[DEFAULT_MIN_PIXELS] if several else DEFAULT_MIN_PIXELS,
         help="fit only increments with at least this many contact pixels (1 = all with load > 0)"
         + ("; several values: one fit (row) each" if several else ""),
     )  # fmt: skip
     f.add_argument(
-        "--depth-window", type=float, nargs=2, default=None, metavar=("LO", "HI"),
+        "--depth-window", type=real(0.0, lo_open=False, unit="m"), nargs=2, default=None,
+        metavar=("LO", "HI"),
         help="fit only depths LO ≤ ω ≤ HI (m)",
     )  # fmt: skip
 
 
 def run(args: argparse.Namespace) -> int:
     """Analyse and write the outputs."""
+    if args.depth_window is not None and not args.depth_window[0] < args.depth_window[1]:
+        lo, hi = args.depth_window
+        raise ValueError(f"--depth-window LO HI needs LO < HI (m), got {lo!r} {hi!r}")
     material = Material(E=args.E, nu=args.nu, E_i=args.E_flat, nu_i=args.nu_flat)
     curve, meta, path = _truncation(args)
     nx, ny, rt = meta["nx"], meta["ny"], meta["rt_m"]

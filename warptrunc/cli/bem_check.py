@@ -16,7 +16,15 @@ import math
 import sys
 
 from ..stiffness import Material
-from ._common import add_device, add_out, add_surface_source, surface_from_args
+from ._common import (
+    add_device,
+    add_out,
+    add_surface_source,
+    integer,
+    positive,
+    real,
+    surface_from_args,
+)
 
 NAME = "bem-check"
 HELP = "elastic boundary-element cross-check of truncation (needs warptrunc[bem])"
@@ -28,24 +36,24 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     a = p.add_argument_group("approaches (default: 0.05 0.1 0.15 0.2 0.3 0.4 of R_t)")
     x = a.add_mutually_exclusive_group()
     x.add_argument(
-        "--fractions", type=float, nargs="+", default=None,
+        "--fractions", type=real(0.0, 1.0, unit="(fraction of R_t)"), nargs="+", default=None,
         help="approaches δ as fractions of R_t, strictly increasing, in (0, 1)",
     )  # fmt: skip
     x.add_argument(
-        "--depths", type=float, nargs="+", default=None,
+        "--depths", type=positive("m"), nargs="+", default=None,
         help="approaches δ (m), strictly increasing, in (0, R_t)",
     )  # fmt: skip
     g = p.add_argument_group("material (as analyze)")
-    g.add_argument("--E", type=float, default=70e9, help="Young's modulus E of the rough body (Pa)")
-    g.add_argument("--nu", type=float, default=0.33, help="Poisson's ratio ν of the rough body")
+    g.add_argument("--E", type=positive("Pa"), default=70e9, help="Young's modulus E of the rough body (Pa)")
+    g.add_argument("--nu", type=real(-1.0, 0.5, hi_open=False), default=0.33, help="Poisson's ratio ν of the rough body")
     g.add_argument(
-        "--E-flat", type=float, default=math.inf,
+        "--E-flat", type=real(0.0, None, allow_inf=True, unit="Pa"), default=math.inf,
         help="Young's modulus E_i of the flat (Pa); inf = rigid",
     )  # fmt: skip
-    g.add_argument("--nu-flat", type=float, default=0.0, help="Poisson's ratio ν_i of the flat")
-    g.add_argument("--beta-prime", type=float, default=1.0, help="geometric factor β' of Eq. 2")
+    g.add_argument("--nu-flat", type=real(-1.0, 0.5, hi_open=False), default=0.0, help="Poisson's ratio ν_i of the flat")
+    g.add_argument("--beta-prime", type=positive(), default=1.0, help="geometric factor β' of Eq. 2")
     g.add_argument(
-        "--increments", type=int, default=400,
+        "--increments", type=integer(1, 10_000_000), default=400,
         help="truncation depth increments from 0 to the largest δ (load integral)",
     )  # fmt: skip
     s = p.add_argument_group("boundary-element solver")
@@ -54,18 +62,18 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="free: non-periodic half-space, zero-padded to 2nx × 2ny; periodic: for periodic maps",
     )  # fmt: skip
     s.add_argument(
-        "--fd-step", type=float, default=0.02,
+        "--fd-step", type=real(0.0, 1.0), default=0.02,
         help="relative step h of the central difference k = dF/dδ over δ(1 ± h)",
     )  # fmt: skip
     s.add_argument(
-        "--pressure-tol", type=float, default=1e-5,
+        "--pressure-tol", type=positive(), default=1e-5,
         help="tolerance on tensile/pad pressure relative to E* (dimensionless)",
     )  # fmt: skip
     s.add_argument(
-        "--pentol", type=float, default=None,
+        "--pentol", type=positive("m"), default=None,
         help="tolerance on penetration (m); default rms height/(10·mean n)",
     )  # fmt: skip
-    s.add_argument("--maxiter", type=int, default=10000, help="largest CG iterations per solve")
+    s.add_argument("--maxiter", type=integer(1), default=10000, help="largest CG iterations per solve")
     add_device(p)
     add_out(p, "bem")
     p.add_argument("--no-plot", action="store_true", help="skip the PNG")

@@ -15,8 +15,8 @@ import json
 from pathlib import Path
 
 from ..fractal import METHODS
-from ._common import add_device
-from .describe import add_scan_arguments, read_scan_args
+from ._common import add_device, integer, output_dir, positive, real
+from .describe import add_height_scaling, add_scan_arguments, method_options, read_scan_args
 
 NAME = "calibrate"
 HELP = "find D_in and R_t' that reproduce a scan's D and R_rms (Fig. 4), then generate"
@@ -27,35 +27,48 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_scan_arguments(p, required=False)
     t = p.add_argument_group("targets (typed in, or overriding those measured on FILE)")
     t.add_argument("--method", choices=list(METHODS), default="tri", help="fractal method matched")
-    t.add_argument("--D", type=float, default=None, help="target fractal dimension (dimensionless)")
-    t.add_argument("--Rrms", type=float, default=None, help="target R_rms (m)")
-    t.add_argument("--Rt", type=float, default=None, help="scan's R_t, input of the D loop (m)")
-    t.add_argument("--Wr", type=float, default=None, help="roll-off wavelength W_r (m)")
-    t.add_argument("--L", type=float, nargs="+", default=None, help="scan side L, or Lx Ly (m)")
-    t.add_argument("--n", type=int, nargs="+", default=None, help="scan pixels per side (nx ny)")
+    add_height_scaling(t)
+    t.add_argument(
+        "--D", type=real(2.0, 3.0), default=None,
+        help="target fractal dimension, 2 < D < 3 (dimensionless)",
+    )  # fmt: skip
+    t.add_argument("--Rrms", type=positive("m"), default=None, help="target R_rms (m)")
+    t.add_argument(
+        "--Rt", type=positive("m"), default=None, help="scan's R_t, input of the D loop (m)"
+    )
+    t.add_argument("--Wr", type=positive("m"), default=None, help="roll-off wavelength W_r (m)")
+    t.add_argument(
+        "--L", type=positive("m"), nargs="+", default=None, help="scan side L, or Lx Ly (m)"
+    )
+    t.add_argument(
+        "--n", type=integer(2), nargs="+", default=None, help="scan pixels per side (nx ny)"
+    )
     c = p.add_argument_group("loop")
-    c.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], help="seeds per evaluation")
-    c.add_argument("--rtol", type=float, default=0.05, help="relative tolerance on D")
-    c.add_argument("--max-iter", type=int, default=12, help="evaluations per D loop")
+    c.add_argument(
+        "--seeds", type=integer(0), nargs="+", default=[0, 1, 2], help="seeds per evaluation"
+    )
+    c.add_argument("--rtol", type=real(0.0, 1.0), default=0.05, help="relative tolerance on D")
+    c.add_argument("--max-iter", type=integer(2, 1000), default=12, help="evaluations per D loop")
     c.add_argument("--no-progress", action="store_true", help="no progress bar")
     o = p.add_argument_group("output surface")
     o.add_argument(
-        "--n-out", type=int, nargs="+", default=None, help="output pixels per side (or nx ny)"
+        "--n-out", type=integer(2), nargs="+", default=None,
+        help="output pixels per side (or nx ny)",
     )
-    o.add_argument("--seed-out", type=int, default=0, help="seed of the output surface")
+    o.add_argument("--seed-out", type=integer(0), default=0, help="seed of the output surface")
     o.add_argument("--no-surface", action="store_true", help="write calibration.json only")
-    p.add_argument("--out", type=Path, default=Path("out"), help="output folder")
+    p.add_argument("--out", type=output_dir, default=Path("out"), help="output folder")
     add_device(p)
 
 
-def _pair(v):
+def _pair(v, option: str):
     if v is None:
         return None
     if len(v) == 1:
         return (v[0], v[0])
     if len(v) == 2:
         return (v[0], v[1])
-    raise ValueError(f"expected one or two values, got {v!r}")
+    raise ValueError(f"{option} takes one or two values, got {len(v)}: {v!r}")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -64,7 +77,10 @@ def run(args: argparse.Namespace) -> int:
 
     if args.file is not None:
         s = read_scan_args(args)
-        t = target_from_surface(s, args.method, Wr=args.Wr, device=args.device)
+        opts = method_options(args.method, args.height_scaling)
+        t = target_from_surface(
+            s, args.method, Wr=args.Wr, method_options=opts, device=args.device
+        )
         fields = t.to_dict()
         target = CalibrationTarget(
             D=args.D if args.D is not None else t.D,
@@ -72,9 +88,10 @@ def run(args: argparse.Namespace) -> int:
             Rrms=args.Rrms if args.Rrms is not None else t.Rrms,
             Rt=args.Rt if args.Rt is not None else t.Rt,
             Wr=t.Wr,
-            L=_pair(args.L) or t.L,
-            n=_pair(args.n) or t.n,
+            L=_pair(args.L, "--L") or t.L,
+            n=_pair(args.n, "--n") or t.n,
             source=fields["source"] or str(args.file),
+            method_options=opts,
         )
     else:
         missing = [k for k in ("D", "Rrms", "Rt", "Wr", "L", "n") if getattr(args, k) is None]
@@ -84,7 +101,8 @@ def run(args: argparse.Namespace) -> int:
             )
         target = CalibrationTarget(
             D=args.D, method=args.method, Rrms=args.Rrms, Rt=args.Rt, Wr=args.Wr,
-            L=_pair(args.L), n=_pair(args.n), source="given",
+            L=_pair(args.L, "--L"), n=_pair(args.n, "--n"), source="given",
+            method_options=method_options(args.method, args.height_scaling),
         )  # fmt: skip
     print(
         f"targets: D_{target.method} = {target.D:.4f}, R_rms = {target.Rrms * 1e6:.4g} µm, "
@@ -107,7 +125,7 @@ def run(args: argparse.Namespace) -> int:
     )
     written = [str(args.out / "calibration.json")]
     if not args.no_surface:
-        n_out = _pair(args.n_out)
+        n_out = _pair(args.n_out, "--n-out")
         surf = calibrated_surface(cal, n=n_out, seed=args.seed_out, device=args.device)
         written.append(str(surf.save(args.out / "surface.npz")))
     print("wrote " + ", ".join(written))

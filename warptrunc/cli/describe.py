@@ -4,7 +4,9 @@
 
 Prints a table and, with --json, writes (or prints, with --json -) a JSON object with the keys
 Rt_m, Rrms_m, Ra_m, skewness, kurtosis, Wr_m, D_tri, D_box, D_vs, D_sp (SI units), plus
-Wr_resolved, r2_<method> and the grid. With --out DIR, also writes DIR/psd.png and
+Wr_resolved, r2_<method>, the grid, and convention_<method>: the height convention that
+produced each D ("cube": heights mapped onto the lateral extent, Gwyddion's, the default;
+"si": metres as measured; "none" for D_vs and D_sp, which do not depend on it). With --out DIR, also writes DIR/psd.png and
 DIR/fractal_fits.png.
 """
 
@@ -15,8 +17,8 @@ import json
 import sys
 from pathlib import Path
 
-from ..fractal import METHODS
-from ._common import add_device, add_reader_options, read_input
+from ..fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS
+from ._common import add_device, add_reader_options, input_file, output_dir, read_input
 
 NAME = "describe"
 HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four methods"
@@ -25,7 +27,7 @@ HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four
 def add_scan_arguments(p: argparse.ArgumentParser, *, required: bool = True) -> None:
     """FILE and the reader options shared by ``describe`` and ``calibrate``."""
     p.add_argument(
-        "file", type=Path, nargs=None if required else "?", default=None,
+        "file", type=input_file, nargs=None if required else "?", default=None,
         help="height map: .npz/.npy (warptrunc or plain), .csv/.txt matrix, or an instrument "
         "file (.sur, .x3p, .datx, ... needs the 'scans' extra)",
     )  # fmt: skip
@@ -37,6 +39,21 @@ def read_scan_args(args: argparse.Namespace):
     return read_input(args.file, args)
 
 
+def add_height_scaling(g) -> None:
+    """``--height-scaling`` of D_tri and D_box (shared with ``calibrate``)."""
+    g.add_argument(
+        "--height-scaling", choices=list(HEIGHT_SCALINGS), default=DEFAULT_HEIGHT_SCALING,
+        help="height convention of D_tri and D_box: 'cube' maps the height range onto the "
+        "lateral extent first (Gwyddion's; independent of units and amplitude), 'si' uses "
+        "metres as measured (D drifts to 2 on gently sloped maps)",
+    )  # fmt: skip
+
+
+def method_options(method: str, height_scaling: str) -> dict:
+    """The options of ``method`` that carry the height convention (tri, box)."""
+    return {"height_scaling": height_scaling} if method in ("tri", "box") else {}
+
+
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc describe``."""
     add_scan_arguments(p)
@@ -45,6 +62,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--methods", nargs="+", choices=list(METHODS), default=list(METHODS),
         help="fractal methods to run",
     )  # fmt: skip
+    add_height_scaling(g)
     g.add_argument(
         "--sp-kind", choices=["profile", "radial"], default="profile",
         help="spectrum of the power-spectrum method",
@@ -53,9 +71,21 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--vs-axis", choices=["both", "x", "y"], default="both",
         help="profile direction of the vertical-sections method",
     )  # fmt: skip
-    p.add_argument("--json", default=None, metavar="PATH", help="write JSON here ('-': stdout)")
-    p.add_argument("--out", type=Path, default=None, help="folder for psd.png and fractal_fits.png")
+    p.add_argument(
+        "--json", type=_json_path, default=None, metavar="PATH",
+        help="write JSON here ('-': stdout)",
+    )  # fmt: skip
+    p.add_argument(
+        "--out", type=output_dir, default=None, help="folder for psd.png and fractal_fits.png"
+    )
     add_device(p)
+
+
+def _json_path(text: str) -> str:
+    """``-`` (stdout) or a file to write (see :func:`warptrunc.cli._common.output_file`)."""
+    from ._common import output_file
+
+    return text if text == "-" else str(output_file(text))
 
 
 def describe_surface(s, methods, options, device) -> dict:
@@ -70,6 +100,11 @@ def describe_surface(s, methods, options, device) -> dict:
         out[f"D_{m}"] = fits[m].D if m in fits else None
     for m in METHODS:
         out[f"r2_{m}"] = fits[m].r2 if m in fits else None
+    for m in METHODS:
+        if m not in fits:
+            out[f"convention_{m}"] = None
+        else:
+            out[f"convention_{m}"] = fits[m].options.get("height_scaling", "none")
     out.update({"nx": s.nx, "ny": s.ny, "dx_m": s.dx, "dy_m": s.dy})
     return {"result": out, "fits": fits, "descriptors": d}
 
@@ -77,7 +112,12 @@ def describe_surface(s, methods, options, device) -> dict:
 def run(args: argparse.Namespace) -> int:
     """Describe the file."""
     s = read_scan_args(args)
-    options = {"sp": {"kind": args.sp_kind}, "vs": {"axis": args.vs_axis}}
+    options = {
+        "sp": {"kind": args.sp_kind},
+        "vs": {"axis": args.vs_axis},
+        "tri": method_options("tri", args.height_scaling),
+        "box": method_options("box", args.height_scaling),
+    }
     options = {k: v for k, v in options.items() if k in args.methods}
     res = describe_surface(s, args.methods, options, args.device)
     out = {"file": str(args.file), **res["result"]}
@@ -96,7 +136,9 @@ def run(args: argparse.Namespace) -> int:
             ("W_r", f"{out['Wr_m'] * u:.4g} µm" + ("" if out["Wr_resolved"] else " (unresolved)")),
         ]
         for m in args.methods:
-            rows.append((f"D_{m}", f"{out[f'D_{m}']:.4f}  (r² = {out[f'r2_{m}']:.4f})"))
+            conv = out[f"convention_{m}"]
+            note = f", heights: {conv}" if conv != "none" else ""
+            rows.append((f"D_{m}", f"{out[f'D_{m}']:.4f}  (r² = {out[f'r2_{m}']:.4f}{note})"))
         w = max(len(r[0]) for r in rows)
         for k, v in rows:
             print(f"  {k:<{w}}  {v}")

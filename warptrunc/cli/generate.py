@@ -7,7 +7,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ._common import add_device, add_surface_source, surface_from_args
+from ._common import add_device, add_surface_source, output_file, surface_from_args
 
 NAME = "generate"
 HELP = "generate a WM surface and save it"
@@ -18,7 +18,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_surface_source(p)
     add_device(p)
     p.add_argument(
-        "--output", "-o", type=Path, default=Path("surface.npz"),
+        "--output", "-o", type=output_file, default=Path("surface.npz"),
         help="output file: .npz (heights + metadata) or .npy (heights) + .json sidecar",
     )  # fmt: skip
 

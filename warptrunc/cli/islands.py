@@ -19,7 +19,18 @@ import math
 from pathlib import Path
 
 from ..islands import MIN_PIXELS, IslandCurve, applicable_depth, island_curve
-from ._common import add_device, add_out, add_surface_source, surface_from_args
+from ..islands.results import MIN_ISLANDS
+from ._common import (
+    add_device,
+    add_out,
+    add_surface_source,
+    fraction,
+    integer,
+    odd_integer,
+    positive,
+    real,
+    surface_from_args,
+)
 
 NAME = "islands"
 HELP = "contact islands against depth, slit-island exponent and the applicable depth (Fig. 8)"
@@ -29,22 +40,25 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc islands``."""
     add_surface_source(p)
     g = p.add_argument_group("depths and islands")
-    g.add_argument("--increments", type=int, default=200, help="number of depth increments n")
     g.add_argument(
-        "--max-depth-fraction", type=float, default=0.5,
+        "--increments", type=integer(1, 10_000_000), default=200,
+        help="number of depth increments n",
+    )  # fmt: skip
+    g.add_argument(
+        "--max-depth-fraction", type=fraction(), default=0.5,
         help="largest depth ω_max as a fraction of R_t (dimensionless)",
     )  # fmt: skip
     g.add_argument(
-        "--max-depth", type=float, default=None,
+        "--max-depth", type=positive("m"), default=None,
         help="largest depth ω_max (m); overrides the fraction",
     )  # fmt: skip
     g.add_argument(
-        "--connectivity", type=int, default=4,
+        "--connectivity", type=int, choices=[4, 8], default=4,
         help="4: pixels sharing an edge form one island; 8: also pixels sharing a corner",
     )  # fmt: skip
     g.add_argument("--periodic", action="store_true", help="wrap the map around in x and y")
     g.add_argument(
-        "--min-pixels", type=int, default=MIN_PIXELS,
+        "--min-pixels", type=integer(1), default=MIN_PIXELS,
         help="smallest island in the slit-island fits (pixels)",
     )  # fmt: skip
     g.add_argument(
@@ -52,27 +66,29 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="island counts, χ and perimeters only (no per-island statistics; fastest)",
     )  # fmt: skip
     g.add_argument(
-        "--snapshots", type=float, nargs="*", default=[0.1, 0.2, 0.3, 0.4],
+        "--snapshots", type=fraction(), nargs="*", default=[0.1, 0.2, 0.3, 0.4],
         help="depths (fractions of R_t) whose islands are drawn in slit_islands.png",
     )  # fmt: skip
     i = p.add_argument_group("applicable-depth indicators")
     i.add_argument(
-        "--exponent-tolerance", type=float, default=0.05,
+        "--exponent-tolerance", type=real(0.0, 1.0), default=0.05,
         help="relative drop of the slit-island exponent below its plateau that ends fractality",
     )  # fmt: skip
     i.add_argument(
-        "--min-islands", type=int, default=50,
+        "--min-islands", type=integer(MIN_ISLANDS), default=50,
         help="fewest fitted islands for a depth's exponent to count",
     )  # fmt: skip
     i.add_argument(
-        "--plateau-width", type=float, default=0.1,
+        "--plateau-width", type=fraction(), default=0.1,
         help="width of the plateau window (fraction of R_t)",
     )  # fmt: skip
     i.add_argument(
-        "--persist", type=float, default=0.02,
+        "--persist", type=fraction(lo_open=False), default=0.02,
         help="depth span (fraction of R_t) a drop of the exponent must last to count",
     )  # fmt: skip
-    i.add_argument("--smooth", type=int, default=5, help="odd smoothing window (depth samples)")
+    i.add_argument(
+        "--smooth", type=odd_integer(1), default=5, help="odd smoothing window (depth samples)"
+    )
     add_device(p)
     add_out(p)
     p.add_argument("--no-plot", action="store_true", help="skip the PNGs")

@@ -14,7 +14,15 @@ import argparse
 import json
 import sys
 
-from ._common import add_device, add_out, add_surface_source, surface_from_args
+from ._common import (
+    add_device,
+    add_out,
+    add_surface_source,
+    fraction,
+    integer,
+    positive,
+    surface_from_args,
+)
 
 NAME = "render"
 HELP = "render truncation sections (Fig. 7), an animation, a VTK file"
@@ -25,55 +33,86 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_surface_source(p)
     g = p.add_argument_group("picture")
     g.add_argument(
-        "--depth-fractions", type=float, nargs="+", default=[0.1, 0.2, 0.3, 0.4, 0.5],
-        metavar="F", help="truncation depths as fractions of R_t, one panel each (dimensionless)",
+        "--depth-fractions", type=fraction(), nargs="+", default=[0.1, 0.2, 0.3, 0.4, 0.5],
+        metavar="F",
+        help="truncation depths as fractions of R_t, each in (0, 1], one panel each "
+        "(dimensionless)",
     )  # fmt: skip
     g.add_argument(
-        "--depths", type=float, nargs="+", default=None, metavar="OMEGA",
-        help="truncation depths ω (m); override --depth-fractions",
+        "--depths", type=positive("m"), nargs="+", default=None, metavar="OMEGA",
+        help="truncation depths ω in metres, each in (0, R_t] of the map; override "
+        "--depth-fractions",
     )  # fmt: skip
     g.add_argument("--top", action="store_true", help="orthographic view from above")
     g.add_argument(
-        "--size", type=int, nargs=2, default=None, metavar=("W", "H"),
+        "--size", type=integer(16, 16384), nargs=2, default=None, metavar=("W", "H"),
         help="picture size in pixels (default 520×440 per panel)",
     )  # fmt: skip
-    g.add_argument("--ncols", type=int, default=None, help="panels per row (default up to 3)")
     g.add_argument(
-        "--exaggeration", type=float, default=None,
+        "--ncols", type=integer(1), default=None, help="panels per row (default up to 3)"
+    )
+    g.add_argument(
+        "--exaggeration", type=positive(), default=None,
         help="vertical exaggeration (dimensionless); default: R_t drawn as 1/10 of the side",
     )  # fmt: skip
     g.add_argument(
-        "--downsample", type=int, default=None,
+        "--downsample", type=integer(1), default=None,
         help="block side of the drawn mesh in pixels (default: about one block per screen "
-        "pixel, at most 1024 blocks per side); a block is red when any of its pixels touches",
+        "pixel, at most 1024 blocks per side)",
     )  # fmt: skip
-    g.add_argument("--output", default="truncation.png", help="picture file name inside --out")
+    g.add_argument(
+        "--pooling", choices=["area", "any"], default="area",
+        help="colour of a block of pixels: 'area' = share of red equal to the fraction of its "
+        "pixels in contact (red measures A_c/A); 'any' = max-pooling, red when any pixel "
+        "touches (shows every contact spot, overstates the area)",
+    )  # fmt: skip
+    g.add_argument(
+        "--output", type=_file_name, default="truncation.png",
+        help="picture file name inside --out",
+    )
     a = p.add_argument_group("animation and VTK export")
     a.add_argument(
-        "--animate", nargs="?", const="truncation.gif", default=None, metavar="FILE",
+        "--animate", type=_file_name, nargs="?", const="truncation.gif", default=None, metavar="FILE",
         help="also write an animation (.gif, or .mp4 with imageio-ffmpeg) inside --out",
     )  # fmt: skip
-    a.add_argument("--frames", type=int, default=26, help="animation frames")
-    a.add_argument("--fps", type=float, default=8.0, help="animation frames per second")
+    a.add_argument("--frames", type=integer(2, 100_000), default=26, help="animation frames")
+    a.add_argument("--fps", type=positive(), default=8.0, help="animation frames per second")
     a.add_argument(
-        "--max-depth-fraction", type=float, default=0.5,
+        "--max-depth-fraction", type=fraction(), default=0.5,
         help="last depth of the animation as a fraction of R_t (dimensionless)",
     )  # fmt: skip
     a.add_argument(
-        "--vtk", nargs="?", const="surface.vti", default=None, metavar="FILE",
+        "--vtk", type=_file_name, nargs="?", const="surface.vti", default=None, metavar="FILE",
         help="also write heights and first-contact depths for ParaView (.vti or .vtk)",
     )  # fmt: skip
     a.add_argument(
-        "--vtk-increments", type=int, default=200,
+        "--vtk-increments", type=integer(1, 10_000_000), default=200,
         help="depth increments n of the first-contact depths, up to ω = R_t",
     )  # fmt: skip
     add_device(p)
     add_out(p)
 
 
+def _file_name(text: str) -> str:
+    """A ``type=`` for a plain file name (written inside --out)."""
+    from pathlib import Path
+
+    if not text or Path(text).name != text or text in (".", ".."):
+        raise argparse.ArgumentTypeError(f"must be a file name without folders, got {text!r}")
+    return text
+
+
 def run(args: argparse.Namespace) -> int:
     """Render and write the outputs."""
     s = surface_from_args(args)
+    if args.depths is not None and max(args.depths) > s.rt:
+        raise ValueError(
+            f"--depths must be in (0, R_t] = (0, {s.rt:.6g}] m for this surface, got "
+            f"{' '.join(f'{d:g}' for d in args.depths)} (metres; --depth-fractions takes "
+            "fractions of R_t)"
+        )
+    if args.out.joinpath(args.output).is_dir():
+        raise ValueError(f"--output names a folder inside --out: {args.out / args.output}")
     args.out.mkdir(parents=True, exist_ok=True)
     written = []
     if args.vtk:
@@ -92,7 +131,7 @@ def run(args: argparse.Namespace) -> int:
             s, args.out / args.output, depth_fractions=args.depth_fractions, depths=args.depths,
             top_view=args.top, window_size=args.size, ncols=args.ncols,
             vertical_exaggeration=args.exaggeration, downsample=args.downsample,
-            device=args.device,
+            pooling=args.pooling, device=args.device,
         )  # fmt: skip
         written.append(r.path)
         info = {"picture": r.to_dict()}
@@ -101,7 +140,7 @@ def run(args: argparse.Namespace) -> int:
                 s, args.out / args.animate, max_depth_fraction=args.max_depth_fraction,
                 n_frames=args.frames, fps=args.fps, top_view=args.top,
                 vertical_exaggeration=args.exaggeration, downsample=args.downsample,
-                device=args.device,
+                pooling=args.pooling, device=args.device,
             )  # fmt: skip
             written.append(a.path)
             info["animation"] = a.to_dict()

@@ -14,7 +14,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from ._common import add_device
+from ._common import add_device, output_dir
 
 NAME = "reproduce"
 HELP = "reproduce the paper's figures and tables with a report"
@@ -25,7 +25,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     from ..reproduce.profiles import PROFILES
 
     p.add_argument("--profile", choices=sorted(PROFILES), default="quick", help="sizes of the run")
-    p.add_argument("--out", type=Path, default=Path("reproduction"), help="output folder")
+    p.add_argument(
+        "--out", type=output_dir, default=Path("reproduction"), help="output folder"
+    )
     p.add_argument("--overwrite", action="store_true",
                    help="recompute stages stored with other parameters (replacing them)")  # fmt: skip
     add_device(p)

@@ -15,7 +15,7 @@ import argparse
 import signal
 import sys
 
-from ._common import add_device, add_out, add_wm_shape
+from ._common import add_device, add_out, add_wm_shape, input_file, integer, positive, real
 from .analyze import add_fit_options, add_truncation_options
 
 NAME = "sweep"
@@ -29,12 +29,12 @@ class Terminated(KeyboardInterrupt):
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc sweep``."""
     g = p.add_argument_group("grid (values on the command line, or --grid FILE)")
-    g.add_argument("--D", type=float, nargs="+", default=None,
+    g.add_argument("--D", type=real(2.0, 3.0), nargs="+", default=None,
                    help="input fractal dimensions D_in, each in (2, 3) (dimensionless)")  # fmt: skip
-    g.add_argument("--delta", type=float, nargs="+", default=None,
+    g.add_argument("--delta", type=positive(), nargs="+", default=None,
                    help="relative roughness values δ = R_t/W_r (dimensionless); R_t = δ·W_r")  # fmt: skip
     g.add_argument("--seeds", default=None, help="seeds: '0-4', '0,3,7' or '0-2,9' (default 0)")
-    g.add_argument("--grid", type=_path, default=None,
+    g.add_argument("--grid", type=input_file, default=None,
                    help="TOML file with D = [...], delta = [...], seeds = '0-4'")  # fmt: skip
     s = p.add_argument_group("surface generation (SI)")
     add_wm_shape(s)
@@ -51,7 +51,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    "fractal_options")  # fmt: skip
     e = p.add_argument_group("execution")
     add_device(e)
-    e.add_argument("--workers", type=int, default=None,
+    e.add_argument("--workers", type=integer(1, 4096), default=None,
                    help="run on a local Dask cluster of N worker processes (one per GPU: "
                    "worker i on cuda:i mod #GPUs); default: in this process")  # fmt: skip
     e.add_argument("--scheduler", default=None,
@@ -63,12 +63,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="run again the cases recorded with an error")  # fmt: skip
     e.add_argument("--no-progress", action="store_true", help="no progress bar")
     add_out(p, default="sweep")
-
-
-def _path(v: str):
-    from pathlib import Path
-
-    return Path(v)
 
 
 def grid_from_args(args: argparse.Namespace):
