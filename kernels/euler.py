@@ -132,3 +132,134 @@ def euler8_histogram_kernel(
     if periodic != 0 or iy < ny:
         ev = wp.min(p10, p11)
     add_cells(hist, n1, v, eh, ev, p11)
+
+
+# ---- GPU: block-private histograms in shared memory ------------------------------------------
+# The kernels above add to a global (n1, 4) histogram with atomics; on the GPU the few hundred
+# bins contend (measured on an H100 at 10240², 201 increments to 0.5·R_t: 60 ms). The kernels
+# below count into a shared HIST_BINS × 4 tile per block first (``wp.tile_scatter_add`` is
+# cooperative, so every thread makes the same calls, flagged by ``has_value``) and add the tile
+# to the global histogram once per block. Launched with persistent blocks over the flattened
+# grid (``wp.launch_tiled``), only when n1 ≤ HIST_BINS.
+
+HIST_BINS = wp.constant(256)
+HIST_CELLS = wp.constant(1024)  # HIST_BINS × 4 channels
+
+
+@wp.func
+def scatter_bin(bins: wp.tile(dtype=wp.int64, shape=(1024,)), k: int, ch: int, n1: int, s: int):
+    """bins[4·k + ch] += s when the bin exists (k < n1) and s != 0 (cooperative call)."""
+    wp.tile_scatter_add(bins, k * 4 + ch, wp.int64(s), k < n1 and s != 0)
+
+
+@wp.func
+def scatter_pair(bins: wp.tile(dtype=wp.int64, shape=(1024,)), ch: int, n1: int, a: int, b: int):
+    """A boundary edge present for k in [min(a, b), max(a, b)) (cooperative; see add_pair)."""
+    scatter_bin(bins, wp.min(a, b), ch, n1, wp.where(a != b, 1, 0))
+    scatter_bin(bins, wp.max(a, b), ch, n1, wp.where(a != b, -1, 0))
+
+
+@wp.func
+def scatter_cells(
+    bins: wp.tile(dtype=wp.int64, shape=(1024,)), n1: int, v: int, e1: int, e2: int, f: int
+):
+    """χ contributions as ``add_cells``, as four cooperative calls (zero where merged)."""
+    s_v = 1 - wp.where(e1 == v, 1, 0) - wp.where(e2 == v, 1, 0) + wp.where(f == v, 1, 0)
+    scatter_bin(bins, v, CH_EULER, n1, s_v)
+    s_e1 = -1 - wp.where(e2 == e1, 1, 0) + wp.where(f == e1, 1, 0)
+    scatter_bin(bins, e1, CH_EULER, n1, wp.where(e1 != v, s_e1, 0))
+    s_e2 = -1 + wp.where(f == e2, 1, 0)
+    scatter_bin(bins, e2, CH_EULER, n1, wp.where(e2 != v and e2 != e1, s_e2, 0))
+    scatter_bin(bins, f, CH_EULER, n1, wp.where(f != v and f != e1 and f != e2, 1, 0))
+
+
+@wp.kernel
+def pixel_histogram_block_kernel(
+    idx: wp.array[wp.int32],
+    ny: int,
+    nx: int,
+    n1: int,
+    periodic: int,
+    euler4: int,
+    chunk: int,
+    steps: int,
+    hist: wp.array[wp.int64],
+):
+    """Tile blocks: block b handles flat pixels [b·chunk, (b+1)·chunk) (``steps`` rounds of
+    block_dim pixels), with the contributions of ``pixel_histogram_kernel``; ``hist`` is the
+    flattened (HIST_BINS, 4) histogram."""
+    b, lane = wp.tid()
+    bins = wp.tile_zeros(shape=HIST_CELLS, dtype=wp.int64, storage="shared")
+    end = wp.min(ny * nx, (b + 1) * chunk)
+    i = b * chunk + lane
+    for _r in range(steps):
+        inside = i < end
+        a = n1
+        bb = n1
+        c = n1
+        d = n1
+        left = 0
+        bottom = 0
+        if inside:
+            iy = i / nx
+            ix = i - iy * nx
+            a = idx[i]
+            bb = index_or_never(idx, wrap_index(iy, ix + 1, ny, nx, periodic), n1)
+            c = index_or_never(idx, wrap_index(iy + 1, ix, ny, nx, periodic), n1)
+            if euler4 != 0:
+                d = index_or_never(idx, wrap_index(iy + 1, ix + 1, ny, nx, periodic), n1)
+            if periodic == 0:
+                left = wp.where(ix == 0, 1, 0)
+                bottom = wp.where(iy == 0, 1, 0)
+        scatter_bin(bins, a, CH_AREA, n1, 1)
+        scatter_pair(bins, CH_EDGES_X, n1, a, bb)
+        scatter_pair(bins, CH_EDGES_Y, n1, a, c)
+        scatter_bin(bins, a, CH_EDGES_X, n1, left)
+        scatter_bin(bins, a, CH_EDGES_Y, n1, bottom)
+        if euler4 != 0:  # uniform across the block
+            scatter_cells(
+                bins, n1, a, wp.max(a, bb), wp.max(a, c), wp.max(wp.max(a, bb), wp.max(c, d))
+            )
+        i += wp.block_dim()
+    wp.tile_atomic_add(hist, bins)
+
+
+@wp.kernel
+def euler8_histogram_block_kernel(
+    idx: wp.array[wp.int32],
+    ny: int,
+    nx: int,
+    n1: int,
+    periodic: int,
+    vy: int,
+    vx: int,
+    chunk: int,
+    steps: int,
+    hist: wp.array[wp.int64],
+):
+    """Tile blocks over the vy × vx lattice vertices (flattened), with the contributions of
+    ``euler8_histogram_kernel``; ``hist`` is the flattened (HIST_BINS, 4) histogram."""
+    b, lane = wp.tid()
+    bins = wp.tile_zeros(shape=HIST_CELLS, dtype=wp.int64, storage="shared")
+    end = wp.min(vy * vx, (b + 1) * chunk)
+    i = b * chunk + lane
+    for _r in range(steps):
+        v = n1
+        eh = n1
+        ev = n1
+        p11 = n1
+        if i < end:
+            iy = i / vx
+            ix = i - iy * vx
+            p00 = index_or_never(idx, wrap_index(iy - 1, ix - 1, ny, nx, periodic), n1)
+            p01 = index_or_never(idx, wrap_index(iy - 1, ix, ny, nx, periodic), n1)
+            p10 = index_or_never(idx, wrap_index(iy, ix - 1, ny, nx, periodic), n1)
+            p11 = index_or_never(idx, wrap_index(iy, ix, ny, nx, periodic), n1)
+            v = wp.min(wp.min(p00, p01), wp.min(p10, p11))
+            if periodic != 0 or ix < nx:
+                eh = wp.min(p01, p11)
+            if periodic != 0 or iy < ny:
+                ev = wp.min(p10, p11)
+        scatter_cells(bins, n1, v, eh, ev, p11)
+        i += wp.block_dim()
+    wp.tile_atomic_add(hist, bins)

@@ -630,3 +630,23 @@ def test_gpu_island_curve_equals_cpu(connectivity):
             np.testing.assert_array_equal(col, b.to_dict()[key], err_msg=key)
     np.testing.assert_array_equal(a.area_histogram, b.area_histogram)
     np.testing.assert_array_equal(a.sizes[0].perimeter, b.sizes[0].perimeter)
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize("periodic", [False, True])
+def test_block_topology_histograms_equal_atomic(device, monkeypatch, connectivity, periodic):
+    """The block-private (shared-memory) topology kernels give the same integer histograms as
+    the global-atomic ones, on a rectangle whose pixel count is not a multiple of the block."""
+    import warptrunc.islands.depths as dep
+
+    s = smooth_surface(37, 53, seed=8)
+    out = {}
+    for mode in ("atomic", "block"):
+        monkeypatch.setattr(dep, "TOPOLOGY_KERNEL", mode)
+        out[mode] = topology_curve(
+            s, 40, max_depth_fraction=0.9, connectivity=connectivity, periodic=periodic,
+            device=device,
+        )  # fmt: skip
+    for name in ("n_contact_pixels", "total_perimeter", "euler_characteristic"):
+        np.testing.assert_array_equal(getattr(out["block"], name), getattr(out["atomic"], name))
+    assert out["atomic"].n_contact_pixels[-1] > 0

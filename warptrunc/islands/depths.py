@@ -394,12 +394,51 @@ def islands_at_depth(
 # --- topology by histograms -----------------------------------------------------------------------
 
 
+TOPOLOGY_KERNEL = "auto"
+"""``"block"``: count the topology histograms per block in shared memory, then once per block
+into the global histogram; ``"atomic"``: global atomics per pixel; ``"auto"``: block on CUDA,
+atomic on the CPU (where a tile block is one thread). Both give the same integer histograms.
+Measured on an H100, 10240², 201 increments to 0.5·R_t, 4-connectivity: 60 ms with global
+atomics."""
+
+
+def _topology_hist_blocks(
+    idx: wp.array, shape: tuple[int, int], n1: int, connectivity: int, per: int, device
+) -> np.ndarray:
+    """(n1, 4) int64 difference histogram by the block-private kernels of ``kernels.euler``."""
+    ny, nx = shape
+    hist = wp.zeros(int(_ke.HIST_CELLS), dtype=wp.int64, device=device)
+
+    bd = 256 if device.is_cuda else 1  # a CPU tile block runs one lane
+
+    def launch(kernel, n: int, args: list) -> None:
+        blocks = max(1, min(-(-n // bd), 8 * device.sm_count if device.is_cuda else 64))
+        chunk = -(-n // blocks)
+        wp.launch_tiled(
+            kernel, dim=blocks, inputs=[*args, chunk, -(-chunk // bd)], outputs=[hist],
+            block_dim=bd, device=device,
+        )  # fmt: skip
+
+    launch(
+        _ke.pixel_histogram_block_kernel,
+        ny * nx,
+        [idx, ny, nx, n1, per, int(connectivity == 4)],
+    )
+    if connectivity == 8:
+        vy, vx = (ny, nx) if per else (ny + 1, nx + 1)
+        launch(_ke.euler8_histogram_block_kernel, vy * vx, [idx, ny, nx, n1, per, vy, vx])
+    return hist.numpy().reshape(-1, 4)[:n1]  # sync point
+
+
 def _topology_hist(
     idx: wp.array, shape: tuple[int, int], n1: int, connectivity: int, periodic: bool, device
 ) -> np.ndarray:
     """(n1, 4) int64 cumulative [contact pixels, edges_x, edges_y, χ] at every increment."""
     ny, nx = shape
     per = int(bool(periodic))
+    mode = TOPOLOGY_KERNEL if TOPOLOGY_KERNEL != "auto" else ("block" if device.is_cuda else "atomic")
+    if mode == "block" and n1 <= _ke.HIST_BINS:
+        return np.cumsum(_topology_hist_blocks(idx, shape, n1, connectivity, per, device), axis=0)
     hist = wp.zeros((n1, 4), dtype=wp.int64, device=device)
     wp.launch(
         _ke.pixel_histogram_kernel,
