@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import os
 import statistics
 import subprocess
 import time
@@ -29,7 +30,13 @@ def timeit(fn: Callable[[], object], repeats: int, sync: Callable[[], object]) -
 
 
 def git_commit(root: str | Path | None = None) -> str | None:
-    """The commit of the checkout at ``root`` (default: this package's), or None."""
+    """The commit of the checkout at ``root`` (default: this package's), or None.
+
+    ``$WARPTRUNC_GIT_COMMIT``, when set, is returned as it is.
+    """
+    env = os.environ.get("WARPTRUNC_GIT_COMMIT")
+    if env:  # a copy without .git (e.g. a tree shipped to a GPU machine) can say its commit
+        return env.strip()
     root = Path(root) if root is not None else Path(__file__).resolve().parents[1]
     try:
         out = subprocess.run(
