@@ -17,7 +17,8 @@ def test_columns_round_trip(tmp_path):
     n = np.arange(5, dtype=np.int64)
     ok = np.array([True, False, True, True, False])
     p = write_columns_csv(tmp_path / "t.csv", {"x": x, "n": n, "ok": ok})
-    rows = list(csv.reader(p.open(newline="")))
+    with p.open(newline="") as fh:
+        rows = list(csv.reader(fh))
     assert rows[0] == ["x", "n", "ok"]
     got = np.array([float(r[0]) for r in rows[1:]])
     np.testing.assert_array_equal(got, x)  # NaN positions equal, finite values exact
