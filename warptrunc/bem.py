@@ -21,7 +21,6 @@ References
 
 from __future__ import annotations
 
-import csv
 import importlib.metadata
 import json
 import math
@@ -33,6 +32,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from ._table import write_columns_csv
 from ._validate import check_int, check_range
 from .stiffness import Material, stiffness_curve
 from .surface import Surface
@@ -174,14 +174,7 @@ class BemCheck:
 
     def to_csv(self, path: str | Path) -> Path:
         """Write :meth:`to_dict` as CSV (full float64 precision)."""
-        path = Path(path)
-        cols = self.to_dict()
-        with path.open("w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(cols)
-            for row in zip(*cols.values(), strict=True):
-                w.writerow([_cell(v) for v in row])
-        return path
+        return write_columns_csv(path, self.to_dict())
 
     def to_json(self, path: str | Path) -> Path:
         """Write the columns, :meth:`summary` and the settings as JSON."""
@@ -201,14 +194,6 @@ def _strict(v: Any) -> Any:
     if isinstance(v, float) and not math.isfinite(v):
         return None if math.isnan(v) else str(v)
     return v
-
-
-def _cell(v: Any) -> Any:
-    if isinstance(v, (bool, np.bool_)):
-        return int(v)
-    if isinstance(v, np.integer):
-        return int(v)
-    return repr(float(v))
 
 
 def _ratio(a: np.ndarray, b: np.ndarray) -> np.ndarray:

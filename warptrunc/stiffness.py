@@ -7,7 +7,6 @@ Host-side float64 arithmetic on a :class:`~warptrunc.truncation.TruncationCurve`
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 from dataclasses import asdict, dataclass
@@ -16,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ._table import write_columns_csv
 from ._validate import check_int, check_range
 from .truncation import TruncationCurve
 
@@ -112,14 +112,7 @@ class StiffnessCurve:
 
     def to_csv(self, path: str | Path) -> Path:
         """Write the columns of :meth:`to_dict` as CSV (full float64 precision)."""
-        path = Path(path)
-        cols = self.to_dict()
-        with path.open("w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(cols)
-            for row in zip(*cols.values(), strict=True):
-                w.writerow([int(v) if isinstance(v, np.integer) else repr(float(v)) for v in row])
-        return path
+        return write_columns_csv(path, self.to_dict())
 
 
 @dataclass(frozen=True)

@@ -46,7 +46,7 @@ from .truncation import (
     depth_grid,
     histogram_bands,
 )
-from .wm import WMSpec, _pad, _prefactor, wm_product, wm_spec, wm_tables
+from .wm import WMSpec, _pad, _scale, _surface_params, wm_product, wm_spec, wm_tables
 
 __all__ = [
     "StreamedTruncation",
@@ -177,12 +177,7 @@ def _pass1(bands: _Bands, progress: bool) -> tuple[float, float, float, float, f
             _z, blo, bhi = bands.raw(r0, r1)
             lo, hi = min(lo, blo), max(hi, bhi)
             bar.update()
-    if spec.Rt is not None:
-        if not hi > lo:
-            raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
-        scale = spec.Rt / (hi - lo)
-    else:
-        scale = _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
+    scale = _scale(spec, lo, hi)
     # the scaled extremes by the same kernel as the heights (the affine map is monotone, so
     # they are the scaled map's min and max bit for bit)
     ext = wp.array(np.array([[lo, hi]], dtype=np.float32), device=bands.device)
@@ -253,9 +248,7 @@ def stream_truncation(
         z_top=zhi,
         rt=rt,
     )
-    params = spec.params()
-    params["scale"] = scale
-    params["G_equivalent"] = spec.Wr * (scale / _prefactor(spec)) ** (1.0 / (spec.D - 3.0))
+    params = _surface_params(spec, scale)
     meta = {
         "nx": spec.nx, "ny": spec.ny, "dx_m": spec.dx, "dy_m": spec.dy, "lx_m": lx, "ly_m": ly,
         "rt_m": rt, **{k: _jsonable(v) for k, v in params.items()},

@@ -261,15 +261,30 @@ def _generate(spec: WMSpec, device) -> tuple[wp.array, float, tuple[float, float
     host therefore gives the extremes of the scaled map bit for bit, with no second pass.
     """
     z, c0, lo, hi = _raw_sum(spec, device)
-    if spec.Rt is not None:
-        if not hi > lo:
-            raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
-        scale = spec.Rt / (hi - lo)
-    else:
-        scale = _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
+    scale = _scale(spec, lo, hi)
     wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, float(scale)], device=device)
     ext = tuple(float(np.float32((np.float64(v) + c0) * scale)) for v in (lo, hi))
     return z, scale, ext
+
+
+def _scale(spec: WMSpec, lo: float, hi: float) -> float:
+    """Factor from the raw WM sum S − c0 to heights (m): R_t/(max − min) when ``spec.Rt`` is
+    set (``lo``, ``hi``: the raw sum's extremes), else the prefactor of Eq. (4) times
+    (G/W_r)^(D − 3)."""
+    if spec.Rt is not None:
+        if not hi > lo:
+            raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
+        return spec.Rt / (hi - lo)
+    return _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
+
+
+def _surface_params(spec: WMSpec, scale: float) -> dict:
+    """The surface's ``params``: the spec's, the height ``scale`` (m) and the topothesy G (m)
+    that gives this scale without R_t scaling (``G_equivalent``)."""
+    params = spec.params()
+    params["scale"] = scale
+    params["G_equivalent"] = spec.Wr * (scale / _prefactor(spec)) ** (1.0 / (spec.D - 3.0))
+    return params
 
 
 def _prefactor(spec: WMSpec) -> float:
@@ -353,9 +368,7 @@ def wm_surface(
     )  # fmt: skip
     device = resolve_device(device)
     z, scale, extremes = _generate(spec, device)
-    params = spec.params()
-    params["scale"] = scale
-    params["G_equivalent"] = spec.Wr * (scale / _prefactor(spec)) ** (1.0 / (spec.D - 3.0))
+    params = _surface_params(spec, scale)
     # device-resident, no host copy until one is asked for; the recorded extremes are exact and
     # finite, and every height lies between them, so no validation pass is needed
     return Surface._on_device(z, spec.dx, spec.dy, params, extremes)

@@ -15,6 +15,9 @@ share of red is the fraction of its pixels in contact, so the red in the picture
 A_c/A; ``"any"`` (max-pooling) paints a block red when any of its pixels touches, which shows
 every contact spot but overstates the area. The factor f and the pooling are returned and
 written into the picture's caption and PNG metadata.
+
+Layout: the mesh, panels and camera in ``scene``; tiling, captions and PNG output in
+``image``; :class:`Rendering` and the two drivers here.
 """
 
 from __future__ import annotations
@@ -22,7 +25,6 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Sequence
-from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -30,8 +32,17 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._blocks import POOLING, block_contact, check_depths, check_pooling, contact_masks, pool_blocks
-from .surface import Surface
+from .._blocks import (
+    POOLING,
+    block_contact,
+    check_depths,
+    check_pooling,
+    contact_masks,
+    pool_blocks,
+)
+from ..surface import Surface
+from .image import _caption, _depth_title, _draw_text, _layout, _save_png, _tile, _wrap
+from .scene import _auto_factor, _Panel, _pyvista, _Scene, _vtk_quiet, auto_exaggeration
 
 __all__ = [
     "DEFAULT_DEPTH_FRACTIONS",
@@ -50,39 +61,6 @@ DEFAULT_DEPTH_FRACTIONS = (0.1, 0.2, 0.3, 0.4, 0.5)
 MAX_MESH = 1024
 #: Pixel size of one panel when no ``window_size`` is given (width, height).
 PANEL_SIZE = (520, 440)
-
-_NEUTRAL = (95, 225)  # grey levels of the lowest and the highest non-contact cells
-
-
-def _pyvista():
-    try:
-        import pyvista as pv
-    except ImportError as exc:  # pragma: no cover - exercised where pyvista is absent
-        raise ImportError(
-            "warptrunc.render needs pyvista (and VTK) for 3-D pictures: pip install pyvista"
-        ) from exc
-    return pv
-
-
-@contextmanager
-def _vtk_quiet():
-    """Hide VTK's warnings while rendering (e.g. "bad X server connection" on headless
-    machines, where off-screen rendering works regardless), unless verbose
-    (:func:`warptrunc._device.set_verbose`, ``warptrunc --verbose``, ``$WARPTRUNC_VERBOSE``).
-    The previous global setting of VTK is restored afterwards."""
-    from ._device import is_verbose
-
-    if is_verbose():
-        yield
-        return
-    from vtkmodules.vtkCommonCore import vtkObject
-
-    was = vtkObject.GetGlobalWarningDisplay()
-    vtkObject.GlobalWarningDisplayOff()
-    try:
-        yield
-    finally:
-        vtkObject.SetGlobalWarningDisplay(was)
 
 
 @dataclass(frozen=True, eq=False)
@@ -146,280 +124,6 @@ class Rendering:
             d[k] = [float(v) for v in d[k]]
         d.pop("path")
         return json.dumps(d)
-
-
-# --- down-sampling ------------------------------------------------------------------------------
-
-
-def _auto_factor(
-    surface: Surface, panel: tuple[int, int], *, top_view: bool, annotate: bool, max_mesh: int
-) -> int:
-    """Smallest block side that gives every block at least one screen pixel.
-
-    Top view: over the map's footprint in the panel (so a red block always covers a pixel
-    centre); oblique view: over the panel's shorter side. Never more than ``max_mesh``
-    blocks per side.
-    """
-    pw, ph = panel
-    nx, ny = surface.nx, surface.ny
-    if top_view:
-        per_m = ph / (2.0 * _top_scale(surface.lx, surface.ly, pw, ph, _fill(annotate)))
-        f = max(nx / (surface.lx * per_m), ny / (surface.ly * per_m))
-    else:
-        f = max(nx, ny) / max(1, min(pw, ph))
-    f = max(f, max(nx, ny) / max(1, int(max_mesh)))
-    return max(1, math.ceil(f - 1e-9))
-
-
-def _fill(annotate: bool) -> float:
-    """Share of the panel's limiting side taken by the map in the top view."""
-    return 0.66 if annotate else 1.0
-
-
-#: In the annotated top view the map is raised by this share of the panel height, so that the
-#: tick labels, the x-axis title and the caption below it do not overlap.
-_TOP_RAISE = 0.04
-
-
-def _top_scale(lx: float, ly: float, w: int, h: int, fill: float) -> float:
-    """Parallel scale (half the visible height) that fits an lx × ly map in a w × h panel."""
-    return max(ly, lx * h / w) / (2.0 * fill)
-
-
-def auto_exaggeration(surface: Surface, relief: float = 0.1) -> float:
-    """Vertical exaggeration that draws R_t as ``relief`` × the longer side, rounded to 1-2-5.
-
-    Returns 1 when the surface is already that rough (dimensionless).
-    """
-    rt = surface.rt
-    if not rt > 0:
-        return 1.0
-    v = relief * max(surface.lx, surface.ly) / rt * (1 + 1e-6)  # R_t rescaled to 10 µm → 10
-    if v <= 1:
-        return 1.0
-    e = 10 ** math.floor(math.log10(v))
-    return float(max(m * e for m in (1, 2, 5, 10) if m * e <= v))
-
-
-# --- mesh and drawing ---------------------------------------------------------------------------
-
-
-class _Scene:
-    """The down-sampled mesh (one cell per block, x fastest) and the colours of its cells."""
-
-    def __init__(self, surface: Surface, factor: int, ve: float):
-        pv = _pyvista()
-        f = factor
-        hb = pool_blocks(surface.heights, f, "mean")  # (my, mx) block means (m)
-        self.shape = hb.shape
-        my, mx = hb.shape
-        # corner heights: mean of the (up to four) blocks sharing the corner
-        p = np.pad(hb, 1, mode="edge")
-        corners = 0.25 * (p[:-1, :-1] + p[1:, :-1] + p[:-1, 1:] + p[1:, 1:])
-        top = float(surface.heights.max())
-        xe = np.minimum(np.arange(mx + 1) * f, surface.nx) * surface.dx * 1e6  # µm
-        ye = np.minimum(np.arange(my + 1) * f, surface.ny) * surface.dy * 1e6
-        gx, gy = np.meshgrid(xe, ye)  # (my+1, mx+1), x fastest after ravel
-        gz = (corners - top) * 1e6 * ve  # µm, exaggerated, top at 0
-        pts = np.column_stack([gx.ravel(), gy.ravel(), gz.ravel()])
-        self.grid = pv.StructuredGrid()
-        self.grid.points = pts
-        self.grid.dimensions = (mx + 1, my + 1, 1)
-        lo, hi = float(hb.min()), float(hb.max())
-        t = (hb - lo) / (hi - lo) if hi > lo else np.full_like(hb, 0.5)
-        g = np.rint(_NEUTRAL[0] + (_NEUTRAL[1] - _NEUTRAL[0]) * t).astype(np.uint8).ravel()
-        self.neutral = np.repeat(g[:, None], 3, axis=1)
-        from .plot import CONTACT_RGB
-
-        self.red = np.asarray(CONTACT_RGB, dtype=np.uint8)
-
-    def colours(self, weight: np.ndarray) -> np.ndarray:
-        """Cell colours: a bool mask paints red; a float weight φ blends grey + φ·(red − grey)."""
-        if weight.dtype == bool:
-            c = self.neutral.copy()
-            c[weight.ravel()] = self.red
-            return c
-        w = np.clip(weight.ravel().astype(np.float32), 0.0, 1.0)[:, None]
-        c = self.neutral.astype(np.float32)
-        c += w * (self.red.astype(np.float32) - c)
-        return np.rint(c).astype(np.uint8)
-
-
-def _font_file() -> str | None:
-    """DejaVu Sans from matplotlib: VTK's built-in fonts lack ω and µ."""
-    import os
-
-    import matplotlib
-
-    p = os.path.join(matplotlib.get_data_path(), "fonts", "ttf", "DejaVuSans.ttf")
-    return p if os.path.exists(p) else None
-
-
-def _text(pl, text: str, position, font_size: int, color: str = "black", name=None):
-    return pl.add_text(
-        text, position=position, font_size=font_size, color=color, font_file=_font_file(),
-        name=name,
-    )  # fmt: skip
-
-
-class _Panel:
-    """One off-screen plotter of panel size showing the scene; :meth:`frame` recolours it.
-
-    Panels are rendered one at a time and tiled by NumPy: VTK draws 2-D axis labels (the mode
-    that can show µ) in the wrong viewport when a plotter holds several.
-    """
-
-    def __init__(self, scene: _Scene, size, *, top_view, lighting, annotate, ve, caption=None):
-        pv = _pyvista()
-        self.scene, self.annotate = scene, annotate
-        # text sizes scale with the panel (VTK sizes are in points at a fixed DPI)
-        self.scale = max(0.6, min(1.5, min(size[0] / 520, size[1] / 440)))
-        self.pl = pv.Plotter(off_screen=True, window_size=[int(size[0]), int(size[1])])
-        pl = self.pl
-        pl.set_background("white")
-        if top_view:  # one sample per pixel: the picture is a map whose red pixels measure A_c
-            pl.disable_anti_aliasing(all_renderers=True)
-        self.mesh = scene.grid.copy(deep=False)
-        self.mesh.cell_data["rgb"] = scene.neutral
-        pl.add_mesh(
-            self.mesh, scalars="rgb", rgb=True, preference="cell", lighting=lighting,
-            show_scalar_bar=False,
-        )  # fmt: skip
-        if annotate:
-            axes = pl.show_bounds(
-                mesh=self.mesh, xtitle="x (µm)", ytitle="y (µm)", ztitle="z",
-                show_zaxis=False, show_zlabels=False, font_size=round(12 * self.scale),
-                color="black", bold=False, n_xlabels=3, n_ylabels=3, fmt="%.0f",
-                location="outer" if top_view else "front", use_3d_text=False, use_2d=True,
-            )  # fmt: skip
-            font = _font_file()
-            if font is not None:
-                from vtkmodules.vtkCommonCore import VTK_FONT_FILE
-
-                for i in range(3):
-                    for prop in (axes.GetTitleTextProperty(i), axes.GetLabelTextProperty(i)):
-                        prop.SetFontFamily(VTK_FONT_FILE)
-                        prop.SetFontFile(font)
-            if caption:
-                self.caption = _text(pl, caption, "lower_left", round(8 * self.scale), "dimgray")
-        _camera(pl, top_view, size, fill=_fill(annotate), raise_=_TOP_RAISE if annotate else 0.0)
-
-    def frame(self, mask: np.ndarray, title: str | None, caption: bool = True) -> np.ndarray:
-        self.mesh.cell_data["rgb"] = self.scene.colours(mask)
-        if self.annotate:
-            if title:
-                _text(self.pl, title, "upper_edge", round(10 * self.scale), name="title")
-            if hasattr(self, "caption"):
-                self.caption.SetVisibility(caption)
-        self.pl.render()
-        return np.asarray(self.pl.screenshot(return_img=True))[..., :3].copy()
-
-    def close(self) -> None:
-        self.pl.close()
-
-
-def _camera(pl, top_view: bool, size, fill: float, raise_: float = 0.0) -> None:
-    if top_view:
-        # looking down −z, x to the right, y up; the surface spans ``fill`` of the limiting
-        # side, so without annotations a k·nx × k·ny window shows each cell as k×k pixels
-        pl.view_xy()
-        pl.enable_parallel_projection()
-        pl.reset_camera()
-        b = pl.bounds
-        scale = _top_scale(b[1] - b[0], b[3] - b[2], size[0], size[1], fill)
-        pl.camera.parallel_scale = scale
-        if raise_:  # look at a point below the centre: the map moves up by raise_ × height
-            dy = 2.0 * scale * raise_
-            fx, fy, fz = pl.camera.focal_point
-            px, py, pz = pl.camera.position
-            pl.camera.focal_point = (fx, fy - dy, fz)
-            pl.camera.position = (px, py - dy, pz)
-        return
-    # from the −y side, 35° above the horizon, turned so that x runs along the front edge
-    b = np.asarray(pl.bounds, dtype=float)
-    c = 0.5 * (b[0::2] + b[1::2])
-    span = max(b[1] - b[0], b[3] - b[2])
-    d = np.array([0.45, -1.0, 0.85])
-    pl.camera.focal_point = tuple(c)
-    pl.camera.position = tuple(c + 2.2 * span * d / np.linalg.norm(d))
-    pl.camera.up = (0.0, 0.0, 1.0)
-    pl.reset_camera()
-    pl.camera.zoom(1.1)
-
-
-def _tile(images: list[np.ndarray], nrows: int, ncols: int, size) -> np.ndarray:
-    w, h = size
-    out = np.full((h, w, 3), 255, dtype=np.uint8)
-    for i, im in enumerate(images):
-        r, c = divmod(i, ncols)
-        y0, x0 = r * (h // nrows), c * (w // ncols)
-        out[y0 : y0 + im.shape[0], x0 : x0 + im.shape[1]] = im
-    return out
-
-
-def _draw_text(img: np.ndarray, text: str, xy, size: int, width: int) -> np.ndarray:
-    """Write ``text`` onto ``img`` with Pillow, wrapped to ``width`` pixels (spare panel)."""
-    from PIL import Image, ImageDraw, ImageFont
-
-    im = Image.fromarray(img)
-    font = _font_file()
-    f = ImageFont.truetype(font, size) if font else ImageFont.load_default()
-    lines: list[str] = []
-    for word in text.split():
-        if lines and f.getlength(lines[-1] + " " + word) <= width:
-            lines[-1] += " " + word
-        else:
-            lines.append(word)
-    ImageDraw.Draw(im).multiline_text(xy, "\n".join(lines), fill=(0, 0, 0), font=f, spacing=5)
-    return np.asarray(im).copy()
-
-
-def _layout(n: int, ncols: int | None) -> tuple[int, int]:
-    if ncols is None:
-        ncols = n if n <= 3 else 3
-    ncols = max(1, min(int(ncols), n))
-    return -(-n // ncols), ncols
-
-
-def _caption(
-    surface: Surface, factor: int, shape: tuple[int, int], ve: float, pooling: str = "area"
-) -> str:
-    s = (
-        f"{surface.nx}×{surface.ny} px, {surface.lx * 1e6:.4g}×{surface.ly * 1e6:.4g} µm, "
-        f"Rt = {surface.rt * 1e6:.3g} µm; heights ×{ve:g}"
-    )
-    if factor > 1:
-        s += f"; mesh down-sampled ×{factor} ({shape[1]}×{shape[0]} blocks): "
-        if pooling == "any":
-            s += (
-                "max-pooling shows every contact spot (a block is red when any of its pixels "
-                "touches), so red overstates Ac/A"
-            )
-        else:
-            s += "a block's share of red is the fraction of its pixels in contact (red = Ac/A)"
-    return s + "; red: contact"
-
-
-def _wrap(text: str, width: int) -> str:
-    import textwrap
-
-    return "\n".join(textwrap.wrap(text, width))
-
-
-def _save_png(img: np.ndarray, path: Path, result_meta: str, caption: str) -> None:
-    from PIL import Image
-    from PIL.PngImagePlugin import PngInfo
-
-    info = PngInfo()
-    info.add_text("Description", caption)
-    info.add_text("Software", "warptrunc.render")
-    info.add_text("warptrunc", result_meta)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    Image.fromarray(img).save(path, pnginfo=info, optimize=True)
-
-
-def _depth_title(d: float, rt: float, frac: float) -> str:
-    return f"ω = {100 * d / rt:.3g} % Rt = {d * 1e6:.3g} µm\ncontact Ac/A = {100 * frac:.3g} %"
 
 
 def render_truncation(

@@ -1,0 +1,217 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Measured height maps as input: NumPy and text matrices built in, instrument files optional.
+
+Built-in formats (no extra dependency):
+
+``.npz`` / ``.npy`` written by :meth:`warptrunc.Surface.save`
+    Pixel sizes and parameters come from the file (``.npy`` from its ``.json`` sidecar).
+plain ``.npy`` / ``.npz`` arrays
+    A 2-D array ``z[iy, ix]``; an ``.npz`` must hold one array or one named ``heights`` or ``z``.
+    The pixel spacing must be given (``dx=``, ``dy=``) and heights are multiplied by
+    ``height_unit`` to get metres.
+``.csv`` / ``.txt`` / ``.tsv`` matrices
+    One row of the map per line (row ``iy``, columns ``ix``), separated by commas, semicolons,
+    tabs or blanks. Leading header lines are read as ``key=value`` (or ``key: value``, an
+    optional ``#`` in front); the keys ``dx``, ``dy``, ``pixel size``, ``height unit``,
+    ``height conversion factor (-> m)``, ``nx``/``w`` and ``ny``/``h`` are understood (lengths
+    may carry a unit: m, mm, µm/um, nm, pm). :func:`write_height_map` writes this format.
+    ``nan`` and empty fields are missing points.
+
+Instrument formats (``.sur``, ``.x3p``, ``.datx``, ``.plu``, ``.opd``, ``.vk4``, ``.gwy``,
+``.di``, ``.top``, ``.asc``, ... over forty) are read through SurfaceTopography (MIT licence),
+an optional extra: ``pip install "warptrunc[scans]"``. It is imported only when such a file is
+read. Units and pixel sizes come from the file's metadata; SurfaceTopography indexes heights
+as ``h[ix, iy]``, which is transposed here to ``z[iy, ix]``.
+
+Missing points (NaN) are never ignored: :func:`read_scan` returns them with a validity mask,
+and :func:`read_height_map` either raises (``missing="error"``, the default, with the count
+and the options) or fills them (``missing="fill"``) and records the count in
+``Surface.params["n_missing"]``.
+
+Layout: :class:`Scan` and the known suffixes in ``scan``; :func:`fill_missing` and
+:func:`level_plane` in ``repair``; the NumPy and text readers in ``builtin``; the
+SurfaceTopography reader in ``instrument``. Every name is importable from ``warptrunc.io``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .._validate import check_range
+from ..surface import Surface
+from .builtin import _read_numpy, _read_text
+from .instrument import _read_surfacetopography
+from .repair import FILL_METHODS, fill_missing, level_plane
+from .scan import ENGINES, NUMPY_SUFFIXES, TEXT_SUFFIXES, MissingExtraError, Scan
+
+__all__ = [
+    "FILL_METHODS",
+    "MissingExtraError",
+    "Scan",
+    "fill_missing",
+    "level_plane",
+    "read_height_map",
+    "read_scan",
+    "write_height_map",
+]
+
+
+def read_scan(
+    path: str | Path,
+    *,
+    dx: float | None = None,
+    dy: float | None = None,
+    height_unit: float = 1.0,
+    engine: str = "auto",
+    channel: int | None = None,
+) -> Scan:
+    """Read a height map with its missing points and metadata, in SI units.
+
+    Parameters
+    ----------
+    path : str or Path
+        File to read (see the module docstring for the formats).
+    dx : float, optional
+        Pixel spacing along x (m). Required for files that do not declare it (plain arrays and
+        matrices); when given, it overrides the file's own value.
+    dy : float, optional
+        Pixel spacing along y (m). Defaults to ``dx`` when ``dx`` is given, else to the file's
+        value.
+    height_unit : float
+        Factor from the file's height numbers to metres for files that declare no height unit
+        (e.g. 1e-6 when a plain matrix holds µm) (m per file unit). Files that declare their
+        unit are converted from the declaration; giving another factor than 1.0 for them raises
+        ValueError.
+    engine : {"auto", "builtin", "surfacetopography"}
+        ``"auto"`` reads .npz/.npy/.csv/.txt/.tsv with the built-in readers and everything else
+        with SurfaceTopography.
+    channel : int, optional
+        Data channel for multi-channel instrument files (SurfaceTopography only); default: the
+        file's default channel.
+
+    Returns
+    -------
+    Scan
+    """
+    path = Path(path)
+    if engine not in ENGINES:
+        raise ValueError(f"engine must be one of {ENGINES}, got {engine!r}")
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: no such file")
+    if not path.is_file():
+        raise ValueError(f"{path}: not a file")
+    if dx is not None:
+        dx = check_range("dx", dx, 0.0, unit="m")
+    if dy is not None:
+        dy = check_range("dy", dy, 0.0, unit="m")
+    if dy is None and dx is not None:
+        dy = dx
+    height_unit = check_range("height_unit", height_unit, 0.0, unit="m per file unit")
+    suffix = path.suffix.lower()
+    builtin = suffix in NUMPY_SUFFIXES + TEXT_SUFFIXES
+    if engine == "builtin" and not builtin:
+        raise ValueError(
+            f"{path}: the built-in readers handle {NUMPY_SUFFIXES + TEXT_SUFFIXES}, got "
+            f"{suffix!r}; use engine='surfacetopography'"
+        )
+    if engine == "surfacetopography" or (engine == "auto" and not builtin):
+        return _read_surfacetopography(path, dx, dy, height_unit, channel)
+    if suffix in NUMPY_SUFFIXES:
+        return _read_numpy(path, dx, dy, height_unit)
+    return _read_text(path, dx, dy, height_unit)
+
+
+def read_height_map(
+    path: str | Path,
+    *,
+    dx: float | None = None,
+    dy: float | None = None,
+    height_unit: float = 1.0,
+    missing: str = "error",
+    fill: str = "nearest",
+    level: bool = False,
+    engine: str = "auto",
+    channel: int | None = None,
+) -> Surface:
+    """Read a height map file into a :class:`~warptrunc.Surface` (SI units).
+
+    Parameters
+    ----------
+    path : str or Path
+        .npz/.npy written by :meth:`Surface.save`, a plain .npy/.npz array, a .csv/.txt/.tsv
+        matrix, or an instrument file (needs the ``scans`` extra).
+    dx, dy : float, optional
+        Pixel spacings (m); required when the file does not declare them. See
+        :func:`read_scan`.
+    height_unit : float
+        Factor to metres for files without a declared height unit (m per file unit).
+    missing : {"error", "fill"}
+        Missing points: raise with their count (default) or fill them.
+    fill : {"nearest", "harmonic", "mean"}
+        Fill method for ``missing="fill"`` (see :func:`fill_missing`).
+    level : bool
+        Subtract the least-squares plane.
+    engine : {"auto", "builtin", "surfacetopography"}
+        Reader choice (see :func:`read_scan`).
+    channel : int, optional
+        Data channel of multi-channel instrument files.
+
+    Returns
+    -------
+    Surface
+        Heights (m) ``z[iy, ix]``, ``dx``, ``dy`` (m); ``params`` records the source, the
+        number of missing points and what was done with them.
+
+    Raises
+    ------
+    FileNotFoundError
+        The file does not exist.
+    ValueError
+        The file is malformed (message names the file and the problem), the pixel spacing is
+        missing, or there are missing points with ``missing="error"``.
+    MissingExtraError
+        An instrument file needs SurfaceTopography (``pip install "warptrunc[scans]"``).
+
+    Examples
+    --------
+    >>> s = read_height_map("scan.csv", dx=1e-6, height_unit=1e-6)  # doctest: +SKIP
+    """
+    scan = read_scan(path, dx=dx, dy=dy, height_unit=height_unit, engine=engine, channel=channel)
+    return scan.to_surface(missing=missing, fill=fill, level=level)
+
+
+def write_height_map(surface: Surface, path: str | Path) -> Path:
+    """Write a surface as .npz/.npy (via :meth:`Surface.save`) or a .csv/.txt/.tsv matrix.
+
+    The text matrix has a ``#`` header with ``nx``, ``ny``, ``dx``, ``dy`` (m) and
+    ``height unit=1 m``, then one row per ``iy``; values are written with 9 significant digits,
+    so float32 heights read back exactly.
+
+    Returns
+    -------
+    Path
+        The path written.
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix in NUMPY_SUFFIXES:
+        return surface.save(path)
+    if suffix not in TEXT_SUFFIXES:
+        raise ValueError(
+            f"{path}: can write {NUMPY_SUFFIXES + TEXT_SUFFIXES}, got suffix {suffix!r}"
+        )
+    delim = {".csv": ",", ".tsv": "\t"}.get(suffix, " ")
+    header = "\n".join(
+        [
+            "warptrunc height map (one row per iy, columns ix, heights in metres)",
+            f"nx={surface.nx} ny={surface.ny}",
+            f"dx={surface.dx!r} m",
+            f"dy={surface.dy!r} m",
+            "height unit=1 m",
+        ]
+    )
+    np.savetxt(path, surface.heights, fmt="%.9g", delimiter=delim, header=header, comments="# ")
+    return path

@@ -1,0 +1,245 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Built-in readers (no extra dependency): NumPy ``.npy``/``.npz`` and text matrices
+(``.csv``/``.txt``/``.tsv``) with an optional ``key=value`` header."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+
+from ..surface import Surface, load_surface
+from .scan import _LENGTH_UNITS, Scan
+
+
+def _need_spacing(path: Path, dx: float | None, dy: float | None, what: str) -> tuple[float, float]:
+    if dx is None or dy is None:
+        raise ValueError(
+            f"{path}: {what} carries no pixel spacing; give dx= (and dy= if different) in metres "
+            "(CLI: --dx/--dy)"
+        )
+    return dx, dy
+
+
+def _as_map(path: Path, a: np.ndarray) -> np.ndarray:
+    if a.dtype.kind not in "biuf":
+        raise ValueError(f"{path}: heights must be real numbers, got dtype {a.dtype}")
+    if a.ndim == 1 or (a.ndim == 2 and min(a.shape) == 1):
+        raise ValueError(
+            f"{path}: holds a 1-D profile of {a.size} points (shape {a.shape}); a 2-D height "
+            "map (ny, nx) with ny, nx >= 2 is needed"
+        )
+    if a.ndim != 2:
+        raise ValueError(f"{path}: heights must be a 2-D array (ny, nx), got shape {a.shape}")
+    return a.astype(np.float64)
+
+
+def _try_warptrunc_file(path: Path) -> Surface | None:
+    """A file written by Surface.save, else None."""
+    if not path.exists():
+        return None
+    if path.suffix.lower() == ".npy":
+        return load_surface(path) if path.with_suffix(".json").exists() else None
+    try:
+        # open the file ourselves: np.load leaks its handle when a zip is corrupt
+        with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as f:
+            is_ours = "heights" in f.files and "metadata" in f.files
+    except Exception as exc:
+        raise ValueError(f"{path}: not a readable .npz file ({exc})") from None
+    return load_surface(path) if is_ours else None
+
+
+def _read_numpy(path: Path, dx, dy, height_unit) -> Scan:
+    suffix = path.suffix.lower()
+    try:
+        ours = _try_warptrunc_file(path)
+    except (ValueError, KeyError, json.JSONDecodeError) as exc:
+        raise ValueError(f"{path}: corrupt warptrunc metadata ({exc})") from None
+    if ours is not None:
+        return Scan(
+            np.asarray(ours.heights, np.float64) * height_unit,
+            ours.dx if dx is None else dx,
+            ours.dy if dy is None else dy,
+            str(path),
+            "warptrunc",
+            {"params": ours.params},
+        )
+    try:
+        if suffix == ".npy":
+            with open(path, "rb") as fh:
+                a = np.load(fh, allow_pickle=False)
+        else:
+            with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as f:
+                names = f.files
+                key = next((k for k in ("heights", "z") if k in names), None)
+                if key is None and len(names) == 1:
+                    key = names[0]
+                if key is None:
+                    raise ValueError(
+                        f"{path}: cannot tell which array holds the heights among {names}; "
+                        "name it 'heights' or store a single array"
+                    )
+                a = f[key]
+    except ValueError as exc:
+        if str(exc).startswith(str(path)):
+            raise
+        raise ValueError(f"{path}: not a readable {suffix} file ({exc})") from None
+    except (OSError, EOFError) as exc:
+        raise ValueError(f"{path}: not a readable {suffix} file ({exc})") from None
+    z = _as_map(path, np.asarray(a))
+    dx, dy = _need_spacing(path, dx, dy, f"a plain {suffix} array")
+    return Scan(z * height_unit, dx, dy, str(path), suffix[1:], {})
+
+
+_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+
+
+def _length(value: str, path: Path, key: str) -> float:
+    m = re.fullmatch(rf"\s*({_NUM})\s*([^\s\d]*)\s*", value)
+    if not m:
+        raise ValueError(f"{path}: header {key}={value!r} is not a length such as '1.5e-6 m'")
+    unit = m.group(2).lower() or "m"
+    if unit not in _LENGTH_UNITS:
+        raise ValueError(
+            f"{path}: header {key}={value!r} has unit {unit!r}; known: {sorted(_LENGTH_UNITS)}"
+        )
+    return float(m.group(1)) * _LENGTH_UNITS[unit]
+
+
+def _parse_header(lines: list[str], path: Path) -> dict[str, str]:
+    out: dict[str, str] = {}
+    for line in lines:
+        s = line.strip().lstrip("#").strip()
+        if not s:
+            continue
+        tokens = s.split()
+        if len(tokens) > 1 and all("=" in t for t in tokens):
+            pairs = [t.split("=", 1) for t in tokens]
+        else:
+            m = re.match(r"([^=:]+?)\s*[=:]\s*(.*)$", s)
+            pairs = [(m.group(1), m.group(2))] if m else []
+        for k, v in pairs:
+            out[k.strip().lower()] = v.strip()
+    return out
+
+
+def _split(line: str, delim: str | None) -> list[str]:
+    if delim is None:
+        return line.split()
+    return [t.strip() for t in line.split(delim)]
+
+
+def _to_floats(tokens: list[str], path: Path, lineno: int) -> np.ndarray:
+    try:
+        return np.array([float(t) if t else math.nan for t in tokens], dtype=np.float64)
+    except ValueError:
+        for col, t in enumerate(tokens):
+            try:
+                float(t) if t else None
+            except ValueError:
+                raise ValueError(
+                    f"{path}: line {lineno}, column {col + 1}: {t!r} is not a number"
+                ) from None
+        raise
+
+
+def _is_numeric_line(line: str, delim: str | None) -> bool:
+    try:
+        for t in _split(line, delim):
+            if t:
+                float(t)
+        return True
+    except ValueError:
+        return False
+
+
+def _read_text(path: Path, dx, dy, height_unit) -> Scan:
+    try:
+        text = path.read_text(encoding="utf-8", errors="strict")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not a text file ({exc.reason} at byte {exc.start})") from None
+    lines = text.splitlines()
+    first = next(
+        (i for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip().startswith("#")), None
+    )
+    # header: leading comment lines and non-numeric lines
+    delim: str | None = None
+    start = None
+    for i, ln in enumerate(lines):
+        s = ln.strip()
+        if not s or s.startswith("#"):
+            continue
+        d = "," if "," in s else ";" if ";" in s else "\t" if "\t" in s.strip() else None
+        if _is_numeric_line(s, d):
+            start, delim = i, d
+            break
+    if first is None or start is None:
+        raise ValueError(f"{path}: no numeric rows found")
+    header = _parse_header(lines[:start], path)
+    rows = []
+    width = None
+    for i in range(start, len(lines)):
+        s = lines[i].strip()
+        if not s or s.startswith("#"):
+            continue
+        r = _to_floats(_split(s, delim), path, i + 1)
+        if width is None:
+            width = r.size
+        elif r.size != width:
+            raise ValueError(
+                f"{path}: line {i + 1} has {r.size} values, expected {width} as in line "
+                f"{start + 1} (truncated or ragged file)"
+            )
+        rows.append(r)
+    z = _as_map(path, np.array(rows))
+    ny, nx = z.shape
+    for keys, n, what in (
+        (("ny", "h", "rows"), ny, "rows"),
+        (("nx", "w", "columns"), nx, "columns"),
+    ):
+        for k in keys:
+            if k in header:
+                try:
+                    want = int(float(header[k]))
+                except ValueError:
+                    raise ValueError(
+                        f"{path}: header {k}={header[k]!r} is not an integer"
+                    ) from None
+                if want != n:
+                    raise ValueError(
+                        f"{path}: header says {k}={want} but the file has {n} {what} "
+                        "(truncated file?)"
+                    )
+    fdx = fdy = None
+    for k, v in header.items():
+        if k in ("dx", "pixel size x", "x pixel size"):
+            fdx = _length(v, path, k)
+        elif k in ("dy", "pixel size y", "y pixel size"):
+            fdy = _length(v, path, k)
+        elif k in ("pixel size", "pixel spacing"):
+            fdx = fdy = _length(v, path, k)
+    if fdx is not None and fdy is None:
+        fdy = fdx
+    factor = None
+    for k, v in header.items():
+        if k.startswith("height conversion factor") or k in ("height unit", "z unit"):
+            try:
+                factor = _length(v, path, k)
+            except ValueError:
+                raise ValueError(
+                    f"{path}: header {k}={v!r} is not a height unit such as '1e-6' or '1 nm'"
+                ) from None
+    if factor is not None and height_unit != 1.0:
+        raise ValueError(
+            f"{path}: the file declares its height unit ({factor:g} m); height_unit="
+            f"{height_unit!r} would conflict with it"
+        )
+    dx = fdx if dx is None else dx
+    dy = fdy if dy is None else dy
+    dx, dy = _need_spacing(path, dx, dy, "a text matrix without a 'dx=' or 'pixel size=' header")
+    scale = factor if factor is not None else height_unit
+    return Scan(z * scale, dx, dy, str(path), "text", {"header": header} if header else {})

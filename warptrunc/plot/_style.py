@@ -1,0 +1,83 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The shared style (sizes, colours, the contact red) and helpers of every figure."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+UM = 1e6  # m → µm on axes
+FIGSIZE = (5.0, 4.0)
+DPI = 150
+CONTACT_RGB = (214, 39, 40)  # contact (truncated) areas, as the paper's red; also in render.py
+CONTACT_COLOR = "#d62728"  # the same red for matplotlib
+SPREAD_ALPHA = 0.25  # shaded spread over seeds
+HEIGHT_CMAP = "viridis"  # height maps; "gray" under a red contact overlay
+PAPER_ALPHA_D = (0.209, 0.090)  # the paper's α = 0.209·D_in + 0.090 (Table 3, D_in)
+
+
+def _figure(figsize: tuple[float, float] = FIGSIZE, ncols: int = 1, nrows: int = 1):
+    """A pyplot-free Figure (renders with Agg, needs no display) and its axes grid."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(figsize[0] * ncols, figsize[1] * nrows), dpi=DPI, layout="constrained")
+    axes = fig.subplots(nrows, ncols, squeeze=False)
+    return fig, axes
+
+
+def _finish(fig: Any, path: str | Path | None) -> Any:
+    if path is not None:
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(path, dpi=DPI)
+    return fig
+
+
+def _as_list(x: Any) -> list:
+    """A single result object or a sequence of them, as a list."""
+    return list(x) if isinstance(x, (list, tuple)) else [x]
+
+
+def _is_group(x: Any) -> bool:
+    """A group of seeds of one case: a list/tuple of result objects (drawn as mean ± spread)."""
+    return isinstance(x, (list, tuple))
+
+
+def _length_axes(ax: Any, x: str = "x", y: str = "y") -> None:
+    """Label both axes as lengths in µm."""
+    ax.set_xlabel(f"{x} (µm)")
+    ax.set_ylabel(f"{y} (µm)")
+
+
+def _band(xs: list, ys: list, *, log: bool, n: int = 200, spread: str = "sd"):
+    """Mean and spread over curves (x_i, y_i), on a grid over the x range they all cover.
+
+    In log mode x and y are interpolated and averaged as logarithms (geometric mean and
+    sd). Returns (grid, centre, lower, upper); spread "sd" is ±1 sample standard deviation,
+    "range" is min–max.
+    """
+    import numpy as np
+
+    f = np.log if log else np.asarray
+    inv = np.exp if log else np.asarray
+    lo = max(float(np.min(x)) for x in xs)
+    hi = min(float(np.max(x)) for x in xs)
+    if not hi > lo:
+        raise ValueError("the curves of a group share no x range; plot them separately")
+    grid = np.geomspace(lo, hi, n) if log else np.linspace(lo, hi, n)
+    v = np.stack(
+        [
+            np.interp(f(grid), f(np.asarray(x)), f(np.asarray(y)))
+            for x, y in zip(xs, ys, strict=True)
+        ]
+    )
+    c = v.mean(axis=0)
+    if spread == "range":
+        a, b = v.min(axis=0), v.max(axis=0)
+    elif spread == "sd":
+        s = v.std(axis=0, ddof=1) if len(xs) > 1 else np.zeros_like(c)
+        a, b = c - s, c + s
+    else:
+        raise ValueError(f"spread must be 'sd' or 'range', got {spread!r}")
+    return grid, inv(c), inv(a), inv(b)

@@ -1,0 +1,124 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Island number and slit-island fits (Fig. 8)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from ._style import (
+    UM,
+    _figure,
+    _finish,
+)
+
+
+def island_number(
+    curves: Any,
+    indicators: Any = None,
+    *,
+    labels: Any = None,
+    title: str | None = None,
+    path: str | Path | None = None,
+):
+    """Normalised island number against depth, with the indicator depths (the paper's Fig. 8a).
+
+    Parameters
+    ----------
+    curves : IslandCurve or sequence of them
+        Island counts against depth; each is normalised by its maximum.
+    indicators : Indicators or sequence, optional
+        One per curve: the depth of the largest growth rate (dashed), the fractality depth
+        (dotted) and the island-count peak (dash-dotted) are marked in the curve's colour.
+    labels : sequence of str, optional
+        Legend labels.
+    path : path, optional
+        Save the figure as PNG here.
+    """
+    curves = list(curves) if isinstance(curves, (list, tuple)) else [curves]
+    if indicators is not None:
+        indicators = list(indicators) if isinstance(indicators, (list, tuple)) else [indicators]
+    fig, axes = _figure()
+    ax = axes[0, 0]
+    marks = (
+        ("max_growth_depth", "--", "max. growth rate"),
+        ("fractal_depth", ":", "end of constant slit exponent"),
+        ("peak_depth", "-.", "island-count peak"),
+    )
+    for i, c in enumerate(curves):
+        lab = labels[i] if labels is not None else None
+        (line,) = ax.plot(100 * c.depth_fraction, c.normalised_island_number, lw=1.2, label=lab)
+        if indicators is not None and indicators[i] is not None:
+            ind = indicators[i]
+            for name, style, what in marks:
+                d = getattr(ind, name)
+                if d == d:  # not NaN
+                    ax.axvline(
+                        100 * d / ind.rt, ls=style, lw=1.0, color=line.get_color(),
+                        label=(what if len(curves) > 1 else f"{what}: {100 * d / ind.rt:.1f} % R$_t$")
+                        if i == 0 else None,
+                    )  # fmt: skip
+    ax.set_xlabel("truncation depth ω (% R$_t$)")
+    ax.set_ylabel("normalised island number n/n$_{max}$")
+    ax.set_ylim(bottom=0)
+    ax.grid(True, alpha=0.3)
+    if title:
+        ax.set_title(title)
+    ax.legend(fontsize=7)
+    return _finish(fig, path)
+
+
+def slit_islands(
+    curve: Any,
+    *,
+    min_pixels: int | None = None,
+    title: str | None = None,
+    path: str | Path | None = None,
+):
+    """Island perimeter against area, log–log, with slit-island fits (the paper's Fig. 8b).
+
+    Parameters
+    ----------
+    curve : IslandCurve or sequence of IslandSizes
+        The islands at a few depths (``IslandCurve.sizes``, from ``snapshot_depths=``).
+    min_pixels : int, optional
+        Smallest island in the fits (pixels); the curve's own by default, else 10. Smaller
+        islands are drawn in grey.
+    path : path, optional
+        Save the figure as PNG here.
+    """
+    import numpy as np
+
+    from ..islands import MIN_PIXELS, slit_island_fit
+
+    sizes = list(getattr(curve, "sizes", curve))
+    if min_pixels is None:
+        min_pixels = getattr(curve, "min_pixels", MIN_PIXELS)
+    rt = getattr(curve, "rt", None)
+    fig, axes = _figure()
+    ax = axes[0, 0]
+    for sz in sizes:
+        if sz.n_islands == 0:
+            continue
+        big = sz.area_pixels >= min_pixels
+        fit = slit_island_fit(sz, min_pixels=min_pixels)
+        at = f"ω = {100 * sz.depth / rt:.1f} % R$_t$" if rt else f"ω = {sz.depth * UM:.3g} µm"
+        (pts,) = ax.loglog(sz.area[big] * UM**2, sz.perimeter[big] * UM, ".", ms=2.5, alpha=0.6)
+        ax.loglog(sz.area[~big] * UM**2, sz.perimeter[~big] * UM, ".", ms=2, color="0.75", zorder=0)
+        if fit.exponent == fit.exponent:
+            a = np.geomspace(sz.area[big].min(), sz.area[big].max(), 20)
+            ax.loglog(
+                a * UM**2, 10**fit.intercept * a**fit.exponent * UM, "-",
+                color=pts.get_color(), lw=1.4,
+                label=f"{at}: exponent {fit.exponent:.3f} (D = {fit.dimension:.2f}, "
+                f"r² = {fit.r2:.3f}, {fit.n_islands} islands)",
+            )  # fmt: skip
+        else:
+            pts.set_label(f"{at}: too few islands ≥ {min_pixels} px")
+    ax.set_xlabel("island area A (µm²)")
+    ax.set_ylabel("island perimeter L (µm)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.set_title(title or f"slit islands (grey: < {min_pixels} pixels, not fitted)")
+    ax.legend(fontsize=6)
+    return _finish(fig, path)

@@ -1,0 +1,180 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Stiffness against load and α against D (Fig. 9)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from ._style import (
+    PAPER_ALPHA_D,
+    SPREAD_ALPHA,
+    _as_list,
+    _band,
+    _figure,
+    _finish,
+    _is_group,
+)
+
+
+def stiffness_load(
+    curves: Any,
+    fits: Any = None,
+    *,
+    labels: Any = None,
+    title: str | None = None,
+    spread: str = "sd",
+    path: str | Path | None = None,
+):
+    """E_c/E against F/(E·A) in log–log, with the fitted power laws (the paper's Fig. 9).
+
+    Parameters
+    ----------
+    curves : StiffnessCurve, or sequence of StiffnessCurve or of groups
+        Curves to draw (increments with zero load are skipped). An element that is itself a
+        list of curves (the seeds of one case) is drawn as its geometric mean with a shaded
+        spread over the F/(E·A) range all its curves cover.
+    fits : PowerLawFit or sequence, optional
+        One fit per curve (dashed line over its fit range); for a group, the list of its
+        fits, drawn with mean α ± sd and the geometric mean β.
+    labels : sequence of str, optional
+        Legend labels, one per curve or group.
+    title : str, optional
+        Axes title.
+    spread : {"sd", "range"}
+        Shaded band of a group: ±1 standard deviation of log(E_c/E), or min–max.
+    path : path, optional
+        Save the figure as PNG here.
+    """
+    import numpy as np
+
+    curves = _as_list(curves)
+    if fits is not None:
+        fits = _as_list(fits)
+        if len(fits) != len(curves):
+            raise ValueError(
+                f"need one fit (or list of fits) per curve, got {len(fits)} for {len(curves)}"
+            )
+    fig, axes = _figure()
+    ax = axes[0, 0]
+    for i, c in enumerate(curves):
+        lab = labels[i] if labels is not None else None
+        if _is_group(c):
+            sels = [g.load > 0 for g in c]
+            x, m, lo, hi = _band(
+                [g.F_over_EA[s] for g, s in zip(c, sels, strict=True)],
+                [g.Ec_over_E[s] for g, s in zip(c, sels, strict=True)],
+                log=True, spread=spread,
+            )  # fmt: skip
+            what = "±1 sd" if spread == "sd" else "min–max"
+            (line,) = ax.loglog(
+                x, m, "-", lw=1.4, label=f"{lab} ({len(c)} seeds, {what})" if lab else None
+            )
+            ax.fill_between(x, lo, hi, color=line.get_color(), alpha=SPREAD_ALPHA, lw=0)
+        else:
+            sel = c.load > 0
+            (line,) = ax.loglog(c.F_over_EA[sel], c.Ec_over_E[sel], "-", lw=1.2, label=lab)
+        f = fits[i] if fits is not None else None
+        if f is None:
+            continue
+        if _is_group(f):
+            f = [g for g in f if g is not None]
+            if not f:
+                continue
+            al = np.array([g.alpha for g in f])
+            beta = float(np.exp(np.mean(np.log([g.beta for g in f]))))
+            alpha = float(al.mean())
+            sd = f" ± {al.std(ddof=1):.3f}" if al.size > 1 else ""
+            xr = np.geomspace(
+                np.exp(np.mean(np.log([g.F_over_EA_min for g in f]))),
+                np.exp(np.mean(np.log([g.F_over_EA_max for g in f]))), 50,
+            )  # fmt: skip
+            text = f"fit α = {alpha:.3f}{sd}, β = {beta:.3g}"
+        else:
+            alpha, beta = f.alpha, f.beta
+            xr = np.geomspace(f.F_over_EA_min, f.F_over_EA_max, 50)
+            text = f"fit α = {f.alpha:.3f}, β = {f.beta:.3g}, r² = {f.r2:.3f}"
+        color = "k" if len(curves) == 1 else line.get_color()
+        ax.loglog(xr, beta * xr**alpha, "--", color=color, lw=1.6, zorder=3, label=text)
+    ax.set_xlabel("normalised load F/(E·A)")
+    ax.set_ylabel("normalised stiffness E$_c$/E")
+    ax.grid(True, which="both", alpha=0.3)
+    if title:
+        ax.set_title(title)
+    ax.legend(fontsize=7)
+    return _finish(fig, path)
+
+
+def alpha_vs_D(
+    summary: Any,
+    *,
+    min_pixels: int | None = None,
+    paper: bool = True,
+    title: str | None = None,
+    path: str | Path | None = None,
+):
+    """Exponent α (mean ± sd over seeds) against D_in, with the fitted line (Fig. 10, Table 3).
+
+    Parameters
+    ----------
+    summary : dict or SweepTable
+        The ``summary.json`` content of ``examples/parametric_sweep.py`` (``fit_ranges`` →
+        {min_pixels: {"per_D": [...], "alpha_vs_D": {...}}}), or a sweep's cases table
+        (:func:`warptrunc.sweep.load`, a DataFrame) or :class:`~warptrunc.sweep.SweepTable`.
+    min_pixels : int, optional
+        Draw this fit range only (default: every fit range in ``summary``).
+    paper : bool
+        Also draw the paper's line α = 0.209·D_in + 0.090.
+    title : str, optional
+        Axes title.
+    path : path, optional
+        Save the figure as PNG here.
+    """
+    import numpy as np
+
+    ranges = _alpha_ranges(summary)
+    if min_pixels is not None:
+        ranges = {k: v for k, v in ranges.items() if int(k) == int(min_pixels)}
+        if not ranges:
+            raise ValueError(f"no fit range with min_pixels = {min_pixels} in the summary")
+    fig, axes = _figure()
+    ax = axes[0, 0]
+    d_all = []
+    for k, v in sorted(ranges.items(), key=lambda kv: int(kv[0])):
+        rows = [r for r in v["per_D"] if r["n"] > 0 and np.isfinite(r["alpha_mean"])]
+        if not rows:
+            continue
+        d = np.array([r["D_in"] for r in rows], dtype=float)
+        a = np.array([r["alpha_mean"] for r in rows], dtype=float)
+        s = np.array([r["alpha_sd"] if np.isfinite(r["alpha_sd"]) else 0.0 for r in rows])
+        d_all.extend(d)
+        eb = ax.errorbar(d, a, yerr=s, fmt="o", ms=4, capsize=3, label=f"min_pixels = {k}")
+        line = v.get("alpha_vs_D")
+        if line:
+            x = np.array([d.min(), d.max()])
+            ax.plot(
+                x, line["slope"] * x + line["intercept"], "-", color=eb[0].get_color(), lw=1.2,
+                label=f"α = {line['slope']:.3f}·D$_{{in}}$ {'+' if line['intercept'] >= 0 else '−'} "
+                f"{abs(line['intercept']):.3f} (r = {line['r']:.2f})",
+            )  # fmt: skip
+    if paper and d_all:
+        x = np.array([min(d_all), max(d_all)])
+        ax.plot(x, PAPER_ALPHA_D[0] * x + PAPER_ALPHA_D[1], ":", color="k", lw=1.4,
+                label="paper: α = 0.209·D$_{in}$ + 0.090")  # fmt: skip
+    ax.set_xlabel("input fractal dimension D$_{in}$")
+    ax.set_ylabel("stiffness exponent α")
+    ax.grid(True, alpha=0.3)
+    if title:
+        ax.set_title(title)
+    ax.legend(fontsize=7)
+    return _finish(fig, path)
+
+
+def _alpha_ranges(summary: Any) -> dict:
+    """{min_pixels: {"per_D": [...], "alpha_vs_D": line or None}} from a summary or a table."""
+    if isinstance(summary, dict):
+        return dict(summary["fit_ranges"])
+    from ..sweep import alpha_summary
+
+    return alpha_summary(summary)["fit_ranges"]
