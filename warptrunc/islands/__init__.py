@@ -39,12 +39,10 @@ sets that do not wrap around).
 # private names re-exported for the tests and the benchmark
 from .depths import (  # noqa: F401
     _Forest,
-    _topology_hist,
     island_counts_device,
     island_curve,
     islands_at_depth,
     islands_at_depths,
-    topology_curve,
 )
 from .fits import applicable_depth, slit_island_fit
 from .labelling import _label_parallel, _label_sequential, label_device, label_islands  # noqa: F401
@@ -58,6 +56,7 @@ from .results import (
     SlitIslandFit,
     TopologyCurve,
 )
+from .topology import _topology_hist, topology_curve  # noqa: F401
 
 __all__ = [
     "MIN_ISLANDS",

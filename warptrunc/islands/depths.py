@@ -13,7 +13,6 @@ import warp as wp
 
 from .._device import check_memory, resolve_device
 from .._validate import check_int, check_range
-from ..kernels import euler as _ke
 from ..kernels import islands as _ki
 from ..surface import Surface
 from ..truncation import _where, contact_index_map, depth_grid, surface_range
@@ -29,8 +28,8 @@ from .results import (
     IslandCurve,
     Islands,
     IslandSizes,
-    TopologyCurve,
 )
+from .topology import _topology_hist
 
 # --- carried forest across depths -----------------------------------------------------------------
 
@@ -392,137 +391,6 @@ def islands_at_depth(
 
 
 # --- topology by histograms -----------------------------------------------------------------------
-
-
-TOPOLOGY_KERNEL = "auto"
-"""``"block"``: count the topology histograms per block in shared memory, then once per block
-into the global histogram; ``"atomic"``: global atomics per pixel; ``"auto"``: block on CUDA,
-atomic on the CPU (where a tile block is one thread). Both give the same integer histograms.
-Measured on an H100, 10240², 201 increments to 0.5·R_t, 4-connectivity: 60 ms with global
-atomics."""
-
-
-def _topology_hist_blocks(
-    idx: wp.array, shape: tuple[int, int], n1: int, connectivity: int, per: int, device
-) -> np.ndarray:
-    """(n1, 4) int64 difference histogram by the block-private kernels of ``kernels.euler``."""
-    ny, nx = shape
-    hist = wp.zeros(int(_ke.HIST_CELLS), dtype=wp.int64, device=device)
-
-    bd = 256 if device.is_cuda else 1  # a CPU tile block runs one lane
-
-    def launch(kernel, n: int, args: list) -> None:
-        blocks = max(1, min(-(-n // bd), 8 * device.sm_count if device.is_cuda else 64))
-        chunk = -(-n // blocks)
-        wp.launch_tiled(
-            kernel, dim=blocks, inputs=[*args, chunk, -(-chunk // bd)], outputs=[hist],
-            block_dim=bd, device=device,
-        )  # fmt: skip
-
-    launch(
-        _ke.pixel_histogram_block_kernel,
-        ny * nx,
-        [idx, ny, nx, n1, per, int(connectivity == 4)],
-    )
-    if connectivity == 8:
-        vy, vx = (ny, nx) if per else (ny + 1, nx + 1)
-        launch(_ke.euler8_histogram_block_kernel, vy * vx, [idx, ny, nx, n1, per, vy, vx])
-    return hist.numpy().reshape(-1, 4)[:n1]  # sync point
-
-
-def _topology_hist(
-    idx: wp.array, shape: tuple[int, int], n1: int, connectivity: int, periodic: bool, device
-) -> np.ndarray:
-    """(n1, 4) int64 cumulative [contact pixels, edges_x, edges_y, χ] at every increment."""
-    ny, nx = shape
-    per = int(bool(periodic))
-    mode = TOPOLOGY_KERNEL if TOPOLOGY_KERNEL != "auto" else ("block" if device.is_cuda else "atomic")
-    if mode == "block" and n1 <= _ke.HIST_BINS:
-        return np.cumsum(_topology_hist_blocks(idx, shape, n1, connectivity, per, device), axis=0)
-    hist = wp.zeros((n1, 4), dtype=wp.int64, device=device)
-    wp.launch(
-        _ke.pixel_histogram_kernel,
-        dim=(ny, nx),
-        inputs=[idx, ny, nx, n1, per, int(connectivity == 4)],
-        outputs=[hist],
-        device=device,
-    )
-    if connectivity == 8:
-        dim = (ny, nx) if periodic else (ny + 1, nx + 1)
-        wp.launch(
-            _ke.euler8_histogram_kernel,
-            dim=dim,
-            inputs=[idx, ny, nx, n1, per],
-            outputs=[hist],
-            device=device,
-        )
-    return np.cumsum(hist.numpy(), axis=0)  # sync point
-
-
-def topology_curve(
-    surface: Surface,
-    n_increments: int = 200,
-    *,
-    max_depth: float | None = None,
-    max_depth_fraction: float = 0.5,
-    connectivity: int = 4,
-    periodic: bool = False,
-    device: wp.DeviceLike = None,
-) -> TopologyCurve:
-    """Total perimeter and Euler characteristic χ of the contact set at every depth, no labelling.
-
-    Parameters
-    ----------
-    surface : Surface
-        The height map (m).
-    n_increments : int
-        Number of depth increments n; depths ω_k = k·ω_max/n, k = 0..n (as :func:`truncate`).
-    max_depth : float, optional
-        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of R_t (dimensionless).
-    connectivity : {4, 8}
-        Connectivity of the contact set, which fixes the cell complex of χ.
-    periodic : bool
-        Wrap the map around in x and y.
-    device : str, optional
-        Warp device; default: where a device-resident surface lives, else
-        :func:`warptrunc.resolve_device`'s choice.
-
-    Returns
-    -------
-    TopologyCurve
-
-    Notes
-    -----
-    One pass over the contact-index map: a boundary edge between pixels with contact indices
-    a < b exists for increments a ≤ k < b (+1 at a, −1 at b); a cell of the complex exists from
-    the increment at which its defining pixels are in contact (4-connectivity: the largest
-    index of its pixels, on the complex of pixel centres; 8-connectivity: the smallest, on
-    closed pixels). χ = V − E + F summed per increment by a difference histogram.
-    """
-    surface = _check_surface(surface)
-    connectivity = _check_connectivity(connectivity)
-    device = resolve_device(_where(surface, device))
-    depth = depth_grid(
-        surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
-    )
-    ny, nx = surface.ny, surface.nx
-    _check_index_size(ny * nx)  # before allocating
-    idx = contact_index_map(surface, depth, device=device, as_warp=True).reshape((ny * nx,))
-    h = _topology_hist(idx, (ny, nx), depth.size, connectivity, periodic, device)
-    return TopologyCurve(
-        depth=depth,
-        n_contact_pixels=h[:, 0],
-        contact_area=h[:, 0] * surface.pixel_area,
-        edges_x=h[:, 1],
-        edges_y=h[:, 2],
-        total_perimeter=h[:, 1] * surface.dy + h[:, 2] * surface.dx,
-        euler_characteristic=h[:, 3],
-        rt=surface.rt,
-        connectivity=connectivity,
-        periodic=bool(periodic),
-    )
 
 
 # --- island curve ---------------------------------------------------------------------------------
