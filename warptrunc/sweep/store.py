@@ -10,11 +10,17 @@ Layout::
                                 Parquet metadata also holds the case's rows, so the cases
                                 table can be rebuilt from the curve files alone
 
-Every file is written to a temporary name in the same folder, flushed to disk and renamed
-(atomic on POSIX), so a crash leaves either the old file or the new one. A case counts as
-finished once its curve file exists; ``cases.parquet`` is rewritten at most every
+Every file is written to a temporary name in the same folder, made durable and renamed
+(atomic on POSIX), so a crash leaves either the old file or the new one. ``sweep.json`` and
+``cases.parquet`` are fsynced one by one; curve files come in batches (:func:`write_curves`:
+all temporaries written, one ``syncfs`` of the filesystem, the renames, one fsync of the
+folder), which keeps the same guarantee at one sync per batch instead of one per case. A
+curve file is never replaced: the first attempt of a case wins. A case counts as finished
+once its curve file exists (and parses); ``cases.parquet`` is rewritten at most every
 ``flush_interval`` seconds and on close, and rows missing from it after a hard kill are
-recovered from the curve files on the next open. One process (the sweep's client) writes.
+recovered from the curve files on the next open. The sweep's client is the only writer of
+``cases.parquet``; curve files are written by the client or, with worker writes, by the Dask
+workers (on a filesystem they share with the client).
 """
 
 from __future__ import annotations
