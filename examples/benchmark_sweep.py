@@ -81,7 +81,7 @@ def main(argv=None) -> int:
     ap.add_argument("--chunk-size", type=int, default=None,
                     help="cases per Dask task (default: adaptive)")
     ap.add_argument("--worker-writes", action=argparse.BooleanOptionalAction, default=None,
-                    help="workers write the curve files (default: on for a LocalCluster)")
+                    help="workers write the curve files (default: on for a LocalCluster on GPUs)")
     ap.add_argument("--json", type=Path, default=None, help="append the results here")
     args = ap.parse_args(argv)
     from warptrunc import __version__

@@ -84,7 +84,7 @@ def run_dask(
     0.1 s of work per task, from the median case time so far, starting at 1), with about two
     tasks in flight per worker, so results keep streaming. With ``worker_writes`` the workers
     write the curve files into ``store.curves`` themselves (needs a filesystem shared with
-    this process; default: True for a LocalCluster, False with ``scheduler``) and only rows
+    this process; default: True for a LocalCluster on CUDA devices, else False) and only rows
     travel back. A chunk whose worker died or whose future was cancelled
     (``client.restart()``) has its unfinished cases submitted again one per task, up to
     ``max_retries`` times each, then recorded as failed.
@@ -94,8 +94,10 @@ def run_dask(
 
     from distributed import Client, LocalCluster, as_completed
 
-    if worker_writes is None:
-        worker_writes = scheduler is None
+    if worker_writes is None:  # on the CPU, Parquet encoding on the workers slows their compute
+        dev = device or os.environ.get("WARPTRUNC_DEVICE")
+        on_gpu = str(dev).startswith("cuda") if dev else _cuda_device_count() > 0
+        worker_writes = scheduler is None and on_gpu
     curves = str(store.curves.resolve()) if worker_writes and store.path is not None else None
     cluster = None
     own_client = True
