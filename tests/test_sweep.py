@@ -379,6 +379,82 @@ def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_re
     pd.testing.assert_frame_equal(load(out), df)
 
 
+def _sweep_in_thread(out, **kw):
+    """Start run_sweep in a thread; returns (thread, box, wait_for(k curve files))."""
+    import threading
+
+    box = {}
+
+    def sweep():
+        try:
+            box["df"] = run_sweep(DASK_GRID, out, progress=False, device="cpu", **kw, **OPTS)
+        except BaseException as exc:  # pragma: no cover - reported by the caller
+            box["exc"] = exc
+
+    th = threading.Thread(target=sweep)
+
+    def wait_for(k):
+        t0 = time.monotonic()
+        while len(list(out.glob("curves/*.parquet"))) < k and th.is_alive():
+            assert time.monotonic() - t0 < 200
+            time.sleep(0.01)
+        return len(list(out.glob("curves/*.parquet")))
+
+    th.start()
+    return th, box, wait_for
+
+
+@pytest.mark.timeout(300)
+def test_chunked_worker_killed_mid_chunk_no_loss_no_duplicates(tmp_path, client, dask_reference):
+    """Chunks of 3 cases (client writes): a worker killed mid-chunk has its chunk run again."""
+    client.register_plugin(_slow_cases_plugin())
+    out = tmp_path / "s"
+    th, box, wait_for = _sweep_in_thread(out, scheduler=client, chunk_size=3,
+                                         worker_writes=False)  # fmt: skip
+    done_at_kill = wait_for(1)  # the first chunk is written: the second and third are running
+    pids = client.run(os.getpid)
+    os.kill(next(iter(pids.values())), signal.SIGKILL)
+    th.join(240)
+    assert not th.is_alive() and "exc" not in box, box.get("exc")
+    assert 3 <= done_at_kill < 8, "the kill came after the sweep finished"
+    df = box["df"]
+    assert not df.duplicated(["case_id", "min_pixels"]).any() and df["error"].isna().all()
+    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
+    pd.testing.assert_frame_equal(load(out), df)
+    assert len(list((out / "curves").iterdir())) == 8  # no temporary file left
+
+
+@pytest.mark.timeout(300)
+def test_worker_written_curves(tmp_path, client, dask_reference, monkeypatch):
+    """With worker writes the client writes no curve file; a kill loses and duplicates nothing."""
+    import warptrunc.sweep.store as store_mod
+
+    def refuse(*a, **kw):
+        raise AssertionError("the client wrote a curve file")
+
+    monkeypatch.setattr(store_mod, "write_curves", refuse)  # this process only, not the workers
+    client.register_plugin(_slow_cases_plugin())
+    out = tmp_path / "s"
+    th, box, wait_for = _sweep_in_thread(out, scheduler=client, chunk_size=2, worker_writes=True)
+    done_at_kill = wait_for(1)
+    pids = client.run(os.getpid)
+    os.kill(next(iter(pids.values())), signal.SIGKILL)
+    th.join(240)
+    assert not th.is_alive() and "exc" not in box, box.get("exc")
+    assert done_at_kill < 8, "the kill came after the sweep finished"
+    df = box["df"]
+    assert not df.duplicated(["case_id", "min_pixels"]).any()
+    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
+    pd.testing.assert_frame_equal(load(out), df)
+    # the curves on disk are those of the in-process engine, and carry the client's rows
+    ref = tmp_path / "ref"
+    monkeypatch.undo()
+    run_sweep(DASK_GRID, ref, progress=False, device="cpu", **OPTS)
+    pd.testing.assert_frame_equal(load_curves(out), load_curves(ref))
+    (out / "cases.parquet").unlink()  # rebuilt from the worker-written curve files alone
+    pd.testing.assert_frame_equal(load(out), df)
+
+
 @pytest.mark.timeout(120)
 def test_workers_pinned_one_device_each(client):
     from warptrunc.sweep.cluster import PinDevice

@@ -57,6 +57,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     e.add_argument("--scheduler", default=None,
                    help="address of an existing Dask scheduler (e.g. tcp://host:8786, or the "
                    "scheduler of a dask-jobqueue cluster)")  # fmt: skip
+    e.add_argument("--chunk-size", type=integer(1, 100000), default=None,
+                   help="with --workers/--scheduler: cases per Dask task (default: adaptive, "
+                   "about 0.1 s of work per task)")  # fmt: skip
+    e.add_argument("--worker-writes", action=argparse.BooleanOptionalAction, default=None,
+                   help="with --workers/--scheduler: workers write the curve files into the "
+                   "store themselves (needs the store on a filesystem shared by every worker "
+                   "and this process); default: on with --workers on GPUs, off on the CPU and with --scheduler")  # fmt: skip
     e.add_argument("--overwrite", action="store_true",
                    help="replace the results in an existing store made by another grid/options")  # fmt: skip
     e.add_argument("--retry-failed", action="store_true",
@@ -117,6 +124,7 @@ def run(args: argparse.Namespace) -> int:
         df = run_sweep(
             grid, args.out, workers=args.workers, scheduler=args.scheduler,
             overwrite=args.overwrite, retry_failed=args.retry_failed,
+            chunk_size=args.chunk_size, worker_writes=args.worker_writes,
             progress=not args.no_progress, device=args.device, **options_from_args(args),
         )  # fmt: skip
     except KeyboardInterrupt as exc:

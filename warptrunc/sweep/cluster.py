@@ -2,9 +2,12 @@
 # SPDX-License-Identifier: MIT
 """The Dask engine: cases on a LocalCluster (one worker per GPU) or on an existing cluster.
 
-Imported only when ``workers`` or ``scheduler`` is given (needs ``warptrunc[sweep]``). The
-client, the store's only writer, receives each case's rows and curve as the case finishes
-(``as_completed``); workers write nothing.
+Imported only when ``workers`` or ``scheduler`` is given (needs ``warptrunc[sweep]``). Cases
+go out in chunks (one task per chunk, sized adaptively to about 0.1 s of work), so the task
+overhead is amortised when a case takes milliseconds; results stream back as chunks finish
+(``as_completed``). The workers write the curve files themselves (``worker_writes``, default
+on a LocalCluster) or send the curves to the client; the client records the rows and is the
+only writer of ``cases.parquet``.
 """
 
 from __future__ import annotations
@@ -14,12 +17,12 @@ import os
 import sys
 from typing import Any
 
-from distributed import Client, LocalCluster, WorkerPlugin, as_completed
+from distributed import WorkerPlugin
 
-from .engines import Sink, _bar, compute_case, failed_case, pinned_device
+from .engines import _bar, compute_chunk, failed_case, pinned_device
 from .grid import Case, SweepOptions
 
-__all__ = ["PinDevice", "run_dask"]
+__all__ = ["PinDevice", "chunk_size_for", "run_dask"]
 
 
 def _cuda_device_count() -> int:
@@ -52,19 +55,50 @@ class PinDevice(WorkerPlugin):
             os.environ["WARPTRUNC_DEVICE"] = dev
 
 
+def chunk_size_for(case_seconds: float | None, remaining: int, n_workers: int, *,
+                   target_s: float = 0.1, max_size: int = 64) -> int:
+    """Cases per task: about ``target_s`` of work, at most ``max_size``, and small enough
+    that the remaining cases still make ≥ 2 tasks per worker (so the load balances).
+
+    ``case_seconds`` is the median time of a case so far (None: none finished yet → 1).
+    """
+    if not case_seconds or case_seconds != case_seconds:  # None, 0 or NaN
+        return 1
+    size = max(1, min(max_size, round(target_s / case_seconds)))
+    return max(1, min(size, -(-remaining // (2 * max(n_workers, 1)))))
+
+
 def run_dask(
-    cases: list[Case], options: SweepOptions, sink: Sink, *, workers: int | None = None,
+    cases: list[Case], options: SweepOptions, store, *, workers: int | None = None,
     scheduler: Any = None, device=None, total: int, progress: bool = True,
-    max_retries: int = 3,
+    max_retries: int = 3, chunk_size: int | None = None, worker_writes: bool | None = None,
 ) -> None:  # fmt: skip
-    """Run ``cases`` on a Dask cluster; results reach ``sink`` in this process as they finish.
+    """Run ``cases`` on a Dask cluster; results reach ``store`` in this process as they finish.
 
     ``scheduler`` (an address or a ``distributed.Client``) uses an existing cluster; else a
     LocalCluster of ``workers`` processes with one thread each, one per CUDA device when
-    ``device`` is None and CUDA devices exist (:class:`PinDevice`). A case whose worker died
-    or whose future was cancelled (``client.restart()``) is submitted again, up to
-    ``max_retries`` times, then recorded as failed.
+    ``device`` is None and CUDA devices exist (:class:`PinDevice`).
+
+    Cases go to the workers in chunks (one task each, :func:`compute_chunk`):
+    ``chunk_size`` cases, or with ``None`` an adaptive size (:func:`chunk_size_for`: about
+    0.1 s of work per task, from the median case time so far, starting at 1), with about two
+    tasks in flight per worker, so results keep streaming. With ``worker_writes`` the workers
+    write the curve files into ``store.curves`` themselves (needs a filesystem shared with
+    this process; default: True for a LocalCluster on CUDA devices, else False) and only rows
+    travel back. A chunk whose worker died or whose future was cancelled
+    (``client.restart()``) has its unfinished cases submitted again one per task, up to
+    ``max_retries`` times each, then recorded as failed.
     """
+    import statistics
+    import time
+
+    from distributed import Client, LocalCluster, as_completed
+
+    if worker_writes is None:  # on the CPU, Parquet encoding on the workers slows their compute
+        dev = device or os.environ.get("WARPTRUNC_DEVICE")
+        on_gpu = str(dev).startswith("cuda") if dev else _cuda_device_count() > 0
+        worker_writes = scheduler is None and on_gpu
+    curves = str(store.curves.resolve()) if worker_writes and store.path is not None else None
     cluster = None
     own_client = True
     if isinstance(scheduler, Client):
@@ -83,35 +117,73 @@ def run_dask(
             client.register_plugin(PinDevice())
     by_id = {c.case_id: c for c in cases}
     attempts = dict.fromkeys(by_id, 0)
+    queue = [c.case_id for c in cases]  # not yet submitted, in grid order
+    retry: list[str] = []  # lost once: one case per task
+    times: list[float] = []
+    n_workers = [1, 0.0]
+
+    def workers_now() -> int:
+        if time.monotonic() - n_workers[1] > 5:
+            n_workers[:] = [max(1, len(client.scheduler_info().get("workers", {}))),
+                            time.monotonic()]  # fmt: skip
+        return n_workers[0]
+
     try:
-        futures = {}
+        futures: dict = {}
+        pending = as_completed()
 
-        def submit(cid: str):
-            attempts[cid] += 1
-            f = client.submit(compute_case, by_id[cid], options, device,
-                              key=f"warptrunc-case-{cid}-{attempts[cid]}", pure=False)  # fmt: skip
-            futures[f] = cid
-            return f
+        def submit(ids: list[str]) -> None:
+            for cid in ids:
+                attempts[cid] += 1
+            key = f"warptrunc-chunk-{ids[0]}-{len(ids)}-{attempts[ids[0]]}"
+            f = client.submit(compute_chunk, [by_id[c] for c in ids], options, device, curves,
+                              key=key, pure=False)  # fmt: skip
+            futures[f] = ids
+            pending.add(f)
 
-        pending = as_completed([submit(c.case_id) for c in cases])
+        def top_up() -> None:
+            w = workers_now()
+            while (retry or queue) and len(futures) < 2 * w:
+                if retry:
+                    submit([retry.pop(0)])
+                    continue
+                size = chunk_size or chunk_size_for(
+                    statistics.median(times[-64:]) if times else None, len(queue), w
+                )
+                submit(queue[:size])
+                del queue[:size]
+
+        top_up()
         with _bar(total, total - len(cases), progress, "sweep [dask]") as bar:
-            for fut in pending:
-                cid = futures.pop(fut)
+            while futures:
+                fut = next(pending)
+                ids = futures.pop(fut)
                 if fut.status == "finished":
-                    sink(*fut.result())
-                    bar.update()
-                elif attempts[cid] <= max_retries:
-                    pending.add(submit(cid))
+                    results = fut.result()
+                    if curves is None:
+                        new = store.add_many(results)
+                    else:
+                        new = [store.record(rows) for rows, _ in results]
+                    times += [r[0]["seconds"] for r, _ in results
+                              if r and r[0].get("seconds") == r[0].get("seconds")]  # fmt: skip
+                    bar.update(sum(new))
                 else:
-                    try:
-                        exc = fut.exception()
-                        why = f"{type(exc).__name__}: {exc}"
-                    except Exception as e:  # cancelled futures raise here
-                        why = f"{type(e).__name__}: {e}"
-                    rows, _ = failed_case(by_id[cid], options, f"lost {attempts[cid]} times: {why}")
-                    sink(rows, None)
-                    bar.update()
+                    lost = [c for c in ids if c not in store.rows]
+                    again = [c for c in lost if attempts[c] <= max_retries]
+                    retry += again
+                    if len(again) < len(lost):
+                        try:
+                            exc = fut.exception()
+                            why = f"{type(exc).__name__}: {exc}"
+                        except Exception as e:  # cancelled futures raise here
+                            why = f"{type(e).__name__}: {e}"
+                        for cid in set(lost) - set(again):
+                            rows, _ = failed_case(by_id[cid], options,
+                                                  f"lost {attempts[cid]} times: {why}")  # fmt: skip
+                            store.add(rows, None)
+                            bar.update()
                 fut.release()
+                top_up()
     finally:
         if own_client:
             client.close()

@@ -4,9 +4,11 @@
 
 The Dask engine is in :mod:`warptrunc.sweep.cluster` (imported only when used).
 
-Cases are pure: a case returns its rows and curve and writes nothing, so a case that runs
-twice (a worker lost mid-case, its task rescheduled) cannot write twice; the client, the
-store's single writer, drops the second result.
+A case (:func:`compute_case`) is pure: it returns its rows and curve and writes nothing. A
+chunk (:func:`compute_chunk`, one Dask task) either returns them for the client to write, or
+writes the curve files itself (worker writes); curve files are never replaced (the first
+attempt of a case wins), and the client, the only writer of ``cases.parquet``, drops a
+second result of a case.
 """
 
 from __future__ import annotations
@@ -24,9 +26,11 @@ import numpy as np
 
 from .grid import FRACTAL_METHODS, Case, SweepOptions
 
-__all__ = ["compute_case", "failed_case", "pinned_device", "run_inprocess"]
+__all__ = ["compute_case", "compute_chunk", "failed_case", "pinned_device", "run_inprocess"]
 
+Result = tuple[list[dict[str, Any]], "dict[str, np.ndarray] | None"]
 Sink = Callable[[list[dict[str, Any]], "dict[str, np.ndarray] | None"], bool]
+BatchSink = Callable[[list[Result]], Any]
 
 
 @functools.cache
@@ -170,32 +174,97 @@ def _bar(total: int, initial: int, progress: bool, desc: str):
 
 
 def run_inprocess(
-    cases: list[Case], options: SweepOptions, sink: Sink, *, device=None, total: int,
-    progress: bool = True,
+    cases: list[Case], options: SweepOptions, sink: BatchSink, *, device=None, total: int,
+    progress: bool = True, max_batch: int = 256,
 ) -> None:  # fmt: skip
-    """Run ``cases`` one after another in this process, handing each result to ``sink``.
+    """Run ``cases`` one after another in this process, handing the results to ``sink``.
 
-    ``sink`` (the store's write) runs in one background thread, so that writing a case
-    overlaps computing the next; at most one write is pending, and it completes before
-    this function returns or an interrupt propagates.
+    ``sink`` (the store's :meth:`~warptrunc.sweep.store.Store.add_many`) runs in one
+    background thread and takes every result that finished while it wrote the previous
+    batch (at most ``max_batch``), so writing overlaps computing and costs one filesystem
+    sync per batch, not one per case. Every computed case is written before this function
+    returns or an exception (Ctrl-C included) propagates.
     """
-    from concurrent.futures import ThreadPoolExecutor
+    import queue
+    import threading
 
     from .._device import resolve_device
 
     dev = str(resolve_device(device))
-    with _bar(total, total - len(cases), progress, f"sweep [{dev}]") as bar, \
-            ThreadPoolExecutor(1, thread_name_prefix="warptrunc-store") as pool:  # fmt: skip
-        pending = None
-        for case in cases:
-            result = compute_case(case, options, dev)
-            if pending is not None:
-                pending.result()
-                bar.update()
-            pending = pool.submit(sink, *result)
-        if pending is not None:
-            pending.result()
-            bar.update()
+    q: queue.Queue = queue.Queue(maxsize=max_batch)
+    failed: list[BaseException] = []
+    done = object()
+
+    with _bar(total, total - len(cases), progress, f"sweep [{dev}]") as bar:
+
+        def writer() -> None:
+            while True:
+                batch = [q.get()]
+                while len(batch) < max_batch:
+                    try:
+                        batch.append(q.get_nowait())
+                    except queue.Empty:
+                        break
+                stop = batch[-1] is done
+                batch = [b for b in batch if b is not done]
+                if batch and not failed:
+                    try:
+                        sink(batch)
+                        bar.update(len(batch))
+                    except BaseException as exc:  # re-raised in the computing thread
+                        failed.append(exc)
+                if stop:
+                    return
+
+        th = threading.Thread(target=writer, name="warptrunc-store", daemon=True)
+        th.start()
+        try:
+            for case in cases:
+                if failed:
+                    break
+                q.put(compute_case(case, options, dev))
+        finally:
+            q.put(done)
+            th.join()
+        if failed:
+            raise failed[0]
+
+
+def compute_chunk(
+    cases: list[Case], options: SweepOptions, device: str | None = None,
+    curves: str | None = None,
+) -> list[tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]]:  # fmt: skip
+    """Run a chunk of cases (one Dask task); with ``curves``, write their curve files too.
+
+    Without ``curves`` it returns each case's (rows, curve) for the client to write. With
+    ``curves`` (the store's ``curves/`` folder, on a filesystem this worker shares with the
+    client) a case whose curve file exists already (an earlier attempt of this chunk) is not
+    computed again; the others are computed and written as one batch
+    (:func:`~warptrunc.sweep.store.write_curves`), and (rows, None) comes back per case, the
+    rows being those in the file.
+    """
+    if curves is None:
+        return [compute_case(c, options, device) for c in cases]
+    from pathlib import Path
+
+    from .store import curve_rows, write_curves
+
+    folder = Path(curves)
+    results: list = []
+    todo: list = []
+    for c in cases:
+        f = folder / f"{c.case_id}.parquet"
+        rows = curve_rows(f) if f.exists() else None
+        if rows is None:
+            todo.append(len(results))
+            results.append(compute_case(c, options, device))
+        else:
+            results.append((rows, None))
+    if todo:
+        written = write_curves(folder, [results[i] for i in todo])
+        for i, rows in zip(todo, written):
+            results[i] = (rows, None)
+    return results
 
 
 def pinned_device(worker_name: Any, n_devices: int) -> str | None:

@@ -10,17 +10,24 @@ Layout::
                                 Parquet metadata also holds the case's rows, so the cases
                                 table can be rebuilt from the curve files alone
 
-Every file is written to a temporary name in the same folder, flushed to disk and renamed
-(atomic on POSIX), so a crash leaves either the old file or the new one. A case counts as
-finished once its curve file exists; ``cases.parquet`` is rewritten at most every
+Every file is written to a temporary name in the same folder, made durable and renamed
+(atomic on POSIX), so a crash leaves either the old file or the new one. ``sweep.json`` and
+``cases.parquet`` are fsynced one by one; curve files come in batches (:func:`write_curves`:
+all temporaries written, one ``syncfs`` of the filesystem, the renames, one fsync of the
+folder), which keeps the same guarantee at one sync per batch instead of one per case. A
+curve file is never replaced: the first attempt of a case wins. A case counts as finished
+once its curve file exists (and parses); ``cases.parquet`` is rewritten at most every
 ``flush_interval`` seconds and on close, and rows missing from it after a hard kill are
-recovered from the curve files on the next open. One process (the sweep's client) writes.
+recovered from the curve files on the next open. The sweep's client is the only writer of
+``cases.parquet``; curve files are written by the client or, with worker writes, by the Dask
+workers (on a filesystem they share with the client).
 """
 
 from __future__ import annotations
 
 import json
 import os
+import threading
 import time
 from pathlib import Path
 from typing import Any
@@ -125,6 +132,119 @@ def _table_bytes(table) -> bytes:
     return sink.getvalue().to_pybytes()
 
 
+def _sync_folder(folder: Path) -> None:
+    """Make the data of every file written so far under ``folder``'s filesystem durable.
+
+    One ``syncfs(2)`` on Linux (one call for a whole batch of files, instead of an fsync per
+    file); ``os.sync()`` elsewhere.
+    """
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        if _syncfs is not None and _syncfs(fd) == 0:
+            return
+        os.sync()
+    finally:
+        os.close(fd)
+
+
+def _fsync_dir(folder: Path) -> None:
+    """fsync a directory, so that renames into it survive a power loss (POSIX only)."""
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:  # pragma: no cover - e.g. Windows
+        return
+    try:
+        os.fsync(fd)
+    except OSError:  # pragma: no cover - filesystems that refuse directory fsync
+        pass
+    finally:
+        os.close(fd)
+
+
+def _load_syncfs():
+    import ctypes
+    import ctypes.util
+    import sys
+
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        f = ctypes.CDLL(ctypes.util.find_library("c") or None, use_errno=True).syncfs
+    except (OSError, AttributeError):  # pragma: no cover
+        return None
+    f.argtypes = [ctypes.c_int]
+    return f
+
+
+_syncfs = _load_syncfs()
+
+
+def curve_rows(path: Path) -> list[dict[str, Any]] | None:
+    """The rows stored in a curve file's metadata; None when it has none or does not parse."""
+    import pyarrow.parquet as pq
+
+    try:
+        meta = pq.read_schema(path).metadata or {}
+    except (OSError, ValueError):  # truncated or empty (e.g. renamed, then power loss)
+        return None
+    return json.loads(meta[_META_KEY]) if _META_KEY in meta else None
+
+
+def write_curves(
+    curves: str | Path, results: list[tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]]
+) -> list[list[dict[str, Any]]]:
+    """Write the curve files of a batch of finished cases atomically; returns their rows.
+
+    Each case's curve (with its rows in the Parquet metadata) goes to a temporary name; then
+    one filesystem sync makes all of them durable, each is renamed to
+    ``<case_id>.parquet`` and the folder is fsynced once. So a visible curve file is always
+    complete (as with an fsync per file, at one sync per batch). A case whose file already
+    exists (written by an earlier attempt of the same case: first writer wins, through
+    ``os.link`` that never replaces) keeps that file, and its rows are returned instead.
+    Used by the client (the store) and, with worker writes, by the Dask workers.
+    """
+    import pyarrow as pa
+
+    curves = Path(curves)
+    out: list[list[dict[str, Any]] | None] = []
+    tmps: list[tuple[int, Path, Path]] = []
+    for i, (rows, curve) in enumerate(results):
+        rows = [{k: _jsonable(v) for k, v in r.items()} for r in rows]
+        out.append(rows)
+        final = curves / f"{rows[0]['case_id']}.parquet"
+        old = curve_rows(final) if final.exists() else None
+        if old is not None:
+            out[i] = old
+            continue
+        cols = {k: np.asarray(curve[k]) if curve else np.zeros(0) for k in CURVE_COLUMNS}
+        cols["n_contact_pixels"] = cols["n_contact_pixels"].astype(np.int64)
+        table = pa.table(cols).replace_schema_metadata(
+            {_META_KEY: json.dumps(rows, allow_nan=True).encode()}
+        )
+        tmp = final.with_name(f".{final.name}.tmp-{os.getpid()}-{threading.get_ident()}")
+        tmp.write_bytes(_table_bytes(table))
+        tmps.append((i, tmp, final))
+    if not tmps:
+        return out
+    _sync_folder(curves)
+    for i, tmp, final in tmps:
+        try:
+            os.link(tmp, final)  # fails if another attempt of this case got there first
+        except FileExistsError:
+            old = curve_rows(final)
+            if old is not None:
+                out[i] = old
+            else:  # an unreadable leftover: replace it
+                os.replace(tmp, final)
+                continue
+        except OSError:  # a filesystem without hard links
+            os.replace(tmp, final)
+            continue
+        tmp.unlink()
+    _fsync_dir(curves)
+    return out
+
+
 def _jsonable(v: Any) -> Any:
     if isinstance(v, (np.integer,)):
         return int(v)
@@ -214,8 +334,6 @@ class Store:
                     f.unlink(missing_ok=True)
 
     def _read_existing(self) -> None:
-        import pyarrow.parquet as pq
-
         wanted = {c.case_id for c in self.grid.cases(self.options)}
         table = self.path / "cases.parquet"
         if table.exists():
@@ -226,10 +344,12 @@ class Store:
             cid = f.stem
             if cid in self.rows or cid not in wanted:
                 continue
-            meta = pq.read_schema(f).metadata or {}
-            if _META_KEY in meta:  # finished after the last cases.parquet flush
-                self.rows[cid] = json.loads(meta[_META_KEY])
+            rows = curve_rows(f)
+            if rows is not None:  # finished after the last cases.parquet flush
+                self.rows[cid] = rows
                 self._dirty = True
+            else:  # does not parse: not finished, computed again
+                f.unlink()
         for cid in set(self.rows) - wanted:
             raise ValueError(f"{self.path}: case {cid} in cases.parquet is not in the grid")
 
@@ -240,25 +360,46 @@ class Store:
 
     def add(self, rows: list[dict[str, Any]], curve: dict[str, np.ndarray] | None) -> bool:
         """Record one finished case; returns False (and writes nothing) for a duplicate."""
-        cid = rows[0]["case_id"]
-        if cid in self.rows:
+        return self.add_many([(rows, curve)])[0]
+
+    def add_many(
+        self, results: list[tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]]
+    ) -> list[bool]:
+        """Record finished cases, writing their curve files as one batch (:func:`write_curves`).
+
+        Returns, per case, False for a duplicate (nothing written, nothing recorded).
+        """
+        fresh, seen, new = [], set(), []
+        for rows, curve in results:
+            cid = rows[0]["case_id"]
+            ok = cid not in self.rows and cid not in seen
+            new.append(ok)
+            if ok:
+                seen.add(cid)
+                fresh.append((rows, curve))
+            else:
+                self.duplicates += 1
+        if self.path is not None and fresh:
+            kept = write_curves(self.curves, fresh)
+        else:
+            kept = [[{k: _jsonable(v) for k, v in r.items()} for r in rows] for rows, _ in fresh]
+        for rows in kept:
+            self._record(rows)
+        return new
+
+    def record(self, rows: list[dict[str, Any]]) -> bool:
+        """Record a case whose curve file a worker already wrote; False for a duplicate."""
+        if rows[0]["case_id"] in self.rows:
             self.duplicates += 1
             return False
-        rows = [{k: _jsonable(v) for k, v in r.items()} for r in rows]
-        if self.path is not None:
-            import pyarrow as pa
+        self._record([{k: _jsonable(v) for k, v in r.items()} for r in rows])
+        return True
 
-            cols = {k: np.asarray(curve[k]) if curve else np.zeros(0) for k in CURVE_COLUMNS}
-            cols["n_contact_pixels"] = cols["n_contact_pixels"].astype(np.int64)
-            table = pa.table(cols).replace_schema_metadata(
-                {_META_KEY: json.dumps(rows, allow_nan=True).encode()}
-            )
-            _write_atomic(self.curves / f"{cid}.parquet", _table_bytes(table))
-        self.rows[cid] = rows
+    def _record(self, rows: list[dict[str, Any]]) -> None:
+        self.rows[rows[0]["case_id"]] = rows
         self._dirty = True
         if time.monotonic() - self._last_flush >= self._interval:
             self.flush()
-        return True
 
     def frame(self):
         """The cases table (DataFrame) in grid order."""
@@ -347,9 +488,7 @@ def load(path: str | Path, *, _raw: bool = False):
     extra = []
     for c in sorted((path / "curves").glob("*.parquet")):
         if c.stem not in have:
-            meta = pq.read_schema(c).metadata or {}
-            if _META_KEY in meta:
-                extra += json.loads(meta[_META_KEY])
+            extra += curve_rows(c) or []
     if extra:
         import pandas as pd
 
