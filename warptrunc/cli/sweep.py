@@ -63,7 +63,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     e.add_argument("--worker-writes", action=argparse.BooleanOptionalAction, default=None,
                    help="with --workers/--scheduler: workers write the curve files into the "
                    "store themselves (needs the store on a filesystem shared by every worker "
-                   "and this process); default: on with --workers on GPUs, off on the CPU and with --scheduler")  # fmt: skip
+                   "and this process); default: off (measured slower on CPUs and GPUs)")  # fmt: skip
     e.add_argument("--overwrite", action="store_true",
                    help="replace the results in an existing store made by another grid/options")  # fmt: skip
     e.add_argument("--retry-failed", action="store_true",

@@ -262,7 +262,7 @@ def compute_chunk(
             results.append((rows, None))
     if todo:
         written = write_curves(folder, [results[i] for i in todo])
-        for i, rows in zip(todo, written):
+        for i, rows in zip(todo, written, strict=True):
             results[i] = (rows, None)
     return results
 
