@@ -66,8 +66,8 @@ class Profile:
     bem_D: tuple[float, ...] = (2.1, 2.5, 2.9)
     bem_fractions: tuple[float, ...] = (0.05, 0.2, 0.4)
     """Approaches δ/R_t of the BEM cross-check (three solves each: δ and δ(1 ± 0.02)). The BEM
-    runs on the CPU on every device: at 512², 3 seeds and these three approaches the stage takes
-    about 4 minutes on a 2-core CPU (measured: 20–37 s per surface)."""
+    runs on the CPU on every device: at 512², 3 seeds and these three approaches the stage took
+    174 s on a 2-core CPU shared with other jobs (12–41 s per surface)."""
     extra: dict[str, Any] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
