@@ -66,9 +66,12 @@ def stage_bem(p: Profile, device) -> dict[str, Any]:
         r = bem_check(surf, fractions=p.bem_fractions, progress=False, device=device)
         if settings is None:
             settings = {
-                k: v for k, v in r.settings.items() if k not in ("surface", "solves", "rt_m")
+                k: v
+                for k, v in r.settings.items()
+                if k not in ("surface", "solves", "rt_m", "pentol_m")
             }
         rows.append({"D": D, "seed": seed, "rt_m": float(surf.rt), "summary": r.summary(),
+                     "pentol_m": r.settings["pentol_m"],
                      "columns": r.to_dict(),
                      "solves": [{k: s[k] for k in ("success", "n_iterations", "message")}
                                 for s in r.settings["solves"]]})  # fmt: skip
@@ -186,7 +189,8 @@ def bem_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | None) -
         )
     tot = "" if seconds is None else f" The stage took {seconds:.1f} s."
     L.append(f"\n`converged` counts seeds whose three solves all met the tolerances "
-             f"(pressure ≤ {st['pressure_tol']:g}·E*, penetration ≤ {st['pentol_m']:.3g} m, "
+             f"(pressure ≤ {st['pressure_tol']:g}·E*, penetration ≤ the library's "
+             f"rms height/(10·mean n) of each map, "
              f"≤ {st['maxiter']} iterations); `edge contact`: the BEM contact reaches the map's "
              f"border (free half-space: the map ends there).{tot}\n")  # fmt: skip
     L.append(_sentence(a) + " The ratios depend on the grid (A_BEM is not converged in the "
