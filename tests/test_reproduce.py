@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import importlib.util
 import json
 import math
 
@@ -22,6 +23,9 @@ from warptrunc.reproduce.asperity import (
 )
 
 MAT = AsperityMaterial()
+HAVE_BEM = all(
+    importlib.util.find_spec(m) is not None for m in ("ContactMechanics", "SurfaceTopography")
+)
 R = 1e-3
 
 
@@ -111,7 +115,8 @@ def test_tiny_report_structure(tiny):
         assert img[..., :3].std() > 0.01  # not blank
     res = json.loads((out / "results.json").read_text())
     assert res["meta"]["device"].startswith("cpu") and res["meta"]["wall_s"] > 0
-    assert set(res["stages"]) == {"asperity", "fig5", "table1", "islands", "group1", "group2"}
+    stages = {"asperity", "fig5", "table1", "islands", "group1", "group2", "bem"}
+    assert set(res["stages"]) == stages
     assert res["analysis"]["asperity"]["pixel_bound_holds"]
 
 
@@ -125,7 +130,10 @@ def test_tiny_group1_beta_scaling(tiny):
 def test_tiny_rerun_reuses_and_conflict(tiny):
     out, _ = tiny
     doc = reproduce("tiny", out, device="cpu")
-    assert set(doc["meta"]["reused"]) == {"asperity", "fig5", "table1", "islands", "group1", "group2"}
+    stored = {"asperity", "fig5", "table1", "islands", "group1", "group2"}
+    if HAVE_BEM:  # without the extra the bem stage is skipped, never stored
+        stored.add("bem")
+    assert set(doc["meta"]["reused"]) == stored
     from dataclasses import replace
 
     from warptrunc.reproduce import get_profile
@@ -178,3 +186,66 @@ def test_tiny_group_stores_loadable_and_reused(tiny):
     assert again["stages"]["group2"] == doc["stages"]["group2"]
     assert again["analysis"]["table3_beta"] == doc["analysis"]["table3_beta"]
     assert "sweeps/group2" in (out / "report.md").read_text()
+
+
+def test_tiny_bem_section(tiny):
+    """Issue 12's ratio table in the report: every cell finite, every solve converged or flagged."""
+    out, doc = tiny
+    text = (out / "report.md").read_text()
+    assert "## Elastic cross-check (BEM)" in text
+    ana = doc["analysis"]["bem"]
+    if not HAVE_BEM:
+        assert ana["status"] == "skipped" and 'pip install "warptrunc[bem]"' in text
+        assert not (out / "stages" / "bem.json").exists()
+        return
+    stage = doc["stages"]["bem"]
+    assert ana["status"] == "ok" and stage["n"] == 64
+    # D × seeds × approaches of the tiny profile, in the JSON and as table rows
+    assert {c["D"] for c in stage["cases"]} == {2.1, 2.5, 2.9} and len(stage["cases"]) == 3
+    assert len(ana["cells"]) == 3 * len(stage["fractions"]) == 9
+    head = "| D | δ/R_t | F'/F_BEM | k'/k_BEM | A'/A_BEM |"
+    assert head in text
+    table = text.split(head)[1].split("\n\n")[0].strip().splitlines()[2:]  # rest of head, ---
+    assert len(table) == len(ana["cells"])
+    for c in stage["cases"]:
+        col = c["columns"]
+        for k in ("load_ratio", "stiffness_ratio", "area_ratio"):
+            v = np.array(col[k], dtype=float)  # None (no BEM contact) would be NaN here
+            assert np.all(np.isfinite(v) & (v > 0)), (k, c["D"], v)
+        # ratios from the stored columns (independent of the code that formed them)
+        np.testing.assert_allclose(col["stiffness_ratio"],
+                                   np.divide(col["trunc_stiffness_N_per_m"], col["bem_stiffness_N_per_m"]))  # fmt: skip
+        assert all(f > 0 for f in col["bem_load_N"])
+        # converged, or flagged in the report's row
+        assert len(c["solves"]) == 3 * len(stage["fractions"])
+        for i, ok in enumerate(col["converged"]):
+            solves = c["solves"][3 * i : 3 * i + 3]
+            assert ok == all(s["success"] for s in solves)
+    for row, cell in zip(table, ana["cells"], strict=True):
+        assert row.startswith(f"| {cell['D']:g} | {cell['fraction']:g} |")
+        assert (cell["converged"] == cell["n"]) != ("not converged" in row)
+    assert ana["time_per_solve_s"] > 0 and "s per solve" in text
+    assert "within ±20 %" in text  # the sentence on where k' is a good estimate
+    res = json.loads((out / "results.json").read_text())
+    assert res["analysis"]["bem"]["cells"] == ana["cells"]
+
+
+def test_bem_stage_skipped_without_extra(tiny, tmp_path, monkeypatch):
+    """Without the extra the stage is not run and not stored; the report names the install."""
+    import shutil
+
+    import warptrunc.reproduce.elastic as el
+
+    out, _ = tiny
+    shutil.copytree(out / "stages", tmp_path / "stages")  # the other stages are reused
+    (tmp_path / "stages" / "bem.json").unlink(missing_ok=True)
+    why = "no module named 'ContactMechanics'; install them with: " + el.EXTRA_HINT
+    monkeypatch.setattr(el, "bem_available", lambda: why)
+    monkeypatch.setattr(el, "stage_bem", lambda *a: pytest.fail("bem stage ran without the extra"))
+    doc = reproduce("tiny", tmp_path, device="cpu")
+    assert doc["stages"]["bem"] == {"status": "skipped", "reason": why}
+    assert doc["analysis"]["bem"]["status"] == "skipped" and "bem" not in doc["meta"]["computed"]
+    assert not (tmp_path / "stages" / "bem.json").exists()
+    sec = (tmp_path / "report.md").read_text().split("## Elastic cross-check (BEM)")[1]
+    first = sec.split("##")[0].strip()
+    assert first == 'Skipped: the `bem` extra is not installed (`pip install "warptrunc[bem]"`).'

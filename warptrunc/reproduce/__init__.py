@@ -3,8 +3,8 @@
 """Reproduce the paper in one call: :func:`reproduce` (CLI: ``warptrunc reproduce``).
 
 Stages (Fig. 2 single asperity, Fig. 5 convergence, Table 1 calibration, Figs. 7–8/Table 2
-islands, Table 3 groups 1 and 2 with Figs. 9–10) are computed by :mod:`.study`, stored and
-reused by :mod:`.store`, summarised by :mod:`.analysis` and written by :mod:`.report` as
+islands, Table 3 groups 1 and 2 with Figs. 9–10, the elastic BEM cross-check) are computed by
+:mod:`.study`, stored and reused by :mod:`.store`, summarised by :mod:`.analysis` and written by :mod:`.report` as
 ``report.md``, ``results.json`` and PNG figures.
 """
 

@@ -305,6 +305,10 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
     for nme in names:
         if nme.startswith(("fig9", "fig10")):
             a(f"![{nme}]({nme})\n")
+    if "bem" in res:
+        from .elastic import bem_lines
+
+        L.extend(bem_lines(res["bem"], ana["bem"], meta["stage_seconds"].get("bem")))
     a("## Stage times\n")
     a("| stage | seconds (compute, from the stage file) |\n|---|---|")
     for k, v in meta["stage_seconds"].items():
