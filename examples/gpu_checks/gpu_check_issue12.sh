@@ -5,7 +5,7 @@
 # NumPy/muGrid FFT); only generation and truncation use the Warp device. Checks that the
 # truncation columns are identical with --device cuda:0 and --device cpu (same seed, same map).
 set -euo pipefail
-cd "$(dirname "$0")"
+cd "$(dirname "$0")/../.."
 pip install -q -e ".[test]"
 python -m pytest -q tests/test_bem.py
 out=$(mktemp -d)
