@@ -33,7 +33,7 @@ PROBE = (
 
 
 def _run(extra_path: list[str], code: str = PROBE):
-    boot = f"import sys; sys.path[1:1] = {extra_path + [DEPS]!r}; "
+    boot = f"import sys; sys.path[1:1] = {[*extra_path, DEPS]!r}; "
     return subprocess.run(
         [sys.executable, "-S", "-c", boot + code], cwd=ROOT, capture_output=True, text=True,
         timeout=120,

@@ -36,7 +36,7 @@ def _slope(x, y):
 def test_storakers_limits():
     d = np.geomspace(1e-8, 1e-5, 20)
     for m in (0.0, 0.3, 1.0):
-        a, f = storakers(d, R, MAT, m)
+        _a, f = storakers(d, R, MAT, m)
         assert _slope(d, f) == pytest.approx(1 + m / 2, abs=1e-9)
     a0, f0 = storakers(d, R, MAT, 0.0)
     assert _slope(d, a0) == pytest.approx(1.0)  # a ∝ d

@@ -29,8 +29,8 @@ from ._source import map_source_kernels as _map_source_kernels
 
 _map_source_kernels(__name__, __path__)
 
-from ._device import resolve_device  # noqa: E402  (after the kernels mapping above)
-from .bem import BemCheck, bem_check  # noqa: E402
+from ._device import resolve_device  # after the kernels mapping above
+from .bem import BemCheck, bem_check
 from .calibrate import Calibration, CalibrationTarget, calibrate
 from .descriptors import describe
 from .fractal import FractalFit, fractal_dimension, fractal_dimensions

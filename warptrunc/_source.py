@@ -63,6 +63,6 @@ def map_source_kernels(package: str, package_path: list[str]) -> bool:
             except BaseException:
                 sys.modules.pop(name, None)
                 raise
-            setattr(sys.modules[package], "kernels", module)
+            sys.modules[package].kernels = module
             return True
     return False

@@ -17,7 +17,6 @@ import importlib
 import pkgutil
 import sys
 
-
 _VERBOSE_HELP = (
     "show the notices of Warp and VTK that are hidden otherwise (e.g. no CUDA driver on a "
     "CPU-only machine, no X server for off-screen rendering)"

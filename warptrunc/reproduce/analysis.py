@@ -103,7 +103,7 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
     # Table 1
     t1 = []
     for r in res["table1"]["rows"]:
-        rt, rrms, wr, *d_paper = TABLE1[r["surface"]]
+        rt, rrms, _wr, *d_paper = TABLE1[r["surface"]]
         row = {"surface": r["surface"], "matched": r["matched"], "status": r["status"],
                "paper": {"Rt_um": rt, "Rrms_um": rrms, "D": dict(zip(D_KEYS[1:], d_paper, strict=True))}}  # fmt: skip
         if r["status"] == "ok":

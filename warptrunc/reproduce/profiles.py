@@ -81,17 +81,17 @@ PROFILES = {
         fig5_sizes=(64, 128), fig5_seeds=1, fig5_increments=(50, 200), table1_n=64,
         table1_methods=("vs",), islands_n=128, islands_seeds=1, islands_increments=50,
         asperity_n=256, asperity_increments=200, bem_n=64, bem_seeds=1,
-    ),  # fmt: skip
+    ),
     "quick": Profile(
         name="quick", n=1024, seeds=3, fig5_sizes=(256, 512, 1024, 2048), fig5_seeds=3,
         table1_n=256, table1_seeds=1, islands_n=1024, islands_seeds=2, asperity_n=1024,
         bem_n=256, bem_seeds=2, bem_fractions=(0.05, 0.1, 0.2, 0.3, 0.4),
-    ),  # fmt: skip
+    ),
     "paper": Profile(
         name="paper", n=10240, seeds=5, fig5_sizes=(1024, 2048, 4096, 8192, 10240),
         fig5_seeds=3, table1_n=1024, table1_seeds=3, table1_methods=("tri", "box", "vs", "sp"),
         islands_n=10240, islands_seeds=4, asperity_n=4096,
-    ),  # fmt: skip
+    ),
 }
 
 
