@@ -36,6 +36,7 @@ import dataclasses
 import functools
 import importlib
 import inspect
+import itertools
 import pkgutil
 import textwrap
 
@@ -163,7 +164,7 @@ def _field_docstrings(cls: type) -> frozenset[str]:
         except (OSError, TypeError):
             continue
         body = ast.parse(source).body[0].body
-        for stmt, nxt in zip(body, body[1:], strict=False):
+        for stmt, nxt in itertools.pairwise(body):
             if (
                 isinstance(stmt, ast.AnnAssign)
                 and isinstance(stmt.target, ast.Name)
