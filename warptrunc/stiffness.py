@@ -35,7 +35,19 @@ DEFAULT_MIN_PIXELS = 10
 
 @dataclass(frozen=True)
 class Material:
-    """Elastic constants of the rough body and of the flat that compresses it."""
+    """Elastic constants of the rough body and of the flat that compresses it.
+
+    Raises
+    ------
+    ValueError
+        If ``E`` is not positive and finite, ``E_i`` is not in (0, inf], or a Poisson's ratio
+        is not in (−1, 0.5].
+
+    Examples
+    --------
+    >>> Material().reduced_modulus  # aluminium against a rigid flat
+    78554595443.83347
+    """
 
     E: float = 70e9
     """Young's modulus of the rough body (Pa); default: aluminium alloy, as in the paper."""
@@ -55,7 +67,10 @@ class Material:
 
     @property
     def reduced_modulus(self) -> float:
-        """E_r' = [(1 − ν²)/E + (1 − ν_i²)/E_i]⁻¹ (Pa)."""
+        """Reduced modulus E_r' = [(1 − ν²)/E + (1 − ν_i²)/E_i]⁻¹ (Pa).
+
+        The second term is left out for a rigid flat (``E_i = inf``).
+        """
         inv = (1.0 - self.nu**2) / self.E
         if math.isfinite(self.E_i):
             inv += (1.0 - self.nu_i**2) / self.E_i
@@ -90,7 +105,16 @@ class StiffnessCurve:
     """Peak-to-valley height R_t of the map (m)."""
 
     def to_dict(self) -> dict[str, np.ndarray]:
-        """Columns in the order of ``curve.csv``."""
+        """Columns in the order of ``curve.csv``.
+
+        Returns
+        -------
+        dict of str to ndarray
+            Seven (n+1,) columns: ``depth_m`` (m), ``n_contact_pixels`` (int64),
+            ``contact_area_m2`` (m²), ``stiffness_N_per_m`` (N/m), ``load_N`` (N),
+            ``Ec_over_E`` and ``F_over_EA`` (dimensionless). The arrays are the fields
+            themselves, not copies.
+        """
         return {
             "depth_m": self.depth,
             "n_contact_pixels": self.n_contact_pixels,
@@ -102,7 +126,19 @@ class StiffnessCurve:
         }
 
     def to_json(self, path: str | Path) -> Path:
-        """Write the columns of :meth:`to_dict` (lists) plus the material and β' as JSON."""
+        """Write the columns of :meth:`to_dict` (lists) plus the material and β' as JSON.
+
+        Parameters
+        ----------
+        path : str or Path
+            File to write (overwritten).
+
+        Returns
+        -------
+        Path
+            ``path``. Besides the columns, the object holds ``material`` (the fields of
+            :class:`Material`), ``beta_prime``, ``apparent_area_m2`` (m²) and ``rt_m`` (R_t, m).
+        """
         path = Path(path)
         d = {k: v.tolist() for k, v in self.to_dict().items()}
         d.update(material=asdict(self.material), beta_prime=self.beta_prime)
@@ -111,7 +147,19 @@ class StiffnessCurve:
         return path
 
     def to_csv(self, path: str | Path) -> Path:
-        """Write the columns of :meth:`to_dict` as CSV (full float64 precision)."""
+        """Write the columns of :meth:`to_dict` as CSV (full float64 precision).
+
+        Parameters
+        ----------
+        path : str or Path
+            File to write (overwritten): a header row of the column names, then one row per
+            truncation depth.
+
+        Returns
+        -------
+        Path
+            ``path``.
+        """
         return write_columns_csv(path, self.to_dict())
 
 
@@ -124,9 +172,9 @@ class PowerLawFit:
     beta: float
     """Amplitude β (dimensionless)."""
     r2: float
-    """Coefficient of determination of the log–log fit."""
+    """Coefficient of determination of the log–log fit (dimensionless)."""
     n_points: int
-    """Number of increments used."""
+    """Number of increments used (count)."""
     depth_min: float
     """Smallest depth used (m)."""
     depth_max: float
@@ -136,18 +184,35 @@ class PowerLawFit:
     F_over_EA_max: float
     """Largest F/(E·A) used (dimensionless)."""
     min_pixels: int
-    """Contact-pixel threshold of the fit range."""
+    """Contact-pixel threshold of the fit range (pixels)."""
     depth_window: tuple[float, float] | None
     """Depth window of the fit range (m), if one was given."""
 
     def to_dict(self) -> dict[str, Any]:
-        """Plain dict (JSON-serialisable)."""
+        """Plain dict of the fields (JSON-serialisable).
+
+        Returns
+        -------
+        dict of str to Any
+            One key per field; ``depth_window`` is a ``[lo, hi]`` list (m) or None.
+        """
         d = asdict(self)
         d["depth_window"] = None if self.depth_window is None else list(self.depth_window)
         return d
 
     def to_json(self, path: str | Path) -> Path:
-        """Write :meth:`to_dict` as JSON."""
+        """Write :meth:`to_dict` as JSON.
+
+        Parameters
+        ----------
+        path : str or Path
+            File to write (overwritten).
+
+        Returns
+        -------
+        Path
+            ``path``.
+        """
         path = Path(path)
         path.write_text(json.dumps(self.to_dict(), indent=2) + "\n")
         return path
@@ -168,13 +233,29 @@ def stiffness_curve(
     material : Material, optional
         Elastic constants; default aluminium (E = 70 GPa, ν = 0.33) against a rigid flat.
     beta_prime : float
-        Geometric factor β' of Eq. (2) (dimensionless), default 1 (flat punch).
+        Geometric factor β' of Eq. (2) (dimensionless); 1 is the flat punch.
+
+    Returns
+    -------
+    StiffnessCurve
+        k, F, E_c/E and F/(E·A) at each of the n+1 depths of ``curve`` (float64).
+
+    Raises
+    ------
+    ValueError
+        If ``beta_prime`` is not positive and finite.
 
     Notes
     -----
     k = β'·(2/√π)·E_r'·√A_c (Eq. 2); F(ω_k) = Σ_{j<k} ½(k_j + k_{j+1})(ω_{j+1} − ω_j) (cumulative
     trapezoidal rule, F(0) = 0); E_c/E = β'·√(A_c/A) (Eq. 3); F/(E·A) with E the Young's
     modulus of the rough body and A = Lx·Ly.
+
+    Examples
+    --------
+    >>> tc = warptrunc.truncation_curve(surface, n_increments=200)
+    >>> sc = stiffness_curve(tc, Material(E=200e9, nu=0.3))
+    >>> sc.stiffness[-1]  # k at ω = R_t, full contact (N/m)
     """
     material = Material() if material is None else material
     beta_prime = check_range("beta_prime", beta_prime, 0.0)
@@ -219,11 +300,23 @@ def fit_power_law(
     Returns
     -------
     PowerLawFit
+        α, β, r² and the depth and F/(E·A) range of the increments used.
+
+    Raises
+    ------
+    ValueError
+        If ``min_pixels`` is not an integer ≥ 1, ``depth_window`` is not (lo, hi) with
+        0 ≤ lo < hi, or fewer than 3 increments remain in the fit range.
 
     Notes
     -----
     Increments with zero load (ω = 0) are always left out (log 0). r² is that of the linear
     regression of log(E_c/E) on log(F/(E·A)).
+
+    Examples
+    --------
+    >>> fit = fit_power_law(stiffness_curve(tc), min_pixels=100)
+    >>> fit.alpha, fit.beta, fit.r2
     """
     min_pixels = check_int("min_pixels", min_pixels, 1)
     sel = (sc.load > 0) & (sc.n_contact_pixels >= min_pixels)

@@ -128,6 +128,17 @@ def fractal_dimension(
     Returns
     -------
     FractalFit
+        The fit of the chosen method.
+
+    Raises
+    ------
+    ValueError
+        If ``method`` is unknown, an option does not belong to it, or the method rejects its
+        input (see its function).
+
+    Examples
+    --------
+    >>> fractal_dimension(surface, "box", box_sizes=[1, 2, 4, 8, 16]).D
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
@@ -170,6 +181,12 @@ def fractal_dimensions(
     -------
     dict
         ``{method: FractalFit}`` in the order of ``methods``.
+
+    Raises
+    ------
+    ValueError
+        If a method in ``methods`` or ``options`` is unknown, an option does not belong to its
+        method, or a method rejects its input (see its function).
     """
     options = dict(options or {})
     for m in list(methods) + list(options):

@@ -55,8 +55,20 @@ def _check_scaling(height_scaling: str) -> str:
 def cube_height_factor(surface: Surface, z_min: float | None = None, z_max: float | None = None) -> float:
     """Factor of the ``"cube"`` convention: (N − 1)·√(dx·dy)/(max z − min z) (dimensionless).
 
-    Heights times this factor span the map's lateral extent (N = max(nx, ny)); 1 for a flat map.
-    ``z_min``, ``z_max`` (m) default to the extremes of ``surface.heights``.
+    Heights times this factor span the map's lateral extent (N = max(nx, ny)).
+
+    Parameters
+    ----------
+    surface : Surface
+        Height map; its grid size and pixel spacings dx, dy (m) are used.
+    z_min, z_max : float, optional
+        Lowest and highest height (m); both default to the extremes of ``surface.heights``
+        (read when either is None).
+
+    Returns
+    -------
+    float
+        The factor (m/m, dimensionless); 1.0 when the height range is not positive (flat map).
     """
     if z_min is None or z_max is None:
         z = surface.heights
@@ -110,11 +122,19 @@ class FractalFit:
 
     @property
     def n_fitted(self) -> int:
-        """Number of scales in the fit."""
+        """Number of scales inside the fit range (count)."""
         return int(np.count_nonzero(self.fitted))
 
     def to_dict(self) -> dict[str, Any]:
-        """Columns ``scale_m``, ``measure``, ``fitted`` and the scalars of the fit."""
+        """Columns ``scale_m``, ``measure``, ``fitted`` and the scalars of the fit.
+
+        Returns
+        -------
+        dict of str to Any
+            ``method``, ``D``, ``r2``, ``slope``, ``intercept``, ``fit_min_m`` and ``fit_max_m``
+            (m) as scalars; ``scale_m`` (m), ``measure`` and ``fitted`` as (k,) arrays.
+            ``options`` is not included.
+        """
         return {
             "method": self.method,
             "D": self.D,

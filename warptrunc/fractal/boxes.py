@@ -60,6 +60,14 @@ def triangular_prism(
         ``scale`` = r (m), ``measure`` = A(r)/A_proj, the prism area over the projected area of
         the cells (dimensionless, ≥ 1).
 
+    Raises
+    ------
+    TypeError
+        If ``surface`` is not a :class:`~warptrunc.Surface`.
+    ValueError
+        If ``box_sizes`` are not at least 2 distinct integers in [1, min(nx, ny) − 1],
+        ``height_scaling`` is unknown, or ``fit_range`` holds fewer than 2 evaluated scales.
+
     Notes
     -----
     The map is divided into cells of s × s pixels whose corners are grid points; each cell is
@@ -137,6 +145,14 @@ def box_counting(
     FractalFit
         ``scale`` = ε (m), ``measure`` = N(ε), the number of cubes crossed, scaled to the whole
         map when the cells do not tile it exactly (dimensionless).
+
+    Raises
+    ------
+    TypeError
+        If ``surface`` is not a :class:`~warptrunc.Surface`.
+    ValueError
+        If ``box_sizes`` are not at least 2 distinct integers in [1, min(nx, ny) − 1],
+        ``height_scaling`` is unknown, or ``fit_range`` holds fewer than 2 evaluated scales.
 
     Notes
     -----

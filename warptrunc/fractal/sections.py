@@ -55,6 +55,14 @@ def vertical_sections(
         all pairs of all profiles. With ``axis="both"`` and dx ≠ dy the x and y points are
         concatenated (x first) and fitted together.
 
+    Raises
+    ------
+    TypeError
+        If ``surface`` is not a :class:`~warptrunc.Surface`.
+    ValueError
+        If ``lags`` are not at least 2 distinct integers in [1, min(nx, ny) − 1],
+        ``axis`` is unknown, or ``fit_range`` holds fewer than 2 evaluated scales.
+
     Notes
     -----
     The surface is cut by vertical planes along its rows and columns; each section is a

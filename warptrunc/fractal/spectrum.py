@@ -30,7 +30,7 @@ def power_spectrum(
         2-D spectrum over annuli. ``"profile"`` is the default because it is robust to the
         line spectrum of WM surfaces (see Notes).
     bins_per_decade : int
-        Logarithmic bands per decade b.
+        Logarithmic bands per decade b (count).
     fit_range : (float, float), optional
         Range of wavelengths 1/f (m) of the band centres used in the fit. Defaults to
         [4·max(dx, dy), min(W_r, min(Lx, Ly)/4)] with W_r from
@@ -46,6 +46,14 @@ def power_spectrum(
     FractalFit
         ``scale`` = 1/f of the band centres (m), ``measure`` = band variance (m²), sorted by
         increasing scale.
+
+    Raises
+    ------
+    TypeError
+        If ``surface`` is not a :class:`~warptrunc.Surface`.
+    ValueError
+        If ``fit_range`` holds fewer than 2 bands with non-zero variance, or an option is
+        rejected by :func:`warptrunc.descriptors.band_variance`.
 
     Notes
     -----

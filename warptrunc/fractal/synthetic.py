@@ -24,9 +24,9 @@ def self_affine_surface(
     Parameters
     ----------
     H : float
-        Hurst exponent, 0 < H < 1; the fractal dimension is D = 3 − H.
+        Hurst exponent, 0 < H < 1 (dimensionless); the fractal dimension is D = 3 − H.
     n : int or (int, int)
-        Pixels per side, or (nx, ny).
+        Pixels per side, or (nx, ny) (pixels, ≥ 4).
     L : float or (float, float)
         Side length, or (Lx, Ly) (m).
     Rrms : float
@@ -42,10 +42,21 @@ def self_affine_surface(
     Surface
         ``params`` records H, D, Rrms, rolloff and seed.
 
+    Raises
+    ------
+    ValueError
+        If H is not in (0, 1), a side has fewer than 4 pixels, or L, Rrms or ``rolloff`` is
+        not positive and finite.
+
     Notes
     -----
     Fourier amplitudes are Gaussian with variance C(f) ∝ f^−2(1+H) (flat below 1/W_r), the
     DC term is zero, and the real part of the inverse FFT is taken, so the map is periodic.
+
+    Examples
+    --------
+    >>> s = self_affine_surface(0.5, 256, 1e-3, Rrms=1e-6, seed=1)  # D = 2.5
+    >>> fractal_dimension(s, "vs").D
     """
     from .._validate import check_int, pair
 
