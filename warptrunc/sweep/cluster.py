@@ -40,6 +40,12 @@ class PinDevice(WorkerPlugin):
     Worker ``i`` of a LocalCluster (named 0..N-1, and a restarted worker keeps its name)
     gets ``cuda:{i mod n_devices}``; ``n_devices=None`` asks Warp in the worker. With no
     CUDA device nothing is set and the workers run on the CPU.
+
+    Parameters
+    ----------
+    n_devices : int, optional
+        Number of CUDA devices to spread the workers over (count). None: the count Warp
+        reports in each worker.
     """
 
     name = "warptrunc-pin-device"
@@ -49,6 +55,13 @@ class PinDevice(WorkerPlugin):
         self.n_devices = n_devices
 
     def setup(self, worker) -> None:
+        """Set ``WARPTRUNC_DEVICE`` in this worker process (called by Dask at worker start).
+
+        Parameters
+        ----------
+        worker : distributed.Worker
+            The worker; its ``name`` picks the device (:func:`pinned_device`).
+        """
         n = self.n_devices if self.n_devices is not None else _cuda_device_count()
         dev = pinned_device(worker.name, n)
         if dev is not None:
@@ -60,7 +73,24 @@ def chunk_size_for(case_seconds: float | None, remaining: int, n_workers: int, *
     """Cases per task: about ``target_s`` of work, at most ``max_size``, and small enough
     that the remaining cases still make ≥ 2 tasks per worker (so the load balances).
 
-    ``case_seconds`` is the median time of a case so far (None: none finished yet → 1).
+    Parameters
+    ----------
+    case_seconds : float or None
+        Median time of one case so far (s); None, 0 or NaN (none finished yet) gives 1.
+    remaining : int
+        Cases not yet submitted (count).
+    n_workers : int
+        Workers of the cluster (count); values below 1 count as 1.
+    target_s : float
+        Work per task to aim for (s).
+    max_size : int
+        Largest chunk (cases).
+
+    Returns
+    -------
+    int
+        Cases per task, ≥ 1: round(target_s/case_seconds) clipped to [1, max_size], then to
+        at most ⌈remaining/(2·n_workers)⌉.
     """
     if not case_seconds or case_seconds != case_seconds:  # None, 0 or NaN
         return 1
@@ -75,16 +105,48 @@ def run_dask(
 ) -> None:  # fmt: skip
     """Run ``cases`` on a Dask cluster; results reach ``store`` in this process as they finish.
 
+    Parameters
+    ----------
+    cases : list of Case
+        Cases to compute (those not yet in ``store``), in grid order.
+    options : SweepOptions
+        Options shared by all cases.
+    store : warptrunc.sweep.store.Store
+        Receives the rows and curves (:meth:`~warptrunc.sweep.store.Store.add_many`,
+        ``record`` and ``add``).
+    workers : int, optional
+        Worker processes of the LocalCluster (count); None lets Dask choose. Ignored with
+        ``scheduler``.
+    scheduler : str or distributed.Client, optional
+        Address of, or a client of, an existing cluster; None starts a LocalCluster.
+    device : str, optional
+        Warp device passed to every task; None lets each worker choose (pinned by
+        :class:`PinDevice` on a LocalCluster unless ``WARPTRUNC_DEVICE`` is set).
+    total : int
+        Cases of the whole grid (count), for the progress bar; ``total − len(cases)`` count
+        as done.
+    progress : bool
+        Show a progress bar and print the dashboard link (stderr).
+    max_retries : int
+        Resubmissions of a case whose task was lost before it is recorded as failed (count).
+    chunk_size : int, optional
+        Cases per task; None: adaptive (:func:`chunk_size_for`).
+    worker_writes : bool, optional
+        Workers write the curve files themselves; None means False.
+
+    Notes
+    -----
     ``scheduler`` (an address or a ``distributed.Client``) uses an existing cluster; else a
     LocalCluster of ``workers`` processes with one thread each, one per CUDA device when
-    ``device`` is None and CUDA devices exist (:class:`PinDevice`).
+    ``device`` is None and CUDA devices exist (:class:`PinDevice`). A client this function
+    opens, and its LocalCluster, are closed at the end; a client passed in is left open.
 
     Cases go to the workers in chunks (one task each, :func:`compute_chunk`):
     ``chunk_size`` cases, or with ``None`` an adaptive size (:func:`chunk_size_for`: about
     0.1 s of work per task, from the median case time so far, starting at 1), with about two
     tasks in flight per worker, so results keep streaming. With ``worker_writes`` the workers
     write the curve files into ``store.curves`` themselves (needs a filesystem shared with
-    this process; default: True for a LocalCluster on CUDA devices, else False) and only rows
+    this process; off by default: Parquet encoding slowed the workers down) and only rows
     travel back. A chunk whose worker died or whose future was cancelled
     (``client.restart()``) has its unfinished cases submitted again one per task, up to
     ``max_retries`` times each, then recorded as failed.

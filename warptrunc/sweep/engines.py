@@ -71,6 +71,20 @@ def _fit_ranges(o: SweepOptions) -> list[tuple[int | None, float]]:
 def resolve_min_pixels(fraction: float, final_contact_pixels: int) -> int:
     """max(DEFAULT_MIN_PIXELS, ⌈fraction·final_contact_pixels⌉): a relative fit range's count.
 
+    Parameters
+    ----------
+    fraction : float
+        Fraction of the contact pixels at the deepest truncation (dimensionless).
+    final_contact_pixels : int
+        Contact pixels at the deepest truncation (count).
+
+    Returns
+    -------
+    int
+        The ``min_pixels`` of the fit range (pixels).
+
+    Notes
+    -----
     The product is rounded to 9 decimals before the ceiling, so that float noise
     (0.05·280 = 14.000000000000002) does not add a pixel.
     """
@@ -82,6 +96,19 @@ def resolve_min_pixels(fraction: float, final_contact_pixels: int) -> int:
 def fractal_record(fits: dict[str, Any]) -> dict[str, Any]:
     """Columns ``D_<m>``, ``D_<m>_r2`` and ``fractal_options`` (JSON) of ``{m: FractalFit}``.
 
+    Parameters
+    ----------
+    fits : dict of str to FractalFit
+        Fits by method key.
+
+    Returns
+    -------
+    dict of str to Any
+        ``D_<m>`` and ``D_<m>_r2`` (float, dimensionless) per method, and ``fractal_options``
+        (a JSON string).
+
+    Notes
+    -----
     ``fractal_options`` holds, per method, the scalars of :meth:`FractalFit.to_dict` (slope,
     intercept, fit range in m), the number of fitted scales and the fit's ``options`` (the
     convention it ran with); the per-scale arrays are left out to keep rows small.
@@ -109,8 +136,24 @@ def compute_case(
 ) -> tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]:
     """Generate, truncate and fit one case; never raises for a failing case.
 
-    Returns the case's rows (one per fit range) and its curve columns, or (rows with the
-    ``error`` column set, None) when generation, the fractal dimensions or truncation raised.
+    Parameters
+    ----------
+    case : Case
+        D, δ = R_t/W_r and seed of the WM surface.
+    options : SweepOptions
+        Grid size, material, increments, fit ranges and fractal methods.
+    device : str, optional
+        Warp device.
+
+    Returns
+    -------
+    rows : list of dict
+        One row per fit range (``min_pixels`` and ``min_pixels_fraction``), with α, β, r²
+        (NaN and ``fit_error`` set when the fit has too few increments), provenance, timing.
+    curve : dict of str to ndarray or None
+        The columns of :meth:`~warptrunc.stiffness.StiffnessCurve.to_dict`, or None when
+        generation, the fractal dimensions or truncation raised (then every row has the
+        ``error`` column set).
     """
     from .._device import resolve_device
     from ..stiffness import fit_power_law, stiffness_curve
@@ -179,6 +222,30 @@ def run_inprocess(
 ) -> None:  # fmt: skip
     """Run ``cases`` one after another in this process, handing the results to ``sink``.
 
+    Parameters
+    ----------
+    cases : list of Case
+        Cases to compute, in order.
+    options : SweepOptions
+        Options shared by all cases.
+    sink : callable
+        Takes a list of (rows, curve) results (:func:`compute_case`).
+    device : str, optional
+        Warp device.
+    total : int
+        Cases of the whole grid (count), for the progress bar.
+    progress : bool
+        Show a progress bar.
+    max_batch : int
+        Most results handed to ``sink`` at once (count); also the queue length.
+
+    Raises
+    ------
+    BaseException
+        The first exception ``sink`` raised, re-raised here after the writer thread stopped.
+
+    Notes
+    -----
     ``sink`` (the store's :meth:`~warptrunc.sweep.store.Store.add_many`) runs in one
     background thread and takes every result that finished while it wrote the previous
     batch (at most ``max_batch``), so writing overlaps computing and costs one filesystem
@@ -236,6 +303,25 @@ def compute_chunk(
 ) -> list[tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]]:  # fmt: skip
     """Run a chunk of cases (one Dask task); with ``curves``, write their curve files too.
 
+    Parameters
+    ----------
+    cases : list of Case
+        Cases of this task.
+    options : SweepOptions
+        Options shared by all cases.
+    device : str, optional
+        Warp device.
+    curves : str, optional
+        The store's ``curves/`` folder, or None to return the curves.
+
+    Returns
+    -------
+    list of (list of dict, dict or None)
+        (rows, curve) per case in the order of ``cases``; curve is None when ``curves`` was
+        given (the file holds it) or the case failed.
+
+    Notes
+    -----
     Without ``curves`` it returns each case's (rows, curve) for the client to write. With
     ``curves`` (the store's ``curves/`` folder, on a filesystem this worker shares with the
     client) a case whose curve file exists already (an earlier attempt of this chunk) is not
@@ -268,7 +354,20 @@ def compute_chunk(
 
 
 def pinned_device(worker_name: Any, n_devices: int) -> str | None:
-    """The CUDA device of a LocalCluster worker: ``cuda:{name mod n_devices}``, or None."""
+    """The CUDA device of a LocalCluster worker: ``cuda:{name mod n_devices}``, or None.
+
+    Parameters
+    ----------
+    worker_name : Any
+        Dask worker name; an integer name is used as is, any other by the hash of its string.
+    n_devices : int
+        CUDA devices (count).
+
+    Returns
+    -------
+    str or None
+        ``"cuda:<i>"``, or None when ``n_devices`` ≤ 0.
+    """
     if n_devices <= 0:
         return None
     try:
@@ -279,6 +378,25 @@ def pinned_device(worker_name: Any, n_devices: int) -> str | None:
 
 
 def failed_case(case: Case, options: SweepOptions, why: str):
+    """Rows of a case that could not be computed (its task was lost too often).
+
+    Parameters
+    ----------
+    case : Case
+        The case.
+    options : SweepOptions
+        Options of the sweep (they give the fit ranges and the input columns).
+    why : str
+        Reason, stored in the ``error`` column.
+
+    Returns
+    -------
+    rows : list of dict
+        One row per fit range, ``seconds`` NaN, no device; ``min_pixels`` 0 for a relative
+        fit range.
+    curve : None
+        No curve.
+    """
     base = _base_row(case, options)
     stamp = datetime.now(timezone.utc).isoformat(timespec="milliseconds")
     base.update(error=why, seconds=np.nan, finished_utc=stamp, device=None, device_name=None)
