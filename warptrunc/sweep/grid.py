@@ -35,6 +35,27 @@ def parse_seeds(spec: str | int | Iterable[int | str]) -> tuple[int, ...]:
     """Seeds from ``"0-4"``, ``"0,2,7"``, ``"0-2,9"``, an int or a list of those.
 
     Ranges are inclusive: ``"0-4"`` is 0, 1, 2, 3, 4.
+
+    Parameters
+    ----------
+    spec : str, int or iterable of int or str
+        Comma-separated seeds and ``lo-hi`` ranges, one seed, or a list of either.
+
+    Returns
+    -------
+    tuple of int
+        The seeds in the order given (not sorted).
+
+    Raises
+    ------
+    ValueError
+        If an item is not an integer or a range, a range has hi < lo, ``spec`` is a bool or
+        empty, a seed is outside [0, 2³² − 1], or seeds repeat.
+
+    Examples
+    --------
+    >>> parse_seeds("0-2,9")
+    (0, 1, 2, 9)
     """
     if isinstance(spec, bool):
         raise ValueError(f"seeds must be integers or ranges like '0-4', got {spec!r}")
@@ -210,6 +231,11 @@ class SweepOptions:
         Options added after the store format was fixed (``min_pixels_fraction``,
         ``fractal_methods``) appear only when set, so the case ids and ``sweep.json`` of
         stores made without them stay valid.
+
+        Returns
+        -------
+        dict of str to Any
+            One entry per field (SI units), tuples converted to lists.
         """
         d = asdict(self)
         for k in _OMIT_WHEN_EMPTY:
@@ -219,7 +245,23 @@ class SweepOptions:
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> SweepOptions:
-        """Inverse of :meth:`to_dict`; unknown names raise ValueError."""
+        """Inverse of :meth:`to_dict`; unknown names raise ValueError.
+
+        Parameters
+        ----------
+        d : dict of str to Any
+            Field values; lists become tuples, missing fields take their defaults.
+
+        Returns
+        -------
+        SweepOptions
+            The validated options.
+
+        Raises
+        ------
+        ValueError
+            If ``d`` names an unknown option or a value is out of range.
+        """
         names = {f.name for f in fields(cls)}
         bad = sorted(set(d) - names)
         if bad:
@@ -228,7 +270,13 @@ class SweepOptions:
         return cls(**kw)
 
     def material(self):
-        """The :class:`warptrunc.Material`."""
+        """The :class:`warptrunc.Material` of these options.
+
+        Returns
+        -------
+        Material
+            ``E``, ``nu``, ``E_flat`` and ``nu_flat`` as E, ν, E_i, ν_i (Pa, dimensionless).
+        """
         from ..stiffness import Material
 
         return Material(E=self.E, nu=self.nu, E_i=self.E_flat, nu_i=self.nu_flat)
@@ -262,12 +310,48 @@ class SweepGrid:
     def from_values(
         cls, D: Sequence[float] | float, delta: Sequence[float] | float, seeds: Any
     ) -> SweepGrid:
-        """From values; ``seeds`` may be ``"0-4"``, ``"0,3"``, an int or a list."""
+        """From values; ``seeds`` may be ``"0-4"``, ``"0,3"``, an int or a list.
+
+        Parameters
+        ----------
+        D : float or sequence of float
+            Input fractal dimensions D_in in (2, 3) (dimensionless).
+        delta : float or sequence of float
+            Relative roughness δ = R_t/W_r > 0 (dimensionless).
+        seeds : str, int or sequence
+            Seeds, as for :func:`parse_seeds`.
+
+        Returns
+        -------
+        SweepGrid
+            The grid.
+
+        Raises
+        ------
+        ValueError
+            If a value is out of range or a seed cannot be parsed.
+        """
         return cls(D=D, delta=delta, seeds=seeds)  # type: ignore[arg-type]
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> SweepGrid:
-        """From {"D": [...], "delta": [...], "seeds": ...}; other keys raise ValueError."""
+        """From {"D": [...], "delta": [...], "seeds": ...}; other keys raise ValueError.
+
+        Parameters
+        ----------
+        d : dict of str to Any
+            Exactly the keys ``D``, ``delta`` and ``seeds`` (as for :meth:`from_values`).
+
+        Returns
+        -------
+        SweepGrid
+            The grid.
+
+        Raises
+        ------
+        ValueError
+            If a key is unknown or missing, or a value is out of range.
+        """
         bad = sorted(set(d) - {"D", "delta", "seeds"})
         missing = sorted({"D", "delta", "seeds"} - set(d))
         if bad or missing:
@@ -279,7 +363,24 @@ class SweepGrid:
 
     @classmethod
     def from_toml(cls, path: str | Path) -> SweepGrid:
-        """From a TOML file with the keys D, delta and seeds."""
+        """From a TOML file with the keys D, delta and seeds.
+
+        Parameters
+        ----------
+        path : str or Path
+            TOML file (see the class docstring).
+
+        Returns
+        -------
+        SweepGrid
+            The grid.
+
+        Raises
+        ------
+        ValueError
+            If the file is not valid TOML or its keys or values are wrong; the message starts
+            with the path.
+        """
         try:
             import tomllib
         except ImportError:  # Python 3.10: the sweep extra installs tomli
@@ -296,14 +397,31 @@ class SweepGrid:
             raise ValueError(f"{path}: {exc}") from None
 
     def to_dict(self) -> dict[str, list]:
-        """{"D": [...], "delta": [...], "seeds": [...]}."""
+        """The grid as lists, the input of :meth:`from_dict`.
+
+        Returns
+        -------
+        dict of str to list
+            ``{"D": [...], "delta": [...], "seeds": [...]}``.
+        """
         return {"D": list(self.D), "delta": list(self.delta), "seeds": list(self.seeds)}
 
     def __len__(self) -> int:
         return len(self.D) * len(self.delta) * len(self.seeds)
 
     def cases(self, options: SweepOptions) -> list[Case]:
-        """Every case in grid order (D slowest, then δ, then seed)."""
+        """Every case in grid order (D slowest, then δ, then seed).
+
+        Parameters
+        ----------
+        options : SweepOptions
+            Options of the sweep; they enter each case id.
+
+        Returns
+        -------
+        list of Case
+            ``len(self)`` cases, ``index`` 0, 1, ...
+        """
         opts = options.to_dict()
         out = []
         for D in self.D:
@@ -314,7 +432,24 @@ class SweepGrid:
 
 
 def case_id(D: float, delta: float, seed: int, options: dict[str, Any]) -> str:
-    """16 hex digits of SHA-256 over the format tag, the case values and the options."""
+    """16 hex digits of SHA-256 over the format tag, the case values and the options.
+
+    Parameters
+    ----------
+    D : float
+        Input fractal dimension D_in (dimensionless).
+    delta : float
+        Relative roughness δ = R_t/W_r (dimensionless).
+    seed : int
+        Phase seed.
+    options : dict of str to Any
+        :meth:`SweepOptions.to_dict` of the sweep.
+
+    Returns
+    -------
+    str
+        The case id.
+    """
     key = {"format": FORMAT, "D": float(D), "delta": float(delta), "seed": int(seed)}
     key["options"] = options
     blob = json.dumps(key, sort_keys=True, separators=(",", ":"))

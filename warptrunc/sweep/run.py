@@ -15,7 +15,24 @@ __all__ = ["as_grid", "run_sweep"]
 
 
 def as_grid(grid: Any) -> SweepGrid:
-    """A :class:`SweepGrid` from a grid, a dict {"D", "delta", "seeds"} or a TOML path."""
+    """A :class:`SweepGrid` from a grid, a dict {"D", "delta", "seeds"} or a TOML path.
+
+    Parameters
+    ----------
+    grid : SweepGrid, dict or str or Path
+        A grid (returned as is), its dict form (:meth:`SweepGrid.from_dict`) or a TOML file
+        (:meth:`SweepGrid.from_toml`).
+
+    Returns
+    -------
+    SweepGrid
+        The grid.
+
+    Raises
+    ------
+    ValueError
+        If ``grid`` is of another type, or the dict or file is invalid.
+    """
     if isinstance(grid, SweepGrid):
         return grid
     if isinstance(grid, dict):

@@ -21,7 +21,24 @@ __all__ = ["SweepTable", "alpha_summary", "group_stats", "linear_fit", "sweep"]
 
 
 def linear_fit(x: Iterable[float], y: Iterable[float]) -> dict[str, float]:
-    """Least-squares line y = slope·x + intercept with Pearson r (as in the paper's Table 3)."""
+    """Least-squares line y = slope·x + intercept with Pearson r (as in the paper's Table 3).
+
+    Parameters
+    ----------
+    x, y : iterable of float
+        Abscissae and ordinates, same length (≥ 2), in any units.
+
+    Returns
+    -------
+    dict of str to float
+        ``slope`` (unit of y per unit of x), ``intercept`` (unit of y) and Pearson ``r``
+        (dimensionless).
+
+    Examples
+    --------
+    >>> linear_fit([2.1, 2.5, 2.9], [0.40, 0.45, 0.50])["slope"]
+    0.125...
+    """
     x = np.asarray(list(x), dtype=float)
     y = np.asarray(list(y), dtype=float)
     slope, intercept = np.polyfit(x, y, 1)
@@ -33,6 +50,26 @@ def group_stats(df, by: Sequence[str], value: str) -> list[dict[str, Any]]:
     """Mean and sample standard deviation (ddof=1) of the finite ``value`` per group of ``by``.
 
     Groups whose values are all NaN are kept with n = 0 and NaN statistics.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        Cases table (:func:`warptrunc.sweep.load`).
+    by : sequence of str
+        Columns to group by; groups sorted, NaN keys kept.
+    value : str
+        Column to summarise.
+
+    Returns
+    -------
+    list of dict
+        One dict per group: the ``by`` values, ``<value>_mean``, ``<value>_sd`` (unit of the
+        column) and ``n`` (finite values, count).
+
+    Raises
+    ------
+    ImportError
+        If pandas or pyarrow (the ``sweep`` extra) is missing.
     """
     from .store import require_extra
 
@@ -55,6 +92,17 @@ def alpha_summary(df) -> dict[str, Any]:
     ``df`` is a cases table (:func:`warptrunc.sweep.load`) or a :class:`SweepTable`.
     ``per_D`` holds ``D_in``, ``alpha_mean``, ``alpha_sd`` (over seeds and δ) and ``n``;
     ``alpha_vs_D`` is :func:`linear_fit` of the means against D_in (None below 2 points).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame or SweepTable
+        Cases table with the columns ``min_pixels``, ``D_in`` and ``alpha`` (and optionally
+        ``min_pixels_fraction``).
+
+    Returns
+    -------
+    dict
+        ``{"fit_ranges": {key: {"per_D": [...], "alpha_vs_D": dict or None}}}``.
     """
     import pandas as pd
 
@@ -87,11 +135,30 @@ class SweepTable:
     """Column name → (n_rows,) array. Lengths in m."""
 
     def to_dict(self) -> dict[str, np.ndarray]:
-        """The columns."""
+        """The columns.
+
+        Returns
+        -------
+        dict of str to ndarray
+            A new dict of the (n_rows,) column arrays (the arrays are not copied).
+        """
         return dict(self.columns)
 
     def group_stats(self, by: Sequence[str], value: str) -> list[dict[str, Any]]:
-        """Mean and sample standard deviation of ``value`` grouped by the columns ``by``."""
+        """Mean and sample standard deviation of ``value`` grouped by the columns ``by``.
+
+        Parameters
+        ----------
+        by : sequence of str
+            Columns to group by.
+        value : str
+            Column to summarise.
+
+        Returns
+        -------
+        list of dict
+            As :func:`group_stats`.
+        """
         import pandas as pd
 
         return group_stats(pd.DataFrame(self.columns), by, value)
@@ -118,7 +185,49 @@ def sweep(
 
     A thin wrapper of :func:`warptrunc.sweep.run_sweep` (which returns a DataFrame and
     takes every option); ``out`` is a result store folder, resumed when it exists.
-    ``wm_kwargs``: M, gamma, Wc, cutoff. ``material``: a :class:`warptrunc.Material`.
+
+    Parameters
+    ----------
+    D_values : sequence of float
+        Input fractal dimensions D_in in (2, 3) (dimensionless).
+    delta_values : sequence of float
+        Relative roughness δ = R_t/W_r > 0 (dimensionless).
+    seeds : sequence of int
+        Phase seeds.
+    Wr : float
+        Roll-off wavelength W_r (m); R_t = δ·W_r.
+    L : float
+        Side length (m).
+    n : int
+        Pixels per side.
+    n_increments : int
+        Depth increments per truncation curve (count).
+    max_depth_fraction : float
+        Deepest truncation ω_max as a fraction of R_t (dimensionless).
+    min_pixels : sequence of int
+        Fit ranges (pixels): one row per value and case.
+    material : Material, optional
+        Elastic constants; None: the sweep's default (aluminium against a rigid flat).
+    out : str or Path, optional
+        Result store folder; None keeps the results in memory only.
+    progress : bool
+        Show a progress bar.
+    device : str, optional
+        Warp device.
+    **wm_kwargs
+        ``M``, ``gamma``, ``Wc``, ``cutoff`` of the WM surfaces (see :class:`SweepOptions`).
+
+    Returns
+    -------
+    SweepTable
+        One row per (D, δ, seed, fit range); lengths in m.
+
+    Raises
+    ------
+    ValueError
+        If a grid value or option is out of range.
+    ImportError
+        If pandas or pyarrow (the ``sweep`` extra) is missing.
     """
     from .grid import SweepGrid
     from .run import run_sweep
