@@ -17,7 +17,19 @@ D_KEYS = ("in", "tri", "box", "vs", "sp")
 
 
 def line_fit(x, y) -> dict[str, float] | None:
-    """y = slope·x + intercept with Pearson r; None with fewer than 2 distinct x."""
+    """y = slope·x + intercept with Pearson r; None with fewer than 2 distinct x.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Abscissae and ordinates (any units); pairs with a non-finite value are dropped.
+
+    Returns
+    -------
+    dict of str to float, or None
+        ``slope``, ``intercept``, Pearson ``r`` (NaN when y is constant) and ``n`` (points
+        used); None with fewer than 2 points or 2 distinct x.
+    """
     x, y = np.asarray(x, float), np.asarray(y, float)
     ok = np.isfinite(x) & np.isfinite(y)
     x, y = x[ok], y[ok]
@@ -29,7 +41,20 @@ def line_fit(x, y) -> dict[str, float] | None:
 
 
 def power_fit(x, y) -> dict[str, float] | None:
-    """y = b·x^p by a line in log–log; r of the logs."""
+    """y = b·x^p by a line in log–log; r of the logs.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Positive abscissae and ordinates (any units); pairs whose logarithm is not finite are
+        dropped.
+
+    Returns
+    -------
+    dict of str to float, or None
+        ``b`` (unit of y per unit of x^p), exponent ``p`` and ``r`` (dimensionless) and ``n``;
+        None as for :func:`line_fit`.
+    """
     f = line_fit(np.log(np.asarray(x, float)), np.log(np.asarray(y, float)))
     if f is None:
         return None
@@ -51,7 +76,20 @@ def _points(rows, fit, key):
 
 
 def analyse(res: dict[str, Any]) -> dict[str, Any]:
-    """Every number the report prints, with the paper's value beside it where there is one."""
+    """Every number the report prints, with the paper's value beside it where there is one.
+
+    Parameters
+    ----------
+    res : dict of str to Any
+        The stage results of :func:`~warptrunc.reproduce.study.run_study` (``group1``,
+        ``group2`` and the other stages).
+
+    Returns
+    -------
+    dict of str to Any
+        The derived numbers (Table 3 fits of α against D per fit range and D method, and the
+        others :func:`~warptrunc.reproduce.report.markdown` prints), JSON-serialisable.
+    """
     out: dict[str, Any] = {}
     g1, g2 = res["group1"], res["group2"]
     # Table 3, α(D) per fit range and D method, one point per generated surface

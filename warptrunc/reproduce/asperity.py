@@ -77,24 +77,82 @@ class AsperityMaterial:
         return self.sigma_y_over_H * self.H
 
     def sigma0(self, m: float) -> float:
-        """σ₀ of σ = σ₀·ε^m continuous with linear elasticity at yield: σ_y^{1−m}·E^m (Pa)."""
+        """σ₀ of σ = σ₀·ε^m continuous with linear elasticity at yield: σ_y^{1−m}·E^m (Pa).
+
+        Parameters
+        ----------
+        m : float
+            Hardening exponent (dimensionless).
+
+        Returns
+        -------
+        float
+            σ₀ (Pa).
+        """
         return self.sigma_y ** (1.0 - m) * self.E**m
 
 
 def critical_interference(R: float, mat: AsperityMaterial) -> float:
-    """ω_c = (π·k·H/(2·E_r))²·R with k = 0.454 + 0.41·ν (m) (paper §2.1)."""
+    """ω_c = (π·k·H/(2·E_r))²·R with k = 0.454 + 0.41·ν (m) (paper §2.1).
+
+    Parameters
+    ----------
+    R : float
+        Sphere radius (m).
+    mat : AsperityMaterial
+        E, ν and hardness H of the asperity.
+
+    Returns
+    -------
+    float
+        Critical interference ω_c (m).
+    """
     k = 0.454 + 0.41 * mat.nu
     return (math.pi * k * mat.H / (2.0 * mat.E_r)) ** 2 * R
 
 
 def hertz(d: np.ndarray, R: float, mat: AsperityMaterial) -> tuple[np.ndarray, np.ndarray]:
-    """Hertz: contact area a_E = πRd (m²) and load F = (4/3)·E_r·√R·d^{3/2} (N)."""
+    """Hertz: contact area a_E = πRd (m²) and load F = (4/3)·E_r·√R·d^{3/2} (N).
+
+    Parameters
+    ----------
+    d : ndarray
+        (k,) interferences (m).
+    R : float
+        Sphere radius (m).
+    mat : AsperityMaterial
+        Elastic constants (E_r).
+
+    Returns
+    -------
+    area : ndarray
+        (k,) contact area (m²).
+    load : ndarray
+        (k,) load (N).
+    """
     d = np.asarray(d, dtype=np.float64)
     return math.pi * R * d, 4.0 / 3.0 * mat.E_r * math.sqrt(R) * d**1.5
 
 
 def fully_plastic(d: np.ndarray, R: float, mat: AsperityMaterial) -> tuple[np.ndarray, np.ndarray]:
-    """Fully plastic: a_P = 2πRd (m²), F = H·a_P (N)."""
+    """Fully plastic: a_P = 2πRd (m²), F = H·a_P (N).
+
+    Parameters
+    ----------
+    d : ndarray
+        (k,) interferences (m).
+    R : float
+        Sphere radius (m).
+    mat : AsperityMaterial
+        Hardness H.
+
+    Returns
+    -------
+    area : ndarray
+        (k,) contact area (m²).
+    load : ndarray
+        (k,) load (N).
+    """
     a = 2.0 * math.pi * R * np.asarray(d, dtype=np.float64)
     return a, mat.H * a
 
@@ -106,6 +164,22 @@ def closed_form_truncation(
 
     F'(d) = (2/√π)·E_r·√π·∫₀^d √(2Rs − s²) ds, integrated in closed form
     (the area under a circle's arc): ∫√(2Rs − s²) ds = ½[(s−R)√(2Rs − s²) + R² asin((s−R)/R)].
+
+    Parameters
+    ----------
+    d : ndarray
+        (k,) truncation depths (m).
+    R : float
+        Sphere radius (m).
+    mat : AsperityMaterial
+        Elastic constants (E_r).
+
+    Returns
+    -------
+    area : ndarray
+        (k,) truncated area a' (m²).
+    load : ndarray
+        (k,) load F' (N), with β' = 1.
     """
     d = np.asarray(d, dtype=np.float64)
     a = math.pi * (2.0 * R * d - d**2)
@@ -128,6 +202,18 @@ def storakers_constants(m: float) -> tuple[float, float]:
     rigid-perfectly-plastic mean pressure p = 3σ_y (≈ H, Tabor), and c² = 1.43 (pile-up);
     m = 1 gives c² = 0.54 and α = 0.5, against the incompressible Hertz values c² = 0.5 and
     α = 16/(9π) = 0.566 (σ₀ = E, ν = ½).
+
+    Parameters
+    ----------
+    m : float
+        Hardening exponent, 0 ≤ m ≤ 1 (dimensionless).
+
+    Returns
+    -------
+    c2 : float
+        Area ratio c² (dimensionless).
+    alpha : float
+        Mean-pressure factor α (dimensionless).
     """
     m = check_range("m", m, 0.0, 1.0, lo_open=False, hi_open=False)
     return 1.43 * math.exp(-0.97 * m), 3.0 * 6.0 ** (-m)
@@ -141,6 +227,24 @@ def storakers(
     For σ = σ₀·ε^m (n_B = 0), self-similarity gives a² = 2c²·R·d and F = π·a²·α·σ₀·(a/R)^m, so
     F ∝ d^{1 + m/2}: m = 1 is Hertz-like (F ∝ d^{3/2}), m = 0 perfectly plastic (F ∝ a ∝ d,
     constant mean pressure 3σ₀). σ₀ = σ_y^{1−m}·E^m (:meth:`AsperityMaterial.sigma0`).
+
+    Parameters
+    ----------
+    d : ndarray
+        (k,) interferences (m).
+    R : float
+        Sphere radius (m).
+    mat : AsperityMaterial
+        E and σ_y of the asperity.
+    m : float
+        Hardening exponent (dimensionless).
+
+    Returns
+    -------
+    area : ndarray
+        (k,) contact area π·a² (m²).
+    load : ndarray
+        (k,) load (N).
 
     References
     ----------
@@ -162,6 +266,20 @@ def sphere_surface(R: float, half_width: float, n: int):
 
     Heights z = −r²/(R + √(R² − r²)) (= √(R² − r²) − R, stable in float32 near the top) with
     the apex on the pixel (n//2, n//2), so the top is exactly 0.
+
+    Parameters
+    ----------
+    R : float
+        Sphere radius (m).
+    half_width : float
+        Half the side of the map (m).
+    n : int
+        Pixels per side.
+
+    Returns
+    -------
+    Surface
+        (n, n) float32 heights (m) with ``params`` generator="sphere" and R.
     """
     from ..surface import from_heights
 
@@ -181,6 +299,20 @@ def pixel_area_bounds(d: np.ndarray, R: float, dx: float) -> tuple[np.ndarray, n
     The pixels counted are those whose centre lies in the disc of radius ρ = √(2Rd − d²); their
     squares lie inside the disc of radius ρ + dx/√2 and cover the disc of radius ρ − dx/√2, so
     π·max(ρ − h, 0)² ≤ A ≤ π(ρ + h)², h = dx/√2.
+
+    Parameters
+    ----------
+    d : ndarray
+        (k,) truncation depths (m).
+    R : float
+        Sphere radius (m).
+    dx : float
+        Pixel spacing (m).
+
+    Returns
+    -------
+    lower, upper : ndarray
+        (k,) bounds on the counted area (m²).
     """
     rho = np.sqrt(np.maximum(2 * R * np.asarray(d, dtype=np.float64) - np.asarray(d) ** 2, 0.0))
     h = dx / math.sqrt(2.0)
@@ -208,7 +340,14 @@ class AsperityResult:
     ``hertz``, ``plastic``, ``storakers_m<m>``."""
 
     def to_dict(self) -> dict[str, Any]:
-        """Scalars and normalised columns A/(πR²), F/(E·πR²) (JSON-serialisable lists)."""
+        """Scalars and normalised columns A/(πR²), F/(E·πR²) (JSON-serialisable lists).
+
+        Returns
+        -------
+        dict of str to Any
+            ``R_m``, ``omega_c_m``, ``n``, ``dx_m``, ``material``, ``d_m`` and, per curve,
+            ``<name>_area_norm`` and ``<name>_load_norm`` (dimensionless lists).
+        """
         s = math.pi * self.R**2
         out: dict[str, Any] = {
             "R_m": self.R, "omega_c_m": self.omega_c, "n": self.n, "dx_m": self.dx,
@@ -242,6 +381,17 @@ def run_asperity(
         Truncation increments (the paper: 1000).
     max_omega_c : float
         Largest interference in units of ω_c (the paper: 100).
+    material : AsperityMaterial, optional
+        Material of the asperity; default :class:`AsperityMaterial`.
+    m_values : tuple of float
+        Hardening exponents of the inelastic (Storåkers) curves (dimensionless).
+    device : str, optional
+        Warp device.
+
+    Returns
+    -------
+    AsperityResult
+        The truncation curve of the pixel map and the closed-form curves against d (m).
     """
     from ..stiffness import Material, stiffness_curve
     from ..truncation import truncate
@@ -272,6 +422,17 @@ def bounds_summary(res: AsperityResult) -> dict[str, Any]:
     A_trunc < A_plastic once the truncation mean pressure (2√2/(3π))·E_r·√(d/R) exceeds H, i.e.
     for d > d* = R·(3πH/(2√2·E_r))². The pixel curve is compared with both by interpolating
     each bound's area at the truncation loads.
+
+    Parameters
+    ----------
+    res : AsperityResult
+        Output of :func:`run_asperity`.
+
+    Returns
+    -------
+    dict of str to Any
+        Area ratios of the truncation curve to each bound at equal load
+        (``area_ratio_to_hertz``, ``area_ratio_to_plastic``, ...) and their summaries.
     """
     a_t, f_t = res.curves["truncation"]
     out: dict[str, Any] = {}

@@ -26,6 +26,7 @@ class Profile:
     """Sizes of one reproduction run. Lengths in m."""
 
     name: str
+    """Profile name (``"tiny"``, ``"quick"``, ``"paper"``)."""
     n: int
     """Pixels per side of the group-1/2 surfaces (over L)."""
     seeds: int
@@ -39,39 +40,61 @@ class Profile:
     max_depth_fraction: float = 0.1
     """ω_max/R_t of the groups (§4.4)."""
     group1_delta: tuple[float, ...] = GROUP1_DELTA
+    """Relative roughness values δ = R_t/W_r of group 1 (dimensionless)."""
     group2_D: tuple[float, ...] = GROUP2_D
+    """Input fractal dimensions D_in of group 2 (dimensionless)."""
     fractal_on_group1: bool = False
     """Also measure the four D on group-1 surfaces (only group 2 enters Fig. 10a–e)."""
     late_fit_fraction: float = 0.05
     """Second fit range: increments with ≥ this fraction of each surface's final contact pixels
     (the first is the package default, ≥ 10 contact pixels)."""
     fig5_sizes: tuple[int, ...] = (512, 1024, 2048)
+    """Pixels per side of the Fig. 5 convergence surfaces."""
     fig5_seeds: int = 3
+    """Surfaces per Fig. 5 case (count)."""
     fig5_increments: tuple[int, ...] = (200, 1000)
+    """Truncation increments of Fig. 5: the first at every size, the others at the largest."""
     table1_n: int = 256
     """Pixels per side of the calibration surfaces (1 µm pixels, as the paper's 1024² scans)."""
     table1_seeds: int = 1
+    """Seeds per calibration surface (count)."""
     table1_methods: tuple[str, ...] = ("vs",)
     """Methods whose Table 1 value is the calibration target (Fig. 6 uses D_vs)."""
     table1_rtol: float = 0.05
+    """Relative tolerance |D_out − D|/D of the calibration (dimensionless)."""
     islands_n: int = 1024
+    """Pixels per side of the island-analysis surfaces."""
     islands_L: float = 1e-3
+    """Side of the island-analysis surfaces (m)."""
     islands_seeds: int = 2
+    """Island-analysis surfaces per case (count)."""
     islands_increments: int = 200
+    """Truncation increments of the island analysis."""
     asperity_n: int = 1024
+    """Pixels per side of the pixelated sphere of Fig. 2."""
     asperity_increments: int = 1000
+    """Truncation increments of Fig. 2."""
     bem_n: int = 512
     """Pixels per side of the elastic BEM cross-check surfaces (over L; runs on the CPU)."""
     bem_seeds: int = 3
+    """BEM cross-check surfaces per D (count)."""
     bem_D: tuple[float, ...] = (2.1, 2.5, 2.9)
+    """Input fractal dimensions D_in of the BEM cross-check (dimensionless)."""
     bem_fractions: tuple[float, ...] = (0.05, 0.2, 0.4)
     """Approaches δ/R_t of the BEM cross-check (three solves each: δ and δ(1 ± 0.02)). The BEM
     runs on the CPU on every device: at 512², 3 seeds and these three approaches the stage took
     174 s on a 2-core CPU shared with other jobs (12–41 s per surface)."""
     extra: dict[str, Any] = field(default_factory=dict)
+    """Free-form additions, recorded with the profile (no stage reads them)."""
 
     def to_dict(self) -> dict[str, Any]:
-        """Plain dict (JSON-serialisable)."""
+        """Plain dict (JSON-serialisable).
+
+        Returns
+        -------
+        dict of str to Any
+            One entry per field (lengths in m).
+        """
         return asdict(self)
 
 
@@ -96,7 +119,23 @@ PROFILES = {
 
 
 def get_profile(name: str) -> Profile:
-    """The named profile; raises with the allowed names."""
+    """The named profile; raises with the allowed names.
+
+    Parameters
+    ----------
+    name : str
+        ``"tiny"``, ``"quick"`` or ``"paper"`` (the keys of :data:`PROFILES`).
+
+    Returns
+    -------
+    Profile
+        The profile.
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is not a profile; the message lists the allowed names.
+    """
     if name not in PROFILES:
         raise ValueError(f"profile must be one of {sorted(PROFILES)}, got {name!r}")
     return PROFILES[name]
