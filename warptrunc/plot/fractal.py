@@ -40,8 +40,15 @@ def psd(
         Legend labels; default the PSD kind.
     Wr : float, optional
         Roll-off wavelength W_r (m), drawn as a vertical line.
+    title : str, optional
+        Axes title.
     path : path, optional
         Save the figure as PNG here.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
     psds = list(psds) if isinstance(psds, (list, tuple)) else [psds]
     fig, axes = _figure()
@@ -69,8 +76,15 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
     ----------
     fits : dict of FractalFit
         ``{method: FractalFit}`` from :func:`warptrunc.fractal.fractal_dimensions`.
+    title : str, optional
+        Figure title (suptitle).
     path : path, optional
         Save the figure as PNG here.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
     import numpy as np
 
@@ -126,8 +140,15 @@ def d_out_vs_d_in(
         ``{method: D_out}`` (dimensionless).
     d_out_std : dict of (k,) array_like, optional
         Error bars (seed standard deviations).
+    title : str, optional
+        Axes title.
     path : path, optional
         Save the figure as PNG here.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
     import numpy as np
 
@@ -157,6 +178,11 @@ def calibration_history(cal: Any, *, path: str | Path | None = None):
         From :func:`warptrunc.calibrate.calibrate`.
     path : path, optional
         Save the figure as PNG here.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
     fig, axes = _figure()
     ax = axes[0, 0]

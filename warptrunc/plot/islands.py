@@ -33,8 +33,15 @@ def island_number(
         (dotted) and the island-count peak (dash-dotted) are marked in the curve's colour.
     labels : sequence of str, optional
         Legend labels.
+    title : str, optional
+        Axes title.
     path : path, optional
         Save the figure as PNG here.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
     curves = list(curves) if isinstance(curves, (list, tuple)) else [curves]
     if indicators is not None:
@@ -85,8 +92,15 @@ def slit_islands(
     min_pixels : int, optional
         Smallest island in the fits (pixels); the curve's own by default, else 10. Smaller
         islands are drawn in grey.
+    title : str, optional
+        Axes title; default names the smallest fitted island size.
     path : path, optional
         Save the figure as PNG here.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
     import numpy as np
 

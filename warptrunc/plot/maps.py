@@ -55,6 +55,11 @@ def height_map(
     path : path, optional
         Save the figure as PNG here.
 
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, also saved as PNG to ``path`` when given (parent folders created).
+
     Notes
     -----
     ``imshow(z, origin="lower", extent=(0, Lx, 0, Ly))``: row iy of ``z`` is drawn at
@@ -136,6 +141,11 @@ def area_fraction(
         Axes title.
     path : path, optional
         Save the figure as PNG here.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
     curves = _as_list(curves)
 

@@ -46,6 +46,11 @@ def stiffness_load(
         Shaded band of a group: ±1 standard deviation of log(E_c/E), or min–max.
     path : path, optional
         Save the figure as PNG here.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
     import numpy as np
 
@@ -130,6 +135,11 @@ def alpha_vs_D(
         Axes title.
     path : path, optional
         Save the figure as PNG here.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
     import numpy as np
 
