@@ -82,7 +82,13 @@ class Scan:
         return (int(self.heights.shape[0]), int(self.heights.shape[1]))
 
     def to_dict(self) -> dict[str, Any]:
-        """Scalar metadata, JSON-serialisable."""
+        """Scalar metadata, JSON-serialisable.
+
+        Returns
+        -------
+        dict of str to Any
+            The scalar metadata of the scan (lengths in m).
+        """
         ny, nx = self.shape
         return {
             "source": self.source,

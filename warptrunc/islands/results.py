@@ -91,7 +91,13 @@ class Islands:
         return isinstance(self.__dict__.get("_labels_store"), np.ndarray)
 
     def to_dict(self) -> dict[str, Any]:
-        """Columns as 1-D arrays, one row per island."""
+        """Columns as 1-D arrays, one row per island.
+
+        Returns
+        -------
+        dict of str to ndarray
+            (n,) columns, one row per island (areas in m², lengths in m).
+        """
         return {
             "label": np.arange(1, self.n_islands + 1, dtype=np.int64),
             "area_pixels": self.area_pixels,
@@ -119,7 +125,13 @@ class IslandSizes:
         return int(self.area_pixels.size)
 
     def to_dict(self) -> dict[str, Any]:
-        """Columns as 1-D arrays, one row per island."""
+        """Columns as 1-D arrays, one row per island.
+
+        Returns
+        -------
+        dict of str to ndarray
+            (n,) columns, one row per island (areas in m², lengths in m).
+        """
         return {
             "depth_m": np.full(self.n_islands, self.depth),
             "area_pixels": self.area_pixels,
@@ -149,7 +161,13 @@ class SlitIslandFit:
         return 2.0 * self.exponent + 1.0
 
     def to_dict(self) -> dict[str, Any]:
-        """Scalars, JSON-serialisable."""
+        """Scalars, JSON-serialisable.
+
+        Returns
+        -------
+        dict of str to Any
+            The scalar fields (lengths in m, areas in m²).
+        """
         return {
             "exponent": self.exponent,
             "intercept": self.intercept,
@@ -186,7 +204,13 @@ class TopologyCurve:
     """Whether the map wraps around."""
 
     def to_dict(self) -> dict[str, Any]:
-        """Columns as 1-D arrays, one row per depth."""
+        """Columns as 1-D arrays, one row per depth.
+
+        Returns
+        -------
+        dict of str to ndarray
+            Equal-length columns, one row per truncation depth ω (m).
+        """
         return {
             "depth_m": self.depth,
             "depth_fraction_of_Rt": self.depth / self.rt,
@@ -270,7 +294,13 @@ class IslandCurve:
         return 2 ** np.arange(self.area_histogram.shape[1] + 1, dtype=np.int64)
 
     def to_dict(self) -> dict[str, Any]:
-        """Columns as 1-D arrays, one row per depth (the first eight are islands.csv)."""
+        """Columns as 1-D arrays, one row per depth (the first eight are islands.csv).
+
+        Returns
+        -------
+        dict of str to ndarray
+            Equal-length columns, one row per truncation depth ω (m).
+        """
         return {
             "depth_m": self.depth,
             "depth_fraction_of_Rt": self.depth_fraction,
@@ -317,7 +347,13 @@ class Indicators:
     """Window (depth samples) of the running mean / median applied before the search."""
 
     def to_dict(self) -> dict[str, Any]:
-        """Scalars, JSON-serialisable; depths in % of R_t and in m."""
+        """Scalars, JSON-serialisable; depths in % of R_t and in m.
+
+        Returns
+        -------
+        dict of str to Any
+            The indicator depths, in % of R_t and in m.
+        """
         pct = 100.0 / self.rt
 
         def num(v: float) -> float | None:

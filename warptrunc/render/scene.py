@@ -88,7 +88,18 @@ def _top_scale(lx: float, ly: float, w: int, h: int, fill: float) -> float:
 def auto_exaggeration(surface: Surface, relief: float = 0.1) -> float:
     """Vertical exaggeration that draws R_t as ``relief`` × the longer side, rounded to 1-2-5.
 
-    Returns 1 when the surface is already that rough (dimensionless).
+    Parameters
+    ----------
+    surface : Surface
+        Height map; its R_t and side lengths Lx, Ly (m) are used.
+    relief : float
+        Target drawn height of R_t as a fraction of max(Lx, Ly) (dimensionless).
+
+    Returns
+    -------
+    float
+        The largest 1-2-5 value (1, 2, 5, 10, 20, ...) not above relief·max(Lx, Ly)/R_t
+        (dimensionless); 1.0 when R_t is 0 or the surface is already that rough.
     """
     rt = surface.rt
     if not rt > 0:
