@@ -34,6 +34,31 @@ def reproduce(
 
     Finished stages in ``out/stages`` are reused when their parameters match; a stage stored
     with other parameters raises :class:`StageConflict` unless ``overwrite``.
+
+    Parameters
+    ----------
+    profile : str or Profile
+        Sizes of the run: ``"tiny"``, ``"quick"``, ``"paper"`` or a :class:`Profile`.
+    out : str or Path
+        Output folder (created): ``stages/``, the figures, ``results.json`` and ``report.md``.
+    overwrite : bool
+        Recompute stages stored with other parameters instead of raising.
+    device : str, optional
+        Warp device.
+    command : str, optional
+        Command line recorded in the report; default the equivalent ``warptrunc reproduce``.
+
+    Returns
+    -------
+    dict of str to Any
+        ``{"meta": ..., "analysis": ..., "stages": ...}``, as written to ``results.json``.
+
+    Raises
+    ------
+    StageConflict
+        If a stored stage has other parameters and ``overwrite`` is False.
+    ValueError
+        If ``profile`` names no profile.
     """
     from .. import __version__
     from .._bench import git_commit

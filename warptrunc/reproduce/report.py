@@ -176,7 +176,25 @@ def fig10(res, ana, out) -> str:
 
 
 def figures(res: dict[str, Any], ana: dict[str, Any], out: Path, device=None) -> list[str]:
-    """Write every figure into ``out``; returns the file names."""
+    """Write every figure into ``out``; returns the file names.
+
+    Parameters
+    ----------
+    res : dict of str to Any
+        Stage results (:func:`~warptrunc.reproduce.study.run_study`).
+    ana : dict of str to Any
+        Derived numbers (:func:`~warptrunc.reproduce.analysis.analyse`).
+    out : Path
+        Output folder.
+    device : str, optional
+        Warp device (Fig. 7 regenerates the calibrated surfaces).
+
+    Returns
+    -------
+    list of str
+        File names written: Fig. 2, 5, 7 (when a Table 1 row is ok), 8 (when the island stage
+        has surfaces), 9 and 10.
+    """
     names = [fig2(res, out), fig5(res, ana, out)]
     if any(r["status"] == "ok" for r in res["table1"]["rows"]):
         names.append(fig7(res, out, device))
@@ -198,7 +216,24 @@ def _dev(ours, paper, fmt=".3f"):
 
 
 def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], names: list[str]) -> str:
-    """The report text."""
+    """The report text.
+
+    Parameters
+    ----------
+    meta : dict of str to Any
+        Run metadata (profile, version, commit, device, wall time, command, ...).
+    res : dict of str to Any
+        Stage results (:func:`~warptrunc.reproduce.study.run_study`).
+    ana : dict of str to Any
+        Derived numbers (:func:`~warptrunc.reproduce.analysis.analyse`).
+    names : list of str
+        Figure file names (:func:`figures`).
+
+    Returns
+    -------
+    str
+        Markdown of ``report.md``.
+    """
     p = meta["profile"]
     L: list[str] = []
     a = L.append

@@ -40,7 +40,20 @@ def _tqdm(it, desc, total=None):
 
 def fit_ranges(profile: Profile, n: int) -> dict[str, int | float]:
     """Fit ranges: ``default`` = the package's ≥ 10 contact pixels; ``late`` = a float f, meaning
-    increments with ≥ f × the surface's final contact pixels (the deep part of each curve)."""
+    increments with ≥ f × the surface's final contact pixels (the deep part of each curve).
+
+    Parameters
+    ----------
+    profile : Profile
+        Gives f (``late_fit_fraction``, dimensionless).
+    n : int
+        Pixels per side of the surfaces (not used by the current ranges).
+
+    Returns
+    -------
+    dict of str to int or float
+        ``{"default": DEFAULT_MIN_PIXELS (pixels), "late": f (dimensionless)}``.
+    """
     from ..stiffness import DEFAULT_MIN_PIXELS
 
     return {"default": DEFAULT_MIN_PIXELS, "late": float(profile.late_fit_fraction)}
@@ -162,7 +175,23 @@ def stage_islands(p: Profile, table1: dict[str, Any], device) -> dict[str, Any]:
 
 def group_sweep(p: Profile, which: int) -> tuple[Any, dict[str, Any]]:
     """The :class:`~warptrunc.sweep.SweepGrid` and :func:`~warptrunc.sweep.run_sweep` options
-    of Table 3 group 1 (D_in = 2.5, δ sweep) or group 2 (δ = 0.01, D_in sweep)."""
+    of Table 3 group 1 (D_in = 2.5, δ sweep) or group 2 (δ = 0.01, D_in sweep).
+
+    Parameters
+    ----------
+    p : Profile
+        Sizes of the run.
+    which : int
+        1 or 2 (any value other than 1 gives group 2).
+
+    Returns
+    -------
+    grid : SweepGrid
+        D_in × δ × seeds of the group.
+    options : dict of str to Any
+        Keyword options of :func:`~warptrunc.sweep.run_sweep` (lengths in m): size, W_r,
+        increments, both fit ranges and the fractal methods (all four for group 2).
+    """
     from ..fractal import METHODS
     from ..sweep import SweepGrid
 
@@ -250,7 +279,29 @@ STAGES = ("asperity", "fig5", "table1", "islands", "group1", "group2", "bem")
 
 
 def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, Any]:
-    """Run (or reuse) every stage; returns {stage: result} and the wall time per stage."""
+    """Run (or reuse) every stage; returns {stage: result} and the wall time per stage.
+
+    Parameters
+    ----------
+    profile : Profile
+        Sizes of the run.
+    store : StageStore
+        Stage store in the output folder: a stage stored with the same parameters is reused.
+    device : str, optional
+        Warp device.
+
+    Returns
+    -------
+    dict of str to dict
+        ``{"results": {stage: result}, "wall_s": {stage: seconds}}`` in the order of
+        :data:`STAGES`; the ``bem`` stage is ``{"status": "skipped", "reason": ...}`` (and not
+        stored) when the ``bem`` extra is missing.
+
+    Raises
+    ------
+    StageConflict
+        If a stored stage has other parameters and the store does not overwrite.
+    """
     from tqdm.auto import tqdm
 
     full = profile.to_dict()
