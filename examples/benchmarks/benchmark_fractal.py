@@ -12,8 +12,8 @@ What it shows
     is reported.
 
 Run
-    python examples/benchmark_fractal.py --device cpu --n 1024 4096
-    python examples/benchmark_fractal.py --device cuda:0 --n 1024 4096 8192 --out bench
+    python examples/benchmarks/benchmark_fractal.py --device cpu --n 1024 4096
+    python examples/benchmarks/benchmark_fractal.py --device cuda:0 --n 1024 4096 8192 --out bench
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ import warp as wp
 
 import warptrunc
 from warptrunc import fractal
-from warptrunc._bench import timeit
+from _common import timeit
 from warptrunc.fractal import box_counting, power_spectrum, triangular_prism, vertical_sections
 
 L = 1e-3

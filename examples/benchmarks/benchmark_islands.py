@@ -24,8 +24,8 @@ Method
     short table.
 
 Run
-    python examples/benchmark_islands.py --device cuda:0 --n 10240 --out results/bench
-    python examples/benchmark_islands.py --device cpu --n 2048 4096 --out results/bench
+    python examples/benchmarks/benchmark_islands.py --device cuda:0 --n 10240 --out results/bench
+    python examples/benchmarks/benchmark_islands.py --device cpu --n 2048 4096 --out results/bench
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 try:
     import warptrunc
@@ -61,7 +61,7 @@ except ImportError:  # not installed: import the checkout, mapping kernels/ as w
 
 import warp as wp  # noqa: E402
 
-from warptrunc._bench import git_commit, timeit  # noqa: E402
+from _common import git_commit, timeit  # noqa: E402
 from warptrunc.islands import (  # noqa: E402
     _Forest,
     _topology_hist,

@@ -14,8 +14,8 @@ What it shows
     ``--path auto`` runs ``device`` when the map fits in free memory, else ``stream``.
 
 Run
-    python examples/benchmark_large.py --n 32768 --path device surface stream --json out.json
-    python examples/benchmark_large.py --n 131072 --path auto
+    python examples/benchmarks/benchmark_large.py --n 32768 --path device surface stream --json out.json
+    python examples/benchmarks/benchmark_large.py --n 131072 --path auto
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ import numpy as np
 import warp as wp
 
 import warptrunc
-from warptrunc._bench import git_commit
+from _common import git_commit
 from warptrunc.stream import fits_in_memory, stream_truncation
 from warptrunc.truncation import _thresholds, depth_grid, height_range, histogram_bands, truncate
 from warptrunc.wm import generate_on_device, wm_spec, wm_surface

@@ -16,8 +16,8 @@ What it shows
     the same process where they exist (moments, 2-D float64 FFT).
 
 Run
-    python examples/benchmark_pipeline.py --device cpu --n 1024 4096
-    python examples/benchmark_pipeline.py --device cuda:0 --n 10240 --json $OUT/bench.json
+    python examples/benchmarks/benchmark_pipeline.py --device cpu --n 1024 4096
+    python examples/benchmarks/benchmark_pipeline.py --device cuda:0 --n 10240 --json $OUT/bench.json
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ import numpy as np
 import warp as wp
 
 import warptrunc
-from warptrunc._bench import git_commit, timeit
+from _common import git_commit, timeit
 from warptrunc.descriptors import describe
 from warptrunc.fractal import fractal_dimensions
 from warptrunc.islands import island_curve

@@ -17,8 +17,8 @@ What it shows
     In-process runs get one untimed warm-up case first (kernels compiled and loaded).
 
 Run
-    python examples/benchmark_sweep.py --device cpu --n 512 --cases 16 --workers 0 2
-    python examples/benchmark_sweep.py --n 2048 10240 --cases 40 --workers 0 2   # on 2 GPUs
+    python examples/benchmarks/benchmark_sweep.py --device cpu --n 512 --cases 16 --workers 0 2
+    python examples/benchmarks/benchmark_sweep.py --n 2048 10240 --cases 40 --workers 0 2   # on 2 GPUs
 """
 
 from __future__ import annotations
@@ -85,7 +85,7 @@ def main(argv=None) -> int:
     ap.add_argument("--json", type=Path, default=None, help="append the results here")
     args = ap.parse_args(argv)
     from warptrunc import __version__
-    from warptrunc._bench import git_commit
+    from _common import git_commit
 
     results = []
     for n in args.n:

@@ -10,8 +10,8 @@ What it shows
     Prints a Markdown table of mean ± sd over seeds, and writes it as JSON with --out.
 
 Run
-    python examples/height_scaling_evidence.py --n 1024 --seeds 0 1 2
-    python examples/height_scaling_evidence.py --quick        # 256², 1 seed
+    python examples/benchmarks/height_scaling_evidence.py --n 1024 --seeds 0 1 2
+    python examples/benchmarks/height_scaling_evidence.py --quick        # 256², 1 seed
 """
 
 from __future__ import annotations

@@ -17,8 +17,8 @@ What it shows
     height convention of --height-scaling ("cube", Gwyddion's, the default; or "si").
 
 Run
-    python examples/table1_report.py --out out/table1          # 1024², 3 seeds, a few minutes
-    python examples/table1_report.py --quick --out out/table1  # 128² over 128 µm, 1 seed
+    python examples/benchmarks/table1_report.py --out out/table1          # 1024², 3 seeds, a few minutes
+    python examples/benchmarks/table1_report.py --quick --out out/table1  # 128² over 128 µm, 1 seed
 """
 
 from __future__ import annotations

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-# Issue 8, items 4-5 (sizes past 2^31 pixels, streamed surfaces) on cuda:0.
+# Large maps on cuda:0: sizes past 2^31 pixels in memory, streamed truncation and islands (issue 8,
+# items 4-5).
 #
-#   bash gpu_check_8b.sh            # tests + 32768², 46400², 65536² + 131072² streamed analyze
-#   SKIP_131072=1 bash gpu_check_8b.sh
-#   FULL=1 bash gpu_check_8b.sh      # also wm_surface (host copy) at 46400² and 65536² (+1-2 min)
-#   DEVICE=cpu SMALL=1 bash gpu_check_8b.sh   # dry run of the script logic on small grids
+#   bash large_maps_and_streaming.sh            # tests + 32768², 46400², 65536² + 131072² streamed analyze
+#   SKIP_131072=1 bash large_maps_and_streaming.sh
+#   FULL=1 bash large_maps_and_streaming.sh      # also wm_surface (host copy) at 46400² and 65536² (+1-2 min)
+#   DEVICE=cpu SMALL=1 bash large_maps_and_streaming.sh   # dry run of the script logic on small grids
 #
 # Needs warptrunc installed in the active Python (pip install -e .). Results: $OUT (default
 # ./out_gpu_8b): tests_8b.txt, large_<n>.json, analyze_big/{fit.json,time.txt,smi_peak_MiB.txt} (n = 131072),
@@ -41,16 +42,16 @@ step tests timeout 300 bash -c "WARPTRUNC_TEST_DEVICES=$DEVS python -m pytest -q
     -p no:cacheprovider tests/test_limits.py -k past_2_31 2>&1 | tail -5 | tee '$OUT/test_46400.txt'"
 
 # 2. generate + truncate, each case in its own process (peak memory per case)
-step large_$N1 timeout 150 python examples/benchmark_large.py --n $N1 --path device surface stream \
+step large_$N1 timeout 150 python examples/benchmarks/benchmark_large.py --n $N1 --path device surface stream \
     --json "$OUT/large_$N1.json"
-step large_$N2 timeout 150 python examples/benchmark_large.py --n $N2 --path device stream \
+step large_$N2 timeout 150 python examples/benchmarks/benchmark_large.py --n $N2 --path device stream \
     --json "$OUT/large_$N2.json"
-step large_$N3 timeout 150 python examples/benchmark_large.py --n $N3 --path auto stream \
+step large_$N3 timeout 150 python examples/benchmarks/benchmark_large.py --n $N3 --path auto stream \
     --json "$OUT/large_$N3.json"
 if [ "${FULL:-0}" = 1 ]; then  # the user path with the host copy (17 GB at 65536²), slower
-    step large_${N2}_surface timeout 150 python examples/benchmark_large.py --n $N2 \
+    step large_${N2}_surface timeout 150 python examples/benchmarks/benchmark_large.py --n $N2 \
         --path surface --no-warmup --json "$OUT/large_${N2}_surface.json"
-    step large_${N3}_surface timeout 150 python examples/benchmark_large.py --n $N3 \
+    step large_${N3}_surface timeout 150 python examples/benchmarks/benchmark_large.py --n $N3 \
         --path surface --no-warmup --json "$OUT/large_${N3}_surface.json"
 fi
 

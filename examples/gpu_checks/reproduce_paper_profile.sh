@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# GPU check for issue 10: the paper profile of `warptrunc reproduce` on cuda:0, timed.
+# The paper profile of `warptrunc reproduce` on cuda:0, timed.
 # Writes $OUT/paper/{report.md,results.json,*.png,stages/}; copy report.md + PNGs to
 # docs/reproduction/ to publish them. Also runs the reproduce tests on the GPU device.
 set -euo pipefail

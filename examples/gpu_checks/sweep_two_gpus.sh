@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# GPU checks for issue 9 (sweeps): run on the 2-GPU kind (nvidia-h200-x2) from the repo root.
-#   bash gpu_check_9.sh            # results in $OUT (or ./gpu_check_9_out)
+# Sweeps on GPUs (issue 9): CUDA sweep equal to the CPU one, --workers 2 pinned one per GPU,
+# throughput. Run on the 2-GPU kind (nvidia-h200-x2) from the repo root.
+#   bash sweep_two_gpus.sh            # results in $OUT (or ./sweep_two_gpus_out)
 # The GPU machine has pandas and pyarrow but not dask/distributed; install these wheels first
 # (pip install --no-deps <wheel files>). All are pure Python except tornado (one small abi3
 # C extension: the cp39-abi3 manylinux x86_64 wheel, any CPython >= 3.9; 6.6 needs >= 3.11); importlib_metadata and zipp are
 # needed on Python < 3.12 only; pytest-timeout only arms the tests' hang guard.
 # WHEELS: dask==2026.8.0 distributed==2026.8.0 partd==1.4.2 locket==1.0.0 tblib==3.2.2 zict==3.0.0 tornado==6.5.2 importlib_metadata==8.7.0 zipp==3.23.0 pytest-timeout==2.4.0
 set -uo pipefail
-OUT=${OUT:-gpu_check_9_out}
+OUT=${OUT:-sweep_two_gpus_out}
 mkdir -p "$OUT"
 pip install -q --no-deps --no-build-isolation -e . >/dev/null 2>&1 || true
 nvidia-smi -L
@@ -55,7 +56,7 @@ PY
 python "$OUT/check_sweep_gpu.py" "$OUT" "$NGPU" || status=1
 # 3. throughput (surfaces/s): in-process on one GPU, then --workers 2 (one per GPU)
 WORKERS="0"; [ "$NGPU" -ge 2 ] && WORKERS="0 2"
-python examples/benchmark_sweep.py --n 2048 --cases 48 --workers $WORKERS --json "$OUT/bench.jsonl" || status=1
-python examples/benchmark_sweep.py --n 10240 --cases 24 --workers $WORKERS --json "$OUT/bench.jsonl" || status=1
+python examples/benchmarks/benchmark_sweep.py --n 2048 --cases 48 --workers $WORKERS --json "$OUT/bench.jsonl" || status=1
+python examples/benchmarks/benchmark_sweep.py --n 10240 --cases 24 --workers $WORKERS --json "$OUT/bench.jsonl" || status=1
 rm -rf "$OUT"/store_* "$OUT/check_sweep_gpu.py"
 exit $status
