@@ -27,10 +27,10 @@ from pathlib import Path
 
 import numpy as np
 import warp as wp
+from _common import timeit
 
 import warptrunc
 from warptrunc import fractal
-from _common import timeit
 from warptrunc.fractal import box_counting, power_spectrum, triangular_prism, vertical_sections
 
 L = 1e-3

@@ -60,8 +60,8 @@ except ImportError:  # not installed: import the checkout, mapping kernels/ as w
     import warptrunc
 
 import warp as wp  # noqa: E402
-
 from _common import git_commit, timeit  # noqa: E402
+
 from warptrunc.islands import (  # noqa: E402
     _Forest,
     _topology_hist,

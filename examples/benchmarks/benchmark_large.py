@@ -28,9 +28,9 @@ import time
 
 import numpy as np
 import warp as wp
+from _common import git_commit
 
 import warptrunc
-from _common import git_commit
 from warptrunc.stream import fits_in_memory, stream_truncation
 from warptrunc.truncation import _thresholds, depth_grid, height_range, histogram_bands, truncate
 from warptrunc.wm import generate_on_device, wm_spec, wm_surface

@@ -31,9 +31,9 @@ from pathlib import Path
 
 import numpy as np
 import warp as wp
+from _common import git_commit, timeit
 
 import warptrunc
-from _common import git_commit, timeit
 from warptrunc.descriptors import describe
 from warptrunc.fractal import fractal_dimensions
 from warptrunc.islands import island_curve

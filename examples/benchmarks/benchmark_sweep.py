@@ -84,8 +84,9 @@ def main(argv=None) -> int:
                     help="workers write the curve files (default: on for a LocalCluster on GPUs)")
     ap.add_argument("--json", type=Path, default=None, help="append the results here")
     args = ap.parse_args(argv)
-    from warptrunc import __version__
     from _common import git_commit
+
+    from warptrunc import __version__
 
     results = []
     for n in args.n:

@@ -1,0 +1,182 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Every user example in ``examples/`` runs on the CPU as a user would, at a small size.
+
+Each script runs in its own process (``WARPTRUNC_DEVICE=cpu``, ``MPLBACKEND=Agg``) with
+``--quick --no-show --out <tmp>``; the test checks the exit status, the files the script says it
+writes and, where cheap, one property of them. A new ``examples/*.py`` without a row in
+:data:`EXAMPLES` fails :func:`test_every_example_is_listed`. The scripts in
+``examples/benchmarks/`` are only checked to import (``--help``); their timings are reported, never
+asserted. The whole file takes about 30 s on 2 cores (kernel cache warm).
+"""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import json
+import os
+import subprocess
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES_DIR = ROOT / "examples"
+BENCHMARKS_DIR = EXAMPLES_DIR / "benchmarks"
+
+pytestmark = pytest.mark.timeout(180)  # hang guard; each example takes seconds
+
+
+def _csv_header(path: Path) -> list[str]:
+    with open(path, newline="") as fh:
+        return next(csv.reader(fh))
+
+
+def _json(path: Path) -> dict:
+    return json.loads(path.read_text())
+
+
+@dataclass(frozen=True)
+class Example:
+    """How to run one example and what it must leave in ``--out``."""
+
+    args: tuple[str, ...] = ("--quick",)
+    outputs: tuple[str, ...] = ()
+    needs: tuple[str, ...] = ()  # optional modules: the test skips without them
+    check: Callable[[Path], None] | None = field(default=None, compare=False)
+
+
+def _check_quickstart(out: Path) -> None:
+    assert _csv_header(out / "curve.csv")[:2] == ["depth_m", "n_contact_pixels"]
+    assert 0 < _json(out / "fit.json")["alpha"] < 5
+
+
+def _check_calibrate(out: Path) -> None:
+    assert 2 < _json(out / "calibration.json")["D_in"] < 3
+
+
+def _check_islands(out: Path) -> None:
+    assert "n_islands" in _csv_header(out / "islands_seed0.csv")
+    assert _json(out / "summary.json")["seeds"]
+
+
+def _check_fractal(out: Path) -> None:
+    assert {"known_D", "wm_D_out"} <= set(_json(out / "fractal_dimension.json"))
+
+
+def _check_sweep(out: Path) -> None:
+    assert _json(out / "summary.json")["fit_ranges"]
+
+
+def _check_stream(out: Path) -> None:
+    assert _json(out / "stream_islands.json")["equal_to_in_memory"] is True
+
+
+EXAMPLES: dict[str, Example] = {
+    "quickstart": Example(("--n", "128"), ("curve.csv", "fit.json", "stiffness.png"),
+                          check=_check_quickstart),
+    "calibrate_to_scan": Example(
+        outputs=("calibrated_surface.npz", "calibration.json", "calibration_history.png",
+                 "psd.png"),
+        check=_check_calibrate),
+    "contact_islands": Example(
+        outputs=("islands_seed0.csv", "summary.json", "island_number.png", "slit_islands.png"),
+        check=_check_islands),
+    "figures": Example(outputs=("height_map.png", "area_fraction.png", "stiffness_load.png",
+                                "alpha_vs_D.png", "psd.png")),
+    "fractal_dimension": Example(
+        outputs=("fractal_dimension.json", "fractal_fits.png", "d_out_vs_d_in.png"),
+        check=_check_fractal),
+    "parametric_sweep": Example(
+        outputs=("summary.json", "alpha_vs_D.png", "sweep.json", "cases.parquet"),
+        needs=("pandas", "pyarrow"), check=_check_sweep),
+    "render_truncated_section": Example(
+        outputs=("truncation.png", "truncation_top.png", "surface.vti", "render.json"),
+        needs=("pyvista",)),
+    "stream_islands": Example(outputs=("stream_islands.json",), check=_check_stream),
+}  # fmt: skip
+
+
+def _env() -> dict[str, str]:
+    env = dict(os.environ, WARPTRUNC_DEVICE="cpu", MPLBACKEND="Agg")
+    env.pop("DISPLAY", None)
+    return env
+
+
+def _run(script: Path, *args: str, timeout: float = 150) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(script), *args], cwd=ROOT, env=_env(),
+                          capture_output=True, text=True, timeout=timeout)  # fmt: skip
+
+
+def test_every_example_is_listed():
+    found = {p.stem for p in EXAMPLES_DIR.glob("*.py")}
+    assert found - EXAMPLES.keys() == set(), "add these examples to EXAMPLES in this file"
+    assert EXAMPLES.keys() - found == set(), "EXAMPLES lists scripts that are gone"
+
+
+@pytest.mark.parametrize("name", sorted(EXAMPLES))
+def test_example_runs(name, tmp_path):
+    ex = EXAMPLES[name]
+    for module in ex.needs:
+        pytest.importorskip(module)
+    out = tmp_path / "out"
+    r = _run(EXAMPLES_DIR / f"{name}.py", *ex.args, "--no-show", "--out", str(out))
+    assert r.returncode == 0, f"{name} failed:\n{r.stdout[-2000:]}\n{r.stderr[-4000:]}"
+    missing = [f for f in ex.outputs if not (out / f).is_file() or (out / f).stat().st_size == 0]
+    assert not missing, f"{name} did not write {missing}; wrote {sorted(os.listdir(out))}"
+    if ex.check is not None:
+        ex.check(out)
+
+
+def test_examples_have_a_docstring_with_a_run_command():
+    for name in EXAMPLES:
+        text = (EXAMPLES_DIR / f"{name}.py").read_text()
+        doc = text.split('"""')[1]
+        assert f"python examples/{name}.py" in doc, f"{name}: the docstring shows no command"
+
+
+BENCHMARKS = sorted(p.name for p in BENCHMARKS_DIR.glob("*.py") if not p.name.startswith("_"))
+
+
+def test_benchmarks_exist():
+    assert "benchmark_pipeline.py" in BENCHMARKS
+
+
+@pytest.mark.parametrize("script", BENCHMARKS)
+def test_benchmark_help(script):
+    r = _run(BENCHMARKS_DIR / script, "--help", timeout=60)
+    assert r.returncode == 0, r.stderr[-4000:]
+    assert "usage:" in r.stdout
+
+
+@pytest.fixture
+def common():
+    spec = importlib.util.spec_from_file_location("_bench_common", BENCHMARKS_DIR / "_common.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_timeit_returns_the_median_after_a_warm_up(common, monkeypatch):
+    # a fake clock: the three timed runs take 3, 1 and 2 s, so the median is 2 s
+    ticks = iter([0.0, 3.0, 10.0, 11.0, 20.0, 22.0])
+    monkeypatch.setattr(common.time, "perf_counter", lambda: next(ticks))
+    calls = {"fn": 0, "sync": 0}
+
+    def fn():
+        calls["fn"] += 1
+
+    def sync():
+        calls["sync"] += 1
+
+    assert common.timeit(fn, 3, sync) == 2.0
+    assert calls == {"fn": 4, "sync": 4}  # one untimed warm-up run
+
+
+def test_git_commit_reads_the_environment_first(common, monkeypatch):
+    monkeypatch.setenv("WARPTRUNC_GIT_COMMIT", " abc123\n")
+    assert common.git_commit() == "abc123"
