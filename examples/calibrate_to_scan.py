@@ -14,6 +14,7 @@ What it shows
 Run
     python examples/calibrate_to_scan.py --method vs --n-out 4096 --out out/calibrate
     python examples/calibrate_to_scan.py --scan ../shared/data/scans/sur-2.sur --Wr 200e-6
+    python examples/calibrate_to_scan.py --quick --out out/calibrate   # 128² stand-in, seconds
 """
 
 from __future__ import annotations

@@ -21,6 +21,7 @@ Outputs (in --out)
 
 Run
     python examples/contact_islands.py --n 2048 --seeds 5 --out results/islands
+    python examples/contact_islands.py --quick --out results/islands   # 128², seconds
 """
 
 from __future__ import annotations

@@ -19,8 +19,13 @@ What it shows
     Every figure is a pyplot-free ``Figure`` saved as PNG; ``--no-show`` only skips opening
     them in a window.
 
+Key steps
+    ``wm_surface`` per (D_in, seed) → ``truncate`` → ``stiffness_curve`` → ``fit_power_law``,
+    then one ``warptrunc.plot`` function per figure, each given ``path=`` to save it.
+
 Run
     python examples/figures.py --n 512 --seeds 5 --out results/figures
+    python examples/figures.py --quick --out results/figures   # 128², seconds
 """
 
 from __future__ import annotations

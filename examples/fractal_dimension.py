@@ -14,6 +14,7 @@ What it shows
 
 Run
     python examples/fractal_dimension.py --n 512 --out out/fractal
+    python examples/fractal_dimension.py --quick --out out/fractal   # 128², one seed, seconds
 """
 
 from __future__ import annotations

@@ -12,7 +12,13 @@ What it shows
     fits other ranges from the stored curves without generating anything. The summary goes
     to OUT/summary.json and a Fig. 9b-style plot to OUT/alpha_vs_D.png.
 
+Key steps
+    ``SweepGrid`` (D_in × δ × seeds) → ``run_sweep`` into a result store (resumable; in-process
+    or on Dask workers) → ``alpha_summary`` (α per case and fit range, linear fit α(D_in)) →
+    ``plot.alpha_vs_D``.
+
 Run
+    python examples/parametric_sweep.py --quick --out results/group2   # 128², seconds
     python examples/parametric_sweep.py --n 1024 --seeds 5 --out results/group2
     python examples/parametric_sweep.py --n 10240 --seeds 5 --workers 2   # one worker per GPU
     python examples/parametric_sweep.py --out results/group2 --refit 30 300

@@ -8,8 +8,14 @@ What it shows
     to 0.1·R_t in 200 increments, turn areas into stiffness and load (Eqs. 2–3), fit
     E_c/E = β[F/(E·A)]^α, and write curve.csv, fit.json and a Fig. 9-style PNG.
 
+Key steps
+    ``wm_surface`` → ``truncate`` (areas A_c(ω) from an atomic histogram) →
+    ``stiffness_curve`` (k and F from A_c, with a ``Material``) → ``fit_power_law`` (over a
+    stated fit range) → ``plot.stiffness_load``.
+
 Run
     python examples/quickstart.py --out results/quickstart
+    python examples/quickstart.py --n 256 --device cpu --out results/quickstart   # seconds
 """
 
 from __future__ import annotations

@@ -13,8 +13,14 @@ What it shows
     shows every spot but overstates the area); f is printed and written into the picture.
     docs/truncation_sections.png is ``--n 2048 --palette`` (truncation.png).
 
+Key steps
+    ``wm_surface`` → ``render_truncation`` (oblique panels and the top view, off-screen) →
+    ``export_vtk`` (heights and the first-contact depth per pixel) → ``animate_truncation``.
+    Needs pyvista (``pip install pyvista``).
+
 Run
     python examples/render_truncated_section.py --n 2048 --out results/render
+    python examples/render_truncated_section.py --quick --out results/render   # 128², seconds
 """
 
 from __future__ import annotations
