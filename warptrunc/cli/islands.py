@@ -133,7 +133,7 @@ def run(args: argparse.Namespace) -> int:
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; up to {curve.n_islands.max()} islands\n"
         f"max. growth rate of the island number at {pct(ind.max_growth_depth)}; island-count "
         f"peak at {pct(ind.peak_depth)}; slit exponent stays within "
-        f"{100 * args.exponent_tolerance:g} % of {ind.plateau_exponent:.3f} down to "
+        f"{100 * args.exponent_tolerance:g} % of {_num(ind.plateau_exponent)} down to "
         f"{pct(ind.fractal_depth)}{' (never left it)' if ind.fractal_depth_censored else ''}\n"
         f"wrote {args.out}/islands.csv, indicators.json"
         + (
@@ -143,6 +143,10 @@ def run(args: argparse.Namespace) -> int:
         )
     )
     return 0
+
+
+def _num(v: float) -> str:
+    return f"{v:.3f}" if math.isfinite(v) else "n/a (too few islands to fit)"
 
 
 def _write(args: argparse.Namespace, s, curve: IslandCurve, ind, out: Path) -> None:
