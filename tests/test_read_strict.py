@@ -216,3 +216,24 @@ def test_describe_never_exits_0_on_garbage(tmp_path, capsys, data, suffix):
     if status == 0:  # only when the bytes happen to form a 2-D map of numbers
         s = read_height_map(f, dx=1e-6)
         assert min(s.heights.shape) >= 2
+
+
+@pytest.mark.filterwarnings("ignore::ResourceWarning")  # SurfaceTopography's .npy reader
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")  # leaks a handle
+def test_scan_survey_has_no_misread_and_no_crash(scans_dir, tmp_path):
+    """examples/scan_survey.py on the measured scans (and SurfaceTopography's examples when
+    WARPTRUNC_ST_EXAMPLES names them): every file analysed, advised or refused clearly."""
+    import importlib.util
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "scan_survey.py"
+    spec = importlib.util.spec_from_file_location("scan_survey", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    dirs = [scans_dir]
+    if os.environ.get("WARPTRUNC_ST_EXAMPLES"):
+        dirs.append(Path(os.environ["WARPTRUNC_ST_EXAMPLES"]))
+    rows = mod.survey(dirs, device="cpu")
+    bad = [r for r in rows if r["category"] in ("misread", "crashed")]
+    assert rows and not bad, bad
+    measured = {p.name for p in scans_dir.iterdir()}
+    assert all(r["category"] in ("analysed", "read, advice") for r in rows if r["file"] in measured)

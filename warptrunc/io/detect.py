@@ -115,8 +115,8 @@ def header_units(
                 f"{path}: header 'Value units: {header['value units']}' is not a length unit; "
                 f"known: {sorted(_LENGTH_UNITS)}"
             )
-    width = length(header["width"]) if "width" in header else None
-    height = length(header["height"]) if "height" in header else None
+    width = next((length(header[k]) for k in ("width", "breite") if k in header), None)
+    height = next((length(header[k]) for k in ("height", "höhe") if k in header), None)
     return unit, width, height
 
 

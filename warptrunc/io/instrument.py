@@ -26,6 +26,8 @@ def _read_surfacetopography(path: Path, dx, dy, height_unit, channel) -> Scan:
     reader = None
     try:
         reader = open_topography(str(path))
+        if not reader.channels:
+            raise ValueError(f"{path}: holds no data channel (no height map) to read")
         ch = reader.default_channel if channel is None else reader.channels[channel]
         kwargs: dict[str, Any] = {"channel_index": ch.index}
         if len(ch.nb_grid_pts) != 2:
