@@ -57,15 +57,17 @@ def test_plain_npy_needs_spacing(tmp_path):
 
 def test_plain_npz_single_and_named(tmp_path):
     z = np.arange(12.0).reshape(3, 4)
-    np.savez(tmp_path / "one.npz", whatever=z)
+    np.savez(tmp_path / "one.npz", z)  # numpy's arr_0
     np.savez(tmp_path / "named.npz", heights=z, other=np.zeros(3))
     np.savez(tmp_path / "many.npz", a=z, b=z)
+    np.savez(tmp_path / "other.npz", whatever=z)  # issue 17: any key was taken as heights
     for name in ("one", "named"):
         s = read_height_map(tmp_path / f"{name}.npz", dx=1.0, dy=3.0)
         np.testing.assert_array_equal(s.heights, z.astype(np.float32))
         assert (s.dx, s.dy) == (1.0, 3.0)
-    with pytest.raises(ValueError, match=r"many\.npz.*which array"):
-        read_height_map(tmp_path / "many.npz", dx=1.0)
+    for name in ("many", "other"):
+        with pytest.raises(ValueError, match=rf"{name}\.npz: no height array under a known key"):
+            read_height_map(tmp_path / f"{name}.npz", dx=1.0)
 
 
 def test_text_with_plain_matrix_and_units(tmp_path):

@@ -43,6 +43,7 @@ import re
 import sys
 from pathlib import Path
 
+from .._atomic import probe_writable
 from ..surface import Surface
 
 # --- parser, help formatter -------------------------------------------------------------------
@@ -198,6 +199,9 @@ def _check_writable_parent(p: Path, text: str) -> None:
         raise argparse.ArgumentTypeError(f"{str(anc)!r} is not a folder, so {text!r} cannot be written")
     if not os.access(anc, os.W_OK | os.X_OK):
         raise argparse.ArgumentTypeError(f"cannot write under {str(anc)!r} (no permission), got {text!r}")
+    why = probe_writable(anc)  # os.access is wrong for root and on /proc, /sys
+    if why is not None:
+        raise argparse.ArgumentTypeError(f"{why}, got {text!r}")
 
 
 def input_file(text: str) -> Path:
@@ -231,7 +235,7 @@ def output_dir(text: str) -> Path:
     if p.exists() and not p.is_dir():
         raise argparse.ArgumentTypeError(f"must be a folder, got an existing file: {text!r}")
     if p.is_dir():
-        if not os.access(p, os.W_OK | os.X_OK):
+        if not os.access(p, os.W_OK | os.X_OK) or probe_writable(p) is not None:
             raise argparse.ArgumentTypeError(f"folder is not writable: {text!r}")
         return p
     _check_writable_parent(p / "x", text)

@@ -7,6 +7,10 @@ Ec_over_E, F_over_EA), OUT/fit.json (alpha, beta, r2 and the fit range), OUT/sti
 (E_c/E against F/(E·A), log–log, with the fitted line, as the paper's Fig. 9) and
 OUT/area_fraction.png (A_c/A against depth).
 
+All or nothing: the files are written under temporary names and moved into OUT only when the
+whole result is good; a failed run leaves OUT as it was (and no OUT if it did not exist).
+fit.json is strict JSON: "E_i": null in "material" means a rigid flat (E_i = ∞).
+
 A generated surface that needs more than half of the free memory of the device or of the host
 (which holds the map's copy) is streamed: generated and truncated by row bands, never held whole
 (``warptrunc.stream``; ``--stream`` forces it). The counts are those of the in-memory path.
@@ -16,9 +20,9 @@ fit.json says which path ran (``"path": "in-memory"`` or ``"streamed"``).
 from __future__ import annotations
 
 import argparse
-import json
 import math
 
+from .._atomic import staged_output, strict_json
 from ..stiffness import DEFAULT_MIN_PIXELS, Material, fit_power_law, stiffness_curve
 from ..truncation import truncate
 from ._common import (
@@ -53,7 +57,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="rows per band when streaming (default: about 2**28 pixels per band)",
     )  # fmt: skip
     add_out(p)
-    p.add_argument("--no-plot", action="store_true", help="skip the PNG")
+    p.add_argument(
+        "--no-plot", action="store_true", help="skip stiffness.png and area_fraction.png"
+    )
 
 
 def add_truncation_options(p: argparse.ArgumentParser) -> None:
@@ -109,6 +115,14 @@ def add_fit_options(p: argparse.ArgumentParser, several: bool = False) -> None:
         metavar=("LO", "HI"),
         help="fit only depths LO ≤ ω ≤ HI (m)",
     )  # fmt: skip
+    if not several:
+        f.add_argument(
+            "--rt-percentile", type=real(0.0, 100.0, lo_open=False, hi_open=False, unit="%"),
+            nargs=2, default=None, metavar=("LO", "HI"),
+            help="robust R_t of a measured map: clip heights to their LO-th and HI-th "
+            "percentiles first (e.g. 0.1 99.9), so that a few spikes do not set R_t and ω_max; "
+            "recorded in fit.json (surface.rt_percentile, Rt_raw_m, n_clipped_above/below)",
+        )  # fmt: skip
 
 
 def run(args: argparse.Namespace) -> int:
@@ -116,33 +130,73 @@ def run(args: argparse.Namespace) -> int:
     if args.depth_window is not None and not args.depth_window[0] < args.depth_window[1]:
         lo, hi = args.depth_window
         raise ValueError(f"--depth-window LO HI needs LO < HI (m), got {lo!r} {hi!r}")
+    rtp = getattr(args, "rt_percentile", None)
+    if rtp is not None and not rtp[0] < rtp[1]:
+        raise ValueError(f"--rt-percentile LO HI needs LO < HI (%), got {rtp[0]!r} {rtp[1]!r}")
     material = Material(E=args.E, nu=args.nu, E_i=args.E_flat, nu_i=args.nu_flat)
     curve, meta, path = _truncation(args)
     nx, ny, rt = meta["nx"], meta["ny"], meta["rt_m"]
     sc = stiffness_curve(curve, material, beta_prime=args.beta_prime)
-    args.out.mkdir(parents=True, exist_ok=True)
-    sc.to_csv(args.out / "curve.csv")
-    fit = fit_power_law(sc, min_pixels=args.min_pixels, depth_window=args.depth_window)
+    try:
+        fit = fit_power_law(sc, min_pixels=args.min_pixels, depth_window=args.depth_window)
+    except ValueError as exc:
+        raise ValueError(_fit_range_message(exc, args)) from None
     info = {**fit.to_dict(), "surface": meta, "material": material.__dict__, **path}
-    (args.out / "fit.json").write_text(json.dumps(info, indent=2, default=str) + "\n")
-    if not args.no_plot:
-        from .. import plot
+    with staged_output(args.out) as out:  # all or nothing
+        sc.to_csv(out / "curve.csv")
+        (out / "fit.json").write_text(strict_json(info))
+        if not args.no_plot:
+            from .. import plot
 
-        plot.stiffness_load(
-            sc, fit, labels=["truncation analysis"], path=args.out / "stiffness.png",
-            title=f"{nx}×{ny}, R$_t$ = {rt * 1e6:.3g} µm",
-        )  # fmt: skip
-        plot.area_fraction(curve, log=True, path=args.out / "area_fraction.png")
+            plot.stiffness_load(
+                sc, fit, labels=["truncation analysis"], path=out / "stiffness.png",
+                title=f"{nx}×{ny}, R$_t$ = {rt * 1e6:.3g} µm",
+            )  # fmt: skip
+            plot.area_fraction(curve, log=True, path=out / "area_fraction.png")
     print(
         f"{nx}×{ny} surface ({_describe(path)}), R_t = {rt * 1e6:.4g} µm; "
         f"{args.increments} increments to "
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; final contact {curve.area_fraction[-1]:.3%} of A\n"
         f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}, "
         f"{fit.n_points} increments with ≥ {fit.min_pixels} contact pixels)\n"
-        f"wrote {args.out}/curve.csv, fit.json"
+        + _clip_note(meta)
+        + f"wrote {args.out}/curve.csv, fit.json"
         + ("" if args.no_plot else ", stiffness.png, area_fraction.png")
     )
     return 0
+
+
+def _clip_note(meta: dict) -> str:
+    if "rt_percentile" not in meta:
+        return ""
+    lo, hi = meta["rt_percentile"]
+    return (
+        f"heights clipped to percentiles {lo:g}–{hi:g} (--rt-percentile): R_t "
+        f"{meta['Rt_raw_m'] * 1e6:.4g} → {meta['rt_m'] * 1e6:.4g} µm, "
+        f"{meta['n_clipped_above']} pixels above, {meta['n_clipped_below']} below\n"
+    )
+
+
+def _fit_range_message(exc: ValueError, args: argparse.Namespace) -> str:
+    """The fit's error with the option values that would work for this map."""
+    from ..robust import fit_range_advice
+
+    s = getattr(args, "_truncated_surface", None)
+    msg = str(exc).split("; need at least")[0]
+    msg = msg.replace("(min_pixels=", "(--min-pixels ").replace(", depth_window=None", "")
+    msg = msg.replace(", depth_window=", ", --depth-window ")
+    if s is None:
+        return f"{msg}; need at least 3: lower --min-pixels, raise --max-depth-fraction"
+    advice = fit_range_advice(
+        s.heights, increments=args.increments, max_depth_fraction=args.max_depth_fraction,
+        max_depth=args.max_depth, min_pixels=args.min_pixels, depth_window=args.depth_window,
+    )  # fmt: skip
+    if not advice:
+        return (
+            f"{msg}; need at least 3, and no single change of --max-depth-fraction, "
+            "--min-pixels or --rt-percentile gives them on this map"
+        )
+    return f"{msg}; need at least 3; for this map any one of these works: " + "; ".join(advice)
 
 
 _TOO_BIG = "the map needs more than half of the free memory"
@@ -161,11 +215,18 @@ def _truncation(args: argparse.Namespace):
         if args.stream:
             raise ValueError(f"--stream applies to generated surfaces, not to --input {args.input}")
         s = surface_from_args(args)
+        if getattr(args, "rt_percentile", None) is not None:
+            from ..robust import clip_to_percentiles
+
+            s = clip_to_percentiles(s, *args.rt_percentile)
+        args._truncated_surface = s  # for the advice when the fit range is empty
         curve = truncate(
             s, args.increments, max_depth=args.max_depth,
             max_depth_fraction=args.max_depth_fraction, device=args.device,
         )  # fmt: skip
         return curve, s.to_dict(), {"path": "in-memory"}
+    if getattr(args, "rt_percentile", None) is not None:
+        raise ValueError("--rt-percentile needs the map in memory; it cannot be streamed")
     from ..stream import stream_truncation
 
     st = stream_truncation(

@@ -6,14 +6,16 @@ Targets come from FILE (D by --method, R_rms, R_t, W_r, size and resolution) or 
 (--D, --Rrms, --Rt, --Wr, --L, --n); typed-in values override those of FILE. Writes
 OUT/calibration.json (the calibrated inputs, the targets and every evaluation) and
 OUT/surface.npz (the calibrated surface at --n-out pixels per side, default the scan's).
+All or nothing: both files are moved into OUT only when both are written; calibration.json is
+strict JSON (a value that could not be computed is null).
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 from pathlib import Path
 
+from .._atomic import staged_output, strict_json
 from ..fractal import METHODS
 from ._common import add_device, integer, output_dir, positive, real
 from .describe import add_height_scaling, add_scan_arguments, method_options, read_scan_args
@@ -114,19 +116,23 @@ def run(args: argparse.Namespace) -> int:
         target, seeds=args.seeds, rtol=args.rtol, max_iter=args.max_iter,
         progress=not args.no_progress, device=args.device,
     )  # fmt: skip
-    args.out.mkdir(parents=True, exist_ok=True)
     d = cal.to_dict()
     d = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in d.items()}
-    (args.out / "calibration.json").write_text(json.dumps(d, indent=2) + "\n")
+    surf = None
+    if not args.no_surface:
+        n_out = _pair(args.n_out, "--n-out")
+        surf = calibrated_surface(cal, n=n_out, seed=args.seed_out, device=args.device)
+    with staged_output(args.out) as out:  # all or nothing
+        (out / "calibration.json").write_text(strict_json(d))
+        if surf is not None:
+            surf.save(out / "surface.npz")
     print(
         f"D_in' = {cal.D_in:.4f}, R_t' = {cal.Rt * 1e6:.4g} µm → D_{target.method} = "
         f"{cal.D_out:.4f} ± {cal.D_out_std:.4f}, R_rms = {cal.Rrms * 1e6:.4g} µm "
         f"({cal.iterations} evaluations × {len(cal.seeds)} seeds)"
     )
     written = [str(args.out / "calibration.json")]
-    if not args.no_surface:
-        n_out = _pair(args.n_out, "--n-out")
-        surf = calibrated_surface(cal, n=n_out, seed=args.seed_out, device=args.device)
-        written.append(str(surf.save(args.out / "surface.npz")))
+    if surf is not None:
+        written.append(str(args.out / "surface.npz"))
     print("wrote " + ", ".join(written))
     return 0

@@ -8,15 +8,19 @@ Wr_resolved, r2_<method>, the grid, and convention_<method>: the height conventi
 produced each D ("cube": heights mapped onto the lateral extent, Gwyddion's, the default;
 "si": metres as measured; "none" for D_vs and D_sp, which do not depend on it). With --out DIR, also writes DIR/psd.png and
 DIR/fractal_fits.png.
+
+A method that cannot fit this map gives D_<method> = null and its reason in
+error_<method> (a line in the table); the other methods are reported. A flat map (R_t = 0) is
+called flat. The JSON is strict (null, never NaN/Infinity); files are written under temporary
+names and renamed into place once complete.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import sys
-from pathlib import Path
 
+from .._atomic import atomic_write, staged_output, strict_json
 from ..fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS
 from ._common import add_device, add_reader_options, input_file, output_dir, read_input
 
@@ -94,7 +98,15 @@ def describe_surface(s, methods, options, device) -> dict:
     from ..fractal import fractal_dimensions
 
     d = describe(s)
-    fits = fractal_dimensions(s, methods, options=options, device=device)
+    fits, errors = {}, {}
+    for m in methods:
+        if not s.rt > 0:
+            errors[m] = "the map is flat (R_t = 0): no roughness to fit"
+            continue
+        try:
+            fits.update(fractal_dimensions(s, [m], options={m: options.get(m, {})}, device=device))
+        except ValueError as exc:
+            errors[m] = _user_words(str(exc), m, s)
     out = {k: v for k, v in d.to_dict().items() if k != "mean_m"}
     for m in METHODS:
         out[f"D_{m}"] = fits[m].D if m in fits else None
@@ -105,8 +117,27 @@ def describe_surface(s, methods, options, device) -> dict:
             out[f"convention_{m}"] = None
         else:
             out[f"convention_{m}"] = fits[m].options.get("height_scaling", "none")
-    out.update({"nx": s.nx, "ny": s.ny, "dx_m": s.dx, "dy_m": s.dy})
+    for m in METHODS:
+        out[f"error_{m}"] = errors.get(m)
+    out.update({"nx": s.nx, "ny": s.ny, "dx_m": s.dx, "dy_m": s.dy, "flat": not s.rt > 0})
     return {"result": out, "fits": fits, "descriptors": d}
+
+
+_INTERNAL_NAMES = {
+    "box_sizes": "the default box sizes",
+    "fit_range": "the default fit range",
+    "lags": "the default lags",
+    "array(": "(",
+}
+
+
+def _user_words(msg: str, method: str, s) -> str:
+    """A method's error without the keyword names of the Python API (the CLI has none)."""
+    if msg.startswith(f"{method}: "):
+        msg = msg[len(method) + 2 :]
+    for k, v in _INTERNAL_NAMES.items():
+        msg = msg.replace(k, v)
+    return f"cannot fit on this {s.nx}×{s.ny} map: {msg}"
 
 
 def run(args: argparse.Namespace) -> int:
@@ -121,7 +152,7 @@ def run(args: argparse.Namespace) -> int:
     options = {k: v for k, v in options.items() if k in args.methods}
     res = describe_surface(s, args.methods, options, args.device)
     out = {"file": str(args.file), **res["result"]}
-    text = json.dumps(out, indent=2) + "\n"
+    text = strict_json(out)
     if args.json == "-":
         sys.stdout.write(text)
     else:
@@ -136,25 +167,32 @@ def run(args: argparse.Namespace) -> int:
             ("W_r", f"{out['Wr_m'] * u:.4g} µm" + ("" if out["Wr_resolved"] else " (unresolved)")),
         ]
         for m in args.methods:
+            if out[f"D_{m}"] is None:
+                rows.append((f"D_{m}", f"— ({out[f'error_{m}']})"))
+                continue
             conv = out[f"convention_{m}"]
             note = f", heights: {conv}" if conv != "none" else ""
             rows.append((f"D_{m}", f"{out[f'D_{m}']:.4f}  (r² = {out[f'r2_{m}']:.4f}{note})"))
+        if out["flat"]:
+            rows.insert(0, ("flat", "every height is the same: R_t = 0"))
         w = max(len(r[0]) for r in rows)
         for k, v in rows:
             print(f"  {k:<{w}}  {v}")
         if args.json:
-            Path(args.json).write_text(text)
+            with atomic_write(args.json) as tmp:
+                tmp.write_text(text)
             print(f"wrote {args.json}")
     if args.out is not None:
         from .. import plot
         from ..descriptors import profile_psd, radial_psd
 
-        args.out.mkdir(parents=True, exist_ok=True)
         psds = [radial_psd(s)]
         if abs(s.dx - s.dy) <= 1e-9 * s.dx and s.nx == s.ny:
             psds.append(profile_psd(s))
-        plot.psd(psds, Wr=out["Wr_m"], path=args.out / "psd.png", title=str(args.file.name))
-        plot.fractal_fits(res["fits"], path=args.out / "fractal_fits.png")
+        with staged_output(args.out) as stage:  # both figures or none
+            plot.psd(psds, Wr=out["Wr_m"], path=stage / "psd.png", title=str(args.file.name))
+            if res["fits"]:  # none when no method could fit
+                plot.fractal_fits(res["fits"], path=stage / "fractal_fits.png")
         if args.json != "-":
             print(f"wrote {args.out}/psd.png, fractal_fits.png")
     return 0

@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from .._atomic import staged_output
 from ._common import add_device, add_surface_source, output_file, surface_from_args
 
 NAME = "generate"
@@ -28,8 +29,9 @@ def run(args: argparse.Namespace) -> int:
     if args.input is not None:
         raise ValueError("generate makes a new surface; --input is not used here")
     s = surface_from_args(args)
-    args.output.parent.mkdir(parents=True, exist_ok=True)
-    path = s.save(args.output)
+    with staged_output(args.output.parent) as out:  # the .npy and its .json sidecar together
+        s.save(out / args.output.name)
+    path = args.output
     meta = s.to_dict()
     print(f"wrote {path}: {s.nx}×{s.ny} pixels, {s.lx * 1e3:g}×{s.ly * 1e3:g} mm, "
           f"R_t = {s.rt * 1e6:.4g} µm, n_max = {meta['n_max']}, {meta['n_terms']} terms")  # fmt: skip

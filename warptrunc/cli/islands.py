@@ -8,16 +8,18 @@ euler_characteristic, total_perimeter_m, contact_area_m2, slit_exponent, slit_r2
 slit_n_islands, n_contact_pixels, normalised_island_number, island_growth_rate),
 OUT/indicators.json (the Table 2 depths in % of R_t, with the settings and the surface) and,
 unless --no-plot, OUT/island_number.png (Fig. 8a) and OUT/slit_islands.png (Fig. 8b).
+All or nothing: the files are moved into OUT only when every one of them is written.
+indicators.json is strict JSON (a depth that was not found is null).
 """
 
 from __future__ import annotations
 
 import argparse
 import csv
-import json
 import math
 from pathlib import Path
 
+from .._atomic import staged_output, strict_json
 from ..islands import MIN_PIXELS, IslandCurve, applicable_depth, island_curve
 from ..islands.results import MIN_ISLANDS
 from ._common import (
@@ -120,8 +122,36 @@ def run(args: argparse.Namespace) -> int:
         curve, exponent_tolerance=args.exponent_tolerance, min_islands=args.min_islands,
         plateau_width=args.plateau_width, persist=args.persist, smooth=args.smooth,
     )  # fmt: skip
-    args.out.mkdir(parents=True, exist_ok=True)
-    write_csv(curve, args.out / "islands.csv")
+    with staged_output(args.out) as out:  # all or nothing
+        _write(args, s, curve, ind, out)
+
+    def pct(v: float) -> str:
+        return "n/a" if not math.isfinite(v) else f"{100 * v / s.rt:.2f} % R_t"
+
+    print(
+        f"{s.nx}×{s.ny} surface, R_t = {s.rt * 1e6:.4g} µm; {curve.depth.size - 1} increments to "
+        f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; up to {curve.n_islands.max()} islands\n"
+        f"max. growth rate of the island number at {pct(ind.max_growth_depth)}; island-count "
+        f"peak at {pct(ind.peak_depth)}; slit exponent stays within "
+        f"{100 * args.exponent_tolerance:g} % of {_num(ind.plateau_exponent)} down to "
+        f"{pct(ind.fractal_depth)}{' (never left it)' if ind.fractal_depth_censored else ''}\n"
+        f"wrote {args.out}/islands.csv, indicators.json"
+        + (
+            ""
+            if args.no_plot
+            else ", island_number.png" + (", slit_islands.png" if curve.sizes else "")
+        )
+    )
+    return 0
+
+
+def _num(v: float) -> str:
+    return f"{v:.3f}" if math.isfinite(v) else "n/a (too few islands to fit)"
+
+
+def _write(args: argparse.Namespace, s, curve: IslandCurve, ind, out: Path) -> None:
+    """islands.csv, indicators.json and the plots, under ``out``."""
+    write_csv(curve, out / "islands.csv")
     info = {
         **ind.to_dict(),
         "connectivity": curve.connectivity,
@@ -132,30 +162,11 @@ def run(args: argparse.Namespace) -> int:
         "max_island_count": int(curve.n_islands.max()),
         "surface": s.to_dict(),
     }
-    (args.out / "indicators.json").write_text(json.dumps(info, indent=2, default=str) + "\n")
+    (out / "indicators.json").write_text(strict_json(info))
     if not args.no_plot:
         from .. import plot
 
         title = f"{s.nx}×{s.ny}, R$_t$ = {s.rt * 1e6:.3g} µm, {curve.connectivity}-connected"
-        plot.island_number(curve, ind, title=title, path=args.out / "island_number.png")
+        plot.island_number(curve, ind, title=title, path=out / "island_number.png")
         if curve.sizes:
-            plot.slit_islands(curve, title=title, path=args.out / "slit_islands.png")
-
-    def pct(v: float) -> str:
-        return "n/a" if not math.isfinite(v) else f"{100 * v / s.rt:.2f} % R_t"
-
-    print(
-        f"{s.nx}×{s.ny} surface, R_t = {s.rt * 1e6:.4g} µm; {curve.depth.size - 1} increments to "
-        f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; up to {curve.n_islands.max()} islands\n"
-        f"max. growth rate of the island number at {pct(ind.max_growth_depth)}; island-count "
-        f"peak at {pct(ind.peak_depth)}; slit exponent stays within "
-        f"{100 * args.exponent_tolerance:g} % of {ind.plateau_exponent:.3f} down to "
-        f"{pct(ind.fractal_depth)}{' (never left it)' if ind.fractal_depth_censored else ''}\n"
-        f"wrote {args.out}/islands.csv, indicators.json"
-        + (
-            ""
-            if args.no_plot
-            else ", island_number.png" + (", slit_islands.png" if curve.sizes else "")
-        )
-    )
-    return 0
+            plot.slit_islands(curve, title=title, path=out / "slit_islands.png")

@@ -6,14 +6,16 @@ Writes OUT/truncation.png (the surface with its contact set in red at each depth
 depth) and OUT/render.json (depths, full-resolution A_c/A, down-sampling factor, vertical
 exaggeration); optionally OUT/truncation.gif (or .mp4), an animation of the truncation
 deepening, and OUT/surface.vti, the heights and first-contact depths for ParaView.
+
+All or nothing: file names and extensions are checked before anything is computed, the files
+are written under temporary names and moved into OUT only when every one of them is done.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
-import sys
 
+from .._atomic import staged_output, strict_json
 from ._common import (
     add_device,
     add_out,
@@ -67,12 +69,14 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "touches (shows every contact spot, overstates the area)",
     )  # fmt: skip
     g.add_argument(
-        "--output", type=_file_name, default="truncation.png",
-        help="picture file name inside --out",
+        "--output",
+        type=_file_name_with((".png",)),
+        default="truncation.png",
+        help="picture file name (.png) inside --out",
     )
     a = p.add_argument_group("animation and VTK export")
     a.add_argument(
-        "--animate", type=_file_name, nargs="?", const="truncation.gif", default=None, metavar="FILE",
+        "--animate", type=_file_name_with((".gif", ".mp4")), nargs="?", const="truncation.gif", default=None, metavar="FILE",
         help="also write an animation (.gif, or .mp4 with imageio-ffmpeg) inside --out",
     )  # fmt: skip
     a.add_argument("--frames", type=integer(2, 100_000), default=26, help="animation frames")
@@ -82,7 +86,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="last depth of the animation as a fraction of R_t (dimensionless)",
     )  # fmt: skip
     a.add_argument(
-        "--vtk", type=_file_name, nargs="?", const="surface.vti", default=None, metavar="FILE",
+        "--vtk", type=_file_name_with((".vti", ".vtk")), nargs="?", const="surface.vti", default=None, metavar="FILE",
         help="also write heights and first-contact depths for ParaView (.vti or .vtk)",
     )  # fmt: skip
     a.add_argument(
@@ -102,8 +106,35 @@ def _file_name(text: str) -> str:
     return text
 
 
+def _file_name_with(suffixes: tuple[str, ...]):
+    """A ``type=`` for a plain file name ending in one of ``suffixes`` (checked at parse time)."""
+
+    def parse(text: str) -> str:
+        name = _file_name(text)
+        if not name.lower().endswith(suffixes):
+            raise argparse.ArgumentTypeError(f"must end in {' or '.join(suffixes)}, got {text!r}")
+        return name
+
+    parse.__name__ = "file name"
+    return parse
+
+
 def run(args: argparse.Namespace) -> int:
     """Render and write the outputs."""
+    names = [args.output, args.animate, args.vtk, "render.json"]
+    names = [n for n in names if n]
+    if len(set(names)) != len(names):
+        raise ValueError(f"--output, --animate and --vtk must name different files, got {names}")
+    if args.animate and args.animate.lower().endswith(".mp4"):
+        try:
+            import imageio.v2  # noqa: F401
+        except ImportError:
+            raise ValueError(
+                "--animate: MP4 animations need imageio and ffmpeg (pip install imageio "
+                "imageio-ffmpeg), or name a .gif"
+            ) from None
+    if args.out.joinpath(args.output).is_dir():
+        raise ValueError(f"--output names a folder inside --out: {args.out / args.output}")
     s = surface_from_args(args)
     if args.depths is not None and max(args.depths) > s.rt:
         raise ValueError(
@@ -111,24 +142,32 @@ def run(args: argparse.Namespace) -> int:
             f"{' '.join(f'{d:g}' for d in args.depths)} (metres; --depth-fractions takes "
             "fractions of R_t)"
         )
-    if args.out.joinpath(args.output).is_dir():
-        raise ValueError(f"--output names a folder inside --out: {args.out / args.output}")
-    args.out.mkdir(parents=True, exist_ok=True)
+    with staged_output(args.out) as out:  # all or nothing
+        r, written = _render(s, args, out)
+    written = [args.out / p.relative_to(out) for p in written]
+    print(r.caption)
+    for d, f, af in zip(r.depth, r.depth_fraction, r.area_fraction, strict=True):
+        print(f"  ω = {d * 1e6:.4g} µm ({100 * f:.3g} % R_t): A_c/A = {100 * af:.4g} %")
+    print("wrote " + ", ".join(str(p) for p in written))
+    return 0
+
+
+def _render(s, args: argparse.Namespace, out):
+    """(picture result, files written), every file under ``out``."""
     written = []
     if args.vtk:
         from ..vtk_io import export_vtk
 
         written.append(
-            export_vtk(s, args.out / args.vtk, n_increments=args.vtk_increments, device=args.device)
+            export_vtk(s, out / args.vtk, n_increments=args.vtk_increments, device=args.device)
         )
     try:
         from .. import render
     except ImportError as exc:  # pragma: no cover
-        print(f"warptrunc render: error: {exc}", file=sys.stderr)
-        return 2
+        raise ValueError(str(exc)) from None  # rolls the staged files back
     try:
         r = render.render_truncation(
-            s, args.out / args.output, depth_fractions=args.depth_fractions, depths=args.depths,
+            s, out / args.output, depth_fractions=args.depth_fractions, depths=args.depths,
             top_view=args.top, window_size=args.size, ncols=args.ncols,
             vertical_exaggeration=args.exaggeration, downsample=args.downsample,
             pooling=args.pooling, device=args.device,
@@ -137,7 +176,7 @@ def run(args: argparse.Namespace) -> int:
         info = {"picture": r.to_dict()}
         if args.animate:
             a = render.animate_truncation(
-                s, args.out / args.animate, max_depth_fraction=args.max_depth_fraction,
+                s, out / args.animate, max_depth_fraction=args.max_depth_fraction,
                 n_frames=args.frames, fps=args.fps, top_view=args.top,
                 vertical_exaggeration=args.exaggeration, downsample=args.downsample,
                 pooling=args.pooling, device=args.device,
@@ -145,16 +184,11 @@ def run(args: argparse.Namespace) -> int:
             written.append(a.path)
             info["animation"] = a.to_dict()
     except ImportError as exc:
-        print(f"warptrunc render: error: {exc}", file=sys.stderr)
-        return 2
+        raise ValueError(str(exc)) from None  # rolls the staged files back
     for v in info.values():
         for k in ("depth_m", "depth_fraction_of_Rt", "area_fraction"):
             v[k] = [float(x) for x in v[k]]
     info["surface"] = s.to_dict()
-    (args.out / "render.json").write_text(json.dumps(info, indent=2, default=str) + "\n")
-    written.append(args.out / "render.json")
-    print(r.caption)
-    for d, f, af in zip(r.depth, r.depth_fraction, r.area_fraction, strict=True):
-        print(f"  ω = {d * 1e6:.4g} µm ({100 * f:.3g} % R_t): A_c/A = {100 * af:.4g} %")
-    print("wrote " + ", ".join(str(p) for p in written))
-    return 0
+    (out / "render.json").write_text(strict_json(info))
+    written.append(out / "render.json")
+    return r, written

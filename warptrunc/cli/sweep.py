@@ -5,7 +5,10 @@
 Writes OUT/sweep.json (grid and options), OUT/cases.parquet (one row per case × fit range)
 and OUT/curves/<case_id>.parquet (each case's curve). Running the same command again skips
 the finished cases; another grid or option set on the same OUT is refused unless
---overwrite. SIGINT/SIGTERM stop after writing what has finished (exit 130/143).
+--overwrite. SIGINT/SIGTERM stop after writing what has finished (exit 130/143). One sweep per store at a
+time: OUT/.lock holds the running sweep's pid and host, and a second sweep on the same OUT is
+refused at once (a lock left by a dead process on this host is taken over, with a message).
+sweep.json is strict JSON: "E_flat": null means a rigid flat (E_flat = inf).
 Example: warptrunc sweep --D 2.1 2.3 2.5 --delta 0.005 0.01 --seeds 0-4 --n 2048 --out runs/g2
 """
 
@@ -145,6 +148,7 @@ def run(args: argparse.Namespace) -> int:
                           for r in v["per_D"])  # fmt: skip
         label = mp if mp.startswith("fraction") else f"min_pixels={mp}"
         print(f"{label}: α {per_d}"
-              + (f"; α = {line['slope']:.3f}·D + {line['intercept']:.3f} (r = {line['r']:.3f})"
+              + (f"; α = {line['slope']:.3f}·D {'−' if line['intercept'] < 0 else '+'} "
+                 f"{abs(line['intercept']):.3f} (r = {line['r']:.3f})"
                  if line else ""))  # fmt: skip
     return 0

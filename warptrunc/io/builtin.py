@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from ..surface import Surface, load_surface
+from .detect import find_data_start, header_units, npz_height_key, shape_words, table_to_map
 from .scan import _LENGTH_UNITS, Scan
 
 
@@ -30,8 +31,7 @@ def _as_map(path: Path, a: np.ndarray) -> np.ndarray:
         raise ValueError(f"{path}: heights must be real numbers, got dtype {a.dtype}")
     if a.ndim == 1 or (a.ndim == 2 and min(a.shape) == 1):
         raise ValueError(
-            f"{path}: holds a 1-D profile of {a.size} points (shape {a.shape}); a 2-D height "
-            "map (ny, nx) with ny, nx >= 2 is needed"
+            f"{path}: {shape_words(a.shape)}; a 2-D height map (ny, nx) with ny, nx >= 2 is needed"
         )
     if a.ndim != 2:
         raise ValueError(f"{path}: heights must be a 2-D array (ny, nx), got shape {a.shape}")
@@ -75,15 +75,7 @@ def _read_numpy(path: Path, dx, dy, height_unit) -> Scan:
         else:
             with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as f:
                 names = f.files
-                key = next((k for k in ("heights", "z") if k in names), None)
-                if key is None and len(names) == 1:
-                    key = names[0]
-                if key is None:
-                    raise ValueError(
-                        f"{path}: cannot tell which array holds the heights among {names}; "
-                        "name it 'heights' or store a single array"
-                    )
-                a = f[key]
+                a = f[npz_height_key(list(names), path)]
     except ValueError as exc:
         if str(exc).startswith(str(path)):
             raise
@@ -163,22 +155,11 @@ def _read_text(path: Path, dx, dy, height_unit) -> Scan:
     except UnicodeDecodeError as exc:
         raise ValueError(f"{path}: not a text file ({exc.reason} at byte {exc.start})") from None
     lines = text.splitlines()
-    first = next(
-        (i for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip().startswith("#")), None
-    )
-    # header: leading comment lines and non-numeric lines
-    delim: str | None = None
-    start = None
-    for i, ln in enumerate(lines):
-        s = ln.strip()
-        if not s or s.startswith("#"):
-            continue
-        d = "," if "," in s else ";" if ";" in s else "\t" if "\t" in s.strip() else None
-        if _is_numeric_line(s, d):
-            start, delim = i, d
-            break
-    if first is None or start is None:
+    # header: leading comments, key=value lines and text-only lines; a mixed line is an error
+    found = find_data_start(lines, path)
+    if found is None:
         raise ValueError(f"{path}: no numeric rows found")
+    start, delim = found
     header = _parse_header(lines[:start], path)
     rows = []
     width = None
@@ -195,6 +176,10 @@ def _read_text(path: Path, dx, dy, height_unit) -> Scan:
                 f"{start + 1} (truncated or ragged file)"
             )
         rows.append(r)
+    gridded = table_to_map(np.array(rows), path, height_unit, dx, dy)  # XYZ, line scans
+    if gridded is not None:
+        z, gdx, gdy, meta = gridded
+        return Scan(z, gdx, gdy, str(path), "xyz", {"header": header, **meta} if header else meta)
     z = _as_map(path, np.array(rows))
     ny, nx = z.shape
     for keys, n, what in (
@@ -224,7 +209,9 @@ def _read_text(path: Path, dx, dy, height_unit) -> Scan:
             fdx = fdy = _length(v, path, k)
     if fdx is not None and fdy is None:
         fdy = fdx
-    factor = None
+    factor, width, height = header_units(header, path)  # Gwyddion's text export
+    if fdx is None and width is not None:
+        fdx, fdy = width / nx, (height / ny if height is not None else width / nx)
     for k, v in header.items():
         if k.startswith("height conversion factor") or k in ("height unit", "z unit"):
             try:

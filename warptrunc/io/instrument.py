@@ -26,8 +26,15 @@ def _read_surfacetopography(path: Path, dx, dy, height_unit, channel) -> Scan:
     reader = None
     try:
         reader = open_topography(str(path))
+        if not reader.channels:
+            raise ValueError(f"{path}: holds no data channel (no height map) to read")
         ch = reader.default_channel if channel is None else reader.channels[channel]
         kwargs: dict[str, Any] = {"channel_index": ch.index}
+        if len(ch.nb_grid_pts) != 2:
+            raise ValueError(
+                f"{path}: holds a 1-D line scan of {ch.nb_grid_pts[0]} points; a 2-D height map "
+                "(ny, nx) is needed"
+            )
         if ch.physical_sizes is None or ch.unit is None:
             # the file lacks sizes or units: the user's dx, dy (m) define them, heights are
             # multiplied by height_unit
@@ -36,7 +43,8 @@ def _read_surfacetopography(path: Path, dx, dy, height_unit, channel) -> Scan:
             f = 1.0 if ch.unit is None else _LENGTH_UNITS.get(str(ch.unit).lower())
             if f is None:
                 raise ValueError(f"{path}: unknown length unit {ch.unit!r} in the file")
-            kwargs["physical_sizes"] = (nx_ * pdx / f, ny_ * pdy / f)
+            if ch.physical_sizes is None:  # else fixed by the file, in an unknown unit
+                kwargs["physical_sizes"] = (nx_ * pdx / f, ny_ * pdy / f)
             if ch.unit is None:
                 kwargs["unit"] = "m"
         topo = reader.topography(**kwargs)

@@ -131,13 +131,19 @@ class Scan:
         z = np.array(self.heights)
         valid = self.valid
         n_missing = self.n_missing
+        n_inf = int(np.count_nonzero(np.isinf(z)))
+        what = (
+            "missing (NaN)" if not n_inf
+            else "infinite (±inf)" if n_inf == n_missing
+            else f"missing (NaN) or infinite ({n_inf} ±inf)"
+        )  # fmt: skip
         if n_missing == z.size:
-            raise ValueError(f"{self.source}: every point is missing (NaN)")
+            raise ValueError(f"{self.source}: every point is {what}")
         if n_missing and missing == "error":
             iy, ix = np.argwhere(~valid)[0]
             raise ValueError(
-                f"{self.source}: {n_missing} of {z.size} points are missing (NaN; first at "
-                f"iy={iy}, ix={ix}); pass missing='fill' (fill={'|'.join(FILL_METHODS)}; CLI: "
+                f"{self.source}: {n_missing} of {z.size} points are {what}; first at "
+                f"iy={iy}, ix={ix}; pass missing='fill' (fill={'|'.join(FILL_METHODS)}; CLI: "
                 "--missing fill) to fill them, or use warptrunc.io.read_scan to keep the mask"
             )
         if level:

@@ -4,11 +4,14 @@
 
 from __future__ import annotations
 
+import sys
+from contextlib import ExitStack
 from pathlib import Path
 from typing import Any
 
 from .._validate import check_int
 from .grid import SweepGrid, SweepOptions
+from .lock import store_lock
 from .store import Store
 
 __all__ = ["as_grid", "run_sweep"]
@@ -120,7 +123,14 @@ def run_sweep(
         chunk_size = check_int("chunk_size", chunk_size, 1)
     if workers is not None and scheduler is not None:
         raise ValueError("give workers (a local cluster) or scheduler (an existing one), not both")
-    store = Store(out, grid, opts, overwrite=overwrite, retry_failed=retry_failed)
+    held = ExitStack()  # one writer per store: a second sweep on ``out`` is refused at once
+    if out is not None:
+        held.enter_context(store_lock(out, notify=lambda m: print(m, file=sys.stderr)))
+    try:
+        store = Store(out, grid, opts, overwrite=overwrite, retry_failed=retry_failed)
+    except BaseException:
+        held.close()
+        raise
     todo = [c for c in grid.cases(opts) if c.case_id not in store.done]
     try:
         if todo and (workers is not None or scheduler is not None):
@@ -141,5 +151,8 @@ def run_sweep(
             run_inprocess(todo, opts, store.add_many, device=device, total=len(grid),
                           progress=progress)  # fmt: skip
     finally:
-        store.flush()
+        try:
+            store.flush()
+        finally:
+            held.close()
     return store.frame()

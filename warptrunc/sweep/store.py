@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from .._atomic import jsonable_strict, read_json, strict_json
 from .grid import FORMAT, SweepGrid, SweepOptions
 
 __all__ = [
@@ -298,7 +299,7 @@ class Store:
         if overwrite:
             self._remove()
         elif meta.exists():
-            _check_same(self.path, json.loads(meta.read_text()), spec)
+            _check_same(self.path, read_json(meta), spec)
         elif (self.path / "cases.parquet").exists() or self.curves.exists():
             raise ValueError(
                 f"{self.path} holds sweep results but no sweep.json; use --overwrite or a new --out"
@@ -307,7 +308,7 @@ class Store:
         for tmp in [*self.path.glob(".*.tmp-*"), *self.curves.glob(".*.tmp-*")]:
             tmp.unlink()  # left by a crash mid-write
         if not meta.exists():
-            _write_atomic(meta, (json.dumps(spec, indent=2) + "\n").encode())
+            _write_atomic(meta, strict_json(spec).encode())  # E_flat: null = rigid (inf)
         self._read_existing()
         if retry_failed:
             for cid in [c for c, r in self.rows.items() if r[0]["error"] is not None]:
@@ -442,8 +443,8 @@ def _check_same(path: Path, old: dict[str, Any], new: dict[str, Any]) -> None:
             f"{path} is a store of format {old.get('format')!r}, not {new['format']!r}; "
             "use --overwrite or a new --out"
         )
-    diff = _diff({"grid": old.get("grid"), "options": old.get("options")},
-                 {"grid": new["grid"], "options": new["options"]})  # fmt: skip
+    diff = _diff(jsonable_strict({"grid": old.get("grid"), "options": old.get("options")}),
+                 jsonable_strict({"grid": new["grid"], "options": new["options"]}))  # fmt: skip
     if diff:
         shown = "; ".join(diff[:4]) + (f"; and {len(diff) - 4} more" if len(diff) > 4 else "")
         raise ValueError(
@@ -462,7 +463,7 @@ def conflict(path: str | Path, grid: SweepGrid, options: SweepOptions) -> str | 
         return None
     new = {"format": FORMAT, "grid": grid.to_dict(), "options": options.to_dict()}
     try:
-        _check_same(Path(path), json.loads(meta.read_text()), new)
+        _check_same(Path(path), read_json(meta), new)
     except ValueError as exc:
         return str(exc)
     return None

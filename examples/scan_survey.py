@@ -1,0 +1,187 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Survey of instrument files: read, analysed on the defaults, refused clearly, misread.
+
+Reads every file of the given folders with :func:`warptrunc.io.read_height_map` (missing
+points filled, plane levelled; ``dx = 1 µm`` only when the file has no spacing and the reader
+asks for one), runs the truncation analysis on the ``analyze`` defaults (200 increments to
+0.1·R_t, ``min_pixels = 10``), and sorts each file into
+
+* **analysed** — read and fitted on the defaults;
+* **read, advice** — read, the default fit range is empty, and the message names option values
+  that work for this map (checked on the map);
+* **refused** — not read, with a one-line ValueError naming the problem;
+* **misread** — read into a map that disagrees with SurfaceTopography's reading of the same
+  file (other shape, a 1-D scan read as a map, heights not proportional); must be 0;
+* **crashed** — any other exception (a traceback for the user); must be 0.
+
+SurfaceTopography is the independent reference: where it opens a file, our shape must be its
+``nb_grid_pts`` transposed and our heights proportional to its heights (a plain ``.npy`` is
+compared untransposed: SurfaceTopography takes the array as h[ix, iy], warptrunc as z[iy, ix],
+the convention its documentation states).
+
+Folders: the measured scans in ``../shared/data/scans`` and SurfaceTopography's
+``test/file_format_examples`` (set ``WARPTRUNC_ST_EXAMPLES`` or pass folders)::
+
+    python examples/scan_survey.py --out survey /work/shared/data/scans /tmp/st_examples
+"""
+
+from __future__ import annotations
+
+import argparse
+import gc
+import json
+import os
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parents[1]
+DEFAULT_DIRS = [HERE.parent / "shared" / "data" / "scans"]
+if os.environ.get("WARPTRUNC_ST_EXAMPLES"):
+    DEFAULT_DIRS.append(Path(os.environ["WARPTRUNC_ST_EXAMPLES"]))
+
+
+def _reference(f: Path):
+    """(nb_grid_pts, heights h[ix, iy]) from SurfaceTopography, or None if it cannot read."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            from SurfaceTopography import open_topography
+
+            r = open_topography(str(f))
+            ch = r.default_channel
+            n = tuple(int(v) for v in ch.nb_grid_pts)
+            h = None
+            if len(n) == 2:
+                kw = {}
+                if ch.physical_sizes is None:
+                    kw["physical_sizes"] = tuple(float(v) for v in n)
+                if ch.unit is None and ch.physical_sizes is None:
+                    kw["unit"] = "m"
+                h = np.ma.filled(np.ma.asarray(r.topography(**kw).heights(), float), np.nan)
+            getattr(r, "close", lambda: None)()
+            del r
+            gc.collect()  # some readers leave their file open
+            return n, h
+    except Exception:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            gc.collect()
+        return None
+
+
+def _proportional(a: np.ndarray, b: np.ndarray) -> bool:
+    ok = np.isfinite(a) & np.isfinite(b)
+    if ok.sum() < 2 or np.ptp(a[ok]) == 0 or np.ptp(b[ok]) == 0:
+        return True  # constant maps: nothing to compare beyond the shape
+    return abs(np.corrcoef(a[ok], b[ok])[0, 1]) > 0.999
+
+
+def survey_file(f: Path, device: str) -> dict:
+    """The category of one file and what decided it."""
+    from warptrunc.io import read_height_map
+    from warptrunc.robust import fit_range_advice
+    from warptrunc.stiffness import fit_power_law, stiffness_curve
+    from warptrunc.truncation import truncate
+
+    row = {"file": f.name, "options": "", "category": "", "detail": ""}
+    ref = _reference(f)
+    kw = {"missing": "fill", "level": True}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            try:
+                s = read_height_map(f, **kw)
+            except ValueError as exc:
+                if "give dx" not in str(exc):
+                    raise
+                s = read_height_map(f, dx=1e-6, **kw)
+                row["options"] = "--dx 1e-6"
+    except ValueError as exc:
+        row["category"], row["detail"] = "refused", str(exc).replace(str(f), f.name)[:160]
+        return row
+    except Exception as exc:
+        row["category"], row["detail"] = "crashed", f"{type(exc).__name__}: {exc}"[:160]
+        return row
+    if ref is not None:
+        n, h = ref
+        # SurfaceTopography takes a plain .npy array as h[ix, iy]; warptrunc as z[iy, ix]
+        same = f.suffix.lower() == ".npy"
+        if len(n) != 2 or (s.ny, s.nx) != (n if same else (n[1], n[0])):
+            row["category"] = "misread"
+            row["detail"] = f"read {s.nx}×{s.ny}, SurfaceTopography: {n}"
+            return row
+        raw = read_height_map(f, dx=1e-6 if row["options"] else None, missing="fill")
+        if h is not None and not _proportional(np.asarray(raw.heights, float), h if same else h.T):
+            row["category"], row["detail"] = "misread", "heights differ from SurfaceTopography's"
+            return row
+    try:
+        curve = truncate(s, 200, max_depth_fraction=0.1, device=device)
+        fit = fit_power_law(stiffness_curve(curve), min_pixels=10)
+    except ValueError as exc:
+        advice = fit_range_advice(
+            s.heights, increments=200, max_depth_fraction=0.1, max_depth=None, min_pixels=10,
+            depth_window=None,
+        )  # fmt: skip
+        if "fit range" in str(exc) and advice:
+            row["category"] = "read, advice"
+            row["detail"] = "; ".join(a.split(" (")[0] for a in advice)
+        else:
+            row["category"], row["detail"] = "refused", str(exc)[:160]
+        return row
+    row["category"] = "analysed"
+    row["detail"] = f"{s.nx}×{s.ny}, α = {fit.alpha:.3f}, r² = {fit.r2:.3f}"
+    return row
+
+
+CATEGORIES = ("analysed", "read, advice", "refused", "misread", "crashed")
+
+
+def survey(dirs: list[Path], device: str = "cpu", quick: bool = False) -> list[dict]:
+    """One row per file of ``dirs`` (README files skipped)."""
+    files = []
+    for d in dirs:
+        if d.is_dir():
+            files += sorted(p for p in d.iterdir() if p.is_file() and p.suffix != ".md")
+    if quick:
+        files = files[:4]
+    return [survey_file(f, device) for f in files]
+
+
+def table(rows: list[dict]) -> str:
+    """Markdown: one line per file, then the counts."""
+    lines = ["| file | read options | category | detail |", "|---|---|---|---|"]
+    lines += [f"| {r['file']} | {r['options']} | {r['category']} | {r['detail']} |" for r in rows]
+    counts = {c: sum(r["category"] == c for r in rows) for c in CATEGORIES}
+    lines += ["", "| " + " | ".join(CATEGORIES) + " | total |", "|" + "---|" * 6]
+    lines.append("| " + " | ".join(str(counts[c]) for c in CATEGORIES) + f" | {len(rows)} |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Survey the folders, print the table, write it (and JSON) to --out."""
+    p = argparse.ArgumentParser(
+        description=__doc__.splitlines()[0],
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+    )
+    p.add_argument("dirs", nargs="*", type=Path, default=DEFAULT_DIRS, help="folders to survey")
+    p.add_argument("--device", default="cpu", help="Warp device")
+    p.add_argument("--out", type=Path, default=Path("survey"), help="output folder")
+    p.add_argument("--quick", action="store_true", help="the first four files only")
+    p.add_argument("--no-show", action="store_true", help="no effect (no figures)")
+    args = p.parse_args(argv)
+    rows = survey(args.dirs, args.device, args.quick)
+    text = table(rows)
+    print(text)
+    args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / "scan_survey.md").write_text(text)
+    (args.out / "scan_survey.json").write_text(json.dumps(rows, indent=1) + "\n")
+    bad = sum(r["category"] in ("misread", "crashed") for r in rows)
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
