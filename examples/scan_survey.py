@@ -38,8 +38,8 @@ from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).resolve().parents[1]
-DEFAULT_DIRS = [HERE.parent / "shared" / "data" / "scans"]
+HERE = Path(__file__).resolve().parents[2]  # the folder that holds the checkout and shared/
+DEFAULT_DIRS = [HERE / "shared" / "data" / "scans"]
 if os.environ.get("WARPTRUNC_ST_EXAMPLES"):
     DEFAULT_DIRS.append(Path(os.environ["WARPTRUNC_ST_EXAMPLES"]))
 

@@ -98,6 +98,7 @@ EXAMPLES: dict[str, Example] = {
         outputs=("truncation.png", "truncation_top.png", "surface.vti", "render.json"),
         needs=("pyvista",)),
     "stream_islands": Example(outputs=("stream_islands.json",), check=_check_stream),
+    "scan_survey": Example(outputs=("scan_survey.md", "scan_survey.json")),
 }  # fmt: skip
 
 
