@@ -1,0 +1,20 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Elastic contact of rough surfaces on Warp: a constrained conjugate-gradient (Polonsky–Keer)
+boundary-element solver on a free (zero-padded) or periodic half-space, and the cross-check of
+truncation analysis against it (:func:`bem_check`)."""
+
+from .halfspace import SUBSTRATES, ElasticHalfSpace, influence_spectrum
+from .results import ContactCurve
+from .solver import STIFFNESS_METHODS, ContactSolver, default_pentol, solve_contact
+
+__all__ = [
+    "STIFFNESS_METHODS",
+    "SUBSTRATES",
+    "ContactCurve",
+    "ContactSolver",
+    "ElasticHalfSpace",
+    "default_pentol",
+    "influence_spectrum",
+    "solve_contact",
+]
