@@ -245,7 +245,7 @@ class ContactSolver:
             du, n_c, s_g, s_gg, pen, s_gap = red.read(dus)
             del r
             g_old = g
-            cg = n_nc == 0
+            cg = n_nc == 0 and n_zero == 0
             rms_pen = math.sqrt(g / a_cg if a_cg > 0 else g)
             ok = True
             if load_control:
