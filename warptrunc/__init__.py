@@ -30,7 +30,7 @@ from ._source import map_source_kernels as _map_source_kernels
 _map_source_kernels(__name__, __path__)
 
 from ._device import resolve_device  # after the kernels mapping above
-from .bem import BemCheck, bem_check
+from .contact.check import BemCheck, bem_check
 from .calibrate import Calibration, CalibrationTarget, calibrate
 from .descriptors import describe
 from .fractal import FractalFit, fractal_dimension, fractal_dimensions

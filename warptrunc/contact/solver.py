@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import check_memory, resolve_device
+from .._device import free_memory_bytes, resolve_device
 from .._validate import check_height_map, check_int, check_range, pair
 from ..kernels import contact as _k
 from .halfspace import DTYPES, SUBSTRATES, ElasticHalfSpace
@@ -126,7 +126,14 @@ class ContactSolver:
         self.dtype = dtype
         self.forcetol = self.pressure_tol * self.contact_modulus * dx * dy
         need = self.memory_bytes(h.shape, substrate, dtype)
-        check_memory(need, self.device, f"the contact solver ({h.shape[0]}×{h.shape[1]}, {substrate}, {dtype})")
+        free = free_memory_bytes(self.device)
+        if need > free:
+            raise MemoryError(
+                f"the contact solver for a {h.shape[0]}×{h.shape[1]} map ({substrate}, {dtype}) "
+                f"needs about {need} bytes ({need / 2**30:.2f} GiB) on {self.device} but only "
+                f"{free} bytes ({free / 2**30:.2f} GiB) are free; use a smaller map, float32 or "
+                "another device"
+            )
         self.hs = ElasticHalfSpace(h.shape, (dx, dy), self.contact_modulus, substrate=substrate,
                                    dtype=dtype, device=self.device)  # fmt: skip
         sc, _, npd = DTYPES[dtype]
