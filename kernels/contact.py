@@ -80,9 +80,11 @@ def cg_direction_kernel(
         n = wp.min(n, i + chunk)
         step = 1
     s_gt = wp.float64(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
     while i < n:
-        iy = i // nx
-        ix = i - iy * nx
         tv = t.dtype(0.0)
         m = wp.uint8(0)
         if q[iy, ix] > q.dtype(0.0):
@@ -93,6 +95,11 @@ def cg_direction_kernel(
         t[iy, ix] = tv
         mask[iy, ix] = m
         i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
     part[lane, 0] = s_gt
 
 
@@ -119,9 +126,11 @@ def spectral_multiply_kernel(
         n = wp.min(n, i + chunk)
         step = 1
     acc = wp.float64(0.0)
+    iy = i // nk
+    ix = i - iy * nk
+    sy = step // nk
+    sx = step - sy * nk
     while i < n:
-        iy = i // nk
-        ix = i - iy * nk
         v = x[iy, ix]
         wv = w[iy, ix]
         if inverse != 0:
@@ -133,6 +142,11 @@ def spectral_multiply_kernel(
                 mult = wp.float64(1.0)
             acc += mult * wp.float64(wv) * (wp.float64(v[0]) * wp.float64(v[0]) + wp.float64(v[1]) * wp.float64(v[1]))
         i += step
+        iy += sy
+        ix += sx
+        if ix >= nk:
+            ix -= nk
+            iy += 1
     part[lane, 0] = acc
 
 
@@ -168,9 +182,11 @@ def update_force_kernel(
     max_tens = wp.float64(0.0)
     total = wp.float64(0.0)
     zero = q.dtype(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
     while i < n:
-        iy = i // nx
-        ix = i - iy * nx
         m = mask[iy, ix]
         qv = q[iy, ix]
         if (int(m) & 1) != 0:
@@ -190,6 +206,11 @@ def update_force_kernel(
         q[iy, ix] = qv
         total += wp.float64(qv)
         i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
     part[lane, 0] = n_nc
     part[lane, 1] = n_zero
     part[lane, 2] = max_tens
@@ -253,9 +274,11 @@ def advance_kernel(
     s_gg = wp.float64(0.0)
     pen = wp.float64(0.0)
     s_gap = wp.float64(0.0)
+    iy = i // nxp
+    ix = i - iy * nxp
+    sy = step // nxp
+    sx = step - sy * nxp
     while i < n:
-        iy = i // nxp
-        ix = i - iy * nxp
         uo = u[iy, ix]
         un = r[iy, ix]
         if mode == 0:
@@ -272,6 +295,11 @@ def advance_kernel(
             if (int(mask[iy, ix]) & 1) != 0:
                 pen = wp.max(pen, -g)
         i += step
+        iy += sy
+        ix += sx
+        if ix >= nxp:
+            ix -= nxp
+            iy += 1
     part[lane, 0] = du_max
     part[lane, 1] = n_c
     part[lane, 2] = s_g
@@ -304,9 +332,11 @@ def contact_sums_kernel(
     s_g = wp.float64(0.0)
     s_gg = wp.float64(0.0)
     s_q = wp.float64(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
     while i < n:
-        iy = i // nx
-        ix = i - iy * nx
         if q[iy, ix] > q.dtype(0.0):
             g = wp.float64(u[iy, ix]) - wp.float64(h[iy, ix]) - offset
             n_c += wp.float64(1.0)
@@ -314,6 +344,11 @@ def contact_sums_kernel(
             s_gg += g * g
             s_q += wp.float64(q[iy, ix])
         i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
     part[lane, 0] = n_c
     part[lane, 1] = s_g
     part[lane, 2] = s_gg
@@ -345,9 +380,11 @@ def punch_step_kernel(
         step = 1
     s_rr = wp.float64(0.0)
     s_x = wp.float64(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
     while i < n:
-        iy = i // nx
-        ix = i - iy * nx
         if (int(mask[iy, ix]) & 1) != 0:
             xv = x[iy, ix] + x.dtype(alpha) * d[iy, ix]
             rv = res[iy, ix] - res.dtype(alpha) * kd[iy, ix]
@@ -356,6 +393,11 @@ def punch_step_kernel(
             s_rr += wp.float64(rv) * wp.float64(rv)
             s_x += wp.float64(xv)
         i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
     part[lane, 0] = s_rr
     part[lane, 1] = s_x
 

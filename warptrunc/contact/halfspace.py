@@ -26,7 +26,9 @@ the package already uses for the spectra of :mod:`warptrunc.descriptors`; CuPy r
 the Warp arrays zero-copy through ``__cuda_array_interface__`` (Warp exports it without a
 stream, so nothing synchronises), runs on Warp's own stream (``cupy.cuda.ExternalStream``), so
 kernels and transforms stay ordered with no device-wide synchronisation, and keeps a cuFFT plan
-cache, so a plan is made once per grid. On the CPU ``scipy.fft`` with ``workers=os.cpu_count()``.
+cache, so a plan is made once per grid. On the CPU ``scipy.fft`` with ``workers=os.cpu_count()``;
+there the forward transform of a force map skips the zero pad (row transforms of the map's ny
+rows only, then the column transforms), 25 % of the forward cost.
 The multiply is a Warp kernel that also returns Σ t·(K t) by Parseval.
 """
 
@@ -252,7 +254,13 @@ class ElasticHalfSpace:
         stride, chunk = red.geometry(n)
         if self._cp is None:
             xh = x.numpy()
-            spec = scipy.fft.rfft2(xh, workers=os.cpu_count())
+            workers = os.cpu_count()
+            ny, nx = self.shape
+            if self.substrate == "free" and not inverse:  # x is zero outside the map: skip it
+                half = scipy.fft.rfft(xh[:ny, :nx], n=self.grid[1], axis=1, workers=workers)
+                spec = scipy.fft.fft(half, n=self.grid[0], axis=0, workers=workers)
+            else:
+                spec = scipy.fft.rfft2(xh, workers=workers)
             spec_w = wp.array(spec.view(self.np_dtype).reshape(nyk, nxk, 2), dtype=self.vec2,
                               device=self.device, copy=False)  # fmt: skip
             wp.launch(
@@ -261,7 +269,7 @@ class ElasticHalfSpace:
                 outputs=[red.part], device=self.device,
             )  # fmt: skip
             energy = math.nan if inverse or not with_energy else float(red.read((False,))[0]) / (self.grid[0] * self.grid[1])
-            out = scipy.fft.irfft2(spec, s=self.grid, workers=os.cpu_count())
+            out = scipy.fft.irfft2(spec, s=self.grid, workers=workers)
             if out.dtype != self.np_dtype:
                 out = out.astype(self.np_dtype)
             return wp.array(out, dtype=self.scalar, device=self.device, copy=False), energy
