@@ -30,7 +30,9 @@ BIG = wp.constant(1.0e300)
 
 
 @wp.kernel
-def clamp_displacement_kernel(h: wp.array2d(dtype=Any), offset: wp.float64, u: wp.array2d(dtype=Any)):
+def clamp_displacement_kernel(
+    h: wp.array2d(dtype=Any), offset: wp.float64, u: wp.array2d(dtype=Any)
+):
     """Warm start, one thread per map pixel: u = max(u, h + offset) (no initial penetration)."""
     iy, ix = wp.tid()
     lo = h[iy, ix] + h.dtype(offset)
@@ -140,7 +142,11 @@ def spectral_multiply_kernel(
             mult = wp.float64(2.0)
             if ix == 0 or 2 * ix == nx_full:
                 mult = wp.float64(1.0)
-            acc += mult * wp.float64(wv) * (wp.float64(v[0]) * wp.float64(v[0]) + wp.float64(v[1]) * wp.float64(v[1]))
+            acc += (
+                mult
+                * wp.float64(wv)
+                * (wp.float64(v[0]) * wp.float64(v[0]) + wp.float64(v[1]) * wp.float64(v[1]))
+            )
         i += step
         iy += sy
         ix += sx
@@ -404,7 +410,10 @@ def punch_step_kernel(
 
 @wp.kernel
 def punch_direction_kernel(
-    res: wp.array2d(dtype=Any), mask: wp.array2d(dtype=wp.uint8), beta: wp.float64, d: wp.array2d(dtype=Any)
+    res: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    beta: wp.float64,
+    d: wp.array2d(dtype=Any),
 ):
     """One thread per map pixel: d = res + β·d on the contact set, 0 elsewhere."""
     iy, ix = wp.tid()
@@ -426,7 +435,9 @@ def contact_mask_kernel(q: wp.array2d(dtype=Any), mask: wp.array2d(dtype=wp.uint
 
 @wp.kernel
 def sum_lanes_kernel(
-    part: wp.array2d(dtype=wp.float64), is_max: wp.array[wp.int32], out: wp.array2d(dtype=wp.float64)
+    part: wp.array2d(dtype=wp.float64),
+    is_max: wp.array[wp.int32],
+    out: wp.array2d(dtype=wp.float64),
 ):
     """One thread per (output row, column): out[k, j] = Σ (or max) of part[k::rows, j], in order."""
     k, j = wp.tid()

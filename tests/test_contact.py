@@ -99,8 +99,12 @@ def test_barber_equals_central_difference(device):
     n, L, R = 96, 1e-3, 0.05
     z = _sphere(n, L, R)
     d = np.array([0.15, 0.3]) * (L / 2) ** 2 / R
-    kb = solve_contact(z, d, pixel_size=L / n, contact_modulus=E_STAR, stiffness="barber", device=device)
-    kc = solve_contact(z, d, pixel_size=L / n, contact_modulus=E_STAR, stiffness="central", device=device)
+    kb = solve_contact(
+        z, d, pixel_size=L / n, contact_modulus=E_STAR, stiffness="barber", device=device
+    )
+    kc = solve_contact(
+        z, d, pixel_size=L / n, contact_modulus=E_STAR, stiffness="central", device=device
+    )
     np.testing.assert_allclose(kb.stiffness, kc.stiffness, rtol=0.01)
 
 
@@ -248,7 +252,9 @@ def test_memory_refused_before_allocating(monkeypatch):
 
     monkeypatch.setattr(solver, "free_memory_bytes", lambda device: 1000)
     need = ContactSolver.memory_bytes((64, 64), "free", "float64")
-    with pytest.raises(MemoryError, match=rf"needs about {need} bytes .* on cpu but only 1000 bytes"):
+    with pytest.raises(
+        MemoryError, match=rf"needs about {need} bytes .* on cpu but only 1000 bytes"
+    ):
         ContactSolver(np.zeros((64, 64)), 1e-6, E_STAR, device="cpu")
 
 

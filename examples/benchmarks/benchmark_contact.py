@@ -159,7 +159,9 @@ def run_contactmechanics(s, system) -> dict:
         t0 = time.perf_counter()
         r0 = system.minimize_proxy(offset=FRACTIONS[0] * s.rt - h.max(), **kw)
         t1 = time.perf_counter()
-        r = system.minimize_proxy(offset=FRACTIONS[1] * s.rt - h.max(), initial_displacements=r0.x, **kw)
+        r = system.minimize_proxy(
+            offset=FRACTIONS[1] * s.rt - h.max(), initial_displacements=r0.x, **kw
+        )
         t2 = time.perf_counter()
     return {
         "time_cold_solve_s": t1 - t0, "time_warm_solve_s": t2 - t1, "n_iterations": int(r.nit),
@@ -170,11 +172,15 @@ def run_contactmechanics(s, system) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark; print a table and optionally write JSON."""
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0], formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    p = argparse.ArgumentParser(
+        description=__doc__.split("\n")[0], formatter_class=argparse.ArgumentDefaultsHelpFormatter
+    )
     p.add_argument("--n", type=int, nargs="+", default=[256, 512], help="map sizes N (N × N)")
     p.add_argument("--device", default=None, help="Warp device (cpu, cuda:0)")
     p.add_argument("--repeats", type=int, default=3, help="timed repeats (median)")
-    p.add_argument("--dtype", nargs="+", default=["float64", "float32"], choices=["float64", "float32"])
+    p.add_argument(
+        "--dtype", nargs="+", default=["float64", "float32"], choices=["float64", "float32"]
+    )
     p.add_argument("--no-reference", action="store_true", help="skip ContactMechanics on the CPU")
     p.add_argument("--json", type=Path, default=None, help="write all figures to this JSON file")
     a = p.parse_args(argv)
@@ -212,7 +218,9 @@ def main(argv: list[str] | None = None) -> int:
             r["iteration_over_floor"] = r["time_per_iteration_s"] / r["conv_floor_s"]
             if ref is not None:
                 r["contactmechanics"] = ref
-                r["time_ratio_to_contactmechanics"] = r["time_warm_solve_s"] / ref["time_warm_solve_s"]
+                r["time_ratio_to_contactmechanics"] = (
+                    r["time_warm_solve_s"] / ref["time_warm_solve_s"]
+                )
                 r["total_ratio_to_contactmechanics"] = (r["time_warm_solve_s"] + r["time_cold_solve_s"]) / (
                     ref["time_warm_solve_s"] + ref["time_cold_solve_s"])  # fmt: skip
                 r["load_rel_diff"] = r["load_N"] / ref["load_N"] - 1

@@ -119,7 +119,8 @@ def run(args: argparse.Namespace) -> int:
     from ..plot import plot_bem_check
 
     if args.stiffness == "barber" and args.solver != "warptrunc":
-        print(f"warptrunc {NAME}: error: --stiffness barber needs --solver warptrunc", file=sys.stderr)
+        print(f"warptrunc {NAME}: error: --stiffness barber needs --solver warptrunc",
+              file=sys.stderr)  # fmt: skip
         return 2
     if args.solver == "contactmechanics":
         try:

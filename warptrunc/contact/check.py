@@ -34,7 +34,6 @@ from typing import Any
 
 import numpy as np
 import warp as wp
-
 from tqdm.auto import tqdm
 
 from .._table import write_columns_csv
@@ -330,7 +329,7 @@ def bem_check(
     if stiffness == "barber" and solver != "warptrunc":
         raise ValueError("stiffness='barber' needs solver='warptrunc'")
     if solver == "contactmechanics":
-        Free, Periodic, System, Topography = require_bem()
+        require_bem()  # fail early, before the truncation part
     material = Material() if material is None else material
     beta_prime = check_range("beta_prime", beta_prime, 0.0)
     if substrate not in SUBSTRATES:
@@ -409,7 +408,9 @@ def _pentol(h: np.ndarray, pentol: float | None) -> tuple[float, str]:
     return pentol, "given"
 
 
-def _run_contactmechanics(surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress):
+def _run_contactmechanics(
+    surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress
+):
     """ContactMechanics' solves, three per approach (δ(1 − h), δ, δ(1 + h)), warm-started."""
     Free, Periodic, System, Topography = require_bem()
     h = np.ascontiguousarray(surface.heights.T, dtype=np.float64)  # ContactMechanics: x first

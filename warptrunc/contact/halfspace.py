@@ -48,7 +48,10 @@ from ..kernels import contact as _k
 __all__ = ["SUBSTRATES", "ElasticHalfSpace", "LaneReduction", "influence_spectrum"]
 
 SUBSTRATES = ("free", "periodic")
-DTYPES = {"float64": (wp.float64, wp.vec2d, np.float64), "float32": (wp.float32, wp.vec2f, np.float32)}
+DTYPES = {
+    "float64": (wp.float64, wp.vec2d, np.float64),
+    "float32": (wp.float32, wp.vec2f, np.float32),
+}
 
 
 def _love(x: np.ndarray, y: np.ndarray, a: float, b: float, e_star: float) -> np.ndarray:
@@ -268,7 +271,11 @@ class ElasticHalfSpace:
                 inputs=[spec_w, self.spectrum, int(inverse), self.grid[1], stride, chunk],
                 outputs=[red.part], device=self.device,
             )  # fmt: skip
-            energy = math.nan if inverse or not with_energy else float(red.read((False,))[0]) / (self.grid[0] * self.grid[1])
+            energy = (
+                math.nan
+                if inverse or not with_energy
+                else float(red.read((False,))[0]) / (self.grid[0] * self.grid[1])
+            )
             out = scipy.fft.irfft2(spec, s=self.grid, workers=workers)
             if out.dtype != self.np_dtype:
                 out = out.astype(self.np_dtype)
@@ -285,7 +292,11 @@ class ElasticHalfSpace:
                 outputs=[red.part], device=self.device,
             )  # fmt: skip
             out = cfft.irfft2(spec, s=self.grid)
-        energy = math.nan if inverse or not with_energy else float(red.read((False,))[0]) / (self.grid[0] * self.grid[1])
+        energy = (
+            math.nan
+            if inverse or not with_energy
+            else float(red.read((False,))[0]) / (self.grid[0] * self.grid[1])
+        )
         res = wp.array(ptr=out.data.ptr, dtype=self.scalar, shape=self.grid, capacity=out.nbytes,
                        device=self.device, copy=False)  # fmt: skip
         res._cupy_owner = out  # keeps CuPy's buffer alive as long as the Warp view

@@ -113,7 +113,9 @@ class ContactSolver:
         if dtype not in DTYPES:
             raise ValueError(f"dtype must be one of {tuple(DTYPES)}, got {dtype!r}")
         self.pressure_tol = check_range("pressure_tol", pressure_tol, 0.0)
-        self.pentol = default_pentol(h) if pentol is None else check_range("pentol", pentol, 0.0, unit="m")
+        self.pentol = (
+            default_pentol(h) if pentol is None else check_range("pentol", pentol, 0.0, unit="m")
+        )
         if self.pentol == 0.0:
             self.pentol = 1e-3 * max(float(np.ptp(h)), dx)  # a flat map: a fraction of its scale
         self.thermotol = check_range("thermotol", thermotol, 0.0)
@@ -148,7 +150,9 @@ class ContactSolver:
         self.offset = 0.0
 
     @staticmethod
-    def memory_bytes(shape: tuple[int, int], substrate: str = "free", dtype: str = "float64") -> int:
+    def memory_bytes(
+        shape: tuple[int, int], substrate: str = "free", dtype: str = "float64"
+    ) -> int:
         """Estimated peak device memory of a solver and its stiffness solve (bytes).
 
         Ten arrays of the FFT grid (q, u, t, two convolution outputs, the punch direction, the
@@ -259,10 +263,15 @@ class ContactSolver:
                 ok = total != 0 and abs((total - load) / total) < self.thermotol
                 height = self.h_max + offset
                 if last_height is not None:
-                    ok = ok and (height == last_height or abs((height - last_height) / height) < self.thermotol)
+                    ok = ok and (
+                        height == last_height
+                        or abs((height - last_height) / height) < self.thermotol
+                    )
                 last_height = height
             elif last_total is not None:
-                ok = (total == last_total) or (total != 0 and abs((total - last_total) / total) < self.thermotol)
+                ok = (total == last_total) or (
+                    total != 0 and abs((total - last_total) / total) < self.thermotol
+                )
             last_total = total
             res = max(rms_pen, pen, du)
             ok = ok and rms_pen < self.pentol and pen < self.pentol and du < self.pentol
@@ -273,7 +282,9 @@ class ContactSolver:
                 "residual": float(res), "max_tensile_force": float(max_tens), "converged": ok,
             }  # fmt: skip
             if not math.isfinite(res):
-                raise FloatingPointError(f"the contact solve diverged at iteration {it} (residual {res})")
+                raise FloatingPointError(
+                    f"the contact solve diverged at iteration {it} (residual {res})"
+                )
             if ok:
                 break
         self.offset = offset
@@ -301,13 +312,27 @@ class ContactSolver:
         sc = DTYPES[self.dtype][0]
         dev, red, hs = self.device, self.hs.reduction, self.hs
         ny, nx = self.shape
-        wp.launch(_k.contact_mask_kernel, dim=self.shape, inputs=[self.q], outputs=[self.mask], device=dev)
+        wp.launch(
+            _k.contact_mask_kernel, dim=self.shape, inputs=[self.q], outputs=[self.mask], device=dev
+        )
         x = wp.zeros(self.shape, dtype=sc, device=dev)
         res = wp.zeros(self.shape, dtype=sc, device=dev)
-        wp.launch(_k.fill_map_kernel, dim=self.shape, inputs=[self.mask, wp.float64(1.0)], outputs=[res], device=dev)
+        wp.launch(
+            _k.fill_map_kernel,
+            dim=self.shape,
+            inputs=[self.mask, wp.float64(1.0)],
+            outputs=[res],
+            device=dev,
+        )
         d = self.t  # the CCG direction is free now; its pad is zero
         d.zero_()
-        wp.launch(_k.fill_map_kernel, dim=self.shape, inputs=[self.mask, wp.float64(1.0)], outputs=[d], device=dev)
+        wp.launch(
+            _k.fill_map_kernel,
+            dim=self.shape,
+            inputs=[self.mask, wp.float64(1.0)],
+            outputs=[d],
+            device=dev,
+        )
         n_set = float(np.count_nonzero(self.mask.numpy()))  # sync point
         if n_set == 0:
             return 0.0, 0, True
@@ -315,7 +340,9 @@ class ContactSolver:
         for it in range(1, self.maxiter + 1):  # noqa: B007
             kd, d_k_d = hs.apply(d)
             alpha = rr / d_k_d
-            red.launch(_k.punch_step_kernel, ny * nx, [kd, d, self.mask, wp.float64(alpha)], [x, res])
+            red.launch(
+                _k.punch_step_kernel, ny * nx, [kd, d, self.mask, wp.float64(alpha)], [x, res]
+            )
             rr_new, k = red.read((False, False))
             if math.sqrt(rr_new / n_set) < rtol:
                 ok = True
