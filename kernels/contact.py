@@ -111,12 +111,13 @@ def spectral_multiply_kernel(
     w: wp.array2d(dtype=Any),
     inverse: int,
     nx_full: int,
+    col: int,
     stride: int,
     chunk: int,
     part: wp.array2d(dtype=wp.float64),
 ):
     """Lanes over the half spectrum (Ny, Nx//2 + 1) of a real-to-complex FFT: x ·= w (x /= w when
-    ``inverse``); part[i] = [Σ m·w·|x_in|²], m = 2 for the columns that stand for two conjugate
+    ``inverse``); part[i, col] = Σ m·w·|x_in|², m = 2 for the columns that stand for two conjugate
     modes, else 1, i.e. N·Σ t·(K t) by Parseval (the CG curvature, no extra pass)."""
     lane = wp.tid()
     nk = x.shape[1]
@@ -153,7 +154,7 @@ def spectral_multiply_kernel(
         if ix >= nk:
             ix -= nk
             iy += 1
-    part[lane, 0] = acc
+    part[lane, col] = acc
 
 
 @wp.kernel

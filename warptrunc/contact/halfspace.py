@@ -242,19 +242,20 @@ class ElasticHalfSpace:
         n = 4 * ny * nx if substrate == "free" else ny * nx
         return n * np.dtype(dtype).itemsize
 
-    def apply(
-        self, x: wp.array, *, inverse: bool = False, with_energy: bool = True
-    ) -> tuple[wp.array, float]:
-        """``(K·x, Σ x·K·x)``: displacements (m) of pixel forces ``x`` (N) on the (Ny, Nx) grid.
+    def apply(self, x: wp.array, *, inverse: bool = False, energy_column: int = -1) -> wp.array:
+        """K·x: displacements (m) of pixel forces ``x`` (N) on the (Ny, Nx) grid; with
+        ``inverse=True`` K⁻¹·x: pixel forces (N) of displacements x (m).
 
-        With ``inverse=True`` returns ``(K⁻¹·x, nan)``: pixel forces (N) of displacements x (m);
-        with ``with_energy=False`` the second value is nan and nothing is read back.
-        The result is a new (Ny, Nx) array (CPU: NumPy-owned memory; CUDA: CuPy's pool).
+        With ``energy_column ≥ 0`` (forward only) the lanes of :attr:`reduction` get the partial
+        sums of N·Σ x·(K·x) in that column (Parseval; read them with ``reduction.read``, divide
+        by N = Ny·Nx); nothing is read back here. The result is a new (Ny, Nx) array (CPU:
+        NumPy-owned memory; CUDA: CuPy's pool, kept alive by the Warp view).
         """
         red = self.reduction
         nyk, nxk = self.spectrum.shape
-        n = nyk * nxk
-        stride, chunk = red.geometry(n)
+        stride, chunk = red.geometry(nyk * nxk)
+        col = energy_column if (energy_column >= 0 and not inverse) else LaneReduction.COLUMNS - 1
+        args = [self.spectrum, int(inverse), self.grid[1], col, stride, chunk]
         if self._cp is None:
             xh = x.numpy()
             workers = os.cpu_count()
@@ -266,38 +267,22 @@ class ElasticHalfSpace:
                 spec = scipy.fft.rfft2(xh, workers=workers)
             spec_w = wp.array(spec.view(self.np_dtype).reshape(nyk, nxk, 2), dtype=self.vec2,
                               device=self.device, copy=False)  # fmt: skip
-            wp.launch(
-                _k.spectral_multiply_kernel, dim=red.lanes,
-                inputs=[spec_w, self.spectrum, int(inverse), self.grid[1], stride, chunk],
-                outputs=[red.part], device=self.device,
-            )  # fmt: skip
-            energy = (
-                math.nan
-                if inverse or not with_energy
-                else float(red.read((False,))[0]) / (self.grid[0] * self.grid[1])
-            )
+            wp.launch(_k.spectral_multiply_kernel, dim=red.lanes, inputs=[spec_w, *args],
+                      outputs=[red.part], device=self.device)  # fmt: skip
             out = scipy.fft.irfft2(spec, s=self.grid, workers=workers)
             if out.dtype != self.np_dtype:
                 out = out.astype(self.np_dtype)
-            return wp.array(out, dtype=self.scalar, device=self.device, copy=False), energy
+            return wp.array(out, dtype=self.scalar, device=self.device, copy=False)
         cp, cfft = self._cp
         stream = wp.get_stream(self.device)
         with cp.cuda.Device(self.device.ordinal), cp.cuda.ExternalStream(stream.cuda_stream):
             spec = cfft.rfft2(cp.asarray(x))
             spec_w = wp.array(ptr=spec.data.ptr, dtype=self.vec2, shape=(nyk, nxk),
                               capacity=spec.nbytes, device=self.device, copy=False)  # fmt: skip
-            wp.launch(
-                _k.spectral_multiply_kernel, dim=red.lanes,
-                inputs=[spec_w, self.spectrum, int(inverse), self.grid[1], stride, chunk],
-                outputs=[red.part], device=self.device,
-            )  # fmt: skip
+            wp.launch(_k.spectral_multiply_kernel, dim=red.lanes, inputs=[spec_w, *args],
+                      outputs=[red.part], device=self.device)  # fmt: skip
             out = cfft.irfft2(spec, s=self.grid)
-        energy = (
-            math.nan
-            if inverse or not with_energy
-            else float(red.read((False,))[0]) / (self.grid[0] * self.grid[1])
-        )
         res = wp.array(ptr=out.data.ptr, dtype=self.scalar, shape=self.grid, capacity=out.nbytes,
                        device=self.device, copy=False)  # fmt: skip
         res._cupy_owner = out  # keeps CuPy's buffer alive as long as the Warp view
-        return res, energy
+        return res

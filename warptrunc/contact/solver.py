@@ -200,7 +200,7 @@ class ContactSolver:
         n_grid = hs.grid[0] * hs.grid[1]
         wp.launch(_k.clamp_displacement_kernel, dim=self.shape, inputs=[self.h, wp.float64(offset)],
                   outputs=[self.u], device=dev)  # fmt: skip
-        q_full, _ = hs.apply(self.u, inverse=True)
+        q_full = hs.apply(self.u, inverse=True)
         self.q.zero_()
         wp.launch(_k.copy_map_kernel, dim=self.shape, inputs=[q_full], outputs=[self.q], device=dev)
         del q_full
@@ -221,8 +221,9 @@ class ContactSolver:
             red.launch(_k.cg_direction_kernel, n_map,
                        [self.q, self.u, self.h, wp.float64(offset), wp.float64(beta)],
                        [self.t, self.mask])  # fmt: skip
-            s_gt = red.read((False,))[0]
-            r, t_k_t = hs.apply(self.t)
+            r = hs.apply(self.t, energy_column=1)
+            s_gt, t_k_t = red.read((False, False))  # sync point
+            t_k_t /= n_grid
             n_conv += 1
             tau = 0.0
             if n_c > 0:
@@ -248,7 +249,7 @@ class ContactSolver:
                     exact = True
                 total = self._sums(offset)[3]
             if exact:
-                r, _ = hs.apply(self.q, with_energy=False)
+                r = hs.apply(self.q)
                 n_conv += 1
             red.launch(_k.advance_kernel, n_grid,
                        [r, 0 if not exact else 1, wp.float64(tau), wp.float64(scale), self.q, self.h,
@@ -338,7 +339,8 @@ class ContactSolver:
             return 0.0, 0, True
         rr, k, it, ok = n_set, 0.0, 0, False
         for it in range(1, self.maxiter + 1):  # noqa: B007
-            kd, d_k_d = hs.apply(d)
+            kd = hs.apply(d, energy_column=0)
+            d_k_d = red.read((False,))[0] / (hs.grid[0] * hs.grid[1])  # sync point
             alpha = rr / d_k_d
             red.launch(
                 _k.punch_step_kernel, ny * nx, [kd, d, self.mask, wp.float64(alpha)], [x, res]
