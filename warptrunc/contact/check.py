@@ -34,7 +34,6 @@ from typing import Any
 
 import numpy as np
 import warp as wp
-from tqdm.auto import tqdm
 
 from .._table import write_columns_csv
 from .._validate import check_int, check_range
@@ -412,6 +411,8 @@ def _run_contactmechanics(
     surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress
 ):
     """ContactMechanics' solves, three per approach (δ(1 − h), δ, δ(1 + h)), warm-started."""
+    from tqdm.auto import tqdm  # `import warptrunc` stays light
+
     Free, Periodic, System, Topography = require_bem()
     h = np.ascontiguousarray(surface.heights.T, dtype=np.float64)  # ContactMechanics: x first
     sizes = (surface.lx, surface.ly)
@@ -479,6 +480,8 @@ def _run_contactmechanics(
 def _run_warptrunc(surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress,
                    stiffness, dtype, device):  # fmt: skip
     """warptrunc's solves on ``device``: δ(1 − h), δ, δ(1 + h) (central) or δ and Barber's punch."""
+    from tqdm.auto import tqdm  # `import warptrunc` stays light
+
     pentol, pentol_note = _pentol(surface.heights, pentol)
     solver = ContactSolver(
         surface.heights, (surface.dx, surface.dy), e_star, substrate=substrate, dtype=dtype,
