@@ -237,7 +237,22 @@ class ElasticHalfSpace:
 
     @staticmethod
     def bytes_per_grid(shape: tuple[int, int], substrate: str, dtype: str) -> int:
-        """Bytes of one real (Ny, Nx) array of the FFT grid."""
+        """Bytes of one real (Ny, Nx) array of the FFT grid.
+
+        Parameters
+        ----------
+        shape : (int, int)
+            Map size (ny, nx).
+        substrate : {"free", "periodic"}
+            Half-space ((Ny, Nx) = (2ny, 2nx) for the free one).
+        dtype : {"float64", "float32"}
+            Precision.
+
+        Returns
+        -------
+        int
+            Bytes.
+        """
         ny, nx = shape
         n = 4 * ny * nx if substrate == "free" else ny * nx
         return n * np.dtype(dtype).itemsize

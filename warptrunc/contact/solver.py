@@ -43,7 +43,18 @@ STIFFNESS_METHODS = ("barber", "central", "none")
 
 
 def default_pentol(heights: np.ndarray) -> float:
-    """ContactMechanics' default penetration tolerance: rms height / (10·mean(nx, ny)) (m)."""
+    """ContactMechanics' default penetration tolerance: rms height / (10·mean(nx, ny)).
+
+    Parameters
+    ----------
+    heights : (ny, nx) array_like
+        Heights (m).
+
+    Returns
+    -------
+    float
+        Tolerance on penetration (m).
+    """
     h = np.asarray(heights, dtype=np.float64)
     return float(np.std(h)) / (10 * np.mean(h.shape))
 
@@ -153,9 +164,21 @@ class ContactSolver:
     def memory_bytes(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64"
     ) -> int:
-        """Estimated peak device memory of a solver and its stiffness solve (bytes).
+        """Estimated peak device memory of a solver and its stiffness solve.
 
-        Ten arrays of the FFT grid (q, u, t, two convolution outputs, the punch direction, the
+        Parameters
+        ----------
+        shape : (int, int)
+            Map size (ny, nx).
+        substrate : {"free", "periodic"}
+            Half-space (the free one works on a 2ny × 2nx grid).
+        dtype : {"float64", "float32"}
+            Precision of the maps.
+
+        Returns
+        -------
+        int
+            Bytes. Ten arrays of the FFT grid (q, u, t, two convolution outputs, the punch direction, the
         complex spectrum and cuFFT's work area, the kernel spectrum) plus four map-sized ones.
         """
         grid = ElasticHalfSpace.bytes_per_grid(shape, substrate, dtype)
@@ -185,6 +208,13 @@ class ContactSolver:
         dict
             ``depth`` (m), ``load`` (N), ``n_contact``, ``mean_gap`` (m), ``n_iterations``,
             ``n_convolutions``, ``residual`` (m), ``max_tensile_force`` (N), ``converged``.
+
+        Raises
+        ------
+        ValueError
+            Neither or both of depth and load, or a load ≤ 0.
+        FloatingPointError
+            When the residual becomes NaN/inf.
         """
         if (depth is None) == (load is None):
             raise ValueError("give exactly one of depth (m) and load (N)")
