@@ -4,9 +4,10 @@
 boundary-element solver on a free (zero-padded) or periodic half-space, and the cross-check of
 truncation analysis against it (:func:`bem_check`)."""
 
+from .curve import STIFFNESS_METHODS, solve_contact
 from .halfspace import SUBSTRATES, ElasticHalfSpace, influence_spectrum
 from .results import ContactCurve
-from .solver import STIFFNESS_METHODS, ContactSolver, default_pentol, solve_contact
+from .solver import ContactSolver, default_pentol
 
 __all__ = [
     "STIFFNESS_METHODS",
