@@ -10,7 +10,7 @@ stiffness and contact area with the truncation formulas of ``analyze``. Writes O
 units in the column names), OUT/bem.json (ratios, solver settings, convergence flags, times) and
 OUT/bem.png.
 
-Exit status: 0 when every solve converged; 3 (:data:`EXIT_NOT_CONVERGED`) when any solve stopped
+Exit status: 0 when every solve converged; 3 (``EXIT_NOT_CONVERGED``) when any solve stopped
 at --maxiter (the outputs are written and flag it), unless --accept-unconverged; 2 for bad
 arguments or a missing extra.
 """
