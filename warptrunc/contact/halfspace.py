@@ -18,7 +18,7 @@ Discretisation (identical to ContactMechanics' ``FreeFFTElasticHalfSpace`` and
 
 The spectrum ``W = FFT(G)/(dx·dy)`` (m/N) is real and even; it is computed in float64 on the
 host once per (grid, pixel size, E*, substrate) and cached (:func:`influence_spectrum`), and
-copied once per device and dtype. ``u = irfft2(W·rfft2(q))`` maps pixel forces q (N) to
+copied to the device once per :class:`ElasticHalfSpace` (one per solver, reused by every solve). ``u = irfft2(W·rfft2(q))`` maps pixel forces q (N) to
 displacements u (m): one real-to-complex transform, one multiply, one inverse.
 
 FFT backends: on a CUDA device cuFFT through CuPy (the ``gpu`` extra, ``cupy-cuda12x``), which

@@ -13,7 +13,10 @@ linearity (times the load scale in load control), so ``u = K·q`` is convolved a
 the projection changed pixels (forces set to zero, or penetrating pixels given force), on the
 first iteration and every ``refresh`` iterations (against round-off drift). In the CG phase near
 convergence the contact set is stable and an iteration costs one convolution; ``n_convolutions``
-reports the count. The curvature t·K·t comes from the spectral multiply by Parseval.
+reports the count (measured on D = 2.5 WM maps, 128²–512²: 13–16 iterations for 20–26
+convolutions per warm-started solve, the extra ones in the first iterations, where the contact
+set changes). The curvature t·K·t comes from the spectral multiply by Parseval; an iteration
+reads back three small reductions (three host synchronisations).
 
 Stopping (ContactMechanics' criterion): rms and max penetration over the CG set and the largest
 change of u in the iteration below ``pentol`` (m); the largest tensile pixel force before the
@@ -70,7 +73,9 @@ class ContactSolver:
         Isolated, zero-padded patch (default) or periodic map; see
         :mod:`warptrunc.contact.halfspace`.
     dtype : {"float64", "float32"}
-        Precision of the maps and FFTs; reductions are float64 in both.
+        Precision of the maps and FFTs; reductions are float64 in both. Measured against
+        float64 on D = 2.5 WM maps of 128²–512²: F within 5e-7, the same contact pixels, k
+        within 3e-5 (relative); about 0.6× the time on the CPU.
     pressure_tol : float
         Tolerance on tensile pixel pressure relative to E* (dimensionless);
         ``forcetol = pressure_tol·E*·dx·dy`` (N).
