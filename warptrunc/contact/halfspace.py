@@ -95,12 +95,15 @@ def influence_spectrum(
     dx, dy = pixel_size
     area = dx * dy
     if substrate == "free":
-        ix = np.arange(2 * nx)
-        iy = np.arange(2 * ny)
-        x = np.where(ix <= nx, ix, ix - 2 * nx) * dx
-        y = np.where(iy <= ny, iy, iy - 2 * ny) * dy
-        g = _love(x[None, :], y[:, None], dx / 2, dy / 2, contact_modulus)
-        w = scipy.fft.rfft2(g).real / area
+        # separations i·dx for i ≤ nx and (i − 2nx)·dx above; Love's G is even in x and y, so it
+        # is evaluated on one quadrant (|x| ≤ nx·dx, |y| ≤ ny·dy) and mirrored
+        quad = _love(np.arange(nx + 1)[None, :] * dx, np.arange(ny + 1)[:, None] * dy,
+                     dx / 2, dy / 2, contact_modulus)  # fmt: skip
+        jx = np.arange(2 * nx)
+        jy = np.arange(2 * ny)
+        g = quad[np.minimum(jy, 2 * ny - jy)[:, None], np.minimum(jx, 2 * nx - jx)[None, :]]
+        del quad
+        w = scipy.fft.rfft2(g, workers=os.cpu_count()).real / area
     elif substrate == "periodic":
         fx = np.fft.rfftfreq(nx, dx)
         fy = np.fft.fftfreq(ny, dy)
