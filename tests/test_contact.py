@@ -15,7 +15,7 @@ import warnings
 import numpy as np
 import pytest
 
-from warptrunc.contact import ContactSolver, default_pentol, solve_contact
+from warptrunc.contact import ContactSolver, default_pentol, influence_spectrum, solve_contact
 from warptrunc.wm import wm_surface
 
 E_STAR = 70e9 / (1 - 0.33**2)  # aluminium on a rigid flat (Pa)
@@ -77,6 +77,21 @@ def _cm_solves(z, dx, depths, *, substrate="free", fd_step=0.02, loads=None):
         k = (row[1][0] - row[0][0]) / (2 * fd_step * v) if loads is None else math.nan
         out.append((F, n * dx * dx, k, it))
     return np.array(out)
+
+
+# --- the discretisation --------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("substrate", ["free", "periodic"])
+def test_spectrum_equals_contactmechanics(substrate):
+    """The half-space's spectrum is ContactMechanics' Green's function (a non-square map with
+    dx ≠ dy checks the orientation: ContactMechanics puts x first), to round-off."""
+    Free, Periodic, _, _ = _contactmechanics()
+    ny, nx, dx, dy = 48, 64, 1e-6, 1.3e-6
+    w = influence_spectrum((ny, nx), (dx, dy), E_STAR, substrate)
+    hs = (Free if substrate == "free" else Periodic)((nx, ny), E_STAR, (nx * dx, ny * dy))
+    ref = np.real(hs.greens_function).T / (dx * dy)  # (y, x), full or half spectrum
+    np.testing.assert_allclose(w, ref[:, : w.shape[1]], rtol=1e-10, atol=1e-12 * np.abs(ref).max())
 
 
 # --- closed forms ---------------------------------------------------------------------------
