@@ -1,9 +1,10 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Elastic BEM cross-check (warptrunc.bem): Hertz, the truncation closed form, a WM surface.
+"""Elastic BEM cross-check (warptrunc.contact.check): Hertz, the truncation closed form, a WM
+surface, with warptrunc's solver (default) and ContactMechanics' (the ``bem`` extra).
 
-Needs the ``bem`` extra (ContactMechanics); skipped cleanly without it, except the test of the
-message that names the extra.
+The ContactMechanics cases skip cleanly without the extra, except the test of the message that
+names it. The solver itself is tested in test_contact.py.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import math
 import numpy as np
 import pytest
 
-from warptrunc import bem
+from warptrunc.contact import check as bem
 from warptrunc.stiffness import Material
 from warptrunc.surface import from_heights
 from warptrunc.wm import wm_surface
@@ -36,15 +37,17 @@ def _sphere(n: int, L: float, R: float):
     return from_heights(np.sqrt(R**2 - X**2 - Y**2) - R, dx)
 
 
-@pytest.fixture(scope="module")
-def hertz():
+@pytest.fixture(scope="module", params=["warptrunc", "contactmechanics"])
+def hertz(request):
     """One sphere (R = 50 mm) on 128² pixels of 7.8 µm; approaches give a = 20–35 pixels."""
-    _needs_bem()
+    if request.param == "contactmechanics":
+        _needs_bem()
     n, L, R = 128, 1e-3, 0.05
     s = _sphere(n, L, R)
     # a = √(Rδ) = √f · L/2 for δ = f·(L/2)²/R: contact radius 20, 29 and 35 pixels
     depths = np.array([0.1, 0.2, 0.3]) * (L / 2) ** 2 / R
-    res = bem.bem_check(s, depths, material=MATERIAL, progress=False, device="cpu")
+    res = bem.bem_check(s, depths, material=MATERIAL, solver=request.param, progress=False,
+                        device="cpu")  # fmt: skip
     return s, R, res
 
 
@@ -85,13 +88,14 @@ def test_truncation_closed_form_and_ratio_two(hertz):
     np.testing.assert_allclose(res.stiffness_ratio, math.sqrt(2), rtol=0.05)
 
 
-@pytest.fixture(scope="module")
-def wm_small():
-    _needs_bem()
+@pytest.fixture(scope="module", params=["warptrunc", "contactmechanics"])
+def wm_small(request):
+    if request.param == "contactmechanics":
+        _needs_bem()
     s = wm_surface(2.5, 100e-6, L=0.25e-3, n=64, Rt=2e-6, seed=3, device="cpu")
     res = bem.bem_check(
-        s, fractions=[0.05, 0.1, 0.2, 0.3, 0.4], material=MATERIAL, progress=False,
-        device="cpu",
+        s, fractions=[0.05, 0.1, 0.2, 0.3, 0.4], material=MATERIAL, solver=request.param,
+        progress=False, device="cpu",
     )  # fmt: skip
     return s, res
 
@@ -123,37 +127,56 @@ def test_outputs(wm_small, tmp_path):
         head
     )
     d = json.loads((tmp_path / "bem.json").read_text())
-    assert d["settings"]["half_space"] == "FreeFFTElasticHalfSpace"
+    if d["settings"]["solver"] == "contactmechanics":
+        assert d["settings"]["half_space"] == "FreeFFTElasticHalfSpace"
     assert d["settings"]["contact_modulus_Pa"] == pytest.approx(MATERIAL.reduced_modulus)
     assert len(d["settings"]["solves"]) == 3 * res.depth.size
     assert d["summary"]["all_converged"] is True
 
 
-def test_cli_writes_files(tmp_path):
-    _needs_bem()
+@pytest.mark.parametrize("solver", ["warptrunc", "contactmechanics"])
+def test_cli_writes_files(tmp_path, solver):
+    if solver == "contactmechanics":
+        _needs_bem()
     from warptrunc.cli import main
 
     out = tmp_path / "b"
     rc = main(
         ["bem-check", "--n", "48", "--L", "2e-4", "--Rt", "1e-6", "--fractions", "0.1", "0.3",
-         "--device", "cpu", "--no-progress", "--out", str(out)]
+         "--device", "cpu", "--no-progress", "--solver", solver, "--out", str(out)]
     )  # fmt: skip
     assert rc == 0
     assert {p.name for p in out.iterdir()} == {"bem.csv", "bem.json", "bem.png"}
+    assert json.loads((out / "bem.json").read_text())["settings"]["solver"] == solver
 
 
-def test_not_converged_is_flagged():
+def test_cli_exit_code_when_not_converged(tmp_path, capsys):
+    """--maxiter 1 cannot converge: the files are written, the exit status is 3, and 0 with
+    --accept-unconverged."""
+    from warptrunc.cli import main
+
+    args = ["bem-check", "--n", "32", "--L", "2e-4", "--Rt", "1e-6", "--fractions", "0.3",
+            "--device", "cpu", "--no-progress", "--no-plot", "--maxiter", "1"]  # fmt: skip
+    assert main([*args, "--out", str(tmp_path / "a")]) == 3
+    assert "not every solve converged" in capsys.readouterr().err
+    d = json.loads((tmp_path / "a" / "bem.json").read_text())
+    assert d["summary"]["all_converged"] is False
+    assert main([*args, "--accept-unconverged", "--out", str(tmp_path / "b")]) == 0
+
+
+@pytest.mark.parametrize("solver", ["warptrunc", "contactmechanics"])
+def test_not_converged_is_flagged(solver):
     """maxiter = 1 cannot converge on a WM surface: every row must say so."""
-    _needs_bem()
+    if solver == "contactmechanics":
+        _needs_bem()
     s = wm_surface(2.5, 100e-6, L=0.25e-3, n=32, Rt=2e-6, seed=1, device="cpu")
-    res = bem.bem_check(s, fractions=[0.3], maxiter=1, progress=False, device="cpu")
+    res = bem.bem_check(s, fractions=[0.3], maxiter=1, solver=solver, progress=False, device="cpu")
     assert not res.converged.any()
     assert res.summary()["n_not_converged"] == 1
     assert not any(x["success"] for x in res.settings["solves"])
 
 
 def test_bad_input():
-    _needs_bem()
     s = wm_surface(2.5, 100e-6, L=0.25e-3, n=32, Rt=2e-6, seed=1, device="cpu")
     with pytest.raises(ValueError, match="fraction must be in"):
         bem.bem_check(s, fractions=[1.5], progress=False, device="cpu")
@@ -161,6 +184,8 @@ def test_bad_input():
         bem.bem_check(s, fractions=[0.3, 0.2], progress=False, device="cpu")
     with pytest.raises(ValueError, match="substrate must be"):
         bem.bem_check(s, substrate="rigid", progress=False, device="cpu")
+    with pytest.raises(ValueError, match="solver must be one of"):
+        bem.bem_check(s, solver="fenics", progress=False, device="cpu")
 
 
 def test_missing_extra_names_it(monkeypatch, capsys):
@@ -176,11 +201,12 @@ def test_missing_extra_names_it(monkeypatch, capsys):
         bem.require_bem()
     from warptrunc.cli import main
 
-    assert main(["bem-check", "--n", "16", "--out", "unused"]) == 2
+    assert main(["bem-check", "--n", "16", "--solver", "contactmechanics", "--out", "unused"]) == 2
     assert "warptrunc[bem]" in capsys.readouterr().err
 
 
-def test_periodic_westergaard():
+@pytest.mark.parametrize("solver", ["warptrunc", "contactmechanics"])
+def test_periodic_westergaard(solver):
     """Periodic substrate on a y-constant cosine z = h₀cos(2πx/λ): Westergaard's partial contact.
 
     Mean pressure against contact width 2a (Johnson 1985, §13.2): p̄ = (πE*h₀/λ)·sin²(πa/λ).
@@ -188,16 +214,18 @@ def test_periodic_westergaard():
     The width is known to a pixel, so p̄ is allowed the error of a ± dx/2 shift of a,
     (π·dx/λ)·cot(πa/λ), plus 1 %.
     """
-    _needs_bem()
+    if solver == "contactmechanics":
+        _needs_bem()
     n, lam, h0 = 128, 1e-4, 1e-7
     dx = lam / n
     x = (np.arange(n) + 0.5) * dx
     s = from_heights(np.tile(h0 * np.cos(2 * np.pi * x / lam), (4, 1)), dx)
     res = bem.bem_check(
-        s, fractions=[0.2, 0.4], material=MATERIAL, substrate="periodic", progress=False,
-        device="cpu",
+        s, fractions=[0.2, 0.4], material=MATERIAL, substrate="periodic", solver=solver,
+        progress=False, device="cpu",
     )  # fmt: skip
-    assert res.settings["half_space"] == "PeriodicFFTElasticHalfSpace"
+    if solver == "contactmechanics":
+        assert res.settings["half_space"] == "PeriodicFFTElasticHalfSpace"
     assert res.all_converged
     a = res.bem_area / s.apparent_area * lam / 2
     p_mean = res.bem_load / s.apparent_area

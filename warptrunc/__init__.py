@@ -30,8 +30,8 @@ from ._source import map_source_kernels as _map_source_kernels
 _map_source_kernels(__name__, __path__)
 
 from ._device import resolve_device  # after the kernels mapping above
-from .bem import BemCheck, bem_check
 from .calibrate import Calibration, CalibrationTarget, calibrate
+from .contact.check import BemCheck, bem_check
 from .descriptors import describe
 from .fractal import FractalFit, fractal_dimension, fractal_dimensions
 from .io import read_height_map, write_height_map

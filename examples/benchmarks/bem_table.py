@@ -3,7 +3,7 @@
 """Truncation against elastic BEM across fractal dimensions: the README's ratio table.
 
 For each D and seed, a WM surface is generated (the defaults of ``analyze``: L = 1 mm,
-W_r = 100 µm, R_t = 10 µm) and :func:`warptrunc.bem.bem_check` compares truncation with the
+W_r = 100 µm, R_t = 10 µm) and :func:`warptrunc.bem_check` compares truncation with the
 non-periodic elastic boundary-element solution at δ/R_t = 0.05 … 0.4. Writes OUT/bem_table.json
 (every case's summary and columns) and OUT/bem_table.md (the ranges of the ratios, the solve
 time per case and per solve). Needs ``pip install "warptrunc[bem]"``.
@@ -87,7 +87,7 @@ def main(argv: list[str] | None = None) -> int:
         print(text)
         return 0
 
-    from warptrunc.bem import bem_check
+    from warptrunc import bem_check
     from warptrunc.stiffness import Material
     from warptrunc.wm import wm_surface
 

@@ -2,11 +2,17 @@
 # SPDX-License-Identifier: MIT
 """Elastic boundary-element cross-check of truncation on the same height map.
 
-Solves the elastic contact of the surface against a rigid flat with ContactMechanics
-(non-periodic FFT half-space, zero-padded to 2nx × 2ny; or periodic with --substrate periodic)
-at each approach δ and compares load, stiffness and contact area with the truncation formulas of
-``analyze``. Writes OUT/bem.csv (SI units in the column names), OUT/bem.json (ratios, solver
-settings, convergence flags, times) and OUT/bem.png. Needs the extra: pip install "warptrunc[bem]".
+Solves the elastic contact of the surface against a rigid flat (non-periodic FFT half-space,
+zero-padded to 2nx × 2ny; or periodic with --substrate periodic) at each approach δ with
+warptrunc's constrained-CG solver on --device (default), or ContactMechanics' on the CPU
+(--solver contactmechanics, needs the extra: pip install "warptrunc[bem]"), and compares load,
+stiffness and contact area with the truncation formulas of ``analyze``. Writes OUT/bem.csv (SI
+units in the column names), OUT/bem.json (ratios, solver settings, convergence flags, times) and
+OUT/bem.png.
+
+Exit status: 0 when every solve converged; 3 (``EXIT_NOT_CONVERGED``) when any solve stopped
+at --maxiter (the outputs are written and flag it), unless --accept-unconverged; 2 for bad
+arguments or a missing extra.
 """
 
 from __future__ import annotations
@@ -27,7 +33,9 @@ from ._common import (
 )
 
 NAME = "bem-check"
-HELP = "elastic boundary-element cross-check of truncation (needs warptrunc[bem])"
+HELP = "elastic boundary-element cross-check of truncation"
+EXIT_NOT_CONVERGED = 3
+"""Exit status when any solve did not converge (without --accept-unconverged)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -58,6 +66,20 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )  # fmt: skip
     s = p.add_argument_group("boundary-element solver")
     s.add_argument(
+        "--solver", choices=["warptrunc", "contactmechanics"], default="warptrunc",
+        help="warptrunc: constrained CG on --device; contactmechanics: the CPU reference "
+        '(needs pip install "warptrunc[bem]")',
+    )  # fmt: skip
+    s.add_argument(
+        "--stiffness", choices=["central", "barber"], default="central",
+        help="k = dF/dδ by the central difference, or by Barber's flat punch of the contact set "
+        "(warptrunc solver only)",
+    )  # fmt: skip
+    s.add_argument(
+        "--dtype", choices=["float64", "float32"], default="float64",
+        help="precision of the warptrunc solver",
+    )  # fmt: skip
+    s.add_argument(
         "--substrate", choices=["free", "periodic"], default="free",
         help="free: non-periodic half-space, zero-padded to 2nx × 2ny; periodic: for periodic maps",
     )  # fmt: skip
@@ -74,10 +96,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="tolerance on penetration (m); default rms height/(10·mean n)",
     )  # fmt: skip
     s.add_argument("--maxiter", type=integer(1), default=10000, help="largest CG iterations per solve")
+    s.add_argument(
+        "--accept-unconverged", action="store_true",
+        help=f"exit 0 even when a solve stopped at --maxiter (default: exit {EXIT_NOT_CONVERGED})",
+    )  # fmt: skip
     add_device(p)
     add_out(p, "bem")
     p.add_argument("--no-plot", action="store_true", help="skip the PNG")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument(
+        "--no-progress", action="store_true",
+        help="no progress bar (it is on stderr, and off when stderr is not a terminal)",
+    )  # fmt: skip
 
 
 def _rng(r: list[float] | None) -> str:
@@ -86,20 +115,27 @@ def _rng(r: list[float] | None) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run the comparison and write the outputs."""
-    from ..bem import bem_check, plot_bem_check, require_bem
+    from ..contact.check import bem_check, require_bem
+    from ..plot import plot_bem_check
 
-    try:
-        require_bem()
-    except ImportError as exc:
-        print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
+    if args.stiffness == "barber" and args.solver != "warptrunc":
+        print(f"warptrunc {NAME}: error: --stiffness barber needs --solver warptrunc",
+              file=sys.stderr)  # fmt: skip
         return 2
+    if args.solver == "contactmechanics":
+        try:
+            require_bem()
+        except ImportError as exc:
+            print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
+            return 2
     material = Material(E=args.E, nu=args.nu, E_i=args.E_flat, nu_i=args.nu_flat)
     s = surface_from_args(args)
     res = bem_check(
         s, args.depths, fractions=args.fractions, material=material,
         beta_prime=args.beta_prime, substrate=args.substrate, increments=args.increments,
         fd_step=args.fd_step, pressure_tol=args.pressure_tol, pentol=args.pentol,
-        maxiter=args.maxiter, progress=not args.no_progress, device=args.device,
+        maxiter=args.maxiter, solver=args.solver, stiffness=args.stiffness, dtype=args.dtype,
+        progress=not args.no_progress and sys.stderr.isatty(), device=args.device,
     )  # fmt: skip
     args.out.mkdir(parents=True, exist_ok=True)
     res.to_csv(args.out / "bem.csv")
@@ -111,14 +147,14 @@ def run(args: argparse.Namespace) -> int:
         fig = plot_bem_check(
             res, args.out / "bem.png",
             title=f"{s.nx}×{s.ny}, R$_t$ = {s.rt * 1e6:.3g} µm, E* = "
-            f"{material.reduced_modulus / 1e9:.4g} GPa, {args.substrate} half-space",
+            f"{material.reduced_modulus / 1e9:.4g} GPa, {args.substrate} half-space ({args.solver})",
         )  # fmt: skip
         plt.close(fig)
         files += ", bem.png"
     sm = res.summary()
     print(
         f"{s.nx}×{s.ny} surface, R_t = {s.rt * 1e6:.4g} µm, E* = "
-        f"{material.reduced_modulus / 1e9:.4g} GPa, {args.substrate} half-space; "
+        f"{material.reduced_modulus / 1e9:.4g} GPa, {args.substrate} half-space ({args.solver} solver); "
         f"{res.depth.size} approaches δ/R_t = "
         f"{res.depth_fraction.min():.3g}–{res.depth_fraction.max():.3g}\n"
         f"F'/F_BEM {_rng(sm['load_ratio'])}, k'/k_BEM {_rng(sm['stiffness_ratio'])}, "
@@ -139,4 +175,11 @@ def run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
     print(f"wrote {args.out}/{files}")
+    if not sm["all_converged"] and not args.accept_unconverged:
+        print(
+            f"warptrunc {NAME}: exit {EXIT_NOT_CONVERGED}: not every solve converged "
+            "(--accept-unconverged to exit 0)",
+            file=sys.stderr,
+        )
+        return EXIT_NOT_CONVERGED
     return 0

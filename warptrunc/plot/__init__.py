@@ -7,7 +7,8 @@ function takes result objects, returns the ``matplotlib.figure.Figure`` and, wit
 also saves a PNG. Lengths on axes are in µm, as the paper's figures.
 
 Layout: the style and shared helpers in ``_style``; Fig. 9 in ``stiffness``; Fig. 8 in
-``islands``; PSD and fractal dimension (Fig. 10) in ``fractal``; height maps in ``maps``.
+``islands``; PSD and fractal dimension (Fig. 10) in ``fractal``; height maps in ``maps``;
+the elastic cross-check in ``bem``.
 Every figure is importable from ``warptrunc.plot``.
 """
 
@@ -23,6 +24,7 @@ from ._style import (
     SPREAD_ALPHA,
     UM,
 )
+from .bem import plot_bem_check
 from .fractal import calibration_history, d_out_vs_d_in, fractal_fits, psd
 from .islands import island_number, slit_islands
 from .maps import area_fraction, height_map
@@ -44,6 +46,7 @@ __all__ = [
     "fractal_fits",
     "height_map",
     "island_number",
+    "plot_bem_check",
     "psd",
     "slit_islands",
     "stiffness_load",

@@ -4,7 +4,7 @@
 
 For D ∈ ``Profile.bem_D`` × ``Profile.bem_seeds`` seeds, a WM surface (L = 1 mm, W_r = 100 µm,
 R_t = 10 µm, the ``analyze`` defaults) at ``Profile.bem_n``² is compared with the non-periodic
-elastic boundary-element contact of :func:`warptrunc.bem.bem_check` at δ/R_t ∈
+elastic boundary-element contact of :func:`warptrunc.contact.check.bem_check` at δ/R_t ∈
 ``Profile.bem_fractions``. The BEM runs on the CPU (ContactMechanics) whatever the device.
 Needs the ``bem`` extra; without it the stage is skipped (not stored, so a rerun after installing
 the extra computes it) and the report says so.
@@ -31,7 +31,7 @@ of issue 12's measurement)."""
 
 def bem_available() -> str | None:
     """None when the ``bem`` extra imports; else the reason (naming the install command)."""
-    from ..bem import require_bem
+    from ..contact.check import require_bem
 
     try:
         require_bem()
@@ -51,10 +51,11 @@ def stage_params(p: Profile) -> dict[str, Any]:
 
 
 def stage_bem(p: Profile, device) -> dict[str, Any]:
-    """Run :func:`~warptrunc.bem.bem_check` on every (D, seed); one case per surface."""
+    """Run :func:`~warptrunc.contact.check.bem_check` (ContactMechanics' solver, the stage's
+    reference) on every (D, seed); one case per surface."""
     from tqdm.auto import tqdm
 
-    from ..bem import bem_check
+    from ..contact.check import bem_check
     from ..wm import wm_surface
 
     cases = [(D, s) for D in p.bem_D for s in range(p.bem_seeds)]
@@ -63,7 +64,8 @@ def stage_bem(p: Profile, device) -> dict[str, Any]:
     for D, seed in tqdm(cases, desc="BEM cross-check", unit="surface", leave=False):
         surf = wm_surface(D, SURFACE["Wr"], L=SURFACE["L"], n=p.bem_n, Rt=SURFACE["Rt"],
                           seed=seed, device=device)  # fmt: skip
-        r = bem_check(surf, fractions=p.bem_fractions, progress=False, device=device)
+        r = bem_check(surf, fractions=p.bem_fractions, solver="contactmechanics", progress=False,
+                      device=device)  # fmt: skip
         if settings is None:
             settings = {
                 k: v
@@ -163,7 +165,7 @@ def bem_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | None) -
     seeds = len({c["seed"] for c in stage["cases"]})
     L.append(
         f"Truncation (k' = (2/√π)·E*·√A', F' = ∫k' dω) against the elastic boundary-element "
-        f"contact of the same map (`warptrunc.bem.bem_check`: ContactMechanics "
+        f"contact of the same map (`warptrunc.contact.check.bem_check`: ContactMechanics "
         f"{st['versions'].get('contactmechanics')}, {st['substrate']} half-space, "
         f"{st['padding'].split(':')[0]}; "
         f"k_BEM by a central difference over δ(1 ± {st['fd_step']:g}), three solves per approach). "

@@ -3,12 +3,15 @@
 """Elastic boundary-element cross-check of truncation analysis on the same height map.
 
 The elastic contact of the rough surface against a rigid flat is solved at given approaches δ
-with the boundary-element (FFT) half-space of ContactMechanics [1]_ and its constrained
-conjugate-gradient (Polonsky–Keer) solver [2]_; the same approaches are fed to the truncation
-formulas of :mod:`warptrunc.stiffness` and the two are compared.
+with a boundary-element (FFT) half-space and the constrained conjugate-gradient (Polonsky–Keer)
+method [2]_: by default warptrunc's own solver on the surface's Warp device
+(:mod:`warptrunc.contact.solver`), or ContactMechanics' [1]_ on the CPU (``solver=
+"contactmechanics"``, the same discretisation and stopping criterion, as a reference). The same
+approaches are fed to the truncation formulas of :mod:`warptrunc.stiffness` and the two are
+compared.
 
 ContactMechanics and SurfaceTopography are an optional extra (``pip install "warptrunc[bem]"``),
-imported only inside :func:`bem_check`. Everything is host-side float64 NumPy.
+imported only when that solver is chosen.
 
 References
 ----------
@@ -21,10 +24,8 @@ References
 
 from __future__ import annotations
 
-import importlib.metadata
 import json
 import math
-import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -32,15 +33,16 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._table import write_columns_csv
-from ._validate import check_int, check_range
-from .stiffness import Material, stiffness_curve
-from .surface import Surface
-from .truncation import truncate
+from .._table import write_columns_csv
+from .._validate import check_int, check_range
+from ..stiffness import Material, stiffness_curve
+from ..surface import Surface
+from ..truncation import truncate
+from .runs import contactmechanics_versions, require_bem, run_contactmechanics, run_warptrunc
 
-__all__ = ["BemCheck", "bem_check", "plot_bem_check", "require_bem"]
+__all__ = ["SOLVERS", "BemCheck", "bem_check", "require_bem"]
 
-EXTRA_HINT = 'pip install "warptrunc[bem]"'
+SOLVERS = ("warptrunc", "contactmechanics")
 
 #: Default approaches, as fractions of R_t (the range of the issue's measurement, 5–40 %).
 DEFAULT_FRACTIONS = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4)
@@ -52,39 +54,6 @@ _PADDING = {
     "periodic": "none: the map repeats periodically; q = 0 mode given the stiffness of the "
     "lowest non-zero wavevector (library default), so F(δ) depends on that convention",
 }
-
-
-def require_bem() -> tuple[Any, Any, Any, Any]:
-    """Import ContactMechanics; raise ImportError naming the extra when it is missing.
-
-    Returns
-    -------
-    (FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace, NonSmoothContactSystem, Topography)
-    """
-    import warnings
-
-    try:
-        with warnings.catch_warnings():  # NuMPI without mpi4py: its serial stub, as intended here
-            warnings.filterwarnings("ignore", "Could not import mpi4py", ImportWarning)
-            from ContactMechanics import FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace
-            from ContactMechanics.Systems import NonSmoothContactSystem
-            from SurfaceTopography import Topography
-    except ImportError as exc:
-        raise ImportError(
-            f"the elastic boundary-element check needs ContactMechanics and SurfaceTopography "
-            f"({exc}); install them with: {EXTRA_HINT}"
-        ) from exc
-    return FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace, NonSmoothContactSystem, Topography
-
-
-def _versions() -> dict[str, str]:
-    out = {}
-    for pkg in ("contactmechanics", "surfacetopography", "mugrid"):
-        try:
-            out[pkg] = importlib.metadata.version(pkg)
-        except importlib.metadata.PackageNotFoundError:
-            out[pkg] = "not installed"
-    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -101,7 +70,7 @@ class BemCheck:
     bem_area: np.ndarray
     """(m,) BEM real contact area A_BEM = pixels with compressive force × pixel area (m²)."""
     bem_stiffness: np.ndarray
-    """(m,) BEM stiffness k_BEM = dF/dδ by central differences (N/m)."""
+    """(m,) BEM stiffness k_BEM = dF/dδ, by central differences or Barber's punch (N/m)."""
     trunc_area: np.ndarray
     """(m,) truncated area A' (pixels with z ≥ z_top − δ, m²)."""
     trunc_load: np.ndarray
@@ -109,11 +78,12 @@ class BemCheck:
     trunc_stiffness: np.ndarray
     """(m,) truncation stiffness k' = β'·(2/√π)·E*·√A' (N/m), Eq. (2)."""
     converged: np.ndarray
-    """(m,) bool: the solve at δ and both finite-difference solves converged."""
+    """(m,) bool: the solve at δ and those of its stiffness (finite differences or Barber's
+    punch) converged."""
     n_iterations: np.ndarray
     """(m,) int64 CG iterations of the solve at δ."""
     solve_time: np.ndarray
-    """(m,) wall time of the three solves of the row (s)."""
+    """(m,) wall time of the row's solves (s)."""
     edge_contact: np.ndarray
     """(m,) bool: BEM contact reaches the border of the map (free boundary: the map ends there)."""
     settings: dict[str, Any] = field(default_factory=dict)
@@ -172,7 +142,8 @@ class BemCheck:
         out["all_converged"] = self.all_converged
         out["n_not_converged"] = int(np.count_nonzero(~self.converged))
         out["any_edge_contact"] = bool(np.any(self.edge_contact))
-        out["time_per_solve_s"] = float(self.solve_time.sum() / (3 * self.depth.size))
+        n_solves = len(self.settings.get("solves", [])) or 3 * self.depth.size
+        out["time_per_solve_s"] = float(self.solve_time.sum() / n_solves)
         out["total_solve_time_s"] = float(self.solve_time.sum())
         return out
 
@@ -238,6 +209,9 @@ def bem_check(
     pressure_tol: float = 1e-5,
     pentol: float | None = None,
     maxiter: int = 10000,
+    solver: str = "warptrunc",
+    stiffness: str = "central",
+    dtype: str = "float64",
     progress: bool = True,
     device: wp.DeviceLike = None,
 ) -> BemCheck:
@@ -273,14 +247,31 @@ def bem_check(
         Solver tolerance on penetration (m); default the library's rms height/(10·mean n).
     maxiter : int
         Largest number of CG iterations per solve.
+    solver : {"warptrunc", "contactmechanics"}
+        Elastic solver: warptrunc's CCG on ``device`` (default), or ContactMechanics' on the CPU
+        (the ``bem`` extra), the reference it is tested against.
+    stiffness : {"central", "barber"}
+        k_BEM by the central difference (both solvers), or by Barber's flat punch of the contact
+        set (warptrunc only; one linear solve instead of two contact solves).
+    dtype : {"float64", "float32"}
+        Precision of warptrunc's solver.
     progress : bool
-        Show a tqdm progress bar over the solves.
+        Show a tqdm progress bar over the solves (stderr).
     device : str, optional
-        Warp device for the truncation part.
+        Warp device for the truncation part and warptrunc's solver.
 
     Returns
     -------
     BemCheck
+
+    Raises
+    ------
+    ValueError
+        Parameters out of range, approaches not increasing, an unknown solver or method.
+    ImportError
+        ``solver="contactmechanics"`` without the ``bem`` extra.
+    MemoryError
+        warptrunc's solver would not fit the device (checked before allocating).
 
     Notes
     -----
@@ -293,9 +284,14 @@ def bem_check(
     A'(δ); F'(δ) by linear interpolation of its trapezoidal load on ``increments`` steps.
     Every solve is warm-started from the displacement of the previous one.
     """
-    from tqdm.auto import tqdm
-
-    Free, Periodic, System, Topography = require_bem()
+    if solver not in SOLVERS:
+        raise ValueError(f"solver must be one of {SOLVERS}, got {solver!r}")
+    if stiffness not in ("central", "barber"):
+        raise ValueError(f"stiffness must be 'central' or 'barber', got {stiffness!r}")
+    if stiffness == "barber" and solver != "warptrunc":
+        raise ValueError("stiffness='barber' needs solver='warptrunc'")
+    if solver == "contactmechanics":
+        require_bem()  # fail early, before the truncation part
     material = Material() if material is None else material
     beta_prime = check_range("beta_prime", beta_prime, 0.0)
     if substrate not in SUBSTRATES:
@@ -321,90 +317,27 @@ def bem_check(
     trunc_stiffness = beta_prime * (2.0 / math.sqrt(math.pi)) * e_star * np.sqrt(trunc_area)
     trunc_load = np.interp(d, sc.depth, sc.load)
 
-    # boundary elements
-    h = np.ascontiguousarray(z.T, dtype=np.float64)  # ContactMechanics: x first
-    sizes = (surface.lx, surface.ly)
-    topo = Topography(h, physical_sizes=sizes, periodic=substrate == "periodic")
-    if substrate == "free":
-        half_space = Free(h.shape, e_star, sizes)
+    args = (surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress)
+    if solver == "contactmechanics":
+        out, conv, nit, edge, solves, extra = run_contactmechanics(*args)
     else:
-        half_space = Periodic(h.shape, e_star, sizes)
-    system = System(half_space, topo)
-    forcetol = pressure_tol * e_star * surface.pixel_area
-    if pentol is None:  # the library's heuristic, computed here (its own call is deprecated)
-        pentol = float(np.std(h)) / (10 * np.mean(h.shape))
-        pentol_note = "default: rms height/(10·mean n)"
-    else:
-        pentol_note = "given"
-    h_max = float(h.max())
-    m = d.size
-    out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
-    conv = np.zeros(m, dtype=bool)
-    nit = np.zeros(m, dtype=np.int64)
-    edge = np.zeros(m, dtype=bool)
-    solves: list[dict[str, Any]] = []
-    u0 = None
-
-    def solve(delta: float) -> tuple[float, dict[str, Any], np.ndarray]:
-        nonlocal u0
-        kw: dict[str, Any] = {
-            "offset": delta - h_max, "forcetol": forcetol, "pentol": pentol, "maxiter": maxiter,
-        }  # fmt: skip
-        if u0 is not None:
-            kw["initial_displacements"] = u0
-        r = system.minimize_proxy(**kw)
-        u0 = r.x
-        f = np.asarray(r.jac)  # per-pixel force on the map, compressive > 0 (N)
-        info = {
-            "depth_m": delta, "success": bool(r.success), "n_iterations": int(r.nit),
-            "message": str(r.message), "load_N": float(f.sum()),
-        }  # fmt: skip
-        return float(f.sum()), info, f
-
-    bar = tqdm(total=3 * m, desc="BEM solves", unit="solve", disable=not progress)
-    for i, delta in enumerate(d):
-        t0 = time.perf_counter()
-        lo, i_lo, _ = solve(delta * (1 - fd_step))
-        bar.update()
-        F, i_mid, f = solve(delta)
-        bar.update()
-        hi, i_hi, _ = solve(delta * (1 + fd_step))
-        bar.update()
-        out["t"][i] = time.perf_counter() - t0
-        contact = f > 0
-        out["F"][i] = F
-        out["A"][i] = np.count_nonzero(contact) * surface.pixel_area
-        out["k"][i] = (hi - lo) / (2 * fd_step * delta)
-        conv[i] = i_lo["success"] and i_mid["success"] and i_hi["success"]
-        nit[i] = i_mid["n_iterations"]
-        edge[i] = bool(
-            contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any()
-            or contact[:, -1].any()
-        )  # fmt: skip
-        solves += [i_lo, i_mid, i_hi]
-    bar.close()
-
+        out, conv, nit, edge, solves, extra = run_warptrunc(*args, stiffness, dtype, device)
     settings = {
-        "solver": "ContactMechanics NonSmoothContactSystem.minimize_proxy "
-        "(constrained conjugate gradients, Polonsky & Keer 1999)",
+        **extra,
         "substrate": substrate,
-        "half_space": type(half_space).__name__,
         "padding": _PADDING[substrate],
         "contact_modulus_Pa": e_star,
         "material": asdict(material),
         "beta_prime": beta_prime,
         "fd_step": fd_step,
-        "stiffness_method": "central difference of F over δ(1 ± fd_step)",
         "pressure_tol": pressure_tol,
-        "forcetol_N": forcetol,
-        "pentol_m": pentol,
-        "pentol_source": pentol_note,
+        "forcetol_N": pressure_tol * e_star * surface.pixel_area,
         "maxiter": maxiter,
         "increments": increments,
         "rt_m": rt,
         "grid": [surface.nx, surface.ny],
         "pixel_size_m": [surface.dx, surface.dy],
-        "versions": _versions(),
+        "versions": contactmechanics_versions(),
         "surface": surface.to_dict(),
         "solves": solves,
     }
@@ -423,40 +356,3 @@ def bem_check(
         edge_contact=edge,
         settings=settings,
     )
-
-
-def plot_bem_check(res: BemCheck, path: str | Path | None = None, *, title: str | None = None):
-    """F and k against δ for both methods, and A'/A_BEM; non-converged rows marked with ×.
-
-    Returns the matplotlib Figure; saved to ``path`` when given.
-    """
-    import matplotlib.pyplot as plt
-    from matplotlib.ticker import NullFormatter, ScalarFormatter
-
-    dum = res.depth * 1e6
-    fig, ax = plt.subplots(1, 3, figsize=(13, 4), constrained_layout=True)
-    ax[0].plot(dum, res.bem_load, "o-", label="elastic BEM")
-    ax[0].plot(dum, res.trunc_load, "s--", label="truncation")
-    ax[0].set(xlabel="approach δ (µm)", ylabel="load F (N)", yscale="log")
-    ax[1].plot(dum, res.bem_stiffness, "o-", label="elastic BEM")
-    ax[1].plot(dum, res.trunc_stiffness, "s--", label="truncation")
-    ax[1].set(xlabel="approach δ (µm)", ylabel="stiffness k (N/m)", yscale="log")
-    ax[2].plot(dum, res.area_ratio, "o-", label="A'/A$_{BEM}$")
-    ax[2].plot(dum, res.load_ratio, "^-", label="F'/F$_{BEM}$")
-    ax[2].plot(dum, res.stiffness_ratio, "v-", label="k'/k$_{BEM}$")
-    ax[2].axhline(1.0, color="0.6", lw=0.8)
-    ax[2].set(xlabel="approach δ (µm)", ylabel="truncation / BEM", yscale="log")
-    ax[2].yaxis.set_major_formatter(ScalarFormatter())
-    ax[2].yaxis.set_minor_formatter(NullFormatter())
-    bad = ~res.converged
-    if bad.any():
-        for a, y in ((ax[0], res.bem_load), (ax[1], res.bem_stiffness)):
-            a.plot(dum[bad], y[bad], "rx", ms=10, label="not converged")
-    for a in ax:
-        a.legend(fontsize=8)
-        a.grid(True, which="both", alpha=0.3)
-    if title:
-        fig.suptitle(title)
-    if path is not None:
-        fig.savefig(path, dpi=120)
-    return fig

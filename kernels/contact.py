@@ -1,0 +1,478 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Constrained conjugate gradients (Polonsky–Keer) for elastic contact: projections, updates and
+float64 reductions.
+
+Launched by ``warptrunc.contact.solver`` (and the spectral multiply by
+``warptrunc.contact.halfspace``). State arrays are float32 or float64 (one overload each):
+heights ``h`` (ny, nx) (m), compressive pixel forces ``q`` (Ny, Nx) (N, > 0 in contact), surface
+displacements ``u`` (Ny, Nx) (m), the CG direction ``t`` (Ny, Nx) (m); ``(Ny, Nx) = (2ny, 2nx)``
+for the free (zero-padded) half-space, ``(ny, nx)`` for the periodic one. ``q`` and ``t`` are
+zero outside the map (the pad) and are never written there. The gap is ``g = u − h − offset``
+(m), penetration where ``g < 0``. ``mask`` (ny, nx) uint8: bit 0 = in the CG set at the start of
+the iteration (q > 0), bit 1 = penetrating without force (load control adds those later).
+
+Grids: the ``*_kernel`` launches with partial sums use ``lanes`` threads: on the GPU lane ``i``
+walks the flattened map with stride ``lanes`` (coalesced), on the CPU lane ``i`` walks the
+contiguous chunk ``[i·chunk, (i+1)·chunk)``. Every lane writes its float64 partials to
+``part[i, j]`` without atomics; ``sum_lanes_kernel`` folds them into a few rows in a fixed
+order, so the reductions are deterministic for a given device. Elementwise kernels without
+reductions are one thread per map pixel, ``iy, ix = wp.tid()``.
+"""
+
+from typing import Any
+
+import warp as wp
+
+wp.set_module_options({"enable_backward": False})
+
+BIG = wp.constant(1.0e300)
+
+
+@wp.kernel
+def clamp_displacement_kernel(
+    h: wp.array2d(dtype=Any), offset: wp.float64, u: wp.array2d(dtype=Any)
+):
+    """Warm start, one thread per map pixel: u = max(u, h + offset) (no initial penetration)."""
+    iy, ix = wp.tid()
+    lo = h[iy, ix] + h.dtype(offset)
+    if u[iy, ix] < lo:
+        u[iy, ix] = lo
+
+
+@wp.kernel
+def copy_map_kernel(src: wp.array2d(dtype=Any), dst: wp.array2d(dtype=Any)):
+    """One thread per map pixel: dst[iy, ix] = src[iy, ix] (the pad of ``dst`` stays zero)."""
+    iy, ix = wp.tid()
+    dst[iy, ix] = src[iy, ix]
+
+
+@wp.kernel
+def fill_map_kernel(mask: wp.array2d(dtype=wp.uint8), value: wp.float64, x: wp.array2d(dtype=Any)):
+    """One thread per map pixel: x = value where mask bit 0 is set, else 0."""
+    iy, ix = wp.tid()
+    if (int(mask[iy, ix]) & 1) != 0:
+        x[iy, ix] = x.dtype(value)
+    else:
+        x[iy, ix] = x.dtype(0.0)
+
+
+@wp.kernel
+def cg_direction_kernel(
+    q: wp.array2d(dtype=Any),
+    u: wp.array2d(dtype=Any),
+    h: wp.array2d(dtype=Any),
+    offset: wp.float64,
+    beta: wp.float64,
+    stride: int,
+    chunk: int,
+    t: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the map: CG set c = q > 0, t = c·(g + β·t) (PK Eq. 13), mask = c;
+    part[i] = [Σ c·g·t]."""
+    lane = wp.tid()
+    nx = h.shape[1]
+    n = h.shape[0] * nx
+    i = lane
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        n = wp.min(n, i + chunk)
+        step = 1
+    s_gt = wp.float64(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
+    while i < n:
+        tv = t.dtype(0.0)
+        m = wp.uint8(0)
+        if q[iy, ix] > q.dtype(0.0):
+            g = u[iy, ix] - h[iy, ix] - h.dtype(offset)
+            tv = g + t.dtype(beta) * t[iy, ix]
+            s_gt += wp.float64(g) * wp.float64(tv)
+            m = wp.uint8(1)
+        t[iy, ix] = tv
+        mask[iy, ix] = m
+        i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
+    part[lane, 0] = s_gt
+
+
+@wp.kernel
+def spectral_multiply_kernel(
+    x: wp.array2d(dtype=Any),
+    w: wp.array2d(dtype=Any),
+    inverse: int,
+    nx_full: int,
+    col: int,
+    stride: int,
+    chunk: int,
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the half spectrum (Ny, Nx//2 + 1) of a real-to-complex FFT: x ·= w (x /= w when
+    ``inverse``); part[i, col] = Σ m·w·|x_in|², m = 2 for the columns that stand for two conjugate
+    modes, else 1, i.e. N·Σ t·(K t) by Parseval (the CG curvature, no extra pass)."""
+    lane = wp.tid()
+    nk = x.shape[1]
+    n = x.shape[0] * nk
+    i = lane
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        n = wp.min(n, i + chunk)
+        step = 1
+    acc = wp.float64(0.0)
+    iy = i // nk
+    ix = i - iy * nk
+    sy = step // nk
+    sx = step - sy * nk
+    while i < n:
+        v = x[iy, ix]
+        wv = w[iy, ix]
+        if inverse != 0:
+            x[iy, ix] = v / wv
+        else:
+            x[iy, ix] = v * wv
+            mult = wp.float64(2.0)
+            if ix == 0 or 2 * ix == nx_full:
+                mult = wp.float64(1.0)
+            acc += (
+                mult
+                * wp.float64(wv)
+                * (wp.float64(v[0]) * wp.float64(v[0]) + wp.float64(v[1]) * wp.float64(v[1]))
+            )
+        i += step
+        iy += sy
+        ix += sx
+        if ix >= nk:
+            ix -= nk
+            iy += 1
+    part[lane, col] = acc
+
+
+@wp.kernel
+def update_force_kernel(
+    t: wp.array2d(dtype=Any),
+    u: wp.array2d(dtype=Any),
+    h: wp.array2d(dtype=Any),
+    offset: wp.float64,
+    tau: wp.float64,
+    defer_nc: int,
+    stride: int,
+    chunk: int,
+    q: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the map: q ← q − τ·c·t; pixels with q ≤ 0 get q = 0 (tensile); those of them
+    that penetrate (g < 0) get q = −τ·g (PK's set I_ol), or only bit 1 of the mask when
+    ``defer_nc`` (load control rescales first). part[i] = [n penetrating without force,
+    n zeroed with q < 0, max tensile force, Σ q (after the update)]."""
+    lane = wp.tid()
+    nx = h.shape[1]
+    n = h.shape[0] * nx
+    i = lane
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        n = wp.min(n, i + chunk)
+        step = 1
+    n_nc = wp.float64(0.0)
+    n_zero = wp.float64(0.0)
+    max_tens = wp.float64(0.0)
+    total = wp.float64(0.0)
+    zero = q.dtype(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
+    while i < n:
+        m = mask[iy, ix]
+        qv = q[iy, ix]
+        if (int(m) & 1) != 0:
+            qv = qv - q.dtype(tau) * t[iy, ix]
+        if qv <= zero:
+            max_tens = wp.max(max_tens, -wp.float64(qv))
+            if qv < zero:
+                n_zero += wp.float64(1.0)
+            qv = zero
+            g = u[iy, ix] - h[iy, ix] - h.dtype(offset)
+            if g < h.dtype(0.0):
+                n_nc += wp.float64(1.0)
+                if defer_nc != 0:
+                    mask[iy, ix] = m | wp.uint8(2)
+                else:
+                    qv = -q.dtype(tau) * g
+        q[iy, ix] = qv
+        total += wp.float64(qv)
+        i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
+    part[lane, 0] = n_nc
+    part[lane, 1] = n_zero
+    part[lane, 2] = max_tens
+    part[lane, 3] = total
+
+
+@wp.kernel
+def rescale_force_kernel(
+    u: wp.array2d(dtype=Any),
+    h: wp.array2d(dtype=Any),
+    offset: wp.float64,
+    tau: wp.float64,
+    scale: wp.float64,
+    mask: wp.array2d(dtype=wp.uint8),
+    q: wp.array2d(dtype=Any),
+):
+    """Load control, one thread per map pixel: q ← scale·q, then q = −τ·g where mask bit 1
+    (which is cleared)."""
+    iy, ix = wp.tid()
+    qv = q[iy, ix] * q.dtype(scale)
+    m = mask[iy, ix]
+    if (int(m) & 2) != 0:
+        qv = -q.dtype(tau) * (u[iy, ix] - h[iy, ix] - h.dtype(offset))
+        mask[iy, ix] = m & wp.uint8(1)
+    q[iy, ix] = qv
+
+
+@wp.kernel
+def advance_kernel(
+    r: wp.array2d(dtype=Any),
+    mode: int,
+    tau: wp.float64,
+    scale: wp.float64,
+    q: wp.array2d(dtype=Any),
+    h: wp.array2d(dtype=Any),
+    offset: wp.float64,
+    mask: wp.array2d(dtype=wp.uint8),
+    stride: int,
+    chunk: int,
+    u: wp.array2d(dtype=Any),
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the whole (padded) grid: the new displacement, u ← scale·(u − τ·r) when
+    ``mode == 0`` (linearity: r = K·t and q changed by −τ·t only) or u ← r when ``mode == 1``
+    (r = K·q, exact). part[i] = [max |Δu| (whole grid), then over the map: n(q > 0), Σ c·g,
+    Σ c·g², max penetration over the previous CG set, Σ g] with c = q > 0 and the new u."""
+    lane = wp.tid()
+    nxp = u.shape[1]
+    n = u.shape[0] * nxp
+    ny = h.shape[0]
+    nx = h.shape[1]
+    i = lane
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        n = wp.min(n, i + chunk)
+        step = 1
+    du_max = wp.float64(0.0)
+    n_c = wp.float64(0.0)
+    s_g = wp.float64(0.0)
+    s_gg = wp.float64(0.0)
+    pen = wp.float64(0.0)
+    s_gap = wp.float64(0.0)
+    iy = i // nxp
+    ix = i - iy * nxp
+    sy = step // nxp
+    sx = step - sy * nxp
+    while i < n:
+        uo = u[iy, ix]
+        un = r[iy, ix]
+        if mode == 0:
+            un = u.dtype(scale) * (uo - u.dtype(tau) * un)
+        u[iy, ix] = un
+        du_max = wp.max(du_max, wp.abs(wp.float64(un) - wp.float64(uo)))
+        if iy < ny and ix < nx:
+            g = wp.float64(un) - wp.float64(h[iy, ix]) - offset
+            s_gap += g
+            if q[iy, ix] > q.dtype(0.0):
+                n_c += wp.float64(1.0)
+                s_g += g
+                s_gg += g * g
+            if (int(mask[iy, ix]) & 1) != 0:
+                pen = wp.max(pen, -g)
+        i += step
+        iy += sy
+        ix += sx
+        if ix >= nxp:
+            ix -= nxp
+            iy += 1
+    part[lane, 0] = du_max
+    part[lane, 1] = n_c
+    part[lane, 2] = s_g
+    part[lane, 3] = s_gg
+    part[lane, 4] = pen
+    part[lane, 5] = s_gap
+
+
+@wp.kernel
+def contact_sums_kernel(
+    q: wp.array2d(dtype=Any),
+    u: wp.array2d(dtype=Any),
+    h: wp.array2d(dtype=Any),
+    offset: wp.float64,
+    stride: int,
+    chunk: int,
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the map: part[i] = [n(q > 0), Σ c·g, Σ c·g², Σ q] (start of a solve)."""
+    lane = wp.tid()
+    nx = h.shape[1]
+    n = h.shape[0] * nx
+    i = lane
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        n = wp.min(n, i + chunk)
+        step = 1
+    n_c = wp.float64(0.0)
+    s_g = wp.float64(0.0)
+    s_gg = wp.float64(0.0)
+    s_q = wp.float64(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
+    while i < n:
+        if q[iy, ix] > q.dtype(0.0):
+            g = wp.float64(u[iy, ix]) - wp.float64(h[iy, ix]) - offset
+            n_c += wp.float64(1.0)
+            s_g += g
+            s_gg += g * g
+            s_q += wp.float64(q[iy, ix])
+        i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
+    part[lane, 0] = n_c
+    part[lane, 1] = s_g
+    part[lane, 2] = s_gg
+    part[lane, 3] = s_q
+
+
+@wp.kernel
+def punch_step_kernel(
+    kd: wp.array2d(dtype=Any),
+    d: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    alpha: wp.float64,
+    stride: int,
+    chunk: int,
+    x: wp.array2d(dtype=Any),
+    res: wp.array2d(dtype=Any),
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Barber's flat punch (linear CG on the contact set), lanes over the map: x += α·d,
+    res −= α·K·d on the set; part[i] = [Σ res², Σ x]."""
+    lane = wp.tid()
+    nx = mask.shape[1]
+    n = mask.shape[0] * nx
+    i = lane
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        n = wp.min(n, i + chunk)
+        step = 1
+    s_rr = wp.float64(0.0)
+    s_x = wp.float64(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
+    while i < n:
+        if (int(mask[iy, ix]) & 1) != 0:
+            xv = x[iy, ix] + x.dtype(alpha) * d[iy, ix]
+            rv = res[iy, ix] - res.dtype(alpha) * kd[iy, ix]
+            x[iy, ix] = xv
+            res[iy, ix] = rv
+            s_rr += wp.float64(rv) * wp.float64(rv)
+            s_x += wp.float64(xv)
+        i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
+    part[lane, 0] = s_rr
+    part[lane, 1] = s_x
+
+
+@wp.kernel
+def punch_direction_kernel(
+    res: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    beta: wp.float64,
+    d: wp.array2d(dtype=Any),
+):
+    """One thread per map pixel: d = res + β·d on the contact set, 0 elsewhere."""
+    iy, ix = wp.tid()
+    if (int(mask[iy, ix]) & 1) != 0:
+        d[iy, ix] = res[iy, ix] + d.dtype(beta) * d[iy, ix]
+    else:
+        d[iy, ix] = d.dtype(0.0)
+
+
+@wp.kernel
+def contact_mask_kernel(q: wp.array2d(dtype=Any), mask: wp.array2d(dtype=wp.uint8)):
+    """One thread per map pixel: mask = 1 where q > 0, else 0."""
+    iy, ix = wp.tid()
+    if q[iy, ix] > q.dtype(0.0):
+        mask[iy, ix] = wp.uint8(1)
+    else:
+        mask[iy, ix] = wp.uint8(0)
+
+
+@wp.kernel
+def sum_lanes_kernel(
+    part: wp.array2d(dtype=wp.float64),
+    is_max: wp.array[wp.int32],
+    out: wp.array2d(dtype=wp.float64),
+):
+    """One thread per (output row, column): out[k, j] = Σ (or max) of part[k::rows, j], in order."""
+    k, j = wp.tid()
+    rows = out.shape[0]
+    acc = wp.float64(0.0)
+    i = k
+    while i < part.shape[0]:
+        v = part[i, j]
+        if is_max[j] != 0:
+            acc = wp.max(acc, v)
+        else:
+            acc += v
+        i += rows
+    out[k, j] = acc
+
+
+def _declare_overloads() -> None:
+    """float32 and float64 instances of every generic kernel, so the module compiles once."""
+    kernels = (
+        clamp_displacement_kernel, copy_map_kernel, fill_map_kernel, cg_direction_kernel,
+        spectral_multiply_kernel, update_force_kernel, rescale_force_kernel, advance_kernel,
+        contact_sums_kernel, punch_step_kernel, punch_direction_kernel, contact_mask_kernel,
+    )  # fmt: skip
+    for scalar, vec in ((wp.float32, wp.vec2f), (wp.float64, wp.vec2d)):
+        for k in kernels:
+            types = {}
+            for arg in k.adj.args:
+                ty = arg.type
+                if wp.types.is_array(ty) and ty.dtype is Any:
+                    dt = vec if (k is spectral_multiply_kernel and arg.label == "x") else scalar
+                    types[arg.label] = wp.array2d(dtype=dt)
+                else:
+                    types[arg.label] = ty
+            wp.overload(k, types)
+
+
+_declare_overloads()

@@ -1,0 +1,291 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Elastic contact solver (warptrunc.contact) against closed forms and ContactMechanics.
+
+Closed forms: Hertz (sphere, free half-space), a rigid flat circular punch (k = 2E*a), and
+Westergaard's periodic sinusoid (periodic half-space). ContactMechanics (the ``bem`` extra) is
+called directly on the same maps with the same tolerances; those tests skip without it.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from warptrunc.contact import ContactSolver, default_pentol, influence_spectrum, solve_contact
+from warptrunc.wm import wm_surface
+
+E_STAR = 70e9 / (1 - 0.33**2)  # aluminium on a rigid flat (Pa)
+
+
+@pytest.fixture(autouse=True)
+def _cufft(request):
+    """On a CUDA device the solver needs CuPy (the ``gpu`` extra) for cuFFT."""
+    params = getattr(getattr(request.node, "callspec", None), "params", {})
+    if str(params.get("device", "")).startswith("cuda"):
+        pytest.importorskip("cupy")
+
+
+def _sphere(n: int, L: float, R: float) -> np.ndarray:
+    """Spherical cap z = √(R² − r²) − R (m) on n² pixels of side L/n, apex at the centre."""
+    dx = L / n
+    x = (np.arange(n) + 0.5) * dx - L / 2
+    X, Y = np.meshgrid(x, x)
+    return np.sqrt(R**2 - X**2 - Y**2) - R
+
+
+def _contactmechanics():
+    pytest.importorskip("ContactMechanics")
+    pytest.importorskip("SurfaceTopography")
+    from warptrunc.contact.check import require_bem
+
+    return require_bem()
+
+
+def _cm_solves(z, dx, depths, *, substrate="free", fd_step=0.02, loads=None):
+    """ContactMechanics on the same map: (F, A, k by central difference, iterations) per row,
+    with warptrunc's default tolerances (pentol: rms/(10·mean n); forcetol 1e-5·E*·dx²)."""
+    Free, Periodic, System, Topography = _contactmechanics()
+    h = np.ascontiguousarray(np.asarray(z, dtype=np.float64).T)  # x first
+    L = (h.shape[0] * dx, h.shape[1] * dx)
+    topo = Topography(h, physical_sizes=L, periodic=substrate == "periodic")
+    hs = (Free if substrate == "free" else Periodic)(h.shape, E_STAR, L)
+    system = System(hs, topo)
+    kw0 = {"pentol": default_pentol(h), "forcetol": 1e-5 * E_STAR * dx * dx, "maxiter": 10000}
+    out, u0 = [], None
+    values = depths if loads is None else loads
+    for v in values:
+        row = []
+        for f in (1 - fd_step, 1 + fd_step, 1.0) if loads is None else (1.0,):
+            kw = dict(kw0)
+            if loads is None:
+                kw["offset"] = v * f - h.max()
+            else:
+                kw["external_force"] = v
+            if u0 is not None:
+                kw["initial_displacements"] = u0
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                r = system.minimize_proxy(**kw)
+            assert r.success
+            u0 = r.x
+            row.append((float(r.jac.sum()), int(np.count_nonzero(r.jac > 0)), int(r.nit)))
+        F, n, it = row[-1]
+        k = (row[1][0] - row[0][0]) / (2 * fd_step * v) if loads is None else math.nan
+        out.append((F, n * dx * dx, k, it))
+    return np.array(out)
+
+
+# --- the discretisation --------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("substrate", ["free", "periodic"])
+def test_spectrum_equals_contactmechanics(substrate):
+    """The half-space's spectrum is ContactMechanics' Green's function (a non-square map with
+    dx ≠ dy checks the orientation: ContactMechanics puts x first), to round-off."""
+    Free, Periodic, _, _ = _contactmechanics()
+    ny, nx, dx, dy = 48, 64, 1e-6, 1.3e-6
+    w = influence_spectrum((ny, nx), (dx, dy), E_STAR, substrate)
+    hs = (Free if substrate == "free" else Periodic)((nx, ny), E_STAR, (nx * dx, ny * dy))
+    ref = np.real(hs.greens_function).T / (dx * dy)  # (y, x), full or half spectrum
+    np.testing.assert_allclose(w, ref[:, : w.shape[1]], rtol=1e-10, atol=1e-12 * np.abs(ref).max())
+
+
+# --- closed forms ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("method", ["barber", "central"])
+def test_hertz(device, method):
+    """F = (4/3)E*R^½δ^{3/2} within 2 %, a = √(A/π) = √(Rδ) within 5 %, k = 2E*a within 2 %.
+
+    The contact edge is resolved to a pixel: the area is off by a band of half a pixel around
+    the rim, ≲ dx/a = 5 % at a = 20 dx; F and k integrate the pressure, whose √-profile at the
+    rim makes their error of order (dx/a)^{3/2} ≈ 1 %. The sphere differs from Hertz's
+    paraboloid by O((a/R)²) < 1e-4.
+    """
+    n, L, R = 128, 1e-3, 0.05  # contact radius 20, 29 and 35 pixels of 7.8 µm
+    d = np.array([0.1, 0.2, 0.3]) * (L / 2) ** 2 / R
+    c = solve_contact(_sphere(n, L, R), d, pixel_size=L / n, contact_modulus=E_STAR,
+                      stiffness=method, device=device)  # fmt: skip
+    assert c.all_converged
+    np.testing.assert_allclose(c.load, 4 / 3 * E_STAR * math.sqrt(R) * d**1.5, rtol=0.02)
+    np.testing.assert_allclose(np.sqrt(c.area / math.pi), np.sqrt(R * d), rtol=0.05)
+    np.testing.assert_allclose(c.stiffness, 2 * E_STAR * np.sqrt(R * d), rtol=0.02)
+
+
+def test_barber_equals_central_difference(device):
+    """Barber's punch stiffness of the contact set equals dF/dδ by central differences (1 %:
+    the difference is O(h²) plus pixels entering the contact within ±2 % of δ)."""
+    n, L, R = 96, 1e-3, 0.05
+    z = _sphere(n, L, R)
+    d = np.array([0.15, 0.3]) * (L / 2) ** 2 / R
+    kb = solve_contact(
+        z, d, pixel_size=L / n, contact_modulus=E_STAR, stiffness="barber", device=device
+    )
+    kc = solve_contact(
+        z, d, pixel_size=L / n, contact_modulus=E_STAR, stiffness="central", device=device
+    )
+    np.testing.assert_allclose(kb.stiffness, kc.stiffness, rtol=0.01)
+
+
+def test_flat_punch(device):
+    """Rigid flat circular punch of radius a: F = 2E*aδ and k = 2E*a (Boussinesq).
+
+    The punch is the pixel disk (radius a_px = √(n_pixels/π)·dx); its pressure is singular at
+    the rim, which the pixel discretisation underestimates by O(dx/a): 3 % allowed at a = 40 dx.
+    """
+    n, dx = 128, 1e-6
+    x = (np.arange(n) + 0.5 - n / 2) * dx
+    X, Y = np.meshgrid(x, x)
+    disk = X**2 + Y**2 <= (40 * dx) ** 2
+    z = np.where(disk, 0.0, -1e-6)
+    delta = 1e-9
+    c = solve_contact(z, [delta], pixel_size=dx, contact_modulus=E_STAR, device=device)
+    a = math.sqrt(np.count_nonzero(disk) / math.pi) * dx
+    assert c.all_converged
+    assert c.n_contact[0] == np.count_nonzero(disk)
+    np.testing.assert_allclose(c.load, 2 * E_STAR * a * delta, rtol=0.03)
+    np.testing.assert_allclose(c.stiffness, 2 * E_STAR * a, rtol=0.03)
+
+
+def test_westergaard_periodic(device):
+    """Periodic sinusoid z = h₀cos(2πx/λ) under mean pressure p̄ (load control):
+    p̄ = p*·sin²(πa/λ) with p* = πE*h₀/λ (Westergaard 1939; Johnson, Contact Mechanics §13.2).
+    The contact width 2a is resolved to a pixel on each side: 2 pixels of 128 allowed."""
+    nx, ny, lam, h0 = 128, 8, 1e-4, 1e-7
+    dx = lam / nx
+    x = np.arange(nx) * dx
+    z = np.tile(h0 * np.cos(2 * np.pi * x / lam), (ny, 1))
+    p_star = math.pi * E_STAR * h0 / lam
+    for frac in (0.1, 0.3, 0.6):
+        load = frac * p_star * lam * ny * dx
+        c = solve_contact(z, loads=[load], pixel_size=dx, contact_modulus=E_STAR,
+                          substrate="periodic", stiffness="none", device=device)  # fmt: skip
+        assert c.all_converged
+        np.testing.assert_allclose(c.load, load, rtol=1e-5)
+        width = c.n_contact[0] / ny * dx  # 2a (m)
+        expect = 2 * lam / math.pi * math.asin(math.sqrt(frac))
+        assert abs(width - expect) <= 2 * dx, (frac, width / dx, expect / dx)
+
+
+# --- against ContactMechanics ---------------------------------------------------------------
+
+
+@pytest.mark.parametrize("substrate", ["free", "periodic"])
+def test_wm_map_equals_contactmechanics(device, substrate):
+    """The same 128² WM map (D = 2.5) through both solvers with the same tolerances: F, A and k
+    (central differences, as ContactMechanics has no other) agree within 1e-3 relative (the
+    tolerances allow a penetration of rms/1280; measured ≤ 2e-5). Iterations differ by a few:
+    warptrunc also restarts the CG when pixels leave the contact."""
+    s = wm_surface(2.5, L=1e-3, n=128, seed=3, device="cpu")
+    d = np.array([0.05, 0.1, 0.2, 0.3]) * s.rt
+    ref = _cm_solves(s.heights, s.dx, d, substrate=substrate)
+    c = solve_contact(s, d, contact_modulus=E_STAR, substrate=substrate, stiffness="central",
+                      device=device)  # fmt: skip
+    assert c.all_converged
+    np.testing.assert_allclose(c.load, ref[:, 0], rtol=1e-3)
+    np.testing.assert_allclose(c.area, ref[:, 1], rtol=1e-3)
+    np.testing.assert_allclose(c.stiffness, ref[:, 2], rtol=1e-3)
+    print(f"iterations ({substrate}): warptrunc {c.n_iterations.tolist()}, "
+          f"ContactMechanics {ref[:, 3].astype(int).tolist()}")  # fmt: skip
+    assert np.all(c.n_iterations <= 2 * ref[:, 3] + 5)
+
+
+def test_load_control_equals_contactmechanics(device):
+    """Load control (ContactMechanics' external_force) on a WM map: the same contact area and
+    approach within 1e-3."""
+    s = wm_surface(2.5, L=1e-3, n=64, seed=5, device="cpu")
+    loads = [0.5, 2.0]
+    ref = _cm_solves(s.heights, s.dx, loads, loads=loads)
+    c = solve_contact(s, loads=loads, contact_modulus=E_STAR, stiffness="none", device=device)
+    assert c.all_converged
+    np.testing.assert_allclose(c.load, ref[:, 0], rtol=1e-5)
+    np.testing.assert_allclose(c.area, ref[:, 1], rtol=1e-3)
+
+
+def test_measured_scan_equals_contactmechanics(scans_dir, device):
+    """A measured scan (matrix-4.txt, 305 × 75, non-square) through both solvers: F, A, k within
+    1e-3."""
+    from warptrunc.io import read_height_map
+
+    s = read_height_map(scans_dir / "matrix-4.txt")
+    d = np.array([0.1, 0.25]) * s.rt
+    ref = _cm_solves(s.heights, s.dx, d)
+    c = solve_contact(s, d, contact_modulus=E_STAR, stiffness="central", device=device)
+    assert c.all_converged
+    np.testing.assert_allclose(c.load, ref[:, 0], rtol=1e-3)
+    np.testing.assert_allclose(c.area, ref[:, 1], rtol=1e-3)
+    np.testing.assert_allclose(c.stiffness, ref[:, 2], rtol=1e-3)
+
+
+def test_float32_close_to_float64(device):
+    """float32 maps and FFTs (float64 reductions) against float64: F within 1e-5, A within 1e-3,
+    Barber k within 1e-4 relative (measured ≤ 5e-7, 0 and 3e-6 at 128²)."""
+    s = wm_surface(2.5, L=1e-3, n=128, seed=1, device="cpu")
+    d = np.array([0.1, 0.2, 0.3]) * s.rt
+    a = solve_contact(s, d, contact_modulus=E_STAR, device=device)
+    b = solve_contact(s, d, contact_modulus=E_STAR, dtype="float32", device=device)
+    assert a.all_converged and b.all_converged
+    np.testing.assert_allclose(b.load, a.load, rtol=1e-5)
+    np.testing.assert_allclose(b.area, a.area, rtol=1e-3)
+    np.testing.assert_allclose(b.stiffness, a.stiffness, rtol=1e-4)
+
+
+# --- outputs, refusals, flags ---------------------------------------------------------------
+
+
+def test_maps_and_columns(device):
+    """Pressure and gap maps: pressure ≥ 0, gap ≥ −pentol, no pressure where the gap is open,
+    Σ pressure·dx² = F; to_dict() gives 1-D columns."""
+    s = wm_surface(2.5, L=1e-3, n=64, seed=2, device="cpu")
+    c = solve_contact(s, [0.2 * s.rt], contact_modulus=E_STAR, maps=True, device=device)
+    p, g = c.pressure[0], c.gap[0]
+    assert p.shape == g.shape == (64, 64)
+    tol = c.settings["pentol_m"]
+    assert p.min() >= 0 and g.min() > -tol
+    assert np.all(p[g > 10 * tol] == 0)
+    assert math.isclose(p.sum() * s.dx * s.dy, c.load[0], rel_tol=1e-12)
+    assert math.isclose(g.mean(), c.mean_gap[0], rel_tol=1e-9)
+    cols = c.to_dict()
+    assert all(np.ndim(v) == 1 and len(v) == 1 for v in cols.values())
+
+
+def test_unconverged_rows_are_flagged(device):
+    """A solve stopped at maxiter is kept and flagged, never dropped."""
+    s = wm_surface(2.5, L=1e-3, n=64, seed=2, device="cpu")
+    d = np.array([0.1, 0.2]) * s.rt
+    c = solve_contact(s, d, contact_modulus=E_STAR, maxiter=1, device=device)
+    assert c.depth.size == 2
+    assert not c.converged.any()
+    assert np.all(c.n_iterations == 1)
+
+
+def test_non_finite_heights_refused():
+    z = np.zeros((16, 16))
+    z[3, 4] = np.nan
+    with pytest.raises(ValueError, match=r"1 NaN/inf values \(first at iy=3, ix=4\)"):
+        ContactSolver(z, 1e-6, E_STAR, device="cpu")
+
+
+def test_memory_refused_before_allocating(monkeypatch):
+    import warptrunc.contact.solver as solver
+
+    monkeypatch.setattr(solver, "free_memory_bytes", lambda device: 1000)
+    need = ContactSolver.memory_bytes((64, 64), "free", "float64")
+    with pytest.raises(
+        MemoryError, match=rf"needs about {need} bytes .* on cpu but only 1000 bytes"
+    ):
+        ContactSolver(np.zeros((64, 64)), 1e-6, E_STAR, device="cpu")
+
+
+def test_bad_arguments():
+    z = np.zeros((8, 8))
+    with pytest.raises(ValueError, match="substrate must be one of"):
+        ContactSolver(z, 1e-6, E_STAR, substrate="halfspace", device="cpu")
+    with pytest.raises(ValueError, match="dtype must be one of"):
+        ContactSolver(z, 1e-6, E_STAR, dtype="float16", device="cpu")
+    with pytest.raises(ValueError, match="exactly one of depths"):
+        solve_contact(z, pixel_size=1e-6, contact_modulus=E_STAR, device="cpu")

@@ -1,0 +1,74 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Result objects of the elastic contact solver: one row per approach δ, host NumPy arrays."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = ["ContactCurve"]
+
+
+@dataclass(frozen=True, eq=False)
+class ContactCurve:
+    """Elastic contact of a rough map against a rigid flat at m approaches (or loads).
+
+    Rows are in the order solved; a solve that stopped at its iteration limit is kept and
+    flagged (``converged`` False), never dropped.
+    """
+
+    depth: np.ndarray
+    """(m,) float64 approach δ of the flat from first touch at the highest pixel (m)."""
+    load: np.ndarray
+    """(m,) float64 normal load F = Σ pixel forces (N)."""
+    n_contact: np.ndarray
+    """(m,) int64 pixels in contact (pressure > 0)."""
+    area: np.ndarray
+    """(m,) float64 real contact area A = n_contact × pixel area (m²)."""
+    stiffness: np.ndarray
+    """(m,) float64 normal contact stiffness k = dF/dδ (N/m); method in ``settings``."""
+    mean_gap: np.ndarray
+    """(m,) float64 mean gap between the flat and the deformed surface over the map (m)."""
+    n_iterations: np.ndarray
+    """(m,) int64 constrained-CG iterations of the solve at δ."""
+    n_convolutions: np.ndarray
+    """(m,) int64 FFT convolutions of that solve (including the warm start's one)."""
+    residual: np.ndarray
+    """(m,) float64 final max(rms penetration, max penetration, max |Δu|) (m), against pentol."""
+    max_tensile_force: np.ndarray
+    """(m,) float64 final largest tensile pixel force before projection (N), against forcetol."""
+    converged: np.ndarray
+    """(m,) bool: the solve at δ (and the solves of its stiffness) converged."""
+    solve_time: np.ndarray
+    """(m,) float64 wall time of the row's solves (s)."""
+    pressure: np.ndarray | None = None
+    """(m, ny, nx) float64 contact pressure (Pa), with ``maps=True``; else None."""
+    gap: np.ndarray | None = None
+    """(m, ny, nx) float64 gap (m), with ``maps=True``; else None."""
+    settings: dict[str, Any] = field(default_factory=dict)
+    """Solver settings and tolerances (JSON-able)."""
+
+    @property
+    def all_converged(self) -> bool:
+        """True when every solve converged."""
+        return bool(np.all(self.converged))
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """1-D columns, SI units in the names (maps and settings left out)."""
+        return {
+            "depth_m": self.depth,
+            "load_N": self.load,
+            "n_contact": self.n_contact,
+            "area_m2": self.area,
+            "stiffness_N_per_m": self.stiffness,
+            "mean_gap_m": self.mean_gap,
+            "n_iterations": self.n_iterations,
+            "n_convolutions": self.n_convolutions,
+            "residual_m": self.residual,
+            "max_tensile_force_N": self.max_tensile_force,
+            "converged": self.converged,
+            "solve_time_s": self.solve_time,
+        }

@@ -1,0 +1,213 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The elastic solves of :func:`warptrunc.bem_check`: warptrunc's solver or ContactMechanics'.
+
+Each ``run_*`` solves the approaches δ of a :class:`~warptrunc.contact.check.BemCheck` and
+returns ``(columns, converged, n_iterations, edge_contact, solves, settings)``: F (N), A (m²),
+k (N/m) and the row's time (s) per δ, the flags, one dict per solve and the solver's settings.
+ContactMechanics (the ``bem`` extra) is imported only by :func:`require_bem`.
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+import time
+from typing import Any
+
+import numpy as np
+
+from .solver import ContactSolver, default_pentol
+
+__all__ = [
+    "EXTRA_HINT",
+    "contactmechanics_versions",
+    "edge_contact",
+    "pentol_or_default",
+    "require_bem",
+    "run_contactmechanics",
+    "run_warptrunc",
+]
+
+EXTRA_HINT = 'pip install "warptrunc[bem]"'
+
+
+def require_bem() -> tuple[Any, Any, Any, Any]:
+    """Import ContactMechanics; raise ImportError naming the extra when it is missing.
+
+    Returns
+    -------
+    (FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace, NonSmoothContactSystem, Topography)
+    """
+    import warnings
+
+    try:
+        with warnings.catch_warnings():  # NuMPI without mpi4py: its serial stub, as intended here
+            warnings.filterwarnings("ignore", "Could not import mpi4py", ImportWarning)
+            from ContactMechanics import FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace
+            from ContactMechanics.Systems import NonSmoothContactSystem
+            from SurfaceTopography import Topography
+    except ImportError as exc:
+        raise ImportError(
+            f"the elastic boundary-element check needs ContactMechanics and SurfaceTopography "
+            f"({exc}); install them with: {EXTRA_HINT}"
+        ) from exc
+    return FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace, NonSmoothContactSystem, Topography
+
+
+def contactmechanics_versions() -> dict[str, str]:
+    """Installed versions of ContactMechanics, SurfaceTopography and muGrid (for provenance)."""
+    out = {}
+    for pkg in ("contactmechanics", "surfacetopography", "mugrid"):
+        try:
+            out[pkg] = importlib.metadata.version(pkg)
+        except importlib.metadata.PackageNotFoundError:
+            out[pkg] = "not installed"
+    return out
+
+
+def edge_contact(contact: np.ndarray) -> bool:
+    """True when a contact pixel lies on the border of the map."""
+    return bool(contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any()
+                or contact[:, -1].any())  # fmt: skip
+
+
+def pentol_or_default(h: np.ndarray, pentol: float | None) -> tuple[float, str]:
+    """(pentol (m), where it came from): the given one, else ContactMechanics' default."""
+    if pentol is None:  # ContactMechanics' heuristic, computed here (its own call is deprecated)
+        return default_pentol(h), "default: rms height/(10·mean n)"
+    return pentol, "given"
+
+
+def run_contactmechanics(
+    surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress
+):
+    """ContactMechanics' solves, three per approach (δ(1 − h), δ, δ(1 + h)), warm-started."""
+    from tqdm.auto import tqdm  # `import warptrunc` stays light
+
+    Free, Periodic, System, Topography = require_bem()
+    h = np.ascontiguousarray(surface.heights.T, dtype=np.float64)  # ContactMechanics: x first
+    sizes = (surface.lx, surface.ly)
+    topo = Topography(h, physical_sizes=sizes, periodic=substrate == "periodic")
+    half_space = (Free if substrate == "free" else Periodic)(h.shape, e_star, sizes)
+    system = System(half_space, topo)
+    forcetol = pressure_tol * e_star * surface.pixel_area
+    pentol, pentol_note = pentol_or_default(h, pentol)
+    h_max = float(h.max())
+    m = d.size
+    out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
+    conv = np.zeros(m, dtype=bool)
+    nit = np.zeros(m, dtype=np.int64)
+    edge = np.zeros(m, dtype=bool)
+    solves: list[dict[str, Any]] = []
+    u0 = None
+
+    def solve(delta: float) -> tuple[float, dict[str, Any], np.ndarray]:
+        nonlocal u0
+        kw: dict[str, Any] = {
+            "offset": delta - h_max, "forcetol": forcetol, "pentol": pentol, "maxiter": maxiter,
+        }  # fmt: skip
+        if u0 is not None:
+            kw["initial_displacements"] = u0
+        r = system.minimize_proxy(**kw)
+        u0 = r.x
+        f = np.asarray(r.jac)  # per-pixel force on the map, compressive > 0 (N)
+        info = {
+            "depth_m": delta, "success": bool(r.success), "n_iterations": int(r.nit),
+            "message": str(r.message), "load_N": float(f.sum()),
+        }  # fmt: skip
+        return float(f.sum()), info, f
+
+    bar = tqdm(total=3 * m, desc="BEM solves", unit="solve", disable=not progress)
+    for i, delta in enumerate(d):
+        t0 = time.perf_counter()
+        lo, i_lo, _ = solve(delta * (1 - fd_step))
+        bar.update()
+        F, i_mid, f = solve(delta)
+        bar.update()
+        hi, i_hi, _ = solve(delta * (1 + fd_step))
+        bar.update()
+        out["t"][i] = time.perf_counter() - t0
+        contact = f > 0
+        out["F"][i] = F
+        out["A"][i] = np.count_nonzero(contact) * surface.pixel_area
+        out["k"][i] = (hi - lo) / (2 * fd_step * delta)
+        conv[i] = i_lo["success"] and i_mid["success"] and i_hi["success"]
+        nit[i] = i_mid["n_iterations"]
+        edge[i] = edge_contact(contact)
+        solves += [i_lo, i_mid, i_hi]
+    bar.close()
+    extra = {
+        "solver": "contactmechanics",
+        "solver_description": "ContactMechanics NonSmoothContactSystem.minimize_proxy "
+        "(constrained conjugate gradients, Polonsky & Keer 1999), CPU, float64",
+        "half_space": type(half_space).__name__,
+        "stiffness_method": "central difference of F over δ(1 ± fd_step)",
+        "pentol_m": pentol,
+        "pentol_source": pentol_note,
+    }
+    return out, conv, nit, edge, solves, extra
+
+
+def run_warptrunc(surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress,
+                   stiffness, dtype, device):  # fmt: skip
+    """warptrunc's solves on ``device``: δ(1 − h), δ, δ(1 + h) (central) or δ and Barber's punch."""
+    from tqdm.auto import tqdm  # `import warptrunc` stays light
+
+    pentol, pentol_note = pentol_or_default(surface.heights, pentol)
+    solver = ContactSolver(
+        surface.heights, (surface.dx, surface.dy), e_star, substrate=substrate, dtype=dtype,
+        pressure_tol=pressure_tol, pentol=pentol, maxiter=maxiter, device=device,
+    )  # fmt: skip
+    m = d.size
+    out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
+    conv = np.zeros(m, dtype=bool)
+    nit = np.zeros(m, dtype=np.int64)
+    edge = np.zeros(m, dtype=bool)
+    solves: list[dict[str, Any]] = []
+    per_row = 3 if stiffness == "central" else 1
+    bar = tqdm(total=per_row * m, desc="BEM solves", unit="solve", disable=not progress)
+
+    def solve(delta: float) -> dict[str, Any]:
+        info = solver.solve(delta)
+        bar.update()
+        solves.append({
+            "depth_m": float(delta), "success": bool(info["converged"]),
+            "n_iterations": int(info["n_iterations"]), "n_convolutions": int(info["n_convolutions"]),
+            "load_N": float(info["load"]), "residual_m": float(info["residual"]),
+            "message": "converged" if info["converged"] else f"reached maxiter = {solver.maxiter}",
+        })  # fmt: skip
+        return info
+
+    for i, delta in enumerate(d):
+        t0 = time.perf_counter()
+        lo = solve(delta * (1 - fd_step)) if stiffness == "central" else None
+        mid = solve(delta)
+        pressure, _ = solver.maps()  # sync point; the contact of the solve at δ
+        if lo is not None:
+            hi = solve(delta * (1 + fd_step))
+            out["k"][i] = (hi["load"] - lo["load"]) / (2 * fd_step * delta)
+            conv[i] = lo["converged"] and mid["converged"] and hi["converged"]
+        else:
+            k, k_it, k_ok = solver.punch_stiffness()
+            solves[-1]["punch_iterations"] = k_it
+            out["k"][i] = k
+            conv[i] = mid["converged"] and k_ok
+        out["t"][i] = time.perf_counter() - t0
+        contact = pressure > 0
+        out["F"][i] = mid["load"]
+        out["A"][i] = np.count_nonzero(contact) * surface.pixel_area
+        nit[i] = mid["n_iterations"]
+        edge[i] = edge_contact(contact)
+    bar.close()
+    extra = {
+        "solver": "warptrunc",
+        "solver_description": "warptrunc.contact constrained conjugate gradients "
+        f"(Polonsky & Keer 1999) on {solver.device}, {dtype}",
+        "stiffness_method": "central difference of F over δ(1 ± fd_step)" if stiffness == "central"
+        else "Barber: flat punch of the contact set (linear CG)",
+        "pentol_m": pentol,
+        "pentol_source": pentol_note,
+        "device": str(solver.device),
+        "dtype": dtype,
+    }  # fmt: skip
+    return out, conv, nit, edge, solves, extra
