@@ -94,6 +94,17 @@ def test_spectrum_equals_contactmechanics(substrate):
     np.testing.assert_allclose(w, ref[:, : w.shape[1]], rtol=1e-10, atol=1e-12 * np.abs(ref).max())
 
 
+def test_device_spectrum_equals_host(device):
+    """On CUDA the free spectrum is computed on the device (CuPy, cuFFT); it must equal the
+    host float64 spectrum (which equals ContactMechanics', above) to round-off."""
+    from warptrunc.contact import ElasticHalfSpace
+
+    ny, nx, dx, dy = 48, 64, 1e-6, 1.3e-6
+    hs = ElasticHalfSpace((ny, nx), (dx, dy), E_STAR, device=device)
+    w = influence_spectrum((ny, nx), (dx, dy), E_STAR, "free")
+    np.testing.assert_allclose(hs.spectrum.numpy(), w, rtol=1e-10, atol=1e-12 * np.abs(w).max())
+
+
 # --- closed forms ---------------------------------------------------------------------------
 
 

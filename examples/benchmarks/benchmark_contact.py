@@ -39,9 +39,9 @@ from pathlib import Path
 import numpy as np
 import scipy.fft
 import warp as wp
+from _common import git_commit
 
 import warptrunc
-from warptrunc._bench import git_commit
 from warptrunc.contact import ContactSolver, default_pentol, influence_spectrum
 from warptrunc.wm import wm_surface
 

@@ -16,9 +16,10 @@ Discretisation (identical to ContactMechanics' ``FreeFFTElasticHalfSpace`` and
   π·E*·(1/Lx + 1/Ly)/2, so F(δ) depends on that convention, the pressure at a given mean
   pressure does not.
 
-The spectrum ``W = FFT(G)/(dx·dy)`` (m/N) is real and even; it is computed in float64 on the
-host once per (grid, pixel size, E*, substrate) and cached (:func:`influence_spectrum`), and
-copied to the device once per :class:`ElasticHalfSpace` (one per solver, reused by every solve). ``u = irfft2(W·rfft2(q))`` maps pixel forces q (N) to
+The spectrum ``W = FFT(G)/(dx·dy)`` (m/N) is real and even; it is computed in float64 once per
+:class:`ElasticHalfSpace` (one per solver, reused by every solve): on a CUDA device with CuPy and
+cuFFT on the device (the free half-space; no host memory at the paper's sizes), otherwise on the
+host, cached by (grid, pixel size, E*, substrate) (:func:`influence_spectrum`). ``u = irfft2(W·rfft2(q))`` maps pixel forces q (N) to
 displacements u (m): one real-to-complex transform, one multiply, one inverse.
 
 FFT backends: on a CUDA device cuFFT through CuPy (the ``gpu`` extra, ``cupy-cuda12x``), which
@@ -54,18 +55,42 @@ DTYPES = {
 }
 
 
-def _love(x: np.ndarray, y: np.ndarray, a: float, b: float, e_star: float) -> np.ndarray:
-    """Displacement (m) at (x, y) under a unit pressure on [−a, a]×[−b, b] (Love 1929)."""
+def _love(x, y, a: float, b: float, e_star: float, xp=np):
+    """Displacement (m) at (x, y) under a unit pressure on [−a, a]×[−b, b] (Love 1929).
+
+    ``xp`` is the array module (NumPy on the host, CuPy on a CUDA device).
+    """
 
     xa, xm, yb, ym = x + a, x - a, y + b, y - b
     with np.errstate(divide="ignore", invalid="ignore"):
         v = (
-            xa * np.log((yb + np.hypot(yb, xa)) / (ym + np.hypot(ym, xa)))
-            + yb * np.log((xa + np.hypot(yb, xa)) / (xm + np.hypot(yb, xm)))
-            + xm * np.log((ym + np.hypot(ym, xm)) / (yb + np.hypot(yb, xm)))
-            + ym * np.log((xm + np.hypot(ym, xm)) / (xa + np.hypot(ym, xa)))
+            xa * xp.log((yb + xp.hypot(yb, xa)) / (ym + xp.hypot(ym, xa)))
+            + yb * xp.log((xa + xp.hypot(yb, xa)) / (xm + xp.hypot(yb, xm)))
+            + xm * xp.log((ym + xp.hypot(ym, xm)) / (yb + xp.hypot(yb, xm)))
+            + ym * xp.log((xm + xp.hypot(ym, xm)) / (xa + xp.hypot(ym, xa)))
         )
     return v / (math.pi * e_star)
+
+
+def _free_spectrum_cupy(shape, pixel_size, contact_modulus, cupy, cfft):
+    """The ``"free"`` spectrum of :func:`influence_spectrum`, computed on the current CUDA device.
+
+    Same float64 formula and mirroring as the host path, evaluated with CuPy and transformed with
+    cuFFT, so that a 10240² map needs no host memory or host FFT (≈ 3 GB of device memory
+    briefly, freed on return except the (2ny, nx + 1) result).
+    """
+    ny, nx = shape
+    dx, dy = pixel_size
+    quad = _love(cupy.arange(nx + 1, dtype=cupy.float64)[None, :] * dx,
+                 cupy.arange(ny + 1, dtype=cupy.float64)[:, None] * dy,
+                 dx / 2, dy / 2, contact_modulus, xp=cupy)  # fmt: skip
+    jx = cupy.arange(2 * nx)
+    jy = cupy.arange(2 * ny)
+    g = quad[cupy.minimum(jy, 2 * ny - jy)[:, None], cupy.minimum(jx, 2 * nx - jx)[None, :]]
+    del quad
+    w = cfft.rfft2(g).real / (dx * dy)
+    del g
+    return cupy.ascontiguousarray(w)
 
 
 @functools.lru_cache(maxsize=8)
@@ -222,11 +247,9 @@ class ElasticHalfSpace:
         self.scalar, self.vec2, self.np_dtype = DTYPES[dtype]
         ny, nx = self.shape
         self.grid = (2 * ny, 2 * nx) if substrate == "free" else (ny, nx)
-        w = influence_spectrum(self.shape, (float(pixel_size[0]), float(pixel_size[1])),
-                               float(contact_modulus), substrate)  # fmt: skip
-        self.spectrum = wp.array(w.astype(self.np_dtype), dtype=self.scalar, device=self.device)
         self.reduction = LaneReduction(self.device, self.grid[0] * self.grid[1])
         self._cp = None
+        pixel = (float(pixel_size[0]), float(pixel_size[1]))
         if self.device.is_cuda:
             try:
                 import cupy
@@ -237,6 +260,20 @@ class ElasticHalfSpace:
                     'install it with: pip install "warptrunc[gpu]"'
                 ) from exc
             self._cp = (cupy, cupyx.scipy.fft)
+        if self._cp is not None and substrate == "free":
+            # the free spectrum on the device: no host memory or host FFT at the paper's sizes
+            cupy, cfft = self._cp
+            with cupy.cuda.Device(self.device.ordinal):
+                w = _free_spectrum_cupy(self.shape, pixel, float(contact_modulus), cupy, cfft)
+                w = w.astype(self.np_dtype, copy=False)
+                wp.synchronize_device(self.device)  # CuPy's stream → Warp's stream
+            self.spectrum = wp.array(ptr=w.data.ptr, dtype=self.scalar, shape=w.shape,
+                                     capacity=w.nbytes, device=self.device, copy=False)  # fmt: skip
+            self.spectrum._cupy_owner = w  # keeps CuPy's buffer alive
+        else:
+            w = influence_spectrum(self.shape, pixel, float(contact_modulus), substrate)
+            self.spectrum = wp.array(w.astype(self.np_dtype), dtype=self.scalar,
+                                     device=self.device)  # fmt: skip
 
     @staticmethod
     def bytes_per_grid(shape: tuple[int, int], substrate: str, dtype: str) -> int:
