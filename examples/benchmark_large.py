@@ -31,8 +31,14 @@ import warp as wp
 
 import warptrunc
 from warptrunc._bench import git_commit
-from warptrunc.stream import fits_in_memory, stream_truncation
-from warptrunc.truncation import _thresholds, depth_grid, height_range, histogram_bands, truncate
+from warptrunc.truncation.curve import (
+    _thresholds,
+    depth_grid,
+    height_range,
+    histogram_bands,
+    truncate,
+)
+from warptrunc.truncation.stream import fits_in_memory, stream_truncation
 from warptrunc.wm import generate_on_device, wm_spec, wm_surface
 
 N_INCREMENTS = 200

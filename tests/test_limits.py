@@ -123,7 +123,7 @@ def test_gpu_past_2_31_pixels_in_memory_equals_streamed_and_numpy():
         pytest.skip("needs a CUDA device")
     if os.environ.get("WARPTRUNC_SLOW") != "1":
         pytest.skip("large case: set WARPTRUNC_SLOW=1")
-    from warptrunc.stream import truncate_streamed
+    from warptrunc.truncation.stream import truncate_streamed
 
     n = 46400
     s = wm_surface(n=n, seed=1, device="cuda:0")

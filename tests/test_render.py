@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from warptrunc import from_heights, truncate
+from warptrunc.io.vtk import export_vtk
 from warptrunc.render import auto_exaggeration, contact_masks, pool_blocks
-from warptrunc.vtk_io import export_vtk
 from warptrunc.wm import wm_surface
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -406,7 +406,7 @@ def test_mp4_without_imageio_names_the_packages(tmp_path, monkeypatch):
 
 def test_import_stays_light():
     code = (
-        "import sys, warptrunc, warptrunc.render, warptrunc.plot, warptrunc.vtk_io;"
+        "import sys, warptrunc, warptrunc.render, warptrunc.plot, warptrunc.io.vtk;"
         "bad = [m for m in ('pyvista', 'vtk', 'vtkmodules', 'matplotlib') if m in sys.modules];"
         "sys.exit(str(bad) if bad else 0)"
     )

@@ -9,7 +9,7 @@ import pytest
 
 from warptrunc import truncate
 from warptrunc.cli import main
-from warptrunc.stream import (
+from warptrunc.truncation.stream import (
     fits_in_memory,
     in_memory_bytes,
     stream_truncation,
@@ -128,9 +128,9 @@ def test_cli_stream_equals_in_memory(tmp_path, capsys):
 
 
 def test_cli_streams_when_the_map_does_not_fit(tmp_path, monkeypatch):
-    import warptrunc.stream
+    import warptrunc.truncation.stream
 
-    monkeypatch.setattr(warptrunc.stream, "_fits", lambda spec, device: False)
+    monkeypatch.setattr(warptrunc.truncation.stream, "_fits", lambda spec, device: False)
     _analyze(tmp_path)
     info = json.loads((tmp_path / "fit.json").read_text())
     assert info["path"] == "streamed"

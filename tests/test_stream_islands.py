@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy import ndimage
 
-from warptrunc.stream_islands import label_banded, streamed_islands
+from warptrunc.islands.streamed import label_banded, streamed_islands
 from warptrunc.wm import wm_surface
 
 STRUCT = {4: ndimage.generate_binary_structure(2, 1), 8: np.ones((3, 3), bool)}

@@ -157,7 +157,7 @@ def test_bad_spacing_and_device_raise():
 def test_histogram_kernels_equal_numpy(device, monkeypatch, mode, n_inc):
     """Every histogram kernel (block-private, 4 pixels per thread, one per pixel), with bins
     beyond the shared histogram's size and a remainder of n mod 4 pixels, counts as NumPy."""
-    import warptrunc.truncation as tr
+    import warptrunc.truncation.curve as tr
 
     monkeypatch.setattr(tr, "GPU_HISTOGRAM", mode)
     z = np.random.default_rng(5).normal(size=(61, 67)).astype(np.float32)  # 4087 pixels

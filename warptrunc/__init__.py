@@ -35,11 +35,11 @@ from .calibrate import Calibration, CalibrationTarget, calibrate
 from .descriptors import describe
 from .fractal import FractalFit, fractal_dimension, fractal_dimensions
 from .io import read_height_map, write_height_map
+from .io.vtk import export_vtk
 from .islands import IslandCurve, Islands, applicable_depth, island_curve, label_islands
 from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
 from .surface import Surface, from_heights, load_surface
 from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
-from .vtk_io import export_vtk
 from .wm import wm_surface
 
 __version__ = "0.1.0"

@@ -16,10 +16,10 @@ import numpy as np
 import warp as wp
 
 from ._device import check_memory, resolve_device
+from ._reduce import height_range
 from ._validate import check_int, check_range, pair
 from .kernels import wm as _k
 from .surface import Surface
-from .truncation import height_range
 
 __all__ = [
     "WMSpec",

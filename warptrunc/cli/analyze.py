@@ -166,7 +166,7 @@ def _truncation(args: argparse.Namespace):
             max_depth_fraction=args.max_depth_fraction, device=args.device,
         )  # fmt: skip
         return curve, s.to_dict(), {"path": "in-memory"}
-    from ..stream import stream_truncation
+    from ..truncation.stream import stream_truncation
 
     st = stream_truncation(
         wm_kwargs(args), args.increments, max_depth=args.max_depth,
@@ -183,6 +183,6 @@ def _wants_stream(args: argparse.Namespace) -> bool:
         return bool(args.stream)
     if args.stream:
         return True
-    from ..stream import fits_in_memory
+    from ..truncation.stream import fits_in_memory
 
     return not fits_in_memory(wm_kwargs(args), args.device)

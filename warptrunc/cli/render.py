@@ -116,7 +116,7 @@ def run(args: argparse.Namespace) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     written = []
     if args.vtk:
-        from ..vtk_io import export_vtk
+        from ..io.vtk import export_vtk
 
         written.append(
             export_vtk(s, args.out / args.vtk, n_increments=args.vtk_increments, device=args.device)

@@ -17,7 +17,7 @@ from .._device import resolve_device
 from .._validate import check_range
 from ..kernels import fractal as _k
 from ..surface import Surface
-from ..truncation import _where, surface_range
+from ..truncation.curve import _where, surface_range
 
 METHODS = ("tri", "box", "vs", "sp")
 """Method keys, in the order of Table 1."""

@@ -12,7 +12,7 @@ import warp as wp
 
 from ..kernels import fractal as _k
 from ..surface import Surface
-from ..truncation import surface_range
+from ..truncation.curve import surface_range
 from ._common import (
     DEFAULT_HEIGHT_SCALING,
     FractalFit,

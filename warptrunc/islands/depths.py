@@ -15,7 +15,7 @@ from .._device import check_memory, resolve_device
 from .._validate import check_int, check_range
 from ..kernels import islands as _ki
 from ..surface import Surface
-from ..truncation import _where, contact_index_map, depth_grid, surface_range
+from ..truncation.curve import _where, contact_index_map, depth_grid, surface_range
 from .fits import _slit_from_sums
 from .labelling import (
     _check_connectivity,

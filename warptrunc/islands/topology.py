@@ -16,7 +16,7 @@ import warp as wp
 from .._device import resolve_device
 from ..kernels import euler as _ke
 from ..surface import Surface
-from ..truncation import _where, contact_index_map, depth_grid
+from ..truncation.curve import _where, contact_index_map, depth_grid
 from .labelling import _check_connectivity, _check_index_size, _check_surface
 from .results import TopologyCurve
 

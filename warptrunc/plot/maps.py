@@ -64,7 +64,7 @@ def height_map(
 
     import numpy as np
 
-    from .._blocks import check_pooling, pool_blocks
+    from .pooling import check_pooling, pool_blocks
 
     check_pooling(pooling)
 

@@ -10,7 +10,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from .._blocks import pool_blocks
+from ..plot.pooling import pool_blocks
 from ..surface import Surface
 
 _NEUTRAL = (95, 225)  # grey levels of the lowest and the highest non-contact cells

@@ -18,12 +18,12 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import resolve_device
-from ._limits import flat_row_bands, row_bands
-from ._validate import check_int, check_range
-from .kernels import reduce as _kr
-from .kernels import truncation as _k
-from .surface import Surface
+from .._device import resolve_device
+from .._limits import flat_row_bands, row_bands
+from .._reduce import height_range
+from .._validate import check_int, check_range
+from ..kernels import truncation as _k
+from ..surface import Surface
 
 __all__ = [
     "TruncationCurve",
@@ -33,8 +33,6 @@ __all__ = [
     "height_range",
     "truncate",
 ]
-
-_REDUCE_LANES = 65536
 
 
 @dataclass(frozen=True, eq=False)
@@ -74,41 +72,6 @@ class TruncationCurve:
             "contact_area_m2": self.contact_area,
             "area_fraction": self.area_fraction,
         }
-
-
-def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, float]:
-    """Return (min z, max z) (m) of a float32 Warp array, by a device reduction.
-
-    ``z`` is 1-D, or 2-D (reduced by row bands of fewer than 2³¹ pixels: any size works)."""
-    if z.ndim == 2:
-        parts = [_height_range_flat(v, device) for _r0, _r1, v in flat_row_bands(z)]
-        return min(p[0] for p in parts), max(p[1] for p in parts)
-    return _height_range_flat(z, device)
-
-
-def _height_range_flat(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, float]:
-    device = resolve_device(device)
-    n = z.shape[0]
-    if device.is_cuda and n >= _kr.TILE:
-        full = n // _kr.TILE
-        lo = wp.empty(full, dtype=wp.float32, device=device)
-        hi = wp.empty(full, dtype=wp.float32, device=device)
-        wp.launch_tiled(
-            _kr.min_max_tile_kernel, dim=full, inputs=[z], outputs=[lo, hi], block_dim=256,
-            device=device,
-        )  # fmt: skip
-        parts_lo, parts_hi = [lo.numpy()], [hi.numpy()]  # sync point
-        if n > full * _kr.TILE:  # the remainder (< TILE values) on the host
-            tail = z[full * _kr.TILE :].numpy()
-            parts_lo.append(tail)
-            parts_hi.append(tail)
-        return float(min(p.min() for p in parts_lo)), float(max(p.max() for p in parts_hi))
-    out = wp.array(np.array([np.inf, -np.inf], dtype=np.float32), device=device)
-    lanes = min(_REDUCE_LANES, max(1, n))
-    chunk = 0 if device.is_cuda else -(-max(1, n) // lanes)  # CPU: contiguous chunks per lane
-    wp.launch(_kr.min_max_kernel, dim=lanes, inputs=[z, lanes, chunk], outputs=[out], device=device)
-    lo_v, hi_v = out.numpy()  # sync point
-    return float(lo_v), float(hi_v)
 
 
 _BLOCKS_PER_SM = 8  # persistent blocks of the GPU histogram kernel

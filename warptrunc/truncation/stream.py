@@ -34,19 +34,19 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import free_memory_bytes, resolve_device
-from ._limits import band_pixel_limit, row_bands
-from ._validate import check_int
-from .kernels import wm as _kwm
-from .surface import _jsonable
-from .truncation import (
+from .._device import free_memory_bytes, resolve_device
+from .._limits import band_pixel_limit, row_bands
+from .._validate import check_int
+from ..kernels import wm as _kwm
+from ..surface import _jsonable
+from ..wm import WMSpec, _pad, _scale, _surface_params, wm_product, wm_spec, wm_tables
+from .curve import (
     DEEP_FRACTION,
     TruncationCurve,
     _thresholds,
     depth_grid,
     histogram_bands,
 )
-from .wm import WMSpec, _pad, _scale, _surface_params, wm_product, wm_spec, wm_tables
 
 __all__ = [
     "StreamedTruncation",

@@ -25,7 +25,7 @@ from collections.abc import Sequence
 import numpy as np
 import warp as wp
 
-from .surface import Surface
+from ..surface import Surface
 
 POOLING = ("area", "any")
 """Ways to colour a block of pixels: by its contact fraction, or red when any pixel touches."""
@@ -140,7 +140,7 @@ def block_contact(
         A pixel is in contact when z ≥ float32(z_top − ω), as :func:`warptrunc.truncate`
         counts it.
     """
-    from .truncation import contact_index_map
+    from ..truncation import contact_index_map
 
     check_pooling(pooling)
     uniq, rank = np.unique(depth, return_inverse=True)

@@ -30,10 +30,10 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import resolve_device
-from ._validate import check_int
-from .kernels import stream_islands as _k
-from .kernels import wm as _kwm
+from .._device import resolve_device
+from .._validate import check_int
+from ..kernels import stream_islands as _k
+from ..kernels import wm as _kwm
 
 __all__ = ["BandedIslands", "label_banded", "streamed_islands"]
 
@@ -157,7 +157,7 @@ def label_banded(
     BandedIslands
         The islands of ``scipy.ndimage.label(mask, structure)``, areas in label order.
     """
-    from .islands.labelling import _check_connectivity, _check_mask, label_device
+    from .labelling import _check_connectivity, _check_mask, label_device
 
     m = _check_mask(mask)
     connectivity = _check_connectivity(connectivity)
@@ -207,8 +207,8 @@ def streamed_islands(
     Pass 1 finds the extremes (``warptrunc.stream``); pass 2 regenerates each band once and,
     for every depth, thresholds, labels and hands it to that depth's border merger.
     """
-    from .islands.labelling import _check_connectivity, label_device
-    from .stream import _as_spec, _Bands, _pass1, _progress
+    from ..truncation.stream import _as_spec, _Bands, _pass1, _progress
+    from .labelling import _check_connectivity, label_device
 
     spec = _as_spec(spec_or_params)
     connectivity = _check_connectivity(connectivity)
