@@ -63,13 +63,13 @@ import warp as wp  # noqa: E402
 
 from warptrunc._bench import git_commit, timeit  # noqa: E402
 from warptrunc.islands import (  # noqa: E402
-    _Forest,
-    _topology_hist,
     island_counts_device,
     island_curve,
     label_device,
     label_islands,
 )
+from warptrunc.islands.depths import Forest  # noqa: E402
+from warptrunc.islands.topology import topology_hist  # noqa: E402
 from warptrunc.truncation import contact_index_map, depth_grid  # noqa: E402
 from warptrunc.wm import wm_surface  # noqa: E402
 
@@ -94,7 +94,7 @@ def counts_breakdown(idx, n: int, n1: int, device, sync) -> dict:
     for _ in range(4):  # the first run warms up
         sync()
         t0 = time.perf_counter()
-        forest = _Forest(flat, (n, n), n1, 4, False, False, device)
+        forest = Forest(flat, (n, n), n1, 4, False, False, device)
         sync()
         t1 = time.perf_counter()
         for _ in range(n1):
@@ -220,7 +220,7 @@ def run_case(n: int, device, args) -> dict:
     res["warp_perimeter_euler_histograms_s"] = guarded(
         res,
         "topology",
-        lambda f=flat: timeit(lambda: _topology_hist(f, (n, n), n1, 4, False, device), rep, sync),
+        lambda f=flat: timeit(lambda: topology_hist(f, (n, n), n1, 4, False, device), rep, sync),
     )
     flat = idx = None  # free before the reference runs
     # reference: label each depth separately, timed on a subset and extrapolated

@@ -32,8 +32,8 @@ import warp as wp
 import warptrunc
 from warptrunc._bench import git_commit
 from warptrunc.truncation.curve import (
-    _thresholds,
     depth_grid,
+    depth_thresholds,
     height_range,
     histogram_bands,
     truncate,
@@ -49,7 +49,7 @@ def run_device(spec, device):
     z, _scale = generate_on_device(spec, device)
     lo, hi = height_range(z, device)
     depth = depth_grid(float(np.float64(hi) - np.float64(lo)), N_INCREMENTS)
-    t, _, _, _, inv_step = _thresholds(None, depth, device, (lo, hi))
+    t, _, _, _, inv_step = depth_thresholds(None, depth, device, (lo, hi))
     return np.cumsum(histogram_bands(z, t, hi, inv_step, device, deep=False))  # sync point
 
 

@@ -89,6 +89,12 @@ def _init() -> None:
         _initialised = True
 
 
+def cuda_device_count() -> int:
+    """Number of CUDA devices Warp sees (0 on a machine without a GPU)."""
+    _init()
+    return wp.get_cuda_device_count()
+
+
 def resolve_device(device: wp.DeviceLike = None) -> wp.context.Device:
     """Return the Warp device to run on.
 

@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from ._progress import progress_bar
 from ._validate import check_int, check_range, pair
 from .descriptors import roll_off_wavelength, surface_statistics
 from .fractal import METHODS, fractal_dimension
@@ -288,8 +289,6 @@ def calibrate(
         The target D lies outside the D_out reached at the bounds of ``D_bounds`` (the message
         gives that range), or the loop did not converge within ``max_iter`` evaluations.
     """
-    from tqdm.auto import tqdm
-
     from .wm import wm_surface
 
     rtol = check_range("rtol", rtol, 0.0, 1.0)
@@ -306,7 +305,9 @@ def calibrate(
     hist: list[tuple[float, float, float, float, float]] = []
     wm_opts = {"M": M, "gamma": gamma, "cutoff": cutoff}
 
-    bar = tqdm(total=max_iter * max_rounds, disable=not progress, desc="calibrate", unit="eval")
+    bar = progress_bar(
+        total=max_iter * max_rounds, enabled=progress, desc="calibrate", unit="eval"
+    )
 
     def evaluate(d_in: float, rt: float) -> tuple[float, float, float]:
         ds, rms = [], []

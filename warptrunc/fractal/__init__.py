@@ -61,11 +61,11 @@ from ._common import (  # noqa: F401
     METHODS,
     FractalFit,
     _check_scaling,
-    _check_sizes,
-    _fit,
     _scaled_upload,
-    _upload,
+    check_sizes,
     cube_height_factor,
+    fit_log_log,
+    upload,
 )
 from .boxes import (
     _box,
@@ -179,7 +179,7 @@ def fractal_dimensions(
         bad = set(o) - _OPTION_NAMES[m]
         if bad:
             raise ValueError(f"unknown option(s) {sorted(bad)} for method {m!r}")
-    zd = _upload(surface, device) if set(methods) - {"sp"} else None
+    zd = upload(surface, device) if set(methods) - {"sp"} else None
     out: dict[str, FractalFit] = {}
     for m in methods:
         o = options.get(m, {})

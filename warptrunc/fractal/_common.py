@@ -17,7 +17,7 @@ from .._device import resolve_device
 from .._validate import check_range
 from ..kernels import fractal as _k
 from ..surface import Surface
-from ..truncation.curve import _where, surface_range
+from ..truncation.curve import surface_device, surface_range
 
 METHODS = ("tri", "box", "vs", "sp")
 """Method keys, in the order of Table 1."""
@@ -132,17 +132,17 @@ class FractalFit:
 # --- shared helpers ------------------------------------------------------------------------------
 
 
-def _upload(surface: Surface, device: wp.DeviceLike) -> wp.array:
+def upload(surface: Surface, device: wp.DeviceLike) -> wp.array:
     if not isinstance(surface, Surface):
         raise TypeError(
             f"surface must be a warptrunc.Surface, got {type(surface).__name__}; wrap a height "
             "array with warptrunc.from_heights(z, dx)"
         )
     # where a device surface lives unless told otherwise; cached per device on the surface
-    return surface.device_heights(resolve_device(_where(surface, device)))
+    return surface.device_heights(resolve_device(surface_device(surface, device)))
 
 
-def _check_sizes(name: str, sizes: Sequence[int] | None, surface: Surface, default) -> np.ndarray:
+def check_sizes(name: str, sizes: Sequence[int] | None, surface: Surface, default) -> np.ndarray:
     if sizes is None:
         sizes = default(surface)
     s = np.unique(np.asarray(sizes))
@@ -158,7 +158,7 @@ def _check_sizes(name: str, sizes: Sequence[int] | None, surface: Surface, defau
     return s
 
 
-def _fit(
+def fit_log_log(
     method: str,
     scale: np.ndarray,
     measure: np.ndarray,

@@ -17,11 +17,11 @@ from ._common import (
     DEFAULT_HEIGHT_SCALING,
     FractalFit,
     _check_scaling,
-    _check_sizes,
     _chunks,
-    _fit,
     _scaled_upload,
-    _upload,
+    check_sizes,
+    fit_log_log,
+    upload,
 )
 
 
@@ -75,12 +75,12 @@ def triangular_prism(
     triangular prism surface area method, Comput. Geosci. 12 (1986) 713–722,
     doi:10.1016/0098-3004(86)90047-6.
     """
-    zd = _upload(surface, device)
+    zd = upload(surface, device)
     return _tri(zd, surface, box_sizes, fit_range, height_scaling)
 
 
 def _tri(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALING) -> FractalFit:
-    sizes = _check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
+    sizes = check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
     zd = _scaled_upload(zd, surface, _check_scaling(height_scaling))
     ratio = np.empty(sizes.size)
     for i, s in enumerate(sizes):
@@ -97,7 +97,7 @@ def _tri(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALIN
         area = float(out.numpy().sum())  # sync point
         ratio[i] = area / (ncx * s * surface.dx * ncy * s * surface.dy)
     h = math.sqrt(surface.dx * surface.dy)
-    return _fit(
+    return fit_log_log(
         "tri",
         sizes * h,
         ratio,
@@ -152,12 +152,12 @@ def box_counting(
     B. B. Chaudhuri, An efficient differential box-counting approach to compute fractal
     dimension of image, IEEE Trans. Syst. Man Cybern. 24 (1994) 115–120, doi:10.1109/21.259692.
     """
-    zd = _upload(surface, device)
+    zd = upload(surface, device)
     return _box(zd, surface, box_sizes, fit_range, height_scaling)
 
 
 def _box(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALING) -> FractalFit:
-    sizes = _check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
+    sizes = check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
     h = math.sqrt(surface.dx * surface.dy)
     z0 = surface_range(surface, zd.flatten(), zd.device)[0]
     if _check_scaling(height_scaling) == "cube":
@@ -176,7 +176,7 @@ def _box(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALIN
         )
         n = int(out.numpy().sum())  # sync point
         counts[i] = n * ((surface.nx - 1) * (surface.ny - 1)) / (ncx * s * ncy * s)
-    return _fit(
+    return fit_log_log(
         "box", sizes * h, counts, fit_range, lambda k: -k,
         {"box_sizes": sizes.tolist(), "height_scaling": height_scaling},
     )  # fmt: skip

@@ -42,8 +42,8 @@ import numpy as np
 
 from .._validate import check_range
 from ..surface import Surface
-from .builtin import _read_numpy, _read_text
-from .instrument import _read_surfacetopography
+from .builtin import read_numpy, read_text
+from .instrument import read_surfacetopography
 from .repair import FILL_METHODS, fill_missing, level_plane
 from .scan import ENGINES, NUMPY_SUFFIXES, TEXT_SUFFIXES, MissingExtraError, Scan
 
@@ -118,10 +118,10 @@ def read_scan(
             f"{suffix!r}; use engine='surfacetopography'"
         )
     if engine == "surfacetopography" or (engine == "auto" and not builtin):
-        return _read_surfacetopography(path, dx, dy, height_unit, channel)
+        return read_surfacetopography(path, dx, dy, height_unit, channel)
     if suffix in NUMPY_SUFFIXES:
-        return _read_numpy(path, dx, dy, height_unit)
-    return _read_text(path, dx, dy, height_unit)
+        return read_numpy(path, dx, dy, height_unit)
+    return read_text(path, dx, dy, height_unit)
 
 
 def read_height_map(

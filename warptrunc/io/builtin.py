@@ -13,10 +13,10 @@ from pathlib import Path
 import numpy as np
 
 from ..surface import Surface, load_surface
-from .scan import _LENGTH_UNITS, Scan
+from .scan import LENGTH_UNITS, Scan
 
 
-def _need_spacing(path: Path, dx: float | None, dy: float | None, what: str) -> tuple[float, float]:
+def need_spacing(path: Path, dx: float | None, dy: float | None, what: str) -> tuple[float, float]:
     if dx is None or dy is None:
         raise ValueError(
             f"{path}: {what} carries no pixel spacing; give dx= (and dy= if different) in metres "
@@ -53,7 +53,7 @@ def _try_warptrunc_file(path: Path) -> Surface | None:
     return load_surface(path) if is_ours else None
 
 
-def _read_numpy(path: Path, dx, dy, height_unit) -> Scan:
+def read_numpy(path: Path, dx, dy, height_unit) -> Scan:
     suffix = path.suffix.lower()
     try:
         ours = _try_warptrunc_file(path)
@@ -91,7 +91,7 @@ def _read_numpy(path: Path, dx, dy, height_unit) -> Scan:
     except (OSError, EOFError) as exc:
         raise ValueError(f"{path}: not a readable {suffix} file ({exc})") from None
     z = _as_map(path, np.asarray(a))
-    dx, dy = _need_spacing(path, dx, dy, f"a plain {suffix} array")
+    dx, dy = need_spacing(path, dx, dy, f"a plain {suffix} array")
     return Scan(z * height_unit, dx, dy, str(path), suffix[1:], {})
 
 
@@ -103,11 +103,11 @@ def _length(value: str, path: Path, key: str) -> float:
     if not m:
         raise ValueError(f"{path}: header {key}={value!r} is not a length such as '1.5e-6 m'")
     unit = m.group(2).lower() or "m"
-    if unit not in _LENGTH_UNITS:
+    if unit not in LENGTH_UNITS:
         raise ValueError(
-            f"{path}: header {key}={value!r} has unit {unit!r}; known: {sorted(_LENGTH_UNITS)}"
+            f"{path}: header {key}={value!r} has unit {unit!r}; known: {sorted(LENGTH_UNITS)}"
         )
-    return float(m.group(1)) * _LENGTH_UNITS[unit]
+    return float(m.group(1)) * LENGTH_UNITS[unit]
 
 
 def _parse_header(lines: list[str], path: Path) -> dict[str, str]:
@@ -157,7 +157,7 @@ def _is_numeric_line(line: str, delim: str | None) -> bool:
         return False
 
 
-def _read_text(path: Path, dx, dy, height_unit) -> Scan:
+def read_text(path: Path, dx, dy, height_unit) -> Scan:
     try:
         text = path.read_text(encoding="utf-8", errors="strict")
     except UnicodeDecodeError as exc:
@@ -240,6 +240,6 @@ def _read_text(path: Path, dx, dy, height_unit) -> Scan:
         )
     dx = fdx if dx is None else dx
     dy = fdy if dy is None else dy
-    dx, dy = _need_spacing(path, dx, dy, "a text matrix without a 'dx=' or 'pixel size=' header")
+    dx, dy = need_spacing(path, dx, dy, "a text matrix without a 'dx=' or 'pixel size=' header")
     scale = factor if factor is not None else height_unit
     return Scan(z * scale, dx, dy, str(path), "text", {"header": header} if header else {})

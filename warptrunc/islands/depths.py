@@ -12,16 +12,17 @@ import numpy as np
 import warp as wp
 
 from .._device import check_memory, resolve_device
+from .._progress import progress_bar
 from .._validate import check_int, check_range
 from ..kernels import islands as _ki
 from ..surface import Surface
-from ..truncation.curve import _where, contact_index_map, depth_grid, surface_range
-from .fits import _slit_from_sums
+from ..truncation.curve import contact_index_map, depth_grid, surface_device, surface_range
+from .fits import slit_from_sums
 from .labelling import (
-    _check_connectivity,
-    _check_index_size,
-    _check_surface,
     _islands,
+    check_connectivity,
+    check_index_size,
+    check_surface,
 )
 from .results import (
     MIN_PIXELS,
@@ -29,7 +30,7 @@ from .results import (
     Islands,
     IslandSizes,
 )
-from .topology import _topology_hist
+from .topology import topology_hist
 
 # --- carried forest across depths -----------------------------------------------------------------
 
@@ -37,7 +38,7 @@ _BLOCK = 256  # threads per block of the statistics kernels (CUDA)
 _STRIDE_THREADS = 1 << 16  # most threads striding over the candidate roots of one increment
 
 
-class _Forest:
+class Forest:
     """One union-find forest carried through increasing depths (see ``kernels/islands.py``)."""
 
     def __init__(
@@ -52,7 +53,7 @@ class _Forest:
     ) -> None:
         ny, nx = shape
         n = ny * nx
-        _check_index_size(n)
+        check_index_size(n)
         self.idx, self.ny, self.nx, self.n, self.n1 = idx, ny, nx, n, n1
         self.connectivity, self.periodic = connectivity, int(bool(periodic))
         self.statistics, self.device = statistics, device
@@ -261,7 +262,7 @@ def island_counts_device(
     increments at which islands start and end (see :func:`island_curve`). No labelling at any
     depth.
     """
-    connectivity = _check_connectivity(connectivity)
+    connectivity = check_connectivity(connectivity)
     n1 = check_int("n_depths", n_depths, 1)
     if not isinstance(index, wp.array) or index.ndim != 2 or index.dtype != wp.int32:
         raise ValueError(
@@ -269,9 +270,9 @@ def island_counts_device(
             f"{getattr(index, 'dtype', '')} with shape {getattr(index, 'shape', None)}"
         )
     ny, nx = index.shape
-    _check_index_size(ny * nx)  # before the flat view (Warp refuses 1-D arrays ≥ 2³¹)
+    check_index_size(ny * nx)  # before the flat view (Warp refuses 1-D arrays ≥ 2³¹)
     flat = index.reshape((ny * nx,))
-    forest = _Forest(flat, (ny, nx), n1, connectivity, periodic, False, index.device)
+    forest = Forest(flat, (ny, nx), n1, connectivity, periodic, False, index.device)
     for _ in range(n1):
         forest.step()
     return forest.island_counts()
@@ -336,18 +337,18 @@ def islands_at_depths(
     after depth; at each requested depth the forest is compressed and relabelled (count → scan →
     write). The labels equal those of :func:`label_islands` on each mask.
     """
-    surface = _check_surface(surface)
-    connectivity = _check_connectivity(connectivity)
+    surface = check_surface(surface)
+    connectivity = check_connectivity(connectivity)
     d = _check_depths(depths, surface.rt)
-    device = resolve_device(_where(surface, device))
+    device = resolve_device(surface_device(surface, device))
     order = np.argsort(d, kind="stable")
     ds = d[order]
     uniq, inverse = np.unique(ds, return_inverse=True)
     ny, nx = surface.ny, surface.nx
-    _check_index_size(ny * nx)  # before allocating
+    check_index_size(ny * nx)  # before allocating
     check_memory(ny * nx * 40, device, "island labelling at several depths")
     idx = _index_at_depths(surface, uniq, device)
-    forest = _Forest(idx, (ny, nx), uniq.size, connectivity, periodic, False, device)
+    forest = Forest(idx, (ny, nx), uniq.size, connectivity, periodic, False, device)
     found: list[Islands] = []
     for k in range(uniq.size):
         forest.step()
@@ -460,33 +461,31 @@ def island_curve(
     sums (equal to it to ~1e-12 relative). Perimeter and χ come from :func:`topology_curve`'s
     histograms.
     """
-    surface = _check_surface(surface)
-    connectivity = _check_connectivity(connectivity)
+    surface = check_surface(surface)
+    connectivity = check_connectivity(connectivity)
     min_pixels = check_int("min_pixels", min_pixels, 1)
-    device = resolve_device(_where(surface, device))
+    device = resolve_device(surface_device(surface, device))
     depth = depth_grid(
         surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
     n1 = depth.size
     ny, nx = surface.ny, surface.nx
-    _check_index_size(ny * nx)  # before allocating
+    check_index_size(ny * nx)  # before allocating
     check_memory(ny * nx * (52 if statistics else 32), device, "island curve")
     snaps: set[int] = set()
     if snapshot_depths is not None:
         sd = _check_depths(snapshot_depths, surface.rt)
         snaps = {int(np.argmin(np.abs(depth - v))) for v in sd}
     idx = contact_index_map(surface, depth, device=device, as_warp=True).reshape((ny * nx,))
-    topo = _topology_hist(idx, (ny, nx), n1, connectivity, periodic, device)
-    forest = _Forest(idx, (ny, nx), n1, connectivity, periodic, statistics, device)
+    topo = topology_hist(idx, (ny, nx), n1, connectivity, periodic, device)
+    forest = Forest(idx, (ny, nx), n1, connectivity, periodic, statistics, device)
 
     if statistics:
         forest.min_pixels, forest.aspect = min_pixels, surface.dy / surface.dx
     sizes: list[IslandSizes] = []
     steps: Any = range(n1)
     if progress:
-        from tqdm.auto import tqdm
-
-        steps = tqdm(steps, desc="islands", unit="depth")
+        steps = progress_bar(steps, desc="islands", unit="depth")
     for k in steps:
         forest.step()
         if k in snaps:
@@ -514,7 +513,7 @@ def island_curve(
         if not np.array_equal(roots_count, n_islands):
             raise RuntimeError("internal error: island counts of the two bookkeepings differ")
         area_hist = forest.hist.numpy()
-        slit, slit_n = _slit_from_sums(forest.slit_sums.numpy())
+        slit, slit_n = slit_from_sums(forest.slit_sums.numpy())
     else:
         area_hist = np.zeros((n1, nbins), dtype=np.int64)
     return IslandCurve(

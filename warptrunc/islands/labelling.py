@@ -23,13 +23,13 @@ from .results import (
 # --- validation -----------------------------------------------------------------------------------
 
 
-def _check_connectivity(connectivity: int) -> int:
+def check_connectivity(connectivity: int) -> int:
     if isinstance(connectivity, bool) or connectivity not in (4, 8):
         raise ValueError(f"connectivity must be 4 or 8, got {connectivity!r}")
     return int(connectivity)
 
 
-def _check_mask(mask: np.ndarray) -> np.ndarray:
+def check_mask(mask: np.ndarray) -> np.ndarray:
     """Return a C-contiguous uint8 0/1 copy of a 2-D boolean or integer mask."""
     m = np.asarray(mask)
     if m.ndim != 2:
@@ -44,7 +44,7 @@ def _check_mask(mask: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(m != 0, dtype=np.uint8)
 
 
-def _check_surface(surface: Surface) -> Surface:
+def check_surface(surface: Surface) -> Surface:
     if not isinstance(surface, Surface):
         raise TypeError(
             f"surface must be a warptrunc.Surface (wrap a height map with "
@@ -53,7 +53,7 @@ def _check_surface(surface: Surface) -> Surface:
     return surface
 
 
-def _check_index_size(n: int) -> None:
+def check_index_size(n: int) -> None:
     # flat int32 indices, and the radix sort's 2·N buffers
     if 2 * n >= 2**31:
         raise ValueError(f"grid of {n} pixels is too large for int32 indices (limit 2**30)")
@@ -89,7 +89,7 @@ def label_device(
     Warp launch runs on one thread, the same union-find runs as one raster-order pass followed
     by an in-place relabelling pass, in a single launch. Both give identical labels.
     """
-    connectivity = _check_connectivity(connectivity)
+    connectivity = check_connectivity(connectivity)
     _check_mask_array(mask)
     if mask.device.is_cpu:
         return _label_sequential(mask, connectivity, periodic)
@@ -104,7 +104,7 @@ def _check_mask_array(mask: wp.array) -> None:
         )
     if not mask.is_contiguous:
         raise ValueError("mask must be a contiguous warp array")
-    _check_index_size(mask.shape[0] * mask.shape[1])
+    check_index_size(mask.shape[0] * mask.shape[1])
 
 
 def _label_sequential(mask: wp.array, connectivity: int, periodic: bool) -> tuple[wp.array, int]:
@@ -313,21 +313,21 @@ def label_islands(
     >>> isl.n_islands, isl.area_pixels.tolist(), isl.perimeter.tolist()
     (2, [2, 1], [6.0, 4.0])
     """
-    connectivity = _check_connectivity(connectivity)
+    connectivity = check_connectivity(connectivity)
     dx = check_range("dx", dx, 0.0, unit="m")
     dy = dx if dy is None else check_range("dy", dy, 0.0, unit="m")
     if isinstance(mask, wp.array):  # device-resident mask: no host pass, no upload
         _check_mask_array(mask)
         device = mask.device if device is None else resolve_device(device)
         shape = (int(mask.shape[0]), int(mask.shape[1]))
-        _check_index_size(shape[0] * shape[1])  # before allocating
+        check_index_size(shape[0] * shape[1])  # before allocating
         check_memory(shape[0] * shape[1] * 28, device, "island labelling")
         mw = mask if mask.device == device else mask.to(device)
     else:
-        m = _check_mask(mask)
+        m = check_mask(mask)
         device = resolve_device(device)
         shape = m.shape
-        _check_index_size(m.size)  # before allocating
+        check_index_size(m.size)  # before allocating
         check_memory(m.size * 29, device, "island labelling")
         mw = wp.array(m, dtype=wp.uint8, device=device)
     labels, n = label_device(mw, connectivity, periodic=periodic)

@@ -31,6 +31,7 @@ import numpy as np
 import warp as wp
 
 from .._device import resolve_device
+from .._progress import progress_bar
 from .._validate import check_int
 from ..kernels import stream_islands as _k
 from ..kernels import wm as _kwm
@@ -157,10 +158,10 @@ def label_banded(
     BandedIslands
         The islands of ``scipy.ndimage.label(mask, structure)``, areas in label order.
     """
-    from .labelling import _check_connectivity, _check_mask, label_device
+    from .labelling import check_connectivity, check_mask, label_device
 
-    m = _check_mask(mask)
-    connectivity = _check_connectivity(connectivity)
+    m = check_mask(mask)
+    connectivity = check_connectivity(connectivity)
     rows = _band_rows(band_rows, m.shape[0])
     device = resolve_device(device)
     merger = _BandMerger(connectivity)
@@ -207,21 +208,23 @@ def streamed_islands(
     Pass 1 finds the extremes (``warptrunc.stream``); pass 2 regenerates each band once and,
     for every depth, thresholds, labels and hands it to that depth's border merger.
     """
-    from ..truncation.stream import _as_spec, _Bands, _pass1, _progress
-    from .labelling import _check_connectivity, label_device
+    from ..truncation.stream import WMBands, as_wm_spec, extremes_pass
+    from .labelling import check_connectivity, label_device
 
-    spec = _as_spec(spec_or_params)
-    connectivity = _check_connectivity(connectivity)
+    spec = as_wm_spec(spec_or_params)
+    connectivity = check_connectivity(connectivity)
     depth = np.asarray(depths, dtype=np.float64).reshape(-1)
     if depth.size == 0 or not np.all(np.isfinite(depth)) or np.any(depth < 0):
         raise ValueError(f"depths must be finite depths ≥ 0 (m), got {depths!r}")
     device = resolve_device(device)
-    bands = _Bands(spec, device, band_rows)
-    _lo, _hi, scale, _zlo, zhi = _pass1(bands, progress)
+    bands = WMBands(spec, device, band_rows)
+    _lo, _hi, scale, _zlo, zhi = extremes_pass(bands, progress)
     thr = (np.float64(zhi) - depth).astype(np.float32)
     mergers = [_BandMerger(connectivity) for _ in depth]
     mask = wp.empty(bands.buffer.shape, dtype=wp.uint8, device=device)
-    with _progress(len(bands.bands), "stream islands (bands)", progress) as bar:
+    with progress_bar(
+        total=len(bands.bands), desc="stream islands (bands)", unit="band", enabled=progress
+    ) as bar:
         for r0, r1 in bands.bands:
             z, _, _ = bands.raw(r0, r1)
             wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale],

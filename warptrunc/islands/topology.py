@@ -16,8 +16,8 @@ import warp as wp
 from .._device import resolve_device
 from ..kernels import euler as _ke
 from ..surface import Surface
-from ..truncation.curve import _where, contact_index_map, depth_grid
-from .labelling import _check_connectivity, _check_index_size, _check_surface
+from ..truncation.curve import contact_index_map, depth_grid, surface_device
+from .labelling import check_connectivity, check_index_size, check_surface
 from .results import TopologyCurve
 
 __all__ = ["topology_curve"]
@@ -58,13 +58,15 @@ def _topology_hist_blocks(
     return hist.numpy().reshape(-1, 4)[:n1]  # sync point
 
 
-def _topology_hist(
+def topology_hist(
     idx: wp.array, shape: tuple[int, int], n1: int, connectivity: int, periodic: bool, device
 ) -> np.ndarray:
     """(n1, 4) int64 cumulative [contact pixels, edges_x, edges_y, χ] at every increment."""
     ny, nx = shape
     per = int(bool(periodic))
-    mode = TOPOLOGY_KERNEL if TOPOLOGY_KERNEL != "auto" else ("block" if device.is_cuda else "atomic")
+    mode = (
+        TOPOLOGY_KERNEL if TOPOLOGY_KERNEL != "auto" else ("block" if device.is_cuda else "atomic")
+    )
     if mode == "block" and n1 <= _ke.HIST_BINS:
         return np.cumsum(_topology_hist_blocks(idx, shape, n1, connectivity, per, device), axis=0)
     hist = wp.zeros((n1, 4), dtype=wp.int64, device=device)
@@ -129,16 +131,16 @@ def topology_curve(
     index of its pixels, on the complex of pixel centres; 8-connectivity: the smallest, on
     closed pixels). χ = V − E + F summed per increment by a difference histogram.
     """
-    surface = _check_surface(surface)
-    connectivity = _check_connectivity(connectivity)
-    device = resolve_device(_where(surface, device))
+    surface = check_surface(surface)
+    connectivity = check_connectivity(connectivity)
+    device = resolve_device(surface_device(surface, device))
     depth = depth_grid(
         surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
     ny, nx = surface.ny, surface.nx
-    _check_index_size(ny * nx)  # before allocating
+    check_index_size(ny * nx)  # before allocating
     idx = contact_index_map(surface, depth, device=device, as_warp=True).reshape((ny * nx,))
-    h = _topology_hist(idx, (ny, nx), depth.size, connectivity, periodic, device)
+    h = topology_hist(idx, (ny, nx), depth.size, connectivity, periodic, device)
     return TopologyCurve(
         depth=depth,
         n_contact_pixels=h[:, 0],

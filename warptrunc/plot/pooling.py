@@ -79,6 +79,7 @@ def pool_blocks(a: np.ndarray, factor: int, how: str = "max") -> np.ndarray:
             out[j] = s / (rows.shape[0] * np.diff(np.append(xs, nx)))
     return out
 
+
 def check_pooling(pooling: str) -> str:
     """Return ``pooling`` if it is one of :data:`POOLING`, else raise ValueError."""
     if pooling not in POOLING:

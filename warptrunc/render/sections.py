@@ -41,8 +41,8 @@ from ..plot.pooling import (
     pool_blocks,
 )
 from ..surface import Surface
-from .image import _caption, _depth_title, _draw_text, _layout, _save_png, _tile, _wrap
-from .scene import _auto_factor, _Panel, _pyvista, _Scene, _vtk_quiet, auto_exaggeration
+from .image import caption_text, depth_title, draw_text, grid_layout, save_png, tile, wrap_text
+from .scene import Panel, Scene, auto_exaggeration, auto_factor, import_pyvista, vtk_quiet
 
 __all__ = [
     "DEFAULT_DEPTH_FRACTIONS",
@@ -209,17 +209,17 @@ def render_truncation(
     >>> r = render_truncation(s, "truncation.png")  # doctest: +SKIP
     >>> r.downsample, r.area_fraction  # doctest: +SKIP
     """
-    _pyvista()
+    import_pyvista()
     depth = check_depths(surface, depth_fractions, depths, upto_rt=True)
     check_pooling(pooling)
-    nrows, ncols = _layout(depth.size, ncols)
+    nrows, ncols = grid_layout(depth.size, ncols)
     if window_size is None:
         window_size = (PANEL_SIZE[0] * ncols, PANEL_SIZE[1] * nrows)
     w, h = (int(v) for v in window_size)
     if w < 16 or h < 16:
         raise ValueError(f"window_size must be at least 16×16 pixels, got {window_size!r}")
     if downsample is None:
-        downsample = _auto_factor(
+        downsample = auto_factor(
             surface, (w // ncols, h // nrows), top_view=top_view, annotate=annotate,
             max_mesh=max_mesh,
         )  # fmt: skip
@@ -234,28 +234,28 @@ def render_truncation(
         lighting = not top_view
 
     blocks, frac = block_contact(surface, depth, f, pooling, device)
-    scene = _Scene(surface, f, ve)
-    caption = _caption(surface, f, scene.shape, ve, pooling)
+    scene = Scene(surface, f, ve)
+    caption = caption_text(surface, f, scene.shape, ve, pooling)
     rt = surface.rt
     pw, ph = w // ncols, h // nrows
     spare = nrows * ncols > depth.size
-    with _vtk_quiet():
-        panel = _Panel(
+    with vtk_quiet():
+        panel = Panel(
             scene, (pw, ph), top_view=top_view, lighting=lighting, annotate=annotate, ve=ve,
-            caption=None if spare else _wrap(caption, max(30, pw // 7)),
+            caption=None if spare else wrap_text(caption, max(30, pw // 7)),
         )  # fmt: skip
         try:
             images = [
-                panel.frame(blocks[i], _depth_title(depth[i], rt, frac[i]), caption=i == 0)
+                panel.frame(blocks[i], depth_title(depth[i], rt, frac[i]), caption=i == 0)
                 for i in range(depth.size)
             ]
         finally:
             panel.close()
-    img = _tile(images, nrows, ncols, (w, h))
+    img = tile(images, nrows, ncols, (w, h))
     if annotate and spare:
         r, c = divmod(depth.size, ncols)
         fs = max(10, min(16, pw // 34))
-        img = _draw_text(img, caption, (c * pw + 12, r * ph + 14), fs, pw - 24)
+        img = draw_text(img, caption, (c * pw + 12, r * ph + 14), fs, pw - 24)
     result = Rendering(
         path=None if path is None else Path(path),
         image=img,
@@ -271,7 +271,7 @@ def render_truncation(
         caption=caption,
     )
     if path is not None:
-        _save_png(img, Path(path), result._metadata(), caption)
+        save_png(img, Path(path), result._metadata(), caption)
     return result
 
 
@@ -313,7 +313,7 @@ def animate_truncation(
     Rendering
         The last frame, and one depth per frame.
     """
-    _pyvista()
+    import_pyvista()
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".gif", ".mp4"):
@@ -336,7 +336,7 @@ def animate_truncation(
         raise ValueError(f"fps must be > 0, got {fps!r}")
     w, h = (int(v) for v in window_size)
     if downsample is None:
-        downsample = _auto_factor(
+        downsample = auto_factor(
             surface, (w, h), top_view=top_view, annotate=True, max_mesh=max_mesh
         )
     f = int(downsample)
@@ -347,18 +347,16 @@ def animate_truncation(
     )
     depth = np.linspace(0.0, max_depth_fraction, n) * surface.rt
     blocks, frac = block_contact(surface, depth, f, check_pooling(pooling), device)
-    scene = _Scene(surface, f, ve)
-    caption = _caption(surface, f, scene.shape, ve, pooling)
+    scene = Scene(surface, f, ve)
+    caption = caption_text(surface, f, scene.shape, ve, pooling)
     rt = surface.rt
-    with _vtk_quiet():
-        panel = _Panel(
+    with vtk_quiet():
+        panel = Panel(
             scene, (w, h), top_view=top_view, lighting=not top_view, annotate=True, ve=ve,
-            caption=_wrap(caption, max(30, w // 7)),
+            caption=wrap_text(caption, max(30, w // 7)),
         )  # fmt: skip
         try:
-            frames = [
-                panel.frame(blocks[i], _depth_title(depth[i], rt, frac[i])) for i in range(n)
-            ]
+            frames = [panel.frame(blocks[i], depth_title(depth[i], rt, frac[i])) for i in range(n)]
         finally:
             panel.close()
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from .._progress import progress_bar
 from .profiles import Profile
 from .store import StageStore
 
@@ -33,9 +34,7 @@ LOADS = (1e-7, 1e-6, 1e-5, 1e-4)
 
 
 def _tqdm(it, desc, total=None):
-    from tqdm.auto import tqdm
-
-    return tqdm(it, desc=desc, total=total, unit="surface", leave=False)
+    return progress_bar(it, desc=desc, total=total, unit="surface", leave=False)
 
 
 def fit_ranges(profile: Profile, n: int) -> dict[str, int | float]:
@@ -251,8 +250,6 @@ STAGES = ("asperity", "fig5", "table1", "islands", "group1", "group2", "bem")
 
 def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, Any]:
     """Run (or reuse) every stage; returns {stage: result} and the wall time per stage."""
-    from tqdm.auto import tqdm
-
     full = profile.to_dict()
     keys = {
         "asperity": ("asperity_n", "asperity_increments"),
@@ -266,7 +263,7 @@ def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, 
     }  # fmt: skip
     res: dict[str, Any] = {}
     wall: dict[str, float] = {}
-    bar = tqdm(STAGES, desc="reproduce", unit="stage")
+    bar = progress_bar(STAGES, desc="reproduce", unit="stage")
     for name in bar:
         bar.set_postfix_str(name)
         t0 = time.perf_counter()

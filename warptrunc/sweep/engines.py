@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from .._progress import progress_bar
 from .grid import FRACTAL_METHODS, Case, SweepOptions
 
 __all__ = ["compute_case", "compute_chunk", "failed_case", "pinned_device", "run_inprocess"]
@@ -167,12 +168,6 @@ def compute_case(
     return rows, curve
 
 
-def _bar(total: int, initial: int, progress: bool, desc: str):
-    from tqdm.auto import tqdm
-
-    return tqdm(total=total, initial=initial, disable=not progress, desc=desc, unit="case")
-
-
 def run_inprocess(
     cases: list[Case], options: SweepOptions, sink: BatchSink, *, device=None, total: int,
     progress: bool = True, max_batch: int = 256,
@@ -195,7 +190,9 @@ def run_inprocess(
     failed: list[BaseException] = []
     done = object()
 
-    with _bar(total, total - len(cases), progress, f"sweep [{dev}]") as bar:
+    with progress_bar(
+        total=total, initial=total - len(cases), enabled=progress, desc=f"sweep [{dev}]", unit="case"
+    ) as bar:
 
         def writer() -> None:
             while True:

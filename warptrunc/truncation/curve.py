@@ -172,12 +172,12 @@ def depth_grid(
     return np.arange(n + 1, dtype=np.float64) * (wmax / n)
 
 
-def _where(surface: Surface, device: wp.DeviceLike) -> wp.DeviceLike:
+def surface_device(surface: Surface, device: wp.DeviceLike) -> wp.DeviceLike:
     """``device``, or where a device-resident surface lives when it is None."""
     return getattr(surface, "device", None) if device is None else device
 
 
-def _upload(surface: Surface, device) -> wp.array:
+def upload_heights(surface: Surface, device) -> wp.array:
     """The (ny, nx) heights on ``device``: the surface's own device array, or its copy there
     (uploaded once per device and cached on the surface).
 
@@ -217,7 +217,7 @@ def surface_range(surface: Surface, z: wp.array, device) -> tuple[float, float]:
     return ext
 
 
-def _thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
+def depth_thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
     lo, hi = height_range(z, device) if lo_hi is None else lo_hi
     thr = (np.float64(hi) - depth).astype(np.float32)
     step = float(depth[-1] / (depth.size - 1)) if depth.size > 1 and depth[-1] > 0 else 0.0
@@ -259,14 +259,14 @@ def truncate(
     z ≥ z_top − ω_k) is found in a Warp kernel and counted in an integer atomic histogram;
     the cumulative sum gives the number of contact pixels at every depth.
     """
-    device = resolve_device(_where(surface, device))
-    z = _upload(surface, device)
+    device = resolve_device(surface_device(surface, device))
+    z = upload_heights(surface, device)
     lo, hi = surface_range(surface, z, device)  # recorded by the generator, or one reduction
     depth = depth_grid(
         float(np.float64(hi) - np.float64(lo)), n_increments,
         max_depth=max_depth, max_depth_fraction=max_depth_fraction,
     )  # fmt: skip
-    t, lo, hi, thr, inv_step = _thresholds(z, depth, device, (lo, hi))
+    t, lo, hi, thr, inv_step = depth_thresholds(z, depth, device, (lo, hi))
     rt = float(np.float64(hi) - np.float64(lo))
     hist = histogram_bands(z, t, hi, inv_step, device, deep=depth[-1] > DEEP_FRACTION * rt)
     counts = np.cumsum(hist)
@@ -307,12 +307,14 @@ def contact_index_map(
     (ny, nx) int32 ndarray (or Warp array)
         The island labelling carries its union-find forest across depths in this order.
     """
-    device = resolve_device(_where(surface, device))
+    device = resolve_device(surface_device(surface, device))
     depth = np.asarray(depth, dtype=np.float64)
     if depth.ndim != 1 or depth.size < 1 or np.any(np.diff(depth) < 0) or depth[0] < 0:
         raise ValueError("depth must be a 1-D non-decreasing array of depths ≥ 0 (m)")
-    z = _upload(surface, device)
-    t, _lo, hi, _thr, inv_step = _thresholds(z, depth, device, surface_range(surface, z, device))
+    z = upload_heights(surface, device)
+    t, _lo, hi, _thr, inv_step = depth_thresholds(
+        z, depth, device, surface_range(surface, z, device)
+    )
     index = wp.empty((surface.ny, surface.nx), dtype=wp.int32, device=device)
     for r0, r1 in row_bands(surface.ny, surface.nx):  # flat launches below 2³¹ pixels each
         wp.launch(
