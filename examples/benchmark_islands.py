@@ -68,7 +68,7 @@ from warptrunc.islands import (  # noqa: E402
     label_device,
     label_islands,
 )
-from warptrunc.islands.depths import Forest  # noqa: E402
+from warptrunc.islands.forest import Forest  # noqa: E402
 from warptrunc.islands.topology import topology_hist  # noqa: E402
 from warptrunc.truncation import contact_index_map, depth_grid  # noqa: E402
 from warptrunc.wm import wm_surface  # noqa: E402

@@ -10,11 +10,10 @@ import json
 import numpy as np
 import pytest
 
+from warptrunc._root_find import find_root, isotonic
 from warptrunc.calibrate import (
     CalibrationError,
     CalibrationTarget,
-    _find_root,
-    _isotonic,
     calibrate,
     calibrated_surface,
     target_from_surface,
@@ -104,7 +103,7 @@ def test_target_from_unresolved_scan_needs_wr():
 
 def test_isotonic_against_brute_force():
     y = np.array([1.0, 3.0, 2.0, 2.5, 0.5, 4.0])
-    got = _isotonic(y)
+    got = isotonic(y)
     assert np.all(np.diff(got) >= 0)
     # pooled blocks: [1], [3, 2, 2.5, 0.5] → 2.0, [4]
     np.testing.assert_allclose(got, [1.0, 2.0, 2.0, 2.0, 2.0, 4.0])
@@ -120,19 +119,19 @@ def test_root_search_noisy_non_monotone():
         return 0.7 * x + 0.8 + 0.02 * np.sin(60 * x) + rng.normal(0, 0.005)
 
     target = 0.7 * 2.63 + 0.8
-    x = _find_root(f, target, 0.01, (2.02, 2.98), 2.2, 15)
+    x = find_root(f, target, 0.01, (2.02, 2.98), 2.2, 15)
     assert abs(0.7 * x + 0.8 - target) < 0.01 + 0.02 + 0.015  # atol + wiggle + 3σ noise
     assert len(calls) <= 15
 
 
 def test_root_search_out_of_evaluations():
     with pytest.raises(CalibrationError, match=r"did not reach 2\.5000 ± 0\.0001 in 3 evaluations"):
-        _find_root(lambda x: x + 0.01 * np.sin(1e4 * x), 2.5, 1e-4, (2.02, 2.98), 2.2, 3)
+        find_root(lambda x: x + 0.01 * np.sin(1e4 * x), 2.5, 1e-4, (2.02, 2.98), 2.2, 3)
 
 
 def test_root_search_unreachable_above():
     with pytest.raises(CalibrationError, match="cannot be reached"):
-        _find_root(lambda x: 2.0 + 0.1 * (x - 2.0), 2.9, 0.01, (2.02, 2.98), 2.5, 10)
+        find_root(lambda x: 2.0 + 0.1 * (x - 2.0), 2.9, 0.01, (2.02, 2.98), 2.5, 10)
 
 
 # --- CLI and figure ------------------------------------------------------------------------------

@@ -1,9 +1,12 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Height maps: the :class:`Surface` result object, its I/O, and Weierstrass–Mandelbrot synthesis.
+"""Height maps: the :class:`Surface` result object and :func:`from_heights`.
 
-The WM synthesis evaluates Eq. (4) of the paper on the device (kernels in
-``warptrunc.kernels.wm``); everything here is host-side validation, allocation and bookkeeping.
+One way in and out: :func:`from_heights` wraps an array, :func:`warptrunc.read_height_map`
+reads a file and :func:`warptrunc.write_height_map` writes one (``warptrunc.io``);
+:func:`warptrunc.wm_surface` synthesises a Weierstrass–Mandelbrot surface (``warptrunc.wm``).
+The :class:`Surface` constructor is the low-level one those functions use. Everything here is
+validation (on the host, or one device reduction for a device map) and bookkeeping.
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from ._results import jsonable
 from ._validate import check_height_map, check_range
 
 __all__ = ["Surface", "from_heights", "load_surface"]
@@ -224,7 +228,7 @@ class Surface:
             "lx_m": self.lx,
             "ly_m": self.ly,
             "rt_m": self.rt,
-            **{k: _jsonable(v) for k, v in self.params.items()},
+            **{k: jsonable(v, nonfinite="text") for k, v in self.params.items()},
         }
 
     def save(self, path: str | Path) -> Path:
@@ -234,7 +238,7 @@ class Surface:
         """
         path = Path(path)
         meta = json.dumps(
-            {"dx": self.dx, "dy": self.dy, "params": _jsonable(self.params)}, sort_keys=True
+            {"dx": self.dx, "dy": self.dy, "params": jsonable(self.params, nonfinite="text")}, sort_keys=True
         )
         if path.suffix == ".npy":
             np.save(path, self.heights)
@@ -276,20 +280,6 @@ def load_surface(path: str | Path) -> Surface:
 def from_heights(z: np.ndarray, dx: float, dy: float | None = None, **params: Any) -> Surface:
     """Wrap a user height map ``z[iy, ix]`` (m) with pixel spacing ``dx`` (and ``dy``) (m)."""
     return Surface(z, dx, dx if dy is None else dy, params)
-
-
-def _jsonable(v: Any) -> Any:
-    if isinstance(v, dict):
-        return {str(k): _jsonable(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_jsonable(x) for x in v]
-    if isinstance(v, np.generic):
-        return v.item()
-    if isinstance(v, np.ndarray):
-        return v.tolist()
-    if isinstance(v, float) and not math.isfinite(v):
-        return str(v)
-    return v
 
 
 def _is_warp_array(a: Any) -> bool:

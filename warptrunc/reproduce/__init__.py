@@ -16,8 +16,9 @@ import time
 from pathlib import Path
 from typing import Any
 
+from .._results import jsonable, write_atomic
 from .profiles import PROFILES, Profile, get_profile
-from .store import StageConflict, StageStore, jsonable, write_atomic
+from .store import StageConflict, StageStore
 
 __all__ = ["PROFILES", "Profile", "StageConflict", "get_profile", "reproduce"]
 

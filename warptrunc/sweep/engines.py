@@ -244,7 +244,7 @@ def compute_chunk(
         return [compute_case(c, options, device) for c in cases]
     from pathlib import Path
 
-    from .store import curve_rows, write_curves
+    from .curves import curve_rows, write_curves
 
     folder = Path(curves)
     results: list = []

@@ -37,9 +37,9 @@ import warp as wp
 from .._device import free_memory_bytes, resolve_device
 from .._limits import band_pixel_limit, row_bands
 from .._progress import progress_bar
+from .._results import jsonable
 from .._validate import check_int
 from ..kernels import wm as _kwm
-from ..surface import _jsonable
 from ..wm import WMSpec, height_scale, pad_to, surface_params, wm_product, wm_spec, wm_tables
 from .curve import (
     DEEP_FRACTION,
@@ -250,7 +250,7 @@ def stream_truncation(
     params = surface_params(spec, scale)
     meta = {
         "nx": spec.nx, "ny": spec.ny, "dx_m": spec.dx, "dy_m": spec.dy, "lx_m": lx, "ly_m": ly,
-        "rt_m": rt, **{k: _jsonable(v) for k, v in params.items()},
+        "rt_m": rt, **{k: jsonable(v, nonfinite="text") for k, v in params.items()},
     }  # fmt: skip
     return StreamedTruncation(curve, meta, bands.rows, len(bands.bands))
 
