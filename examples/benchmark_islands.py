@@ -70,7 +70,7 @@ from warptrunc.islands import (  # noqa: E402
 )
 from warptrunc.islands.forest import Forest  # noqa: E402
 from warptrunc.islands.topology import topology_hist  # noqa: E402
-from warptrunc.truncation import contact_index_map, depth_grid  # noqa: E402
+from warptrunc.truncation import contact_index_device, depth_grid  # noqa: E402
 from warptrunc.wm import wm_surface  # noqa: E402
 
 FRACTIONS = (0.1, 0.3, 0.5)
@@ -202,9 +202,9 @@ def run_case(n: int, device, args) -> dict:
     res["increments"] = args.increments
     res["max_depth_fraction"] = args.max_depth_fraction
     res["contact_index_map_incl_h2d_s"] = timeit(
-        lambda: contact_index_map(s, depth, device=device, as_warp=True), rep, sync
+        lambda: contact_index_device(s, depth, warptrunc.resolve_device(device)), rep, sync
     )
-    idx = contact_index_map(s, depth, device=device, as_warp=True)
+    idx = contact_index_device(s, depth, warptrunc.resolve_device(device))
     for conn in (4, 8):
         res[f"warp_counts_all_depths{conn}_s"] = guarded(
             res,

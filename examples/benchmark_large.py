@@ -7,7 +7,7 @@ What it shows
     R_t = 10 µm, 200 increments to 0.1·R_t), the wall time of
     - ``device``: generation on the device + truncation on the device array (no host copy);
     - ``surface``: ``truncate(wm_surface(...))``, the user path (includes the host copy);
-    - ``stream``: ``truncate_streamed`` (two passes over row bands, never the whole map);
+    - ``stream``: ``truncate(spec, stream=True)`` (two passes over row bands, never the whole map);
     each after one warm-up run (kernels compiled and loaded), with the peak memory of the
     Warp memory pool (CUDA) and the peak resident host memory of the process. When more than
     one path runs, it checks that their counts are equal.
@@ -38,7 +38,7 @@ from warptrunc.truncation.curve import (
     histogram_bands,
     truncate,
 )
-from warptrunc.truncation.stream import fits_in_memory, stream_truncation
+from warptrunc.truncation.stream import fits_in_memory
 from warptrunc.wm import generate_on_device, wm_spec, wm_surface
 
 N_INCREMENTS = 200
@@ -60,9 +60,7 @@ def run_surface(spec, device):
 
 
 def run_stream(spec, device):
-    return stream_truncation(
-        spec, N_INCREMENTS, device=device, progress=False
-    ).curve.n_contact_pixels
+    return truncate(spec, N_INCREMENTS, stream=True, device=device).n_contact_pixels
 
 
 RUNS = {"device": run_device, "surface": run_surface, "stream": run_stream}

@@ -550,7 +550,7 @@ def test_indicators_ignore_a_short_dip():
 def test_island_counts_device_equal_scipy(device, connectivity):
     s = smooth_surface(50, 61, seed=8)
     depth = warptrunc.depth_grid(s.rt, 30, max_depth_fraction=1.0)
-    idx = warptrunc.contact_index_map(s, depth, device=device, as_warp=True)
+    idx = warptrunc.truncation.contact_index_device(s, depth, warptrunc.resolve_device(device))
     from warptrunc.islands import island_counts_device
 
     got = island_counts_device(idx, depth.size, connectivity)

@@ -123,13 +123,11 @@ def test_gpu_past_2_31_pixels_in_memory_equals_streamed_and_numpy():
         pytest.skip("needs a CUDA device")
     if os.environ.get("WARPTRUNC_SLOW") != "1":
         pytest.skip("large case: set WARPTRUNC_SLOW=1")
-    from warptrunc.truncation.stream import truncate_streamed
-
     n = 46400
     s = wm_surface(n=n, seed=1, device="cuda:0")
     assert s.heights.size > 2**31 - 1
     c = truncate(s, 50, max_depth_fraction=0.3, device="cuda:0")
-    st = truncate_streamed(s.params, 50, max_depth_fraction=0.3, device="cuda:0", progress=False)
+    st = truncate(s.params, 50, max_depth_fraction=0.3, stream=True, device="cuda:0")
     np.testing.assert_array_equal(st.n_contact_pixels, c.n_contact_pixels)
     assert (st.z_top, st.rt) == (c.z_top, c.rt)
     assert c.z_top == float(s.heights.max())

@@ -7,13 +7,13 @@ import json
 import numpy as np
 import pytest
 
-from warptrunc import truncate
+from warptrunc import resolve_device, truncate
 from warptrunc.cli import main
 from warptrunc.truncation.stream import (
+    as_wm_spec,
+    banded_truncation,
     fits_in_memory,
     in_memory_bytes,
-    stream_truncation,
-    truncate_streamed,
     wm_bands,
 )
 from warptrunc.wm import wm_spec, wm_surface
@@ -32,10 +32,14 @@ def test_streamed_counts_equal_in_memory_and_numpy(device, nx, ny, band_rows):
     kw = dict(D=2.4, Wr=100e-6, n=(nx, ny), seed=7)
     s = wm_surface(**kw, device=device)
     ref = truncate(s, 60, max_depth_fraction=0.4, device=device)
-    st = stream_truncation(
-        s.params, 60, max_depth_fraction=0.4, band_rows=band_rows, device=device, progress=False
-    )
+    st = banded_truncation(
+        as_wm_spec(s.params), 60, max_depth=None, max_depth_fraction=0.4, band_rows=band_rows,
+        device=resolve_device(device), progress=False,
+    )  # fmt: skip
     c = st.curve
+    public = truncate(s.params, 60, max_depth_fraction=0.4, stream=True, band_rows=band_rows,
+                      device=device)  # fmt: skip
+    np.testing.assert_array_equal(public.n_contact_pixels, c.n_contact_pixels)
     # independent: NumPy counts on the in-memory heights at the streamed thresholds
     np.testing.assert_array_equal(c.n_contact_pixels, numpy_counts(s.heights, c.threshold))
     np.testing.assert_array_equal(c.n_contact_pixels, ref.n_contact_pixels)
@@ -70,8 +74,7 @@ def test_topothesy_scaling_and_max_depth(device):
     kw = dict(D=2.3, Wr=100e-6, n=(80, 72), Rt=None, G=1e-9, seed=2)
     s = wm_surface(**kw, device=device)
     ref = truncate(s, 40, max_depth=0.25 * s.rt, device=device)
-    c = truncate_streamed(kw, 40, max_depth=0.25 * s.rt, band_rows=16, device=device,
-                          progress=False)  # fmt: skip
+    c = truncate(kw, 40, max_depth=0.25 * s.rt, stream=True, band_rows=16, device=device)
     np.testing.assert_array_equal(c.n_contact_pixels, ref.n_contact_pixels)
     np.testing.assert_array_equal(c.n_contact_pixels, numpy_counts(s.heights, c.threshold))
     assert c.rt == s.rt
@@ -79,22 +82,29 @@ def test_topothesy_scaling_and_max_depth(device):
 
 def test_accepts_a_spec_and_a_params_mapping():
     spec = wm_spec(2.5, 100e-6, n=64, seed=5)
-    a = truncate_streamed(spec, 20, band_rows=16, device="cpu", progress=False)
-    b = truncate_streamed({"D": 2.5, "Wr": 100e-6, "n": 64, "seed": 5}, 20, device="cpu",
-                          progress=False)  # fmt: skip
+    a = truncate(spec, 20, stream=True, band_rows=16, device="cpu")
+    b = truncate({"D": 2.5, "Wr": 100e-6, "n": 64, "seed": 5}, 20, stream=True, device="cpu")
     np.testing.assert_array_equal(a.n_contact_pixels, b.n_contact_pixels)
+    c = truncate(spec, 20, stream=False, device="cpu")  # generated whole
+    d = truncate(spec, 20, device="cpu")  # "auto": a 64² map fits
+    np.testing.assert_array_equal(c.n_contact_pixels, a.n_contact_pixels)
+    np.testing.assert_array_equal(d.n_contact_pixels, a.n_contact_pixels)
 
 
 def test_bad_input_is_refused_with_the_parameter():
     spec = wm_spec(2.5, 100e-6, n=64)
     with pytest.raises(ValueError, match="band_rows"):
-        truncate_streamed(spec, 10, band_rows=0, device="cpu")
+        truncate(spec, 10, stream=True, band_rows=0, device="cpu")
     with pytest.raises(ValueError, match="band_rows"):
-        truncate_streamed(spec, 10, band_rows=65, device="cpu")
+        truncate(spec, 10, stream=True, band_rows=65, device="cpu")
     with pytest.raises(ValueError, match="method='tile'"):
-        truncate_streamed(wm_spec(2.5, 100e-6, n=64, method="direct"), 10, device="cpu")
+        truncate(wm_spec(2.5, 100e-6, n=64, method="direct"), 10, stream=True, device="cpu")
     with pytest.raises(TypeError, match="spec_or_params"):
-        truncate_streamed([2.5], 10, device="cpu")
+        truncate([2.5], 10, device="cpu")
+    with pytest.raises(ValueError, match="stream=True"):
+        truncate(wm_surface(2.5, 100e-6, n=32, device="cpu"), 10, stream=True)
+    with pytest.raises(ValueError, match="stream must be"):
+        truncate(spec, 10, stream="yes", device="cpu")
 
 
 def test_memory_estimate():
@@ -130,7 +140,7 @@ def test_cli_stream_equals_in_memory(tmp_path, capsys):
 def test_cli_streams_when_the_map_does_not_fit(tmp_path, monkeypatch):
     import warptrunc.truncation.stream
 
-    monkeypatch.setattr(warptrunc.truncation.stream, "_fits", lambda spec, device: False)
+    monkeypatch.setattr(warptrunc.truncation.stream, "fits", lambda spec, device: False)
     _analyze(tmp_path)
     info = json.loads((tmp_path / "fit.json").read_text())
     assert info["path"] == "streamed"

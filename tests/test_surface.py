@@ -48,7 +48,9 @@ def test_lazy_host_copy_equals_device_array(device):
 def test_truncate_and_islands_make_no_host_copy(device):
     s = _wm(device)
     truncate(s, 50, device=device)
-    warptrunc.contact_index_map(s, np.linspace(0, 0.3 * s.rt, 11), device=device, as_warp=True)
+    warptrunc.truncation.contact_index_device(
+        s, np.linspace(0, 0.3 * s.rt, 11), warptrunc.resolve_device(device)
+    )
     island_curve(s, 20, device=device)
     warptrunc.islands.islands_at_depths(s, [0.1 * s.rt, 0.2 * s.rt], device=device)
     assert not s.has_host_copy

@@ -190,16 +190,16 @@ def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
 
 
 def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
-    import warptrunc.wm
+    import warptrunc.sweep.engines as engines
 
-    real = warptrunc.wm.wm_surface
+    real = engines.wm_surface
 
     def flaky(D, *a, seed=0, **kw):
         if seed == 1:
             raise RuntimeError("injected failure")
         return real(D, *a, seed=seed, **kw)
 
-    monkeypatch.setattr(warptrunc.wm, "wm_surface", flaky)
+    monkeypatch.setattr(engines, "wm_surface", flaky)
     out = tmp_path / "s"
     grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-2")
     df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
@@ -209,7 +209,7 @@ def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
     good = df[df["seed"] != 1]
     assert len(good) == 8 and good["error"].isna().all() and good["alpha"].notna().all()
     assert len(load_curves(out)) == 4 * 61  # failed cases have empty curves
-    monkeypatch.setattr(warptrunc.wm, "wm_surface", real)
+    monkeypatch.setattr(engines, "wm_surface", real)
     assert run_sweep(grid, out, progress=False, device="cpu", **OPTS)["error"].notna().sum() == 4
     fixed = run_sweep(grid, out, retry_failed=True, progress=False, device="cpu", **OPTS)
     assert fixed["error"].isna().all()

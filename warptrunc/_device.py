@@ -8,7 +8,10 @@ else ``"cuda:0"`` when a CUDA device is present, else ``"cpu"``.
 
 from __future__ import annotations
 
+import ctypes
 import os
+import sys
+import tempfile
 
 import warp as wp
 
@@ -46,9 +49,6 @@ def _run_filtering_native_output(fn, drop: tuple[str, ...]):
     file descriptors 1 and 2; C buffers are flushed before they are restored. Captured lines
     that contain none of ``drop`` are written back to the same stream afterwards.
     """
-    import ctypes
-    import sys
-    import tempfile
 
     try:
         libc = ctypes.CDLL(None)

@@ -24,14 +24,14 @@ def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, floa
     """Return (min z, max z) (m) of a float32 Warp array, by a device reduction.
 
     ``z`` is 1-D, or 2-D (reduced by row bands of fewer than 2³¹ pixels: any size works)."""
+    device = resolve_device(device)
     if z.ndim == 2:
         parts = [_height_range_flat(v, device) for _r0, _r1, v in flat_row_bands(z)]
         return min(p[0] for p in parts), max(p[1] for p in parts)
     return _height_range_flat(z, device)
 
 
-def _height_range_flat(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, float]:
-    device = resolve_device(device)
+def _height_range_flat(z: wp.array, device: wp.context.Device) -> tuple[float, float]:
     n = z.shape[0]
     if device.is_cuda and n >= _kr.TILE:
         full = n // _kr.TILE

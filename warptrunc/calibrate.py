@@ -38,6 +38,7 @@ from ._validate import check_int, check_range, pair
 from .descriptors import roll_off_wavelength, surface_statistics
 from .fractal import METHODS, fractal_dimension
 from .surface import Surface
+from .wm import wm_surface
 
 __all__ = [
     "Calibration",
@@ -278,7 +279,6 @@ def calibrate(
         The target D lies outside the D_out reached at the bounds of ``D_bounds`` (the message
         gives that range), or the loop did not converge within ``max_iter`` evaluations.
     """
-    from .wm import wm_surface
 
     rtol = check_range("rtol", rtol, 0.0, 1.0)
     lo, hi = (float(v) for v in D_bounds)
@@ -397,7 +397,6 @@ def calibrated_surface(
     WM sum has more (finer) terms, so R_rms at fixed R_t' differs slightly from the target
     (−1.4 % from 1024² to 2048² in ``examples/calibrate_to_scan.py``).
     """
-    from .wm import wm_surface
 
     t = calibration.target
     s = wm_surface(

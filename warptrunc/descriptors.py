@@ -53,7 +53,9 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import warp as wp
 
+from .kernels import reduce as _kr
 from .spectra import (
     PSD,
     band_variance,
@@ -161,9 +163,7 @@ def surface_statistics(surface: Surface) -> dict[str, float]:
     """
     if surface.device is None:
         return height_statistics(surface.heights)
-    import warp as wp
 
-    from .kernels import reduce as _kr
 
     z = surface.device_heights()
     dev = z.device

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import warp as wp
 
 from ._validate import check_int, check_range
 from .surface import Surface
@@ -60,7 +61,6 @@ def _array_module(surface: Surface):
     dev = surface.device
     if dev is None:
         return np, surface.heights
-    import warp as wp
 
     zd = surface.device_heights()
     if zd.device.is_cpu:

@@ -13,13 +13,17 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+import warp as wp
 
+from ._device import check_memory, resolve_device
 from ._results import jsonable
 from ._validate import check_height_map, check_range
+from .kernels import reduce as _kr
 
 __all__ = ["Surface", "from_heights", "load_surface"]
 
@@ -140,11 +144,11 @@ class Surface:
         :func:`warptrunc.resolve_device`'s default. A copy on another device is made once
         (host → device upload, or device → device copy) and cached on the surface.
         """
-        import warp as wp
 
-        from ._device import check_memory, resolve_device
 
-        dev = resolve_device(self._home if device is None else device)
+        dev = device if isinstance(device, wp.Device) else None  # resolved by the caller
+        if dev is None:
+            dev = resolve_device(self._home if device is None else device)
         key = str(dev)
         z = self._dev.get(key)
         if z is None:
@@ -283,15 +287,11 @@ def from_heights(z: np.ndarray, dx: float, dy: float | None = None, **params: An
 
 
 def _is_warp_array(a: Any) -> bool:
-    import sys
-
     wp = sys.modules.get("warp")
     return wp is not None and isinstance(a, wp.array)
 
 
 def _check_device_map(z: Any, name: str = "heights") -> Any:
-    import warp as wp
-
     if z.ndim != 2:
         raise ValueError(f"{name} must be 2-D (ny, nx), got shape {z.shape}")
     if z.shape[0] < 1 or z.shape[1] < 1:
@@ -307,9 +307,7 @@ def _check_device_map(z: Any, name: str = "heights") -> Any:
 
 def _validate_on_device(z: Any, name: str = "heights") -> tuple[float, float]:
     """Finite check and (min, max) of a device map: one launch, one 32-byte read-back."""
-    import warp as wp
 
-    from .kernels import reduce as _kr
 
     dev = z.device
     n = z.shape[0] * z.shape[1]

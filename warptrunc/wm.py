@@ -366,7 +366,11 @@ def wm_surface(
         D, Wr, L=L, n=n, Rt=Rt, G=G, M=M, gamma=gamma, Wc=Wc, cutoff=cutoff, seed=seed,
         method=method,
     )  # fmt: skip
-    device = resolve_device(device)
+    return surface_from_spec(spec, resolve_device(device))
+
+
+def surface_from_spec(spec: WMSpec, device: wp.context.Device) -> Surface:
+    """The device-resident :class:`Surface` of ``spec`` on the resolved ``device``."""
     z, scale, extremes = _generate(spec, device)
     params = surface_params(spec, scale)
     # device-resident, no host copy until one is asked for; the recorded extremes are exact and

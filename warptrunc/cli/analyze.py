@@ -19,8 +19,10 @@ import argparse
 import json
 import math
 
+from .._device import resolve_device
 from ..stiffness import DEFAULT_MIN_PIXELS, Material, fit_power_law, stiffness_curve
 from ..truncation import truncate
+from ..truncation.stream import as_wm_spec, banded_truncation, fits_in_memory
 from ._common import (
     add_device,
     add_out,
@@ -166,12 +168,11 @@ def _truncation(args: argparse.Namespace):
             max_depth_fraction=args.max_depth_fraction, device=args.device,
         )  # fmt: skip
         return curve, s.to_dict(), {"path": "in-memory"}
-    from ..truncation.stream import stream_truncation
 
-    st = stream_truncation(
-        wm_kwargs(args), args.increments, max_depth=args.max_depth,
+    st = banded_truncation(
+        as_wm_spec(wm_kwargs(args)), args.increments, max_depth=args.max_depth,
         max_depth_fraction=args.max_depth_fraction, band_rows=args.band_rows,
-        device=args.device,
+        device=resolve_device(args.device), progress=True,
     )  # fmt: skip
     reason = "--stream given" if args.stream else _TOO_BIG
     info = {"band_rows": st.band_rows, "n_bands": st.n_bands, "reason": reason}
@@ -183,6 +184,5 @@ def _wants_stream(args: argparse.Namespace) -> bool:
         return bool(args.stream)
     if args.stream:
         return True
-    from ..truncation.stream import fits_in_memory
 
     return not fits_in_memory(wm_kwargs(args), args.device)

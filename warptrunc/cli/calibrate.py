@@ -14,6 +14,7 @@ import argparse
 import json
 from pathlib import Path
 
+from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
 from ..fractal import METHODS
 from ._common import add_device, integer, output_dir, positive, real
 from .describe import add_height_scaling, add_scan_arguments, method_options, read_scan_args
@@ -73,7 +74,6 @@ def _pair(v, option: str):
 
 def run(args: argparse.Namespace) -> int:
     """Calibrate and write the outputs."""
-    from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
 
     if args.file is not None:
         s = read_scan_args(args)

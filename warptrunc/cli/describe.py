@@ -17,8 +17,9 @@ import json
 import sys
 from pathlib import Path
 
-from ..fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS
-from ._common import add_device, add_reader_options, input_file, output_dir, read_input
+from ..descriptors import describe, profile_psd, radial_psd
+from ..fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
+from ._common import add_device, add_reader_options, input_file, output_dir, output_file, read_input
 
 NAME = "describe"
 HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four methods"
@@ -83,15 +84,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def _json_path(text: str) -> str:
     """``-`` (stdout) or a file to write (see :func:`warptrunc.cli._common.output_file`)."""
-    from ._common import output_file
 
     return text if text == "-" else str(output_file(text))
 
 
 def describe_surface(s, methods, options, device) -> dict:
     """Descriptors and D values as one flat dict (the JSON of ``describe``)."""
-    from ..descriptors import describe
-    from ..fractal import fractal_dimensions
 
     d = describe(s)
     fits = fractal_dimensions(s, methods, options=options, device=device)
@@ -147,7 +145,6 @@ def run(args: argparse.Namespace) -> int:
             print(f"wrote {args.json}")
     if args.out is not None:
         from .. import plot
-        from ..descriptors import profile_psd, radial_psd
 
         args.out.mkdir(parents=True, exist_ok=True)
         psds = [radial_psd(s)]

@@ -13,7 +13,9 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
 
+from ..io.vtk import export_vtk
 from ._common import (
     add_device,
     add_out,
@@ -95,7 +97,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def _file_name(text: str) -> str:
     """A ``type=`` for a plain file name (written inside --out)."""
-    from pathlib import Path
 
     if not text or Path(text).name != text or text in (".", ".."):
         raise argparse.ArgumentTypeError(f"must be a file name without folders, got {text!r}")
@@ -116,7 +117,6 @@ def run(args: argparse.Namespace) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     written = []
     if args.vtk:
-        from ..io.vtk import export_vtk
 
         written.append(
             export_vtk(s, args.out / args.vtk, n_increments=args.vtk_increments, device=args.device)

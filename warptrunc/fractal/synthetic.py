@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_range
+from .._validate import check_int, check_range, pair
 from ..surface import Surface
 
 
@@ -47,7 +47,6 @@ def self_affine_surface(
     Fourier amplitudes are Gaussian with variance C(f) ∝ f^−2(1+H) (flat below 1/W_r), the
     DC term is zero, and the real part of the inverse FFT is taken, so the map is periodic.
     """
-    from .._validate import check_int, pair
 
     H = check_range("H", H, 0.0, 1.0)
     nx, ny = pair("n", n, int)

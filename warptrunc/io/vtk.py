@@ -29,6 +29,7 @@ import numpy as np
 import warp as wp
 
 from ..surface import Surface
+from ..truncation import contact_index_map, depth_grid
 
 __all__ = ["export_vtk"]
 
@@ -71,7 +72,6 @@ def export_vtk(
     -----
     The file holds 4 + 8 + 4 = 16 bytes per pixel (1.6 GB for 10240²).
     """
-    from ..truncation import contact_index_map, depth_grid
 
     path = Path(path)
     suffix = path.suffix.lower()

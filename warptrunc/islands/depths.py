@@ -17,7 +17,12 @@ from .._progress import progress_bar
 from .._validate import check_int, check_range
 from ..kernels import islands as _ki
 from ..surface import Surface
-from ..truncation.curve import contact_index_map, depth_grid, surface_device, surface_range
+from ..truncation.curve import (
+    contact_index_device,
+    depth_grid,
+    surface_device,
+    surface_range,
+)
 from .fits import slit_from_sums
 from .forest import Forest
 from .labelling import (
@@ -284,7 +289,7 @@ def island_curve(
     if snapshot_depths is not None:
         sd = _check_depths(snapshot_depths, surface.rt)
         snaps = {int(np.argmin(np.abs(depth - v))) for v in sd}
-    idx = contact_index_map(surface, depth, device=device, as_warp=True).reshape((ny * nx,))
+    idx = contact_index_device(surface, depth, device).reshape((ny * nx,))
     topo = topology_hist(idx, (ny, nx), n1, connectivity, periodic, device)
     forest = Forest(idx, (ny, nx), n1, connectivity, periodic, statistics, device)
 

@@ -35,6 +35,8 @@ from .._progress import progress_bar
 from .._validate import check_int
 from ..kernels import stream_islands as _k
 from ..kernels import wm as _kwm
+from ..truncation.stream import WMBands, as_wm_spec, extremes_pass
+from .labelling import check_connectivity, check_mask, label_device
 
 __all__ = ["BandedIslands", "label_banded", "streamed_islands"]
 
@@ -158,7 +160,6 @@ def label_banded(
     BandedIslands
         The islands of ``scipy.ndimage.label(mask, structure)``, areas in label order.
     """
-    from .labelling import check_connectivity, check_mask, label_device
 
     m = check_mask(mask)
     connectivity = check_connectivity(connectivity)
@@ -208,8 +209,6 @@ def streamed_islands(
     Pass 1 finds the extremes (``warptrunc.stream``); pass 2 regenerates each band once and,
     for every depth, thresholds, labels and hands it to that depth's border merger.
     """
-    from ..truncation.stream import WMBands, as_wm_spec, extremes_pass
-    from .labelling import check_connectivity, label_device
 
     spec = as_wm_spec(spec_or_params)
     connectivity = check_connectivity(connectivity)

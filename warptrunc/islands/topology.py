@@ -16,7 +16,7 @@ import warp as wp
 from .._device import resolve_device
 from ..kernels import euler as _ke
 from ..surface import Surface
-from ..truncation.curve import contact_index_map, depth_grid, surface_device
+from ..truncation.curve import contact_index_device, depth_grid, surface_device
 from .labelling import check_connectivity, check_index_size, check_surface
 from .results import TopologyCurve
 
@@ -139,7 +139,7 @@ def topology_curve(
     )
     ny, nx = surface.ny, surface.nx
     check_index_size(ny * nx)  # before allocating
-    idx = contact_index_map(surface, depth, device=device, as_warp=True).reshape((ny * nx,))
+    idx = contact_index_device(surface, depth, device).reshape((ny * nx,))
     h = topology_hist(idx, (ny, nx), depth.size, connectivity, periodic, device)
     return TopologyCurve(
         depth=depth,

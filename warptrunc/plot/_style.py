@@ -7,6 +7,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 UM = 1e6  # m → µm on axes
 FIGSIZE = (5.0, 4.0)
 DPI = 150
@@ -57,7 +59,6 @@ def _band(xs: list, ys: list, *, log: bool, n: int = 200, spread: str = "sd"):
     sd). Returns (grid, centre, lower, upper); spread "sd" is ±1 sample standard deviation,
     "range" is min–max.
     """
-    import numpy as np
 
     f = np.log if log else np.asarray
     inv = np.exp if log else np.asarray

@@ -8,6 +8,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from ._style import (
     UM,
     _figure,
@@ -72,7 +74,6 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
     path : path, optional
         Save the figure as PNG here.
     """
-    import numpy as np
 
     items = list(fits.items())
     ncols = min(2, len(items))
@@ -129,7 +130,6 @@ def d_out_vs_d_in(
     path : path, optional
         Save the figure as PNG here.
     """
-    import numpy as np
 
     fig, axes = _figure()
     ax = axes[0, 0]

@@ -7,6 +7,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
+from ..islands import MIN_PIXELS, slit_island_fit
 from ._style import (
     UM,
     _figure,
@@ -88,9 +91,7 @@ def slit_islands(
     path : path, optional
         Save the figure as PNG here.
     """
-    import numpy as np
 
-    from ..islands import MIN_PIXELS, slit_island_fit
 
     sizes = list(getattr(curve, "sizes", curve))
     if min_pixels is None:

@@ -4,8 +4,11 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from ._style import (
     CONTACT_RGB,
@@ -19,6 +22,7 @@ from ._style import (
     _is_group,
     _length_axes,
 )
+from .pooling import check_pooling, pool_blocks
 
 
 def height_map(
@@ -60,11 +64,8 @@ def height_map(
     ``imshow(z, origin="lower", extent=(0, Lx, 0, Ly))``: row iy of ``z`` is drawn at
     y = iy·dy, so x runs to the right and y up, as in the 3-D pictures.
     """
-    import math
 
-    import numpy as np
 
-    from .pooling import check_pooling, pool_blocks
 
     check_pooling(pooling)
 

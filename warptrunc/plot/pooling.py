@@ -26,6 +26,7 @@ import numpy as np
 import warp as wp
 
 from ..surface import Surface
+from ..truncation import contact_index_map
 
 POOLING = ("area", "any")
 """Ways to colour a block of pixels: by its contact fraction, or red when any pixel touches."""
@@ -141,7 +142,6 @@ def block_contact(
         A pixel is in contact when z ≥ float32(z_top − ω), as :func:`warptrunc.truncate`
         counts it.
     """
-    from ..truncation import contact_index_map
 
     check_pooling(pooling)
     uniq, rank = np.unique(depth, return_inverse=True)

@@ -7,6 +7,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
+from ..sweep import alpha_summary
 from ._style import (
     PAPER_ALPHA_D,
     SPREAD_ALPHA,
@@ -47,7 +50,6 @@ def stiffness_load(
     path : path, optional
         Save the figure as PNG here.
     """
-    import numpy as np
 
     curves = _as_list(curves)
     if fits is not None:
@@ -131,7 +133,6 @@ def alpha_vs_D(
     path : path, optional
         Save the figure as PNG here.
     """
-    import numpy as np
 
     ranges = _alpha_ranges(summary)
     if min_pixels is not None:
@@ -175,6 +176,5 @@ def _alpha_ranges(summary: Any) -> dict:
     """{min_pixels: {"per_D": [...], "alpha_vs_D": line or None}} from a summary or a table."""
     if isinstance(summary, dict):
         return dict(summary["fit_ranges"])
-    from ..sweep import alpha_summary
 
     return alpha_summary(summary)["fit_ranges"]

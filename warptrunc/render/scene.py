@@ -6,10 +6,13 @@ with its camera, the down-sampling factor and the vertical exaggeration."""
 from __future__ import annotations
 
 import math
+import os
 from contextlib import contextmanager
 
 import numpy as np
 
+from .._device import is_verbose
+from ..plot import CONTACT_RGB
 from ..plot.pooling import pool_blocks
 from ..surface import Surface
 
@@ -32,7 +35,6 @@ def vtk_quiet():
     machines, where off-screen rendering works regardless), unless verbose
     (:func:`warptrunc._device.set_verbose`, ``warptrunc --verbose``, ``$WARPTRUNC_VERBOSE``).
     The previous global setting of VTK is restored afterwards."""
-    from .._device import is_verbose
 
     if is_verbose():
         yield
@@ -128,7 +130,6 @@ class Scene:
         t = (hb - lo) / (hi - lo) if hi > lo else np.full_like(hb, 0.5)
         g = np.rint(_NEUTRAL[0] + (_NEUTRAL[1] - _NEUTRAL[0]) * t).astype(np.uint8).ravel()
         self.neutral = np.repeat(g[:, None], 3, axis=1)
-        from ..plot import CONTACT_RGB
 
         self.red = np.asarray(CONTACT_RGB, dtype=np.uint8)
 
@@ -146,7 +147,6 @@ class Scene:
 
 def font_file() -> str | None:
     """DejaVu Sans from matplotlib: VTK's built-in fonts lack ω and µ."""
-    import os
 
     import matplotlib
 

@@ -26,6 +26,9 @@ from typing import Any
 import numpy as np
 
 from .._validate import check_int, check_range
+from ..stiffness import Material, stiffness_curve
+from ..surface import from_heights
+from ..truncation import truncate
 
 __all__ = [
     "M_B_VALUES",
@@ -163,7 +166,6 @@ def sphere_surface(R: float, half_width: float, n: int):
     Heights z = −r²/(R + √(R² − r²)) (= √(R² − r²) − R, stable in float32 near the top) with
     the apex on the pixel (n//2, n//2), so the top is exactly 0.
     """
-    from ..surface import from_heights
 
     R = check_range("R", R, 0.0, unit="m")
     n = check_int("n", n, 8, 1 << 16)
@@ -243,8 +245,6 @@ def run_asperity(
     max_omega_c : float
         Largest interference in units of ω_c (the paper: 100).
     """
-    from ..stiffness import Material, stiffness_curve
-    from ..truncation import truncate
 
     mat = AsperityMaterial() if material is None else material
     wc = critical_interference(R, mat)

@@ -10,6 +10,8 @@ from typing import Any
 
 import numpy as np
 
+from ..truncation import contact_index_map
+from ..wm import wm_surface
 from .analysis import D_KEYS
 
 __all__ = ["figures", "markdown"]
@@ -73,9 +75,6 @@ def fig5(res, ana, out) -> str:
 
 
 def fig7(res, out, device) -> str:
-    from ..truncation import contact_index_map
-    from ..wm import wm_surface
-
     rows = [r for r in res["table1"]["rows"] if r["status"] == "ok"]
     r = next((x for x in rows if x["surface"] == "GB300s"), rows[0])
     n = res["table1"]["n"]

@@ -17,6 +17,7 @@ rows of many cases written by workers and resumed case by case. Both write throu
 from __future__ import annotations
 
 import json
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -83,7 +84,6 @@ class StageStore:
         self, name: str, params: dict[str, Any], fn: Callable[[], dict[str, Any]]
     ) -> dict[str, Any]:
         """The stage's result: stored when the parameters match, else ``fn()`` (then stored)."""
-        import time
 
         if self.check(name, params):
             self.reused.append(name)

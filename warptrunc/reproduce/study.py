@@ -23,8 +23,19 @@ from typing import Any
 import numpy as np
 
 from .._progress import progress_bar
+from ..calibrate import CalibrationError, CalibrationTarget, calibrate
+from ..fractal import METHODS, fractal_dimensions
+from ..islands import applicable_depth, island_curve
+from ..stiffness import DEFAULT_MIN_PIXELS, stiffness_curve
+from ..sweep import SweepGrid, load_curves, run_sweep
+from ..sweep.grid import SweepOptions
+from ..sweep.store import conflict
+from ..truncation import truncate
+from ..wm import wm_surface
+from .asperity import bounds_summary, pixel_area_bounds, run_asperity
+from .paper import TABLE1
 from .profiles import Profile
-from .store import StageStore
+from .store import StageConflict, StageStore
 
 __all__ = ["STAGES", "fit_ranges", "group_sweep", "run_study"]
 
@@ -40,14 +51,11 @@ def _tqdm(it, desc, total=None):
 def fit_ranges(profile: Profile, n: int) -> dict[str, int | float]:
     """Fit ranges: ``default`` = the package's ≥ 10 contact pixels; ``late`` = a float f, meaning
     increments with ≥ f × the surface's final contact pixels (the deep part of each curve)."""
-    from ..stiffness import DEFAULT_MIN_PIXELS
 
     return {"default": DEFAULT_MIN_PIXELS, "late": float(profile.late_fit_fraction)}
 
 
 def _fractal(surface, device) -> dict[str, Any]:
-    from ..fractal import fractal_dimensions
-
     out = {}
     for k, f in fractal_dimensions(surface, device=device).items():
         opts = {kk: v for kk, v in f.options.items() if kk not in ("box_sizes", "lags")}
@@ -60,7 +68,6 @@ def _fractal(surface, device) -> dict[str, Any]:
 
 def stage_asperity(p: Profile, device) -> dict[str, Any]:
     """Fig. 2: the sphere through truncate + stiffness_curve, with the closed forms."""
-    from .asperity import bounds_summary, pixel_area_bounds, run_asperity
 
     res = run_asperity(n=p.asperity_n, n_increments=p.asperity_increments, device=device)
     a, _ = res.curves["truncation"]
@@ -84,9 +91,6 @@ def _read_at(sc, loads) -> list[float | None]:
 
 def stage_fig5(p: Profile, device) -> dict[str, Any]:
     """Fig. 5: E_c/E at fixed F/(E·A) against resolution and against the increment count."""
-    from ..stiffness import stiffness_curve
-    from ..truncation import truncate
-    from ..wm import wm_surface
 
     kw = {"D": 2.5, "Wr": 100e-6, "L": 1e-3, "Rt": 10e-6}
     rows = []
@@ -103,10 +107,6 @@ def stage_fig5(p: Profile, device) -> dict[str, Any]:
 
 def stage_table1(p: Profile, device) -> dict[str, Any]:
     """Table 1: calibrate D_in and R_t' of each simulated surface; D_out by the four methods."""
-    from ..calibrate import CalibrationError, CalibrationTarget, calibrate
-    from ..fractal import METHODS
-    from ..wm import wm_surface
-    from .paper import TABLE1
 
     L = p.table1_n * UM
     seeds = tuple(range(p.table1_seeds))
@@ -136,8 +136,6 @@ def stage_table1(p: Profile, device) -> dict[str, Any]:
 
 def stage_islands(p: Profile, table1: dict[str, Any], device) -> dict[str, Any]:
     """Fig. 7 panel, Fig. 8 and Table 2 on the calibrated surfaces (first matched method)."""
-    from ..islands import applicable_depth, island_curve
-    from ..wm import wm_surface
 
     out: dict[str, Any] = {"n": p.islands_n, "L_m": p.islands_L, "surfaces": {}}
     done = set()
@@ -162,8 +160,6 @@ def stage_islands(p: Profile, table1: dict[str, Any], device) -> dict[str, Any]:
 def group_sweep(p: Profile, which: int) -> tuple[Any, dict[str, Any]]:
     """The :class:`~warptrunc.sweep.SweepGrid` and :func:`~warptrunc.sweep.run_sweep` options
     of Table 3 group 1 (D_in = 2.5, δ sweep) or group 2 (δ = 0.01, D_in sweep)."""
-    from ..fractal import METHODS
-    from ..sweep import SweepGrid
 
     ranges = fit_ranges(p, p.n)
     seeds = tuple(range(p.seeds))
@@ -215,10 +211,6 @@ def stage_group(
     p: Profile, which: int, out, device, *, overwrite: bool = False, curve_points: int = 60
 ) -> dict[str, Any]:  # fmt: skip
     """Table 3 group 1 or 2 through the sweep store ``<out>/sweeps/group<which>`` (resumed)."""
-    from ..sweep import load_curves, run_sweep
-    from ..sweep.grid import SweepOptions
-    from ..sweep.store import conflict
-    from .store import StageConflict
 
     grid, opts = group_sweep(p, which)
     path = Path(out) / "sweeps" / f"group{which}"

@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import logging
 import os
+import statistics
 import sys
+import time
 from typing import Any
 
 from distributed import WorkerPlugin
@@ -88,8 +90,6 @@ def run_dask(
     (``client.restart()``) has its unfinished cases submitted again one per task, up to
     ``max_retries`` times each, then recorded as failed.
     """
-    import statistics
-    import time
 
     from distributed import Client, LocalCluster, as_completed
 

@@ -7,8 +7,11 @@ from :mod:`warptrunc.sweep.store` (the durability rules are described there).
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import json
 import os
+import sys
 import threading
 from pathlib import Path
 from typing import Any
@@ -74,10 +77,6 @@ def _fsync_dir(folder: Path) -> None:
 
 
 def _load_syncfs():
-    import ctypes
-    import ctypes.util
-    import sys
-
     if not sys.platform.startswith("linux"):
         return None
     try:

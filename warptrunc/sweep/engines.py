@@ -16,15 +16,25 @@ from __future__ import annotations
 import functools
 import json
 import math
+import queue
 import socket
+import threading
 import time
 from collections.abc import Callable
 from datetime import datetime, timezone
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from .. import __version__
+from .._bench import git_commit
+from .._device import resolve_device
 from .._progress import progress_bar
+from ..stiffness import DEFAULT_MIN_PIXELS, fit_power_law, stiffness_curve
+from ..truncation import truncate
+from ..wm import wm_surface
+from .curves import curve_rows, write_curves
 from .grid import FRACTAL_METHODS, Case, SweepOptions
 
 __all__ = ["compute_case", "compute_chunk", "failed_case", "pinned_device", "run_inprocess"]
@@ -36,9 +46,6 @@ BatchSink = Callable[[list[Result]], Any]
 
 @functools.cache
 def _provenance() -> tuple[str, str | None, str]:
-    from .. import __version__
-    from .._bench import git_commit
-
     return __version__, git_commit(), socket.gethostname()
 
 
@@ -75,7 +82,6 @@ def resolve_min_pixels(fraction: float, final_contact_pixels: int) -> int:
     The product is rounded to 9 decimals before the ceiling, so that float noise
     (0.05·280 = 14.000000000000002) does not add a pixel.
     """
-    from ..stiffness import DEFAULT_MIN_PIXELS
 
     return max(DEFAULT_MIN_PIXELS, math.ceil(round(fraction * final_contact_pixels, 9)))
 
@@ -113,10 +119,6 @@ def compute_case(
     Returns the case's rows (one per fit range) and its curve columns, or (rows with the
     ``error`` column set, None) when generation, the fractal dimensions or truncation raised.
     """
-    from .._device import resolve_device
-    from ..stiffness import fit_power_law, stiffness_curve
-    from ..truncation import truncate
-    from ..wm import wm_surface
 
     o = options
     base = _base_row(case, o)
@@ -180,10 +182,7 @@ def run_inprocess(
     sync per batch, not one per case. Every computed case is written before this function
     returns or an exception (Ctrl-C included) propagates.
     """
-    import queue
-    import threading
 
-    from .._device import resolve_device
 
     dev = str(resolve_device(device))
     q: queue.Queue = queue.Queue(maxsize=max_batch)
@@ -242,9 +241,7 @@ def compute_chunk(
     """
     if curves is None:
         return [compute_case(c, options, device) for c in cases]
-    from pathlib import Path
 
-    from .curves import curve_rows, write_curves
 
     folder = Path(curves)
     results: list = []

@@ -16,6 +16,9 @@ from typing import Any
 import numpy as np
 
 from ..stiffness import DEFAULT_MIN_PIXELS
+from .grid import SweepGrid
+from .run import run_sweep
+from .store import require_extra
 
 __all__ = ["SweepTable", "alpha_summary", "group_stats", "linear_fit", "sweep"]
 
@@ -34,7 +37,6 @@ def group_stats(df, by: Sequence[str], value: str) -> list[dict[str, Any]]:
 
     Groups whose values are all NaN are kept with n = 0 and NaN statistics.
     """
-    from .store import require_extra
 
     require_extra()
     v = df[value].astype(float)
@@ -120,8 +122,6 @@ def sweep(
     takes every option); ``out`` is a result store folder, resumed when it exists.
     ``wm_kwargs``: M, gamma, Wc, cutoff. ``material``: a :class:`warptrunc.Material`.
     """
-    from .grid import SweepGrid
-    from .run import run_sweep
 
     mat = {}
     if material is not None:

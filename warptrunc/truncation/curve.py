@@ -28,10 +28,11 @@ from ..surface import Surface
 __all__ = [
     "TruncationCurve",
     "contact_histogram",
+    "contact_index_device",
     "contact_index_map",
     "depth_grid",
     "height_range",
-    "truncate",
+    "truncate_surface",
 ]
 
 
@@ -225,41 +226,20 @@ def depth_thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
     return wp.array(thr, dtype=wp.float32, device=device), lo, hi, thr, inv_step
 
 
-def truncate(
+def truncate_surface(
     surface: Surface,
-    n_increments: int = 200,
+    n_increments: int,
     *,
-    max_depth: float | None = None,
-    max_depth_fraction: float = 0.1,
-    device: wp.DeviceLike = None,
+    max_depth: float | None,
+    max_depth_fraction: float,
+    device: wp.context.Device,
 ) -> TruncationCurve:
-    """Truncated area A_c(ω) of ``surface`` at n + 1 equally spaced depths.
+    """The in-memory path of :func:`warptrunc.truncate` on a resolved ``device``.
 
-    Parameters
-    ----------
-    surface : Surface
-        The height map (m).
-    n_increments : int
-        Number of depth increments n; depths are ω_k = k·ω_max/n, k = 0..n.
-    max_depth : float, optional
-        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of the map's R_t (dimensionless).
-    device : str, optional
-        Warp device; default: where a device-resident surface lives, else
-        :func:`warptrunc.resolve_device`'s choice.
-
-    Returns
-    -------
-    TruncationCurve
-
-    Notes
-    -----
     One pass over the heights: each pixel's contact index (the first k with
     z ≥ z_top − ω_k) is found in a Warp kernel and counted in an integer atomic histogram;
     the cumulative sum gives the number of contact pixels at every depth.
     """
-    device = resolve_device(surface_device(surface, device))
     z = upload_heights(surface, device)
     lo, hi = surface_range(surface, z, device)  # recorded by the generator, or one reduction
     depth = depth_grid(
@@ -288,8 +268,7 @@ def contact_index_map(
     depth: np.ndarray,
     *,
     device: wp.DeviceLike = None,
-    as_warp: bool = False,
-):
+) -> np.ndarray:
     """Per-pixel contact index: the first k with z ≥ z_top − depth[k], or len(depth) if none.
 
     Parameters
@@ -299,15 +278,21 @@ def contact_index_map(
     depth : (n+1,) array_like
         Non-decreasing, equally spaced truncation depths (m), starting at 0 (as from
         :func:`depth_grid`).
-    as_warp : bool
-        Return the Warp array (on ``device``, shape (ny, nx), int32) instead of NumPy.
+    device : str, optional
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
 
     Returns
     -------
-    (ny, nx) int32 ndarray (or Warp array)
-        The island labelling carries its union-find forest across depths in this order.
+    (ny, nx) int32 ndarray
+        The island labelling carries its union-find forest across depths in this order. The
+        same map left on the device is :func:`contact_index_device`.
     """
-    device = resolve_device(surface_device(surface, device))
+    return contact_index_device(surface, depth, resolve_device(surface_device(surface, device))).numpy()
+
+
+def contact_index_device(surface: Surface, depth: np.ndarray, device: wp.context.Device) -> wp.array:
+    """:func:`contact_index_map` as a (ny, nx) int32 Warp array left on the resolved ``device``."""
     depth = np.asarray(depth, dtype=np.float64)
     if depth.ndim != 1 or depth.size < 1 or np.any(np.diff(depth) < 0) or depth[0] < 0:
         raise ValueError("depth must be a 1-D non-decreasing array of depths ≥ 0 (m)")
@@ -324,4 +309,4 @@ def contact_index_map(
             outputs=[index[r0:r1].flatten()],
             device=device,
         )
-    return index if as_warp else index.numpy()
+    return index
