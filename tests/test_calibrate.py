@@ -10,6 +10,7 @@ import json
 import numpy as np
 import pytest
 
+import warptrunc
 from warptrunc._root_find import find_root, isotonic
 from warptrunc.calibrate import (
     CalibrationError,
@@ -138,7 +139,7 @@ def test_root_search_unreachable_above():
 
 
 def test_cli_calibrate_typed_targets(tmp_path, capsys):
-    from warptrunc import load_surface
+    from warptrunc import read_height_map
     from warptrunc.cli import main
 
     out = tmp_path / "cal"
@@ -151,7 +152,7 @@ def test_cli_calibrate_typed_targets(tmp_path, capsys):
     info = json.loads((out / "calibration.json").read_text())
     assert abs(info["D_out"] - 2.4) <= 0.05 * 2.4
     assert info["target_source"] == "given"
-    s = load_surface(out / "surface.npz")
+    s = read_height_map(out / "surface.npz")
     assert s.heights.shape == (96, 96)
     assert s.rt == pytest.approx(info["Rt_m"], rel=1e-5)
 
@@ -159,7 +160,7 @@ def test_cli_calibrate_typed_targets(tmp_path, capsys):
 def test_cli_calibrate_from_file_and_errors(tmp_path, capsys):
     from warptrunc.cli import main
 
-    p = _scan(n=64).save(tmp_path / "scan.npz")
+    p = warptrunc.write_height_map(_scan(n=64), tmp_path / "scan.npz")
     rc = main(["calibrate", str(p), "--method", "vs", "--Wr", str(WR), "--seeds", "0",
                "--no-progress", "--no-surface", "--out", str(tmp_path / "o")])  # fmt: skip
     assert rc == 0

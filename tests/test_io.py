@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import warptrunc
 from warptrunc import from_heights
 from warptrunc.io import (
     MissingExtraError,
@@ -158,7 +159,7 @@ def test_wrong_dimensionality(tmp_path):
 
 def test_truncated_npz_and_npy(tmp_path):
     s = _surface(32, 32)
-    good = s.save(tmp_path / "s.npz")
+    good = warptrunc.write_height_map(s, tmp_path / "s.npz")
     (tmp_path / "cut.npz").write_bytes(good.read_bytes()[:200])
     with pytest.raises(ValueError, match=r"cut\.npz"):
         read_height_map(tmp_path / "cut.npz")
@@ -170,7 +171,7 @@ def test_truncated_npz_and_npy(tmp_path):
 
 def test_corrupt_sidecar(tmp_path):
     s = _surface()
-    p = s.save(tmp_path / "s.npy")
+    p = warptrunc.write_height_map(s, tmp_path / "s.npy")
     p.with_suffix(".json").write_text("{not json")
     with pytest.raises(ValueError, match=r"s\.npy: corrupt warptrunc metadata"):
         read_height_map(p)

@@ -38,7 +38,7 @@ from .io import read_height_map, write_height_map
 from .io.vtk import export_vtk
 from .islands import IslandCurve, Islands, applicable_depth, island_curve, label_islands
 from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
-from .surface import Surface, from_heights, load_surface
+from .surface import Surface, from_heights
 from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
 from .wm import wm_surface
 
@@ -69,7 +69,6 @@ __all__ = [
     "from_heights",
     "island_curve",
     "label_islands",
-    "load_surface",
     "read_height_map",
     "resolve_device",
     "stiffness_curve",

@@ -11,10 +11,8 @@ validation (on the host, or one device reduction for a device map) and bookkeepi
 
 from __future__ import annotations
 
-import json
 import math
 import sys
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -25,7 +23,7 @@ from ._results import jsonable
 from ._validate import check_height_map, check_range
 from .kernels import reduce as _kr
 
-__all__ = ["Surface", "from_heights", "load_surface"]
+__all__ = ["Surface", "from_heights"]
 
 
 class Surface:
@@ -234,51 +232,6 @@ class Surface:
             "rt_m": self.rt,
             **{k: jsonable(v, nonfinite="text") for k, v in self.params.items()},
         }
-
-    def save(self, path: str | Path) -> Path:
-        """Save to ``.npz`` (heights + JSON metadata) or ``.npy`` (heights) + ``.json`` sidecar.
-
-        Returns the path of the file holding the heights.
-        """
-        path = Path(path)
-        meta = json.dumps(
-            {"dx": self.dx, "dy": self.dy, "params": jsonable(self.params, nonfinite="text")}, sort_keys=True
-        )
-        if path.suffix == ".npy":
-            np.save(path, self.heights)
-            path.with_suffix(".json").write_text(meta + "\n")
-        else:
-            if path.suffix != ".npz":
-                path = (
-                    path.with_suffix(path.suffix + ".npz")
-                    if path.suffix
-                    else path.with_suffix(".npz")
-                )
-            np.savez_compressed(path, heights=self.heights, metadata=np.array(meta))
-        return path
-
-
-def load_surface(path: str | Path) -> Surface:
-    """Load a surface written by :meth:`Surface.save` (``.npz``, or ``.npy`` + ``.json``)."""
-    path = Path(path)
-    if path.suffix == ".npy":
-        side = path.with_suffix(".json")
-        if not side.exists():
-            raise ValueError(
-                f"{path}: no metadata sidecar {side.name}; use warptrunc.io.read_height_map "
-                "and give the pixel spacing"
-            )
-        meta = json.loads(side.read_text())
-        z = np.load(path, allow_pickle=False)
-    else:
-        with np.load(path, allow_pickle=False) as f:
-            if "heights" not in f or "metadata" not in f:
-                raise ValueError(
-                    f"{path}: not a warptrunc surface (needs 'heights' and 'metadata')"
-                )
-            z = f["heights"]
-            meta = json.loads(str(f["metadata"]))
-    return Surface(z, meta["dx"], meta["dy"], meta.get("params", {}))
 
 
 def from_heights(z: np.ndarray, dx: float, dy: float | None = None, **params: Any) -> Surface:

@@ -16,6 +16,7 @@ from pathlib import Path
 
 from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
 from ..fractal import METHODS
+from ..io import write_height_map
 from ._common import add_device, integer, output_dir, positive, real
 from .describe import add_height_scaling, add_scan_arguments, method_options, read_scan_args
 
@@ -127,6 +128,6 @@ def run(args: argparse.Namespace) -> int:
     if not args.no_surface:
         n_out = _pair(args.n_out, "--n-out")
         surf = calibrated_surface(cal, n=n_out, seed=args.seed_out, device=args.device)
-        written.append(str(surf.save(args.out / "surface.npz")))
+        written.append(str(write_height_map(surf, args.out / "surface.npz")))
     print("wrote " + ", ".join(written))
     return 0

@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..io import write_height_map
 from ._common import add_device, add_surface_source, output_file, surface_from_args
 
 NAME = "generate"
@@ -29,7 +30,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError("generate makes a new surface; --input is not used here")
     s = surface_from_args(args)
     args.output.parent.mkdir(parents=True, exist_ok=True)
-    path = s.save(args.output)
+    path = write_height_map(s, args.output)
     meta = s.to_dict()
     print(f"wrote {path}: {s.nx}×{s.ny} pixels, {s.lx * 1e3:g}×{s.ly * 1e3:g} mm, "
           f"R_t = {s.rt * 1e6:.4g} µm, n_max = {meta['n_max']}, {meta['n_terms']} terms")  # fmt: skip

@@ -12,7 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..surface import Surface, load_surface
+from .._results import jsonable
+from ..surface import Surface
 from .scan import LENGTH_UNITS, Scan
 
 
@@ -38,25 +39,66 @@ def _as_map(path: Path, a: np.ndarray) -> np.ndarray:
     return a.astype(np.float64)
 
 
-def _try_warptrunc_file(path: Path) -> Surface | None:
-    """A file written by Surface.save, else None."""
+def write_warptrunc_file(surface: Surface, path: Path) -> Path:
+    """Save to ``.npz`` (heights + JSON metadata) or ``.npy`` (heights) + ``.json`` sidecar
+    (the writer of :func:`warptrunc.write_height_map` for those suffixes).
+
+    Returns the path of the file holding the heights.
+    """
+    meta = json.dumps(
+        {"dx": surface.dx, "dy": surface.dy, "params": jsonable(surface.params, nonfinite="text")},
+        sort_keys=True,
+    )
+    if path.suffix.lower() == ".npy":
+        np.save(path, surface.heights)
+        path.with_suffix(".json").write_text(meta + "\n")
+    else:
+        np.savez_compressed(path, heights=surface.heights, metadata=np.array(meta))
+    return path
+
+
+def load_warptrunc_file(path: Path) -> Surface:
+    """A surface written by :func:`write_warptrunc_file` (``.npz``, or ``.npy`` + ``.json``)."""
+    path = Path(path)
+    if path.suffix == ".npy":
+        side = path.with_suffix(".json")
+        if not side.exists():
+            raise ValueError(
+                f"{path}: no metadata sidecar {side.name}; use warptrunc.io.read_height_map "
+                "and give the pixel spacing"
+            )
+        meta = json.loads(side.read_text())
+        z = np.load(path, allow_pickle=False)
+    else:
+        with np.load(path, allow_pickle=False) as f:
+            if "heights" not in f or "metadata" not in f:
+                raise ValueError(
+                    f"{path}: not a warptrunc surface (needs 'heights' and 'metadata')"
+                )
+            z = f["heights"]
+            meta = json.loads(str(f["metadata"]))
+    return Surface(z, meta["dx"], meta["dy"], meta.get("params", {}))
+
+
+def try_warptrunc_file(path: Path) -> Surface | None:
+    """A file written by :func:`write_warptrunc_file`, else None."""
     if not path.exists():
         return None
     if path.suffix.lower() == ".npy":
-        return load_surface(path) if path.with_suffix(".json").exists() else None
+        return load_warptrunc_file(path) if path.with_suffix(".json").exists() else None
     try:
         # open the file ourselves: np.load leaks its handle when a zip is corrupt
         with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as f:
             is_ours = "heights" in f.files and "metadata" in f.files
     except Exception as exc:
         raise ValueError(f"{path}: not a readable .npz file ({exc})") from None
-    return load_surface(path) if is_ours else None
+    return load_warptrunc_file(path) if is_ours else None
 
 
 def read_numpy(path: Path, dx, dy, height_unit) -> Scan:
     suffix = path.suffix.lower()
     try:
-        ours = _try_warptrunc_file(path)
+        ours = try_warptrunc_file(path)
     except (ValueError, KeyError, json.JSONDecodeError) as exc:
         raise ValueError(f"{path}: corrupt warptrunc metadata ({exc})") from None
     if ours is not None:
