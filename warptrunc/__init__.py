@@ -31,12 +31,19 @@ _map_source_kernels(__name__, __path__)
 
 from ._device import resolve_device  # after the kernels mapping above
 from .bem import BemCheck, bem_check
-from .calibrate import Calibration, CalibrationTarget, calibrate
-from .descriptors import describe
+from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
+from .descriptors import Descriptors, describe
 from .fractal import FractalFit, fractal_dimension, fractal_dimensions
 from .io import read_height_map, write_height_map
 from .io.vtk import export_vtk
-from .islands import IslandCurve, Islands, applicable_depth, island_curve, label_islands
+from .islands import (
+    Indicators,
+    IslandCurve,
+    Islands,
+    applicable_depth,
+    island_curve,
+    label_islands,
+)
 from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
 from .surface import Surface, from_heights
 from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
@@ -47,8 +54,11 @@ __version__ = "0.1.0"
 __all__ = [
     "BemCheck",
     "Calibration",
+    "CalibrationError",
     "CalibrationTarget",
+    "Descriptors",
     "FractalFit",
+    "Indicators",
     "IslandCurve",
     "Islands",
     "Material",

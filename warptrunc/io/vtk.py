@@ -59,7 +59,9 @@ def export_vtk(
     max_depth : float, optional
         Largest depth ω_max (m). Overrides ``max_depth_fraction``.
     max_depth_fraction : float
-        ω_max as a fraction of R_t (dimensionless); with 1 every point touches.
+        ω_max as a fraction of R_t (dimensionless). 1 by default, not :func:`truncate`'s 0.1:
+        the exported contact index covers the whole height range, so every point gets the
+        depth at which it touches.
     device : str, optional
         Warp device for the contact index; see :func:`warptrunc.resolve_device`.
 

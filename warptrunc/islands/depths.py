@@ -235,8 +235,9 @@ def island_curve(
     max_depth : float, optional
         Largest depth ω_max (m). Overrides ``max_depth_fraction``.
     max_depth_fraction : float
-        ω_max as a fraction of R_t (dimensionless). The default 0.5 covers the island-count
-        peak of the paper's surfaces.
+        ω_max as a fraction of R_t (dimensionless). 0.5 by default, not :func:`truncate`'s 0.1:
+        the island count rises and falls again deeper than the stiffness fit reads, and 0.5
+        covers its peak on the paper's surfaces (Fig. 8).
     connectivity : {4, 8}
         Neighbourhood of an island.
     periodic : bool

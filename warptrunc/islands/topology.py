@@ -110,7 +110,8 @@ def topology_curve(
     max_depth : float, optional
         Largest depth ω_max (m). Overrides ``max_depth_fraction``.
     max_depth_fraction : float
-        ω_max as a fraction of R_t (dimensionless).
+        ω_max as a fraction of R_t (dimensionless). 0.5 by default, as :func:`island_curve`
+        (the topology is read over the same depths as the island count).
     connectivity : {4, 8}
         Connectivity of the contact set, which fixes the cell complex of χ.
     periodic : bool

@@ -300,7 +300,9 @@ def animate_truncation(
         Output file: ``.gif`` (written with Pillow) or ``.mp4`` (needs
         ``pip install imageio imageio-ffmpeg``).
     max_depth_fraction : float
-        Last depth as a fraction of R_t, in (0, 1] (dimensionless).
+        Last depth as a fraction of R_t, in (0, 1] (dimensionless). 0.5 by default, the deepest
+        of the paper's Fig. 7 sections (:data:`DEFAULT_DEPTH_FRACTIONS`), not
+        :func:`warptrunc.truncate`'s 0.1: a picture shows the contact spreading.
     n_frames : int
         Number of frames (≥ 2); depths are equally spaced from 0.
     fps : float
