@@ -138,7 +138,7 @@ def run_case(n: int, device, args) -> dict:
     # 1. one mask at 10 %, 30 %, 50 % of R_t
     res["masks"] = []
     for f in FRACTIONS:
-        thr = np.float32(ztop - f * s.rt)
+        thr = np.float32(ztop - f * s.Rt)
         m_np = z >= thr
         row: dict = {"fraction_of_Rt": f, "contact_fraction": float(m_np.mean())}
         m_wp = wp.array(m_np.view(np.uint8), dtype=wp.uint8, device=device)
@@ -197,7 +197,7 @@ def run_case(n: int, device, args) -> dict:
         )
 
     # 2. island counts at every depth from one carried forest
-    depth = depth_grid(s.rt, args.increments, max_depth_fraction=args.max_depth_fraction)
+    depth = depth_grid(s.Rt, args.increments, max_depth_fraction=args.max_depth_fraction)
     n1 = depth.size
     res["increments"] = args.increments
     res["max_depth_fraction"] = args.max_depth_fraction

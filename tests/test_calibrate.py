@@ -62,7 +62,7 @@ def test_given_targets_and_high_resolution_surface():
     cal = calibrate(target, seeds=(0, 1), progress=False, device="cpu")
     s = calibrated_surface(cal, n=128, seed=3, device="cpu")
     assert s.heights.shape == (128, 128)
-    assert s.rt == pytest.approx(cal.Rt, rel=1e-5)  # heights are scaled to R_t'
+    assert s.Rt == pytest.approx(cal.Rt, rel=1e-5)  # heights are scaled to R_t'
     assert s.params["calibration"]["D_in"] == cal.D_in
     json.dumps(s.params)
 
@@ -154,7 +154,7 @@ def test_cli_calibrate_typed_targets(tmp_path, capsys):
     assert info["target_source"] == "given"
     s = read_height_map(out / "surface.npz")
     assert s.heights.shape == (96, 96)
-    assert s.rt == pytest.approx(info["Rt_m"], rel=1e-5)
+    assert s.Rt == pytest.approx(info["Rt_m"], rel=1e-5)
 
 
 def test_cli_calibrate_from_file_and_errors(tmp_path, capsys):

@@ -24,7 +24,7 @@ def test_generate_then_analyze(tmp_path):
             "--seed", 3, "--device", "cpu", "-o", tmp_path / "s.npz")  # fmt: skip
     assert r.returncode == 0, r.stderr
     s = read_height_map(tmp_path / "s.npz")
-    assert s.heights.shape == (96, 128) and s.rt == pytest.approx(2e-6, rel=1e-6)
+    assert s.heights.shape == (96, 128) and s.Rt == pytest.approx(2e-6, rel=1e-6)
     assert s.params["D"] == 2.4 and s.params["seed"] == 3
     out = tmp_path / "out"
     r = cli("analyze", "--input", tmp_path / "s.npz", "--device", "cpu", "--out", out,

@@ -47,7 +47,7 @@ def test_describe_dict_keys():
     for k in ("Rt_m", "Rrms_m", "Ra_m", "skewness", "kurtosis", "Wr_m"):
         assert k in d
     json.dumps(d)
-    assert d["Rt_m"] == pytest.approx(s.rt, rel=1e-6)
+    assert d["Rt_m"] == pytest.approx(s.Rt, rel=1e-6)
 
 
 def test_periodogram_parseval():

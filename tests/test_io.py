@@ -295,7 +295,7 @@ def test_instrument_scans(scans_dir, name, shape, size, n_missing):
         s = scan.to_surface(level=True)
     assert np.isfinite(s.heights).all()
     # heights of real scans are far below a millimetre: units were converted to metres
-    assert 0 < s.rt < 1e-4
+    assert 0 < s.Rt < 1e-4
 
 
 def test_matrix_scan_transposition_matches_surfacetopography(scans_dir):

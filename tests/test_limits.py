@@ -71,7 +71,7 @@ def test_banded_truncation_equals_numpy_and_one_band(device, name, z, cap):
         lo, hi = height_range(wp.array(z, device=device), device)
     np.testing.assert_array_equal(c.n_contact_pixels, numpy_counts(z, c.threshold))
     np.testing.assert_array_equal(c.n_contact_pixels, ref.n_contact_pixels)
-    assert (c.z_top, c.rt) == (ref.z_top, ref.rt)
+    assert (c.z_top, c.Rt) == (ref.z_top, ref.Rt)
     assert (lo, hi) == (float(z.min()), float(z.max()))
     # the contact index: the first k with z ≥ threshold[k], as NumPy finds it
     expect = np.argmax(z[..., None] >= c.threshold[None, None, :], axis=-1)
@@ -85,7 +85,7 @@ def test_banded_wm_generation_is_unchanged(device):
     with force_band_pixels(5 * 96 + 1):  # extremes by 20 bands of 5 rows
         s = wm_surface(**kw)
     np.testing.assert_array_equal(s.heights, ref.heights)
-    assert s.rt == ref.rt and s.params["scale"] == ref.params["scale"]
+    assert s.Rt == ref.Rt and s.params["scale"] == ref.params["scale"]
 
 
 def test_side_limit_is_refused_before_allocating(capsys):
@@ -129,7 +129,7 @@ def test_gpu_past_2_31_pixels_in_memory_equals_streamed_and_numpy():
     c = truncate(s, 50, max_depth_fraction=0.3, device="cuda:0")
     st = truncate(s.params, 50, max_depth_fraction=0.3, stream=True, device="cuda:0")
     np.testing.assert_array_equal(st.n_contact_pixels, c.n_contact_pixels)
-    assert (st.z_top, st.rt) == (c.z_top, c.rt)
+    assert (st.z_top, st.Rt) == (c.z_top, c.Rt)
     assert c.z_top == float(s.heights.max())
     for k in (0, 10, 50):
         assert c.n_contact_pixels[k] == np.count_nonzero(s.heights >= c.threshold[k])

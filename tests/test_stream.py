@@ -46,7 +46,7 @@ def test_streamed_counts_equal_in_memory_and_numpy(device, nx, ny, band_rows):
     np.testing.assert_array_equal(c.threshold, ref.threshold)
     np.testing.assert_array_equal(c.depth, ref.depth)
     np.testing.assert_array_equal(c.contact_area, ref.contact_area)
-    assert (c.z_top, c.rt, c.n_pixels) == (ref.z_top, ref.rt, ref.n_pixels)
+    assert (c.z_top, c.Rt, c.n_pixels) == (ref.z_top, ref.Rt, ref.n_pixels)
     assert (c.apparent_area, c.pixel_area) == (ref.apparent_area, ref.pixel_area)
     assert c.z_top == float(s.heights.max())
     assert st.surface == s.to_dict()
@@ -73,11 +73,11 @@ def test_topothesy_scaling_and_max_depth(device):
     """Rt=None (G given): the scale does not depend on the extremes; z_top and R_t still do."""
     kw = dict(D=2.3, Wr=100e-6, n=(80, 72), Rt=None, G=1e-9, seed=2)
     s = wm_surface(**kw, device=device)
-    ref = truncate(s, 40, max_depth=0.25 * s.rt, device=device)
-    c = truncate(kw, 40, max_depth=0.25 * s.rt, stream=True, band_rows=16, device=device)
+    ref = truncate(s, 40, max_depth=0.25 * s.Rt, device=device)
+    c = truncate(kw, 40, max_depth=0.25 * s.Rt, stream=True, band_rows=16, device=device)
     np.testing.assert_array_equal(c.n_contact_pixels, ref.n_contact_pixels)
     np.testing.assert_array_equal(c.n_contact_pixels, numpy_counts(s.heights, c.threshold))
-    assert c.rt == s.rt
+    assert c.Rt == s.Rt
 
 
 def test_accepts_a_spec_and_a_params_mapping():

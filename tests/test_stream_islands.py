@@ -73,7 +73,7 @@ def test_spiral_merges_across_every_border():
 @pytest.mark.parametrize("connectivity", [4, 8])
 def test_streamed_islands_equal_scipy_on_the_in_memory_map(device, band_rows, connectivity):
     s = wm_surface(2.4, 100e-6, n=(96, 150), seed=5, device=device)
-    depths = np.array([0.05, 0.2, 0.45]) * s.rt
+    depths = np.array([0.05, 0.2, 0.45]) * s.Rt
     got = streamed_islands(s.params, depths, band_rows=band_rows, connectivity=connectivity,
                            device=device, progress=False)  # fmt: skip
     thr = (np.float64(s.heights.max()) - depths).astype(np.float32)

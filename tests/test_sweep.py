@@ -189,6 +189,25 @@ def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
     assert not list((out / "curves").glob(".*tmp*"))
 
 
+def test_store_written_with_rt_measured_m_reads_as_Rt_measured_m(tmp_path):
+    """A store from before R_t was spelled ``Rt`` everywhere: the old column reads under the new
+    name, from cases.parquet and from the rows kept in the curve files alike."""
+    import pyarrow.parquet as pq
+
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3], [0.01], "0")
+    full = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    table = pq.read_table(out / "cases.parquet")
+    names = ["rt_measured_m" if n == "Rt_measured_m" else n for n in table.column_names]
+    pq.write_table(table.rename_columns(names), out / "cases.parquet")
+    old = load(out)
+    assert "rt_measured_m" not in old and (full["Rt_measured_m"] > 0).all()
+    np.testing.assert_array_equal(old["Rt_measured_m"], full["Rt_measured_m"])
+    resumed = run_sweep(grid, out, progress=False, device="cpu", **OPTS)  # nothing recomputed
+    np.testing.assert_array_equal(resumed["Rt_measured_m"], full["Rt_measured_m"])
+    np.testing.assert_array_equal(resumed["seconds"], full["seconds"])
+
+
 def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
     import warptrunc.sweep.engines as engines
 

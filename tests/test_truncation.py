@@ -106,7 +106,7 @@ def test_depth_options(device):
     c = truncate(s, 20, max_depth=0.5, device=device)
     assert c.depth[-1] == pytest.approx(0.5) and c.depth.size == 21
     c = truncate(s, 8, max_depth_fraction=0.25, device=device)
-    assert c.depth[-1] == pytest.approx(0.25 * s.rt)
+    assert c.depth[-1] == pytest.approx(0.25 * s.Rt)
 
 
 @pytest.mark.parametrize(

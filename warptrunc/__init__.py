@@ -11,7 +11,7 @@ W_c     ``Wc``                 cut-off wavelength (m)
 γ       ``gamma``              WM frequency density (dimensionless, > 1)
 M       ``M``                  number of superposed ridges
 G       ``G``                  topothesy (m)
-R_t     ``Rt`` / ``rt``        peak-to-valley height (m)
+R_t     ``Rt``                 peak-to-valley height (m)
 ω       ``depth``              truncation depth from the top (m)
 A_c     ``contact_area``       truncated (contact) area (m²)
 A       ``apparent_area``      apparent area Lx·Ly (m²)

@@ -298,28 +298,28 @@ def calibrate(
         total=max_iter * max_rounds, enabled=progress, desc="calibrate", unit="eval"
     )
 
-    def evaluate(d_in: float, rt: float) -> tuple[float, float, float]:
+    def evaluate(d_in: float, Rt: float) -> tuple[float, float, float]:
         ds, rms = [], []
         for seed in seeds:
             s = wm_surface(
-                d_in, target.Wr, L=target.L, n=target.n, Rt=rt, seed=seed, device=device, **wm_opts
+                d_in, target.Wr, L=target.L, n=target.n, Rt=Rt, seed=seed, device=device, **wm_opts
             )
             ds.append(fractal_dimension(s, target.method, device=device, **target.method_options).D)
             rms.append(surface_statistics(s)["Rrms"])  # on the device, no host copy
         out = (float(np.mean(ds)), float(np.std(ds)), float(np.mean(rms)))
-        hist.append((d_in, rt, *out))
+        hist.append((d_in, Rt, *out))
         bar.update(1)
         bar.set_postfix(D_in=f"{d_in:.4f}", D_out=f"{out[0]:.4f}", target=f"{target.D:.4f}")
         return out
 
     atol = rtol * target.D
-    rt = target.Rt
+    Rt = target.Rt
     d_in = x0
     known = None
     try:
         for _ in range(max_rounds):
             d_in = find_root(
-                lambda x, rt=rt: evaluate(x, rt)[0],
+                lambda x, Rt=Rt: evaluate(x, Rt)[0],
                 target.D,
                 atol,
                 (lo, hi),
@@ -329,16 +329,16 @@ def calibrate(
                 known=known,
             )
             # R_t' from the evaluation at the chosen D_in (R_rms ∝ R_t for fixed D_in, seeds)
-            rms_at = next(h[4] for h in reversed(hist) if h[0] == d_in and h[1] == rt)
-            rt = rt * target.Rrms / rms_at
-            d_out, d_std, rms = evaluate(d_in, rt)
+            rms_at = next(h[4] for h in reversed(hist) if h[0] == d_in and h[1] == Rt)
+            Rt = Rt * target.Rrms / rms_at
+            d_out, d_std, rms = evaluate(d_in, Rt)
             if abs(d_out - target.D) <= atol:
                 break
             known = (d_in, d_out)
         else:
             raise CalibrationError(
                 f"D_out by {target.method!r} drifts out of tolerance after rescaling to R_t' in "
-                f"each of {max_rounds} rounds (last D_in = {d_in:.4f}, R_t' = {rt:.4g} m, "
+                f"each of {max_rounds} rounds (last D_in = {d_in:.4f}, R_t' = {Rt:.4g} m, "
                 f"D_out = {d_out:.4f}, target {target.D:.4f} ± {atol:.4f})"
             )
     finally:
@@ -347,7 +347,7 @@ def calibrate(
     return Calibration(
         target=target,
         D_in=float(d_in),
-        Rt=float(rt),
+        Rt=float(Rt),
         D_out=d_out,
         D_out_std=d_std,
         Rrms=rms,

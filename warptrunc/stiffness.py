@@ -86,7 +86,7 @@ class StiffnessCurve:
     """Geometric factor β' (dimensionless)."""
     apparent_area: float
     """Apparent area A (m²)."""
-    rt: float
+    Rt: float
     """Peak-to-valley height R_t of the map (m)."""
 
     def to_dict(self) -> dict[str, np.ndarray]:
@@ -106,7 +106,7 @@ class StiffnessCurve:
         path = Path(path)
         d = {k: v.tolist() for k, v in self.to_dict().items()}
         d.update(material=asdict(self.material), beta_prime=self.beta_prime)
-        d.update(apparent_area_m2=self.apparent_area, rt_m=self.rt)
+        d.update(apparent_area_m2=self.apparent_area, Rt_m=self.Rt)
         path.write_text(json.dumps(d, indent=1, default=str) + "\n")
         return path
 
@@ -194,7 +194,7 @@ def stiffness_curve(
         material=material,
         beta_prime=beta_prime,
         apparent_area=A,
-        rt=curve.rt,
+        Rt=curve.Rt,
     )
 
 

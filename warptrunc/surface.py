@@ -215,10 +215,16 @@ class Surface:
         return self.lx * self.ly
 
     @property
-    def rt(self) -> float:
+    def Rt(self) -> float:
         """Peak-to-valley height R_t = max z − min z (m), in float64."""
         lo, hi = self.extremes()
         return float(np.float64(hi) - np.float64(lo))
+
+    @property
+    def rt(self) -> float:
+        """Old spelling of :attr:`Rt`, kept only for ``warptrunc.bem`` (another branch moves it to
+        ``warptrunc.contact`` and switches to ``Rt``); remove with that merge."""
+        return self.Rt
 
     def to_dict(self) -> dict[str, Any]:
         """Scalar metadata (grid and parameters), JSON-serialisable."""
@@ -229,7 +235,7 @@ class Surface:
             "dy_m": self.dy,
             "lx_m": self.lx,
             "ly_m": self.ly,
-            "rt_m": self.rt,
+            "Rt_m": self.Rt,
             **{k: jsonable(v, nonfinite="text") for k, v in self.params.items()},
         }
 

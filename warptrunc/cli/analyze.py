@@ -120,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--depth-window LO HI needs LO < HI (m), got {lo!r} {hi!r}")
     material = Material(E=args.E, nu=args.nu, E_i=args.E_flat, nu_i=args.nu_flat)
     curve, meta, path = _truncation(args)
-    nx, ny, rt = meta["nx"], meta["ny"], meta["rt_m"]
+    nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
     sc = stiffness_curve(curve, material, beta_prime=args.beta_prime)
     args.out.mkdir(parents=True, exist_ok=True)
     sc.to_csv(args.out / "curve.csv")
@@ -132,11 +132,11 @@ def run(args: argparse.Namespace) -> int:
 
         plot.stiffness_load(
             sc, fit, labels=["truncation analysis"], path=args.out / "stiffness.png",
-            title=f"{nx}×{ny}, R$_t$ = {rt * 1e6:.3g} µm",
+            title=f"{nx}×{ny}, R$_t$ = {Rt * 1e6:.3g} µm",
         )  # fmt: skip
         plot.area_fraction(curve, log=True, path=args.out / "area_fraction.png")
     print(
-        f"{nx}×{ny} surface ({_describe(path)}), R_t = {rt * 1e6:.4g} µm; "
+        f"{nx}×{ny} surface ({_describe(path)}), R_t = {Rt * 1e6:.4g} µm; "
         f"{args.increments} increments to "
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; final contact {curve.area_fraction[-1]:.3%} of A\n"
         f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}, "

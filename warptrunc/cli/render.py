@@ -106,9 +106,9 @@ def _file_name(text: str) -> str:
 def run(args: argparse.Namespace) -> int:
     """Render and write the outputs."""
     s = surface_from_args(args)
-    if args.depths is not None and max(args.depths) > s.rt:
+    if args.depths is not None and max(args.depths) > s.Rt:
         raise ValueError(
-            f"--depths must be in (0, R_t] = (0, {s.rt:.6g}] m for this surface, got "
+            f"--depths must be in (0, R_t] = (0, {s.Rt:.6g}] m for this surface, got "
             f"{' '.join(f'{d:g}' for d in args.depths)} (metres; --depth-fractions takes "
             "fractions of R_t)"
         )

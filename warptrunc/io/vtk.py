@@ -80,7 +80,7 @@ def export_vtk(
     if suffix not in (".vti", ".vtk"):
         raise ValueError(f"path must end in .vti or .vtk, got {str(path)!r}")
     depth = depth_grid(
-        surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
+        surface.Rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
     index = contact_index_map(surface, depth, device=device)
     lookup = np.append(depth, np.nan)  # index n + 1 → never in contact

@@ -104,7 +104,7 @@ def _index_at_depths(surface: Surface, depth: np.ndarray, device) -> wp.array:
     return idx
 
 
-def _check_depths(depths: Any, rt: float) -> np.ndarray:
+def _check_depths(depths: Any, Rt: float) -> np.ndarray:
     d = np.atleast_1d(np.asarray(depths, dtype=np.float64))
     if d.ndim != 1 or d.size == 0:
         raise ValueError(f"depths must be a non-empty 1-D sequence of depths (m), got {depths!r}")
@@ -152,7 +152,7 @@ def islands_at_depths(
     """
     surface = check_surface(surface)
     connectivity = check_connectivity(connectivity)
-    d = _check_depths(depths, surface.rt)
+    d = _check_depths(depths, surface.Rt)
     device = resolve_device(surface_device(surface, device))
     order = np.argsort(d, kind="stable")
     ds = d[order]
@@ -280,7 +280,7 @@ def island_curve(
     min_pixels = check_int("min_pixels", min_pixels, 1)
     device = resolve_device(surface_device(surface, device))
     depth = depth_grid(
-        surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
+        surface.Rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
     n1 = depth.size
     ny, nx = surface.ny, surface.nx
@@ -288,7 +288,7 @@ def island_curve(
     check_memory(ny * nx * (52 if statistics else 32), device, "island curve")
     snaps: set[int] = set()
     if snapshot_depths is not None:
-        sd = _check_depths(snapshot_depths, surface.rt)
+        sd = _check_depths(snapshot_depths, surface.Rt)
         snaps = {int(np.argmin(np.abs(depth - v))) for v in sd}
     idx = contact_index_device(surface, depth, device).reshape((ny * nx,))
     topo = topology_hist(idx, (ny, nx), n1, connectivity, periodic, device)
@@ -342,7 +342,7 @@ def island_curve(
         slit_n_islands=slit_n,
         area_histogram=area_hist,
         sizes=tuple(sizes),
-        rt=surface.rt,
+        Rt=surface.Rt,
         dx=surface.dx,
         dy=surface.dy,
         connectivity=connectivity,

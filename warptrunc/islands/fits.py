@@ -182,7 +182,7 @@ def applicable_depth(
         peak_depth=float(curve.depth[k_peak]),
         plateau_exponent=plateau,
         fractal_depth_censored=censored,
-        rt=curve.rt,
+        Rt=curve.Rt,
         exponent_tolerance=tol,
         min_islands=min_islands,
         persist=persist,

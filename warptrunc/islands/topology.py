@@ -136,7 +136,7 @@ def topology_curve(
     connectivity = check_connectivity(connectivity)
     device = resolve_device(surface_device(surface, device))
     depth = depth_grid(
-        surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
+        surface.Rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
     ny, nx = surface.ny, surface.nx
     check_index_size(ny * nx)  # before allocating
@@ -150,7 +150,7 @@ def topology_curve(
         edges_y=h[:, 2],
         total_perimeter=h[:, 1] * surface.dy + h[:, 2] * surface.dx,
         euler_characteristic=h[:, 3],
-        rt=surface.rt,
+        Rt=surface.Rt,
         connectivity=connectivity,
         periodic=bool(periodic),
     )

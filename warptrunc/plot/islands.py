@@ -58,8 +58,8 @@ def island_number(
                 d = getattr(ind, name)
                 if d == d:  # not NaN
                     ax.axvline(
-                        100 * d / ind.rt, ls=style, lw=1.0, color=line.get_color(),
-                        label=(what if len(curves) > 1 else f"{what}: {100 * d / ind.rt:.1f} % R$_t$")
+                        100 * d / ind.Rt, ls=style, lw=1.0, color=line.get_color(),
+                        label=(what if len(curves) > 1 else f"{what}: {100 * d / ind.Rt:.1f} % R$_t$")
                         if i == 0 else None,
                     )  # fmt: skip
     ax.set_xlabel("truncation depth ω (% R$_t$)")
@@ -96,7 +96,7 @@ def slit_islands(
     sizes = list(getattr(curve, "sizes", curve))
     if min_pixels is None:
         min_pixels = getattr(curve, "min_pixels", MIN_PIXELS)
-    rt = getattr(curve, "rt", None)
+    Rt = getattr(curve, "rt", None)
     fig, axes = _figure()
     ax = axes[0, 0]
     for sz in sizes:
@@ -104,7 +104,7 @@ def slit_islands(
             continue
         big = sz.area_pixels >= min_pixels
         fit = slit_island_fit(sz, min_pixels=min_pixels)
-        at = f"ω = {100 * sz.depth / rt:.1f} % R$_t$" if rt else f"ω = {sz.depth * UM:.3g} µm"
+        at = f"ω = {100 * sz.depth / Rt:.1f} % R$_t$" if Rt else f"ω = {sz.depth * UM:.3g} µm"
         (pts,) = ax.loglog(sz.area[big] * UM**2, sz.perimeter[big] * UM, ".", ms=2.5, alpha=0.6)
         ax.loglog(sz.area[~big] * UM**2, sz.perimeter[~big] * UM, ".", ms=2, color="0.75", zorder=0)
         if fit.exponent == fit.exponent:

@@ -72,7 +72,7 @@ def height_map(
     if depth is not None and depth_fraction is not None:
         raise ValueError("give depth or depth_fraction, not both")
     if depth_fraction is not None:
-        depth = float(depth_fraction) * surface.rt
+        depth = float(depth_fraction) * surface.Rt
     z = surface.heights
     f = max(1, math.ceil(max(z.shape) / int(max_pixels)))
     shown = pool_blocks(z, f, "mean") if f > 1 else z
@@ -95,7 +95,7 @@ def height_map(
         rgba[..., :3] = [c / 255 for c in CONTACT_RGB]
         rgba[..., 3] = mask
         ax.imshow(rgba, origin="lower", extent=ext, interpolation="nearest")
-        label = f"contact at ω = {depth * UM:.3g} µm ({100 * depth / surface.rt:.3g} % R$_t$): A$_c$/A = {100 * frac:.3g} %"
+        label = f"contact at ω = {depth * UM:.3g} µm ({100 * depth / surface.Rt:.3g} % R$_t$): A$_c$/A = {100 * frac:.3g} %"
     _length_axes(ax)
     note = f"{surface.nx}×{surface.ny} px" + (f", shown in {f}×{f} blocks" if f > 1 else "")
     if f > 1 and depth is not None:
@@ -141,7 +141,7 @@ def area_fraction(
     curves = _as_list(curves)
 
     def xy(c):
-        x = 100 * c.depth / c.rt if relative else c.depth * UM
+        x = 100 * c.depth / c.Rt if relative else c.depth * UM
         return x, 100 * c.area_fraction
 
     fig, axes = _figure()

@@ -94,9 +94,9 @@ def check_depths(surface: Surface, depth_fractions, depths, *, upto_rt: bool = F
     With ``upto_rt`` (pictures) every depth must lie in (0, R_t] and every fraction in (0, 1];
     otherwise depths may be any finite ω ≥ 0 and fractions any value in [0, 1].
     """
-    rt = surface.rt
-    if not rt > 0:
-        raise ValueError(f"the height map is flat (R_t = {rt!r} m): nothing to truncate")
+    Rt = surface.Rt
+    if not Rt > 0:
+        raise ValueError(f"the height map is flat (R_t = {Rt!r} m): nothing to truncate")
     if depths is None:
         fr = np.atleast_1d(np.asarray(depth_fractions, dtype=np.float64))
         ok = (fr > 0) if upto_rt else (fr >= 0)
@@ -105,12 +105,12 @@ def check_depths(surface: Surface, depth_fractions, depths, *, upto_rt: bool = F
             raise ValueError(
                 f"depth_fractions must be in {rng} (fractions of R_t), got {depth_fractions!r}"
             )
-        return fr * rt
+        return fr * Rt
     d = np.atleast_1d(np.asarray(depths, dtype=np.float64))
     if upto_rt:
-        if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d) & (d > 0) & (d <= rt)):
+        if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d) & (d > 0) & (d <= Rt)):
             raise ValueError(
-                f"depths must be in (0, R_t] = (0, {rt:.6g}] m for this map, got {depths!r}"
+                f"depths must be in (0, R_t] = (0, {Rt:.6g}] m for this map, got {depths!r}"
             )
     elif d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d) & (d >= 0)):
         raise ValueError(f"depths must be finite and ≥ 0 (m), got {depths!r}")

@@ -52,7 +52,7 @@ def caption_text(
 ) -> str:
     s = (
         f"{surface.nx}×{surface.ny} px, {surface.lx * 1e6:.4g}×{surface.ly * 1e6:.4g} µm, "
-        f"Rt = {surface.rt * 1e6:.3g} µm; heights ×{ve:g}"
+        f"Rt = {surface.Rt * 1e6:.3g} µm; heights ×{ve:g}"
     )
     if factor > 1:
         s += f"; mesh down-sampled ×{factor} ({shape[1]}×{shape[0]} blocks): "
@@ -82,5 +82,5 @@ def save_png(img: np.ndarray, path: Path, result_meta: str, caption: str) -> Non
     Image.fromarray(img).save(path, pnginfo=info, optimize=True)
 
 
-def depth_title(d: float, rt: float, frac: float) -> str:
-    return f"ω = {100 * d / rt:.3g} % Rt = {d * 1e6:.3g} µm\ncontact Ac/A = {100 * frac:.3g} %"
+def depth_title(d: float, Rt: float, frac: float) -> str:
+    return f"ω = {100 * d / Rt:.3g} % Rt = {d * 1e6:.3g} µm\ncontact Ac/A = {100 * frac:.3g} %"

@@ -92,10 +92,10 @@ def auto_exaggeration(surface: Surface, relief: float = 0.1) -> float:
 
     Returns 1 when the surface is already that rough (dimensionless).
     """
-    rt = surface.rt
-    if not rt > 0:
+    Rt = surface.Rt
+    if not Rt > 0:
         return 1.0
-    v = relief * max(surface.lx, surface.ly) / rt * (1 + 1e-6)  # R_t rescaled to 10 µm → 10
+    v = relief * max(surface.lx, surface.ly) / Rt * (1 + 1e-6)  # R_t rescaled to 10 µm → 10
     if v <= 1:
         return 1.0
     e = 10 ** math.floor(math.log10(v))

@@ -236,7 +236,7 @@ def render_truncation(
     blocks, frac = block_contact(surface, depth, f, pooling, device)
     scene = Scene(surface, f, ve)
     caption = caption_text(surface, f, scene.shape, ve, pooling)
-    rt = surface.rt
+    Rt = surface.Rt
     pw, ph = w // ncols, h // nrows
     spare = nrows * ncols > depth.size
     with vtk_quiet():
@@ -246,7 +246,7 @@ def render_truncation(
         )  # fmt: skip
         try:
             images = [
-                panel.frame(blocks[i], depth_title(depth[i], rt, frac[i]), caption=i == 0)
+                panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i]), caption=i == 0)
                 for i in range(depth.size)
             ]
         finally:
@@ -260,7 +260,7 @@ def render_truncation(
         path=None if path is None else Path(path),
         image=img,
         depth=depth,
-        depth_fraction=depth / rt,
+        depth_fraction=depth / Rt,
         area_fraction=np.asarray(frac, dtype=np.float64),
         downsample=f,
         pooling=pooling,
@@ -347,18 +347,18 @@ def animate_truncation(
         if vertical_exaggeration is None
         else float(vertical_exaggeration)
     )
-    depth = np.linspace(0.0, max_depth_fraction, n) * surface.rt
+    depth = np.linspace(0.0, max_depth_fraction, n) * surface.Rt
     blocks, frac = block_contact(surface, depth, f, check_pooling(pooling), device)
     scene = Scene(surface, f, ve)
     caption = caption_text(surface, f, scene.shape, ve, pooling)
-    rt = surface.rt
+    Rt = surface.Rt
     with vtk_quiet():
         panel = Panel(
             scene, (w, h), top_view=top_view, lighting=not top_view, annotate=True, ve=ve,
             caption=wrap_text(caption, max(30, w // 7)),
         )  # fmt: skip
         try:
-            frames = [panel.frame(blocks[i], depth_title(depth[i], rt, frac[i])) for i in range(n)]
+            frames = [panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i])) for i in range(n)]
         finally:
             panel.close()
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -381,7 +381,7 @@ def animate_truncation(
         path=path,
         image=frames[-1],
         depth=depth,
-        depth_fraction=depth / rt,
+        depth_fraction=depth / Rt,
         area_fraction=np.asarray(frac, dtype=np.float64),
         downsample=f,
         pooling=pooling,

@@ -111,12 +111,12 @@ def stage_table1(p: Profile, device) -> dict[str, Any]:
     L = p.table1_n * UM
     seeds = tuple(range(p.table1_seeds))
     rows = []
-    for name, (rt, rrms, wr, *d_paper) in TABLE1.items():
+    for name, (Rt, rrms, wr, *d_paper) in TABLE1.items():
         wr_m = 2 * L if wr is None else wr * UM
         paper_d = dict(zip(METHODS, d_paper, strict=True))
         for m in p.table1_methods:
             row: dict[str, Any] = {"surface": name, "matched": m, "Wr_m": wr_m}
-            target = CalibrationTarget(D=paper_d[m], method=m, Rrms=rrms * UM, Rt=rt * UM,
+            target = CalibrationTarget(D=paper_d[m], method=m, Rrms=rrms * UM, Rt=Rt * UM,
                                        Wr=wr_m, L=L, n=p.table1_n, source=f"Table 1 {name}")  # fmt: skip
             try:
                 cal = calibrate(target, seeds=seeds, rtol=p.table1_rtol, progress=True, device=device)
@@ -181,7 +181,7 @@ def _row(case_rows, curve, ranges: dict[str, int | float], curve_points: int) ->
     """A stage row (as the report reads it) from a case's store rows and curve."""
     first = case_rows[0]
     row: dict[str, Any] = {"D_in": first["D_in"], "delta": first["delta"], "seed": first["seed"],
-                           "Rt_m": first["rt_measured_m"], "case_id": first["case_id"], "fits": {}}  # fmt: skip
+                           "Rt_m": first["Rt_measured_m"], "case_id": first["case_id"], "fits": {}}  # fmt: skip
     for name, mp in ranges.items():
         if isinstance(mp, int):  # an absolute fit range
             r = next(x for x in case_rows if x["min_pixels_fraction"] is None and x["min_pixels"] == mp)

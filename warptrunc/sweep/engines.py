@@ -64,7 +64,7 @@ def _base_row(case: Case, o: SweepOptions) -> dict[str, Any]:
         "E_flat_Pa": o.E_flat, "nu_flat": o.nu_flat, "beta_prime": o.beta_prime,
         "depth_window_lo_m": lo, "depth_window_hi_m": hi, "alpha": np.nan, "beta": np.nan,
         "r2": np.nan, "n_points": None, "fit_depth_min_m": np.nan, "fit_depth_max_m": np.nan,
-        "final_contact_pixels": None, "final_area_fraction": np.nan, "rt_measured_m": np.nan,
+        "final_contact_pixels": None, "final_area_fraction": np.nan, "Rt_measured_m": np.nan,
         **{f"D_{m}{s}": np.nan for m in FRACTAL_METHODS for s in ("", "_r2")},
         "fractal_options": None, "fractal_seconds": np.nan, "fit_error": None, "error": None, "host": host, "warptrunc_version": version,
         "git_commit": commit,
@@ -144,7 +144,7 @@ def compute_case(
         base.update(
             final_contact_pixels=int(sc.n_contact_pixels[-1]),
             final_area_fraction=float(sc.contact_area[-1] / sc.apparent_area),
-            rt_measured_m=float(sc.rt),
+            Rt_measured_m=float(sc.Rt),
         )
     except Exception as exc:  # recorded, the sweep goes on
         base.update(error=f"{type(exc).__name__}: {exc}")

@@ -51,7 +51,7 @@ CASE_COLUMNS = (
     "E_Pa", "nu", "E_flat_Pa", "nu_flat", "beta_prime", "min_pixels", "min_pixels_fraction",
     "depth_window_lo_m", "depth_window_hi_m", "alpha", "beta", "r2", "n_points",
     "fit_depth_min_m", "fit_depth_max_m", "final_contact_pixels", "final_area_fraction",
-    "rt_measured_m", "D_tri", "D_tri_r2", "D_box", "D_box_r2", "D_vs", "D_vs_r2", "D_sp",
+    "Rt_measured_m", "D_tri", "D_tri_r2", "D_box", "D_box_r2", "D_vs", "D_vs_r2", "D_sp",
     "D_sp_r2", "fractal_options", "fractal_seconds", "fit_error", "error", "seconds", "device", "device_name", "host", "finished_utc",
     "warptrunc_version", "git_commit",
 )  # fmt: skip
@@ -84,10 +84,15 @@ def require_extra() -> None:
         ) from None
 
 
+_RENAMED = {"rt_measured_m": "Rt_measured_m"}
+"""Columns of stores written before R_t was spelled ``Rt`` everywhere, read under the new name."""
+
+
 def rows_frame(rows: list[dict[str, Any]]):
     """The rows as a DataFrame with the columns and dtypes of ``cases.parquet``."""
     import pandas as pd
 
+    rows = [{_RENAMED.get(k, k): v for k, v in r.items()} for r in rows]
     df = pd.DataFrame.from_records(rows, columns=list(CASE_COLUMNS))
     for c in _INT:
         df[c] = df[c].astype("int64")
@@ -335,7 +340,7 @@ def load(path: str | Path, *, _raw: bool = False):
     if not (path / "sweep.json").exists():
         raise FileNotFoundError(f"{path} is not a sweep store (no sweep.json)")
     f = path / "cases.parquet"
-    df = pq.read_table(f).to_pandas() if f.exists() else rows_frame([])
+    df = pq.read_table(f).to_pandas().rename(columns=_RENAMED) if f.exists() else rows_frame([])
     if _raw:
         return df
     have = set(df["case_id"])

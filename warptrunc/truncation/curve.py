@@ -56,7 +56,7 @@ class TruncationCurve:
     """Total number of pixels."""
     z_top: float
     """Highest height max z (m)."""
-    rt: float
+    Rt: float
     """Peak-to-valley height R_t of the map (m)."""
 
     @property
@@ -68,7 +68,7 @@ class TruncationCurve:
         """Columns as 1-D arrays (one row per depth)."""
         return {
             "depth_m": self.depth,
-            "depth_fraction_of_Rt": self.depth / self.rt if self.rt > 0 else self.depth * 0,
+            "depth_fraction_of_Rt": self.depth / self.Rt if self.Rt > 0 else self.depth * 0,
             "n_contact_pixels": self.n_contact_pixels,
             "contact_area_m2": self.contact_area,
             "area_fraction": self.area_fraction,
@@ -143,7 +143,7 @@ def contact_histogram(
 
 
 def depth_grid(
-    rt: float,
+    Rt: float,
     n_increments: int = 200,
     *,
     max_depth: float | None = None,
@@ -165,11 +165,11 @@ def depth_grid(
     n = check_int("n_increments", n_increments, 1, 10_000_000)
     if max_depth is None:
         frac = check_range("max_depth_fraction", max_depth_fraction, 0.0, 1.0, hi_open=False)
-        wmax = frac * rt
+        wmax = frac * Rt
     else:
         wmax = check_range("max_depth", max_depth, 0.0, unit="m")
     if not wmax > 0:
-        raise ValueError(f"the height map is flat (R_t = {rt!r} m): nothing to truncate")
+        raise ValueError(f"the height map is flat (R_t = {Rt!r} m): nothing to truncate")
     return np.arange(n + 1, dtype=np.float64) * (wmax / n)
 
 
@@ -247,8 +247,8 @@ def truncate_surface(
         max_depth=max_depth, max_depth_fraction=max_depth_fraction,
     )  # fmt: skip
     t, lo, hi, thr, inv_step = depth_thresholds(z, depth, device, (lo, hi))
-    rt = float(np.float64(hi) - np.float64(lo))
-    hist = histogram_bands(z, t, hi, inv_step, device, deep=depth[-1] > DEEP_FRACTION * rt)
+    Rt = float(np.float64(hi) - np.float64(lo))
+    hist = histogram_bands(z, t, hi, inv_step, device, deep=depth[-1] > DEEP_FRACTION * Rt)
     counts = np.cumsum(hist)
     return TruncationCurve(
         depth=depth,
@@ -259,7 +259,7 @@ def truncate_surface(
         pixel_area=surface.pixel_area,
         n_pixels=surface.nx * surface.ny,
         z_top=hi,
-        rt=float(np.float64(hi) - np.float64(lo)),
+        Rt=float(np.float64(hi) - np.float64(lo)),
     )
 
 

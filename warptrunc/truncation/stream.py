@@ -69,7 +69,7 @@ class StreamedTruncation:
     """The truncation curve, as ``truncate(wm_surface(...))`` would give it."""
     surface: dict[str, Any] = field(default_factory=dict)
     """Scalar metadata of the (never assembled) surface, as ``Surface.to_dict()``: grid (m),
-    ``rt_m`` (m), generation parameters, ``scale`` (m) and ``G_equivalent`` (m)."""
+    ``Rt_m`` (m), generation parameters, ``scale`` (m) and ``G_equivalent`` (m)."""
     band_rows: int = 0
     """Rows per band (the last band may be shorter)."""
     n_bands: int = 0
@@ -217,11 +217,11 @@ def banded_truncation(
     CLI reports them)."""
     bands = WMBands(spec, device, band_rows)
     _lo, _hi, scale, zlo, zhi = extremes_pass(bands, progress)
-    rt = float(np.float64(zhi) - np.float64(zlo))
-    depth = depth_grid(rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction)
+    Rt = float(np.float64(zhi) - np.float64(zlo))
+    depth = depth_grid(Rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction)
     t, _, _, thr, inv_step = depth_thresholds(None, depth, device, (zlo, zhi))
     hist = np.zeros(depth.size, dtype=np.int64)
-    deep = depth[-1] > DEEP_FRACTION * rt  # picks the GPU histogram kernel, as truncate() does
+    deep = depth[-1] > DEEP_FRACTION * Rt  # picks the GPU histogram kernel, as truncate() does
     with progress_bar(
         total=len(bands.bands), desc="stream pass 2/2 (histogram)", unit="band", enabled=progress
     ) as bar:
@@ -245,12 +245,12 @@ def banded_truncation(
         pixel_area=pixel_area,
         n_pixels=spec.nx * spec.ny,
         z_top=zhi,
-        rt=rt,
+        Rt=Rt,
     )
     params = surface_params(spec, scale)
     meta = {
         "nx": spec.nx, "ny": spec.ny, "dx_m": spec.dx, "dy_m": spec.dy, "lx_m": lx, "ly_m": ly,
-        "rt_m": rt, **{k: jsonable(v, nonfinite="text") for k, v in params.items()},
+        "Rt_m": Rt, **{k: jsonable(v, nonfinite="text") for k, v in params.items()},
     }  # fmt: skip
     return StreamedTruncation(curve, meta, bands.rows, len(bands.bands))
 
