@@ -1,8 +1,9 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Start-up stays light: ``import warptrunc``, the CLI's parser and ``analyze --no-plot`` load
-none of the plotting, rendering, data-frame or cluster libraries (each in a fresh process, so
-nothing imported by other tests counts)."""
+"""Start-up stays light: ``import warptrunc``, its subpackages (plotting and rendering modules
+included: they import matplotlib/pyvista inside their functions), the CLI's parser and
+``analyze --no-plot`` load none of the plotting, rendering, data-frame, cluster, scan-reader or
+progress-bar libraries (each in a fresh process, so nothing imported by other tests counts)."""
 
 import subprocess
 import sys
@@ -11,7 +12,10 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-HEAVY = ("matplotlib", "pyvista", "pandas", "dask", "vtk", "cupy")
+HEAVY = (
+    "matplotlib", "pyvista", "vtk", "vtkmodules", "pandas", "pyarrow", "dask", "distributed",
+    "cupy", "SurfaceTopography", "tqdm",
+)  # fmt: skip
 REPORT = f"import sys; print(sorted({{m.split('.')[0] for m in sys.modules}} & set({HEAVY!r})))"
 
 
@@ -28,7 +32,9 @@ def _loaded(code: str, cwd: Path) -> str:
     "code",
     [
         "import warptrunc",
-        "import warptrunc.truncation, warptrunc.islands, warptrunc.io, warptrunc.sweep",
+        "import warptrunc.truncation, warptrunc.islands, warptrunc.io, warptrunc.io.vtk, "
+        "warptrunc.fractal, warptrunc.descriptors, warptrunc.calibrate, warptrunc.render, "
+        "warptrunc.plot, warptrunc.sweep, warptrunc.cli.sweep",
         "from warptrunc.cli import build_parser; build_parser()",  # what `warptrunc --help` runs
     ],
     ids=["package", "subpackages", "cli-parser"],

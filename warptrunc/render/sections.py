@@ -33,27 +33,15 @@ import numpy as np
 import warp as wp
 
 from ..plot.pooling import (
-    POOLING,
     block_contact,
     check_depths,
     check_pooling,
-    contact_masks,
-    pool_blocks,
 )
 from ..surface import Surface
 from .image import caption_text, depth_title, draw_text, grid_layout, save_png, tile, wrap_text
 from .scene import Panel, Scene, auto_exaggeration, auto_factor, import_pyvista, vtk_quiet
 
-__all__ = [
-    "DEFAULT_DEPTH_FRACTIONS",
-    "POOLING",
-    "Rendering",
-    "animate_truncation",
-    "auto_exaggeration",
-    "contact_masks",
-    "pool_blocks",
-    "render_truncation",
-]
+__all__ = ["DEFAULT_DEPTH_FRACTIONS", "Rendering", "animate_truncation", "render_truncation"]
 
 #: Depths of the paper's Fig. 7, as fractions of R_t.
 DEFAULT_DEPTH_FRACTIONS = (0.1, 0.2, 0.3, 0.4, 0.5)
@@ -124,6 +112,24 @@ class Rendering:
             d[k] = [float(v) for v in d[k]]
         d.pop("path")
         return json.dumps(d)
+
+
+def _rendering(path, image, depth, frac, f, pooling, scene, surface, ve, top_view, caption):
+    """The :class:`Rendering` of a picture or an animation (depths in m)."""
+    return Rendering(
+        path=None if path is None else Path(path),
+        image=image,
+        depth=depth,
+        depth_fraction=depth / surface.Rt,
+        area_fraction=np.asarray(frac, dtype=np.float64),
+        downsample=f,
+        pooling=pooling,
+        mesh_shape=scene.shape,
+        surface_shape=(surface.ny, surface.nx),
+        vertical_exaggeration=ve,
+        top_view=bool(top_view),
+        caption=caption,
+    )
 
 
 def render_truncation(
@@ -256,20 +262,7 @@ def render_truncation(
         r, c = divmod(depth.size, ncols)
         fs = max(10, min(16, pw // 34))
         img = draw_text(img, caption, (c * pw + 12, r * ph + 14), fs, pw - 24)
-    result = Rendering(
-        path=None if path is None else Path(path),
-        image=img,
-        depth=depth,
-        depth_fraction=depth / Rt,
-        area_fraction=np.asarray(frac, dtype=np.float64),
-        downsample=f,
-        pooling=pooling,
-        mesh_shape=scene.shape,
-        surface_shape=(surface.ny, surface.nx),
-        vertical_exaggeration=ve,
-        top_view=bool(top_view),
-        caption=caption,
-    )
+    result = _rendering(path, img, depth, frac, f, pooling, scene, surface, ve, top_view, caption)
     if path is not None:
         save_png(img, Path(path), result._metadata(), caption)
     return result
@@ -377,17 +370,6 @@ def animate_truncation(
                 writer.append_data(fr)
         finally:
             writer.close()
-    return Rendering(
-        path=path,
-        image=frames[-1],
-        depth=depth,
-        depth_fraction=depth / Rt,
-        area_fraction=np.asarray(frac, dtype=np.float64),
-        downsample=f,
-        pooling=pooling,
-        mesh_shape=scene.shape,
-        surface_shape=(surface.ny, surface.nx),
-        vertical_exaggeration=ve,
-        top_view=bool(top_view),
-        caption=caption,
+    return _rendering(
+        path, frames[-1], depth, frac, f, pooling, scene, surface, ve, top_view, caption
     )
