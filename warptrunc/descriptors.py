@@ -55,6 +55,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from ._results import fields_to_dict
 from .kernels import reduce as _kr
 from .spectra import (
     PSD,
@@ -106,16 +107,8 @@ class Descriptors:
 
     def to_dict(self) -> dict[str, Any]:
         """Scalars with unit-suffixed keys (``Rt_m``, ``Rrms_m``, ...), JSON-serialisable."""
-        return {
-            "Rt_m": self.Rt,
-            "Rrms_m": self.Rrms,
-            "Ra_m": self.Ra,
-            "skewness": self.skewness,
-            "kurtosis": self.kurtosis,
-            "Wr_m": self.Wr,
-            "Wr_resolved": bool(self.Wr_resolved),
-            "mean_m": self.mean,
-        }
+        d = fields_to_dict(self, {k: f"{k}_m" for k in ("Rt", "Rrms", "Ra", "Wr", "mean")})
+        return {**d, "Wr_resolved": bool(self.Wr_resolved)}
 
 
 def height_statistics(z: np.ndarray) -> dict[str, float]:

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from ._results import fields_to_dict
 from ._validate import check_int, check_range
 from .surface import Surface
 
@@ -47,12 +48,7 @@ class PSD:
 
     def to_dict(self) -> dict[str, Any]:
         """Columns ``frequency_per_m``, ``psd``, ``n_modes`` and the ``kind``."""
-        return {
-            "frequency_per_m": self.frequency,
-            "psd": self.psd,
-            "n_modes": self.n_modes,
-            "kind": self.kind,
-        }
+        return fields_to_dict(self, {"frequency": "frequency_per_m"})
 
 
 def _array_module(surface: Surface):

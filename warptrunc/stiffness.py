@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ._results import fields_to_dict
 from ._table import write_columns_csv
 from ._validate import check_int, check_range
 from .truncation import TruncationCurve
@@ -91,15 +92,12 @@ class StiffnessCurve:
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """Columns in the order of ``curve.csv``."""
-        return {
-            "depth_m": self.depth,
-            "n_contact_pixels": self.n_contact_pixels,
-            "contact_area_m2": self.contact_area,
-            "stiffness_N_per_m": self.stiffness,
-            "load_N": self.load,
-            "Ec_over_E": self.Ec_over_E,
-            "F_over_EA": self.F_over_EA,
-        }
+        return fields_to_dict(
+            self,
+            {"depth": "depth_m", "contact_area": "contact_area_m2",
+             "stiffness": "stiffness_N_per_m", "load": "load_N"},
+            skip=("material", "beta_prime", "apparent_area", "Rt"),
+        )  # fmt: skip
 
     def to_json(self, path: str | Path) -> Path:
         """Write the columns of :meth:`to_dict` (lists) plus the material and β' as JSON."""
