@@ -65,10 +65,10 @@ from warptrunc._bench import git_commit, timeit  # noqa: E402
 from warptrunc.islands import (  # noqa: E402
     island_counts_device,
     island_curve,
-    label_device,
     label_islands,
 )
 from warptrunc.islands.forest import Forest  # noqa: E402
+from warptrunc.islands.labelling import label_device  # noqa: E402
 from warptrunc.islands.topology import topology_hist  # noqa: E402
 from warptrunc.truncation import contact_index_device, depth_grid  # noqa: E402
 from warptrunc.wm import wm_surface  # noqa: E402

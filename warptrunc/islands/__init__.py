@@ -43,7 +43,7 @@ from .depths import (
     islands_at_depths,
 )
 from .fits import applicable_depth, slit_island_fit
-from .labelling import label_device, label_islands
+from .labelling import label_islands
 from .results import (
     MIN_ISLANDS,
     MIN_PIXELS,
@@ -70,7 +70,6 @@ __all__ = [
     "island_curve",
     "islands_at_depth",
     "islands_at_depths",
-    "label_device",
     "label_islands",
     "slit_island_fit",
     "topology_curve",

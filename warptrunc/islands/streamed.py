@@ -4,7 +4,7 @@
 2³⁰-pixel limit of the in-memory labelling).
 
 Kernels: ``warptrunc.kernels.stream_islands`` (contact mask, per-label areas) and the in-memory
-labelling of one band (``warptrunc.islands.label_device``).
+labelling of one band (``warptrunc.islands.labelling.label_device``).
 
 Each band is labelled on its own (labels 1..n_b in raster order of each island's first pixel);
 its labels are offset by the running count into provisional global labels (Python / int64).
