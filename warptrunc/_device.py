@@ -95,6 +95,12 @@ def cuda_device_count() -> int:
     return wp.get_cuda_device_count()
 
 
+def as_device(device: wp.DeviceLike = None) -> wp.context.Device:
+    """``device`` itself when it is already a resolved Warp device (as internal helpers get it
+    from the public call that resolved it), else :func:`resolve_device` of it."""
+    return device if isinstance(device, wp.Device) else resolve_device(device)
+
+
 def resolve_device(device: wp.DeviceLike = None) -> wp.context.Device:
     """Return the Warp device to run on.
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from ._device import resolve_device
+from ._device import as_device
 from ._limits import flat_row_bands
 from .kernels import reduce as _kr
 
@@ -24,7 +24,7 @@ def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, floa
     """Return (min z, max z) (m) of a float32 Warp array, by a device reduction.
 
     ``z`` is 1-D, or 2-D (reduced by row bands of fewer than 2³¹ pixels: any size works)."""
-    device = resolve_device(device)
+    device = as_device(device)  # resolved once by the public caller
     if z.ndim == 2:
         parts = [_height_range_flat(v, device) for _r0, _r1, v in flat_row_bands(z)]
         return min(p[0] for p in parts), max(p[1] for p in parts)

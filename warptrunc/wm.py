@@ -15,7 +15,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import warp as wp
 
-from ._device import check_memory, resolve_device
+from ._device import as_device, check_memory, resolve_device
 from ._reduce import height_range
 from ._validate import check_int, check_range, pair
 from .kernels import wm as _k
@@ -128,7 +128,7 @@ def wm_tables(
     will hold for heights besides the tables (default: the whole float32 map; the streamed
     path passes one band), checked before allocating.
     """
-    device = resolve_device(device)
+    device = as_device(device)
     nx, ny, T = spec.nx, spec.ny, spec.n_terms
     gpu = device.is_cuda
     K = pad_to(2 * T, _k.TILE_K)

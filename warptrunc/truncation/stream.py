@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import free_memory_bytes, resolve_device
+from .._device import as_device, free_memory_bytes, resolve_device
 from .._limits import band_pixel_limit, row_bands
 from .._progress import progress_bar
 from .._results import jsonable
@@ -107,7 +107,7 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
     add up in the same memory.
     """
     spec = as_wm_spec(spec_or_params)
-    device = resolve_device(device)
+    device = as_device(device)
     n = spec.nx * spec.ny
     K = pad_to(2 * spec.n_terms, _kwm.TILE_K)
     tables = 4 * K * (spec.nx + spec.ny + 256)
