@@ -44,7 +44,7 @@ DEFAULT_HEIGHT_SCALING = "cube"
 self-affine surfaces far better than ``"si"``)."""
 
 
-def _check_scaling(height_scaling: str) -> str:
+def check_scaling(height_scaling: str) -> str:
     if height_scaling not in HEIGHT_SCALINGS:
         raise ValueError(f"height_scaling must be one of {HEIGHT_SCALINGS}, got {height_scaling!r}")
     return height_scaling
@@ -67,7 +67,7 @@ def cube_height_factor(
     return (max(surface.nx, surface.ny) - 1) * math.sqrt(surface.dx * surface.dy) / rng
 
 
-def _scaled_upload(zd: wp.array, surface: Surface, height_scaling: str) -> wp.array:
+def scaled_upload(zd: wp.array, surface: Surface, height_scaling: str) -> wp.array:
     """The device heights for a method: as measured ("si") or mapped into the cube (on the
     device, from the surface's recorded or reduced extremes)."""
     if height_scaling == "si":
@@ -202,6 +202,6 @@ def fit_log_log(
     )
 
 
-def _chunks(ncx: int, s: int) -> tuple[int, int]:
+def row_chunks(ncx: int, s: int) -> tuple[int, int]:
     chunk = max(1, 32 // s)
     return chunk, (ncx + chunk - 1) // chunk

@@ -16,7 +16,7 @@ from ..surface import Surface
 from ._common import FractalFit, check_sizes, fit_log_log, upload
 
 
-def _default_lags(surface: Surface) -> np.ndarray:
+def default_lags(surface: Surface) -> np.ndarray:
     tmax = max(4, (min(surface.nx, surface.ny) - 1) // 8)
     return np.unique(np.round(np.geomspace(1, tmax, 16)).astype(np.int64))
 
@@ -70,13 +70,13 @@ def vertical_sections(
     and spatial data, Stat. Sci. 27 (2012) 247–277, doi:10.1214/11-STS370.
     """
     zd = upload(surface, device)
-    return _vs(zd, surface, lags, fit_range, axis)
+    return vs_fit(zd, surface, lags, fit_range, axis)
 
 
-def _vs(zd, surface, lags, fit_range, axis) -> FractalFit:
+def vs_fit(zd, surface, lags, fit_range, axis) -> FractalFit:
     if axis not in ("both", "x", "y"):
         raise ValueError(f"axis must be 'both', 'x' or 'y', got {axis!r}")
-    taus = check_sizes("lags", lags, surface, _default_lags)
+    taus = check_sizes("lags", lags, surface, default_lags)
     lag_d = wp.array(taus.astype(np.int32), dtype=wp.int32, device=zd.device)
     ny, nx = surface.ny, surface.nx
     parts = []

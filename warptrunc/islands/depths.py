@@ -26,10 +26,10 @@ from ..truncation.curve import (
 from .fits import slit_from_sums
 from .forest import Forest
 from .labelling import (
-    _islands,
     check_connectivity,
     check_index_size,
     check_surface,
+    islands_from_labels,
 )
 from .results import (
     MIN_PIXELS,
@@ -167,7 +167,7 @@ def islands_at_depths(
         forest.step()
         labels, n = forest.labels()
         found.append(
-            _islands(
+            islands_from_labels(
                 labels.reshape((ny, nx)),
                 n,
                 (ny, nx),
@@ -305,7 +305,7 @@ def island_curve(
         if k in snaps:
             labels, n = forest.labels()
             sizes.append(
-                _islands(
+                islands_from_labels(
                     labels,
                     n,
                     (ny, nx),

@@ -15,7 +15,7 @@ from ..kernels import islands as _ki
 from ..kernels import label as _kl
 from ..surface import Surface
 from .results import (
-    _SEGMENT,
+    SEGMENT,
     Islands,
     IslandSizes,
 )
@@ -149,7 +149,7 @@ def _label_parallel(
         wp.launch(
             _kl.init_parent4_kernel,
             dim=q,
-            inputs=[mask4, flat, nx, _SEGMENT],
+            inputs=[mask4, flat, nx, SEGMENT],
             outputs=[parent4],
             device=device,
         )
@@ -172,7 +172,7 @@ def _label_parallel(
         wp.launch(
             _kl.init_parent_kernel,
             dim=dims,
-            inputs=[flat, nx, _SEGMENT],
+            inputs=[flat, nx, SEGMENT],
             outputs=[parent],
             device=device,
         )
@@ -219,11 +219,11 @@ def _stats_from_labels(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Per-label (pixels, edges along x, edges along y) for labels 1..n, as int64 ndarrays."""
     acc = wp.zeros((3, n_islands + 1), dtype=wp.int64, device=device)
-    nseg = (nx + _SEGMENT - 1) // _SEGMENT
+    nseg = (nx + SEGMENT - 1) // SEGMENT
     wp.launch(
         _ki.island_stats_kernel,
         dim=(ny, nseg),
-        inputs=[labels.reshape((ny * nx,)), ny, nx, int(bool(periodic)), _SEGMENT],
+        inputs=[labels.reshape((ny * nx,)), ny, nx, int(bool(periodic)), SEGMENT],
         outputs=[acc[0], acc[1], acc[2]],
         device=device,
     )
@@ -231,7 +231,7 @@ def _stats_from_labels(
     return a[0], a[1], a[2]
 
 
-def _islands(
+def islands_from_labels(
     labels: wp.array,
     n_islands: int,
     shape: tuple[int, int],
@@ -331,4 +331,4 @@ def label_islands(
         check_memory(m.size * 29, device, "island labelling")
         mw = wp.array(m, dtype=wp.uint8, device=device)
     labels, n = label_device(mw, connectivity, periodic=periodic)
-    return _islands(labels, n, shape, dx, dy, connectivity, periodic, math.nan, device)
+    return islands_from_labels(labels, n, shape, dx, dy, connectivity, periodic, math.nan, device)

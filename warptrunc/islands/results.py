@@ -17,7 +17,7 @@ perimeter of an island is set by the grid (1 pixel: L = 4·dx, A = dx²), not by
 MIN_ISLANDS = 5
 """Fewest islands for a slit-island fit; fewer give NaN."""
 
-_SEGMENT = 32  # pixels per thread in island_stats_kernel
+SEGMENT = 32  # pixels per thread in island_stats_kernel
 
 
 class _LazyHostArray:

@@ -12,8 +12,8 @@ import numpy as np
 
 from ._style import (
     UM,
-    _figure,
-    _finish,
+    finish_figure,
+    new_figure,
 )
 
 _METHOD_LABELS = {
@@ -46,7 +46,7 @@ def psd(
         Save the figure as PNG here.
     """
     psds = list(psds) if isinstance(psds, (list, tuple)) else [psds]
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     for i, p in enumerate(psds):
         unit = "m$^4$" if p.kind == "radial" else "m$^3$"
@@ -61,7 +61,7 @@ def psd(
     if title:
         ax.set_title(title)
     ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None = None):
@@ -78,7 +78,7 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
     items = list(fits.items())
     ncols = min(2, len(items))
     nrows = (len(items) + ncols - 1) // ncols
-    fig, axes = _figure((4.0, 3.2), ncols=ncols, nrows=nrows)
+    fig, axes = new_figure((4.0, 3.2), ncols=ncols, nrows=nrows)
     ylab = {
         "tri": "area ratio A/A$_{proj}$",
         "box": "cubes N(ε)",
@@ -106,7 +106,7 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
         axes[k // ncols, k % ncols].set_visible(False)
     if title:
         fig.suptitle(title)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def d_out_vs_d_in(
@@ -131,7 +131,7 @@ def d_out_vs_d_in(
         Save the figure as PNG here.
     """
 
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     d_in = np.asarray(d_in, dtype=float)
     for m, v in d_out.items():
@@ -145,7 +145,7 @@ def d_out_vs_d_in(
     if title:
         ax.set_title(title)
     ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def calibration_history(cal: Any, *, path: str | Path | None = None):
@@ -158,7 +158,7 @@ def calibration_history(cal: Any, *, path: str | Path | None = None):
     path : path, optional
         Save the figure as PNG here.
     """
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     t = cal.target
     tol = cal.rtol * t.D
@@ -175,4 +175,4 @@ def calibration_history(cal: Any, *, path: str | Path | None = None):
     ax.set_ylabel(f"D$_{{out}}$ ({t.method})")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)

@@ -12,8 +12,8 @@ import numpy as np
 from ..islands import MIN_PIXELS, slit_island_fit
 from ._style import (
     UM,
-    _figure,
-    _finish,
+    finish_figure,
+    new_figure,
 )
 
 
@@ -42,7 +42,7 @@ def island_number(
     curves = list(curves) if isinstance(curves, (list, tuple)) else [curves]
     if indicators is not None:
         indicators = list(indicators) if isinstance(indicators, (list, tuple)) else [indicators]
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     marks = (
         ("max_growth_depth", "--", "max. growth rate"),
@@ -69,7 +69,7 @@ def island_number(
     if title:
         ax.set_title(title)
     ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def slit_islands(
@@ -96,7 +96,7 @@ def slit_islands(
     if min_pixels is None:
         min_pixels = getattr(curve, "min_pixels", MIN_PIXELS)
     Rt = getattr(curve, "rt", None)
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     for sz in sizes:
         if sz.n_islands == 0:
@@ -121,4 +121,4 @@ def slit_islands(
     ax.grid(True, which="both", alpha=0.3)
     ax.set_title(title or f"slit islands (grey: < {min_pixels} pixels, not fitted)")
     ax.legend(fontsize=6)
-    return _finish(fig, path)
+    return finish_figure(fig, path)

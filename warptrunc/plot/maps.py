@@ -15,12 +15,12 @@ from ._style import (
     HEIGHT_CMAP,
     SPREAD_ALPHA,
     UM,
-    _as_list,
-    _band,
-    _figure,
-    _finish,
-    _is_group,
-    _length_axes,
+    as_list,
+    finish_figure,
+    is_group,
+    length_axes,
+    new_figure,
+    shade_band,
 )
 from .pooling import check_pooling, pool_blocks
 
@@ -74,7 +74,7 @@ def height_map(
     z = surface.heights
     f = max(1, math.ceil(max(z.shape) / int(max_pixels)))
     shown = pool_blocks(z, f, "mean") if f > 1 else z
-    fig, axes = _figure(figsize=(5.4, 4.4))
+    fig, axes = new_figure(figsize=(5.4, 4.4))
     ax = axes[0, 0]
     ext = (0.0, surface.lx * UM, 0.0, surface.ly * UM)
     im = ax.imshow(
@@ -94,7 +94,7 @@ def height_map(
         rgba[..., 3] = mask
         ax.imshow(rgba, origin="lower", extent=ext, interpolation="nearest")
         label = f"contact at ω = {depth * UM:.3g} µm ({100 * depth / surface.Rt:.3g} % R$_t$): A$_c$/A = {100 * frac:.3g} %"
-    _length_axes(ax)
+    length_axes(ax)
     note = f"{surface.nx}×{surface.ny} px" + (f", shown in {f}×{f} blocks" if f > 1 else "")
     if f > 1 and depth is not None:
         note += (
@@ -103,7 +103,7 @@ def height_map(
             else " (red opacity = contact fraction)"
         )
     ax.set_title("\n".join(t for t in (title, label, note) if t), fontsize=8)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def area_fraction(
@@ -136,19 +136,21 @@ def area_fraction(
     path : path, optional
         Save the figure as PNG here.
     """
-    curves = _as_list(curves)
+    curves = as_list(curves)
 
     def xy(c):
         x = 100 * c.depth / c.Rt if relative else c.depth * UM
         return x, 100 * c.area_fraction
 
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     for i, c in enumerate(curves):
         lab = labels[i] if labels is not None else None
-        if _is_group(c):
+        if is_group(c):
             pts = [xy(g) for g in c]
-            x, m, lo, hi = _band([p[0] for p in pts], [p[1] for p in pts], log=False, spread=spread)
+            x, m, lo, hi = shade_band(
+                [p[0] for p in pts], [p[1] for p in pts], log=False, spread=spread
+            )
             what = "±1 sd" if spread == "sd" else "min–max"
             (line,) = ax.plot(
                 x, m, "-", lw=1.4, label=f"{lab} ({len(c)} seeds, {what})" if lab else None
@@ -165,4 +167,4 @@ def area_fraction(
         ax.set_title(title)
     if labels is not None:
         ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
