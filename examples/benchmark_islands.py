@@ -68,8 +68,8 @@ from warptrunc.islands import (  # noqa: E402
     label_islands,
 )
 from warptrunc.islands.forest import Forest  # noqa: E402
-from warptrunc.islands.labelling import label_device  # noqa: E402
 from warptrunc.islands.topology import topology_hist  # noqa: E402
+from warptrunc.islands.unionfind import label_device  # noqa: E402
 from warptrunc.truncation import contact_index_device, depth_grid  # noqa: E402
 from warptrunc.wm import wm_surface  # noqa: E402
 

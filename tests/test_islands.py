@@ -24,7 +24,7 @@ from warptrunc.islands import (
     label_islands,
     slit_island_fit,
 )
-from warptrunc.islands import labelling as _labelling
+from warptrunc.islands import unionfind as _unionfind
 
 # --- references -------------------------------------------------------------------------------
 
@@ -180,9 +180,9 @@ def labels_of(mask, connectivity, device, method, periodic=False):
         return isl.labels, isl.n_islands
     m = wp.array(np.ascontiguousarray(mask, np.uint8), dtype=wp.uint8, device=device)
     if method == "sequential":
-        lab, n = _labelling._label_sequential(m, connectivity, periodic)
+        lab, n = _unionfind._label_sequential(m, connectivity, periodic)
     else:  # "parallel": 4 pixels per thread where rows allow it; "parallel-pixel": 1 per thread
-        lab, n = _labelling._label_parallel(
+        lab, n = _unionfind._label_parallel(
             m, connectivity, periodic, quads=None if method == "parallel" else False
         )
     return lab.numpy(), n

@@ -100,7 +100,7 @@ def test_side_limit_is_refused_before_allocating(capsys):
 def test_island_labelling_limit_is_refused_before_touching_memory(shape):
     """A (ny, nx) int32 view over a 16-element buffer: the size check must come first."""
     from warptrunc.islands import island_counts_device
-    from warptrunc.islands.labelling import label_device
+    from warptrunc.islands.unionfind import label_device
 
     buf = wp.zeros(16, dtype=wp.int32, device="cpu")
     index = wp.array(ptr=buf.ptr, shape=shape, dtype=wp.int32, device="cpu")

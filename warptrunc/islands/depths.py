@@ -25,12 +25,7 @@ from ..truncation.curve import (
 )
 from .fits import slit_from_sums
 from .forest import Forest
-from .labelling import (
-    check_connectivity,
-    check_index_size,
-    check_surface,
-    islands_from_labels,
-)
+from .labelling import islands_from_labels
 from .results import (
     MIN_PIXELS,
     IslandCurve,
@@ -38,6 +33,7 @@ from .results import (
     IslandSizes,
 )
 from .topology import topology_hist
+from .unionfind import check_connectivity, check_index_size, check_surface
 
 # --- carried forest across depths -----------------------------------------------------------------
 

@@ -10,7 +10,7 @@ import numpy as np
 import warp as wp
 
 from ..kernels import islands as _ki
-from .labelling import (
+from .unionfind import (
     check_index_size,
 )
 

@@ -4,7 +4,7 @@
 2³⁰-pixel limit of the in-memory labelling).
 
 Kernels: ``warptrunc.kernels.stream_islands`` (contact mask, per-label areas) and the in-memory
-labelling of one band (``warptrunc.islands.labelling.label_device``).
+labelling of one band (``warptrunc.islands.unionfind.label_device``).
 
 Each band is labelled on its own (labels 1..n_b in raster order of each island's first pixel);
 its labels are offset by the running count into provisional global labels (Python / int64).
@@ -36,7 +36,7 @@ from .._validate import check_int
 from ..kernels import stream_islands as _k
 from ..kernels import wm as _kwm
 from ..truncation.stream import WMBands, as_wm_spec, extremes_pass
-from .labelling import check_connectivity, check_mask, label_device
+from .unionfind import check_connectivity, check_mask, label_device
 
 __all__ = ["BandedIslands", "label_banded", "streamed_islands"]
 

@@ -17,8 +17,8 @@ from .._device import resolve_device
 from ..kernels import euler as _ke
 from ..surface import Surface
 from ..truncation.curve import contact_index_device, depth_grid, surface_device
-from .labelling import check_connectivity, check_index_size, check_surface
 from .results import TopologyCurve
+from .unionfind import check_connectivity, check_index_size, check_surface
 
 __all__ = ["topology_curve"]
 
