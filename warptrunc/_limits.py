@@ -76,9 +76,10 @@ union-find over the pairs (label above, label below) of touching contact pixels;
 label of each merged set survives (first pixel in raster order) and the areas (int64 pixel
 counts, one device histogram per band) of the others are added to it. Memory stays
 O(band + number of islands). Built for island counts and areas in
-``warptrunc.islands.streamed`` (``label_banded``, ``streamed_islands``); not built: periodic
-wrapping, perimeters (a perimeter would be the sum over bands minus twice the merged border
-edges) and the union-find forest carried across depths (each depth is labelled afresh).
+``warptrunc.islands.streamed.streamed_islands``, and for labels, areas and perimeters of a host
+mask in ``label_islands(..., band_rows=)`` (the label map and the perimeter count on the host);
+not built: periodic wrapping and the union-find forest carried across depths (each depth is
+labelled afresh).
 """
 
 

@@ -17,6 +17,7 @@ from .results import (
     Islands,
     IslandSizes,
 )
+from .streamed import label_in_bands
 from .unionfind import (
     check_connectivity,
     check_index_size,
@@ -94,6 +95,7 @@ def label_islands(
     *,
     connectivity: int = 4,
     periodic: bool = False,
+    band_rows: int | None = None,
     device: wp.DeviceLike = None,
 ) -> Islands:
     """Label the islands of a contact mask and measure their areas and perimeters.
@@ -113,6 +115,12 @@ def label_islands(
         islands (see the module Notes).
     periodic : bool
         Wrap the map around in x and y.
+    band_rows : int, optional
+        Label by row bands of this many rows, 1 ≤ band_rows ≤ ny, holding one band on the
+        device at a time (masks beyond device memory or past the 2³⁰-pixel limit of the
+        one-piece labelling); the borders are merged by union-find on the host and the labels,
+        areas and perimeters equal the one-piece result. Host NumPy masks only; not with
+        ``periodic``.
     device : str, optional
         Warp device; see :func:`warptrunc.resolve_device`.
 
@@ -138,6 +146,15 @@ def label_islands(
     connectivity = check_connectivity(connectivity)
     dx = check_range("dx", dx, 0.0, unit="m")
     dy = dx if dy is None else check_range("dy", dy, 0.0, unit="m")
+    if band_rows is not None:
+        if periodic or isinstance(mask, wp.array):
+            raise ValueError(
+                "band_rows labels a host (NumPy) mask of a bounded map; got "
+                + ("periodic=True" if periodic else "a Warp array")
+            )
+        return label_in_bands(
+            check_mask(mask), dx, dy, connectivity, band_rows, resolve_device(device)
+        )
     if isinstance(mask, wp.array):  # device-resident mask: no host pass, no upload
         check_mask_array(mask)
         device = mask.device if device is None else resolve_device(device)
