@@ -20,11 +20,8 @@ from .. import __version__
 from .._bench import git_commit
 from .._device import resolve_device
 from .._results import jsonable, write_atomic
-from .analysis import analyse
 from .profiles import PROFILES, Profile, get_profile
-from .report import figures, markdown
 from .store import StageConflict, StageStore
-from .study import run_study
 
 __all__ = ["PROFILES", "Profile", "StageConflict", "get_profile", "reproduce"]
 
@@ -42,6 +39,11 @@ def reproduce(
     Finished stages in ``out/stages`` are reused when their parameters match; a stage stored
     with other parameters raises :class:`StageConflict` unless ``overwrite``.
     """
+    # the study stack (sweeps, calibration, figures) loads when a study runs, not with the
+    # package: `warptrunc --help` reads the profiles only
+    from .analysis import analyse
+    from .report import figures, markdown
+    from .study import run_study
 
     p = get_profile(profile) if isinstance(profile, str) else profile
     out = Path(out)
