@@ -33,9 +33,8 @@ import time
 from pathlib import Path
 
 
-def one(
-    n: int, cases: int, workers: int, device, increments: int, chunk_size=None, worker_writes=None
-) -> dict:
+def one(n: int, cases: int, workers: int, device, increments: int, chunk_size=None,
+        worker_writes=None) -> dict:
     from warptrunc.sweep import SweepGrid, run_sweep
 
     opts = dict(n=n, increments=increments, min_pixels=(10,))
@@ -79,15 +78,10 @@ def main(argv=None) -> int:
                     help="0 = in-process; N = LocalCluster of N workers")  # fmt: skip
     ap.add_argument("--increments", type=int, default=200, help="depth increments")
     ap.add_argument("--device", default=None, help="cpu, cuda:0, ... (default: resolved)")
-    ap.add_argument(
-        "--chunk-size", type=int, default=None, help="cases per Dask task (default: adaptive)"
-    )
-    ap.add_argument(
-        "--worker-writes",
-        action=argparse.BooleanOptionalAction,
-        default=None,
-        help="workers write the curve files (default: on for a LocalCluster on GPUs)",
-    )
+    ap.add_argument("--chunk-size", type=int, default=None,
+                    help="cases per Dask task (default: adaptive)")
+    ap.add_argument("--worker-writes", action=argparse.BooleanOptionalAction, default=None,
+                    help="workers write the curve files (default: on for a LocalCluster on GPUs)")
     ap.add_argument("--json", type=Path, default=None, help="append the results here")
     args = ap.parse_args(argv)
     from warptrunc import __version__
@@ -96,9 +90,8 @@ def main(argv=None) -> int:
     results = []
     for n in args.n:
         for w in args.workers:
-            r = one(
-                n, args.cases, w, args.device, args.increments, args.chunk_size, args.worker_writes
-            )
+            r = one(n, args.cases, w, args.device, args.increments, args.chunk_size,
+                    args.worker_writes)
             r.update(host=platform.node(), cpus=os.cpu_count(), warptrunc=__version__,
                      commit=git_commit())  # fmt: skip
             results.append(r)

@@ -51,11 +51,9 @@ def markdown(rows) -> str:
     cols = ["D_tri_cube", "D_tri_si", "D_box_cube", "D_box_si", "D_vs", "D_sp"]
     out = "| H | true D | " + " | ".join(cols) + " |\n|---|---|" + "---|" * len(cols) + "\n"
     for r in rows:
-        out += (
-            f"| {r['H']:.1f} | {r['D_true']:.1f} | "
-            + " | ".join(f"{r[c]:.3f} ± {r[c + '_sd']:.3f}" for c in cols)
-            + " |\n"
-        )
+        out += f"| {r['H']:.1f} | {r['D_true']:.1f} | " + " | ".join(
+            f"{r[c]:.3f} ± {r[c + '_sd']:.3f}" for c in cols
+        ) + " |\n"
     return out
 
 

@@ -75,8 +75,7 @@ def report(n, L, seeds, rtol, methods, device, progress, height_scaling=DEFAULT_
             fits = [
                 fractal_dimensions(
                     wm_surface(cal.D_in, wr_m, L=L, n=n, Rt=cal.Rt, seed=s, device=device),
-                    options=opts,
-                    device=device,
+                    options=opts, device=device,
                 )
                 for s in seeds
             ]

@@ -58,9 +58,7 @@ def test_verbose_shows_the_warp_notice_on_a_cpu_only_machine(tmp_path):
         pytest.skip("a CUDA driver is present: Warp has nothing to say")
     r = cli("--verbose", "generate", "--n", 32, "-o", "s.npz", cwd=tmp_path)
     assert r.returncode == 0 and "CUDA driver" in r.stdout + r.stderr
-    r = cli(
-        "generate", "--n", 32, "-o", "s.npz", cwd=tmp_path, env_extra={"WARPTRUNC_VERBOSE": "1"}
-    )
+    r = cli("generate", "--n", 32, "-o", "s.npz", cwd=tmp_path, env_extra={"WARPTRUNC_VERBOSE": "1"})
     assert r.returncode == 0 and "CUDA driver" in r.stdout + r.stderr
 
 

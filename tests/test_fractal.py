@@ -106,12 +106,8 @@ def test_cube_convention_is_si_on_heights_mapped_onto_the_lateral_extent(device)
     tri = triangular_prism(s, box_sizes=sizes, device=device)  # default: cube
     box = box_counting(s, box_sizes=sizes, device=device)
     assert tri.options["height_scaling"] == box.options["height_scaling"] == "cube"
-    np.testing.assert_allclose(
-        tri.measure, [numpy_prism_ratio(zc, k, 1e-6, 1.5e-6) for k in sizes], rtol=1e-6
-    )
-    np.testing.assert_allclose(
-        box.measure, [numpy_box_count(zc, k, k * h) for k in sizes], rtol=1e-6
-    )
+    np.testing.assert_allclose(tri.measure, [numpy_prism_ratio(zc, k, 1e-6, 1.5e-6) for k in sizes], rtol=1e-6)
+    np.testing.assert_allclose(box.measure, [numpy_box_count(zc, k, k * h) for k in sizes], rtol=1e-6)
 
 
 @pytest.mark.parametrize("H", [0.2, 0.5, 0.8])

@@ -90,9 +90,7 @@ def test_stage_store_reuses_and_refuses(tmp_path):
     st = StageStore(tmp_path)
     calls = []
     st.run("s", {"a": 1}, lambda: calls.append(1) or {"x": 1.5})
-    assert StageStore(tmp_path).run("s", {"a": 1}, lambda: calls.append(2) or {"x": 9}) == {
-        "x": 1.5
-    }
+    assert StageStore(tmp_path).run("s", {"a": 1}, lambda: calls.append(2) or {"x": 9}) == {"x": 1.5}
     assert calls == [1]
     with pytest.raises(StageConflict, match="differing: a"):
         StageStore(tmp_path).run("s", {"a": 2}, lambda: {"x": 3})

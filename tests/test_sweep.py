@@ -138,9 +138,7 @@ def test_fractal_methods_and_relative_fit_range(tmp_path):
     assert "fractal_methods" not in SweepOptions(**OPTS).to_dict()
     plain = {c.case_id for c in grid.cases(SweepOptions(**OPTS))}
     assert plain.isdisjoint(df["case_id"])
-    assert plain.isdisjoint(
-        c.case_id for c in grid.cases(SweepOptions(**OPTS, fractal_methods="vs"))
-    )
+    assert plain.isdisjoint(c.case_id for c in grid.cases(SweepOptions(**OPTS, fractal_methods="vs")))
     with pytest.raises(ValueError, match=r"fractal_methods must be among .*'dim'"):
         SweepOptions(fractal_methods=("tri", "dim"))
     with pytest.raises(ValueError, match=r"min_pixels_fraction must be in \(0, 1\]"):

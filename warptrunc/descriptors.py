@@ -157,6 +157,7 @@ def surface_statistics(surface: Surface) -> dict[str, float]:
     if surface.device is None:
         return height_statistics(surface.heights)
 
+
     z = surface.device_heights()
     dev = z.device
     n = surface.nx * surface.ny
@@ -218,3 +219,5 @@ def describe(surface: Surface, *, smoothing: float = 0.05) -> Descriptors:
         Wr_resolved=resolved,
         mean=st["mean"],
     )
+
+

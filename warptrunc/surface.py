@@ -143,6 +143,7 @@ class Surface:
         (host → device upload, or device → device copy) and cached on the surface.
         """
 
+
         dev = device if isinstance(device, wp.Device) else None  # resolved by the caller
         if dev is None:
             dev = resolve_device(self._home if device is None else device)
@@ -265,6 +266,7 @@ def _check_device_map(z: Any, name: str = "heights") -> Any:
 
 def _validate_on_device(z: Any, name: str = "heights") -> tuple[float, float]:
     """Finite check and (min, max) of a device map: one launch, one 32-byte read-back."""
+
 
     dev = z.device
     n = z.shape[0] * z.shape[1]

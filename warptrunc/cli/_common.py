@@ -128,9 +128,7 @@ def real(
         try:
             v = float(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"must be a number in {rng}{u}, got {text!r}"
-            ) from None
+            raise argparse.ArgumentTypeError(f"must be a number in {rng}{u}, got {text!r}") from None
         bad = math.isnan(v) or (math.isinf(v) and not (allow_inf and v > 0))
         if lo is not None:
             bad |= v <= lo if lo_open else v < lo
@@ -199,13 +197,9 @@ def _nearest_existing(p: Path) -> Path:
 def _check_writable_parent(p: Path, text: str) -> None:
     anc = _nearest_existing(p.parent if p.name else p)
     if not anc.is_dir():
-        raise argparse.ArgumentTypeError(
-            f"{str(anc)!r} is not a folder, so {text!r} cannot be written"
-        )
+        raise argparse.ArgumentTypeError(f"{str(anc)!r} is not a folder, so {text!r} cannot be written")
     if not os.access(anc, os.W_OK | os.X_OK):
-        raise argparse.ArgumentTypeError(
-            f"cannot write under {str(anc)!r} (no permission), got {text!r}"
-        )
+        raise argparse.ArgumentTypeError(f"cannot write under {str(anc)!r} (no permission), got {text!r}")
 
 
 def input_file(text: str) -> Path:
@@ -302,7 +296,9 @@ def add_wm_shape(g: argparse._ActionsContainer) -> None:
     g.add_argument(
         "--n", type=integer(2), nargs="+", default=[1024], help="pixels per side, or nx ny"
     )
-    g.add_argument("--M", type=integer(1, 10_000), default=10, help="number of superposed ridges M")
+    g.add_argument(
+        "--M", type=integer(1, 10_000), default=10, help="number of superposed ridges M"
+    )
     g.add_argument(
         "--gamma", type=real(1.0), default=1.5, help="frequency density γ > 1 (dimensionless)"
     )

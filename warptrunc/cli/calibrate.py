@@ -54,10 +54,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     c.add_argument("--no-progress", action="store_true", help="no progress bar")
     o = p.add_argument_group("output surface")
     o.add_argument(
-        "--n-out",
-        type=integer(2),
-        nargs="+",
-        default=None,
+        "--n-out", type=integer(2), nargs="+", default=None,
         help="output pixels per side (or nx ny)",
     )
     o.add_argument("--seed-out", type=integer(0), default=0, help="seed of the output surface")
@@ -82,7 +79,9 @@ def run(args: argparse.Namespace) -> int:
     if args.file is not None:
         s = read_scan_args(args)
         opts = method_options(args.method, args.height_scaling)
-        t = target_from_surface(s, args.method, Wr=args.Wr, method_options=opts, device=args.device)
+        t = target_from_surface(
+            s, args.method, Wr=args.Wr, method_options=opts, device=args.device
+        )
         fields = t.to_dict()
         target = CalibrationTarget(
             D=args.D if args.D is not None else t.D,

@@ -69,9 +69,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "touches (shows every contact spot, overstates the area)",
     )  # fmt: skip
     g.add_argument(
-        "--output",
-        type=_file_name,
-        default="truncation.png",
+        "--output", type=_file_name, default="truncation.png",
         help="picture file name inside --out",
     )
     a = p.add_argument_group("animation and VTK export")
@@ -119,6 +117,7 @@ def run(args: argparse.Namespace) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     written = []
     if args.vtk:
+
         written.append(
             export_vtk(s, args.out / args.vtk, n_increments=args.vtk_increments, device=args.device)
         )

@@ -27,7 +27,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc reproduce``."""
 
     p.add_argument("--profile", choices=sorted(PROFILES), default="quick", help="sizes of the run")
-    p.add_argument("--out", type=output_dir, default=Path("reproduction"), help="output folder")
+    p.add_argument(
+        "--out", type=output_dir, default=Path("reproduction"), help="output folder"
+    )
     p.add_argument("--overwrite", action="store_true",
                    help="recompute stages stored with other parameters (replacing them)")  # fmt: skip
     add_device(p)

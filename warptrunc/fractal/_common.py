@@ -46,13 +46,13 @@ self-affine surfaces far better than ``"si"``)."""
 
 def check_scaling(height_scaling: str) -> str:
     if height_scaling not in HEIGHT_SCALINGS:
-        raise ValueError(f"height_scaling must be one of {HEIGHT_SCALINGS}, got {height_scaling!r}")
+        raise ValueError(
+            f"height_scaling must be one of {HEIGHT_SCALINGS}, got {height_scaling!r}"
+        )
     return height_scaling
 
 
-def cube_height_factor(
-    surface: Surface, z_min: float | None = None, z_max: float | None = None
-) -> float:
+def cube_height_factor(surface: Surface, z_min: float | None = None, z_max: float | None = None) -> float:
     """Factor of the ``"cube"`` convention: (N − 1)·√(dx·dy)/(max z − min z) (dimensionless).
 
     Heights times this factor span the map's lateral extent (N = max(nx, ny)); 1 for a flat map.

@@ -29,7 +29,6 @@ def default_box_sizes(surface: Surface) -> np.ndarray:
     smax = max(4, (min(surface.nx, surface.ny) - 1) // 8)
     return 2 ** np.arange(int(math.log2(smax)) + 1)
 
-
 def triangular_prism(
     surface: Surface,
     *,

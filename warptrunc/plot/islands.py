@@ -92,6 +92,7 @@ def slit_islands(
         Save the figure as PNG here.
     """
 
+
     sizes = list(getattr(curve, "sizes", curve))
     if min_pixels is None:
         min_pixels = getattr(curve, "min_pixels", MIN_PIXELS)

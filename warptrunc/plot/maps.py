@@ -65,6 +65,8 @@ def height_map(
     y = iy·dy, so x runs to the right and y up, as in the 3-D pictures.
     """
 
+
+
     check_pooling(pooling)
 
     if depth is not None and depth_fraction is not None:

@@ -60,10 +60,7 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
         t3[fit] = {}
         for k in D_KEYS:
             f = line_fit(*_points(g2["rows"], fit, k))
-            t3[fit][k] = {
-                "ours": f,
-                "paper": dict(zip(("slope", "intercept", "r"), TABLE3["alpha"][k], strict=True)),
-            }
+            t3[fit][k] = {"ours": f, "paper": dict(zip(("slope", "intercept", "r"), TABLE3["alpha"][k], strict=True))}
     out["table3_alpha"] = t3
     # group 1: β(δ) and the scaling argument β ∝ δ^−α
     b1: dict[str, Any] = {}
@@ -110,9 +107,7 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
         row = {"surface": r["surface"], "matched": r["matched"], "status": r["status"],
                "paper": {"Rt_um": Rt, "Rrms_um": rrms, "D": dict(zip(D_KEYS[1:], d_paper, strict=True))}}  # fmt: skip
         if r["status"] == "ok":
-            row.update(
-                D_in=r["D_in"], Rt_um=r["Rt_m"] / 1e-6, Rrms_um=r["Rrms_m"] / 1e-6, D_out=r["D_out"]
-            )
+            row.update(D_in=r["D_in"], Rt_um=r["Rt_m"] / 1e-6, Rrms_um=r["Rrms_m"] / 1e-6, D_out=r["D_out"])
         else:
             row["message"] = r.get("message")
         t1.append(row)
@@ -127,9 +122,7 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
             return float(np.mean(v)) if v else None
 
         frac = np.asarray(s["seeds"][0]["depth_fraction"])
-        ex = np.array(
-            [[np.nan if v is None else v for v in x["slit_exponent"]] for x in s["seeds"]]
-        )
+        ex = np.array([[np.nan if v is None else v for v in x["slit_exponent"]] for x in s["seeds"]])
         ok = np.isfinite(ex)
         cnt = ok.sum(axis=0)
         mean_ex = np.where(cnt > 0, np.where(ok, ex, 0.0).sum(axis=0) / np.maximum(cnt, 1), np.nan)
@@ -145,13 +138,9 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
             "paper": dict(zip(("applicable", "max_growth", "fractality"), TABLE2[name], strict=True)),
         }  # fmt: skip
     out["table2"] = t2
-    out["asperity"] = {
-        k: v for k, v in res["asperity"]["bounds"].items() if not isinstance(v, list)
-    }
+    out["asperity"] = {k: v for k, v in res["asperity"]["bounds"].items() if not isinstance(v, list)}
     out["asperity"]["pixel_bound_holds"] = res["asperity"]["pixel_bound_holds"]
-    out["asperity"]["max_rel_area_error_last_half"] = res["asperity"][
-        "max_rel_area_error_last_half"
-    ]
+    out["asperity"]["max_rel_area_error_last_half"] = res["asperity"]["max_rel_area_error_last_half"]
     if "bem" in res:
         from .elastic import analyse_bem
 

@@ -31,6 +31,7 @@ class StageConflict(ValueError):
     """A stage file exists with different parameters and ``overwrite`` is off."""
 
 
+
 class StageStore:
     """Stage files ``<out>/stages/<name>.json`` with parameter checks.
 

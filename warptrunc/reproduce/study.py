@@ -119,9 +119,7 @@ def stage_table1(p: Profile, device) -> dict[str, Any]:
             target = CalibrationTarget(D=paper_d[m], method=m, Rrms=rrms * UM, Rt=Rt * UM,
                                        Wr=wr_m, L=L, n=p.table1_n, source=f"Table 1 {name}")  # fmt: skip
             try:
-                cal = calibrate(
-                    target, seeds=seeds, rtol=p.table1_rtol, progress=True, device=device
-                )
+                cal = calibrate(target, seeds=seeds, rtol=p.table1_rtol, progress=True, device=device)
             except (CalibrationError, ValueError) as exc:
                 row.update(status="not reached", message=str(exc))
                 rows.append(row)
@@ -186,9 +184,7 @@ def _row(case_rows, curve, ranges: dict[str, int | float], curve_points: int) ->
                            "Rt_m": first["Rt_measured_m"], "case_id": first["case_id"], "fits": {}}  # fmt: skip
     for name, mp in ranges.items():
         if isinstance(mp, int):  # an absolute fit range
-            r = next(
-                x for x in case_rows if x["min_pixels_fraction"] is None and x["min_pixels"] == mp
-            )
+            r = next(x for x in case_rows if x["min_pixels_fraction"] is None and x["min_pixels"] == mp)
         else:  # relative to the surface's final contact pixels
             r = next(x for x in case_rows if x["min_pixels_fraction"] == mp)
         if r["fit_error"] is None:
@@ -226,9 +222,7 @@ def stage_group(
     ranges = fit_ranges(p, p.n)
     rows, failed = [], []
     for cid, part in df.groupby("case_id", sort=False):
-        recs = [
-            {k: (None if _isna(v) else v) for k, v in r.items()} for r in part.to_dict("records")
-        ]
+        recs = [{k: (None if _isna(v) else v) for k, v in r.items()} for r in part.to_dict("records")]
         if recs[0]["error"] is not None:
             failed.append({k: recs[0][k] for k in ("case_id", "D_in", "delta", "seed", "error")})
             continue
@@ -282,8 +276,7 @@ def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, 
         elif name.startswith("group"):
             params = base
             fn = lambda w=int(name[-1]): stage_group(  # noqa: E731
-                profile, w, store.out, device, overwrite=store.overwrite
-            )
+                profile, w, store.out, device, overwrite=store.overwrite)
         else:
             params = base
             fn = {"asperity": lambda: stage_asperity(profile, device),

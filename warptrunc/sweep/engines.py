@@ -183,17 +183,14 @@ def run_inprocess(
     returns or an exception (Ctrl-C included) propagates.
     """
 
+
     dev = str(resolve_device(device))
     q: queue.Queue = queue.Queue(maxsize=max_batch)
     failed: list[BaseException] = []
     done = object()
 
     with progress_bar(
-        total=total,
-        initial=total - len(cases),
-        enabled=progress,
-        desc=f"sweep [{dev}]",
-        unit="case",
+        total=total, initial=total - len(cases), enabled=progress, desc=f"sweep [{dev}]", unit="case"
     ) as bar:
 
         def writer() -> None:
@@ -244,6 +241,7 @@ def compute_chunk(
     """
     if curves is None:
         return [compute_case(c, options, device) for c in cases]
+
 
     folder = Path(curves)
     results: list = []

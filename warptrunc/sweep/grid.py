@@ -194,11 +194,7 @@ class SweepOptions:
         if len(set(fr)) != len(fr):
             raise ValueError(f"min_pixels_fraction must hold distinct values, got {fr!r}")
         s(self, "min_pixels_fraction", fr)
-        fm = (
-            (self.fractal_methods,)
-            if isinstance(self.fractal_methods, str)
-            else tuple(self.fractal_methods)
-        )
+        fm = (self.fractal_methods,) if isinstance(self.fractal_methods, str) else tuple(self.fractal_methods)
         for m in fm:
             if m not in FRACTAL_METHODS:
                 raise ValueError(f"fractal_methods must be among {FRACTAL_METHODS}, got {m!r}")

@@ -62,15 +62,7 @@ CASE_COLUMNS = (
 case failed). ``D_<method>``, ``D_<method>_r2``, ``fractal_options`` (JSON) and
 ``fractal_seconds`` (s) are NaN/null unless the sweep ran with ``fractal_methods``."""
 
-RUN_COLUMNS = (
-    "seconds",
-    "fractal_seconds",
-    "device",
-    "device_name",
-    "host",
-    "finished_utc",
-    "git_commit",
-)
+RUN_COLUMNS = ("seconds", "fractal_seconds", "device", "device_name", "host", "finished_utc", "git_commit")
 """Columns that describe how and where a case ran rather than its result."""
 
 
@@ -249,10 +241,7 @@ class Store:
         if self.path is not None and fresh:
             kept = write_curves(self.curves, fresh)
         else:
-            kept = [
-                [{k: jsonable(v, nonfinite="keep") for k, v in r.items()} for r in rows]
-                for rows, _ in fresh
-            ]
+            kept = [[{k: jsonable(v, nonfinite="keep") for k, v in r.items()} for r in rows] for rows, _ in fresh]
         for rows in kept:
             self._record(rows)
         return new

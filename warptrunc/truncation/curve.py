@@ -288,14 +288,10 @@ def contact_index_map(
         The island labelling carries its union-find forest across depths in this order. The
         same map left on the device is :func:`contact_index_device`.
     """
-    return contact_index_device(
-        surface, depth, resolve_device(surface_device(surface, device))
-    ).numpy()
+    return contact_index_device(surface, depth, resolve_device(surface_device(surface, device))).numpy()
 
 
-def contact_index_device(
-    surface: Surface, depth: np.ndarray, device: wp.context.Device
-) -> wp.array:
+def contact_index_device(surface: Surface, depth: np.ndarray, device: wp.context.Device) -> wp.array:
     """:func:`contact_index_map` as a (ny, nx) int32 Warp array left on the resolved ``device``."""
     depth = np.asarray(depth, dtype=np.float64)
     if depth.ndim != 1 or depth.size < 1 or np.any(np.diff(depth) < 0) or depth[0] < 0:
