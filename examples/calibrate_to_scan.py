@@ -27,7 +27,7 @@ from warptrunc import plot
 from warptrunc.calibrate import calibrate, calibrated_surface, target_from_surface
 from warptrunc.descriptors import describe, radial_psd
 from warptrunc.fractal import METHODS, fractal_dimensions
-from warptrunc.io import read_height_map
+from warptrunc.io import read_height_map, write_height_map
 from warptrunc.wm import wm_surface
 
 
@@ -76,7 +76,7 @@ def main(argv=None) -> int:
     ds = describe(s)
     print(f"4. {n_out}² surface: R_t = {ds.Rt * 1e6:.4g} µm, R_rms = {ds.Rrms * 1e6:.4g} µm "
           f"(at fixed R_t' it moves with the resolution), W_r = {ds.Wr * 1e6:.4g} µm")  # fmt: skip
-    path = s.save(args.out / "calibrated_surface.npz")
+    path = write_height_map(s, args.out / "calibrated_surface.npz")
     info = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in cal.to_dict().items()}
     info["output"] = {"path": str(path), **ds.to_dict()}
     (args.out / "calibration.json").write_text(json.dumps(info, indent=2) + "\n")

@@ -72,7 +72,7 @@ def main(argv=None) -> int:
         c = island_curve(
             s, inc, max_depth_fraction=args.max_depth_fraction,
             connectivity=args.connectivity, min_pixels=args.min_pixels,
-            snapshot_depths=[f * s.rt for f in (0.1, 0.2, 0.3, 0.4)] if seed == args.seed else None,
+            snapshot_depths=[f * s.Rt for f in (0.1, 0.2, 0.3, 0.4)] if seed == args.seed else None,
             progress=args.progress, device=args.device,
         )  # fmt: skip
         ind = applicable_depth(c, min_islands=min_islands)
@@ -81,9 +81,9 @@ def main(argv=None) -> int:
         inds.append(ind)
         rows.append({"seed": seed, "seconds": time.perf_counter() - t0, **ind.to_dict()})
         print(
-            f"seed {seed}: max growth rate at {100 * ind.max_growth_depth / ind.rt:.2f} % R_t, "
-            f"peak at {100 * ind.peak_depth / ind.rt:.2f} % R_t, exponent plateau "
-            f"{ind.plateau_exponent:.3f} kept to {100 * ind.fractal_depth / ind.rt:.2f} % R_t"
+            f"seed {seed}: max growth rate at {100 * ind.max_growth_depth / ind.Rt:.2f} % R_t, "
+            f"peak at {100 * ind.peak_depth / ind.Rt:.2f} % R_t, exponent plateau "
+            f"{ind.plateau_exponent:.3f} kept to {100 * ind.fractal_depth / ind.Rt:.2f} % R_t"
             f"{' (censored)' if ind.fractal_depth_censored else ''}"
             f"  [{rows[-1]['seconds']:.1f} s]"
         )

@@ -128,7 +128,7 @@ def main(argv=None) -> int:
 
         ic = [
             islands.island_curve(ss[0], 100, max_depth_fraction=0.5, device=args.device,
-                                 snapshot_depths=[f * ss[0].rt for f in (0.1, 0.2, 0.3)])
+                                 snapshot_depths=[f * ss[0].Rt for f in (0.1, 0.2, 0.3)])
             for ss in surfaces.values()
         ]  # fmt: skip
         p = args.out / "islands.png"

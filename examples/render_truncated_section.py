@@ -29,8 +29,8 @@ import argparse
 import json
 from pathlib import Path
 
+from warptrunc.io.vtk import export_vtk
 from warptrunc.render import animate_truncation, render_truncation
-from warptrunc.vtk_io import export_vtk
 from warptrunc.wm import wm_surface
 
 

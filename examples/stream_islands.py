@@ -35,7 +35,7 @@ import numpy as np
 import warp as wp
 
 import warptrunc
-from warptrunc.stream_islands import streamed_islands
+from warptrunc.islands.streamed import streamed_islands
 from warptrunc.wm import wm_spec
 
 

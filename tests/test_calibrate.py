@@ -10,11 +10,11 @@ import json
 import numpy as np
 import pytest
 
+import warptrunc
+from warptrunc._root_find import find_root, isotonic
 from warptrunc.calibrate import (
     CalibrationError,
     CalibrationTarget,
-    _find_root,
-    _isotonic,
     calibrate,
     calibrated_surface,
     target_from_surface,
@@ -62,7 +62,7 @@ def test_given_targets_and_high_resolution_surface():
     cal = calibrate(target, seeds=(0, 1), progress=False, device="cpu")
     s = calibrated_surface(cal, n=128, seed=3, device="cpu")
     assert s.heights.shape == (128, 128)
-    assert s.rt == pytest.approx(cal.Rt, rel=1e-5)  # heights are scaled to R_t'
+    assert s.Rt == pytest.approx(cal.Rt, rel=1e-5)  # heights are scaled to R_t'
     assert s.params["calibration"]["D_in"] == cal.D_in
     json.dumps(s.params)
 
@@ -104,7 +104,7 @@ def test_target_from_unresolved_scan_needs_wr():
 
 def test_isotonic_against_brute_force():
     y = np.array([1.0, 3.0, 2.0, 2.5, 0.5, 4.0])
-    got = _isotonic(y)
+    got = isotonic(y)
     assert np.all(np.diff(got) >= 0)
     # pooled blocks: [1], [3, 2, 2.5, 0.5] → 2.0, [4]
     np.testing.assert_allclose(got, [1.0, 2.0, 2.0, 2.0, 2.0, 4.0])
@@ -120,26 +120,26 @@ def test_root_search_noisy_non_monotone():
         return 0.7 * x + 0.8 + 0.02 * np.sin(60 * x) + rng.normal(0, 0.005)
 
     target = 0.7 * 2.63 + 0.8
-    x = _find_root(f, target, 0.01, (2.02, 2.98), 2.2, 15)
+    x = find_root(f, target, 0.01, (2.02, 2.98), 2.2, 15)
     assert abs(0.7 * x + 0.8 - target) < 0.01 + 0.02 + 0.015  # atol + wiggle + 3σ noise
     assert len(calls) <= 15
 
 
 def test_root_search_out_of_evaluations():
     with pytest.raises(CalibrationError, match=r"did not reach 2\.5000 ± 0\.0001 in 3 evaluations"):
-        _find_root(lambda x: x + 0.01 * np.sin(1e4 * x), 2.5, 1e-4, (2.02, 2.98), 2.2, 3)
+        find_root(lambda x: x + 0.01 * np.sin(1e4 * x), 2.5, 1e-4, (2.02, 2.98), 2.2, 3)
 
 
 def test_root_search_unreachable_above():
     with pytest.raises(CalibrationError, match="cannot be reached"):
-        _find_root(lambda x: 2.0 + 0.1 * (x - 2.0), 2.9, 0.01, (2.02, 2.98), 2.5, 10)
+        find_root(lambda x: 2.0 + 0.1 * (x - 2.0), 2.9, 0.01, (2.02, 2.98), 2.5, 10)
 
 
 # --- CLI and figure ------------------------------------------------------------------------------
 
 
 def test_cli_calibrate_typed_targets(tmp_path, capsys):
-    from warptrunc import load_surface
+    from warptrunc import read_height_map
     from warptrunc.cli import main
 
     out = tmp_path / "cal"
@@ -152,15 +152,15 @@ def test_cli_calibrate_typed_targets(tmp_path, capsys):
     info = json.loads((out / "calibration.json").read_text())
     assert abs(info["D_out"] - 2.4) <= 0.05 * 2.4
     assert info["target_source"] == "given"
-    s = load_surface(out / "surface.npz")
+    s = read_height_map(out / "surface.npz")
     assert s.heights.shape == (96, 96)
-    assert s.rt == pytest.approx(info["Rt_m"], rel=1e-5)
+    assert s.Rt == pytest.approx(info["Rt_m"], rel=1e-5)
 
 
 def test_cli_calibrate_from_file_and_errors(tmp_path, capsys):
     from warptrunc.cli import main
 
-    p = _scan(n=64).save(tmp_path / "scan.npz")
+    p = warptrunc.write_height_map(_scan(n=64), tmp_path / "scan.npz")
     rc = main(["calibrate", str(p), "--method", "vs", "--Wr", str(WR), "--seeds", "0",
                "--no-progress", "--no-surface", "--out", str(tmp_path / "o")])  # fmt: skip
     assert rc == 0

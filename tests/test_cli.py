@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from warptrunc import load_surface
+from warptrunc import read_height_map
 
 
 def cli(*args, cwd=None):
@@ -23,8 +23,8 @@ def test_generate_then_analyze(tmp_path):
     r = cli("generate", "--n", 128, 96, "--L", 1e-3, 0.75e-3, "--D", 2.4, "--Rt", 2e-6,
             "--seed", 3, "--device", "cpu", "-o", tmp_path / "s.npz")  # fmt: skip
     assert r.returncode == 0, r.stderr
-    s = load_surface(tmp_path / "s.npz")
-    assert s.heights.shape == (96, 128) and s.rt == pytest.approx(2e-6, rel=1e-6)
+    s = read_height_map(tmp_path / "s.npz")
+    assert s.heights.shape == (96, 128) and s.Rt == pytest.approx(2e-6, rel=1e-6)
     assert s.params["D"] == 2.4 and s.params["seed"] == 3
     out = tmp_path / "out"
     r = cli("analyze", "--input", tmp_path / "s.npz", "--device", "cpu", "--out", out,

@@ -13,6 +13,8 @@ import sys
 import numpy as np
 import pytest
 
+import warptrunc
+
 NOTICES = ("CUDA driver", "bad X server", "vtkXOpenGLRenderWindow", "Warp CUDA warning")
 
 
@@ -65,7 +67,7 @@ def test_describe_json_names_the_convention_of_each_d(tmp_path, scaling):
     from warptrunc.fractal import box_counting, fractal_dimension, self_affine_surface
 
     s = self_affine_surface(0.5, n=128, L=1e-3, Rrms=1e-6, seed=3)
-    s.save(tmp_path / "s.npz")
+    warptrunc.write_height_map(s, tmp_path / "s.npz")
     r = cli("describe", "s.npz", "--json", "-", "--height-scaling", scaling, "--device", "cpu",
             cwd=tmp_path)  # fmt: skip
     assert r.returncode == 0, r.stderr

@@ -192,7 +192,7 @@ def test_wm_map_equals_contactmechanics(device, substrate):
     tolerances allow a penetration of rms/1280; measured ≤ 2e-5). Iterations differ by a few:
     warptrunc also restarts the CG when pixels leave the contact."""
     s = wm_surface(2.5, L=1e-3, n=128, seed=3, device="cpu")
-    d = np.array([0.05, 0.1, 0.2, 0.3]) * s.rt
+    d = np.array([0.05, 0.1, 0.2, 0.3]) * s.Rt
     ref = _cm_solves(s.heights, s.dx, d, substrate=substrate)
     c = solve_contact(s, d, contact_modulus=E_STAR, substrate=substrate, stiffness="central",
                       device=device)  # fmt: skip
@@ -223,7 +223,7 @@ def test_measured_scan_equals_contactmechanics(scans_dir, device):
     from warptrunc.io import read_height_map
 
     s = read_height_map(scans_dir / "matrix-4.txt")
-    d = np.array([0.1, 0.25]) * s.rt
+    d = np.array([0.1, 0.25]) * s.Rt
     ref = _cm_solves(s.heights, s.dx, d)
     c = solve_contact(s, d, contact_modulus=E_STAR, stiffness="central", device=device)
     assert c.all_converged
@@ -236,7 +236,7 @@ def test_float32_close_to_float64(device):
     """float32 maps and FFTs (float64 reductions) against float64: F within 1e-5, A within 1e-3,
     Barber k within 1e-4 relative (measured ≤ 5e-7, 0 and 3e-6 at 128²)."""
     s = wm_surface(2.5, L=1e-3, n=128, seed=1, device="cpu")
-    d = np.array([0.1, 0.2, 0.3]) * s.rt
+    d = np.array([0.1, 0.2, 0.3]) * s.Rt
     a = solve_contact(s, d, contact_modulus=E_STAR, device=device)
     b = solve_contact(s, d, contact_modulus=E_STAR, dtype="float32", device=device)
     assert a.all_converged and b.all_converged
@@ -252,7 +252,7 @@ def test_maps_and_columns(device):
     """Pressure and gap maps: pressure ≥ 0, gap ≥ −pentol, no pressure where the gap is open,
     Σ pressure·dx² = F; to_dict() gives 1-D columns."""
     s = wm_surface(2.5, L=1e-3, n=64, seed=2, device="cpu")
-    c = solve_contact(s, [0.2 * s.rt], contact_modulus=E_STAR, maps=True, device=device)
+    c = solve_contact(s, [0.2 * s.Rt], contact_modulus=E_STAR, maps=True, device=device)
     p, g = c.pressure[0], c.gap[0]
     assert p.shape == g.shape == (64, 64)
     tol = c.settings["pentol_m"]
@@ -267,7 +267,7 @@ def test_maps_and_columns(device):
 def test_unconverged_rows_are_flagged(device):
     """A solve stopped at maxiter is kept and flagged, never dropped."""
     s = wm_surface(2.5, L=1e-3, n=64, seed=2, device="cpu")
-    d = np.array([0.1, 0.2]) * s.rt
+    d = np.array([0.1, 0.2]) * s.Rt
     c = solve_contact(s, d, contact_modulus=E_STAR, maxiter=1, device=device)
     assert c.depth.size == 2
     assert not c.converged.any()

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from scipy import stats
 
+import warptrunc
 from warptrunc import from_heights
 from warptrunc.descriptors import (
     band_variance,
@@ -46,7 +47,7 @@ def test_describe_dict_keys():
     for k in ("Rt_m", "Rrms_m", "Ra_m", "skewness", "kurtosis", "Wr_m"):
         assert k in d
     json.dumps(d)
-    assert d["Rt_m"] == pytest.approx(s.rt, rel=1e-6)
+    assert d["Rt_m"] == pytest.approx(s.Rt, rel=1e-6)
 
 
 def test_periodogram_parseval():
@@ -153,7 +154,7 @@ def test_cli_describe_table_and_figures(tmp_path, capsys):
     from warptrunc.cli import main
 
     s = self_affine_surface(0.5, 64, L, Rrms=2e-6, seed=3)
-    p = s.save(tmp_path / "s.npz")
+    p = warptrunc.write_height_map(s, tmp_path / "s.npz")
     rc = main(
         ["describe", str(p), "--out", str(tmp_path / "o"), "--json", str(tmp_path / "d.json")]
     )

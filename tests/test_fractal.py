@@ -224,7 +224,7 @@ def _all(s):
 
 def test_invariant_to_constant(rough):
     base = _all(rough)
-    shifted = _all(from_heights(rough.heights.astype(np.float64) + 5 * rough.rt, rough.dx))
+    shifted = _all(from_heights(rough.heights.astype(np.float64) + 5 * rough.Rt, rough.dx))
     for m in METHODS:
         # float32 rounding of z + c moves heights by ≤ 1 ulp of 5·R_t
         assert shifted[m] == pytest.approx(base[m], abs=2e-3), m

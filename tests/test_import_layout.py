@@ -23,7 +23,8 @@ ROOT = Path(__file__).resolve().parents[1]
 DEPS = str(Path(numpy.__file__).resolve().parents[1])  # site-packages holding the dependencies
 
 PROBE = (
-    "import sys, warptrunc, warptrunc.kernels, warptrunc.truncation;"
+    "import sys, warptrunc, warptrunc.kernels, warptrunc.truncation.stream, warptrunc.io.vtk;"
+    "import warptrunc.islands.streamed, warptrunc.plot.pooling;"
     "from warptrunc.kernels import truncation as _k;"
     "assert 'kernels' not in sys.modules, 'top-level kernels package';"
     "s = warptrunc.from_heights([[0.0, 1.0], [2.0, 3.0]], 1e-6);"
@@ -93,3 +94,30 @@ def test_kernel_modules_are_submodules_of_the_package(mod):
 
     m = importlib.import_module(mod)
     assert m.__name__ == mod and m.__package__ == "warptrunc.kernels"
+
+
+def test_pyproject_lists_every_package_of_the_tree():
+    """``packages`` in pyproject.toml = the folders of ``warptrunc/`` with an ``__init__.py``."""
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+    cfg = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    tree = {
+        ".".join(p.parent.relative_to(ROOT).parts)
+        for p in (ROOT / "warptrunc").rglob("__init__.py")
+        if "__pycache__" not in p.parts
+    }
+    assert set(cfg["packages"]) == tree | {"warptrunc.kernels"}
+
+
+@pytest.mark.parametrize(
+    "old", ["warptrunc.stream", "warptrunc.stream_islands", "warptrunc.vtk_io", "warptrunc._blocks"]
+)
+def test_old_module_paths_are_gone(old):
+    """One place per concern: the modules moved into ``truncation/``, ``islands/``, ``io/`` and
+    ``plot/`` leave no second import path behind."""
+    import importlib
+
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module(old)

@@ -14,7 +14,6 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 import warptrunc
-from warptrunc import islands as _islands
 from warptrunc.islands import (
     MIN_ISLANDS,
     IslandCurve,
@@ -25,6 +24,7 @@ from warptrunc.islands import (
     label_islands,
     slit_island_fit,
 )
+from warptrunc.islands import unionfind as _unionfind
 
 # --- references -------------------------------------------------------------------------------
 
@@ -180,9 +180,9 @@ def labels_of(mask, connectivity, device, method, periodic=False):
         return isl.labels, isl.n_islands
     m = wp.array(np.ascontiguousarray(mask, np.uint8), dtype=wp.uint8, device=device)
     if method == "sequential":
-        lab, n = _islands._label_sequential(m, connectivity, periodic)
+        lab, n = _unionfind._label_sequential(m, connectivity, periodic)
     else:  # "parallel": 4 pixels per thread where rows allow it; "parallel-pixel": 1 per thread
-        lab, n = _islands._label_parallel(
+        lab, n = _unionfind._label_parallel(
             m, connectivity, periodic, quads=None if method == "parallel" else False
         )
     return lab.numpy(), n
@@ -297,7 +297,7 @@ def test_carried_forest_equals_labelling_each_depth(device, connectivity, kind):
         if kind == "quantised":  # many equal heights: pixels that touch at the same depth
             z = np.floor(z * 6)
         s = warptrunc.from_heights((z * 1e-6).astype(np.float32), 1e-6)
-    depths = np.array([0.45, 0.0, 0.1, 0.25, 0.25, 0.6, 0.95, 1.0]) * s.rt
+    depths = np.array([0.45, 0.0, 0.1, 0.25, 0.25, 0.6, 0.95, 1.0]) * s.Rt
     got = islands_at_depths(s, depths, connectivity=connectivity, device=device)
     thr = thresholds(s, depths)
     for d, t, isl in zip(depths, thr, got, strict=True):
@@ -338,7 +338,7 @@ def test_long_merge_chain_along_spiral(device):
 def test_island_curve_against_references(device, connectivity, periodic):
     s = smooth_surface(64, 72, seed=3)
     min_pixels = 4
-    snaps = [0.2 * s.rt, 0.35 * s.rt]
+    snaps = [0.2 * s.Rt, 0.35 * s.Rt]
     c = island_curve(
         s,
         30,
@@ -451,8 +451,8 @@ def test_slit_island_fit_recovers_a_power_law():
     assert sq.r2 == pytest.approx(1.0, rel=1e-12)
 
 
-def _synthetic_curve(n_islands, exponent, rt=1.0):
-    depth = np.linspace(0, 0.5, n_islands.size) * rt
+def _synthetic_curve(n_islands, exponent, Rt=1.0):
+    depth = np.linspace(0, 0.5, n_islands.size) * Rt
     z = np.zeros(depth.size)
     return IslandCurve(
         depth=depth,
@@ -466,7 +466,7 @@ def _synthetic_curve(n_islands, exponent, rt=1.0):
         slit_n_islands=z.astype(np.int64) + 100,
         area_histogram=np.zeros((depth.size, 4), np.int64),
         sizes=(),
-        rt=rt,
+        Rt=Rt,
         dx=1.0,
         dy=1.0,
         connectivity=4,
@@ -480,13 +480,13 @@ def test_indicators_on_a_synthetic_curve():
     n = np.round(1000 * np.exp(-(((frac - 0.4) / 0.1) ** 2))).astype(int)  # peak at 40 %
     beta = np.where(frac <= 0.3, 0.75, 0.75 - 2.0 * (frac - 0.3))  # drops after 30 %
     beta[:3] = np.nan  # too few islands at the top
-    ind = applicable_depth(_synthetic_curve(n, beta, rt=2e-6), smooth=1)
+    ind = applicable_depth(_synthetic_curve(n, beta, Rt=2e-6), smooth=1)
     # the Gaussian's steepest rise is one standard deviation... /sqrt(2) before the peak
-    assert ind.max_growth_depth / ind.rt == pytest.approx(0.4 - 0.1 / math.sqrt(2), abs=0.006)
-    assert ind.peak_depth / ind.rt == pytest.approx(0.4)
+    assert ind.max_growth_depth / ind.Rt == pytest.approx(0.4 - 0.1 / math.sqrt(2), abs=0.006)
+    assert ind.peak_depth / ind.Rt == pytest.approx(0.4)
     assert ind.plateau_exponent == pytest.approx(0.75)
     # 5 % below 0.75 is 0.7125, crossed at 30 % + 0.01875 → last depth above: 31.5 %
-    assert ind.fractal_depth / ind.rt == pytest.approx(0.315)
+    assert ind.fractal_depth / ind.Rt == pytest.approx(0.315)
     assert not ind.fractal_depth_censored
     d = ind.to_dict()
     assert d["island_peak_depth_percent_Rt"] == pytest.approx(40.0)
@@ -549,8 +549,8 @@ def test_indicators_ignore_a_short_dip():
 @pytest.mark.parametrize("connectivity", [4, 8])
 def test_island_counts_device_equal_scipy(device, connectivity):
     s = smooth_surface(50, 61, seed=8)
-    depth = warptrunc.depth_grid(s.rt, 30, max_depth_fraction=1.0)
-    idx = warptrunc.contact_index_map(s, depth, device=device, as_warp=True)
+    depth = warptrunc.depth_grid(s.Rt, 30, max_depth_fraction=1.0)
+    idx = warptrunc.truncation.contact_index_device(s, depth, warptrunc.resolve_device(device))
     from warptrunc.islands import island_counts_device
 
     got = island_counts_device(idx, depth.size, connectivity)
@@ -585,7 +585,7 @@ def test_gpu_labels_deterministic_and_equal_scipy(connectivity):
 def test_gpu_island_curve_equals_cpu(connectivity):
     _cuda_or_skip()
     s = smooth_surface(256, 200, sigma=3.0, seed=13)
-    kw = dict(connectivity=connectivity, min_pixels=4, snapshot_depths=[0.3 * s.rt])
+    kw = dict(connectivity=connectivity, min_pixels=4, snapshot_depths=[0.3 * s.Rt])
     a = island_curve(s, 60, device="cpu", **kw)
     b = island_curve(s, 60, device="cuda:0", **kw)
     for key, col in a.to_dict().items():

@@ -90,7 +90,7 @@ def test_figures_from_python(tmp_path):
     z = ndi.gaussian_filter(rng.standard_normal((64, 64)), 2.0).astype(np.float32)
     s = warptrunc.from_heights(z * 1e-6, 1e-6)
     c = island_curve(s, 30, max_depth_fraction=0.8, min_pixels=3,
-                     snapshot_depths=[0.2 * s.rt, 0.5 * s.rt], device="cpu")  # fmt: skip
+                     snapshot_depths=[0.2 * s.Rt, 0.5 * s.Rt], device="cpu")  # fmt: skip
     ind = applicable_depth(c, min_islands=5)
     fig = plot.island_number([c, c], [ind, None], labels=["a", "b"], path=tmp_path / "a.png")
     assert len(fig.axes[0].lines) >= 4

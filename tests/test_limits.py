@@ -71,7 +71,7 @@ def test_banded_truncation_equals_numpy_and_one_band(device, name, z, cap):
         lo, hi = height_range(wp.array(z, device=device), device)
     np.testing.assert_array_equal(c.n_contact_pixels, numpy_counts(z, c.threshold))
     np.testing.assert_array_equal(c.n_contact_pixels, ref.n_contact_pixels)
-    assert (c.z_top, c.rt) == (ref.z_top, ref.rt)
+    assert (c.z_top, c.Rt) == (ref.z_top, ref.Rt)
     assert (lo, hi) == (float(z.min()), float(z.max()))
     # the contact index: the first k with z ≥ threshold[k], as NumPy finds it
     expect = np.argmax(z[..., None] >= c.threshold[None, None, :], axis=-1)
@@ -85,7 +85,7 @@ def test_banded_wm_generation_is_unchanged(device):
     with force_band_pixels(5 * 96 + 1):  # extremes by 20 bands of 5 rows
         s = wm_surface(**kw)
     np.testing.assert_array_equal(s.heights, ref.heights)
-    assert s.rt == ref.rt and s.params["scale"] == ref.params["scale"]
+    assert s.Rt == ref.Rt and s.params["scale"] == ref.params["scale"]
 
 
 def test_side_limit_is_refused_before_allocating(capsys):
@@ -99,7 +99,8 @@ def test_side_limit_is_refused_before_allocating(capsys):
 @pytest.mark.parametrize("shape", [(32768, 32768), (46400, 46400)], ids=["2^30", "46400^2"])
 def test_island_labelling_limit_is_refused_before_touching_memory(shape):
     """A (ny, nx) int32 view over a 16-element buffer: the size check must come first."""
-    from warptrunc.islands import island_counts_device, label_device
+    from warptrunc.islands import island_counts_device
+    from warptrunc.islands.unionfind import label_device
 
     buf = wp.zeros(16, dtype=wp.int32, device="cpu")
     index = wp.array(ptr=buf.ptr, shape=shape, dtype=wp.int32, device="cpu")
@@ -123,15 +124,13 @@ def test_gpu_past_2_31_pixels_in_memory_equals_streamed_and_numpy():
         pytest.skip("needs a CUDA device")
     if os.environ.get("WARPTRUNC_SLOW") != "1":
         pytest.skip("large case: set WARPTRUNC_SLOW=1")
-    from warptrunc.stream import truncate_streamed
-
     n = 46400
     s = wm_surface(n=n, seed=1, device="cuda:0")
     assert s.heights.size > 2**31 - 1
     c = truncate(s, 50, max_depth_fraction=0.3, device="cuda:0")
-    st = truncate_streamed(s.params, 50, max_depth_fraction=0.3, device="cuda:0", progress=False)
+    st = truncate(s.params, 50, max_depth_fraction=0.3, stream=True, device="cuda:0")
     np.testing.assert_array_equal(st.n_contact_pixels, c.n_contact_pixels)
-    assert (st.z_top, st.rt) == (c.z_top, c.rt)
+    assert (st.z_top, st.Rt) == (c.z_top, c.Rt)
     assert c.z_top == float(s.heights.max())
     for k in (0, 10, 50):
         assert c.n_contact_pixels[k] == np.count_nonzero(s.heights >= c.threshold[k])

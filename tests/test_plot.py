@@ -64,7 +64,7 @@ def test_height_map_contact_overlay_is_the_numpy_mask():
     fig = plot.height_map(s, depth_fraction=0.3)
     over = np.asarray(fig.axes[0].images[1].get_array())
     z = s.heights
-    ref = z >= np.float32(np.float64(z.max()) - 0.3 * s.rt)
+    ref = z >= np.float32(np.float64(z.max()) - 0.3 * s.Rt)
     np.testing.assert_array_equal(over[..., 3] > 0, ref)
     red = over[ref, :3]
     np.testing.assert_allclose(red, np.broadcast_to(np.array(plot.CONTACT_RGB) / 255, red.shape))
@@ -80,7 +80,7 @@ def test_height_map_of_a_large_map_is_block_pooled_and_says_so(tmp_path):
     z = s.heights.astype(np.float64)
     np.testing.assert_allclose(shown[0, 0], z[:5, :5].mean() * 1e6, rtol=1e-6)
     np.testing.assert_allclose(shown.shape, (40, 60))
-    mask = s.heights >= np.float32(np.float64(s.heights.max()) - 0.2 * s.rt)
+    mask = s.heights >= np.float32(np.float64(s.heights.max()) - 0.2 * s.Rt)
     pooled = mask.reshape(40, 5, 60, 5).any(axis=(1, 3))
     np.testing.assert_array_equal(np.asarray(ax.images[1].get_array())[..., 3] > 0, pooled)
     assert (tmp_path / "h.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -16,7 +16,7 @@ def curve_from_area(depth, area, A=1e-6, pixel_area=1e-12):
     return TruncationCurve(
         depth=np.asarray(depth, float), threshold=np.zeros(len(depth), np.float32),
         n_contact_pixels=n, contact_area=np.asarray(area, float), apparent_area=A,
-        pixel_area=pixel_area, n_pixels=int(A / pixel_area), z_top=0.0, rt=float(depth[-1]) * 10,
+        pixel_area=pixel_area, n_pixels=int(A / pixel_area), z_top=0.0, Rt=float(depth[-1]) * 10,
     )  # fmt: skip
 
 
@@ -48,7 +48,7 @@ def test_fit_recovers_exact_power_law(alpha, beta):
     sc = StiffnessCurve(
         depth=np.linspace(1e-9, 1e-6, 60), n_contact_pixels=n * 1000, contact_area=z, stiffness=z,
         load=f, Ec_over_E=beta * f**alpha, F_over_EA=f, material=Material(), beta_prime=1.0,
-        apparent_area=1.0, rt=1e-5,
+        apparent_area=1.0, Rt=1e-5,
     )  # fmt: skip
     fit = fit_power_law(sc, min_pixels=1)
     assert fit.alpha == pytest.approx(alpha, rel=1e-10)

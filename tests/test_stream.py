@@ -2,18 +2,20 @@
 # SPDX-License-Identifier: MIT
 """Streamed WM truncation against the in-memory path and NumPy counts; bit-identical bands."""
 
+import itertools
 import json
 
 import numpy as np
 import pytest
+from reference import wm_numpy
 
-from warptrunc import truncate
+from warptrunc import resolve_device, truncate
 from warptrunc.cli import main
-from warptrunc.stream import (
+from warptrunc.truncation.stream import (
+    as_wm_spec,
+    banded_truncation,
     fits_in_memory,
     in_memory_bytes,
-    stream_truncation,
-    truncate_streamed,
     wm_bands,
 )
 from warptrunc.wm import wm_spec, wm_surface
@@ -32,17 +34,21 @@ def test_streamed_counts_equal_in_memory_and_numpy(device, nx, ny, band_rows):
     kw = dict(D=2.4, Wr=100e-6, n=(nx, ny), seed=7)
     s = wm_surface(**kw, device=device)
     ref = truncate(s, 60, max_depth_fraction=0.4, device=device)
-    st = stream_truncation(
-        s.params, 60, max_depth_fraction=0.4, band_rows=band_rows, device=device, progress=False
-    )
+    st = banded_truncation(
+        as_wm_spec(s.params), 60, max_depth=None, max_depth_fraction=0.4, band_rows=band_rows,
+        device=resolve_device(device), progress=False,
+    )  # fmt: skip
     c = st.curve
+    public = truncate(s.params, 60, max_depth_fraction=0.4, stream=True, band_rows=band_rows,
+                      device=device)  # fmt: skip
+    np.testing.assert_array_equal(public.n_contact_pixels, c.n_contact_pixels)
     # independent: NumPy counts on the in-memory heights at the streamed thresholds
     np.testing.assert_array_equal(c.n_contact_pixels, numpy_counts(s.heights, c.threshold))
     np.testing.assert_array_equal(c.n_contact_pixels, ref.n_contact_pixels)
     np.testing.assert_array_equal(c.threshold, ref.threshold)
     np.testing.assert_array_equal(c.depth, ref.depth)
     np.testing.assert_array_equal(c.contact_area, ref.contact_area)
-    assert (c.z_top, c.rt, c.n_pixels) == (ref.z_top, ref.rt, ref.n_pixels)
+    assert (c.z_top, c.Rt, c.n_pixels) == (ref.z_top, ref.Rt, ref.n_pixels)
     assert (c.apparent_area, c.pixel_area) == (ref.apparent_area, ref.pixel_area)
     assert c.z_top == float(s.heights.max())
     assert st.surface == s.to_dict()
@@ -54,47 +60,61 @@ def test_streamed_counts_equal_in_memory_and_numpy(device, nx, ny, band_rows):
 
 @pytest.mark.parametrize("nx,ny", [(120, 90), (64, 300)], ids=["120x90", "64x300"])
 @pytest.mark.parametrize("band_rows", [8, 16, 56, 88])
-def test_bands_are_bit_identical_to_the_in_memory_map(device, nx, ny, band_rows):
+def test_bands_match_float64_numpy(device, nx, ny, band_rows):
+    """Each band against the independent float64 NumPy sum of Eq. (4) (``tests/reference.py``)
+    on the same rows; with G given (Rt=None) the scale does not depend on the other bands."""
     # 64×300: several bands on CUDA too (bands are rounded up to 128 rows there)
-    s = wm_surface(2.6, 80e-6, n=(nx, ny), seed=11, device=device)
-    parts = list(wm_bands(s.params, band_rows=band_rows, device=device))
+    D, Wr, L, G, seed = 2.6, 80e-6, (1.2e-3, 0.9e-3), 1e-9, 11
+    Wc = 2 * max(L[0] / nx, L[1] / ny)
+    ref, _ = wm_numpy(D, Wr, L[0], L[1], nx, ny, G=G, Wc=Wc, seed=seed)
+    kw = dict(D=D, Wr=Wr, L=L, n=(nx, ny), Rt=None, G=G, seed=seed)
+    parts = list(wm_bands(kw, band_rows=band_rows, device=device))
     assert [r0 for r0, _, _ in parts] == sorted({r0 for r0, _, _ in parts})
     assert parts[0][0] == 0 and parts[-1][1] == ny
-    z = np.concatenate([b for _, _, b in parts])
-    assert z.dtype == np.float32 and z.shape == s.heights.shape
-    np.testing.assert_array_equal(z.view(np.uint32), s.heights.view(np.uint32))  # bits
+    assert all(a[1] == b[0] for a, b in itertools.pairwise(parts))  # no gap, no overlap
+    for r0, r1, z in parts:
+        assert z.dtype == np.float32 and z.shape == (r1 - r0, nx)
+        # float32 heights of a float64 sum: 1e-5 of the height range, as tests/test_wm.py
+        err = np.abs(z.astype(np.float64) - ref[r0:r1]).max() / np.ptp(ref)
+        assert err <= 1e-5, (r0, r1, err)
 
 
 def test_topothesy_scaling_and_max_depth(device):
     """Rt=None (G given): the scale does not depend on the extremes; z_top and R_t still do."""
     kw = dict(D=2.3, Wr=100e-6, n=(80, 72), Rt=None, G=1e-9, seed=2)
     s = wm_surface(**kw, device=device)
-    ref = truncate(s, 40, max_depth=0.25 * s.rt, device=device)
-    c = truncate_streamed(kw, 40, max_depth=0.25 * s.rt, band_rows=16, device=device,
-                          progress=False)  # fmt: skip
+    ref = truncate(s, 40, max_depth=0.25 * s.Rt, device=device)
+    c = truncate(kw, 40, max_depth=0.25 * s.Rt, stream=True, band_rows=16, device=device)
     np.testing.assert_array_equal(c.n_contact_pixels, ref.n_contact_pixels)
     np.testing.assert_array_equal(c.n_contact_pixels, numpy_counts(s.heights, c.threshold))
-    assert c.rt == s.rt
+    assert c.Rt == s.Rt
 
 
 def test_accepts_a_spec_and_a_params_mapping():
     spec = wm_spec(2.5, 100e-6, n=64, seed=5)
-    a = truncate_streamed(spec, 20, band_rows=16, device="cpu", progress=False)
-    b = truncate_streamed({"D": 2.5, "Wr": 100e-6, "n": 64, "seed": 5}, 20, device="cpu",
-                          progress=False)  # fmt: skip
+    a = truncate(spec, 20, stream=True, band_rows=16, device="cpu")
+    b = truncate({"D": 2.5, "Wr": 100e-6, "n": 64, "seed": 5}, 20, stream=True, device="cpu")
     np.testing.assert_array_equal(a.n_contact_pixels, b.n_contact_pixels)
+    c = truncate(spec, 20, stream=False, device="cpu")  # generated whole
+    d = truncate(spec, 20, device="cpu")  # "auto": a 64² map fits
+    np.testing.assert_array_equal(c.n_contact_pixels, a.n_contact_pixels)
+    np.testing.assert_array_equal(d.n_contact_pixels, a.n_contact_pixels)
 
 
 def test_bad_input_is_refused_with_the_parameter():
     spec = wm_spec(2.5, 100e-6, n=64)
     with pytest.raises(ValueError, match="band_rows"):
-        truncate_streamed(spec, 10, band_rows=0, device="cpu")
+        truncate(spec, 10, stream=True, band_rows=0, device="cpu")
     with pytest.raises(ValueError, match="band_rows"):
-        truncate_streamed(spec, 10, band_rows=65, device="cpu")
+        truncate(spec, 10, stream=True, band_rows=65, device="cpu")
     with pytest.raises(ValueError, match="method='tile'"):
-        truncate_streamed(wm_spec(2.5, 100e-6, n=64, method="direct"), 10, device="cpu")
+        truncate(wm_spec(2.5, 100e-6, n=64, method="direct"), 10, stream=True, device="cpu")
     with pytest.raises(TypeError, match="spec_or_params"):
-        truncate_streamed([2.5], 10, device="cpu")
+        truncate([2.5], 10, device="cpu")
+    with pytest.raises(ValueError, match="stream=True"):
+        truncate(wm_surface(2.5, 100e-6, n=32, device="cpu"), 10, stream=True)
+    with pytest.raises(ValueError, match="stream must be"):
+        truncate(spec, 10, stream="yes", device="cpu")
 
 
 def test_memory_estimate():
@@ -128,9 +148,9 @@ def test_cli_stream_equals_in_memory(tmp_path, capsys):
 
 
 def test_cli_streams_when_the_map_does_not_fit(tmp_path, monkeypatch):
-    import warptrunc.stream
+    import warptrunc.truncation.stream
 
-    monkeypatch.setattr(warptrunc.stream, "_fits", lambda spec, device: False)
+    monkeypatch.setattr(warptrunc.truncation.stream, "fits", lambda spec, device: False)
     _analyze(tmp_path)
     info = json.loads((tmp_path / "fit.json").read_text())
     assert info["path"] == "streamed"

@@ -1,12 +1,14 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Banded island labelling (border merge by union-find) against scipy.ndimage.label."""
+"""Banded island labelling (``label_islands(..., band_rows=)``, border merge by union-find) and
+streamed islands against scipy.ndimage.label and the one-piece labelling."""
 
 import numpy as np
 import pytest
 from scipy import ndimage
 
-from warptrunc.stream_islands import label_banded, streamed_islands
+from warptrunc import label_islands
+from warptrunc.islands.streamed import streamed_islands
 from warptrunc.wm import wm_surface
 
 STRUCT = {4: ndimage.generate_binary_structure(2, 1), 8: np.ones((3, 3), bool)}
@@ -54,26 +56,31 @@ def _u_shapes():
 @pytest.mark.parametrize("connectivity", [4, 8])
 def test_banded_labels_equal_scipy(device, name, mask, band_rows, connectivity):
     rows = min(band_rows, mask.shape[0])
-    got = label_banded(mask, band_rows=rows, connectivity=connectivity, device=device)
+    got = label_islands(mask, 2e-6, 3e-6, connectivity=connectivity, band_rows=rows, device=device)
     ref = scipy_areas(mask, connectivity)
     assert got.area_pixels.dtype == np.int64
     np.testing.assert_array_equal(got.area_pixels, ref)  # count, sizes and raster order
     assert got.n_islands == ref.size
-    assert got.n_bands == -(-mask.shape[0] // rows)
+    np.testing.assert_array_equal(
+        got.labels, ndimage.label(mask, structure=STRUCT[connectivity])[0]
+    )
+    # perimeters and areas: equal to the one-piece labelling (tested against NumPy itself)
+    one = label_islands(mask, 2e-6, 3e-6, connectivity=connectivity, device=device)
+    for k in ("area", "perimeter", "edges_x", "edges_y"):
+        np.testing.assert_array_equal(getattr(got, k), getattr(one, k), err_msg=k)
 
 
 def test_spiral_merges_across_every_border():
     m = _spiral(33)
-    got = label_banded(m, band_rows=2, connectivity=4, device="cpu")
+    got = label_islands(m, band_rows=2, connectivity=4, device="cpu")
     assert got.n_islands == ndimage.label(m)[1]
-    assert got.n_border_merges > 5
 
 
 @pytest.mark.parametrize("band_rows", [8, 24, None])
 @pytest.mark.parametrize("connectivity", [4, 8])
 def test_streamed_islands_equal_scipy_on_the_in_memory_map(device, band_rows, connectivity):
     s = wm_surface(2.4, 100e-6, n=(96, 150), seed=5, device=device)
-    depths = np.array([0.05, 0.2, 0.45]) * s.rt
+    depths = np.array([0.05, 0.2, 0.45]) * s.Rt
     got = streamed_islands(s.params, depths, band_rows=band_rows, connectivity=connectivity,
                            device=device, progress=False)  # fmt: skip
     thr = (np.float64(s.heights.max()) - depths).astype(np.float32)
@@ -84,8 +91,10 @@ def test_streamed_islands_equal_scipy_on_the_in_memory_map(device, band_rows, co
 
 def test_bad_input():
     with pytest.raises(ValueError, match="band_rows"):
-        label_banded(np.ones((4, 4), bool), band_rows=0, device="cpu")
+        label_islands(np.ones((4, 4), bool), band_rows=0, device="cpu")
     with pytest.raises(ValueError, match="connectivity"):
-        label_banded(np.ones((4, 4), bool), band_rows=2, connectivity=6, device="cpu")
+        label_islands(np.ones((4, 4), bool), band_rows=2, connectivity=6, device="cpu")
+    with pytest.raises(ValueError, match="band_rows"):
+        label_islands(np.ones((4, 4), bool), band_rows=2, periodic=True, device="cpu")
     with pytest.raises(ValueError, match="depths"):
         streamed_islands({"n": 64}, [-1.0], device="cpu")

@@ -245,7 +245,7 @@ def test_rt_percentile_clips_spikes_and_is_recorded(tmp_path, capsys):
     assert run(*args, "--rt-percentile", 0.1, 99.9, "--out", tmp_path / "b") == 0
     fit = strict_load(tmp_path / "b" / "fit.json")
     assert fit["surface"]["rt_percentile"] == [0.1, 99.9]
-    assert fit["surface"]["Rt_raw_m"] > 10 * fit["surface"]["rt_m"]
+    assert fit["surface"]["Rt_raw_m"] > 10 * fit["surface"]["Rt_m"]
     assert fit["surface"]["n_clipped_above"] >= 1
 
 

@@ -106,7 +106,7 @@ def test_depth_options(device):
     c = truncate(s, 20, max_depth=0.5, device=device)
     assert c.depth[-1] == pytest.approx(0.5) and c.depth.size == 21
     c = truncate(s, 8, max_depth_fraction=0.25, device=device)
-    assert c.depth[-1] == pytest.approx(0.25 * s.rt)
+    assert c.depth[-1] == pytest.approx(0.25 * s.Rt)
 
 
 @pytest.mark.parametrize(
@@ -157,7 +157,7 @@ def test_bad_spacing_and_device_raise():
 def test_histogram_kernels_equal_numpy(device, monkeypatch, mode, n_inc):
     """Every histogram kernel (block-private, 4 pixels per thread, one per pixel), with bins
     beyond the shared histogram's size and a remainder of n mod 4 pixels, counts as NumPy."""
-    import warptrunc.truncation as tr
+    import warptrunc.truncation.curve as tr
 
     monkeypatch.setattr(tr, "GPU_HISTOGRAM", mode)
     z = np.random.default_rng(5).normal(size=(61, 67)).astype(np.float32)  # 4087 pixels
@@ -179,3 +179,29 @@ def test_histogram_of_unaligned_view_equals_numpy(device):
     thr = (np.float64(z[1:].max()) - np.linspace(0.0, 2.0, 101)).astype(np.float32)
     hist = contact_histogram(zw, wp.array(thr, device=dev), float(z[1:].max()), 50.0, dev)
     np.testing.assert_array_equal(np.cumsum(hist.numpy()[:101]), numpy_counts(z[1:], thr))
+
+
+@pytest.mark.parametrize("stream", [False, True])
+def test_device_is_resolved_once_per_call(monkeypatch, stream):
+    """The public call resolves the device; the helpers below it take the resolved device."""
+    import sys
+
+    import warptrunc
+    import warptrunc._device as dev
+
+    real, calls = dev.resolve_device, []
+
+    def counting(device=None):
+        calls.append(device)
+        return real(device)
+
+    for m in list(sys.modules.values()):
+        if (
+            getattr(m, "__name__", "").startswith("warptrunc")
+            and getattr(m, "resolve_device", None) is real
+        ):
+            monkeypatch.setattr(m, "resolve_device", counting)
+    spec = {"D": 2.5, "Wr": 100e-6, "n": 64, "seed": 1}
+    warptrunc.truncate(spec, 20, stream=stream, device="cpu")
+    warptrunc.truncate(warptrunc.from_heights(np.eye(8), 1e-6), 4, device="cpu")
+    assert calls == ["cpu", "cpu"]

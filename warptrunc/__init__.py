@@ -11,7 +11,7 @@ W_c     ``Wc``                 cut-off wavelength (m)
 γ       ``gamma``              WM frequency density (dimensionless, > 1)
 M       ``M``                  number of superposed ridges
 G       ``G``                  topothesy (m)
-R_t     ``Rt`` / ``rt``        peak-to-valley height (m)
+R_t     ``Rt``                 peak-to-valley height (m)
 ω       ``depth``              truncation depth from the top (m)
 A_c     ``contact_area``       truncated (contact) area (m²)
 A       ``apparent_area``      apparent area Lx·Ly (m²)
@@ -30,16 +30,23 @@ from ._source import map_source_kernels as _map_source_kernels
 _map_source_kernels(__name__, __path__)
 
 from ._device import resolve_device  # after the kernels mapping above
-from .calibrate import Calibration, CalibrationTarget, calibrate
+from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
 from .contact.check import BemCheck, bem_check
-from .descriptors import describe
+from .descriptors import Descriptors, describe
 from .fractal import FractalFit, fractal_dimension, fractal_dimensions
 from .io import read_height_map, write_height_map
-from .islands import IslandCurve, Islands, applicable_depth, island_curve, label_islands
+from .io.vtk import export_vtk
+from .islands import (
+    Indicators,
+    IslandCurve,
+    Islands,
+    applicable_depth,
+    island_curve,
+    label_islands,
+)
 from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
-from .surface import Surface, from_heights, load_surface
+from .surface import Surface, from_heights
 from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
-from .vtk_io import export_vtk
 from .wm import wm_surface
 
 __version__ = "0.1.0"
@@ -47,8 +54,11 @@ __version__ = "0.1.0"
 __all__ = [
     "BemCheck",
     "Calibration",
+    "CalibrationError",
     "CalibrationTarget",
+    "Descriptors",
     "FractalFit",
+    "Indicators",
     "IslandCurve",
     "Islands",
     "Material",
@@ -69,7 +79,6 @@ __all__ = [
     "from_heights",
     "island_curve",
     "label_islands",
-    "load_surface",
     "read_height_map",
     "resolve_device",
     "stiffness_curve",

@@ -8,7 +8,10 @@ else ``"cuda:0"`` when a CUDA device is present, else ``"cpu"``.
 
 from __future__ import annotations
 
+import ctypes
 import os
+import sys
+import tempfile
 
 import warp as wp
 
@@ -46,9 +49,6 @@ def _run_filtering_native_output(fn, drop: tuple[str, ...]):
     file descriptors 1 and 2; C buffers are flushed before they are restored. Captured lines
     that contain none of ``drop`` are written back to the same stream afterwards.
     """
-    import ctypes
-    import sys
-    import tempfile
 
     try:
         libc = ctypes.CDLL(None)
@@ -87,6 +87,18 @@ def _init() -> None:
         else:
             _run_filtering_native_output(wp.init, CPU_ONLY_NOTICES)
         _initialised = True
+
+
+def cuda_device_count() -> int:
+    """Number of CUDA devices Warp sees (0 on a machine without a GPU)."""
+    _init()
+    return wp.get_cuda_device_count()
+
+
+def as_device(device: wp.DeviceLike = None) -> wp.context.Device:
+    """``device`` itself when it is already a resolved Warp device (as internal helpers get it
+    from the public call that resolved it), else :func:`resolve_device` of it."""
+    return device if isinstance(device, wp.Device) else resolve_device(device)
 
 
 def resolve_device(device: wp.DeviceLike = None) -> wp.context.Device:

@@ -30,7 +30,7 @@ split a map into **row bands** (whole rows; a contiguous slice ``z[r0:r1]`` flat
 valid 1-D view) of at most :func:`band_pixel_limit` pixels, launch the flat kernels once per
 band, and combine the partial results on the host in Python integers (int64 histograms; global
 row offsets are Python ints passed as kernel arguments only where a kernel needs them, and a
-row index stays below 2²⁰). The same bands drive the streamed path (``warptrunc.stream``),
+row index stays below 2²⁰). The same bands drive the streamed path (``warptrunc.truncation.stream``),
 where a band is generated, reduced and dropped.
 
 The band limit is 2³⁰ pixels by default (4 GiB of float32 per band, well inside the 32-bit
@@ -41,7 +41,7 @@ Remaining limits (refused before allocating, with the value):
 - island labelling keeps flat ``int32`` pixel indices (union-find parents, the radix sort's
   2·N buffers): fewer than 2³⁰ pixels; ``warptrunc.islands`` refuses larger maps before
   allocating, naming the limit and the size. Island counts and areas past it, or beyond
-  memory, come from the banded labelling of ``warptrunc.stream_islands`` (see
+  memory, come from the banded labelling of ``warptrunc.islands.streamed`` (see
   :data:`STREAMING_ISLANDS`).
 - a side of a WM surface is at most 2²⁰ pixels (``wm_spec``).
 """
@@ -76,9 +76,10 @@ union-find over the pairs (label above, label below) of touching contact pixels;
 label of each merged set survives (first pixel in raster order) and the areas (int64 pixel
 counts, one device histogram per band) of the others are added to it. Memory stays
 O(band + number of islands). Built for island counts and areas in
-``warptrunc.stream_islands`` (``label_banded``, ``streamed_islands``); not built: periodic
-wrapping, perimeters (a perimeter would be the sum over bands minus twice the merged border
-edges) and the union-find forest carried across depths (each depth is labelled afresh).
+``warptrunc.islands.streamed.streamed_islands``, and for labels, areas and perimeters of a host
+mask in ``label_islands(..., band_rows=)`` (the label map and the perimeter count on the host);
+not built: periodic wrapping and the union-find forest carried across depths (each depth is
+labelled afresh).
 """
 
 

@@ -24,18 +24,21 @@ interpolation inside the bracket, secant extrapolation outside it, clipped to
 
 from __future__ import annotations
 
-import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 import warp as wp
 
+from ._progress import progress_bar
+from ._results import jsonable
+from ._root_find import CalibrationError, find_root
 from ._validate import check_int, check_range, pair
 from .descriptors import roll_off_wavelength, surface_statistics
 from .fractal import METHODS, fractal_dimension
 from .surface import Surface
+from .wm import wm_surface
 
 __all__ = [
     "Calibration",
@@ -45,18 +48,6 @@ __all__ = [
     "calibrated_surface",
     "target_from_surface",
 ]
-
-
-class CalibrationError(ValueError):
-    """The target cannot be reached, or the loop ran out of evaluations.
-
-    ``d_in`` and ``d_out`` hold the evaluations of the failed D loop (dimensionless).
-    """
-
-    def __init__(self, message: str, d_in: Sequence[float] = (), d_out: Sequence[float] = ()):
-        super().__init__(message)
-        self.d_in = [float(v) for v in d_in]
-        self.d_out = [float(v) for v in d_out]
 
 
 @dataclass(frozen=True)
@@ -111,7 +102,7 @@ class CalibrationTarget:
             "Ly_m": self.L[1],
             "nx": self.n[0],
             "ny": self.n[1],
-            "method_options": _jsonable(self.method_options),
+            "method_options": jsonable(self.method_options, nonfinite="text"),
             "source": self.source,
         }
 
@@ -288,9 +279,6 @@ def calibrate(
         The target D lies outside the D_out reached at the bounds of ``D_bounds`` (the message
         gives that range), or the loop did not converge within ``max_iter`` evaluations.
     """
-    from tqdm.auto import tqdm
-
-    from .wm import wm_surface
 
     rtol = check_range("rtol", rtol, 0.0, 1.0)
     lo, hi = (float(v) for v in D_bounds)
@@ -306,30 +294,32 @@ def calibrate(
     hist: list[tuple[float, float, float, float, float]] = []
     wm_opts = {"M": M, "gamma": gamma, "cutoff": cutoff}
 
-    bar = tqdm(total=max_iter * max_rounds, disable=not progress, desc="calibrate", unit="eval")
+    bar = progress_bar(
+        total=max_iter * max_rounds, enabled=progress, desc="calibrate", unit="eval"
+    )
 
-    def evaluate(d_in: float, rt: float) -> tuple[float, float, float]:
+    def evaluate(d_in: float, Rt: float) -> tuple[float, float, float]:
         ds, rms = [], []
         for seed in seeds:
             s = wm_surface(
-                d_in, target.Wr, L=target.L, n=target.n, Rt=rt, seed=seed, device=device, **wm_opts
+                d_in, target.Wr, L=target.L, n=target.n, Rt=Rt, seed=seed, device=device, **wm_opts
             )
             ds.append(fractal_dimension(s, target.method, device=device, **target.method_options).D)
             rms.append(surface_statistics(s)["Rrms"])  # on the device, no host copy
         out = (float(np.mean(ds)), float(np.std(ds)), float(np.mean(rms)))
-        hist.append((d_in, rt, *out))
+        hist.append((d_in, Rt, *out))
         bar.update(1)
         bar.set_postfix(D_in=f"{d_in:.4f}", D_out=f"{out[0]:.4f}", target=f"{target.D:.4f}")
         return out
 
     atol = rtol * target.D
-    rt = target.Rt
+    Rt = target.Rt
     d_in = x0
     known = None
     try:
         for _ in range(max_rounds):
-            d_in = _find_root(
-                lambda x, rt=rt: evaluate(x, rt)[0],
+            d_in = find_root(
+                lambda x, Rt=Rt: evaluate(x, Rt)[0],
                 target.D,
                 atol,
                 (lo, hi),
@@ -339,16 +329,16 @@ def calibrate(
                 known=known,
             )
             # R_t' from the evaluation at the chosen D_in (R_rms ∝ R_t for fixed D_in, seeds)
-            rms_at = next(h[4] for h in reversed(hist) if h[0] == d_in and h[1] == rt)
-            rt = rt * target.Rrms / rms_at
-            d_out, d_std, rms = evaluate(d_in, rt)
+            rms_at = next(h[4] for h in reversed(hist) if h[0] == d_in and h[1] == Rt)
+            Rt = Rt * target.Rrms / rms_at
+            d_out, d_std, rms = evaluate(d_in, Rt)
             if abs(d_out - target.D) <= atol:
                 break
             known = (d_in, d_out)
         else:
             raise CalibrationError(
                 f"D_out by {target.method!r} drifts out of tolerance after rescaling to R_t' in "
-                f"each of {max_rounds} rounds (last D_in = {d_in:.4f}, R_t' = {rt:.4g} m, "
+                f"each of {max_rounds} rounds (last D_in = {d_in:.4f}, R_t' = {Rt:.4g} m, "
                 f"D_out = {d_out:.4f}, target {target.D:.4f} ± {atol:.4f})"
             )
     finally:
@@ -357,7 +347,7 @@ def calibrate(
     return Calibration(
         target=target,
         D_in=float(d_in),
-        Rt=float(rt),
+        Rt=float(Rt),
         D_out=d_out,
         D_out_std=d_std,
         Rrms=rms,
@@ -407,7 +397,6 @@ def calibrated_surface(
     WM sum has more (finer) terms, so R_rms at fixed R_t' differs slightly from the target
     (−1.4 % from 1024² to 2048² in ``examples/calibrate_to_scan.py``).
     """
-    from .wm import wm_surface
 
     t = calibration.target
     s = wm_surface(
@@ -425,121 +414,9 @@ def calibrated_surface(
         for k, v in calibration.to_dict().items()
         if not k.startswith("history_") and not k.startswith("wm_")
     }
-    return Surface(s.heights, s.dx, s.dy, {**s.params, "calibration": _jsonable(info)})
+    return Surface(s.heights, s.dx, s.dy, {**s.params, "calibration": jsonable(info, nonfinite="text")})
 
 
 # --- root search on a noisy, non-decreasing function -------------------------------------------
 
 
-def _isotonic(y: np.ndarray) -> np.ndarray:
-    """Non-decreasing least-squares fit of ``y`` (pool adjacent violators, equal weights)."""
-    vals: list[float] = []
-    counts: list[int] = []
-    for v in y:
-        vals.append(float(v))
-        counts.append(1)
-        while len(vals) > 1 and vals[-2] > vals[-1]:
-            c = counts[-2] + counts[-1]
-            v2 = (vals[-2] * counts[-2] + vals[-1] * counts[-1]) / c
-            vals[-2:] = [v2]
-            counts[-2:] = [c]
-    return np.repeat(vals, counts)
-
-
-def _find_root(
-    f: Callable[[float], float],
-    target: float,
-    atol: float,
-    bounds: tuple[float, float],
-    x0: float,
-    max_iter: int,
-    *,
-    what: str = "f",
-    known: tuple[float, float] | None = None,
-) -> float:
-    """Return an x in ``bounds`` with |f(x) − target| ≤ atol, f noisy but non-decreasing
-    on average; ``known`` = (x0, f(x0)) saves the first evaluation. Raises CalibrationError
-    when unreachable or out of evaluations."""
-    lo, hi = bounds
-    xs: list[float] = []
-    ys: list[float] = []
-    x = x0
-    streak = 0  # consecutive extrapolations in one direction: the minimum step doubles
-    for it in range(max_iter):
-        y = known[1] if (it == 0 and known is not None) else f(x)
-        xs.append(x)
-        ys.append(y)
-        if abs(y - target) <= atol:
-            return x
-        order = np.argsort(xs)
-        sx = np.asarray(xs)[order]
-        sy = _isotonic(np.asarray(ys)[order])
-        # secant slope of the isotonic fit; 1 (D_out ≈ D_in) until two distinct points exist
-        slope = 1.0
-        if sx[-1] - sx[0] > 1e-6 and sy[-1] > sy[0]:
-            slope = float(np.clip((sy[-1] - sy[0]) / (sx[-1] - sx[0]), 0.05, 20.0))
-        if target < sy[0]:
-            if sx[0] <= lo + 1e-9:
-                _unreachable(what, target, atol, xs, ys, bounds)
-            streak = min(streak, 0) - 1
-            step = max(1.2 * (sy[0] - target) / slope, 0.02 * 2 ** (-streak - 1))
-            nxt = max(lo, sx[0] - step)
-        elif target > sy[-1]:
-            if sx[-1] >= hi - 1e-9:
-                _unreachable(what, target, atol, xs, ys, bounds)
-            streak = max(streak, 0) + 1
-            step = max(1.2 * (target - sy[-1]) / slope, 0.02 * 2 ** (streak - 1))
-            nxt = min(hi, sx[-1] + step)
-        else:
-            streak = 0
-            i = int(np.searchsorted(sy, target, side="left"))
-            i = min(max(i, 1), sx.size - 1)
-            x_a, x_b, y_a, y_b = sx[i - 1], sx[i], sy[i - 1], sy[i]
-            nxt = (
-                0.5 * (x_a + x_b)
-                if y_b <= y_a
-                else x_a + (target - y_a) * (x_b - x_a) / (y_b - y_a)
-            )
-            # keep clear of points already evaluated (noise would only repeat them)
-            gap = 0.1 * (x_b - x_a)
-            nxt = min(max(nxt, x_a + gap), x_b - gap)
-        if min(abs(nxt - v) for v in xs) < 1e-4:
-            break
-        x = float(nxt)
-    best = int(np.argmin(np.abs(np.asarray(ys) - target)))
-    raise CalibrationError(
-        f"{what} did not reach {target:.4f} ± {atol:.4f} in {len(xs)} evaluations; closest: "
-        f"D_in = {xs[best]:.4f} → {ys[best]:.4f}. Evaluations (D_in → D_out): "
-        + ", ".join(f"{a:.4f}→{b:.4f}" for a, b in zip(xs, ys, strict=True))
-        + ". Raise max_iter, add seeds, or loosen rtol.",
-        xs,
-        ys,
-    )
-
-
-def _unreachable(what, target, atol, xs, ys, bounds) -> None:
-    i = int(np.argmin(xs)) if target < min(ys) else int(np.argmax(xs))
-    side = "lower" if target < min(ys) else "upper"
-    raise CalibrationError(
-        f"{what} = {target:.4f} cannot be reached with D_in in [{bounds[0]:g}, {bounds[1]:g}]: "
-        f"the {side} bound D_in = {xs[i]:.4f} gives {ys[i]:.4f} (tolerance ± {atol:.4f}); "
-        f"D_out over the {len(xs)} evaluations spans [{min(ys):.4f}, {max(ys):.4f}]. Use another "
-        "method, or check the target (for 'tri'/'box' D depends on R_t relative to the pixel "
-        "size).",
-        xs,
-        ys,
-    )
-
-
-def _jsonable(v: Any) -> Any:
-    if isinstance(v, dict):
-        return {str(k): _jsonable(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_jsonable(x) for x in v]
-    if isinstance(v, np.ndarray):
-        return v.tolist()
-    if isinstance(v, np.generic):
-        return v.item()
-    if isinstance(v, float) and not math.isfinite(v):
-        return str(v)
-    return v

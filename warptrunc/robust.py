@@ -109,12 +109,12 @@ def fit_range_advice(
     """
     z = np.asarray(heights, dtype=np.float64).ravel()
     zs = np.sort(z)[::-1]
-    rt = float(zs[0] - zs[-1])
+    Rt = float(zs[0] - zs[-1])
     n, m = int(increments), int(min_pixels)
     out: list[str] = []
-    if rt <= 0:
+    if Rt <= 0:
         return out
-    omega = max_depth if max_depth is not None else max_depth_fraction * rt
+    omega = max_depth if max_depth is not None else max_depth_fraction * Rt
     if n < MIN_FIT_POINTS:
         if _n_fit(zs, 200, omega, m, depth_window) >= MIN_FIT_POINTS:
             out.append("--increments 200")
@@ -122,8 +122,8 @@ def fit_range_advice(
     if depth_window is None and m <= zs.size:
         # depth at which the m-th pixel touches; ω_{n−2} must reach it
         need = (zs[0] - zs[m - 1]) * n / (n - MIN_FIT_POINTS + 1)
-        for f in (_ceil2(1.02 * need / rt), _ceil2(1.1 * need / rt)):
-            if f <= 1.0 and _n_fit(zs, n, f * rt, m, None) >= MIN_FIT_POINTS:
+        for f in (_ceil2(1.02 * need / Rt), _ceil2(1.1 * need / Rt)):
+            if f <= 1.0 and _n_fit(zs, n, f * Rt, m, None) >= MIN_FIT_POINTS:
                 out.append(f"--max-depth-fraction {f:g}")
                 break
     # the fewest pixels among the last three increments (inside the window)
@@ -146,7 +146,7 @@ def fit_range_advice(
         p_lo, p_hi = np.percentile(z, [0.1, 99.9])
         zc = np.clip(zs, p_lo, p_hi)
         if p_hi > p_lo and _n_fit(zc, n, max_depth_fraction * (p_hi - p_lo), m, None) >= 3:
-            share = (zs[0] - p_hi) / rt
+            share = (zs[0] - p_hi) / Rt
             out.append(
                 f"--rt-percentile 0.1 99.9 (the highest 0.1 % of the pixels span {share:.0%} of R_t)"
             )

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ._results import fields_to_dict
 from ._table import write_columns_csv
 from ._validate import check_int, check_range
 from .truncation import TruncationCurve
@@ -101,7 +102,7 @@ class StiffnessCurve:
     """Geometric factor β' (dimensionless)."""
     apparent_area: float
     """Apparent area A (m²)."""
-    rt: float
+    Rt: float
     """Peak-to-valley height R_t of the map (m)."""
 
     def to_dict(self) -> dict[str, np.ndarray]:
@@ -115,15 +116,12 @@ class StiffnessCurve:
             ``Ec_over_E`` and ``F_over_EA`` (dimensionless). The arrays are the fields
             themselves, not copies.
         """
-        return {
-            "depth_m": self.depth,
-            "n_contact_pixels": self.n_contact_pixels,
-            "contact_area_m2": self.contact_area,
-            "stiffness_N_per_m": self.stiffness,
-            "load_N": self.load,
-            "Ec_over_E": self.Ec_over_E,
-            "F_over_EA": self.F_over_EA,
-        }
+        return fields_to_dict(
+            self,
+            {"depth": "depth_m", "contact_area": "contact_area_m2",
+             "stiffness": "stiffness_N_per_m", "load": "load_N"},
+            skip=("material", "beta_prime", "apparent_area", "Rt"),
+        )  # fmt: skip
 
     def to_json(self, path: str | Path) -> Path:
         """Write the columns of :meth:`to_dict` (lists) plus the material and β' as JSON.
@@ -137,12 +135,12 @@ class StiffnessCurve:
         -------
         Path
             ``path``. Besides the columns, the object holds ``material`` (the fields of
-            :class:`Material`), ``beta_prime``, ``apparent_area_m2`` (m²) and ``rt_m`` (R_t, m).
+            :class:`Material`), ``beta_prime``, ``apparent_area_m2`` (m²) and ``Rt_m`` (R_t, m).
         """
         path = Path(path)
         d = {k: v.tolist() for k, v in self.to_dict().items()}
         d.update(material=asdict(self.material), beta_prime=self.beta_prime)
-        d.update(apparent_area_m2=self.apparent_area, rt_m=self.rt)
+        d.update(apparent_area_m2=self.apparent_area, Rt_m=self.Rt)
         path.write_text(json.dumps(d, indent=1, default=str) + "\n")
         return path
 
@@ -275,7 +273,7 @@ def stiffness_curve(
         material=material,
         beta_prime=beta_prime,
         apparent_area=A,
-        rt=curve.rt,
+        Rt=curve.Rt,
     )
 
 

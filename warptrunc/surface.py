@@ -1,23 +1,29 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Height maps: the :class:`Surface` result object, its I/O, and Weierstrass–Mandelbrot synthesis.
+"""Height maps: the :class:`Surface` result object and :func:`from_heights`.
 
-The WM synthesis evaluates Eq. (4) of the paper on the device (kernels in
-``warptrunc.kernels.wm``); everything here is host-side validation, allocation and bookkeeping.
+One way in and out: :func:`from_heights` wraps an array, :func:`warptrunc.read_height_map`
+reads a file and :func:`warptrunc.write_height_map` writes one (``warptrunc.io``);
+:func:`warptrunc.wm_surface` synthesises a Weierstrass–Mandelbrot surface (``warptrunc.wm``).
+The :class:`Surface` constructor is the low-level one those functions use. Everything here is
+validation (on the host, or one device reduction for a device map) and bookkeeping.
 """
 
 from __future__ import annotations
 
-import json
 import math
-from pathlib import Path
+import sys
 from typing import Any
 
 import numpy as np
+import warp as wp
 
+from ._device import check_memory, resolve_device
+from ._results import jsonable
 from ._validate import check_height_map, check_range
+from .kernels import reduce as _kr
 
-__all__ = ["Surface", "from_heights", "load_surface"]
+__all__ = ["Surface", "from_heights"]
 
 
 class Surface:
@@ -136,11 +142,11 @@ class Surface:
         :func:`warptrunc.resolve_device`'s default. A copy on another device is made once
         (host → device upload, or device → device copy) and cached on the surface.
         """
-        import warp as wp
 
-        from ._device import check_memory, resolve_device
 
-        dev = resolve_device(self._home if device is None else device)
+        dev = device if isinstance(device, wp.Device) else None  # resolved by the caller
+        if dev is None:
+            dev = resolve_device(self._home if device is None else device)
         key = str(dev)
         z = self._dev.get(key)
         if z is None:
@@ -209,7 +215,7 @@ class Surface:
         return self.lx * self.ly
 
     @property
-    def rt(self) -> float:
+    def Rt(self) -> float:
         """Peak-to-valley height R_t = max z − min z (m), in float64."""
         lo, hi = self.extremes()
         return float(np.float64(hi) - np.float64(lo))
@@ -223,54 +229,9 @@ class Surface:
             "dy_m": self.dy,
             "lx_m": self.lx,
             "ly_m": self.ly,
-            "rt_m": self.rt,
-            **{k: _jsonable(v) for k, v in self.params.items()},
+            "Rt_m": self.Rt,
+            **{k: jsonable(v, nonfinite="text") for k, v in self.params.items()},
         }
-
-    def save(self, path: str | Path) -> Path:
-        """Save to ``.npz`` (heights + JSON metadata) or ``.npy`` (heights) + ``.json`` sidecar.
-
-        Returns the path of the file holding the heights.
-        """
-        path = Path(path)
-        meta = json.dumps(
-            {"dx": self.dx, "dy": self.dy, "params": _jsonable(self.params)}, sort_keys=True
-        )
-        if path.suffix == ".npy":
-            np.save(path, self.heights)
-            path.with_suffix(".json").write_text(meta + "\n")
-        else:
-            if path.suffix != ".npz":
-                path = (
-                    path.with_suffix(path.suffix + ".npz")
-                    if path.suffix
-                    else path.with_suffix(".npz")
-                )
-            np.savez_compressed(path, heights=self.heights, metadata=np.array(meta))
-        return path
-
-
-def load_surface(path: str | Path) -> Surface:
-    """Load a surface written by :meth:`Surface.save` (``.npz``, or ``.npy`` + ``.json``)."""
-    path = Path(path)
-    if path.suffix == ".npy":
-        side = path.with_suffix(".json")
-        if not side.exists():
-            raise ValueError(
-                f"{path}: no metadata sidecar {side.name}; use warptrunc.io.read_height_map "
-                "and give the pixel spacing"
-            )
-        meta = json.loads(side.read_text())
-        z = np.load(path, allow_pickle=False)
-    else:
-        with np.load(path, allow_pickle=False) as f:
-            if "heights" not in f or "metadata" not in f:
-                raise ValueError(
-                    f"{path}: not a warptrunc surface (needs 'heights' and 'metadata')"
-                )
-            z = f["heights"]
-            meta = json.loads(str(f["metadata"]))
-    return Surface(z, meta["dx"], meta["dy"], meta.get("params", {}))
 
 
 def from_heights(z: np.ndarray, dx: float, dy: float | None = None, **params: Any) -> Surface:
@@ -278,30 +239,12 @@ def from_heights(z: np.ndarray, dx: float, dy: float | None = None, **params: An
     return Surface(z, dx, dx if dy is None else dy, params)
 
 
-def _jsonable(v: Any) -> Any:
-    if isinstance(v, dict):
-        return {str(k): _jsonable(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_jsonable(x) for x in v]
-    if isinstance(v, np.generic):
-        return v.item()
-    if isinstance(v, np.ndarray):
-        return v.tolist()
-    if isinstance(v, float) and not math.isfinite(v):
-        return str(v)
-    return v
-
-
 def _is_warp_array(a: Any) -> bool:
-    import sys
-
     wp = sys.modules.get("warp")
     return wp is not None and isinstance(a, wp.array)
 
 
 def _check_device_map(z: Any, name: str = "heights") -> Any:
-    import warp as wp
-
     if z.ndim != 2:
         raise ValueError(f"{name} must be 2-D (ny, nx), got shape {z.shape}")
     if z.shape[0] < 1 or z.shape[1] < 1:
@@ -317,9 +260,7 @@ def _check_device_map(z: Any, name: str = "heights") -> Any:
 
 def _validate_on_device(z: Any, name: str = "heights") -> tuple[float, float]:
     """Finite check and (min, max) of a device map: one launch, one 32-byte read-back."""
-    import warp as wp
 
-    from .kernels import reduce as _kr
 
     dev = z.device
     n = z.shape[0] * z.shape[1]

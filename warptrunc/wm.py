@@ -15,11 +15,11 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import warp as wp
 
-from ._device import check_memory, resolve_device
+from ._device import as_device, check_memory, resolve_device
+from ._reduce import height_range
 from ._validate import check_int, check_range, pair
 from .kernels import wm as _k
 from .surface import Surface
-from .truncation import height_range
 
 __all__ = [
     "WMSpec",
@@ -114,7 +114,7 @@ def wm_spec(
     )  # fmt: skip
 
 
-def _pad(v: int, t: int) -> int:
+def pad_to(v: int, t: int) -> int:
     return -(-v // t) * t
 
 
@@ -128,12 +128,12 @@ def wm_tables(
     will hold for heights besides the tables (default: the whole float32 map; the streamed
     path passes one band), checked before allocating.
     """
-    device = resolve_device(device)
+    device = as_device(device)
     nx, ny, T = spec.nx, spec.ny, spec.n_terms
     gpu = device.is_cuda
-    K = _pad(2 * T, _k.TILE_K)
-    ny_pad = _pad(ny, _k.TILE_M) if gpu else _pad(ny, _k.ROWS)
-    nx_pad = _pad(nx, _k.TILE_N) if gpu else _pad(nx, _k.COLS)
+    K = pad_to(2 * T, _k.TILE_K)
+    ny_pad = pad_to(ny, _k.TILE_M) if gpu else pad_to(ny, _k.ROWS)
+    nx_pad = pad_to(nx, _k.TILE_N) if gpu else pad_to(nx, _k.COLS)
     heights = 4 * nx * ny if map_bytes is None else map_bytes
     check_memory(
         heights + 4 * K * (nx_pad + ny_pad), device, f"a {nx}×{ny} WM surface with {T} terms"
@@ -261,13 +261,13 @@ def _generate(spec: WMSpec, device) -> tuple[wp.array, float, tuple[float, float
     host therefore gives the extremes of the scaled map bit for bit, with no second pass.
     """
     z, c0, lo, hi = _raw_sum(spec, device)
-    scale = _scale(spec, lo, hi)
+    scale = height_scale(spec, lo, hi)
     wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, float(scale)], device=device)
     ext = tuple(float(np.float32((np.float64(v) + c0) * scale)) for v in (lo, hi))
     return z, scale, ext
 
 
-def _scale(spec: WMSpec, lo: float, hi: float) -> float:
+def height_scale(spec: WMSpec, lo: float, hi: float) -> float:
     """Factor from the raw WM sum S − c0 to heights (m): R_t/(max − min) when ``spec.Rt`` is
     set (``lo``, ``hi``: the raw sum's extremes), else the prefactor of Eq. (4) times
     (G/W_r)^(D − 3)."""
@@ -278,7 +278,7 @@ def _scale(spec: WMSpec, lo: float, hi: float) -> float:
     return _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
 
 
-def _surface_params(spec: WMSpec, scale: float) -> dict:
+def surface_params(spec: WMSpec, scale: float) -> dict:
     """The surface's ``params``: the spec's, the height ``scale`` (m) and the topothesy G (m)
     that gives this scale without R_t scaling (``G_equivalent``)."""
     params = spec.params()
@@ -366,9 +366,13 @@ def wm_surface(
         D, Wr, L=L, n=n, Rt=Rt, G=G, M=M, gamma=gamma, Wc=Wc, cutoff=cutoff, seed=seed,
         method=method,
     )  # fmt: skip
-    device = resolve_device(device)
+    return surface_from_spec(spec, resolve_device(device))
+
+
+def surface_from_spec(spec: WMSpec, device: wp.context.Device) -> Surface:
+    """The device-resident :class:`Surface` of ``spec`` on the resolved ``device``."""
     z, scale, extremes = _generate(spec, device)
-    params = _surface_params(spec, scale)
+    params = surface_params(spec, scale)
     # device-resident, no host copy until one is asked for; the recorded extremes are exact and
     # finite, and every height lies between them, so no validation pass is needed
     return Surface._on_device(z, spec.dx, spec.dy, params, extremes)

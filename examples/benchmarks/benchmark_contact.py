@@ -63,10 +63,10 @@ def run_solver(s, dtype: str, dev) -> dict:
     solver = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev)
     _sync(dev)
     t0 = time.perf_counter()
-    solver.solve(FRACTIONS[0] * s.rt)
+    solver.solve(FRACTIONS[0] * s.Rt)
     _sync(dev)
     t1 = time.perf_counter()
-    info = solver.solve(FRACTIONS[1] * s.rt)
+    info = solver.solve(FRACTIONS[1] * s.Rt)
     _sync(dev)
     t2 = time.perf_counter()
     return {"cold": t1 - t0, "warm": t2 - t1, "info": info}
@@ -157,10 +157,10 @@ def run_contactmechanics(s, system) -> dict:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         t0 = time.perf_counter()
-        r0 = system.minimize_proxy(offset=FRACTIONS[0] * s.rt - h.max(), **kw)
+        r0 = system.minimize_proxy(offset=FRACTIONS[0] * s.Rt - h.max(), **kw)
         t1 = time.perf_counter()
         r = system.minimize_proxy(
-            offset=FRACTIONS[1] * s.rt - h.max(), initial_displacements=r0.x, **kw
+            offset=FRACTIONS[1] * s.Rt - h.max(), initial_displacements=r0.x, **kw
         )
         t2 = time.perf_counter()
     return {

@@ -63,14 +63,14 @@ import warp as wp  # noqa: E402
 from _common import git_commit, timeit  # noqa: E402
 
 from warptrunc.islands import (  # noqa: E402
-    _Forest,
-    _topology_hist,
     island_counts_device,
     island_curve,
-    label_device,
     label_islands,
 )
-from warptrunc.truncation import contact_index_map, depth_grid  # noqa: E402
+from warptrunc.islands.forest import Forest  # noqa: E402
+from warptrunc.islands.topology import topology_hist  # noqa: E402
+from warptrunc.islands.unionfind import label_device  # noqa: E402
+from warptrunc.truncation import contact_index_device, depth_grid  # noqa: E402
 from warptrunc.wm import wm_surface  # noqa: E402
 
 FRACTIONS = (0.1, 0.3, 0.5)
@@ -94,7 +94,7 @@ def counts_breakdown(idx, n: int, n1: int, device, sync) -> dict:
     for _ in range(4):  # the first run warms up
         sync()
         t0 = time.perf_counter()
-        forest = _Forest(flat, (n, n), n1, 4, False, False, device)
+        forest = Forest(flat, (n, n), n1, 4, False, False, device)
         sync()
         t1 = time.perf_counter()
         for _ in range(n1):
@@ -138,7 +138,7 @@ def run_case(n: int, device, args) -> dict:
     # 1. one mask at 10 %, 30 %, 50 % of R_t
     res["masks"] = []
     for f in FRACTIONS:
-        thr = np.float32(ztop - f * s.rt)
+        thr = np.float32(ztop - f * s.Rt)
         m_np = z >= thr
         row: dict = {"fraction_of_Rt": f, "contact_fraction": float(m_np.mean())}
         m_wp = wp.array(m_np.view(np.uint8), dtype=wp.uint8, device=device)
@@ -197,14 +197,14 @@ def run_case(n: int, device, args) -> dict:
         )
 
     # 2. island counts at every depth from one carried forest
-    depth = depth_grid(s.rt, args.increments, max_depth_fraction=args.max_depth_fraction)
+    depth = depth_grid(s.Rt, args.increments, max_depth_fraction=args.max_depth_fraction)
     n1 = depth.size
     res["increments"] = args.increments
     res["max_depth_fraction"] = args.max_depth_fraction
     res["contact_index_map_incl_h2d_s"] = timeit(
-        lambda: contact_index_map(s, depth, device=device, as_warp=True), rep, sync
+        lambda: contact_index_device(s, depth, warptrunc.resolve_device(device)), rep, sync
     )
-    idx = contact_index_map(s, depth, device=device, as_warp=True)
+    idx = contact_index_device(s, depth, warptrunc.resolve_device(device))
     for conn in (4, 8):
         res[f"warp_counts_all_depths{conn}_s"] = guarded(
             res,
@@ -220,7 +220,7 @@ def run_case(n: int, device, args) -> dict:
     res["warp_perimeter_euler_histograms_s"] = guarded(
         res,
         "topology",
-        lambda f=flat: timeit(lambda: _topology_hist(f, (n, n), n1, 4, False, device), rep, sync),
+        lambda f=flat: timeit(lambda: topology_hist(f, (n, n), n1, 4, False, device), rep, sync),
     )
     flat = idx = None  # free before the reference runs
     # reference: label each depth separately, timed on a subset and extrapolated

@@ -7,7 +7,7 @@ What it shows
     R_t = 10 µm, 200 increments to 0.1·R_t), the wall time of
     - ``device``: generation on the device + truncation on the device array (no host copy);
     - ``surface``: ``truncate(wm_surface(...))``, the user path (includes the host copy);
-    - ``stream``: ``truncate_streamed`` (two passes over row bands, never the whole map);
+    - ``stream``: ``truncate(spec, stream=True)`` (two passes over row bands, never the whole map);
     each after one warm-up run (kernels compiled and loaded), with the peak memory of the
     Warp memory pool (CUDA) and the peak resident host memory of the process. When more than
     one path runs, it checks that their counts are equal.
@@ -31,8 +31,9 @@ import warp as wp
 from _common import git_commit
 
 import warptrunc
-from warptrunc.stream import fits_in_memory, stream_truncation
-from warptrunc.truncation import _thresholds, depth_grid, height_range, histogram_bands, truncate
+from warptrunc.truncation import truncate
+from warptrunc.truncation.curve import depth_grid, depth_thresholds, height_range, histogram_bands
+from warptrunc.truncation.stream import fits_in_memory
 from warptrunc.wm import generate_on_device, wm_spec, wm_surface
 
 N_INCREMENTS = 200
@@ -43,7 +44,7 @@ def run_device(spec, device):
     z, _scale = generate_on_device(spec, device)
     lo, hi = height_range(z, device)
     depth = depth_grid(float(np.float64(hi) - np.float64(lo)), N_INCREMENTS)
-    t, _, _, _, inv_step = _thresholds(None, depth, device, (lo, hi))
+    t, _, _, _, inv_step = depth_thresholds(None, depth, device, (lo, hi))
     return np.cumsum(histogram_bands(z, t, hi, inv_step, device, deep=False))  # sync point
 
 
@@ -54,9 +55,7 @@ def run_surface(spec, device):
 
 
 def run_stream(spec, device):
-    return stream_truncation(
-        spec, N_INCREMENTS, device=device, progress=False
-    ).curve.n_contact_pixels
+    return truncate(spec, N_INCREMENTS, stream=True, device=device).n_contact_pixels
 
 
 RUNS = {"device": run_device, "surface": run_surface, "stream": run_stream}

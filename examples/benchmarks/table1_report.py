@@ -47,15 +47,15 @@ def _options(height_scaling):
 def report(n, L, seeds, rtol, methods, device, progress, height_scaling=DEFAULT_HEIGHT_SCALING):
     rows = []
     opts = _options(height_scaling)
-    for name, (rt, rrms, wr, *d_paper) in PAPER.items():
+    for name, (Rt, rrms, wr, *d_paper) in PAPER.items():
         wr_m = 2 * L if wr is None else wr * UM
         paper_d = dict(zip(METHODS, d_paper, strict=True))
         for m in methods:
-            row = {"surface": name, "matched": m, "Wr_m": wr_m, "paper_Rt_m": rt * UM,
+            row = {"surface": name, "matched": m, "Wr_m": wr_m, "paper_Rt_m": Rt * UM,
                    "paper_Rrms_m": rrms * UM, "height_scaling": height_scaling}  # fmt: skip
             row.update({f"paper_D_{k}": v for k, v in paper_d.items()})
             target = CalibrationTarget(
-                D=paper_d[m], method=m, Rrms=rrms * UM, Rt=rt * UM, Wr=wr_m, L=L, n=n,
+                D=paper_d[m], method=m, Rrms=rrms * UM, Rt=Rt * UM, Wr=wr_m, L=L, n=n,
                 source=f"Table 1 {name}", method_options=opts.get(m, {}),
             )  # fmt: skip
             t0 = time.perf_counter()

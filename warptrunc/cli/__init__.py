@@ -17,6 +17,9 @@ import importlib
 import pkgutil
 import sys
 
+from .._device import set_verbose
+from ._common import HelpFormatter, Parser
+
 _VERBOSE_HELP = (
     "show the notices of Warp and VTK that are hidden otherwise (e.g. no CUDA driver on a "
     "CPU-only machine, no X server for off-screen rendering)"
@@ -25,7 +28,6 @@ _VERBOSE_HELP = (
 
 def build_parser() -> argparse.ArgumentParser:
     """The top-level parser with every discovered sub-command."""
-    from ._common import HelpFormatter, Parser
 
     parser = Parser(
         prog="warptrunc",
@@ -56,7 +58,6 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     """Entry point; returns the exit status."""
     args = build_parser().parse_args(argv)
-    from .._device import set_verbose
 
     if getattr(args, "verbose", False):
         set_verbose(True)  # otherwise $WARPTRUNC_VERBOSE decides

@@ -44,7 +44,9 @@ import sys
 from pathlib import Path
 
 from .._atomic import probe_writable
+from ..io import read_height_map
 from ..surface import Surface
+from ..wm import wm_surface
 
 # --- parser, help formatter -------------------------------------------------------------------
 
@@ -352,7 +354,6 @@ def add_reader_options(g: argparse._ActionsContainer) -> None:
 
 def read_input(path: Path, args: argparse.Namespace) -> Surface:
     """Read ``path`` with the options of :func:`add_reader_options`; reports filled points."""
-    from ..io import read_height_map
 
     s = read_height_map(
         path, dx=args.dx, dy=args.dy, height_unit=args.height_unit, missing=args.missing,
@@ -393,6 +394,5 @@ def surface_from_args(args: argparse.Namespace) -> Surface:
     """Read ``--input`` or generate a WM surface from the parameters."""
     if args.input is not None:
         return read_input(args.input, args)
-    from ..wm import wm_surface
 
     return wm_surface(**wm_kwargs(args), device=args.device)

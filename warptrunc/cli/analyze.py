@@ -23,8 +23,11 @@ import argparse
 import math
 
 from .._atomic import staged_output, strict_json
+from .._device import resolve_device
+from ..robust import clip_to_percentiles
 from ..stiffness import DEFAULT_MIN_PIXELS, Material, fit_power_law, stiffness_curve
 from ..truncation import truncate
+from ..truncation.stream import as_wm_spec, banded_truncation, fits_in_memory
 from ._common import (
     add_device,
     add_out,
@@ -135,7 +138,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--rt-percentile LO HI needs LO < HI (%), got {rtp[0]!r} {rtp[1]!r}")
     material = Material(E=args.E, nu=args.nu, E_i=args.E_flat, nu_i=args.nu_flat)
     curve, meta, path = _truncation(args)
-    nx, ny, rt = meta["nx"], meta["ny"], meta["rt_m"]
+    nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
     sc = stiffness_curve(curve, material, beta_prime=args.beta_prime)
     try:
         fit = fit_power_law(sc, min_pixels=args.min_pixels, depth_window=args.depth_window)
@@ -150,11 +153,11 @@ def run(args: argparse.Namespace) -> int:
 
             plot.stiffness_load(
                 sc, fit, labels=["truncation analysis"], path=out / "stiffness.png",
-                title=f"{nx}×{ny}, R$_t$ = {rt * 1e6:.3g} µm",
+                title=f"{nx}×{ny}, R$_t$ = {Rt * 1e6:.3g} µm",
             )  # fmt: skip
             plot.area_fraction(curve, log=True, path=out / "area_fraction.png")
     print(
-        f"{nx}×{ny} surface ({_describe(path)}), R_t = {rt * 1e6:.4g} µm; "
+        f"{nx}×{ny} surface ({_describe(path)}), R_t = {Rt * 1e6:.4g} µm; "
         f"{args.increments} increments to "
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; final contact {curve.area_fraction[-1]:.3%} of A\n"
         f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}, "
@@ -172,7 +175,7 @@ def _clip_note(meta: dict) -> str:
     lo, hi = meta["rt_percentile"]
     return (
         f"heights clipped to percentiles {lo:g}–{hi:g} (--rt-percentile): R_t "
-        f"{meta['Rt_raw_m'] * 1e6:.4g} → {meta['rt_m'] * 1e6:.4g} µm, "
+        f"{meta['Rt_raw_m'] * 1e6:.4g} → {meta['Rt_m'] * 1e6:.4g} µm, "
         f"{meta['n_clipped_above']} pixels above, {meta['n_clipped_below']} below\n"
     )
 
@@ -216,8 +219,6 @@ def _truncation(args: argparse.Namespace):
             raise ValueError(f"--stream applies to generated surfaces, not to --input {args.input}")
         s = surface_from_args(args)
         if getattr(args, "rt_percentile", None) is not None:
-            from ..robust import clip_to_percentiles
-
             s = clip_to_percentiles(s, *args.rt_percentile)
         args._truncated_surface = s  # for the advice when the fit range is empty
         curve = truncate(
@@ -227,12 +228,11 @@ def _truncation(args: argparse.Namespace):
         return curve, s.to_dict(), {"path": "in-memory"}
     if getattr(args, "rt_percentile", None) is not None:
         raise ValueError("--rt-percentile needs the map in memory; it cannot be streamed")
-    from ..stream import stream_truncation
 
-    st = stream_truncation(
-        wm_kwargs(args), args.increments, max_depth=args.max_depth,
+    st = banded_truncation(
+        as_wm_spec(wm_kwargs(args)), args.increments, max_depth=args.max_depth,
         max_depth_fraction=args.max_depth_fraction, band_rows=args.band_rows,
-        device=args.device,
+        device=resolve_device(args.device), progress=True,
     )  # fmt: skip
     reason = "--stream given" if args.stream else _TOO_BIG
     info = {"band_rows": st.band_rows, "n_bands": st.n_bands, "reason": reason}
@@ -244,6 +244,5 @@ def _wants_stream(args: argparse.Namespace) -> bool:
         return bool(args.stream)
     if args.stream:
         return True
-    from ..stream import fits_in_memory
 
     return not fits_in_memory(wm_kwargs(args), args.device)

@@ -16,7 +16,9 @@ import argparse
 from pathlib import Path
 
 from .._atomic import staged_output, strict_json
+from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
 from ..fractal import METHODS
+from ..io import write_height_map
 from ._common import add_device, integer, output_dir, positive, real
 from .describe import add_height_scaling, add_scan_arguments, method_options, read_scan_args
 
@@ -75,7 +77,6 @@ def _pair(v, option: str):
 
 def run(args: argparse.Namespace) -> int:
     """Calibrate and write the outputs."""
-    from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
 
     if args.file is not None:
         s = read_scan_args(args)
@@ -125,7 +126,7 @@ def run(args: argparse.Namespace) -> int:
     with staged_output(args.out) as out:  # all or nothing
         (out / "calibration.json").write_text(strict_json(d))
         if surf is not None:
-            surf.save(out / "surface.npz")
+            write_height_map(surf, out / "surface.npz")
     print(
         f"D_in' = {cal.D_in:.4f}, R_t' = {cal.Rt * 1e6:.4g} µm → D_{target.method} = "
         f"{cal.D_out:.4f} ± {cal.D_out_std:.4f}, R_rms = {cal.Rrms * 1e6:.4g} µm "

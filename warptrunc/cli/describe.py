@@ -21,8 +21,9 @@ import argparse
 import sys
 
 from .._atomic import atomic_write, staged_output, strict_json
-from ..fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS
-from ._common import add_device, add_reader_options, input_file, output_dir, read_input
+from ..descriptors import describe, profile_psd, radial_psd
+from ..fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
+from ._common import add_device, add_reader_options, input_file, output_dir, output_file, read_input
 
 NAME = "describe"
 HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four methods"
@@ -87,20 +88,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def _json_path(text: str) -> str:
     """``-`` (stdout) or a file to write (see :func:`warptrunc.cli._common.output_file`)."""
-    from ._common import output_file
 
     return text if text == "-" else str(output_file(text))
 
 
 def describe_surface(s, methods, options, device) -> dict:
     """Descriptors and D values as one flat dict (the JSON of ``describe``)."""
-    from ..descriptors import describe
-    from ..fractal import fractal_dimensions
 
     d = describe(s)
     fits, errors = {}, {}
     for m in methods:
-        if not s.rt > 0:
+        if not s.Rt > 0:
             errors[m] = "the map is flat (R_t = 0): no roughness to fit"
             continue
         try:
@@ -119,7 +117,7 @@ def describe_surface(s, methods, options, device) -> dict:
             out[f"convention_{m}"] = fits[m].options.get("height_scaling", "none")
     for m in METHODS:
         out[f"error_{m}"] = errors.get(m)
-    out.update({"nx": s.nx, "ny": s.ny, "dx_m": s.dx, "dy_m": s.dy, "flat": not s.rt > 0})
+    out.update({"nx": s.nx, "ny": s.ny, "dx_m": s.dx, "dy_m": s.dy, "flat": not s.Rt > 0})
     return {"result": out, "fits": fits, "descriptors": d}
 
 
@@ -184,7 +182,6 @@ def run(args: argparse.Namespace) -> int:
             print(f"wrote {args.json}")
     if args.out is not None:
         from .. import plot
-        from ..descriptors import profile_psd, radial_psd
 
         psds = [radial_psd(s)]
         if abs(s.dx - s.dy) <= 1e-9 * s.dx and s.nx == s.ny:

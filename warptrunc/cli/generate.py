@@ -8,6 +8,7 @@ import argparse
 from pathlib import Path
 
 from .._atomic import staged_output
+from ..io import write_height_map
 from ._common import add_device, add_surface_source, output_file, surface_from_args
 
 NAME = "generate"
@@ -30,9 +31,9 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError("generate makes a new surface; --input is not used here")
     s = surface_from_args(args)
     with staged_output(args.output.parent) as out:  # the .npy and its .json sidecar together
-        s.save(out / args.output.name)
+        write_height_map(s, out / args.output.name)
     path = args.output
     meta = s.to_dict()
     print(f"wrote {path}: {s.nx}×{s.ny} pixels, {s.lx * 1e3:g}×{s.ly * 1e3:g} mm, "
-          f"R_t = {s.rt * 1e6:.4g} µm, n_max = {meta['n_max']}, {meta['n_terms']} terms")  # fmt: skip
+          f"R_t = {s.Rt * 1e6:.4g} µm, n_max = {meta['n_max']}, {meta['n_terms']} terms")  # fmt: skip
     return 0

@@ -110,7 +110,7 @@ def write_csv(curve: IslandCurve, path: Path) -> None:
 def run(args: argparse.Namespace) -> int:
     """Analyse the islands and write the outputs."""
     s = surface_from_args(args)
-    snaps = [f * s.rt for f in args.snapshots] if args.snapshots else None
+    snaps = [f * s.Rt for f in args.snapshots] if args.snapshots else None
     curve = island_curve(
         s, args.increments, max_depth=args.max_depth,
         max_depth_fraction=args.max_depth_fraction, connectivity=args.connectivity,
@@ -126,10 +126,10 @@ def run(args: argparse.Namespace) -> int:
         _write(args, s, curve, ind, out)
 
     def pct(v: float) -> str:
-        return "n/a" if not math.isfinite(v) else f"{100 * v / s.rt:.2f} % R_t"
+        return "n/a" if not math.isfinite(v) else f"{100 * v / s.Rt:.2f} % R_t"
 
     print(
-        f"{s.nx}×{s.ny} surface, R_t = {s.rt * 1e6:.4g} µm; {curve.depth.size - 1} increments to "
+        f"{s.nx}×{s.ny} surface, R_t = {s.Rt * 1e6:.4g} µm; {curve.depth.size - 1} increments to "
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; up to {curve.n_islands.max()} islands\n"
         f"max. growth rate of the island number at {pct(ind.max_growth_depth)}; island-count "
         f"peak at {pct(ind.peak_depth)}; slit exponent stays within "
@@ -166,7 +166,7 @@ def _write(args: argparse.Namespace, s, curve: IslandCurve, ind, out: Path) -> N
     if not args.no_plot:
         from .. import plot
 
-        title = f"{s.nx}×{s.ny}, R$_t$ = {s.rt * 1e6:.3g} µm, {curve.connectivity}-connected"
+        title = f"{s.nx}×{s.ny}, R$_t$ = {s.Rt * 1e6:.3g} µm, {curve.connectivity}-connected"
         plot.island_number(curve, ind, title=title, path=out / "island_number.png")
         if curve.sizes:
             plot.slit_islands(curve, title=title, path=out / "slit_islands.png")

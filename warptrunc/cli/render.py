@@ -14,8 +14,10 @@ are written under temporary names and moved into OUT only when every one of them
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 
 from .._atomic import staged_output, strict_json
+from ..io.vtk import export_vtk
 from ._common import (
     add_device,
     add_out,
@@ -99,7 +101,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def _file_name(text: str) -> str:
     """A ``type=`` for a plain file name (written inside --out)."""
-    from pathlib import Path
 
     if not text or Path(text).name != text or text in (".", ".."):
         raise argparse.ArgumentTypeError(f"must be a file name without folders, got {text!r}")
@@ -136,9 +137,9 @@ def run(args: argparse.Namespace) -> int:
     if args.out.joinpath(args.output).is_dir():
         raise ValueError(f"--output names a folder inside --out: {args.out / args.output}")
     s = surface_from_args(args)
-    if args.depths is not None and max(args.depths) > s.rt:
+    if args.depths is not None and max(args.depths) > s.Rt:
         raise ValueError(
-            f"--depths must be in (0, R_t] = (0, {s.rt:.6g}] m for this surface, got "
+            f"--depths must be in (0, R_t] = (0, {s.Rt:.6g}] m for this surface, got "
             f"{' '.join(f'{d:g}' for d in args.depths)} (metres; --depth-fractions takes "
             "fractions of R_t)"
         )
@@ -156,7 +157,6 @@ def _render(s, args: argparse.Namespace, out):
     """(picture result, files written), every file under ``out``."""
     written = []
     if args.vtk:
-        from ..vtk_io import export_vtk
 
         written.append(
             export_vtk(s, out / args.vtk, n_increments=args.vtk_increments, device=args.device)

@@ -14,6 +14,9 @@ import argparse
 import sys
 from pathlib import Path
 
+from ..reproduce import reproduce
+from ..reproduce.profiles import PROFILES
+from ..sweep.store import require_extra
 from ._common import add_device, output_dir
 
 NAME = "reproduce"
@@ -22,7 +25,6 @@ HELP = "reproduce the paper's figures and tables with a report"
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc reproduce``."""
-    from ..reproduce.profiles import PROFILES
 
     p.add_argument("--profile", choices=sorted(PROFILES), default="quick", help="sizes of the run")
     p.add_argument(
@@ -35,8 +37,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the study and print where the report is."""
-    from ..reproduce import reproduce
-    from ..sweep.store import require_extra
 
     try:  # the Table 3 groups run on the sweep store
         require_extra()

@@ -18,6 +18,8 @@ import argparse
 import signal
 import sys
 
+from ..sweep import SweepGrid, alpha_summary, load, run_sweep
+from ..sweep.store import require_extra
 from ._common import add_device, add_out, add_wm_shape, input_file, integer, positive, real
 from .analyze import add_fit_options, add_truncation_options
 
@@ -77,7 +79,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def grid_from_args(args: argparse.Namespace):
     """The :class:`SweepGrid` of ``--grid`` or of ``--D/--delta/--seeds``."""
-    from ..sweep import SweepGrid
 
     if args.grid is not None:
         if args.D is not None or args.delta is not None or args.seeds is not None:
@@ -111,8 +112,6 @@ def _on_sigterm(signum, frame):
 
 def run(args: argparse.Namespace) -> int:
     """Run the sweep; print a summary."""
-    from ..sweep import alpha_summary, load, run_sweep
-    from ..sweep.store import require_extra
 
     for opt in ("L", "n"):
         if len(getattr(args, opt)) > 2:

@@ -177,18 +177,18 @@ def _ratio(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-def _approaches(rt: float, depths: Any, fractions: Any) -> np.ndarray:
+def _approaches(Rt: float, depths: Any, fractions: Any) -> np.ndarray:
     if depths is not None and fractions is not None:
         raise ValueError("give either depths (m) or fractions of R_t, not both")
     if depths is None:
         fr = np.asarray(DEFAULT_FRACTIONS if fractions is None else fractions, dtype=np.float64)
         for f in np.atleast_1d(fr):
             check_range("fraction", f, 0.0, 1.0)
-        d = np.atleast_1d(fr) * rt
+        d = np.atleast_1d(fr) * Rt
     else:
         d = np.atleast_1d(np.asarray(depths, dtype=np.float64))
         for v in d:
-            check_range("depth", v, 0.0, rt, unit="m")
+            check_range("depth", v, 0.0, Rt, unit="m")
     if d.size == 0:
         raise ValueError("at least one approach is needed, got none")
     if np.any(np.diff(d) <= 0):
@@ -303,8 +303,8 @@ def bem_check(
         pentol = check_range("pentol", pentol, 0.0, unit="m")
     maxiter = check_int("maxiter", maxiter, 1)
 
-    rt = float(surface.rt)
-    d = _approaches(rt, depths, fractions)
+    Rt = float(surface.Rt)
+    d = _approaches(Rt, depths, fractions)
     e_star = material.reduced_modulus
 
     # truncation, the same formulas as `analyze`
@@ -334,7 +334,7 @@ def bem_check(
         "forcetol_N": pressure_tol * e_star * surface.pixel_area,
         "maxiter": maxiter,
         "increments": increments,
-        "rt_m": rt,
+        "Rt_m": Rt,
         "grid": [surface.nx, surface.ny],
         "pixel_size_m": [surface.dx, surface.dy],
         "versions": contactmechanics_versions(),
@@ -343,7 +343,7 @@ def bem_check(
     }
     return BemCheck(
         depth=d,
-        depth_fraction=d / rt,
+        depth_fraction=d / Rt,
         bem_load=out["F"],
         bem_area=out["A"],
         bem_stiffness=out["k"],

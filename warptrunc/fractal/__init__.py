@@ -60,24 +60,24 @@ from ._common import (  # noqa: F401
     HEIGHT_SCALINGS,
     METHODS,
     FractalFit,
-    _check_scaling,
-    _check_sizes,
-    _fit,
-    _scaled_upload,
-    _upload,
+    check_scaling,
+    check_sizes,
     cube_height_factor,
+    fit_log_log,
+    scaled_upload,
+    upload,
 )
 from .boxes import (
-    _box,
-    _default_box_sizes,  # noqa: F401  (examples/benchmark_fractal.py)
-    _tri,
     box_counting,
+    box_fit,
+    default_box_sizes,  # noqa: F401  (examples/benchmark_fractal.py)
+    tri_fit,
     triangular_prism,
 )
 from .sections import (
-    _default_lags,  # noqa: F401  (examples/benchmark_fractal.py)
-    _vs,
+    default_lags,  # noqa: F401  (examples/benchmark_fractal.py)
     vertical_sections,
+    vs_fit,
 )
 from .spectrum import power_spectrum
 from .synthetic import self_affine_surface
@@ -196,17 +196,17 @@ def fractal_dimensions(
         bad = set(o) - _OPTION_NAMES[m]
         if bad:
             raise ValueError(f"unknown option(s) {sorted(bad)} for method {m!r}")
-    zd = _upload(surface, device) if set(methods) - {"sp"} else None
+    zd = upload(surface, device) if set(methods) - {"sp"} else None
     out: dict[str, FractalFit] = {}
     for m in methods:
         o = options.get(m, {})
         hs = o.get("height_scaling", DEFAULT_HEIGHT_SCALING)
         if m == "tri":
-            out[m] = _tri(zd, surface, o.get("box_sizes"), o.get("fit_range"), hs)
+            out[m] = tri_fit(zd, surface, o.get("box_sizes"), o.get("fit_range"), hs)
         elif m == "box":
-            out[m] = _box(zd, surface, o.get("box_sizes"), o.get("fit_range"), hs)
+            out[m] = box_fit(zd, surface, o.get("box_sizes"), o.get("fit_range"), hs)
         elif m == "vs":
-            out[m] = _vs(zd, surface, o.get("lags"), o.get("fit_range"), o.get("axis", "both"))
+            out[m] = vs_fit(zd, surface, o.get("lags"), o.get("fit_range"), o.get("axis", "both"))
         else:
             out[m] = power_spectrum(surface, **o)
     return out

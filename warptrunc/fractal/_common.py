@@ -17,7 +17,7 @@ from .._device import resolve_device
 from .._validate import check_range
 from ..kernels import fractal as _k
 from ..surface import Surface
-from ..truncation import _where, surface_range
+from ..truncation.curve import surface_device, surface_range
 
 METHODS = ("tri", "box", "vs", "sp")
 """Method keys, in the order of Table 1."""
@@ -44,7 +44,7 @@ DEFAULT_HEIGHT_SCALING = "cube"
 self-affine surfaces far better than ``"si"``)."""
 
 
-def _check_scaling(height_scaling: str) -> str:
+def check_scaling(height_scaling: str) -> str:
     if height_scaling not in HEIGHT_SCALINGS:
         raise ValueError(
             f"height_scaling must be one of {HEIGHT_SCALINGS}, got {height_scaling!r}"
@@ -79,7 +79,7 @@ def cube_height_factor(surface: Surface, z_min: float | None = None, z_max: floa
     return (max(surface.nx, surface.ny) - 1) * math.sqrt(surface.dx * surface.dy) / rng
 
 
-def _scaled_upload(zd: wp.array, surface: Surface, height_scaling: str) -> wp.array:
+def scaled_upload(zd: wp.array, surface: Surface, height_scaling: str) -> wp.array:
     """The device heights for a method: as measured ("si") or mapped into the cube (on the
     device, from the surface's recorded or reduced extremes)."""
     if height_scaling == "si":
@@ -152,17 +152,17 @@ class FractalFit:
 # --- shared helpers ------------------------------------------------------------------------------
 
 
-def _upload(surface: Surface, device: wp.DeviceLike) -> wp.array:
+def upload(surface: Surface, device: wp.DeviceLike) -> wp.array:
     if not isinstance(surface, Surface):
         raise TypeError(
             f"surface must be a warptrunc.Surface, got {type(surface).__name__}; wrap a height "
             "array with warptrunc.from_heights(z, dx)"
         )
     # where a device surface lives unless told otherwise; cached per device on the surface
-    return surface.device_heights(resolve_device(_where(surface, device)))
+    return surface.device_heights(resolve_device(surface_device(surface, device)))
 
 
-def _check_sizes(name: str, sizes: Sequence[int] | None, surface: Surface, default) -> np.ndarray:
+def check_sizes(name: str, sizes: Sequence[int] | None, surface: Surface, default) -> np.ndarray:
     if sizes is None:
         sizes = default(surface)
     s = np.unique(np.asarray(sizes))
@@ -178,7 +178,7 @@ def _check_sizes(name: str, sizes: Sequence[int] | None, surface: Surface, defau
     return s
 
 
-def _fit(
+def fit_log_log(
     method: str,
     scale: np.ndarray,
     measure: np.ndarray,
@@ -222,6 +222,6 @@ def _fit(
     )
 
 
-def _chunks(ncx: int, s: int) -> tuple[int, int]:
+def row_chunks(ncx: int, s: int) -> tuple[int, int]:
     chunk = max(1, 32 // s)
     return chunk, (ncx + chunk - 1) // chunk

@@ -12,20 +12,20 @@ import warp as wp
 
 from ..kernels import fractal as _k
 from ..surface import Surface
-from ..truncation import surface_range
+from ..truncation.curve import surface_range
 from ._common import (
     DEFAULT_HEIGHT_SCALING,
     FractalFit,
-    _check_scaling,
-    _check_sizes,
-    _chunks,
-    _fit,
-    _scaled_upload,
-    _upload,
+    check_scaling,
+    check_sizes,
+    fit_log_log,
+    row_chunks,
+    scaled_upload,
+    upload,
 )
 
 
-def _default_box_sizes(surface: Surface) -> np.ndarray:
+def default_box_sizes(surface: Surface) -> np.ndarray:
     smax = max(4, (min(surface.nx, surface.ny) - 1) // 8)
     return 2 ** np.arange(int(math.log2(smax)) + 1)
 
@@ -83,17 +83,17 @@ def triangular_prism(
     triangular prism surface area method, Comput. Geosci. 12 (1986) 713–722,
     doi:10.1016/0098-3004(86)90047-6.
     """
-    zd = _upload(surface, device)
-    return _tri(zd, surface, box_sizes, fit_range, height_scaling)
+    zd = upload(surface, device)
+    return tri_fit(zd, surface, box_sizes, fit_range, height_scaling)
 
 
-def _tri(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALING) -> FractalFit:
-    sizes = _check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
-    zd = _scaled_upload(zd, surface, _check_scaling(height_scaling))
+def tri_fit(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALING) -> FractalFit:
+    sizes = check_sizes("box_sizes", box_sizes, surface, default_box_sizes)
+    zd = scaled_upload(zd, surface, check_scaling(height_scaling))
     ratio = np.empty(sizes.size)
     for i, s in enumerate(sizes):
         ncy, ncx = (surface.ny - 1) // s, (surface.nx - 1) // s
-        chunk, nch = _chunks(ncx, int(s))
+        chunk, nch = row_chunks(ncx, int(s))
         out = wp.zeros((ncy, nch), dtype=wp.float64, device=zd.device)
         wp.launch(
             _k.prism_area_kernel,
@@ -105,7 +105,7 @@ def _tri(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALIN
         area = float(out.numpy().sum())  # sync point
         ratio[i] = area / (ncx * s * surface.dx * ncy * s * surface.dy)
     h = math.sqrt(surface.dx * surface.dy)
-    return _fit(
+    return fit_log_log(
         "tri",
         sizes * h,
         ratio,
@@ -168,20 +168,20 @@ def box_counting(
     B. B. Chaudhuri, An efficient differential box-counting approach to compute fractal
     dimension of image, IEEE Trans. Syst. Man Cybern. 24 (1994) 115–120, doi:10.1109/21.259692.
     """
-    zd = _upload(surface, device)
-    return _box(zd, surface, box_sizes, fit_range, height_scaling)
+    zd = upload(surface, device)
+    return box_fit(zd, surface, box_sizes, fit_range, height_scaling)
 
 
-def _box(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALING) -> FractalFit:
-    sizes = _check_sizes("box_sizes", box_sizes, surface, _default_box_sizes)
+def box_fit(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALING) -> FractalFit:
+    sizes = check_sizes("box_sizes", box_sizes, surface, default_box_sizes)
     h = math.sqrt(surface.dx * surface.dy)
     z0 = surface_range(surface, zd.flatten(), zd.device)[0]
-    if _check_scaling(height_scaling) == "cube":
-        zd, z0 = _scaled_upload(zd, surface, height_scaling), 0.0
+    if check_scaling(height_scaling) == "cube":
+        zd, z0 = scaled_upload(zd, surface, height_scaling), 0.0
     counts = np.empty(sizes.size)
     for i, s in enumerate(sizes):
         ncy, ncx = (surface.ny - 1) // s, (surface.nx - 1) // s
-        chunk, nch = _chunks(ncx, int(s))
+        chunk, nch = row_chunks(ncx, int(s))
         out = wp.zeros((ncy, nch), dtype=wp.int64, device=zd.device)
         wp.launch(
             _k.box_count_kernel,
@@ -192,7 +192,7 @@ def _box(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCALIN
         )
         n = int(out.numpy().sum())  # sync point
         counts[i] = n * ((surface.nx - 1) * (surface.ny - 1)) / (ncx * s * ncy * s)
-    return _fit(
+    return fit_log_log(
         "box", sizes * h, counts, fit_range, lambda k: -k,
         {"box_sizes": sizes.tolist(), "height_scaling": height_scaling},
     )  # fmt: skip

@@ -13,10 +13,10 @@ import warp as wp
 from ..descriptors import roll_off_wavelength
 from ..kernels import fractal as _k
 from ..surface import Surface
-from ._common import FractalFit, _check_sizes, _fit, _upload
+from ._common import FractalFit, check_sizes, fit_log_log, upload
 
 
-def _default_lags(surface: Surface) -> np.ndarray:
+def default_lags(surface: Surface) -> np.ndarray:
     tmax = max(4, (min(surface.nx, surface.ny) - 1) // 8)
     return np.unique(np.round(np.geomspace(1, tmax, 16)).astype(np.int64))
 
@@ -77,14 +77,14 @@ def vertical_sections(
     and D. B. Percival, Estimators of fractal dimension: assessing the roughness of time series
     and spatial data, Stat. Sci. 27 (2012) 247–277, doi:10.1214/11-STS370.
     """
-    zd = _upload(surface, device)
-    return _vs(zd, surface, lags, fit_range, axis)
+    zd = upload(surface, device)
+    return vs_fit(zd, surface, lags, fit_range, axis)
 
 
-def _vs(zd, surface, lags, fit_range, axis) -> FractalFit:
+def vs_fit(zd, surface, lags, fit_range, axis) -> FractalFit:
     if axis not in ("both", "x", "y"):
         raise ValueError(f"axis must be 'both', 'x' or 'y', got {axis!r}")
-    taus = _check_sizes("lags", lags, surface, _default_lags)
+    taus = check_sizes("lags", lags, surface, default_lags)
     lag_d = wp.array(taus.astype(np.int32), dtype=wp.int32, device=zd.device)
     ny, nx = surface.ny, surface.nx
     parts = []
@@ -117,7 +117,7 @@ def _vs(zd, surface, lags, fit_range, axis) -> FractalFit:
         wr, _ = roll_off_wavelength(surface)
         fourth = float(np.sort(scale)[min(3, scale.size - 1)])
         fit_range = (0.0, max(wr / 4.0, fourth))
-    return _fit(
+    return fit_log_log(
         "vs",
         scale,
         v,

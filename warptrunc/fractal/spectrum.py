@@ -8,7 +8,7 @@ import numpy as np
 
 from ..descriptors import band_variance, roll_off_wavelength
 from ..surface import Surface
-from ._common import FractalFit, _fit, _upload
+from ._common import FractalFit, fit_log_log, upload
 
 
 def power_spectrum(
@@ -75,7 +75,7 @@ def power_spectrum(
     Nyquist frequency).
     """
     if not isinstance(surface, Surface):
-        _upload(surface, "cpu")  # raises the TypeError
+        upload(surface, "cpu")  # raises the TypeError
     f, var, nm = band_variance(surface, kind=kind, bins_per_decade=bins_per_decade, window=window)
     lam = 1.0 / f
     order = np.argsort(lam)
@@ -85,7 +85,7 @@ def power_spectrum(
         hi = min(wr, min(surface.lx, surface.ly) / 4.0)
         lo = 4.0 * max(surface.dx, surface.dy)
         fit_range = (lo, max(hi, lo))
-    return _fit(
+    return fit_log_log(
         "sp",
         lam,
         var,

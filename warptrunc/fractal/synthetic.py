@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_range
+from .._validate import check_int, check_range, pair
 from ..surface import Surface
 
 
@@ -58,7 +58,6 @@ def self_affine_surface(
     >>> s = self_affine_surface(0.5, 256, 1e-3, Rrms=1e-6, seed=1)  # D = 2.5
     >>> fractal_dimension(s, "vs").D
     """
-    from .._validate import check_int, pair
 
     H = check_range("H", H, 0.0, 1.0)
     nx, ny = pair("n", n, int)

@@ -42,8 +42,8 @@ import numpy as np
 
 from .._validate import check_range
 from ..surface import Surface
-from .builtin import _read_numpy, _read_text
-from .instrument import _read_surfacetopography
+from .builtin import read_numpy, read_text, write_warptrunc_file
+from .instrument import read_surfacetopography
 from .repair import FILL_METHODS, fill_missing, level_plane
 from .scan import ENGINES, NUMPY_SUFFIXES, TEXT_SUFFIXES, MissingExtraError, Scan
 
@@ -118,10 +118,10 @@ def read_scan(
             f"{suffix!r}; use engine='surfacetopography'"
         )
     if engine == "surfacetopography" or (engine == "auto" and not builtin):
-        return _read_surfacetopography(path, dx, dy, height_unit, channel)
+        return read_surfacetopography(path, dx, dy, height_unit, channel)
     if suffix in NUMPY_SUFFIXES:
-        return _read_numpy(path, dx, dy, height_unit)
-    return _read_text(path, dx, dy, height_unit)
+        return read_numpy(path, dx, dy, height_unit)
+    return read_text(path, dx, dy, height_unit)
 
 
 def read_height_map(
@@ -141,7 +141,8 @@ def read_height_map(
     Parameters
     ----------
     path : str or Path
-        .npz/.npy written by :meth:`Surface.save`, a plain .npy/.npz array, a .csv/.txt/.tsv
+        .npz/.npy written by :func:`write_height_map` (its ``params`` are kept), a plain
+        .npy/.npz array, a .csv/.txt/.tsv
         matrix, or an instrument file (needs the ``scans`` extra).
     dx, dy : float, optional
         Pixel spacings (m); required when the file does not declare them. See
@@ -184,7 +185,10 @@ def read_height_map(
 
 
 def write_height_map(surface: Surface, path: str | Path) -> Path:
-    """Write a surface as .npz/.npy (via :meth:`Surface.save`) or a .csv/.txt/.tsv matrix.
+    """Write a surface as .npz (heights + JSON metadata), .npy (heights) + .json sidecar, or a
+    .csv/.txt/.tsv matrix; a path without a suffix gets ``.npz``.
+
+    :func:`read_height_map` reads every one of them back.
 
     The text matrix has a ``#`` header with ``nx``, ``ny``, ``dx``, ``dy`` (m) and
     ``height unit=1 m``, then one row per ``iy``; values are written with 9 significant digits,
@@ -196,9 +200,11 @@ def write_height_map(surface: Surface, path: str | Path) -> Path:
         The path written.
     """
     path = Path(path)
+    if not path.suffix:
+        path = path.with_suffix(".npz")
     suffix = path.suffix.lower()
     if suffix in NUMPY_SUFFIXES:
-        return surface.save(path)
+        return write_warptrunc_file(surface, path)
     if suffix not in TEXT_SUFFIXES:
         raise ValueError(
             f"{path}: can write {NUMPY_SUFFIXES + TEXT_SUFFIXES}, got suffix {suffix!r}"

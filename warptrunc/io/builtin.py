@@ -12,12 +12,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..surface import Surface, load_surface
+from .._results import jsonable
+from ..surface import Surface
 from .detect import find_data_start, header_units, npz_height_key, shape_words, table_to_map
-from .scan import _LENGTH_UNITS, Scan
+from .scan import LENGTH_UNITS, Scan
 
 
-def _need_spacing(path: Path, dx: float | None, dy: float | None, what: str) -> tuple[float, float]:
+def need_spacing(path: Path, dx: float | None, dy: float | None, what: str) -> tuple[float, float]:
     if dx is None or dy is None:
         raise ValueError(
             f"{path}: {what} carries no pixel spacing; give dx= (and dy= if different) in metres "
@@ -38,25 +39,66 @@ def _as_map(path: Path, a: np.ndarray) -> np.ndarray:
     return a.astype(np.float64)
 
 
-def _try_warptrunc_file(path: Path) -> Surface | None:
-    """A file written by Surface.save, else None."""
+def write_warptrunc_file(surface: Surface, path: Path) -> Path:
+    """Save to ``.npz`` (heights + JSON metadata) or ``.npy`` (heights) + ``.json`` sidecar
+    (the writer of :func:`warptrunc.write_height_map` for those suffixes).
+
+    Returns the path of the file holding the heights.
+    """
+    meta = json.dumps(
+        {"dx": surface.dx, "dy": surface.dy, "params": jsonable(surface.params, nonfinite="text")},
+        sort_keys=True,
+    )
+    if path.suffix.lower() == ".npy":
+        np.save(path, surface.heights)
+        path.with_suffix(".json").write_text(meta + "\n")
+    else:
+        np.savez_compressed(path, heights=surface.heights, metadata=np.array(meta))
+    return path
+
+
+def load_warptrunc_file(path: Path) -> Surface:
+    """A surface written by :func:`write_warptrunc_file` (``.npz``, or ``.npy`` + ``.json``)."""
+    path = Path(path)
+    if path.suffix == ".npy":
+        side = path.with_suffix(".json")
+        if not side.exists():
+            raise ValueError(
+                f"{path}: no metadata sidecar {side.name}; use warptrunc.io.read_height_map "
+                "and give the pixel spacing"
+            )
+        meta = json.loads(side.read_text())
+        z = np.load(path, allow_pickle=False)
+    else:
+        with np.load(path, allow_pickle=False) as f:
+            if "heights" not in f or "metadata" not in f:
+                raise ValueError(
+                    f"{path}: not a warptrunc surface (needs 'heights' and 'metadata')"
+                )
+            z = f["heights"]
+            meta = json.loads(str(f["metadata"]))
+    return Surface(z, meta["dx"], meta["dy"], meta.get("params", {}))
+
+
+def try_warptrunc_file(path: Path) -> Surface | None:
+    """A file written by :func:`write_warptrunc_file`, else None."""
     if not path.exists():
         return None
     if path.suffix.lower() == ".npy":
-        return load_surface(path) if path.with_suffix(".json").exists() else None
+        return load_warptrunc_file(path) if path.with_suffix(".json").exists() else None
     try:
         # open the file ourselves: np.load leaks its handle when a zip is corrupt
         with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as f:
             is_ours = "heights" in f.files and "metadata" in f.files
     except Exception as exc:
         raise ValueError(f"{path}: not a readable .npz file ({exc})") from None
-    return load_surface(path) if is_ours else None
+    return load_warptrunc_file(path) if is_ours else None
 
 
-def _read_numpy(path: Path, dx, dy, height_unit) -> Scan:
+def read_numpy(path: Path, dx, dy, height_unit) -> Scan:
     suffix = path.suffix.lower()
     try:
-        ours = _try_warptrunc_file(path)
+        ours = try_warptrunc_file(path)
     except (ValueError, KeyError, json.JSONDecodeError) as exc:
         raise ValueError(f"{path}: corrupt warptrunc metadata ({exc})") from None
     if ours is not None:
@@ -83,7 +125,7 @@ def _read_numpy(path: Path, dx, dy, height_unit) -> Scan:
     except (OSError, EOFError) as exc:
         raise ValueError(f"{path}: not a readable {suffix} file ({exc})") from None
     z = _as_map(path, np.asarray(a))
-    dx, dy = _need_spacing(path, dx, dy, f"a plain {suffix} array")
+    dx, dy = need_spacing(path, dx, dy, f"a plain {suffix} array")
     return Scan(z * height_unit, dx, dy, str(path), suffix[1:], {})
 
 
@@ -95,11 +137,11 @@ def _length(value: str, path: Path, key: str) -> float:
     if not m:
         raise ValueError(f"{path}: header {key}={value!r} is not a length such as '1.5e-6 m'")
     unit = m.group(2).lower() or "m"
-    if unit not in _LENGTH_UNITS:
+    if unit not in LENGTH_UNITS:
         raise ValueError(
-            f"{path}: header {key}={value!r} has unit {unit!r}; known: {sorted(_LENGTH_UNITS)}"
+            f"{path}: header {key}={value!r} has unit {unit!r}; known: {sorted(LENGTH_UNITS)}"
         )
-    return float(m.group(1)) * _LENGTH_UNITS[unit]
+    return float(m.group(1)) * LENGTH_UNITS[unit]
 
 
 def _parse_header(lines: list[str], path: Path) -> dict[str, str]:
@@ -149,7 +191,7 @@ def _is_numeric_line(line: str, delim: str | None) -> bool:
         return False
 
 
-def _read_text(path: Path, dx, dy, height_unit) -> Scan:
+def read_text(path: Path, dx, dy, height_unit) -> Scan:
     try:
         text = path.read_text(encoding="utf-8", errors="strict")
     except UnicodeDecodeError as exc:
@@ -227,6 +269,6 @@ def _read_text(path: Path, dx, dy, height_unit) -> Scan:
         )
     dx = fdx if dx is None else dx
     dy = fdy if dy is None else dy
-    dx, dy = _need_spacing(path, dx, dy, "a text matrix without a 'dx=' or 'pixel size=' header")
+    dx, dy = need_spacing(path, dx, dy, "a text matrix without a 'dx=' or 'pixel size=' header")
     scale = factor if factor is not None else height_unit
     return Scan(z * scale, dx, dy, str(path), "text", {"header": header} if header else {})

@@ -33,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .scan import _LENGTH_UNITS
+from .scan import LENGTH_UNITS
 
 __all__ = [
     "HEIGHT_KEYS",
@@ -103,9 +103,9 @@ def header_units(
 
     def length(v: str) -> float | None:
         m = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)?\s*(\S+)\s*", v)
-        if not m or m.group(2).lower() not in _LENGTH_UNITS:
+        if not m or m.group(2).lower() not in LENGTH_UNITS:
             return None
-        return float(m.group(1) or 1.0) * _LENGTH_UNITS[m.group(2).lower()]
+        return float(m.group(1) or 1.0) * LENGTH_UNITS[m.group(2).lower()]
 
     unit = None
     if "value units" in header:
@@ -113,7 +113,7 @@ def header_units(
         if unit is None:
             raise ValueError(
                 f"{path}: header 'Value units: {header['value units']}' is not a length unit; "
-                f"known: {sorted(_LENGTH_UNITS)}"
+                f"known: {sorted(LENGTH_UNITS)}"
             )
     width = next((length(header[k]) for k in ("width", "breite") if k in header), None)
     height = next((length(header[k]) for k in ("height", "höhe") if k in header), None)

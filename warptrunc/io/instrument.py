@@ -11,11 +11,11 @@ from typing import Any
 
 import numpy as np
 
-from .builtin import _need_spacing
-from .scan import _LENGTH_UNITS, MissingExtraError, Scan
+from .builtin import need_spacing
+from .scan import LENGTH_UNITS, MissingExtraError, Scan
 
 
-def _read_surfacetopography(path: Path, dx, dy, height_unit, channel) -> Scan:
+def read_surfacetopography(path: Path, dx, dy, height_unit, channel) -> Scan:
     try:
         from SurfaceTopography import open_topography
     except ImportError:
@@ -39,8 +39,8 @@ def _read_surfacetopography(path: Path, dx, dy, height_unit, channel) -> Scan:
             # the file lacks sizes or units: the user's dx, dy (m) define them, heights are
             # multiplied by height_unit
             nx_, ny_ = ch.nb_grid_pts
-            pdx, pdy = _need_spacing(path, dx, dy, "this instrument file (no physical size)")
-            f = 1.0 if ch.unit is None else _LENGTH_UNITS.get(str(ch.unit).lower())
+            pdx, pdy = need_spacing(path, dx, dy, "this instrument file (no physical size)")
+            f = 1.0 if ch.unit is None else LENGTH_UNITS.get(str(ch.unit).lower())
             if f is None:
                 raise ValueError(f"{path}: unknown length unit {ch.unit!r} in the file")
             if ch.physical_sizes is None:  # else fixed by the file, in an unknown unit

@@ -18,7 +18,7 @@ NUMPY_SUFFIXES = (".npz", ".npy")
 TEXT_SUFFIXES = (".csv", ".txt", ".tsv")
 ENGINES = ("auto", "builtin", "surfacetopography")
 
-_LENGTH_UNITS = {
+LENGTH_UNITS = {
     "m": 1.0,
     "mm": 1e-3,
     "um": 1e-6,

@@ -36,16 +36,14 @@ versa). With ``periodic=True``, χ is that of the set on the torus (χ = islands
 sets that do not wrap around).
 """
 
-# private names re-exported for the tests and the benchmark
-from .depths import (  # noqa: F401
-    _Forest,
+from .depths import (
     island_counts_device,
     island_curve,
     islands_at_depth,
     islands_at_depths,
 )
 from .fits import applicable_depth, slit_island_fit
-from .labelling import _label_parallel, _label_sequential, label_device, label_islands  # noqa: F401
+from .labelling import label_islands
 from .results import (
     MIN_ISLANDS,
     MIN_PIXELS,
@@ -56,7 +54,7 @@ from .results import (
     SlitIslandFit,
     TopologyCurve,
 )
-from .topology import _topology_hist, topology_curve  # noqa: F401
+from .topology import topology_curve
 
 __all__ = [
     "MIN_ISLANDS",
@@ -72,7 +70,6 @@ __all__ = [
     "island_curve",
     "islands_at_depth",
     "islands_at_depths",
-    "label_device",
     "label_islands",
     "slit_island_fit",
     "topology_curve",

@@ -182,7 +182,7 @@ def applicable_depth(
         peak_depth=float(curve.depth[k_peak]),
         plateau_exponent=plateau,
         fractal_depth_censored=censored,
-        rt=curve.rt,
+        Rt=curve.Rt,
         exponent_tolerance=tol,
         min_islands=min_islands,
         persist=persist,
@@ -191,7 +191,7 @@ def applicable_depth(
     )
 
 
-def _slit_from_sums(sums: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def slit_from_sums(sums: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(n1, 2) [slope, r²] and (n1,) island counts of the slit-island fits from the per-depth
     sums [n, Σx, Σy, Σx², Σxy, Σy²] (x = log10 area, y = log10 perimeter, any units).
 

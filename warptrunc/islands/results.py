@@ -17,7 +17,7 @@ perimeter of an island is set by the grid (1 pixel: L = 4·dx, A = dx²), not by
 MIN_ISLANDS = 5
 """Fewest islands for a slit-island fit; fewer give NaN."""
 
-_SEGMENT = 32  # pixels per thread in island_stats_kernel
+SEGMENT = 32  # pixels per thread in island_stats_kernel
 
 
 class _LazyHostArray:
@@ -196,7 +196,7 @@ class TopologyCurve:
     """(n+1,) float64 total island perimeter (m)."""
     euler_characteristic: np.ndarray
     """(n+1,) int64 χ = islands − holes of the contact set."""
-    rt: float
+    Rt: float
     """Peak-to-valley height R_t (m)."""
     connectivity: int
     """4 or 8."""
@@ -213,7 +213,7 @@ class TopologyCurve:
         """
         return {
             "depth_m": self.depth,
-            "depth_fraction_of_Rt": self.depth / self.rt,
+            "depth_fraction_of_Rt": self.depth / self.Rt,
             "n_contact_pixels": self.n_contact_pixels,
             "contact_area_m2": self.contact_area,
             "total_perimeter_m": self.total_perimeter,
@@ -249,7 +249,7 @@ class IslandCurve:
     statistics."""
     sizes: tuple[IslandSizes, ...]
     """Areas and perimeters of every island at the snapshot depths."""
-    rt: float
+    Rt: float
     """Peak-to-valley height R_t (m)."""
     dx: float
     """Pixel spacing along x (m)."""
@@ -267,7 +267,7 @@ class IslandCurve:
     @property
     def depth_fraction(self) -> np.ndarray:
         """(n+1,) float64 ω/R_t (dimensionless)."""
-        return self.depth / self.rt
+        return self.depth / self.Rt
 
     @property
     def normalised_island_number(self) -> np.ndarray:
@@ -333,7 +333,7 @@ class Indicators:
     fractal_depth_censored: bool
     """True when the exponent never left the plateau: ``fractal_depth`` is then the deepest
     depth analysed, a lower bound."""
-    rt: float
+    Rt: float
     """Peak-to-valley height R_t (m)."""
     exponent_tolerance: float
     """Allowed relative drop of the exponent below the plateau (dimensionless)."""
@@ -354,7 +354,7 @@ class Indicators:
         dict of str to Any
             The indicator depths, in % of R_t and in m.
         """
-        pct = 100.0 / self.rt
+        pct = 100.0 / self.Rt
 
         def num(v: float) -> float | None:
             return None if not math.isfinite(v) else float(v)
@@ -369,7 +369,7 @@ class Indicators:
             "plateau_exponent": num(self.plateau_exponent),
             "plateau_dimension": num(2.0 * self.plateau_exponent + 1.0),
             "fractality_depth_censored": bool(self.fractal_depth_censored),
-            "rt_m": self.rt,
+            "Rt_m": self.Rt,
             "exponent_tolerance": self.exponent_tolerance,
             "min_islands": self.min_islands,
             "persist_fraction_of_Rt": self.persist,

@@ -16,9 +16,9 @@ import warp as wp
 from .._device import resolve_device
 from ..kernels import euler as _ke
 from ..surface import Surface
-from ..truncation import _where, contact_index_map, depth_grid
-from .labelling import _check_connectivity, _check_index_size, _check_surface
+from ..truncation.curve import contact_index_device, depth_grid, surface_device
 from .results import TopologyCurve
+from .unionfind import check_connectivity, check_index_size, check_surface
 
 __all__ = ["topology_curve"]
 
@@ -58,13 +58,15 @@ def _topology_hist_blocks(
     return hist.numpy().reshape(-1, 4)[:n1]  # sync point
 
 
-def _topology_hist(
+def topology_hist(
     idx: wp.array, shape: tuple[int, int], n1: int, connectivity: int, periodic: bool, device
 ) -> np.ndarray:
     """(n1, 4) int64 cumulative [contact pixels, edges_x, edges_y, χ] at every increment."""
     ny, nx = shape
     per = int(bool(periodic))
-    mode = TOPOLOGY_KERNEL if TOPOLOGY_KERNEL != "auto" else ("block" if device.is_cuda else "atomic")
+    mode = (
+        TOPOLOGY_KERNEL if TOPOLOGY_KERNEL != "auto" else ("block" if device.is_cuda else "atomic")
+    )
     if mode == "block" and n1 <= _ke.HIST_BINS:
         return np.cumsum(_topology_hist_blocks(idx, shape, n1, connectivity, per, device), axis=0)
     hist = wp.zeros((n1, 4), dtype=wp.int64, device=device)
@@ -108,7 +110,8 @@ def topology_curve(
     max_depth : float, optional
         Largest depth ω_max (m). Overrides ``max_depth_fraction``.
     max_depth_fraction : float
-        ω_max as a fraction of R_t (dimensionless).
+        ω_max as a fraction of R_t (dimensionless). 0.5 by default, as :func:`island_curve`
+        (the topology is read over the same depths as the island count).
     connectivity : {4, 8}
         Connectivity of the contact set, which fixes the cell complex of χ.
     periodic : bool
@@ -129,16 +132,16 @@ def topology_curve(
     index of its pixels, on the complex of pixel centres; 8-connectivity: the smallest, on
     closed pixels). χ = V − E + F summed per increment by a difference histogram.
     """
-    surface = _check_surface(surface)
-    connectivity = _check_connectivity(connectivity)
-    device = resolve_device(_where(surface, device))
+    surface = check_surface(surface)
+    connectivity = check_connectivity(connectivity)
+    device = resolve_device(surface_device(surface, device))
     depth = depth_grid(
-        surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
+        surface.Rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
     ny, nx = surface.ny, surface.nx
-    _check_index_size(ny * nx)  # before allocating
-    idx = contact_index_map(surface, depth, device=device, as_warp=True).reshape((ny * nx,))
-    h = _topology_hist(idx, (ny, nx), depth.size, connectivity, periodic, device)
+    check_index_size(ny * nx)  # before allocating
+    idx = contact_index_device(surface, depth, device).reshape((ny * nx,))
+    h = topology_hist(idx, (ny, nx), depth.size, connectivity, periodic, device)
     return TopologyCurve(
         depth=depth,
         n_contact_pixels=h[:, 0],
@@ -147,7 +150,7 @@ def topology_curve(
         edges_y=h[:, 2],
         total_perimeter=h[:, 1] * surface.dy + h[:, 2] * surface.dx,
         euler_characteristic=h[:, 3],
-        rt=surface.rt,
+        Rt=surface.Rt,
         connectivity=connectivity,
         periodic=bool(periodic),
     )

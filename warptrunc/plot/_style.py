@@ -7,6 +7,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 UM = 1e6  # m → µm on axes
 FIGSIZE = (5.0, 4.0)
 DPI = 150
@@ -17,7 +19,7 @@ HEIGHT_CMAP = "viridis"  # height maps; "gray" under a red contact overlay
 PAPER_ALPHA_D = (0.209, 0.090)  # the paper's α = 0.209·D_in + 0.090 (Table 3, D_in)
 
 
-def _figure(figsize: tuple[float, float] = FIGSIZE, ncols: int = 1, nrows: int = 1):
+def new_figure(figsize: tuple[float, float] = FIGSIZE, ncols: int = 1, nrows: int = 1):
     """A pyplot-free Figure (renders with Agg, needs no display) and its axes grid."""
     from matplotlib.figure import Figure
 
@@ -26,7 +28,7 @@ def _figure(figsize: tuple[float, float] = FIGSIZE, ncols: int = 1, nrows: int =
     return fig, axes
 
 
-def _finish(fig: Any, path: str | Path | None) -> Any:
+def finish_figure(fig: Any, path: str | Path | None) -> Any:
     if path is not None:
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -34,30 +36,29 @@ def _finish(fig: Any, path: str | Path | None) -> Any:
     return fig
 
 
-def _as_list(x: Any) -> list:
+def as_list(x: Any) -> list:
     """A single result object or a sequence of them, as a list."""
     return list(x) if isinstance(x, (list, tuple)) else [x]
 
 
-def _is_group(x: Any) -> bool:
+def is_group(x: Any) -> bool:
     """A group of seeds of one case: a list/tuple of result objects (drawn as mean ± spread)."""
     return isinstance(x, (list, tuple))
 
 
-def _length_axes(ax: Any, x: str = "x", y: str = "y") -> None:
+def length_axes(ax: Any, x: str = "x", y: str = "y") -> None:
     """Label both axes as lengths in µm."""
     ax.set_xlabel(f"{x} (µm)")
     ax.set_ylabel(f"{y} (µm)")
 
 
-def _band(xs: list, ys: list, *, log: bool, n: int = 200, spread: str = "sd"):
+def shade_band(xs: list, ys: list, *, log: bool, n: int = 200, spread: str = "sd"):
     """Mean and spread over curves (x_i, y_i), on a grid over the x range they all cover.
 
     In log mode x and y are interpolated and averaged as logarithms (geometric mean and
     sd). Returns (grid, centre, lower, upper); spread "sd" is ±1 sample standard deviation,
     "range" is min–max.
     """
-    import numpy as np
 
     f = np.log if log else np.asarray
     inv = np.exp if log else np.asarray

@@ -8,10 +8,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from ._style import (
     UM,
-    _figure,
-    _finish,
+    finish_figure,
+    new_figure,
 )
 
 _METHOD_LABELS = {
@@ -51,7 +53,7 @@ def psd(
         The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
     psds = list(psds) if isinstance(psds, (list, tuple)) else [psds]
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     for i, p in enumerate(psds):
         unit = "m$^4$" if p.kind == "radial" else "m$^3$"
@@ -66,7 +68,7 @@ def psd(
     if title:
         ax.set_title(title)
     ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None = None):
@@ -86,12 +88,11 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
     matplotlib.figure.Figure
         The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
-    import numpy as np
 
     items = list(fits.items())
     ncols = min(2, len(items))
     nrows = (len(items) + ncols - 1) // ncols
-    fig, axes = _figure((4.0, 3.2), ncols=ncols, nrows=nrows)
+    fig, axes = new_figure((4.0, 3.2), ncols=ncols, nrows=nrows)
     ylab = {
         "tri": "area ratio A/A$_{proj}$",
         "box": "cubes N(ε)",
@@ -119,7 +120,7 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
         axes[k // ncols, k % ncols].set_visible(False)
     if title:
         fig.suptitle(title)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def d_out_vs_d_in(
@@ -150,9 +151,8 @@ def d_out_vs_d_in(
     matplotlib.figure.Figure
         The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
-    import numpy as np
 
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     d_in = np.asarray(d_in, dtype=float)
     for m, v in d_out.items():
@@ -166,7 +166,7 @@ def d_out_vs_d_in(
     if title:
         ax.set_title(title)
     ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def calibration_history(cal: Any, *, path: str | Path | None = None):
@@ -184,7 +184,7 @@ def calibration_history(cal: Any, *, path: str | Path | None = None):
     matplotlib.figure.Figure
         The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     t = cal.target
     tol = cal.rtol * t.D
@@ -201,4 +201,4 @@ def calibration_history(cal: Any, *, path: str | Path | None = None):
     ax.set_ylabel(f"D$_{{out}}$ ({t.method})")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)

@@ -7,10 +7,13 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
+from ..islands import MIN_PIXELS, slit_island_fit
 from ._style import (
     UM,
-    _figure,
-    _finish,
+    finish_figure,
+    new_figure,
 )
 
 
@@ -46,7 +49,7 @@ def island_number(
     curves = list(curves) if isinstance(curves, (list, tuple)) else [curves]
     if indicators is not None:
         indicators = list(indicators) if isinstance(indicators, (list, tuple)) else [indicators]
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     marks = (
         ("max_growth_depth", "--", "max. growth rate"),
@@ -62,8 +65,8 @@ def island_number(
                 d = getattr(ind, name)
                 if d == d:  # not NaN
                     ax.axvline(
-                        100 * d / ind.rt, ls=style, lw=1.0, color=line.get_color(),
-                        label=(what if len(curves) > 1 else f"{what}: {100 * d / ind.rt:.1f} % R$_t$")
+                        100 * d / ind.Rt, ls=style, lw=1.0, color=line.get_color(),
+                        label=(what if len(curves) > 1 else f"{what}: {100 * d / ind.Rt:.1f} % R$_t$")
                         if i == 0 else None,
                     )  # fmt: skip
     ax.set_xlabel("truncation depth ω (% R$_t$)")
@@ -73,7 +76,7 @@ def island_number(
     if title:
         ax.set_title(title)
     ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def slit_islands(
@@ -102,22 +105,20 @@ def slit_islands(
     matplotlib.figure.Figure
         The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
-    import numpy as np
 
-    from ..islands import MIN_PIXELS, slit_island_fit
 
     sizes = list(getattr(curve, "sizes", curve))
     if min_pixels is None:
         min_pixels = getattr(curve, "min_pixels", MIN_PIXELS)
-    rt = getattr(curve, "rt", None)
-    fig, axes = _figure()
+    Rt = getattr(curve, "Rt", None)
+    fig, axes = new_figure()
     ax = axes[0, 0]
     for sz in sizes:
         if sz.n_islands == 0:
             continue
         big = sz.area_pixels >= min_pixels
         fit = slit_island_fit(sz, min_pixels=min_pixels)
-        at = f"ω = {100 * sz.depth / rt:.1f} % R$_t$" if rt else f"ω = {sz.depth * UM:.3g} µm"
+        at = f"ω = {100 * sz.depth / Rt:.1f} % R$_t$" if Rt else f"ω = {sz.depth * UM:.3g} µm"
         (pts,) = ax.loglog(sz.area[big] * UM**2, sz.perimeter[big] * UM, ".", ms=2.5, alpha=0.6)
         ax.loglog(sz.area[~big] * UM**2, sz.perimeter[~big] * UM, ".", ms=2, color="0.75", zorder=0)
         if fit.exponent == fit.exponent:
@@ -135,4 +136,4 @@ def slit_islands(
     ax.grid(True, which="both", alpha=0.3)
     ax.set_title(title or f"slit islands (grey: < {min_pixels} pixels, not fitted)")
     ax.legend(fontsize=6)
-    return _finish(fig, path)
+    return finish_figure(fig, path)

@@ -4,21 +4,25 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from ._style import (
     CONTACT_RGB,
     HEIGHT_CMAP,
     SPREAD_ALPHA,
     UM,
-    _as_list,
-    _band,
-    _figure,
-    _finish,
-    _is_group,
-    _length_axes,
+    as_list,
+    finish_figure,
+    is_group,
+    length_axes,
+    new_figure,
+    shade_band,
 )
+from .pooling import check_pooling, pool_blocks
 
 
 def height_map(
@@ -65,22 +69,19 @@ def height_map(
     ``imshow(z, origin="lower", extent=(0, Lx, 0, Ly))``: row iy of ``z`` is drawn at
     y = iy·dy, so x runs to the right and y up, as in the 3-D pictures.
     """
-    import math
 
-    import numpy as np
 
-    from .._blocks import check_pooling, pool_blocks
 
     check_pooling(pooling)
 
     if depth is not None and depth_fraction is not None:
         raise ValueError("give depth or depth_fraction, not both")
     if depth_fraction is not None:
-        depth = float(depth_fraction) * surface.rt
+        depth = float(depth_fraction) * surface.Rt
     z = surface.heights
     f = max(1, math.ceil(max(z.shape) / int(max_pixels)))
     shown = pool_blocks(z, f, "mean") if f > 1 else z
-    fig, axes = _figure(figsize=(5.4, 4.4))
+    fig, axes = new_figure(figsize=(5.4, 4.4))
     ax = axes[0, 0]
     ext = (0.0, surface.lx * UM, 0.0, surface.ly * UM)
     im = ax.imshow(
@@ -99,8 +100,8 @@ def height_map(
         rgba[..., :3] = [c / 255 for c in CONTACT_RGB]
         rgba[..., 3] = mask
         ax.imshow(rgba, origin="lower", extent=ext, interpolation="nearest")
-        label = f"contact at ω = {depth * UM:.3g} µm ({100 * depth / surface.rt:.3g} % R$_t$): A$_c$/A = {100 * frac:.3g} %"
-    _length_axes(ax)
+        label = f"contact at ω = {depth * UM:.3g} µm ({100 * depth / surface.Rt:.3g} % R$_t$): A$_c$/A = {100 * frac:.3g} %"
+    length_axes(ax)
     note = f"{surface.nx}×{surface.ny} px" + (f", shown in {f}×{f} blocks" if f > 1 else "")
     if f > 1 and depth is not None:
         note += (
@@ -109,7 +110,7 @@ def height_map(
             else " (red opacity = contact fraction)"
         )
     ax.set_title("\n".join(t for t in (title, label, note) if t), fontsize=8)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def area_fraction(
@@ -147,19 +148,21 @@ def area_fraction(
     matplotlib.figure.Figure
         The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
-    curves = _as_list(curves)
+    curves = as_list(curves)
 
     def xy(c):
-        x = 100 * c.depth / c.rt if relative else c.depth * UM
+        x = 100 * c.depth / c.Rt if relative else c.depth * UM
         return x, 100 * c.area_fraction
 
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     for i, c in enumerate(curves):
         lab = labels[i] if labels is not None else None
-        if _is_group(c):
+        if is_group(c):
             pts = [xy(g) for g in c]
-            x, m, lo, hi = _band([p[0] for p in pts], [p[1] for p in pts], log=False, spread=spread)
+            x, m, lo, hi = shade_band(
+                [p[0] for p in pts], [p[1] for p in pts], log=False, spread=spread
+            )
             what = "±1 sd" if spread == "sd" else "min–max"
             (line,) = ax.plot(
                 x, m, "-", lw=1.4, label=f"{lab} ({len(c)} seeds, {what})" if lab else None
@@ -176,4 +179,4 @@ def area_fraction(
         ax.set_title(title)
     if labels is not None:
         ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)

@@ -7,14 +7,17 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
+from ..sweep import alpha_summary
 from ._style import (
     PAPER_ALPHA_D,
     SPREAD_ALPHA,
-    _as_list,
-    _band,
-    _figure,
-    _finish,
-    _is_group,
+    as_list,
+    finish_figure,
+    is_group,
+    new_figure,
+    shade_band,
 )
 
 
@@ -52,22 +55,21 @@ def stiffness_load(
     matplotlib.figure.Figure
         The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
-    import numpy as np
 
-    curves = _as_list(curves)
+    curves = as_list(curves)
     if fits is not None:
-        fits = _as_list(fits)
+        fits = as_list(fits)
         if len(fits) != len(curves):
             raise ValueError(
                 f"need one fit (or list of fits) per curve, got {len(fits)} for {len(curves)}"
             )
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     for i, c in enumerate(curves):
         lab = labels[i] if labels is not None else None
-        if _is_group(c):
+        if is_group(c):
             sels = [g.load > 0 for g in c]
-            x, m, lo, hi = _band(
+            x, m, lo, hi = shade_band(
                 [g.F_over_EA[s] for g, s in zip(c, sels, strict=True)],
                 [g.Ec_over_E[s] for g, s in zip(c, sels, strict=True)],
                 log=True, spread=spread,
@@ -83,7 +85,7 @@ def stiffness_load(
         f = fits[i] if fits is not None else None
         if f is None:
             continue
-        if _is_group(f):
+        if is_group(f):
             f = [g for g in f if g is not None]
             if not f:
                 continue
@@ -108,7 +110,7 @@ def stiffness_load(
     if title:
         ax.set_title(title)
     ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def alpha_vs_D(
@@ -141,14 +143,13 @@ def alpha_vs_D(
     matplotlib.figure.Figure
         The figure, also saved as PNG to ``path`` when given (parent folders created).
     """
-    import numpy as np
 
     ranges = _alpha_ranges(summary)
     if min_pixels is not None:
         ranges = {k: v for k, v in ranges.items() if int(k) == int(min_pixels)}
         if not ranges:
             raise ValueError(f"no fit range with min_pixels = {min_pixels} in the summary")
-    fig, axes = _figure()
+    fig, axes = new_figure()
     ax = axes[0, 0]
     d_all = []
     for k, v in sorted(ranges.items(), key=lambda kv: int(kv[0])):
@@ -178,13 +179,12 @@ def alpha_vs_D(
     if title:
         ax.set_title(title)
     ax.legend(fontsize=7)
-    return _finish(fig, path)
+    return finish_figure(fig, path)
 
 
 def _alpha_ranges(summary: Any) -> dict:
     """{min_pixels: {"per_D": [...], "alpha_vs_D": line or None}} from a summary or a table."""
     if isinstance(summary, dict):
         return dict(summary["fit_ranges"])
-    from ..sweep import alpha_summary
 
     return alpha_summary(summary)["fit_ranges"]

@@ -4,15 +4,16 @@
 
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import numpy as np
 
 from ..surface import Surface
-from .scene import _font_file
+from .scene import font_file
 
 
-def _tile(images: list[np.ndarray], nrows: int, ncols: int, size) -> np.ndarray:
+def tile(images: list[np.ndarray], nrows: int, ncols: int, size) -> np.ndarray:
     w, h = size
     out = np.full((h, w, 3), 255, dtype=np.uint8)
     for i, im in enumerate(images):
@@ -22,12 +23,12 @@ def _tile(images: list[np.ndarray], nrows: int, ncols: int, size) -> np.ndarray:
     return out
 
 
-def _draw_text(img: np.ndarray, text: str, xy, size: int, width: int) -> np.ndarray:
+def draw_text(img: np.ndarray, text: str, xy, size: int, width: int) -> np.ndarray:
     """Write ``text`` onto ``img`` with Pillow, wrapped to ``width`` pixels (spare panel)."""
     from PIL import Image, ImageDraw, ImageFont
 
     im = Image.fromarray(img)
-    font = _font_file()
+    font = font_file()
     f = ImageFont.truetype(font, size) if font else ImageFont.load_default()
     lines: list[str] = []
     for word in text.split():
@@ -39,19 +40,19 @@ def _draw_text(img: np.ndarray, text: str, xy, size: int, width: int) -> np.ndar
     return np.asarray(im).copy()
 
 
-def _layout(n: int, ncols: int | None) -> tuple[int, int]:
+def grid_layout(n: int, ncols: int | None) -> tuple[int, int]:
     if ncols is None:
         ncols = n if n <= 3 else 3
     ncols = max(1, min(int(ncols), n))
     return -(-n // ncols), ncols
 
 
-def _caption(
+def caption_text(
     surface: Surface, factor: int, shape: tuple[int, int], ve: float, pooling: str = "area"
 ) -> str:
     s = (
         f"{surface.nx}×{surface.ny} px, {surface.lx * 1e6:.4g}×{surface.ly * 1e6:.4g} µm, "
-        f"Rt = {surface.rt * 1e6:.3g} µm; heights ×{ve:g}"
+        f"Rt = {surface.Rt * 1e6:.3g} µm; heights ×{ve:g}"
     )
     if factor > 1:
         s += f"; mesh down-sampled ×{factor} ({shape[1]}×{shape[0]} blocks): "
@@ -65,13 +66,11 @@ def _caption(
     return s + "; red: contact"
 
 
-def _wrap(text: str, width: int) -> str:
-    import textwrap
-
+def wrap_text(text: str, width: int) -> str:
     return "\n".join(textwrap.wrap(text, width))
 
 
-def _save_png(img: np.ndarray, path: Path, result_meta: str, caption: str) -> None:
+def save_png(img: np.ndarray, path: Path, result_meta: str, caption: str) -> None:
     from PIL import Image
     from PIL.PngImagePlugin import PngInfo
 
@@ -83,5 +82,5 @@ def _save_png(img: np.ndarray, path: Path, result_meta: str, caption: str) -> No
     Image.fromarray(img).save(path, pnginfo=info, optimize=True)
 
 
-def _depth_title(d: float, rt: float, frac: float) -> str:
-    return f"ω = {100 * d / rt:.3g} % Rt = {d * 1e6:.3g} µm\ncontact Ac/A = {100 * frac:.3g} %"
+def depth_title(d: float, Rt: float, frac: float) -> str:
+    return f"ω = {100 * d / Rt:.3g} % Rt = {d * 1e6:.3g} µm\ncontact Ac/A = {100 * frac:.3g} %"

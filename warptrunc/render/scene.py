@@ -6,17 +6,20 @@ with its camera, the down-sampling factor and the vertical exaggeration."""
 from __future__ import annotations
 
 import math
+import os
 from contextlib import contextmanager
 
 import numpy as np
 
-from .._blocks import pool_blocks
+from .._device import is_verbose
+from ..plot import CONTACT_RGB
+from ..plot.pooling import pool_blocks
 from ..surface import Surface
 
 _NEUTRAL = (95, 225)  # grey levels of the lowest and the highest non-contact cells
 
 
-def _pyvista():
+def import_pyvista():
     try:
         import pyvista as pv
     except ImportError as exc:  # pragma: no cover - exercised where pyvista is absent
@@ -27,12 +30,11 @@ def _pyvista():
 
 
 @contextmanager
-def _vtk_quiet():
+def vtk_quiet():
     """Hide VTK's warnings while rendering (e.g. "bad X server connection" on headless
     machines, where off-screen rendering works regardless), unless verbose
     (:func:`warptrunc._device.set_verbose`, ``warptrunc --verbose``, ``$WARPTRUNC_VERBOSE``).
     The previous global setting of VTK is restored afterwards."""
-    from .._device import is_verbose
 
     if is_verbose():
         yield
@@ -50,7 +52,7 @@ def _vtk_quiet():
 # --- down-sampling ------------------------------------------------------------------------------
 
 
-def _auto_factor(
+def auto_factor(
     surface: Surface, panel: tuple[int, int], *, top_view: bool, annotate: bool, max_mesh: int
 ) -> int:
     """Smallest block side that gives every block at least one screen pixel.
@@ -101,10 +103,10 @@ def auto_exaggeration(surface: Surface, relief: float = 0.1) -> float:
         The largest 1-2-5 value (1, 2, 5, 10, 20, ...) not above relief·max(Lx, Ly)/R_t
         (dimensionless); 1.0 when R_t is 0 or the surface is already that rough.
     """
-    rt = surface.rt
-    if not rt > 0:
+    Rt = surface.Rt
+    if not Rt > 0:
         return 1.0
-    v = relief * max(surface.lx, surface.ly) / rt * (1 + 1e-6)  # R_t rescaled to 10 µm → 10
+    v = relief * max(surface.lx, surface.ly) / Rt * (1 + 1e-6)  # R_t rescaled to 10 µm → 10
     if v <= 1:
         return 1.0
     e = 10 ** math.floor(math.log10(v))
@@ -114,11 +116,11 @@ def auto_exaggeration(surface: Surface, relief: float = 0.1) -> float:
 # --- mesh and drawing ---------------------------------------------------------------------------
 
 
-class _Scene:
+class Scene:
     """The down-sampled mesh (one cell per block, x fastest) and the colours of its cells."""
 
     def __init__(self, surface: Surface, factor: int, ve: float):
-        pv = _pyvista()
+        pv = import_pyvista()
         f = factor
         hb = pool_blocks(surface.heights, f, "mean")  # (my, mx) block means (m)
         self.shape = hb.shape
@@ -139,7 +141,6 @@ class _Scene:
         t = (hb - lo) / (hi - lo) if hi > lo else np.full_like(hb, 0.5)
         g = np.rint(_NEUTRAL[0] + (_NEUTRAL[1] - _NEUTRAL[0]) * t).astype(np.uint8).ravel()
         self.neutral = np.repeat(g[:, None], 3, axis=1)
-        from ..plot import CONTACT_RGB
 
         self.red = np.asarray(CONTACT_RGB, dtype=np.uint8)
 
@@ -155,9 +156,8 @@ class _Scene:
         return np.rint(c).astype(np.uint8)
 
 
-def _font_file() -> str | None:
+def font_file() -> str | None:
     """DejaVu Sans from matplotlib: VTK's built-in fonts lack ω and µ."""
-    import os
 
     import matplotlib
 
@@ -167,20 +167,20 @@ def _font_file() -> str | None:
 
 def _text(pl, text: str, position, font_size: int, color: str = "black", name=None):
     return pl.add_text(
-        text, position=position, font_size=font_size, color=color, font_file=_font_file(),
+        text, position=position, font_size=font_size, color=color, font_file=font_file(),
         name=name,
     )  # fmt: skip
 
 
-class _Panel:
+class Panel:
     """One off-screen plotter of panel size showing the scene; :meth:`frame` recolours it.
 
     Panels are rendered one at a time and tiled by NumPy: VTK draws 2-D axis labels (the mode
     that can show µ) in the wrong viewport when a plotter holds several.
     """
 
-    def __init__(self, scene: _Scene, size, *, top_view, lighting, annotate, ve, caption=None):
-        pv = _pyvista()
+    def __init__(self, scene: Scene, size, *, top_view, lighting, annotate, ve, caption=None):
+        pv = import_pyvista()
         self.scene, self.annotate = scene, annotate
         # text sizes scale with the panel (VTK sizes are in points at a fixed DPI)
         self.scale = max(0.6, min(1.5, min(size[0] / 520, size[1] / 440)))
@@ -202,7 +202,7 @@ class _Panel:
                 color="black", bold=False, n_xlabels=3, n_ylabels=3, fmt="%.0f",
                 location="outer" if top_view else "front", use_3d_text=False, use_2d=True,
             )  # fmt: skip
-            font = _font_file()
+            font = font_file()
             if font is not None:
                 from vtkmodules.vtkCommonCore import VTK_FONT_FILE
 

@@ -16,8 +16,12 @@ import time
 from pathlib import Path
 from typing import Any
 
+from .. import __version__
+from .._bench import git_commit
+from .._device import resolve_device
+from .._results import jsonable, write_atomic
 from .profiles import PROFILES, Profile, get_profile
-from .store import StageConflict, StageStore, jsonable, write_atomic
+from .store import StageConflict, StageStore
 
 __all__ = ["PROFILES", "Profile", "StageConflict", "get_profile", "reproduce"]
 
@@ -60,9 +64,8 @@ def reproduce(
     ValueError
         If ``profile`` names no profile.
     """
-    from .. import __version__
-    from .._bench import git_commit
-    from .._device import resolve_device
+    # the study stack (sweeps, calibration, figures) loads when a study runs, not with the
+    # package: `warptrunc --help` reads the profiles only
     from .analysis import analyse
     from .report import figures, markdown
     from .study import run_study

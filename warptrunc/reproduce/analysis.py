@@ -141,9 +141,9 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
     # Table 1
     t1 = []
     for r in res["table1"]["rows"]:
-        rt, rrms, _wr, *d_paper = TABLE1[r["surface"]]
+        Rt, rrms, _wr, *d_paper = TABLE1[r["surface"]]
         row = {"surface": r["surface"], "matched": r["matched"], "status": r["status"],
-               "paper": {"Rt_um": rt, "Rrms_um": rrms, "D": dict(zip(D_KEYS[1:], d_paper, strict=True))}}  # fmt: skip
+               "paper": {"Rt_um": Rt, "Rrms_um": rrms, "D": dict(zip(D_KEYS[1:], d_paper, strict=True))}}  # fmt: skip
         if r["status"] == "ok":
             row.update(D_in=r["D_in"], Rt_um=r["Rt_m"] / 1e-6, Rrms_um=r["Rrms_m"] / 1e-6, D_out=r["D_out"])
         else:

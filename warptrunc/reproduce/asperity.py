@@ -26,6 +26,9 @@ from typing import Any
 import numpy as np
 
 from .._validate import check_int, check_range
+from ..stiffness import Material, stiffness_curve
+from ..surface import from_heights
+from ..truncation import truncate
 
 __all__ = [
     "M_B_VALUES",
@@ -281,7 +284,6 @@ def sphere_surface(R: float, half_width: float, n: int):
     Surface
         (n, n) float32 heights (m) with ``params`` generator="sphere" and R.
     """
-    from ..surface import from_heights
 
     R = check_range("R", R, 0.0, unit="m")
     n = check_int("n", n, 8, 1 << 16)
@@ -393,8 +395,6 @@ def run_asperity(
     AsperityResult
         The truncation curve of the pixel map and the closed-form curves against d (m).
     """
-    from ..stiffness import Material, stiffness_curve
-    from ..truncation import truncate
 
     mat = AsperityMaterial() if material is None else material
     wc = critical_interference(R, mat)

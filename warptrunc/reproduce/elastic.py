@@ -70,9 +70,9 @@ def stage_bem(p: Profile, device) -> dict[str, Any]:
             settings = {
                 k: v
                 for k, v in r.settings.items()
-                if k not in ("surface", "solves", "rt_m", "pentol_m")
+                if k not in ("surface", "solves", "Rt_m", "pentol_m")
             }
-        rows.append({"D": D, "seed": seed, "rt_m": float(surf.rt), "summary": r.summary(),
+        rows.append({"D": D, "seed": seed, "Rt_m": float(surf.Rt), "summary": r.summary(),
                      "pentol_m": r.settings["pentol_m"],
                      "columns": r.to_dict(),
                      "solves": [{k: s[k] for k in ("success", "n_iterations", "message")}

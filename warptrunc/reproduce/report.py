@@ -10,6 +10,8 @@ from typing import Any
 
 import numpy as np
 
+from ..truncation import contact_index_map
+from ..wm import wm_surface
 from .analysis import D_KEYS
 
 __all__ = ["figures", "markdown"]
@@ -73,16 +75,13 @@ def fig5(res, ana, out) -> str:
 
 
 def fig7(res, out, device) -> str:
-    from ..truncation import contact_index_map
-    from ..wm import wm_surface
-
     rows = [r for r in res["table1"]["rows"] if r["status"] == "ok"]
     r = next((x for x in rows if x["surface"] == "GB300s"), rows[0])
     n = res["table1"]["n"]
     s = wm_surface(r["D_in"], r["Wr_m"], L=res["table1"]["L_m"], n=n, Rt=r["Rt_m"], seed=0, device=device)
     fig, axs = _fig(5, 1, w=2.6, h=2.8)
     fr = (0.1, 0.2, 0.3, 0.4, 0.5)
-    idx = contact_index_map(s, np.asarray(fr) * s.rt, device=device)
+    idx = contact_index_map(s, np.asarray(fr) * s.Rt, device=device)
     for k, (ax, f) in enumerate(zip(axs, fr, strict=True)):
         ax.imshow(s.heights, cmap="gray")
         ax.imshow(np.ma.masked_where(idx > k, np.ones_like(s.heights)), cmap="autumn", alpha=0.8, vmin=0, vmax=1)

@@ -7,56 +7,29 @@ loads the results instead of recomputing; a rerun with different parameters refu
 earlier results are never replaced silently) unless ``overwrite=True``. Files are written
 atomically (temporary file + ``os.replace``), so an interrupted run leaves either the old
 file or the new one.
+
+Why a store apart from ``warptrunc.sweep.store``: a stage is one JSON document (parameters and
+results of a fixed study step) reused or refused as a whole, where the sweep store holds Parquet
+rows of many cases written by workers and resumed case by case. Both write through
+:func:`warptrunc._results.write_atomic` and convert values with :func:`warptrunc._results.jsonable`.
 """
 
 from __future__ import annotations
 
 import json
-import math
-import os
-import tempfile
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-import numpy as np
+from .._results import jsonable, write_atomic
 
-__all__ = ["StageConflict", "StageStore", "jsonable", "write_atomic"]
+__all__ = ["StageConflict", "StageStore"]
 
 
 class StageConflict(ValueError):
     """A stage file exists with different parameters and ``overwrite`` is off."""
 
-
-def jsonable(v: Any) -> Any:
-    """Nested dicts/lists/NumPy values → JSON types; non-finite floats → None."""
-    if isinstance(v, dict):
-        return {str(k): jsonable(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [jsonable(x) for x in v]
-    if isinstance(v, np.ndarray):
-        return jsonable(v.tolist())
-    if isinstance(v, np.generic):
-        return jsonable(v.item())
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    return v
-
-
-def write_atomic(path: Path, text: str | bytes) -> Path:
-    """Write ``text`` to ``path`` through a temporary file in the same folder and a rename."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(text.encode() if isinstance(text, str) else text)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
 
 
 class StageStore:
@@ -111,7 +84,6 @@ class StageStore:
         self, name: str, params: dict[str, Any], fn: Callable[[], dict[str, Any]]
     ) -> dict[str, Any]:
         """The stage's result: stored when the parameters match, else ``fn()`` (then stored)."""
-        import time
 
         if self.check(name, params):
             self.reused.append(name)

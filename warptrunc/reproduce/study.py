@@ -22,8 +22,20 @@ from typing import Any
 
 import numpy as np
 
+from .._progress import progress_bar
+from ..calibrate import CalibrationError, CalibrationTarget, calibrate
+from ..fractal import METHODS, fractal_dimensions
+from ..islands import applicable_depth, island_curve
+from ..stiffness import DEFAULT_MIN_PIXELS, stiffness_curve
+from ..sweep import SweepGrid, load_curves, run_sweep
+from ..sweep.grid import SweepOptions
+from ..sweep.store import conflict
+from ..truncation import truncate
+from ..wm import wm_surface
+from .asperity import bounds_summary, pixel_area_bounds, run_asperity
+from .paper import TABLE1
 from .profiles import Profile
-from .store import StageStore
+from .store import StageConflict, StageStore
 
 __all__ = ["STAGES", "fit_ranges", "group_sweep", "run_study"]
 
@@ -33,9 +45,7 @@ LOADS = (1e-7, 1e-6, 1e-5, 1e-4)
 
 
 def _tqdm(it, desc, total=None):
-    from tqdm.auto import tqdm
-
-    return tqdm(it, desc=desc, total=total, unit="surface", leave=False)
+    return progress_bar(it, desc=desc, total=total, unit="surface", leave=False)
 
 
 def fit_ranges(profile: Profile, n: int) -> dict[str, int | float]:
@@ -54,14 +64,11 @@ def fit_ranges(profile: Profile, n: int) -> dict[str, int | float]:
     dict of str to int or float
         ``{"default": DEFAULT_MIN_PIXELS (pixels), "late": f (dimensionless)}``.
     """
-    from ..stiffness import DEFAULT_MIN_PIXELS
 
     return {"default": DEFAULT_MIN_PIXELS, "late": float(profile.late_fit_fraction)}
 
 
 def _fractal(surface, device) -> dict[str, Any]:
-    from ..fractal import fractal_dimensions
-
     out = {}
     for k, f in fractal_dimensions(surface, device=device).items():
         opts = {kk: v for kk, v in f.options.items() if kk not in ("box_sizes", "lags")}
@@ -74,7 +81,6 @@ def _fractal(surface, device) -> dict[str, Any]:
 
 def stage_asperity(p: Profile, device) -> dict[str, Any]:
     """Fig. 2: the sphere through truncate + stiffness_curve, with the closed forms."""
-    from .asperity import bounds_summary, pixel_area_bounds, run_asperity
 
     res = run_asperity(n=p.asperity_n, n_increments=p.asperity_increments, device=device)
     a, _ = res.curves["truncation"]
@@ -98,9 +104,6 @@ def _read_at(sc, loads) -> list[float | None]:
 
 def stage_fig5(p: Profile, device) -> dict[str, Any]:
     """Fig. 5: E_c/E at fixed F/(E·A) against resolution and against the increment count."""
-    from ..stiffness import stiffness_curve
-    from ..truncation import truncate
-    from ..wm import wm_surface
 
     kw = {"D": 2.5, "Wr": 100e-6, "L": 1e-3, "Rt": 10e-6}
     rows = []
@@ -117,20 +120,16 @@ def stage_fig5(p: Profile, device) -> dict[str, Any]:
 
 def stage_table1(p: Profile, device) -> dict[str, Any]:
     """Table 1: calibrate D_in and R_t' of each simulated surface; D_out by the four methods."""
-    from ..calibrate import CalibrationError, CalibrationTarget, calibrate
-    from ..fractal import METHODS
-    from ..wm import wm_surface
-    from .paper import TABLE1
 
     L = p.table1_n * UM
     seeds = tuple(range(p.table1_seeds))
     rows = []
-    for name, (rt, rrms, wr, *d_paper) in TABLE1.items():
+    for name, (Rt, rrms, wr, *d_paper) in TABLE1.items():
         wr_m = 2 * L if wr is None else wr * UM
         paper_d = dict(zip(METHODS, d_paper, strict=True))
         for m in p.table1_methods:
             row: dict[str, Any] = {"surface": name, "matched": m, "Wr_m": wr_m}
-            target = CalibrationTarget(D=paper_d[m], method=m, Rrms=rrms * UM, Rt=rt * UM,
+            target = CalibrationTarget(D=paper_d[m], method=m, Rrms=rrms * UM, Rt=Rt * UM,
                                        Wr=wr_m, L=L, n=p.table1_n, source=f"Table 1 {name}")  # fmt: skip
             try:
                 cal = calibrate(target, seeds=seeds, rtol=p.table1_rtol, progress=True, device=device)
@@ -150,8 +149,6 @@ def stage_table1(p: Profile, device) -> dict[str, Any]:
 
 def stage_islands(p: Profile, table1: dict[str, Any], device) -> dict[str, Any]:
     """Fig. 7 panel, Fig. 8 and Table 2 on the calibrated surfaces (first matched method)."""
-    from ..islands import applicable_depth, island_curve
-    from ..wm import wm_surface
 
     out: dict[str, Any] = {"n": p.islands_n, "L_m": p.islands_L, "surfaces": {}}
     done = set()
@@ -192,8 +189,6 @@ def group_sweep(p: Profile, which: int) -> tuple[Any, dict[str, Any]]:
         Keyword options of :func:`~warptrunc.sweep.run_sweep` (lengths in m): size, W_r,
         increments, both fit ranges and the fractal methods (all four for group 2).
     """
-    from ..fractal import METHODS
-    from ..sweep import SweepGrid
 
     ranges = fit_ranges(p, p.n)
     seeds = tuple(range(p.seeds))
@@ -215,7 +210,7 @@ def _row(case_rows, curve, ranges: dict[str, int | float], curve_points: int) ->
     """A stage row (as the report reads it) from a case's store rows and curve."""
     first = case_rows[0]
     row: dict[str, Any] = {"D_in": first["D_in"], "delta": first["delta"], "seed": first["seed"],
-                           "Rt_m": first["rt_measured_m"], "case_id": first["case_id"], "fits": {}}  # fmt: skip
+                           "Rt_m": first["Rt_measured_m"], "case_id": first["case_id"], "fits": {}}  # fmt: skip
     for name, mp in ranges.items():
         if isinstance(mp, int):  # an absolute fit range
             r = next(x for x in case_rows if x["min_pixels_fraction"] is None and x["min_pixels"] == mp)
@@ -245,10 +240,6 @@ def stage_group(
     p: Profile, which: int, out, device, *, overwrite: bool = False, curve_points: int = 60
 ) -> dict[str, Any]:  # fmt: skip
     """Table 3 group 1 or 2 through the sweep store ``<out>/sweeps/group<which>`` (resumed)."""
-    from ..sweep import load_curves, run_sweep
-    from ..sweep.grid import SweepOptions
-    from ..sweep.store import conflict
-    from .store import StageConflict
 
     grid, opts = group_sweep(p, which)
     path = Path(out) / "sweeps" / f"group{which}"
@@ -302,8 +293,6 @@ def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, 
     StageConflict
         If a stored stage has other parameters and the store does not overwrite.
     """
-    from tqdm.auto import tqdm
-
     full = profile.to_dict()
     keys = {
         "asperity": ("asperity_n", "asperity_increments"),
@@ -317,7 +306,7 @@ def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, 
     }  # fmt: skip
     res: dict[str, Any] = {}
     wall: dict[str, float] = {}
-    bar = tqdm(STAGES, desc="reproduce", unit="stage")
+    bar = progress_bar(STAGES, desc="reproduce", unit="stage")
     for name in bar:
         bar.set_postfix_str(name)
         t0 = time.perf_counter()

@@ -14,24 +14,19 @@ from __future__ import annotations
 
 import logging
 import os
+import statistics
 import sys
+import time
 from typing import Any
 
 from distributed import WorkerPlugin
 
-from .engines import _bar, compute_chunk, failed_case, pinned_device
+from .._device import cuda_device_count
+from .._progress import progress_bar
+from .engines import compute_chunk, failed_case, pinned_device
 from .grid import Case, SweepOptions
 
 __all__ = ["PinDevice", "chunk_size_for", "run_dask"]
-
-
-def _cuda_device_count() -> int:
-    import warp as wp
-
-    from .._device import _init
-
-    _init()
-    return wp.get_cuda_device_count()
 
 
 class PinDevice(WorkerPlugin):
@@ -62,14 +57,20 @@ class PinDevice(WorkerPlugin):
         worker : distributed.Worker
             The worker; its ``name`` picks the device (:func:`pinned_device`).
         """
-        n = self.n_devices if self.n_devices is not None else _cuda_device_count()
+        n = self.n_devices if self.n_devices is not None else cuda_device_count()
         dev = pinned_device(worker.name, n)
         if dev is not None:
             os.environ["WARPTRUNC_DEVICE"] = dev
 
 
-def chunk_size_for(case_seconds: float | None, remaining: int, n_workers: int, *,
-                   target_s: float = 0.1, max_size: int = 64) -> int:
+def chunk_size_for(
+    case_seconds: float | None,
+    remaining: int,
+    n_workers: int,
+    *,
+    target_s: float = 0.1,
+    max_size: int = 64,
+) -> int:
     """Cases per task: about ``target_s`` of work, at most ``max_size``, and small enough
     that the remaining cases still make ≥ 2 tasks per worker (so the load balances).
 
@@ -151,8 +152,6 @@ def run_dask(
     (``client.restart()``) has its unfinished cases submitted again one per task, up to
     ``max_retries`` times each, then recorded as failed.
     """
-    import statistics
-    import time
 
     from distributed import Client, LocalCluster, as_completed
 
@@ -216,7 +215,13 @@ def run_dask(
                 del queue[:size]
 
         top_up()
-        with _bar(total, total - len(cases), progress, "sweep [dask]") as bar:
+        with progress_bar(
+            total=total,
+            initial=total - len(cases),
+            enabled=progress,
+            desc="sweep [dask]",
+            unit="case",
+        ) as bar:
             while futures:
                 fut = next(pending)
                 ids = futures.pop(fut)

@@ -16,14 +16,25 @@ from __future__ import annotations
 import functools
 import json
 import math
+import queue
 import socket
+import threading
 import time
 from collections.abc import Callable
 from datetime import datetime, timezone
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from .. import __version__
+from .._bench import git_commit
+from .._device import resolve_device
+from .._progress import progress_bar
+from ..stiffness import DEFAULT_MIN_PIXELS, fit_power_law, stiffness_curve
+from ..truncation import truncate
+from ..wm import wm_surface
+from .curves import curve_rows, write_curves
 from .grid import FRACTAL_METHODS, Case, SweepOptions
 
 __all__ = ["compute_case", "compute_chunk", "failed_case", "pinned_device", "run_inprocess"]
@@ -35,9 +46,6 @@ BatchSink = Callable[[list[Result]], Any]
 
 @functools.cache
 def _provenance() -> tuple[str, str | None, str]:
-    from .. import __version__
-    from .._bench import git_commit
-
     return __version__, git_commit(), socket.gethostname()
 
 
@@ -56,7 +64,7 @@ def _base_row(case: Case, o: SweepOptions) -> dict[str, Any]:
         "E_flat_Pa": o.E_flat, "nu_flat": o.nu_flat, "beta_prime": o.beta_prime,
         "depth_window_lo_m": lo, "depth_window_hi_m": hi, "alpha": np.nan, "beta": np.nan,
         "r2": np.nan, "n_points": None, "fit_depth_min_m": np.nan, "fit_depth_max_m": np.nan,
-        "final_contact_pixels": None, "final_area_fraction": np.nan, "rt_measured_m": np.nan,
+        "final_contact_pixels": None, "final_area_fraction": np.nan, "Rt_measured_m": np.nan,
         **{f"D_{m}{s}": np.nan for m in FRACTAL_METHODS for s in ("", "_r2")},
         "fractal_options": None, "fractal_seconds": np.nan, "fit_error": None, "error": None, "host": host, "warptrunc_version": version,
         "git_commit": commit,
@@ -88,7 +96,6 @@ def resolve_min_pixels(fraction: float, final_contact_pixels: int) -> int:
     The product is rounded to 9 decimals before the ceiling, so that float noise
     (0.05·280 = 14.000000000000002) does not add a pixel.
     """
-    from ..stiffness import DEFAULT_MIN_PIXELS
 
     return max(DEFAULT_MIN_PIXELS, math.ceil(round(fraction * final_contact_pixels, 9)))
 
@@ -155,10 +162,6 @@ def compute_case(
         generation, the fractal dimensions or truncation raised (then every row has the
         ``error`` column set).
     """
-    from .._device import resolve_device
-    from ..stiffness import fit_power_law, stiffness_curve
-    from ..truncation import truncate
-    from ..wm import wm_surface
 
     o = options
     base = _base_row(case, o)
@@ -184,7 +187,7 @@ def compute_case(
         base.update(
             final_contact_pixels=int(sc.n_contact_pixels[-1]),
             final_area_fraction=float(sc.contact_area[-1] / sc.apparent_area),
-            rt_measured_m=float(sc.rt),
+            Rt_measured_m=float(sc.Rt),
         )
     except Exception as exc:  # recorded, the sweep goes on
         base.update(error=f"{type(exc).__name__}: {exc}")
@@ -208,12 +211,6 @@ def compute_case(
         r.setdefault("device", str(device))
         r.setdefault("device_name", None)
     return rows, curve
-
-
-def _bar(total: int, initial: int, progress: bool, desc: str):
-    from tqdm.auto import tqdm
-
-    return tqdm(total=total, initial=initial, disable=not progress, desc=desc, unit="case")
 
 
 def run_inprocess(
@@ -252,17 +249,16 @@ def run_inprocess(
     sync per batch, not one per case. Every computed case is written before this function
     returns or an exception (Ctrl-C included) propagates.
     """
-    import queue
-    import threading
 
-    from .._device import resolve_device
 
     dev = str(resolve_device(device))
     q: queue.Queue = queue.Queue(maxsize=max_batch)
     failed: list[BaseException] = []
     done = object()
 
-    with _bar(total, total - len(cases), progress, f"sweep [{dev}]") as bar:
+    with progress_bar(
+        total=total, initial=total - len(cases), enabled=progress, desc=f"sweep [{dev}]", unit="case"
+    ) as bar:
 
         def writer() -> None:
             while True:
@@ -331,9 +327,7 @@ def compute_chunk(
     """
     if curves is None:
         return [compute_case(c, options, device) for c in cases]
-    from pathlib import Path
 
-    from .store import curve_rows, write_curves
 
     folder = Path(curves)
     results: list = []

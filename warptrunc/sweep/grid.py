@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from .._validate import check_int, check_range
-from ..stiffness import DEFAULT_MIN_PIXELS
+from ..stiffness import DEFAULT_MIN_PIXELS, Material
 
 __all__ = ["FRACTAL_METHODS", "Case", "SweepGrid", "SweepOptions", "parse_seeds"]
 
@@ -167,8 +167,6 @@ class SweepOptions:
     ``fractal_options`` (JSON: each fit's scalars and options). Off by default."""
 
     def __post_init__(self) -> None:
-        from ..stiffness import Material
-
         s = object.__setattr__
         s(self, "Wr", check_range("Wr", self.Wr, 0, None, unit="m"))
         if isinstance(self.L, (int, float)):
@@ -277,7 +275,6 @@ class SweepOptions:
         Material
             ``E``, ``nu``, ``E_flat`` and ``nu_flat`` as E, ν, E_i, ν_i (Pa, dimensionless).
         """
-        from ..stiffness import Material
 
         return Material(E=self.E, nu=self.nu, E_i=self.E_flat, nu_i=self.nu_flat)
 

@@ -16,6 +16,9 @@ from typing import Any
 import numpy as np
 
 from ..stiffness import DEFAULT_MIN_PIXELS
+from .grid import SweepGrid
+from .run import run_sweep
+from .store import require_extra
 
 __all__ = ["SweepTable", "alpha_summary", "group_stats", "linear_fit", "sweep"]
 
@@ -71,7 +74,6 @@ def group_stats(df, by: Sequence[str], value: str) -> list[dict[str, Any]]:
     ImportError
         If pandas or pyarrow (the ``sweep`` extra) is missing.
     """
-    from .store import require_extra
 
     require_extra()
     v = df[value].astype(float)
@@ -229,8 +231,6 @@ def sweep(
     ImportError
         If pandas or pyarrow (the ``sweep`` extra) is missing.
     """
-    from .grid import SweepGrid
-    from .run import run_sweep
 
     mat = {}
     if material is not None:

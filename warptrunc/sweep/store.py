@@ -21,13 +21,15 @@ once its curve file exists (and parses); ``cases.parquet`` is rewritten at most 
 recovered from the curve files on the next open. The sweep's client is the only writer of
 ``cases.parquet``; curve files are written by the client or, with worker writes, by the Dask
 workers (on a filesystem they share with the client).
+
+Why a store apart from ``warptrunc.reproduce.store``: this one holds many small cases as
+Parquet rows, written concurrently by workers and resumed case by case; the reproduce store holds
+one JSON document per stage of a fixed study. Both write through
+:func:`warptrunc._results.write_atomic` and convert values with :func:`warptrunc._results.jsonable`.
 """
 
 from __future__ import annotations
 
-import json
-import os
-import threading
 import time
 from pathlib import Path
 from typing import Any
@@ -35,6 +37,8 @@ from typing import Any
 import numpy as np
 
 from .._atomic import jsonable_strict, read_json, strict_json
+from .._results import jsonable, write_atomic
+from .curves import CURVE_COLUMNS, curve_rows, parquet_bytes, write_curves
 from .grid import FORMAT, SweepGrid, SweepOptions
 
 __all__ = [
@@ -47,7 +51,7 @@ CASE_COLUMNS = (
     "E_Pa", "nu", "E_flat_Pa", "nu_flat", "beta_prime", "min_pixels", "min_pixels_fraction",
     "depth_window_lo_m", "depth_window_hi_m", "alpha", "beta", "r2", "n_points",
     "fit_depth_min_m", "fit_depth_max_m", "final_contact_pixels", "final_area_fraction",
-    "rt_measured_m", "D_tri", "D_tri_r2", "D_box", "D_box_r2", "D_vs", "D_vs_r2", "D_sp",
+    "Rt_measured_m", "D_tri", "D_tri_r2", "D_box", "D_box_r2", "D_vs", "D_vs_r2", "D_sp",
     "D_sp_r2", "fractal_options", "fractal_seconds", "fit_error", "error", "seconds", "device", "device_name", "host", "finished_utc",
     "warptrunc_version", "git_commit",
 )  # fmt: skip
@@ -61,17 +65,11 @@ case failed). ``D_<method>``, ``D_<method>_r2``, ``fractal_options`` (JSON) and
 RUN_COLUMNS = ("seconds", "fractal_seconds", "device", "device_name", "host", "finished_utc", "git_commit")
 """Columns that describe how and where a case ran rather than its result."""
 
-CURVE_COLUMNS = (
-    "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
-    "Ec_over_E", "F_over_EA",
-)  # fmt: skip
-"""Columns of a curve file (as ``warptrunc analyze``'s curve.csv)."""
 
 _INT = ("case_index", "seed", "nx", "ny", "M", "increments", "min_pixels")
 _NULLABLE_INT = ("n_points", "final_contact_pixels")
 _STR = ("case_id", "cutoff", "fractal_options", "fit_error", "error", "device", "device_name", "host",
         "finished_utc", "warptrunc_version", "git_commit")  # fmt: skip
-_META_KEY = b"warptrunc.rows"
 
 
 def require_extra() -> None:
@@ -86,10 +84,15 @@ def require_extra() -> None:
         ) from None
 
 
+_RENAMED = {"rt_measured_m": "Rt_measured_m"}
+"""Columns of stores written before R_t was spelled ``Rt`` everywhere, read under the new name."""
+
+
 def rows_frame(rows: list[dict[str, Any]]):
     """The rows as a DataFrame with the columns and dtypes of ``cases.parquet``."""
     import pandas as pd
 
+    rows = [{_RENAMED.get(k, k): v for k, v in r.items()} for r in rows]
     df = pd.DataFrame.from_records(rows, columns=list(CASE_COLUMNS))
     for c in _INT:
         df[c] = df[c].astype("int64")
@@ -107,151 +110,6 @@ def _sorted(df):
         df = df.assign(min_pixels_fraction=np.nan)
     keys = ["case_index", "min_pixels_fraction", "min_pixels"]
     return df.sort_values(keys, kind="stable", na_position="first").reset_index(drop=True)
-
-
-def _write_atomic(path: Path, data: bytes) -> None:
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    with open(tmp, "wb") as fh:
-        fh.write(data)
-        fh.flush()
-        os.fsync(fh.fileno())
-    os.replace(tmp, path)
-
-
-def _parquet_bytes(df) -> bytes:
-    import pyarrow as pa
-
-    return _table_bytes(pa.Table.from_pandas(df, preserve_index=False))
-
-
-def _table_bytes(table) -> bytes:
-    import pyarrow as pa
-    import pyarrow.parquet as pq
-
-    sink = pa.BufferOutputStream()
-    pq.write_table(table, sink)
-    return sink.getvalue().to_pybytes()
-
-
-def _sync_folder(folder: Path) -> None:
-    """Make the data of every file written so far under ``folder``'s filesystem durable.
-
-    One ``syncfs(2)`` on Linux (one call for a whole batch of files, instead of an fsync per
-    file); ``os.sync()`` elsewhere.
-    """
-    fd = os.open(folder, os.O_RDONLY)
-    try:
-        if _syncfs is not None and _syncfs(fd) == 0:
-            return
-        os.sync()
-    finally:
-        os.close(fd)
-
-
-def _fsync_dir(folder: Path) -> None:
-    """fsync a directory, so that renames into it survive a power loss (POSIX only)."""
-    try:
-        fd = os.open(folder, os.O_RDONLY)
-    except OSError:  # pragma: no cover - e.g. Windows
-        return
-    try:
-        os.fsync(fd)
-    except OSError:  # pragma: no cover - filesystems that refuse directory fsync
-        pass
-    finally:
-        os.close(fd)
-
-
-def _load_syncfs():
-    import ctypes
-    import ctypes.util
-    import sys
-
-    if not sys.platform.startswith("linux"):
-        return None
-    try:
-        f = ctypes.CDLL(ctypes.util.find_library("c") or None, use_errno=True).syncfs
-    except (OSError, AttributeError):  # pragma: no cover
-        return None
-    f.argtypes = [ctypes.c_int]
-    return f
-
-
-_syncfs = _load_syncfs()
-
-
-def curve_rows(path: Path) -> list[dict[str, Any]] | None:
-    """The rows stored in a curve file's metadata; None when it has none or does not parse."""
-    import pyarrow.parquet as pq
-
-    try:
-        meta = pq.read_schema(path).metadata or {}
-    except (OSError, ValueError):  # truncated or empty (e.g. renamed, then power loss)
-        return None
-    return json.loads(meta[_META_KEY]) if _META_KEY in meta else None
-
-
-def write_curves(
-    curves: str | Path, results: list[tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]]
-) -> list[list[dict[str, Any]]]:
-    """Write the curve files of a batch of finished cases atomically; returns their rows.
-
-    Each case's curve (with its rows in the Parquet metadata) goes to a temporary name; then
-    one filesystem sync makes all of them durable, each is renamed to
-    ``<case_id>.parquet`` and the folder is fsynced once. So a visible curve file is always
-    complete (as with an fsync per file, at one sync per batch). A case whose file already
-    exists (written by an earlier attempt of the same case: first writer wins, through
-    ``os.link`` that never replaces) keeps that file, and its rows are returned instead.
-    Used by the client (the store) and, with worker writes, by the Dask workers.
-    """
-    import pyarrow as pa
-
-    curves = Path(curves)
-    out: list[list[dict[str, Any]] | None] = []
-    tmps: list[tuple[int, Path, Path]] = []
-    for i, (rows, curve) in enumerate(results):
-        rows = [{k: _jsonable(v) for k, v in r.items()} for r in rows]
-        out.append(rows)
-        final = curves / f"{rows[0]['case_id']}.parquet"
-        old = curve_rows(final) if final.exists() else None
-        if old is not None:
-            out[i] = old
-            continue
-        cols = {k: np.asarray(curve[k]) if curve else np.zeros(0) for k in CURVE_COLUMNS}
-        cols["n_contact_pixels"] = cols["n_contact_pixels"].astype(np.int64)
-        table = pa.table(cols).replace_schema_metadata(
-            {_META_KEY: json.dumps(rows, allow_nan=True).encode()}
-        )
-        tmp = final.with_name(f".{final.name}.tmp-{os.getpid()}-{threading.get_ident()}")
-        tmp.write_bytes(_table_bytes(table))
-        tmps.append((i, tmp, final))
-    if not tmps:
-        return out
-    _sync_folder(curves)
-    for i, tmp, final in tmps:
-        try:
-            os.link(tmp, final)  # fails if another attempt of this case got there first
-        except FileExistsError:
-            old = curve_rows(final)
-            if old is not None:
-                out[i] = old
-            else:  # an unreadable leftover: replace it
-                os.replace(tmp, final)
-                continue
-        except OSError:  # a filesystem without hard links
-            os.replace(tmp, final)
-            continue
-        tmp.unlink()
-    _fsync_dir(curves)
-    return out
-
-
-def _jsonable(v: Any) -> Any:
-    if isinstance(v, (np.integer,)):
-        return int(v)
-    if isinstance(v, (np.floating,)):
-        return float(v)
-    return v
 
 
 class Store:
@@ -308,7 +166,7 @@ class Store:
         for tmp in [*self.path.glob(".*.tmp-*"), *self.curves.glob(".*.tmp-*")]:
             tmp.unlink()  # left by a crash mid-write
         if not meta.exists():
-            _write_atomic(meta, strict_json(spec).encode())  # E_flat: null = rigid (inf)
+            write_atomic(meta, strict_json(spec).encode())  # E_flat: null = rigid (inf)
         self._read_existing()
         if retry_failed:
             for cid in [c for c, r in self.rows.items() if r[0]["error"] is not None]:
@@ -339,7 +197,7 @@ class Store:
         table = self.path / "cases.parquet"
         if table.exists():
             for r in load(self.path, _raw=True).to_dict("records"):
-                r = {k: (None if _isna(v) else _jsonable(v)) for k, v in r.items()}
+                r = {k: (None if _isna(v) else jsonable(v, nonfinite="keep")) for k, v in r.items()}
                 self.rows.setdefault(r["case_id"], []).append(r)
         for f in self.curves.glob("*.parquet"):
             cid = f.stem
@@ -383,7 +241,7 @@ class Store:
         if self.path is not None and fresh:
             kept = write_curves(self.curves, fresh)
         else:
-            kept = [[{k: _jsonable(v) for k, v in r.items()} for r in rows] for rows, _ in fresh]
+            kept = [[{k: jsonable(v, nonfinite="keep") for k, v in r.items()} for r in rows] for rows, _ in fresh]
         for rows in kept:
             self._record(rows)
         return new
@@ -393,7 +251,7 @@ class Store:
         if rows[0]["case_id"] in self.rows:
             self.duplicates += 1
             return False
-        self._record([{k: _jsonable(v) for k, v in r.items()} for r in rows])
+        self._record([{k: jsonable(v, nonfinite="keep") for k, v in r.items()} for r in rows])
         return True
 
     def _record(self, rows: list[dict[str, Any]]) -> None:
@@ -417,7 +275,7 @@ class Store:
         self._last_flush = t0
         if self.path is None or not self._dirty:
             return
-        _write_atomic(self.path / "cases.parquet", _parquet_bytes(self.frame()))
+        write_atomic(self.path / "cases.parquet", parquet_bytes(self.frame()))
         self._dirty = False
         self._interval = max(self.flush_interval, 10 * (time.monotonic() - t0))
 
@@ -482,7 +340,7 @@ def load(path: str | Path, *, _raw: bool = False):
     if not (path / "sweep.json").exists():
         raise FileNotFoundError(f"{path} is not a sweep store (no sweep.json)")
     f = path / "cases.parquet"
-    df = pq.read_table(f).to_pandas() if f.exists() else rows_frame([])
+    df = pq.read_table(f).to_pandas().rename(columns=_RENAMED) if f.exists() else rows_frame([])
     if _raw:
         return df
     have = set(df["case_id"])

@@ -25,7 +25,8 @@ from collections.abc import Sequence
 import numpy as np
 import warp as wp
 
-from .surface import Surface
+from ..surface import Surface
+from ..truncation import contact_index_map
 
 POOLING = ("area", "any")
 """Ways to colour a block of pixels: by its contact fraction, or red when any pixel touches."""
@@ -79,6 +80,7 @@ def pool_blocks(a: np.ndarray, factor: int, how: str = "max") -> np.ndarray:
             out[j] = s / (rows.shape[0] * np.diff(np.append(xs, nx)))
     return out
 
+
 def check_pooling(pooling: str) -> str:
     """Return ``pooling`` if it is one of :data:`POOLING`, else raise ValueError."""
     if pooling not in POOLING:
@@ -92,9 +94,9 @@ def check_depths(surface: Surface, depth_fractions, depths, *, upto_rt: bool = F
     With ``upto_rt`` (pictures) every depth must lie in (0, R_t] and every fraction in (0, 1];
     otherwise depths may be any finite ω ≥ 0 and fractions any value in [0, 1].
     """
-    rt = surface.rt
-    if not rt > 0:
-        raise ValueError(f"the height map is flat (R_t = {rt!r} m): nothing to truncate")
+    Rt = surface.Rt
+    if not Rt > 0:
+        raise ValueError(f"the height map is flat (R_t = {Rt!r} m): nothing to truncate")
     if depths is None:
         fr = np.atleast_1d(np.asarray(depth_fractions, dtype=np.float64))
         ok = (fr > 0) if upto_rt else (fr >= 0)
@@ -103,12 +105,12 @@ def check_depths(surface: Surface, depth_fractions, depths, *, upto_rt: bool = F
             raise ValueError(
                 f"depth_fractions must be in {rng} (fractions of R_t), got {depth_fractions!r}"
             )
-        return fr * rt
+        return fr * Rt
     d = np.atleast_1d(np.asarray(depths, dtype=np.float64))
     if upto_rt:
-        if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d) & (d > 0) & (d <= rt)):
+        if d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d) & (d > 0) & (d <= Rt)):
             raise ValueError(
-                f"depths must be in (0, R_t] = (0, {rt:.6g}] m for this map, got {depths!r}"
+                f"depths must be in (0, R_t] = (0, {Rt:.6g}] m for this map, got {depths!r}"
             )
     elif d.ndim != 1 or d.size == 0 or not np.all(np.isfinite(d) & (d >= 0)):
         raise ValueError(f"depths must be finite and ≥ 0 (m), got {depths!r}")
@@ -140,7 +142,6 @@ def block_contact(
         A pixel is in contact when z ≥ float32(z_top − ω), as :func:`warptrunc.truncate`
         counts it.
     """
-    from .truncation import contact_index_map
 
     check_pooling(pooling)
     uniq, rank = np.unique(depth, return_inverse=True)

@@ -18,10 +18,10 @@ P[r0:r1]·Q, so the map never needs to exist as a whole. Two passes over the row
 
 Device memory: the two tables (≈ 2·K·n·4 bytes, K = 2·n_terms padded) and one band. The result
 is the :class:`~warptrunc.truncation.TruncationCurve` that ``truncate(wm_surface(...))`` gives,
-count for count.
+count for count. Reached through :func:`warptrunc.truncate` (``stream=``).
 
 Islands of a streamed surface (counts and areas, labels per band, border rows merged by
-union-find): ``warptrunc.stream_islands``.
+union-find): ``warptrunc.islands.streamed``.
 """
 
 from __future__ import annotations
@@ -34,26 +34,27 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import free_memory_bytes, resolve_device
-from ._limits import band_pixel_limit, row_bands
-from ._validate import check_int
-from .kernels import wm as _kwm
-from .surface import _jsonable
-from .truncation import (
+from .._device import as_device, free_memory_bytes, resolve_device
+from .._limits import band_pixel_limit, row_bands
+from .._progress import progress_bar
+from .._results import jsonable
+from .._validate import check_int
+from ..kernels import wm as _kwm
+from ..wm import WMSpec, height_scale, pad_to, surface_params, wm_product, wm_spec, wm_tables
+from .curve import (
     DEEP_FRACTION,
     TruncationCurve,
-    _thresholds,
     depth_grid,
+    depth_thresholds,
     histogram_bands,
 )
-from .wm import WMSpec, _pad, _scale, _surface_params, wm_product, wm_spec, wm_tables
 
 __all__ = [
     "StreamedTruncation",
+    "banded_truncation",
+    "fits",
     "fits_in_memory",
     "in_memory_bytes",
-    "stream_truncation",
-    "truncate_streamed",
     "wm_bands",
 ]
 
@@ -68,7 +69,7 @@ class StreamedTruncation:
     """The truncation curve, as ``truncate(wm_surface(...))`` would give it."""
     surface: dict[str, Any] = field(default_factory=dict)
     """Scalar metadata of the (never assembled) surface, as ``Surface.to_dict()``: grid (m),
-    ``rt_m`` (m), generation parameters, ``scale`` (m) and ``G_equivalent`` (m)."""
+    ``Rt_m`` (m), generation parameters, ``scale`` (m) and ``G_equivalent`` (m)."""
     band_rows: int = 0
     """Rows per band (the last band may be shorter)."""
     n_bands: int = 0
@@ -79,7 +80,7 @@ class StreamedTruncation:
         return self.curve.to_dict()
 
 
-def _as_spec(spec_or_params) -> WMSpec:
+def as_wm_spec(spec_or_params) -> WMSpec:
     """A :class:`WMSpec`, from a spec, or a mapping of ``wm_spec`` keywords, or the ``params``
     of a WM surface (``nx, ny, Lx, Ly`` are mapped to ``n`` and ``L``)."""
     if isinstance(spec_or_params, WMSpec):
@@ -105,10 +106,10 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
     ``Surface`` copy and its validation temporaries (a boolean mask); on the CPU device the two
     add up in the same memory.
     """
-    spec = _as_spec(spec_or_params)
-    device = resolve_device(device)
+    spec = as_wm_spec(spec_or_params)
+    device = as_device(device)
     n = spec.nx * spec.ny
-    K = _pad(2 * spec.n_terms, _kwm.TILE_K)
+    K = pad_to(2 * spec.n_terms, _kwm.TILE_K)
     tables = 4 * K * (spec.nx + spec.ny + 256)
     dev = 4 * n + tables
     host = 4 * n + n  # the Surface copy + np.isfinite mask
@@ -117,7 +118,8 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
     return dev, host
 
 
-def _fits(spec: WMSpec, device) -> bool:
+def fits(spec: WMSpec, device: wp.context.Device) -> bool:
+    """Whether the in-memory path fits ``device`` (resolved); see :func:`fits_in_memory`."""
     # at most half of the free memory: the rest stays for the pool's slack, the plots, the
     # islands; past that, streaming (two passes of the product, no host copy) is faster anyway
     dev, host = in_memory_bytes(spec, device)
@@ -127,7 +129,7 @@ def _fits(spec: WMSpec, device) -> bool:
     return dev + host <= 0.5 * free_memory_bytes(device)
 
 
-class _Bands:
+class WMBands:
     """Tables on the device and a reusable band buffer: ``raw(r0, r1)`` = S − c0 on those rows."""
 
     def __init__(self, spec: WMSpec, device, band_rows: int | None):
@@ -156,28 +158,24 @@ class _Bands:
 
     def raw(self, r0: int, r1: int) -> tuple[wp.array, float, float]:
         rows = r1 - r0
-        p = self.p[r0 : r0 + _pad(rows, self.align)]  # a view: the same rows of the same table
+        p = self.p[r0 : r0 + pad_to(rows, self.align)]  # a view: the same rows of the same table
         z = self.buffer[:rows]
         lo, hi = wm_product(p, self.q, z)  # sync point
         return z, lo, hi
 
 
-def _progress(total: int, desc: str, enabled: bool):
-    from tqdm.auto import tqdm
-
-    return tqdm(total=total, desc=desc, unit="band", disable=not enabled)
-
-
-def _pass1(bands: _Bands, progress: bool) -> tuple[float, float, float, float, float]:
+def extremes_pass(bands: WMBands, progress: bool) -> tuple[float, float, float, float, float]:
     """Global extremes of S − c0, then the scale and the extremes of the scaled heights (m)."""
     spec = bands.spec
     lo, hi = math.inf, -math.inf
-    with _progress(len(bands.bands), "stream pass 1/2 (extremes)", progress) as bar:
+    with progress_bar(
+        total=len(bands.bands), desc="stream pass 1/2 (extremes)", unit="band", enabled=progress
+    ) as bar:
         for r0, r1 in bands.bands:
             _z, blo, bhi = bands.raw(r0, r1)
             lo, hi = min(lo, blo), max(hi, bhi)
             bar.update()
-    scale = _scale(spec, lo, hi)
+    scale = height_scale(spec, lo, hi)
     # the scaled extremes by the same kernel as the heights (the affine map is monotone, so
     # they are the scaled map's min and max bit for bit)
     ext = wp.array(np.array([[lo, hi]], dtype=np.float32), device=bands.device)
@@ -193,10 +191,10 @@ def wm_bands(
     """Yield ``(r0, r1, heights)``: the WM surface's rows r0..r1 (m, float32 host array), band
     by band, equal bit for bit to ``wm_surface(...).heights[r0:r1]`` (a first pass over all
     bands finds the extremes for the R_t scaling). For checks and for writing large maps."""
-    spec = _as_spec(spec_or_params)
+    spec = as_wm_spec(spec_or_params)
     device = resolve_device(device)
-    bands = _Bands(spec, device, band_rows)
-    _lo, _hi, scale, _zlo, _zhi = _pass1(bands, False)
+    bands = WMBands(spec, device, band_rows)
+    _lo, _hi, scale, _zlo, _zhi = extremes_pass(bands, False)
     for r0, r1 in bands.bands:
         z, _, _ = bands.raw(r0, r1)
         wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale], device=device)
@@ -204,28 +202,29 @@ def wm_bands(
         yield r0, r1, z.numpy().copy()
 
 
-def stream_truncation(
-    spec_or_params,
-    n_increments: int = 200,
+def banded_truncation(
+    spec: WMSpec,
+    n_increments: int,
     *,
-    max_depth: float | None = None,
-    max_depth_fraction: float = 0.1,
-    band_rows: int | None = None,
-    device: wp.DeviceLike = None,
-    progress: bool = True,
+    max_depth: float | None,
+    max_depth_fraction: float,
+    band_rows: int | None,
+    device: wp.context.Device,
+    progress: bool,
 ) -> StreamedTruncation:
-    """Truncation curve of a WM surface generated band by band (see :func:`truncate_streamed`);
-    returns the curve with the surface's metadata and the band layout."""
-    spec = _as_spec(spec_or_params)
-    device = resolve_device(device)
-    bands = _Bands(spec, device, band_rows)
-    _lo, _hi, scale, zlo, zhi = _pass1(bands, progress)
-    rt = float(np.float64(zhi) - np.float64(zlo))
-    depth = depth_grid(rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction)
-    t, _, _, thr, inv_step = _thresholds(None, depth, device, (zlo, zhi))
+    """The streamed path of :func:`warptrunc.truncate` on a resolved ``device``: the curve of
+    a WM surface generated band by band, with the surface's metadata and the band layout (the
+    CLI reports them)."""
+    bands = WMBands(spec, device, band_rows)
+    _lo, _hi, scale, zlo, zhi = extremes_pass(bands, progress)
+    Rt = float(np.float64(zhi) - np.float64(zlo))
+    depth = depth_grid(Rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction)
+    t, _, _, thr, inv_step = depth_thresholds(None, depth, device, (zlo, zhi))
     hist = np.zeros(depth.size, dtype=np.int64)
-    deep = depth[-1] > DEEP_FRACTION * rt  # picks the GPU histogram kernel, as truncate() does
-    with _progress(len(bands.bands), "stream pass 2/2 (histogram)", progress) as bar:
+    deep = depth[-1] > DEEP_FRACTION * Rt  # picks the GPU histogram kernel, as truncate() does
+    with progress_bar(
+        total=len(bands.bands), desc="stream pass 2/2 (histogram)", unit="band", enabled=progress
+    ) as bar:
         # last band first: pass 1 left its raw sum in the buffer (one band fewer to generate;
         # integer counts do not depend on the order)
         for i, (r0, r1) in enumerate(reversed(bands.bands)):
@@ -246,68 +245,17 @@ def stream_truncation(
         pixel_area=pixel_area,
         n_pixels=spec.nx * spec.ny,
         z_top=zhi,
-        rt=rt,
+        Rt=Rt,
     )
-    params = _surface_params(spec, scale)
+    params = surface_params(spec, scale)
     meta = {
         "nx": spec.nx, "ny": spec.ny, "dx_m": spec.dx, "dy_m": spec.dy, "lx_m": lx, "ly_m": ly,
-        "rt_m": rt, **{k: _jsonable(v) for k, v in params.items()},
+        "Rt_m": Rt, **{k: jsonable(v, nonfinite="text") for k, v in params.items()},
     }  # fmt: skip
     return StreamedTruncation(curve, meta, bands.rows, len(bands.bands))
-
-
-def truncate_streamed(
-    spec_or_params,
-    n_increments: int = 200,
-    *,
-    max_depth: float | None = None,
-    max_depth_fraction: float = 0.1,
-    band_rows: int | None = None,
-    device: wp.DeviceLike = None,
-    progress: bool = True,
-) -> TruncationCurve:
-    """Truncated area A_c(ω) of a WM surface that is never held whole: generated by row bands.
-
-    Parameters
-    ----------
-    spec_or_params : WMSpec or mapping
-        The surface: a :func:`warptrunc.wm.wm_spec`, a mapping of its keywords (``D``, ``Wr``
-        (m), ``L`` (m), ``n``, ``Rt`` (m), ``G`` (m), ``M``, ``gamma``, ``Wc`` (m), ``cutoff``,
-        ``seed``), or the ``params`` of a surface from ``wm_surface``.
-    n_increments : int
-        Number of depth increments n; depths are ω_k = k·ω_max/n, k = 0..n.
-    max_depth : float, optional
-        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of the map's R_t (dimensionless).
-    band_rows : int, optional
-        Rows per band, rounded up to the product's row block (128 on CUDA, 8 on the CPU).
-        Default: about 2²⁸ pixels per band, less where free memory is short.
-    device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
-    progress : bool
-        Show a tqdm progress bar over the bands of each pass.
-
-    Returns
-    -------
-    TruncationCurve
-        Equal, count for count, to ``truncate(wm_surface(...), n_increments, ...)``.
-
-    Notes
-    -----
-    Two passes (extremes, then histogram) regenerate the same bands with the same tables and
-    kernels, so the scaled heights of pass 2 are bit-identical to the in-memory map (pass 2
-    starts with the last band, still in the buffer). Device memory: the tables and one band;
-    time: about twice the generation of the whole map (once, for a single band).
-    """
-    return stream_truncation(
-        spec_or_params, n_increments, max_depth=max_depth,
-        max_depth_fraction=max_depth_fraction, band_rows=band_rows, device=device,
-        progress=progress,
-    ).curve  # fmt: skip
 
 
 def fits_in_memory(spec_or_params, device: wp.DeviceLike = None) -> bool:
     """Whether ``truncate(wm_surface(...))`` needs at most half of the free memory of ``device``
     and of the host (which holds the ``Surface`` copy); see :func:`in_memory_bytes`."""
-    return _fits(_as_spec(spec_or_params), resolve_device(device))
+    return fits(as_wm_spec(spec_or_params), resolve_device(device))

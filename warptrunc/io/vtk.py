@@ -28,7 +28,8 @@ from pathlib import Path
 import numpy as np
 import warp as wp
 
-from .surface import Surface
+from ..surface import Surface
+from ..truncation import contact_index_map, depth_grid
 
 __all__ = ["export_vtk"]
 
@@ -58,7 +59,9 @@ def export_vtk(
     max_depth : float, optional
         Largest depth ω_max (m). Overrides ``max_depth_fraction``.
     max_depth_fraction : float
-        ω_max as a fraction of R_t (dimensionless); with 1 every point touches.
+        ω_max as a fraction of R_t (dimensionless). 1 by default, not :func:`truncate`'s 0.1:
+        the exported contact index covers the whole height range, so every point gets the
+        depth at which it touches.
     device : str, optional
         Warp device for the contact index; see :func:`warptrunc.resolve_device`.
 
@@ -71,14 +74,13 @@ def export_vtk(
     -----
     The file holds 4 + 8 + 4 = 16 bytes per pixel (1.6 GB for 10240²).
     """
-    from .truncation import contact_index_map, depth_grid
 
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".vti", ".vtk"):
         raise ValueError(f"path must end in .vti or .vtk, got {str(path)!r}")
     depth = depth_grid(
-        surface.rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
+        surface.Rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
     )
     index = contact_index_map(surface, depth, device=device)
     lookup = np.append(depth, np.nan)  # index n + 1 → never in contact

@@ -4,7 +4,7 @@
 2³⁰-pixel limit of the in-memory labelling).
 
 Kernels: ``warptrunc.kernels.stream_islands`` (contact mask, per-label areas) and the in-memory
-labelling of one band (``warptrunc.islands.label_device``).
+labelling of one band (``warptrunc.islands.unionfind.label_device``).
 
 Each band is labelled on its own (labels 1..n_b in raster order of each island's first pixel);
 its labels are offset by the running count into provisional global labels (Python / int64).
@@ -18,11 +18,15 @@ Surviving labels in increasing order are therefore the islands in raster order o
 pixel: the order of ``scipy.ndimage.label`` and of ``warptrunc.label_islands``.
 
 Memory: one band of heights, mask and labels on the device; O(number of islands) on the host.
-Not covered: periodic wrapping, perimeters and the other per-island statistics.
+``label_islands(mask, ..., band_rows=)`` (through :func:`label_in_bands`) also keeps each band's
+labels on the host, maps them to the final labels and counts perimeters there, so it returns the
+same :class:`~warptrunc.islands.Islands` as the one-piece labelling. ``streamed_islands`` keeps
+counts and areas only. Not covered: periodic wrapping.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -30,12 +34,16 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import resolve_device
-from ._validate import check_int
-from .kernels import stream_islands as _k
-from .kernels import wm as _kwm
+from .._device import resolve_device
+from .._progress import progress_bar
+from .._validate import check_int
+from ..kernels import stream_islands as _k
+from ..kernels import wm as _kwm
+from ..truncation.stream import WMBands, as_wm_spec, extremes_pass
+from .results import Islands
+from .unionfind import check_connectivity, label_device
 
-__all__ = ["BandedIslands", "label_banded", "streamed_islands"]
+__all__ = ["BandedIslands", "label_in_bands", "streamed_islands"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -108,6 +116,7 @@ class _BandMerger:
     def finish(self, depth: float) -> BandedIslands:
         area = np.concatenate(self.areas) if self.areas else np.zeros(0, np.int64)
         keep = np.ones(area.size, dtype=bool)
+        root_of = np.arange(area.size + 1, dtype=np.int64)  # provisional label → its island's
         merged = 0
         if self.above and sum(a.size for a in self.above):
             from scipy.sparse import coo_matrix
@@ -124,7 +133,11 @@ class _BandMerger:
             moved = nodes != node_root
             np.add.at(area, node_root[moved] - 1, area[nodes[moved] - 1])
             keep[nodes[moved] - 1] = False
+            root_of[nodes[moved]] = node_root[moved]
             merged = int(moved.sum())
+        rank = np.zeros(area.size + 1, dtype=np.int64)
+        rank[np.flatnonzero(keep) + 1] = np.arange(1, int(keep.sum()) + 1)
+        self.final = rank[root_of]  # provisional label → final label 1..n (0 stays 0)
         return BandedIslands(area[keep], float(depth), self.n_bands, merged)
 
 
@@ -132,42 +145,59 @@ def _band_rows(band_rows: int, ny: int) -> int:
     return check_int("band_rows", band_rows, 1, ny)
 
 
-def label_banded(
-    mask: np.ndarray,
-    *,
-    band_rows: int,
-    connectivity: int = 4,
-    device: wp.DeviceLike = None,
-) -> BandedIslands:
-    """Label the islands of a contact mask band by band (only one band on the device).
+def label_in_bands(
+    m: np.ndarray, dx: float, dy: float, connectivity: int, band_rows: int, device: wp.Device
+) -> Islands:
+    """The banded path of :func:`warptrunc.label_islands` (checked mask, resolved device).
 
-    Parameters
-    ----------
-    mask : (ny, nx) ndarray of bool or int
-        Contact mask ``m[iy, ix]``, non-zero = contact.
-    band_rows : int
-        Rows per band, 1 ≤ band_rows ≤ ny.
-    connectivity : {4, 8}
-        Neighbourhood of an island.
-    device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
-
-    Returns
-    -------
-    BandedIslands
-        The islands of ``scipy.ndimage.label(mask, structure)``, areas in label order.
+    Each band is labelled on the device, its labels are kept on the host with the running
+    offset, and after the border merge the provisional labels are mapped to the final 1..n (raster
+    order of first pixel). Perimeters are then counted on the host from the label map: an edge
+    between a contact pixel and a non-contact pixel (or the map border), dy long across x and dx
+    long across y, as the in-memory path counts them.
     """
-    from .islands.labelling import _check_connectivity, _check_mask, label_device
-
-    m = _check_mask(mask)
-    connectivity = _check_connectivity(connectivity)
     rows = _band_rows(band_rows, m.shape[0])
-    device = resolve_device(device)
     merger = _BandMerger(connectivity)
+    labels = np.zeros(m.shape, dtype=np.int64)
     for r0 in range(0, m.shape[0], rows):
         band = wp.array(np.ascontiguousarray(m[r0 : r0 + rows], dtype=np.uint8), device=device)
-        merger.add(*label_device(band, connectivity))
-    return merger.finish(float("nan"))
+        lab, n = label_device(band, connectivity)
+        offset = merger.offset
+        merger.add(lab, n)
+        h = lab.numpy()  # sync point
+        labels[r0 : r0 + rows] = np.where(h > 0, h.astype(np.int64) + offset, 0)
+    found = merger.finish(math.nan)
+    labels = merger.final[labels].astype(np.int32)
+    n = found.n_islands
+    ex, ey = _edge_counts(labels, n)
+    return Islands(
+        labels=labels,
+        n_islands=n,
+        area_pixels=found.area_pixels,
+        area=found.area_pixels * (dx * dy),
+        perimeter=ex * dy + ey * dx,
+        edges_x=ex,
+        edges_y=ey,
+        dx=dx,
+        dy=dy,
+        connectivity=connectivity,
+        periodic=False,
+        depth=math.nan,
+    )
+
+
+def _edge_counts(labels: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """(n,) int64 boundary edges of islands 1..n crossed along x and along y (bounded map)."""
+    pad = np.pad(labels > 0, 1)  # outside the map: no contact
+    inner = pad[1:-1, 1:-1]
+    counts = []
+    for shifts in (((1, 0), (1, 2)), ((0, 1), (2, 1))):  # x: left, right; y: below, above
+        total = np.zeros(n + 1, dtype=np.int64)
+        for dy_, dx_ in shifts:
+            nb = pad[dy_ : dy_ + labels.shape[0], dx_ : dx_ + labels.shape[1]]
+            total += np.bincount(labels[inner & ~nb], minlength=n + 1)
+        counts.append(total[1:])
+    return counts[0], counts[1]
 
 
 def streamed_islands(
@@ -207,21 +237,21 @@ def streamed_islands(
     Pass 1 finds the extremes (``warptrunc.stream``); pass 2 regenerates each band once and,
     for every depth, thresholds, labels and hands it to that depth's border merger.
     """
-    from .islands.labelling import _check_connectivity, label_device
-    from .stream import _as_spec, _Bands, _pass1, _progress
 
-    spec = _as_spec(spec_or_params)
-    connectivity = _check_connectivity(connectivity)
+    spec = as_wm_spec(spec_or_params)
+    connectivity = check_connectivity(connectivity)
     depth = np.asarray(depths, dtype=np.float64).reshape(-1)
     if depth.size == 0 or not np.all(np.isfinite(depth)) or np.any(depth < 0):
         raise ValueError(f"depths must be finite depths ≥ 0 (m), got {depths!r}")
     device = resolve_device(device)
-    bands = _Bands(spec, device, band_rows)
-    _lo, _hi, scale, _zlo, zhi = _pass1(bands, progress)
+    bands = WMBands(spec, device, band_rows)
+    _lo, _hi, scale, _zlo, zhi = extremes_pass(bands, progress)
     thr = (np.float64(zhi) - depth).astype(np.float32)
     mergers = [_BandMerger(connectivity) for _ in depth]
     mask = wp.empty(bands.buffer.shape, dtype=wp.uint8, device=device)
-    with _progress(len(bands.bands), "stream islands (bands)", progress) as bar:
+    with progress_bar(
+        total=len(bands.bands), desc="stream islands (bands)", unit="band", enabled=progress
+    ) as bar:
         for r0, r1 in bands.bands:
             z, _, _ = bands.raw(r0, r1)
             wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale],

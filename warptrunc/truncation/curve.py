@@ -18,23 +18,22 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import resolve_device
-from ._limits import flat_row_bands, row_bands
-from ._validate import check_int, check_range
-from .kernels import reduce as _kr
-from .kernels import truncation as _k
-from .surface import Surface
+from .._device import resolve_device
+from .._limits import flat_row_bands, row_bands
+from .._reduce import height_range
+from .._validate import check_int, check_range
+from ..kernels import truncation as _k
+from ..surface import Surface
 
 __all__ = [
     "TruncationCurve",
     "contact_histogram",
+    "contact_index_device",
     "contact_index_map",
     "depth_grid",
     "height_range",
-    "truncate",
+    "truncate_surface",
 ]
-
-_REDUCE_LANES = 65536
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,7 +56,7 @@ class TruncationCurve:
     """Total number of pixels."""
     z_top: float
     """Highest height max z (m)."""
-    rt: float
+    Rt: float
     """Peak-to-valley height R_t of the map (m)."""
 
     @property
@@ -69,46 +68,11 @@ class TruncationCurve:
         """Columns as 1-D arrays (one row per depth)."""
         return {
             "depth_m": self.depth,
-            "depth_fraction_of_Rt": self.depth / self.rt if self.rt > 0 else self.depth * 0,
+            "depth_fraction_of_Rt": self.depth / self.Rt if self.Rt > 0 else self.depth * 0,
             "n_contact_pixels": self.n_contact_pixels,
             "contact_area_m2": self.contact_area,
             "area_fraction": self.area_fraction,
         }
-
-
-def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, float]:
-    """Return (min z, max z) (m) of a float32 Warp array, by a device reduction.
-
-    ``z`` is 1-D, or 2-D (reduced by row bands of fewer than 2³¹ pixels: any size works)."""
-    if z.ndim == 2:
-        parts = [_height_range_flat(v, device) for _r0, _r1, v in flat_row_bands(z)]
-        return min(p[0] for p in parts), max(p[1] for p in parts)
-    return _height_range_flat(z, device)
-
-
-def _height_range_flat(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, float]:
-    device = resolve_device(device)
-    n = z.shape[0]
-    if device.is_cuda and n >= _kr.TILE:
-        full = n // _kr.TILE
-        lo = wp.empty(full, dtype=wp.float32, device=device)
-        hi = wp.empty(full, dtype=wp.float32, device=device)
-        wp.launch_tiled(
-            _kr.min_max_tile_kernel, dim=full, inputs=[z], outputs=[lo, hi], block_dim=256,
-            device=device,
-        )  # fmt: skip
-        parts_lo, parts_hi = [lo.numpy()], [hi.numpy()]  # sync point
-        if n > full * _kr.TILE:  # the remainder (< TILE values) on the host
-            tail = z[full * _kr.TILE :].numpy()
-            parts_lo.append(tail)
-            parts_hi.append(tail)
-        return float(min(p.min() for p in parts_lo)), float(max(p.max() for p in parts_hi))
-    out = wp.array(np.array([np.inf, -np.inf], dtype=np.float32), device=device)
-    lanes = min(_REDUCE_LANES, max(1, n))
-    chunk = 0 if device.is_cuda else -(-max(1, n) // lanes)  # CPU: contiguous chunks per lane
-    wp.launch(_kr.min_max_kernel, dim=lanes, inputs=[z, lanes, chunk], outputs=[out], device=device)
-    lo_v, hi_v = out.numpy()  # sync point
-    return float(lo_v), float(hi_v)
 
 
 _BLOCKS_PER_SM = 8  # persistent blocks of the GPU histogram kernel
@@ -179,7 +143,7 @@ def contact_histogram(
 
 
 def depth_grid(
-    rt: float,
+    Rt: float,
     n_increments: int = 200,
     *,
     max_depth: float | None = None,
@@ -189,7 +153,7 @@ def depth_grid(
 
     Parameters
     ----------
-    rt : float
+    Rt : float
         Peak-to-valley height R_t (m).
     n_increments : int
         Number of increments n (≥ 1).
@@ -201,20 +165,20 @@ def depth_grid(
     n = check_int("n_increments", n_increments, 1, 10_000_000)
     if max_depth is None:
         frac = check_range("max_depth_fraction", max_depth_fraction, 0.0, 1.0, hi_open=False)
-        wmax = frac * rt
+        wmax = frac * Rt
     else:
         wmax = check_range("max_depth", max_depth, 0.0, unit="m")
     if not wmax > 0:
-        raise ValueError(f"the height map is flat (R_t = {rt!r} m): nothing to truncate")
+        raise ValueError(f"the height map is flat (R_t = {Rt!r} m): nothing to truncate")
     return np.arange(n + 1, dtype=np.float64) * (wmax / n)
 
 
-def _where(surface: Surface, device: wp.DeviceLike) -> wp.DeviceLike:
+def surface_device(surface: Surface, device: wp.DeviceLike) -> wp.DeviceLike:
     """``device``, or where a device-resident surface lives when it is None."""
     return getattr(surface, "device", None) if device is None else device
 
 
-def _upload(surface: Surface, device) -> wp.array:
+def upload_heights(surface: Surface, device) -> wp.array:
     """The (ny, nx) heights on ``device``: the surface's own device array, or its copy there
     (uploaded once per device and cached on the surface).
 
@@ -254,7 +218,7 @@ def surface_range(surface: Surface, z: wp.array, device) -> tuple[float, float]:
     return ext
 
 
-def _thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
+def depth_thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
     lo, hi = height_range(z, device) if lo_hi is None else lo_hi
     thr = (np.float64(hi) - depth).astype(np.float32)
     step = float(depth[-1] / (depth.size - 1)) if depth.size > 1 and depth[-1] > 0 else 0.0
@@ -262,50 +226,29 @@ def _thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
     return wp.array(thr, dtype=wp.float32, device=device), lo, hi, thr, inv_step
 
 
-def truncate(
+def truncate_surface(
     surface: Surface,
-    n_increments: int = 200,
+    n_increments: int,
     *,
-    max_depth: float | None = None,
-    max_depth_fraction: float = 0.1,
-    device: wp.DeviceLike = None,
+    max_depth: float | None,
+    max_depth_fraction: float,
+    device: wp.context.Device,
 ) -> TruncationCurve:
-    """Truncated area A_c(ω) of ``surface`` at n + 1 equally spaced depths.
+    """The in-memory path of :func:`warptrunc.truncate` on a resolved ``device``.
 
-    Parameters
-    ----------
-    surface : Surface
-        The height map (m).
-    n_increments : int
-        Number of depth increments n; depths are ω_k = k·ω_max/n, k = 0..n.
-    max_depth : float, optional
-        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of the map's R_t (dimensionless).
-    device : str, optional
-        Warp device; default: where a device-resident surface lives, else
-        :func:`warptrunc.resolve_device`'s choice.
-
-    Returns
-    -------
-    TruncationCurve
-
-    Notes
-    -----
     One pass over the heights: each pixel's contact index (the first k with
     z ≥ z_top − ω_k) is found in a Warp kernel and counted in an integer atomic histogram;
     the cumulative sum gives the number of contact pixels at every depth.
     """
-    device = resolve_device(_where(surface, device))
-    z = _upload(surface, device)
+    z = upload_heights(surface, device)
     lo, hi = surface_range(surface, z, device)  # recorded by the generator, or one reduction
     depth = depth_grid(
         float(np.float64(hi) - np.float64(lo)), n_increments,
         max_depth=max_depth, max_depth_fraction=max_depth_fraction,
     )  # fmt: skip
-    t, lo, hi, thr, inv_step = _thresholds(z, depth, device, (lo, hi))
-    rt = float(np.float64(hi) - np.float64(lo))
-    hist = histogram_bands(z, t, hi, inv_step, device, deep=depth[-1] > DEEP_FRACTION * rt)
+    t, lo, hi, thr, inv_step = depth_thresholds(z, depth, device, (lo, hi))
+    Rt = float(np.float64(hi) - np.float64(lo))
+    hist = histogram_bands(z, t, hi, inv_step, device, deep=depth[-1] > DEEP_FRACTION * Rt)
     counts = np.cumsum(hist)
     return TruncationCurve(
         depth=depth,
@@ -316,7 +259,7 @@ def truncate(
         pixel_area=surface.pixel_area,
         n_pixels=surface.nx * surface.ny,
         z_top=hi,
-        rt=float(np.float64(hi) - np.float64(lo)),
+        Rt=float(np.float64(hi) - np.float64(lo)),
     )
 
 
@@ -325,8 +268,7 @@ def contact_index_map(
     depth: np.ndarray,
     *,
     device: wp.DeviceLike = None,
-    as_warp: bool = False,
-):
+) -> np.ndarray:
     """Per-pixel contact index: the first k with z ≥ z_top − depth[k], or len(depth) if none.
 
     Parameters
@@ -336,20 +278,28 @@ def contact_index_map(
     depth : (n+1,) array_like
         Non-decreasing, equally spaced truncation depths (m), starting at 0 (as from
         :func:`depth_grid`).
-    as_warp : bool
-        Return the Warp array (on ``device``, shape (ny, nx), int32) instead of NumPy.
+    device : str, optional
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
 
     Returns
     -------
-    (ny, nx) int32 ndarray (or Warp array)
-        The island labelling carries its union-find forest across depths in this order.
+    (ny, nx) int32 ndarray
+        The island labelling carries its union-find forest across depths in this order. The
+        same map left on the device is :func:`contact_index_device`.
     """
-    device = resolve_device(_where(surface, device))
+    return contact_index_device(surface, depth, resolve_device(surface_device(surface, device))).numpy()
+
+
+def contact_index_device(surface: Surface, depth: np.ndarray, device: wp.context.Device) -> wp.array:
+    """:func:`contact_index_map` as a (ny, nx) int32 Warp array left on the resolved ``device``."""
     depth = np.asarray(depth, dtype=np.float64)
     if depth.ndim != 1 or depth.size < 1 or np.any(np.diff(depth) < 0) or depth[0] < 0:
         raise ValueError("depth must be a 1-D non-decreasing array of depths ≥ 0 (m)")
-    z = _upload(surface, device)
-    t, _lo, hi, _thr, inv_step = _thresholds(z, depth, device, surface_range(surface, z, device))
+    z = upload_heights(surface, device)
+    t, _lo, hi, _thr, inv_step = depth_thresholds(
+        z, depth, device, surface_range(surface, z, device)
+    )
     index = wp.empty((surface.ny, surface.nx), dtype=wp.int32, device=device)
     for r0, r1 in row_bands(surface.ny, surface.nx):  # flat launches below 2³¹ pixels each
         wp.launch(
@@ -359,4 +309,4 @@ def contact_index_map(
             outputs=[index[r0:r1].flatten()],
             device=device,
         )
-    return index if as_warp else index.numpy()
+    return index

@@ -1,0 +1,375 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""3-D pictures of truncation sections (the paper's Fig. 7) with pyvista, off-screen.
+
+The surface is drawn as a height field with the contact set at each depth ω in red over a
+neutral grey (shaded by height), one panel per depth, and saved as PNG; an animation shows the
+truncation deepening. pyvista is imported inside the functions, so ``import warptrunc`` stays
+light; without it these functions raise an ImportError naming ``pip install pyvista``.
+
+Each pixel of the height map is one cell of the rendered mesh, so the contact set is drawn
+pixel for pixel (no interpolation of the mask across cells). Large maps are down-sampled to at
+most about one block per screen pixel (block heights are block means), and a block of f×f
+pixels is coloured by ``pooling`` (see :mod:`warptrunc.plot.pooling`): by default (``"area"``) its
+share of red is the fraction of its pixels in contact, so the red in the picture measures
+A_c/A; ``"any"`` (max-pooling) paints a block red when any of its pixels touches, which shows
+every contact spot but overstates the area. The factor f and the pooling are returned and
+written into the picture's caption and PNG metadata.
+
+Layout: the mesh, panels and camera in ``scene``; tiling, captions and PNG output in
+``image``; :class:`Rendering` and the two drivers here (re-exported by ``warptrunc.render``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import warp as wp
+
+from ..plot.pooling import (
+    block_contact,
+    check_depths,
+    check_pooling,
+)
+from ..surface import Surface
+from .image import caption_text, depth_title, draw_text, grid_layout, save_png, tile, wrap_text
+from .scene import Panel, Scene, auto_exaggeration, auto_factor, import_pyvista, vtk_quiet
+
+__all__ = ["DEFAULT_DEPTH_FRACTIONS", "Rendering", "animate_truncation", "render_truncation"]
+
+#: Depths of the paper's Fig. 7, as fractions of R_t.
+DEFAULT_DEPTH_FRACTIONS = (0.1, 0.2, 0.3, 0.4, 0.5)
+#: Largest rendered mesh side (blocks) when the image would allow more.
+MAX_MESH = 1024
+#: Pixel size of one panel when no ``window_size`` is given (width, height).
+PANEL_SIZE = (520, 440)
+
+
+@dataclass(frozen=True, eq=False)
+class Rendering:
+    """A rendered picture (or animation) of truncation sections."""
+
+    path: Path | None
+    """File written (PNG, GIF or MP4), or None."""
+    image: np.ndarray
+    """(height, width, 3) uint8 RGB of the picture (the last frame of an animation)."""
+    depth: np.ndarray
+    """(k,) float64 truncation depths ω shown, one per panel or frame (m)."""
+    depth_fraction: np.ndarray
+    """(k,) float64 ω/R_t (dimensionless)."""
+    area_fraction: np.ndarray
+    """(k,) float64 A_c/A at full resolution (dimensionless)."""
+    downsample: int
+    """Block size f: the mesh has one cell per f×f pixels (1 = full resolution)."""
+    pooling: str
+    """How a block is coloured: ``"area"`` (share of red = contact fraction) or ``"any"``
+    (red when any pixel touches; max-pooling)."""
+    mesh_shape: tuple[int, int]
+    """(rows, columns) of cells drawn."""
+    surface_shape: tuple[int, int]
+    """(ny, nx) pixels of the height map."""
+    vertical_exaggeration: float
+    """Factor applied to heights in the picture (dimensionless)."""
+    top_view: bool
+    """True for an orthographic view from above."""
+    caption: str
+    """Caption drawn on the picture and stored in the PNG metadata."""
+
+    @property
+    def image_shape(self) -> tuple[int, int, int]:
+        """(height, width, 3) of :attr:`image`."""
+        return tuple(self.image.shape)  # type: ignore[return-value]
+
+    def to_dict(self) -> dict[str, Any]:
+        """One row per depth: depth_m, depth_fraction_of_Rt, area_fraction, and the scalars."""
+        return {
+            "depth_m": self.depth,
+            "depth_fraction_of_Rt": self.depth_fraction,
+            "area_fraction": self.area_fraction,
+            "path": None if self.path is None else str(self.path),
+            "image_height": int(self.image.shape[0]),
+            "image_width": int(self.image.shape[1]),
+            "downsample": self.downsample,
+            "pooling": self.pooling,
+            "mesh_rows": self.mesh_shape[0],
+            "mesh_columns": self.mesh_shape[1],
+            "ny": self.surface_shape[0],
+            "nx": self.surface_shape[1],
+            "vertical_exaggeration": self.vertical_exaggeration,
+            "top_view": self.top_view,
+            "caption": self.caption,
+        }
+
+    def _metadata(self) -> str:
+        d = self.to_dict()
+        for k in ("depth_m", "depth_fraction_of_Rt", "area_fraction"):
+            d[k] = [float(v) for v in d[k]]
+        d.pop("path")
+        return json.dumps(d)
+
+
+def _rendering(path, image, depth, frac, f, pooling, scene, surface, ve, top_view, caption):
+    """The :class:`Rendering` of a picture or an animation (depths in m)."""
+    return Rendering(
+        path=None if path is None else Path(path),
+        image=image,
+        depth=depth,
+        depth_fraction=depth / surface.Rt,
+        area_fraction=np.asarray(frac, dtype=np.float64),
+        downsample=f,
+        pooling=pooling,
+        mesh_shape=scene.shape,
+        surface_shape=(surface.ny, surface.nx),
+        vertical_exaggeration=ve,
+        top_view=bool(top_view),
+        caption=caption,
+    )
+
+
+def render_truncation(
+    surface: Surface,
+    path: str | Path | None = None,
+    *,
+    depth_fractions: Sequence[float] = DEFAULT_DEPTH_FRACTIONS,
+    depths: Sequence[float] | None = None,
+    top_view: bool = False,
+    window_size: tuple[int, int] | None = None,
+    ncols: int | None = None,
+    vertical_exaggeration: float | None = None,
+    downsample: int | None = None,
+    pooling: str = "area",
+    max_mesh: int = MAX_MESH,
+    lighting: bool | None = None,
+    annotate: bool = True,
+    device: wp.DeviceLike = None,
+) -> Rendering:
+    """Render truncation sections: the surface with its contact set at each depth in red.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m).
+    path : path, optional
+        Save the picture as PNG here (with the caption and the result's metadata in PNG text
+        chunks).
+    depth_fractions : sequence of float
+        Depths as fractions of R_t, in (0, 1], one panel each (dimensionless); the paper's
+        Fig. 7 uses 0.1–0.5.
+    depths : sequence of float, optional
+        Depths ω in (0, R_t] (m); override ``depth_fractions``.
+    top_view : bool
+        View from above with an orthographic (parallel) projection, x to the right and y up
+        (as ``imshow(z, origin="lower")``); otherwise an oblique view from the −y side,
+        35° above the horizon.
+    window_size : (int, int), optional
+        Picture size (width, height) in pixels. Default: 520×440 per panel.
+    ncols : int, optional
+        Panels per row (default: up to 3).
+    vertical_exaggeration : float, optional
+        Factor on heights (dimensionless); default :func:`auto_exaggeration`.
+    downsample : int, optional
+        Block side f of the drawn mesh. Default: the smallest f that gives every block at
+        least one screen pixel (over the map's footprint in the top view, over the panel's
+        shorter side in the oblique view) and at most ``max_mesh`` blocks per side.
+    pooling : {"area", "any"}
+        How a block of f×f pixels is coloured when f > 1. ``"area"`` (default): its share of
+        red is the fraction of its pixels in contact, so the red in the picture measures A_c/A.
+        ``"any"``: max-pooling, red when any of its pixels touches; shows every contact spot
+        but overstates the area. The caption says which.
+    max_mesh : int
+        Largest number of blocks per side when ``downsample`` is not given.
+    lighting : bool, optional
+        Shade the surface by VTK lights. Default: on in the oblique view, off in the top
+        view (flat colours, so red pixels measure the contact area).
+    annotate : bool
+        Draw titles, axes in µm and the caption.
+    device : str, optional
+        Warp device for the contact index; see :func:`warptrunc.resolve_device`.
+
+    Returns
+    -------
+    Rendering
+        The image, the depths, the full-resolution A_c/A, the down-sampling factor and the
+        vertical exaggeration.
+
+    Notes
+    -----
+    Each pixel (or block) is one flat-coloured cell; corner heights are means of the adjacent
+    cells. A pixel is in contact at ω when z ≥ float32(z_top − ω), as in
+    :func:`warptrunc.truncate`. Rendering is off-screen and needs no display.
+
+    In the top view without annotations, a window of k·nx × k·ny pixels per panel shows every
+    map pixel as k×k screen pixels, so the red pixels count k²·N_c exactly.
+
+    Examples
+    --------
+    >>> from warptrunc.wm import wm_surface
+    >>> from warptrunc.render import render_truncation
+    >>> s = wm_surface(2.5, 100e-6, n=2048, Rt=10e-6, seed=1)
+    >>> r = render_truncation(s, "truncation.png")  # doctest: +SKIP
+    >>> r.downsample, r.area_fraction  # doctest: +SKIP
+    """
+    import_pyvista()
+    depth = check_depths(surface, depth_fractions, depths, upto_rt=True)
+    check_pooling(pooling)
+    nrows, ncols = grid_layout(depth.size, ncols)
+    if window_size is None:
+        window_size = (PANEL_SIZE[0] * ncols, PANEL_SIZE[1] * nrows)
+    w, h = (int(v) for v in window_size)
+    if w < 16 or h < 16:
+        raise ValueError(f"window_size must be at least 16×16 pixels, got {window_size!r}")
+    if downsample is None:
+        downsample = auto_factor(
+            surface, (w // ncols, h // nrows), top_view=top_view, annotate=annotate,
+            max_mesh=max_mesh,
+        )  # fmt: skip
+    f = int(downsample)
+    if f < 1 or f != downsample:
+        raise ValueError(f"downsample must be an integer ≥ 1, got {downsample!r}")
+    ve = auto_exaggeration(surface) if vertical_exaggeration is None else vertical_exaggeration
+    if not (ve > 0 and math.isfinite(ve)):
+        raise ValueError(f"vertical_exaggeration must be > 0, got {vertical_exaggeration!r}")
+    ve = float(ve)
+    if lighting is None:
+        lighting = not top_view
+
+    blocks, frac = block_contact(surface, depth, f, pooling, device)
+    scene = Scene(surface, f, ve)
+    caption = caption_text(surface, f, scene.shape, ve, pooling)
+    Rt = surface.Rt
+    pw, ph = w // ncols, h // nrows
+    spare = nrows * ncols > depth.size
+    with vtk_quiet():
+        panel = Panel(
+            scene, (pw, ph), top_view=top_view, lighting=lighting, annotate=annotate, ve=ve,
+            caption=None if spare else wrap_text(caption, max(30, pw // 7)),
+        )  # fmt: skip
+        try:
+            images = [
+                panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i]), caption=i == 0)
+                for i in range(depth.size)
+            ]
+        finally:
+            panel.close()
+    img = tile(images, nrows, ncols, (w, h))
+    if annotate and spare:
+        r, c = divmod(depth.size, ncols)
+        fs = max(10, min(16, pw // 34))
+        img = draw_text(img, caption, (c * pw + 12, r * ph + 14), fs, pw - 24)
+    result = _rendering(path, img, depth, frac, f, pooling, scene, surface, ve, top_view, caption)
+    if path is not None:
+        save_png(img, Path(path), result._metadata(), caption)
+    return result
+
+
+def animate_truncation(
+    surface: Surface,
+    path: str | Path,
+    *,
+    max_depth_fraction: float = 0.5,
+    n_frames: int = 26,
+    fps: float = 8.0,
+    top_view: bool = False,
+    window_size: tuple[int, int] = (640, 520),
+    vertical_exaggeration: float | None = None,
+    downsample: int | None = None,
+    pooling: str = "area",
+    max_mesh: int = MAX_MESH,
+    device: wp.DeviceLike = None,
+) -> Rendering:
+    """Animate the truncation deepening from ω = 0 to ``max_depth_fraction``·R_t.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m).
+    path : path
+        Output file: ``.gif`` (written with Pillow) or ``.mp4`` (needs
+        ``pip install imageio imageio-ffmpeg``).
+    max_depth_fraction : float
+        Last depth as a fraction of R_t, in (0, 1] (dimensionless). 0.5 by default, the deepest
+        of the paper's Fig. 7 sections (:data:`DEFAULT_DEPTH_FRACTIONS`), not
+        :func:`warptrunc.truncate`'s 0.1: a picture shows the contact spreading.
+    n_frames : int
+        Number of frames (≥ 2); depths are equally spaced from 0.
+    fps : float
+        Frames per second.
+    top_view, window_size, vertical_exaggeration, downsample, pooling, max_mesh, device
+        As in :func:`render_truncation`.
+
+    Returns
+    -------
+    Rendering
+        The last frame, and one depth per frame.
+    """
+    import_pyvista()
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".gif", ".mp4"):
+        raise ValueError(f"animation path must end in .gif or .mp4, got {str(path)!r}")
+    writer = None
+    if suffix == ".mp4":
+        try:
+            import imageio.v2 as imageio
+        except ImportError as exc:
+            raise ImportError(
+                "MP4 animations need imageio and ffmpeg: pip install imageio imageio-ffmpeg "
+                "(or write a .gif, which needs only Pillow)"
+            ) from exc
+    n = int(n_frames)
+    if n < 2 or n != n_frames:
+        raise ValueError(f"n_frames must be an integer ≥ 2, got {n_frames!r}")
+    if not 0 < max_depth_fraction <= 1:
+        raise ValueError(f"max_depth_fraction must be in (0, 1], got {max_depth_fraction!r}")
+    if not fps > 0:
+        raise ValueError(f"fps must be > 0, got {fps!r}")
+    w, h = (int(v) for v in window_size)
+    if downsample is None:
+        downsample = auto_factor(
+            surface, (w, h), top_view=top_view, annotate=True, max_mesh=max_mesh
+        )
+    f = int(downsample)
+    ve = (
+        auto_exaggeration(surface)
+        if vertical_exaggeration is None
+        else float(vertical_exaggeration)
+    )
+    depth = np.linspace(0.0, max_depth_fraction, n) * surface.Rt
+    blocks, frac = block_contact(surface, depth, f, check_pooling(pooling), device)
+    scene = Scene(surface, f, ve)
+    caption = caption_text(surface, f, scene.shape, ve, pooling)
+    Rt = surface.Rt
+    with vtk_quiet():
+        panel = Panel(
+            scene, (w, h), top_view=top_view, lighting=not top_view, annotate=True, ve=ve,
+            caption=wrap_text(caption, max(30, w // 7)),
+        )  # fmt: skip
+        try:
+            frames = [panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i])) for i in range(n)]
+        finally:
+            panel.close()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if suffix == ".gif":
+        from PIL import Image
+
+        ims = [Image.fromarray(fr) for fr in frames]
+        ims[0].save(
+            path, save_all=True, append_images=ims[1:], duration=round(1000 / fps), loop=0,
+            comment=caption.encode(),
+        )  # fmt: skip
+    else:
+        writer = imageio.get_writer(path, fps=fps)
+        try:
+            for fr in frames:
+                writer.append_data(fr)
+        finally:
+            writer.close()
+    return _rendering(
+        path, frames[-1], depth, frac, f, pooling, scene, surface, ve, top_view, caption
+    )
