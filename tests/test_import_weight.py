@@ -52,3 +52,44 @@ def test_analyze_without_plots_loads_no_matplotlib(tmp_path):
     )
     assert _loaded(code, tmp_path) == "[]"
     assert (tmp_path / "o" / "fit.json").exists()
+
+
+@pytest.mark.parametrize(
+    "code",
+    [
+        "import warptrunc",
+        "from warptrunc.cli import build_parser; build_parser(['--help'])",
+        "from warptrunc.cli import build_parser; build_parser(['generate', '--help'])",
+    ],
+    ids=["package", "top-level-help", "generate-parser"],
+)
+def test_help_and_import_load_no_warp(code):
+    """``import warptrunc`` and ``warptrunc --help`` import neither Warp nor NumPy (public
+    names load on first use), so the help answers at once; building one sub-command's parser
+    loads only what that sub-command's module imports (Warp, for ``generate``)."""
+    check = "import sys; print(sorted({m.split('.')[0] for m in sys.modules} & {'warp', 'numpy'}))"
+    r = subprocess.run([sys.executable, "-c", f"{code}\n{check}"], cwd=ROOT, capture_output=True,
+                       text=True, timeout=300)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    loaded = r.stdout.strip().splitlines()[-1]
+    expect = "['numpy', 'warp']" if "generate" in code else "[]"
+    assert loaded == expect
+
+
+def test_lazy_names_resolve_to_their_objects():
+    """Every name of ``warptrunc.__all__`` resolves (lazily) to the object its module defines;
+    ``warptrunc.calibrate`` stays the function after its module is imported."""
+    code = (
+        "import importlib, sys, warptrunc\n"
+        "import warptrunc.calibrate\n"
+        "m = sys.modules['warptrunc.calibrate']\n"
+        "assert warptrunc.calibrate is m.calibrate, warptrunc.calibrate\n"
+        "for n in warptrunc.__all__:\n"
+        "    obj = getattr(warptrunc, n)\n"
+        "    mod = importlib.import_module(warptrunc._EXPORTS[n], 'warptrunc')\n"
+        "    assert obj is getattr(mod, n), n\n"
+        "print('ok')"
+    )
+    r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True,
+                       timeout=300)  # fmt: skip
+    assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr

@@ -21,33 +21,115 @@ E, ν    ``E``, ``nu``          Young's modulus (Pa), Poisson's ratio of the rou
 α, β    ``alpha``, ``beta``    power-law exponent and amplitude of E_c/E = β[F/(EA)]^α
 ======  =====================  ==========================================
 
-``import warptrunc`` loads NumPy and Warp only; plotting and rendering import matplotlib and
-pyvista when first used.
+``import warptrunc`` is light: every public name (and subpackage) is imported on first use
+(PEP 562), so ``import warptrunc`` and ``warptrunc --help`` load neither Warp nor NumPy; the
+first computing call loads Warp, plotting and rendering load matplotlib and pyvista.
 """
+
+import importlib
+import sys
+import types
+from typing import TYPE_CHECKING, Any
 
 from ._source import map_source_kernels as _map_source_kernels
 
 _map_source_kernels(__name__, __path__)
 
-from ._device import resolve_device  # after the kernels mapping above
-from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
-from .contact.check import BemCheck, bem_check
-from .descriptors import Descriptors, describe
-from .fractal import FractalFit, fractal_dimension, fractal_dimensions
-from .io import read_height_map, write_height_map
-from .io.vtk import export_vtk
-from .islands import (
-    Indicators,
-    IslandCurve,
-    Islands,
-    applicable_depth,
-    island_curve,
-    label_islands,
-)
-from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
-from .surface import Surface, from_heights
-from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
-from .wm import wm_surface
+_EXPORTS = {
+    "BemCheck": ".contact.check",
+    "Calibration": ".calibrate",
+    "CalibrationError": ".calibrate",
+    "CalibrationTarget": ".calibrate",
+    "Descriptors": ".descriptors",
+    "FractalFit": ".fractal",
+    "Indicators": ".islands",
+    "IslandCurve": ".islands",
+    "Islands": ".islands",
+    "Material": ".stiffness",
+    "PowerLawFit": ".stiffness",
+    "StiffnessCurve": ".stiffness",
+    "Surface": ".surface",
+    "TruncationCurve": ".truncation",
+    "applicable_depth": ".islands",
+    "bem_check": ".contact.check",
+    "calibrate": ".calibrate",
+    "contact_index_map": ".truncation",
+    "depth_grid": ".truncation",
+    "describe": ".descriptors",
+    "export_vtk": ".io.vtk",
+    "fit_power_law": ".stiffness",
+    "fractal_dimension": ".fractal",
+    "fractal_dimensions": ".fractal",
+    "from_heights": ".surface",
+    "island_curve": ".islands",
+    "label_islands": ".islands",
+    "read_height_map": ".io",
+    "resolve_device": "._device",
+    "stiffness_curve": ".stiffness",
+    "truncate": ".truncation",
+    "wm_surface": ".wm",
+    "write_height_map": ".io",
+}
+"""Public name → the module that defines it (imported on first access, PEP 562)."""
+
+_SUBMODULES = frozenset({
+    "calibrate", "cli", "contact", "descriptors", "fractal", "io", "islands", "plot", "render",
+    "reproduce", "robust", "spectra", "stiffness", "surface", "sweep", "truncation", "wm",
+})  # fmt: skip
+
+
+def __getattr__(name: str) -> Any:
+    """Import a public name (or a subpackage) on first access."""
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+    elif name in _SUBMODULES:
+        value = importlib.import_module(f".{name}", __name__)
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+class _Package(types.ModuleType):
+    """The package module: keeps a public function that shares its module's name.
+
+    The import system binds every imported submodule as an attribute of its package; for
+    ``calibrate`` (function of module ``warptrunc.calibrate``) the function must stay bound.
+    """
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if isinstance(value, types.ModuleType) and _EXPORTS.get(name) == f".{name}":
+            value = getattr(value, name)
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__) | _SUBMODULES)
+
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerly
+    from ._device import resolve_device  # after the kernels mapping above
+    from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
+    from .contact.check import BemCheck, bem_check
+    from .descriptors import Descriptors, describe
+    from .fractal import FractalFit, fractal_dimension, fractal_dimensions
+    from .io import read_height_map, write_height_map
+    from .io.vtk import export_vtk
+    from .islands import (
+        Indicators,
+        IslandCurve,
+        Islands,
+        applicable_depth,
+        island_curve,
+        label_islands,
+    )
+    from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
+    from .surface import Surface, from_heights
+    from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
+    from .wm import wm_surface
 
 __version__ = "0.1.0"
 

@@ -6,19 +6,29 @@ Each sub-command is a module of this package defining ``NAME``, ``HELP``,
 ``add_arguments(parser)`` and ``run(args) -> int``; modules are discovered in name order,
 so adding a command needs no edit here. Every sub-command gets ``--verbose`` (show the
 notices of Warp and VTK that are hidden by default on CPU-only machines), one-line errors with
-exit status 2 (:class:`warptrunc.cli._common.Parser`) and the help formatter of
-:mod:`warptrunc.cli._common`, whose ``type=`` validators new commands should use.
+exit status 2 (:class:`warptrunc.cli._parser.Parser`) and the help formatter of
+:mod:`warptrunc.cli._parser`; the ``type=`` validators of :mod:`warptrunc.cli._common` are the
+ones new commands should use.
+
+Start-up: only the sub-command that runs is imported. ``NAME``, ``HELP`` and the module
+docstring of the others are read from their source (:mod:`ast`), so ``warptrunc --help``
+imports neither Warp nor NumPy.
 """
 
 from __future__ import annotations
 
 import argparse
+import ast
 import importlib
+import os
 import pkgutil
 import sys
+from dataclasses import dataclass
+from pathlib import Path
 
-from .._device import set_verbose
-from ._common import HelpFormatter, Parser
+from ._parser import HelpFormatter, Parser
+
+__all__ = ["build_parser", "main"]
 
 _VERBOSE_HELP = (
     "show the notices of Warp and VTK that are hidden otherwise (e.g. no CUDA driver on a "
@@ -26,9 +36,57 @@ _VERBOSE_HELP = (
 )
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The top-level parser with every discovered sub-command."""
+@dataclass(frozen=True)
+class _Command:
+    """A sub-command module as read from its source: module name, ``NAME``, ``HELP``, doc."""
 
+    module: str
+    name: str
+    help: str
+    doc: str | None
+
+
+def _commands() -> list[_Command]:
+    """The sub-command modules of this package, in module-name order, without importing them."""
+    out = []
+    for info in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
+        if info.name.startswith("_"):
+            continue
+        tree = ast.parse((Path(__path__[0]) / f"{info.name}.py").read_text(encoding="utf-8"))
+        consts = {
+            t.id: node.value.value
+            for node in tree.body
+            if isinstance(node, ast.Assign) and isinstance(node.value, ast.Constant)
+            for t in node.targets
+            if isinstance(t, ast.Name)
+        }
+        out.append(_Command(info.name, consts["NAME"], consts["HELP"], ast.get_docstring(tree)))
+    return out
+
+
+def _command_in(argv: list[str]) -> str | None:
+    """The sub-command named on the command line (the first argument that is no option)."""
+    for a in argv:
+        if not a.startswith("-"):
+            return a
+    return None
+
+
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The top-level parser: every sub-command, with the full options of the one in ``argv``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The command line (without the program name). The sub-command it names is imported and
+        gets its options; the others are listed with their help only. ``None``: every
+        sub-command is imported and complete (for documentation and tests).
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The parser; a parsed namespace carries the sub-command's ``run`` as ``_run``.
+    """
     parser = Parser(
         prog="warptrunc",
         description="Contact stiffness of rough multiscale surfaces by truncation analysis.",
@@ -37,16 +95,13 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(
         dest="command", required=True, metavar="COMMAND", parser_class=Parser
     )
-    for info in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
-        if info.name.startswith("_"):
-            continue
-        mod = importlib.import_module(f"{__name__}.{info.name}")
-        p = sub.add_parser(
-            mod.NAME,
-            help=mod.HELP,
-            description=mod.__doc__,
-            formatter_class=HelpFormatter,
-        )
+    wanted = _command_in(argv) if argv is not None else None
+    for cmd in _commands():
+        p = sub.add_parser(cmd.name, help=cmd.help, description=cmd.doc,
+                           formatter_class=HelpFormatter)  # fmt: skip
+        if argv is not None and cmd.name != wanted:
+            continue  # listed in the top-level help; its options load only when it runs
+        mod = importlib.import_module(f"{__name__}.{cmd.module}")
         mod.add_arguments(p)
         p.add_argument(
             "--verbose", "-v", action="store_true", default=argparse.SUPPRESS, help=_VERBOSE_HELP
@@ -56,11 +111,24 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point; returns the exit status."""
-    args = build_parser().parse_args(argv)
+    """Entry point of ``warptrunc``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The command line without the program name (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit status: 0 on success, 2 for bad input (one line on stderr), or the
+        sub-command's own documented status.
+    """
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args = build_parser(argv).parse_args(argv)
 
     if getattr(args, "verbose", False):
-        set_verbose(True)  # otherwise $WARPTRUNC_VERBOSE decides
+        os.environ["WARPTRUNC_VERBOSE"] = "1"  # read by warptrunc._device.is_verbose
     try:
         return int(args._run(args) or 0)
     except (ValueError, MemoryError, OSError) as exc:

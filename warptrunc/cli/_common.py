@@ -1,7 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """Shared pieces of the sub-commands: argument groups (surface source, device, output folder),
-argparse ``type=`` validators, the help formatter and the parser class.
+argparse ``type=`` validators (the help formatter and the parser class are in
+:mod:`warptrunc.cli._parser`).
 
 Validators
 ----------
@@ -39,7 +40,6 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import re
 import sys
 from pathlib import Path
 
@@ -47,40 +47,6 @@ from .._atomic import probe_writable
 from ..io import read_height_map
 from ..surface import Surface
 from ..wm import wm_surface
-
-# --- parser, help formatter -------------------------------------------------------------------
-
-
-class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
-    """Appends "(default: X)" to an option's help, except when the help already states its
-    default or the default is None (whose meaning the help text gives)."""
-
-    def _get_help_string(self, action: argparse.Action) -> str | None:
-        text = action.help or ""
-        if action.default is None or "default" in text.lower():
-            return text
-        if isinstance(action, argparse._StoreTrueAction):  # "(default: False)" says nothing
-            return text
-        return super()._get_help_string(action)
-
-
-class Parser(argparse.ArgumentParser):
-    """An ArgumentParser whose errors are one line: ``PROG: error: MESSAGE (see PROG --help)``,
-    exit status 2 (argparse's default also prints the usage, a dozen lines here).
-
-    Values such as ``-1e-6``, ``-inf`` and ``-nan`` are read as (negative) numbers, so that the
-    validators can name the allowed range, rather than as unknown options.
-    """
-
-    def __init__(self, *args, **kwargs):
-        super().__init__(*args, **kwargs)
-        self._negative_number_matcher = re.compile(
-            r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE
-        )
-
-    def error(self, message: str):  # type: ignore[override]
-        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
-
 
 # --- validators for ``type=`` -----------------------------------------------------------------
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import threading
 
 from .._atomic import staged_output, strict_json
 from .._device import resolve_device
@@ -128,6 +129,22 @@ def add_fit_options(p: argparse.ArgumentParser, several: bool = False) -> None:
         )  # fmt: skip
 
 
+def _preload_plotting() -> threading.Thread:
+    """Import matplotlib and the figure module in a background thread while the surface is
+    generated and truncated: the import overlaps the device work and its waits (CUDA
+    initialisation, kernel loading, synchronisation release the GIL). Joined before drawing."""
+
+    def load() -> None:
+        import matplotlib.backends.backend_agg
+        import matplotlib.figure  # noqa: F401
+
+        from .. import plot  # noqa: F401
+
+    t = threading.Thread(target=load, name="warptrunc-plot-preload", daemon=True)
+    t.start()
+    return t
+
+
 def run(args: argparse.Namespace) -> int:
     """Analyse and write the outputs."""
     if args.depth_window is not None and not args.depth_window[0] < args.depth_window[1]:
@@ -137,6 +154,7 @@ def run(args: argparse.Namespace) -> int:
     if rtp is not None and not rtp[0] < rtp[1]:
         raise ValueError(f"--rt-percentile LO HI needs LO < HI (%), got {rtp[0]!r} {rtp[1]!r}")
     material = Material(E=args.E, nu=args.nu, E_i=args.E_flat, nu_i=args.nu_flat)
+    preload = None if args.no_plot else _preload_plotting()
     curve, meta, path = _truncation(args)
     nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
     sc = stiffness_curve(curve, material, beta_prime=args.beta_prime)
@@ -149,6 +167,7 @@ def run(args: argparse.Namespace) -> int:
         sc.to_csv(out / "curve.csv")
         (out / "fit.json").write_text(strict_json(info))
         if not args.no_plot:
+            preload.join()
             from .. import plot
 
             plot.stiffness_load(
