@@ -8,12 +8,12 @@ The scripts import it as ``from _common import ...``: run as
 
 from __future__ import annotations
 
-import os
 import statistics
-import subprocess
 import time
 from collections.abc import Callable
 from pathlib import Path
+
+from warptrunc._provenance import git_commit
 
 ROOT = Path(__file__).resolve().parents[2]
 """The repository root (this file is ``examples/benchmarks/_common.py``)."""
@@ -35,19 +35,4 @@ def timeit(fn: Callable[[], object], repeats: int, sync: Callable[[], object]) -
         ts.append(time.perf_counter() - t0)
     return statistics.median(ts)
 
-
-def git_commit(root: str | Path | None = None) -> str | None:
-    """The commit of the checkout at ``root`` (default: this repository's), or None.
-
-    ``$WARPTRUNC_GIT_COMMIT``, when set, is returned as it is.
-    """
-    env = os.environ.get("WARPTRUNC_GIT_COMMIT")
-    if env:  # a copy without .git (e.g. a tree shipped to a GPU machine) can say its commit
-        return env.strip()
-    try:
-        out = subprocess.run(
-            ["git", "-C", str(root or ROOT), "rev-parse", "HEAD"], capture_output=True, text=True
-        )
-        return out.stdout.strip() or None
-    except OSError:
-        return None
+__all__ = ["ROOT", "git_commit", "timeit"]

@@ -1,32 +1,12 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Helpers shared by the benchmark scripts in ``examples/`` (timing and provenance)."""
+"""Provenance of results: the commit of the code that made them."""
 
 from __future__ import annotations
 
 import os
-import statistics
 import subprocess
-import time
-from collections.abc import Callable
 from pathlib import Path
-
-
-def timeit(fn: Callable[[], object], repeats: int, sync: Callable[[], object]) -> float:
-    """Median wall time (s) of ``fn`` over ``repeats`` runs after one warm-up run.
-
-    ``sync`` is called after each run (e.g. ``wp.synchronize_device``) so that asynchronous
-    device work is inside the measurement.
-    """
-    fn()
-    sync()
-    ts = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        sync()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
 
 
 def git_commit(root: str | Path | None = None) -> str | None:
