@@ -36,8 +36,8 @@ def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, floa
     Returns
     -------
     tuple of (float, float)
-        Lowest and highest height (m), float32 values as Python floats. An empty array gives
-        (inf, −inf).
+        Lowest and highest height (m), float32 values as Python floats.
+
     """
 
     device = as_device(device)  # resolved once by the public caller
