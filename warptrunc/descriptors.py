@@ -171,13 +171,8 @@ def surface_statistics(surface: Surface) -> dict[str, float]:
     dict
         ``Rt``, ``Rrms``, ``Ra`` (m), ``skewness``, ``kurtosis`` (dimensionless), ``mean`` (m),
         as float. Skewness and kurtosis are 0 and 3 by convention for a constant map.
-
-    Raises
-    ------
-    ValueError
-        For a host surface whose heights are empty or not finite (from
-        :func:`height_statistics`).
     """
+
 
     if surface.device is None:
         return height_statistics(surface.heights)

@@ -137,8 +137,9 @@ class StageStore:
         params : dict
             Parameters that identify the stage (JSON-able after :func:`jsonable`).
         fn : callable
-            Computes the result, called with no arguments; must return a dict whose values
-            are finite after :func:`jsonable` (strict JSON).
+            Computes the result, called with no arguments; returns a dict, stored after
+            :func:`jsonable` (non-finite floats become null).
+
 
         Returns
         -------
