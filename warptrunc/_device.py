@@ -109,7 +109,19 @@ def resolve_device(device: wp.DeviceLike = None) -> wp.context.Device:
     device : str or warp Device, optional
         ``"cpu"``, ``"cuda:0"``, ... ``None`` picks ``$WARPTRUNC_DEVICE``, else CUDA when
         present, else the CPU.
+
+    Returns
+    -------
+    warp.context.Device
+        The resolved device. On the first use of a CUDA device with a memory pool whose
+        release threshold is 0, the threshold is set to a quarter of its memory.
+
+    Raises
+    ------
+    ValueError
+        Warp does not know ``device``; the message lists the available devices.
     """
+
     _init()
     if device is None:
         device = os.environ.get("WARPTRUNC_DEVICE") or None

@@ -23,7 +23,23 @@ _REDUCE_LANES = 65536
 def height_range(z: wp.array, device: wp.DeviceLike = None) -> tuple[float, float]:
     """Return (min z, max z) (m) of a float32 Warp array, by a device reduction.
 
-    ``z`` is 1-D, or 2-D (reduced by row bands of fewer than 2³¹ pixels: any size works)."""
+    ``z`` is 1-D, or 2-D (reduced by row bands of fewer than 2³¹ pixels: any size works).
+
+    Parameters
+    ----------
+    z : warp.array of float32
+        Heights (m), 1-D or 2-D, on ``device``.
+    device : str or warp.context.Device, optional
+        The device of ``z``; a resolved :class:`warp.context.Device` is used as is, anything
+        else goes through :func:`warptrunc.resolve_device`.
+
+    Returns
+    -------
+    tuple of (float, float)
+        Lowest and highest height (m), float32 values as Python floats.
+
+    """
+
     device = as_device(device)  # resolved once by the public caller
     if z.ndim == 2:
         parts = [_height_range_flat(v, device) for _r0, _r1, v in flat_row_bands(z)]

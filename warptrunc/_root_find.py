@@ -17,7 +17,17 @@ class CalibrationError(ValueError):
     """The target cannot be reached, or the loop ran out of evaluations.
 
     ``d_in`` and ``d_out`` hold the evaluations of the failed D loop (dimensionless).
+
+    Parameters
+    ----------
+    message : str
+        The error message.
+    d_in : sequence of float, optional
+        Input fractal dimensions D_in tried so far (dimensionless); stored as a list of float.
+    d_out : sequence of float, optional
+        Fractal dimensions D_out measured for them, same length (dimensionless).
     """
+
 
     def __init__(self, message: str, d_in: Sequence[float] = (), d_out: Sequence[float] = ()):
         super().__init__(message)

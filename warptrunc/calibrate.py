@@ -91,7 +91,15 @@ class CalibrationTarget:
         object.__setattr__(self, "method_options", dict(self.method_options))
 
     def to_dict(self) -> dict[str, Any]:
-        """Scalars (JSON-serialisable)."""
+        """Scalars (JSON-serialisable).
+
+        Returns
+        -------
+        dict
+            ``D``, ``method``, ``Rrms_m``, ``Rt_m``, ``Wr_m``, ``Lx_m``, ``Ly_m`` (m),
+            ``nx``, ``ny`` (pixels), ``method_options`` (non-finite numbers as text) and
+            ``source``.
+        """
         return {
             "D": self.D,
             "method": self.method,
@@ -148,7 +156,19 @@ class Calibration:
         return int(self.history_D_in.size)
 
     def to_dict(self) -> dict[str, Any]:
-        """Scalars (``D_in``, ``Rt_m``, ...), ``target_*`` and the history columns."""
+        """Scalars (``D_in``, ``Rt_m``, ...), ``target_*`` and the history columns.
+
+        Returns
+        -------
+        dict
+            Scalars ``D_in``, ``D_out``, ``D_out_std`` (dimensionless), ``Rt_m``, ``Wr_m``,
+            ``Rrms_m`` (m), ``converged``, ``rtol``, ``iterations``, ``seeds``; the WM options
+            as ``wm_<name>``; the target's :meth:`CalibrationTarget.to_dict` as
+            ``target_<name>``; and the history arrays ``history_D_in``, ``history_Rt_m``,
+            ``history_D_out``, ``history_D_out_std``, ``history_Rrms_m``, shape
+            ``(iterations,)``.
+        """
+
         out: dict[str, Any] = {
             "D_in": self.D_in,
             "Rt_m": self.Rt,

@@ -106,7 +106,14 @@ class Descriptors:
     """Mean height z̄ (m)."""
 
     def to_dict(self) -> dict[str, Any]:
-        """Scalars with unit-suffixed keys (``Rt_m``, ``Rrms_m``, ...), JSON-serialisable."""
+        """Scalars with unit-suffixed keys (``Rt_m``, ``Rrms_m``, ...), JSON-serialisable.
+
+        Returns
+        -------
+        dict
+            Every field; ``Rt``, ``Rrms``, ``Ra``, ``Wr`` and ``mean`` (m) under the keys
+            ``Rt_m``, ``Rrms_m``, ``Ra_m``, ``Wr_m``, ``mean_m``; ``Wr_resolved`` as a bool.
+        """
         d = fields_to_dict(self, {k: f"{k}_m" for k in ("Rt", "Rrms", "Ra", "Wr", "mean")})
         return {**d, "Wr_resolved": bool(self.Wr_resolved)}
 
@@ -153,7 +160,20 @@ def surface_statistics(surface: Surface) -> dict[str, float]:
     A NumPy surface: :func:`height_statistics` of its heights. A device-resident surface: two
     Warp reductions on its device (float64 sum, then float64 central moments about the mean),
     R_t from its validation; no host copy of the map.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m), on the host or on a Warp device.
+
+    Returns
+    -------
+    dict
+        ``Rt``, ``Rrms``, ``Ra`` (m), ``skewness``, ``kurtosis`` (dimensionless), ``mean`` (m),
+        as float. Skewness and kurtosis are 0 and 3 by convention for a constant map.
     """
+
+
     if surface.device is None:
         return height_statistics(surface.heights)
 

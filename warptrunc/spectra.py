@@ -47,7 +47,14 @@ class PSD:
     """``"radial"`` (2-D, m⁴) or ``"profile-x"``, ``"profile-y"``, ``"profile"`` (m³)."""
 
     def to_dict(self) -> dict[str, Any]:
-        """Columns ``frequency_per_m``, ``psd``, ``n_modes`` and the ``kind``."""
+        """Columns ``frequency_per_m``, ``psd``, ``n_modes`` and the ``kind``.
+
+        Returns
+        -------
+        dict
+            ``frequency_per_m`` (k,) (1/m), ``psd`` (k,) (m⁴ radial, m³ profile), ``n_modes``
+            (k,) and ``kind`` (str).
+        """
         return fields_to_dict(self, {"frequency": "frequency_per_m"})
 
 
@@ -135,11 +142,27 @@ def radial_psd(surface: Surface, *, window: str = "hann") -> PSD:
     left out. With ``window="none"``, ``Σ C(f_k) n_k Δf_x Δf_y`` over all bins plus the corners
     beyond the Nyquist circle is the variance.
 
+    Parameters
+    ----------
+    surface : Surface
+        Height map (m); its mean is subtracted. A surface on a CUDA device is transformed
+        there with CuPy when it is available.
+    window : {"hann", "none"}
+        2-D window (outer product of 1-D windows) applied before the FFT; the PSD is divided
+        by its mean square.
+
     Returns
     -------
     PSD
-        ``kind="radial"``.
+        ``kind="radial"``: bin centres k·Δf, Δf = min(1/Lx, 1/Ly) (1/m), for the bins that hold
+        at least one mode, C(f) (m⁴) and the number of modes per bin.
+
+    Raises
+    ------
+    ValueError
+        ``window`` is not one of :data:`WINDOWS`.
     """
+
     c, fx, fy = _periodogram(surface, window)
     xp = np if isinstance(c, np.ndarray) else _cupy()
     fr = xp.hypot(fx, fy).ravel()

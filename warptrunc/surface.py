@@ -141,6 +141,22 @@ class Surface:
         ``None`` means the surface's own device when it is device-resident, else
         :func:`warptrunc.resolve_device`'s default. A copy on another device is made once
         (host → device upload, or device → device copy) and cached on the surface.
+
+        Parameters
+        ----------
+        device : str or warp.context.Device, optional
+            Target Warp device; None for the default above.
+
+        Returns
+        -------
+        warp.array2d of float32
+            (ny, nx) heights z (m). On a CPU device made from a host map it shares the host
+            buffer (no copy); do not write to it.
+
+        Raises
+        ------
+        MemoryError
+            The copy would not fit the device's free memory (checked before allocating).
         """
 
 
@@ -164,7 +180,13 @@ class Surface:
 
     def extremes(self) -> tuple[float, float]:
         """(min z, max z) (m), float32 values as Python floats; from the validation reduction
-        for a device surface, else one NumPy pass (cached)."""
+        for a device surface, else one NumPy pass (cached).
+
+        Returns
+        -------
+        tuple of (float, float)
+            Lowest and highest height (m).
+        """
         if self._extremes is None:
             z = self._host
             object.__setattr__(self, "_extremes", (float(z.min()), float(z.max())))
@@ -221,7 +243,14 @@ class Surface:
         return float(np.float64(hi) - np.float64(lo))
 
     def to_dict(self) -> dict[str, Any]:
-        """Scalar metadata (grid and parameters), JSON-serialisable."""
+        """Scalar metadata (grid and parameters), JSON-serialisable.
+
+        Returns
+        -------
+        dict
+            ``nx``, ``ny`` (pixels), ``dx_m``, ``dy_m``, ``lx_m``, ``ly_m``, ``Rt_m`` (m), then
+            every entry of :attr:`params` (non-finite floats written as text).
+        """
         return {
             "nx": self.nx,
             "ny": self.ny,
@@ -235,7 +264,40 @@ class Surface:
 
 
 def from_heights(z: np.ndarray, dx: float, dy: float | None = None, **params: Any) -> Surface:
-    """Wrap a user height map ``z[iy, ix]`` (m) with pixel spacing ``dx`` (and ``dy``) (m)."""
+    """Wrap a user height map ``z[iy, ix]`` (m) with pixel spacing ``dx`` (and ``dy``) (m).
+
+    Parameters
+    ----------
+    z : (ny, nx) ndarray or warp array
+        Heights (m); see :class:`Surface` for what is accepted (NumPy input becomes
+        C-contiguous float32).
+    dx : float
+        Pixel spacing along x (m), > 0.
+    dy : float, optional
+        Pixel spacing along y (m), > 0; defaults to ``dx``.
+    **params
+        Provenance parameters stored in :attr:`Surface.params` (SI units; JSON-serialisable).
+
+    Returns
+    -------
+    Surface
+        The map, kept where ``z`` lives (host or Warp device).
+
+    Raises
+    ------
+    ValueError
+        ``z`` is not a non-empty finite 2-D map (or not a contiguous float32 Warp array), or
+        a spacing is not a positive finite number.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import warptrunc
+    >>> s = warptrunc.from_heights(np.zeros((64, 64)), 1e-6)
+    >>> s.lx
+    6.4e-05
+    """
+
     return Surface(z, dx, dx if dy is None else dy, params)
 
 

@@ -38,13 +38,32 @@ class WMSpec:
     Attributes are SI: ``Lx, Ly, dx, dy, Wr, Wc`` (m), ``G`` (m or None), ``Rt`` (m or None);
     ``kx, ky`` (rad/m), ``alpha`` (rad), ``w`` (dimensionless) have one entry per term
     t = (m − 1)·(n_max + 1) + n, m = 1..M, n = 0..n_max.
+
+    Made by :func:`wm_spec`, which validates the values; the constructor itself checks
+    nothing.
+
+    Parameters
+    ----------
+    **kw
+        The attributes, stored as given: ``D``, ``Wr``, ``Lx``, ``Ly``, ``nx``, ``ny``,
+        ``dx``, ``dy``, ``M``, ``gamma``, ``Wc``, ``cutoff``, ``n_max``, ``n_terms``,
+        ``seed``, ``G``, ``Rt``, ``method`` and the (n_terms,) float64 tables ``kx``, ``ky``,
+        ``alpha``, ``w``.
     """
 
     def __init__(self, **kw):
         self.__dict__.update(kw)
 
     def params(self) -> dict:
-        """JSON-serialisable generation parameters (SI units)."""
+        """JSON-serialisable generation parameters (SI units).
+
+        Returns
+        -------
+        dict
+            ``generator="weierstrass-mandelbrot"`` and ``D``, ``Wr``, ``Lx``, ``Ly`` (m),
+            ``nx``, ``ny``, ``M``, ``gamma``, ``Wc`` (m), ``cutoff``, ``n_max``, ``n_terms``,
+            ``seed``, ``G`` (m or None), ``Rt`` (m or None), ``method``.
+        """
         keys = ("D Wr Lx Ly nx ny M gamma Wc cutoff n_max n_terms seed G Rt method").split()
         return {"generator": "weierstrass-mandelbrot", **{k: getattr(self, k) for k in keys}}
 
@@ -64,7 +83,54 @@ def wm_spec(
     seed: int = 0,
     method: str = "tile",
 ) -> WMSpec:
-    """Validate the WM parameters and draw the phases on the host (see :func:`wm_surface`)."""
+    """Validate the WM parameters and draw the phases on the host (see :func:`wm_surface`).
+
+    Parameters
+    ----------
+    D : float
+        Fractal dimension, 2 < D < 3 (dimensionless).
+    Wr : float
+        Roll-off wavelength W_r, the longest wavelength (m).
+    L : float or (float, float)
+        Side length, or (Lx, Ly) (m).
+    n : int or (int, int)
+        Pixels per side, or (nx, ny), each in [2, 2²⁰]. dx = Lx/nx, dy = Ly/ny (m).
+    Rt : float or None
+        Target peak-to-valley height R_t (m); give exactly one of ``Rt`` and ``G``.
+    G : float, optional
+        Topothesy G (m) of Eq. (4), for unscaled heights.
+    M : int
+        Number of superposed ridges, in [1, 10⁴].
+    gamma : float
+        Frequency density γ > 1 (dimensionless).
+    Wc : float, optional
+        Cut-off wavelength W_c (m), 0 < W_c < W_r. Defaults by ``cutoff``.
+    cutoff : {"nyquist", "pixel"}
+        Default W_c: 2·max(dx, dy) or max(dx, dy) (m).
+    seed : int
+        Seed (≥ 0) of ``numpy.random.default_rng`` that draws the phases α_mn uniformly in
+        [0, 2π), in (m, n) order.
+    method : {"tile", "direct"}
+        Evaluation method recorded in the spec (see :func:`wm_surface`).
+
+    Returns
+    -------
+    WMSpec
+        The validated parameters, dx, dy (m), n_max (the largest n with W_r/γ^n ≥ W_c),
+        n_terms = M·(n_max + 1), and per term the wavevector components kx, ky (rad/m), the
+        phase α (rad) and the weight w = γ^((D − 3)n) (dimensionless).
+
+    Raises
+    ------
+    ValueError
+        A parameter out of range, an unknown ``cutoff`` or ``method``, a default W_c not
+        below W_r, or both or neither of ``Rt`` and ``G``.
+
+    Notes
+    -----
+    The terms are those of the paper's Eq. (4), with the spatial frequency of term (m, n)
+    k = 2πγⁿ/W_r along the direction θ = πm/M.
+    """
     D = check_range("D", D, 2.0, 3.0)
     Wr = check_range("Wr", Wr, 0.0, unit="m")
     Lx, Ly = pair("L", L)
@@ -127,6 +193,30 @@ def wm_tables(
     of the device. Built in float64, stored as float32. ``map_bytes`` is the memory the caller
     will hold for heights besides the tables (default: the whole float32 map; the streamed
     path passes one band), checked before allocating.
+
+    Parameters
+    ----------
+    spec : WMSpec
+        The WM parameters and per-term tables.
+    device : str or warp.context.Device, optional
+        Warp device; a resolved device is used as is, else
+        :func:`warptrunc.resolve_device`'s choice.
+    map_bytes : int, optional
+        Bytes of heights the caller will hold besides the tables (see above).
+
+    Returns
+    -------
+    p : warp.array2d of float32
+        Row table P, (ny_pad, K), on ``device``.
+    q : warp.array2d of float32
+        Column table Q, (K, nx_pad), on ``device``.
+    c0 : float
+        The constant Σ_t w_t cos α_t (dimensionless).
+
+    Raises
+    ------
+    MemoryError
+        The tables and ``map_bytes`` would not fit the device's free memory.
     """
     device = as_device(device)
     nx, ny, T = spec.nx, spec.ny, spec.n_terms
@@ -163,6 +253,23 @@ def wm_product(
     """z = P·Q on z's device (tile GEMM on CUDA; threaded row bands on the CPU).
 
     Returns (min z, max z), from one reduction pass after the product (a sync point).
+
+    Parameters
+    ----------
+    p : warp.array2d of float32
+        Row table P from :func:`wm_tables` (or a view of its rows), on z's device.
+    q : warp.array2d of float32
+        Column table Q from :func:`wm_tables`.
+    z : warp.array2d of float32
+        Output, (ny, nx), the raw WM sum S − c0 (dimensionless); overwritten.
+    cpu_threads : int, optional
+        Python threads for the CPU product (default: the number of CPU cores, at most one
+        per block of rows); ignored on CUDA.
+
+    Returns
+    -------
+    tuple of (float, float)
+        (min z, max z) (dimensionless), as Python floats.
     """
     device = z.device
     K = p.shape[1]
@@ -237,6 +344,26 @@ def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int |
     """Evaluate the unscaled WM sum S (dimensionless) on ``device``; returns a (ny, nx) wp.array.
 
     S = Σ_t w_t [cos α_t − cos(kx_t·x + ky_t·y + α_t)], so heights are z = scale·S.
+
+    Parameters
+    ----------
+    spec : WMSpec
+        The WM parameters, from :func:`wm_spec`.
+    device : str or warp.context.Device, optional
+        Warp device; see :func:`warptrunc.resolve_device`.
+    cpu_threads : int, optional
+        Python threads for the CPU product of the ``"tile"`` method (default: the number of
+        CPU cores).
+
+    Returns
+    -------
+    warp.array2d of float32
+        (ny, nx) unscaled sum S (dimensionless) on ``device``.
+
+    Raises
+    ------
+    MemoryError
+        The map (and tables) would not fit the device's free memory.
     """
     device = resolve_device(device)
     z, c0, _lo, _hi = _raw_sum(spec, device, cpu_threads)
@@ -248,7 +375,30 @@ def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.a
     """Heights z = scale·S (m) as a (ny, nx) float32 Warp array on ``device``, and the scale.
 
     With ``spec.Rt`` set, scale = R_t/(max S − min S); otherwise the prefactor of Eq. (4).
+
+    Parameters
+    ----------
+    spec : WMSpec
+        The WM parameters, from :func:`wm_spec`.
+    device : str or warp.context.Device, optional
+        Warp device; see :func:`warptrunc.resolve_device`.
+
+    Returns
+    -------
+    z : warp.array2d of float32
+        (ny, nx) heights (m) on ``device``.
+    scale : float
+        Metres per unit of the raw sum S (m): R_t/(max S − min S), or
+        W_r·(ln γ/M)^(1/2)·(G/W_r)^(D − 3).
+
+    Raises
+    ------
+    ValueError
+        ``spec.Rt`` is set but S is flat on this grid.
+    MemoryError
+        The map (and tables) would not fit the device's free memory.
     """
+
     z, scale, _ext = _generate(spec, resolve_device(device))
     return z, scale
 

@@ -110,7 +110,18 @@ class BemCheck:
         return bool(np.all(self.converged))
 
     def to_dict(self) -> dict[str, np.ndarray]:
-        """Columns (SI units in the names) in the order of ``bem.csv``."""
+        """Columns (SI units in the names) in the order of ``bem.csv``.
+
+        Returns
+        -------
+        dict of str to ndarray
+            One ``(m,)`` column per field and ratio, m the number of depths: ``depth_m`` (m),
+            ``depth_fraction_of_Rt`` (dimensionless), ``bem_load_N`` and ``trunc_load_N``
+            (N), ``bem_area_m2`` and ``trunc_area_m2`` (m²), ``bem_stiffness_N_per_m`` and
+            ``trunc_stiffness_N_per_m`` (N/m), ``load_ratio``, ``stiffness_ratio``,
+            ``area_ratio`` (truncation over BEM, dimensionless), ``converged``,
+            ``n_iterations``, ``solve_time_s`` (s) and ``edge_contact``.
+        """
         return {
             "depth_m": self.depth,
             "depth_fraction_of_Rt": self.depth_fraction,
@@ -130,7 +141,17 @@ class BemCheck:
         }
 
     def summary(self) -> dict[str, Any]:
-        """Ranges of the ratios and the solve times (the numbers of the README table)."""
+        """Ranges of the ratios and the solve times (the numbers of the README table).
+
+        Returns
+        -------
+        dict
+            ``load_ratio``, ``stiffness_ratio``, ``area_ratio``: ``[min, max]`` over the
+            finite values (dimensionless), or None when none is finite; ``all_converged``,
+            ``n_not_converged``, ``any_edge_contact``; ``time_per_solve_s`` (total solve time
+            over the number of solves in ``settings["solves"]``, else over 3 solves per depth)
+            and ``total_solve_time_s`` (s).
+        """
         out: dict[str, Any] = {}
         for name, r in (
             ("load_ratio", self.load_ratio),
@@ -148,11 +169,35 @@ class BemCheck:
         return out
 
     def to_csv(self, path: str | Path) -> Path:
-        """Write :meth:`to_dict` as CSV (full float64 precision)."""
+        """Write :meth:`to_dict` as CSV (full float64 precision).
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file to write (overwritten if it exists).
+
+        Returns
+        -------
+        Path
+            ``path``.
+        """
         return write_columns_csv(path, self.to_dict())
 
     def to_json(self, path: str | Path) -> Path:
-        """Write the columns, :meth:`summary` and the settings as JSON."""
+        """Write the columns, :meth:`summary` and the settings as JSON.
+
+        Parameters
+        ----------
+        path : str or Path
+            The JSON file to write (overwritten if it exists).
+
+        Returns
+        -------
+        Path
+            ``path``. The file has keys ``summary``, ``settings`` and ``columns`` (lists);
+            non-finite floats are written as null or ``"inf"`` (strict JSON).
+        """
+
         path = Path(path)
         d: dict[str, Any] = {"summary": self.summary(), "settings": self.settings}
         d["columns"] = {k: v.tolist() for k, v in self.to_dict().items()}

@@ -57,7 +57,17 @@ class ContactCurve:
         return bool(np.all(self.converged))
 
     def to_dict(self) -> dict[str, np.ndarray]:
-        """1-D columns, SI units in the names (maps and settings left out)."""
+        """1-D columns, SI units in the names (maps and settings left out).
+
+        Returns
+        -------
+        dict of str to ndarray
+            One ``(m,)`` column per field, m the number of interferences: ``depth_m`` (m),
+            ``load_N`` (N), ``n_contact`` (pixels), ``area_m2`` (m²), ``stiffness_N_per_m``
+            (N/m), ``mean_gap_m`` (m), ``n_iterations``, ``n_convolutions``, ``residual_m``
+            (m), ``max_tensile_force_N`` (N), ``converged`` and ``solve_time_s`` (s).
+        """
+
         return {
             "depth_m": self.depth,
             "load_N": self.load,

@@ -55,7 +55,14 @@ def require_bem() -> tuple[Any, Any, Any, Any]:
 
 
 def contactmechanics_versions() -> dict[str, str]:
-    """Installed versions of ContactMechanics, SurfaceTopography and muGrid (for provenance)."""
+    """Installed versions of ContactMechanics, SurfaceTopography and muGrid (for provenance).
+
+    Returns
+    -------
+    dict of str to str
+        ``{"contactmechanics": ..., "surfacetopography": ..., "mugrid": ...}``: each package's
+        version string, or ``"not installed"``.
+    """
     out = {}
     for pkg in ("contactmechanics", "surfacetopography", "mugrid"):
         try:
@@ -66,13 +73,40 @@ def contactmechanics_versions() -> dict[str, str]:
 
 
 def edge_contact(contact: np.ndarray) -> bool:
-    """True when a contact pixel lies on the border of the map."""
+    """True when a contact pixel lies on the border of the map.
+
+    Parameters
+    ----------
+    contact : (ny, nx) ndarray of bool
+        Contact mask (any 2-D array whose truth value marks contact).
+
+    Returns
+    -------
+    bool
+        True if any pixel of the first or last row or column is in contact.
+    """
     return bool(contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any()
                 or contact[:, -1].any())  # fmt: skip
 
 
 def pentol_or_default(h: np.ndarray, pentol: float | None) -> tuple[float, str]:
-    """(pentol (m), where it came from): the given one, else ContactMechanics' default."""
+    """(pentol (m), where it came from): the given one, else ContactMechanics' default.
+
+    Parameters
+    ----------
+    h : ndarray
+        Heights (m), used only when ``pentol`` is None.
+    pentol : float or None
+        Penetration tolerance (m), or None for the default.
+
+    Returns
+    -------
+    pentol : float
+        ``pentol`` itself, or :func:`~warptrunc.contact.solver.default_pentol` of ``h``
+        (ContactMechanics' heuristic rms height/(10·mean n)) (m).
+    source : str
+        ``"given"`` or ``"default: rms height/(10·mean n)"``.
+    """
     if pentol is None:  # ContactMechanics' heuristic, computed here (its own call is deprecated)
         return default_pentol(h), "default: rms height/(10·mean n)"
     return pentol, "given"
@@ -81,7 +115,57 @@ def pentol_or_default(h: np.ndarray, pentol: float | None) -> tuple[float, str]:
 def run_contactmechanics(
     surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress
 ):
-    """ContactMechanics' solves, three per approach (δ(1 − h), δ, δ(1 + h)), warm-started."""
+    """ContactMechanics' solves, three per approach (δ(1 − h), δ, δ(1 + h)), warm-started.
+
+    The solves run on the CPU in float64 (``NonSmoothContactSystem.minimize_proxy``), each one
+    started from the displacements of the previous solve. k is the central difference
+    [F(δ(1 + h)) − F(δ(1 − h))]/(2hδ).
+
+    Parameters
+    ----------
+    surface : Surface
+        The rough height map (m), on the host.
+    d : (m,) ndarray
+        Approaches δ (m), increasing.
+    e_star : float
+        Reduced modulus E* (Pa).
+    substrate : {"free", "periodic"}
+        ``FreeFFTElasticHalfSpace`` or ``PeriodicFFTElasticHalfSpace``.
+    fd_step : float
+        Relative step h of the central difference (dimensionless).
+    pressure_tol : float
+        Tolerance on tensile pressure relative to E* (dimensionless); ContactMechanics'
+        ``forcetol`` is ``pressure_tol·E*·dx·dy`` (N).
+    pentol : float or None
+        Penetration tolerance (m); None for :func:`pentol_or_default`'s default.
+    maxiter : int
+        Largest number of CG iterations per solve.
+    progress : bool
+        Show a tqdm progress bar over the 3m solves.
+
+    Returns
+    -------
+    columns : dict of str to (m,) ndarray
+        ``"F"`` load at δ (N), ``"A"`` contact area at δ (m²), ``"k"`` stiffness (N/m),
+        ``"t"`` wall time of the row's three solves (s).
+    converged : (m,) ndarray of bool
+        All three solves of the row succeeded.
+    n_iterations : (m,) ndarray of int64
+        Iterations of the solve at δ.
+    edge_contact : (m,) ndarray of bool
+        :func:`edge_contact` of the contact at δ.
+    solves : list of dict
+        One dict per solve (``depth_m``, ``success``, ``n_iterations``, ``message``,
+        ``load_N``), in solve order.
+    settings : dict
+        Solver name and description, half-space class, stiffness method, ``pentol_m`` and
+        ``pentol_source``.
+
+    Raises
+    ------
+    ImportError
+        ContactMechanics or SurfaceTopography is not installed (:func:`require_bem`).
+    """
     from tqdm.auto import tqdm  # `import warptrunc` stays light
 
     Free, Periodic, System, Topography = require_bem()
@@ -150,7 +234,60 @@ def run_contactmechanics(
 
 def run_warptrunc(surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress,
                    stiffness, dtype, device):  # fmt: skip
-    """warptrunc's solves on ``device``: δ(1 − h), δ, δ(1 + h) (central) or δ and Barber's punch."""
+    """warptrunc's solves on ``device``: δ(1 − h), δ, δ(1 + h) (central) or δ and Barber's punch.
+
+    One :class:`~warptrunc.contact.solver.ContactSolver` serves all solves.
+
+    Parameters
+    ----------
+    surface : Surface
+        The rough height map (m), on the host.
+    d : (m,) ndarray
+        Approaches δ (m), increasing.
+    e_star : float
+        Reduced modulus E* (Pa).
+    substrate : {"free", "periodic"}
+        Half-space of the solver.
+    fd_step : float
+        Relative step h of the central difference (dimensionless); unused with
+        ``stiffness="barber"``.
+    pressure_tol : float
+        Solver tolerance on tensile pressure relative to E* (dimensionless).
+    pentol : float or None
+        Penetration tolerance (m); None for :func:`pentol_or_default`'s default.
+    maxiter : int
+        Largest number of CG iterations per solve.
+    progress : bool
+        Show a tqdm progress bar over the solves.
+    stiffness : {"central", "barber"}
+        ``"central"``: k = [F(δ(1 + h)) − F(δ(1 − h))]/(2hδ), three contact solves per row;
+        otherwise Barber's flat punch of the contact set at δ (one contact solve and one
+        linear solve per row).
+    dtype : {"float64", "float32"}
+        Precision of the solver.
+    device : str or warp.context.Device or None
+        Warp device of the solver.
+
+    Returns
+    -------
+    columns : dict of str to (m,) ndarray
+        ``"F"`` load at δ (N), ``"A"`` contact area at δ (m²), ``"k"`` stiffness (N/m),
+        ``"t"`` wall time of the row's solves (s).
+    converged : (m,) ndarray of bool
+        The row's contact solves (and, for Barber, the punch solve) converged.
+    n_iterations : (m,) ndarray of int64
+        Iterations of the solve at δ.
+    edge_contact : (m,) ndarray of bool
+        :func:`edge_contact` of the contact at δ.
+    solves : list of dict
+        One dict per contact solve (``depth_m``, ``success``, ``n_iterations``,
+        ``n_convolutions``, ``load_N``, ``residual_m``, ``message``; ``punch_iterations`` on
+        the solve at δ with Barber's method), in solve order.
+    settings : dict
+        Solver name and description, stiffness method, ``pentol_m``, ``pentol_source``,
+        ``device`` and ``dtype``.
+    """
+
     from tqdm.auto import tqdm  # `import warptrunc` stays light
 
     pentol, pentol_note = pentol_or_default(surface.heights, pentol)

@@ -194,11 +194,25 @@ def write_height_map(surface: Surface, path: str | Path) -> Path:
     ``height unit=1 m``, then one row per ``iy``; values are written with 9 significant digits,
     so float32 heights read back exactly.
 
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m) and its metadata.
+    path : str or Path
+        Output file; its suffix chooses the format (``.npz``, ``.npy``, ``.csv``, ``.txt``,
+        ``.tsv``).
+
     Returns
     -------
     Path
         The path written.
+
+    Raises
+    ------
+    ValueError
+        The suffix is none of the formats above.
     """
+
     path = Path(path)
     if not path.suffix:
         path = path.with_suffix(".npz")

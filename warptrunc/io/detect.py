@@ -69,6 +69,23 @@ def _delimiter(s: str) -> str | None:
 def find_data_start(lines: list[str], path: Path) -> tuple[int, str | None] | None:
     """Index of the first data line and its delimiter, or None when there is none.
 
+    Blank lines, ``#`` comments, ``key=value``/``key: value`` lines and text-only lines
+    (column names) before it are the header.
+
+    Parameters
+    ----------
+    lines : list of str
+        The file's lines.
+    path : Path
+        The file, named in the error message.
+
+    Returns
+    -------
+    tuple of (int, str or None) or None
+        ``(index, delimiter)``: the 0-based index in ``lines`` of the first line of numbers
+        and its delimiter (``","``, ``";"``, ``"\\t"``, or None for whitespace); None when no
+        line holds numbers only.
+
     Raises
     ------
     ValueError
@@ -99,7 +116,28 @@ def find_data_start(lines: list[str], path: Path) -> tuple[int, str | None] | No
 def header_units(
     header: dict[str, str], path: Path
 ) -> tuple[float | None, float | None, float | None]:
-    """(height unit, physical width, physical height) (m) of a Gwyddion-style header, or None."""
+    """(height unit, physical width, physical height) (m) of a Gwyddion-style header, or None.
+
+    Parameters
+    ----------
+    header : dict of str to str
+        Header entries, keys lower-cased (``"value units"``, ``"width"``/``"breite"``,
+        ``"height"``/``"höhe"``), values such as ``"nm"`` or ``"10.0 µm"``.
+    path : Path
+        The file, named in the error message.
+
+    Returns
+    -------
+    unit : float or None
+        Metres per height unit of ``Value units`` (m), or None without that key.
+    width, height : float or None
+        Physical width and height of the map (m), or None when absent or not a length.
+
+    Raises
+    ------
+    ValueError
+        ``Value units`` is not a known length unit.
+    """
 
     def length(v: str) -> float | None:
         m = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)?\s*(\S+)\s*", v)
@@ -138,7 +176,30 @@ def table_to_map(
 ) -> tuple[np.ndarray, float, float, dict] | None:
     """An XYZ point list read onto its grid as (z (m), dx, dy, metadata); None for a matrix.
 
-    Raises ValueError for a line scan (x, z) or a point list not on a regular lattice.
+    Parameters
+    ----------
+    table : (n, ncol) ndarray
+        The numeric rows of the file, in the file's units.
+    path : Path
+        The file, named in error messages.
+    height_unit : float
+        Metres per unit of the file (m); scales the heights and the lattice steps.
+    dx, dy : float or None
+        Pixel spacings (m) that override the lattice steps; None to use them.
+
+    Returns
+    -------
+    tuple of (ndarray, float, float, dict) or None
+        ``(z, dx, dy, metadata)``: ``(ny, nx)`` float64 heights ``z[iy, ix]`` (m), NaN at
+        lattice points absent from the list; the spacings (m); ``{"xyz": {"points",
+        "grid_points", "x_step", "y_step"}}`` (steps in the file's unit). None when the table
+        is not a three-column point list (a height matrix).
+
+    Raises
+    ------
+    ValueError
+        The table is a line scan (two columns, the first strictly monotonic, more than two
+        rows), or a point list whose x or y values are not on a uniform lattice.
     """
     n, ncol = table.shape
     if ncol == 2 and n > 2:
@@ -180,7 +241,19 @@ def table_to_map(
 
 
 def shape_words(shape: tuple[int, ...]) -> str:
-    """What an array of ``shape`` that is no 2-D map holds, in words."""
+    """What an array of ``shape`` that is no 2-D map holds, in words.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        Shape of the array read from the file.
+
+    Returns
+    -------
+    str
+        A phrase for an error message, e.g. ``"holds a 1-D profile of 512 points (shape
+        (512,))"``.
+    """
     size = int(np.prod(shape))
     if size == 0:
         return f"holds no points (shape {shape})"
@@ -196,7 +269,27 @@ def shape_words(shape: tuple[int, ...]) -> str:
 
 
 def npz_height_key(names: list[str], path: Path) -> str:
-    """The key of the heights in a plain ``.npz`` (see the module docstring)."""
+    """The key of the heights in a plain ``.npz`` (see the module docstring).
+
+    Parameters
+    ----------
+    names : list of str
+        The array names in the archive.
+    path : Path
+        The file, named in the error message.
+
+    Returns
+    -------
+    str
+        The first of :data:`HEIGHT_KEYS` in ``names``, else ``"arr_0"`` when it is the only
+        name.
+
+    Raises
+    ------
+    ValueError
+        No known key; the message lists the names found.
+    """
+
     key = next((k for k in HEIGHT_KEYS if k in names), None)
     if key is None and names == ["arr_0"]:
         key = "arr_0"

@@ -192,8 +192,34 @@ def islands_at_depth(
 ) -> Islands:
     """Islands of the contact set ``z >= z_top − ω`` at one depth ω (m).
 
-    See :func:`islands_at_depths` for the parameters.
+    ``islands_at_depths(surface, [depth], ...)[0]``; see :func:`islands_at_depths`.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m).
+    depth : float
+        Truncation depth ω (m), finite and ≥ 0; a pixel is in contact when
+        ``z >= float32(z_top − ω)``.
+    connectivity : {4, 8}
+        Neighbourhood of an island.
+    periodic : bool
+        Wrap the map around in x and y.
+    device : str, optional
+        Warp device; default: where a device-resident surface lives, else
+        :func:`warptrunc.resolve_device`'s choice.
+
+    Returns
+    -------
+    Islands
+        The islands at ω (labels, areas (m²), perimeters (m)).
+
+    Raises
+    ------
+    ValueError
+        ``depth`` is negative or not finite, or ``connectivity`` is not 4 or 8.
     """
+
     check_range("depth", depth, 0.0, lo_open=False, unit="m")
     return islands_at_depths(
         surface, [depth], connectivity=connectivity, periodic=periodic, device=device

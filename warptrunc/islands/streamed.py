@@ -66,7 +66,14 @@ class BandedIslands:
         return int(self.area_pixels.size)
 
     def to_dict(self) -> dict[str, Any]:
-        """One row per island."""
+        """One row per island.
+
+        Returns
+        -------
+        dict of str to (n_islands,) ndarray
+            ``label`` (int64, 1..n_islands), ``area_pixels`` (pixels) and ``depth_m`` (the
+            truncation depth ω repeated, m).
+        """
         return {
             "label": np.arange(1, self.n_islands + 1, dtype=np.int64),
             "area_pixels": self.area_pixels,
@@ -155,7 +162,32 @@ def label_in_bands(
     order of first pixel). Perimeters are then counted on the host from the label map: an edge
     between a contact pixel and a non-contact pixel (or the map border), dy long across x and dx
     long across y, as the in-memory path counts them.
+
+    Parameters
+    ----------
+    m : (ny, nx) ndarray
+        Contact mask (non-zero: contact), already checked by the caller.
+    dx, dy : float
+        Pixel spacings along x and y (m).
+    connectivity : {4, 8}
+        Neighbourhood of an island, already checked.
+    band_rows : int
+        Rows of ``m`` per band, in [1, ny].
+    device : warp.context.Device
+        The resolved Warp device that labels each band.
+
+    Returns
+    -------
+    Islands
+        Same labels (int32, raster order of first pixel), areas (m²) and perimeters (m) as the
+        in-memory path; ``periodic=False`` and ``depth`` NaN.
+
+    Raises
+    ------
+    ValueError
+        ``band_rows`` is not an integer in [1, ny].
     """
+
     rows = _band_rows(band_rows, m.shape[0])
     merger = _BandMerger(connectivity)
     labels = np.zeros(m.shape, dtype=np.int64)

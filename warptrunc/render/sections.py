@@ -87,7 +87,18 @@ class Rendering:
         return tuple(self.image.shape)  # type: ignore[return-value]
 
     def to_dict(self) -> dict[str, Any]:
-        """One row per depth: depth_m, depth_fraction_of_Rt, area_fraction, and the scalars."""
+        """One row per depth: depth_m, depth_fraction_of_Rt, area_fraction, and the scalars.
+
+        Returns
+        -------
+        dict
+            Per-depth columns ``depth_m`` (m), ``depth_fraction_of_Rt`` and ``area_fraction``
+            (dimensionless); scalars ``path`` (str or None), ``image_height``,
+            ``image_width`` (pixels), ``downsample``, ``pooling``, ``mesh_rows``,
+            ``mesh_columns``, ``ny``, ``nx``, ``vertical_exaggeration`` (dimensionless),
+            ``top_view`` and ``caption``.
+        """
+
         return {
             "depth_m": self.depth,
             "depth_fraction_of_Rt": self.depth_fraction,

@@ -30,7 +30,14 @@ of issue 12's measurement)."""
 
 
 def bem_available() -> str | None:
-    """None when the ``bem`` extra imports; else the reason (naming the install command)."""
+    """None when the ``bem`` extra imports; else the reason (naming the install command).
+
+    Returns
+    -------
+    str or None
+        None when ContactMechanics and SurfaceTopography import, else the ImportError's
+        message.
+    """
     from ..contact.check import require_bem
 
     try:
@@ -52,7 +59,32 @@ def stage_params(p: Profile) -> dict[str, Any]:
 
 def stage_bem(p: Profile, device) -> dict[str, Any]:
     """Run :func:`~warptrunc.contact.check.bem_check` (ContactMechanics' solver, the stage's
-    reference) on every (D, seed); one case per surface."""
+    reference) on every (D, seed); one case per surface.
+
+    Each surface is a WM surface (:func:`~warptrunc.wm.wm_surface`) with the fixed ``SURFACE``
+    W_r, L and R_t, ``p.bem_n`` pixels a side, D in ``p.bem_D`` and seeds
+    ``0 .. p.bem_seeds − 1``, checked at the approaches ``p.bem_fractions`` of R_t.
+
+    Parameters
+    ----------
+    p : Profile
+        The reproduction profile (``bem_n``, ``bem_seeds``, ``bem_D``, ``bem_fractions``).
+    device : str or warp.context.Device or None
+        Warp device for the surfaces and the truncation part (the BEM runs on the CPU).
+
+    Returns
+    -------
+    dict
+        ``n``, ``surface`` (the ``SURFACE`` dict, m), ``fractions``, ``settings`` (the first
+        check's settings without the per-surface entries) and ``cases``: one dict per
+        (D, seed) with ``D``, ``seed``, ``Rt_m`` (m), ``summary`` (:meth:`BemCheck.summary`),
+        ``pentol_m`` (m), ``columns`` (:meth:`BemCheck.to_dict`) and ``solves``.
+
+    Raises
+    ------
+    ImportError
+        The ``bem`` extra (ContactMechanics) is not installed.
+    """
     from tqdm.auto import tqdm
 
     from ..contact.check import bem_check
@@ -92,7 +124,27 @@ def _stats(v: list[float | None]) -> dict[str, Any]:
 
 def analyse_bem(stage: dict[str, Any]) -> dict[str, Any]:
     """Per (D, δ/R_t): mean and range over seeds of the three ratios, convergence and edge
-    counts; per D: time per solve; the cells where k' is within ±GOOD of k_BEM."""
+    counts; per D: time per solve; the cells where k' is within ±GOOD of k_BEM.
+
+    Parameters
+    ----------
+    stage : dict
+        The stored ``bem`` stage, as returned by :func:`stage_bem`, or
+        ``{"status": "skipped", "reason": ...}``.
+
+    Returns
+    -------
+    dict
+        ``{"status": "skipped", "reason": ...}`` for a skipped stage. Otherwise
+        ``status="ok"``, ``n``, ``fractions``, ``cells`` (per (D, fraction): ``load_ratio``,
+        ``stiffness_ratio``, ``area_ratio`` as ``{mean, min, max, n}`` over the seeds with a
+        finite ratio (dimensionless), ``converged``, ``n``, ``edge_contact`` counts and
+        ``contact_fraction`` = mean A_BEM/L² (dimensionless)), ``per_D``
+        (``time_per_solve_s`` (s), ``solves``, ``not_converged_rows``), ``good_band``,
+        ``good_cells`` ([D, fraction] pairs with |k'/k_BEM − 1| ≤ :data:`GOOD`),
+        ``other_stiffness_ratio_range``, ``all_converged``, ``rows``, ``solves`` and
+        ``time_per_solve_s`` (s).
+    """
     if stage.get("status") == "skipped":
         return {"status": "skipped", "reason": stage["reason"]}
     cells = []
@@ -156,7 +208,24 @@ def _sentence(a: dict[str, Any]) -> str:
 
 
 def bem_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | None) -> list[str]:
-    """The report section "Elastic cross-check (BEM)" as Markdown lines."""
+    """The report section "Elastic cross-check (BEM)" as Markdown lines.
+
+    Parameters
+    ----------
+    stage : dict
+        The stored ``bem`` stage (:func:`stage_bem`).
+    a : dict
+        Its analysis (:func:`analyse_bem`); a skipped one gives a one-line section.
+    seconds : float or None
+        Wall time of the stage (s), quoted when given.
+
+    Returns
+    -------
+    list of str
+        Markdown lines: heading, method paragraph, the per-(D, δ/R_t) ratio table, the
+        per-D timing table and the summary sentences.
+    """
+
     L = ["## Elastic cross-check (BEM)\n"]
     if a["status"] == "skipped":
         L.append(f"Skipped: the `bem` extra is not installed (`{EXTRA_HINT}`).\n")

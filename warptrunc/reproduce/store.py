@@ -51,18 +51,60 @@ class StageStore:
         self.computed: list[str] = []
 
     def path(self, name: str) -> Path:
-        """The stage's file."""
+        """The stage's file.
+
+        Parameters
+        ----------
+        name : str
+            Stage name.
+
+        Returns
+        -------
+        Path
+            ``<out>/stages/<name>.json`` (it may not exist yet).
+        """
         return self.dir / f"{name}.json"
 
     def load(self, name: str) -> dict[str, Any] | None:
-        """The stored ``{"params", "result", "seconds"}`` of a stage, or None."""
+        """The stored ``{"params", "result", "seconds"}`` of a stage, or None.
+
+        Parameters
+        ----------
+        name : str
+            Stage name.
+
+        Returns
+        -------
+        dict or None
+            The parsed stage file, or None when it does not exist.
+        """
         p = self.path(name)
         if not p.exists():
             return None
         return json.loads(p.read_text())
 
     def check(self, name: str, params: dict[str, Any]) -> bool:
-        """True when the stage is stored with ``params``; raises on a conflict (no overwrite)."""
+        """True when the stage is stored with ``params``; raises on a conflict (no overwrite).
+
+        Parameters
+        ----------
+        name : str
+            Stage name.
+        params : dict
+            Parameters that identify the stage, compared after :func:`jsonable`.
+
+        Returns
+        -------
+        bool
+            True when the stored parameters equal ``params``; False when nothing is stored,
+            or when they differ and ``overwrite`` is on.
+
+        Raises
+        ------
+        StageConflict
+            The stored parameters differ and ``overwrite`` is off; the message names the
+            differing keys.
+        """
         old = self.load(name)
         if old is None:
             return False
@@ -83,7 +125,32 @@ class StageStore:
     def run(
         self, name: str, params: dict[str, Any], fn: Callable[[], dict[str, Any]]
     ) -> dict[str, Any]:
-        """The stage's result: stored when the parameters match, else ``fn()`` (then stored)."""
+        """The stage's result: stored when the parameters match, else ``fn()`` (then stored).
+
+        The stage name goes to :attr:`reused` or :attr:`computed`. A computed result is
+        written atomically with its parameters and its compute time.
+
+        Parameters
+        ----------
+        name : str
+            Stage name.
+        params : dict
+            Parameters that identify the stage (JSON-able after :func:`jsonable`).
+        fn : callable
+            Computes the result, called with no arguments; returns a dict, stored after
+            :func:`jsonable` (non-finite floats become null).
+
+
+        Returns
+        -------
+        dict
+            The result, as stored (after :func:`jsonable`).
+
+        Raises
+        ------
+        StageConflict
+            Stored with other parameters and ``overwrite`` is off.
+        """
 
         if self.check(name, params):
             self.reused.append(name)
@@ -96,6 +163,18 @@ class StageStore:
         return result
 
     def seconds(self, name: str) -> float | None:
-        """Compute time of a stored stage (s)."""
+        """Compute time of a stored stage (s).
+
+        Parameters
+        ----------
+        name : str
+            Stage name.
+
+        Returns
+        -------
+        float or None
+            The stored ``seconds`` (s), or None when the stage or the entry is missing.
+        """
+
         rec = self.load(name)
         return None if rec is None else rec.get("seconds")

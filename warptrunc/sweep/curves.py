@@ -33,12 +33,36 @@ _META_KEY = b"warptrunc.rows"
 
 
 def parquet_bytes(df) -> bytes:
+    """A pandas DataFrame as the bytes of a Parquet file (index left out).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table to serialise.
+
+    Returns
+    -------
+    bytes
+        The Parquet file's content, as :func:`table_bytes` writes it.
+    """
     import pyarrow as pa
 
     return table_bytes(pa.Table.from_pandas(df, preserve_index=False))
 
 
 def table_bytes(table) -> bytes:
+    """A pyarrow Table as the bytes of a Parquet file (``pyarrow.parquet.write_table``).
+
+    Parameters
+    ----------
+    table : pyarrow.Table
+        The table to serialise, schema metadata included.
+
+    Returns
+    -------
+    bytes
+        The Parquet file's content, for an atomic write.
+    """
     import pyarrow as pa
     import pyarrow.parquet as pq
 
@@ -91,7 +115,21 @@ _syncfs = _load_syncfs()
 
 
 def curve_rows(path: Path) -> list[dict[str, Any]] | None:
-    """The rows stored in a curve file's metadata; None when it has none or does not parse."""
+    """The rows stored in a curve file's metadata; None when it has none or does not parse.
+
+    Parameters
+    ----------
+    path : Path
+        A curve file ``curves/<case_id>.parquet``.
+
+    Returns
+    -------
+    list of dict or None
+        The case's result rows (the JSON under the schema metadata key ``warptrunc.rows``);
+        None for a file without that key, or one that cannot be read (missing, truncated,
+        empty).
+    """
+
     import pyarrow.parquet as pq
 
     try:
@@ -113,7 +151,24 @@ def write_curves(
     exists (written by an earlier attempt of the same case: first writer wins, through
     ``os.link`` that never replaces) keeps that file, and its rows are returned instead.
     Used by the client (the store) and, with worker writes, by the Dask workers.
+
+    Parameters
+    ----------
+    curves : str or Path
+        The store's ``curves`` folder (must exist).
+    results : list of (list of dict, dict or None)
+        One ``(rows, curve)`` per case: its result rows (the first has ``case_id``; values
+        made JSON-able with non-finite floats kept) and its curve, a dict of the
+        :data:`CURVE_COLUMNS` arrays (``depth_m`` (m), ``contact_area_m2`` (m²), ``load_N``
+        (N), ``stiffness_N_per_m`` (N/m), ...), or None for a failed case (an empty curve).
+
+    Returns
+    -------
+    list of list of dict
+        Per case, in the order of ``results``: the rows now stored for it (those given, or
+        the earlier attempt's when its file already existed).
     """
+
     import pyarrow as pa
 
     curves = Path(curves)

@@ -32,7 +32,22 @@ class StoreLocked(ValueError):
 
 
 def read_lock(path: str | Path) -> dict[str, Any] | None:
-    """The holder recorded in ``path/.lock`` (pid, host, started_utc), or None if unlocked."""
+    """The holder recorded in ``path/.lock`` (pid, host, started_utc), or None if unlocked.
+
+    Parameters
+    ----------
+    path : str or Path
+        The store folder.
+
+    Returns
+    -------
+    dict or None
+        The lock file's JSON object (``pid``, ``host``, ``started_utc``); None when there is
+        no lock file. A lock file that cannot be read or parsed (half-written) gives
+        ``{"pid": None, "host": None, "started_utc": None}``, and a JSON value that is not an
+        object gives ``{"pid": None, "host": None}``.
+    """
+
     f = Path(path) / LOCK_NAME
     try:
         info = json.loads(f.read_text())

@@ -176,7 +176,14 @@ class Store:
         self.flush()
 
     def spec(self) -> dict[str, Any]:
-        """The content of ``sweep.json``."""
+        """The content of ``sweep.json``.
+
+        Returns
+        -------
+        dict
+            ``format`` (the store format version), ``grid`` (:meth:`SweepGrid.to_dict`),
+            ``options`` (:meth:`SweepOptions.to_dict`) and ``n_cases``.
+        """
         return {
             "format": FORMAT,
             "grid": self.grid.to_dict(),
@@ -218,7 +225,23 @@ class Store:
         return set(self.rows)
 
     def add(self, rows: list[dict[str, Any]], curve: dict[str, np.ndarray] | None) -> bool:
-        """Record one finished case; returns False (and writes nothing) for a duplicate."""
+        """Record one finished case; returns False (and writes nothing) for a duplicate.
+
+        ``add_many([(rows, curve)])[0]``: see :meth:`add_many`.
+
+        Parameters
+        ----------
+        rows : list of dict
+            The case's result rows; the first holds its ``case_id``.
+        curve : dict of str to ndarray or None
+            Its curve, the :data:`CURVE_COLUMNS` arrays (SI units in the names), or None for
+            a failed case.
+
+        Returns
+        -------
+        bool
+            True when the case was recorded, False for a duplicate.
+        """
         return self.add_many([(rows, curve)])[0]
 
     def add_many(
@@ -227,6 +250,19 @@ class Store:
         """Record finished cases, writing their curve files as one batch (:func:`write_curves`).
 
         Returns, per case, False for a duplicate (nothing written, nothing recorded).
+        A store without a folder records the rows only. ``cases.parquet`` is rewritten when
+        the flush interval has passed.
+
+        Parameters
+        ----------
+        results : list of (list of dict, dict or None)
+            One ``(rows, curve)`` per case, as for :meth:`add`.
+
+        Returns
+        -------
+        list of bool
+            Per case, in order: True when recorded, False for a duplicate (a case already in
+            the store or earlier in ``results``); duplicates are counted in ``duplicates``.
         """
         fresh, seen, new = [], set(), []
         for rows, curve in results:
@@ -247,7 +283,19 @@ class Store:
         return new
 
     def record(self, rows: list[dict[str, Any]]) -> bool:
-        """Record a case whose curve file a worker already wrote; False for a duplicate."""
+        """Record a case whose curve file a worker already wrote; False for a duplicate.
+
+        Parameters
+        ----------
+        rows : list of dict
+            The case's result rows (as returned by :func:`write_curves`); the first holds its
+            ``case_id``.
+
+        Returns
+        -------
+        bool
+            True when recorded, False for a duplicate (counted in ``duplicates``).
+        """
         if rows[0]["case_id"] in self.rows:
             self.duplicates += 1
             return False
@@ -261,7 +309,14 @@ class Store:
             self.flush()
 
     def frame(self):
-        """The cases table (DataFrame) in grid order."""
+        """The cases table (DataFrame) in grid order.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per recorded result row, the columns and dtypes of ``cases.parquet``
+            (:data:`CASE_COLUMNS`, SI units in the names).
+        """
         rows = [r for rs in self.rows.values() for r in rs]
         return _sorted(rows_frame(rows))
 
@@ -315,6 +370,21 @@ def conflict(path: str | Path, grid: SweepGrid, options: SweepOptions) -> str | 
     """Why the store at ``path`` cannot be resumed with ``grid`` and ``options``, or None.
 
     None also when ``path`` holds no ``sweep.json`` yet (a new store).
+
+    Parameters
+    ----------
+    path : str or Path
+        The store folder.
+    grid : SweepGrid
+        The grid of the sweep to resume.
+    options : SweepOptions
+        Its options.
+
+    Returns
+    -------
+    str or None
+        The message of the conflict (another format, or the grid or options entries that
+        differ from the stored ``sweep.json``), or None when the store can be resumed.
     """
     meta = Path(path) / "sweep.json"
     if not meta.exists():
@@ -332,6 +402,28 @@ def load(path: str | Path, *, _raw: bool = False):
 
     Rows of cases finished after the last flush of ``cases.parquet`` (a killed sweep) are
     read from their curve files, so nothing that finished is missing.
+
+    Parameters
+    ----------
+    path : str or Path
+        The store folder (holding ``sweep.json``).
+    _raw : bool
+        Internal (used by :class:`Store` when it reopens a store); not for users. True returns
+        ``cases.parquet`` as stored: no rows from curve files, no sorting.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per result row, the columns of ``cases.parquet`` (:data:`CASE_COLUMNS`, SI
+        units in the names), sorted by ``case_index``, then ``min_pixels_fraction``, then
+        ``min_pixels``.
+
+    Raises
+    ------
+    ImportError
+        pandas or pyarrow is missing (the ``sweep`` extra).
+    FileNotFoundError
+        ``path`` holds no ``sweep.json``.
     """
     require_extra()
     import pyarrow.parquet as pq
@@ -359,7 +451,33 @@ def load_curves(path: str | Path, case_id: str | None = None):
     """Curves of the store at ``path``: one case's, or all (long format with ``case_id``).
 
     Columns: ``case_id`` and CURVE_COLUMNS (SI units in the names). Failed cases have no rows.
+
+    Parameters
+    ----------
+    path : str or Path
+        The store folder (holding ``sweep.json``).
+    case_id : str, optional
+        One case's id; None for every curve file.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``case_id`` followed by :data:`CURVE_COLUMNS`: ``depth_m`` (m),
+        ``n_contact_pixels``, ``contact_area_m2`` (m²), ``stiffness_N_per_m`` (N/m),
+        ``load_N`` (N), ``Ec_over_E`` and ``F_over_EA`` (dimensionless); the files'
+        rows concatenated in ``case_id`` order. Empty (with these columns) when there are no
+        curve files.
+
+    Raises
+    ------
+    ImportError
+        pandas or pyarrow is missing (the ``sweep`` extra).
+    FileNotFoundError
+        ``path`` holds no ``sweep.json``.
+    ValueError
+        ``case_id`` has no curve file.
     """
+
     require_extra()
     import pandas as pd
     import pyarrow.parquet as pq

@@ -65,7 +65,15 @@ class TruncationCurve:
         return self.n_contact_pixels / float(self.n_pixels)
 
     def to_dict(self) -> dict[str, Any]:
-        """Columns as 1-D arrays (one row per depth)."""
+        """Columns as 1-D arrays (one row per depth).
+
+        Returns
+        -------
+        dict of str to (n+1,) ndarray
+            ``depth_m`` ω (m), ``depth_fraction_of_Rt`` ω/R_t (dimensionless; zeros for a flat
+            map), ``n_contact_pixels`` (int64), ``contact_area_m2`` A_c (m²) and
+            ``area_fraction`` A_c/A (dimensionless).
+        """
         return {
             "depth_m": self.depth,
             "depth_fraction_of_Rt": self.depth / self.Rt if self.Rt > 0 else self.depth * 0,
@@ -97,6 +105,29 @@ def contact_histogram(
     array may be longer than ``t`` (the extra entries are zero). No host synchronisation.
     ``deep``: whether many pixels are expected to touch (picks the GPU kernel under
     ``GPU_HISTOGRAM = "auto"``).
+
+    Parameters
+    ----------
+    z : warp.array of float32
+        The flattened heights (m), 1-D, fewer than 2³¹ pixels; read 4 at a time when its
+        address is 16-byte aligned.
+    t : warp.array of float32
+        Non-increasing thresholds t_k = z_top − ω_k (m), on ``device``.
+    z_top : float
+        Highest height of the map (m).
+    inv_step : float
+        1/Δω, the inverse depth step (1/m), for the first guess of each pixel's index
+        (corrected exactly against ``t``); 0 when there is no step.
+    device : warp.context.Device
+        The resolved device of ``z`` and ``t``.
+    deep : bool
+        Many pixels expected to touch (see above).
+
+    Returns
+    -------
+    warp.array of int64
+        Counts per contact index, length len(t) or more (``HIST_BINS`` with the block kernel),
+        on ``device``; pixels that never touch are not counted.
     """
     n = z.shape[0]
     n1 = t.shape[0]
@@ -161,6 +192,17 @@ def depth_grid(
         Largest depth ω_max (m). Overrides ``max_depth_fraction``.
     max_depth_fraction : float
         Largest depth as a fraction of R_t, in (0, 1] (dimensionless).
+
+    Returns
+    -------
+    (n+1,) float64 ndarray
+        Depths ω_k (m), from 0 to ω_max.
+
+    Raises
+    ------
+    ValueError
+        ``n_increments`` is not an integer in [1, 10⁷], ``max_depth_fraction`` is outside
+        (0, 1], ``max_depth`` is not positive and finite, or ω_max is 0 (a flat map).
     """
     n = check_int("n_increments", n_increments, 1, 10_000_000)
     if max_depth is None:
@@ -239,6 +281,31 @@ def truncate_surface(
     One pass over the heights: each pixel's contact index (the first k with
     z ≥ z_top − ω_k) is found in a Warp kernel and counted in an integer atomic histogram;
     the cumulative sum gives the number of contact pixels at every depth.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m), already checked by the caller.
+    n_increments : int
+        Number of depth increments n (≥ 1).
+    max_depth : float or None
+        Largest depth ω_max (m); None to use ``max_depth_fraction``.
+    max_depth_fraction : float
+        ω_max as a fraction of R_t, in (0, 1] (dimensionless).
+    device : warp.context.Device
+        The resolved Warp device.
+
+    Returns
+    -------
+    TruncationCurve
+        A_c(ω_k) at the n + 1 depths of :func:`depth_grid`.
+
+    Raises
+    ------
+    ValueError
+        Out-of-range depth parameters, or a flat map (see :func:`depth_grid`).
+    MemoryError
+        The heights do not fit the device (a host surface is uploaded).
     """
     z = upload_heights(surface, device)
     lo, hi = surface_range(surface, z, device)  # recorded by the generator, or one reduction
@@ -292,7 +359,31 @@ def contact_index_map(
 
 
 def contact_index_device(surface: Surface, depth: np.ndarray, device: wp.context.Device) -> wp.array:
-    """:func:`contact_index_map` as a (ny, nx) int32 Warp array left on the resolved ``device``."""
+    """:func:`contact_index_map` as a (ny, nx) int32 Warp array left on the resolved ``device``.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m).
+    depth : (n+1,) array_like
+        Non-decreasing, equally spaced truncation depths (m), starting at 0 or more.
+    device : warp.context.Device
+        The resolved Warp device.
+
+    Returns
+    -------
+    warp.array2d of int32
+        (ny, nx) contact index of each pixel (len(depth) where it never touches), on
+        ``device``.
+
+    Raises
+    ------
+    ValueError
+        ``depth`` is not a 1-D non-decreasing array of depths ≥ 0.
+    TypeError
+        ``surface`` is not a :class:`~warptrunc.Surface`.
+    """
+
     depth = np.asarray(depth, dtype=np.float64)
     if depth.ndim != 1 or depth.size < 1 or np.any(np.diff(depth) < 0) or depth[0] < 0:
         raise ValueError("depth must be a 1-D non-decreasing array of depths ≥ 0 (m)")

@@ -76,7 +76,15 @@ class StreamedTruncation:
     """Number of row bands in each pass."""
 
     def to_dict(self) -> dict[str, Any]:
-        """The curve's columns (one row per depth)."""
+        """The curve's columns (one row per depth).
+
+        Returns
+        -------
+        dict of str to (n+1,) ndarray
+            :meth:`TruncationCurve.to_dict` of :attr:`curve`: ``depth_m`` (m),
+            ``depth_fraction_of_Rt``, ``n_contact_pixels``, ``contact_area_m2`` (m²) and
+            ``area_fraction``.
+        """
         return self.curve.to_dict()
 
 
@@ -105,6 +113,28 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
     Device: the float32 map, the tables and, on the CPU, the padded product buffer. Host: the
     ``Surface`` copy and its validation temporaries (a boolean mask); on the CPU device the two
     add up in the same memory.
+
+    Parameters
+    ----------
+    spec_or_params : WMSpec or mapping
+        The WM surface: a :class:`~warptrunc.wm.WMSpec`, a mapping of :func:`~warptrunc.wm_spec`
+        keywords, or the ``params`` of a WM surface (``nx``, ``ny``, ``Lx``, ``Ly`` become
+        ``n`` and ``L``).
+    device : str or warp.context.Device, optional
+        Warp device the map would be made on; :func:`warptrunc.resolve_device`'s choice when
+        None.
+
+    Returns
+    -------
+    device_bytes, host_bytes : int
+        Peak bytes on the device and on the host.
+
+    Raises
+    ------
+    TypeError
+        ``spec_or_params`` is neither a WMSpec nor a mapping.
+    ValueError
+        Invalid WM parameters (from :func:`~warptrunc.wm_spec`).
     """
     spec = as_wm_spec(spec_or_params)
     device = as_device(device)
@@ -119,7 +149,22 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
 
 
 def fits(spec: WMSpec, device: wp.context.Device) -> bool:
-    """Whether the in-memory path fits ``device`` (resolved); see :func:`fits_in_memory`."""
+    """Whether the in-memory path fits ``device`` (resolved); see :func:`fits_in_memory`.
+
+    Parameters
+    ----------
+    spec : WMSpec
+        The WM surface.
+    device : warp.context.Device
+        The resolved Warp device.
+
+    Returns
+    -------
+    bool
+        On a CUDA device: device bytes ≤ half its free memory and host bytes ≤ half the
+        host's free memory (:func:`in_memory_bytes`); on the CPU: their sum ≤ half the
+        host's free memory.
+    """
     # at most half of the free memory: the rest stays for the pool's slack, the plots, the
     # islands; past that, streaming (two passes of the product, no host copy) is faster anyway
     dev, host = in_memory_bytes(spec, device)
@@ -190,7 +235,34 @@ def wm_bands(
 ) -> Iterator[tuple[int, int, np.ndarray]]:
     """Yield ``(r0, r1, heights)``: the WM surface's rows r0..r1 (m, float32 host array), band
     by band, equal bit for bit to ``wm_surface(...).heights[r0:r1]`` (a first pass over all
-    bands finds the extremes for the R_t scaling). For checks and for writing large maps."""
+    bands finds the extremes for the R_t scaling). For checks and for writing large maps.
+
+    Parameters
+    ----------
+    spec_or_params : WMSpec or mapping
+        The WM surface, as for :func:`in_memory_bytes`; its ``method`` must be ``"tile"``.
+    band_rows : int, optional
+        Rows per band, in [1, ny], rounded up to the product's row block; default: a band
+        of at most 2²⁸ pixels that fits a sixteenth of the free device memory.
+    device : str or warp.context.Device, optional
+        Warp device that generates the bands; :func:`warptrunc.resolve_device`'s choice
+        when None.
+
+    Yields
+    ------
+    r0, r1 : int
+        First row and one past the last row of the band.
+    heights : (r1 − r0, nx) float32 ndarray
+        The band's heights z (m), a fresh host copy.
+
+    Raises
+    ------
+    TypeError
+        ``spec_or_params`` is neither a WMSpec nor a mapping.
+    ValueError
+        Invalid WM parameters, a ``method`` other than ``"tile"``, or ``band_rows`` out of
+        range (raised when the first band is requested).
+    """
     spec = as_wm_spec(spec_or_params)
     device = resolve_device(device)
     bands = WMBands(spec, device, band_rows)
@@ -214,7 +286,39 @@ def banded_truncation(
 ) -> StreamedTruncation:
     """The streamed path of :func:`warptrunc.truncate` on a resolved ``device``: the curve of
     a WM surface generated band by band, with the surface's metadata and the band layout (the
-    CLI reports them)."""
+    CLI reports them).
+
+    Two passes over the bands: the first finds the extremes of the unscaled sum (for the R_t
+    scaling), the second scales each band and adds its histogram of contact indices. The
+    counts are those of ``truncate(wm_surface(...))``.
+
+    Parameters
+    ----------
+    spec : WMSpec
+        The WM surface; ``method`` must be ``"tile"``.
+    n_increments : int
+        Number of depth increments n (≥ 1).
+    max_depth : float or None
+        Largest depth ω_max (m); None to use ``max_depth_fraction``.
+    max_depth_fraction : float
+        ω_max as a fraction of R_t, in (0, 1] (dimensionless).
+    band_rows : int or None
+        Rows per band, as for :func:`wm_bands`.
+    device : warp.context.Device
+        The resolved Warp device.
+    progress : bool
+        Show a progress bar per pass.
+
+    Returns
+    -------
+    StreamedTruncation
+        The curve A_c(ω_k), the surface's scalar metadata, rows per band and band count.
+
+    Raises
+    ------
+    ValueError
+        A ``method`` other than ``"tile"``, ``band_rows`` or the depth parameters out of range.
+    """
     bands = WMBands(spec, device, band_rows)
     _lo, _hi, scale, zlo, zhi = extremes_pass(bands, progress)
     Rt = float(np.float64(zhi) - np.float64(zlo))
@@ -257,5 +361,28 @@ def banded_truncation(
 
 def fits_in_memory(spec_or_params, device: wp.DeviceLike = None) -> bool:
     """Whether ``truncate(wm_surface(...))`` needs at most half of the free memory of ``device``
-    and of the host (which holds the ``Surface`` copy); see :func:`in_memory_bytes`."""
+    and of the host (which holds the ``Surface`` copy); see :func:`in_memory_bytes`.
+
+    Parameters
+    ----------
+    spec_or_params : WMSpec or mapping
+        The WM surface, as for :func:`in_memory_bytes`.
+    device : str or warp.context.Device, optional
+        Warp device; :func:`warptrunc.resolve_device`'s choice when None.
+
+    Returns
+    -------
+    bool
+        True when the in-memory path fits; when False, ``truncate(spec, stream="auto")``
+        streams.
+
+
+    Raises
+    ------
+    TypeError
+        ``spec_or_params`` is neither a WMSpec nor a mapping.
+    ValueError
+        Invalid WM parameters.
+    """
+
     return fits(as_wm_spec(spec_or_params), resolve_device(device))
