@@ -1,23 +1,26 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Constrained conjugate gradients (Polonsky–Keer) for elastic contact: projections, updates and
-float64 reductions.
+"""Constrained conjugate gradients (Polonsky–Keer) for elastic contact: projections, updates,
+spectral products and float64 reductions.
 
-Launched by ``warptrunc.contact.solver`` (and the spectral multiply by
-``warptrunc.contact.halfspace``). State arrays are float32 or float64 (one overload each):
-heights ``h`` (ny, nx) (m), compressive pixel forces ``q`` (Ny, Nx) (N, > 0 in contact), surface
-displacements ``u`` (Ny, Nx) (m), the CG direction ``t`` (Ny, Nx) (m); ``(Ny, Nx) = (2ny, 2nx)``
-for the free (zero-padded) half-space, ``(ny, nx)`` for the periodic one. ``q`` and ``t`` are
-zero outside the map (the pad) and are never written there. The gap is ``g = u − h − offset``
-(m), penetration where ``g < 0``. ``mask`` (ny, nx) uint8: bit 0 = in the CG set at the start of
-the iteration (q > 0), bit 1 = penetrating without force (load control adds those later).
+Launched by ``warptrunc.contact.solver`` (the spectral kernel also by
+``warptrunc.contact.halfspace``). State arrays are float32 or float64 (one overload each) and live
+on the (ny, nx) map: heights ``h`` (m), compressive pixel forces ``q`` (N, > 0 in contact), surface
+displacements ``u`` (m), the CG direction ``t`` (m). ``q`` and ``t`` are views of (ny, Nx) buffers
+whose columns ``nx … Nx−1`` are the zero pad of the free half-space (Nx = 2nx; Nx = nx for the
+periodic one) and are never written here. The gap is ``g = u − h − offset`` (m), penetration where
+``g < 0``. ``mask`` (ny, nx) uint8: bit 0 = in the CG set at the start of the iteration (q > 0),
+bit 1 = penetrating without force (load control adds those later). Spectra are (Ny, Nx//2 + 1)
+arrays of vec2 (re, im), the kernel spectrum ``w`` is real and even in y and stored for rows
+0 … Ny//2 only.
 
 Grids: the ``*_kernel`` launches with partial sums use ``lanes`` threads: on the GPU lane ``i``
-walks the flattened map with stride ``lanes`` (coalesced), on the CPU lane ``i`` walks the
+walks the flattened array with stride ``lanes`` (coalesced), on the CPU lane ``i`` walks the
 contiguous chunk ``[i·chunk, (i+1)·chunk)``. Every lane writes its float64 partials to
 ``part[i, j]`` without atomics; ``sum_lanes_kernel`` folds them into a few rows in a fixed
-order, so the reductions are deterministic for a given device. Elementwise kernels without
-reductions are one thread per map pixel, ``iy, ix = wp.tid()``.
+order, so the reductions are deterministic for a given device. Columns of ``part`` within one
+iteration: 0 Σ c·g·t, 1 N·t·K·t, 2–5 the force update, 6 the step τ (lane 0 only). Elementwise
+kernels without reductions are one thread per map pixel, ``iy, ix = wp.tid()``.
 """
 
 from typing import Any
@@ -31,13 +34,28 @@ BIG = wp.constant(1.0e300)
 
 @wp.kernel
 def clamp_displacement_kernel(
-    h: wp.array2d(dtype=Any), offset: wp.float64, u: wp.array2d(dtype=Any)
+    h: wp.array2d(dtype=Any),
+    offset: wp.float64,
+    u: wp.array2d(dtype=Any),
+    du: wp.array2d(dtype=Any),
 ):
-    """Warm start, one thread per map pixel: u = max(u, h + offset) (no initial penetration)."""
+    """Warm start, one thread per map pixel: u ← max(u, h + offset) (no initial penetration),
+    du = the increment of u (≥ 0)."""
     iy, ix = wp.tid()
     lo = h[iy, ix] + h.dtype(offset)
-    if u[iy, ix] < lo:
+    uo = u[iy, ix]
+    if uo < lo:
         u[iy, ix] = lo
+        du[iy, ix] = lo - uo
+    else:
+        du[iy, ix] = du.dtype(0.0)
+
+
+@wp.kernel
+def add_map_kernel(src: wp.array2d(dtype=Any), dst: wp.array2d(dtype=Any)):
+    """One thread per map pixel: dst += src."""
+    iy, ix = wp.tid()
+    dst[iy, ix] = dst[iy, ix] + src[iy, ix]
 
 
 @wp.kernel
@@ -105,23 +123,43 @@ def cg_direction_kernel(
     part[lane, 0] = s_gt
 
 
+SPECTRUM_ENERGY = wp.constant(0)
+SPECTRUM_APPLY = wp.constant(1)
+SPECTRUM_INVERSE = wp.constant(2)
+SPECTRUM_EXACT = wp.constant(3)
+SPECTRUM_LINEAR = wp.constant(4)
+
+
 @wp.kernel
-def spectral_multiply_kernel(
-    x: wp.array2d(dtype=Any),
+def spectral_kernel(
+    a: wp.array2d(dtype=Any),
+    b: wp.array2d(dtype=Any),
     w: wp.array2d(dtype=Any),
-    inverse: int,
+    mode: int,
+    tau: wp.float64,
+    scale: wp.float64,
+    inv_n: wp.float64,
     nx_full: int,
     col: int,
     stride: int,
     chunk: int,
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the half spectrum (Ny, Nx//2 + 1) of a real-to-complex FFT: x ·= w (x /= w when
-    ``inverse``); part[i, col] = Σ m·w·|x_in|², m = 2 for the columns that stand for two conjugate
-    modes, else 1, i.e. N·Σ t·(K t) by Parseval (the CG curvature, no extra pass)."""
+    """Lanes over the half spectrum (Ny, Nx//2 + 1) of a real-to-complex FFT, by ``mode``:
+
+    * ``SPECTRUM_ENERGY``: nothing written; part[i, col] = Σ m·w·|b|², m = 2 for the columns that
+      stand for two conjugate modes, else 1, i.e. N·Σ t·(K t) by Parseval (N = Ny·Nx);
+    * ``SPECTRUM_APPLY``: the same sum, then b ← w·b/N (K, with the inverse FFT's 1/N);
+    * ``SPECTRUM_INVERSE``: b ← b/(w·N) (K⁻¹);
+    * ``SPECTRUM_EXACT``: b ← w·a/N (a = the spectrum of the forces, just transformed);
+    * ``SPECTRUM_LINEAR``: a ← scale·(a − τ·b), then b ← w·a/N (b = the spectrum of the CG
+      direction: the force update by linearity, no transform of the forces).
+
+    ``a`` is not read in the first three modes (pass ``b``). ``w`` holds rows 0 … Ny//2."""
     lane = wp.tid()
-    nk = x.shape[1]
-    n = x.shape[0] * nk
+    nk = b.shape[1]
+    ny_full = b.shape[0]
+    n = ny_full * nk
     i = lane
     step = stride
     if chunk > 0:
@@ -134,12 +172,9 @@ def spectral_multiply_kernel(
     sy = step // nk
     sx = step - sy * nk
     while i < n:
-        v = x[iy, ix]
-        wv = w[iy, ix]
-        if inverse != 0:
-            x[iy, ix] = v / wv
-        else:
-            x[iy, ix] = v * wv
+        wv = w[wp.min(iy, ny_full - iy), ix]
+        v = b[iy, ix]
+        if mode <= SPECTRUM_APPLY:
             mult = wp.float64(2.0)
             if ix == 0 or 2 * ix == nx_full:
                 mult = wp.float64(1.0)
@@ -148,13 +183,46 @@ def spectral_multiply_kernel(
                 * wp.float64(wv)
                 * (wp.float64(v[0]) * wp.float64(v[0]) + wp.float64(v[1]) * wp.float64(v[1]))
             )
+            if mode == SPECTRUM_APPLY:
+                b[iy, ix] = v * (wv * w.dtype(inv_n))
+        elif mode == SPECTRUM_INVERSE:
+            b[iy, ix] = v * (w.dtype(inv_n) / wv)
+        elif mode == SPECTRUM_EXACT:
+            b[iy, ix] = a[iy, ix] * (wv * w.dtype(inv_n))
+        else:
+            av = w.dtype(scale) * (a[iy, ix] - w.dtype(tau) * v)
+            a[iy, ix] = av
+            b[iy, ix] = av * (wv * w.dtype(inv_n))
         i += step
         iy += sy
         ix += sx
         if ix >= nk:
             ix -= nk
             iy += 1
-    part[lane, col] = acc
+    if mode <= SPECTRUM_APPLY:
+        part[lane, col] = acc
+
+
+@wp.kernel
+def step_length_kernel(
+    sums: wp.array2d(dtype=wp.float64),
+    n_c: wp.float64,
+    inv_n: wp.float64,
+    tau: wp.array[wp.float64],
+):
+    """One thread: the CG step τ = Σ c·g·t / (t·K·t) from the folded rows of columns 0 (Σ c·g·t)
+    and 1 (N·t·K·t) of the lane partials (PK Eq. 15); τ = 0 without a CG set or curvature. Kept on
+    the device, so that the force update follows without a host round trip."""
+    s_gt = wp.float64(0.0)
+    t_k_t = wp.float64(0.0)
+    for k in range(sums.shape[0]):
+        s_gt += sums[k, 0]
+        t_k_t += sums[k, 1]
+    t_k_t = t_k_t * inv_n
+    step = wp.float64(0.0)
+    if n_c > wp.float64(0.0) and t_k_t > wp.float64(0.0):
+        step = s_gt / t_k_t
+    tau[0] = step
 
 
 @wp.kernel
@@ -163,7 +231,7 @@ def update_force_kernel(
     u: wp.array2d(dtype=Any),
     h: wp.array2d(dtype=Any),
     offset: wp.float64,
-    tau: wp.float64,
+    tau_arr: wp.array[wp.float64],
     defer_nc: int,
     stride: int,
     chunk: int,
@@ -171,11 +239,13 @@ def update_force_kernel(
     mask: wp.array2d(dtype=wp.uint8),
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the map: q ← q − τ·c·t; pixels with q ≤ 0 get q = 0 (tensile); those of them
-    that penetrate (g < 0) get q = −τ·g (PK's set I_ol), or only bit 1 of the mask when
-    ``defer_nc`` (load control rescales first). part[i] = [n penetrating without force,
-    n zeroed with q < 0, max tensile force, Σ q (after the update)]."""
+    """Lanes over the map: q ← q − τ·c·t with τ = tau_arr[0]; pixels with q ≤ 0 get q = 0
+    (tensile); those of them that penetrate (g < 0) get q = −τ·g (PK's set I_ol), or only bit 1 of
+    the mask when ``defer_nc`` (load control rescales first). part[i, 2:7] = [n penetrating
+    without force, n zeroed with q < 0, max tensile force, Σ q (after the update), τ (lane 0;
+    0 on the others, so that the column sums to τ)]."""
     lane = wp.tid()
+    tau = tau_arr[0]
     nx = h.shape[1]
     n = h.shape[0] * nx
     i = lane
@@ -218,10 +288,14 @@ def update_force_kernel(
         if ix >= nx:
             ix -= nx
             iy += 1
-    part[lane, 0] = n_nc
-    part[lane, 1] = n_zero
-    part[lane, 2] = max_tens
-    part[lane, 3] = total
+    part[lane, 2] = n_nc
+    part[lane, 3] = n_zero
+    part[lane, 4] = max_tens
+    part[lane, 5] = total
+    if lane == 0:
+        part[lane, 6] = tau
+    else:
+        part[lane, 6] = wp.float64(0.0)
 
 
 @wp.kernel
@@ -248,9 +322,6 @@ def rescale_force_kernel(
 @wp.kernel
 def advance_kernel(
     r: wp.array2d(dtype=Any),
-    mode: int,
-    tau: wp.float64,
-    scale: wp.float64,
     q: wp.array2d(dtype=Any),
     h: wp.array2d(dtype=Any),
     offset: wp.float64,
@@ -260,15 +331,12 @@ def advance_kernel(
     u: wp.array2d(dtype=Any),
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the whole (padded) grid: the new displacement, u ← scale·(u − τ·r) when
-    ``mode == 0`` (linearity: r = K·t and q changed by −τ·t only) or u ← r when ``mode == 1``
-    (r = K·q, exact). part[i] = [max |Δu| (whole grid), then over the map: n(q > 0), Σ c·g,
-    Σ c·g², max penetration over the previous CG set, Σ g] with c = q > 0 and the new u."""
+    """Lanes over the map: the new displacement u ← r (= K·q, the map of the inverse transform).
+    part[i] = [max |Δu|, n(q > 0), Σ c·g, Σ c·g², max penetration over the previous CG set, Σ g,
+    Σ q] with c = q > 0 and the new u."""
     lane = wp.tid()
-    nxp = u.shape[1]
-    n = u.shape[0] * nxp
-    ny = h.shape[0]
     nx = h.shape[1]
+    n = h.shape[0] * nx
     i = lane
     step = stride
     if chunk > 0:
@@ -281,31 +349,31 @@ def advance_kernel(
     s_gg = wp.float64(0.0)
     pen = wp.float64(0.0)
     s_gap = wp.float64(0.0)
-    iy = i // nxp
-    ix = i - iy * nxp
-    sy = step // nxp
-    sx = step - sy * nxp
+    s_q = wp.float64(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
     while i < n:
         uo = u[iy, ix]
         un = r[iy, ix]
-        if mode == 0:
-            un = u.dtype(scale) * (uo - u.dtype(tau) * un)
         u[iy, ix] = un
         du_max = wp.max(du_max, wp.abs(wp.float64(un) - wp.float64(uo)))
-        if iy < ny and ix < nx:
-            g = wp.float64(un) - wp.float64(h[iy, ix]) - offset
-            s_gap += g
-            if q[iy, ix] > q.dtype(0.0):
-                n_c += wp.float64(1.0)
-                s_g += g
-                s_gg += g * g
-            if (int(mask[iy, ix]) & 1) != 0:
-                pen = wp.max(pen, -g)
+        g = wp.float64(un) - wp.float64(h[iy, ix]) - offset
+        s_gap += g
+        qv = q[iy, ix]
+        if qv > q.dtype(0.0):
+            n_c += wp.float64(1.0)
+            s_g += g
+            s_gg += g * g
+            s_q += wp.float64(qv)
+        if (int(mask[iy, ix]) & 1) != 0:
+            pen = wp.max(pen, -g)
         i += step
         iy += sy
         ix += sx
-        if ix >= nxp:
-            ix -= nxp
+        if ix >= nx:
+            ix -= nx
             iy += 1
     part[lane, 0] = du_max
     part[lane, 1] = n_c
@@ -313,6 +381,7 @@ def advance_kernel(
     part[lane, 3] = s_gg
     part[lane, 4] = pen
     part[lane, 5] = s_gap
+    part[lane, 6] = s_q
 
 
 @wp.kernel
@@ -458,8 +527,8 @@ def sum_lanes_kernel(
 def _declare_overloads() -> None:
     """float32 and float64 instances of every generic kernel, so the module compiles once."""
     kernels = (
-        clamp_displacement_kernel, copy_map_kernel, fill_map_kernel, cg_direction_kernel,
-        spectral_multiply_kernel, update_force_kernel, rescale_force_kernel, advance_kernel,
+        clamp_displacement_kernel, add_map_kernel, copy_map_kernel, fill_map_kernel,
+        cg_direction_kernel, spectral_kernel, update_force_kernel, rescale_force_kernel, advance_kernel,
         contact_sums_kernel, punch_step_kernel, punch_direction_kernel, contact_mask_kernel,
     )  # fmt: skip
     for scalar, vec in ((wp.float32, wp.vec2f), (wp.float64, wp.vec2d)):
@@ -468,7 +537,7 @@ def _declare_overloads() -> None:
             for arg in k.adj.args:
                 ty = arg.type
                 if wp.types.is_array(ty) and ty.dtype is Any:
-                    dt = vec if (k is spectral_multiply_kernel and arg.label == "x") else scalar
+                    dt = vec if (k is spectral_kernel and arg.label in ("a", "b")) else scalar
                     types[arg.label] = wp.array2d(dtype=dt)
                 else:
                     types[arg.label] = ty

@@ -158,7 +158,7 @@ def solve_contact(
     return ContactCurve(
         depth=col("depth"), load=col("load"), n_contact=n_contact, area=n_contact * (dx * dy),
         stiffness=col("stiffness"), mean_gap=col("mean_gap"),
-        n_iterations=col("n_iterations", np.int64), n_convolutions=col("n_convolutions", np.int64),
+        n_iterations=col("n_iterations", np.int64), n_convolutions=col("n_convolutions", np.float64),
         residual=col("residual"), max_tensile_force=col("max_tensile_force"),
         converged=col("converged", bool), solve_time=col("solve_time"),
         pressure=np.stack(p_maps) if maps else None, gap=np.stack(g_maps) if maps else None,
