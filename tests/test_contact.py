@@ -103,7 +103,7 @@ def test_device_spectrum_equals_host(device):
     ny, nx, dx, dy = 48, 64, 1e-6, 1.3e-6
     hs = ElasticHalfSpace((ny, nx), (dx, dy), E_STAR, device=device)
     w = influence_spectrum((ny, nx), (dx, dy), E_STAR, "free")
-    np.testing.assert_allclose(w[1:ny], w[: ny : -1], rtol=1e-12)  # even in y
+    np.testing.assert_allclose(w[1:ny], w[:ny:-1], rtol=1e-12)  # even in y
     np.testing.assert_allclose(
         hs.spectrum.numpy(), w[: ny + 1], rtol=1e-10, atol=1e-12 * np.abs(w).max()
     )
@@ -125,7 +125,7 @@ def test_pruned_transform_equals_full(device, substrate, shape, dtype):
     pixel = (1e-6, 1.3e-6)
     hs = ElasticHalfSpace(shape, pixel, E_STAR, substrate=substrate, dtype=dtype, device=device)
     x = np.random.default_rng(0).random(shape)
-    buf, view = hs.map_buffer()
+    buf, _ = hs.map_buffer()
     host = np.zeros(buf.shape, dtype=dtype)
     host[:, :nx] = x
     buf.assign(host)

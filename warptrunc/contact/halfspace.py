@@ -100,7 +100,9 @@ def _free_spectrum_cupy(shape, pixel_size, contact_modulus, cupy, cfft):
     jy = cupy.arange(2 * ny)
     g = quad[cupy.minimum(jy, 2 * ny - jy)[:, None], cupy.minimum(jx, 2 * nx - jx)[None, :]]
     del quad
-    w = cfft.rfft2(g)[: ny + 1].real / (dx * dy)  # W is even in y: rows 0 … Ny//2 = ny
+    plan = cfft.get_fft_plan(g, value_type="R2C")  # not cached: its work area goes with it
+    w = cfft.rfft2(g, plan=plan)[: ny + 1].real / (dx * dy)  # W is even in y: rows 0 … ny
+    del plan
     del g
     return cupy.ascontiguousarray(w)
 
@@ -461,8 +463,9 @@ class ElasticHalfSpace:
         cupy = self._cp[0]
         rows, cols, _ = self._cupy_plans()
         s = self._cupy_view(spec)
-        with cupy.cuda.Device(self.device.ordinal), cupy_stream(
-            cupy, wp.get_stream(self.device), self.device.ordinal
+        with (
+            cupy.cuda.Device(self.device.ordinal),
+            cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
         ):
             rows.fft(self._cupy_view(buf), s, cupy.cuda.cufft.CUFFT_FORWARD)
             cols.fft(s, s, cupy.cuda.cufft.CUFFT_FORWARD)
@@ -483,8 +486,9 @@ class ElasticHalfSpace:
         cupy = self._cp[0]
         _, cols, rows_inv = self._cupy_plans()
         s = self._cupy_view(spec)
-        with cupy.cuda.Device(self.device.ordinal), cupy_stream(
-            cupy, wp.get_stream(self.device), self.device.ordinal
+        with (
+            cupy.cuda.Device(self.device.ordinal),
+            cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
         ):
             cols.fft(s, s, cupy.cuda.cufft.CUFFT_INVERSE)
             rows_inv.fft(s, s, cupy.cuda.cufft.CUFFT_INVERSE)
