@@ -383,10 +383,8 @@ class ElasticHalfSpace:
         return n * np.dtype(dtype).itemsize
 
     @staticmethod
-    def memory_bytes(shape: tuple[int, int], substrate: str, dtype: str) -> int:
-        """Device bytes of a half-space: the half kernel spectrum, the work spectrum and cuFFT's
-        work areas (estimated at the size of the data each plan transforms; their true size is
-        cuFFT's choice).
+    def memory_bytes(shape: tuple[int, int], substrate: str, dtype: str) -> tuple[int, int]:
+        """Device bytes of a half-space: (held, while made).
 
         Parameters
         ----------
@@ -399,8 +397,13 @@ class ElasticHalfSpace:
 
         Returns
         -------
-        int
-            Bytes.
+        (int, int)
+            Bytes held for its life: the half kernel spectrum, the work spectrum, the lane
+            partials and cuFFT's work areas (estimated at the size of the data each plan
+            transforms; their true size is cuFFT's choice). Bytes in use at the peak of making
+            the free spectrum on a CUDA device (float64 whatever the dtype: Love's quadrant, the
+            mirrored (2ny, 2nx) grid, its half spectrum and cuFFT's work area, its real part),
+            before anything else is allocated.
         """
         ny, nx = shape
         big_y, big_x = (2 * ny, 2 * nx) if substrate == "free" else (ny, nx)
@@ -409,7 +412,12 @@ class ElasticHalfSpace:
         spectrum = big_y * nk * 2 * item
         kernel = (big_y // 2 + 1) * nk * item
         cufft_work = spectrum + 2 * ny * nk * 2 * item  # columns; rows forward and inverse
-        return int(kernel + spectrum + cufft_work)
+        lanes = (65536 + 256) * LaneReduction.COLUMNS * 8
+        held = kernel + spectrum + cufft_work + lanes
+        making = 0
+        if substrate == "free":
+            making = 8 * (2 * (ny + 1) * (nx + 1) + big_y * big_x + 2 * 2 * big_y * nk)
+        return int(held), int(making)
 
     # --- transforms ------------------------------------------------------------------------
 
@@ -421,7 +429,8 @@ class ElasticHalfSpace:
         """The three cuFFT plans (made once): rows R2C, columns C2C in place, rows C2R in place."""
         if self._plans is None:
             cupy = self._cp[0]
-            cufft = cupy.cuda.cufft
+            from cupy.cuda import cufft
+
             ny = self.shape[0]
             big_y, big_x = self.grid
             nk = self.spectrum_shape[1]
