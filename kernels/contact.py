@@ -126,18 +126,13 @@ def cg_direction_kernel(
 SPECTRUM_ENERGY = wp.constant(0)
 SPECTRUM_APPLY = wp.constant(1)
 SPECTRUM_INVERSE = wp.constant(2)
-SPECTRUM_EXACT = wp.constant(3)
-SPECTRUM_LINEAR = wp.constant(4)
 
 
 @wp.kernel
 def spectral_kernel(
-    a: wp.array2d(dtype=Any),
     b: wp.array2d(dtype=Any),
     w: wp.array2d(dtype=Any),
     mode: int,
-    tau: wp.float64,
-    scale: wp.float64,
     inv_n: wp.float64,
     nx_full: int,
     col: int,
@@ -150,12 +145,9 @@ def spectral_kernel(
     * ``SPECTRUM_ENERGY``: nothing written; part[i, col] = Σ m·w·|b|², m = 2 for the columns that
       stand for two conjugate modes, else 1, i.e. N·Σ t·(K t) by Parseval (N = Ny·Nx);
     * ``SPECTRUM_APPLY``: the same sum, then b ← w·b/N (K, with the inverse FFT's 1/N);
-    * ``SPECTRUM_INVERSE``: b ← b/(w·N) (K⁻¹);
-    * ``SPECTRUM_EXACT``: b ← w·a/N (a = the spectrum of the forces, just transformed);
-    * ``SPECTRUM_LINEAR``: a ← scale·(a − τ·b), then b ← w·a/N (b = the spectrum of the CG
-      direction: the force update by linearity, no transform of the forces).
+    * ``SPECTRUM_INVERSE``: b ← b/(w·N) (K⁻¹).
 
-    ``a`` is not read in the first three modes (pass ``b``). ``w`` holds rows 0 … Ny//2."""
+    ``w`` holds rows 0 … Ny//2."""
     lane = wp.tid()
     nk = b.shape[1]
     ny_full = b.shape[0]
@@ -185,14 +177,8 @@ def spectral_kernel(
             )
             if mode == SPECTRUM_APPLY:
                 b[iy, ix] = v * (wv * w.dtype(inv_n))
-        elif mode == SPECTRUM_INVERSE:
-            b[iy, ix] = v * (w.dtype(inv_n) / wv)
-        elif mode == SPECTRUM_EXACT:
-            b[iy, ix] = a[iy, ix] * (wv * w.dtype(inv_n))
         else:
-            av = w.dtype(scale) * (a[iy, ix] - w.dtype(tau) * v)
-            a[iy, ix] = av
-            b[iy, ix] = av * (wv * w.dtype(inv_n))
+            b[iy, ix] = v * (w.dtype(inv_n) / wv)
         i += step
         iy += sy
         ix += sx
@@ -237,13 +223,17 @@ def update_force_kernel(
     chunk: int,
     q: wp.array2d(dtype=Any),
     mask: wp.array2d(dtype=wp.uint8),
+    lin: wp.array2d(dtype=Any),
+    lane_count: wp.array[wp.int32],
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the map: q ← q − τ·c·t with τ = tau_arr[0]; pixels with q ≤ 0 get q = 0
-    (tensile); those of them that penetrate (g < 0) get q = −τ·g (PK's set I_ol), or only bit 1 of
-    the mask when ``defer_nc`` (load control rescales first). part[i, 2:7] = [n penetrating
-    without force, n zeroed with q < 0, max tensile force, Σ q (after the update), τ (lane 0;
-    0 on the others, so that the column sums to τ)]."""
+    """Lanes over the map: q ← q − τ·c·t (= q_lin) with τ = tau_arr[0]; pixels with q ≤ 0 get
+    q = 0 (tensile); those of them that penetrate (g < 0) get q = −τ·g (PK's set I_ol), or only
+    bit 1 of the mask when ``defer_nc`` (load control rescales first). Pixels where the projection
+    changed q (q_lin < 0, or I_ol) get mask bit 2 and lin = q_lin; lane_count[i] = their number in
+    the lane. part[i, 2:8] = [n penetrating without force, n zeroed with q < 0, max tensile force,
+    Σ q (after the update), τ (lane 0; 0 on the others, so that the column sums to τ), n changed].
+    """
     lane = wp.tid()
     tau = tau_arr[0]
     nx = h.shape[1]
@@ -259,6 +249,7 @@ def update_force_kernel(
     max_tens = wp.float64(0.0)
     total = wp.float64(0.0)
     zero = q.dtype(0.0)
+    count = int(0)
     iy = i // nx
     ix = i - iy * nx
     sy = step // nx
@@ -269,6 +260,8 @@ def update_force_kernel(
         if (int(m) & 1) != 0:
             qv = qv - q.dtype(tau) * t[iy, ix]
         if qv <= zero:
+            q_lin = qv
+            changed = qv < zero
             max_tens = wp.max(max_tens, -wp.float64(qv))
             if qv < zero:
                 n_zero += wp.float64(1.0)
@@ -276,10 +269,15 @@ def update_force_kernel(
             g = u[iy, ix] - h[iy, ix] - h.dtype(offset)
             if g < h.dtype(0.0):
                 n_nc += wp.float64(1.0)
+                changed = True
                 if defer_nc != 0:
-                    mask[iy, ix] = m | wp.uint8(2)
+                    m = m | wp.uint8(2)
                 else:
                     qv = -q.dtype(tau) * g
+            if changed:
+                mask[iy, ix] = m | wp.uint8(4)
+                lin[iy, ix] = q_lin
+                count += 1
         q[iy, ix] = qv
         total += wp.float64(qv)
         i += step
@@ -296,6 +294,8 @@ def update_force_kernel(
         part[lane, 6] = tau
     else:
         part[lane, 6] = wp.float64(0.0)
+    part[lane, 7] = wp.float64(count)
+    lane_count[lane] = count
 
 
 @wp.kernel
@@ -309,19 +309,85 @@ def rescale_force_kernel(
     q: wp.array2d(dtype=Any),
 ):
     """Load control, one thread per map pixel: q ← scale·q, then q = −τ·g where mask bit 1
-    (which is cleared)."""
+    (which is cleared; bit 2 is kept)."""
     iy, ix = wp.tid()
     qv = q[iy, ix] * q.dtype(scale)
     m = mask[iy, ix]
     if (int(m) & 2) != 0:
         qv = -q.dtype(tau) * (u[iy, ix] - h[iy, ix] - h.dtype(offset))
-        mask[iy, ix] = m & wp.uint8(1)
+        mask[iy, ix] = m & wp.uint8(5)
     q[iy, ix] = qv
+
+
+@wp.kernel
+def compact_changes_kernel(
+    q: wp.array2d(dtype=Any),
+    lin: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    scale: wp.float64,
+    offsets: wp.array[wp.int32],
+    stride: int,
+    chunk: int,
+    index: wp.array[wp.int32],
+    value: wp.array[wp.float64],
+):
+    """Lanes over the map, in the walk of ``update_force_kernel``: the pixels with mask bit 2 (the
+    projection changed q) and their force correction Δp = q − scale·q_lin (N), written from
+    offsets[i] (the exclusive scan of its lane counts), so the list's order is fixed. ``index``
+    holds iy·nx + ix."""
+    lane = wp.tid()
+    nx = q.shape[1]
+    n = q.shape[0] * nx
+    i = lane
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        n = wp.min(n, i + chunk)
+        step = 1
+    k = offsets[lane]
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
+    while i < n:
+        if (int(mask[iy, ix]) & 4) != 0:
+            index[k] = iy * nx + ix
+            value[k] = wp.float64(q[iy, ix]) - scale * wp.float64(lin[iy, ix])
+            k += 1
+        i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
+
+
+@wp.func
+def influence(table: wp.array2d(dtype=Any), periodic: int, dy: int, dx: int) -> wp.float64:
+    """Displacement per unit force (m/N) at separation (dy, dx) pixels: the free half-space's
+    table holds |dy|, |dx| ≥ 0 (Love's coefficient is even); the periodic one wraps."""
+    ny = table.shape[0]
+    nx = table.shape[1]
+    if periodic != 0:
+        if dy < 0:
+            dy += ny
+        if dx < 0:
+            dx += nx
+        return wp.float64(table[dy, dx])
+    return wp.float64(table[wp.abs(dy), wp.abs(dx)])
 
 
 @wp.kernel
 def advance_kernel(
     r: wp.array2d(dtype=Any),
+    linear: int,
+    tau: wp.float64,
+    scale: wp.float64,
+    table: wp.array2d(dtype=Any),
+    periodic: int,
+    index: wp.array[wp.int32],
+    value: wp.array[wp.float64],
+    n_changes: int,
     q: wp.array2d(dtype=Any),
     h: wp.array2d(dtype=Any),
     offset: wp.float64,
@@ -331,9 +397,11 @@ def advance_kernel(
     u: wp.array2d(dtype=Any),
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the map: the new displacement u ← r (= K·q, the map of the inverse transform).
-    part[i] = [max |Δu|, n(q > 0), Σ c·g, Σ c·g², max penetration over the previous CG set, Σ g,
-    Σ q] with c = q > 0 and the new u."""
+    """Lanes over the map: the new displacement. ``linear == 0``: u ← r (r = K·q, exact).
+    ``linear != 0``: u ← scale·(u − τ·r) + Σ_k value_k·G(pixel − index_k) (r = K·t: the step by
+    linearity, then the projection's few force corrections by direct summation over the
+    influence table, in the list's fixed order). part[i] = [max |Δu|, n(q > 0), Σ c·g, Σ c·g²,
+    max penetration over the previous CG set, Σ g, Σ q] with c = q > 0 and the new u."""
     lane = wp.tid()
     nx = h.shape[1]
     n = h.shape[0] * nx
@@ -357,6 +425,13 @@ def advance_kernel(
     while i < n:
         uo = u[iy, ix]
         un = r[iy, ix]
+        if linear != 0:
+            acc = scale * (wp.float64(uo) - tau * wp.float64(un))
+            for k in range(n_changes):
+                j = index[k]
+                jy = j // nx
+                acc += value[k] * influence(table, periodic, iy - jy, ix - (j - jy * nx))
+            un = u.dtype(acc)
         u[iy, ix] = un
         du_max = wp.max(du_max, wp.abs(wp.float64(un) - wp.float64(uo)))
         g = wp.float64(un) - wp.float64(h[iy, ix]) - offset
@@ -528,7 +603,7 @@ def _declare_overloads() -> None:
     """float32 and float64 instances of every generic kernel, so the module compiles once."""
     kernels = (
         clamp_displacement_kernel, add_map_kernel, copy_map_kernel, fill_map_kernel,
-        cg_direction_kernel, spectral_kernel, update_force_kernel, rescale_force_kernel, advance_kernel,
+        cg_direction_kernel, spectral_kernel, update_force_kernel, compact_changes_kernel, rescale_force_kernel, advance_kernel,
         contact_sums_kernel, punch_step_kernel, punch_direction_kernel, contact_mask_kernel,
     )  # fmt: skip
     for scalar, vec in ((wp.float32, wp.vec2f), (wp.float64, wp.vec2d)):
@@ -537,7 +612,7 @@ def _declare_overloads() -> None:
             for arg in k.adj.args:
                 ty = arg.type
                 if wp.types.is_array(ty) and ty.dtype is Any:
-                    dt = vec if (k is spectral_kernel and arg.label in ("a", "b")) else scalar
+                    dt = vec if (k is spectral_kernel and arg.label == "b") else scalar
                     types[arg.label] = wp.array2d(dtype=dt)
                 else:
                     types[arg.label] = ty

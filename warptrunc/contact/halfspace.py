@@ -32,7 +32,8 @@ first ny rows only. Both equal the full zero-padded transforms to round-off
 work (the x transforms of the pad rows are skipped both ways). The periodic half-space is the
 same with no pad (Nx = nx, Ny = ny). Transforms are unnormalised both ways; the 1/N of the
 inverse is folded into the spectral kernel (``warptrunc.kernels.contact.spectral_kernel``), which
-also forms t·K·t by Parseval in the same pass.
+also forms t·K·t by Parseval in the same pass. A few forces are also applied by direct summation
+over the real-space influence table (:func:`influence_table`, held by the half-space).
 
 FFT backends, one algorithm: on a CUDA device three cuFFT plans (``cupy.cuda.cufft.PlanNd``
 with the advanced data layout: the batched row R2C, the strided in-place column C2C, the row
@@ -57,7 +58,13 @@ import warp as wp
 from .._device import resolve_device
 from ..kernels import contact as _k
 
-__all__ = ["SUBSTRATES", "ElasticHalfSpace", "LaneReduction", "influence_spectrum"]
+__all__ = [
+    "SUBSTRATES",
+    "ElasticHalfSpace",
+    "LaneReduction",
+    "influence_spectrum",
+    "influence_table",
+]
 
 SUBSTRATES = ("free", "periodic")
 DTYPES = {
@@ -89,7 +96,7 @@ def _free_spectrum_cupy(shape, pixel_size, contact_modulus, cupy, cfft):
     Same float64 formula and mirroring as the host path, evaluated with CuPy and transformed with
     cuFFT, so that a 10240² map needs no host memory or host FFT (≈ 10 GB of device memory
     briefly at 10240², before the solver allocates anything). Returns rows 0 … ny of the
-    (2ny, nx + 1) spectrum (the rest mirrors them).
+    (2ny, nx + 1) spectrum (the rest mirrors them) and the (ny, nx) influence table (m/N).
     """
     ny, nx = shape
     dx, dy = pixel_size
@@ -99,12 +106,12 @@ def _free_spectrum_cupy(shape, pixel_size, contact_modulus, cupy, cfft):
     jx = cupy.arange(2 * nx)
     jy = cupy.arange(2 * ny)
     g = quad[cupy.minimum(jy, 2 * ny - jy)[:, None], cupy.minimum(jx, 2 * nx - jx)[None, :]]
+    table = cupy.ascontiguousarray(quad[:ny, :nx]) / (dx * dy)
     del quad
     plan = cfft.get_fft_plan(g, value_type="R2C")  # not cached: its work area goes with it
     w = cfft.rfft2(g, plan=plan)[: ny + 1].real / (dx * dy)  # W is even in y: rows 0 … ny
-    del plan
-    del g
-    return cupy.ascontiguousarray(w)
+    del plan, g
+    return cupy.ascontiguousarray(w), table
 
 
 @functools.lru_cache(maxsize=8)
@@ -156,6 +163,40 @@ def influence_spectrum(
     return w
 
 
+def influence_table(
+    shape: tuple[int, int], pixel_size: tuple[float, float], contact_modulus: float, substrate: str
+) -> np.ndarray:
+    """Real-space influence coefficients G (m/N): displacement at a pixel per unit force on
+    another, by separation, for the direct summation of a few forces.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    pixel_size : (float, float)
+        Pixel sides (dx, dy) (m).
+    contact_modulus : float
+        Contact modulus E* (Pa).
+    substrate : {"free", "periodic"}
+        Half-space.
+
+    Returns
+    -------
+    (ny, nx) ndarray of float64
+        ``"free"``: G at separations (|Δy|, |Δx|) pixels (Love's form divided by the pixel
+        area; the values the spectrum transforms). ``"periodic"``: G at separations
+        (Δy mod ny, Δx mod nx), the inverse transform of the spectrum.
+    """
+    ny, nx = shape
+    dx, dy = pixel_size
+    if substrate == "free":
+        quad = _love(np.arange(nx)[None, :] * dx, np.arange(ny)[:, None] * dy, dx / 2, dy / 2,
+                     contact_modulus)  # fmt: skip
+        return quad / (dx * dy)
+    w = influence_spectrum(shape, pixel_size, contact_modulus, substrate)
+    return scipy.fft.irfft2(w, s=shape)
+
+
 class LaneReduction:
     """Deterministic float64 partial sums/maxima of the lane kernels of ``kernels/contact.py``.
 
@@ -167,7 +208,7 @@ class LaneReduction:
         Largest number of elements a lane kernel walks (sets the CPU chunk).
     """
 
-    COLUMNS = 8
+    COLUMNS = 9
 
     def __init__(self, device: wp.context.Device, n_max: int) -> None:
         self.device = device
@@ -322,19 +363,26 @@ class ElasticHalfSpace:
             # the free spectrum on the device: no host memory or host FFT at the paper's sizes
             cupy, cfft = self._cp
             with cupy.cuda.Device(self.device.ordinal):
-                w = _free_spectrum_cupy(self.shape, pixel, float(contact_modulus), cupy, cfft)
+                w, table = _free_spectrum_cupy(
+                    self.shape, pixel, float(contact_modulus), cupy, cfft
+                )
                 w = w.astype(self.np_dtype, copy=False)
+                table = table.astype(self.np_dtype, copy=False)
                 cupy.cuda.get_current_stream().synchronize()
-                view = wp.array(ptr=w.data.ptr, dtype=self.scalar, shape=w.shape,
-                                device=self.device)  # fmt: skip
-                self.spectrum = wp.clone(view)  # Warp-owned, so CuPy's pool can let go
+                views = [wp.array(ptr=a.data.ptr, dtype=self.scalar, shape=a.shape,
+                                  device=self.device) for a in (w, table)]  # fmt: skip
+                # Warp-owned copies, so that CuPy's pool can let go of the work arrays
+                self.spectrum, self.table = (wp.clone(v) for v in views)
                 wp.synchronize_stream(wp.get_stream(self.device))
-                del view, w
+                del views, w, table
                 cupy.get_default_memory_pool().free_all_blocks()
         else:
-            w = influence_spectrum(self.shape, pixel, float(contact_modulus), substrate)[:rows]
-            self.spectrum = wp.array(w.astype(self.np_dtype), dtype=self.scalar,
+            w = influence_spectrum(self.shape, pixel, float(contact_modulus), substrate)
+            table = influence_table(self.shape, pixel, float(contact_modulus), substrate)
+            self.spectrum = wp.array(w[:rows].astype(self.np_dtype), dtype=self.scalar,
                                      device=self.device)  # fmt: skip
+            self.table = wp.array(table.astype(self.np_dtype), dtype=self.scalar,
+                                  device=self.device)  # fmt: skip
         self.work = wp.zeros(self.spectrum_shape, dtype=self.vec2, device=self.device)
         self._plans = None
         self._views: dict[int, Any] = {}
@@ -398,7 +446,8 @@ class ElasticHalfSpace:
         Returns
         -------
         (int, int)
-            Bytes held for its life: the half kernel spectrum, the work spectrum, the lane
+            Bytes held for its life: the half kernel spectrum, the influence table, the work
+            spectrum, the lane
             partials and cuFFT's work areas (estimated at the size of the data each plan
             transforms; their true size is cuFFT's choice). Bytes in use at the peak of making
             the free spectrum on a CUDA device (float64 whatever the dtype: Love's quadrant, the
@@ -413,10 +462,11 @@ class ElasticHalfSpace:
         kernel = (big_y // 2 + 1) * nk * item
         cufft_work = spectrum + 2 * ny * nk * 2 * item  # columns; rows forward and inverse
         lanes = (65536 + 256) * LaneReduction.COLUMNS * 8
-        held = kernel + spectrum + cufft_work + lanes
+        table = ny * nx * item
+        held = kernel + table + spectrum + cufft_work + lanes
         making = 0
         if substrate == "free":
-            making = 8 * (2 * (ny + 1) * (nx + 1) + big_y * big_x + 2 * 2 * big_y * nk)
+            making = 8 * (3 * (ny + 1) * (nx + 1) + big_y * big_x + 2 * 2 * big_y * nk)
         return int(held), int(making)
 
     # --- transforms ------------------------------------------------------------------------
@@ -503,16 +553,14 @@ class ElasticHalfSpace:
             rows_inv.fft(s, s, cupy.cuda.cufft.CUFFT_INVERSE)
         return self.result_map(spec)
 
-    def spectral(self, mode: int, b: wp.array, a: wp.array | None = None, *, tau: float = 0.0,
-                 scale: float = 1.0, col: int = LaneReduction.COLUMNS - 1) -> None:  # fmt: skip
+    def spectral(self, mode: int, spec: wp.array, *, col: int = LaneReduction.COLUMNS - 1) -> None:
         """Launch ``spectral_kernel`` (its modes are ``_k.SPECTRUM_*``) on the lanes."""
         red = self.reduction
-        stride, chunk = red.geometry(b.shape[0] * b.shape[1])
+        stride, chunk = red.geometry(spec.shape[0] * spec.shape[1])
         wp.launch(
             _k.spectral_kernel, dim=red.lanes,
-            inputs=[b if a is None else a, b, self.spectrum, int(mode), wp.float64(tau),
-                    wp.float64(scale), wp.float64(1.0 / self.n_total), self.grid[1], int(col),
-                    stride, chunk],
+            inputs=[spec, self.spectrum, int(mode), wp.float64(1.0 / self.n_total), self.grid[1],
+                    int(col), stride, chunk],
             outputs=[red.part], device=self.device,
         )  # fmt: skip
 
