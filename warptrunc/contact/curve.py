@@ -151,7 +151,8 @@ def solve_contact(
         "substrate": substrate, "dtype": dtype, "contact_modulus_Pa": solver.contact_modulus,
         "stiffness_method": stiffness, "fd_step": fd_step, "pressure_tol": solver.pressure_tol,
         "forcetol_N": solver.forcetol, "pentol_m": solver.pentol, "thermotol": solver.thermotol,
-        "maxiter": solver.maxiter, "refresh": solver.refresh, "device": str(solver.device),
+        "maxiter": solver.maxiter, "refresh": solver.refresh,
+        "direct_max": solver.direct_max, "device": str(solver.device),
         "grid": [solver.shape[1], solver.shape[0]], "pixel_size_m": [dx, dy],
         "control": "displacement" if key == "depth" else "load",
     }  # fmt: skip
