@@ -39,8 +39,8 @@ FFT backends, one algorithm: on a CUDA device three cuFFT plans (``cupy.cuda.cuf
 with the advanced data layout: the batched row R2C, the strided in-place column C2C, the row
 C2R in place, so no transposes and no copies) executed on Warp's own stream (CuPy's view of it:
 ``cupy.cuda.Stream.from_external`` on CuPy ≥ 14, ``ExternalStream`` before), so kernels and
-transforms stay ordered with no device-wide synchronisation; the buffers are Warp arrays, which
-CuPy reads and writes zero-copy through ``__cuda_array_interface__``. On the CPU ``scipy.fft``
+transforms stay ordered with no device-wide synchronisation; the buffers are Warp arrays, handed to cuFFT by pointer
+(``cupy.cuda.UnownedMemory``; no copies, no ``__cuda_array_interface__``). On the CPU ``scipy.fft``
 (``workers=os.cpu_count()``) performs the same three steps on the same buffers.
 """
 
@@ -479,8 +479,7 @@ class ElasticHalfSpace:
         """The three cuFFT plans (made once): rows R2C, columns C2C in place, rows C2R in place."""
         if self._plans is None:
             cupy = self._cp[0]
-            from cupy.cuda import cufft
-
+            cufft = cupy.cuda.cufft  # loaded by cupyx.scipy.fft (imported in __init__)
             ny = self.shape[0]
             big_y, big_x = self.grid
             nk = self.spectrum_shape[1]
@@ -498,13 +497,21 @@ class ElasticHalfSpace:
                 rows_inv = cufft.PlanNd((big_x,), (nk,), 1, nk, (2 * nk,), 1, 2 * nk, c2r, ny,
                                         "C", 1, big_x)  # fmt: skip
             self._plans = (rows, cols, rows_inv)
+            self._directions = (cufft.CUFFT_FORWARD, cufft.CUFFT_INVERSE)
         return self._plans
 
     def _cupy_view(self, arr: wp.array):
-        """CuPy's zero-copy view of a contiguous Warp buffer (cached by address)."""
+        """A CuPy array over a contiguous Warp buffer's bytes (no copy; cached by address), all
+        that ``PlanNd.fft`` reads (``.data.ptr``). Made from the pointer
+        (``cupy.cuda.UnownedMemory``, which keeps the Warp array alive), not through
+        ``__cuda_array_interface__``."""
         view = self._views.get(arr.ptr)
         if view is None or view[0] is not arr:
-            view = self._views[arr.ptr] = (arr, self._cp[0].asarray(arr))
+            cupy = self._cp[0]
+            mem = cupy.cuda.UnownedMemory(arr.ptr, arr.capacity, arr, self.device.ordinal)
+            data = cupy.ndarray((arr.capacity,), dtype=cupy.uint8,
+                                memptr=cupy.cuda.MemoryPointer(mem, 0))  # fmt: skip
+            view = self._views[arr.ptr] = (arr, data)
         return view[1]
 
     def forward(self, buf: wp.array, spec: wp.array) -> None:
@@ -526,8 +533,8 @@ class ElasticHalfSpace:
             cupy.cuda.Device(self.device.ordinal),
             cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
         ):
-            rows.fft(self._cupy_view(buf), s, cupy.cuda.cufft.CUFFT_FORWARD)
-            cols.fft(s, s, cupy.cuda.cufft.CUFFT_FORWARD)
+            rows.fft(self._cupy_view(buf), s, self._directions[0])
+            cols.fft(s, s, self._directions[0])
 
     def inverse(self, spec: wp.array) -> wp.array:
         """The (ny, nx) map of the unnormalised inverse transform of ``spec``, written in place
@@ -549,8 +556,8 @@ class ElasticHalfSpace:
             cupy.cuda.Device(self.device.ordinal),
             cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
         ):
-            cols.fft(s, s, cupy.cuda.cufft.CUFFT_INVERSE)
-            rows_inv.fft(s, s, cupy.cuda.cufft.CUFFT_INVERSE)
+            cols.fft(s, s, self._directions[1])
+            rows_inv.fft(s, s, self._directions[1])
         return self.result_map(spec)
 
     def spectral(self, mode: int, spec: wp.array, *, col: int = LaneReduction.COLUMNS - 1) -> None:
