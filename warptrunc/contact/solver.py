@@ -10,7 +10,7 @@ answers on the same discretisation (:mod:`warptrunc.contact.halfspace`); its ker
 Work per iteration, in transforms (a convolution = one forward and one inverse transform, each
 pruned to the map: :mod:`warptrunc.contact.halfspace`). PK needs t·K·t (for the step τ) and
 u = K·q (the gaps). t·K·t comes from the spectrum T̂ of the direction by Parseval, in the same
-pass that scales T̂ by the kernel; one inverse transform then gives K·t, and after the step
+pass that multiplies T̂ by the kernel; one inverse transform then gives K·t, and after the step
 q ← q − τ·t the new displacement is u − τ·K·t by linearity (times the load scale in load
 control). The projection then changes a few forces by Δp (tensile forces set to zero, penetrating
 pixels given force): when they are at most ``direct_max`` pixels, K·Δp is summed directly over
@@ -298,7 +298,9 @@ class ContactSolver:
                        [self.t, self.mask])  # fmt: skip
             spec = hs.work
             hs.forward(self.t_buf, spec)  # T̂
-            hs.spectral(_k.SPECTRUM_ENERGY, spec, col=1)  # N·t·K·t by Parseval
+            # N·t·K·t by Parseval, and T̂ ← W·T̂/N in the same pass (not yet known whether K·t
+            # is needed: a transform of q afresh overwrites it)
+            hs.spectral(_k.SPECTRUM_APPLY, spec, col=1)
             wp.launch(_k.step_length_kernel, dim=1,
                       inputs=[red.fold((False, False)), wp.float64(n_c), wp.float64(inv_n)],
                       outputs=[self.tau], device=dev)  # fmt: skip
@@ -327,6 +329,7 @@ class ContactSolver:
                     exact = True
             if exact:  # u = K·q afresh
                 hs.forward(self.q_buf, spec)
+                hs.spectral(_k.SPECTRUM_APPLY, spec)
                 n_transforms += 1
             elif n_changed > 0:  # the projection's few corrections, listed in a fixed order
                 wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
@@ -334,7 +337,6 @@ class ContactSolver:
                           inputs=[self.q, self.lin, self.mask, wp.float64(scale), self.lane_offset,
                                   *red.geometry(n_map)],
                           outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
-            hs.spectral(_k.SPECTRUM_APPLY, spec)
             r = hs.inverse(spec)  # K·q (exact) or K·t (linear)
             n_transforms += 1
             red.launch(_k.advance_kernel, n_map,
