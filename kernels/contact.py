@@ -10,7 +10,8 @@ displacements ``u`` (m), the CG direction ``t`` (m). ``q`` and ``t`` are views o
 whose columns ``nx … Nx−1`` are the zero pad of the free half-space (Nx = 2nx; Nx = nx for the
 periodic one) and are never written here. The gap is ``g = u − h − offset`` (m), penetration where
 ``g < 0``. ``mask`` (ny, nx) uint8: bit 0 = in the CG set at the start of the iteration (q > 0),
-bit 1 = penetrating without force (load control adds those later). Spectra are (Ny, Nx//2 + 1)
+bit 1 = penetrating without force (load control adds those later), bit 2 = the projection changed
+the force in this iteration. Spectra are (Ny, Nx//2 + 1)
 arrays of vec2 (re, im), the kernel spectrum ``w`` is real and even in y and stored for rows
 0 … Ny//2 only.
 
@@ -19,7 +20,9 @@ walks the flattened array with stride ``lanes`` (coalesced), on the CPU lane ``i
 contiguous chunk ``[i·chunk, (i+1)·chunk)``. Every lane writes its float64 partials to
 ``part[i, j]`` without atomics; ``sum_lanes_kernel`` folds them into a few rows in a fixed
 order, so the reductions are deterministic for a given device. Columns of ``part`` within one
-iteration: 0 Σ c·g·t, 1 N·t·K·t, 2–5 the force update, 6 the step τ (lane 0 only). Elementwise
+iteration: 0 Σ c·g·t, 1 N·t·K·t, 2–5 the force update, 6 the step τ (lane 0 only), 7 the number
+of forces the projection changed (those are listed by ``compact_changes_kernel`` and their
+displacements summed directly over the influence table by ``advance_kernel``). Elementwise
 kernels without reductions are one thread per map pixel, ``iy, ix = wp.tid()``.
 """
 
