@@ -225,8 +225,9 @@ class ContactSolver:
         item = np.dtype(dtype).itemsize
         maps = ny * nx * (5 * item + 1)  # h, u, q_lin, stiffness x and residual; mask
         buffers = 2 * ny * big_x * item  # q and t with their pad columns
+        lists = 2 * 65536 * 4 + 24 * 12  # lane counts and offsets, the list of changed forces
         held, making = ElasticHalfSpace.memory_bytes(shape, substrate, dtype)
-        return int(max(making, held + maps + buffers))
+        return int(max(making, held + maps + buffers + lists))
 
     # --- one solve ---------------------------------------------------------------------------
 
