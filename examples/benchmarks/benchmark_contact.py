@@ -84,12 +84,17 @@ def device_used_bytes(dev) -> int:
     return int(total - free)
 
 
+DIRECT_MAX: int | str = "auto"
+
+
 def run_solver(s, dtype: str, dev) -> dict:
     """One cold solve at 0.15·R_t and the warm-started one at 0.2·R_t, timed; on CUDA also the
     device memory the solver holds after them."""
     free_pools(dev)
     base = device_used_bytes(dev) if dev.is_cuda else 0
-    solver = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev)
+    solver = ContactSolver(
+        s.heights, (s.dx, s.dy), E_STAR, dtype=dtype, direct_max=DIRECT_MAX, device=dev
+    )
     _sync(dev)
     t0 = time.perf_counter()
     solver.solve(FRACTIONS[0] * s.Rt)
@@ -217,8 +222,14 @@ def main(argv: list[str] | None = None) -> int:
         "--dtype", nargs="+", default=["float64", "float32"], choices=["float64", "float32"]
     )
     p.add_argument("--no-reference", action="store_true", help="skip ContactMechanics on the CPU")
+    p.add_argument(
+        "--direct-max", default="auto",
+        help="ContactSolver(direct_max=...): changed forces summed directly (int or auto)",
+    )  # fmt: skip
     p.add_argument("--json", type=Path, default=None, help="write all figures to this JSON file")
     a = p.parse_args(argv)
+    global DIRECT_MAX
+    DIRECT_MAX = a.direct_max if a.direct_max == "auto" else int(a.direct_max)
     dev = warptrunc.resolve_device(a.device)
     name = wp.get_device(dev).name
     print(f"device {dev} ({name}), warp {wp.config.version}, commit {git_commit()}")
