@@ -1,23 +1,29 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Constrained conjugate gradients (Polonsky–Keer) for elastic contact: projections, updates and
-float64 reductions.
+"""Constrained conjugate gradients (Polonsky–Keer) for elastic contact: projections, updates,
+spectral products and float64 reductions.
 
-Launched by ``warptrunc.contact.solver`` (and the spectral multiply by
-``warptrunc.contact.halfspace``). State arrays are float32 or float64 (one overload each):
-heights ``h`` (ny, nx) (m), compressive pixel forces ``q`` (Ny, Nx) (N, > 0 in contact), surface
-displacements ``u`` (Ny, Nx) (m), the CG direction ``t`` (Ny, Nx) (m); ``(Ny, Nx) = (2ny, 2nx)``
-for the free (zero-padded) half-space, ``(ny, nx)`` for the periodic one. ``q`` and ``t`` are
-zero outside the map (the pad) and are never written there. The gap is ``g = u − h − offset``
-(m), penetration where ``g < 0``. ``mask`` (ny, nx) uint8: bit 0 = in the CG set at the start of
-the iteration (q > 0), bit 1 = penetrating without force (load control adds those later).
+Launched by ``warptrunc.contact.solver`` (the spectral kernel also by
+``warptrunc.contact.halfspace``). State arrays are float32 or float64 (one overload each) and live
+on the (ny, nx) map: heights ``h`` (m), compressive pixel forces ``q`` (N, > 0 in contact), surface
+displacements ``u`` (m), the CG direction ``t`` (m). ``q`` and ``t`` are views of (ny, Nx) buffers
+whose columns ``nx … Nx−1`` are the zero pad of the free half-space (Nx = 2nx; Nx = nx for the
+periodic one) and are never written here. The gap is ``g = u − h − offset`` (m), penetration where
+``g < 0``. ``mask`` (ny, nx) uint8: bit 0 = in the CG set at the start of the iteration (q > 0),
+bit 1 = penetrating without force (load control adds those later), bit 2 = the projection changed
+the force in this iteration. Spectra are (Ny, Nx//2 + 1)
+arrays of vec2 (re, im), the kernel spectrum ``w`` is real and even in y and stored for rows
+0 … Ny//2 only.
 
 Grids: the ``*_kernel`` launches with partial sums use ``lanes`` threads: on the GPU lane ``i``
-walks the flattened map with stride ``lanes`` (coalesced), on the CPU lane ``i`` walks the
+walks the flattened array with stride ``lanes`` (coalesced), on the CPU lane ``i`` walks the
 contiguous chunk ``[i·chunk, (i+1)·chunk)``. Every lane writes its float64 partials to
 ``part[i, j]`` without atomics; ``sum_lanes_kernel`` folds them into a few rows in a fixed
-order, so the reductions are deterministic for a given device. Elementwise kernels without
-reductions are one thread per map pixel, ``iy, ix = wp.tid()``.
+order, so the reductions are deterministic for a given device. Columns of ``part`` within one
+iteration: 0 Σ c·g·t, 1 N·t·K·t, 2–5 the force update, 6 the step τ (lane 0 only), 7 the number
+of forces the projection changed (those are listed by ``compact_changes_kernel`` and their
+displacements summed directly over the influence table by ``advance_kernel``). Elementwise
+kernels without reductions are one thread per map pixel, ``iy, ix = wp.tid()``.
 """
 
 from typing import Any
@@ -31,13 +37,28 @@ BIG = wp.constant(1.0e300)
 
 @wp.kernel
 def clamp_displacement_kernel(
-    h: wp.array2d(dtype=Any), offset: wp.float64, u: wp.array2d(dtype=Any)
+    h: wp.array2d(dtype=Any),
+    offset: wp.float64,
+    u: wp.array2d(dtype=Any),
+    du: wp.array2d(dtype=Any),
 ):
-    """Warm start, one thread per map pixel: u = max(u, h + offset) (no initial penetration)."""
+    """Warm start, one thread per map pixel: u ← max(u, h + offset) (no initial penetration),
+    du = the increment of u (≥ 0)."""
     iy, ix = wp.tid()
     lo = h[iy, ix] + h.dtype(offset)
-    if u[iy, ix] < lo:
+    uo = u[iy, ix]
+    if uo < lo:
         u[iy, ix] = lo
+        du[iy, ix] = lo - uo
+    else:
+        du[iy, ix] = du.dtype(0.0)
+
+
+@wp.kernel
+def add_map_kernel(src: wp.array2d(dtype=Any), dst: wp.array2d(dtype=Any)):
+    """One thread per map pixel: dst += src."""
+    iy, ix = wp.tid()
+    dst[iy, ix] = dst[iy, ix] + src[iy, ix]
 
 
 @wp.kernel
@@ -105,23 +126,35 @@ def cg_direction_kernel(
     part[lane, 0] = s_gt
 
 
+SPECTRUM_ENERGY = wp.constant(0)
+SPECTRUM_APPLY = wp.constant(1)
+SPECTRUM_INVERSE = wp.constant(2)
+
+
 @wp.kernel
-def spectral_multiply_kernel(
-    x: wp.array2d(dtype=Any),
+def spectral_kernel(
+    b: wp.array2d(dtype=Any),
     w: wp.array2d(dtype=Any),
-    inverse: int,
+    mode: int,
+    inv_n: wp.float64,
     nx_full: int,
     col: int,
     stride: int,
     chunk: int,
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the half spectrum (Ny, Nx//2 + 1) of a real-to-complex FFT: x ·= w (x /= w when
-    ``inverse``); part[i, col] = Σ m·w·|x_in|², m = 2 for the columns that stand for two conjugate
-    modes, else 1, i.e. N·Σ t·(K t) by Parseval (the CG curvature, no extra pass)."""
+    """Lanes over the half spectrum (Ny, Nx//2 + 1) of a real-to-complex FFT, by ``mode``:
+
+    * ``SPECTRUM_ENERGY``: nothing written; part[i, col] = Σ m·w·|b|², m = 2 for the columns that
+      stand for two conjugate modes, else 1, i.e. N·Σ t·(K t) by Parseval (N = Ny·Nx);
+    * ``SPECTRUM_APPLY``: the same sum, then b ← w·b/N (K, with the inverse FFT's 1/N);
+    * ``SPECTRUM_INVERSE``: b ← b/(w·N) (K⁻¹).
+
+    ``w`` holds rows 0 … Ny//2."""
     lane = wp.tid()
-    nk = x.shape[1]
-    n = x.shape[0] * nk
+    nk = b.shape[1]
+    ny_full = b.shape[0]
+    n = ny_full * nk
     i = lane
     step = stride
     if chunk > 0:
@@ -134,12 +167,9 @@ def spectral_multiply_kernel(
     sy = step // nk
     sx = step - sy * nk
     while i < n:
-        v = x[iy, ix]
-        wv = w[iy, ix]
-        if inverse != 0:
-            x[iy, ix] = v / wv
-        else:
-            x[iy, ix] = v * wv
+        wv = w[wp.min(iy, ny_full - iy), ix]
+        v = b[iy, ix]
+        if mode <= SPECTRUM_APPLY:
             mult = wp.float64(2.0)
             if ix == 0 or 2 * ix == nx_full:
                 mult = wp.float64(1.0)
@@ -148,13 +178,40 @@ def spectral_multiply_kernel(
                 * wp.float64(wv)
                 * (wp.float64(v[0]) * wp.float64(v[0]) + wp.float64(v[1]) * wp.float64(v[1]))
             )
+            if mode == SPECTRUM_APPLY:
+                b[iy, ix] = v * (wv * w.dtype(inv_n))
+        else:
+            b[iy, ix] = v * (w.dtype(inv_n) / wv)
         i += step
         iy += sy
         ix += sx
         if ix >= nk:
             ix -= nk
             iy += 1
-    part[lane, col] = acc
+    if mode <= SPECTRUM_APPLY:
+        part[lane, col] = acc
+
+
+@wp.kernel
+def step_length_kernel(
+    sums: wp.array2d(dtype=wp.float64),
+    n_c: wp.float64,
+    inv_n: wp.float64,
+    tau: wp.array[wp.float64],
+):
+    """One thread: the CG step τ = Σ c·g·t / (t·K·t) from the folded rows of columns 0 (Σ c·g·t)
+    and 1 (N·t·K·t) of the lane partials (PK Eq. 15); τ = 0 without a CG set or curvature. Kept on
+    the device, so that the force update follows without a host round trip."""
+    s_gt = wp.float64(0.0)
+    t_k_t = wp.float64(0.0)
+    for k in range(sums.shape[0]):
+        s_gt += sums[k, 0]
+        t_k_t += sums[k, 1]
+    t_k_t = t_k_t * inv_n
+    step = wp.float64(0.0)
+    if n_c > wp.float64(0.0) and t_k_t > wp.float64(0.0):
+        step = s_gt / t_k_t
+    tau[0] = step
 
 
 @wp.kernel
@@ -163,19 +220,25 @@ def update_force_kernel(
     u: wp.array2d(dtype=Any),
     h: wp.array2d(dtype=Any),
     offset: wp.float64,
-    tau: wp.float64,
+    tau_arr: wp.array[wp.float64],
     defer_nc: int,
     stride: int,
     chunk: int,
     q: wp.array2d(dtype=Any),
     mask: wp.array2d(dtype=wp.uint8),
+    lin: wp.array2d(dtype=Any),
+    lane_count: wp.array[wp.int32],
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the map: q ← q − τ·c·t; pixels with q ≤ 0 get q = 0 (tensile); those of them
-    that penetrate (g < 0) get q = −τ·g (PK's set I_ol), or only bit 1 of the mask when
-    ``defer_nc`` (load control rescales first). part[i] = [n penetrating without force,
-    n zeroed with q < 0, max tensile force, Σ q (after the update)]."""
+    """Lanes over the map: q ← q − τ·c·t (= q_lin) with τ = tau_arr[0]; pixels with q ≤ 0 get
+    q = 0 (tensile); those of them that penetrate (g < 0) get q = −τ·g (PK's set I_ol), or only
+    bit 1 of the mask when ``defer_nc`` (load control rescales first). Pixels where the projection
+    changed q (q_lin < 0, or I_ol) get mask bit 2 and lin = q_lin; lane_count[i] = their number in
+    the lane. part[i, 2:8] = [n penetrating without force, n zeroed with q < 0, max tensile force,
+    Σ q (after the update), τ (lane 0; 0 on the others, so that the column sums to τ), n changed].
+    """
     lane = wp.tid()
+    tau = tau_arr[0]
     nx = h.shape[1]
     n = h.shape[0] * nx
     i = lane
@@ -189,6 +252,7 @@ def update_force_kernel(
     max_tens = wp.float64(0.0)
     total = wp.float64(0.0)
     zero = q.dtype(0.0)
+    count = int(0)
     iy = i // nx
     ix = i - iy * nx
     sy = step // nx
@@ -199,6 +263,8 @@ def update_force_kernel(
         if (int(m) & 1) != 0:
             qv = qv - q.dtype(tau) * t[iy, ix]
         if qv <= zero:
+            q_lin = qv
+            changed = qv < zero
             max_tens = wp.max(max_tens, -wp.float64(qv))
             if qv < zero:
                 n_zero += wp.float64(1.0)
@@ -206,10 +272,15 @@ def update_force_kernel(
             g = u[iy, ix] - h[iy, ix] - h.dtype(offset)
             if g < h.dtype(0.0):
                 n_nc += wp.float64(1.0)
+                changed = True
                 if defer_nc != 0:
-                    mask[iy, ix] = m | wp.uint8(2)
+                    m = m | wp.uint8(2)
                 else:
                     qv = -q.dtype(tau) * g
+            if changed:
+                mask[iy, ix] = m | wp.uint8(4)
+                lin[iy, ix] = q_lin
+                count += 1
         q[iy, ix] = qv
         total += wp.float64(qv)
         i += step
@@ -218,10 +289,16 @@ def update_force_kernel(
         if ix >= nx:
             ix -= nx
             iy += 1
-    part[lane, 0] = n_nc
-    part[lane, 1] = n_zero
-    part[lane, 2] = max_tens
-    part[lane, 3] = total
+    part[lane, 2] = n_nc
+    part[lane, 3] = n_zero
+    part[lane, 4] = max_tens
+    part[lane, 5] = total
+    if lane == 0:
+        part[lane, 6] = tau
+    else:
+        part[lane, 6] = wp.float64(0.0)
+    part[lane, 7] = wp.float64(count)
+    lane_count[lane] = count
 
 
 @wp.kernel
@@ -235,22 +312,85 @@ def rescale_force_kernel(
     q: wp.array2d(dtype=Any),
 ):
     """Load control, one thread per map pixel: q ← scale·q, then q = −τ·g where mask bit 1
-    (which is cleared)."""
+    (which is cleared; bit 2 is kept)."""
     iy, ix = wp.tid()
     qv = q[iy, ix] * q.dtype(scale)
     m = mask[iy, ix]
     if (int(m) & 2) != 0:
         qv = -q.dtype(tau) * (u[iy, ix] - h[iy, ix] - h.dtype(offset))
-        mask[iy, ix] = m & wp.uint8(1)
+        mask[iy, ix] = m & wp.uint8(5)
     q[iy, ix] = qv
+
+
+@wp.kernel
+def compact_changes_kernel(
+    q: wp.array2d(dtype=Any),
+    lin: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    scale: wp.float64,
+    offsets: wp.array[wp.int32],
+    stride: int,
+    chunk: int,
+    index: wp.array[wp.int32],
+    value: wp.array[wp.float64],
+):
+    """Lanes over the map, in the walk of ``update_force_kernel``: the pixels with mask bit 2 (the
+    projection changed q) and their force correction Δp = q − scale·q_lin (N), written from
+    offsets[i] (the exclusive scan of its lane counts), so the list's order is fixed. ``index``
+    holds iy·nx + ix."""
+    lane = wp.tid()
+    nx = q.shape[1]
+    n = q.shape[0] * nx
+    i = lane
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        n = wp.min(n, i + chunk)
+        step = 1
+    k = offsets[lane]
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
+    while i < n:
+        if (int(mask[iy, ix]) & 4) != 0:
+            index[k] = iy * nx + ix
+            value[k] = wp.float64(q[iy, ix]) - scale * wp.float64(lin[iy, ix])
+            k += 1
+        i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
+
+
+@wp.func
+def influence(table: wp.array2d(dtype=Any), periodic: int, dy: int, dx: int) -> wp.float64:
+    """Displacement per unit force (m/N) at separation (dy, dx) pixels: the free half-space's
+    table holds |dy|, |dx| ≥ 0 (Love's coefficient is even); the periodic one wraps."""
+    ny = table.shape[0]
+    nx = table.shape[1]
+    if periodic != 0:
+        if dy < 0:
+            dy += ny
+        if dx < 0:
+            dx += nx
+        return wp.float64(table[dy, dx])
+    return wp.float64(table[wp.abs(dy), wp.abs(dx)])
 
 
 @wp.kernel
 def advance_kernel(
     r: wp.array2d(dtype=Any),
-    mode: int,
+    linear: int,
     tau: wp.float64,
     scale: wp.float64,
+    table: wp.array2d(dtype=Any),
+    periodic: int,
+    index: wp.array[wp.int32],
+    value: wp.array[wp.float64],
+    n_changes: int,
     q: wp.array2d(dtype=Any),
     h: wp.array2d(dtype=Any),
     offset: wp.float64,
@@ -260,15 +400,14 @@ def advance_kernel(
     u: wp.array2d(dtype=Any),
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the whole (padded) grid: the new displacement, u ← scale·(u − τ·r) when
-    ``mode == 0`` (linearity: r = K·t and q changed by −τ·t only) or u ← r when ``mode == 1``
-    (r = K·q, exact). part[i] = [max |Δu| (whole grid), then over the map: n(q > 0), Σ c·g,
-    Σ c·g², max penetration over the previous CG set, Σ g] with c = q > 0 and the new u."""
+    """Lanes over the map: the new displacement. ``linear == 0``: u ← r (r = K·q, exact).
+    ``linear != 0``: u ← scale·(u − τ·r) + Σ_k value_k·G(pixel − index_k) (r = K·t: the step by
+    linearity, then the projection's few force corrections by direct summation over the
+    influence table, in the list's fixed order). part[i] = [max |Δu|, n(q > 0), Σ c·g, Σ c·g²,
+    max penetration over the previous CG set, Σ g, Σ q] with c = q > 0 and the new u."""
     lane = wp.tid()
-    nxp = u.shape[1]
-    n = u.shape[0] * nxp
-    ny = h.shape[0]
     nx = h.shape[1]
+    n = h.shape[0] * nx
     i = lane
     step = stride
     if chunk > 0:
@@ -281,31 +420,38 @@ def advance_kernel(
     s_gg = wp.float64(0.0)
     pen = wp.float64(0.0)
     s_gap = wp.float64(0.0)
-    iy = i // nxp
-    ix = i - iy * nxp
-    sy = step // nxp
-    sx = step - sy * nxp
+    s_q = wp.float64(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
     while i < n:
         uo = u[iy, ix]
         un = r[iy, ix]
-        if mode == 0:
-            un = u.dtype(scale) * (uo - u.dtype(tau) * un)
+        if linear != 0:
+            acc = scale * (wp.float64(uo) - tau * wp.float64(un))
+            for k in range(n_changes):
+                j = index[k]
+                jy = j // nx
+                acc += value[k] * influence(table, periodic, iy - jy, ix - (j - jy * nx))
+            un = u.dtype(acc)
         u[iy, ix] = un
         du_max = wp.max(du_max, wp.abs(wp.float64(un) - wp.float64(uo)))
-        if iy < ny and ix < nx:
-            g = wp.float64(un) - wp.float64(h[iy, ix]) - offset
-            s_gap += g
-            if q[iy, ix] > q.dtype(0.0):
-                n_c += wp.float64(1.0)
-                s_g += g
-                s_gg += g * g
-            if (int(mask[iy, ix]) & 1) != 0:
-                pen = wp.max(pen, -g)
+        g = wp.float64(un) - wp.float64(h[iy, ix]) - offset
+        s_gap += g
+        qv = q[iy, ix]
+        if qv > q.dtype(0.0):
+            n_c += wp.float64(1.0)
+            s_g += g
+            s_gg += g * g
+            s_q += wp.float64(qv)
+        if (int(mask[iy, ix]) & 1) != 0:
+            pen = wp.max(pen, -g)
         i += step
         iy += sy
         ix += sx
-        if ix >= nxp:
-            ix -= nxp
+        if ix >= nx:
+            ix -= nx
             iy += 1
     part[lane, 0] = du_max
     part[lane, 1] = n_c
@@ -313,6 +459,7 @@ def advance_kernel(
     part[lane, 3] = s_gg
     part[lane, 4] = pen
     part[lane, 5] = s_gap
+    part[lane, 6] = s_q
 
 
 @wp.kernel
@@ -458,8 +605,8 @@ def sum_lanes_kernel(
 def _declare_overloads() -> None:
     """float32 and float64 instances of every generic kernel, so the module compiles once."""
     kernels = (
-        clamp_displacement_kernel, copy_map_kernel, fill_map_kernel, cg_direction_kernel,
-        spectral_multiply_kernel, update_force_kernel, rescale_force_kernel, advance_kernel,
+        clamp_displacement_kernel, add_map_kernel, copy_map_kernel, fill_map_kernel,
+        cg_direction_kernel, spectral_kernel, update_force_kernel, compact_changes_kernel, rescale_force_kernel, advance_kernel,
         contact_sums_kernel, punch_step_kernel, punch_direction_kernel, contact_mask_kernel,
     )  # fmt: skip
     for scalar, vec in ((wp.float32, wp.vec2f), (wp.float64, wp.vec2d)):
@@ -468,7 +615,7 @@ def _declare_overloads() -> None:
             for arg in k.adj.args:
                 ty = arg.type
                 if wp.types.is_array(ty) and ty.dtype is Any:
-                    dt = vec if (k is spectral_multiply_kernel and arg.label == "x") else scalar
+                    dt = vec if (k is spectral_kernel and arg.label == "b") else scalar
                     types[arg.label] = wp.array2d(dtype=dt)
                 else:
                     types[arg.label] = ty

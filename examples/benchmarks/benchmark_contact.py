@@ -7,8 +7,11 @@ What it shows
     δ = 0.15·R_t (cold) and then δ = 0.2·R_t warm-started from it, in float64 and float32, free
     half-space. Reports the median time of the warm solve over ``--repeats`` (after a warm-up
     that compiles the kernels), its iterations and convolutions, time per iteration, F and A,
-    the memory estimate of :meth:`ContactSolver.memory_bytes` and the measured peak (CUDA: the
-    Warp and CuPy pools; CPU: the growth of the process's peak RSS).
+    the memory estimate of :meth:`ContactSolver.memory_bytes` and the measured memory (CUDA: the
+    device memory in use with the solver alive after its warm solve, above what was in use before
+    it was made, pools emptied first; also the high-water mark of Warp's pool; CPU: the growth of
+    the process's peak RSS). Between sizes and dtypes CuPy's and Warp's pools and CuPy's FFT plan
+    cache are emptied, so that sizes do not starve each other.
 
     Floors in the same run: one zero-padded (2N)² convolution (rfft2 → multiply → irfft2) plus
     three elementwise passes over the padded grid, with CuPy on CUDA and ``scipy.fft`` on the CPU.
@@ -27,6 +30,7 @@ Run
 from __future__ import annotations
 
 import argparse
+import gc
 import json
 import os
 import platform
@@ -58,9 +62,39 @@ def _rss_bytes() -> int:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
 
 
+def free_pools(dev) -> None:
+    """Return cached device memory: Python garbage, CuPy's pools and FFT plans, Warp's pool."""
+    gc.collect()
+    if dev.is_cuda:
+        import cupy as cp
+
+        wp.synchronize_device(dev)
+        cp.fft.config.get_plan_cache().clear()
+        cp.get_default_memory_pool().free_all_blocks()
+        cp.get_default_pinned_memory_pool().free_all_blocks()
+        wp.synchronize_device(dev)  # Warp's pool (release threshold 0) gives back at a sync
+
+
+def device_used_bytes(dev) -> int:
+    """Bytes in use on a CUDA device (cudaMemGetInfo: total − free, all processes)."""
+    import cupy as cp
+
+    with cp.cuda.Device(dev.ordinal):
+        free, total = cp.cuda.runtime.memGetInfo()
+    return int(total - free)
+
+
+DIRECT_MAX: int | str = "auto"
+
+
 def run_solver(s, dtype: str, dev) -> dict:
-    """One cold solve at 0.15·R_t and the warm-started one at 0.2·R_t, timed."""
-    solver = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev)
+    """One cold solve at 0.15·R_t and the warm-started one at 0.2·R_t, timed; on CUDA also the
+    device memory the solver holds after them."""
+    free_pools(dev)
+    base = device_used_bytes(dev) if dev.is_cuda else 0
+    solver = ContactSolver(
+        s.heights, (s.dx, s.dy), E_STAR, dtype=dtype, direct_max=DIRECT_MAX, device=dev
+    )
     _sync(dev)
     t0 = time.perf_counter()
     solver.solve(FRACTIONS[0] * s.Rt)
@@ -69,7 +103,10 @@ def run_solver(s, dtype: str, dev) -> dict:
     info = solver.solve(FRACTIONS[1] * s.Rt)
     _sync(dev)
     t2 = time.perf_counter()
-    return {"cold": t1 - t0, "warm": t2 - t1, "info": info}
+    used = device_used_bytes(dev) - base if dev.is_cuda else 0
+    del solver
+    free_pools(dev)
+    return {"cold": t1 - t0, "warm": t2 - t1, "info": info, "device_bytes": used}
 
 
 def summarise_solver(s, dtype: str, dev, runs: list[dict], rss0: int) -> dict:
@@ -87,7 +124,8 @@ def summarise_solver(s, dtype: str, dev, runs: list[dict], rss0: int) -> dict:
     if dev.is_cuda:
         import cupy as cp
 
-        out["peak_warp_pool_bytes"] = int(wp.get_mempool_used_mem_high(dev))
+        out["device_bytes"] = max(r["device_bytes"] for r in runs)
+        out["warp_pool_high_water_bytes"] = int(wp.get_mempool_used_mem_high(dev))  # process
         out["cupy_pool_bytes"] = int(cp.get_default_memory_pool().total_bytes())
     else:
         out["peak_rss_growth_bytes"] = max(0, _rss_bytes() - rss0)
@@ -122,6 +160,8 @@ def conv_floor(n: int, dtype: str, dev, repeats: int) -> float:
                 step()
                 cp.cuda.Device().synchronize()
                 ts.append(time.perf_counter() - t0)
+            del x, wd, u
+        free_pools(dev)
         return statistics.median(ts)
     x = np.zeros((2 * n, 2 * n), dtype=dtype)
     x[:n, :n] = rng.random((n, n))
@@ -182,20 +222,25 @@ def main(argv: list[str] | None = None) -> int:
         "--dtype", nargs="+", default=["float64", "float32"], choices=["float64", "float32"]
     )
     p.add_argument("--no-reference", action="store_true", help="skip ContactMechanics on the CPU")
+    p.add_argument(
+        "--direct-max", default="auto",
+        help="ContactSolver(direct_max=...): changed forces summed directly (int or auto)",
+    )  # fmt: skip
     p.add_argument("--json", type=Path, default=None, help="write all figures to this JSON file")
     a = p.parse_args(argv)
+    global DIRECT_MAX
+    DIRECT_MAX = a.direct_max if a.direct_max == "auto" else int(a.direct_max)
     dev = warptrunc.resolve_device(a.device)
     name = wp.get_device(dev).name
     print(f"device {dev} ({name}), warp {wp.config.version}, commit {git_commit()}")
+    if dev.is_cuda and wp.is_mempool_enabled(dev):
+        wp.set_mempool_release_threshold(dev, 0)  # freed blocks go back to the driver at syncs
     rows = []
     for n in a.n:
         s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=0, device="cpu")
         system = None if (dev.is_cuda or a.no_reference) else contactmechanics_system(s)
         rss0 = _rss_bytes()
-        if dev.is_cuda:
-            import cupy as cp
-
-            cp.get_default_memory_pool().free_all_blocks()
+        free_pools(dev)
         for dtype in a.dtype:
             run_solver(s, dtype, dev)  # warm-up: compiles the kernels, makes the FFT plans
         runs: dict[str, list] = {dtype: [] for dtype in a.dtype}
@@ -233,6 +278,8 @@ def main(argv: list[str] | None = None) -> int:
                 f"{r['iteration_over_floor']:.2f}× floor ({r['conv_floor_s'] * 1e3:.2f} ms), "
                 f"mem est {r['memory_estimate_bytes'] / 2**20:.0f} MiB"
             )
+            if dev.is_cuda:
+                line += f", used {r['device_bytes'] / 2**20:.0f} MiB"
             if ref is not None:
                 line += (
                     f"; ContactMechanics warm {ref['time_warm_solve_s'] * 1e3:.1f} ms "
@@ -242,6 +289,8 @@ def main(argv: list[str] | None = None) -> int:
                     f"ΔA/A {r['area_rel_diff']:.1e}"
                 )
             print(line, flush=True)
+        del runs, refs, system, s
+        free_pools(dev)
     if a.json:
         doc = {"device": str(dev), "device_name": name, "warp": wp.config.version,
                "commit": git_commit(), "platform": platform.platform(), "cpu_count": os.cpu_count(),

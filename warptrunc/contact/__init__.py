@@ -5,7 +5,7 @@ boundary-element solver on a free (zero-padded) or periodic half-space, and the 
 truncation analysis against it (:func:`bem_check`)."""
 
 from .curve import STIFFNESS_METHODS, solve_contact
-from .halfspace import SUBSTRATES, ElasticHalfSpace, influence_spectrum
+from .halfspace import SUBSTRATES, ElasticHalfSpace, influence_spectrum, influence_table
 from .results import ContactCurve
 from .solver import ContactSolver, default_pentol
 
@@ -17,5 +17,6 @@ __all__ = [
     "ElasticHalfSpace",
     "default_pentol",
     "influence_spectrum",
+    "influence_table",
     "solve_contact",
 ]

@@ -151,14 +151,15 @@ def solve_contact(
         "substrate": substrate, "dtype": dtype, "contact_modulus_Pa": solver.contact_modulus,
         "stiffness_method": stiffness, "fd_step": fd_step, "pressure_tol": solver.pressure_tol,
         "forcetol_N": solver.forcetol, "pentol_m": solver.pentol, "thermotol": solver.thermotol,
-        "maxiter": solver.maxiter, "refresh": solver.refresh, "device": str(solver.device),
+        "maxiter": solver.maxiter, "refresh": solver.refresh,
+        "direct_max": solver.direct_max, "device": str(solver.device),
         "grid": [solver.shape[1], solver.shape[0]], "pixel_size_m": [dx, dy],
         "control": "displacement" if key == "depth" else "load",
     }  # fmt: skip
     return ContactCurve(
         depth=col("depth"), load=col("load"), n_contact=n_contact, area=n_contact * (dx * dy),
         stiffness=col("stiffness"), mean_gap=col("mean_gap"),
-        n_iterations=col("n_iterations", np.int64), n_convolutions=col("n_convolutions", np.int64),
+        n_iterations=col("n_iterations", np.int64), n_convolutions=col("n_convolutions", np.float64),
         residual=col("residual"), max_tensile_force=col("max_tensile_force"),
         converged=col("converged", bool), solve_time=col("solve_time"),
         pressure=np.stack(p_maps) if maps else None, gap=np.stack(g_maps) if maps else None,

@@ -19,18 +19,29 @@ Discretisation (identical to ContactMechanics' ``FreeFFTElasticHalfSpace`` and
 The spectrum ``W = FFT(G)/(dx·dy)`` (m/N) is real and even; it is computed in float64 once per
 :class:`ElasticHalfSpace` (one per solver, reused by every solve): on a CUDA device with CuPy and
 cuFFT on the device (the free half-space; no host memory at the paper's sizes), otherwise on the
-host, cached by (grid, pixel size, E*, substrate) (:func:`influence_spectrum`). ``u = irfft2(W·rfft2(q))`` maps pixel forces q (N) to
-displacements u (m): one real-to-complex transform, one multiply, one inverse.
+host, cached by (grid, pixel size, E*, substrate) (:func:`influence_spectrum`). W is even in y
+too, so the half-space keeps its rows 0 … Ny//2 only.
 
-FFT backends: on a CUDA device cuFFT through CuPy (the ``gpu`` extra, ``cupy-cuda12x``), which
-the package already uses for the spectra of :mod:`warptrunc.descriptors`; CuPy reads and writes
-the Warp arrays zero-copy through ``__cuda_array_interface__`` (Warp exports it without a
-stream, so nothing synchronises), runs on Warp's own stream (``cupy.cuda.ExternalStream``), so
-kernels and transforms stay ordered with no device-wide synchronisation, and keeps a cuFFT plan
-cache, so a plan is made once per grid. On the CPU ``scipy.fft`` with
-``workers=os.cpu_count()`` (skipping the zero pad in the forward transform, row transforms of
-the map's rows then column transforms, was measured slower with scipy at 256² and 512²).
-The multiply is a Warp kernel that also returns Σ t·(K t) by Parseval.
+Pruned transforms. Forces live on the (ny, nx) map and only the map's displacements are needed,
+so the free half-space never forms the (2ny, 2nx) grid: the forward transform is a real-to-complex
+FFT along x of the ny map rows (each row stored with its zero pad, length 2nx) into the first ny
+rows of a (2ny, nx + 1) spectrum whose other rows are zeroed, then a complex FFT along y of every
+column; the inverse is the complex inverse FFT along y, then the complex-to-real FFT along x of the
+first ny rows only. Both equal the full zero-padded transforms to round-off
+(``tests/test_contact.py::test_pruned_transform_equals_full``) at about three quarters of their
+work (the x transforms of the pad rows are skipped both ways). The periodic half-space is the
+same with no pad (Nx = nx, Ny = ny). Transforms are unnormalised both ways; the 1/N of the
+inverse is folded into the spectral kernel (``warptrunc.kernels.contact.spectral_kernel``), which
+also forms t·K·t by Parseval in the same pass. A few forces are also applied by direct summation
+over the real-space influence table (:func:`influence_table`, held by the half-space).
+
+FFT backends, one algorithm: on a CUDA device three cuFFT plans (``cupy.cuda.cufft.PlanNd``
+with the advanced data layout: the batched row R2C, the strided in-place column C2C, the row
+C2R in place, so no transposes and no copies) executed on Warp's own stream (CuPy's view of it:
+``cupy.cuda.Stream.from_external`` on CuPy ≥ 14, ``ExternalStream`` before), so kernels and
+transforms stay ordered with no device-wide synchronisation; the buffers are Warp arrays, handed to cuFFT by pointer
+(``cupy.cuda.UnownedMemory``; no copies, no ``__cuda_array_interface__``). On the CPU ``scipy.fft``
+(``workers=os.cpu_count()``) performs the same three steps on the same buffers.
 """
 
 from __future__ import annotations
@@ -38,6 +49,7 @@ from __future__ import annotations
 import functools
 import math
 import os
+from typing import Any
 
 import numpy as np
 import scipy.fft
@@ -46,7 +58,13 @@ import warp as wp
 from .._device import resolve_device
 from ..kernels import contact as _k
 
-__all__ = ["SUBSTRATES", "ElasticHalfSpace", "LaneReduction", "influence_spectrum"]
+__all__ = [
+    "SUBSTRATES",
+    "ElasticHalfSpace",
+    "LaneReduction",
+    "influence_spectrum",
+    "influence_table",
+]
 
 SUBSTRATES = ("free", "periodic")
 DTYPES = {
@@ -76,8 +94,9 @@ def _free_spectrum_cupy(shape, pixel_size, contact_modulus, cupy, cfft):
     """The ``"free"`` spectrum of :func:`influence_spectrum`, computed on the current CUDA device.
 
     Same float64 formula and mirroring as the host path, evaluated with CuPy and transformed with
-    cuFFT, so that a 10240² map needs no host memory or host FFT (≈ 3 GB of device memory
-    briefly, freed on return except the (2ny, nx + 1) result).
+    cuFFT, so that a 10240² map needs no host memory or host FFT (≈ 10 GB of device memory
+    briefly at 10240², before the solver allocates anything). Returns rows 0 … ny of the
+    (2ny, nx + 1) spectrum (the rest mirrors them) and the (ny, nx) influence table (m/N).
     """
     ny, nx = shape
     dx, dy = pixel_size
@@ -87,10 +106,12 @@ def _free_spectrum_cupy(shape, pixel_size, contact_modulus, cupy, cfft):
     jx = cupy.arange(2 * nx)
     jy = cupy.arange(2 * ny)
     g = quad[cupy.minimum(jy, 2 * ny - jy)[:, None], cupy.minimum(jx, 2 * nx - jx)[None, :]]
+    table = cupy.ascontiguousarray(quad[:ny, :nx]) / (dx * dy)
     del quad
-    w = cfft.rfft2(g).real / (dx * dy)
-    del g
-    return cupy.ascontiguousarray(w)
+    plan = cfft.get_fft_plan(g, value_type="R2C")  # not cached: its work area goes with it
+    w = cfft.rfft2(g, plan=plan)[: ny + 1].real / (dx * dy)  # W is even in y: rows 0 … ny
+    del plan, g
+    return cupy.ascontiguousarray(w), table
 
 
 @functools.lru_cache(maxsize=8)
@@ -142,6 +163,40 @@ def influence_spectrum(
     return w
 
 
+def influence_table(
+    shape: tuple[int, int], pixel_size: tuple[float, float], contact_modulus: float, substrate: str
+) -> np.ndarray:
+    """Real-space influence coefficients G (m/N): displacement at a pixel per unit force on
+    another, by separation, for the direct summation of a few forces.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    pixel_size : (float, float)
+        Pixel sides (dx, dy) (m).
+    contact_modulus : float
+        Contact modulus E* (Pa).
+    substrate : {"free", "periodic"}
+        Half-space.
+
+    Returns
+    -------
+    (ny, nx) ndarray of float64
+        ``"free"``: G at separations (|Δy|, |Δx|) pixels (Love's form divided by the pixel
+        area; the values the spectrum transforms). ``"periodic"``: G at separations
+        (Δy mod ny, Δx mod nx), the inverse transform of the spectrum.
+    """
+    ny, nx = shape
+    dx, dy = pixel_size
+    if substrate == "free":
+        quad = _love(np.arange(nx)[None, :] * dx, np.arange(ny)[:, None] * dy, dx / 2, dy / 2,
+                     contact_modulus)  # fmt: skip
+        return quad / (dx * dy)
+    w = influence_spectrum(shape, pixel_size, contact_modulus, substrate)
+    return scipy.fft.irfft2(w, s=shape)
+
+
 class LaneReduction:
     """Deterministic float64 partial sums/maxima of the lane kernels of ``kernels/contact.py``.
 
@@ -153,7 +208,7 @@ class LaneReduction:
         Largest number of elements a lane kernel walks (sets the CPU chunk).
     """
 
-    COLUMNS = 8
+    COLUMNS = 9
 
     def __init__(self, device: wp.context.Device, n_max: int) -> None:
         self.device = device
@@ -182,22 +237,57 @@ class LaneReduction:
             device=self.device,
         )  # fmt: skip
 
+    def fold(self, is_max: tuple[bool, ...]) -> wp.array:
+        """Fold the lane partials of the first ``len(is_max)`` columns into a few rows on the
+        device (CUDA; the CPU's lanes are few and are the rows); nothing is read back.
+
+        Returns
+        -------
+        (rows, COLUMNS) warp array of float64
+            Rows to sum (or take the maximum of) per column.
+        """
+        if not self.device.is_cuda:
+            return self.part
+        ncol = len(is_max)
+        flags = self._flags.get(is_max)
+        if flags is None:
+            f = [int(v) for v in is_max] + [0] * (self.COLUMNS - ncol)
+            flags = self._flags[is_max] = wp.array(f, dtype=wp.int32, device=self.device)
+        wp.launch(
+            _k.sum_lanes_kernel, dim=(self.rows, ncol), inputs=[self.part, flags],
+            outputs=[self.out], device=self.device,
+        )  # fmt: skip
+        return self.out
+
     def read(self, is_max: tuple[bool, ...]) -> np.ndarray:
         """The reduced columns (host float64), summing or taking the maximum per column."""
         ncol = len(is_max)
-        if self.device.is_cuda:
-            flags = self._flags.get(is_max)
-            if flags is None:
-                f = [int(v) for v in is_max] + [0] * (self.COLUMNS - ncol)
-                flags = self._flags[is_max] = wp.array(f, dtype=wp.int32, device=self.device)
-            wp.launch(
-                _k.sum_lanes_kernel, dim=(self.rows, ncol), inputs=[self.part, flags],
-                outputs=[self.out], device=self.device,
-            )  # fmt: skip
-            p = self.out.numpy()[:, :ncol]  # sync point
-        else:
-            p = self.part.numpy()[:, :ncol]
+        p = self.fold(is_max).numpy()[:, :ncol]  # sync point
         return np.array([p[:, j].max() if is_max[j] else p[:, j].sum() for j in range(ncol)])
+
+
+_CUPY_STREAMS: dict[tuple[int, int], Any] = {}
+
+
+def cupy_stream(cupy, stream: wp.Stream, ordinal: int):
+    """CuPy's view of a Warp stream, so that cuFFT runs on it.
+
+    CuPy ≥ 14 deprecates ``cupy.cuda.ExternalStream`` for ``Stream.from_external`` (the CUDA
+    stream protocol, ``__cuda_stream__``, which Warp's streams implement); older CuPy has only
+    the former. A ``Stream`` made by ``from_external`` destroys its handle when collected, so the
+    views are kept for the life of the process (one per Warp stream), never collected.
+    """
+    key = (ordinal, int(stream.cuda_stream))
+    view = _CUPY_STREAMS.get(key)
+    if view is None:
+        with cupy.cuda.Device(ordinal):
+            from_external = getattr(cupy.cuda.Stream, "from_external", None)
+            if from_external is not None:
+                view = from_external(stream)
+            else:
+                view = cupy.cuda.ExternalStream(key[1], ordinal)
+        _CUPY_STREAMS[key] = view
+    return view
 
 
 class ElasticHalfSpace:
@@ -217,6 +307,12 @@ class ElasticHalfSpace:
         Precision of the arrays and transforms (reductions are float64 either way).
     device : str or warp Device, optional
         Warp device (default: see :func:`warptrunc.resolve_device`).
+
+    Notes
+    -----
+    Inputs are (ny, Nx) buffers (:meth:`map_buffer`) whose columns nx … Nx−1 stay zero; the map
+    is the view ``buffer[:, :nx]``. The half-space owns one work spectrum and returns results as a
+    view into it, valid until its next transform.
 
     Raises
     ------
@@ -247,9 +343,12 @@ class ElasticHalfSpace:
         self.scalar, self.vec2, self.np_dtype = DTYPES[dtype]
         ny, nx = self.shape
         self.grid = (2 * ny, 2 * nx) if substrate == "free" else (ny, nx)
-        self.reduction = LaneReduction(self.device, self.grid[0] * self.grid[1])
+        self.n_total = self.grid[0] * self.grid[1]
+        self.spectrum_shape = (self.grid[0], self.grid[1] // 2 + 1)
+        self.reduction = LaneReduction(self.device, max(self.n_total // 2, ny * nx))
         self._cp = None
         pixel = (float(pixel_size[0]), float(pixel_size[1]))
+        rows = self.grid[0] // 2 + 1
         if self.device.is_cuda:
             try:
                 import cupy
@@ -264,20 +363,54 @@ class ElasticHalfSpace:
             # the free spectrum on the device: no host memory or host FFT at the paper's sizes
             cupy, cfft = self._cp
             with cupy.cuda.Device(self.device.ordinal):
-                w = _free_spectrum_cupy(self.shape, pixel, float(contact_modulus), cupy, cfft)
+                w, table = _free_spectrum_cupy(
+                    self.shape, pixel, float(contact_modulus), cupy, cfft
+                )
                 w = w.astype(self.np_dtype, copy=False)
-                wp.synchronize_device(self.device)  # CuPy's stream → Warp's stream
-            self.spectrum = wp.array(ptr=w.data.ptr, dtype=self.scalar, shape=w.shape,
-                                     capacity=w.nbytes, device=self.device, copy=False)  # fmt: skip
-            self.spectrum._cupy_owner = w  # keeps CuPy's buffer alive
+                table = table.astype(self.np_dtype, copy=False)
+                cupy.cuda.get_current_stream().synchronize()
+                views = [wp.array(ptr=a.data.ptr, dtype=self.scalar, shape=a.shape,
+                                  device=self.device) for a in (w, table)]  # fmt: skip
+                # Warp-owned copies, so that CuPy's pool can let go of the work arrays
+                self.spectrum, self.table = (wp.clone(v) for v in views)
+                wp.synchronize_stream(wp.get_stream(self.device))
+                del views, w, table
+                cupy.get_default_memory_pool().free_all_blocks()
         else:
             w = influence_spectrum(self.shape, pixel, float(contact_modulus), substrate)
-            self.spectrum = wp.array(w.astype(self.np_dtype), dtype=self.scalar,
+            table = influence_table(self.shape, pixel, float(contact_modulus), substrate)
+            self.spectrum = wp.array(w[:rows].astype(self.np_dtype), dtype=self.scalar,
                                      device=self.device)  # fmt: skip
+            self.table = wp.array(table.astype(self.np_dtype), dtype=self.scalar,
+                                  device=self.device)  # fmt: skip
+        self.work = wp.zeros(self.spectrum_shape, dtype=self.vec2, device=self.device)
+        self._plans = None
+        self._views: dict[int, Any] = {}
+
+    # --- buffers ---------------------------------------------------------------------------
+
+    def map_buffer(self) -> tuple[wp.array, wp.array]:
+        """A zeroed (ny, Nx) input buffer and its (ny, nx) map view."""
+        buf = wp.zeros((self.shape[0], self.grid[1]), dtype=self.scalar, device=self.device)
+        return buf, buf[:, : self.shape[1]]
+
+    def new_spectrum(self) -> wp.array:
+        """A zeroed (Ny, Nx//2 + 1) spectrum (vec2: re, im)."""
+        return wp.zeros(self.spectrum_shape, dtype=self.vec2, device=self.device)
+
+    def result_map(self, spec: wp.array) -> wp.array:
+        """The (ny, nx) real map that :meth:`inverse` wrote into ``spec``'s memory (a view)."""
+        ny, nx = self.shape
+        row = 2 * self.spectrum_shape[1]  # reals per complex row: the in-place C2R layout
+        item = np.dtype(self.np_dtype).itemsize
+        view = wp.array(ptr=spec.ptr, dtype=self.scalar, shape=(ny, nx),
+                        strides=(row * item, item), device=self.device)  # fmt: skip
+        view._spectrum_owner = spec  # keeps the spectrum alive as long as the view
+        return view
 
     @staticmethod
     def bytes_per_grid(shape: tuple[int, int], substrate: str, dtype: str) -> int:
-        """Bytes of one real (Ny, Nx) array of the FFT grid.
+        """Bytes of one real (Ny, Nx) array of the FFT grid (the unit of the memory estimate).
 
         Parameters
         ----------
@@ -297,42 +430,161 @@ class ElasticHalfSpace:
         n = 4 * ny * nx if substrate == "free" else ny * nx
         return n * np.dtype(dtype).itemsize
 
-    def apply(self, x: wp.array, *, inverse: bool = False, energy_column: int = -1) -> wp.array:
-        """K·x: displacements (m) of pixel forces ``x`` (N) on the (Ny, Nx) grid; with
-        ``inverse=True`` K⁻¹·x: pixel forces (N) of displacements x (m).
+    @staticmethod
+    def memory_bytes(shape: tuple[int, int], substrate: str, dtype: str) -> tuple[int, int]:
+        """Device bytes of a half-space: (held, while made).
 
-        With ``energy_column ≥ 0`` (forward only) the lanes of :attr:`reduction` get the partial
-        sums of N·Σ x·(K·x) in that column (Parseval; read them with ``reduction.read``, divide
-        by N = Ny·Nx); nothing is read back here. The result is a new (Ny, Nx) array (CPU:
-        NumPy-owned memory; CUDA: CuPy's pool, kept alive by the Warp view).
+        Parameters
+        ----------
+        shape : (int, int)
+            Map size (ny, nx).
+        substrate : {"free", "periodic"}
+            Half-space.
+        dtype : {"float64", "float32"}
+            Precision.
+
+        Returns
+        -------
+        (int, int)
+            Bytes held for its life: the half kernel spectrum, the influence table, the work
+            spectrum, the lane
+            partials and cuFFT's work areas (estimated at the size of the data each plan
+            transforms; their true size is cuFFT's choice). Bytes in use at the peak of making
+            the free spectrum on a CUDA device (float64 whatever the dtype: Love's quadrant, the
+            mirrored (2ny, 2nx) grid, its half spectrum and cuFFT's work area, its real part),
+            before anything else is allocated.
         """
-        red = self.reduction
-        nyk, nxk = self.spectrum.shape
-        stride, chunk = red.geometry(nyk * nxk)
-        col = energy_column if (energy_column >= 0 and not inverse) else LaneReduction.COLUMNS - 1
-        args = [self.spectrum, int(inverse), self.grid[1], col, stride, chunk]
+        ny, nx = shape
+        big_y, big_x = (2 * ny, 2 * nx) if substrate == "free" else (ny, nx)
+        nk = big_x // 2 + 1
+        item = np.dtype(dtype).itemsize
+        spectrum = big_y * nk * 2 * item
+        kernel = (big_y // 2 + 1) * nk * item
+        cufft_work = spectrum + 2 * ny * nk * 2 * item  # columns; rows forward and inverse
+        lanes = (65536 + 256) * LaneReduction.COLUMNS * 8
+        table = ny * nx * item
+        held = kernel + table + spectrum + cufft_work + lanes
+        making = 0
+        if substrate == "free":
+            making = 8 * (3 * (ny + 1) * (nx + 1) + big_y * big_x + 2 * 2 * big_y * nk)
+        return int(held), int(making)
+
+    # --- transforms ------------------------------------------------------------------------
+
+    def _complex_view(self, spec: wp.array) -> np.ndarray:
+        """CPU: the spectrum's memory as a complex NumPy array (no copy)."""
+        return spec.numpy().view(np.result_type(self.np_dtype, np.complex64))[..., 0]
+
+    def _cupy_plans(self):
+        """The three cuFFT plans (made once): rows R2C, columns C2C in place, rows C2R in place."""
+        if self._plans is None:
+            cupy = self._cp[0]
+            cufft = cupy.cuda.cufft  # loaded by cupyx.scipy.fft (imported in __init__)
+            ny = self.shape[0]
+            big_y, big_x = self.grid
+            nk = self.spectrum_shape[1]
+            if self.dtype == "float64":
+                r2c, c2c, c2r = cufft.CUFFT_D2Z, cufft.CUFFT_Z2Z, cufft.CUFFT_Z2D
+            else:
+                r2c, c2c, c2r = cufft.CUFFT_R2C, cufft.CUFFT_C2C, cufft.CUFFT_C2R
+            with cupy.cuda.Device(self.device.ordinal):
+                # PlanNd(n, inembed, istride, idist, onembed, ostride, odist, type, batch,
+                #        order, last_axis, last_size): element (b, x) at b·dist + x·stride
+                rows = cufft.PlanNd((big_x,), (big_x,), 1, big_x, (nk,), 1, nk, r2c, ny,
+                                    "C", 1, nk)  # fmt: skip
+                cols = cufft.PlanNd((big_y,), (big_y,), nk, 1, (big_y,), nk, 1, c2c, nk,
+                                    "C", 0, None)  # fmt: skip
+                rows_inv = cufft.PlanNd((big_x,), (nk,), 1, nk, (2 * nk,), 1, 2 * nk, c2r, ny,
+                                        "C", 1, big_x)  # fmt: skip
+            self._plans = (rows, cols, rows_inv)
+            self._directions = (cufft.CUFFT_FORWARD, cufft.CUFFT_INVERSE)
+        return self._plans
+
+    def _cupy_view(self, arr: wp.array):
+        """A CuPy array over a contiguous Warp buffer's bytes (no copy; cached by address), all
+        that ``PlanNd.fft`` reads (``.data.ptr``). Made from the pointer
+        (``cupy.cuda.UnownedMemory``, which keeps the Warp array alive), not through
+        ``__cuda_array_interface__``."""
+        view = self._views.get(arr.ptr)
+        if view is None or view[0] is not arr:
+            cupy = self._cp[0]
+            mem = cupy.cuda.UnownedMemory(arr.ptr, arr.capacity, arr, self.device.ordinal)
+            data = cupy.ndarray((arr.capacity,), dtype=cupy.uint8,
+                                memptr=cupy.cuda.MemoryPointer(mem, 0))  # fmt: skip
+            view = self._views[arr.ptr] = (arr, data)
+        return view[1]
+
+    def forward(self, buf: wp.array, spec: wp.array) -> None:
+        """``spec`` ← the (Ny, Nx//2 + 1) spectrum of the zero-padded map in ``buf`` (ny, Nx)."""
+        ny = self.shape[0]
         if self._cp is None:
-            xh = x.numpy()
+            s = self._complex_view(spec)
             workers = os.cpu_count()
-            spec = scipy.fft.rfft2(xh, workers=workers)
-            spec_w = wp.array(spec.view(self.np_dtype).reshape(nyk, nxk, 2), dtype=self.vec2,
-                              device=self.device, copy=False)  # fmt: skip
-            wp.launch(_k.spectral_multiply_kernel, dim=red.lanes, inputs=[spec_w, *args],
-                      outputs=[red.part], device=self.device)  # fmt: skip
-            out = scipy.fft.irfft2(spec, s=self.grid, workers=workers)
-            if out.dtype != self.np_dtype:
-                out = out.astype(self.np_dtype)
-            return wp.array(out, dtype=self.scalar, device=self.device, copy=False)
-        cp, cfft = self._cp
-        stream = wp.get_stream(self.device)
-        with cp.cuda.Device(self.device.ordinal), cp.cuda.ExternalStream(stream.cuda_stream):
-            spec = cfft.rfft2(cp.asarray(x))
-            spec_w = wp.array(ptr=spec.data.ptr, dtype=self.vec2, shape=(nyk, nxk),
-                              capacity=spec.nbytes, device=self.device, copy=False)  # fmt: skip
-            wp.launch(_k.spectral_multiply_kernel, dim=red.lanes, inputs=[spec_w, *args],
-                      outputs=[red.part], device=self.device)  # fmt: skip
-            out = cfft.irfft2(spec, s=self.grid)
-        res = wp.array(ptr=out.data.ptr, dtype=self.scalar, shape=self.grid, capacity=out.nbytes,
-                       device=self.device, copy=False)  # fmt: skip
-        res._cupy_owner = out  # keeps CuPy's buffer alive as long as the Warp view
-        return res
+            s[:ny] = scipy.fft.rfft(buf.numpy(), axis=1, workers=workers)
+            s[ny:] = 0
+            s[...] = scipy.fft.fft(s, axis=0, workers=workers, overwrite_x=True)
+            return
+        if ny < self.grid[0]:
+            spec[ny:].zero_()  # the pad rows: zero before the column transform
+        cupy = self._cp[0]
+        rows, cols, _ = self._cupy_plans()
+        s = self._cupy_view(spec)
+        with (
+            cupy.cuda.Device(self.device.ordinal),
+            cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
+        ):
+            rows.fft(self._cupy_view(buf), s, self._directions[0])
+            cols.fft(s, s, self._directions[0])
+
+    def inverse(self, spec: wp.array) -> wp.array:
+        """The (ny, nx) map of the unnormalised inverse transform of ``spec``, written in place
+        into ``spec``'s memory (which it destroys); a view (:meth:`result_map`)."""
+        ny = self.shape[0]
+        big_x = self.grid[1]
+        if self._cp is None:
+            s = self._complex_view(spec)
+            workers = os.cpu_count()
+            c = scipy.fft.ifft(s, axis=0, norm="forward", workers=workers, overwrite_x=True)
+            r = scipy.fft.irfft(c[:ny], n=big_x, axis=1, norm="forward", workers=workers)
+            real = spec.numpy().reshape(spec.shape[0], -1)
+            real[:ny, :big_x] = r
+            return self.result_map(spec)
+        cupy = self._cp[0]
+        _, cols, rows_inv = self._cupy_plans()
+        s = self._cupy_view(spec)
+        with (
+            cupy.cuda.Device(self.device.ordinal),
+            cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
+        ):
+            cols.fft(s, s, self._directions[1])
+            rows_inv.fft(s, s, self._directions[1])
+        return self.result_map(spec)
+
+    def spectral(self, mode: int, spec: wp.array, *, col: int = LaneReduction.COLUMNS - 1) -> None:
+        """Launch ``spectral_kernel`` (its modes are ``_k.SPECTRUM_*``) on the lanes."""
+        red = self.reduction
+        stride, chunk = red.geometry(spec.shape[0] * spec.shape[1])
+        wp.launch(
+            _k.spectral_kernel, dim=red.lanes,
+            inputs=[spec, self.spectrum, int(mode), wp.float64(1.0 / self.n_total), self.grid[1],
+                    int(col), stride, chunk],
+            outputs=[red.part], device=self.device,
+        )  # fmt: skip
+
+    def apply(self, buf: wp.array, *, inverse: bool = False, energy_column: int = -1) -> wp.array:
+        """K·x: displacements (m) of pixel forces x (N) on the map; with ``inverse=True`` K⁻¹·x:
+        pixel forces (N) of displacements x (m) (the map of K⁻¹ applied to the zero-padded map).
+
+        ``buf`` is an input buffer (:meth:`map_buffer`) holding x on its map. With
+        ``energy_column ≥ 0`` (forward only) the lanes of :attr:`reduction` get the partial sums
+        of N·Σ x·(K·x) in that column (Parseval; read them with ``reduction.read``, divide by
+        N = Ny·Nx); nothing is read back here. Returns a (ny, nx) view into the work spectrum,
+        valid until the half-space's next transform.
+        """
+        self.forward(buf, self.work)
+        if inverse:
+            self.spectral(_k.SPECTRUM_INVERSE, self.work)
+        else:
+            col = energy_column if energy_column >= 0 else LaneReduction.COLUMNS - 1
+            self.spectral(_k.SPECTRUM_APPLY, self.work, col=col)
+        return self.inverse(self.work)

@@ -35,7 +35,8 @@ class ContactCurve:
     n_iterations: np.ndarray
     """(m,) int64 constrained-CG iterations of the solve at δ."""
     n_convolutions: np.ndarray
-    """(m,) int64 FFT convolutions of that solve (including the warm start's one)."""
+    """(m,) float64 FFT convolutions of that solve, counted as (forward + inverse transforms) / 2
+    (including the warm start's one)."""
     residual: np.ndarray
     """(m,) float64 final max(rms penetration, max penetration, max |Δu|) (m), against pentol."""
     max_tensile_force: np.ndarray

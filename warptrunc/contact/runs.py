@@ -309,7 +309,7 @@ def run_warptrunc(surface, d, e_star, substrate, fd_step, pressure_tol, pentol, 
         bar.update()
         solves.append({
             "depth_m": float(delta), "success": bool(info["converged"]),
-            "n_iterations": int(info["n_iterations"]), "n_convolutions": int(info["n_convolutions"]),
+            "n_iterations": int(info["n_iterations"]), "n_convolutions": float(info["n_convolutions"]),
             "load_N": float(info["load"]), "residual_m": float(info["residual"]),
             "message": "converged" if info["converged"] else f"reached maxiter = {solver.maxiter}",
         })  # fmt: skip
