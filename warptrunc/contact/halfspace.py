@@ -301,7 +301,7 @@ class ElasticHalfSpace:
         """K·x: displacements (m) of pixel forces ``x`` (N) on the (Ny, Nx) grid; with
         ``inverse=True`` K⁻¹·x: pixel forces (N) of displacements x (m).
 
-        With ``energy_column ≥ 0`` (forward only) the lanes of :attr:`reduction` get the partial
+        With ``energy_column ≥ 0`` (forward only) the lanes of ``self.reduction`` get the partial
         sums of N·Σ x·(K·x) in that column (Parseval; read them with ``reduction.read``, divide
         by N = Ny·Nx); nothing is read back here. The result is a new (Ny, Nx) array (CPU:
         NumPy-owned memory; CUDA: CuPy's pool, kept alive by the Warp view).
