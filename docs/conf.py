@@ -82,6 +82,7 @@ suppress_warnings = [
 ]
 
 # -- API reference ---------------------------------------------------------------------------
+shutil.rmtree(DOCS / "api" / "generated", ignore_errors=True)  # stubs of renamed objects
 API_PAGES = apigen.write_pages(DOCS)
 xref.set_aliases(*apigen.collect())
 autosummary_generate = True
@@ -158,7 +159,7 @@ sphinx_gallery_conf = {
     "image_scrapers": ("gallery.png_scraper",),
     "within_subsection_order": "FileNameSortKey",
     "doc_module": ("warptrunc",),
-    "backreferences_dir": "api/generated/backreferences",
+    "backreferences_dir": "api/backreferences",
     "reference_url": {"warptrunc": None},
     "remove_config_comments": True,
     "download_all_examples": False,

@@ -80,16 +80,16 @@ def collect() -> tuple[dict[str, list[str]], dict[int, str], dict[str, object]]:
             home.setdefault(id(obj), f"{cand}.{name}")
             continue
         defined = getattr(obj, "__module__", "") or ""
-        if defined in mods and name in exports.get(defined, []):
-            home[id(obj)] = f"{defined}.{name}"
-            continue
-        # a private module: the exporting public module closest to (longest prefix of) it
         cands = [m for m in exports if name in exports[m] and objects[f"{m}.{name}"] is obj]
-        best = max(cands, key=lambda m: (defined.startswith(m + ".") or defined == m,
-                                         m.count(".")))
-        prev = home.get(id(obj))
-        if prev is None or prev.count(".") < best.count("."):
-            home[id(obj)] = f"{best}.{name}"
+        # users import from the subpackage (warptrunc.truncation.truncate, not
+        # warptrunc.truncation.api.truncate): the shallowest exporting module on the page of the
+        # defining module; the top-level package only when nothing else exports the object
+        page = page_of(defined) if defined.startswith("warptrunc.") else ""
+        same_page = [m for m in cands if m != "warptrunc" and page_of(m) == page]
+        others = [m for m in cands if m != "warptrunc"]
+        pool = same_page or others or cands
+        best = min(pool, key=lambda m: (m.count("."), m))
+        home[id(obj)] = f"{best}.{name}"
     return exports, home, objects
 
 
@@ -102,6 +102,8 @@ def write_pages(docs: Path) -> list[str]:
     exports, home, objects = collect()
     api = docs / "api"
     api.mkdir(exist_ok=True)
+    for stale in api.glob("warptrunc*.rst"):
+        stale.unlink()
     pages: dict[str, list[str]] = {}
     for modname in exports:
         pages.setdefault(page_of(modname), []).append(modname)
