@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Calibrate WM inputs to a scan (the paper's Fig. 4) and generate a high-resolution surface.
+"""Calibrate WM inputs to a scan (the paper's Fig. 4) and generate a high-resolution surface
+=========================================================================================
 
 What it shows
     1. Read a scan (any format that ``warptrunc.io.read_height_map`` reads; without --scan a
@@ -11,7 +12,8 @@ What it shows
        R_t' such that R_rms matches.
     4. Generate the calibrated surface at --n-out pixels per side and compare its descriptors.
 
-Run
+Run::
+
     python examples/calibrate_to_scan.py --method vs --n-out 4096 --out out/calibrate
     python examples/calibrate_to_scan.py --scan ../shared/data/scans/sur-2.sur --Wr 200e-6
     python examples/calibrate_to_scan.py --quick --out out/calibrate   # 128² stand-in, seconds
@@ -99,4 +101,5 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    if (status := main()) != 0:
+        raise SystemExit(status)

@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Contact islands: how contact spots grow and merge with truncation depth (paper §4.3, Fig. 8).
+"""Contact islands: how contact spots grow and merge with truncation depth (paper §4.3, Fig. 8)
+============================================================================================
 
 What it shows
     WM surfaces (D = 2.5, W_r = 100 µm, L = 1 mm, R_t = 10 µm by default) are truncated to
@@ -19,7 +20,8 @@ Outputs (in --out)
     islands_seed<k>.csv per seed, summary.json (indicators per seed, mean and sd; the exponent
     against depth, mean and sd over seeds), island_number.png, slit_islands.png.
 
-Run
+Run::
+
     python examples/contact_islands.py --n 2048 --seeds 5 --out results/islands
     python examples/contact_islands.py --quick --out results/islands   # 128², seconds
 """
@@ -137,4 +139,5 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    if (status := main()) != 0:
+        raise SystemExit(status)

@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The matplotlib figure set of warptrunc on a small case, in one style.
+"""The matplotlib figure set of warptrunc on a small case, in one style
+====================================================================
 
 What it shows
     WM surfaces with δ = R_t/W_r = 0.01 (W_r = 100 µm, L = 1 mm, as the paper's group 2) for a
@@ -23,7 +24,8 @@ Key steps
     ``wm_surface`` per (D_in, seed) → ``truncate`` → ``stiffness_curve`` → ``fit_power_law``,
     then one ``warptrunc.plot`` function per figure, each given ``path=`` to save it.
 
-Run
+Run::
+
     python examples/figures.py --n 512 --seeds 5 --out results/figures
     python examples/figures.py --quick --out results/figures   # 128², seconds
 """
@@ -164,4 +166,5 @@ def _show(paths) -> None:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    if (status := main()) != 0:
+        raise SystemExit(status)

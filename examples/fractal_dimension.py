@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Fractal dimension by the paper's four methods, on surfaces of known D and on WM surfaces.
+"""Fractal dimension by the paper's four methods, on surfaces of known D and on WM surfaces
+========================================================================================
 
 What it shows
     1. Random-phase self-affine surfaces of known Hurst exponent H (D = 3 − H), rough at the
@@ -12,7 +13,8 @@ What it shows
        below D_in because these surfaces are gently sloped at the pixel scale.
     3. The log–log fits behind the four values for one surface.
 
-Run
+Run::
+
     python examples/fractal_dimension.py --n 512 --out out/fractal
     python examples/fractal_dimension.py --quick --out out/fractal   # 128², one seed, seconds
 """
@@ -104,4 +106,5 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    if (status := main()) != 0:
+        raise SystemExit(status)

@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Parametric study, group 2 of the paper (§4.4, Fig. 9b, Table 3): α against D_in at δ = 0.01.
+"""Parametric study, group 2 of the paper (§4.4, Fig. 9b, Table 3): α against D_in at δ = 0.01
+===========================================================================================
 
 What it shows
     For D_in ∈ {2.1, 2.3, 2.5, 2.7, 2.9} and several seeds, WM surfaces with δ = R_t/W_r
@@ -17,7 +18,8 @@ Key steps
     or on Dask workers) → ``alpha_summary`` (α per case and fit range, linear fit α(D_in)) →
     ``plot.alpha_vs_D``.
 
-Run
+Run::
+
     python examples/parametric_sweep.py --quick --out results/group2   # 128², seconds
     python examples/parametric_sweep.py --n 1024 --seeds 5 --out results/group2
     python examples/parametric_sweep.py --n 10240 --seeds 5 --workers 2   # one worker per GPU
@@ -114,4 +116,5 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    if (status := main()) != 0:
+        raise SystemExit(status)

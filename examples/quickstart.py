@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Quickstart: a WM surface, its truncation analysis, and the stiffness–load power law.
+"""Quickstart: a WM surface, its truncation analysis, and the stiffness–load power law
+===================================================================================
 
 What it shows
     The same job as ``warptrunc analyze`` on its defaults, from Python: generate a
@@ -13,7 +14,8 @@ Key steps
     ``stiffness_curve`` (k and F from A_c, with a ``Material``) → ``fit_power_law`` (over a
     stated fit range) → ``plot.stiffness_load``.
 
-Run
+Run::
+
     python examples/quickstart.py --out results/quickstart
     python examples/quickstart.py --n 256 --device cpu --out results/quickstart   # seconds
 """
@@ -70,4 +72,5 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    if (status := main()) != 0:
+        raise SystemExit(status)

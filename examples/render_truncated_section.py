@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Truncation sections of a rough surface at 10–50 % of R_t, contact in red (the paper's Fig. 7).
+"""Truncation sections of a rough surface at 10–50 % of R_t, contact in red (the paper's Fig. 7)
+=============================================================================================
 
 What it shows
     A WM surface (D_in = 2.5, W_r = 100 µm, L = 1 mm, R_t = 10 µm) rendered off-screen with
@@ -18,7 +19,8 @@ Key steps
     ``export_vtk`` (heights and the first-contact depth per pixel) → ``animate_truncation``.
     Needs pyvista (``pip install pyvista``).
 
-Run
+Run::
+
     python examples/render_truncated_section.py --n 2048 --out results/render
     python examples/render_truncated_section.py --quick --out results/render   # 128², seconds
 """
@@ -114,4 +116,5 @@ def _palette(path: Path) -> None:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    if (status := main()) != 0:
+        raise SystemExit(status)

@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Survey of instrument files: read, analysed on the defaults, refused clearly, misread.
+"""Survey of instrument files: read, analysed on the defaults, refused clearly, misread
+====================================================================================
 
 Reads every file of the given folders with :func:`warptrunc.io.read_height_map` (missing
 points filled, plane levelled; ``dx = 1 µm`` only when the file has no spacing and the reader
@@ -184,4 +185,5 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    if (status := main()) != 0:
+        sys.exit(status)

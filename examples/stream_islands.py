@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Contact islands of a map labelled band by band, for maps larger than memory.
+"""Contact islands of a map labelled band by band, for maps larger than memory
+===========================================================================
 
 What it shows
     ``streamed_islands`` on an n × n WM surface (D = 2.5, W_r = 100 µm, L = 1 mm, R_t = 10 µm)
@@ -18,7 +19,8 @@ Outputs (in --out)
     stream_islands.json (device, depths, time, island counts, largest island, border merges,
     equality with the in-memory labelling).
 
-Run
+Run::
+
     python examples/stream_islands.py --n 2048 --device cpu --out results/stream_islands
     python examples/stream_islands.py --n 16384 --band-rows 1024 --device cuda:0
     python examples/stream_islands.py --n 46400 --device cuda:0 --json out.json
@@ -100,4 +102,5 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    if (status := main()) != 0:
+        raise SystemExit(status)

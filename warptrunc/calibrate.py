@@ -132,7 +132,7 @@ class Calibration:
     Rrms: float
     """Mean R_rms over the seeds at (D_in', R_t') (m)."""
     converged: bool
-    """True when |D_out − D| ≤ rtol·D at (D_in', R_t')."""
+    """True when abs(D_out − D) ≤ rtol·D at (D_in', R_t')."""
     rtol: float
     """Relative tolerance on D (dimensionless)."""
     seeds: tuple[int, ...]
@@ -272,7 +272,7 @@ def calibrate(
     seeds : sequence of int
         Seeds of the WM phases; D_out and R_rms are averaged over them at every evaluation.
     rtol : float
-        Relative tolerance: |D_out − D| ≤ rtol·D (dimensionless). The paper uses 5 %.
+        Relative tolerance: abs(D_out − D) ≤ rtol·D (dimensionless). The paper uses 5 %.
     D_start : float, optional
         First D_in; default the target D (as in the paper), clipped to ``D_bounds``.
     D_bounds : (float, float)

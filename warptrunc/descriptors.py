@@ -92,7 +92,7 @@ class Descriptors:
     Rrms: float
     """Root-mean-square roughness R_rms = √⟨(z − z̄)²⟩ (m)."""
     Ra: float
-    """Arithmetic mean roughness R_a = ⟨|z − z̄|⟩ (m)."""
+    """Arithmetic mean roughness R_a = ⟨abs(z − z̄)⟩ (m)."""
     skewness: float
     """Skewness R_sk = ⟨(z − z̄)³⟩ / R_rms³ (dimensionless)."""
     kurtosis: float

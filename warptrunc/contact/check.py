@@ -269,7 +269,7 @@ def bem_check(
     depths : sequence of float, optional
         Approaches δ (m), strictly increasing, in (0, R_t).
     fractions : sequence of float, optional
-        Approaches as fractions of R_t, in (0, 1); default :data:`DEFAULT_FRACTIONS`.
+        Approaches as fractions of R_t, in (0, 1); default ``DEFAULT_FRACTIONS`` = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4).
     material : Material, optional
         Elastic constants; E* = ``material.reduced_modulus`` is used by both methods.
     beta_prime : float

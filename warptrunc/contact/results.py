@@ -38,7 +38,7 @@ class ContactCurve:
     """(m,) float64 FFT convolutions of that solve, counted as (forward + inverse transforms) / 2
     (including the warm start's one)."""
     residual: np.ndarray
-    """(m,) float64 final max(rms penetration, max penetration, max |Δu|) (m), against pentol."""
+    """(m,) float64 final max(rms penetration, max penetration, max abs(Δu)) (m), against pentol."""
     max_tensile_force: np.ndarray
     """(m,) float64 final largest tensile pixel force before projection (N), against forcetol."""
     converged: np.ndarray

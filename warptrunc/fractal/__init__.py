@@ -29,13 +29,13 @@ measured surfaces with the *same* method and options.
 
 Invariances (tested in ``tests/test_fractal.py``):
 
-=====================  =====  =====  =====  =====
-transformation          tri    box    vs     sp
-=====================  =====  =====  =====  =====
-z + constant            yes    yes¹   yes    yes
-a·z (a > 0)             cube³  cube³  yes    yes
-transposition (z.T)     yes    yes    yes²   yes
-=====================  =====  =====  =====  =====
+=====================  ======  ======  ======  ======
+transformation         tri     box     vs      sp
+=====================  ======  ======  ======  ======
+z + constant           yes     yes¹    yes     yes
+a·z (a > 0)            cube³   cube³   yes     yes
+transposition (z.T)    yes     yes     yes²    yes
+=====================  ======  ======  ======  ======
 
 ¹ cubes are stacked from the lowest point, so a shift changes only float32 rounding;
 ² with ``axis="both"`` (x and y profiles pooled);

@@ -67,7 +67,7 @@ def power_spectrum(
     f_n = γⁿ/W_r. In the 2-D spectrum all M lines of one n fall on the same radius, so a band
     holds zero, one or two radii depending on how the bands fall against γ, and the fitted
     D_sp jumped by −1.7 … +0.2 in our tests (``kind="radial"``). Along a profile, line (m, n)
-    appears at f_n·|cos θ_m|: M distinct frequencies per n that fill the bands evenly; summing
+    appears at f_n·abs(cos θ_m): M distinct frequencies per n that fill the bands evenly; summing
     the variance of each band (rather than averaging a PSD in narrow bins, most of them empty)
     then follows f^−2H. Measured with the defaults (3 seeds each): WM surfaces, 256² and 512²,
     W_r = L/8: D_sp − D_in between −0.07 and +0.01 for D_in = 2.2 … 2.8; random-phase

@@ -4,7 +4,7 @@
 
 Built-in formats (no extra dependency):
 
-``.npz`` / ``.npy`` written by :meth:`warptrunc.Surface.save`
+``.npz`` / ``.npy`` written by :func:`warptrunc.write_height_map`
     Pixel sizes and parameters come from the file (``.npy`` from its ``.json`` sidecar).
 plain ``.npy`` / ``.npz`` arrays
     A 2-D array ``z[iy, ix]``; an ``.npz`` must hold one array or one named ``heights`` or ``z``.

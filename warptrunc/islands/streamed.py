@@ -246,10 +246,10 @@ def streamed_islands(
     Parameters
     ----------
     spec_or_params : WMSpec or mapping
-        The surface, as for :func:`warptrunc.stream.truncate_streamed`.
+        The surface, as for :func:`warptrunc.truncation.truncate` with ``stream=True``.
     depths : sequence of float
         Truncation depths ω ≥ 0 (m); a pixel is in contact when ``z >= float32(z_top − ω)``,
-        as in :func:`warptrunc.islands_at_depths`.
+        as in :func:`warptrunc.islands.islands_at_depths`.
     band_rows : int, optional
         Rows per band (rounded up to the product's row block); see ``truncate_streamed``.
     connectivity : {4, 8}

@@ -165,7 +165,7 @@ def contact_masks(
     downsample: int = 1,
     device: wp.DeviceLike = None,
 ) -> np.ndarray:
-    """Contact masks at the given depths, max-pooled over blocks of ``downsample``² pixels.
+    """Contact masks at the given depths, max-pooled over blocks of ``downsample`` × ``downsample`` pixels.
 
     Parameters
     ----------

@@ -61,7 +61,7 @@ class Profile:
     table1_methods: tuple[str, ...] = ("vs",)
     """Methods whose Table 1 value is the calibration target (Fig. 6 uses D_vs)."""
     table1_rtol: float = 0.05
-    """Relative tolerance |D_out − D|/D of the calibration (dimensionless)."""
+    """Relative tolerance abs(D_out − D)/D of the calibration (dimensionless)."""
     islands_n: int = 1024
     """Pixels per side of the island-analysis surfaces."""
     islands_L: float = 1e-3

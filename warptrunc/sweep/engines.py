@@ -322,7 +322,7 @@ def compute_chunk(
     ``curves`` (the store's ``curves/`` folder, on a filesystem this worker shares with the
     client) a case whose curve file exists already (an earlier attempt of this chunk) is not
     computed again; the others are computed and written as one batch
-    (:func:`~warptrunc.sweep.store.write_curves`), and (rows, None) comes back per case, the
+    (:func:`~warptrunc.sweep.curves.write_curves`), and (rows, None) comes back per case, the
     rows being those in the file.
     """
     if curves is None:
