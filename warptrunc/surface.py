@@ -249,7 +249,7 @@ class Surface:
         -------
         dict
             ``nx``, ``ny`` (pixels), ``dx_m``, ``dy_m``, ``lx_m``, ``ly_m``, ``Rt_m`` (m), then
-            every entry of :attr:`params` (non-finite floats written as text).
+            every entry of ``params`` (non-finite floats written as text).
         """
         return {
             "nx": self.nx,
@@ -276,7 +276,7 @@ def from_heights(z: np.ndarray, dx: float, dy: float | None = None, **params: An
     dy : float, optional
         Pixel spacing along y (m), > 0; defaults to ``dx``.
     **params
-        Provenance parameters stored in :attr:`Surface.params` (SI units; JSON-serialisable).
+        Provenance parameters stored in ``Surface.params`` (SI units; JSON-serialisable).
 
     Returns
     -------

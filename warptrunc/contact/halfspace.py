@@ -576,7 +576,7 @@ class ElasticHalfSpace:
         pixel forces (N) of displacements x (m) (the map of K⁻¹ applied to the zero-padded map).
 
         ``buf`` is an input buffer (:meth:`map_buffer`) holding x on its map. With
-        ``energy_column ≥ 0`` (forward only) the lanes of :attr:`reduction` get the partial sums
+        ``energy_column ≥ 0`` (forward only) the lanes of ``reduction`` get the partial sums
         of N·Σ x·(K·x) in that column (Parseval; read them with ``reduction.read``, divide by
         N = Ny·Nx); nothing is read back here. Returns a (ny, nx) view into the work spectrum,
         valid until the half-space's next transform.

@@ -91,7 +91,7 @@ class StageStore:
         name : str
             Stage name.
         params : dict
-            Parameters that identify the stage, compared after :func:`jsonable`.
+            Parameters that identify the stage, compared after ``jsonable``.
 
         Returns
         -------
@@ -127,7 +127,7 @@ class StageStore:
     ) -> dict[str, Any]:
         """The stage's result: stored when the parameters match, else ``fn()`` (then stored).
 
-        The stage name goes to :attr:`reused` or :attr:`computed`. A computed result is
+        The stage name goes to ``reused`` or ``computed``. A computed result is
         written atomically with its parameters and its compute time.
 
         Parameters
@@ -135,16 +135,16 @@ class StageStore:
         name : str
             Stage name.
         params : dict
-            Parameters that identify the stage (JSON-able after :func:`jsonable`).
+            Parameters that identify the stage (JSON-able after ``jsonable``).
         fn : callable
             Computes the result, called with no arguments; returns a dict, stored after
-            :func:`jsonable` (non-finite floats become null).
+            ``jsonable`` (non-finite floats become null).
 
 
         Returns
         -------
         dict
-            The result, as stored (after :func:`jsonable`).
+            The result, as stored (after ``jsonable``).
 
         Raises
         ------

@@ -117,7 +117,7 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
     Parameters
     ----------
     spec_or_params : WMSpec or mapping
-        The WM surface: a :class:`~warptrunc.wm.WMSpec`, a mapping of :func:`~warptrunc.wm_spec`
+        The WM surface: a :class:`~warptrunc.wm.WMSpec`, a mapping of :func:`~warptrunc.wm.wm_spec`
         keywords, or the ``params`` of a WM surface (``nx``, ``ny``, ``Lx``, ``Ly`` become
         ``n`` and ``L``).
     device : str or warp.context.Device, optional
@@ -134,7 +134,7 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
     TypeError
         ``spec_or_params`` is neither a WMSpec nor a mapping.
     ValueError
-        Invalid WM parameters (from :func:`~warptrunc.wm_spec`).
+        Invalid WM parameters (from :func:`~warptrunc.wm.wm_spec`).
     """
     spec = as_wm_spec(spec_or_params)
     device = as_device(device)
