@@ -183,7 +183,7 @@ def influence_table(
     Returns
     -------
     (ny, nx) ndarray of float64
-        ``"free"``: G at separations (|Δy|, |Δx|) pixels (Love's form divided by the pixel
+        ``"free"``: G at separations (abs(Δy), abs(Δx)) pixels (Love's form divided by the pixel
         area; the values the spectrum transforms). ``"periodic"``: G at separations
         (Δy mod ny, Δx mod nx), the inverse transform of the spectrum.
     """

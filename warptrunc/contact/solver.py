@@ -30,7 +30,7 @@ Host synchronisation: two small read-backs per iteration. τ is formed on the de
 projection changed decides between direct summation and a transform); the advance's sums (gaps,
 convergence) are the second.
 
-The max |Δu| of the stopping criterion is taken over the map (ContactMechanics takes it over the
+The max abs(Δu) of the stopping criterion is taken over the map (ContactMechanics takes it over the
 padded grid; outside the map Δu is the far field of the map's Δq and smaller).
 
 Stopping (ContactMechanics' criterion): rms and max penetration over the CG set and the largest

@@ -141,7 +141,7 @@ def analyse_bem(stage: dict[str, Any]) -> dict[str, Any]:
         finite ratio (dimensionless), ``converged``, ``n``, ``edge_contact`` counts and
         ``contact_fraction`` = mean A_BEM/L² (dimensionless)), ``per_D``
         (``time_per_solve_s`` (s), ``solves``, ``not_converged_rows``), ``good_band``,
-        ``good_cells`` ([D, fraction] pairs with |k'/k_BEM − 1| ≤ ``GOOD``),
+        ``good_cells`` ([D, fraction] pairs with abs(k'/k_BEM − 1) ≤ ``GOOD``),
         ``other_stiffness_ratio_range``, ``all_converged``, ``rows``, ``solves`` and
         ``time_per_solve_s`` (s).
     """
