@@ -1,7 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Sweeps: grid parsing, the Parquet store, resume after SIGINT/SIGTERM, refusal of another
-grid, failing cases, and the Dask engine (2 workers; a worker killed mid-sweep)."""
+"""Sweeps: grid parsing, the Parquet store (parts, duplicates, migration of the previous
+layout), resume after SIGINT/SIGTERM/kill -9, refusal of another grid, failing cases, elastic
+columns, and the Dask engine (2 workers; a worker killed mid-sweep)."""
 
 import json
 import os
@@ -26,6 +27,7 @@ from warptrunc.sweep import (  # noqa: E402
     parse_seeds,
     run_sweep,
 )
+from warptrunc.sweep.curves import part_files, part_rows  # noqa: E402
 from warptrunc.wm import wm_surface  # noqa: E402
 
 OPTS = dict(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
@@ -34,6 +36,11 @@ OPTS = dict(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
 def _results(df):
     """The cases table without the columns that describe where and when a case ran."""
     return df.drop(columns=list(RUN_COLUMNS)).reset_index(drop=True)
+
+
+def _on_disk(out):
+    """Case ids held by the parts of a store (a case in two parts counts twice)."""
+    return [rs[0]["case_id"] for f in part_files(out / "curves") for rs in (part_rows(f) or [])]
 
 
 def test_parse_seeds_and_grid_errors(tmp_path):
@@ -101,6 +108,15 @@ def test_store_rows_and_curves_match_numpy(tmp_path):
     assert row.alpha == pytest.approx(a, rel=1e-12) and row.beta == pytest.approx(np.exp(logb))
     assert row.n_points == sel.sum()
     assert len(load_curves(tmp_path / "s")) == 8 * 61
+    # the parts are a Parquet dataset that pandas and pyarrow read directly
+    import pyarrow.dataset as ds
+
+    direct = pd.read_parquet(tmp_path / "s" / "curves")
+    pd.testing.assert_frame_equal(direct.sort_values(["case_id", "depth_m"]).reset_index(drop=True),
+                                  load_curves(tmp_path / "s").sort_values(["case_id", "depth_m"])
+                                  .reset_index(drop=True), check_dtype=False)  # fmt: skip
+    assert ds.dataset(tmp_path / "s" / "curves").count_rows() == 8 * 61
+    pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "s" / "cases.parquet"), df)
 
 
 def test_fractal_methods_and_relative_fit_range(tmp_path):
@@ -173,7 +189,7 @@ def test_rerun_skips_other_grid_refused_overwrite(tmp_path):
     assert load(out)["case_id"].nunique() == 3  # the refused runs changed nothing
     new = run_sweep(SweepGrid.from_values([2.3], [0.01], "0-3"), out, overwrite=True,
                     progress=False, device="cpu", **OPTS)  # fmt: skip
-    assert new["case_id"].nunique() == 4 and len(list((out / "curves").iterdir())) == 4
+    assert new["case_id"].nunique() == 4 and sorted(_on_disk(out)) == sorted(new["case_id"].unique())
 
 
 def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
@@ -182,7 +198,8 @@ def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
     grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1")
     full = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
     (out / "cases.parquet").unlink()
-    (out / "curves" / ".x.parquet.tmp-123").write_bytes(b"PAR1 trunc")  # a half-written file
+    (out / "curves" / ".part-x.parquet.tmp-123").write_bytes(b"PAR1 trunc")  # a half-written part
+    assert len(pd.read_parquet(out / "curves")) == 4 * 61  # the dot-named temporary is skipped
     pd.testing.assert_frame_equal(load(out), full)
     resumed = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
     pd.testing.assert_frame_equal(resumed, full)  # same stamps: nothing was recomputed
@@ -191,7 +208,7 @@ def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
 
 def test_store_written_with_rt_measured_m_reads_as_Rt_measured_m(tmp_path):
     """A store from before R_t was spelled ``Rt`` everywhere: the old column reads under the new
-    name, from cases.parquet and from the rows kept in the curve files alike."""
+    name, from cases.parquet and from the rows kept in the parts alike."""
     import pyarrow.parquet as pq
 
     out = tmp_path / "s"
@@ -258,9 +275,10 @@ def reference():
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
 def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
     out = tmp_path / "run"
-    p = subprocess.Popen(_cli(out), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    p = subprocess.Popen(_cli(out, "--shard-seconds", "0"), stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)  # fmt: skip
     t0 = time.monotonic()
-    while len(list(out.glob("curves/*.parquet"))) < 2:
+    while len(_on_disk(out)) < 2:
         assert p.poll() is None, p.communicate()
         assert time.monotonic() - t0 < 240, "the sweep did not start"
         time.sleep(0.01)
@@ -281,7 +299,7 @@ def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
     # the cases finished before the signal were not recomputed
     kept = final[final.case_id.isin(partial.case_id)]
     np.testing.assert_array_equal(kept["finished_utc"], partial["finished_utc"])
-    assert len(list(out.glob("curves/*.parquet"))) == 18
+    assert sorted(_on_disk(out)) == sorted(final.case_id.unique())  # each case in one part
 
 
 def test_cli_refuses_other_grid(tmp_path):
@@ -377,10 +395,10 @@ def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_re
 
     def wait_for(k):
         t0 = time.monotonic()
-        while len(list(out.glob("curves/*.parquet"))) < k and th.is_alive():
+        while len(_on_disk(out)) < k and th.is_alive():
             assert time.monotonic() - t0 < 200
             time.sleep(0.01)
-        return len(list(out.glob("curves/*.parquet")))
+        return len(_on_disk(out))
 
     th = threading.Thread(target=sweep)
     th.start()
@@ -399,7 +417,7 @@ def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_re
 
 
 def _sweep_in_thread(out, **kw):
-    """Start run_sweep in a thread; returns (thread, box, wait_for(k curve files))."""
+    """Start run_sweep in a thread; returns (thread, box, wait_for(k cases in parts))."""
     import threading
 
     box = {}
@@ -414,23 +432,22 @@ def _sweep_in_thread(out, **kw):
 
     def wait_for(k):
         t0 = time.monotonic()
-        while len(list(out.glob("curves/*.parquet"))) < k and th.is_alive():
+        while len(_on_disk(out)) < k and th.is_alive():
             assert time.monotonic() - t0 < 200
             time.sleep(0.01)
-        return len(list(out.glob("curves/*.parquet")))
+        return len(_on_disk(out))
 
     th.start()
     return th, box, wait_for
 
 
 @pytest.mark.timeout(300)
-def test_chunked_worker_killed_mid_chunk_no_loss_no_duplicates(tmp_path, client, dask_reference):
-    """Chunks of 3 cases (client writes): a worker killed mid-chunk has its chunk run again."""
+def test_sharded_worker_killed_mid_shard_no_loss_no_duplicates(tmp_path, client, dask_reference):
+    """Shards of 3 cases: a worker killed mid-shard has its shard run again."""
     client.register_plugin(_slow_cases_plugin())
     out = tmp_path / "s"
-    th, box, wait_for = _sweep_in_thread(out, scheduler=client, chunk_size=3,
-                                         worker_writes=False)  # fmt: skip
-    done_at_kill = wait_for(1)  # the first chunk is written: the second and third are running
+    th, box, wait_for = _sweep_in_thread(out, scheduler=client, shard_size=3)
+    done_at_kill = wait_for(1)  # the first shard is written: the second and third are running
     pids = client.run(os.getpid)
     os.kill(next(iter(pids.values())), signal.SIGKILL)
     th.join(240)
@@ -440,21 +457,22 @@ def test_chunked_worker_killed_mid_chunk_no_loss_no_duplicates(tmp_path, client,
     assert not df.duplicated(["case_id", "min_pixels"]).any() and df["error"].isna().all()
     pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
     pd.testing.assert_frame_equal(load(out), df)
-    assert len(list((out / "curves").iterdir())) == 8  # no temporary file left
+    assert sorted(_on_disk(out)) == sorted(df.case_id.unique())  # each case in one part
+    assert not list((out / "curves").glob(".*"))  # no temporary file left
 
 
 @pytest.mark.timeout(300)
-def test_worker_written_curves(tmp_path, client, dask_reference, monkeypatch):
-    """With worker writes the client writes no curve file; a kill loses and duplicates nothing."""
+def test_worker_written_parts(tmp_path, client, dask_reference, monkeypatch):
+    """The workers write the parts, the client none; a kill loses and duplicates nothing."""
     import warptrunc.sweep.store as store_mod
 
     def refuse(*a, **kw):
-        raise AssertionError("the client wrote a curve file")
+        raise AssertionError("the client wrote a part")
 
-    monkeypatch.setattr(store_mod, "write_curves", refuse)  # this process only, not the workers
+    monkeypatch.setattr(store_mod, "write_part", refuse)  # this process only, not the workers
     client.register_plugin(_slow_cases_plugin())
     out = tmp_path / "s"
-    th, box, wait_for = _sweep_in_thread(out, scheduler=client, chunk_size=2, worker_writes=True)
+    th, box, wait_for = _sweep_in_thread(out, scheduler=client, shard_size=2)
     done_at_kill = wait_for(1)
     pids = client.run(os.getpid)
     os.kill(next(iter(pids.values())), signal.SIGKILL)
@@ -470,7 +488,7 @@ def test_worker_written_curves(tmp_path, client, dask_reference, monkeypatch):
     monkeypatch.undo()
     run_sweep(DASK_GRID, ref, progress=False, device="cpu", **OPTS)
     pd.testing.assert_frame_equal(load_curves(out), load_curves(ref))
-    (out / "cases.parquet").unlink()  # rebuilt from the worker-written curve files alone
+    (out / "cases.parquet").unlink()  # rebuilt from the worker-written parts alone
     pd.testing.assert_frame_equal(load(out), df)
 
 
