@@ -20,6 +20,7 @@ pytest.importorskip("pyarrow")
 from warptrunc.sweep import (  # noqa: E402
     CURVE_COLUMNS,
     RUN_COLUMNS,
+    Store,
     SweepGrid,
     SweepOptions,
     load,
@@ -250,6 +251,221 @@ def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
     fixed = run_sweep(grid, out, retry_failed=True, progress=False, device="cpu", **OPTS)
     assert fixed["error"].isna().all()
     pd.testing.assert_frame_equal(_results(fixed[fixed.seed != 1]), _results(good))
+
+
+# --- parts: half-written, retried concurrently, overlapping; the previous layout -----------------
+
+
+def _old_layout(out):
+    """Turn a store into the previous layout: sweep.json of format 1, one curve file per case
+    (its rows in the metadata), cases.parquet without the last case (killed before its flush)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from warptrunc.sweep.store import rows_frame
+
+    rows = {rs[0]["case_id"]: rs for f in part_files(out / "curves") for rs in part_rows(f)}
+    curves = load_curves(out)
+    for f in part_files(out / "curves"):
+        f.unlink()
+    for cid, rs in rows.items():
+        c = curves[curves.case_id == cid].drop(columns="case_id")
+        t = pa.Table.from_pandas(c, preserve_index=False)
+        t = t.replace_schema_metadata({b"warptrunc.rows": json.dumps(rs).encode()})
+        pq.write_table(t, out / "curves" / f"{cid}.parquet")
+    last = max(rows, key=lambda c: rows[c][0]["case_index"])
+    df = rows_frame([r for c, rs in rows.items() if c != last for r in rs])
+    df.to_parquet(out / "cases.parquet", index=False)
+    spec = json.loads((out / "sweep.json").read_text())
+    (out / "sweep.json").write_text(json.dumps({**spec, "format": "warptrunc-sweep/1"}))
+
+
+def test_previous_layout_refused_by_load_converted_by_migrate(tmp_path):
+    from warptrunc.cli import main
+
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1")
+    out, out2 = tmp_path / "s", tmp_path / "s2"
+    full = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    curves = load_curves(out)
+    _old_layout(out)
+    with pytest.raises(ValueError, match=r"previous layout.*warptrunc sweep --migrate .*s$"):
+        load(out)
+    assert main(["sweep", "--migrate", "--out", str(out)]) == 0
+    assert json.loads((out / "sweep.json").read_text())["format"] == "warptrunc-sweep/2"
+    assert sorted(p.name for p in (out / "curves").iterdir())[0].startswith("part-")
+    assert len(list((out / "curves").iterdir())) == 1  # 4 cases in one part, no old file left
+    pd.testing.assert_frame_equal(load(out), full)  # the last case came from its curve file
+    pd.testing.assert_frame_equal(load_curves(out), curves)
+    assert main(["sweep", "--migrate", "--out", str(out)]) == 0  # nothing left to convert
+    # run_sweep converts on open, then resumes: nothing recomputed
+    run_sweep(grid, out2, progress=False, device="cpu", **OPTS)
+    _old_layout(out2)
+    again = run_sweep(grid, out2, progress=False, device="cpu", **OPTS)
+    pd.testing.assert_frame_equal(_results(again), _results(full))
+    assert sorted(_on_disk(out2)) == sorted(full.case_id.unique())
+
+
+_KILL_MID_WRITE = """
+import os, sys, time
+import warptrunc.sweep.curves as c
+from warptrunc.sweep import SweepGrid, SweepOptions
+from warptrunc.sweep.engines import compute_shard
+real = os.fsync
+def stall(fd):  # the part's bytes are in the temporary file: the worker dies here
+    print("writing", flush=True)
+    time.sleep(60)
+c.os.fsync = stall
+o = SweepOptions(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
+cases = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1").cases(o)
+compute_shard(cases, o, "cpu", sys.argv[1])
+"""
+
+
+@pytest.mark.timeout(240)
+def test_worker_killed_while_writing_leaves_no_readable_part(tmp_path):
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1")
+    run_sweep(grid, out, progress=False, device="cpu", **OPTS)  # the store exists
+    ref = load(out)
+    for f in part_files(out / "curves"):
+        f.unlink()
+    (out / "cases.parquet").unlink()
+    p = subprocess.Popen([sys.executable, "-c", _KILL_MID_WRITE, str(out / "curves")],
+                         stdout=subprocess.PIPE, text=True)  # fmt: skip
+    assert p.stdout.readline().strip() == "writing"
+    p.kill()  # kill -9 mid-write
+    p.communicate(timeout=30)
+    left = list((out / "curves").iterdir())
+    assert len(left) == 1 and left[0].name.startswith(".part-") and ".tmp-" in left[0].name
+    assert left[0].stat().st_size > 0 and not part_files(out / "curves")
+    # readers skip it, and so does resuming (which removes it and computes the four cases)
+    assert len(pd.read_parquet(out / "curves")) == 0 and len(load(out)) == 0
+    df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    pd.testing.assert_frame_equal(_results(df), _results(ref))
+    assert not list((out / "curves").glob(".*")) and len(_on_disk(out)) == 4
+
+
+def test_shard_retried_concurrently_written_once(tmp_path):
+    """Four attempts of one shard at once (as a retried task whose first attempt still runs):
+    one part, each case once, and every attempt reports that part's rows."""
+    import threading
+
+    from warptrunc.sweep.engines import compute_shard
+
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-2")
+    run_sweep(SweepGrid.from_values([2.3], [0.01], "0"), None, progress=False, device="cpu",
+              **OPTS)  # fmt: skip  (kernels loaded before the race)
+    opts = SweepOptions(**OPTS)
+    cases = grid.cases(opts)
+    Store(out, grid, opts)  # an empty store: sweep.json and curves/
+    barrier, got = threading.Barrier(4), []
+
+    def attempt():
+        barrier.wait()
+        got.append(compute_shard(cases, opts, "cpu", str(out / "curves")))
+
+    ths = [threading.Thread(target=attempt) for _ in range(4)]
+    for t in ths:
+        t.start()
+    for t in ths:
+        t.join(120)
+    assert len(got) == 4 and len({g["part"] for g in got}) == 1
+    same = {json.dumps(g["rows"], sort_keys=True) for g in got}
+    assert len(same) == 1  # the winner's rows (stamps included) in every answer
+    assert len(part_files(out / "curves")) == 1 and not list((out / "curves").glob(".*"))
+    assert sorted(_on_disk(out)) == sorted(c.case_id for c in cases)
+    # the store takes the part as it is: nothing recomputed
+    df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    assert sorted(df.finished_utc.unique()) == sorted({rs[0]["finished_utc"] for rs in got[0]["rows"]})
+
+
+def test_overlapping_parts_each_case_once(tmp_path):
+    """Two shards that overlap (a lost shard run again in another split) each write a part:
+    readers see each case once, and opening the store rewrites the later part without them."""
+    from warptrunc.sweep.engines import compute_shard
+
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-2")
+    ref = run_sweep(grid, out, progress=False, device="cpu", shard_seconds=0, **OPTS)
+    for f in part_files(out / "curves"):
+        f.unlink()
+    (out / "cases.parquet").unlink()
+    opts = SweepOptions(**OPTS)
+    cases = grid.cases(opts)
+    a = compute_shard(cases[:4], opts, "cpu", str(out / "curves"))
+    b = compute_shard(cases[2:], opts, "cpu", str(out / "curves"))
+    assert a["part"] < b["part"] and len(_on_disk(out)) == 8  # cases 2 and 3 twice
+    df = load(out)
+    assert not df.duplicated(["case_id", "min_pixels"]).any() and len(df) == len(ref)
+    assert len(load_curves(out)) == 6 * 61
+    again = run_sweep(grid, out, progress=False, device="cpu", **OPTS)  # nothing recomputed
+    pd.testing.assert_frame_equal(_results(again), _results(ref))
+    assert sorted(_on_disk(out)) == sorted(ref.case_id.unique())  # the overlap was dropped
+    assert len(pd.read_parquet(out / "curves")) == 6 * 61
+    first = {rs[0]["case_id"]: rs[0]["finished_utc"] for rs in a["rows"]}
+    kept = again.drop_duplicates("case_id").set_index("case_id")["finished_utc"]
+    assert all(kept[c] == t for c, t in first.items())  # the first part's cases were kept
+
+
+def test_elastic_columns_match_the_contact_solver(tmp_path):
+    from warptrunc.contact import solve_contact
+    from warptrunc.stiffness import Material
+
+    grid = SweepGrid.from_values([2.3, 2.7], [0.01], "0")
+    kw = dict(OPTS, bem_fractions=(0.2, 0.05))
+    df = run_sweep(grid, tmp_path / "s", progress=False, device="cpu", **kw)
+    assert df["error"].isna().all() and df["bem_error"].isna().all()
+    pd.testing.assert_frame_equal(load(tmp_path / "s"), df)
+    assert json.loads((tmp_path / "s" / "sweep.json").read_text())["options"]["bem_fractions"] == [0.05, 0.2]
+    cols = [c for c in df.columns if c.endswith("_0.05")]
+    assert cols == ["bem_depth_m_0.05", "F_bem_N_0.05", "A_bem_m2_0.05", "k_bem_N_per_m_0.05",
+                    "F_trunc_N_0.05", "A_trunc_m2_0.05", "k_trunc_N_per_m_0.05", "F_ratio_0.05",
+                    "A_ratio_0.05", "k_ratio_0.05", "bem_converged_0.05", "bem_iterations_0.05"]
+    assert str(df["bem_converged_0.2"].dtype) == "boolean"
+    assert str(df["bem_iterations_0.2"].dtype) == "Int64"
+    e_star = Material().reduced_modulus
+    for _, row in df.drop_duplicates("case_id").iterrows():
+        s = wm_surface(row.D_in, 100e-6, n=64, Rt=0.01 * 100e-6, seed=int(row.seed), device="cpu")
+        d = np.array([0.05, 0.2]) * row.Rt_measured_m
+        cc = solve_contact(s, depths=d, contact_modulus=e_star, substrate="free",
+                           stiffness="barber", device="cpu")  # fmt: skip
+        z = s.heights
+        for i, f in enumerate(("0.05", "0.2")):
+            assert row[f"bem_depth_m_{f}"] == d[i]
+            # same solver, same inputs: equal up to the order of float sums (rtol 1e-9)
+            np.testing.assert_allclose(row[f"F_bem_N_{f}"], cc.load[i], rtol=1e-9)
+            np.testing.assert_allclose(row[f"k_bem_N_per_m_{f}"], cc.stiffness[i], rtol=1e-9)
+            assert row[f"A_bem_m2_{f}"] == cc.area[i]
+            assert row[f"bem_converged_{f}"] == bool(cc.converged[i])
+            n = np.count_nonzero(z >= np.float32(np.float32(z.max()) - d[i]))
+            assert row[f"A_trunc_m2_{f}"] == n * s.pixel_area
+            np.testing.assert_allclose(row[f"k_trunc_N_per_m_{f}"],
+                                       2 / np.sqrt(np.pi) * e_star * np.sqrt(n * s.pixel_area),
+                                       rtol=1e-12)  # fmt: skip
+            for q in ("F", "A", "k"):
+                assert row[f"{q}_ratio_{f}"] == pytest.approx(
+                    row[f"{q}_bem_{'N' if q == 'F' else 'm2' if q == 'A' else 'N_per_m'}_{f}"]
+                    / row[f"{q}_trunc_{'N' if q == 'F' else 'm2' if q == 'A' else 'N_per_m'}_{f}"],
+                    rel=1e-12)
+        assert row["F_trunc_N_0.05"] > 0 and row["F_bem_N_0.2"] > row["F_bem_N_0.05"] > 0
+    from warptrunc.sweep import bem_long
+
+    long = bem_long(df)
+    assert len(long) == 2 * len(df) and sorted(long.bem_fraction.unique()) == [0.05, 0.2]
+    assert long.set_index(["case_id", "min_pixels", "bem_fraction"]).loc[
+        (df.case_id[0], 1, 0.2), "k_ratio"] == df["k_ratio_0.2"][0]
+
+
+def test_unconverged_solve_flagged_not_dropped(tmp_path, monkeypatch):
+    import warptrunc.contact as contact
+
+    real = contact.solve_contact
+    monkeypatch.setattr(contact, "solve_contact", lambda *a, **kw: real(*a, **{**kw, "maxiter": 1}))
+    df = run_sweep(SweepGrid.from_values([2.5], [0.01], "0"), tmp_path / "s", progress=False,
+                   device="cpu", **dict(OPTS, bem_fractions=(0.1,)))  # fmt: skip
+    assert len(df) == 2 and df["error"].isna().all()
+    assert (~df["bem_converged_0.1"]).all() and df["F_bem_N_0.1"].notna().all()
 
 
 # --- the CLI killed by a signal, then resumed ---------------------------------------------------
