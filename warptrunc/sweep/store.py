@@ -137,23 +137,25 @@ def rows_frame(rows: list[dict[str, Any]], columns: tuple[str, ...] | None = Non
     """
     import pandas as pd
 
-    rows = [{_RENAMED.get(k, k): v for k, v in r.items()} for r in rows]
+    if rows and any(k in rows[0] for k in _RENAMED):
+        rows = [{_RENAMED.get(k, k): v for k, v in r.items()} for r in rows]
     if columns is None:
         extra = [k for k in (rows[0] if rows else {}) if k not in CASE_COLUMNS]
         columns = (*CASE_COLUMNS, *extra)
-    df = pd.DataFrame.from_records(rows, columns=list(columns))
-    for c in df.columns:
+    data = {}
+    for c in columns:
+        values = [r.get(c) for r in rows]
         if c in _INT:
-            df[c] = df[c].astype("int64")
+            data[c] = pd.array(values, dtype="int64")
         elif c in _NULLABLE_INT or c.startswith("bem_iterations_"):
-            df[c] = df[c].astype("Int64")
+            data[c] = pd.array(values, dtype="Int64")
         elif c in _STR:
-            df[c] = df[c].astype("string")
+            data[c] = pd.array(values, dtype="string")
         elif c.startswith("bem_converged_"):
-            df[c] = df[c].astype("boolean")
+            data[c] = pd.array(values, dtype="boolean")
         else:
-            df[c] = df[c].astype("float64")
-    return df
+            data[c] = np.array([np.nan if v is None else v for v in values], dtype=np.float64)
+    return pd.DataFrame(data, columns=list(columns))
 
 
 def _sorted(df):
