@@ -50,7 +50,20 @@ Result = tuple[list[dict[str, Any]], "dict[str, np.ndarray] | None"]
 
 
 def parquet_bytes(df, metadata: dict[bytes, bytes] | None = None) -> bytes:
-    """A DataFrame as Parquet bytes (no index), with extra key-value metadata."""
+    """A DataFrame as Parquet bytes (no index), with extra key-value metadata.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table.
+    metadata : dict of bytes to bytes, optional
+        Extra schema metadata (besides pandas').
+
+    Returns
+    -------
+    bytes
+        The Parquet file.
+    """
     import pyarrow as pa
 
     table = pa.Table.from_pandas(df, preserve_index=False)
@@ -60,7 +73,18 @@ def parquet_bytes(df, metadata: dict[bytes, bytes] | None = None) -> bytes:
 
 
 def table_bytes(table) -> bytes:
-    """A pyarrow Table as Parquet bytes."""
+    """A pyarrow Table as Parquet bytes.
+
+    Parameters
+    ----------
+    table : pyarrow.Table
+        The table.
+
+    Returns
+    -------
+    bytes
+        The Parquet file.
+    """
     import pyarrow as pa
     import pyarrow.parquet as pq
 
@@ -86,21 +110,54 @@ def _fsync_dir(folder: Path) -> None:
 def part_name(case_ids: list[str], first_index: int) -> str:
     """``part-<first case index, 8 digits>-<12 hex of SHA-256 over the sorted case ids>.parquet``.
 
-    The name is a function of the shard's cases only, so a retried shard writes the same name
-    (and loses to the first attempt), and parts list in grid order.
+    Parameters
+    ----------
+    case_ids : list of str
+        Ids of the shard's cases (any order).
+    first_index : int
+        Grid index of the shard's first case.
+
+    Returns
+    -------
+    str
+        The part's file name: a function of the shard's cases only, so a retried shard writes
+        the same name (and loses to the first attempt), and parts list in grid order.
     """
     h = hashlib.sha256(",".join(sorted(case_ids)).encode()).hexdigest()[:12]
     return f"part-{first_index:08d}-{h}.parquet"
 
 
 def part_files(folder: str | Path) -> list[Path]:
-    """The parts in ``folder`` (``OUT/curves``), sorted by name (grid order of their first case)."""
+    """The parts in ``folder``, sorted by name (grid order of their first case).
+
+    Parameters
+    ----------
+    folder : path
+        The store's ``curves/`` folder (missing: no parts).
+
+    Returns
+    -------
+    list of Path
+        The ``part-*.parquet`` files; temporaries (dot names) are not among them.
+    """
     folder = Path(folder)
     return sorted(folder.glob(PART_GLOB)) if folder.is_dir() else []
 
 
 def part_rows(path: str | Path) -> list[list[dict[str, Any]]] | None:
-    """The rows held by a part, one list per case; None when it does not parse."""
+    """The rows held by a part, one list per case; None when it does not parse.
+
+    Parameters
+    ----------
+    path : path
+        A part file.
+
+    Returns
+    -------
+    list of list of dict, or None
+        Per case, its fit-range rows (the cases table's columns); None for a file that is
+        truncated, empty or not a part.
+    """
     import pyarrow.parquet as pq
 
     try:
@@ -111,8 +168,20 @@ def part_rows(path: str | Path) -> list[list[dict[str, Any]]] | None:
 
 
 def read_part_curves(path: str | Path, case_ids=None):
-    """The curves of a part as a DataFrame (``case_id`` and CURVE_COLUMNS), optionally of
-    ``case_ids`` only."""
+    """The curves of a part as a DataFrame.
+
+    Parameters
+    ----------
+    path : path
+        A part file.
+    case_ids : iterable of str, optional
+        Only these cases (default all).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``case_id`` and CURVE_COLUMNS (SI units), one row per depth increment.
+    """
     import pyarrow.parquet as pq
 
     filters = None if case_ids is None else [("case_id", "in", list(case_ids))]

@@ -244,7 +244,13 @@ class Store:
         self.flush()
 
     def spec(self) -> dict[str, Any]:
-        """The content of ``sweep.json``."""
+        """The content of ``sweep.json``.
+
+        Returns
+        -------
+        dict of str to Any
+            ``format``, ``grid``, ``options`` and ``n_cases``.
+        """
         return {
             "format": STORE_FORMAT,
             "grid": self.grid.to_dict(),
@@ -288,7 +294,15 @@ class Store:
     ) -> list[bool]:
         """Record finished cases, writing them as one part (:func:`write_part`) from here.
 
-        Returns, per case, False for a duplicate (nothing written, nothing recorded).
+        Parameters
+        ----------
+        results : list of (list of dict, dict or None)
+            Per case, its rows and curve (:func:`~warptrunc.sweep.engines.compute_case`).
+
+        Returns
+        -------
+        list of bool
+            Per case, False for a duplicate (nothing written, nothing recorded).
         """
         fresh, seen, new = [], set(), []
         for rows, curve in results:
@@ -311,15 +325,42 @@ class Store:
         return new
 
     def add(self, rows: list[dict[str, Any]], curve: dict[str, np.ndarray] | None) -> bool:
-        """Record one finished case (a part of its own); False for a duplicate."""
+        """Record one finished case (a part of its own).
+
+        Parameters
+        ----------
+        rows : list of dict
+            The case's fit-range rows.
+        curve : dict of str to ndarray or None
+            Its curve (None for a failed case).
+
+        Returns
+        -------
+        bool
+            False for a duplicate.
+        """
         return self.add_many([(rows, curve)])[0]
 
     def record_part(self, name: str, held: list[list[dict[str, Any]]]) -> list[bool]:
         """Record a part that exists in ``curves/`` (written by a worker or by :meth:`add_many`).
 
-        Returns, per case, False when another part held the case already. A part all of whose
-        cases are held elsewhere is deleted; one that overlaps in part is rewritten without
-        the cases held elsewhere. Recording the same part twice changes nothing.
+        Parameters
+        ----------
+        name : str
+            The part's file name.
+        held : list of list of dict
+            Its rows, one list per case (:func:`~warptrunc.sweep.curves.part_rows`).
+
+        Returns
+        -------
+        list of bool
+            Per case, False when another part held the case already.
+
+        Notes
+        -----
+        A part all of whose cases are held elsewhere is deleted; one that overlaps in part is
+        rewritten without the cases held elsewhere. Recording the same part twice changes
+        nothing.
         """
         ids = [rows[0]["case_id"] for rows in held]
         new = [c not in self.rows for c in ids]
@@ -366,7 +407,13 @@ class Store:
             self.flush()
 
     def frame(self):
-        """The cases table (DataFrame) in grid order."""
+        """The cases table in grid order.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per case × fit range (the columns of ``cases.parquet``).
+        """
         rows = [r for rs in self.rows.values() for r in rs]
         return _sorted(rows_frame(rows, self.columns))
 
@@ -431,8 +478,21 @@ def _check_same(path: Path, old: dict[str, Any], new: dict[str, Any]) -> None:
 def conflict(path: str | Path, grid: SweepGrid, options: SweepOptions) -> str | None:
     """Why the store at ``path`` cannot be resumed with ``grid`` and ``options``, or None.
 
-    None also when ``path`` holds no ``sweep.json`` yet (a new store), and for a store of the
-    previous layout with the same grid and options (resuming converts it).
+    Parameters
+    ----------
+    path : path
+        The store folder.
+    grid : SweepGrid
+        The grid to resume with.
+    options : SweepOptions
+        The options to resume with.
+
+    Returns
+    -------
+    str or None
+        The refusal message; None also when ``path`` holds no ``sweep.json`` yet (a new
+        store), and for a store of the previous layout with the same grid and options
+        (resuming converts it).
     """
     meta = Path(path) / "sweep.json"
     if not meta.exists():
@@ -474,11 +534,26 @@ def _unique_parts(path: Path) -> list[tuple[Path, list[list[dict[str, Any]]]]]:
 
 
 def load(path: str | Path):
-    """The cases table of the store at ``path`` as a pandas DataFrame, in grid order.
+    """The cases table of the store at ``path``, in grid order.
 
-    ``cases.parquet`` when it holds every part present; otherwise (a sweep killed before its
-    last flush, or still running) the table is rebuilt from the parts, so nothing that
-    finished is missing and no case appears twice.
+    Parameters
+    ----------
+    path : path
+        The store folder.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``cases.parquet`` when it holds every part present; otherwise (a sweep killed before
+        its last flush, or still running) the table rebuilt from the parts, so nothing that
+        finished is missing and no case appears twice.
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``path`` holds no ``sweep.json``.
+    ValueError
+        If the store has the previous layout (the message gives the command converting it).
     """
     require_extra()
     import pyarrow.parquet as pq
@@ -497,8 +572,18 @@ def load(path: str | Path):
 def load_curves(path: str | Path, case_id: str | None = None):
     """Curves of the store at ``path``: one case's, or all (long format with ``case_id``).
 
-    Columns: ``case_id`` and CURVE_COLUMNS (SI units in the names), rows in part order (grid
-    order). Failed cases have no rows.
+    Parameters
+    ----------
+    path : path
+        The store folder.
+    case_id : str, optional
+        One case (ValueError if no part holds its curve).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``case_id`` and CURVE_COLUMNS (SI units in the names), rows in part order (grid
+        order), each case from its first part only. Failed cases have no rows.
     """
     require_extra()
     import pandas as pd
