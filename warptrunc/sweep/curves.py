@@ -191,17 +191,24 @@ def read_part_curves(path: str | Path, case_ids=None):
 def _part_table(results: list[Result]):
     import pyarrow as pa
 
-    ids, cols = [], {k: [] for k in CURVE_COLUMNS}
-    for rows, curve in results:
-        m = 0 if curve is None else len(curve["depth_m"])
-        ids.append(np.full(m, rows[0]["case_id"], dtype=object))
-        for k in CURVE_COLUMNS:
-            cols[k].append(np.asarray(curve[k]) if m else np.zeros(0))
-    data = {"case_id": pa.array(np.concatenate(ids) if ids else [], type=pa.string())}
+    lengths = [0 if curve is None else len(curve["depth_m"]) for _, curve in results]
+    ids = np.repeat(np.array([rows[0]["case_id"] for rows, _ in results], dtype=object), lengths)
+    data = {"case_id": pa.array(ids, type=pa.string())}
     for k in CURVE_COLUMNS:
-        v = np.concatenate(cols[k]) if cols[k] else np.zeros(0)
+        parts = [np.asarray(curve[k]) for (_, curve), m in zip(results, lengths, strict=True) if m]
+        v = np.concatenate(parts) if parts else np.zeros(0)
         data[k] = pa.array(v.astype(np.int64 if k == "n_contact_pixels" else np.float64))
     return pa.table(data)
+
+
+_PLAIN = (float, int, str, bool, type(None))
+
+
+def clean_rows(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Rows with JSON-ready values (NaN kept): plain Python values pass as they are, others
+    through :func:`warptrunc._results.jsonable`."""
+    return [{k: v if type(v) in _PLAIN else jsonable(v, nonfinite="keep") for k, v in r.items()}
+            for r in rows]  # fmt: skip
 
 
 def write_part(
@@ -234,8 +241,7 @@ def write_part(
     at any point leaves either no part or a complete one. The folder is fsynced last.
     """
     folder = Path(folder)
-    rows = [[{k: jsonable(v, nonfinite="keep") for k, v in r.items()} for r in rs]
-            for rs, _ in results]  # fmt: skip
+    rows = [clean_rows(rs) for rs, _ in results]
     ids = [rs[0]["case_id"] for rs in rows]
     if first_index is None:
         first_index = min(rs[0]["case_index"] for rs in rows)

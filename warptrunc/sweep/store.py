@@ -52,6 +52,7 @@ from .._atomic import jsonable_strict, read_json, strict_json
 from .._results import jsonable, write_atomic
 from .curves import (
     CURVE_COLUMNS,
+    clean_rows,
     parquet_bytes,
     part_files,
     part_rows,
@@ -165,8 +166,7 @@ def _sorted(df):
     return df.sort_values(keys, kind="stable", na_position="first").reset_index(drop=True)
 
 
-def _clean(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    return [{k: jsonable(v, nonfinite="keep") for k, v in r.items()} for r in rows]
+_clean = clean_rows
 
 
 class Store:
