@@ -168,12 +168,14 @@ def test_cli_fractal_and_fraction_options(tmp_path, capsys):
     out = tmp_path / "run"
     rc = main(["sweep", "--D", "2.5", "--delta", "0.01", "--n", "64", "--increments", "30",
                "--device", "cpu", "--no-progress", "--fractal", "vs", "sp",
-               "--min-pixels-fraction", "0.1", "--out", str(out)])  # fmt: skip
+               "--min-pixels-fraction", "0.1", "--bem-fractions", "0.1", "--out", str(out)])  # fmt: skip
     assert rc == 0 and "fraction=0.1: α" in capsys.readouterr().out
     df = load(out)
     assert df["D_vs"].notna().all() and df["D_tri"].isna().all() and len(df) == 2
+    assert df["k_ratio_0.1"].notna().all() and df["bem_converged_0.1"].notna().all()
     spec = json.loads((out / "sweep.json").read_text())["options"]
     assert spec["fractal_methods"] == ["vs", "sp"] and spec["min_pixels_fraction"] == [0.1]
+    assert spec["bem_fractions"] == [0.1]
 
 
 def test_rerun_skips_other_grid_refused_overwrite(tmp_path):

@@ -16,7 +16,9 @@ What it shows
       ``run_sweep(..., scheduler=client)`` into a fresh store; ratio = rate / (N × rate of 1
       worker), the parallel efficiency (1.0 = linear). With ``--device cuda:0`` every worker
       uses that GPU (two workers sharing one GPU); with ``--device cpu`` the workers use
-      CPU cores only (each process single-threaded: Dask sets OMP_NUM_THREADS=1).
+      CPU cores only, worker i pinned to core i and single-threaded (``--pin-cores``, on by
+      default for the CPU: the CPU paths size their thread pools by ``os.cpu_count()``, so
+      without it one worker would already use every core).
 
     Rates are K / wall time of the timed part; every timed run is preceded by an untimed
     warm-up case on the same device (kernels compiled and loaded).
@@ -106,7 +108,29 @@ def inprocess(n: int, cases: int, device, increments: int, bem: list[float]) -> 
     return wall
 
 
-def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: list[float]):
+def _pin_plugin():
+    """A worker plugin: worker i runs on CPU core i (mod the cores) and reports one CPU.
+
+    ``os.cpu_count`` is what the CPU paths size their thread pools by (scipy.fft's
+    ``workers``, the threaded WM product); reporting 1 makes each worker single-threaded, so
+    N workers use N cores and one worker is the one-core baseline.
+    """
+    from distributed import WorkerPlugin
+
+    class PinCores(WorkerPlugin):
+        name = "benchmark-pin-cores"
+        idempotent = True
+
+        def setup(self, worker):
+            cores = sorted(os.sched_getaffinity(0))
+            os.sched_setaffinity(0, {cores[int(worker.name) % len(cores)]})
+            os.cpu_count = lambda: 1
+
+    return PinCores()
+
+
+def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: list[float],
+                pin: bool):  # fmt: skip
     """Wall time (s) of run_sweep on a warmed-up LocalCluster of ``workers`` processes."""
     import logging
 
@@ -124,6 +148,8 @@ def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: 
     try:
         if device is None:
             client.register_plugin(PinDevice())
+        if pin:
+            client.register_plugin(_pin_plugin())
         o = SweepOptions(**opts)
         warm = SweepGrid([D], [DELTA], list(range(10**6, 10**6 + workers))).cases(o)
         names = list(client.scheduler_info()["workers"])
@@ -158,6 +184,8 @@ def main(argv=None) -> int:
     ap.add_argument("--bem-fractions", type=float, nargs="+", default=[],
                     help="elastic solves per case at δ = f·R_t (as warptrunc sweep)")  # fmt: skip
     ap.add_argument("--device", default=None, help="cpu, cuda:0, ... (default: resolved)")
+    ap.add_argument("--pin-cores", action=argparse.BooleanOptionalAction, default=None,
+                    help="worker i on CPU core i, single-threaded (default: on with --device cpu)")
     ap.add_argument("--json", type=Path, default=None, help="append the results here")
     args = ap.parse_args(argv)
     import warp as wp
@@ -182,8 +210,9 @@ def main(argv=None) -> int:
                                                  args.bem_fractions)))  # fmt: skip
         if "workers" in args.runs:
             for w in args.workers:
+                pin = args.pin_cores if args.pin_cores is not None else str(dev) == "cpu"
                 wall, devs = workers_run(n, args.cases, w, device, args.increments,
-                                         args.bem_fractions)  # fmt: skip
+                                         args.bem_fractions, pin)  # fmt: skip
                 results.append(dict(n=n, run=f"{w} workers", workers=w, wall_s=wall,
                                     devices=devs))  # fmt: skip
     for r in results:
