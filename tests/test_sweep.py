@@ -252,6 +252,9 @@ def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
     assert run_sweep(grid, out, progress=False, device="cpu", **OPTS)["error"].notna().sum() == 4
     fixed = run_sweep(grid, out, retry_failed=True, progress=False, device="cpu", **OPTS)
     assert fixed["error"].isna().all()
+    assert sorted(_on_disk(out)) == sorted(fixed.case_id.unique())  # failed cases left their parts
+    pd.testing.assert_frame_equal(pd.read_parquet(out / "cases.parquet"), fixed)
+    pd.testing.assert_frame_equal(load(out), fixed)
     pd.testing.assert_frame_equal(_results(fixed[fixed.seed != 1]), _results(good))
 
 

@@ -209,6 +209,7 @@ class Store:
         self.rows: dict[str, list[dict[str, Any]]] = {}
         self.part_of: dict[str, str] = {}
         self.duplicates = 0
+        self._frame = None
         self._dirty = False
         self._last_flush = time.monotonic()
         self._interval = flush_interval
@@ -237,9 +238,12 @@ class Store:
             failed = {c for c, r in self.rows.items() if r[0]["error"] is not None}
             for name in sorted({self.part_of[c] for c in failed}):
                 held = [c for c, p in self.part_of.items() if p == name]
-                self._rewrite(name, [c for c in held if c not in failed])
+                kept = self._rewrite(name, [c for c in held if c not in failed])
+                for rows in kept[1] if kept is not None else []:
+                    self.part_of[rows[0]["case_id"]] = kept[0]
             for c in failed:
                 del self.rows[c], self.part_of[c]
+            self._frame = None
             self._dirty = self._dirty or bool(failed)
         self.flush()
 
@@ -400,6 +404,7 @@ class Store:
     def _record(self, rows: list[dict[str, Any]], part: str | None) -> None:
         cid = rows[0]["case_id"]
         self.rows[cid] = rows
+        self._frame = None
         if part is not None:
             self.part_of[cid] = part
         self._dirty = True
@@ -414,8 +419,10 @@ class Store:
         pandas.DataFrame
             One row per case × fit range (the columns of ``cases.parquet``).
         """
-        rows = [r for rs in self.rows.values() for r in rs]
-        return _sorted(rows_frame(rows, self.columns))
+        if self._frame is None:
+            rows = [r for rs in self.rows.values() for r in rs]
+            self._frame = _sorted(rows_frame(rows, self.columns))
+        return self._frame.copy()
 
     def flush(self) -> None:
         """Rewrite ``cases.parquet`` (atomically) if cases were recorded since the last flush.
