@@ -713,6 +713,59 @@ def test_worker_written_parts(tmp_path, client, dask_reference, monkeypatch):
     pd.testing.assert_frame_equal(load(out), df)
 
 
+def _die_after_write_plugin(flag):
+    """A worker plugin: the first shard written in the cluster kills its worker (SIGKILL) right
+    after its part is in place, before the result reaches the client; ``flag`` records the
+    part's name and stamps."""
+    from distributed import WorkerPlugin
+
+    class DieAfterWrite(WorkerPlugin):
+        name = "test-die-after-write"
+        idempotent = True
+
+        def setup(self, worker):
+            import warptrunc.sweep.engines as e
+
+            if getattr(e.compute_shard, "_dies", False):
+                return
+            real = e.compute_shard
+
+            def dying(*a, **kw):
+                out = real(*a, **kw)
+                try:
+                    fd = os.open(flag, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+                except FileExistsError:
+                    return out
+                os.write(fd, json.dumps({"part": out["part"], "stamps": [
+                    rs[0]["finished_utc"] for rs in out["rows"]]}).encode())
+                os.close(fd)
+                os.kill(os.getpid(), signal.SIGKILL)
+
+            dying._dies = True
+            e.compute_shard = dying
+
+    return DieAfterWrite()
+
+
+@pytest.mark.timeout(300)
+def test_worker_killed_after_writing_its_part_part_kept(tmp_path, client, dask_reference):
+    """The part of a shard whose worker died before reporting is recorded, not recomputed."""
+    flag = tmp_path / "died.json"
+    client.register_plugin(_die_after_write_plugin(str(flag)))
+    try:
+        out = tmp_path / "s"
+        df = run_sweep(DASK_GRID, out, scheduler=client, progress=False, device="cpu",
+                       shard_size=3, **OPTS)  # fmt: skip
+    finally:
+        client.unregister_worker_plugin("test-die-after-write")
+    died = json.loads(flag.read_text())
+    assert (out / "curves" / died["part"]).exists()
+    assert not df.duplicated(["case_id", "min_pixels"]).any()
+    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
+    assert set(died["stamps"]) <= set(df["finished_utc"])  # the dead worker's results, kept
+    assert sorted(_on_disk(out)) == sorted(df.case_id.unique())
+
+
 @pytest.mark.timeout(120)
 def test_workers_pinned_one_device_each(client):
     from warptrunc.sweep.cluster import PinDevice
