@@ -88,6 +88,8 @@ def kernel_loop(n: int, cases: int, device, increments: int, bem: list[float]) -
 def _check(df) -> None:
     if df["error"].notna().any():
         raise RuntimeError(f"failed cases: {df['error'].dropna().unique()[:3]}")
+    if "bem_error" in df and df["bem_error"].notna().any():  # e.g. CuPy missing on a GPU
+        raise RuntimeError(f"failed elastic solves: {df['bem_error'].dropna().unique()[:3]}")
 
 
 def inprocess(n: int, cases: int, device, increments: int, bem: list[float]) -> float:
