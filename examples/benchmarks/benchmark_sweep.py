@@ -73,8 +73,8 @@ def kernel_loop(n: int, cases: int, device, increments: int, bem: list[float]) -
             fit_power_law(sc, min_pixels=10)
         except ValueError:  # too few increments in the range: the sweep records it too
             pass
-        if bem:
-            elastic_record(s, sc, o, device)
+        if bem and (why := elastic_record(s, sc, o, device)["bem_error"]) is not None:
+            raise RuntimeError(f"elastic solve failed: {why}")
 
     one(10**6)
     wp.synchronize_device(device)
