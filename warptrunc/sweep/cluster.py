@@ -234,8 +234,13 @@ def run_dask(
             while futures:
                 fut = next(pending)
                 ids = futures.pop(fut)
+                out = None
                 if fut.status == "finished":
-                    out = fut.result()
+                    try:
+                        out = fut.result()
+                    except Exception:  # cancelled after it finished (client.restart()): lost
+                        out = None
+                if out is not None:
                     bar.update(record(out["part"], out["rows"]))
                 else:
                     if curves is not None:  # the worker may have written the part and died
