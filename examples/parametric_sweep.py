@@ -8,9 +8,11 @@ What it shows
     (W_r = 100 µm, L = 1 mm) are truncated to ω_max = 0.1·R_t in 200 increments; the power law
     E_c/E = β[F/(E·A)]^α is fitted for several fit ranges (minimum contact pixels), and the
     linear fit α(D_in) is printed next to the paper's α = 0.209·D_in + 0.090.
-    The cases go to a result store (OUT/sweep.json, OUT/cases.parquet, OUT/curves/): running
-    the script again resumes an interrupted run instead of starting over, and ``--refit``
-    fits other ranges from the stored curves without generating anything. The summary goes
+    The cases go to a result store (OUT/sweep.json, OUT/cases.parquet, and OUT/curves/, a
+    partitioned Parquet dataset of one part per shard of cases): running the script again
+    resumes an interrupted run instead of starting over, and ``--refit`` fits other ranges
+    from the stored curves (``pandas.read_parquet(OUT / "curves")``) without generating
+    anything. The summary goes
     to OUT/summary.json and a Fig. 9b-style plot to OUT/alpha_vs_D.png.
 
 Key steps
@@ -40,11 +42,12 @@ def refit(out: Path, min_pixels: list[int]):
     import numpy as np
     import pandas as pd
 
-    from warptrunc.sweep import load, load_curves
+    from warptrunc.sweep import load
 
     cases = load(out).drop_duplicates("case_id").set_index("case_id")
     rows = []
-    for cid, c in load_curves(out).groupby("case_id"):
+    # the store's curves/ folder is a Parquet dataset: pandas reads every part at once
+    for cid, c in pd.read_parquet(Path(out) / "curves").groupby("case_id"):
         for mp in min_pixels:
             sel = (c["load_N"] > 0) & (c["n_contact_pixels"] >= mp)
             alpha = np.nan
@@ -111,7 +114,7 @@ def main(argv=None) -> int:
 
     png = "alpha_vs_D_refit.png" if args.refit else "alpha_vs_D.png"
     plot.alpha_vs_D(summary, path=args.out / png)
-    print(f"\nstore {args.out} (sweep.json, cases.parquet, curves/); wrote {name}, {png}")
+    print(f"\nstore {args.out} (sweep.json, cases.parquet, curves/part-*.parquet); wrote {name}, {png}")
     return 0
 
 

@@ -142,6 +142,23 @@ def test_tiny_rerun_reuses_and_conflict(tiny):
         reproduce(replace(get_profile("tiny"), seeds=1), out, device="cpu")
 
 
+def _drop_case(store, case_id):
+    """Rewrite the part holding ``case_id`` without it (as if killed before that case's part)."""
+    from warptrunc.sweep.curves import part_files, part_rows, read_part_curves, write_part
+
+    for f in part_files(store / "curves"):
+        held = part_rows(f)
+        if case_id not in {rs[0]["case_id"] for rs in held}:
+            continue
+        keep = [rs for rs in held if rs[0]["case_id"] != case_id]
+        curves = read_part_curves(f)
+        f.unlink()
+        if keep:
+            write_part(store / "curves", [
+                (rs, {k: v.to_numpy() for k, v in curves[curves.case_id == rs[0]["case_id"]]
+                      .drop(columns="case_id").items()}) for rs in keep])  # fmt: skip
+
+
 def test_tiny_group_stores_loadable_and_reused(tiny):
     pd = pytest.importorskip("pandas")
     from warptrunc.sweep import load
@@ -165,13 +182,13 @@ def test_tiny_group_stores_loadable_and_reused(tiny):
         assert r["D"]["vs"]["D"] == part.D_vs.iloc[0] and r["D"]["tri"]["D"] == part.D_tri.iloc[0]
     assert np.isfinite(g2.alpha).sum() >= len(rows)  # the comparisons above are not all skipped
     before = {g: load(p) for g, p in stores.items()}
-    # stage files lost and group 1 interrupted (cases.parquet and one curve gone): the rerun
+    # stage files lost and group 1 interrupted (cases.parquet and one case's curve gone): the rerun
     # rebuilds both stages from the stores and computes only the missing surface
     for g in stores:
         (out / "stages" / f"{g}.json").unlink()
     lost = before["group1"].case_id.iloc[-1]
     (stores["group1"] / "cases.parquet").unlink()
-    (stores["group1"] / "curves" / f"{lost}.parquet").unlink()
+    _drop_case(stores["group1"], lost)
     again = reproduce("tiny", out, device="cpu")
     assert set(again["meta"]["computed"]) == {"group1", "group2"}
     pd.testing.assert_frame_equal(load(stores["group2"]), before["group2"])  # same stamps

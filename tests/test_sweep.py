@@ -1,7 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Sweeps: grid parsing, the Parquet store, resume after SIGINT/SIGTERM, refusal of another
-grid, failing cases, and the Dask engine (2 workers; a worker killed mid-sweep)."""
+"""Sweeps: grid parsing, the Parquet store (parts, duplicates, migration of the previous
+layout), resume after SIGINT/SIGTERM/kill -9, refusal of another grid, failing cases, elastic
+columns, and the Dask engine (2 workers; a worker killed mid-sweep)."""
 
 import json
 import os
@@ -19,6 +20,7 @@ pytest.importorskip("pyarrow")
 from warptrunc.sweep import (  # noqa: E402
     CURVE_COLUMNS,
     RUN_COLUMNS,
+    Store,
     SweepGrid,
     SweepOptions,
     load,
@@ -26,6 +28,7 @@ from warptrunc.sweep import (  # noqa: E402
     parse_seeds,
     run_sweep,
 )
+from warptrunc.sweep.curves import part_files, part_rows  # noqa: E402
 from warptrunc.wm import wm_surface  # noqa: E402
 
 OPTS = dict(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
@@ -34,6 +37,11 @@ OPTS = dict(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
 def _results(df):
     """The cases table without the columns that describe where and when a case ran."""
     return df.drop(columns=list(RUN_COLUMNS)).reset_index(drop=True)
+
+
+def _on_disk(out):
+    """Case ids held by the parts of a store (a case in two parts counts twice)."""
+    return [rs[0]["case_id"] for f in part_files(out / "curves") for rs in (part_rows(f) or [])]
 
 
 def test_parse_seeds_and_grid_errors(tmp_path):
@@ -101,6 +109,15 @@ def test_store_rows_and_curves_match_numpy(tmp_path):
     assert row.alpha == pytest.approx(a, rel=1e-12) and row.beta == pytest.approx(np.exp(logb))
     assert row.n_points == sel.sum()
     assert len(load_curves(tmp_path / "s")) == 8 * 61
+    # the parts are a Parquet dataset that pandas and pyarrow read directly
+    import pyarrow.dataset as ds
+
+    direct = pd.read_parquet(tmp_path / "s" / "curves")
+    pd.testing.assert_frame_equal(direct.sort_values(["case_id", "depth_m"]).reset_index(drop=True),
+                                  load_curves(tmp_path / "s").sort_values(["case_id", "depth_m"])
+                                  .reset_index(drop=True), check_dtype=False)  # fmt: skip
+    assert ds.dataset(tmp_path / "s" / "curves").count_rows() == 8 * 61
+    pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "s" / "cases.parquet"), df)
 
 
 def test_fractal_methods_and_relative_fit_range(tmp_path):
@@ -151,12 +168,14 @@ def test_cli_fractal_and_fraction_options(tmp_path, capsys):
     out = tmp_path / "run"
     rc = main(["sweep", "--D", "2.5", "--delta", "0.01", "--n", "64", "--increments", "30",
                "--device", "cpu", "--no-progress", "--fractal", "vs", "sp",
-               "--min-pixels-fraction", "0.1", "--out", str(out)])  # fmt: skip
+               "--min-pixels-fraction", "0.1", "--bem-fractions", "0.1", "--out", str(out)])  # fmt: skip
     assert rc == 0 and "fraction=0.1: α" in capsys.readouterr().out
     df = load(out)
     assert df["D_vs"].notna().all() and df["D_tri"].isna().all() and len(df) == 2
+    assert df["k_ratio_0.1"].notna().all() and df["bem_converged_0.1"].notna().all()
     spec = json.loads((out / "sweep.json").read_text())["options"]
     assert spec["fractal_methods"] == ["vs", "sp"] and spec["min_pixels_fraction"] == [0.1]
+    assert spec["bem_fractions"] == [0.1]
 
 
 def test_rerun_skips_other_grid_refused_overwrite(tmp_path):
@@ -173,7 +192,7 @@ def test_rerun_skips_other_grid_refused_overwrite(tmp_path):
     assert load(out)["case_id"].nunique() == 3  # the refused runs changed nothing
     new = run_sweep(SweepGrid.from_values([2.3], [0.01], "0-3"), out, overwrite=True,
                     progress=False, device="cpu", **OPTS)  # fmt: skip
-    assert new["case_id"].nunique() == 4 and len(list((out / "curves").iterdir())) == 4
+    assert new["case_id"].nunique() == 4 and sorted(_on_disk(out)) == sorted(new["case_id"].unique())
 
 
 def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
@@ -182,7 +201,8 @@ def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
     grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1")
     full = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
     (out / "cases.parquet").unlink()
-    (out / "curves" / ".x.parquet.tmp-123").write_bytes(b"PAR1 trunc")  # a half-written file
+    (out / "curves" / ".part-x.parquet.tmp-123").write_bytes(b"PAR1 trunc")  # a half-written part
+    assert len(pd.read_parquet(out / "curves")) == 4 * 61  # the dot-named temporary is skipped
     pd.testing.assert_frame_equal(load(out), full)
     resumed = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
     pd.testing.assert_frame_equal(resumed, full)  # same stamps: nothing was recomputed
@@ -191,7 +211,7 @@ def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
 
 def test_store_written_with_rt_measured_m_reads_as_Rt_measured_m(tmp_path):
     """A store from before R_t was spelled ``Rt`` everywhere: the old column reads under the new
-    name, from cases.parquet and from the rows kept in the curve files alike."""
+    name, from cases.parquet and from the rows kept in the parts alike."""
     import pyarrow.parquet as pq
 
     out = tmp_path / "s"
@@ -232,7 +252,225 @@ def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
     assert run_sweep(grid, out, progress=False, device="cpu", **OPTS)["error"].notna().sum() == 4
     fixed = run_sweep(grid, out, retry_failed=True, progress=False, device="cpu", **OPTS)
     assert fixed["error"].isna().all()
+    assert sorted(_on_disk(out)) == sorted(fixed.case_id.unique())  # failed cases left their parts
+    pd.testing.assert_frame_equal(pd.read_parquet(out / "cases.parquet"), fixed)
+    pd.testing.assert_frame_equal(load(out), fixed)
     pd.testing.assert_frame_equal(_results(fixed[fixed.seed != 1]), _results(good))
+
+
+# --- parts: half-written, retried concurrently, overlapping; the previous layout -----------------
+
+
+def _old_layout(out):
+    """Turn a store into the previous layout: sweep.json of format 1, one curve file per case
+    (its rows in the metadata), cases.parquet without the last case (killed before its flush)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from warptrunc.sweep.store import rows_frame
+
+    rows = {rs[0]["case_id"]: rs for f in part_files(out / "curves") for rs in part_rows(f)}
+    curves = load_curves(out)
+    for f in part_files(out / "curves"):
+        f.unlink()
+    for cid, rs in rows.items():
+        c = curves[curves.case_id == cid].drop(columns="case_id")
+        t = pa.Table.from_pandas(c, preserve_index=False)
+        t = t.replace_schema_metadata({b"warptrunc.rows": json.dumps(rs).encode()})
+        pq.write_table(t, out / "curves" / f"{cid}.parquet")
+    last = max(rows, key=lambda c: rows[c][0]["case_index"])
+    df = rows_frame([r for c, rs in rows.items() if c != last for r in rs])
+    df.to_parquet(out / "cases.parquet", index=False)
+    spec = json.loads((out / "sweep.json").read_text())
+    (out / "sweep.json").write_text(json.dumps({**spec, "format": "warptrunc-sweep/1"}))
+
+
+def test_previous_layout_refused_by_load_converted_by_migrate(tmp_path):
+    from warptrunc.cli import main
+
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1")
+    out, out2 = tmp_path / "s", tmp_path / "s2"
+    full = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    curves = load_curves(out)
+    _old_layout(out)
+    with pytest.raises(ValueError, match=r"previous layout.*warptrunc sweep --migrate .*s$"):
+        load(out)
+    assert main(["sweep", "--migrate", "--out", str(out)]) == 0
+    assert json.loads((out / "sweep.json").read_text())["format"] == "warptrunc-sweep/2"
+    assert sorted(p.name for p in (out / "curves").iterdir())[0].startswith("part-")
+    assert len(list((out / "curves").iterdir())) == 1  # 4 cases in one part, no old file left
+    pd.testing.assert_frame_equal(load(out), full)  # the last case came from its curve file
+    pd.testing.assert_frame_equal(load_curves(out), curves)
+    assert main(["sweep", "--migrate", "--out", str(out)]) == 0  # nothing left to convert
+    # run_sweep converts on open, then resumes: nothing recomputed
+    run_sweep(grid, out2, progress=False, device="cpu", **OPTS)
+    _old_layout(out2)
+    again = run_sweep(grid, out2, progress=False, device="cpu", **OPTS)
+    pd.testing.assert_frame_equal(_results(again), _results(full))
+    assert sorted(_on_disk(out2)) == sorted(full.case_id.unique())
+
+
+_KILL_MID_WRITE = """
+import os, sys, time
+import warptrunc.sweep.curves as c
+from warptrunc.sweep import SweepGrid, SweepOptions
+from warptrunc.sweep.engines import compute_shard
+real = os.fsync
+def stall(fd):  # the part's bytes are in the temporary file: the worker dies here
+    print("writing", flush=True)
+    time.sleep(60)
+c.os.fsync = stall
+o = SweepOptions(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
+cases = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1").cases(o)
+compute_shard(cases, o, "cpu", sys.argv[1])
+"""
+
+
+@pytest.mark.timeout(240)
+def test_worker_killed_while_writing_leaves_no_readable_part(tmp_path):
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1")
+    run_sweep(grid, out, progress=False, device="cpu", **OPTS)  # the store exists
+    ref = load(out)
+    for f in part_files(out / "curves"):
+        f.unlink()
+    (out / "cases.parquet").unlink()
+    p = subprocess.Popen([sys.executable, "-c", _KILL_MID_WRITE, str(out / "curves")],
+                         stdout=subprocess.PIPE, text=True)  # fmt: skip
+    assert p.stdout.readline().strip() == "writing"
+    p.kill()  # kill -9 mid-write
+    p.communicate(timeout=30)
+    left = list((out / "curves").iterdir())
+    assert len(left) == 1 and left[0].name.startswith(".part-") and ".tmp-" in left[0].name
+    assert left[0].stat().st_size > 0 and not part_files(out / "curves")
+    # readers skip it, and so does resuming (which removes it and computes the four cases)
+    assert len(pd.read_parquet(out / "curves")) == 0 and len(load(out)) == 0
+    df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    pd.testing.assert_frame_equal(_results(df), _results(ref))
+    assert not list((out / "curves").glob(".*")) and len(_on_disk(out)) == 4
+
+
+def test_shard_retried_concurrently_written_once(tmp_path):
+    """Four attempts of one shard at once (as a retried task whose first attempt still runs):
+    one part, each case once, and every attempt reports that part's rows."""
+    import threading
+
+    from warptrunc.sweep.engines import compute_shard
+
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-2")
+    run_sweep(SweepGrid.from_values([2.3], [0.01], "0"), None, progress=False, device="cpu",
+              **OPTS)  # fmt: skip  (kernels loaded before the race)
+    opts = SweepOptions(**OPTS)
+    cases = grid.cases(opts)
+    Store(out, grid, opts)  # an empty store: sweep.json and curves/
+    barrier, got = threading.Barrier(4), []
+
+    def attempt():
+        barrier.wait()
+        got.append(compute_shard(cases, opts, "cpu", str(out / "curves")))
+
+    ths = [threading.Thread(target=attempt) for _ in range(4)]
+    for t in ths:
+        t.start()
+    for t in ths:
+        t.join(120)
+    assert len(got) == 4 and len({g["part"] for g in got}) == 1
+    same = {json.dumps(g["rows"], sort_keys=True) for g in got}
+    assert len(same) == 1  # the winner's rows (stamps included) in every answer
+    assert len(part_files(out / "curves")) == 1 and not list((out / "curves").glob(".*"))
+    assert sorted(_on_disk(out)) == sorted(c.case_id for c in cases)
+    # the store takes the part as it is: nothing recomputed
+    df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    assert sorted(df.finished_utc.unique()) == sorted({rs[0]["finished_utc"] for rs in got[0]["rows"]})
+
+
+def test_overlapping_parts_each_case_once(tmp_path):
+    """Two shards that overlap (a lost shard run again in another split) each write a part:
+    readers see each case once, and opening the store rewrites the later part without them."""
+    from warptrunc.sweep.engines import compute_shard
+
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-2")
+    ref = run_sweep(grid, out, progress=False, device="cpu", shard_seconds=0, **OPTS)
+    for f in part_files(out / "curves"):
+        f.unlink()
+    (out / "cases.parquet").unlink()
+    opts = SweepOptions(**OPTS)
+    cases = grid.cases(opts)
+    a = compute_shard(cases[:4], opts, "cpu", str(out / "curves"))
+    b = compute_shard(cases[2:], opts, "cpu", str(out / "curves"))
+    assert a["part"] < b["part"] and len(_on_disk(out)) == 8  # cases 2 and 3 twice
+    df = load(out)
+    assert not df.duplicated(["case_id", "min_pixels"]).any() and len(df) == len(ref)
+    assert len(load_curves(out)) == 6 * 61
+    again = run_sweep(grid, out, progress=False, device="cpu", **OPTS)  # nothing recomputed
+    pd.testing.assert_frame_equal(_results(again), _results(ref))
+    assert sorted(_on_disk(out)) == sorted(ref.case_id.unique())  # the overlap was dropped
+    assert len(pd.read_parquet(out / "curves")) == 6 * 61
+    first = {rs[0]["case_id"]: rs[0]["finished_utc"] for rs in a["rows"]}
+    kept = again.drop_duplicates("case_id").set_index("case_id")["finished_utc"]
+    assert all(kept[c] == t for c, t in first.items())  # the first part's cases were kept
+
+
+def test_elastic_columns_match_the_contact_solver(tmp_path):
+    from warptrunc.contact import solve_contact
+    from warptrunc.stiffness import Material
+
+    grid = SweepGrid.from_values([2.3, 2.7], [0.01], "0")
+    kw = dict(OPTS, bem_fractions=(0.2, 0.05))
+    df = run_sweep(grid, tmp_path / "s", progress=False, device="cpu", **kw)
+    assert df["error"].isna().all() and df["bem_error"].isna().all()
+    pd.testing.assert_frame_equal(load(tmp_path / "s"), df)
+    assert json.loads((tmp_path / "s" / "sweep.json").read_text())["options"]["bem_fractions"] == [0.05, 0.2]
+    cols = [c for c in df.columns if c.endswith("_0.05")]
+    assert cols == ["bem_depth_m_0.05", "F_bem_N_0.05", "A_bem_m2_0.05", "k_bem_N_per_m_0.05",
+                    "F_trunc_N_0.05", "A_trunc_m2_0.05", "k_trunc_N_per_m_0.05", "F_ratio_0.05",
+                    "A_ratio_0.05", "k_ratio_0.05", "bem_converged_0.05", "bem_iterations_0.05"]
+    assert str(df["bem_converged_0.2"].dtype) == "boolean"
+    assert str(df["bem_iterations_0.2"].dtype) == "Int64"
+    e_star = Material().reduced_modulus
+    for _, row in df.drop_duplicates("case_id").iterrows():
+        s = wm_surface(row.D_in, 100e-6, n=64, Rt=0.01 * 100e-6, seed=int(row.seed), device="cpu")
+        d = np.array([0.05, 0.2]) * row.Rt_measured_m
+        cc = solve_contact(s, depths=d, contact_modulus=e_star, substrate="free",
+                           stiffness="barber", device="cpu")  # fmt: skip
+        z = s.heights
+        for i, f in enumerate(("0.05", "0.2")):
+            assert row[f"bem_depth_m_{f}"] == d[i]
+            # same solver, same inputs: equal up to the order of float sums (rtol 1e-9)
+            np.testing.assert_allclose(row[f"F_bem_N_{f}"], cc.load[i], rtol=1e-9)
+            np.testing.assert_allclose(row[f"k_bem_N_per_m_{f}"], cc.stiffness[i], rtol=1e-9)
+            assert row[f"A_bem_m2_{f}"] == cc.area[i]
+            assert row[f"bem_converged_{f}"] == bool(cc.converged[i])
+            n = np.count_nonzero(z >= np.float32(np.float32(z.max()) - d[i]))
+            assert row[f"A_trunc_m2_{f}"] == n * s.pixel_area
+            np.testing.assert_allclose(row[f"k_trunc_N_per_m_{f}"],
+                                       2 / np.sqrt(np.pi) * e_star * np.sqrt(n * s.pixel_area),
+                                       rtol=1e-12)  # fmt: skip
+            for q in ("F", "A", "k"):
+                assert row[f"{q}_ratio_{f}"] == pytest.approx(
+                    row[f"{q}_bem_{'N' if q == 'F' else 'm2' if q == 'A' else 'N_per_m'}_{f}"]
+                    / row[f"{q}_trunc_{'N' if q == 'F' else 'm2' if q == 'A' else 'N_per_m'}_{f}"],
+                    rel=1e-12)
+        assert row["F_trunc_N_0.05"] > 0 and row["F_bem_N_0.2"] > row["F_bem_N_0.05"] > 0
+    from warptrunc.sweep import bem_long
+
+    long = bem_long(df)
+    assert len(long) == 2 * len(df) and sorted(long.bem_fraction.unique()) == [0.05, 0.2]
+    assert long.set_index(["case_id", "min_pixels", "bem_fraction"]).loc[
+        (df.case_id[0], 1, 0.2), "k_ratio"] == df["k_ratio_0.2"][0]
+
+
+def test_unconverged_solve_flagged_not_dropped(tmp_path, monkeypatch):
+    import warptrunc.contact as contact
+
+    real = contact.solve_contact
+    monkeypatch.setattr(contact, "solve_contact", lambda *a, **kw: real(*a, **{**kw, "maxiter": 1}))
+    df = run_sweep(SweepGrid.from_values([2.5], [0.01], "0"), tmp_path / "s", progress=False,
+                   device="cpu", **dict(OPTS, bem_fractions=(0.1,)))  # fmt: skip
+    assert len(df) == 2 and df["error"].isna().all()
+    assert (~df["bem_converged_0.1"]).all() and df["F_bem_N_0.1"].notna().all()
 
 
 # --- the CLI killed by a signal, then resumed ---------------------------------------------------
@@ -258,9 +496,10 @@ def reference():
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
 def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
     out = tmp_path / "run"
-    p = subprocess.Popen(_cli(out), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    p = subprocess.Popen(_cli(out, "--shard-seconds", "0"), stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)  # fmt: skip
     t0 = time.monotonic()
-    while len(list(out.glob("curves/*.parquet"))) < 2:
+    while len(_on_disk(out)) < 2:
         assert p.poll() is None, p.communicate()
         assert time.monotonic() - t0 < 240, "the sweep did not start"
         time.sleep(0.01)
@@ -281,7 +520,7 @@ def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
     # the cases finished before the signal were not recomputed
     kept = final[final.case_id.isin(partial.case_id)]
     np.testing.assert_array_equal(kept["finished_utc"], partial["finished_utc"])
-    assert len(list(out.glob("curves/*.parquet"))) == 18
+    assert sorted(_on_disk(out)) == sorted(final.case_id.unique())  # each case in one part
 
 
 def test_cli_refuses_other_grid(tmp_path):
@@ -377,10 +616,10 @@ def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_re
 
     def wait_for(k):
         t0 = time.monotonic()
-        while len(list(out.glob("curves/*.parquet"))) < k and th.is_alive():
+        while len(_on_disk(out)) < k and th.is_alive():
             assert time.monotonic() - t0 < 200
             time.sleep(0.01)
-        return len(list(out.glob("curves/*.parquet")))
+        return len(_on_disk(out))
 
     th = threading.Thread(target=sweep)
     th.start()
@@ -399,7 +638,7 @@ def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_re
 
 
 def _sweep_in_thread(out, **kw):
-    """Start run_sweep in a thread; returns (thread, box, wait_for(k curve files))."""
+    """Start run_sweep in a thread; returns (thread, box, wait_for(k cases in parts))."""
     import threading
 
     box = {}
@@ -414,23 +653,22 @@ def _sweep_in_thread(out, **kw):
 
     def wait_for(k):
         t0 = time.monotonic()
-        while len(list(out.glob("curves/*.parquet"))) < k and th.is_alive():
+        while len(_on_disk(out)) < k and th.is_alive():
             assert time.monotonic() - t0 < 200
             time.sleep(0.01)
-        return len(list(out.glob("curves/*.parquet")))
+        return len(_on_disk(out))
 
     th.start()
     return th, box, wait_for
 
 
 @pytest.mark.timeout(300)
-def test_chunked_worker_killed_mid_chunk_no_loss_no_duplicates(tmp_path, client, dask_reference):
-    """Chunks of 3 cases (client writes): a worker killed mid-chunk has its chunk run again."""
+def test_sharded_worker_killed_mid_shard_no_loss_no_duplicates(tmp_path, client, dask_reference):
+    """Shards of 3 cases: a worker killed mid-shard has its shard run again."""
     client.register_plugin(_slow_cases_plugin())
     out = tmp_path / "s"
-    th, box, wait_for = _sweep_in_thread(out, scheduler=client, chunk_size=3,
-                                         worker_writes=False)  # fmt: skip
-    done_at_kill = wait_for(1)  # the first chunk is written: the second and third are running
+    th, box, wait_for = _sweep_in_thread(out, scheduler=client, shard_size=3)
+    done_at_kill = wait_for(1)  # the first shard is written: the second and third are running
     pids = client.run(os.getpid)
     os.kill(next(iter(pids.values())), signal.SIGKILL)
     th.join(240)
@@ -440,21 +678,22 @@ def test_chunked_worker_killed_mid_chunk_no_loss_no_duplicates(tmp_path, client,
     assert not df.duplicated(["case_id", "min_pixels"]).any() and df["error"].isna().all()
     pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
     pd.testing.assert_frame_equal(load(out), df)
-    assert len(list((out / "curves").iterdir())) == 8  # no temporary file left
+    assert sorted(_on_disk(out)) == sorted(df.case_id.unique())  # each case in one part
+    assert not list((out / "curves").glob(".*"))  # no temporary file left
 
 
 @pytest.mark.timeout(300)
-def test_worker_written_curves(tmp_path, client, dask_reference, monkeypatch):
-    """With worker writes the client writes no curve file; a kill loses and duplicates nothing."""
+def test_worker_written_parts(tmp_path, client, dask_reference, monkeypatch):
+    """The workers write the parts, the client none; a kill loses and duplicates nothing."""
     import warptrunc.sweep.store as store_mod
 
     def refuse(*a, **kw):
-        raise AssertionError("the client wrote a curve file")
+        raise AssertionError("the client wrote a part")
 
-    monkeypatch.setattr(store_mod, "write_curves", refuse)  # this process only, not the workers
+    monkeypatch.setattr(store_mod, "write_part", refuse)  # this process only, not the workers
     client.register_plugin(_slow_cases_plugin())
     out = tmp_path / "s"
-    th, box, wait_for = _sweep_in_thread(out, scheduler=client, chunk_size=2, worker_writes=True)
+    th, box, wait_for = _sweep_in_thread(out, scheduler=client, shard_size=2)
     done_at_kill = wait_for(1)
     pids = client.run(os.getpid)
     os.kill(next(iter(pids.values())), signal.SIGKILL)
@@ -470,8 +709,61 @@ def test_worker_written_curves(tmp_path, client, dask_reference, monkeypatch):
     monkeypatch.undo()
     run_sweep(DASK_GRID, ref, progress=False, device="cpu", **OPTS)
     pd.testing.assert_frame_equal(load_curves(out), load_curves(ref))
-    (out / "cases.parquet").unlink()  # rebuilt from the worker-written curve files alone
+    (out / "cases.parquet").unlink()  # rebuilt from the worker-written parts alone
     pd.testing.assert_frame_equal(load(out), df)
+
+
+def _die_after_write_plugin(flag):
+    """A worker plugin: the first shard written in the cluster kills its worker (SIGKILL) right
+    after its part is in place, before the result reaches the client; ``flag`` records the
+    part's name and stamps."""
+    from distributed import WorkerPlugin
+
+    class DieAfterWrite(WorkerPlugin):
+        name = "test-die-after-write"
+        idempotent = True
+
+        def setup(self, worker):
+            import warptrunc.sweep.engines as e
+
+            if getattr(e.compute_shard, "_dies", False):
+                return
+            real = e.compute_shard
+
+            def dying(*a, **kw):
+                out = real(*a, **kw)
+                try:
+                    fd = os.open(flag, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+                except FileExistsError:
+                    return out
+                os.write(fd, json.dumps({"part": out["part"], "stamps": [
+                    rs[0]["finished_utc"] for rs in out["rows"]]}).encode())
+                os.close(fd)
+                os.kill(os.getpid(), signal.SIGKILL)
+
+            dying._dies = True
+            e.compute_shard = dying
+
+    return DieAfterWrite()
+
+
+@pytest.mark.timeout(300)
+def test_worker_killed_after_writing_its_part_part_kept(tmp_path, client, dask_reference):
+    """The part of a shard whose worker died before reporting is recorded, not recomputed."""
+    flag = tmp_path / "died.json"
+    client.register_plugin(_die_after_write_plugin(str(flag)))
+    try:
+        out = tmp_path / "s"
+        df = run_sweep(DASK_GRID, out, scheduler=client, progress=False, device="cpu",
+                       shard_size=3, **OPTS)  # fmt: skip
+    finally:
+        client.unregister_worker_plugin("test-die-after-write")
+    died = json.loads(flag.read_text())
+    assert (out / "curves" / died["part"]).exists()
+    assert not df.duplicated(["case_id", "min_pixels"]).any()
+    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
+    assert set(died["stamps"]) <= set(df["finished_utc"])  # the dead worker's results, kept
+    assert sorted(_on_disk(out)) == sorted(df.case_id.unique())
 
 
 @pytest.mark.timeout(120)

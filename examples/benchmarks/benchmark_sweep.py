@@ -1,24 +1,37 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Benchmark: sweep throughput (surfaces per second) in-process and on a local Dask cluster.
+"""Benchmark: sweep throughput (surfaces/s) against the kernel loop, and scaling with workers.
 
 What it shows
     For each grid size n, K cases (D = 2.5, δ = 0.01, seeds 0..K-1, 200 increments, fit range
-    min_pixels = 10) run through :func:`warptrunc.sweep.run_sweep` into a fresh result store,
-    in this process and with ``--workers N`` (a LocalCluster, one worker per GPU). Everything
-    a user pays is inside: generation, truncation, fits, the Parquet writes, the transfer of
-    results to the client. Two rates per run:
+    min_pixels = 10; with ``--bem-fractions`` an elastic solve per case) are run by up to three
+    kinds of run, all in one process and printed as one table that names the device:
 
-    - wall: K / (wall time of run_sweep), including cluster start-up and warm-up;
-    - steady: (K − w) / (t_K − t_w), from the finish stamps of the cases, leaving out the first
-      w cases (w = number of workers: one per worker, which pays kernel loading) — the rate
-      a long sweep approaches.
+    - ``kernel``: the reference, the bare loop generate → truncate → fit (→ elastic solve) of
+      the same cases with no store, no rows, no thread (``wp.synchronize_device`` at the end);
+    - ``inproc``: :func:`warptrunc.sweep.run_sweep` in this process into a fresh store (the
+      writer thread writes the parts while the device computes); ratio = inproc / kernel;
+    - ``N`` (from ``--workers``): a LocalCluster of N worker processes, one thread each, started
+      and warmed up (one case per worker: kernels loaded) before the clock starts, then
+      ``run_sweep(..., scheduler=client)`` into a fresh store; ratio = rate / (N × rate of 1
+      worker), the parallel efficiency (1.0 = linear). With ``--device cuda:0`` every worker
+      uses that GPU (two workers sharing one GPU); with ``--device cpu`` the workers use
+      CPU cores only, worker i pinned to core i and single-threaded (``--pin-cores``, on by
+      default for the CPU: the CPU paths size their thread pools by ``os.cpu_count()``, so
+      without it one worker would already use every core).
 
-    In-process runs get one untimed warm-up case first (kernels compiled and loaded).
+    Rates are K / wall time of the timed part; every timed run is preceded by an untimed
+    warm-up case on the same device (kernels compiled and loaded).
 
 Run
-    python examples/benchmarks/benchmark_sweep.py --device cpu --n 512 --cases 16 --workers 0 2
-    python examples/benchmarks/benchmark_sweep.py --n 2048 10240 --cases 40 --workers 0 2   # on 2 GPUs
+    # the H100: light cases, in-process against the kernel loop
+    python examples/benchmarks/benchmark_sweep.py --n 2048 10240 --cases 200
+    # 16 CPU cores: elastic 512² cases on 1, 2, 4, 8 CPU workers
+    python examples/benchmarks/benchmark_sweep.py --device cpu --n 512 --cases 64 \\
+        --bem-fractions 0.05 0.1 0.2 --runs workers --workers 1 2 4 8
+    # one GPU shared by 2 workers against 1 worker
+    python examples/benchmarks/benchmark_sweep.py --device cuda:0 --n 512 --cases 128 \\
+        --bem-fractions 0.05 0.1 0.2 --runs workers --workers 1 2
 """
 
 from __future__ import annotations
@@ -32,40 +45,130 @@ import tempfile
 import time
 from pathlib import Path
 
+D, DELTA = 2.5, 0.01
 
-def one(n: int, cases: int, workers: int, device, increments: int, chunk_size=None,
-        worker_writes=None) -> dict:
+
+def _opts(n: int, increments: int, bem: list[float]) -> dict:
+    return dict(n=n, increments=increments, min_pixels=(10,), bem_fractions=tuple(bem))
+
+
+def kernel_loop(n: int, cases: int, device, increments: int, bem: list[float]) -> float:
+    """Wall time (s) of the bare loop over ``cases`` surfaces (after one warm-up surface)."""
+    import warp as wp
+
+    from warptrunc.stiffness import fit_power_law, stiffness_curve
+    from warptrunc.sweep import SweepOptions
+    from warptrunc.sweep.engines import elastic_record
+    from warptrunc.truncation import truncate
+    from warptrunc.wm import wm_surface
+
+    o = SweepOptions(**_opts(n, increments, bem))
+    mat = o.material()
+
+    def one(seed):
+        s = wm_surface(D, o.Wr, L=o.L, n=n, Rt=DELTA * o.Wr, seed=seed, device=device)
+        sc = stiffness_curve(truncate(s, increments, max_depth_fraction=o.max_depth_fraction,
+                                      device=device), mat)  # fmt: skip
+        try:
+            fit_power_law(sc, min_pixels=10)
+        except ValueError:  # too few increments in the range: the sweep records it too
+            pass
+        if bem and (why := elastic_record(s, sc, o, device)["bem_error"]) is not None:
+            raise RuntimeError(f"elastic solve failed: {why}")
+
+    one(10**6)
+    wp.synchronize_device(device)
+    t0 = time.perf_counter()
+    for seed in range(cases):
+        one(seed)
+    wp.synchronize_device(device)
+    return time.perf_counter() - t0
+
+
+def _check(df) -> None:
+    if df["error"].notna().any():
+        raise RuntimeError(f"failed cases: {df['error'].dropna().unique()[:3]}")
+    if "bem_error" in df and df["bem_error"].notna().any():  # e.g. CuPy missing on a GPU
+        raise RuntimeError(f"failed elastic solves: {df['bem_error'].dropna().unique()[:3]}")
+
+
+def inprocess(n: int, cases: int, device, increments: int, bem: list[float]) -> float:
+    """Wall time (s) of run_sweep in this process into a fresh store (after a warm-up case)."""
     from warptrunc.sweep import SweepGrid, run_sweep
 
-    opts = dict(n=n, increments=increments, min_pixels=(10,))
-    if workers == 0:  # warm-up outside the timing
-        run_sweep(SweepGrid([2.5], [0.01], [10**6]), None, progress=False, device=device, **opts)
+    opts = _opts(n, increments, bem)
+    run_sweep(SweepGrid([D], [DELTA], [10**6]), None, progress=False, device=device, **opts)
     tmp = Path(tempfile.mkdtemp(prefix="warptrunc-bench-sweep-"))
     try:
         t0 = time.perf_counter()
-        df = run_sweep(
-            SweepGrid([2.5], [0.01], list(range(cases))), tmp / "store", progress=False,
-            workers=workers or None, device=device, **opts,
-            **(dict(chunk_size=chunk_size, worker_writes=worker_writes) if workers else {}),
-        )  # fmt: skip
+        df = run_sweep(SweepGrid([D], [DELTA], list(range(cases))), tmp / "store",
+                       progress=False, device=device, **opts)  # fmt: skip
         wall = time.perf_counter() - t0
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    if df["error"].notna().any():
-        raise RuntimeError(f"failed cases: {df['error'].dropna().unique()[:3]}")
-    import pandas as pd
+    _check(df)
+    return wall
 
-    per_case = df.drop_duplicates("case_id")
-    stamps = pd.to_datetime(per_case["finished_utc"]).sort_values().reset_index(drop=True)
-    w = max(workers, 1)
-    span = (stamps.iloc[-1] - stamps.iloc[w - 1]).total_seconds()
-    return {
-        "n": n, "cases": cases, "workers": workers, "devices": sorted(df["device"].unique()),
-        "device_name": str(df["device_name"].iloc[0]), "wall_s": wall,
-        "wall_surfaces_per_s": cases / wall,
-        "steady_surfaces_per_s": (cases - w) / span if span > 0 else float("nan"),
-        "median_case_s": float(per_case["seconds"].median()),
-    }  # fmt: skip
+
+def _pin_plugin():
+    """A worker plugin: worker i runs on CPU core i (mod the cores) and reports one CPU.
+
+    ``os.cpu_count`` is what the CPU paths size their thread pools by (scipy.fft's
+    ``workers``, the threaded WM product); reporting 1 makes each worker single-threaded, so
+    N workers use N cores and one worker is the one-core baseline.
+    """
+    from distributed import WorkerPlugin
+
+    class PinCores(WorkerPlugin):
+        name = "benchmark-pin-cores"
+        idempotent = True
+
+        def setup(self, worker):
+            cores = sorted(os.sched_getaffinity(0))
+            os.sched_setaffinity(0, {cores[int(worker.name) % len(cores)]})
+            os.cpu_count = lambda: 1
+
+    return PinCores()
+
+
+def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: list[float],
+                pin: bool):  # fmt: skip
+    """Wall time (s) of run_sweep on a warmed-up LocalCluster of ``workers`` processes."""
+    import logging
+
+    from distributed import Client, LocalCluster
+
+    from warptrunc.sweep import SweepGrid, SweepOptions, run_sweep
+    from warptrunc.sweep.cluster import PinDevice
+    from warptrunc.sweep.engines import compute_case
+
+    opts = _opts(n, increments, bem)
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=":0", silence_logs=logging.ERROR)  # fmt: skip
+    client = Client(cluster)
+    tmp = Path(tempfile.mkdtemp(prefix="warptrunc-bench-sweep-"))
+    try:
+        if device is None:
+            client.register_plugin(PinDevice())
+        if pin:
+            client.register_plugin(_pin_plugin())
+        o = SweepOptions(**opts)
+        warm = SweepGrid([D], [DELTA], list(range(10**6, 10**6 + workers))).cases(o)
+        names = list(client.scheduler_info()["workers"])
+        futs = [client.submit(compute_case, c, o, device, workers=[w], pure=False)
+                for c, w in zip(warm, names, strict=True)]  # fmt: skip
+        client.gather(futs)  # every worker has loaded its kernels
+        t0 = time.perf_counter()
+        df = run_sweep(SweepGrid([D], [DELTA], list(range(cases))), tmp / "store",
+                       scheduler=client, progress=False, device=device, **opts)  # fmt: skip
+        wall = time.perf_counter() - t0
+        devices = sorted(df["device"].unique())
+    finally:
+        client.close()
+        cluster.close()
+        shutil.rmtree(tmp, ignore_errors=True)
+    _check(df)
+    return wall, devices
 
 
 def main(argv=None) -> int:
@@ -74,39 +177,67 @@ def main(argv=None) -> int:
     )
     ap.add_argument("--n", type=int, nargs="+", default=[512], help="pixels per side")
     ap.add_argument("--cases", type=int, default=16, help="surfaces per run")
-    ap.add_argument("--workers", type=int, nargs="+", default=[0, 2],
-                    help="0 = in-process; N = LocalCluster of N workers")  # fmt: skip
+    ap.add_argument("--runs", nargs="+", default=["kernel", "inproc"],
+                    choices=("kernel", "inproc", "workers"),
+                    help="which runs: the kernel loop, run_sweep in process, --workers")  # fmt: skip
+    ap.add_argument("--workers", type=int, nargs="+", default=[1, 2],
+                    help="LocalCluster sizes for --runs workers")  # fmt: skip
     ap.add_argument("--increments", type=int, default=200, help="depth increments")
+    ap.add_argument("--bem-fractions", type=float, nargs="+", default=[],
+                    help="elastic solves per case at δ = f·R_t (as warptrunc sweep)")  # fmt: skip
     ap.add_argument("--device", default=None, help="cpu, cuda:0, ... (default: resolved)")
-    ap.add_argument("--chunk-size", type=int, default=None,
-                    help="cases per Dask task (default: adaptive)")
-    ap.add_argument("--worker-writes", action=argparse.BooleanOptionalAction, default=None,
-                    help="workers write the curve files (default: on for a LocalCluster on GPUs)")
+    ap.add_argument("--pin-cores", action=argparse.BooleanOptionalAction, default=None,
+                    help="worker i on CPU core i, single-threaded (default: on with --device cpu)")
     ap.add_argument("--json", type=Path, default=None, help="append the results here")
     args = ap.parse_args(argv)
+    import warp as wp
     from _common import git_commit
 
     from warptrunc import __version__
+    from warptrunc._device import resolve_device
 
+    dev = resolve_device(args.device)
+    device = args.device if args.device is not None else None
+    if "workers" not in args.runs:
+        device = str(dev)
     results = []
     for n in args.n:
-        for w in args.workers:
-            r = one(n, args.cases, w, args.device, args.increments, args.chunk_size,
-                    args.worker_writes)
-            r.update(host=platform.node(), cpus=os.cpu_count(), warptrunc=__version__,
-                     commit=git_commit())  # fmt: skip
-            results.append(r)
-            mode = "in-process" if w == 0 else f"{w} workers"
-            print(f"n={n:6d} {mode:>11s} on {','.join(r['devices'])} ({r['device_name']}): "
-                  f"{r['steady_surfaces_per_s']:8.3f} surfaces/s steady, "
-                  f"{r['wall_surfaces_per_s']:8.3f} wall ({args.cases} cases in {r['wall_s']:.1f} s; "
-                  f"median case {r['median_case_s'] * 1e3:.1f} ms)", flush=True)  # fmt: skip
-        base = [r for r in results if r["n"] == n and r["workers"] == 0]
-        for r in results:
-            if base and r["n"] == n and r["workers"] > 0:
-                print(f"n={n:6d} speed-up with {r['workers']} workers: "
-                      f"{r['steady_surfaces_per_s'] / base[0]['steady_surfaces_per_s']:.2f}× steady, "
-                      f"{r['wall_surfaces_per_s'] / base[0]['wall_surfaces_per_s']:.2f}× wall")  # fmt: skip
+        if "kernel" in args.runs:
+            results.append(dict(n=n, run="kernel", workers=0,
+                                wall_s=kernel_loop(n, args.cases, str(dev), args.increments,
+                                                   args.bem_fractions)))  # fmt: skip
+        if "inproc" in args.runs:
+            results.append(dict(n=n, run="inproc", workers=0,
+                                wall_s=inprocess(n, args.cases, str(dev), args.increments,
+                                                 args.bem_fractions)))  # fmt: skip
+        if "workers" in args.runs:
+            for w in args.workers:
+                pin = args.pin_cores if args.pin_cores is not None else str(dev) == "cpu"
+                wall, devs = workers_run(n, args.cases, w, device, args.increments,
+                                         args.bem_fractions, pin)  # fmt: skip
+                results.append(dict(n=n, run=f"{w} workers", workers=w, wall_s=wall,
+                                    devices=devs))  # fmt: skip
+    for r in results:
+        r["surfaces_per_s"] = args.cases / r["wall_s"]
+        ref = [q for q in results if q["n"] == r["n"] and q["run"] == ("kernel" if r["run"] == "inproc" else "1 workers")]
+        if r["run"] == "inproc" and ref:
+            r["ratio"] = r["surfaces_per_s"] / ref[0]["surfaces_per_s"]
+        elif r["workers"] and ref:
+            r["ratio"] = r["surfaces_per_s"] / (r["workers"] * ref[0]["surfaces_per_s"])
+        r.update(cases=args.cases, bem_fractions=args.bem_fractions, device=str(dev),
+                 device_name=str(dev.name), host=platform.node(), cpus=os.cpu_count(),
+                 warp=wp.config.version, warptrunc=__version__, commit=git_commit())  # fmt: skip
+    bem = f", elastic solves at {args.bem_fractions} R_t" if args.bem_fractions else ""
+    print(f"\ndevice {dev} ({dev.name}); host {platform.node()}, {os.cpu_count()} CPUs; "
+          f"warp {wp.config.version}; {args.cases} cases per run, {args.increments} increments{bem}")  # fmt: skip
+    print("ratio: inproc / kernel loop; N workers: rate / (N × rate of 1 worker)\n")
+    print(f"| {'n':>6} | {'run':<10} | {'devices':<16} | {'wall s':>8} | {'surfaces/s':>10} | {'ratio':>6} |")
+    print(f"|{'-' * 8}|{'-' * 12}|{'-' * 18}|{'-' * 10}|{'-' * 12}|{'-' * 8}|")
+    for r in results:
+        devs = ",".join(r.get("devices", [str(dev)]))
+        ratio = f"{r['ratio']:.2f}" if "ratio" in r else ""
+        print(f"| {r['n']:>6} | {r['run']:<10} | {devs:<16} | {r['wall_s']:>8.2f} | "
+              f"{r['surfaces_per_s']:>10.1f} | {ratio:>6} |")  # fmt: skip
     if args.json:
         with args.json.open("a") as fh:
             for r in results:

@@ -55,8 +55,8 @@ if __name__ == "__main__":
 PY
 python "$OUT/check_sweep_gpu.py" "$OUT" "$NGPU" || status=1
 # 3. throughput (surfaces/s): in-process on one GPU, then --workers 2 (one per GPU)
-WORKERS="0"; [ "$NGPU" -ge 2 ] && WORKERS="0 2"
-python examples/benchmarks/benchmark_sweep.py --n 2048 --cases 48 --workers $WORKERS --json "$OUT/bench.jsonl" || status=1
-python examples/benchmarks/benchmark_sweep.py --n 10240 --cases 24 --workers $WORKERS --json "$OUT/bench.jsonl" || status=1
+RUNS="kernel inproc"; WORKERS="1"; [ "$NGPU" -ge 2 ] && RUNS="kernel inproc workers" && WORKERS="1 2"
+python examples/benchmarks/benchmark_sweep.py --n 2048 --cases 48 --runs $RUNS --workers $WORKERS --json "$OUT/bench.jsonl" || status=1
+python examples/benchmarks/benchmark_sweep.py --n 10240 --cases 24 --runs $RUNS --workers $WORKERS --json "$OUT/bench.jsonl" || status=1
 rm -rf "$OUT"/store_* "$OUT/check_sweep_gpu.py"
 exit $status

@@ -2,9 +2,11 @@
 # SPDX-License-Identifier: MIT
 """Sweep D × δ × seeds into a result store that a re-run resumes.
 
-Writes OUT/sweep.json (grid and options), OUT/cases.parquet (one row per case × fit range)
-and OUT/curves/<case_id>.parquet (each case's curve). Running the same command again skips
-the finished cases; another grid or option set on the same OUT is refused unless
+Writes OUT/sweep.json (grid and options), OUT/curves/part-*.parquet (one Parquet part per
+shard of about 1 s of work: its curves, and its rows in the metadata; a dataset that
+pd.read_parquet("OUT/curves") reads) and OUT/cases.parquet (one row per case × fit range,
+rebuilt from the parts). Running the same command again skips the finished cases (those some
+part holds); `--migrate OUT` converts a store of the previous layout (one curve file per case); another grid or option set on the same OUT is refused unless
 --overwrite. SIGINT/SIGTERM stop after writing what has finished (exit 130/143). One sweep per store at a
 time: OUT/.lock holds the running sweep's pid and host, and a second sweep on the same OUT is
 refused at once (a lock left by a dead process on this host is taken over, with a message).
@@ -54,6 +56,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="measure D of each generated surface by these methods (tri box vs sp; "
                    "fractal_dimensions' default options): columns D_<method>, D_<method>_r2, "
                    "fractal_options")  # fmt: skip
+    m.add_argument("--bem-fractions", type=real(0.0, 1.0), nargs="+", default=[], metavar="F",
+                   help="elastic solves per case (free half-space, warptrunc.contact) at "
+                   "approaches δ = f·R_t, f in (0, 1): columns F_bem_N_<f>, A_bem_m2_<f>, "
+                   "k_bem_N_per_m_<f>, the truncation values F_trunc_N_<f>, ..., the ratios "
+                   "F_ratio_<f>, A_ratio_<f>, k_ratio_<f> and bem_converged_<f>")  # fmt: skip
     e = p.add_argument_group("execution")
     add_device(e)
     e.add_argument("--workers", type=integer(1, 4096), default=None,
@@ -62,13 +69,15 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     e.add_argument("--scheduler", default=None,
                    help="address of an existing Dask scheduler (e.g. tcp://host:8786, or the "
                    "scheduler of a dask-jobqueue cluster)")  # fmt: skip
-    e.add_argument("--chunk-size", type=integer(1, 100000), default=None,
-                   help="with --workers/--scheduler: cases per Dask task (default: adaptive, "
-                   "about 0.1 s of work per task)")  # fmt: skip
-    e.add_argument("--worker-writes", action=argparse.BooleanOptionalAction, default=None,
-                   help="with --workers/--scheduler: workers write the curve files into the "
-                   "store themselves (needs the store on a filesystem shared by every worker "
-                   "and this process); default: off (measured slower on CPUs and GPUs)")  # fmt: skip
+    e.add_argument("--shard-size", type=integer(1, 10**6), default=None,
+                   help="with --workers/--scheduler: cases per Dask task, each written by its "
+                   "worker as one part (default: adaptive, about --shard-seconds of work)")  # fmt: skip
+    e.add_argument("--shard-seconds", type=real(0.0, None, lo_open=False), default=1.0,
+                   help="work per part of the store (s); a hard kill loses at most about this "
+                   "much per worker")  # fmt: skip
+    e.add_argument("--migrate", action="store_true",
+                   help="only convert the store at --out from the previous layout (one curve "
+                   "file per case) to parts, and exit")  # fmt: skip
     e.add_argument("--overwrite", action="store_true",
                    help="replace the results in an existing store made by another grid/options")  # fmt: skip
     e.add_argument("--retry-failed", action="store_true",
@@ -101,7 +110,7 @@ def options_from_args(args: argparse.Namespace) -> dict:
         max_depth_fraction=args.max_depth_fraction, max_depth=args.max_depth, E=args.E,
         nu=args.nu, E_flat=args.E_flat, nu_flat=args.nu_flat, beta_prime=args.beta_prime,
         min_pixels=tuple(args.min_pixels), min_pixels_fraction=tuple(args.min_pixels_fraction),
-        fractal_methods=tuple(args.fractal),
+        fractal_methods=tuple(args.fractal), bem_fractions=tuple(args.bem_fractions),
         depth_window=None if args.depth_window is None else tuple(args.depth_window),
     )  # fmt: skip
 
@@ -120,13 +129,15 @@ def run(args: argparse.Namespace) -> int:
         require_extra()
     except ImportError as exc:
         raise ValueError(str(exc)) from None
+    if args.migrate:
+        return _migrate(args.out)
     grid = grid_from_args(args)
     old = signal.signal(signal.SIGTERM, _on_sigterm)
     try:
         df = run_sweep(
             grid, args.out, workers=args.workers, scheduler=args.scheduler,
             overwrite=args.overwrite, retry_failed=args.retry_failed,
-            chunk_size=args.chunk_size, worker_writes=args.worker_writes,
+            shard_size=args.shard_size, shard_seconds=args.shard_seconds,
             progress=not args.no_progress, device=args.device, **options_from_args(args),
         )  # fmt: skip
     except KeyboardInterrupt as exc:
@@ -140,7 +151,8 @@ def run(args: argparse.Namespace) -> int:
     finally:
         signal.signal(signal.SIGTERM, old)
     failed = df.loc[df["error"].notna(), "case_id"].nunique()
-    print(f"{len(grid)} cases ({failed} failed) in {args.out}: sweep.json, cases.parquet, curves/")
+    print(f"{len(grid)} cases ({failed} failed) in {args.out}: sweep.json, cases.parquet, "
+          "curves/part-*.parquet")
     for mp, v in alpha_summary(df[df["error"].isna()])["fit_ranges"].items():
         line = v["alpha_vs_D"]
         per_d = ", ".join(f"D={r['D_in']:g}: {r['alpha_mean']:.4f}±{r['alpha_sd']:.4f} (n={r['n']})"
@@ -150,4 +162,17 @@ def run(args: argparse.Namespace) -> int:
               + (f"; α = {line['slope']:.3f}·D {'−' if line['intercept'] < 0 else '+'} "
                  f"{abs(line['intercept']):.3f} (r = {line['r']:.3f})"
                  if line else ""))  # fmt: skip
+    return 0
+
+
+def _migrate(out) -> int:
+    from ..sweep.lock import store_lock
+    from ..sweep.store import migrate
+
+    if not (out / "sweep.json").exists():
+        raise ValueError(f"{out} is not a sweep store (no sweep.json)")
+    with store_lock(out, notify=lambda m: print(m, file=sys.stderr)):
+        n = migrate(out, notify=print)
+    if n == 0:
+        print(f"{out} has the current layout already; nothing to convert")
     return 0

@@ -250,12 +250,13 @@ def stage_group(
                    progress=True, **opts)  # fmt: skip
     ranges = fit_ranges(p, p.n)
     rows, failed = [], []
+    curves = dict(tuple(load_curves(path).groupby("case_id", sort=False)))  # one pass over the parts
     for cid, part in df.groupby("case_id", sort=False):
         recs = [{k: (None if _isna(v) else v) for k, v in r.items()} for r in part.to_dict("records")]
         if recs[0]["error"] is not None:
             failed.append({k: recs[0][k] for k in ("case_id", "D_in", "delta", "seed", "error")})
             continue
-        rows.append(_row(recs, load_curves(path, cid), ranges, curve_points))
+        rows.append(_row(recs, curves[cid].reset_index(drop=True), ranges, curve_points))
     return {"fit_ranges": ranges, "rows": rows, "failed": failed,
             "store": str(Path("sweeps") / f"group{which}")}  # fmt: skip
 

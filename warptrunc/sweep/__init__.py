@@ -8,7 +8,8 @@
 >>> load("runs/g2").groupby(["min_pixels", "D_in"]).alpha.agg(["mean", "std"])  # doctest: +SKIP
 
 Modules: ``grid`` (SweepGrid, SweepOptions, case ids), ``store`` (the Parquet store:
-sweep.json, cases.parquet, curves/), ``engines`` (one case; in-process and Dask execution),
+sweep.json, curves/part-*.parquet, cases.parquet; :func:`migrate`), ``curves`` (writing and
+reading one part), ``engines`` (one case, one shard; in-process execution), ``cluster`` (Dask),
 ``run`` (:func:`run_sweep`), ``stats`` (pandas summaries, :func:`linear_fit`, and the older
 in-memory :func:`sweep`/:class:`SweepTable`). pandas, pyarrow and dask are imported only
 inside these functions: ``pip install "warptrunc[sweep]"``.
@@ -17,9 +18,20 @@ inside these functions: ``pip install "warptrunc[sweep]"``.
 from .grid import Case, SweepGrid, SweepOptions, parse_seeds
 from .run import run_sweep
 from .stats import SweepTable, alpha_summary, linear_fit, sweep
-from .store import CASE_COLUMNS, CURVE_COLUMNS, RUN_COLUMNS, Store, load, load_curves
+from .store import (
+    BEM_QUANTITIES,
+    CASE_COLUMNS,
+    CURVE_COLUMNS,
+    RUN_COLUMNS,
+    Store,
+    bem_long,
+    load,
+    load_curves,
+    migrate,
+)  # fmt: skip
 
 __all__ = [
+    "BEM_QUANTITIES",
     "CASE_COLUMNS",
     "CURVE_COLUMNS",
     "RUN_COLUMNS",
@@ -29,9 +41,11 @@ __all__ = [
     "SweepOptions",
     "SweepTable",
     "alpha_summary",
+    "bem_long",
     "linear_fit",
     "load",
     "load_curves",
+    "migrate",
     "parse_seeds",
     "run_sweep",
     "sweep",

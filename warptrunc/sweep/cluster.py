@@ -3,16 +3,17 @@
 """The Dask engine: cases on a LocalCluster (one worker per GPU) or on an existing cluster.
 
 Imported only when ``workers`` or ``scheduler`` is given (needs ``warptrunc[sweep]``). Cases
-go out in chunks (one task per chunk, sized adaptively to about 0.1 s of work), so the task
-overhead is amortised when a case takes milliseconds; results stream back as chunks finish
-(``as_completed``). The workers send the curves to the client, or write the curve files
-themselves (``worker_writes``, off by default: measured slower on 2 × H200 and on the CPU); the
-client records the rows and is the only writer of ``cases.parquet``.
+go out in shards (one task per shard, sized adaptively to about 1 s of work), so the task
+overhead is amortised when a case takes milliseconds. Each worker writes its shard as one
+part of the store (:func:`~warptrunc.sweep.engines.compute_shard`) and sends back only the
+part's name and rows; the client records which parts exist and is the only writer of
+``cases.parquet``.
 """
 
 from __future__ import annotations
 
 import logging
+import math
 import os
 import statistics
 import sys
@@ -23,10 +24,11 @@ from distributed import WorkerPlugin
 
 from .._device import cuda_device_count
 from .._progress import progress_bar
-from .engines import compute_chunk, failed_case, pinned_device
+from .curves import part_name, part_rows
+from .engines import compute_shard, failed_case, pinned_device
 from .grid import Case, SweepOptions
 
-__all__ = ["PinDevice", "chunk_size_for", "run_dask"]
+__all__ = ["PinDevice", "run_dask", "shard_size_for"]
 
 
 class PinDevice(WorkerPlugin):
@@ -63,13 +65,13 @@ class PinDevice(WorkerPlugin):
             os.environ["WARPTRUNC_DEVICE"] = dev
 
 
-def chunk_size_for(
+def shard_size_for(
     case_seconds: float | None,
     remaining: int,
     n_workers: int,
     *,
-    target_s: float = 0.1,
-    max_size: int = 64,
+    target_s: float = 1.0,
+    max_size: int = 4096,
 ) -> int:
     """Cases per task: about ``target_s`` of work, at most ``max_size``, and small enough
     that the remaining cases still make ≥ 2 tasks per worker (so the load balances).
@@ -85,26 +87,26 @@ def chunk_size_for(
     target_s : float
         Work per task to aim for (s).
     max_size : int
-        Largest chunk (cases).
+        Largest shard (cases).
 
     Returns
     -------
     int
-        Cases per task, ≥ 1: round(target_s/case_seconds) clipped to [1, max_size], then to
+        Cases per task, ≥ 1: ⌈target_s/case_seconds⌉ clipped to [1, max_size], then to
         at most ⌈remaining/(2·n_workers)⌉.
     """
     if not case_seconds or case_seconds != case_seconds:  # None, 0 or NaN
         return 1
-    size = max(1, min(max_size, round(target_s / case_seconds)))
+    size = max(1, min(max_size, math.ceil(target_s / case_seconds)))
     return max(1, min(size, -(-remaining // (2 * max(n_workers, 1)))))
 
 
 def run_dask(
     cases: list[Case], options: SweepOptions, store, *, workers: int | None = None,
     scheduler: Any = None, device=None, total: int, progress: bool = True,
-    max_retries: int = 3, chunk_size: int | None = None, worker_writes: bool | None = None,
+    max_retries: int = 3, shard_size: int | None = None, shard_seconds: float = 1.0,
 ) -> None:  # fmt: skip
-    """Run ``cases`` on a Dask cluster; results reach ``store`` in this process as they finish.
+    """Run ``cases`` on a Dask cluster; each task writes one part of ``store``.
 
     Parameters
     ----------
@@ -113,8 +115,7 @@ def run_dask(
     options : SweepOptions
         Options shared by all cases.
     store : warptrunc.sweep.store.Store
-        Receives the rows and curves (:meth:`~warptrunc.sweep.store.Store.add_many`,
-        ``record`` and ``add``).
+        Records the parts (:meth:`~warptrunc.sweep.store.Store.record_part`).
     workers : int, optional
         Worker processes of the LocalCluster (count); None lets Dask choose. Ignored with
         ``scheduler``.
@@ -130,36 +131,33 @@ def run_dask(
         Show a progress bar and print the dashboard link (stderr).
     max_retries : int
         Resubmissions of a case whose task was lost before it is recorded as failed (count).
-    chunk_size : int, optional
-        Cases per task; None: adaptive (:func:`chunk_size_for`).
-    worker_writes : bool, optional
-        Workers write the curve files themselves; None means False.
+    shard_size : int, optional
+        Cases per task; None: adaptive (:func:`shard_size_for`).
+    shard_seconds : float
+        Work per task that the adaptive size aims for (s).
 
     Notes
     -----
     ``scheduler`` (an address or a ``distributed.Client``) uses an existing cluster; else a
     LocalCluster of ``workers`` processes with one thread each, one per CUDA device when
-    ``device`` is None and CUDA devices exist (:class:`PinDevice`). A client this function
-    opens, and its LocalCluster, are closed at the end; a client passed in is left open.
+    ``device`` is None and CUDA devices exist (:class:`PinDevice`; with more workers than
+    devices they share them). A client this function opens, and its LocalCluster, are closed
+    at the end; a client passed in is left open.
 
-    Cases go to the workers in chunks (one task each, :func:`compute_chunk`):
-    ``chunk_size`` cases, or with ``None`` an adaptive size (:func:`chunk_size_for`: about
-    0.1 s of work per task, from the median case time so far, starting at 1), with about two
-    tasks in flight per worker, so results keep streaming. With ``worker_writes`` the workers
-    write the curve files into ``store.curves`` themselves (needs a filesystem shared with
-    this process; off by default: Parquet encoding slowed the workers down) and only rows
-    travel back. A chunk whose worker died or whose future was cancelled
-    (``client.restart()``) has its unfinished cases submitted again one per task, up to
-    ``max_retries`` times each, then recorded as failed.
+    Cases go to the workers in shards (one task each, :func:`compute_shard`): ``shard_size``
+    cases, or an adaptive size (:func:`shard_size_for`: about ``shard_seconds`` of work per
+    task from the median case time so far, starting at 1 case), with about two tasks in
+    flight per worker. The workers write the parts into ``store.curves`` (a filesystem shared
+    with this process) and send back only the part's name and rows. A task whose worker died
+    or whose future was cancelled (``client.restart()``): if its part exists (written before
+    the worker died) it is recorded; else the shard is submitted again whole (same part name,
+    so two attempts never both land), and after a second loss one case per task, up to
+    ``max_retries`` times per case, then recorded as failed.
     """
 
     from distributed import Client, LocalCluster, as_completed
 
-    if worker_writes is None:
-        # off by default: Parquet encoding on the workers slowed them on the CPU (2 cores, 512²:
-        # median case 14 → 26 ms) and on 2 × H200 (2048², 40 cases: 90 against 247 surfaces/s)
-        worker_writes = False
-    curves = str(store.curves.resolve()) if worker_writes and store.path is not None else None
+    curves = str(store.curves.resolve()) if store.path is not None else None
     cluster = None
     own_client = True
     if isinstance(scheduler, Client):
@@ -179,7 +177,7 @@ def run_dask(
     by_id = {c.case_id: c for c in cases}
     attempts = dict.fromkeys(by_id, 0)
     queue = [c.case_id for c in cases]  # not yet submitted, in grid order
-    retry: list[str] = []  # lost once: one case per task
+    retry: list[list[str]] = []  # lost shards, submitted again first
     times: list[float] = []
     n_workers = [1, 0.0]
 
@@ -189,6 +187,16 @@ def run_dask(
                             time.monotonic()]  # fmt: skip
         return n_workers[0]
 
+    def record(part, held) -> int:
+        if part is None:
+            new = store.add_many([(rows, None) for rows in held])
+        else:
+            new = store.record_part(part, held)
+        times.extend(rs[0]["seconds"] for rs in held
+                     if rs and isinstance(rs[0].get("seconds"), float)
+                     and rs[0]["seconds"] == rs[0]["seconds"])  # fmt: skip
+        return sum(new)
+
     try:
         futures: dict = {}
         pending = as_completed()
@@ -196,8 +204,8 @@ def run_dask(
         def submit(ids: list[str]) -> None:
             for cid in ids:
                 attempts[cid] += 1
-            key = f"warptrunc-chunk-{ids[0]}-{len(ids)}-{attempts[ids[0]]}"
-            f = client.submit(compute_chunk, [by_id[c] for c in ids], options, device, curves,
+            key = f"warptrunc-shard-{ids[0]}-{len(ids)}-{attempts[ids[0]]}"
+            f = client.submit(compute_shard, [by_id[c] for c in ids], options, device, curves,
                               key=key, pure=False)  # fmt: skip
             futures[f] = ids
             pending.add(f)
@@ -206,11 +214,12 @@ def run_dask(
             w = workers_now()
             while (retry or queue) and len(futures) < 2 * w:
                 if retry:
-                    submit([retry.pop(0)])
+                    submit(retry.pop(0))
                     continue
-                size = chunk_size or chunk_size_for(
-                    statistics.median(times[-64:]) if times else None, len(queue), w
-                )
+                size = shard_size or shard_size_for(
+                    statistics.median(times[-64:]) if times else None, len(queue), w,
+                    target_s=shard_seconds,
+                )  # fmt: skip
                 submit(queue[:size])
                 del queue[:size]
 
@@ -225,19 +234,26 @@ def run_dask(
             while futures:
                 fut = next(pending)
                 ids = futures.pop(fut)
+                out = None
                 if fut.status == "finished":
-                    results = fut.result()
-                    if curves is None:
-                        new = store.add_many(results)
-                    else:
-                        new = [store.record(rows) for rows, _ in results]
-                    times += [r[0]["seconds"] for r, _ in results
-                              if r and r[0].get("seconds") == r[0].get("seconds")]  # fmt: skip
-                    bar.update(sum(new))
+                    try:
+                        out = fut.result()
+                    except Exception:  # cancelled after it finished (client.restart()): lost
+                        out = None
+                if out is not None:
+                    bar.update(record(out["part"], out["rows"]))
                 else:
+                    if curves is not None:  # the worker may have written the part and died
+                        name = part_name(ids, min(by_id[c].index for c in ids))
+                        held = part_rows(os.path.join(curves, name))
+                        if held is not None:
+                            bar.update(record(name, held))
                     lost = [c for c in ids if c not in store.rows]
                     again = [c for c in lost if attempts[c] <= max_retries]
-                    retry += again
+                    if again and len(again) == len(ids) and attempts[again[0]] == 1:
+                        retry.append(again)  # the same shard once more: the same part name
+                    else:
+                        retry += [[c] for c in again]
                     if len(again) < len(lost):
                         try:
                             exc = fut.exception()

@@ -1,17 +1,20 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Curve files of the sweep store (``OUT/curves/<case_id>.parquet``): Parquet bytes, batched
-durable writes (one ``syncfs`` per batch), and reading a curve file's rows back. Moved verbatim
-from :mod:`warptrunc.sweep.store` (the durability rules are described there).
+"""Parts of the sweep store (``OUT/curves/part-*.parquet``): one Parquet file per shard of
+cases, written durably under a temporary name and renamed into place (first writer wins);
+reading a part's rows back. The store's rules are described in :mod:`warptrunc.sweep.store`.
+
+A part's table is the curves of its cases in long format (``case_id`` then CURVE_COLUMNS,
+one row per depth increment; a failed case has no curve rows) and its key-value metadata
+``warptrunc.rows`` holds the cases' rows (JSON, one list of fit-range rows per case), so the
+cases table is rebuilt from the parts alone.
 """
 
 from __future__ import annotations
 
-import ctypes
-import ctypes.util
+import hashlib
 import json
 import os
-import sys
 import threading
 from pathlib import Path
 from typing import Any
@@ -20,48 +23,67 @@ import numpy as np
 
 from .._results import jsonable
 
-__all__ = ["CURVE_COLUMNS", "curve_rows", "parquet_bytes", "table_bytes", "write_curves"]
+__all__ = [
+    "CURVE_COLUMNS",
+    "PART_GLOB",
+    "parquet_bytes",
+    "part_files",
+    "part_name",
+    "part_rows",
+    "read_part_curves",
+    "table_bytes",
+    "write_part",
+]  # fmt: skip
 
 CURVE_COLUMNS = (
     "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
     "Ec_over_E", "F_over_EA",
 )  # fmt: skip
-"""Columns of a curve file (as ``warptrunc analyze``'s curve.csv)."""
+"""Curve columns of a part, after ``case_id`` (as ``warptrunc analyze``'s curve.csv)."""
 
+PART_GLOB = "part-*.parquet"
+"""Names of the parts in ``OUT/curves``; temporaries start with a dot (readers skip them)."""
 
 _META_KEY = b"warptrunc.rows"
 
+Result = tuple[list[dict[str, Any]], "dict[str, np.ndarray] | None"]
 
-def parquet_bytes(df) -> bytes:
-    """A pandas DataFrame as the bytes of a Parquet file (index left out).
+
+def parquet_bytes(df, metadata: dict[bytes, bytes] | None = None) -> bytes:
+    """A DataFrame as Parquet bytes (no index), with extra key-value metadata.
 
     Parameters
     ----------
     df : pandas.DataFrame
-        The table to serialise.
+        The table.
+    metadata : dict of bytes to bytes, optional
+        Extra schema metadata (besides pandas').
 
     Returns
     -------
     bytes
-        The Parquet file's content, as :func:`table_bytes` writes it.
+        The Parquet file.
     """
     import pyarrow as pa
 
-    return table_bytes(pa.Table.from_pandas(df, preserve_index=False))
+    table = pa.Table.from_pandas(df, preserve_index=False)
+    if metadata:
+        table = table.replace_schema_metadata({**(table.schema.metadata or {}), **metadata})
+    return table_bytes(table)
 
 
 def table_bytes(table) -> bytes:
-    """A pyarrow Table as the bytes of a Parquet file (``pyarrow.parquet.write_table``).
+    """A pyarrow Table as Parquet bytes.
 
     Parameters
     ----------
     table : pyarrow.Table
-        The table to serialise, schema metadata included.
+        The table.
 
     Returns
     -------
     bytes
-        The Parquet file's content, for an atomic write.
+        The Parquet file.
     """
     import pyarrow as pa
     import pyarrow.parquet as pq
@@ -69,21 +91,6 @@ def table_bytes(table) -> bytes:
     sink = pa.BufferOutputStream()
     pq.write_table(table, sink)
     return sink.getvalue().to_pybytes()
-
-
-def _sync_folder(folder: Path) -> None:
-    """Make the data of every file written so far under ``folder``'s filesystem durable.
-
-    One ``syncfs(2)`` on Linux (one call for a whole batch of files, instead of an fsync per
-    file); ``os.sync()`` elsewhere.
-    """
-    fd = os.open(folder, os.O_RDONLY)
-    try:
-        if _syncfs is not None and _syncfs(fd) == 0:
-            return
-        os.sync()
-    finally:
-        os.close(fd)
 
 
 def _fsync_dir(folder: Path) -> None:
@@ -100,36 +107,57 @@ def _fsync_dir(folder: Path) -> None:
         os.close(fd)
 
 
-def _load_syncfs():
-    if not sys.platform.startswith("linux"):
-        return None
-    try:
-        f = ctypes.CDLL(ctypes.util.find_library("c") or None, use_errno=True).syncfs
-    except (OSError, AttributeError):  # pragma: no cover
-        return None
-    f.argtypes = [ctypes.c_int]
-    return f
-
-
-_syncfs = _load_syncfs()
-
-
-def curve_rows(path: Path) -> list[dict[str, Any]] | None:
-    """The rows stored in a curve file's metadata; None when it has none or does not parse.
+def part_name(case_ids: list[str], first_index: int) -> str:
+    """``part-<first case index, 8 digits>-<12 hex of SHA-256 over the sorted case ids>.parquet``.
 
     Parameters
     ----------
-    path : Path
-        A curve file ``curves/<case_id>.parquet``.
+    case_ids : list of str
+        Ids of the shard's cases (any order).
+    first_index : int
+        Grid index of the shard's first case.
 
     Returns
     -------
-    list of dict or None
-        The case's result rows (the JSON under the schema metadata key ``warptrunc.rows``);
-        None for a file without that key, or one that cannot be read (missing, truncated,
-        empty).
+    str
+        The part's file name: a function of the shard's cases only, so a retried shard writes
+        the same name (and loses to the first attempt), and parts list in grid order.
     """
+    h = hashlib.sha256(",".join(sorted(case_ids)).encode()).hexdigest()[:12]
+    return f"part-{first_index:08d}-{h}.parquet"
 
+
+def part_files(folder: str | Path) -> list[Path]:
+    """The parts in ``folder``, sorted by name (grid order of their first case).
+
+    Parameters
+    ----------
+    folder : path
+        The store's ``curves/`` folder (missing: no parts).
+
+    Returns
+    -------
+    list of Path
+        The ``part-*.parquet`` files; temporaries (dot names) are not among them.
+    """
+    folder = Path(folder)
+    return sorted(folder.glob(PART_GLOB)) if folder.is_dir() else []
+
+
+def part_rows(path: str | Path) -> list[list[dict[str, Any]]] | None:
+    """The rows held by a part, one list per case; None when it does not parse.
+
+    Parameters
+    ----------
+    path : path
+        A part file.
+
+    Returns
+    -------
+    list of list of dict, or None
+        Per case, its fit-range rows (the cases table's columns); None for a file that is
+        truncated, empty or not a part.
+    """
     import pyarrow.parquet as pq
 
     try:
@@ -139,73 +167,117 @@ def curve_rows(path: Path) -> list[dict[str, Any]] | None:
     return json.loads(meta[_META_KEY]) if _META_KEY in meta else None
 
 
-def write_curves(
-    curves: str | Path, results: list[tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]]
-) -> list[list[dict[str, Any]]]:
-    """Write the curve files of a batch of finished cases atomically; returns their rows.
-
-    Each case's curve (with its rows in the Parquet metadata) goes to a temporary name; then
-    one filesystem sync makes all of them durable, each is renamed to
-    ``<case_id>.parquet`` and the folder is fsynced once. So a visible curve file is always
-    complete (as with an fsync per file, at one sync per batch). A case whose file already
-    exists (written by an earlier attempt of the same case: first writer wins, through
-    ``os.link`` that never replaces) keeps that file, and its rows are returned instead.
-    Used by the client (the store) and, with worker writes, by the Dask workers.
+def read_part_curves(path: str | Path, case_ids=None):
+    """The curves of a part as a DataFrame.
 
     Parameters
     ----------
-    curves : str or Path
-        The store's ``curves`` folder (must exist).
-    results : list of (list of dict, dict or None)
-        One ``(rows, curve)`` per case: its result rows (the first has ``case_id``; values
-        made JSON-able with non-finite floats kept) and its curve, a dict of the
-        :data:`CURVE_COLUMNS` arrays (``depth_m`` (m), ``contact_area_m2`` (m²), ``load_N``
-        (N), ``stiffness_N_per_m`` (N/m), ...), or None for a failed case (an empty curve).
+    path : path
+        A part file.
+    case_ids : iterable of str, optional
+        Only these cases (default all).
 
     Returns
     -------
-    list of list of dict
-        Per case, in the order of ``results``: the rows now stored for it (those given, or
-        the earlier attempt's when its file already existed).
+    pandas.DataFrame
+        ``case_id`` and CURVE_COLUMNS (SI units), one row per depth increment.
     """
+    import pyarrow.parquet as pq
 
+    filters = None if case_ids is None else [("case_id", "in", list(case_ids))]
+    return pq.read_table(path, filters=filters).to_pandas()
+
+
+def _part_table(results: list[Result]):
     import pyarrow as pa
 
-    curves = Path(curves)
-    out: list[list[dict[str, Any]] | None] = []
-    tmps: list[tuple[int, Path, Path]] = []
-    for i, (rows, curve) in enumerate(results):
-        rows = [{k: jsonable(v, nonfinite="keep") for k, v in r.items()} for r in rows]
-        out.append(rows)
-        final = curves / f"{rows[0]['case_id']}.parquet"
-        old = curve_rows(final) if final.exists() else None
+    lengths = [0 if curve is None else len(curve["depth_m"]) for _, curve in results]
+    ids = np.repeat(np.array([rows[0]["case_id"] for rows, _ in results], dtype=object), lengths)
+    data = {"case_id": pa.array(ids, type=pa.string())}
+    for k in CURVE_COLUMNS:
+        parts = [np.asarray(curve[k]) for (_, curve), m in zip(results, lengths, strict=True) if m]
+        v = np.concatenate(parts) if parts else np.zeros(0)
+        data[k] = pa.array(v.astype(np.int64 if k == "n_contact_pixels" else np.float64))
+    return pa.table(data)
+
+
+_PLAIN = (float, int, str, bool, type(None))
+
+
+def clean_rows(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Rows with JSON-ready values (NaN kept): plain Python values pass as they are, others
+    through :func:`warptrunc._results.jsonable`."""
+    return [{k: v if type(v) in _PLAIN else jsonable(v, nonfinite="keep") for k, v in r.items()}
+            for r in rows]  # fmt: skip
+
+
+def write_part(
+    folder: str | Path, results: list[Result], *, first_index: int | None = None
+) -> tuple[str, list[list[dict[str, Any]]]]:
+    """Write one part holding ``results`` (a shard's cases); returns its name and rows.
+
+    Parameters
+    ----------
+    folder : path
+        The store's ``curves/`` folder.
+    results : list of (rows, curve)
+        Per case, its fit-range rows and its curve (None for a failed case).
+    first_index : int, optional
+        ``case_index`` for the name; default the smallest of ``results``.
+
+    Returns
+    -------
+    name : str
+        The part's file name (:func:`part_name`).
+    rows : list of list of dict
+        The rows now in that part, one list per case: those of ``results``, or, when a part
+        of the same name existed (an earlier attempt of the same shard), that part's rows.
+
+    Notes
+    -----
+    The part is written to ``.<name>.tmp-<pid>-<thread>`` (a dot name: pandas, pyarrow and
+    Dask skip it), its data made durable (``fsync``), then hard-linked to ``<name>``, which
+    never replaces an existing file: the first attempt of a shard wins, and a process killed
+    at any point leaves either no part or a complete one. The folder is fsynced last.
+    """
+    folder = Path(folder)
+    rows = [clean_rows(rs) for rs, _ in results]
+    ids = [rs[0]["case_id"] for rs in rows]
+    if first_index is None:
+        first_index = min(rs[0]["case_index"] for rs in rows)
+    name = part_name(ids, first_index)
+    final = folder / name
+    if final.exists():
+        old = part_rows(final)
         if old is not None:
-            out[i] = old
-            continue
-        cols = {k: np.asarray(curve[k]) if curve else np.zeros(0) for k in CURVE_COLUMNS}
-        cols["n_contact_pixels"] = cols["n_contact_pixels"].astype(np.int64)
-        table = pa.table(cols).replace_schema_metadata(
-            {_META_KEY: json.dumps(rows, allow_nan=True).encode()}
-        )
-        tmp = final.with_name(f".{final.name}.tmp-{os.getpid()}-{threading.get_ident()}")
-        tmp.write_bytes(table_bytes(table))
-        tmps.append((i, tmp, final))
-    if not tmps:
-        return out
-    _sync_folder(curves)
-    for i, tmp, final in tmps:
-        try:
-            os.link(tmp, final)  # fails if another attempt of this case got there first
-        except FileExistsError:
-            old = curve_rows(final)
-            if old is not None:
-                out[i] = old
-            else:  # an unreadable leftover: replace it
-                os.replace(tmp, final)
-                continue
-        except OSError:  # a filesystem without hard links
+            return name, old
+    table = _part_table(results).replace_schema_metadata(
+        {_META_KEY: json.dumps(rows, allow_nan=True).encode()}
+    )
+    tmp = folder / f".{name}.tmp-{os.getpid()}-{threading.get_ident()}"
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    try:
+        data = table_bytes(table)
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view):]
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+    try:
+        os.link(tmp, final)  # fails if another attempt of this shard got there first
+    except FileExistsError:
+        old = part_rows(final)
+        if old is None:  # an unreadable leftover (power loss after the rename): replace it
             os.replace(tmp, final)
-            continue
+            _fsync_dir(folder)
+            return name, rows
         tmp.unlink()
-    _fsync_dir(curves)
-    return out
+        return name, old
+    except OSError:  # a filesystem without hard links
+        os.replace(tmp, final)
+        _fsync_dir(folder)
+        return name, rows
+    tmp.unlink()
+    _fsync_dir(folder)
+    return name, rows

@@ -1,14 +1,15 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Running the cases: one case (:func:`compute_case`) and the in-process engine.
+"""Running the cases: one case (:func:`compute_case`), one shard (:func:`compute_shard`) and
+the in-process engine (:func:`run_inprocess`).
 
 The Dask engine is in :mod:`warptrunc.sweep.cluster` (imported only when used).
 
 A case (:func:`compute_case`) is pure: it returns its rows and curve and writes nothing. A
-chunk (:func:`compute_chunk`, one Dask task) either returns them for the client to write, or
-writes the curve files itself (worker writes); curve files are never replaced (the first
-attempt of a case wins), and the client, the only writer of ``cases.parquet``, drops a
-second result of a case.
+shard (:func:`compute_shard`, one Dask task) computes its cases and writes them as one part
+of the store (:func:`~warptrunc.sweep.curves.write_part`); parts are never replaced (the
+first attempt of a shard wins), and the client, the only writer of ``cases.parquet``, records
+which parts exist and drops a second part of a case.
 """
 
 from __future__ import annotations
@@ -28,16 +29,17 @@ from typing import Any
 import numpy as np
 
 from .. import __version__
+from .._bench import git_commit
 from .._device import resolve_device
 from .._progress import progress_bar
-from .._provenance import git_commit
 from ..stiffness import DEFAULT_MIN_PIXELS, fit_power_law, stiffness_curve
 from ..truncation import truncate
 from ..wm import wm_surface
-from .curves import curve_rows, write_curves
+from .curves import part_name, part_rows, write_part
 from .grid import FRACTAL_METHODS, Case, SweepOptions
 
-__all__ = ["compute_case", "compute_chunk", "failed_case", "pinned_device", "run_inprocess"]
+__all__ = ["compute_case", "compute_shard", "elastic_record", "failed_case", "pinned_device",
+           "run_inprocess"]
 
 Result = tuple[list[dict[str, Any]], "dict[str, np.ndarray] | None"]
 Sink = Callable[[list[dict[str, Any]], "dict[str, np.ndarray] | None"], bool]
@@ -67,8 +69,93 @@ def _base_row(case: Case, o: SweepOptions) -> dict[str, Any]:
         "final_contact_pixels": None, "final_area_fraction": np.nan, "Rt_measured_m": np.nan,
         **{f"D_{m}{s}": np.nan for m in FRACTAL_METHODS for s in ("", "_r2")},
         "fractal_options": None, "fractal_seconds": np.nan, "fit_error": None, "error": None, "host": host, "warptrunc_version": version,
-        "git_commit": commit,
+        "git_commit": commit, **_bem_blank(o),
     }  # fmt: skip
+
+
+def _bem_blank(o: SweepOptions) -> dict[str, Any]:
+    from .store import BEM_QUANTITIES
+
+    if not o.bem_fractions:
+        return {}
+    out: dict[str, Any] = {}
+    for f in o.bem_fractions:
+        for q in BEM_QUANTITIES:
+            out[f"{q}_{f:g}"] = None if q in ("bem_converged", "bem_iterations") else np.nan
+    return {**out, "bem_seconds": np.nan, "bem_error": None}
+
+
+def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str, Any]:
+    """Elastic columns of one case: the free half-space solver against Eq. 2 at δ = f·R_t.
+
+    Parameters
+    ----------
+    surface : Surface
+        The generated surface.
+    sc : StiffnessCurve
+        Its truncation curve (:func:`~warptrunc.stiffness.stiffness_curve`); a deeper one is
+        computed when the largest approach lies beyond it.
+    options : SweepOptions
+        ``bem_fractions`` (f, dimensionless), material, β', increments.
+    device : str, optional
+        Warp device.
+
+    Returns
+    -------
+    dict of str to Any
+        The columns of :func:`warptrunc.sweep.store.bem_columns` (SI units).
+
+    Notes
+    -----
+    Truncation at δ: A' = (pixels with z ≥ z_max − δ)·pixel area (exact count, float32 as the
+    kernels), k' = β'·(2/√π)·E*·√A' (Eq. 2), F'(δ) by linear interpolation of the curve's
+    trapezoidal load; the same formulas as :func:`warptrunc.contact.bem_check`. The elastic
+    solve is :func:`warptrunc.contact.solve_contact` (``substrate="free"``, Barber stiffness),
+    warm-started over increasing δ; a solve that stops at its iteration limit is kept with
+    ``bem_converged_<f>`` False. A solver error leaves the columns NaN and sets ``bem_error``.
+    """
+    from ..contact import solve_contact
+
+    o = options
+    out = _bem_blank(o)
+    t0 = time.perf_counter()
+    Rt = float(sc.Rt)
+    fr = np.asarray(o.bem_fractions, dtype=np.float64)
+    d = fr * Rt
+    e_star = o.material().reduced_modulus
+    z = surface.heights
+    z_top = np.float32(z.max())
+    n_trunc = np.array([np.count_nonzero(z >= np.float32(z_top - v)) for v in d], dtype=np.int64)
+    a_trunc = n_trunc * surface.pixel_area
+    k_trunc = o.beta_prime * (2.0 / math.sqrt(math.pi)) * e_star * np.sqrt(a_trunc)
+    deep = sc
+    if d[-1] > sc.depth[-1]:
+        tc = truncate(surface, o.increments, max_depth=float(d[-1]), device=device)
+        deep = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
+    f_trunc = np.interp(d, deep.depth, deep.load)
+    try:
+        cc = solve_contact(surface, depths=d, contact_modulus=e_star, substrate="free",
+                           stiffness="barber", device=device)  # fmt: skip
+    except Exception as exc:  # recorded; the truncation results stand
+        out["bem_error"] = f"{type(exc).__name__}: {exc}"
+        out["bem_seconds"] = time.perf_counter() - t0
+        return out
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for i, f in enumerate(o.bem_fractions):
+            s = f"_{f:g}"
+            out.update({
+                "bem_depth_m" + s: float(d[i]), "F_bem_N" + s: float(cc.load[i]),
+                "A_bem_m2" + s: float(cc.area[i]), "k_bem_N_per_m" + s: float(cc.stiffness[i]),
+                "F_trunc_N" + s: float(f_trunc[i]), "A_trunc_m2" + s: float(a_trunc[i]),
+                "k_trunc_N_per_m" + s: float(k_trunc[i]),
+                "F_ratio" + s: float(np.float64(cc.load[i]) / f_trunc[i]),
+                "A_ratio" + s: float(np.float64(cc.area[i]) / a_trunc[i]),
+                "k_ratio" + s: float(np.float64(cc.stiffness[i]) / k_trunc[i]),
+                "bem_converged" + s: bool(cc.converged[i]),
+                "bem_iterations" + s: int(cc.n_iterations[i]),
+            })  # fmt: skip
+    out["bem_seconds"] = time.perf_counter() - t0
+    return out
 
 
 def _fit_ranges(o: SweepOptions) -> list[tuple[int | None, float]]:
@@ -184,6 +271,8 @@ def compute_case(
                       max_depth_fraction=o.max_depth_fraction, device=dev)  # fmt: skip
         sc = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
         curve = sc.to_dict()
+        if o.bem_fractions:
+            base.update(elastic_record(s, sc, o, dev))
         base.update(
             final_contact_pixels=int(sc.n_contact_pixels[-1]),
             final_area_fraction=float(sc.contact_area[-1] / sc.apparent_area),
@@ -215,7 +304,7 @@ def compute_case(
 
 def run_inprocess(
     cases: list[Case], options: SweepOptions, sink: BatchSink, *, device=None, total: int,
-    progress: bool = True, max_batch: int = 256,
+    progress: bool = True, shard_seconds: float = 1.0, max_shard: int = 4096,
 ) -> None:  # fmt: skip
     """Run ``cases`` one after another in this process, handing the results to ``sink``.
 
@@ -226,14 +315,17 @@ def run_inprocess(
     options : SweepOptions
         Options shared by all cases.
     sink : callable
-        Takes a list of (rows, curve) results (:func:`compute_case`).
+        Takes a list of (rows, curve) results (:func:`compute_case`): one part of the store.
     device : str, optional
         Warp device.
     total : int
         Cases of the whole grid (count), for the progress bar.
     progress : bool
         Show a progress bar.
-    max_batch : int
+    shard_seconds : float
+        Hand results to ``sink`` once they hold about this much computing time (s); 0 hands
+        over whatever finished while the previous part was written.
+    max_shard : int
         Most results handed to ``sink`` at once (count); also the queue length.
 
     Raises
@@ -243,16 +335,14 @@ def run_inprocess(
 
     Notes
     -----
-    ``sink`` (the store's :meth:`~warptrunc.sweep.store.Store.add_many`) runs in one
-    background thread and takes every result that finished while it wrote the previous
-    batch (at most ``max_batch``), so writing overlaps computing and costs one filesystem
-    sync per batch, not one per case. Every computed case is written before this function
-    returns or an exception (Ctrl-C included) propagates.
+    ``sink`` (the store's :meth:`~warptrunc.sweep.store.Store.add_many`, which writes one part)
+    runs in one background thread, so encoding and writing never hold up the device: the
+    computing thread only queues results. Every computed case is written before this
+    function returns or an exception (Ctrl-C included) propagates; a hard kill loses at most
+    the last ``shard_seconds`` of work.
     """
-
-
     dev = str(resolve_device(device))
-    q: queue.Queue = queue.Queue(maxsize=max_batch)
+    q: queue.Queue = queue.Queue(maxsize=max_shard)
     failed: list[BaseException] = []
     done = object()
 
@@ -261,21 +351,26 @@ def run_inprocess(
     ) as bar:
 
         def writer() -> None:
+            pending: list = []
+            work = 0.0
             while True:
-                batch = [q.get()]
-                while len(batch) < max_batch:
+                item = q.get()
+                stop = item is done
+                if not stop:
+                    pending.append(item)
+                    s = item[0][0].get("seconds")
+                    work += s if isinstance(s, float) and s == s else 0.0
+                    if len(pending) < max_shard and (
+                        work < shard_seconds if shard_seconds > 0 else not q.empty()
+                    ):
+                        continue
+                if pending and not failed:
                     try:
-                        batch.append(q.get_nowait())
-                    except queue.Empty:
-                        break
-                stop = batch[-1] is done
-                batch = [b for b in batch if b is not done]
-                if batch and not failed:
-                    try:
-                        sink(batch)
-                        bar.update(len(batch))
+                        sink(pending)
+                        bar.update(len(pending))
                     except BaseException as exc:  # re-raised in the computing thread
                         failed.append(exc)
+                pending, work = [], 0.0
                 if stop:
                     return
 
@@ -293,11 +388,11 @@ def run_inprocess(
             raise failed[0]
 
 
-def compute_chunk(
+def compute_shard(
     cases: list[Case], options: SweepOptions, device: str | None = None,
     curves: str | None = None,
-) -> list[tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]]:  # fmt: skip
-    """Run a chunk of cases (one Dask task); with ``curves``, write their curve files too.
+) -> dict[str, Any]:  # fmt: skip
+    """Run a shard of cases (one Dask task) and write it as one part of the store.
 
     Parameters
     ----------
@@ -308,43 +403,34 @@ def compute_chunk(
     device : str, optional
         Warp device.
     curves : str, optional
-        The store's ``curves/`` folder, or None to return the curves.
+        The store's ``curves/`` folder, on a filesystem this worker shares with the client;
+        None (a sweep kept in memory) returns the rows without writing anything.
 
     Returns
     -------
-    list of (list of dict, dict or None)
-        (rows, curve) per case in the order of ``cases``; curve is None when ``curves`` was
-        given (the file holds it) or the case failed.
+    dict
+        ``part``: the part's file name (None without ``curves``); ``rows``: per case, its
+        fit-range rows as stored in that part.
 
     Notes
     -----
-    Without ``curves`` it returns each case's (rows, curve) for the client to write. With
-    ``curves`` (the store's ``curves/`` folder, on a filesystem this worker shares with the
-    client) a case whose curve file exists already (an earlier attempt of this chunk) is not
-    computed again; the others are computed and written as one batch
-    (:func:`~warptrunc.sweep.curves.write_curves`), and (rows, None) comes back per case, the
-    rows being those in the file.
+    The part's name is a function of the shard's cases
+    (:func:`~warptrunc.sweep.curves.part_name`): a shard whose part exists already (an
+    earlier attempt wrote it, and the client did not hear of it) is not computed again, and
+    two attempts running at once write one part (the first rename wins, the other returns
+    that part's rows).
     """
     if curves is None:
-        return [compute_case(c, options, device) for c in cases]
-
-
+        return {"part": None, "rows": [compute_case(c, options, device)[0] for c in cases]}
     folder = Path(curves)
-    results: list = []
-    todo: list = []
-    for c in cases:
-        f = folder / f"{c.case_id}.parquet"
-        rows = curve_rows(f) if f.exists() else None
-        if rows is None:
-            todo.append(len(results))
-            results.append(compute_case(c, options, device))
-        else:
-            results.append((rows, None))
-    if todo:
-        written = write_curves(folder, [results[i] for i in todo])
-        for i, rows in zip(todo, written, strict=True):
-            results[i] = (rows, None)
-    return results
+    name = part_name([c.case_id for c in cases], min(c.index for c in cases))
+    if (folder / name).exists():
+        held = part_rows(folder / name)
+        if held is not None:
+            return {"part": name, "rows": held}
+    results = [compute_case(c, options, device) for c in cases]
+    name, held = write_part(folder, results)
+    return {"part": name, "rows": held}
 
 
 def pinned_device(worker_name: Any, n_devices: int) -> str | None:

@@ -25,10 +25,15 @@ __all__ = ["FRACTAL_METHODS", "Case", "SweepGrid", "SweepOptions", "parse_seeds"
 FRACTAL_METHODS = ("tri", "box", "vs", "sp")
 """Methods of :func:`warptrunc.fractal_dimensions` that ``fractal_methods`` may name."""
 
-_OMIT_WHEN_EMPTY = ("min_pixels_fraction", "fractal_methods")
+_OMIT_WHEN_EMPTY = ("min_pixels_fraction", "fractal_methods", "bem_fractions")
 
 FORMAT = "warptrunc-sweep/1"
-"""Store format tag; part of every case id."""
+"""Format tag of the case ids (part of every id; unchanged by the store layout of format 2)."""
+
+STORE_FORMAT = "warptrunc-sweep/2"
+"""Layout tag in ``sweep.json``: ``curves/part-*.parquet`` (one part per shard of cases).
+``FORMAT`` in a ``sweep.json`` marks the layout before it (one curve file per case), which
+:func:`warptrunc.sweep.store.migrate` converts."""
 
 
 def parse_seeds(spec: str | int | Iterable[int | str]) -> tuple[int, ...]:
@@ -165,6 +170,11 @@ class SweepOptions:
     :func:`warptrunc.fractal_dimensions` (``"tri"``, ``"box"``, ``"vs"``, ``"sp"``; that
     function's default options). Columns ``D_<method>``, ``D_<method>_r2`` and
     ``fractal_options`` (JSON: each fit's scalars and options). Off by default."""
+    bem_fractions: tuple[float, ...] = ()
+    """Elastic solves per case at approaches δ = f·R_t (measured R_t), f in (0, 1): the free
+    half-space solver :func:`warptrunc.contact.solve_contact` (Barber stiffness) against Eq. 2's
+    truncation values at the same depth, in wide columns ``<quantity>_<f>``
+    (:data:`warptrunc.sweep.store.BEM_QUANTITIES`). Off by default."""
 
     def __post_init__(self) -> None:
         s = object.__setattr__
@@ -222,12 +232,18 @@ class SweepOptions:
         if len(set(fm)) != len(fm):
             raise ValueError(f"fractal_methods must not repeat, got {fm!r}")
         s(self, "fractal_methods", fm)
+        bf = self.bem_fractions
+        bf = (bf,) if isinstance(bf, (int, float)) else tuple(bf)
+        bf = tuple(check_range("bem_fractions", v, 0, 1) for v in bf)
+        if len(set(bf)) != len(bf):
+            raise ValueError(f"bem_fractions must hold distinct values, got {bf!r}")
+        s(self, "bem_fractions", tuple(sorted(bf)))
 
     def to_dict(self) -> dict[str, Any]:
         """The options as JSON-ready values (tuples as lists).
 
         Options added after the store format was fixed (``min_pixels_fraction``,
-        ``fractal_methods``) appear only when set, so the case ids and ``sweep.json`` of
+        ``fractal_methods``, ``bem_fractions``) appear only when set, so the case ids and ``sweep.json`` of
         stores made without them stay valid.
 
         Returns

@@ -9,7 +9,7 @@ from contextlib import ExitStack
 from pathlib import Path
 from typing import Any
 
-from .._validate import check_int
+from .._validate import check_int, check_range
 from .grid import SweepGrid, SweepOptions
 from .lock import store_lock
 from .store import Store
@@ -53,8 +53,8 @@ def run_sweep(
     scheduler: Any = None,
     overwrite: bool = False,
     retry_failed: bool = False,
-    chunk_size: int | None = None,
-    worker_writes: bool | None = None,
+    shard_size: int | None = None,
+    shard_seconds: float = 1.0,
     progress: bool = True,
     device: Any = None,
     **options: Any,
@@ -67,9 +67,10 @@ def run_sweep(
         D_in × δ × seeds; a dict {"D": [...], "delta": [...], "seeds": "0-4"} or a TOML file
         with those keys.
     out : path, optional
-        Store folder (``sweep.json``, ``cases.parquet``, ``curves/``). An existing store made
-        by the same grid and options is resumed; another one is refused (ValueError) unless
-        ``overwrite``. ``None`` keeps the results in memory only.
+        Store folder (``sweep.json``, ``curves/part-*.parquet``, ``cases.parquet``; see
+        :mod:`warptrunc.sweep.store`). An existing store made by the same grid and options is
+        resumed (one of the previous layout is converted first); another one is refused
+        (ValueError) unless ``overwrite``. ``None`` keeps the results in memory only.
     workers : int, optional
         Run on a ``dask.distributed.LocalCluster`` of this many worker processes (one thread
         each); with CUDA devices and ``device=None``, worker i is pinned to ``cuda:{i mod
@@ -82,15 +83,16 @@ def run_sweep(
         Replace an existing store's results.
     retry_failed : bool
         Run again the cases that the store records as failed.
-    chunk_size : int, optional
-        With ``workers``/``scheduler``: cases per Dask task. Default: adaptive, about 0.1 s
-        of work per task (from the median case time so far, at most 64 cases, and at least
-        two tasks per worker for what remains).
-    worker_writes : bool, optional
-        With ``workers``/``scheduler``: the workers write the curve files into the store
-        themselves and send only rows back (the client still writes ``cases.parquet``). This
-        needs the store on a filesystem that every worker shares with this process. Default:
-        False (measured slower with 2 CPU workers and with 2 GPU workers; see the README).
+    shard_size : int, optional
+        With ``workers``/``scheduler``: cases per Dask task (one part of the store each).
+        Default: adaptive, about ``shard_seconds`` of work per task (from the median case time
+        so far, at most 4096 cases, and at least two tasks per worker for what remains).
+        Workers write their parts into ``out`` themselves: it must be on a filesystem that
+        every worker shares with this process.
+    shard_seconds : float
+        Work per part (s): the adaptive shard size with workers, and how much the in-process
+        engine gathers before writing a part (0: whatever finished while the previous part was
+        written). A hard kill loses at most about this much work per worker.
     progress : bool
         tqdm progress bar (every engine).
     device : str, optional
@@ -100,7 +102,9 @@ def run_sweep(
         Fields of :class:`SweepOptions` (as ``warptrunc analyze``): Wr (m), L (m), n, M,
         gamma, Wc (m), cutoff, increments, max_depth_fraction, max_depth (m), E (Pa), nu,
         E_flat (Pa), nu_flat, beta_prime, min_pixels (one or several fit ranges),
-        depth_window (m).
+        depth_window (m), min_pixels_fraction, fractal_methods, bem_fractions (elastic
+        solves at δ = f·R_t, wide columns ``F_bem_N_<f>``, ...: see
+        :data:`warptrunc.sweep.store.BEM_QUANTITIES`).
 
     Returns
     -------
@@ -119,15 +123,18 @@ def run_sweep(
         raise ValueError(f"unknown sweep options {bad}; allowed: {allowed}") from None
     if workers is not None:
         workers = check_int("workers", workers, 1)
-    if chunk_size is not None:
-        chunk_size = check_int("chunk_size", chunk_size, 1)
+    if shard_size is not None:
+        shard_size = check_int("shard_size", shard_size, 1)
+    shard_seconds = check_range("shard_seconds", shard_seconds, 0, None, lo_open=False, unit="s")
     if workers is not None and scheduler is not None:
         raise ValueError("give workers (a local cluster) or scheduler (an existing one), not both")
     held = ExitStack()  # one writer per store: a second sweep on ``out`` is refused at once
+    notify = lambda m: print(m, file=sys.stderr)  # noqa: E731
     if out is not None:
-        held.enter_context(store_lock(out, notify=lambda m: print(m, file=sys.stderr)))
+        held.enter_context(store_lock(out, notify=notify))
     try:
-        store = Store(out, grid, opts, overwrite=overwrite, retry_failed=retry_failed)
+        store = Store(out, grid, opts, overwrite=overwrite, retry_failed=retry_failed,
+                      notify=notify)  # fmt: skip
     except BaseException:
         held.close()
         raise
@@ -143,13 +150,13 @@ def run_sweep(
                 ) from None
 
             run_dask(todo, opts, store, workers=workers, scheduler=scheduler, device=device,
-                     total=len(grid), progress=progress, chunk_size=chunk_size,
-                     worker_writes=worker_writes)  # fmt: skip
+                     total=len(grid), progress=progress, shard_size=shard_size,
+                     shard_seconds=shard_seconds)  # fmt: skip
         elif todo:
             from .engines import run_inprocess
 
             run_inprocess(todo, opts, store.add_many, device=device, total=len(grid),
-                          progress=progress)  # fmt: skip
+                          progress=progress, shard_seconds=shard_seconds)  # fmt: skip
     finally:
         try:
             store.flush()
