@@ -88,7 +88,7 @@ def _to_host(a):
 
 
 def _window(n: int, kind: str, xp=np) -> np.ndarray:
-    if kind == "none":
+    if kind == "none" or n < 3:  # fewer than 3 samples cannot be tapered (Hann of 1 is [0])
         return xp.ones(n)
     # periodic Hann: tapers both edges of a non-periodic scan to zero
     return 0.5 - 0.5 * xp.cos(2.0 * np.pi * xp.arange(n) / n)
