@@ -272,8 +272,8 @@ def slit_bootstrap(
     rng = np.random.default_rng(seed)
     n = x.size
     if n > blocks:
-        unit = np.zeros((blocks, 6))
-        np.add.at(unit, rng.permutation(n) % blocks, terms)
+        which = rng.permutation(n) % blocks
+        unit = np.stack([np.bincount(which, weights=t, minlength=blocks) for t in terms.T], axis=1)
     else:
         unit = terms
     pick = rng.integers(0, unit.shape[0], size=(resamples, unit.shape[0]))
