@@ -127,7 +127,7 @@ PAPER_DEPARTURES = (
     ("n", "Groups 1–2 (Table 3) surfaces", "10240² over 1 mm, 5 per case", "{n}² over {L_mm:g} mm, {seeds} per case"),
     ("table1_n", "Table 1 calibration surfaces", "1024² scans, 1 µm pixels", "{table1_n}² scans, 1 µm pixels, {table1_seeds} seed(s)"),
     ("islands_n", "Islands (Figs. 7–8, Table 2)", "30720² over 3 mm", "{islands_n}² over {islands_L_mm:g} mm, {islands_seeds} seed(s) per surface"),
-    ("asperity_n", "Fig. 2 sphere", "1000 increments (pixels not stated)", "{asperity_n}² pixels, {asperity_increments} increments"),
+    ("asperity_n", "Fig. 2 sphere", "1000 increments", "{asperity_increments} increments, {asperity_n}² pixel sphere (the paper states no size)"),
     ("group_fit", "Fit range of α, β (Table 3)", "not stated", "≥ 10 contact pixels (`default`) and ≥ {late_fit_fraction:g} × final contact pixels (`late`); the fit-range map shows the rest"),
 )
 

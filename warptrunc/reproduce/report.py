@@ -390,6 +390,7 @@ def departure_lines(p: dict[str, Any]) -> list[str]:
     for _key, item, paper, ours in PAPER_DEPARTURES:
         txt = ours.format(**v)
         same = "yes" if txt == paper or txt.startswith(paper + ",") else "**no**"
+        same = "n/a" if paper == "not stated" else same
         out.append(f"| {item} | {paper} | {txt} | {same} |")
     out.append("")
     return out
