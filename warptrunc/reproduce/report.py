@@ -110,7 +110,7 @@ def fig8(res, out) -> str:
             a2.fill_between(b["percent_Rt"], nan(b["lo"]), nan(b["hi"]), color=ln.get_color(), alpha=0.25, lw=0)
             a2.plot(b["percent_Rt"], nan(b["exponent"]), "o", color=ln.get_color(), ms=3)
     a1.set(xlabel="depth (% R$_t$)", ylabel="normalised island number", title="Fig. 8a")
-    a2.set(xlabel="depth (% R$_t$)", ylabel="slit-island exponent (L ∝ A$^x$)", title="Fig. 8b: exponent against depth (seed 0; band: 95 % bootstrap over islands)")
+    a2.set(xlabel="depth (% R$_t$)", ylabel="slit-island exponent (L ∝ A$^x$)", title="Fig. 8b: seed 0, 95 % bootstrap band")
     a1.legend(fontsize=8)
     return _save(fig, out, "fig8_islands.png")
 
