@@ -206,9 +206,9 @@ def slit_band_summary(islands: dict[str, Any], tolerance: float = 0.05, plateau_
     -------
     dict of str to Any
         Per surface: seed 0's ``percent_Rt``, ``exponent``, ``lo``, ``hi`` and ``plateau``;
-        per seed ``possible_drop_percent_Rt`` (first depth whose band reaches below the
-        threshold) and ``established_drop_percent_Rt`` (first depth whose whole band is below
-        it), None where there is none; ``paper`` (Table 2 fractality range, % R_t).
+        per seed ``possible_drop_percent_Rt`` (first depth past the plateau window whose band
+        reaches below the threshold) and ``established_drop_percent_Rt`` (first such depth
+        whose whole band is below it), None where there is none; ``paper`` (Table 2 fractality range, % R_t).
     """
     out: dict[str, Any] = {}
     for name, s in islands["surfaces"].items():
@@ -228,8 +228,9 @@ def slit_band_summary(islands: dict[str, Any], tolerance: float = 0.05, plateau_
             first = pct[ok][0]
             plateau = float(np.median(e[ok & (pct <= first + plateau_width)]))
             thr = (1 - tolerance) * plateau
-            p_ = pct[ok & (lo < thr)]
-            e_ = pct[ok & (hi < thr)]
+            after = ok & (pct > first + plateau_width)  # a drop is looked for past the plateau window
+            p_ = pct[after & (lo < thr)]
+            e_ = pct[after & (hi < thr)]
             poss.append(float(p_[0]) if p_.size else None)
             est.append(float(e_[0]) if e_.size else None)
             plateaus.append(plateau)

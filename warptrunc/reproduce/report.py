@@ -557,8 +557,9 @@ def slit_band_lines(sb: dict[str, Any]) -> list[str]:
     out = ["\n**Slit-island exponent with an error bar.** At every 2.5 % R_t the exponent of seed 0 and its 95 % "
            "percentile band from 200 bootstrap resamples of the islands (seed 0 of the resampling; islands dealt into "
            "≤ 4096 random blocks when there are more). A drop is *established* at the first depth whose whole band lies "
-           "below (1 − 0.05)·plateau (plateau: median exponent over the first 10 % R_t of fitted depths), and *possible* "
-           "from the first depth whose band reaches below it.\n"]  # fmt: skip
+           "below (1 − 0.05)·plateau (plateau: median exponent over the first 10 % R_t of fitted depths; drops are looked for "
+           "past that window), and *possible* from the first depth whose band reaches below it. 'none' with a plateau: no "
+           "drop down to 50 % R_t, with 95 % confidence where 'possible' is none too.\n"]  # fmt: skip
     pcts = next(iter(sb.values()))["percent_Rt"]
     out.append("| surface | plateau | " + " | ".join(f"{p:g} %" for p in pcts[1::2]) + " | drop possible from (% R_t, per seed) | drop established at (per seed) | paper fractality depth |")
     out.append("|---|---|" + "---|" * (len(pcts[1::2]) + 3))
