@@ -266,3 +266,109 @@ def test_bem_stage_skipped_without_extra(tiny, tmp_path, monkeypatch):
     sec = (tmp_path / "report.md").read_text().split("## Elastic cross-check (BEM)")[1]
     first = sec.split("##")[0].strip()
     assert first == 'Skipped: the `bem` extra is not installed (`pip install "warptrunc[bem]"`).'
+
+
+# --- issue 19: paper scale, fit-range map, slit band, Fig. 2 models, commit --------------------
+
+
+def test_paper_profile_at_paper_scale():
+    from warptrunc.reproduce import get_profile
+
+    p = get_profile("paper")
+    assert (p.islands_n, p.islands_L, p.fig5_seeds) == (30720, 3e-3, 10)
+    assert p.islands_seeds >= 2 and (p.table1_n, p.n, p.seeds) == (1024, 10240, 5)
+    assert p.islands_n**2 < 2**30  # the in-memory labelling limit (warptrunc._limits)
+    assert p.islands_n**2 * 52 < 70 * 2**30  # island_curve's statistics fit an 80 GB GPU
+
+
+def test_fit_range_map_equals_direct_refit(tiny):
+    """One range of the map, re-fitted by hand from the stored curves, and the stored fit."""
+    from warptrunc.reproduce.analysis import line_fit
+    from warptrunc.reproduce.fitrange import refit_store
+    from warptrunc.stiffness import fit_power_law
+    from warptrunc.sweep import load, load_curves
+
+    out, doc = tiny
+    fm = doc["analysis"]["fit_range_map"]
+    g2 = out / doc["stages"]["group2"]["store"]
+    cases, alphas, D = load(g2), [], []
+    for cid, part in cases[cases["error"].isna()].groupby("case_id", sort=False):
+        c = load_curves(g2, cid)
+        sc = __import__("types").SimpleNamespace(
+            depth=c["depth_m"].to_numpy(), n_contact_pixels=c["n_contact_pixels"].to_numpy(),
+            load=c["load_N"].to_numpy(), Ec_over_E=c["Ec_over_E"].to_numpy(),
+            F_over_EA=c["F_over_EA"].to_numpy(),
+        )
+        stored = part[part["min_pixels_fraction"].isna() & (part["min_pixels"] == 10)].iloc[0]
+        if isinstance(stored["fit_error"], str):  # too few increments: left out, as in the map
+            with pytest.raises(ValueError):
+                fit_power_law(sc, min_pixels=10)
+            continue
+        a = fit_power_law(sc, min_pixels=10).alpha
+        assert a == pytest.approx(float(stored["alpha"]), rel=1e-9)  # the sweep's own fit
+        alphas.append(a)
+        D.append(float(part["D_in"].iloc[0]))
+    ref = line_fit(D, alphas)
+    got = fm["alpha"]["min_pixels=10"]["in"]
+    assert got["slope"] == pytest.approx(ref["slope"], rel=1e-12)
+    assert got["intercept"] == pytest.approx(ref["intercept"], rel=1e-12)
+    assert got["alpha_2_5"] == pytest.approx(2.5 * ref["slope"] + ref["intercept"])
+    # the map's rows cover both kinds of range and β is −α of group 1 in each
+    rows = refit_store(g2)
+    assert {r["kind"] for r in rows} == {"min_pixels", "fraction"}
+    for b in fm["beta"].values():
+        if b is not None:
+            assert b["p"] == pytest.approx(b["minus_alpha"], abs=0.01)
+
+
+def test_slit_bootstrap_band_contains_estimate_and_is_deterministic():
+    from warptrunc.islands import island_curve, slit_bootstrap, slit_island_fit
+    from warptrunc.wm import wm_surface
+
+    s = wm_surface(2.5, 60e-6, L=1e-3, n=256, Rt=30e-6, seed=0, device="cpu")
+    c = island_curve(s, 50, max_depth_fraction=0.5, snapshot_depths=[0.3 * s.Rt], device="cpu")
+    (sz,) = c.sizes
+    e, lo, hi = slit_bootstrap(sz, min_islands=5)
+    assert e == pytest.approx(slit_island_fit(sz, min_islands=5).exponent)
+    assert lo < e < hi
+    assert slit_bootstrap(sz, min_islands=5) == (e, lo, hi)  # same seed, same band
+    assert slit_bootstrap(sz, min_islands=5, seed=1) != (e, lo, hi)
+    # blocks of islands: the same estimate, a band of similar width
+    eb, lob, hib = slit_bootstrap(sz, min_islands=5, blocks=8)
+    assert eb == e and lob < e < hib
+
+
+def test_tiny_report_new_sections(tiny):
+    out, doc = tiny
+    text = (out / "report.md").read_text()
+    assert "| item | the paper | this run | same? |" in text
+    assert "## Fit-range map of Table 3" in text and "](fit_range_map.png)" in text
+    assert "Slit-island exponent with an error bar" in text
+    for model in ("Storåkers–Biwa–Larsson", "Hertz", "fully plastic", "truncation model"):
+        assert model in text
+    sb = doc["analysis"]["slit_band"]
+    assert sb and all(len(v["lo"]) == len(v["percent_Rt"]) for v in sb.values())
+    band = doc["stages"]["islands"]["surfaces"]
+    for s in band.values():
+        b = s["seeds"][0]["slit_band"]
+        for e, lo, hi in zip(b["exponent"], b["lo"], b["hi"], strict=True):
+            if e is not None and lo is not None:
+                assert lo <= e <= hi
+
+
+def test_report_commit_fallback(tiny, monkeypatch):
+    from warptrunc._provenance import git_commit
+    from warptrunc.reproduce import get_profile
+    from warptrunc.reproduce.report import departure_lines, markdown
+
+    rows = "\n".join(departure_lines(get_profile("paper").to_dict()))
+    assert "| Islands (Figs. 7–8, Table 2) | 30720² over 3 mm | 30720² over 3 mm," in rows
+    assert "| Fig. 5 seeds per resolution | 10 | 10 | yes |" in rows
+    out, _ = tiny
+    doc = json.loads((out / "results.json").read_text())
+    meta = {**doc["meta"], "git_commit": None}  # made where neither the variable nor git says
+    text = markdown(meta, doc["stages"], doc["analysis"], doc["meta"]["figures"])
+    assert "commit unknown (set `WARPTRUNC_GIT_COMMIT` or pass `--commit SHA`)" in text
+    assert "commit `None`" not in text
+    monkeypatch.setenv("WARPTRUNC_GIT_COMMIT", "abc123")
+    assert git_commit() == "abc123"

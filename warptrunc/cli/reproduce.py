@@ -32,6 +32,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument("--overwrite", action="store_true",
                    help="recompute stages stored with other parameters (replacing them)")  # fmt: skip
+    p.add_argument("--commit", metavar="SHA", default=None,
+                   help="commit recorded in the report (default: $WARPTRUNC_GIT_COMMIT, else "
+                        "git rev-parse HEAD of the checkout, else 'unknown')")  # fmt: skip
     add_device(p)
 
 
@@ -43,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
     except ImportError as exc:
         raise ValueError(str(exc)) from None
     doc = reproduce(args.profile, args.out, overwrite=args.overwrite, device=args.device,
-                    command="warptrunc " + " ".join(sys.argv[1:]))  # fmt: skip
+                    commit=args.commit, command="warptrunc " + " ".join(sys.argv[1:]))  # fmt: skip
     m = doc["meta"]
     print(f"wrote {args.out}/report.md, results.json and {len(m['figures'])} figures "
           f"in {m['wall_s']:.1f} s on {m['device']} (reused: {', '.join(m['reused']) or 'none'})")  # fmt: skip

@@ -42,7 +42,7 @@ from .depths import (
     islands_at_depth,
     islands_at_depths,
 )
-from .fits import applicable_depth, slit_island_fit
+from .fits import applicable_depth, slit_bootstrap, slit_island_fit
 from .labelling import label_islands
 from .results import (
     MIN_ISLANDS,
@@ -71,6 +71,7 @@ __all__ = [
     "islands_at_depth",
     "islands_at_depths",
     "label_islands",
+    "slit_bootstrap",
     "slit_island_fit",
     "topology_curve",
 ]

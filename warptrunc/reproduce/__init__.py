@@ -33,6 +33,7 @@ def reproduce(
     overwrite: bool = False,
     device=None,
     command: str | None = None,
+    commit: str | None = None,
 ) -> dict[str, Any]:
     """Run the study at ``profile`` into ``out``; returns the content of ``results.json``.
 
@@ -51,6 +52,9 @@ def reproduce(
         Warp device.
     command : str, optional
         Command line recorded in the report; default the equivalent ``warptrunc reproduce``.
+    commit : str, optional
+        Commit recorded in the report; default ``$WARPTRUNC_GIT_COMMIT``, else ``git rev-parse
+        HEAD`` of the package's checkout, else "unknown".
 
     Returns
     -------
@@ -79,9 +83,16 @@ def reproduce(
     study = run_study(p, store, device=dev)
     res = study["results"]
     ana = analyse(res)
+    if all(res[g].get("store") for g in ("group1", "group2")):  # re-fit from the stored curves
+        from .fitrange import fit_range_map
+
+        try:
+            ana["fit_range_map"] = fit_range_map(out / res["group1"]["store"], out / res["group2"]["store"])
+        except FileNotFoundError as exc:  # stages reused from a folder without the stores
+            ana["fit_range_map_missing"] = str(exc)
     names = figures(res, ana, out, device=dev)
     meta = {
-        "profile": p.to_dict(), "version": __version__, "git_commit": git_commit(),
+        "profile": p.to_dict(), "version": __version__, "git_commit": commit or git_commit(),
         "device": f"{dev.alias} ({getattr(dev, 'name', '')})", "wall_s": time.perf_counter() - t0,
         "stage_wall_s": study["wall_s"], "stage_seconds": {k: store.seconds(k) for k in res},
         "reused": store.reused, "computed": store.computed,

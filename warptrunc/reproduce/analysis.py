@@ -11,7 +11,7 @@ import numpy as np
 
 from .paper import TABLE1, TABLE2, TABLE3
 
-__all__ = ["analyse", "line_fit", "power_fit"]
+__all__ = ["analyse", "line_fit", "power_fit", "slit_band_summary"]
 
 D_KEYS = ("in", "tri", "box", "vs", "sp")
 
@@ -176,6 +176,7 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
             "paper": dict(zip(("applicable", "max_growth", "fractality"), TABLE2[name], strict=True)),
         }  # fmt: skip
     out["table2"] = t2
+    out["slit_band"] = slit_band_summary(res["islands"])
     out["asperity"] = {k: v for k, v in res["asperity"]["bounds"].items() if not isinstance(v, list)}
     out["asperity"]["pixel_bound_holds"] = res["asperity"]["pixel_bound_holds"]
     out["asperity"]["max_rel_area_error_last_half"] = res["asperity"]["max_rel_area_error_last_half"]
@@ -183,4 +184,61 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
         from .elastic import analyse_bem
 
         out["bem"] = analyse_bem(res["bem"])
+    return out
+
+
+def slit_band_summary(islands: dict[str, Any], tolerance: float = 0.05, plateau_width: float = 10.0) -> dict[str, Any]:
+    """Slit exponent with its bootstrap band per surface (seed 0) and, for every seed, where a
+    drop below (1 − ``tolerance``)·plateau is possible and where it is established.
+
+    Parameters
+    ----------
+    islands : dict of str to Any
+        The island stage (per seed ``slit_band`` with ``percent_Rt``, ``exponent``, ``lo``,
+        ``hi``).
+    tolerance : float
+        Relative drop below the plateau that ends fractality (dimensionless), as in
+        ``applicable_depth``.
+    plateau_width : float
+        Plateau window from the first fitted depth (% R_t).
+
+    Returns
+    -------
+    dict of str to Any
+        Per surface: seed 0's ``percent_Rt``, ``exponent``, ``lo``, ``hi`` and ``plateau``;
+        per seed ``possible_drop_percent_Rt`` (first depth past the plateau window whose band
+        reaches below the threshold) and ``established_drop_percent_Rt`` (first such depth
+        whose whole band is below it), None where there is none; ``paper`` (Table 2 fractality range, % R_t).
+    """
+    out: dict[str, Any] = {}
+    for name, s in islands["surfaces"].items():
+        poss, est, plateaus = [], [], []
+        for x in s["seeds"]:
+            b = x.get("slit_band")
+            if not b:
+                break
+            pct = np.asarray(b["percent_Rt"], float)
+            e, lo, hi = (np.array([np.nan if v is None else v for v in b[k]]) for k in ("exponent", "lo", "hi"))
+            ok = np.isfinite(e) & np.isfinite(lo) & np.isfinite(hi)
+            if not ok.any():
+                poss.append(None)
+                est.append(None)
+                plateaus.append(None)
+                continue
+            first = pct[ok][0]
+            plateau = float(np.median(e[ok & (pct <= first + plateau_width)]))
+            thr = (1 - tolerance) * plateau
+            after = ok & (pct > first + plateau_width)  # a drop is looked for past the plateau window
+            p_ = pct[after & (lo < thr)]
+            e_ = pct[after & (hi < thr)]
+            poss.append(float(p_[0]) if p_.size else None)
+            est.append(float(e_[0]) if e_.size else None)
+            plateaus.append(plateau)
+        if not plateaus:
+            continue
+        b0 = s["seeds"][0]["slit_band"]
+        out[name] = {"percent_Rt": b0["percent_Rt"], "exponent": b0["exponent"], "lo": b0["lo"],
+                     "hi": b0["hi"], "plateau": plateaus[0], "plateaus": plateaus,
+                     "possible_drop_percent_Rt": poss, "established_drop_percent_Rt": est,
+                     "paper": list(TABLE2[name][2])}  # fmt: skip
     return out

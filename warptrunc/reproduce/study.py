@@ -25,7 +25,7 @@ import numpy as np
 from .._progress import progress_bar
 from ..calibrate import CalibrationError, CalibrationTarget, calibrate
 from ..fractal import METHODS, fractal_dimensions
-from ..islands import applicable_depth, island_curve
+from ..islands import applicable_depth, island_curve, slit_bootstrap
 from ..stiffness import DEFAULT_MIN_PIXELS, stiffness_curve
 from ..sweep import SweepGrid, load_curves, run_sweep
 from ..sweep.grid import SweepOptions
@@ -160,13 +160,50 @@ def stage_islands(p: Profile, table1: dict[str, Any], device) -> dict[str, Any]:
         for seed in _tqdm(range(p.islands_seeds), f"islands {r['surface']}"):
             s = wm_surface(r["D_in"], r["Wr_m"], L=p.islands_L, n=p.islands_n, Rt=r["Rt_m"],
                            seed=seed, device=device)  # fmt: skip
-            c = island_curve(s, p.islands_increments, max_depth_fraction=0.5, device=device)
-            ind = applicable_depth(c, min_islands=5 if p.islands_n < 512 else 50)
+            snaps = np.asarray(SLIT_BAND["percent_Rt"]) / 100 * s.Rt
+            c = island_curve(s, p.islands_increments, max_depth_fraction=0.5,
+                             snapshot_depths=snaps, device=device)  # fmt: skip
+            min_islands = 5 if p.islands_n < 512 else 50
+            ind = applicable_depth(c, min_islands=min_islands)
             per.append({"seed": seed, "indicators": ind.to_dict(),
                         "depth_fraction": c.depth_fraction, "normalised": c.normalised_island_number,
-                        "slit_exponent": c.slit_exponent})  # fmt: skip
+                        "slit_exponent": c.slit_exponent,
+                        "slit_band": slit_band(c, min_islands)})  # fmt: skip
         out["surfaces"][r["surface"]] = {"D_in": r["D_in"], "Rt_m": r["Rt_m"], "Wr_m": r["Wr_m"],
                                          "seeds": per}  # fmt: skip
+    return out
+
+
+SLIT_BAND = {"percent_Rt": tuple(2.5 * k for k in range(1, 21)), "resamples": 200,
+             "level": 0.95, "seed": 0}
+"""Depths (% R_t) and bootstrap of the slit-exponent band of the island stage."""
+
+
+def slit_band(curve, min_islands: int) -> dict[str, list]:
+    """Slit exponent with its bootstrap band over islands at the snapshot depths of ``curve``.
+
+    Parameters
+    ----------
+    curve : IslandCurve
+        Island curve with ``sizes`` at the depths of :data:`SLIT_BAND`.
+    min_islands : int
+        Fewest fitted islands for an exponent (count), as in ``applicable_depth``.
+
+    Returns
+    -------
+    dict of str to list
+        ``percent_Rt`` (depth, % R_t), ``exponent``, ``lo``, ``hi`` (dimensionless; None where
+        fewer than ``min_islands`` islands) and ``n_islands`` (islands fitted).
+    """
+    out: dict[str, list] = {"percent_Rt": [], "exponent": [], "lo": [], "hi": [], "n_islands": []}
+    for sz in curve.sizes:
+        e, lo, hi = slit_bootstrap(sz, resamples=SLIT_BAND["resamples"], level=SLIT_BAND["level"],
+                                   min_pixels=curve.min_pixels, min_islands=min_islands,
+                                   seed=SLIT_BAND["seed"])  # fmt: skip
+        out["percent_Rt"].append(100 * sz.depth / curve.Rt)
+        for k, v in (("exponent", e), ("lo", lo), ("hi", hi)):
+            out[k].append(v if math.isfinite(v) else None)
+        out["n_islands"].append(int((np.asarray(sz.area_pixels) >= curve.min_pixels).sum()))
     return out
 
 
@@ -323,7 +360,7 @@ def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, 
             params = stage_params(profile)
             fn = lambda: stage_bem(profile, device)  # noqa: E731
         elif name == "islands":
-            params = {**base, "table1": res["table1"]}
+            params = {**base, "table1": res["table1"], "slit_band": SLIT_BAND}
             fn = lambda: stage_islands(profile, res["table1"], device)  # noqa: E731
         elif name.startswith("group"):
             params = base
