@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from .. import __version__
-from .._bench import git_commit
+from .._provenance import git_commit
 from .._device import resolve_device
 from .._progress import progress_bar
 from ..stiffness import DEFAULT_MIN_PIXELS, fit_power_law, stiffness_curve
