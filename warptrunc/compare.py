@@ -100,7 +100,7 @@ LOW_FRACTION = 0.1
 
 CASE_COLUMNS = (
     "case_id", "source", "D_in", "seed", "size_ratio", "Wr_m", "L_m", "n", "dx_m", "Rt_m",
-    "M", "gamma", "cutoff", "depth_fraction_of_Rt", "depth_m", "trunc_area_m2", "n_islands",
+    "Wc_m", "M", "gamma", "depth_fraction_of_Rt", "depth_m", "trunc_area_m2", "n_islands",
     "eq2_stiffness_N_per_m", "eq2_load_N", "islands_stiffness_N_per_m", "islands_load_N",
     "bem_stiffness_N_per_m", "bem_load_N", "bem_area_m2", "eq2_k_ratio", "eq2_F_ratio",
     "islands_k_ratio", "islands_F_ratio", "area_ratio", "converged", "n_iterations",
@@ -388,7 +388,6 @@ def study_cases(
     Rt_over_Wr: float = 0.01,
     M: int = 10,
     gamma: float = 1.5,
-    cutoff: str = "nyquist",
 ) -> list[dict[str, Any]]:
     """The WM cases of a study: D × (L/W_r at a fixed pixel size, plus one halved pixel size)
     × seeds.
@@ -404,6 +403,9 @@ def study_cases(
         Pixels per roll-off wavelength of the base grid.
     refine_ratio : float, optional
         L/W_r at which the pixel size is halved once (grid convergence at fixed L); None for none.
+        The refined map is the *same* WM surface (same phases, same cut-off W_c) sampled twice
+        as finely, so the change measures each route's discretisation error, not added
+        roughness.
     seeds : int
         Surfaces per (D, grid).
     Wr : float
@@ -411,14 +413,15 @@ def study_cases(
     Rt_over_Wr : float
         R_t/W_r, the paper's relative roughness δ (dimensionless); the ratios and α do not
         depend on it (see the module notes).
-    M, gamma, cutoff
-        WM parameters, see :func:`warptrunc.wm_surface`.
+    M, gamma
+        WM parameters, see :func:`warptrunc.wm_surface`. The cut-off W_c is the Nyquist
+        wavelength of the base grid, 2·dx = 2·W_r/``pixels_per_Wr``, in every case.
 
     Returns
     -------
     list of dict
         One dict per case: ``case_id``, ``D_in``, ``seed``, ``size_ratio``, ``n``, ``L_m``,
-        ``dx_m``, ``Wr_m``, ``Rt_m``, ``M``, ``gamma``, ``cutoff``; smallest maps first.
+        ``dx_m``, ``Wr_m``, ``Wc_m``, ``Rt_m``, ``M``, ``gamma``; smallest maps first.
     """
     pixels_per_Wr = check_int("pixels_per_Wr", pixels_per_Wr, 2)
     seeds = check_int("seeds", seeds, 1)
@@ -438,8 +441,8 @@ def study_cases(
                 cases.append({
                     "case_id": f"D{Dv:g}_L{r:g}Wr_n{n}_s{s}",
                     "source": "wm", "D_in": Dv, "seed": s, "size_ratio": r, "n": n, "L_m": L,
-                    "dx_m": L / n, "Wr_m": Wr, "Rt_m": Rt_over_Wr * Wr, "M": M,
-                    "gamma": gamma, "cutoff": cutoff,
+                    "dx_m": L / n, "Wr_m": Wr, "Wc_m": 2 * Wr / pixels_per_Wr,
+                    "Rt_m": Rt_over_Wr * Wr, "M": M, "gamma": gamma,
                 })  # fmt: skip
     return cases
 
@@ -503,7 +506,8 @@ def compare_study(
     Returns
     -------
     pandas.DataFrame
-        Every stored row of the study (:func:`load_comparison`).
+        The stored rows of ``cases`` (:func:`load_comparison`, other cases in the store left
+        out).
 
     Raises
     ------
@@ -533,8 +537,8 @@ def compare_study(
             "size_ratio": (surface.lx / p["Wr"]) if "Wr" in p else math.nan,
             "n": surface.nx, "L_m": surface.lx, "dx_m": surface.dx,
             "Wr_m": float(p.get("Wr", math.nan)), "Rt_m": surface.Rt,
+            "Wc_m": float(p.get("Wc") or math.nan),
             "M": int(p.get("M", -1)), "gamma": float(p.get("gamma", math.nan)),
-            "cutoff": str(p.get("cutoff", "")),
         }]  # fmt: skip
     elif cases is None:
         cases = study_cases()
@@ -550,7 +554,7 @@ def compare_study(
             s = surface
         else:
             s = wm_surface(c["D_in"], c["Wr_m"], L=c["L_m"], n=c["n"], Rt=c["Rt_m"], M=c["M"],
-                           gamma=c["gamma"], cutoff=c["cutoff"], seed=c["seed"], device=device)  # fmt: skip
+                           gamma=c["gamma"], Wc=c["Wc_m"], seed=c["seed"], device=device)  # fmt: skip
         r = compare_models(
             s, fractions, material=material, beta_prime=beta_prime, increments=increments,
             connectivity=connectivity, dtype=dtype, pressure_tol=pressure_tol, pentol=pentol,
@@ -559,7 +563,8 @@ def compare_study(
         c = {**c, "Rt_m": r.Rt}
         _write_case(out, c, r, time.perf_counter() - t0)
         del s, r
-    return load_comparison(out)
+    rows = load_comparison(out)
+    return rows[rows["case_id"].isin(ids)].reset_index(drop=True)
 
 
 def _case_path(out: Path, case_id: str) -> Path:

@@ -1,200 +1,466 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Stage ``bem`` of ``warptrunc reproduce``: truncation against an elastic BEM solution.
+"""Stage ``elastic`` of ``warptrunc reproduce``: how far is truncation from elastic contact?
 
-For D ∈ ``Profile.bem_D`` × ``Profile.bem_seeds`` seeds, a WM surface (L = 1 mm, W_r = 100 µm,
-R_t = 10 µm, the ``analyze`` defaults) at ``Profile.bem_n``² is compared with the non-periodic
-elastic boundary-element contact of :func:`warptrunc.contact.check.bem_check` at δ/R_t ∈
-``Profile.bem_fractions``. The BEM runs on the CPU (ContactMechanics) whatever the device.
-Needs the ``bem`` extra; without it the stage is skipped (not stored, so a rerun after installing
-the extra computes it) and the report says so.
+Eq. 2 (one flat punch of the whole truncated area), island-resolved truncation (one punch per
+island) and warptrunc's elastic BEM solver (free half-space, Barber stiffness) on the same WM
+maps (:mod:`warptrunc.compare`): D ∈ ``Profile.elastic_D``, approaches δ/R_t ∈
+``Profile.elastic_fractions``, map sizes L/W_r ∈ ``Profile.elastic_size_ratios`` at a fixed
+pixel size, the pixel size halved once at L/W_r = ``Profile.elastic_refine_ratio``,
+``Profile.elastic_seeds`` seeds. The cases are stored one Parquet file each under
+``OUT/elastic/`` (resumed case by case by a rerun, also after an interrupted stage); the stage
+file holds the summary tables, recomputed from those rows.
+
+This stage replaces the former ``bem`` stage (ContactMechanics on the CPU at one map size):
+its cases are the L/W_r = 10 column here, solved by warptrunc's own solver on the run's device.
+A ``stages/bem.json`` of an earlier run is left in place and no longer read.
+
+Also runnable alone (``python -m warptrunc.reproduce.elastic --profile paper --out DIR``):
+then it writes ``DIR/elastic.md`` (the report section) and its figures.
 """
 
 from __future__ import annotations
 
+import math
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from .profiles import Profile
 
-__all__ = ["SURFACE", "analyse_bem", "bem_available", "bem_lines", "stage_bem"]
+__all__ = ["GOOD", "analyse_elastic", "elastic_figures", "elastic_lines", "stage_elastic",
+           "stage_params"]  # fmt: skip
 
-SURFACE = {"L": 1e-3, "Wr": 100e-6, "Rt": 10e-6}
-"""WM surface of the cross-check (m): the ``analyze`` defaults, as the README's BEM table."""
-EXTRA_HINT = 'pip install "warptrunc[bem]"'
-RATIOS = ("load_ratio", "stiffness_ratio", "area_ratio")
 GOOD = 0.2
-"""|k'/k_BEM − 1| ≤ GOOD counts as a good stiffness estimate in the report's sentence (the ±20 %
-of issue 12's measurement)."""
+"""|model/BEM − 1| ≤ GOOD counts as "within ±20 %" in the section's sentences."""
+SUBDIR = "elastic"
+"""Case store of the stage, inside the reproduction folder."""
+POHRT_POPOV = ((2.0, 0.51), (3.0, 0.77))
+"""α at D = 2 and 3 from Pohrt & Popov (2012), BEM; the section interpolates linearly."""
+PAPER_ALPHA = (0.209, 0.090)
+"""The paper's Table 3: α = 0.209·D_in + 0.090."""
 
 
-def bem_available() -> str | None:
-    """None when the ``bem`` extra imports; else the reason (naming the install command)."""
-    from ..contact.check import require_bem
+def _material():
+    from ..stiffness import Material
 
-    try:
-        require_bem()
-    except ImportError as exc:
-        return str(exc)
-    return None
+    return Material()
+
+
+def _cases(p: Profile) -> list[dict[str, Any]]:
+    from ..compare import study_cases
+
+    return study_cases(
+        D=p.elastic_D, size_ratios=p.elastic_size_ratios, pixels_per_Wr=p.elastic_pixels_per_Wr,
+        refine_ratio=p.elastic_refine_ratio, seeds=p.elastic_seeds, Wr=p.Wr,
+    )  # fmt: skip
 
 
 def stage_params(p: Profile) -> dict[str, Any]:
-    """The parameters that identify a stored ``bem`` stage."""
-    from ..stiffness import Material
-
-    m = Material()
-    return {"bem_n": p.bem_n, "bem_seeds": p.bem_seeds, "bem_D": list(p.bem_D),
-            "bem_fractions": list(p.bem_fractions), "surface": SURFACE,
-            "material": {"E_Pa": m.E, "nu": m.nu, "E_star_Pa": m.reduced_modulus}}  # fmt: skip
-
-
-def stage_bem(p: Profile, device) -> dict[str, Any]:
-    """Run :func:`~warptrunc.contact.check.bem_check` (ContactMechanics' solver, the stage's
-    reference) on every (D, seed); one case per surface."""
-    from tqdm.auto import tqdm
-
-    from ..contact.check import bem_check
-    from ..wm import wm_surface
-
-    cases = [(D, s) for D in p.bem_D for s in range(p.bem_seeds)]
-    rows = []
-    settings = None
-    for D, seed in tqdm(cases, desc="BEM cross-check", unit="surface", leave=False):
-        surf = wm_surface(D, SURFACE["Wr"], L=SURFACE["L"], n=p.bem_n, Rt=SURFACE["Rt"],
-                          seed=seed, device=device)  # fmt: skip
-        r = bem_check(surf, fractions=p.bem_fractions, solver="contactmechanics", progress=False,
-                      device=device)  # fmt: skip
-        if settings is None:
-            settings = {
-                k: v
-                for k, v in r.settings.items()
-                if k not in ("surface", "solves", "Rt_m", "pentol_m")
-            }
-        rows.append({"D": D, "seed": seed, "Rt_m": float(surf.Rt), "summary": r.summary(),
-                     "pentol_m": r.settings["pentol_m"],
-                     "columns": r.to_dict(),
-                     "solves": [{k: s[k] for k in ("success", "n_iterations", "message")}
-                                for s in r.settings["solves"]]})  # fmt: skip
-    return {"n": p.bem_n, "surface": SURFACE, "fractions": list(p.bem_fractions),
-            "settings": settings, "cases": rows}  # fmt: skip
+    """The parameters that identify a stored ``elastic`` stage."""
+    m = _material()
+    return {"elastic_D": list(p.elastic_D), "elastic_size_ratios": list(p.elastic_size_ratios),
+            "elastic_pixels_per_Wr": p.elastic_pixels_per_Wr,
+            "elastic_refine_ratio": p.elastic_refine_ratio, "elastic_seeds": p.elastic_seeds,
+            "elastic_fractions": list(p.elastic_fractions), "elastic_dtype": p.elastic_dtype,
+            "Wr": p.Wr, "material": {"E_Pa": m.E, "nu": m.nu, "E_star_Pa": m.reduced_modulus},
+            "solver": "warptrunc"}  # fmt: skip
 
 
-def _stats(v: list[float | None]) -> dict[str, Any]:
-    x = np.array([np.nan if a is None else a for a in v], dtype=float)
-    ok = np.isfinite(x)
-    if not ok.any():
-        return {"mean": None, "min": None, "max": None, "n": 0}
-    x = x[ok]
-    return {"mean": float(x.mean()), "min": float(x.min()), "max": float(x.max()), "n": int(x.size)}
+def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
+    """Run (or resume) the comparison study under ``out/elastic`` and summarise it."""
+    from ..compare import compare_study
 
-
-def analyse_bem(stage: dict[str, Any]) -> dict[str, Any]:
-    """Per (D, δ/R_t): mean and range over seeds of the three ratios, convergence and edge
-    counts; per D: time per solve; the cells where k' is within ±GOOD of k_BEM."""
-    if stage.get("status") == "skipped":
-        return {"status": "skipped", "reason": stage["reason"]}
-    cells = []
-    per_D = {}
-    for D in sorted({c["D"] for c in stage["cases"]}):
-        cs = [c for c in stage["cases"] if c["D"] == D]
-        for i, f in enumerate(stage["fractions"]):
-            cell: dict[str, Any] = {"D": D, "fraction": f}
-            for k in RATIOS:
-                cell[k] = _stats([c["columns"][k][i] for c in cs])
-            cell["converged"] = sum(bool(c["columns"]["converged"][i]) for c in cs)
-            cell["n"] = len(cs)
-            cell["edge_contact"] = sum(bool(c["columns"]["edge_contact"][i]) for c in cs)
-            cell["contact_fraction"] = float(np.mean(
-                [c["columns"]["bem_area_m2"][i] for c in cs])) / stage["surface"]["L"] ** 2  # fmt: skip
-            cells.append(cell)
-        per_D[str(D)] = {
-            "time_per_solve_s": float(np.mean([c["summary"]["time_per_solve_s"] for c in cs])),
-            "solves": 3 * len(stage["fractions"]) * len(cs),
-            "not_converged_rows": sum(c["summary"]["n_not_converged"] for c in cs),
-        }  # fmt: skip
-    k = [c["stiffness_ratio"]["mean"] for c in cells]
-    good = [c for c, v in zip(cells, k, strict=True) if v is not None and abs(v - 1) <= GOOD]
-    bad = [v for v in k if v is not None and abs(v - 1) > GOOD]
-    n_rows = sum(len(c["columns"]["converged"]) for c in stage["cases"])
-    return {"status": "ok", "n": stage["n"], "fractions": stage["fractions"], "cells": cells,
-            "per_D": per_D, "good_band": GOOD,
-            "good_cells": [[c["D"], c["fraction"]] for c in good],
-            "other_stiffness_ratio_range": [min(bad), max(bad)] if bad else None,
-            "all_converged": all(all(c["columns"]["converged"]) for c in stage["cases"]),
-            "rows": n_rows, "solves": 3 * n_rows,
-            "time_per_solve_s": float(np.mean([v["time_per_solve_s"] for v in per_D.values()]))}  # fmt: skip
-
-
-def _r(s: dict[str, Any]) -> str:
-    if s["mean"] is None:
-        return "— (no BEM contact)"
-    if s["n"] == 1:
-        return f"{s['mean']:.2f}"
-    return f"{s['mean']:.2f} ({s['min']:.2f}–{s['max']:.2f})"
-
-
-def _sentence(a: dict[str, Any]) -> str:
-    g = a["good_cells"]
-    band = f"±{100 * a['good_band']:.0f} %"
-    k_all = [
-        c["stiffness_ratio"]["mean"] for c in a["cells"] if c["stiffness_ratio"]["mean"] is not None
-    ]
-    under = sum(v < 1 for v in k_all)
-    where = ", ".join(f"D = {D:g} at δ/R_t = {f:g}" for D, f in g) if g else "no (D, δ) here"
-    rng = a["other_stiffness_ratio_range"]
-    rest = (f"; elsewhere the seed-mean k'/k_BEM lies between {rng[0]:.2f} and {rng[1]:.2f}"
-            if rng else "")  # fmt: skip
-    areas = [c["area_ratio"]["mean"] for c in a["cells"] if c["area_ratio"]["mean"] is not None]
-    return (
-        f"On these {a['n']}² maps the truncation stiffness k' is within {band} of the elastic "
-        f"BEM stiffness (seed mean) for {where}{rest}; {under} of {len(k_all)} seed-mean ratios "
-        f"are below 1 (truncation softer than the elastic solution), and the truncated area is "
-        f"{min(areas):.1f}–{max(areas):.1f} × the elastic contact area."
+    store = Path(out) / SUBDIR
+    rows = compare_study(
+        store, _cases(p), fractions=p.elastic_fractions, material=_material(),
+        dtype=p.elastic_dtype, overwrite=True, progress=True, device=device,
     )  # fmt: skip
+    return summary_from_rows(rows, store=SUBDIR)
 
 
-def bem_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | None) -> list[str]:
-    """The report section "Elastic cross-check (BEM)" as Markdown lines."""
-    L = ["## Elastic cross-check (BEM)\n"]
-    if a["status"] == "skipped":
-        L.append(f"Skipped: the `bem` extra is not installed (`{EXTRA_HINT}`).\n")
-        return L
-    s, st = stage["surface"], stage["settings"]
-    seeds = len({c["seed"] for c in stage["cases"]})
+def summary_from_rows(rows, store: str = SUBDIR) -> dict[str, Any]:
+    """The stage result from the study's rows: settings, the two summary tables as records,
+    the grid-convergence pairs, solver counts and times."""
+    from ..compare import summarize
+
+    s = summarize(rows)
+    conv = rows["converged"].astype(bool)
+    per_n = (rows.groupby("n")[["solve_time_s", "case_seconds"]].mean()
+             .reset_index().to_dict("records"))  # fmt: skip
+    return {
+        "store": store,
+        "n_cases": int(rows["case_id"].nunique()),
+        "n_rows": len(rows),
+        "not_converged_rows": int((~conv).sum()),
+        "device": sorted(set(rows["device"].astype(str))),
+        "fractions": sorted(float(f) for f in rows["depth_fraction_of_Rt"].unique()),
+        "grids": sorted({(float(r), int(n))
+                         for r, n in zip(rows["size_ratio"], rows["n"], strict=True)}),
+        "Wr_m": float(rows["Wr_m"].iloc[0]),
+        "Rt_m": sorted({float(v) for v in rows["Rt_m"]}),
+        "ratios": s["ratios"].to_dict("records"),
+        "alpha": s["alpha"].to_dict("records"),
+        "grid": _grid_pairs(rows),
+        "times": per_n,
+    }
+
+
+def _grid_pairs(rows) -> list[dict[str, Any]]:
+    """Per (D, δ/R_t) at the refined L/W_r: fine/coarse of each route's k and F and of the
+    areas, same seed paired (the same surface sampled twice as finely)."""
+    out = []
+    for r in sorted(rows["size_ratio"].unique()):
+        ns = sorted(rows.loc[rows["size_ratio"] == r, "n"].unique())
+        if len(ns) < 2:
+            continue
+        lo, hi = ns[0], ns[-1]
+        a = rows[(rows["size_ratio"] == r) & (rows["n"] == lo)]
+        b = rows[(rows["size_ratio"] == r) & (rows["n"] == hi)]
+        m = a.merge(b, on=["D_in", "seed", "depth_fraction_of_Rt"], suffixes=("_c", "_f"))
+        for (Dv, f), g in m.groupby(["D_in", "depth_fraction_of_Rt"], sort=True):
+            rec: dict[str, Any] = {"D_in": float(Dv), "size_ratio": float(r), "n_coarse": int(lo),
+                                   "n_fine": int(hi), "depth_fraction_of_Rt": float(f)}  # fmt: skip
+            for q in ("eq2_stiffness_N_per_m", "islands_stiffness_N_per_m",
+                      "bem_stiffness_N_per_m", "eq2_load_N", "islands_load_N", "bem_load_N",
+                      "trunc_area_m2", "bem_area_m2", "eq2_k_ratio", "islands_k_ratio"):  # fmt: skip
+                v = (g[f"{q}_f"] / g[f"{q}_c"]).to_numpy(dtype=float)
+                v = v[np.isfinite(v)]
+                rec[f"{q}_fine_over_coarse"] = float(v.mean()) if v.size else None
+            out.append(rec)
+    return out
+
+
+# --- analysis -------------------------------------------------------------------------------------
+
+
+def _base(records: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Records at the base pixel size (largest dx = L/n over the stored sizes)."""
+    if not records:
+        return []
+    dx = max(r["size_ratio"] / r["n"] for r in records)
+    return [r for r in records if math.isclose(r["size_ratio"] / r["n"], dx, rel_tol=1e-9)]
+
+
+def _fin(v: Any) -> bool:
+    return v is not None and isinstance(v, (int, float)) and math.isfinite(v)
+
+
+def analyse_elastic(stage: dict[str, Any]) -> dict[str, Any]:
+    """The numbers the section states: per model the cells within ±GOOD of BEM, the range
+    elsewhere, the trend with L/W_r, the grid change and α against the references."""
+    ratios = _base(stage["ratios"])
+    res: dict[str, Any] = {"good_band": GOOD, "models": {}}
+    for m in ("eq2", "islands"):
+        for q in ("k", "F"):
+            key = f"{m}_{q}_ratio"
+            cells = [r for r in ratios if _fin(r[f"{key}_mean"])]
+            good = [r for r in cells if abs(r[f"{key}_mean"] - 1) <= GOOD]
+            all_good = [r for r in good if r[f"{key}_min"] >= 1 - GOOD and r[f"{key}_max"] <= 1 + GOOD]
+            bad = [r[f"{key}_mean"] for r in cells if abs(r[f"{key}_mean"] - 1) > GOOD]
+            low = [r for r in cells if r["depth_fraction_of_Rt"] <= 0.1 + 1e-9]
+            res["models"][key] = {
+                "cells": len(cells),
+                "good": [[r["D_in"], r["size_ratio"], r["depth_fraction_of_Rt"]] for r in good],
+                "good_all_seeds": len(all_good),
+                "below_one": sum(r[f"{key}_mean"] < 1 for r in cells),
+                "range": [min(r[f"{key}_mean"] for r in cells), max(r[f"{key}_mean"] for r in cells)] if cells else None,
+                "outside_range": [min(bad), max(bad)] if bad else None,
+                "low_range": [min(r[f"{key}_mean"] for r in low), max(r[f"{key}_mean"] for r in low)] if low else None,
+                "size_trend": _size_trend(cells, key),
+            }  # fmt: skip
+    res["alpha"] = _alpha_vs_refs(stage["alpha"])
+    res["grid"] = _grid_summary(stage["grid"])
+    return res
+
+
+def _size_trend(cells: list[dict[str, Any]], key: str) -> dict[str, Any] | None:
+    """Ratio at the largest L/W_r over that at the smallest, per (D, δ/R_t)."""
+    sizes = sorted({r["size_ratio"] for r in cells})
+    if len(sizes) < 2:
+        return None
+    by = {(r["D_in"], r["depth_fraction_of_Rt"], r["size_ratio"]): r[f"{key}_mean"] for r in cells}
+    f = []
+    for Dv, fr in sorted({(r["D_in"], r["depth_fraction_of_Rt"]) for r in cells}):
+        a, b = by.get((Dv, fr, sizes[0])), by.get((Dv, fr, sizes[-1]))
+        if _fin(a) and _fin(b) and a > 0:
+            f.append(b / a)
+    if not f:
+        return None
+    return {"smallest": sizes[0], "largest": sizes[-1], "factor_min": min(f),
+            "factor_median": float(np.median(f)), "factor_max": max(f),
+            "decreasing": sum(v < 1 for v in f), "n": len(f)}  # fmt: skip
+
+
+def _alpha_vs_refs(alpha: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    out = []
+    (d0, a0), (d1, a1) = POHRT_POPOV
+    for r in _base(alpha):
+        D = r["D_in"]
+        out.append({**r, "pohrt_popov": a0 + (a1 - a0) * (D - d0) / (d1 - d0),
+                    "paper_table3": PAPER_ALPHA[0] * D + PAPER_ALPHA[1]})  # fmt: skip
+    return out
+
+
+def _grid_summary(grid: list[dict[str, Any]]) -> dict[str, Any] | None:
+    if not grid:
+        return None
+    out: dict[str, Any] = {"size_ratio": grid[0]["size_ratio"], "n_coarse": grid[0]["n_coarse"],
+                           "n_fine": grid[0]["n_fine"]}  # fmt: skip
+    for q in ("eq2_stiffness_N_per_m", "islands_stiffness_N_per_m", "bem_stiffness_N_per_m",
+              "bem_load_N", "trunc_area_m2", "bem_area_m2", "eq2_k_ratio", "islands_k_ratio"):  # fmt: skip
+        v = [g[f"{q}_fine_over_coarse"] for g in grid if _fin(g[f"{q}_fine_over_coarse"])]
+        out[q] = [min(v), max(v)] if v else None
+    return out
+
+
+# --- figures and text -----------------------------------------------------------------------------
+
+
+def elastic_figures(stage: dict[str, Any], out: str | Path) -> list[str]:
+    """``elastic_ratio_vs_size.png`` and ``elastic_alpha_vs_D.png`` into ``out``."""
+    import pandas as pd
+
+    from ..plot import alpha_vs_D_routes, ratio_vs_size
+
+    out = Path(out)
+    r, a = pd.DataFrame(stage["ratios"]), pd.DataFrame(stage["alpha"])
+    names = ["elastic_ratio_vs_size.png", "elastic_alpha_vs_D.png"]
+    ratio_vs_size(r, path=out / names[0])
+    alpha_vs_D_routes(a, path=out / names[1])
+    return names
+
+
+def _c(s: dict[str, Any], key: str) -> str:
+    m = s.get(f"{key}_mean")
+    if not _fin(m):
+        return "—"
+    lo, hi = s[f"{key}_min"], s[f"{key}_max"]
+    if s.get("seeds", 1) == 1 or math.isclose(lo, hi):
+        return f"{m:.2f}"
+    return f"{m:.2f} ({lo:.2f}–{hi:.2f})"
+
+
+def _where(good: list[list[float]]) -> str:
+    if not good:
+        return "nowhere in this study"
+    by: dict[tuple[float, float], list[float]] = {}
+    for D, r, f in good:
+        by.setdefault((D, r), []).append(f)
+    return "; ".join(f"D = {D:g}, L/W_r = {r:g} at δ/R_t = {', '.join(f'{f:g}' for f in sorted(fs))}"
+                     for (D, r), fs in sorted(by.items()))  # fmt: skip
+
+
+def _model_sentence(name: str, m: dict[str, Any], q: str) -> str:
+    band = f"±{100 * GOOD:.0f} %"
+    what = "stiffness" if q == "k" else "load"
+    s = (f"**{name}, {what}:** within {band} of the elastic solution (seed mean) in "
+         f"{len(m['good'])} of {m['cells']} cells ({m['good_all_seeds']} with every seed inside): "
+         f"{_where(m['good'])}.")
+    if m["outside_range"]:
+        lo, hi = m["outside_range"]
+        s += f" Elsewhere the seed-mean ratio lies between {lo:.2f} and {hi:.2f}"
+        s += f"; {m['below_one']} of {m['cells']} cells are below 1 (softer than elastic)."
+    t = m["size_trend"]
+    if t:
+        s += (f" From L/W_r = {t['smallest']:g} to {t['largest']:g} at the same pixel size the "
+              f"ratio changes by a factor {t['factor_min']:.2f}–{t['factor_max']:.2f} (median "
+              f"{t['factor_median']:.2f}; it falls in {t['decreasing']} of {t['n']} (D, δ) series).")
+    return s  # fmt: skip
+
+
+def elastic_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | None,
+                  figure_names: list[str] | None = None) -> list[str]:  # fmt: skip
+    """The report section "How far is truncation from elastic contact?" as Markdown lines."""
+    L = ["## How far is truncation from elastic contact?\n"]
+    seeds = max((r["seeds"] for r in stage["ratios"]), default=0)
+    grids = ", ".join(f"{n}² (L/W_r = {r:g})" for r, n in stage["grids"])
+    m = _material()
     L.append(
-        f"Truncation (k' = (2/√π)·E*·√A', F' = ∫k' dω) against the elastic boundary-element "
-        f"contact of the same map (`warptrunc.contact.check.bem_check`: ContactMechanics "
-        f"{st['versions'].get('contactmechanics')}, {st['substrate']} half-space, "
-        f"{st['padding'].split(':')[0]}; "
-        f"k_BEM by a central difference over δ(1 ± {st['fd_step']:g}), three solves per approach). "
-        f"WM surfaces at **{a['n']}²** over {s['L'] * 1e3:g} mm, W_r = {s['Wr'] * 1e6:g} µm, "
-        f"R_t = {s['Rt'] * 1e6:g} µm, {seeds} seed{'s' if seeds > 1 else ''} per D; E* = {st['contact_modulus_Pa'] / 1e9:.2f} GPa. "
-        f"The BEM runs on the CPU. "
-        + ("Mean (min–max) over seeds:\n" if seeds > 1 else "One seed per cell:\n")
+        "Three routes on the same WM maps, at approaches δ (from first touch) = truncation depth ω: "
+        "**Eq. 2**, the whole truncated area as one flat punch, k' = (2/√π)E*·√A'; "
+        "**island-resolved** truncation, one flat punch per island of the truncated set, "
+        "k_isl = (2/√π)E*·Σ_i √A_i (4-connected islands); both with F = ∫k dω; and the **elastic** "
+        "solution of warptrunc's BEM solver (`warptrunc.contact.solve_contact`, free half-space: "
+        "the map is an isolated patch; constrained CG; k_BEM by Barber's theorem, the stiffness of a "
+        "rigid punch shaped like the real contact area). "
+        f"Maps {grids}; W_r = {stage['Wr_m'] * 1e6:g} µm at a fixed pixel size over the sizes "
+        "(size effect); at the refined size the same surface (same phases and cut-off) is sampled "
+        f"twice as finely (grid convergence). Seeds per cell: {seeds}; E* = {m.reduced_modulus / 1e9:.2f} GPa; "
+        "ratios and α do not depend on R_t (all routes are linear in the height scale). "
+        f"Device: {', '.join(stage['device'])}; {stage['n_cases']} maps, {stage['n_rows']} approaches, "
+        f"{stage['not_converged_rows']} elastic solves not converged. Nothing is fitted to the elastic "
+        "result: β' = 1 in both truncation models.\n"
     )  # fmt: skip
-    L.append("| D | δ/R_t | F'/F_BEM | k'/k_BEM | A'/A_BEM | A_BEM/A | converged | edge contact |")
-    L.append("|---|---|---|---|---|---|---|---|")
-    for c in a["cells"]:
-        conv = f"{c['converged']}/{c['n']}" + (
-            "" if c["converged"] == c["n"] else " **not converged: flagged**"
-        )
-        L.append(f"| {c['D']:g} | {c['fraction']:g} | {_r(c['load_ratio'])} | {_r(c['stiffness_ratio'])} | "
-                 f"{_r(c['area_ratio'])} | {100 * c['contact_fraction']:.2g} % | {conv} | "
-                 f"{c['edge_contact']}/{c['n']} |")  # fmt: skip
-    L.append("\n| D | solves | s per solve (host CPU) | rows not converged |")
-    L.append("|---|---|---|---|")
-    for D, v in a["per_D"].items():
-        L.append(
-            f"| {D} | {v['solves']} | {v['time_per_solve_s']:.2f} | {v['not_converged_rows']} |"
-        )
+    base = _base(stage["ratios"])
+    fr = stage["fractions"]
+    for key, title in (("eq2_k_ratio", "k'/k_BEM (Eq. 2)"),
+                       ("islands_k_ratio", "k_isl/k_BEM (island-resolved)"),
+                       ("eq2_F_ratio", "F'/F_BEM (Eq. 2)"),
+                       ("islands_F_ratio", "F_isl/F_BEM (island-resolved)")):  # fmt: skip
+        L.append(f"**{title}**, mean (min–max) over seeds:\n")
+        L.append("| D | L/W_r | n | " + " | ".join(f"δ/R_t = {f:g}" for f in fr) + " |")
+        L.append("|---|---|---|" + "---|" * len(fr))
+        for (D, r, n) in sorted({(c["D_in"], c["size_ratio"], c["n"]) for c in base}):
+            cells = {c["depth_fraction_of_Rt"]: c for c in base
+                     if (c["D_in"], c["size_ratio"], c["n"]) == (D, r, n)}  # fmt: skip
+            L.append(f"| {D:g} | {r:g} | {n} | " + " | ".join(
+                _c(cells[f], key) if f in cells else "—" for f in fr) + " |")  # fmt: skip
+        L.append("")
+    L.append("**A'/A_BEM** (truncated over elastic contact area), seed mean: "
+             + "; ".join(f"D = {D:g}: {min(v):.2f}–{max(v):.2f}" for D, v in sorted(
+                 _group(base, "area_ratio_mean").items())) + ".\n")  # fmt: skip
+    for key, name in (("eq2", "Eq. 2"), ("islands", "Island-resolved")):
+        for q in ("k", "F"):
+            L.append(_model_sentence(name, a["models"][f"{key}_{q}_ratio"], q) + "\n")
+    # grid
+    g = a["grid"]
+    if g:
+        def rng(v):
+            return "—" if v is None else f"{v[0]:.3f}–{v[1]:.3f}"
+
+        L.append(f"**Grid convergence** (L/W_r = {g['size_ratio']:g}, {g['n_coarse']}² → {g['n_fine']}², "
+                 "the same surface; fine/coarse, range over D and δ/R_t of the seed means): "
+                 f"k_BEM {rng(g['bem_stiffness_N_per_m'])}, F_BEM {rng(g['bem_load_N'])}, "
+                 f"A_BEM {rng(g['bem_area_m2'])}; k' {rng(g['eq2_stiffness_N_per_m'])}, "
+                 f"k_isl {rng(g['islands_stiffness_N_per_m'])}, A' {rng(g['trunc_area_m2'])}; "
+                 f"the ratios k'/k_BEM {rng(g['eq2_k_ratio'])} and k_isl/k_BEM {rng(g['islands_k_ratio'])}.\n")  # fmt: skip
+    # alpha
+    al = [r for r in a["alpha"]]
+    if al:
+        L.append("**α of k ∝ F^α by three routes** (least squares in log–log over the approaches: "
+                 "`all` = every δ/R_t, `low` = δ/R_t ≤ 0.1, the paper's fit range), mean (min–max) "
+                 "over seeds, against Pohrt & Popov's BEM range (0.51 at D = 2 → 0.77 at D = 3, "
+                 "linear interpolation) and the paper's Table 3 (α = 0.209·D + 0.090):\n")  # fmt: skip
+        L.append("| D | L/W_r | n | fit | α Eq. 2 | α islands | α BEM | Pohrt & Popov | Table 3 |")
+        L.append("|---|---|---|---|---|---|---|---|---|")
+        for r in sorted(al, key=lambda r: (r["size_ratio"], r["D_in"], r["range"])):
+            L.append(f"| {r['D_in']:g} | {r['size_ratio']:g} | {r['n']} | {r['range']} | "
+                     f"{_c(r, 'alpha_eq2')} | {_c(r, 'alpha_islands')} | {_c(r, 'alpha_bem')} | "
+                     f"{r['pohrt_popov']:.3f} | {r['paper_table3']:.3f} |")  # fmt: skip
+        L.append("")
+        L.append(_alpha_sentence(al) + "\n")
+    for nme in figure_names or []:
+        L.append(f"![{nme}]({nme})\n")
+    L.append(_reading(a) + "\n")
     tot = "" if seconds is None else f" The stage took {seconds:.1f} s."
-    L.append(f"\n`converged` counts seeds whose three solves all met the tolerances "
-             f"(pressure ≤ {st['pressure_tol']:g}·E*, penetration ≤ the library's "
-             f"rms height/(10·mean n) of each map, "
-             f"≤ {st['maxiter']} iterations); `edge contact`: the BEM contact reaches the map's "
-             f"border (free half-space: the map ends there).{tot}\n")  # fmt: skip
-    L.append(_sentence(a) + " The ratios depend on the grid (A_BEM is not converged in the "
-             "pixel size on a fractal map); quote them with it.\n")  # fmt: skip
+    L.append(f"Cases are stored one Parquet file each under `{stage['store']}/` "
+             f"(`warptrunc.compare.load_comparison`); the tables are recomputed from them.{tot}\n")  # fmt: skip
     return L
+
+
+def _group(records, key):
+    out: dict[float, list[float]] = {}
+    for r in records:
+        if _fin(r.get(key)):
+            out.setdefault(r["D_in"], []).append(r[key])
+    return out
+
+
+def _alpha_sentence(al: list[dict[str, Any]]) -> str:
+    big = max(r["size_ratio"] for r in al)
+    rows = [r for r in al if r["size_ratio"] == big and r["range"] == "all"]
+    parts = []
+    for m, name in (("eq2", "Eq. 2"), ("islands", "island-resolved"), ("bem", "BEM")):
+        d = [r[f"alpha_{m}_mean"] - r["pohrt_popov"] for r in rows if _fin(r[f"alpha_{m}_mean"])]
+        slope = _slope([(r["D_in"], r[f"alpha_{m}_mean"]) for r in rows])
+        if d:
+            parts.append(f"{name}: α − α_PP from {min(d):+.2f} to {max(d):+.2f}"
+                         + (f", dα/dD = {slope:.2f}" if slope is not None else ""))  # fmt: skip
+    return (f"At L/W_r = {big:g} (all approaches), against Pohrt & Popov's line (dα/dD = 0.26; "
+            "Table 3: 0.209): " + "; ".join(parts) + ".")
+
+
+def _slope(pts: list[tuple[float, float]]) -> float | None:
+    pts = [(x, y) for x, y in pts if _fin(y)]
+    if len({x for x, _ in pts}) < 2:
+        return None
+    x, y = np.array(pts).T
+    return float(np.polyfit(x, y, 1)[0])
+
+
+def _reading(a: dict[str, Any]) -> str:
+    """How to read the paper's conclusions, from the numbers above (conditional sentences)."""
+    e = a["models"]["eq2_k_ratio"]
+    f = a["models"]["eq2_F_ratio"]
+    i = a["models"]["islands_k_ratio"]
+    s = ["**Reading the paper in this light.**"]
+    if e["low_range"]:
+        lo, hi = e["low_range"]
+        inside = (lo >= 1 - GOOD) and (hi <= 1 + GOOD)
+        s.append(f"In the paper's fit range (δ/R_t ≤ 0.1) Eq. 2's k'/k_BEM spans {lo:.2f}–{hi:.2f} over D and "
+                 f"L/W_r here, so its stiffness magnitude (β of Table 3) "
+                 + ("agrees with elastic contact within ±20 % on these maps." if inside else
+                    "is a truncation-model quantity, not the elastic stiffness of the map: quote it with "
+                    "the map size and pixel size it was computed at."))  # fmt: skip
+    if f["low_range"]:
+        lo, hi = f["low_range"]
+        s.append(f"The load F' there is {lo:.2f}–{hi:.2f} × F_BEM.")
+    t = e["size_trend"]
+    if t and t["n"]:
+        if t["decreasing"] > t["n"] / 2:
+            s.append(f"k'/k_BEM falls with the number of roll-off wavelengths in the map in {t['decreasing']} of "
+                     f"{t['n']} series (what a single punch, not extensive in the map size, predicts), so Eq. 2's β "
+                     "depends on L/W_r, "
+                     "which the paper keeps fixed (1 mm over W_r = 100 µm, L/W_r = 10).")
+        else:
+            s.append(f"k'/k_BEM falls with L/W_r in only {t['decreasing']} of {t['n']} series here.")
+    ti = i["size_trend"]
+    if ti and ti["n"]:
+        s.append(f"The island-resolved ratio changes by a median factor {ti['factor_median']:.2f} over the same sizes "
+                 + (f"(Eq. 2: {t['factor_median']:.2f})." if t else "."))
+    al = [r for r in a["alpha"] if r["range"] == "low"]
+    if al:
+        big = max(r["size_ratio"] for r in al)
+        rows = [r for r in al if r["size_ratio"] == big]
+        d = [abs(r["alpha_eq2_mean"] - r["alpha_bem_mean"]) for r in rows
+             if _fin(r["alpha_eq2_mean"]) and _fin(r["alpha_bem_mean"])]
+        if d:
+            s.append(f"The exponent α from Eq. 2 differs from the elastic α by {min(d):.2f}–{max(d):.2f} "
+                     f"in the paper's range at L/W_r = {big:g}; "
+                     + ("the paper's α(D) trend is therefore within 0.05 of elastic contact here."
+                        if max(d) <= 0.05 else
+                        "read the paper's α(D) as the exponent of the truncation model, checked against "
+                        "elastic contact only to that accuracy."))  # fmt: skip
+    return " ".join(s)
+
+
+# --- standalone ---------------------------------------------------------------------------------
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the ``elastic`` stage alone: ``python -m warptrunc.reproduce.elastic``."""
+    import argparse
+    import json
+    import time
+
+    from .._results import jsonable, write_atomic
+    from .profiles import PROFILES
+    from .store import StageStore
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
+    ap.add_argument("--profile", choices=sorted(PROFILES), default="quick")
+    ap.add_argument("--out", type=Path, default=Path("reproduction"))
+    ap.add_argument("--device", default=None)
+    ap.add_argument("--overwrite", action="store_true")
+    args = ap.parse_args(argv)
+    p = PROFILES[args.profile]
+    args.out.mkdir(parents=True, exist_ok=True)
+    store = StageStore(args.out, overwrite=args.overwrite)
+    t0 = time.perf_counter()
+    stage = store.run("elastic", stage_params(p), lambda: stage_elastic(p, args.out, args.device))
+    a = analyse_elastic(stage)
+    names = elastic_figures(stage, args.out)
+    lines = elastic_lines(stage, a, store.seconds("elastic"), names)
+    head = (f"<!-- warptrunc.reproduce.elastic --profile {p.name}; wall {time.perf_counter() - t0:.1f} s -->\n")
+    write_atomic(args.out / "elastic.md", head + "\n".join(lines) + "\n")
+    write_atomic(args.out / "elastic_analysis.json",
+                 json.dumps(jsonable(a), indent=1, allow_nan=False) + "\n")  # fmt: skip
+    print(f"wrote {args.out}/elastic.md, elastic_analysis.json, {', '.join(names)}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -192,7 +192,7 @@ def figures(res: dict[str, Any], ana: dict[str, Any], out: Path, device=None) ->
     -------
     list of str
         File names written: Fig. 2, 5, 7 (when a Table 1 row is ok), 8 (when the island stage
-        has surfaces), 9 and 10.
+        has surfaces), 9, 10 and the ``elastic`` stage's two figures.
     """
     names = [fig2(res, out), fig5(res, ana, out)]
     if any(r["status"] == "ok" for r in res["table1"]["rows"]):
@@ -201,6 +201,10 @@ def figures(res: dict[str, Any], ana: dict[str, Any], out: Path, device=None) ->
         names.append(fig8(res, out))
     names += fig9(res, out)
     names.append(fig10(res, ana, out))
+    if "elastic" in res:
+        from .elastic import elastic_figures
+
+        names += elastic_figures(res["elastic"], out)
     return names
 
 
@@ -339,10 +343,11 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
     for nme in names:
         if nme.startswith(("fig9", "fig10")):
             a(f"![{nme}]({nme})\n")
-    if "bem" in res:
-        from .elastic import bem_lines
+    if "elastic" in res:
+        from .elastic import elastic_lines
 
-        L.extend(bem_lines(res["bem"], ana["bem"], meta["stage_seconds"].get("bem")))
+        L.extend(elastic_lines(res["elastic"], ana["elastic"], meta["stage_seconds"].get("elastic"),
+                               [n for n in names if n.startswith("elastic_")]))  # fmt: skip
     a("## Stage times\n")
     a("| stage | seconds (compute, from the stage file) |\n|---|---|")
     for k, v in meta["stage_seconds"].items():
