@@ -151,8 +151,20 @@ class ModelComparison:
     """Material, β', grid, solver settings (JSON-able)."""
 
     def ratio(self, model: str, quantity: str = "stiffness") -> np.ndarray:
-        """(m,) model/BEM for ``model`` in {"eq2", "islands"}, ``quantity`` in {"stiffness",
-        "load"} (dimensionless); NaN where the BEM value is 0."""
+        """Model over BEM at every approach.
+
+        Parameters
+        ----------
+        model : {"eq2", "islands"}
+            The truncation model.
+        quantity : {"stiffness", "load"}
+            k or F.
+
+        Returns
+        -------
+        (m,) ndarray
+            float64 ratio (dimensionless); NaN where the BEM value is 0.
+        """
         if model not in ("eq2", "islands") or quantity not in ("stiffness", "load"):
             raise ValueError(f"ratio of ('eq2'|'islands', 'stiffness'|'load'), got {model!r}, "
                              f"{quantity!r}")  # fmt: skip
@@ -164,8 +176,18 @@ class ModelComparison:
         return _ratio(self.trunc_area, self.bem_area)
 
     def fits(self, max_fraction: float | None = None) -> dict[str, dict[str, float]]:
-        """α (k ∝ F^α), prefactor and r² of each route over the approaches (δ/R_t ≤
-        ``max_fraction`` when given); see :func:`fit_k_vs_F`."""
+        """Power law k ∝ F^α of each route over the approaches.
+
+        Parameters
+        ----------
+        max_fraction : float, optional
+            Use only approaches with δ/R_t ≤ this (dimensionless); default all.
+
+        Returns
+        -------
+        dict of str to dict
+            ``{"eq2" | "islands" | "bem": fit}``, each fit as :func:`fit_k_vs_F` returns it.
+        """
         sel = np.ones(self.depth.size, bool)
         if max_fraction is not None:
             sel = self.depth_fraction <= max_fraction * (1 + 1e-9)
@@ -173,7 +195,13 @@ class ModelComparison:
                 for m in MODELS}  # fmt: skip
 
     def to_dict(self) -> dict[str, np.ndarray]:
-        """1-D columns, SI units in the names (the per-approach columns of a case file)."""
+        """1-D columns, SI units in the names.
+
+        Returns
+        -------
+        dict of str to ndarray
+            The per-approach columns of a case file (:data:`CASE_COLUMNS`), each (m,).
+        """
         return {
             "depth_fraction_of_Rt": self.depth_fraction,
             "depth_m": self.depth,

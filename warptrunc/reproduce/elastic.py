@@ -30,7 +30,7 @@ import numpy as np
 from .profiles import Profile
 
 __all__ = ["GOOD", "analyse_elastic", "elastic_figures", "elastic_lines", "stage_elastic",
-           "stage_params"]  # fmt: skip
+           "stage_params", "summary_from_rows"]  # fmt: skip
 
 GOOD = 0.2
 """|model/BEM − 1| ≤ GOOD counts as "within ±20 %" in the section's sentences."""
@@ -58,7 +58,18 @@ def _cases(p: Profile) -> list[dict[str, Any]]:
 
 
 def stage_params(p: Profile) -> dict[str, Any]:
-    """The parameters that identify a stored ``elastic`` stage."""
+    """The parameters that identify a stored ``elastic`` stage.
+
+    Parameters
+    ----------
+    p : Profile
+        The reproduction profile.
+
+    Returns
+    -------
+    dict
+        JSON-able parameters (compared by :class:`~warptrunc.reproduce.store.StageStore`).
+    """
     m = _material()
     return {"elastic_D": list(p.elastic_D), "elastic_size_ratios": list(p.elastic_size_ratios),
             "elastic_pixels_per_Wr": p.elastic_pixels_per_Wr,
@@ -69,7 +80,22 @@ def stage_params(p: Profile) -> dict[str, Any]:
 
 
 def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
-    """Run (or resume) the comparison study under ``out/elastic`` and summarise it."""
+    """Run (or resume) the comparison study under ``out/elastic`` and summarise it.
+
+    Parameters
+    ----------
+    p : Profile
+        The reproduction profile (its ``elastic_*`` fields).
+    out : str or Path
+        Reproduction folder; the case store is ``out/elastic``.
+    device : str, optional
+        Warp device of every route.
+
+    Returns
+    -------
+    dict
+        :func:`summary_from_rows` of the study's rows.
+    """
     from ..compare import compare_study
 
     store = Path(out) / SUBDIR
@@ -81,8 +107,21 @@ def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
 
 
 def summary_from_rows(rows, store: str = SUBDIR) -> dict[str, Any]:
-    """The stage result from the study's rows: settings, the two summary tables as records,
-    the grid-convergence pairs, solver counts and times."""
+    """The stage result from the study's rows.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        Rows of :func:`warptrunc.compare.load_comparison`.
+    store : str
+        Folder of the case store, as the report names it.
+
+    Returns
+    -------
+    dict
+        Counts, grids, the two summary tables of :func:`warptrunc.compare.summarize` as
+        records, the grid-convergence pairs and mean times per map size (JSON-able).
+    """
     from ..compare import summarize
 
     s = summarize(rows)
@@ -148,8 +187,19 @@ def _fin(v: Any) -> bool:
 
 
 def analyse_elastic(stage: dict[str, Any]) -> dict[str, Any]:
-    """The numbers the section states: per model the cells within ±GOOD of BEM, the range
-    elsewhere, the trend with L/W_r, the grid change and α against the references."""
+    """The numbers the section states.
+
+    Parameters
+    ----------
+    stage : dict
+        The stage result (:func:`summary_from_rows`).
+
+    Returns
+    -------
+    dict
+        Per model and quantity the cells within ±GOOD of BEM, the range elsewhere and in the
+        paper's range, the trend with L/W_r; the grid change; α with the two references.
+    """
     ratios = _base(stage["ratios"])
     res: dict[str, Any] = {"good_band": GOOD, "models": {}}
     for m in ("eq2", "islands"):
@@ -219,7 +269,20 @@ def _grid_summary(grid: list[dict[str, Any]]) -> dict[str, Any] | None:
 
 
 def elastic_figures(stage: dict[str, Any], out: str | Path) -> list[str]:
-    """``elastic_ratio_vs_size.png`` and ``elastic_alpha_vs_D.png`` into ``out``."""
+    """Write the stage's two figures.
+
+    Parameters
+    ----------
+    stage : dict
+        The stage result (:func:`summary_from_rows`).
+    out : str or Path
+        Folder for ``elastic_ratio_vs_size.png`` and ``elastic_alpha_vs_D.png``.
+
+    Returns
+    -------
+    list of str
+        The two file names.
+    """
     import pandas as pd
 
     from ..plot import alpha_vs_D_routes, ratio_vs_size
@@ -272,7 +335,24 @@ def _model_sentence(name: str, m: dict[str, Any], q: str) -> str:
 
 def elastic_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | None,
                   figure_names: list[str] | None = None) -> list[str]:  # fmt: skip
-    """The report section "How far is truncation from elastic contact?" as Markdown lines."""
+    """The report section "How far is truncation from elastic contact?".
+
+    Parameters
+    ----------
+    stage : dict
+        The stage result (:func:`summary_from_rows`).
+    a : dict
+        Its analysis (:func:`analyse_elastic`).
+    seconds : float or None
+        Compute time of the stage (s), if known.
+    figure_names : list of str, optional
+        Figures to embed.
+
+    Returns
+    -------
+    list of str
+        Markdown lines; every number and every sentence's claim comes from ``stage`` and ``a``.
+    """
     L = ["## How far is truncation from elastic contact?\n"]
     seeds = max((r["seeds"] for r in stage["ratios"]), default=0)
     grids = ", ".join(f"{n}² (L/W_r = {r:g})" for r, n in stage["grids"])
@@ -325,7 +405,20 @@ def elastic_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | Non
                  f"k_BEM {rng(g['bem_stiffness_N_per_m'])}, F_BEM {rng(g['bem_load_N'])}, "
                  f"A_BEM {rng(g['bem_area_m2'])}; k' {rng(g['eq2_stiffness_N_per_m'])}, "
                  f"k_isl {rng(g['islands_stiffness_N_per_m'])}, A' {rng(g['trunc_area_m2'])}; "
-                 f"the ratios k'/k_BEM {rng(g['eq2_k_ratio'])} and k_isl/k_BEM {rng(g['islands_k_ratio'])}.\n")  # fmt: skip
+                 f"the ratios k'/k_BEM {rng(g['eq2_k_ratio'])} and k_isl/k_BEM {rng(g['islands_k_ratio'])}. "
+                 "Per approach, fine/coarse averaged over D:\n")  # fmt: skip
+        L.append("| δ/R_t | k_BEM | F_BEM | A_BEM | k' | k_isl | A' | k'/k_BEM | k_isl/k_BEM |")
+        L.append("|---|---|---|---|---|---|---|---|---|")
+        qs = ("bem_stiffness_N_per_m", "bem_load_N", "bem_area_m2", "eq2_stiffness_N_per_m",
+              "islands_stiffness_N_per_m", "trunc_area_m2", "eq2_k_ratio", "islands_k_ratio")
+        for f in stage["fractions"]:
+            gs = [x for x in stage["grid"] if math.isclose(x["depth_fraction_of_Rt"], f)]
+            vals = []
+            for q in qs:
+                v = [x[f"{q}_fine_over_coarse"] for x in gs if _fin(x[f"{q}_fine_over_coarse"])]
+                vals.append(f"{np.mean(v):.3f}" if v else "—")
+            L.append(f"| {f:g} | " + " | ".join(vals) + " |")
+        L.append("")
     # alpha
     al = [r for r in a["alpha"]]
     if al:
@@ -430,7 +523,18 @@ def _reading(a: dict[str, Any]) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the ``elastic`` stage alone: ``python -m warptrunc.reproduce.elastic``."""
+    """Run the ``elastic`` stage alone: ``python -m warptrunc.reproduce.elastic``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status.
+    """
     import argparse
     import json
     import time
