@@ -154,7 +154,7 @@ class StiffnessCurve:
         path.write_text(json.dumps(d, indent=1, default=str) + "\n")
         return path
 
-    def to_csv(self, path: str | Path) -> Path:
+    def to_csv(self, path: str | Path, islands: StiffnessCurve | None = None) -> Path:
         """Write the columns of :meth:`to_dict` as CSV (full float64 precision).
 
         Parameters
@@ -162,13 +162,28 @@ class StiffnessCurve:
         path : str or Path
             File to write (overwritten): a header row of the column names, then one row per
             truncation depth.
+        islands : StiffnessCurve, optional
+            The island-resolved model on the same depths (:func:`island_stiffness_curve`);
+            appends ``stiffness_islands_N_per_m`` (N/m), ``load_islands_N`` (N) and
+            ``Ec_over_E_islands`` (dimensionless), as ``analyze`` writes ``curve.csv``.
 
         Returns
         -------
         Path
             ``path``.
+
+        Raises
+        ------
+        ValueError
+            If ``islands`` is not on the same depths.
         """
-        return write_columns_csv(path, self.to_dict())
+        cols = self.to_dict()
+        if islands is not None:
+            if not np.array_equal(islands.depth, self.depth):
+                raise ValueError("islands must be on the same depths as this curve")
+            cols = {**cols, "stiffness_islands_N_per_m": islands.stiffness,
+                    "load_islands_N": islands.load, "Ec_over_E_islands": islands.Ec_over_E}  # fmt: skip
+        return write_columns_csv(path, cols)
 
 
 @dataclass(frozen=True)

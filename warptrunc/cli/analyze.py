@@ -35,7 +35,6 @@ import numpy as np
 
 from .._atomic import staged_output, strict_json
 from .._device import resolve_device
-from .._table import write_columns_csv
 from ..robust import clip_to_percentiles
 from ..stiffness import (
     DEFAULT_MIN_PIXELS,
@@ -177,12 +176,8 @@ def run(args: argparse.Namespace) -> int:
         **isl_fit.to_dict(), "model": "k = β'(2/√π)E*·Σ_i √A_i, one flat punch per island",
         "connectivity": args.connectivity,
     }  # fmt: skip
-    cols = sc.to_dict()
-    if isl is not None:
-        cols = {**cols, "stiffness_islands_N_per_m": isl.stiffness, "load_islands_N": isl.load,
-                "Ec_over_E_islands": isl.Ec_over_E}  # fmt: skip
     with staged_output(args.out) as out:  # all or nothing
-        write_columns_csv(out / "curve.csv", cols)
+        sc.to_csv(out / "curve.csv", islands=isl)
         (out / "fit.json").write_text(strict_json(info))
         if not args.no_plot:
             from .. import plot
