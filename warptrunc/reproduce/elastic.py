@@ -516,6 +516,13 @@ def _reading(a: dict[str, Any]) -> str:
                         if max(d) <= 0.05 else
                         "read the paper's α(D) as the exponent of the truncation model, checked against "
                         "elastic contact only to that accuracy."))  # fmt: skip
+        di = [r["alpha_islands_mean"] - r["alpha_bem_mean"] for r in rows
+              if _fin(r["alpha_islands_mean"]) and _fin(r["alpha_bem_mean"])]
+        de = [r["alpha_eq2_mean"] - r["alpha_bem_mean"] for r in rows
+              if _fin(r["alpha_eq2_mean"]) and _fin(r["alpha_bem_mean"])]
+        if di and de:
+            s.append(f"In the same range α_isl − α_BEM is {min(di):+.2f} to {max(di):+.2f} "
+                     f"(α_Eq.2 − α_BEM: {min(de):+.2f} to {max(de):+.2f}).")  # fmt: skip
     return " ".join(s)
 
 
