@@ -162,6 +162,8 @@ def run(args: argparse.Namespace) -> int:
     rtp = getattr(args, "rt_percentile", None)
     if rtp is not None and not rtp[0] < rtp[1]:
         raise ValueError(f"--rt-percentile LO HI needs LO < HI (%), got {rtp[0]!r} {rtp[1]!r}")
+    if args.islands and args.stream:
+        raise ValueError("--islands needs the map in memory; a streamed map has no island pass")
     material = Material(E=args.E, nu=args.nu, E_i=args.E_flat, nu_i=args.nu_flat)
     curve, meta, path = _truncation(args)
     nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
