@@ -82,6 +82,7 @@ def test_study_cases_grids():
 
 def test_study_resumes_refuses_and_reloads(tmp_path, monkeypatch):
     import warptrunc.compare as cmp
+    import warptrunc.compare.study as cmp_study
 
     cases = study_cases(D=(2.2, 2.8), size_ratios=(1,), pixels_per_Wr=24, refine_ratio=None,
                         seeds=1)  # fmt: skip
@@ -95,7 +96,7 @@ def test_study_resumes_refuses_and_reloads(tmp_path, monkeypatch):
     lost.unlink()
     calls = []
     real = cmp.compare_models
-    monkeypatch.setattr(cmp, "compare_models", lambda *a, **k: calls.append(1) or real(*a, **k))
+    monkeypatch.setattr(cmp_study, "compare_models", lambda *a, **k: calls.append(1) or real(*a, **k))
     again = compare_study(out, cases, fractions=FR, device="cpu", progress=False)
     assert len(calls) == 1 and lost.exists()
     times = ["case_seconds", "solve_time_s"]  # the recomputed case: same numbers, new times

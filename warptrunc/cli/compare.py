@@ -136,12 +136,8 @@ def run(args: argparse.Namespace) -> int:
         buf = io.BytesIO()
         s[name].to_parquet(buf, index=False)
         write_atomic(out / f"{name}.parquet", buf.getvalue())
-    from ..reproduce.elastic import (
-        analyse_elastic,
-        elastic_figures,
-        elastic_lines,
-        summary_from_rows,
-    )
+    from ..reproduce.elastic import analyse_elastic, summary_from_rows
+    from ..reproduce.elastic_report import elastic_figures, elastic_lines
 
     stage = summary_from_rows(rows, store="cases")
     a = analyse_elastic(stage) if cases is not None else None

@@ -202,7 +202,7 @@ def figures(res: dict[str, Any], ana: dict[str, Any], out: Path, device=None) ->
     names += fig9(res, out)
     names.append(fig10(res, ana, out))
     if "elastic" in res:
-        from .elastic import elastic_figures
+        from .elastic_report import elastic_figures
 
         names += elastic_figures(res["elastic"], out)
     return names
@@ -344,7 +344,7 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
         if nme.startswith(("fig9", "fig10")):
             a(f"![{nme}]({nme})\n")
     if "elastic" in res:
-        from .elastic import elastic_lines
+        from .elastic_report import elastic_lines
 
         L.extend(elastic_lines(res["elastic"], ana["elastic"], meta["stage_seconds"].get("elastic"),
                                [n for n in names if n.startswith("elastic_")]))  # fmt: skip
