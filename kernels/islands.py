@@ -20,7 +20,7 @@ Per-island statistics along the way (optional): integer accumulators ``area``,
 accumulators of the roots hooked at k are added to their new roots
 (``merge_linked_stride_kernel``), then each new pixel adds 1 to the area and its change of
 boundary edges (``add_pixels_kernel``), then ``compact_roots_kernel`` keeps the surviving roots
-and adds them to the per-depth area histogram and slit-island sums. The number of roots stays
+and adds them to the per-depth area histogram, slit-island sums and Σ√(island area). The number of roots stays
 on the device, so no increment waits for the host. ``edges_x`` counts pixel edges crossed along x (vertical
 edges, length dy), ``edges_y`` edges crossed along y (length dx), between a contact pixel and a
 non-contact pixel or the domain border (unless periodic). Integer atomics only: results are
@@ -234,6 +234,17 @@ def merge_linked_stride_kernel(
                 wp.atomic_add(edges_y, r, edges_y[c])
 
 
+SQRT_SCALE = wp.constant(wp.float64(1 << 30))
+"""Fixed-point scale of the Σ√A_i accumulator (units of pixel^½): ≤ 2^31 pixels give
+Σ√a ≤ 2^31, i.e. ≤ 2^61 in int64, and each term is rounded to 2^-31 pixel^½."""
+
+
+@wp.func
+def sqrt_fixed(a: int) -> wp.int64:
+    """√a (a in pixels) in fixed point, rounded to the nearest 1/SQRT_SCALE."""
+    return wp.int64(wp.sqrt(wp.float64(a)) * SQRT_SCALE + wp.float64(0.5))
+
+
 @wp.kernel
 def compact_roots_kernel(
     roots: wp.array[wp.int32],
@@ -253,6 +264,7 @@ def compact_roots_kernel(
     out_roots: wp.array[wp.int32],
     hist: wp.array2d[wp.int64],
     sums: wp.array2d[wp.float64],
+    sqrt_sums: wp.array[wp.int64],
 ):
     """Tiled, ``n_blocks`` blocks striding over the candidates of increment k (previous roots,
     ``counts[kprev]`` of them, then bucket k). Each candidate still a root is appended to
@@ -261,7 +273,11 @@ def compact_roots_kernel(
     ``min_pixels`` pixels, added to the slit-island sums of row k:
     ``sums[k] = [n, Σx, Σy, Σx², Σxy, Σy²]`` with x = log10(area in pixels) and
     y = log10(edges_x·aspect + edges_y) (perimeter in units of dx; aspect = dy/dx), in
-    float64, reduced per block (tile sum) before one atomic per block and column."""
+    float64, reduced per block (tile sum) before one atomic per block and column. Every
+    surviving root also adds √(area in pixels) to ``sqrt_sums[k]`` (island-resolved stiffness,
+    Σ√A_i): each √a is a float64 rounded to a fixed-point int64 in units of
+    ``SQRT_SCALE``⁻¹ pixel^½, so the sum is exact and independent of the order of the roots
+    (identical on every device and run)."""
     b, lane = wp.tid()
     bd = wp.block_dim()
     nr = int(0)
@@ -273,6 +289,7 @@ def compact_roots_kernel(
     s3 = wp.float64(0.0)
     s4 = wp.float64(0.0)
     s5 = wp.float64(0.0)
+    q = wp.int64(0)
     for t in range(b * bd + lane, nr + count, n_blocks * bd):
         c = candidate(roots, nr, order, start, t)
         if parent[c] == c:
@@ -283,6 +300,7 @@ def compact_roots_kernel(
             while (a >> (e + 1)) > 0:
                 e += 1
             wp.atomic_add(hist, k, wp.min(e, hist.shape[1] - 1), wp.int64(1))
+            q += sqrt_fixed(a)
             if a >= min_pixels:
                 x = wp.log10(wp.float64(a))
                 y = wp.log10(wp.float64(edges_x[c]) * aspect + wp.float64(edges_y[c]))
@@ -292,6 +310,9 @@ def compact_roots_kernel(
                 s3 += x * x
                 s4 += x * y
                 s5 += y * y
+    rq = wp.tile_extract(wp.tile_sum(wp.tile(q)), 0)
+    if lane == 0 and rq != wp.int64(0):
+        wp.atomic_add(sqrt_sums, k, rq)
     r0 = wp.tile_extract(wp.tile_sum(wp.tile(s0)), 0)
     if r0 > wp.float64(0.0):
         r1 = wp.tile_extract(wp.tile_sum(wp.tile(s1)), 0)

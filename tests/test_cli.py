@@ -33,15 +33,19 @@ def test_generate_then_analyze(tmp_path):
     data = np.genfromtxt(out / "curve.csv", delimiter=",", names=True)
     assert data.dtype.names == (
         "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
-        "Ec_over_E", "F_over_EA",
+        "Ec_over_E", "F_over_EA", "stiffness_islands_N_per_m", "load_islands_N",
+        "Ec_over_E_islands",
     )  # fmt: skip
     assert len(data) == 51
+    # one punch per island is at least one punch of the total area (Σ√A_i ≥ √ΣA_i)
+    assert np.all(data["stiffness_islands_N_per_m"] >= data["stiffness_N_per_m"] * (1 - 1e-9))
     z = s.heights
     thr = (np.float64(z.max()) - data["depth_m"]).astype(np.float32)
     np.testing.assert_array_equal(data["n_contact_pixels"], [np.count_nonzero(z >= t) for t in thr])
     fit = json.loads((out / "fit.json").read_text())
     assert {"alpha", "beta", "r2", "n_points", "depth_min", "depth_max", "min_pixels"} <= set(fit)
     assert fit["min_pixels"] == 3
+    assert fit["islands"]["min_pixels"] == 3 and fit["islands"]["connectivity"] == 4
     png = (out / "stiffness.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000
 

@@ -4,7 +4,6 @@
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import math
 
@@ -23,9 +22,6 @@ from warptrunc.reproduce.asperity import (
 )
 
 MAT = AsperityMaterial()
-HAVE_BEM = all(
-    importlib.util.find_spec(m) is not None for m in ("ContactMechanics", "SurfaceTopography")
-)
 R = 1e-3
 
 
@@ -115,7 +111,7 @@ def test_tiny_report_structure(tiny):
         assert img[..., :3].std() > 0.01  # not blank
     res = json.loads((out / "results.json").read_text())
     assert res["meta"]["device"].startswith("cpu") and res["meta"]["wall_s"] > 0
-    stages = {"asperity", "fig5", "table1", "islands", "group1", "group2", "bem"}
+    stages = {"asperity", "fig5", "table1", "islands", "group1", "group2", "elastic"}
     assert set(res["stages"]) == stages
     assert res["analysis"]["asperity"]["pixel_bound_holds"]
 
@@ -130,9 +126,7 @@ def test_tiny_group1_beta_scaling(tiny):
 def test_tiny_rerun_reuses_and_conflict(tiny):
     out, _ = tiny
     doc = reproduce("tiny", out, device="cpu")
-    stored = {"asperity", "fig5", "table1", "islands", "group1", "group2"}
-    if HAVE_BEM:  # without the extra the bem stage is skipped, never stored
-        stored.add("bem")
+    stored = {"asperity", "fig5", "table1", "islands", "group1", "group2", "elastic"}
     assert set(doc["meta"]["reused"]) == stored
     from dataclasses import replace
 
@@ -205,67 +199,65 @@ def test_tiny_group_stores_loadable_and_reused(tiny):
     assert "sweeps/group2" in (out / "report.md").read_text()
 
 
-def test_tiny_bem_section(tiny):
-    """Issue 12's ratio table in the report: every cell finite, every solve converged or flagged."""
+def test_tiny_elastic_section(tiny):
+    """The elastic stage of the tiny profile: every cell in the tables, finite positive ratios,
+    the section and its two figures in the report."""
     out, doc = tiny
     text = (out / "report.md").read_text()
-    assert "## Elastic cross-check (BEM)" in text
-    ana = doc["analysis"]["bem"]
-    if not HAVE_BEM:
-        assert ana["status"] == "skipped" and 'pip install "warptrunc[bem]"' in text
-        assert not (out / "stages" / "bem.json").exists()
-        return
-    stage = doc["stages"]["bem"]
-    assert ana["status"] == "ok" and stage["n"] == 64
-    # D × seeds × approaches of the tiny profile, in the JSON and as table rows
-    assert {c["D"] for c in stage["cases"]} == {2.1, 2.5, 2.9} and len(stage["cases"]) == 3
-    assert len(ana["cells"]) == 3 * len(stage["fractions"]) == 9
-    head = "| D | δ/R_t | F'/F_BEM | k'/k_BEM | A'/A_BEM |"
-    assert head in text
-    table = text.split(head)[1].split("\n\n")[0].strip().splitlines()[2:]  # rest of head, ---
-    assert len(table) == len(ana["cells"])
-    for c in stage["cases"]:
-        col = c["columns"]
-        for k in ("load_ratio", "stiffness_ratio", "area_ratio"):
-            v = np.array(col[k], dtype=float)  # None (no BEM contact) would be NaN here
-            assert np.all(np.isfinite(v) & (v > 0)), (k, c["D"], v)
-        # ratios from the stored columns (independent of the code that formed them)
-        np.testing.assert_allclose(col["stiffness_ratio"],
-                                   np.divide(col["trunc_stiffness_N_per_m"], col["bem_stiffness_N_per_m"]))  # fmt: skip
-        assert all(f > 0 for f in col["bem_load_N"])
-        # converged, or flagged in the report's row
-        assert len(c["solves"]) == 3 * len(stage["fractions"])
-        for i, ok in enumerate(col["converged"]):
-            solves = c["solves"][3 * i : 3 * i + 3]
-            assert ok == all(s["success"] for s in solves)
-    for row, cell in zip(table, ana["cells"], strict=True):
-        assert row.startswith(f"| {cell['D']:g} | {cell['fraction']:g} |")
-        assert (cell["converged"] == cell["n"]) != ("not converged" in row)
-    assert ana["time_per_solve_s"] > 0 and "s per solve" in text
-    assert "within ±20 %" in text  # the sentence on where k' is a good estimate
-    res = json.loads((out / "results.json").read_text())
-    assert res["analysis"]["bem"]["cells"] == ana["cells"]
+    assert "## How far is truncation from elastic contact?" in text
+    stage, ana = doc["stages"]["elastic"], doc["analysis"]["elastic"]
+    from warptrunc.reproduce import get_profile
+
+    p = get_profile("tiny")
+    n_grids = len(p.elastic_size_ratios) + 1
+    assert stage["n_cases"] == len(p.elastic_D) * p.elastic_seeds * n_grids
+    assert stage["n_rows"] == stage["n_cases"] * len(p.elastic_fractions)
+    assert len(stage["ratios"]) == len(p.elastic_D) * n_grids * len(p.elastic_fractions)
+    for r in stage["ratios"]:
+        for k in ("eq2_k_ratio_mean", "islands_k_ratio_mean", "eq2_F_ratio_mean"):
+            assert np.isfinite(r[k]) and r[k] > 0, (k, r)
+        # one punch per island is never softer than one punch of the total area
+        assert r["islands_k_ratio_mean"] >= r["eq2_k_ratio_mean"] * (1 - 1e-9)  # √a to 2^-31
+    for key in ("eq2_k_ratio", "islands_k_ratio"):
+        m = ana["models"][key]
+        assert m["cells"] == len(p.elastic_D) * len(p.elastic_size_ratios) * len(p.elastic_fractions)
+    assert "within ±20 %" in text and "Reading the paper in this light" in text
+    for name in ("elastic_ratio_vs_size.png", "elastic_alpha_vs_D.png"):
+        assert name in doc["meta"]["figures"] and f"]({name})" in text
+    assert (out / "stages" / "elastic.json").exists()
 
 
-def test_bem_stage_skipped_without_extra(tiny, tmp_path, monkeypatch):
-    """Without the extra the stage is not run and not stored; the report names the install."""
-    import shutil
+def test_tiny_elastic_tables_from_store(tiny):
+    """The stage's tables are recomputed exactly from the Parquet case store."""
+    pytest.importorskip("pandas")
+    from warptrunc.compare import load_comparison
+    from warptrunc.reproduce.elastic import summary_from_rows
 
-    import warptrunc.reproduce.elastic as el
+    out, doc = tiny
+    rows = load_comparison(out / "elastic")
+    again = json.loads(json.dumps(summary_from_rows(rows), default=float))
+    stage = doc["stages"]["elastic"]
+    for k in ("ratios", "alpha", "grid", "n_cases", "n_rows"):
+        assert _nan_eq(again[k], stage[k]), k
+    # the ratio columns are the quotients of the stored columns
+    np.testing.assert_allclose(rows["eq2_k_ratio"],
+                               rows["eq2_stiffness_N_per_m"] / rows["bem_stiffness_N_per_m"])  # fmt: skip
+    np.testing.assert_allclose(rows["islands_F_ratio"], rows["islands_load_N"] / rows["bem_load_N"])
 
-    out, _ = tiny
-    shutil.copytree(out / "stages", tmp_path / "stages")  # the other stages are reused
-    (tmp_path / "stages" / "bem.json").unlink(missing_ok=True)
-    why = "no module named 'ContactMechanics'; install them with: " + el.EXTRA_HINT
-    monkeypatch.setattr(el, "bem_available", lambda: why)
-    monkeypatch.setattr(el, "stage_bem", lambda *a: pytest.fail("bem stage ran without the extra"))
-    doc = reproduce("tiny", tmp_path, device="cpu")
-    assert doc["stages"]["bem"] == {"status": "skipped", "reason": why}
-    assert doc["analysis"]["bem"]["status"] == "skipped" and "bem" not in doc["meta"]["computed"]
-    assert not (tmp_path / "stages" / "bem.json").exists()
-    sec = (tmp_path / "report.md").read_text().split("## Elastic cross-check (BEM)")[1]
-    first = sec.split("##")[0].strip()
-    assert first == 'Skipped: the `bem` extra is not installed (`pip install "warptrunc[bem]"`).'
+
+def _nan_eq(a, b) -> bool:
+    """Equality of JSON-like values with NaN (stage JSON: null) equal to NaN/None."""
+    if isinstance(a, dict):
+        return isinstance(b, dict) and a.keys() == b.keys() and all(_nan_eq(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)):
+        return len(a) == len(b) and all(_nan_eq(x, y) for x, y in zip(a, b, strict=True))
+    na = a is None or (isinstance(a, float) and math.isnan(a))
+    nb = b is None or (isinstance(b, float) and math.isnan(b))
+    if na or nb:
+        return na and nb
+    if isinstance(a, float) or isinstance(b, float):
+        return a == pytest.approx(b, rel=1e-12)
+    return a == b
 
 
 # --- issue 19: paper scale, fit-range map, slit band, Fig. 2 models, commit --------------------

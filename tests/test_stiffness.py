@@ -109,3 +109,43 @@ def test_curve_json_export(tmp_path):
     sc = stiffness_curve(curve_from_area(depth, 1e-12 * np.arange(1, 6)))
     d = json.loads(sc.to_json(tmp_path / "c.json").read_text())
     assert d["load_N"] == sc.load.tolist() and d["material"]["E"] == 70e9
+
+
+def _paraboloid_tile(n=40, R=1e-3, dx=1e-6):
+    """One paraboloid cap z = h − r²/(2R) on an n² tile, floored at 0, centred in the tile
+    (float32, m)."""
+    x = (np.arange(n) - (n - 1) / 2) * dx
+    r2 = x[None, :] ** 2 + x[:, None] ** 2
+    h = ((n / 2 - 2) * dx) ** 2 / (2 * R)  # the cap ends 2 pixels inside the tile
+    return np.maximum(h - r2 / (2 * R), 0.0).astype(np.float32), dx
+
+
+@pytest.mark.parametrize("tiles", [(1, 1), (2, 3), (4, 4)])
+def test_separate_paraboloids_islands_vs_eq2(device, tiles):
+    """N identical, separate paraboloids: island-resolved k is N × that of one, Eq. 2's is √N ×
+    (Σ√A_i = N√a, √ΣA_i = √N·√a); loads scale alike. Exact up to float64 rounding."""
+    from warptrunc.islands import island_curve
+    from warptrunc.stiffness import island_stiffness_curve
+    from warptrunc.surface import from_heights
+    from warptrunc.truncation import truncate
+
+    tile, dx = _paraboloid_tile()
+    N = tiles[0] * tiles[1]
+    one = from_heights(tile, dx)
+    many = from_heights(np.tile(tile, tiles), dx)
+    kw = dict(max_depth_fraction=0.9, device=device)  # islands stay apart below R_t
+    ic1, icN = island_curve(one, 30, **kw), island_curve(many, 30, **kw)
+    assert np.all(icN.n_islands[1:] == N)
+    k1 = island_stiffness_curve(ic1)
+    kN = island_stiffness_curve(icN)
+    eN = stiffness_curve(truncate(many, 30, **kw))
+    np.testing.assert_allclose(kN.stiffness, N * k1.stiffness, rtol=1e-9)
+    np.testing.assert_allclose(kN.load, N * k1.load, rtol=1e-9)
+    np.testing.assert_allclose(eN.stiffness, math.sqrt(N) * k1.stiffness, rtol=1e-9)
+    np.testing.assert_allclose(eN.load, math.sqrt(N) * k1.load, rtol=1e-9)
+    # one island: both models agree; E_c/E of the islands model is k/((2/√π)E*√A)
+    e1 = stiffness_curve(truncate(one, 30, **kw))
+    np.testing.assert_allclose(k1.stiffness, e1.stiffness, rtol=1e-9)
+    c = 2 / math.sqrt(math.pi) * kN.material.reduced_modulus * math.sqrt(kN.apparent_area)
+    np.testing.assert_allclose(kN.Ec_over_E, kN.stiffness / c, rtol=1e-12)
+    assert kN.model == "islands" and eN.model == "area"

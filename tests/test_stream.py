@@ -133,7 +133,7 @@ def _analyze(out, *extra):
 
 
 def test_cli_stream_equals_in_memory(tmp_path, capsys):
-    _analyze(tmp_path / "mem")
+    _analyze(tmp_path / "mem", "--no-islands")  # a streamed map has no island pass
     _analyze(tmp_path / "str", "--stream", "--band-rows", "24")
     out = capsys.readouterr().out
     assert "streamed: 5 bands of 24 rows" in out
@@ -164,3 +164,12 @@ def test_cli_stream_refuses_an_input_file(tmp_path, capsys):
                "--no-plot", "--out", str(tmp_path / "o")])  # fmt: skip
     assert rc == 2
     assert "--stream applies to generated surfaces" in capsys.readouterr().err
+
+
+def test_cli_stream_refuses_islands(tmp_path, capsys):
+    """The island-resolved model needs the map in memory: --islands with --stream is an error."""
+    args = ["analyze", "--n", "64", "--stream", "--islands", "--no-plot", "--device", "cpu",
+            "--out", str(tmp_path / "o")]  # fmt: skip
+    assert main(args) == 2
+    assert "--islands needs the map in memory" in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()

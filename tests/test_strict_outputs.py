@@ -148,9 +148,9 @@ def test_write_failing_half_way_leaves_no_partial_result_and_a_rerun_completes(
     calls = []
     real = stiffness.StiffnessCurve.to_csv
 
-    def first_then_fail(self, path):
+    def first_then_fail(self, path, **kw):
         calls.append(path)
-        real(self, path)
+        real(self, path, **kw)
         raise OSError(28, "No space left on device (injected)")
 
     out = tmp_path / "x"

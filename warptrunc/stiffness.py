@@ -26,8 +26,13 @@ __all__ = [
     "PowerLawFit",
     "StiffnessCurve",
     "fit_power_law",
+    "island_stiffness_curve",
     "stiffness_curve",
 ]
+
+MODELS = ("area", "islands")
+"""Stiffness models: ``"area"`` = Eq. (2), one flat punch of the whole truncated area;
+``"islands"`` = one flat punch per island of the truncated set, k = β'(2/√π)E*·Σ√A_i."""
 
 #: Default fit range: increments with at least this many contact pixels (see README,
 #: "Fit range"); the first increments, where a handful of pixels touch, are left out.
@@ -89,11 +94,13 @@ class StiffnessCurve:
     contact_area: np.ndarray
     """(n+1,) truncated area A_c (m²)."""
     stiffness: np.ndarray
-    """(n+1,) k = β'·(2/√π)·E_r'·√A_c (N/m), Eq. (2)."""
+    """(n+1,) k = β'·(2/√π)·E_r'·√A_c (N/m), Eq. (2); for ``model="islands"``
+    k = β'·(2/√π)·E_r'·Σ_i √A_i over the islands."""
     load: np.ndarray
     """(n+1,) F(ω) = ∫₀^ω k dω' by the cumulative trapezoidal rule (N)."""
     Ec_over_E: np.ndarray
-    """(n+1,) E_c/E = β'·√(A_c/A) (dimensionless), Eq. (3)."""
+    """(n+1,) E_c/E = β'·√(A_c/A) (dimensionless), Eq. (3); β'·Σ√A_i/√A for
+    ``model="islands"``."""
     F_over_EA: np.ndarray
     """(n+1,) F/(E·A) (dimensionless)."""
     material: Material
@@ -104,6 +111,9 @@ class StiffnessCurve:
     """Apparent area A (m²)."""
     Rt: float
     """Peak-to-valley height R_t of the map (m)."""
+    model: str = "area"
+    """``"area"`` (Eq. 2, one punch of the truncated area) or ``"islands"`` (one punch per
+    island, :func:`island_stiffness_curve`)."""
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """Columns in the order of ``curve.csv``.
@@ -120,7 +130,7 @@ class StiffnessCurve:
             self,
             {"depth": "depth_m", "contact_area": "contact_area_m2",
              "stiffness": "stiffness_N_per_m", "load": "load_N"},
-            skip=("material", "beta_prime", "apparent_area", "Rt"),
+            skip=("material", "beta_prime", "apparent_area", "Rt", "model"),
         )  # fmt: skip
 
     def to_json(self, path: str | Path) -> Path:
@@ -144,7 +154,7 @@ class StiffnessCurve:
         path.write_text(json.dumps(d, indent=1, default=str) + "\n")
         return path
 
-    def to_csv(self, path: str | Path) -> Path:
+    def to_csv(self, path: str | Path, islands: StiffnessCurve | None = None) -> Path:
         """Write the columns of :meth:`to_dict` as CSV (full float64 precision).
 
         Parameters
@@ -152,13 +162,28 @@ class StiffnessCurve:
         path : str or Path
             File to write (overwritten): a header row of the column names, then one row per
             truncation depth.
+        islands : StiffnessCurve, optional
+            The island-resolved model on the same depths (:func:`island_stiffness_curve`);
+            appends ``stiffness_islands_N_per_m`` (N/m), ``load_islands_N`` (N) and
+            ``Ec_over_E_islands`` (dimensionless), as ``analyze`` writes ``curve.csv``.
 
         Returns
         -------
         Path
             ``path``.
+
+        Raises
+        ------
+        ValueError
+            If ``islands`` is not on the same depths.
         """
-        return write_columns_csv(path, self.to_dict())
+        cols = self.to_dict()
+        if islands is not None:
+            if not np.array_equal(islands.depth, self.depth):
+                raise ValueError("islands must be on the same depths as this curve")
+            cols = {**cols, "stiffness_islands_N_per_m": islands.stiffness,
+                    "load_islands_N": islands.load, "Ec_over_E_islands": islands.Ec_over_E}  # fmt: skip
+        return write_columns_csv(path, cols)
 
 
 @dataclass(frozen=True)
@@ -259,8 +284,7 @@ def stiffness_curve(
     beta_prime = check_range("beta_prime", beta_prime, 0.0)
     area = np.asarray(curve.contact_area, dtype=np.float64)
     k = beta_prime * (2.0 / math.sqrt(math.pi)) * material.reduced_modulus * np.sqrt(area)
-    dw = np.diff(curve.depth)
-    load = np.concatenate([[0.0], np.cumsum(0.5 * (k[1:] + k[:-1]) * dw)])
+    load = cumulative_load(k, curve.depth)
     A = curve.apparent_area
     return StiffnessCurve(
         depth=np.asarray(curve.depth, dtype=np.float64),
@@ -274,6 +298,89 @@ def stiffness_curve(
         beta_prime=beta_prime,
         apparent_area=A,
         Rt=curve.Rt,
+    )
+
+
+def cumulative_load(stiffness: np.ndarray, depth: np.ndarray) -> np.ndarray:
+    """F(ω_k) = Σ_{j<k} ½(k_j + k_{j+1})(ω_{j+1} − ω_j), F(ω_0) = 0 (N): the cumulative
+    trapezoidal rule shared by both stiffness models."""
+    k = np.asarray(stiffness, dtype=np.float64)
+    dw = np.diff(np.asarray(depth, dtype=np.float64))
+    return np.concatenate([[0.0], np.cumsum(0.5 * (k[1:] + k[:-1]) * dw)])
+
+
+def island_stiffness_curve(
+    island_curve: Any,
+    material: Material | None = None,
+    *,
+    beta_prime: float = 1.0,
+) -> StiffnessCurve:
+    """Island-resolved truncation: one flat punch per island of the truncated set.
+
+    Parameters
+    ----------
+    island_curve : IslandCurve
+        Islands at every depth, from :func:`warptrunc.islands.island_curve` with
+        ``statistics=True`` (which carries Σ_i √A_i, m).
+    material : Material, optional
+        Elastic constants; default aluminium (E = 70 GPa, ν = 0.33) against a rigid flat.
+    beta_prime : float
+        Geometric factor β' (dimensionless); 1 is the flat punch.
+
+    Returns
+    -------
+    StiffnessCurve
+        ``model="islands"``: k, F, E_c/E and F/(E·A) at each depth of ``island_curve``
+        (float64); ``contact_area`` is the total truncated area A' (m²).
+
+    Raises
+    ------
+    ValueError
+        If ``island_curve`` was computed without statistics, or ``beta_prime`` is not positive.
+
+    Notes
+    -----
+    k_isl = β'·(2/√π)·E_r'·Σ_i √A_i, the islands taken as independent flat punches (no elastic
+    interaction between them), against Eq. (2)'s k' = β'·(2/√π)·E_r'·√(Σ_i A_i); since
+    Σ√A_i ≥ √ΣA_i, k_isl ≥ k', with equality for one island. N equal islands give
+    k_isl = √N·k'. F_isl = ∫₀^ω k_isl dω' by the cumulative trapezoidal rule, as Eq. (2)'s F;
+    E_c/E = β'·Σ√A_i/√A, so :func:`fit_power_law` applies unchanged.
+
+    Examples
+    --------
+    >>> ic = warptrunc.islands.island_curve(surface, 200, max_depth_fraction=0.1)
+    >>> sc = island_stiffness_curve(ic)
+    >>> fit_power_law(sc).alpha
+    """
+    material = Material() if material is None else material
+    beta_prime = check_range("beta_prime", beta_prime, 0.0)
+    s = getattr(island_curve, "sqrt_area_sum", None)
+    if s is None:
+        raise ValueError(
+            "island_curve has no Σ√A_i: compute it with island_curve(..., statistics=True)"
+        )
+    s = np.asarray(s, dtype=np.float64)
+    depth = np.asarray(island_curve.depth, dtype=np.float64)
+    k = beta_prime * (2.0 / math.sqrt(math.pi)) * material.reduced_modulus * s
+    load = cumulative_load(k, depth)
+    n = np.asarray(island_curve.n_contact_pixels, dtype=np.int64)
+    A = getattr(island_curve, "apparent_area", None)
+    if A is None:
+        raise ValueError("island_curve has no apparent_area: compute it with island_curve()")
+    A = float(A)
+    return StiffnessCurve(
+        depth=depth,
+        n_contact_pixels=n,
+        contact_area=np.asarray(island_curve.contact_area, dtype=np.float64),
+        stiffness=k,
+        load=load,
+        Ec_over_E=beta_prime * s / math.sqrt(A),
+        F_over_EA=load / (material.E * A),
+        material=material,
+        beta_prime=beta_prime,
+        apparent_area=A,
+        Rt=float(island_curve.Rt),
+        model="islands",
     )
 
 

@@ -265,8 +265,8 @@ def island_curve(
     periodic : bool
         Wrap the map around in x and y.
     statistics : bool
-        Also carry per-island areas and perimeters: slit-island fit and area histogram at every
-        depth. ``False`` gives island counts, χ and total perimeter only (fastest).
+        Also carry per-island areas and perimeters: slit-island fit, area histogram and
+        Σ√A_i (``sqrt_area_sum``) at every depth. ``False`` gives island counts, χ and total perimeter only (fastest).
     min_pixels : int
         Smallest island in the slit-island fits (pixels); see :data:`MIN_PIXELS`.
     snapshot_depths : sequence of float, optional
@@ -292,7 +292,8 @@ def island_curve(
     Per-island areas and perimeters are integer accumulators on the roots, merged when roots
     are hooked. The list of roots, its length, the log2 area histogram and the slit-island sums
     (n, Σx, Σy, Σx², Σxy, Σy² of x = log10 A, y = log10 L over the islands ≥ ``min_pixels``,
-    float64) stay on the device and are read back once after the last increment: no increment
+    float64) and Σ√A_i over all islands (int64 fixed point, exact and order-free) stay on the
+    device and are read back once after the last increment: no increment
     waits for the host. The fit is the least-squares fit of :func:`slit_island_fit` from those
     sums (equal to it to ~1e-12 relative). Perimeter and χ come from :func:`topology_curve`'s
     histograms.
@@ -350,7 +351,9 @@ def island_curve(
             raise RuntimeError("internal error: island counts of the two bookkeepings differ")
         area_hist = forest.hist.numpy()
         slit, slit_n = slit_from_sums(forest.slit_sums.numpy())
+        sqrt_area_sum = forest.sqrt_area_sum() * math.sqrt(surface.pixel_area)
     else:
+        sqrt_area_sum = None
         area_hist = np.zeros((n1, nbins), dtype=np.int64)
     return IslandCurve(
         depth=depth,
@@ -371,4 +374,6 @@ def island_curve(
         periodic=bool(periodic),
         min_pixels=min_pixels,
         params=dict(surface.params),
+        sqrt_area_sum=sqrt_area_sum,
+        apparent_area=float(surface.apparent_area),
     )

@@ -81,6 +81,7 @@ class Forest:
             self.root_counts = wp.zeros(n1, dtype=wp.int32, device=device)
             self.hist = wp.zeros((n1, max(1, n.bit_length())), dtype=wp.int64, device=device)
             self.slit_sums = wp.zeros((n1, 6), dtype=wp.float64, device=device)
+            self.sqrt_sums = wp.zeros(n1, dtype=wp.int64, device=device)  # Σ√a, fixed point
             self.min_pixels, self.aspect = 1, 1.0
 
     def bucket(self, k: int) -> tuple[int, int]:
@@ -134,7 +135,8 @@ class Forest:
                     dim=blocks,
                     inputs=[src, -1, self.order, 0, 0, self.parent, *acc, 0, self.min_pixels,
                             self.aspect, blocks],
-                    outputs=[self.root_counts, dst, self.hist, self.slit_sums],
+                    outputs=[self.root_counts, dst, self.hist, self.slit_sums,
+                             self.sqrt_sums],
                     block_dim=_BLOCK,
                     device=dev,
                     record_cmd=True,
@@ -174,6 +176,12 @@ class Forest:
             c.set_param_by_name(name, v)
         c.launch()
         self._parity = 1 - p
+
+    def sqrt_area_sum(self) -> np.ndarray:
+        """(n1,) float64 Σ_i √(area_i in pixels) over the islands at every increment
+        (valid up to the current one; needs ``statistics``)."""
+        q = self.sqrt_sums.numpy()  # sync point
+        return q.astype(np.float64) / float(_ki.SQRT_SCALE)
 
     def labels(self) -> tuple[wp.array, int]:
         """Labels (flat int32, 1..n raster order) of the contact set at the current increment."""

@@ -263,6 +263,12 @@ class IslandCurve:
     """Smallest island in the slit-island fits (pixels)."""
     params: dict[str, Any] = field(default_factory=dict)
     """Provenance: the surface's parameters."""
+    sqrt_area_sum: np.ndarray | None = None
+    """(n+1,) float64 Σ_i √A_i over the islands at each depth (m), the island-resolved
+    stiffness's sum (:func:`warptrunc.stiffness.island_stiffness_curve`); None without
+    statistics."""
+    apparent_area: float | None = None
+    """Apparent area A of the map (m²); None when not recorded."""
 
     @property
     def depth_fraction(self) -> np.ndarray:

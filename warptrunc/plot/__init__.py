@@ -8,7 +8,7 @@ also saves a PNG. Lengths on axes are in µm, as the paper's figures.
 
 Layout: the style and shared helpers in ``_style``; Fig. 9 in ``stiffness``; Fig. 8 in
 ``islands``; PSD and fractal dimension (Fig. 10) in ``fractal``; height maps in ``maps``;
-the elastic cross-check in ``bem``.
+the elastic cross-check in ``bem``; truncation against elastic contact in ``compare``.
 Every figure is importable from ``warptrunc.plot``.
 """
 
@@ -25,6 +25,7 @@ from ._style import (
     UM,
 )
 from .bem import plot_bem_check
+from .compare import alpha_vs_D_routes, ratio_vs_size
 from .fractal import calibration_history, d_out_vs_d_in, fractal_fits, psd
 from .islands import island_number, slit_islands
 from .maps import area_fraction, height_map
@@ -40,6 +41,7 @@ __all__ = [
     "SPREAD_ALPHA",
     "UM",
     "alpha_vs_D",
+    "alpha_vs_D_routes",
     "area_fraction",
     "calibration_history",
     "d_out_vs_d_in",
@@ -48,6 +50,7 @@ __all__ = [
     "island_number",
     "plot_bem_check",
     "psd",
+    "ratio_vs_size",
     "slit_islands",
     "stiffness_load",
 ]

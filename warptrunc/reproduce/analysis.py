@@ -180,10 +180,10 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
     out["asperity"] = {k: v for k, v in res["asperity"]["bounds"].items() if not isinstance(v, list)}
     out["asperity"]["pixel_bound_holds"] = res["asperity"]["pixel_bound_holds"]
     out["asperity"]["max_rel_area_error_last_half"] = res["asperity"]["max_rel_area_error_last_half"]
-    if "bem" in res:
-        from .elastic import analyse_bem
+    if "elastic" in res:
+        from .elastic import analyse_elastic
 
-        out["bem"] = analyse_bem(res["bem"])
+        out["elastic"] = analyse_elastic(res["elastic"])
     return out
 
 

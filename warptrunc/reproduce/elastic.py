@@ -1,269 +1,317 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Stage ``bem`` of ``warptrunc reproduce``: truncation against an elastic BEM solution.
+"""Stage ``elastic`` of ``warptrunc reproduce``: how far is truncation from elastic contact?
 
-For D ∈ ``Profile.bem_D`` × ``Profile.bem_seeds`` seeds, a WM surface (L = 1 mm, W_r = 100 µm,
-R_t = 10 µm, the ``analyze`` defaults) at ``Profile.bem_n``² is compared with the non-periodic
-elastic boundary-element contact of :func:`warptrunc.contact.check.bem_check` at δ/R_t ∈
-``Profile.bem_fractions``. The BEM runs on the CPU (ContactMechanics) whatever the device.
-Needs the ``bem`` extra; without it the stage is skipped (not stored, so a rerun after installing
-the extra computes it) and the report says so.
+Eq. 2 (one flat punch of the whole truncated area), island-resolved truncation (one punch per
+island) and warptrunc's elastic BEM solver (free half-space, Barber stiffness) on the same WM
+maps (:mod:`warptrunc.compare`): D ∈ ``Profile.elastic_D``, approaches δ/R_t ∈
+``Profile.elastic_fractions``, map sizes L/W_r ∈ ``Profile.elastic_size_ratios`` at a fixed
+pixel size, the pixel size halved once at L/W_r = ``Profile.elastic_refine_ratio``,
+``Profile.elastic_seeds`` seeds. The cases are stored one Parquet file each under
+``OUT/elastic/`` (resumed case by case by a rerun, also after an interrupted stage); the stage
+file holds the summary tables, recomputed from those rows.
+
+This stage replaces the former ``bem`` stage (ContactMechanics on the CPU at one map size):
+its cases are the L/W_r = 10 column here, solved by warptrunc's own solver on the run's device.
+A ``stages/bem.json`` of an earlier run is left in place and no longer read.
+
+Also runnable alone (``python -m warptrunc.reproduce.elastic --profile paper --out DIR``):
+then it writes ``DIR/elastic.md`` (the report section) and its figures. The section's text and
+figures are made by :mod:`.elastic_report`.
 """
 
 from __future__ import annotations
 
+import math
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from .profiles import Profile
 
-__all__ = ["SURFACE", "analyse_bem", "bem_available", "bem_lines", "stage_bem"]
+__all__ = ["GOOD", "analyse_elastic", "stage_elastic", "stage_params", "summary_from_rows"]
 
-SURFACE = {"L": 1e-3, "Wr": 100e-6, "Rt": 10e-6}
-"""WM surface of the cross-check (m): the ``analyze`` defaults, as the README's BEM table."""
-EXTRA_HINT = 'pip install "warptrunc[bem]"'
-RATIOS = ("load_ratio", "stiffness_ratio", "area_ratio")
 GOOD = 0.2
-"""|k'/k_BEM − 1| ≤ GOOD counts as a good stiffness estimate in the report's sentence (the ±20 %
-of issue 12's measurement)."""
+"""|model/BEM − 1| ≤ GOOD counts as "within ±20 %" in the section's sentences."""
+SUBDIR = "elastic"
+"""Case store of the stage, inside the reproduction folder."""
+POHRT_POPOV = ((2.0, 0.51), (3.0, 0.77))
+"""α at D = 2 and 3 from Pohrt & Popov (2012), BEM; the section interpolates linearly."""
+PAPER_ALPHA = (0.209, 0.090)
+"""The paper's Table 3: α = 0.209·D_in + 0.090."""
 
 
-def bem_available() -> str | None:
-    """None when the ``bem`` extra imports; else the reason (naming the install command).
+def _material():
+    from ..stiffness import Material
 
-    Returns
-    -------
-    str or None
-        None when ContactMechanics and SurfaceTopography import, else the ImportError's
-        message.
-    """
-    from ..contact.check import require_bem
+    return Material()
 
-    try:
-        require_bem()
-    except ImportError as exc:
-        return str(exc)
-    return None
+
+def _cases(p: Profile) -> list[dict[str, Any]]:
+    from ..compare import study_cases
+
+    return study_cases(
+        D=p.elastic_D, size_ratios=p.elastic_size_ratios, pixels_per_Wr=p.elastic_pixels_per_Wr,
+        refine_ratio=p.elastic_refine_ratio, seeds=p.elastic_seeds, Wr=p.Wr,
+    )  # fmt: skip
 
 
 def stage_params(p: Profile) -> dict[str, Any]:
-    """The parameters that identify a stored ``bem`` stage."""
-    from ..stiffness import Material
-
-    m = Material()
-    return {"bem_n": p.bem_n, "bem_seeds": p.bem_seeds, "bem_D": list(p.bem_D),
-            "bem_fractions": list(p.bem_fractions), "surface": SURFACE,
-            "material": {"E_Pa": m.E, "nu": m.nu, "E_star_Pa": m.reduced_modulus}}  # fmt: skip
-
-
-def stage_bem(p: Profile, device) -> dict[str, Any]:
-    """Run :func:`~warptrunc.contact.check.bem_check` (ContactMechanics' solver, the stage's
-    reference) on every (D, seed); one case per surface.
-
-    Each surface is a WM surface (:func:`~warptrunc.wm.wm_surface`) with the fixed ``SURFACE``
-    W_r, L and R_t, ``p.bem_n`` pixels a side, D in ``p.bem_D`` and seeds
-    ``0 .. p.bem_seeds − 1``, checked at the approaches ``p.bem_fractions`` of R_t.
+    """The parameters that identify a stored ``elastic`` stage.
 
     Parameters
     ----------
     p : Profile
-        The reproduction profile (``bem_n``, ``bem_seeds``, ``bem_D``, ``bem_fractions``).
-    device : str or warp.context.Device or None
-        Warp device for the surfaces and the truncation part (the BEM runs on the CPU).
+        The reproduction profile.
 
     Returns
     -------
     dict
-        ``n``, ``surface`` (the ``SURFACE`` dict, m), ``fractions``, ``settings`` (the first
-        check's settings without the per-surface entries) and ``cases``: one dict per
-        (D, seed) with ``D``, ``seed``, ``Rt_m`` (m), ``summary`` (:meth:`BemCheck.summary`),
-        ``pentol_m`` (m), ``columns`` (:meth:`BemCheck.to_dict`) and ``solves``.
-
-    Raises
-    ------
-    ImportError
-        The ``bem`` extra (ContactMechanics) is not installed.
+        JSON-able parameters (compared by :class:`~warptrunc.reproduce.store.StageStore`).
     """
-    from tqdm.auto import tqdm
-
-    from ..contact.check import bem_check
-    from ..wm import wm_surface
-
-    cases = [(D, s) for D in p.bem_D for s in range(p.bem_seeds)]
-    rows = []
-    settings = None
-    for D, seed in tqdm(cases, desc="BEM cross-check", unit="surface", leave=False):
-        surf = wm_surface(D, SURFACE["Wr"], L=SURFACE["L"], n=p.bem_n, Rt=SURFACE["Rt"],
-                          seed=seed, device=device)  # fmt: skip
-        r = bem_check(surf, fractions=p.bem_fractions, solver="contactmechanics", progress=False,
-                      device=device)  # fmt: skip
-        if settings is None:
-            settings = {
-                k: v
-                for k, v in r.settings.items()
-                if k not in ("surface", "solves", "Rt_m", "pentol_m")
-            }
-        rows.append({"D": D, "seed": seed, "Rt_m": float(surf.Rt), "summary": r.summary(),
-                     "pentol_m": r.settings["pentol_m"],
-                     "columns": r.to_dict(),
-                     "solves": [{k: s[k] for k in ("success", "n_iterations", "message")}
-                                for s in r.settings["solves"]]})  # fmt: skip
-    return {"n": p.bem_n, "surface": SURFACE, "fractions": list(p.bem_fractions),
-            "settings": settings, "cases": rows}  # fmt: skip
+    m = _material()
+    return {"elastic_D": list(p.elastic_D), "elastic_size_ratios": list(p.elastic_size_ratios),
+            "elastic_pixels_per_Wr": p.elastic_pixels_per_Wr,
+            "elastic_refine_ratio": p.elastic_refine_ratio, "elastic_seeds": p.elastic_seeds,
+            "elastic_fractions": list(p.elastic_fractions), "elastic_dtype": p.elastic_dtype,
+            "Wr": p.Wr, "material": {"E_Pa": m.E, "nu": m.nu, "E_star_Pa": m.reduced_modulus},
+            "solver": "warptrunc"}  # fmt: skip
 
 
-def _stats(v: list[float | None]) -> dict[str, Any]:
-    x = np.array([np.nan if a is None else a for a in v], dtype=float)
-    ok = np.isfinite(x)
-    if not ok.any():
-        return {"mean": None, "min": None, "max": None, "n": 0}
-    x = x[ok]
-    return {"mean": float(x.mean()), "min": float(x.min()), "max": float(x.max()), "n": int(x.size)}
-
-
-def analyse_bem(stage: dict[str, Any]) -> dict[str, Any]:
-    """Per (D, δ/R_t): mean and range over seeds of the three ratios, convergence and edge
-    counts; per D: time per solve; the cells where k' is within ±GOOD of k_BEM.
+def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
+    """Run (or resume) the comparison study under ``out/elastic`` and summarise it.
 
     Parameters
     ----------
-    stage : dict
-        The stored ``bem`` stage, as returned by :func:`stage_bem`, or
-        ``{"status": "skipped", "reason": ...}``.
+    p : Profile
+        The reproduction profile (its ``elastic_*`` fields).
+    out : str or Path
+        Reproduction folder; the case store is ``out/elastic``.
+    device : str, optional
+        Warp device of every route.
 
     Returns
     -------
     dict
-        ``{"status": "skipped", "reason": ...}`` for a skipped stage. Otherwise
-        ``status="ok"``, ``n``, ``fractions``, ``cells`` (per (D, fraction): ``load_ratio``,
-        ``stiffness_ratio``, ``area_ratio`` as ``{mean, min, max, n}`` over the seeds with a
-        finite ratio (dimensionless), ``converged``, ``n``, ``edge_contact`` counts and
-        ``contact_fraction`` = mean A_BEM/L² (dimensionless)), ``per_D``
-        (``time_per_solve_s`` (s), ``solves``, ``not_converged_rows``), ``good_band``,
-        ``good_cells`` ([D, fraction] pairs with abs(k'/k_BEM − 1) ≤ ``GOOD``),
-        ``other_stiffness_ratio_range``, ``all_converged``, ``rows``, ``solves`` and
-        ``time_per_solve_s`` (s).
+        :func:`summary_from_rows` of the study's rows.
     """
-    if stage.get("status") == "skipped":
-        return {"status": "skipped", "reason": stage["reason"]}
-    cells = []
-    per_D = {}
-    for D in sorted({c["D"] for c in stage["cases"]}):
-        cs = [c for c in stage["cases"] if c["D"] == D]
-        for i, f in enumerate(stage["fractions"]):
-            cell: dict[str, Any] = {"D": D, "fraction": f}
-            for k in RATIOS:
-                cell[k] = _stats([c["columns"][k][i] for c in cs])
-            cell["converged"] = sum(bool(c["columns"]["converged"][i]) for c in cs)
-            cell["n"] = len(cs)
-            cell["edge_contact"] = sum(bool(c["columns"]["edge_contact"][i]) for c in cs)
-            cell["contact_fraction"] = float(np.mean(
-                [c["columns"]["bem_area_m2"][i] for c in cs])) / stage["surface"]["L"] ** 2  # fmt: skip
-            cells.append(cell)
-        per_D[str(D)] = {
-            "time_per_solve_s": float(np.mean([c["summary"]["time_per_solve_s"] for c in cs])),
-            "solves": 3 * len(stage["fractions"]) * len(cs),
-            "not_converged_rows": sum(c["summary"]["n_not_converged"] for c in cs),
-        }  # fmt: skip
-    k = [c["stiffness_ratio"]["mean"] for c in cells]
-    good = [c for c, v in zip(cells, k, strict=True) if v is not None and abs(v - 1) <= GOOD]
-    bad = [v for v in k if v is not None and abs(v - 1) > GOOD]
-    n_rows = sum(len(c["columns"]["converged"]) for c in stage["cases"])
-    return {"status": "ok", "n": stage["n"], "fractions": stage["fractions"], "cells": cells,
-            "per_D": per_D, "good_band": GOOD,
-            "good_cells": [[c["D"], c["fraction"]] for c in good],
-            "other_stiffness_ratio_range": [min(bad), max(bad)] if bad else None,
-            "all_converged": all(all(c["columns"]["converged"]) for c in stage["cases"]),
-            "rows": n_rows, "solves": 3 * n_rows,
-            "time_per_solve_s": float(np.mean([v["time_per_solve_s"] for v in per_D.values()]))}  # fmt: skip
+    from ..compare import compare_study
 
-
-def _r(s: dict[str, Any]) -> str:
-    if s["mean"] is None:
-        return "— (no BEM contact)"
-    if s["n"] == 1:
-        return f"{s['mean']:.2f}"
-    return f"{s['mean']:.2f} ({s['min']:.2f}–{s['max']:.2f})"
-
-
-def _sentence(a: dict[str, Any]) -> str:
-    g = a["good_cells"]
-    band = f"±{100 * a['good_band']:.0f} %"
-    k_all = [
-        c["stiffness_ratio"]["mean"] for c in a["cells"] if c["stiffness_ratio"]["mean"] is not None
-    ]
-    under = sum(v < 1 for v in k_all)
-    where = ", ".join(f"D = {D:g} at δ/R_t = {f:g}" for D, f in g) if g else "no (D, δ) here"
-    rng = a["other_stiffness_ratio_range"]
-    rest = (f"; elsewhere the seed-mean k'/k_BEM lies between {rng[0]:.2f} and {rng[1]:.2f}"
-            if rng else "")  # fmt: skip
-    areas = [c["area_ratio"]["mean"] for c in a["cells"] if c["area_ratio"]["mean"] is not None]
-    return (
-        f"On these {a['n']}² maps the truncation stiffness k' is within {band} of the elastic "
-        f"BEM stiffness (seed mean) for {where}{rest}; {under} of {len(k_all)} seed-mean ratios "
-        f"are below 1 (truncation softer than the elastic solution), and the truncated area is "
-        f"{min(areas):.1f}–{max(areas):.1f} × the elastic contact area."
+    store = Path(out) / SUBDIR
+    rows = compare_study(
+        store, _cases(p), fractions=p.elastic_fractions, material=_material(),
+        dtype=p.elastic_dtype, overwrite=True, progress=True, device=device,
     )  # fmt: skip
+    return summary_from_rows(rows, store=SUBDIR)
 
 
-def bem_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | None) -> list[str]:
-    """The report section "Elastic cross-check (BEM)" as Markdown lines.
+def summary_from_rows(rows, store: str = SUBDIR) -> dict[str, Any]:
+    """The stage result from the study's rows.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        Rows of :func:`warptrunc.compare.load_comparison`.
+    store : str
+        Folder of the case store, as the report names it.
+
+    Returns
+    -------
+    dict
+        Counts, grids, the two summary tables of :func:`warptrunc.compare.summarize` as
+        records, the grid-convergence pairs and mean times per map size (JSON-able).
+    """
+    from ..compare import summarize
+
+    s = summarize(rows)
+    conv = rows["converged"].astype(bool)
+    per_n = (rows.groupby("n")[["solve_time_s", "case_seconds"]].mean()
+             .reset_index().to_dict("records"))  # fmt: skip
+    return {
+        "store": store,
+        "n_cases": int(rows["case_id"].nunique()),
+        "n_rows": len(rows),
+        "not_converged_rows": int((~conv).sum()),
+        "device": sorted(set(rows["device"].astype(str))),
+        "fractions": sorted(float(f) for f in rows["depth_fraction_of_Rt"].unique()),
+        "grids": sorted({(float(r), int(n))
+                         for r, n in zip(rows["size_ratio"], rows["n"], strict=True)}),
+        "Wr_m": float(rows["Wr_m"].iloc[0]),
+        "Rt_m": sorted({float(v) for v in rows["Rt_m"]}),
+        "ratios": s["ratios"].to_dict("records"),
+        "alpha": s["alpha"].to_dict("records"),
+        "grid": _grid_pairs(rows),
+        "times": per_n,
+    }
+
+
+def _grid_pairs(rows) -> list[dict[str, Any]]:
+    """Per (D, δ/R_t) at the refined L/W_r: fine/coarse of each route's k and F and of the
+    areas, same seed paired (the same surface sampled twice as finely)."""
+    out = []
+    for r in sorted(rows["size_ratio"].unique()):
+        ns = sorted(rows.loc[rows["size_ratio"] == r, "n"].unique())
+        if len(ns) < 2:
+            continue
+        lo, hi = ns[0], ns[-1]
+        a = rows[(rows["size_ratio"] == r) & (rows["n"] == lo)]
+        b = rows[(rows["size_ratio"] == r) & (rows["n"] == hi)]
+        m = a.merge(b, on=["D_in", "seed", "depth_fraction_of_Rt"], suffixes=("_c", "_f"))
+        for (Dv, f), g in m.groupby(["D_in", "depth_fraction_of_Rt"], sort=True):
+            rec: dict[str, Any] = {"D_in": float(Dv), "size_ratio": float(r), "n_coarse": int(lo),
+                                   "n_fine": int(hi), "depth_fraction_of_Rt": float(f)}  # fmt: skip
+            for q in ("eq2_stiffness_N_per_m", "islands_stiffness_N_per_m",
+                      "bem_stiffness_N_per_m", "eq2_load_N", "islands_load_N", "bem_load_N",
+                      "trunc_area_m2", "bem_area_m2", "eq2_k_ratio", "islands_k_ratio"):  # fmt: skip
+                v = (g[f"{q}_f"] / g[f"{q}_c"]).to_numpy(dtype=float)
+                v = v[np.isfinite(v)]
+                rec[f"{q}_fine_over_coarse"] = float(v.mean()) if v.size else None
+            out.append(rec)
+    return out
+
+
+# --- analysis -------------------------------------------------------------------------------------
+
+
+def _base(records: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Records at the base pixel size (largest dx = L/n over the stored sizes)."""
+    if not records:
+        return []
+    dx = max(r["size_ratio"] / r["n"] for r in records)
+    return [r for r in records if math.isclose(r["size_ratio"] / r["n"], dx, rel_tol=1e-9)]
+
+
+def _fin(v: Any) -> bool:
+    return v is not None and isinstance(v, (int, float)) and math.isfinite(v)
+
+
+def analyse_elastic(stage: dict[str, Any]) -> dict[str, Any]:
+    """The numbers the section states.
 
     Parameters
     ----------
     stage : dict
-        The stored ``bem`` stage (:func:`stage_bem`).
-    a : dict
-        Its analysis (:func:`analyse_bem`); a skipped one gives a one-line section.
-    seconds : float or None
-        Wall time of the stage (s), quoted when given.
+        The stage result (:func:`summary_from_rows`).
 
     Returns
     -------
-    list of str
-        Markdown lines: heading, method paragraph, the per-(D, δ/R_t) ratio table, the
-        per-D timing table and the summary sentences.
+    dict
+        Per model and quantity the cells within ±GOOD of BEM, the range elsewhere and in the
+        paper's range, the trend with L/W_r; the grid change; α with the two references.
     """
+    ratios = _base(stage["ratios"])
+    res: dict[str, Any] = {"good_band": GOOD, "models": {}}
+    for m in ("eq2", "islands"):
+        for q in ("k", "F"):
+            key = f"{m}_{q}_ratio"
+            cells = [r for r in ratios if _fin(r[f"{key}_mean"])]
+            good = [r for r in cells if abs(r[f"{key}_mean"] - 1) <= GOOD]
+            all_good = [r for r in good if r[f"{key}_min"] >= 1 - GOOD and r[f"{key}_max"] <= 1 + GOOD]
+            bad = [r[f"{key}_mean"] for r in cells if abs(r[f"{key}_mean"] - 1) > GOOD]
+            low = [r for r in cells if r["depth_fraction_of_Rt"] <= 0.1 + 1e-9]
+            res["models"][key] = {
+                "cells": len(cells),
+                "good": [[r["D_in"], r["size_ratio"], r["depth_fraction_of_Rt"]] for r in good],
+                "good_all_seeds": len(all_good),
+                "below_one": sum(r[f"{key}_mean"] < 1 for r in cells),
+                "range": [min(r[f"{key}_mean"] for r in cells), max(r[f"{key}_mean"] for r in cells)] if cells else None,
+                "outside_range": [min(bad), max(bad)] if bad else None,
+                "low_range": [min(r[f"{key}_mean"] for r in low), max(r[f"{key}_mean"] for r in low)] if low else None,
+                "size_trend": _size_trend(cells, key),
+            }  # fmt: skip
+    res["alpha"] = _alpha_vs_refs(stage["alpha"])
+    res["grid"] = _grid_summary(stage["grid"])
+    return res
 
-    L = ["## Elastic cross-check (BEM)\n"]
-    if a["status"] == "skipped":
-        L.append(f"Skipped: the `bem` extra is not installed (`{EXTRA_HINT}`).\n")
-        return L
-    s, st = stage["surface"], stage["settings"]
-    seeds = len({c["seed"] for c in stage["cases"]})
-    L.append(
-        f"Truncation (k' = (2/√π)·E*·√A', F' = ∫k' dω) against the elastic boundary-element "
-        f"contact of the same map (`warptrunc.contact.check.bem_check`: ContactMechanics "
-        f"{st['versions'].get('contactmechanics')}, {st['substrate']} half-space, "
-        f"{st['padding'].split(':')[0]}; "
-        f"k_BEM by a central difference over δ(1 ± {st['fd_step']:g}), three solves per approach). "
-        f"WM surfaces at **{a['n']}²** over {s['L'] * 1e3:g} mm, W_r = {s['Wr'] * 1e6:g} µm, "
-        f"R_t = {s['Rt'] * 1e6:g} µm, {seeds} seed{'s' if seeds > 1 else ''} per D; E* = {st['contact_modulus_Pa'] / 1e9:.2f} GPa. "
-        f"The BEM runs on the CPU. "
-        + ("Mean (min–max) over seeds:\n" if seeds > 1 else "One seed per cell:\n")
-    )  # fmt: skip
-    L.append("| D | δ/R_t | F'/F_BEM | k'/k_BEM | A'/A_BEM | A_BEM/A | converged | edge contact |")
-    L.append("|---|---|---|---|---|---|---|---|")
-    for c in a["cells"]:
-        conv = f"{c['converged']}/{c['n']}" + (
-            "" if c["converged"] == c["n"] else " **not converged: flagged**"
-        )
-        L.append(f"| {c['D']:g} | {c['fraction']:g} | {_r(c['load_ratio'])} | {_r(c['stiffness_ratio'])} | "
-                 f"{_r(c['area_ratio'])} | {100 * c['contact_fraction']:.2g} % | {conv} | "
-                 f"{c['edge_contact']}/{c['n']} |")  # fmt: skip
-    L.append("\n| D | solves | s per solve (host CPU) | rows not converged |")
-    L.append("|---|---|---|---|")
-    for D, v in a["per_D"].items():
-        L.append(
-            f"| {D} | {v['solves']} | {v['time_per_solve_s']:.2f} | {v['not_converged_rows']} |"
-        )
-    tot = "" if seconds is None else f" The stage took {seconds:.1f} s."
-    L.append(f"\n`converged` counts seeds whose three solves all met the tolerances "
-             f"(pressure ≤ {st['pressure_tol']:g}·E*, penetration ≤ the library's "
-             f"rms height/(10·mean n) of each map, "
-             f"≤ {st['maxiter']} iterations); `edge contact`: the BEM contact reaches the map's "
-             f"border (free half-space: the map ends there).{tot}\n")  # fmt: skip
-    L.append(_sentence(a) + " The ratios depend on the grid (A_BEM is not converged in the "
-             "pixel size on a fractal map); quote them with it.\n")  # fmt: skip
-    return L
+
+def _size_trend(cells: list[dict[str, Any]], key: str) -> dict[str, Any] | None:
+    """Ratio at the largest L/W_r over that at the smallest, per (D, δ/R_t)."""
+    sizes = sorted({r["size_ratio"] for r in cells})
+    if len(sizes) < 2:
+        return None
+    by = {(r["D_in"], r["depth_fraction_of_Rt"], r["size_ratio"]): r[f"{key}_mean"] for r in cells}
+    f = []
+    for Dv, fr in sorted({(r["D_in"], r["depth_fraction_of_Rt"]) for r in cells}):
+        a, b = by.get((Dv, fr, sizes[0])), by.get((Dv, fr, sizes[-1]))
+        if _fin(a) and _fin(b) and a > 0:
+            f.append(b / a)
+    if not f:
+        return None
+    return {"smallest": sizes[0], "largest": sizes[-1], "factor_min": min(f),
+            "factor_median": float(np.median(f)), "factor_max": max(f),
+            "decreasing": sum(v < 1 for v in f), "n": len(f)}  # fmt: skip
+
+
+def _alpha_vs_refs(alpha: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    out = []
+    (d0, a0), (d1, a1) = POHRT_POPOV
+    for r in _base(alpha):
+        D = r["D_in"]
+        out.append({**r, "pohrt_popov": a0 + (a1 - a0) * (D - d0) / (d1 - d0),
+                    "paper_table3": PAPER_ALPHA[0] * D + PAPER_ALPHA[1]})  # fmt: skip
+    return out
+
+
+def _grid_summary(grid: list[dict[str, Any]]) -> dict[str, Any] | None:
+    if not grid:
+        return None
+    out: dict[str, Any] = {"size_ratio": grid[0]["size_ratio"], "n_coarse": grid[0]["n_coarse"],
+                           "n_fine": grid[0]["n_fine"]}  # fmt: skip
+    for q in ("eq2_stiffness_N_per_m", "islands_stiffness_N_per_m", "bem_stiffness_N_per_m",
+              "bem_load_N", "trunc_area_m2", "bem_area_m2", "eq2_k_ratio", "islands_k_ratio"):  # fmt: skip
+        v = [g[f"{q}_fine_over_coarse"] for g in grid if _fin(g[f"{q}_fine_over_coarse"])]
+        out[q] = [min(v), max(v)] if v else None
+    return out
+
+
+# --- standalone ---------------------------------------------------------------------------------
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the ``elastic`` stage alone: ``python -m warptrunc.reproduce.elastic``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status.
+    """
+    import argparse
+    import json
+    import time
+
+    from .._results import jsonable, write_atomic
+    from .elastic_report import elastic_figures, elastic_lines
+    from .profiles import PROFILES
+    from .store import StageStore
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
+    ap.add_argument("--profile", choices=sorted(PROFILES), default="quick")
+    ap.add_argument("--out", type=Path, default=Path("reproduction"))
+    ap.add_argument("--device", default=None)
+    ap.add_argument("--overwrite", action="store_true")
+    args = ap.parse_args(argv)
+    p = PROFILES[args.profile]
+    args.out.mkdir(parents=True, exist_ok=True)
+    store = StageStore(args.out, overwrite=args.overwrite)
+    t0 = time.perf_counter()
+    stage = store.run("elastic", stage_params(p), lambda: stage_elastic(p, args.out, args.device))
+    a = analyse_elastic(stage)
+    names = elastic_figures(stage, args.out)
+    lines = elastic_lines(stage, a, store.seconds("elastic"), names)
+    head = (f"<!-- warptrunc.reproduce.elastic --profile {p.name}; wall {time.perf_counter() - t0:.1f} s -->\n")
+    write_atomic(args.out / "elastic.md", head + "\n".join(lines) + "\n")
+    write_atomic(args.out / "elastic_analysis.json",
+                 json.dumps(jsonable(a), indent=1, allow_nan=False) + "\n")  # fmt: skip
+    print(f"wrote {args.out}/elastic.md, elastic_analysis.json, {', '.join(names)}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -6,8 +6,9 @@
 increments, ω_max = 0.1·R_t; islands of Figs. 7–8 and Table 2 on 30720² over 3 mm; Fig. 5 with
 10 seeds per resolution; Table 1 calibrated on 1024² over 1 mm) except where noted in
 :data:`PAPER_DEPARTURES`: Fig. 5 goes to 10240² (the paper: 32760²) and the island analysis
-uses 4 seeds per surface; the elastic cross-check (not in the paper) is at 512² because it
-runs on the CPU. ``quick`` fits a 2-core CPU in minutes and
+uses 4 seeds per surface; the elastic comparison (not in the paper) goes to 7680² (L/W_r = 30
+at 256 pixels per W_r) and 5120² (L/W_r = 10, pixel size halved). ``quick`` fits a 2-core CPU
+in minutes and
 ``tiny`` is the CI check.
 """
 
@@ -75,16 +76,20 @@ class Profile:
     """Pixels per side of the pixelated sphere of Fig. 2."""
     asperity_increments: int = 1000
     """Truncation increments of Fig. 2."""
-    bem_n: int = 512
-    """Pixels per side of the elastic BEM cross-check surfaces (over L; runs on the CPU)."""
-    bem_seeds: int = 3
-    """BEM cross-check surfaces per D (count)."""
-    bem_D: tuple[float, ...] = (2.1, 2.5, 2.9)
-    """Input fractal dimensions D_in of the BEM cross-check (dimensionless)."""
-    bem_fractions: tuple[float, ...] = (0.05, 0.2, 0.4)
-    """Approaches δ/R_t of the BEM cross-check (three solves each: δ and δ(1 ± 0.02)). The BEM
-    runs on the CPU on every device: at 512², 3 seeds and these three approaches the stage took
-    174 s on a 2-core CPU shared with other jobs (12–41 s per surface)."""
+    elastic_D: tuple[float, ...] = (2.1, 2.5, 2.9)
+    """Input fractal dimensions of the ``elastic`` stage (dimensionless)."""
+    elastic_size_ratios: tuple[float, ...] = (1, 3, 10, 30)
+    """Map sizes L/W_r of the ``elastic`` stage, at a fixed pixel size (dimensionless)."""
+    elastic_pixels_per_Wr: int = 256
+    """Pixels per W_r of the ``elastic`` stage's base grid (n = L/W_r × this)."""
+    elastic_refine_ratio: float | None = 10
+    """L/W_r at which the ``elastic`` stage halves the pixel size once (None: never)."""
+    elastic_seeds: int = 3
+    """Surfaces per (D, grid) of the ``elastic`` stage (count)."""
+    elastic_fractions: tuple[float, ...] = (0.02, 0.05, 0.1, 0.2, 0.3, 0.4)
+    """Approaches δ/R_t of the ``elastic`` stage (dimensionless)."""
+    elastic_dtype: str = "float64"
+    """Precision of the elastic solver in the ``elastic`` stage."""
     extra: dict[str, Any] = field(default_factory=dict)
     """Free-form additions, recorded with the profile (no stage reads them)."""
 
@@ -104,12 +109,14 @@ PROFILES = {
         name="tiny", n=256, seeds=2, group1_delta=(0.0025, 0.01, 0.04), group2_D=(2.2, 2.5, 2.8),
         fig5_sizes=(64, 128), fig5_seeds=1, fig5_increments=(50, 200), table1_n=64,
         table1_methods=("vs",), islands_n=128, islands_seeds=1, islands_increments=50,
-        asperity_n=256, asperity_increments=200, bem_n=64, bem_seeds=1,
+        asperity_n=256, asperity_increments=200, elastic_D=(2.1, 2.9), elastic_size_ratios=(1, 3),
+        elastic_pixels_per_Wr=16, elastic_refine_ratio=3, elastic_seeds=1,
+        elastic_fractions=(0.02, 0.05, 0.1, 0.2, 0.4),
     ),
     "quick": Profile(
         name="quick", n=1024, seeds=3, fig5_sizes=(256, 512, 1024, 2048), fig5_seeds=3,
         table1_n=256, table1_seeds=1, islands_n=1024, islands_seeds=2, asperity_n=1024,
-        bem_n=256, bem_seeds=2, bem_fractions=(0.05, 0.1, 0.2, 0.3, 0.4),
+        elastic_pixels_per_Wr=16,
     ),
     "paper": Profile(
         name="paper", n=10240, seeds=5, fig5_sizes=(1024, 2048, 4096, 8192, 10240),

@@ -198,7 +198,7 @@ def figures(res: dict[str, Any], ana: dict[str, Any], out: Path, device=None) ->
     -------
     list of str
         File names written: Fig. 2, 5, 7 (when a Table 1 row is ok), 8 (when the island stage
-        has surfaces), 9 and 10.
+        has surfaces), 9, 10 and the ``elastic`` stage's two figures.
     """
     names = [fig2(res, out), fig5(res, ana, out)]
     if any(r["status"] == "ok" for r in res["table1"]["rows"]):
@@ -209,6 +209,10 @@ def figures(res: dict[str, Any], ana: dict[str, Any], out: Path, device=None) ->
     names.append(fig10(res, ana, out))
     if "fit_range_map" in ana:
         names.append(fig_fit_range(ana["fit_range_map"], out))
+    if "elastic" in res:
+        from .elastic_report import elastic_figures
+
+        names += elastic_figures(res["elastic"], out)
     return names
 
 
@@ -356,10 +360,11 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
         a(f"## Fit-range map of Table 3\n\nNot made: {ana['fit_range_map_missing']}.\n")
     if "fit_range_map" in ana:
         L.extend(fit_range_lines(ana["fit_range_map"], "fit_range_map.png" if "fit_range_map.png" in names else None))
-    if "bem" in res:
-        from .elastic import bem_lines
+    if "elastic" in res:
+        from .elastic_report import elastic_lines
 
-        L.extend(bem_lines(res["bem"], ana["bem"], meta["stage_seconds"].get("bem")))
+        L.extend(elastic_lines(res["elastic"], ana["elastic"], meta["stage_seconds"].get("elastic"),
+                               [n for n in names if n.startswith("elastic_")]))  # fmt: skip
     a("## Stage times\n")
     a("| stage | seconds (compute, from the stage file) |\n|---|---|")
     for k, v in meta["stage_seconds"].items():

@@ -1,8 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """The paper's study as stages (Fig. 2, Fig. 5, Table 1, Figs. 7–8/Table 2, Fig. 9/10, Table 3),
-and the elastic BEM cross-check of issue 12 (stage ``bem``, :mod:`.elastic`; skipped, not stored,
-without the ``bem`` extra).
+and how far truncation is from elastic contact (stage ``elastic``, :mod:`.elastic`: Eq. 2,
+island-resolved truncation and warptrunc's BEM solver; it replaces the former ``bem`` stage).
 
 Every stage is a function of the profile returning a JSON-serialisable dict; :func:`run_study`
 runs them through a :class:`~warptrunc.reproduce.store.StageStore`, so a rerun reuses finished
@@ -304,7 +304,7 @@ def _isna(v) -> bool:
     return v is None or (not isinstance(v, (list, dict, str)) and bool(pd.isna(v)))
 
 
-STAGES = ("asperity", "fig5", "table1", "islands", "group1", "group2", "bem")
+STAGES = ("asperity", "fig5", "table1", "islands", "group1", "group2", "elastic")
 
 
 def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, Any]:
@@ -323,8 +323,7 @@ def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, 
     -------
     dict of str to dict
         ``{"results": {stage: result}, "wall_s": {stage: seconds}}`` in the order of
-        :data:`STAGES`; the ``bem`` stage is ``{"status": "skipped", "reason": ...}`` (and not
-        stored) when the ``bem`` extra is missing.
+        :data:`STAGES`.
 
     Raises
     ------
@@ -349,16 +348,11 @@ def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, 
         bar.set_postfix_str(name)
         t0 = time.perf_counter()
         base = {k: full[k] for k in keys.get(name, ())}
-        if name == "bem":
-            from .elastic import bem_available, stage_bem, stage_params
+        if name == "elastic":
+            from .elastic import stage_elastic, stage_params
 
-            why = bem_available()
-            if why is not None:  # not stored: a rerun with the extra installed computes it
-                res[name] = {"status": "skipped", "reason": why}
-                wall[name] = time.perf_counter() - t0
-                continue
             params = stage_params(profile)
-            fn = lambda: stage_bem(profile, device)  # noqa: E731
+            fn = lambda: stage_elastic(profile, store.out, device)  # noqa: E731
         elif name == "islands":
             params = {**base, "table1": res["table1"], "slit_band": SLIT_BAND}
             fn = lambda: stage_islands(profile, res["table1"], device)  # noqa: E731

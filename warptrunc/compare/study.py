@@ -1,0 +1,381 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The comparison study: WM cases (:func:`study_cases`), the resumable Parquet store
+(:func:`compare_study`, :func:`load_comparison`) and its tables (:func:`summarize`); see
+:mod:`warptrunc.compare`."""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import platform
+import time
+from dataclasses import asdict
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import warp as wp
+
+from .._atomic import read_json, strict_json
+from .._results import write_atomic
+from .._validate import check_int, check_range
+from ..stiffness import Material
+from ..surface import Surface
+from .models import (
+    DEFAULT_FRACTIONS,
+    LOW_FRACTION,
+    MODELS,
+    ModelComparison,
+    _approaches,
+    compare_models,
+    fit_k_vs_F,
+)
+
+__all__ = ["CASE_COLUMNS", "FORMAT", "compare_study", "load_comparison", "study_cases", "summarize"]
+
+FORMAT = "warptrunc-compare/1"
+"""Format tag of ``study.json``."""
+
+
+CASE_COLUMNS = (
+    "case_id", "source", "D_in", "seed", "size_ratio", "Wr_m", "L_m", "n", "dx_m", "Rt_m",
+    "Wc_m", "M", "gamma", "depth_fraction_of_Rt", "depth_m", "trunc_area_m2", "n_islands",
+    "eq2_stiffness_N_per_m", "eq2_load_N", "islands_stiffness_N_per_m", "islands_load_N",
+    "bem_stiffness_N_per_m", "bem_load_N", "bem_area_m2", "eq2_k_ratio", "eq2_F_ratio",
+    "islands_k_ratio", "islands_F_ratio", "area_ratio", "converged", "n_iterations",
+    "solve_time_s", "case_seconds", "device",
+)  # fmt: skip
+"""Columns of a case file, in order; SI units in the names. ``size_ratio`` is L/W_r; the
+ratios are model/BEM (``area_ratio`` = A'/A_BEM); ``case_seconds`` is the case's wall time (s)."""
+
+
+
+def study_cases(
+    *,
+    D: Any = (2.1, 2.5, 2.9),
+    size_ratios: Any = (1, 3, 10, 30),
+    pixels_per_Wr: int = 32,
+    refine_ratio: float | None = 10,
+    seeds: int = 3,
+    Wr: float = 100e-6,
+    Rt_over_Wr: float = 0.01,
+    M: int = 10,
+    gamma: float = 1.5,
+) -> list[dict[str, Any]]:
+    """The WM cases of a study: D × (L/W_r at a fixed pixel size, plus one halved pixel size)
+    × seeds.
+
+    Parameters
+    ----------
+    D : sequence of float
+        Fractal dimensions, 2 < D < 3 (dimensionless).
+    size_ratios : sequence of float
+        Map sizes L/W_r (dimensionless); n = L/W_r × ``pixels_per_Wr`` pixels per side, so the
+        pixel size dx = W_r/``pixels_per_Wr`` is the same in every size (size effect).
+    pixels_per_Wr : int
+        Pixels per roll-off wavelength of the base grid.
+    refine_ratio : float, optional
+        L/W_r at which the pixel size is halved once (grid convergence at fixed L); None for none.
+        The refined map is the *same* WM surface (same phases, same cut-off W_c) sampled twice
+        as finely, so the change measures each route's discretisation error, not added
+        roughness.
+    seeds : int
+        Surfaces per (D, grid).
+    Wr : float
+        Roll-off wavelength W_r (m).
+    Rt_over_Wr : float
+        R_t/W_r, the paper's relative roughness δ (dimensionless); the ratios and α do not
+        depend on it (see the module notes).
+    M, gamma
+        WM parameters, see :func:`warptrunc.wm_surface`. The cut-off W_c is the Nyquist
+        wavelength of the base grid, 2·dx = 2·W_r/``pixels_per_Wr``, in every case.
+
+    Returns
+    -------
+    list of dict
+        One dict per case: ``case_id``, ``D_in``, ``seed``, ``size_ratio``, ``n``, ``L_m``,
+        ``dx_m``, ``Wr_m``, ``Wc_m``, ``Rt_m``, ``M``, ``gamma``; smallest maps first.
+    """
+    pixels_per_Wr = check_int("pixels_per_Wr", pixels_per_Wr, 2)
+    seeds = check_int("seeds", seeds, 1)
+    grids = []
+    for r in size_ratios:
+        r = check_range("size_ratio", r, 0.0)
+        grids.append((r, _pixels(r * pixels_per_Wr)))
+    if refine_ratio is not None:
+        grids.append((float(refine_ratio), _pixels(2 * refine_ratio * pixels_per_Wr)))
+    grids = sorted(set(grids), key=lambda g: (g[1], g[0]))
+    cases = []
+    for r, n in grids:
+        for Dv in D:
+            Dv = check_range("D", Dv, 2.0, 3.0)
+            for s in range(seeds):
+                L = r * Wr
+                cases.append({
+                    "case_id": f"D{Dv:g}_L{r:g}Wr_n{n}_s{s}",
+                    "source": "wm", "D_in": Dv, "seed": s, "size_ratio": r, "n": n, "L_m": L,
+                    "dx_m": L / n, "Wr_m": Wr, "Wc_m": 2 * Wr / pixels_per_Wr,
+                    "Rt_m": Rt_over_Wr * Wr, "M": M, "gamma": gamma,
+                })  # fmt: skip
+    return cases
+
+
+def _pixels(v: float) -> int:
+    n = round(v)
+    if abs(n - v) > 1e-9 * max(1.0, v) or n < 4:
+        raise ValueError(f"L/W_r × pixels per W_r must be a whole number ≥ 4 of pixels, got {v!r}")
+    return int(n)
+
+
+def _settings(fractions, material, beta_prime, increments, connectivity, dtype, pressure_tol,
+              pentol, maxiter) -> dict[str, Any]:  # fmt: skip
+    return {
+        "fractions": [float(f) for f in fractions], "material": asdict(material),
+        "E_star_Pa": material.reduced_modulus, "beta_prime": float(beta_prime),
+        "increments": int(increments), "connectivity": int(connectivity), "dtype": dtype,
+        "pressure_tol": float(pressure_tol), "pentol_m": pentol, "maxiter": int(maxiter),
+        "substrate": "free", "stiffness_method": "barber",
+    }  # fmt: skip
+
+
+def compare_study(
+    out: str | Path,
+    cases: list[dict[str, Any]] | None = None,
+    *,
+    surface: Surface | None = None,
+    fractions: Any = DEFAULT_FRACTIONS,
+    material: Material | None = None,
+    beta_prime: float = 1.0,
+    increments: int = 400,
+    connectivity: int = 4,
+    dtype: str = "float64",
+    pressure_tol: float = 1e-5,
+    pentol: float | None = None,
+    maxiter: int = 10000,
+    overwrite: bool = False,
+    progress: bool = True,
+    device: wp.DeviceLike = None,
+):
+    """Run (or resume) a study of the three routes and store one Parquet file per case.
+
+    Parameters
+    ----------
+    out : str or Path
+        Store folder (``study.json``, ``cases/*.parquet``); created if needed.
+    cases : list of dict, optional
+        WM cases from :func:`study_cases`; default ``study_cases()``.
+    surface : Surface, optional
+        Your own map instead of WM cases: stored as the single case ``input``.
+    fractions, material, beta_prime, increments, connectivity, dtype, pressure_tol, pentol, maxiter
+        As in :func:`compare_models`; recorded in ``study.json``. A store made with other
+        values is refused unless ``overwrite``.
+    overwrite : bool
+        Replace a store made with other settings (its case files are deleted).
+    progress : bool
+        tqdm bar over the cases.
+    device : str, optional
+        Warp device.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The stored rows of ``cases`` (:func:`load_comparison`, other cases in the store left
+        out).
+
+    Raises
+    ------
+    ValueError
+        If the store was made with other settings and ``overwrite`` is off.
+
+    Notes
+    -----
+    A case counts as done once its file exists; each file is written to a temporary name and
+    renamed (atomic), so an interrupted study resumes where it stopped.
+    """
+    from .._progress import progress_bar
+    from ..wm import wm_surface
+
+    out = Path(out)
+    material = Material() if material is None else material
+    fractions = [float(f) for f in _approaches(1.0, fractions)]
+    settings = _settings(fractions, material, beta_prime, increments, connectivity, dtype,
+                         pressure_tol, pentol, maxiter)  # fmt: skip
+    if surface is not None:
+        if cases is not None:
+            raise ValueError("give either cases (WM study) or surface (your map), not both")
+        p = dict(surface.params)
+        cases = [{
+            "case_id": "input", "source": str(p.get("source", "input")),
+            "D_in": float(p["D"]) if "D" in p else math.nan, "seed": int(p.get("seed", -1)),
+            "size_ratio": (surface.lx / p["Wr"]) if "Wr" in p else math.nan,
+            "n": surface.nx, "L_m": surface.lx, "dx_m": surface.dx,
+            "Wr_m": float(p.get("Wr", math.nan)), "Rt_m": surface.Rt,
+            "Wc_m": float(p.get("Wc") or math.nan),
+            "M": int(p.get("M", -1)), "gamma": float(p.get("gamma", math.nan)),
+        }]  # fmt: skip
+    elif cases is None:
+        cases = study_cases()
+    ids = [c["case_id"] for c in cases]
+    if len(set(ids)) != len(ids):
+        raise ValueError("case_id values must be unique")
+    _open_store(out, settings, overwrite)
+    todo = [c for c in cases if not _case_path(out, c["case_id"]).exists()]
+    bar = progress_bar(todo, desc="compare", unit="case", enabled=progress)
+    for c in bar:
+        t0 = time.perf_counter()
+        if surface is not None:
+            s = surface
+        else:
+            s = wm_surface(c["D_in"], c["Wr_m"], L=c["L_m"], n=c["n"], Rt=c["Rt_m"], M=c["M"],
+                           gamma=c["gamma"], Wc=c["Wc_m"], seed=c["seed"], device=device)  # fmt: skip
+        r = compare_models(
+            s, fractions, material=material, beta_prime=beta_prime, increments=increments,
+            connectivity=connectivity, dtype=dtype, pressure_tol=pressure_tol, pentol=pentol,
+            maxiter=maxiter, device=device,
+        )  # fmt: skip
+        c = {**c, "Rt_m": r.Rt}
+        _write_case(out, c, r, time.perf_counter() - t0)
+        del s, r
+    rows = load_comparison(out)
+    return rows[rows["case_id"].isin(ids)].reset_index(drop=True)
+
+
+def _case_path(out: Path, case_id: str) -> Path:
+    return out / "cases" / f"{case_id}.parquet"
+
+
+def _open_store(out: Path, settings: dict[str, Any], overwrite: bool) -> None:
+    meta = out / "study.json"
+    doc = {"format": FORMAT, "settings": settings}
+    if meta.exists():
+        old = read_json(meta)
+        same = json.loads(strict_json(doc)) == json.loads(strict_json(
+            {"format": old.get("format"), "settings": old.get("settings")}))  # fmt: skip
+        if same:
+            return
+        if not overwrite:
+            diff = sorted(k for k in settings if old.get("settings", {}).get(k) != settings[k])
+            raise ValueError(
+                f"{out} holds a comparison study made with other settings (differing: "
+                f"{', '.join(diff) or 'format'}); use another folder, or overwrite"
+            )
+        for f in (out / "cases").glob("*.parquet"):
+            f.unlink()
+    import warp
+
+    from .. import __version__ as version
+
+    doc["created"] = {"warptrunc_version": version, "warp_version": warp.config.version,
+                      "host": platform.node()}  # fmt: skip
+    write_atomic(meta, strict_json(doc))
+
+
+def _write_case(out: Path, case: dict[str, Any], r: ModelComparison, seconds: float) -> None:
+    import pandas as pd
+
+    cols = r.to_dict()
+    m = r.depth.size
+    data: dict[str, Any] = {}
+    for k in CASE_COLUMNS:
+        if k in cols:
+            data[k] = cols[k]
+        elif k == "case_seconds":
+            data[k] = np.full(m, seconds)
+        elif k == "device":
+            data[k] = [str(r.settings["solver"].get("device", ""))] * m
+        else:
+            data[k] = [case[k]] * m
+    df = pd.DataFrame(data, columns=list(CASE_COLUMNS))
+    buf = io.BytesIO()
+    df.to_parquet(buf, index=False)
+    write_atomic(_case_path(out, case["case_id"]), buf.getvalue())
+
+
+def load_comparison(out: str | Path):
+    """Every stored row of a comparison study.
+
+    Parameters
+    ----------
+    out : str or Path
+        The study's store folder.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (case, approach), columns :data:`CASE_COLUMNS`, sorted by case and δ/R_t.
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``out`` holds no ``study.json``.
+    """
+    import pandas as pd
+
+    out = Path(out)
+    if not (out / "study.json").exists():
+        raise FileNotFoundError(f"no comparison study in {out} (study.json missing)")
+    files = sorted((out / "cases").glob("*.parquet"))
+    if not files:
+        return pd.DataFrame(columns=list(CASE_COLUMNS))
+    df = pd.concat([pd.read_parquet(f) for f in files], ignore_index=True)
+    return df.sort_values(["n", "size_ratio", "D_in", "seed", "depth_fraction_of_Rt"],
+                          kind="stable").reset_index(drop=True)  # fmt: skip
+
+
+def _stats(v) -> dict[str, float]:
+    x = np.asarray(v, dtype=np.float64)
+    x = x[np.isfinite(x)]
+    if x.size == 0:
+        return {"mean": math.nan, "min": math.nan, "max": math.nan, "n": 0}
+    return {"mean": float(x.mean()), "min": float(x.min()), "max": float(x.max()), "n": int(x.size)}
+
+
+def summarize(rows) -> dict[str, Any]:
+    """The study's tables, recomputed from its rows.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        Rows of :func:`load_comparison`.
+
+    Returns
+    -------
+    dict
+        ``ratios``: DataFrame, one row per (D_in, size_ratio, n, δ/R_t) with mean, min and max
+        over seeds of k/k_BEM and F/F_BEM for ``eq2`` and ``islands`` and of A'/A_BEM, and the
+        number of converged seeds. ``alpha``: DataFrame, one row per (D_in, size_ratio, n, range)
+        with mean, min and max over seeds of α by the three routes; range ``all`` fits every
+        approach, ``low`` those with δ/R_t ≤ :data:`LOW_FRACTION`.
+    """
+    import pandas as pd
+
+    keys = ["D_in", "size_ratio", "n"]
+    out_r = []
+    for (Dv, r, n, f), g in rows.groupby([*keys, "depth_fraction_of_Rt"], sort=True, dropna=False):
+        rec: dict[str, Any] = {"D_in": Dv, "size_ratio": r, "n": n, "depth_fraction_of_Rt": f,
+                               "seeds": int(g["seed"].nunique()),
+                               "converged": int(g["converged"].sum())}  # fmt: skip
+        for col in ("eq2_k_ratio", "islands_k_ratio", "eq2_F_ratio", "islands_F_ratio",
+                    "area_ratio"):  # fmt: skip
+            s = _stats(g[col])
+            for k in ("mean", "min", "max"):
+                rec[f"{col}_{k}"] = s[k]
+        out_r.append(rec)
+    out_a = []
+    for (Dv, r, n), g in rows.groupby(keys, sort=True, dropna=False):
+        for rng, lim in (("all", None), ("low", LOW_FRACTION)):
+            fits: dict[str, list[float]] = {m: [] for m in MODELS}
+            for _, c in g.groupby("case_id", sort=True):
+                c = c[c["depth_fraction_of_Rt"] <= lim * (1 + 1e-9)] if lim else c
+                for m in MODELS:
+                    fits[m].append(fit_k_vs_F(c[f"{m}_load_N"], c[f"{m}_stiffness_N_per_m"])["alpha"])
+            rec = {"D_in": Dv, "size_ratio": r, "n": n, "range": rng,
+                   "seeds": int(g["seed"].nunique())}  # fmt: skip
+            for m in MODELS:
+                s = _stats(fits[m])
+                for k in ("mean", "min", "max"):
+                    rec[f"alpha_{m}_{k}"] = s[k]
+            out_a.append(rec)
+    return {"ratios": pd.DataFrame(out_r), "alpha": pd.DataFrame(out_a)}
