@@ -224,13 +224,41 @@ class LaneReduction:
         self._flags: dict[tuple[bool, ...], wp.array] = {}
 
     def geometry(self, n: int) -> tuple[int, int]:
-        """(stride, chunk) arguments of a lane kernel that walks ``n`` elements."""
+        """Stride and chunk arguments of a lane kernel that walks ``n`` elements.
+
+        Parameters
+        ----------
+        n : int
+            Number of elements the kernel walks (dimensionless count).
+
+        Returns
+        -------
+        stride : int
+            Step between the elements one lane visits: the number of lanes, ``lanes``.
+        chunk : int
+            On the CPU, the length of the contiguous run of elements each lane walks instead
+            (ceil(n / lanes), at least 1); 0 on a CUDA device, where the lanes stride.
+        """
         if self.device.is_cuda:
             return self.lanes, 0
         return self.lanes, max(1, -(-n // self.lanes))
 
     def launch(self, kernel, n: int, inputs: list, outputs: list) -> None:
-        """Launch ``kernel`` on the lanes; ``inputs`` end before (stride, chunk)."""
+        """Launch a lane kernel on ``lanes`` threads, its partials going to ``part``.
+
+        Parameters
+        ----------
+        kernel : warp Kernel
+            Lane kernel whose last two inputs are (stride, chunk) and whose last output is the
+            (lanes, COLUMNS) float64 partials array.
+        n : int
+            Number of elements the kernel walks (dimensionless count; sets the chunk, see
+            :meth:`geometry`).
+        inputs : list
+            The kernel's inputs before (stride, chunk), which are appended.
+        outputs : list
+            The kernel's outputs before the partials ``part``, which is appended.
+        """
         stride, chunk = self.geometry(n)
         wp.launch(
             kernel, dim=self.lanes, inputs=[*inputs, stride, chunk], outputs=[*outputs, self.part],
@@ -238,8 +266,17 @@ class LaneReduction:
         )  # fmt: skip
 
     def fold(self, is_max: tuple[bool, ...]) -> wp.array:
-        """Fold the lane partials of the first ``len(is_max)`` columns into a few rows on the
-        device (CUDA; the CPU's lanes are few and are the rows); nothing is read back.
+        """Fold the lane partials of the first ``len(is_max)`` columns into a few rows.
+
+        On a CUDA device ``sum_lanes_kernel`` folds the (lanes, COLUMNS) partials into
+        (rows, COLUMNS), on the device; on the CPU the lanes are few and are the rows (the
+        partials are returned as they are). Nothing is read back.
+
+        Parameters
+        ----------
+        is_max : tuple of bool
+            One flag per column from column 0: True takes the maximum of the column's partials
+            (non-negative quantities; the fold starts from 0), False their sum.
 
         Returns
         -------
@@ -260,7 +297,23 @@ class LaneReduction:
         return self.out
 
     def read(self, is_max: tuple[bool, ...]) -> np.ndarray:
-        """The reduced columns (host float64), summing or taking the maximum per column."""
+        """Reduce the lane partials of the first ``len(is_max)`` columns to one value each.
+
+        Folds on the device (:meth:`fold`), then reads the rows back to the host (a
+        synchronisation point) and finishes there in float64.
+
+        Parameters
+        ----------
+        is_max : tuple of bool
+            One flag per column from column 0: True takes the maximum of the column's partials,
+            False their sum.
+
+        Returns
+        -------
+        (len(is_max),) ndarray of float64
+            Per column, the sum or the maximum of the partials, in the units of what the lane
+            kernel accumulated in that column.
+        """
         ncol = len(is_max)
         p = self.fold(is_max).numpy()[:, :ncol]  # sync point
         return np.array([p[:, j].max() if is_max[j] else p[:, j].sum() for j in range(ncol)])
@@ -390,16 +443,50 @@ class ElasticHalfSpace:
     # --- buffers ---------------------------------------------------------------------------
 
     def map_buffer(self) -> tuple[wp.array, wp.array]:
-        """A zeroed (ny, Nx) input buffer and its (ny, nx) map view."""
+        """Allocate a zeroed input buffer and its map view.
+
+        Returns
+        -------
+        buf : (ny, Nx) warp array
+            Zeroed buffer of the half-space's dtype, the input of :meth:`forward` and
+            :meth:`apply`; columns nx … Nx−1 are the zero pad (Nx = 2nx for the free
+            half-space, nx for the periodic one) and must stay zero.
+        view : (ny, nx) warp array
+            The view ``buf[:, :nx]``: the map, where the pixel forces (N) or displacements (m)
+            are written.
+        """
         buf = wp.zeros((self.shape[0], self.grid[1]), dtype=self.scalar, device=self.device)
         return buf, buf[:, : self.shape[1]]
 
     def new_spectrum(self) -> wp.array:
-        """A zeroed (Ny, Nx//2 + 1) spectrum (vec2: re, im)."""
+        """Allocate a zeroed half spectrum of the half-space's transform.
+
+        Returns
+        -------
+        (Ny, Nx//2 + 1) warp array of vec2
+            Zeroed complex spectrum, (re, im) per element in the half-space's dtype: the layout
+            :meth:`forward` writes and :meth:`inverse` reads. (Ny, Nx) = (2ny, 2nx) for the free
+            half-space, (ny, nx) for the periodic one.
+        """
         return wp.zeros(self.spectrum_shape, dtype=self.vec2, device=self.device)
 
     def result_map(self, spec: wp.array) -> wp.array:
-        """The (ny, nx) real map that :meth:`inverse` wrote into ``spec``'s memory (a view)."""
+        """View the real map that :meth:`inverse` wrote into a spectrum's memory.
+
+        Parameters
+        ----------
+        spec : (Ny, Nx//2 + 1) warp array of vec2
+            Spectrum after :meth:`inverse`: its memory holds real rows in the in-place
+            complex-to-real layout, 2·(Nx//2 + 1) reals per row.
+
+        Returns
+        -------
+        (ny, nx) warp array
+            Strided view (no copy) of the first ny rows and nx columns, in the half-space's
+            dtype and the units of the transformed quantity (m after :meth:`apply`, N after
+            ``apply(..., inverse=True)``). It keeps ``spec`` alive and is valid until ``spec``
+            is next written.
+        """
         ny, nx = self.shape
         row = 2 * self.spectrum_shape[1]  # reals per complex row: the in-place C2R layout
         item = np.dtype(self.np_dtype).itemsize
@@ -515,7 +602,21 @@ class ElasticHalfSpace:
         return view[1]
 
     def forward(self, buf: wp.array, spec: wp.array) -> None:
-        """``spec`` ← the (Ny, Nx//2 + 1) spectrum of the zero-padded map in ``buf`` (ny, Nx)."""
+        """Transform a zero-padded map into its half spectrum (unnormalised, real to complex).
+
+        ``spec`` ← the 2-D FFT of the (Ny, Nx) grid whose first ny rows are ``buf`` and whose
+        other rows are zero, computed pruned (module docstring). On a CUDA device the cuFFT
+        plans run on Warp's stream; nothing is synchronised.
+
+        Parameters
+        ----------
+        buf : (ny, Nx) warp array
+            Input buffer (:meth:`map_buffer`): the map in columns 0 … nx−1 (pixel forces in N,
+            or displacements in m), zeros in the pad.
+        spec : (Ny, Nx//2 + 1) warp array of vec2
+            Output spectrum (:meth:`new_spectrum`), overwritten with the unnormalised
+            transform (same units as ``buf``).
+        """
         ny = self.shape[0]
         if self._cp is None:
             s = self._complex_view(spec)
@@ -537,8 +638,23 @@ class ElasticHalfSpace:
             cols.fft(s, s, self._directions[0])
 
     def inverse(self, spec: wp.array) -> wp.array:
-        """The (ny, nx) map of the unnormalised inverse transform of ``spec``, written in place
-        into ``spec``'s memory (which it destroys); a view (:meth:`result_map`)."""
+        """Inverse-transform a half spectrum in place and return its real map.
+
+        The unnormalised inverse 2-D FFT (no 1/N; :meth:`spectral` folds it into the kernel) of
+        ``spec``, of which only the first ny rows and nx columns are formed; it is written
+        into ``spec``'s memory, which it destroys.
+
+        Parameters
+        ----------
+        spec : (Ny, Nx//2 + 1) warp array of vec2
+            Spectrum to transform (:meth:`forward`, then :meth:`spectral`); overwritten.
+
+        Returns
+        -------
+        (ny, nx) warp array
+            The map, a view into ``spec``'s memory (:meth:`result_map`), valid until ``spec`` is
+            next written; units those of the spectrum (m for K·x, N for K⁻¹·x).
+        """
         ny = self.shape[0]
         big_x = self.grid[1]
         if self._cp is None:
@@ -561,7 +677,26 @@ class ElasticHalfSpace:
         return self.result_map(spec)
 
     def spectral(self, mode: int, spec: wp.array, *, col: int = LaneReduction.COLUMNS - 1) -> None:
-        """Launch ``spectral_kernel`` (its modes are ``_k.SPECTRUM_*``) on the lanes."""
+        """Launch the spectral kernel on a half spectrum, over the lanes of ``reduction``.
+
+        The kernel is ``spectral_kernel`` of ``warptrunc.kernels.contact``; it multiplies by
+        the half-space's spectrum W (m/N) and, for the sums, counts each column that stands for
+        two conjugate modes twice. Nothing is read back.
+
+        Parameters
+        ----------
+        mode : int
+            ``SPECTRUM_ENERGY`` (0): ``spec`` is left as is; the lanes' partial sums of
+            Σ W·abs(spec)², which is N·Σ x·(K·x) by Parseval (N = Ny·Nx; N·m for pixel forces
+            x in newtons), go to column ``col`` of ``reduction.part``. ``SPECTRUM_APPLY`` (1):
+            the same sums, then ``spec`` ← W·spec/N (K, with the inverse transform's 1/N).
+            ``SPECTRUM_INVERSE`` (2): ``spec`` ← spec/(W·N) (K⁻¹); no sums.
+        spec : (Ny, Nx//2 + 1) warp array of vec2
+            Spectrum of a map (:meth:`forward`); modified in place by modes 1 and 2.
+        col : int, optional
+            Column of ``reduction.part`` that gets the partial sums (default the last,
+            COLUMNS − 1).
+        """
         red = self.reduction
         stride, chunk = red.geometry(spec.shape[0] * spec.shape[1])
         wp.launch(
@@ -572,14 +707,31 @@ class ElasticHalfSpace:
         )  # fmt: skip
 
     def apply(self, buf: wp.array, *, inverse: bool = False, energy_column: int = -1) -> wp.array:
-        """K·x: displacements (m) of pixel forces x (N) on the map; with ``inverse=True`` K⁻¹·x:
-        pixel forces (N) of displacements x (m) (the map of K⁻¹ applied to the zero-padded map).
+        """Apply the operator K, or its inverse, to a map by FFT convolution.
 
-        ``buf`` is an input buffer (:meth:`map_buffer`) holding x on its map. With
-        ``energy_column ≥ 0`` (forward only) the lanes of ``reduction`` get the partial sums
-        of N·Σ x·(K·x) in that column (Parseval; read them with ``reduction.read``, divide by
-        N = Ny·Nx); nothing is read back here. Returns a (ny, nx) view into the work spectrum,
-        valid until the half-space's next transform.
+        K·x gives the displacements (m) of pixel forces x (N) on the map; K⁻¹·x the pixel forces
+        (N) of displacements x (m) (the map of K⁻¹ applied to the zero-padded map). One forward
+        transform, the spectral kernel and one inverse transform, in the work spectrum; nothing
+        is read back.
+
+        Parameters
+        ----------
+        buf : (ny, Nx) warp array
+            Input buffer (:meth:`map_buffer`) holding x on its map, columns 0 … nx−1: pixel
+            forces (N), or displacements (m) with ``inverse=True``; the pad stays zero.
+        inverse : bool, optional
+            False (default): K·x. True: K⁻¹·x.
+        energy_column : int, optional
+            Forward only. With a value ≥ 0 the lanes of ``reduction`` get the partial sums of
+            N·Σ x·(K·x) (N·m times N = Ny·Nx; Parseval) in that column: read them with
+            ``reduction.read`` and divide by N. Default −1: the sums go to the last column,
+            COLUMNS − 1, as scratch.
+
+        Returns
+        -------
+        (ny, nx) warp array
+            K·x (m) or K⁻¹·x (N), a view into the work spectrum, valid until the half-space's
+            next transform.
         """
         self.forward(buf, self.work)
         if inverse:

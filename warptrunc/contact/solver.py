@@ -448,7 +448,18 @@ class ContactSolver:
         return float(k), it, ok
 
     def maps(self) -> tuple[np.ndarray, np.ndarray]:
-        """Pressure (Pa) and gap (m) of the current solution, (ny, nx) float64 host arrays."""
+        """Copy the pressure and gap maps of the current solution to the host.
+
+        Reads the device back (a synchronisation point).
+
+        Returns
+        -------
+        pressure : (ny, nx) ndarray of float64
+            Pressure (Pa): the pixel forces (N) divided by the pixel area dx·dy (m²).
+        gap : (ny, nx) ndarray of float64
+            Gap (m): displacement u minus heights h minus the rigid offset of the last solve,
+            u − h − offset (ContactMechanics' sign).
+        """
         sc = DTYPES[self.dtype][0]
         out = []
         for src in (self.q, self.u):
