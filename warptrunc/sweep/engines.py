@@ -29,9 +29,9 @@ from typing import Any
 import numpy as np
 
 from .. import __version__
-from .._provenance import git_commit
 from .._device import resolve_device
 from .._progress import progress_bar
+from .._provenance import git_commit
 from ..stiffness import DEFAULT_MIN_PIXELS, fit_power_law, stiffness_curve
 from ..truncation import truncate
 from ..wm import wm_surface
