@@ -156,9 +156,27 @@ def free_memory_bytes(device: wp.context.Device) -> int:
     return int(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
 
 
+def release_cached_memory(device: wp.context.Device) -> int:
+    """Give the memory that Warp's (and CuPy's) pools keep cached back to the device and
+    return the free bytes then: the pooled blocks are free for our next allocation but not
+    counted as free by the driver, so a size check would refuse work that fits."""
+    if device.is_mempool_supported:
+        keep = wp.get_mempool_release_threshold(device)
+        wp.set_mempool_release_threshold(device, 0)
+        wp.synchronize_device(device)  # the pool trims to the threshold here
+        wp.set_mempool_release_threshold(device, keep)
+    cupy = sys.modules.get("cupy")
+    if cupy is not None:
+        with cupy.cuda.Device(device.ordinal):
+            cupy.get_default_memory_pool().free_all_blocks()
+    return free_memory_bytes(device)
+
+
 def check_memory(nbytes: int, device: wp.context.Device, what: str) -> None:
     """Raise ``MemoryError`` before allocating when ``nbytes`` exceed the free memory."""
     free = free_memory_bytes(device)
+    if nbytes > free and device.is_cuda:
+        free = release_cached_memory(device)
     if nbytes > free:
         raise MemoryError(
             f"{what} needs {nbytes / 2**30:.2f} GiB on {device} but only "

@@ -48,7 +48,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import free_memory_bytes, resolve_device
+from .._device import free_memory_bytes, release_cached_memory, resolve_device
 from .._validate import check_height_map, check_int, check_range, pair
 from ..kernels import contact as _k
 from .halfspace import DTYPES, SUBSTRATES, ElasticHalfSpace
@@ -166,6 +166,8 @@ class ContactSolver:
         self.forcetol = self.pressure_tol * self.contact_modulus * dx * dy
         need = self.memory_bytes(h.shape, substrate, dtype)
         free = free_memory_bytes(self.device)
+        if need > free and self.device.is_cuda:
+            free = release_cached_memory(self.device)  # pooled blocks are free for us too
         if need > free:
             raise MemoryError(
                 f"the contact solver for a {h.shape[0]}×{h.shape[1]} map ({substrate}, {dtype}) "
