@@ -135,9 +135,13 @@ def _st_example(name: str) -> Path:
 
 # --- fuzzing -----------------------------------------------------------------------------------
 
+# CI runs a fixed (derandomised) sequence of examples so that a landing never depends on the
+# draw; elsewhere each run explores new ones (`--hypothesis-seed=N` repeats a failure).
+CI_FIXED = bool(os.environ.get("CI"))
 FUZZ = settings(
     max_examples=40,
     deadline=None,
+    derandomize=CI_FIXED,
     suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow],
 )
 
@@ -205,7 +209,8 @@ def test_truncated_text_files_are_refused_or_read_whole(tmp_path, z, cut):
 
 
 @settings(
-    max_examples=8, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+    max_examples=8, deadline=None, derandomize=CI_FIXED,
+    suppress_health_check=[HealthCheck.function_scoped_fixture],
 )
 @given(data=st.binary(min_size=1, max_size=200), suffix=st.sampled_from([".csv", ".npy", ".sur"]))
 def test_describe_never_exits_0_on_garbage(tmp_path, capsys, data, suffix):

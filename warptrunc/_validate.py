@@ -65,6 +65,13 @@ def check_height_map(z: np.ndarray, name: str = "heights") -> np.ndarray:
             f"{name} contains {int(bad.sum())} NaN/inf values (first at iy={iy}, ix={ix}); "
             "fill or mask them first"
         )
+    big = float(np.finfo(np.float32).max) / 4  # heights and their differences stay finite
+    peak = float(np.max(np.abs(z)))
+    if peak > big:
+        raise ValueError(
+            f"{name} reach {peak:.3g} in magnitude, beyond what float32 heights hold with finite "
+            f"differences (±{big:.3g}); check the height unit"
+        )
     return np.ascontiguousarray(z, dtype=np.float32)
 
 

@@ -173,10 +173,8 @@ def surface_statistics(surface: Surface) -> dict[str, float]:
         as float. Skewness and kurtosis are 0 and 3 by convention for a constant map.
     """
 
-
     if surface.device is None:
         return height_statistics(surface.heights)
-
 
     z = surface.device_heights()
     dev = z.device
@@ -226,7 +224,25 @@ def describe(surface: Surface, *, smoothing: float = 0.05) -> Descriptors:
     Returns
     -------
     Descriptors
+
+    Raises
+    ------
+    ValueError
+        For a map of fewer than 2 × 2 pixels (a single point or a profile): its spectra and
+        W_r are not defined.
     """
+    if min(surface.ny, surface.nx) < 2:
+        what = (
+            "a single point"
+            if surface.ny * surface.nx == 1
+            else (
+                f"a profile of {surface.nx} points along x"
+                if surface.ny == 1
+                else f"a profile of {surface.ny} points along y"
+            )
+        )
+        raise ValueError(f"describe needs a map of at least 2 × 2 pixels; this one is "
+                         f"{surface.ny}×{surface.nx}, {what}")  # fmt: skip
     st = surface_statistics(surface)
     wr, resolved = roll_off_wavelength(surface, smoothing=smoothing)
     return Descriptors(
@@ -239,5 +255,3 @@ def describe(surface: Surface, *, smoothing: float = 0.05) -> Descriptors:
         Wr_resolved=resolved,
         mean=st["mean"],
     )
-
-

@@ -165,6 +165,8 @@ def _lattice(v: np.ndarray, rtol: float = 1e-6) -> tuple[np.ndarray, float] | No
         return None
     step = float(np.min(np.diff(u)))
     idx = (v - u[0]) / step
+    if not np.all(np.isfinite(idx)) or float(idx.max()) > 4.0 * u.size:
+        return None  # most lattice sites empty (or beyond int64): not a grid of these points
     k = np.rint(idx)
     if np.max(np.abs(idx - k)) > rtol * max(1.0, float(k.max())):
         return None
