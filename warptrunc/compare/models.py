@@ -33,7 +33,7 @@ MODELS = ("eq2", "islands", "bem")
 """The three routes, in the order of the tables."""
 
 GOOD = 0.2
-"""|ratio − 1| ≤ GOOD: a model "within ±20 %" of the elastic solution in the summaries."""
+"""abs(ratio − 1) ≤ GOOD: a model "within ±20 %" of the elastic solution in the summaries."""
 
 LOW_FRACTION = 0.1
 """Largest δ/R_t of the low-approach α fit (the paper's fit range, ω ≤ 0.1·R_t, §4.4)."""

@@ -33,7 +33,7 @@ from .profiles import Profile
 __all__ = ["GOOD", "analyse_elastic", "stage_elastic", "stage_params", "summary_from_rows"]
 
 GOOD = 0.2
-"""|model/BEM − 1| ≤ GOOD counts as "within ±20 %" in the section's sentences."""
+"""abs(model/BEM − 1) ≤ GOOD counts as "within ±20 %" in the section's sentences."""
 SUBDIR = "elastic"
 """Case store of the stage, inside the reproduction folder."""
 POHRT_POPOV = ((2.0, 0.51), (3.0, 0.77))

@@ -8,7 +8,7 @@
 >>> load("runs/g2").groupby(["min_pixels", "D_in"]).alpha.agg(["mean", "std"])  # doctest: +SKIP
 
 Modules: ``grid`` (SweepGrid, SweepOptions, case ids), ``store`` (the Parquet store:
-sweep.json, curves/part-*.parquet, cases.parquet; :func:`migrate`), ``curves`` (writing and
+sweep.json, ``curves/part-*.parquet``, cases.parquet; :func:`migrate`), ``curves`` (writing and
 reading one part), ``engines`` (one case, one shard; in-process execution), ``cluster`` (Dask),
 ``run`` (:func:`run_sweep`), ``stats`` (pandas summaries, :func:`linear_fit`, and the older
 in-memory :func:`sweep`/:class:`SweepTable`). pandas, pyarrow and dask are imported only

@@ -103,13 +103,13 @@ def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str,
     Returns
     -------
     dict of str to Any
-        The columns of :func:`warptrunc.sweep.store.bem_columns` (SI units).
+        The columns of ``warptrunc.sweep.store.bem_columns`` (SI units).
 
     Notes
     -----
     Truncation at δ: A' = (pixels with z ≥ z_max − δ)·pixel area (exact count, float32 as the
     kernels), k' = β'·(2/√π)·E*·√A' (Eq. 2), F'(δ) by linear interpolation of the curve's
-    trapezoidal load; the same formulas as :func:`warptrunc.contact.bem_check`. The elastic
+    trapezoidal load; the same formulas as ``warptrunc.bem_check``. The elastic
     solve is :func:`warptrunc.contact.solve_contact` (``substrate="free"``, Barber stiffness),
     warm-started over increasing δ; a solve that stops at its iteration limit is kept with
     ``bem_converged_<f>`` False. A solver error leaves the columns NaN and sets ``bem_error``.

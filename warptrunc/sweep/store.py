@@ -82,7 +82,7 @@ CASE_COLUMNS = (
 ``min_pixels_fraction`` one (``min_pixels`` then holds the count it resolved to, 0 when the
 case failed). ``D_<method>``, ``D_<method>_r2``, ``fractal_options`` (JSON) and
 ``fractal_seconds`` (s) are NaN/null unless the sweep ran with ``fractal_methods``. With
-``bem_fractions`` the columns of :func:`bem_columns` follow."""
+``bem_fractions`` the columns of ``bem_columns`` follow."""
 
 RUN_COLUMNS = ("seconds", "fractal_seconds", "device", "device_name", "host", "finished_utc", "git_commit")
 """Columns that describe how and where a case ran rather than its result."""
