@@ -15,7 +15,7 @@ This stage replaces the former ``bem`` stage (ContactMechanics on the CPU at one
 its cases are the L/W_r = 10 column here, solved by warptrunc's own solver on the run's device.
 A ``stages/bem.json`` of an earlier run is left in place and no longer read.
 
-Also runnable alone (``python -m warptrunc.reproduce.elastic --profile paper --out DIR``):
+Also runnable alone (``python -m warptrunc.reproduce.elastic_report --profile paper --out DIR``):
 then it writes ``DIR/elastic.md`` (the report section) and its figures. The section's text and
 figures are made by :mod:`.elastic_report`.
 """
@@ -42,7 +42,7 @@ PAPER_ALPHA = (0.209, 0.090)
 """The paper's Table 3: α = 0.209·D_in + 0.090."""
 
 
-def _material():
+def default_material():
     from ..stiffness import Material
 
     return Material()
@@ -70,7 +70,7 @@ def stage_params(p: Profile) -> dict[str, Any]:
     dict
         JSON-able parameters (compared by :class:`~warptrunc.reproduce.store.StageStore`).
     """
-    m = _material()
+    m = default_material()
     return {"elastic_D": list(p.elastic_D), "elastic_size_ratios": list(p.elastic_size_ratios),
             "elastic_pixels_per_Wr": p.elastic_pixels_per_Wr,
             "elastic_refine_ratio": p.elastic_refine_ratio, "elastic_seeds": p.elastic_seeds,
@@ -100,7 +100,7 @@ def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
 
     store = Path(out) / SUBDIR
     rows = compare_study(
-        store, _cases(p), fractions=p.elastic_fractions, material=_material(),
+        store, _cases(p), fractions=p.elastic_fractions, material=default_material(),
         dtype=p.elastic_dtype, overwrite=True, progress=True, device=device,
     )  # fmt: skip
     return summary_from_rows(rows, store=SUBDIR)
@@ -174,7 +174,7 @@ def _grid_pairs(rows) -> list[dict[str, Any]]:
 # --- analysis -------------------------------------------------------------------------------------
 
 
-def _base(records: list[dict[str, Any]]) -> list[dict[str, Any]]:
+def base_records(records: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Records at the base pixel size (largest dx = L/n over the stored sizes)."""
     if not records:
         return []
@@ -182,7 +182,7 @@ def _base(records: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return [r for r in records if math.isclose(r["size_ratio"] / r["n"], dx, rel_tol=1e-9)]
 
 
-def _fin(v: Any) -> bool:
+def is_finite(v: Any) -> bool:
     return v is not None and isinstance(v, (int, float)) and math.isfinite(v)
 
 
@@ -200,12 +200,12 @@ def analyse_elastic(stage: dict[str, Any]) -> dict[str, Any]:
         Per model and quantity the cells within ±GOOD of BEM, the range elsewhere and in the
         paper's range, the trend with L/W_r; the grid change; α with the two references.
     """
-    ratios = _base(stage["ratios"])
+    ratios = base_records(stage["ratios"])
     res: dict[str, Any] = {"good_band": GOOD, "models": {}}
     for m in ("eq2", "islands"):
         for q in ("k", "F"):
             key = f"{m}_{q}_ratio"
-            cells = [r for r in ratios if _fin(r[f"{key}_mean"])]
+            cells = [r for r in ratios if is_finite(r[f"{key}_mean"])]
             good = [r for r in cells if abs(r[f"{key}_mean"] - 1) <= GOOD]
             all_good = [r for r in good if r[f"{key}_min"] >= 1 - GOOD and r[f"{key}_max"] <= 1 + GOOD]
             bad = [r[f"{key}_mean"] for r in cells if abs(r[f"{key}_mean"] - 1) > GOOD]
@@ -234,7 +234,7 @@ def _size_trend(cells: list[dict[str, Any]], key: str) -> dict[str, Any] | None:
     f = []
     for Dv, fr in sorted({(r["D_in"], r["depth_fraction_of_Rt"]) for r in cells}):
         a, b = by.get((Dv, fr, sizes[0])), by.get((Dv, fr, sizes[-1]))
-        if _fin(a) and _fin(b) and a > 0:
+        if is_finite(a) and is_finite(b) and a > 0:
             f.append(b / a)
     if not f:
         return None
@@ -246,7 +246,7 @@ def _size_trend(cells: list[dict[str, Any]], key: str) -> dict[str, Any] | None:
 def _alpha_vs_refs(alpha: list[dict[str, Any]]) -> list[dict[str, Any]]:
     out = []
     (d0, a0), (d1, a1) = POHRT_POPOV
-    for r in _base(alpha):
+    for r in base_records(alpha):
         D = r["D_in"]
         out.append({**r, "pohrt_popov": a0 + (a1 - a0) * (D - d0) / (d1 - d0),
                     "paper_table3": PAPER_ALPHA[0] * D + PAPER_ALPHA[1]})  # fmt: skip
@@ -260,58 +260,9 @@ def _grid_summary(grid: list[dict[str, Any]]) -> dict[str, Any] | None:
                            "n_fine": grid[0]["n_fine"]}  # fmt: skip
     for q in ("eq2_stiffness_N_per_m", "islands_stiffness_N_per_m", "bem_stiffness_N_per_m",
               "bem_load_N", "trunc_area_m2", "bem_area_m2", "eq2_k_ratio", "islands_k_ratio"):  # fmt: skip
-        v = [g[f"{q}_fine_over_coarse"] for g in grid if _fin(g[f"{q}_fine_over_coarse"])]
+        v = [g[f"{q}_fine_over_coarse"] for g in grid if is_finite(g[f"{q}_fine_over_coarse"])]
         out[q] = [min(v), max(v)] if v else None
     return out
 
 
 # --- standalone ---------------------------------------------------------------------------------
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Run the ``elastic`` stage alone: ``python -m warptrunc.reproduce.elastic``.
-
-    Parameters
-    ----------
-    argv : list of str, optional
-        Command-line arguments (default ``sys.argv[1:]``).
-
-    Returns
-    -------
-    int
-        Exit status.
-    """
-    import argparse
-    import json
-    import time
-
-    from .._results import jsonable, write_atomic
-    from .elastic_report import elastic_figures, elastic_lines
-    from .profiles import PROFILES
-    from .store import StageStore
-
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0],
-                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
-    ap.add_argument("--profile", choices=sorted(PROFILES), default="quick")
-    ap.add_argument("--out", type=Path, default=Path("reproduction"))
-    ap.add_argument("--device", default=None)
-    ap.add_argument("--overwrite", action="store_true")
-    args = ap.parse_args(argv)
-    p = PROFILES[args.profile]
-    args.out.mkdir(parents=True, exist_ok=True)
-    store = StageStore(args.out, overwrite=args.overwrite)
-    t0 = time.perf_counter()
-    stage = store.run("elastic", stage_params(p), lambda: stage_elastic(p, args.out, args.device))
-    a = analyse_elastic(stage)
-    names = elastic_figures(stage, args.out)
-    lines = elastic_lines(stage, a, store.seconds("elastic"), names)
-    head = (f"<!-- warptrunc.reproduce.elastic --profile {p.name}; wall {time.perf_counter() - t0:.1f} s -->\n")
-    write_atomic(args.out / "elastic.md", head + "\n".join(lines) + "\n")
-    write_atomic(args.out / "elastic_analysis.json",
-                 json.dumps(jsonable(a), indent=1, allow_nan=False) + "\n")  # fmt: skip
-    print(f"wrote {args.out}/elastic.md, elastic_analysis.json, {', '.join(names)}")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -12,7 +12,15 @@ from typing import Any
 
 import numpy as np
 
-from .elastic import GOOD, _base, _fin, _material
+from .elastic import (
+    GOOD,
+    analyse_elastic,
+    base_records,
+    default_material,
+    is_finite,
+    stage_elastic,
+    stage_params,
+)
 
 __all__ = ["elastic_figures", "elastic_lines"]
 
@@ -46,7 +54,7 @@ def elastic_figures(stage: dict[str, Any], out: str | Path) -> list[str]:
 
 def _c(s: dict[str, Any], key: str) -> str:
     m = s.get(f"{key}_mean")
-    if not _fin(m):
+    if not is_finite(m):
         return "—"
     lo, hi = s[f"{key}_min"], s[f"{key}_max"]
     if s.get("seeds", 1) == 1 or math.isclose(lo, hi):
@@ -105,7 +113,7 @@ def elastic_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | Non
     L = ["## How far is truncation from elastic contact?\n"]
     seeds = max((r["seeds"] for r in stage["ratios"]), default=0)
     grids = ", ".join(f"{n}² (L/W_r = {r:g})" for r, n in stage["grids"])
-    m = _material()
+    m = default_material()
     L.append(
         "Three routes on the same WM maps, at approaches δ (from first touch) = truncation depth ω: "
         "**Eq. 2**, the whole truncated area as one flat punch, k' = (2/√π)E*·√A'; "
@@ -122,7 +130,7 @@ def elastic_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | Non
         f"{stage['not_converged_rows']} elastic solves not converged. Nothing is fitted to the elastic "
         "result: β' = 1 in both truncation models.\n"
     )  # fmt: skip
-    base = _base(stage["ratios"])
+    base = base_records(stage["ratios"])
     fr = stage["fractions"]
     for key, title in (("eq2_k_ratio", "k'/k_BEM (Eq. 2)"),
                        ("islands_k_ratio", "k_isl/k_BEM (island-resolved)"),
@@ -164,7 +172,7 @@ def elastic_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | Non
             gs = [x for x in stage["grid"] if math.isclose(x["depth_fraction_of_Rt"], f)]
             vals = []
             for q in qs:
-                v = [x[f"{q}_fine_over_coarse"] for x in gs if _fin(x[f"{q}_fine_over_coarse"])]
+                v = [x[f"{q}_fine_over_coarse"] for x in gs if is_finite(x[f"{q}_fine_over_coarse"])]
                 vals.append(f"{np.mean(v):.3f}" if v else "—")
             L.append(f"| {f:g} | " + " | ".join(vals) + " |")
         L.append("")
@@ -195,7 +203,7 @@ def elastic_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | Non
 def _group(records, key):
     out: dict[float, list[float]] = {}
     for r in records:
-        if _fin(r.get(key)):
+        if is_finite(r.get(key)):
             out.setdefault(r["D_in"], []).append(r[key])
     return out
 
@@ -205,7 +213,7 @@ def _alpha_sentence(al: list[dict[str, Any]]) -> str:
     rows = [r for r in al if r["size_ratio"] == big and r["range"] == "all"]
     parts = []
     for m, name in (("eq2", "Eq. 2"), ("islands", "island-resolved"), ("bem", "BEM")):
-        d = [r[f"alpha_{m}_mean"] - r["pohrt_popov"] for r in rows if _fin(r[f"alpha_{m}_mean"])]
+        d = [r[f"alpha_{m}_mean"] - r["pohrt_popov"] for r in rows if is_finite(r[f"alpha_{m}_mean"])]
         slope = _slope([(r["D_in"], r[f"alpha_{m}_mean"]) for r in rows])
         if d:
             parts.append(f"{name}: α − α_PP from {min(d):+.2f} to {max(d):+.2f}"
@@ -215,7 +223,7 @@ def _alpha_sentence(al: list[dict[str, Any]]) -> str:
 
 
 def _slope(pts: list[tuple[float, float]]) -> float | None:
-    pts = [(x, y) for x, y in pts if _fin(y)]
+    pts = [(x, y) for x, y in pts if is_finite(y)]
     if len({x for x, _ in pts}) < 2:
         return None
     x, y = np.array(pts).T
@@ -257,7 +265,7 @@ def _reading(a: dict[str, Any]) -> str:
         big = max(r["size_ratio"] for r in al)
         rows = [r for r in al if r["size_ratio"] == big]
         d = [abs(r["alpha_eq2_mean"] - r["alpha_bem_mean"]) for r in rows
-             if _fin(r["alpha_eq2_mean"]) and _fin(r["alpha_bem_mean"])]
+             if is_finite(r["alpha_eq2_mean"]) and is_finite(r["alpha_bem_mean"])]
         if d:
             s.append(f"The exponent α from Eq. 2 differs from the elastic α by {min(d):.2f}–{max(d):.2f} "
                      f"in the paper's range at L/W_r = {big:g}; "
@@ -266,10 +274,57 @@ def _reading(a: dict[str, Any]) -> str:
                         "read the paper's α(D) as the exponent of the truncation model, checked against "
                         "elastic contact only to that accuracy."))  # fmt: skip
         di = [r["alpha_islands_mean"] - r["alpha_bem_mean"] for r in rows
-              if _fin(r["alpha_islands_mean"]) and _fin(r["alpha_bem_mean"])]
+              if is_finite(r["alpha_islands_mean"]) and is_finite(r["alpha_bem_mean"])]
         de = [r["alpha_eq2_mean"] - r["alpha_bem_mean"] for r in rows
-              if _fin(r["alpha_eq2_mean"]) and _fin(r["alpha_bem_mean"])]
+              if is_finite(r["alpha_eq2_mean"]) and is_finite(r["alpha_bem_mean"])]
         if di and de:
             s.append(f"In the same range α_isl − α_BEM is {min(di):+.2f} to {max(di):+.2f} "
                      f"(α_Eq.2 − α_BEM: {min(de):+.2f} to {max(de):+.2f}).")  # fmt: skip
     return " ".join(s)
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the ``elastic`` stage alone: ``python -m warptrunc.reproduce.elastic_report``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status.
+    """
+    import argparse
+    import json
+    import time
+
+    from .._results import jsonable, write_atomic
+    from .profiles import PROFILES
+    from .store import StageStore
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
+    ap.add_argument("--profile", choices=sorted(PROFILES), default="quick")
+    ap.add_argument("--out", type=Path, default=Path("reproduction"))
+    ap.add_argument("--device", default=None)
+    ap.add_argument("--overwrite", action="store_true")
+    args = ap.parse_args(argv)
+    p = PROFILES[args.profile]
+    args.out.mkdir(parents=True, exist_ok=True)
+    store = StageStore(args.out, overwrite=args.overwrite)
+    t0 = time.perf_counter()
+    stage = store.run("elastic", stage_params(p), lambda: stage_elastic(p, args.out, args.device))
+    a = analyse_elastic(stage)
+    names = elastic_figures(stage, args.out)
+    lines = elastic_lines(stage, a, store.seconds("elastic"), names)
+    head = (f"<!-- warptrunc.reproduce.elastic_report --profile {p.name}; wall {time.perf_counter() - t0:.1f} s -->\n")
+    write_atomic(args.out / "elastic.md", head + "\n".join(lines) + "\n")
+    write_atomic(args.out / "elastic_analysis.json",
+                 json.dumps(jsonable(a), indent=1, allow_nan=False) + "\n")  # fmt: skip
+    print(f"wrote {args.out}/elastic.md, elastic_analysis.json, {', '.join(names)}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
