@@ -3,9 +3,8 @@
 """Constrained conjugate gradients (Polonsky–Keer) for elastic contact: projections, updates,
 spectral products and float64 reductions.
 
-Launched by ``warptrunc.contact.solver`` (the spectral kernel also by
-``warptrunc.contact.halfspace``). State arrays are float32 or float64 (one overload each) and live
-on the (ny, nx) map: heights ``h`` (m), compressive pixel forces ``q`` (N, > 0 in contact), surface
+Launched by ``warptrunc.contact.solver`` (spectral products and reductions: ``contact_reduce``). State
+arrays are float32 or float64 (one overload each) and live on the (ny, nx) map: heights ``h`` (m), compressive pixel forces ``q`` (N, > 0 in contact), surface
 displacements ``u`` (m), the CG direction ``t`` (m). ``q`` and ``t`` are views of (ny, Nx) buffers
 whose columns ``nx … Nx−1`` are the zero pad of the free half-space (Nx = 2nx; Nx = nx for the
 periodic one) and are never written here. The gap is ``g = u − h − offset`` (m), penetration where
@@ -18,7 +17,7 @@ arrays of vec2 (re, im), the kernel spectrum ``w`` is real and even in y and sto
 Grids: the ``*_kernel`` launches with partial sums use ``lanes`` threads: on the GPU lane ``i``
 walks the flattened array with stride ``lanes`` (coalesced), on the CPU lane ``i`` walks the
 contiguous chunk ``[i·chunk, (i+1)·chunk)``. Every lane writes its float64 partials to
-``part[i, j]`` without atomics; ``sum_lanes_kernel`` folds them into a few rows in a fixed
+``part[i, j]`` without atomics; ``sum_lanes_kernel`` (``contact_reduce``) folds them into a few rows in a fixed
 order, so the reductions are deterministic for a given device. Columns of ``part`` within one
 iteration: 0 Σ c·g·t, 1 N·t·K·t, 2–5 the force update, 6 the step τ (lane 0 only), 7 the number
 of forces the projection changed (those are listed by ``compact_changes_kernel`` and their
@@ -124,72 +123,6 @@ def cg_direction_kernel(
             ix -= nx
             iy += 1
     part[lane, 0] = s_gt
-
-
-SPECTRUM_ENERGY = wp.constant(0)
-SPECTRUM_APPLY = wp.constant(1)
-SPECTRUM_INVERSE = wp.constant(2)
-
-
-@wp.kernel
-def spectral_kernel(
-    b: wp.array2d(dtype=Any),
-    w: wp.array2d(dtype=Any),
-    mode: int,
-    inv_n: wp.float64,
-    nx_full: int,
-    col: int,
-    stride: int,
-    chunk: int,
-    part: wp.array2d(dtype=wp.float64),
-):
-    """Lanes over the half spectrum (Ny, Nx//2 + 1) of a real-to-complex FFT, by ``mode``:
-
-    * ``SPECTRUM_ENERGY``: nothing written; part[i, col] = Σ m·w·|b|², m = 2 for the columns that
-      stand for two conjugate modes, else 1, i.e. N·Σ t·(K t) by Parseval (N = Ny·Nx);
-    * ``SPECTRUM_APPLY``: the same sum, then b ← w·b/N (K, with the inverse FFT's 1/N);
-    * ``SPECTRUM_INVERSE``: b ← b/(w·N) (K⁻¹).
-
-    ``w`` holds rows 0 … Ny//2."""
-    lane = wp.tid()
-    nk = b.shape[1]
-    ny_full = b.shape[0]
-    n = ny_full * nk
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
-    acc = wp.float64(0.0)
-    iy = i // nk
-    ix = i - iy * nk
-    sy = step // nk
-    sx = step - sy * nk
-    while i < n:
-        wv = w[wp.min(iy, ny_full - iy), ix]
-        v = b[iy, ix]
-        if mode <= SPECTRUM_APPLY:
-            mult = wp.float64(2.0)
-            if ix == 0 or 2 * ix == nx_full:
-                mult = wp.float64(1.0)
-            acc += (
-                mult
-                * wp.float64(wv)
-                * (wp.float64(v[0]) * wp.float64(v[0]) + wp.float64(v[1]) * wp.float64(v[1]))
-            )
-            if mode == SPECTRUM_APPLY:
-                b[iy, ix] = v * (wv * w.dtype(inv_n))
-        else:
-            b[iy, ix] = v * (w.dtype(inv_n) / wv)
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nk:
-            ix -= nk
-            iy += 1
-    if mode <= SPECTRUM_APPLY:
-        part[lane, col] = acc
 
 
 @wp.kernel
@@ -463,53 +396,6 @@ def advance_kernel(
 
 
 @wp.kernel
-def contact_sums_kernel(
-    q: wp.array2d(dtype=Any),
-    u: wp.array2d(dtype=Any),
-    h: wp.array2d(dtype=Any),
-    offset: wp.float64,
-    stride: int,
-    chunk: int,
-    part: wp.array2d(dtype=wp.float64),
-):
-    """Lanes over the map: part[i] = [n(q > 0), Σ c·g, Σ c·g², Σ q] (start of a solve)."""
-    lane = wp.tid()
-    nx = h.shape[1]
-    n = h.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
-    n_c = wp.float64(0.0)
-    s_g = wp.float64(0.0)
-    s_gg = wp.float64(0.0)
-    s_q = wp.float64(0.0)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
-    while i < n:
-        if q[iy, ix] > q.dtype(0.0):
-            g = wp.float64(u[iy, ix]) - wp.float64(h[iy, ix]) - offset
-            n_c += wp.float64(1.0)
-            s_g += g
-            s_gg += g * g
-            s_q += wp.float64(q[iy, ix])
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
-    part[lane, 0] = n_c
-    part[lane, 1] = s_g
-    part[lane, 2] = s_gg
-    part[lane, 3] = s_q
-
-
-@wp.kernel
 def punch_step_kernel(
     kd: wp.array2d(dtype=Any),
     d: wp.array2d(dtype=Any),
@@ -581,42 +467,20 @@ def contact_mask_kernel(q: wp.array2d(dtype=Any), mask: wp.array2d(dtype=wp.uint
         mask[iy, ix] = wp.uint8(0)
 
 
-@wp.kernel
-def sum_lanes_kernel(
-    part: wp.array2d(dtype=wp.float64),
-    is_max: wp.array[wp.int32],
-    out: wp.array2d(dtype=wp.float64),
-):
-    """One thread per (output row, column): out[k, j] = Σ (or max) of part[k::rows, j], in order."""
-    k, j = wp.tid()
-    rows = out.shape[0]
-    acc = wp.float64(0.0)
-    i = k
-    while i < part.shape[0]:
-        v = part[i, j]
-        if is_max[j] != 0:
-            acc = wp.max(acc, v)
-        else:
-            acc += v
-        i += rows
-    out[k, j] = acc
-
-
 def _declare_overloads() -> None:
     """float32 and float64 instances of every generic kernel, so the module compiles once."""
     kernels = (
         clamp_displacement_kernel, add_map_kernel, copy_map_kernel, fill_map_kernel,
-        cg_direction_kernel, spectral_kernel, update_force_kernel, compact_changes_kernel, rescale_force_kernel, advance_kernel,
-        contact_sums_kernel, punch_step_kernel, punch_direction_kernel, contact_mask_kernel,
+        cg_direction_kernel, update_force_kernel, compact_changes_kernel, rescale_force_kernel, advance_kernel,
+        punch_step_kernel, punch_direction_kernel, contact_mask_kernel,
     )  # fmt: skip
-    for scalar, vec in ((wp.float32, wp.vec2f), (wp.float64, wp.vec2d)):
+    for scalar in (wp.float32, wp.float64):
         for k in kernels:
             types = {}
             for arg in k.adj.args:
                 ty = arg.type
                 if wp.types.is_array(ty) and ty.dtype is Any:
-                    dt = vec if (k is spectral_kernel and arg.label == "b") else scalar
-                    types[arg.label] = wp.array2d(dtype=dt)
+                    types[arg.label] = wp.array2d(dtype=scalar)
                 else:
                     types[arg.label] = ty
             wp.overload(k, types)

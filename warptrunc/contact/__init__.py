@@ -5,7 +5,8 @@ boundary-element solver on a free (zero-padded) or periodic half-space, and the 
 truncation analysis against it (:func:`bem_check`)."""
 
 from .curve import STIFFNESS_METHODS, solve_contact
-from .halfspace import SUBSTRATES, ElasticHalfSpace, influence_spectrum, influence_table
+from .halfspace import ElasticHalfSpace
+from .influence import SUBSTRATES, influence_spectrum, influence_table
 from .results import ContactCurve
 from .solver import ContactSolver, default_pentol
 

@@ -31,9 +31,9 @@ first ny rows only. Both equal the full zero-padded transforms to round-off
 (``tests/test_contact.py::test_pruned_transform_equals_full``) at about three quarters of their
 work (the x transforms of the pad rows are skipped both ways). The periodic half-space is the
 same with no pad (Nx = nx, Ny = ny). Transforms are unnormalised both ways; the 1/N of the
-inverse is folded into the spectral kernel (``warptrunc.kernels.contact.spectral_kernel``), which
-also forms t·K·t by Parseval in the same pass. A few forces are also applied by direct summation
-over the real-space influence table (:func:`influence_table`, held by the half-space).
+inverse is folded into the spectral kernel (``warptrunc.kernels.contact_reduce.spectral_kernel``),
+which also forms t·K·t by Parseval in the same pass. A few forces are also applied by direct
+summation over the real-space influence table (:func:`influence_table`, held by the half-space).
 
 FFT backends, one algorithm: on a CUDA device three cuFFT plans (``cupy.cuda.cufft.PlanNd``
 with the advanced data layout: the batched row R2C, the strided in-place column C2C, the row
@@ -46,8 +46,6 @@ transforms stay ordered with no device-wide synchronisation; the buffers are War
 
 from __future__ import annotations
 
-import functools
-import math
 import os
 from typing import Any
 
@@ -56,267 +54,24 @@ import scipy.fft
 import warp as wp
 
 from .._device import resolve_device
-from ..kernels import contact as _k
+from ..kernels import contact_reduce as _kr
+from .influence import (
+    SUBSTRATES,
+    LaneReduction,
+    free_spectrum_cupy,
+    influence_spectrum,
+    influence_table,
+)
 
 __all__ = [
     "SUBSTRATES",
     "ElasticHalfSpace",
-    "LaneReduction",
-    "influence_spectrum",
-    "influence_table",
 ]
 
-SUBSTRATES = ("free", "periodic")
 DTYPES = {
     "float64": (wp.float64, wp.vec2d, np.float64),
     "float32": (wp.float32, wp.vec2f, np.float32),
 }
-
-
-def _love(x, y, a: float, b: float, e_star: float, xp=np):
-    """Displacement (m) at (x, y) under a unit pressure on [−a, a]×[−b, b] (Love 1929).
-
-    ``xp`` is the array module (NumPy on the host, CuPy on a CUDA device).
-    """
-
-    xa, xm, yb, ym = x + a, x - a, y + b, y - b
-    with np.errstate(divide="ignore", invalid="ignore"):
-        v = (
-            xa * xp.log((yb + xp.hypot(yb, xa)) / (ym + xp.hypot(ym, xa)))
-            + yb * xp.log((xa + xp.hypot(yb, xa)) / (xm + xp.hypot(yb, xm)))
-            + xm * xp.log((ym + xp.hypot(ym, xm)) / (yb + xp.hypot(yb, xm)))
-            + ym * xp.log((xm + xp.hypot(ym, xm)) / (xa + xp.hypot(ym, xa)))
-        )
-    return v / (math.pi * e_star)
-
-
-def _free_spectrum_cupy(shape, pixel_size, contact_modulus, cupy, cfft):
-    """The ``"free"`` spectrum of :func:`influence_spectrum`, computed on the current CUDA device.
-
-    Same float64 formula and mirroring as the host path, evaluated with CuPy and transformed with
-    cuFFT, so that a 10240² map needs no host memory or host FFT (≈ 10 GB of device memory
-    briefly at 10240², before the solver allocates anything). Returns rows 0 … ny of the
-    (2ny, nx + 1) spectrum (the rest mirrors them) and the (ny, nx) influence table (m/N).
-    """
-    ny, nx = shape
-    dx, dy = pixel_size
-    quad = _love(cupy.arange(nx + 1, dtype=cupy.float64)[None, :] * dx,
-                 cupy.arange(ny + 1, dtype=cupy.float64)[:, None] * dy,
-                 dx / 2, dy / 2, contact_modulus, xp=cupy)  # fmt: skip
-    jx = cupy.arange(2 * nx)
-    jy = cupy.arange(2 * ny)
-    g = quad[cupy.minimum(jy, 2 * ny - jy)[:, None], cupy.minimum(jx, 2 * nx - jx)[None, :]]
-    table = cupy.ascontiguousarray(quad[:ny, :nx]) / (dx * dy)
-    del quad
-    plan = cfft.get_fft_plan(g, value_type="R2C")  # not cached: its work area goes with it
-    w = cfft.rfft2(g, plan=plan)[: ny + 1].real / (dx * dy)  # W is even in y: rows 0 … ny
-    del plan, g
-    return cupy.ascontiguousarray(w), table
-
-
-@functools.lru_cache(maxsize=8)
-def influence_spectrum(
-    shape: tuple[int, int], pixel_size: tuple[float, float], contact_modulus: float, substrate: str
-) -> np.ndarray:
-    """Half spectrum W (m/N) of the half-space's pixel-force → displacement convolution.
-
-    Parameters
-    ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
-    substrate : {"free", "periodic"}
-        Zero-padded isolated patch, or a periodic map (module docstring).
-
-    Returns
-    -------
-    (Ny, Nx//2 + 1) ndarray of float64
-        W for ``u = irfft2(W·rfft2(q), (Ny, Nx))``; (Ny, Nx) = (2ny, 2nx) for ``"free"``,
-        (ny, nx) for ``"periodic"``. Cached; do not modify it.
-    """
-    ny, nx = shape
-    dx, dy = pixel_size
-    area = dx * dy
-    if substrate == "free":
-        # separations i·dx for i ≤ nx and (i − 2nx)·dx above; Love's G is even in x and y, so it
-        # is evaluated on one quadrant (|x| ≤ nx·dx, |y| ≤ ny·dy) and mirrored
-        quad = _love(np.arange(nx + 1)[None, :] * dx, np.arange(ny + 1)[:, None] * dy,
-                     dx / 2, dy / 2, contact_modulus)  # fmt: skip
-        jx = np.arange(2 * nx)
-        jy = np.arange(2 * ny)
-        g = quad[np.minimum(jy, 2 * ny - jy)[:, None], np.minimum(jx, 2 * nx - jx)[None, :]]
-        del quad
-        w = scipy.fft.rfft2(g, workers=os.cpu_count()).real / area
-    elif substrate == "periodic":
-        fx = np.fft.rfftfreq(nx, dx)
-        fy = np.fft.fftfreq(ny, dy)
-        f = np.hypot(fx[None, :], fy[:, None])  # cycles per metre; q = 2πf
-        stiff = math.pi * contact_modulus * f  # = q·E*/2 (Pa/m)
-        stiff[0, 0] = math.pi * contact_modulus * (1 / (nx * dx) + 1 / (ny * dy)) / 2
-        w = 1.0 / (stiff * area)
-    else:
-        raise ValueError(f"substrate must be one of {SUBSTRATES}, got {substrate!r}")
-    w.setflags(write=False)
-    return w
-
-
-def influence_table(
-    shape: tuple[int, int], pixel_size: tuple[float, float], contact_modulus: float, substrate: str
-) -> np.ndarray:
-    """Real-space influence coefficients G (m/N): displacement at a pixel per unit force on
-    another, by separation, for the direct summation of a few forces.
-
-    Parameters
-    ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
-    substrate : {"free", "periodic"}
-        Half-space.
-
-    Returns
-    -------
-    (ny, nx) ndarray of float64
-        ``"free"``: G at separations (abs(Δy), abs(Δx)) pixels (Love's form divided by the pixel
-        area; the values the spectrum transforms). ``"periodic"``: G at separations
-        (Δy mod ny, Δx mod nx), the inverse transform of the spectrum.
-    """
-    ny, nx = shape
-    dx, dy = pixel_size
-    if substrate == "free":
-        quad = _love(np.arange(nx)[None, :] * dx, np.arange(ny)[:, None] * dy, dx / 2, dy / 2,
-                     contact_modulus)  # fmt: skip
-        return quad / (dx * dy)
-    w = influence_spectrum(shape, pixel_size, contact_modulus, substrate)
-    return scipy.fft.irfft2(w, s=shape)
-
-
-class LaneReduction:
-    """Deterministic float64 partial sums/maxima of the lane kernels of ``kernels/contact.py``.
-
-    Parameters
-    ----------
-    device : warp Device
-        Where the kernels run.
-    n_max : int
-        Largest number of elements a lane kernel walks (sets the CPU chunk).
-    """
-
-    COLUMNS = 9
-
-    def __init__(self, device: wp.context.Device, n_max: int) -> None:
-        self.device = device
-        if device.is_cuda:
-            self.lanes = int(min(65536, max(1, n_max)))
-            self.rows = 256
-            self.out = wp.zeros((self.rows, self.COLUMNS), dtype=wp.float64, device=device)
-        else:
-            self.lanes = int(min(64, max(1, n_max)))
-            self.rows = 0
-            self.out = None
-        self.part = wp.zeros((self.lanes, self.COLUMNS), dtype=wp.float64, device=device)
-        self._flags: dict[tuple[bool, ...], wp.array] = {}
-
-    def geometry(self, n: int) -> tuple[int, int]:
-        """Stride and chunk arguments of a lane kernel that walks ``n`` elements.
-
-        Parameters
-        ----------
-        n : int
-            Number of elements the kernel walks (dimensionless count).
-
-        Returns
-        -------
-        stride : int
-            Step between the elements one lane visits: the number of lanes, ``lanes``.
-        chunk : int
-            On the CPU, the length of the contiguous run of elements each lane walks instead
-            (ceil(n / lanes), at least 1); 0 on a CUDA device, where the lanes stride.
-        """
-        if self.device.is_cuda:
-            return self.lanes, 0
-        return self.lanes, max(1, -(-n // self.lanes))
-
-    def launch(self, kernel, n: int, inputs: list, outputs: list) -> None:
-        """Launch a lane kernel on ``lanes`` threads, its partials going to ``part``.
-
-        Parameters
-        ----------
-        kernel : warp Kernel
-            Lane kernel whose last two inputs are (stride, chunk) and whose last output is the
-            (lanes, COLUMNS) float64 partials array.
-        n : int
-            Number of elements the kernel walks (dimensionless count; sets the chunk, see
-            :meth:`geometry`).
-        inputs : list
-            The kernel's inputs before (stride, chunk), which are appended.
-        outputs : list
-            The kernel's outputs before the partials ``part``, which is appended.
-        """
-        stride, chunk = self.geometry(n)
-        wp.launch(
-            kernel, dim=self.lanes, inputs=[*inputs, stride, chunk], outputs=[*outputs, self.part],
-            device=self.device,
-        )  # fmt: skip
-
-    def fold(self, is_max: tuple[bool, ...]) -> wp.array:
-        """Fold the lane partials of the first ``len(is_max)`` columns into a few rows.
-
-        On a CUDA device ``sum_lanes_kernel`` folds the (lanes, COLUMNS) partials into
-        (rows, COLUMNS), on the device; on the CPU the lanes are few and are the rows (the
-        partials are returned as they are). Nothing is read back.
-
-        Parameters
-        ----------
-        is_max : tuple of bool
-            One flag per column from column 0: True takes the maximum of the column's partials
-            (non-negative quantities; the fold starts from 0), False their sum.
-
-        Returns
-        -------
-        (rows, COLUMNS) warp array of float64
-            Rows to sum (or take the maximum of) per column.
-        """
-        if not self.device.is_cuda:
-            return self.part
-        ncol = len(is_max)
-        flags = self._flags.get(is_max)
-        if flags is None:
-            f = [int(v) for v in is_max] + [0] * (self.COLUMNS - ncol)
-            flags = self._flags[is_max] = wp.array(f, dtype=wp.int32, device=self.device)
-        wp.launch(
-            _k.sum_lanes_kernel, dim=(self.rows, ncol), inputs=[self.part, flags],
-            outputs=[self.out], device=self.device,
-        )  # fmt: skip
-        return self.out
-
-    def read(self, is_max: tuple[bool, ...]) -> np.ndarray:
-        """Reduce the lane partials of the first ``len(is_max)`` columns to one value each.
-
-        Folds on the device (:meth:`fold`), then reads the rows back to the host (a
-        synchronisation point) and finishes there in float64.
-
-        Parameters
-        ----------
-        is_max : tuple of bool
-            One flag per column from column 0: True takes the maximum of the column's partials,
-            False their sum.
-
-        Returns
-        -------
-        (len(is_max),) ndarray of float64
-            Per column, the sum or the maximum of the partials, in the units of what the lane
-            kernel accumulated in that column.
-        """
-        ncol = len(is_max)
-        p = self.fold(is_max).numpy()[:, :ncol]  # sync point
-        return np.array([p[:, j].max() if is_max[j] else p[:, j].sum() for j in range(ncol)])
 
 
 _CUPY_STREAMS: dict[tuple[int, int], Any] = {}
@@ -416,7 +171,7 @@ class ElasticHalfSpace:
             # the free spectrum on the device: no host memory or host FFT at the paper's sizes
             cupy, cfft = self._cp
             with cupy.cuda.Device(self.device.ordinal):
-                w, table = _free_spectrum_cupy(
+                w, table = free_spectrum_cupy(
                     self.shape, pixel, float(contact_modulus), cupy, cfft
                 )
                 w = w.astype(self.np_dtype, copy=False)
@@ -679,7 +434,7 @@ class ElasticHalfSpace:
     def spectral(self, mode: int, spec: wp.array, *, col: int = LaneReduction.COLUMNS - 1) -> None:
         """Launch the spectral kernel on a half spectrum, over the lanes of ``reduction``.
 
-        The kernel is ``spectral_kernel`` of ``warptrunc.kernels.contact``; it multiplies by
+        The kernel is ``spectral_kernel`` of ``warptrunc.kernels.contact_reduce``; it multiplies by
         the half-space's spectrum W (m/N) and, for the sums, counts each column that stands for
         two conjugate modes twice. Nothing is read back.
 
@@ -700,7 +455,7 @@ class ElasticHalfSpace:
         red = self.reduction
         stride, chunk = red.geometry(spec.shape[0] * spec.shape[1])
         wp.launch(
-            _k.spectral_kernel, dim=red.lanes,
+            _kr.spectral_kernel, dim=red.lanes,
             inputs=[spec, self.spectrum, int(mode), wp.float64(1.0 / self.n_total), self.grid[1],
                     int(col), stride, chunk],
             outputs=[red.part], device=self.device,
@@ -735,8 +490,8 @@ class ElasticHalfSpace:
         """
         self.forward(buf, self.work)
         if inverse:
-            self.spectral(_k.SPECTRUM_INVERSE, self.work)
+            self.spectral(_kr.SPECTRUM_INVERSE, self.work)
         else:
             col = energy_column if energy_column >= 0 else LaneReduction.COLUMNS - 1
-            self.spectral(_k.SPECTRUM_APPLY, self.work, col=col)
+            self.spectral(_kr.SPECTRUM_APPLY, self.work, col=col)
         return self.inverse(self.work)

@@ -5,7 +5,7 @@
 The iteration is that of ContactMechanics' ``constrained_conjugate_gradients`` (same gap sign,
 warm start, offset handling in load control and stopping criterion), so that both give the same
 answers on the same discretisation (:mod:`warptrunc.contact.halfspace`); its kernels are in
-``warptrunc.kernels.contact``.
+``warptrunc.kernels.contact`` and ``warptrunc.kernels.contact_reduce``.
 
 Work per iteration, in transforms (a convolution = one forward and one inverse transform, each
 pruned to the map: :mod:`warptrunc.contact.halfspace`). PK needs t·K·t (for the step τ) and
@@ -51,6 +51,7 @@ import warp as wp
 from .._device import free_memory_bytes, release_cached_memory, resolve_device
 from .._validate import check_height_map, check_int, check_range, pair
 from ..kernels import contact as _k
+from ..kernels import contact_reduce as _kr
 from .halfspace import DTYPES, SUBSTRATES, ElasticHalfSpace
 
 __all__ = ["ContactSolver", "default_pentol"]
@@ -235,7 +236,7 @@ class ContactSolver:
 
     def _sums(self, offset: float) -> np.ndarray:
         red = self.hs.reduction
-        red.launch(_k.contact_sums_kernel, self.shape[0] * self.shape[1],
+        red.launch(_kr.contact_sums_kernel, self.shape[0] * self.shape[1],
                    [self.q, self.u, self.h, wp.float64(offset)], [])  # fmt: skip
         return red.read((False, False, False, False))
 
@@ -303,7 +304,7 @@ class ContactSolver:
             hs.forward(self.t_buf, spec)  # T̂
             # N·t·K·t by Parseval, and T̂ ← W·T̂/N in the same pass (not yet known whether K·t
             # is needed: a transform of q afresh overwrites it)
-            hs.spectral(_k.SPECTRUM_APPLY, spec, col=1)
+            hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
             wp.launch(_k.step_length_kernel, dim=1,
                       inputs=[red.fold((False, False)), wp.float64(n_c), wp.float64(inv_n)],
                       outputs=[self.tau], device=dev)  # fmt: skip
@@ -332,7 +333,7 @@ class ContactSolver:
                     exact = True
             if exact:  # u = K·q afresh
                 hs.forward(self.q_buf, spec)
-                hs.spectral(_k.SPECTRUM_APPLY, spec)
+                hs.spectral(_kr.SPECTRUM_APPLY, spec)
                 n_transforms += 1
             elif n_changed > 0:  # the projection's few corrections, listed in a fixed order
                 wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)

@@ -1,0 +1,170 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Spectral products and float64 lane reductions of the constrained conjugate gradients of
+``kernels/contact.py`` (array layouts, ``mask`` bits and the lane grids are described there).
+
+Launched by ``warptrunc.contact.halfspace`` (``spectral_kernel``), ``warptrunc.contact.influence``
+(``sum_lanes_kernel``, through ``LaneReduction``) and ``warptrunc.contact.solver``
+(``contact_sums_kernel``; the ``SPECTRUM_*`` modes). State arrays are float32 or float64 (one
+overload each); spectra are (Ny, Nx//2 + 1) arrays of vec2 (re, im), the kernel spectrum ``w`` is
+real and even in y and stored for rows 0 … Ny//2 only.
+"""
+
+from typing import Any
+
+import warp as wp
+
+wp.set_module_options({"enable_backward": False})
+
+
+SPECTRUM_ENERGY = wp.constant(0)
+SPECTRUM_APPLY = wp.constant(1)
+SPECTRUM_INVERSE = wp.constant(2)
+
+
+@wp.kernel
+def spectral_kernel(
+    b: wp.array2d(dtype=Any),
+    w: wp.array2d(dtype=Any),
+    mode: int,
+    inv_n: wp.float64,
+    nx_full: int,
+    col: int,
+    stride: int,
+    chunk: int,
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the half spectrum (Ny, Nx//2 + 1) of a real-to-complex FFT, by ``mode``:
+
+    * ``SPECTRUM_ENERGY``: nothing written; part[i, col] = Σ m·w·|b|², m = 2 for the columns that
+      stand for two conjugate modes, else 1, i.e. N·Σ t·(K t) by Parseval (N = Ny·Nx);
+    * ``SPECTRUM_APPLY``: the same sum, then b ← w·b/N (K, with the inverse FFT's 1/N);
+    * ``SPECTRUM_INVERSE``: b ← b/(w·N) (K⁻¹).
+
+    ``w`` holds rows 0 … Ny//2."""
+    lane = wp.tid()
+    nk = b.shape[1]
+    ny_full = b.shape[0]
+    n = ny_full * nk
+    i = lane
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        n = wp.min(n, i + chunk)
+        step = 1
+    acc = wp.float64(0.0)
+    iy = i // nk
+    ix = i - iy * nk
+    sy = step // nk
+    sx = step - sy * nk
+    while i < n:
+        wv = w[wp.min(iy, ny_full - iy), ix]
+        v = b[iy, ix]
+        if mode <= SPECTRUM_APPLY:
+            mult = wp.float64(2.0)
+            if ix == 0 or 2 * ix == nx_full:
+                mult = wp.float64(1.0)
+            acc += (
+                mult
+                * wp.float64(wv)
+                * (wp.float64(v[0]) * wp.float64(v[0]) + wp.float64(v[1]) * wp.float64(v[1]))
+            )
+            if mode == SPECTRUM_APPLY:
+                b[iy, ix] = v * (wv * w.dtype(inv_n))
+        else:
+            b[iy, ix] = v * (w.dtype(inv_n) / wv)
+        i += step
+        iy += sy
+        ix += sx
+        if ix >= nk:
+            ix -= nk
+            iy += 1
+    if mode <= SPECTRUM_APPLY:
+        part[lane, col] = acc
+
+
+@wp.kernel
+def contact_sums_kernel(
+    q: wp.array2d(dtype=Any),
+    u: wp.array2d(dtype=Any),
+    h: wp.array2d(dtype=Any),
+    offset: wp.float64,
+    stride: int,
+    chunk: int,
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the map: part[i] = [n(q > 0), Σ c·g, Σ c·g², Σ q] (start of a solve)."""
+    lane = wp.tid()
+    nx = h.shape[1]
+    n = h.shape[0] * nx
+    i = lane
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        n = wp.min(n, i + chunk)
+        step = 1
+    n_c = wp.float64(0.0)
+    s_g = wp.float64(0.0)
+    s_gg = wp.float64(0.0)
+    s_q = wp.float64(0.0)
+    iy = i // nx
+    ix = i - iy * nx
+    sy = step // nx
+    sx = step - sy * nx
+    while i < n:
+        if q[iy, ix] > q.dtype(0.0):
+            g = wp.float64(u[iy, ix]) - wp.float64(h[iy, ix]) - offset
+            n_c += wp.float64(1.0)
+            s_g += g
+            s_gg += g * g
+            s_q += wp.float64(q[iy, ix])
+        i += step
+        iy += sy
+        ix += sx
+        if ix >= nx:
+            ix -= nx
+            iy += 1
+    part[lane, 0] = n_c
+    part[lane, 1] = s_g
+    part[lane, 2] = s_gg
+    part[lane, 3] = s_q
+
+
+@wp.kernel
+def sum_lanes_kernel(
+    part: wp.array2d(dtype=wp.float64),
+    is_max: wp.array[wp.int32],
+    out: wp.array2d(dtype=wp.float64),
+):
+    """One thread per (output row, column): out[k, j] = Σ (or max) of part[k::rows, j], in order."""
+    k, j = wp.tid()
+    rows = out.shape[0]
+    acc = wp.float64(0.0)
+    i = k
+    while i < part.shape[0]:
+        v = part[i, j]
+        if is_max[j] != 0:
+            acc = wp.max(acc, v)
+        else:
+            acc += v
+        i += rows
+    out[k, j] = acc
+
+
+def _declare_overloads() -> None:
+    """float32 and float64 instances of every generic kernel, so the module compiles once."""
+    kernels = (spectral_kernel, contact_sums_kernel)
+    for scalar, vec in ((wp.float32, wp.vec2f), (wp.float64, wp.vec2d)):
+        for k in kernels:
+            types = {}
+            for arg in k.adj.args:
+                ty = arg.type
+                if wp.types.is_array(ty) and ty.dtype is Any:
+                    dt = vec if (k is spectral_kernel and arg.label == "b") else scalar
+                    types[arg.label] = wp.array2d(dtype=dt)
+                else:
+                    types[arg.label] = ty
+            wp.overload(k, types)
+
+
+_declare_overloads()

@@ -1,0 +1,275 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Host side of the elastic half-space (:mod:`warptrunc.contact.halfspace`): the influence
+coefficients of a pixel grid (Love's closed form, their spectrum and real-space table) and the
+deterministic float64 lane reductions that the half-space and the solver share.
+
+The spectral kernels these serve are in ``warptrunc.kernels.contact_reduce``.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import os
+
+import numpy as np
+import scipy.fft
+import warp as wp
+
+from ..kernels import contact_reduce as _kr
+
+__all__ = [
+    "SUBSTRATES",
+    "LaneReduction",
+    "influence_spectrum",
+    "influence_table",
+]
+
+SUBSTRATES = ("free", "periodic")
+
+
+def _love(x, y, a: float, b: float, e_star: float, xp=np):
+    """Displacement (m) at (x, y) under a unit pressure on [−a, a]×[−b, b] (Love 1929).
+
+    ``xp`` is the array module (NumPy on the host, CuPy on a CUDA device).
+    """
+
+    xa, xm, yb, ym = x + a, x - a, y + b, y - b
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v = (
+            xa * xp.log((yb + xp.hypot(yb, xa)) / (ym + xp.hypot(ym, xa)))
+            + yb * xp.log((xa + xp.hypot(yb, xa)) / (xm + xp.hypot(yb, xm)))
+            + xm * xp.log((ym + xp.hypot(ym, xm)) / (yb + xp.hypot(yb, xm)))
+            + ym * xp.log((xm + xp.hypot(ym, xm)) / (xa + xp.hypot(ym, xa)))
+        )
+    return v / (math.pi * e_star)
+
+
+def free_spectrum_cupy(shape, pixel_size, contact_modulus, cupy, cfft):
+    """The ``"free"`` spectrum of :func:`influence_spectrum`, computed on the current CUDA device.
+
+    Same float64 formula and mirroring as the host path, evaluated with CuPy and transformed with
+    cuFFT, so that a 10240² map needs no host memory or host FFT (≈ 10 GB of device memory
+    briefly at 10240², before the solver allocates anything). Returns rows 0 … ny of the
+    (2ny, nx + 1) spectrum (the rest mirrors them) and the (ny, nx) influence table (m/N).
+    """
+    ny, nx = shape
+    dx, dy = pixel_size
+    quad = _love(cupy.arange(nx + 1, dtype=cupy.float64)[None, :] * dx,
+                 cupy.arange(ny + 1, dtype=cupy.float64)[:, None] * dy,
+                 dx / 2, dy / 2, contact_modulus, xp=cupy)  # fmt: skip
+    jx = cupy.arange(2 * nx)
+    jy = cupy.arange(2 * ny)
+    g = quad[cupy.minimum(jy, 2 * ny - jy)[:, None], cupy.minimum(jx, 2 * nx - jx)[None, :]]
+    table = cupy.ascontiguousarray(quad[:ny, :nx]) / (dx * dy)
+    del quad
+    plan = cfft.get_fft_plan(g, value_type="R2C")  # not cached: its work area goes with it
+    w = cfft.rfft2(g, plan=plan)[: ny + 1].real / (dx * dy)  # W is even in y: rows 0 … ny
+    del plan, g
+    return cupy.ascontiguousarray(w), table
+
+
+@functools.lru_cache(maxsize=8)
+def influence_spectrum(
+    shape: tuple[int, int], pixel_size: tuple[float, float], contact_modulus: float, substrate: str
+) -> np.ndarray:
+    """Half spectrum W (m/N) of the half-space's pixel-force → displacement convolution.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    pixel_size : (float, float)
+        Pixel sides (dx, dy) (m).
+    contact_modulus : float
+        Contact modulus E* (Pa).
+    substrate : {"free", "periodic"}
+        Zero-padded isolated patch, or a periodic map (module docstring).
+
+    Returns
+    -------
+    (Ny, Nx//2 + 1) ndarray of float64
+        W for ``u = irfft2(W·rfft2(q), (Ny, Nx))``; (Ny, Nx) = (2ny, 2nx) for ``"free"``,
+        (ny, nx) for ``"periodic"``. Cached; do not modify it.
+    """
+    ny, nx = shape
+    dx, dy = pixel_size
+    area = dx * dy
+    if substrate == "free":
+        # separations i·dx for i ≤ nx and (i − 2nx)·dx above; Love's G is even in x and y, so it
+        # is evaluated on one quadrant (|x| ≤ nx·dx, |y| ≤ ny·dy) and mirrored
+        quad = _love(np.arange(nx + 1)[None, :] * dx, np.arange(ny + 1)[:, None] * dy,
+                     dx / 2, dy / 2, contact_modulus)  # fmt: skip
+        jx = np.arange(2 * nx)
+        jy = np.arange(2 * ny)
+        g = quad[np.minimum(jy, 2 * ny - jy)[:, None], np.minimum(jx, 2 * nx - jx)[None, :]]
+        del quad
+        w = scipy.fft.rfft2(g, workers=os.cpu_count()).real / area
+    elif substrate == "periodic":
+        fx = np.fft.rfftfreq(nx, dx)
+        fy = np.fft.fftfreq(ny, dy)
+        f = np.hypot(fx[None, :], fy[:, None])  # cycles per metre; q = 2πf
+        stiff = math.pi * contact_modulus * f  # = q·E*/2 (Pa/m)
+        stiff[0, 0] = math.pi * contact_modulus * (1 / (nx * dx) + 1 / (ny * dy)) / 2
+        w = 1.0 / (stiff * area)
+    else:
+        raise ValueError(f"substrate must be one of {SUBSTRATES}, got {substrate!r}")
+    w.setflags(write=False)
+    return w
+
+
+def influence_table(
+    shape: tuple[int, int], pixel_size: tuple[float, float], contact_modulus: float, substrate: str
+) -> np.ndarray:
+    """Real-space influence coefficients G (m/N): displacement at a pixel per unit force on
+    another, by separation, for the direct summation of a few forces.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    pixel_size : (float, float)
+        Pixel sides (dx, dy) (m).
+    contact_modulus : float
+        Contact modulus E* (Pa).
+    substrate : {"free", "periodic"}
+        Half-space.
+
+    Returns
+    -------
+    (ny, nx) ndarray of float64
+        ``"free"``: G at separations (abs(Δy), abs(Δx)) pixels (Love's form divided by the pixel
+        area; the values the spectrum transforms). ``"periodic"``: G at separations
+        (Δy mod ny, Δx mod nx), the inverse transform of the spectrum.
+    """
+    ny, nx = shape
+    dx, dy = pixel_size
+    if substrate == "free":
+        quad = _love(np.arange(nx)[None, :] * dx, np.arange(ny)[:, None] * dy, dx / 2, dy / 2,
+                     contact_modulus)  # fmt: skip
+        return quad / (dx * dy)
+    w = influence_spectrum(shape, pixel_size, contact_modulus, substrate)
+    return scipy.fft.irfft2(w, s=shape)
+
+
+class LaneReduction:
+    """Deterministic float64 partial sums/maxima of the lane kernels of ``kernels/contact.py``.
+
+    Parameters
+    ----------
+    device : warp Device
+        Where the kernels run.
+    n_max : int
+        Largest number of elements a lane kernel walks (sets the CPU chunk).
+    """
+
+    COLUMNS = 9
+
+    def __init__(self, device: wp.context.Device, n_max: int) -> None:
+        self.device = device
+        if device.is_cuda:
+            self.lanes = int(min(65536, max(1, n_max)))
+            self.rows = 256
+            self.out = wp.zeros((self.rows, self.COLUMNS), dtype=wp.float64, device=device)
+        else:
+            self.lanes = int(min(64, max(1, n_max)))
+            self.rows = 0
+            self.out = None
+        self.part = wp.zeros((self.lanes, self.COLUMNS), dtype=wp.float64, device=device)
+        self._flags: dict[tuple[bool, ...], wp.array] = {}
+
+    def geometry(self, n: int) -> tuple[int, int]:
+        """Stride and chunk arguments of a lane kernel that walks ``n`` elements.
+
+        Parameters
+        ----------
+        n : int
+            Number of elements the kernel walks (dimensionless count).
+
+        Returns
+        -------
+        stride : int
+            Step between the elements one lane visits: the number of lanes, ``lanes``.
+        chunk : int
+            On the CPU, the length of the contiguous run of elements each lane walks instead
+            (ceil(n / lanes), at least 1); 0 on a CUDA device, where the lanes stride.
+        """
+        if self.device.is_cuda:
+            return self.lanes, 0
+        return self.lanes, max(1, -(-n // self.lanes))
+
+    def launch(self, kernel, n: int, inputs: list, outputs: list) -> None:
+        """Launch a lane kernel on ``lanes`` threads, its partials going to ``part``.
+
+        Parameters
+        ----------
+        kernel : warp Kernel
+            Lane kernel whose last two inputs are (stride, chunk) and whose last output is the
+            (lanes, COLUMNS) float64 partials array.
+        n : int
+            Number of elements the kernel walks (dimensionless count; sets the chunk, see
+            :meth:`geometry`).
+        inputs : list
+            The kernel's inputs before (stride, chunk), which are appended.
+        outputs : list
+            The kernel's outputs before the partials ``part``, which is appended.
+        """
+        stride, chunk = self.geometry(n)
+        wp.launch(
+            kernel, dim=self.lanes, inputs=[*inputs, stride, chunk], outputs=[*outputs, self.part],
+            device=self.device,
+        )  # fmt: skip
+
+    def fold(self, is_max: tuple[bool, ...]) -> wp.array:
+        """Fold the lane partials of the first ``len(is_max)`` columns into a few rows.
+
+        On a CUDA device ``sum_lanes_kernel`` folds the (lanes, COLUMNS) partials into
+        (rows, COLUMNS), on the device; on the CPU the lanes are few and are the rows (the
+        partials are returned as they are). Nothing is read back.
+
+        Parameters
+        ----------
+        is_max : tuple of bool
+            One flag per column from column 0: True takes the maximum of the column's partials
+            (non-negative quantities; the fold starts from 0), False their sum.
+
+        Returns
+        -------
+        (rows, COLUMNS) warp array of float64
+            Rows to sum (or take the maximum of) per column.
+        """
+        if not self.device.is_cuda:
+            return self.part
+        ncol = len(is_max)
+        flags = self._flags.get(is_max)
+        if flags is None:
+            f = [int(v) for v in is_max] + [0] * (self.COLUMNS - ncol)
+            flags = self._flags[is_max] = wp.array(f, dtype=wp.int32, device=self.device)
+        wp.launch(
+            _kr.sum_lanes_kernel, dim=(self.rows, ncol), inputs=[self.part, flags],
+            outputs=[self.out], device=self.device,
+        )  # fmt: skip
+        return self.out
+
+    def read(self, is_max: tuple[bool, ...]) -> np.ndarray:
+        """Reduce the lane partials of the first ``len(is_max)`` columns to one value each.
+
+        Folds on the device (:meth:`fold`), then reads the rows back to the host (a
+        synchronisation point) and finishes there in float64.
+
+        Parameters
+        ----------
+        is_max : tuple of bool
+            One flag per column from column 0: True takes the maximum of the column's partials,
+            False their sum.
+
+        Returns
+        -------
+        (len(is_max),) ndarray of float64
+            Per column, the sum or the maximum of the partials, in the units of what the lane
+            kernel accumulated in that column.
+        """
+        ncol = len(is_max)
+        p = self.fold(is_max).numpy()[:, :ncol]  # sync point
+        return np.array([p[:, j].max() if is_max[j] else p[:, j].sum() for j in range(ncol)])
