@@ -17,9 +17,9 @@ import warp as wp
 
 from ._device import as_device, check_memory, resolve_device
 from ._reduce import height_range
-from ._validate import check_int, check_range, pair
 from .kernels import wm as _k
 from .surface import Surface
+from .wm_params import WMSpec, wm_spec
 
 __all__ = [
     "WMSpec",
@@ -30,154 +30,6 @@ __all__ = [
     "wm_surface",
     "wm_tables",
 ]
-
-
-class WMSpec:
-    """Validated WM parameters and the per-term tables (host, float64).
-
-    Attributes are SI: ``Lx, Ly, dx, dy, Wr, Wc`` (m), ``G`` (m or None), ``Rt`` (m or None);
-    ``kx, ky`` (rad/m), ``alpha`` (rad), ``w`` (dimensionless) have one entry per term
-    t = (m − 1)·(n_max + 1) + n, m = 1..M, n = 0..n_max.
-
-    Made by :func:`wm_spec`, which validates the values; the constructor itself checks
-    nothing.
-
-    Parameters
-    ----------
-    **kw
-        The attributes, stored as given: ``D``, ``Wr``, ``Lx``, ``Ly``, ``nx``, ``ny``,
-        ``dx``, ``dy``, ``M``, ``gamma``, ``Wc``, ``cutoff``, ``n_max``, ``n_terms``,
-        ``seed``, ``G``, ``Rt``, ``method`` and the (n_terms,) float64 tables ``kx``, ``ky``,
-        ``alpha``, ``w``.
-    """
-
-    def __init__(self, **kw):
-        self.__dict__.update(kw)
-
-    def params(self) -> dict:
-        """JSON-serialisable generation parameters (SI units).
-
-        Returns
-        -------
-        dict
-            ``generator="weierstrass-mandelbrot"`` and ``D``, ``Wr``, ``Lx``, ``Ly`` (m),
-            ``nx``, ``ny``, ``M``, ``gamma``, ``Wc`` (m), ``cutoff``, ``n_max``, ``n_terms``,
-            ``seed``, ``G`` (m or None), ``Rt`` (m or None), ``method``.
-        """
-        keys = ("D Wr Lx Ly nx ny M gamma Wc cutoff n_max n_terms seed G Rt method").split()
-        return {"generator": "weierstrass-mandelbrot", **{k: getattr(self, k) for k in keys}}
-
-
-def wm_spec(
-    D: float = 2.5,
-    Wr: float = 100e-6,
-    *,
-    L: float | tuple[float, float] = 1e-3,
-    n: int | tuple[int, int] = 1024,
-    Rt: float | None = 10e-6,
-    G: float | None = None,
-    M: int = 10,
-    gamma: float = 1.5,
-    Wc: float | None = None,
-    cutoff: str = "nyquist",
-    seed: int = 0,
-    method: str = "tile",
-) -> WMSpec:
-    """Validate the WM parameters and draw the phases on the host (see :func:`wm_surface`).
-
-    Parameters
-    ----------
-    D : float
-        Fractal dimension, 2 < D < 3 (dimensionless).
-    Wr : float
-        Roll-off wavelength W_r, the longest wavelength (m).
-    L : float or (float, float)
-        Side length, or (Lx, Ly) (m).
-    n : int or (int, int)
-        Pixels per side, or (nx, ny), each in [2, 2²⁰]. dx = Lx/nx, dy = Ly/ny (m).
-    Rt : float or None
-        Target peak-to-valley height R_t (m); give exactly one of ``Rt`` and ``G``.
-    G : float, optional
-        Topothesy G (m) of Eq. (4), for unscaled heights.
-    M : int
-        Number of superposed ridges, in [1, 10⁴].
-    gamma : float
-        Frequency density γ > 1 (dimensionless).
-    Wc : float, optional
-        Cut-off wavelength W_c (m), 0 < W_c < W_r. Defaults by ``cutoff``.
-    cutoff : {"nyquist", "pixel"}
-        Default W_c: 2·max(dx, dy) or max(dx, dy) (m).
-    seed : int
-        Seed (≥ 0) of ``numpy.random.default_rng`` that draws the phases α_mn uniformly in
-        [0, 2π), in (m, n) order.
-    method : {"tile", "direct"}
-        Evaluation method recorded in the spec (see :func:`wm_surface`).
-
-    Returns
-    -------
-    WMSpec
-        The validated parameters, dx, dy (m), n_max (the largest n with W_r/γ^n ≥ W_c),
-        n_terms = M·(n_max + 1), and per term the wavevector components kx, ky (rad/m), the
-        phase α (rad) and the weight w = γ^((D − 3)n) (dimensionless).
-
-    Raises
-    ------
-    ValueError
-        A parameter out of range, an unknown ``cutoff`` or ``method``, a default W_c not
-        below W_r, or both or neither of ``Rt`` and ``G``.
-
-    Notes
-    -----
-    The terms are those of the paper's Eq. (4), with the spatial frequency of term (m, n)
-    k = 2πγⁿ/W_r along the direction θ = πm/M.
-    """
-    D = check_range("D", D, 2.0, 3.0)
-    Wr = check_range("Wr", Wr, 0.0, unit="m")
-    Lx, Ly = pair("L", L)
-    Lx = check_range("L (x)", Lx, 0.0, unit="m")
-    Ly = check_range("L (y)", Ly, 0.0, unit="m")
-    nx, ny = pair("n", n, cast=lambda v: v)
-    nx = check_int("n (x)", nx, 2, 1 << 20)
-    ny = check_int("n (y)", ny, 2, 1 << 20)
-    M = check_int("M", M, 1, 10_000)
-    gamma = check_range("gamma", gamma, 1.0, unit="(dimensionless)")
-    if cutoff not in ("nyquist", "pixel"):
-        raise ValueError(f"cutoff must be 'nyquist' or 'pixel', got {cutoff!r}")
-    if method not in ("tile", "direct"):
-        raise ValueError(f"method must be 'tile' or 'direct', got {method!r}")
-    dx, dy = Lx / nx, Ly / ny
-    if Wc is None:
-        Wc = (2.0 if cutoff == "nyquist" else 1.0) * max(dx, dy)
-        if Wc >= Wr:
-            raise ValueError(
-                f"the default cut-off W_c = {Wc:g} m ({cutoff}) is not below Wr = {Wr:g} m: "
-                "use more pixels, a larger Wr, or give Wc"
-            )
-    Wc = check_range("Wc", Wc, 0.0, Wr, unit=f"m (must be below Wr = {Wr:g} m)")
-    if Rt is not None and G is not None:
-        raise ValueError("give either Rt (rescale to a peak-to-valley height) or G, not both")
-    if Rt is None and G is None:
-        raise ValueError("give Rt (m) or G (m) to set the vertical scale")
-    if Rt is not None:
-        Rt = check_range("Rt", Rt, 0.0, unit="m")
-    if G is not None:
-        G = check_range("G", G, 0.0, unit="m")
-    seed = check_int("seed", seed, 0)
-    # n_max: the largest n with wavelength Wr/γ^n ≥ Wc (1e-9 guards exact powers)
-    n_max = math.floor(math.log(Wr / Wc) / math.log(gamma) + 1e-9)
-    n_f = n_max + 1
-    n_terms = M * n_f
-    rng = np.random.default_rng(seed)
-    alpha = rng.uniform(0.0, 2.0 * math.pi, size=(M, n_f)).reshape(-1)
-    m = np.repeat(np.arange(1, M + 1, dtype=np.float64), n_f)
-    nn = np.tile(np.arange(n_f, dtype=np.float64), M)
-    k = 2.0 * math.pi * gamma**nn / Wr
-    theta = math.pi * m / M
-    return WMSpec(
-        D=D, Wr=Wr, Lx=Lx, Ly=Ly, nx=nx, ny=ny, dx=dx, dy=dy, M=M, gamma=gamma, Wc=Wc,
-        cutoff=cutoff, n_max=n_max, n_terms=n_terms, seed=seed, G=G, Rt=Rt, method=method,
-        kx=k * np.cos(theta), ky=k * np.sin(theta), alpha=alpha, w=gamma ** ((D - 3.0) * nn),
-    )  # fmt: skip
 
 
 def pad_to(v: int, t: int) -> int:

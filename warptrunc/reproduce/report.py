@@ -4,7 +4,6 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
@@ -13,29 +12,24 @@ import numpy as np
 from ..truncation import contact_index_map
 from ..wm import wm_surface
 from .analysis import D_KEYS
-from .profiles import PAPER_DEPARTURES
+from .report_sections import (
+    D_LABELS,
+    departure_lines,
+    fig2_model_lines,
+    fig_fit_range,
+    fit_range_lines,
+    fmt_value,
+    new_figure,
+    save_figure,
+    slit_band_lines,
+)
 
 __all__ = ["figures", "markdown"]
-
-_LBL = {"in": "D$_{in}$", "tri": "D$_{tri}$", "box": "D$_{box}$", "vs": "D$_{vs}$", "sp": "D$_{sp}$"}
-
-
-def _fig(ncols=1, nrows=1, w=5.2, h=4.0):
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(w * ncols, h * nrows), layout="constrained")
-    axs = fig.subplots(nrows, ncols, squeeze=False)
-    return fig, axs.ravel()
-
-
-def _save(fig, out: Path, name: str) -> str:
-    fig.savefig(out / name, dpi=110)
-    return name
 
 
 def fig2(res, out) -> str:
     c = res["asperity"]["curves"]
-    fig, (ax,) = _fig(w=6.4, h=5.0)
+    fig, (ax,) = new_figure(w=6.4, h=5.0)
     for key, style, lab in (("hertz", "k--", "Hertz"), ("plastic", "k:", "fully plastic"),
                             ("truncation_exact", "r-", "truncation, closed form")):  # fmt: skip
         ax.loglog(c[f"{key}_load_norm"][1:], c[f"{key}_area_norm"][1:], style, label=lab)
@@ -52,13 +46,13 @@ def fig2(res, out) -> str:
     ax.set_ylabel("A$_c$/(πR²)")
     ax.set_title("Fig. 2: single asperity, d ≤ 100 ω$_c$")
     ax.legend(fontsize=7)
-    return _save(fig, out, "fig2_asperity.png")
+    return save_figure(fig, out, "fig2_asperity.png")
 
 
 def fig5(res, ana, out) -> str:
     f5 = ana["fig5"]
     loads = res["fig5"]["loads"]
-    fig, (a1, a2) = _fig(2)
+    fig, (a1, a2) = new_figure(2)
     incs = sorted({int(k.split("|")[1]) for k in f5})
     base = incs[0]
     ns = sorted({int(k.split("|")[0]) for k in f5 if int(k.split("|")[1]) == base})
@@ -72,7 +66,7 @@ def fig5(res, ana, out) -> str:
     a2.set_xscale("log")
     a2.set(xlabel="increments", ylabel="E$_c$/E", title=f"Fig. 5b ({ns[-1]}²)")
     a1.legend(fontsize=7)
-    return _save(fig, out, "fig5_convergence.png")
+    return save_figure(fig, out, "fig5_convergence.png")
 
 
 def fig7(res, out, device) -> str:
@@ -80,7 +74,7 @@ def fig7(res, out, device) -> str:
     r = next((x for x in rows if x["surface"] == "GB300s"), rows[0])
     n = res["table1"]["n"]
     s = wm_surface(r["D_in"], r["Wr_m"], L=res["table1"]["L_m"], n=n, Rt=r["Rt_m"], seed=0, device=device)
-    fig, axs = _fig(5, 1, w=2.6, h=2.8)
+    fig, axs = new_figure(5, 1, w=2.6, h=2.8)
     fr = (0.1, 0.2, 0.3, 0.4, 0.5)
     idx = contact_index_map(s, np.asarray(fr) * s.Rt, device=device)
     for k, (ax, f) in enumerate(zip(axs, fr, strict=True)):
@@ -89,11 +83,11 @@ def fig7(res, out, device) -> str:
         ax.set_title(f"{int(f * 100)} % R$_t$", fontsize=9)
         ax.set_axis_off()
     fig.suptitle(f"Fig. 7: truncation sections, simulated {r['surface']} ({n}²)")
-    return _save(fig, out, "fig7_sections.png")
+    return save_figure(fig, out, "fig7_sections.png")
 
 
 def fig8(res, out) -> str:
-    fig, (a1, a2) = _fig(2)
+    fig, (a1, a2) = new_figure(2)
     for name, s in res["islands"]["surfaces"].items():
         fr = np.asarray(s["seeds"][0]["depth_fraction"]) * 100
         nn = np.mean([x["normalised"] for x in s["seeds"]], axis=0)
@@ -112,7 +106,7 @@ def fig8(res, out) -> str:
     a1.set(xlabel="depth (% R$_t$)", ylabel="normalised island number", title="Fig. 8a")
     a2.set(xlabel="depth (% R$_t$)", ylabel="slit-island exponent (L ∝ A$^x$)", title="Fig. 8b: seed 0, 95 % bootstrap band")
     a1.legend(fontsize=8)
-    return _save(fig, out, "fig8_islands.png")
+    return save_figure(fig, out, "fig8_islands.png")
 
 
 def _mean_curves(rows, key, fit="default"):
@@ -125,7 +119,7 @@ def _mean_curves(rows, key, fit="default"):
 def fig9(res, out) -> list[str]:
     names = []
     for g, key, lab, tag in ((res["group1"], "delta", "δ", "a"), (res["group2"], "D_in", "D$_{in}$", "b")):
-        fig, (ax,) = _fig(w=6, h=4.6)
+        fig, (ax,) = new_figure(w=6, h=4.6)
         for k, cs in sorted(_mean_curves(g["rows"], key).items()):
             x = np.exp(np.mean([np.log(np.maximum(c["F_over_EA"], 1e-300)) for c in cs], axis=0))
             y = np.exp(np.mean([np.log(np.maximum(c["Ec_over_E"], 1e-300)) for c in cs], axis=0))
@@ -133,13 +127,13 @@ def fig9(res, out) -> list[str]:
             ax.loglog(x[sel], y[sel], label=f"{lab} = {k:g}")
         ax.set(xlabel="F/(E·A)", ylabel="E$_c$/E", title=f"Fig. 9{tag} (geometric mean over seeds)")
         ax.legend(fontsize=7)
-        names.append(_save(fig, out, f"fig9{tag}.png"))
+        names.append(save_figure(fig, out, f"fig9{tag}.png"))
     return names
 
 
 def fig10(res, ana, out) -> str:
     g2 = res["group2"]
-    fig, axs = _fig(3, 2, w=4.2, h=3.5)
+    fig, axs = new_figure(3, 2, w=4.2, h=3.5)
     for ax, k in zip(axs[:5], D_KEYS, strict=True):
         for fit, mk in zip(g2["fit_ranges"], ("o", "s"), strict=False):
             xs, ys = [], []
@@ -158,7 +152,7 @@ def fig10(res, ana, out) -> str:
         pp = ana["table3_alpha"]["default"][k]["paper"]
         xx = np.linspace(2.0, 3.0, 2)
         ax.plot(xx, pp["slope"] * xx + pp["intercept"], "k--", lw=0.8, label="paper")
-        ax.set(xlabel=_LBL[k], ylabel="α")
+        ax.set(xlabel=D_LABELS[k], ylabel="α")
         ax.legend(fontsize=6)
     ax = axs[5]
     g1 = res["group1"]
@@ -177,7 +171,7 @@ def fig10(res, ana, out) -> str:
     ax.set(xlabel="δ", ylabel="β")
     ax.legend(fontsize=6)
     fig.suptitle("Fig. 10: α against D by each method (one point per surface); β against δ")
-    return _save(fig, out, "fig10.png")
+    return save_figure(fig, out, "fig10.png")
 
 
 def figures(res: dict[str, Any], ana: dict[str, Any], out: Path, device=None) -> list[str]:
@@ -214,10 +208,6 @@ def figures(res: dict[str, Any], ana: dict[str, Any], out: Path, device=None) ->
 
         names += elastic_figures(res["elastic"], out)
     return names
-
-
-def _f(v, fmt=".3f"):
-    return "—" if v is None or (isinstance(v, float) and not math.isfinite(v)) else format(v, fmt)
 
 
 def _dev(ours, paper, fmt=".3f"):
@@ -269,7 +259,7 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
       f"(median ratio {asp['hertz_ratio_median']:.3f}; closed form 2^(2/3) = {asp['hertz_ratio_closed_form']:.3f}).")
     a(f"- It lies below fully plastic (so *between* the bounds, as the paper states) only for d > d* = "
       f"R(3πH/(2√2E_r))² = {asp['d_star_over_omega_c']:.1f} ω_c: {100 * asp['fraction_between']:.0f} % of the increments "
-      f"(first at {_f(asp['first_between_d_over_omega_c'], '.1f')} ω_c). Below d*, the truncation mean pressure is under H and "
+      f"(first at {fmt_value(asp['first_between_d_over_omega_c'], '.1f')} ω_c). Below d*, the truncation mean pressure is under H and "
       "its area exceeds both bounds; the paper's \"between\" holds for this material in the upper part of the range only.\n")
     L.extend(fig2_model_lines(res))
     a(f"![Fig. 2]({names[0]})\n")
@@ -280,7 +270,7 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
     a("|---|---|" + "---|" * len(loads))
     for k, v in ana["fig5"].items():
         n, inc = k.split("|")
-        a(f"| {n}² | {inc} | " + " | ".join(_f(x, ".4g") for x in v) + " |")
+        a(f"| {n}² | {inc} | " + " | ".join(fmt_value(x, ".4g") for x in v) + " |")
     a("\nThe paper gives no numbers for Fig. 5, only that ≥ 8192² and ≥ 200 increments converge; "
       "compare the last rows. D_in = 2.5, R_t = 10 µm, W_r = 100 µm, to 0.5·R_t; '—' = load outside the curve.\n")
     a("![Fig. 5](fig5_convergence.png)\n")
@@ -293,7 +283,7 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
         if r["status"] != "ok":
             a(f"| {r['surface']} | D_{r['matched']} | {r['status']}: {r.get('message', '')[:120]} | | | | | |")
             continue
-        ds = " | ".join(f"{_f(r['D_out'][k])} / {r['paper']['D'][k]:.3f} / {_dev(r['D_out'][k], r['paper']['D'][k])}" for k in D_KEYS[1:])
+        ds = " | ".join(f"{fmt_value(r['D_out'][k])} / {r['paper']['D'][k]:.3f} / {_dev(r['D_out'][k], r['paper']['D'][k])}" for k in D_KEYS[1:])
         a(f"| {r['surface']} | D_{r['matched']} | {r['D_in']:.3f} | {r['Rt_um']:.4g} ({r['paper']['Rt_um']:.4g}) | {ds} |")
     a(f"\nD options (convention) used: `{ana['d_options']}`.\n")
     # Table 2
@@ -303,11 +293,11 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
     for name, t in ana["table2"].items():
         pg = float(np.mean(t["paper"]["max_growth"]))
         pf = float(np.mean(t["paper"]["fractality"]))
-        tr = ", ".join(_f(t["slit_exponent_at_percent_Rt"][k]) for k in ("5", "10", "20", "30", "40", "50"))
-        a(f"| {name} | {_f(t['max_growth_rate_depth_percent_Rt'], '.1f')} ({t['paper']['max_growth'][0]}–{t['paper']['max_growth'][1]}) | "
-          f"{_dev(t['max_growth_rate_depth_percent_Rt'], pg, '.1f')} | {_f(t['fractality_depth_percent_Rt'], '.1f')} "
+        tr = ", ".join(fmt_value(t["slit_exponent_at_percent_Rt"][k]) for k in ("5", "10", "20", "30", "40", "50"))
+        a(f"| {name} | {fmt_value(t['max_growth_rate_depth_percent_Rt'], '.1f')} ({t['paper']['max_growth'][0]}–{t['paper']['max_growth'][1]}) | "
+          f"{_dev(t['max_growth_rate_depth_percent_Rt'], pg, '.1f')} | {fmt_value(t['fractality_depth_percent_Rt'], '.1f')} "
           f"({t['paper']['fractality'][0]}–{t['paper']['fractality'][1]}) | {_dev(t['fractality_depth_percent_Rt'], pf, '.1f')} | "
-          f"{_f(t['island_peak_depth_percent_Rt'], '.1f')} | {tr} |")
+          f"{fmt_value(t['island_peak_depth_percent_Rt'], '.1f')} | {tr} |")
     a("\nDeviations are from the middle of the paper's range. The slit exponent's depth trend (last column) is the evidence "
       "for the fractality depth: the paper reports a plateau above 0.5 followed by a drop.\n")
     L.extend(slit_band_lines(ana.get("slit_band", {})))
@@ -333,21 +323,21 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
     for fit, per in ana["table3_alpha"].items():
         for k in D_KEYS:
             o, pp = per[k]["ours"], per[k]["paper"]
-            txt = "—" if o is None else f"{o['slope']:.3f}·D {o['intercept']:+.3f} (r = {_f(o['r'])})"
+            txt = "—" if o is None else f"{o['slope']:.3f}·D {o['intercept']:+.3f} (r = {fmt_value(o['r'])})"
             a(f"| D_{k} | {fit} | {txt} | {pp['slope']}·D {pp['intercept']:+} (r = {pp['r']}) | {_dev(o and o['slope'], pp['slope'])} |")
     a("\n| fit range | β = b·δ^p, ours (r) | −mean α of group 1 | paper | p dev from paper |")
     a("|---|---|---|---|---|")
     for fit, b in ana["table3_beta"].items():
         o = b["ours"]
-        txt = "—" if o is None else f"{o['b']:.4g}·δ^{o['p']:.4f} (r = {_f(o['r'])})"
-        a(f"| {fit} | {txt} | {_f(b['minus_alpha'], '.4f')} | 0.0386·δ^−1.122 (r = 0.992) | {_dev(o and o['p'], -1.122)} |")
+        txt = "—" if o is None else f"{o['b']:.4g}·δ^{o['p']:.4f} (r = {fmt_value(o['r'])})"
+        a(f"| {fit} | {txt} | {fmt_value(b['minus_alpha'], '.4f')} | 0.0386·δ^−1.122 (r = 0.992) | {_dev(o and o['p'], -1.122)} |")
     a("\n**Why β(δ) cannot follow the paper's −1.122 here.** Group 1 changes only R_t = δ·W_r at fixed W_r, L and seeds, so every "
       "surface is the same shape with heights scaled by δ. The truncated area at depth fraction ω/R_t is then unchanged, so "
       "E_c/E is unchanged while F ∝ ∫k dω scales with δ: F/(EA) → δ·F/(EA). With E_c/E = β[F/(EA)]^α, β ∝ δ^−α exactly, "
       "and the measured exponent p equals −α of group 1 (table above) — a property of the method, not a fit. The paper's −1.122 "
       "would need α ≈ 1.12 at D_in = 2.5, outside its own α range [1/3, 1] and its α(2.5) = 0.61.\n")
     a("Group-2 α per D_in (mean ± sd over seeds): " + "; ".join(
-        f"`{fit}`: " + ", ".join(f"{k}: {v['mean']:.3f} ± {_f(v['sd'])}" for k, v in per.items())
+        f"`{fit}`: " + ", ".join(f"{k}: {v['mean']:.3f} ± {fmt_value(v['sd'])}" for k, v in per.items())
         for fit, per in ana["group2_alpha"].items()) + ".\n")
     a("The α(D) slope depends on the fit range (two ranges above): the earliest increments, where a handful of pixels "
       "touch, pull α; the `late` range keeps only the deep part of each curve. "
@@ -368,211 +358,5 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
     a("## Stage times\n")
     a("| stage | seconds (compute, from the stage file) |\n|---|---|")
     for k, v in meta["stage_seconds"].items():
-        a(f"| {k} | {_f(v, '.1f')} |")
+        a(f"| {k} | {fmt_value(v, '.1f')} |")
     return "\n".join(L) + "\n"
-
-
-# --- sections added for issue 19: departures, Fig. 2 models, slit band, fit-range map ----------
-
-
-def departure_lines(p: dict[str, Any]) -> list[str]:
-    """Header table: what the paper did and what this profile does, item by item.
-
-    Parameters
-    ----------
-    p : dict of str to Any
-        The profile (:meth:`~warptrunc.reproduce.profiles.Profile.to_dict`; lengths in m).
-
-    Returns
-    -------
-    list of str
-        Markdown lines of the table.
-    """
-    v = {**p, "L_mm": p["L"] * 1e3, "islands_L_mm": p["islands_L"] * 1e3,
-         "fig5_min": p["fig5_sizes"][0], "fig5_max": p["fig5_sizes"][-1],
-         "fig5_max_inc": p["fig5_increments"][-1]}  # fmt: skip
-    out = ["| item | the paper | this run | same? |", "|---|---|---|---|"]
-    for _key, item, paper, ours in PAPER_DEPARTURES:
-        txt = ours.format(**v)
-        same = "yes" if txt == paper or txt.startswith(paper + ",") else "**no**"
-        same = "n/a" if paper == "not stated" else same
-        out.append(f"| {item} | {paper} | {txt} | {same} |")
-    out.append("")
-    return out
-
-
-def fig2_model_lines(res: dict[str, Any]) -> list[str]:
-    """The models drawn in Fig. 2, named (from the stored curves of the asperity stage).
-
-    Parameters
-    ----------
-    res : dict of str to Any
-        Stage results (the ``asperity`` stage).
-
-    Returns
-    -------
-    list of str
-        Markdown lines.
-    """
-    c = res["asperity"]["curves"]
-    ms = sorted(float(k[len("storakers_m"):-len("_area_norm")]) for k in c
-                if k.startswith("storakers_m") and k.endswith("_area_norm"))  # fmt: skip
-    return [
-        "Curves in the figure (A = πR², E the Young's modulus):",
-        "- **Storåkers–Biwa–Larsson** self-similar inelastic flattening of a sphere (Storåkers, Biwa & Larsson 1997, "
-        "the paper's ref. [34]) for the power-law material σ = σ₀·ε^{m_B}, n_B = 0, hardening exponents "
-        f"m_B = {', '.join(f'{m:g}' for m in ms)} (thin solid lines, coloured by m_B; m_B = 0 is perfectly plastic, "
-        "m_B = 1 linear elastic);",
-        "- **Hertz** elastic contact, A = πRd, F = (4/3)·E_r·√R·d^{3/2} (black dashed);",
-        "- **fully plastic** limit (Abbott–Firestone), A = 2πRd, F = H·A (black dotted);",
-        "- the **truncation model** in closed form, A = π(2Rd − d²), F = ∫(2/√π)·E_r·√A dd (red line), and the same "
-        f"through `truncate` + `stiffness_curve` on the {c['n']}² pixel sphere (red circles).",
-        "",
-    ]
-
-
-def fig_fit_range(fm: dict[str, Any], out: Path) -> str:
-    """Fit-range map: α(D) slope and α(2.5) against the fit range, Table 3 marked; β's exponent.
-
-    Parameters
-    ----------
-    fm : dict of str to Any
-        :func:`~warptrunc.reproduce.fitrange.fit_range_map`.
-    out : Path
-        Output folder.
-
-    Returns
-    -------
-    str
-        File name written (``fit_range_map.png``).
-    """
-    fig, axs = _fig(3, 2, w=4.3, h=3.3)
-    kinds = (("min_pixels", "fit range: ≥ m contact pixels", "log"),
-             ("fraction", "fit range: ≥ f × final contact pixels", "log"))  # fmt: skip
-    for row, (kind, xlabel, scale) in enumerate(kinds):
-        rs = [r for r in fm["ranges"] if r["kind"] == kind]
-        xs = [r["value"] for r in rs]
-        a_s, a_a, a_b = axs[3 * row : 3 * row + 3]
-        for k in D_KEYS:
-            fs = [fm["alpha"][r["name"]][k] for r in rs]
-            if all(f is None for f in fs):
-                continue
-            sl = [np.nan if f is None else f["slope"] for f in fs]
-            (p,) = a_s.plot(xs, sl, "o-", ms=3, label=_LBL[k])
-            a_s.axhline(fm["paper"][k]["slope"], color=p.get_color(), ls="--", lw=0.7)
-            aa = [np.nan if f is None else f["alpha_2_5"] for f in fs]
-            a_a.plot(xs, aa, "o-", ms=3, color=p.get_color(), label=_LBL[k])
-            a_a.axhline(fm["paper"][k]["alpha_2_5"], color=p.get_color(), ls="--", lw=0.7)
-        bs = [fm["beta"][r["name"]] for r in rs]
-        a_b.plot(xs, [np.nan if b is None else b["p"] for b in bs], "o-", ms=3, label="p of β = b·δ^p")
-        a_b.plot(xs, [np.nan if b is None else b["minus_alpha"] for b in bs], "x:", label="−mean α, group 1")
-        a_b.axhline(fm["paper_beta"]["p"], color="k", ls="--", lw=0.7, label="paper −1.122")
-        for ax, yl in ((a_s, "slope of α(D)"), (a_a, "α(2.5) of the α(D) line"), (a_b, "exponent p of β(δ)")):
-            ax.set_xscale(scale)
-            ax.set(xlabel=xlabel, ylabel=yl)
-        a_s.legend(fontsize=6, title="dashed: Table 3", title_fontsize=6)
-        a_b.legend(fontsize=6)
-    fig.suptitle("Fit-range map: Table 3 re-fitted from the stored curves (dashed: the paper)")
-    return _save(fig, out, "fit_range_map.png")
-
-
-def fit_range_lines(fm: dict[str, Any], figure: str | None) -> list[str]:
-    """Report section of the fit-range map (α(D) per D method, β(δ)), with the finding.
-
-    Parameters
-    ----------
-    fm : dict of str to Any
-        :func:`~warptrunc.reproduce.fitrange.fit_range_map`.
-    figure : str or None
-        File name of :func:`fig_fit_range`.
-
-    Returns
-    -------
-    list of str
-        Markdown lines.
-    """
-    tol = fm["tolerance"]
-    out = ["## Fit-range map of Table 3\n",
-           "The paper does not state which increments its power-law fits use. Every stored curve of groups 1 and 2 is "
-           "re-fitted (`warptrunc.stiffness.fit_power_law`, no surface recomputed) for fit ranges ≥ m contact pixels and "
-           "≥ max(1, ⌈f·N_final⌉) contact pixels (N_final: the surface's final contact pixels); each row is one range "
-           "(slope, intercept, r of α = slope·D + intercept over every surface, α(2.5) = 2.5·slope + intercept; "
-           "deviations from Table 3 in %).\n",
-           "| fit range | " + " | ".join(f"D_{k}: slope / α(2.5) / r" for k in D_KEYS) + " | β = b·δ^p: p (−mean α) |",
-           "|---|" + "---|" * (len(D_KEYS) + 1)]  # fmt: skip
-    for r in fm["ranges"]:
-        cells = []
-        for k in D_KEYS:
-            f = fm["alpha"][r["name"]][k]
-            cells.append("—" if f is None else f"{f['slope']:.3f} ({100 * f['slope_dev']:+.0f} %) / "
-                         f"{f['alpha_2_5']:.3f} ({100 * f['alpha_2_5_dev']:+.0f} %) / {_f(f['r'])}")  # fmt: skip
-        b = fm["beta"][r["name"]]
-        cells.append("—" if b is None else f"{b['p']:.3f} ({b['minus_alpha']:.3f})")
-        out.append(f"| {r['name']} | " + " | ".join(cells) + " |")
-    out.append("| **paper** | " + " | ".join(f"{fm['paper'][k]['slope']} / {fm['paper'][k]['alpha_2_5']:.3f} / {fm['paper'][k]['r']}" for k in D_KEYS)
-               + f" | {fm['paper_beta']['p']} |\n")  # fmt: skip
-    # the finding, D_in first
-    rep = fm["reproduces"]
-    for k in D_KEYS:
-        ok = rep[k]
-        fits = [(r["name"], fm["alpha"][r["name"]][k]) for r in fm["ranges"]]
-        fits = [(n, f) for n, f in fits if f is not None]
-        if not fits:
-            continue
-        sl = [f["slope"] for _, f in fits]
-        aa = [f["alpha_2_5"] for _, f in fits]
-        head = f"- **D_{k}**: slope {min(sl):.3f} to {max(sl):.3f}, α(2.5) {min(aa):.3f} to {max(aa):.3f} over the ranges; "
-        names = [n for n, _ in fits]
-        best = min(fits, key=lambda t: max(abs(t[1]["slope_dev"]), abs(t[1]["alpha_2_5_dev"])))
-        i = names.index(best[0])
-        nb = [fits[j] for j in (i - 1, i + 1) if 0 <= j < len(fits) and fits[j][0].split("=")[0] == best[0].split("=")[0]]
-        sharp = (f" The neighbouring ranges of {best[0]} give slope "
-                 + ", ".join(f"{f['slope']:.3f} ({n})" for n, f in nb) + "." if nb else "")  # fmt: skip
-        if ok:
-            out.append(head + f"Table 3 (slope {fm['paper'][k]['slope']}, α(2.5) {fm['paper'][k]['alpha_2_5']:.3f}) is reproduced "
-                       f"within ±{100 * tol:.0f} % each by: {', '.join(ok)}." + sharp)
-        else:
-            out.append(head + f"no range reproduces Table 3 within ±{100 * tol:.0f} % (slope and α(2.5) together); the closest "
-                       f"is {best[0]} (slope {100 * best[1]['slope_dev']:+.0f} %, α(2.5) {100 * best[1]['alpha_2_5_dev']:+.0f} %)." + sharp)
-    out.append("\nHow sharply the answer depends on the range is the spread of each column: a range that matches one "
-               "column and not its neighbours is a coincidence of the fit range, not a reproduction. β's exponent p equals "
-               "−mean α of group 1 in every range (group 1 changes only R_t), so no range gives the paper's −1.122 unless "
-               "α ≈ 1.12. This map is a finding, not a new default: the stored fits keep `default` and `late`.\n")
-    if figure:
-        out.append(f"![fit-range map]({figure})\n")
-    return out
-
-
-def slit_band_lines(sb: dict[str, Any]) -> list[str]:
-    """Report lines of the slit exponent with its bootstrap band (per surface, seed 0) and
-    the drop statements of every seed.
-
-    Parameters
-    ----------
-    sb : dict of str to Any
-        :func:`~warptrunc.reproduce.analysis.slit_band_summary`.
-
-    Returns
-    -------
-    list of str
-        Markdown lines (none when there is no band).
-    """
-    if not sb:
-        return []
-    out = ["\n**Slit-island exponent with an error bar.** At every 2.5 % R_t the exponent of seed 0 and its 95 % "
-           "percentile band from 200 bootstrap resamples of the islands (seed 0 of the resampling; islands dealt into "
-           "≤ 4096 random blocks when there are more). A drop is *established* at the first depth whose whole band lies "
-           "below (1 − 0.05)·plateau (plateau: median exponent over the first 10 % R_t of fitted depths; drops are looked for "
-           "past that window), and *possible* from the first depth whose band reaches below it. 'none' with a plateau: no "
-           "drop down to 50 % R_t, with 95 % confidence where 'possible' is none too.\n"]  # fmt: skip
-    pcts = next(iter(sb.values()))["percent_Rt"]
-    out.append("| surface | plateau | " + " | ".join(f"{p:g} %" for p in pcts[1::2]) + " | drop possible from (% R_t, per seed) | drop established at (per seed) | paper fractality depth |")
-    out.append("|---|---|" + "---|" * (len(pcts[1::2]) + 3))
-    for name, s in sb.items():
-        cells = [("—" if e is None else f"{e:.3f} [{_f(lo)}, {_f(hi)}]")
-                 for e, lo, hi in list(zip(s["exponent"], s["lo"], s["hi"], strict=True))[1::2]]  # fmt: skip
-        poss = ", ".join("none" if v is None else f"{v:g}" for v in s["possible_drop_percent_Rt"])
-        est = ", ".join("none" if v is None else f"{v:g}" for v in s["established_drop_percent_Rt"])
-        out.append(f"| {name} | {_f(s['plateau'])} | " + " | ".join(cells) + f" | {poss} | {est} | {s['paper'][0]}–{s['paper'][1]} |")
-    out.append("")
-    return out
