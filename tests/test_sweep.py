@@ -773,6 +773,8 @@ def test_workers_pinned_one_device_each(client):
 
     assert [pinned_device(i, 2) for i in range(4)] == ["cuda:0", "cuda:1", "cuda:0", "cuda:1"]
     assert pinned_device("3", 4) == "cuda:3" and pinned_device(0, 0) is None
+    # the module's cluster may still be bringing back a worker an earlier test killed
+    client.wait_for_workers(2, timeout=120)
     client.register_plugin(PinDevice(n_devices=2))  # as on a node with 2 GPUs
     got = client.run(lambda dask_worker: (dask_worker.name, os.environ["WARPTRUNC_DEVICE"]))
     assert sorted(got.values()) == [(0, "cuda:0"), (1, "cuda:1")]
