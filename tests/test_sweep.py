@@ -267,7 +267,7 @@ def _old_layout(out):
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    from warptrunc.sweep.store import rows_frame
+    from warptrunc.sweep.read import rows_frame
 
     rows = {rs[0]["case_id"]: rs for f in part_files(out / "curves") for rs in part_rows(f)}
     curves = load_curves(out)

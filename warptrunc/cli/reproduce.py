@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..reproduce import reproduce
 from ..reproduce.profiles import PROFILES
-from ..sweep.store import require_extra
+from ..sweep.read import require_extra
 from ._common import add_device, output_dir
 
 NAME = "reproduce"

@@ -21,7 +21,7 @@ import signal
 import sys
 
 from ..sweep import SweepGrid, alpha_summary, load, run_sweep
-from ..sweep.store import require_extra
+from ..sweep.read import require_extra
 from ._common import add_device, add_out, add_wm_shape, input_file, integer, positive, real
 from .analyze import add_fit_options, add_truncation_options
 
@@ -167,7 +167,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _migrate(out) -> int:
     from ..sweep.lock import store_lock
-    from ..sweep.store import migrate
+    from ..sweep.migration import migrate
 
     if not (out / "sweep.json").exists():
         raise ValueError(f"{out} is not a sweep store (no sweep.json)")

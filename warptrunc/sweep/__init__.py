@@ -8,27 +8,21 @@
 >>> load("runs/g2").groupby(["min_pixels", "D_in"]).alpha.agg(["mean", "std"])  # doctest: +SKIP
 
 Modules: ``grid`` (SweepGrid, SweepOptions, case ids), ``store`` (the Parquet store:
-sweep.json, ``curves/part-*.parquet``, cases.parquet; :func:`migrate`), ``curves`` (writing and
+sweep.json, ``curves/part-*.parquet``, cases.parquet), ``read`` (the columns of cases.parquet;
+:func:`load`, :func:`load_curves`), ``migration`` (:func:`migrate`, the previous layout), ``curves`` (writing and
 reading one part), ``engines`` (one case, one shard; in-process execution), ``cluster`` (Dask),
 ``run`` (:func:`run_sweep`), ``stats`` (pandas summaries, :func:`linear_fit`, and the older
 in-memory :func:`sweep`/:class:`SweepTable`). pandas, pyarrow and dask are imported only
 inside these functions: ``pip install "warptrunc[sweep]"``.
 """
 
+from .curves import CURVE_COLUMNS
 from .grid import Case, SweepGrid, SweepOptions, parse_seeds
+from .migration import migrate
+from .read import BEM_QUANTITIES, CASE_COLUMNS, RUN_COLUMNS, bem_long, load, load_curves
 from .run import run_sweep
 from .stats import SweepTable, alpha_summary, linear_fit, sweep
-from .store import (
-    BEM_QUANTITIES,
-    CASE_COLUMNS,
-    CURVE_COLUMNS,
-    RUN_COLUMNS,
-    Store,
-    bem_long,
-    load,
-    load_curves,
-    migrate,
-)  # fmt: skip
+from .store import Store
 
 __all__ = [
     "BEM_QUANTITIES",

@@ -74,7 +74,7 @@ def _base_row(case: Case, o: SweepOptions) -> dict[str, Any]:
 
 
 def _bem_blank(o: SweepOptions) -> dict[str, Any]:
-    from .store import BEM_QUANTITIES
+    from .read import BEM_QUANTITIES
 
     if not o.bem_fractions:
         return {}
@@ -103,7 +103,7 @@ def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str,
     Returns
     -------
     dict of str to Any
-        The columns of ``warptrunc.sweep.store.bem_columns`` (SI units).
+        The columns of ``warptrunc.sweep.read.bem_columns`` (SI units).
 
     Notes
     -----

@@ -33,7 +33,7 @@ FORMAT = "warptrunc-sweep/1"
 STORE_FORMAT = "warptrunc-sweep/2"
 """Layout tag in ``sweep.json``: ``curves/part-*.parquet`` (one part per shard of cases).
 ``FORMAT`` in a ``sweep.json`` marks the layout before it (one curve file per case), which
-:func:`warptrunc.sweep.store.migrate` converts."""
+:func:`warptrunc.sweep.migration.migrate` converts."""
 
 
 def parse_seeds(spec: str | int | Iterable[int | str]) -> tuple[int, ...]:
@@ -174,7 +174,7 @@ class SweepOptions:
     """Elastic solves per case at approaches δ = f·R_t (measured R_t), f in (0, 1): the free
     half-space solver :func:`warptrunc.contact.solve_contact` (Barber stiffness) against Eq. 2's
     truncation values at the same depth, in wide columns ``<quantity>_<f>``
-    (:data:`warptrunc.sweep.store.BEM_QUANTITIES`). Off by default."""
+    (:data:`warptrunc.sweep.read.BEM_QUANTITIES`). Off by default."""
 
     def __post_init__(self) -> None:
         s = object.__setattr__

@@ -104,7 +104,7 @@ def run_sweep(
         E_flat (Pa), nu_flat, beta_prime, min_pixels (one or several fit ranges),
         depth_window (m), min_pixels_fraction, fractal_methods, bem_fractions (elastic
         solves at δ = f·R_t, wide columns ``F_bem_N_<f>``, ...: see
-        :data:`warptrunc.sweep.store.BEM_QUANTITIES`).
+        :data:`warptrunc.sweep.read.BEM_QUANTITIES`).
 
     Returns
     -------

@@ -17,8 +17,8 @@ import numpy as np
 
 from ..stiffness import DEFAULT_MIN_PIXELS
 from .grid import SweepGrid
+from .read import require_extra
 from .run import run_sweep
-from .store import require_extra
 
 __all__ = ["SweepTable", "alpha_summary", "group_stats", "linear_fit", "sweep"]
 
