@@ -2,10 +2,9 @@
 # SPDX-License-Identifier: MIT
 """Sweeps: grid parsing, the Parquet store (parts, duplicates, migration of the previous
 layout), resume after SIGINT/SIGTERM/kill -9, refusal of another grid, failing cases, elastic
-columns, and the Dask engine (2 workers; a worker killed mid-sweep)."""
+columns (the Dask engine: tests/test_sweep_dask.py)."""
 
 import json
-import os
 import signal
 import subprocess
 import sys
@@ -17,9 +16,10 @@ import pytest
 pd = pytest.importorskip("pandas")
 pytest.importorskip("pyarrow")
 
+from sweep_helpers import OPTS, case_ids_on_disk, results_only  # noqa: E402
+
 from warptrunc.sweep import (  # noqa: E402
     CURVE_COLUMNS,
-    RUN_COLUMNS,
     Store,
     SweepGrid,
     SweepOptions,
@@ -30,18 +30,6 @@ from warptrunc.sweep import (  # noqa: E402
 )
 from warptrunc.sweep.curves import part_files, part_rows  # noqa: E402
 from warptrunc.wm import wm_surface  # noqa: E402
-
-OPTS = dict(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
-
-
-def _results(df):
-    """The cases table without the columns that describe where and when a case ran."""
-    return df.drop(columns=list(RUN_COLUMNS)).reset_index(drop=True)
-
-
-def _on_disk(out):
-    """Case ids held by the parts of a store (a case in two parts counts twice)."""
-    return [rs[0]["case_id"] for f in part_files(out / "curves") for rs in (part_rows(f) or [])]
 
 
 def test_parse_seeds_and_grid_errors(tmp_path):
@@ -192,7 +180,7 @@ def test_rerun_skips_other_grid_refused_overwrite(tmp_path):
     assert load(out)["case_id"].nunique() == 3  # the refused runs changed nothing
     new = run_sweep(SweepGrid.from_values([2.3], [0.01], "0-3"), out, overwrite=True,
                     progress=False, device="cpu", **OPTS)  # fmt: skip
-    assert new["case_id"].nunique() == 4 and sorted(_on_disk(out)) == sorted(new["case_id"].unique())
+    assert new["case_id"].nunique() == 4 and sorted(case_ids_on_disk(out)) == sorted(new["case_id"].unique())
 
 
 def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
@@ -252,10 +240,10 @@ def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
     assert run_sweep(grid, out, progress=False, device="cpu", **OPTS)["error"].notna().sum() == 4
     fixed = run_sweep(grid, out, retry_failed=True, progress=False, device="cpu", **OPTS)
     assert fixed["error"].isna().all()
-    assert sorted(_on_disk(out)) == sorted(fixed.case_id.unique())  # failed cases left their parts
+    assert sorted(case_ids_on_disk(out)) == sorted(fixed.case_id.unique())  # failed cases left their parts
     pd.testing.assert_frame_equal(pd.read_parquet(out / "cases.parquet"), fixed)
     pd.testing.assert_frame_equal(load(out), fixed)
-    pd.testing.assert_frame_equal(_results(fixed[fixed.seed != 1]), _results(good))
+    pd.testing.assert_frame_equal(results_only(fixed[fixed.seed != 1]), results_only(good))
 
 
 # --- parts: half-written, retried concurrently, overlapping; the previous layout -----------------
@@ -306,8 +294,8 @@ def test_previous_layout_refused_by_load_converted_by_migrate(tmp_path):
     run_sweep(grid, out2, progress=False, device="cpu", **OPTS)
     _old_layout(out2)
     again = run_sweep(grid, out2, progress=False, device="cpu", **OPTS)
-    pd.testing.assert_frame_equal(_results(again), _results(full))
-    assert sorted(_on_disk(out2)) == sorted(full.case_id.unique())
+    pd.testing.assert_frame_equal(results_only(again), results_only(full))
+    assert sorted(case_ids_on_disk(out2)) == sorted(full.case_id.unique())
 
 
 _KILL_MID_WRITE = """
@@ -346,8 +334,8 @@ def test_worker_killed_while_writing_leaves_no_readable_part(tmp_path):
     # readers skip it, and so does resuming (which removes it and computes the four cases)
     assert len(pd.read_parquet(out / "curves")) == 0 and len(load(out)) == 0
     df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
-    pd.testing.assert_frame_equal(_results(df), _results(ref))
-    assert not list((out / "curves").glob(".*")) and len(_on_disk(out)) == 4
+    pd.testing.assert_frame_equal(results_only(df), results_only(ref))
+    assert not list((out / "curves").glob(".*")) and len(case_ids_on_disk(out)) == 4
 
 
 def test_shard_retried_concurrently_written_once(tmp_path):
@@ -379,7 +367,7 @@ def test_shard_retried_concurrently_written_once(tmp_path):
     same = {json.dumps(g["rows"], sort_keys=True) for g in got}
     assert len(same) == 1  # the winner's rows (stamps included) in every answer
     assert len(part_files(out / "curves")) == 1 and not list((out / "curves").glob(".*"))
-    assert sorted(_on_disk(out)) == sorted(c.case_id for c in cases)
+    assert sorted(case_ids_on_disk(out)) == sorted(c.case_id for c in cases)
     # the store takes the part as it is: nothing recomputed
     df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
     assert sorted(df.finished_utc.unique()) == sorted({rs[0]["finished_utc"] for rs in got[0]["rows"]})
@@ -400,13 +388,13 @@ def test_overlapping_parts_each_case_once(tmp_path):
     cases = grid.cases(opts)
     a = compute_shard(cases[:4], opts, "cpu", str(out / "curves"))
     b = compute_shard(cases[2:], opts, "cpu", str(out / "curves"))
-    assert a["part"] < b["part"] and len(_on_disk(out)) == 8  # cases 2 and 3 twice
+    assert a["part"] < b["part"] and len(case_ids_on_disk(out)) == 8  # cases 2 and 3 twice
     df = load(out)
     assert not df.duplicated(["case_id", "min_pixels"]).any() and len(df) == len(ref)
     assert len(load_curves(out)) == 6 * 61
     again = run_sweep(grid, out, progress=False, device="cpu", **OPTS)  # nothing recomputed
-    pd.testing.assert_frame_equal(_results(again), _results(ref))
-    assert sorted(_on_disk(out)) == sorted(ref.case_id.unique())  # the overlap was dropped
+    pd.testing.assert_frame_equal(results_only(again), results_only(ref))
+    assert sorted(case_ids_on_disk(out)) == sorted(ref.case_id.unique())  # the overlap was dropped
     assert len(pd.read_parquet(out / "curves")) == 6 * 61
     first = {rs[0]["case_id"]: rs[0]["finished_utc"] for rs in a["rows"]}
     kept = again.drop_duplicates("case_id").set_index("case_id")["finished_utc"]
@@ -499,7 +487,7 @@ def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
     p = subprocess.Popen(_cli(out, "--shard-seconds", "0"), stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE, text=True)  # fmt: skip
     t0 = time.monotonic()
-    while len(_on_disk(out)) < 2:
+    while len(case_ids_on_disk(out)) < 2:
         assert p.poll() is None, p.communicate()
         assert time.monotonic() - t0 < 240, "the sweep did not start"
         time.sleep(0.01)
@@ -516,11 +504,11 @@ def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
     assert "18 cases (0 failed)" in r.stdout
     final = load(out)
     assert len(final) == 36 and not final.duplicated(["case_id", "min_pixels"]).any()
-    pd.testing.assert_frame_equal(_results(final), _results(reference))
+    pd.testing.assert_frame_equal(results_only(final), results_only(reference))
     # the cases finished before the signal were not recomputed
     kept = final[final.case_id.isin(partial.case_id)]
     np.testing.assert_array_equal(kept["finished_utc"], partial["finished_utc"])
-    assert sorted(_on_disk(out)) == sorted(final.case_id.unique())  # each case in one part
+    assert sorted(case_ids_on_disk(out)) == sorted(final.case_id.unique())  # each case in one part
 
 
 def test_cli_refuses_other_grid(tmp_path):
@@ -539,245 +527,6 @@ def test_cli_refuses_other_grid(tmp_path):
         .startswith("warptrunc sweep: error: " + str(out) + " holds a sweep with another grid")
     )
     assert "--overwrite" in r.stderr and load(out)["case_id"].nunique() == 1
-
-
-# --- Dask: a local cluster of 2 worker processes ----------------------------------------------
-
-
-@pytest.fixture(scope="module")
-def client():
-    distributed = pytest.importorskip("distributed")
-    import logging
-
-    cluster = distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
-        silence_logs=logging.ERROR,
-    )  # fmt: skip
-    c = distributed.Client(cluster)
-    yield c
-    c.close()
-    cluster.close()
-
-
-DASK_GRID = SweepGrid.from_values([2.3, 2.6], [0.01], "0-3")
-
-
-@pytest.fixture(scope="module")
-def dask_reference():
-    return run_sweep(DASK_GRID, None, progress=False, device="cpu", **OPTS)
-
-
-@pytest.mark.timeout(240)
-def test_two_local_workers_same_table_as_in_process(tmp_path, dask_reference):
-    pytest.importorskip("distributed")
-    df = run_sweep(DASK_GRID, tmp_path / "s", workers=2, progress=False, **OPTS)
-    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
-    assert df["host"].nunique() == 1 and (df["device"] == "cpu").all()
-
-
-def _slow_cases_plugin():
-    """A worker plugin that delays each case, so that kills land mid-sweep."""
-    from distributed import WorkerPlugin
-
-    class SlowCases(WorkerPlugin):
-        name = "test-slow-cases"
-        idempotent = True
-
-        def setup(self, worker):
-            import warptrunc.sweep.engines as e
-
-            if not getattr(e.compute_case, "_slow", False):
-                real = e.compute_case
-
-                def slow(*a, **kw):
-                    time.sleep(0.4)
-                    return real(*a, **kw)
-
-                slow._slow = True
-                e.compute_case = slow
-
-    return SlowCases()
-
-
-@pytest.mark.timeout(300)
-def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_reference):
-    import threading
-
-    client.register_plugin(_slow_cases_plugin())  # a local class: pickled by value
-    out = tmp_path / "s"
-    box = {}
-
-    def sweep():
-        try:
-            box["df"] = run_sweep(DASK_GRID, out, scheduler=client, progress=False, device="cpu",
-                                  **OPTS)  # fmt: skip
-        except BaseException as exc:  # pragma: no cover - reported below
-            box["exc"] = exc
-
-    def wait_for(k):
-        t0 = time.monotonic()
-        while len(_on_disk(out)) < k and th.is_alive():
-            assert time.monotonic() - t0 < 200
-            time.sleep(0.01)
-        return len(_on_disk(out))
-
-    th = threading.Thread(target=sweep)
-    th.start()
-    done_at_kill = wait_for(1)
-    pids = client.run(os.getpid)
-    os.kill(next(iter(pids.values())), signal.SIGKILL)  # one worker process dies
-    done_at_restart = wait_for(done_at_kill + 2)
-    client.restart()  # every worker dies; running cases are cancelled and submitted again
-    th.join(240)
-    assert not th.is_alive() and "exc" not in box, box.get("exc")
-    assert done_at_kill < 8 and done_at_restart < 8, "the kills came after the sweep finished"
-    df = box["df"]
-    assert not df.duplicated(["case_id", "min_pixels"]).any()
-    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
-    pd.testing.assert_frame_equal(load(out), df)
-
-
-def _sweep_in_thread(out, **kw):
-    """Start run_sweep in a thread; returns (thread, box, wait_for(k cases in parts))."""
-    import threading
-
-    box = {}
-
-    def sweep():
-        try:
-            box["df"] = run_sweep(DASK_GRID, out, progress=False, device="cpu", **kw, **OPTS)
-        except BaseException as exc:  # pragma: no cover - reported by the caller
-            box["exc"] = exc
-
-    th = threading.Thread(target=sweep)
-
-    def wait_for(k):
-        t0 = time.monotonic()
-        while len(_on_disk(out)) < k and th.is_alive():
-            assert time.monotonic() - t0 < 200
-            time.sleep(0.01)
-        return len(_on_disk(out))
-
-    th.start()
-    return th, box, wait_for
-
-
-@pytest.mark.timeout(300)
-def test_sharded_worker_killed_mid_shard_no_loss_no_duplicates(tmp_path, client, dask_reference):
-    """Shards of 3 cases: a worker killed mid-shard has its shard run again."""
-    client.register_plugin(_slow_cases_plugin())
-    out = tmp_path / "s"
-    th, box, wait_for = _sweep_in_thread(out, scheduler=client, shard_size=3)
-    done_at_kill = wait_for(1)  # the first shard is written: the second and third are running
-    pids = client.run(os.getpid)
-    os.kill(next(iter(pids.values())), signal.SIGKILL)
-    th.join(240)
-    assert not th.is_alive() and "exc" not in box, box.get("exc")
-    assert 3 <= done_at_kill < 8, "the kill came after the sweep finished"
-    df = box["df"]
-    assert not df.duplicated(["case_id", "min_pixels"]).any() and df["error"].isna().all()
-    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
-    pd.testing.assert_frame_equal(load(out), df)
-    assert sorted(_on_disk(out)) == sorted(df.case_id.unique())  # each case in one part
-    assert not list((out / "curves").glob(".*"))  # no temporary file left
-
-
-@pytest.mark.timeout(300)
-def test_worker_written_parts(tmp_path, client, dask_reference, monkeypatch):
-    """The workers write the parts, the client none; a kill loses and duplicates nothing."""
-    import warptrunc.sweep.store as store_mod
-
-    def refuse(*a, **kw):
-        raise AssertionError("the client wrote a part")
-
-    monkeypatch.setattr(store_mod, "write_part", refuse)  # this process only, not the workers
-    client.register_plugin(_slow_cases_plugin())
-    out = tmp_path / "s"
-    th, box, wait_for = _sweep_in_thread(out, scheduler=client, shard_size=2)
-    done_at_kill = wait_for(1)
-    pids = client.run(os.getpid)
-    os.kill(next(iter(pids.values())), signal.SIGKILL)
-    th.join(240)
-    assert not th.is_alive() and "exc" not in box, box.get("exc")
-    assert done_at_kill < 8, "the kill came after the sweep finished"
-    df = box["df"]
-    assert not df.duplicated(["case_id", "min_pixels"]).any()
-    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
-    pd.testing.assert_frame_equal(load(out), df)
-    # the curves on disk are those of the in-process engine, and carry the client's rows
-    ref = tmp_path / "ref"
-    monkeypatch.undo()
-    run_sweep(DASK_GRID, ref, progress=False, device="cpu", **OPTS)
-    pd.testing.assert_frame_equal(load_curves(out), load_curves(ref))
-    (out / "cases.parquet").unlink()  # rebuilt from the worker-written parts alone
-    pd.testing.assert_frame_equal(load(out), df)
-
-
-def _die_after_write_plugin(flag):
-    """A worker plugin: the first shard written in the cluster kills its worker (SIGKILL) right
-    after its part is in place, before the result reaches the client; ``flag`` records the
-    part's name and stamps."""
-    from distributed import WorkerPlugin
-
-    class DieAfterWrite(WorkerPlugin):
-        name = "test-die-after-write"
-        idempotent = True
-
-        def setup(self, worker):
-            import warptrunc.sweep.engines as e
-
-            if getattr(e.compute_shard, "_dies", False):
-                return
-            real = e.compute_shard
-
-            def dying(*a, **kw):
-                out = real(*a, **kw)
-                try:
-                    fd = os.open(flag, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
-                except FileExistsError:
-                    return out
-                os.write(fd, json.dumps({"part": out["part"], "stamps": [
-                    rs[0]["finished_utc"] for rs in out["rows"]]}).encode())
-                os.close(fd)
-                os.kill(os.getpid(), signal.SIGKILL)
-
-            dying._dies = True
-            e.compute_shard = dying
-
-    return DieAfterWrite()
-
-
-@pytest.mark.timeout(300)
-def test_worker_killed_after_writing_its_part_part_kept(tmp_path, client, dask_reference):
-    """The part of a shard whose worker died before reporting is recorded, not recomputed."""
-    flag = tmp_path / "died.json"
-    client.register_plugin(_die_after_write_plugin(str(flag)))
-    try:
-        out = tmp_path / "s"
-        df = run_sweep(DASK_GRID, out, scheduler=client, progress=False, device="cpu",
-                       shard_size=3, **OPTS)  # fmt: skip
-    finally:
-        client.unregister_worker_plugin("test-die-after-write")
-    died = json.loads(flag.read_text())
-    assert (out / "curves" / died["part"]).exists()
-    assert not df.duplicated(["case_id", "min_pixels"]).any()
-    pd.testing.assert_frame_equal(_results(df), _results(dask_reference))
-    assert set(died["stamps"]) <= set(df["finished_utc"])  # the dead worker's results, kept
-    assert sorted(_on_disk(out)) == sorted(df.case_id.unique())
-
-
-@pytest.mark.timeout(120)
-def test_workers_pinned_one_device_each(client):
-    from warptrunc.sweep.cluster import PinDevice
-    from warptrunc.sweep.engines import pinned_device
-
-    assert [pinned_device(i, 2) for i in range(4)] == ["cuda:0", "cuda:1", "cuda:0", "cuda:1"]
-    assert pinned_device("3", 4) == "cuda:3" and pinned_device(0, 0) is None
-    # the module's cluster may still be bringing back a worker an earlier test killed
-    client.wait_for_workers(2, timeout=120)
-    client.register_plugin(PinDevice(n_devices=2))  # as on a node with 2 GPUs
-    got = client.run(lambda dask_worker: (dask_worker.name, os.environ["WARPTRUNC_DEVICE"]))
-    assert sorted(got.values()) == [(0, "cuda:0"), (1, "cuda:1")]
 
 
 def test_parametric_sweep_example_and_refit_from_curves(tmp_path):

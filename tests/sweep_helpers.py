@@ -1,0 +1,20 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Helpers shared by the sweep tests (tests/test_sweep.py, tests/test_sweep_dask.py)."""
+
+from warptrunc.sweep import RUN_COLUMNS
+from warptrunc.sweep.curves import part_files, part_rows
+
+__all__ = ["OPTS", "case_ids_on_disk", "results_only"]
+
+OPTS = dict(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
+
+
+def results_only(df):
+    """The cases table without the columns that describe where and when a case ran."""
+    return df.drop(columns=list(RUN_COLUMNS)).reset_index(drop=True)
+
+
+def case_ids_on_disk(out):
+    """Case ids held by the parts of a store (a case in two parts counts twice)."""
+    return [rs[0]["case_id"] for f in part_files(out / "curves") for rs in (part_rows(f) or [])]
