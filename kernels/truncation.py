@@ -16,7 +16,9 @@ blocks, each walking a contiguous chunk of the map with a block-private histogra
 memory, added to the global one once per block; the default on the GPU for deep truncations,
 where global atomics on a few hundred bins contend (measured on an H100 at 10240², 201 bins,
 ω_max = R_t: 18.6 ms with global atomics, 2.6 ms with one private histogram per 4096 pixels).
-Counting uses integer atomics only, so results are identical on the CPU and the GPU. Pixels that
+``contact_histogram_batch_kernel``: B stacked maps of one size, one thread per 4 pixels of
+one map, each map with its own thresholds (its n + 1 entries of the flat ``t``), top and step; counts in row s of
+``hist``. Counting uses integer atomics only, so results are identical on the CPU and the GPU. Pixels that
 never touch are not counted (no atomic), which keeps contention low at shallow depths.
 """
 
@@ -26,9 +28,10 @@ wp.set_module_options({"enable_backward": False})
 
 
 @wp.func
-def contact_index(v: wp.float32, t: wp.array[wp.float32], z_top: float, inv_step: float) -> int:
-    """Smallest k with v >= t[k]; len(t) when there is none."""
-    n1 = t.shape[0]
+def contact_index_at(
+    v: wp.float32, t: wp.array[wp.float32], t0: int, n1: int, z_top: float, inv_step: float
+) -> int:
+    """Smallest k with v >= t[t0 + k], k < n1; n1 when there is none."""
     g = wp.ceil((z_top - v) * inv_step)
     k = int(0)
     if g > float(n1):
@@ -36,11 +39,17 @@ def contact_index(v: wp.float32, t: wp.array[wp.float32], z_top: float, inv_step
     elif g > 0.0:
         k = int(g)
     # exact corrections: t is non-increasing
-    while k > 0 and v >= t[k - 1]:
+    while k > 0 and v >= t[t0 + k - 1]:
         k -= 1
-    while k < n1 and v < t[k]:
+    while k < n1 and v < t[t0 + k]:
         k += 1
     return k
+
+
+@wp.func
+def contact_index(v: wp.float32, t: wp.array[wp.float32], z_top: float, inv_step: float) -> int:
+    """Smallest k with v >= t[k]; len(t) when there is none."""
+    return contact_index_at(v, t, 0, t.shape[0], z_top, inv_step)
 
 
 @wp.kernel
@@ -126,3 +135,26 @@ def contact_histogram_block_kernel(
             wp.tile_scatter_add(bins, k, wp.int64(1), k < n1)
         i += wp.block_dim()
     wp.tile_atomic_add(hist, bins)
+
+
+@wp.kernel
+def contact_histogram_batch_kernel(
+    z: wp.array2d[wp.vec4],
+    t: wp.array[wp.float32],
+    z_top: wp.array[wp.float32],
+    inv_step: wp.array[wp.float32],
+    hist: wp.array2d[wp.int64],
+):
+    """One thread per (map s, 4 pixels): as ``contact_histogram_vec4_kernel`` with map s's
+    thresholds ``t[s·n1 : (s+1)·n1]`` (n1 = hist.shape[1]), top ``z_top[s]`` and
+    ``inv_step[s]``; counts into ``hist[s]``."""
+    s, i = wp.tid()
+    v = z[s, i]
+    n1 = hist.shape[1]
+    t0 = s * n1
+    t_last = t[t0 + n1 - 1]
+    for c in range(4):
+        if v[c] >= t_last:
+            k = contact_index_at(v[c], t, t0, n1, z_top[s], inv_step[s])
+            if k < n1:
+                wp.atomic_add(hist, s, k, wp.int64(1))

@@ -24,6 +24,14 @@ tiles, whose CPU shared memory is a process-wide static buffer, so row bands can
 from several host threads at once).
 ``wm_direct_kernel``: one thread per pixel, float64 phases, loop over terms (reference path).
 ``affine_kernel``: one thread per pixel, z = (z + offset)·scale.
+
+Batches (``warptrunc.sweep.batch``): B surfaces of one grid stacked along the rows, the grid's
+sides multiples of the GEMM tiles (no padding). ``column_table_batch_kernel`` /
+``row_table_batch_kernel`` write surface s's tables at rows s·K (Q) and s·ny (P) with its own
+phases α and weights w, by the same float64 expressions as the single-surface kernels;
+``wm_tile_gemm_batch_kernel`` multiplies each surface's P by its own Q tile by tile, as
+``wm_tile_gemm_kernel`` does (the same sums in the same order); ``affine_batch_kernel`` applies
+each surface's offset and scale.
 """
 
 import warp as wp
@@ -172,3 +180,70 @@ def affine_kernel(z: wp.array2d[wp.float32], offset: wp.float64, scale: wp.float
     """One thread per pixel: z = (z + offset)·scale, evaluated in float64."""
     iy, ix = wp.tid()
     z[iy, ix] = wp.float32((wp.float64(z[iy, ix]) + offset) * scale)
+
+
+@wp.kernel
+def column_table_batch_kernel(
+    kx: wp.array[wp.float64],
+    alpha: wp.array2d[wp.float64],
+    dx: wp.float64,
+    k_rows: int,
+    q: wp.array2d[wp.float32],
+):
+    """One thread per (surface s, term t, column ix): Q[s·K + t, ix] = cos(kx_t·x + α_st),
+    Q[s·K + T + t, ix] = sin(...), T = alpha.shape[1], K = ``k_rows`` (rows ≥ 2T stay 0)."""
+    s, t, ix = wp.tid()
+    n_terms = alpha.shape[1]
+    a = kx[t] * (wp.float64(ix) * dx) + alpha[s, t]
+    q[s * k_rows + t, ix] = wp.float32(wp.cos(a))
+    q[s * k_rows + n_terms + t, ix] = wp.float32(wp.sin(a))
+
+
+@wp.kernel
+def row_table_batch_kernel(
+    ky: wp.array[wp.float64],
+    w: wp.array2d[wp.float64],
+    dy: wp.float64,
+    ny: int,
+    p: wp.array2d[wp.float32],
+):
+    """One thread per (surface s, row iy, term t): P[s·ny + iy, t] = −w_st·cos(ky_t·y),
+    P[s·ny + iy, T + t] = w_st·sin(...)."""
+    s, iy, t = wp.tid()
+    n_terms = w.shape[1]
+    b = ky[t] * (wp.float64(iy) * dy)
+    p[s * ny + iy, t] = wp.float32(-w[s, t] * wp.cos(b))
+    p[s * ny + iy, n_terms + t] = wp.float32(w[s, t] * wp.sin(b))
+
+
+@wp.kernel
+def wm_tile_gemm_batch_kernel(
+    p: wp.array2d[wp.float32],
+    q: wp.array2d[wp.float32],
+    tiles_per_surface: int,
+    z: wp.array2d[wp.float32],
+):
+    """One tile block per output tile of the stacked maps: row tile i belongs to surface
+    s = i // ``tiles_per_surface``, whose Q starts at row s·K (K = p.shape[1])."""
+    i, j = wp.tid()
+    k_rows = p.shape[1]
+    q0 = (i // tiles_per_surface) * k_rows
+    acc = wp.tile_zeros(shape=(TILE_M, TILE_N), dtype=wp.float32)
+    for k in range(k_rows // TILE_K):
+        a = wp.tile_load(p, shape=(TILE_M, TILE_K), offset=(i * TILE_M, k * TILE_K))
+        b = wp.tile_load(q, shape=(TILE_K, TILE_N), offset=(q0 + k * TILE_K, j * TILE_N))
+        wp.tile_matmul(a, b, acc)
+    wp.tile_store(z, acc, offset=(i * TILE_M, j * TILE_N))
+
+
+@wp.kernel
+def affine_batch_kernel(
+    z: wp.array2d[wp.float32],
+    ny: int,
+    offset: wp.array[wp.float64],
+    scale: wp.array[wp.float64],
+):
+    """One thread per pixel of the stacked maps: z = (z + offset_s)·scale_s, s = iy // ny."""
+    iy, ix = wp.tid()
+    s = iy // ny
+    z[iy, ix] = wp.float32((wp.float64(z[iy, ix]) + offset[s]) * scale[s])

@@ -27,6 +27,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import warp as wp
 
 from .. import __version__
 from .._device import resolve_device
@@ -35,11 +36,13 @@ from .._provenance import git_commit
 from ..stiffness import DEFAULT_MIN_PIXELS, fit_power_law, stiffness_curve
 from ..truncation import truncate
 from ..wm import wm_surface
+from .batch import WMBatch, batch_size
 from .curves import part_name, part_rows, write_part
+from .elastic import bem_blank, elastic_record
 from .grid import FRACTAL_METHODS, Case, SweepOptions
 
-__all__ = ["compute_case", "compute_shard", "elastic_record", "failed_case", "pinned_device",
-           "run_inprocess"]
+__all__ = ["compute_case", "compute_many", "compute_shard", "elastic_record", "failed_case",
+           "finish_batch", "pinned_device", "run_inprocess", "truncate_batch"]
 
 Result = tuple[list[dict[str, Any]], "dict[str, np.ndarray] | None"]
 Sink = Callable[[list[dict[str, Any]], "dict[str, np.ndarray] | None"], bool]
@@ -69,93 +72,8 @@ def _base_row(case: Case, o: SweepOptions) -> dict[str, Any]:
         "final_contact_pixels": None, "final_area_fraction": np.nan, "Rt_measured_m": np.nan,
         **{f"D_{m}{s}": np.nan for m in FRACTAL_METHODS for s in ("", "_r2")},
         "fractal_options": None, "fractal_seconds": np.nan, "fit_error": None, "error": None, "host": host, "warptrunc_version": version,
-        "git_commit": commit, **_bem_blank(o),
+        "git_commit": commit, **bem_blank(o),
     }  # fmt: skip
-
-
-def _bem_blank(o: SweepOptions) -> dict[str, Any]:
-    from .read import BEM_QUANTITIES
-
-    if not o.bem_fractions:
-        return {}
-    out: dict[str, Any] = {}
-    for f in o.bem_fractions:
-        for q in BEM_QUANTITIES:
-            out[f"{q}_{f:g}"] = None if q in ("bem_converged", "bem_iterations") else np.nan
-    return {**out, "bem_seconds": np.nan, "bem_error": None}
-
-
-def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str, Any]:
-    """Elastic columns of one case: the free half-space solver against Eq. 2 at δ = f·R_t.
-
-    Parameters
-    ----------
-    surface : Surface
-        The generated surface.
-    sc : StiffnessCurve
-        Its truncation curve (:func:`~warptrunc.stiffness.stiffness_curve`); a deeper one is
-        computed when the largest approach lies beyond it.
-    options : SweepOptions
-        ``bem_fractions`` (f, dimensionless), material, β', increments.
-    device : str, optional
-        Warp device.
-
-    Returns
-    -------
-    dict of str to Any
-        The columns of ``warptrunc.sweep.read.bem_columns`` (SI units).
-
-    Notes
-    -----
-    Truncation at δ: A' = (pixels with z ≥ z_max − δ)·pixel area (exact count, float32 as the
-    kernels), k' = β'·(2/√π)·E*·√A' (Eq. 2), F'(δ) by linear interpolation of the curve's
-    trapezoidal load; the same formulas as ``warptrunc.bem_check``. The elastic
-    solve is :func:`warptrunc.contact.solve_contact` (``substrate="free"``, Barber stiffness),
-    warm-started over increasing δ; a solve that stops at its iteration limit is kept with
-    ``bem_converged_<f>`` False. A solver error leaves the columns NaN and sets ``bem_error``.
-    """
-    from ..contact import solve_contact
-
-    o = options
-    out = _bem_blank(o)
-    t0 = time.perf_counter()
-    Rt = float(sc.Rt)
-    fr = np.asarray(o.bem_fractions, dtype=np.float64)
-    d = fr * Rt
-    e_star = o.material().reduced_modulus
-    z = surface.heights
-    z_top = np.float32(z.max())
-    n_trunc = np.array([np.count_nonzero(z >= np.float32(z_top - v)) for v in d], dtype=np.int64)
-    a_trunc = n_trunc * surface.pixel_area
-    k_trunc = o.beta_prime * (2.0 / math.sqrt(math.pi)) * e_star * np.sqrt(a_trunc)
-    deep = sc
-    if d[-1] > sc.depth[-1]:
-        tc = truncate(surface, o.increments, max_depth=float(d[-1]), device=device)
-        deep = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
-    f_trunc = np.interp(d, deep.depth, deep.load)
-    try:
-        cc = solve_contact(surface, depths=d, contact_modulus=e_star, substrate="free",
-                           stiffness="barber", device=device)  # fmt: skip
-    except Exception as exc:  # recorded; the truncation results stand
-        out["bem_error"] = f"{type(exc).__name__}: {exc}"
-        out["bem_seconds"] = time.perf_counter() - t0
-        return out
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for i, f in enumerate(o.bem_fractions):
-            s = f"_{f:g}"
-            out.update({
-                "bem_depth_m" + s: float(d[i]), "F_bem_N" + s: float(cc.load[i]),
-                "A_bem_m2" + s: float(cc.area[i]), "k_bem_N_per_m" + s: float(cc.stiffness[i]),
-                "F_trunc_N" + s: float(f_trunc[i]), "A_trunc_m2" + s: float(a_trunc[i]),
-                "k_trunc_N_per_m" + s: float(k_trunc[i]),
-                "F_ratio" + s: float(np.float64(cc.load[i]) / f_trunc[i]),
-                "A_ratio" + s: float(np.float64(cc.area[i]) / a_trunc[i]),
-                "k_ratio" + s: float(np.float64(cc.stiffness[i]) / k_trunc[i]),
-                "bem_converged" + s: bool(cc.converged[i]),
-                "bem_iterations" + s: int(cc.n_iterations[i]),
-            })  # fmt: skip
-    out["bem_seconds"] = time.perf_counter() - t0
-    return out
 
 
 def _fit_ranges(o: SweepOptions) -> list[tuple[int | None, float]]:
@@ -253,7 +171,7 @@ def compute_case(
     o = options
     base = _base_row(case, o)
     t0 = time.perf_counter()
-    curve = None
+    sc = None
     try:
         dev = resolve_device(device)
         base.update(device=str(dev), device_name=str(dev.name))
@@ -270,16 +188,24 @@ def compute_case(
         tc = truncate(s, o.increments, max_depth=o.max_depth,
                       max_depth_fraction=o.max_depth_fraction, device=dev)  # fmt: skip
         sc = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
-        curve = sc.to_dict()
         if o.bem_fractions:
             base.update(elastic_record(s, sc, o, dev))
+    except Exception as exc:  # recorded, the sweep goes on
+        base.update(error=f"{type(exc).__name__}: {exc}")
+    return _finish(o, base, sc, time.perf_counter() - t0, device)
+
+
+def _finish(o: SweepOptions, base: dict[str, Any], sc, seconds: float, device) -> Result:
+    """Rows (one per fit range, fitted when the curve ``sc`` exists) and the curve of a case
+    whose ``base`` row holds its inputs, device and any error; ``seconds``: its wall time (s)."""
+    curve = None
+    if sc is not None:
+        curve = sc.to_dict()
         base.update(
             final_contact_pixels=int(sc.n_contact_pixels[-1]),
             final_area_fraction=float(sc.contact_area[-1] / sc.apparent_area),
             Rt_measured_m=float(sc.Rt),
         )
-    except Exception as exc:  # recorded, the sweep goes on
-        base.update(error=f"{type(exc).__name__}: {exc}")
     rows = []
     for mp, frac in _fit_ranges(o):
         if mp is None:
@@ -293,13 +219,82 @@ def compute_case(
             except ValueError as exc:  # too few increments in this range: recorded, not dropped
                 row.update(n_points=0, fit_error=str(exc))
         rows.append(row)
-    seconds = time.perf_counter() - t0
     stamp = datetime.now(timezone.utc).isoformat(timespec="milliseconds")
     for r in rows:
         r.update(seconds=seconds, finished_utc=stamp)
         r.setdefault("device", str(device))
         r.setdefault("device_name", None)
     return rows, curve
+
+
+def truncate_batch(cases: list[Case], batch: WMBatch) -> tuple[list | None, float]:
+    """The truncation curves of ``cases`` from one :class:`~warptrunc.sweep.batch.WMBatch`
+    call, or None when it raised (the cases are then computed one by one, each recording its
+    own error); and the wall time of the call (s)."""
+    t0 = time.perf_counter()
+    try:
+        curves = batch.truncate(cases)
+    except Exception:  # e.g. a flat surface: compute_case records each case's error
+        curves = None
+    return curves, time.perf_counter() - t0
+
+
+def finish_batch(cases: list[Case], options: SweepOptions, curves, seconds: float,
+                 device: wp.context.Device) -> list[Result]:  # fmt: skip
+    """The results (:func:`compute_case`'s) of ``cases`` from their truncation curves
+    (:func:`truncate_batch`); ``seconds``: the batch's wall time (s), shared equally.
+
+    A case's ``seconds`` is its share of the batch plus its own fit time; equal rows and curves
+    to :func:`compute_case` on the same device otherwise. With ``curves`` None every case is
+    computed by :func:`compute_case`."""
+    if curves is None:
+        return [compute_case(c, options, device) for c in cases]
+    o, share = options, seconds / max(1, len(cases))
+    out = []
+    for c, tc in zip(cases, curves, strict=True):
+        t0 = time.perf_counter()
+        base = _base_row(c, o)
+        base.update(device=str(device), device_name=str(device.name))
+        sc = None
+        try:
+            sc = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
+        except Exception as exc:  # recorded, the sweep goes on
+            base.update(error=f"{type(exc).__name__}: {exc}")
+        out.append(_finish(o, base, sc, share + time.perf_counter() - t0, device))
+    return out
+
+
+def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
+                 batch: bool | None = None) -> list[Result]:  # fmt: skip
+    """:func:`compute_case` of every case, several surfaces per launch where that applies.
+
+    Parameters
+    ----------
+    cases : list of Case
+        The cases.
+    options : SweepOptions
+        Options shared by all cases.
+    device : str, optional
+        Warp device.
+    batch : bool, optional
+        None: batch where :func:`~warptrunc.sweep.batch.batch_size` allows (CUDA, light cases
+        of tile-sized grids); True: batch on the CPU too; False: one case at a time.
+
+    Returns
+    -------
+    list of (rows, curve)
+        As :func:`compute_case`, in the order of ``cases``.
+    """
+    dev = resolve_device(device)
+    size = 1 if batch is False else batch_size(options, dev, force=bool(batch))
+    if size <= 1 or len(cases) < 2:
+        return [compute_case(c, options, dev) for c in cases]
+    wb = WMBatch(options, min(size, len(cases)), dev)
+    out: list[Result] = []
+    for i in range(0, len(cases), wb.size):
+        chunk = cases[i : i + wb.size]
+        out += finish_batch(chunk, options, *truncate_batch(chunk, wb), dev)
+    return out
 
 
 def run_inprocess(
@@ -377,7 +372,11 @@ def run_inprocess(
         th = threading.Thread(target=writer, name="warptrunc-store", daemon=True)
         th.start()
         try:
-            for case in cases:
+            size = batch_size(options, resolve_device(dev)) if len(cases) > 1 else 1
+            if size > 1:
+                _pipelined(cases, options, resolve_device(dev), min(size, len(cases)), q.put,
+                           lambda: bool(failed))  # fmt: skip
+            for case in cases if size <= 1 else ():
                 if failed:
                     break
                 q.put(compute_case(case, options, dev))
@@ -386,6 +385,48 @@ def run_inprocess(
             th.join()
         if failed:
             raise failed[0]
+
+
+def _pipelined(cases: list[Case], options: SweepOptions, device, size: int,
+               put: Callable[[Result], Any], failed: Callable[[], bool]) -> None:  # fmt: skip
+    """Batches of ``size`` cases: a device thread generates and truncates batch i + 1 while
+    this thread fits batch i and hands its results to ``put``; stops early when ``failed()``.
+    An exception of either thread propagates here once the device thread has stopped."""
+    wb = WMBatch(options, size, device)  # MemoryError here, before any thread starts
+    handoff: queue.Queue = queue.Queue(maxsize=2)
+    stop = threading.Event()
+    crashed: list[BaseException] = []
+
+    def produce() -> None:
+        try:
+            for i in range(0, len(cases), size):
+                if stop.is_set():
+                    break
+                chunk = cases[i : i + size]
+                handoff.put((chunk, *truncate_batch(chunk, wb)))
+        except BaseException as exc:  # re-raised in the fitting thread
+            crashed.append(exc)
+        finally:
+            handoff.put(None)
+
+    th = threading.Thread(target=produce, name="warptrunc-batches", daemon=True)
+    th.start()
+    try:
+        while (item := handoff.get()) is not None:
+            for r in finish_batch(item[0], options, item[1], item[2], device):
+                put(r)
+            if failed():
+                break
+    finally:
+        stop.set()
+        while th.is_alive():  # unblock a producer waiting on a full handoff queue
+            try:
+                handoff.get(timeout=0.05)
+            except queue.Empty:
+                pass
+        th.join()
+    if crashed:
+        raise crashed[0]
 
 
 def compute_shard(
@@ -421,14 +462,14 @@ def compute_shard(
     that part's rows).
     """
     if curves is None:
-        return {"part": None, "rows": [compute_case(c, options, device)[0] for c in cases]}
+        return {"part": None, "rows": [r[0] for r in compute_many(cases, options, device)]}
     folder = Path(curves)
     name = part_name([c.case_id for c in cases], min(c.index for c in cases))
     if (folder / name).exists():
         held = part_rows(folder / name)
         if held is not None:
             return {"part": name, "rows": held}
-    results = [compute_case(c, options, device) for c in cases]
+    results = compute_many(cases, options, device)
     name, held = write_part(folder, results)
     return {"part": name, "rows": held}
 

@@ -260,11 +260,16 @@ def surface_range(surface: Surface, z: wp.array, device) -> tuple[float, float]:
     return ext
 
 
-def depth_thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
-    lo, hi = height_range(z, device) if lo_hi is None else lo_hi
+def host_thresholds(depth: np.ndarray, hi: float) -> tuple[np.ndarray, float]:
+    """Float32 thresholds z_top − ω_k (m) and 1/Δω (1/m; 0 without a step) for the kernels."""
     thr = (np.float64(hi) - depth).astype(np.float32)
     step = float(depth[-1] / (depth.size - 1)) if depth.size > 1 and depth[-1] > 0 else 0.0
-    inv_step = 1.0 / step if step > 0 else 0.0
+    return thr, 1.0 / step if step > 0 else 0.0
+
+
+def depth_thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
+    lo, hi = height_range(z, device) if lo_hi is None else lo_hi
+    thr, inv_step = host_thresholds(depth, hi)
     return wp.array(thr, dtype=wp.float32, device=device), lo, hi, thr, inv_step
 
 
@@ -316,15 +321,27 @@ def truncate_surface(
     t, lo, hi, thr, inv_step = depth_thresholds(z, depth, device, (lo, hi))
     Rt = float(np.float64(hi) - np.float64(lo))
     hist = histogram_bands(z, t, hi, inv_step, device, deep=depth[-1] > DEEP_FRACTION * Rt)
+    return curve_from_histogram(hist, depth, thr, (lo, hi), surface)
+
+
+def curve_from_histogram(
+    hist: np.ndarray, depth: np.ndarray, thr: np.ndarray, lo_hi: tuple[float, float], grid: Any
+) -> TruncationCurve:
+    """The :class:`TruncationCurve` of a contact-index histogram (counts = its cumulative sum).
+
+    ``depth`` (m) and ``thr`` (float32, m) as from :func:`depth_grid` and
+    :func:`depth_thresholds`; ``lo_hi`` the map's (min z, max z) (m); ``grid`` anything with
+    ``pixel_area`` (m²), ``apparent_area`` (m²), ``nx`` and ``ny`` (a :class:`Surface`)."""
+    lo, hi = lo_hi
     counts = np.cumsum(hist)
     return TruncationCurve(
         depth=depth,
         threshold=thr,
         n_contact_pixels=counts.astype(np.int64),
-        contact_area=counts * surface.pixel_area,
-        apparent_area=surface.apparent_area,
-        pixel_area=surface.pixel_area,
-        n_pixels=surface.nx * surface.ny,
+        contact_area=counts * grid.pixel_area,
+        apparent_area=grid.apparent_area,
+        pixel_area=grid.pixel_area,
+        n_pixels=grid.nx * grid.ny,
         z_top=hi,
         Rt=float(np.float64(hi) - np.float64(lo)),
     )
