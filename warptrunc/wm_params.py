@@ -151,8 +151,7 @@ def wm_spec(
     n_max = math.floor(math.log(Wr / Wc) / math.log(gamma) + 1e-9)
     n_f = n_max + 1
     n_terms = M * n_f
-    rng = np.random.default_rng(seed)
-    alpha = rng.uniform(0.0, 2.0 * math.pi, size=(M, n_f)).reshape(-1)
+    alpha = wm_phases(seed, M, n_f)
     m = np.repeat(np.arange(1, M + 1, dtype=np.float64), n_f)
     nn = np.tile(np.arange(n_f, dtype=np.float64), M)
     k = 2.0 * math.pi * gamma**nn / Wr
@@ -160,5 +159,16 @@ def wm_spec(
     return WMSpec(
         D=D, Wr=Wr, Lx=Lx, Ly=Ly, nx=nx, ny=ny, dx=dx, dy=dy, M=M, gamma=gamma, Wc=Wc,
         cutoff=cutoff, n_max=n_max, n_terms=n_terms, seed=seed, G=G, Rt=Rt, method=method,
-        kx=k * np.cos(theta), ky=k * np.sin(theta), alpha=alpha, w=gamma ** ((D - 3.0) * nn),
+        kx=k * np.cos(theta), ky=k * np.sin(theta), alpha=alpha, w=wm_weights(D, gamma, nn),
     )  # fmt: skip
+
+
+def wm_phases(seed: int, M: int, n_f: int) -> np.ndarray:
+    """Phases α_mn (rad), drawn uniformly in [0, 2π) by ``numpy.random.default_rng(seed)`` in
+    (m, n) order: (M·n_f,) float64, term t = (m − 1)·n_f + n."""
+    return np.random.default_rng(seed).uniform(0.0, 2.0 * math.pi, size=(M, n_f)).reshape(-1)
+
+
+def wm_weights(D: float, gamma: float, nn: np.ndarray) -> np.ndarray:
+    """Term weights γ^((D − 3)·n) (dimensionless) for the frequency indices ``nn``."""
+    return gamma ** ((D - 3.0) * nn)

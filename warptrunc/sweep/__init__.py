@@ -10,7 +10,8 @@
 Modules: ``grid`` (SweepGrid, SweepOptions, case ids), ``store`` (the Parquet store:
 sweep.json, ``curves/part-*.parquet``, cases.parquet), ``read`` (the columns of cases.parquet;
 :func:`load`, :func:`load_curves`), ``migration`` (:func:`migrate`, the previous layout), ``curves`` (writing and
-reading one part), ``engines`` (one case, one shard; in-process execution), ``cluster`` (Dask),
+reading one part), ``engines`` (one case, one shard; in-process execution), ``batch`` (several light
+surfaces per launch on a GPU), ``rows`` and ``elastic`` (a case's columns), ``cluster`` (Dask),
 ``run`` (:func:`run_sweep`), ``stats`` (pandas summaries, :func:`linear_fit`, and the older
 in-memory :func:`sweep`/:class:`SweepTable`). pandas, pyarrow and dask are imported only
 inside these functions: ``pip install "warptrunc[sweep]"``.

@@ -6,7 +6,8 @@ A light case (no fractal dimensions, no elastic solve) of a small grid is a few 
 microseconds of GPU work but about 1.5 ms of launches, allocations and synchronisations when
 run alone (measured on an H100 at 512² and 2048²). :class:`WMBatch` generates B surfaces of
 one grid in one launch per step (tables, tile GEMM, extremes, scaling, histogram), with device
-buffers kept from batch to batch and two host synchronisations per batch.
+buffers kept from batch to batch and two host waits per batch, each on an event of that
+batch only (so a second batch can be queued while the host fits the first).
 
 Every step evaluates the same float32/float64 expressions as the single-surface path
 (:func:`warptrunc.wm.wm_surface` with ``method="tile"``, then :func:`warptrunc.truncate`), in
@@ -17,17 +18,20 @@ the same order within each tile, so the counts and curves equal those of
 from __future__ import annotations
 
 from types import SimpleNamespace
+from typing import Any
 
 import numpy as np
 import warp as wp
 
 from .._device import check_memory
+from .._reduce import height_range
+from .._validate import check_int, check_range
 from ..kernels import reduce as _kr
 from ..kernels import truncation as _kt
 from ..kernels import wm as _kw
 from ..truncation.curve import TruncationCurve, curve_from_histogram, depth_grid, host_thresholds
-from ..wm import height_scale, pad_to
-from ..wm_params import wm_spec
+from ..wm import pad_to
+from ..wm_params import wm_phases, wm_spec, wm_weights
 from .grid import Case, SweepOptions
 
 __all__ = ["BATCH_PIXELS", "MAX_BATCH", "WMBatch", "batch_size"]
@@ -79,42 +83,84 @@ class WMBatch:
         Surfaces per batch (≥ 1).
     device : warp.context.Device
         The resolved device.
+    slots : int
+        Batches that may be in flight at once (≥ 1), each with its own buffers: 2 lets
+        :meth:`submit` queue the next batch while the host fits the last one.
 
     Raises
     ------
     MemoryError
         The buffers would not fit the device's free memory.
+
+    Notes
+    -----
+    A batch goes through :meth:`submit` (tables, product and the tile extremes, launched;
+    returns at once on a GPU), :meth:`scale` (waits for the extremes, then launches the
+    scaling and the histogram) and :meth:`collect` (waits for the histogram, returns the
+    curves). On a GPU the small inputs travel through pinned host buffers and the results come
+    back by asynchronous copies and events, so the host never waits for work queued after the
+    batch it asks about. :meth:`truncate` does the three steps at once.
     """
 
-    def __init__(self, options: SweepOptions, size: int, device: wp.context.Device):
+    def __init__(self, options: SweepOptions, size: int, device: wp.context.Device, *,
+                 slots: int = 1):  # fmt: skip
         o = self.options = options
         ref = wm_spec(2.5, o.Wr, L=o.L, n=o.n, Rt=1.0, M=o.M, gamma=o.gamma, Wc=o.Wc,
                       cutoff=o.cutoff)  # fmt: skip
         self.device, self.size = device, int(size)
         self.nx, self.ny, self.T = ref.nx, ref.ny, ref.n_terms
+        self.M, self.n_f = ref.M, ref.n_max + 1
+        self.nn = np.tile(np.arange(self.n_f, dtype=np.float64), ref.M)
         self.K = pad_to(2 * self.T, _kw.TILE_K)
         self.grid = SimpleNamespace(
             nx=ref.nx, ny=ref.ny, pixel_area=ref.dx * ref.dy,
             apparent_area=(ref.nx * ref.dx) * (ref.ny * ref.dy),
         )  # fmt: skip
         self.dx, self.dy = ref.dx, ref.dy
-        B, nx, ny, K = self.size, self.nx, self.ny, self.K
+        B, nx, ny, K, T = self.size, self.nx, self.ny, self.K, self.T
         n1 = o.increments + 1
-        check_memory(4 * B * (nx * ny + K * (nx + ny)) + 8 * B * n1, device,
-                     f"a batch of {B} WM surfaces of {nx}×{ny}")  # fmt: skip
+        tiles = (B * nx * ny) // int(_kr.TILE) if device.is_cuda else 0
+        per_slot = 4 * B * (nx * ny + K * (nx + ny)) + 8 * B * (n1 + 2 * T) + 8 * tiles
+        check_memory(slots * per_slot, device, f"{slots} batch(es) of {B} WM surfaces of {nx}×{ny}")
         self.kx = wp.array(ref.kx, dtype=wp.float64, device=device)
         self.ky = wp.array(ref.ky, dtype=wp.float64, device=device)
-        self.p = wp.zeros((B * ny, K), dtype=wp.float32, device=device)
-        self.q = wp.zeros((B * K, nx), dtype=wp.float32, device=device)
-        self.z = wp.empty((B * ny, nx), dtype=wp.float32, device=device)
-        self.hist = wp.zeros((B, n1), dtype=wp.int64, device=device)
-        tiles = (B * nx * ny) // int(_kr.TILE)
-        self.lo = wp.empty(tiles, dtype=wp.float32, device=device)
-        self.hi = wp.empty(tiles, dtype=wp.float32, device=device)
+        pinned = device.is_cuda
+
+        def pair(shape, dtype):  # (device array, host staging array)
+            d = wp.zeros(shape, dtype=dtype, device=device)
+            return d, (wp.zeros(shape, dtype=dtype, device="cpu", pinned=pinned) if pinned else None)
+
+        self._slots = []
+        for _ in range(max(1, int(slots))):
+            b = SimpleNamespace(
+                p=wp.zeros((B * ny, K), dtype=wp.float32, device=device),
+                q=wp.zeros((B * K, nx), dtype=wp.float32, device=device),
+                z=wp.empty((B * ny, nx), dtype=wp.float32, device=device),
+                alpha=pair((B, T), wp.float64), w=pair((B, T), wp.float64),
+                c0=pair(B, wp.float64), scale=pair(B, wp.float64),
+                t=pair(B * n1, wp.float32), top=pair(B, wp.float32), inv=pair(B, wp.float32),
+                hist=pair((B, n1), wp.int64),
+                lo=pair(max(tiles, 1), wp.float32), hi=pair(max(tiles, 1), wp.float32),
+                event=wp.Event(device) if device.is_cuda else None, job=None,
+            )  # fmt: skip
+            self._slots.append(b)
+        self._last = None
 
     def heights(self, i: int) -> np.ndarray:
-        """Host copy of surface ``i`` of the last batch: (ny, nx) float32 heights (m)."""
-        return self.z[i * self.ny : (i + 1) * self.ny].numpy()
+        """Host copy of one surface of the last collected batch.
+
+        Parameters
+        ----------
+        i : int
+            Position of the surface in that batch.
+
+        Returns
+        -------
+        (ny, nx) float32 ndarray
+            Its heights (m), as :func:`warptrunc.wm_surface` would give on this device.
+        """
+        z = self._last.z if self._last is not None else self._slots[0].z
+        return z[i * self.ny : (i + 1) * self.ny].numpy()
 
     def truncate(self, cases: list[Case]) -> list[TruncationCurve]:
         """Generate and truncate the surfaces of ``cases`` (at most ``size``) in one batch.
@@ -129,7 +175,7 @@ class WMBatch:
         list of TruncationCurve
             One per case, in order, as :func:`warptrunc.truncate` of that case's
             :func:`warptrunc.wm_surface` would give on this device. The heights stay in the
-            batch's buffer until the next call (:meth:`heights`).
+            batch's buffer until the buffer is used again (:meth:`heights`).
 
         Raises
         ------
@@ -137,67 +183,168 @@ class WMBatch:
             A case's parameters are out of range or its surface is flat (the caller retries
             the batch case by case, so that each case records its own error).
         """
+        job = self.submit(cases)
+        self.scale(job)
+        return self.collect(job)
+
+    def submit(self, cases: list[Case]) -> Any:
+        """Queue the tables, product and tile extremes of ``cases`` on a free slot.
+
+        Parameters
+        ----------
+        cases : list of Case
+            At most ``size`` cases.
+
+        Returns
+        -------
+        object
+            The slot now holding the batch, for :meth:`scale` and :meth:`collect`.
+
+        Raises
+        ------
+        ValueError
+            A wrong number of cases, or a case's D, R_t or seed out of range.
+        RuntimeError
+            Every slot holds a batch not yet collected.
+        """
         o, dev = self.options, self.device
         b = len(cases)
         if not 1 <= b <= self.size:
             raise ValueError(f"a batch holds 1 to {self.size} cases, got {b}")
-        specs = [
-            wm_spec(c.D, o.Wr, L=o.L, n=o.n, Rt=c.delta * o.Wr, M=o.M, gamma=o.gamma, Wc=o.Wc,
-                    cutoff=o.cutoff, seed=c.seed)
-            for c in cases
-        ]  # fmt: skip
+        for c in cases:  # the checks of wm_spec that depend on the case
+            check_range("D", c.D, 2.0, 3.0)
+            check_range("Rt", c.delta * o.Wr, 0.0, unit="m")
+            check_int("seed", c.seed, 0)
+        s = next((x for x in self._slots if x.job is None), None)
+        if s is None:
+            raise RuntimeError("every slot holds a batch: collect one first")
         nx, ny, T, K = self.nx, self.ny, self.T, self.K
-        alpha = wp.array(np.stack([s.alpha for s in specs]), dtype=wp.float64, device=dev)
-        w = wp.array(np.stack([s.w for s in specs]), dtype=wp.float64, device=dev)
-        p, q, z = self.p[: b * ny], self.q[: b * K], self.z[: b * ny]
+        alpha = np.stack([wm_phases(c.seed, self.M, self.n_f) for c in cases])
+        w = np.stack([wm_weights(c.D, o.gamma, self.nn) for c in cases])
+        self._put(s.alpha, alpha)
+        self._put(s.w, w)
+        p, q, z = s.p[: b * ny], s.q[: b * K], s.z[: b * ny]
         wp.launch(_kw.column_table_batch_kernel, dim=(b, T, nx),
-                  inputs=[self.kx, alpha, self.dx, K], outputs=[q], device=dev)  # fmt: skip
+                  inputs=[self.kx, s.alpha[0][:b], self.dx, K], outputs=[q], device=dev)  # fmt: skip
         wp.launch(_kw.row_table_batch_kernel, dim=(b, ny, T),
-                  inputs=[self.ky, w, self.dy, ny], outputs=[p], device=dev)  # fmt: skip
+                  inputs=[self.ky, s.w[0][:b], self.dy, ny], outputs=[p], device=dev)  # fmt: skip
         tm = ny // int(_kw.TILE_M)
         wp.launch_tiled(_kw.wm_tile_gemm_batch_kernel, dim=(b * tm, nx // int(_kw.TILE_N)),
                         inputs=[p, q, tm], outputs=[z], block_dim=256, device=dev)  # fmt: skip
-        raw = self._extremes(z, b)  # sync point
-        c0 = np.array([np.sum(s.w * np.cos(s.alpha)) for s in specs])
-        scale = np.array([height_scale(s, lo, hi) for s, (lo, hi) in zip(specs, raw, strict=True)])
+        if dev.is_cuda:  # whole tiles: nx·ny is a multiple of 128² = 2·TILE
+            tiles = b * nx * ny // int(_kr.TILE)
+            wp.launch_tiled(_kr.min_max_tile_kernel, dim=tiles, inputs=[z.flatten()],
+                            outputs=[s.lo[0][:tiles], s.hi[0][:tiles]], block_dim=256,
+                            device=dev)  # fmt: skip
+            self._get(s.lo, tiles)
+            self._get(s.hi, tiles)
+            wp.record_event(s.event)
+        s.job = SimpleNamespace(cases=cases, alpha=alpha, w=w, ext=None, depths=None, thr=None)
+        return s
+
+    def scale(self, s: Any) -> None:
+        """Wait for the extremes of a batch, then queue its scaling and truncation histogram.
+
+        Parameters
+        ----------
+        s : object
+            The slot returned by :meth:`submit`.
+
+        Raises
+        ------
+        ValueError
+            A surface of the batch is flat (its slot is then free again).
+        """
+        o, dev, j = self.options, self.device, s.job
+        b, ny, nx = len(j.cases), self.ny, self.nx
+        z = s.z[: b * ny]
+        if dev.is_cuda:
+            wp.synchronize_event(s.event)
+            tiles = b * nx * ny // int(_kr.TILE)
+            lo_h = s.lo[1].numpy()[:tiles].reshape(b, -1)
+            hi_h = s.hi[1].numpy()[:tiles].reshape(b, -1)
+            raw = [(float(lo_h[i].min()), float(hi_h[i].max())) for i in range(b)]
+        else:
+            raw = [height_range(z[i * ny : (i + 1) * ny], dev) for i in range(b)]
+        c0 = np.sum(j.w * np.cos(j.alpha), axis=1)
+        scale = np.empty(b)
+        for i, (c, (lo, hi)) in enumerate(zip(j.cases, raw, strict=True)):
+            if not hi > lo:  # as warptrunc.wm.height_scale
+                s.job = None
+                raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
+            scale[i] = c.delta * o.Wr / (hi - lo)
+        self._put(s.c0, c0)
+        self._put(s.scale, scale)
         wp.launch(_kw.affine_batch_kernel, dim=(b * ny, nx),
-                  inputs=[z, ny, wp.array(c0, dtype=wp.float64, device=dev),
-                          wp.array(scale, dtype=wp.float64, device=dev)], device=dev)  # fmt: skip
+                  inputs=[z, ny, s.c0[0][:b], s.scale[0][:b]], device=dev)  # fmt: skip
         # exact float32 extremes of the scaled maps, as warptrunc.wm._generate records them
-        ext = [tuple(float(np.float32((np.float64(v) + c0[i]) * scale[i])) for v in raw[i])
-               for i in range(b)]  # fmt: skip
-        depths, thrs, inv = [], [], []
-        for lo, hi in ext:
+        j.ext = [tuple(float(np.float32((np.float64(v) + c0[i]) * scale[i])) for v in raw[i])
+                 for i in range(b)]  # fmt: skip
+        j.depths, j.thr, inv = [], [], np.empty(b)
+        for lo, hi in j.ext:
             d = depth_grid(float(np.float64(hi) - np.float64(lo)), o.increments,
                            max_depth=o.max_depth, max_depth_fraction=o.max_depth_fraction)  # fmt: skip
-            thr, inv_step = host_thresholds(d, hi)
-            depths.append(d)
-            thrs.append(thr)
-            inv.append(inv_step)
-        hist = self.hist[:b]
+            thr, inv[len(j.depths)] = host_thresholds(d, hi)
+            j.depths.append(d)
+            j.thr.append(thr)
+        n1 = o.increments + 1
+        self._put(s.t, np.concatenate(j.thr))
+        self._put(s.top, np.array([e[1] for e in j.ext], np.float32))
+        self._put(s.inv, inv.astype(np.float32))
+        hist = s.hist[0][:b]
         hist.zero_()
         z4 = wp.array(ptr=z.ptr, dtype=wp.vec4, shape=(b, nx * ny // 4), device=dev)
-        wp.launch(
-            _kt.contact_histogram_batch_kernel, dim=(b, nx * ny // 4),
-            inputs=[z4, wp.array(np.concatenate(thrs), dtype=wp.float32, device=dev),
-                    wp.array(np.array([e[1] for e in ext], np.float32), device=dev),
-                    wp.array(np.array(inv, np.float32), device=dev)],
-            outputs=[hist], device=dev,
-        )  # fmt: skip
-        h = hist.numpy()  # sync point
-        return [curve_from_histogram(h[i], depths[i], thrs[i], ext[i], self.grid) for i in range(b)]
+        wp.launch(_kt.contact_histogram_batch_kernel, dim=(b, nx * ny // 4),
+                  inputs=[z4, s.t[0][: b * n1], s.top[0][:b], s.inv[0][:b]], outputs=[hist],
+                  device=dev)  # fmt: skip
+        if dev.is_cuda:
+            self._get(s.hist, b * n1)
+            wp.record_event(s.event)
 
-    def _extremes(self, z: wp.array, b: int) -> list[tuple[float, float]]:
-        """(min, max) of each of the first ``b`` raw maps (float32 values as Python floats)."""
-        per = self.nx * self.ny
-        if self.device.is_cuda:  # whole tiles: nx·ny is a multiple of 128² = 2·TILE
-            tiles = b * per // int(_kr.TILE)
-            lo, hi = self.lo[:tiles], self.hi[:tiles]
-            wp.launch_tiled(_kr.min_max_tile_kernel, dim=tiles, inputs=[z.flatten()],
-                            outputs=[lo, hi], block_dim=256, device=self.device)  # fmt: skip
-            lo_h, hi_h = lo.numpy().reshape(b, -1), hi.numpy().reshape(b, -1)
-            return [(float(lo_h[i].min()), float(hi_h[i].max())) for i in range(b)]
-        from .._reduce import height_range
+    def collect(self, s: Any) -> list[TruncationCurve]:
+        """Wait for the histogram of a batch and return its truncation curves.
 
-        return [height_range(z[i * self.ny : (i + 1) * self.ny], self.device) for i in range(b)]
+        Parameters
+        ----------
+        s : object
+            The slot returned by :meth:`submit`, after :meth:`scale`.
 
+        Returns
+        -------
+        list of TruncationCurve
+            One per case of the batch, in order; the slot is free again.
+        """
+        j, b = s.job, len(s.job.cases)
+        if self.device.is_cuda:
+            wp.synchronize_event(s.event)
+            h = s.hist[1].numpy()[:b]
+        else:
+            h = s.hist[0].numpy()[:b]
+        s.job, self._last = None, s
+        return [curve_from_histogram(h[i], j.depths[i], j.thr[i], j.ext[i], self.grid)
+                for i in range(b)]  # fmt: skip
+
+    def release(self, s: Any) -> None:
+        """Free the slot of a batch that failed between :meth:`submit` and :meth:`collect`.
+
+        Parameters
+        ----------
+        s : object
+            The slot returned by :meth:`submit`.
+        """
+        s.job = None
+
+    def _put(self, pair, values: np.ndarray) -> None:
+        """values → the device array of ``pair`` (through its pinned staging array on a GPU)."""
+        d, h = pair
+        flat = np.ascontiguousarray(values).reshape(-1)
+        if h is None:
+            d.flatten()[: flat.size].assign(flat)
+            return
+        h.numpy().reshape(-1)[: flat.size] = flat
+        wp.copy(d, h, count=flat.size)
+
+    def _get(self, pair, count: int) -> None:
+        """Queue the copy of the first ``count`` values of ``pair``'s device array to its
+        pinned host array (asynchronous)."""
+        wp.copy(pair[1], pair[0], count=count)

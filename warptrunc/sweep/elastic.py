@@ -21,7 +21,19 @@ __all__ = ["bem_blank", "elastic_record"]
 
 
 def bem_blank(o: SweepOptions) -> dict[str, Any]:
-    """The elastic columns of ``o.bem_fractions``, all missing (NaN or None); {} without them."""
+    """The elastic columns of a case before its solve.
+
+    Parameters
+    ----------
+    o : SweepOptions
+        The sweep's options (``bem_fractions``).
+
+    Returns
+    -------
+    dict of str to Any
+        Every elastic column missing (NaN, or None for flags and counts); empty without
+        ``bem_fractions``.
+    """
     from .read import BEM_QUANTITIES
 
     if not o.bem_fractions:

@@ -14,11 +14,8 @@ which parts exist and drops a second part of a case.
 
 from __future__ import annotations
 
-import functools
-import json
-import math
+import collections
 import queue
-import socket
 import threading
 import time
 from collections.abc import Callable
@@ -29,118 +26,32 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .. import __version__
 from .._device import resolve_device
 from .._progress import progress_bar
-from .._provenance import git_commit
-from ..stiffness import DEFAULT_MIN_PIXELS, fit_power_law, stiffness_curve
+from ..stiffness import fit_power_law, stiffness_curve
 from ..truncation import truncate
 from ..wm import wm_surface
 from .batch import WMBatch, batch_size
 from .curves import part_name, part_rows, write_part
-from .elastic import bem_blank, elastic_record
-from .grid import FRACTAL_METHODS, Case, SweepOptions
+from .elastic import elastic_record
+from .grid import Case, SweepOptions
+from .rows import base_row, fit_ranges, fractal_record, resolve_min_pixels
 
-__all__ = ["compute_case", "compute_many", "compute_shard", "elastic_record", "failed_case",
-           "finish_batch", "pinned_device", "run_inprocess", "truncate_batch"]
+__all__ = [
+    "batched_results",
+    "compute_case",
+    "compute_many",
+    "compute_shard",
+    "elastic_record",
+    "failed_case",
+    "finish_batch",
+    "pinned_device",
+    "run_inprocess",
+]
 
 Result = tuple[list[dict[str, Any]], "dict[str, np.ndarray] | None"]
 Sink = Callable[[list[dict[str, Any]], "dict[str, np.ndarray] | None"], bool]
 BatchSink = Callable[[list[Result]], Any]
-
-
-@functools.cache
-def _provenance() -> tuple[str, str | None, str]:
-    return __version__, git_commit(), socket.gethostname()
-
-
-def _base_row(case: Case, o: SweepOptions) -> dict[str, Any]:
-    Lx, Ly = (o.L, o.L) if isinstance(o.L, float) else o.L
-    nx, ny = (o.n, o.n) if isinstance(o.n, int) else o.n
-    lo, hi = o.depth_window if o.depth_window is not None else (np.nan, np.nan)
-    version, commit, host = _provenance()
-    return {
-        "case_id": case.case_id, "case_index": case.index, "D_in": case.D, "delta": case.delta,
-        "seed": case.seed, "Rt_m": case.delta * o.Wr, "Wr_m": o.Wr, "Lx_m": Lx, "Ly_m": Ly,
-        "nx": nx, "ny": ny, "M": o.M, "gamma": o.gamma,
-        "Wc_m": np.nan if o.Wc is None else o.Wc, "cutoff": o.cutoff,
-        "increments": o.increments, "max_depth_fraction": o.max_depth_fraction,
-        "max_depth_m": np.nan if o.max_depth is None else o.max_depth, "E_Pa": o.E, "nu": o.nu,
-        "E_flat_Pa": o.E_flat, "nu_flat": o.nu_flat, "beta_prime": o.beta_prime,
-        "depth_window_lo_m": lo, "depth_window_hi_m": hi, "alpha": np.nan, "beta": np.nan,
-        "r2": np.nan, "n_points": None, "fit_depth_min_m": np.nan, "fit_depth_max_m": np.nan,
-        "final_contact_pixels": None, "final_area_fraction": np.nan, "Rt_measured_m": np.nan,
-        **{f"D_{m}{s}": np.nan for m in FRACTAL_METHODS for s in ("", "_r2")},
-        "fractal_options": None, "fractal_seconds": np.nan, "fit_error": None, "error": None, "host": host, "warptrunc_version": version,
-        "git_commit": commit, **bem_blank(o),
-    }  # fmt: skip
-
-
-def _fit_ranges(o: SweepOptions) -> list[tuple[int | None, float]]:
-    """(min_pixels, fraction) per fit range: (mp, NaN) absolute, (None, f) relative."""
-    return [(mp, math.nan) for mp in o.min_pixels] + [(None, f) for f in o.min_pixels_fraction]
-
-
-def resolve_min_pixels(fraction: float, final_contact_pixels: int) -> int:
-    """max(DEFAULT_MIN_PIXELS, ⌈fraction·final_contact_pixels⌉): a relative fit range's count.
-
-    Parameters
-    ----------
-    fraction : float
-        Fraction of the contact pixels at the deepest truncation (dimensionless).
-    final_contact_pixels : int
-        Contact pixels at the deepest truncation (count).
-
-    Returns
-    -------
-    int
-        The ``min_pixels`` of the fit range (pixels).
-
-    Notes
-    -----
-    The product is rounded to 9 decimals before the ceiling, so that float noise
-    (0.05·280 = 14.000000000000002) does not add a pixel.
-    """
-
-    return max(DEFAULT_MIN_PIXELS, math.ceil(round(fraction * final_contact_pixels, 9)))
-
-
-def fractal_record(fits: dict[str, Any]) -> dict[str, Any]:
-    """Columns ``D_<m>``, ``D_<m>_r2`` and ``fractal_options`` (JSON) of ``{m: FractalFit}``.
-
-    Parameters
-    ----------
-    fits : dict of str to FractalFit
-        Fits by method key.
-
-    Returns
-    -------
-    dict of str to Any
-        ``D_<m>`` and ``D_<m>_r2`` (float, dimensionless) per method, and ``fractal_options``
-        (a JSON string).
-
-    Notes
-    -----
-    ``fractal_options`` holds, per method, the scalars of :meth:`FractalFit.to_dict` (slope,
-    intercept, fit range in m), the number of fitted scales and the fit's ``options`` (the
-    convention it ran with); the per-scale arrays are left out to keep rows small.
-    """
-    out: dict[str, Any] = {}
-    info = {}
-    for m, f in fits.items():
-        out[f"D_{m}"], out[f"D_{m}_r2"] = float(f.D), float(f.r2)
-        d = {k: v for k, v in f.to_dict().items() if np.ndim(v) == 0 and k not in ("D", "r2")}
-        info[m] = {**d, "n_fitted": f.n_fitted, "options": f.options}
-    out["fractal_options"] = json.dumps(info, default=_json_default, allow_nan=True)
-    return out
-
-
-def _json_default(v: Any) -> Any:
-    if isinstance(v, np.ndarray):
-        return v.tolist()
-    if isinstance(v, np.generic):
-        return v.item()
-    raise TypeError(f"{type(v).__name__} is not JSON-serialisable")
 
 
 def compute_case(
@@ -169,7 +80,7 @@ def compute_case(
     """
 
     o = options
-    base = _base_row(case, o)
+    base = base_row(case, o)
     t0 = time.perf_counter()
     sc = None
     try:
@@ -207,7 +118,7 @@ def _finish(o: SweepOptions, base: dict[str, Any], sc, seconds: float, device) -
             Rt_measured_m=float(sc.Rt),
         )
     rows = []
-    for mp, frac in _fit_ranges(o):
+    for mp, frac in fit_ranges(o):
         if mp is None:
             mp = 0 if curve is None else resolve_min_pixels(frac, base["final_contact_pixels"])
         row = {**base, "min_pixels": mp, "min_pixels_fraction": frac}
@@ -227,33 +138,37 @@ def _finish(o: SweepOptions, base: dict[str, Any], sc, seconds: float, device) -
     return rows, curve
 
 
-def truncate_batch(cases: list[Case], batch: WMBatch) -> tuple[list | None, float]:
-    """The truncation curves of ``cases`` from one :class:`~warptrunc.sweep.batch.WMBatch`
-    call, or None when it raised (the cases are then computed one by one, each recording its
-    own error); and the wall time of the call (s)."""
-    t0 = time.perf_counter()
-    try:
-        curves = batch.truncate(cases)
-    except Exception:  # e.g. a flat surface: compute_case records each case's error
-        curves = None
-    return curves, time.perf_counter() - t0
-
-
 def finish_batch(cases: list[Case], options: SweepOptions, curves, seconds: float,
                  device: wp.context.Device) -> list[Result]:  # fmt: skip
-    """The results (:func:`compute_case`'s) of ``cases`` from their truncation curves
-    (:func:`truncate_batch`); ``seconds``: the batch's wall time (s), shared equally.
+    """The results of ``cases`` from their batched truncation curves.
 
-    A case's ``seconds`` is its share of the batch plus its own fit time; equal rows and curves
-    to :func:`compute_case` on the same device otherwise. With ``curves`` None every case is
-    computed by :func:`compute_case`."""
+    Parameters
+    ----------
+    cases : list of Case
+        The cases of one batch.
+    options : SweepOptions
+        Options shared by all cases.
+    curves : list of TruncationCurve or None
+        Their curves (:meth:`~warptrunc.sweep.batch.WMBatch.collect`); None: every case is
+        computed by :func:`compute_case` instead.
+    seconds : float
+        The batch's wall time (s), shared equally between its cases.
+    device : warp.context.Device
+        The resolved device.
+
+    Returns
+    -------
+    list of (rows, curve)
+        As :func:`compute_case` on the same device; a case's ``seconds`` is its share of the
+        batch plus its own fit time.
+    """
     if curves is None:
         return [compute_case(c, options, device) for c in cases]
     o, share = options, seconds / max(1, len(cases))
     out = []
     for c, tc in zip(cases, curves, strict=True):
         t0 = time.perf_counter()
-        base = _base_row(c, o)
+        base = base_row(c, o)
         base.update(device=str(device), device_name=str(device.name))
         sc = None
         try:
@@ -289,12 +204,7 @@ def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
     size = 1 if batch is False else batch_size(options, dev, force=bool(batch))
     if size <= 1 or len(cases) < 2:
         return [compute_case(c, options, dev) for c in cases]
-    wb = WMBatch(options, min(size, len(cases)), dev)
-    out: list[Result] = []
-    for i in range(0, len(cases), wb.size):
-        chunk = cases[i : i + wb.size]
-        out += finish_batch(chunk, options, *truncate_batch(chunk, wb), dev)
-    return out
+    return [r for rs in batched_results(cases, options, dev, min(size, len(cases))) for r in rs]
 
 
 def run_inprocess(
@@ -374,8 +284,11 @@ def run_inprocess(
         try:
             size = batch_size(options, resolve_device(dev)) if len(cases) > 1 else 1
             if size > 1:
-                _pipelined(cases, options, resolve_device(dev), min(size, len(cases)), q.put,
-                           lambda: bool(failed))  # fmt: skip
+                for rs in batched_results(cases, options, resolve_device(dev), min(size, len(cases))):
+                    for r in rs:
+                        q.put(r)
+                    if failed:
+                        break
             for case in cases if size <= 1 else ():
                 if failed:
                     break
@@ -387,46 +300,67 @@ def run_inprocess(
             raise failed[0]
 
 
-def _pipelined(cases: list[Case], options: SweepOptions, device, size: int,
-               put: Callable[[Result], Any], failed: Callable[[], bool]) -> None:  # fmt: skip
-    """Batches of ``size`` cases: a device thread generates and truncates batch i + 1 while
-    this thread fits batch i and hands its results to ``put``; stops early when ``failed()``.
-    An exception of either thread propagates here once the device thread has stopped."""
-    wb = WMBatch(options, size, device)  # MemoryError here, before any thread starts
-    handoff: queue.Queue = queue.Queue(maxsize=2)
-    stop = threading.Event()
-    crashed: list[BaseException] = []
+def batched_results(cases: list[Case], options: SweepOptions, device, size: int):
+    """Yield the results (:func:`compute_case`'s) of ``cases``, batch by batch.
 
-    def produce() -> None:
-        try:
-            for i in range(0, len(cases), size):
-                if stop.is_set():
-                    break
-                chunk = cases[i : i + size]
-                handoff.put((chunk, *truncate_batch(chunk, wb)))
-        except BaseException as exc:  # re-raised in the fitting thread
-            crashed.append(exc)
-        finally:
-            handoff.put(None)
+    Parameters
+    ----------
+    cases : list of Case
+        The cases, in order.
+    options : SweepOptions
+        Options shared by all cases (light cases: see
+        :func:`~warptrunc.sweep.batch.batch_size`).
+    device : warp.context.Device
+        The resolved device.
+    size : int
+        Cases per batch (≥ 1).
 
-    th = threading.Thread(target=produce, name="warptrunc-batches", daemon=True)
-    th.start()
-    try:
-        while (item := handoff.get()) is not None:
-            for r in finish_batch(item[0], options, item[1], item[2], device):
-                put(r)
-            if failed():
-                break
-    finally:
-        stop.set()
-        while th.is_alive():  # unblock a producer waiting on a full handoff queue
+    Yields
+    ------
+    list of (rows, curve)
+        The results of one batch, in the order of ``cases``.
+
+    Notes
+    -----
+    One thread keeps the device busy: batch i + 1 is scaled and batch i + 2 queued
+    (:meth:`~warptrunc.sweep.batch.WMBatch.submit`) before the host fits batch i. A batch
+    whose submission or scaling raises ValueError is computed case by case (each case records
+    its own error). A case's ``seconds`` is its share of its batch's time from submission to
+    its curves, plus its own fit time.
+    """
+    wb = WMBatch(options, size, device, slots=2)
+    chunks = iter([cases[i : i + size] for i in range(0, len(cases), size)])
+    pending: collections.deque = collections.deque()  # [chunk, slot or None, t0, scaled]
+
+    def submit_next() -> None:
+        if (chunk := next(chunks, None)) is not None:
+            t0 = time.perf_counter()
             try:
-                handoff.get(timeout=0.05)
-            except queue.Empty:
-                pass
-        th.join()
-    if crashed:
-        raise crashed[0]
+                slot = wb.submit(chunk)
+            except ValueError:  # a case out of range: compute_case records it
+                slot = None
+            pending.append([chunk, slot, t0, False])
+
+    def scale_first() -> None:
+        e = pending[0] if pending else None
+        if e is not None and e[1] is not None and not e[3]:
+            try:
+                wb.scale(e[1])
+                e[3] = True
+            except ValueError:  # a flat surface
+                wb.release(e[1])
+                e[1] = None
+
+    submit_next()
+    scale_first()
+    submit_next()
+    while pending:
+        chunk, slot, t0, _ = pending.popleft()
+        curves = None if slot is None else wb.collect(slot)
+        seconds = time.perf_counter() - t0
+        scale_first()
+        submit_next()
+        yield finish_batch(chunk, options, curves, seconds, device)
 
 
 def compute_shard(
@@ -518,8 +452,8 @@ def failed_case(case: Case, options: SweepOptions, why: str):
     curve : None
         No curve.
     """
-    base = _base_row(case, options)
+    base = base_row(case, options)
     stamp = datetime.now(timezone.utc).isoformat(timespec="milliseconds")
     base.update(error=why, seconds=np.nan, finished_utc=stamp, device=None, device_name=None)
     return [{**base, "min_pixels": mp or 0, "min_pixels_fraction": f}
-            for mp, f in _fit_ranges(options)], None  # fmt: skip
+            for mp, f in fit_ranges(options)], None  # fmt: skip
