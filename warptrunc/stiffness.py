@@ -440,12 +440,13 @@ def fit_power_law(
     x = np.log(sc.F_over_EA[sel])
     y = np.log(sc.Ec_over_E[sel])
     # least squares by the centred normal equations (as np.polyfit(x, y, 1), ~5× faster)
-    xc, yc = x - x.mean(), y - y.mean()
+    xm, ym = float(np.add.reduce(x)) / x.size, float(np.add.reduce(y)) / y.size
+    xc, yc = x - xm, y - ym
     sxx = float(xc @ xc)
     if not sxx > 0:
         raise ValueError("F/(E·A) does not vary over the fit range: no slope to fit")
     alpha = float(xc @ yc) / sxx
-    logb = float(y.mean()) - alpha * float(x.mean())
+    logb = ym - alpha * xm
     resid = yc - alpha * xc
     ss_tot = float(yc @ yc)
     r2 = 1.0 - float(resid @ resid) / ss_tot if ss_tot > 0 else 1.0

@@ -200,12 +200,16 @@ def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: 
                        scheduler=client, progress=False, device=device, **opts)  # fmt: skip
         wall = time.perf_counter() - t0
         devices = sorted(df["device"].unique())
+        case_s = df.drop_duplicates("case_id")["seconds"]
     finally:
         client.close()
         cluster.close()
         shutil.rmtree(tmp, ignore_errors=True)
     _check(df)
-    return wall, devices
+    # busy: the workers' summed case times over their wall time (1.0 = never idle); a busy
+    # fraction near 1 with a low efficiency means the cases themselves ran slower side by
+    # side (shared memory bandwidth, caches), not that the scheduler left workers idle
+    return wall, devices, float(case_s.median()), float(case_s.sum() / (workers * wall))
 
 
 def main(argv=None) -> int:
@@ -255,10 +259,10 @@ def main(argv=None) -> int:
         if "workers" in args.runs:
             for w in args.workers:
                 pin = args.pin_cores if args.pin_cores is not None else str(dev) == "cpu"
-                wall, devs = workers_run(n, args.cases, w, device, args.increments,
-                                         args.bem_fractions, pin)  # fmt: skip
+                wall, devs, case_s, busy = workers_run(n, args.cases, w, device, args.increments,
+                                                       args.bem_fractions, pin)  # fmt: skip
                 results.append(dict(n=n, run=f"{w} workers", workers=w, wall_s=wall,
-                                    devices=devs))  # fmt: skip
+                                    devices=devs, case_s=case_s, busy=busy))  # fmt: skip
     for r in results:
         r["surfaces_per_s"] = args.cases / r["wall_s"]
         ref = [q for q in results if q["n"] == r["n"] and q["run"] == ("kernel" if r["run"] in ("inproc", "batch") else "1 workers")]
@@ -273,13 +277,17 @@ def main(argv=None) -> int:
     print(f"\ndevice {dev} ({dev.name}); host {platform.node()}, {os.cpu_count()} CPUs; "
           f"warp {wp.config.version}; {args.cases} cases per run, {args.increments} increments{bem}")  # fmt: skip
     print("ratio: batch and inproc / kernel loop; N workers: rate / (N × rate of 1 worker)\n")
-    print(f"| {'n':>6} | {'run':<10} | {'devices':<16} | {'wall s':>8} | {'surfaces/s':>10} | {'ratio':>6} |")
-    print(f"|{'-' * 8}|{'-' * 12}|{'-' * 18}|{'-' * 10}|{'-' * 12}|{'-' * 8}|")
+    print("case s: median wall time of one case; busy: Σ case times / (workers × wall)\n")
+    print(f"| {'n':>6} | {'run':<10} | {'devices':<16} | {'wall s':>8} | {'surfaces/s':>10} | "
+          f"{'ratio':>6} | {'case s':>7} | {'busy':>5} |")  # fmt: skip
+    print(f"|{'-' * 8}|{'-' * 12}|{'-' * 18}|{'-' * 10}|{'-' * 12}|{'-' * 8}|{'-' * 9}|{'-' * 7}|")
     for r in results:
         devs = ",".join(r.get("devices", [str(dev)]))
         ratio = f"{r['ratio']:.2f}" if "ratio" in r else ""
+        case_s = f"{r['case_s']:.3f}" if "case_s" in r else ""
+        busy = f"{r['busy']:.2f}" if "busy" in r else ""
         print(f"| {r['n']:>6} | {r['run']:<10} | {devs:<16} | {r['wall_s']:>8.2f} | "
-              f"{r['surfaces_per_s']:>10.1f} | {ratio:>6} |")  # fmt: skip
+              f"{r['surfaces_per_s']:>10.1f} | {ratio:>6} | {case_s:>7} | {busy:>5} |")  # fmt: skip
     if args.json:
         with args.json.open("a") as fh:
             for r in results:

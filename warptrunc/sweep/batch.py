@@ -29,7 +29,7 @@ from .._validate import check_int, check_range
 from ..kernels import reduce as _kr
 from ..kernels import truncation as _kt
 from ..kernels import wm as _kw
-from ..truncation.curve import TruncationCurve, curve_from_histogram, depth_grid, host_thresholds
+from ..truncation.curve import TruncationCurve, curve_from_histogram, depth_grid
 from ..wm import pad_to
 from ..wm_params import wm_phases, wm_spec, wm_weights
 from .grid import Case, SweepOptions
@@ -280,16 +280,23 @@ class WMBatch:
         # exact float32 extremes of the scaled maps, as warptrunc.wm._generate records them
         j.ext = [tuple(float(np.float32((np.float64(v) + c0[i]) * scale[i])) for v in raw[i])
                  for i in range(b)]  # fmt: skip
-        j.depths, j.thr, inv = [], [], np.empty(b)
-        for lo, hi in j.ext:
-            d = depth_grid(float(np.float64(hi) - np.float64(lo)), o.increments,
-                           max_depth=o.max_depth, max_depth_fraction=o.max_depth_fraction)  # fmt: skip
-            thr, inv[len(j.depths)] = host_thresholds(d, hi)
-            j.depths.append(d)
-            j.thr.append(thr)
-        n1 = o.increments + 1
-        self._put(s.t, np.concatenate(j.thr))
-        self._put(s.top, np.array([e[1] for e in j.ext], np.float32))
+        # depth_grid and host_thresholds of every surface at once (the same float64
+        # operations, element by element); depth_grid checks the options on the first
+        n, n1 = o.increments, o.increments + 1
+        lo_hi = np.array(j.ext, dtype=np.float64)
+        rt = lo_hi[:, 1] - lo_hi[:, 0]
+        first = depth_grid(float(rt[0]), n, max_depth=o.max_depth,
+                           max_depth_fraction=o.max_depth_fraction)  # fmt: skip
+        wmax = np.full(b, first[-1]) if o.max_depth is not None else o.max_depth_fraction * rt
+        if not np.all(wmax > 0):
+            s.job = None
+            raise ValueError("a height map of the batch is flat: nothing to truncate")
+        depths = np.arange(n1, dtype=np.float64)[None, :] * (wmax / n)[:, None]
+        thr = (lo_hi[:, 1:2] - depths).astype(np.float32)
+        inv = 1.0 / (depths[:, -1] / n)
+        j.depths, j.thr = list(depths), list(thr)
+        self._put(s.t, thr)
+        self._put(s.top, lo_hi[:, 1].astype(np.float32))
         self._put(s.inv, inv.astype(np.float32))
         hist = s.hist[0][:b]
         hist.zero_()
