@@ -51,7 +51,8 @@ def dask_reference():
 @pytest.mark.timeout(240)
 def test_two_local_workers_same_table_as_in_process(tmp_path, dask_reference):
     pytest.importorskip("distributed")
-    df = run_sweep(DASK_GRID, tmp_path / "s", workers=2, progress=False, **OPTS)
+    # the reference's device on the workers too (on a GPU machine they would pick cuda:0)
+    df = run_sweep(DASK_GRID, tmp_path / "s", workers=2, progress=False, device="cpu", **OPTS)
     pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))
     assert df["host"].nunique() == 1 and (df["device"] == "cpu").all()
 

@@ -242,7 +242,14 @@ def main(argv=None) -> int:
     device = args.device if args.device is not None else None
     if "workers" not in args.runs:
         device = str(dev)
-    results = []
+    class Runs(list):  # each run is printed as it ends: a run cut short keeps the others
+        def append(self, r):
+            super().append(r)
+            extra = "".join(f" {k}={r[k]:.3f}" for k in ("case_s", "busy") if k in r)
+            print(f"[run] n={r['n']} {r['run']}: {args.cases} cases in {r['wall_s']:.2f} s{extra}",
+                  flush=True)  # fmt: skip
+
+    results = Runs()
     for n in args.n:
         if "kernel" in args.runs:
             results.append(dict(n=n, run="kernel", workers=0,
