@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """Figures and the report section "How far is truncation from elastic contact?" of the
-``elastic`` stage (:mod:`.elastic`). Every number and every claim of the text is computed from the
+``elastic`` stage (:mod:`warptrunc.reproduce.elastic`). Every number and every claim of the text is computed from the
 stage result and its analysis; sentences whose direction depends on the data are conditional."""
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """The paper's study as stages (Fig. 2, Fig. 5, Table 1, Figs. 7–8/Table 2, Fig. 9/10, Table 3),
-and how far truncation is from elastic contact (stage ``elastic``, :mod:`.elastic`: Eq. 2,
+and how far truncation is from elastic contact (stage ``elastic``, :mod:`warptrunc.reproduce.elastic`: Eq. 2,
 island-resolved truncation and warptrunc's BEM solver; it replaces the former ``bem`` stage).
 
 Every stage is a function of the profile returning a JSON-serialisable dict; :func:`run_study`
