@@ -130,3 +130,21 @@ def test_compute_many_batches_only_when_asked_on_the_cpu():
     for (ra, ca), (rb, cb) in zip(forced, plain, strict=True):
         np.testing.assert_array_equal(ca["n_contact_pixels"], cb["n_contact_pixels"])
         assert ra[0]["case_id"] == rb[0]["case_id"]
+
+
+def test_batches_that_do_not_fit_fall_back_to_one_case_at_a_time(monkeypatch):
+    import warptrunc.sweep.batch as B
+
+    def full(nbytes, device, what):
+        raise MemoryError(f"{what} needs {nbytes} bytes")
+
+    monkeypatch.setattr(B, "check_memory", full)
+    dev = resolve_device("cpu")
+    with pytest.raises(MemoryError, match="batch"):
+        WMBatch(OPTS, 3, dev, slots=2)
+    cases = GRID.cases(OPTS)[:3]
+    out = [r for rs in batched_results(cases, OPTS, dev, 3) for r in rs]
+    want = [compute_case(c, OPTS, "cpu") for c in cases]
+    for (ra, ca), (rb, cb) in zip(out, want, strict=True):
+        np.testing.assert_array_equal(ca["n_contact_pixels"], cb["n_contact_pixels"])
+        assert ra[0]["alpha"] == rb[0]["alpha"]

@@ -325,10 +325,15 @@ def batched_results(cases: list[Case], options: SweepOptions, device, size: int)
     One thread keeps the device busy: batch i + 1 is scaled and batch i + 2 queued
     (:meth:`~warptrunc.sweep.batch.WMBatch.submit`) before the host fits batch i. A batch
     whose submission or scaling raises ValueError is computed case by case (each case records
-    its own error). A case's ``seconds`` is its share of its batch's time from submission to
+    its own error); so is every case when the batch buffers do not fit the device's memory. A case's ``seconds`` is its share of its batch's time from submission to
     its curves, plus its own fit time.
     """
-    wb = WMBatch(options, size, device, slots=2)
+    try:
+        wb = WMBatch(options, size, device, slots=2)
+    except MemoryError:  # a small or busy GPU: one case at a time
+        for c in cases:
+            yield [compute_case(c, options, device)]
+        return
     chunks = iter([cases[i : i + size] for i in range(0, len(cases), size)])
     pending: collections.deque = collections.deque()  # [chunk, slot or None, t0, scaled]
 
