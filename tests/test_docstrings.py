@@ -37,33 +37,19 @@ import functools
 import importlib
 import inspect
 import itertools
-import pkgutil
 import textwrap
 
 import pytest
 
 numpydoc_validate = pytest.importorskip("numpydoc.validate")
 
-import warptrunc  # noqa: E402
 
-SKIP_PREFIXES = ("warptrunc.kernels", "warptrunc.cli")
+from warptrunc._public import SKIP_PREFIXES, public_modules  # noqa: E402
 
 FUNCTION_CODES = frozenset({"GL08", "SS01", "SS03", "PR01", "PR02", "RT01"})
 CLASS_CODES = frozenset({"GL08", "SS01", "SS03", "PR01", "PR02"})
 DATACLASS_CODES = frozenset({"GL08", "SS01", "SS03"})
 PROPERTY_CODES = frozenset({"GL08"})
-
-
-def _public_modules() -> list[str]:
-    names = ["warptrunc"]
-    for info in pkgutil.walk_packages(warptrunc.__path__, "warptrunc."):
-        name = info.name
-        if name.startswith(SKIP_PREFIXES):
-            continue
-        if any(part.startswith("_") for part in name.split(".")[1:]):
-            continue
-        names.append(name)
-    return sorted(names)
 
 
 def _is_private_module(modname: str) -> bool:
@@ -116,7 +102,7 @@ def _dataclass_fields(cls: type, cls_name: str) -> list[tuple[str, str]]:
 def _collect() -> dict[str, str]:
     """Map qualified name -> kind ("function", "class", "dataclass", "property", "field")."""
     found: dict[str, str] = {}
-    for modname in _public_modules():
+    for modname in public_modules():
         module = importlib.import_module(modname)
         for name in getattr(module, "__all__", ()):
             obj = getattr(module, name)

@@ -16,25 +16,9 @@ from __future__ import annotations
 
 import importlib
 import inspect
-import pkgutil
 from pathlib import Path
 
-SKIP_PREFIXES = ("warptrunc.kernels", "warptrunc.cli")
-
-
-def public_modules() -> list[str]:
-    """Names of the public modules of warptrunc, sorted."""
-    import warptrunc
-
-    names = ["warptrunc"]
-    for info in pkgutil.walk_packages(warptrunc.__path__, "warptrunc."):
-        name = info.name
-        if name.startswith(SKIP_PREFIXES):
-            continue
-        if any(part.startswith("_") for part in name.split(".")[1:]):
-            continue
-        names.append(name)
-    return sorted(names)
+from warptrunc._public import public_modules
 
 
 def page_of(modname: str) -> str:
