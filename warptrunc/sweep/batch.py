@@ -280,8 +280,9 @@ class WMBatch:
         # exact float32 extremes of the scaled maps, as warptrunc.wm._generate records them
         j.ext = [tuple(float(np.float32((np.float64(v) + c0[i]) * scale[i])) for v in raw[i])
                  for i in range(b)]  # fmt: skip
-        # depth_grid and host_thresholds of every surface at once (the same float64
-        # operations, element by element); depth_grid checks the options on the first
+        # depth_grid and the thresholds of truncation.curve.depth_thresholds for every
+        # surface at once (the same float64 operations, element by element); depth_grid
+        # checks the options on the first
         n, n1 = o.increments, o.increments + 1
         lo_hi = np.array(j.ext, dtype=np.float64)
         rt = lo_hi[:, 1] - lo_hi[:, 0]

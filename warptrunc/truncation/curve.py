@@ -260,16 +260,11 @@ def surface_range(surface: Surface, z: wp.array, device) -> tuple[float, float]:
     return ext
 
 
-def host_thresholds(depth: np.ndarray, hi: float) -> tuple[np.ndarray, float]:
-    """Float32 thresholds z_top − ω_k (m) and 1/Δω (1/m; 0 without a step) for the kernels."""
-    thr = (np.float64(hi) - depth).astype(np.float32)
-    step = float(depth[-1] / (depth.size - 1)) if depth.size > 1 and depth[-1] > 0 else 0.0
-    return thr, 1.0 / step if step > 0 else 0.0
-
-
 def depth_thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
     lo, hi = height_range(z, device) if lo_hi is None else lo_hi
-    thr, inv_step = host_thresholds(depth, hi)
+    thr = (np.float64(hi) - depth).astype(np.float32)
+    step = float(depth[-1] / (depth.size - 1)) if depth.size > 1 and depth[-1] > 0 else 0.0
+    inv_step = 1.0 / step if step > 0 else 0.0
     return wp.array(thr, dtype=wp.float32, device=device), lo, hi, thr, inv_step
 
 
