@@ -62,7 +62,7 @@ def test_hertz_load_area_stiffness(hertz):
     O((a/R)²), negligible here.
     """
     _, R, res = hertz
-    e = MATERIAL.reduced_modulus
+    e = MATERIAL.contact_modulus
     d = res.depth
     assert res.all_converged
     assert not res.edge_contact.any()
@@ -81,7 +81,7 @@ def test_truncation_closed_form_and_ratio_two(hertz):
     d = res.depth
     np.testing.assert_allclose(res.trunc_area, math.pi * (2 * R * d - d**2), rtol=0.05)
     np.testing.assert_allclose(res.area_ratio, 2.0, rtol=0.08)  # two 5 % pixel-rim errors
-    e = MATERIAL.reduced_modulus
+    e = MATERIAL.contact_modulus
     np.testing.assert_allclose(
         res.trunc_stiffness, 2 / math.sqrt(math.pi) * e * np.sqrt(res.trunc_area), rtol=1e-12
     )
@@ -109,7 +109,7 @@ def test_wm_monotone_and_converged(wm_small):
     # the real (elastic) area never exceeds the truncated one on a rough surface (§2.1)
     assert np.all(res.area_ratio >= 1.0)
     # the truncation side is the `analyze` formula: k' = (2/√π)·E*·√A'
-    e = MATERIAL.reduced_modulus
+    e = MATERIAL.contact_modulus
     np.testing.assert_allclose(
         res.trunc_stiffness, 2 / math.sqrt(math.pi) * e * np.sqrt(res.trunc_area)
     )
@@ -129,7 +129,7 @@ def test_outputs(wm_small, tmp_path):
     d = json.loads((tmp_path / "bem.json").read_text())
     if d["settings"]["solver"] == "contactmechanics":
         assert d["settings"]["half_space"] == "FreeFFTElasticHalfSpace"
-    assert d["settings"]["contact_modulus_Pa"] == pytest.approx(MATERIAL.reduced_modulus)
+    assert d["settings"]["contact_modulus_Pa"] == pytest.approx(MATERIAL.contact_modulus)
     assert len(d["settings"]["solves"]) == 3 * res.depth.size
     assert d["summary"]["all_converged"] is True
 
@@ -229,6 +229,6 @@ def test_periodic_westergaard(solver):
     assert res.all_converged
     a = res.bem_area / s.apparent_area * lam / 2
     p_mean = res.bem_load / s.apparent_area
-    p_ref = math.pi * MATERIAL.reduced_modulus * h0 / lam * np.sin(np.pi * a / lam) ** 2
+    p_ref = math.pi * MATERIAL.contact_modulus * h0 / lam * np.sin(np.pi * a / lam) ** 2
     tol = math.pi * dx / lam / np.tan(np.pi * a / lam) + 0.01
     assert np.all(np.abs(p_mean / p_ref - 1) <= tol), (p_mean / p_ref, tol)

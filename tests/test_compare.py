@@ -48,7 +48,7 @@ def test_compare_models_against_independent_formulas(device):
     m = Material()
     c = compare_models(s, FR, material=m, device=device)
     z, top = s.heights, np.float32(s.heights.max())
-    pref = 2 / math.sqrt(math.pi) * m.reduced_modulus
+    pref = 2 / math.sqrt(math.pi) * m.contact_modulus
     for i, f in enumerate(FR):
         mask = z >= np.float32(top - np.float32(f * s.Rt))
         lab, n = ndi.label(mask)
@@ -59,7 +59,7 @@ def test_compare_models_against_independent_formulas(device):
         assert c.islands_stiffness[i] == pytest.approx(pref * np.sqrt(a).sum(), rel=1e-9)
     assert np.all(c.islands_stiffness >= c.eq2_stiffness * (1 - 1e-9))
     assert np.all(c.islands_load >= c.eq2_load * (1 - 1e-9)) and np.all(np.diff(c.eq2_load) > 0)
-    cc = solve_contact(s, np.asarray(FR) * s.Rt, contact_modulus=m.reduced_modulus, device=device)
+    cc = solve_contact(s, np.asarray(FR) * s.Rt, contact_modulus=m.contact_modulus, device=device)
     np.testing.assert_allclose(c.bem_load, cc.load, rtol=1e-12)
     np.testing.assert_allclose(c.bem_stiffness, cc.stiffness, rtol=1e-12)
     assert c.converged.all()

@@ -20,10 +20,10 @@ def curve_from_area(depth, area, A=1e-6, pixel_area=1e-12):
     )  # fmt: skip
 
 
-def test_reduced_modulus():
-    assert Material(E=200e9, nu=0.3).reduced_modulus == pytest.approx(200e9 / (1 - 0.09))
+def test_contact_modulus():
+    assert Material(E=200e9, nu=0.3).contact_modulus == pytest.approx(200e9 / (1 - 0.09))
     m = Material(E=70e9, nu=0.33, E_i=1141e9, nu_i=0.07)  # aluminium on diamond
-    assert m.reduced_modulus == pytest.approx(1 / ((1 - 0.33**2) / 70e9 + (1 - 0.07**2) / 1141e9))
+    assert m.contact_modulus == pytest.approx(1 / ((1 - 0.33**2) / 70e9 + (1 - 0.07**2) / 1141e9))
 
 
 def test_eq2_eq3_and_trapezoid_load():
@@ -33,7 +33,7 @@ def test_eq2_eq3_and_trapezoid_load():
     c = 4.0
     mat = Material(E=100e9, nu=0.25)
     sc = stiffness_curve(curve_from_area(depth, c * depth**2), mat, beta_prime=1.2)
-    k_expected = 1.2 * 2 / math.sqrt(math.pi) * mat.reduced_modulus * math.sqrt(c) * depth
+    k_expected = 1.2 * 2 / math.sqrt(math.pi) * mat.contact_modulus * math.sqrt(c) * depth
     np.testing.assert_allclose(sc.stiffness, k_expected, rtol=1e-12, atol=1e-30)
     np.testing.assert_allclose(sc.load, k_expected * depth / 2, rtol=1e-12, atol=1e-30)
     np.testing.assert_allclose(sc.Ec_over_E, 1.2 * np.sqrt(c * depth**2 / 1e-6), rtol=1e-12)
@@ -146,6 +146,6 @@ def test_separate_paraboloids_islands_vs_eq2(device, tiles):
     # one island: both models agree; E_c/E of the islands model is k/((2/√π)E*√A)
     e1 = stiffness_curve(truncate(one, 30, **kw))
     np.testing.assert_allclose(k1.stiffness, e1.stiffness, rtol=1e-9)
-    c = 2 / math.sqrt(math.pi) * kN.material.reduced_modulus * math.sqrt(kN.apparent_area)
+    c = 2 / math.sqrt(math.pi) * kN.material.contact_modulus * math.sqrt(kN.apparent_area)
     np.testing.assert_allclose(kN.Ec_over_E, kN.stiffness / c, rtol=1e-12)
     assert kN.model == "islands" and eN.model == "area"

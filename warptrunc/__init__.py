@@ -45,11 +45,12 @@ _EXPORTS = {
     "Indicators": ".islands",
     "IslandCurve": ".islands",
     "Islands": ".islands",
-    "Material": ".stiffness",
+    "Material": ".material",
     "PowerLawFit": ".stiffness",
     "StiffnessCurve": ".stiffness",
     "Surface": ".surface",
     "TruncationCurve": ".truncation",
+    "WMSpec": ".wm_params",
     "applicable_depth": ".islands",
     "bem_check": ".contact.check",
     "calibrate": ".calibrate",
@@ -126,10 +127,12 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerl
         island_curve,
         label_islands,
     )
-    from .stiffness import Material, PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
+    from .material import Material
+    from .stiffness import PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
     from .surface import Surface, from_heights
     from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
     from .wm import wm_surface
+    from .wm_params import WMSpec
 
 __version__ = "0.1.0"
 
@@ -148,6 +151,7 @@ __all__ = [
     "StiffnessCurve",
     "Surface",
     "TruncationCurve",
+    "WMSpec",
     "applicable_depth",
     "bem_check",
     "calibrate",

@@ -18,6 +18,7 @@ import numpy as np
 from ._results import fields_to_dict
 from ._table import write_columns_csv
 from ._validate import check_int, check_range
+from .material import Material
 from .truncation import TruncationCurve
 
 __all__ = [
@@ -37,50 +38,6 @@ MODELS = ("area", "islands")
 #: Default fit range: increments with at least this many contact pixels (see README,
 #: "Fit range"); the first increments, where a handful of pixels touch, are left out.
 DEFAULT_MIN_PIXELS = 10
-
-
-@dataclass(frozen=True)
-class Material:
-    """Elastic constants of the rough body and of the flat that compresses it.
-
-    Raises
-    ------
-    ValueError
-        If ``E`` is not positive and finite, ``E_i`` is not in (0, inf], or a Poisson's ratio
-        is not in (−1, 0.5].
-
-    Examples
-    --------
-    >>> Material().reduced_modulus  # aluminium against a rigid flat
-    78554595443.83347
-    """
-
-    E: float = 70e9
-    """Young's modulus of the rough body (Pa); default: aluminium alloy, as in the paper."""
-    nu: float = 0.33
-    """Poisson's ratio of the rough body (dimensionless)."""
-    E_i: float = math.inf
-    """Young's modulus of the flat (Pa); ``inf`` = rigid flat (default)."""
-    nu_i: float = 0.0
-    """Poisson's ratio of the flat (dimensionless); irrelevant for a rigid flat."""
-
-    def __post_init__(self) -> None:
-        check_range("E", self.E, 0.0, unit="Pa")
-        check_range("nu", self.nu, -1.0, 0.5, hi_open=False)
-        if not (self.E_i > 0):
-            raise ValueError(f"E_i must be in (0, inf] Pa, got {self.E_i!r}")
-        check_range("nu_i", self.nu_i, -1.0, 0.5, hi_open=False)
-
-    @property
-    def reduced_modulus(self) -> float:
-        """Reduced modulus E_r' = [(1 − ν²)/E + (1 − ν_i²)/E_i]⁻¹ (Pa).
-
-        The second term is left out for a rigid flat (``E_i = inf``).
-        """
-        inv = (1.0 - self.nu**2) / self.E
-        if math.isfinite(self.E_i):
-            inv += (1.0 - self.nu_i**2) / self.E_i
-        return 1.0 / inv
 
 
 @dataclass(frozen=True, eq=False)
@@ -283,7 +240,7 @@ def stiffness_curve(
     material = Material() if material is None else material
     beta_prime = check_range("beta_prime", beta_prime, 0.0)
     area = np.asarray(curve.contact_area, dtype=np.float64)
-    k = beta_prime * (2.0 / math.sqrt(math.pi)) * material.reduced_modulus * np.sqrt(area)
+    k = beta_prime * (2.0 / math.sqrt(math.pi)) * material.contact_modulus * np.sqrt(area)
     load = cumulative_load(k, curve.depth)
     A = curve.apparent_area
     return StiffnessCurve(
@@ -361,7 +318,7 @@ def island_stiffness_curve(
         )
     s = np.asarray(s, dtype=np.float64)
     depth = np.asarray(island_curve.depth, dtype=np.float64)
-    k = beta_prime * (2.0 / math.sqrt(math.pi)) * material.reduced_modulus * s
+    k = beta_prime * (2.0 / math.sqrt(math.pi)) * material.contact_modulus * s
     load = cumulative_load(k, depth)
     n = np.asarray(island_curve.n_contact_pixels, dtype=np.int64)
     A = getattr(island_curve, "apparent_area", None)

@@ -19,10 +19,11 @@ from ._device import as_device, check_memory, resolve_device
 from ._reduce import height_range
 from .kernels import wm as _k
 from .surface import Surface
-from .wm_params import WMSpec, wm_spec
+from .wm_params import WMSpec, WMTerms, wm_spec
 
 __all__ = [
     "WMSpec",
+    "WMTerms",
     "generate_on_device",
     "wm_heights",
     "wm_product",
@@ -37,7 +38,7 @@ def pad_to(v: int, t: int) -> int:
 
 
 def wm_tables(
-    spec: WMSpec, device: wp.DeviceLike = None, *, map_bytes: int | None = None
+    spec: WMTerms, device: wp.DeviceLike = None, *, map_bytes: int | None = None
 ) -> tuple[wp.array, wp.array, float]:
     """Row table P (ny_pad × K), column table Q (K × nx_pad) and c0: S = c0 + P·Q.
 
@@ -48,7 +49,7 @@ def wm_tables(
 
     Parameters
     ----------
-    spec : WMSpec
+    spec : WMTerms
         The WM parameters and per-term tables.
     device : str or warp.context.Device, optional
         Warp device; a resolved device is used as is, else
@@ -171,7 +172,7 @@ def _extremes(z: wp.array) -> tuple[float, float]:
     return height_range(z, z.device)  # sync point; 2-D: by row bands below 2³¹ pixels
 
 
-def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None):
+def _raw_sum(spec: WMTerms, device, cpu_threads: int | None = None):
     """S − c0 as a (ny, nx) float32 Warp array, c0 (the constant Σ w·cos α), and the min and
     max of S − c0."""
     if spec.method == "direct":
@@ -192,14 +193,14 @@ def _raw_sum(spec: WMSpec, device, cpu_threads: int | None = None):
     return z, c0, lo, hi
 
 
-def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int | None = None):
+def wm_heights(spec: WMTerms, device: wp.DeviceLike = None, *, cpu_threads: int | None = None):
     """Evaluate the unscaled WM sum S (dimensionless) on ``device``; returns a (ny, nx) wp.array.
 
     S = Σ_t w_t [cos α_t − cos(kx_t·x + ky_t·y + α_t)], so heights are z = scale·S.
 
     Parameters
     ----------
-    spec : WMSpec
+    spec : WMTerms
         The WM parameters, from :func:`wm_spec`.
     device : str or warp.context.Device, optional
         Warp device; see :func:`warptrunc.resolve_device`.
@@ -223,14 +224,14 @@ def wm_heights(spec: WMSpec, device: wp.DeviceLike = None, *, cpu_threads: int |
     return z
 
 
-def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.array, float]:
+def generate_on_device(spec: WMTerms, device: wp.DeviceLike = None) -> tuple[wp.array, float]:
     """Heights z = scale·S (m) as a (ny, nx) float32 Warp array on ``device``, and the scale.
 
     With ``spec.Rt`` set, scale = R_t/(max S − min S); otherwise the prefactor of Eq. (4).
 
     Parameters
     ----------
-    spec : WMSpec
+    spec : WMTerms
         The WM parameters, from :func:`wm_spec`.
     device : str or warp.context.Device, optional
         Warp device; see :func:`warptrunc.resolve_device`.
@@ -255,7 +256,7 @@ def generate_on_device(spec: WMSpec, device: wp.DeviceLike = None) -> tuple[wp.a
     return z, scale
 
 
-def _generate(spec: WMSpec, device) -> tuple[wp.array, float, tuple[float, float]]:
+def _generate(spec: WMTerms, device) -> tuple[wp.array, float, tuple[float, float]]:
     """:func:`generate_on_device` plus the exact float32 (min z, max z) of the result (m).
 
     The scaling kernel maps each raw value s to float32((float64(s) + c0)·scale), a monotone
@@ -269,7 +270,7 @@ def _generate(spec: WMSpec, device) -> tuple[wp.array, float, tuple[float, float
     return z, scale, ext
 
 
-def height_scale(spec: WMSpec, lo: float, hi: float) -> float:
+def height_scale(spec: WMTerms, lo: float, hi: float) -> float:
     """Factor from the raw WM sum S − c0 to heights (m): R_t/(max − min) when ``spec.Rt`` is
     set (``lo``, ``hi``: the raw sum's extremes), else the prefactor of Eq. (4) times
     (G/W_r)^(D − 3)."""
@@ -280,7 +281,7 @@ def height_scale(spec: WMSpec, lo: float, hi: float) -> float:
     return _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
 
 
-def surface_params(spec: WMSpec, scale: float) -> dict:
+def surface_params(spec: WMTerms, scale: float) -> dict:
     """The surface's ``params``: the spec's, the height ``scale`` (m) and the topothesy G (m)
     that gives this scale without R_t scaling (``G_equivalent``)."""
     params = spec.params()
@@ -289,7 +290,7 @@ def surface_params(spec: WMSpec, scale: float) -> dict:
     return params
 
 
-def _prefactor(spec: WMSpec) -> float:
+def _prefactor(spec: WMTerms) -> float:
     return spec.Wr * math.sqrt(math.log(spec.gamma) / spec.M)
 
 
@@ -371,7 +372,7 @@ def wm_surface(
     return surface_from_spec(spec, resolve_device(device))
 
 
-def surface_from_spec(spec: WMSpec, device: wp.context.Device) -> Surface:
+def surface_from_spec(spec: WMTerms, device: wp.context.Device) -> Surface:
     """The device-resident :class:`Surface` of ``spec`` on the resolved ``device``."""
     z, scale, extremes = _generate(spec, device)
     params = surface_params(spec, scale)

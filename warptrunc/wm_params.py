@@ -8,15 +8,18 @@ Re-exported by ``warptrunc.wm``, which synthesises the surfaces.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
 from ._validate import check_int, check_range, pair
+from .params import check_fields, param, to_dict
 
-__all__ = ["WMSpec", "wm_spec"]
+__all__ = ["WMSpec", "WMTerms", "wm_spec"]
 
 
-class WMSpec:
+class WMTerms:
     """Validated WM parameters and the per-term tables (host, float64).
 
     Attributes are SI: ``Lx, Ly, dx, dy, Wr, Wc`` (m), ``G`` (m or None), ``Rt`` (m or None);
@@ -66,7 +69,7 @@ def wm_spec(
     cutoff: str = "nyquist",
     seed: int = 0,
     method: str = "tile",
-) -> WMSpec:
+) -> WMTerms:
     """Validate the WM parameters and draw the phases on the host (see :func:`wm_surface`).
 
     Parameters
@@ -99,7 +102,7 @@ def wm_spec(
 
     Returns
     -------
-    WMSpec
+    WMTerms
         The validated parameters, dx, dy (m), n_max (the largest n with W_r/γ^n ≥ W_c),
         n_terms = M·(n_max + 1), and per term the wavevector components kx, ky (rad/m), the
         phase α (rad) and the weight w = γ^((D − 3)n) (dimensionless).
@@ -156,7 +159,7 @@ def wm_spec(
     nn = np.tile(np.arange(n_f, dtype=np.float64), M)
     k = 2.0 * math.pi * gamma**nn / Wr
     theta = math.pi * m / M
-    return WMSpec(
+    return WMTerms(
         D=D, Wr=Wr, Lx=Lx, Ly=Ly, nx=nx, ny=ny, dx=dx, dy=dy, M=M, gamma=gamma, Wc=Wc,
         cutoff=cutoff, n_max=n_max, n_terms=n_terms, seed=seed, G=G, Rt=Rt, method=method,
         kx=k * np.cos(theta), ky=k * np.sin(theta), alpha=alpha, w=wm_weights(D, gamma, nn),
@@ -172,3 +175,108 @@ def wm_phases(seed: int, M: int, n_f: int) -> np.ndarray:
 def wm_weights(D: float, gamma: float, nn: np.ndarray) -> np.ndarray:
     """Term weights γ^((D − 3)·n) (dimensionless) for the frequency indices ``nn``."""
     return gamma ** ((D - 3.0) * nn)
+
+
+@dataclass(frozen=True)
+class WMSpec:
+    """The parameters of a Weierstrass–Mandelbrot surface (paper Eq. 4), declared once.
+
+    Every field has a default, so ``WMSpec()`` is the default surface (D = 2.5, W_r = 100 µm,
+    1 mm at 1024², R_t = 10 µm). Lengths are in metres. The command-line options of every
+    command that generates a surface, the sweep axes and the documentation's parameter table
+    are generated from these fields (:mod:`warptrunc.params`).
+
+    Raises
+    ------
+    ValueError
+        A field out of its range (the message names the field, its value and the range), or a
+        cut-off W_c not below W_r.
+
+    Examples
+    --------
+    >>> WMSpec(D=2.3, n=256).n_terms
+    170
+    """
+
+    D: float = param(2.5, "fractal dimension D", gt=2.0, lt=3.0)
+    Wr: float = param(100e-6, "roll-off wavelength W_r, the longest wavelength", unit="m", gt=0.0)
+    L: float | tuple[float, float] = param(
+        1e-3, "side length L, or Lx Ly", unit="m", gt=0.0, pair=True, sweep=False
+    )
+    n: int | tuple[int, int] = param(
+        1024, "pixels per side, or nx ny", kind="int", ge=2, le=1 << 20, pair=True, sweep=False
+    )
+    Rt: float | None = param(
+        10e-6, "target peak-to-valley height R_t; None (none) when G is given", unit="m", gt=0.0, optional=True
+    )
+    G: float | None = param(
+        None, "topothesy G; when given, heights are not rescaled to R_t", unit="m", gt=0.0,
+        optional=True, sweep=False,
+    )  # fmt: skip
+    M: int = param(10, "number of superposed ridges M", kind="int", ge=1, le=10_000)
+    gamma: float = param(1.5, "frequency density γ", gt=1.0)
+    Wc: float | None = param(
+        None, "cut-off wavelength W_c (default from cutoff)", unit="m", gt=0.0, optional=True
+    )
+    cutoff: str = param(
+        "nyquist", "default W_c: 'nyquist' = 2 pixel spacings (no aliasing), 'pixel' = 1 "
+        "spacing (the paper's literal reading)", choices=("nyquist", "pixel"), sweep=False,
+    )  # fmt: skip
+    seed: int = param(
+        0, "seed of the random phases α_mn (drawn on the host)", kind="int", ge=0, le=2**32 - 1,
+        sweep=False,
+    )  # fmt: skip
+    method: str = param(
+        "tile", "evaluation: 'tile' (separable GEMM) or 'direct' (per-pixel sum)",
+        choices=("tile", "direct"), sweep=False,
+    )  # fmt: skip
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+        self.terms()  # the checks that need several fields (W_c < W_r, R_t or G)
+
+    def kwargs(self) -> dict[str, Any]:
+        """The keywords of :func:`wm_spec` / :func:`~warptrunc.wm_surface`.
+
+        Returns
+        -------
+        dict
+        """
+        return to_dict(self) | {"L": self.L, "n": self.n}
+
+    def terms(self) -> WMTerms:
+        """The per-term tables (wavevectors, phases, weights) of these parameters.
+
+        Returns
+        -------
+        WMTerms
+        """
+        return wm_spec(**self.kwargs())
+
+    @property
+    def n_terms(self) -> int:
+        """Number of WM terms M·(n_max + 1)."""
+        return self.terms().n_terms
+
+    def replace(self, **kw: Any) -> WMSpec:
+        """A copy with some fields changed (validated).
+
+        Parameters
+        ----------
+        **kw
+            Fields to change.
+
+        Returns
+        -------
+        WMSpec
+        """
+        return replace(self, **kw)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields, JSON-ready (SI).
+
+        Returns
+        -------
+        dict
+        """
+        return to_dict(self)

@@ -147,14 +147,14 @@ def run(args: argparse.Namespace) -> int:
         fig = plot_bem_check(
             res, args.out / "bem.png",
             title=f"{s.nx}×{s.ny}, R$_t$ = {s.Rt * 1e6:.3g} µm, E* = "
-            f"{material.reduced_modulus / 1e9:.4g} GPa, {args.substrate} half-space ({args.solver})",
+            f"{material.contact_modulus / 1e9:.4g} GPa, {args.substrate} half-space ({args.solver})",
         )  # fmt: skip
         plt.close(fig)
         files += ", bem.png"
     sm = res.summary()
     print(
         f"{s.nx}×{s.ny} surface, R_t = {s.Rt * 1e6:.4g} µm, E* = "
-        f"{material.reduced_modulus / 1e9:.4g} GPa, {args.substrate} half-space ({args.solver} solver); "
+        f"{material.contact_modulus / 1e9:.4g} GPa, {args.substrate} half-space ({args.solver} solver); "
         f"{res.depth.size} approaches δ/R_t = "
         f"{res.depth_fraction.min():.3g}–{res.depth_fraction.max():.3g}\n"
         f"F'/F_BEM {_rng(sm['load_ratio'])}, k'/k_BEM {_rng(sm['stiffness_ratio'])}, "

@@ -225,7 +225,7 @@ def compare_models(
     fractions : sequence of float
         Approaches δ/R_t, strictly increasing, in (0, 1) (dimensionless).
     material : Material, optional
-        Elastic constants; E* = ``material.reduced_modulus`` is used by all three routes.
+        Elastic constants; E* = ``material.contact_modulus`` is used by all three routes.
     beta_prime : float
         Geometric factor β' of both truncation models (dimensionless).
     increments : int
@@ -282,13 +282,13 @@ def compare_models(
 
     nearest = np.abs(ic.depth[:, None] - d[None, :]).argmin(axis=0)
     cc = solve_contact(
-        surface, d, contact_modulus=material.reduced_modulus, substrate="free", dtype=dtype,
+        surface, d, contact_modulus=material.contact_modulus, substrate="free", dtype=dtype,
         stiffness="barber", pressure_tol=pressure_tol, pentol=pentol, maxiter=maxiter,
         progress=progress, device=device,
     )  # fmt: skip
     settings = {
         "material": asdict(material),
-        "contact_modulus_Pa": material.reduced_modulus,
+        "contact_modulus_Pa": material.contact_modulus,
         "beta_prime": beta_prime,
         "increments": increments,
         "connectivity": connectivity,

@@ -133,7 +133,7 @@ def _settings(fractions, material, beta_prime, increments, connectivity, dtype, 
               pentol, maxiter) -> dict[str, Any]:  # fmt: skip
     return {
         "fractions": [float(f) for f in fractions], "material": asdict(material),
-        "E_star_Pa": material.reduced_modulus, "beta_prime": float(beta_prime),
+        "E_star_Pa": material.contact_modulus, "beta_prime": float(beta_prime),
         "increments": int(increments), "connectivity": int(connectivity), "dtype": dtype,
         "pressure_tol": float(pressure_tol), "pentol_m": pentol, "maxiter": int(maxiter),
         "substrate": "free", "stiffness_method": "barber",

@@ -271,7 +271,7 @@ def bem_check(
     fractions : sequence of float, optional
         Approaches as fractions of R_t, in (0, 1); default ``DEFAULT_FRACTIONS`` = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4).
     material : Material, optional
-        Elastic constants; E* = ``material.reduced_modulus`` is used by both methods.
+        Elastic constants; E* = ``material.contact_modulus`` is used by both methods.
     beta_prime : float
         Geometric factor β' of Eq. (2) (dimensionless), as in ``analyze``.
     substrate : {"free", "periodic"}
@@ -350,7 +350,7 @@ def bem_check(
 
     Rt = float(surface.Rt)
     d = _approaches(Rt, depths, fractions)
-    e_star = material.reduced_modulus
+    contact_modulus = material.contact_modulus
 
     # truncation, the same formulas as `analyze`
     curve = truncate(surface, increments, max_depth=float(d[-1]), device=device)
@@ -359,10 +359,10 @@ def bem_check(
     z_top = np.float32(z.max())
     n_trunc = np.array([np.count_nonzero(z >= np.float32(z_top - v)) for v in d], dtype=np.int64)
     trunc_area = n_trunc * surface.pixel_area
-    trunc_stiffness = beta_prime * (2.0 / math.sqrt(math.pi)) * e_star * np.sqrt(trunc_area)
+    trunc_stiffness = beta_prime * (2.0 / math.sqrt(math.pi)) * contact_modulus * np.sqrt(trunc_area)
     trunc_load = np.interp(d, sc.depth, sc.load)
 
-    args = (surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress)
+    args = (surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress)
     if solver == "contactmechanics":
         out, conv, nit, edge, solves, extra = run_contactmechanics(*args)
     else:
@@ -371,12 +371,12 @@ def bem_check(
         **extra,
         "substrate": substrate,
         "padding": _PADDING[substrate],
-        "contact_modulus_Pa": e_star,
+        "contact_modulus_Pa": contact_modulus,
         "material": asdict(material),
         "beta_prime": beta_prime,
         "fd_step": fd_step,
         "pressure_tol": pressure_tol,
-        "forcetol_N": pressure_tol * e_star * surface.pixel_area,
+        "forcetol_N": pressure_tol * contact_modulus * surface.pixel_area,
         "maxiter": maxiter,
         "increments": increments,
         "Rt_m": Rt,

@@ -29,7 +29,7 @@ __all__ = [
 SUBSTRATES = ("free", "periodic")
 
 
-def _love(x, y, a: float, b: float, e_star: float, xp=np):
+def _love(x, y, a: float, b: float, contact_modulus: float, xp=np):
     """Displacement (m) at (x, y) under a unit pressure on [−a, a]×[−b, b] (Love 1929).
 
     ``xp`` is the array module (NumPy on the host, CuPy on a CUDA device).
@@ -43,7 +43,7 @@ def _love(x, y, a: float, b: float, e_star: float, xp=np):
             + xm * xp.log((ym + xp.hypot(ym, xm)) / (yb + xp.hypot(yb, xm)))
             + ym * xp.log((xm + xp.hypot(ym, xm)) / (xa + xp.hypot(ym, xa)))
         )
-    return v / (math.pi * e_star)
+    return v / (math.pi * contact_modulus)
 
 
 def free_spectrum_cupy(shape, pixel_size, contact_modulus, cupy, cfft):

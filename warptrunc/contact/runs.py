@@ -113,7 +113,7 @@ def pentol_or_default(h: np.ndarray, pentol: float | None) -> tuple[float, str]:
 
 
 def run_contactmechanics(
-    surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress
+    surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress
 ):
     """ContactMechanics' solves, three per approach (δ(1 − h), δ, δ(1 + h)), warm-started.
 
@@ -127,7 +127,7 @@ def run_contactmechanics(
         The rough height map (m), on the host.
     d : (m,) ndarray
         Approaches δ (m), increasing.
-    e_star : float
+    contact_modulus : float
         Reduced modulus E* (Pa).
     substrate : {"free", "periodic"}
         ``FreeFFTElasticHalfSpace`` or ``PeriodicFFTElasticHalfSpace``.
@@ -172,9 +172,9 @@ def run_contactmechanics(
     h = np.ascontiguousarray(surface.heights.T, dtype=np.float64)  # ContactMechanics: x first
     sizes = (surface.lx, surface.ly)
     topo = Topography(h, physical_sizes=sizes, periodic=substrate == "periodic")
-    half_space = (Free if substrate == "free" else Periodic)(h.shape, e_star, sizes)
+    half_space = (Free if substrate == "free" else Periodic)(h.shape, contact_modulus, sizes)
     system = System(half_space, topo)
-    forcetol = pressure_tol * e_star * surface.pixel_area
+    forcetol = pressure_tol * contact_modulus * surface.pixel_area
     pentol, pentol_note = pentol_or_default(h, pentol)
     h_max = float(h.max())
     m = d.size
@@ -232,7 +232,7 @@ def run_contactmechanics(
     return out, conv, nit, edge, solves, extra
 
 
-def run_warptrunc(surface, d, e_star, substrate, fd_step, pressure_tol, pentol, maxiter, progress,
+def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress,
                    stiffness, dtype, device):  # fmt: skip
     """warptrunc's solves on ``device``: δ(1 − h), δ, δ(1 + h) (central) or δ and Barber's punch.
 
@@ -244,7 +244,7 @@ def run_warptrunc(surface, d, e_star, substrate, fd_step, pressure_tol, pentol, 
         The rough height map (m), on the host.
     d : (m,) ndarray
         Approaches δ (m), increasing.
-    e_star : float
+    contact_modulus : float
         Reduced modulus E* (Pa).
     substrate : {"free", "periodic"}
         Half-space of the solver.
@@ -292,7 +292,7 @@ def run_warptrunc(surface, d, e_star, substrate, fd_step, pressure_tol, pentol, 
 
     pentol, pentol_note = pentol_or_default(surface.heights, pentol)
     solver = ContactSolver(
-        surface.heights, (surface.dx, surface.dy), e_star, substrate=substrate, dtype=dtype,
+        surface.heights, (surface.dx, surface.dy), contact_modulus, substrate=substrate, dtype=dtype,
         pressure_tol=pressure_tol, pentol=pentol, maxiter=maxiter, device=device,
     )  # fmt: skip
     m = d.size

@@ -245,7 +245,7 @@ def streamed_islands(
 
     Parameters
     ----------
-    spec_or_params : WMSpec or mapping
+    spec_or_params : WMTerms or mapping
         The surface, as for :func:`warptrunc.truncation.truncate` with ``stream=True``.
     depths : sequence of float
         Truncation depths ω ≥ 0 (m); a pixel is in contact when ``z >= float32(z_top − ω)``,

@@ -75,7 +75,7 @@ def stage_params(p: Profile) -> dict[str, Any]:
             "elastic_pixels_per_Wr": p.elastic_pixels_per_Wr,
             "elastic_refine_ratio": p.elastic_refine_ratio, "elastic_seeds": p.elastic_seeds,
             "elastic_fractions": list(p.elastic_fractions), "elastic_dtype": p.elastic_dtype,
-            "Wr": p.Wr, "material": {"E_Pa": m.E, "nu": m.nu, "E_star_Pa": m.reduced_modulus},
+            "Wr": p.Wr, "material": {"E_Pa": m.E, "nu": m.nu, "E_star_Pa": m.contact_modulus},
             "solver": "warptrunc"}  # fmt: skip
 
 

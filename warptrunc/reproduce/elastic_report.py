@@ -124,7 +124,7 @@ def elastic_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | Non
         "rigid punch shaped like the real contact area). "
         f"Maps {grids}; W_r = {stage['Wr_m'] * 1e6:g} µm at a fixed pixel size over the sizes "
         "(size effect); at the refined size the same surface (same phases and cut-off) is sampled "
-        f"twice as finely (grid convergence). Seeds per cell: {seeds}; E* = {m.reduced_modulus / 1e9:.2f} GPa; "
+        f"twice as finely (grid convergence). Seeds per cell: {seeds}; E* = {m.contact_modulus / 1e9:.2f} GPa; "
         "ratios and α do not depend on R_t (all routes are linear in the height scale). "
         f"Device: {', '.join(stage['device'])}; {stage['n_cases']} maps, {stage['n_rows']} approaches, "
         f"{stage['not_converged_rows']} elastic solves not converged. Nothing is fitted to the elastic "

@@ -82,19 +82,19 @@ def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str,
     Rt = float(sc.Rt)
     fr = np.asarray(o.bem_fractions, dtype=np.float64)
     d = fr * Rt
-    e_star = o.material().reduced_modulus
+    contact_modulus = o.material().contact_modulus
     z = surface.heights
     z_top = np.float32(z.max())
     n_trunc = np.array([np.count_nonzero(z >= np.float32(z_top - v)) for v in d], dtype=np.int64)
     a_trunc = n_trunc * surface.pixel_area
-    k_trunc = o.beta_prime * (2.0 / math.sqrt(math.pi)) * e_star * np.sqrt(a_trunc)
+    k_trunc = o.beta_prime * (2.0 / math.sqrt(math.pi)) * contact_modulus * np.sqrt(a_trunc)
     deep = sc
     if d[-1] > sc.depth[-1]:
         tc = truncate(surface, o.increments, max_depth=float(d[-1]), device=device)
         deep = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
     f_trunc = np.interp(d, deep.depth, deep.load)
     try:
-        cc = solve_contact(surface, depths=d, contact_modulus=e_star, substrate="free",
+        cc = solve_contact(surface, depths=d, contact_modulus=contact_modulus, substrate="free",
                            stiffness="barber", device=device)  # fmt: skip
     except Exception as exc:  # recorded; the truncation results stand
         out["bem_error"] = f"{type(exc).__name__}: {exc}"

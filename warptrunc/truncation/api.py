@@ -13,7 +13,7 @@ import warp as wp
 
 from .._device import resolve_device
 from ..surface import Surface
-from ..wm import WMSpec, surface_from_spec
+from ..wm import WMTerms, surface_from_spec
 from .curve import TruncationCurve, surface_device, truncate_surface
 from .stream import as_wm_spec, banded_truncation, fits
 
@@ -21,7 +21,7 @@ __all__ = ["truncate"]
 
 
 def truncate(
-    surface: Surface | WMSpec | Mapping,
+    surface: Surface | WMTerms | Mapping,
     n_increments: int = 200,
     *,
     max_depth: float | None = None,
@@ -35,7 +35,7 @@ def truncate(
 
     Parameters
     ----------
-    surface : Surface, WMSpec or mapping
+    surface : Surface, WMTerms or mapping
         The height map (m), or a WM surface to generate: a :func:`warptrunc.wm.wm_spec`, a
         mapping of its keywords (``D``, ``Wr`` (m), ``L`` (m), ``n``, ``Rt`` (m), ``G`` (m),
         ``M``, ``gamma``, ``Wc`` (m), ``cutoff``, ``seed``), or the ``params`` of a surface

@@ -40,7 +40,7 @@ from .._progress import progress_bar
 from .._results import jsonable
 from .._validate import check_int
 from ..kernels import wm as _kwm
-from ..wm import WMSpec, height_scale, pad_to, surface_params, wm_product, wm_spec, wm_tables
+from ..wm import WMSpec, WMTerms, height_scale, pad_to, surface_params, wm_product, wm_spec, wm_tables
 from .curve import (
     DEEP_FRACTION,
     TruncationCurve,
@@ -88,11 +88,13 @@ class StreamedTruncation:
         return self.curve.to_dict()
 
 
-def as_wm_spec(spec_or_params) -> WMSpec:
-    """A :class:`WMSpec`, from a spec, or a mapping of ``wm_spec`` keywords, or the ``params``
-    of a WM surface (``nx, ny, Lx, Ly`` are mapped to ``n`` and ``L``)."""
-    if isinstance(spec_or_params, WMSpec):
+def as_wm_spec(spec_or_params) -> WMTerms:
+    """A :class:`WMTerms`, from a :class:`WMSpec`, its terms, a mapping of ``wm_spec`` keywords,
+    or the ``params`` of a WM surface (``nx, ny, Lx, Ly`` are mapped to ``n`` and ``L``)."""
+    if isinstance(spec_or_params, WMTerms):
         return spec_or_params
+    if isinstance(spec_or_params, WMSpec):
+        return spec_or_params.terms()
     if not isinstance(spec_or_params, Mapping):
         raise TypeError(
             "spec_or_params must be a WMSpec or a mapping of wm_spec parameters, got "
@@ -116,8 +118,8 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
 
     Parameters
     ----------
-    spec_or_params : WMSpec or mapping
-        The WM surface: a :class:`~warptrunc.wm.WMSpec`, a mapping of :func:`~warptrunc.wm.wm_spec`
+    spec_or_params : WMTerms or mapping
+        The WM surface: a :class:`~warptrunc.wm.WMTerms`, a mapping of :func:`~warptrunc.wm.wm_spec`
         keywords, or the ``params`` of a WM surface (``nx``, ``ny``, ``Lx``, ``Ly`` become
         ``n`` and ``L``).
     device : str or warp.context.Device, optional
@@ -132,7 +134,7 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
     Raises
     ------
     TypeError
-        ``spec_or_params`` is neither a WMSpec nor a mapping.
+        ``spec_or_params`` is neither a WMTerms nor a mapping.
     ValueError
         Invalid WM parameters (from :func:`~warptrunc.wm.wm_spec`).
     """
@@ -148,12 +150,12 @@ def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, 
     return dev, host
 
 
-def fits(spec: WMSpec, device: wp.context.Device) -> bool:
+def fits(spec: WMTerms, device: wp.context.Device) -> bool:
     """Whether the in-memory path fits ``device`` (resolved); see :func:`fits_in_memory`.
 
     Parameters
     ----------
-    spec : WMSpec
+    spec : WMTerms
         The WM surface.
     device : warp.context.Device
         The resolved Warp device.
@@ -177,7 +179,7 @@ def fits(spec: WMSpec, device: wp.context.Device) -> bool:
 class WMBands:
     """Tables on the device and a reusable band buffer: ``raw(r0, r1)`` = S − c0 on those rows."""
 
-    def __init__(self, spec: WMSpec, device, band_rows: int | None):
+    def __init__(self, spec: WMTerms, device, band_rows: int | None):
         if spec.method != "tile":
             raise ValueError(
                 f"streamed generation needs method='tile' (row bands of the table product), "
@@ -239,7 +241,7 @@ def wm_bands(
 
     Parameters
     ----------
-    spec_or_params : WMSpec or mapping
+    spec_or_params : WMTerms or mapping
         The WM surface, as for :func:`in_memory_bytes`; its ``method`` must be ``"tile"``.
     band_rows : int, optional
         Rows per band, in [1, ny], rounded up to the product's row block; default: a band
@@ -258,7 +260,7 @@ def wm_bands(
     Raises
     ------
     TypeError
-        ``spec_or_params`` is neither a WMSpec nor a mapping.
+        ``spec_or_params`` is neither a WMTerms nor a mapping.
     ValueError
         Invalid WM parameters, a ``method`` other than ``"tile"``, or ``band_rows`` out of
         range (raised when the first band is requested).
@@ -275,7 +277,7 @@ def wm_bands(
 
 
 def banded_truncation(
-    spec: WMSpec,
+    spec: WMTerms,
     n_increments: int,
     *,
     max_depth: float | None,
@@ -294,7 +296,7 @@ def banded_truncation(
 
     Parameters
     ----------
-    spec : WMSpec
+    spec : WMTerms
         The WM surface; ``method`` must be ``"tile"``.
     n_increments : int
         Number of depth increments n (≥ 1).
@@ -365,7 +367,7 @@ def fits_in_memory(spec_or_params, device: wp.DeviceLike = None) -> bool:
 
     Parameters
     ----------
-    spec_or_params : WMSpec or mapping
+    spec_or_params : WMTerms or mapping
         The WM surface, as for :func:`in_memory_bytes`.
     device : str or warp.context.Device, optional
         Warp device; :func:`warptrunc.resolve_device`'s choice when None.
@@ -380,7 +382,7 @@ def fits_in_memory(spec_or_params, device: wp.DeviceLike = None) -> bool:
     Raises
     ------
     TypeError
-        ``spec_or_params`` is neither a WMSpec nor a mapping.
+        ``spec_or_params`` is neither a WMTerms nor a mapping.
     ValueError
         Invalid WM parameters.
     """
