@@ -136,7 +136,7 @@ else:
                    r"distributed|pyarrow|cupy|SurfaceTopography|ContactMechanics|tqdm|"
                    r"pathlib|os|json|concurrent|typing|collections|dataclasses|argparse|"
                    r"contextlib|threading|multiprocessing)(\..*)?"),
-        # private modules (warptrunc._results, ...) are not part of the API reference
+        # private modules (warptrunc._support.results, ...) are not part of the API reference
         (r"py:.*", r"warptrunc\._.*"),
         # Python builtins, which intersphinx to the Python docs links when online
         (r"py:.*", r"(int|float|str|bool|bytes|dict|list|tuple|set|frozenset|object|None|"

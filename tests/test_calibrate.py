@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import warptrunc
-from warptrunc._root_find import find_root, isotonic
+from warptrunc._support.root_find import find_root, isotonic
 from warptrunc.calibrate import (
     CalibrationError,
     CalibrationTarget,

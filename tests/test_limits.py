@@ -10,7 +10,7 @@ import pytest
 import warp as wp
 
 from warptrunc import contact_index_map, from_heights, truncate
-from warptrunc._limits import WARP_MAX_DIM, band_pixel_limit, force_band_pixels, row_bands
+from warptrunc._support.limits import WARP_MAX_DIM, band_pixel_limit, force_band_pixels, row_bands
 from warptrunc.cli import main
 from warptrunc.truncation import height_range
 from warptrunc.wm import wm_spec, wm_surface

@@ -269,7 +269,7 @@ def test_paper_profile_at_paper_scale():
     p = get_profile("paper")
     assert (p.islands_n, p.islands_L, p.fig5_seeds) == (30720, 3e-3, 10)
     assert p.islands_seeds >= 2 and (p.table1_n, p.n, p.seeds) == (1024, 10240, 5)
-    assert p.islands_n**2 < 2**30  # the in-memory labelling limit (warptrunc._limits)
+    assert p.islands_n**2 < 2**30  # the in-memory labelling limit (warptrunc._support.limits)
     assert p.islands_n**2 * 52 < 70 * 2**30  # island_curve's statistics fit an 80 GB GPU
 
 
@@ -349,7 +349,7 @@ def test_tiny_report_new_sections(tiny):
 
 
 def test_report_commit_fallback(tiny, monkeypatch):
-    from warptrunc._provenance import git_commit
+    from warptrunc._support.provenance import git_commit
     from warptrunc.reproduce import get_profile
     from warptrunc.reproduce.report import departure_lines, markdown
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from warptrunc._device import resolve_device
+from warptrunc._support.device import resolve_device
 from warptrunc.sweep import SweepGrid, SweepOptions, load, run_sweep
 from warptrunc.sweep.batch import MAX_BATCH, WMBatch, batch_size
 from warptrunc.sweep.engines import batched_results, compute_case, compute_many

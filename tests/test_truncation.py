@@ -187,7 +187,7 @@ def test_device_is_resolved_once_per_call(monkeypatch, stream):
     import sys
 
     import warptrunc
-    import warptrunc._device as dev
+    import warptrunc._support.device as dev
 
     real, calls = dev.resolve_device, []
 

@@ -65,7 +65,7 @@ _EXPORTS = {
     "island_curve": ".islands",
     "label_islands": ".islands",
     "read_height_map": ".io",
-    "resolve_device": "._device",
+    "resolve_device": "._support.device",
     "stiffness_curve": ".stiffness",
     "truncate": ".truncation",
     "wm_surface": ".wm",
@@ -112,7 +112,7 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerly
-    from ._device import resolve_device  # after the kernels mapping above
+    from ._support.device import resolve_device  # after the kernels mapping above
     from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
     from .contact.check import BemCheck, bem_check
     from .descriptors import Descriptors, describe

@@ -31,10 +31,10 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._progress import progress_bar
-from ._results import jsonable
-from ._root_find import CalibrationError, find_root
-from ._validate import check_int, check_range, pair
+from ._support.progress import progress_bar
+from ._support.results import jsonable
+from ._support.root_find import CalibrationError, find_root
+from ._support.validate import check_int, check_range, pair
 from .descriptors import roll_off_wavelength, surface_statistics
 from .fractal import METHODS, fractal_dimension
 from .surface import Surface

@@ -55,7 +55,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._results import fields_to_dict
+from ._support.results import fields_to_dict
 from .kernels import reduce as _kr
 from .spectra import (
     PSD,

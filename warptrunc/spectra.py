@@ -15,8 +15,8 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._results import fields_to_dict
-from ._validate import check_int, check_range
+from ._support.results import fields_to_dict
+from ._support.validate import check_int, check_range
 from .surface import Surface
 
 __all__ = [

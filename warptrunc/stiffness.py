@@ -15,9 +15,9 @@ from typing import Any
 
 import numpy as np
 
-from ._results import fields_to_dict
-from ._table import write_columns_csv
-from ._validate import check_int, check_range
+from ._support.results import fields_to_dict
+from ._support.table import write_columns_csv
+from ._support.validate import check_int, check_range
 from .material import Material
 from .truncation import TruncationCurve
 

@@ -18,9 +18,9 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._device import check_memory, resolve_device
-from ._results import jsonable
-from ._validate import check_height_map, check_range
+from ._support.device import check_memory, resolve_device
+from ._support.results import jsonable
+from ._support.validate import check_height_map, check_range
 from .kernels import reduce as _kr
 
 __all__ = ["Surface", "from_heights"]

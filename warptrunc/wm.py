@@ -15,8 +15,8 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import warp as wp
 
-from ._device import as_device, check_memory, resolve_device
-from ._reduce import height_range
+from ._support.device import as_device, check_memory, resolve_device
+from ._support.reduce import height_range
 from .kernels import wm as _k
 from .surface import Surface
 from .wm_params import WMSpec, WMTerms, wm_spec

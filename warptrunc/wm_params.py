@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from ._validate import check_int, check_range, pair
+from ._support.validate import check_int, check_range, pair
 from .params import check_fields, param, to_dict
 
 __all__ = ["WMSpec", "WMTerms", "wm_spec"]

@@ -13,7 +13,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from warptrunc._provenance import git_commit
+from warptrunc._support.provenance import git_commit
 
 ROOT = Path(__file__).resolve().parents[2]
 """The repository root (this file is ``examples/benchmarks/_common.py``)."""

@@ -96,7 +96,7 @@ def batch_loop(n: int, cases: int, device, increments: int, bem: list[float]) ->
     for light cases on a GPU), still with no store, no rows and no thread."""
     import warp as wp
 
-    from warptrunc._device import resolve_device
+    from warptrunc._support.device import resolve_device
     from warptrunc.stiffness import fit_power_law, stiffness_curve
     from warptrunc.sweep import SweepGrid, SweepOptions
     from warptrunc.sweep.batch import WMBatch, batch_size
@@ -236,7 +236,7 @@ def main(argv=None) -> int:
     from _common import git_commit
 
     from warptrunc import __version__
-    from warptrunc._device import resolve_device
+    from warptrunc._support.device import resolve_device
 
     dev = resolve_device(args.device)
     device = args.device if args.device is not None else None

@@ -128,7 +128,7 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser(argv).parse_args(argv)
 
     if getattr(args, "verbose", False):
-        os.environ["WARPTRUNC_VERBOSE"] = "1"  # read by warptrunc._device.is_verbose
+        os.environ["WARPTRUNC_VERBOSE"] = "1"  # read by warptrunc._support.device.is_verbose
     try:
         return int(args._run(args) or 0)
     except (ValueError, MemoryError, OSError) as exc:

@@ -43,7 +43,7 @@ import os
 import sys
 from pathlib import Path
 
-from .._atomic import probe_writable
+from .._support.atomic import probe_writable
 from ..io import read_height_map
 from ..surface import Surface
 from ..wm import wm_surface

@@ -34,8 +34,8 @@ import threading
 
 import numpy as np
 
-from .._atomic import staged_output, strict_json
-from .._device import resolve_device
+from .._support.atomic import staged_output, strict_json
+from .._support.device import resolve_device
 from ..robust import clip_to_percentiles
 from ..stiffness import (
     DEFAULT_MIN_PIXELS,

@@ -15,7 +15,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .._atomic import staged_output, strict_json
+from .._support.atomic import staged_output, strict_json
 from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
 from ..fractal import METHODS
 from ..io import write_height_map

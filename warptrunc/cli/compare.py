@@ -94,8 +94,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study and write the summary."""
-    from .._atomic import strict_json
-    from .._results import write_atomic
+    from .._support.atomic import strict_json
+    from .._support.results import write_atomic
     from ..compare import compare_study, study_cases, summarize
     from ..stiffness import Material
     try:

@@ -20,7 +20,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .._atomic import atomic_write, staged_output, strict_json
+from .._support.atomic import atomic_write, staged_output, strict_json
 from ..descriptors import describe, profile_psd, radial_psd
 from ..fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
 from ._common import add_device, add_reader_options, input_file, output_dir, output_file, read_input

@@ -7,7 +7,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .._atomic import staged_output
+from .._support.atomic import staged_output
 from ..io import write_height_map
 from ._common import add_device, add_surface_source, output_file, surface_from_args
 

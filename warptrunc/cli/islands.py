@@ -19,7 +19,7 @@ import csv
 import math
 from pathlib import Path
 
-from .._atomic import staged_output, strict_json
+from .._support.atomic import staged_output, strict_json
 from ..islands import MIN_PIXELS, IslandCurve, applicable_depth, island_curve
 from ..islands.results import MIN_ISLANDS
 from ._common import (

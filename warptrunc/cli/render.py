@@ -16,7 +16,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .._atomic import staged_output, strict_json
+from .._support.atomic import staged_output, strict_json
 from ..io.vtk import export_vtk
 from ._common import (
     add_device,

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._validate import check_int, check_range
+from .._support.validate import check_int, check_range
 from ..stiffness import Material, island_stiffness_curve, stiffness_curve
 from ..surface import Surface
 

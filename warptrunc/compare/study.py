@@ -18,9 +18,9 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._atomic import read_json, strict_json
-from .._results import write_atomic
-from .._validate import check_int, check_range
+from .._support.atomic import read_json, strict_json
+from .._support.results import write_atomic
+from .._support.validate import check_int, check_range
 from ..stiffness import Material
 from ..surface import Surface
 from .models import (
@@ -194,7 +194,7 @@ def compare_study(
     A case counts as done once its file exists; each file is written to a temporary name and
     renamed (atomic), so an interrupted study resumes where it stopped.
     """
-    from .._progress import progress_bar
+    from .._support.progress import progress_bar
     from ..wm import wm_surface
 
     out = Path(out)

@@ -33,8 +33,8 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._table import write_columns_csv
-from .._validate import check_int, check_range
+from .._support.table import write_columns_csv
+from .._support.validate import check_int, check_range
 from ..stiffness import Material, stiffness_curve
 from ..surface import Surface
 from ..truncation import truncate

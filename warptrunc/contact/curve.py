@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._validate import check_range
+from .._support.validate import check_range
 from .results import ContactCurve
 from .solver import ContactSolver
 

@@ -53,7 +53,7 @@ import numpy as np
 import scipy.fft
 import warp as wp
 
-from .._device import resolve_device
+from .._support.device import resolve_device
 from ..kernels import contact_reduce as _kr
 from .influence import (
     SUBSTRATES,

@@ -48,8 +48,8 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import free_memory_bytes, release_cached_memory, resolve_device
-from .._validate import check_height_map, check_int, check_range, pair
+from .._support.device import free_memory_bytes, release_cached_memory, resolve_device
+from .._support.validate import check_height_map, check_int, check_range, pair
 from ..kernels import contact as _k
 from ..kernels import contact_reduce as _kr
 from .halfspace import DTYPES, SUBSTRATES, ElasticHalfSpace

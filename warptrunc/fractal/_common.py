@@ -13,8 +13,8 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import resolve_device
-from .._validate import check_range
+from .._support.device import resolve_device
+from .._support.validate import check_range
 from ..kernels import fractal as _k
 from ..surface import Surface
 from ..truncation.curve import surface_device, surface_range

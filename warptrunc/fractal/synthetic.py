@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_int, check_range, pair
+from .._support.validate import check_int, check_range, pair
 from ..surface import Surface
 
 

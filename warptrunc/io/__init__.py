@@ -40,7 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._validate import check_range
+from .._support.validate import check_range
 from ..surface import Surface
 from .builtin import read_numpy, read_text, write_warptrunc_file
 from .instrument import read_surfacetopography

@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_range
+from .._support.validate import check_range
 from ..surface import Surface
 from .repair import FILL_METHODS, fill_missing, level_plane
 

@@ -12,9 +12,9 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import check_memory, resolve_device
-from .._progress import progress_bar
-from .._validate import check_int, check_range
+from .._support.device import check_memory, resolve_device
+from .._support.progress import progress_bar
+from .._support.validate import check_int, check_range
 from ..kernels import islands as _ki
 from ..surface import Surface
 from ..truncation.curve import (

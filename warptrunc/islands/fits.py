@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from .._validate import check_int, check_range
+from .._support.validate import check_int, check_range
 from .results import (
     MIN_ISLANDS,
     MIN_PIXELS,

@@ -9,8 +9,8 @@ import math
 import numpy as np
 import warp as wp
 
-from .._device import check_memory, resolve_device
-from .._validate import check_range
+from .._support.device import check_memory, resolve_device
+from .._support.validate import check_range
 from ..kernels import islands as _ki
 from .results import (
     SEGMENT,

@@ -34,9 +34,9 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import resolve_device
-from .._progress import progress_bar
-from .._validate import check_int
+from .._support.device import resolve_device
+from .._support.progress import progress_bar
+from .._support.validate import check_int
 from ..kernels import stream_islands as _k
 from ..kernels import wm as _kwm
 from ..truncation.stream import WMBands, as_wm_spec, extremes_pass

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from .._device import resolve_device
+from .._support.device import resolve_device
 from ..kernels import euler as _ke
 from ..surface import Surface
 from ..truncation.curve import contact_index_device, depth_grid, surface_device

@@ -11,7 +11,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from .._device import is_verbose
+from .._support.device import is_verbose
 from ..plot import CONTACT_RGB
 from ..plot.pooling import pool_blocks
 from ..surface import Surface
@@ -33,7 +33,7 @@ def import_pyvista():
 def vtk_quiet():
     """Hide VTK's warnings while rendering (e.g. "bad X server connection" on headless
     machines, where off-screen rendering works regardless), unless verbose
-    (:func:`warptrunc._device.set_verbose`, ``warptrunc --verbose``, ``$WARPTRUNC_VERBOSE``).
+    (:func:`warptrunc._support.device.set_verbose`, ``warptrunc --verbose``, ``$WARPTRUNC_VERBOSE``).
     The previous global setting of VTK is restored afterwards."""
 
     if is_verbose():

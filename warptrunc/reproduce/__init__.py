@@ -17,9 +17,9 @@ from pathlib import Path
 from typing import Any
 
 from .. import __version__
-from .._device import resolve_device
-from .._provenance import git_commit
-from .._results import jsonable, write_atomic
+from .._support.device import resolve_device
+from .._support.provenance import git_commit
+from .._support.results import jsonable, write_atomic
 from .profiles import PROFILES, Profile, get_profile
 from .store import StageConflict, StageStore
 

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_int, check_range
+from .._support.validate import check_int, check_range
 from ..stiffness import Material, stiffness_curve
 from ..surface import from_heights
 from ..truncation import truncate

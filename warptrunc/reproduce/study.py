@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .._progress import progress_bar
+from .._support.progress import progress_bar
 from ..calibrate import CalibrationError, CalibrationTarget, calibrate
 from ..fractal import METHODS, fractal_dimensions
 from ..islands import applicable_depth, island_curve, slit_bootstrap

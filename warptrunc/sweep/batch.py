@@ -23,9 +23,9 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import check_memory
-from .._reduce import height_range
-from .._validate import check_int, check_range
+from .._support.device import check_memory
+from .._support.reduce import height_range
+from .._support.validate import check_int, check_range
 from ..kernels import reduce as _kr
 from ..kernels import truncation as _kt
 from ..kernels import wm as _kw

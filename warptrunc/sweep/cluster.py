@@ -22,8 +22,8 @@ from typing import Any
 
 from distributed import WorkerPlugin
 
-from .._device import cuda_device_count
-from .._progress import progress_bar
+from .._support.device import cuda_device_count
+from .._support.progress import progress_bar
 from .curves import part_name, part_rows
 from .engines import compute_shard, failed_case, pinned_device
 from .grid import Case, SweepOptions

@@ -26,8 +26,8 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import resolve_device
-from .._progress import progress_bar
+from .._support.device import resolve_device
+from .._support.progress import progress_bar
 from ..stiffness import fit_power_law, stiffness_curve
 from ..truncation import truncate
 from ..wm import wm_surface

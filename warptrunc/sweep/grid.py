@@ -17,7 +17,7 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
 
-from .._validate import check_int, check_range
+from .._support.validate import check_int, check_range
 from ..stiffness import DEFAULT_MIN_PIXELS, Material
 
 __all__ = ["FRACTAL_METHODS", "Case", "SweepGrid", "SweepOptions", "parse_seeds"]

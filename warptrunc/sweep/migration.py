@@ -12,8 +12,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from .._atomic import read_json, strict_json
-from .._results import jsonable, write_atomic
+from .._support.atomic import read_json, strict_json
+from .._support.results import jsonable, write_atomic
 from .curves import CURVE_COLUMNS, part_files, write_part
 from .grid import FORMAT, STORE_FORMAT
 from .read import RENAMED_COLUMNS, require_extra

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .. import __version__
-from .._provenance import git_commit
+from .._support.provenance import git_commit
 from ..stiffness import DEFAULT_MIN_PIXELS
 from .elastic import bem_blank
 from .grid import FRACTAL_METHODS, Case, SweepOptions

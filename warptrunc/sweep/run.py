@@ -9,7 +9,7 @@ from contextlib import ExitStack
 from pathlib import Path
 from typing import Any
 
-from .._validate import check_int, check_range
+from .._support.validate import check_int, check_range
 from .grid import SweepGrid, SweepOptions
 from .lock import store_lock
 from .store import Store

@@ -35,7 +35,7 @@ them on open, :func:`~warptrunc.sweep.read.load` refuses them with that command.
 Why a store apart from ``warptrunc.reproduce.store``: this one holds many small cases as
 Parquet rows, written concurrently by workers and resumed case by case; the reproduce store holds
 one JSON document per stage of a fixed study. Both write through
-:func:`warptrunc._results.write_atomic` and convert values with :func:`warptrunc._results.jsonable`.
+:func:`warptrunc._support.results.write_atomic` and convert values with :func:`warptrunc._support.results.jsonable`.
 """
 
 from __future__ import annotations
@@ -48,8 +48,8 @@ from typing import Any
 
 import numpy as np
 
-from .._atomic import jsonable_strict, read_json, strict_json
-from .._results import write_atomic
+from .._support.atomic import jsonable_strict, read_json, strict_json
+from .._support.results import write_atomic
 from .curves import (
     CURVE_COLUMNS,
     clean_rows,

@@ -11,7 +11,7 @@ from typing import Literal
 
 import warp as wp
 
-from .._device import resolve_device
+from .._support.device import resolve_device
 from ..surface import Surface
 from ..wm import WMTerms, surface_from_spec
 from .curve import TruncationCurve, surface_device, truncate_surface

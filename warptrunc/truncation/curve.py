@@ -18,10 +18,10 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import resolve_device
-from .._limits import flat_row_bands, row_bands
-from .._reduce import height_range
-from .._validate import check_int, check_range
+from .._support.device import resolve_device
+from .._support.limits import flat_row_bands, row_bands
+from .._support.reduce import height_range
+from .._support.validate import check_int, check_range
 from ..kernels import truncation as _k
 from ..surface import Surface
 
@@ -225,7 +225,7 @@ def upload_heights(surface: Surface, device) -> wp.array:
     (uploaded once per device and cached on the surface).
 
     Kept 2-D: a flattened map of 2³¹ pixels or more is not a valid Warp array; the flat
-    kernels run over row bands (``warptrunc._limits``)."""
+    kernels run over row bands (``warptrunc._support.limits``)."""
     if not isinstance(surface, Surface):
         raise TypeError(
             f"surface must be a warptrunc.Surface, got {type(surface).__name__}; wrap a height "

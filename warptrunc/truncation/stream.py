@@ -34,11 +34,11 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._device import as_device, free_memory_bytes, resolve_device
-from .._limits import band_pixel_limit, row_bands
-from .._progress import progress_bar
-from .._results import jsonable
-from .._validate import check_int
+from .._support.device import as_device, free_memory_bytes, resolve_device
+from .._support.limits import band_pixel_limit, row_bands
+from .._support.progress import progress_bar
+from .._support.results import jsonable
+from .._support.validate import check_int
 from ..kernels import wm as _kwm
 from ..wm import WMSpec, WMTerms, height_scale, pad_to, surface_params, wm_product, wm_spec, wm_tables
 from .curve import (

@@ -11,9 +11,9 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
-from ._device import as_device
-from ._limits import flat_row_bands
-from .kernels import reduce as _kr
+from .device import as_device
+from .limits import flat_row_bands
+from ..kernels import reduce as _kr
 
 __all__ = ["height_range"]
 
