@@ -165,16 +165,16 @@ class ContactSolver:
         self.substrate = substrate
         self.dtype = dtype
         self.forcetol = self.pressure_tol * self.contact_modulus * dx * dy
-        need = self.memory_bytes(h.shape, substrate, dtype)
+        need = self.memory_bytes(h.shape, substrate, dtype, cuda=self.device.is_cuda)
         free = free_memory_bytes(self.device)
         if need > free and self.device.is_cuda:
             free = release_cached_memory(self.device)  # pooled blocks are free for us too
         if need > free:
             raise MemoryError(
                 f"the contact solver for a {h.shape[0]}×{h.shape[1]} map ({substrate}, {dtype}) "
-                f"needs about {need} bytes ({need / 2**30:.2f} GiB) on {self.device} but only "
-                f"{free} bytes ({free / 2**30:.2f} GiB) are free; use a smaller map, float32 or "
-                "another device"
+                f"needs {need / 1e9:.2f} GB, {free / 1e9:.2f} GB free on {self.device} "
+                f"({need} bytes needed, {free} free); use a smaller map, float32 or another "
+                "device"
             )
         self.hs = ElasticHalfSpace(h.shape, (dx, dy), self.contact_modulus, substrate=substrate,
                                    dtype=dtype, device=self.device)  # fmt: skip
@@ -182,7 +182,7 @@ class ContactSolver:
         dev = self.device
         self.h_max = float(h.max())
         self.h = wp.array(h.astype(npd), dtype=sc, device=dev)
-        self.q_buf, self.q = self.hs.map_buffer()  # forces (N) on the map, zero-padded buffer
+        self.q_buf, self.q = self.hs.map_buffer()  # forces (N) on the map (no pad stored)
         self.t_buf, self.t = self.hs.map_buffer()  # CG direction (m)
         self.u = wp.zeros(h.shape, dtype=sc, device=dev)
         self.mask = wp.zeros(h.shape, dtype=wp.uint8, device=dev)
@@ -198,10 +198,52 @@ class ContactSolver:
         self.offset = 0.0
 
     @staticmethod
+    def memory_terms(
+        shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
+        cuda: bool = True, direct_max: int = 24,
+    ) -> dict[str, int]:  # fmt: skip
+        """The model of a solver's peak device memory, term by term (bytes).
+
+        Parameters
+        ----------
+        shape : (int, int)
+            Map size (ny, nx).
+        substrate : {"free", "periodic"}
+            Half-space.
+        dtype : {"float64", "float32"}
+            Precision of the maps.
+        cuda : bool, optional
+            On a CUDA device (cuFFT's work area and 65536 reduction lanes are counted).
+        direct_max : int, optional
+            Length of the list of changed forces (dimensionless count).
+
+        Returns
+        -------
+        dict of str to int
+            The half-space's terms (:meth:`ElasticHalfSpace.memory_terms`: kernel spectrum,
+            influence table, work spectrum, lane partials, cuFFT work area) and the solver's:
+            ``"maps"``: h, u, q, t and q_lin (five (ny, nx) maps of the dtype; q and t hold no
+            pad); ``"mask"``: one byte per pixel; ``"lists"``: the lane counts and offsets and
+            the list of changed forces; ``"stiffness solve"``: the one more map Barber's punch
+            needs (its residual; its unknown reuses q_lin's map). The peak is their sum, reached
+            during :meth:`punch_stiffness`; a solve needs all but the last term.
+        """
+        ny, nx = shape
+        item = np.dtype(dtype).itemsize
+        terms = ElasticHalfSpace.memory_terms(shape, substrate, dtype, cuda=cuda)
+        lanes = 65536 if cuda else 64
+        terms["maps"] = 5 * ny * nx * item
+        terms["mask"] = ny * nx
+        terms["lists"] = 2 * lanes * 4 + max(1, direct_max) * 12 + 8
+        terms["stiffness solve"] = ny * nx * item
+        return terms
+
+    @staticmethod
     def memory_bytes(
-        shape: tuple[int, int], substrate: str = "free", dtype: str = "float64"
-    ) -> int:
-        """Estimated peak device memory of a solver and its stiffness solve.
+        shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
+        cuda: bool = True,
+    ) -> int:  # fmt: skip
+        """Peak device memory of a solver and its stiffness solve (bytes).
 
         Parameters
         ----------
@@ -211,26 +253,19 @@ class ContactSolver:
             Half-space (the free one transforms a 2ny × 2nx grid, pruned to the map).
         dtype : {"float64", "float32"}
             Precision of the maps.
+        cuda : bool, optional
+            On a CUDA device (default; cuFFT's work area counted).
 
         Returns
         -------
         int
-            Bytes: the larger of the half-space while it is made (the free spectrum on a
-            CUDA device) and what the solver holds: the half-space
-            (:meth:`ElasticHalfSpace.memory_bytes`: half kernel spectrum, influence table, work
-            spectrum, cuFFT work areas), the zero-padded (ny, Nx) buffers of q and t, the maps
-            h, u and q_lin, the mask, and the two maps of the stiffness solve (x, residual). Free
-            float64: 0.79 GiB at 2048², 3.1 GiB at 4096², 12.6 GiB at 8192², 19.6 GiB at
-            10240² (float32: 0.44, 1.75, 7.0, 10.9 GiB).
+            The sum of :meth:`memory_terms`. Per map pixel, free boundary, large maps: float32
+            4 (kernel spectrum) + 4 (table) + 16 (work spectrum) + ≤ 2 (cuFFT work area,
+            estimated) + 20 (maps) + 1 (mask) + 4 (stiffness solve) ≈ 51 B; float64 ≈ 101 B;
+            periodic float32 ≈ 1 + 4 + 4 + ≤ 0.5 + 20 + 1 + 4 ≈ 35 B.
         """
-        ny, nx = shape
-        big_x = 2 * nx if substrate == "free" else nx
-        item = np.dtype(dtype).itemsize
-        maps = ny * nx * (5 * item + 1)  # h, u, q_lin, stiffness x and residual; mask
-        buffers = 2 * ny * big_x * item  # q and t with their pad columns
-        lists = 2 * 65536 * 4 + 24 * 12  # lane counts and offsets, the list of changed forces
-        held, making = ElasticHalfSpace.memory_bytes(shape, substrate, dtype)
-        return int(max(making, held + maps + buffers + lists))
+        terms = ContactSolver.memory_terms(shape, substrate, dtype, cuda=cuda)
+        return int(sum(terms.values()))
 
     # --- one solve ---------------------------------------------------------------------------
 
@@ -411,7 +446,8 @@ class ContactSolver:
         wp.launch(
             _k.contact_mask_kernel, dim=self.shape, inputs=[self.q], outputs=[self.mask], device=dev
         )
-        x = wp.zeros(self.shape, dtype=sc, device=dev)
+        x = self.lin  # q_lin is scratch between solves: the punch's unknown uses its map
+        x.zero_()
         res = wp.zeros(self.shape, dtype=sc, device=dev)
         wp.launch(
             _k.fill_map_kernel,
