@@ -446,6 +446,50 @@ def test_westergaard_periodic(device):
         assert abs(width - expect) <= 2 * dx, (frac, width / dx, expect / dx)
 
 
+def _westergaard(nx: int, ny: int, device, fractions):
+    """One wavelength λ = nx pixels of z = Δ·cos(2πx/λ), uniform in y, periodic, in load
+    control at mean pressures p̄ = f·p*: per f, (converged, contact width 2a in pixels, the
+    closed form's 2a in pixels) with p̄ = p*·sin²(πa/λ), p* = πE*Δ/λ (Johnson §13.2)."""
+    lam, delta = 1e-4, 1e-7
+    dx = lam / nx
+    x = np.arange(nx) * dx
+    z = np.tile(delta * np.cos(2 * np.pi * x / lam), (ny, 1))
+    p_star = math.pi * E_STAR * delta / lam
+    loads = [f * p_star * lam * ny * dx for f in fractions]
+    c = solve_contact(z, loads=loads, pixel_size=dx, contact_modulus=E_STAR,
+                      substrate="periodic", stiffness="none", device=device)  # fmt: skip
+    np.testing.assert_allclose(c.load, loads, rtol=1e-5)
+    width = c.n_contact / ny  # 2a in pixels (the contact is uniform in y)
+    expect = 2 * nx / math.pi * np.arcsin(np.sqrt(fractions))
+    return c.converged, width, expect
+
+
+@pytest.mark.parametrize(("nx", "ny"), [(256, 8), (1024, 8)])
+def test_westergaard_near_full_contact(device, nx, ny):
+    """Westergaard's sinusoid up to near full contact: at p̄ = p*/2 the contact width is λ/2
+    within one pixel; the gap width 1 − 2a/λ within 5 % of the closed form at 90 % of p*
+    (0.205λ: 52 pixels at λ = 256) and, at λ = 1024, at 99 % (0.064λ = 65 pixels). The contact
+    edges are resolved to a pixel each and the pixel-centred map makes the contact an odd number
+    of pixels, and the solution overshoots the closed form's contact by about 1.5 pixels, so 5 %
+    needs a gap of ≳ 35 pixels (measured at λ = 512: 31 against 32.6, 5.05 %)."""
+    ok, width, expect = _westergaard(nx, ny, device, np.array([0.5, 0.9, 0.99]))
+    assert ok.all()
+    assert abs(width[0] - expect[0]) <= 1.0, (width, expect)
+    k = 3 if nx >= 1024 else 2
+    np.testing.assert_allclose(1 - width[1:k] / nx, 1 - expect[1:k] / nx, rtol=0.05)
+
+
+@pytest.mark.gpu
+@pytest.mark.slow
+def test_westergaard_near_full_contact_large(device):
+    """The same at λ = 2048 pixels (a 2048 × 8 map), where the 5 % gap tolerance at 99 % of p*
+    is 2.6 pixels (the issue's λ ≥ 2048-pixel case)."""
+    ok, width, expect = _westergaard(2048, 8, device, np.array([0.5, 0.9, 0.99]))
+    assert ok.all()
+    assert abs(width[0] - expect[0]) <= 1.0
+    np.testing.assert_allclose(1 - width[1:] / 2048, 1 - expect[1:] / 2048, rtol=0.05)
+
+
 # --- against ContactMechanics ---------------------------------------------------------------
 
 
