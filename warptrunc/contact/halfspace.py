@@ -16,15 +16,20 @@ Discretisation (identical to ContactMechanics' ``FreeFFTElasticHalfSpace`` and
   π·E*·(1/Lx + 1/Ly)/2, so F(δ) depends on that convention, the pressure at a given mean
   pressure does not.
 
-The spectrum ``W = FFT(G)/(dx·dy)`` (m/N) is real and even; it is computed in float64 once per
-:class:`ElasticHalfSpace` (one per solver, reused by every solve): on a CUDA device with CuPy and
-cuFFT on the device (the free half-space; no host memory at the paper's sizes), otherwise on the
-host, cached by (grid, pixel size, E*, substrate) (:func:`influence_spectrum`). W is even in y
-too, so the half-space keeps its rows 0 … Ny//2 only.
+The spectrum ``W = FFT(G)/(dx·dy)`` (m/N) is real and even; the half-space keeps its rows
+0 … Ny//2 only, in its dtype, and the (ny, nx) influence table. Both are built in place once per
+:class:`ElasticHalfSpace` (one per solver), in float64 arithmetic whatever the dtype, a slab of
+rows or columns at a time (:func:`~warptrunc.contact.influence.build_free_spectrum`: the x
+transform of the mirrored rows of Love's quadrant into the work spectrum, used as float64
+scratch, then the y transform of its mirrored columns), with CuPy on a CUDA device and NumPy on
+the CPU: no (2ny, 2nx) grid, no host copy, temporaries of a few MiB. The periodic table is the
+inverse transform of the spectrum.
 
 Pruned transforms. Forces live on the (ny, nx) map and only the map's displacements are needed,
 so the free half-space never forms the (2ny, 2nx) grid: the forward transform is a real-to-complex
-FFT along x of the ny map rows (each row stored with its zero pad, length 2nx) into the first ny
+FFT along x of the ny map rows (on a CUDA device each row is first written with its zero pad,
+length 2nx, into the work spectrum's memory and transformed there in place; the maps themselves
+hold no pad) into the first ny
 rows of a (2ny, nx + 1) spectrum whose other rows are zeroed, then a complex FFT along y of every
 column; the inverse is the complex inverse FFT along y, then the complex-to-real FFT along x of the
 first ny rows only. Both equal the full zero-padded transforms to round-off
@@ -37,7 +42,9 @@ summation over the real-space influence table (:func:`influence_table`, held by 
 
 FFT backends, one algorithm: on a CUDA device three cuFFT plans (``cupy.cuda.cufft.PlanNd``
 with the advanced data layout: the batched row R2C, the strided in-place column C2C, the row
-C2R in place, so no transposes and no copies) executed on Warp's own stream (CuPy's view of it:
+C2R in place, so no transposes; each executed in at most ``FFT_SLABS`` slabs of rows or columns,
+with one work area shared by all plans and allocated, like every CuPy allocation the half-space
+makes, from Warp's memory pool) executed on Warp's own stream (CuPy's view of it:
 ``cupy.cuda.Stream.from_external`` on CuPy ≥ 14, ``ExternalStream`` before), so kernels and
 transforms stay ordered with no device-wide synchronisation; the buffers are Warp arrays, handed to cuFFT by pointer
 (``cupy.cuda.UnownedMemory``; no copies, no ``__cuda_array_interface__``). On the CPU ``scipy.fft``
