@@ -115,10 +115,10 @@ def run_one(s, dtype: str, dev) -> dict:
     return {
         "setup_s": t1 - t0, "cold_s": t2 - t1, "warm_s": t3 - t2, "punch_s": t4 - t3,
         "stiffness_N_per_m": k, "punch_converged": bool(k_ok),
-        "cold_iterations": cold["n_iterations"], "cold_convolutions": cold["n_convolutions"],
-        "warm_iterations": warm["n_iterations"], "warm_convolutions": warm["n_convolutions"],
-        "converged": bool(cold["converged"] and warm["converged"]),
-        "load_N": warm["load"], "n_contact": warm["n_contact"],
+        "cold_iterations": cold.n_iterations, "cold_convolutions": cold.n_convolutions,
+        "warm_iterations": warm.n_iterations, "warm_convolutions": warm.n_convolutions,
+        "converged": bool(cold.converged and warm.converged),
+        "load_N": warm.load, "n_contact": warm.n_contact,
         "peak_bytes": peak, "cufft_work_bytes": int(fft_work),
     }  # fmt: skip
 
