@@ -89,7 +89,7 @@ def test_banded_wm_generation_is_unchanged(device):
 
 
 def test_side_limit_is_refused_before_allocating(capsys):
-    with pytest.raises(ValueError, match=r"n \(x\) must be an integer in \[2, 1048576\]"):
+    with pytest.raises(ValueError, match=r"n must be an integer in \[2, 1048576\]"):
         wm_spec(n=2**20 + 1)
     rc = main(["generate", "--n", str(2**21), "-o", "unused.npz"])
     assert rc == 2
