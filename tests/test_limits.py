@@ -93,7 +93,7 @@ def test_side_limit_is_refused_before_allocating(capsys):
         wm_spec(n=2**20 + 1)
     rc = main(["generate", "--n", str(2**21), "-o", "unused.npz"])
     assert rc == 2
-    assert "n (x) must be an integer in [2, 1048576], got 2097152" in capsys.readouterr().err
+    assert "--n: must be an integer in [2, 1048576], got '2097152'" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("shape", [(32768, 32768), (46400, 46400)], ids=["2^30", "46400^2"])

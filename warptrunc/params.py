@@ -438,6 +438,8 @@ def add_options(
         default = defaults.get(name, fields[name].default)
         unit = f" ({meta.unit})" if meta.unit else ""
         rng = meta.interval() if meta.kind != "choice" else ""
+        if meta.unit and rng.endswith(" " + meta.unit):
+            rng = rng[: -len(meta.unit) - 1]  # the unit is named once, after the description
         help_ = f"{docs.get(name, meta.doc)}{unit}"
         if rng:
             help_ += f"; {rng}"

@@ -23,7 +23,16 @@ from ..params import check_fields, check_value, param_info, param_like, sweep_fi
 from ..stiffness import DEFAULT_MIN_PIXELS
 from ..wm_params import WMSpec
 
-__all__ = ["AXIS_SPECS", "FRACTAL_METHODS", "Case", "SweepGrid", "SweepOptions", "parse_seeds"]
+__all__ = [
+    "AXIS_SPECS",
+    "FRACTAL_METHODS",
+    "Case",
+    "SweepGrid",
+    "SweepOptions",
+    "axis_names",
+    "option_name",
+    "parse_seeds",
+]
 
 AXIS_SPECS = (WMSpec, Material)
 """The parameter classes whose sweepable fields (:func:`warptrunc.params.sweep_fields`) a grid
@@ -325,7 +334,7 @@ class SweepOptions:
         mine = {f.name for f in fields(self)}
         kw = {}
         for name, v in values.items():
-            opt = _OPTION_OF.get(name, name)
+            opt = option_name(name)
             if opt not in mine or opt in _NOT_AXES:
                 raise ValueError(
                     f"the sweep cannot vary {name!r}: it is not an option of the sweep "
@@ -337,6 +346,22 @@ class SweepOptions:
 
 _OPTION_OF = {"E_i": "E_flat", "nu_i": "nu_flat"}
 """Axis (parameter field) → SweepOptions field, where the names differ."""
+
+
+def option_name(name: str) -> str:
+    """The :class:`SweepOptions` field that holds parameter field ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A field of :class:`~warptrunc.WMSpec` or :class:`~warptrunc.Material`.
+
+    Returns
+    -------
+    str
+        ``E_flat`` for ``E_i``, ``nu_flat`` for ``nu_i`` (the stores' names), else ``name``.
+    """
+    return _OPTION_OF.get(name, name)
 
 _NOT_AXES = ("L", "n", "cutoff")
 
@@ -362,7 +387,7 @@ def axis_names(specs: Sequence[type] = AXIS_SPECS, *, runnable: bool = False) ->
         for name in sweep_fields(spec):
             if name in _CORE or name in out:
                 continue
-            if runnable and _OPTION_OF.get(name, name) not in mine:
+            if runnable and option_name(name) not in mine:
                 continue
             out.append(name)
     return out
