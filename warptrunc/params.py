@@ -190,7 +190,7 @@ def param(default: Any, doc: str, *, unit: str = "", **kw: Any) -> Any:
     return dataclasses.field(default=default, metadata={_KEY: meta})
 
 
-def param_like(cls: Any, name: str, *, default: Any = dataclasses.MISSING, **changes: Any) -> Any:
+def param_like(source: Any, name: str, *, default: Any = dataclasses.MISSING, **changes: Any) -> Any:
     """A field declared like field ``name`` of ``cls``: same default, unit, range, description.
 
     For an object that holds a parameter of another one under its own name (the sweep's
@@ -198,7 +198,7 @@ def param_like(cls: Any, name: str, *, default: Any = dataclasses.MISSING, **cha
 
     Parameters
     ----------
-    cls : type
+    source : type
         The parameter class that declares the field.
     name : str
         Its field name.
@@ -211,9 +211,9 @@ def param_like(cls: Any, name: str, *, default: Any = dataclasses.MISSING, **cha
     -------
     dataclasses.Field
     """
-    f = {f.name: f for f in dataclasses.fields(cls)}.get(name)
+    f = {f.name: f for f in dataclasses.fields(source)}.get(name)
     if f is None or _KEY not in f.metadata:
-        raise ValueError(f"{cls.__name__} has no parameter {name!r}")
+        raise ValueError(f"{source.__name__} has no parameter {name!r}")
     meta = dataclasses.replace(f.metadata[_KEY], **changes)
     d = f.default if default is dataclasses.MISSING else default
     return dataclasses.field(default=d, metadata={_KEY: meta})
