@@ -107,8 +107,14 @@ def _read_table(p: Path) -> pd.DataFrame:
         if "case_id" in df.columns:
             df = df.sort_values("case_id", kind="stable", ignore_index=True)
         return df
-    if p.suffix == ".csv":
-        return pd.read_csv(p, float_precision="round_trip")
+    if p.suffix == ".csv":  # Python's float() of each cell: correctly rounded
+        df = pd.read_csv(p, dtype=str, keep_default_na=False)
+        for c in df.columns:
+            try:
+                df[c] = df[c].map(float)
+            except ValueError:
+                pass
+        return df
     return pd.read_parquet(p)
 
 
