@@ -407,8 +407,8 @@ class SweepGrid:
         [axes]                   # optional: more axes, outermost (slowest) first
         M = [8, 10]              # any sweepable field of WMSpec or Material (SI units)
 
-    The values are checked against the declarations of the fields (:func:`warptrunc.params.
-    check_value`): ``D`` against :class:`~warptrunc.WMSpec`'s, an extra axis against that of
+    The values are checked against the declarations of the fields
+    (:func:`warptrunc.params.check_value`): ``D`` against :class:`~warptrunc.WMSpec`'s, an extra axis against that of
     the parameter class declaring it (``specs``). A grid without extra axes has the case ids
     it always had; a case of a grid with extra axes has the id of the same case run with
     those values as options.
