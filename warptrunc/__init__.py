@@ -49,6 +49,7 @@ _EXPORTS = {
     "PowerLawFit": ".stiffness",
     "SolverSettings": ".contact.settings",
     "StiffnessCurve": ".stiffness",
+    "TABLE1": ".presets",
     "Surface": ".surface",
     "TruncationCurve": ".truncation",
     "WMSpec": ".wm_params",
@@ -65,6 +66,7 @@ _EXPORTS = {
     "from_heights": ".surface",
     "island_curve": ".islands",
     "label_islands": ".islands",
+    "preset": ".presets",
     "read_height_map": ".io",
     "resolve_device": "._support.device",
     "stiffness_curve": ".stiffness",
@@ -75,8 +77,9 @@ _EXPORTS = {
 """Public name → the module that defines it (imported on first access, PEP 562)."""
 
 _SUBMODULES = frozenset({
-    "calibrate", "cli", "contact", "descriptors", "fractal", "io", "islands", "plot", "render",
-    "reproduce", "robust", "spectra", "stiffness", "surface", "sweep", "truncation", "wm",
+    "calibrate", "cli", "contact", "descriptors", "fractal", "io", "islands", "material",
+    "params", "plot", "presets", "render", "reproduce", "robust", "spectra", "stiffness",
+    "surface", "sweep", "truncation", "wm", "wm_params",
 })  # fmt: skip
 
 
@@ -130,6 +133,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerl
         label_islands,
     )
     from .material import Material
+    from .presets import TABLE1, preset
     from .stiffness import PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
     from .surface import Surface, from_heights
     from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
@@ -153,6 +157,7 @@ __all__ = [
     "SolverSettings",
     "StiffnessCurve",
     "Surface",
+    "TABLE1",
     "TruncationCurve",
     "WMSpec",
     "applicable_depth",
@@ -168,6 +173,7 @@ __all__ = [
     "from_heights",
     "island_curve",
     "label_islands",
+    "preset",
     "read_height_map",
     "resolve_device",
     "stiffness_curve",
