@@ -209,6 +209,7 @@ class ContactSolver:
         self.offset = 0.0
         self.plastic_frozen = False
         self.plastic_volume = 0.0  # Σ plastic displacement·dx·dy (m³)
+        self._depth: float | None = None  # approach of the last solve (m)
 
     @staticmethod
     def memory_bytes(
@@ -305,6 +306,7 @@ class ContactSolver:
         return self._state(info, self._flow(apply=info["converged"]))
 
     def _state(self, info: dict[str, Any], flow: tuple[int, int] | None) -> ContactState:
+        self._depth = float(info["depth"])
         dx, dy = self.pixel_size
         n_c, n_p = (info["n_contact"], 0) if flow is None else flow
         return ContactState(
@@ -550,9 +552,9 @@ class ContactSolver:
         tol = max(self.thermotol, 1e-9) * load
         lo, f_lo = 0.0, 0.0  # the flat at the original top: nothing penetrates, F = 0
         hi = f_hi = None
-        x = self.offset + self.h_max if self.offset + self.h_max > 0 else None
+        x = self._depth if self._depth is not None and self._depth > 0 else None
         if x is None:
-            x = max(float(self.pentol), 1e-3 * self._scale())
+            x = max(float(self.pentol), 1e-2 * self._scale())
         info: dict[str, Any] = {}
         side = 0
         conv = True
@@ -638,6 +640,7 @@ class ContactSolver:
             a.zero_()
         self.offset = 0.0
         self.plastic_volume = 0.0
+        self._depth = None
 
     # --- after a solve -----------------------------------------------------------------------
 
