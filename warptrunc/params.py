@@ -68,6 +68,9 @@ class Param:
     """``None`` is allowed (meaning: derived, see the description)."""
     pair: bool = False
     """A scalar or an (x, y) pair is allowed (CLI: one or two values)."""
+    many: bool = False
+    """A tuple of one or more values, each in the range (a scalar becomes a 1-tuple; CLI: one
+    or more values)."""
     allow_inf: bool = False
     """+inf is allowed (e.g. the modulus of a rigid body, the hardness of an elastic one)."""
     cli: str | None = None
@@ -131,6 +134,15 @@ class Param:
                 raise ValueError(f"{name} must be a scalar or an (x, y) pair, got {value!r}")
             checked = (self._one(f"{name} (x)", v[0]), self._one(f"{name} (y)", v[1]))
             return checked[0] if checked[0] == checked[1] else checked
+        if self.many:
+            if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
+                value = (value,)
+            v = tuple(value)
+            if self.optional and v == (None,):
+                return None
+            if not v:
+                raise ValueError(f"{name} needs at least one value in {self.interval()}, got none")
+            return tuple(self._one(f"{name}[{i}]", x) for i, x in enumerate(v))
         return self._one(name, value)
 
     def _one(self, name: str, value: Any) -> Any:
@@ -175,7 +187,8 @@ def param(default: Any, doc: str, *, unit: str = "", **kw: Any) -> Any:
         SI unit, "" for dimensionless quantities and counts.
     **kw
         Further :class:`Param` attributes: ``gt``, ``ge``, ``lt``, ``le``, ``kind``,
-        ``choices``, ``optional``, ``pair``, ``allow_inf``, ``cli``, ``aliases``, ``sweep``.
+        ``choices``, ``optional``, ``pair``, ``many``, ``allow_inf``, ``cli``, ``aliases``,
+        ``sweep``.
 
     Returns
     -------
@@ -391,7 +404,7 @@ def add_options(
         else:
             kw["type"] = _arg_type(name, meta)
             kw["metavar"] = name.upper() if meta.kind == "int" else name
-        if meta.pair:
+        if meta.pair or meta.many:
             kw["nargs"] = "+"
         g.add_argument(*_option(name, meta, prefix), **kw)
     return g
@@ -437,6 +450,8 @@ def from_args(
                     f"{_option(name, meta, prefix)[0]} takes one or two values, got {len(v)}: {v!r}"
                 )
             v = v[0] if len(v) == 1 else (v[0], v[1])
+        elif meta.many:
+            v = tuple(v)
         kw[name] = v
     kw.update(overrides)
     return spec_cls(**kw)
