@@ -42,6 +42,8 @@ _EXPORTS = {
     "CalibrationTarget": ".calibrate",
     "Descriptors": ".descriptors",
     "FractalFit": ".fractal",
+    "IndentProtocol": ".indent",
+    "IndentationResult": ".indent",
     "Indicators": ".islands",
     "IslandCurve": ".islands",
     "Islands": ".islands",
@@ -62,6 +64,7 @@ _EXPORTS = {
     "fractal_dimension": ".fractal",
     "fractal_dimensions": ".fractal",
     "from_heights": ".surface",
+    "indent": ".indent",
     "island_curve": ".islands",
     "label_islands": ".islands",
     "read_height_map": ".io",
@@ -74,8 +77,8 @@ _EXPORTS = {
 """Public name → the module that defines it (imported on first access, PEP 562)."""
 
 _SUBMODULES = frozenset({
-    "calibrate", "cli", "contact", "descriptors", "fractal", "io", "islands", "plot", "render",
-    "reproduce", "robust", "spectra", "stiffness", "surface", "sweep", "truncation", "wm",
+    "calibrate", "cli", "contact", "descriptors", "fractal", "indent", "io", "islands", "plot",
+    "render", "reproduce", "robust", "spectra", "stiffness", "surface", "sweep", "truncation", "wm",
 })  # fmt: skip
 
 
@@ -117,6 +120,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerl
     from .contact.check import BemCheck, bem_check
     from .descriptors import Descriptors, describe
     from .fractal import FractalFit, fractal_dimension, fractal_dimensions
+    from .indent import IndentationResult, IndentProtocol, indent
     from .io import read_height_map, write_height_map
     from .io.vtk import export_vtk
     from .islands import (
@@ -143,6 +147,8 @@ __all__ = [
     "CalibrationTarget",
     "Descriptors",
     "FractalFit",
+    "IndentProtocol",
+    "IndentationResult",
     "Indicators",
     "IslandCurve",
     "Islands",
@@ -163,6 +169,7 @@ __all__ = [
     "fractal_dimension",
     "fractal_dimensions",
     "from_heights",
+    "indent",
     "island_curve",
     "label_islands",
     "read_height_map",

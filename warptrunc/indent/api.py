@@ -113,7 +113,7 @@ def indent(
         Punch positions per diameter, random, inside the map and apart; None: one punch at
         the map centre.
     seed : int
-        Seed of the random positions.
+        Seed of the random positions (``IndentProtocol.placement_seed``).
     pixel_size : float or (float, float), optional
         Pixel sides (m); required for an array, taken from a Surface.
     settings : SolverSettings, optional
@@ -162,7 +162,7 @@ def indent(
     z, (dx, dy), surface_info = _heights(surface, pixel_size)
     protocol = IndentProtocol(
         punch_diameters=punch_diameter, peak_loads=peak_loads, unload_fraction=unload_fraction,
-        placements=placements, seed=seed, overlap=overlap,
+        placements=placements, placement_seed=seed, overlap=overlap,
         truncation_increments=truncation_increments,
     )  # fmt: skip
     material = default_material() if material is None else material
@@ -183,8 +183,10 @@ def indent(
         if d is None:
             centres, frac = np.array([[0.5 * lx, 0.5 * ly]]), np.zeros(1)
         else:
-            centres, frac = place_punches((lx, ly), d, protocol.placements, seed=(protocol.seed, i),
-                                          overlap=protocol.overlap)  # fmt: skip
+            centres, frac = place_punches(
+                (lx, ly), d, protocol.placements, seed=(protocol.placement_seed, i),
+                overlap=protocol.overlap,
+            )  # fmt: skip
         for j, c in enumerate(centres):
             w = punch_window(z, (dx, dy), d, (float(c[0]), float(c[1])))
             _check_loads(w, protocol, hardness)

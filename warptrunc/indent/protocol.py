@@ -110,16 +110,17 @@ class IndentProtocol:
     )  # fmt: skip
     peak_loads: tuple[float, ...] = param(
         PAPER_PEAK_LOADS, "peak loads F of the cycles, increasing", unit="N", gt=0.0,
-        many=True, sweep=False,
+        many=True, cli="peak-loads", sweep=False,
     )  # fmt: skip
     unload_fraction: float = param(
-        0.1, "partial unloading of each cycle, as a fraction of its peak load", gt=0.0, lt=1.0
+        0.1, "partial unloading of each cycle, as a fraction of its peak load", gt=0.0, lt=1.0,
+        cli="unload-fraction",
     )
     placements: int | None = param(
         3, "punch positions per diameter (random, apart); none = one at the map centre",
         kind="int", ge=1, le=10_000, optional=True, sweep=False,
     )  # fmt: skip
-    seed: int = param(
+    placement_seed: int = param(
         0, "seed of the random punch positions", kind="int", ge=0, le=2**32 - 1,
         cli="placement-seed", sweep=False,
     )  # fmt: skip
@@ -129,7 +130,7 @@ class IndentProtocol:
     )  # fmt: skip
     truncation_increments: int = param(
         1000, "depth increments of the Eq. 2 truncation curve under each punch", kind="int",
-        ge=10, le=10_000_000, sweep=False,
+        ge=10, le=10_000_000, cli="truncation-increments", sweep=False,
     )  # fmt: skip
 
     def __post_init__(self) -> None:
