@@ -284,11 +284,11 @@ def test_direct_corrections_equal_transforms(device):
                             device=device)  # fmt: skip
         out.append([sol.solve(f * s.Rt) for f in (0.1, 0.2)])
     for a, b in zip(*out, strict=True):
-        assert a["converged"] and b["converged"]
-        assert a["n_iterations"] == b["n_iterations"]
-        assert a["n_contact"] == b["n_contact"]
-        assert math.isclose(a["load"], b["load"], rel_tol=1e-10)
-        assert b["n_convolutions"] < a["n_convolutions"]
+        assert a.converged and b.converged
+        assert a.n_iterations == b.n_iterations
+        assert a.n_contact == b.n_contact
+        assert math.isclose(a.load, b.load, rel_tol=1e-10)
+        assert b.n_convolutions < a.n_convolutions
 
 
 # --- closed forms ---------------------------------------------------------------------------

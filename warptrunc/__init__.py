@@ -49,6 +49,7 @@ _EXPORTS = {
     "Islands": ".islands",
     "Material": ".material",
     "PowerLawFit": ".stiffness",
+    "SolverSettings": ".contact.settings",
     "StiffnessCurve": ".stiffness",
     "Surface": ".surface",
     "TruncationCurve": ".truncation",
@@ -118,6 +119,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerl
     from ._support.device import resolve_device  # after the kernels mapping above
     from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
     from .contact.check import BemCheck, bem_check
+    from .contact.settings import SolverSettings
     from .descriptors import Descriptors, describe
     from .fractal import FractalFit, fractal_dimension, fractal_dimensions
     from .indent import IndentationResult, IndentProtocol, indent
@@ -154,6 +156,7 @@ __all__ = [
     "Islands",
     "Material",
     "PowerLawFit",
+    "SolverSettings",
     "StiffnessCurve",
     "Surface",
     "TruncationCurve",

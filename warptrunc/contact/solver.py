@@ -43,16 +43,22 @@ position steady (load control).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 import warp as wp
 
 from .._support.device import free_memory_bytes, release_cached_memory, resolve_device
-from .._support.validate import check_height_map, check_int, check_range, pair
+from .._support.validate import check_height_map, check_range, pair
 from ..kernels import contact as _k
+from ..kernels import contact_plastic as _kp
 from ..kernels import contact_reduce as _kr
-from .halfspace import DTYPES, SUBSTRATES, ElasticHalfSpace
+from ..material import Material
+from ..params import check_value
+from .halfspace import DTYPES, ElasticHalfSpace
+from .results import ContactState
+from .settings import SolverSettings
 
 __all__ = ["ContactSolver", "default_pentol"]
 
@@ -74,8 +80,16 @@ def default_pentol(heights: np.ndarray) -> float:
     return float(np.std(h)) / (10 * np.mean(h.shape))
 
 
+_LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter", "refresh",
+           "direct_max")  # fmt: skip
+
+
 class ContactSolver:
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
+
+    With a finite ``hardness`` the local pressure is capped at H and the map flows plastically
+    (elastic–perfectly-plastic contact, see the module docstring): the plastic height change is
+    state of the solver, so a sequence of solves is a loading history.
 
     Parameters
     ----------
@@ -85,37 +99,28 @@ class ContactSolver:
         Pixel sides (dx, dy) (m).
     contact_modulus : float
         Contact modulus E* (Pa).
-    substrate : {"free", "periodic"}
-        Isolated, zero-padded patch (default) or periodic map; see
-        :mod:`warptrunc.contact.halfspace`.
-    dtype : {"float64", "float32"}
-        Precision of the maps and FFTs; reductions are float64 in both. Measured against
-        float64 on D = 2.5 WM maps of 128²–512²: F within 5e-7, the same contact pixels, k
-        within 3e-5 (relative); about 0.6× the time on the CPU.
-    pressure_tol : float
-        Tolerance on tensile pixel pressure relative to E* (dimensionless);
-        ``forcetol = pressure_tol·E*·dx·dy`` (N).
-    pentol : float, optional
-        Tolerance on penetration (m); default rms height/(10·mean(nx, ny)).
-    thermotol : float
-        Relative tolerance on the total force (dimensionless).
-    maxiter : int
-        Largest number of iterations per solve.
-    refresh : int
-        Transform the forces afresh (instead of updating u by linearity) at least every
-        ``refresh`` iterations.
-    direct_max : int or "auto"
-        Largest number of pixels whose force the projection changed that are corrected by direct
-        summation over the influence table (each costs one pass over the map) rather than by
-        transforming the forces afresh. ``"auto"``: 24 on a CUDA device, 4 on the CPU (where
-        Warp runs a kernel on one core).
+    settings : SolverSettings, optional
+        Precision, substrate, tolerances and iteration limits
+        (:class:`~warptrunc.contact.SolverSettings`; default ``SolverSettings()``). Measured
+        float32 against float64 on D = 2.5 WM maps of 128²–512²: F within 5e-7, the same contact
+        pixels, k within 3e-5 (relative); about 0.6× the time on the CPU.
+    hardness : float
+        Hardness H (Pa), the local pressure cap, in (0, inf]; ``inf`` (default): elastic, the
+        solver of today bit for bit.
     device : str or warp Device, optional
         Warp device.
+    **legacy
+        The fields of :class:`~warptrunc.contact.SolverSettings` as keywords (``substrate=``,
+        ``dtype=``, ``pressure_tol=``, ``pentol=``, ``thermotol=``, ``maxiter=``, ``refresh=``,
+        ``direct_max=``, ``"auto"`` allowed), as before the settings object; they override
+        ``settings``.
 
     Raises
     ------
     ValueError
         Non-finite or non-2-D heights, parameters out of range.
+    TypeError
+        An unknown keyword.
     MemoryError
         When the estimated memory (:meth:`memory_bytes`) exceeds the device's free memory,
         before anything is allocated.
@@ -127,39 +132,42 @@ class ContactSolver:
         pixel_size: Any,
         contact_modulus: float,
         *,
-        substrate: str = "free",
-        dtype: str = "float64",
-        pressure_tol: float = 1e-5,
-        pentol: float | None = None,
-        thermotol: float = 1e-6,
-        maxiter: int = 10000,
-        refresh: int = 50,
-        direct_max: int | str = "auto",
+        settings: SolverSettings | None = None,
+        hardness: float = math.inf,
         device: wp.DeviceLike = None,
+        **legacy: Any,
     ) -> None:
+        unknown = sorted(set(legacy) - set(_LEGACY))
+        if unknown:
+            raise TypeError(f"ContactSolver got unexpected keyword(s) {unknown}; known: "
+                            f"settings, hardness, device, {', '.join(_LEGACY)}")  # fmt: skip
+        if settings is None:
+            settings = SolverSettings()
+        elif not isinstance(settings, SolverSettings):
+            raise ValueError(f"settings must be a SolverSettings, got {type(settings).__name__}")
+        if legacy:
+            settings = replace(settings, **legacy)
+        self.settings = settings
+        self.hardness = float(check_value(Material, "hardness", hardness))
         check_height_map(heights)
         h = np.asarray(heights, dtype=np.float64)
         dx, dy = pair("pixel_size", pixel_size)
         check_range("pixel_size", dx, 0.0, unit="m")
         check_range("pixel_size", dy, 0.0, unit="m")
         self.contact_modulus = check_range("contact_modulus", contact_modulus, 0.0, unit="Pa")
-        if substrate not in SUBSTRATES:
-            raise ValueError(f"substrate must be one of {SUBSTRATES}, got {substrate!r}")
-        if dtype not in DTYPES:
-            raise ValueError(f"dtype must be one of {tuple(DTYPES)}, got {dtype!r}")
-        self.pressure_tol = check_range("pressure_tol", pressure_tol, 0.0)
-        self.pentol = (
-            default_pentol(h) if pentol is None else check_range("pentol", pentol, 0.0, unit="m")
-        )
+        substrate, dtype = settings.substrate, settings.dtype
+        self.pressure_tol = settings.pressure_tol
+        self.pentol = default_pentol(h) if settings.pentol is None else settings.pentol
         if self.pentol == 0.0:
             self.pentol = 1e-3 * max(float(np.ptp(h)), dx)  # a flat map: a fraction of its scale
-        self.thermotol = check_range("thermotol", thermotol, 0.0)
-        self.maxiter = check_int("maxiter", maxiter, 1)
-        self.refresh = check_int("refresh", refresh, 1)
+        self.thermotol = settings.thermotol
+        self.maxiter = settings.maxiter
+        self.refresh = settings.refresh
         self.device = resolve_device(device)
-        if direct_max == "auto":
+        direct_max = settings.direct_max
+        if direct_max is None:
             direct_max = 24 if self.device.is_cuda else 4
-        self.direct_max = check_int("direct_max", direct_max, 0)
+        self.direct_max = int(direct_max)
         self.shape = h.shape
         self.pixel_size = (dx, dy)
         self.substrate = substrate
@@ -181,7 +189,10 @@ class ContactSolver:
         sc, _, npd = DTYPES[dtype]
         dev = self.device
         self.h_max = float(h.max())
-        self.h = wp.array(h.astype(npd), dtype=sc, device=dev)
+        h_dev = h.astype(npd)
+        self.h = wp.array(h_dev, dtype=sc, device=dev)
+        # the original map as stored on the device (host copy): plastic displacement = h0 − h
+        self._h0 = h_dev if math.isfinite(self.hardness) else None
         self.q_buf, self.q = self.hs.map_buffer()  # forces (N) on the map, zero-padded buffer
         self.t_buf, self.t = self.hs.map_buffer()  # CG direction (m)
         self.u = wp.zeros(h.shape, dtype=sc, device=dev)
@@ -196,6 +207,8 @@ class ContactSolver:
         self.change_value = wp.zeros(max(1, self.direct_max), dtype=wp.float64, device=dev)
         self.tau = wp.zeros(1, dtype=wp.float64, device=dev)
         self.offset = 0.0
+        self.plastic_frozen = False
+        self.plastic_volume = 0.0  # Σ plastic displacement·dx·dy (m³)
 
     @staticmethod
     def memory_bytes(
@@ -240,21 +253,30 @@ class ContactSolver:
                    [self.q, self.u, self.h, wp.float64(offset)], [])  # fmt: skip
         return red.read((False, False, False, False))
 
-    def solve(self, depth: float | None = None, *, load: float | None = None) -> dict[str, Any]:
+    def solve(
+        self, depth: float | None = None, *, load: float | None = None, plastic: bool | None = None
+    ) -> ContactState:
         """Solve at approach ``depth`` δ (m) or total ``load`` F (N), warm-started.
+
+        With a finite hardness the pressure is capped at H and, once converged, the heights
+        flow where p = H (the plastic state grows; see the module docstring). Unloading (a solve
+        at a smaller δ or F) is elastic from the deformed surface.
 
         Parameters
         ----------
         depth : float, optional
-            Approach δ of the flat from first touch at the highest pixel (m).
+            Approach δ of the flat from first touch at the highest pixel of the original map (m).
         load : float, optional
             Total normal load (N), instead of ``depth``.
+        plastic : bool, optional
+            False: an elastic solve of the current (deformed) surface with the plastic state
+            frozen and no pressure cap (for unloading); True: capped and flowing. Default: not
+            :attr:`plastic_frozen` (see :meth:`freeze_plastic`). Irrelevant when H = inf.
 
         Returns
         -------
-        dict
-            ``depth`` (m), ``load`` (N), ``n_contact``, ``mean_gap`` (m), ``n_iterations``,
-            ``n_convolutions``, ``residual`` (m), ``max_tensile_force`` (N), ``converged``.
+        ContactState
+            Load, contact and plastic areas, plastic volume and the solve's convergence record.
 
         Raises
         ------
@@ -265,9 +287,39 @@ class ContactSolver:
         """
         if (depth is None) == (load is None):
             raise ValueError("give exactly one of depth (m) and load (N)")
+        if load is not None:
+            load = check_range("load", load, 0.0, unit="N")
+        else:
+            depth = float(depth)
+        if plastic is None:
+            plastic = not self.plastic_frozen
+        if math.isinf(self.hardness):
+            return self._state(self._solve_elastic(depth, load), None)
+        if not plastic:
+            info = self._solve_elastic(depth, load)
+            return self._state(info, self._flow(apply=False))
+        if load is None:
+            info = self._solve_capped(depth - self.h_max)
+        else:
+            info = self._solve_capped_load(load)
+        return self._state(info, self._flow(apply=info["converged"]))
+
+    def _state(self, info: dict[str, Any], flow: tuple[int, int] | None) -> ContactState:
+        dx, dy = self.pixel_size
+        n_c, n_p = (info["n_contact"], 0) if flow is None else flow
+        return ContactState(
+            depth=float(info["depth"]), load=float(info["load"]), n_contact=int(n_c),
+            contact_area=n_c * dx * dy, n_plastic=int(n_p), plastic_area=n_p * dx * dy,
+            plastic_volume=self.plastic_volume, mean_gap=float(info["mean_gap"]),
+            n_iterations=int(info["n_iterations"]), n_convolutions=float(info["n_convolutions"]),
+            residual=float(info["residual"]), max_tensile_force=float(info["max_tensile_force"]),
+            converged=bool(info["converged"]),
+        )  # fmt: skip
+
+    def _solve_elastic(self, depth: float | None, load: float | None) -> dict[str, Any]:
+        """Today's elastic constrained CG on the current heights (the path of H = inf)."""
         load_control = load is not None
         if load_control:
-            load = check_range("load", load, 0.0, unit="N")
             offset = 0.0  # as ContactMechanics: the first gap is measured from offset 0
         else:
             offset = float(depth) - self.h_max
@@ -385,6 +437,207 @@ class ContactSolver:
                 break
         self.offset = offset
         return info
+
+    # --- elastic–perfectly-plastic solves -------------------------------------------------------
+
+    @property
+    def _cap(self) -> float:
+        dx, dy = self.pixel_size
+        return self.hardness * dx * dy  # force cap per pixel (N)
+
+    def _self_influence(self) -> float:
+        """Displacement per unit force at the loaded pixel itself, G(0, 0) (m/N)."""
+        if not hasattr(self, "_g00"):
+            self._g00 = float(self.hs.table[0:1, 0:1].numpy()[0, 0])  # sync point
+        return self._g00
+
+    def _solve_capped(self, offset: float) -> dict[str, Any]:
+        """Constrained CG with 0 ≤ q ≤ H·dx·dy at a fixed offset (m); the heights are not changed
+        (that is :meth:`_flow`)."""
+        red, hs, dev = self.hs.reduction, self.hs, self.device
+        n_map = self.shape[0] * self.shape[1]
+        inv_n = 1.0 / hs.n_total
+        hf = wp.float64(self._cap)
+        fallback = wp.float64(1.0 / self._self_influence())
+        wp.launch(_k.clamp_displacement_kernel, dim=self.shape,
+                  inputs=[self.h, wp.float64(offset)], outputs=[self.u, self.t],
+                  device=dev)  # fmt: skip
+        dq = hs.apply(self.t_buf, inverse=True)
+        wp.launch(_k.add_map_kernel, dim=self.shape, inputs=[dq], outputs=[self.q], device=dev)
+        del dq
+        n_transforms = 2
+        red.launch(_kp.capped_sums_kernel, n_map, [self.q, self.u, self.h, wp.float64(offset), hf],
+                   [])  # fmt: skip
+        n_c, _, s_gg, _ = red.read((False, False, False, False))
+        self.t.zero_()
+        g_old, cg = 1.0, False
+        last_total = None
+        info: dict[str, Any] = {"converged": False}
+        update_cols = (False, False, False, False, True, False, False, False)
+        advance_cols = (True, False, False, False, True, False, False)
+        periodic = int(self.substrate == "periodic")
+        for it in range(1, self.maxiter + 1):
+            g, a_cg = s_gg, n_c
+            beta = g / g_old if (cg and g_old > 0) else 0.0
+            red.launch(_kp.capped_direction_kernel, n_map,
+                       [self.q, self.u, self.h, wp.float64(offset), wp.float64(beta), hf],
+                       [self.t, self.mask])  # fmt: skip
+            spec = hs.work
+            hs.forward(self.t_buf, spec)
+            hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
+            wp.launch(_kp.capped_step_kernel, dim=1,
+                      inputs=[red.fold((False, False)), wp.float64(n_c), wp.float64(inv_n),
+                              fallback], outputs=[self.tau], device=dev)  # fmt: skip
+            red.launch(_kp.capped_update_kernel, n_map,
+                       [self.t, self.u, self.h, wp.float64(offset), self.tau, hf],
+                       [self.q, self.mask, self.lin, self.lane_count])  # fmt: skip
+            _, t_k_t, n_nc, n_clamp, max_viol, total, tau, n_changed = red.read(
+                update_cols
+            )  # sync point
+            n_changed = int(n_changed)
+            n_transforms += 1
+            if n_c > 0 and not t_k_t > 0.0:
+                g = 0.0
+            exact = it == 1 or it % self.refresh == 0 or n_changed > self.direct_max
+            if exact:
+                hs.forward(self.q_buf, spec)
+                hs.spectral(_kr.SPECTRUM_APPLY, spec)
+                n_transforms += 1
+            elif n_changed > 0:
+                wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
+                wp.launch(_k.compact_changes_kernel, dim=red.lanes,
+                          inputs=[self.q, self.lin, self.mask, wp.float64(1.0), self.lane_offset,
+                                  *red.geometry(n_map)],
+                          outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
+            r = hs.inverse(spec)
+            n_transforms += 1
+            red.launch(_kp.capped_advance_kernel, n_map,
+                       [r, int(not exact), wp.float64(tau), hs.table, periodic, self.change_index,
+                        self.change_value, 0 if exact else n_changed, self.q, self.h,
+                        wp.float64(offset), hf, self.mask],
+                       [self.u])  # fmt: skip
+            du, n_c, _, s_gg, viol, s_gap, total = red.read(advance_cols)  # sync point
+            del r
+            g_old = g
+            cg = n_nc == 0 and n_clamp == 0
+            rms_pen = math.sqrt(g / a_cg if a_cg > 0 else g)
+            ok = last_total is not None and (
+                total == last_total
+                or (total != 0 and abs((total - last_total) / total) < self.thermotol)
+            )
+            last_total = total
+            res = max(rms_pen, viol, du)
+            ok = ok and res < self.pentol and max_viol < self.forcetol and n_nc == 0
+            info = {
+                "depth": offset + self.h_max, "load": float(total), "mean_gap": s_gap / n_map,
+                "n_iterations": it, "n_convolutions": n_transforms / 2, "residual": float(res),
+                "max_tensile_force": float(max_viol), "converged": ok,
+            }  # fmt: skip
+            if not math.isfinite(res):
+                raise FloatingPointError(
+                    f"the contact solve diverged at iteration {it} (residual {res})"
+                )
+            if ok:
+                break
+        self.offset = offset
+        return info
+
+    def _solve_capped_load(self, load: float) -> dict[str, Any]:
+        """Load control with the cap: the approach δ with F(δ) = load, by regula falsi
+        (Illinois) on displacement-controlled capped solves of the current surface (warm-started
+        from each other; the heights flow once, after the last)."""
+        n_it, n_conv = 0, 0.0
+        tol = max(self.thermotol, 1e-9) * load
+        lo, f_lo = 0.0, 0.0  # the flat at the original top: nothing penetrates, F = 0
+        hi = f_hi = None
+        x = self.offset + self.h_max if self.offset + self.h_max > 0 else None
+        if x is None:
+            x = max(float(self.pentol), 1e-3 * self._scale())
+        info: dict[str, Any] = {}
+        side = 0
+        conv = True
+        for _ in range(200):
+            info = self._solve_capped(x - self.h_max)
+            n_it += info["n_iterations"]
+            n_conv += info["n_convolutions"]
+            conv = conv and info["converged"]
+            f = info["load"]
+            if abs(f - load) <= tol:
+                break
+            if f < load:
+                lo, f_lo = x, f
+                if side == -1 and hi is not None:
+                    f_hi = load + (f_hi - load) / 2  # Illinois
+                side = -1
+            else:
+                hi, f_hi = x, f
+                if side == 1:
+                    f_lo = load + (f_lo - load) / 2
+                side = 1
+            if hi is None:
+                x = 2 * x if f <= 0 else x * min(4.0, max(1.1, (load / f) ** (2 / 3)))
+                continue
+            if hi - lo <= 1e-12 * max(hi, 1e-300):
+                break
+            x = lo + (load - f_lo) * (hi - lo) / (f_hi - f_lo)
+            x = min(max(x, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
+        else:
+            conv = False
+        info = dict(info)
+        info.update(n_iterations=n_it, n_convolutions=n_conv,
+                    converged=conv and abs(info["load"] - load) <= tol)  # fmt: skip
+        return info
+
+    def _scale(self) -> float:
+        """Height range of the original map (m), for a first guess of δ."""
+        if self._h0 is not None:
+            return float(np.ptp(self._h0)) or self.pentol
+        return self.pentol
+
+    def _flow(self, apply: bool) -> tuple[int, int]:
+        """Count contact and capped pixels; with ``apply``, let the capped pixels flow (the
+        heights there drop to close the gap) and add the removed volume to the state."""
+        red = self.hs.reduction
+        red.launch(_kp.plastic_flow_kernel, self.shape[0] * self.shape[1],
+                   [self.q, self.u, wp.float64(self.offset), wp.float64(self._cap), int(apply)],
+                   [self.h])  # fmt: skip
+        n_c, n_p, s_dw = red.read((False, False, False))  # sync point
+        dx, dy = self.pixel_size
+        self.plastic_volume += float(s_dw) * dx * dy
+        return int(n_c), int(n_p)
+
+    def freeze_plastic(self, frozen: bool = True) -> None:
+        """Freeze (or release) the plastic state: while frozen, :meth:`solve` is elastic on the
+        deformed surface without the pressure cap (an unloading).
+
+        Parameters
+        ----------
+        frozen : bool
+            True freezes, False lets the surface flow again at p = H.
+        """
+        self.plastic_frozen = bool(frozen)
+
+    def plastic_displacement(self) -> np.ndarray:
+        """The plastic height change so far, copied to the host (a synchronisation point).
+
+        Returns
+        -------
+        (ny, nx) ndarray of float64
+            Height removed by plastic flow, w = h_original − h_deformed ≥ 0 (m); zeros when
+            H = inf.
+        """
+        if self._h0 is None:
+            return np.zeros(self.shape)
+        return self._h0.astype(np.float64) - self.h.numpy().astype(np.float64)
+
+    def reset(self) -> None:
+        """Forget the solution and the plastic state: original heights, zero forces."""
+        if self._h0 is not None:
+            self.h.assign(self._h0)
+        for a in (self.q_buf, self.t_buf, self.u, self.mask, self.lin):
+            a.zero_()
+        self.offset = 0.0
+        self.plastic_volume = 0.0
 
     # --- after a solve -----------------------------------------------------------------------
 
