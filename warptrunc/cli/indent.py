@@ -28,6 +28,7 @@ import sys
 import warnings
 
 from .._support.atomic import staged_output
+from ..contact.settings import SolverSettings
 from ..material import Material
 from ..params import add_options, from_args
 from ._common import add_device, add_out, add_surface_source, surface_from_args
@@ -45,13 +46,6 @@ _OPTION = {
 }  # fmt: skip
 
 
-def _solver_settings_class():
-    """``warptrunc.contact.SolverSettings`` where this version has it, else None."""
-    from .. import contact
-
-    return getattr(contact, "SolverSettings", None)
-
-
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc indent``."""
     from ..indent.protocol import MATERIAL_DEFAULTS, IndentProtocol
@@ -60,9 +54,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_options(p, IndentProtocol, title="indentation protocol")
     add_options(p, Material, title="material (default: aluminium alloy against diamond)",
                 defaults=MATERIAL_DEFAULTS)  # fmt: skip
-    settings = _solver_settings_class()
-    if settings is not None:
-        add_options(p, settings, title="contact solver", exclude=("substrate",))
+    add_options(p, SolverSettings, title="contact solver (free half-space on each punch's window)",
+                exclude=("substrate",))  # fmt: skip
     p.add_argument(
         "--no-elastic", action="store_true",
         help="skip the elastic solution (H = ∞) on the same punches (its columns are NaN)",
@@ -95,8 +88,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         material = from_args(Material, args, defaults=MATERIAL_DEFAULTS)
         protocol = from_args(IndentProtocol, args)
-        cls = _solver_settings_class()
-        settings = None if cls is None else from_args(cls, args, substrate="free")
+        settings = from_args(SolverSettings, args, substrate="free")
         s = surface_from_args(args)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", PlacementOverlapWarning)

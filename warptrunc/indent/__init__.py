@@ -17,7 +17,7 @@ from .protocol import (
     PAPER_PUNCH_DIAMETERS,
     IndentProtocol,
     default_material,
-    elastic_plastic_available,
+    make_solver,
     run_cycles,
 )
 from .punch import (
@@ -43,9 +43,9 @@ __all__ = [
     "default_material",
     "disk_mask",
     "disk_truncation",
-    "elastic_plastic_available",
     "indent",
     "lens_fraction",
+    "make_solver",
     "modulus_from_stiffness",
     "place_punches",
     "punch_window",

@@ -4,7 +4,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import time
 from typing import Any
@@ -14,6 +13,7 @@ import warp as wp
 
 from .._support.device import resolve_device
 from .._support.progress import progress_bar
+from ..contact.settings import SolverSettings
 from ..material import Material
 from ..surface import Surface
 from .protocol import (
@@ -21,7 +21,6 @@ from .protocol import (
     PAPER_PUNCH_DIAMETERS,
     IndentProtocol,
     default_material,
-    elastic_plastic_available,
     run_cycles,
 )
 from .punch import PunchWindow, place_punches, punch_window
@@ -76,7 +75,7 @@ def indent(
     placements: int | None = 3,
     seed: int = 0,
     pixel_size: float | tuple[float, float] | None = None,
-    settings: Any = None,
+    settings: SolverSettings | None = None,
     elastic: bool = True,
     truncation_increments: int = 1000,
     overlap: str = "warn",
@@ -142,8 +141,7 @@ def indent(
     ------
     ValueError
         A parameter out of range (the message names it): a punch larger than the map, peak
-        loads not increasing or above H × A, an unloading fraction outside (0, 1), a finite
-        hardness without the elastic–plastic solver.
+        loads not increasing or above H × A, an unloading fraction outside (0, 1).
 
     Notes
     -----
@@ -169,11 +167,8 @@ def indent(
     if not isinstance(material, Material):
         raise ValueError(f"material must be a warptrunc.Material, got {type(material).__name__}")
     hardness = material.hardness
-    if math.isfinite(hardness) and not elastic_plastic_available():
-        raise ValueError(
-            f"hardness = {hardness!r} Pa needs the elastic–perfectly-plastic contact solver, "
-            "which this version does not have; use hardness = inf (elastic)"
-        )
+    if settings is not None and not isinstance(settings, SolverSettings):
+        raise ValueError(f"settings must be a SolverSettings, got {type(settings).__name__}")
     dev = resolve_device(device)
     ny, nx = z.shape
     lx, ly = nx * dx, ny * dy
@@ -252,8 +247,7 @@ def indent(
         "solver": "warptrunc constrained conjugate gradients (Polonsky & Keer 1999), free "
         "half-space on each punch's window" + (", pressure capped at H" if math.isfinite(hardness)
                                                else ""),
-        "solver_settings": (dataclasses.asdict(settings) if dataclasses.is_dataclass(settings)
-                            else None if settings is None else str(settings)),  # fmt: skip
+        "solver_settings": (SolverSettings() if settings is None else settings).to_dict(),
         "elastic_reference": bool(elastic),
         "punches": per_punch,
         "seconds": {**timings, "total_s": time.perf_counter() - t_start},

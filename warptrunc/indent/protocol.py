@@ -25,13 +25,13 @@ F/(E·A) with E the Young's modulus of the rough body.
 from __future__ import annotations
 
 import dataclasses
-import inspect
 import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from ..contact.settings import SolverSettings
 from ..contact.solver import ContactSolver, default_pentol
 from ..material import Material
 from ..params import check_fields, param
@@ -43,7 +43,7 @@ __all__ = [
     "PAPER_PUNCH_DIAMETERS",
     "IndentProtocol",
     "default_material",
-    "elastic_plastic_available",
+    "make_solver",
     "run_cycles",
 ]
 
@@ -150,79 +150,54 @@ class IndentProtocol:
                 for f in dataclasses.fields(self)}  # fmt: skip
 
 
-# --- the contact solver, through its present and its coming interface --------------------------
-
-
-def _init_params() -> set[str]:
-    return set(inspect.signature(ContactSolver.__init__).parameters)
-
-
-def elastic_plastic_available() -> bool:
-    """Whether :class:`~warptrunc.contact.ContactSolver` takes a ``hardness`` (elastic–plastic).
-
-    Returns
-    -------
-    bool
-    """
-    return "hardness" in _init_params()
-
-
-def get(state: Any, name: str, default: Any = None) -> Any:
-    """A field of a solve's result: a ``ContactState`` attribute or a key of the older dict."""
-    if isinstance(state, dict):
-        return state.get(name, default)
-    return getattr(state, name, default)
+# --- the cycles ---------------------------------------------------------------------------------
 
 
 def make_solver(window: PunchWindow, material: Material, *, hardness: float,
-                settings: Any = None, device: Any = None) -> ContactSolver:  # fmt: skip
+                settings: SolverSettings | None = None, device: Any = None) -> ContactSolver:  # fmt: skip
     """A contact solver on a punch window, with the penetration tolerance of the disk's heights.
 
-    The default tolerance (rms height/(10·mean n)) is taken over the disk only: the pixels
-    outside it, far below, would inflate it.
+    Parameters
+    ----------
+    window : PunchWindow
+        The punch and the heights under it.
+    material : Material
+        E* (Pa) for the solver.
+    hardness : float
+        Pressure cap H (Pa); inf = elastic.
+    settings : SolverSettings, optional
+        Solver settings; a finite punch needs the free half-space.
+    device : str or warp Device, optional
+        Warp device.
+
+    Returns
+    -------
+    ContactSolver
+
+    Raises
+    ------
+    ValueError
+        A periodic substrate under a finite punch.
+
+    Notes
+    -----
+    The default penetration tolerance (rms height/(10·mean n), ContactMechanics') is taken over
+    the disk only: the pixels outside it, far below, would inflate it. A flat disk gets
+    10⁻⁶ of a pixel side.
     """
-    pentol = default_pentol(window.disk_heights)
-    if pentol == 0.0:  # a flat punch face: a small fraction of a pixel
-        pentol = 1e-6 * min(window.pixel_size)
-    accepted = _init_params()
-    kw: dict[str, Any] = {"device": device}
-    if math.isfinite(hardness):
-        if "hardness" not in accepted:
-            raise ValueError(
-                f"hardness = {hardness!r} Pa needs the elastic–perfectly-plastic contact solver, "
-                "which this version does not have; use hardness = inf (elastic)"
-            )
-        kw["hardness"] = hardness
-    elif "hardness" in accepted:
-        kw["hardness"] = math.inf
-    if settings is not None and "settings" in accepted:
-        if getattr(settings, "pentol", None) is None:
-            settings = dataclasses.replace(settings, pentol=pentol)
-        kw["settings"] = settings
-    elif settings is not None:  # the older keywords, one per field of the settings
-        fields = (f.name for f in dataclasses.fields(settings))
-        kw.update({f: getattr(settings, f) for f in fields if f in accepted})
-        if kw.get("pentol") is None:
-            kw["pentol"] = pentol
-    else:
-        kw["pentol"] = pentol
-    return ContactSolver(window.heights, window.pixel_size, material.contact_modulus, **kw)
-
-
-def _solve_load(solver: ContactSolver, load: float, *, plastic: bool) -> Any:
-    """Load-controlled solve; ``plastic=False`` freezes the plastic state (elastic unloading)."""
-    if "plastic" in inspect.signature(solver.solve).parameters:
-        return solver.solve(load=load, plastic=plastic)
-    freeze = getattr(solver, "freeze_plastic", None)
-    if freeze is not None:
-        freeze(not plastic)
-    return solver.solve(load=load)
-
-
-def _freeze(solver: ContactSolver, frozen: bool) -> None:
-    freeze = getattr(solver, "freeze_plastic", None)
-    if freeze is not None:
-        freeze(frozen)
+    settings = SolverSettings() if settings is None else settings
+    if window.diameter is not None and settings.substrate != "free":
+        raise ValueError(
+            f"settings.substrate must be 'free' under a finite punch (the body around the punch "
+            f"is the unloaded half-space), got {settings.substrate!r}"
+        )
+    if settings.pentol is None:
+        pentol = default_pentol(window.disk_heights)
+        if pentol == 0.0:  # a flat punch face
+            pentol = 1e-6 * min(window.pixel_size)
+        settings = settings.replace(pentol=pentol)
+    return ContactSolver(window.heights, window.pixel_size, material.contact_modulus,
+                         settings=settings, hardness=hardness, device=device)  # fmt: skip
 
 
 COLUMNS = (
@@ -240,7 +215,7 @@ def run_cycles(
     material: Material,
     *,
     hardness: float,
-    settings: Any = None,
+    settings: SolverSettings | None = None,
     device: Any = None,
     step: Any = None,
 ) -> dict[str, np.ndarray]:
@@ -275,33 +250,36 @@ def run_cycles(
         converged.
     """
     solver = make_solver(window, material, hardness=hardness, settings=settings, device=device)
-    dx, dy = window.pixel_size
+    reach = window.top - window.floor  # an approach this deep would reach outside the disk
     out: dict[str, list] = {c: [] for c in COLUMNS}
     f = float(unload_fraction)
     for load in np.asarray(peak_loads, dtype=np.float64):
-        peak = _solve_load(solver, float(load), plastic=True)
-        _freeze(solver, True)
+        solver.freeze_plastic(False)
+        peak = solver.solve(load=float(load))
+        solver.freeze_plastic(True)  # the unloading below is elastic from the deformed surface
         k_barber, _, ok_barber = solver.punch_stiffness()
-        n_c = int(get(peak, "n_contact"))
-        n_p = int(get(peak, "n_plastic", 0))
-        out["displacement"].append(float(get(peak, "depth")))
-        out["n_contact"].append(n_c)
-        out["contact_area"].append(float(get(peak, "contact_area", n_c * dx * dy)))
-        out["n_plastic"].append(n_p)
-        out["plastic_area"].append(float(get(peak, "plastic_area", n_p * dx * dy)))
-        out["plastic_volume"].append(float(get(peak, "plastic_volume", 0.0)))
-        out["n_iterations"].append(int(get(peak, "n_iterations")))
-        low = _solve_load(solver, (1.0 - f) * float(load), plastic=False)
-        d_peak, d_low = float(get(peak, "depth")), float(get(low, "depth"))
-        k_secant = f * float(load) / (d_peak - d_low) if d_peak > d_low else math.nan
-        _freeze(solver, False)
+        low = solver.solve(load=(1.0 - f) * float(load))
+        if not peak.depth < reach:
+            raise RuntimeError(
+                f"the punch approach {peak.depth:.4g} m reached the pixels outside the disk "
+                f"({reach:.4g} m below its top); give punch_window a larger drop"
+            )
+        k_secant = f * load / (peak.depth - low.depth) if peak.depth > low.depth else math.nan
+        out["displacement"].append(peak.depth)
+        out["n_contact"].append(peak.n_contact)
+        out["contact_area"].append(peak.contact_area)
+        out["n_plastic"].append(peak.n_plastic)
+        out["plastic_area"].append(peak.plastic_area)
+        out["plastic_volume"].append(peak.plastic_volume)
+        out["n_iterations"].append(peak.n_iterations)
         out["unloading_stiffness"].append(float(k_barber))
         out["partial_unloading_stiffness"].append(k_secant)
-        out["unloaded_displacement"].append(d_low)
-        out["converged"].append(bool(get(peak, "converged")) and bool(get(low, "converged"))
-                                and bool(ok_barber) and math.isfinite(k_secant))  # fmt: skip
+        out["unloaded_displacement"].append(low.depth)
+        out["converged"].append(peak.converged and low.converged and bool(ok_barber)
+                                and math.isfinite(k_secant))  # fmt: skip
         if step is not None:
             step()
+    solver.freeze_plastic(False)
     types = {"n_contact": np.int64, "n_plastic": np.int64, "n_iterations": np.int64,
              "converged": bool}  # fmt: skip
     return {c: np.asarray(v, dtype=types.get(c, np.float64)) for c, v in out.items()}
