@@ -308,10 +308,21 @@ def _option(name: str, meta: Param, prefix: str) -> list[str]:
     return [f"--{prefix}{n}" for n in names]
 
 
+class _NoneGiven:
+    """The value of an optional option given as ``none`` on the command line (argparse's own
+    ``None`` means "not given"); :func:`from_args` turns it into ``None``."""
+
+    def __repr__(self) -> str:
+        return "none"
+
+
+NONE_GIVEN = _NoneGiven()
+
+
 def _arg_type(name: str, meta: Param):
     def parse(text: str):
         if meta.optional and text.lower() == "none":
-            return None
+            return NONE_GIVEN
         v: Any = text
         if meta.kind != "choice":
             try:
@@ -443,6 +454,15 @@ def from_args(
         dest = f"{prefix}{name}".replace("-", "_")
         v = getattr(args, dest, None)
         if v is None:
+            continue
+        if isinstance(v, list) and any(x is NONE_GIVEN for x in v):
+            if len(v) > 1:
+                raise ValueError(
+                    f"{_option(name, meta, prefix)[0]} takes 'none' alone, got {' '.join(map(str, v))}"
+                )
+            v = NONE_GIVEN
+        if v is NONE_GIVEN:
+            kw[name] = None
             continue
         if meta.pair:
             if len(v) > 2:
