@@ -3,7 +3,7 @@
 """Constrained conjugate gradients with a pressure cap (elastic–perfectly-plastic contact):
 the bound-constrained projection 0 ≤ q ≤ H·dx·dy and the plastic update of the heights.
 
-Launched by ``warptrunc.contact.solver`` (``ContactSolver`` with a finite hardness). Array
+Launched by ``warptrunc.contact.plastic`` (``ContactSolver`` with a finite hardness). Array
 layouts, ``mask`` bits, the lane grid and the partials array ``part`` are those of
 ``kernels/contact.py``; ``hf`` is the force cap H·dx·dy (N). The CG set is 0 < q < hf (pixels at
 the cap have left it, as pixels at zero force have); the gap is ``g = u − h − offset`` (m) with
@@ -160,8 +160,11 @@ def capped_update_kernel(
     part: wp.array2d(dtype=wp.float64),
 ):
     """Lanes over the map: q_lin = q − τ·c·t, projected on [0, hf]. Pixels at zero force that
-    penetrate (g < 0) get q = min(−τ·g, hf); pixels at the cap whose gap is open (g > 0) get
-    q = max(hf − τ·g, 0) (both: the active set changes). Changed pixels get mask bit 2 and
+    penetrate (g < 0) get q = min(−τ·g, hf/2); pixels at the cap whose gap is open (g > 0) get
+    q = max(hf − τ·g, hf/2) (both: the active set changes). The bound hf/2 puts them into the
+    CG set of the next iteration instead of across the whole interval, so that thousands of
+    pixels changing sides at once (a cold start deep into plastic contact) do not flip between
+    0 and hf with a step τ fitted to the few others. Changed pixels get mask bit 2 and
     lin = q_lin; lane_count[i] = their number. part[i, 2:8] = [n changing sides, n clamped
     (tensile or above the cap), max(tensile force, force above the cap) before the projection,
     Σ q, τ (lane 0), n changed]."""
@@ -181,6 +184,7 @@ def capped_update_kernel(
     total = wp.float64(0.0)
     zero = q.dtype(0.0)
     cap = q.dtype(hf)
+    half = q.dtype(wp.float64(0.5) * hf)
     count = int(0)
     iy = i // nx
     ix = i - iy * nx
@@ -203,7 +207,7 @@ def capped_update_kernel(
             if g < h.dtype(0.0):
                 n_nc += wp.float64(1.0)
                 changed = True
-                qv = wp.min(-q.dtype(tau) * g, cap)
+                qv = wp.min(-q.dtype(tau) * g, half)
         elif qv >= cap:
             max_viol = wp.max(max_viol, wp.float64(qv) - hf)
             if qv > cap:
@@ -214,7 +218,7 @@ def capped_update_kernel(
             if g > h.dtype(0.0):
                 n_nc += wp.float64(1.0)
                 changed = True
-                qv = wp.max(cap - q.dtype(tau) * g, zero)
+                qv = wp.max(cap - q.dtype(tau) * g, half)
         if changed:
             mask[iy, ix] = m | wp.uint8(4)
             lin[iy, ix] = q_lin
