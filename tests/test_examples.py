@@ -72,6 +72,11 @@ def _check_sweep(out: Path) -> None:
     assert _json(out / "summary.json")["fit_ranges"]
 
 
+def _check_indentation(out: Path) -> None:
+    assert _csv_header(out / "indent.csv")[:3] == ["punch_diameter_m", "placement", "peak_load_N"]
+    assert _json(out / "indent.json")["fits"]["truncation"]["alpha"] > 0
+
+
 def _check_stream(out: Path) -> None:
     assert _json(out / "stream_islands.json")["equal_to_in_memory"] is True
 
@@ -88,6 +93,8 @@ EXAMPLES: dict[str, Example] = {
         check=_check_islands),
     "figures": Example(outputs=("height_map.png", "area_fraction.png", "stiffness_load.png",
                                 "alpha_vs_D.png", "psd.png")),
+    "indentation": Example(outputs=("indent.csv", "indent.json", "indent.png"),
+                           check=_check_indentation),
     "fractal_dimension": Example(
         outputs=("fractal_dimension.json", "fractal_fits.png", "d_out_vs_d_in.png"),
         check=_check_fractal),

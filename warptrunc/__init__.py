@@ -42,6 +42,8 @@ _EXPORTS = {
     "CalibrationTarget": ".calibrate",
     "Descriptors": ".descriptors",
     "FractalFit": ".fractal",
+    "IndentProtocol": ".indent",
+    "IndentationResult": ".indent",
     "Indicators": ".islands",
     "IslandCurve": ".islands",
     "Islands": ".islands",
@@ -64,6 +66,7 @@ _EXPORTS = {
     "fractal_dimension": ".fractal",
     "fractal_dimensions": ".fractal",
     "from_heights": ".surface",
+    "indent": ".indent",
     "island_curve": ".islands",
     "label_islands": ".islands",
     "preset": ".presets",
@@ -77,9 +80,9 @@ _EXPORTS = {
 """Public name → the module that defines it (imported on first access, PEP 562)."""
 
 _SUBMODULES = frozenset({
-    "calibrate", "cli", "contact", "descriptors", "fractal", "io", "islands", "material",
-    "params", "plot", "presets", "render", "reproduce", "robust", "spectra", "stiffness",
-    "surface", "sweep", "truncation", "wm", "wm_params",
+    "calibrate", "cli", "contact", "descriptors", "fractal", "indent", "io", "islands",
+    "material", "params", "plot", "presets", "render", "reproduce", "robust", "spectra",
+    "stiffness", "surface", "sweep", "truncation", "wm", "wm_params",
 })  # fmt: skip
 
 
@@ -122,6 +125,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerl
     from .contact.settings import SolverSettings
     from .descriptors import Descriptors, describe
     from .fractal import FractalFit, fractal_dimension, fractal_dimensions
+    from .indent import IndentationResult, IndentProtocol, indent
     from .io import read_height_map, write_height_map
     from .io.vtk import export_vtk
     from .islands import (
@@ -149,6 +153,8 @@ __all__ = [
     "CalibrationTarget",
     "Descriptors",
     "FractalFit",
+    "IndentProtocol",
+    "IndentationResult",
     "Indicators",
     "IslandCurve",
     "Islands",
@@ -171,6 +177,7 @@ __all__ = [
     "fractal_dimension",
     "fractal_dimensions",
     "from_heights",
+    "indent",
     "island_curve",
     "label_islands",
     "preset",

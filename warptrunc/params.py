@@ -70,6 +70,9 @@ class Param:
     """``None`` is allowed (meaning: derived, see the description)."""
     pair: bool = False
     """A scalar or an (x, y) pair is allowed (CLI: one or two values)."""
+    many: bool = False
+    """A tuple of one or more values, each in the range (a scalar becomes a 1-tuple; CLI: one
+    or more values)."""
     allow_inf: bool = False
     """+inf is allowed (e.g. the modulus of a rigid body, the hardness of an elastic one)."""
     cli: str | None = None
@@ -133,6 +136,15 @@ class Param:
                 raise ValueError(f"{name} must be a scalar or an (x, y) pair, got {value!r}")
             checked = (self._one(f"{name} (x)", v[0]), self._one(f"{name} (y)", v[1]))
             return checked[0] if checked[0] == checked[1] else checked
+        if self.many:
+            if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
+                value = (value,)
+            v = tuple(value)
+            if self.optional and v == (None,):
+                return None
+            if not v:
+                raise ValueError(f"{name} needs at least one value in {self.interval()}, got none")
+            return tuple(self._one(f"{name}[{i}]", x) for i, x in enumerate(v))
         return self._one(name, value)
 
     def _one(self, name: str, value: Any) -> Any:
@@ -177,7 +189,8 @@ def param(default: Any, doc: str, *, unit: str = "", **kw: Any) -> Any:
         SI unit, "" for dimensionless quantities and counts.
     **kw
         Further :class:`Param` attributes: ``gt``, ``ge``, ``lt``, ``le``, ``kind``,
-        ``choices``, ``optional``, ``pair``, ``allow_inf``, ``cli``, ``aliases``, ``sweep``.
+        ``choices``, ``optional``, ``pair``, ``many``, ``allow_inf``, ``cli``, ``aliases``,
+        ``sweep``.
 
     Returns
     -------
@@ -332,10 +345,21 @@ def _option(name: str, meta: Param, prefix: str) -> list[str]:
     return [f"--{prefix}{n}" for n in names]
 
 
+class _NoneGiven:
+    """The value of an optional option given as ``none`` on the command line (argparse's own
+    ``None`` means "not given"); :func:`from_args` turns it into ``None``."""
+
+    def __repr__(self) -> str:
+        return "none"
+
+
+NONE_GIVEN = _NoneGiven()
+
+
 def _arg_type(name: str, meta: Param):
     def parse(text: str):
         if meta.optional and text.lower() == "none":
-            return None
+            return NONE_GIVEN
         v: Any = text
         if meta.kind != "choice":
             try:
@@ -456,7 +480,7 @@ def add_options(
         else:
             kw["type"] = _arg_type(name, meta)
             kw["metavar"] = name.upper() if meta.kind == "int" else name
-        if meta.pair or name in many:
+        if meta.pair or meta.many or name in many:
             kw["nargs"] = "+"
         g.add_argument(*_option(name, meta, prefix), **kw)
     return g
@@ -496,12 +520,23 @@ def from_args(
         v = getattr(args, dest, None)
         if v is None:
             continue
+        if isinstance(v, list) and any(x is NONE_GIVEN for x in v):
+            if len(v) > 1:
+                raise ValueError(
+                    f"{_option(name, meta, prefix)[0]} takes 'none' alone, got {' '.join(map(str, v))}"
+                )
+            v = NONE_GIVEN
+        if v is NONE_GIVEN:
+            kw[name] = None
+            continue
         if meta.pair:
             if len(v) > 2:
                 raise ValueError(
                     f"{_option(name, meta, prefix)[0]} takes one or two values, got {len(v)}: {v!r}"
                 )
             v = v[0] if len(v) == 1 else (v[0], v[1])
+        elif meta.many:
+            v = tuple(v)
         elif isinstance(v, list):  # an option of add_options(..., many=...)
             if len(v) != 1:
                 raise ValueError(

@@ -443,7 +443,7 @@ class ContactSolver(CappedSolves):
             del r
             g_old = g
             cg = n_nc == 0 and n_zero == 0
-            rms_pen = math.sqrt(g / a_cg if a_cg > 0 else g)
+            rms_pen = math.sqrt(max(g, 0.0) / a_cg if a_cg > 0 else max(g, 0.0))  # g ≥ 0 up to round-off
             ok = True
             if load_control:
                 ok = total != 0 and abs((total - load) / total) < self.thermotol

@@ -8,7 +8,8 @@ also saves a PNG. Lengths on axes are in µm, as the paper's figures.
 
 Layout: the style and shared helpers in ``_style``; Fig. 9 in ``stiffness``; Fig. 8 in
 ``islands``; PSD and fractal dimension (Fig. 10) in ``fractal``; height maps in ``maps``;
-the elastic cross-check in ``bem``; truncation against elastic contact in ``compare``.
+the elastic cross-check in ``bem``; truncation against elastic contact in ``compare``;
+flat-punch indentation (Fig. 6) in ``indent``.
 Every figure is importable from ``warptrunc.plot``.
 """
 
@@ -27,6 +28,7 @@ from ._style import (
 from .bem import plot_bem_check
 from .compare import alpha_vs_D_routes, ratio_vs_size
 from .fractal import calibration_history, d_out_vs_d_in, fractal_fits, psd
+from .indent import indentation
 from .islands import island_number, slit_islands
 from .maps import area_fraction, height_map
 from .stiffness import alpha_vs_D, stiffness_load
@@ -47,6 +49,7 @@ __all__ = [
     "d_out_vs_d_in",
     "fractal_fits",
     "height_map",
+    "indentation",
     "island_number",
     "plot_bem_check",
     "psd",

@@ -1,0 +1,285 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The paper's indentation protocol (§ 4.1): its parameters, the default material, and the
+load / partial-unload cycles under one punch.
+
+Each cycle loads the punch to its peak load F (load control), then measures the unloading
+stiffness two ways, with the plastic state frozen (the surface stays as the peak left it):
+
+* **initial unloading slope** (Barber): K = the stiffness of a rigid flat punch shaped like the
+  whole contact set at the peak (every pixel with p > 0, those at the hardness included),
+  :meth:`ContactSolver.punch_stiffness`. Exact at the start of elastic unloading, since the edge
+  pressures are finite (≤ H); never the loading tangent, which is lower.
+* **the paper's protocol**: unload by ``unload_fraction``·F and take the secant
+  K = ΔF/Δδ = f·F / (δ(F) − δ((1 − f)·F)) from an elastic solve of the deformed surface.
+
+Then it reloads to the next peak. In an elastic–perfectly-plastic model, unloading and
+reloading up to the previous peak are elastic (no pixel reaches H again below the peak load),
+so the state at each peak is that of monotonic loading to it: a run need not replay the partial
+unloads (``tests/test_indent.py`` checks this on the results of :func:`warptrunc.indent`).
+
+E_c = √π·K/(2√A), with A the punch area πd²/4 (§ 4.1), and Fig. 6's normalisations E_c/E and
+F/(E·A) with E the Young's modulus of the rough body.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..contact.settings import SolverSettings
+from ..contact.solver import ContactSolver, default_pentol
+from ..material import Material
+from ..params import check_fields, param
+from .punch import PunchWindow
+
+__all__ = [
+    "ALUMINIUM_HARDNESS",
+    "PAPER_PEAK_LOADS",
+    "PAPER_PUNCH_DIAMETERS",
+    "IndentProtocol",
+    "default_material",
+    "make_solver",
+    "run_cycles",
+]
+
+PAPER_PUNCH_DIAMETERS = (54.1e-6, 108.7e-6, 502.6e-6)
+"""Diameters of the paper's flat diamond punches (m): FLT-D050, FLT-D100, FLT-D500 (§ 4.1)."""
+
+PAPER_PEAK_LOADS = tuple(0.5 / 2**k for k in range(9, -1, -1))
+"""The paper's ten peak loads (N): each twice the previous, the last 500 mN (§ 4.1)."""
+
+ALUMINIUM_HARDNESS = 1.0e9
+"""Hardness H of a treated (precipitation-hardened) aluminium alloy (Pa), the local pressure cap.
+
+6061-T6: Vickers hardness 107 HV = 1.05 GPa (ASM Handbook Vol. 2, *Properties and Selection:
+Nonferrous Alloys and Special-Purpose Materials*, ASM International, 1990,
+doi:10.31399/asm.hb.v02.9781627081627); Tabor's H ≈ 3σ_y with σ_y = 276 MPa gives 0.83 GPa
+(D. Tabor, *The Hardness of Metals*, Oxford, 1951). The paper does not name its alloy; 1.0 GPa is
+a round value between the two."""
+
+
+def default_material(**kw: Any) -> Material:
+    """The paper's aluminium alloy against its diamond punches, with a hardness.
+
+    Parameters
+    ----------
+    **kw
+        Fields to change (``E``, ``nu``, ``hardness``).
+
+    Returns
+    -------
+    Material
+        E = 70 GPa, ν = 0.33, H = :data:`ALUMINIUM_HARDNESS`; diamond E_i = 1141 GPa,
+        ν_i = 0.07 (Oliver & Pharr, J. Mater. Res. 7, 1564 (1992)).
+    """
+    return Material.against_diamond(**{"E": 70e9, "nu": 0.33, "hardness": ALUMINIUM_HARDNESS,
+                                       **kw})  # fmt: skip
+
+
+MATERIAL_DEFAULTS = {"E_i": 1141e9, "nu_i": 0.07, "hardness": ALUMINIUM_HARDNESS}
+"""The fields of :func:`default_material` that differ from ``Material()`` (the CLI's defaults)."""
+
+
+@dataclass(frozen=True)
+class IndentProtocol:
+    """The experiment of § 4.1: punches, peak loads, partial unloading and punch positions.
+
+    Raises
+    ------
+    ValueError
+        A field out of its range (the message names it, its value and the range), or peak
+        loads that do not increase.
+
+    Examples
+    --------
+    >>> IndentProtocol().peak_loads[-1]  # the paper's last peak (N)
+    0.5
+    >>> IndentProtocol(punch_diameters=None, placements=None).punch_diameters is None
+    True
+    """
+
+    punch_diameters: tuple[float, ...] | None = param(
+        PAPER_PUNCH_DIAMETERS, "punch diameters d; none = one flat larger than the map",
+        unit="m", gt=0.0, many=True, optional=True, cli="punch-diameter",
+        aliases=("punch-diameters",), sweep=False,
+    )  # fmt: skip
+    peak_loads: tuple[float, ...] = param(
+        PAPER_PEAK_LOADS, "peak loads F of the cycles, increasing", unit="N", gt=0.0,
+        many=True, cli="peak-loads", sweep=False,
+    )  # fmt: skip
+    unload_fraction: float = param(
+        0.1, "partial unloading of each cycle, as a fraction of its peak load", gt=0.0, lt=1.0,
+        cli="unload-fraction",
+    )
+    placements: int | None = param(
+        3, "punch positions per diameter (random, apart); none = one at the map centre",
+        kind="int", ge=1, le=10_000, optional=True, sweep=False,
+    )  # fmt: skip
+    placement_seed: int = param(
+        0, "seed of the random punch positions", kind="int", ge=0, le=2**32 - 1,
+        cli="placement-seed", sweep=False,
+    )  # fmt: skip
+    overlap: str = param(
+        "warn", "punches of one diameter that cannot be placed apart: 'warn' (placed as far "
+        "apart as found, overlap reported) or 'error'", choices=("warn", "error"), sweep=False,
+    )  # fmt: skip
+    truncation_increments: int = param(
+        1000, "depth increments of the Eq. 2 truncation curve under each punch", kind="int",
+        ge=10, le=10_000_000, cli="truncation-increments", sweep=False,
+    )  # fmt: skip
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+        f = self.peak_loads
+        if any(not b > a for a, b in zip(f, f[1:], strict=False)):
+            raise ValueError(f"peak_loads must be strictly increasing (N), got {list(f)!r}")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields (SI; tuples as lists).
+
+        Returns
+        -------
+        dict
+        """
+        return {f.name: (list(v) if isinstance(v := getattr(self, f.name), tuple) else v)
+                for f in dataclasses.fields(self)}  # fmt: skip
+
+
+# --- the cycles ---------------------------------------------------------------------------------
+
+
+def make_solver(window: PunchWindow, material: Material, *, hardness: float,
+                settings: SolverSettings | None = None, device: Any = None) -> ContactSolver:  # fmt: skip
+    """A contact solver on a punch window, with the penetration tolerance of the disk's heights.
+
+    Parameters
+    ----------
+    window : PunchWindow
+        The punch and the heights under it.
+    material : Material
+        E* (Pa) for the solver.
+    hardness : float
+        Pressure cap H (Pa); inf = elastic.
+    settings : SolverSettings, optional
+        Solver settings; a finite punch needs the free half-space.
+    device : str or warp Device, optional
+        Warp device.
+
+    Returns
+    -------
+    ContactSolver
+
+    Raises
+    ------
+    ValueError
+        A periodic substrate under a finite punch.
+
+    Notes
+    -----
+    The default penetration tolerance (rms height/(10·mean n), ContactMechanics') is taken over
+    the disk only: the pixels outside it, far below, would inflate it. A flat disk gets
+    10⁻⁶ of a pixel side.
+    """
+    settings = SolverSettings() if settings is None else settings
+    if window.diameter is not None and settings.substrate != "free":
+        raise ValueError(
+            f"settings.substrate must be 'free' under a finite punch (the body around the punch "
+            f"is the unloaded half-space), got {settings.substrate!r}"
+        )
+    if settings.pentol is None:
+        pentol = default_pentol(window.disk_heights)
+        if pentol == 0.0:  # a flat punch face
+            pentol = 1e-6 * min(window.pixel_size)
+        settings = settings.replace(pentol=pentol)
+    return ContactSolver(window.heights, window.pixel_size, material.contact_modulus,
+                         settings=settings, hardness=hardness, device=device)  # fmt: skip
+
+
+COLUMNS = (
+    "displacement", "n_contact", "contact_area", "n_plastic", "plastic_area", "plastic_volume",
+    "unloading_stiffness", "partial_unloading_stiffness", "unloaded_displacement",
+    "n_iterations", "converged",
+)  # fmt: skip
+"""Per-peak outputs of :func:`run_cycles`."""
+
+
+def run_cycles(
+    window: PunchWindow,
+    peak_loads: Any,
+    unload_fraction: float,
+    material: Material,
+    *,
+    hardness: float,
+    settings: SolverSettings | None = None,
+    device: Any = None,
+    step: Any = None,
+) -> dict[str, np.ndarray]:
+    """Load / partial-unload cycles under one punch, at increasing peak loads.
+
+    Parameters
+    ----------
+    window : PunchWindow
+        The punch and the heights under it.
+    peak_loads : (m,) array_like
+        Increasing peak loads F (N).
+    unload_fraction : float
+        Partial unloading f of each cycle (dimensionless), in (0, 1).
+    material : Material
+        Elastic constants (E* for the solver).
+    hardness : float
+        Pressure cap H (Pa); inf = elastic.
+    settings : SolverSettings, optional
+        Contact-solver settings.
+    device : str or warp Device, optional
+        Warp device.
+    step : callable, optional
+        Called once per cycle (a progress bar's ``update``).
+
+    Returns
+    -------
+    dict of str to (m,) ndarray
+        :data:`COLUMNS`: at each peak the approach δ from first touch (m), contact pixels and
+        area (m²), plastic pixels, area (m²) and volume (m³), Barber's unloading stiffness and
+        the partial-unloading secant (N/m), the approach after the partial unloading (m), the
+        constrained-CG iterations of the peak solve and whether every solve of the cycle
+        converged.
+    """
+    solver = make_solver(window, material, hardness=hardness, settings=settings, device=device)
+    reach = window.top - window.floor  # an approach this deep would reach outside the disk
+    out: dict[str, list] = {c: [] for c in COLUMNS}
+    f = float(unload_fraction)
+    for load in np.asarray(peak_loads, dtype=np.float64):
+        solver.freeze_plastic(False)
+        peak = solver.solve(load=float(load))
+        solver.freeze_plastic(True)  # the unloading below is elastic from the deformed surface
+        k_barber, _, ok_barber = solver.punch_stiffness()
+        low = solver.solve(load=(1.0 - f) * float(load))
+        if not peak.depth < reach:
+            raise RuntimeError(
+                f"the punch approach {peak.depth:.4g} m reached the pixels outside the disk "
+                f"({reach:.4g} m below its top); give punch_window a larger drop"
+            )
+        k_secant = f * load / (peak.depth - low.depth) if peak.depth > low.depth else math.nan
+        out["displacement"].append(peak.depth)
+        out["n_contact"].append(peak.n_contact)
+        out["contact_area"].append(peak.contact_area)
+        out["n_plastic"].append(peak.n_plastic)
+        out["plastic_area"].append(peak.plastic_area)
+        out["plastic_volume"].append(peak.plastic_volume)
+        out["n_iterations"].append(peak.n_iterations)
+        out["unloading_stiffness"].append(float(k_barber))
+        out["partial_unloading_stiffness"].append(k_secant)
+        out["unloaded_displacement"].append(low.depth)
+        out["converged"].append(peak.converged and low.converged and bool(ok_barber)
+                                and math.isfinite(k_secant))  # fmt: skip
+        if step is not None:
+            step()
+    solver.freeze_plastic(False)
+    types = {"n_contact": np.int64, "n_plastic": np.int64, "n_iterations": np.int64,
+             "converged": bool}  # fmt: skip
+    return {c: np.asarray(v, dtype=types.get(c, np.float64)) for c, v in out.items()}

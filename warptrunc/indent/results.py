@@ -1,0 +1,301 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The result of :func:`warptrunc.indent`: one row per punch × placement × peak load, three
+models side by side (elastic–plastic, elastic, Eq. 2 truncation), and their power-law fits."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
+
+import numpy as np
+
+from .._support.atomic import strict_json
+from .._support.table import write_columns_csv
+from ..material import Material
+from ..stiffness import PowerLawFit, fit_power_law
+from .protocol import IndentProtocol
+
+__all__ = ["MODELS", "IndentationResult", "modulus_from_stiffness"]
+
+MODELS = {
+    "elastic_plastic": ("E_c_over_E", "converged"),
+    "elastic_plastic_partial": ("E_c_partial_over_E", "converged"),
+    "elastic": ("elastic_E_c_over_E", "elastic_converged"),
+    "elastic_partial": ("elastic_E_c_partial_over_E", "elastic_converged"),
+    "truncation": ("truncation_E_c_over_E", None),
+}
+"""Model name → (E_c/E column, convergence column) of the fits E_c/E = β·[F/(E·A)]^α:
+the elastic–plastic unloading stiffness (Barber's initial slope; ``_partial``: the secant of the
+partial unloading), the same for the elastic solution (H = ∞), and Eq. 2 truncation."""
+
+
+def modulus_from_stiffness(stiffness: Any, area: Any) -> np.ndarray:
+    """E_c = √π·K/(2√A) (Pa), § 4.1.
+
+    Parameters
+    ----------
+    stiffness : array_like
+        Unloading stiffness K (N/m).
+    area : array_like
+        Punch area A (m²).
+
+    Returns
+    -------
+    ndarray of float64
+        E_c (Pa).
+    """
+    k = np.asarray(stiffness, dtype=np.float64)
+    return math.sqrt(math.pi) * k / (2.0 * np.sqrt(np.asarray(area, dtype=np.float64)))
+
+
+@dataclass(frozen=True, eq=False)
+class IndentationResult:
+    """Flat-punch indentation of a rough surface, in silico (paper § 4.1, Fig. 6).
+
+    One row per punch diameter × placement × peak load, in that nesting order. Columns are
+    (m,) host arrays; the unloading stiffnesses are measured with the plastic state of the peak
+    frozen (:mod:`warptrunc.indent.protocol`).
+    """
+
+    punch_diameter: np.ndarray
+    """(m,) float64 punch diameter d (m); NaN for a flat larger than the map."""
+    placement: np.ndarray
+    """(m,) int64 index of the punch position (0, 1, …) for this diameter."""
+    centre_x: np.ndarray
+    """(m,) float64 x of the punch centre (m), from the map's corner."""
+    centre_y: np.ndarray
+    """(m,) float64 y of the punch centre (m)."""
+    overlap_fraction: np.ndarray
+    """(m,) float64 largest fraction of this punch's area that another placement of the same
+    diameter covers (dimensionless); 0 when they are apart."""
+    punch_area: np.ndarray
+    """(m,) float64 punch area A = πd²/4 (m²), or Lx·Ly for a flat larger than the map."""
+    n_punch_pixels: np.ndarray
+    """(m,) int64 pixels the punch can touch (pixel centre inside the disk)."""
+    peak_load: np.ndarray
+    """(m,) float64 peak load F of the cycle (N)."""
+    displacement: np.ndarray
+    """(m,) float64 approach δ of the punch at the peak, from first touch at the highest pixel
+    inside the disk (m)."""
+    n_contact: np.ndarray
+    """(m,) int64 contact pixels at the peak (p > 0)."""
+    contact_area: np.ndarray
+    """(m,) float64 real contact area at the peak (m²)."""
+    plastic_area: np.ndarray
+    """(m,) float64 area of the pixels at the hardness at the peak (m²); 0 when elastic."""
+    plastic_volume: np.ndarray
+    """(m,) float64 plastic (permanent) volume removed up to the peak (m³)."""
+    unloading_stiffness: np.ndarray
+    """(m,) float64 Barber's initial unloading stiffness K (N/m): a rigid punch shaped like the
+    whole contact set at the peak."""
+    partial_unloading_stiffness: np.ndarray
+    """(m,) float64 the paper's secant K = f·F/Δδ over the partial unloading (N/m)."""
+    E_c: np.ndarray
+    """(m,) float64 E_c = √π·K/(2√A) from :attr:`unloading_stiffness` (Pa)."""
+    E_c_partial: np.ndarray
+    """(m,) float64 E_c from :attr:`partial_unloading_stiffness` (Pa)."""
+    converged: np.ndarray
+    """(m,) bool: every solve of the cycle (peak, punch stiffness, partial unloading) converged."""
+    elastic_displacement: np.ndarray
+    """(m,) float64 approach at the peak of the elastic solution, H = ∞ (m); NaN when not run."""
+    elastic_contact_area: np.ndarray
+    """(m,) float64 contact area of the elastic solution at the peak (m²)."""
+    elastic_unloading_stiffness: np.ndarray
+    """(m,) float64 Barber's stiffness of the elastic solution at the peak (N/m)."""
+    elastic_partial_unloading_stiffness: np.ndarray
+    """(m,) float64 the partial-unloading secant of the elastic solution (N/m)."""
+    elastic_converged: np.ndarray
+    """(m,) bool: every solve of the elastic cycle converged (False when not run)."""
+    truncation_depth: np.ndarray
+    """(m,) float64 truncation depth ω under the punch where Eq. 2's F(ω) = F (m)."""
+    truncation_contact_area: np.ndarray
+    """(m,) float64 truncated area A_c of the disk at that depth (m²)."""
+    truncation_stiffness: np.ndarray
+    """(m,) float64 k = (2/√π)·E*·√A_c, Eq. 2 (N/m)."""
+    material: Material
+    """Material: E (Pa) normalises E_c/E and F/(E·A); E* and the hardness H (Pa) of the solves."""
+    protocol: IndentProtocol
+    """The protocol that was run."""
+    settings: dict[str, Any] = field(default_factory=dict)
+    """Surface, solver settings, device and the pixel counts of each punch (JSON-able)."""
+
+    # --- derived columns -------------------------------------------------------------------
+
+    def _over_E(self, stiffness: np.ndarray) -> np.ndarray:
+        return modulus_from_stiffness(stiffness, self.punch_area) / self.material.E
+
+    @property
+    def E_c_over_E(self) -> np.ndarray:
+        """(m,) float64 E_c/E of Barber's unloading stiffness (dimensionless)."""
+        return self.E_c / self.material.E
+
+    @property
+    def E_c_partial_over_E(self) -> np.ndarray:
+        """(m,) float64 E_c/E of the partial-unloading secant (dimensionless)."""
+        return self.E_c_partial / self.material.E
+
+    @property
+    def F_over_EA(self) -> np.ndarray:
+        """(m,) float64 F/(E·A) (dimensionless)."""
+        return self.peak_load / (self.material.E * self.punch_area)
+
+    @property
+    def elastic_E_c_over_E(self) -> np.ndarray:
+        """(m,) float64 E_c/E of the elastic solution's Barber stiffness (dimensionless)."""
+        return self._over_E(self.elastic_unloading_stiffness)
+
+    @property
+    def elastic_E_c_partial_over_E(self) -> np.ndarray:
+        """(m,) float64 E_c/E of the elastic solution's partial-unloading secant."""
+        return self._over_E(self.elastic_partial_unloading_stiffness)
+
+    @property
+    def truncation_E_c_over_E(self) -> np.ndarray:
+        """(m,) float64 E_c/E of Eq. 2 truncation, E*/E·√(A_c/A) (dimensionless)."""
+        return self._over_E(self.truncation_stiffness)
+
+    @property
+    def all_converged(self) -> bool:
+        """True when every cycle of both contact models converged."""
+        return bool(np.all(self.converged))
+
+    # --- tables ------------------------------------------------------------------------------
+
+    def to_dict(self) -> dict[str, np.ndarray]:
+        """1-D columns, SI units in the names: the rows of ``indent.csv``.
+
+        Returns
+        -------
+        dict of str to (m,) ndarray
+            ``punch_diameter_m, placement, peak_load_N, displacement_m, contact_area_m2,
+            plastic_area_m2, unloading_stiffness_N_per_m, partial_unloading_stiffness_N_per_m,
+            E_c_Pa, E_c_over_E, F_over_EA, converged`` (the elastic–plastic model), then
+            ``E_c_partial_Pa, E_c_partial_over_E, centre_x_m, centre_y_m, overlap_fraction,
+            punch_area_m2, n_punch_pixels, n_contact, plastic_volume_m3``, the elastic
+            solution's ``elastic_*`` columns (``displacement_m``, ``contact_area_m2``,
+            ``unloading_stiffness_N_per_m``, ``partial_unloading_stiffness_N_per_m``,
+            ``E_c_over_E``, ``E_c_partial_over_E``, ``converged``) and Eq. 2 truncation's
+            ``truncation_depth_m``, ``truncation_contact_area_m2``,
+            ``truncation_stiffness_N_per_m``, ``truncation_E_c_over_E``.
+        """
+        return {
+            "punch_diameter_m": self.punch_diameter,
+            "placement": self.placement,
+            "peak_load_N": self.peak_load,
+            "displacement_m": self.displacement,
+            "contact_area_m2": self.contact_area,
+            "plastic_area_m2": self.plastic_area,
+            "unloading_stiffness_N_per_m": self.unloading_stiffness,
+            "partial_unloading_stiffness_N_per_m": self.partial_unloading_stiffness,
+            "E_c_Pa": self.E_c,
+            "E_c_over_E": self.E_c_over_E,
+            "F_over_EA": self.F_over_EA,
+            "converged": self.converged,
+            "E_c_partial_Pa": self.E_c_partial,
+            "E_c_partial_over_E": self.E_c_partial_over_E,
+            "centre_x_m": self.centre_x,
+            "centre_y_m": self.centre_y,
+            "overlap_fraction": self.overlap_fraction,
+            "punch_area_m2": self.punch_area,
+            "n_punch_pixels": self.n_punch_pixels,
+            "n_contact": self.n_contact,
+            "plastic_volume_m3": self.plastic_volume,
+            "elastic_displacement_m": self.elastic_displacement,
+            "elastic_contact_area_m2": self.elastic_contact_area,
+            "elastic_unloading_stiffness_N_per_m": self.elastic_unloading_stiffness,
+            "elastic_partial_unloading_stiffness_N_per_m": self.elastic_partial_unloading_stiffness,
+            "elastic_E_c_over_E": self.elastic_E_c_over_E,
+            "elastic_E_c_partial_over_E": self.elastic_E_c_partial_over_E,
+            "elastic_converged": self.elastic_converged,
+            "truncation_depth_m": self.truncation_depth,
+            "truncation_contact_area_m2": self.truncation_contact_area,
+            "truncation_stiffness_N_per_m": self.truncation_stiffness,
+            "truncation_E_c_over_E": self.truncation_E_c_over_E,
+        }
+
+    def fits(self) -> dict[str, PowerLawFit | None]:
+        """E_c/E = β·[F/(E·A)]^α per model, over every converged row with E_c > 0.
+
+        Returns
+        -------
+        dict of str to PowerLawFit or None
+            One entry per :data:`MODELS` name; None where fewer than 3 rows qualify or F/(E·A)
+            does not vary. ``depth_min``/``depth_max`` are the range of the punch approach δ
+            (m) of the rows used (truncation: ω).
+        """
+        cols = self.to_dict()
+        out: dict[str, PowerLawFit | None] = {}
+        for name, (y_col, ok_col) in MODELS.items():
+            y = np.asarray(cols[y_col], dtype=np.float64)
+            x = self.F_over_EA
+            ok = np.isfinite(y) & (y > 0) & np.isfinite(x) & (x > 0)
+            if ok_col is not None:
+                ok &= np.asarray(cols[ok_col], dtype=bool)
+            depth = {"truncation": self.truncation_depth, "elastic": self.elastic_displacement,
+                     "elastic_partial": self.elastic_displacement}.get(name, self.displacement)  # fmt: skip
+            curve = SimpleNamespace(load=x[ok], n_contact_pixels=np.ones(int(ok.sum()), np.int64),
+                                    depth=depth[ok], F_over_EA=x[ok], Ec_over_E=y[ok])  # fmt: skip
+            try:
+                out[name] = fit_power_law(curve, min_pixels=1)  # type: ignore[arg-type]
+            except ValueError:
+                out[name] = None
+        return out
+
+    def summary(self) -> dict[str, Any]:
+        """Settings, material, protocol and the fits: what ``indent.json`` holds besides its
+        provenance.
+
+        Returns
+        -------
+        dict
+            ``protocol``, ``material`` (SI, with ``contact_modulus``), ``settings`` and
+            ``fits`` (model → :meth:`PowerLawFit.to_dict` or None), ``n_rows``,
+            ``all_converged``.
+        """
+        return {
+            "protocol": self.protocol.to_dict(),
+            "material": self.material.to_dict(),
+            "settings": self.settings,
+            "fits": {k: (None if v is None else v.to_dict()) for k, v in self.fits().items()},
+            "fit_form": "E_c/E = beta * (F/(E*A))**alpha, E Young's modulus, A punch area",
+            "n_rows": int(self.peak_load.size),
+            "all_converged": self.all_converged,
+        }
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write :meth:`to_dict` as CSV (full float64 precision).
+
+        Parameters
+        ----------
+        path : str or Path
+            File to write (overwritten).
+
+        Returns
+        -------
+        Path
+            ``path``.
+        """
+        return write_columns_csv(path, self.to_dict())
+
+    def to_json(self, path: str | Path, **extra: Any) -> Path:
+        """Write :meth:`summary` (and ``extra`` keys) as strict JSON (NaN/inf as null).
+
+        Parameters
+        ----------
+        path : str or Path
+            File to write (overwritten).
+        **extra
+            Further top-level keys (e.g. provenance).
+
+        Returns
+        -------
+        Path
+            ``path``.
+        """
+        path = Path(path)
+        path.write_text(strict_json({**self.summary(), **extra}))
+        return path
