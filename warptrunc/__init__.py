@@ -26,10 +26,11 @@ E, ν    ``E``, ``nu``          Young's modulus (Pa), Poisson's ratio of the rou
 first computing call loads Warp, plotting and rendering load matplotlib and pyvista.
 """
 
-import importlib
-import sys
-import types
-from typing import TYPE_CHECKING, Any
+import importlib as _importlib
+import sys as _sys
+import types as _types
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+from typing import Any as _Any
 
 from ._source import map_source_kernels as _map_source_kernels
 
@@ -66,6 +67,7 @@ _EXPORTS = {
     "label_islands": ".islands",
     "read_height_map": ".io",
     "resolve_device": "._support.device",
+    "solve_contact": ".contact.curve",
     "stiffness_curve": ".stiffness",
     "truncate": ".truncation",
     "wm_surface": ".wm",
@@ -74,47 +76,52 @@ _EXPORTS = {
 """Public name → the module that defines it (imported on first access, PEP 562)."""
 
 _SUBMODULES = frozenset({
-    "calibrate", "cli", "contact", "descriptors", "fractal", "io", "islands", "plot", "render",
-    "reproduce", "robust", "spectra", "stiffness", "surface", "sweep", "truncation", "wm",
+    "calibrate", "cli", "compare", "contact", "descriptors", "fractal", "io", "islands",
+    "material", "params", "plot", "render", "reproduce", "robust", "spectra", "stiffness",
+    "surface", "sweep", "truncation", "wm", "wm_params",
 })  # fmt: skip
+"""The public subpackages and modules (``warptrunc.<name>``): with ``__all__``, all that
+``dir(warptrunc)`` lists."""
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> _Any:
     """Import a public name (or a subpackage) on first access."""
     if name in _EXPORTS:
-        value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+        value = getattr(_importlib.import_module(_EXPORTS[name], __name__), name)
     elif name in _SUBMODULES:
-        value = importlib.import_module(f".{name}", __name__)
+        value = _importlib.import_module(f".{name}", __name__)
     else:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value
     return value
 
 
-class _Package(types.ModuleType):
+class _Package(_types.ModuleType):
     """The package module: keeps a public function that shares its module's name.
 
     The import system binds every imported submodule as an attribute of its package; for
     ``calibrate`` (function of module ``warptrunc.calibrate``) the function must stay bound.
     """
 
-    def __setattr__(self, name: str, value: Any) -> None:
-        if isinstance(value, types.ModuleType) and _EXPORTS.get(name) == f".{name}":
+    def __setattr__(self, name: str, value: _Any) -> None:
+        if isinstance(value, _types.ModuleType) and _EXPORTS.get(name) == f".{name}":
             value = getattr(value, name)
         super().__setattr__(name, value)
 
 
-sys.modules[__name__].__class__ = _Package
+_sys.modules[__name__].__class__ = _Package
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__) | _SUBMODULES)
+    """The public API: ``__all__`` and the public subpackages and modules, nothing else."""
+    return sorted(set(__all__) | _SUBMODULES)
 
 
-if TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerly
+if _TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerly
     from ._support.device import resolve_device  # after the kernels mapping above
     from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
     from .contact.check import BemCheck, bem_check
+    from .contact.curve import solve_contact
     from .descriptors import Descriptors, describe
     from .fractal import FractalFit, fractal_dimension, fractal_dimensions
     from .io import read_height_map, write_height_map
@@ -167,6 +174,7 @@ __all__ = [
     "label_islands",
     "read_height_map",
     "resolve_device",
+    "solve_contact",
     "stiffness_curve",
     "truncate",
     "wm_surface",

@@ -47,7 +47,7 @@ HELP = "Eq. 2, island-resolved truncation and elastic BEM on the same maps (stud
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc compare``."""
-    from ..compare import DEFAULT_FRACTIONS
+    from ..compare import APPROACH_FRACTIONS
     from ..reproduce.profiles import PROFILES
 
     s = p.add_argument_group("surfaces: your map, a WM study, or a reproduce profile")
@@ -70,7 +70,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     s.add_argument("--rt-over-wr", type=positive(), default=0.01,
                    help="R_t/W_r (the paper's δ); ratios and α do not depend on it")  # fmt: skip
     m = p.add_argument_group("approaches, material, solver")
-    m.add_argument("--fractions", type=fraction(), nargs="+", default=list(DEFAULT_FRACTIONS),
+    m.add_argument("--fractions", type=fraction(), nargs="+", default=list(APPROACH_FRACTIONS),
                    help="approaches δ/R_t, increasing")  # fmt: skip
     m.add_argument("--E", type=positive("Pa"), default=70e9, help="Young's modulus E (Pa)")
     m.add_argument("--nu", type=real(-1.0, 0.5, hi_open=False), default=0.33,
