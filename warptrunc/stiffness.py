@@ -225,7 +225,7 @@ class PowerLawFit:
     """Depth window of the fit range (m), if one was given."""
     beta_young: float = math.nan
     """For a stiffness curve: β_E of E_c/E = β_E·[F/(E·A)]^α with E the Young's modulus,
-    β·E*/E (dimensionless); NaN for a fit of two arrays."""
+    β·E*/E (dimensionless); NaN for a fit of two arrays or of a curve without a material."""
     normalisation: str = NORMALISATION_ESTAR
     """Which quantity ``beta`` belongs to: :data:`NORMALISATION_ESTAR` (E_c/E*) for a stiffness
     curve, :data:`NORMALISATION_NONE` (y = β·x^α) for two arrays."""
@@ -554,8 +554,13 @@ def fit_power_law(
         F_over_EA_max=float(f.max()),
         min_pixels=min_pixels,
         depth_window=None if depth_window is None else (lo, hi),
-        beta_young=float(np.exp(logb)) * (sc.material.contact_modulus / sc.material.E),
+        beta_young=_beta_young(float(np.exp(logb)), getattr(sc, "material", None)),
     )
+
+
+def _beta_young(beta: float, material: Material | None) -> float:
+    """β·E*/E: the β of E_c/E from that of E_c/E* (NaN without a material)."""
+    return math.nan if material is None else beta * (material.contact_modulus / material.E)
 
 
 def _fit_arrays(x: Any, y: Any, *, min_points: int) -> PowerLawFit:
