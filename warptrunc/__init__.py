@@ -2,24 +2,34 @@
 # SPDX-License-Identifier: MIT
 """warptrunc: normal contact stiffness of rough multiscale surfaces by truncation analysis.
 
-Symbols (paper notation → code name, SI unit):
+Symbols (paper notation → code name, SI unit); the full mapping, with the names that collide
+between the paper and the code, is the glossary (``docs/guide/glossary.md``):
 
-======  =====================  ==========================================
-D       ``D``                  fractal dimension (dimensionless, 2 < D < 3)
-W_r     ``Wr``                 roll-off wavelength (m)
-W_c     ``Wc``                 cut-off wavelength (m)
-γ       ``gamma``              WM frequency density (dimensionless, > 1)
-M       ``M``                  number of superposed ridges
-G       ``G``                  topothesy (m)
-R_t     ``Rt``                 peak-to-valley height (m)
-ω       ``depth``              truncation depth from the top (m)
-A_c     ``contact_area``       truncated (contact) area (m²)
-A       ``apparent_area``      apparent area Lx·Ly (m²)
-k       ``stiffness``          normal contact stiffness (N/m)
-F       ``load``               normal load (N)
-E, ν    ``E``, ``nu``          Young's modulus (Pa), Poisson's ratio of the rough body
-α, β    ``alpha``, ``beta``    power-law exponent and amplitude of E_c/E = β[F/(EA)]^α
-======  =====================  ==========================================
+======  ======================  ==========================================
+D       ``D``                   fractal dimension D_in (dimensionless, 2 < D < 3)
+W_r     ``Wr``                  roll-off wavelength (m)
+W_c     ``Wc``                  cut-off wavelength (m)
+γ       ``gamma``               WM frequency density (dimensionless, > 1)
+M       ``M``                   number of superposed ridges
+G       ``G``                   topothesy (m)
+R_t     ``Rt``                  peak-to-valley height (m)
+δ       ``delta``               relative roughness R_t/W_r (dimensionless)
+ω       ``depth``               truncation depth from the top (m)
+A_c     ``contact_area``        truncated (contact) area A′ (m²)
+A       ``apparent_area``       apparent area Lx·Ly (m²)
+k       ``stiffness``           normal contact stiffness, Eq. 2 (N/m)
+F       ``load``                normal load (N)
+E, ν    ``E``, ``nu``           Young's modulus (Pa), Poisson's ratio of the rough body
+E_r′    ``contact_modulus``     contact modulus E* = [(1−ν²)/E + (1−ν_i²)/E_i]⁻¹ (Pa)
+β′      ``beta_prime``          geometric factor of Eq. 2 (dimensionless)
+E_c/E*  ``Ec_over_Estar``       β′·√(A_c/A) (the ``Ec_over_E`` column; dimensionless)
+E_c/E   ``Ec_over_E_young``     (E*/E)·β′·√(A_c/A), E the Young's modulus (dimensionless)
+α, β    ``alpha``, ``beta``     exponent and amplitude of E_c/E* = β[F/(E·A)]^α
+β_E     ``beta_young``          amplitude of E_c/E = β_E[F/(E·A)]^α (the paper's β)
+======  ======================  ==========================================
+
+One public function per operation: generate :func:`wm_surface`, truncate :func:`truncate`,
+label :func:`label_islands`, fit :func:`fit_power_law`, solve a contact :func:`solve_contact`.
 
 ``import warptrunc`` is light: every public name (and subpackage) is imported on first use
 (PEP 562), so ``import warptrunc`` and ``warptrunc --help`` load neither Warp nor NumPy; the
