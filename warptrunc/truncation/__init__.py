@@ -29,5 +29,4 @@ __all__ = [
     "height_range",
     "in_memory_bytes",
     "truncate",
-    "wm_bands",
 ]

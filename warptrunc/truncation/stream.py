@@ -51,8 +51,6 @@ from .curve import (
 
 __all__ = [
     "StreamedTruncation",
-    "banded_truncation",
-    "fits",
     "fits_in_memory",
     "in_memory_bytes",
     "wm_bands",
