@@ -53,7 +53,6 @@ __all__ = [
     "StreamedTruncation",
     "fits_in_memory",
     "in_memory_bytes",
-    "wm_bands",
 ]
 
 _DEFAULT_BAND_PIXELS = 2**28  # 1 GiB of float32 per band: a progress step every few ms on a GPU
