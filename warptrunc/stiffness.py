@@ -32,6 +32,8 @@ from .truncation import TruncationCurve
 
 __all__ = [
     "DEFAULT_MIN_PIXELS",
+    "NORMALISATION_ESTAR",
+    "NORMALISATION_NONE",
     "STIFFNESS_MODELS",
     "Material",
     "PowerLawFit",
