@@ -39,7 +39,7 @@ sets that do not wrap around).
 from .._support.deprecate import deprecated_function
 from .depths import (
     _islands_at_depth,
-    island_counts_device,
+    island_counts_device as island_counts_device,  # internal fast path, not in __all__
     island_curve,
     islands_at_depths,
 )
