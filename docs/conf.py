@@ -45,6 +45,7 @@ os.environ.pop("DISPLAY", None)
 import warptrunc  # noqa: E402
 
 import apigen  # noqa: E402
+import paramtables  # noqa: E402
 import perftables  # noqa: E402
 import xref  # noqa: E402
 
@@ -97,10 +98,13 @@ numpydoc_validation_checks = set()  # tests/test_docstrings.py validates
 # -- performance tables from docs/benchmarks/*.json ------------------------------------------
 perftables.write_tables(DOCS)
 
+# -- parameter tables from the declarations of WMSpec and Material (warptrunc.params) --------
+paramtables.write_tables(DOCS)
+
 # -- guide pages added by other work (e.g. guide/elastic_comparison.md) join the guide's toctree
 GUIDE_ORDER = ["index", "getting_started", "method", "islands", "fractal", "scans", "large_maps",
-               "sweeps", "elastic", "pictures", "command_line", "reproduce", "performance",
-               "layout"]
+               "sweeps", "elastic", "pictures", "command_line", "parameters", "reproduce",
+               "performance", "layout"]
 
 
 def _guide_extra() -> None:

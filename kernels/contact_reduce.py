@@ -3,7 +3,9 @@
 """Spectral products and float64 lane reductions of the constrained conjugate gradients of
 ``kernels/contact.py`` (array layouts, ``mask`` bits and the lane grids are described there).
 
-Launched by ``warptrunc.contact.halfspace`` (``spectral_kernel``), ``warptrunc.contact.influence``
+Launched by ``warptrunc.contact.halfspace`` (``spectral_kernel``; ``expand_spectrum_kernel`` and
+``pad_rows_kernel``, which fill a spectrum from the kernel's half rows and the real rows of an
+in-place transform from a map), ``warptrunc.contact.influence``
 (``sum_lanes_kernel``, through ``LaneReduction``) and ``warptrunc.contact.solver``
 (``contact_sums_kernel``; the ``SPECTRUM_*`` modes). State arrays are float32 or float64 (one
 overload each); spectra are (Ny, Nx//2 + 1) arrays of vec2 (re, im), the kernel spectrum ``w`` is
@@ -151,16 +153,37 @@ def sum_lanes_kernel(
     out[k, j] = acc
 
 
+@wp.kernel
+def expand_spectrum_kernel(w: wp.array2d(dtype=Any), scale: wp.float64, b: wp.array2d(dtype=Any)):
+    """One thread per element of the (Ny, Nx//2 + 1) half spectrum ``b``: b = (scale·w, 0), with
+    ``w`` the kernel spectrum's rows 0 … Ny//2 mirrored to the full Ny rows."""
+    iy, ix = wp.tid()
+    wv = w[wp.min(iy, b.shape[0] - iy), ix] * w.dtype(scale)
+    b[iy, ix] = b.dtype(wv, w.dtype(0.0))
+
+
+@wp.kernel
+def pad_rows_kernel(x: wp.array2d(dtype=Any), rows: wp.array2d(dtype=Any)):
+    """One thread per element of ``rows`` (ny, 2·(Nx//2 + 1)), the real rows of an in-place
+    real-to-complex transform: rows = x on the map's columns, 0 in the pad."""
+    iy, ix = wp.tid()
+    if ix < x.shape[1]:
+        rows[iy, ix] = x[iy, ix]
+    else:
+        rows[iy, ix] = rows.dtype(0.0)
+
+
 def _declare_overloads() -> None:
     """float32 and float64 instances of every generic kernel, so the module compiles once."""
-    kernels = (spectral_kernel, contact_sums_kernel)
+    kernels = (spectral_kernel, contact_sums_kernel, expand_spectrum_kernel, pad_rows_kernel)
+    vec_args = {(spectral_kernel, "b"), (expand_spectrum_kernel, "b")}
     for scalar, vec in ((wp.float32, wp.vec2f), (wp.float64, wp.vec2d)):
         for k in kernels:
             types = {}
             for arg in k.adj.args:
                 ty = arg.type
                 if wp.types.is_array(ty) and ty.dtype is Any:
-                    dt = vec if (k is spectral_kernel and arg.label == "b") else scalar
+                    dt = vec if (k, arg.label) in vec_args else scalar
                     types[arg.label] = wp.array2d(dtype=dt)
                 else:
                     types[arg.label] = ty

@@ -154,6 +154,20 @@ def test_benchmark_help(script):
     assert "usage:" in r.stdout
 
 
+def test_solver_scaling_benchmark_runs_quick(tmp_path):
+    """The contact solver's scaling benchmark runs on the CPU with --quick and writes its JSON
+    (sizes, iterations, convolutions, peak memory against the model)."""
+    script = BENCHMARKS_DIR / "benchmark_solver_scaling.py"
+    r = _run(script, "--quick", "--device", "cpu", "--out", str(tmp_path), timeout=300)
+    assert r.returncode == 0, r.stderr[-4000:]
+    doc = json.loads((tmp_path / "scaling.json").read_text())
+    assert [row["n"] for row in doc["rows"]] == [128, 256]
+    for row in doc["rows"]:
+        assert row["converged"] and row["cold_iterations"] > 0
+        # Warp's allocation tracker against the model, on the CPU (no cuFFT work area)
+        assert abs(row["peak_bytes"] / row["memory_model_bytes"] - 1) < 0.1
+
+
 @pytest.fixture
 def common():
     spec = importlib.util.spec_from_file_location("_bench_common", BENCHMARKS_DIR / "_common.py")

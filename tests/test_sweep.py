@@ -221,10 +221,10 @@ def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
 
     real = engines.wm_surface
 
-    def flaky(D, *a, seed=0, **kw):
-        if seed == 1:
+    def flaky(spec, *a, **kw):  # the engine passes the case's WMSpec
+        if spec.seed == 1:
             raise RuntimeError("injected failure")
-        return real(D, *a, seed=seed, **kw)
+        return real(spec, *a, **kw)
 
     monkeypatch.setattr(engines, "wm_surface", flaky)
     out = tmp_path / "s"

@@ -58,7 +58,9 @@ _EXPORTS = {
     "Islands": ".islands",
     "Material": ".material",
     "PowerLawFit": ".stiffness",
+    "SolverSettings": ".contact.settings",
     "StiffnessCurve": ".stiffness",
+    "TABLE1": ".presets",
     "Surface": ".surface",
     "TruncationCurve": ".truncation",
     "WMSpec": ".wm_params",
@@ -75,6 +77,7 @@ _EXPORTS = {
     "from_heights": ".surface",
     "island_curve": ".islands",
     "label_islands": ".islands",
+    "preset": ".presets",
     "read_height_map": ".io",
     "resolve_device": "._support.device",
     "solve_contact": ".contact.curve",
@@ -87,8 +90,8 @@ _EXPORTS = {
 
 _SUBMODULES = frozenset({
     "calibrate", "cli", "compare", "contact", "descriptors", "fractal", "io", "islands",
-    "material", "params", "plot", "render", "reproduce", "robust", "spectra", "stiffness",
-    "surface", "sweep", "truncation", "wm", "wm_params",
+    "material", "params", "plot", "presets", "render", "reproduce", "robust", "spectra",
+    "stiffness", "surface", "sweep", "truncation", "wm", "wm_params",
 })  # fmt: skip
 """The public subpackages and modules (``warptrunc.<name>``): with ``__all__``, all that
 ``dir(warptrunc)`` lists."""
@@ -132,6 +135,7 @@ if _TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eager
     from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
     from .contact.check import BemCheck, bem_check
     from .contact.curve import solve_contact
+    from .contact.settings import SolverSettings
     from .descriptors import Descriptors, describe
     from .fractal import FractalFit, fractal_dimension, fractal_dimensions
     from .io import read_height_map, write_height_map
@@ -145,6 +149,7 @@ if _TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eager
         label_islands,
     )
     from .material import Material
+    from .presets import TABLE1, preset
     from .stiffness import PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
     from .surface import Surface, from_heights
     from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
@@ -165,8 +170,10 @@ __all__ = [
     "Islands",
     "Material",
     "PowerLawFit",
+    "SolverSettings",
     "StiffnessCurve",
     "Surface",
+    "TABLE1",
     "TruncationCurve",
     "WMSpec",
     "applicable_depth",
@@ -182,6 +189,7 @@ __all__ = [
     "from_heights",
     "island_curve",
     "label_islands",
+    "preset",
     "read_height_map",
     "resolve_device",
     "solve_contact",

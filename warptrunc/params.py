@@ -35,8 +35,10 @@ __all__ = [
     "check_value",
     "from_args",
     "markdown_table",
+    "numpydoc_fields",
     "param",
     "param_info",
+    "param_like",
     "sweep_fields",
     "to_dict",
 ]
@@ -188,6 +190,35 @@ def param(default: Any, doc: str, *, unit: str = "", **kw: Any) -> Any:
     return dataclasses.field(default=default, metadata={_KEY: meta})
 
 
+def param_like(source: Any, name: str, *, default: Any = dataclasses.MISSING, **changes: Any) -> Any:
+    """A field declared like field ``name`` of ``cls``: same default, unit, range, description.
+
+    For an object that holds a parameter of another one under its own name (the sweep's
+    options hold W_r, E, ...), so that the declaration stays in one place.
+
+    Parameters
+    ----------
+    source : type
+        The parameter class that declares the field.
+    name : str
+        Its field name.
+    default : object, optional
+        Another default (default: the same).
+    **changes
+        :class:`Param` attributes that differ (e.g. a narrower range ``ge=8``).
+
+    Returns
+    -------
+    dataclasses.Field
+    """
+    f = {f.name: f for f in dataclasses.fields(source)}.get(name)
+    if f is None or _KEY not in f.metadata:
+        raise ValueError(f"{source.__name__} has no parameter {name!r}")
+    meta = dataclasses.replace(f.metadata[_KEY], **changes)
+    d = f.default if default is dataclasses.MISSING else default
+    return dataclasses.field(default=d, metadata={_KEY: meta})
+
+
 def param_info(cls_or_obj: Any) -> dict[str, Param]:
     """Field name → :class:`Param` of a parameter object, in field order.
 
@@ -233,7 +264,7 @@ def check_value(cls_or_obj: Any, name: str, value: Any) -> Any:
     return info[name].check(name, value)
 
 
-def check_fields(obj: Any) -> None:
+def check_fields(obj: Any, *, keep_pairs: bool = False) -> None:
     """Validate (and normalise: ints, floats) every declared field of a frozen dataclass.
 
     Called from ``__post_init__``.
@@ -242,6 +273,9 @@ def check_fields(obj: Any) -> None:
     ----------
     obj : object
         A parameter object.
+    keep_pairs : bool
+        Keep a pair of equal values as a pair (a tuple) rather than making it a scalar (for
+        objects whose ``to_dict`` enters a hash, e.g. the sweep's case ids).
 
     Raises
     ------
@@ -249,7 +283,10 @@ def check_fields(obj: Any) -> None:
         Naming the field, its value and the range.
     """
     for name, meta in param_info(obj).items():
-        v = meta.check(name, getattr(obj, name))
+        raw = getattr(obj, name)
+        v = meta.check(name, raw)
+        if keep_pairs and meta.pair and isinstance(raw, (tuple, list)) and not isinstance(v, tuple):
+            v = (v, v)
         object.__setattr__(obj, name, v)
 
 
@@ -323,6 +360,8 @@ def _arg_type(name: str, meta: Param):
 
 
 def _default_text(v: Any) -> str:
+    if v is None:
+        return "none"
     if isinstance(v, float):
         return f"{v:g}"
     if isinstance(v, tuple):
@@ -337,7 +376,10 @@ def add_options(
     prefix: str = "",
     title: str | None = None,
     exclude: Sequence[str] = (),
+    only: Sequence[str] | None = None,
     defaults: dict[str, Any] | None = None,
+    many: bool | Sequence[str] = False,
+    docs: dict[str, str] | None = None,
 ) -> argparse._ActionsContainer:
     """Add one option per declared field of ``spec_cls``, help text from the metadata.
 
@@ -353,8 +395,18 @@ def add_options(
         Put the options in a new argument group with this title.
     exclude : sequence of str
         Fields left out.
+    only : sequence of str, optional
+        Only these fields (in the class's order).
     defaults : dict, optional
-        Defaults that differ from the class's (for a command whose own default differs).
+        Defaults that differ from the class's (for a command whose own default differs), as
+        shown in the help; the command passes the same dict to :func:`from_args`.
+    many : bool or sequence of str
+        These fields (``True``: every sweepable one, see :func:`sweep_fields`) take one or
+        more values (``--D 2.1 2.3``, ``nargs="+"``), each checked against the range: a list
+        of values for a sweep. Pair fields keep their one-or-two values.
+    docs : dict of str to str, optional
+        Another description for some fields, where the command gives the parameter another
+        role (e.g. the *target* D of a calibration); unit and range stay those declared.
 
     Returns
     -------
@@ -370,17 +422,30 @@ def add_options(
     """
     g = parser.add_argument_group(title) if title else parser
     defaults = dict(defaults or {})
+    docs = dict(docs or {})
     fields = {f.name: f for f in dataclasses.fields(spec_cls)}
-    for name, meta in param_info(spec_cls).items():
-        if name in exclude:
+    info = param_info(spec_cls)
+    unknown = sorted(set(exclude) | set(only or ()) | set(docs) | set(defaults))
+    unknown = [k for k in unknown if k not in info]
+    if unknown:
+        raise ValueError(f"{spec_cls.__name__} has no parameters {unknown}")
+    if many is True:
+        many = tuple(sweep_fields(spec_cls))
+    many = set(many or ())
+    for name, meta in info.items():
+        if name in exclude or (only is not None and name not in only):
             continue
         default = defaults.get(name, fields[name].default)
         unit = f" ({meta.unit})" if meta.unit else ""
         rng = meta.interval() if meta.kind != "choice" else ""
-        help_ = f"{meta.doc}{unit}"
+        if meta.unit and rng.endswith(" " + meta.unit):
+            rng = rng[: -len(meta.unit) - 1]  # the unit is named once, after the description
+        help_ = f"{docs.get(name, meta.doc)}{unit}"
         if rng:
             help_ += f"; {rng}"
         help_ += f"; default {_default_text(default)}"
+        if name in many and not meta.pair:
+            help_ += "; several values: one sweep axis"
         kw: dict[str, Any] = {
             "dest": f"{prefix}{name}".replace("-", "_"),
             "default": None,
@@ -391,7 +456,7 @@ def add_options(
         else:
             kw["type"] = _arg_type(name, meta)
             kw["metavar"] = name.upper() if meta.kind == "int" else name
-        if meta.pair:
+        if meta.pair or name in many:
             kw["nargs"] = "+"
         g.add_argument(*_option(name, meta, prefix), **kw)
     return g
@@ -437,6 +502,12 @@ def from_args(
                     f"{_option(name, meta, prefix)[0]} takes one or two values, got {len(v)}: {v!r}"
                 )
             v = v[0] if len(v) == 1 else (v[0], v[1])
+        elif isinstance(v, list):  # an option of add_options(..., many=...)
+            if len(v) != 1:
+                raise ValueError(
+                    f"{_option(name, meta, prefix)[0]} takes one value here, got {len(v)}: {v!r}"
+                )
+            v = v[0]
         kw[name] = v
     kw.update(overrides)
     return spec_cls(**kw)
@@ -474,3 +545,39 @@ def markdown_table(spec_cls: Any, *, prefix: str = "") -> str:
             f"{rng} | {meta.doc} |"
         )
     return "\n".join(rows)
+
+
+def numpydoc_fields(spec_cls: Any, *, indent: int = 4, exclude: Sequence[str] = ()) -> str:
+    """The fields of ``spec_cls`` as numpydoc-style lines, to fill into a docstring.
+
+    One line per field, ``name : type, default value`` followed by its description, unit and
+    allowed range (indented by 4 more), so a function that takes the fields as ``**params``
+    documents them from the declaration instead of repeating it (pyvista-style docstring
+    templating: the function's docstring holds a placeholder that this text replaces).
+
+    Parameters
+    ----------
+    spec_cls : type
+        A parameter class.
+    indent : int
+        Spaces before each ``name :`` line.
+    exclude : sequence of str
+        Fields left out.
+
+    Returns
+    -------
+    str
+        The lines, joined by newlines (no trailing newline).
+    """
+    fields = {f.name: f for f in dataclasses.fields(spec_cls)}
+    pad, out = " " * indent, []
+    for name, meta in param_info(spec_cls).items():
+        if name in exclude:
+            continue
+        typ = fields[name].type
+        typ = typ if isinstance(typ, str) else getattr(typ, "__name__", str(typ))
+        default = _default_text(fields[name].default)
+        out.append(f"{pad}``{name}`` : {typ}, default {default}")
+        text = f"{meta.doc[:1].upper()}{meta.doc[1:]}; {meta.interval()}."
+        out.append(f"{pad}    {text}")
+    return "\n".join(out)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import os
 from concurrent.futures import ThreadPoolExecutor
+from typing import Any
 
 import numpy as np
 import warp as wp
@@ -19,7 +20,8 @@ from ._support.device import as_device, check_memory, resolve_device
 from ._support.reduce import height_range
 from .kernels import wm as _k
 from .surface import Surface
-from .wm_params import WMSpec, WMTerms, wm_spec
+from .params import numpydoc_fields
+from .wm_params import WMSpec, WMTerms, spec_of_call, wm_spec
 
 __all__ = [
     "WMSpec",
@@ -291,57 +293,35 @@ def _prefactor(spec: WMTerms) -> float:
 
 
 def wm_surface(
-    D: float = 2.5,
-    Wr: float = 100e-6,
-    *,
-    L: float | tuple[float, float] = 1e-3,
-    n: int | tuple[int, int] = 1024,
-    Rt: float | None = 10e-6,
-    G: float | None = None,
-    M: int = 10,
-    gamma: float = 1.5,
-    Wc: float | None = None,
-    cutoff: str = "nyquist",
-    seed: int = 0,
-    method: str = "tile",
-    device: wp.DeviceLike = None,
+    spec: WMSpec | float | None = None, /, *args: Any, device: wp.DeviceLike = None, **params: Any
 ) -> Surface:
     """Generate a Weierstrass–Mandelbrot rough surface (paper Eq. 4).
 
+    ``wm_surface(WMSpec(D=2.3, n=2048))``, ``wm_surface(D=2.3, n=2048)`` and, as before
+    :class:`WMSpec` existed, ``wm_surface(2.3, 100e-6, n=2048)`` give the same surface.
+
     Parameters
     ----------
-    D : float
-        Fractal dimension, 2 < D < 3 (dimensionless).
-    Wr : float
-        Roll-off wavelength W_r, the longest wavelength (m).
-    L : float or (float, float)
-        Side length, or (Lx, Ly) (m).
-    n : int or (int, int)
-        Pixels per side, or (nx, ny). Pixel spacing dx = Lx/nx, dy = Ly/ny (m).
-    Rt : float or None
-        Target peak-to-valley height R_t (m): heights are scaled so that max − min = R_t (the
-        paper's procedure, §3.2). Set ``Rt=None`` and give ``G`` for the unscaled formula.
-    G : float, optional
-        Topothesy G (m); heights are Eq. (4) with this G and are not rescaled.
-    M : int
-        Number of superposed ridges.
-    gamma : float
-        Frequency density γ > 1 (dimensionless).
-    Wc : float, optional
-        Cut-off wavelength W_c (m), 0 < W_c < W_r. Defaults by ``cutoff``.
-    cutoff : {"nyquist", "pixel"}
-        Default W_c: ``"nyquist"`` = 2·max(dx, dy), the shortest wavelength the grid resolves
-        (no term aliases); ``"pixel"`` = max(dx, dy), the paper's literal "smallest distance
-        between two adjacent pixels", whose finest terms alias onto longer wavelengths.
-    seed : int
-        Seed of ``numpy.random.default_rng`` that draws the phases α_mn uniformly in
-        [0, 2π) on the host, in (m, n) order: the same seed gives the same surface on every
-        device.
-    method : {"tile", "direct"}
-        ``"tile"``: separable tables and a Warp tile GEMM (fast); ``"direct"``: one thread
-        per pixel summing every term with float64 phases (reference).
+    spec : WMSpec or float, optional
+        The parameters (a preset such as ``warptrunc.presets.TABLE1["GB300s"]`` is one); or the
+        fractal dimension D, then ``Wr`` may follow positionally. Default: ``WMSpec()``.
+    *args
+        ``Wr`` (m), when ``spec`` is D.
     device : str, optional
         Warp device; see :func:`warptrunc.resolve_device`.
+    **params
+        Fields of :class:`WMSpec` (they override those of ``spec``). ``Rt`` scales the heights
+        so that max − min = R_t (the paper's procedure, §3.2); set ``Rt=None`` and give ``G``
+        for the unscaled formula. ``cutoff="nyquist"`` (default W_c = 2·max(dx, dy)) is the
+        shortest wavelength the grid resolves (no term aliases); ``"pixel"`` (max(dx, dy)) is
+        the paper's literal "smallest distance between two adjacent pixels", whose finest
+        terms alias onto longer wavelengths. The phases α_mn are drawn on the host by
+        ``numpy.random.default_rng(seed)`` in (m, n) order, so the same seed gives the same
+        surface on every device. ``method="tile"``: separable tables and a Warp tile GEMM
+        (fast); ``"direct"``: one thread per pixel summing every term with float64 phases
+        (reference). The fields:
+
+{fields}
 
     Returns
     -------
@@ -350,6 +330,13 @@ def wm_surface(
         frequency index, the largest n with W_r/γ^n ≥ W_c), ``n_terms`` = M·(n_max + 1),
         ``scale`` (m per unit of the raw sum) and ``G_equivalent`` (the topothesy giving that
         scale).
+
+    Raises
+    ------
+    ValueError
+        A parameter out of its range (the message names it, its value and the range).
+    TypeError
+        More than two positional arguments, or a field given twice.
 
     Notes
     -----
@@ -361,11 +348,11 @@ def wm_surface(
     ----------
     Yan & Komvopoulos (1998), J. Appl. Phys. 84, 3617, doi:10.1063/1.368536.
     """
-    spec = wm_spec(
-        D, Wr, L=L, n=n, Rt=Rt, G=G, M=M, gamma=gamma, Wc=Wc, cutoff=cutoff, seed=seed,
-        method=method,
-    )  # fmt: skip
-    return surface_from_spec(spec, resolve_device(device))
+    terms = spec_of_call(spec, args, params, "wm_surface").terms()
+    return surface_from_spec(terms, resolve_device(device))
+
+
+wm_surface.__doc__ = wm_surface.__doc__.replace("{fields}", numpydoc_fields(WMSpec, indent=8))
 
 
 def surface_from_spec(spec: WMTerms, device: wp.context.Device) -> Surface:

@@ -13,8 +13,8 @@ from typing import Any
 
 import numpy as np
 
-from ._support.validate import check_int, check_range, pair
-from .params import check_fields, param, to_dict
+from ._support.validate import check_range
+from .params import check_fields, numpydoc_fields, param, to_dict
 
 __all__ = ["WMSpec", "WMTerms", "wm_spec"]
 
@@ -55,50 +55,20 @@ class WMTerms:
         return {"generator": "weierstrass-mandelbrot", **{k: getattr(self, k) for k in keys}}
 
 
-def wm_spec(
-    D: float = 2.5,
-    Wr: float = 100e-6,
-    *,
-    L: float | tuple[float, float] = 1e-3,
-    n: int | tuple[int, int] = 1024,
-    Rt: float | None = 10e-6,
-    G: float | None = None,
-    M: int = 10,
-    gamma: float = 1.5,
-    Wc: float | None = None,
-    cutoff: str = "nyquist",
-    seed: int = 0,
-    method: str = "tile",
-) -> WMTerms:
+def wm_spec(spec: WMSpec | float | None = None, /, *args: Any, **params: Any) -> WMTerms:
     """Validate the WM parameters and draw the phases on the host (see :func:`wm_surface`).
 
     Parameters
     ----------
-    D : float
-        Fractal dimension, 2 < D < 3 (dimensionless).
-    Wr : float
-        Roll-off wavelength W_r, the longest wavelength (m).
-    L : float or (float, float)
-        Side length, or (Lx, Ly) (m).
-    n : int or (int, int)
-        Pixels per side, or (nx, ny), each in [2, 2²⁰]. dx = Lx/nx, dy = Ly/ny (m).
-    Rt : float or None
-        Target peak-to-valley height R_t (m); give exactly one of ``Rt`` and ``G``.
-    G : float, optional
-        Topothesy G (m) of Eq. (4), for unscaled heights.
-    M : int
-        Number of superposed ridges, in [1, 10⁴].
-    gamma : float
-        Frequency density γ > 1 (dimensionless).
-    Wc : float, optional
-        Cut-off wavelength W_c (m), 0 < W_c < W_r. Defaults by ``cutoff``.
-    cutoff : {"nyquist", "pixel"}
-        Default W_c: 2·max(dx, dy) or max(dx, dy) (m).
-    seed : int
-        Seed (≥ 0) of ``numpy.random.default_rng`` that draws the phases α_mn uniformly in
-        [0, 2π), in (m, n) order.
-    method : {"tile", "direct"}
-        Evaluation method recorded in the spec (see :func:`wm_surface`).
+    spec : WMSpec or float, optional
+        The parameters; or, as before :class:`WMSpec` existed, the fractal dimension D
+        (then ``Wr`` may follow as the second positional argument).
+    *args
+        ``Wr`` (m), when ``spec`` is D.
+    **params
+        Fields of :class:`WMSpec` (they override those of ``spec``):
+
+{fields}
 
     Returns
     -------
@@ -118,20 +88,55 @@ def wm_spec(
     The terms are those of the paper's Eq. (4), with the spatial frequency of term (m, n)
     k = 2πγⁿ/W_r along the direction θ = πm/M.
     """
-    D = check_range("D", D, 2.0, 3.0)
-    Wr = check_range("Wr", Wr, 0.0, unit="m")
-    Lx, Ly = pair("L", L)
-    Lx = check_range("L (x)", Lx, 0.0, unit="m")
-    Ly = check_range("L (y)", Ly, 0.0, unit="m")
-    nx, ny = pair("n", n, cast=lambda v: v)
-    nx = check_int("n (x)", nx, 2, 1 << 20)
-    ny = check_int("n (y)", ny, 2, 1 << 20)
-    M = check_int("M", M, 1, 10_000)
-    gamma = check_range("gamma", gamma, 1.0, unit="(dimensionless)")
-    if cutoff not in ("nyquist", "pixel"):
-        raise ValueError(f"cutoff must be 'nyquist' or 'pixel', got {cutoff!r}")
-    if method not in ("tile", "direct"):
-        raise ValueError(f"method must be 'tile' or 'direct', got {method!r}")
+    return spec_of_call(spec, args, params, "wm_spec").terms()
+
+
+def spec_of_call(spec: Any, args: tuple, params: dict, where: str) -> WMSpec:
+    """The :class:`WMSpec` of a call ``f(spec=None, /, *args, **params)``.
+
+    ``spec`` is a :class:`WMSpec` (``params`` override its fields), None (``params`` alone),
+    or, as the signature of ``wm_surface``/``wm_spec`` was before, D followed by ``Wr``.
+
+    Parameters
+    ----------
+    spec : WMSpec, float or None
+        The first positional argument.
+    args : tuple
+        The further positional arguments (at most ``Wr``, after D).
+    params : dict
+        The keyword arguments: fields of :class:`WMSpec`.
+    where : str
+        The function's name, for the messages.
+
+    Returns
+    -------
+    WMSpec
+        Validated.
+
+    Raises
+    ------
+    TypeError
+        Positional arguments beyond (D, Wr), or a field given twice.
+    """
+    if isinstance(spec, WMSpec):
+        if args:
+            raise TypeError(f"{where}: give the fields of a WMSpec as keywords, not positionally")
+        return spec.replace(**params) if params else spec
+    pos = () if spec is None and not args else (spec, *args)
+    if len(pos) > 2:
+        raise TypeError(f"{where} takes at most 2 positional arguments (D, Wr), got {len(pos)}")
+    for k, v in zip(("D", "Wr"), pos):
+        if k in params:
+            raise TypeError(f"{where} got multiple values for argument {k!r}")
+        params[k] = v
+    return WMSpec(**params)
+
+
+def _terms(s: WMSpec) -> WMTerms:
+    """The per-term tables of ``s``, with the checks that need several fields."""
+    D, Wr, M, gamma, cutoff, Wc = s.D, s.Wr, s.M, s.gamma, s.cutoff, s.Wc
+    Lx, Ly = s.L if isinstance(s.L, tuple) else (s.L, s.L)
+    nx, ny = s.n if isinstance(s.n, tuple) else (s.n, s.n)
     dx, dy = Lx / nx, Ly / ny
     if Wc is None:
         Wc = (2.0 if cutoff == "nyquist" else 1.0) * max(dx, dy)
@@ -141,28 +146,24 @@ def wm_spec(
                 "use more pixels, a larger Wr, or give Wc"
             )
     Wc = check_range("Wc", Wc, 0.0, Wr, unit=f"m (must be below Wr = {Wr:g} m)")
-    if Rt is not None and G is not None:
+    if s.Rt is not None and s.G is not None:
         raise ValueError("give either Rt (rescale to a peak-to-valley height) or G, not both")
-    if Rt is None and G is None:
+    if s.Rt is None and s.G is None:
         raise ValueError("give Rt (m) or G (m) to set the vertical scale")
-    if Rt is not None:
-        Rt = check_range("Rt", Rt, 0.0, unit="m")
-    if G is not None:
-        G = check_range("G", G, 0.0, unit="m")
-    seed = check_int("seed", seed, 0)
     # n_max: the largest n with wavelength Wr/γ^n ≥ Wc (1e-9 guards exact powers)
     n_max = math.floor(math.log(Wr / Wc) / math.log(gamma) + 1e-9)
     n_f = n_max + 1
     n_terms = M * n_f
-    alpha = wm_phases(seed, M, n_f)
+    alpha = wm_phases(s.seed, M, n_f)
     m = np.repeat(np.arange(1, M + 1, dtype=np.float64), n_f)
     nn = np.tile(np.arange(n_f, dtype=np.float64), M)
     k = 2.0 * math.pi * gamma**nn / Wr
     theta = math.pi * m / M
     return WMTerms(
         D=D, Wr=Wr, Lx=Lx, Ly=Ly, nx=nx, ny=ny, dx=dx, dy=dy, M=M, gamma=gamma, Wc=Wc,
-        cutoff=cutoff, n_max=n_max, n_terms=n_terms, seed=seed, G=G, Rt=Rt, method=method,
-        kx=k * np.cos(theta), ky=k * np.sin(theta), alpha=alpha, w=wm_weights(D, gamma, nn),
+        cutoff=cutoff, n_max=n_max, n_terms=n_terms, seed=s.seed, G=s.G, Rt=s.Rt,
+        method=s.method, kx=k * np.cos(theta), ky=k * np.sin(theta), alpha=alpha,
+        w=wm_weights(D, gamma, nn),
     )  # fmt: skip
 
 
@@ -251,7 +252,7 @@ class WMSpec:
         -------
         WMTerms
         """
-        return wm_spec(**self.kwargs())
+        return _terms(self)
 
     @property
     def n_terms(self) -> int:
@@ -280,3 +281,6 @@ class WMSpec:
         dict
         """
         return to_dict(self)
+
+
+wm_spec.__doc__ = wm_spec.__doc__.replace("{fields}", numpydoc_fields(WMSpec, indent=8))

@@ -115,12 +115,12 @@ def summarise_solver(s, dtype: str, dev, runs: list[dict], rss0: int) -> dict:
     out = {
         "dtype": dtype, "time_warm_solve_s": statistics.median(r["warm"] for r in runs),
         "time_cold_solve_s": statistics.median(r["cold"] for r in runs),
-        "n_iterations": info["n_iterations"], "n_convolutions": info["n_convolutions"],
-        "converged": bool(info["converged"]), "load_N": info["load"],
-        "area_m2": info["n_contact"] * s.pixel_area,
+        "n_iterations": info.n_iterations, "n_convolutions": info.n_convolutions,
+        "converged": bool(info.converged), "load_N": info.load,
+        "area_m2": info.n_contact * s.pixel_area,
         "memory_estimate_bytes": ContactSolver.memory_bytes(s.shape, "free", dtype),
     }  # fmt: skip
-    out["time_per_iteration_s"] = out["time_warm_solve_s"] / info["n_iterations"]
+    out["time_per_iteration_s"] = out["time_warm_solve_s"] / info.n_iterations
     if dev.is_cuda:
         import cupy as cp
 

@@ -45,8 +45,12 @@ from pathlib import Path
 
 from .._support.atomic import probe_writable
 from ..io import read_height_map
+from ..material import Material
+from ..params import add_options, from_args
+from ..presets import TABLE1
 from ..surface import Surface
 from ..wm import wm_surface
+from ..wm_params import WMSpec
 
 # --- validators for ``type=`` -----------------------------------------------------------------
 
@@ -228,9 +232,22 @@ def add_out(p: argparse.ArgumentParser, default: str = "out") -> None:
     p.add_argument("--out", type=output_dir, default=Path(default), help="output folder")
 
 
-def add_surface_source(p: argparse.ArgumentParser) -> None:
-    """A height-map file, or WM generation parameters (all SI)."""
-    g = p.add_argument_group("surface source (a height-map file, or WM generation parameters)")
+SURFACE_EXCLUDE = ("method",)
+"""WMSpec fields with no command-line option: the evaluation method (``"direct"`` is a
+reference for tests, not a surface parameter)."""
+
+
+def add_surface_source(p: argparse.ArgumentParser, *, defaults: dict | None = None) -> None:
+    """A height-map file, a preset, or WM generation parameters (all SI).
+
+    The WM options (``--D``, ``--Wr``, ``--L``, ``--n``, ``--Rt``, ``--G``, ``--M``,
+    ``--gamma``, ``--Wc``, ``--cutoff``, ``--seed``) are generated from :class:`WMSpec`
+    (:func:`warptrunc.params.add_options`); ``defaults`` are the command's own defaults where
+    they differ from the class's (pass the same to :func:`wm_spec_from_args`).
+    """
+    g = p.add_argument_group(
+        "surface source (a height-map file, a preset, or WM generation parameters)"
+    )
     g.add_argument(
         "--input",
         "-i",
@@ -241,50 +258,49 @@ def add_surface_source(p: argparse.ArgumentParser) -> None:
     )
     add_reader_options(g)
     g.add_argument(
-        "--D", type=real(2.0, 3.0), default=2.5,
-        help="fractal dimension D, 2 < D < 3 (dimensionless)",
+        "--preset", choices=list(TABLE1), default=None,
+        help="start from the paper's Table 1 simulated surface (warptrunc.presets: calibrated "
+        "D_in and R_t', Table 1's W_r, 10240² over 1 mm); WM options given win over it",
     )  # fmt: skip
-    add_wm_shape(g)
-    g.add_argument(
-        "--Rt", type=positive("m"), default=10e-6, help="target peak-to-valley height R_t (m)"
-    )
-    g.add_argument(
-        "--G",
-        type=positive("m"),
-        default=None,
-        help="topothesy G (m); when given, heights are not rescaled to --Rt",
-    )
-    g.add_argument("--seed", type=integer(0), default=0, help="seed of the random phases α_mn")
+    add_options(g, WMSpec, exclude=SURFACE_EXCLUDE, defaults=defaults)
 
 
-def add_wm_shape(g: argparse._ActionsContainer) -> None:
-    """WM options other than D, R_t/G and the seed: W_r, L, n, M, γ, W_c, cut-off (SI)."""
-    g.add_argument("--Wr", type=positive("m"), default=100e-6, help="roll-off wavelength W_r (m)")
-    g.add_argument(
-        "--L", type=positive("m"), nargs="+", default=[1e-3], help="side length L, or Lx Ly (m)"
-    )
-    g.add_argument(
-        "--n", type=integer(2), nargs="+", default=[1024], help="pixels per side, or nx ny"
-    )
-    g.add_argument(
-        "--M", type=integer(1, 10_000), default=10, help="number of superposed ridges M"
-    )
-    g.add_argument(
-        "--gamma", type=real(1.0), default=1.5, help="frequency density γ > 1 (dimensionless)"
-    )
-    g.add_argument(
-        "--Wc",
-        type=positive("m"),
-        default=None,
-        help="cut-off wavelength W_c (m); default from --cutoff",
-    )
-    g.add_argument(
-        "--cutoff",
-        choices=["nyquist", "pixel"],
-        default="nyquist",
-        help="default W_c: 'nyquist' = 2 pixel spacings (no aliasing), 'pixel' = 1 spacing "
-        "(the paper's literal reading)",
-    )
+def add_wm_shape(g: argparse._ActionsContainer, *, many: bool = False) -> None:
+    """WM options other than D, R_t/G and the seed: W_r, L, n, M, γ, W_c, cut-off (SI).
+
+    ``many``: the sweepable ones take one or more values (several: a sweep axis).
+    """
+    add_options(g, WMSpec, exclude=("D", "Rt", "G", "seed", *SURFACE_EXCLUDE), many=many)
+
+
+def add_material(
+    g: argparse._ActionsContainer,
+    *,
+    exclude: tuple[str, ...] = ("hardness",),
+    many: bool = False,
+) -> None:
+    """``--E``, ``--nu``, ``--E-i``/``--E-flat``, ``--nu-i``/``--nu-flat`` from :class:`Material`.
+
+    ``hardness`` is left out by default: the truncation commands are elastic (E* only).
+    """
+    add_options(g, Material, exclude=exclude, many=many)
+
+
+def wm_spec_from_args(args: argparse.Namespace, defaults: dict | None = None) -> WMSpec:
+    """The :class:`WMSpec` of the parsed options: the command's ``defaults``, then the
+    ``--preset``, then the options given. ``--G`` given: the heights are not rescaled
+    (``Rt`` is None)."""
+    base = dict(defaults or {})
+    name = getattr(args, "preset", None)
+    if name is not None:
+        base.update(TABLE1[name].to_dict() | {"L": TABLE1[name].L, "n": TABLE1[name].n})
+    over = {"Rt": None} if getattr(args, "G", None) is not None else {}
+    return from_args(WMSpec, args, defaults=base, **over)
+
+
+def material_from_args(args: argparse.Namespace, **overrides) -> Material:
+    """The :class:`Material` of the parsed options (``overrides`` win)."""
+    return from_args(Material, args, **overrides)
 
 
 def add_reader_options(g: argparse._ActionsContainer) -> None:
@@ -331,34 +347,9 @@ def read_input(path: Path, args: argparse.Namespace) -> Surface:
     return s
 
 
-def _pair(v: list, option: str) -> float | tuple:
-    if len(v) == 1:
-        return v[0]
-    if len(v) == 2:
-        return (v[0], v[1])
-    raise ValueError(f"{option} takes one or two values, got {len(v)}: {v!r}")
-
-
-def wm_kwargs(args: argparse.Namespace) -> dict:
-    """The WM generation keywords (``wm_spec``/``wm_surface``) of the parsed arguments."""
-    return dict(
-        D=args.D,
-        Wr=args.Wr,
-        L=_pair(args.L, "--L"),
-        n=_pair(args.n, "--n"),
-        Rt=None if args.G is not None else args.Rt,
-        G=args.G,
-        M=args.M,
-        gamma=args.gamma,
-        Wc=args.Wc,
-        cutoff=args.cutoff,
-        seed=args.seed,
-    )
-
-
 def surface_from_args(args: argparse.Namespace) -> Surface:
     """Read ``--input`` or generate a WM surface from the parameters."""
     if args.input is not None:
         return read_input(args.input, args)
 
-    return wm_surface(**wm_kwargs(args), device=args.device)
+    return wm_surface(wm_spec_from_args(args), device=args.device)

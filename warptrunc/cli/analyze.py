@@ -32,7 +32,6 @@ pass (fit.json: "islands": null).
 from __future__ import annotations
 
 import argparse
-import math
 import threading
 
 import numpy as np
@@ -48,17 +47,19 @@ from ..stiffness import (
     stiffness_curve,
 )
 from ..truncation import truncate
-from ..truncation.stream import as_wm_spec, banded_truncation, fits_in_memory
+from ..truncation.stream import banded_truncation, fits_in_memory
 from ._common import (
     add_device,
+    add_material,
     add_out,
     add_surface_source,
     fraction,
     integer,
+    material_from_args,
     positive,
     real,
     surface_from_args,
-    wm_kwargs,
+    wm_spec_from_args,
 )
 
 NAME = "analyze"
@@ -95,8 +96,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
 
 
-def add_truncation_options(p: argparse.ArgumentParser) -> None:
-    """Depth increments, ω_max, material and β' (shared with ``warptrunc sweep``)."""
+def add_truncation_options(p: argparse.ArgumentParser, *, many: bool = False) -> None:
+    """Depth increments, ω_max, material and β' (shared with ``warptrunc sweep``).
+
+    The material options come from :class:`Material`; ``many`` (the sweep) lets them take
+    several values (a sweep axis).
+    """
     g = p.add_argument_group("truncation and material")
     g.add_argument(
         "--increments", type=integer(1, 10_000_000), default=200,
@@ -112,23 +117,7 @@ def add_truncation_options(p: argparse.ArgumentParser) -> None:
         default=None,
         help="largest depth ω_max (m); overrides the fraction",
     )
-    g.add_argument(
-        "--E", type=positive("Pa"), default=70e9, help="Young's modulus E of the rough body (Pa)"
-    )
-    g.add_argument(
-        "--nu", type=real(-1.0, 0.5, hi_open=False), default=0.33,
-        help="Poisson's ratio ν of the rough body, −1 < ν ≤ 0.5",
-    )  # fmt: skip
-    g.add_argument(
-        "--E-flat",
-        type=real(0.0, None, allow_inf=True, unit="Pa"),
-        default=math.inf,
-        help="Young's modulus E_i of the flat (Pa); inf = rigid",
-    )
-    g.add_argument(
-        "--nu-flat", type=real(-1.0, 0.5, hi_open=False), default=0.0,
-        help="Poisson's ratio ν_i of the flat, −1 < ν_i ≤ 0.5",
-    )  # fmt: skip
+    add_material(g, many=many)
     g.add_argument(
         "--beta-prime", type=positive(), default=1.0, help="geometric factor β' of Eq. 2"
     )
@@ -184,7 +173,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--rt-percentile LO HI needs LO < HI (%), got {rtp[0]!r} {rtp[1]!r}")
     if args.islands and args.stream:
         raise ValueError("--islands needs the map in memory; a streamed map has no island pass")
-    material = Material(E=args.E, nu=args.nu, E_i=args.E_flat, nu_i=args.nu_flat)
+    material = material_from_args(args)
     preload = None if args.no_plot else _preload_plotting()
     curve, meta, path = _truncation(args)
     nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
@@ -320,7 +309,7 @@ def _truncation(args: argparse.Namespace):
         raise ValueError("--rt-percentile needs the map in memory; it cannot be streamed")
 
     st = banded_truncation(
-        as_wm_spec(wm_kwargs(args)), args.increments, max_depth=args.max_depth,
+        wm_spec_from_args(args).terms(), args.increments, max_depth=args.max_depth,
         max_depth_fraction=args.max_depth_fraction, band_rows=args.band_rows,
         device=resolve_device(args.device), progress=True,
     )  # fmt: skip
@@ -335,4 +324,4 @@ def _wants_stream(args: argparse.Namespace) -> bool:
     if args.stream:
         return True
 
-    return not fits_in_memory(wm_kwargs(args), args.device)
+    return not fits_in_memory(wm_spec_from_args(args), args.device)

@@ -18,15 +18,15 @@ arguments or a missing extra.
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 
-from ..stiffness import Material
 from ._common import (
     add_device,
+    add_material,
     add_out,
     add_surface_source,
     integer,
+    material_from_args,
     positive,
     real,
     surface_from_args,
@@ -52,13 +52,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="approaches δ (m), strictly increasing, in (0, R_t)",
     )  # fmt: skip
     g = p.add_argument_group("material (as analyze)")
-    g.add_argument("--E", type=positive("Pa"), default=70e9, help="Young's modulus E of the rough body (Pa)")
-    g.add_argument("--nu", type=real(-1.0, 0.5, hi_open=False), default=0.33, help="Poisson's ratio ν of the rough body")
-    g.add_argument(
-        "--E-flat", type=real(0.0, None, allow_inf=True, unit="Pa"), default=math.inf,
-        help="Young's modulus E_i of the flat (Pa); inf = rigid",
-    )  # fmt: skip
-    g.add_argument("--nu-flat", type=real(-1.0, 0.5, hi_open=False), default=0.0, help="Poisson's ratio ν_i of the flat")
+    add_material(g)
     g.add_argument("--beta-prime", type=positive(), default=1.0, help="geometric factor β' of Eq. 2")
     g.add_argument(
         "--increments", type=integer(1, 10_000_000), default=400,
@@ -128,7 +122,7 @@ def run(args: argparse.Namespace) -> int:
         except ImportError as exc:
             print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
             return 2
-    material = Material(E=args.E, nu=args.nu, E_i=args.E_flat, nu_i=args.nu_flat)
+    material = material_from_args(args)
     s = surface_from_args(args)
     res = bem_check(
         s, args.depths, fractions=args.fractions, material=material,

@@ -19,11 +19,15 @@ from .._support.atomic import staged_output, strict_json
 from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
 from ..fractal import METHODS
 from ..io import write_height_map
+from ..params import add_options
+from ..wm_params import WMSpec
 from ._common import add_device, integer, output_dir, positive, real
 from .describe import add_height_scaling, add_scan_arguments, method_options, read_scan_args
 
 NAME = "calibrate"
 HELP = "find D_in and R_t' that reproduce a scan's D and R_rms (Fig. 4), then generate"
+TARGET_FIELDS = ("D", "Wr", "L", "n", "Rt")
+"""The targets typed in with the options of :class:`WMSpec` (default: measured on FILE)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -32,21 +36,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     t = p.add_argument_group("targets (typed in, or overriding those measured on FILE)")
     t.add_argument("--method", choices=list(METHODS), default="tri", help="fractal method matched")
     add_height_scaling(t)
-    t.add_argument(
-        "--D", type=real(2.0, 3.0), default=None,
-        help="target fractal dimension, 2 < D < 3 (dimensionless)",
-    )  # fmt: skip
     t.add_argument("--Rrms", type=positive("m"), default=None, help="target R_rms (m)")
-    t.add_argument(
-        "--Rt", type=positive("m"), default=None, help="scan's R_t, input of the D loop (m)"
-    )
-    t.add_argument("--Wr", type=positive("m"), default=None, help="roll-off wavelength W_r (m)")
-    t.add_argument(
-        "--L", type=positive("m"), nargs="+", default=None, help="scan side L, or Lx Ly (m)"
-    )
-    t.add_argument(
-        "--n", type=integer(2), nargs="+", default=None, help="scan pixels per side (nx ny)"
-    )
+    add_options(
+        t, WMSpec, only=TARGET_FIELDS, defaults=dict.fromkeys(TARGET_FIELDS),
+        docs={"D": "target fractal dimension (by --method)", "Rt": "scan's R_t, input of the D loop",
+              "Wr": "roll-off wavelength W_r", "L": "scan side L, or Lx Ly",
+              "n": "scan pixels per side, or nx ny"},
+    )  # fmt: skip
     c = p.add_argument_group("loop")
     c.add_argument(
         "--seeds", type=integer(0), nargs="+", default=[0, 1, 2], help="seeds per evaluation"

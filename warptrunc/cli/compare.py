@@ -29,13 +29,17 @@ import io
 import sys
 from pathlib import Path
 
+from ..params import add_options
+from ..wm_params import WMSpec
 from ._common import (
     add_device,
+    add_material,
     add_out,
     add_reader_options,
     fraction,
     input_file,
     integer,
+    material_from_args,
     positive,
     read_input,
     real,
@@ -43,6 +47,8 @@ from ._common import (
 
 NAME = "compare"
 HELP = "Eq. 2, island-resolved truncation and elastic BEM on the same maps (study)"
+STUDY_D = (2.1, 2.5, 2.9)
+"""Default fractal dimensions D of the WM study (dimensionless)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -57,8 +63,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     s.add_argument("--profile", choices=sorted(PROFILES), default=None,
                    help="the `elastic` stage of this reproduce profile (overrides the WM study "
                    "options) and its report section elastic.md")  # fmt: skip
-    s.add_argument("--D", type=real(2.0, 3.0), nargs="+", default=[2.1, 2.5, 2.9],
-                   help="fractal dimensions D of the WM study")  # fmt: skip
+    add_options(s, WMSpec, only=("D",), many=("D",), defaults={"D": STUDY_D},
+                docs={"D": "fractal dimensions D of the WM study"})  # fmt: skip
     s.add_argument("--size-ratios", type=positive(), nargs="+", default=[1, 3, 10],
                    help="map sizes L/W_r, at a fixed pixel size W_r/(--pixels-per-wr)")  # fmt: skip
     s.add_argument("--pixels-per-wr", type=integer(2), default=32,
@@ -66,15 +72,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     s.add_argument("--refine-ratio", type=real(0.0, lo_open=False), default=10,
                    help="L/W_r at which the pixel size is halved once (grid convergence); 0: none")  # fmt: skip
     s.add_argument("--seeds", type=integer(1), default=3, help="surfaces per (D, grid)")
-    s.add_argument("--Wr", type=positive("m"), default=100e-6, help="roll-off wavelength W_r (m)")
+    add_options(s, WMSpec, only=("Wr",))
     s.add_argument("--rt-over-wr", type=positive(), default=0.01,
                    help="R_t/W_r (the paper's δ); ratios and α do not depend on it")  # fmt: skip
     m = p.add_argument_group("approaches, material, solver")
     m.add_argument("--fractions", type=fraction(), nargs="+", default=list(APPROACH_FRACTIONS),
                    help="approaches δ/R_t, increasing")  # fmt: skip
-    m.add_argument("--E", type=positive("Pa"), default=70e9, help="Young's modulus E (Pa)")
-    m.add_argument("--nu", type=real(-1.0, 0.5, hi_open=False), default=0.33,
-                   help="Poisson's ratio ν")  # fmt: skip
+    add_material(m)
     m.add_argument("--increments", type=integer(1, 10_000_000), default=400,
                    help="depth increments of the truncation load integrals")  # fmt: skip
     m.add_argument("--connectivity", type=int, choices=(4, 8), default=4,
@@ -106,7 +110,7 @@ def run(args: argparse.Namespace) -> int:
                          'pip install "warptrunc[sweep]"') from None
     if args.input is not None and args.profile is not None:
         raise ValueError("give either --input or --profile, not both")
-    material = Material(E=args.E, nu=args.nu)
+    material = material_from_args(args)
     fractions, dtype, cases, surface = args.fractions, args.dtype, None, None
     prof = None
     if args.profile is not None:
@@ -120,8 +124,9 @@ def run(args: argparse.Namespace) -> int:
         surface = read_input(args.input, args)
     else:
         cases = study_cases(
-            D=args.D, size_ratios=args.size_ratios, pixels_per_Wr=args.pixels_per_wr,
-            refine_ratio=args.refine_ratio or None, seeds=args.seeds, Wr=args.Wr,
+            D=list(STUDY_D) if args.D is None else args.D, size_ratios=args.size_ratios,
+            pixels_per_Wr=args.pixels_per_wr, refine_ratio=args.refine_ratio or None,
+            seeds=args.seeds, Wr=WMSpec().Wr if args.Wr is None else args.Wr,
             Rt_over_Wr=args.rt_over_wr,
         )  # fmt: skip
     out: Path = args.out

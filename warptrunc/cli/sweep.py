@@ -1,6 +1,10 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Sweep D × δ × seeds into a result store that a re-run resumes.
+"""Sweep D × δ × seeds (and more axes) into a result store that a re-run resumes.
+
+Several values of a sweepable surface or material option (--Wr, --M, --gamma, --Wc, --E,
+--nu, --E-i, --nu-i) make it one more axis of the grid (outermost), as a table [axes] of the
+--grid file does; one value is an option shared by every case.
 
 Writes OUT/sweep.json (grid and options), OUT/curves/part-*.parquet (one Parquet part per
 shard of about 1 s of work: its curves, and its rows in the metadata; a dataset that
@@ -20,8 +24,12 @@ import argparse
 import signal
 import sys
 
+from ..material import Material
+from ..params import add_options, param_info
 from ..sweep import SweepGrid, alpha_summary, load, run_sweep
+from ..sweep.grid import option_name
 from ..sweep.read import require_extra
+from ..wm_params import WMSpec
 from ._common import add_device, add_out, add_wm_shape, input_file, integer, positive, real
 from .analyze import add_fit_options, add_truncation_options
 
@@ -36,16 +44,19 @@ class Terminated(KeyboardInterrupt):
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc sweep``."""
     g = p.add_argument_group("grid (values on the command line, or --grid FILE)")
-    g.add_argument("--D", type=real(2.0, 3.0), nargs="+", default=None,
-                   help="input fractal dimensions D_in, each in (2, 3) (dimensionless)")  # fmt: skip
+    add_options(g, WMSpec, only=("D",), many=("D",), defaults={"D": None},
+                docs={"D": "input fractal dimensions D_in"})  # fmt: skip
     g.add_argument("--delta", type=positive(), nargs="+", default=None,
                    help="relative roughness values δ = R_t/W_r (dimensionless); R_t = δ·W_r")  # fmt: skip
     g.add_argument("--seeds", default=None, help="seeds: '0-4', '0,3,7' or '0-2,9' (default 0)")
     g.add_argument("--grid", type=input_file, default=None,
-                   help="TOML file with D = [...], delta = [...], seeds = '0-4'")  # fmt: skip
-    s = p.add_argument_group("surface generation (SI)")
-    add_wm_shape(s)
-    add_truncation_options(p)
+                   help="TOML file with D = [...], delta = [...], seeds = '0-4' and optionally "
+                   "a table [axes] of more axes (e.g. M = [8, 10])")  # fmt: skip
+    s = p.add_argument_group(
+        "surface generation (SI; several values of --Wr, --M, --gamma, --Wc: more grid axes)"
+    )
+    add_wm_shape(s, many=True)
+    add_truncation_options(p, many=True)
     add_fit_options(p, several=True)
     m = p.add_argument_group("extra measurements and fit ranges")
     m.add_argument("--min-pixels-fraction", type=float, nargs="+", default=[],
@@ -86,30 +97,53 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_out(p, default="sweep")
 
 
-def grid_from_args(args: argparse.Namespace):
-    """The :class:`SweepGrid` of ``--grid`` or of ``--D/--delta/--seeds``."""
+def _wm_material(args: argparse.Namespace) -> tuple[dict, dict]:
+    """(single-valued options, extra axes) of the WMSpec and Material options given."""
+    opts: dict = {}
+    axes: dict = {}
+    for cls in (WMSpec, Material):
+        for name, meta in param_info(cls).items():
+            v = getattr(args, name, None)
+            if name == "D" or v is None:
+                continue
+            if meta.pair:
+                if len(v) > 2:
+                    raise ValueError(f"--{meta.cli or name} takes one or two values, got {v}")
+                v = v[0] if len(v) == 1 else tuple(v)
+            elif isinstance(v, list) and len(v) > 1:
+                axes[name] = v
+                continue
+            elif isinstance(v, list):
+                v = v[0]
+            opts[option_name(name)] = v
+    return opts, axes
 
+
+def grid_from_args(args: argparse.Namespace):
+    """The :class:`SweepGrid` of ``--grid`` or of ``--D/--delta/--seeds``, with the extra
+    axes of the options given several values."""
+
+    _, axes = _wm_material(args)
     if args.grid is not None:
         if args.D is not None or args.delta is not None or args.seeds is not None:
             raise ValueError("give --grid FILE or --D/--delta/--seeds, not both")
-        return SweepGrid.from_toml(args.grid)
+        g = SweepGrid.from_toml(args.grid)
+        return SweepGrid(D=g.D, delta=g.delta, seeds=g.seeds, axes=(*g.axes, *axes.items()))
     if args.D is None or args.delta is None:
         raise ValueError("the grid needs --D and --delta (and --seeds), or --grid FILE")
-    return SweepGrid.from_values(args.D, args.delta, args.seeds if args.seeds is not None else "0")
+    seeds = args.seeds if args.seeds is not None else "0"
+    return SweepGrid.from_values(args.D, args.delta, seeds, axes=axes)
 
 
 def options_from_args(args: argparse.Namespace) -> dict:
     """Keyword options of :func:`warptrunc.sweep.run_sweep` from the parsed arguments."""
 
-    def pair(v):
-        return v[0] if len(v) == 1 else tuple(v)
-
+    wm_material, _ = _wm_material(args)
     return dict(
-        Wr=args.Wr, L=pair(args.L), n=pair(args.n), M=args.M, gamma=args.gamma, Wc=args.Wc,
-        cutoff=args.cutoff, increments=args.increments,
-        max_depth_fraction=args.max_depth_fraction, max_depth=args.max_depth, E=args.E,
-        nu=args.nu, E_flat=args.E_flat, nu_flat=args.nu_flat, beta_prime=args.beta_prime,
-        min_pixels=tuple(args.min_pixels), min_pixels_fraction=tuple(args.min_pixels_fraction),
+        **wm_material, increments=args.increments,
+        max_depth_fraction=args.max_depth_fraction, max_depth=args.max_depth,
+        beta_prime=args.beta_prime, min_pixels=tuple(args.min_pixels),
+        min_pixels_fraction=tuple(args.min_pixels_fraction),
         fractal_methods=tuple(args.fractal), bem_fractions=tuple(args.bem_fractions),
         depth_window=None if args.depth_window is None else tuple(args.depth_window),
     )  # fmt: skip
@@ -122,9 +156,6 @@ def _on_sigterm(signum, frame):
 def run(args: argparse.Namespace) -> int:
     """Run the sweep; print a summary."""
 
-    for opt in ("L", "n"):
-        if len(getattr(args, opt)) > 2:
-            raise ValueError(f"--{opt} takes one or two values, got {getattr(args, opt)}")
     try:
         require_extra()
     except ImportError as exc:

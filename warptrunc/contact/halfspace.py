@@ -16,15 +16,20 @@ Discretisation (identical to ContactMechanics' ``FreeFFTElasticHalfSpace`` and
   π·E*·(1/Lx + 1/Ly)/2, so F(δ) depends on that convention, the pressure at a given mean
   pressure does not.
 
-The spectrum ``W = FFT(G)/(dx·dy)`` (m/N) is real and even; it is computed in float64 once per
-:class:`ElasticHalfSpace` (one per solver, reused by every solve): on a CUDA device with CuPy and
-cuFFT on the device (the free half-space; no host memory at the paper's sizes), otherwise on the
-host, cached by (grid, pixel size, E*, substrate) (:func:`influence_spectrum`). W is even in y
-too, so the half-space keeps its rows 0 … Ny//2 only.
+The spectrum ``W = FFT(G)/(dx·dy)`` (m/N) is real and even; the half-space keeps its rows
+0 … Ny//2 only, in its dtype, and the (ny, nx) influence table. Both are built in place once per
+:class:`ElasticHalfSpace` (one per solver), in float64 arithmetic whatever the dtype, a slab of
+rows or columns at a time (:func:`~warptrunc.contact.influence.build_free_spectrum`: the x
+transform of the mirrored rows of Love's quadrant into the work spectrum, used as float64
+scratch, then the y transform of its mirrored columns), with CuPy on a CUDA device and NumPy on
+the CPU: no (2ny, 2nx) grid, no host copy, temporaries of a few MiB. The periodic table is the
+inverse transform of the spectrum.
 
 Pruned transforms. Forces live on the (ny, nx) map and only the map's displacements are needed,
 so the free half-space never forms the (2ny, 2nx) grid: the forward transform is a real-to-complex
-FFT along x of the ny map rows (each row stored with its zero pad, length 2nx) into the first ny
+FFT along x of the ny map rows (on a CUDA device each row is first written with its zero pad,
+length 2nx, into the work spectrum's memory and transformed there in place; the maps themselves
+hold no pad) into the first ny
 rows of a (2ny, nx + 1) spectrum whose other rows are zeroed, then a complex FFT along y of every
 column; the inverse is the complex inverse FFT along y, then the complex-to-real FFT along x of the
 first ny rows only. Both equal the full zero-padded transforms to round-off
@@ -37,7 +42,9 @@ summation over the real-space influence table (:func:`influence_table`, held by 
 
 FFT backends, one algorithm: on a CUDA device three cuFFT plans (``cupy.cuda.cufft.PlanNd``
 with the advanced data layout: the batched row R2C, the strided in-place column C2C, the row
-C2R in place, so no transposes and no copies) executed on Warp's own stream (CuPy's view of it:
+C2R in place, so no transposes; each executed in at most ``FFT_SLABS`` slabs of rows or columns,
+with one work area shared by all plans and allocated, like every CuPy allocation the half-space
+makes, from Warp's memory pool) executed on Warp's own stream (CuPy's view of it:
 ``cupy.cuda.Stream.from_external`` on CuPy ≥ 14, ``ExternalStream`` before), so kernels and
 transforms stay ordered with no device-wide synchronisation; the buffers are Warp arrays, handed to cuFFT by pointer
 (``cupy.cuda.UnownedMemory``; no copies, no ``__cuda_array_interface__``). On the CPU ``scipy.fft``
@@ -58,9 +65,8 @@ from ..kernels import contact_reduce as _kr
 from .influence import (
     SUBSTRATES,
     LaneReduction,
-    free_spectrum_cupy,
-    influence_spectrum,
-    influence_table,
+    build_free_spectrum,
+    build_periodic_spectrum,
 )
 
 __all__ = [
@@ -75,6 +81,19 @@ DTYPES = {
 
 
 _CUPY_STREAMS: dict[tuple[int, int], Any] = {}
+
+FFT_SLABS = 8
+"""Largest number of slabs a cuFFT transform is cut into (batches of rows or columns, one plan
+execution each), so that cuFFT's work area, which may be as large as the data a plan transforms,
+stays a fraction of the work spectrum; slabs are never below 256 MiB of data."""
+
+_SLAB_MIN_BYTES = 1 << 28
+
+
+def _null():
+    import contextlib
+
+    return contextlib.nullcontext()
 
 
 def cupy_stream(cupy, stream: wp.Stream, ordinal: int):
@@ -167,51 +186,98 @@ class ElasticHalfSpace:
                     'install it with: pip install "warptrunc[gpu]"'
                 ) from exc
             self._cp = (cupy, cupyx.scipy.fft)
-        if self._cp is not None and substrate == "free":
-            # the free spectrum on the device: no host memory or host FFT at the paper's sizes
-            cupy, cfft = self._cp
-            with cupy.cuda.Device(self.device.ordinal):
-                w, table = free_spectrum_cupy(
-                    self.shape, pixel, float(contact_modulus), cupy, cfft
-                )
-                w = w.astype(self.np_dtype, copy=False)
-                table = table.astype(self.np_dtype, copy=False)
-                cupy.cuda.get_current_stream().synchronize()
-                views = [wp.array(ptr=a.data.ptr, dtype=self.scalar, shape=a.shape,
-                                  device=self.device) for a in (w, table)]  # fmt: skip
-                # Warp-owned copies, so that CuPy's pool can let go of the work arrays
-                self.spectrum, self.table = (wp.clone(v) for v in views)
-                wp.synchronize_stream(wp.get_stream(self.device))
-                del views, w, table
-                cupy.get_default_memory_pool().free_all_blocks()
-        else:
-            w = influence_spectrum(self.shape, pixel, float(contact_modulus), substrate)
-            table = influence_table(self.shape, pixel, float(contact_modulus), substrate)
-            self.spectrum = wp.array(w[:rows].astype(self.np_dtype), dtype=self.scalar,
-                                     device=self.device)  # fmt: skip
-            self.table = wp.array(table.astype(self.np_dtype), dtype=self.scalar,
-                                  device=self.device)  # fmt: skip
-        self.work = wp.zeros(self.spectrum_shape, dtype=self.vec2, device=self.device)
         self._plans = None
         self._views: dict[int, Any] = {}
+        self.fft_work = None  # the cuFFT plans' one shared work area (CUDA)
+        self.spectrum = wp.empty((rows, self.spectrum_shape[1]), dtype=self.scalar,
+                                 device=self.device)  # fmt: skip
+        self.table = wp.empty(self.shape, dtype=self.scalar, device=self.device)
+        self.work = wp.zeros(self.spectrum_shape, dtype=self.vec2, device=self.device)
+        self._build(pixel, float(contact_modulus))
+
+    def _build(self, pixel: tuple[float, float], contact_modulus: float) -> None:
+        """Fill the kernel spectrum and the influence table in place, in slabs, with the work
+        spectrum as the float64 scratch (module docstring): nothing of the map's size is
+        allocated besides what the half-space holds, on the device or the host."""
+        ny, nx = self.shape
+        if self._cp is None:
+            xp, rfft = np, None
+            spectrum, table = self.spectrum.numpy(), self.table.numpy()
+            raw = self.work.numpy().reshape(-1).view(np.uint8)
+        else:
+            cupy, cfft = self._cp
+            xp = cupy
+
+            def rfft(x, axis):
+                return cfft.rfft(x, axis=axis)
+
+            spectrum, table, raw = (self._cupy_array(a) for a in (self.spectrum, self.table,
+                                                                   self.work))  # fmt: skip
+        ctx = self._cupy_context() if self._cp is not None else _null()
+        with ctx:
+            if self.substrate == "free":
+                scratch = raw[: (ny + 1) * (nx + 1) * 8].view(xp.float64).reshape(ny + 1, nx + 1)
+                build_free_spectrum(self.shape, pixel, contact_modulus, spectrum, table, scratch,
+                                    xp=xp, rfft=rfft)  # fmt: skip
+                del scratch
+            else:
+                build_periodic_spectrum(self.shape, pixel, contact_modulus, spectrum, xp=xp)
+            del spectrum, table, raw
+            if self._cp is not None:
+                self._cp[0].fft.config.get_plan_cache().clear()
+        if self.substrate == "periodic":  # the table: the inverse transform of the spectrum
+            wp.launch(_kr.expand_spectrum_kernel, dim=self.spectrum_shape,
+                      inputs=[self.spectrum, wp.float64(1.0 / self.n_total)], outputs=[self.work],
+                      device=self.device)  # fmt: skip
+            wp.copy(self.table, self.inverse(self.work))
+        self.work.zero_()
+
+    def _cupy_context(self):
+        """CuPy on this device, its allocations (FFT work areas, temporaries) served from Warp's
+        pool, so that one allocator's high-water mark and tracker see all of the solver's memory."""
+        import contextlib
+
+        cupy = self._cp[0]
+        device = self.device
+
+        def allocate(size):
+            arr = wp.empty(max(1, int(size)), dtype=wp.uint8, device=device)
+            mem = cupy.cuda.UnownedMemory(arr.ptr, arr.capacity, arr, device.ordinal)
+            return cupy.cuda.MemoryPointer(mem, 0)
+
+        stack = contextlib.ExitStack()
+        stack.enter_context(cupy.cuda.Device(device.ordinal))
+        # on Warp's stream, so that Warp's stream-ordered frees of these blocks follow their use
+        stack.enter_context(cupy_stream(cupy, wp.get_stream(device), device.ordinal))
+        stack.enter_context(cupy.cuda.using_allocator(allocate))
+        return stack
+
+    def _cupy_array(self, arr: wp.array):
+        """A CuPy array of the same shape and dtype over a contiguous Warp array (no copy)."""
+        cupy = self._cp[0]
+        dt = {wp.float32: np.float32, wp.float64: np.float64, wp.vec2f: np.float32,
+              wp.vec2d: np.float64}[arr.dtype]  # fmt: skip
+        shape = arr.shape + ((2,) if arr.dtype in (wp.vec2f, wp.vec2d) else ())
+        mem = cupy.cuda.UnownedMemory(arr.ptr, arr.capacity, arr, self.device.ordinal)
+        out = cupy.ndarray(shape, dtype=dt, memptr=cupy.cuda.MemoryPointer(mem, 0))
+        return out if arr.dtype not in (wp.vec2f, wp.vec2d) else out.reshape(-1).view(cupy.uint8)
 
     # --- buffers ---------------------------------------------------------------------------
 
     def map_buffer(self) -> tuple[wp.array, wp.array]:
-        """Allocate a zeroed input buffer and its map view.
+        """Allocate a zeroed input map.
 
         Returns
         -------
-        buf : (ny, Nx) warp array
-            Zeroed buffer of the half-space's dtype, the input of :meth:`forward` and
-            :meth:`apply`; columns nx … Nx−1 are the zero pad (Nx = 2nx for the free
-            half-space, nx for the periodic one) and must stay zero.
+        buf : (ny, nx) warp array
+            Zeroed map of the half-space's dtype, the input of :meth:`forward` and
+            :meth:`apply`: pixel forces (N) or displacements (m). The free half-space's zero pad
+            is never stored: :meth:`forward` writes it into the work spectrum's rows.
         view : (ny, nx) warp array
-            The view ``buf[:, :nx]``: the map, where the pixel forces (N) or displacements (m)
-            are written.
+            The same array (kept so that callers written for padded buffers keep working).
         """
-        buf = wp.zeros((self.shape[0], self.grid[1]), dtype=self.scalar, device=self.device)
-        return buf, buf[:, : self.shape[1]]
+        buf = wp.zeros(self.shape, dtype=self.scalar, device=self.device)
+        return buf, buf
 
     def new_spectrum(self) -> wp.array:
         """Allocate a zeroed half spectrum of the half-space's transform.
@@ -251,30 +317,80 @@ class ElasticHalfSpace:
         return view
 
     @staticmethod
-    def bytes_per_grid(shape: tuple[int, int], substrate: str, dtype: str) -> int:
-        """Bytes of one real (Ny, Nx) array of the FFT grid (the unit of the memory estimate).
+    def fft_slabs(n_batch: int, slab_bytes: int) -> list[tuple[int, int]]:
+        """Cut a batched transform of ``n_batch`` rows or columns into slabs (module docstring).
+
+        Parameters
+        ----------
+        n_batch : int
+            Rows or columns the plan transforms (dimensionless count).
+        slab_bytes : int
+            Bytes of one row or column of data (complex) (B).
+
+        Returns
+        -------
+        list of (int, int)
+            (first, count) per slab: at most ``FFT_SLABS`` slabs of at least 256 MiB each (one
+            slab for small grids), of at most two distinct counts.
+        """
+        total = n_batch * slab_bytes
+        k = int(min(FFT_SLABS, max(1, total // _SLAB_MIN_BYTES), n_batch))
+        size = -(-n_batch // k)
+        return [(i, min(size, n_batch - i)) for i in range(0, n_batch, size)]
+
+    @staticmethod
+    def memory_terms(
+        shape: tuple[int, int], substrate: str, dtype: str, *, cuda: bool = True
+    ) -> dict[str, int]:
+        """Bytes a half-space holds for its life, term by term (its peak: the construction
+        works inside these arrays, with temporaries of a few MiB).
 
         Parameters
         ----------
         shape : (int, int)
             Map size (ny, nx).
         substrate : {"free", "periodic"}
-            Half-space ((Ny, Nx) = (2ny, 2nx) for the free one).
+            Half-space ((Ny, Nx) = (2ny, 2nx) for the free one, (ny, nx) for the periodic one).
         dtype : {"float64", "float32"}
             Precision.
+        cuda : bool, optional
+            On a CUDA device: the lane partials are 65536 lanes (64 on the CPU) and cuFFT's
+            shared work area is counted.
 
         Returns
         -------
-        int
-            Bytes.
+        dict of str to int
+            ``"kernel spectrum"``: rows 0 … Ny//2 of W, (Ny//2 + 1)·(Nx//2 + 1) reals;
+            ``"influence table"``: (ny, nx) reals; ``"work spectrum"``: the one FFT work area,
+            Ny·(Nx//2 + 1) complex (the transforms run in it in place, and the construction of W
+            uses it as float64 scratch); ``"lane partials"``: the float64 reduction partials;
+            ``"cufft work area"``: one area shared by all plans, estimated at the data of the
+            largest slab one plan execution transforms (cuFFT's choice; the half-space reports
+            the true size as ``fft_work.capacity``).
         """
         ny, nx = shape
-        n = 4 * ny * nx if substrate == "free" else ny * nx
-        return n * np.dtype(dtype).itemsize
+        big_y, big_x = (2 * ny, 2 * nx) if substrate == "free" else (ny, nx)
+        nk = big_x // 2 + 1
+        item = np.dtype(dtype).itemsize
+        lanes = 65536 if cuda else min(64, max(1, big_y * nk))
+        terms = {
+            "kernel spectrum": (big_y // 2 + 1) * nk * item,
+            "influence table": ny * nx * item,
+            "work spectrum": big_y * nk * 2 * item,
+            "lane partials": (lanes + (256 if cuda else 0)) * LaneReduction.COLUMNS * 8,
+        }
+        if cuda:
+            row, col = ElasticHalfSpace.fft_slabs, 2 * item
+            work = max(
+                max(c for _, c in row(ny, nk * col)) * nk * col,  # rows, R2C / C2R
+                max(c for _, c in row(nk, big_y * col)) * big_y * col,  # columns, C2C
+            )
+            terms["cufft work area"] = work
+        return terms
 
     @staticmethod
     def memory_bytes(shape: tuple[int, int], substrate: str, dtype: str) -> tuple[int, int]:
-        """Device bytes of a half-space: (held, while made).
+        """Device bytes of a half-space on a CUDA device: (held, while made).
 
         Parameters
         ----------
@@ -288,28 +404,11 @@ class ElasticHalfSpace:
         Returns
         -------
         (int, int)
-            Bytes held for its life: the half kernel spectrum, the influence table, the work
-            spectrum, the lane
-            partials and cuFFT's work areas (estimated at the size of the data each plan
-            transforms; their true size is cuFFT's choice). Bytes in use at the peak of making
-            the free spectrum on a CUDA device (float64 whatever the dtype: Love's quadrant, the
-            mirrored (2ny, 2nx) grid, its half spectrum and cuFFT's work area, its real part),
-            before anything else is allocated.
+            The sum of :meth:`memory_terms`, twice: the construction fills the held arrays in
+            place (its slab temporaries, a few MiB, are not counted).
         """
-        ny, nx = shape
-        big_y, big_x = (2 * ny, 2 * nx) if substrate == "free" else (ny, nx)
-        nk = big_x // 2 + 1
-        item = np.dtype(dtype).itemsize
-        spectrum = big_y * nk * 2 * item
-        kernel = (big_y // 2 + 1) * nk * item
-        cufft_work = spectrum + 2 * ny * nk * 2 * item  # columns; rows forward and inverse
-        lanes = (65536 + 256) * LaneReduction.COLUMNS * 8
-        table = ny * nx * item
-        held = kernel + table + spectrum + cufft_work + lanes
-        making = 0
-        if substrate == "free":
-            making = 8 * (3 * (ny + 1) * (nx + 1) + big_y * big_x + 2 * 2 * big_y * nk)
-        return int(held), int(making)
+        held = sum(ElasticHalfSpace.memory_terms(shape, substrate, dtype).values())
+        return int(held), int(held)
 
     # --- transforms ------------------------------------------------------------------------
 
@@ -317,80 +416,138 @@ class ElasticHalfSpace:
         """CPU: the spectrum's memory as a complex NumPy array (no copy)."""
         return spec.numpy().view(np.result_type(self.np_dtype, np.complex64))[..., 0]
 
-    def _cupy_plans(self):
-        """The three cuFFT plans (made once): rows R2C, columns C2C in place, rows C2R in place."""
-        if self._plans is None:
-            cupy = self._cp[0]
-            cufft = cupy.cuda.cufft  # loaded by cupyx.scipy.fft (imported in __init__)
-            ny = self.shape[0]
-            big_y, big_x = self.grid
-            nk = self.spectrum_shape[1]
-            if self.dtype == "float64":
-                r2c, c2c, c2r = cufft.CUFFT_D2Z, cufft.CUFFT_Z2Z, cufft.CUFFT_Z2D
-            else:
-                r2c, c2c, c2r = cufft.CUFFT_R2C, cufft.CUFFT_C2C, cufft.CUFFT_C2R
-            with cupy.cuda.Device(self.device.ordinal):
-                # PlanNd(n, inembed, istride, idist, onembed, ostride, odist, type, batch,
-                #        order, last_axis, last_size): element (b, x) at b·dist + x·stride
-                rows = cufft.PlanNd((big_x,), (big_x,), 1, big_x, (nk,), 1, nk, r2c, ny,
-                                    "C", 1, nk)  # fmt: skip
-                cols = cufft.PlanNd((big_y,), (big_y,), nk, 1, (big_y,), nk, 1, c2c, nk,
-                                    "C", 0, None)  # fmt: skip
-                rows_inv = cufft.PlanNd((big_x,), (nk,), 1, nk, (2 * nk,), 1, 2 * nk, c2r, ny,
-                                        "C", 1, big_x)  # fmt: skip
-            self._plans = (rows, cols, rows_inv)
-            self._directions = (cufft.CUFFT_FORWARD, cufft.CUFFT_INVERSE)
+    def _make_plans(self):
+        """The cuFFT plans, per slab size: rows R2C (in place for the free half-space), columns
+        C2C in place, rows C2R in place; made twice, first to learn their work sizes, then with
+        one shared work area (they run one after another on one stream)."""
+        cupy = self._cp[0]
+        cufft = cupy.cuda.cufft  # loaded by cupyx.scipy.fft (imported in __init__)
+        ny = self.shape[0]
+        big_y, big_x = self.grid
+        nk = self.spectrum_shape[1]
+        item = 2 * np.dtype(self.np_dtype).itemsize  # bytes of one complex element
+        if self.dtype == "float64":
+            r2c, c2c, c2r = cufft.CUFFT_D2Z, cufft.CUFFT_Z2Z, cufft.CUFFT_Z2D
+        else:
+            r2c, c2c, c2r = cufft.CUFFT_R2C, cufft.CUFFT_C2C, cufft.CUFFT_C2R
+        free = self.substrate == "free"
+        in_row = 2 * nk if free else big_x  # reals per input row: in place, or the map's
+        rows = self.fft_slabs(ny, nk * item)
+        cols = self.fft_slabs(nk, big_y * item)
+
+        def make():
+            # PlanNd(n, inembed, istride, idist, onembed, ostride, odist, type, batch,
+            #        order, last_axis, last_size): element (b, x) at b·dist + x·stride
+            plans = {}
+            for _, c in rows:
+                plans["rows", c] = cufft.PlanNd((big_x,), (in_row,), 1, in_row, (nk,), 1, nk,
+                                                r2c, c, "C", 1, nk)  # fmt: skip
+                plans["rows_inv", c] = cufft.PlanNd((big_x,), (nk,), 1, nk, (2 * nk,), 1,
+                                                    2 * nk, c2r, c, "C", 1, big_x)  # fmt: skip
+            for _, c in cols:
+                plans["cols", c] = cufft.PlanNd((big_y,), (big_y,), nk, 1, (big_y,), nk, 1, c2c,
+                                                c, "C", 0, None)  # fmt: skip
+            return plans
+
+        sizes = []
+
+        def record(size):
+            sizes.append(int(size))
+            mem = cupy.cuda.UnownedMemory(self.work.ptr, int(size), self.work,
+                                          self.device.ordinal)  # fmt: skip
+            return cupy.cuda.MemoryPointer(mem, 0)
+
+        with cupy.cuda.Device(self.device.ordinal):
+            with cupy.cuda.using_allocator(record):
+                del_plans = make()  # never executed: only their work sizes are kept
+            del del_plans
+            self.fft_work = wp.empty(max(1, max(sizes, default=1)), dtype=wp.uint8,
+                                     device=self.device)  # fmt: skip
+            shared = cupy.cuda.UnownedMemory(self.fft_work.ptr, self.fft_work.capacity,
+                                             self.fft_work, self.device.ordinal)  # fmt: skip
+            with cupy.cuda.using_allocator(lambda size: cupy.cuda.MemoryPointer(shared, 0)):
+                plans = make()
+        self._plans = (plans, rows, cols)
+        self._directions = (cufft.CUFFT_FORWARD, cufft.CUFFT_INVERSE)
         return self._plans
 
-    def _cupy_view(self, arr: wp.array):
-        """A CuPy array over a contiguous Warp buffer's bytes (no copy; cached by address), all
-        that ``PlanNd.fft`` reads (``.data.ptr``). Made from the pointer
+    def _cupy_plans(self):
+        """The plans and their slabs (made once)."""
+        return self._plans if self._plans is not None else self._make_plans()
+
+    def _cupy_view(self, arr: wp.array, offset: int = 0):
+        """A CuPy array starting ``offset`` bytes into a contiguous Warp buffer (no copy;
+        cached), all that ``PlanNd.fft`` reads (``.data.ptr``). Made from the pointer
         (``cupy.cuda.UnownedMemory``, which keeps the Warp array alive), not through
         ``__cuda_array_interface__``."""
-        view = self._views.get(arr.ptr)
+        key = (arr.ptr, offset)
+        view = self._views.get(key)
         if view is None or view[0] is not arr:
             cupy = self._cp[0]
             mem = cupy.cuda.UnownedMemory(arr.ptr, arr.capacity, arr, self.device.ordinal)
-            data = cupy.ndarray((arr.capacity,), dtype=cupy.uint8,
-                                memptr=cupy.cuda.MemoryPointer(mem, 0))  # fmt: skip
-            view = self._views[arr.ptr] = (arr, data)
+            data = cupy.ndarray((arr.capacity - offset,), dtype=cupy.uint8,
+                                memptr=cupy.cuda.MemoryPointer(mem, offset))  # fmt: skip
+            view = self._views[key] = (arr, data)
         return view[1]
 
-    def forward(self, buf: wp.array, spec: wp.array) -> None:
-        """Transform a zero-padded map into its half spectrum (unnormalised, real to complex).
+    def _real_rows(self, spec: wp.array) -> wp.array:
+        """The first ny real rows of a spectrum's memory in the in-place layout, 2·(Nx//2 + 1)
+        reals each (a view, no copy)."""
+        nk2 = 2 * self.spectrum_shape[1]
+        view = wp.array(ptr=spec.ptr, dtype=self.scalar, shape=(self.shape[0], nk2),
+                        device=self.device)  # fmt: skip
+        view._spectrum_owner = spec
+        return view
 
-        ``spec`` ← the 2-D FFT of the (Ny, Nx) grid whose first ny rows are ``buf`` and whose
-        other rows are zero, computed pruned (module docstring). On a CUDA device the cuFFT
-        plans run on Warp's stream; nothing is synchronised.
+    def forward(self, buf: wp.array, spec: wp.array) -> None:
+        """Transform a map, zero-padded, into its half spectrum (unnormalised, real to complex).
+
+        ``spec`` ← the 2-D FFT of the (Ny, Nx) grid whose first ny rows and nx columns are
+        ``buf`` and whose other elements are zero, computed pruned (module docstring). On a
+        CUDA device the map is copied into the spectrum's first rows with its pad (the real
+        layout of an in-place transform; the free half-space) and the cuFFT plans run on Warp's
+        stream; nothing is synchronised.
 
         Parameters
         ----------
-        buf : (ny, Nx) warp array
-            Input buffer (:meth:`map_buffer`): the map in columns 0 … nx−1 (pixel forces in N,
-            or displacements in m), zeros in the pad.
+        buf : (ny, nx) warp array
+            Input map (:meth:`map_buffer`): pixel forces in N, or displacements in m.
         spec : (Ny, Nx//2 + 1) warp array of vec2
             Output spectrum (:meth:`new_spectrum`), overwritten with the unnormalised
             transform (same units as ``buf``).
         """
         ny = self.shape[0]
+        big_x = self.grid[1]
         if self._cp is None:
             s = self._complex_view(spec)
             workers = os.cpu_count()
-            s[:ny] = scipy.fft.rfft(buf.numpy(), axis=1, workers=workers)
+            s[:ny] = scipy.fft.rfft(buf.numpy(), n=big_x, axis=1, workers=workers)
             s[ny:] = 0
             s[...] = scipy.fft.fft(s, axis=0, workers=workers, overwrite_x=True)
             return
         if ny < self.grid[0]:
             spec[ny:].zero_()  # the pad rows: zero before the column transform
+        free = self.substrate == "free"
+        if free:
+            rows_view = self._real_rows(spec)
+            wp.launch(_kr.pad_rows_kernel, dim=rows_view.shape, inputs=[buf],
+                      outputs=[rows_view], device=self.device)  # fmt: skip
         cupy = self._cp[0]
-        rows, cols, _ = self._cupy_plans()
-        s = self._cupy_view(spec)
+        plans, rows, cols = self._cupy_plans()
+        nk = self.spectrum_shape[1]
+        item = np.dtype(self.np_dtype).itemsize
+        fwd = self._directions[0]
         with (
             cupy.cuda.Device(self.device.ordinal),
             cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
         ):
-            rows.fft(self._cupy_view(buf), s, self._directions[0])
-            cols.fft(s, s, self._directions[0])
+            for r0, c in rows:
+                out = self._cupy_view(spec, r0 * nk * 2 * item)
+                src = out if free else self._cupy_view(buf, r0 * big_x * item)
+                plans["rows", c].fft(src, out, fwd)
+            for c0, c in cols:
+                v = self._cupy_view(spec, c0 * 2 * item)
+                plans["cols", c].fft(v, v, fwd)
 
     def inverse(self, spec: wp.array) -> wp.array:
         """Inverse-transform a half spectrum in place and return its real map.
@@ -421,14 +578,20 @@ class ElasticHalfSpace:
             real[:ny, :big_x] = r
             return self.result_map(spec)
         cupy = self._cp[0]
-        _, cols, rows_inv = self._cupy_plans()
-        s = self._cupy_view(spec)
+        plans, rows, cols = self._cupy_plans()
+        nk = self.spectrum_shape[1]
+        item = np.dtype(self.np_dtype).itemsize
+        inv = self._directions[1]
         with (
             cupy.cuda.Device(self.device.ordinal),
             cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
         ):
-            cols.fft(s, s, self._directions[1])
-            rows_inv.fft(s, s, self._directions[1])
+            for c0, c in cols:
+                v = self._cupy_view(spec, c0 * 2 * item)
+                plans["cols", c].fft(v, v, inv)
+            for r0, c in rows:
+                v = self._cupy_view(spec, r0 * nk * 2 * item)
+                plans["rows_inv", c].fft(v, v, inv)
         return self.result_map(spec)
 
     def spectral(self, mode: int, spec: wp.array, *, col: int = LaneReduction.COLUMNS - 1) -> None:

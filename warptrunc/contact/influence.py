@@ -12,6 +12,7 @@ from __future__ import annotations
 import functools
 import math
 import os
+from typing import Any
 
 import numpy as np
 import scipy.fft
@@ -22,6 +23,8 @@ from ..kernels import contact_reduce as _kr
 __all__ = [
     "SUBSTRATES",
     "LaneReduction",
+    "build_free_spectrum",
+    "build_periodic_spectrum",
     "influence_spectrum",
     "influence_table",
 ]
@@ -46,28 +49,150 @@ def _love(x, y, a: float, b: float, contact_modulus: float, xp=np):
     return v / (math.pi * contact_modulus)
 
 
-def free_spectrum_cupy(shape, pixel_size, contact_modulus, cupy, cfft):
-    """The ``"free"`` spectrum of :func:`influence_spectrum`, computed on the current CUDA device.
+SLAB_ELEMENTS = 1 << 18
+"""Elements (float64) of one slab of the spectrum's construction (:func:`build_free_spectrum`):
+rows of Love's coefficients or columns of their row transforms are processed this many at a
+time, so that the construction's temporaries stay a few MiB whatever the map."""
 
-    Same float64 formula and mirroring as the host path, evaluated with CuPy and transformed with
-    cuFFT, so that a 10240² map needs no host memory or host FFT (≈ 10 GB of device memory
-    briefly at 10240², before the solver allocates anything). Returns rows 0 … ny of the
-    (2ny, nx + 1) spectrum (the rest mirrors them) and the (ny, nx) influence table (m/N).
+
+def slab_rows(n_rows: int, row_length: int, slab_elements: int = SLAB_ELEMENTS) -> int:
+    """Rows per slab: as many rows of ``row_length`` elements as fit ``slab_elements`` (≥ 1).
+
+    Parameters
+    ----------
+    n_rows : int
+        Rows to process (dimensionless count).
+    row_length : int
+        Elements per row (dimensionless count).
+    slab_elements : int, optional
+        Elements per slab (dimensionless count).
+
+    Returns
+    -------
+    int
+        Rows per slab, between 1 and ``n_rows``.
+    """
+    return int(max(1, min(n_rows, slab_elements // max(1, row_length))))
+
+
+def build_free_spectrum(
+    shape: tuple[int, int],
+    pixel_size: tuple[float, float],
+    contact_modulus: float,
+    spectrum: Any,
+    table: Any,
+    scratch: Any,
+    *,
+    xp: Any = np,
+    rfft: Any = None,
+    slab_elements: int = SLAB_ELEMENTS,
+) -> None:
+    """Fill the free half-space's half spectrum and influence table in place, in slabs.
+
+    The (2ny, 2nx) mirrored grid of Love's coefficients is never formed. W = FFT(G)/(dx·dy)
+    with G even in x and y is separable: the x transform of the mirrored rows of the quadrant
+    (rows 0 … ny, which are all that the mirror needs), then the y transform of the mirrored
+    columns of that. Rows of the quadrant are evaluated (float64) and transformed a slab at a
+    time into ``scratch`` (float64), then its columns a slab at a time into ``spectrum`` (in its
+    own dtype). Both transforms are real (the mirrored sequences are even), and the arithmetic is
+    float64 whatever the dtype of the outputs, so the spectrum equals :func:`influence_spectrum`
+    rounded to that dtype. Temporaries: a few slabs of ``slab_elements`` float64.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    pixel_size : (float, float)
+        Pixel sides (dx, dy) (m).
+    contact_modulus : float
+        Contact modulus E* (Pa).
+    spectrum : (ny + 1, nx + 1) array
+        Output: rows 0 … ny of W (m/N), float32 or float64 (NumPy, or CuPy with ``xp=cupy``;
+        may be a view of a Warp array).
+    table : (ny, nx) array
+        Output: the influence table G (m/N) at separations (iy, ix) pixels (:func:`influence_table`).
+    scratch : (ny + 1, nx + 1) array of float64
+        Work memory (e.g. the half-space's work spectrum, viewed as float64), overwritten.
+    xp : module, optional
+        Array module: NumPy (default) or CuPy.
+    rfft : callable, optional
+        ``rfft(x, axis)`` of ``xp`` (default ``scipy.fft.rfft`` with all cores).
+    slab_elements : int, optional
+        Float64 elements per slab (dimensionless count).
     """
     ny, nx = shape
     dx, dy = pixel_size
-    quad = _love(cupy.arange(nx + 1, dtype=cupy.float64)[None, :] * dx,
-                 cupy.arange(ny + 1, dtype=cupy.float64)[:, None] * dy,
-                 dx / 2, dy / 2, contact_modulus, xp=cupy)  # fmt: skip
-    jx = cupy.arange(2 * nx)
-    jy = cupy.arange(2 * ny)
-    g = quad[cupy.minimum(jy, 2 * ny - jy)[:, None], cupy.minimum(jx, 2 * nx - jx)[None, :]]
-    table = cupy.ascontiguousarray(quad[:ny, :nx]) / (dx * dy)
-    del quad
-    plan = cfft.get_fft_plan(g, value_type="R2C")  # not cached: its work area goes with it
-    w = cfft.rfft2(g, plan=plan)[: ny + 1].real / (dx * dy)  # W is even in y: rows 0 … ny
-    del plan, g
-    return cupy.ascontiguousarray(w), table
+    area = dx * dy
+    if rfft is None:
+        workers = os.cpu_count()
+
+        def rfft(x, axis):
+            return scipy.fft.rfft(x, axis=axis, workers=workers)
+
+    xs = xp.arange(nx + 1, dtype=xp.float64) * dx
+    step = slab_rows(ny + 1, 2 * nx, slab_elements)
+    for j0 in range(0, ny + 1, step):
+        j1 = min(ny + 1, j0 + step)
+        ys = xp.arange(j0, j1, dtype=xp.float64)[:, None] * dy
+        quad = _love(xs[None, :], ys, dx / 2, dy / 2, contact_modulus, xp=xp)  # (rows, nx + 1)
+        if j0 < ny:
+            k = min(j1, ny) - j0
+            table[j0 : j0 + k] = (quad[:k, :nx] / area).astype(table.dtype)
+        row = xp.concatenate([quad, quad[:, nx - 1 : 0 : -1]], axis=1)  # x mirrored: 2nx
+        del quad
+        scratch[j0:j1] = rfft(row, 1).real
+        del row
+    step = slab_rows(nx + 1, 2 * ny, slab_elements)
+    for i0 in range(0, nx + 1, step):
+        i1 = min(nx + 1, i0 + step)
+        col = scratch[:, i0:i1]
+        col = xp.concatenate([col, col[ny - 1 : 0 : -1]], axis=0)  # y mirrored: 2ny
+        spectrum[:, i0:i1] = (rfft(col, 0).real / area).astype(spectrum.dtype)
+        del col
+
+
+def build_periodic_spectrum(
+    shape: tuple[int, int],
+    pixel_size: tuple[float, float],
+    contact_modulus: float,
+    spectrum: Any,
+    *,
+    xp: Any = np,
+    slab_elements: int = SLAB_ELEMENTS,
+) -> None:
+    """Fill rows 0 … ny//2 of the periodic half-space's spectrum in place, in slabs of rows.
+
+    W = 1/(q·E*/2·dx·dy) (m/N) with the mean displacement's convention of
+    :func:`influence_spectrum`, evaluated in float64 and stored in the dtype of ``spectrum``.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    pixel_size : (float, float)
+        Pixel sides (dx, dy) (m).
+    contact_modulus : float
+        Contact modulus E* (Pa).
+    spectrum : (ny//2 + 1, nx//2 + 1) array
+        Output, float32 or float64 (NumPy, or CuPy with ``xp=cupy``).
+    xp : module, optional
+        Array module: NumPy (default) or CuPy.
+    slab_elements : int, optional
+        Float64 elements per slab (dimensionless count).
+    """
+    ny, nx = shape
+    dx, dy = pixel_size
+    area = dx * dy
+    rows, nk = ny // 2 + 1, nx // 2 + 1
+    fx = xp.arange(nk, dtype=xp.float64)[None, :] / (nx * dx)  # cycles per metre; q = 2πf
+    step = slab_rows(rows, nk, slab_elements)
+    for j0 in range(0, rows, step):
+        j1 = min(rows, j0 + step)
+        fy = xp.arange(j0, j1, dtype=xp.float64)[:, None] / (ny * dy)
+        stiff = math.pi * contact_modulus * xp.hypot(fx, fy)  # = q·E*/2 (Pa/m)
+        if j0 == 0:
+            stiff[0, 0] = math.pi * contact_modulus * (1 / (nx * dx) + 1 / (ny * dy)) / 2
+        spectrum[j0:j1] = (1.0 / (stiff * area)).astype(spectrum.dtype)
 
 
 @functools.lru_cache(maxsize=8)

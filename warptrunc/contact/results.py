@@ -1,15 +1,100 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Result objects of the elastic contact solver: one row per approach δ, host NumPy arrays."""
+"""Result objects of the contact solver: one solve (:class:`ContactState`) and one row per
+approach δ (:class:`ContactCurve`, host NumPy arrays)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import warnings
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
 
-__all__ = ["ContactCurve"]
+__all__ = ["ContactCurve", "ContactState"]
+
+
+@dataclass(frozen=True)
+class ContactState:
+    """The state after one solve of :meth:`warptrunc.contact.ContactSolver.solve`.
+
+    Index access with the keys of the dict that ``solve`` returned before (``state["load"]``)
+    still works but is deprecated (:class:`DeprecationWarning`); use the attributes.
+    """
+
+    depth: float
+    """Approach δ of the flat from first touch at the highest pixel of the original
+    (undeformed) map (m)."""
+    load: float
+    """Normal load F = Σ pixel forces (N)."""
+    n_contact: int
+    """Pixels in contact (pressure p > 0), those at the hardness included."""
+    contact_area: float
+    """Real contact area A_c = n_contact·dx·dy (m²)."""
+    n_plastic: int
+    """Pixels at the pressure cap (p = H); 0 for an elastic solve (H = inf). For a solve with
+    the plastic state frozen, the pixels where p ≥ H."""
+    plastic_area: float
+    """Plastic area n_plastic·dx·dy (m²)."""
+    plastic_volume: float
+    """Volume removed by plastic flow so far, Σ plastic displacement·dx·dy (m³)."""
+    mean_gap: float
+    """Mean gap between the flat and the deformed surface over the map (m)."""
+    n_iterations: int
+    """Constrained-CG iterations of the solve (all trial solves in load control with H < inf)."""
+    n_convolutions: float
+    """FFT convolutions of the solve, (forward + inverse transforms)/2."""
+    residual: float
+    """Final max(rms penetration, max penetration or open gap at the cap, max abs(Δu)) (m),
+    against ``pentol``."""
+    max_tensile_force: float
+    """Final largest tensile (or above-hardness) pixel force before projection (N), against
+    ``forcetol``."""
+    converged: bool
+    """The solve met every stopping criterion before ``maxiter``."""
+
+    def to_dict(self) -> dict[str, Any]:
+        """One row, SI units in the names.
+
+        Returns
+        -------
+        dict of str to scalar
+            ``depth_m`` (m), ``load_N`` (N), ``n_contact``, ``contact_area_m2`` (m²),
+            ``n_plastic``, ``plastic_area_m2`` (m²), ``plastic_volume_m3`` (m³), ``mean_gap_m``
+            (m), ``n_iterations``, ``n_convolutions``, ``residual_m`` (m),
+            ``max_tensile_force_N`` (N), ``converged``.
+        """
+        return {
+            "depth_m": self.depth, "load_N": self.load, "n_contact": self.n_contact,
+            "contact_area_m2": self.contact_area, "n_plastic": self.n_plastic,
+            "plastic_area_m2": self.plastic_area, "plastic_volume_m3": self.plastic_volume,
+            "mean_gap_m": self.mean_gap, "n_iterations": self.n_iterations,
+            "n_convolutions": self.n_convolutions, "residual_m": self.residual,
+            "max_tensile_force_N": self.max_tensile_force, "converged": self.converged,
+        }  # fmt: skip
+
+    def __getitem__(self, key: str) -> Any:
+        """Deprecated dict access (``state["load"]``); use the attribute (``state.load``).
+
+        Parameters
+        ----------
+        key : str
+            A field name (the keys of the dict that ``solve`` returned before).
+
+        Returns
+        -------
+        object
+            The field's value.
+        """
+        names = {f.name for f in fields(self)}
+        if key not in names:
+            raise KeyError(key)
+        warnings.warn(
+            f"ContactState[{key!r}] is deprecated; use the attribute ContactState.{key}",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return getattr(self, key)
 
 
 @dataclass(frozen=True, eq=False)
@@ -45,6 +130,13 @@ class ContactCurve:
     """(m,) bool: the solve at δ (and the solves of its stiffness) converged."""
     solve_time: np.ndarray
     """(m,) float64 wall time of the row's solves (s)."""
+    n_plastic: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    """(m,) int64 pixels at the pressure cap p = H (all 0 when H = inf)."""
+    plastic_area: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """(m,) float64 plastic area n_plastic × pixel area (m²)."""
+    plastic_volume: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """(m,) float64 volume removed by plastic flow up to the row, Σ plastic displacement·dx·dy
+    (m³)."""
     pressure: np.ndarray | None = None
     """(m, ny, nx) float64 contact pressure (Pa), with ``maps=True``; else None."""
     gap: np.ndarray | None = None
@@ -66,7 +158,8 @@ class ContactCurve:
             One ``(m,)`` column per field, m the number of interferences: ``depth_m`` (m),
             ``load_N`` (N), ``n_contact`` (pixels), ``area_m2`` (m²), ``stiffness_N_per_m``
             (N/m), ``mean_gap_m`` (m), ``n_iterations``, ``n_convolutions``, ``residual_m``
-            (m), ``max_tensile_force_N`` (N), ``converged`` and ``solve_time_s`` (s).
+            (m), ``max_tensile_force_N`` (N), ``converged``, ``solve_time_s`` (s), and
+            ``n_plastic``, ``plastic_area_m2`` (m²), ``plastic_volume_m3`` (m³).
         """
 
         return {
@@ -82,4 +175,7 @@ class ContactCurve:
             "max_tensile_force_N": self.max_tensile_force,
             "converged": self.converged,
             "solve_time_s": self.solve_time,
+            "n_plastic": self.n_plastic,
+            "plastic_area_m2": self.plastic_area,
+            "plastic_volume_m3": self.plastic_volume,
         }

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from .results import ContactState
 from .solver import ContactSolver, default_pentol
 
 __all__ = [
@@ -304,14 +305,14 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
     per_row = 3 if stiffness == "central" else 1
     bar = tqdm(total=per_row * m, desc="BEM solves", unit="solve", disable=not progress)
 
-    def solve(delta: float) -> dict[str, Any]:
+    def solve(delta: float) -> ContactState:
         info = solver.solve(delta)
         bar.update()
         solves.append({
-            "depth_m": float(delta), "success": bool(info["converged"]),
-            "n_iterations": int(info["n_iterations"]), "n_convolutions": float(info["n_convolutions"]),
-            "load_N": float(info["load"]), "residual_m": float(info["residual"]),
-            "message": "converged" if info["converged"] else f"reached maxiter = {solver.maxiter}",
+            "depth_m": float(delta), "success": bool(info.converged),
+            "n_iterations": int(info.n_iterations), "n_convolutions": float(info.n_convolutions),
+            "load_N": float(info.load), "residual_m": float(info.residual),
+            "message": "converged" if info.converged else f"reached maxiter = {solver.maxiter}",
         })  # fmt: skip
         return info
 
@@ -322,18 +323,18 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
         pressure, _ = solver.maps()  # sync point; the contact of the solve at δ
         if lo is not None:
             hi = solve(delta * (1 + fd_step))
-            out["k"][i] = (hi["load"] - lo["load"]) / (2 * fd_step * delta)
-            conv[i] = lo["converged"] and mid["converged"] and hi["converged"]
+            out["k"][i] = (hi.load - lo.load) / (2 * fd_step * delta)
+            conv[i] = lo.converged and mid.converged and hi.converged
         else:
             k, k_it, k_ok = solver.punch_stiffness()
             solves[-1]["punch_iterations"] = k_it
             out["k"][i] = k
-            conv[i] = mid["converged"] and k_ok
+            conv[i] = mid.converged and k_ok
         out["t"][i] = time.perf_counter() - t0
         contact = pressure > 0
-        out["F"][i] = mid["load"]
+        out["F"][i] = mid.load
         out["A"][i] = np.count_nonzero(contact) * surface.pixel_area
-        nit[i] = mid["n_iterations"]
+        nit[i] = mid.n_iterations
         edge[i] = edge_contact(contact)
     bar.close()
     extra = {

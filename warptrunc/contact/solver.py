@@ -38,21 +38,29 @@ change of u in the iteration below ``pentol`` (m); the largest tensile pixel for
 projection below ``forcetol`` (N); the relative change of the total force below ``thermotol``
 (displacement control) or the total force within ``thermotol`` of the target and the flat's
 position steady (load control).
+
+Elastic–perfectly-plastic contact (``hardness`` H < inf): :mod:`warptrunc.contact.plastic`.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 import warp as wp
 
 from .._support.device import free_memory_bytes, release_cached_memory, resolve_device
-from .._support.validate import check_height_map, check_int, check_range, pair
+from .._support.validate import check_height_map, check_range, pair
 from ..kernels import contact as _k
 from ..kernels import contact_reduce as _kr
-from .halfspace import DTYPES, SUBSTRATES, ElasticHalfSpace
+from ..material import Material
+from ..params import check_value
+from .halfspace import DTYPES, ElasticHalfSpace
+from .plastic import CappedSolves
+from .results import ContactState
+from .settings import SolverSettings
 
 __all__ = ["ContactSolver", "default_pentol"]
 
@@ -74,8 +82,16 @@ def default_pentol(heights: np.ndarray) -> float:
     return float(np.std(h)) / (10 * np.mean(h.shape))
 
 
-class ContactSolver:
+_LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter", "refresh",
+           "direct_max")  # fmt: skip
+
+
+class ContactSolver(CappedSolves):
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
+
+    With a finite ``hardness`` the local pressure is capped at H and the map flows plastically
+    (elastic–perfectly-plastic contact, see the module docstring): the plastic height change is
+    state of the solver, so a sequence of solves is a loading history.
 
     Parameters
     ----------
@@ -85,37 +101,28 @@ class ContactSolver:
         Pixel sides (dx, dy) (m).
     contact_modulus : float
         Contact modulus E* (Pa).
-    substrate : {"free", "periodic"}
-        Isolated, zero-padded patch (default) or periodic map; see
-        :mod:`warptrunc.contact.halfspace`.
-    dtype : {"float64", "float32"}
-        Precision of the maps and FFTs; reductions are float64 in both. Measured against
-        float64 on D = 2.5 WM maps of 128²–512²: F within 5e-7, the same contact pixels, k
-        within 3e-5 (relative); about 0.6× the time on the CPU.
-    pressure_tol : float
-        Tolerance on tensile pixel pressure relative to E* (dimensionless);
-        ``forcetol = pressure_tol·E*·dx·dy`` (N).
-    pentol : float, optional
-        Tolerance on penetration (m); default rms height/(10·mean(nx, ny)).
-    thermotol : float
-        Relative tolerance on the total force (dimensionless).
-    maxiter : int
-        Largest number of iterations per solve.
-    refresh : int
-        Transform the forces afresh (instead of updating u by linearity) at least every
-        ``refresh`` iterations.
-    direct_max : int or "auto"
-        Largest number of pixels whose force the projection changed that are corrected by direct
-        summation over the influence table (each costs one pass over the map) rather than by
-        transforming the forces afresh. ``"auto"``: 24 on a CUDA device, 4 on the CPU (where
-        Warp runs a kernel on one core).
+    settings : SolverSettings, optional
+        Precision, substrate, tolerances and iteration limits
+        (:class:`~warptrunc.contact.SolverSettings`; default ``SolverSettings()``). Measured
+        float32 against float64 on D = 2.5 WM maps of 128²–512²: F within 5e-7, the same contact
+        pixels, k within 3e-5 (relative); about 0.6× the time on the CPU.
+    hardness : float
+        Hardness H (Pa), the local pressure cap, in (0, inf]; ``inf`` (default): elastic, the
+        solver of today bit for bit.
     device : str or warp Device, optional
         Warp device.
+    **legacy
+        The fields of :class:`~warptrunc.contact.SolverSettings` as keywords (``substrate=``,
+        ``dtype=``, ``pressure_tol=``, ``pentol=``, ``thermotol=``, ``maxiter=``, ``refresh=``,
+        ``direct_max=``, ``"auto"`` allowed), as before the settings object; they override
+        ``settings``.
 
     Raises
     ------
     ValueError
         Non-finite or non-2-D heights, parameters out of range.
+    TypeError
+        An unknown keyword.
     MemoryError
         When the estimated memory (:meth:`memory_bytes`) exceeds the device's free memory,
         before anything is allocated.
@@ -127,62 +134,68 @@ class ContactSolver:
         pixel_size: Any,
         contact_modulus: float,
         *,
-        substrate: str = "free",
-        dtype: str = "float64",
-        pressure_tol: float = 1e-5,
-        pentol: float | None = None,
-        thermotol: float = 1e-6,
-        maxiter: int = 10000,
-        refresh: int = 50,
-        direct_max: int | str = "auto",
+        settings: SolverSettings | None = None,
+        hardness: float = math.inf,
         device: wp.DeviceLike = None,
+        **legacy: Any,
     ) -> None:
+        unknown = sorted(set(legacy) - set(_LEGACY))
+        if unknown:
+            raise TypeError(f"ContactSolver got unexpected keyword(s) {unknown}; known: "
+                            f"settings, hardness, device, {', '.join(_LEGACY)}")  # fmt: skip
+        if settings is None:
+            settings = SolverSettings()
+        elif not isinstance(settings, SolverSettings):
+            raise ValueError(f"settings must be a SolverSettings, got {type(settings).__name__}")
+        if legacy:
+            settings = replace(settings, **legacy)
+        self.settings = settings
+        self.hardness = float(check_value(Material, "hardness", hardness))
         check_height_map(heights)
         h = np.asarray(heights, dtype=np.float64)
         dx, dy = pair("pixel_size", pixel_size)
         check_range("pixel_size", dx, 0.0, unit="m")
         check_range("pixel_size", dy, 0.0, unit="m")
         self.contact_modulus = check_range("contact_modulus", contact_modulus, 0.0, unit="Pa")
-        if substrate not in SUBSTRATES:
-            raise ValueError(f"substrate must be one of {SUBSTRATES}, got {substrate!r}")
-        if dtype not in DTYPES:
-            raise ValueError(f"dtype must be one of {tuple(DTYPES)}, got {dtype!r}")
-        self.pressure_tol = check_range("pressure_tol", pressure_tol, 0.0)
-        self.pentol = (
-            default_pentol(h) if pentol is None else check_range("pentol", pentol, 0.0, unit="m")
-        )
+        substrate, dtype = settings.substrate, settings.dtype
+        self.pressure_tol = settings.pressure_tol
+        self.pentol = default_pentol(h) if settings.pentol is None else settings.pentol
         if self.pentol == 0.0:
             self.pentol = 1e-3 * max(float(np.ptp(h)), dx)  # a flat map: a fraction of its scale
-        self.thermotol = check_range("thermotol", thermotol, 0.0)
-        self.maxiter = check_int("maxiter", maxiter, 1)
-        self.refresh = check_int("refresh", refresh, 1)
+        self.thermotol = settings.thermotol
+        self.maxiter = settings.maxiter
+        self.refresh = settings.refresh
         self.device = resolve_device(device)
-        if direct_max == "auto":
+        direct_max = settings.direct_max
+        if direct_max is None:
             direct_max = 24 if self.device.is_cuda else 4
-        self.direct_max = check_int("direct_max", direct_max, 0)
+        self.direct_max = int(direct_max)
         self.shape = h.shape
         self.pixel_size = (dx, dy)
         self.substrate = substrate
         self.dtype = dtype
         self.forcetol = self.pressure_tol * self.contact_modulus * dx * dy
-        need = self.memory_bytes(h.shape, substrate, dtype)
+        need = self.memory_bytes(h.shape, substrate, dtype, cuda=self.device.is_cuda)
         free = free_memory_bytes(self.device)
         if need > free and self.device.is_cuda:
             free = release_cached_memory(self.device)  # pooled blocks are free for us too
         if need > free:
             raise MemoryError(
                 f"the contact solver for a {h.shape[0]}×{h.shape[1]} map ({substrate}, {dtype}) "
-                f"needs about {need} bytes ({need / 2**30:.2f} GiB) on {self.device} but only "
-                f"{free} bytes ({free / 2**30:.2f} GiB) are free; use a smaller map, float32 or "
-                "another device"
+                f"needs {need / 1e9:.2f} GB, {free / 1e9:.2f} GB free on {self.device} "
+                f"({need} bytes needed, {free} free); use a smaller map, float32 or another "
+                "device"
             )
         self.hs = ElasticHalfSpace(h.shape, (dx, dy), self.contact_modulus, substrate=substrate,
                                    dtype=dtype, device=self.device)  # fmt: skip
         sc, _, npd = DTYPES[dtype]
         dev = self.device
         self.h_max = float(h.max())
-        self.h = wp.array(h.astype(npd), dtype=sc, device=dev)
-        self.q_buf, self.q = self.hs.map_buffer()  # forces (N) on the map, zero-padded buffer
+        h_dev = h.astype(npd)
+        self.h = wp.array(h_dev, dtype=sc, device=dev)
+        # the original map as stored on the device (host copy): plastic displacement = h0 − h
+        self._h0 = h_dev if math.isfinite(self.hardness) else None
+        self.q_buf, self.q = self.hs.map_buffer()  # forces (N) on the map (no pad stored)
         self.t_buf, self.t = self.hs.map_buffer()  # CG direction (m)
         self.u = wp.zeros(h.shape, dtype=sc, device=dev)
         self.mask = wp.zeros(h.shape, dtype=wp.uint8, device=dev)
@@ -196,12 +209,57 @@ class ContactSolver:
         self.change_value = wp.zeros(max(1, self.direct_max), dtype=wp.float64, device=dev)
         self.tau = wp.zeros(1, dtype=wp.float64, device=dev)
         self.offset = 0.0
+        self.plastic_frozen = False
+        self.plastic_volume = 0.0  # Σ plastic displacement·dx·dy (m³)
+        self._depth: float | None = None  # approach of the last solve (m)
+
+    @staticmethod
+    def memory_terms(
+        shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
+        cuda: bool = True, direct_max: int = 24,
+    ) -> dict[str, int]:  # fmt: skip
+        """The model of a solver's peak device memory, term by term (bytes).
+
+        Parameters
+        ----------
+        shape : (int, int)
+            Map size (ny, nx).
+        substrate : {"free", "periodic"}
+            Half-space.
+        dtype : {"float64", "float32"}
+            Precision of the maps.
+        cuda : bool, optional
+            On a CUDA device (cuFFT's work area and 65536 reduction lanes are counted).
+        direct_max : int, optional
+            Length of the list of changed forces (dimensionless count).
+
+        Returns
+        -------
+        dict of str to int
+            The half-space's terms (:meth:`ElasticHalfSpace.memory_terms`: kernel spectrum,
+            influence table, work spectrum, lane partials, cuFFT work area) and the solver's:
+            ``"maps"``: h, u, q, t and q_lin (five (ny, nx) maps of the dtype; q and t hold no
+            pad); ``"mask"``: one byte per pixel; ``"lists"``: the lane counts and offsets and
+            the list of changed forces; ``"stiffness solve"``: the one more map Barber's punch
+            needs (its residual; its unknown reuses q_lin's map). The peak is their sum, reached
+            during :meth:`punch_stiffness`; a solve needs all but the last term.
+        """
+        ny, nx = shape
+        item = np.dtype(dtype).itemsize
+        terms = ElasticHalfSpace.memory_terms(shape, substrate, dtype, cuda=cuda)
+        lanes = 65536 if cuda else 64
+        terms["maps"] = 5 * ny * nx * item
+        terms["mask"] = ny * nx
+        terms["lists"] = 2 * lanes * 4 + max(1, direct_max) * 12 + 8
+        terms["stiffness solve"] = ny * nx * item
+        return terms
 
     @staticmethod
     def memory_bytes(
-        shape: tuple[int, int], substrate: str = "free", dtype: str = "float64"
-    ) -> int:
-        """Estimated peak device memory of a solver and its stiffness solve.
+        shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
+        cuda: bool = True,
+    ) -> int:  # fmt: skip
+        """Peak device memory of a solver and its stiffness solve (bytes).
 
         Parameters
         ----------
@@ -211,26 +269,19 @@ class ContactSolver:
             Half-space (the free one transforms a 2ny × 2nx grid, pruned to the map).
         dtype : {"float64", "float32"}
             Precision of the maps.
+        cuda : bool, optional
+            On a CUDA device (default; cuFFT's work area counted).
 
         Returns
         -------
         int
-            Bytes: the larger of the half-space while it is made (the free spectrum on a
-            CUDA device) and what the solver holds: the half-space
-            (:meth:`ElasticHalfSpace.memory_bytes`: half kernel spectrum, influence table, work
-            spectrum, cuFFT work areas), the zero-padded (ny, Nx) buffers of q and t, the maps
-            h, u and q_lin, the mask, and the two maps of the stiffness solve (x, residual). Free
-            float64: 0.79 GiB at 2048², 3.1 GiB at 4096², 12.6 GiB at 8192², 19.6 GiB at
-            10240² (float32: 0.44, 1.75, 7.0, 10.9 GiB).
+            The sum of :meth:`memory_terms`. Per map pixel, free boundary, large maps: float32
+            4 (kernel spectrum) + 4 (table) + 16 (work spectrum) + ≤ 2 (cuFFT work area,
+            estimated) + 20 (maps) + 1 (mask) + 4 (stiffness solve) ≈ 51 B; float64 ≈ 101 B;
+            periodic float32 ≈ 1 + 4 + 4 + ≤ 0.5 + 20 + 1 + 4 ≈ 35 B.
         """
-        ny, nx = shape
-        big_x = 2 * nx if substrate == "free" else nx
-        item = np.dtype(dtype).itemsize
-        maps = ny * nx * (5 * item + 1)  # h, u, q_lin, stiffness x and residual; mask
-        buffers = 2 * ny * big_x * item  # q and t with their pad columns
-        lists = 2 * 65536 * 4 + 24 * 12  # lane counts and offsets, the list of changed forces
-        held, making = ElasticHalfSpace.memory_bytes(shape, substrate, dtype)
-        return int(max(making, held + maps + buffers + lists))
+        terms = ContactSolver.memory_terms(shape, substrate, dtype, cuda=cuda)
+        return int(sum(terms.values()))
 
     # --- one solve ---------------------------------------------------------------------------
 
@@ -240,21 +291,30 @@ class ContactSolver:
                    [self.q, self.u, self.h, wp.float64(offset)], [])  # fmt: skip
         return red.read((False, False, False, False))
 
-    def solve(self, depth: float | None = None, *, load: float | None = None) -> dict[str, Any]:
+    def solve(
+        self, depth: float | None = None, *, load: float | None = None, plastic: bool | None = None
+    ) -> ContactState:
         """Solve at approach ``depth`` δ (m) or total ``load`` F (N), warm-started.
+
+        With a finite hardness the pressure is capped at H and, once converged, the heights
+        flow where p = H (the plastic state grows; see the module docstring). Unloading (a solve
+        at a smaller δ or F) is elastic from the deformed surface.
 
         Parameters
         ----------
         depth : float, optional
-            Approach δ of the flat from first touch at the highest pixel (m).
+            Approach δ of the flat from first touch at the highest pixel of the original map (m).
         load : float, optional
             Total normal load (N), instead of ``depth``.
+        plastic : bool, optional
+            False: an elastic solve of the current (deformed) surface with the plastic state
+            frozen and no pressure cap (for unloading); True: capped and flowing. Default: not
+            :attr:`plastic_frozen` (see :meth:`freeze_plastic`). Irrelevant when H = inf.
 
         Returns
         -------
-        dict
-            ``depth`` (m), ``load`` (N), ``n_contact``, ``mean_gap`` (m), ``n_iterations``,
-            ``n_convolutions``, ``residual`` (m), ``max_tensile_force`` (N), ``converged``.
+        ContactState
+            Load, contact and plastic areas, plastic volume and the solve's convergence record.
 
         Raises
         ------
@@ -265,9 +325,40 @@ class ContactSolver:
         """
         if (depth is None) == (load is None):
             raise ValueError("give exactly one of depth (m) and load (N)")
+        if load is not None:
+            load = check_range("load", load, 0.0, unit="N")
+        else:
+            depth = float(depth)
+        if plastic is None:
+            plastic = not self.plastic_frozen
+        if math.isinf(self.hardness):
+            return self._state(self._solve_elastic(depth, load), None)
+        if not plastic:
+            info = self._solve_elastic(depth, load)
+            return self._state(info, self._flow(apply=False))
+        if load is None:
+            info = self._solve_capped(depth - self.h_max)
+        else:
+            info = self._solve_capped_load(load)
+        return self._state(info, self._flow(apply=info["converged"]))
+
+    def _state(self, info: dict[str, Any], flow: tuple[int, int] | None) -> ContactState:
+        self._depth = float(info["depth"])
+        dx, dy = self.pixel_size
+        n_c, n_p = (info["n_contact"], 0) if flow is None else flow
+        return ContactState(
+            depth=float(info["depth"]), load=float(info["load"]), n_contact=int(n_c),
+            contact_area=n_c * dx * dy, n_plastic=int(n_p), plastic_area=n_p * dx * dy,
+            plastic_volume=self.plastic_volume, mean_gap=float(info["mean_gap"]),
+            n_iterations=int(info["n_iterations"]), n_convolutions=float(info["n_convolutions"]),
+            residual=float(info["residual"]), max_tensile_force=float(info["max_tensile_force"]),
+            converged=bool(info["converged"]),
+        )  # fmt: skip
+
+    def _solve_elastic(self, depth: float | None, load: float | None) -> dict[str, Any]:
+        """Today's elastic constrained CG on the current heights (the path of H = inf)."""
         load_control = load is not None
         if load_control:
-            load = check_range("load", load, 0.0, unit="N")
             offset = 0.0  # as ContactMechanics: the first gap is measured from offset 0
         else:
             offset = float(depth) - self.h_max
@@ -386,6 +477,42 @@ class ContactSolver:
         self.offset = offset
         return info
 
+    # --- elastic–perfectly-plastic solves -------------------------------------------------------
+
+    def freeze_plastic(self, frozen: bool = True) -> None:
+        """Freeze (or release) the plastic state: while frozen, :meth:`solve` is elastic on the
+        deformed surface without the pressure cap (an unloading).
+
+        Parameters
+        ----------
+        frozen : bool
+            True freezes, False lets the surface flow again at p = H.
+        """
+        self.plastic_frozen = bool(frozen)
+
+    def plastic_displacement(self) -> np.ndarray:
+        """The plastic height change so far, copied to the host (a synchronisation point).
+
+        Returns
+        -------
+        (ny, nx) ndarray of float64
+            Height removed by plastic flow, w = h_original − h_deformed ≥ 0 (m); zeros when
+            H = inf.
+        """
+        if self._h0 is None:
+            return np.zeros(self.shape)
+        return self._h0.astype(np.float64) - self.h.numpy().astype(np.float64)
+
+    def reset(self) -> None:
+        """Forget the solution and the plastic state: original heights, zero forces."""
+        if self._h0 is not None:
+            self.h.assign(self._h0)
+        for a in (self.q_buf, self.t_buf, self.u, self.mask, self.lin):
+            a.zero_()
+        self.offset = 0.0
+        self.plastic_volume = 0.0
+        self._depth = None
+
     # --- after a solve -----------------------------------------------------------------------
 
     def punch_stiffness(self, rtol: float | None = None) -> tuple[float, int, bool]:
@@ -411,7 +538,8 @@ class ContactSolver:
         wp.launch(
             _k.contact_mask_kernel, dim=self.shape, inputs=[self.q], outputs=[self.mask], device=dev
         )
-        x = wp.zeros(self.shape, dtype=sc, device=dev)
+        x = self.lin  # q_lin is scratch between solves: the punch's unknown uses its map
+        x.zero_()
         res = wp.zeros(self.shape, dtype=sc, device=dev)
         wp.launch(
             _k.fill_map_kernel,

@@ -31,7 +31,7 @@ from ..kernels import truncation as _kt
 from ..kernels import wm as _kw
 from ..truncation.curve import TruncationCurve, curve_from_histogram, depth_grid
 from ..wm import pad_to
-from ..wm_params import wm_phases, wm_spec, wm_weights
+from ..wm_params import wm_phases, wm_weights
 from .grid import Case, SweepOptions
 
 __all__ = ["BATCH_PIXELS", "MAX_BATCH", "WMBatch", "batch_size"]
@@ -105,8 +105,7 @@ class WMBatch:
     def __init__(self, options: SweepOptions, size: int, device: wp.context.Device, *,
                  slots: int = 1):  # fmt: skip
         o = self.options = options
-        ref = wm_spec(2.5, o.Wr, L=o.L, n=o.n, Rt=1.0, M=o.M, gamma=o.gamma, Wc=o.Wc,
-                      cutoff=o.cutoff)  # fmt: skip
+        ref = o.wm_spec(2.5, 1.0).terms()
         self.device, self.size = device, int(size)
         self.nx, self.ny, self.T = ref.nx, ref.ny, ref.n_terms
         self.M, self.n_f = ref.M, ref.n_max + 1

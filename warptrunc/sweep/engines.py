@@ -86,10 +86,7 @@ def compute_case(
     try:
         dev = resolve_device(device)
         base.update(device=str(dev), device_name=str(dev.name))
-        s = wm_surface(
-            case.D, o.Wr, L=o.L, n=o.n, Rt=case.delta * o.Wr, M=o.M, gamma=o.gamma, Wc=o.Wc,
-            cutoff=o.cutoff, seed=case.seed, device=dev,
-        )  # fmt: skip
+        s = wm_surface(o.wm_spec(case.D, case.delta * o.Wr, case.seed), device=dev)
         if o.fractal_methods:
             from ..fractal import fractal_dimensions
 

@@ -9,18 +9,37 @@ values, so a store can tell finished cases from missing ones whatever order they
 from __future__ import annotations
 
 import hashlib
+import itertools
 import json
-import math
 import re
 from collections.abc import Iterable, Sequence
-from dataclasses import asdict, dataclass, fields
+from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
 from .._support.validate import check_int, check_range
-from ..stiffness import DEFAULT_MIN_PIXELS, Material
+from ..material import Material
+from ..params import check_fields, check_value, param_info, param_like, sweep_fields
+from ..stiffness import DEFAULT_MIN_PIXELS
+from ..wm_params import WMSpec
 
-__all__ = ["FRACTAL_METHODS", "Case", "SweepGrid", "SweepOptions", "parse_seeds"]
+__all__ = [
+    "AXIS_SPECS",
+    "FRACTAL_METHODS",
+    "Case",
+    "SweepGrid",
+    "SweepOptions",
+    "axis_names",
+    "option_name",
+    "parse_seeds",
+]
+
+AXIS_SPECS = (WMSpec, Material)
+"""The parameter classes whose sweepable fields (:func:`warptrunc.params.sweep_fields`) a grid
+may name as axes."""
+
+_CORE = ("D", "Rt")
+"""Not extra axes: D is one of the grid's own axes, R_t = δ·W_r follows from δ."""
 
 FRACTAL_METHODS = ("tri", "box", "vs", "sp")
 """Methods of :func:`warptrunc.fractal_dimensions` that ``fractal_methods`` may name."""
@@ -94,9 +113,13 @@ def parse_seeds(spec: str | int | Iterable[int | str]) -> tuple[int, ...]:
 
 
 def _floats(name: str, values: Any, lo: float, hi: float | None) -> tuple[float, ...]:
-    if isinstance(values, (int, float)):
+    return _values(name, values, lambda v: check_range(name, v, lo, hi))
+
+
+def _values(name: str, values: Any, check) -> tuple:
+    if isinstance(values, (int, float, str)):
         values = [values]
-    out = tuple(check_range(name, v, lo, hi) for v in values)
+    out = tuple(check(v) for v in values)
     if not out:
         raise ValueError(f"{name} must hold at least one value, got {values!r}")
     if len(set(out)) != len(out):
@@ -117,7 +140,11 @@ class Case:
     seed: int
     """Phase seed."""
     case_id: str
-    """Stable hash of (D, δ, seed) and the options."""
+    """Stable hash of (D, δ, seed) and the options (those of the case: its extra axis values
+    in place of the sweep's)."""
+    params: tuple[tuple[str, Any], ...] = ()
+    """The case's values of the grid's extra axes, ``((name, value), ...)`` (empty for a
+    D × δ × seeds grid)."""
 
 
 @dataclass(frozen=True)
@@ -125,36 +152,29 @@ class SweepOptions:
     """Generation, truncation, material and fit options shared by every case (SI units).
 
     Names follow ``warptrunc analyze``; R_t is not an option: each case has R_t = δ·W_r.
+    The generation and material fields are declared by :class:`~warptrunc.WMSpec` and
+    :class:`~warptrunc.Material` (:func:`warptrunc.params.param_like`: same default, unit,
+    range and description); ``E_flat`` and ``nu_flat`` are Material's ``E_i`` and ``nu_i``
+    under the names that the stores and their case ids have always used.
     """
 
-    Wr: float = 100e-6
-    """Roll-off wavelength W_r (m)."""
-    L: float | tuple[float, float] = 1e-3
-    """Side length, or (Lx, Ly) (m)."""
-    n: int | tuple[int, int] = 1024
-    """Pixels per side, or (nx, ny)."""
-    M: int = 10
-    """Number of superposed ridges."""
-    gamma: float = 1.5
-    """WM frequency density γ > 1 (dimensionless)."""
-    Wc: float | None = None
-    """Cut-off wavelength W_c (m); default from ``cutoff``."""
-    cutoff: str = "nyquist"
-    """Default W_c: 'nyquist' (2 pixels) or 'pixel' (1 pixel)."""
+    Wr: float = param_like(WMSpec, "Wr")
+    L: float | tuple[float, float] = param_like(WMSpec, "L")
+    n: int | tuple[int, int] = param_like(WMSpec, "n", ge=8)
+    M: int = param_like(WMSpec, "M")
+    gamma: float = param_like(WMSpec, "gamma")
+    Wc: float | None = param_like(WMSpec, "Wc")
+    cutoff: str = param_like(WMSpec, "cutoff")
     increments: int = 200
     """Number of depth increments n."""
     max_depth_fraction: float = 0.1
     """ω_max as a fraction of R_t (dimensionless)."""
     max_depth: float | None = None
     """ω_max (m); overrides the fraction."""
-    E: float = 70e9
-    """Young's modulus of the rough body (Pa)."""
-    nu: float = 0.33
-    """Poisson's ratio of the rough body."""
-    E_flat: float = math.inf
-    """Young's modulus of the flat (Pa); inf = rigid."""
-    nu_flat: float = 0.0
-    """Poisson's ratio of the flat."""
+    E: float = param_like(Material, "E")
+    nu: float = param_like(Material, "nu")
+    E_flat: float = param_like(Material, "E_i", cli="E-flat", aliases=())
+    nu_flat: float = param_like(Material, "nu_i", cli="nu-flat", aliases=())
     beta_prime: float = 1.0
     """Geometric factor β' of Eq. 2."""
     min_pixels: tuple[int, ...] = (DEFAULT_MIN_PIXELS,)
@@ -178,35 +198,12 @@ class SweepOptions:
 
     def __post_init__(self) -> None:
         s = object.__setattr__
-        s(self, "Wr", check_range("Wr", self.Wr, 0, None, unit="m"))
-        if isinstance(self.L, (int, float)):
-            s(self, "L", check_range("L", self.L, 0, None, unit="m"))
-        else:
-            s(self, "L", tuple(check_range("L", v, 0, None, unit="m") for v in self.L))
-            if len(self.L) != 2:
-                raise ValueError(f"L must be a length or an (Lx, Ly) pair (m), got {self.L!r}")
-        if isinstance(self.n, (int, float)):
-            s(self, "n", check_int("n", self.n, 8))
-        else:
-            s(self, "n", tuple(check_int("n", v, 8) for v in self.n))
-            if len(self.n) != 2:
-                raise ValueError(f"n must be an int or an (nx, ny) pair, got {self.n!r}")
-        s(self, "M", check_int("M", self.M, 1))
-        s(self, "gamma", check_range("gamma", self.gamma, 1, None))
-        if self.Wc is not None:
-            s(self, "Wc", check_range("Wc", self.Wc, 0, None, unit="m"))
-        if self.cutoff not in ("nyquist", "pixel"):
-            raise ValueError(f"cutoff must be 'nyquist' or 'pixel', got {self.cutoff!r}")
+        check_fields(self, keep_pairs=True)  # the WMSpec and Material fields, by their metadata
         s(self, "increments", check_int("increments", self.increments, 1))
         s(self, "max_depth_fraction",
           check_range("max_depth_fraction", self.max_depth_fraction, 0, 1, hi_open=False))  # fmt: skip
         if self.max_depth is not None:
             s(self, "max_depth", check_range("max_depth", self.max_depth, 0, None, unit="m"))
-        Material(E=self.E, nu=self.nu, E_i=self.E_flat, nu_i=self.nu_flat)  # validates
-        s(self, "E", float(self.E))
-        s(self, "nu", float(self.nu))
-        s(self, "E_flat", float(self.E_flat))
-        s(self, "nu_flat", float(self.nu_flat))
         s(self, "beta_prime", check_range("beta_prime", self.beta_prime, 0, None))
         mp = (self.min_pixels,) if isinstance(self.min_pixels, int) else tuple(self.min_pixels)
         if not mp or len(set(mp)) != len(mp):
@@ -294,6 +291,107 @@ class SweepOptions:
 
         return Material(E=self.E, nu=self.nu, E_i=self.E_flat, nu_i=self.nu_flat)
 
+    def wm_spec(self, D: float, Rt: float, seed: int = 0) -> WMSpec:
+        """The :class:`~warptrunc.WMSpec` of one case: these options' generation fields.
+
+        Parameters
+        ----------
+        D : float
+            Input fractal dimension D_in (dimensionless).
+        Rt : float
+            Peak-to-valley height R_t (m).
+        seed : int
+            Phase seed.
+
+        Returns
+        -------
+        WMSpec
+        """
+        mine = {f.name for f in fields(self)}
+        kw = {k: getattr(self, k) for k in param_info(WMSpec) if k in mine}
+        return WMSpec(D=D, Rt=Rt, seed=seed, **kw)
+
+    def with_axes(self, values: dict[str, Any]) -> SweepOptions:
+        """These options with a case's extra-axis values in place (validated).
+
+        Parameters
+        ----------
+        values : dict of str to Any
+            Field name (of :class:`~warptrunc.WMSpec` or :class:`~warptrunc.Material`: ``E_i``
+            and ``nu_i`` are this object's ``E_flat`` and ``nu_flat``) → value.
+
+        Returns
+        -------
+        SweepOptions
+
+        Raises
+        ------
+        ValueError
+            An axis that is no option of the sweep.
+        """
+        if not values:
+            return self
+        mine = {f.name for f in fields(self)}
+        kw = {}
+        for name, v in values.items():
+            opt = option_name(name)
+            if opt not in mine or opt in _NOT_AXES:
+                raise ValueError(
+                    f"the sweep cannot vary {name!r}: it is not an option of the sweep "
+                    f"(axes it can vary: {', '.join(axis_names(AXIS_SPECS, runnable=True))})"
+                )
+            kw[opt] = v
+        return replace(self, **kw)
+
+
+_OPTION_OF = {"E_i": "E_flat", "nu_i": "nu_flat"}
+"""Axis (parameter field) → SweepOptions field, where the names differ."""
+
+
+def option_name(name: str) -> str:
+    """The :class:`SweepOptions` field that holds parameter field ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A field of :class:`~warptrunc.WMSpec` or :class:`~warptrunc.Material`.
+
+    Returns
+    -------
+    str
+        ``E_flat`` for ``E_i``, ``nu_flat`` for ``nu_i`` (the stores' names), else ``name``.
+    """
+    return _OPTION_OF.get(name, name)
+
+_NOT_AXES = ("L", "n", "cutoff")
+
+
+def axis_names(specs: Sequence[type] = AXIS_SPECS, *, runnable: bool = False) -> list[str]:
+    """The fields that a grid may name as extra axes: sweepable fields of ``specs`` but D and R_t.
+
+    Parameters
+    ----------
+    specs : sequence of type
+        Parameter classes.
+    runnable : bool
+        Only those that :func:`~warptrunc.sweep.run_sweep` can vary (a field of
+        :class:`SweepOptions`).
+
+    Returns
+    -------
+    list of str
+    """
+    mine = {f.name for f in fields(SweepOptions)}
+    out = []
+    for spec in specs:
+        for name in sweep_fields(spec):
+            if name in _CORE or name in out:
+                continue
+            if runnable and option_name(name) not in mine:
+                continue
+            out.append(name)
+    return out
+
 
 @dataclass(frozen=True)
 class SweepGrid:
@@ -305,6 +403,15 @@ class SweepGrid:
         D = [2.1, 2.3, 2.5]      # input fractal dimensions (dimensionless)
         delta = [0.005, 0.01]    # δ = R_t/W_r (dimensionless)
         seeds = "0-4"            # or [0, 1, 2, 3, 4]
+
+        [axes]                   # optional: more axes, outermost (slowest) first
+        M = [8, 10]              # any sweepable field of WMSpec or Material (SI units)
+
+    The values are checked against the declarations of the fields
+    (:func:`warptrunc.params.check_value`): ``D`` against :class:`~warptrunc.WMSpec`'s, an extra axis against that of
+    the parameter class declaring it (``specs``). A grid without extra axes has the case ids
+    it always had; a case of a grid with extra axes has the id of the same case run with
+    those values as options.
     """
 
     D: tuple[float, ...]
@@ -313,15 +420,40 @@ class SweepGrid:
     """Relative roughness values δ = R_t/W_r > 0 (dimensionless)."""
     seeds: tuple[int, ...]
     """Phase seeds."""
+    axes: tuple[tuple[str, tuple], ...] = ()
+    """More axes, ``((name, values), ...)`` (a dict is accepted): sweepable fields of
+    ``specs`` other than D and R_t, outermost first."""
+    specs: tuple[type, ...] = field(default=AXIS_SPECS, repr=False, compare=False)
+    """Parameter classes declaring the axes (default :data:`AXIS_SPECS`)."""
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "D", _floats("D", self.D, 2, 3))
-        object.__setattr__(self, "delta", _floats("delta", self.delta, 0, None))
-        object.__setattr__(self, "seeds", parse_seeds(self.seeds))
+        s = object.__setattr__
+        specs = tuple(self.specs)
+        s(self, "specs", specs)
+        home = next((c for c in specs if "D" in param_info(c)), WMSpec)
+        s(self, "D", _values("D", self.D, lambda v: check_value(home, "D", v)))
+        s(self, "delta", _floats("delta", self.delta, 0, None))
+        s(self, "seeds", parse_seeds(self.seeds))
+        axes = self.axes.items() if isinstance(self.axes, dict) else self.axes
+        allowed = axis_names(specs)
+        out = []
+        for name, values in axes:
+            if name not in allowed:
+                raise ValueError(
+                    f"a sweep axis must be a sweepable parameter of "
+                    f"{', '.join(c.__name__ for c in specs)} other than D and Rt "
+                    f"({', '.join(allowed)}), got {name!r}"
+                )
+            if name in (a for a, _ in out):
+                raise ValueError(f"axis {name!r} is given twice")
+            spec = next(c for c in specs if name in param_info(c))
+            out.append((name, _values(name, values, lambda v, c=spec, k=name: check_value(c, k, v))))
+        s(self, "axes", tuple(out))
 
     @classmethod
     def from_values(
-        cls, D: Sequence[float] | float, delta: Sequence[float] | float, seeds: Any
+        cls, D: Sequence[float] | float, delta: Sequence[float] | float, seeds: Any,
+        axes: dict[str, Sequence] | None = None,
     ) -> SweepGrid:
         """From values; ``seeds`` may be ``"0-4"``, ``"0,3"``, an int or a list.
 
@@ -333,6 +465,8 @@ class SweepGrid:
             Relative roughness δ = R_t/W_r > 0 (dimensionless).
         seeds : str, int or sequence
             Seeds, as for :func:`parse_seeds`.
+        axes : dict of str to sequence, optional
+            More axes: field name → values (see the class docstring).
 
         Returns
         -------
@@ -344,16 +478,20 @@ class SweepGrid:
         ValueError
             If a value is out of range or a seed cannot be parsed.
         """
-        return cls(D=D, delta=delta, seeds=seeds)  # type: ignore[arg-type]
+        axes = tuple((axes or {}).items())
+        return cls(D=D, delta=delta, seeds=seeds, axes=axes)  # type: ignore[arg-type]
 
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> SweepGrid:
-        """From {"D": [...], "delta": [...], "seeds": ...}; other keys raise ValueError.
+    def from_dict(cls, d: dict[str, Any], specs: Sequence[type] = AXIS_SPECS) -> SweepGrid:
+        """From {"D": [...], "delta": [...], "seeds": ..., "axes": {...}}; other keys raise ValueError.
 
         Parameters
         ----------
         d : dict of str to Any
-            Exactly the keys ``D``, ``delta`` and ``seeds`` (as for :meth:`from_values`).
+            The keys ``D``, ``delta`` and ``seeds`` (as for :meth:`from_values`), and
+            optionally ``axes`` (field name → values).
+        specs : sequence of type
+            Parameter classes declaring the axes.
 
         Returns
         -------
@@ -365,14 +503,18 @@ class SweepGrid:
         ValueError
             If a key is unknown or missing, or a value is out of range.
         """
-        bad = sorted(set(d) - {"D", "delta", "seeds"})
+        bad = sorted(set(d) - {"D", "delta", "seeds", "axes"})
         missing = sorted({"D", "delta", "seeds"} - set(d))
         if bad or missing:
             raise ValueError(
-                f"a sweep grid has exactly the keys D, delta, seeds; "
+                f"a sweep grid has the keys D, delta, seeds (and optionally a table axes); "
                 f"unknown {bad}, missing {missing}"
             )
-        return cls(D=d["D"], delta=d["delta"], seeds=d["seeds"])
+        axes = d.get("axes", {})
+        if not isinstance(axes, dict):
+            raise ValueError(f"axes must be a table of field = [values], got {axes!r}")
+        return cls(D=d["D"], delta=d["delta"], seeds=d["seeds"], axes=tuple(axes.items()),
+                   specs=tuple(specs))  # fmt: skip
 
     @classmethod
     def from_toml(cls, path: str | Path) -> SweepGrid:
@@ -409,21 +551,29 @@ class SweepGrid:
         except ValueError as exc:
             raise ValueError(f"{path}: {exc}") from None
 
-    def to_dict(self) -> dict[str, list]:
+    def to_dict(self) -> dict[str, Any]:
         """The grid as lists, the input of :meth:`from_dict`.
 
         Returns
         -------
         dict of str to list
-            ``{"D": [...], "delta": [...], "seeds": [...]}``.
+            ``{"D": [...], "delta": [...], "seeds": [...]}``, and ``"axes": {name: [...]}``
+            when the grid has extra axes (so that the ``sweep.json`` of a D × δ × seeds grid
+            is what it always was).
         """
-        return {"D": list(self.D), "delta": list(self.delta), "seeds": list(self.seeds)}
+        d: dict[str, Any] = {"D": list(self.D), "delta": list(self.delta), "seeds": list(self.seeds)}
+        if self.axes:
+            d["axes"] = {k: list(v) for k, v in self.axes}
+        return d
 
     def __len__(self) -> int:
-        return len(self.D) * len(self.delta) * len(self.seeds)
+        n = len(self.D) * len(self.delta) * len(self.seeds)
+        for _, v in self.axes:
+            n *= len(v)
+        return n
 
     def cases(self, options: SweepOptions) -> list[Case]:
-        """Every case in grid order (D slowest, then δ, then seed).
+        """Every case in grid order (extra axes slowest, then D, then δ, then seed).
 
         Parameters
         ----------
@@ -435,12 +585,17 @@ class SweepGrid:
         list of Case
             ``len(self)`` cases, ``index`` 0, 1, ...
         """
-        opts = options.to_dict()
-        out = []
-        for D in self.D:
-            for delta in self.delta:
-                for seed in self.seeds:
-                    out.append(Case(len(out), D, delta, seed, case_id(D, delta, seed, opts)))
+        names = [k for k, _ in self.axes]
+        out: list[Case] = []
+        for combo in itertools.product(*(v for _, v in self.axes)):
+            over = dict(zip(names, combo, strict=True))
+            opts = options.with_axes(over).to_dict()
+            params = tuple(over.items())
+            for D in self.D:
+                for delta in self.delta:
+                    for seed in self.seeds:
+                        cid = case_id(D, delta, seed, opts)
+                        out.append(Case(len(out), D, delta, seed, cid, params))
         return out
 
 

@@ -64,8 +64,10 @@ def run_sweep(
     Parameters
     ----------
     grid : SweepGrid, dict or path
-        D_in × δ × seeds; a dict {"D": [...], "delta": [...], "seeds": "0-4"} or a TOML file
-        with those keys.
+        D_in × δ × seeds (and optional extra axes: sweepable fields of WMSpec or Material that
+        are options of the sweep, e.g. ``M``, ``gamma``, ``Wr``, ``E``); a dict {"D": [...],
+        "delta": [...], "seeds": "0-4", "axes": {"M": [8, 10]}} or a TOML file with those
+        keys.
     out : path, optional
         Store folder (``sweep.json``, ``curves/part-*.parquet``, ``cases.parquet``; see
         :mod:`warptrunc.sweep.store`). An existing store made by the same grid and options is
@@ -128,6 +130,7 @@ def run_sweep(
     shard_seconds = check_range("shard_seconds", shard_seconds, 0, None, lo_open=False, unit="s")
     if workers is not None and scheduler is not None:
         raise ValueError("give workers (a local cluster) or scheduler (an existing one), not both")
+    cases = grid.cases(opts)  # checks that the sweep can vary the grid's extra axes
     held = ExitStack()  # one writer per store: a second sweep on ``out`` is refused at once
     notify = lambda m: print(m, file=sys.stderr)  # noqa: E731
     if out is not None:
@@ -138,28 +141,42 @@ def run_sweep(
     except BaseException:
         held.close()
         raise
-    todo = [c for c in grid.cases(opts) if c.case_id not in store.done]
+    todo = [c for c in cases if c.case_id not in store.done]
+    groups: dict[tuple, list] = {}  # the cases of each value of the extra axes share options
+    for c in todo:
+        groups.setdefault(c.params, []).append(c)
     try:
-        if todo and (workers is not None or scheduler is not None):
-            try:
-                from .cluster import run_dask
-            except ImportError as exc:
-                raise ImportError(
-                    f"workers/scheduler need dask.distributed ({exc.name} is missing): "
-                    'pip install "warptrunc[sweep]"'
-                ) from None
-
-            run_dask(todo, opts, store, workers=workers, scheduler=scheduler, device=device,
-                     total=len(grid), progress=progress, shard_size=shard_size,
-                     shard_seconds=shard_seconds)  # fmt: skip
-        elif todo:
-            from .engines import run_inprocess
-
-            run_inprocess(todo, opts, store.add_many, device=device, total=len(grid),
-                          progress=progress, shard_seconds=shard_seconds)  # fmt: skip
+        left = len(todo)
+        for params, group in groups.items():
+            left -= len(group)
+            _run_group(group, opts.with_axes(dict(params)), store, workers=workers,
+                       scheduler=scheduler, device=device, total=len(grid) - left,
+                       progress=progress, shard_size=shard_size, shard_seconds=shard_seconds)  # fmt: skip
     finally:
         try:
             store.flush()
         finally:
             held.close()
     return store.frame()
+
+
+def _run_group(todo, opts, store, *, workers, scheduler, device, total, progress, shard_size,
+               shard_seconds) -> None:  # fmt: skip
+    """Run cases that share ``opts`` on the chosen engine."""
+    if todo and (workers is not None or scheduler is not None):
+        try:
+            from .cluster import run_dask
+        except ImportError as exc:
+            raise ImportError(
+                f"workers/scheduler need dask.distributed ({exc.name} is missing): "
+                'pip install "warptrunc[sweep]"'
+            ) from None
+
+        run_dask(todo, opts, store, workers=workers, scheduler=scheduler, device=device,
+                 total=total, progress=progress, shard_size=shard_size,
+                 shard_seconds=shard_seconds)  # fmt: skip
+    elif todo:
+        from .engines import run_inprocess
+
+        run_inprocess(todo, opts, store.add_many, device=device, total=total,
+                      progress=progress, shard_seconds=shard_seconds)  # fmt: skip

@@ -40,7 +40,8 @@ from .._support.progress import progress_bar
 from .._support.results import jsonable
 from .._support.validate import check_int
 from ..kernels import wm as _kwm
-from ..wm import WMSpec, WMTerms, height_scale, pad_to, surface_params, wm_product, wm_spec, wm_tables
+from ..params import param_info
+from ..wm import WMSpec, WMTerms, height_scale, pad_to, surface_params, wm_product, wm_tables
 from .curve import (
     DEEP_FRACTION,
     TruncationCurve,
@@ -102,8 +103,7 @@ def as_wm_spec(spec_or_params) -> WMTerms:
         kw["n"] = (kw.pop("nx"), kw.pop("ny"))
     if "Lx" in kw or "Ly" in kw:
         kw["L"] = (kw.pop("Lx"), kw.pop("Ly"))
-    keys = ("D", "Wr", "L", "n", "Rt", "G", "M", "gamma", "Wc", "cutoff", "seed", "method")
-    return wm_spec(**{k: kw[k] for k in keys if k in kw})
+    return WMSpec(**{k: kw[k] for k in param_info(WMSpec) if k in kw}).terms()
 
 
 def in_memory_bytes(spec_or_params, device: wp.DeviceLike = None) -> tuple[int, int]:

@@ -1,0 +1,94 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Settings of the contact solver, declared once (:mod:`warptrunc.params`).
+
+:class:`SolverSettings` holds the precision, the substrate, the tolerances and the iteration
+limits of :class:`~warptrunc.contact.ContactSolver`; validation, command-line options
+(:func:`warptrunc.params.add_options`) and the docs table (:func:`warptrunc.params.markdown_table`)
+are generated from its fields.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any
+
+from ..params import check_fields, param, to_dict
+
+__all__ = ["SolverSettings"]
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    """Precision, substrate, tolerances and iteration limits of the contact solver.
+
+    Raises
+    ------
+    ValueError
+        A field out of its range; the message names the field, its value and the range.
+
+    Notes
+    -----
+    ``direct_max`` is an integer or None (``"auto"`` is accepted and stored as None): None
+    chooses 24 on a CUDA device and 4 on the CPU, where Warp runs a kernel on one core.
+
+    Examples
+    --------
+    >>> SolverSettings(dtype="float32").substrate
+    'free'
+    """
+
+    dtype: str = param(
+        "float64", "precision of the maps and FFTs (reductions are float64 in both)",
+        choices=("float64", "float32"),
+    )  # fmt: skip
+    substrate: str = param(
+        "free", "half-space: isolated zero-padded patch or periodic map",
+        choices=("free", "periodic"),
+    )  # fmt: skip
+    pressure_tol: float = param(
+        1e-5, "tolerance on tensile (and above-hardness) pixel pressure relative to E*; "
+        "forcetol = pressure_tol·E*·dx·dy", gt=0.0,
+    )  # fmt: skip
+    pentol: float | None = param(
+        None, "tolerance on penetration; None = rms height/(10·mean(nx, ny)) (ContactMechanics)",
+        unit="m", gt=0.0, optional=True,
+    )  # fmt: skip
+    thermotol: float = param(1e-6, "relative tolerance on the total force", gt=0.0)
+    maxiter: int = param(10000, "largest number of iterations per solve", kind="int", ge=1)
+    refresh: int = param(
+        50, "transform the forces afresh at least every this many iterations", kind="int", ge=1
+    )
+    direct_max: int | None = param(
+        None, "largest number of changed forces corrected by direct summation; None = auto "
+        "(24 on CUDA, 4 on the CPU)", kind="int", ge=0, optional=True,
+    )  # fmt: skip
+
+    def __post_init__(self) -> None:
+        if isinstance(self.direct_max, str) and self.direct_max == "auto":
+            object.__setattr__(self, "direct_max", None)
+        check_fields(self)
+
+    def replace(self, **kw: Any) -> SolverSettings:
+        """A copy with some fields changed (validated).
+
+        Parameters
+        ----------
+        **kw
+            Fields to change.
+
+        Returns
+        -------
+        SolverSettings
+        """
+        return replace(self, **kw)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            One entry per field (``pentol`` and ``direct_max`` may be None).
+        """
+        return to_dict(self)
