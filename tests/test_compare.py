@@ -17,7 +17,6 @@ from warptrunc.compare import (
     CASE_COLUMNS,
     compare_models,
     compare_study,
-    fit_k_vs_F,
     load_comparison,
     study_cases,
     summarize,
@@ -29,11 +28,26 @@ FR = (0.05, 0.1, 0.2, 0.4)
 
 
 def test_fit_k_vs_F_recovers_a_power_law():
+    from warptrunc.compare import fit_k_vs_F
+
     F = np.geomspace(1e-3, 1.0, 7)
-    f = fit_k_vs_F(F, 3.0 * F**0.62)
+    with pytest.warns(DeprecationWarning, match="fit_power_law"):
+        f = fit_k_vs_F(F, 3.0 * F**0.62)
     assert f["alpha"] == pytest.approx(0.62, rel=1e-12) and f["prefactor"] == pytest.approx(3.0)
     assert f["r2"] == pytest.approx(1.0) and f["n_points"] == 7
-    assert math.isnan(fit_k_vs_F([0, 1, 2], [1, 2, 3])["alpha"])  # two usable points
+    with pytest.warns(DeprecationWarning):
+        assert math.isnan(fit_k_vs_F([0, 1, 2], [1, 2, 3])["alpha"])  # two usable points
+
+
+@pytest.mark.parametrize("old, new", [("DEFAULT_FRACTIONS", "APPROACH_FRACTIONS"),
+                                      ("MODELS", "ROUTES")])  # fmt: skip
+def test_renamed_constants_warn(old, new):
+    import warptrunc.compare as c
+    import warptrunc.compare.models as m
+
+    for mod in (c, m):
+        with pytest.warns(DeprecationWarning, match=new):
+            assert getattr(mod, old) == getattr(mod, new)
 
 
 def test_compare_models_against_independent_formulas(device):

@@ -17,7 +17,6 @@ import warptrunc
 from warptrunc.islands import (
     MIN_ISLANDS,
     island_curve,
-    islands_at_depth,
     islands_at_depths,
     label_islands,
 )
@@ -305,7 +304,8 @@ def test_carried_forest_equals_labelling_each_depth(device, connectivity, kind):
         np.testing.assert_array_equal(isl.labels, scratch.labels)
         np.testing.assert_array_equal(isl.perimeter, scratch.perimeter)
         assert isl.depth == d
-    one = islands_at_depth(s, depths[0], connectivity=connectivity, device=device)
+    with pytest.warns(DeprecationWarning, match="islands_at_depths"):
+        one = warptrunc.islands.islands_at_depth(s, depths[0], connectivity=connectivity, device=device)
     np.testing.assert_array_equal(one.labels, got[0].labels)
 
 
@@ -447,8 +447,8 @@ def test_bad_input_raises_clear_errors():
         island_curve(s, 5, connectivity="four", device="cpu")
     with pytest.raises(ValueError, match="depths must be finite"):
         islands_at_depths(s, [0.1e-6, np.nan], device="cpu")
-    with pytest.raises(ValueError, match="depth must be in"):
-        islands_at_depth(s, -1.0, device="cpu")
+    with pytest.raises(ValueError, match="depths must be finite and ≥ 0"):
+        islands_at_depths(s, [-1.0], device="cpu")
 
 
 @pytest.mark.parametrize("connectivity", [4, 8])

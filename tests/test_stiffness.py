@@ -7,7 +7,13 @@ import math
 import numpy as np
 import pytest
 
-from warptrunc.stiffness import Material, StiffnessCurve, fit_power_law, stiffness_curve
+from warptrunc.stiffness import (
+    Material,
+    StiffnessCurve,
+    fit_power_law,
+    flat_punch_stiffness,
+    stiffness_curve,
+)
 from warptrunc.truncation import TruncationCurve
 
 
@@ -92,8 +98,9 @@ def test_csv_and_json_export(tmp_path):
     data = np.genfromtxt(p, delimiter=",", names=True)
     assert data.dtype.names == (
         "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
-        "Ec_over_E", "F_over_EA",
+        "Ec_over_E", "F_over_EA", "Ec_over_Estar", "Ec_over_E_young",
     )  # fmt: skip
+    np.testing.assert_array_equal(data["Ec_over_Estar"], data["Ec_over_E"])
     np.testing.assert_array_equal(data["load_N"], sc.load)
     fit = fit_power_law(sc, min_pixels=1)
     import json
@@ -149,3 +156,78 @@ def test_separate_paraboloids_islands_vs_eq2(device, tiles):
     c = 2 / math.sqrt(math.pi) * kN.material.contact_modulus * math.sqrt(kN.apparent_area)
     np.testing.assert_allclose(kN.Ec_over_E, kN.stiffness / c, rtol=1e-12)
     assert kN.model == "islands" and eN.model == "area"
+
+
+# --- one Eq. 2, two normalisations, one fit -----------------------------------------------------
+
+
+@pytest.mark.parametrize("beta_prime", [1.0, 1.034])
+def test_flat_punch_stiffness_is_eq2(beta_prime):
+    """k = β'(2/√π)E*√A, and for a circular punch of radius a Sneddon's k = 2E*a."""
+    Estar = Material.against_diamond().contact_modulus
+    a = np.array([1e-6, 3e-5, 2e-4])
+    area = math.pi * a**2
+    k = flat_punch_stiffness(np.sqrt(area), Estar, beta_prime=beta_prime)
+    np.testing.assert_allclose(k, beta_prime * 2.0 * Estar * a, rtol=1e-15)
+    assert flat_punch_stiffness(1e-3, 1e9) == pytest.approx(2e6 / math.sqrt(math.pi), rel=1e-15)
+    with pytest.raises(ValueError, match="contact_modulus"):
+        flat_punch_stiffness(1e-3, -1.0)
+    with pytest.raises(ValueError, match="beta_prime"):
+        flat_punch_stiffness(1e-3, 1e9, beta_prime=0.0)
+
+
+@pytest.mark.parametrize(
+    "mat, ratio",
+    [(Material(), 1 / (1 - 0.33**2)),  # rigid flat: E*/E = 1/(1 − ν²) = 1.12
+     (Material.against_diamond(), 1 / (1 - 0.33**2 + (1 - 0.07**2) * 70 / 1141))],  # 1.05
+)  # fmt: skip
+def test_two_normalisations_differ_by_Estar_over_E(mat, ratio):
+    """For a known A_c/A: E_c/E* = β'·√(A_c/A) and E_c/E = (E*/E)·β'·√(A_c/A), closed forms."""
+    depth = np.linspace(0, 1e-6, 11)
+    frac = np.linspace(0, 0.3, 11)  # A_c/A
+    sc = stiffness_curve(curve_from_area(depth, frac * 1e-6), mat, beta_prime=1.1)
+    np.testing.assert_allclose(sc.Ec_over_Estar, 1.1 * np.sqrt(frac), rtol=1e-14)
+    np.testing.assert_allclose(sc.Ec_over_E_young, ratio * 1.1 * np.sqrt(frac), rtol=1e-14)
+    np.testing.assert_allclose(sc.Ec_over_E_young[1:] / sc.Ec_over_Estar[1:], ratio, rtol=1e-15)
+    assert sc.Ec_over_Estar is sc.Ec_over_E  # the historical column, E_c/E*
+    assert round(ratio, 2) == (1.12 if math.isinf(mat.E_i) else 1.05)
+
+
+def test_fit_reports_both_betas():
+    """α is the same on E_c/E* and E_c/E; β_E = β·E*/E; the fit says which β it is."""
+    depth = np.linspace(0, 1e-6, 41)
+    mat = Material(E=200e9, nu=0.3)
+    sc = stiffness_curve(curve_from_area(depth, 1e-12 * np.round(1e6 * (depth / 1e-6) ** 1.7)), mat)
+    fit = fit_power_law(sc, min_pixels=1)
+    assert fit.normalisation == "E_c/E*"
+    assert fit.beta_young == pytest.approx(fit.beta / (1 - 0.3**2), rel=1e-14)
+    sel = sc.load > 0
+    x, y = np.log(sc.F_over_EA[sel]), np.log(sc.Ec_over_E_young[sel])
+    slope, icpt = np.polyfit(x, y, 1)  # independent: numpy's least squares on E_c/E
+    assert fit.alpha == pytest.approx(slope, rel=1e-10)
+    assert fit.beta_young == pytest.approx(math.exp(icpt), rel=1e-10)
+    d = fit.to_dict()
+    assert d["normalisation"] == "E_c/E*" and "beta_young" in d and "r" not in d
+
+
+def test_fit_power_law_of_two_arrays():
+    x = np.geomspace(1e-3, 1e2, 30)
+    rng = np.random.default_rng(0)
+    y = 3.0 * x**0.62 * np.exp(0.01 * rng.standard_normal(30))
+    fit = fit_power_law(np.r_[x, 0.0, -1.0], np.r_[y, 1.0, 1.0])  # non-positive pairs dropped
+    slope, icpt = np.polyfit(np.log(x), np.log(y), 1)
+    assert fit.n_points == 30 and fit.normalisation == "y = beta*x^alpha"
+    assert fit.alpha == pytest.approx(slope, rel=1e-12)
+    assert fit.beta == pytest.approx(math.exp(icpt), rel=1e-12)
+    r = np.corrcoef(np.log(x), np.log(y))[0, 1]
+    assert fit.r == pytest.approx(r, rel=1e-12) and fit.r2 == pytest.approx(r * r, rel=1e-9)
+    with pytest.raises(ValueError, match="at least 3"):
+        fit_power_law([1.0, 2.0], [1.0, 2.0])
+    assert fit_power_law([1.0, 2.0], [1.0, 2.0], min_points=2).alpha == pytest.approx(1.0)
+
+
+def test_models_renamed_with_a_warning():
+    import warptrunc.stiffness as st
+
+    with pytest.warns(DeprecationWarning, match="STIFFNESS_MODELS"):
+        assert st.MODELS == st.STIFFNESS_MODELS == ("area", "islands")

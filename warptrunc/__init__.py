@@ -2,34 +2,45 @@
 # SPDX-License-Identifier: MIT
 """warptrunc: normal contact stiffness of rough multiscale surfaces by truncation analysis.
 
-Symbols (paper notation → code name, SI unit):
+Symbols (paper notation → code name, SI unit); the full mapping, with the names that collide
+between the paper and the code, is the glossary (``docs/guide/glossary.md``):
 
-======  =====================  ==========================================
-D       ``D``                  fractal dimension (dimensionless, 2 < D < 3)
-W_r     ``Wr``                 roll-off wavelength (m)
-W_c     ``Wc``                 cut-off wavelength (m)
-γ       ``gamma``              WM frequency density (dimensionless, > 1)
-M       ``M``                  number of superposed ridges
-G       ``G``                  topothesy (m)
-R_t     ``Rt``                 peak-to-valley height (m)
-ω       ``depth``              truncation depth from the top (m)
-A_c     ``contact_area``       truncated (contact) area (m²)
-A       ``apparent_area``      apparent area Lx·Ly (m²)
-k       ``stiffness``          normal contact stiffness (N/m)
-F       ``load``               normal load (N)
-E, ν    ``E``, ``nu``          Young's modulus (Pa), Poisson's ratio of the rough body
-α, β    ``alpha``, ``beta``    power-law exponent and amplitude of E_c/E = β[F/(EA)]^α
-======  =====================  ==========================================
+======  ======================  ==========================================
+D       ``D``                   fractal dimension D_in (dimensionless, 2 < D < 3)
+W_r     ``Wr``                  roll-off wavelength (m)
+W_c     ``Wc``                  cut-off wavelength (m)
+γ       ``gamma``               WM frequency density (dimensionless, > 1)
+M       ``M``                   number of superposed ridges
+G       ``G``                   topothesy (m)
+R_t     ``Rt``                  peak-to-valley height (m)
+δ       ``delta``               relative roughness R_t/W_r (dimensionless)
+ω       ``depth``               truncation depth from the top (m)
+A_c     ``contact_area``        truncated (contact) area A′ (m²)
+A       ``apparent_area``       apparent area Lx·Ly (m²)
+k       ``stiffness``           normal contact stiffness, Eq. 2 (N/m)
+F       ``load``                normal load (N)
+E, ν    ``E``, ``nu``           Young's modulus (Pa), Poisson's ratio of the rough body
+E_r′    ``contact_modulus``     contact modulus E* = [(1−ν²)/E + (1−ν_i²)/E_i]⁻¹ (Pa)
+β′      ``beta_prime``          geometric factor of Eq. 2 (dimensionless)
+E_c/E*  ``Ec_over_Estar``       β′·√(A_c/A) (the ``Ec_over_E`` column; dimensionless)
+E_c/E   ``Ec_over_E_young``     (E*/E)·β′·√(A_c/A), E the Young's modulus (dimensionless)
+α, β    ``alpha``, ``beta``     exponent and amplitude of E_c/E* = β[F/(E·A)]^α
+β_E     ``beta_young``          amplitude of E_c/E = β_E[F/(E·A)]^α (the paper's β)
+======  ======================  ==========================================
+
+One public function per operation: generate :func:`wm_surface`, truncate :func:`truncate`,
+label :func:`label_islands`, fit :func:`fit_power_law`, solve a contact :func:`solve_contact`.
 
 ``import warptrunc`` is light: every public name (and subpackage) is imported on first use
 (PEP 562), so ``import warptrunc`` and ``warptrunc --help`` load neither Warp nor NumPy; the
 first computing call loads Warp, plotting and rendering load matplotlib and pyvista.
 """
 
-import importlib
-import sys
-import types
-from typing import TYPE_CHECKING, Any
+import importlib as _importlib
+import sys as _sys
+import types as _types
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+from typing import Any as _Any
 
 from ._source import map_source_kernels as _map_source_kernels
 
@@ -72,6 +83,7 @@ _EXPORTS = {
     "preset": ".presets",
     "read_height_map": ".io",
     "resolve_device": "._support.device",
+    "solve_contact": ".contact.curve",
     "stiffness_curve": ".stiffness",
     "truncate": ".truncation",
     "wm_surface": ".wm",
@@ -80,48 +92,53 @@ _EXPORTS = {
 """Public name → the module that defines it (imported on first access, PEP 562)."""
 
 _SUBMODULES = frozenset({
-    "calibrate", "cli", "contact", "descriptors", "fractal", "indent", "io", "islands",
+    "calibrate", "cli", "compare", "contact", "descriptors", "fractal", "indent", "io",
+    "islands",
     "material", "params", "plot", "presets", "render", "reproduce", "robust", "spectra",
     "stiffness", "surface", "sweep", "truncation", "wm", "wm_params",
 })  # fmt: skip
+"""The public subpackages and modules (``warptrunc.<name>``): with ``__all__``, all that
+``dir(warptrunc)`` lists."""
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> _Any:
     """Import a public name (or a subpackage) on first access."""
     if name in _EXPORTS:
-        value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+        value = getattr(_importlib.import_module(_EXPORTS[name], __name__), name)
     elif name in _SUBMODULES:
-        value = importlib.import_module(f".{name}", __name__)
+        value = _importlib.import_module(f".{name}", __name__)
     else:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value
     return value
 
 
-class _Package(types.ModuleType):
+class _Package(_types.ModuleType):
     """The package module: keeps a public function that shares its module's name.
 
     The import system binds every imported submodule as an attribute of its package; for
     ``calibrate`` (function of module ``warptrunc.calibrate``) the function must stay bound.
     """
 
-    def __setattr__(self, name: str, value: Any) -> None:
-        if isinstance(value, types.ModuleType) and _EXPORTS.get(name) == f".{name}":
+    def __setattr__(self, name: str, value: _Any) -> None:
+        if isinstance(value, _types.ModuleType) and _EXPORTS.get(name) == f".{name}":
             value = getattr(value, name)
         super().__setattr__(name, value)
 
 
-sys.modules[__name__].__class__ = _Package
+_sys.modules[__name__].__class__ = _Package
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__) | _SUBMODULES)
+    """The public API: ``__all__`` and the public subpackages and modules, nothing else."""
+    return sorted(set(__all__) | _SUBMODULES)
 
 
-if TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerly
+if _TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerly
     from ._support.device import resolve_device  # after the kernels mapping above
     from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
     from .contact.check import BemCheck, bem_check
+    from .contact.curve import solve_contact
     from .contact.settings import SolverSettings
     from .descriptors import Descriptors, describe
     from .fractal import FractalFit, fractal_dimension, fractal_dimensions
@@ -183,6 +200,7 @@ __all__ = [
     "preset",
     "read_height_map",
     "resolve_device",
+    "solve_contact",
     "stiffness_curve",
     "truncate",
     "wm_surface",

@@ -2,7 +2,15 @@
 # SPDX-License-Identifier: MIT
 """Stiffness and load from truncated areas (paper Eqs. 1–3) and the power-law fit (§4.4).
 
-Host-side float64 arithmetic on a :class:`~warptrunc.truncation.TruncationCurve`.
+Host-side float64 arithmetic on a :class:`~warptrunc.truncation.TruncationCurve`. The one home
+of Eq. 2 (:func:`flat_punch_stiffness`) and of power-law fits (:func:`fit_power_law` →
+:class:`PowerLawFit`).
+
+Two normalisations of the contact modulus E_c = (√π/2)·k/√A (§4.1) appear side by side:
+E_c/E* = β′·√(A_c/A) (``Ec_over_Estar``, the historical ``Ec_over_E`` column, Eq. 3) and
+E_c/E = (E*/E)·β′·√(A_c/A) with E the Young's modulus (``Ec_over_E_young``, the paper's
+Figs. 6 and 9 and Table 3). They differ by the constant E*/E (1/(1 − ν²) = 1.12 against a rigid
+flat), so a power-law fit gives the same α on both and β_E = β·E*/E (``beta_young``).
 """
 
 from __future__ import annotations
@@ -15,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from ._support.deprecate import module_getattr
 from ._support.results import fields_to_dict
 from ._support.table import write_columns_csv
 from ._support.validate import check_int, check_range
@@ -23,17 +32,27 @@ from .truncation import TruncationCurve
 
 __all__ = [
     "DEFAULT_MIN_PIXELS",
+    "NORMALISATION_ESTAR",
+    "NORMALISATION_NONE",
+    "STIFFNESS_MODELS",
     "Material",
     "PowerLawFit",
     "StiffnessCurve",
     "fit_power_law",
+    "flat_punch_stiffness",
     "island_stiffness_curve",
     "stiffness_curve",
 ]
 
-MODELS = ("area", "islands")
-"""Stiffness models: ``"area"`` = Eq. (2), one flat punch of the whole truncated area;
-``"islands"`` = one flat punch per island of the truncated set, k = β'(2/√π)E*·Σ√A_i."""
+STIFFNESS_MODELS = ("area", "islands")
+"""Values of :attr:`StiffnessCurve.model`: ``"area"`` = Eq. (2), one flat punch of the whole
+truncated area; ``"islands"`` = one flat punch per island of the truncated set,
+k = β'(2/√π)E*·Σ√A_i."""
+
+__getattr__ = module_getattr(__name__, globals(), {"MODELS": "STIFFNESS_MODELS"})
+
+
+_TWO_OVER_SQRT_PI = 2.0 / math.sqrt(math.pi)  # the flat-punch factor 2/√π of Eqs. (1)–(2)
 
 #: Default fit range: increments with at least this many contact pixels (see README,
 #: "Fit range"); the first increments, where a handful of pixels touch, are left out.
@@ -56,10 +75,11 @@ class StiffnessCurve:
     load: np.ndarray
     """(n+1,) F(ω) = ∫₀^ω k dω' by the cumulative trapezoidal rule (N)."""
     Ec_over_E: np.ndarray
-    """(n+1,) E_c/E = β'·√(A_c/A) (dimensionless), Eq. (3); β'·Σ√A_i/√A for
-    ``model="islands"``."""
+    """(n+1,) E_c/E* = β'·√(A_c/A) (dimensionless), Eq. (3), normalised by the contact modulus
+    E* (not the Young's modulus, despite the historical name: see :attr:`Ec_over_Estar`, the
+    same array, and :attr:`Ec_over_E_young`); β'·Σ√A_i/√A for ``model="islands"``."""
     F_over_EA: np.ndarray
-    """(n+1,) F/(E·A) (dimensionless)."""
+    """(n+1,) F/(E·A) with E the Young's modulus of the rough body (dimensionless)."""
     material: Material
     """Elastic constants used."""
     beta_prime: float
@@ -70,7 +90,20 @@ class StiffnessCurve:
     """Peak-to-valley height R_t of the map (m)."""
     model: str = "area"
     """``"area"`` (Eq. 2, one punch of the truncated area) or ``"islands"`` (one punch per
-    island, :func:`island_stiffness_curve`)."""
+    island, :func:`island_stiffness_curve`): one of :data:`STIFFNESS_MODELS`."""
+
+    @property
+    def Ec_over_Estar(self) -> np.ndarray:
+        """(n+1,) E_c/E* = β'·√(A_c/A) (dimensionless): :attr:`Ec_over_E` under its explicit
+        name (the same array), E_c = (√π/2)·k/√A and E* = ``material.contact_modulus``."""
+        return self.Ec_over_E
+
+    @property
+    def Ec_over_E_young(self) -> np.ndarray:
+        """(n+1,) E_c/E with E the Young's modulus of the rough body (dimensionless), as the
+        paper's Figs. 6 and 9 plot it: (E_c/E*)·(E*/E), the constant factor E*/E = 1/(1 − ν²)
+        (1.12 for ν = 0.33) against a rigid flat."""
+        return self.Ec_over_E * (self.material.contact_modulus / self.material.E)
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """Columns in the order of ``curve.csv``.
@@ -122,7 +155,14 @@ class StiffnessCurve:
         islands : StiffnessCurve, optional
             The island-resolved model on the same depths (:func:`island_stiffness_curve`);
             appends ``stiffness_islands_N_per_m`` (N/m), ``load_islands_N`` (N) and
-            ``Ec_over_E_islands`` (dimensionless), as ``analyze`` writes ``curve.csv``.
+            ``Ec_over_E_islands`` (E_c/E*, dimensionless), as ``analyze`` writes ``curve.csv``.
+
+        Notes
+        -----
+        After the columns of :meth:`to_dict` (and the island columns) come ``Ec_over_Estar``
+        (E_c/E*, equal to ``Ec_over_E``) and ``Ec_over_E_young`` (E_c/E, E the Young's
+        modulus), then, with ``islands``, ``Ec_over_Estar_islands`` and
+        ``Ec_over_E_young_islands``: both normalisations under explicit names.
 
         Returns
         -------
@@ -140,17 +180,35 @@ class StiffnessCurve:
                 raise ValueError("islands must be on the same depths as this curve")
             cols = {**cols, "stiffness_islands_N_per_m": islands.stiffness,
                     "load_islands_N": islands.load, "Ec_over_E_islands": islands.Ec_over_E}  # fmt: skip
+        cols.update(Ec_over_Estar=self.Ec_over_Estar, Ec_over_E_young=self.Ec_over_E_young)
+        if islands is not None:
+            cols.update(Ec_over_Estar_islands=islands.Ec_over_Estar,
+                        Ec_over_E_young_islands=islands.Ec_over_E_young)  # fmt: skip
         return write_columns_csv(path, cols)
+
+
+NORMALISATION_ESTAR = "E_c/E*"
+""":attr:`PowerLawFit.normalisation` of a stiffness-curve fit: β is that of
+E_c/E* = β·[F/(E·A)]^α, E* the contact modulus (``beta_young`` that of E_c/E)."""
+
+NORMALISATION_NONE = "y = beta*x^alpha"
+""":attr:`PowerLawFit.normalisation` of a fit of two arrays: β is the prefactor of y = β·x^α."""
 
 
 @dataclass(frozen=True)
 class PowerLawFit:
-    """Least-squares fit of log(E_c/E) = log β + α·log(F/(E·A))."""
+    """Least-squares power law y = β·x^α, fitted as log y = log β + α·log x.
+
+    For a :class:`StiffnessCurve`, y = E_c/E* and x = F/(E·A) (:data:`NORMALISATION_ESTAR`):
+    ``beta`` is normalised by the contact modulus E*, ``beta_young`` by the Young's modulus E
+    (the β of the paper's Figs. 6 and 9 and Table 3).
+    """
 
     alpha: float
     """Exponent α (dimensionless)."""
     beta: float
-    """Amplitude β (dimensionless)."""
+    """Amplitude β (unit of y per unit of x^α): for a stiffness curve, that of
+    E_c/E* = β·[F/(E·A)]^α (dimensionless; see :attr:`normalisation`)."""
     r2: float
     """Coefficient of determination of the log–log fit (dimensionless)."""
     n_points: int
@@ -167,6 +225,15 @@ class PowerLawFit:
     """Contact-pixel threshold of the fit range (pixels)."""
     depth_window: tuple[float, float] | None
     """Depth window of the fit range (m), if one was given."""
+    beta_young: float = math.nan
+    """For a stiffness curve: β_E of E_c/E = β_E·[F/(E·A)]^α with E the Young's modulus,
+    β·E*/E (dimensionless); NaN for a fit of two arrays or of a curve without a material."""
+    normalisation: str = NORMALISATION_ESTAR
+    """Which quantity ``beta`` belongs to: :data:`NORMALISATION_ESTAR` (E_c/E*) for a stiffness
+    curve, :data:`NORMALISATION_NONE` (y = β·x^α) for two arrays."""
+    r: float = math.nan
+    """Pearson correlation of log x and log y of a fit of two arrays (dimensionless; NaN when y
+    is constant, and for a stiffness curve)."""
 
     def to_dict(self) -> dict[str, Any]:
         """Plain dict of the fields (JSON-serialisable).
@@ -174,10 +241,13 @@ class PowerLawFit:
         Returns
         -------
         dict of str to Any
-            One key per field; ``depth_window`` is a ``[lo, hi]`` list (m) or None.
+            One key per field; ``depth_window`` is a ``[lo, hi]`` list (m) or None. For a
+            stiffness curve ``r`` is left out (it is not computed there).
         """
         d = asdict(self)
         d["depth_window"] = None if self.depth_window is None else list(self.depth_window)
+        if self.normalisation == NORMALISATION_ESTAR:
+            del d["r"]
         return d
 
     def to_json(self, path: str | Path) -> Path:
@@ -196,6 +266,51 @@ class PowerLawFit:
         path = Path(path)
         path.write_text(json.dumps(self.to_dict(), indent=2) + "\n")
         return path
+
+
+def flat_punch_stiffness(
+    sqrt_area: Any,
+    contact_modulus: float,
+    *,
+    beta_prime: float = 1.0,
+) -> Any:
+    """Normal stiffness of flat punches, k = β'·(2/√π)·E*·√A (paper Eq. 2).
+
+    The one place Eq. (2) is written: :func:`stiffness_curve`, :func:`island_stiffness_curve`,
+    the sweep's elastic columns and :func:`warptrunc.bem_check` call it.
+
+    Parameters
+    ----------
+    sqrt_area : float or ndarray
+        √A of the punch (m): √A_c for the whole truncated area (Eq. 2), or Σ_i √A_i for islands
+        taken as independent punches.
+    contact_modulus : float
+        Contact modulus E* = E_r′ (Pa), :attr:`Material.contact_modulus`.
+    beta_prime : float
+        Geometric factor β' (dimensionless); 1 is the flat punch.
+
+    Returns
+    -------
+    float or ndarray
+        k (N/m), the shape of ``sqrt_area``.
+
+    Raises
+    ------
+    ValueError
+        If ``contact_modulus`` or ``beta_prime`` is not positive and finite.
+
+    Notes
+    -----
+    Sneddon's flat punch of radius a, k = 2E*a, written with its area A = πa²:
+    k = (2/√π)·E*·√A. β' corrects for a non-circular punch (Pharr, Oliver & Brotzen 1992).
+
+    Examples
+    --------
+    >>> flat_punch_stiffness(math.sqrt(1e-6), Material().contact_modulus)  # 1 mm² punch (N/m)
+    """
+    contact_modulus = check_range("contact_modulus", contact_modulus, 0.0, unit="Pa")
+    beta_prime = check_range("beta_prime", beta_prime, 0.0)
+    return beta_prime * _TWO_OVER_SQRT_PI * contact_modulus * sqrt_area
 
 
 def stiffness_curve(
@@ -218,7 +333,7 @@ def stiffness_curve(
     Returns
     -------
     StiffnessCurve
-        k, F, E_c/E and F/(E·A) at each of the n+1 depths of ``curve`` (float64).
+        k, F, E_c/E* (and E_c/E) and F/(E·A) at each of the n+1 depths of ``curve`` (float64).
 
     Raises
     ------
@@ -227,9 +342,10 @@ def stiffness_curve(
 
     Notes
     -----
-    k = β'·(2/√π)·E_r'·√A_c (Eq. 2); F(ω_k) = Σ_{j<k} ½(k_j + k_{j+1})(ω_{j+1} − ω_j) (cumulative
-    trapezoidal rule, F(0) = 0); E_c/E = β'·√(A_c/A) (Eq. 3); F/(E·A) with E the Young's
-    modulus of the rough body and A = Lx·Ly.
+    k = β'·(2/√π)·E_r'·√A_c (Eq. 2, :func:`flat_punch_stiffness`);
+    F(ω_k) = Σ_{j<k} ½(k_j + k_{j+1})(ω_{j+1} − ω_j) (cumulative trapezoidal rule, F(0) = 0);
+    E_c/E* = β'·√(A_c/A) (Eq. 3, E_c = (√π/2)·k/√A); F/(E·A) with E the Young's modulus of
+    the rough body and A = Lx·Ly.
 
     Examples
     --------
@@ -240,7 +356,7 @@ def stiffness_curve(
     material = Material() if material is None else material
     beta_prime = check_range("beta_prime", beta_prime, 0.0)
     area = np.asarray(curve.contact_area, dtype=np.float64)
-    k = beta_prime * (2.0 / math.sqrt(math.pi)) * material.contact_modulus * np.sqrt(area)
+    k = flat_punch_stiffness(np.sqrt(area), material.contact_modulus, beta_prime=beta_prime)
     load = cumulative_load(k, curve.depth)
     A = curve.apparent_area
     return StiffnessCurve(
@@ -287,7 +403,7 @@ def island_stiffness_curve(
     Returns
     -------
     StiffnessCurve
-        ``model="islands"``: k, F, E_c/E and F/(E·A) at each depth of ``island_curve``
+        ``model="islands"``: k, F, E_c/E* and F/(E·A) at each depth of ``island_curve``
         (float64); ``contact_area`` is the total truncated area A' (m²).
 
     Raises
@@ -301,7 +417,7 @@ def island_stiffness_curve(
     interaction between them), against Eq. (2)'s k' = β'·(2/√π)·E_r'·√(Σ_i A_i); since
     Σ√A_i ≥ √ΣA_i, k_isl ≥ k', with equality for one island. N equal islands give
     k_isl = √N·k'. F_isl = ∫₀^ω k_isl dω' by the cumulative trapezoidal rule, as Eq. (2)'s F;
-    E_c/E = β'·Σ√A_i/√A, so :func:`fit_power_law` applies unchanged.
+    E_c/E* = β'·Σ√A_i/√A, so :func:`fit_power_law` applies unchanged.
 
     Examples
     --------
@@ -318,7 +434,7 @@ def island_stiffness_curve(
         )
     s = np.asarray(s, dtype=np.float64)
     depth = np.asarray(island_curve.depth, dtype=np.float64)
-    k = beta_prime * (2.0 / math.sqrt(math.pi)) * material.contact_modulus * s
+    k = flat_punch_stiffness(s, material.contact_modulus, beta_prime=beta_prime)
     load = cumulative_load(k, depth)
     n = np.asarray(island_curve.n_contact_pixels, dtype=np.int64)
     A = getattr(island_curve, "apparent_area", None)
@@ -342,44 +458,64 @@ def island_stiffness_curve(
 
 
 def fit_power_law(
-    sc: StiffnessCurve,
+    sc: StiffnessCurve | Any,
+    y: Any = None,
     *,
     min_pixels: int = DEFAULT_MIN_PIXELS,
     depth_window: tuple[float, float] | None = None,
+    min_points: int = 3,
 ) -> PowerLawFit:
-    """Fit E_c/E = β·[F/(E·A)]^α by least squares in log–log space.
+    """Fit a power law y = β·x^α by least squares in log–log space.
+
+    ``fit_power_law(sc)`` fits a stiffness curve, E_c/E* = β·[F/(E·A)]^α (the paper's §4.4);
+    ``fit_power_law(x, y)`` fits two arrays, y = β·x^α (k against F, β against δ, …). Every
+    power-law fit of warptrunc is this function.
 
     Parameters
     ----------
-    sc : StiffnessCurve
-        The curves to fit.
+    sc : StiffnessCurve or (m,) array_like
+        The curves to fit, or the abscissae x (any unit) when ``y`` is given.
+    y : (m,) array_like, optional
+        Ordinates (any unit); pairs where x or y is not positive and finite are left out.
     min_pixels : int
-        Use only increments with at least this many contact pixels (≥ 1). ``1`` keeps every
-        increment with non-zero load. Default :data:`DEFAULT_MIN_PIXELS`.
+        Stiffness curve: use only increments with at least this many contact pixels (≥ 1).
+        ``1`` keeps every increment with non-zero load. Default :data:`DEFAULT_MIN_PIXELS`.
     depth_window : (float, float), optional
-        Use only depths ω with lo ≤ ω ≤ hi (m).
+        Stiffness curve: use only depths ω with lo ≤ ω ≤ hi (m).
+    min_points : int
+        Two arrays: fewest pairs for a fit (≥ 2).
 
     Returns
     -------
     PowerLawFit
-        α, β, r² and the depth and F/(E·A) range of the increments used.
+        α, β, r² and, for a stiffness curve, ``beta_young`` and the depth and F/(E·A) range of
+        the increments used; for two arrays, Pearson ``r`` of the logs and NaN ranges.
 
     Raises
     ------
     ValueError
         If ``min_pixels`` is not an integer ≥ 1, ``depth_window`` is not (lo, hi) with
-        0 ≤ lo < hi, or fewer than 3 increments remain in the fit range.
+        0 ≤ lo < hi, fewer than 3 increments (``min_points`` pairs) remain in the fit range, or x
+        does not vary.
 
     Notes
     -----
-    Increments with zero load (ω = 0) are always left out (log 0). r² is that of the linear
-    regression of log(E_c/E) on log(F/(E·A)).
+    Stiffness curve: increments with zero load (ω = 0) are always left out (log 0); the line is
+    solved by the centred normal equations and r² is that of the regression of log(E_c/E*) on
+    log(F/(E·A)). β_E = β·E*/E (``beta_young``): E_c/E differs from E_c/E* by the constant E*/E,
+    which shifts log y and leaves α unchanged.
+
+    Two arrays: the line by :func:`numpy.polyfit` of natural logs,
+    r² = 1 − Σ residual²/Σ(log y − mean)², r by :func:`numpy.corrcoef`.
 
     Examples
     --------
     >>> fit = fit_power_law(stiffness_curve(tc), min_pixels=100)
-    >>> fit.alpha, fit.beta, fit.r2
+    >>> fit.alpha, fit.beta, fit.beta_young, fit.r2
+    >>> fit_power_law([1.0, 2.0, 4.0], [3.0, 6.0, 12.0]).alpha  # y = 3·x
     """
+    if y is not None:
+        return _fit_arrays(sc, y, min_points=check_int("min_points", min_points, 2))
     min_pixels = check_int("min_pixels", min_pixels, 1)
     sel = (sc.load > 0) & (sc.n_contact_pixels >= min_pixels)
     if depth_window is not None:
@@ -420,4 +556,36 @@ def fit_power_law(
         F_over_EA_max=float(f.max()),
         min_pixels=min_pixels,
         depth_window=None if depth_window is None else (lo, hi),
+        beta_young=_beta_young(float(np.exp(logb)), getattr(sc, "material", None)),
     )
+
+
+def _beta_young(beta: float, material: Material | None) -> float:
+    """β·E*/E: the β of E_c/E from that of E_c/E* (NaN without a material)."""
+    return math.nan if material is None else beta * (material.contact_modulus / material.E)
+
+
+def _fit_arrays(x: Any, y: Any, *, min_points: int) -> PowerLawFit:
+    """:func:`fit_power_law` of two arrays (see there)."""
+    x = np.asarray(x, dtype=np.float64)
+    y = np.asarray(y, dtype=np.float64)
+    if x.shape != y.shape or x.ndim != 1:
+        raise ValueError(f"x and y must be 1-D of one length, got shapes {x.shape} and {y.shape}")
+    ok = (x > 0) & (y > 0) & np.isfinite(x) & np.isfinite(y)
+    n = int(np.count_nonzero(ok))
+    if n < min_points:
+        raise ValueError(f"only {n} positive finite pairs to fit; need at least {min_points}")
+    lx, ly = np.log(x[ok]), np.log(y[ok])
+    if not np.ptp(lx) > 0:
+        raise ValueError("x does not vary over the fit: no slope to fit")
+    alpha, logb = (float(v) for v in np.polyfit(lx, ly, 1))
+    r = float(np.corrcoef(lx, ly)[0, 1]) if np.ptp(ly) > 0 else math.nan
+    res = ly - (alpha * lx + logb)
+    ss = float(np.sum((ly - ly.mean()) ** 2))
+    r2 = 1.0 - float(np.sum(res**2)) / ss if ss > 0 else 1.0
+    nan = math.nan
+    return PowerLawFit(
+        alpha=alpha, beta=math.exp(logb), r2=r2, n_points=n, depth_min=nan, depth_max=nan,
+        F_over_EA_min=nan, F_over_EA_max=nan, min_pixels=0, depth_window=None,
+        normalisation=NORMALISATION_NONE, r=r,
+    )  # fmt: skip

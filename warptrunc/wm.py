@@ -26,12 +26,8 @@ from .wm_params import WMSpec, WMTerms, spec_of_call, wm_spec
 __all__ = [
     "WMSpec",
     "WMTerms",
-    "generate_on_device",
-    "wm_heights",
-    "wm_product",
     "wm_spec",
     "wm_surface",
-    "wm_tables",
 ]
 
 

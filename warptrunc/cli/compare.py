@@ -53,7 +53,7 @@ STUDY_D = (2.1, 2.5, 2.9)
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc compare``."""
-    from ..compare import DEFAULT_FRACTIONS
+    from ..compare import APPROACH_FRACTIONS
     from ..reproduce.profiles import PROFILES
 
     s = p.add_argument_group("surfaces: your map, a WM study, or a reproduce profile")
@@ -76,7 +76,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     s.add_argument("--rt-over-wr", type=positive(), default=0.01,
                    help="R_t/W_r (the paper's δ); ratios and α do not depend on it")  # fmt: skip
     m = p.add_argument_group("approaches, material, solver")
-    m.add_argument("--fractions", type=fraction(), nargs="+", default=list(DEFAULT_FRACTIONS),
+    m.add_argument("--fractions", type=fraction(), nargs="+", default=list(APPROACH_FRACTIONS),
                    help="approaches δ/R_t, increasing")  # fmt: skip
     add_material(m)
     m.add_argument("--increments", type=integer(1, 10_000_000), default=400,

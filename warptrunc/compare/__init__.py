@@ -3,14 +3,14 @@
 """How good is truncation? Eq. 2, island-resolved truncation and elastic contact on one map.
 
 Three routes to the load F, the stiffness k and the contact area A of a rough surface pressed
-by a rigid flat to an approach δ (measured from first touch at the highest pixel):
+by a rigid flat to an approach d (measured from first touch at the highest pixel):
 
 ``eq2``
-    The paper's Eq. (2): the whole truncated set at ω = δ is one flat punch,
-    k' = β'(2/√π)E*·√A', F' = ∫₀^δ k' dω (:func:`warptrunc.stiffness.stiffness_curve`).
+    The paper's Eq. (2): the whole truncated set at ω = d is one flat punch,
+    k' = β'(2/√π)E*·√A', F' = ∫₀^d k' dω (:func:`warptrunc.stiffness.stiffness_curve`).
 ``islands``
     Island-resolved truncation: each island of the truncated set is a punch of its own,
-    k_isl = β'(2/√π)E*·Σ_i √A_i, F_isl = ∫₀^δ k_isl dω
+    k_isl = β'(2/√π)E*·Σ_i √A_i, F_isl = ∫₀^d k_isl dω
     (:func:`warptrunc.stiffness.island_stiffness_curve`).
 ``bem``
     The elastic boundary-element solution of the same map on a free (zero-padded) half-space,
@@ -32,7 +32,7 @@ Store layout::
     OUT/cases/<case_id>.parquet one row per approach (columns: CASE_COLUMNS)
 
 Scaling: in the half-space (small-slope) approximation all three routes are linear in the
-height scale at a fixed δ/R_t (A unchanged, F ∝ R_t, k unchanged), so the ratios and α do not
+height scale at a fixed d/R_t (A unchanged, F ∝ R_t, k unchanged), so the ratios and α do not
 depend on R_t; the study fixes R_t = ``Rt_over_Wr``·W_r.
 
 References
@@ -48,29 +48,39 @@ J.R. Barber, Bounds on the electrical resistance between contacting elastic roug
 Proc. R. Soc. A 459, 53 (2003). doi:10.1098/rspa.2002.1038
 """
 
+from .._support.deprecate import module_getattr
 from .models import (
-    DEFAULT_FRACTIONS,
+    APPROACH_FRACTIONS,
     GOOD,
     LOW_FRACTION,
-    MODELS,
+    ROUTES,
     ModelComparison,
     compare_models,
-    fit_k_vs_F,
 )
+from .models import fit_k_vs_F as _fit_k_vs_F_deprecated
 from .study import CASE_COLUMNS, FORMAT, compare_study, load_comparison, study_cases, summarize
 
 __all__ = [
+    "APPROACH_FRACTIONS",
     "CASE_COLUMNS",
-    "DEFAULT_FRACTIONS",
     "FORMAT",
     "GOOD",
     "LOW_FRACTION",
-    "MODELS",
+    "ROUTES",
     "ModelComparison",
     "compare_models",
     "compare_study",
-    "fit_k_vs_F",
     "load_comparison",
     "study_cases",
     "summarize",
 ]
+
+_RENAMED = {"DEFAULT_FRACTIONS": "APPROACH_FRACTIONS", "MODELS": "ROUTES"}
+_module_getattr = module_getattr(__name__, globals(), _RENAMED)
+
+
+def __getattr__(name: str) -> object:
+    """Deprecated names: ``DEFAULT_FRACTIONS``, ``MODELS``, ``fit_k_vs_F``."""
+    if name == "fit_k_vs_F":
+        return _fit_k_vs_F_deprecated
+    return _module_getattr(name)

@@ -1,7 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """Eq. 2, island-resolved truncation and elastic BEM on one map: :func:`compare_models` →
-:class:`ModelComparison`, and the power law :func:`fit_k_vs_F` (see :mod:`warptrunc.compare`)."""
+:class:`ModelComparison`, and the k–F power law of each route (:func:`warptrunc.fit_power_law`;
+see :mod:`warptrunc.compare`)."""
 
 from __future__ import annotations
 
@@ -12,31 +13,33 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from .._support.deprecate import deprecated_function, module_getattr
 from .._support.validate import check_int, check_range
-from ..stiffness import Material, island_stiffness_curve, stiffness_curve
+from ..stiffness import Material, fit_power_law, island_stiffness_curve, stiffness_curve
 from ..surface import Surface
 
 __all__ = [
-    "DEFAULT_FRACTIONS",
+    "APPROACH_FRACTIONS",
     "GOOD",
     "LOW_FRACTION",
-    "MODELS",
+    "ROUTES",
     "ModelComparison",
     "compare_models",
-    "fit_k_vs_F",
 ]
 
-DEFAULT_FRACTIONS = (0.02, 0.05, 0.1, 0.2, 0.3, 0.4)
-"""Default approaches δ/R_t (dimensionless): from first islands to large contact."""
+APPROACH_FRACTIONS = (0.02, 0.05, 0.1, 0.2, 0.3, 0.4)
+"""Default approaches d/R_t of :func:`compare_models` (dimensionless): from first islands to
+large contact."""
 
-MODELS = ("eq2", "islands", "bem")
-"""The three routes, in the order of the tables."""
+ROUTES = ("eq2", "islands", "bem")
+"""The three routes (Eq. 2, island-resolved truncation, elastic BEM), in the order of the
+tables."""
 
 GOOD = 0.2
 """abs(ratio − 1) ≤ GOOD: a model "within ±20 %" of the elastic solution in the summaries."""
 
 LOW_FRACTION = 0.1
-"""Largest δ/R_t of the low-approach α fit (the paper's fit range, ω ≤ 0.1·R_t, §4.4)."""
+"""Largest d/R_t of the low-approach α fit (the paper's fit range, ω ≤ 0.1·R_t, §4.4)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -44,9 +47,9 @@ class ModelComparison:
     """F, k and A by Eq. 2, island-resolved truncation and elastic BEM at m approaches."""
 
     depth: np.ndarray
-    """(m,) float64 approach δ = truncation depth ω (m)."""
+    """(m,) float64 approach d = truncation depth ω (m)."""
     depth_fraction: np.ndarray
-    """(m,) float64 δ/R_t (dimensionless)."""
+    """(m,) float64 d/R_t (dimensionless)."""
     trunc_area: np.ndarray
     """(m,) float64 truncated area A' (m²)."""
     n_islands: np.ndarray
@@ -107,18 +110,20 @@ class ModelComparison:
         Parameters
         ----------
         max_fraction : float, optional
-            Use only approaches with δ/R_t ≤ this (dimensionless); default all.
+            Use only approaches with d/R_t ≤ this (dimensionless); default all.
 
         Returns
         -------
         dict of str to dict
-            ``{"eq2" | "islands" | "bem": fit}``, each fit as :func:`fit_k_vs_F` returns it.
+            ``{"eq2" | "islands" | "bem": fit}``, each fit a dict ``alpha`` (dimensionless),
+            ``prefactor`` c of k = c·F^α (N/m per N^α), ``r2`` and ``n_points`` from
+            :func:`warptrunc.fit_power_law` (NaN values below 3 usable points).
         """
         sel = np.ones(self.depth.size, bool)
         if max_fraction is not None:
             sel = self.depth_fraction <= max_fraction * (1 + 1e-9)
-        return {m: fit_k_vs_F(getattr(self, f"{m}_load")[sel], getattr(self, f"{m}_stiffness")[sel])
-                for m in MODELS}  # fmt: skip
+        return {m: _k_vs_F(getattr(self, f"{m}_load")[sel], getattr(self, f"{m}_stiffness")[sel])
+                for m in ROUTES}  # fmt: skip
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """1-D columns, SI units in the names.
@@ -157,37 +162,28 @@ def _ratio(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-def fit_k_vs_F(load: Any, stiffness: Any) -> dict[str, float]:
-    """Least-squares power law k = c·F^α in log–log space.
+def _k_vs_F(load: Any, stiffness: Any) -> dict[str, float]:
+    """k = c·F^α by :func:`warptrunc.fit_power_law` of two arrays, as the dict the comparison
+    files hold: ``alpha``, ``prefactor`` c (N/m per N^α), ``r2``, ``n_points``; NaN values when
+    fewer than 3 pairs with F > 0 and k > 0 remain (or F does not vary).
 
-    Parameters
-    ----------
-    load, stiffness : (m,) array_like
-        Loads F (N) and stiffnesses k (N/m); pairs with F ≤ 0 or k ≤ 0 are left out.
-
-    Returns
-    -------
-    dict
-        ``alpha`` (dimensionless), ``prefactor`` c (N/m per N^α), ``r2`` and ``n_points``;
-        NaN values when fewer than 3 points remain.
-
-    Notes
-    -----
     k ∝ F^α is the paper's E_c/E = β[F/(E·A)]^α at a fixed apparent area A, so α is the same
-    exponent as in Table 3 and in Pohrt & Popov (2012).
-    """
+    exponent as in Table 3 and in Pohrt & Popov (2012)."""
     F = np.asarray(load, dtype=np.float64)
     k = np.asarray(stiffness, dtype=np.float64)
-    ok = (F > 0) & (k > 0) & np.isfinite(F) & np.isfinite(k)
-    n = int(np.count_nonzero(ok))
-    if n < 3:
+    try:
+        f = fit_power_law(F, k)
+    except ValueError:
+        n = int(np.count_nonzero((F > 0) & (k > 0) & np.isfinite(F) & np.isfinite(k)))
         return {"alpha": math.nan, "prefactor": math.nan, "r2": math.nan, "n_points": n}
-    x, y = np.log(F[ok]), np.log(k[ok])
-    a, b = np.polyfit(x, y, 1)
-    res = y - (a * x + b)
-    ss = float(np.sum((y - y.mean()) ** 2))
-    r2 = 1.0 - float(np.sum(res**2)) / ss if ss > 0 else 1.0
-    return {"alpha": float(a), "prefactor": float(math.exp(b)), "r2": r2, "n_points": n}
+    return {"alpha": f.alpha, "prefactor": f.beta, "r2": f.r2, "n_points": f.n_points}
+
+
+fit_k_vs_F = deprecated_function(_k_vs_F, "warptrunc.compare.fit_k_vs_F", "warptrunc.fit_power_law")
+
+__getattr__ = module_getattr(
+    __name__, globals(), {"DEFAULT_FRACTIONS": "APPROACH_FRACTIONS", "MODELS": "ROUTES"}
+)
 
 
 def _approaches(Rt: float, fractions: Any) -> np.ndarray:
@@ -203,7 +199,7 @@ def _approaches(Rt: float, fractions: Any) -> np.ndarray:
 
 def compare_models(
     surface: Surface,
-    fractions: Any = DEFAULT_FRACTIONS,
+    fractions: Any = APPROACH_FRACTIONS,
     *,
     material: Material | None = None,
     beta_prime: float = 1.0,
@@ -223,13 +219,13 @@ def compare_models(
     surface : Surface
         The rough height map (m), pressed against a rigid flat.
     fractions : sequence of float
-        Approaches δ/R_t, strictly increasing, in (0, 1) (dimensionless).
+        Approaches d/R_t, strictly increasing, in (0, 1) (dimensionless).
     material : Material, optional
         Elastic constants; E* = ``material.contact_modulus`` is used by all three routes.
     beta_prime : float
         Geometric factor β' of both truncation models (dimensionless).
     increments : int
-        Depth increments from 0 to the largest δ for the load integrals of the truncation
+        Depth increments from 0 to the largest d for the load integrals of the truncation
         models. With the default 400 and the default fractions every approach is a grid depth;
         elsewhere k and F are interpolated linearly between grid depths.
     connectivity : {4, 8}
@@ -249,7 +245,7 @@ def compare_models(
 
     Notes
     -----
-    The truncation depth ω of a row is its approach δ; both truncation models come from one
+    The truncation depth ω of a row is its approach d; both truncation models come from one
     :func:`warptrunc.islands.island_curve` pass (statistics on, which carries Σ√A_i). The elastic
     contact is :func:`warptrunc.contact.solve_contact` on a free half-space (the map is an
     isolated patch), each approach warm-started from the previous one, stiffness by Barber's

@@ -24,13 +24,13 @@ from .._support.validate import check_int, check_range
 from ..stiffness import Material
 from ..surface import Surface
 from .models import (
-    DEFAULT_FRACTIONS,
+    APPROACH_FRACTIONS,
     LOW_FRACTION,
-    MODELS,
+    ROUTES,
     ModelComparison,
     _approaches,
+    _k_vs_F,
     compare_models,
-    fit_k_vs_F,
 )
 
 __all__ = ["CASE_COLUMNS", "FORMAT", "compare_study", "load_comparison", "study_cases", "summarize"]
@@ -145,7 +145,7 @@ def compare_study(
     cases: list[dict[str, Any]] | None = None,
     *,
     surface: Surface | None = None,
-    fractions: Any = DEFAULT_FRACTIONS,
+    fractions: Any = APPROACH_FRACTIONS,
     material: Material | None = None,
     beta_prime: float = 1.0,
     increments: int = 400,
@@ -304,7 +304,7 @@ def load_comparison(out: str | Path):
     Returns
     -------
     pandas.DataFrame
-        One row per (case, approach), columns :data:`CASE_COLUMNS`, sorted by case and δ/R_t.
+        One row per (case, approach), columns :data:`CASE_COLUMNS`, sorted by case and d/R_t.
 
     Raises
     ------
@@ -343,11 +343,11 @@ def summarize(rows) -> dict[str, Any]:
     Returns
     -------
     dict
-        ``ratios``: DataFrame, one row per (D_in, size_ratio, n, δ/R_t) with mean, min and max
+        ``ratios``: DataFrame, one row per (D_in, size_ratio, n, d/R_t) with mean, min and max
         over seeds of k/k_BEM and F/F_BEM for ``eq2`` and ``islands`` and of A'/A_BEM, and the
         number of converged seeds. ``alpha``: DataFrame, one row per (D_in, size_ratio, n, range)
         with mean, min and max over seeds of α by the three routes; range ``all`` fits every
-        approach, ``low`` those with δ/R_t ≤ :data:`LOW_FRACTION`.
+        approach, ``low`` those with d/R_t ≤ :data:`LOW_FRACTION`.
     """
     import pandas as pd
 
@@ -366,14 +366,14 @@ def summarize(rows) -> dict[str, Any]:
     out_a = []
     for (Dv, r, n), g in rows.groupby(keys, sort=True, dropna=False):
         for rng, lim in (("all", None), ("low", LOW_FRACTION)):
-            fits: dict[str, list[float]] = {m: [] for m in MODELS}
+            fits: dict[str, list[float]] = {m: [] for m in ROUTES}
             for _, c in g.groupby("case_id", sort=True):
                 c = c[c["depth_fraction_of_Rt"] <= lim * (1 + 1e-9)] if lim else c
-                for m in MODELS:
-                    fits[m].append(fit_k_vs_F(c[f"{m}_load_N"], c[f"{m}_stiffness_N_per_m"])["alpha"])
+                for m in ROUTES:
+                    fits[m].append(_k_vs_F(c[f"{m}_load_N"], c[f"{m}_stiffness_N_per_m"])["alpha"])
             rec = {"D_in": Dv, "size_ratio": r, "n": n, "range": rng,
                    "seeds": int(g["seed"].nunique())}  # fmt: skip
-            for m in MODELS:
+            for m in ROUTES:
                 s = _stats(fits[m])
                 for k in ("mean", "min", "max"):
                     rec[f"alpha_{m}_{k}"] = s[k]

@@ -35,7 +35,7 @@ import warp as wp
 
 from .._support.table import write_columns_csv
 from .._support.validate import check_int, check_range
-from ..stiffness import Material, stiffness_curve
+from ..stiffness import Material, flat_punch_stiffness, stiffness_curve
 from ..surface import Surface
 from ..truncation import truncate
 from .runs import contactmechanics_versions, require_bem, run_contactmechanics, run_warptrunc
@@ -45,7 +45,7 @@ __all__ = ["SOLVERS", "BemCheck", "bem_check", "require_bem"]
 SOLVERS = ("warptrunc", "contactmechanics")
 
 #: Default approaches, as fractions of R_t (the range of the issue's measurement, 5–40 %).
-DEFAULT_FRACTIONS = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4)
+CHECK_FRACTIONS = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4)
 
 SUBSTRATES = ("free", "periodic")
 _PADDING = {
@@ -226,7 +226,7 @@ def _approaches(Rt: float, depths: Any, fractions: Any) -> np.ndarray:
     if depths is not None and fractions is not None:
         raise ValueError("give either depths (m) or fractions of R_t, not both")
     if depths is None:
-        fr = np.asarray(DEFAULT_FRACTIONS if fractions is None else fractions, dtype=np.float64)
+        fr = np.asarray(CHECK_FRACTIONS if fractions is None else fractions, dtype=np.float64)
         for f in np.atleast_1d(fr):
             check_range("fraction", f, 0.0, 1.0)
         d = np.atleast_1d(fr) * Rt
@@ -269,7 +269,7 @@ def bem_check(
     depths : sequence of float, optional
         Approaches δ (m), strictly increasing, in (0, R_t).
     fractions : sequence of float, optional
-        Approaches as fractions of R_t, in (0, 1); default ``DEFAULT_FRACTIONS`` = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4).
+        Approaches as fractions of R_t, in (0, 1); default ``CHECK_FRACTIONS`` = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4).
     material : Material, optional
         Elastic constants; E* = ``material.contact_modulus`` is used by both methods.
     beta_prime : float
@@ -359,7 +359,7 @@ def bem_check(
     z_top = np.float32(z.max())
     n_trunc = np.array([np.count_nonzero(z >= np.float32(z_top - v)) for v in d], dtype=np.int64)
     trunc_area = n_trunc * surface.pixel_area
-    trunc_stiffness = beta_prime * (2.0 / math.sqrt(math.pi)) * contact_modulus * np.sqrt(trunc_area)
+    trunc_stiffness = flat_punch_stiffness(np.sqrt(trunc_area), contact_modulus, beta_prime=beta_prime)
     trunc_load = np.interp(d, sc.depth, sc.load)
 
     args = (surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress)

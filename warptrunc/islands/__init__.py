@@ -36,10 +36,11 @@ versa). With ``periodic=True``, χ is that of the set on the torus (χ = islands
 sets that do not wrap around).
 """
 
+from .._support.deprecate import deprecated_function
 from .depths import (
-    island_counts_device,
+    _islands_at_depth,
+    island_counts_device as island_counts_device,  # internal fast path, not in __all__
     island_curve,
-    islands_at_depth,
     islands_at_depths,
 )
 from .fits import applicable_depth, slit_bootstrap, slit_island_fit
@@ -56,6 +57,10 @@ from .results import (
 )
 from .topology import topology_curve
 
+islands_at_depth = deprecated_function(
+    _islands_at_depth, "warptrunc.islands.islands_at_depth", "islands_at_depths(surface, [depth])[0]"
+)
+
 __all__ = [
     "MIN_ISLANDS",
     "MIN_PIXELS",
@@ -66,9 +71,7 @@ __all__ = [
     "SlitIslandFit",
     "TopologyCurve",
     "applicable_depth",
-    "island_counts_device",
     "island_curve",
-    "islands_at_depth",
     "islands_at_depths",
     "label_islands",
     "slit_bootstrap",

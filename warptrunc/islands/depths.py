@@ -182,7 +182,7 @@ def islands_at_depths(
     return out
 
 
-def islands_at_depth(
+def _islands_at_depth(
     surface: Surface,
     depth: float,
     *,
@@ -190,7 +190,8 @@ def islands_at_depth(
     periodic: bool = False,
     device: wp.DeviceLike = None,
 ) -> Islands:
-    """Islands of the contact set ``z >= z_top − ω`` at one depth ω (m).
+    """Islands of the contact set ``z >= z_top − ω`` at one depth ω (m) (deprecated public
+    name ``islands_at_depth``: use ``islands_at_depths(surface, [depth])[0]``).
 
     ``islands_at_depths(surface, [depth], ...)[0]``; see :func:`islands_at_depths`.
 

@@ -43,7 +43,7 @@ from ..truncation.stream import WMBands, as_wm_spec, extremes_pass
 from .results import Islands
 from .unionfind import check_connectivity, label_device
 
-__all__ = ["BandedIslands", "label_in_bands", "streamed_islands"]
+__all__ = ["BandedIslands", "streamed_islands"]
 
 
 @dataclass(frozen=True, eq=False)

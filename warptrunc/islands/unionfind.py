@@ -32,7 +32,7 @@ def check_mask(mask: np.ndarray) -> np.ndarray:
     if not (m.dtype == np.bool_ or np.issubdtype(m.dtype, np.integer)):
         raise ValueError(
             f"mask must be boolean or integer (non-zero = contact), got dtype {m.dtype}; "
-            "threshold height maps with islands_at_depth"
+            "threshold height maps with islands_at_depths"
         )
     return np.ascontiguousarray(m != 0, dtype=np.uint8)
 

@@ -30,7 +30,10 @@ def stiffness_load(
     spread: str = "sd",
     path: str | Path | None = None,
 ):
-    """E_c/E against F/(E·A) in log–log, with the fitted power laws (the paper's Fig. 9).
+    """E_c/E* against F/(E·A) in log–log, with the fitted power laws (the paper's Fig. 9).
+
+    E* is the contact modulus (``Ec_over_E``, ``beta``); the paper's Fig. 9 normalises by the
+    Young's modulus E, a constant factor E*/E higher (``Ec_over_E_young``, ``beta_young``).
 
     Parameters
     ----------
@@ -46,7 +49,7 @@ def stiffness_load(
     title : str, optional
         Axes title.
     spread : {"sd", "range"}
-        Shaded band of a group: ±1 standard deviation of log(E_c/E), or min–max.
+        Shaded band of a group: ±1 standard deviation of log(E_c/E*), or min–max.
     path : path, optional
         Save the figure as PNG here.
 
@@ -97,15 +100,15 @@ def stiffness_load(
                 np.exp(np.mean(np.log([g.F_over_EA_min for g in f]))),
                 np.exp(np.mean(np.log([g.F_over_EA_max for g in f]))), 50,
             )  # fmt: skip
-            text = f"fit α = {alpha:.3f}{sd}, β = {beta:.3g}"
+            text = f"fit α = {alpha:.3f}{sd}, β = {beta:.3g} (E$_c$/E$^*$)"
         else:
             alpha, beta = f.alpha, f.beta
             xr = np.geomspace(f.F_over_EA_min, f.F_over_EA_max, 50)
-            text = f"fit α = {f.alpha:.3f}, β = {f.beta:.3g}, r² = {f.r2:.3f}"
+            text = f"fit α = {f.alpha:.3f}, β = {f.beta:.3g} (E$_c$/E$^*$), r² = {f.r2:.3f}"
         color = "k" if len(curves) == 1 else line.get_color()
         ax.loglog(xr, beta * xr**alpha, "--", color=color, lw=1.6, zorder=3, label=text)
     ax.set_xlabel("normalised load F/(E·A)")
-    ax.set_ylabel("normalised stiffness E$_c$/E")
+    ax.set_ylabel("normalised stiffness E$_c$/E$^*$ (E$^*$: contact modulus)")
     ax.grid(True, which="both", alpha=0.3)
     if title:
         ax.set_title(title)

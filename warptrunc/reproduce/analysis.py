@@ -4,61 +4,49 @@
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 
+from .._support.deprecate import deprecated_function
+from ..stiffness import fit_power_law
+from ..sweep.stats import linear_fit
 from .paper import TABLE1, TABLE2, TABLE3
 
-__all__ = ["analyse", "line_fit", "power_fit", "slit_band_summary"]
+__all__ = ["analyse", "slit_band_summary"]
 
 D_KEYS = ("in", "tri", "box", "vs", "sp")
 
 
-def line_fit(x, y) -> dict[str, float] | None:
-    """y = slope·x + intercept with Pearson r; None with fewer than 2 distinct x.
-
-    Parameters
-    ----------
-    x, y : array_like
-        Abscissae and ordinates (any units); pairs with a non-finite value are dropped.
-
-    Returns
-    -------
-    dict of str to float, or None
-        ``slope``, ``intercept``, Pearson ``r`` (NaN when y is constant) and ``n`` (points
-        used); None with fewer than 2 points or 2 distinct x.
-    """
+def _line(x, y) -> dict[str, float] | None:
+    """y = slope·x + intercept with Pearson r (NaN when y is constant) and ``n`` (points used),
+    by :func:`warptrunc.sweep.linear_fit`; pairs with a non-finite value are
+    dropped; None with fewer than 2 points or 2 distinct x."""
     x, y = np.asarray(x, float), np.asarray(y, float)
     ok = np.isfinite(x) & np.isfinite(y)
     x, y = x[ok], y[ok]
     if x.size < 2 or np.ptp(x) == 0:
         return None
-    slope, icpt = np.polyfit(x, y, 1)
-    r = float(np.corrcoef(x, y)[0, 1]) if np.ptp(y) > 0 else float("nan")
-    return {"slope": float(slope), "intercept": float(icpt), "r": r, "n": int(x.size)}
+    return {**linear_fit(x, y), "n": int(x.size)}
 
 
-def power_fit(x, y) -> dict[str, float] | None:
-    """y = b·x^p by a line in log–log; r of the logs.
-
-    Parameters
-    ----------
-    x, y : array_like
-        Positive abscissae and ordinates (any units); pairs whose logarithm is not finite are
-        dropped.
-
-    Returns
-    -------
-    dict of str to float, or None
-        ``b`` (unit of y per unit of x^p), exponent ``p`` and ``r`` (dimensionless) and ``n``;
-        None as for :func:`line_fit`.
-    """
-    f = line_fit(np.log(np.asarray(x, float)), np.log(np.asarray(y, float)))
-    if f is None:
+def _power(x, y) -> dict[str, float] | None:
+    """y = b·x^p by :func:`warptrunc.fit_power_law` of two arrays: ``b``, exponent ``p``,
+    Pearson ``r`` of the logs and ``n``; pairs not positive and finite dropped; None with fewer
+    than 2 pairs or 2 distinct x."""
+    try:
+        f = fit_power_law(x, y, min_points=2)
+    except ValueError:
         return None
-    return {"b": math.exp(f["intercept"]), "p": f["slope"], "r": f["r"], "n": f["n"]}
+    return {"b": f.beta, "p": f.alpha, "r": f.r, "n": f.n_points}
+
+
+line_fit = deprecated_function(
+    _line, "warptrunc.reproduce.analysis.line_fit", "warptrunc.sweep.linear_fit"
+)
+power_fit = deprecated_function(
+    _power, "warptrunc.reproduce.analysis.power_fit", "warptrunc.fit_power_law"
+)
 
 
 def _points(rows, fit, key):
@@ -97,14 +85,14 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
     for fit in g2["fit_ranges"]:
         t3[fit] = {}
         for k in D_KEYS:
-            f = line_fit(*_points(g2["rows"], fit, k))
+            f = _line(*_points(g2["rows"], fit, k))
             t3[fit][k] = {"ours": f, "paper": dict(zip(("slope", "intercept", "r"), TABLE3["alpha"][k], strict=True))}
     out["table3_alpha"] = t3
     # group 1: β(δ) and the scaling argument β ∝ δ^−α
     b1: dict[str, Any] = {}
     for fit in g1["fit_ranges"]:
         rows = [r for r in g1["rows"] if r["fits"][fit].get("beta") is not None]
-        pf = power_fit([r["delta"] for r in rows], [r["fits"][fit]["beta"] for r in rows])
+        pf = _power([r["delta"] for r in rows], [r["fits"][fit]["beta"] for r in rows])
         alphas = np.array([r["fits"][fit]["alpha"] for r in rows])
         b1[fit] = {
             "ours": pf, "alpha_mean": float(alphas.mean()) if alphas.size else None,

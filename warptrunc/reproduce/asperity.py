@@ -70,9 +70,18 @@ class AsperityMaterial:
         check_range("sigma_y_over_H", self.sigma_y_over_H, 0.0, 1.0, hi_open=False)
 
     @property
-    def E_r(self) -> float:
-        """Reduced modulus against a rigid flat, E/(1 − ν²) (Pa)."""
+    def contact_modulus(self) -> float:
+        """Contact modulus E* (the paper's E_r) against a rigid flat, E/(1 − ν²) (Pa)."""
         return self.E / (1.0 - self.nu**2)
+
+    @property
+    def E_r(self) -> float:
+        """Deprecated name of :attr:`contact_modulus` (Pa)."""
+        import warnings
+
+        warnings.warn("AsperityMaterial.E_r is deprecated; use AsperityMaterial.contact_modulus",
+                      DeprecationWarning, stacklevel=2)  # fmt: skip
+        return self.contact_modulus
 
     @property
     def sigma_y(self) -> float:
@@ -111,7 +120,7 @@ def critical_interference(R: float, mat: AsperityMaterial) -> float:
         Critical interference ω_c (m).
     """
     k = 0.454 + 0.41 * mat.nu
-    return (math.pi * k * mat.H / (2.0 * mat.E_r)) ** 2 * R
+    return (math.pi * k * mat.H / (2.0 * mat.contact_modulus)) ** 2 * R
 
 
 def hertz(d: np.ndarray, R: float, mat: AsperityMaterial) -> tuple[np.ndarray, np.ndarray]:
@@ -124,7 +133,7 @@ def hertz(d: np.ndarray, R: float, mat: AsperityMaterial) -> tuple[np.ndarray, n
     R : float
         Sphere radius (m).
     mat : AsperityMaterial
-        Elastic constants (E_r).
+        Elastic constants (E* = ``contact_modulus``).
 
     Returns
     -------
@@ -134,7 +143,7 @@ def hertz(d: np.ndarray, R: float, mat: AsperityMaterial) -> tuple[np.ndarray, n
         (k,) load (N).
     """
     d = np.asarray(d, dtype=np.float64)
-    return math.pi * R * d, 4.0 / 3.0 * mat.E_r * math.sqrt(R) * d**1.5
+    return math.pi * R * d, 4.0 / 3.0 * mat.contact_modulus * math.sqrt(R) * d**1.5
 
 
 def fully_plastic(d: np.ndarray, R: float, mat: AsperityMaterial) -> tuple[np.ndarray, np.ndarray]:
@@ -175,7 +184,7 @@ def closed_form_truncation(
     R : float
         Sphere radius (m).
     mat : AsperityMaterial
-        Elastic constants (E_r).
+        Elastic constants (E* = ``contact_modulus``).
 
     Returns
     -------
@@ -191,7 +200,7 @@ def closed_form_truncation(
         return 0.5 * ((s - R) * np.sqrt(np.maximum(2 * R * s - s**2, 0.0))
                       + R**2 * np.arcsin(np.clip((s - R) / R, -1.0, 1.0)))  # fmt: skip
 
-    return a, 2.0 * mat.E_r * (prim(d) - prim(0.0))
+    return a, 2.0 * mat.contact_modulus * (prim(d) - prim(0.0))
 
 
 def storakers_constants(m: float) -> tuple[float, float]:
@@ -441,7 +450,7 @@ def bounds_summary(res: AsperityResult) -> dict[str, Any]:
         a, f = res.curves[name]
         out[f"area_ratio_to_{name}"] = (a_t[sel] / np.interp(f_t[sel], f, a)).tolist()
     mat = res.material
-    d_star = res.R * (3 * math.pi * mat.H / (2 * math.sqrt(2) * mat.E_r)) ** 2
+    d_star = res.R * (3 * math.pi * mat.H / (2 * math.sqrt(2) * mat.contact_modulus)) ** 2
     rh = np.asarray(out["area_ratio_to_hertz"])
     rp = np.asarray(out["area_ratio_to_plastic"])
     d = res.d[sel]

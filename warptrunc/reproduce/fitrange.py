@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from ..stiffness import fit_power_law
-from .analysis import D_KEYS, line_fit, power_fit
+from .analysis import D_KEYS, _line, _power
 from .paper import TABLE3
 
 __all__ = ["FRACTIONS", "MIN_PIXELS", "TOLERANCE", "fit_range_map", "refit_store"]
@@ -150,14 +150,14 @@ def fit_range_map(
         for k in D_KEYS:
             xs = [r["D_in"] if k == "in" else r["D"].get(k) for r in rows]
             pts = [(x, r["alpha"]) for x, r in zip(xs, rows, strict=True) if x is not None]
-            f = line_fit(*zip(*pts, strict=True)) if pts else None
+            f = _line(*zip(*pts, strict=True)) if pts else None
             if f is not None:
                 f["alpha_2_5"] = f["slope"] * 2.5 + f["intercept"]
                 f["slope_dev"] = _rel(f["slope"], paper[k]["slope"])
                 f["alpha_2_5_dev"] = _rel(f["alpha_2_5"], paper[k]["alpha_2_5"])
             alpha[name][k] = f
         rows = [r for r in r1 if r["range"] == name and r["beta"] is not None]
-        pf = power_fit([r["delta"] for r in rows], [r["beta"] for r in rows]) if rows else None
+        pf = _power([r["delta"] for r in rows], [r["beta"] for r in rows]) if rows else None
         if pf is not None:
             pf["minus_alpha"] = -float(np.mean([r["alpha"] for r in rows]))
             pf["p_dev"] = _rel(pf["p"], TABLE3["beta"][1])

@@ -7,13 +7,12 @@ Used by :func:`warptrunc.sweep.engines.compute_case` when ``bem_fractions`` is s
 
 from __future__ import annotations
 
-import math
 import time
 from typing import Any
 
 import numpy as np
 
-from ..stiffness import stiffness_curve
+from ..stiffness import flat_punch_stiffness, stiffness_curve
 from ..truncation import truncate
 from .grid import SweepOptions
 
@@ -87,7 +86,7 @@ def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str,
     z_top = np.float32(z.max())
     n_trunc = np.array([np.count_nonzero(z >= np.float32(z_top - v)) for v in d], dtype=np.int64)
     a_trunc = n_trunc * surface.pixel_area
-    k_trunc = o.beta_prime * (2.0 / math.sqrt(math.pi)) * contact_modulus * np.sqrt(a_trunc)
+    k_trunc = flat_punch_stiffness(np.sqrt(a_trunc), contact_modulus, beta_prime=o.beta_prime)
     deep = sc
     if d[-1] > sc.depth[-1]:
         tc = truncate(surface, o.increments, max_depth=float(d[-1]), device=device)

@@ -35,7 +35,8 @@ def linear_fit(x: Iterable[float], y: Iterable[float]) -> dict[str, float]:
     -------
     dict of str to float
         ``slope`` (unit of y per unit of x), ``intercept`` (unit of y) and Pearson ``r``
-        (dimensionless).
+        (dimensionless; NaN when y is constant). The one straight-line fit of warptrunc (power
+        laws: :func:`warptrunc.fit_power_law`).
 
     Examples
     --------
@@ -45,7 +46,7 @@ def linear_fit(x: Iterable[float], y: Iterable[float]) -> dict[str, float]:
     x = np.asarray(list(x), dtype=float)
     y = np.asarray(list(y), dtype=float)
     slope, intercept = np.polyfit(x, y, 1)
-    r = float(np.corrcoef(x, y)[0, 1])
+    r = float(np.corrcoef(x, y)[0, 1]) if np.ptp(y) > 0 else float("nan")
     return {"slope": float(slope), "intercept": float(intercept), "r": r}
 
 

@@ -16,7 +16,8 @@ from .curve import (
     depth_grid,
     height_range,
 )
-from .stream import StreamedTruncation, fits_in_memory, in_memory_bytes, wm_bands
+from .stream import StreamedTruncation, fits_in_memory, in_memory_bytes
+from .stream import wm_bands as wm_bands  # internal band generator, not in __all__
 
 __all__ = [
     "StreamedTruncation",
@@ -29,5 +30,4 @@ __all__ = [
     "height_range",
     "in_memory_bytes",
     "truncate",
-    "wm_bands",
 ]

@@ -32,7 +32,6 @@ __all__ = [
     "contact_index_map",
     "depth_grid",
     "height_range",
-    "truncate_surface",
 ]
 
 

@@ -52,11 +52,8 @@ from .curve import (
 
 __all__ = [
     "StreamedTruncation",
-    "banded_truncation",
-    "fits",
     "fits_in_memory",
     "in_memory_bytes",
-    "wm_bands",
 ]
 
 _DEFAULT_BAND_PIXELS = 2**28  # 1 GiB of float32 per band: a progress step every few ms on a GPU

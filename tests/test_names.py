@@ -1,0 +1,79 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""One name per quantity, one home per operation: the public face of the package, and the old
+names that keep working with a DeprecationWarning."""
+
+import importlib
+import math
+
+import numpy as np
+import pytest
+
+import warptrunc
+from warptrunc._public import public_modules
+
+
+def test_dir_is_the_public_api():
+    """dir(warptrunc) = __all__ ∪ the public top-level modules: no Any, sys, importlib …"""
+    top = {m.split(".")[1] for m in public_modules() if m.count(".") >= 1}
+    assert warptrunc._SUBMODULES == top | {"cli"}  # cli: public, documented by --help
+    assert set(dir(warptrunc)) == set(warptrunc.__all__) | warptrunc._SUBMODULES
+    for leaked in ("Any", "TYPE_CHECKING", "importlib", "sys", "types", "annotations"):
+        assert leaked not in dir(warptrunc)
+    for name in warptrunc._SUBMODULES:  # each listed module is reachable
+        assert importlib.import_module(f"warptrunc.{name}") is not None
+
+
+@pytest.mark.parametrize(
+    "name, module",
+    [("wm_surface", "warptrunc.wm"), ("truncate", "warptrunc.truncation"),
+     ("label_islands", "warptrunc.islands"), ("fit_power_law", "warptrunc.stiffness"),
+     ("solve_contact", "warptrunc.contact")],
+)  # fmt: skip
+def test_one_public_function_per_operation_at_the_top(name, module):
+    assert name in warptrunc.__all__
+    assert getattr(warptrunc, name) is getattr(importlib.import_module(module), name)
+
+
+def test_reproduce_fits_are_deprecated_aliases_of_the_one_fit():
+    import warptrunc.reproduce.analysis as a
+
+    assert "power_fit" not in a.__all__ and "line_fit" not in a.__all__
+    x = np.array([0.01, 0.02, 0.04, 0.08])
+    y = 0.0386 * x**-1.122  # the paper's Table 3 β(δ)
+    with pytest.warns(DeprecationWarning, match="fit_power_law"):
+        f = a.power_fit(x, y)
+    assert f["p"] == pytest.approx(-1.122, rel=1e-12) and f["b"] == pytest.approx(0.0386)
+    with pytest.warns(DeprecationWarning, match="linear_fit"):
+        g = a.line_fit([2.1, 2.5, 2.9], [0.40, 0.45, 0.50])
+    assert g["slope"] == pytest.approx(0.125) and g["n"] == 3
+
+
+def test_asperity_contact_modulus_renamed():
+    from warptrunc.reproduce.asperity import AsperityMaterial
+
+    m = AsperityMaterial(E=70e9, nu=0.33)
+    assert m.contact_modulus == pytest.approx(70e9 / (1 - 0.33**2), rel=1e-15)
+    with pytest.warns(DeprecationWarning, match="contact_modulus"):
+        assert m.E_r == m.contact_modulus
+
+
+def test_no_other_name_for_the_contact_modulus():
+    """E* is called contact_modulus in the code: no reduced_modulus/e_star/E_r identifiers
+    outside their deprecated aliases."""
+    import ast
+    import pathlib
+
+    bad = {"reduced_modulus", "e_star", "estar", "E_star", "Estar", "E_r", "Er", "E_red"}
+    root = pathlib.Path(warptrunc.__file__).parent
+    hits = []
+    for path in root.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            name = getattr(node, "id", None) or getattr(node, "attr", None) or getattr(node, "arg", None)
+            if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+                name = node.name
+            if name in bad:
+                hits.append(f"{path.relative_to(root)}:{node.lineno}: {name}")
+    allowed = {"material.py", "reproduce/asperity.py"}  # the deprecated properties themselves
+    assert [h for h in hits if h.split(":")[0] not in allowed] == []
+    assert math.isfinite(warptrunc.Material().contact_modulus)
