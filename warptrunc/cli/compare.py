@@ -110,11 +110,11 @@ def run(args: argparse.Namespace) -> int:
     fractions, dtype, cases, surface = args.fractions, args.dtype, None, None
     prof = None
     if args.profile is not None:
-        from ..reproduce.elastic import _cases
+        from ..reproduce.elastic import profile_cases
         from ..reproduce.profiles import PROFILES
 
         prof = PROFILES[args.profile]
-        cases, fractions, dtype = _cases(prof), list(prof.elastic_fractions), prof.elastic_dtype
+        cases, fractions, dtype = profile_cases(prof), list(prof.elastic_fractions), prof.elastic_dtype
         material = Material()
     elif args.input is not None:
         surface = read_input(args.input, args)

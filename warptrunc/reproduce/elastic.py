@@ -30,7 +30,14 @@ import numpy as np
 
 from .profiles import Profile
 
-__all__ = ["GOOD", "analyse_elastic", "stage_elastic", "stage_params", "summary_from_rows"]
+__all__ = [
+    "GOOD",
+    "analyse_elastic",
+    "profile_cases",
+    "stage_elastic",
+    "stage_params",
+    "summary_from_rows",
+]
 
 GOOD = 0.2
 """abs(model/BEM − 1) ≤ GOOD counts as "within ±20 %" in the section's sentences."""
@@ -48,7 +55,19 @@ def default_material():
     return Material()
 
 
-def _cases(p: Profile) -> list[dict[str, Any]]:
+def profile_cases(p: Profile) -> list[dict[str, Any]]:
+    """The WM cases of a profile's ``elastic`` stage.
+
+    Parameters
+    ----------
+    p : Profile
+        The reproduction profile.
+
+    Returns
+    -------
+    list of dict
+        One case per (D, grid, seed), as :func:`warptrunc.compare.study_cases` makes them.
+    """
     from ..compare import study_cases
 
     return study_cases(
@@ -100,7 +119,7 @@ def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
 
     store = Path(out) / SUBDIR
     rows = compare_study(
-        store, _cases(p), fractions=p.elastic_fractions, material=default_material(),
+        store, profile_cases(p), fractions=p.elastic_fractions, material=default_material(),
         dtype=p.elastic_dtype, overwrite=True, progress=True, device=device,
     )  # fmt: skip
     return summary_from_rows(rows, store=SUBDIR)
