@@ -44,7 +44,7 @@ from ..stiffness import (
     island_stiffness_curve,
     stiffness_curve,
 )
-from ..truncation import truncate
+from ..truncation.api import truncate
 from ..truncation.stream import as_wm_spec, banded_truncation, fits_in_memory
 from ._common import (
     add_device,
@@ -231,7 +231,7 @@ def _islands(args: argparse.Namespace, curve, material: Material, path: dict):
         return None, None
     if want is False:
         return None, None
-    from ..islands import island_curve
+    from ..islands.depths import island_curve
 
     s = args._truncated_surface
     ic = island_curve(

@@ -47,7 +47,7 @@ HELP = "Eq. 2, island-resolved truncation and elastic BEM on the same maps (stud
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc compare``."""
-    from ..compare import DEFAULT_FRACTIONS
+    from ..compare.models import DEFAULT_FRACTIONS
     from ..reproduce.profiles import PROFILES
 
     s = p.add_argument_group("surfaces: your map, a WM study, or a reproduce profile")
@@ -96,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study and write the summary."""
     from .._support.atomic import strict_json
     from .._support.results import write_atomic
-    from ..compare import compare_study, study_cases, summarize
+    from ..compare.study import compare_study, study_cases, summarize
     from ..stiffness import Material
     try:
         import pandas  # noqa: F401

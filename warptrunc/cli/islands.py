@@ -20,8 +20,9 @@ import math
 from pathlib import Path
 
 from .._support.atomic import staged_output, strict_json
-from ..islands import MIN_PIXELS, IslandCurve, applicable_depth, island_curve
-from ..islands.results import MIN_ISLANDS
+from ..islands.depths import island_curve
+from ..islands.fits import applicable_depth
+from ..islands.results import MIN_ISLANDS, MIN_PIXELS, IslandCurve
 from ._common import (
     add_device,
     add_out,

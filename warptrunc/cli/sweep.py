@@ -20,8 +20,10 @@ import argparse
 import signal
 import sys
 
-from ..sweep import SweepGrid, alpha_summary, load, run_sweep
-from ..sweep.read import require_extra
+from ..sweep.grid import SweepGrid
+from ..sweep.read import load, require_extra
+from ..sweep.run import run_sweep
+from ..sweep.stats import alpha_summary
 from ._common import add_device, add_out, add_wm_shape, input_file, integer, positive, real
 from .analyze import add_fit_options, add_truncation_options
 

@@ -9,7 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from ..islands import MIN_PIXELS, slit_island_fit
+from ..islands.fits import slit_island_fit
+from ..islands.results import MIN_PIXELS
 from ._style import (
     UM,
     finish_figure,

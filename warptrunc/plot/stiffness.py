@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ..sweep import alpha_summary
+from ..sweep.stats import alpha_summary
 from ._style import (
     PAPER_ALPHA_D,
     SPREAD_ALPHA,

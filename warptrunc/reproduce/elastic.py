@@ -68,7 +68,7 @@ def profile_cases(p: Profile) -> list[dict[str, Any]]:
     list of dict
         One case per (D, grid, seed), as :func:`warptrunc.compare.study_cases` makes them.
     """
-    from ..compare import study_cases
+    from ..compare.study import study_cases
 
     return study_cases(
         D=p.elastic_D, size_ratios=p.elastic_size_ratios, pixels_per_Wr=p.elastic_pixels_per_Wr,
@@ -115,7 +115,7 @@ def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
     dict
         :func:`summary_from_rows` of the study's rows.
     """
-    from ..compare import compare_study
+    from ..compare.study import compare_study
 
     store = Path(out) / SUBDIR
     rows = compare_study(
@@ -141,7 +141,7 @@ def summary_from_rows(rows, store: str = SUBDIR) -> dict[str, Any]:
         Counts, grids, the two summary tables of :func:`warptrunc.compare.summarize` as
         records, the grid-convergence pairs and mean times per map size (JSON-able).
     """
-    from ..compare import summarize
+    from ..compare.study import summarize
 
     s = summarize(rows)
     conv = rows["converged"].astype(bool)

@@ -29,7 +29,7 @@ import warp as wp
 from .._support.device import resolve_device
 from .._support.progress import progress_bar
 from ..stiffness import fit_power_law, stiffness_curve
-from ..truncation import truncate
+from ..truncation.api import truncate
 from ..wm import wm_surface
 from .batch import WMBatch, batch_size
 from .curves import part_name, part_rows, write_part
