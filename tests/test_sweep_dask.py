@@ -255,6 +255,30 @@ def test_worker_killed_after_writing_its_part_part_kept(tmp_path, client, dask_r
     assert sorted(case_ids_on_disk(out)) == sorted(df.case_id.unique())
 
 
+def test_worker_device_is_a_stable_function_of_its_name():
+    """The same name gives the same device in every process, whatever PYTHONHASHSEED is."""
+    import subprocess
+    import sys
+    import zlib
+
+    from warptrunc.sweep.engines import pinned_device
+
+    assert pinned_device("gpu-worker-3", 4) == "cuda:3"  # a trailing index is the index
+    assert pinned_device("worker-7", 4) == "cuda:3"
+    assert pinned_device(-5, 4) == "cuda:1"
+    names = ["alpha", "tcp-worker", "ß-node"]
+    expected = [f"cuda:{zlib.crc32(n.encode('utf-8')) % 3}" for n in names]
+    code = (
+        "from warptrunc.sweep.engines import pinned_device;"
+        f"print([pinned_device(n, 3) for n in {names!r}])"
+    )
+    for seed in ("1", "2", "12345"):
+        env = {**os.environ, "PYTHONHASHSEED": seed}
+        r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                           text=True, timeout=120, check=True)  # fmt: skip
+        assert r.stdout.strip() == repr(expected)
+
+
 @pytest.mark.timeout(120)
 def test_workers_pinned_one_device_each(client):
     from warptrunc.sweep.cluster import PinDevice
