@@ -56,17 +56,17 @@ def default_material():
 
 
 def profile_cases(p: Profile) -> list[dict[str, Any]]:
-    """The WM cases of a profile's ``elastic`` stage.
+    """The WM cases of a profile's ``elastic`` stage, one per (D, grid, seed).
 
     Parameters
     ----------
     p : Profile
-        The reproduction profile.
+        Its ``elastic_*`` fields and ``Wr`` (m) set the cases.
 
     Returns
     -------
     list of dict
-        One case per (D, grid, seed), as :func:`warptrunc.compare.study_cases` makes them.
+        The cases as :func:`warptrunc.compare.study_cases` makes them.
     """
     from ..compare.study import study_cases
 
