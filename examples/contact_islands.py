@@ -127,13 +127,7 @@ def main(argv=None) -> int:
                       path=args.out / "slit_islands.png")  # fmt: skip
     print(f"wrote {args.out}/summary.json, islands_seed*.csv, island_number.png, slit_islands.png")
     if not args.no_show:  # pragma: no cover - interactive use only
-        import matplotlib.pyplot as plt
-
-        for name in ("island_number.png", "slit_islands.png"):
-            plt.figure()
-            plt.imshow(plt.imread(args.out / name))
-            plt.axis("off")
-        plt.show()
+        plot.show_pngs([args.out / "island_number.png", args.out / "slit_islands.png"])
     return 0
 
 

@@ -81,44 +81,6 @@ def _slow_cases_plugin():
     return SlowCases()
 
 
-@pytest.mark.timeout(300)
-def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_reference):
-    import threading
-
-    client.register_plugin(_slow_cases_plugin())  # a local class: pickled by value
-    out = tmp_path / "s"
-    box = {}
-
-    def sweep():
-        try:
-            box["df"] = run_sweep(DASK_GRID, out, scheduler=client, progress=False, device="cpu",
-                                  **OPTS)  # fmt: skip
-        except BaseException as exc:  # pragma: no cover - reported below
-            box["exc"] = exc
-
-    def wait_for(k):
-        t0 = time.monotonic()
-        while len(case_ids_on_disk(out)) < k and th.is_alive():
-            assert time.monotonic() - t0 < 200
-            time.sleep(0.01)
-        return len(case_ids_on_disk(out))
-
-    th = threading.Thread(target=sweep)
-    th.start()
-    done_at_kill = wait_for(1)
-    pids = client.run(os.getpid)
-    os.kill(next(iter(pids.values())), signal.SIGKILL)  # one worker process dies
-    done_at_restart = wait_for(done_at_kill + 2)
-    client.restart()  # every worker dies; running cases are cancelled and submitted again
-    th.join(240)
-    assert not th.is_alive() and "exc" not in box, box.get("exc")
-    assert done_at_kill < 8 and done_at_restart < 8, "the kills came after the sweep finished"
-    df = box["df"]
-    assert not df.duplicated(["case_id", "min_pixels"]).any()
-    pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))
-    pd.testing.assert_frame_equal(load(out), df)
-
-
 def _sweep_in_thread(out, **kw):
     """Start run_sweep in a thread; returns (thread, box, wait_for(k cases in parts))."""
     import threading
@@ -142,6 +104,25 @@ def _sweep_in_thread(out, **kw):
 
     th.start()
     return th, box, wait_for
+
+
+@pytest.mark.timeout(300)
+def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_reference):
+    client.register_plugin(_slow_cases_plugin())  # a local class: pickled by value
+    out = tmp_path / "s"
+    th, box, wait_for = _sweep_in_thread(out, scheduler=client)
+    done_at_kill = wait_for(1)
+    pids = client.run(os.getpid)
+    os.kill(next(iter(pids.values())), signal.SIGKILL)  # one worker process dies
+    done_at_restart = wait_for(done_at_kill + 2)
+    client.restart()  # every worker dies; running cases are cancelled and submitted again
+    th.join(240)
+    assert not th.is_alive() and "exc" not in box, box.get("exc")
+    assert done_at_kill < 8 and done_at_restart < 8, "the kills came after the sweep finished"
+    df = box["df"]
+    assert not df.duplicated(["case_id", "min_pixels"]).any()
+    pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))
+    pd.testing.assert_frame_equal(load(out), df)
 
 
 @pytest.mark.timeout(300)

@@ -75,6 +75,33 @@ def finish_axes(
     return finish_figure(fig, path)
 
 
+def show_pngs(
+    paths: Any, *, figsize: tuple[float, float] | None = None, titles: bool = False
+) -> None:
+    """Open saved PNG figures in matplotlib windows and block until they are closed.
+
+    The last step of the examples (skipped with ``--no-show``); needs a display.
+
+    Parameters
+    ----------
+    paths : sequence of str or Path
+        PNG files, one window each.
+    figsize : (float, float), optional
+        Window size (inches); matplotlib's default when None.
+    titles : bool
+        Title each window with its file name.
+    """
+    import matplotlib.pyplot as plt
+
+    for p in paths:
+        plt.figure(figsize=figsize)
+        plt.imshow(plt.imread(p))
+        plt.axis("off")
+        if titles:
+            plt.title(Path(p).name)
+    plt.show()
+
+
 def as_list(x: Any) -> list:
     """A single result object or a sequence of them, as a list."""
     return list(x) if isinstance(x, (list, tuple)) else [x]
