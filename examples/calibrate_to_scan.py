@@ -89,14 +89,7 @@ def main(argv=None) -> int:
     )  # fmt: skip
     print(f"wrote {path}, {args.out}/calibration.json, calibration_history.png, psd.png")
     if not args.no_show:
-        import matplotlib.pyplot as plt
-        from matplotlib.image import imread
-
-        for fig_name in ("calibration_history.png", "psd.png"):
-            plt.figure()
-            plt.imshow(imread(args.out / fig_name))
-            plt.axis("off")
-        plt.show()
+        plot.show_pngs([args.out / "calibration_history.png", args.out / "psd.png"])
     return 0
 
 

@@ -35,7 +35,6 @@ from pathlib import Path
 
 import numpy as np
 
-from warptrunc.cli.islands import write_csv
 from warptrunc.islands import applicable_depth, island_curve
 from warptrunc.wm import wm_surface
 
@@ -78,7 +77,7 @@ def main(argv=None) -> int:
             progress=args.progress, device=args.device,
         )  # fmt: skip
         ind = applicable_depth(c, min_islands=min_islands)
-        write_csv(c, args.out / f"islands_seed{seed}.csv")
+        c.to_csv(args.out / f"islands_seed{seed}.csv")
         curves.append(c)
         inds.append(ind)
         rows.append({"seed": seed, "seconds": time.perf_counter() - t0, **ind.to_dict()})
@@ -128,13 +127,7 @@ def main(argv=None) -> int:
                       path=args.out / "slit_islands.png")  # fmt: skip
     print(f"wrote {args.out}/summary.json, islands_seed*.csv, island_number.png, slit_islands.png")
     if not args.no_show:  # pragma: no cover - interactive use only
-        import matplotlib.pyplot as plt
-
-        for name in ("island_number.png", "slit_islands.png"):
-            plt.figure()
-            plt.imshow(plt.imread(args.out / name))
-            plt.axis("off")
-        plt.show()
+        plot.show_pngs([args.out / "island_number.png", args.out / "slit_islands.png"])
     return 0
 
 

@@ -143,7 +143,7 @@ def main(argv=None) -> int:
 
     print("wrote " + ", ".join(str(w) for w in written))
     if not args.no_show:
-        _show(written)
+        plot.show_pngs(written, figsize=(7, 5.5), titles=True)
     return 0
 
 
@@ -152,17 +152,6 @@ def _fit(curve):
         return fit_power_law(curve)
     except ValueError:  # too few increments with ≥ 10 contact pixels: left out, not hidden
         return None
-
-
-def _show(paths) -> None:
-    import matplotlib.pyplot as plt
-
-    for p in paths:
-        plt.figure(figsize=(7, 5.5))
-        plt.imshow(plt.imread(p))
-        plt.axis("off")
-        plt.title(p.name)
-    plt.show()
 
 
 if __name__ == "__main__":

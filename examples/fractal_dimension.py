@@ -94,14 +94,7 @@ def main(argv=None) -> int:
     )
     print(f"wrote {args.out}/d_out_vs_d_in.png, fractal_fits.png, fractal_dimension.json")
     if not args.no_show:
-        import matplotlib.pyplot as plt
-        from matplotlib.image import imread
-
-        for name in ("d_out_vs_d_in.png", "fractal_fits.png"):
-            plt.figure()
-            plt.imshow(imread(args.out / name))
-            plt.axis("off")
-        plt.show()
+        plot.show_pngs([args.out / "d_out_vs_d_in.png", args.out / "fractal_fits.png"])
     return 0
 
 

@@ -63,11 +63,7 @@ def main(argv=None) -> int:
     )
     print(f"wrote {args.out}/curve.csv, fit.json, stiffness.png")
     if not args.no_show:  # pragma: no cover - interactive use only
-        import matplotlib.pyplot as plt
-
-        plt.imshow(plt.imread(args.out / "stiffness.png"))
-        plt.axis("off")
-        plt.show()
+        plot.show_pngs([args.out / "stiffness.png"])
     return 0
 
 

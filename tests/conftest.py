@@ -38,6 +38,20 @@ def device(request) -> str:
 SCANS = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "scans"
 
 
+@pytest.fixture(scope="module")
+def quiet_surfacetopography():
+    """Import SurfaceTopography once with its ImportWarning (no mpi4py) silenced; modules that
+    read scans use it (``pytestmark = pytest.mark.usefixtures("quiet_surfacetopography")``)."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ImportWarning)
+        try:
+            import SurfaceTopography  # noqa: F401
+        except ImportError:
+            pass
+
+
 @pytest.fixture
 def scans_dir() -> Path:
     """../shared/data/scans beside the checkout; skips when absent (users' clones)."""

@@ -542,3 +542,22 @@ def test_sqrt_area_sum_absent_without_statistics():
     assert ic.sqrt_area_sum is None
     with pytest.raises(ValueError, match="statistics=True"):
         island_stiffness_curve(ic)
+
+
+def test_island_curve_csv_reads_back(tmp_path):
+    """islands.csv: the to_dict columns, floats to the last bit, counts as integers."""
+    import csv
+
+    z = np.random.default_rng(4).normal(size=(48, 40))
+    c = island_curve(warptrunc.from_heights(z, 1e-6), 30, max_depth_fraction=0.5, device="cpu")
+    with open(c.to_csv(tmp_path / "i.csv"), newline="") as fh:
+        rows = list(csv.reader(fh))
+    cols = c.to_dict()
+    assert rows[0] == list(cols)
+    assert len(rows) == c.depth.size + 1
+    for j, (name, v) in enumerate(cols.items()):
+        got = [r[j] for r in rows[1:]]
+        if v.dtype.kind == "i":
+            assert got == [str(int(x)) for x in v], name
+        else:
+            np.testing.assert_array_equal(np.array(got, dtype=np.float64), v, err_msg=name)

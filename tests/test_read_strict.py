@@ -23,17 +23,7 @@ EXPECTED = (ValueError, FileNotFoundError, MissingExtraError)
 """The documented exception types of the readers (MissingExtraError is a ValueError too)."""
 
 
-@pytest.fixture(autouse=True, scope="module")
-def _quiet_surfacetopography():
-    """Import SurfaceTopography once with its ImportWarning (no mpi4py) silenced."""
-    import warnings
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ImportWarning)
-        try:
-            import SurfaceTopography  # noqa: F401
-        except ImportError:
-            pass
+pytestmark = pytest.mark.usefixtures("quiet_surfacetopography")
 
 
 # --- 4. never misread --------------------------------------------------------------------------

@@ -37,17 +37,7 @@ def leftovers(root: Path) -> list[Path]:
     return [p for p in root.rglob("*") if "partial" in p.name or ".tmp" in p.name]
 
 
-@pytest.fixture(autouse=True, scope="module")
-def _quiet_surfacetopography():
-    """Import SurfaceTopography once with its ImportWarning (no mpi4py) silenced."""
-    import warnings
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ImportWarning)
-        try:
-            import SurfaceTopography  # noqa: F401
-        except ImportError:
-            pass
+pytestmark = pytest.mark.usefixtures("quiet_surfacetopography")
 
 
 # --- 1. strict JSON ---------------------------------------------------------------------------

@@ -451,7 +451,7 @@ def test_elastic_columns_match_the_contact_solver(tmp_path):
 
 
 def test_unconverged_solve_flagged_not_dropped(tmp_path, monkeypatch):
-    import warptrunc.contact as contact
+    import warptrunc.contact.curve as contact
 
     real = contact.solve_contact
     monkeypatch.setattr(contact, "solve_contact", lambda *a, **kw: real(*a, **{**kw, "maxiter": 1}))

@@ -81,44 +81,6 @@ def _slow_cases_plugin():
     return SlowCases()
 
 
-@pytest.mark.timeout(300)
-def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_reference):
-    import threading
-
-    client.register_plugin(_slow_cases_plugin())  # a local class: pickled by value
-    out = tmp_path / "s"
-    box = {}
-
-    def sweep():
-        try:
-            box["df"] = run_sweep(DASK_GRID, out, scheduler=client, progress=False, device="cpu",
-                                  **OPTS)  # fmt: skip
-        except BaseException as exc:  # pragma: no cover - reported below
-            box["exc"] = exc
-
-    def wait_for(k):
-        t0 = time.monotonic()
-        while len(case_ids_on_disk(out)) < k and th.is_alive():
-            assert time.monotonic() - t0 < 200
-            time.sleep(0.01)
-        return len(case_ids_on_disk(out))
-
-    th = threading.Thread(target=sweep)
-    th.start()
-    done_at_kill = wait_for(1)
-    pids = client.run(os.getpid)
-    os.kill(next(iter(pids.values())), signal.SIGKILL)  # one worker process dies
-    done_at_restart = wait_for(done_at_kill + 2)
-    client.restart()  # every worker dies; running cases are cancelled and submitted again
-    th.join(240)
-    assert not th.is_alive() and "exc" not in box, box.get("exc")
-    assert done_at_kill < 8 and done_at_restart < 8, "the kills came after the sweep finished"
-    df = box["df"]
-    assert not df.duplicated(["case_id", "min_pixels"]).any()
-    pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))
-    pd.testing.assert_frame_equal(load(out), df)
-
-
 def _sweep_in_thread(out, **kw):
     """Start run_sweep in a thread; returns (thread, box, wait_for(k cases in parts))."""
     import threading
@@ -142,6 +104,25 @@ def _sweep_in_thread(out, **kw):
 
     th.start()
     return th, box, wait_for
+
+
+@pytest.mark.timeout(300)
+def test_worker_killed_and_cluster_restarted_mid_sweep(tmp_path, client, dask_reference):
+    client.register_plugin(_slow_cases_plugin())  # a local class: pickled by value
+    out = tmp_path / "s"
+    th, box, wait_for = _sweep_in_thread(out, scheduler=client)
+    done_at_kill = wait_for(1)
+    pids = client.run(os.getpid)
+    os.kill(next(iter(pids.values())), signal.SIGKILL)  # one worker process dies
+    done_at_restart = wait_for(done_at_kill + 2)
+    client.restart()  # every worker dies; running cases are cancelled and submitted again
+    th.join(240)
+    assert not th.is_alive() and "exc" not in box, box.get("exc")
+    assert done_at_kill < 8 and done_at_restart < 8, "the kills came after the sweep finished"
+    df = box["df"]
+    assert not df.duplicated(["case_id", "min_pixels"]).any()
+    pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))
+    pd.testing.assert_frame_equal(load(out), df)
 
 
 @pytest.mark.timeout(300)
@@ -253,6 +234,30 @@ def test_worker_killed_after_writing_its_part_part_kept(tmp_path, client, dask_r
     pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))
     assert set(died["stamps"]) <= set(df["finished_utc"])  # the dead worker's results, kept
     assert sorted(case_ids_on_disk(out)) == sorted(df.case_id.unique())
+
+
+def test_worker_device_is_a_stable_function_of_its_name():
+    """The same name gives the same device in every process, whatever PYTHONHASHSEED is."""
+    import subprocess
+    import sys
+    import zlib
+
+    from warptrunc.sweep.engines import pinned_device
+
+    assert pinned_device("gpu-worker-3", 4) == "cuda:3"  # a trailing index is the index
+    assert pinned_device("worker-7", 4) == "cuda:3"
+    assert pinned_device(-5, 4) == "cuda:1"
+    names = ["alpha", "tcp-worker", "ß-node"]
+    expected = [f"cuda:{zlib.crc32(n.encode('utf-8')) % 3}" for n in names]
+    code = (
+        "from warptrunc.sweep.engines import pinned_device;"
+        f"print([pinned_device(n, 3) for n in {names!r}])"
+    )
+    for seed in ("1", "2", "12345"):
+        env = {**os.environ, "PYTHONHASHSEED": seed}
+        r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                           text=True, timeout=120, check=True)  # fmt: skip
+        assert r.stdout.strip() == repr(expected)
 
 
 @pytest.mark.timeout(120)

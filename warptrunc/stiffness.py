@@ -28,7 +28,7 @@ from ._support.results import fields_to_dict
 from ._support.table import write_columns_csv
 from ._support.validate import check_int, check_range
 from .material import Material
-from .truncation import TruncationCurve
+from .truncation.curve import TruncationCurve
 
 __all__ = [
     "DEFAULT_MIN_PIXELS",

@@ -34,20 +34,8 @@ from __future__ import annotations
 import argparse
 import threading
 
-import numpy as np
-
 from .._support.atomic import staged_output, strict_json
-from .._support.device import resolve_device
-from ..robust import clip_to_percentiles
-from ..stiffness import (
-    DEFAULT_MIN_PIXELS,
-    Material,
-    fit_power_law,
-    island_stiffness_curve,
-    stiffness_curve,
-)
-from ..truncation import truncate
-from ..truncation.stream import banded_truncation, fits_in_memory
+from ..stiffness import DEFAULT_MIN_PIXELS
 from ._common import (
     add_device,
     add_material,
@@ -165,6 +153,8 @@ def _preload_plotting() -> threading.Thread:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse and write the outputs."""
+    from ..analysis import FitRangeError, analyze
+
     if args.depth_window is not None and not args.depth_window[0] < args.depth_window[1]:
         lo, hi = args.depth_window
         raise ValueError(f"--depth-window LO HI needs LO < HI (m), got {lo!r} {hi!r}")
@@ -173,24 +163,29 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--rt-percentile LO HI needs LO < HI (%), got {rtp[0]!r} {rtp[1]!r}")
     if args.islands and args.stream:
         raise ValueError("--islands needs the map in memory; a streamed map has no island pass")
+    if args.stream and args.input is not None:
+        raise ValueError(f"--stream applies to generated surfaces, not to --input {args.input}")
+    if args.stream and rtp is not None:
+        raise ValueError("--rt-percentile needs the map in memory; it cannot be streamed")
     material = material_from_args(args)
     preload = None if args.no_plot else _preload_plotting()
-    curve, meta, path = _truncation(args)
-    nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
-    sc = stiffness_curve(curve, material, beta_prime=args.beta_prime)
+    source = surface_from_args(args) if args.input is not None else wm_spec_from_args(args)
     try:
-        fit = fit_power_law(sc, min_pixels=args.min_pixels, depth_window=args.depth_window)
-    except ValueError as exc:
+        a = analyze(
+            source, args.increments, max_depth=args.max_depth,
+            max_depth_fraction=args.max_depth_fraction, material=material,
+            beta_prime=args.beta_prime, min_pixels=args.min_pixels,
+            depth_window=args.depth_window, rt_percentile=rtp, islands=args.islands,
+            connectivity=args.connectivity, stream=True if args.stream else "auto",
+            band_rows=args.band_rows, device=args.device,
+        )  # fmt: skip
+    except FitRangeError as exc:
         raise ValueError(_fit_range_message(exc, args)) from None
-    isl, isl_fit = _islands(args, curve, material, path)
-    info = {**fit.to_dict(), "surface": meta, "material": material.__dict__, **path}
-    info["islands"] = None if isl_fit is None else {
-        **isl_fit.to_dict(), "model": "k = β'(2/√π)E*·Σ_i √A_i, one flat punch per island",
-        "connectivity": args.connectivity,
-    }  # fmt: skip
+    curve, sc, fit, meta = a.curve, a.stiffness, a.fit, a.surface
+    nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
     with staged_output(args.out) as out:  # all or nothing
-        sc.to_csv(out / "curve.csv", islands=isl)
-        (out / "fit.json").write_text(strict_json(info))
+        sc.to_csv(out / "curve.csv", islands=a.islands)
+        (out / "fit.json").write_text(strict_json(a.summary()))
         if not args.no_plot:
             preload.join()
             from .. import plot
@@ -201,44 +196,17 @@ def run(args: argparse.Namespace) -> int:
             )  # fmt: skip
             plot.area_fraction(curve, log=True, path=out / "area_fraction.png")
     print(
-        f"{nx}×{ny} surface ({_describe(path)}), R_t = {Rt * 1e6:.4g} µm; "
+        f"{nx}×{ny} surface ({_describe(a.path)}), R_t = {Rt * 1e6:.4g} µm; "
         f"{args.increments} increments to "
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; final contact {curve.area_fraction[-1]:.3%} of A\n"
         f"E_c/E* = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}, "
         f"{fit.n_points} increments with ≥ {fit.min_pixels} contact pixels)\n"
-        + _islands_note(isl_fit)
+        + _islands_note(a.islands_fit)
         + _clip_note(meta)
         + f"wrote {args.out}/curve.csv, fit.json"
         + ("" if args.no_plot else ", stiffness.png, area_fraction.png")
     )
     return 0
-
-
-def _islands(args: argparse.Namespace, curve, material: Material, path: dict):
-    """(island-resolved StiffnessCurve, its fit) or (None, None) when off or streamed."""
-    want = args.islands
-    if path["path"] == "streamed":
-        if want:
-            raise ValueError("--islands needs the map in memory; a streamed map has no island pass")
-        return None, None
-    if want is False:
-        return None, None
-    from ..islands import island_curve
-
-    s = args._truncated_surface
-    ic = island_curve(
-        s, args.increments, max_depth=args.max_depth, max_depth_fraction=args.max_depth_fraction,
-        connectivity=args.connectivity, statistics=True, device=args.device,
-    )  # fmt: skip
-    if not (np.array_equal(ic.depth, curve.depth)
-            and np.array_equal(ic.n_contact_pixels, curve.n_contact_pixels)):  # fmt: skip
-        raise RuntimeError("internal error: island pass and truncation disagree on the depths")
-    isl = island_stiffness_curve(ic, material, beta_prime=args.beta_prime)
-    try:
-        fit = fit_power_law(isl, min_pixels=args.min_pixels, depth_window=args.depth_window)
-    except ValueError:  # same range as Eq. 2's fit, which succeeded: cannot happen
-        fit = None
-    return isl, fit
 
 
 def _islands_note(fit) -> str:
@@ -259,11 +227,12 @@ def _clip_note(meta: dict) -> str:
     )
 
 
-def _fit_range_message(exc: ValueError, args: argparse.Namespace) -> str:
-    """The fit's error with the option values that would work for this map."""
+def _fit_range_message(exc, args: argparse.Namespace) -> str:
+    """The fit's error (a ``FitRangeError``) with the option values that would work for
+    this map."""
     from ..robust import fit_range_advice
 
-    s = getattr(args, "_truncated_surface", None)
+    s = exc.surface
     msg = str(exc).split("; need at least")[0]
     msg = msg.replace("(min_pixels=", "(--min-pixels ").replace(", depth_window=None", "")
     msg = msg.replace(", depth_window=", ", --depth-window ")
@@ -281,47 +250,8 @@ def _fit_range_message(exc: ValueError, args: argparse.Namespace) -> str:
     return f"{msg}; need at least 3; for this map any one of these works: " + "; ".join(advice)
 
 
-_TOO_BIG = "the map needs more than half of the free memory"
-
-
 def _describe(path: dict) -> str:
     if path["path"] == "streamed":
         st = path["streaming"]
         return f"streamed: {st['n_bands']} bands of {st['band_rows']} rows, {st['reason']}"
     return "in memory"
-
-
-def _truncation(args: argparse.Namespace):
-    """(curve, surface metadata, {"path": ...}): in memory, or streamed by row bands."""
-    if args.input is not None or not _wants_stream(args):
-        if args.stream:
-            raise ValueError(f"--stream applies to generated surfaces, not to --input {args.input}")
-        s = surface_from_args(args)
-        if getattr(args, "rt_percentile", None) is not None:
-            s = clip_to_percentiles(s, *args.rt_percentile)
-        args._truncated_surface = s  # for the advice when the fit range is empty
-        curve = truncate(
-            s, args.increments, max_depth=args.max_depth,
-            max_depth_fraction=args.max_depth_fraction, device=args.device,
-        )  # fmt: skip
-        return curve, s.to_dict(), {"path": "in-memory"}
-    if getattr(args, "rt_percentile", None) is not None:
-        raise ValueError("--rt-percentile needs the map in memory; it cannot be streamed")
-
-    st = banded_truncation(
-        wm_spec_from_args(args).terms(), args.increments, max_depth=args.max_depth,
-        max_depth_fraction=args.max_depth_fraction, band_rows=args.band_rows,
-        device=resolve_device(args.device), progress=True,
-    )  # fmt: skip
-    reason = "--stream given" if args.stream else _TOO_BIG
-    info = {"band_rows": st.band_rows, "n_bands": st.n_bands, "reason": reason}
-    return st.curve, st.surface, {"path": "streamed", "streaming": info}
-
-
-def _wants_stream(args: argparse.Namespace) -> bool:
-    if args.input is not None:
-        return bool(args.stream)
-    if args.stream:
-        return True
-
-    return not fits_in_memory(wm_spec_from_args(args), args.device)

@@ -110,7 +110,7 @@ def _rng(r: list[float] | None) -> str:
 def run(args: argparse.Namespace) -> int:
     """Run the comparison and write the outputs."""
     from ..contact.check import bem_check, require_bem
-    from ..plot import plot_bem_check
+    from ..plot.bem import plot_bem_check
 
     if args.stiffness == "barber" and args.solver != "warptrunc":
         print(f"warptrunc {NAME}: error: --stiffness barber needs --solver warptrunc",

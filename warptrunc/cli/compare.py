@@ -53,7 +53,7 @@ STUDY_D = (2.1, 2.5, 2.9)
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc compare``."""
-    from ..compare import APPROACH_FRACTIONS
+    from ..compare.models import APPROACH_FRACTIONS
     from ..reproduce.profiles import PROFILES
 
     s = p.add_argument_group("surfaces: your map, a WM study, or a reproduce profile")
@@ -100,7 +100,7 @@ def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study and write the summary."""
     from .._support.atomic import strict_json
     from .._support.results import write_atomic
-    from ..compare import compare_study, study_cases, summarize
+    from ..compare.study import compare_study, study_cases, summarize
     from ..stiffness import Material
     try:
         import pandas  # noqa: F401
@@ -114,11 +114,11 @@ def run(args: argparse.Namespace) -> int:
     fractions, dtype, cases, surface = args.fractions, args.dtype, None, None
     prof = None
     if args.profile is not None:
-        from ..reproduce.elastic import _cases
+        from ..reproduce.elastic import profile_cases
         from ..reproduce.profiles import PROFILES
 
         prof = PROFILES[args.profile]
-        cases, fractions, dtype = _cases(prof), list(prof.elastic_fractions), prof.elastic_dtype
+        cases, fractions, dtype = profile_cases(prof), list(prof.elastic_fractions), prof.elastic_dtype
         material = Material()
     elif args.input is not None:
         surface = read_input(args.input, args)

@@ -15,13 +15,13 @@ indicators.json is strict JSON (a depth that was not found is null).
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 from pathlib import Path
 
 from .._support.atomic import staged_output, strict_json
-from ..islands import MIN_PIXELS, IslandCurve, applicable_depth, island_curve
-from ..islands.results import MIN_ISLANDS
+from ..islands.depths import island_curve
+from ..islands.fits import applicable_depth
+from ..islands.results import MIN_ISLANDS, MIN_PIXELS, IslandCurve
 from ._common import (
     add_device,
     add_out,
@@ -97,16 +97,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--progress", action="store_true", help="show a progress bar")
 
 
-def write_csv(curve: IslandCurve, path: Path) -> None:
-    """One row per depth, full float64 precision, ``nan`` where no fit exists."""
-    cols = curve.to_dict()
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(cols)
-        for row in zip(*cols.values(), strict=True):
-            w.writerow([repr(float(v)) if isinstance(v, float) else int(v) for v in row])
-
-
 def run(args: argparse.Namespace) -> int:
     """Analyse the islands and write the outputs."""
     s = surface_from_args(args)
@@ -151,7 +141,7 @@ def _num(v: float) -> str:
 
 def _write(args: argparse.Namespace, s, curve: IslandCurve, ind, out: Path) -> None:
     """islands.csv, indicators.json and the plots, under ``out``."""
-    write_csv(curve, out / "islands.csv")
+    curve.to_csv(out / "islands.csv")
     info = {
         **ind.to_dict(),
         "connectivity": curve.connectivity,

@@ -26,9 +26,10 @@ import sys
 
 from ..material import Material
 from ..params import add_options, param_info
-from ..sweep import SweepGrid, alpha_summary, load, run_sweep
-from ..sweep.grid import option_name
-from ..sweep.read import require_extra
+from ..sweep.grid import SweepGrid, option_name
+from ..sweep.read import load, require_extra
+from ..sweep.run import run_sweep
+from ..sweep.stats import alpha_summary
 from ..wm_params import WMSpec
 from ._common import add_device, add_out, add_wm_shape, input_file, integer, positive, real
 from .analyze import add_fit_options, add_truncation_options

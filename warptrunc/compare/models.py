@@ -257,8 +257,8 @@ def compare_models(
     >>> c = compare_models(s, (0.05, 0.1, 0.2))
     >>> c.ratio("eq2"), c.ratio("islands")  # k'/k_BEM, k_isl/k_BEM
     """
-    from ..contact import solve_contact
-    from ..islands import island_curve
+    from ..contact.curve import solve_contact
+    from ..islands.depths import island_curve
 
     material = Material() if material is None else material
     beta_prime = check_range("beta_prime", beta_prime, 0.0)

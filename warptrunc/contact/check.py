@@ -37,7 +37,7 @@ from .._support.table import write_columns_csv
 from .._support.validate import check_int, check_range
 from ..stiffness import Material, flat_punch_stiffness, stiffness_curve
 from ..surface import Surface
-from ..truncation import truncate
+from ..truncation.api import truncate
 from .runs import contactmechanics_versions, require_bem, run_contactmechanics, run_warptrunc
 
 __all__ = ["SOLVERS", "BemCheck", "bem_check", "require_bem"]

@@ -29,7 +29,7 @@ import numpy as np
 import warp as wp
 
 from ..surface import Surface
-from ..truncation import contact_index_map, depth_grid
+from ..truncation.curve import contact_index_map, depth_grid
 
 __all__ = ["export_vtk"]
 

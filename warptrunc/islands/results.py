@@ -6,9 +6,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from .._support.table import write_columns_csv
 
 MIN_PIXELS = 10
 """Default smallest island (pixels) in a slit-island fit: below ~10 pixels the pixel-edge
@@ -321,6 +324,23 @@ class IslandCurve:
             "normalised_island_number": self.normalised_island_number,
             "island_growth_rate": self.island_growth_rate,
         }
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write the columns of :meth:`to_dict` as CSV, as ``warptrunc islands`` writes
+        ``islands.csv`` (full float64 precision, ``nan`` where no fit exists).
+
+        Parameters
+        ----------
+        path : str or Path
+            File to write (overwritten): a header row of the column names, then one row per
+            truncation depth.
+
+        Returns
+        -------
+        Path
+            ``path``.
+        """
+        return write_columns_csv(path, self.to_dict())
 
 
 @dataclass(frozen=True, eq=False)

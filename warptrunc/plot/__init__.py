@@ -24,6 +24,7 @@ from ._style import (
     PAPER_ALPHA_D,
     SPREAD_ALPHA,
     UM,
+    show_pngs,
 )
 from .bem import plot_bem_check
 from .compare import alpha_vs_D_routes, ratio_vs_size
@@ -54,6 +55,7 @@ __all__ = [
     "plot_bem_check",
     "psd",
     "ratio_vs_size",
+    "show_pngs",
     "slit_islands",
     "stiffness_load",
 ]

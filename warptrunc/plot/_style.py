@@ -19,6 +19,31 @@ HEIGHT_CMAP = "viridis"  # height maps; "gray" under a red contact overlay
 PAPER_ALPHA_D = (0.209, 0.090)  # the paper's α = 0.209·D_in + 0.090 (Table 3, D_in)
 
 
+FIGURE_DOCS = {
+    "{path}": "path : path, optional\n    Save the figure as PNG here.",
+    "{returns}": (
+        "Returns\n-------\nmatplotlib.figure.Figure\n"
+        "    The figure, also saved as PNG to ``path`` when given (parent folders created)."
+    ),
+}
+"""Docstring blocks every figure function shares, written once: a line holding only a key is
+replaced by its block (at that line's indentation) by :func:`figure_doc`."""
+
+
+def figure_doc(func: Any) -> Any:
+    """Fill the :data:`FIGURE_DOCS` blocks into ``func``'s docstring; returns ``func``."""
+    lines = []
+    for line in func.__doc__.split("\n"):
+        block = FIGURE_DOCS.get(line.strip())
+        if block is None:
+            lines.append(line)
+            continue
+        indent = line[: len(line) - len(line.lstrip())]
+        lines += [indent + b if b else b for b in block.split("\n")]
+    func.__doc__ = "\n".join(lines)
+    return func
+
+
 def new_figure(figsize: tuple[float, float] = FIGSIZE, ncols: int = 1, nrows: int = 1):
     """A pyplot-free Figure (renders with Agg, needs no display) and its axes grid."""
     from matplotlib.figure import Figure
@@ -34,6 +59,47 @@ def finish_figure(fig: Any, path: str | Path | None) -> Any:
         path.parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(path, dpi=DPI)
     return fig
+
+
+def finish_axes(
+    fig: Any, ax: Any, path: str | Path | None, *, title: str | None, which: str = "major",
+    legend: bool = True,
+) -> Any:
+    """Grid (``which`` ticks), title and legend of a one-axes figure, then
+    :func:`finish_figure`."""
+    ax.grid(True, which=which, alpha=0.3)
+    if title:
+        ax.set_title(title)
+    if legend:
+        ax.legend(fontsize=7)
+    return finish_figure(fig, path)
+
+
+def show_pngs(
+    paths: Any, *, figsize: tuple[float, float] | None = None, titles: bool = False
+) -> None:
+    """Open saved PNG figures in matplotlib windows and block until they are closed.
+
+    The last step of the examples (skipped with ``--no-show``); needs a display.
+
+    Parameters
+    ----------
+    paths : sequence of str or Path
+        PNG files, one window each.
+    figsize : (float, float), optional
+        Window size (inches); matplotlib's default when None.
+    titles : bool
+        Title each window with its file name.
+    """
+    import matplotlib.pyplot as plt
+
+    for p in paths:
+        plt.figure(figsize=figsize)
+        plt.imshow(plt.imread(p))
+        plt.axis("off")
+        if titles:
+            plt.title(Path(p).name)
+    plt.show()
 
 
 def as_list(x: Any) -> list:

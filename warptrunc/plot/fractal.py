@@ -12,6 +12,9 @@ import numpy as np
 
 from ._style import (
     UM,
+    as_list,
+    figure_doc,
+    finish_axes,
     finish_figure,
     new_figure,
 )
@@ -24,6 +27,7 @@ _METHOD_LABELS = {
 }
 
 
+@figure_doc
 def psd(
     psds: Any,
     *,
@@ -44,15 +48,11 @@ def psd(
         Roll-off wavelength W_r (m), drawn as a vertical line.
     title : str, optional
         Axes title.
-    path : path, optional
-        Save the figure as PNG here.
+    {path}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        The figure, also saved as PNG to ``path`` when given (parent folders created).
+    {returns}
     """
-    psds = list(psds) if isinstance(psds, (list, tuple)) else [psds]
+    psds = as_list(psds)
     fig, axes = new_figure()
     ax = axes[0, 0]
     for i, p in enumerate(psds):
@@ -64,13 +64,10 @@ def psd(
     ax.invert_xaxis()
     ax.set_xlabel("wavelength 1/f (µm)")
     ax.set_ylabel("PSD C(f)")
-    ax.grid(True, which="both", alpha=0.3)
-    if title:
-        ax.set_title(title)
-    ax.legend(fontsize=7)
-    return finish_figure(fig, path)
+    return finish_axes(fig, ax, path, title=title, which="both")
 
 
+@figure_doc
 def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None = None):
     """The log–log fits behind each fractal dimension, one panel per method.
 
@@ -80,13 +77,9 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
         ``{method: FractalFit}`` from :func:`warptrunc.fractal.fractal_dimensions`.
     title : str, optional
         Figure title (suptitle).
-    path : path, optional
-        Save the figure as PNG here.
+    {path}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        The figure, also saved as PNG to ``path`` when given (parent folders created).
+    {returns}
     """
 
     items = list(fits.items())
@@ -123,6 +116,7 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
     return finish_figure(fig, path)
 
 
+@figure_doc
 def d_out_vs_d_in(
     d_in: Any,
     d_out: Any,
@@ -143,13 +137,9 @@ def d_out_vs_d_in(
         Error bars (seed standard deviations).
     title : str, optional
         Axes title.
-    path : path, optional
-        Save the figure as PNG here.
+    {path}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        The figure, also saved as PNG to ``path`` when given (parent folders created).
+    {returns}
     """
 
     fig, axes = new_figure()
@@ -162,13 +152,10 @@ def d_out_vs_d_in(
     ax.set_xlabel("input fractal dimension D$_{in}$")
     ax.set_ylabel("estimated fractal dimension D$_{out}$")
     ax.set_xlim(d_in.min() - 0.05, d_in.max() + 0.05)
-    ax.grid(True, alpha=0.3)
-    if title:
-        ax.set_title(title)
-    ax.legend(fontsize=7)
-    return finish_figure(fig, path)
+    return finish_axes(fig, ax, path, title=title)
 
 
+@figure_doc
 def calibration_history(cal: Any, *, path: str | Path | None = None):
     """The evaluations of a calibration: D_out against D_in in order, with the target band.
 
@@ -176,13 +163,9 @@ def calibration_history(cal: Any, *, path: str | Path | None = None):
     ----------
     cal : Calibration
         From :func:`warptrunc.calibrate.calibrate`.
-    path : path, optional
-        Save the figure as PNG here.
+    {path}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        The figure, also saved as PNG to ``path`` when given (parent folders created).
+    {returns}
     """
     fig, axes = new_figure()
     ax = axes[0, 0]

@@ -9,14 +9,19 @@ from typing import Any
 
 import numpy as np
 
-from ..islands import MIN_PIXELS, slit_island_fit
+from ..islands.fits import slit_island_fit
+from ..islands.results import MIN_PIXELS
 from ._style import (
     UM,
+    as_list,
+    figure_doc,
+    finish_axes,
     finish_figure,
     new_figure,
 )
 
 
+@figure_doc
 def island_number(
     curves: Any,
     indicators: Any = None,
@@ -38,17 +43,13 @@ def island_number(
         Legend labels.
     title : str, optional
         Axes title.
-    path : path, optional
-        Save the figure as PNG here.
+    {path}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        The figure, also saved as PNG to ``path`` when given (parent folders created).
+    {returns}
     """
-    curves = list(curves) if isinstance(curves, (list, tuple)) else [curves]
+    curves = as_list(curves)
     if indicators is not None:
-        indicators = list(indicators) if isinstance(indicators, (list, tuple)) else [indicators]
+        indicators = as_list(indicators)
     fig, axes = new_figure()
     ax = axes[0, 0]
     marks = (
@@ -72,13 +73,10 @@ def island_number(
     ax.set_xlabel("truncation depth ω (% R$_t$)")
     ax.set_ylabel("normalised island number n/n$_{max}$")
     ax.set_ylim(bottom=0)
-    ax.grid(True, alpha=0.3)
-    if title:
-        ax.set_title(title)
-    ax.legend(fontsize=7)
-    return finish_figure(fig, path)
+    return finish_axes(fig, ax, path, title=title)
 
 
+@figure_doc
 def slit_islands(
     curve: Any,
     *,
@@ -97,13 +95,9 @@ def slit_islands(
         islands are drawn in grey.
     title : str, optional
         Axes title; default names the smallest fitted island size.
-    path : path, optional
-        Save the figure as PNG here.
+    {path}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        The figure, also saved as PNG to ``path`` when given (parent folders created).
+    {returns}
     """
 
 

@@ -16,6 +16,8 @@ from ._style import (
     SPREAD_ALPHA,
     UM,
     as_list,
+    figure_doc,
+    finish_axes,
     finish_figure,
     is_group,
     length_axes,
@@ -25,6 +27,7 @@ from ._style import (
 from .pooling import check_pooling, pool_blocks
 
 
+@figure_doc
 def height_map(
     surface: Any,
     *,
@@ -56,13 +59,9 @@ def height_map(
         Colour map of the heights (default viridis, grey under a contact overlay).
     title : str, optional
         Axes title.
-    path : path, optional
-        Save the figure as PNG here.
+    {path}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        The figure, also saved as PNG to ``path`` when given (parent folders created).
+    {returns}
 
     Notes
     -----
@@ -113,6 +112,7 @@ def height_map(
     return finish_figure(fig, path)
 
 
+@figure_doc
 def area_fraction(
     curves: Any,
     *,
@@ -140,13 +140,9 @@ def area_fraction(
         Shaded band of a group: ±1 standard deviation, or min–max.
     title : str, optional
         Axes title.
-    path : path, optional
-        Save the figure as PNG here.
+    {path}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        The figure, also saved as PNG to ``path`` when given (parent folders created).
+    {returns}
     """
     curves = as_list(curves)
 
@@ -174,9 +170,4 @@ def area_fraction(
     ax.set_ylabel("truncated area A$_c$/A (%)")
     if log:
         ax.set_yscale("log")
-    ax.grid(True, which="both", alpha=0.3)
-    if title:
-        ax.set_title(title)
-    if labels is not None:
-        ax.legend(fontsize=7)
-    return finish_figure(fig, path)
+    return finish_axes(fig, ax, path, title=title, which="both", legend=labels is not None)

@@ -26,7 +26,7 @@ import numpy as np
 import warp as wp
 
 from ..surface import Surface
-from ..truncation import contact_index_map
+from ..truncation.curve import contact_index_map
 
 POOLING = ("area", "any")
 """Ways to colour a block of pixels: by its contact fraction, or red when any pixel touches."""

@@ -9,18 +9,20 @@ from typing import Any
 
 import numpy as np
 
-from ..sweep import alpha_summary
+from ..sweep.stats import alpha_summary
 from ._style import (
     PAPER_ALPHA_D,
     SPREAD_ALPHA,
     as_list,
-    finish_figure,
+    figure_doc,
+    finish_axes,
     is_group,
     new_figure,
     shade_band,
 )
 
 
+@figure_doc
 def stiffness_load(
     curves: Any,
     fits: Any = None,
@@ -50,13 +52,9 @@ def stiffness_load(
         Axes title.
     spread : {"sd", "range"}
         Shaded band of a group: ±1 standard deviation of log(E_c/E*), or min–max.
-    path : path, optional
-        Save the figure as PNG here.
+    {path}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        The figure, also saved as PNG to ``path`` when given (parent folders created).
+    {returns}
     """
 
     curves = as_list(curves)
@@ -109,13 +107,10 @@ def stiffness_load(
         ax.loglog(xr, beta * xr**alpha, "--", color=color, lw=1.6, zorder=3, label=text)
     ax.set_xlabel("normalised load F/(E·A)")
     ax.set_ylabel("normalised stiffness E$_c$/E$^*$ (E$^*$: contact modulus)")
-    ax.grid(True, which="both", alpha=0.3)
-    if title:
-        ax.set_title(title)
-    ax.legend(fontsize=7)
-    return finish_figure(fig, path)
+    return finish_axes(fig, ax, path, title=title, which="both")
 
 
+@figure_doc
 def alpha_vs_D(
     summary: Any,
     *,
@@ -138,13 +133,9 @@ def alpha_vs_D(
         Also draw the paper's line α = 0.209·D_in + 0.090.
     title : str, optional
         Axes title.
-    path : path, optional
-        Save the figure as PNG here.
+    {path}
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        The figure, also saved as PNG to ``path`` when given (parent folders created).
+    {returns}
     """
 
     ranges = _alpha_ranges(summary)
@@ -178,11 +169,7 @@ def alpha_vs_D(
                 label="paper: α = 0.209·D$_{in}$ + 0.090")  # fmt: skip
     ax.set_xlabel("input fractal dimension D$_{in}$")
     ax.set_ylabel("stiffness exponent α")
-    ax.grid(True, alpha=0.3)
-    if title:
-        ax.set_title(title)
-    ax.legend(fontsize=7)
-    return finish_figure(fig, path)
+    return finish_axes(fig, ax, path, title=title)
 
 
 def _alpha_ranges(summary: Any) -> dict:

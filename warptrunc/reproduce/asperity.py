@@ -28,7 +28,7 @@ import numpy as np
 from .._support.validate import check_int, check_range
 from ..stiffness import Material, stiffness_curve
 from ..surface import from_heights
-from ..truncation import truncate
+from ..truncation.api import truncate
 
 __all__ = [
     "M_B_VALUES",

@@ -30,7 +30,14 @@ import numpy as np
 
 from .profiles import Profile
 
-__all__ = ["GOOD", "analyse_elastic", "stage_elastic", "stage_params", "summary_from_rows"]
+__all__ = [
+    "GOOD",
+    "analyse_elastic",
+    "profile_cases",
+    "stage_elastic",
+    "stage_params",
+    "summary_from_rows",
+]
 
 GOOD = 0.2
 """abs(model/BEM − 1) ≤ GOOD counts as "within ±20 %" in the section's sentences."""
@@ -48,8 +55,20 @@ def default_material():
     return Material()
 
 
-def _cases(p: Profile) -> list[dict[str, Any]]:
-    from ..compare import study_cases
+def profile_cases(p: Profile) -> list[dict[str, Any]]:
+    """The WM cases of a profile's ``elastic`` stage, one per (D, grid, seed).
+
+    Parameters
+    ----------
+    p : Profile
+        Its ``elastic_*`` fields and ``Wr`` (m) set the cases.
+
+    Returns
+    -------
+    list of dict
+        The cases as :func:`warptrunc.compare.study_cases` makes them.
+    """
+    from ..compare.study import study_cases
 
     return study_cases(
         D=p.elastic_D, size_ratios=p.elastic_size_ratios, pixels_per_Wr=p.elastic_pixels_per_Wr,
@@ -96,11 +115,11 @@ def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
     dict
         :func:`summary_from_rows` of the study's rows.
     """
-    from ..compare import compare_study
+    from ..compare.study import compare_study
 
     store = Path(out) / SUBDIR
     rows = compare_study(
-        store, _cases(p), fractions=p.elastic_fractions, material=default_material(),
+        store, profile_cases(p), fractions=p.elastic_fractions, material=default_material(),
         dtype=p.elastic_dtype, overwrite=True, progress=True, device=device,
     )  # fmt: skip
     return summary_from_rows(rows, store=SUBDIR)
@@ -122,7 +141,7 @@ def summary_from_rows(rows, store: str = SUBDIR) -> dict[str, Any]:
         Counts, grids, the two summary tables of :func:`warptrunc.compare.summarize` as
         records, the grid-convergence pairs and mean times per map size (JSON-able).
     """
-    from ..compare import summarize
+    from ..compare.study import summarize
 
     s = summarize(rows)
     conv = rows["converged"].astype(bool)

@@ -42,7 +42,7 @@ def elastic_figures(stage: dict[str, Any], out: str | Path) -> list[str]:
     """
     import pandas as pd
 
-    from ..plot import alpha_vs_D_routes, ratio_vs_size
+    from ..plot.compare import alpha_vs_D_routes, ratio_vs_size
 
     out = Path(out)
     r, a = pd.DataFrame(stage["ratios"]), pd.DataFrame(stage["alpha"])

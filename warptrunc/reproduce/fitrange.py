@@ -71,7 +71,7 @@ def refit_store(
         ``threshold`` (contact pixels), ``alpha``, ``beta``, ``r2``, ``n_points`` (None where
         fewer than 3 increments remain).
     """
-    from ..sweep import load, load_curves
+    from ..sweep.read import load, load_curves
 
     cases = load(path)
     curves = load_curves(path)

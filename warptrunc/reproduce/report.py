@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ..truncation import contact_index_map
+from ..truncation.curve import contact_index_map
 from ..wm import wm_surface
 from .analysis import D_KEYS
 from .report_sections import (

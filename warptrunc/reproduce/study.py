@@ -25,12 +25,14 @@ import numpy as np
 from .._support.progress import progress_bar
 from ..calibrate import CalibrationError, CalibrationTarget, calibrate
 from ..fractal import METHODS, fractal_dimensions
-from ..islands import applicable_depth, island_curve, slit_bootstrap
+from ..islands.depths import island_curve
+from ..islands.fits import applicable_depth, slit_bootstrap
 from ..stiffness import DEFAULT_MIN_PIXELS, stiffness_curve
-from ..sweep import SweepGrid, load_curves, run_sweep
-from ..sweep.grid import SweepOptions
+from ..sweep.grid import SweepGrid, SweepOptions
+from ..sweep.read import load_curves
+from ..sweep.run import run_sweep
 from ..sweep.store import conflict
-from ..truncation import truncate
+from ..truncation.api import truncate
 from ..wm import wm_surface
 from .asperity import bounds_summary, pixel_area_bounds, run_asperity
 from .paper import TABLE1

@@ -35,8 +35,10 @@ class PinDevice(WorkerPlugin):
     """Dask worker plugin: sets WARPTRUNC_DEVICE in each worker process before any task.
 
     Worker ``i`` of a LocalCluster (named 0..N-1, and a restarted worker keeps its name)
-    gets ``cuda:{i mod n_devices}``; ``n_devices=None`` asks Warp in the worker. With no
-    CUDA device nothing is set and the workers run on the CPU.
+    gets ``cuda:{i mod n_devices}``; other names map by a stable function of the name
+    (:func:`~warptrunc.sweep.engines.pinned_device`), the same in every run.
+    ``n_devices=None`` asks Warp in the worker. With no CUDA device nothing is set and the
+    workers run on the CPU.
 
     Parameters
     ----------

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from ..stiffness import flat_punch_stiffness, stiffness_curve
-from ..truncation import truncate
+from ..truncation.api import truncate
 from .grid import SweepOptions
 
 __all__ = ["bem_blank", "elastic_record"]
@@ -73,7 +73,7 @@ def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str,
     warm-started over increasing δ; a solve that stops at its iteration limit is kept with
     ``bem_converged_<f>`` False. A solver error leaves the columns NaN and sets ``bem_error``.
     """
-    from ..contact import solve_contact
+    from ..contact.curve import solve_contact
 
     o = options
     out = bem_blank(o)

@@ -16,8 +16,10 @@ from __future__ import annotations
 
 import collections
 import queue
+import re
 import threading
 import time
+import zlib
 from collections.abc import Callable
 from datetime import datetime, timezone
 from pathlib import Path
@@ -29,7 +31,7 @@ import warp as wp
 from .._support.device import resolve_device
 from .._support.progress import progress_bar
 from ..stiffness import fit_power_law, stiffness_curve
-from ..truncation import truncate
+from ..truncation.api import truncate
 from ..wm import wm_surface
 from .batch import WMBatch, batch_size
 from .curves import part_name, part_rows, write_part
@@ -47,6 +49,7 @@ __all__ = [
     "finish_batch",
     "pinned_device",
     "run_inprocess",
+    "worker_index",
 ]
 
 Result = tuple[list[dict[str, Any]], "dict[str, np.ndarray] | None"]
@@ -411,12 +414,18 @@ def compute_shard(
 
 
 def pinned_device(worker_name: Any, n_devices: int) -> str | None:
-    """The CUDA device of a LocalCluster worker: ``cuda:{name mod n_devices}``, or None.
+    """The CUDA device of a Dask worker: ``cuda:{index mod n_devices}``, or None.
+
+    The index is a stable function of the worker's name, the same in every process and run
+    (unlike :func:`hash`, which Python randomises per process): an integer name (a
+    LocalCluster's workers are named 0..N-1) is the index; a name ending in digits
+    (``"gpu-worker-3"``) uses that trailing number; any other name, the CRC-32 of its UTF-8
+    text (:func:`zlib.crc32`).
 
     Parameters
     ----------
     worker_name : Any
-        Dask worker name; an integer name is used as is, any other by the hash of its string.
+        Dask worker name.
     n_devices : int
         CUDA devices (count).
 
@@ -427,11 +436,32 @@ def pinned_device(worker_name: Any, n_devices: int) -> str | None:
     """
     if n_devices <= 0:
         return None
+    return f"cuda:{worker_index(worker_name) % n_devices}"
+
+
+def worker_index(worker_name: Any) -> int:
+    """A stable non-negative index for a Dask worker name (see :func:`pinned_device`).
+
+    Parameters
+    ----------
+    worker_name : Any
+        Dask worker name: an integer, a string ending in digits, or any other object.
+
+    Returns
+    -------
+    int
+        The integer name (its absolute value), the trailing number of the name, or the
+        CRC-32 of ``str(worker_name)`` encoded as UTF-8.
+    """
     try:
-        i = int(worker_name)
+        return abs(int(worker_name))
     except (TypeError, ValueError):
-        i = abs(hash(str(worker_name)))
-    return f"cuda:{i % n_devices}"
+        pass
+    text = str(worker_name)
+    digits = re.search(r"(\d+)$", text)
+    if digits is not None:
+        return int(digits.group(1))
+    return zlib.crc32(text.encode("utf-8"))
 
 
 def failed_case(case: Case, options: SweepOptions, why: str):
