@@ -47,6 +47,7 @@ from ._source import map_source_kernels as _map_source_kernels
 _map_source_kernels(__name__, __path__)
 
 _EXPORTS = {
+    "Analysis": ".analysis",
     "BemCheck": ".contact.check",
     "Calibration": ".calibrate",
     "CalibrationError": ".calibrate",
@@ -66,6 +67,7 @@ _EXPORTS = {
     "Surface": ".surface",
     "TruncationCurve": ".truncation",
     "WMSpec": ".wm_params",
+    "analyze": ".analysis",
     "applicable_depth": ".islands",
     "bem_check": ".contact.check",
     "calibrate": ".calibrate",
@@ -92,7 +94,7 @@ _EXPORTS = {
 """Public name → the module that defines it (imported on first access, PEP 562)."""
 
 _SUBMODULES = frozenset({
-    "calibrate", "cli", "compare", "contact", "descriptors", "fractal", "indent", "io",
+    "analysis", "calibrate", "cli", "compare", "contact", "descriptors", "fractal", "indent", "io",
     "islands",
     "material", "params", "plot", "presets", "render", "reproduce", "robust", "spectra",
     "stiffness", "surface", "sweep", "truncation", "wm", "wm_params",
@@ -136,6 +138,7 @@ def __dir__() -> list[str]:
 
 if _TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerly
     from ._support.device import resolve_device  # after the kernels mapping above
+    from .analysis import Analysis, analyze
     from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
     from .contact.check import BemCheck, bem_check
     from .contact.curve import solve_contact
@@ -164,6 +167,7 @@ if _TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eager
 __version__ = "0.1.0"
 
 __all__ = [
+    "Analysis",
     "BemCheck",
     "Calibration",
     "CalibrationError",
@@ -183,6 +187,7 @@ __all__ = [
     "TABLE1",
     "TruncationCurve",
     "WMSpec",
+    "analyze",
     "applicable_depth",
     "bem_check",
     "calibrate",
