@@ -36,7 +36,8 @@ import numpy as np
 
 from .._support.atomic import staged_output, strict_json
 from .._support.device import resolve_device
-from ..robust import clip_to_percentiles
+from ..plausibility import check_fit, check_fit_depth, fit_error_text
+from ..robust import auto_fit_range, clip_to_percentiles
 from ..stiffness import (
     DEFAULT_MIN_PIXELS,
     Material,
@@ -49,12 +50,14 @@ from ..truncation.stream import as_wm_spec, banded_truncation, fits_in_memory
 from ._common import (
     add_device,
     add_out,
+    add_warnings,
     add_surface_source,
     fraction,
     integer,
     positive,
     real,
     surface_from_args,
+    warnings_of,
     wm_kwargs,
 )
 
@@ -147,6 +150,14 @@ def add_fit_options(p: argparse.ArgumentParser, several: bool = False) -> None:
     )  # fmt: skip
     if not several:
         f.add_argument(
+            "--fit-range", choices=["auto", "legacy"], default="auto",
+            help="legacy: increments to ω_max with ≥ --min-pixels contact pixels; auto: the "
+            "same, and for a map read from a file whose legacy fit is not worth reading "
+            "(warptrunc.plausibility.check_fit) the range stated in contact pixels "
+            "(warptrunc.robust.auto_fit_range: spike pixels masked, from the top to 0.5 %% of A "
+            "in contact, at least 500 pixels), kept when its fit is worth reading",
+        )  # fmt: skip
+        f.add_argument(
             "--rt-percentile", type=real(0.0, 100.0, lo_open=False, hi_open=False, unit="%"),
             nargs=2, default=None, metavar=("LO", "HI"),
             help="robust R_t of a measured map: clip heights to their LO-th and HI-th "
@@ -188,14 +199,33 @@ def run(args: argparse.Namespace) -> int:
     sc = stiffness_curve(curve, material, beta_prime=args.beta_prime)
     try:
         fit = fit_power_law(sc, min_pixels=args.min_pixels, depth_window=args.depth_window)
+        found = check_fit(fit, sc)
     except ValueError as exc:
-        raise ValueError(_fit_range_message(exc, args)) from None
+        fit, found, error = None, [], exc
+    indicators = _validity(args, path)
+    if fit is not None and indicators is not None:
+        found += check_fit_depth(fit, indicators)
+    if (fit is None or found) and _wants_auto(args):
+        auto = _auto_range(args, material, path)
+        if auto is not None:
+            curve, meta, sc, fit, found, indicators = auto
+            nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
+    if fit is None:
+        raise ValueError(_fit_range_message(error, args)) from None
     isl, isl_fit = _islands(args, curve, material, path)
+    isl_found = [] if isl_fit is None else check_fit(isl_fit, isl, label="islands fit")
+    if indicators is not None and isl_fit is not None:
+        isl_found += check_fit_depth(isl_fit, indicators, label="islands fit")
+    add_warnings(args, found + isl_found)
     info = {**fit.to_dict(), "surface": meta, "material": material.__dict__, **path}
+    info["fit_range"] = getattr(args, "_fit_range", {"rule": "legacy"})
+    info["fit_error"] = fit_error_text(found)
     info["islands"] = None if isl_fit is None else {
         **isl_fit.to_dict(), "model": "k = β'(2/√π)E*·Σ_i √A_i, one flat punch per island",
-        "connectivity": args.connectivity,
+        "connectivity": args.connectivity, "fit_error": fit_error_text(isl_found),
     }  # fmt: skip
+    info["applicable_depth"] = None if indicators is None else indicators.to_dict()
+    info["warnings"] = warnings_of(args)
     with staged_output(args.out) as out:  # all or nothing
         sc.to_csv(out / "curve.csv", islands=isl)
         (out / "fit.json").write_text(strict_json(info))
@@ -216,10 +246,71 @@ def run(args: argparse.Namespace) -> int:
         f"{fit.n_points} increments with ≥ {fit.min_pixels} contact pixels)\n"
         + _islands_note(isl_fit)
         + _clip_note(meta)
+        + _range_note(info["fit_range"])
         + f"wrote {args.out}/curve.csv, fit.json"
         + ("" if args.no_plot else ", stiffness.png, area_fraction.png")
     )
     return 0
+
+
+def _wants_auto(args: argparse.Namespace) -> bool:
+    """The automatic fit range applies to maps read from a file, in memory, with no fit range
+    of the user's own (``--depth-window``, ``--max-depth``, ``--rt-percentile``)."""
+    return (
+        getattr(args, "fit_range", "auto") == "auto" and args.input is not None
+        and getattr(args, "_truncated_surface", None) is not None
+        and args.depth_window is None and args.max_depth is None
+        and getattr(args, "rt_percentile", None) is None
+    )  # fmt: skip
+
+
+def _auto_range(args: argparse.Namespace, material: Material, path: dict):
+    """(curve, meta, stiffness curve, fit, warnings) on the automatic fit range, or None when
+    it has no fit worth reading either (the legacy result is then kept)."""
+    try:
+        s, max_depth, rule = auto_fit_range(args._truncated_surface)
+        curve = truncate(s, args.increments, max_depth=max_depth, device=args.device)
+        sc = stiffness_curve(curve, material, beta_prime=args.beta_prime)
+        fit = fit_power_law(sc, min_pixels=args.min_pixels)
+    except ValueError:
+        return None
+    found = check_fit(fit, sc)
+    indicators = _validity(args, path, s)
+    if indicators is not None:
+        found += check_fit_depth(fit, indicators)
+    if found:
+        return None
+    args._truncated_surface, args.max_depth = s, max_depth  # the island pass follows
+    args._fit_range = {**rule, "reason": "the legacy fit range gave no fit worth reading"}
+    return curve, s.to_dict(), sc, fit, found, indicators
+
+
+#: Depth grid of the island counts that locate the maximum growth rate (§ 4.3, Table 2).
+VALIDITY_INCREMENTS, VALIDITY_DEPTH_FRACTION = 100, 0.5
+
+
+def _validity(args: argparse.Namespace, path: dict, surface=None):
+    """§ 4.3's indicators (maximum growth rate of the island count) of the analysed map, when
+    the island-resolved model runs (else None): island counts at 100 depths to 0.5·R_t for a
+    generated surface, to the median height (half of the pixels in contact) for a map read
+    from a file, whose R_t a spike or a pit can set."""
+    if path["path"] == "streamed" or args.islands is False:
+        return None
+    from ..islands import applicable_depth, island_curve
+
+    s = args._truncated_surface if surface is None else surface
+    max_depth = None
+    if args.input is not None:
+        z = np.asarray(s.heights)
+        max_depth = float(z.max()) - float(np.median(z))
+        if not max_depth > 0:
+            return None
+    ic = island_curve(
+        s, VALIDITY_INCREMENTS, max_depth=max_depth,
+        max_depth_fraction=VALIDITY_DEPTH_FRACTION, connectivity=args.connectivity,
+        statistics=False, device=args.device,
+    )  # fmt: skip
+    return applicable_depth(ic)
 
 
 def _islands(args: argparse.Namespace, curve, material: Material, path: dict):
@@ -254,6 +345,16 @@ def _islands_note(fit) -> str:
         return ""
     return (f"islands: E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}; "
             "one flat punch per island)\n")  # fmt: skip
+
+
+def _range_note(rule: dict) -> str:
+    if rule["rule"] != "auto":
+        return ""
+    return (
+        f"automatic fit range (--fit-range auto; {rule['reason']}): from the top to "
+        f"{rule['end_contact_pixels']} contact pixels, ω_max = {rule['max_depth_m'] * 1e6:.4g} µm"
+        f", {rule['spikes_masked']} spike pixels masked\n"
+    )
 
 
 def _clip_note(meta: dict) -> str:
