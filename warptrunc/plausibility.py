@@ -139,17 +139,17 @@ def _neighbour_stack(z: np.ndarray, r0: int, r1: int) -> np.ndarray:
 
 
 def _bands(ny: int, nx: int) -> Iterable[tuple[int, int]]:
-    rows = max(1, (1 << 21) // max(nx, 1))  # about 2 M pixels (64 MB of float32 stacks) a band
+    rows = max(1, (1 << 20) // max(nx, 1))  # about 1 M pixels (64 MB of float64 stacks) a band
     for r0 in range(0, ny, rows):
         yield r0, min(ny, r0 + rows)
 
 
 def _residual(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(d, median of the 8 neighbours), float32, by row bands."""
-    d = np.empty(z.shape, dtype=np.float32)
-    med = np.empty(z.shape, dtype=np.float32)
+    """(d, median of the 8 neighbours), float64, by row bands."""
+    d = np.empty(z.shape, dtype=np.float64)
+    med = np.empty(z.shape, dtype=np.float64)
     for r0, r1 in _bands(*z.shape):
-        nb = _neighbour_stack(z, r0, r1)
+        nb = _neighbour_stack(z, r0, r1).astype(np.float64)
         med[r0:r1] = np.median(nb, axis=0)
         d[r0:r1] = z[r0:r1] - med[r0:r1]
     return d, med
@@ -194,8 +194,7 @@ def find_spikes(
     if min(z.shape) < 3 or Rt == 0.0:
         return empty, empty, {"sigma_d_m": 0.0, "R_robust_m": 0.0, "Rt_m": Rt,
                               "neighbour_median_m": []}  # fmt: skip
-    d, med = _residual(z)
-    d64 = d.astype(np.float64)
+    d64, med = _residual(z)
     sigma = 1.4826 * float(np.median(np.abs(d64 - np.median(d64))))
     p_lo, p_hi = np.percentile(z, [0.1, 99.9])
     r_robust = float(p_hi) - float(p_lo)
@@ -209,7 +208,7 @@ def find_spikes(
         keep[j] = close < 4
     iy, ix = iy[keep].astype(np.int64), ix[keep].astype(np.int64)
     scales = {"sigma_d_m": sigma, "R_robust_m": r_robust, "Rt_m": Rt,
-              "neighbour_median_m": med[iy, ix].astype(np.float64).tolist()}  # fmt: skip
+              "neighbour_median_m": med[iy, ix].tolist()}  # fmt: skip
     return iy, ix, scales
 
 
