@@ -233,9 +233,12 @@ def run(args: argparse.Namespace) -> int:
             preload.join()
             from .. import plot
 
+            both = isl_fit is not None
             plot.stiffness_load(
-                sc, fit, labels=["truncation analysis"], path=out / "stiffness.png",
-                title=f"{nx}×{ny}, R$_t$ = {Rt * 1e6:.3g} µm",
+                [sc, isl] if both else sc, [fit, isl_fit] if both else fit,
+                labels=["Eq. 2 (one punch)", "islands (one punch each)"] if both
+                else ["truncation analysis"],
+                path=out / "stiffness.png", title=_plot_title(meta, material, nx, ny, Rt),
             )  # fmt: skip
             plot.area_fraction(curve, log=True, path=out / "area_fraction.png")
     print(
@@ -345,6 +348,15 @@ def _islands_note(fit) -> str:
         return ""
     return (f"islands: E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}; "
             "one flat punch per island)\n")  # fmt: skip
+
+
+def _plot_title(meta: dict, material: Material, nx: int, ny: int, Rt: float) -> str:
+    """stiffness.png's title: the map (D when generated), R_t and the material."""
+    d = meta.get("D")
+    where = f"D = {d:g}, " if isinstance(d, (int, float)) else ""
+    flat = "rigid flat" if math.isinf(material.E_i) else f"E$_i$ = {material.E_i / 1e9:.3g} GPa"
+    return (f"{nx}×{ny}, {where}R$_t$ = {Rt * 1e6:.3g} µm\nE = {material.E / 1e9:.3g} GPa, "
+            f"ν = {material.nu:g}, {flat}")
 
 
 def _range_note(rule: dict) -> str:
