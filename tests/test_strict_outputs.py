@@ -230,8 +230,13 @@ def test_rt_percentile_clips_spikes_and_is_recorded(tmp_path, capsys):
     z[5, 5] = 1e-4  # one spike sets R_t
     np.save(tmp_path / "spike.npy", z)
     args = ["analyze", "-i", tmp_path / "spike.npy", "--dx", 1e-6, "--no-plot"]
-    assert run(*args, "--out", tmp_path / "a") == 2
+    assert run(*args, "--fit-range", "legacy", "--out", tmp_path / "a") == 2
     assert "--rt-percentile 0.1 99.9" in capsys.readouterr().err
+    # the automatic fit range (the default) masks the spike and fits without help
+    assert run(*args, "--out", tmp_path / "c") == 0
+    auto = strict_load(tmp_path / "c" / "fit.json")
+    assert auto["fit_range"]["rule"] == "auto" and auto["fit_range"]["spikes_masked"] == 1
+    assert auto["warnings"][0]["details"]["locations"][0]["iy"] == 5
     assert run(*args, "--rt-percentile", 0.1, 99.9, "--out", tmp_path / "b") == 0
     fit = strict_load(tmp_path / "b" / "fit.json")
     assert fit["surface"]["rt_percentile"] == [0.1, 99.9]

@@ -21,7 +21,8 @@ import warp as wp
 
 from ._support.device import resolve_device
 from .material import Material
-from .robust import clip_to_percentiles
+from .plausibility import PlausibilityWarning, check_fit, check_fit_depth, fit_error_text
+from .robust import auto_fit_range, clip_to_percentiles
 from .stiffness import (
     DEFAULT_MIN_PIXELS,
     PowerLawFit,
@@ -88,6 +89,18 @@ class Analysis:
     "n_bands", "reason"}}`` (rows, count, text)."""
     connectivity: int
     """Island neighbourhood of the island-resolved model (4 or 8)."""
+    warnings: tuple[PlausibilityWarning, ...] = ()
+    """Plausibility warnings of the fits (:mod:`warptrunc.plausibility`): a fit not worth
+    reading, a fit range past § 4.3's validity depth."""
+    fit_range: dict[str, Any] | None = None
+    """The fit-range rule used: ``{"rule": "legacy"}`` or the automatic rule's record
+    (:func:`warptrunc.robust.auto_fit_range`)."""
+    indicators: Any = None
+    """§ 4.3's indicators (:class:`warptrunc.Indicators`) of the map when computed, else None."""
+    fit_error: str | None = None
+    """Why Eq. 2's fit is not worth reading, or None."""
+    islands_fit_error: str | None = None
+    """Why the island-resolved fit is not worth reading, or None."""
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """The curve's columns, one row per depth, as ``analyze`` writes ``curve.csv``.
@@ -114,14 +127,20 @@ class Analysis:
         dict
             :meth:`PowerLawFit.to_dict` of :attr:`fit`, ``surface``, ``material`` (its
             fields; ``E_i`` inf is a rigid flat), the :attr:`path` entries and ``islands``:
-            the island-resolved fit with ``model`` and ``connectivity``, or None.
+            the island-resolved fit with ``model``, ``connectivity`` and ``fit_error``, or
+            None; ``fit_range`` (the rule), ``fit_error``, ``applicable_depth`` (§ 4.3's
+            indicators or None) and ``warnings`` (list of dicts).
         """
         info = {**self.fit.to_dict(), "surface": self.surface,
                 "material": self.material.__dict__, **self.path}  # fmt: skip
+        info["fit_range"] = self.fit_range or {"rule": "legacy"}
+        info["fit_error"] = self.fit_error
         info["islands"] = None if self.islands_fit is None else {
             **self.islands_fit.to_dict(), "model": ISLAND_MODEL,
-            "connectivity": self.connectivity,
+            "connectivity": self.connectivity, "fit_error": self.islands_fit_error,
         }  # fmt: skip
+        info["applicable_depth"] = None if self.indicators is None else self.indicators.to_dict()
+        info["warnings"] = [w.to_dict() for w in self.warnings]
         return info
 
 
@@ -140,6 +159,7 @@ def analyze(
     connectivity: int = 4,
     stream: bool | Literal["auto"] = "auto",
     band_rows: int | None = None,
+    fit_range: Literal["auto", "legacy"] = "auto",
     progress: bool = True,
     device: wp.DeviceLike = None,
 ) -> Analysis:
@@ -177,6 +197,12 @@ def analyze(
         always in memory (True raises).
     band_rows : int, optional
         Rows per band when streaming.
+    fit_range : {"auto", "legacy"}
+        ``"legacy"``: increments to ω_max with ≥ ``min_pixels`` contact pixels. ``"auto"``: the
+        same, and for a :class:`Surface` (a map read from a file) whose legacy fit is not worth
+        reading (:func:`warptrunc.plausibility.check_fit`) with no range of the caller's own
+        (``max_depth``, ``depth_window``, ``rt_percentile``), the range stated in contact
+        pixels of :func:`warptrunc.robust.auto_fit_range`, kept when its fit is worth reading.
     progress : bool
         Show a progress bar over the bands of each streamed pass.
     device : str, optional
@@ -196,25 +222,102 @@ def analyze(
         streamed surface, or parameters out of range.
     """
     material = Material() if material is None else material
+    if fit_range not in ("auto", "legacy"):
+        raise ValueError(f"fit_range must be 'auto' or 'legacy', got {fit_range!r}")
     curve, surface, meta, path = _truncation(
         source, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction,
         rt_percentile=rt_percentile, islands=islands, stream=stream, band_rows=band_rows,
         progress=progress, device=device,
     )  # fmt: skip
+    read_map = isinstance(source, Surface)
     sc = stiffness_curve(curve, material, beta_prime=beta_prime)
+    found: list = []
     try:
         fit = fit_power_law(sc, min_pixels=min_pixels, depth_window=depth_window)
+        found = check_fit(fit, sc)
     except ValueError as exc:
-        raise FitRangeError(str(exc), surface) from None
+        fit, error = None, exc
+    want_islands = surface is not None and islands is not False
+    indicators = _validity(surface, read_map, connectivity, device) if want_islands else None
+    if fit is not None and indicators is not None:
+        found += check_fit_depth(fit, indicators)
+    rule: dict[str, Any] = {"rule": "legacy"}
+    auto_ok = (fit_range == "auto" and read_map and surface is not None and depth_window is None
+               and max_depth is None and rt_percentile is None)  # fmt: skip
+    if (fit is None or found) and auto_ok:
+        auto = _auto_range(surface, material, n_increments, beta_prime, min_pixels, read_map,
+                           connectivity, want_islands, device)  # fmt: skip
+        if auto is not None:
+            surface, max_depth, curve, sc, fit, found, indicators, rule = auto
+            meta = surface.to_dict()
+    if fit is None:
+        raise FitRangeError(str(error), surface) from None
     isl = isl_fit = None
-    if surface is not None and islands is not False:
+    isl_found: list = []
+    if want_islands:
         isl, isl_fit = _islands(
             surface, curve, material, n_increments, max_depth=max_depth,
             max_depth_fraction=max_depth_fraction, beta_prime=beta_prime,
             min_pixels=min_pixels, depth_window=depth_window, connectivity=connectivity,
             device=device,
         )  # fmt: skip
-    return Analysis(curve, sc, fit, isl, isl_fit, material, meta, path, connectivity)
+        if isl_fit is not None:
+            isl_found = check_fit(isl_fit, isl, label="islands fit")
+            if indicators is not None:
+                isl_found += check_fit_depth(isl_fit, indicators, label="islands fit")
+    return Analysis(
+        curve, sc, fit, isl, isl_fit, material, meta, path, connectivity,
+        warnings=tuple(found + isl_found), fit_range=rule, indicators=indicators,
+        fit_error=fit_error_text(found), islands_fit_error=fit_error_text(isl_found),
+    )  # fmt: skip
+
+
+#: Depth grid of the island counts that locate the maximum growth rate (§ 4.3, Table 2).
+VALIDITY_INCREMENTS, VALIDITY_DEPTH_FRACTION = 100, 0.5
+
+
+def _validity(surface: Surface, read_map: bool, connectivity: int, device):
+    """§ 4.3's indicators (maximum growth rate of the island count) of the map: island counts
+    at 100 depths to 0.5·R_t for a generated surface, to the median height (half of the
+    pixels in contact) for a map read from a file, whose R_t a spike or a pit can set; None
+    when that depth is not positive."""
+    from .islands.depths import island_curve
+    from .islands.fits import applicable_depth
+
+    max_depth = None
+    if read_map:
+        z = np.asarray(surface.heights)
+        max_depth = float(z.max()) - float(np.median(z))
+        if not max_depth > 0:
+            return None
+    ic = island_curve(
+        surface, VALIDITY_INCREMENTS, max_depth=max_depth,
+        max_depth_fraction=VALIDITY_DEPTH_FRACTION, connectivity=connectivity,
+        statistics=False, device=device,
+    )  # fmt: skip
+    return applicable_depth(ic)
+
+
+def _auto_range(surface, material, n_increments, beta_prime, min_pixels, read_map, connectivity,
+                want_islands, device):  # fmt: skip
+    """(surface, ω_max, curve, stiffness curve, fit, warnings, indicators, rule) on the
+    automatic fit range, or None when its fit is not worth reading either (the legacy result
+    is then kept)."""
+    try:
+        s, max_depth, rule = auto_fit_range(surface)
+        curve = truncate(s, n_increments, max_depth=max_depth, device=device)
+        sc = stiffness_curve(curve, material, beta_prime=beta_prime)
+        fit = fit_power_law(sc, min_pixels=min_pixels)
+    except ValueError:
+        return None
+    found = check_fit(fit, sc)
+    indicators = _validity(s, read_map, connectivity, device) if want_islands else None
+    if indicators is not None:
+        found += check_fit_depth(fit, indicators)
+    if found:
+        return None
+    rule = {**rule, "reason": "the legacy fit range gave no fit worth reading"}
+    return s, max_depth, curve, sc, fit, found, indicators, rule
 
 
 def _truncation(source, n_increments: int, *, max_depth, max_depth_fraction, rt_percentile,

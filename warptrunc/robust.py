@@ -20,7 +20,14 @@ import numpy as np
 
 from .surface import Surface
 
-__all__ = ["MIN_FIT_POINTS", "clip_to_percentiles", "fit_range_advice"]
+__all__ = [
+    "AUTO_END_FRACTION",
+    "AUTO_END_PIXELS",
+    "MIN_FIT_POINTS",
+    "auto_fit_range",
+    "clip_to_percentiles",
+    "fit_range_advice",
+]
 
 MIN_FIT_POINTS = 3
 """Fewest increments a power-law fit needs (``stiffness.fit_power_law``)."""
@@ -151,3 +158,72 @@ def fit_range_advice(
                 f"--rt-percentile 0.1 99.9 (the highest 0.1 % of the pixels span {share:.0%} of R_t)"
             )
     return out
+
+
+
+AUTO_END_FRACTION = 0.005
+"""Automatic fit range: the deepest increment has this share of A in contact (dimensionless) ..."""
+AUTO_END_PIXELS = 500
+"""... and at least this many contact pixels (pixels)."""
+
+
+def auto_fit_range(
+    surface: Surface,
+    *,
+    end_fraction: float = AUTO_END_FRACTION,
+    end_pixels: int = AUTO_END_PIXELS,
+) -> tuple[Surface, float, dict]:
+    """The map and ω_max of the automatic fit range, stated in contact pixels.
+
+    Parameters
+    ----------
+    surface : Surface
+        The map (m).
+    end_fraction : float
+        The deepest increment has a share ``end_fraction`` of the pixels in contact
+        (dimensionless, 0 < f < 1) ...
+    end_pixels : int
+        ... and at least ``end_pixels`` of them (pixels; capped at the map's size).
+
+    Returns
+    -------
+    surface : Surface
+        ``surface`` with its spike pixels masked (:func:`warptrunc.plausibility.mask_spikes`),
+        or ``surface`` itself when it has none.
+    max_depth : float
+        ω_max (m): from the highest pixel to the max(⌈f·N⌉, ``end_pixels``)-th highest one.
+    info : dict
+        The rule and its values, for ``fit.json``: ``rule`` (``"auto"``), ``end_fraction``,
+        ``end_pixels``, ``end_contact_pixels``, ``spikes_masked`` (pixels) and
+        ``max_depth_m`` (m).
+
+    Raises
+    ------
+    ValueError
+        If the map is flat over that range of pixels.
+
+    Notes
+    -----
+    The depth range ends at a contact area, not at a share of R_t, which one spike or one pit
+    sets; spike pixels (which would start the truncation alone) are masked first. The fit then
+    uses the increments with at least ``min_pixels`` contact pixels, as the legacy range.
+    """
+    from .plausibility import mask_spikes
+
+    if not 0.0 < end_fraction < 1.0:
+        raise ValueError(f"end_fraction must be in (0, 1), got {end_fraction!r}")
+    masked, found = mask_spikes(surface)
+    z = np.asarray(masked.heights, dtype=np.float64).ravel()
+    n = z.size
+    end = min(max(math.ceil(end_fraction * n), int(end_pixels)), n)
+    z_end = float(-np.partition(-z, end - 1)[end - 1])
+    z_top = float(z.max())
+    if not z_top > z_end:
+        raise ValueError(
+            f"the map is flat between its highest and {end}th highest pixels: no automatic fit "
+            "range; give --fit-range legacy"
+        )
+    info = {"rule": "auto", "end_fraction": float(end_fraction), "end_pixels": int(end_pixels),
+            "end_contact_pixels": end, "spikes_masked": found[0].details["count"] if found else 0,
+            "max_depth_m": z_top - z_end}  # fmt: skip
+    return masked, z_top - z_end, info

@@ -332,6 +332,13 @@ def add_reader_options(g: argparse._ActionsContainer) -> None:
     g.add_argument(
         "--channel", type=integer(0), default=None, help="data channel of instrument files"
     )
+    g.add_argument(
+        "--spikes", choices=["report", "mask", "off"], default="report",
+        help="spike pixels of a map read from a file (warptrunc.plausibility: off their "
+        "neighbours' median by > 10 robust sigmas and > half the P0.1–P99.9 height range): "
+        "report them as warnings, mask them (replace by the neighbours' median, R_t "
+        "recomputed), or skip the check",
+    )  # fmt: skip
 
 
 def read_input(path: Path, args: argparse.Namespace) -> Surface:
@@ -344,7 +351,36 @@ def read_input(path: Path, args: argparse.Namespace) -> Surface:
     n_missing = s.params.get("n_missing", 0)
     if n_missing:
         print(f"{path}: {n_missing} missing points filled ({args.fill})", file=sys.stderr)
+    return _map_checks(s, args)
+
+
+def _map_checks(s: Surface, args: argparse.Namespace) -> Surface:
+    """Spike check of a map read from a file (``--spikes``): warnings printed on stderr and
+    kept in ``args._warnings`` for the command's JSON (:func:`warnings_of`)."""
+    from .. import plausibility
+
+    how = getattr(args, "spikes", "report")
+    if how == "mask":
+        s, found = plausibility.mask_spikes(s)
+    elif how == "report":
+        found = plausibility.check_spikes(s)
+    else:
+        found = []
+    add_warnings(args, found)
     return s
+
+
+def add_warnings(args: argparse.Namespace, found: list) -> None:
+    """Print ``found`` (PlausibilityWarning) on stderr and keep them for :func:`warnings_of`."""
+    from ..plausibility import report
+
+    report(found)
+    args._warnings = [*getattr(args, "_warnings", []), *found]
+
+
+def warnings_of(args: argparse.Namespace) -> list[dict]:
+    """The ``"warnings"`` list of a command's JSON: every warning kept by :func:`add_warnings`."""
+    return [w.to_dict() for w in getattr(args, "_warnings", [])]
 
 
 def surface_from_args(args: argparse.Namespace) -> Surface:

@@ -32,14 +32,17 @@ pass (fit.json: "islands": null).
 from __future__ import annotations
 
 import argparse
+import math
 import threading
 
 from .._support.atomic import staged_output, strict_json
+from ..material import Material
 from ..stiffness import DEFAULT_MIN_PIXELS
 from ._common import (
     add_device,
     add_material,
     add_out,
+    add_warnings,
     add_surface_source,
     fraction,
     integer,
@@ -47,6 +50,7 @@ from ._common import (
     positive,
     real,
     surface_from_args,
+    warnings_of,
     wm_spec_from_args,
 )
 
@@ -127,6 +131,14 @@ def add_fit_options(p: argparse.ArgumentParser, several: bool = False) -> None:
     )  # fmt: skip
     if not several:
         f.add_argument(
+            "--fit-range", choices=["auto", "legacy"], default="auto",
+            help="legacy: increments to ω_max with ≥ --min-pixels contact pixels; auto: the "
+            "same, and for a map read from a file whose legacy fit is not worth reading "
+            "(warptrunc.plausibility.check_fit) the range stated in contact pixels "
+            "(warptrunc.robust.auto_fit_range: spike pixels masked, from the top to 0.5 %% of A "
+            "in contact, at least 500 pixels), kept when its fit is worth reading",
+        )  # fmt: skip
+        f.add_argument(
             "--rt-percentile", type=real(0.0, 100.0, lo_open=False, hi_open=False, unit="%"),
             nargs=2, default=None, metavar=("LO", "HI"),
             help="robust R_t of a measured map: clip heights to their LO-th and HI-th "
@@ -177,12 +189,15 @@ def run(args: argparse.Namespace) -> int:
             beta_prime=args.beta_prime, min_pixels=args.min_pixels,
             depth_window=args.depth_window, rt_percentile=rtp, islands=args.islands,
             connectivity=args.connectivity, stream=True if args.stream else "auto",
-            band_rows=args.band_rows, device=args.device,
+            band_rows=args.band_rows, fit_range=getattr(args, "fit_range", "auto"),
+            device=args.device,
         )  # fmt: skip
     except FitRangeError as exc:
         raise ValueError(_fit_range_message(exc, args)) from None
     curve, sc, fit, meta = a.curve, a.stiffness, a.fit, a.surface
     nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
+    isl, isl_fit = a.islands, a.islands_fit
+    add_warnings(args, list(a.warnings))
     with staged_output(args.out) as out:  # all or nothing
         sc.to_csv(out / "curve.csv", islands=a.islands)
         (out / "fit.json").write_text(strict_json(a.summary()))
@@ -190,9 +205,12 @@ def run(args: argparse.Namespace) -> int:
             preload.join()
             from .. import plot
 
+            both = isl_fit is not None
             plot.stiffness_load(
-                sc, fit, labels=["truncation analysis"], path=out / "stiffness.png",
-                title=f"{nx}×{ny}, R$_t$ = {Rt * 1e6:.3g} µm",
+                [sc, isl] if both else sc, [fit, isl_fit] if both else fit,
+                labels=["Eq. 2 (one punch)", "islands (one punch each)"] if both
+                else ["truncation analysis"],
+                path=out / "stiffness.png", title=_plot_title(meta, material, nx, ny, Rt),
             )  # fmt: skip
             plot.area_fraction(curve, log=True, path=out / "area_fraction.png")
     print(
@@ -203,6 +221,7 @@ def run(args: argparse.Namespace) -> int:
         f"{fit.n_points} increments with ≥ {fit.min_pixels} contact pixels)\n"
         + _islands_note(a.islands_fit)
         + _clip_note(meta)
+        + _range_note(a.fit_range)
         + f"wrote {args.out}/curve.csv, fit.json"
         + ("" if args.no_plot else ", stiffness.png, area_fraction.png")
     )
@@ -214,6 +233,25 @@ def _islands_note(fit) -> str:
         return ""
     return (f"islands: E_c/E* = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}; "
             "one flat punch per island)\n")  # fmt: skip
+
+
+def _plot_title(meta: dict, material: Material, nx: int, ny: int, Rt: float) -> str:
+    """stiffness.png's title: the map (D when generated), R_t and the material."""
+    d = meta.get("D")
+    where = f"D = {d:g}, " if isinstance(d, (int, float)) else ""
+    flat = "rigid flat" if math.isinf(material.E_i) else f"E$_i$ = {material.E_i / 1e9:.3g} GPa"
+    return (f"{nx}×{ny}, {where}R$_t$ = {Rt * 1e6:.3g} µm\nE = {material.E / 1e9:.3g} GPa, "
+            f"ν = {material.nu:g}, {flat}")
+
+
+def _range_note(rule: dict) -> str:
+    if rule["rule"] != "auto":
+        return ""
+    return (
+        f"automatic fit range (--fit-range auto; {rule['reason']}): from the top to "
+        f"{rule['end_contact_pixels']} contact pixels, ω_max = {rule['max_depth_m'] * 1e6:.4g} µm"
+        f", {rule['spikes_masked']} spike pixels masked\n"
+    )
 
 
 def _clip_note(meta: dict) -> str:

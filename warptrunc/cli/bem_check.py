@@ -30,6 +30,7 @@ from ._common import (
     positive,
     real,
     surface_from_args,
+    warnings_of,
 )
 
 NAME = "bem-check"
@@ -133,7 +134,7 @@ def run(args: argparse.Namespace) -> int:
     )  # fmt: skip
     args.out.mkdir(parents=True, exist_ok=True)
     res.to_csv(args.out / "bem.csv")
-    res.to_json(args.out / "bem.json")
+    res.to_json(args.out / "bem.json", warnings=warnings_of(args))
     files = "bem.csv, bem.json"
     if not args.no_plot:
         import matplotlib.pyplot as plt

@@ -20,8 +20,9 @@ from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target
 from ..fractal import METHODS
 from ..io import write_height_map
 from ..params import add_options
+from ..plausibility import check_dimensions
 from ..wm_params import WMSpec
-from ._common import add_device, integer, output_dir, positive, real
+from ._common import add_device, add_warnings, integer, output_dir, positive, real, warnings_of
 from .describe import add_height_scaling, add_scan_arguments, method_options, read_scan_args
 
 NAME = "calibrate"
@@ -115,6 +116,9 @@ def run(args: argparse.Namespace) -> int:
     )  # fmt: skip
     d = cal.to_dict()
     d = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in d.items()}
+    if target.source != "given":  # the D measured on the scan
+        add_warnings(args, check_dimensions({target.method: target.D}))
+    d["warnings"] = warnings_of(args)
     surf = None
     if not args.no_surface:
         n_out = _pair(args.n_out, "--n-out")

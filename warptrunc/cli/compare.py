@@ -42,6 +42,7 @@ from ._common import (
     material_from_args,
     positive,
     read_input,
+    warnings_of,
     real,
 )
 
@@ -146,7 +147,8 @@ def run(args: argparse.Namespace) -> int:
 
     stage = summary_from_rows(rows, store="cases")
     a = analyse_elastic(stage) if cases is not None else None
-    write_atomic(out / "summary.json", strict_json({"stage": stage, "analysis": a}))
+    write_atomic(out / "summary.json", strict_json({"stage": stage, "analysis": a,
+                                                  "warnings": warnings_of(args)}))
     files = ["study.json", f"cases/ ({stage['n_cases']} cases)", "ratios.parquet",
              "alpha.parquet", "summary.json"]  # fmt: skip
     names: list[str] = []

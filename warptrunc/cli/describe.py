@@ -23,7 +23,17 @@ import sys
 from .._support.atomic import atomic_write, staged_output, strict_json
 from ..descriptors import describe, profile_psd, radial_psd
 from ..fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
-from ._common import add_device, add_reader_options, input_file, output_dir, output_file, read_input
+from ..plausibility import check_dimensions
+from ._common import (
+    add_device,
+    add_reader_options,
+    add_warnings,
+    input_file,
+    output_dir,
+    output_file,
+    read_input,
+    warnings_of,
+)
 
 NAME = "describe"
 HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four methods"
@@ -149,7 +159,8 @@ def run(args: argparse.Namespace) -> int:
     }
     options = {k: v for k, v in options.items() if k in args.methods}
     res = describe_surface(s, args.methods, options, args.device)
-    out = {"file": str(args.file), **res["result"]}
+    add_warnings(args, check_dimensions({m: res["result"][f"D_{m}"] for m in METHODS}))
+    out = {"file": str(args.file), **res["result"], "warnings": warnings_of(args)}
     text = strict_json(out)
     if args.json == "-":
         sys.stdout.write(text)

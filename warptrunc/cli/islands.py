@@ -22,16 +22,19 @@ from .._support.atomic import staged_output, strict_json
 from ..islands.depths import island_curve
 from ..islands.fits import applicable_depth
 from ..islands.results import MIN_ISLANDS, MIN_PIXELS, IslandCurve
+from ..plausibility import check_dimensions
 from ._common import (
     add_device,
     add_out,
     add_surface_source,
+    add_warnings,
     fraction,
     integer,
     odd_integer,
     positive,
     real,
     surface_from_args,
+    warnings_of,
 )
 
 NAME = "islands"
@@ -112,6 +115,8 @@ def run(args: argparse.Namespace) -> int:
         curve, exponent_tolerance=args.exponent_tolerance, min_islands=args.min_islands,
         plateau_width=args.plateau_width, persist=args.persist, smooth=args.smooth,
     )  # fmt: skip
+    if math.isfinite(ind.plateau_exponent):  # D = 2β + 1 of the slit-island plateau
+        add_warnings(args, check_dimensions({"slit": 2.0 * ind.plateau_exponent + 1.0}))
     with staged_output(args.out) as out:  # all or nothing
         _write(args, s, curve, ind, out)
 
@@ -151,6 +156,7 @@ def _write(args: argparse.Namespace, s, curve: IslandCurve, ind, out: Path) -> N
         "max_depth_m": float(curve.depth[-1]),
         "max_island_count": int(curve.n_islands.max()),
         "surface": s.to_dict(),
+        "warnings": warnings_of(args),
     }
     (out / "indicators.json").write_text(strict_json(info))
     if not args.no_plot:

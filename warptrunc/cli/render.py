@@ -26,6 +26,7 @@ from ._common import (
     integer,
     positive,
     surface_from_args,
+    warnings_of,
 )
 
 NAME = "render"
@@ -189,6 +190,7 @@ def _render(s, args: argparse.Namespace, out):
         for k in ("depth_m", "depth_fraction_of_Rt", "area_fraction"):
             v[k] = [float(x) for x in v[k]]
     info["surface"] = s.to_dict()
+    info["warnings"] = warnings_of(args)
     (out / "render.json").write_text(strict_json(info))
     written.append(out / "render.json")
     return r, written

@@ -185,7 +185,18 @@ def run(args: argparse.Namespace) -> int:
     failed = df.loc[df["error"].notna(), "case_id"].nunique()
     print(f"{len(grid)} cases ({failed} failed) in {args.out}: sweep.json, cases.parquet, "
           "curves/part-*.parquet")
-    for mp, v in alpha_summary(df[df["error"].isna()])["fit_ranges"].items():
+    flagged = int((df["error"].isna() & df["fit_error"].notna() & df["alpha"].notna()).sum())
+    if flagged:
+        print(f"warning: {flagged} fits not worth reading (fit_error in cases.parquet) are left "
+              "out of the α summary", file=sys.stderr)  # fmt: skip
+    ranges = alpha_summary(df[df["error"].isna()])["fit_ranges"]
+    good = alpha_summary(df[df["error"].isna() & df["fit_error"].isna()])["fit_ranges"]
+    for mp in ranges:
+        if mp not in good:
+            label = mp if mp.startswith("fraction") else f"min_pixels={mp}"
+            print(f"{label}: α — no fit worth reading")
+            continue
+        v = good[mp]
         line = v["alpha_vs_D"]
         per_d = ", ".join(f"D={r['D_in']:g}: {r['alpha_mean']:.4f}±{r['alpha_sd']:.4f} (n={r['n']})"
                           for r in v["per_D"])  # fmt: skip

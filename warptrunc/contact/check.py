@@ -183,13 +183,16 @@ class BemCheck:
         """
         return write_columns_csv(path, self.to_dict())
 
-    def to_json(self, path: str | Path) -> Path:
+    def to_json(self, path: str | Path, *, warnings: list | None = None) -> Path:
         """Write the columns, :meth:`summary` and the settings as JSON.
 
         Parameters
         ----------
         path : str or Path
             The JSON file to write (overwritten if it exists).
+        warnings : list of dict, optional
+            Plausibility warnings of the map (:mod:`warptrunc.plausibility`), written under
+            ``warnings`` (an empty list when None).
 
         Returns
         -------
@@ -201,6 +204,7 @@ class BemCheck:
         path = Path(path)
         d: dict[str, Any] = {"summary": self.summary(), "settings": self.settings}
         d["columns"] = {k: v.tolist() for k, v in self.to_dict().items()}
+        d["warnings"] = list(warnings or [])
         path.write_text(json.dumps(_strict(d), indent=1, default=str, allow_nan=False) + "\n")
         return path
 

@@ -255,9 +255,12 @@ def _row(case_rows, curve, ranges: dict[str, int | float], curve_points: int) ->
             r = next(x for x in case_rows if x["min_pixels_fraction"] is None and x["min_pixels"] == mp)
         else:  # relative to the surface's final contact pixels
             r = next(x for x in case_rows if x["min_pixels_fraction"] == mp)
-        if r["fit_error"] is None:
+        fitted = r["alpha"] is not None and math.isfinite(float(r["alpha"]))
+        if r["fit_error"] is None or fitted:  # a fit, worth reading or not
             row["fits"][name] = {"alpha": r["alpha"], "beta": r["beta"], "r2": r["r2"],
                                  "n_points": r["n_points"], "min_pixels": r["min_pixels"]}  # fmt: skip
+            if r["fit_error"] is not None:
+                row["fits"][name]["warning"] = r["fit_error"]
         else:  # too few increments: recorded, not dropped
             row["fits"][name] = {"alpha": None, "beta": None, "error": r["fit_error"],
                                  "min_pixels": r["min_pixels"]}  # fmt: skip

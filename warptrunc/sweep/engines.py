@@ -15,6 +15,7 @@ which parts exist and drops a second part of a case.
 from __future__ import annotations
 
 import collections
+import json
 import queue
 import re
 import threading
@@ -30,6 +31,7 @@ import warp as wp
 
 from .._support.device import resolve_device
 from .._support.progress import progress_bar
+from ..plausibility import check_dimensions, check_fit, fit_error_text
 from ..stiffness import fit_power_law, stiffness_curve
 from ..truncation.api import truncate
 from ..wm import wm_surface
@@ -95,6 +97,9 @@ def compute_case(
 
             t1 = time.perf_counter()
             base.update(fractal_record(fractal_dimensions(s, o.fractal_methods, device=dev)))
+            found = check_dimensions({m: base[f"D_{m}"] for m in o.fractal_methods})
+            if found:
+                base["warnings"] = _join_warnings(None, found)
             base["fractal_seconds"] = time.perf_counter() - t1
         tc = truncate(s, o.increments, max_depth=o.max_depth,
                       max_depth_fraction=o.max_depth_fraction, device=dev)  # fmt: skip
@@ -127,6 +132,10 @@ def _finish(o: SweepOptions, base: dict[str, Any], sc, seconds: float, device) -
                 f = fit_power_law(sc, min_pixels=mp, depth_window=o.depth_window)
                 row.update(alpha=f.alpha, beta=f.beta, r2=f.r2, n_points=f.n_points,
                            fit_depth_min_m=f.depth_min, fit_depth_max_m=f.depth_max)  # fmt: skip
+                found = check_fit(f, sc)  # not worth reading: kept, with fit_error and warnings
+                row.update(fit_error=fit_error_text(found))
+                if found:
+                    row["warnings"] = _join_warnings(row.get("warnings"), found)
             except ValueError as exc:  # too few increments in this range: recorded, not dropped
                 row.update(n_points=0, fit_error=str(exc))
         rows.append(row)
@@ -136,6 +145,12 @@ def _finish(o: SweepOptions, base: dict[str, Any], sc, seconds: float, device) -
         r.setdefault("device", str(device))
         r.setdefault("device_name", None)
     return rows, curve
+
+
+def _join_warnings(old: str | None, found: list) -> str:
+    """The ``warnings`` column: a JSON list of ``{code, message, details}``."""
+    return json.dumps([*(json.loads(old) if old else []), *(w.to_dict() for w in found)],
+                      allow_nan=True)  # fmt: skip
 
 
 def finish_batch(cases: list[Case], options: SweepOptions, curves, seconds: float,

@@ -27,7 +27,7 @@ CASE_COLUMNS = (
     "depth_window_lo_m", "depth_window_hi_m", "alpha", "beta", "r2", "n_points",
     "fit_depth_min_m", "fit_depth_max_m", "final_contact_pixels", "final_area_fraction",
     "Rt_measured_m", "D_tri", "D_tri_r2", "D_box", "D_box_r2", "D_vs", "D_vs_r2", "D_sp",
-    "D_sp_r2", "fractal_options", "fractal_seconds", "fit_error", "error", "seconds", "device", "device_name", "host", "finished_utc",
+    "D_sp_r2", "fractal_options", "fractal_seconds", "fit_error", "warnings", "error", "seconds", "device", "device_name", "host", "finished_utc",
     "warptrunc_version", "git_commit",
 )  # fmt: skip
 """Columns of ``cases.parquet``, in order; units in the names (SI).
@@ -35,7 +35,10 @@ CASE_COLUMNS = (
 ``min_pixels_fraction`` is NaN for a ``min_pixels`` fit range and f for a
 ``min_pixels_fraction`` one (``min_pixels`` then holds the count it resolved to, 0 when the
 case failed). ``D_<method>``, ``D_<method>_r2``, ``fractal_options`` (JSON) and
-``fractal_seconds`` (s) are NaN/null unless the sweep ran with ``fractal_methods``. With
+``fractal_seconds`` (s) are NaN/null unless the sweep ran with ``fractal_methods``.
+``fit_error`` is set when the fit failed (α NaN) and when it is not worth reading
+(:func:`warptrunc.plausibility.check_fit`: α, β, r² kept); ``warnings`` is then a JSON list of
+``{code, message, details}`` (also for a measured D outside (2, 3)), else null. With
 ``bem_fractions`` the columns of ``bem_columns`` follow."""
 
 RUN_COLUMNS = ("seconds", "fractal_seconds", "device", "device_name", "host", "finished_utc", "git_commit")
@@ -63,7 +66,7 @@ def bem_columns(fractions) -> tuple[str, ...]:
 
 _INT = ("case_index", "seed", "nx", "ny", "M", "increments", "min_pixels")
 _NULLABLE_INT = ("n_points", "final_contact_pixels")
-_STR = ("case_id", "cutoff", "fractal_options", "fit_error", "error", "device", "device_name", "host",
+_STR = ("case_id", "cutoff", "fractal_options", "fit_error", "warnings", "error", "device", "device_name", "host",
         "finished_utc", "warptrunc_version", "git_commit", "bem_error")  # fmt: skip
 MANIFEST_KEY = b"warptrunc.parts"
 

@@ -60,7 +60,7 @@ def base_row(case: Case, o: SweepOptions) -> dict[str, Any]:
         "r2": np.nan, "n_points": None, "fit_depth_min_m": np.nan, "fit_depth_max_m": np.nan,
         "final_contact_pixels": None, "final_area_fraction": np.nan, "Rt_measured_m": np.nan,
         **{f"D_{m}{s}": np.nan for m in FRACTAL_METHODS for s in ("", "_r2")},
-        "fractal_options": None, "fractal_seconds": np.nan, "fit_error": None, "error": None, "host": host, "warptrunc_version": version,
+        "fractal_options": None, "fractal_seconds": np.nan, "fit_error": None, "warnings": None, "error": None, "host": host, "warptrunc_version": version,
         "git_commit": commit, **bem_blank(o),
     }  # fmt: skip
 
