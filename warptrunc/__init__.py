@@ -96,7 +96,7 @@ _EXPORTS = {
 _SUBMODULES = frozenset({
     "analysis", "calibrate", "cli", "compare", "contact", "descriptors", "fractal", "indent", "io",
     "islands",
-    "material", "params", "plot", "presets", "render", "reproduce", "robust", "spectra",
+    "material", "params", "plausibility", "plot", "presets", "render", "reproduce", "robust", "spectra",
     "stiffness", "surface", "sweep", "truncation", "wm", "wm_params",
 })  # fmt: skip
 """The public subpackages and modules (``warptrunc.<name>``): with ``__all__``, all that

@@ -200,7 +200,7 @@ def run(args: argparse.Namespace) -> int:
     add_warnings(args, list(a.warnings))
     with staged_output(args.out) as out:  # all or nothing
         sc.to_csv(out / "curve.csv", islands=a.islands)
-        (out / "fit.json").write_text(strict_json(a.summary()))
+        (out / "fit.json").write_text(strict_json({**a.summary(), "warnings": warnings_of(args)}))
         if not args.no_plot:
             preload.join()
             from .. import plot
