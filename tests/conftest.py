@@ -35,12 +35,16 @@ def device(request) -> str:
     return request.param
 
 
-SCANS = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "scans"
+SCANS = Path(
+    os.environ.get("WARPTRUNC_SCANS_DIR")
+    or Path(__file__).resolve().parents[1].parent / "shared" / "data" / "scans"
+)
 
 
 @pytest.fixture
 def scans_dir() -> Path:
-    """../shared/data/scans beside the checkout; skips when absent (users' clones)."""
+    """../shared/data/scans beside the checkout (or $WARPTRUNC_SCANS_DIR); skips when absent
+    (users' clones)."""
     if not SCANS.is_dir():
         pytest.skip(f"measured scans not found at {SCANS}")
     return SCANS

@@ -36,6 +36,7 @@ import numpy as np
 
 from .._support.atomic import staged_output, strict_json
 from .._support.device import resolve_device
+from .._support.provenance import provenance
 from ..robust import clip_to_percentiles
 from ..stiffness import (
     DEFAULT_MIN_PIXELS,
@@ -192,6 +193,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(_fit_range_message(exc, args)) from None
     isl, isl_fit = _islands(args, curve, material, path)
     info = {**fit.to_dict(), "surface": meta, "material": material.__dict__, **path}
+    info["provenance"] = provenance(args.device)
     info["islands"] = None if isl_fit is None else {
         **isl_fit.to_dict(), "model": "k = β'(2/√π)E*·Σ_i √A_i, one flat punch per island",
         "connectivity": args.connectivity,

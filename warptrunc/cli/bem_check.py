@@ -8,7 +8,8 @@ warptrunc's constrained-CG solver on --device (default), or ContactMechanics' on
 (--solver contactmechanics, needs the extra: pip install "warptrunc[bem]"), and compares load,
 stiffness and contact area with the truncation formulas of ``analyze``. Writes OUT/bem.csv (SI
 units in the column names), OUT/bem.json (ratios, solver settings, convergence flags, times) and
-OUT/bem.png.
+OUT/bem.png. All or nothing: the files are moved into OUT only when every one of them is
+written.
 
 Exit status: 0 when every solve converged; 3 (``EXIT_NOT_CONVERGED``) when any solve stopped
 at --maxiter (the outputs are written and flag it), unless --accept-unconverged; 2 for bad
@@ -21,6 +22,7 @@ import argparse
 import math
 import sys
 
+from .._support.atomic import staged_output
 from ..stiffness import Material
 from ._common import (
     add_device,
@@ -137,20 +139,21 @@ def run(args: argparse.Namespace) -> int:
         maxiter=args.maxiter, solver=args.solver, stiffness=args.stiffness, dtype=args.dtype,
         progress=not args.no_progress and sys.stderr.isatty(), device=args.device,
     )  # fmt: skip
-    args.out.mkdir(parents=True, exist_ok=True)
-    res.to_csv(args.out / "bem.csv")
-    res.to_json(args.out / "bem.json")
     files = "bem.csv, bem.json"
-    if not args.no_plot:
-        import matplotlib.pyplot as plt
+    with staged_output(args.out) as out:  # all or nothing
+        res.to_csv(out / "bem.csv")
+        res.to_json(out / "bem.json")
+        if not args.no_plot:
+            import matplotlib.pyplot as plt
 
-        fig = plot_bem_check(
-            res, args.out / "bem.png",
-            title=f"{s.nx}×{s.ny}, R$_t$ = {s.Rt * 1e6:.3g} µm, E* = "
-            f"{material.contact_modulus / 1e9:.4g} GPa, {args.substrate} half-space ({args.solver})",
-        )  # fmt: skip
-        plt.close(fig)
-        files += ", bem.png"
+            fig = plot_bem_check(
+                res, out / "bem.png",
+                title=f"{s.nx}×{s.ny}, R$_t$ = {s.Rt * 1e6:.3g} µm, E* = "
+                f"{material.contact_modulus / 1e9:.4g} GPa, {args.substrate} half-space "
+                f"({args.solver})",
+            )  # fmt: skip
+            plt.close(fig)
+            files += ", bem.png"
     sm = res.summary()
     print(
         f"{s.nx}×{s.ny} surface, R_t = {s.Rt * 1e6:.4g} µm, E* = "

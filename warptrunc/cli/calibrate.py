@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """Calibrate WM inputs (D_in, R_t') to a scan's descriptors (Fig. 4) and generate the surface.
 
-Targets come from FILE (D by --method, R_rms, R_t, W_r, size and resolution) or are typed in
+Targets come from FILE (or ``--input FILE``; D by --method, R_rms, R_t, W_r, size and resolution) or are typed in
 (--D, --Rrms, --Rt, --Wr, --L, --n); typed-in values override those of FILE. Writes
 OUT/calibration.json (the calibrated inputs, the targets and every evaluation) and
 OUT/surface.npz (the calibrated surface at --n-out pixels per side, default the scan's).
@@ -16,11 +16,18 @@ import argparse
 from pathlib import Path
 
 from .._support.atomic import staged_output, strict_json
+from .._support.provenance import provenance
 from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
 from ..fractal import METHODS
 from ..io import write_height_map
 from ._common import add_device, integer, output_dir, positive, real
-from .describe import add_height_scaling, add_scan_arguments, method_options, read_scan_args
+from .describe import (
+    add_height_scaling,
+    add_scan_arguments,
+    method_options,
+    read_scan_args,
+    scan_file,
+)
 
 NAME = "calibrate"
 HELP = "find D_in and R_t' that reproduce a scan's D and R_rms (Fig. 4), then generate"
@@ -78,7 +85,7 @@ def _pair(v, option: str):
 def run(args: argparse.Namespace) -> int:
     """Calibrate and write the outputs."""
 
-    if args.file is not None:
+    if scan_file(args) is not None:
         s = read_scan_args(args)
         opts = method_options(args.method, args.height_scaling)
         t = target_from_surface(
@@ -119,6 +126,7 @@ def run(args: argparse.Namespace) -> int:
     )  # fmt: skip
     d = cal.to_dict()
     d = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in d.items()}
+    d["provenance"] = provenance(args.device)
     surf = None
     if not args.no_surface:
         n_out = _pair(args.n_out, "--n-out")

@@ -20,6 +20,7 @@ import math
 from pathlib import Path
 
 from .._support.atomic import staged_output, strict_json
+from .._support.provenance import provenance
 from ..islands import MIN_PIXELS, IslandCurve, applicable_depth, island_curve
 from ..islands.results import MIN_ISLANDS
 from ._common import (
@@ -161,6 +162,7 @@ def _write(args: argparse.Namespace, s, curve: IslandCurve, ind, out: Path) -> N
         "max_depth_m": float(curve.depth[-1]),
         "max_island_count": int(curve.n_islands.max()),
         "surface": s.to_dict(),
+        "provenance": provenance(args.device),
     }
     (out / "indicators.json").write_text(strict_json(info))
     if not args.no_plot:

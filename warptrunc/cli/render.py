@@ -17,6 +17,7 @@ import argparse
 from pathlib import Path
 
 from .._support.atomic import staged_output, strict_json
+from .._support.provenance import provenance
 from ..io.vtk import export_vtk
 from ._common import (
     add_device,
@@ -189,6 +190,7 @@ def _render(s, args: argparse.Namespace, out):
         for k in ("depth_m", "depth_fraction_of_Rt", "area_fraction"):
             v[k] = [float(x) for x in v[k]]
     info["surface"] = s.to_dict()
+    info["provenance"] = provenance(args.device)
     (out / "render.json").write_text(strict_json(info))
     written.append(out / "render.json")
     return r, written

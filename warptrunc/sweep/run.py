@@ -9,6 +9,7 @@ from contextlib import ExitStack
 from pathlib import Path
 from typing import Any
 
+from .._support.atomic import store_rollback
 from .._support.validate import check_int, check_range
 from .grid import SweepGrid, SweepOptions
 from .lock import store_lock
@@ -128,38 +129,49 @@ def run_sweep(
     shard_seconds = check_range("shard_seconds", shard_seconds, 0, None, lo_open=False, unit="s")
     if workers is not None and scheduler is not None:
         raise ValueError("give workers (a local cluster) or scheduler (an existing one), not both")
-    held = ExitStack()  # one writer per store: a second sweep on ``out`` is refused at once
-    notify = lambda m: print(m, file=sys.stderr)  # noqa: E731
+    guard = ExitStack()  # a failed run on a new store that finished nothing leaves nothing
+    store: Store | None = None
     if out is not None:
-        held.enter_context(store_lock(out, notify=notify))
-    try:
-        store = Store(out, grid, opts, overwrite=overwrite, retry_failed=retry_failed,
-                      notify=notify)  # fmt: skip
-    except BaseException:
-        held.close()
-        raise
-    todo = [c for c in grid.cases(opts) if c.case_id not in store.done]
-    try:
-        if todo and (workers is not None or scheduler is not None):
-            try:
-                from .cluster import run_dask
-            except ImportError as exc:
-                raise ImportError(
-                    f"workers/scheduler need dask.distributed ({exc.name} is missing): "
-                    'pip install "warptrunc[sweep]"'
-                ) from None
 
-            run_dask(todo, opts, store, workers=workers, scheduler=scheduler, device=device,
-                     total=len(grid), progress=progress, shard_size=shard_size,
-                     shard_seconds=shard_seconds)  # fmt: skip
-        elif todo:
-            from .engines import run_inprocess
+        def keep() -> bool:  # finished cases (or parts a worker wrote) are kept for a rerun
+            return (store is not None and bool(store.done)) or any(
+                Path(out).glob("curves/part-*.parquet")
+            )
 
-            run_inprocess(todo, opts, store.add_many, device=device, total=len(grid),
-                          progress=progress, shard_seconds=shard_seconds)  # fmt: skip
-    finally:
+        guard.enter_context(store_rollback(out, keep=keep))
+    with guard:
+        held = ExitStack()  # one writer per store: a second sweep on ``out`` is refused at once
+        notify = lambda m: print(m, file=sys.stderr)  # noqa: E731
+        if out is not None:
+            held.enter_context(store_lock(out, notify=notify))
         try:
-            store.flush()
-        finally:
+            store = Store(out, grid, opts, overwrite=overwrite, retry_failed=retry_failed,
+                          notify=notify)  # fmt: skip
+        except BaseException:
             held.close()
+            raise
+        todo = [c for c in grid.cases(opts) if c.case_id not in store.done]
+        try:
+            if todo and (workers is not None or scheduler is not None):
+                try:
+                    from .cluster import run_dask
+                except ImportError as exc:
+                    raise ImportError(
+                        f"workers/scheduler need dask.distributed ({exc.name} is missing): "
+                        'pip install "warptrunc[sweep]"'
+                    ) from None
+
+                run_dask(todo, opts, store, workers=workers, scheduler=scheduler, device=device,
+                         total=len(grid), progress=progress, shard_size=shard_size,
+                         shard_seconds=shard_seconds)  # fmt: skip
+            elif todo:
+                from .engines import run_inprocess
+
+                run_inprocess(todo, opts, store.add_many, device=device, total=len(grid),
+                              progress=progress, shard_seconds=shard_seconds)  # fmt: skip
+        finally:
+            try:
+                store.flush()
+            finally:
+                held.close()
     return store.frame()
