@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from ._support.validate import check_int, check_range, pair
+from ._support.validate import HEIGHT_LIMIT_M, check_int, check_range, pair
 from .params import check_fields, param, to_dict
 
 __all__ = ["WMSpec", "WMTerms", "wm_spec"]
@@ -146,7 +146,7 @@ def wm_spec(
     if Rt is None and G is None:
         raise ValueError("give Rt (m) or G (m) to set the vertical scale")
     if Rt is not None:
-        Rt = check_range("Rt", Rt, 0.0, unit="m")
+        Rt = check_range("Rt", Rt, 0.0, HEIGHT_LIMIT_M, hi_open=False, unit="m")
     if G is not None:
         G = check_range("G", G, 0.0, unit="m")
     seed = check_int("seed", seed, 0)
@@ -207,8 +207,9 @@ class WMSpec:
         1024, "pixels per side, or nx ny", kind="int", ge=2, le=1 << 20, pair=True, sweep=False
     )
     Rt: float | None = param(
-        10e-6, "target peak-to-valley height R_t; None (none) when G is given", unit="m", gt=0.0, optional=True
-    )
+        10e-6, "target peak-to-valley height R_t; None (none) when G is given", unit="m", gt=0.0,
+        le=HEIGHT_LIMIT_M, optional=True,
+    )  # fmt: skip
     G: float | None = param(
         None, "topothesy G; when given, heights are not rescaled to R_t", unit="m", gt=0.0,
         optional=True, sweep=False,

@@ -45,6 +45,7 @@ from pathlib import Path
 
 from .._support.atomic import probe_writable
 from .._support.messages import show
+from .._support.validate import MAX_INCREMENTS
 from ..io import read_height_map
 from ..surface import Surface
 from ..wm import wm_surface
@@ -237,6 +238,30 @@ def output_dir(text: str) -> Path:
         return p
     _check_writable_parent(p / "x", text)
     return p
+
+
+def check_increments(value: int | None, option: str = "--increments") -> None:
+    """Refuse more depth increments than one run may have (bounded work), naming the cap.
+
+    Parameters
+    ----------
+    value : int or None
+        The option's value (None: not given).
+    option : str
+        The option, for the message.
+
+    Raises
+    ------
+    ValueError
+        ``value`` exceeds :data:`warptrunc._support.validate.MAX_INCREMENTS`.
+    """
+    if value is not None and value > MAX_INCREMENTS:
+        raise ValueError(
+            f"{option} {value} is more than the {MAX_INCREMENTS} increments one run may have "
+            f"(a step below 10⁻⁶·ω_max is finer than float32 heights resolve, and each increment "
+            f"is a row of the output: {value} rows take minutes to write); use at most "
+            f"{MAX_INCREMENTS}"
+        )
 
 
 # --- argument groups --------------------------------------------------------------------------

@@ -48,6 +48,7 @@ from ..stiffness import (
 from ..truncation import truncate
 from ..truncation.stream import as_wm_spec, banded_truncation, fits_in_memory
 from ._common import (
+    check_increments,
     add_device,
     add_out,
     add_surface_source,
@@ -174,6 +175,7 @@ def _preload_plotting() -> threading.Thread:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse and write the outputs."""
+    check_increments(args.increments, "--increments")
     if args.depth_window is not None and not args.depth_window[0] < args.depth_window[1]:
         lo, hi = args.depth_window
         raise ValueError(f"--depth-window LO HI needs LO < HI (m), got {lo!r} {hi!r}")

@@ -25,6 +25,7 @@ import sys
 from .._support.atomic import staged_output
 from ..stiffness import Material
 from ._common import (
+    check_increments,
     add_device,
     add_out,
     add_surface_source,
@@ -117,6 +118,7 @@ def _rng(r: list[float] | None) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run the comparison and write the outputs."""
+    check_increments(args.increments, "--increments")
     from ..contact.check import bem_check, require_bem
     from ..plot import plot_bem_check
 

@@ -30,6 +30,7 @@ import sys
 from pathlib import Path
 
 from ._common import (
+    check_increments,
     add_device,
     add_out,
     add_reader_options,
@@ -94,6 +95,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study and write the summary."""
+    check_increments(args.increments, "--increments")
     from .._support.atomic import staged_outputs, strict_json
     from .._support.provenance import provenance
     from ..compare import compare_study, study_cases, summarize

@@ -24,6 +24,7 @@ from .._support.provenance import provenance
 from ..islands import MIN_PIXELS, IslandCurve, applicable_depth, island_curve
 from ..islands.results import MIN_ISLANDS
 from ._common import (
+    check_increments,
     add_device,
     add_out,
     add_surface_source,
@@ -110,6 +111,7 @@ def write_csv(curve: IslandCurve, path: Path) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the islands and write the outputs."""
+    check_increments(args.increments, "--increments")
     s = surface_from_args(args)
     snaps = [f * s.Rt for f in args.snapshots] if args.snapshots else None
     curve = island_curve(

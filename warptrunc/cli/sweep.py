@@ -22,7 +22,16 @@ import sys
 
 from ..sweep import SweepGrid, alpha_summary, load, run_sweep
 from ..sweep.read import require_extra
-from ._common import add_device, add_out, add_wm_shape, input_file, integer, positive, real
+from ._common import (
+    add_device,
+    add_out,
+    add_wm_shape,
+    check_increments,
+    input_file,
+    integer,
+    positive,
+    real,
+)
 from .analyze import add_fit_options, add_truncation_options
 
 NAME = "sweep"
@@ -121,6 +130,7 @@ def _on_sigterm(signum, frame):
 
 def run(args: argparse.Namespace) -> int:
     """Run the sweep; print a summary."""
+    check_increments(args.increments, "--increments")
 
     for opt in ("L", "n"):
         if len(getattr(args, opt)) > 2:

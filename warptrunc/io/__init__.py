@@ -40,6 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._support.messages import MAX_MESSAGE_CHARS, one_line
 from .._support.validate import check_range
 from ..surface import Surface
 from .builtin import read_numpy, read_text, write_warptrunc_file
@@ -95,6 +96,16 @@ def read_scan(
     Returns
     -------
     Scan
+
+    Raises
+    ------
+    FileNotFoundError
+        The file does not exist.
+    ValueError
+        The file is empty, damaged or not a height map, or the pixel spacing is missing; the
+        message is one line of at most a few hundred characters that names the file.
+    MissingExtraError
+        An instrument file needs SurfaceTopography (``pip install "warptrunc[scans]"``).
     """
     path = Path(path)
     if engine not in ENGINES:
@@ -117,11 +128,31 @@ def read_scan(
             f"{path}: the built-in readers handle {NUMPY_SUFFIXES + TEXT_SUFFIXES}, got "
             f"{suffix!r}; use engine='surfacetopography'"
         )
-    if engine == "surfacetopography" or (engine == "auto" and not builtin):
-        return read_surfacetopography(path, dx, dy, height_unit, channel)
-    if suffix in NUMPY_SUFFIXES:
-        return read_numpy(path, dx, dy, height_unit)
-    return read_text(path, dx, dy, height_unit)
+    if path.stat().st_size == 0:
+        raise ValueError(f"{path}: empty file (0 bytes): no height map to read")
+    try:
+        if engine == "surfacetopography" or (engine == "auto" and not builtin):
+            return read_surfacetopography(path, dx, dy, height_unit, channel)
+        if suffix in NUMPY_SUFFIXES:
+            return read_numpy(path, dx, dy, height_unit)
+        return read_text(path, dx, dy, height_unit)
+    except (MissingExtraError, MemoryError):
+        raise
+    except (ValueError, OSError) as exc:  # ours: keep the type, keep the message one short line
+        msg = str(exc)
+        if len(msg) <= MAX_MESSAGE_CHARS and "\n" not in msg:
+            raise
+        short = one_line(msg)
+        try:
+            new = type(exc)(short)
+        except Exception:  # an exception type that needs other arguments
+            new = ValueError(short)
+        raise new from None
+    except Exception as exc:  # numpy, zipfile, pickle guards, ...: a damaged file
+        raise ValueError(
+            f"{path}: cannot read, the file is damaged or not a {suffix or 'known'} height map "
+            f"({type(exc).__name__}: {one_line(exc, 160)})"
+        ) from None
 
 
 def read_height_map(
