@@ -158,6 +158,8 @@ class Staging:
         self._created: list[Path] = []  # folders made for the outputs, innermost first
         self._folders: list[tuple[Path, Path]] = []  # (staging folder, destination folder)
         self._files: list[tuple[Path, Path]] = []  # (temporary file, destination file)
+        self.targets: list[Path] = []
+        """The output folders and files asked for, in order."""
 
     def _make_parents(self, folder: Path) -> None:
         made = _created_parents(folder)
@@ -181,6 +183,7 @@ class Staging:
             allowed).
         """
         out = Path(out)
+        self.targets.append(out)
         self._make_parents(out)
         stage = Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=out))
         self._folders.append((stage, out))
@@ -200,6 +203,7 @@ class Staging:
             An empty temporary file in the same folder (``.<stem>.partial-*<suffix>``).
         """
         path = Path(path)
+        self.targets.append(path)
         self._make_parents(path.parent)
         fd, tmp = tempfile.mkstemp(
             dir=path.parent, prefix=f".{path.stem}.partial-", suffix=path.suffix
@@ -277,6 +281,11 @@ def staged_outputs() -> Iterator[Staging]:
     try:
         yield st
         st.commit()
+    except OSError as exc:  # a full disk, a file-size limit: say which output could not be made
+        st.rollback()
+        if exc.filename is None and st.targets and exc.errno is not None:
+            raise OSError(exc.errno, exc.strerror or str(exc), str(st.targets[0])) from exc
+        raise
     except BaseException:
         st.rollback()
         raise
