@@ -365,9 +365,11 @@ def store_rollback(out: str | Path, keep: Callable[[], bool]) -> Iterator[None]:
                         p.unlink()
                 except OSError:
                     pass
-            for d in created:
+            for d in created:  # innermost first; out itself may be gone already
                 try:
                     d.rmdir()
+                except FileNotFoundError:
+                    continue
                 except OSError:
                     break
         raise
