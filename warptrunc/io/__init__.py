@@ -36,6 +36,7 @@ SurfaceTopography reader in ``instrument``. Every name is importable from ``warp
 
 from __future__ import annotations
 
+import errno
 from pathlib import Path
 
 import numpy as np
@@ -138,21 +139,31 @@ def read_scan(
         return read_text(path, dx, dy, height_unit)
     except (MissingExtraError, MemoryError):
         raise
-    except (ValueError, OSError) as exc:  # ours: keep the type, keep the message one short line
-        msg = str(exc)
-        if len(msg) <= MAX_MESSAGE_CHARS and "\n" not in msg:
+    except OSError as exc:
+        if exc.errno in _IO_ERRNOS:  # the file system refused: say so, naming the file
+            raise OSError(exc.errno, exc.strerror, str(path)) from None
+        raise ValueError(_damaged(path, suffix, exc)) from None  # e.g. a seek past a cut zip
+    except ValueError as exc:  # ours: keep the type, keep the message one short line that
+        msg = str(exc)  # names the file
+        if len(msg) <= MAX_MESSAGE_CHARS and "\n" not in msg and str(path) in msg:
             raise
-        short = one_line(msg)
-        try:
-            new = type(exc)(short)
-        except Exception:  # an exception type that needs other arguments
-            new = ValueError(short)
-        raise new from None
+        if str(path) not in msg:
+            raise ValueError(_damaged(path, suffix, exc)) from None
+        raise ValueError(one_line(msg)) from None
     except Exception as exc:  # numpy, zipfile, pickle guards, ...: a damaged file
-        raise ValueError(
-            f"{path}: cannot read, the file is damaged or not a {suffix or 'known'} height map "
-            f"({type(exc).__name__}: {one_line(exc, 160)})"
-        ) from None
+        raise ValueError(_damaged(path, suffix, exc)) from None
+
+
+_IO_ERRNOS = {errno.EACCES, errno.EPERM, errno.EIO, errno.ENOENT, errno.EISDIR, errno.ENOMEM,
+              errno.EMFILE, errno.ENFILE, errno.ETIMEDOUT}  # fmt: skip
+"""Errors of the file system (not of the file's content), kept as OSError by :func:`read_scan`."""
+
+
+def _damaged(path: Path, suffix: str, exc: BaseException) -> str:
+    return (
+        f"{path}: cannot read, the file is damaged or not a {suffix or 'known'} height map "
+        f"({type(exc).__name__}: {one_line(exc, 160)})"
+    )
 
 
 def read_height_map(
