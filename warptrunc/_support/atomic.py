@@ -42,6 +42,7 @@ import numpy as np
 
 __all__ = [
     "INF_KEYS",
+    "Staging",
     "atomic_write",
     "jsonable_strict",
     "probe_writable",
@@ -50,7 +51,6 @@ __all__ = [
     "staged_outputs",
     "store_rollback",
     "strict_json",
-    "Staging",
 ]
 
 INF_KEYS = frozenset({"E_i", "E_flat", "E_flat_Pa"})
