@@ -35,7 +35,10 @@ def device(request) -> str:
     return request.param
 
 
-SCANS = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "scans"
+SCANS = Path(
+    os.environ.get("WARPTRUNC_SCANS_DIR")
+    or Path(__file__).resolve().parents[1].parent / "shared" / "data" / "scans"
+)
 
 
 @pytest.fixture(scope="module")
@@ -54,7 +57,8 @@ def quiet_surfacetopography():
 
 @pytest.fixture
 def scans_dir() -> Path:
-    """../shared/data/scans beside the checkout; skips when absent (users' clones)."""
+    """../shared/data/scans beside the checkout (or $WARPTRUNC_SCANS_DIR); skips when absent
+    (users' clones)."""
     if not SCANS.is_dir():
         pytest.skip(f"measured scans not found at {SCANS}")
     return SCANS

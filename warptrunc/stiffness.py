@@ -135,12 +135,15 @@ class StiffnessCurve:
         -------
         Path
             ``path``. Besides the columns, the object holds ``material`` (the fields of
-            :class:`Material`), ``beta_prime``, ``apparent_area_m2`` (m²) and ``Rt_m`` (R_t, m).
+            :class:`Material`), ``beta_prime``, ``apparent_area_m2`` (m²), ``Rt_m`` (R_t, m)
+            and ``provenance`` (version, commit, command line, time).
         """
+        from ._support.provenance import provenance
+
         path = Path(path)
         d = {k: v.tolist() for k, v in self.to_dict().items()}
         d.update(material=asdict(self.material), beta_prime=self.beta_prime)
-        d.update(apparent_area_m2=self.apparent_area, Rt_m=self.Rt)
+        d.update(apparent_area_m2=self.apparent_area, Rt_m=self.Rt, provenance=provenance())
         path.write_text(json.dumps(d, indent=1, default=str) + "\n")
         return path
 
@@ -261,10 +264,13 @@ class PowerLawFit:
         Returns
         -------
         Path
-            ``path``.
+            ``path``. Besides the fields of :meth:`to_dict`, the object holds ``provenance``
+            (version, commit, command line, time).
         """
+        from ._support.provenance import provenance
+
         path = Path(path)
-        path.write_text(json.dumps(self.to_dict(), indent=2) + "\n")
+        path.write_text(json.dumps({**self.to_dict(), "provenance": provenance()}, indent=2) + "\n")
         return path
 
 

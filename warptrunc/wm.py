@@ -18,6 +18,7 @@ import warp as wp
 
 from ._support.device import as_device, check_memory, resolve_device
 from ._support.reduce import height_range
+from ._support.validate import HEIGHT_LIMIT_M
 from .kernels import wm as _k
 from .surface import Surface
 from .params import numpydoc_fields
@@ -276,7 +277,17 @@ def height_scale(spec: WMTerms, lo: float, hi: float) -> float:
         if not hi > lo:
             raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")
         return spec.Rt / (hi - lo)
-    return _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
+    try:
+        scale = _prefactor(spec) * (spec.G / spec.Wr) ** (spec.D - 3.0)
+    except OverflowError:
+        scale = math.inf
+    if not scale * (hi - lo) <= HEIGHT_LIMIT_M:  # inf or NaN too
+        raise ValueError(
+            f"G = {spec.G!r} m gives heights of R_t = {scale * (hi - lo):.3g} m, beyond the "
+            f"{HEIGHT_LIMIT_M:.3g} m float32 heights hold; use a larger G (heights grow as "
+            f"G^(D − 3)) or give Rt"
+        )
+    return scale
 
 
 def surface_params(spec: WMTerms, scale: float) -> dict:

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from ._support.validate import check_range
+from ._support.validate import HEIGHT_LIMIT_M, check_range
 from .params import check_fields, numpydoc_fields, param, to_dict
 
 __all__ = ["WMSpec", "WMTerms", "wm_spec"]
@@ -208,8 +208,9 @@ class WMSpec:
         1024, "pixels per side, or nx ny", kind="int", ge=2, le=1 << 20, pair=True, sweep=False
     )
     Rt: float | None = param(
-        10e-6, "target peak-to-valley height R_t; None (none) when G is given", unit="m", gt=0.0, optional=True
-    )
+        10e-6, "target peak-to-valley height R_t; None (none) when G is given", unit="m", gt=0.0,
+        le=HEIGHT_LIMIT_M, optional=True,
+    )  # fmt: skip
     G: float | None = param(
         None, "topothesy G; when given, heights are not rescaled to R_t", unit="m", gt=0.0,
         optional=True, sweep=False,

@@ -6,6 +6,7 @@
 ``atomic``         all-or-nothing file writes (temporary sibling, rename)
 ``device``         Warp device resolution, free memory, pool trimming
 ``limits``         size limits (int32 indexing, row bands)
+``messages``       error messages of one short line
 ``progress``       progress bars
 ``provenance``     version, commit, command line, device and time of an output
 ``reduce``         device min/max reductions

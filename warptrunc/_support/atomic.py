@@ -9,7 +9,10 @@ Strict JSON
     :func:`read_json` reads such a file back and maps ``null`` to ``inf`` for the keys of
     :data:`INF_KEYS` (the moduli of a rigid flat).
 
-All-or-nothing output folders
+All-or-nothing outputs
+    :func:`staged_outputs` is the one mechanism of every command: it hands out staging folders
+    (for an output folder) and temporary sibling files (for an output file) and renames them
+    all into place when the block succeeds, or removes them all when it fails.
     :func:`staged_output` yields a hidden staging folder inside ``--out``; the command writes
     every file there, and only when the block ends without an exception are the files renamed
     into ``--out`` (each rename atomic on POSIX). On an exception the staging folder is removed,
@@ -30,7 +33,7 @@ import math
 import os
 import shutil
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -39,11 +42,14 @@ import numpy as np
 
 __all__ = [
     "INF_KEYS",
+    "Staging",
     "atomic_write",
     "jsonable_strict",
     "probe_writable",
     "read_json",
     "staged_output",
+    "staged_outputs",
+    "store_rollback",
     "strict_json",
 ]
 
@@ -90,9 +96,18 @@ def _null_to_inf(v: Any) -> Any:
 def read_json(path: str | Path) -> Any:
     """Read a JSON file written by warptrunc; ``null`` under :data:`INF_KEYS` becomes inf.
 
-    Older files with ``Infinity`` tokens are read as well.
+    Older files with ``Infinity`` tokens are read as well. A file that is not JSON (cut short
+    by a full disk or a crash, or not text) raises ValueError naming the file.
     """
-    return _null_to_inf(json.loads(Path(path).read_text()))
+    path = Path(path)
+    try:
+        return _null_to_inf(json.loads(path.read_text(encoding="utf-8")))
+    except ValueError as exc:  # JSONDecodeError, UnicodeDecodeError
+        from .messages import one_line
+
+        raise ValueError(
+            f"{path}: not valid JSON, the file is damaged (cut short?): {one_line(exc, 120)}"
+        ) from None
 
 
 def _nearest_existing(p: Path) -> Path:
@@ -108,24 +123,172 @@ def probe_writable(path: str | Path) -> str | None:
     Creates and removes a temporary folder in the nearest existing ancestor of ``path``.
     """
     anc = _nearest_existing(Path(path))
+    from .messages import show
+
     if not anc.is_dir():
-        return f"{str(anc)!r} is not a folder"
+        return f"{show(anc)} is not a folder"
     try:
         tmp = tempfile.mkdtemp(prefix=".warptrunc-probe-", dir=anc)
     except OSError as exc:
-        return f"cannot write under {str(anc)!r} ({exc.strerror or exc})"
+        return f"cannot write under {show(anc)} ({exc.strerror or type(exc).__name__})"
     os.rmdir(tmp)
     return None
 
 
 def _created_parents(out: Path) -> list[Path]:
-    """The folders that ``out.mkdir(parents=True)`` would create, outermost last."""
+    """The folders that ``out.mkdir(parents=True)`` would create, innermost first."""
     made = []
     q = out.absolute()
     while not q.exists() and q != q.parent:
         made.append(q)
         q = q.parent
     return made
+
+
+class Staging:
+    """One all-or-nothing set of outputs: folders and single files, committed together.
+
+    Made by :func:`staged_outputs`; do not build it directly. :meth:`folder` gives a staging
+    folder for an output folder, :meth:`file` a temporary sibling for an output file. The
+    destinations are touched only by :meth:`commit` (renames within each file system); until
+    then a failure removes every staged file and every folder that this set created.
+    """
+
+    def __init__(self) -> None:
+        self._created: list[Path] = []  # folders made for the outputs, innermost first
+        self._folders: list[tuple[Path, Path]] = []  # (staging folder, destination folder)
+        self._files: list[tuple[Path, Path]] = []  # (temporary file, destination file)
+        self.targets: list[Path] = []
+        """The output folders and files asked for, in order."""
+
+    def _make_parents(self, folder: Path) -> None:
+        made = _created_parents(folder)
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+        finally:
+            self._created = [d for d in made if d.is_dir()] + self._created
+
+    def folder(self, out: str | Path) -> Path:
+        """A hidden staging folder whose files go into ``out`` on commit.
+
+        Parameters
+        ----------
+        out : path
+            The output folder (created if missing; removed again on failure).
+
+        Returns
+        -------
+        Path
+            The staging folder inside ``out``; write every output file there (sub-folders
+            allowed).
+        """
+        out = Path(out)
+        self.targets.append(out)
+        self._make_parents(out)
+        stage = Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=out))
+        self._folders.append((stage, out))
+        return stage
+
+    def file(self, path: str | Path) -> Path:
+        """A temporary sibling of ``path`` that replaces ``path`` on commit.
+
+        Parameters
+        ----------
+        path : path
+            The output file (its folder is created if missing; removed again on failure).
+
+        Returns
+        -------
+        Path
+            An empty temporary file in the same folder (``.<stem>.partial-*<suffix>``).
+        """
+        path = Path(path)
+        self.targets.append(path)
+        self._make_parents(path.parent)
+        fd, tmp = tempfile.mkstemp(
+            dir=path.parent, prefix=f".{path.stem}.partial-", suffix=path.suffix
+        )
+        os.close(fd)
+        self._files.append((Path(tmp), path))
+        return Path(tmp)
+
+    def _moves(self) -> list[tuple[Path, Path]]:
+        moves = list(self._files)
+        for stage, out in self._folders:
+            for f in sorted(p for p in stage.rglob("*") if not p.is_dir()):
+                moves.append((f, out / f.relative_to(stage)))
+        for _, dest in moves:
+            if dest.is_dir():
+                raise IsADirectoryError(f"cannot write {dest}: a folder of that name exists")
+        return moves
+
+    def commit(self) -> None:
+        """Move every staged file onto its destination and remove the staging folders."""
+        temporary = {tmp for tmp, _ in self._files}
+        for src, dest in self._moves():
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            if src in temporary:
+                os.chmod(src, 0o644)  # mkstemp made it 0600
+            os.replace(src, dest)
+        for stage, _ in self._folders:
+            shutil.rmtree(stage, ignore_errors=True)
+        self._folders, self._files, self._created = [], [], []
+
+    def rollback(self) -> None:
+        """Remove every staged file, staging folder and folder this set created."""
+        for stage, _ in self._folders:
+            shutil.rmtree(stage, ignore_errors=True)
+        for tmp, _ in self._files:
+            tmp.unlink(missing_ok=True)
+        for d in self._created:  # innermost first; stops at a folder that is not empty
+            try:
+                d.rmdir()
+            except OSError:
+                break
+        self._folders, self._files, self._created = [], [], []
+
+
+@contextmanager
+def staged_outputs() -> Iterator[Staging]:
+    """All-or-nothing outputs of one command, in several folders and files.
+
+    Yields
+    ------
+    Staging
+        Ask it for staging folders (:meth:`Staging.folder`) and temporary files
+        (:meth:`Staging.file`) and write there.
+
+    Notes
+    -----
+    When the block ends without an exception every staged file is renamed onto its destination
+    (each rename atomic on POSIX; destinations are checked first, so that a rename fails only
+    in exceptional cases). On any exception (KeyboardInterrupt included) the staged files are
+    removed, and so are the output folders (and their parents) this call created, and the
+    exception propagates: a failed command leaves nothing new behind, and files of an earlier
+    run are untouched.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> root = pathlib.Path(tempfile.mkdtemp())
+    >>> with staged_outputs() as st:
+    ...     _ = (st.folder(root / "out") / "a.txt").write_text("a")
+    ...     _ = st.file(root / "b.json").write_text("{}")
+    >>> sorted(p.name for p in root.rglob("*"))
+    ['a.txt', 'b.json', 'out']
+    """
+    st = Staging()
+    try:
+        yield st
+        st.commit()
+    except OSError as exc:  # a full disk, a file-size limit: say which output could not be made
+        st.rollback()
+        if exc.filename is None and st.targets and exc.errno is not None:
+            raise OSError(exc.errno, exc.strerror or str(exc), str(st.targets[0])) from exc
+        raise
+    except BaseException:
+        st.rollback()
+        raise
 
 
 @contextmanager
@@ -144,54 +307,69 @@ def staged_output(out: str | Path) -> Iterator[Path]:
 
     Notes
     -----
-    On success every file is renamed into ``out`` (replacing files of the same name) and the
-    staging folder is removed. On any exception (including KeyboardInterrupt) the staging
-    folder is removed, ``out`` and its parents are removed again if this call created them,
-    and the exception propagates.
+    :func:`staged_outputs` with one folder: on success every file is renamed into ``out``
+    (replacing files of the same name) and the staging folder is removed. On any exception
+    (including KeyboardInterrupt) the staging folder is removed, ``out`` and its parents are
+    removed again if this call created them, and the exception propagates.
     """
-    out = Path(out)
-    created = _created_parents(out)
-    out.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=out))
-    try:
-        yield stage
-        files = sorted(p for p in stage.rglob("*") if not p.is_dir())
-        for f in files:
-            dest = out / f.relative_to(stage)
-            if dest.is_dir():
-                raise IsADirectoryError(f"cannot write {dest}: a folder of that name exists")
-        for f in files:
-            dest = out / f.relative_to(stage)
-            dest.parent.mkdir(parents=True, exist_ok=True)
-            os.replace(f, dest)
-    except BaseException:
-        shutil.rmtree(stage, ignore_errors=True)
-        for d in created:  # innermost first
-            try:
-                d.rmdir()
-            except OSError:
-                break
-        raise
-    shutil.rmtree(stage, ignore_errors=True)
+    with staged_outputs() as st:
+        yield st.folder(out)
 
 
 @contextmanager
 def atomic_write(path: str | Path) -> Iterator[Path]:
     """A temporary path next to ``path``, renamed onto ``path`` only if the block succeeds."""
-    path = Path(path)
-    created = _created_parents(path.parent)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.partial-", suffix=path.suffix)
-    os.close(fd)
+    with staged_outputs() as st:
+        yield st.file(path)
+
+
+def _tree(out: Path) -> set[Path]:
+    if not out.is_dir():
+        return set()
+    return {out, *out.rglob("*")}
+
+
+@contextmanager
+def store_rollback(out: str | Path, keep: Callable[[], bool]) -> Iterator[None]:
+    """For a resumable store (sweep, compare): a failed run that finished nothing leaves
+    nothing new.
+
+    Parameters
+    ----------
+    out : path
+        The store folder (it may exist, hold an earlier run, or not exist yet).
+    keep : callable
+        Called after a failure: True when the run stored results worth resuming (then every
+        file stays, as the store promises); False to remove what the run created.
+
+    Notes
+    -----
+    On an exception with ``keep()`` False, every file and folder under ``out`` that did not
+    exist when the block started is removed (files first, deepest folders first), and so are
+    ``out`` and its parents if the block created them; files of an earlier run are untouched.
+    The exception propagates.
+    """
+    out = Path(out)
+    created = _created_parents(out)
+    before = _tree(out)
     try:
-        yield Path(tmp)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
+        yield
     except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        for d in created:
-            try:
-                d.rmdir()
-            except OSError:
-                break
+        if not keep():
+            new = sorted(_tree(out) - before, key=lambda p: len(p.parts), reverse=True)
+            for p in new:
+                try:
+                    if p.is_dir() and not p.is_symlink():
+                        p.rmdir()
+                    else:
+                        p.unlink()
+                except OSError:
+                    pass
+            for d in created:  # innermost first; out itself may be gone already
+                try:
+                    d.rmdir()
+                except FileNotFoundError:
+                    continue
+                except OSError:
+                    break
         raise

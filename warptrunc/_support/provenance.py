@@ -1,27 +1,137 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Provenance of results: the commit of the code that made them."""
+"""Provenance of results: what made an output, and when.
+
+:func:`provenance` is the one record every output carries (``"provenance"`` in ``fit.json``,
+``fit.to_json()``, ``render.json``, ``bem.json``, ``indicators.json``, ``calibration.json``,
+``describe --json``, a sweep store's ``sweep.json``, a comparison study, reports): warptrunc's
+version, the git commit where known, the command line, the device, the time (UTC), and the
+versions of Python and Warp. The command line is the ``warptrunc`` command while one runs
+(:func:`set_command`, called by :func:`warptrunc.cli.main`), else ``sys.argv``.
+``$SOURCE_DATE_EPOCH``, when set, fixes the time (reproducible outputs).
+"""
 
 from __future__ import annotations
 
+import functools
 import os
+import platform
+import shlex
 import subprocess
+import sys
+import time
 from pathlib import Path
+from typing import Any
+
+__all__ = ["git_commit", "provenance", "set_command"]
+
+_command: list[str] | None = None
+
+
+def set_command(argv: list[str] | None) -> None:
+    """Record the command line of the running ``warptrunc`` command (None: forget it).
+
+    Parameters
+    ----------
+    argv : list of str or None
+        The full command line, program name first (``["warptrunc", "analyze", ...]``).
+    """
+    global _command
+    _command = None if argv is None else [str(a) for a in argv]
+
+
+@functools.lru_cache(maxsize=8)
+def _git_head(root: str) -> str | None:
+    try:
+        out = subprocess.run(
+            ["git", "-C", root, "rev-parse", "HEAD"], capture_output=True, text=True, timeout=10
+        )
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return out.stdout.strip() if out.returncode == 0 and out.stdout.strip() else None
 
 
 def git_commit(root: str | Path | None = None) -> str | None:
     """The commit of the checkout at ``root`` (default: this package's), or None.
 
-    ``$WARPTRUNC_GIT_COMMIT``, when set, is returned as it is.
+    ``$WARPTRUNC_GIT_COMMIT``, when set, is returned as it is. The answer of git is kept for
+    the life of the process.
+
+    Parameters
+    ----------
+    root : str or Path, optional
+        A folder inside a git checkout.
+
+    Returns
+    -------
+    str or None
+        The full commit hash; None outside a checkout or without git.
     """
     env = os.environ.get("WARPTRUNC_GIT_COMMIT")
     if env:  # a copy without .git (e.g. a tree shipped to a GPU machine) can say its commit
         return env.strip()
-    root = Path(root) if root is not None else Path(__file__).resolve().parents[1]
+    root = Path(root) if root is not None else Path(__file__).resolve().parents[2]
+    return _git_head(str(root))
+
+
+def _utc_now() -> str:
+    epoch = os.environ.get("SOURCE_DATE_EPOCH")
+    t = time.gmtime(int(epoch)) if epoch and epoch.strip().isdigit() else time.gmtime()
+    return time.strftime("%Y-%m-%dT%H:%M:%SZ", t)
+
+
+def _device(device: Any) -> tuple[str | None, str | None]:
+    """(device alias, device name) as resolved by Warp, when Warp is loaded already."""
+    if "warp" not in sys.modules:  # nothing ran on a device; do not load Warp for this
+        return (None if device is None else str(device)), None
     try:
-        out = subprocess.run(
-            ["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True
-        )
-        return out.stdout.strip() or None
-    except OSError:
-        return None
+        from .device import resolve_device
+
+        d = resolve_device(device)
+        return str(d.alias), str(getattr(d, "name", "") or "") or None
+    except Exception:  # an unknown device name: the command reports it elsewhere
+        return (None if device is None else str(device)), None
+
+
+def provenance(device: Any = None, argv: list[str] | None = None) -> dict[str, Any]:
+    """What made an output and when, as a JSON-ready dict.
+
+    Parameters
+    ----------
+    device : str or warp.Device, optional
+        The device the work ran on (default: the one Warp resolves by default, when Warp is
+        loaded; else None).
+    argv : list of str, optional
+        The command line, program name first (default: the running ``warptrunc`` command,
+        else ``sys.argv``).
+
+    Returns
+    -------
+    dict
+        ``warptrunc_version``, ``git_commit`` (None where unknown), ``command`` (one string,
+        shell-quoted), ``device`` (e.g. ``"cuda:0"``), ``device_name``, ``created_utc``
+        (ISO 8601, ``$SOURCE_DATE_EPOCH`` when set), ``python_version`` and
+        ``warp_version`` (None when Warp is not loaded).
+
+    Examples
+    --------
+    >>> sorted(provenance())[:3]
+    ['command', 'created_utc', 'device']
+    """
+    from .. import __version__
+
+    if argv is None:
+        argv = _command if _command is not None else list(sys.argv)
+    dev, name = _device(device)
+    warp = sys.modules.get("warp")
+    return {
+        "warptrunc_version": __version__,
+        "git_commit": git_commit(),
+        "command": shlex.join(str(a) for a in argv),
+        "device": dev,
+        "device_name": name,
+        "created_utc": _utc_now(),
+        "python_version": platform.python_version(),
+        "warp_version": None if warp is None else getattr(getattr(warp, "config", None),
+                                                          "version", None),  # fmt: skip
+    }

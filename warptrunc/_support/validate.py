@@ -8,6 +8,20 @@ import math
 
 import numpy as np
 
+HEIGHT_LIMIT_M = float(np.finfo(np.float32).max) / 4
+"""Largest height magnitude (m) a map may hold: float32 heights (on the device) and their
+differences stay finite up to a quarter of the float32 maximum (about 8.5·10³⁷)."""
+
+MAX_INCREMENTS = 1_000_000
+"""Most depth increments of one truncation curve (a bound on the work of one run).
+
+A step below 10⁻⁶·ω_max is finer than float32 heights resolve when ω_max is a tenth of R_t or
+more (float32 holds about 7 significant digits), and every increment is a row of curve.csv
+(writing a row takes about 15 µs: 10⁶ rows are 15 s and 150 MB)."""
+
+MAX_SEEDS = 1_000_000
+"""Most seeds of one sweep grid, and most cases (D × δ × seeds) of one store."""
+
 
 def check_range(
     name: str,
@@ -65,7 +79,7 @@ def check_height_map(z: np.ndarray, name: str = "heights") -> np.ndarray:
             f"{name} contains {int(bad.sum())} NaN/inf values (first at iy={iy}, ix={ix}); "
             "fill or mask them first"
         )
-    big = float(np.finfo(np.float32).max) / 4  # heights and their differences stay finite
+    big = HEIGHT_LIMIT_M  # heights and their differences stay finite
     peak = float(np.max(np.abs(z)))
     if peak > big:
         raise ValueError(

@@ -125,16 +125,52 @@ def main(argv: list[str] | None = None) -> int:
         sub-command's own documented status.
     """
     argv = sys.argv[1:] if argv is None else list(argv)
-    args = build_parser(argv).parse_args(argv)
+    parser = build_parser(argv)
+    try:
+        args = parser.parse_args(argv)
+    except OSError as exc:  # a ``type=`` validator met the file system (all are caught there)
+        print(f"warptrunc {_command_in(argv)}: error: {_error_text(exc)}", file=sys.stderr)
+        return 2
 
     if getattr(args, "verbose", False):
         os.environ["WARPTRUNC_VERBOSE"] = "1"  # read by warptrunc._support.device.is_verbose
+    from .._support.provenance import set_command
+
+    set_command(["warptrunc", *argv])  # the command line in every output's provenance
     try:
         return int(args._run(args) or 0)
-    except (ValueError, MemoryError, OSError) as exc:
-        msg = " ".join(str(exc).split())  # one line
-        print(f"warptrunc {args.command}: error: {msg}", file=sys.stderr)
+    except (ValueError, MemoryError, OSError, OverflowError, RecursionError) as exc:
+        print(f"warptrunc {args.command}: error: {_error_text(exc)}", file=sys.stderr)
         return 2
+    except Exception as exc:  # a bug: still one line, the traceback with --verbose
+        if getattr(args, "verbose", False):
+            raise
+        print(
+            f"warptrunc {args.command}: internal error: {_error_text(exc)} (a bug: please "
+            "report it with the command line; --verbose shows the traceback)",
+            file=sys.stderr,
+        )
+        return EXIT_INTERNAL_ERROR
+    finally:
+        set_command(None)
+
+
+EXIT_INTERNAL_ERROR = 1
+"""Exit status of an unexpected exception (a bug); bad input exits with 2."""
+
+
+def _error_text(exc: BaseException) -> str:
+    """The exception's message as one short line; its type when the message is empty."""
+    from .._support.messages import one_line
+
+    msg = one_line(exc)
+    if isinstance(exc, MemoryError):
+        return f"out of memory{': ' + msg if msg else ''}"
+    if isinstance(exc, OSError) and exc.strerror and exc.filename is not None:
+        from .._support.messages import show
+
+        return one_line(f"{exc.strerror}: {show(exc.filename)}")
+    return msg or type(exc).__name__
 
 
 if __name__ == "__main__":

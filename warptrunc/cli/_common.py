@@ -44,6 +44,8 @@ import sys
 from pathlib import Path
 
 from .._support.atomic import probe_writable
+from .._support.messages import show
+from .._support.validate import MAX_INCREMENTS
 from ..io import read_height_map
 from ..material import Material
 from ..params import add_options, from_args
@@ -99,14 +101,14 @@ def real(
         try:
             v = float(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"must be a number in {rng}{u}, got {text!r}") from None
+            raise argparse.ArgumentTypeError(f"must be a number in {rng}{u}, got {show(text)}") from None
         bad = math.isnan(v) or (math.isinf(v) and not (allow_inf and v > 0))
         if lo is not None:
             bad |= v <= lo if lo_open else v < lo
         if hi is not None:
             bad |= v >= hi if hi_open else v > hi
         if bad:
-            raise argparse.ArgumentTypeError(f"must be in {rng}{u}, got {text!r}")
+            raise argparse.ArgumentTypeError(f"must be in {rng}{u}, got {show(text)}")
         return v
 
     parse.__name__ = "number"
@@ -135,9 +137,9 @@ def integer(lo: int, hi: int | None = None):
         try:
             v = int(text, 10)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"must be an integer in {rng}, got {text!r}") from None
+            raise argparse.ArgumentTypeError(f"must be an integer in {rng}, got {show(text)}") from None
         if v < lo or (hi is not None and v > hi):
-            raise argparse.ArgumentTypeError(f"must be an integer in {rng}, got {text!r}")
+            raise argparse.ArgumentTypeError(f"must be an integer in {rng}, got {show(text)}")
         return v
 
     parse.__name__ = "integer"
@@ -151,7 +153,7 @@ def odd_integer(lo: int = 1):
     def parse(text: str) -> int:
         v = base(text)
         if v % 2 == 0:
-            raise argparse.ArgumentTypeError(f"must be an odd integer ≥ {lo}, got {text!r}")
+            raise argparse.ArgumentTypeError(f"must be an odd integer ≥ {lo}, got {show(text)}")
         return v
 
     parse.__name__ = "odd integer"
@@ -168,50 +170,102 @@ def _nearest_existing(p: Path) -> Path:
 def _check_writable_parent(p: Path, text: str) -> None:
     anc = _nearest_existing(p.parent if p.name else p)
     if not anc.is_dir():
-        raise argparse.ArgumentTypeError(f"{str(anc)!r} is not a folder, so {text!r} cannot be written")
+        raise argparse.ArgumentTypeError(f"{show(anc)} is not a folder, so {show(text)} cannot be written")
     if not os.access(anc, os.W_OK | os.X_OK):
-        raise argparse.ArgumentTypeError(f"cannot write under {str(anc)!r} (no permission), got {text!r}")
+        raise argparse.ArgumentTypeError(f"cannot write under {show(anc)} (no permission), got {show(text)}")
     why = probe_writable(anc)  # os.access is wrong for root and on /proc, /sys
     if why is not None:
-        raise argparse.ArgumentTypeError(f"{why}, got {text!r}")
+        raise argparse.ArgumentTypeError(f"{why}, got {show(text)}")
 
 
+def _path_check(what: str):
+    """Turn an OSError met while looking at a path (no permission to enter a folder, a name too
+    long, ...) into the one-line ``argparse`` error of the option."""
+
+    def wrap(check):
+        def parse(text: str) -> Path:
+            try:
+                return check(text)
+            except OSError as exc:
+                why = exc.strerror or type(exc).__name__
+                raise argparse.ArgumentTypeError(
+                    f"cannot use {show(text)} as {what} ({why}"
+                    + (f": {show(exc.filename)}" if exc.filename not in (None, text) else "")
+                    + ")"
+                ) from None
+
+        parse.__name__ = check.__name__
+        parse.__doc__ = check.__doc__
+        return parse
+
+    return wrap
+
+
+@_path_check("an input file")
 def input_file(text: str) -> Path:
     """A ``type=`` for an existing regular file (not a folder)."""
     p = Path(text)
     if not text:
         raise argparse.ArgumentTypeError("must be a file name, got ''")
     if not p.exists():
-        raise argparse.ArgumentTypeError(f"file not found: {text!r}")
+        raise argparse.ArgumentTypeError(f"file not found: {show(text)}")
     if not p.is_file():
-        raise argparse.ArgumentTypeError(f"must be a regular file, got a folder: {text!r}")
+        raise argparse.ArgumentTypeError(f"must be a regular file, got a folder: {show(text)}")
+    if not os.access(p, os.R_OK):
+        raise argparse.ArgumentTypeError(f"file is not readable (no permission): {show(text)}")
     return p
 
 
+@_path_check("an output file")
 def output_file(text: str) -> Path:
     """A ``type=`` for a file to write: not an existing folder, in a writable folder."""
     p = Path(text)
     if not text:
         raise argparse.ArgumentTypeError("must be a file name, got ''")
     if p.is_dir():
-        raise argparse.ArgumentTypeError(f"must be a file name, got an existing folder: {text!r}")
+        raise argparse.ArgumentTypeError(f"must be a file name, got an existing folder: {show(text)}")
     _check_writable_parent(p, text)
     return p
 
 
+@_path_check("an output folder")
 def output_dir(text: str) -> Path:
     """A ``type=`` for an output folder: an existing folder, or one that can be created."""
     p = Path(text)
     if not text:
         raise argparse.ArgumentTypeError("must be a folder name, got ''")
     if p.exists() and not p.is_dir():
-        raise argparse.ArgumentTypeError(f"must be a folder, got an existing file: {text!r}")
+        raise argparse.ArgumentTypeError(f"must be a folder, got an existing file: {show(text)}")
     if p.is_dir():
         if not os.access(p, os.W_OK | os.X_OK) or probe_writable(p) is not None:
-            raise argparse.ArgumentTypeError(f"folder is not writable: {text!r}")
+            raise argparse.ArgumentTypeError(f"folder is not writable: {show(text)}")
         return p
     _check_writable_parent(p / "x", text)
     return p
+
+
+def check_increments(value: int | None, option: str = "--increments") -> None:
+    """Refuse more depth increments than one run may have (bounded work), naming the cap.
+
+    Parameters
+    ----------
+    value : int or None
+        The option's value (None: not given).
+    option : str
+        The option, for the message.
+
+    Raises
+    ------
+    ValueError
+        ``value`` exceeds :data:`warptrunc._support.validate.MAX_INCREMENTS`.
+    """
+    if value is not None and value > MAX_INCREMENTS:
+        raise ValueError(
+            f"{option} {value} is more than the {MAX_INCREMENTS} increments one run may have "
+            f"(a step below 10⁻⁶·ω_max is finer than float32 heights resolve, and each increment "
+            f"is a row of the output: {value} rows take minutes to write); use at most "
+            f"{MAX_INCREMENTS}"
+        )
 
 
 # --- argument groups --------------------------------------------------------------------------

@@ -42,4 +42,6 @@ class Parser(argparse.ArgumentParser):
         )
 
     def error(self, message: str):  # type: ignore[override]
-        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+        from .._support.messages import one_line
+
+        self.exit(2, one_line(f"{self.prog}: error: {message} (see {self.prog} --help)") + "\n")

@@ -36,9 +36,11 @@ import math
 import threading
 
 from .._support.atomic import staged_output, strict_json
+from .._support.provenance import provenance
 from ..material import Material
 from ..stiffness import DEFAULT_MIN_PIXELS
 from ._common import (
+    check_increments,
     add_device,
     add_material,
     add_out,
@@ -165,6 +167,7 @@ def _preload_plotting() -> threading.Thread:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse and write the outputs."""
+    check_increments(args.increments, "--increments")
     from ..analysis import FitRangeError, analyze
 
     if args.depth_window is not None and not args.depth_window[0] < args.depth_window[1]:
@@ -200,7 +203,7 @@ def run(args: argparse.Namespace) -> int:
     add_warnings(args, list(a.warnings))
     with staged_output(args.out) as out:  # all or nothing
         sc.to_csv(out / "curve.csv", islands=a.islands)
-        (out / "fit.json").write_text(strict_json({**a.summary(), "warnings": warnings_of(args)}))
+        (out / "fit.json").write_text(strict_json({**a.summary(), "provenance": provenance(args.device), "warnings": warnings_of(args)}))
         if not args.no_plot:
             preload.join()
             from .. import plot

@@ -8,7 +8,8 @@ warptrunc's constrained-CG solver on --device (default), or ContactMechanics' on
 (--solver contactmechanics, needs the extra: pip install "warptrunc[bem]"), and compares load,
 stiffness and contact area with the truncation formulas of ``analyze``. Writes OUT/bem.csv (SI
 units in the column names), OUT/bem.json (ratios, solver settings, convergence flags, times) and
-OUT/bem.png.
+OUT/bem.png. All or nothing: the files are moved into OUT only when every one of them is
+written.
 
 Exit status: 0 when every solve converged; 3 (``EXIT_NOT_CONVERGED``) when any solve stopped
 at --maxiter (the outputs are written and flag it), unless --accept-unconverged; 2 for bad
@@ -20,11 +21,13 @@ from __future__ import annotations
 import argparse
 import sys
 
+from .._support.atomic import staged_output
 from ._common import (
     add_device,
     add_material,
     add_out,
     add_surface_source,
+    check_increments,
     integer,
     material_from_args,
     positive,
@@ -110,6 +113,7 @@ def _rng(r: list[float] | None) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run the comparison and write the outputs."""
+    check_increments(args.increments, "--increments")
     from ..contact.check import bem_check, require_bem
     from ..plot.bem import plot_bem_check
 
@@ -132,20 +136,21 @@ def run(args: argparse.Namespace) -> int:
         maxiter=args.maxiter, solver=args.solver, stiffness=args.stiffness, dtype=args.dtype,
         progress=not args.no_progress and sys.stderr.isatty(), device=args.device,
     )  # fmt: skip
-    args.out.mkdir(parents=True, exist_ok=True)
-    res.to_csv(args.out / "bem.csv")
-    res.to_json(args.out / "bem.json", warnings=warnings_of(args))
     files = "bem.csv, bem.json"
-    if not args.no_plot:
-        import matplotlib.pyplot as plt
+    with staged_output(args.out) as out:  # all or nothing
+        res.to_csv(out / "bem.csv")
+        res.to_json(out / "bem.json", warnings=warnings_of(args))
+        if not args.no_plot:
+            import matplotlib.pyplot as plt
 
-        fig = plot_bem_check(
-            res, args.out / "bem.png",
-            title=f"{s.nx}×{s.ny}, R$_t$ = {s.Rt * 1e6:.3g} µm, E* = "
-            f"{material.contact_modulus / 1e9:.4g} GPa, {args.substrate} half-space ({args.solver})",
-        )  # fmt: skip
-        plt.close(fig)
-        files += ", bem.png"
+            fig = plot_bem_check(
+                res, out / "bem.png",
+                title=f"{s.nx}×{s.ny}, R$_t$ = {s.Rt * 1e6:.3g} µm, E* = "
+                f"{material.contact_modulus / 1e9:.4g} GPa, {args.substrate} half-space "
+                f"({args.solver})",
+            )  # fmt: skip
+            plt.close(fig)
+            files += ", bem.png"
     sm = res.summary()
     print(
         f"{s.nx}×{s.ny} surface, R_t = {s.Rt * 1e6:.4g} µm, E* = "

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """Calibrate WM inputs (D_in, R_t') to a scan's descriptors (Fig. 4) and generate the surface.
 
-Targets come from FILE (D by --method, R_rms, R_t, W_r, size and resolution) or are typed in
+Targets come from FILE (or ``--input FILE``; D by --method, R_rms, R_t, W_r, size and resolution) or are typed in
 (--D, --Rrms, --Rt, --Wr, --L, --n); typed-in values override those of FILE. Writes
 OUT/calibration.json (the calibrated inputs, the targets and every evaluation) and
 OUT/surface.npz (the calibrated surface at --n-out pixels per side, default the scan's).
@@ -16,6 +16,7 @@ import argparse
 from pathlib import Path
 
 from .._support.atomic import staged_output, strict_json
+from .._support.provenance import provenance
 from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
 from ..fractal import METHODS
 from ..io import write_height_map
@@ -23,7 +24,13 @@ from ..params import add_options
 from ..plausibility import check_dimensions
 from ..wm_params import WMSpec
 from ._common import add_device, add_warnings, integer, output_dir, positive, real, warnings_of
-from .describe import add_height_scaling, add_scan_arguments, method_options, read_scan_args
+from .describe import (
+    add_height_scaling,
+    add_scan_arguments,
+    method_options,
+    read_scan_args,
+    scan_file,
+)
 
 NAME = "calibrate"
 HELP = "find D_in and R_t' that reproduce a scan's D and R_rms (Fig. 4), then generate"
@@ -75,7 +82,7 @@ def _pair(v, option: str):
 def run(args: argparse.Namespace) -> int:
     """Calibrate and write the outputs."""
 
-    if args.file is not None:
+    if scan_file(args) is not None:
         s = read_scan_args(args)
         opts = method_options(args.method, args.height_scaling)
         t = target_from_surface(
@@ -119,6 +126,7 @@ def run(args: argparse.Namespace) -> int:
     if target.source != "given":  # the D measured on the scan
         add_warnings(args, check_dimensions({target.method: target.D}))
     d["warnings"] = warnings_of(args)
+    d["provenance"] = provenance(args.device)
     surf = None
     if not args.no_surface:
         n_out = _pair(args.n_out, "--n-out")

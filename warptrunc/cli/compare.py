@@ -32,6 +32,7 @@ from pathlib import Path
 from ..params import add_options
 from ..wm_params import WMSpec
 from ._common import (
+    check_increments,
     add_device,
     add_material,
     add_out,
@@ -99,8 +100,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study and write the summary."""
-    from .._support.atomic import strict_json
-    from .._support.results import write_atomic
+    check_increments(args.increments, "--increments")
+    from .._support.atomic import staged_outputs, strict_json
+    from .._support.provenance import provenance
     from ..compare.study import compare_study, study_cases, summarize
     from ..stiffness import Material
     try:
@@ -138,28 +140,31 @@ def run(args: argparse.Namespace) -> int:
         progress=not args.no_progress, device=args.device,
     )  # fmt: skip
     s = summarize(rows)
-    for name in ("ratios", "alpha"):
-        buf = io.BytesIO()
-        s[name].to_parquet(buf, index=False)
-        write_atomic(out / f"{name}.parquet", buf.getvalue())
     from ..reproduce.elastic import analyse_elastic, summary_from_rows
     from ..reproduce.elastic_report import elastic_figures, elastic_lines
 
     stage = summary_from_rows(rows, store="cases")
     a = analyse_elastic(stage) if cases is not None else None
-    write_atomic(out / "summary.json", strict_json({"stage": stage, "analysis": a,
-                                                  "warnings": warnings_of(args)}))
     files = ["study.json", f"cases/ ({stage['n_cases']} cases)", "ratios.parquet",
              "alpha.parquet", "summary.json"]  # fmt: skip
     names: list[str] = []
-    if not args.no_plot and cases is not None:
-        names = elastic_figures(stage, out)
-        files += names
-    if prof is not None:
-        lines = elastic_lines(stage, a, None, names)
-        cmd = "warptrunc " + " ".join(sys.argv[1:])
-        write_atomic(out / "elastic.md", f"<!-- {cmd} -->\n" + "\n".join(lines) + "\n")
-        files.append("elastic.md")
+    with staged_outputs() as st:  # the summary files, or none of them (cases/ is the store)
+        dest = st.folder(out)
+        for name in ("ratios", "alpha"):
+            buf = io.BytesIO()
+            s[name].to_parquet(buf, index=False)
+            (dest / f"{name}.parquet").write_bytes(buf.getvalue())
+        doc = {"stage": stage, "analysis": a, "provenance": provenance(args.device),
+               "warnings": warnings_of(args)}
+        (dest / "summary.json").write_text(strict_json(doc))
+        if not args.no_plot and cases is not None:
+            names = elastic_figures(stage, dest)
+            files += names
+        if prof is not None:
+            lines = elastic_lines(stage, a, None, names)
+            cmd = provenance()["command"]
+            (dest / "elastic.md").write_text(f"<!-- {cmd} -->\n" + "\n".join(lines) + "\n")
+            files.append("elastic.md")
     _print_summary(s, rows, surface is not None)
     print(f"wrote {out}/: " + ", ".join(files))
     return 0

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 """Roughness descriptors and the four fractal dimensions of a height-map file (Table 1).
 
-Prints a table and, with --json, writes (or prints, with --json -) a JSON object with the keys
+FILE may be given as ``--input FILE`` (``-i``) as in every other command. Prints a table and,
+with --json, writes (or prints, with --json -) a JSON object with the keys
 Rt_m, Rrms_m, Ra_m, skewness, kurtosis, Wr_m, D_tri, D_box, D_vs, D_sp (SI units), plus
 Wr_resolved, r2_<method>, the grid, and convention_<method>: the height convention that
 produced each D ("cube": heights mapped onto the lateral extent, Gwyddion's, the default;
@@ -11,8 +12,9 @@ DIR/fractal_fits.png.
 
 A method that cannot fit this map gives D_<method> = null and its reason in
 error_<method> (a line in the table); the other methods are reported. A flat map (R_t = 0) is
-called flat. The JSON is strict (null, never NaN/Infinity); files are written under temporary
-names and renamed into place once complete.
+called flat. The JSON is strict (null, never NaN/Infinity) and holds "provenance" (version,
+commit, command line, device, time). All or nothing: the JSON and the figures are written under
+temporary names and renamed into place once every one of them is complete.
 """
 
 from __future__ import annotations
@@ -20,7 +22,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .._support.atomic import atomic_write, staged_output, strict_json
+from .._support.atomic import staged_outputs, strict_json
+from .._support.provenance import provenance
 from ..descriptors import describe, profile_psd, radial_psd
 from ..fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
 from ..plausibility import check_dimensions
@@ -39,19 +42,59 @@ NAME = "describe"
 HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four methods"
 
 
+_FILE_HELP = (
+    "height map: .npz/.npy (warptrunc or plain), .csv/.txt matrix, or an instrument file (.sur, "
+    ".x3p, .datx, ... needs the 'scans' extra)"
+)
+
+
 def add_scan_arguments(p: argparse.ArgumentParser, *, required: bool = True) -> None:
-    """FILE and the reader options shared by ``describe`` and ``calibrate``."""
+    """FILE (positional, or ``--input/-i FILE`` as in every other command) and the reader
+    options shared by ``describe`` and ``calibrate``."""
     p.add_argument(
-        "file", type=input_file, nargs=None if required else "?", default=None,
-        help="height map: .npz/.npy (warptrunc or plain), .csv/.txt matrix, or an instrument "
-        "file (.sur, .x3p, .datx, ... needs the 'scans' extra)",
+        "file", type=input_file, nargs="?", default=None, metavar="FILE",
+        help=_FILE_HELP + ("" if required else " (optional: the targets may be typed in)"),
     )  # fmt: skip
-    add_reader_options(p.add_argument_group("reading the file"))
+    g = p.add_argument_group("reading the file")
+    g.add_argument(
+        "--input", "-i", type=input_file, default=None, metavar="FILE",
+        help="the height map, as FILE (the same file; give one of the two)",
+    )  # fmt: skip
+    add_reader_options(g)
+    p.set_defaults(_file_required=required)
+
+
+def scan_file(args: argparse.Namespace):
+    """The file named by FILE or ``--input`` (None when neither is given and it is optional).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments of :func:`add_scan_arguments`; ``args.file`` is set to the file.
+
+    Returns
+    -------
+    Path or None
+        The file to read.
+
+    Raises
+    ------
+    ValueError
+        Both forms name a file, or neither does and the command needs one.
+    """
+    f, i = args.file, getattr(args, "input", None)
+    if f is not None and i is not None and f != i:
+        raise ValueError(f"give the height map once, as FILE or --input FILE, got {f} and {i}")
+    args.file = f if f is not None else i
+    if args.file is None and getattr(args, "_file_required", True):
+        raise ValueError("the height map is missing: give FILE or --input FILE")
+    return args.file
 
 
 def read_scan_args(args: argparse.Namespace):
-    """The Surface named by ``args.file`` with the reader options; reports missing points."""
-    return read_input(args.file, args)
+    """The Surface named by FILE or ``--input`` with the reader options; reports missing
+    points."""
+    return read_input(scan_file(args), args)
 
 
 def add_height_scaling(g) -> None:
@@ -161,7 +204,7 @@ def run(args: argparse.Namespace) -> int:
     res = describe_surface(s, args.methods, options, args.device)
     add_warnings(args, check_dimensions({m: res["result"][f"D_{m}"] for m in METHODS}))
     out = {"file": str(args.file), **res["result"], "warnings": warnings_of(args)}
-    text = strict_json(out)
+    text = strict_json({**out, "provenance": provenance(args.device)})
     if args.json == "-":
         sys.stdout.write(text)
     else:
@@ -187,20 +230,21 @@ def run(args: argparse.Namespace) -> int:
         w = max(len(r[0]) for r in rows)
         for k, v in rows:
             print(f"  {k:<{w}}  {v}")
-        if args.json:
-            with atomic_write(args.json) as tmp:
-                tmp.write_text(text)
-            print(f"wrote {args.json}")
-    if args.out is not None:
-        from .. import plot
+    with staged_outputs() as st:  # the JSON and both figures, or none of them
+        if args.json and args.json != "-":
+            st.file(args.json).write_text(text)
+        if args.out is not None:
+            from .. import plot
 
-        psds = [radial_psd(s)]
-        if abs(s.dx - s.dy) <= 1e-9 * s.dx and s.nx == s.ny:
-            psds.append(profile_psd(s))
-        with staged_output(args.out) as stage:  # both figures or none
+            psds = [radial_psd(s)]
+            if abs(s.dx - s.dy) <= 1e-9 * s.dx and s.nx == s.ny:
+                psds.append(profile_psd(s))
+            stage = st.folder(args.out)
             plot.psd(psds, Wr=out["Wr_m"], path=stage / "psd.png", title=str(args.file.name))
             if res["fits"]:  # none when no method could fit
                 plot.fractal_fits(res["fits"], path=stage / "fractal_fits.png")
-        if args.json != "-":
-            print(f"wrote {args.out}/psd.png, fractal_fits.png")
+    if args.json and args.json != "-":
+        print(f"wrote {args.json}")
+    if args.out is not None and args.json != "-":
+        print(f"wrote {args.out}/psd.png" + (", fractal_fits.png" if res["fits"] else ""))
     return 0

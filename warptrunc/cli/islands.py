@@ -19,11 +19,13 @@ import math
 from pathlib import Path
 
 from .._support.atomic import staged_output, strict_json
+from .._support.provenance import provenance
 from ..islands.depths import island_curve
 from ..islands.fits import applicable_depth
 from ..islands.results import MIN_ISLANDS, MIN_PIXELS, IslandCurve
 from ..plausibility import check_dimensions
 from ._common import (
+    check_increments,
     add_device,
     add_out,
     add_surface_source,
@@ -102,6 +104,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the islands and write the outputs."""
+    check_increments(args.increments, "--increments")
     s = surface_from_args(args)
     snaps = [f * s.Rt for f in args.snapshots] if args.snapshots else None
     curve = island_curve(
@@ -157,6 +160,7 @@ def _write(args: argparse.Namespace, s, curve: IslandCurve, ind, out: Path) -> N
         "max_island_count": int(curve.n_islands.max()),
         "surface": s.to_dict(),
         "warnings": warnings_of(args),
+        "provenance": provenance(args.device),
     }
     (out / "indicators.json").write_text(strict_json(info))
     if not args.no_plot:

@@ -17,8 +17,10 @@ import argparse
 from pathlib import Path
 
 from .._support.atomic import staged_output, strict_json
+from .._support.provenance import provenance
 from ..io.vtk import export_vtk
 from ._common import (
+    check_increments,
     add_device,
     add_out,
     add_surface_source,
@@ -123,6 +125,7 @@ def _file_name_with(suffixes: tuple[str, ...]):
 
 def run(args: argparse.Namespace) -> int:
     """Render and write the outputs."""
+    check_increments(args.vtk_increments, "--vtk-increments")
     names = [args.output, args.animate, args.vtk, "render.json"]
     names = [n for n in names if n]
     if len(set(names)) != len(names):
@@ -191,6 +194,7 @@ def _render(s, args: argparse.Namespace, out):
             v[k] = [float(x) for x in v[k]]
     info["surface"] = s.to_dict()
     info["warnings"] = warnings_of(args)
+    info["provenance"] = provenance(args.device)
     (out / "render.json").write_text(strict_json(info))
     written.append(out / "render.json")
     return r, written

@@ -31,7 +31,16 @@ from ..sweep.read import load, require_extra
 from ..sweep.run import run_sweep
 from ..sweep.stats import alpha_summary
 from ..wm_params import WMSpec
-from ._common import add_device, add_out, add_wm_shape, input_file, integer, positive, real
+from ._common import (
+    add_device,
+    add_out,
+    add_wm_shape,
+    check_increments,
+    input_file,
+    integer,
+    positive,
+    real,
+)
 from .analyze import add_fit_options, add_truncation_options
 
 NAME = "sweep"
@@ -156,6 +165,7 @@ def _on_sigterm(signum, frame):
 
 def run(args: argparse.Namespace) -> int:
     """Run the sweep; print a summary."""
+    check_increments(args.increments, "--increments")
 
     try:
         require_extra()

@@ -14,7 +14,7 @@ import numpy as np
 import warp as wp
 
 from .._support.deprecate import deprecated_function, module_getattr
-from .._support.validate import check_int, check_range
+from .._support.validate import MAX_INCREMENTS, check_int, check_range
 from ..stiffness import Material, fit_power_law, island_stiffness_curve, stiffness_curve
 from ..surface import Surface
 
@@ -262,7 +262,7 @@ def compare_models(
 
     material = Material() if material is None else material
     beta_prime = check_range("beta_prime", beta_prime, 0.0)
-    increments = check_int("increments", increments, 1, 10_000_000)
+    increments = check_int("increments", increments, 1, MAX_INCREMENTS)
     Rt = float(surface.Rt)
     fr = _approaches(Rt, fractions)
     d = fr * Rt

@@ -18,7 +18,8 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._support.atomic import read_json, strict_json
+from .._support.atomic import read_json, store_rollback, strict_json
+from .._support.provenance import provenance
 from .._support.results import write_atomic
 from .._support.validate import check_int, check_range
 from ..stiffness import Material
@@ -194,9 +195,6 @@ def compare_study(
     A case counts as done once its file exists; each file is written to a temporary name and
     renamed (atomic), so an interrupted study resumes where it stopped.
     """
-    from .._support.progress import progress_bar
-    from ..wm import wm_surface
-
     out = Path(out)
     material = Material() if material is None else material
     fractions = [float(f) for f in _approaches(1.0, fractions)]
@@ -220,7 +218,20 @@ def compare_study(
     ids = [c["case_id"] for c in cases]
     if len(set(ids)) != len(ids):
         raise ValueError("case_id values must be unique")
-    _open_store(out, settings, overwrite)
+    with store_rollback(out, keep=lambda: any((out / "cases").glob("*.parquet"))):
+        _open_store(out, settings, overwrite)
+        _run_cases(out, cases, surface, fractions, material, beta_prime, increments,
+                   connectivity, dtype, pressure_tol, pentol, maxiter, progress, device)  # fmt: skip
+    rows = load_comparison(out)
+    return rows[rows["case_id"].isin(ids)].reset_index(drop=True)
+
+
+def _run_cases(out, cases, surface, fractions, material, beta_prime, increments, connectivity,
+               dtype, pressure_tol, pentol, maxiter, progress, device) -> None:  # fmt: skip
+    """Compute and store the cases that ``out`` does not hold yet."""
+    from .._support.progress import progress_bar
+    from ..wm import wm_surface
+
     todo = [c for c in cases if not _case_path(out, c["case_id"]).exists()]
     bar = progress_bar(todo, desc="compare", unit="case", enabled=progress)
     for c in bar:
@@ -238,8 +249,6 @@ def compare_study(
         c = {**c, "Rt_m": r.Rt}
         _write_case(out, c, r, time.perf_counter() - t0)
         del s, r
-    rows = load_comparison(out)
-    return rows[rows["case_id"].isin(ids)].reset_index(drop=True)
 
 
 def _case_path(out: Path, case_id: str) -> Path:
@@ -269,6 +278,7 @@ def _open_store(out: Path, settings: dict[str, Any], overwrite: bool) -> None:
 
     doc["created"] = {"warptrunc_version": version, "warp_version": warp.config.version,
                       "host": platform.node()}  # fmt: skip
+    doc["provenance"] = provenance()
     write_atomic(meta, strict_json(doc))
 
 

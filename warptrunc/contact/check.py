@@ -197,12 +197,15 @@ class BemCheck:
         Returns
         -------
         Path
-            ``path``. The file has keys ``summary``, ``settings`` and ``columns`` (lists);
-            non-finite floats are written as null or ``"inf"`` (strict JSON).
+            ``path``. The file has keys ``summary``, ``settings``, ``columns`` (lists) and
+            ``provenance`` (version, commit, command, device, time); non-finite floats are
+            written as null or ``"inf"`` (strict JSON).
         """
+        from .._support.provenance import provenance
 
         path = Path(path)
         d: dict[str, Any] = {"summary": self.summary(), "settings": self.settings}
+        d["provenance"] = provenance(self.settings.get("device"))
         d["columns"] = {k: v.tolist() for k, v in self.to_dict().items()}
         d["warnings"] = list(warnings or [])
         path.write_text(json.dumps(_strict(d), indent=1, default=str, allow_nan=False) + "\n")

@@ -36,10 +36,12 @@ SurfaceTopography reader in ``instrument``. Every name is importable from ``warp
 
 from __future__ import annotations
 
+import errno
 from pathlib import Path
 
 import numpy as np
 
+from .._support.messages import MAX_MESSAGE_CHARS, one_line
 from .._support.validate import check_range
 from ..surface import Surface
 from .builtin import read_numpy, read_text, write_warptrunc_file
@@ -95,6 +97,16 @@ def read_scan(
     Returns
     -------
     Scan
+
+    Raises
+    ------
+    FileNotFoundError
+        The file does not exist.
+    ValueError
+        The file is empty, damaged or not a height map, or the pixel spacing is missing; the
+        message is one line of at most a few hundred characters that names the file.
+    MissingExtraError
+        An instrument file needs SurfaceTopography (``pip install "warptrunc[scans]"``).
     """
     path = Path(path)
     if engine not in ENGINES:
@@ -117,11 +129,41 @@ def read_scan(
             f"{path}: the built-in readers handle {NUMPY_SUFFIXES + TEXT_SUFFIXES}, got "
             f"{suffix!r}; use engine='surfacetopography'"
         )
-    if engine == "surfacetopography" or (engine == "auto" and not builtin):
-        return read_surfacetopography(path, dx, dy, height_unit, channel)
-    if suffix in NUMPY_SUFFIXES:
-        return read_numpy(path, dx, dy, height_unit)
-    return read_text(path, dx, dy, height_unit)
+    if path.stat().st_size == 0:
+        raise ValueError(f"{path}: empty file (0 bytes): no height map to read")
+    try:
+        if engine == "surfacetopography" or (engine == "auto" and not builtin):
+            return read_surfacetopography(path, dx, dy, height_unit, channel)
+        if suffix in NUMPY_SUFFIXES:
+            return read_numpy(path, dx, dy, height_unit)
+        return read_text(path, dx, dy, height_unit)
+    except (MissingExtraError, MemoryError):
+        raise
+    except OSError as exc:
+        if exc.errno in _IO_ERRNOS:  # the file system refused: say so, naming the file
+            raise OSError(exc.errno, exc.strerror, str(path)) from None
+        raise ValueError(_damaged(path, suffix, exc)) from None  # e.g. a seek past a cut zip
+    except ValueError as exc:  # ours: keep the type, keep the message one short line that
+        msg = str(exc)  # names the file
+        if len(msg) <= MAX_MESSAGE_CHARS and "\n" not in msg and str(path) in msg:
+            raise
+        if str(path) not in msg:
+            raise ValueError(_damaged(path, suffix, exc)) from None
+        raise ValueError(one_line(msg)) from None
+    except Exception as exc:  # numpy, zipfile, pickle guards, ...: a damaged file
+        raise ValueError(_damaged(path, suffix, exc)) from None
+
+
+_IO_ERRNOS = {errno.EACCES, errno.EPERM, errno.EIO, errno.ENOENT, errno.EISDIR, errno.ENOMEM,
+              errno.EMFILE, errno.ENFILE, errno.ETIMEDOUT}  # fmt: skip
+"""Errors of the file system (not of the file's content), kept as OSError by :func:`read_scan`."""
+
+
+def _damaged(path: Path, suffix: str, exc: BaseException) -> str:
+    return (
+        f"{path}: cannot read, the file is damaged or not a {suffix or 'known'} height map "
+        f"({type(exc).__name__}: {one_line(exc, 160)})"
+    )
 
 
 def read_height_map(

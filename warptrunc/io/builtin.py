@@ -45,10 +45,13 @@ def write_warptrunc_file(surface: Surface, path: Path) -> Path:
 
     Returns the path of the file holding the heights.
     """
+    from .._support.provenance import provenance
+
     meta = json.dumps(
-        {"dx": surface.dx, "dy": surface.dy, "params": jsonable(surface.params, nonfinite="text")},
+        {"dx": surface.dx, "dy": surface.dy, "params": jsonable(surface.params, nonfinite="text"),
+         "provenance": provenance()},
         sort_keys=True,
-    )
+    )  # fmt: skip
     if path.suffix.lower() == ".npy":
         np.save(path, surface.heights)
         path.with_suffix(".json").write_text(meta + "\n")

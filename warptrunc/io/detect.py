@@ -173,6 +173,15 @@ def _lattice(v: np.ndarray, rtol: float = 1e-6) -> tuple[np.ndarray, float] | No
     return k.astype(np.int64), step
 
 
+def _looks_like_points(x: np.ndarray, y: np.ndarray) -> bool:
+    """Whether columns x, y (finite) repeat their values as the coordinates of a point list."""
+    n = x.size
+    if n < 4:
+        return False
+    nux, nuy = np.unique(x).size, np.unique(y).size
+    return not (nux * nuy > 4 * n or nux > n // 2 or nuy > n // 2)
+
+
 def table_to_map(
     table: np.ndarray, path: Path, height_unit: float, dx: float | None, dy: float | None
 ) -> tuple[np.ndarray, float, float, dict] | None:
@@ -201,13 +210,14 @@ def table_to_map(
     ------
     ValueError
         The table is a line scan (two columns, the first strictly monotonic, more than two
-        rows), or a point list whose x or y values are not on a uniform lattice.
+        rows), or a point list whose x or y values are not on a uniform lattice or not finite.
     """
     n, ncol = table.shape
     if ncol == 2 and n > 2:
         x = table[:, 0]
-        dxs = np.diff(x)
-        if np.all(np.isfinite(x)) and (np.all(dxs > 0) or np.all(dxs < 0)):
+        xf = x[np.isfinite(x)]  # np.diff of ±inf would warn (inf − inf)
+        dxs = np.diff(xf)
+        if xf.size > 2 and (np.all(dxs > 0) or np.all(dxs < 0)):
             raise ValueError(
                 f"{path}: holds a line scan (x, z) of {n} points (two columns, the first "
                 "strictly monotonic); a 2-D height map is needed"
@@ -215,10 +225,16 @@ def table_to_map(
     if ncol != 3 or n < 4:
         return None
     x, y, h = table[:, 0], table[:, 1], table[:, 2]
-    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
-        return None
-    nux, nuy = np.unique(x).size, np.unique(y).size
-    if nux * nuy > 4 * n or nux > n // 2 or nuy > n // 2:
+    finite = np.isfinite(x) & np.isfinite(y)
+    if not np.all(finite):
+        if _looks_like_points(x[finite], y[finite]):
+            k = int(np.argmin(finite))
+            raise ValueError(
+                f"{path}: holds an XYZ point list with a coordinate that is not finite (data "
+                f"row {k + 1}: x = {float(x[k])!r}, y = {float(y[k])!r}); every point needs finite x and y"
+            )
+        return None  # a 3-column height matrix with missing points
+    if not _looks_like_points(x, y):
         return None  # coordinates are not repeated: a 3-column height matrix
     lx, ly = _lattice(x), _lattice(y)
     if lx is None or ly is None:

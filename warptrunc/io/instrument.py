@@ -5,19 +5,81 @@ extra imported only when such a file is read."""
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
+import logging
+import re
+import warnings
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from .._support.messages import one_line
 from .builtin import need_spacing
 from .scan import LENGTH_UNITS, MissingExtraError, Scan
 
 
+@contextlib.contextmanager
+def _quiet():
+    """Silence what SurfaceTopography's readers (and igor2, ...) print or log on a damaged file:
+    a log record may hold the file's bytes (megabytes on one line). The error raised says what
+    went wrong."""
+    sink = io.StringIO()
+    previous = logging.root.manager.disable
+    logging.disable(logging.CRITICAL)
+    try:
+        with contextlib.redirect_stdout(sink), contextlib.redirect_stderr(sink):
+            yield
+    finally:
+        logging.disable(previous)
+
+
+_TRIED = re.compile(r"tried (\w+):\s*(.*?)(?=\s*tried \w+:|\Z)", re.S)
+
+
+def _cannot_read(path: Path, exc: BaseException) -> str:
+    """One short line for a file no reader could read: the reader of its suffix and its
+    reason when it tried (SurfaceTopography lists every reader's message, each may hold the
+    file's bytes), else the error itself."""
+    name = type(exc).__name__
+    text = str(exc)
+    tried = _TRIED.findall(text)
+    if name == "CannotDetectFileFormat" and tried:
+        ext = path.suffix.lower().lstrip(".")
+        own = [(r, why) for r, why in tried if _reader_reads(r, ext)]
+        if own:
+            r, why = own[0]
+            return (
+                f"{path}: cannot read, the file is damaged or cut short ({r}: "
+                f"{one_line(why, 160)}; {len(tried)} readers tried)"
+            )
+        return (
+            f"{path}: cannot read: no reader recognises this file ({len(tried)} tried: "
+            f"{one_line(', '.join(r for r, _ in tried), 160)})"
+        )
+    return f"{path}: cannot read ({name}: {one_line(text, 200)})"
+
+
+def _reader_reads(reader: str, ext: str) -> bool:
+    """Whether SurfaceTopography's reader class ``reader`` is the one for ``ext``."""
+    try:
+        from SurfaceTopography.IO import readers
+    except ImportError:  # pragma: no cover
+        return False
+    for r in readers:
+        if r.__name__ == reader:
+            exts = getattr(r, "_file_extensions", None) or []
+            return ext in [e.lower() for e in exts]
+    return False
+
+
 def read_surfacetopography(path: Path, dx, dy, height_unit, channel) -> Scan:
     try:
-        from SurfaceTopography import open_topography
+        with warnings.catch_warnings():  # NuMPI: "Could not import mpi4py" (no MPI: fine here)
+            warnings.simplefilter("ignore", ImportWarning)
+            from SurfaceTopography import open_topography
     except ImportError:
         raise MissingExtraError(
             f"{path}: reading {path.suffix or 'this'} files needs SurfaceTopography; install the "
@@ -25,7 +87,8 @@ def read_surfacetopography(path: Path, dx, dy, height_unit, channel) -> Scan:
         ) from None
     reader = None
     try:
-        reader = open_topography(str(path))
+        with _quiet():
+            reader = open_topography(str(path))
         if not reader.channels:
             raise ValueError(f"{path}: holds no data channel (no height map) to read")
         ch = reader.default_channel if channel is None else reader.channels[channel]
@@ -47,16 +110,17 @@ def read_surfacetopography(path: Path, dx, dy, height_unit, channel) -> Scan:
                 kwargs["physical_sizes"] = (nx_ * pdx / f, ny_ * pdy / f)
             if ch.unit is None:
                 kwargs["unit"] = "m"
-        topo = reader.topography(**kwargs)
+        with _quiet():
+            topo = reader.topography(**kwargs)
     except IndexError:
         n = len(reader.channels) if reader is not None else 0
         raise ValueError(f"{path}: channel {channel} does not exist; the file has {n}") from None
     except ValueError as exc:
         if str(exc).startswith(str(path)):
             raise
-        raise ValueError(f"{path}: cannot read ({type(exc).__name__}: {exc})") from None
+        raise ValueError(_cannot_read(path, exc)) from None
     except Exception as exc:  # SurfaceTopography raises many kinds on malformed files
-        raise ValueError(f"{path}: cannot read ({type(exc).__name__}: {exc})") from None
+        raise ValueError(_cannot_read(path, exc)) from None
     if topo.dim != 2:
         raise ValueError(
             f"{path}: holds a 1-D line scan of {topo.nb_grid_pts[0]} points; a 2-D height map "

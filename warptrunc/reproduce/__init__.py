@@ -17,9 +17,10 @@ from pathlib import Path
 from typing import Any
 
 from .. import __version__
+from .._support.atomic import staged_outputs, store_rollback
 from .._support.device import resolve_device
-from .._support.provenance import git_commit
-from .._support.results import jsonable, write_atomic
+from .._support.provenance import git_commit, provenance
+from .._support.results import jsonable
 from .profiles import PROFILES, Profile, get_profile
 from .store import StageConflict, StageStore
 
@@ -71,26 +72,42 @@ def reproduce(
     # the study stack (sweeps, calibration, figures) loads when a study runs, not with the
     # package: `warptrunc --help` reads the profiles only
     from .analysis import analyse
-    from .report import figures, markdown
     from .study import run_study
 
     p = get_profile(profile) if isinstance(profile, str) else profile
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    dev = resolve_device(device)
-    store = StageStore(out, overwrite=overwrite)
-    t0 = time.perf_counter()
-    study = run_study(p, store, device=dev)
-    res = study["results"]
-    ana = analyse(res)
-    if all(res[g].get("store") for g in ("group1", "group2")):  # re-fit from the stored curves
-        from .fitrange import fit_range_map
+    store: StageStore | None = None
+    # a run that stored nothing leaves nothing behind; finished stages and sweep parts are kept
+    # for a rerun
+    def keep() -> bool:
+        return (store is not None and bool(store.computed)) or any(out.rglob("*.parquet"))
 
-        try:
-            ana["fit_range_map"] = fit_range_map(out / res["group1"]["store"], out / res["group2"]["store"])
-        except FileNotFoundError as exc:  # stages reused from a folder without the stores
-            ana["fit_range_map_missing"] = str(exc)
-    names = figures(res, ana, out, device=dev)
+    with store_rollback(out, keep=keep):
+        out.mkdir(parents=True, exist_ok=True)
+        dev = resolve_device(device)
+        store = StageStore(out, overwrite=overwrite)
+        t0 = time.perf_counter()
+        study = run_study(p, store, device=dev)
+        res = study["results"]
+        ana = analyse(res)
+        if all(res[g].get("store") for g in ("group1", "group2")):  # re-fit from the stored curves
+            from .fitrange import fit_range_map
+
+            try:
+                ana["fit_range_map"] = fit_range_map(out / res["group1"]["store"], out / res["group2"]["store"])
+            except FileNotFoundError as exc:  # stages reused from a folder without the stores
+                ana["fit_range_map_missing"] = str(exc)
+        with staged_outputs() as st:  # the figures, results.json and report.md, or none of them
+            stage = st.folder(out)
+            doc = _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, commit)
+    return jsonable(doc)
+
+
+def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, commit):
+    """Write the figures, results.json and report.md into ``stage``; returns the document."""
+    from .report import figures, markdown
+
+    names = figures(res, ana, stage, device=dev)
     meta = {
         "profile": p.to_dict(), "version": __version__, "git_commit": commit or git_commit(),
         "device": f"{dev.alias} ({getattr(dev, 'name', '')})", "wall_s": time.perf_counter() - t0,
@@ -98,8 +115,9 @@ def reproduce(
         "reused": store.reused, "computed": store.computed,
         "command": command or f"warptrunc reproduce --profile {p.name} --out {out}",
         "python": sys.version.split()[0], "figures": names,
+        "provenance": provenance(dev),
     }  # fmt: skip
     doc = {"meta": meta, "analysis": ana, "stages": res}
-    write_atomic(out / "results.json", json.dumps(jsonable(doc), indent=1, allow_nan=False) + "\n")
-    write_atomic(out / "report.md", markdown(meta, res, ana, names))
-    return jsonable(doc)
+    (stage / "results.json").write_text(json.dumps(jsonable(doc), indent=1, allow_nan=False) + "\n")
+    (stage / "report.md").write_text(markdown(meta, res, ana, names))
+    return doc

@@ -257,13 +257,17 @@ def write_part(
     tmp = folder / f".{name}.tmp-{os.getpid()}-{threading.get_ident()}"
     fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
     try:
-        data = table_bytes(table)
-        view = memoryview(data)
-        while view:
-            view = view[os.write(fd, view):]
-        os.fsync(fd)
-    finally:
-        os.close(fd)
+        try:
+            data = table_bytes(table)
+            view = memoryview(data)
+            while view:
+                view = view[os.write(fd, view):]
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+    except BaseException:  # a full disk, a file-size limit: no half-written .tmp left behind
+        tmp.unlink(missing_ok=True)
+        raise
     try:
         os.link(tmp, final)  # fails if another attempt of this shard got there first
     except FileExistsError:

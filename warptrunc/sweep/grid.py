@@ -17,7 +17,8 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
-from .._support.validate import check_int, check_range
+from .._support.messages import show
+from .._support.validate import MAX_INCREMENTS, MAX_SEEDS, check_int, check_range
 from ..material import Material
 from ..params import check_fields, check_value, param_info, param_like, sweep_fields
 from ..stiffness import DEFAULT_MIN_PIXELS
@@ -74,7 +75,8 @@ def parse_seeds(spec: str | int | Iterable[int | str]) -> tuple[int, ...]:
     ------
     ValueError
         If an item is not an integer or a range, a range has hi < lo, ``spec`` is a bool or
-        empty, a seed is outside [0, 2³² − 1], or seeds repeat.
+        empty, a seed is outside [0, 2³² − 1], seeds repeat, or there are more than
+        :data:`~warptrunc._support.validate.MAX_SEEDS` (10⁶) of them.
 
     Examples
     --------
@@ -82,7 +84,7 @@ def parse_seeds(spec: str | int | Iterable[int | str]) -> tuple[int, ...]:
     (0, 1, 2, 9)
     """
     if isinstance(spec, bool):
-        raise ValueError(f"seeds must be integers or ranges like '0-4', got {spec!r}")
+        raise ValueError(f"seeds must be integers or ranges like '0-4', got {show(spec)}")
     if isinstance(spec, int):
         items: list = [spec]
     elif isinstance(spec, str):
@@ -95,20 +97,27 @@ def parse_seeds(spec: str | int | Iterable[int | str]) -> tuple[int, ...]:
         if m:
             lo, hi = int(m[1]), int(m[2])
             if hi < lo:
-                raise ValueError(f"seed range must have lo ≤ hi, got {it!r}")
+                raise ValueError(f"seed range must have lo ≤ hi, got {show(it)}")
+            if len(out) + (hi - lo + 1) > MAX_SEEDS:  # refused before building the list
+                raise ValueError(
+                    f"seeds {show(it)} name {hi - lo + 1 + len(out)} seeds, more than the "
+                    f"{MAX_SEEDS} one sweep takes; split the grid into several sweeps"
+                )
             out.extend(range(lo, hi + 1))
             continue
         try:
             v = int(it) if isinstance(it, str) else it
         except ValueError:
-            raise ValueError(f"seeds must be integers or ranges like '0-4', got {it!r}") from None
+            raise ValueError(f"seeds must be integers or ranges like '0-4', got {show(it)}") from None
         out.append(v)
+        if len(out) > MAX_SEEDS:
+            raise ValueError(f"seeds name more than the {MAX_SEEDS} one sweep takes")
     for s in out:
         check_int("seed", s, 0, 2**32 - 1)
     if not out:
-        raise ValueError(f"seeds must name at least one seed, got {spec!r}")
+        raise ValueError(f"seeds must name at least one seed, got {show(spec)}")
     if len(set(out)) != len(out):
-        raise ValueError(f"seeds must not repeat, got {spec!r}")
+        raise ValueError(f"seeds must not repeat, got {show(spec)}")
     return tuple(out)
 
 
@@ -199,7 +208,7 @@ class SweepOptions:
     def __post_init__(self) -> None:
         s = object.__setattr__
         check_fields(self, keep_pairs=True)  # the WMSpec and Material fields, by their metadata
-        s(self, "increments", check_int("increments", self.increments, 1))
+        s(self, "increments", check_int("increments", self.increments, 1, MAX_INCREMENTS))
         s(self, "max_depth_fraction",
           check_range("max_depth_fraction", self.max_depth_fraction, 0, 1, hi_open=False))  # fmt: skip
         if self.max_depth is not None:
@@ -449,6 +458,12 @@ class SweepGrid:
             spec = next(c for c in specs if name in param_info(c))
             out.append((name, _values(name, values, lambda v, c=spec, k=name: check_value(c, k, v))))
         s(self, "axes", tuple(out))
+        if len(self) > MAX_SEEDS:
+            raise ValueError(
+                f"the grid has {len(self.D)} D × {len(self.delta)} δ × {len(self.seeds)} seeds = "
+                f"{len(self)} cases, more than the {MAX_SEEDS} one store takes; split it into "
+                "several sweeps"
+            )
 
     @classmethod
     def from_values(

@@ -43,19 +43,22 @@ def read_lock(path: str | Path) -> dict[str, Any] | None:
     -------
     dict or None
         The lock file's JSON object (``pid``, ``host``, ``started_utc``); None when there is
-        no lock file. A lock file that cannot be read or parsed (half-written) gives
-        ``{"pid": None, "host": None, "started_utc": None}``, and a JSON value that is not an
-        object gives ``{"pid": None, "host": None}``.
+        no lock file. A lock file that cannot be read or parsed (half-written, damaged, a
+        folder) gives ``{"pid": None, "host": None, "started_utc": None, "unreadable": why}``.
     """
 
     f = Path(path) / LOCK_NAME
     try:
-        info = json.loads(f.read_text())
+        info = json.loads(f.read_text(encoding="utf-8"))
     except FileNotFoundError:
         return None
-    except (OSError, ValueError):
-        return {"pid": None, "host": None, "started_utc": None}  # half-written: treat as unknown
-    return info if isinstance(info, dict) else {"pid": None, "host": None}
+    except (OSError, ValueError) as exc:  # half-written or damaged: the holder is unknown
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else "not JSON"
+        return {"pid": None, "host": None, "started_utc": None, "unreadable": why}
+    if not isinstance(info, dict) or not isinstance(info.get("pid"), int):
+        return {"pid": None, "host": None, "started_utc": None,
+                "unreadable": "no pid recorded"}  # fmt: skip
+    return info
 
 
 def _alive(pid: int) -> bool:
@@ -73,8 +76,12 @@ def _try_create(f: Path, info: dict[str, Any]) -> bool:
         fd = os.open(f, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
     except FileExistsError:
         return False
-    with os.fdopen(fd, "w") as fh:
-        fh.write(json.dumps(info) + "\n")
+    try:
+        with os.fdopen(fd, "w") as fh:
+            fh.write(json.dumps(info) + "\n")
+    except BaseException:  # e.g. a full disk: never leave a half-written lock behind
+        f.unlink(missing_ok=True)
+        raise
     return True
 
 
@@ -118,6 +125,12 @@ def store_lock(
             continue  # released meanwhile
         pid, h = held.get("pid"), held.get("host")
         stale = h == host and isinstance(pid, int) and pid != os.getpid() and not _alive(pid)
+        if held.get("unreadable"):
+            raise StoreLocked(
+                f"{path} is locked, but its lock file {f} cannot be read ({held['unreadable']}; "
+                "half-written or damaged), so its holder is unknown; if no sweep is running on "
+                f"this store, remove {f}"
+            )
         if not stale:
             raise StoreLocked(
                 f"{path} is in use by another sweep (pid {pid} on host {h}, since "

@@ -9,6 +9,7 @@ from contextlib import ExitStack
 from pathlib import Path
 from typing import Any
 
+from .._support.atomic import store_rollback
 from .._support.validate import check_int, check_range
 from .grid import SweepGrid, SweepOptions
 from .lock import store_lock
@@ -131,32 +132,44 @@ def run_sweep(
     if workers is not None and scheduler is not None:
         raise ValueError("give workers (a local cluster) or scheduler (an existing one), not both")
     cases = grid.cases(opts)  # checks that the sweep can vary the grid's extra axes
-    held = ExitStack()  # one writer per store: a second sweep on ``out`` is refused at once
-    notify = lambda m: print(m, file=sys.stderr)  # noqa: E731
+    guard = ExitStack()  # a failed run on a new store that finished nothing leaves nothing
+    store: Store | None = None
     if out is not None:
-        held.enter_context(store_lock(out, notify=notify))
-    try:
-        store = Store(out, grid, opts, overwrite=overwrite, retry_failed=retry_failed,
-                      notify=notify)  # fmt: skip
-    except BaseException:
-        held.close()
-        raise
-    todo = [c for c in cases if c.case_id not in store.done]
-    groups: dict[tuple, list] = {}  # the cases of each value of the extra axes share options
-    for c in todo:
-        groups.setdefault(c.params, []).append(c)
-    try:
-        left = len(todo)
-        for params, group in groups.items():
-            left -= len(group)
-            _run_group(group, opts.with_axes(dict(params)), store, workers=workers,
-                       scheduler=scheduler, device=device, total=len(grid) - left,
-                       progress=progress, shard_size=shard_size, shard_seconds=shard_seconds)  # fmt: skip
-    finally:
+
+        def keep() -> bool:  # finished cases (or parts a worker wrote) are kept for a rerun
+            return (store is not None and bool(store.done)) or any(
+                Path(out).glob("curves/part-*.parquet")
+            )
+
+        guard.enter_context(store_rollback(out, keep=keep))
+    with guard:
+        held = ExitStack()  # one writer per store: a second sweep on ``out`` is refused at once
+        notify = lambda m: print(m, file=sys.stderr)  # noqa: E731
+        if out is not None:
+            held.enter_context(store_lock(out, notify=notify))
         try:
-            store.flush()
-        finally:
+            store = Store(out, grid, opts, overwrite=overwrite, retry_failed=retry_failed,
+                          notify=notify)  # fmt: skip
+        except BaseException:
             held.close()
+            raise
+        todo = [c for c in cases if c.case_id not in store.done]
+        groups: dict[tuple, list] = {}  # the cases of each value of the extra axes share options
+        for c in todo:
+            groups.setdefault(c.params, []).append(c)
+        try:
+            left = len(todo)
+            for params, group in groups.items():
+                left -= len(group)
+                _run_group(group, opts.with_axes(dict(params)), store, workers=workers,
+                           scheduler=scheduler, device=device, total=len(grid) - left,
+                           progress=progress, shard_size=shard_size,
+                           shard_seconds=shard_seconds)  # fmt: skip
+        finally:
+            try:
+                store.flush()
+            finally:
+                held.close()
     return store.frame()
 
 

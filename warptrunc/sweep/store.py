@@ -49,6 +49,7 @@ from typing import Any
 import numpy as np
 
 from .._support.atomic import jsonable_strict, read_json, strict_json
+from .._support.provenance import provenance
 from .._support.results import write_atomic
 from .curves import (
     CURVE_COLUMNS,
@@ -130,7 +131,13 @@ class Store:
         if overwrite:
             self._remove()
         elif meta.exists():
-            old = read_json(meta)
+            try:
+                old = read_json(meta)
+            except ValueError as exc:
+                raise ValueError(
+                    f"{exc}; its results cannot be matched to this grid: use --overwrite (removes "
+                    "them) or a new --out"
+                ) from None
             _check_same(self.path, old, spec)
             migrate(self.path, notify=notify)  # the previous layout, or its leftovers
         elif (self.path / "cases.parquet").exists() or self.curves.exists():
@@ -141,7 +148,8 @@ class Store:
         for tmp in [*self.path.glob(".*.tmp-*"), *self.curves.glob(".*.tmp-*")]:
             tmp.unlink()  # left by a crash mid-write: never a readable part
         if not meta.exists():
-            write_atomic(meta, strict_json(spec).encode())  # E_flat: null = rigid (inf)
+            doc = {**spec, "provenance": provenance()}  # of the run that made the store
+            write_atomic(meta, strict_json(doc).encode())  # E_flat: null = rigid (inf)
         self._read_existing()
         if retry_failed:
             failed = {c for c, r in self.rows.items() if r[0]["error"] is not None}

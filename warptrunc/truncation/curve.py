@@ -21,7 +21,7 @@ import warp as wp
 from .._support.device import resolve_device
 from .._support.limits import flat_row_bands, row_bands
 from .._support.reduce import height_range
-from .._support.validate import check_int, check_range
+from .._support.validate import MAX_INCREMENTS, check_int, check_range
 from ..kernels import truncation as _k
 from ..surface import Surface
 
@@ -200,10 +200,11 @@ def depth_grid(
     Raises
     ------
     ValueError
-        ``n_increments`` is not an integer in [1, 10⁷], ``max_depth_fraction`` is outside
+        ``n_increments`` is not an integer in [1, 10⁶] (:data:`MAX_INCREMENTS`),
+        ``max_depth_fraction`` is outside
         (0, 1], ``max_depth`` is not positive and finite, or ω_max is 0 (a flat map).
     """
-    n = check_int("n_increments", n_increments, 1, 10_000_000)
+    n = check_int("n_increments", n_increments, 1, MAX_INCREMENTS)
     if max_depth is None:
         frac = check_range("max_depth_fraction", max_depth_fraction, 0.0, 1.0, hi_open=False)
         wmax = frac * Rt
