@@ -117,7 +117,7 @@ def stage_params(p: Profile) -> dict[str, Any]:
         "placements": p.indentation_placements, "seed": p.indentation_seed,
         "hardness_factors": [("inf" if math.isinf(f) else f) for f in p.indentation_hardness_factors],
         "unload_fraction": p.indentation_unload_fraction, "dtype": p.indentation_dtype,
-        "truncation_increments": p.indentation_increments, "refine": p.indentation_refine,
+        "maxiter": p.indentation_maxiter, "truncation_increments": p.indentation_increments, "refine": p.indentation_refine,
         "material": m.to_dict(),
     })  # fmt: skip
 
@@ -148,7 +148,7 @@ def _piece_params(p: Profile, surface: str, factor: float) -> dict[str, Any]:
         "surface": surface, "spec": par["surfaces"][surface], "hardness_factor": factor,
         "material": _material(factor).to_dict(),
         **{k: par[k] for k in ("punches_m", "loads_N", "placements", "seed", "unload_fraction",
-                               "dtype", "truncation_increments")},
+                               "dtype", "maxiter", "truncation_increments")},
     })  # fmt: skip
 
 
@@ -176,7 +176,7 @@ def _run_indent(surface, p: Profile, factor: float, *, placements, device) -> An
             surface, punch_diameter=tuple(p.indentation_punches),
             peak_loads=tuple(p.indentation_loads), unload_fraction=p.indentation_unload_fraction,
             material=_material(factor), placements=placements, seed=p.indentation_seed,
-            settings=SolverSettings(dtype=p.indentation_dtype),
+            settings=SolverSettings(dtype=p.indentation_dtype, maxiter=p.indentation_maxiter),
             truncation_increments=p.indentation_increments, elastic=math.isinf(factor),
             device=device,
         )  # fmt: skip
@@ -299,7 +299,7 @@ def _resolution_params(p: Profile) -> dict[str, Any] | None:
         "surface": s, "spec": _spec(p, s).to_dict(), "n_coarse": p.indentation_n,
         "n_fine": 2 * p.indentation_n, "punch_m": min(p.indentation_punches),
         "hardness_factors": ["inf", *finite[:1]], "placement": "map centre",
-        **{k: stage_params(p)[k] for k in ("loads_N", "unload_fraction", "dtype",
+        **{k: stage_params(p)[k] for k in ("loads_N", "unload_fraction", "dtype", "maxiter",
                                             "truncation_increments")},
     })  # fmt: skip
 
@@ -325,7 +325,8 @@ def _run_resolution(p: Profile, ref: dict[str, Any], device) -> dict[str, Any]:
             t1 = time.perf_counter()
             r = indent(surf, punch_diameter=(ref["punch_m"],), peak_loads=tuple(ref["loads_N"]),
                        unload_fraction=ref["unload_fraction"], material=_material(fac),
-                       placements=None, settings=SolverSettings(dtype=ref["dtype"]),
+                       placements=None,
+                       settings=SolverSettings(dtype=ref["dtype"], maxiter=ref["maxiter"]),
                        truncation_increments=ref["truncation_increments"],
                        elastic=math.isinf(fac), device=device)  # fmt: skip
             cols = r.to_dict()
@@ -476,11 +477,17 @@ def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
     -------
     dict
         ``per_model``: model → ``n_cells`` (cells with a ratio), ``n_good`` (within the band),
-        ``runs`` (per punch, the loads within the band as contiguous runs of the load sequence:
+        ``runs`` (per punch, the loads within the band as contiguous runs of the loads that
+        have a ratio:
         ``[punch_m, first_load_N, last_load_N, n_loads]``), ``median_ratio``, ``range``;
         ``closest``: model → cells where it is the model nearest to truncation (smallest
         abs(ln ratio)); ``tracked``: the model with most cells in the band (ties: more
         ``closest`` cells, then the order given), None when no cell is in the band.
+
+    Notes
+    -----
+    The model tracked is the one with the largest *fraction* n_good/n_cells (cells where a
+    solve did not converge have no ratio); ties go to more ``n_good``, then more ``closest``.
     """
     per: dict[str, Any] = {}
     closest: dict[str, int] = {m: 0 for m in ratios}
@@ -510,7 +517,8 @@ def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
                   "range": [min(xs), max(xs)] if xs else None}  # fmt: skip
     order = list(ratios)
     cand = [m for m in order if per[m]["n_good"] > 0]
-    tracked = (max(cand, key=lambda m: (per[m]["n_good"], closest[m], -order.index(m)))
+    tracked = (max(cand, key=lambda m: (per[m]["n_good"] / per[m]["n_cells"], per[m]["n_good"],
+                                        closest[m], -order.index(m)))
                if cand else None)  # fmt: skip
     return {"per_model": per, "closest": closest, "tracked": tracked, "band": good}
 

@@ -233,9 +233,9 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
     L.append(
         f"**Which model truncation tracks.** Rule: at each (surface, punch, peak load) cell, E_c/E of every "
         "model is the geometric mean over the converged placements; truncation *tracks* a model there when "
-        f"E_c,trunc/E_c,model is within {band} of 1. Per surface, the model tracked is the one with most "
-        "cells in the band (ties: the one nearest to truncation in more cells); the load ranges are the runs "
-        "of consecutive peak loads in the band, per punch.\n"
+        f"E_c,trunc/E_c,model is within {band} of 1. Per surface, the model tracked is the one with the largest "
+        "fraction of its cells in the band (ties: more cells, then the one nearest to truncation in more "
+        "cells); the load ranges are the runs of consecutive peak loads in the band, per punch.\n"
     )  # fmt: skip
     L.append("| surface | model | cells within " + band + " | median E_c,trunc/E_c | range | load ranges in the band |")
     L.append("|---|---|---|---|---|---|")

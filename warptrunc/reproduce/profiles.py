@@ -117,6 +117,10 @@ class Profile:
     """Partial unloading of each cycle, a fraction of its peak load (dimensionless)."""
     indentation_dtype: str = "float64"
     """Precision of the contact solver in the ``indentation`` stage."""
+    indentation_maxiter: int = 1000
+    """Iteration limit of each contact solve in the ``indentation`` stage: bounds the work of a
+    solve that does not converge (complete contact under a small punch on the smooth Ps stalls
+    load control); such cycles are flagged, counted in the report and left out of the fits."""
     indentation_increments: int = 1000
     """Depth increments of the truncation curve under each punch (``indentation`` stage)."""
     indentation_refine: bool = True
@@ -144,7 +148,7 @@ PROFILES = {
         elastic_pixels_per_Wr=16, elastic_refine_ratio=3, elastic_seeds=1,
         elastic_fractions=(0.02, 0.05, 0.1, 0.2, 0.4),
         indentation_n=256, indentation_loads=INDENT_LOADS[-4:], indentation_placements=1,
-        indentation_increments=200,
+        indentation_increments=200, indentation_maxiter=200,
     ),
     "quick": Profile(
         name="quick", n=1024, seeds=3, fig5_sizes=(256, 512, 1024, 2048), fig5_seeds=3,
