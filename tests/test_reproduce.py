@@ -111,7 +111,7 @@ def test_tiny_report_structure(tiny):
         assert img[..., :3].std() > 0.01  # not blank
     res = json.loads((out / "results.json").read_text())
     assert res["meta"]["device"].startswith("cpu") and res["meta"]["wall_s"] > 0
-    stages = {"asperity", "fig5", "table1", "islands", "group1", "group2", "elastic"}
+    stages = {"asperity", "fig5", "table1", "islands", "group1", "group2", "elastic", "indentation"}
     assert set(res["stages"]) == stages
     assert res["analysis"]["asperity"]["pixel_bound_holds"]
 
@@ -126,7 +126,7 @@ def test_tiny_group1_beta_scaling(tiny):
 def test_tiny_rerun_reuses_and_conflict(tiny):
     out, _ = tiny
     doc = reproduce("tiny", out, device="cpu")
-    stored = {"asperity", "fig5", "table1", "islands", "group1", "group2", "elastic"}
+    stored = {"asperity", "fig5", "table1", "islands", "group1", "group2", "elastic", "indentation"}
     assert set(doc["meta"]["reused"]) == stored
     from dataclasses import replace
 
@@ -364,3 +364,129 @@ def test_report_commit_fallback(tiny, monkeypatch):
     assert "commit `None`" not in text
     monkeypatch.setenv("WARPTRUNC_GIT_COMMIT", "abc123")
     assert git_commit() == "abc123"
+
+
+# --- issue 28 item 6: the indentation stage (Fig. 6 in silico) --------------------------------
+
+
+def test_tiny_indentation_stage(tiny):
+    """Rows of every surface × model × punch × placement × load, F/(E·A) from the definition,
+    truncation independent of H, the section, its figure and the resolution check."""
+    from warptrunc.reproduce import get_profile
+
+    out, doc = tiny
+    p = get_profile("tiny")
+    st, ana = doc["stages"]["indentation"], doc["analysis"]["indentation"]
+    r = st["rows"]
+    n_models = len(p.indentation_hardness_factors) + 1  # + truncation
+    per = len(p.indentation_punches) * p.indentation_placements * len(p.indentation_loads)
+    assert len(r["surface"]) == len(p.indentation_surfaces) * n_models * per
+    assert set(r["model"]) == {"truncation", "elastic", "elastic_plastic_1H", "elastic_plastic_2H"}
+    d, f = np.array(r["punch_diameter_m"]), np.array(r["peak_load_N"])
+    np.testing.assert_allclose(r["F_over_EA"], f / (70e9 * np.pi * d**2 / 4), rtol=1e-12)
+    assert st["truncation_same_over_H"]
+    ep = np.array(r["model"]) == "elastic_plastic_1H"
+    el = np.array(r["model"]) == "elastic"
+    assert np.all(np.array(r["plastic_area_m2"], dtype=float)[el] == 0)
+    assert np.any(np.array(r["plastic_area_m2"], dtype=float)[ep] > 0)
+    # mean pressure of 500 mN on the 54.1 µm punch: 218 MPa, below H
+    assert ana["mean_pressure"]["p_mean_Pa"] == pytest.approx(0.5 / (np.pi * 27.05e-6**2))
+    assert ana["mean_pressure"]["below_H"] and round(ana["mean_pressure"]["p_mean_Pa"] / 1e6) == 218
+    assert ana["smooth_Ec_over_E"] == pytest.approx(73.52e9 / 70e9, rel=1e-3)
+    for s in p.indentation_surfaces:
+        assert set(ana["fits"][s]) >= {"truncation", "elastic", "elastic_plastic_1H"}
+        assert ana["tracking"][s]["tracked"] in (None, "elastic", "elastic_plastic_1H", "elastic_plastic_2H")
+    res = ana["resolution"]
+    assert res["n_fine"] == 2 * res["n_coarse"] and res["dx_fine_m"] == pytest.approx(res["dx_coarse_m"] / 2)
+    text = (out / "report.md").read_text()
+    assert "## Indentation in silico (Fig. 6)" in text and "Which model truncation tracks" in text
+    assert "](indentation_fig6.png)" in text and "Resolution check" in text
+    assert "| Indentation punches | 54.1, 108.7, 502.6 µm |" in text
+    pieces = sorted((out / "indentation").glob("*.json"))
+    assert len(pieces) == len(p.indentation_surfaces) * len(p.indentation_hardness_factors) + 1
+
+
+def test_tracking_rule_on_hand_made_ratios():
+    from warptrunc.reproduce.indentation import tracking
+
+    d1, d2 = 5e-5, 1e-4
+    ratios = {
+        # elastic: in the band at the two smallest loads of d1 and the middle one of d2
+        "elastic": {(d1, 1.0): 1.1, (d1, 2.0): 0.85, (d1, 4.0): 1.5, (d2, 1.0): 2.0,
+                    (d2, 2.0): 1.19, (d2, 4.0): 0.7},
+        # plastic: in the band at one cell only, nearer to 1 there than elastic
+        "plastic": {(d1, 1.0): 0.3, (d1, 2.0): 0.5, (d1, 4.0): 1.01, (d2, 1.0): 0.1,
+                    (d2, 2.0): 0.2, (d2, 4.0): None},
+    }
+    t = tracking(ratios, good=0.2)
+    e, p = t["per_model"]["elastic"], t["per_model"]["plastic"]
+    assert (e["n_cells"], e["n_good"], p["n_cells"], p["n_good"]) == (6, 3, 5, 1)
+    assert e["runs"] == [[d1, 1.0, 2.0, 2], [d2, 2.0, 2.0, 1]]
+    assert p["runs"] == [[d1, 4.0, 4.0, 1]]
+    assert t["tracked"] == "elastic"  # 3/6 > 1/5
+    # nearest model per cell: |ln r| smallest; (d1, 4.0) → plastic, (d2, 4.0) → elastic only
+    assert t["closest"] == {"elastic": 5, "plastic": 1}
+    assert e["median_ratio"] == pytest.approx(np.median([1.1, 0.85, 1.5, 2.0, 1.19, 0.7]))
+    # the band's edge is inside; nothing in the band → None
+    assert tracking({"m": {(d1, 1.0): 1.2}}, good=0.2)["per_model"]["m"]["n_good"] == 1
+    assert tracking({"m": {(d1, 1.0): 1.3}}, good=0.2)["tracked"] is None
+
+
+def _small_profile():
+    from dataclasses import replace
+
+    from warptrunc.reproduce import get_profile
+
+    return replace(get_profile("tiny"), name="indent-test", indentation_surfaces=("GB300s", "GB50s"),
+                   indentation_punches=(108.7e-6,), indentation_loads=(0.125, 0.25),
+                   indentation_hardness_factors=(math.inf, 1.0), indentation_refine=False)
+
+
+def test_indentation_stage_resumes_after_interruption(tmp_path):
+    """A time budget stops the stage between pieces; the rerun computes only what is missing and
+    gives the stage an uninterrupted run gives."""
+    from warptrunc.reproduce.indentation import StageIncomplete, stage_indentation
+
+    p = _small_profile()
+    full = stage_indentation(p, tmp_path / "a", "cpu", progress=False)
+    with pytest.raises(StageIncomplete, match="0 of 4 pieces"):
+        stage_indentation(p, tmp_path / "b", "cpu", deadline=0.0, progress=False)
+    # interrupted after two pieces: keep two of the uninterrupted run's pieces, drop the others
+    (tmp_path / "b" / "indentation").mkdir(parents=True, exist_ok=True)
+    files = sorted((tmp_path / "a" / "indentation").glob("*.json"))
+    kept = [f for f in files if f.name.startswith("GB300s")]
+    for f in kept:
+        (tmp_path / "b" / "indentation" / f.name).write_text(f.read_text())
+    before = {f.name: (tmp_path / "b" / "indentation" / f.name).stat().st_mtime_ns for f in kept}
+    again = stage_indentation(p, tmp_path / "b", "cpu", progress=False)
+    for name, t in before.items():  # reused, not rewritten
+        assert (tmp_path / "b" / "indentation" / name).stat().st_mtime_ns == t
+    assert len(list((tmp_path / "b" / "indentation").glob("*.json"))) == 4
+    assert _nan_eq(again["rows"], full["rows"])
+    # a piece stored with other parameters is refused, or replaced with overwrite
+    from dataclasses import replace
+
+    q = replace(p, indentation_loads=(0.125, 0.3))
+    with pytest.raises(StageConflict, match="other parameters"):
+        stage_indentation(q, tmp_path / "b", "cpu", progress=False)
+
+
+def test_reproduce_stages_and_time_budget(tmp_path):
+    """--stages runs one stage; a time budget leaves it incomplete (reported, not stored) and a
+    rerun finishes it."""
+    p = _small_profile()
+    doc = reproduce(p, tmp_path, device="cpu", stages="indentation", time_budget=1e-9)
+    assert "indentation" in doc["meta"]["incomplete"] and "indentation" not in doc["stages"]
+    assert doc["meta"]["stages_selected"] == ["indentation"]
+    assert "asperity" in doc["meta"]["stages_skipped"]
+    assert "## Stage `indentation`: incomplete" in (tmp_path / "report.md").read_text()
+    assert not (tmp_path / "stages" / "indentation.json").exists()
+    doc = reproduce(p, tmp_path, device="cpu", stages=["indentation"])
+    assert doc["meta"]["computed"] == ["indentation"] and "incomplete" not in doc["meta"]
+    assert set(doc["stages"]) == {"indentation"}
+    assert "## Indentation in silico (Fig. 6)" in (tmp_path / "report.md").read_text()
+    with pytest.raises(ValueError, match="stages must be names among"):
+        reproduce(p, tmp_path, device="cpu", stages="fig6")
+    from warptrunc.reproduce.study import select_stages
+
+    assert select_stages("islands") == ("table1", "islands")

@@ -3,7 +3,8 @@
 """Reproduce the paper in one call: :func:`reproduce` (CLI: ``warptrunc reproduce``).
 
 Stages (Fig. 2 single asperity, Fig. 5 convergence, Table 1 calibration, Figs. 7–8/Table 2
-islands, Table 3 groups 1 and 2 with Figs. 9–10, the elastic BEM cross-check) are computed by
+islands, Table 3 groups 1 and 2 with Figs. 9–10, the elastic BEM cross-check, the indentation
+experiment of Fig. 6 in silico) are computed by
 :mod:`.study`, stored and reused by :mod:`.store`, summarised by :mod:`.analysis` and written by :mod:`.report` as
 ``report.md``, ``results.json`` and PNG figures.
 """
@@ -35,6 +36,8 @@ def reproduce(
     device=None,
     command: str | None = None,
     commit: str | None = None,
+    stages: str | tuple[str, ...] | None = None,
+    time_budget: float | None = None,
 ) -> dict[str, Any]:
     """Run the study at ``profile`` into ``out``; returns the content of ``results.json``.
 
@@ -56,6 +59,15 @@ def reproduce(
     commit : str, optional
         Commit recorded in the report; default ``$WARPTRUNC_GIT_COMMIT``, else ``git rev-parse
         HEAD`` of the package's checkout, else "unknown".
+    stages : str or sequence of str, optional
+        Compute only these stages (names of :data:`~warptrunc.reproduce.study.STAGES`, or one
+        comma-separated string; a stage's inputs are added). The others are read from
+        ``out/stages`` when stored with the same parameters and left out of the report
+        otherwise. Default: every stage.
+    time_budget : float, optional
+        Seconds from the start after which the ``indentation`` stage starts no new piece
+        (its pieces are stored as they finish; a rerun continues). The report then says the
+        stage is incomplete. Default: no limit.
 
     Returns
     -------
@@ -67,16 +79,20 @@ def reproduce(
     StageConflict
         If a stored stage has other parameters and ``overwrite`` is False.
     ValueError
-        If ``profile`` names no profile.
+        If ``profile`` names no profile, ``stages`` names no stage or ``time_budget`` ≤ 0.
     """
     # the study stack (sweeps, calibration, figures) loads when a study runs, not with the
     # package: `warptrunc --help` reads the profiles only
     from .analysis import analyse
-    from .study import run_study
+    from .study import run_study, select_stages
 
     p = get_profile(profile) if isinstance(profile, str) else profile
+    selected = select_stages(stages)
+    if time_budget is not None and not time_budget > 0:
+        raise ValueError(f"time_budget must be > 0 s, got {time_budget!r}")
     out = Path(out)
     store: StageStore | None = None
+
     # a run that stored nothing leaves nothing behind; finished stages and sweep parts are kept
     # for a rerun
     def keep() -> bool:
@@ -87,10 +103,11 @@ def reproduce(
         dev = resolve_device(device)
         store = StageStore(out, overwrite=overwrite)
         t0 = time.perf_counter()
-        study = run_study(p, store, device=dev)
+        deadline = None if time_budget is None else t0 + float(time_budget)
+        study = run_study(p, store, device=dev, stages=stages, deadline=deadline)
         res = study["results"]
         ana = analyse(res)
-        if all(res[g].get("store") for g in ("group1", "group2")):  # re-fit from the stored curves
+        if all(g in res and res[g].get("store") for g in ("group1", "group2")):  # re-fit
             from .fitrange import fit_range_map
 
             try:
@@ -99,11 +116,12 @@ def reproduce(
                 ana["fit_range_map_missing"] = str(exc)
         with staged_outputs() as st:  # the figures, results.json and report.md, or none of them
             stage = st.folder(out)
-            doc = _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, commit)
+            doc = _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, commit,
+                                 None if stages is None else selected)  # fmt: skip
     return jsonable(doc)
 
 
-def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, commit):
+def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, commit, selected):
     """Write the figures, results.json and report.md into ``stage``; returns the document."""
     from .report import figures, markdown
 
@@ -113,10 +131,17 @@ def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, comm
         "device": f"{dev.alias} ({getattr(dev, 'name', '')})", "wall_s": time.perf_counter() - t0,
         "stage_wall_s": study["wall_s"], "stage_seconds": {k: store.seconds(k) for k in res},
         "reused": store.reused, "computed": store.computed,
-        "command": command or f"warptrunc reproduce --profile {p.name} --out {out}",
+        "command": command or f"warptrunc reproduce --profile {p.name} --out {out}"
+        + ("" if selected is None else f" --stages {','.join(selected)}"),
         "python": sys.version.split()[0], "figures": names,
         "provenance": provenance(dev),
     }  # fmt: skip
+    if selected is not None:
+        meta["stages_selected"] = list(selected)
+    if study["skipped"]:
+        meta["stages_skipped"] = study["skipped"]
+    if study["incomplete"]:
+        meta["incomplete"] = study["incomplete"]
     doc = {"meta": meta, "analysis": ana, "stages": res}
     (stage / "results.json").write_text(json.dumps(jsonable(doc), indent=1, allow_nan=False) + "\n")
     (stage / "report.md").write_text(markdown(meta, res, ana, names))

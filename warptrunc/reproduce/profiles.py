@@ -7,13 +7,16 @@ increments, ω_max = 0.1·R_t; islands of Figs. 7–8 and Table 2 on 30720² ove
 10 seeds per resolution; Table 1 calibrated on 1024² over 1 mm) except where noted in
 :data:`PAPER_DEPARTURES`: Fig. 5 goes to 10240² (the paper: 32760²) and the island analysis
 uses 4 seeds per surface; the elastic comparison (not in the paper) goes to 7680² (L/W_r = 30
-at 256 pixels per W_r) and 5120² (L/W_r = 10, pixel size halved). ``quick`` fits a 2-core CPU
-in minutes and
+at 256 pixels per W_r) and 5120² (L/W_r = 10, pixel size halved). The indentation stage (Fig. 6
+in silico, not in the paper's simulations) runs at the paper's pixel size with the paper's
+punches and loads; ``quick`` and ``tiny`` coarsen its pixels (512² and 256² over 1 mm) and use
+one placement (``tiny``: the last four loads). ``quick`` fits a 2-core CPU in minutes and
 ``tiny`` is the CI check.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
@@ -21,6 +24,9 @@ __all__ = ["PAPER_DEPARTURES", "PROFILES", "Profile", "get_profile"]
 
 GROUP1_DELTA = (0.000625, 0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.08, 0.16)
 GROUP2_D = (2.1, 2.3, 2.5, 2.7, 2.9)
+INDENT_SURFACES = ("Ps", "SMATs", "GB300s", "GB50s")
+INDENT_PUNCHES = (54.1e-6, 108.7e-6, 502.6e-6)  # = warptrunc.indent.PAPER_PUNCH_DIAMETERS
+INDENT_LOADS = tuple(0.5 / 2**k for k in range(9, -1, -1))  # = warptrunc.indent.PAPER_PEAK_LOADS
 
 
 @dataclass(frozen=True)
@@ -90,6 +96,35 @@ class Profile:
     """Approaches δ/R_t of the ``elastic`` stage (dimensionless)."""
     elastic_dtype: str = "float64"
     """Precision of the elastic solver in the ``elastic`` stage."""
+    indentation_surfaces: tuple[str, ...] = INDENT_SURFACES
+    """Table 1 presets of the ``indentation`` stage (:data:`warptrunc.presets.TABLE1`)."""
+    indentation_n: int = 10240
+    """Pixels per side of the ``indentation`` stage's maps (over ``indentation_L``)."""
+    indentation_L: float = 1e-3
+    """Side of the ``indentation`` stage's maps (m)."""
+    indentation_punches: tuple[float, ...] = INDENT_PUNCHES
+    """Flat-punch diameters of the ``indentation`` stage (m)."""
+    indentation_loads: tuple[float, ...] = INDENT_LOADS
+    """Peak loads of the ``indentation`` stage's cycles (N), increasing."""
+    indentation_placements: int = 3
+    """Random punch placements per diameter in the ``indentation`` stage (count)."""
+    indentation_seed: int = 0
+    """Seed of the punch placements of the ``indentation`` stage."""
+    indentation_hardness_factors: tuple[float, ...] = (math.inf, 1.0, 2.0)
+    """Hardness H of the ``indentation`` stage as multiples of the alloy's
+    (:data:`warptrunc.indent.ALUMINIUM_HARDNESS`, 1.0 GPa); inf = elastic (dimensionless)."""
+    indentation_unload_fraction: float = 0.1
+    """Partial unloading of each cycle, a fraction of its peak load (dimensionless)."""
+    indentation_dtype: str = "float64"
+    """Precision of the contact solver in the ``indentation`` stage."""
+    indentation_maxiter: int = 1000
+    """Iteration limit of each contact solve in the ``indentation`` stage: bounds the work of a
+    solve that does not converge (complete contact under a small punch on the smooth Ps stalls
+    load control); such cycles are flagged, counted in the report and left out of the fits."""
+    indentation_increments: int = 1000
+    """Depth increments of the truncation curve under each punch (``indentation`` stage)."""
+    indentation_refine: bool = True
+    """Resolution check of the ``indentation`` stage: the smallest punch at dx and dx/2."""
     extra: dict[str, Any] = field(default_factory=dict)
     """Free-form additions, recorded with the profile (no stage reads them)."""
 
@@ -112,16 +147,19 @@ PROFILES = {
         asperity_n=256, asperity_increments=200, elastic_D=(2.1, 2.9), elastic_size_ratios=(1, 3),
         elastic_pixels_per_Wr=16, elastic_refine_ratio=3, elastic_seeds=1,
         elastic_fractions=(0.02, 0.05, 0.1, 0.2, 0.4),
+        indentation_n=256, indentation_loads=INDENT_LOADS[-4:], indentation_placements=1,
+        indentation_increments=200, indentation_maxiter=200,
     ),
     "quick": Profile(
         name="quick", n=1024, seeds=3, fig5_sizes=(256, 512, 1024, 2048), fig5_seeds=3,
         table1_n=256, table1_seeds=1, islands_n=1024, islands_seeds=2, asperity_n=1024,
-        elastic_pixels_per_Wr=16,
+        elastic_pixels_per_Wr=16, indentation_n=512, indentation_placements=1,
     ),
     "paper": Profile(
         name="paper", n=10240, seeds=5, fig5_sizes=(1024, 2048, 4096, 8192, 10240),
         fig5_seeds=10, table1_n=1024, table1_seeds=3, table1_methods=("tri", "box", "vs", "sp"),
         islands_n=30720, islands_L=3e-3, islands_seeds=4, asperity_n=4096,
+        indentation_dtype="float32",
     ),
 }
 
@@ -136,6 +174,10 @@ PAPER_DEPARTURES = (
     ("islands_n", "Islands (Figs. 7–8, Table 2)", "30720² over 3 mm", "{islands_n}² over {islands_L_mm:g} mm, {islands_seeds} seed(s) per surface"),
     ("asperity_n", "Fig. 2 sphere", "1000 increments", "{asperity_increments} increments, {asperity_n}² pixel sphere (the paper states no size)"),
     ("group_fit", "Fit range of α, β (Table 3)", "not stated", "≥ 10 contact pixels (`default`) and ≥ {late_fit_fraction:g} × final contact pixels (`late`); the fit-range map shows the rest"),
+    ("indentation_n", "Indentation (Fig. 6) maps", "1 mm over 10240 pixels (97.7 nm)", "{indentation_L_mm:g} mm over {indentation_n} pixels ({indentation_dx_nm:.1f} nm)"),
+    ("indentation_punches", "Indentation punches", "54.1, 108.7, 502.6 µm", "{indentation_punches_um}"),
+    ("indentation_loads", "Indentation cycles", "10 peaks, each twice the previous, to 500 mN", "{indentation_n_loads} peaks, each twice the previous, to {indentation_max_mN:g} mN"),
+    ("indentation_placements", "Indents per punch and surface", "not stated", "{indentation_placements} random placement(s), seed {indentation_seed}"),
 )
 
 

@@ -55,8 +55,16 @@ def departure_lines(p: dict[str, Any]) -> list[str]:
     v = {**p, "L_mm": p["L"] * 1e3, "islands_L_mm": p["islands_L"] * 1e3,
          "fig5_min": p["fig5_sizes"][0], "fig5_max": p["fig5_sizes"][-1],
          "fig5_max_inc": p["fig5_increments"][-1]}  # fmt: skip
+    if "indentation_n" in p:
+        v.update(indentation_L_mm=p["indentation_L"] * 1e3,
+                 indentation_dx_nm=p["indentation_L"] / p["indentation_n"] * 1e9,
+                 indentation_punches_um=", ".join(f"{d * 1e6:g}" for d in p["indentation_punches"]) + " µm",
+                 indentation_n_loads=len(p["indentation_loads"]),
+                 indentation_max_mN=max(p["indentation_loads"]) * 1e3)  # fmt: skip
     out = ["| item | the paper | this run | same? |", "|---|---|---|---|"]
-    for _key, item, paper, ours in PAPER_DEPARTURES:
+    for key, item, paper, ours in PAPER_DEPARTURES:
+        if key.startswith("indentation") and "indentation_n" not in p:
+            continue  # a profile stored before the stage existed
         txt = ours.format(**v)
         same = "yes" if txt == paper or txt.startswith(paper + ",") else "**no**"
         same = "n/a" if paper == "not stated" else same

@@ -122,6 +122,24 @@ class StageStore:
             f"{', '.join(diff)}); use another --out, or --overwrite to replace it"
         )
 
+    def matches(self, name: str, params: dict[str, Any]) -> bool:
+        """True when the stage is stored with ``params`` (never raises).
+
+        Parameters
+        ----------
+        name : str
+            Stage name.
+        params : dict
+            Parameters that identify the stage, compared after ``jsonable``.
+
+        Returns
+        -------
+        bool
+            Whether a stored stage has exactly these parameters.
+        """
+        old = self.load(name)
+        return old is not None and old.get("params") == jsonable(params)
+
     def run(
         self, name: str, params: dict[str, Any], fn: Callable[[], dict[str, Any]]
     ) -> dict[str, Any]:

@@ -2,7 +2,9 @@
 # SPDX-License-Identifier: MIT
 """The paper's study as stages (Fig. 2, Fig. 5, Table 1, Figs. 7–8/Table 2, Fig. 9/10, Table 3),
 and how far truncation is from elastic contact (stage ``elastic``, :mod:`warptrunc.reproduce.elastic`: Eq. 2,
-island-resolved truncation and warptrunc's BEM solver; it replaces the former ``bem`` stage).
+island-resolved truncation and warptrunc's BEM solver; it replaces the former ``bem`` stage), and
+the paper's indentation experiment in silico (stage ``indentation``,
+:mod:`warptrunc.reproduce.indentation`).
 
 Every stage is a function of the profile returning a JSON-serialisable dict; :func:`run_study`
 runs them through a :class:`~warptrunc.reproduce.store.StageStore`, so a rerun reuses finished
@@ -39,7 +41,7 @@ from .paper import TABLE1
 from .profiles import Profile
 from .store import StageConflict, StageStore
 
-__all__ = ["STAGES", "fit_ranges", "group_sweep", "run_study"]
+__all__ = ["STAGES", "fit_ranges", "group_sweep", "run_study", "select_stages"]
 
 UM = 1e-6
 LOADS = (1e-7, 1e-6, 1e-5, 1e-4)
@@ -309,32 +311,45 @@ def _isna(v) -> bool:
     return v is None or (not isinstance(v, (list, dict, str)) and bool(pd.isna(v)))
 
 
-STAGES = ("asperity", "fig5", "table1", "islands", "group1", "group2", "elastic")
+STAGES = ("asperity", "fig5", "table1", "islands", "group1", "group2", "elastic", "indentation")
+DEPENDS = {"islands": ("table1",)}
+"""Stages whose input is another stage's result: selecting one selects the other too."""
 
 
-def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, Any]:
-    """Run (or reuse) every stage; returns {stage: result} and the wall time per stage.
+def select_stages(stages: Any = None) -> tuple[str, ...]:
+    """The stages to compute, in :data:`STAGES` order, with their dependencies.
 
     Parameters
     ----------
-    profile : Profile
-        Sizes of the run.
-    store : StageStore
-        Stage store in the output folder: a stage stored with the same parameters is reused.
-    device : str, optional
-        Warp device.
+    stages : str, sequence of str or None
+        Stage names (a comma-separated string is split); None: every stage.
 
     Returns
     -------
-    dict of str to dict
-        ``{"results": {stage: result}, "wall_s": {stage: seconds}}`` in the order of
-        :data:`STAGES`.
+    tuple of str
+        The selected stages and those they depend on (:data:`DEPENDS`).
 
     Raises
     ------
-    StageConflict
-        If a stored stage has other parameters and the store does not overwrite.
+    ValueError
+        A name that is not a stage; the message lists the allowed names.
     """
+    if stages is None:
+        return STAGES
+    if isinstance(stages, str):
+        stages = [x.strip() for x in stages.split(",") if x.strip()]
+    names = set(stages)
+    bad = sorted(names - set(STAGES))
+    if bad or not names:
+        raise ValueError(f"stages must be names among {', '.join(STAGES)}, got {list(stages)!r}")
+    for n in list(names):
+        names |= set(DEPENDS.get(n, ()))
+    return tuple(n for n in STAGES if n in names)
+
+
+def _stage_call(name: str, profile: Profile, res: dict[str, Any], store: StageStore, device,
+                deadline: float | None):  # fmt: skip
+    """(parameters, function) of a stage; None when an input stage is missing."""
     full = profile.to_dict()
     keys = {
         "asperity": ("asperity_n", "asperity_increments"),
@@ -346,30 +361,89 @@ def run_study(profile: Profile, store: StageStore, *, device=None) -> dict[str, 
         "group2": ("n", "seeds", "L", "Wr", "increments", "max_depth_fraction", "group2_D",
                    "late_fit_fraction"),
     }  # fmt: skip
+    base = {k: full[k] for k in keys.get(name, ())}
+    if name == "elastic":
+        from .elastic import stage_elastic, stage_params
+
+        return stage_params(profile), lambda: stage_elastic(profile, store.out, device)
+    if name == "indentation":
+        from .indentation import stage_indentation
+        from .indentation import stage_params as indent_params
+
+        return indent_params(profile), lambda: stage_indentation(
+            profile, store.out, device, overwrite=store.overwrite, deadline=deadline)
+    if name == "islands":
+        if "table1" not in res:
+            return None
+        return ({**base, "table1": res["table1"], "slit_band": SLIT_BAND},
+                lambda: stage_islands(profile, res["table1"], device))  # fmt: skip
+    if name.startswith("group"):
+        return base, lambda w=int(name[-1]): stage_group(
+            profile, w, store.out, device, overwrite=store.overwrite)
+    return base, {"asperity": lambda: stage_asperity(profile, device),
+                  "fig5": lambda: stage_fig5(profile, device),
+                  "table1": lambda: stage_table1(profile, device)}[name]  # fmt: skip
+
+
+def run_study(profile: Profile, store: StageStore, *, device=None, stages: Any = None,
+              deadline: float | None = None) -> dict[str, Any]:  # fmt: skip
+    """Run (or reuse) the stages; returns {stage: result} and the wall time per stage.
+
+    Parameters
+    ----------
+    profile : Profile
+        Sizes of the run.
+    store : StageStore
+        Stage store in the output folder: a stage stored with the same parameters is reused.
+    device : str, optional
+        Warp device.
+    stages : str, sequence of str or None
+        Stages to compute (:func:`select_stages`); None: every stage. A stage not selected is
+        read from the store when it is stored with the same parameters, else left out.
+    deadline : float, optional
+        ``time.perf_counter()`` value after which the ``indentation`` stage starts no new
+        piece (it is then reported in ``incomplete``, not stored).
+
+    Returns
+    -------
+    dict of str to dict
+        ``{"results": {stage: result}, "wall_s": {stage: seconds}, "skipped": [...],
+        "incomplete": {stage: message}}`` in the order of :data:`STAGES`.
+
+    Raises
+    ------
+    StageConflict
+        If a selected stage is stored with other parameters and the store does not overwrite.
+    ValueError
+        ``stages`` names no stage.
+    """
+    from .indentation import StageIncomplete
+
+    selected = select_stages(stages)
     res: dict[str, Any] = {}
     wall: dict[str, float] = {}
+    skipped: list[str] = []
+    incomplete: dict[str, str] = {}
     bar = progress_bar(STAGES, desc="reproduce", unit="stage")
     for name in bar:
         bar.set_postfix_str(name)
         t0 = time.perf_counter()
-        base = {k: full[k] for k in keys.get(name, ())}
-        if name == "elastic":
-            from .elastic import stage_elastic, stage_params
-
-            params = stage_params(profile)
-            fn = lambda: stage_elastic(profile, store.out, device)  # noqa: E731
-        elif name == "islands":
-            params = {**base, "table1": res["table1"], "slit_band": SLIT_BAND}
-            fn = lambda: stage_islands(profile, res["table1"], device)  # noqa: E731
-        elif name.startswith("group"):
-            params = base
-            fn = lambda w=int(name[-1]): stage_group(  # noqa: E731
-                profile, w, store.out, device, overwrite=store.overwrite)
-        else:
-            params = base
-            fn = {"asperity": lambda: stage_asperity(profile, device),
-                  "fig5": lambda: stage_fig5(profile, device),
-                  "table1": lambda: stage_table1(profile, device)}[name]  # fmt: skip
-        res[name] = store.run(name, params, fn)
+        call = _stage_call(name, profile, res, store, device, deadline)
+        if call is None:
+            skipped.append(name)
+            continue
+        params, fn = call
+        if name not in selected:
+            if store.matches(name, params):
+                res[name] = store.run(name, params, fn)  # reused, never computed
+                wall[name] = time.perf_counter() - t0
+            else:
+                skipped.append(name)
+            continue
+        try:
+            res[name] = store.run(name, params, fn)
+        except StageIncomplete as exc:
+            incomplete[name] = str(exc)
+            continue
         wall[name] = time.perf_counter() - t0
-    return {"results": res, "wall_s": wall}
+    return {"results": res, "wall_s": wall, "skipped": skipped, "incomplete": incomplete}
