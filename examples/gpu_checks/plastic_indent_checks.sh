@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# GPU checks of the elastic–plastic contact, indentation and parameter-object work, on a
+# machine where warp-lang is installed under /tmp/site (see ../shared/device/README.md).
+#   suite     the test suite on cuda:0 only
+#   analyze   `warptrunc analyze --n 10240` as a whole process, median of 5 (and of an older
+#             source tree in ./_base when present, for a before/after in the same run)
+#   indent    `reproduce --profile paper --stages indentation` (resumable; repeat until complete)
+#   scaling   the contact solver at 10240², 16384², 32768²
+# Results go under $OUT.
+set -uo pipefail
+export PYTHONPATH=/tmp/site MPLBACKEND=Agg
+what=${1:-suite}
+case $what in
+suite)
+  (cd tests && WARPTRUNC_TEST_DEVICES=cuda:0 timeout 420 python3 -m pytest -q -x -p no:cacheprovider --timeout 300 2>&1 | tail -15) ;;
+analyze)
+  python3 - <<'PY'
+import json, os, statistics, subprocess, sys, time
+out = os.environ["OUT"]
+def bench(cwd, env, label):
+    cmd = [sys.executable, "-m", "warptrunc", "analyze", "--n", "10240", "--device", "cuda:0", "--out", f"/tmp/an_{label}"]
+    subprocess.run(cmd, cwd=cwd, env=env, capture_output=True)  # warm the kernel cache
+    ts = []
+    for _ in range(5):
+        t = time.perf_counter(); r = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True); ts.append(time.perf_counter() - t)
+        if r.returncode: print(r.stderr[-2000:]); break
+    return ts
+env = dict(os.environ)
+res = {"new": bench("/tmp", env, "new")}
+if os.path.isdir("_base"):
+    e2 = dict(env, PYTHONPATH=os.path.abspath("_base") + ":/tmp/site")
+    res["base"] = bench(os.path.abspath("_base"), e2, "base")
+for k, v in res.items():
+    print(f"analyze --n 10240 ({k}): median {statistics.median(v):.2f} s, min {min(v):.2f}, max {max(v):.2f}, runs {[round(x, 2) for x in v]}")
+json.dump(res, open(f"{out}/analyze_10240.json", "w"))
+PY
+  ;;
+indent)
+  python3 -m warptrunc reproduce --profile paper --out /tmp/repro_paper --stages indentation --time-budget ${2:-500} --device cuda:0 2>&1 | tail -25
+  mkdir -p $OUT/repro_paper && cp -r /tmp/repro_paper/*.md /tmp/repro_paper/*.json /tmp/repro_paper/*.png $OUT/repro_paper/ 2>/dev/null ;;
+scaling)
+  python3 examples/benchmarks/benchmark_solver_scaling.py --device cuda:0 --n ${2:-10240 16384 32768} --dtype float32 --budget ${3:-400} --out $OUT/scaling 2>&1 | tail -20 ;;
+esac
