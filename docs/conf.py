@@ -216,10 +216,44 @@ def linkcode_resolve(domain: str, info: dict) -> str | None:
     return f"{GITHUB}/blob/{COMMIT}/{rel.as_posix()}#L{start}-L{start + len(src) - 1}"
 
 
+# -- maths: MathJax bundled with the site, so "The method" reads right offline --------------
+# sphinx-mathjax-offline (PyPI, in the `docs` extra) ships MathJax 3's files; we copy only what
+# the TeX→CommonHTML renderer loads (tex-chtml.js, its fonts, the TeX extensions it may
+# autoload) into _static/mathjax, and point sphinx.ext.mathjax there instead of a CDN.
+# docs/check_links.py fails the build when any page loads a script from the network.
+MATHJAX_FILES = ("tex-chtml.js", "output/chtml", "input/tex/extensions", "a11y", "ui",
+                 "sre")
+
+
+def _mathjax_source() -> Path:
+    import importlib.util
+
+    spec = importlib.util.find_spec("sphinx-mathjax-offline")
+    if spec is None or not spec.submodule_search_locations:
+        raise RuntimeError("the docs bundle MathJax from the sphinx-mathjax-offline package: "
+                           'pip install -e ".[docs]"')
+    return Path(next(iter(spec.submodule_search_locations))) / "static" / "mathjax"
+
+
+def _bundle_mathjax() -> None:
+    src, dest = _mathjax_source(), DOCS / "_generated" / "static" / "mathjax"
+    for name in MATHJAX_FILES:
+        if not (src / name).exists():
+            continue
+        if (src / name).is_dir():
+            shutil.copytree(src / name, dest / name, dirs_exist_ok=True)
+        else:
+            dest.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src / name, dest / name)
+
+
+_bundle_mathjax()
+mathjax_path = "mathjax/tex-chtml.js"  # relative: under _static of the built site
+
 # -- HTML ------------------------------------------------------------------------------------
 html_theme = "pydata_sphinx_theme"
 html_title = f"warptrunc {release}"
-html_static_path = ["_static"]
+html_static_path = ["_static", "_generated/static"]
 html_css_files = ["warptrunc.css"]
 html_logo = None
 html_show_sourcelink = False
