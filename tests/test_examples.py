@@ -104,7 +104,8 @@ EXAMPLES: dict[str, Example] = {
     "render_truncated_section": Example(
         outputs=("truncation.png", "truncation_top.png", "surface.vti", "render.json"),
         needs=("pyvista",)),
-    "stream_islands": Example(outputs=("stream_islands.json",), check=_check_stream),
+    "stream_islands": Example(outputs=("stream_islands.json", "island_sizes.png"),
+                              check=_check_stream),
     "scan_survey": Example(outputs=("scan_survey.md", "scan_survey.json")),
 }  # fmt: skip
 
