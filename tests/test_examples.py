@@ -106,7 +106,7 @@ EXAMPLES: dict[str, Example] = {
         needs=("pyvista",)),
     "stream_islands": Example(outputs=("stream_islands.json", "island_sizes.png"),
                               check=_check_stream),
-    "scan_survey": Example(outputs=("scan_survey.md", "scan_survey.json")),
+    "scan_survey": Example(outputs=("scan_survey.md", "scan_survey.json", "survey.png")),
 }  # fmt: skip
 
 
