@@ -203,3 +203,16 @@ def test_timeit_returns_the_median_after_a_warm_up(common, monkeypatch):
 def test_git_commit_reads_the_environment_first(common, monkeypatch):
     monkeypatch.setenv("WARPTRUNC_GIT_COMMIT", " abc123\n")
     assert common.git_commit() == "abc123"
+
+
+@pytest.mark.parametrize("stem", ["parametric_sweep", "figures"])
+def test_alpha_vs_D_below_8192_carries_the_resolution_caveat(stem):
+    # the gallery draws α against D at 128², where α falls with D beside the paper's rising
+    # line: the title must say that this is below the resolution α(D) needs (§ 3.3: ≥ 8192²)
+    spec = importlib.util.spec_from_file_location(f"_ex_{stem}", EXAMPLES_DIR / f"{stem}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    text = mod.resolution_caveat(128)
+    assert "128²" in text and "8192²" in text and "10240²" in text
+    assert mod.resolution_caveat(8192) == "" and mod.resolution_caveat(10240) == ""
+    assert "alpha-vs-d-10240" in mod.__doc__  # the docstring links the 10240² figure
