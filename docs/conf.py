@@ -139,12 +139,12 @@ else:
         (r"py:.*", r"(numpy|np|scipy|matplotlib|pandas|pd|pyvista|pv|warp|wp|dask|"
                    r"distributed|pyarrow|cupy|SurfaceTopography|ContactMechanics|tqdm|"
                    r"pathlib|os|json|concurrent|typing|collections|dataclasses|argparse|"
-                   r"contextlib|threading|multiprocessing)(\..*)?"),
+                   r"contextlib|threading|multiprocessing|zlib|hashlib)(\..*)?"),
         # private modules (warptrunc._support.results, ...) are not part of the API reference
         (r"py:.*", r"warptrunc\._.*"),
         # Python builtins, which intersphinx to the Python docs links when online
         (r"py:.*", r"(int|float|str|bool|bytes|dict|list|tuple|set|frozenset|object|None|"
-                   r"callable|iterable|Path|ValueError|TypeError|RuntimeError|OSError|"
+                   r"callable|iterable|hash|Path|ValueError|TypeError|RuntimeError|OSError|"
                    r"MemoryError|KeyError|Exception|BaseException|FileNotFoundError|"
                    r"KeyboardInterrupt|NotImplementedError|ImportError)"),
     ]
