@@ -216,3 +216,21 @@ def test_alpha_vs_D_below_8192_carries_the_resolution_caveat(stem):
     assert "128²" in text and "8192²" in text and "10240²" in text
     assert mod.resolution_caveat(8192) == "" and mod.resolution_caveat(10240) == ""
     assert "alpha-vs-d-10240" in mod.__doc__  # the docstring links the 10240² figure
+
+
+@pytest.mark.parametrize("path", sorted(EXAMPLES_DIR.glob("*.py")), ids=lambda p: p.stem)
+def test_example_does_not_exit_on_success(path):
+    # sphinx-gallery runs each example as __main__ in the docs build process: a SystemExit on
+    # success (``raise SystemExit(main())``, ``sys.exit(0)``) ends the whole build, with status 0
+    import ast
+
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Raise) and isinstance(node.exc, ast.Call):
+            f, args = node.exc.func, node.exc.args
+            if getattr(f, "id", None) == "SystemExit" and args and isinstance(args[0], ast.Call):
+                assert getattr(args[0].func, "id", None) != "main", f"{path.name}:{node.lineno}"
+        if isinstance(node, ast.Call) and getattr(node.func, "attr", None) == "exit":
+            args = node.args
+            assert not (args and isinstance(args[0], ast.Call)
+                        and getattr(args[0].func, "id", None) == "main"), path.name
