@@ -170,6 +170,9 @@ sphinx_gallery_conf = {
     "show_memory": False,
     "capture_repr": (),
     "min_reported_time": 1,
+    # no sg_execution_times pages: they load jQuery and DataTables from CDNs (the site must
+    # work offline, docs/check_links.py checks), and the timings of a CPU build say little
+    "write_computation_times": False,
     "abort_on_example_error": True,
     "only_warn_on_example_error": False,
     "copyfile_regex": "",
