@@ -107,8 +107,19 @@ GUIDE_ORDER = ["index", "getting_started", "method", "islands", "fractal", "scan
                "performance", "layout"]
 
 
+def _guide_toctree() -> set[str]:
+    """Pages named in the toctree of guide/index.md (not listed again under "More guides")."""
+    text = (DOCS / "guide" / "index.md").read_text()
+    names: set[str] = set()
+    for block in text.split("```{toctree}")[1:]:
+        names |= {ln.strip() for ln in block.split("```")[0].splitlines()
+                  if ln.strip() and not ln.strip().startswith(":")}
+    return names
+
+
 def _guide_extra() -> None:
-    extra = sorted(p.stem for p in (DOCS / "guide").glob("*.md") if p.stem not in GUIDE_ORDER)
+    listed = set(GUIDE_ORDER) | _guide_toctree()
+    extra = sorted(p.stem for p in (DOCS / "guide").glob("*.md") if p.stem not in listed)
     text = ("```{toctree}\n:maxdepth: 2\n:caption: More guides\n\n" + "\n".join(extra)
             + "\n```\n") if extra else ""
     dest = DOCS / "_generated" / "guide_extra.md"
