@@ -183,11 +183,14 @@ sphinx_gallery_conf = {
     "min_reported_time": 1,
     # no sg_execution_times pages: they load jQuery and DataTables from CDNs (the site must
     # work offline, docs/check_links.py checks), and the timings of a CPU build say little
-    "write_computation_times": False,
+    "write_computation_times": False,  # (the stale pages of an earlier build are removed below)
     "abort_on_example_error": True,
     "only_warn_on_example_error": False,
     "copyfile_regex": "",
 }
+
+for _stale in (DOCS / "sg_execution_times.rst", DOCS / "gallery" / "sg_execution_times.rst"):
+    _stale.unlink(missing_ok=True)
 
 # -- linkcode: "[source]" links to the repository, as pyvista does ---------------------------
 GITHUB = "https://github.com/warptrunc/warptrunc"
