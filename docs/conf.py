@@ -15,6 +15,9 @@ Environment:
   cannot be fetched is a warning (an error under ``-W``). Offline, references into those
   packages are plain text (``nitpick_ignore_regex`` below names them).
 - ``WARPTRUNC_DOCS_GALLERY=0`` skips running the example gallery (a quick text-only build).
+- The site needs no network to read: MathJax is copied into ``_static/mathjax`` from the
+  ``sphinx-mathjax-offline`` package (``docs`` extra), and ``docs/check_links.py`` fails when a
+  page loads a script, stylesheet or image from the network.
 - The gallery runs every example in ``examples/*.py`` at its ``--quick`` size on the CPU
   (``WARPTRUNC_DEVICE=cpu``), so every picture on the site is made by the code shown beside it.
 

@@ -26,10 +26,10 @@ when all three hold:
 3. fewer than 4 of its 8 neighbours lie within ``|d|/2`` of it: a needle of a few pixels, not
    the top of a hill whose flanks rise to it.
 
-The isolated high peaks that truncation starts from pass: on WM surfaces (D 2.1–2.9, 256² and
-512²) the largest ``|d|`` is below 7·σ_d and below 0.43·R_robust (D = 2.9, 256²; 0.29 at 512²),
-and on measured scans without artefacts below 30·σ_d and 0.15·R_robust. Flagged pixels are
-only reported by default; ``mask_spikes`` (``--spikes mask``) replaces each with the median of
+The isolated high peaks that truncation starts from pass: on WM surfaces (D 2.1–2.9, 256²
+and 512²) the largest ``|d|`` is below 7·σ_d and below 0.43·R_robust (D = 2.9, 256²; 0.29 at
+512²), and on measured scans without artefacts below 30·σ_d and 0.15·R_robust. Flagged pixels
+are only reported by default; ``mask_spikes`` (``--spikes mask``) replaces each with the median of
 its 8 neighbours, so that R_t is recomputed without it.
 """
 
