@@ -1,14 +1,16 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """Check the internal links of the built site: every local href/src opens a file, and every
-``#fragment`` into a page of the site names an element of that page.
+``#fragment`` into a page of the site names an element of that page; and check that the site
+reads right offline: no page loads a script, stylesheet or font from the network (the maths
+renderer, MathJax, is bundled under ``_static/mathjax``, see docs/conf.py).
 
 ``sphinx-build -b linkcheck`` checks external links (it needs the internet); this checks the
 rest, offline, after ``sphinx-build -b html docs docs/_build/html``::
 
     python docs/check_links.py docs/_build/html
 
-Exit status 1 lists the broken links (page, link).
+Exit status 1 lists the broken links (page, link) and the remote resources (page, URL).
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ class _Page(HTMLParser):
         super().__init__()
         self.links: list[str] = []
         self.ids: set[str] = set()
+        self.resources: list[str] = []  # what the browser loads by itself: scripts, styles, ...
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
@@ -33,6 +36,48 @@ class _Page(HTMLParser):
         for key in ("href", "src"):
             if a.get(key) and tag in ("a", "img", "link", "script", "source"):
                 self.links.append(a[key])
+        if tag in ("script", "img", "source", "iframe") and a.get("src"):
+            self.resources.append(a["src"])
+        if tag == "link" and a.get("href") and set((a.get("rel") or "").split()) & {
+                "stylesheet", "preload", "modulepreload", "icon"}:
+            self.resources.append(a["href"])
+
+
+def _is_remote(url: str) -> bool:
+    u = urlsplit(url.strip())
+    return u.scheme in ("http", "https") or (not u.scheme and bool(u.netloc))  # "//cdn..."
+
+
+def remote_resources(html: str) -> list[str]:
+    """URLs of the resources a page loads from the network by itself.
+
+    Parameters
+    ----------
+    html : str
+        Text of one HTML page.
+
+    Returns
+    -------
+    list of str
+        ``src`` of ``<script>``, ``<img>``, ``<source>``, ``<iframe>`` and ``href`` of
+        ``<link rel="stylesheet|preload|modulepreload|icon">`` that are ``http:``, ``https:``
+        or protocol-relative (``//host/...``) URLs, in page order. Hyperlinks (``<a href>``)
+        are not resources: a reader follows them on purpose.
+    """
+    p = _Page()
+    p.feed(html)
+    return [r for r in p.resources if _is_remote(r)]
+
+
+def check_offline(root: Path) -> list[tuple[str, str]]:
+    """Remote resources of the pages of the site under ``root`` as (page, URL) pairs."""
+    found = []
+    for f in sorted(root.rglob("*.html")):
+        if f.relative_to(root).parts[0] in ("_static", "_sources", "_images"):
+            continue
+        found += [(str(f.relative_to(root)), url) for url in remote_resources(
+            f.read_text(errors="replace"))]
+    return found
 
 
 def check(root: Path) -> list[tuple[str, str]]:
@@ -71,9 +116,13 @@ def main(argv=None) -> int:
     broken = check(root)
     for page, link in broken:
         print(f"{page}: broken link {link}")
+    remote = check_offline(root)
+    for page, url in remote:
+        print(f"{page}: loads {url} from the network (bundle it under docs/_static)")
     n = sum(1 for _ in root.rglob("*.html"))
-    print(f"check_links: {n} pages, {len(broken)} broken internal links")
-    return 1 if broken else 0
+    print(f"check_links: {n} pages, {len(broken)} broken internal links, "
+          f"{len(remote)} remote resources")
+    return 1 if broken or remote else 0
 
 
 if __name__ == "__main__":

@@ -15,6 +15,9 @@ Environment:
   cannot be fetched is a warning (an error under ``-W``). Offline, references into those
   packages are plain text (``nitpick_ignore_regex`` below names them).
 - ``WARPTRUNC_DOCS_GALLERY=0`` skips running the example gallery (a quick text-only build).
+- The site needs no network to read: MathJax is copied into ``_static/mathjax`` from the
+  ``sphinx-mathjax-offline`` package (``docs`` extra), and ``docs/check_links.py`` fails when a
+  page loads a script, stylesheet or image from the network.
 - The gallery runs every example in ``examples/*.py`` at its ``--quick`` size on the CPU
   (``WARPTRUNC_DEVICE=cpu``), so every picture on the site is made by the code shown beside it.
 
@@ -107,8 +110,19 @@ GUIDE_ORDER = ["index", "getting_started", "method", "islands", "fractal", "scan
                "performance", "layout"]
 
 
+def _guide_toctree() -> set[str]:
+    """Pages named in the toctree of guide/index.md (not listed again under "More guides")."""
+    text = (DOCS / "guide" / "index.md").read_text()
+    names: set[str] = set()
+    for block in text.split("```{toctree}")[1:]:
+        names |= {ln.strip() for ln in block.split("```")[0].splitlines()
+                  if ln.strip() and not ln.strip().startswith(":")}
+    return names
+
+
 def _guide_extra() -> None:
-    extra = sorted(p.stem for p in (DOCS / "guide").glob("*.md") if p.stem not in GUIDE_ORDER)
+    listed = set(GUIDE_ORDER) | _guide_toctree()
+    extra = sorted(p.stem for p in (DOCS / "guide").glob("*.md") if p.stem not in listed)
     text = ("```{toctree}\n:maxdepth: 2\n:caption: More guides\n\n" + "\n".join(extra)
             + "\n```\n") if extra else ""
     dest = DOCS / "_generated" / "guide_extra.md"
@@ -139,12 +153,12 @@ else:
         (r"py:.*", r"(numpy|np|scipy|matplotlib|pandas|pd|pyvista|pv|warp|wp|dask|"
                    r"distributed|pyarrow|cupy|SurfaceTopography|ContactMechanics|tqdm|"
                    r"pathlib|os|json|concurrent|typing|collections|dataclasses|argparse|"
-                   r"contextlib|threading|multiprocessing)(\..*)?"),
+                   r"contextlib|threading|multiprocessing|zlib|hashlib)(\..*)?"),
         # private modules (warptrunc._support.results, ...) are not part of the API reference
         (r"py:.*", r"warptrunc\._.*"),
         # Python builtins, which intersphinx to the Python docs links when online
         (r"py:.*", r"(int|float|str|bool|bytes|dict|list|tuple|set|frozenset|object|None|"
-                   r"callable|iterable|Path|ValueError|TypeError|RuntimeError|OSError|"
+                   r"callable|iterable|hash|Path|ValueError|TypeError|RuntimeError|OSError|"
                    r"MemoryError|KeyError|Exception|BaseException|FileNotFoundError|"
                    r"KeyboardInterrupt|NotImplementedError|ImportError)"),
     ]
@@ -170,10 +184,16 @@ sphinx_gallery_conf = {
     "show_memory": False,
     "capture_repr": (),
     "min_reported_time": 1,
+    # no sg_execution_times pages: they load jQuery and DataTables from CDNs (the site must
+    # work offline, docs/check_links.py checks), and the timings of a CPU build say little
+    "write_computation_times": False,  # (the stale pages of an earlier build are removed below)
     "abort_on_example_error": True,
     "only_warn_on_example_error": False,
     "copyfile_regex": "",
 }
+
+for _stale in (DOCS / "sg_execution_times.rst", DOCS / "gallery" / "sg_execution_times.rst"):
+    _stale.unlink(missing_ok=True)
 
 # -- linkcode: "[source]" links to the repository, as pyvista does ---------------------------
 GITHUB = "https://github.com/warptrunc/warptrunc"
@@ -216,10 +236,44 @@ def linkcode_resolve(domain: str, info: dict) -> str | None:
     return f"{GITHUB}/blob/{COMMIT}/{rel.as_posix()}#L{start}-L{start + len(src) - 1}"
 
 
+# -- maths: MathJax bundled with the site, so "The method" reads right offline --------------
+# sphinx-mathjax-offline (PyPI, in the `docs` extra) ships MathJax 3's files; we copy only what
+# the TeX→CommonHTML renderer loads (tex-chtml.js, its fonts, the TeX extensions it may
+# autoload) into _static/mathjax, and point sphinx.ext.mathjax there instead of a CDN.
+# docs/check_links.py fails the build when any page loads a script from the network.
+MATHJAX_FILES = ("tex-chtml.js", "output/chtml", "input/tex/extensions", "a11y", "ui",
+                 "sre")
+
+
+def _mathjax_source() -> Path:
+    import importlib.util
+
+    spec = importlib.util.find_spec("sphinx-mathjax-offline")
+    if spec is None or not spec.submodule_search_locations:
+        raise RuntimeError("the docs bundle MathJax from the sphinx-mathjax-offline package: "
+                           'pip install -e ".[docs]"')
+    return Path(next(iter(spec.submodule_search_locations))) / "static" / "mathjax"
+
+
+def _bundle_mathjax() -> None:
+    src, dest = _mathjax_source(), DOCS / "_generated" / "static" / "mathjax"
+    for name in MATHJAX_FILES:
+        if not (src / name).exists():
+            continue
+        if (src / name).is_dir():
+            shutil.copytree(src / name, dest / name, dirs_exist_ok=True)
+        else:
+            dest.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src / name, dest / name)
+
+
+_bundle_mathjax()
+mathjax_path = "mathjax/tex-chtml.js"  # relative: under _static of the built site
+
 # -- HTML ------------------------------------------------------------------------------------
 html_theme = "pydata_sphinx_theme"
 html_title = f"warptrunc {release}"
-html_static_path = ["_static"]
+html_static_path = ["_static", "_generated/static"]
 html_css_files = ["warptrunc.css"]
 html_logo = None
 html_show_sourcelink = False

@@ -20,6 +20,13 @@ What it shows
     Every figure is a pyplot-free ``Figure`` saved as PNG; ``--no-show`` only skips opening
     them in a window.
 
+Resolution
+    Below about 8192² pixels α(D_in) has not converged (§ 3.3 of the paper asks ≥ 8192² for
+    resolution-independent results): at the ``--quick`` size of 128², α even *falls* with
+    D_in beside the paper's rising line. The figure says so in its title. The resolution
+    trend (1024², 2048², 10240²) and the 10240² figure (``docs/alpha_vs_D_10240.png``, 5 seeds,
+    four fit ranges) are in :ref:`the method guide <alpha-vs-d-10240>`.
+
 Key steps
     ``wm_surface`` per (D_in, seed) → ``truncate`` → ``stiffness_curve`` → ``fit_power_law``,
     then one ``warptrunc.plot`` function per figure, each given ``path=`` to save it.
@@ -42,6 +49,14 @@ from warptrunc import plot, truncate
 from warptrunc.stiffness import fit_power_law, stiffness_curve
 from warptrunc.sweep import linear_fit
 from warptrunc.wm import wm_surface
+
+
+def resolution_caveat(n: int) -> str:
+    """Title lines that warn about an α-vs-D figure below 8192² (empty from 8192² up)."""
+    if n >= 8192:
+        return ""
+    return (f"\n{n}² — below the resolution where α(D) converges\n"
+            "(§ 3.3 asks ≥ 8192²); see the 10240² figure in the docs")
 
 
 def main(argv=None) -> int:
@@ -112,7 +127,10 @@ def main(argv=None) -> int:
     )
     summary = {"fit_ranges": {"10": {"per_D": per_D, "alpha_vs_D": line}}}
     p = args.out / "alpha_vs_D.png"
-    plot.alpha_vs_D(summary, title=f"δ = {args.delta}, {args.n}², {args.seeds} seeds", path=p)
+    fig = plot.alpha_vs_D(summary, title=f"δ = {args.delta}, {args.n}², {args.seeds} seeds"
+                          + resolution_caveat(args.n))
+    fig.axes[0].title.set_fontsize(8)
+    fig.savefig(p)
     written.append(p)
 
     if importlib.util.find_spec("warptrunc.descriptors") and hasattr(plot, "psd"):

@@ -93,4 +93,6 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    # no SystemExit(0): sphinx-gallery runs this file as __main__ and would stop the docs build
+    if (status := main()) != 0:
+        raise SystemExit(status)

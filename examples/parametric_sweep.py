@@ -15,6 +15,13 @@ What it shows
     anything. The summary goes
     to OUT/summary.json and a Fig. 9b-style plot to OUT/alpha_vs_D.png.
 
+Resolution
+    Below about 8192² pixels α(D_in) has not converged (§ 3.3 of the paper asks ≥ 8192² for
+    resolution-independent results): at the ``--quick`` size of 128², α even *falls* with
+    D_in beside the paper's rising line. The figure says so in its title. The resolution
+    trend (1024², 2048², 10240²) and the 10240² figure (``docs/alpha_vs_D_10240.png``, 5 seeds,
+    four fit ranges) are in :ref:`the method guide <alpha-vs-d-10240>`.
+
 Key steps
     ``SweepGrid`` (D_in × δ × seeds) → ``run_sweep`` into a result store (resumable; in-process
     or on Dask workers) → ``alpha_summary`` (α per case and fit range, linear fit α(D_in)) →
@@ -35,6 +42,14 @@ import json
 from pathlib import Path
 
 PAPER = {"slope": 0.209, "intercept": 0.090, "r": 0.940}
+
+
+def resolution_caveat(n: int) -> str:
+    """Title lines that warn about an α-vs-D figure below 8192² (empty from 8192² up)."""
+    if n >= 8192:
+        return ""
+    return (f"\n{n}² — below the resolution where α(D) converges\n"
+            "(§ 3.3 asks ≥ 8192²); see the 10240² figure in the docs")
 
 
 def refit(out: Path, min_pixels: list[int]):
@@ -113,7 +128,10 @@ def main(argv=None) -> int:
     from warptrunc import plot
 
     png = "alpha_vs_D_refit.png" if args.refit else "alpha_vs_D.png"
-    plot.alpha_vs_D(summary, path=args.out / png)
+    fig = plot.alpha_vs_D(summary, title=f"δ = {args.delta}, {args.n}², {args.seeds} seeds"
+                          + resolution_caveat(args.n))
+    fig.axes[0].title.set_fontsize(8)
+    fig.savefig(args.out / png)
     print(f"\nstore {args.out} (sweep.json, cases.parquet, curves/part-*.parquet); wrote {name}, {png}")
     return 0
 

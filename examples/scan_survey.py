@@ -21,11 +21,18 @@ SurfaceTopography is the independent reference: where it opens a file, our shape
 compared untransposed: SurfaceTopography takes the array as h[ix, iy], warptrunc as z[iy, ix],
 the convention its documentation states).
 
+Writes ``scan_survey.md`` (the table), ``scan_survey.json`` (one row per file) and
+``survey.png`` (files per category) to ``--out``.
+
 Folders: the measured scans in ``../shared/data/scans`` and SurfaceTopography's
 ``test/file_format_examples`` (set ``WARPTRUNC_ST_EXAMPLES`` or pass folders)::
 
     python examples/scan_survey.py --out survey /work/shared/data/scans /tmp/st_examples
 """
+
+# The docs build does not run this example (the scans are not part of the repository); its
+# gallery card shows survey.png of a run on ../shared/data/scans:
+# sphinx_gallery_thumbnail_path = "_static/scan_survey.png"
 
 from __future__ import annotations
 
@@ -162,6 +169,27 @@ def table(rows: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def figure(rows: list[dict], path: Path) -> None:
+    """Bar chart of the files per category (survey.png)."""
+    from matplotlib.figure import Figure
+    from matplotlib.ticker import MaxNLocator
+
+    counts = [sum(r["category"] == c for r in rows) for c in CATEGORIES]
+    colors = ["tab:green", "tab:olive", "tab:gray", "tab:red", "k"]
+    fig = Figure(figsize=(5.0, 3.0), dpi=150, layout="constrained")
+    ax = fig.subplots()
+    y = np.arange(len(CATEGORIES))[::-1]
+    ax.barh(y, counts, color=colors)
+    for yi, c in zip(y, counts, strict=True):
+        ax.text(c, yi, f" {c}", va="center", fontsize=8)
+    ax.set_yticks(y, CATEGORIES)
+    ax.set_xlim(0, max(counts + [1]) * 1.15)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.set_xlabel("instrument files")
+    ax.set_title(f"{len(rows)} files read and analysed on the analyze defaults", fontsize=9)
+    fig.savefig(path)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Survey the folders, print the table, write it (and JSON) to --out."""
     p = argparse.ArgumentParser(
@@ -172,7 +200,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--device", default="cpu", help="Warp device")
     p.add_argument("--out", type=Path, default=Path("survey"), help="output folder")
     p.add_argument("--quick", action="store_true", help="the first four files only")
-    p.add_argument("--no-show", action="store_true", help="no effect (no figures)")
+    p.add_argument("--no-show", action="store_true", help="no effect (survey.png is saved)")
     args = p.parse_args(argv)
     rows = survey(args.dirs, args.device, args.quick)
     text = table(rows)
@@ -180,6 +208,7 @@ def main(argv: list[str] | None = None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     (args.out / "scan_survey.md").write_text(text)
     (args.out / "scan_survey.json").write_text(json.dumps(rows, indent=1) + "\n")
+    figure(rows, args.out / "survey.png")
     bad = sum(r["category"] in ("misread", "crashed") for r in rows)
     return 1 if bad else 0
 

@@ -104,8 +104,9 @@ EXAMPLES: dict[str, Example] = {
     "render_truncated_section": Example(
         outputs=("truncation.png", "truncation_top.png", "surface.vti", "render.json"),
         needs=("pyvista",)),
-    "stream_islands": Example(outputs=("stream_islands.json",), check=_check_stream),
-    "scan_survey": Example(outputs=("scan_survey.md", "scan_survey.json")),
+    "stream_islands": Example(outputs=("stream_islands.json", "island_sizes.png"),
+                              check=_check_stream),
+    "scan_survey": Example(outputs=("scan_survey.md", "scan_survey.json", "survey.png")),
 }  # fmt: skip
 
 
@@ -202,3 +203,34 @@ def test_timeit_returns_the_median_after_a_warm_up(common, monkeypatch):
 def test_git_commit_reads_the_environment_first(common, monkeypatch):
     monkeypatch.setenv("WARPTRUNC_GIT_COMMIT", " abc123\n")
     assert common.git_commit() == "abc123"
+
+
+@pytest.mark.parametrize("stem", ["parametric_sweep", "figures"])
+def test_alpha_vs_D_below_8192_carries_the_resolution_caveat(stem):
+    # the gallery draws α against D at 128², where α falls with D beside the paper's rising
+    # line: the title must say that this is below the resolution α(D) needs (§ 3.3: ≥ 8192²)
+    spec = importlib.util.spec_from_file_location(f"_ex_{stem}", EXAMPLES_DIR / f"{stem}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    text = mod.resolution_caveat(128)
+    assert "128²" in text and "8192²" in text and "10240²" in text
+    assert mod.resolution_caveat(8192) == "" and mod.resolution_caveat(10240) == ""
+    assert "alpha-vs-d-10240" in mod.__doc__  # the docstring links the 10240² figure
+
+
+@pytest.mark.parametrize("path", sorted(EXAMPLES_DIR.glob("*.py")), ids=lambda p: p.stem)
+def test_example_does_not_exit_on_success(path):
+    # sphinx-gallery runs each example as __main__ in the docs build process: a SystemExit on
+    # success (``raise SystemExit(main())``, ``sys.exit(0)``) ends the whole build, with status 0
+    import ast
+
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Raise) and isinstance(node.exc, ast.Call):
+            f, args = node.exc.func, node.exc.args
+            if getattr(f, "id", None) == "SystemExit" and args and isinstance(args[0], ast.Call):
+                assert getattr(args[0].func, "id", None) != "main", f"{path.name}:{node.lineno}"
+        if isinstance(node, ast.Call) and getattr(node.func, "attr", None) == "exit":
+            args = node.args
+            assert not (args and isinstance(args[0], ast.Call)
+                        and getattr(args[0].func, "id", None) == "main"), path.name

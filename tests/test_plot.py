@@ -198,3 +198,70 @@ def test_figures_example_runs_quick(tmp_path):
     assert r.returncode == 0, r.stderr
     for f in ("height_map.png", "area_fraction.png", "stiffness_load.png", "alpha_vs_D.png"):
         assert (tmp_path / f).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def _drawn_ticklabels(ax, axis):
+    """Tick labels with text that the drawn axes shows, as (text, window bbox)."""
+    ax.figure.canvas.draw()
+    box = ax.get_window_extent()
+    out = []
+    for t in getattr(ax, f"get_{axis}ticklabels")(which="both"):
+        if not (t.get_visible() and t.get_text()):
+            continue
+        bb = t.get_window_extent()
+        c = (bb.x0 + bb.x1) / 2 if axis == "x" else (bb.y0 + bb.y1) / 2
+        lo, hi = (box.x0, box.x1) if axis == "x" else (box.y0, box.y1)
+        if lo - 1 <= c <= hi + 1:
+            out.append((t.get_text(), bb))
+    return out
+
+
+def test_fractal_fits_tick_labels_are_readable():
+    # the scales span about a decade and the triangulation's area ratios less than one:
+    # matplotlib's default log ticks labelled minor ticks on top of each other (x) or gave
+    # the triangulation panel a single y label
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from warptrunc.fractal import fractal_dimensions
+
+    fits = fractal_dimensions(wm_surface(n=128, D=2.4, seed=1))
+    fig = plot.fractal_fits(fits)
+    FigureCanvasAgg(fig)
+    for ax in [a for a in fig.axes if a.get_visible()]:
+        for axis in ("x", "y"):
+            labels = _drawn_ticklabels(ax, axis)
+            assert 2 <= len(labels) <= 7, (ax.get_title(), axis, [t for t, _ in labels])
+            for (t0, b0), (t1, b1) in zip(labels, labels[1:], strict=False):
+                assert not b0.overlaps(b1), (ax.get_title(), axis, t0, t1)
+
+
+def _alpha_table():
+    pd = pytest.importorskip("pandas")
+    d = np.array([2.1, 2.3, 2.5, 2.7, 2.9])
+    rows = {"D_in": d, "size_ratio": 8.0, "n": 256, "range": "all"}
+    # points wherever a legend could go: high and low at both ends
+    for m, y in {"eq2": [0.95, 0.9, 0.5, 0.35, 0.3], "islands": [0.3, 0.4, 0.6, 0.9, 0.97],
+                 "bem": [0.5, 0.6, 0.65, 0.7, 0.8]}.items():
+        rows[f"alpha_{m}_mean"] = y
+        rows[f"alpha_{m}_min"] = np.array(y) - 0.02
+        rows[f"alpha_{m}_max"] = np.array(y) + 0.02
+    return pd.DataFrame(rows)
+
+
+def test_alpha_vs_D_routes_legend_covers_no_data_point():
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = plot.alpha_vs_D_routes(_alpha_table())
+    FigureCanvasAgg(fig)
+    fig.canvas.draw()
+    ax = fig.axes[0]
+    legends = [lg for lg in [ax.get_legend(), *fig.legends] if lg is not None]
+    assert len(legends) == 1 and len(legends[0].get_texts()) == 5
+    lb = legends[0].get_window_extent()
+    pts = np.concatenate([ax.transData.transform(np.column_stack(line.get_data()))
+                          for line in ax.get_lines() if len(line.get_xdata()) == 5])
+    assert len(pts) >= 15
+    inside = ((pts[:, 0] >= lb.x0) & (pts[:, 0] <= lb.x1) & (pts[:, 1] >= lb.y0)
+              & (pts[:, 1] <= lb.y1))
+    assert not inside.any()
+    assert not lb.overlaps(ax.get_window_extent())  # outside the axes altogether

@@ -21,15 +21,15 @@ over the whole map (a robust scale of pixel-to-pixel roughness) and R_robust = P
 of the heights (a height range that a few spikes cannot move, unlike R_t), a pixel is a spike
 when all three hold:
 
-1. |d| > ``k``·σ_d (default k = 10): far outside the map's own pixel-scale roughness;
-2. |d| > ``share``·R_robust (default share = 0.5): a jump of half the height range or more;
-3. fewer than 4 of its 8 neighbours lie within |d|/2 of it: a needle of a few pixels, not
+1. ``|d|`` > ``k``·σ_d (default k = 10): far outside the map's own pixel-scale roughness;
+2. ``|d|`` > ``share``·R_robust (default share = 0.5): a jump of half the height range or more;
+3. fewer than 4 of its 8 neighbours lie within ``|d|/2`` of it: a needle of a few pixels, not
    the top of a hill whose flanks rise to it.
 
-The isolated high peaks that truncation starts from pass: on WM surfaces (D 2.1–2.9, 256² and
-512²) the largest |d| is below 7·σ_d and below 0.43·R_robust (D = 2.9, 256²; 0.29 at 512²),
-and on measured scans without artefacts below 30·σ_d and 0.15·R_robust. Flagged pixels are
-only reported by default; ``mask_spikes`` (``--spikes mask``) replaces each with the median of
+The isolated high peaks that truncation starts from pass: on WM surfaces (D 2.1–2.9, 256²
+and 512²) the largest ``|d|`` is below 7·σ_d and below 0.43·R_robust (D = 2.9, 256²; 0.29 at
+512²), and on measured scans without artefacts below 30·σ_d and 0.15·R_robust. Flagged pixels
+are only reported by default; ``mask_spikes`` (``--spikes mask``) replaces each with the median of
 its 8 neighbours, so that R_t is recomputed without it.
 """
 
@@ -61,9 +61,9 @@ __all__ = [
 ]
 
 SPIKE_K = 10.0
-"""Spike rule 1: |d| above this many robust standard deviations σ_d of d (dimensionless)."""
+"""Spike rule 1: ``|d|`` above this many robust standard deviations σ_d of d (dimensionless)."""
 SPIKE_SHARE = 0.5
-"""Spike rule 2: |d| above this share of R_robust = P99.9 − P0.1 (dimensionless)."""
+"""Spike rule 2: ``|d|`` above this share of R_robust = P99.9 − P0.1 (dimensionless)."""
 FIT_MIN_R2 = 0.9
 """A fit with r² below this is not worth reading (dimensionless)."""
 FIT_MIN_DECADES = 0.5
@@ -165,9 +165,9 @@ def find_spikes(
     heights : (ny, nx) array_like
         Heights z (m), finite.
     k : float
-        Rule 1: |d| > k·σ_d (dimensionless, > 0).
+        Rule 1: ``|d|`` > k·σ_d (dimensionless, > 0).
     share : float
-        Rule 2: |d| > share·R_robust (dimensionless, > 0).
+        Rule 2: ``|d|`` > share·R_robust (dimensionless, > 0).
 
     Returns
     -------

@@ -3,8 +3,11 @@
 """How sphinx-gallery runs ``examples/*.py`` for the site (used by ``docs/conf.py``).
 
 Each example is a command-line script. sphinx-gallery executes it as ``__main__`` with
-``sys.argv`` from :func:`reset_argv`: ``--quick --no-show --out docs/_build/gallery-out/<stem>``,
-the small CPU size the tests also use (``tests/test_examples.py``). The examples write their
+``sys.argv`` from :func:`reset_argv`: ``--quick --no-show --out out/<stem>``, the small CPU size
+the tests also use (``tests/test_examples.py``). sphinx-gallery runs each example in its own
+folder (``docs/_build/gallery-src``), so ``--out`` is relative and what an example prints
+("wrote out/quickstart/curve.csv, ...") reads as it would for a user, with no path of the
+build machine in it. The examples write their
 figures as PNG files; :func:`png_scraper` puts the PNGs the example wrote into the page, so
 every picture in the gallery is made by the code shown above it.
 
@@ -21,8 +24,8 @@ import shutil
 from pathlib import Path
 
 DOCS = Path(__file__).resolve().parents[1]
-OUT = DOCS / "_build" / "gallery-out"
 SRC = DOCS / "_build" / "gallery-src"  # the user examples only (not benchmarks/, gpu_checks/)
+OUT = SRC / "out"  # the examples' outputs: sphinx-gallery ignores a folder without a header
 
 HEADER = """\
 Gallery of examples
@@ -87,9 +90,10 @@ def ignore_pattern() -> str:
 def reset_argv(gallery_conf, script_vars) -> list[str]:
     """Command-line arguments of an example in the gallery: its ``--quick`` size on the CPU."""
     stem = Path(script_vars["src_file"]).stem
-    out = OUT / stem
-    shutil.rmtree(out, ignore_errors=True)
-    return [*ARGS.get(stem, ["--quick"]), "--no-show", "--out", str(out)]
+    shutil.rmtree(OUT / stem, ignore_errors=True)
+    # relative to the folder sphinx-gallery runs the example in (SRC): no absolute path in
+    # what the example prints
+    return [*ARGS.get(stem, ["--quick"]), "--no-show", "--out", f"{OUT.name}/{stem}"]
 
 
 def png_scraper(block, block_vars, gallery_conf) -> str:

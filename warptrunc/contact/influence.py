@@ -83,7 +83,7 @@ def build_free_spectrum(
     table: Any,
     scratch: Any,
     *,
-    xp: Any = np,
+    xp: Any = None,
     rfft: Any = None,
     slab_elements: int = SLAB_ELEMENTS,
 ) -> None:
@@ -114,12 +114,13 @@ def build_free_spectrum(
     scratch : (ny + 1, nx + 1) array of float64
         Work memory (e.g. the half-space's work spectrum, viewed as float64), overwritten.
     xp : module, optional
-        Array module: NumPy (default) or CuPy.
+        Array module: NumPy (``None``, the default) or CuPy.
     rfft : callable, optional
         ``rfft(x, axis)`` of ``xp`` (default ``scipy.fft.rfft`` with all cores).
     slab_elements : int, optional
         Float64 elements per slab (dimensionless count).
     """
+    xp = np if xp is None else xp  # (a module default would print its path in the docs)
     ny, nx = shape
     dx, dy = pixel_size
     area = dx * dy
@@ -157,7 +158,7 @@ def build_periodic_spectrum(
     contact_modulus: float,
     spectrum: Any,
     *,
-    xp: Any = np,
+    xp: Any = None,
     slab_elements: int = SLAB_ELEMENTS,
 ) -> None:
     """Fill rows 0 … ny//2 of the periodic half-space's spectrum in place, in slabs of rows.
@@ -176,10 +177,11 @@ def build_periodic_spectrum(
     spectrum : (ny//2 + 1, nx//2 + 1) array
         Output, float32 or float64 (NumPy, or CuPy with ``xp=cupy``).
     xp : module, optional
-        Array module: NumPy (default) or CuPy.
+        Array module: NumPy (``None``, the default) or CuPy.
     slab_elements : int, optional
         Float64 elements per slab (dimensionless count).
     """
+    xp = np if xp is None else xp  # (a module default would print its path in the docs)
     ny, nx = shape
     dx, dy = pixel_size
     area = dx * dy

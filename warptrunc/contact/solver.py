@@ -309,7 +309,7 @@ class ContactSolver(CappedSolves):
         plastic : bool, optional
             False: an elastic solve of the current (deformed) surface with the plastic state
             frozen and no pressure cap (for unloading); True: capped and flowing. Default: not
-            :attr:`plastic_frozen` (see :meth:`freeze_plastic`). Irrelevant when H = inf.
+            ``plastic_frozen`` (see :meth:`freeze_plastic`). Irrelevant when H = inf.
 
         Returns
         -------

@@ -243,11 +243,11 @@ def run_cycles(
     Returns
     -------
     dict of str to (m,) ndarray
-        :data:`COLUMNS`: at each peak the approach δ from first touch (m), contact pixels and
-        area (m²), plastic pixels, area (m²) and volume (m³), Barber's unloading stiffness and
-        the partial-unloading secant (N/m), the approach after the partial unloading (m), the
-        constrained-CG iterations of the peak solve and whether every solve of the cycle
-        converged.
+        ``warptrunc.indent.protocol.COLUMNS``: at each peak the approach δ from first touch
+        (m), contact pixels and area (m²), plastic pixels, area (m²) and volume (m³), Barber's
+        unloading stiffness and the partial-unloading secant (N/m), the approach after the
+        partial unloading (m), the constrained-CG iterations of the peak solve and whether
+        every solve of the cycle converged.
     """
     solver = make_solver(window, material, hardness=hardness, settings=settings, device=device)
     reach = window.top - window.floor  # an approach this deep would reach outside the disk

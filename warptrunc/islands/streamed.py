@@ -18,7 +18,7 @@ Surviving labels in increasing order are therefore the islands in raster order o
 pixel: the order of ``scipy.ndimage.label`` and of ``warptrunc.label_islands``.
 
 Memory: one band of heights, mask and labels on the device; O(number of islands) on the host.
-``label_islands(mask, ..., band_rows=)`` (through :func:`label_in_bands`) also keeps each band's
+``label_islands(mask, ..., band_rows=)`` (through ``label_in_bands``) also keeps each band's
 labels on the host, maps them to the final labels and counts perimeters there, so it returns the
 same :class:`~warptrunc.islands.Islands` as the one-piece labelling. ``streamed_islands`` keeps
 counts and areas only. Not covered: periodic wrapping.

@@ -53,6 +53,56 @@ def new_figure(figsize: tuple[float, float] = FIGSIZE, ncols: int = 1, nrows: in
     return fig, axes
 
 
+def _tick_text(v: float) -> str:
+    """A log-axis tick label: plain digits from 10⁻³ to 10⁴, else m×10ᵏ in mathtext."""
+    if v <= 0 or not np.isfinite(v):
+        return ""
+    if 1e-3 <= v < 1e4:
+        return f"{v:.6g}"
+    k = int(np.floor(np.log10(v) + 1e-9))
+    m = v / 10.0**k
+    return f"$10^{{{k}}}$" if abs(m - 1) < 1e-6 else f"${m:.3g}\\times10^{{{k}}}$"
+
+
+def readable_log_ticks(axis: Any, max_ticks: int = 6) -> None:
+    """Give a log-scaled matplotlib axis 2–``max_ticks`` labelled major ticks that do not run
+    into each other, at 1–2–5-style values when the range spans less than a few decades and at
+    (every n-th) decade otherwise; minor ticks keep their marks but get no labels. The view
+    limits are frozen at their current values."""
+    from matplotlib.ticker import (
+        FixedLocator,
+        FuncFormatter,
+        LogLocator,
+        NullFormatter,
+        NullLocator,
+    )
+
+    lo, hi = sorted(axis.get_view_interval())
+    if not (lo > 0 and np.isfinite(hi)):
+        return
+    k0, k1 = int(np.floor(np.log10(lo))), int(np.ceil(np.log10(hi)))
+    ticks: list[float] = []
+    for mant in ((1.0,), (1.0, 3.0), (1.0, 2.0, 5.0), (1.0, 1.5, 2.0, 3.0, 5.0, 7.0)):
+        vals = [m * 10.0**k for k in range(k0, k1 + 1) for m in mant]
+        vals = [v for v in vals if lo * (1 - 1e-9) <= v <= hi * (1 + 1e-9)]
+        if len(vals) > max_ticks:
+            step = int(np.ceil(len(vals) / max_ticks))
+            vals = vals[::step]
+        ticks = vals
+        if len(vals) >= 3:
+            break
+    axis.set_major_locator(FixedLocator(ticks))
+    axis.set_major_formatter(FuncFormatter(lambda v, _pos: _tick_text(v)))
+    wide = k1 - k0 > 4  # many decades: minor marks would only clutter the grid
+    axis.set_minor_locator(NullLocator() if wide else LogLocator(subs=np.arange(2, 10),
+                                                                 numticks=12))
+    axis.set_minor_formatter(NullFormatter())
+    if axis.axis_name == "x":
+        axis.axes.set_xlim(lo, hi)
+    else:
+        axis.axes.set_ylim(lo, hi)
+
+
 def finish_figure(fig: Any, path: str | Path | None) -> Any:
     if path is not None:
         path = Path(path)

@@ -125,7 +125,7 @@ def alpha_vs_D_routes(
     if size_ratio is None and len(df):
         size_ratio = float(df["size_ratio"].max())
     df = df[np.isclose(df["size_ratio"], size_ratio)].sort_values("D_in")
-    fig, axes = new_figure()
+    fig, axes = new_figure((5.0, 5.2))
     ax = axes[0][0]
     d = np.linspace(2.0, 3.0, 11)
     (d0, a0), (d1, a1) = POHRT_POPOV
@@ -146,5 +146,8 @@ def alpha_vs_D_routes(
     n = int(df["n"].max()) if len(df) else 0
     ax.set_title(f"L/W$_r$ = {size_ratio:g}, {n}², fit over {rng}", fontsize=9)
     ax.set_xlim(2.0, 3.0)
-    ax.legend(fontsize=7, loc="best")
+    ax.grid(True, alpha=0.3)
+    # below the axes: inside, five entries cover points wherever they sit (α spans 0.3–1)
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", fontsize=7,
+               ncols=1, frameon=False)
     return finish_figure(fig, path)

@@ -17,6 +17,7 @@ from ._style import (
     finish_axes,
     finish_figure,
     new_figure,
+    readable_log_ticks,
 )
 
 _METHOD_LABELS = {
@@ -103,11 +104,10 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
         ax.set_title(f"{_METHOD_LABELS.get(m, m)} = {f.D:.3f} (r² = {f.r2:.3f})", fontsize=8)
         ax.set_xlabel("scale (µm)")
         ax.set_ylabel(ylab.get(m, "measure"))
-        if m == "tri":  # ratios just above 1: plain numbers read better than 1×10⁰
-            from matplotlib.ticker import FormatStrFormatter, NullFormatter
-
-            ax.yaxis.set_major_formatter(FormatStrFormatter("%.6g"))
-            ax.yaxis.set_minor_formatter(NullFormatter())
+        # a few labelled ticks per axis: a range under a decade (the triangulation's area
+        # ratios, the scales) would otherwise get overlapping minor labels or none at all
+        readable_log_ticks(ax.xaxis, max_ticks=5)
+        readable_log_ticks(ax.yaxis)
         ax.grid(True, which="both", alpha=0.3)
     for k in range(len(items), nrows * ncols):
         axes[k // ncols, k % ncols].set_visible(False)

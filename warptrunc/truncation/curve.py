@@ -200,7 +200,7 @@ def depth_grid(
     Raises
     ------
     ValueError
-        ``n_increments`` is not an integer in [1, 10⁶] (:data:`MAX_INCREMENTS`),
+        ``n_increments`` is not an integer in [1, 10⁶] (``MAX_INCREMENTS``),
         ``max_depth_fraction`` is outside
         (0, 1], ``max_depth`` is not positive and finite, or ω_max is 0 (a flat map).
     """
