@@ -24,6 +24,13 @@ import numpy as np
 
 __all__ = ["fields_to_dict", "jsonable", "write_atomic"]
 
+WRITE_DOCS = {
+    "{path}": "Parameters\n----------\npath : str or Path\n    File to write (overwritten).",
+    "{returns_path}": "Returns\n-------\nPath",
+}
+"""Docstring text of the results' writers (``to_csv``, ``to_json``), written once
+(:func:`warptrunc._support.docs.fill_doc`)."""
+
 
 def jsonable(v: Any, *, nonfinite: Literal["null", "text", "keep"] = "null") -> Any:
     """Nested dicts/lists/tuples, NumPy arrays and NumPy scalars → JSON types.

@@ -61,8 +61,10 @@ import scipy.fft
 import warp as wp
 
 from .._support.device import resolve_device
+from .._support.docs import fill_doc
 from ..kernels import contact_reduce as _kr
 from .influence import (
+    GRID_DOCS,
     SUBSTRATES,
     LaneReduction,
     build_free_spectrum,
@@ -117,17 +119,11 @@ def cupy_stream(cupy, stream: wp.Stream, ordinal: int):
     return view
 
 
+@fill_doc(GRID_DOCS)
 class ElasticHalfSpace:
     """Pixel-force → displacement operator K of an elastic half-space, on a Warp device.
 
-    Parameters
-    ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
+    {grid}
     substrate : {"free", "periodic"}
         Zero-padded isolated patch (default) or periodic map.
     dtype : {"float64", "float32"}

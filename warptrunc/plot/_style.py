@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
+
 UM = 1e6  # m → µm on axes
 FIGSIZE = (5.0, 4.0)
 DPI = 150
@@ -32,16 +34,7 @@ replaced by its block (at that line's indentation) by :func:`figure_doc`."""
 
 def figure_doc(func: Any) -> Any:
     """Fill the :data:`FIGURE_DOCS` blocks into ``func``'s docstring; returns ``func``."""
-    lines = []
-    for line in func.__doc__.split("\n"):
-        block = FIGURE_DOCS.get(line.strip())
-        if block is None:
-            lines.append(line)
-            continue
-        indent = line[: len(line) - len(line.lstrip())]
-        lines += [indent + b if b else b for b in block.split("\n")]
-    func.__doc__ = "\n".join(lines)
-    return func
+    return fill_doc(FIGURE_DOCS)(func)
 
 
 def new_figure(figsize: tuple[float, float] = FIGSIZE, ncols: int = 1, nrows: int = 1):
