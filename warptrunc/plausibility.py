@@ -43,6 +43,8 @@ from typing import Any, TextIO
 
 import numpy as np
 
+from ._support.docs import SHARED_DOCS, fill_doc
+
 __all__ = [
     "FIT_MIN_CONTACT_PIXELS",
     "FIT_MIN_DECADES",
@@ -230,6 +232,7 @@ def _spike_warning(surface: Any, iy, ix, scales, k, share, action: str) -> Plaus
     )  # fmt: skip
 
 
+@fill_doc(SHARED_DOCS)
 def check_spikes(
     surface: Any, *, k: float = SPIKE_K, share: float = SPIKE_SHARE
 ) -> list[PlausibilityWarning]:
@@ -237,8 +240,7 @@ def check_spikes(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     k : float
         Rule 1 of the spike rule (dimensionless).
     share : float
@@ -256,6 +258,7 @@ def check_spikes(
     return [_spike_warning(surface, iy, ix, scales, k, share, "report")]
 
 
+@fill_doc(SHARED_DOCS)
 def mask_spikes(
     surface: Any, *, k: float = SPIKE_K, share: float = SPIKE_SHARE
 ) -> tuple[Any, list[PlausibilityWarning]]:
@@ -263,8 +266,7 @@ def mask_spikes(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     k : float
         Rule 1 of the spike rule (dimensionless).
     share : float

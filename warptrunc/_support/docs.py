@@ -25,3 +25,18 @@ def fill_doc(blocks: Mapping[str, str]) -> Callable[[Any], Any]:
         return obj
 
     return fill
+
+
+SHARED_DOCS = {
+    "{device}": (
+        "device : str, optional\n    Warp device; default: where a device-resident surface lives,"
+        " else\n    :func:`warptrunc.resolve_device`'s choice."
+    ),
+    "{warp_device}": "device : str, optional\n    Warp device.",
+    "{warp_device_obj}": "device : str or warp Device, optional\n    Warp device.",
+    "{surface}": "surface : Surface\n    The height map (m).",
+    "{periodic}": "periodic : bool\n    Wrap the map around in x and y.",
+    "{connectivity}": "connectivity : {4, 8}\n    Neighbourhood of an island.",
+}
+"""Parameter text that functions of several packages share, written once: a docstring line
+holding only a key is replaced by its block (:func:`fill_doc`)."""

@@ -52,6 +52,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import free_memory_bytes, release_cached_memory, resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_height_map, check_range, pair
 from ..kernels import contact as _k
 from ..kernels import contact_reduce as _kr
@@ -86,6 +87,7 @@ _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter
            "direct_max")  # fmt: skip
 
 
+@fill_doc(SHARED_DOCS)
 class ContactSolver(CappedSolves):
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
 
@@ -109,8 +111,7 @@ class ContactSolver(CappedSolves):
     hardness : float
         Hardness H (Pa), the local pressure cap, in (0, inf]; ``inf`` (default): elastic, the
         solver of today bit for bit.
-    device : str or warp Device, optional
-        Warp device.
+    {warp_device_obj}
     **legacy
         The fields of :class:`~warptrunc.contact.SolverSettings` as keywords (``substrate=``,
         ``dtype=``, ``pressure_tol=``, ``pentol=``, ``thermotol=``, ``maxiter=``, ``refresh=``,

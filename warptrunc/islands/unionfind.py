@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import warp as wp
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..kernels import label as _kl
 from ..surface import Surface
 from .results import (
@@ -52,6 +53,7 @@ def check_index_size(n: int) -> None:
         raise ValueError(f"grid of {n} pixels is too large for int32 indices (limit 2**30)")
 
 
+@fill_doc(SHARED_DOCS)
 def label_device(
     mask: wp.array, connectivity: int = 4, *, periodic: bool = False
 ) -> tuple[wp.array, int]:
@@ -63,8 +65,7 @@ def label_device(
         Contact mask, non-zero = contact, contiguous, on the device to run on.
     connectivity : {4, 8}
         Neighbourhood of an island (see the module Notes).
-    periodic : bool
-        Wrap the map around in x and y.
+    {periodic}
 
     Returns
     -------

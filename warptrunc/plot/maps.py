@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ._style import (
     CONTACT_RGB,
     HEIGHT_CMAP,
@@ -27,6 +28,7 @@ from ._style import (
 from .pooling import check_pooling, pool_blocks
 
 
+@fill_doc(SHARED_DOCS)
 @figure_doc
 def height_map(
     surface: Any,
@@ -43,8 +45,7 @@ def height_map(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     depth : float, optional
         Overlay the contact set z ≥ float32(z_top − ω) at this depth ω (m) in red.
     depth_fraction : float, optional

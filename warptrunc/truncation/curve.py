@@ -19,6 +19,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.limits import flat_row_bands, row_bands
 from .._support.reduce import height_range
 from .._support.validate import MAX_INCREMENTS, check_int, check_range
@@ -342,6 +343,7 @@ def curve_from_histogram(
     )
 
 
+@fill_doc(SHARED_DOCS)
 def contact_index_map(
     surface: Surface,
     depth: np.ndarray,
@@ -352,14 +354,11 @@ def contact_index_map(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     depth : (n+1,) array_like
         Non-decreasing, equally spaced truncation depths (m), starting at 0 (as from
         :func:`depth_grid`).
-    device : str, optional
-        Warp device; default: where a device-resident surface lives, else
-        :func:`warptrunc.resolve_device`'s choice.
+    {device}
 
     Returns
     -------
@@ -370,13 +369,13 @@ def contact_index_map(
     return contact_index_device(surface, depth, resolve_device(surface_device(surface, device))).numpy()
 
 
+@fill_doc(SHARED_DOCS)
 def contact_index_device(surface: Surface, depth: np.ndarray, device: wp.context.Device) -> wp.array:
     """:func:`contact_index_map` as a (ny, nx) int32 Warp array left on the resolved ``device``.
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     depth : (n+1,) array_like
         Non-decreasing, equally spaced truncation depths (m), starting at 0 or more.
     device : warp.context.Device
