@@ -32,6 +32,17 @@ WRITE_DOCS = {
 (:func:`warptrunc._support.docs.fill_doc`)."""
 
 
+class Converged:
+    """Base of the results with a ``converged`` column: :attr:`all_converged`."""
+
+    converged: np.ndarray
+
+    @property
+    def all_converged(self) -> bool:
+        """True when every entry of ``converged`` is true (every solve converged)."""
+        return bool(np.all(self.converged))
+
+
 def jsonable(v: Any, *, nonfinite: Literal["null", "text", "keep"] = "null") -> Any:
     """Nested dicts/lists/tuples, NumPy arrays and NumPy scalars → JSON types.
 

@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from .._support.results import Converged
 from .._support.table import write_columns_csv
 from .._support.validate import check_int, check_range
 from ..stiffness import Material, flat_punch_stiffness, stiffness_curve
@@ -57,7 +58,7 @@ _PADDING = {
 
 
 @dataclass(frozen=True, eq=False)
-class BemCheck:
+class BemCheck(Converged):
     """Truncation against an elastic boundary-element solution, one row per approach δ."""
 
     depth: np.ndarray
@@ -104,10 +105,6 @@ class BemCheck:
         """(m,) A'/A_BEM (dimensionless)."""
         return _ratio(self.trunc_area, self.bem_area)
 
-    @property
-    def all_converged(self) -> bool:
-        """True when every solve converged."""
-        return bool(np.all(self.converged))
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """Columns (SI units in the names) in the order of ``bem.csv``.

@@ -11,6 +11,8 @@ from typing import Any
 
 import numpy as np
 
+from .._support.results import Converged
+
 __all__ = ["ContactCurve", "ContactState"]
 
 
@@ -98,7 +100,7 @@ class ContactState:
 
 
 @dataclass(frozen=True, eq=False)
-class ContactCurve:
+class ContactCurve(Converged):
     """Elastic contact of a rough map against a rigid flat at m approaches (or loads).
 
     Rows are in the order solved; a solve that stopped at its iteration limit is kept and
@@ -144,10 +146,6 @@ class ContactCurve:
     settings: dict[str, Any] = field(default_factory=dict)
     """Solver settings and tolerances (JSON-able)."""
 
-    @property
-    def all_converged(self) -> bool:
-        """True when every solve converged."""
-        return bool(np.all(self.converged))
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """1-D columns, SI units in the names (maps and settings left out).
