@@ -35,6 +35,11 @@ SHARED_DOCS = {
     "{warp_device}": "device : str, optional\n    Warp device.",
     "{warp_device_obj}": "device : str or warp Device, optional\n    Warp device.",
     "{surface}": "surface : Surface\n    The height map (m).",
+    "{depth_range}": (
+        "n_increments : int\n    Number of depth increments n (≥ 1).\n"
+        "max_depth : float or None\n    Largest depth ω_max (m); None to use ``max_depth_fraction``.\n"
+        "max_depth_fraction : float\n    ω_max as a fraction of R_t, in (0, 1] (dimensionless)."
+    ),
     "{periodic}": "periodic : bool\n    Wrap the map around in x and y.",
     "{connectivity}": "connectivity : {4, 8}\n    Neighbourhood of an island.",
 }

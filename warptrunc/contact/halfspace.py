@@ -335,6 +335,7 @@ class ElasticHalfSpace:
         return [(i, min(size, n_batch - i)) for i in range(0, n_batch, size)]
 
     @staticmethod
+    @fill_doc(GRID_DOCS)
     def memory_terms(
         shape: tuple[int, int], substrate: str, dtype: str, *, cuda: bool = True
     ) -> dict[str, int]:
@@ -343,8 +344,7 @@ class ElasticHalfSpace:
 
         Parameters
         ----------
-        shape : (int, int)
-            Map size (ny, nx).
+        {shape}
         substrate : {"free", "periodic"}
             Half-space ((Ny, Nx) = (2ny, 2nx) for the free one, (ny, nx) for the periodic one).
         dtype : {"float64", "float32"}
@@ -385,15 +385,14 @@ class ElasticHalfSpace:
         return terms
 
     @staticmethod
+    @fill_doc(GRID_DOCS)
     def memory_bytes(shape: tuple[int, int], substrate: str, dtype: str) -> tuple[int, int]:
         """Device bytes of a half-space on a CUDA device: (held, while made).
 
         Parameters
         ----------
-        shape : (int, int)
-            Map size (ny, nx).
-        substrate : {"free", "periodic"}
-            Half-space.
+        {shape}
+        {substrate}
         dtype : {"float64", "float32"}
             Precision.
 

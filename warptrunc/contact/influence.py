@@ -38,6 +38,8 @@ GRID_DOCS = {
         "pixel_size : (float, float)\n    Pixel sides (dx, dy) (m).\n"
         "contact_modulus : float\n    Contact modulus E* (Pa)."
     ),
+    "{shape}": "shape : (int, int)\n    Map size (ny, nx).",
+    "{substrate}": 'substrate : {"free", "periodic"}\n    Half-space.',
 }
 """The parameters every half-space builder shares, written once (:func:`fill_doc`)."""
 
@@ -244,8 +246,7 @@ def influence_table(
     another, by separation, for the direct summation of a few forces.
 
     {grid}
-    substrate : {"free", "periodic"}
-        Half-space.
+    {substrate}
 
     Returns
     -------

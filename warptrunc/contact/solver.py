@@ -59,6 +59,7 @@ from ..kernels import contact_reduce as _kr
 from ..material import Material
 from ..params import check_value
 from .halfspace import DTYPES, ElasticHalfSpace
+from .influence import GRID_DOCS
 from .plastic import CappedSolves
 from .results import ContactState
 from .settings import SolverSettings
@@ -215,6 +216,7 @@ class ContactSolver(CappedSolves):
         self._depth: float | None = None  # approach of the last solve (m)
 
     @staticmethod
+    @fill_doc(GRID_DOCS)
     def memory_terms(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
         cuda: bool = True, direct_max: int = 24,
@@ -223,10 +225,8 @@ class ContactSolver(CappedSolves):
 
         Parameters
         ----------
-        shape : (int, int)
-            Map size (ny, nx).
-        substrate : {"free", "periodic"}
-            Half-space.
+        {shape}
+        {substrate}
         dtype : {"float64", "float32"}
             Precision of the maps.
         cuda : bool, optional
@@ -256,6 +256,7 @@ class ContactSolver(CappedSolves):
         return terms
 
     @staticmethod
+    @fill_doc(GRID_DOCS)
     def memory_bytes(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
         cuda: bool = True,
@@ -264,8 +265,7 @@ class ContactSolver(CappedSolves):
 
         Parameters
         ----------
-        shape : (int, int)
-            Map size (ny, nx).
+        {shape}
         substrate : {"free", "periodic"}
             Half-space (the free one transforms a 2ny × 2nx grid, pruned to the map).
         dtype : {"float64", "float32"}

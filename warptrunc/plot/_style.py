@@ -23,6 +23,7 @@ PAPER_ALPHA_D = (0.209, 0.090)  # the paper's α = 0.209·D_in + 0.090 (Table 3,
 
 FIGURE_DOCS = {
     "{path}": "path : path, optional\n    Save the figure as PNG here.",
+    "{title}": "title : str, optional\n    Axes title.",
     "{returns}": (
         "Returns\n-------\nmatplotlib.figure.Figure\n"
         "    The figure, also saved as PNG to ``path`` when given (parent folders created)."

@@ -28,8 +28,8 @@ from ._style import (
 from .pooling import check_pooling, pool_blocks
 
 
-@fill_doc(SHARED_DOCS)
 @figure_doc
+@fill_doc(SHARED_DOCS)
 def height_map(
     surface: Any,
     *,
@@ -58,8 +58,7 @@ def height_map(
         opaque red when any pixel touches, which shows every spot but overstates the area.
     cmap : str, optional
         Colour map of the heights (default viridis, grey under a contact overlay).
-    title : str, optional
-        Axes title.
+    {title}
     {path}
 
     {returns}
@@ -139,8 +138,7 @@ def area_fraction(
         Logarithmic A_c/A axis (the first, small contacts).
     spread : {"sd", "range"}
         Shaded band of a group: ±1 standard deviation, or min–max.
-    title : str, optional
-        Axes title.
+    {title}
     {path}
 
     {returns}

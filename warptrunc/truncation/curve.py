@@ -269,6 +269,7 @@ def depth_thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
     return wp.array(thr, dtype=wp.float32, device=device), lo, hi, thr, inv_step
 
 
+@fill_doc(SHARED_DOCS)
 def truncate_surface(
     surface: Surface,
     n_increments: int,
@@ -287,12 +288,7 @@ def truncate_surface(
     ----------
     surface : Surface
         The height map (m), already checked by the caller.
-    n_increments : int
-        Number of depth increments n (≥ 1).
-    max_depth : float or None
-        Largest depth ω_max (m); None to use ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of R_t, in (0, 1] (dimensionless).
+    {depth_range}
     device : warp.context.Device
         The resolved Warp device.
 
