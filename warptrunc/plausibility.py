@@ -73,6 +73,7 @@ SPIKE_DOCS = {
         "share : float\n    Rule 2 of the spike rule (dimensionless)."
     ),
 }
+SPIKE_DOCS["{spike_params}"] = SPIKE_DOCS["{surface}"] + "\n" + SPIKE_DOCS["{spike_rule}"]
 """Docstring text of the spike functions, written once (:func:`fill_doc`)."""
 FIT_MIN_R2 = 0.9
 """A fit with r² below this is not worth reading (dimensionless)."""
@@ -248,8 +249,7 @@ def check_spikes(
 
     Parameters
     ----------
-    {surface}
-    {spike_rule}
+    {spike_params}
 
     Returns
     -------
@@ -271,8 +271,7 @@ def mask_spikes(
 
     Parameters
     ----------
-    {surface}
-    {spike_rule}
+    {spike_params}
 
     Returns
     -------

@@ -43,5 +43,8 @@ SHARED_DOCS = {
     "{periodic}": "periodic : bool\n    Wrap the map around in x and y.",
     "{connectivity}": "connectivity : {4, 8}\n    Neighbourhood of an island.",
 }
+SHARED_DOCS["{label_options}"] = "\n".join(
+    SHARED_DOCS[k] for k in ("{connectivity}", "{periodic}", "{device}")
+)
 """Parameter text that functions of several packages share, written once: a docstring line
 holding only a key is replaced by its block (:func:`fill_doc`)."""

@@ -126,9 +126,7 @@ def islands_at_depths(
     depths : sequence of float
         Truncation depths ω (m), any order; a pixel is in contact when
         ``z >= float32(z_top − ω)``.
-    {connectivity}
-    {periodic}
-    {device}
+    {label_options}
 
     Returns
     -------
@@ -198,9 +196,7 @@ def _islands_at_depth(
     depth : float
         Truncation depth ω (m), finite and ≥ 0; a pixel is in contact when
         ``z >= float32(z_top − ω)``.
-    {connectivity}
-    {periodic}
-    {device}
+    {label_options}
 
     Returns
     -------
