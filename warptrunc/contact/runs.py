@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
 from .results import ContactState
 from .solver import ContactSolver, default_pentol
 
@@ -28,6 +29,15 @@ __all__ = [
     "run_contactmechanics",
     "run_warptrunc",
 ]
+
+RUN_DOCS = {
+    "{surface_approaches}": (
+        "surface : Surface\n    The rough height map (m), on the host.\n"
+        "d : (m,) ndarray\n    Approaches δ (m), increasing.\n"
+        "contact_modulus : float\n    Reduced modulus E* (Pa)."
+    ),
+}
+"""Parameter text of both solvers' runs, written once (:func:`fill_doc`)."""
 
 EXTRA_HINT = 'pip install "warptrunc[bem]"'
 
@@ -113,6 +123,7 @@ def pentol_or_default(h: np.ndarray, pentol: float | None) -> tuple[float, str]:
     return pentol, "given"
 
 
+@fill_doc(RUN_DOCS)
 def run_contactmechanics(
     surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress
 ):
@@ -124,12 +135,7 @@ def run_contactmechanics(
 
     Parameters
     ----------
-    surface : Surface
-        The rough height map (m), on the host.
-    d : (m,) ndarray
-        Approaches δ (m), increasing.
-    contact_modulus : float
-        Reduced modulus E* (Pa).
+    {surface_approaches}
     substrate : {"free", "periodic"}
         ``FreeFFTElasticHalfSpace`` or ``PeriodicFFTElasticHalfSpace``.
     fd_step : float
@@ -233,6 +239,7 @@ def run_contactmechanics(
     return out, conv, nit, edge, solves, extra
 
 
+@fill_doc(RUN_DOCS)
 def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress,
                    stiffness, dtype, device):  # fmt: skip
     """warptrunc's solves on ``device``: δ(1 − h), δ, δ(1 + h) (central) or δ and Barber's punch.
@@ -241,12 +248,7 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
 
     Parameters
     ----------
-    surface : Surface
-        The rough height map (m), on the host.
-    d : (m,) ndarray
-        Approaches δ (m), increasing.
-    contact_modulus : float
-        Reduced modulus E* (Pa).
+    {surface_approaches}
     substrate : {"free", "periodic"}
         Half-space of the solver.
     fd_step : float
