@@ -123,6 +123,13 @@ def pentol_or_default(h: np.ndarray, pentol: float | None) -> tuple[float, str]:
     return pentol, "given"
 
 
+def _run_columns(m: int) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
+    """Zeroed columns of m approaches: F, A, k and t (a dict of float64), converged, iterations
+    and edge contact."""
+    out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
+    return out, np.zeros(m, dtype=bool), np.zeros(m, dtype=np.int64), np.zeros(m, dtype=bool)
+
+
 @fill_doc(RUN_DOCS)
 def run_contactmechanics(
     surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress
@@ -185,10 +192,7 @@ def run_contactmechanics(
     pentol, pentol_note = pentol_or_default(h, pentol)
     h_max = float(h.max())
     m = d.size
-    out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
-    conv = np.zeros(m, dtype=bool)
-    nit = np.zeros(m, dtype=np.int64)
-    edge = np.zeros(m, dtype=bool)
+    out, conv, nit, edge = _run_columns(m)
     solves: list[dict[str, Any]] = []
     u0 = None
 
@@ -299,10 +303,7 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
         pressure_tol=pressure_tol, pentol=pentol, maxiter=maxiter, device=device,
     )  # fmt: skip
     m = d.size
-    out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
-    conv = np.zeros(m, dtype=bool)
-    nit = np.zeros(m, dtype=np.int64)
-    edge = np.zeros(m, dtype=bool)
+    out, conv, nit, edge = _run_columns(m)
     solves: list[dict[str, Any]] = []
     per_row = 3 if stiffness == "central" else 1
     bar = tqdm(total=per_row * m, desc="BEM solves", unit="solve", disable=not progress)
