@@ -32,15 +32,15 @@ WRITE_DOCS = {
 (:func:`warptrunc._support.docs.fill_doc`)."""
 
 
-class Converged:
-    """Base of the results with a ``converged`` column: :attr:`all_converged`."""
+def all_converged_property() -> property:
+    """The ``all_converged`` property of a result with a ``converged`` column (assign it in the
+    class body, where the API reference documents it with the class's own members)."""
 
-    converged: np.ndarray
-
-    @property
-    def all_converged(self) -> bool:
+    def all_converged(self: Any) -> bool:
         """True when every entry of ``converged`` is true (every solve converged)."""
         return bool(np.all(self.converged))
+
+    return property(all_converged)
 
 
 def jsonable(v: Any, *, nonfinite: Literal["null", "text", "keep"] = "null") -> Any:

@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._support.results import Converged
+from .._support.results import all_converged_property
 from .._support.table import write_columns_csv
 from .._support.validate import check_int, check_range
 from ..stiffness import Material, flat_punch_stiffness, stiffness_curve
@@ -58,7 +58,7 @@ _PADDING = {
 
 
 @dataclass(frozen=True, eq=False)
-class BemCheck(Converged):
+class BemCheck:
     """Truncation against an elastic boundary-element solution, one row per approach δ."""
 
     depth: np.ndarray
@@ -105,6 +105,7 @@ class BemCheck(Converged):
         """(m,) A'/A_BEM (dimensionless)."""
         return _ratio(self.trunc_area, self.bem_area)
 
+    all_converged = all_converged_property()
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """Columns (SI units in the names) in the order of ``bem.csv``.

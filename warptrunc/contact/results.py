@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from .._support.results import Converged
+from .._support.results import all_converged_property
 
 __all__ = ["ContactCurve", "ContactState"]
 
@@ -100,7 +100,7 @@ class ContactState:
 
 
 @dataclass(frozen=True, eq=False)
-class ContactCurve(Converged):
+class ContactCurve:
     """Elastic contact of a rough map against a rigid flat at m approaches (or loads).
 
     Rows are in the order solved; a solve that stopped at its iteration limit is kept and
@@ -146,6 +146,7 @@ class ContactCurve(Converged):
     settings: dict[str, Any] = field(default_factory=dict)
     """Solver settings and tolerances (JSON-able)."""
 
+    all_converged = all_converged_property()
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """1-D columns, SI units in the names (maps and settings left out).

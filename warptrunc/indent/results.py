@@ -15,7 +15,7 @@ import numpy as np
 
 from .._support.atomic import strict_json
 from .._support.docs import fill_doc
-from .._support.results import WRITE_DOCS, Converged
+from .._support.results import WRITE_DOCS, all_converged_property
 from .._support.table import write_columns_csv
 from ..material import Material
 from ..stiffness import PowerLawFit, fit_power_law
@@ -55,7 +55,7 @@ def modulus_from_stiffness(stiffness: Any, area: Any) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
-class IndentationResult(Converged):
+class IndentationResult:
     """Flat-punch indentation of a rough surface, in silico (paper § 4.1, Fig. 6).
 
     One row per punch diameter × placement × peak load, in that nesting order. Columns are
@@ -160,6 +160,7 @@ class IndentationResult(Converged):
         """(m,) float64 E_c/E of Eq. 2 truncation, E*/E·√(A_c/A) (dimensionless)."""
         return self._over_E(self.truncation_stiffness)
 
+    all_converged = all_converged_property()
 
     # --- tables ------------------------------------------------------------------------------
 
