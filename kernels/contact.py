@@ -29,6 +29,8 @@ from typing import Any
 
 import warp as wp
 
+from .lanes import declare_overloads, lane_next, lane_start
+
 wp.set_module_options({"enable_backward": False})
 
 BIG = wp.constant(1.0e300)
@@ -94,18 +96,8 @@ def cg_direction_kernel(
     part[i] = [Σ c·g·t]."""
     lane = wp.tid()
     nx = h.shape[1]
-    n = h.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     s_gt = wp.float64(0.0)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         tv = t.dtype(0.0)
         m = wp.uint8(0)
@@ -116,12 +108,7 @@ def cg_direction_kernel(
             m = wp.uint8(1)
         t[iy, ix] = tv
         mask[iy, ix] = m
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 0] = s_gt
 
 
@@ -173,23 +160,13 @@ def update_force_kernel(
     lane = wp.tid()
     tau = tau_arr[0]
     nx = h.shape[1]
-    n = h.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     n_nc = wp.float64(0.0)
     n_zero = wp.float64(0.0)
     max_tens = wp.float64(0.0)
     total = wp.float64(0.0)
     zero = q.dtype(0.0)
     count = int(0)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         m = mask[iy, ix]
         qv = q[iy, ix]
@@ -216,12 +193,7 @@ def update_force_kernel(
                 count += 1
         q[iy, ix] = qv
         total += wp.float64(qv)
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 2] = n_nc
     part[lane, 3] = n_zero
     part[lane, 4] = max_tens
@@ -273,29 +245,14 @@ def compact_changes_kernel(
     holds iy·nx + ix."""
     lane = wp.tid()
     nx = q.shape[1]
-    n = q.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, q.shape[0] * nx, nx)
     k = offsets[lane]
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         if (int(mask[iy, ix]) & 4) != 0:
             index[k] = iy * nx + ix
             value[k] = wp.float64(q[iy, ix]) - scale * wp.float64(lin[iy, ix])
             k += 1
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
 
 
 @wp.func
@@ -340,13 +297,7 @@ def advance_kernel(
     max penetration over the previous CG set, Σ g, Σ q] with c = q > 0 and the new u."""
     lane = wp.tid()
     nx = h.shape[1]
-    n = h.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     du_max = wp.float64(0.0)
     n_c = wp.float64(0.0)
     s_g = wp.float64(0.0)
@@ -354,10 +305,6 @@ def advance_kernel(
     pen = wp.float64(0.0)
     s_gap = wp.float64(0.0)
     s_q = wp.float64(0.0)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         uo = u[iy, ix]
         un = r[iy, ix]
@@ -380,12 +327,7 @@ def advance_kernel(
             s_q += wp.float64(qv)
         if (int(mask[iy, ix]) & 1) != 0:
             pen = wp.max(pen, -g)
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 0] = du_max
     part[lane, 1] = n_c
     part[lane, 2] = s_g
@@ -411,19 +353,9 @@ def punch_step_kernel(
     res −= α·K·d on the set; part[i] = [Σ res², Σ x]."""
     lane = wp.tid()
     nx = mask.shape[1]
-    n = mask.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, mask.shape[0] * nx, nx)
     s_rr = wp.float64(0.0)
     s_x = wp.float64(0.0)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         if (int(mask[iy, ix]) & 1) != 0:
             xv = x[iy, ix] + x.dtype(alpha) * d[iy, ix]
@@ -432,12 +364,7 @@ def punch_step_kernel(
             res[iy, ix] = rv
             s_rr += wp.float64(rv) * wp.float64(rv)
             s_x += wp.float64(xv)
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 0] = s_rr
     part[lane, 1] = s_x
 
@@ -467,23 +394,8 @@ def contact_mask_kernel(q: wp.array2d(dtype=Any), mask: wp.array2d(dtype=wp.uint
         mask[iy, ix] = wp.uint8(0)
 
 
-def _declare_overloads() -> None:
-    """float32 and float64 instances of every generic kernel, so the module compiles once."""
-    kernels = (
-        clamp_displacement_kernel, add_map_kernel, copy_map_kernel, fill_map_kernel,
-        cg_direction_kernel, update_force_kernel, compact_changes_kernel, rescale_force_kernel, advance_kernel,
-        punch_step_kernel, punch_direction_kernel, contact_mask_kernel,
-    )  # fmt: skip
-    for scalar in (wp.float32, wp.float64):
-        for k in kernels:
-            types = {}
-            for arg in k.adj.args:
-                ty = arg.type
-                if wp.types.is_array(ty) and ty.dtype is Any:
-                    types[arg.label] = wp.array2d(dtype=scalar)
-                else:
-                    types[arg.label] = ty
-            wp.overload(k, types)
-
-
-_declare_overloads()
+declare_overloads((
+    clamp_displacement_kernel, add_map_kernel, copy_map_kernel, fill_map_kernel,
+    cg_direction_kernel, update_force_kernel, compact_changes_kernel, rescale_force_kernel, advance_kernel,
+    punch_step_kernel, punch_direction_kernel, contact_mask_kernel,
+))  # fmt: skip

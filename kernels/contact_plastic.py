@@ -16,6 +16,7 @@ from typing import Any
 import warp as wp
 
 from .contact import influence
+from .lanes import declare_overloads, lane_next, lane_start
 
 wp.set_module_options({"enable_backward": False})
 
@@ -34,22 +35,12 @@ def capped_sums_kernel(
     """Lanes over the map, start of a solve: part[i] = [n(0 < q < hf), Σ c·g, Σ c·g², Σ q]."""
     lane = wp.tid()
     nx = h.shape[1]
-    n = h.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     n_c = wp.float64(0.0)
     s_g = wp.float64(0.0)
     s_gg = wp.float64(0.0)
     s_q = wp.float64(0.0)
     cap = q.dtype(hf)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         qv = q[iy, ix]
         s_q += wp.float64(qv)
@@ -58,12 +49,7 @@ def capped_sums_kernel(
             n_c += wp.float64(1.0)
             s_g += g
             s_gg += g * g
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 0] = n_c
     part[lane, 1] = s_g
     part[lane, 2] = s_gg
@@ -87,19 +73,9 @@ def capped_direction_kernel(
     """Lanes over the map: CG set c = 0 < q < hf, t = c·(g + β·t), mask = c; part[i] = [Σ c·g·t]."""
     lane = wp.tid()
     nx = h.shape[1]
-    n = h.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     s_gt = wp.float64(0.0)
     cap = q.dtype(hf)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         tv = t.dtype(0.0)
         m = wp.uint8(0)
@@ -111,12 +87,7 @@ def capped_direction_kernel(
             m = wp.uint8(1)
         t[iy, ix] = tv
         mask[iy, ix] = m
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 0] = s_gt
 
 
@@ -171,13 +142,7 @@ def capped_update_kernel(
     lane = wp.tid()
     tau = tau_arr[0]
     nx = h.shape[1]
-    n = h.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     n_nc = wp.float64(0.0)
     n_clamp = wp.float64(0.0)
     max_viol = wp.float64(0.0)
@@ -186,10 +151,6 @@ def capped_update_kernel(
     cap = q.dtype(hf)
     half = q.dtype(wp.float64(0.5) * hf)
     count = int(0)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         m = mask[iy, ix]
         qv = q[iy, ix]
@@ -225,12 +186,7 @@ def capped_update_kernel(
             count += 1
         q[iy, ix] = qv
         total += wp.float64(qv)
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 2] = n_nc
     part[lane, 3] = n_clamp
     part[lane, 4] = max_viol
@@ -269,13 +225,7 @@ def capped_advance_kernel(
     at the cap), Σ g, Σ q] with c = 0 < q < hf and the new u."""
     lane = wp.tid()
     nx = h.shape[1]
-    n = h.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     du_max = wp.float64(0.0)
     n_c = wp.float64(0.0)
     s_g = wp.float64(0.0)
@@ -284,10 +234,6 @@ def capped_advance_kernel(
     s_gap = wp.float64(0.0)
     s_q = wp.float64(0.0)
     cap = q.dtype(hf)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         uo = u[iy, ix]
         un = r[iy, ix]
@@ -312,12 +258,7 @@ def capped_advance_kernel(
             viol = wp.max(viol, g)
         if (int(mask[iy, ix]) & 1) != 0:
             viol = wp.max(viol, -g)
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 0] = du_max
     part[lane, 1] = n_c
     part[lane, 2] = s_g
@@ -344,21 +285,11 @@ def plastic_flow_kernel(
     [n(q > 0), n(q ≥ hf), Σ (h_old − h_new) (m, the stored change)]."""
     lane = wp.tid()
     nx = h.shape[1]
-    n = h.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     n_c = wp.float64(0.0)
     n_p = wp.float64(0.0)
     s_dw = wp.float64(0.0)
     cap = q.dtype(hf)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         qv = q[iy, ix]
         if qv > q.dtype(0.0):
@@ -371,33 +302,13 @@ def plastic_flow_kernel(
                 if hn < ho:
                     h[iy, ix] = hn
                     s_dw += wp.float64(ho) - wp.float64(hn)
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 0] = n_c
     part[lane, 1] = n_p
     part[lane, 2] = s_dw
 
 
-def _declare_overloads() -> None:
-    """float32 and float64 instances of every generic kernel, so the module compiles once."""
-    kernels = (
-        capped_sums_kernel, capped_direction_kernel, capped_update_kernel, capped_advance_kernel,
-        plastic_flow_kernel,
-    )  # fmt: skip
-    for scalar in (wp.float32, wp.float64):
-        for k in kernels:
-            types = {}
-            for arg in k.adj.args:
-                ty = arg.type
-                if wp.types.is_array(ty) and ty.dtype is Any:
-                    types[arg.label] = wp.array2d(dtype=scalar)
-                else:
-                    types[arg.label] = ty
-            wp.overload(k, types)
-
-
-_declare_overloads()
+declare_overloads((
+    capped_sums_kernel, capped_direction_kernel, capped_update_kernel, capped_advance_kernel,
+    plastic_flow_kernel,
+))  # fmt: skip

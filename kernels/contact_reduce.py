@@ -16,6 +16,8 @@ from typing import Any
 
 import warp as wp
 
+from .lanes import declare_overloads, lane_next, lane_start
+
 wp.set_module_options({"enable_backward": False})
 
 
@@ -47,18 +49,8 @@ def spectral_kernel(
     lane = wp.tid()
     nk = b.shape[1]
     ny_full = b.shape[0]
-    n = ny_full * nk
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, ny_full * nk, nk)
     acc = wp.float64(0.0)
-    iy = i // nk
-    ix = i - iy * nk
-    sy = step // nk
-    sx = step - sy * nk
     while i < n:
         wv = w[wp.min(iy, ny_full - iy), ix]
         v = b[iy, ix]
@@ -75,12 +67,7 @@ def spectral_kernel(
                 b[iy, ix] = v * (wv * w.dtype(inv_n))
         else:
             b[iy, ix] = v * (w.dtype(inv_n) / wv)
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nk:
-            ix -= nk
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nk)
     if mode <= SPECTRUM_APPLY:
         part[lane, col] = acc
 
@@ -98,21 +85,11 @@ def contact_sums_kernel(
     """Lanes over the map: part[i] = [n(q > 0), Σ c·g, Σ c·g², Σ q] (start of a solve)."""
     lane = wp.tid()
     nx = h.shape[1]
-    n = h.shape[0] * nx
-    i = lane
-    step = stride
-    if chunk > 0:
-        i = lane * chunk
-        n = wp.min(n, i + chunk)
-        step = 1
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     n_c = wp.float64(0.0)
     s_g = wp.float64(0.0)
     s_gg = wp.float64(0.0)
     s_q = wp.float64(0.0)
-    iy = i // nx
-    ix = i - iy * nx
-    sy = step // nx
-    sx = step - sy * nx
     while i < n:
         if q[iy, ix] > q.dtype(0.0):
             g = wp.float64(u[iy, ix]) - wp.float64(h[iy, ix]) - offset
@@ -120,12 +97,7 @@ def contact_sums_kernel(
             s_g += g
             s_gg += g * g
             s_q += wp.float64(q[iy, ix])
-        i += step
-        iy += sy
-        ix += sx
-        if ix >= nx:
-            ix -= nx
-            iy += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 0] = n_c
     part[lane, 1] = s_g
     part[lane, 2] = s_gg
@@ -173,21 +145,7 @@ def pad_rows_kernel(x: wp.array2d(dtype=Any), rows: wp.array2d(dtype=Any)):
         rows[iy, ix] = rows.dtype(0.0)
 
 
-def _declare_overloads() -> None:
-    """float32 and float64 instances of every generic kernel, so the module compiles once."""
-    kernels = (spectral_kernel, contact_sums_kernel, expand_spectrum_kernel, pad_rows_kernel)
-    vec_args = {(spectral_kernel, "b"), (expand_spectrum_kernel, "b")}
-    for scalar, vec in ((wp.float32, wp.vec2f), (wp.float64, wp.vec2d)):
-        for k in kernels:
-            types = {}
-            for arg in k.adj.args:
-                ty = arg.type
-                if wp.types.is_array(ty) and ty.dtype is Any:
-                    dt = vec if (k, arg.label) in vec_args else scalar
-                    types[arg.label] = wp.array2d(dtype=dt)
-                else:
-                    types[arg.label] = ty
-            wp.overload(k, types)
-
-
-_declare_overloads()
+declare_overloads(
+    (spectral_kernel, contact_sums_kernel, expand_spectrum_kernel, pad_rows_kernel),
+    vec_args={(spectral_kernel, "b"), (expand_spectrum_kernel, "b")},
+)

@@ -12,6 +12,8 @@ device.
 
 import warp as wp
 
+from .lanes import lane_range
+
 wp.set_module_options({"enable_backward": False})
 
 
@@ -20,19 +22,14 @@ def min_max_kernel(z: wp.array[wp.float32], stride: int, chunk: int, out: wp.arr
     """Lanes over the flattened map; ``out = [min, max]``. GPU (``chunk == 0``): grid-stride
     lanes, coalesced. CPU: lane i scans the contiguous chunk [i·chunk, (i+1)·chunk), which is
     cache-friendly where a strided walk is not."""
-    i = wp.tid()
-    n = z.shape[0]
-    if chunk > 0:
-        i = i * chunk
-        n = wp.min(n, i + chunk)
-        stride = 1
+    i, n, step = lane_range(wp.tid(), stride, chunk, z.shape[0])
     lo = float(3.4e38)
     hi = float(-3.4e38)
     while i < n:
         v = z[i]
         lo = wp.min(lo, v)
         hi = wp.max(hi, v)
-        i += stride
+        i += step
     wp.atomic_min(out, 0, lo)
     wp.atomic_max(out, 1, hi)
 
@@ -66,12 +63,7 @@ def validate_kernel(
     ``out = [min, max]`` over the finite values (the caller sets (+inf, −inf)); ``bad[0]`` =
     number of NaN/inf values, ``bad[1]`` = smallest flat index of one (the caller sets
     (0, len(z))). Integer atomics and min/max only: identical on every device."""
-    i = wp.tid()
-    n = z.shape[0]
-    if chunk > 0:
-        i = i * chunk
-        n = wp.min(n, i + chunk)
-        stride = 1
+    i, n, step = lane_range(wp.tid(), stride, chunk, z.shape[0])
     lo = float(3.4e38)
     hi = float(-3.4e38)
     nbad = wp.int64(0)
@@ -85,7 +77,7 @@ def validate_kernel(
             if nbad == wp.int64(0):
                 first = wp.int64(i)
             nbad += wp.int64(1)
-        i += stride
+        i += step
     wp.atomic_min(out, 0, lo)
     wp.atomic_max(out, 1, hi)
     if nbad > wp.int64(0):
@@ -97,16 +89,11 @@ def validate_kernel(
 def sum_kernel(z: wp.array[wp.float32], stride: int, chunk: int, out: wp.array[wp.float64]):
     """Lanes as ``min_max_kernel``; ``out[0] +=`` the float64 sum of the lane's values (one
     float64 atomic per lane)."""
-    i = wp.tid()
-    n = z.shape[0]
-    if chunk > 0:
-        i = i * chunk
-        n = wp.min(n, i + chunk)
-        stride = 1
+    i, n, step = lane_range(wp.tid(), stride, chunk, z.shape[0])
     s = wp.float64(0.0)
     while i < n:
         s += wp.float64(z[i])
-        i += stride
+        i += step
     wp.atomic_add(out, 0, s)
 
 
@@ -120,12 +107,7 @@ def central_moments_kernel(
 ):
     """Lanes as ``min_max_kernel``; ``out[0..3] +=`` Σ|d|, Σd², Σd³, Σd⁴ with d = z − mean,
     accumulated in float64 (one atomic per lane and moment)."""
-    i = wp.tid()
-    n = z.shape[0]
-    if chunk > 0:
-        i = i * chunk
-        n = wp.min(n, i + chunk)
-        stride = 1
+    i, n, step = lane_range(wp.tid(), stride, chunk, z.shape[0])
     a1 = wp.float64(0.0)
     a2 = wp.float64(0.0)
     a3 = wp.float64(0.0)
@@ -137,7 +119,7 @@ def central_moments_kernel(
         a2 += d2
         a3 += d2 * d
         a4 += d2 * d2
-        i += stride
+        i += step
     wp.atomic_add(out, 0, a1)
     wp.atomic_add(out, 1, a2)
     wp.atomic_add(out, 2, a3)

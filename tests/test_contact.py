@@ -167,6 +167,30 @@ def test_memory_model_equals_allocations(substrate, n, dtype, hardness):
     assert abs(peak - need) <= 0.1 * need, (peak, need)
 
 
+def _load_map(hs, x, pixel, substrate, dtype):
+    """x into the half-space's map buffer (zero pad); that buffer, the reference spectrum W,
+    rfft2(x) on the padded grid and the relative tolerance of the dtype."""
+    import scipy.fft
+
+    buf, _ = hs.map_buffer()
+    host = np.zeros(buf.shape, dtype=dtype)
+    host[:, : x.shape[1]] = x
+    buf.assign(host)
+    w = influence_spectrum(x.shape, pixel, E_STAR, substrate)
+    return buf, w, scipy.fft.rfft2(x, s=hs.grid), 1e-12 if dtype == "float64" else 2e-5
+
+
+def _check_transforms(hs, buf, w, spec, tol):
+    """K·x and K⁻¹·x of the half-space equal the full zero-padded transforms on the map."""
+    import scipy.fft
+
+    ny, nx = hs.shape
+    for inverse, mult in ((False, w), (True, 1 / w)):
+        ref = scipy.fft.irfft2(spec * mult, s=hs.grid)[:ny, :nx]
+        got = hs.apply(buf, inverse=inverse).numpy()
+        np.testing.assert_allclose(got, ref, rtol=0, atol=tol * np.abs(ref).max())
+
+
 @pytest.mark.parametrize("dtype", ["float64", "float32"])
 @pytest.mark.parametrize(
     ("substrate", "shape"), [("free", (48, 64)), ("free", (37, 50)), ("periodic", (48, 64))]
@@ -183,17 +207,8 @@ def test_pruned_transform_equals_full(device, substrate, shape, dtype):
     pixel = (1e-6, 1.3e-6)
     hs = ElasticHalfSpace(shape, pixel, E_STAR, substrate=substrate, dtype=dtype, device=device)
     x = np.random.default_rng(0).random(shape)
-    buf, _ = hs.map_buffer()
-    host = np.zeros(buf.shape, dtype=dtype)
-    host[:, :nx] = x
-    buf.assign(host)
-    w = influence_spectrum(shape, pixel, E_STAR, substrate)
-    spec = scipy.fft.rfft2(x, s=hs.grid)
-    tol = 1e-12 if dtype == "float64" else 2e-5
-    for inverse, mult in ((False, w), (True, 1 / w)):
-        ref = scipy.fft.irfft2(spec * mult, s=hs.grid)[:ny, :nx]
-        got = hs.apply(buf, inverse=inverse).numpy()
-        np.testing.assert_allclose(got, ref, rtol=0, atol=tol * np.abs(ref).max())
+    buf, w, spec, tol = _load_map(hs, x, pixel, substrate, dtype)
+    _check_transforms(hs, buf, w, spec, tol)
     # the energy column: N·x·K·x by Parseval
     hs.apply(buf, energy_column=0)
     energy = hs.reduction.read((False,))[0] / hs.n_total
@@ -303,18 +318,9 @@ def test_cuda_transform_layouts_emulated(monkeypatch, substrate, shape, dtype):
     monkeypatch.setattr(hsmod.wp, "get_stream", lambda device: None)
     monkeypatch.setattr(hsmod, "_SLAB_MIN_BYTES", 1024)  # several slabs of two sizes
     x = np.random.default_rng(2).random(shape)
-    buf, _ = hs.map_buffer()
-    host = np.zeros(buf.shape, dtype=dtype)
-    host[:, :nx] = x
-    buf.assign(host)
-    w = influence_spectrum(shape, pixel, E_STAR, substrate)
-    spec = scipy.fft.rfft2(x, s=hs.grid)
-    tol = 1e-12 if dtype == "float64" else 2e-5
+    buf, w, spec, tol = _load_map(hs, x, pixel, substrate, dtype)
     hs.work.fill_(hs.vec2(7.0, 7.0))  # the pad rows must be zeroed by the forward transform
-    for inverse, mult in ((False, w), (True, 1 / w)):
-        ref = scipy.fft.irfft2(spec * mult, s=hs.grid)[:ny, :nx]
-        got = hs.apply(buf, inverse=inverse).numpy()
-        np.testing.assert_allclose(got, ref, rtol=0, atol=tol * np.abs(ref).max())
+    _check_transforms(hs, buf, w, spec, tol)
     plans, rows, cols = hs._plans
     assert len(rows) > 1 and len(cols) > 1
     # one work area, as large as the largest plan's, shared by all plans

@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from ._support.docs import SHARED_DOCS, fill_doc
 from ._support.progress import progress_bar
 from ._support.results import jsonable
 from ._support.root_find import CalibrationError, find_root
@@ -191,6 +192,7 @@ class Calibration:
         return out
 
 
+@fill_doc(SHARED_DOCS)
 def target_from_surface(
     surface: Surface,
     method: str = "tri",
@@ -212,8 +214,7 @@ def target_from_surface(
         of the scan; a scan too small to resolve it raises ValueError asking for ``Wr``.
     method_options : dict, optional
         Options of the fractal method (see :func:`warptrunc.fractal.fractal_dimension`).
-    device : str, optional
-        Warp device.
+    {warp_device}
 
     Returns
     -------
@@ -248,6 +249,7 @@ def target_from_surface(
     )
 
 
+@fill_doc(SHARED_DOCS)
 def calibrate(
     target: CalibrationTarget,
     *,
@@ -286,8 +288,7 @@ def calibrate(
         WM inputs (see :func:`warptrunc.wm.wm_surface`).
     progress : bool
         Show a tqdm progress bar.
-    device : str, optional
-        Warp device.
+    {warp_device}
 
     Returns
     -------
@@ -383,6 +384,7 @@ def calibrate(
     )
 
 
+@fill_doc(SHARED_DOCS)
 def calibrated_surface(
     calibration: Calibration,
     *,
@@ -403,8 +405,7 @@ def calibrated_surface(
         Side length(s) (m); default the scan's.
     seed : int
         Seed of the phases.
-    device : str, optional
-        Warp device.
+    {warp_device}
 
     Returns
     -------

@@ -43,6 +43,8 @@ from typing import Any, TextIO
 
 import numpy as np
 
+from ._support.docs import SHARED_DOCS, fill_doc
+
 __all__ = [
     "FIT_MIN_CONTACT_PIXELS",
     "FIT_MIN_DECADES",
@@ -64,6 +66,15 @@ SPIKE_K = 10.0
 """Spike rule 1: ``|d|`` above this many robust standard deviations σ_d of d (dimensionless)."""
 SPIKE_SHARE = 0.5
 """Spike rule 2: ``|d|`` above this share of R_robust = P99.9 − P0.1 (dimensionless)."""
+SPIKE_DOCS = {
+    **SHARED_DOCS,
+    "{spike_rule}": (
+        "k : float\n    Rule 1 of the spike rule (dimensionless).\n"
+        "share : float\n    Rule 2 of the spike rule (dimensionless)."
+    ),
+}
+SPIKE_DOCS["{spike_params}"] = SPIKE_DOCS["{surface}"] + "\n" + SPIKE_DOCS["{spike_rule}"]
+"""Docstring text of the spike functions, written once (:func:`fill_doc`)."""
 FIT_MIN_R2 = 0.9
 """A fit with r² below this is not worth reading (dimensionless)."""
 FIT_MIN_DECADES = 0.5
@@ -230,6 +241,7 @@ def _spike_warning(surface: Any, iy, ix, scales, k, share, action: str) -> Plaus
     )  # fmt: skip
 
 
+@fill_doc(SPIKE_DOCS)
 def check_spikes(
     surface: Any, *, k: float = SPIKE_K, share: float = SPIKE_SHARE
 ) -> list[PlausibilityWarning]:
@@ -237,12 +249,7 @@ def check_spikes(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
-    k : float
-        Rule 1 of the spike rule (dimensionless).
-    share : float
-        Rule 2 of the spike rule (dimensionless).
+    {spike_params}
 
     Returns
     -------
@@ -256,6 +263,7 @@ def check_spikes(
     return [_spike_warning(surface, iy, ix, scales, k, share, "report")]
 
 
+@fill_doc(SPIKE_DOCS)
 def mask_spikes(
     surface: Any, *, k: float = SPIKE_K, share: float = SPIKE_SHARE
 ) -> tuple[Any, list[PlausibilityWarning]]:
@@ -263,12 +271,7 @@ def mask_spikes(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
-    k : float
-        Rule 1 of the spike rule (dimensionless).
-    share : float
-        Rule 2 of the spike rule (dimensionless).
+    {spike_params}
 
     Returns
     -------

@@ -24,7 +24,8 @@ from typing import Any
 import numpy as np
 
 from ._support.deprecate import module_getattr
-from ._support.results import fields_to_dict
+from ._support.docs import fill_doc
+from ._support.results import WRITE_DOCS, fields_to_dict
 from ._support.table import write_columns_csv
 from ._support.validate import check_int, check_range
 from .material import Material
@@ -123,17 +124,13 @@ class StiffnessCurve:
             skip=("material", "beta_prime", "apparent_area", "Rt", "model"),
         )  # fmt: skip
 
+    @fill_doc(WRITE_DOCS)
     def to_json(self, path: str | Path) -> Path:
         """Write the columns of :meth:`to_dict` (lists) plus the material and β' as JSON.
 
-        Parameters
-        ----------
-        path : str or Path
-            File to write (overwritten).
+        {path}
 
-        Returns
-        -------
-        Path
+        {returns_path}
             ``path``. Besides the columns, the object holds ``material`` (the fields of
             :class:`Material`), ``beta_prime``, ``apparent_area_m2`` (m²), ``Rt_m`` (R_t, m)
             and ``provenance`` (version, commit, command line, time).
@@ -147,6 +144,7 @@ class StiffnessCurve:
         path.write_text(json.dumps(d, indent=1, default=str) + "\n")
         return path
 
+    @fill_doc(WRITE_DOCS)
     def to_csv(self, path: str | Path, islands: StiffnessCurve | None = None) -> Path:
         """Write the columns of :meth:`to_dict` as CSV (full float64 precision).
 
@@ -167,9 +165,7 @@ class StiffnessCurve:
         modulus), then, with ``islands``, ``Ec_over_Estar_islands`` and
         ``Ec_over_E_young_islands``: both normalisations under explicit names.
 
-        Returns
-        -------
-        Path
+        {returns_path}
             ``path``.
 
         Raises
@@ -253,17 +249,13 @@ class PowerLawFit:
             del d["r"]
         return d
 
+    @fill_doc(WRITE_DOCS)
     def to_json(self, path: str | Path) -> Path:
         """Write :meth:`to_dict` as JSON.
 
-        Parameters
-        ----------
-        path : str or Path
-            File to write (overwritten).
+        {path}
 
-        Returns
-        -------
-        Path
+        {returns_path}
             ``path``. Besides the fields of :meth:`to_dict`, the object holds ``provenance``
             (version, commit, command line, time).
         """

@@ -17,6 +17,7 @@ import numpy as np
 import warp as wp
 
 from ._support.device import as_device, check_memory, resolve_device
+from ._support.docs import fill_doc
 from ._support.reduce import height_range
 from ._support.validate import HEIGHT_LIMIT_M
 from .kernels import wm as _k
@@ -30,6 +31,15 @@ __all__ = [
     "wm_spec",
     "wm_surface",
 ]
+
+WM_DOCS = {
+    "{spec_device}": (
+        "spec : WMTerms\n    The WM parameters, from :func:`wm_spec`.\n"
+        "device : str or warp.context.Device, optional\n"
+        "    Warp device; see :func:`warptrunc.resolve_device`."
+    ),
+}
+"""Parameter text of the WM evaluators, written once (:func:`fill_doc`)."""
 
 
 def pad_to(v: int, t: int) -> int:
@@ -192,6 +202,7 @@ def _raw_sum(spec: WMTerms, device, cpu_threads: int | None = None):
     return z, c0, lo, hi
 
 
+@fill_doc(WM_DOCS)
 def wm_heights(spec: WMTerms, device: wp.DeviceLike = None, *, cpu_threads: int | None = None):
     """Evaluate the unscaled WM sum S (dimensionless) on ``device``; returns a (ny, nx) wp.array.
 
@@ -199,10 +210,7 @@ def wm_heights(spec: WMTerms, device: wp.DeviceLike = None, *, cpu_threads: int 
 
     Parameters
     ----------
-    spec : WMTerms
-        The WM parameters, from :func:`wm_spec`.
-    device : str or warp.context.Device, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
+    {spec_device}
     cpu_threads : int, optional
         Python threads for the CPU product of the ``"tile"`` method (default: the number of
         CPU cores).
@@ -223,6 +231,7 @@ def wm_heights(spec: WMTerms, device: wp.DeviceLike = None, *, cpu_threads: int 
     return z
 
 
+@fill_doc(WM_DOCS)
 def generate_on_device(spec: WMTerms, device: wp.DeviceLike = None) -> tuple[wp.array, float]:
     """Heights z = scale·S (m) as a (ny, nx) float32 Warp array on ``device``, and the scale.
 
@@ -230,10 +239,7 @@ def generate_on_device(spec: WMTerms, device: wp.DeviceLike = None) -> tuple[wp.
 
     Parameters
     ----------
-    spec : WMTerms
-        The WM parameters, from :func:`wm_spec`.
-    device : str or warp.context.Device, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
+    {spec_device}
 
     Returns
     -------

@@ -8,6 +8,7 @@ The scripts import it as ``from _common import ...``: run as
 
 from __future__ import annotations
 
+import argparse
 import statistics
 import time
 from collections.abc import Callable
@@ -36,3 +37,15 @@ def timeit(fn: Callable[[], object], repeats: int, sync: Callable[[], object]) -
     return statistics.median(ts)
 
 __all__ = ["ROOT", "git_commit", "timeit"]
+
+
+def bench_parser(description: str | None) -> argparse.ArgumentParser:
+    """The options every timing benchmark takes: ``--device``, ``--n``, ``--repeats``, ``--out``."""
+    ap = argparse.ArgumentParser(
+        description=description, formatter_class=argparse.ArgumentDefaultsHelpFormatter
+    )
+    ap.add_argument("--device", default=None, help="cpu, cuda:0, ... (default: CUDA if present)")
+    ap.add_argument("--n", type=int, nargs="+", default=[1024, 4096], help="pixels per side")
+    ap.add_argument("--repeats", type=int, default=5, help="timed repeats per measurement")
+    ap.add_argument("--out", type=Path, default=Path("bench"), help="folder for the JSON")
+    return ap

@@ -18,16 +18,14 @@ Run
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import platform
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import warp as wp
-from _common import timeit
+from _common import bench_parser, timeit
 
 import warptrunc
 from warptrunc import fractal
@@ -163,13 +161,7 @@ def run_case(n: int, device, repeats: int, max_ref_n: int = 4096) -> dict:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(
-        description=__doc__, formatter_class=argparse.ArgumentDefaultsHelpFormatter
-    )
-    ap.add_argument("--device", default=None, help="cpu, cuda:0, ... (default: CUDA if present)")
-    ap.add_argument("--n", type=int, nargs="+", default=[1024, 4096], help="pixels per side")
-    ap.add_argument("--repeats", type=int, default=5, help="timed repeats per measurement")
-    ap.add_argument("--out", type=Path, default=Path("bench"), help="folder for the JSON")
+    ap = bench_parser(__doc__)
     ap.add_argument(
         "--max-ref-n", type=int, default=4096, help="largest n timed with the NumPy reference"
     )

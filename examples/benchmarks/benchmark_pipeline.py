@@ -22,7 +22,6 @@ Run
 
 from __future__ import annotations
 
-import argparse
 import json
 import platform
 import statistics
@@ -31,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 import warp as wp
-from _common import git_commit, timeit
+from _common import bench_parser, git_commit, timeit
 
 import warptrunc
 from warptrunc.descriptors import describe
@@ -187,13 +186,7 @@ def run_end_to_end(n: int, device, repeats: int) -> dict:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(
-        description=__doc__, formatter_class=argparse.ArgumentDefaultsHelpFormatter
-    )
-    ap.add_argument("--device", default=None, help="cpu, cuda:0, ... (default: CUDA if present)")
-    ap.add_argument("--n", type=int, nargs="+", default=[1024, 4096], help="pixels per side")
-    ap.add_argument("--repeats", type=int, default=5, help="timed repeats per measurement")
-    ap.add_argument("--out", type=Path, default=Path("bench"), help="folder for the JSON")
+    ap = bench_parser(__doc__)
     ap.add_argument("--quick", action="store_true", help="one 256² case, 2 repeats")
     ap.add_argument("--json", type=Path, default=None, help="also write the JSON to this file")
     ap.add_argument(

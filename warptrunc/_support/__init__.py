@@ -5,6 +5,7 @@
 =================  ===========================================================================
 ``atomic``         all-or-nothing file writes (temporary sibling, rename)
 ``device``         Warp device resolution, free memory, pool trimming
+``docs``           shared docstring blocks (``fill_doc``)
 ``limits``         size limits (int32 indexing, row bands)
 ``messages``       error messages of one short line
 ``progress``       progress bars

@@ -24,6 +24,24 @@ import numpy as np
 
 __all__ = ["fields_to_dict", "jsonable", "write_atomic"]
 
+WRITE_DOCS = {
+    "{path}": "Parameters\n----------\npath : str or Path\n    File to write (overwritten).",
+    "{returns_path}": "Returns\n-------\nPath",
+}
+"""Docstring text of the results' writers (``to_csv``, ``to_json``), written once
+(:func:`warptrunc._support.docs.fill_doc`)."""
+
+
+def all_converged_property() -> property:
+    """The ``all_converged`` property of a result with a ``converged`` column (assign it in the
+    class body, where the API reference documents it with the class's own members)."""
+
+    def all_converged(self: Any) -> bool:
+        """True when every entry of ``converged`` is true (every solve converged)."""
+        return bool(np.all(self.converged))
+
+    return property(all_converged)
+
 
 def jsonable(v: Any, *, nonfinite: Literal["null", "text", "keep"] = "null") -> Any:
     """Nested dicts/lists/tuples, NumPy arrays and NumPy scalars → JSON types.

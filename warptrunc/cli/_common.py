@@ -42,6 +42,7 @@ import math
 import os
 import sys
 from pathlib import Path
+from typing import Any
 
 from .._support.atomic import probe_writable
 from .._support.messages import show
@@ -284,6 +285,34 @@ def add_device(p: argparse.ArgumentParser) -> None:
 def add_out(p: argparse.ArgumentParser, default: str = "out") -> None:
     """``--out DIR``."""
     p.add_argument("--out", type=output_dir, default=Path(default), help="output folder")
+
+
+def add_run_outputs(p: argparse.ArgumentParser, out: str, plot_help: str) -> None:
+    """``--device``, ``--out DIR`` (default ``out``), ``--no-plot`` and ``--no-progress``."""
+    add_device(p)
+    add_out(p, out)
+    p.add_argument("--no-plot", action="store_true", help=plot_help)
+    p.add_argument(
+        "--no-progress", action="store_true",
+        help="no progress bar (it is on stderr, and off when stderr is not a terminal)",
+    )  # fmt: skip
+
+
+def add_depth_options(g: Any, max_depth_fraction: float) -> None:
+    """``--increments``, ``--max-depth-fraction`` (default ``max_depth_fraction``) and
+    ``--max-depth`` on the argument group ``g``."""
+    g.add_argument(
+        "--increments", type=integer(1, 10_000_000), default=200,
+        help="number of depth increments n",
+    )  # fmt: skip
+    g.add_argument(
+        "--max-depth-fraction", type=fraction(), default=max_depth_fraction,
+        help="largest depth ω_max as a fraction of R_t (dimensionless)",
+    )  # fmt: skip
+    g.add_argument(
+        "--max-depth", type=positive("m"), default=None,
+        help="largest depth ω_max (m); overrides the fraction",
+    )  # fmt: skip
 
 
 SURFACE_EXCLUDE = ("method",)

@@ -40,12 +40,13 @@ from .._support.provenance import provenance
 from ..material import Material
 from ..stiffness import DEFAULT_MIN_PIXELS
 from ._common import (
-    check_increments,
+    add_depth_options,
     add_device,
     add_material,
     add_out,
-    add_warnings,
     add_surface_source,
+    add_warnings,
+    check_increments,
     fraction,
     integer,
     material_from_args,
@@ -97,20 +98,7 @@ def add_truncation_options(p: argparse.ArgumentParser, *, many: bool = False) ->
     several values (a sweep axis).
     """
     g = p.add_argument_group("truncation and material")
-    g.add_argument(
-        "--increments", type=integer(1, 10_000_000), default=200,
-        help="number of depth increments n",
-    )  # fmt: skip
-    g.add_argument(
-        "--max-depth-fraction", type=fraction(), default=0.1,
-        help="largest depth ω_max as a fraction of R_t (dimensionless)",
-    )  # fmt: skip
-    g.add_argument(
-        "--max-depth",
-        type=positive("m"),
-        default=None,
-        help="largest depth ω_max (m); overrides the fraction",
-    )
+    add_depth_options(g, 0.1)
     add_material(g, many=many)
     g.add_argument(
         "--beta-prime", type=positive(), default=1.0, help="geometric factor β' of Eq. 2"

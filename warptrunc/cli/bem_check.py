@@ -23,9 +23,8 @@ import sys
 
 from .._support.atomic import staged_output
 from ._common import (
-    add_device,
     add_material,
-    add_out,
+    add_run_outputs,
     add_surface_source,
     check_increments,
     integer,
@@ -98,13 +97,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--accept-unconverged", action="store_true",
         help=f"exit 0 even when a solve stopped at --maxiter (default: exit {EXIT_NOT_CONVERGED})",
     )  # fmt: skip
-    add_device(p)
-    add_out(p, "bem")
-    p.add_argument("--no-plot", action="store_true", help="skip the PNG")
-    p.add_argument(
-        "--no-progress", action="store_true",
-        help="no progress bar (it is on stderr, and off when stderr is not a terminal)",
-    )  # fmt: skip
+    add_run_outputs(p, "bem", "skip the PNG")
 
 
 def _rng(r: list[float] | None) -> str:

@@ -31,7 +31,7 @@ from .._support.atomic import staged_output
 from ..contact.settings import SolverSettings
 from ..material import Material
 from ..params import add_options, from_args
-from ._common import add_device, add_out, add_surface_source, surface_from_args
+from ._common import add_run_outputs, add_surface_source, surface_from_args
 
 NAME = "indent"
 HELP = "flat-punch indentation with partial unloadings, against truncation (Fig. 6)"
@@ -64,13 +64,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--accept-unconverged", action="store_true",
         help=f"exit 0 even when a solve did not converge (default: exit {EXIT_NOT_CONVERGED})",
     )  # fmt: skip
-    add_device(p)
-    add_out(p, "indent")
-    p.add_argument("--no-plot", action="store_true", help="skip indent.png")
-    p.add_argument(
-        "--no-progress", action="store_true",
-        help="no progress bar (it is on stderr, and off when stderr is not a terminal)",
-    )  # fmt: skip
+    add_run_outputs(p, "indent", "skip indent.png")
 
 
 def _options(msg: str) -> str:

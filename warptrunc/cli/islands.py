@@ -25,15 +25,15 @@ from ..islands.fits import applicable_depth
 from ..islands.results import MIN_ISLANDS, MIN_PIXELS, IslandCurve
 from ..plausibility import check_dimensions
 from ._common import (
-    check_increments,
+    add_depth_options,
     add_device,
     add_out,
     add_surface_source,
     add_warnings,
+    check_increments,
     fraction,
     integer,
     odd_integer,
-    positive,
     real,
     surface_from_args,
     warnings_of,
@@ -47,18 +47,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc islands``."""
     add_surface_source(p)
     g = p.add_argument_group("depths and islands")
-    g.add_argument(
-        "--increments", type=integer(1, 10_000_000), default=200,
-        help="number of depth increments n",
-    )  # fmt: skip
-    g.add_argument(
-        "--max-depth-fraction", type=fraction(), default=0.5,
-        help="largest depth ω_max as a fraction of R_t (dimensionless)",
-    )  # fmt: skip
-    g.add_argument(
-        "--max-depth", type=positive("m"), default=None,
-        help="largest depth ω_max (m); overrides the fraction",
-    )  # fmt: skip
+    add_depth_options(g, 0.5)
     g.add_argument(
         "--connectivity", type=int, choices=[4, 8], default=4,
         help="4: pixels sharing an edge form one island; 8: also pixels sharing a corner",

@@ -19,6 +19,7 @@ import numpy as np
 import warp as wp
 
 from .._support.atomic import read_json, store_rollback, strict_json
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.provenance import provenance
 from .._support.results import write_atomic
 from .._support.validate import check_int, check_range
@@ -141,6 +142,7 @@ def _settings(fractions, material, beta_prime, increments, connectivity, dtype, 
     }  # fmt: skip
 
 
+@fill_doc(SHARED_DOCS)
 def compare_study(
     out: str | Path,
     cases: list[dict[str, Any]] | None = None,
@@ -176,8 +178,7 @@ def compare_study(
         Replace a store made with other settings (its case files are deleted).
     progress : bool
         tqdm bar over the cases.
-    device : str, optional
-        Warp device.
+    {warp_device}
 
     Returns
     -------

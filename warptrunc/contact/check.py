@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from .._support.results import all_converged_property
 from .._support.table import write_columns_csv
 from .._support.validate import check_int, check_range
 from ..stiffness import Material, flat_punch_stiffness, stiffness_curve
@@ -104,10 +105,7 @@ class BemCheck:
         """(m,) A'/A_BEM (dimensionless)."""
         return _ratio(self.trunc_area, self.bem_area)
 
-    @property
-    def all_converged(self) -> bool:
-        """True when every solve converged."""
-        return bool(np.all(self.converged))
+    all_converged = all_converged_property()
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """Columns (SI units in the names) in the order of ``bem.csv``.

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_range
 from ..material import Material
 from ..params import check_value
@@ -25,6 +26,7 @@ __all__ = ["STIFFNESS_METHODS", "solve_contact"]
 STIFFNESS_METHODS = ("barber", "central", "none")
 
 
+@fill_doc(SHARED_DOCS)
 def solve_contact(
     heights: Any,
     depths: Any = None,
@@ -89,8 +91,7 @@ def solve_contact(
         Keep pressure (Pa) and gap (m) maps of every row (host memory: 16 bytes per pixel per row).
     progress : bool
         tqdm bar over the rows (stderr).
-    device : str or warp Device, optional
-        Warp device.
+    {warp_device_obj}
 
     Returns
     -------

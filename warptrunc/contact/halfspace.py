@@ -61,8 +61,10 @@ import scipy.fft
 import warp as wp
 
 from .._support.device import resolve_device
+from .._support.docs import fill_doc
 from ..kernels import contact_reduce as _kr
 from .influence import (
+    GRID_DOCS,
     SUBSTRATES,
     LaneReduction,
     build_free_spectrum,
@@ -117,17 +119,11 @@ def cupy_stream(cupy, stream: wp.Stream, ordinal: int):
     return view
 
 
+@fill_doc(GRID_DOCS)
 class ElasticHalfSpace:
     """Pixel-force → displacement operator K of an elastic half-space, on a Warp device.
 
-    Parameters
-    ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
+    {grid}
     substrate : {"free", "periodic"}
         Zero-padded isolated patch (default) or periodic map.
     dtype : {"float64", "float32"}
@@ -339,6 +335,7 @@ class ElasticHalfSpace:
         return [(i, min(size, n_batch - i)) for i in range(0, n_batch, size)]
 
     @staticmethod
+    @fill_doc(GRID_DOCS)
     def memory_terms(
         shape: tuple[int, int], substrate: str, dtype: str, *, cuda: bool = True
     ) -> dict[str, int]:
@@ -347,8 +344,7 @@ class ElasticHalfSpace:
 
         Parameters
         ----------
-        shape : (int, int)
-            Map size (ny, nx).
+        {shape}
         substrate : {"free", "periodic"}
             Half-space ((Ny, Nx) = (2ny, 2nx) for the free one, (ny, nx) for the periodic one).
         dtype : {"float64", "float32"}
@@ -389,15 +385,14 @@ class ElasticHalfSpace:
         return terms
 
     @staticmethod
+    @fill_doc(GRID_DOCS)
     def memory_bytes(shape: tuple[int, int], substrate: str, dtype: str) -> tuple[int, int]:
         """Device bytes of a half-space on a CUDA device: (held, while made).
 
         Parameters
         ----------
-        shape : (int, int)
-            Map size (ny, nx).
-        substrate : {"free", "periodic"}
-            Half-space.
+        {shape}
+        {substrate}
         dtype : {"float64", "float32"}
             Precision.
 

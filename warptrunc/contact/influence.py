@@ -18,6 +18,7 @@ import numpy as np
 import scipy.fft
 import warp as wp
 
+from .._support.docs import fill_doc
 from ..kernels import contact_reduce as _kr
 
 __all__ = [
@@ -30,6 +31,17 @@ __all__ = [
 ]
 
 SUBSTRATES = ("free", "periodic")
+
+GRID_DOCS = {
+    "{grid}": (
+        "Parameters\n----------\nshape : (int, int)\n    Map size (ny, nx).\n"
+        "pixel_size : (float, float)\n    Pixel sides (dx, dy) (m).\n"
+        "contact_modulus : float\n    Contact modulus E* (Pa)."
+    ),
+    "{shape}": "shape : (int, int)\n    Map size (ny, nx).",
+    "{substrate}": 'substrate : {"free", "periodic"}\n    Half-space.',
+}
+"""The parameters every half-space builder shares, written once (:func:`fill_doc`)."""
 
 
 def _love(x, y, a: float, b: float, contact_modulus: float, xp=np):
@@ -75,6 +87,7 @@ def slab_rows(n_rows: int, row_length: int, slab_elements: int = SLAB_ELEMENTS) 
     return int(max(1, min(n_rows, slab_elements // max(1, row_length))))
 
 
+@fill_doc(GRID_DOCS)
 def build_free_spectrum(
     shape: tuple[int, int],
     pixel_size: tuple[float, float],
@@ -98,14 +111,7 @@ def build_free_spectrum(
     float64 whatever the dtype of the outputs, so the spectrum equals :func:`influence_spectrum`
     rounded to that dtype. Temporaries: a few slabs of ``slab_elements`` float64.
 
-    Parameters
-    ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
+    {grid}
     spectrum : (ny + 1, nx + 1) array
         Output: rows 0 … ny of W (m/N), float32 or float64 (NumPy, or CuPy with ``xp=cupy``;
         may be a view of a Warp array).
@@ -152,6 +158,7 @@ def build_free_spectrum(
         del col
 
 
+@fill_doc(GRID_DOCS)
 def build_periodic_spectrum(
     shape: tuple[int, int],
     pixel_size: tuple[float, float],
@@ -166,14 +173,7 @@ def build_periodic_spectrum(
     W = 1/(q·E*/2·dx·dy) (m/N) with the mean displacement's convention of
     :func:`influence_spectrum`, evaluated in float64 and stored in the dtype of ``spectrum``.
 
-    Parameters
-    ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
+    {grid}
     spectrum : (ny//2 + 1, nx//2 + 1) array
         Output, float32 or float64 (NumPy, or CuPy with ``xp=cupy``).
     xp : module, optional
@@ -198,19 +198,13 @@ def build_periodic_spectrum(
 
 
 @functools.lru_cache(maxsize=8)
+@fill_doc(GRID_DOCS)
 def influence_spectrum(
     shape: tuple[int, int], pixel_size: tuple[float, float], contact_modulus: float, substrate: str
 ) -> np.ndarray:
     """Half spectrum W (m/N) of the half-space's pixel-force → displacement convolution.
 
-    Parameters
-    ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
+    {grid}
     substrate : {"free", "periodic"}
         Zero-padded isolated patch, or a periodic map (module docstring).
 
@@ -246,22 +240,15 @@ def influence_spectrum(
     return w
 
 
+@fill_doc(GRID_DOCS)
 def influence_table(
     shape: tuple[int, int], pixel_size: tuple[float, float], contact_modulus: float, substrate: str
 ) -> np.ndarray:
     """Real-space influence coefficients G (m/N): displacement at a pixel per unit force on
     another, by separation, for the direct summation of a few forces.
 
-    Parameters
-    ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
-    substrate : {"free", "periodic"}
-        Half-space.
+    {grid}
+    {substrate}
 
     Returns
     -------

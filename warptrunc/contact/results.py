@@ -11,6 +11,8 @@ from typing import Any
 
 import numpy as np
 
+from .._support.results import all_converged_property
+
 __all__ = ["ContactCurve", "ContactState"]
 
 
@@ -144,10 +146,7 @@ class ContactCurve:
     settings: dict[str, Any] = field(default_factory=dict)
     """Solver settings and tolerances (JSON-able)."""
 
-    @property
-    def all_converged(self) -> bool:
-        """True when every solve converged."""
-        return bool(np.all(self.converged))
+    all_converged = all_converged_property()
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """1-D columns, SI units in the names (maps and settings left out).

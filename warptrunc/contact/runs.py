@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
 from .results import ContactState
 from .solver import ContactSolver, default_pentol
 
@@ -28,6 +29,15 @@ __all__ = [
     "run_contactmechanics",
     "run_warptrunc",
 ]
+
+RUN_DOCS = {
+    "{surface_approaches}": (
+        "surface : Surface\n    The rough height map (m), on the host.\n"
+        "d : (m,) ndarray\n    Approaches δ (m), increasing.\n"
+        "contact_modulus : float\n    Reduced modulus E* (Pa)."
+    ),
+}
+"""Parameter text of both solvers' runs, written once (:func:`fill_doc`)."""
 
 EXTRA_HINT = 'pip install "warptrunc[bem]"'
 
@@ -113,6 +123,14 @@ def pentol_or_default(h: np.ndarray, pentol: float | None) -> tuple[float, str]:
     return pentol, "given"
 
 
+def _run_columns(m: int) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
+    """Zeroed columns of m approaches: F, A, k and t (a dict of float64), converged, iterations
+    and edge contact."""
+    out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
+    return out, np.zeros(m, dtype=bool), np.zeros(m, dtype=np.int64), np.zeros(m, dtype=bool)
+
+
+@fill_doc(RUN_DOCS)
 def run_contactmechanics(
     surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress
 ):
@@ -124,12 +142,7 @@ def run_contactmechanics(
 
     Parameters
     ----------
-    surface : Surface
-        The rough height map (m), on the host.
-    d : (m,) ndarray
-        Approaches δ (m), increasing.
-    contact_modulus : float
-        Reduced modulus E* (Pa).
+    {surface_approaches}
     substrate : {"free", "periodic"}
         ``FreeFFTElasticHalfSpace`` or ``PeriodicFFTElasticHalfSpace``.
     fd_step : float
@@ -179,10 +192,7 @@ def run_contactmechanics(
     pentol, pentol_note = pentol_or_default(h, pentol)
     h_max = float(h.max())
     m = d.size
-    out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
-    conv = np.zeros(m, dtype=bool)
-    nit = np.zeros(m, dtype=np.int64)
-    edge = np.zeros(m, dtype=bool)
+    out, conv, nit, edge = _run_columns(m)
     solves: list[dict[str, Any]] = []
     u0 = None
 
@@ -233,6 +243,7 @@ def run_contactmechanics(
     return out, conv, nit, edge, solves, extra
 
 
+@fill_doc(RUN_DOCS)
 def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress,
                    stiffness, dtype, device):  # fmt: skip
     """warptrunc's solves on ``device``: δ(1 − h), δ, δ(1 + h) (central) or δ and Barber's punch.
@@ -241,12 +252,7 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
 
     Parameters
     ----------
-    surface : Surface
-        The rough height map (m), on the host.
-    d : (m,) ndarray
-        Approaches δ (m), increasing.
-    contact_modulus : float
-        Reduced modulus E* (Pa).
+    {surface_approaches}
     substrate : {"free", "periodic"}
         Half-space of the solver.
     fd_step : float
@@ -297,10 +303,7 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
         pressure_tol=pressure_tol, pentol=pentol, maxiter=maxiter, device=device,
     )  # fmt: skip
     m = d.size
-    out = {k: np.zeros(m) for k in ("F", "A", "k", "t")}
-    conv = np.zeros(m, dtype=bool)
-    nit = np.zeros(m, dtype=np.int64)
-    edge = np.zeros(m, dtype=bool)
+    out, conv, nit, edge = _run_columns(m)
     solves: list[dict[str, Any]] = []
     per_row = 3 if stiffness == "central" else 1
     bar = tqdm(total=per_row * m, desc="BEM solves", unit="solve", disable=not progress)

@@ -52,12 +52,14 @@ import numpy as np
 import warp as wp
 
 from .._support.device import free_memory_bytes, release_cached_memory, resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_height_map, check_range, pair
 from ..kernels import contact as _k
 from ..kernels import contact_reduce as _kr
 from ..material import Material
 from ..params import check_value
 from .halfspace import DTYPES, ElasticHalfSpace
+from .influence import GRID_DOCS
 from .plastic import CappedSolves
 from .results import ContactState
 from .settings import SolverSettings
@@ -86,6 +88,7 @@ _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter
            "direct_max")  # fmt: skip
 
 
+@fill_doc(SHARED_DOCS)
 class ContactSolver(CappedSolves):
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
 
@@ -109,8 +112,7 @@ class ContactSolver(CappedSolves):
     hardness : float
         Hardness H (Pa), the local pressure cap, in (0, inf]; ``inf`` (default): elastic, the
         solver of today bit for bit.
-    device : str or warp Device, optional
-        Warp device.
+    {warp_device_obj}
     **legacy
         The fields of :class:`~warptrunc.contact.SolverSettings` as keywords (``substrate=``,
         ``dtype=``, ``pressure_tol=``, ``pentol=``, ``thermotol=``, ``maxiter=``, ``refresh=``,
@@ -214,6 +216,7 @@ class ContactSolver(CappedSolves):
         self._depth: float | None = None  # approach of the last solve (m)
 
     @staticmethod
+    @fill_doc(GRID_DOCS)
     def memory_terms(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
         cuda: bool = True, direct_max: int = 24,
@@ -222,10 +225,8 @@ class ContactSolver(CappedSolves):
 
         Parameters
         ----------
-        shape : (int, int)
-            Map size (ny, nx).
-        substrate : {"free", "periodic"}
-            Half-space.
+        {shape}
+        {substrate}
         dtype : {"float64", "float32"}
             Precision of the maps.
         cuda : bool, optional
@@ -255,6 +256,7 @@ class ContactSolver(CappedSolves):
         return terms
 
     @staticmethod
+    @fill_doc(GRID_DOCS)
     def memory_bytes(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
         cuda: bool = True,
@@ -263,8 +265,7 @@ class ContactSolver(CappedSolves):
 
         Parameters
         ----------
-        shape : (int, int)
-            Map size (ny, nx).
+        {shape}
         substrate : {"free", "periodic"}
             Half-space (the free one transforms a 2ny × 2nx grid, pruned to the map).
         dtype : {"float64", "float32"}

@@ -54,6 +54,7 @@ from typing import Any
 
 import warp as wp
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..surface import Surface
 from ._common import (  # noqa: F401
     DEFAULT_HEIGHT_SCALING,
@@ -157,6 +158,7 @@ def fractal_dimension(
     return power_spectrum(surface, **options)
 
 
+@fill_doc(SHARED_DOCS)
 def fractal_dimensions(
     surface: Surface,
     methods: Sequence[str] = METHODS,
@@ -174,8 +176,7 @@ def fractal_dimensions(
         Subset of ``("tri", "box", "vs", "sp")``.
     options : dict, optional
         Per-method keyword options, e.g. ``{"vs": {"axis": "x"}, "sp": {"kind": "profile"}}``.
-    device : str, optional
-        Warp device.
+    {warp_device}
 
     Returns
     -------

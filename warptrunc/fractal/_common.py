@@ -40,6 +40,15 @@ HEIGHT_SCALINGS = ("cube", "si")
 """
 
 DEFAULT_HEIGHT_SCALING = "cube"
+
+FRACTAL_DOCS = {
+    "{surface}": "surface : Surface\n    Height map (m).",
+    "{device}": "device : str, optional\n    Warp device.",
+    "{raises}": (
+        "Raises\n------\nTypeError\n    If ``surface`` is not a :class:`~warptrunc.Surface`.\nValueError"
+    ),
+}
+"""Docstring text the fractal-dimension methods share, written once (:func:`fill_doc`)."""
 """Default of ``height_scaling`` (see the README's evidence table: it recovers 3 − H of
 self-affine surfaces far better than ``"si"``)."""
 

@@ -10,11 +10,13 @@ from collections.abc import Sequence
 import numpy as np
 import warp as wp
 
+from .._support.docs import fill_doc
 from ..kernels import fractal as _k
 from ..surface import Surface
 from ..truncation.curve import surface_range
 from ._common import (
     DEFAULT_HEIGHT_SCALING,
+    FRACTAL_DOCS,
     FractalFit,
     check_scaling,
     check_sizes,
@@ -29,6 +31,7 @@ def default_box_sizes(surface: Surface) -> np.ndarray:
     smax = max(4, (min(surface.nx, surface.ny) - 1) // 8)
     return 2 ** np.arange(int(math.log2(smax)) + 1)
 
+@fill_doc(FRACTAL_DOCS)
 def triangular_prism(
     surface: Surface,
     *,
@@ -41,8 +44,7 @@ def triangular_prism(
 
     Parameters
     ----------
-    surface : Surface
-        Height map (m).
+    {surface}
     box_sizes : sequence of int, optional
         Cell sides s (pixels) to evaluate. Defaults to the powers of two from 1 to
         max(4, (min(nx, ny) − 1) // 8).
@@ -51,8 +53,7 @@ def triangular_prism(
     height_scaling : {"cube", "si"}
         ``"cube"`` (default): heights mapped onto the lateral extent first, as Gwyddion does
         (see :data:`HEIGHT_SCALINGS`); ``"si"``: heights in metres as measured.
-    device : str, optional
-        Warp device.
+    {device}
 
     Returns
     -------
@@ -60,11 +61,7 @@ def triangular_prism(
         ``scale`` = r (m), ``measure`` = A(r)/A_proj, the prism area over the projected area of
         the cells (dimensionless, ≥ 1).
 
-    Raises
-    ------
-    TypeError
-        If ``surface`` is not a :class:`~warptrunc.Surface`.
-    ValueError
+    {raises}
         If ``box_sizes`` are not at least 2 distinct integers in [1, min(nx, ny) − 1],
         ``height_scaling`` is unknown, or ``fit_range`` holds fewer than 2 evaluated scales.
 
@@ -115,6 +112,7 @@ def tri_fit(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCA
     )
 
 
+@fill_doc(FRACTAL_DOCS)
 def box_counting(
     surface: Surface,
     *,
@@ -127,8 +125,7 @@ def box_counting(
 
     Parameters
     ----------
-    surface : Surface
-        Height map (m).
+    {surface}
     box_sizes : sequence of int, optional
         Cube sides s (pixels) to evaluate; default as :func:`triangular_prism`.
     fit_range : (float, float), optional
@@ -137,8 +134,7 @@ def box_counting(
         ``"cube"`` (default): heights mapped onto the lateral extent first, so that the height
         range holds as many cubes as a side holds boxes (Gwyddion's cube counting; see
         :data:`HEIGHT_SCALINGS`); ``"si"``: heights in metres as measured.
-    device : str, optional
-        Warp device.
+    {device}
 
     Returns
     -------
@@ -146,11 +142,7 @@ def box_counting(
         ``scale`` = ε (m), ``measure`` = N(ε), the number of cubes crossed, scaled to the whole
         map when the cells do not tile it exactly (dimensionless).
 
-    Raises
-    ------
-    TypeError
-        If ``surface`` is not a :class:`~warptrunc.Surface`.
-    ValueError
+    {raises}
         If ``box_sizes`` are not at least 2 distinct integers in [1, min(nx, ny) − 1],
         ``height_scaling`` is unknown, or ``fit_range`` holds fewer than 2 evaluated scales.
 

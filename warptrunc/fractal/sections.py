@@ -10,10 +10,11 @@ from collections.abc import Sequence
 import numpy as np
 import warp as wp
 
+from .._support.docs import fill_doc
 from ..descriptors import roll_off_wavelength
 from ..kernels import fractal as _k
 from ..surface import Surface
-from ._common import FractalFit, check_sizes, fit_log_log, upload
+from ._common import FRACTAL_DOCS, FractalFit, check_sizes, fit_log_log, upload
 
 
 def default_lags(surface: Surface) -> np.ndarray:
@@ -21,6 +22,7 @@ def default_lags(surface: Surface) -> np.ndarray:
     return np.unique(np.round(np.geomspace(1, tmax, 16)).astype(np.int64))
 
 
+@fill_doc(FRACTAL_DOCS)
 def vertical_sections(
     surface: Surface,
     *,
@@ -33,8 +35,7 @@ def vertical_sections(
 
     Parameters
     ----------
-    surface : Surface
-        Height map (m).
+    {surface}
     lags : sequence of int, optional
         Lags τ (pixels). Defaults to 16 logarithmically spaced integers from 1 to
         max(4, (min(nx, ny) − 1) // 8).
@@ -45,8 +46,7 @@ def vertical_sections(
         at least the four smallest lags.
     axis : {"both", "x", "y"}
         Profiles along x (rows), along y (columns), or both pooled.
-    device : str, optional
-        Warp device.
+    {device}
 
     Returns
     -------
@@ -55,11 +55,7 @@ def vertical_sections(
         all pairs of all profiles. With ``axis="both"`` and dx ≠ dy the x and y points are
         concatenated (x first) and fitted together.
 
-    Raises
-    ------
-    TypeError
-        If ``surface`` is not a :class:`~warptrunc.Surface`.
-    ValueError
+    {raises}
         If ``lags`` are not at least 2 distinct integers in [1, min(nx, ny) − 1],
         ``axis`` is unknown, or ``fit_range`` holds fewer than 2 evaluated scales.
 

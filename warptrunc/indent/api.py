@@ -12,6 +12,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.progress import progress_bar
 from ..contact.settings import SolverSettings
 from ..material import Material
@@ -65,6 +66,7 @@ def _check_loads(window: PunchWindow, protocol: IndentProtocol, hardness: float)
         )
 
 
+@fill_doc(SHARED_DOCS)
 def indent(
     surface: Surface | Any,
     *,
@@ -129,8 +131,7 @@ def indent(
         (``overlap_fraction``), or raise.
     progress : bool
         tqdm bar over the cycles (stderr).
-    device : str or warp Device, optional
-        Warp device.
+    {warp_device_obj}
 
     Returns
     -------

@@ -31,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..contact.settings import SolverSettings
 from ..contact.solver import ContactSolver, default_pentol
 from ..material import Material
@@ -153,6 +154,7 @@ class IndentProtocol:
 # --- the cycles ---------------------------------------------------------------------------------
 
 
+@fill_doc(SHARED_DOCS)
 def make_solver(window: PunchWindow, material: Material, *, hardness: float,
                 settings: SolverSettings | None = None, device: Any = None) -> ContactSolver:  # fmt: skip
     """A contact solver on a punch window, with the penetration tolerance of the disk's heights.
@@ -167,8 +169,7 @@ def make_solver(window: PunchWindow, material: Material, *, hardness: float,
         Pressure cap H (Pa); inf = elastic.
     settings : SolverSettings, optional
         Solver settings; a finite punch needs the free half-space.
-    device : str or warp Device, optional
-        Warp device.
+    {warp_device_obj}
 
     Returns
     -------
@@ -208,6 +209,7 @@ COLUMNS = (
 """Per-peak outputs of :func:`run_cycles`."""
 
 
+@fill_doc(SHARED_DOCS)
 def run_cycles(
     window: PunchWindow,
     peak_loads: Any,
@@ -235,8 +237,7 @@ def run_cycles(
         Pressure cap H (Pa); inf = elastic.
     settings : SolverSettings, optional
         Contact-solver settings.
-    device : str or warp Device, optional
-        Warp device.
+    {warp_device_obj}
     step : callable, optional
         Called once per cycle (a progress bar's ``update``).
 

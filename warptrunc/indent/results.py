@@ -14,6 +14,8 @@ from typing import Any
 import numpy as np
 
 from .._support.atomic import strict_json
+from .._support.docs import fill_doc
+from .._support.results import WRITE_DOCS, all_converged_property
 from .._support.table import write_columns_csv
 from ..material import Material
 from ..stiffness import PowerLawFit, fit_power_law
@@ -158,10 +160,7 @@ class IndentationResult:
         """(m,) float64 E_c/E of Eq. 2 truncation, E*/E·√(A_c/A) (dimensionless)."""
         return self._over_E(self.truncation_stiffness)
 
-    @property
-    def all_converged(self) -> bool:
-        """True when every cycle of both contact models converged."""
-        return bool(np.all(self.converged))
+    all_converged = all_converged_property()
 
     # --- tables ------------------------------------------------------------------------------
 
@@ -266,34 +265,26 @@ class IndentationResult:
             "all_converged": self.all_converged,
         }
 
+    @fill_doc(WRITE_DOCS)
     def to_csv(self, path: str | Path) -> Path:
         """Write :meth:`to_dict` as CSV (full float64 precision).
 
-        Parameters
-        ----------
-        path : str or Path
-            File to write (overwritten).
+        {path}
 
-        Returns
-        -------
-        Path
+        {returns_path}
             ``path``.
         """
         return write_columns_csv(path, self.to_dict())
 
+    @fill_doc(WRITE_DOCS)
     def to_json(self, path: str | Path, **extra: Any) -> Path:
         """Write :meth:`summary` (and ``extra`` keys) as strict JSON (NaN/inf as null).
 
-        Parameters
-        ----------
-        path : str or Path
-            File to write (overwritten).
+        {path}
         **extra
             Further top-level keys (e.g. provenance).
 
-        Returns
-        -------
-        Path
+        {returns_path}
             ``path``.
         """
         path = Path(path)

@@ -21,6 +21,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_int
 from ..stiffness import cumulative_load
 from ..truncation.curve import TruncationCurve, curve_from_histogram, depth_grid, depth_thresholds
@@ -88,6 +89,7 @@ def disk_truncation(
     return curve_from_histogram(hist, depth, thr, (lo, hi), grid)
 
 
+@fill_doc(SHARED_DOCS)
 def truncation_at_loads(
     window: PunchWindow,
     loads: Any,
@@ -109,8 +111,7 @@ def truncation_at_loads(
     n_increments : int
         Depth increments of the truncation curve, from 0 to just past the depth where the
         load reaches max(loads).
-    device : str or warp Device, optional
-        Warp device.
+    {warp_device_obj}
 
     Returns
     -------

@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 import warp as wp
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..surface import Surface
 from ..truncation.curve import contact_index_map, depth_grid
 
@@ -36,6 +37,7 @@ __all__ = ["export_vtk"]
 _ROWS = 512  # rows per write, so large maps are not copied whole
 
 
+@fill_doc(SHARED_DOCS)
 def export_vtk(
     surface: Surface,
     path: str | Path,
@@ -49,8 +51,7 @@ def export_vtk(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     path : path
         ``.vti`` (VTK XML image data) or ``.vtk`` (legacy structured points).
     n_increments : int

@@ -13,6 +13,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import check_memory, resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.progress import progress_bar
 from .._support.validate import check_int, check_range
 from ..kernels import islands as _ki
@@ -38,6 +39,7 @@ from .unionfind import check_connectivity, check_index_size, check_surface
 # --- carried forest across depths -----------------------------------------------------------------
 
 
+@fill_doc(SHARED_DOCS)
 def island_counts_device(
     index: wp.array,
     n_depths: int,
@@ -54,10 +56,8 @@ def island_counts_device(
         ``n_depths`` when it never does (as from ``contact_index_map(..., as_warp=True)``).
     n_depths : int
         Number of depths n + 1.
-    connectivity : {4, 8}
-        Neighbourhood of an island.
-    periodic : bool
-        Wrap the map around in x and y.
+    {connectivity}
+    {periodic}
 
     Returns
     -------
@@ -109,6 +109,7 @@ def _check_depths(depths: Any, Rt: float) -> np.ndarray:
     return d
 
 
+@fill_doc(SHARED_DOCS)
 def islands_at_depths(
     surface: Surface,
     depths: Sequence[float] | np.ndarray,
@@ -121,18 +122,11 @@ def islands_at_depths(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     depths : sequence of float
         Truncation depths ω (m), any order; a pixel is in contact when
         ``z >= float32(z_top − ω)``.
-    connectivity : {4, 8}
-        Neighbourhood of an island.
-    periodic : bool
-        Wrap the map around in x and y.
-    device : str, optional
-        Warp device; default: where a device-resident surface lives, else
-        :func:`warptrunc.resolve_device`'s choice.
+    {label_options}
 
     Returns
     -------
@@ -182,6 +176,7 @@ def islands_at_depths(
     return out
 
 
+@fill_doc(SHARED_DOCS)
 def _islands_at_depth(
     surface: Surface,
     depth: float,
@@ -197,18 +192,11 @@ def _islands_at_depth(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     depth : float
         Truncation depth ω (m), finite and ≥ 0; a pixel is in contact when
         ``z >= float32(z_top − ω)``.
-    connectivity : {4, 8}
-        Neighbourhood of an island.
-    periodic : bool
-        Wrap the map around in x and y.
-    device : str, optional
-        Warp device; default: where a device-resident surface lives, else
-        :func:`warptrunc.resolve_device`'s choice.
+    {label_options}
 
     Returns
     -------
@@ -233,6 +221,7 @@ def _islands_at_depth(
 # --- island curve ---------------------------------------------------------------------------------
 
 
+@fill_doc(SHARED_DOCS)
 def island_curve(
     surface: Surface,
     n_increments: int = 200,
@@ -251,8 +240,7 @@ def island_curve(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     n_increments : int
         Number of depth increments n; depths ω_k = k·ω_max/n, k = 0..n.
     max_depth : float, optional
@@ -261,10 +249,8 @@ def island_curve(
         ω_max as a fraction of R_t (dimensionless). 0.5 by default, not :func:`truncate`'s 0.1:
         the island count rises and falls again deeper than the stiffness fit reads, and 0.5
         covers its peak on the paper's surfaces (Fig. 8).
-    connectivity : {4, 8}
-        Neighbourhood of an island.
-    periodic : bool
-        Wrap the map around in x and y.
+    {connectivity}
+    {periodic}
     statistics : bool
         Also carry per-island areas and perimeters: slit-island fit, area histogram and
         Σ√A_i (``sqrt_area_sum``) at every depth. ``False`` gives island counts, χ and total perimeter only (fastest).
@@ -275,9 +261,7 @@ def island_curve(
         moved to the nearest increment.
     progress : bool
         Show a tqdm progress bar over the increments.
-    device : str, optional
-        Warp device; default: where a device-resident surface lives, else
-        :func:`warptrunc.resolve_device`'s choice.
+    {device}
 
     Returns
     -------

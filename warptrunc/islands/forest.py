@@ -6,6 +6,8 @@ statistics (kernels ``warptrunc.kernels.islands``). Driven by :mod:`warptrunc.is
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import warp as wp
 
@@ -19,6 +21,16 @@ _BLOCK = 256  # threads per block of the statistics kernels (CUDA)
 
 _STRIDE_THREADS = 1 << 16  # most threads striding over the candidate roots of one increment
 
+
+
+def _launch_bucket(cmd: Any, start: int, count: int, k: int) -> None:
+    """Launch the recorded ``cmd`` over the ``count`` pixels of bucket k from ``start`` (none
+    when the bucket is empty)."""
+    if count > 0:
+        cmd.set_dim(count)
+        cmd.set_param_by_name("start", start)
+        cmd.set_param_by_name("k", k)
+        cmd.launch()
 
 class Forest:
     """One union-find forest carried through increasing depths (see ``kernels/islands.py``)."""
@@ -95,12 +107,7 @@ class Forest:
         if k >= self.n1:
             raise RuntimeError("no increment left")
         start, count = self.bucket(k)
-        if count > 0:
-            h = self._hook
-            h.set_dim(count)
-            h.set_param_by_name("start", start)
-            h.set_param_by_name("k", k)
-            h.launch()
+        _launch_bucket(self._hook, start, count, k)
         if self.statistics:
             self._update_statistics(k, start, count)
         self.k = k
@@ -165,12 +172,7 @@ class Forest:
         for name, v in (("kprev", k - 1), ("start", start), ("count", count), ("k", k)):
             m.set_param_by_name(name, v)
         m.launch()
-        if count > 0:
-            a = self._add
-            a.set_dim(count)
-            a.set_param_by_name("start", start)
-            a.set_param_by_name("k", k)
-            a.launch()
+        _launch_bucket(self._add, start, count, k)
         c = self._compact[p]
         for name, v in (("kprev", k - 1), ("start", start), ("count", count), ("k", k)):
             c.set_param_by_name(name, v)

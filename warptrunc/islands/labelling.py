@@ -10,6 +10,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import check_memory, resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_range
 from ..kernels import islands as _ki
 from .results import (
@@ -88,6 +89,7 @@ def islands_from_labels(
     )
 
 
+@fill_doc(SHARED_DOCS)
 def label_islands(
     mask: np.ndarray,
     dx: float = 1.0,
@@ -113,8 +115,7 @@ def label_islands(
     connectivity : {4, 8}
         Neighbourhood of an island. 4 (default): pixels touching at a corner only are separate
         islands (see the module Notes).
-    periodic : bool
-        Wrap the map around in x and y.
+    {periodic}
     band_rows : int, optional
         Label by row bands of this many rows, 1 ≤ band_rows ≤ ny, holding one band on the
         device at a time (masks beyond device memory or past the 2³⁰-pixel limit of the

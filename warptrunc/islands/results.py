@@ -11,6 +11,8 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
+from .._support.results import WRITE_DOCS
 from .._support.table import write_columns_csv
 
 MIN_PIXELS = 10
@@ -325,6 +327,7 @@ class IslandCurve:
             "island_growth_rate": self.island_growth_rate,
         }
 
+    @fill_doc(WRITE_DOCS)
     def to_csv(self, path: str | Path) -> Path:
         """Write the columns of :meth:`to_dict` as CSV, as ``warptrunc islands`` writes
         ``islands.csv`` (full float64 precision, ``nan`` where no fit exists).
@@ -335,9 +338,7 @@ class IslandCurve:
             File to write (overwritten): a header row of the column names, then one row per
             truncation depth.
 
-        Returns
-        -------
-        Path
+        {returns_path}
             ``path``.
         """
         return write_columns_csv(path, self.to_dict())

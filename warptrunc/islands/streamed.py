@@ -35,6 +35,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.progress import progress_bar
 from .._support.validate import check_int
 from ..kernels import stream_islands as _k
@@ -232,6 +233,7 @@ def _edge_counts(labels: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
     return counts[0], counts[1]
 
 
+@fill_doc(SHARED_DOCS)
 def streamed_islands(
     spec_or_params,
     depths: Sequence[float] | np.ndarray,
@@ -252,8 +254,7 @@ def streamed_islands(
         as in :func:`warptrunc.islands.islands_at_depths`.
     band_rows : int, optional
         Rows per band (rounded up to the product's row block); see ``truncate_streamed``.
-    connectivity : {4, 8}
-        Neighbourhood of an island.
+    {connectivity}
     device : str, optional
         Warp device; see :func:`warptrunc.resolve_device`.
     progress : bool

@@ -14,6 +14,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..kernels import euler as _ke
 from ..surface import Surface
 from ..truncation.curve import contact_index_device, depth_grid, surface_device
@@ -89,6 +90,7 @@ def topology_hist(
     return np.cumsum(hist.numpy(), axis=0)  # sync point
 
 
+@fill_doc(SHARED_DOCS)
 def topology_curve(
     surface: Surface,
     n_increments: int = 200,
@@ -103,8 +105,7 @@ def topology_curve(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     n_increments : int
         Number of depth increments n; depths ω_k = k·ω_max/n, k = 0..n (as :func:`truncate`).
     max_depth : float, optional
@@ -114,11 +115,8 @@ def topology_curve(
         (the topology is read over the same depths as the island count).
     connectivity : {4, 8}
         Connectivity of the contact set, which fixes the cell complex of χ.
-    periodic : bool
-        Wrap the map around in x and y.
-    device : str, optional
-        Warp device; default: where a device-resident surface lives, else
-        :func:`warptrunc.resolve_device`'s choice.
+    {periodic}
+    {device}
 
     Returns
     -------

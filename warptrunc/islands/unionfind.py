@@ -6,9 +6,12 @@ and the input checks shared by every island driver; moved verbatim from ``labell
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import warp as wp
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..kernels import label as _kl
 from ..surface import Surface
 from .results import (
@@ -52,6 +55,7 @@ def check_index_size(n: int) -> None:
         raise ValueError(f"grid of {n} pixels is too large for int32 indices (limit 2**30)")
 
 
+@fill_doc(SHARED_DOCS)
 def label_device(
     mask: wp.array, connectivity: int = 4, *, periodic: bool = False
 ) -> tuple[wp.array, int]:
@@ -63,8 +67,7 @@ def label_device(
         Contact mask, non-zero = contact, contiguous, on the device to run on.
     connectivity : {4, 8}
         Neighbourhood of an island (see the module Notes).
-    periodic : bool
-        Wrap the map around in x and y.
+    {periodic}
 
     Returns
     -------
@@ -129,6 +132,7 @@ def _label_parallel(
     flag = wp.empty(n, dtype=wp.int32, device=device)
     rank = wp.empty(n, dtype=wp.int32, device=device)
     per = int(bool(periodic))
+    launch = functools.partial(wp.launch, device=device)  # every pass runs on the mask's device
     if quads is None:
         quads = nx % 4 == 0 and mask.ptr % 4 == 0
     if quads:
@@ -136,64 +140,24 @@ def _label_parallel(
         as4 = lambda a, dtype: wp.array(ptr=a.ptr, dtype=dtype, shape=(q,), device=device)  # noqa: E731
         mask4, parent4 = as4(flat, wp.uint32), as4(parent, wp.vec4i)
         flag4, rank4 = as4(flag, wp.vec4i), as4(rank, wp.vec4i)
-        wp.launch(
-            _kl.init_parent4_kernel,
-            dim=q,
-            inputs=[mask4, flat, nx, SEGMENT],
-            outputs=[parent4],
-            device=device,
+        launch(_kl.init_parent4_kernel, dim=q, inputs=[mask4, flat, nx, SEGMENT], outputs=[parent4])
+        launch(
+            _kl.hook_flat_kernel, dim=n, inputs=[flat, ny, nx, connectivity, per], outputs=[parent]
         )
-        wp.launch(
-            _kl.hook_flat_kernel,
-            dim=n,
-            inputs=[flat, ny, nx, connectivity, per],
-            outputs=[parent],
-            device=device,
-        )
-        wp.launch(
-            _kl.compress_flag4_kernel,
-            dim=q,
-            inputs=[parent4],
-            outputs=[parent, flag4],
-            device=device,
-        )
+        launch(_kl.compress_flag4_kernel, dim=q, inputs=[parent4], outputs=[parent, flag4])
     else:
         dims = (ny, nx)
-        wp.launch(
-            _kl.init_parent_kernel,
-            dim=dims,
-            inputs=[flat, nx, SEGMENT],
-            outputs=[parent],
-            device=device,
+        launch(_kl.init_parent_kernel, dim=dims, inputs=[flat, nx, SEGMENT], outputs=[parent])
+        launch(
+            _kl.hook_kernel, dim=dims, inputs=[flat, ny, nx, connectivity, per], outputs=[parent]
         )
-        wp.launch(
-            _kl.hook_kernel,
-            dim=dims,
-            inputs=[flat, ny, nx, connectivity, per],
-            outputs=[parent],
-            device=device,
-        )
-        wp.launch(
-            _kl.compress_flag_kernel, dim=dims, inputs=[nx], outputs=[parent, flag], device=device
-        )
+        launch(_kl.compress_flag_kernel, dim=dims, inputs=[nx], outputs=[parent, flag])
     wp.utils.array_scan(flag, rank, inclusive=True)
     n_islands = int(rank[n - 1 : n].numpy()[0])  # sync point
     # labels overwrite the scan: a root's slot is rewritten with its own value, and no thread
     # reads the slot of a non-root
     if quads:
-        wp.launch(
-            _kl.write_labels4_kernel,
-            dim=q,
-            inputs=[parent4, parent, rank],
-            outputs=[rank4],
-            device=device,
-        )
+        launch(_kl.write_labels4_kernel, dim=q, inputs=[parent4, parent, rank], outputs=[rank4])
     else:
-        wp.launch(
-            _kl.write_labels_kernel,
-            dim=(ny, nx),
-            inputs=[parent, rank, nx],
-            outputs=[rank],
-            device=device,
-        )
+        launch(_kl.write_labels_kernel, dim=(ny, nx), inputs=[parent, rank, nx], outputs=[rank])
     return rank.reshape((ny, nx)), n_islands

@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
+
 UM = 1e6  # m → µm on axes
 FIGSIZE = (5.0, 4.0)
 DPI = 150
@@ -21,6 +23,7 @@ PAPER_ALPHA_D = (0.209, 0.090)  # the paper's α = 0.209·D_in + 0.090 (Table 3,
 
 FIGURE_DOCS = {
     "{path}": "path : path, optional\n    Save the figure as PNG here.",
+    "{title}": "title : str, optional\n    Axes title.",
     "{returns}": (
         "Returns\n-------\nmatplotlib.figure.Figure\n"
         "    The figure, also saved as PNG to ``path`` when given (parent folders created)."
@@ -32,16 +35,7 @@ replaced by its block (at that line's indentation) by :func:`figure_doc`."""
 
 def figure_doc(func: Any) -> Any:
     """Fill the :data:`FIGURE_DOCS` blocks into ``func``'s docstring; returns ``func``."""
-    lines = []
-    for line in func.__doc__.split("\n"):
-        block = FIGURE_DOCS.get(line.strip())
-        if block is None:
-            lines.append(line)
-            continue
-        indent = line[: len(line) - len(line.lstrip())]
-        lines += [indent + b if b else b for b in block.split("\n")]
-    func.__doc__ = "\n".join(lines)
-    return func
+    return fill_doc(FIGURE_DOCS)(func)
 
 
 def new_figure(figsize: tuple[float, float] = FIGSIZE, ncols: int = 1, nrows: int = 1):

@@ -47,8 +47,7 @@ def psd(
         Legend labels; default the PSD kind.
     Wr : float, optional
         Roll-off wavelength W_r (m), drawn as a vertical line.
-    title : str, optional
-        Axes title.
+    {title}
     {path}
 
     {returns}
@@ -135,8 +134,7 @@ def d_out_vs_d_in(
         ``{method: D_out}`` (dimensionless).
     d_out_std : dict of (k,) array_like, optional
         Error bars (seed standard deviations).
-    title : str, optional
-        Axes title.
+    {title}
     {path}
 
     {returns}

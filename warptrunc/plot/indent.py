@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._style import finish_figure, new_figure
+from ._style import figure_doc, finish_figure, new_figure
 
 if TYPE_CHECKING:
     from ..indent import IndentationResult
@@ -25,6 +25,7 @@ _DRAWN = (  # (model, column, colour, label, filled markers)
 )  # fmt: skip
 
 
+@figure_doc
 def indentation(
     result: IndentationResult,
     path: str | Path | None = None,
@@ -39,8 +40,7 @@ def indentation(
         From :func:`warptrunc.indent`.
     path : str or Path, optional
         Save the figure as PNG here.
-    title : str, optional
-        Axes title.
+    {title}
 
     Returns
     -------

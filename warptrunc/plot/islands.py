@@ -41,8 +41,7 @@ def island_number(
         (dotted) and the island-count peak (dash-dotted) are marked in the curve's colour.
     labels : sequence of str, optional
         Legend labels.
-    title : str, optional
-        Axes title.
+    {title}
     {path}
 
     {returns}

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ._style import (
     CONTACT_RGB,
     HEIGHT_CMAP,
@@ -28,6 +29,7 @@ from .pooling import check_pooling, pool_blocks
 
 
 @figure_doc
+@fill_doc(SHARED_DOCS)
 def height_map(
     surface: Any,
     *,
@@ -43,8 +45,7 @@ def height_map(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     depth : float, optional
         Overlay the contact set z ≥ float32(z_top − ω) at this depth ω (m) in red.
     depth_fraction : float, optional
@@ -57,8 +58,7 @@ def height_map(
         opaque red when any pixel touches, which shows every spot but overstates the area.
     cmap : str, optional
         Colour map of the heights (default viridis, grey under a contact overlay).
-    title : str, optional
-        Axes title.
+    {title}
     {path}
 
     {returns}
@@ -138,8 +138,7 @@ def area_fraction(
         Logarithmic A_c/A axis (the first, small contacts).
     spread : {"sd", "range"}
         Shaded band of a group: ±1 standard deviation, or min–max.
-    title : str, optional
-        Axes title.
+    {title}
     {path}
 
     {returns}

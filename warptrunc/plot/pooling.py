@@ -25,6 +25,7 @@ from collections.abc import Sequence
 import numpy as np
 import warp as wp
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..surface import Surface
 from ..truncation.curve import contact_index_map
 
@@ -117,6 +118,7 @@ def check_depths(surface: Surface, depth_fractions, depths, *, upto_rt: bool = F
     return d
 
 
+@fill_doc(SHARED_DOCS)
 def block_contact(
     surface: Surface, depth: np.ndarray, factor: int, pooling: str = "area", device=None
 ) -> tuple[list[np.ndarray], np.ndarray]:
@@ -124,8 +126,7 @@ def block_contact(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     depth : (k,) ndarray
         Truncation depths ω (m), validated.
     factor : int
@@ -158,6 +159,7 @@ def block_contact(
     return out, frac
 
 
+@fill_doc(SHARED_DOCS)
 def contact_masks(
     surface: Surface,
     depth: Sequence[float],
@@ -169,8 +171,7 @@ def contact_masks(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     depth : (k,) array_like
         Truncation depths ω ≥ 0 (m), in any order.
     downsample : int

@@ -48,8 +48,7 @@ def stiffness_load(
         fits, drawn with mean α ± sd and the geometric mean β.
     labels : sequence of str, optional
         Legend labels, one per curve or group.
-    title : str, optional
-        Axes title.
+    {title}
     spread : {"sd", "range"}
         Shaded band of a group: ±1 standard deviation of log(E_c/E*), or min–max.
     {path}
@@ -131,8 +130,7 @@ def alpha_vs_D(
         Draw this fit range only (default: every fit range in ``summary``).
     paper : bool
         Also draw the paper's line α = 0.209·D_in + 0.090.
-    title : str, optional
-        Axes title.
+    {title}
     {path}
 
     {returns}

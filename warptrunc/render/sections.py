@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..plot.pooling import (
     block_contact,
     check_depths,
@@ -143,6 +144,7 @@ def _rendering(path, image, depth, frac, f, pooling, scene, surface, ve, top_vie
     )
 
 
+@fill_doc(SHARED_DOCS)
 def render_truncation(
     surface: Surface,
     path: str | Path | None = None,
@@ -164,8 +166,7 @@ def render_truncation(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     path : path, optional
         Save the picture as PNG here (with the caption and the result's metadata in PNG text
         chunks).
@@ -279,6 +280,7 @@ def render_truncation(
     return result
 
 
+@fill_doc(SHARED_DOCS)
 def animate_truncation(
     surface: Surface,
     path: str | Path,
@@ -298,8 +300,7 @@ def animate_truncation(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     path : path
         Output file: ``.gif`` (written with Pillow) or ``.mp4`` (needs
         ``pip install imageio imageio-ffmpeg``).

@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..stiffness import flat_punch_stiffness, stiffness_curve
 from ..truncation.api import truncate
 from .grid import SweepOptions
@@ -44,6 +45,7 @@ def bem_blank(o: SweepOptions) -> dict[str, Any]:
     return {**out, "bem_seconds": np.nan, "bem_error": None}
 
 
+@fill_doc(SHARED_DOCS)
 def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str, Any]:
     """Elastic columns of one case: the free half-space solver against Eq. 2 at δ = f·R_t.
 
@@ -56,8 +58,7 @@ def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str,
         computed when the largest approach lies beyond it.
     options : SweepOptions
         ``bem_fractions`` (f, dimensionless), material, β', increments.
-    device : str, optional
-        Warp device.
+    {warp_device}
 
     Returns
     -------

@@ -30,6 +30,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.progress import progress_bar
 from ..plausibility import check_dimensions, check_fit, fit_error_text
 from ..stiffness import fit_power_law, stiffness_curve
@@ -59,6 +60,7 @@ Sink = Callable[[list[dict[str, Any]], "dict[str, np.ndarray] | None"], bool]
 BatchSink = Callable[[list[Result]], Any]
 
 
+@fill_doc(SHARED_DOCS)
 def compute_case(
     case: Case, options: SweepOptions, device: str | None = None
 ) -> tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]:
@@ -70,8 +72,7 @@ def compute_case(
         D, δ = R_t/W_r and seed of the WM surface.
     options : SweepOptions
         Grid size, material, increments, fit ranges and fractal methods.
-    device : str, optional
-        Warp device.
+    {warp_device}
 
     Returns
     -------
@@ -194,6 +195,7 @@ def finish_batch(cases: list[Case], options: SweepOptions, curves, seconds: floa
     return out
 
 
+@fill_doc(SHARED_DOCS)
 def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
                  batch: bool | None = None) -> list[Result]:  # fmt: skip
     """:func:`compute_case` of every case, several surfaces per launch where that applies.
@@ -204,8 +206,7 @@ def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
         The cases.
     options : SweepOptions
         Options shared by all cases.
-    device : str, optional
-        Warp device.
+    {warp_device}
     batch : bool, optional
         None: batch where :func:`~warptrunc.sweep.batch.batch_size` allows (CUDA, light cases
         of tile-sized grids); True: batch on the CPU too; False: one case at a time.
@@ -222,6 +223,7 @@ def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
     return [r for rs in batched_results(cases, options, dev, min(size, len(cases))) for r in rs]
 
 
+@fill_doc(SHARED_DOCS)
 def run_inprocess(
     cases: list[Case], options: SweepOptions, sink: BatchSink, *, device=None, total: int,
     progress: bool = True, shard_seconds: float = 1.0, max_shard: int = 4096,
@@ -236,8 +238,7 @@ def run_inprocess(
         Options shared by all cases.
     sink : callable
         Takes a list of (rows, curve) results (:func:`compute_case`): one part of the store.
-    device : str, optional
-        Warp device.
+    {warp_device}
     total : int
         Cases of the whole grid (count), for the progress bar.
     progress : bool
@@ -383,6 +384,7 @@ def batched_results(cases: list[Case], options: SweepOptions, device, size: int)
         yield finish_batch(chunk, options, curves, seconds, device)
 
 
+@fill_doc(SHARED_DOCS)
 def compute_shard(
     cases: list[Case], options: SweepOptions, device: str | None = None,
     curves: str | None = None,
@@ -395,8 +397,7 @@ def compute_shard(
         Cases of this task.
     options : SweepOptions
         Options shared by all cases.
-    device : str, optional
-        Warp device.
+    {warp_device}
     curves : str, optional
         The store's ``curves/`` folder, on a filesystem this worker shares with the client;
         None (a sweep kept in memory) returns the rows without writing anything.

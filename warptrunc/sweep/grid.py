@@ -17,6 +17,7 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
+from .._support.docs import fill_doc
 from .._support.messages import show
 from .._support.validate import MAX_INCREMENTS, MAX_SEEDS, check_int, check_range
 from ..material import Material
@@ -38,6 +39,9 @@ __all__ = [
 AXIS_SPECS = (WMSpec, Material)
 """The parameter classes whose sweepable fields (:func:`warptrunc.params.sweep_fields`) a grid
 may name as axes."""
+
+GRID_DOCS = {"{returns_grid}": "Returns\n-------\nSweepGrid\n    The grid.\n\nRaises\n------\nValueError"}
+"""The end of every grid constructor's docstring, written once (:func:`fill_doc`)."""
 
 _CORE = ("D", "Rt")
 """Not extra axes: D is one of the grid's own axes, R_t = δ·W_r follows from δ."""
@@ -466,6 +470,7 @@ class SweepGrid:
             )
 
     @classmethod
+    @fill_doc(GRID_DOCS)
     def from_values(
         cls, D: Sequence[float] | float, delta: Sequence[float] | float, seeds: Any,
         axes: dict[str, Sequence] | None = None,
@@ -483,20 +488,14 @@ class SweepGrid:
         axes : dict of str to sequence, optional
             More axes: field name → values (see the class docstring).
 
-        Returns
-        -------
-        SweepGrid
-            The grid.
-
-        Raises
-        ------
-        ValueError
+        {returns_grid}
             If a value is out of range or a seed cannot be parsed.
         """
         axes = tuple((axes or {}).items())
         return cls(D=D, delta=delta, seeds=seeds, axes=axes)  # type: ignore[arg-type]
 
     @classmethod
+    @fill_doc(GRID_DOCS)
     def from_dict(cls, d: dict[str, Any], specs: Sequence[type] = AXIS_SPECS) -> SweepGrid:
         """From {"D": [...], "delta": [...], "seeds": ..., "axes": {...}}; other keys raise ValueError.
 
@@ -508,14 +507,7 @@ class SweepGrid:
         specs : sequence of type
             Parameter classes declaring the axes.
 
-        Returns
-        -------
-        SweepGrid
-            The grid.
-
-        Raises
-        ------
-        ValueError
+        {returns_grid}
             If a key is unknown or missing, or a value is out of range.
         """
         bad = sorted(set(d) - {"D", "delta", "seeds", "axes"})
@@ -532,6 +524,7 @@ class SweepGrid:
                    specs=tuple(specs))  # fmt: skip
 
     @classmethod
+    @fill_doc(GRID_DOCS)
     def from_toml(cls, path: str | Path) -> SweepGrid:
         """From a TOML file with the keys D, delta and seeds.
 
@@ -540,14 +533,7 @@ class SweepGrid:
         path : str or Path
             TOML file (see the class docstring).
 
-        Returns
-        -------
-        SweepGrid
-            The grid.
-
-        Raises
-        ------
-        ValueError
+        {returns_grid}
             If the file is not valid TOML or its keys or values are wrong; the message starts
             with the path.
         """

@@ -10,14 +10,16 @@ from pathlib import Path
 from typing import Any
 
 from .._support.atomic import store_rollback
+from .._support.docs import fill_doc
 from .._support.validate import check_int, check_range
-from .grid import SweepGrid, SweepOptions
+from .grid import GRID_DOCS, SweepGrid, SweepOptions
 from .lock import store_lock
 from .store import Store
 
 __all__ = ["as_grid", "run_sweep"]
 
 
+@fill_doc(GRID_DOCS)
 def as_grid(grid: Any) -> SweepGrid:
     """A :class:`SweepGrid` from a grid, a dict {"D", "delta", "seeds"} or a TOML path.
 
@@ -27,14 +29,7 @@ def as_grid(grid: Any) -> SweepGrid:
         A grid (returned as is), its dict form (:meth:`SweepGrid.from_dict`) or a TOML file
         (:meth:`SweepGrid.from_toml`).
 
-    Returns
-    -------
-    SweepGrid
-        The grid.
-
-    Raises
-    ------
-    ValueError
+    {returns_grid}
         If ``grid`` is of another type, or the dict or file is invalid.
     """
     if isinstance(grid, SweepGrid):

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..stiffness import DEFAULT_MIN_PIXELS
 from .grid import SweepGrid
 from .read import require_extra
@@ -167,6 +168,7 @@ class SweepTable:
         return group_stats(pd.DataFrame(self.columns), by, value)
 
 
+@fill_doc(SHARED_DOCS)
 def sweep(
     D_values: Sequence[float],
     delta_values: Sequence[float],
@@ -215,8 +217,7 @@ def sweep(
         Result store folder; None keeps the results in memory only.
     progress : bool
         Show a progress bar.
-    device : str, optional
-        Warp device.
+    {warp_device}
     **wm_kwargs
         ``M``, ``gamma``, ``Wc``, ``cutoff`` of the WM surfaces (see :class:`SweepOptions`).
 

@@ -12,6 +12,7 @@ from typing import Literal
 import warp as wp
 
 from .._support.device import resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from ..surface import Surface
 from ..wm import WMTerms, surface_from_spec
 from .curve import TruncationCurve, surface_device, truncate_surface
@@ -20,6 +21,7 @@ from .stream import as_wm_spec, banded_truncation, fits
 __all__ = ["truncate"]
 
 
+@fill_doc(SHARED_DOCS)
 def truncate(
     surface: Surface | WMTerms | Mapping,
     n_increments: int = 200,
@@ -56,9 +58,7 @@ def truncate(
         the CPU). Default: about 2²⁸ pixels per band, less where free memory is short.
     progress : bool
         Show a progress bar over the bands of each streamed pass.
-    device : str, optional
-        Warp device; default: where a device-resident surface lives, else
-        :func:`warptrunc.resolve_device`'s choice.
+    {device}
 
     Returns
     -------

@@ -19,6 +19,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.limits import flat_row_bands, row_bands
 from .._support.reduce import height_range
 from .._support.validate import MAX_INCREMENTS, check_int, check_range
@@ -268,6 +269,7 @@ def depth_thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
     return wp.array(thr, dtype=wp.float32, device=device), lo, hi, thr, inv_step
 
 
+@fill_doc(SHARED_DOCS)
 def truncate_surface(
     surface: Surface,
     n_increments: int,
@@ -286,12 +288,7 @@ def truncate_surface(
     ----------
     surface : Surface
         The height map (m), already checked by the caller.
-    n_increments : int
-        Number of depth increments n (≥ 1).
-    max_depth : float or None
-        Largest depth ω_max (m); None to use ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of R_t, in (0, 1] (dimensionless).
+    {depth_range}
     device : warp.context.Device
         The resolved Warp device.
 
@@ -342,6 +339,7 @@ def curve_from_histogram(
     )
 
 
+@fill_doc(SHARED_DOCS)
 def contact_index_map(
     surface: Surface,
     depth: np.ndarray,
@@ -352,14 +350,11 @@ def contact_index_map(
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     depth : (n+1,) array_like
         Non-decreasing, equally spaced truncation depths (m), starting at 0 (as from
         :func:`depth_grid`).
-    device : str, optional
-        Warp device; default: where a device-resident surface lives, else
-        :func:`warptrunc.resolve_device`'s choice.
+    {device}
 
     Returns
     -------
@@ -370,13 +365,13 @@ def contact_index_map(
     return contact_index_device(surface, depth, resolve_device(surface_device(surface, device))).numpy()
 
 
+@fill_doc(SHARED_DOCS)
 def contact_index_device(surface: Surface, depth: np.ndarray, device: wp.context.Device) -> wp.array:
     """:func:`contact_index_map` as a (ny, nx) int32 Warp array left on the resolved ``device``.
 
     Parameters
     ----------
-    surface : Surface
-        The height map (m).
+    {surface}
     depth : (n+1,) array_like
         Non-decreasing, equally spaced truncation depths (m), starting at 0 or more.
     device : warp.context.Device

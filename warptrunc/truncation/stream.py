@@ -35,6 +35,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import as_device, free_memory_bytes, resolve_device
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.limits import band_pixel_limit, row_bands
 from .._support.progress import progress_bar
 from .._support.results import jsonable
@@ -273,6 +274,7 @@ def wm_bands(
         yield r0, r1, z.numpy().copy()
 
 
+@fill_doc(SHARED_DOCS)
 def banded_truncation(
     spec: WMTerms,
     n_increments: int,
@@ -295,12 +297,7 @@ def banded_truncation(
     ----------
     spec : WMTerms
         The WM surface; ``method`` must be ``"tile"``.
-    n_increments : int
-        Number of depth increments n (≥ 1).
-    max_depth : float or None
-        Largest depth ω_max (m); None to use ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of R_t, in (0, 1] (dimensionless).
+    {depth_range}
     band_rows : int or None
         Rows per band, as for :func:`wm_bands`.
     device : warp.context.Device

@@ -1,0 +1,67 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The lane walk shared by the reduction kernels, and their float32/float64 overloads.
+
+Used by ``kernels/contact.py``, ``kernels/contact_plastic.py``, ``kernels/contact_reduce.py`` and
+``kernels/reduce.py``. A launch of ``lanes`` threads walks ``n`` flattened elements: on the GPU
+(``chunk == 0``) lane ``i`` takes every ``stride``-th element from ``i`` (coalesced), on the CPU
+the contiguous chunk ``[i·chunk, (i+1)·chunk)``. Integer index arithmetic only: the kernels'
+floating-point operations and their order are their own.
+"""
+
+from typing import Any
+
+import warp as wp
+
+wp.set_module_options({"enable_backward": False})
+
+
+@wp.func
+def lane_range(lane: int, stride: int, chunk: int, n: int):
+    """First flat index, end (exclusive) and step of ``lane`` over ``n`` elements."""
+    i = lane
+    end = n
+    step = stride
+    if chunk > 0:
+        i = lane * chunk
+        end = wp.min(n, i + chunk)
+        step = 1
+    return i, end, step
+
+
+@wp.func
+def lane_start(lane: int, stride: int, chunk: int, n: int, nx: int):
+    """``lane_range`` over a map of rows of ``nx``, with the start's (iy, ix) and the step's
+    (sy, sx) in rows and columns: ``i, end, step, iy, ix, sy, sx``."""
+    i, end, step = lane_range(lane, stride, chunk, n)
+    iy = i // nx
+    sy = step // nx
+    return i, end, step, iy, i - iy * nx, sy, step - sy * nx
+
+
+@wp.func
+def lane_next(i: int, iy: int, ix: int, step: int, sy: int, sx: int, nx: int):
+    """The next element of a ``lane_start`` walk: ``i, iy, ix``."""
+    iy += sy
+    ix += sx
+    if ix >= nx:
+        ix -= nx
+        iy += 1
+    return i + step, iy, ix
+
+
+def declare_overloads(kernels, vec_args=frozenset()) -> None:
+    """float32 and float64 instances of every generic kernel (``Any`` arrays become 2-D arrays of
+    the scalar, or of vec2 for the (kernel, argument) pairs in ``vec_args``), so that a module
+    compiles once."""
+    for scalar, vec in ((wp.float32, wp.vec2f), (wp.float64, wp.vec2d)):
+        for k in kernels:
+            types = {}
+            for arg in k.adj.args:
+                ty = arg.type
+                if wp.types.is_array(ty) and ty.dtype is Any:
+                    dt = vec if (k, arg.label) in vec_args else scalar
+                    types[arg.label] = wp.array2d(dtype=dt)
+                else:
+                    types[arg.label] = ty
+            wp.overload(k, types)
