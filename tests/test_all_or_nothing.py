@@ -101,7 +101,8 @@ def test_a_file_size_limit_keeps_the_earlier_outputs_and_adds_nothing(name, scan
         assert main(argv) in (0, 3), capsys.readouterr().err  # the earlier run (3: unconverged)
     capsys.readouterr()
     before = snapshot(tmp_path / "out")
-    env = {**os.environ, "PYTHONPATH": str(ROOT), "WARPTRUNC_DEVICE": "cpu", "MPLBACKEND": "Agg"}
+    path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)
+    env = {**os.environ, "PYTHONPATH": path, "WARPTRUNC_DEVICE": "cpu", "MPLBACKEND": "Agg"}
     r = subprocess.run(
         [sys.executable, "-c", LIMITED.format(limit=4000), *argv], capture_output=True,
         text=True, env=env, cwd=tmp_path, timeout=300,
