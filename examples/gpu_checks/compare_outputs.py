@@ -148,8 +148,8 @@ def compare_table(a: Path, b: Path, report: list[str]) -> int:
                 report.append(f"{b}: column {c} differs (first at row {i}: {sa.iloc[i]!r} → "
                               f"{sb.iloc[i]!r})")  # fmt: skip
         else:
-            va = [None if (isinstance(v, float) and math.isnan(v)) else v for v in sa.tolist()]
-            vb = [None if (isinstance(v, float) and math.isnan(v)) else v for v in sb.tolist()]
+            va = [None if (v is pd.NA or (isinstance(v, float) and math.isnan(v))) else v for v in sa.tolist()]
+            vb = [None if (v is pd.NA or (isinstance(v, float) and math.isnan(v))) else v for v in sb.tolist()]
             if va != vb:
                 i = next(i for i, (x, y) in enumerate(zip(va, vb)) if x != y)
                 report.append(f"{b}: column {c} differs (first at row {i}: {va[i]!r} → {vb[i]!r})")
