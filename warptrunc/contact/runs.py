@@ -26,9 +26,9 @@ __all__ = [
     "edge_contact",
     "pentol_or_default",
     "require_bem",
-    "run_contactmechanics",
-    "run_warptrunc",
 ]
+# run_warptrunc and run_contactmechanics are bem-check's two routes (warptrunc.bem_check), not
+# entry points of their own: one public function solves a contact, solve_contact.
 
 RUN_DOCS = {
     "{surface_approaches}": (
