@@ -22,9 +22,18 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from .._support.docs import fill_doc
 from .._support.results import jsonable, write_atomic
 
 __all__ = ["StageConflict", "StageStore"]
+
+_NAME = "Parameters\n----------\nname : str\n    Stage name."
+_STORE_DOCS = {
+    "{name}": _NAME,
+    "{name_params}": _NAME
+    + "\nparams : dict\n    Parameters that identify the stage, compared after ``jsonable``.",
+}
+"""The stage methods' parameter text, written once (:func:`fill_doc`)."""
 
 
 class StageConflict(ValueError):
@@ -50,13 +59,11 @@ class StageStore:
         self.reused: list[str] = []
         self.computed: list[str] = []
 
+    @fill_doc(_STORE_DOCS)
     def path(self, name: str) -> Path:
         """The stage's file.
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
+        {name}
 
         Returns
         -------
@@ -65,13 +72,11 @@ class StageStore:
         """
         return self.dir / f"{name}.json"
 
+    @fill_doc(_STORE_DOCS)
     def load(self, name: str) -> dict[str, Any] | None:
         """The stored ``{"params", "result", "seconds"}`` of a stage, or None.
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
+        {name}
 
         Returns
         -------
@@ -83,15 +88,11 @@ class StageStore:
             return None
         return json.loads(p.read_text())
 
+    @fill_doc(_STORE_DOCS)
     def check(self, name: str, params: dict[str, Any]) -> bool:
         """True when the stage is stored with ``params``; raises on a conflict (no overwrite).
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
-        params : dict
-            Parameters that identify the stage, compared after ``jsonable``.
+        {name_params}
 
         Returns
         -------
@@ -122,15 +123,11 @@ class StageStore:
             f"{', '.join(diff)}); use another --out, or --overwrite to replace it"
         )
 
+    @fill_doc(_STORE_DOCS)
     def matches(self, name: str, params: dict[str, Any]) -> bool:
         """True when the stage is stored with ``params`` (never raises).
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
-        params : dict
-            Parameters that identify the stage, compared after ``jsonable``.
+        {name_params}
 
         Returns
         -------
@@ -140,6 +137,7 @@ class StageStore:
         old = self.load(name)
         return old is not None and old.get("params") == jsonable(params)
 
+    @fill_doc(_STORE_DOCS)
     def run(
         self, name: str, params: dict[str, Any], fn: Callable[[], dict[str, Any]]
     ) -> dict[str, Any]:
@@ -148,10 +146,7 @@ class StageStore:
         The stage name goes to ``reused`` or ``computed``. A computed result is
         written atomically with its parameters and its compute time.
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
+        {name}
         params : dict
             Parameters that identify the stage (JSON-able after ``jsonable``).
         fn : callable
@@ -180,13 +175,11 @@ class StageStore:
         self.computed.append(name)
         return result
 
+    @fill_doc(_STORE_DOCS)
     def seconds(self, name: str) -> float | None:
         """Compute time of a stored stage (s).
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
+        {name}
 
         Returns
         -------
