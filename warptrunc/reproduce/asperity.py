@@ -105,12 +105,16 @@ class AsperityMaterial:
         return self.sigma_y ** (1.0 - m) * self.E**m
 
 
-_D_R = "Parameters\n----------\nd : ndarray\n    (k,) {} (m).\nR : float\n    Sphere radius (m)."
+_D_R = (
+    "Parameters\n----------\nd : ndarray\n    (k,) {} (m)."
+    "\nR : float\n    Sphere radius (m)."
+)
 _CURVE_DOCS = {
     "{d_R}": _D_R.format("interferences"),
     "{depth_R}": _D_R.format("truncation depths"),
     "{area_load}": (
-        "Returns\n-------\narea : ndarray\n    (k,) contact area (m²).\nload : ndarray\n    (k,) load (N)."
+        "Returns\n-------\narea : ndarray\n    (k,) contact area (m²).\n"
+        "load : ndarray\n    (k,) load (N)."
     ),
 }
 """Parameter and return text of the closed-form curves, written once (:func:`fill_doc`)."""

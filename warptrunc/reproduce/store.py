@@ -28,12 +28,26 @@ from .._support.results import jsonable, write_atomic
 __all__ = ["StageConflict", "StageStore"]
 
 _NAME = "Parameters\n----------\nname : str\n    Stage name."
-_STORE_DOCS = {
+STAGE_DOCS = {
     "{name}": _NAME,
     "{name_params}": _NAME
     + "\nparams : dict\n    Parameters that identify the stage, compared after ``jsonable``.",
 }
-"""The stage methods' parameter text, written once (:func:`fill_doc`)."""
+STAGE_DOCS["{profile}"] = "Parameters\n----------\np : Profile\n    The reproduction profile."
+STAGE_DOCS["{elastic_profile}"] = STAGE_DOCS["{profile}"][:-1] + " (its ``elastic_*`` fields)."
+STAGE_DOCS["{indentation_profile}"] = (
+    STAGE_DOCS["{profile}"][:-1] + " (its ``indentation_*`` fields)."
+)
+STAGE_DOCS["{stage_params_returns}"] = (
+    "Returns\n-------\ndict\n"
+    "    JSON-able parameters (compared by :class:`~warptrunc.reproduce.store.StageStore`)."
+)
+STAGE_DOCS["{report_extras}"] = (
+    "seconds : float or None\n    Compute time of the stage (s), if known.\n"
+    "figure_names : list of str, optional\n    Figures to embed.\n\nReturns\n-------\nlist of str"
+)
+"""Docstring text of the stage store and of the reproduction stages, written once
+(:func:`~warptrunc._support.docs.fill_doc`)."""
 
 
 class StageConflict(ValueError):
@@ -59,7 +73,7 @@ class StageStore:
         self.reused: list[str] = []
         self.computed: list[str] = []
 
-    @fill_doc(_STORE_DOCS)
+    @fill_doc(STAGE_DOCS)
     def path(self, name: str) -> Path:
         """The stage's file.
 
@@ -72,7 +86,7 @@ class StageStore:
         """
         return self.dir / f"{name}.json"
 
-    @fill_doc(_STORE_DOCS)
+    @fill_doc(STAGE_DOCS)
     def load(self, name: str) -> dict[str, Any] | None:
         """The stored ``{"params", "result", "seconds"}`` of a stage, or None.
 
@@ -88,7 +102,7 @@ class StageStore:
             return None
         return json.loads(p.read_text())
 
-    @fill_doc(_STORE_DOCS)
+    @fill_doc(STAGE_DOCS)
     def check(self, name: str, params: dict[str, Any]) -> bool:
         """True when the stage is stored with ``params``; raises on a conflict (no overwrite).
 
@@ -123,7 +137,7 @@ class StageStore:
             f"{', '.join(diff)}); use another --out, or --overwrite to replace it"
         )
 
-    @fill_doc(_STORE_DOCS)
+    @fill_doc(STAGE_DOCS)
     def matches(self, name: str, params: dict[str, Any]) -> bool:
         """True when the stage is stored with ``params`` (never raises).
 
@@ -137,7 +151,7 @@ class StageStore:
         old = self.load(name)
         return old is not None and old.get("params") == jsonable(params)
 
-    @fill_doc(_STORE_DOCS)
+    @fill_doc(STAGE_DOCS)
     def run(
         self, name: str, params: dict[str, Any], fn: Callable[[], dict[str, Any]]
     ) -> dict[str, Any]:
@@ -175,7 +189,7 @@ class StageStore:
         self.computed.append(name)
         return result
 
-    @fill_doc(_STORE_DOCS)
+    @fill_doc(STAGE_DOCS)
     def seconds(self, name: str) -> float | None:
         """Compute time of a stored stage (s).
 
