@@ -40,6 +40,8 @@ GRID_DOCS = {
     ),
     "{shape}": "shape : (int, int)\n    Map size (ny, nx).",
     "{substrate}": 'substrate : {"free", "periodic"}\n    Half-space.',
+    "{xp}": "xp : module, optional\n    Array module: NumPy (``None``, the default) or CuPy.",
+    "{slab_elements}": "slab_elements : int, optional\n    Float64 elements per slab (dimensionless count).",
 }
 """The parameters every half-space builder shares, written once (:func:`fill_doc`)."""
 
@@ -119,12 +121,10 @@ def build_free_spectrum(
         Output: the influence table G (m/N) at separations (iy, ix) pixels (:func:`influence_table`).
     scratch : (ny + 1, nx + 1) array of float64
         Work memory (e.g. the half-space's work spectrum, viewed as float64), overwritten.
-    xp : module, optional
-        Array module: NumPy (``None``, the default) or CuPy.
+    {xp}
     rfft : callable, optional
         ``rfft(x, axis)`` of ``xp`` (default ``scipy.fft.rfft`` with all cores).
-    slab_elements : int, optional
-        Float64 elements per slab (dimensionless count).
+    {slab_elements}
     """
     xp = np if xp is None else xp  # (a module default would print its path in the docs)
     ny, nx = shape
@@ -176,10 +176,8 @@ def build_periodic_spectrum(
     {grid}
     spectrum : (ny//2 + 1, nx//2 + 1) array
         Output, float32 or float64 (NumPy, or CuPy with ``xp=cupy``).
-    xp : module, optional
-        Array module: NumPy (``None``, the default) or CuPy.
-    slab_elements : int, optional
-        Float64 elements per slab (dimensionless count).
+    {xp}
+    {slab_elements}
     """
     xp = np if xp is None else xp  # (a module default would print its path in the docs)
     ny, nx = shape

@@ -15,6 +15,19 @@ from .._support.docs import fill_doc
 from .._support.results import WRITE_DOCS
 from .._support.table import write_columns_csv
 
+_DOCS = {
+    **WRITE_DOCS,
+    "{island_columns}": (
+        "Returns\n-------\ndict of str to ndarray\n"
+        "    (n,) columns, one row per island (areas in m², lengths in m)."
+    ),
+    "{depth_columns}": (
+        "Returns\n-------\ndict of str to ndarray\n"
+        "    Equal-length columns, one row per truncation depth ω (m)."
+    ),
+}
+"""Docstring text of the results' writers and columns, written once (:func:`fill_doc`)."""
+
 MIN_PIXELS = 10
 """Default smallest island (pixels) in a slit-island fit: below ~10 pixels the pixel-edge
 perimeter of an island is set by the grid (1 pixel: L = 4·dx, A = dx²), not by the surface."""
@@ -95,13 +108,11 @@ class Islands:
         """True once the NumPy labels exist (the lazy copy has been made)."""
         return isinstance(self.__dict__.get("_labels_store"), np.ndarray)
 
+    @fill_doc(_DOCS)
     def to_dict(self) -> dict[str, Any]:
         """Columns as 1-D arrays, one row per island.
 
-        Returns
-        -------
-        dict of str to ndarray
-            (n,) columns, one row per island (areas in m², lengths in m).
+        {island_columns}
         """
         return {
             "label": np.arange(1, self.n_islands + 1, dtype=np.int64),
@@ -129,13 +140,11 @@ class IslandSizes:
         """Number of islands."""
         return int(self.area_pixels.size)
 
+    @fill_doc(_DOCS)
     def to_dict(self) -> dict[str, Any]:
         """Columns as 1-D arrays, one row per island.
 
-        Returns
-        -------
-        dict of str to ndarray
-            (n,) columns, one row per island (areas in m², lengths in m).
+        {island_columns}
         """
         return {
             "depth_m": np.full(self.n_islands, self.depth),
@@ -208,13 +217,11 @@ class TopologyCurve:
     periodic: bool
     """Whether the map wraps around."""
 
+    @fill_doc(_DOCS)
     def to_dict(self) -> dict[str, Any]:
         """Columns as 1-D arrays, one row per depth.
 
-        Returns
-        -------
-        dict of str to ndarray
-            Equal-length columns, one row per truncation depth ω (m).
+        {depth_columns}
         """
         return {
             "depth_m": self.depth,
@@ -304,13 +311,11 @@ class IslandCurve:
         """(m+1,) int64 edges 2^j of ``area_histogram`` (pixels)."""
         return 2 ** np.arange(self.area_histogram.shape[1] + 1, dtype=np.int64)
 
+    @fill_doc(_DOCS)
     def to_dict(self) -> dict[str, Any]:
         """Columns as 1-D arrays, one row per depth (the first eight are islands.csv).
 
-        Returns
-        -------
-        dict of str to ndarray
-            Equal-length columns, one row per truncation depth ω (m).
+        {depth_columns}
         """
         return {
             "depth_m": self.depth,
@@ -327,7 +332,7 @@ class IslandCurve:
             "island_growth_rate": self.island_growth_rate,
         }
 
-    @fill_doc(WRITE_DOCS)
+    @fill_doc(_DOCS)
     def to_csv(self, path: str | Path) -> Path:
         """Write the columns of :meth:`to_dict` as CSV, as ``warptrunc islands`` writes
         ``islands.csv`` (full float64 precision, ``nan`` where no fit exists).

@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
 from .._support.validate import check_int, check_range
 from ..stiffness import Material, stiffness_curve
 from ..surface import from_heights
@@ -104,6 +105,21 @@ class AsperityMaterial:
         return self.sigma_y ** (1.0 - m) * self.E**m
 
 
+_D_R = (
+    "Parameters\n----------\nd : ndarray\n    (k,) {} (m)."
+    "\nR : float\n    Sphere radius (m)."
+)
+_CURVE_DOCS = {
+    "{d_R}": _D_R.format("interferences"),
+    "{depth_R}": _D_R.format("truncation depths"),
+    "{area_load}": (
+        "Returns\n-------\narea : ndarray\n    (k,) contact area (m²).\n"
+        "load : ndarray\n    (k,) load (N)."
+    ),
+}
+"""Parameter and return text of the closed-form curves, written once (:func:`fill_doc`)."""
+
+
 def critical_interference(R: float, mat: AsperityMaterial) -> float:
     """ω_c = (π·k·H/(2·E_r))²·R with k = 0.454 + 0.41·ν (m) (paper §2.1).
 
@@ -123,52 +139,35 @@ def critical_interference(R: float, mat: AsperityMaterial) -> float:
     return (math.pi * k * mat.H / (2.0 * mat.contact_modulus)) ** 2 * R
 
 
+@fill_doc(_CURVE_DOCS)
 def hertz(d: np.ndarray, R: float, mat: AsperityMaterial) -> tuple[np.ndarray, np.ndarray]:
     """Hertz: contact area a_E = πRd (m²) and load F = (4/3)·E_r·√R·d^{3/2} (N).
 
-    Parameters
-    ----------
-    d : ndarray
-        (k,) interferences (m).
-    R : float
-        Sphere radius (m).
+    {d_R}
     mat : AsperityMaterial
         Elastic constants (E* = ``contact_modulus``).
 
-    Returns
-    -------
-    area : ndarray
-        (k,) contact area (m²).
-    load : ndarray
-        (k,) load (N).
+    {area_load}
     """
     d = np.asarray(d, dtype=np.float64)
     return math.pi * R * d, 4.0 / 3.0 * mat.contact_modulus * math.sqrt(R) * d**1.5
 
 
+@fill_doc(_CURVE_DOCS)
 def fully_plastic(d: np.ndarray, R: float, mat: AsperityMaterial) -> tuple[np.ndarray, np.ndarray]:
     """Fully plastic: a_P = 2πRd (m²), F = H·a_P (N).
 
-    Parameters
-    ----------
-    d : ndarray
-        (k,) interferences (m).
-    R : float
-        Sphere radius (m).
+    {d_R}
     mat : AsperityMaterial
         Hardness H.
 
-    Returns
-    -------
-    area : ndarray
-        (k,) contact area (m²).
-    load : ndarray
-        (k,) load (N).
+    {area_load}
     """
     a = 2.0 * math.pi * R * np.asarray(d, dtype=np.float64)
     return a, mat.H * a
 
 
+@fill_doc(_CURVE_DOCS)
 def closed_form_truncation(
     d: np.ndarray, R: float, mat: AsperityMaterial
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -177,12 +176,7 @@ def closed_form_truncation(
     F'(d) = (2/√π)·E_r·√π·∫₀^d √(2Rs − s²) ds, integrated in closed form
     (the area under a circle's arc): ∫√(2Rs − s²) ds = ½[(s−R)√(2Rs − s²) + R² asin((s−R)/R)].
 
-    Parameters
-    ----------
-    d : ndarray
-        (k,) truncation depths (m).
-    R : float
-        Sphere radius (m).
+    {depth_R}
     mat : AsperityMaterial
         Elastic constants (E* = ``contact_modulus``).
 
@@ -231,6 +225,7 @@ def storakers_constants(m: float) -> tuple[float, float]:
     return 1.43 * math.exp(-0.97 * m), 3.0 * 6.0 ** (-m)
 
 
+@fill_doc(_CURVE_DOCS)
 def storakers(
     d: np.ndarray, R: float, mat: AsperityMaterial, m: float
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -240,12 +235,7 @@ def storakers(
     F ∝ d^{1 + m/2}: m = 1 is Hertz-like (F ∝ d^{3/2}), m = 0 perfectly plastic (F ∝ a ∝ d,
     constant mean pressure 3σ₀). σ₀ = σ_y^{1−m}·E^m (:meth:`AsperityMaterial.sigma0`).
 
-    Parameters
-    ----------
-    d : ndarray
-        (k,) interferences (m).
-    R : float
-        Sphere radius (m).
+    {d_R}
     mat : AsperityMaterial
         E and σ_y of the asperity.
     m : float
@@ -304,6 +294,7 @@ def sphere_surface(R: float, half_width: float, n: int):
     return from_heights(z.astype(np.float32), dx, generator="sphere", R=R)
 
 
+@fill_doc(_CURVE_DOCS)
 def pixel_area_bounds(d: np.ndarray, R: float, dx: float) -> tuple[np.ndarray, np.ndarray]:
     """Bounds (m²) on the pixel-counted truncated area of :func:`sphere_surface` at depth d.
 
@@ -311,12 +302,7 @@ def pixel_area_bounds(d: np.ndarray, R: float, dx: float) -> tuple[np.ndarray, n
     squares lie inside the disc of radius ρ + dx/√2 and cover the disc of radius ρ − dx/√2, so
     π·max(ρ − h, 0)² ≤ A ≤ π(ρ + h)², h = dx/√2.
 
-    Parameters
-    ----------
-    d : ndarray
-        (k,) truncation depths (m).
-    R : float
-        Sphere radius (m).
+    {depth_R}
     dx : float
         Pixel spacing (m).
 

@@ -28,7 +28,9 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
 from .profiles import Profile
+from .store import STAGE_DOCS
 
 __all__ = [
     "GOOD",
@@ -76,18 +78,13 @@ def profile_cases(p: Profile) -> list[dict[str, Any]]:
     )  # fmt: skip
 
 
+@fill_doc(STAGE_DOCS)
 def stage_params(p: Profile) -> dict[str, Any]:
     """The parameters that identify a stored ``elastic`` stage.
 
-    Parameters
-    ----------
-    p : Profile
-        The reproduction profile.
+    {profile}
 
-    Returns
-    -------
-    dict
-        JSON-able parameters (compared by :class:`~warptrunc.reproduce.store.StageStore`).
+    {stage_params_returns}
     """
     m = default_material()
     return {"elastic_D": list(p.elastic_D), "elastic_size_ratios": list(p.elastic_size_ratios),
@@ -98,13 +95,11 @@ def stage_params(p: Profile) -> dict[str, Any]:
             "solver": "warptrunc"}  # fmt: skip
 
 
+@fill_doc(STAGE_DOCS)
 def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
     """Run (or resume) the comparison study under ``out/elastic`` and summarise it.
 
-    Parameters
-    ----------
-    p : Profile
-        The reproduction profile (its ``elastic_*`` fields).
+    {elastic_profile}
     out : str or Path
         Reproduction folder; the case store is ``out/elastic``.
     device : str, optional

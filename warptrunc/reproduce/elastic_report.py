@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
 from .elastic import (
     GOOD,
     analyse_elastic,
@@ -21,6 +22,7 @@ from .elastic import (
     stage_elastic,
     stage_params,
 )
+from .store import STAGE_DOCS
 
 __all__ = ["elastic_figures", "elastic_lines"]
 
@@ -90,6 +92,7 @@ def _model_sentence(name: str, m: dict[str, Any], q: str) -> str:
     return s  # fmt: skip
 
 
+@fill_doc(STAGE_DOCS)
 def elastic_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | None,
                   figure_names: list[str] | None = None) -> list[str]:  # fmt: skip
     """The report section "How far is truncation from elastic contact?".
@@ -100,14 +103,7 @@ def elastic_lines(stage: dict[str, Any], a: dict[str, Any], seconds: float | Non
         The stage result (:func:`summary_from_rows`).
     a : dict
         Its analysis (:func:`analyse_elastic`).
-    seconds : float or None
-        Compute time of the stage (s), if known.
-    figure_names : list of str, optional
-        Figures to embed.
-
-    Returns
-    -------
-    list of str
+    {report_extras}
         Markdown lines; every number and every sentence's claim comes from ``stage`` and ``a``.
     """
     L = ["## How far is truncation from elastic contact?\n"]

@@ -32,9 +32,10 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
 from .._support.results import jsonable, write_atomic
 from .profiles import Profile
-from .store import StageConflict
+from .store import STAGE_DOCS, StageConflict
 
 __all__ = [
     "GOOD",
@@ -51,6 +52,13 @@ __all__ = [
 GOOD = 0.2
 """Truncation *tracks* a model at a (surface, punch, load) cell when
 abs(E_c,trunc/E_c,model − 1) ≤ GOOD (geometric means over the placements)."""
+_STAGE_DOCS = {
+    **STAGE_DOCS,
+    "{stage}": (
+        "Parameters\n----------\nstage : dict\n    The stage result (:func:`summary_from_pieces`)."
+    ),
+}
+"""The stage functions' parameter text, written once (:func:`fill_doc`)."""
 SUBDIR = "indentation"
 """Piece store of the stage, inside the reproduction folder."""
 RESOLUTION_SURFACE = "GB300s"
@@ -97,18 +105,13 @@ def _spec(p: Profile, name: str):
     return TABLE1[name].replace(n=p.indentation_n, L=p.indentation_L)
 
 
+@fill_doc(_STAGE_DOCS)
 def stage_params(p: Profile) -> dict[str, Any]:
     """The parameters that identify a stored ``indentation`` stage.
 
-    Parameters
-    ----------
-    p : Profile
-        The reproduction profile (its ``indentation_*`` fields).
+    {indentation_profile}
 
-    Returns
-    -------
-    dict
-        JSON-able parameters (compared by :class:`~warptrunc.reproduce.store.StageStore`).
+    {stage_params_returns}
     """
     m = _material(1.0)
     return jsonable({
@@ -122,13 +125,11 @@ def stage_params(p: Profile) -> dict[str, Any]:
     })  # fmt: skip
 
 
+@fill_doc(_STAGE_DOCS)
 def piece_names(p: Profile) -> list[tuple[str, float]]:
     """(surface, hardness factor) of every piece, in the order they are computed.
 
-    Parameters
-    ----------
-    p : Profile
-        The reproduction profile.
+    {profile}
 
     Returns
     -------
@@ -198,14 +199,12 @@ def _piece_record(res, params: dict[str, Any], gen_s: float, wall_s: float) -> d
     })  # fmt: skip
 
 
+@fill_doc(_STAGE_DOCS)
 def stage_indentation(p: Profile, out: str | Path, device, *, overwrite: bool = False,
                       deadline: float | None = None, progress: bool = True) -> dict[str, Any]:  # fmt: skip
     """Run (or continue) the pieces under ``out/indentation`` and summarise them.
 
-    Parameters
-    ----------
-    p : Profile
-        The reproduction profile (its ``indentation_*`` fields).
+    {indentation_profile}
     out : str or Path
         Reproduction folder; the pieces go to ``out/indentation``.
     device : str, optional
@@ -343,14 +342,12 @@ def _run_resolution(p: Profile, ref: dict[str, Any], device) -> dict[str, Any]:
 # --- summary --------------------------------------------------------------------------------------
 
 
+@fill_doc(_STAGE_DOCS)
 def summary_from_pieces(p: Profile, pieces: list[dict[str, Any]],
                         resolution: dict[str, Any] | None) -> dict[str, Any]:  # fmt: skip
     """The stage result from its stored pieces.
 
-    Parameters
-    ----------
-    p : Profile
-        The reproduction profile.
+    {profile}
     pieces : list of dict
         The piece records, in :func:`piece_names` order.
     resolution : dict or None
@@ -426,14 +423,12 @@ def _gmean(v: list[float]) -> float | None:
     return float(np.exp(np.mean(np.log(v)))) if v else None
 
 
+@fill_doc(_STAGE_DOCS)
 def cells(stage: dict[str, Any]) -> dict[tuple[str, str, float, float], dict[str, Any]]:
     """Per (surface, model, punch, peak load): E_c/E and F/(E·A), geometric means over the
     converged placements.
 
-    Parameters
-    ----------
-    stage : dict
-        The stage result (:func:`summary_from_pieces`).
+    {stage}
 
     Returns
     -------
@@ -523,14 +518,12 @@ def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
     return {"per_model": per, "closest": closest, "tracked": tracked, "band": good}
 
 
+@fill_doc(_STAGE_DOCS)
 def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
     """The numbers the section states: fits (surface × model), tracking per surface, the
     resolution check and the mean pressure of the largest load on the smallest punch.
 
-    Parameters
-    ----------
-    stage : dict
-        The stage result (:func:`summary_from_pieces`).
+    {stage}
 
     Returns
     -------

@@ -13,8 +13,10 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
 from .indentation import cells
 from .report_sections import fmt_value, new_figure, save_figure
+from .store import STAGE_DOCS
 
 __all__ = ["indentation_figures", "indentation_lines", "model_label"]
 
@@ -149,6 +151,7 @@ def tracking_sentence(stage: dict[str, Any], s: str, t: dict[str, Any]) -> str:
             + (f" Nearest model per cell: {closest}." if closest else ""))  # fmt: skip
 
 
+@fill_doc(STAGE_DOCS)
 def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float | None,
                       figure_names: list[str] | None = None) -> list[str]:  # fmt: skip
     """The report section "Indentation in silico (Fig. 6)".
@@ -159,14 +162,7 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
         The stage result (:func:`~warptrunc.reproduce.indentation.summary_from_pieces`).
     ana : dict
         Its analysis (:func:`~warptrunc.reproduce.indentation.analyse_indentation`).
-    seconds : float or None
-        Compute time of the stage (s), if known.
-    figure_names : list of str, optional
-        Figures to embed.
-
-    Returns
-    -------
-    list of str
+    {report_extras}
         Markdown lines; every number and every sentence's claim comes from ``stage`` and ``ana``.
     """
     from ..presets import TABLE1

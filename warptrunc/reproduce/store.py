@@ -22,9 +22,32 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from .._support.docs import fill_doc
 from .._support.results import jsonable, write_atomic
 
 __all__ = ["StageConflict", "StageStore"]
+
+_NAME = "Parameters\n----------\nname : str\n    Stage name."
+STAGE_DOCS = {
+    "{name}": _NAME,
+    "{name_params}": _NAME
+    + "\nparams : dict\n    Parameters that identify the stage, compared after ``jsonable``.",
+}
+STAGE_DOCS["{profile}"] = "Parameters\n----------\np : Profile\n    The reproduction profile."
+STAGE_DOCS["{elastic_profile}"] = STAGE_DOCS["{profile}"][:-1] + " (its ``elastic_*`` fields)."
+STAGE_DOCS["{indentation_profile}"] = (
+    STAGE_DOCS["{profile}"][:-1] + " (its ``indentation_*`` fields)."
+)
+STAGE_DOCS["{stage_params_returns}"] = (
+    "Returns\n-------\ndict\n"
+    "    JSON-able parameters (compared by :class:`~warptrunc.reproduce.store.StageStore`)."
+)
+STAGE_DOCS["{report_extras}"] = (
+    "seconds : float or None\n    Compute time of the stage (s), if known.\n"
+    "figure_names : list of str, optional\n    Figures to embed.\n\nReturns\n-------\nlist of str"
+)
+"""Docstring text of the stage store and of the reproduction stages, written once
+(:func:`~warptrunc._support.docs.fill_doc`)."""
 
 
 class StageConflict(ValueError):
@@ -50,13 +73,11 @@ class StageStore:
         self.reused: list[str] = []
         self.computed: list[str] = []
 
+    @fill_doc(STAGE_DOCS)
     def path(self, name: str) -> Path:
         """The stage's file.
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
+        {name}
 
         Returns
         -------
@@ -65,13 +86,11 @@ class StageStore:
         """
         return self.dir / f"{name}.json"
 
+    @fill_doc(STAGE_DOCS)
     def load(self, name: str) -> dict[str, Any] | None:
         """The stored ``{"params", "result", "seconds"}`` of a stage, or None.
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
+        {name}
 
         Returns
         -------
@@ -83,15 +102,11 @@ class StageStore:
             return None
         return json.loads(p.read_text())
 
+    @fill_doc(STAGE_DOCS)
     def check(self, name: str, params: dict[str, Any]) -> bool:
         """True when the stage is stored with ``params``; raises on a conflict (no overwrite).
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
-        params : dict
-            Parameters that identify the stage, compared after ``jsonable``.
+        {name_params}
 
         Returns
         -------
@@ -122,15 +137,11 @@ class StageStore:
             f"{', '.join(diff)}); use another --out, or --overwrite to replace it"
         )
 
+    @fill_doc(STAGE_DOCS)
     def matches(self, name: str, params: dict[str, Any]) -> bool:
         """True when the stage is stored with ``params`` (never raises).
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
-        params : dict
-            Parameters that identify the stage, compared after ``jsonable``.
+        {name_params}
 
         Returns
         -------
@@ -140,6 +151,7 @@ class StageStore:
         old = self.load(name)
         return old is not None and old.get("params") == jsonable(params)
 
+    @fill_doc(STAGE_DOCS)
     def run(
         self, name: str, params: dict[str, Any], fn: Callable[[], dict[str, Any]]
     ) -> dict[str, Any]:
@@ -148,10 +160,7 @@ class StageStore:
         The stage name goes to ``reused`` or ``computed``. A computed result is
         written atomically with its parameters and its compute time.
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
+        {name}
         params : dict
             Parameters that identify the stage (JSON-able after ``jsonable``).
         fn : callable
@@ -180,13 +189,11 @@ class StageStore:
         self.computed.append(name)
         return result
 
+    @fill_doc(STAGE_DOCS)
     def seconds(self, name: str) -> float | None:
         """Compute time of a stored stage (s).
 
-        Parameters
-        ----------
-        name : str
-            Stage name.
+        {name}
 
         Returns
         -------
