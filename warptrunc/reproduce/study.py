@@ -327,7 +327,7 @@ def select_stages(stages: Any = None) -> tuple[str, ...]:
     Returns
     -------
     tuple of str
-        The selected stages and those they depend on (:data:`DEPENDS`).
+        The selected stages and those they depend on (``DEPENDS``: the islands stage needs table1).
 
     Raises
     ------
