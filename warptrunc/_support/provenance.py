@@ -118,7 +118,7 @@ def provenance(device: Any = None, argv: list[str] | None = None) -> dict[str, A
     >>> sorted(provenance())[:3]
     ['command', 'created_utc', 'device']
     """
-    from .. import __version__
+    from .version import __version__
 
     if argv is None:
         argv = _command if _command is not None else list(sys.argv)

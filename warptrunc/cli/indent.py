@@ -74,7 +74,7 @@ def _options(msg: str) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run the experiment and write the outputs."""
-    from .. import __version__
+    from .._support.version import __version__
     from .._support.provenance import git_commit
     from ..indent import IndentProtocol, PlacementOverlapWarning, indent
     from ..indent.protocol import MATERIAL_DEFAULTS

@@ -275,7 +275,7 @@ def _open_store(out: Path, settings: dict[str, Any], overwrite: bool) -> None:
             f.unlink()
     import warp
 
-    from .. import __version__ as version
+    from .._support.version import __version__ as version
 
     doc["created"] = {"warptrunc_version": version, "warp_version": warp.config.version,
                       "host": platform.node()}  # fmt: skip

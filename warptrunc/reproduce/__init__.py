@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from .. import __version__
+from .._support.version import __version__
 from .._support.atomic import staged_outputs, store_rollback
 from .._support.device import resolve_device
 from .._support.provenance import git_commit, provenance

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import __version__
+from .._support.version import __version__
 from .._support.provenance import git_commit
 from ..stiffness import DEFAULT_MIN_PIXELS
 from .elastic import bem_blank
