@@ -24,8 +24,10 @@ heights map on the device *is* the plastic state (the original map is kept on th
 :meth:`~warptrunc.contact.ContactSolver.plastic_displacement` = h_original − h ≥ 0), so the
 plastic solve needs no
 more device memory than the elastic one. Load control with a cap finds the approach with
-F(δ) = load by regula falsi (Illinois) over displacement-controlled solves of the current
-surface, each warm-started from the last, and lets the surface flow once, after the last.
+F(δ) = load by a safeguarded secant iteration (bracketed; regula falsi and bisection as
+fallbacks) over displacement-controlled solves of the current surface, each warm-started from
+the last, starting from the last converged state and the last load solve's slope, and lets the
+surface flow once, after the last.
 
 Path dependence. A later solve at a smaller approach or load is elastic from the deformed
 surface (the plastic state only grows); ``plastic=False`` (or
@@ -165,19 +167,58 @@ class CappedSolves:
         return info
 
     def _solve_capped_load(self, load: float) -> dict[str, Any]:
-        """Load control with the cap: the approach δ with F(δ) = load, by regula falsi
-        (Illinois) on displacement-controlled capped solves of the current surface (warm-started
-        from each other; the heights flow once, after the last)."""
+        """Load control with the cap: the approach δ with F(δ) = load, by a safeguarded secant
+        iteration on displacement-controlled capped solves of the current surface (warm-started
+        from each other; the heights flow once, after the last).
+
+        F(δ) is nondecreasing and piecewise smooth: its slope is the stiffness of the contact
+        pixels below the cap (pixels at the cap carry H·dx·dy whatever δ), so it is linear while
+        the contact set and the capped set stay (under complete contact, the flat punch's
+        stiffness), and flat while every contact pixel is at the cap. The first step starts from
+        the last converged state when it is a point of F on the current surface (a capped solve,
+        or an elastic one with no pixel at the cap: no solve is needed there), with the slope of
+        the last load solve's final secant; then the secant of the last two iterates, kept inside
+        the bracket [F < load, F > load] once there is one (regula falsi on the bracket when the
+        secant leaves it or is flat, bisection when neither the bracket nor the load mismatch
+        shrinks by half in two steps); before a bracket, flats are crossed by doubling steps.
+        It stops when F is within ``thermotol``·load of the load, or when the bracket is narrower
+        than the approach the solver can resolve (round-off of δ in its precision); the latter
+        counts as converged, at the bracket end whose load is nearer.
+        """
         n_it, n_conv = 0, 0.0
         tol = max(self.thermotol, 1e-9) * load
         lo, f_lo = 0.0, 0.0  # the flat at the original top: nothing penetrates, F = 0
         hi = f_hi = None
-        x = self._depth if self._depth is not None and self._depth > 0 else None
+        prev: tuple[float, float] | None = None  # the last point of F before x
+        x = None
+        point = getattr(self, "_point", None)
+        hint = getattr(self, "_slope", None)
+        if point is not None and point[0] > 0 and abs(point[1] - load) > tol:
+            prev = point
+            if point[1] < load:
+                lo, f_lo = point
+            else:
+                hi, f_hi = point
+            if hint is not None and hint > 0:
+                x = point[0] + (load - point[1]) / hint
+                if hi is None:
+                    x = min(x, 4 * point[0])
+                elif not lo < x < hi:
+                    x = None
         if x is None:
-            x = max(float(self.pentol), 1e-2 * self._scale())
+            if hi is not None:
+                x = lo + (load - f_lo) * (hi - lo) / (f_hi - f_lo)
+            elif self._depth is not None and self._depth > 0:
+                x = self._depth
+            else:
+                x = max(float(self.pentol), 1e-2 * self._scale())
+        eps = 1.2e-7 if self.dtype == "float32" else 2.3e-16
         info: dict[str, Any] = {}
-        side = 0
         conv = True
+        pts: list[tuple[float, float]] = [] if prev is None else [prev]  # points of F, in order
+        flats: set[float] = set()  # approaches of points on a flat below the load
+        history: list[tuple[float, float]] = []  # (bracket width, |F − load|) per bracketed step
+        collapsed = False
         for _ in range(200):
             info = self._solve_capped(x - self.h_max)
             n_it += info["n_iterations"]
@@ -188,26 +229,59 @@ class CappedSolves:
                 break
             if f < load:
                 lo, f_lo = x, f
-                if side == -1 and hi is not None:
-                    f_hi = load + (f_hi - load) / 2  # Illinois
-                side = -1
+                same = [p[0] for p in pts if p[1] < load and abs(p[1] - f) <= tol and p[0] != x]
+                if same:
+                    flats.update(same)
+                    flats.add(x)
             else:
                 hi, f_hi = x, f
-                if side == 1:
-                    f_lo = load + (f_lo - load) / 2
-                side = 1
+            step = x - pts[-1][0] if pts else 0.0
+            pts.append((x, f))
+            # the secant of the two latest points off the flats
+            ends = [p for p in pts if p[0] not in flats][-2:]
+            cand = None
+            if len(ends) == 2 and ends[1][0] != ends[0][0]:
+                slope = (ends[1][1] - ends[0][1]) / (ends[1][0] - ends[0][0])
+                if slope > 0:
+                    self._slope = slope
+                    cand = ends[1][0] + (load - ends[1][1]) / slope
             if hi is None:
-                x = 2 * x if f <= 0 else x * min(4.0, max(1.1, (load / f) ** (2 / 3)))
+                if x in flats or cand is None or not cand > x:  # a flat, or no slope: expand
+                    if f <= 0 or x in flats:
+                        grow = 2 * x
+                    else:
+                        grow = x * min(4.0, max(1.1, (load / f) ** (2 / 3)))
+                    cand = max(grow, x + 2 * abs(step))
+                x = min(cand, 4 * x)
                 continue
-            if hi - lo <= 1e-12 * max(hi, 1e-300):
+            width = hi - lo
+            if width <= max(1e-12 * hi, 8 * eps * (abs(self.h_max) + abs(hi))):
+                collapsed = True
                 break
-            x = lo + (load - f_lo) * (hi - lo) / (f_hi - f_lo)
-            x = min(max(x, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))
+            history.append((width, abs(f - load)))
+            slow = len(history) >= 3 and (
+                width > 0.5 * history[-3][0] and abs(f - load) > 0.5 * history[-3][1]
+            )
+            if slow or (lo in flats and not (cand is not None and lo < cand < hi)):
+                x = 0.5 * (lo + hi)
+                history.clear()
+            elif cand is not None and lo < cand < hi:
+                x = cand
+            else:
+                x = lo + (load - f_lo) * width / (f_hi - f_lo)
+                x = min(max(x, lo + 1e-3 * width), hi - 1e-3 * width)
         else:
             conv = False
+        if collapsed:
+            best_lo = load - f_lo < f_hi - load
+            if (x == lo) != best_lo:  # solve again at the nearer end (warm: a few iterations)
+                info = self._solve_capped((lo if best_lo else hi) - self.h_max)
+                n_it += info["n_iterations"]
+                n_conv += info["n_convolutions"]
+                conv = conv and info["converged"]
         info = dict(info)
         info.update(n_iterations=n_it, n_convolutions=n_conv,
-                    converged=conv and abs(info["load"] - load) <= tol)  # fmt: skip
+                    converged=conv and (collapsed or abs(info["load"] - load) <= tol))  # fmt: skip
         return info
 
     def _scale(self) -> float:

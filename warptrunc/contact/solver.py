@@ -214,6 +214,8 @@ class ContactSolver(CappedSolves):
         self.plastic_frozen = False
         self.plastic_volume = 0.0  # Σ plastic displacement·dx·dy (m³)
         self._depth: float | None = None  # approach of the last solve (m)
+        self._point: tuple[float, float] | None = None  # (δ (m), F (N)) of the capped F(δ)
+        self._slope: float | None = None  # dF/dδ of the last capped load solve (N/m)
 
     @staticmethod
     @fill_doc(GRID_DOCS)
@@ -336,12 +338,26 @@ class ContactSolver(CappedSolves):
             return self._state(self._solve_elastic(depth, load), None)
         if not plastic:
             info = self._solve_elastic(depth, load)
-            return self._state(info, self._flow(apply=False))
+            flow = self._flow(apply=False)
+            # below the cap everywhere, the elastic solution is the capped one at that approach
+            self._point = self._point_of(info, flow[1] == 0)
+            return self._state(info, flow)
         if load is None:
             info = self._solve_capped(depth - self.h_max)
         else:
             info = self._solve_capped_load(load)
-        return self._state(info, self._flow(apply=info["converged"]))
+        state = self._state(info, self._flow(apply=info["converged"]))
+        # a converged loading state is a solution of the capped problem on the flowed surface
+        self._point = self._point_of(info, True)
+        return state
+
+    @staticmethod
+    def _point_of(info: dict[str, Any], feasible: bool) -> tuple[float, float] | None:
+        """(approach (m), load (N)) of a converged solve as a known point of the capped F(δ) of
+        the current surface, for the next load-controlled capped solve; None if it is not one."""
+        if feasible and info["converged"]:
+            return float(info["depth"]), float(info["load"])
+        return None
 
     def _state(self, info: dict[str, Any], flow: tuple[int, int] | None) -> ContactState:
         self._depth = float(info["depth"])
@@ -513,6 +529,8 @@ class ContactSolver(CappedSolves):
         self.offset = 0.0
         self.plastic_volume = 0.0
         self._depth = None
+        self._point = None
+        self._slope = None
 
     # --- after a solve -----------------------------------------------------------------------
 
