@@ -273,3 +273,21 @@ def test_equals_contactmechanics_plastic_system(device):
     k_cm = (np.asarray(r.jac).sum() - f_cm.sum()) / (un.depth - peak.depth)
     k = (un.load - peak.load) / (un.depth - peak.depth)
     assert math.isclose(k, k_cm, rel_tol=0.02)
+
+
+@pytest.mark.parametrize("dtype", ["float64", "float32"])
+def test_load_control_under_complete_contact_converges(device, dtype):
+    """A gently tilted plane (8 nm across 32 pixels of 1 µm) under loads that bring every pixel
+    into contact, below H·A: F(δ) becomes linear once the whole map touches, and each
+    load-controlled solve must converge to the load with every pixel in contact and none at
+    the cap (the mean pressure F/A stays well below H)."""
+    n, dx = 32, 1e-6
+    y, x = np.mgrid[0:n, 0:n]
+    z = -8e-9 * (x + y) / (2 * n)  # m
+    area = (n * dx) ** 2
+    sol = ContactSolver(z, dx, E_STAR, hardness=H_AL, dtype=dtype, device=device)
+    for p_mean in (2e7, 5e7, 1e8):  # Pa, 2–10 % of H
+        st = sol.solve(load=p_mean * area)
+        assert st.converged, (dtype, p_mean)
+        assert st.n_contact == n * n and st.n_plastic == 0
+        assert math.isclose(st.load, p_mean * area, rel_tol=1e-4)
