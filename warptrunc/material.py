@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
-from .params import check_fields, param, to_dict
+from .params import Parameters, check_fields, param, to_dict
 
 __all__ = ["DIAMOND", "Material"]
 
@@ -24,7 +24,7 @@ J. Mater. Res. 7, 1564 (1992), doi:10.1557/JMR.1992.1564)."""
 
 
 @dataclass(frozen=True)
-class Material:
+class Material(Parameters):
     """Elastic constants of the rough body and its counter-body, and the rough body's hardness.
 
     ``Material()`` is the paper's aluminium alloy (E = 70 GPa, ν = 0.33) against a rigid flat
@@ -110,19 +110,6 @@ class Material:
         """True when the hardness is infinite (no plasticity)."""
         return math.isinf(self.hardness)
 
-    def replace(self, **kw: Any) -> Material:
-        """A copy with some fields changed (validated).
-
-        Parameters
-        ----------
-        **kw
-            Fields to change.
-
-        Returns
-        -------
-        Material
-        """
-        return replace(self, **kw)
 
     def to_dict(self) -> dict[str, Any]:
         """The fields (SI) and ``contact_modulus`` (Pa).

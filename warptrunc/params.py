@@ -30,6 +30,7 @@ from typing import Any
 
 __all__ = [
     "Param",
+    "Parameters",
     "add_options",
     "check_fields",
     "check_value",
@@ -174,6 +175,36 @@ class Param:
             what = "an " if self.kind == "int" else "in "
             raise ValueError(f"{name} must be {what}{self.interval()}, got {value!r}")
         return v
+
+
+class Parameters:
+    """Base of the parameter objects (:class:`~warptrunc.WMSpec`, :class:`~warptrunc.Material`,
+    :class:`~warptrunc.SolverSettings`): ``replace`` and ``to_dict``, written once."""
+
+    def replace(self, **kw: Any) -> Any:
+        """A copy with some fields changed (validated by the copy's ``__post_init__``).
+
+        Parameters
+        ----------
+        **kw
+            Fields to change.
+
+        Returns
+        -------
+        object
+            A new instance of the same class.
+        """
+        return dataclasses.replace(self, **kw)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields as a JSON-ready dict (SI; pairs as lists, ``inf`` kept as float).
+
+        Returns
+        -------
+        dict
+            One entry per field.
+        """
+        return to_dict(self)
 
 
 def param(default: Any, doc: str, *, unit: str = "", **kw: Any) -> Any:

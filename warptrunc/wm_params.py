@@ -8,13 +8,13 @@ Re-exported by ``warptrunc.wm``, which synthesises the surfaces.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ._support.validate import HEIGHT_LIMIT_M, check_range
-from .params import check_fields, numpydoc_fields, param, to_dict
+from .params import Parameters, check_fields, numpydoc_fields, param, to_dict
 
 __all__ = ["WMSpec", "WMTerms", "wm_spec"]
 
@@ -179,7 +179,7 @@ def wm_weights(D: float, gamma: float, nn: np.ndarray) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class WMSpec:
+class WMSpec(Parameters):
     """The parameters of a Weierstrass–Mandelbrot surface (paper Eq. 4), declared once.
 
     Every field has a default, so ``WMSpec()`` is the default surface (D = 2.5, W_r = 100 µm,
@@ -260,28 +260,7 @@ class WMSpec:
         """Number of WM terms M·(n_max + 1)."""
         return self.terms().n_terms
 
-    def replace(self, **kw: Any) -> WMSpec:
-        """A copy with some fields changed (validated).
 
-        Parameters
-        ----------
-        **kw
-            Fields to change.
-
-        Returns
-        -------
-        WMSpec
-        """
-        return replace(self, **kw)
-
-    def to_dict(self) -> dict[str, Any]:
-        """The fields, JSON-ready (SI).
-
-        Returns
-        -------
-        dict
-        """
-        return to_dict(self)
 
 
 wm_spec.__doc__ = wm_spec.__doc__.replace("{fields}", numpydoc_fields(WMSpec, indent=8))

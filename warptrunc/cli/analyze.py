@@ -47,7 +47,6 @@ from ._common import (
     add_surface_source,
     add_warnings,
     check_increments,
-    fraction,
     integer,
     material_from_args,
     positive,

@@ -10,16 +10,15 @@ are generated from its fields.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
-from typing import Any
+from dataclasses import dataclass
 
-from ..params import check_fields, param, to_dict
+from ..params import Parameters, check_fields, param
 
 __all__ = ["SolverSettings"]
 
 
 @dataclass(frozen=True)
-class SolverSettings:
+class SolverSettings(Parameters):
     """Precision, substrate, tolerances and iteration limits of the contact solver.
 
     Raises
@@ -69,26 +68,4 @@ class SolverSettings:
             object.__setattr__(self, "direct_max", None)
         check_fields(self)
 
-    def replace(self, **kw: Any) -> SolverSettings:
-        """A copy with some fields changed (validated).
 
-        Parameters
-        ----------
-        **kw
-            Fields to change.
-
-        Returns
-        -------
-        SolverSettings
-        """
-        return replace(self, **kw)
-
-    def to_dict(self) -> dict[str, Any]:
-        """The fields as a JSON-ready dict.
-
-        Returns
-        -------
-        dict
-            One entry per field (``pentol`` and ``direct_max`` may be None).
-        """
-        return to_dict(self)
