@@ -36,8 +36,27 @@ json.dump(res, open(f"{out}/analyze_10240.json", "w"))
 PY
   ;;
 indent)
-  python3 -m warptrunc reproduce --profile paper --out /tmp/repro_paper --stages indentation --time-budget ${2:-500} --device cuda:0 2>&1 | tail -25
-  mkdir -p $OUT/repro_paper && cp -r /tmp/repro_paper/*.md /tmp/repro_paper/*.json /tmp/repro_paper/*.png $OUT/repro_paper/ 2>/dev/null ;;
+  # pieces of earlier calls (a cold machine lost /tmp) travel back in ./_gpu_pieces (carried)
+  mkdir -p /tmp/repro_paper/indentation $OUT/pieces
+  [ -d _gpu_pieces ] && cp -n _gpu_pieces/*.json /tmp/repro_paper/indentation/ 2>/dev/null
+  timeout ${3:-540} python3 -m warptrunc reproduce --profile paper --out /tmp/repro_paper --stages indentation --time-budget ${2:-400} --device cuda:0 --no-progress > $OUT/indent.log 2>&1
+  echo "reproduce exit $?"; tail -5 $OUT/indent.log
+  cp /tmp/repro_paper/indentation/*.json $OUT/pieces/ 2>/dev/null
+  python3 - <<'PY'
+import glob, json, os
+tot, surf = 0.0, {}
+for f in sorted(glob.glob("/tmp/repro_paper/indentation/*.json")):
+    r = json.load(open(f)); s = r.get("seconds", {})
+    if not isinstance(s, dict):  # the resolution check: one number
+        t = float(s)
+    else:
+        t = s.get("piece_s", 0.0)
+        surf[os.path.basename(f).split("__")[0]] = s.get("surface_s", 0.0)
+    tot += t
+    print(f"{os.path.basename(f):40s} {t:8.1f} s  not converged {r.get('n_not_converged')}  {r.get('device')}")
+print(f"surfaces {sum(surf.values()):.1f} s; pieces {tot:.1f} s; sum {tot + sum(surf.values()):.1f} s")
+PY
+  cp -r /tmp/repro_paper/*.md /tmp/repro_paper/*.json /tmp/repro_paper/*.png /tmp/repro_paper/stages $OUT/ 2>/dev/null ;;
 scaling)
   python3 examples/benchmarks/benchmark_solver_scaling.py --device cuda:0 --n ${2:-10240 16384 32768} --dtype float32 --budget ${3:-400} --out $OUT/scaling 2>&1 | tail -20 ;;
 esac

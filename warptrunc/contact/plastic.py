@@ -166,18 +166,45 @@ class CappedSolves:
         self.offset = offset
         return info
 
-    def _solve_capped_load(self, load: float) -> dict[str, Any]:
-        """Load control with the cap: the approach δ with F(δ) = load, by a safeguarded secant
-        iteration on displacement-controlled capped solves of the current surface (warm-started
-        from each other; the heights flow once, after the last).
+    def _solve_load_trial(self, load: float) -> dict[str, Any]:
+        """Load control with the cap, starting with an elastic trial: the elastic solution of the
+        current surface at the load (offset load control, no cap). Where no pixel reaches H it is
+        the capped solution too (it satisfies the capped problem's conditions, which have one
+        solution) and is kept; else the capped δ lies deeper (the cap only lowers F(δ)) and the
+        secant starts at the trial's approach. Once a trial has failed, the later loads of the
+        history (which reach further up the same asperities) go to the secant directly, until
+        :meth:`reset`."""
+        if getattr(self, "_trial_failed", False):
+            return self._solve_load_secant(load, capped=True)
+        trial = self._solve_elastic(None, load)
+        n_plastic = self._flow(apply=False)[1]
+        if trial["converged"] and n_plastic == 0:
+            return trial
+        self._trial_failed = True
+        # a converged trial's approach is a lower bound of the capped one; an unconverged
+        # trial (the offset iteration can stall under complete contact) tells nothing
+        start = float(trial["depth"]) if trial["converged"] else None
+        info = self._solve_load_secant(load, capped=True, start=start)
+        info.update(n_iterations=info["n_iterations"] + trial["n_iterations"],
+                    n_convolutions=info["n_convolutions"] + trial["n_convolutions"])  # fmt: skip
+        return info
+
+    def _solve_load_secant(self, load: float, *, capped: bool,
+                           start: float | None = None) -> dict[str, Any]:  # fmt: skip
+        """Load control by the approach: δ with F(δ) = load, by a safeguarded secant iteration
+        on displacement-controlled solves of the current surface, capped (``capped``; the
+        heights flow once, after the last) or elastic, each warm-started from the last.
 
         F(δ) is nondecreasing and piecewise smooth: its slope is the stiffness of the contact
         pixels below the cap (pixels at the cap carry H·dx·dy whatever δ), so it is linear while
         the contact set and the capped set stay (under complete contact, the flat punch's
         stiffness), and flat while every contact pixel is at the cap. The first step starts from
-        the last converged state when it is a point of F on the current surface (a capped solve,
-        or an elastic one with no pixel at the cap: no solve is needed there), with the slope of
-        the last load solve's final secant; then the secant of the last two iterates, kept inside
+        the last converged state when it is a point of F on the current surface (every converged
+        solve is on the elastic F; on the capped F, a capped solve or an elastic one with no
+        pixel at the cap: no solve is needed there), with the slope of the last load solve's
+        final secant or of :meth:`punch_stiffness` since; without one, from a lower bound of δ
+        (the free half-space: F(δ) ≤ K·δ with K = 2E*a the stiffness of a flat circular punch
+        of radius a = half the map's diagonal, which covers every pixel); then the secant of the last two iterates, kept inside
         the bracket [F < load, F > load] once there is one (regula falsi on the bracket when the
         secant leaves it or is flat, bisection when neither the bracket nor the load mismatch
         shrinks by half in two steps); before a bracket, flats are crossed by doubling steps.
@@ -193,6 +220,10 @@ class CappedSolves:
         x = None
         point = getattr(self, "_point", None)
         hint = getattr(self, "_slope", None)
+        if point is not None and capped and not point[2]:
+            point = None  # an elastic solution with pixels above the cap: not on the capped F
+        if point is not None:
+            point = point[:2]
         if point is not None and point[0] > 0 and abs(point[1] - load) > tol:
             prev = point
             if point[1] < load:
@@ -205,11 +236,17 @@ class CappedSolves:
                     x = min(x, 4 * point[0])
                 elif not lo < x < hi:
                     x = None
+        if start is not None and start > lo and (hi is None or start < hi):
+            x = start
         if x is None:
             if hi is not None:
                 x = lo + (load - f_lo) * (hi - lo) / (f_hi - f_lo)
             elif self._depth is not None and self._depth > 0:
                 x = self._depth
+            elif self.substrate == "free":
+                dx, dy = self.pixel_size
+                a = 0.5 * math.hypot(self.shape[1] * dx, self.shape[0] * dy)
+                x = max(load / (2.0 * self.contact_modulus * a), float(self.pentol))
             else:
                 x = max(float(self.pentol), 1e-2 * self._scale())
         eps = 1.2e-7 if self.dtype == "float32" else 2.3e-16
@@ -219,12 +256,24 @@ class CappedSolves:
         flats: set[float] = set()  # approaches of points on a flat below the load
         history: list[tuple[float, float]] = []  # (bracket width, |F − load|) per bracketed step
         collapsed = False
+        def solve_at(x: float) -> dict[str, Any]:
+            return self._solve_capped(x - self.h_max) if capped else self._solve_elastic(x, None)
+
+        n_bad = 0  # unconverged displacement solves
         for _ in range(200):
-            info = self._solve_capped(x - self.h_max)
+            info = solve_at(x)
             n_it += info["n_iterations"]
             n_conv += info["n_convolutions"]
-            conv = conv and info["converged"]
+            conv = info["converged"]
             f = info["load"]
+            if not conv:
+                # an unconverged solve's load is not a point of F: no bracket, no secant from
+                # it; try nearby (a stall is a property of the approach, rarely of its neighbours)
+                n_bad += 1
+                if n_bad > 8:
+                    break
+                x = 0.5 * (lo + hi) if hi is not None and x != 0.5 * (lo + hi) else x * (1 + 1e-3)
+                continue
             if abs(f - load) <= tol:
                 break
             if f < load:
@@ -275,10 +324,10 @@ class CappedSolves:
         if collapsed:
             best_lo = load - f_lo < f_hi - load
             if (x == lo) != best_lo:  # solve again at the nearer end (warm: a few iterations)
-                info = self._solve_capped((lo if best_lo else hi) - self.h_max)
+                info = solve_at(lo if best_lo else hi)
                 n_it += info["n_iterations"]
                 n_conv += info["n_convolutions"]
-                conv = conv and info["converged"]
+                conv = info["converged"]
         info = dict(info)
         info.update(n_iterations=n_it, n_convolutions=n_conv,
                     converged=conv and (collapsed or abs(info["load"] - load) <= tol))  # fmt: skip

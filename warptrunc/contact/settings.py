@@ -54,6 +54,13 @@ class SolverSettings(Parameters):
         unit="m", gt=0.0, optional=True,
     )  # fmt: skip
     thermotol: float = param(1e-6, "relative tolerance on the total force", gt=0.0)
+    load_control: str = param(
+        "offset", "how a solve at a given load finds its approach: 'offset' moves the rigid "
+        "offset inside the CG (ContactMechanics'; with a hardness, an elastic trial that is "
+        "kept when no pixel exceeds H, else the secant from it), 'secant' runs a safeguarded "
+        "secant on the approach over displacement-controlled solves",
+        choices=("offset", "secant"),
+    )  # fmt: skip
     maxiter: int = param(10000, "largest number of iterations per solve", kind="int", ge=1)
     refresh: int = param(
         50, "transform the forces afresh at least every this many iterations", kind="int", ge=1

@@ -85,7 +85,7 @@ def default_pentol(heights: np.ndarray) -> float:
 
 
 _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter", "refresh",
-           "direct_max")  # fmt: skip
+           "direct_max", "load_control")  # fmt: skip
 
 
 @fill_doc(SHARED_DOCS)
@@ -165,6 +165,7 @@ class ContactSolver(CappedSolves):
         if self.pentol == 0.0:
             self.pentol = 1e-3 * max(float(np.ptp(h)), dx)  # a flat map: a fraction of its scale
         self.thermotol = settings.thermotol
+        self.load_control = settings.load_control
         self.maxiter = settings.maxiter
         self.refresh = settings.refresh
         self.device = resolve_device(device)
@@ -214,8 +215,10 @@ class ContactSolver(CappedSolves):
         self.plastic_frozen = False
         self.plastic_volume = 0.0  # Σ plastic displacement·dx·dy (m³)
         self._depth: float | None = None  # approach of the last solve (m)
-        self._point: tuple[float, float] | None = None  # (δ (m), F (N)) of the capped F(δ)
-        self._slope: float | None = None  # dF/dδ of the last capped load solve (N/m)
+        # (δ (m), F (N), also on the capped curve) of the last converged solve
+        self._point: tuple[float, float, bool] | None = None
+        self._slope: float | None = None  # dF/dδ at or near the last solution (N/m)
+        self._trial_failed = False  # an elastic trial of a capped load solve exceeded H
 
     @staticmethod
     @fill_doc(GRID_DOCS)
@@ -308,7 +311,12 @@ class ContactSolver(CappedSolves):
         depth : float, optional
             Approach δ of the flat from first touch at the highest pixel of the original map (m).
         load : float, optional
-            Total normal load (N), instead of ``depth``.
+            Total normal load (N), instead of ``depth``. How the approach is found is
+            ``settings.load_control``: ``"offset"`` moves the rigid offset inside the CG
+            (ContactMechanics'; with the cap, an elastic trial kept when no pixel exceeds H,
+            else the secant from it); ``"secant"`` runs a secant on the approach over
+            displacement-controlled solves (from the last converged solution, with the slope
+            of the last secant or of :meth:`punch_stiffness`).
         plastic : bool, optional
             False: an elastic solve of the current (deformed) surface with the plastic state
             frozen and no pressure cap (for unloading); True: capped and flowing. Default: not
@@ -334,29 +342,38 @@ class ContactSolver(CappedSolves):
             depth = float(depth)
         if plastic is None:
             plastic = not self.plastic_frozen
+        secant = load is not None and self.load_control == "secant"
         if math.isinf(self.hardness):
-            return self._state(self._solve_elastic(depth, load), None)
+            info = self._solve_load_secant(load, capped=False) if secant else (
+                self._solve_elastic(depth, load))  # fmt: skip
+            self._point = self._point_of(info, capped=True)
+            return self._state(info, None)
         if not plastic:
-            info = self._solve_elastic(depth, load)
+            info = self._solve_load_secant(load, capped=False) if secant else (
+                self._solve_elastic(depth, load))  # fmt: skip
             flow = self._flow(apply=False)
             # below the cap everywhere, the elastic solution is the capped one at that approach
-            self._point = self._point_of(info, flow[1] == 0)
+            self._point = self._point_of(info, capped=flow[1] == 0)
             return self._state(info, flow)
         if load is None:
             info = self._solve_capped(depth - self.h_max)
+        elif secant:
+            info = self._solve_load_secant(load, capped=True)
         else:
-            info = self._solve_capped_load(load)
+            info = self._solve_load_trial(load)
         state = self._state(info, self._flow(apply=info["converged"]))
         # a converged loading state is a solution of the capped problem on the flowed surface
-        self._point = self._point_of(info, True)
+        self._point = self._point_of(info, capped=True)
         return state
 
     @staticmethod
-    def _point_of(info: dict[str, Any], feasible: bool) -> tuple[float, float] | None:
-        """(approach (m), load (N)) of a converged solve as a known point of the capped F(δ) of
-        the current surface, for the next load-controlled capped solve; None if it is not one."""
-        if feasible and info["converged"]:
-            return float(info["depth"]), float(info["load"])
+    def _point_of(info: dict[str, Any], *, capped: bool) -> tuple[float, float, bool] | None:
+        """(approach (m), load (N), on the capped curve) of a converged solve: a known point of
+        the elastic F(δ) of the current surface (every converged solve is one: where the
+        surface flowed, p = H and the gap is closed) and, when ``capped``, of the capped F(δ)
+        too, for the next secant load control; None if it did not converge."""
+        if info["converged"]:
+            return float(info["depth"]), float(info["load"]), bool(capped)
         return None
 
     def _state(self, info: dict[str, Any], flow: tuple[int, int] | None) -> ContactState:
@@ -531,6 +548,7 @@ class ContactSolver(CappedSolves):
         self._depth = None
         self._point = None
         self._slope = None
+        self._trial_failed = False
 
     # --- after a solve -----------------------------------------------------------------------
 
@@ -547,7 +565,9 @@ class ContactSolver(CappedSolves):
         Returns
         -------
         (float, int, bool)
-            Stiffness k (N/m), CG iterations, converged.
+            Stiffness k (N/m), CG iterations, converged. A converged k is also the slope with
+            which the next secant load control (:meth:`solve` with ``load``) takes its first
+            step: it is dF/dδ of unloading from the current solution.
         """
         if rtol is None:
             rtol = 1e-10 if self.dtype == "float64" else 1e-5
@@ -595,6 +615,8 @@ class ContactSolver(CappedSolves):
                       inputs=[res, self.mask, wp.float64(rr_new / rr)], outputs=[d], device=dev)  # fmt: skip
             rr = rr_new
         self.t.zero_()
+        if ok and k > 0:
+            self._slope = float(k)  # dF/dδ of unloading from here: the next secant's first step
         return float(k), it, ok
 
     def maps(self) -> tuple[np.ndarray, np.ndarray]:

@@ -11,7 +11,9 @@ stiffness two ways, with the plastic state frozen (the surface stays as the peak
   :meth:`ContactSolver.punch_stiffness`. Exact at the start of elastic unloading, since the edge
   pressures are finite (≤ H); never the loading tangent, which is lower.
 * **the paper's protocol**: unload by ``unload_fraction``·F and take the secant
-  K = ΔF/Δδ = f·F / (δ(F) − δ((1 − f)·F)) from an elastic solve of the deformed surface.
+  K = ΔF/Δδ ≈ f·F / (δ(F) − δ((1 − f)·F)) from an elastic solve of the deformed surface (ΔF
+  from the loads the two solves reached, each within the solver's ``thermotol`` of its
+  target).
 
 Then it reloads to the next peak. In an elastic–perfectly-plastic model, unloading and
 reloading up to the previous peak are elastic (no pixel reaches H again below the peak load),
@@ -33,7 +35,7 @@ import numpy as np
 
 from .._support.docs import SHARED_DOCS, fill_doc
 from ..contact.settings import SolverSettings
-from ..contact.solver import ContactSolver, default_pentol
+from ..contact.solver import ContactSolver
 from ..material import Material
 from ..params import check_fields, param
 from .punch import PunchWindow
@@ -182,9 +184,9 @@ def make_solver(window: PunchWindow, material: Material, *, hardness: float,
 
     Notes
     -----
-    The default penetration tolerance (rms height/(10·mean n), ContactMechanics') is taken over
-    the disk only: the pixels outside it, far below, would inflate it. A flat disk gets
-    10⁻⁶ of a pixel side.
+    The default penetration tolerance (rms height/(10·mean n), ContactMechanics') takes the rms
+    over the disk only (the pixels outside it, far below, would inflate it) and n the window's
+    sides. A flat disk gets 10⁻⁶ of a pixel side.
     """
     settings = SolverSettings() if settings is None else settings
     if window.diameter is not None and settings.substrate != "free":
@@ -193,7 +195,8 @@ def make_solver(window: PunchWindow, material: Material, *, hardness: float,
             f"is the unloaded half-space), got {settings.substrate!r}"
         )
     if settings.pentol is None:
-        pentol = default_pentol(window.disk_heights)
+        # rms over the disk / (10·mean window side), not over the (1-D) list of disk pixels
+        pentol = float(np.std(window.disk_heights)) / (10 * np.mean(window.mask.shape))
         if pentol == 0.0:  # a flat punch face
             pentol = 1e-6 * min(window.pixel_size)
         settings = settings.replace(pentol=pentol)
@@ -265,7 +268,9 @@ def run_cycles(
                 f"the punch approach {peak.depth:.4g} m reached the pixels outside the disk "
                 f"({reach:.4g} m below its top); give punch_window a larger drop"
             )
-        k_secant = f * load / (peak.depth - low.depth) if peak.depth > low.depth else math.nan
+        # the loads the solves reached (each within thermotol of its target)
+        k_secant = ((peak.load - low.load) / (peak.depth - low.depth) if peak.depth > low.depth
+                    else math.nan)  # fmt: skip
         out["displacement"].append(peak.depth)
         out["n_contact"].append(peak.n_contact)
         out["contact_area"].append(peak.contact_area)
