@@ -39,7 +39,7 @@ indent)
   # pieces of earlier calls (a cold machine lost /tmp) travel back in ./_gpu_pieces (carried)
   mkdir -p /tmp/repro_paper/indentation $OUT/pieces
   [ -d _gpu_pieces ] && cp -n _gpu_pieces/*.json /tmp/repro_paper/indentation/ 2>/dev/null
-  timeout ${3:-540} python3 -m warptrunc reproduce --profile paper --out /tmp/repro_paper --stages indentation --time-budget ${2:-400} --device cuda:0 --no-progress > $OUT/indent.log 2>&1
+  timeout ${3:-540} python3 -m warptrunc reproduce --profile paper --out /tmp/repro_paper --stages indentation --time-budget ${2:-400} --device cuda:0 > $OUT/indent.log 2>&1
   echo "reproduce exit $?"; tail -5 $OUT/indent.log
   cp /tmp/repro_paper/indentation/*.json $OUT/pieces/ 2>/dev/null
   python3 - <<'PY'

@@ -1,0 +1,79 @@
+"""Where the time of the indentation cycles goes: solves, CG iterations, convolutions and seconds
+per phase (loading, Barber's stiffness, partial unloading), per surface × hardness × punch.
+
+Usage: python profile_indentation.py N DTYPE SURFACES FACTORS [PUNCHES_UM] [DEVICE] [LOAD_CONTROL]
+e.g. ``python profile_indentation.py 1024 float32 Ps,GB300s inf,1`` (Table 1 presets over 1 mm,
+one placement per punch, the paper's ten loads). With ``-v`` in the environment variable
+PROFILE_VERBOSE=1 every solve is printed as it ends.
+"""
+
+import collections
+import math
+import os
+import sys
+import time
+
+import warptrunc as wt
+from warptrunc.contact.settings import SolverSettings
+from warptrunc.contact.solver import ContactSolver
+from warptrunc.indent import protocol as P
+from warptrunc.indent.punch import place_punches, punch_window
+from warptrunc.presets import TABLE1
+
+
+def main(argv):
+    n, dtype, surfs, facs = int(argv[1]), argv[2], argv[3].split(","), [float(x) for x in argv[4].split(",")]
+    punches = [float(x) * 1e-6 for x in argv[5].split(",")] if len(argv) > 5 and argv[5] else P.PAPER_PUNCH_DIAMETERS
+    dev = argv[6] if len(argv) > 6 else "cpu"
+    lc = argv[7] if len(argv) > 7 else "offset"
+    verbose = os.environ.get("PROFILE_VERBOSE") == "1"
+    stats = collections.defaultdict(lambda: [0, 0, 0.0, 0.0])  # calls, iterations, convolutions, s
+    orig_solve, orig_k = ContactSolver.solve, ContactSolver.punch_stiffness
+    phase = ["?"]
+
+    def solve(self, *a, **k):
+        t = time.perf_counter()
+        s = orig_solve(self, *a, **k)
+        dt = time.perf_counter() - t
+        key = phase[0] + ("/load" if "load" in k else "/depth") + ("/frozen" if self.plastic_frozen else "")
+        st = stats[key]
+        st[0] += 1
+        st[1] += s.n_iterations
+        st[2] += s.n_convolutions
+        st[3] += dt
+        if verbose or not s.converged:
+            print(f"  {key} F={s.load:.4g} it={s.n_iterations} conv={s.converged} {dt:.2f}s", flush=True)
+        return s
+
+    def pk(self, *a, **k):
+        t = time.perf_counter()
+        r = orig_k(self, *a, **k)
+        st = stats[phase[0] + "/barber"]
+        st[0] += 1
+        st[1] += r[1]
+        st[2] += r[1]
+        st[3] += time.perf_counter() - t
+        return r
+
+    ContactSolver.solve, ContactSolver.punch_stiffness = solve, pk
+    for s in surfs:
+        surf = wt.wm_surface(TABLE1[s].replace(n=n, L=1e-3), device=dev)
+        z, dx = surf.heights, surf.dx
+        for f in facs:
+            mat = P.default_material(hardness=math.inf if math.isinf(f) else f * P.ALUMINIUM_HARDNESS)
+            for i, d in enumerate(punches):
+                c, _ = place_punches((n * dx, n * dx), d, 1, seed=(0, i))
+                w = punch_window(z, (dx, dx), d, tuple(c[0]))
+                phase[0] = f"{s}/{f:g}H/{d * 1e6:.0f}um/{w.mask.shape[0]}px"
+                t = time.perf_counter()
+                out = P.run_cycles(w, P.PAPER_PEAK_LOADS, 0.1, mat, hardness=mat.hardness,
+                                   settings=SolverSettings(dtype=dtype, maxiter=1000, load_control=lc),
+                                   device=dev)
+                print(phase[0], f"{time.perf_counter() - t:.2f}s", "contact pixels",
+                      out["n_contact"][[0, -1]], "converged", bool(out["converged"].all()), flush=True)
+    for k, v in stats.items():
+        print(f"{k:50s} calls {v[0]:4d} it {v[1]:6d} conv {v[2]:8.1f} s {v[3]:7.2f}", flush=True)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
