@@ -81,7 +81,7 @@ def test_flat_punch_error_falls_as_dx_over_a():
 def test_window_holds_exactly_the_disk_pixels():
     """The window's mask equals the disk test on every pixel centre of the whole map; pixels
     outside it sit at ``floor``, below the disk by the drop; the window is the disk's bounding
-    box."""
+    box, grown at its far ends to the next 7-smooth sides (FFT lengths at full speed)."""
     rng = np.random.default_rng(3)
     z = rng.normal(size=(80, 70)) * 1e-6
     dx, dy = 1e-6, 1.3e-6
@@ -90,11 +90,18 @@ def test_window_holds_exactly_the_disk_pixels():
     yy, xx = np.mgrid[0:80, 0:70]
     full = ((xx + 0.5) * dx - centre[0]) ** 2 + ((yy + 0.5) * dy - centre[1]) ** 2 <= (d / 2) ** 2
     iy0, ix0 = w.origin
-    wy, wx = w.mask.shape
-    assert full.sum() == w.n_pixels
-    np.testing.assert_array_equal(full[iy0 : iy0 + wy, ix0 : ix0 + wx], w.mask)
     rows, cols = np.nonzero(full)
-    assert (rows.min(), cols.min(), rows.max() + 1, cols.max() + 1) == (iy0, ix0, iy0 + wy, ix0 + wx)
+    by, bx = rows.max() + 1 - iy0, cols.max() + 1 - ix0  # the disk's bounding box
+    assert (rows.min(), cols.min()) == (iy0, ix0)
+    assert full.sum() == w.n_pixels
+    np.testing.assert_array_equal(full[iy0 : iy0 + by, ix0 : ix0 + bx], w.mask[:by, :bx])
+    assert not w.mask[by:, :].any() and not w.mask[:, bx:].any()
+
+    def smooth(m):  # prime factors 2, 3, 5, 7 only, by trial division
+        return all(m % p for p in range(11, m + 1) if all(p % q for q in range(2, p))) or m == 1
+
+    for side, box in zip(w.mask.shape, (by, bx), strict=True):  # the next 7-smooth length
+        assert side >= box and smooth(side) and not any(smooth(m) for m in range(box, side))
     np.testing.assert_array_equal(w.disk_heights, z[full])
     assert np.all(w.heights[~w.mask] == w.floor) and w.floor < z[full].min()
     np.testing.assert_array_equal(disk_mask(z.shape, (dx, dy), centre, d), full)

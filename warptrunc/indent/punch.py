@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from .._support.validate import check_int, check_range
+from ..contact.halfspace import fft_size
 
 __all__ = [
     "PlacementOverlapWarning",
@@ -224,7 +225,10 @@ class PunchWindow:
     origin: tuple[int, int]
     """(iy0, ix0): the window's first row and column in the map."""
     mask: np.ndarray
-    """(wy, wx) bool: the window's pixels that the punch can touch (centre inside the disk)."""
+    """(wy, wx) bool: the window's pixels that the punch can touch (centre inside the disk).
+    The window is the disk's bounding box grown at its far ends to 7-smooth sides
+    (:func:`warptrunc.contact.halfspace.fft_size`), so the FFTs of the solve run at full speed;
+    the added pixels are outside the disk."""
     heights: np.ndarray
     """(wy, wx) float64 heights for the solver (m): the map's inside the disk, ``floor``
     outside it."""
@@ -335,4 +339,11 @@ def punch_window(
         drop = 10.0 * (float(np.ptp(inside)) + d)
     floor = float(inside.min()) - check_range("drop", drop, 0.0, unit="m")
     win[~mask] = floor
+    # grow the window past the disk's bounding box to a length the FFT transforms at full
+    # speed (more pixels at the floor, outside the disk: the contact is unchanged)
+    wy, wx = mask.shape
+    gy, gx = fft_size(wy), fft_size(wx)
+    if (gy, gx) != (wy, wx):
+        win = np.pad(win, ((0, gy - wy), (0, gx - wx)), constant_values=floor)
+        mask = np.pad(mask, ((0, gy - wy), (0, gx - wx)), constant_values=False)
     return PunchWindow(d, (cx, cy), (iy0, ix0), mask, win, floor, (dx, dy), math.pi * r * r)
