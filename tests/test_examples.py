@@ -16,6 +16,7 @@ import csv
 import importlib.util
 import json
 import os
+import re
 import subprocess
 import sys
 from collections.abc import Callable
@@ -234,3 +235,15 @@ def test_example_does_not_exit_on_success(path):
             args = node.args
             assert not (args and isinstance(args[0], ast.Call)
                         and getattr(args[0].func, "id", None) == "main"), path.name
+
+
+def test_indentation_profiler_runs_small():
+    """The indentation profiler runs one small case on the CPU and reports every phase (loading,
+    Barber's stiffness, partial unloading) with converged cycles."""
+    script = BENCHMARKS_DIR / "profile_indentation.py"
+    r = _run(script, "--n", "256", "--surfaces", "GB300s", "--hardness-factors", "1",
+             "--punches-um", "108.7", "--device", "cpu", timeout=300)  # fmt: skip
+    assert r.returncode == 0, r.stderr[-4000:]
+    assert "converged True" in r.stdout
+    for phase in ("/load ", "/barber ", "/load/frozen "):
+        assert re.search(rf"GB300s/1H/109um/\d+px{phase}", r.stdout), phase

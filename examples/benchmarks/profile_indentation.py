@@ -1,16 +1,15 @@
 """Where the time of the indentation cycles goes: solves, CG iterations, convolutions and seconds
 per phase (loading, Barber's stiffness, partial unloading), per surface × hardness × punch.
 
-Usage: python profile_indentation.py N DTYPE SURFACES FACTORS [PUNCHES_UM] [DEVICE] [LOAD_CONTROL]
-e.g. ``python profile_indentation.py 1024 float32 Ps,GB300s inf,1`` (Table 1 presets over 1 mm,
-one placement per punch, the paper's ten loads). With ``-v`` in the environment variable
-PROFILE_VERBOSE=1 every solve is printed as it ends.
+Example: ``python profile_indentation.py --n 1024 --dtype float32 --surfaces Ps,GB300s
+--hardness-factors inf,1`` (Table 1 presets over 1 mm, one placement per punch, the paper's ten
+loads). ``--verbose`` prints every solve as it ends. Measured figures (CPU and H100) are in
+``docs/guide/indentation.md``.
 """
 
+import argparse
 import collections
 import math
-import os
-import sys
 import time
 
 import warptrunc as wt
@@ -21,12 +20,24 @@ from warptrunc.indent.punch import place_punches, punch_window
 from warptrunc.presets import TABLE1
 
 
-def main(argv):
-    n, dtype, surfs, facs = int(argv[1]), argv[2], argv[3].split(","), [float(x) for x in argv[4].split(",")]
-    punches = [float(x) * 1e-6 for x in argv[5].split(",")] if len(argv) > 5 and argv[5] else P.PAPER_PUNCH_DIAMETERS
-    dev = argv[6] if len(argv) > 6 else "cpu"
-    lc = argv[7] if len(argv) > 7 else "offset"
-    verbose = os.environ.get("PROFILE_VERBOSE") == "1"
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--n", type=int, default=1024, help="pixels per side over 1 mm")
+    ap.add_argument("--dtype", default="float32", choices=("float32", "float64"))
+    ap.add_argument("--surfaces", default="Ps,GB300s", help="Table 1 presets, comma-separated")
+    ap.add_argument("--hardness-factors", default="inf,1",
+                    help="H as multiples of the alloy's 1 GPa, comma-separated (inf = elastic)")
+    ap.add_argument("--punches-um", default="", help="punch diameters (µm); default the paper's")
+    ap.add_argument("--device", default="cpu")
+    ap.add_argument("--load-control", default="offset", choices=("offset", "secant"))
+    ap.add_argument("--maxiter", type=int, default=1000, help="iteration limit per solve")
+    ap.add_argument("--verbose", action="store_true", help="print every solve")
+    a = ap.parse_args(argv)
+    n, dtype, dev, lc, verbose = a.n, a.dtype, a.device, a.load_control, a.verbose
+    surfs = a.surfaces.split(",")
+    facs = [float(x) for x in a.hardness_factors.split(",")]
+    punches = ([float(x) * 1e-6 for x in a.punches_um.split(",")] if a.punches_um
+               else P.PAPER_PUNCH_DIAMETERS)
     stats = collections.defaultdict(lambda: [0, 0, 0.0, 0.0])  # calls, iterations, convolutions, s
     orig_solve, orig_k = ContactSolver.solve, ContactSolver.punch_stiffness
     phase = ["?"]
@@ -67,7 +78,7 @@ def main(argv):
                 phase[0] = f"{s}/{f:g}H/{d * 1e6:.0f}um/{w.mask.shape[0]}px"
                 t = time.perf_counter()
                 out = P.run_cycles(w, P.PAPER_PEAK_LOADS, 0.1, mat, hardness=mat.hardness,
-                                   settings=SolverSettings(dtype=dtype, maxiter=1000, load_control=lc),
+                                   settings=SolverSettings(dtype=dtype, maxiter=a.maxiter, load_control=lc),
                                    device=dev)
                 print(phase[0], f"{time.perf_counter() - t:.2f}s", "contact pixels",
                       out["n_contact"][[0, -1]], "converged", bool(out["converged"].all()), flush=True)
@@ -76,4 +87,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    main(sys.argv)
+    main()
