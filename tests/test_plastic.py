@@ -54,14 +54,15 @@ def test_huge_hardness_equals_elastic(device, dtype):
     assert not np.any(big.plastic_displacement())
 
 
+@pytest.mark.parametrize("algorithm", ["pk", "bccg"])
 @pytest.mark.parametrize("substrate", ["free", "periodic"])
 @pytest.mark.parametrize("dtype", ["float64", "float32"])
-def test_complementarity(device, substrate, dtype):
+def test_complementarity(device, substrate, dtype, algorithm):
     """At convergence of every loading solve: gap ≥ −pentol, 0 ≤ p ≤ H, |gap| ≤ pentol where
     p > 0 (p·gap ≈ 0), and the plastic displacement grows only where p = H."""
     s = _surface()
     sol = ContactSolver(s.heights, s.dx, E_STAR, hardness=H_AL, substrate=substrate,
-                        dtype=dtype, device=device)  # fmt: skip
+                        dtype=dtype, algorithm=algorithm, device=device)  # fmt: skip
     tol = sol.pentol * (1 + 1e-3) + (1e-12 if dtype == "float64" else 1e-6 * s.Rt)
     w_old = sol.plastic_displacement()
     for f in (0.15, 0.3, 0.45):
@@ -228,7 +229,8 @@ def test_settings_and_legacy_keywords(device):
 # --- ContactMechanics ------------------------------------------------------------------------
 
 
-def test_equals_contactmechanics_plastic_system(device):
+@pytest.mark.parametrize("algorithm", ["pk", "bccg"])
+def test_equals_contactmechanics_plastic_system(device, algorithm):
     """Loading to three approaches and a 10 % partial unloading equal ContactMechanics'
     ``PlasticNonSmoothContactSystem`` (``PlasticTopography``) on the same 64² map: contact and
     plastic areas and the plastic displacement within 1 %, the unloading stiffness within 2 %."""
@@ -245,7 +247,7 @@ def test_equals_contactmechanics_plastic_system(device):
     sizes = (s.lx, s.ly)
     topo = PlasticTopography(Topography(hT, physical_sizes=sizes, periodic=False), H_AL)
     system = PlasticNonSmoothContactSystem(FreeFFTElasticHalfSpace(hT.shape, E_STAR, sizes), topo)
-    sol = ContactSolver(h, s.dx, E_STAR, hardness=H_AL, device=device)
+    sol = ContactSolver(h, s.dx, E_STAR, hardness=H_AL, algorithm=algorithm, device=device)
     kw = {"pentol": sol.pentol, "forcetol": sol.forcetol, "maxiter": 100000}
     cap = H_AL * s.dx * s.dx
     u0 = None
@@ -275,8 +277,9 @@ def test_equals_contactmechanics_plastic_system(device):
     assert math.isclose(k, k_cm, rel_tol=0.02)
 
 
+@pytest.mark.parametrize("algorithm", ["pk", "bccg"])
 @pytest.mark.parametrize("dtype", ["float64", "float32"])
-def test_load_control_under_complete_contact_converges(device, dtype):
+def test_load_control_under_complete_contact_converges(device, dtype, algorithm):
     """A gently tilted plane (8 nm across 32 pixels of 1 µm) under loads that bring every pixel
     into contact, below H·A: F(δ) becomes linear once the whole map touches, and each
     load-controlled solve must converge to the load with every pixel in contact and none at
@@ -285,7 +288,8 @@ def test_load_control_under_complete_contact_converges(device, dtype):
     y, x = np.mgrid[0:n, 0:n]
     z = -8e-9 * (x + y) / (2 * n)  # m
     area = (n * dx) ** 2
-    sol = ContactSolver(z, dx, E_STAR, hardness=H_AL, dtype=dtype, device=device)
+    sol = ContactSolver(z, dx, E_STAR, hardness=H_AL, dtype=dtype, algorithm=algorithm,
+                        device=device)  # fmt: skip
     for p_mean in (2e7, 5e7, 1e8):  # Pa, 2–10 % of H
         st = sol.solve(load=p_mean * area)
         assert st.converged, (dtype, p_mean)

@@ -30,6 +30,8 @@ def main(argv=None):
     ap.add_argument("--punches-um", default="", help="punch diameters (µm); default the paper's")
     ap.add_argument("--device", default="cpu")
     ap.add_argument("--load-control", default="offset", choices=("offset", "secant"))
+    ap.add_argument("--algorithm", default="pk", choices=("pk", "bccg"),
+                    help="the contact solver's iteration (SolverSettings.algorithm)")
     ap.add_argument("--maxiter", type=int, default=1000, help="iteration limit per solve")
     ap.add_argument("--verbose", action="store_true", help="print every solve")
     a = ap.parse_args(argv)
@@ -78,7 +80,8 @@ def main(argv=None):
                 phase[0] = f"{s}/{f:g}H/{d * 1e6:.0f}um/{w.mask.shape[0]}px"
                 t = time.perf_counter()
                 out = P.run_cycles(w, P.PAPER_PEAK_LOADS, 0.1, mat, hardness=mat.hardness,
-                                   settings=SolverSettings(dtype=dtype, maxiter=a.maxiter, load_control=lc),
+                                   settings=SolverSettings(dtype=dtype, maxiter=a.maxiter, load_control=lc,
+                                                          algorithm=a.algorithm),
                                    device=dev)
                 print(phase[0], f"{time.perf_counter() - t:.2f}s", "contact pixels",
                       out["n_contact"][[0, -1]], "converged", bool(out["converged"].all()), flush=True)

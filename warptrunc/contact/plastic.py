@@ -78,6 +78,8 @@ class CappedSolves:
     def _solve_capped(self, offset: float) -> dict[str, Any]:
         """Constrained CG with 0 ≤ q ≤ H·dx·dy at a fixed offset (m); the heights are not changed
         (that is :meth:`_flow`)."""
+        if self.settings.algorithm == "bccg":
+            return self._solve_bccg(offset, None, self._cap)
         red, hs, dev = self.hs.reduction, self.hs, self.device
         n_map = self.shape[0] * self.shape[1]
         inv_n = 1.0 / hs.n_total

@@ -61,6 +61,12 @@ class SolverSettings(Parameters):
         "secant on the approach over displacement-controlled solves",
         choices=("offset", "secant"),
     )  # fmt: skip
+    algorithm: str = param(
+        "pk", "iteration: 'pk' Polonsky & Keer's constrained CG (ContactMechanics'), 'bccg' "
+        "Vollebregt's bound-constrained CG with the FFT preconditioner K⁻¹ (one more convolution "
+        "per iteration, far fewer iterations on large contacts)",
+        choices=("pk", "bccg"),
+    )  # fmt: skip
     maxiter: int = param(10000, "largest number of iterations per solve", kind="int", ge=1)
     refresh: int = param(
         50, "transform the forces afresh at least every this many iterations", kind="int", ge=1

@@ -60,6 +60,7 @@ from ..material import Material
 from ..params import check_value
 from .halfspace import DTYPES, ElasticHalfSpace
 from .influence import GRID_DOCS
+from .bccg import BCCGSolves
 from .plastic import CappedSolves
 from .results import ContactState
 from .settings import SolverSettings
@@ -85,11 +86,11 @@ def default_pentol(heights: np.ndarray) -> float:
 
 
 _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter", "refresh",
-           "direct_max", "load_control")  # fmt: skip
+           "direct_max", "load_control", "algorithm")  # fmt: skip
 
 
 @fill_doc(SHARED_DOCS)
-class ContactSolver(CappedSolves):
+class ContactSolver(CappedSolves, BCCGSolves):
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
 
     With a finite ``hardness`` the local pressure is capped at H and the map flows plastically
@@ -178,7 +179,8 @@ class ContactSolver(CappedSolves):
         self.substrate = substrate
         self.dtype = dtype
         self.forcetol = self.pressure_tol * self.contact_modulus * dx * dy
-        need = self.memory_bytes(h.shape, substrate, dtype, cuda=self.device.is_cuda)
+        need = self.memory_bytes(h.shape, substrate, dtype, cuda=self.device.is_cuda,
+                                 algorithm=settings.algorithm)  # fmt: skip
         free = free_memory_bytes(self.device)
         if need > free and self.device.is_cuda:
             free = release_cached_memory(self.device)  # pooled blocks are free for us too
@@ -224,7 +226,7 @@ class ContactSolver(CappedSolves):
     @fill_doc(GRID_DOCS)
     def memory_terms(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
-        cuda: bool = True, direct_max: int = 24,
+        cuda: bool = True, direct_max: int = 24, algorithm: str = "pk",
     ) -> dict[str, int]:  # fmt: skip
         """The model of a solver's peak device memory, term by term (bytes).
 
@@ -238,6 +240,9 @@ class ContactSolver(CappedSolves):
             On a CUDA device (cuFFT's work area and 65536 reduction lanes are counted).
         direct_max : int, optional
             Length of the list of changed forces (dimensionless count).
+        algorithm : {"pk", "bccg"}, optional
+            The iteration (:class:`~warptrunc.contact.SolverSettings`); ``"bccg"`` holds one
+            more map, its residual.
 
         Returns
         -------
@@ -258,13 +263,15 @@ class ContactSolver(CappedSolves):
         terms["mask"] = ny * nx
         terms["lists"] = 2 * lanes * 4 + max(1, direct_max) * 12 + 8
         terms["stiffness solve"] = ny * nx * item
+        if algorithm == "bccg":
+            terms["bccg residual"] = ny * nx * item
         return terms
 
     @staticmethod
     @fill_doc(GRID_DOCS)
     def memory_bytes(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
-        cuda: bool = True,
+        cuda: bool = True, algorithm: str = "pk",
     ) -> int:  # fmt: skip
         """Peak device memory of a solver and its stiffness solve (bytes).
 
@@ -277,6 +284,8 @@ class ContactSolver(CappedSolves):
             Precision of the maps.
         cuda : bool, optional
             On a CUDA device (default; cuFFT's work area counted).
+        algorithm : {"pk", "bccg"}, optional
+            The iteration; ``"bccg"`` holds one more map.
 
         Returns
         -------
@@ -286,7 +295,8 @@ class ContactSolver(CappedSolves):
             estimated) + 20 (maps) + 1 (mask) + 4 (stiffness solve) ≈ 51 B; float64 ≈ 101 B;
             periodic float32 ≈ 1 + 4 + 4 + ≤ 0.5 + 20 + 1 + 4 ≈ 35 B.
         """
-        terms = ContactSolver.memory_terms(shape, substrate, dtype, cuda=cuda)
+        terms = ContactSolver.memory_terms(shape, substrate, dtype, cuda=cuda,
+                                           algorithm=algorithm)  # fmt: skip
         return int(sum(terms.values()))
 
     # --- one solve ---------------------------------------------------------------------------
@@ -392,6 +402,12 @@ class ContactSolver(CappedSolves):
     def _solve_elastic(self, depth: float | None, load: float | None) -> dict[str, Any]:
         """Today's elastic constrained CG on the current heights (the path of H = inf)."""
         load_control = load is not None
+        if self.settings.algorithm == "bccg":
+            if load_control:
+                start = self.offset if self._depth is not None else 0.0
+            else:
+                start = float(depth) - self.h_max
+            return self._solve_bccg(start, load, None)
         if load_control:
             offset = 0.0  # as ContactMechanics: the first gap is measured from offset 0
         else:
@@ -599,6 +615,21 @@ class ContactSolver(CappedSolves):
         n_set = float(np.count_nonzero(self.mask.numpy()))  # sync point
         if n_set == 0:
             return 0.0, 0, True
+        if self.settings.algorithm == "bccg":
+            k, it, ok = self._punch_pcg(x, res, n_set, rtol)
+        else:
+            k, it, ok = self._punch_cg(x, res, n_set, rtol)
+        self.t.zero_()
+        if ok and k > 0:
+            self._slope = float(k)  # dF/dδ of unloading from here: the next secant's first step
+        return float(k), it, ok
+
+    def _punch_cg(self, x: wp.array, res: wp.array, n_set: float,
+                  rtol: float) -> tuple[float, int, bool]:  # fmt: skip
+        """Barber's punch by plain CG from x = 0, res = 1 m on the set, d = res (in self.t)."""
+        dev, red, hs = self.device, self.hs.reduction, self.hs
+        ny, nx = self.shape
+        d = self.t
         rr, k, it, ok = n_set, 0.0, 0, False
         for it in range(1, self.maxiter + 1):  # noqa: B007
             kd = hs.apply(self.t_buf, energy_column=0)
@@ -614,10 +645,7 @@ class ContactSolver(CappedSolves):
             wp.launch(_k.punch_direction_kernel, dim=self.shape,
                       inputs=[res, self.mask, wp.float64(rr_new / rr)], outputs=[d], device=dev)  # fmt: skip
             rr = rr_new
-        self.t.zero_()
-        if ok and k > 0:
-            self._slope = float(k)  # dF/dδ of unloading from here: the next secant's first step
-        return float(k), it, ok
+        return k, it, ok
 
     def maps(self) -> tuple[np.ndarray, np.ndarray]:
         """Copy the pressure and gap maps of the current solution to the host.

@@ -1,0 +1,236 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Preconditioned bound-constrained conjugate gradients (``SolverSettings.algorithm="bccg"``).
+
+The contact problem at a fixed approach is the bound-constrained quadratic programme
+min ½·q·K·q − q·(h + offset) over 0 ≤ q ≤ H·dx·dy (H = inf: elastic), with gradient the gap
+g = K·q − h − offset. Polonsky & Keer's CG (:mod:`warptrunc.contact.solver`, the default
+``"pk"``) needs O(√N) iterations on a contact of N pixels: K is a 1/|k| operator, its condition
+number on a contact set d pixels across grows as d, and under a flat punch close to complete
+contact (the paper's 502.6 µm punch is 5147 pixels across at its pixel size) that means hundreds
+to a thousand iterations per load. This solver follows Vollebregt (J. Optim. Theory Appl. 162,
+931 (2014); J. Comput. Phys. 257, 333 (2014)):
+
+* **Free set** (the variables the CG moves): 0 < q < H·dx·dy, plus the pixels at a bound whose
+  gradient points into the box (q = 0 penetrating, g < 0; q at the cap with an open gap, g > 0).
+  Pixels enter the set as soon as they penetrate, instead of one restart at a time.
+* **Preconditioner**: z = c·K⁻¹·(c·g), c the free set, with K⁻¹ the inverse of the half-space's
+  circulant convolution (the spectrum 1/W on the padded grid: ``SPECTRUM_INVERSE``, one more
+  convolution per iteration). On a fixed contact set it makes the CG iterations nearly
+  independent of the grid (prototype, D = 2.5 WM map under a punch at 81 % contact: 19, 21, 23,
+  24 iterations at 128², 256², 512², 1024² against 46, 62, 80, 108 for plain CG).
+* **Truncation, no restart**: after the step the forces are projected onto [0, H·dx·dy] and the
+  CG continues with the Polak–Ribière β = max(0, r·(z − z_old)/(r_old·z_old)).
+* **Load control** (elastic only; with a cap the approach is found by the secant of
+  :mod:`warptrunc.contact.plastic`): the rigid offset moves so that the mean gap over the free
+  set is zero, z is made mean-free on the set, and the forces are scaled to the load after each
+  step (as in the default solver).
+
+Displacements stay exact: u ← u − τ·K·t when the projection did not act, else u = K·q afresh
+(one more convolution), and afresh every ``refresh`` iterations. Stopping: the default solver's
+criterion (rms and max gap over 0 < q < cap, penetration at zero force, open gaps at the cap,
+the largest change of u below ``pentol``; the largest projected force below ``forcetol``; the
+total force steady or at the target) tested on the state at the top of each iteration.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import warp as wp
+
+from ..kernels import contact as _k
+from ..kernels import contact_bccg as _kb
+from ..kernels import contact_reduce as _kr
+
+__all__ = ["BCCGSolves"]
+
+_HUGE = 1e300  # the "cap" of an elastic solve (N)
+
+
+class BCCGSolves:
+    """The preconditioned BCCG solve of :class:`~warptrunc.contact.ContactSolver` (a base class
+    holding methods only; the solver's maps and settings are its own)."""
+
+    def _bccg_maps(self) -> tuple[Any, Any]:
+        """The residual map (a transform input) and the last preconditioned residual (the
+        solver's q_lin map, free while this solver runs)."""
+        if getattr(self, "_r_buf", None) is None:
+            self._r_buf, _ = self.hs.map_buffer()
+        return self._r_buf, self.lin
+
+    def _solve_bccg(self, offset: float, load: float | None, cap: float | None) -> dict[str, Any]:
+        """One solve at ``offset`` (m; the start in load control) or at ``load`` (N), with the
+        force cap ``cap`` (N per pixel; None: elastic). Returns the info dict of the default
+        solver's solves."""
+        red, hs, dev = self.hs.reduction, self.hs, self.device
+        n_map = self.shape[0] * self.shape[1]
+        inv_n = 1.0 / hs.n_total
+        hf = _HUGE if cap is None else float(cap)
+        load_control = load is not None
+        r_buf, z_old = self._bccg_maps()
+        # warm start: raise u where the map would penetrate, q += K⁻¹·(that increase), projected
+        wp.launch(_k.clamp_displacement_kernel, dim=self.shape,
+                  inputs=[self.h, wp.float64(offset)], outputs=[self.u, self.t],
+                  device=dev)  # fmt: skip
+        dq = hs.apply(self.t_buf, inverse=True)
+        wp.launch(_k.add_map_kernel, dim=self.shape, inputs=[dq], outputs=[self.q], device=dev)
+        del dq
+        wp.launch(_kb.clamp_force_kernel, dim=self.shape, inputs=[wp.float64(hf)],
+                  outputs=[self.q], device=dev)  # fmt: skip
+        total = float(self._sums(offset)[3])  # Σ q (N)
+        if load_control:
+            if total > 0.0:
+                wp.launch(_kb.scale_state_kernel, dim=self.shape,
+                          inputs=[wp.float64(load / total)], outputs=[self.q, self.u],
+                          device=dev)  # fmt: skip
+            else:
+                self.mask.fill_(1)
+                wp.launch(_k.fill_map_kernel, dim=self.shape,
+                          inputs=[self.mask, wp.float64(load / n_map)], outputs=[self.q],
+                          device=dev)  # fmt: skip
+            total = float(load)
+        kq = hs.apply(self.q_buf)
+        red.launch(_kb.bccg_exact_kernel, n_map, [kq], [self.u])
+        del kq
+        n_transforms = 4
+        self.t.zero_()
+        z_old.zero_()
+        rz_old = None
+        du = None  # largest change of u in the last step (m); none yet
+        viol = 0.0
+        last_total = last_height = None
+        info: dict[str, Any] = {"converged": False}
+        for it in range(1, self.maxiter + 1):
+            set_offset = offset
+            if load_control:
+                red.launch(_kb.bccg_sums_kernel, n_map,
+                           [self.q, self.u, self.h, wp.float64(offset), wp.float64(hf)], [])  # fmt: skip
+                n_f, s_g = red.read((False, False))  # sync point
+                if n_f > 0:
+                    offset = offset + s_g / n_f
+            red.launch(_kb.bccg_residual_kernel, n_map,
+                       [self.q, self.u, self.h, wp.float64(set_offset), wp.float64(offset),
+                        wp.float64(hf)], [r_buf, self.mask])  # fmt: skip
+            (n_f, s_r, n_cg, s_gg, g_max, pen, open_cap, n_c, s_gap) = red.read(
+                (False, False, False, False, True, True, True, False, False))  # sync point
+            # convergence of the state reached by the last step (module docstring)
+            rms = math.sqrt(s_gg / n_cg) if n_cg > 0 else 0.0
+            res = max(rms, g_max, pen, open_cap, 0.0 if du is None else du)
+            ok = du is not None and res < self.pentol and viol < self.forcetol
+            if load_control:
+                ok = ok and total != 0 and abs((total - load) / total) < self.thermotol
+                height = self.h_max + offset
+                ok = ok and last_height is not None and (
+                    height == last_height or abs((height - last_height) / height) < self.thermotol
+                )
+                last_height = height
+            else:
+                ok = ok and last_total is not None and (
+                    total == last_total
+                    or (total != 0 and abs((total - last_total) / total) < self.thermotol)
+                )
+            last_total = total
+            if not math.isfinite(res):
+                raise FloatingPointError(
+                    f"the contact solve diverged at iteration {it} (residual {res})"
+                )
+            info = {
+                "depth": offset + self.h_max, "load": total, "n_contact": int(n_c),
+                "mean_gap": s_gap / n_map, "n_iterations": it,
+                "n_convolutions": n_transforms / 2, "residual": float(res),
+                "max_tensile_force": float(viol), "converged": ok,
+            }  # fmt: skip
+            if ok or n_f == 0:
+                if n_f == 0 and not ok:
+                    info["converged"] = res < self.pentol and viol < self.forcetol
+                break
+            # preconditioned residual z = c·K⁻¹·r
+            z = hs.apply(r_buf, inverse=True)
+            n_transforms += 2
+            red.launch(_kb.bccg_dot_kernel, n_map, [z, r_buf, z_old, self.mask], [])
+            s_z, rz, rzo = red.read((False, False, False))  # sync point
+            mean = s_z / n_f if load_control else 0.0
+            rz -= mean * s_r
+            rzo_c = rzo  # z_old is mean-free on its own set; r·z_old as it is
+            beta = 0.0
+            if rz_old is not None and rz_old > 0.0:
+                beta = max(0.0, (rz - rzo_c) / rz_old)
+            rz_old = rz
+            red.launch(_kb.bccg_direction_kernel, n_map,
+                       [z, wp.float64(mean), wp.float64(beta), self.mask, r_buf],
+                       [self.t, z_old])  # fmt: skip
+            del z
+            spec = hs.work
+            hs.forward(self.t_buf, spec)
+            hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
+            wp.launch(_k.step_length_kernel, dim=1,
+                      inputs=[red.fold((False, False)), wp.float64(n_f), wp.float64(inv_n)],
+                      outputs=[self.tau], device=dev)  # fmt: skip
+            kt = hs.inverse(spec)
+            n_transforms += 2
+            red.launch(_kb.bccg_update_kernel, n_map, [kt, self.tau, wp.float64(hf), self.t],
+                       [self.q, self.u])  # fmt: skip
+            del kt
+            n_proj, viol, total, du = red.read((False, True, False, True))  # sync point
+            if load_control:
+                if total > 0.0:
+                    wp.launch(_kb.scale_state_kernel, dim=self.shape,
+                              inputs=[wp.float64(load / total)], outputs=[self.q, self.u],
+                              device=dev)  # fmt: skip
+                else:
+                    self.mask.fill_(1)
+                    wp.launch(_k.fill_map_kernel, dim=self.shape,
+                              inputs=[self.mask, wp.float64(load / n_map)], outputs=[self.q],
+                              device=dev)  # fmt: skip
+                    n_proj = 1.0
+                total = float(load)
+            if n_proj > 0 or it % self.refresh == 0:
+                kq = hs.apply(self.q_buf)
+                n_transforms += 2
+                red.launch(_kb.bccg_exact_kernel, n_map, [kq], [self.u])
+                del kq
+                du = max(du, float(red.read((True,))[0]))  # sync point
+        self.offset = offset
+        return info
+
+
+    def _punch_pcg(self, x: Any, res: Any, n_set: float,
+                   rtol: float) -> tuple[float, int, bool]:  # fmt: skip
+        """Barber's punch (K·x = 1 m on the contact set, ``mask``) by CG preconditioned with
+        c·K⁻¹·c, from x = 0 and res = 1 m on the set; k = Σx (N/m). Returns (k, iterations,
+        converged)."""
+        red, hs = self.hs.reduction, self.hs
+        n_map = self.shape[0] * self.shape[1]
+        scratch, _ = self._bccg_maps()  # the last z (unused here, a kernel output)
+        d = self.t
+        z = hs.apply(res, inverse=True)
+        red.launch(_kb.bccg_dot_kernel, n_map, [z, res, d, self.mask], [])
+        rz = float(red.read((False, False))[1])  # sync point
+        red.launch(_kb.bccg_direction_kernel, n_map,
+                   [z, wp.float64(0.0), wp.float64(0.0), self.mask, res], [d, scratch])  # fmt: skip
+        del z
+        k, it, ok = 0.0, 0, False
+        for it in range(1, self.maxiter + 1):  # noqa: B007
+            kd = hs.apply(self.t_buf, energy_column=0)
+            d_k_d = red.read((False,))[0] / hs.n_total  # sync point
+            if not d_k_d > 0.0:
+                break
+            alpha = rz / d_k_d
+            red.launch(_k.punch_step_kernel, n_map, [kd, d, self.mask, wp.float64(alpha)],
+                       [x, res])  # fmt: skip
+            del kd
+            rr_new, k = red.read((False, False))  # sync point
+            if math.sqrt(rr_new / n_set) < rtol:
+                ok = True
+                break
+            z = hs.apply(res, inverse=True)
+            red.launch(_kb.bccg_dot_kernel, n_map, [z, res, d, self.mask], [])
+            rz_new = float(red.read((False, False))[1])  # sync point
+            red.launch(_kb.bccg_direction_kernel, n_map,
+                       [z, wp.float64(0.0), wp.float64(rz_new / rz), self.mask, res],
+                       [d, scratch])  # fmt: skip
+            del z
+            rz = rz_new
+        return float(k), it, ok
