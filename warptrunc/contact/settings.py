@@ -62,7 +62,7 @@ class SolverSettings(Parameters):
         choices=("offset", "secant"),
     )  # fmt: skip
     algorithm: str = param(
-        "pk", "iteration: 'pk' Polonsky & Keer's constrained CG (ContactMechanics'), 'bccg' "
+        "bccg", "iteration: 'pk' Polonsky & Keer's constrained CG (ContactMechanics'), 'bccg' "
         "Vollebregt's bound-constrained CG with the FFT preconditioner K⁻¹ (one more convolution "
         "per iteration, far fewer iterations on large contacts)",
         choices=("pk", "bccg"),

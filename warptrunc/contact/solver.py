@@ -226,7 +226,7 @@ class ContactSolver(CappedSolves, BCCGSolves):
     @fill_doc(GRID_DOCS)
     def memory_terms(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
-        cuda: bool = True, direct_max: int = 24, algorithm: str = "pk",
+        cuda: bool = True, direct_max: int = 24, algorithm: str = "bccg",
     ) -> dict[str, int]:  # fmt: skip
         """The model of a solver's peak device memory, term by term (bytes).
 
@@ -241,8 +241,8 @@ class ContactSolver(CappedSolves, BCCGSolves):
         direct_max : int, optional
             Length of the list of changed forces (dimensionless count).
         algorithm : {"pk", "bccg"}, optional
-            The iteration (:class:`~warptrunc.contact.SolverSettings`); ``"bccg"`` holds one
-            more map, its residual.
+            The iteration (:class:`~warptrunc.contact.SolverSettings`; default ``"bccg"``, its
+            default); ``"bccg"`` holds one more map, its residual.
 
         Returns
         -------
@@ -271,7 +271,7 @@ class ContactSolver(CappedSolves, BCCGSolves):
     @fill_doc(GRID_DOCS)
     def memory_bytes(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
-        cuda: bool = True, algorithm: str = "pk",
+        cuda: bool = True, algorithm: str = "bccg",
     ) -> int:  # fmt: skip
         """Peak device memory of a solver and its stiffness solve (bytes).
 
@@ -285,7 +285,8 @@ class ContactSolver(CappedSolves, BCCGSolves):
         cuda : bool, optional
             On a CUDA device (default; cuFFT's work area counted).
         algorithm : {"pk", "bccg"}, optional
-            The iteration; ``"bccg"`` holds one more map.
+            The iteration (default ``"bccg"``, that of ``SolverSettings``); ``"bccg"`` holds one
+            more map, its residual.
 
         Returns
         -------
