@@ -9,21 +9,12 @@ import math
 
 import numpy as np
 import pytest
+from test_plastic import _displacement
 
 from warptrunc import SolverSettings, wm_surface
-from warptrunc.contact import ContactSolver, influence_spectrum
+from warptrunc.contact import ContactSolver
 
 E_STAR = 70e9 / (1 - 0.33**2)  # aluminium on a rigid flat (Pa)
-
-
-def _displacement(q, dx, substrate="free"):
-    """u = K·q by a float64 NumPy FFT convolution with the (independently tested) spectrum."""
-    ny, nx = q.shape
-    w = influence_spectrum((ny, nx), (dx, dx), E_STAR, substrate)
-    grid = (2 * ny, 2 * nx) if substrate == "free" else (ny, nx)
-    pad = np.zeros(grid)
-    pad[:ny, :nx] = q
-    return np.fft.irfft2(np.fft.rfft2(pad) * w, s=grid)[:ny, :nx]
 
 
 def _solvers(h, dx, device, **kw):

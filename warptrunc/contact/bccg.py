@@ -60,6 +60,19 @@ class BCCGSolves:
             self._r_buf, _ = self.hs.map_buffer()
         return self._r_buf, self.lin
 
+    def _scale_to_load(self, load: float, total: float) -> bool:
+        """Scale q and u (= K·q) to the ``load`` (N) from their ``total`` (N); without any force,
+        spread the load evenly (u is then stale). Returns whether u is still K·q."""
+        if total > 0.0:
+            wp.launch(_kb.scale_state_kernel, dim=self.shape, inputs=[wp.float64(load / total)],
+                      outputs=[self.q, self.u], device=self.device)  # fmt: skip
+            return True
+        self.mask.fill_(1)
+        n_map = self.shape[0] * self.shape[1]
+        wp.launch(_k.fill_map_kernel, dim=self.shape, inputs=[self.mask, wp.float64(load / n_map)],
+                  outputs=[self.q], device=self.device)  # fmt: skip
+        return False
+
     def _solve_bccg(self, offset: float, load: float | None, cap: float | None) -> dict[str, Any]:
         """One solve at ``offset`` (m; the start in load control) or at ``load`` (N), with the
         force cap ``cap`` (N per pixel; None: elastic). Returns the info dict of the default
@@ -70,26 +83,12 @@ class BCCGSolves:
         hf = _HUGE if cap is None else float(cap)
         load_control = load is not None
         r_buf, z_old = self._bccg_maps()
-        # warm start: raise u where the map would penetrate, q += K⁻¹·(that increase), projected
-        wp.launch(_k.clamp_displacement_kernel, dim=self.shape,
-                  inputs=[self.h, wp.float64(offset)], outputs=[self.u, self.t],
-                  device=dev)  # fmt: skip
-        dq = hs.apply(self.t_buf, inverse=True)
-        wp.launch(_k.add_map_kernel, dim=self.shape, inputs=[dq], outputs=[self.q], device=dev)
-        del dq
+        self._warm_start(offset)  # then projected onto the box
         wp.launch(_kb.clamp_force_kernel, dim=self.shape, inputs=[wp.float64(hf)],
                   outputs=[self.q], device=dev)  # fmt: skip
         total = float(self._sums(offset)[3])  # Σ q (N)
         if load_control:
-            if total > 0.0:
-                wp.launch(_kb.scale_state_kernel, dim=self.shape,
-                          inputs=[wp.float64(load / total)], outputs=[self.q, self.u],
-                          device=dev)  # fmt: skip
-            else:
-                self.mask.fill_(1)
-                wp.launch(_k.fill_map_kernel, dim=self.shape,
-                          inputs=[self.mask, wp.float64(load / n_map)], outputs=[self.q],
-                          device=dev)  # fmt: skip
+            self._scale_to_load(load, total)
             total = float(load)
         kq = hs.apply(self.q_buf)
         red.launch(_kb.bccg_exact_kernel, n_map, [kq], [self.u])
@@ -114,7 +113,8 @@ class BCCGSolves:
                        [self.q, self.u, self.h, wp.float64(set_offset), wp.float64(offset),
                         wp.float64(hf)], [r_buf, self.mask])  # fmt: skip
             (n_f, s_r, n_cg, s_gg, g_max, pen, open_cap, n_c, s_gap) = red.read(
-                (False, False, False, False, True, True, True, False, False))  # sync point
+                (False, False, False, False, True, True, True, False, False)
+            )  # sync point
             # convergence of the state reached by the last step (module docstring)
             rms = math.sqrt(s_gg / n_cg) if n_cg > 0 else 0.0
             res = max(rms, g_max, pen, open_cap, 0.0 if du is None else du)
@@ -122,14 +122,23 @@ class BCCGSolves:
             if load_control:
                 ok = ok and total != 0 and abs((total - load) / total) < self.thermotol
                 height = self.h_max + offset
-                ok = ok and last_height is not None and (
-                    height == last_height or abs((height - last_height) / height) < self.thermotol
+                ok = (
+                    ok
+                    and last_height is not None
+                    and (
+                        height == last_height
+                        or abs((height - last_height) / height) < self.thermotol
+                    )
                 )
                 last_height = height
             else:
-                ok = ok and last_total is not None and (
-                    total == last_total
-                    or (total != 0 and abs((total - last_total) / total) < self.thermotol)
+                ok = (
+                    ok
+                    and last_total is not None
+                    and (
+                        total == last_total
+                        or (total != 0 and abs((total - last_total) / total) < self.thermotol)
+                    )
                 )
             last_total = total
             if not math.isfinite(res):
@@ -178,16 +187,8 @@ class BCCGSolves:
             del kt
             n_proj, viol, total, du = red.read((False, True, False, True))  # sync point
             if load_control:
-                if total > 0.0:
-                    wp.launch(_kb.scale_state_kernel, dim=self.shape,
-                              inputs=[wp.float64(load / total)], outputs=[self.q, self.u],
-                              device=dev)  # fmt: skip
-                else:
-                    self.mask.fill_(1)
-                    wp.launch(_k.fill_map_kernel, dim=self.shape,
-                              inputs=[self.mask, wp.float64(load / n_map)], outputs=[self.q],
-                              device=dev)  # fmt: skip
-                    n_proj = 1.0
+                if not self._scale_to_load(load, total):
+                    n_proj = 1.0  # u no longer K·q: transform afresh
                 total = float(load)
             if n_proj > 0 or it % self.refresh == 0:
                 kq = hs.apply(self.q_buf)
@@ -197,7 +198,6 @@ class BCCGSolves:
                 du = max(du, float(red.read((True,))[0]))  # sync point
         self.offset = offset
         return info
-
 
     def _punch_pcg(self, x: Any, res: Any, n_set: float,
                    rtol: float) -> tuple[float, int, bool]:  # fmt: skip

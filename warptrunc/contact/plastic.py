@@ -85,12 +85,7 @@ class CappedSolves:
         inv_n = 1.0 / hs.n_total
         hf = wp.float64(self._cap)
         fallback = wp.float64(1.0 / self._self_influence())
-        wp.launch(_k.clamp_displacement_kernel, dim=self.shape,
-                  inputs=[self.h, wp.float64(offset)], outputs=[self.u, self.t],
-                  device=dev)  # fmt: skip
-        dq = hs.apply(self.t_buf, inverse=True)
-        wp.launch(_k.add_map_kernel, dim=self.shape, inputs=[dq], outputs=[self.q], device=dev)
-        del dq
+        self._warm_start(offset)
         n_transforms = 2
         red.launch(_kp.capped_sums_kernel, n_map, [self.q, self.u, self.h, wp.float64(offset), hf],
                    [])  # fmt: skip

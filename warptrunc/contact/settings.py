@@ -72,7 +72,8 @@ class SolverSettings(Parameters):
         50, "transform the forces afresh at least every this many iterations", kind="int", ge=1
     )
     direct_max: int | None = param(
-        None, "largest number of changed forces corrected by direct summation; None = auto "
+        None, "largest number of changed forces corrected by direct summation (algorithm "
+        "'pk'); None = auto "
         "(24 on CUDA, 4 on the CPU)", kind="int", ge=0, optional=True,
     )  # fmt: skip
 

@@ -2,6 +2,10 @@
 # SPDX-License-Identifier: MIT
 """Constrained conjugate gradients (Polonsky & Keer 1999) for a rough map on an elastic half-space.
 
+The default iteration is the preconditioned bound-constrained CG of :mod:`warptrunc.contact.bccg`
+(``SolverSettings.algorithm="bccg"``); this module's own loop is ``algorithm="pk"``, described
+below, and holds the solver's state, settings and everything around the iteration.
+
 The iteration is that of ContactMechanics' ``constrained_conjugate_gradients`` (same gap sign,
 warm start, offset handling in load control and stopping criterion), so that both give the same
 answers on the same discretisation (:mod:`warptrunc.contact.halfspace`); its kernels are in
@@ -58,9 +62,9 @@ from ..kernels import contact as _k
 from ..kernels import contact_reduce as _kr
 from ..material import Material
 from ..params import check_value
+from .bccg import BCCGSolves
 from .halfspace import DTYPES, ElasticHalfSpace
 from .influence import GRID_DOCS
-from .bccg import BCCGSolves
 from .plastic import CappedSolves
 from .results import ContactState
 from .settings import SolverSettings
@@ -400,6 +404,16 @@ class ContactSolver(CappedSolves, BCCGSolves):
             converged=bool(info["converged"]),
         )  # fmt: skip
 
+    def _warm_start(self, offset: float) -> None:
+        """Warm start of a solve at ``offset`` (m): raise u where the map would penetrate and
+        add K⁻¹·(that increase) to q (two transforms; q may leave its bounds)."""
+        wp.launch(_k.clamp_displacement_kernel, dim=self.shape,
+                  inputs=[self.h, wp.float64(offset)], outputs=[self.u, self.t],
+                  device=self.device)  # fmt: skip
+        dq = self.hs.apply(self.t_buf, inverse=True)
+        wp.launch(_k.add_map_kernel, dim=self.shape, inputs=[dq], outputs=[self.q],
+                  device=self.device)  # fmt: skip
+
     def _solve_elastic(self, depth: float | None, load: float | None) -> dict[str, Any]:
         """Today's elastic constrained CG on the current heights (the path of H = inf)."""
         load_control = load is not None
@@ -416,13 +430,7 @@ class ContactSolver(CappedSolves, BCCGSolves):
         red, hs, dev = self.hs.reduction, self.hs, self.device
         n_map = self.shape[0] * self.shape[1]
         inv_n = 1.0 / hs.n_total
-        # warm start: raise u where the map would penetrate, q += K⁻¹·(that increase)
-        wp.launch(_k.clamp_displacement_kernel, dim=self.shape,
-                  inputs=[self.h, wp.float64(offset)], outputs=[self.u, self.t],
-                  device=dev)  # fmt: skip
-        dq = hs.apply(self.t_buf, inverse=True)
-        wp.launch(_k.add_map_kernel, dim=self.shape, inputs=[dq], outputs=[self.q], device=dev)
-        del dq
+        self._warm_start(offset)
         n_transforms = 2
         n_c, s_g, s_gg, _ = self._sums(offset)
         self.t.zero_()
@@ -589,8 +597,7 @@ class ContactSolver(CappedSolves, BCCGSolves):
         if rtol is None:
             rtol = 1e-10 if self.dtype == "float64" else 1e-5
         sc = DTYPES[self.dtype][0]
-        dev, red, hs = self.device, self.hs.reduction, self.hs
-        ny, nx = self.shape
+        dev = self.device
         wp.launch(
             _k.contact_mask_kernel, dim=self.shape, inputs=[self.q], outputs=[self.mask], device=dev
         )
