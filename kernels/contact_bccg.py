@@ -15,6 +15,7 @@ from typing import Any
 
 import warp as wp
 
+from .contact import influence
 from .lanes import declare_overloads, lane_next, lane_start
 
 wp.set_module_options({"enable_backward": False})
@@ -199,11 +200,16 @@ def bccg_update_kernel(
     chunk: int,
     q: wp.array2d(dtype=Any),
     u: wp.array2d(dtype=Any),
+    lin: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    lane_count: wp.array[wp.int32],
     part: wp.array2d(dtype=wp.float64),
 ):
     """Lanes over the map: q ← q − τ·t projected onto [0, hf] (τ = tau_arr[0]); u ← u − τ·K·t
-    (exact unless the projection acted). part[i] = [n projected, max amount projected (N),
-    Σ q, max abs(τ·K·t)]."""
+    (exact unless the projection acted). A projected pixel gets mask bit 4 and lin = q − τ·t
+    before the projection (``compact_changes_kernel`` then lists q − lin); lane_count[i] = their
+    number in the lane. part[i] = [n projected, max amount projected (N), Σ q,
+    max abs(τ·K·t)]."""
     lane = wp.tid()
     tau = tau_arr[0]
     nx = q.shape[1]
@@ -212,19 +218,27 @@ def bccg_update_kernel(
     viol = wp.float64(0.0)
     total = wp.float64(0.0)
     du = wp.float64(0.0)
+    count = int(0)
     while i < n:
         tv = wp.float64(t[iy, ix])
         qv = wp.float64(q[iy, ix])
         if tv != wp.float64(0.0):
             qv = qv - tau * tv
+            q_lin = qv
+            projected = int(0)
             if qv < wp.float64(0.0):
                 viol = wp.max(viol, -qv)
-                n_p += wp.float64(1.0)
+                projected = 1
                 qv = wp.float64(0.0)
             elif qv > hf:
                 viol = wp.max(viol, qv - hf)
-                n_p += wp.float64(1.0)
+                projected = 1
                 qv = hf
+            if projected != 0:
+                n_p += wp.float64(1.0)
+                count += 1
+                lin[iy, ix] = lin.dtype(q_lin)
+                mask[iy, ix] = mask[iy, ix] | wp.uint8(4)
             q[iy, ix] = q.dtype(qv)
         step_u = tau * wp.float64(kt[iy, ix])
         u[iy, ix] = u.dtype(wp.float64(u[iy, ix]) - step_u)
@@ -235,6 +249,38 @@ def bccg_update_kernel(
     part[lane, 1] = viol
     part[lane, 2] = total
     part[lane, 3] = du
+    lane_count[lane] = count
+
+
+@wp.kernel
+def bccg_correct_kernel(
+    table: wp.array2d(dtype=Any),
+    periodic: int,
+    index: wp.array[wp.int32],
+    value: wp.array[wp.float64],
+    n_changes: int,
+    stride: int,
+    chunk: int,
+    u: wp.array2d(dtype=Any),
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the map: u ← u + Σ_k value_k·G(pixel − index_k), the projection's few force
+    corrections (N) by direct summation over the influence table, in the list's fixed order.
+    part[i, 0] = max abs(correction) (m)."""
+    lane = wp.tid()
+    nx = u.shape[1]
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, u.shape[0] * nx, nx)
+    d_max = wp.float64(0.0)
+    while i < n:
+        acc = wp.float64(0.0)
+        for k in range(n_changes):
+            j = index[k]
+            jy = j // nx
+            acc += value[k] * influence(table, periodic, iy - jy, ix - (j - jy * nx))
+        u[iy, ix] = u.dtype(wp.float64(u[iy, ix]) + acc)
+        d_max = wp.max(d_max, wp.abs(acc))
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
+    part[lane, 0] = d_max
 
 
 @wp.kernel
@@ -279,5 +325,5 @@ def scale_state_kernel(s: wp.float64, q: wp.array2d(dtype=Any), u: wp.array2d(dt
 
 declare_overloads((
     bccg_sums_kernel, bccg_residual_kernel, bccg_dot_kernel, bccg_direction_kernel,
-    bccg_update_kernel, bccg_exact_kernel, clamp_force_kernel, scale_state_kernel,
+    bccg_update_kernel, bccg_correct_kernel, bccg_exact_kernel, clamp_force_kernel, scale_state_kernel,
 ))  # fmt: skip

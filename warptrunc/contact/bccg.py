@@ -26,8 +26,10 @@ to a thousand iterations per load. This solver follows Vollebregt (J. Optim. The
   set is zero, z is made mean-free on the set, and the forces are scaled to the load after each
   step (as in the default solver).
 
-Displacements stay exact: u ← u − τ·K·t when the projection did not act, else u = K·q afresh
-(one more convolution), and afresh every ``refresh`` iterations. Stopping: the default solver's
+Displacements stay exact: u ← u − τ·K·t, plus K·Δq for the forces the projection changed, by
+direct summation over the influence table when they are at most ``direct_max`` pixels (as in
+the default solver), else u = K·q afresh (one more convolution); afresh every ``refresh``
+iterations too. Stopping: the default solver's
 criterion (rms and max gap over 0 < q < cap, penetration at zero force, open gaps at the cap,
 the largest change of u below ``pentol``; the largest projected force below ``forcetol``; the
 total force steady or at the target) tested on the state at the top of each iteration.
@@ -83,6 +85,7 @@ class BCCGSolves:
         hf = _HUGE if cap is None else float(cap)
         load_control = load is not None
         r_buf, z_old = self._bccg_maps()
+        periodic = int(self.substrate == "periodic")
         self._warm_start(offset)  # then projected onto the box
         wp.launch(_kb.clamp_force_kernel, dim=self.shape, inputs=[wp.float64(hf)],
                   outputs=[self.q], device=dev)  # fmt: skip
@@ -183,14 +186,28 @@ class BCCGSolves:
             kt = hs.inverse(spec)
             n_transforms += 2
             red.launch(_kb.bccg_update_kernel, n_map, [kt, self.tau, wp.float64(hf), self.t],
-                       [self.q, self.u])  # fmt: skip
+                       [self.q, self.u, r_buf, self.mask, self.lane_count])  # fmt: skip
             del kt
             n_proj, viol, total, du = red.read((False, True, False, True))  # sync point
+            n_proj = int(n_proj)
+            exact = it % self.refresh == 0 or n_proj > self.direct_max
+            if n_proj > 0 and not exact:
+                # the projection's few corrections by direct summation (r is free until the
+                # next residual: it holds the projected pixels' forces before the projection)
+                wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
+                wp.launch(_k.compact_changes_kernel, dim=red.lanes,
+                          inputs=[self.q, r_buf, self.mask, wp.float64(1.0), self.lane_offset,
+                                  *red.geometry(n_map)],
+                          outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
+                red.launch(_kb.bccg_correct_kernel, n_map,
+                           [hs.table, periodic, self.change_index, self.change_value, n_proj],
+                           [self.u])  # fmt: skip
+                du += float(red.read((True,))[0])  # sync point
             if load_control:
                 if not self._scale_to_load(load, total):
-                    n_proj = 1.0  # u no longer K·q: transform afresh
+                    exact = True  # u no longer K·q: transform afresh
                 total = float(load)
-            if n_proj > 0 or it % self.refresh == 0:
+            if exact:
                 kq = hs.apply(self.q_buf)
                 n_transforms += 2
                 red.launch(_kb.bccg_exact_kernel, n_map, [kq], [self.u])
