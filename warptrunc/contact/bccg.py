@@ -5,7 +5,7 @@
 The contact problem at a fixed approach is the bound-constrained quadratic programme
 min ½·q·K·q − q·(h + offset) over 0 ≤ q ≤ H·dx·dy (H = inf: elastic), with gradient the gap
 g = K·q − h − offset. Polonsky & Keer's CG (:mod:`warptrunc.contact.solver`, the default
-``"pk"``) needs O(√N) iterations on a contact of N pixels: K is a 1/|k| operator, its condition
+``"pk"``) needs O(√N) iterations on a contact of N pixels: K is a ``1/|k|`` operator, its condition
 number on a contact set d pixels across grows as d, and under a flat punch close to complete
 contact (the paper's 502.6 µm punch is 5147 pixels across at its pixel size) that means hundreds
 to a thousand iterations per load. This solver follows Vollebregt (J. Optim. Theory Appl. 162,
