@@ -66,6 +66,7 @@ from .bccg import BCCGSolves
 from .halfspace import DTYPES, ElasticHalfSpace
 from .influence import GRID_DOCS
 from .plastic import CappedSolves
+from .punch import PunchStiffness
 from .results import ContactState
 from .settings import SolverSettings
 
@@ -94,7 +95,7 @@ _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter
 
 
 @fill_doc(SHARED_DOCS)
-class ContactSolver(CappedSolves, BCCGSolves):
+class ContactSolver(CappedSolves, BCCGSolves, PunchStiffness):
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
 
     With a finite ``hardness`` the local pressure is capped at H and the map flows plastically
@@ -576,84 +577,6 @@ class ContactSolver(CappedSolves, BCCGSolves):
         self._trial_failed = False
 
     # --- after a solve -----------------------------------------------------------------------
-
-    def punch_stiffness(self, rtol: float | None = None) -> tuple[float, int, bool]:
-        """Barber's incremental stiffness of the current contact: a rigid flat punch shaped like
-        the contact set, K·x = 1 m on the set, solved by linear CG; k = Σx (N/m).
-
-        Parameters
-        ----------
-        rtol : float, optional
-            Relative rms residual to stop at (dimensionless); default 1e-10 (float64) or 1e-5
-            (float32).
-
-        Returns
-        -------
-        (float, int, bool)
-            Stiffness k (N/m), CG iterations, converged. A converged k is also the slope with
-            which the next secant load control (:meth:`solve` with ``load``) takes its first
-            step: it is dF/dδ of unloading from the current solution.
-        """
-        if rtol is None:
-            rtol = 1e-10 if self.dtype == "float64" else 1e-5
-        sc = DTYPES[self.dtype][0]
-        dev = self.device
-        wp.launch(
-            _k.contact_mask_kernel, dim=self.shape, inputs=[self.q], outputs=[self.mask], device=dev
-        )
-        x = self.lin  # q_lin is scratch between solves: the punch's unknown uses its map
-        x.zero_()
-        res = wp.zeros(self.shape, dtype=sc, device=dev)
-        wp.launch(
-            _k.fill_map_kernel,
-            dim=self.shape,
-            inputs=[self.mask, wp.float64(1.0)],
-            outputs=[res],
-            device=dev,
-        )
-        d = self.t  # the CCG direction is free now; its buffer's pad is zero
-        d.zero_()
-        wp.launch(
-            _k.fill_map_kernel,
-            dim=self.shape,
-            inputs=[self.mask, wp.float64(1.0)],
-            outputs=[d],
-            device=dev,
-        )
-        n_set = float(np.count_nonzero(self.mask.numpy()))  # sync point
-        if n_set == 0:
-            return 0.0, 0, True
-        if self.settings.algorithm == "bccg":
-            k, it, ok = self._punch_pcg(x, res, n_set, rtol)
-        else:
-            k, it, ok = self._punch_cg(x, res, n_set, rtol)
-        self.t.zero_()
-        if ok and k > 0:
-            self._slope = float(k)  # dF/dδ of unloading from here: the next secant's first step
-        return float(k), it, ok
-
-    def _punch_cg(self, x: wp.array, res: wp.array, n_set: float,
-                  rtol: float) -> tuple[float, int, bool]:  # fmt: skip
-        """Barber's punch by plain CG from x = 0, res = 1 m on the set, d = res (in self.t)."""
-        dev, red, hs = self.device, self.hs.reduction, self.hs
-        ny, nx = self.shape
-        d = self.t
-        rr, k, it, ok = n_set, 0.0, 0, False
-        for it in range(1, self.maxiter + 1):  # noqa: B007
-            kd = hs.apply(self.t_buf, energy_column=0)
-            d_k_d = red.read((False,))[0] / hs.n_total  # sync point
-            alpha = rr / d_k_d
-            red.launch(
-                _k.punch_step_kernel, ny * nx, [kd, d, self.mask, wp.float64(alpha)], [x, res]
-            )
-            rr_new, k = red.read((False, False))
-            if math.sqrt(rr_new / n_set) < rtol:
-                ok = True
-                break
-            wp.launch(_k.punch_direction_kernel, dim=self.shape,
-                      inputs=[res, self.mask, wp.float64(rr_new / rr)], outputs=[d], device=dev)  # fmt: skip
-            rr = rr_new
-        return k, it, ok
 
     def maps(self) -> tuple[np.ndarray, np.ndarray]:
         """Copy the pressure and gap maps of the current solution to the host.
