@@ -24,7 +24,9 @@ to a thousand iterations per load. This solver follows Vollebregt (J. Optim. The
 * **Load control** (elastic only; with a cap the approach is found by the secant of
   :mod:`warptrunc.contact.plastic`): the rigid offset moves so that the mean gap over the free
   set is zero, z is made mean-free on the set, and the forces are scaled to the load after each
-  step (as in the default solver).
+  step (as in the default solver). The solve starts from the last approach or, after Barber's
+  stiffness K (:meth:`~warptrunc.contact.ContactSolver.punch_stiffness`), from the approach it
+  predicts, δ₀ + (F − F₀)/K (a lower bound on loading, since K is the unloading slope).
 
 Displacements stay exact: u ← u − τ·K·t, plus K·Δq for the forces the projection changed, by
 direct summation over the influence table when they are at most ``direct_max`` pixels (as in

@@ -421,6 +421,8 @@ class ContactSolver(CappedSolves, BCCGSolves, PunchStiffness):
         if self.settings.algorithm == "bccg":
             if load_control:
                 start = self.offset if self._depth is not None else 0.0
+                if self._point is not None and self._slope:  # predicted by the last slope
+                    start = self._point[0] - self.h_max + (load - self._point[1]) / self._slope
             else:
                 start = float(depth) - self.h_max
             return self._solve_bccg(start, load, None)
