@@ -87,7 +87,7 @@ def fft_floor(n: int, dtype: str, dev, repeats: int) -> float | None:
     return statistics.median(ts[1:])
 
 
-def run_one(s, dtype: str, dev) -> dict:
+def run_one(s, dtype: str, dev, algorithm: str = "bccg") -> dict:
     """Make a solver, solve cold at 0.20·R_t and warm at 0.21·R_t; times, counts, memory."""
     gc.collect()
     wp.synchronize_device(dev)
@@ -96,7 +96,8 @@ def run_one(s, dtype: str, dev) -> dict:
         core.wp_alloc_tracker_reset()
         base = core.wp_alloc_tracker_get_current_bytes()
         t0 = time.perf_counter()
-        solver = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev)
+        solver = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev,
+                               algorithm=algorithm)  # fmt: skip
         wp.synchronize_device(dev)
         t1 = time.perf_counter()
         cold = solver.solve(COLD * s.Rt)
@@ -133,6 +134,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--dtype", nargs="+", default=["float32", "float64"],
                    choices=["float32", "float64"])  # fmt: skip
     p.add_argument("--device", default=None, help="Warp device (cpu, cuda:0)")
+    p.add_argument("--algorithm", nargs="+", default=["bccg"], choices=["bccg", "pk"],
+                   help="the solver's iteration(s) (SolverSettings.algorithm)")  # fmt: skip
     p.add_argument("--repeats", type=int, default=3, help="repeats of the FFT floor (median)")
     p.add_argument("--budget", type=float, default=480.0, help="time budget of the run (s)")
     p.add_argument("--quick", action="store_true", help="small sizes (128, 256), float32 only")
@@ -151,25 +154,28 @@ def main(argv: list[str] | None = None) -> int:
     last: tuple[int, float] | None = None
     stopped = None
     for n in sizes:
-        for dtype in dtypes:
+        for dtype, algorithm in [(d, al) for d in dtypes for al in a.algorithm]:
             if last is not None:
                 predicted = last[1] * 4.5 ** np.log2(n / last[0])
                 left = a.budget - (time.perf_counter() - start)
                 if predicted > left:
                     stopped = f"stopped before N={n} {dtype}: predicted {predicted:.0f} s, {left:.0f} s left"
                     break
-            need = ContactSolver.memory_bytes((n, n), "free", dtype, cuda=dev.is_cuda)
+            need = ContactSolver.memory_bytes((n, n), "free", dtype, cuda=dev.is_cuda,
+                                              algorithm=algorithm)  # fmt: skip
             t0 = time.perf_counter()
             try:
                 s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=a.seed, device=dev)
-                r = run_one(s, dtype, dev)
+                r = run_one(s, dtype, dev, algorithm)
             except MemoryError as exc:
                 print(f"N={n} {dtype}: {exc}", flush=True)
-                rows.append({"n": n, "dtype": dtype, "memory_model_bytes": need, "error": str(exc)})
+                rows.append({"n": n, "dtype": dtype, "algorithm": algorithm,
+                             "memory_model_bytes": need, "error": str(exc)})  # fmt: skip
                 continue
             floor = fft_floor(n, dtype, dev, a.repeats)
             del s
-            r.update(n=n, dtype=dtype, memory_model_bytes=need, fft_floor_s=floor)
+            r.update(n=n, dtype=dtype, algorithm=algorithm, memory_model_bytes=need,
+                     fft_floor_s=floor)  # fmt: skip
             conv = r["warm_convolutions"]
             r["warm_per_convolution_s"] = r["warm_s"] / conv if conv else None
             r["per_convolution_over_floor"] = (
@@ -181,7 +187,7 @@ def main(argv: list[str] | None = None) -> int:
             last = (n, time.perf_counter() - t0)
             ratio = r["per_convolution_over_floor"]
             print(
-                f"N={n:6d} {dtype}: cold {r['cold_s']:8.3f} s ({r['cold_iterations']} it, "
+                f"N={n:6d} {dtype} {algorithm}: cold {r['cold_s']:8.3f} s ({r['cold_iterations']} it, "
                 f"{r['cold_convolutions']} conv), warm {r['warm_s']:8.3f} s "
                 f"({r['warm_iterations']} it, {conv} conv), "
                 f"{(r['warm_per_convolution_s'] or 0) * 1e3:8.2f} ms/conv"
