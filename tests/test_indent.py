@@ -262,9 +262,12 @@ def test_monotonic_loading_needs_no_replay_of_the_partial_unloads():
     assert cycles["plastic_area_m2"][-1] > 50 * s.dx**2  # plasticity is there
     for k in ("contact_area_m2", "plastic_area_m2", "n_contact"):
         assert cycles[k][-1] == straight[k][0], k
-    for k in ("displacement_m", "plastic_volume_m3", "unloading_stiffness_N_per_m",
-              "partial_unloading_stiffness_N_per_m"):  # fmt: skip
+    for k in ("displacement_m", "plastic_volume_m3", "unloading_stiffness_N_per_m"):
         np.testing.assert_allclose(cycles[k][-1], straight[k][0], rtol=1e-5, err_msg=k)
+    # the secant ΔF/Δδ over a 10 % step: each load within thermotol = 1e-6 of F, so ΔF within
+    # 2·1e-6·F = 2e-5·ΔF (the approach's share comes on top)
+    k = "partial_unloading_stiffness_N_per_m"
+    np.testing.assert_allclose(cycles[k][-1], straight[k][0], rtol=5e-5, err_msg=k)
 
 
 def test_elastic_hardness_copies_the_elastic_columns():
