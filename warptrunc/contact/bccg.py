@@ -14,7 +14,7 @@ to a thousand iterations per load. This solver follows Vollebregt (J. Optim. The
 * **Free set** (the variables the CG moves): 0 < q < H·dx·dy, plus the pixels at a bound whose
   gradient points into the box (q = 0 penetrating, g < 0; q at the cap with an open gap, g > 0).
   Pixels enter the set as soon as they penetrate, instead of one restart at a time.
-* **Preconditioner** (while the free set covers more than :data:`PRECONDITION_ABOVE` of the
+* **Preconditioner** (while the free set covers more than ``PRECONDITION_ABOVE`` (2 %) of the
   map; else z = c·g): z = c·K⁻¹·(c·g), c the free set, with K⁻¹ the inverse of the half-space's
   circulant convolution (the spectrum 1/W on the padded grid: ``SPECTRUM_INVERSE``, one more
   convolution per iteration). On a fixed contact set it makes the CG iterations nearly

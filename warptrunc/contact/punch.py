@@ -26,23 +26,8 @@ class PunchStiffness:
     """Barber's punch solve of :class:`~warptrunc.contact.ContactSolver` (a base class holding
     methods only; the solver's maps and settings are its own)."""
 
-    def punch_stiffness(self, rtol: float | None = None) -> tuple[float, int, bool]:
-        """Barber's incremental stiffness of the current contact: a rigid flat punch shaped like
-        the contact set, K·x = 1 m on the set, solved by linear CG; k = Σx (N/m).
-
-        Parameters
-        ----------
-        rtol : float, optional
-            Relative rms residual to stop at (dimensionless); default 1e-10 (float64) or 1e-5
-            (float32).
-
-        Returns
-        -------
-        (float, int, bool)
-            Stiffness k (N/m), CG iterations, converged. A converged k is also the slope with
-            which the next secant load control (:meth:`solve` with ``load``) takes its first
-            step: it is dF/dδ of unloading from the current solution.
-        """
+    def _punch_solve(self, rtol: float | None = None) -> tuple[float, int, bool]:
+        """:meth:`~warptrunc.contact.ContactSolver.punch_stiffness` (its docstring)."""
         if rtol is None:
             rtol = 1e-10 if self.dtype == "float64" else 1e-5
         sc = DTYPES[self.dtype][0]

@@ -580,6 +580,27 @@ class ContactSolver(CappedSolves, BCCGSolves, PunchStiffness):
 
     # --- after a solve -----------------------------------------------------------------------
 
+    def punch_stiffness(self, rtol: float | None = None) -> tuple[float, int, bool]:
+        """Barber's incremental stiffness of the current contact: a rigid flat punch shaped like
+        the contact set, K·x = 1 m on the set, solved by linear CG (preconditioned with c·K⁻¹·c
+        under ``algorithm="bccg"`` when the set covers more than 2 % of the map;
+        :mod:`warptrunc.contact.punch`); k = Σx (N/m).
+
+        Parameters
+        ----------
+        rtol : float, optional
+            Relative rms residual to stop at (dimensionless); default 1e-10 (float64) or 1e-5
+            (float32).
+
+        Returns
+        -------
+        (float, int, bool)
+            Stiffness k (N/m), CG iterations, converged. A converged k is also the slope with
+            which the next secant load control (:meth:`solve` with ``load``) takes its first
+            step: it is dF/dδ of unloading from the current solution.
+        """
+        return self._punch_solve(rtol)
+
     def maps(self) -> tuple[np.ndarray, np.ndarray]:
         """Copy the pressure and gap maps of the current solution to the host.
 
