@@ -247,3 +247,19 @@ def test_indentation_profiler_runs_small():
     assert "converged True" in r.stdout
     for phase in ("/load ", "/barber ", "/load/frozen "):
         assert re.search(rf"GB300s/1H/109um/\d+px{phase}", r.stdout), phase
+
+
+def test_iterations_vs_grid_runs_small(tmp_path):
+    """The iterations-against-the-grid benchmark runs two small sizes on the CPU, both
+    algorithms, every case converged, and writes its rows as JSON; under the punch near complete
+    contact the preconditioned BCCG needs fewer iterations than PK at the larger size."""
+    out = tmp_path / "iters.json"
+    script = BENCHMARKS_DIR / "iterations_vs_grid.py"
+    r = _run(script, "--n", "64", "128", "--json", str(out), timeout=300)
+    assert r.returncode == 0, r.stderr[-4000:]
+    rows = json.loads(out.read_text())["rows"]
+    assert {row["algorithm"] for row in rows} == {"pk", "bccg"}
+    assert all(row["converged"] for row in rows)
+    punch = {row["algorithm"]: row["iterations"] for row in rows
+             if row["n"] == 128 and row["case"].startswith("punch")}  # fmt: skip
+    assert punch["bccg"] < punch["pk"], punch
