@@ -298,8 +298,9 @@ class ContactSolver(CappedSolves, BCCGSolves, PunchStiffness):
         int
             The sum of :meth:`memory_terms`. Per map pixel, free boundary, large maps: float32
             4 (kernel spectrum) + 4 (table) + 16 (work spectrum) + ≤ 2 (cuFFT work area,
-            estimated) + 20 (maps) + 1 (mask) + 4 (stiffness solve) ≈ 51 B; float64 ≈ 101 B;
-            periodic float32 ≈ 1 + 4 + 4 + ≤ 0.5 + 20 + 1 + 4 ≈ 35 B.
+            estimated) + 20 (maps) + 1 (mask) + 4 (stiffness solve) + 4 (BCCG's residual)
+            ≈ 55 B; float64 ≈ 109 B; periodic float32 ≈ 1 + 4 + 4 + ≤ 0.5 + 20 + 1 + 4 + 4
+            ≈ 38.5 B. Without BCCG (``algorithm="pk"``) one map less.
         """
         terms = ContactSolver.memory_terms(shape, substrate, dtype, cuda=cuda,
                                            algorithm=algorithm)  # fmt: skip
