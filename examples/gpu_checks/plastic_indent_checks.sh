@@ -5,7 +5,8 @@
 #   analyze   `warptrunc analyze --n 10240` as a whole process, median of 5 (and of an older
 #             source tree in ./_base when present, for a before/after in the same run)
 #   indent    `reproduce --profile paper --stages indentation` (resumable; repeat until complete)
-#   scaling   the contact solver at 10240², 16384², 32768²
+#   scaling   the contact solver at 10240², 16384², 32768² (both algorithms)
+#   iterations  iterations against the grid on cuda:0 (benchmarks/iterations_vs_grid.py)
 # Results go under $OUT.
 set -uo pipefail
 export PYTHONPATH=/tmp/site MPLBACKEND=Agg
@@ -58,5 +59,8 @@ print(f"surfaces {sum(surf.values()):.1f} s; pieces {tot:.1f} s; sum {tot + sum(
 PY
   cp -r /tmp/repro_paper/*.md /tmp/repro_paper/*.json /tmp/repro_paper/*.png /tmp/repro_paper/stages $OUT/ 2>/dev/null ;;
 scaling)
-  python3 examples/benchmarks/benchmark_solver_scaling.py --device cuda:0 --n ${2:-10240 16384 32768} --dtype float32 --budget ${3:-400} --out $OUT/scaling 2>&1 | tail -20 ;;
+  python3 examples/benchmarks/benchmark_solver_scaling.py --device cuda:0 --n ${2:-10240 16384 32768} --dtype float32 --budget ${3:-400} --algorithm ${4:-bccg pk} --out $OUT/scaling 2>&1 | tail -20 ;;
+iterations)
+  # iterations and convolutions against the grid, both algorithms (CPU table: docs/benchmarks/iterations_cpu.json)
+  timeout ${3:-400} python3 examples/benchmarks/iterations_vs_grid.py --device cuda:0 --dtype float32 --n ${2:-1024 2048 4096} --json $OUT/iterations_gpu.json 2>&1 | tail -40 ;;
 esac
