@@ -86,6 +86,15 @@ class BCCGSolves:
                   outputs=[self.q], device=self.device)  # fmt: skip
         return False
 
+    def _exact_u(self) -> float:
+        """u ← K·q by a transform afresh (one convolution); returns the largest change of u (m;
+        a synchronisation point)."""
+        kq = self.hs.apply(self.q_buf)
+        self.hs.reduction.launch(_kb.bccg_exact_kernel, self.shape[0] * self.shape[1], [kq],
+                                 [self.u])  # fmt: skip
+        del kq
+        return float(self.hs.reduction.read((True,))[0])
+
     def _solve_bccg(self, offset: float, load: float | None, cap: float | None) -> dict[str, Any]:
         """One solve at ``offset`` (m; the start in load control) or at ``load`` (N), with the
         force cap ``cap`` (N per pixel; None: elastic). Returns the info dict of the default
@@ -104,9 +113,7 @@ class BCCGSolves:
         if load_control:
             self._scale_to_load(load, total)
             total = float(load)
-        kq = hs.apply(self.q_buf)
-        red.launch(_kb.bccg_exact_kernel, n_map, [kq], [self.u])
-        del kq
+        self._exact_u()
         n_transforms = 4
         self.t.zero_()
         z_old.zero_()
@@ -137,24 +144,10 @@ class BCCGSolves:
             if load_control:
                 ok = ok and total != 0 and abs((total - load) / total) < self.thermotol
                 height = self.h_max + offset
-                ok = (
-                    ok
-                    and last_height is not None
-                    and (
-                        height == last_height
-                        or abs((height - last_height) / height) < self.thermotol
-                    )
-                )
+                ok = ok and self._steady(height, last_height)
                 last_height = height
             else:
-                ok = (
-                    ok
-                    and last_total is not None
-                    and (
-                        total == last_total
-                        or (total != 0 and abs((total - last_total) / total) < self.thermotol)
-                    )
-                )
+                ok = ok and self._steady(total, last_total)
             last_total = total
             if not math.isfinite(res):
                 raise FloatingPointError(
@@ -187,10 +180,9 @@ class BCCGSolves:
             s_z, rz, rzo = red.read((False, False, False))  # sync point
             mean = s_z / n_f if load_control else 0.0
             rz -= mean * s_r
-            rzo_c = rzo  # z_old is mean-free on its own set; r·z_old as it is
-            beta = 0.0
+            beta = 0.0  # Polak–Ribière (z_old is mean-free on its own set; r·z_old as it is)
             if rz_old is not None and rz_old > 0.0:
-                beta = max(0.0, (rz - rzo_c) / rz_old)
+                beta = max(0.0, (rz - rzo) / rz_old)
             rz_old = rz
             red.launch(_kb.bccg_direction_kernel, n_map,
                        [z, wp.float64(mean), wp.float64(beta), self.mask, r_buf],
@@ -227,11 +219,8 @@ class BCCGSolves:
                     exact = True  # u no longer K·q: transform afresh
                 total = float(load)
             if exact:
-                kq = hs.apply(self.q_buf)
+                du = max(du, self._exact_u())
                 n_transforms += 2
-                red.launch(_kb.bccg_exact_kernel, n_map, [kq], [self.u])
-                del kq
-                du = max(du, float(red.read((True,))[0]))  # sync point
         self.offset = offset
         return info
 

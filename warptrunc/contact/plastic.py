@@ -142,10 +142,7 @@ class CappedSolves:
             g_old = g
             cg = n_nc == 0 and n_clamp == 0
             rms_pen = math.sqrt(g / a_cg if a_cg > 0 else g)
-            ok = last_total is not None and (
-                total == last_total
-                or (total != 0 and abs((total - last_total) / total) < self.thermotol)
-            )
+            ok = self._steady(total, last_total)
             last_total = total
             res = max(rms_pen, viol, du)
             ok = ok and res < self.pentol and max_viol < self.forcetol and n_nc == 0

@@ -45,15 +45,8 @@ class PunchStiffness:
             outputs=[res],
             device=dev,
         )
-        d = self.t  # the CCG direction is free now; its buffer's pad is zero
-        d.zero_()
-        wp.launch(
-            _k.fill_map_kernel,
-            dim=self.shape,
-            inputs=[self.mask, wp.float64(1.0)],
-            outputs=[d],
-            device=dev,
-        )
+        d = self.t  # the CCG direction is free now: the first direction is the residual
+        wp.copy(d, res)
         n_set = float(np.count_nonzero(self.mask.numpy()))  # sync point
         if n_set == 0:
             return 0.0, 0, True

@@ -65,6 +65,7 @@ from ..params import check_value
 from .bccg import BCCGSolves
 from .halfspace import DTYPES, ElasticHalfSpace
 from .influence import GRID_DOCS
+from .pk import PKSolves
 from .plastic import CappedSolves
 from .punch import PunchStiffness
 from .results import ContactState
@@ -95,7 +96,7 @@ _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter
 
 
 @fill_doc(SHARED_DOCS)
-class ContactSolver(CappedSolves, BCCGSolves, PunchStiffness):
+class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
 
     With a finite ``hardness`` the local pressure is capped at H and the map flows plastically
@@ -406,6 +407,13 @@ class ContactSolver(CappedSolves, BCCGSolves, PunchStiffness):
             converged=bool(info["converged"]),
         )  # fmt: skip
 
+    def _steady(self, new: float, old: float | None) -> bool:
+        """Whether a quantity (a total force in N, a height in m) changed by less than
+        ``thermotol`` relative to its new value since the last iteration (False without one)."""
+        if old is None:
+            return False
+        return new == old or (new != 0 and abs((new - old) / new) < self.thermotol)
+
     def _warm_start(self, offset: float) -> None:
         """Warm start of a solve at ``offset`` (m): raise u where the map would penetrate and
         add K⁻¹·(that increase) to q (two transforms; q may leave its bounds)."""
@@ -417,7 +425,8 @@ class ContactSolver(CappedSolves, BCCGSolves, PunchStiffness):
                   device=self.device)  # fmt: skip
 
     def _solve_elastic(self, depth: float | None, load: float | None) -> dict[str, Any]:
-        """Today's elastic constrained CG on the current heights (the path of H = inf)."""
+        """The elastic solve on the current heights (the path of H = inf), by the settings'
+        algorithm: :mod:`warptrunc.contact.bccg` or :mod:`warptrunc.contact.pk`."""
         load_control = load is not None
         if self.settings.algorithm == "bccg":
             if load_control:
@@ -427,118 +436,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PunchStiffness):
             else:
                 start = float(depth) - self.h_max
             return self._solve_bccg(start, load, None)
-        if load_control:
-            offset = 0.0  # as ContactMechanics: the first gap is measured from offset 0
-        else:
-            offset = float(depth) - self.h_max
-        red, hs, dev = self.hs.reduction, self.hs, self.device
-        n_map = self.shape[0] * self.shape[1]
-        inv_n = 1.0 / hs.n_total
-        self._warm_start(offset)
-        n_transforms = 2
-        n_c, s_g, s_gg, _ = self._sums(offset)
-        self.t.zero_()
-        g_old, cg = 1.0, False
-        last_total = last_height = None
-        info: dict[str, Any] = {"converged": False}
-        update_cols = (False, False, False, False, True, False, False, False)
-        advance_cols = (True, False, False, False, True, False, False)
-        periodic = int(self.substrate == "periodic")
-        for it in range(1, self.maxiter + 1):
-            if load_control:  # offset: mean gap over the CG set is zero (ContactMechanics)
-                new = offset + s_g / n_c if n_c > 0 else 0.0
-                d = offset - new
-                s_gg, s_g, offset = s_gg + 2 * d * s_g + d * d * n_c, s_g + d * n_c, new
-            g, a_cg = s_gg, n_c
-            beta = g / g_old if (cg and g_old > 0) else 0.0
-            red.launch(_k.cg_direction_kernel, n_map,
-                       [self.q, self.u, self.h, wp.float64(offset), wp.float64(beta)],
-                       [self.t, self.mask])  # fmt: skip
-            spec = hs.work
-            hs.forward(self.t_buf, spec)  # T̂
-            # N·t·K·t by Parseval, and T̂ ← W·T̂/N in the same pass (not yet known whether K·t
-            # is needed: a transform of q afresh overwrites it)
-            hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
-            wp.launch(_k.step_length_kernel, dim=1,
-                      inputs=[red.fold((False, False)), wp.float64(n_c), wp.float64(inv_n)],
-                      outputs=[self.tau], device=dev)  # fmt: skip
-            red.launch(_k.update_force_kernel, n_map,
-                       [self.t, self.u, self.h, wp.float64(offset), self.tau, int(load_control)],
-                       [self.q, self.mask, self.lin, self.lane_count])  # fmt: skip
-            _, t_k_t, n_nc, n_zero, max_tens, total, tau, n_changed = red.read(
-                update_cols
-            )  # sync point
-            n_changed = int(n_changed)
-            n_transforms += 1
-            if n_c > 0 and not t_k_t > 0.0:
-                g = 0.0
-            scale = 1.0
-            exact = it == 1 or it % self.refresh == 0 or n_changed > self.direct_max
-            if load_control:
-                if total != 0.0:
-                    scale = load / total
-                    wp.launch(_k.rescale_force_kernel, dim=self.shape,
-                              inputs=[self.u, self.h, wp.float64(offset), wp.float64(tau),
-                                      wp.float64(scale), self.mask], outputs=[self.q], device=dev)  # fmt: skip
-                else:
-                    self.mask.fill_(1)
-                    wp.launch(_k.fill_map_kernel, dim=self.shape,
-                              inputs=[self.mask, wp.float64(load / n_map)], outputs=[self.q], device=dev)  # fmt: skip
-                    exact = True
-            if exact:  # u = K·q afresh
-                hs.forward(self.q_buf, spec)
-                hs.spectral(_kr.SPECTRUM_APPLY, spec)
-                n_transforms += 1
-            elif n_changed > 0:  # the projection's few corrections, listed in a fixed order
-                wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
-                wp.launch(_k.compact_changes_kernel, dim=red.lanes,
-                          inputs=[self.q, self.lin, self.mask, wp.float64(scale), self.lane_offset,
-                                  *red.geometry(n_map)],
-                          outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
-            r = hs.inverse(spec)  # K·q (exact) or K·t (linear)
-            n_transforms += 1
-            red.launch(_k.advance_kernel, n_map,
-                       [r, int(not exact), wp.float64(tau), wp.float64(scale), hs.table, periodic,
-                        self.change_index, self.change_value, 0 if exact else n_changed, self.q,
-                        self.h, wp.float64(offset), self.mask],
-                       [self.u])  # fmt: skip
-            du, n_c, s_g, s_gg, pen, s_gap, total = red.read(advance_cols)  # sync point
-            del r
-            g_old = g
-            cg = n_nc == 0 and n_zero == 0
-            rms_pen = math.sqrt(max(g, 0.0) / a_cg if a_cg > 0 else max(g, 0.0))  # g ≥ 0 up to round-off
-            ok = True
-            if load_control:
-                ok = total != 0 and abs((total - load) / total) < self.thermotol
-                height = self.h_max + offset
-                if last_height is not None:
-                    ok = ok and (
-                        height == last_height
-                        or abs((height - last_height) / height) < self.thermotol
-                    )
-                last_height = height
-            elif last_total is not None:
-                ok = (total == last_total) or (
-                    total != 0 and abs((total - last_total) / total) < self.thermotol
-                )
-            last_total = total
-            res = max(rms_pen, pen, du)
-            ok = ok and rms_pen < self.pentol and pen < self.pentol and du < self.pentol
-            ok = ok and max_tens < self.forcetol
-            info = {
-                "depth": offset + self.h_max, "load": float(total), "n_contact": int(n_c),
-                "mean_gap": s_gap / n_map, "n_iterations": it,
-                "n_convolutions": n_transforms / 2, "residual": float(res),
-                "max_tensile_force": float(max_tens), "converged": ok,
-            }  # fmt: skip
-            if not math.isfinite(res):
-                raise FloatingPointError(
-                    f"the contact solve diverged at iteration {it} (residual {res})"
-                )
-            if ok:
-                break
-        self.offset = offset
-        return info
+        return self._solve_pk(depth, load)
 
     # --- elastic–perfectly-plastic solves -------------------------------------------------------
 
