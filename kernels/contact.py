@@ -394,8 +394,26 @@ def contact_mask_kernel(q: wp.array2d(dtype=Any), mask: wp.array2d(dtype=wp.uint
         mask[iy, ix] = wp.uint8(0)
 
 
+@wp.kernel
+def max_force_kernel(
+    q: wp.array2d(dtype=Any),
+    stride: int,
+    chunk: int,
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the map: part[i, 0] = the largest compressive pixel force max(q, 0) (N)."""
+    lane = wp.tid()
+    nx = q.shape[1]
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, q.shape[0] * nx, nx)
+    qm = wp.float64(0.0)
+    while i < n:
+        qm = wp.max(qm, wp.float64(q[iy, ix]))
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
+    part[lane, 0] = qm
+
+
 declare_overloads((
     clamp_displacement_kernel, add_map_kernel, copy_map_kernel, fill_map_kernel,
     cg_direction_kernel, update_force_kernel, compact_changes_kernel, rescale_force_kernel, advance_kernel,
-    punch_step_kernel, punch_direction_kernel, contact_mask_kernel,
+    punch_step_kernel, punch_direction_kernel, contact_mask_kernel, max_force_kernel,
 ))  # fmt: skip

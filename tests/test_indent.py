@@ -282,6 +282,73 @@ def test_elastic_hardness_copies_the_elastic_columns():
     assert np.all(d["plastic_area_m2"] == 0)
 
 
+def test_unyielded_cycles_taken_from_the_elastic_run_equal_solving_them():
+    """With a finite H the elastic cycles run first, and each punch's leading cycles whose
+    elastic peak pressure stays below H are copied, not solved: the result equals the one that
+    solves every cycle (elastic=False), to round-off, and at least one cycle is copied and at
+    least one solved (plasticity sets in within the loads)."""
+    s = _wm(n=128, L=0.5e-3, Rt=1e-6)
+    kw = {"punch_diameter": (0.1e-3, 0.25e-3), "peak_loads": (1e-3, 4e-3, 16e-3, 64e-3),
+          "placements": 2, "seed": 3, "device": "cpu",
+          "material": Material.against_diamond(hardness=1e9)}  # fmt: skip
+    both = indent(s, elastic=True, **kw)
+    alone = indent(s, elastic=False, **kw)
+    n = both.settings["reused_elastic_cycles"]
+    assert 0 < n < 16 and alone.settings["reused_elastic_cycles"] == 0
+    a, b = both.to_dict(), alone.to_dict()
+    assert np.any(a["plastic_area_m2"] > 0)
+    for k in ("n_contact", "contact_area_m2", "plastic_area_m2", "converged"):
+        np.testing.assert_array_equal(a[k], b[k], err_msg=k)
+    # the first solved cycle starts from zero forces instead of the previous peak's: equal to
+    # the solver's tolerances (loads within thermotol = 1e-6)
+    for k in ("displacement_m", "max_pressure_Pa", "unloading_stiffness_N_per_m",
+              "partial_unloading_stiffness_N_per_m"):  # fmt: skip
+        np.testing.assert_allclose(a[k], b[k], rtol=1e-6, atol=0, err_msg=k)
+    # a few plastic pixels' interference is small next to δ, so δ's change weighs more there
+    np.testing.assert_allclose(a["plastic_volume_m3"], b["plastic_volume_m3"], rtol=1e-4, atol=0)
+    # the copied cycles are the elastic ones: below H, no plastic area; the others reach H
+    el = a["elastic_contact_area_m2"] == a["contact_area_m2"]
+    assert np.all(a["max_pressure_Pa"] <= 1e9 * (1 + 1e-12))
+    assert np.all(a["plastic_area_m2"][a["max_pressure_Pa"] < 1e9] == 0)
+    assert el.sum() >= n
+    # an elastic run given as ``reuse`` (also as its columns) does the same without solving it
+    elastic = indent(s, **{**kw, "material": Material.against_diamond()})
+    for given in (elastic, elastic.to_dict()):
+        c = indent(s, elastic=True, reuse=given, **kw)
+        assert c.settings["reused_elastic_cycles"] == n
+        np.testing.assert_allclose(c.to_dict()["unloading_stiffness_N_per_m"],
+                                   b["unloading_stiffness_N_per_m"], rtol=1e-6)  # fmt: skip
+        np.testing.assert_array_equal(c.to_dict()["elastic_contact_area_m2"],
+                                      a["elastic_contact_area_m2"])  # fmt: skip
+
+
+def test_reuse_of_another_run_is_refused():
+    s = _wm(n=64)
+    kw = {"punch_diameter": 0.1e-3, "peak_loads": (1e-3, 4e-3), "placements": 1, "device": "cpu"}
+    elastic = indent(s, material=Material.against_diamond(), seed=0, **kw)
+    plastic = indent(s, material=Material.against_diamond(hardness=1e9), seed=0, **kw)
+    m = Material.against_diamond(hardness=1e9)
+    with pytest.raises(ValueError, match="not the punch"):
+        indent(s, material=m, seed=5, reuse=elastic, **kw)  # another placement
+    with pytest.raises(ValueError, match=r"reuse must be an elastic run"):
+        indent(s, material=m, seed=0, reuse=plastic, **kw)
+    cols = elastic.to_dict()
+    del cols["max_pressure_Pa"]
+    with pytest.raises(ValueError, match="max_pressure_Pa"):
+        indent(s, material=m, seed=0, reuse=cols, **kw)
+
+
+def test_max_pressure_is_the_largest_pixel_pressure():
+    """ContactSolver.max_pressure (a device reduction) equals the maximum of the pressure map
+    copied to the host."""
+    z = _wm(n=64).heights
+    solver = ContactSolver(z, 0.5e-3 / 64, MAT.contact_modulus, device="cpu")
+    assert solver.max_pressure() == 0.0
+    solver.solve(load=1e-2)
+    p, _ = solver.maps()
+    assert solver.max_pressure() == pytest.approx(p.max(), rel=1e-12)
+
+
 def test_loads_above_what_the_punch_carries_are_refused():
     s = _wm()
     m = Material.against_diamond(hardness=1e9)

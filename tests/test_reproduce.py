@@ -404,6 +404,24 @@ def test_tiny_indentation_stage(tiny):
     assert "| Indentation punches | 54.1, 108.7, 502.6 µm |" in text
     pieces = sorted((out / "indentation").glob("*.json"))
     assert len(pieces) == len(p.indentation_surfaces) * len(p.indentation_hardness_factors) + 1
+    # an elastic–plastic piece takes each punch's leading unyielded cycles from the elastic one
+    assert "cycles taken from the elastic piece" in text
+    recs = {f.stem: json.loads(f.read_text()) for f in pieces if f.stem != "resolution"}
+    m = len(p.indentation_loads)
+    for name, rec in recs.items():
+        if "__elastic_plastic_" not in name:
+            continue
+        hard = float(name.split("_")[-1].rstrip("H")) * 1e9
+        el = recs[name.split("__")[0] + "__elastic"]["rows"]
+        expect = 0
+        for b in range(0, len(el["peak_load_N"]), m):
+            k = 0
+            while k < m and el["max_pressure_Pa"][b + k] < hard and el["converged"][b + k]:
+                assert rec["rows"]["unloading_stiffness_N_per_m"][b + k] == el["unloading_stiffness_N_per_m"][b + k]
+                k += 1
+            expect += k
+        assert rec["reused_elastic_cycles"] == expect
+        assert all(v <= hard * (1 + 1e-6) for v in rec["rows"]["max_pressure_Pa"])
 
 
 def test_tracking_rule_on_hand_made_ratios():

@@ -500,6 +500,21 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         """
         return self._punch_solve(rtol)
 
+    def max_pressure(self) -> float:
+        """The largest contact pressure of the current solution, reduced on the device.
+
+        Returns
+        -------
+        float
+            max(q)/(dx·dy) (Pa), 0 without contact; a synchronisation point (one number is
+            read back). Below the hardness H no pixel is capped: that solution is also the
+            elastic–perfectly-plastic one.
+        """
+        red = self.hs.reduction
+        red.launch(_k.max_force_kernel, self.shape[0] * self.shape[1], [self.q], [])
+        dx, dy = self.pixel_size
+        return float(red.read((True,))[0]) / (dx * dy)
+
     def maps(self) -> tuple[np.ndarray, np.ndarray]:
         """Copy the pressure and gap maps of the current solution to the host.
 

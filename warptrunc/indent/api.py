@@ -66,6 +66,66 @@ def _check_loads(window: PunchWindow, protocol: IndentProtocol, hardness: float)
         )
 
 
+_REUSED = {  # run_cycles column → to_dict column of an elastic run
+    "displacement": "displacement_m", "n_contact": "n_contact", "contact_area": "contact_area_m2",
+    "max_pressure": "max_pressure_Pa", "unloading_stiffness": "unloading_stiffness_N_per_m",
+    "partial_unloading_stiffness": "partial_unloading_stiffness_N_per_m", "converged": "converged",
+}  # fmt: skip
+
+
+def _elastic_cycles(reuse: Any, windows: list, loads: np.ndarray, material: Material,
+                    settings: SolverSettings | None) -> list[dict[str, np.ndarray]]:  # fmt: skip
+    """Split an elastic run given as ``reuse`` into the run_cycles columns of each window,
+    checking that it is one (H = inf, same E*, solver settings, punches, centres and loads)."""
+    cols = reuse
+    if isinstance(reuse, IndentationResult):
+        if math.isfinite(reuse.material.hardness):
+            raise ValueError(
+                f"reuse must be an elastic run (material.hardness = inf), got hardness "
+                f"{reuse.material.hardness!r} Pa"
+            )
+        if not math.isclose(reuse.material.contact_modulus, material.contact_modulus, rel_tol=1e-12):
+            raise ValueError(
+                f"reuse was run with E* = {reuse.material.contact_modulus!r} Pa, this run with "
+                f"{material.contact_modulus!r} Pa; give the same elastic constants"
+            )
+        mine = (SolverSettings() if settings is None else settings).to_dict()
+        if reuse.settings.get("solver_settings") != mine:
+            raise ValueError("reuse was run with other solver settings; give the same settings")
+        cols = reuse.to_dict()
+    try:
+        cols = {k: np.asarray(cols[k]) for k in (*_REUSED.values(), "punch_diameter_m", "placement",
+                                                  "peak_load_N", "centre_x_m", "centre_y_m")}  # fmt: skip
+    except (KeyError, TypeError) as e:
+        raise ValueError(
+            f"reuse must be an IndentationResult or its to_dict() columns, with max_pressure_Pa "
+            f"(missing: {e})"
+        ) from None
+    m = loads.size
+    if any(v.shape != (len(windows) * m,) for v in cols.values()):
+        raise ValueError(
+            f"reuse has {cols['peak_load_N'].size} rows, this run {len(windows) * m} "
+            f"({len(windows)} punch placements × {m} peak loads)"
+        )
+    out = []
+    for r, (_i, j, w, _f) in enumerate(windows):
+        sl = slice(r * m, (r + 1) * m)
+        d = np.nan if w.diameter is None else w.diameter
+        same = (np.allclose(cols["punch_diameter_m"][sl], d, rtol=1e-12, atol=0, equal_nan=True)
+                and np.all(cols["placement"][sl] == j)
+                and np.allclose(cols["centre_x_m"][sl], w.centre[0], rtol=1e-12, atol=0)
+                and np.allclose(cols["centre_y_m"][sl], w.centre[1], rtol=1e-12, atol=0)
+                and np.allclose(cols["peak_load_N"][sl], loads, rtol=1e-12, atol=0))  # fmt: skip
+        if not same:
+            raise ValueError(
+                f"reuse rows {sl.start}–{sl.stop - 1} are not the punch of diameter {d!r} m, "
+                f"placement {j} at {w.centre} m with these peak loads; run it with the same "
+                "surface, punches, placements, seed and loads"
+            )
+        out.append({k: cols[c][sl] for k, c in _REUSED.items()})
+    return out
+
+
 @fill_doc(SHARED_DOCS)
 def indent(
     surface: Surface | Any,
@@ -79,6 +139,7 @@ def indent(
     pixel_size: float | tuple[float, float] | None = None,
     settings: SolverSettings | None = None,
     elastic: bool = True,
+    reuse: IndentationResult | dict[str, Any] | None = None,
     truncation_increments: int = 1000,
     overlap: str = "warn",
     progress: bool = False,
@@ -123,7 +184,16 @@ def indent(
     elastic : bool
         Also solve the elastic contact (H = ∞) on the same punches (the ``elastic_*`` columns;
         NaN when off). With ``hardness = inf`` the elastic–plastic columns are the elastic
-        solution and are copied.
+        solution and are copied. With a finite hardness the elastic cycles run first, and
+        the leading cycles of each punch whose elastic peak pressure stays below H are copied
+        into the elastic–plastic columns instead of solved again (no pixel reaches the cap
+        there, so the two solutions are one; ``settings["reused_elastic_cycles"]``).
+    reuse : IndentationResult or dict, optional
+        An elastic run (``hardness = inf``) of the same surface, punches, placements, seed,
+        peak loads, unloading fraction, E* and solver settings, or its ``to_dict()`` columns
+        (``max_pressure_Pa`` among them): its cycles are taken as the elastic ones instead of
+        solved, as above (several hardness values from one elastic run). Punches, centres
+        and loads are checked; the settings only for an IndentationResult.
     truncation_increments : int
         Depth increments of the Eq. 2 truncation curve under each punch.
     overlap : {"warn", "error"}
@@ -190,6 +260,8 @@ def indent(
     loads = np.asarray(protocol.peak_loads, dtype=np.float64)
     m = loads.size
     two = elastic and math.isfinite(hardness)
+    given = (None if reuse is None or not math.isfinite(hardness)
+             else _elastic_cycles(reuse, windows, loads, material, settings))  # fmt: skip
     cols: dict[str, list] = {}
 
     def add(name: str, values: Any) -> None:
@@ -197,22 +269,36 @@ def indent(
 
     timings = {"elastic_plastic_s": 0.0, "elastic_s": 0.0, "truncation_s": 0.0}
     per_punch = []
-    with progress_bar(total=len(windows) * m * (2 if two else 1), desc="indentation cycles",
-                      unit="cycle", enabled=progress) as bar:  # fmt: skip
-        for _i, j, w, frac in windows:
+    n_reused = 0
+    solve_elastic = two or (given is not None)
+    with progress_bar(total=len(windows) * m * (2 if solve_elastic else 1),
+                      desc="indentation cycles", unit="cycle", enabled=progress) as bar:  # fmt: skip
+        for r, (_i, j, w, frac) in enumerate(windows):
             t0 = time.perf_counter()
-            ep = run_cycles(w, loads, protocol.unload_fraction, material, hardness=hardness,
-                            settings=settings, device=dev, step=bar.update)  # fmt: skip
+            if given is not None:
+                el = given[r]
+                bar.update(m)
+            elif two:  # first, so that the elastic–plastic run can take its unyielded cycles
+                el = run_cycles(w, loads, protocol.unload_fraction, material, hardness=math.inf,
+                                settings=settings, device=dev, step=bar.update)  # fmt: skip
+            else:
+                el = None
             t1 = time.perf_counter()
-            el = (run_cycles(w, loads, protocol.unload_fraction, material, hardness=math.inf,
-                             settings=settings, device=dev, step=bar.update)
-                  if two else ep if elastic else None)  # fmt: skip
+            ep = run_cycles(w, loads, protocol.unload_fraction, material, hardness=hardness,
+                            settings=settings, device=dev, step=bar.update, elastic=el)  # fmt: skip
+            if el is not None:
+                below = (el["max_pressure"] < hardness) & el["converged"].astype(bool)
+                n_reused += m if below.all() else int(np.argmin(below))
+            if el is None and elastic:
+                el = ep
+            if not elastic:
+                el = None
             t2 = time.perf_counter()
             tr = truncation_at_loads(w, loads, material.contact_modulus,
                                      n_increments=protocol.truncation_increments, device=dev)  # fmt: skip
             t3 = time.perf_counter()
-            timings["elastic_plastic_s"] += t1 - t0
-            timings["elastic_s"] += t2 - t1
+            timings["elastic_plastic_s"] += t2 - t1
+            timings["elastic_s"] += t1 - t0
             timings["truncation_s"] += t3 - t2
             nan = np.full(m, np.nan)
             add("punch_diameter", np.full(m, np.nan if w.diameter is None else w.diameter))
@@ -224,7 +310,7 @@ def indent(
             add("n_punch_pixels", np.full(m, w.n_pixels, dtype=np.int64))
             add("peak_load", loads)
             for k in ("displacement", "n_contact", "contact_area", "plastic_area",
-                      "plastic_volume", "unloading_stiffness", "partial_unloading_stiffness",
+                      "plastic_volume", "max_pressure", "unloading_stiffness", "partial_unloading_stiffness",
                       "converged"):  # fmt: skip
                 add(k, ep[k])
             add("E_c", modulus_from_stiffness(ep["unloading_stiffness"], w.area))
@@ -242,12 +328,16 @@ def indent(
                 "n_punch_pixels": w.n_pixels, "overlap_fraction": frac,
                 "disk_Rt_m": float(np.ptp(w.disk_heights)),
             })  # fmt: skip
+    algo = (SolverSettings() if settings is None else settings).algorithm
     settings_info = {
         "surface": surface_info,
         "device": str(dev),
-        "solver": "warptrunc constrained conjugate gradients (Polonsky & Keer 1999), free "
-        "half-space on each punch's window" + (", pressure capped at H" if math.isfinite(hardness)
-                                               else ""),
+        "solver": f"warptrunc contact solver, algorithm {algo!r} ("
+        + ("bound-constrained CG, Vollebregt 2014" if algo == "bccg"
+           else "constrained CG, Polonsky & Keer 1999")
+        + "), free half-space on each punch's window"
+        + (", pressure capped at H" if math.isfinite(hardness) else ""),
+        "reused_elastic_cycles": n_reused,
         "solver_settings": (SolverSettings() if settings is None else settings).to_dict(),
         "elastic_reference": bool(elastic),
         "punches": per_punch,

@@ -206,8 +206,8 @@ def make_solver(window: PunchWindow, material: Material, *, hardness: float,
 
 COLUMNS = (
     "displacement", "n_contact", "contact_area", "n_plastic", "plastic_area", "plastic_volume",
-    "unloading_stiffness", "partial_unloading_stiffness", "unloaded_displacement",
-    "n_iterations", "converged",
+    "max_pressure", "unloading_stiffness", "partial_unloading_stiffness",
+    "unloaded_displacement", "n_iterations", "converged",
 )  # fmt: skip
 """Per-peak outputs of :func:`run_cycles`."""
 
@@ -223,6 +223,7 @@ def run_cycles(
     settings: SolverSettings | None = None,
     device: Any = None,
     step: Any = None,
+    elastic: dict[str, np.ndarray] | None = None,
 ) -> dict[str, np.ndarray]:
     """Load / partial-unload cycles under one punch, at increasing peak loads.
 
@@ -243,23 +244,51 @@ def run_cycles(
     {warp_device_obj}
     step : callable, optional
         Called once per cycle (a progress bar's ``update``).
+    elastic : dict of str to (m,) ndarray, optional
+        The elastic cycles (``hardness = inf``) of the same window, loads, unloading fraction
+        and settings, as this function returns them. With a finite ``hardness`` the leading
+        cycles whose elastic peak pressure stays below H (and which converged) are copied from
+        it instead of solved: no pixel reaches the cap there, so the elastic solution is the
+        elastic–perfectly-plastic one (the capped problem has one solution), no plastic flow
+        occurs, and the surface the next cycle starts from is the original one. The cycles
+        after the first that reaches H are solved, starting from the original surface (the
+        state at a peak is that of monotonic loading to it).
 
     Returns
     -------
     dict of str to (m,) ndarray
         ``warptrunc.indent.protocol.COLUMNS``: at each peak the approach δ from first touch
-        (m), contact pixels and area (m²), plastic pixels, area (m²) and volume (m³), Barber's
-        unloading stiffness and the partial-unloading secant (N/m), the approach after the
-        partial unloading (m), the constrained-CG iterations of the peak solve and whether
-        every solve of the cycle converged.
+        (m), contact pixels and area (m²), plastic pixels, area (m²) and volume (m³), the
+        largest contact pressure (Pa), Barber's unloading stiffness and the partial-unloading
+        secant (N/m), the approach after the partial unloading (m), the constrained-CG
+        iterations of the peak solve and whether every solve of the cycle converged.
     """
-    solver = make_solver(window, material, hardness=hardness, settings=settings, device=device)
-    reach = window.top - window.floor  # an approach this deep would reach outside the disk
+    loads = np.asarray(peak_loads, dtype=np.float64)
     out: dict[str, list] = {c: [] for c in COLUMNS}
+    n_reused = 0
+    if elastic is not None and math.isfinite(hardness):
+        below = (np.asarray(elastic["max_pressure"], np.float64) < hardness) & np.asarray(
+            elastic["converged"], bool)  # fmt: skip
+        if below.shape != loads.shape:
+            raise ValueError(f"elastic has {below.size} cycles, peak_loads {loads.size}")
+        n_reused = int(np.argmin(below)) if not below.all() else loads.size
+        unyielded = {"n_plastic": 0, "plastic_area": 0.0, "plastic_volume": 0.0,
+                     "unloaded_displacement": math.nan, "n_iterations": 0}  # fmt: skip
+        for c in COLUMNS:
+            v = elastic.get(c)
+            out[c] = (list(np.asarray(v)[:n_reused]) if v is not None
+                      else [unyielded[c]] * n_reused)  # fmt: skip
+        if step is not None:
+            for _ in range(n_reused):
+                step()
     f = float(unload_fraction)
-    for load in np.asarray(peak_loads, dtype=np.float64):
+    reach = window.top - window.floor  # an approach this deep would reach outside the disk
+    solver = (make_solver(window, material, hardness=hardness, settings=settings, device=device)
+              if n_reused < loads.size else None)  # fmt: skip
+    for load in loads[n_reused:]:
         solver.freeze_plastic(False)
         peak = solver.solve(load=float(load))
+        p_max = solver.max_pressure()
         solver.freeze_plastic(True)  # the unloading below is elastic from the deformed surface
         k_barber, _, ok_barber = solver.punch_stiffness()
         low = solver.solve(load=(1.0 - f) * float(load))
@@ -277,6 +306,7 @@ def run_cycles(
         out["n_plastic"].append(peak.n_plastic)
         out["plastic_area"].append(peak.plastic_area)
         out["plastic_volume"].append(peak.plastic_volume)
+        out["max_pressure"].append(p_max)
         out["n_iterations"].append(peak.n_iterations)
         out["unloading_stiffness"].append(float(k_barber))
         out["partial_unloading_stiffness"].append(k_secant)
@@ -285,7 +315,8 @@ def run_cycles(
                                 and math.isfinite(k_secant))  # fmt: skip
         if step is not None:
             step()
-    solver.freeze_plastic(False)
+    if solver is not None:
+        solver.freeze_plastic(False)
     types = {"n_contact": np.int64, "n_plastic": np.int64, "n_iterations": np.int64,
              "converged": bool}  # fmt: skip
     return {c: np.asarray(v, dtype=types.get(c, np.float64)) for c, v in out.items()}

@@ -91,6 +91,9 @@ class IndentationResult:
     """(m,) float64 area of the pixels at the hardness at the peak (m²); 0 when elastic."""
     plastic_volume: np.ndarray
     """(m,) float64 plastic (permanent) volume removed up to the peak (m³)."""
+    max_pressure: np.ndarray
+    """(m,) float64 largest contact pressure at the peak (Pa); at most H, and below H where no
+    pixel yields."""
     unloading_stiffness: np.ndarray
     """(m,) float64 Barber's initial unloading stiffness K (N/m): a rigid punch shaped like the
     whole contact set at the peak."""
@@ -174,7 +177,7 @@ class IndentationResult:
             plastic_area_m2, unloading_stiffness_N_per_m, partial_unloading_stiffness_N_per_m,
             E_c_Pa, E_c_over_E, F_over_EA, converged`` (the elastic–plastic model), then
             ``E_c_partial_Pa, E_c_partial_over_E, centre_x_m, centre_y_m, overlap_fraction,
-            punch_area_m2, n_punch_pixels, n_contact, plastic_volume_m3``, the elastic
+            punch_area_m2, n_punch_pixels, n_contact, plastic_volume_m3, max_pressure_Pa``, the elastic
             solution's ``elastic_*`` columns (``displacement_m``, ``contact_area_m2``,
             ``unloading_stiffness_N_per_m``, ``partial_unloading_stiffness_N_per_m``,
             ``E_c_over_E``, ``E_c_partial_over_E``, ``converged``) and Eq. 2 truncation's
@@ -203,6 +206,7 @@ class IndentationResult:
             "n_punch_pixels": self.n_punch_pixels,
             "n_contact": self.n_contact,
             "plastic_volume_m3": self.plastic_volume,
+            "max_pressure_Pa": self.max_pressure,
             "elastic_displacement_m": self.elastic_displacement,
             "elastic_contact_area_m2": self.elastic_contact_area,
             "elastic_unloading_stiffness_N_per_m": self.elastic_unloading_stiffness,

@@ -68,7 +68,8 @@ COLUMNS = (
     "contact_area_m2", "plastic_area_m2", "n_contact", "unloading_stiffness_N_per_m",
     "partial_unloading_stiffness_N_per_m", "E_c_over_E", "E_c_partial_over_E", "converged",
     "overlap_fraction", "n_punch_pixels", "truncation_depth_m", "truncation_contact_area_m2",
-    "truncation_stiffness_N_per_m", "truncation_E_c_over_E",
+    "truncation_stiffness_N_per_m", "truncation_E_c_over_E", "centre_x_m", "centre_y_m",
+    "max_pressure_Pa",
 )  # fmt: skip
 """Columns of :meth:`warptrunc.indent.IndentationResult.to_dict` kept in each piece."""
 
@@ -167,7 +168,7 @@ def _load_piece(path: Path, params: dict[str, Any], overwrite: bool) -> dict[str
     )
 
 
-def _run_indent(surface, p: Profile, factor: float, *, placements, device) -> Any:
+def _run_indent(surface, p: Profile, factor: float, *, placements, device, reuse=None) -> Any:
     from ..contact.settings import SolverSettings
     from ..indent import PlacementOverlapWarning, indent
 
@@ -179,7 +180,7 @@ def _run_indent(surface, p: Profile, factor: float, *, placements, device) -> An
             material=_material(factor), placements=placements, seed=p.indentation_seed,
             settings=SolverSettings(dtype=p.indentation_dtype, maxiter=p.indentation_maxiter),
             truncation_increments=p.indentation_increments, elastic=math.isinf(factor),
-            device=device,
+            reuse=reuse, device=device,
         )  # fmt: skip
 
 
@@ -196,6 +197,7 @@ def _piece_record(res, params: dict[str, Any], gen_s: float, wall_s: float) -> d
         "seconds": {**sec, "surface_s": gen_s, "piece_s": wall_s},
         "device": res.settings["device"],
         "n_not_converged": int((~np.asarray(res.converged, bool)).sum()),
+        "reused_elastic_cycles": int(res.settings.get("reused_elastic_cycles", 0)),
     })  # fmt: skip
 
 
@@ -267,7 +269,12 @@ def stage_indentation(p: Profile, out: str | Path, device, *, overwrite: bool = 
                 cache[s] = (surface, time.perf_counter() - t0)
             surface, gen_s = cache[s]
             t1 = time.perf_counter()
-            res = _run_indent(surface, p, f, placements=p.indentation_placements, device=device)
+            # the elastic piece's unyielded cycles are this piece's too (warptrunc.indent's reuse)
+            el = done.get((s, math.inf))
+            reuse = (el["rows"] if el is not None and not math.isinf(f)
+                     and "max_pressure_Pa" in el["rows"] else None)  # fmt: skip
+            res = _run_indent(surface, p, f, placements=p.indentation_placements, device=device,
+                              reuse=reuse)  # fmt: skip
             rec = _piece_record(res, _piece_params(p, s, f), gen_s, time.perf_counter() - t1)
             write_atomic(_piece_file(store, s, f), json.dumps(rec, indent=None, allow_nan=False) + "\n")
             done[(s, f)] = rec
@@ -392,6 +399,7 @@ def summary_from_pieces(p: Profile, pieces: list[dict[str, Any]],
         win = max((w["window_px"] for w in rec["windows"]), key=lambda v: v[0] * v[1])
         timings.append({"surface": s, "model": model_name(f), **rec["seconds"],
                         "largest_window_px": win, "n_not_converged": rec["n_not_converged"],
+                        "reused_elastic_cycles": rec.get("reused_elastic_cycles", 0),
                         "device": rec["device"]})  # fmt: skip
     m = _material(1.0)
     return {

@@ -270,13 +270,18 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
     # timings
     L.append("**Pieces** (one per surface × model; stored under "
              f"`{stage['store']}/`, a rerun continues an interrupted stage):\n")  # fmt: skip
-    L.append("| surface | model | seconds | of which elastic–plastic / elastic / truncation | largest window (px) | not converged | device |")
-    L.append("|---|---|---|---|---|---|---|")
+    L.append("| surface | model | seconds | of which elastic–plastic / elastic / truncation | "
+             "cycles taken from the elastic piece | largest window (px) | not converged | device |")
+    L.append("|---|---|---|---|---|---|---|---|")
     for t in stage["timings"]:
         w = t["largest_window_px"]
         L.append(f"| {t['surface']} | {model_label(stage, t['model'])} | {t['piece_s']:.1f} | "
                  f"{t['elastic_plastic_s']:.1f} / {t['elastic_s']:.1f} / {t['truncation_s']:.1f} | "
+                 f"{t.get('reused_elastic_cycles', 0)} | "
                  f"{w[0]}×{w[1]} | {t['n_not_converged']} | {t['device']} |")  # fmt: skip
+    L.append("\nAn elastic–plastic piece takes from the elastic piece each punch's leading cycles "
+             "whose elastic peak pressure stays below H (no pixel reaches the cap, so the two "
+             "solutions are one) and solves the rest.\n")
     tot = "" if seconds is None else f" The stage took {seconds:.1f} s in its last run."
     L.append(f"\nTotal over the pieces: {sum(t['piece_s'] for t in stage['timings']):.1f} s.{tot}\n")
     return L
