@@ -13,7 +13,7 @@ export PYTHONPATH=/tmp/site MPLBACKEND=Agg
 what=${1:-suite}
 case $what in
 suite)
-  (cd tests && WARPTRUNC_TEST_DEVICES=cuda:0 timeout 420 python3 -m pytest -q -x -p no:cacheprovider --timeout 300 2>&1 | tail -15) ;;
+  (cd tests && WARPTRUNC_TEST_DEVICES=cuda:0 timeout ${2:-420} python3 -m pytest -q -p no:cacheprovider 2>&1 | tail -25) ;;
 analyze)
   python3 - <<'PY'
 import json, os, statistics, subprocess, sys, time
@@ -38,11 +38,11 @@ PY
   ;;
 indent)
   # pieces of earlier calls (a cold machine lost /tmp) travel back in ./_gpu_pieces (carried)
-  mkdir -p /tmp/repro_paper/indentation $OUT/pieces
+  mkdir -p /tmp/repro_paper/indentation
   [ -d _gpu_pieces ] && cp -n _gpu_pieces/*.json /tmp/repro_paper/indentation/ 2>/dev/null
   timeout ${3:-540} python3 -m warptrunc reproduce --profile paper --out /tmp/repro_paper --stages indentation --time-budget ${2:-400} --device cuda:0 > $OUT/indent.log 2>&1
   echo "reproduce exit $?"; tail -5 $OUT/indent.log
-  cp /tmp/repro_paper/indentation/*.json $OUT/pieces/ 2>/dev/null
+  tar -C /tmp/repro_paper/indentation -cf $OUT/pieces.tar . 2>/dev/null  # one file back
   python3 - <<'PY'
 import glob, json, os
 tot, surf = 0.0, {}
@@ -54,10 +54,10 @@ for f in sorted(glob.glob("/tmp/repro_paper/indentation/*.json")):
         t = s.get("piece_s", 0.0)
         surf[os.path.basename(f).split("__")[0]] = s.get("surface_s", 0.0)
     tot += t
-    print(f"{os.path.basename(f):40s} {t:8.1f} s  not converged {r.get('n_not_converged')}  {r.get('device')}")
+    print(f"{os.path.basename(f):40s} {t:8.1f} s  not converged {r.get('n_not_converged')}  reused {r.get('reused_elastic_cycles')}  {r.get('device')}")
 print(f"surfaces {sum(surf.values()):.1f} s; pieces {tot:.1f} s; sum {tot + sum(surf.values()):.1f} s")
 PY
-  cp -r /tmp/repro_paper/*.md /tmp/repro_paper/*.json /tmp/repro_paper/*.png /tmp/repro_paper/stages $OUT/ 2>/dev/null ;;
+  (cd /tmp/repro_paper && tar -cf $OUT/report.tar --exclude=indentation . 2>/dev/null) ;;
 scaling)
   python3 examples/benchmarks/benchmark_solver_scaling.py --device cuda:0 --n ${2:-10240 16384 32768} --dtype float32 --budget ${3:-400} --algorithm ${4:-bccg pk} --out $OUT/scaling 2>&1 | tail -20 ;;
 iterations)
