@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from warptrunc import __version__
+from warptrunc import __version__, resolve_device
 from warptrunc._support.provenance import provenance
 from warptrunc.cli import main
 
@@ -28,7 +28,8 @@ def check(p: dict, argv: list[str] | None = None) -> None:
     assert p["git_commit"] == "0123abc"
     if argv is not None:
         assert p["command"] == shlex.join(["warptrunc", *map(str, argv)])
-        assert p["device"] == "cpu"
+        # the commands run on the default device (cpu in CI, cuda:0 where there is a GPU)
+        assert p["device"] == str(resolve_device(None))
 
 
 @pytest.fixture(autouse=True)

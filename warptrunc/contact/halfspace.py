@@ -490,8 +490,10 @@ class ElasticHalfSpace:
             with cupy.cuda.using_allocator(record):
                 del_plans = make()  # never executed: only their work sizes are kept
             del del_plans
-            self.fft_work = wp.empty(max(1, max(sizes, default=1)), dtype=wp.uint8,
-                                     device=self.device)  # fmt: skip
+            # in 8-byte words: a byte array past 2³¹ − 1 elements (32768² maps) is beyond
+            # Warp's int32 shapes
+            words = -(-max(1, max(sizes, default=1)) // 8)
+            self.fft_work = wp.empty(words, dtype=wp.float64, device=self.device)
             shared = cupy.cuda.UnownedMemory(self.fft_work.ptr, self.fft_work.capacity,
                                              self.fft_work, self.device.ordinal)  # fmt: skip
             with cupy.cuda.using_allocator(lambda size: cupy.cuda.MemoryPointer(shared, 0)):
