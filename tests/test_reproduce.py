@@ -508,3 +508,14 @@ def test_reproduce_stages_and_time_budget(tmp_path):
     from warptrunc.reproduce.study import select_stages
 
     assert select_stages("islands") == ("table1", "islands")
+
+
+def test_fig6_model_colours_are_distinct():
+    """Truncation and every contact model get their own colour (the elastic–plastic ones once
+    took truncation's red)."""
+    from warptrunc.reproduce.indentation_report import model_colours
+
+    models = ["truncation", "elastic", "elastic_plastic_1H", "elastic_plastic_2H", "elastic_plastic_4H"]
+    c = model_colours(models)
+    assert set(c) == set(models) and len(set(c.values())) == len(models)
+    assert c["truncation"] == "C3" and c["elastic"] == "C0"

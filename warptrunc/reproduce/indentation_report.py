@@ -22,6 +22,25 @@ __all__ = ["indentation_figures", "indentation_lines", "model_label"]
 
 COLOURS = {"truncation": "C3", "elastic": "C0"}
 MARKERS = ("o", "s", "^", "D", "v")
+_MORE_COLOURS = ("C2", "C4", "C1", "C5", "C6", "C8", "C9", "C7")
+
+
+def model_colours(models: list[str]) -> dict[str, str]:
+    """One matplotlib colour per model key, distinct: truncation red, elastic blue, the
+    elastic–plastic models from a palette that skips those two.
+
+    Parameters
+    ----------
+    models : list of str
+        Model keys (``truncation``, ``elastic``, ``elastic_plastic_1H``, …).
+
+    Returns
+    -------
+    dict of str to str
+        Model key → colour (``"C0"`` … ``"C9"``, cycling past ten models).
+    """
+    more = iter(_MORE_COLOURS * (1 + len(models) // len(_MORE_COLOURS)))
+    return {m: COLOURS[m] if m in COLOURS else next(more) for m in models}
 
 
 def model_label(stage: dict[str, Any], model: str) -> str:
@@ -72,9 +91,10 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
     fig, axs = new_figure(ncol, nrow, w=5.6, h=4.4)
     c = cells(stage)
     models = ["truncation", *stage["models"]]
+    colours = model_colours(models)
     for ax, s in zip(axs, surfaces, strict=False):
-        for j, m in enumerate(models):
-            colour = COLOURS.get(m, f"C{j + 1}")
+        for m in models:
+            colour = colours[m]
             xs_all = []
             for k, d in enumerate(stage["punches_m"]):
                 pts = sorted((v["F_over_EA"], v["E_c_over_E"]) for (ss, mm, dd, _f), v in c.items()
