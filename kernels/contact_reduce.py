@@ -16,7 +16,7 @@ from typing import Any
 
 import warp as wp
 
-from .lanes import declare_overloads, lane_next, lane_start
+from .lanes import declare_overloads, lane_more, lane_next, lane_next_rc, lane_start, lane_start_rc
 
 wp.set_module_options({"enable_backward": False})
 
@@ -49,9 +49,10 @@ def spectral_kernel(
     lane = wp.tid()
     nk = b.shape[1]
     ny_full = b.shape[0]
-    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, ny_full * nk, nk)
+    # (row, column) walk: Ny·(Nx//2 + 1) passes 2³¹ − 1 at 32768² (free boundary)
+    iy, ix, sy, sx, ey, ex = lane_start_rc(lane, stride, chunk, ny_full, nk)
     acc = wp.float64(0.0)
-    while i < n:
+    while lane_more(iy, ix, ey, ex):
         wv = w[wp.min(iy, ny_full - iy), ix]
         v = b[iy, ix]
         if mode <= SPECTRUM_APPLY:
@@ -67,7 +68,7 @@ def spectral_kernel(
                 b[iy, ix] = v * (wv * w.dtype(inv_n))
         else:
             b[iy, ix] = v * (w.dtype(inv_n) / wv)
-        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nk)
+        iy, ix = lane_next_rc(iy, ix, sy, sx, nk)
     if mode <= SPECTRUM_APPLY:
         part[lane, col] = acc
 

@@ -50,6 +50,50 @@ def lane_next(i: int, iy: int, ix: int, step: int, sy: int, sx: int, nx: int):
     return i + step, iy, ix
 
 
+@wp.func
+def lane_start_rc(lane: int, stride: int, chunk: int, ny: int, nx: int):
+    """``lane_start`` for grids of more than 2³¹ − 1 elements (a 32768² map's padded half
+    spectrum, 65536 × 32769): the walk is kept as (row, column) and ends at the row and column
+    ``(ey, ex)`` (exclusive), the flat positions computed in 64 bits. Returns
+    ``iy, ix, sy, sx, ey, ex``; go on while :func:`lane_more`, step with :func:`lane_next_rc`."""
+    n = wp.int64(ny) * wp.int64(nx)
+    i = wp.int64(lane)
+    step = wp.int64(stride)
+    end = n
+    if chunk > 0:
+        i = wp.int64(lane) * wp.int64(chunk)
+        end = wp.min(n, i + wp.int64(chunk))
+        step = wp.int64(1)
+    nx64 = wp.int64(nx)
+    iy = wp.int32(i / nx64)
+    ix = wp.int32(i - wp.int64(iy) * nx64)
+    sy = wp.int32(step / nx64)
+    sx = wp.int32(step - wp.int64(sy) * nx64)
+    ey = wp.int32(end / nx64)
+    ex = wp.int32(end - wp.int64(ey) * nx64)
+    if i >= end:  # an idle lane
+        iy = ey
+        ix = ex
+    return iy, ix, sy, sx, ey, ex
+
+
+@wp.func
+def lane_more(iy: int, ix: int, ey: int, ex: int):
+    """True while (iy, ix) is before the end (ey, ex) of a ``lane_start_rc`` walk."""
+    return iy < ey or (iy == ey and ix < ex)
+
+
+@wp.func
+def lane_next_rc(iy: int, ix: int, sy: int, sx: int, nx: int):
+    """The next (row, column) of a ``lane_start_rc`` walk."""
+    iy += sy
+    ix += sx
+    if ix >= nx:
+        ix -= nx
+        iy += 1
+    return iy, ix
+
+
 def declare_overloads(kernels, vec_args=frozenset()) -> None:
     """float32 and float64 instances of every generic kernel (``Any`` arrays become 2-D arrays of
     the scalar, or of vec2 for the (kernel, argument) pairs in ``vec_args``), so that a module
