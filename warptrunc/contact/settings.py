@@ -67,6 +67,15 @@ class SolverSettings(Parameters):
         "per iteration, far fewer iterations on large contacts)",
         choices=("pk", "bccg"),
     )  # fmt: skip
+    fft_plan: str = param(
+        "auto", "cuFFT plans of the free half-space on a CUDA device (ignored elsewhere): "
+        "'pruned' transforms only the map's rows and the columns in slabs (least memory), "
+        "'full' one 2-D plan each way over the padded grid (about 2× faster per convolution at "
+        "16384², with cuFFT's work area as large as the work spectrum: +16 bytes per map pixel "
+        "in float32), 'auto' full when the solver then fits in the free device memory, else "
+        "pruned",
+        choices=("auto", "pruned", "full"),
+    )  # fmt: skip
     maxiter: int = param(10000, "largest number of iterations per solve", kind="int", ge=1)
     refresh: int = param(
         50, "transform the forces afresh at least every this many iterations", kind="int", ge=1

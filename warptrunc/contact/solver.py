@@ -92,7 +92,7 @@ def default_pentol(heights: np.ndarray) -> float:
 
 
 _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter", "refresh",
-           "direct_max", "load_control", "algorithm")  # fmt: skip
+           "direct_max", "load_control", "algorithm", "fft_plan")  # fmt: skip
 
 
 @fill_doc(SHARED_DOCS)
@@ -185,20 +185,33 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         self.substrate = substrate
         self.dtype = dtype
         self.forcetol = self.pressure_tol * self.contact_modulus * dx * dy
-        need = self.memory_bytes(h.shape, substrate, dtype, cuda=self.device.is_cuda,
-                                 algorithm=settings.algorithm)  # fmt: skip
+        cuda = self.device.is_cuda
+        plan = settings.fft_plan if cuda and substrate == "free" else "pruned"
+
+        def needs(p: str) -> int:
+            return self.memory_bytes(h.shape, substrate, dtype, cuda=cuda,
+                                     algorithm=settings.algorithm, fft_plan=p)  # fmt: skip
+
         free = free_memory_bytes(self.device)
-        if need > free and self.device.is_cuda:
+        if plan == "auto":
+            if needs("full") > free and cuda:
+                free = release_cached_memory(self.device)
+            plan = "full" if needs("full") <= free else "pruned"
+        need = needs(plan)
+        if need > free and cuda:
             free = release_cached_memory(self.device)  # pooled blocks are free for us too
         if need > free:
             raise MemoryError(
-                f"the contact solver for a {h.shape[0]}×{h.shape[1]} map ({substrate}, {dtype}) "
-                f"needs {need / 1e9:.2f} GB, {free / 1e9:.2f} GB free on {self.device} "
-                f"({need} bytes needed, {free} free); use a smaller map, float32 or another "
-                "device"
+                f"the contact solver for a {h.shape[0]}×{h.shape[1]} map ({substrate}, {dtype}, "
+                f"fft_plan {plan!r}) needs {need / 1e9:.2f} GB, {free / 1e9:.2f} GB free on "
+                f"{self.device} ({need} bytes needed, {free} free); use a smaller map, float32, "
+                "fft_plan='pruned' or another device"
             )
+        self.fft_plan = plan
+        """The cuFFT plans in use (:data:`~warptrunc.contact.halfspace.FFT_PLANS`; 'pruned' off
+        CUDA and on the periodic substrate)."""
         self.hs = ElasticHalfSpace(h.shape, (dx, dy), self.contact_modulus, substrate=substrate,
-                                   dtype=dtype, device=self.device)  # fmt: skip
+                                   dtype=dtype, device=self.device, fft_plan=plan)  # fmt: skip
         sc, _, npd = DTYPES[dtype]
         dev = self.device
         self.h_max = float(h.max())
@@ -233,6 +246,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
     def memory_terms(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
         cuda: bool = True, direct_max: int = 24, algorithm: str = "bccg",
+        fft_plan: str = "pruned",
     ) -> dict[str, int]:  # fmt: skip
         """The model of a solver's peak device memory, term by term (bytes).
 
@@ -249,6 +263,9 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         algorithm : {"pk", "bccg"}, optional
             The iteration (:class:`~warptrunc.contact.SolverSettings`; default ``"bccg"``, its
             default); ``"bccg"`` holds one more map, its residual.
+        fft_plan : {"pruned", "full"}, optional
+            The half-space's cuFFT plans (``SolverSettings.fft_plan``; ``"full"`` counts a cuFFT
+            work area as large as the work spectrum, free substrate on CUDA).
 
         Returns
         -------
@@ -263,7 +280,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         """
         ny, nx = shape
         item = np.dtype(dtype).itemsize
-        terms = ElasticHalfSpace.memory_terms(shape, substrate, dtype, cuda=cuda)
+        terms = ElasticHalfSpace.memory_terms(shape, substrate, dtype, cuda=cuda, fft_plan=fft_plan)
         lanes = 65536 if cuda else 64
         terms["maps"] = 5 * ny * nx * item
         terms["mask"] = ny * nx
@@ -277,7 +294,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
     @fill_doc(GRID_DOCS)
     def memory_bytes(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
-        cuda: bool = True, algorithm: str = "bccg",
+        cuda: bool = True, algorithm: str = "bccg", fft_plan: str = "pruned",
     ) -> int:  # fmt: skip
         """Peak device memory of a solver and its stiffness solve (bytes).
 
@@ -293,6 +310,10 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         algorithm : {"pk", "bccg"}, optional
             The iteration (default ``"bccg"``, that of ``SolverSettings``); ``"bccg"`` holds one
             more map, its residual.
+        fft_plan : {"pruned", "full"}, optional
+            The half-space's cuFFT plans (``SolverSettings.fft_plan``); ``"full"`` adds a
+            cuFFT work area as large as the work spectrum (free substrate on CUDA: + 16 B per
+            map pixel in float32, + 32 in float64).
 
         Returns
         -------
@@ -304,7 +325,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
             ≈ 38.5 B. Without BCCG (``algorithm="pk"``) one map less.
         """
         terms = ContactSolver.memory_terms(shape, substrate, dtype, cuda=cuda,
-                                           algorithm=algorithm)  # fmt: skip
+                                           algorithm=algorithm, fft_plan=fft_plan)  # fmt: skip
         return int(sum(terms.values()))
 
     # --- one solve ---------------------------------------------------------------------------
