@@ -111,6 +111,7 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg") -> dict:
         t4 = time.perf_counter()
         peak = int(core.wp_alloc_tracker_get_peak_bytes() - base)
         fft_work = solver.hs.fft_work.capacity if solver.hs.fft_work is not None else 0
+        plan = solver.fft_plan
         del solver
     gc.collect()
     return {
@@ -120,7 +121,7 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg") -> dict:
         "warm_iterations": warm.n_iterations, "warm_convolutions": warm.n_convolutions,
         "converged": bool(cold.converged and warm.converged),
         "load_N": warm.load, "n_contact": warm.n_contact,
-        "peak_bytes": peak, "cufft_work_bytes": int(fft_work),
+        "peak_bytes": peak, "cufft_work_bytes": int(fft_work), "fft_plan": plan,
     }  # fmt: skip
 
 
@@ -174,6 +175,8 @@ def main(argv: list[str] | None = None) -> int:
                 continue
             floor = fft_floor(n, dtype, dev, a.repeats)
             del s
+            need = ContactSolver.memory_bytes((n, n), "free", dtype, cuda=dev.is_cuda,
+                                              algorithm=algorithm, fft_plan=r["fft_plan"])  # fmt: skip
             r.update(n=n, dtype=dtype, algorithm=algorithm, memory_model_bytes=need,
                      fft_floor_s=floor)  # fmt: skip
             conv = r["warm_convolutions"]
@@ -193,7 +196,7 @@ def main(argv: list[str] | None = None) -> int:
                 f"{(r['warm_per_convolution_s'] or 0) * 1e3:8.2f} ms/conv"
                 + (f" = {ratio:.2f}× FFT floor ({floor * 1e3:.2f} ms)" if ratio else ", no floor")
                 + f"; peak {r['peak_bytes'] / n**2:.1f} B/px against the model "
-                f"{need / n**2:.1f} B/px ({r['peak_bytes'] / need:.3f}); "
+                f"{need / n**2:.1f} B/px ({r['peak_bytes'] / need:.3f}; fft_plan {r['fft_plan']}); "
                 f"setup {r['setup_s']:.2f} s; converged {r['converged']}",
                 flush=True,
             )

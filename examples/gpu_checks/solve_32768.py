@@ -18,10 +18,12 @@ from warptrunc.wm import wm_surface
 n = int(sys.argv[1]) if len(sys.argv) > 1 else 32768
 algo = sys.argv[2] if len(sys.argv) > 2 else "bccg"
 maxiter = int(sys.argv[3]) if len(sys.argv) > 3 else 400
+plan = sys.argv[4] if len(sys.argv) > 4 else "auto"
 dev = wp.get_device("cuda:0")
 E = 70e9 / (1 - 0.33**2)
 t = time.perf_counter()
-need = ContactSolver.memory_bytes((n, n), "free", "float32", cuda=True, algorithm=algo)
+need = ContactSolver.memory_bytes((n, n), "free", "float32", cuda=True, algorithm=algo,
+                                  fft_plan="pruned")
 print(f"N={n} {algo}: model {need / 1e9:.1f} GB ({need / n**2:.1f} B/px), free "
       f"{wp.get_device(dev).free_memory / 1e9:.1f} GB", flush=True)
 s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=0, device=dev)
@@ -31,9 +33,12 @@ print(f"surface {time.perf_counter() - t:.1f} s", flush=True)
 base = wp.get_mempool_used_mem_high(dev)
 t = time.perf_counter()
 solver = ContactSolver(h, (s.dx, s.dy), E, dtype="float32", device=dev, algorithm=algo,
-                       maxiter=maxiter)
+                       maxiter=maxiter, fft_plan=plan)
 wp.synchronize_device(dev)
-print(f"setup {time.perf_counter() - t:.1f} s", flush=True)
+need = ContactSolver.memory_bytes((n, n), "free", "float32", cuda=True, algorithm=algo,
+                                  fft_plan=solver.fft_plan)
+print(f"setup {time.perf_counter() - t:.1f} s, fft_plan {solver.fft_plan} (model "
+      f"{need / 1e9:.1f} GB)", flush=True)
 for name, frac in (("cold", 0.20), ("warm", 0.21)):
     t = time.perf_counter()
     r = solver.solve(frac * s.Rt)
