@@ -75,7 +75,7 @@ def test_both_plans_same_solution_and_modelled_memory(dtype):
             wp.synchronize_device(dev)
             peak = runtime.core.wp_alloc_tracker_get_peak_bytes() - base
             del sol
-        need = ContactSolver.memory_bytes(s.shape, "free", dtype, fft_plan=plan)
+        need = ContactSolver.memory_bytes(s.shape, "free", dtype, fft_plan=plan, device=dev)
         assert abs(peak - need) <= 0.1 * need, (plan, peak, need)
         assert r.converged
         out[plan] = r

@@ -176,7 +176,8 @@ def main(argv: list[str] | None = None) -> int:
             floor = fft_floor(n, dtype, dev, a.repeats)
             del s
             need = ContactSolver.memory_bytes((n, n), "free", dtype, cuda=dev.is_cuda,
-                                              algorithm=algorithm, fft_plan=r["fft_plan"])  # fmt: skip
+                                              algorithm=algorithm, fft_plan=r["fft_plan"],
+                                              device=dev if dev.is_cuda else None)  # fmt: skip
             r.update(n=n, dtype=dtype, algorithm=algorithm, memory_model_bytes=need,
                      fft_floor_s=floor)  # fmt: skip
             conv = r["warm_convolutions"]

@@ -36,7 +36,7 @@ solver = ContactSolver(h, (s.dx, s.dy), E, dtype="float32", device=dev, algorith
                        maxiter=maxiter, fft_plan=plan)
 wp.synchronize_device(dev)
 need = ContactSolver.memory_bytes((n, n), "free", "float32", cuda=True, algorithm=algo,
-                                  fft_plan=solver.fft_plan)
+                                  fft_plan=solver.fft_plan, device=dev)
 print(f"setup {time.perf_counter() - t:.1f} s, fft_plan {solver.fft_plan} (model "
       f"{need / 1e9:.1f} GB)", flush=True)
 for name, frac in (("cold", 0.20), ("warm", 0.21)):

@@ -387,7 +387,7 @@ class ElasticHalfSpace:
     @fill_doc(GRID_DOCS)
     def memory_terms(
         shape: tuple[int, int], substrate: str, dtype: str, *, cuda: bool = True,
-        fft_plan: str = "pruned",
+        fft_plan: str = "pruned", device: wp.DeviceLike = None,
     ) -> dict[str, int]:  # fmt: skip
         """Bytes a half-space holds for its life, term by term (its peak: the construction
         works inside these arrays, with temporaries of a few MiB).
@@ -406,6 +406,9 @@ class ElasticHalfSpace:
             The plans (:data:`FFT_PLANS`); ``"full"`` counts a work area as large as the work
             spectrum (free substrate on CUDA; measured equal to it on an H100 at 10240² and
             16384², float32).
+        device : str or warp Device, optional
+            A CUDA device: cuFFT's work area is then the one cuFFT asks for these plans
+            (:meth:`cufft_work_bytes`) instead of the estimate.
 
         Returns
         -------
@@ -429,7 +432,11 @@ class ElasticHalfSpace:
             "work spectrum": big_y * nk * 2 * item,
             "lane partials": (lanes + (256 if cuda else 0)) * LaneReduction.COLUMNS * 8,
         }
-        if cuda and fft_plan == "full" and substrate == "free":
+        exact = (ElasticHalfSpace.cufft_work_bytes(shape, substrate, dtype, fft_plan, device)
+                 if cuda and device is not None else None)  # fmt: skip
+        if exact is not None:
+            terms["cufft work area"] = exact
+        elif cuda and fft_plan == "full" and substrate == "free":
             terms["cufft work area"] = big_y * nk * 2 * item
         elif cuda:
             row, col = ElasticHalfSpace.fft_slabs, 2 * item
@@ -470,35 +477,34 @@ class ElasticHalfSpace:
         """CPU: the spectrum's memory as a complex NumPy array (no copy)."""
         return spec.numpy().view(np.result_type(self.np_dtype, np.complex64))[..., 0]
 
-    def _make_plans(self):
-        """The cuFFT plans, per slab size: rows R2C (in place for the free half-space), columns
-        C2C in place, rows C2R in place; made twice, first to learn their work sizes, then with
-        one shared work area (they run one after another on one stream)."""
-        cupy = self._cp[0]
-        cufft = cupy.cuda.cufft  # loaded by cupyx.scipy.fft (imported in __init__)
-        ny = self.shape[0]
-        big_y, big_x = self.grid
-        nk = self.spectrum_shape[1]
-        item = 2 * np.dtype(self.np_dtype).itemsize  # bytes of one complex element
-        if self.dtype == "float64":
-            r2c, c2c, c2r = cufft.CUFFT_D2Z, cufft.CUFFT_Z2Z, cufft.CUFFT_Z2D
-        else:
-            r2c, c2c, c2r = cufft.CUFFT_R2C, cufft.CUFFT_C2C, cufft.CUFFT_C2R
-        free = self.substrate == "free"
+    @staticmethod
+    def _plan_layout(shape: tuple[int, int], substrate: str, dtype: str, fft_plan: str):
+        """What the cuFFT plans transform: a function ``make(cufft)`` that builds the plans dict,
+        and the row and column slabs (the pruned plans run one execution per slab)."""
+        ny, nx = shape
+        big_y, big_x = (2 * ny, 2 * nx) if substrate == "free" else (ny, nx)
+        nk = big_x // 2 + 1
+        item = 2 * np.dtype(dtype).itemsize  # bytes of one complex element
+        free = substrate == "free"
         in_row = 2 * nk if free else big_x  # reals per input row: in place, or the map's
-        rows = self.fft_slabs(ny, nk * item)
-        cols = self.fft_slabs(nk, big_y * item)
+        rows = ElasticHalfSpace.fft_slabs(ny, nk * item)
+        cols = ElasticHalfSpace.fft_slabs(nk, big_y * item)
 
-        def make():
+        def make(cufft):
+            if dtype == "float64":
+                r2c, c2c, c2r = cufft.CUFFT_D2Z, cufft.CUFFT_Z2Z, cufft.CUFFT_Z2D
+            else:
+                r2c, c2c, c2r = cufft.CUFFT_R2C, cufft.CUFFT_C2C, cufft.CUFFT_C2R
             # PlanNd(n, inembed, istride, idist, onembed, ostride, odist, type, batch,
             #        order, last_axis, last_size): element (b, x) at b·dist + x·stride
             plans = {}
-            if self.fft_plan == "full":  # in place over the whole padded grid
-                plans["full"] = cufft.PlanNd((big_y, big_x), (big_y, 2 * nk), 1, big_y * 2 * nk,
-                                             (big_y, nk), 1, big_y * nk, r2c, 1, "C", 1, nk)  # fmt: skip
-                plans["full_inv"] = cufft.PlanNd((big_y, big_x), (big_y, nk), 1, big_y * nk,
-                                                 (big_y, 2 * nk), 1, big_y * 2 * nk, c2r, 1, "C",
-                                                 1, big_x)  # fmt: skip
+            if fft_plan == "full" and free:  # in place over the whole padded grid, one batch
+                # (the distances between batches are unused: 1, since past 2³¹ they overflow)
+                plans["full"] = cufft.PlanNd((big_y, big_x), (big_y, 2 * nk), 1, 1,
+                                             (big_y, nk), 1, 1, r2c, 1, "C", 1, nk)  # fmt: skip
+                plans["full_inv"] = cufft.PlanNd((big_y, big_x), (big_y, nk), 1, 1,
+                                                 (big_y, 2 * nk), 1, 1, c2r, 1, "C", 1,
+                                                 big_x)  # fmt: skip
                 return plans
             for _, c in rows:
                 plans["rows", c] = cufft.PlanNd((big_x,), (in_row,), 1, in_row, (nk,), 1, nk,
@@ -510,6 +516,72 @@ class ElasticHalfSpace:
                                                 c, "C", 0, None)  # fmt: skip
             return plans
 
+        return make, rows, cols
+
+    @staticmethod
+    @fill_doc(GRID_DOCS)
+    def cufft_work_bytes(shape: tuple[int, int], substrate: str, dtype: str, fft_plan: str,
+                         device: wp.DeviceLike) -> int | None:  # fmt: skip
+        """The work area cuFFT asks for the half-space's plans, learnt by making them (no
+        transform runs and nothing of that size is allocated).
+
+        Parameters
+        ----------
+        {shape}
+        {substrate}
+        dtype : {"float64", "float32"}
+            Precision.
+        fft_plan : {"pruned", "full"}
+            The plans (:data:`FFT_PLANS`).
+        device : str or warp Device
+            A CUDA device.
+
+        Returns
+        -------
+        int or None
+            The largest work area of the plans (B), or None without CuPy or off CUDA.
+
+        Raises
+        ------
+        ValueError
+            cuFFT cannot make these plans (the message says which and why).
+        """
+        dev = resolve_device(device)
+        if not dev.is_cuda:
+            return None
+        try:
+            import cupy
+            import cupyx.scipy.fft  # noqa: F401 - loads cupy.cuda.cufft
+        except ImportError:
+            return None
+        make, _, _ = ElasticHalfSpace._plan_layout(shape, substrate, dtype, fft_plan)
+        sizes: list[int] = []
+        with cupy.cuda.Device(dev.ordinal):
+            dummy = cupy.empty(1, dtype=cupy.uint8)
+
+            def record(size):  # a pointer for the plan to keep; never written
+                sizes.append(int(size))
+                mem = cupy.cuda.UnownedMemory(dummy.data.ptr, int(size), dummy, dev.ordinal)
+                return cupy.cuda.MemoryPointer(mem, 0)
+
+            try:
+                with cupy.cuda.using_allocator(record):
+                    plans = make(cupy.cuda.cufft)
+                del plans
+            except Exception as exc:  # noqa: BLE001 - cuFFT's errors, named in the message
+                raise ValueError(
+                    f"cuFFT cannot make the {fft_plan!r} plans of a {shape[0]}×{shape[1]} map "
+                    f"({substrate}, {dtype}): {exc}"
+                ) from None
+        return max(sizes, default=0)
+
+    def _make_plans(self):
+        """The cuFFT plans (:meth:`_plan_layout`): made twice, first to learn their work sizes,
+        then with one shared work area (they run one after another on one stream)."""
+        cupy = self._cp[0]
+        cufft = cupy.cuda.cufft  # loaded by cupyx.scipy.fft (imported in __init__)
+        make, rows, cols = self._plan_layout(self.shape, self.substrate, self.dtype,
+                                             self.fft_plan)  # fmt: skip
         sizes = []
 
         def record(size):
@@ -520,7 +592,7 @@ class ElasticHalfSpace:
 
         with cupy.cuda.Device(self.device.ordinal):
             with cupy.cuda.using_allocator(record):
-                del_plans = make()  # never executed: only their work sizes are kept
+                del_plans = make(cufft)  # never executed: only their work sizes are kept
             del del_plans
             # in 8-byte words: a byte array past 2³¹ − 1 elements (32768² maps) is beyond
             # Warp's int32 shapes
@@ -529,7 +601,7 @@ class ElasticHalfSpace:
             shared = cupy.cuda.UnownedMemory(self.fft_work.ptr, self.fft_work.capacity,
                                              self.fft_work, self.device.ordinal)  # fmt: skip
             with cupy.cuda.using_allocator(lambda size: cupy.cuda.MemoryPointer(shared, 0)):
-                plans = make()
+                plans = make(cufft)
         self._plans = (plans, rows, cols)
         self._directions = (cufft.CUFFT_FORWARD, cufft.CUFFT_INVERSE)
         return self._plans

@@ -188,15 +188,20 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         cuda = self.device.is_cuda
         plan = settings.fft_plan if cuda and substrate == "free" else "pruned"
 
-        def needs(p: str) -> int:
+        def needs(p: str) -> int:  # with the work area cuFFT asks for, on CUDA
             return self.memory_bytes(h.shape, substrate, dtype, cuda=cuda,
-                                     algorithm=settings.algorithm, fft_plan=p)  # fmt: skip
+                                     algorithm=settings.algorithm, fft_plan=p,
+                                     device=self.device if cuda else None)  # fmt: skip
 
         free = free_memory_bytes(self.device)
         if plan == "auto":
-            if needs("full") > free and cuda:
+            try:
+                full = needs("full")
+            except ValueError:  # cuFFT cannot make the 2-D plans at this size
+                full = None
+            if full is not None and full > free and cuda:
                 free = release_cached_memory(self.device)
-            plan = "full" if needs("full") <= free else "pruned"
+            plan = "full" if full is not None and full <= free else "pruned"
         need = needs(plan)
         if need > free and cuda:
             free = release_cached_memory(self.device)  # pooled blocks are free for us too
@@ -246,7 +251,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
     def memory_terms(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
         cuda: bool = True, direct_max: int = 24, algorithm: str = "bccg",
-        fft_plan: str = "pruned",
+        fft_plan: str = "pruned", device: wp.DeviceLike = None,
     ) -> dict[str, int]:  # fmt: skip
         """The model of a solver's peak device memory, term by term (bytes).
 
@@ -266,6 +271,9 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         fft_plan : {"pruned", "full"}, optional
             The half-space's cuFFT plans (``SolverSettings.fft_plan``; ``"full"`` counts a cuFFT
             work area as large as the work spectrum, free substrate on CUDA).
+        device : str or warp Device, optional
+            A CUDA device: cuFFT's work area is the one cuFFT asks for the plans
+            (:meth:`ElasticHalfSpace.cufft_work_bytes`) instead of the estimate.
 
         Returns
         -------
@@ -280,7 +288,8 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         """
         ny, nx = shape
         item = np.dtype(dtype).itemsize
-        terms = ElasticHalfSpace.memory_terms(shape, substrate, dtype, cuda=cuda, fft_plan=fft_plan)
+        terms = ElasticHalfSpace.memory_terms(shape, substrate, dtype, cuda=cuda,
+                                              fft_plan=fft_plan, device=device)  # fmt: skip
         lanes = 65536 if cuda else 64
         terms["maps"] = 5 * ny * nx * item
         terms["mask"] = ny * nx
@@ -295,6 +304,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
     def memory_bytes(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
         cuda: bool = True, algorithm: str = "bccg", fft_plan: str = "pruned",
+        device: wp.DeviceLike = None,
     ) -> int:  # fmt: skip
         """Peak device memory of a solver and its stiffness solve (bytes).
 
@@ -314,6 +324,8 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
             The half-space's cuFFT plans (``SolverSettings.fft_plan``); ``"full"`` adds a
             cuFFT work area as large as the work spectrum (free substrate on CUDA: + 16 B per
             map pixel in float32, + 32 in float64).
+        device : str or warp Device, optional
+            A CUDA device: cuFFT's work area as cuFFT asks for it, instead of the estimate.
 
         Returns
         -------
@@ -325,7 +337,8 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
             ≈ 38.5 B. Without BCCG (``algorithm="pk"``) one map less.
         """
         terms = ContactSolver.memory_terms(shape, substrate, dtype, cuda=cuda,
-                                           algorithm=algorithm, fft_plan=fft_plan)  # fmt: skip
+                                           algorithm=algorithm, fft_plan=fft_plan,
+                                           device=device)  # fmt: skip
         return int(sum(terms.values()))
 
     # --- one solve ---------------------------------------------------------------------------
