@@ -87,7 +87,7 @@ def fft_floor(n: int, dtype: str, dev, repeats: int) -> float | None:
     return statistics.median(ts[1:])
 
 
-def run_one(s, dtype: str, dev, algorithm: str = "bccg") -> dict:
+def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto") -> dict:
     """Make a solver, solve cold at 0.20·R_t and warm at 0.21·R_t; times, counts, memory."""
     gc.collect()
     wp.synchronize_device(dev)
@@ -97,7 +97,7 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg") -> dict:
         base = core.wp_alloc_tracker_get_current_bytes()
         t0 = time.perf_counter()
         solver = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev,
-                               algorithm=algorithm)  # fmt: skip
+                               algorithm=algorithm, fft_plan=fft_plan)  # fmt: skip
         wp.synchronize_device(dev)
         t1 = time.perf_counter()
         cold = solver.solve(COLD * s.Rt)
@@ -137,6 +137,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--device", default=None, help="Warp device (cpu, cuda:0)")
     p.add_argument("--algorithm", nargs="+", default=["bccg"], choices=["bccg", "pk"],
                    help="the solver's iteration(s) (SolverSettings.algorithm)")  # fmt: skip
+    p.add_argument("--fft-plan", default="auto", choices=["auto", "pruned", "full"],
+                   help="the free half-space's cuFFT plans (SolverSettings.fft_plan)")  # fmt: skip
     p.add_argument("--repeats", type=int, default=3, help="repeats of the FFT floor (median)")
     p.add_argument("--budget", type=float, default=480.0, help="time budget of the run (s)")
     p.add_argument("--quick", action="store_true", help="small sizes (128, 256), float32 only")
@@ -167,7 +169,7 @@ def main(argv: list[str] | None = None) -> int:
             t0 = time.perf_counter()
             try:
                 s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=a.seed, device=dev)
-                r = run_one(s, dtype, dev, algorithm)
+                r = run_one(s, dtype, dev, algorithm, a.fft_plan)
             except MemoryError as exc:
                 print(f"N={n} {dtype}: {exc}", flush=True)
                 rows.append({"n": n, "dtype": dtype, "algorithm": algorithm,
