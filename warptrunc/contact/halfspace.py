@@ -594,10 +594,12 @@ class ElasticHalfSpace:
             with cupy.cuda.using_allocator(record):
                 del_plans = make(cufft)  # never executed: only their work sizes are kept
             del del_plans
-            # in 8-byte words: a byte array past 2³¹ − 1 elements (32768² maps) is beyond
-            # Warp's int32 shapes
+            # rows of 2²⁰ 8-byte words: one dimension past 2³¹ − 1 elements (the full plan's
+            # work area at 32768²: 2³¹ + 2¹⁶ words) is beyond Warp's int32 shapes
             words = -(-max(1, max(sizes, default=1)) // 8)
-            self.fft_work = wp.empty(words, dtype=wp.float64, device=self.device)
+            cols = min(words, 1 << 20)
+            self.fft_work = wp.empty((-(-words // cols), cols), dtype=wp.float64,
+                                     device=self.device)  # fmt: skip
             shared = cupy.cuda.UnownedMemory(self.fft_work.ptr, self.fft_work.capacity,
                                              self.fft_work, self.device.ordinal)  # fmt: skip
             with cupy.cuda.using_allocator(lambda size: cupy.cuda.MemoryPointer(shared, 0)):
