@@ -597,8 +597,8 @@ class ElasticHalfSpace:
             # rows of 2²⁰ 8-byte words: one dimension past 2³¹ − 1 elements (the full plan's
             # work area at 32768²: 2³¹ + 2¹⁶ words) is beyond Warp's int32 shapes
             words = -(-max(1, max(sizes, default=1)) // 8)
-            cols = min(words, 1 << 20)
-            self.fft_work = wp.empty((-(-words // cols), cols), dtype=wp.float64,
+            width = min(words, 1 << 20)
+            self.fft_work = wp.empty((-(-words // width), width), dtype=wp.float64,
                                      device=self.device)  # fmt: skip
             shared = cupy.cuda.UnownedMemory(self.fft_work.ptr, self.fft_work.capacity,
                                              self.fft_work, self.device.ordinal)  # fmt: skip
