@@ -20,13 +20,18 @@ from __future__ import annotations
 import argparse
 import json
 import statistics
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import warp as wp
 
 import warptrunc.contact.halfspace as hsmod
 from warptrunc.contact.halfspace import ElasticHalfSpace, cupy_stream
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+from benchmark_solver_scaling import fft_floor  # noqa: E402 - the floor of the scaling benchmark
 
 
 def timed(fn, dev, repeats):
@@ -132,26 +137,6 @@ def plan_2d(hs, dev, repeats):
     return {"fwd_inv_2d_inplace": t, "work_bytes_2d": sizes}
 
 
-def floor(n, dtype, dev, repeats):
-    import cupy as cp
-    import cupyx.scipy.fft as cfft
-
-    with cp.cuda.Device(dev.ordinal):
-        x = cp.zeros((2 * n, 2 * n), dtype=dtype)
-        x[:n, :n] = 1.0
-        ts = []
-        for _ in range(repeats + 1):
-            cp.cuda.Device().synchronize()
-            t0 = time.perf_counter()
-            y = cfft.irfft2(cfft.rfft2(x), s=x.shape)
-            cp.cuda.Device().synchronize()
-            ts.append(time.perf_counter() - t0)
-        del x, y
-        cp.fft.config.get_plan_cache().clear()
-        cp.get_default_memory_pool().free_all_blocks()
-    return statistics.median(ts[1:])
-
-
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--n", type=int, nargs="+", default=[10240, 16384])
@@ -186,7 +171,7 @@ def main() -> int:
         finally:
             hsmod.FFT_SLABS = saved
         wp.synchronize_device(dev)
-        row["floor"] = floor(n, a.dtype, dev, a.repeats)
+        row["floor"] = fft_floor(n, a.dtype, dev, a.repeats)
         res.append(row)
         ms = {k: round(v * 1e3, 2) for k, v in row.items() if isinstance(v, float) and k != "setup_s"}
         print(f"N={n} {a.dtype}: " + ", ".join(f"{k} {v} ms" for k, v in ms.items())
