@@ -486,11 +486,9 @@ def test_westergaard_near_full_contact(device, nx, ny):
     np.testing.assert_allclose(1 - width[1:k] / nx, 1 - expect[1:k] / nx, rtol=0.05)
 
 
-@pytest.mark.gpu
-@pytest.mark.slow
 def test_westergaard_near_full_contact_large(device):
     """The same at λ = 2048 pixels (a 2048 × 8 map), where the 5 % gap tolerance at 99 % of p*
-    is 2.6 pixels (the issue's λ ≥ 2048-pixel case)."""
+    is 2.6 pixels (the issue's λ ≥ 2048-pixel case; about 3 s on the CPU, so it runs in CI)."""
     ok, width, expect = _westergaard(2048, 8, device, np.array([0.5, 0.9, 0.99]))
     assert ok.all()
     assert abs(width[0] - expect[0]) <= 1.0
