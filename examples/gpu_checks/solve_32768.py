@@ -1,10 +1,11 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""One free-boundary float32 contact solve at 32768² on cuda:0, each phase printed as it ends
+"""One float32 contact solve at 32768² on cuda:0 (free boundary unless told), each phase printed as it ends
 (surface, solver set-up, cold solve at 0.20·R_t, warm solve at 0.21·R_t), with the pool's
 high-water mark against ContactSolver.memory_bytes. The scaling benchmark's map and approach.
 
-Run (GPU machine): python examples/gpu_checks/solve_32768.py [N] [algorithm] [maxiter]
+Run (GPU machine): python examples/gpu_checks/solve_32768.py [N] [algorithm] [maxiter] [fft_plan]
+[substrate]
 """
 
 import sys
@@ -19,12 +20,13 @@ n = int(sys.argv[1]) if len(sys.argv) > 1 else 32768
 algo = sys.argv[2] if len(sys.argv) > 2 else "bccg"
 maxiter = int(sys.argv[3]) if len(sys.argv) > 3 else 400
 plan = sys.argv[4] if len(sys.argv) > 4 else "auto"
+substrate = sys.argv[5] if len(sys.argv) > 5 else "free"
 dev = wp.get_device("cuda:0")
 E = 70e9 / (1 - 0.33**2)
 t = time.perf_counter()
-need = ContactSolver.memory_bytes((n, n), "free", "float32", cuda=True, algorithm=algo,
+need = ContactSolver.memory_bytes((n, n), substrate, "float32", cuda=True, algorithm=algo,
                                   fft_plan="pruned")
-print(f"N={n} {algo}: model {need / 1e9:.1f} GB ({need / n**2:.1f} B/px), free "
+print(f"N={n} {algo} {substrate}: model {need / 1e9:.1f} GB ({need / n**2:.1f} B/px), free "
       f"{wp.get_device(dev).free_memory / 1e9:.1f} GB", flush=True)
 s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=0, device=dev)
 h = s.heights
@@ -33,9 +35,9 @@ print(f"surface {time.perf_counter() - t:.1f} s", flush=True)
 base = wp.get_mempool_used_mem_high(dev)
 t = time.perf_counter()
 solver = ContactSolver(h, (s.dx, s.dy), E, dtype="float32", device=dev, algorithm=algo,
-                       maxiter=maxiter, fft_plan=plan)
+                       maxiter=maxiter, fft_plan=plan, substrate=substrate)
 wp.synchronize_device(dev)
-need = ContactSolver.memory_bytes((n, n), "free", "float32", cuda=True, algorithm=algo,
+need = ContactSolver.memory_bytes((n, n), substrate, "float32", cuda=True, algorithm=algo,
                                   fft_plan=solver.fft_plan, device=dev)
 print(f"setup {time.perf_counter() - t:.1f} s, fft_plan {solver.fft_plan} (model "
       f"{need / 1e9:.1f} GB)", flush=True)
