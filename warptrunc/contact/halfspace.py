@@ -171,8 +171,8 @@ class ElasticHalfSpace:
     device : str or warp Device, optional
         Warp device (default: see :func:`warptrunc.resolve_device`).
     fft_plan : {"pruned", "full"}, optional
-        cuFFT plans (:data:`FFT_PLANS`), for the free substrate on a CUDA device; elsewhere
-        the transforms are those of ``"pruned"`` (and SciPy's on the CPU).
+        cuFFT plans (``warptrunc.contact.halfspace.FFT_PLANS``), for the free substrate on a
+        CUDA device; elsewhere the transforms are those of ``"pruned"`` (SciPy's on the CPU).
 
     Notes
     -----
@@ -403,9 +403,9 @@ class ElasticHalfSpace:
             On a CUDA device: the lane partials are 65536 lanes (64 on the CPU) and cuFFT's
             shared work area is counted.
         fft_plan : {"pruned", "full"}, optional
-            The plans (:data:`FFT_PLANS`); ``"full"`` counts a work area as large as the work
-            spectrum (free substrate on CUDA; measured equal to it on an H100 at 10240² and
-            16384², float32).
+            The plans (``warptrunc.contact.halfspace.FFT_PLANS``); ``"full"`` counts a work
+            area as large as the work spectrum (free substrate on CUDA; measured equal to it on
+            an H100 at 10240² and 16384², float32).
         device : str or warp Device, optional
             A CUDA device: cuFFT's work area is then the one cuFFT asks for these plans
             (:meth:`cufft_work_bytes`) instead of the estimate.
@@ -460,7 +460,7 @@ class ElasticHalfSpace:
         dtype : {"float64", "float32"}
             Precision.
         fft_plan : {"pruned", "full"}, optional
-            The cuFFT plans (:data:`FFT_PLANS`).
+            The cuFFT plans (``warptrunc.contact.halfspace.FFT_PLANS``).
 
         Returns
         -------
@@ -468,7 +468,8 @@ class ElasticHalfSpace:
             The sum of :meth:`memory_terms`, twice: the construction fills the held arrays in
             place (its slab temporaries, a few MiB, are not counted).
         """
-        held = sum(ElasticHalfSpace.memory_terms(shape, substrate, dtype, fft_plan=fft_plan).values())
+        terms = ElasticHalfSpace.memory_terms(shape, substrate, dtype, fft_plan=fft_plan)
+        held = sum(terms.values())
         return int(held), int(held)
 
     # --- transforms ------------------------------------------------------------------------
@@ -532,7 +533,7 @@ class ElasticHalfSpace:
         dtype : {"float64", "float32"}
             Precision.
         fft_plan : {"pruned", "full"}
-            The plans (:data:`FFT_PLANS`).
+            The plans (``warptrunc.contact.halfspace.FFT_PLANS``).
         device : str or warp Device
             A CUDA device.
 

@@ -213,7 +213,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
                 "fft_plan='pruned' or another device"
             )
         self.fft_plan = plan
-        """The cuFFT plans in use (:data:`~warptrunc.contact.halfspace.FFT_PLANS`; 'pruned' off
+        """The cuFFT plans in use (``warptrunc.contact.halfspace.FFT_PLANS``; 'pruned' off
         CUDA and on the periodic substrate)."""
         self.hs = ElasticHalfSpace(h.shape, (dx, dy), self.contact_modulus, substrate=substrate,
                                    dtype=dtype, device=self.device, fft_plan=plan)  # fmt: skip

@@ -94,8 +94,9 @@ def _elastic_cycles(reuse: Any, windows: list, loads: np.ndarray, material: Mate
             raise ValueError("reuse was run with other solver settings; give the same settings")
         cols = reuse.to_dict()
     try:
-        cols = {k: np.asarray(cols[k]) for k in (*_REUSED.values(), "punch_diameter_m", "placement",
-                                                  "peak_load_N", "centre_x_m", "centre_y_m")}  # fmt: skip
+        keys = (*_REUSED.values(), "punch_diameter_m", "placement", "peak_load_N", "centre_x_m",
+                "centre_y_m")  # fmt: skip
+        cols = {k: np.asarray(cols[k]) for k in keys}
     except (KeyError, TypeError) as e:
         raise ValueError(
             f"reuse must be an IndentationResult or its to_dict() columns, with max_pressure_Pa "

@@ -160,6 +160,7 @@ def run_sweep(
                            scheduler=scheduler, device=device, total=len(grid) - left,
                            progress=progress, shard_size=shard_size,
                            shard_seconds=shard_seconds)  # fmt: skip
+            store.remove_temporaries()  # of workers killed mid-write; their cases ran again
         finally:
             try:
                 store.flush()

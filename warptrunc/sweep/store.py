@@ -145,8 +145,7 @@ class Store:
                 f"{self.path} holds sweep results but no sweep.json; use --overwrite or a new --out"
             )
         self.curves.mkdir(parents=True, exist_ok=True)
-        for tmp in [*self.path.glob(".*.tmp-*"), *self.curves.glob(".*.tmp-*")]:
-            tmp.unlink()  # left by a crash mid-write: never a readable part
+        self.remove_temporaries()
         if not meta.exists():
             doc = {**spec, "provenance": provenance()}  # of the run that made the store
             write_atomic(meta, strict_json(doc).encode())  # E_flat: null = rigid (inf)
@@ -340,6 +339,24 @@ class Store:
             rows = [r for rs in self.rows.values() for r in rs]
             self._frame = sort_cases(rows_frame(rows, self.columns))
         return self._frame.copy()
+
+    def remove_temporaries(self) -> int:
+        """Delete the temporary files of writes that never finished (a crash, or a worker killed
+        mid-write): never a readable part. Called when the store opens and when a run has
+        collected every case (no writer of this run is left then).
+
+        Returns
+        -------
+        int
+            Files removed (dimensionless count).
+        """
+        if self.path is None:
+            return 0
+        n = 0
+        for tmp in [*self.path.glob(".*.tmp-*"), *self.curves.glob(".*.tmp-*")]:
+            tmp.unlink(missing_ok=True)
+            n += 1
+        return n
 
     def flush(self) -> None:
         """Rewrite ``cases.parquet`` (atomically) if cases were recorded since the last flush.
