@@ -307,7 +307,7 @@ def test_cuda_transform_layouts_emulated(monkeypatch, substrate, shape, dtype):
     import scipy.fft
 
     from warptrunc.contact import ElasticHalfSpace
-    from warptrunc.contact import halfspace as hsmod
+    from warptrunc.contact import transforms as hsmod
 
     ny, nx = shape
     pixel = (1e-6, 1.3e-6)

@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 import warp as wp
 
-import warptrunc.contact.halfspace as hsmod
+import warptrunc.contact.transforms as hsmod
 from warptrunc.contact.halfspace import ElasticHalfSpace, cupy_stream
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))

@@ -273,7 +273,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
             work area as large as the work spectrum, free substrate on CUDA).
         device : str or warp Device, optional
             A CUDA device: cuFFT's work area is the one cuFFT asks for the plans
-            (:meth:`ElasticHalfSpace.cufft_work_bytes`) instead of the estimate.
+            (``ElasticHalfSpace.cufft_work_bytes``) instead of the estimate.
 
         Returns
         -------
