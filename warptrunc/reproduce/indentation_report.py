@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """Figure and report section "Indentation in silico (Fig. 6)" of the ``indentation`` stage
 (:mod:`warptrunc.reproduce.indentation`). Every number and every claim of the text is computed
-from the stage result and its analysis (:func:`~warptrunc.reproduce.indentation.analyse_indentation`);
+from the stage result and its analysis (:func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`);
 which model truncation tracks follows the rule stated in the section."""
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from .._support.docs import fill_doc
-from .indentation import cells
+from .indentation_analysis import cells
 from .report_sections import fmt_value, new_figure, save_figure
 from .store import STAGE_DOCS
 
@@ -76,7 +76,7 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
     stage : dict
         The stage result.
     ana : dict
-        Its analysis (:func:`~warptrunc.reproduce.indentation.analyse_indentation`).
+        Its analysis (:func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`).
     out : str or Path
         Output folder.
 
@@ -142,7 +142,7 @@ def tracking_sentence(stage: dict[str, Any], s: str, t: dict[str, Any]) -> str:
     s : str
         Surface name.
     t : dict
-        :func:`~warptrunc.reproduce.indentation.tracking` of that surface.
+        :func:`~warptrunc.reproduce.indentation_analysis.tracking` of that surface.
 
     Returns
     -------
@@ -181,7 +181,7 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
     stage : dict
         The stage result (:func:`~warptrunc.reproduce.indentation.summary_from_pieces`).
     ana : dict
-        Its analysis (:func:`~warptrunc.reproduce.indentation.analyse_indentation`).
+        Its analysis (:func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`).
     {report_extras}
         Markdown lines; every number and every sentence's claim comes from ``stage`` and ``ana``.
     """
