@@ -4,13 +4,13 @@
 =========================================================================================
 
 What it shows
-    1. Read a scan (any format that ``warptrunc.io.read_height_map`` reads; without --scan a
+    1. Read a scan (any format that ``warptrunc.io.read_height_map`` reads; without ``--scan`` a
        stand-in "scan" is generated: a WM surface at 1 µm pixels with D_in = 2.45,
        W_r = 60 µm, R_t = 37 µm) and report its descriptors and the four D values.
     2. Targets: D by the chosen method, R_rms, R_t, W_r, the scan's size and resolution.
     3. The D loop (D_in such that the mean D_out over the seeds matches within rtol), then
        R_t' such that R_rms matches.
-    4. Generate the calibrated surface at --n-out pixels per side and compare its descriptors.
+    4. Generate the calibrated surface at ``--n-out`` pixels per side and compare its descriptors.
 
 Run::
 

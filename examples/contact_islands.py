@@ -16,7 +16,7 @@ Key steps
     ``island_curve`` (counts, χ, perimeters, slit fits at every depth) → ``applicable_depth``
     (Table 2 indicators) → ``plot.island_number`` (Fig. 8a) and ``plot.slit_islands`` (Fig. 8b).
 
-Outputs (in --out)
+Outputs (in ``--out``)
     islands_seed<k>.csv per seed, summary.json (indicators per seed, mean and sd; the exponent
     against depth, mean and sd over seeds), island_number.png, slit_islands.png.
 

@@ -21,7 +21,7 @@ Key steps
     truncation on the disks) → ``IndentationResult.to_csv`` / ``to_json`` (fits per model) →
     ``plot.indentation`` (Fig. 6 axes).
 
-Outputs (in --out)
+Outputs (in ``--out``)
     indent.csv (one row per punch × placement × peak), indent.json (settings and fits),
     indent.png.
 

@@ -15,7 +15,7 @@ Key steps
     in row bands, labels each band and merges the labels across band borders by union-find, so
     the whole map is never held in memory.
 
-Outputs (in --out)
+Outputs (in ``--out``)
     stream_islands.json (device, depths, time, island counts, largest island, border merges,
     equality with the in-memory labelling); island_sizes.png: the cumulative island-size
     distribution N(≥ a) against the island area a (µm²), one line per depth.
