@@ -10,7 +10,8 @@ What it shows
     irfft2 of the zero-padded (2N)² grid; skipped without CuPy, and on the CPU scipy.fft) —
     and the peak memory of the solver (Warp's allocation tracker: the peak of the bytes Warp
     allocated from before the solver was made to after the warm solve and Barber's stiffness
-    solve; on CUDA also the pool's
+    solve, host allocations included: the 1 B/px read-back of the contact mask in Barber's
+    solve is one; on CUDA also the pool's
     high-water mark, ``wp.get_mempool_used_mem_high``, which is process-wide and never falls)
     against :meth:`ContactSolver.memory_bytes`.
 
@@ -89,6 +90,8 @@ def fft_floor(n: int, dtype: str, dev, repeats: int) -> float | None:
 
 def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto") -> dict:
     """Make a solver, solve cold at 0.20·R_t and warm at 0.21·R_t; times, counts, memory."""
+    h = s.heights  # the host copy of a device map: outside the window (Warp's tracker counts
+    # host allocations too)
     gc.collect()
     wp.synchronize_device(dev)
     core = _tracker()
@@ -96,7 +99,7 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto")
         core.wp_alloc_tracker_reset()
         base = core.wp_alloc_tracker_get_current_bytes()
         t0 = time.perf_counter()
-        solver = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev,
+        solver = ContactSolver(h, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev,
                                algorithm=algorithm, fft_plan=fft_plan)  # fmt: skip
         wp.synchronize_device(dev)
         t1 = time.perf_counter()
