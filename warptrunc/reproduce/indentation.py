@@ -36,7 +36,9 @@ import numpy as np
 from .._support.docs import fill_doc
 from .._support.results import jsonable, write_atomic
 from .profiles import Profile
-from .store import STAGE_DOCS, StageConflict
+# the analysis's names stay importable from here
+from .indentation_analysis import _STAGE_DOCS, GOOD, analyse_indentation, cells, tracking  # noqa: F401
+from .store import StageConflict
 
 __all__ = [
     "StageIncomplete",
@@ -46,13 +48,6 @@ __all__ = [
     "summary_from_pieces",
 ]
 
-_STAGE_DOCS = {
-    **STAGE_DOCS,
-    "{stage}": (
-        "Parameters\n----------\nstage : dict\n    The stage result (:func:`summary_from_pieces`)."
-    ),
-}
-"""The stage functions' parameter text, written once (:func:`fill_doc`)."""
 SUBDIR = "indentation"
 """Piece store of the stage, inside the reproduction folder."""
 RESOLUTION_SURFACE = "GB300s"
@@ -418,7 +413,3 @@ def summary_from_pieces(p: Profile, pieces: list[dict[str, Any]],
 
 
 # --- analysis -------------------------------------------------------------------------------------
-
-
-# the analysis, importable from here as before (warptrunc.reproduce.indentation_analysis)
-from .indentation_analysis import GOOD, analyse_indentation, cells, tracking  # noqa: E402, F401

@@ -13,9 +13,19 @@ from typing import Any
 import numpy as np
 
 from .._support.docs import fill_doc
-from .indentation import _STAGE_DOCS
+from .store import STAGE_DOCS
 
 __all__ = ["GOOD", "analyse_indentation", "cells", "tracking"]
+
+_STAGE_DOCS = {
+    **STAGE_DOCS,
+    "{stage}": (
+        "Parameters\n----------\nstage : dict\n    The stage result "
+        "(:func:`~warptrunc.reproduce.indentation.summary_from_pieces`)."
+    ),
+}
+"""The indentation stage functions' parameter text, written once (:func:`fill_doc`; shared with
+:mod:`.indentation`)."""
 
 GOOD = 0.2
 """Truncation *tracks* a model at a (surface, punch, load) cell when
