@@ -26,7 +26,8 @@ import sys
 
 from ..material import Material
 from ..params import add_options, param_info
-from ..sweep.grid import SweepGrid, option_name
+from ..sweep.grid import SweepGrid
+from ..sweep.options import option_name
 from ..sweep.read import load, require_extra
 from ..sweep.run import run_sweep
 from ..sweep.stats import alpha_summary

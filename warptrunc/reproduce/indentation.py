@@ -35,9 +35,14 @@ import numpy as np
 
 from .._support.docs import fill_doc
 from .._support.results import jsonable, write_atomic
+from .indentation_analysis import (  # noqa: F401 - the analysis's names stay importable here
+    _STAGE_DOCS,
+    GOOD,
+    analyse_indentation,
+    cells,
+    tracking,
+)
 from .profiles import Profile
-# the analysis's names stay importable from here
-from .indentation_analysis import _STAGE_DOCS, GOOD, analyse_indentation, cells, tracking  # noqa: F401
 from .store import StageConflict
 
 __all__ = [

@@ -30,7 +30,8 @@ from ..fractal import METHODS, fractal_dimensions
 from ..islands.depths import island_curve
 from ..islands.fits import applicable_depth, slit_bootstrap
 from ..stiffness import DEFAULT_MIN_PIXELS, stiffness_curve
-from ..sweep.grid import SweepGrid, SweepOptions
+from ..sweep.grid import SweepGrid
+from ..sweep.options import SweepOptions
 from ..sweep.read import load_curves
 from ..sweep.run import run_sweep
 from ..sweep.store import conflict

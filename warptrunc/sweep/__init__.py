@@ -18,8 +18,9 @@ inside these functions: ``pip install "warptrunc[sweep]"``.
 """
 
 from .curves import CURVE_COLUMNS
-from .grid import Case, SweepGrid, SweepOptions, parse_seeds
+from .grid import Case, SweepGrid, parse_seeds
 from .migration import migrate
+from .options import SweepOptions
 from .read import BEM_QUANTITIES, CASE_COLUMNS, RUN_COLUMNS, bem_long, load, load_curves
 from .run import run_sweep
 from .stats import SweepTable, alpha_summary, linear_fit, sweep

@@ -32,7 +32,8 @@ from ..kernels import wm as _kw
 from ..truncation.curve import TruncationCurve, curve_from_histogram, depth_grid
 from ..wm import pad_to
 from ..wm_params import wm_phases, wm_weights
-from .grid import Case, SweepOptions
+from .grid import Case
+from .options import SweepOptions
 
 __all__ = ["BATCH_PIXELS", "MAX_BATCH", "WMBatch", "batch_size"]
 

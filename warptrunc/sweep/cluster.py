@@ -26,7 +26,8 @@ from .._support.device import cuda_device_count
 from .._support.progress import progress_bar
 from .curves import part_name, part_rows
 from .engines import compute_shard, failed_case, pinned_device
-from .grid import Case, SweepOptions
+from .grid import Case
+from .options import SweepOptions
 
 __all__ = ["PinDevice", "run_dask", "shard_size_for"]
 

@@ -15,7 +15,7 @@ import numpy as np
 from .._support.docs import SHARED_DOCS, fill_doc
 from ..stiffness import flat_punch_stiffness, stiffness_curve
 from ..truncation.api import truncate
-from .grid import SweepOptions
+from .options import SweepOptions
 
 __all__ = ["bem_blank", "elastic_record"]
 

@@ -39,7 +39,8 @@ from ..wm import wm_surface
 from .batch import WMBatch, batch_size
 from .curves import part_name, part_rows, write_part
 from .elastic import elastic_record
-from .grid import Case, SweepOptions
+from .grid import Case
+from .options import SweepOptions
 from .rows import base_row, fit_ranges, fractal_record, resolve_min_pixels
 
 __all__ = [

@@ -15,11 +15,12 @@ from typing import Any
 
 import numpy as np
 
-from .._support.version import __version__
 from .._support.provenance import git_commit
+from .._support.version import __version__
 from ..stiffness import DEFAULT_MIN_PIXELS
 from .elastic import bem_blank
-from .grid import FRACTAL_METHODS, Case, SweepOptions
+from .grid import Case
+from .options import FRACTAL_METHODS, SweepOptions
 
 __all__ = ["base_row", "fit_ranges", "fractal_record", "resolve_min_pixels"]
 

@@ -12,8 +12,9 @@ from typing import Any
 from .._support.atomic import store_rollback
 from .._support.docs import fill_doc
 from .._support.validate import check_int, check_range
-from .grid import GRID_DOCS, SweepGrid, SweepOptions
+from .grid import GRID_DOCS, SweepGrid
 from .lock import store_lock
+from .options import SweepOptions
 from .store import Store
 
 __all__ = ["as_grid", "run_sweep"]

@@ -60,8 +60,9 @@ from .curves import (
     read_part_curves,
     write_part,
 )  # fmt: skip
-from .grid import FORMAT, STORE_FORMAT, SweepGrid, SweepOptions
+from .grid import FORMAT, STORE_FORMAT, SweepGrid
 from .migration import migrate
+from .options import SweepOptions
 from .read import (
     CASE_COLUMNS,
     MANIFEST_KEY,
