@@ -41,6 +41,16 @@ SCANS = Path(
 )
 
 
+@pytest.fixture
+def cupy_on_cuda(request):
+    """Skip a test parametrised on a CUDA device when CuPy (the ``gpu`` extra, cuFFT for the
+    contact solver) is missing; modules that solve contact use it
+    (``pytestmark = pytest.mark.usefixtures("cupy_on_cuda")``)."""
+    params = getattr(getattr(request.node, "callspec", None), "params", {})
+    if str(params.get("device", "")).startswith("cuda"):
+        pytest.importorskip("cupy")
+
+
 @pytest.fixture(scope="module")
 def quiet_surfacetopography():
     """Import SurfaceTopography once with its ImportWarning (no mpi4py) silenced; modules that

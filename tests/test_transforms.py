@@ -17,12 +17,7 @@ from warptrunc.contact import influence_spectrum
 E_STAR = 70e9 / (1 - 0.33**2)  # aluminium on a rigid flat (Pa)
 
 
-@pytest.fixture(autouse=True)
-def _cufft(request):
-    """On a CUDA device the half-space needs CuPy (the ``gpu`` extra) for cuFFT."""
-    params = getattr(getattr(request.node, "callspec", None), "params", {})
-    if str(params.get("device", "")).startswith("cuda"):
-        pytest.importorskip("cupy")
+pytestmark = pytest.mark.usefixtures("cupy_on_cuda")  # cuFFT on a CUDA device
 
 
 def _load_map(hs, x, pixel, substrate, dtype):

@@ -149,16 +149,8 @@ class BCCGSolves:
             else:
                 ok = ok and self._steady(total, last_total)
             last_total = total
-            if not math.isfinite(res):
-                raise FloatingPointError(
-                    f"the contact solve diverged at iteration {it} (residual {res})"
-                )
-            info = {
-                "depth": offset + self.h_max, "load": total, "n_contact": int(n_c),
-                "mean_gap": s_gap / n_map, "n_iterations": it,
-                "n_convolutions": n_transforms / 2, "residual": float(res),
-                "max_tensile_force": float(viol), "converged": ok,
-            }  # fmt: skip
+            info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res,
+                                        viol, ok, n_contact=n_c)  # fmt: skip
             if ok:
                 break
             if n_f == 0:

@@ -118,16 +118,8 @@ class PKSolves:
             res = max(rms_pen, pen, du)
             ok = ok and rms_pen < self.pentol and pen < self.pentol and du < self.pentol
             ok = ok and max_tens < self.forcetol
-            info = {
-                "depth": offset + self.h_max, "load": float(total), "n_contact": int(n_c),
-                "mean_gap": s_gap / n_map, "n_iterations": it,
-                "n_convolutions": n_transforms / 2, "residual": float(res),
-                "max_tensile_force": float(max_tens), "converged": ok,
-            }  # fmt: skip
-            if not math.isfinite(res):
-                raise FloatingPointError(
-                    f"the contact solve diverged at iteration {it} (residual {res})"
-                )
+            info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res,
+                                        max_tens, ok, n_contact=n_c)  # fmt: skip
             if ok:
                 break
         self.offset = offset

@@ -146,15 +146,8 @@ class CappedSolves:
             last_total = total
             res = max(rms_pen, viol, du)
             ok = ok and res < self.pentol and max_viol < self.forcetol and n_nc == 0
-            info = {
-                "depth": offset + self.h_max, "load": float(total), "mean_gap": s_gap / n_map,
-                "n_iterations": it, "n_convolutions": n_transforms / 2, "residual": float(res),
-                "max_tensile_force": float(max_viol), "converged": ok,
-            }  # fmt: skip
-            if not math.isfinite(res):
-                raise FloatingPointError(
-                    f"the contact solve diverged at iteration {it} (residual {res})"
-                )
+            info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res,
+                                        max_viol, ok)  # fmt: skip
             if ok:
                 break
         self.offset = offset

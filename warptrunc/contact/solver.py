@@ -202,7 +202,9 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
             if full is not None and full > free and cuda:
                 free = release_cached_memory(self.device)
             plan = "full" if full is not None and full <= free else "pruned"
-        need = needs(plan)
+            need = full if plan == "full" else needs(plan)  # each plan made once to learn its size
+        else:
+            need = needs(plan)
         if need > free and cuda:
             free = release_cached_memory(self.device)  # pooled blocks are free for us too
         if need > free:
@@ -447,6 +449,26 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         if old is None:
             return False
         return new == old or (new != 0 and abs((new - old) / new) < self.thermotol)
+
+    def _iteration_info(self, offset: float, load: float, mean_gap: float, it: int,
+                        n_transforms: int, res: float, max_tensile: float, ok: bool,
+                        n_contact: int | None = None) -> dict[str, Any]:  # fmt: skip
+        """The info dict of one iteration of a solve loop (PK, BCCG, capped): approach (m), load
+        (N), mean gap (m), iterations, convolutions (two transforms each), residual (m), largest
+        tensile force (N), converged, and the contact pixels when counted; a non-finite residual
+        raises FloatingPointError (the solve diverged)."""
+        if not math.isfinite(res):
+            raise FloatingPointError(
+                f"the contact solve diverged at iteration {it} (residual {res})"
+            )
+        info = {
+            "depth": offset + self.h_max, "load": float(load), "mean_gap": mean_gap,
+            "n_iterations": it, "n_convolutions": n_transforms / 2, "residual": float(res),
+            "max_tensile_force": float(max_tensile), "converged": ok,
+        }  # fmt: skip
+        if n_contact is not None:
+            info["n_contact"] = int(n_contact)
+        return info
 
     def _warm_start(self, offset: float) -> None:
         """Warm start of a solve at ``offset`` (m): raise u where the map would penetrate and
