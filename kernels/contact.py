@@ -270,6 +270,28 @@ def influence(table: wp.array2d(dtype=Any), periodic: int, dy: int, dx: int) -> 
     return wp.float64(table[wp.abs(dy), wp.abs(dx)])
 
 
+@wp.func
+def direct_sum(
+    acc: wp.float64,
+    table: wp.array2d(dtype=Any),
+    periodic: int,
+    index: wp.array[wp.int32],
+    value: wp.array[wp.float64],
+    n_changes: int,
+    iy: int,
+    ix: int,
+    nx: int,
+) -> wp.float64:
+    """acc + Σ_k value_k·G(pixel (iy, ix) − index_k) (m): the displacement there of a few
+    listed force changes (N) added by direct summation over the influence table, one term at a
+    time in the list's fixed order."""
+    for k in range(n_changes):
+        j = index[k]
+        jy = j // nx
+        acc += value[k] * influence(table, periodic, iy - jy, ix - (j - jy * nx))
+    return acc
+
+
 @wp.kernel
 def advance_kernel(
     r: wp.array2d(dtype=Any),
@@ -309,11 +331,8 @@ def advance_kernel(
         uo = u[iy, ix]
         un = r[iy, ix]
         if linear != 0:
-            acc = scale * (wp.float64(uo) - tau * wp.float64(un))
-            for k in range(n_changes):
-                j = index[k]
-                jy = j // nx
-                acc += value[k] * influence(table, periodic, iy - jy, ix - (j - jy * nx))
+            acc = direct_sum(scale * (wp.float64(uo) - tau * wp.float64(un)), table, periodic,
+                             index, value, n_changes, iy, ix, nx)
             un = u.dtype(acc)
         u[iy, ix] = un
         du_max = wp.max(du_max, wp.abs(wp.float64(un) - wp.float64(uo)))

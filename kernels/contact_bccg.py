@@ -15,7 +15,7 @@ from typing import Any
 
 import warp as wp
 
-from .contact import influence
+from .contact import direct_sum
 from .lanes import declare_overloads, lane_next, lane_start
 
 wp.set_module_options({"enable_backward": False})
@@ -272,11 +272,7 @@ def bccg_correct_kernel(
     i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, u.shape[0] * nx, nx)
     d_max = wp.float64(0.0)
     while i < n:
-        acc = wp.float64(0.0)
-        for k in range(n_changes):
-            j = index[k]
-            jy = j // nx
-            acc += value[k] * influence(table, periodic, iy - jy, ix - (j - jy * nx))
+        acc = direct_sum(wp.float64(0.0), table, periodic, index, value, n_changes, iy, ix, nx)
         u[iy, ix] = u.dtype(wp.float64(u[iy, ix]) + acc)
         d_max = wp.max(d_max, wp.abs(acc))
         i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)

@@ -15,7 +15,7 @@ from typing import Any
 
 import warp as wp
 
-from .contact import influence
+from .contact import direct_sum
 from .lanes import declare_overloads, lane_next, lane_start
 
 wp.set_module_options({"enable_backward": False})
@@ -238,11 +238,8 @@ def capped_advance_kernel(
         uo = u[iy, ix]
         un = r[iy, ix]
         if linear != 0:
-            acc = wp.float64(uo) - tau * wp.float64(un)
-            for k in range(n_changes):
-                j = index[k]
-                jy = j // nx
-                acc += value[k] * influence(table, periodic, iy - jy, ix - (j - jy * nx))
+            acc = direct_sum(wp.float64(uo) - tau * wp.float64(un), table, periodic, index,
+                             value, n_changes, iy, ix, nx)
             un = u.dtype(acc)
         u[iy, ix] = un
         du_max = wp.max(du_max, wp.abs(wp.float64(un) - wp.float64(uo)))
