@@ -88,7 +88,8 @@ def fft_floor(n: int, dtype: str, dev, repeats: int) -> float | None:
     return statistics.median(ts[1:])
 
 
-def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto") -> dict:
+def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
+            precondition_above: float = 0.02) -> dict:
     """Make a solver, solve cold at 0.20·R_t and warm at 0.21·R_t; times, counts, memory."""
     h = s.heights  # the host copy of a device map: outside the window (Warp's tracker counts
     # host allocations too)
@@ -100,7 +101,8 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto")
         base = core.wp_alloc_tracker_get_current_bytes()
         t0 = time.perf_counter()
         solver = ContactSolver(h, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev,
-                               algorithm=algorithm, fft_plan=fft_plan)  # fmt: skip
+                               algorithm=algorithm, fft_plan=fft_plan,
+                               precondition_above=precondition_above)  # fmt: skip
         wp.synchronize_device(dev)
         t1 = time.perf_counter()
         cold = solver.solve(COLD * s.Rt)
@@ -142,6 +144,12 @@ def main(argv: list[str] | None = None) -> int:
                    help="the solver's iteration(s) (SolverSettings.algorithm)")  # fmt: skip
     p.add_argument("--fft-plan", default="auto", choices=["auto", "pruned", "full"],
                    help="the free half-space's cuFFT plans (SolverSettings.fft_plan)")  # fmt: skip
+    p.add_argument("--precondition-above", type=float, nargs="+", default=[0.02],
+                   help="BCCG's preconditioner threshold(s) (SolverSettings.precondition_above; "
+                   "0 = always)")  # fmt: skip
+    p.add_argument("--wc-pixels", type=float, default=None,
+                   help="fixed content: the cut-off W_c as this many pixels of the first N "
+                   "(default: W_c = 2 pixels at every N, finer pixels add roughness)")  # fmt: skip
     p.add_argument("--repeats", type=int, default=3, help="repeats of the FFT floor (median)")
     p.add_argument("--budget", type=float, default=480.0, help="time budget of the run (s)")
     p.add_argument("--quick", action="store_true", help="small sizes (128, 256), float32 only")
@@ -156,11 +164,14 @@ def main(argv: list[str] | None = None) -> int:
                     [2048, 4096, 8192, 10240, 16384, 32768] if dev.is_cuda else [128, 256, 512])  # fmt: skip
     dtypes = ["float32"] if a.quick else a.dtype
     print(f"device {dev} ({name}), warp {wp.config.version}, commit {git_commit()}", flush=True)
+    # fixed content: W_c the same length at every N; else None (2 pixels, wm_surface's default)
+    wc = {"Wc": a.wc_pixels * 1e-3 / sizes[0]} if a.wc_pixels else {}
     rows: list[dict] = []
     last: tuple[int, float] | None = None
     stopped = None
     for n in sizes:
-        for dtype, algorithm in [(d, al) for d in dtypes for al in a.algorithm]:
+        for dtype, algorithm, pa in [(d, al, pa) for d in dtypes for al in a.algorithm
+                                     for pa in a.precondition_above]:  # fmt: skip
             if last is not None:
                 predicted = last[1] * 4.5 ** np.log2(n / last[0])
                 left = a.budget - (time.perf_counter() - start)
@@ -171,8 +182,9 @@ def main(argv: list[str] | None = None) -> int:
                                               algorithm=algorithm)  # fmt: skip
             t0 = time.perf_counter()
             try:
-                s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=a.seed, device=dev)
-                r = run_one(s, dtype, dev, algorithm, a.fft_plan)
+                s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=a.seed, device=dev,
+                               **wc)  # fmt: skip
+                r = run_one(s, dtype, dev, algorithm, a.fft_plan, pa)
             except MemoryError as exc:
                 print(f"N={n} {dtype}: {exc}", flush=True)
                 rows.append({"n": n, "dtype": dtype, "algorithm": algorithm,
@@ -184,7 +196,8 @@ def main(argv: list[str] | None = None) -> int:
                                               algorithm=algorithm, fft_plan=r["fft_plan"],
                                               device=dev if dev.is_cuda else None)  # fmt: skip
             r.update(n=n, dtype=dtype, algorithm=algorithm, memory_model_bytes=need,
-                     fft_floor_s=floor)  # fmt: skip
+                     fft_floor_s=floor, precondition_above=pa,
+                     Wc_m=wc.get("Wc"))  # fmt: skip
             conv = r["warm_convolutions"]
             r["warm_per_convolution_s"] = r["warm_s"] / conv if conv else None
             r["per_convolution_over_floor"] = (
@@ -196,7 +209,7 @@ def main(argv: list[str] | None = None) -> int:
             last = (n, time.perf_counter() - t0)
             ratio = r["per_convolution_over_floor"]
             print(
-                f"N={n:6d} {dtype} {algorithm}: cold {r['cold_s']:8.3f} s ({r['cold_iterations']} it, "
+                f"N={n:6d} {dtype} {algorithm} pc>{pa:g}: cold {r['cold_s']:8.3f} s ({r['cold_iterations']} it, "
                 f"{r['cold_convolutions']} conv), warm {r['warm_s']:8.3f} s "
                 f"({r['warm_iterations']} it, {conv} conv), "
                 f"{(r['warm_per_convolution_s'] or 0) * 1e3:8.2f} ms/conv"
@@ -214,6 +227,7 @@ def main(argv: list[str] | None = None) -> int:
         doc = {"device": str(dev), "device_name": name, "warp": wp.config.version,
                "commit": git_commit(), "platform": platform.platform(),
                "surface": "wm_surface(D=2.5, Wr=100 µm, L=1 mm, Rt=10 µm), free boundary",
+               "Wc_m": wc.get("Wc"),
                "cold_fraction_of_Rt": COLD, "warm_fraction_of_Rt": WARM,
                "stopped": stopped, "rows": rows}  # fmt: skip
         a.out.mkdir(parents=True, exist_ok=True)

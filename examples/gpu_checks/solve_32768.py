@@ -5,7 +5,7 @@
 high-water mark against ContactSolver.memory_bytes. The scaling benchmark's map and approach.
 
 Run (GPU machine): python examples/gpu_checks/solve_32768.py [N] [algorithm] [maxiter] [fft_plan]
-[substrate]
+[substrate] [precondition_above]
 """
 
 import sys
@@ -21,12 +21,13 @@ algo = sys.argv[2] if len(sys.argv) > 2 else "bccg"
 maxiter = int(sys.argv[3]) if len(sys.argv) > 3 else 400
 plan = sys.argv[4] if len(sys.argv) > 4 else "auto"
 substrate = sys.argv[5] if len(sys.argv) > 5 else "free"
+pc_above = float(sys.argv[6]) if len(sys.argv) > 6 else 0.02
 dev = wp.get_device("cuda:0")
 E = 70e9 / (1 - 0.33**2)
 t = time.perf_counter()
 need = ContactSolver.memory_bytes((n, n), substrate, "float32", cuda=True, algorithm=algo,
                                   fft_plan="pruned")
-print(f"N={n} {algo} {substrate}: model {need / 1e9:.1f} GB ({need / n**2:.1f} B/px), free "
+print(f"N={n} {algo} {substrate} precondition_above {pc_above:g}: model {need / 1e9:.1f} GB ({need / n**2:.1f} B/px), free "
       f"{wp.get_device(dev).free_memory / 1e9:.1f} GB", flush=True)
 s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=0, device=dev)
 h = s.heights
@@ -35,7 +36,8 @@ print(f"surface {time.perf_counter() - t:.1f} s", flush=True)
 base = wp.get_mempool_used_mem_high(dev)
 t = time.perf_counter()
 solver = ContactSolver(h, (s.dx, s.dy), E, dtype="float32", device=dev, algorithm=algo,
-                       maxiter=maxiter, fft_plan=plan, substrate=substrate)
+                       maxiter=maxiter, fft_plan=plan, substrate=substrate,
+                       precondition_above=pc_above)
 wp.synchronize_device(dev)
 need = ContactSolver.memory_bytes((n, n), substrate, "float32", cuda=True, algorithm=algo,
                                   fft_plan=solver.fft_plan, device=dev)

@@ -14,8 +14,8 @@ to a thousand iterations per load. This solver follows Vollebregt (J. Optim. The
 * **Free set** (the variables the CG moves): 0 < q < H·dx·dy, plus the pixels at a bound whose
   gradient points into the box (q = 0 penetrating, g < 0; q at the cap with an open gap, g > 0).
   Pixels enter the set as soon as they penetrate, instead of one restart at a time.
-* **Preconditioner** (while the free set covers more than ``PRECONDITION_ABOVE`` (2 %) of the
-  map; else z = c·g): z = c·K⁻¹·(c·g), c the free set, with K⁻¹ the inverse of the half-space's
+* **Preconditioner** (while the free set covers more than ``settings.precondition_above``
+  (default 2 %) of the map; else z = c·g): z = c·K⁻¹·(c·g), c the free set, with K⁻¹ the inverse of the half-space's
   circulant convolution (the spectrum 1/W on the padded grid: ``SPECTRUM_INVERSE``, one more
   convolution per iteration). On a fixed contact set it makes the CG iterations nearly
   independent of the grid (prototype, D = 2.5 WM map under a punch at 81 % contact: 19, 21, 23,
@@ -50,14 +50,6 @@ from ..kernels import contact_bccg as _kb
 from ..kernels import contact_reduce as _kr
 
 __all__ = ["BCCGSolves"]
-
-PRECONDITION_ABOVE = 0.02
-"""The preconditioner is applied while the free set (or, for Barber's punch, the contact set)
-covers more than this fraction of the map (dimensionless); below, z = r and the iteration costs
-one convolution less. On sparse contacts the preconditioner saves few iterations (D = 2.5 WM maps
-at 0.2·R_t, 0.1–1 % contact: 16 → 10 at 256², 22 → 13 at 512² cold) at one more convolution each;
-on the paper's punches at 512² (Ps and GB300s, H = ∞ and 1 GPa, ten cycles) this rule takes
-5488 convolutions to 4606."""
 
 _HUGE = 1e300  # the "cap" of an elastic solve (N)
 
@@ -159,7 +151,7 @@ class BCCGSolves:
                 info["converged"] = pen <= self.pentol and open_cap <= self.pentol
                 break
             # preconditioned residual z = c·K⁻¹·r (on a large free set; else z = r)
-            use_pc = n_f > PRECONDITION_ABOVE * n_map
+            use_pc = n_f > self.settings.precondition_above * n_map
             if use_pc != last_pc:
                 rz_old = None  # another preconditioner: the CG restarts
             last_pc = use_pc
@@ -223,7 +215,7 @@ class BCCGSolves:
         converged)."""
         red, hs = self.hs.reduction, self.hs
         n_map = self.shape[0] * self.shape[1]
-        if n_set <= PRECONDITION_ABOVE * n_map:
+        if n_set <= self.settings.precondition_above * n_map:
             return self._punch_cg(x, res, n_set, rtol)  # a small set: plain CG
         scratch, _ = self._bccg_maps()  # the last z (unused here, a kernel output)
         d = self.t

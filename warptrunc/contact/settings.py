@@ -76,6 +76,12 @@ class SolverSettings(Parameters):
         "pruned",
         choices=("auto", "pruned", "full"),
     )  # fmt: skip
+    precondition_above: float = param(
+        0.02, "BCCG applies its FFT preconditioner c·K⁻¹·c (one more convolution per iteration) "
+        "while the free set covers more than this fraction of the map (dimensionless; 0 = "
+        "always, 1 = never); Barber's punch solve likewise on its contact set",
+        ge=0.0, le=1.0,
+    )  # fmt: skip
     maxiter: int = param(10000, "largest number of iterations per solve", kind="int", ge=1)
     refresh: int = param(
         50, "transform the forces afresh at least every this many iterations", kind="int", ge=1

@@ -92,7 +92,7 @@ def default_pentol(heights: np.ndarray) -> float:
 
 
 _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter", "refresh",
-           "direct_max", "load_control", "algorithm", "fft_plan")  # fmt: skip
+           "direct_max", "load_control", "algorithm", "fft_plan", "precondition_above")  # fmt: skip
 
 
 @fill_doc(SHARED_DOCS)
@@ -538,7 +538,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
     def punch_stiffness(self, rtol: float | None = None) -> tuple[float, int, bool]:
         """Barber's incremental stiffness of the current contact: a rigid flat punch shaped like
         the contact set, K·x = 1 m on the set, solved by linear CG (preconditioned with c·K⁻¹·c
-        under ``algorithm="bccg"`` when the set covers more than 2 % of the map;
+        under ``algorithm="bccg"`` when the set covers more than ``settings.precondition_above`` of the map;
         :mod:`warptrunc.contact.punch`); k = Σx (N/m).
 
         Parameters
