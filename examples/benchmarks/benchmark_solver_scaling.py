@@ -89,7 +89,7 @@ def fft_floor(n: int, dtype: str, dev, repeats: int) -> float | None:
 
 
 def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
-            precondition_above: float = 0.02) -> dict:
+            precondition_above: float | None = None, pentol: float | None = None) -> dict:
     """Make a solver, solve cold at 0.20·R_t and warm at 0.21·R_t; times, counts, memory."""
     h = s.heights  # the host copy of a device map: outside the window (Warp's tracker counts
     # host allocations too)
@@ -102,7 +102,8 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
         t0 = time.perf_counter()
         solver = ContactSolver(h, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev,
                                algorithm=algorithm, fft_plan=fft_plan,
-                               precondition_above=precondition_above)  # fmt: skip
+                               precondition_above=precondition_above,
+                               pentol=pentol)  # fmt: skip
         wp.synchronize_device(dev)
         t1 = time.perf_counter()
         cold = solver.solve(COLD * s.Rt)
@@ -130,6 +131,11 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
     }  # fmt: skip
 
 
+def _threshold(text: str) -> float | None:
+    """A ``--precondition-above`` value: a fraction, or "auto" (None)."""
+    return None if text == "auto" else float(text)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark; print a table, write JSON to ``--out``."""
     p = argparse.ArgumentParser(
@@ -144,9 +150,12 @@ def main(argv: list[str] | None = None) -> int:
                    help="the solver's iteration(s) (SolverSettings.algorithm)")  # fmt: skip
     p.add_argument("--fft-plan", default="auto", choices=["auto", "pruned", "full"],
                    help="the free half-space's cuFFT plans (SolverSettings.fft_plan)")  # fmt: skip
-    p.add_argument("--precondition-above", type=float, nargs="+", default=[0.02],
+    p.add_argument("--precondition-above", type=_threshold, nargs="+", default=[None],
                    help="BCCG's preconditioner threshold(s) (SolverSettings.precondition_above; "
-                   "0 = always)")  # fmt: skip
+                   "0 = always, auto = the default rule)")  # fmt: skip
+    p.add_argument("--pentol-rms", type=float, default=None,
+                   help="a fixed relative tolerance: pentol = this × the map's rms height "
+                   "(default: the solver's, rms/(10·N), which tightens with N)")  # fmt: skip
     p.add_argument("--wc-pixels", type=float, default=None,
                    help="fixed content: the cut-off W_c as this many pixels of the first N "
                    "(default: W_c = 2 pixels at every N, finer pixels add roughness)")  # fmt: skip
@@ -184,7 +193,10 @@ def main(argv: list[str] | None = None) -> int:
             try:
                 s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=a.seed, device=dev,
                                **wc)  # fmt: skip
-                r = run_one(s, dtype, dev, algorithm, a.fft_plan, pa)
+                pentol = None
+                if a.pentol_rms is not None:
+                    pentol = a.pentol_rms * float(np.std(s.heights))
+                r = run_one(s, dtype, dev, algorithm, a.fft_plan, pa, pentol)
             except MemoryError as exc:
                 print(f"N={n} {dtype}: {exc}", flush=True)
                 rows.append({"n": n, "dtype": dtype, "algorithm": algorithm,
@@ -196,7 +208,7 @@ def main(argv: list[str] | None = None) -> int:
                                               algorithm=algorithm, fft_plan=r["fft_plan"],
                                               device=dev if dev.is_cuda else None)  # fmt: skip
             r.update(n=n, dtype=dtype, algorithm=algorithm, memory_model_bytes=need,
-                     fft_floor_s=floor, precondition_above=pa,
+                     fft_floor_s=floor, precondition_above=pa, pentol_m=pentol,
                      Wc_m=wc.get("Wc"))  # fmt: skip
             conv = r["warm_convolutions"]
             r["warm_per_convolution_s"] = r["warm_s"] / conv if conv else None
@@ -209,7 +221,7 @@ def main(argv: list[str] | None = None) -> int:
             last = (n, time.perf_counter() - t0)
             ratio = r["per_convolution_over_floor"]
             print(
-                f"N={n:6d} {dtype} {algorithm} pc>{pa:g}: cold {r['cold_s']:8.3f} s ({r['cold_iterations']} it, "
+                f"N={n:6d} {dtype} {algorithm} pc>{'auto' if pa is None else pa}: cold {r['cold_s']:8.3f} s ({r['cold_iterations']} it, "
                 f"{r['cold_convolutions']} conv), warm {r['warm_s']:8.3f} s "
                 f"({r['warm_iterations']} it, {conv} conv), "
                 f"{(r['warm_per_convolution_s'] or 0) * 1e3:8.2f} ms/conv"

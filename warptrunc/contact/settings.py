@@ -30,6 +30,10 @@ class SolverSettings(Parameters):
     -----
     ``direct_max`` is an integer or None (``"auto"`` is accepted and stored as None): None
     chooses 24 on a CUDA device and 4 on the CPU, where Warp runs a kernel on one core.
+    ``precondition_above`` likewise: None (or ``"auto"``) applies the preconditioner always on a
+    map (or punch window) of at least 1024² pixels and from 2 % of the map below, where on
+    sparse contacts it saves fewer iterations than it costs convolutions (the measurements
+    behind the rule: ``guide/performance.md``, issue 29).
 
     Examples
     --------
@@ -76,11 +80,11 @@ class SolverSettings(Parameters):
         "pruned",
         choices=("auto", "pruned", "full"),
     )  # fmt: skip
-    precondition_above: float = param(
-        0.02, "BCCG applies its FFT preconditioner c·K⁻¹·c (one more convolution per iteration) "
+    precondition_above: float | None = param(
+        None, "BCCG applies its FFT preconditioner c·K⁻¹·c (one more convolution per iteration) "
         "while the free set covers more than this fraction of the map (dimensionless; 0 = "
-        "always, 1 = never); Barber's punch solve likewise on its contact set",
-        ge=0.0, le=1.0,
+        "always, 1 = never; Barber's punch solve likewise on its contact set); None = auto: "
+        "0 on maps of at least 1024² pixels, else 0.02", ge=0.0, le=1.0, optional=True,
     )  # fmt: skip
     maxiter: int = param(10000, "largest number of iterations per solve", kind="int", ge=1)
     refresh: int = param(
@@ -93,8 +97,9 @@ class SolverSettings(Parameters):
     )  # fmt: skip
 
     def __post_init__(self) -> None:
-        if isinstance(self.direct_max, str) and self.direct_max == "auto":
-            object.__setattr__(self, "direct_max", None)
+        for name in ("direct_max", "precondition_above"):
+            if isinstance(getattr(self, name), str) and getattr(self, name) == "auto":
+                object.__setattr__(self, name, None)
         check_fields(self)
 
 

@@ -538,8 +538,9 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
     def punch_stiffness(self, rtol: float | None = None) -> tuple[float, int, bool]:
         """Barber's incremental stiffness of the current contact: a rigid flat punch shaped like
         the contact set, K·x = 1 m on the set, solved by linear CG (preconditioned with c·K⁻¹·c
-        under ``algorithm="bccg"`` when the set covers more than ``settings.precondition_above`` of the map;
-        :mod:`warptrunc.contact.punch`); k = Σx (N/m).
+        under ``algorithm="bccg"`` when the set covers more than ``settings.precondition_above``
+        of the map, by default always from 1024² pixels; :mod:`warptrunc.contact.punch`);
+        k = Σx (N/m).
 
         Parameters
         ----------
