@@ -21,13 +21,13 @@ algo = sys.argv[2] if len(sys.argv) > 2 else "bccg"
 maxiter = int(sys.argv[3]) if len(sys.argv) > 3 else 400
 plan = sys.argv[4] if len(sys.argv) > 4 else "auto"
 substrate = sys.argv[5] if len(sys.argv) > 5 else "free"
-pc_above = float(sys.argv[6]) if len(sys.argv) > 6 else 0.02
+pc_above = None if len(sys.argv) <= 6 or sys.argv[6] == "auto" else float(sys.argv[6])
 dev = wp.get_device("cuda:0")
 E = 70e9 / (1 - 0.33**2)
 t = time.perf_counter()
 need = ContactSolver.memory_bytes((n, n), substrate, "float32", cuda=True, algorithm=algo,
                                   fft_plan="pruned")
-print(f"N={n} {algo} {substrate} precondition_above {pc_above:g}: model {need / 1e9:.1f} GB ({need / n**2:.1f} B/px), free "
+print(f"N={n} {algo} {substrate} precondition_above {pc_above}: model {need / 1e9:.1f} GB ({need / n**2:.1f} B/px), free "
       f"{wp.get_device(dev).free_memory / 1e9:.1f} GB", flush=True)
 s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=0, device=dev)
 h = s.heights
