@@ -5,7 +5,8 @@
 What it shows
     Cold-start (from zero pressure) and warm-start iterations and convolutions of
     :class:`warptrunc.contact.ContactSolver` per map size N, for ``algorithm="pk"`` (Polonsky &
-    Keer) and ``"bccg"`` (preconditioned bound-constrained CG), at a fixed relative tolerance
+    Keer) and ``"bccg"`` (preconditioned bound-constrained CG; by its default rule, and as
+    ``bccg/always`` with ``precondition_above=0`` and ``bccg/2%`` with 0.02), at a fixed relative tolerance
     (pentol = 1e-4·rms height), on D = 2.5 WM maps over L = 1 mm (W_r = 100 µm, R_t = 10 µm,
     free boundary) in two families: **fixed content** (cut-off W_c = L/64: the same modes
     sampled finer) and **W_c = pixel** (finer pixels add roughness). Cases: the whole map at
@@ -44,9 +45,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--device", default="cpu", help="Warp device")
     ap.add_argument("--dtype", default="float64", choices=("float64", "float32"))
     ap.add_argument("--json", type=Path, default=None, help="write the rows here")
+    ap.add_argument("--variants", nargs="+", default=["pk", "bccg"],
+                    choices=["pk", "bccg", "bccg/always", "bccg/2%"],
+                    help="iterations (bccg/always: precondition_above=0; bccg/2%%: 0.02)")
+    ap.add_argument("--no-punch", action="store_true", help="the whole-map cases only")
     a = ap.parse_args(argv)
     rows = []
-    print(f"{'case':34s} {'N':>6s} {'algorithm':>9s} {'iterations':>10s} {'convolutions':>12s} "
+    print(f"{'case':34s} {'N':>6s} {'algorithm':>11s} {'iterations':>10s} {'convolutions':>12s} "
           f"{'seconds':>8s} {'load (N)':>12s}")  # fmt: skip
     for family in ("fixed content", "W_c = pixel"):
         for n in a.n:
@@ -56,7 +61,7 @@ def main(argv: list[str] | None = None) -> int:
                 ("map, cold 0.20 R_t", h, [0.20 * rt]),
                 ("map, warm 0.21 R_t", h, [0.20 * rt, 0.21 * rt]),
             ]
-            if family == "fixed content":
+            if family == "fixed content" and not a.no_punch:
                 y, x = np.mgrid[0:n, 0:n]
                 hp = h.copy()
                 hp[(x - n / 2 + 0.5) ** 2 + (y - n / 2 + 0.5) ** 2 >= (0.45 * n) ** 2] = (
@@ -66,9 +71,13 @@ def main(argv: list[str] | None = None) -> int:
             for name, z, depths in cases:
                 inside = z > h.min() - 1e-4
                 pentol = 1e-4 * float(np.std(z[inside]))
-                for alg in ("pk", "bccg"):
+                for alg in a.variants:
+                    algorithm, _, rule = alg.partition("/")
+                    pc = {"": None, "always": 0.0, "2%": 0.02}[rule]
                     sol = ContactSolver(z, 1e-3 / n, E_STAR, device=a.device,
-                                        settings=SolverSettings(algorithm=alg, pentol=pentol, dtype=a.dtype))  # fmt: skip
+                                        settings=SolverSettings(algorithm=algorithm, pentol=pentol,
+                                                                dtype=a.dtype,
+                                                                precondition_above=pc))  # fmt: skip
                     for d in depths[:-1]:
                         sol.solve(d)
                     t = time.perf_counter()
@@ -79,7 +88,7 @@ def main(argv: list[str] | None = None) -> int:
                            "seconds": dt, "load_N": st.load, "converged": st.converged,
                            "device": a.device, "dtype": a.dtype}  # fmt: skip
                     rows.append(row)
-                    print(f"{family + ': ' + name:34s} {n:6d} {alg:>9s} {st.n_iterations:10d} "
+                    print(f"{family + ': ' + name:34s} {n:6d} {alg:>11s} {st.n_iterations:10d} "
                           f"{st.n_convolutions:12.1f} {dt:8.2f} {st.load:12.6g}"
                           f"{'' if st.converged else ' (not converged)'}", flush=True)  # fmt: skip
     if a.json:

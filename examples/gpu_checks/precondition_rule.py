@@ -1,11 +1,13 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """Experiment behind BCCG's default preconditioner rule (issue 29): one placement of the paper's
-three punches at 10240² over 1 mm (H = ∞, float32, `warptrunc indent`), with the rule given as
-``after`` (the default rule's PRECONDITION_AFTER; "none" = the 2 % rule alone, "always" =
-precondition_above 0); prints the time and the iterations and convolutions per punch window.
+three punches at 10240² over 1 mm (H = ∞, float32, `warptrunc indent`), with BCCG's
+preconditioner rule given as RULE: "none" = from 2 % of the window (the default under a punch),
+"always" = precondition_above 0; prints the time and the iterations and convolutions per punch
+window. (The 10240² runs of 2026-11-26 on an H100 also tried "after K": the 2 % rule, and always
+from iteration K + 1 on windows of at least 1024² pixels, K = 4 and 10.)
 
-Run (GPU machine): python examples/gpu_checks/precondition_rule.py PRESET AFTER
+Run (GPU machine): python examples/gpu_checks/precondition_rule.py PRESET RULE
 """
 
 import collections
@@ -14,18 +16,11 @@ import sys
 import tempfile
 import time
 
-import warptrunc.contact.bccg as B
 from warptrunc.cli import main
 from warptrunc.contact import solver as S
 
-preset, after = sys.argv[1], sys.argv[2]
-extra = []
-if after == "always":
-    extra = ["--precondition_above", "0"]
-elif after == "none":
-    extra = ["--precondition_above", "0.02"]
-else:
-    B.PRECONDITION_AFTER = int(after)
+preset, rule = sys.argv[1], sys.argv[2]
+extra = ["--precondition_above", {"always": "0", "none": "0.02"}[rule]]
 tally = collections.defaultdict(lambda: [0, 0, 0.0])
 solve = S.ContactSolver.solve
 
@@ -46,7 +41,7 @@ main(["indent", "--preset", preset, "--n", "10240", "--L", "1e-3", "--hardness",
       "--placements", "1", "--dtype", "float32", "--device", "cuda:0", "--no-plot",
       "--no-progress", "--out", out, *extra])
 d = json.load(open(f"{out}/indent.json"))
-print(f"{preset} after={after}: {d['settings']['seconds']['elastic_plastic_s']:.2f} s "
+print(f"{preset} rule={rule}: {d['settings']['seconds']['elastic_plastic_s']:.2f} s "
       f"(wall {time.perf_counter() - t0:.1f}), converged {d['all_converged']}; "
       + "; ".join(f"{k}²: {v[0]} solves {v[1]} it {v[2]:.0f} conv" for k, v in sorted(tally.items())),
       flush=True)

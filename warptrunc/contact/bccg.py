@@ -15,8 +15,8 @@ to a thousand iterations per load. This solver follows Vollebregt (J. Optim. The
   gradient points into the box (q = 0 penetrating, g < 0; q at the cap with an open gap, g > 0).
   Pixels enter the set as soon as they penetrate, instead of one restart at a time.
 * **Preconditioner** (while the free set covers more than ``settings.precondition_above`` of
-  the map; by default, :data:`PRECONDITION_ABOVE`, and on large maps from iteration
-  :data:`PRECONDITION_AFTER` + 1 on (:data:`PRECONDITION_LARGE`); else z = c·g): z = c·K⁻¹·(c·g), c the free set, with K⁻¹ the inverse of the half-space's
+  the map; by default always on maps of at least :data:`PRECONDITION_LARGE` pixels, else from
+  :data:`PRECONDITION_ABOVE`; else z = c·g): z = c·K⁻¹·(c·g), c the free set, with K⁻¹ the inverse of the half-space's
   circulant convolution (the spectrum 1/W on the padded grid: ``SPECTRUM_INVERSE``, one more
   convolution per iteration). On a fixed contact set it makes the CG iterations nearly
   independent of the grid (prototype, D = 2.5 WM map under a punch at 81 % contact: 19, 21, 23,
@@ -53,19 +53,16 @@ from ..kernels import contact_reduce as _kr
 __all__ = ["BCCGSolves"]
 
 PRECONDITION_LARGE = 1024 * 1024
-"""Under the default ``SolverSettings.precondition_above=None``, a solve on a map (or punch
-window) of at least this many pixels applies the preconditioner from iteration
-:data:`PRECONDITION_AFTER` + 1 on, whatever the free set; every map while the free set covers
-more than :data:`PRECONDITION_ABOVE` of it. The plain CG's iterations grow with the contact's
-width in pixels, the preconditioned one's hardly (guide/performance.md, issue 29): on D = 2.5 WM
-maps at 0.2·R_t (0.01–1 % contact; NVIDIA H100, float32) always preconditioning took 51 → 19
-cold iterations at 16384², 3.4 → 1.5 s warm. Solves that end within a few iterations (a warm
-load step under a punch on a rough surface) do not pay the extra convolution: always
-preconditioning made one placement of the paper's punches on GB300s (10240², H = ∞) 25 %
-slower, on Ps 15 % faster."""
-
-PRECONDITION_AFTER = 10
-"""See :data:`PRECONDITION_LARGE` (iterations)."""
+"""Under the default ``SolverSettings.precondition_above=None``, a map of at least this many
+pixels applies the preconditioner always, a smaller one while the free set covers more than
+:data:`PRECONDITION_ABOVE` of it. The plain CG's iterations grow with the contact's width in
+pixels, the preconditioned one's hardly: on D = 2.5 WM maps at 0.2·R_t (0.01–1 % contact;
+NVIDIA H100, float32, pentol = 10⁻⁴·rms) always preconditioning took the cold iterations from
+27 → 51 to 14 → 19 between 2048² and 16384² on a fixed-content family, and the warm solve at
+16384² from 3.4 to 1.5 s; on the CPU it is faster at 1024², slower at 512² and below
+(guide/performance.md). Under a punch (:func:`warptrunc.indent.protocol.make_solver`) the
+default is :data:`PRECONDITION_ABOVE` at every size: on one placement of the paper's punches on
+GB300s (10240² over 1 mm, H = ∞) always preconditioning took 1678 convolutions to 2482."""
 
 PRECONDITION_ABOVE = 0.02
 """The free-set fraction (dimensionless) above which smaller maps apply the preconditioner (on
@@ -79,15 +76,13 @@ class BCCGSolves:
     """The preconditioned BCCG solve of :class:`~warptrunc.contact.ContactSolver` (a base class
     holding methods only; the solver's maps and settings are its own)."""
 
-    def _precondition_rule(self) -> tuple[float, int | None]:
-        """(the free-set fraction above which the preconditioner applies, the iteration after
-        which it applies anyway or None): the settings' fraction, or the default rule of
-        :data:`PRECONDITION_LARGE`."""
+    def _precondition_above(self) -> float:
+        """The free-set fraction above which the preconditioner applies: the settings', or by
+        the default rule of :data:`PRECONDITION_LARGE`."""
         given = self.settings.precondition_above
         if given is not None:
-            return float(given), None
-        large = self.shape[0] * self.shape[1] >= PRECONDITION_LARGE
-        return PRECONDITION_ABOVE, (PRECONDITION_AFTER if large else None)
+            return float(given)
+        return 0.0 if self.shape[0] * self.shape[1] >= PRECONDITION_LARGE else PRECONDITION_ABOVE
 
     def _bccg_maps(self) -> tuple[Any, Any]:
         """The residual map (a transform input) and the last preconditioned residual (the
@@ -128,7 +123,7 @@ class BCCGSolves:
         hf = _HUGE if cap is None else float(cap)
         load_control = load is not None
         r_buf, z_old = self._bccg_maps()
-        pc_above, pc_after = self._precondition_rule()
+        pc_above = self._precondition_above()
         periodic = int(self.substrate == "periodic")
         self._warm_start(offset)  # then projected onto the box
         wp.launch(_kb.clamp_force_kernel, dim=self.shape, inputs=[wp.float64(hf)],
@@ -183,7 +178,7 @@ class BCCGSolves:
                 info["converged"] = pen <= self.pentol and open_cap <= self.pentol
                 break
             # preconditioned residual z = c·K⁻¹·r (on a large free set; else z = r)
-            use_pc = n_f > pc_above * n_map or (pc_after is not None and it > pc_after)
+            use_pc = n_f > pc_above * n_map
             if use_pc != last_pc:
                 rz_old = None  # another preconditioner: the CG restarts
             last_pc = use_pc
@@ -247,7 +242,11 @@ class BCCGSolves:
         converged)."""
         red, hs = self.hs.reduction, self.hs
         n_map = self.shape[0] * self.shape[1]
-        if n_set <= self._precondition_rule()[0] * n_map:
+        given = self.settings.precondition_above  # by default 2 % at every size (measured:
+        # always preconditioning Barber's solve is 1.3× slower on the pixel family at 16384²,
+        # 2× faster on the fixed-content one; guide/performance.md)
+        above = PRECONDITION_ABOVE if given is None else float(given)
+        if n_set <= above * n_map:
             return self._punch_cg(x, res, n_set, rtol)  # a small set: plain CG
         scratch, _ = self._bccg_maps()  # the last z (unused here, a kernel output)
         d = self.t

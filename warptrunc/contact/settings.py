@@ -30,12 +30,12 @@ class SolverSettings(Parameters):
     -----
     ``direct_max`` is an integer or None (``"auto"`` is accepted and stored as None): None
     chooses 24 on a CUDA device and 4 on the CPU, where Warp runs a kernel on one core.
-    ``precondition_above`` likewise: None (or ``"auto"``) applies the preconditioner while the
-    free set covers more than 2 % of the map and, on a map (or punch window) of at least 1024²
-    pixels, from the 11th iteration of a solve on: long solves gain from it (their iterations
-    stop growing with the grid), short ones do not pay its extra convolution
-    (:data:`warptrunc.contact.bccg.PRECONDITION_LARGE`; the measurements behind the rule:
-    ``guide/performance.md``).
+    ``precondition_above`` likewise: None (or ``"auto"``) applies the preconditioner always on a
+    map of at least 1024² pixels (the iterations then hardly grow with the grid) and while the
+    free set covers more than 2 % of a smaller map; the solvers of a punch's window
+    (:mod:`warptrunc.indent`) take 2 % at every size, where always preconditioning costs more
+    convolutions than it saves (:data:`warptrunc.contact.bccg.PRECONDITION_LARGE`; the
+    measurements behind the rule: ``guide/performance.md``).
 
     Examples
     --------
@@ -86,7 +86,7 @@ class SolverSettings(Parameters):
         None, "BCCG applies its FFT preconditioner c·K⁻¹·c (one more convolution per iteration) "
         "while the free set covers more than this fraction of the map (dimensionless; 0 = "
         "always, 1 = never; Barber's punch solve likewise on its contact set); None = auto: "
-        "0.02, and on maps of at least 1024² pixels always after 10 iterations", ge=0.0, le=1.0, optional=True,
+        "0 on maps of at least 1024² pixels, else 0.02; 0.02 under a punch and in Barber's solve", ge=0.0, le=1.0, optional=True,
     )  # fmt: skip
     maxiter: int = param(10000, "largest number of iterations per solve", kind="int", ge=1)
     refresh: int = param(

@@ -539,8 +539,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         """Barber's incremental stiffness of the current contact: a rigid flat punch shaped like
         the contact set, K·x = 1 m on the set, solved by linear CG (preconditioned with c·K⁻¹·c
         under ``algorithm="bccg"`` when the set covers more than ``settings.precondition_above``
-        of the map (by default 2 %); :mod:`warptrunc.contact.punch`);
-        k = Σx (N/m).
+        of the map (by default 2 %); :mod:`warptrunc.contact.punch`); k = Σx (N/m).
 
         Parameters
         ----------
