@@ -15,9 +15,9 @@ to a thousand iterations per load. This solver follows Vollebregt (J. Optim. The
   gradient points into the box (q = 0 penetrating, g < 0; q at the cap with an open gap, g > 0).
   Pixels enter the set as soon as they penetrate, instead of one restart at a time.
 * **Preconditioner** (while the free set covers more than ``settings.precondition_above`` of
-  the map; by default always on maps of at least :data:`PRECONDITION_LARGE` pixels, else from
-  :data:`PRECONDITION_ABOVE`; else z = c·g): z = c·K⁻¹·(c·g), c the free set, with K⁻¹ the inverse of the half-space's
-  circulant convolution (the spectrum 1/W on the padded grid: ``SPECTRUM_INVERSE``, one more
+  the map; by default always on maps of at least ``PRECONDITION_LARGE`` pixels, else from
+  ``PRECONDITION_ABOVE``; else z = c·g): z = c·K⁻¹·(c·g), c the free set, with K⁻¹ the
+  inverse of the half-space's circulant convolution (the spectrum 1/W on the padded grid: ``SPECTRUM_INVERSE``, one more
   convolution per iteration). On a fixed contact set it makes the CG iterations nearly
   independent of the grid (prototype, D = 2.5 WM map under a punch at 81 % contact: 19, 21, 23,
   24 iterations at 128², 256², 512², 1024² against 46, 62, 80, 108 for plain CG).
@@ -55,13 +55,13 @@ __all__ = ["BCCGSolves"]
 PRECONDITION_LARGE = 1024 * 1024
 """Under the default ``SolverSettings.precondition_above=None``, a map of at least this many
 pixels applies the preconditioner always, a smaller one while the free set covers more than
-:data:`PRECONDITION_ABOVE` of it. The plain CG's iterations grow with the contact's width in
+``PRECONDITION_ABOVE`` of it. The plain CG's iterations grow with the contact's width in
 pixels, the preconditioned one's hardly: on D = 2.5 WM maps at 0.2·R_t (0.01–1 % contact;
 NVIDIA H100, float32, pentol = 10⁻⁴·rms) always preconditioning took the cold iterations from
 27 → 51 to 14 → 19 between 2048² and 16384² on a fixed-content family, and the warm solve at
 16384² from 3.4 to 1.5 s; on the CPU it is faster at 1024², slower at 512² and below
 (guide/performance.md). Under a punch (:func:`warptrunc.indent.protocol.make_solver`) the
-default is :data:`PRECONDITION_ABOVE` at every size: on one placement of the paper's punches on
+default is ``PRECONDITION_ABOVE`` at every size: on one placement of the paper's punches on
 GB300s (10240² over 1 mm, H = ∞) always preconditioning took 1678 convolutions to 2482."""
 
 PRECONDITION_ABOVE = 0.02
@@ -78,7 +78,7 @@ class BCCGSolves:
 
     def _precondition_above(self) -> float:
         """The free-set fraction above which the preconditioner applies: the settings', or by
-        the default rule of :data:`PRECONDITION_LARGE`."""
+        the default rule of ``PRECONDITION_LARGE``."""
         given = self.settings.precondition_above
         if given is not None:
             return float(given)

@@ -34,7 +34,7 @@ class SolverSettings(Parameters):
     map of at least 1024² pixels (the iterations then hardly grow with the grid) and while the
     free set covers more than 2 % of a smaller map; the solvers of a punch's window
     (:mod:`warptrunc.indent`) take 2 % at every size, where always preconditioning costs more
-    convolutions than it saves (:data:`warptrunc.contact.bccg.PRECONDITION_LARGE`; the
+    convolutions than it saves (``warptrunc.contact.bccg.PRECONDITION_LARGE``; the
     measurements behind the rule: ``guide/performance.md``).
 
     Examples

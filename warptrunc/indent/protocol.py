@@ -189,7 +189,7 @@ def make_solver(window: PunchWindow, material: Material, *, hardness: float,
     over the disk only (the pixels outside it, far below, would inflate it) and n the window's
     sides. A flat disk gets 10⁻⁶ of a pixel side. The default BCCG preconditioner rule
     (``precondition_above=None``) becomes 2 % of the window at every size
-    (:data:`warptrunc.contact.bccg.PRECONDITION_ABOVE`): under a punch on a rough surface always
+    (``warptrunc.contact.bccg.PRECONDITION_ABOVE``): under a punch on a rough surface always
     preconditioning the large windows costs more convolutions than it saves.
     """
     settings = SolverSettings() if settings is None else settings
