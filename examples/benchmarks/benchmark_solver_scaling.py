@@ -89,7 +89,8 @@ def fft_floor(n: int, dtype: str, dev, repeats: int) -> float | None:
 
 
 def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
-            precondition_above: float | None = None, pentol: float | None = None) -> dict:
+            precondition_above: float | None = None, pentol: float | None = None,
+            direct_max: int | None = None) -> dict:
     """Make a solver, solve cold at 0.20·R_t and warm at 0.21·R_t; times, counts, memory."""
     h = s.heights  # the host copy of a device map: outside the window (Warp's tracker counts
     # host allocations too)
@@ -103,7 +104,7 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
         solver = ContactSolver(h, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev,
                                algorithm=algorithm, fft_plan=fft_plan,
                                precondition_above=precondition_above,
-                               pentol=pentol)  # fmt: skip
+                               pentol=pentol, direct_max=direct_max)  # fmt: skip
         wp.synchronize_device(dev)
         t1 = time.perf_counter()
         cold = solver.solve(COLD * s.Rt)
@@ -156,6 +157,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--pentol-rms", type=float, default=None,
                    help="a fixed relative tolerance: pentol = this × the map's rms height "
                    "(default: the solver's, rms/(10·N), which tightens with N)")  # fmt: skip
+    p.add_argument("--direct-max", type=int, nargs="+", default=[None],
+                   help="largest number of projection corrections summed directly "
+                   "(SolverSettings.direct_max; default auto)")  # fmt: skip
     p.add_argument("--wc-pixels", type=float, default=None,
                    help="fixed content: the cut-off W_c as this many pixels of the first N "
                    "(default: W_c = 2 pixels at every N, finer pixels add roughness)")  # fmt: skip
@@ -179,8 +183,9 @@ def main(argv: list[str] | None = None) -> int:
     last: tuple[int, float] | None = None
     stopped = None
     for n in sizes:
-        for dtype, algorithm, pa in [(d, al, pa) for d in dtypes for al in a.algorithm
-                                     for pa in a.precondition_above]:  # fmt: skip
+        for dtype, algorithm, pa, dm in [(d, al, pa, dm) for d in dtypes for al in a.algorithm
+                                         for pa in a.precondition_above
+                                         for dm in a.direct_max]:  # fmt: skip
             if last is not None:
                 predicted = last[1] * 4.5 ** np.log2(n / last[0])
                 left = a.budget - (time.perf_counter() - start)
@@ -196,7 +201,7 @@ def main(argv: list[str] | None = None) -> int:
                 pentol = None
                 if a.pentol_rms is not None:
                     pentol = a.pentol_rms * float(np.std(s.heights))
-                r = run_one(s, dtype, dev, algorithm, a.fft_plan, pa, pentol)
+                r = run_one(s, dtype, dev, algorithm, a.fft_plan, pa, pentol, dm)
             except MemoryError as exc:
                 print(f"N={n} {dtype}: {exc}", flush=True)
                 rows.append({"n": n, "dtype": dtype, "algorithm": algorithm,
@@ -208,7 +213,7 @@ def main(argv: list[str] | None = None) -> int:
                                               algorithm=algorithm, fft_plan=r["fft_plan"],
                                               device=dev if dev.is_cuda else None)  # fmt: skip
             r.update(n=n, dtype=dtype, algorithm=algorithm, memory_model_bytes=need,
-                     fft_floor_s=floor, precondition_above=pa, pentol_m=pentol,
+                     fft_floor_s=floor, precondition_above=pa, pentol_m=pentol, direct_max=dm,
                      Wc_m=wc.get("Wc"))  # fmt: skip
             conv = r["warm_convolutions"]
             r["warm_per_convolution_s"] = r["warm_s"] / conv if conv else None
@@ -221,7 +226,7 @@ def main(argv: list[str] | None = None) -> int:
             last = (n, time.perf_counter() - t0)
             ratio = r["per_convolution_over_floor"]
             print(
-                f"N={n:6d} {dtype} {algorithm} pc>{'auto' if pa is None else pa}: cold {r['cold_s']:8.3f} s ({r['cold_iterations']} it, "
+                f"N={n:6d} {dtype} {algorithm} pc>{'auto' if pa is None else pa}{'' if dm is None else f' direct_max {dm}'}: cold {r['cold_s']:8.3f} s ({r['cold_iterations']} it, "
                 f"{r['cold_convolutions']} conv), warm {r['warm_s']:8.3f} s "
                 f"({r['warm_iterations']} it, {conv} conv), "
                 f"{(r['warm_per_convolution_s'] or 0) * 1e3:8.2f} ms/conv"
