@@ -6,7 +6,8 @@ What it shows
     Cold-start (from zero pressure) and warm-start iterations and convolutions of
     :class:`warptrunc.contact.ContactSolver` per map size N, for ``algorithm="pk"`` (Polonsky &
     Keer) and ``"bccg"`` (preconditioned bound-constrained CG; by its default rule, and as
-    ``bccg/always`` with ``precondition_above=0`` and ``bccg/2%`` with 0.02), at a fixed relative tolerance
+    ``bccg/always`` with ``precondition_above=0`` and ``bccg/2%`` with 0.02), at a fixed relative
+    tolerance
     (pentol = 1e-4·rms height), on D = 2.5 WM maps over L = 1 mm (W_r = 100 µm, R_t = 10 µm,
     free boundary) in two families: **fixed content** (cut-off W_c = L/64: the same modes
     sampled finer) and **W_c = pixel** (finer pixels add roughness). Cases: the whole map at

@@ -43,5 +43,6 @@ main(["indent", "--preset", preset, "--n", "10240", "--L", "1e-3", "--hardness",
 d = json.load(open(f"{out}/indent.json"))
 print(f"{preset} rule={rule}: {d['settings']['seconds']['elastic_plastic_s']:.2f} s "
       f"(wall {time.perf_counter() - t0:.1f}), converged {d['all_converged']}; "
-      + "; ".join(f"{k}²: {v[0]} solves {v[1]} it {v[2]:.0f} conv" for k, v in sorted(tally.items())),
+      + "; ".join(f"{k}²: {v[0]} solves {v[1]} it {v[2]:.0f} conv"
+                  for k, v in sorted(tally.items())),
       flush=True)

@@ -27,7 +27,8 @@ E = 70e9 / (1 - 0.33**2)
 t = time.perf_counter()
 need = ContactSolver.memory_bytes((n, n), substrate, "float32", cuda=True, algorithm=algo,
                                   fft_plan="pruned")
-print(f"N={n} {algo} {substrate} precondition_above {pc_above}: model {need / 1e9:.1f} GB ({need / n**2:.1f} B/px), free "
+print(f"N={n} {algo} {substrate} precondition_above {pc_above}: model {need / 1e9:.1f} GB "
+      f"({need / n**2:.1f} B/px), free "
       f"{wp.get_device(dev).free_memory / 1e9:.1f} GB", flush=True)
 s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=0, device=dev)
 h = s.heights

@@ -17,10 +17,11 @@ to a thousand iterations per load. This solver follows Vollebregt (J. Optim. The
 * **Preconditioner** (while the free set covers more than ``settings.precondition_above`` of
   the map; by default always on maps of at least ``PRECONDITION_LARGE`` pixels, else from
   ``PRECONDITION_ABOVE``; else z = c·g): z = c·K⁻¹·(c·g), c the free set, with K⁻¹ the
-  inverse of the half-space's circulant convolution (the spectrum 1/W on the padded grid: ``SPECTRUM_INVERSE``, one more
-  convolution per iteration). On a fixed contact set it makes the CG iterations nearly
-  independent of the grid (prototype, D = 2.5 WM map under a punch at 81 % contact: 19, 21, 23,
-  24 iterations at 128², 256², 512², 1024² against 46, 62, 80, 108 for plain CG).
+  inverse of the half-space's circulant convolution (the spectrum 1/W on the padded grid:
+  ``SPECTRUM_INVERSE``, one more convolution per iteration). On a fixed contact set it makes
+  the CG iterations nearly independent of the grid (prototype, D = 2.5 WM map under a punch at
+  81 % contact: 19, 21, 23, 24 iterations at 128², 256², 512², 1024² against 46, 62, 80, 108
+  for plain CG).
 * **Truncation, no restart**: after the step the forces are projected onto [0, H·dx·dy] and the
   CG continues with the Polak–Ribière β = max(0, r·(z − z_old)/(r_old·z_old)).
 * **Load control** (elastic only; with a cap the approach is found by the secant of

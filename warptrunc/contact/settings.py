@@ -86,7 +86,8 @@ class SolverSettings(Parameters):
         None, "BCCG applies its FFT preconditioner c·K⁻¹·c (one more convolution per iteration) "
         "while the free set covers more than this fraction of the map (dimensionless; 0 = "
         "always, 1 = never; Barber's punch solve likewise on its contact set); None = auto: "
-        "0 on maps of at least 1024² pixels, else 0.02; 0.02 under a punch and in Barber's solve", ge=0.0, le=1.0, optional=True,
+        "0 on maps of at least 1024² pixels, else 0.02; 0.02 under a punch and in Barber's solve",
+        ge=0.0, le=1.0, optional=True,
     )  # fmt: skip
     maxiter: int = param(10000, "largest number of iterations per solve", kind="int", ge=1)
     refresh: int = param(
