@@ -217,11 +217,7 @@ class BCCGSolves:
             if n_proj > 0 and not exact:
                 # the projection's few corrections by direct summation (r is free until the
                 # next residual: it holds the projected pixels' forces before the projection)
-                wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
-                wp.launch(_k.compact_changes_kernel, dim=red.lanes,
-                          inputs=[self.q, r_buf, self.mask, wp.float64(1.0), self.lane_offset,
-                                  *red.geometry(n_map)],
-                          outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
+                self._compact_changes(r_buf, 1.0)
                 red.launch(_kb.bccg_correct_kernel, n_map,
                            [hs.table, periodic, self.change_index, self.change_value, n_proj],
                            [self.u])  # fmt: skip

@@ -22,6 +22,31 @@ class PKSolves:
     """The Polonsky–Keer solve of :class:`~warptrunc.contact.ContactSolver` (a base class
     holding methods only; the solver's maps and settings are its own)."""
 
+    def _compact_changes(self, before: Any, scale: float) -> None:
+        """List the pixels whose force the last projection changed into ``change_index`` and
+        ``change_value`` (the change in N, in a fixed order), for the direct summation of their
+        displacements: q against ``before`` (the forces before the projection, where it acted)
+        times ``scale``. Used by the PK, capped and BCCG loops."""
+        red = self.hs.reduction
+        wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
+        wp.launch(_k.compact_changes_kernel, dim=red.lanes,
+                  inputs=[self.q, before, self.mask, wp.float64(scale), self.lane_offset,
+                          *red.geometry(self.shape[0] * self.shape[1])],
+                  outputs=[self.change_index, self.change_value], device=self.device)  # fmt: skip
+
+    def _exact_or_listed(self, spec: Any, exact: bool, n_changed: int, scale: float) -> int:
+        """After a step of the PK or capped loop: ``exact`` puts W·Q̂/N of the forces afresh
+        into ``spec`` (u = K·q after the inverse transform), else the projection's changes, if
+        any, are listed (:meth:`_compact_changes`, against ``lin``) and ``spec`` keeps K·t.
+        Returns the transforms run (1 or 0)."""
+        if exact:
+            self.hs.forward(self.q_buf, spec)
+            self.hs.spectral(_kr.SPECTRUM_APPLY, spec)
+            return 1
+        if n_changed > 0:
+            self._compact_changes(self.lin, scale)
+        return 0
+
     def _solve_pk(self, depth: float | None, load: float | None) -> dict[str, Any]:
         """One solve at approach ``depth`` (m) or ``load`` (N), warm-started; the info dict."""
         load_control = load is not None
@@ -83,16 +108,8 @@ class PKSolves:
                     wp.launch(_k.fill_map_kernel, dim=self.shape,
                               inputs=[self.mask, wp.float64(load / n_map)], outputs=[self.q], device=dev)  # fmt: skip
                     exact = True
-            if exact:  # u = K·q afresh
-                hs.forward(self.q_buf, spec)
-                hs.spectral(_kr.SPECTRUM_APPLY, spec)
-                n_transforms += 1
-            elif n_changed > 0:  # the projection's few corrections, listed in a fixed order
-                wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
-                wp.launch(_k.compact_changes_kernel, dim=red.lanes,
-                          inputs=[self.q, self.lin, self.mask, wp.float64(scale), self.lane_offset,
-                                  *red.geometry(n_map)],
-                          outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
+            # u = K·q afresh, or the projection's few corrections listed in a fixed order
+            n_transforms += self._exact_or_listed(spec, exact, n_changed, scale)
             r = hs.inverse(spec)  # K·q (exact) or K·t (linear)
             n_transforms += 1
             red.launch(_k.advance_kernel, n_map,

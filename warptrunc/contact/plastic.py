@@ -53,7 +53,6 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ..kernels import contact as _k
 from ..kernels import contact_plastic as _kp
 from ..kernels import contact_reduce as _kr
 
@@ -120,16 +119,7 @@ class CappedSolves:
             if n_c > 0 and not t_k_t > 0.0:
                 g = 0.0
             exact = it == 1 or it % self.refresh == 0 or n_changed > self.direct_max
-            if exact:
-                hs.forward(self.q_buf, spec)
-                hs.spectral(_kr.SPECTRUM_APPLY, spec)
-                n_transforms += 1
-            elif n_changed > 0:
-                wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
-                wp.launch(_k.compact_changes_kernel, dim=red.lanes,
-                          inputs=[self.q, self.lin, self.mask, wp.float64(1.0), self.lane_offset,
-                                  *red.geometry(n_map)],
-                          outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
+            n_transforms += self._exact_or_listed(spec, exact, n_changed, 1.0)
             r = hs.inverse(spec)
             n_transforms += 1
             red.launch(_kp.capped_advance_kernel, n_map,
