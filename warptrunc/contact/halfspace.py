@@ -372,8 +372,7 @@ class ElasticHalfSpace(PaddedTransforms):
         ----------
         {shape}
         {substrate}
-        dtype : {"float64", "float32"}
-            Precision.
+        {dtype}
         fft_plan : {"pruned", "full"}, optional
             The cuFFT plans (``warptrunc.contact.halfspace.FFT_PLANS``).
 

@@ -40,6 +40,7 @@ GRID_DOCS = {
     ),
     "{shape}": "shape : (int, int)\n    Map size (ny, nx).",
     "{substrate}": 'substrate : {"free", "periodic"}\n    Half-space.',
+    "{dtype}": 'dtype : {"float64", "float32"}\n    Precision.',
     "{xp}": "xp : module, optional\n    Array module: NumPy (``None``, the default) or CuPy.",
     "{slab_elements}": "slab_elements : int, optional\n    Float64 elements per slab (dimensionless count).",
 }

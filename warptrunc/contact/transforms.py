@@ -37,6 +37,7 @@ large as the work spectrum. :class:`PaddedTransforms` is the half of
 
 from __future__ import annotations
 
+import contextlib
 import os
 from typing import Any
 
@@ -186,8 +187,7 @@ class PaddedTransforms:
         ----------
         {shape}
         {substrate}
-        dtype : {"float64", "float32"}
-            Precision.
+        {dtype}
         fft_plan : {"pruned", "full"}
             The plans (``warptrunc.contact.halfspace.FFT_PLANS``).
         device : str or warp Device
@@ -284,6 +284,18 @@ class PaddedTransforms:
             view = self._views[key] = (arr, data)
         return view[1]
 
+    @contextlib.contextmanager
+    def _cufft(self):
+        """CuPy on this device and on Warp's stream, for running the plans: yields the plans,
+        their row and column slabs, the half spectrum's row length and the bytes of one real."""
+        cupy = self._cp[0]
+        plans, rows, cols = self._cupy_plans()
+        with (
+            cupy.cuda.Device(self.device.ordinal),
+            cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
+        ):
+            yield plans, rows, cols, self.spectrum_shape[1], np.dtype(self.np_dtype).itemsize
+
     def _real_rows(self, spec: wp.array) -> wp.array:
         """The first ny real rows of a spectrum's memory in the in-place layout, 2·(Nx//2 + 1)
         reals each (a view, no copy)."""
@@ -326,15 +338,8 @@ class PaddedTransforms:
             rows_view = self._real_rows(spec)
             wp.launch(_kr.pad_rows_kernel, dim=rows_view.shape, inputs=[buf],
                       outputs=[rows_view], device=self.device)  # fmt: skip
-        cupy = self._cp[0]
-        plans, rows, cols = self._cupy_plans()
-        nk = self.spectrum_shape[1]
-        item = np.dtype(self.np_dtype).itemsize
-        fwd = self._directions[0]
-        with (
-            cupy.cuda.Device(self.device.ordinal),
-            cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
-        ):
+        with self._cufft() as (plans, rows, cols, nk, item):
+            fwd = self._directions[0]
             if self.fft_plan == "full":
                 v = self._cupy_view(spec, 0)
                 plans["full"].fft(v, v, fwd)
@@ -375,15 +380,8 @@ class PaddedTransforms:
             real = spec.numpy().reshape(spec.shape[0], -1)
             real[:ny, :big_x] = r
             return self.result_map(spec)
-        cupy = self._cp[0]
-        plans, rows, cols = self._cupy_plans()
-        nk = self.spectrum_shape[1]
-        item = np.dtype(self.np_dtype).itemsize
-        inv = self._directions[1]
-        with (
-            cupy.cuda.Device(self.device.ordinal),
-            cupy_stream(cupy, wp.get_stream(self.device), self.device.ordinal),
-        ):
+        with self._cufft() as (plans, rows, cols, nk, item):
+            inv = self._directions[1]
             if self.fft_plan == "full":
                 v = self._cupy_view(spec, 0)
                 plans["full_inv"].fft(v, v, inv)
