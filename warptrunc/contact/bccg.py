@@ -77,13 +77,17 @@ class BCCGSolves:
     """The preconditioned BCCG solve of :class:`~warptrunc.contact.ContactSolver` (a base class
     holding methods only; the solver's maps and settings are its own)."""
 
-    def _precondition_above(self) -> float:
-        """The free-set fraction above which the preconditioner applies: the settings', or by
-        the default rule of ``PRECONDITION_LARGE``."""
+    def _precondition_above(self, *, barber: bool = False) -> float:
+        """The free-set (or, for Barber's solve, ``barber``, contact-set) fraction above which
+        the preconditioner applies: the settings', or by the default rule of
+        ``PRECONDITION_LARGE`` (Barber's solve: ``PRECONDITION_ABOVE`` at every size, measured:
+        always preconditioned it is 1.3× slower on the W_c = 2 px map at 16384², 2× faster on
+        the fixed-content one; guide/performance.md)."""
         given = self.settings.precondition_above
         if given is not None:
             return float(given)
-        return 0.0 if self.shape[0] * self.shape[1] >= PRECONDITION_LARGE else PRECONDITION_ABOVE
+        large = self.shape[0] * self.shape[1] >= PRECONDITION_LARGE
+        return 0.0 if large and not barber else PRECONDITION_ABOVE
 
     def _bccg_maps(self) -> tuple[Any, Any]:
         """The residual map (a transform input) and the last preconditioned residual (the
@@ -239,11 +243,7 @@ class BCCGSolves:
         converged)."""
         red, hs = self.hs.reduction, self.hs
         n_map = self.shape[0] * self.shape[1]
-        given = self.settings.precondition_above  # by default 2 % at every size (measured:
-        # always preconditioning Barber's solve is 1.3× slower on the pixel family at 16384²,
-        # 2× faster on the fixed-content one; guide/performance.md)
-        above = PRECONDITION_ABOVE if given is None else float(given)
-        if n_set <= above * n_map:
+        if n_set <= self._precondition_above(barber=True) * n_map:
             return self._punch_cg(x, res, n_set, rtol)  # a small set: plain CG
         scratch, _ = self._bccg_maps()  # the last z (unused here, a kernel output)
         d = self.t
