@@ -23,7 +23,7 @@ import warp as wp
 from .._support.device import resolve_device
 from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_int
-from ..stiffness import cumulative_load
+from ..stiffness.curve import cumulative_load
 from ..truncation.curve import TruncationCurve, curve_from_histogram, depth_grid, depth_thresholds
 from ..truncation.curve import histogram_bands as _histogram
 from .punch import PunchWindow

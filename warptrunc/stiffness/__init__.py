@@ -1,0 +1,49 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Stiffness and load from truncated areas (paper Eqs. 1–3) and the power-law fit (§4.4).
+
+Host-side float64 arithmetic on a :class:`~warptrunc.truncation.TruncationCurve`. The one home
+of Eq. 2 (:func:`flat_punch_stiffness`) and of power-law fits (:func:`fit_power_law` →
+:class:`PowerLawFit`).
+
+Two normalisations of the contact modulus E_c = (√π/2)·k/√A (§4.1) appear side by side:
+E_c/E* = β′·√(A_c/A) (``Ec_over_Estar``, the historical ``Ec_over_E`` column, Eq. 3) and
+E_c/E = (E*/E)·β′·√(A_c/A) with E the Young's modulus (``Ec_over_E_young``, the paper's
+Figs. 6 and 9 and Table 3). They differ by the constant E*/E (1/(1 − ν²) = 1.12 against a rigid
+flat), so a power-law fit gives the same α on both and β_E = β·E*/E (``beta_young``).
+"""
+
+from __future__ import annotations
+
+from .._support.deprecate import module_getattr
+from ..material import Material
+from .curve import (
+    STIFFNESS_MODELS,
+    StiffnessCurve,
+    flat_punch_stiffness,
+    island_stiffness_curve,
+    stiffness_curve,
+)
+from .fit import (
+    DEFAULT_MIN_PIXELS,
+    NORMALISATION_ESTAR,
+    NORMALISATION_NONE,
+    PowerLawFit,
+    fit_power_law,
+)
+
+__all__ = [
+    "DEFAULT_MIN_PIXELS",
+    "NORMALISATION_ESTAR",
+    "NORMALISATION_NONE",
+    "STIFFNESS_MODELS",
+    "Material",
+    "PowerLawFit",
+    "StiffnessCurve",
+    "fit_power_law",
+    "flat_punch_stiffness",
+    "island_stiffness_curve",
+    "stiffness_curve",
+]
+
+__getattr__ = module_getattr(__name__, globals(), {"MODELS": "STIFFNESS_MODELS"})
