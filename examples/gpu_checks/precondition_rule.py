@@ -20,7 +20,7 @@ from warptrunc.cli import main
 from warptrunc.contact import solver as S
 
 preset, rule = sys.argv[1], sys.argv[2]
-extra = ["--precondition_above", {"always": "0", "none": "0.02"}[rule]]
+extra = ["--precondition-above", {"always": "0", "none": "0.02"}[rule]]
 tally = collections.defaultdict(lambda: [0, 0, 0.0])
 solve = S.ContactSolver.solve
 

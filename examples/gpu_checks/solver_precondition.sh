@@ -25,7 +25,7 @@ if [ $what = indent ] || [ $what = all ]; then
   for pa in 0.02 auto; do
     /usr/bin/time -f "indent precondition_above $pa: %e s wall" python3 -m warptrunc indent \
       --preset GB300s --n 10240 --L 1e-3 --hardness inf --placements 1 --dtype float32 \
-      --device cuda:0 --no-plot --no-progress --precondition_above $pa --out $OUT/indent_$pa \
+      --device cuda:0 --no-plot --no-progress --precondition-above $pa --out $OUT/indent_$pa \
       2>&1 | grep -v "^Warp\|Module" | tail -3
     python3 -c "import json,sys; d=json.load(open('$OUT/indent_$pa/indent.json')); print('$pa', d['settings']['seconds'], d['all_converged'])"
   done

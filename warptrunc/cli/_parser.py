@@ -29,7 +29,12 @@ class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
 
 class Parser(argparse.ArgumentParser):
     """An ArgumentParser whose errors are one line: ``PROG: error: MESSAGE (see PROG --help)``,
-    exit status 2 (argparse's default also prints the usage, a dozen lines here).
+    exit status 2 (argparse's default also prints the usage, a dozen lines here). Unknown
+    options are reported by the sub-command's parser (``warptrunc indent: error: unrecognized
+    arguments: --x (see warptrunc indent --help)``), not by the top-level one.
+
+    An abbreviated option (``--pressure``) matching an option and its hidden old spelling
+    (``--pressure-tol``, ``--pressure_tol``, same destination) is the option, not ambiguous.
 
     Values such as ``-1e-6``, ``-inf`` and ``-nan`` are read as (negative) numbers, so that the
     validators can name the allowed range, rather than as unknown options.
@@ -40,6 +45,26 @@ class Parser(argparse.ArgumentParser):
         self._negative_number_matcher = re.compile(
             r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE
         )
+
+    def parse_args(self, args=None, namespace=None):  # type: ignore[override]
+        ns, extras = self.parse_known_args(args, namespace)
+        if extras:
+            self._innermost(ns).error(f"unrecognized arguments: {' '.join(extras)}")
+        return ns
+
+    def _innermost(self, ns: argparse.Namespace) -> argparse.ArgumentParser:
+        """The parser of the (sub-)sub-command that ``ns`` ran, else this one."""
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                sub = action.choices.get(getattr(ns, action.dest, None) or "")
+                if sub is not None:
+                    return sub._innermost(ns) if isinstance(sub, Parser) else sub
+        return self
+
+    def _get_option_tuples(self, option_string):
+        found = super()._get_option_tuples(option_string)
+        shown = {t[0].dest for t in found if t[0].help != argparse.SUPPRESS}
+        return [t for t in found if t[0].help != argparse.SUPPRESS or t[0].dest not in shown]
 
     def error(self, message: str):  # type: ignore[override]
         from .._support.messages import one_line

@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import math
+import sys
 from collections.abc import Sequence
 from typing import Any
 
@@ -17,8 +18,43 @@ from ._fields import Param, param_info, sweep_fields
 
 
 def _option(name: str, meta: Param, prefix: str) -> list[str]:
+    """The option strings shown in the help: hyphenated (``--pressure-tol``), one spelling."""
     names = [meta.cli or name, *meta.aliases]
-    return [f"--{prefix}{n}" for n in names]
+    return [f"--{prefix}{n}".replace("_", "-") for n in names]
+
+
+def _old_options(name: str, meta: Param, prefix: str) -> list[str]:
+    """The underscore spellings (``--pressure_tol``) of the options of :func:`_option`, still
+    accepted for one release (hidden from the help, with a deprecation note: issue 37)."""
+    names = [meta.cli or name, *meta.aliases]
+    return [f"--{prefix}{n}" for n in names if "_" in f"{prefix}{n}"]
+
+
+class DeprecatedSpelling(argparse.Action):
+    """A hidden, deprecated spelling of an option (``--pressure_tol`` for ``--pressure-tol``):
+    stores like the option it stands for and prints a one-line note on stderr. The underscore
+    spellings are removed in the next release.
+
+    Parameters
+    ----------
+    option_strings, dest, **kwargs
+        As for :class:`argparse.Action` (``help`` is always :data:`argparse.SUPPRESS`, the
+        default :data:`argparse.SUPPRESS`: the visible option sets it).
+    """
+
+    def __init__(self, option_strings, dest, **kwargs):
+        kwargs["help"] = argparse.SUPPRESS
+        kwargs.setdefault("default", argparse.SUPPRESS)
+        super().__init__(option_strings, dest, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        new = (option_string or self.option_strings[0]).replace("_", "-")
+        print(
+            f"{parser.prog}: warning: {option_string} is deprecated, use {new} "
+            "(the underscore spelling is removed in the next release)",
+            file=sys.stderr,
+        )
+        setattr(namespace, self.dest, values)
 
 
 class _NoneGiven:
@@ -115,7 +151,9 @@ def add_options(
 
     Notes
     -----
-    Options are stored under ``{prefix}{field}`` with dashes as underscores; every option's
+    Options are spelled with hyphens (``--pressure-tol`` for field ``pressure_tol``; the
+    underscore spelling is a hidden, deprecated alias for one release, with a note on stderr)
+    and stored under ``{prefix}{field}`` with dashes as underscores; every option's
     default is ``None`` (= "not given"), so :func:`from_args` takes the class's default for
     options not given and a subclass's new field needs no other edit. The help shows the
     default, the unit and the allowed range.
@@ -159,6 +197,10 @@ def add_options(
         if meta.pair or meta.many or name in many:
             kw["nargs"] = "+"
         g.add_argument(*_option(name, meta, prefix), **kw)
+        old = _old_options(name, meta, prefix)
+        if old:  # one release more: hidden, with a note (issue 37)
+            kw = {k: v for k, v in kw.items() if k not in ("help", "default")}
+            g.add_argument(*old, action=DeprecatedSpelling, **kw)
     return g
 
 
