@@ -429,9 +429,9 @@ def test_non_finite_heights_refused():
 
 
 def test_memory_refused_before_allocating(monkeypatch):
-    import warptrunc.contact.solver as solver
+    import warptrunc.contact.memory as memory  # the check against the free memory
 
-    monkeypatch.setattr(solver, "free_memory_bytes", lambda device: 1000)
+    monkeypatch.setattr(memory, "free_memory_bytes", lambda device: 1000)
     need = ContactSolver.memory_bytes((64, 64), "free", "float64", cuda=False)
     with pytest.raises(
         MemoryError,

@@ -27,6 +27,13 @@ Properties are checked for ``GL08`` only (their summary is their documentation).
 are checked for ``GL08``, ``SS01`` and ``SS03``; their constructor parameters are the fields,
 and each field must have an attribute docstring (a string literal right after the field,
 the house style for result objects), read from the source with :mod:`ast`.
+
+Besides, every public function, method and class whose signature takes parameters (beyond
+``self``/``cls``) has a ``Parameters`` section (parsed with :mod:`numpydoc.docscrape`; for a
+class, in its docstring or its ``__init__``'s), or, for a dataclass, documents each of its
+constructor parameters as a field (an attribute docstring, or the description of a
+:func:`~warptrunc.params.param` field): ``test_parameters_documented``. Exception classes
+whose constructor is the built-in one (a message) are exempt.
 """
 
 from __future__ import annotations
@@ -42,6 +49,7 @@ import textwrap
 import pytest
 
 numpydoc_validate = pytest.importorskip("numpydoc.validate")
+numpydoc_docscrape = pytest.importorskip("numpydoc.docscrape")
 
 
 from warptrunc._public import SKIP_PREFIXES, public_modules  # noqa: E402
@@ -163,20 +171,29 @@ def _field_docstrings(cls: type) -> frozenset[str]:
     return frozenset(names)
 
 
+def _field_doc_problem(cls: type, field: str) -> str | None:
+    """Why a dataclass field is undocumented, or None when it is documented: a parameter field
+    (:func:`~warptrunc.params.param`) by its description, any other by an attribute
+    docstring."""
+    meta = {f.name: f.metadata for f in dataclasses.fields(cls)}.get(field, {})
+    if "warptrunc" in meta:  # a parameter field: its description is the param() metadata
+        return None if meta["warptrunc"].doc.strip() else "parameter without a description"
+    if field in _field_docstrings(cls):
+        return None
+    return (
+        "GL08 dataclass field has no attribute docstring "
+        "(a string literal on the line after the field)"
+    )
+
+
 @pytest.mark.parametrize("qualname", list(PUBLIC), ids=str)
 def test_numpydoc(qualname: str) -> None:
     kind = PUBLIC[qualname]
     if kind == "field":
         cls_name, field = qualname.rsplit(".", 1)
         cls, _ = _resolve(cls_name)
-        meta = {f.name: f.metadata for f in dataclasses.fields(cls)}.get(field, {})
-        if "warptrunc" in meta:  # a parameter field: its description is the param() metadata
-            assert meta["warptrunc"].doc.strip(), f"{qualname}: parameter without a description"
-            return
-        assert field in _field_docstrings(cls), (
-            f"{qualname}: GL08 dataclass field has no attribute docstring "
-            "(a string literal on the line after the field)"
-        )
+        problem = _field_doc_problem(cls, field)
+        assert problem is None, f"{qualname}: {problem}"
         return
     codes = {
         "function": FUNCTION_CODES,
@@ -191,10 +208,60 @@ def test_numpydoc(qualname: str) -> None:
     )
 
 
+CALLABLES = [q for q, kind in PUBLIC.items() if kind in ("function", "class", "dataclass")]
+
+
+def _parameters(obj: object) -> list[str] | None:
+    """The names a callable's signature takes beyond ``self``/``cls``; None for an exception
+    class with the built-in constructor (no signature to read: it takes the message)."""
+    try:
+        sig = inspect.signature(obj)
+    except ValueError:
+        if inspect.isclass(obj) and issubclass(obj, BaseException):
+            return None
+        raise
+    return [name for name in sig.parameters if name not in ("self", "cls")]
+
+
+def _has_parameters_section(obj: object) -> bool:
+    """Whether numpydoc finds a non-empty Parameters section in the docstring (for a class,
+    its own or its ``__init__``'s)."""
+    docs = [inspect.getdoc(obj) or ""]
+    if inspect.isclass(obj) and "__init__" in vars(obj):
+        docs.append(inspect.getdoc(vars(obj)["__init__"]) or "")
+    return any(numpydoc_docscrape.NumpyDocString(doc)["Parameters"] for doc in docs)
+
+
+@pytest.mark.parametrize("qualname", CALLABLES, ids=str)
+def test_parameters_documented(qualname: str) -> None:
+    """A public callable that takes parameters documents them in a Parameters section, or, a
+    dataclass, as its fields (each constructor parameter a documented field)."""
+    obj, _ = _resolve(qualname)
+    names = _parameters(obj)
+    if not names or _has_parameters_section(obj):
+        return
+    assert PUBLIC[qualname] == "dataclass", (
+        f"{qualname}: no Parameters section, although it takes {', '.join(names)}"
+    )
+    fields = {f.name for f in dataclasses.fields(obj)}
+    problems = [
+        f"{name}: " + ("not a field" if name not in fields else _field_doc_problem(obj, name))
+        for name in names
+        if name not in fields or _field_doc_problem(obj, name) is not None
+    ]
+    assert not problems, (
+        f"{qualname}: no Parameters section, and parameters not documented as fields:\n  "
+        + "\n  ".join(problems)
+    )
+
+
 def test_collects_the_api() -> None:
     """The walk finds the top-level API and the subpackages' names (guards an empty test)."""
     assert len(PUBLIC) > 200
-    assert "warptrunc.stiffness.stiffness_curve" in PUBLIC
-    assert PUBLIC["warptrunc.stiffness.StiffnessCurve"] == "dataclass"
+    assert "warptrunc.stiffness.curve.stiffness_curve" in PUBLIC  # under its defining module
+    assert PUBLIC["warptrunc.stiffness.curve.StiffnessCurve"] == "dataclass"
     assert PUBLIC["warptrunc.material.Material.contact_modulus"] == "property"
     assert not any(q.startswith(SKIP_PREFIXES) for q in PUBLIC)
+    assert len(CALLABLES) > 350
+    assert "warptrunc.contact.solver.ContactSolver.solve" in CALLABLES
+    assert "warptrunc.indent.protocol.IndentProtocol" in CALLABLES  # documents its fields

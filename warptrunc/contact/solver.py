@@ -3,8 +3,14 @@
 """Constrained conjugate gradients (Polonsky & Keer 1999) for a rough map on an elastic half-space.
 
 The default iteration is the preconditioned bound-constrained CG of :mod:`warptrunc.contact.bccg`
-(``SolverSettings.algorithm="bccg"``); this module's own loop is ``algorithm="pk"``, described
-below, and holds the solver's state, settings and everything around the iteration.
+(``SolverSettings.algorithm="bccg"``); Polonsky & Keer's is ``algorithm="pk"``, described below,
+its loop in :mod:`warptrunc.contact.pk`. This module holds the solver object: its settings, its
+state (the device maps, allocated in ``ContactSolver.__init__``, cleared by ``reset``) and its
+public methods (``solve``: displacement or load control, elastic or capped; the plastic state;
+Barber's stiffness; the read-backs ``maps`` and ``max_pressure``). What the solve loops share
+(and where a device-side loop goes) is :mod:`warptrunc.contact.loop`; the memory model and the
+check against the free memory (where a multi-device path starts) are
+:mod:`warptrunc.contact.memory`, whose docstring lists what lives where.
 
 The iteration is that of ContactMechanics' ``constrained_conjugate_gradients`` (same gap sign,
 warm start, offset handling in load control and stopping criterion), so that both give the same
@@ -55,16 +61,16 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._support.device import free_memory_bytes, release_cached_memory, resolve_device
+from .._support.device import resolve_device
 from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_height_map, check_range, pair
 from ..kernels import contact as _k
-from ..kernels import contact_reduce as _kr
 from ..material import Material
 from ..params import check_value
 from .bccg import BCCGSolves
 from .halfspace import DTYPES, ElasticHalfSpace
-from .influence import GRID_DOCS
+from .loop import SolveLoop
+from .memory import SolverMemory
 from .pk import PKSolves
 from .plastic import CappedSolves
 from .punch import PunchStiffness
@@ -96,7 +102,7 @@ _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter
 
 
 @fill_doc(SHARED_DOCS)
-class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
+class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
 
     With a finite ``hardness`` the local pressure is capped at H and the map flows plastically
@@ -185,35 +191,7 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         self.substrate = substrate
         self.dtype = dtype
         self.forcetol = self.pressure_tol * self.contact_modulus * dx * dy
-        cuda = self.device.is_cuda
-        plan = settings.fft_plan if cuda and substrate == "free" else "pruned"
-
-        def needs(p: str) -> int:  # with the work area cuFFT asks for, on CUDA
-            return self.memory_bytes(h.shape, substrate, dtype, cuda=cuda,
-                                     algorithm=settings.algorithm, fft_plan=p,
-                                     device=self.device if cuda else None)  # fmt: skip
-
-        free = free_memory_bytes(self.device)
-        if plan == "auto":
-            try:
-                full = needs("full")
-            except ValueError:  # cuFFT cannot make the 2-D plans at this size
-                full = None
-            if full is not None and full > free and cuda:
-                free = release_cached_memory(self.device)
-            plan = "full" if full is not None and full <= free else "pruned"
-            need = full if plan == "full" else needs(plan)  # each plan made once to learn its size
-        else:
-            need = needs(plan)
-        if need > free and cuda:
-            free = release_cached_memory(self.device)  # pooled blocks are free for us too
-        if need > free:
-            raise MemoryError(
-                f"the contact solver for a {h.shape[0]}×{h.shape[1]} map ({substrate}, {dtype}, "
-                f"fft_plan {plan!r}) needs {need / 1e9:.2f} GB, {free / 1e9:.2f} GB free on "
-                f"{self.device} ({need} bytes needed, {free} free); use a smaller map, float32, "
-                "fft_plan='pruned' or another device"
-            )
+        plan = self._fft_plan_that_fits(h.shape, settings)  # or MemoryError, before allocating
         self.fft_plan = plan
         """The cuFFT plans in use (``warptrunc.contact.halfspace.FFT_PLANS``; 'pruned' off
         CUDA and on the periodic substrate)."""
@@ -248,108 +226,12 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         self._slope: float | None = None  # dF/dδ at or near the last solution (N/m)
         self._trial_failed = False  # an elastic trial of a capped load solve exceeded H
 
-    @staticmethod
-    @fill_doc(GRID_DOCS)
-    def memory_terms(
-        shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
-        cuda: bool = True, direct_max: int = 24, algorithm: str = "bccg",
-        fft_plan: str = "pruned", device: wp.DeviceLike = None,
-    ) -> dict[str, int]:  # fmt: skip
-        """The model of a solver's peak device memory, term by term (bytes).
-
-        Parameters
-        ----------
-        {shape}
-        {substrate}
-        dtype : {"float64", "float32"}
-            Precision of the maps.
-        cuda : bool, optional
-            On a CUDA device (cuFFT's work area and 65536 reduction lanes are counted).
-        direct_max : int, optional
-            Length of the list of changed forces (dimensionless count).
-        algorithm : {"pk", "bccg"}, optional
-            The iteration (:class:`~warptrunc.contact.SolverSettings`; default ``"bccg"``, its
-            default); ``"bccg"`` holds one more map, its residual.
-        fft_plan : {"pruned", "full"}, optional
-            The half-space's cuFFT plans (``SolverSettings.fft_plan``; ``"full"`` counts a cuFFT
-            work area as large as the work spectrum, free substrate on CUDA).
-        device : str or warp Device, optional
-            A CUDA device: cuFFT's work area is the one cuFFT asks for the plans
-            (``ElasticHalfSpace.cufft_work_bytes``) instead of the estimate.
-
-        Returns
-        -------
-        dict of str to int
-            The half-space's terms (:meth:`ElasticHalfSpace.memory_terms`: kernel spectrum,
-            influence table, work spectrum, lane partials, cuFFT work area) and the solver's:
-            ``"maps"``: h, u, q, t and q_lin (five (ny, nx) maps of the dtype; q and t hold no
-            pad); ``"mask"``: one byte per pixel; ``"lists"``: the lane counts and offsets and
-            the list of changed forces; ``"stiffness solve"``: the one more map Barber's punch
-            needs (its residual; its unknown reuses q_lin's map). The peak is their sum, reached
-            during :meth:`punch_stiffness`; a solve needs all but the last term.
-        """
-        ny, nx = shape
-        item = np.dtype(dtype).itemsize
-        terms = ElasticHalfSpace.memory_terms(shape, substrate, dtype, cuda=cuda,
-                                              fft_plan=fft_plan, device=device)  # fmt: skip
-        lanes = 65536 if cuda else 64
-        terms["maps"] = 5 * ny * nx * item
-        terms["mask"] = ny * nx
-        terms["lists"] = 2 * lanes * 4 + max(1, direct_max) * 12 + 8
-        terms["stiffness solve"] = ny * nx * item
-        if algorithm == "bccg":
-            terms["bccg residual"] = ny * nx * item
-        return terms
-
-    @staticmethod
-    @fill_doc(GRID_DOCS)
-    def memory_bytes(
-        shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
-        cuda: bool = True, algorithm: str = "bccg", fft_plan: str = "pruned",
-        device: wp.DeviceLike = None,
-    ) -> int:  # fmt: skip
-        """Peak device memory of a solver and its stiffness solve (bytes).
-
-        Parameters
-        ----------
-        {shape}
-        substrate : {"free", "periodic"}
-            Half-space (the free one transforms a 2ny × 2nx grid, pruned to the map).
-        dtype : {"float64", "float32"}
-            Precision of the maps.
-        cuda : bool, optional
-            On a CUDA device (default; cuFFT's work area counted).
-        algorithm : {"pk", "bccg"}, optional
-            The iteration (default ``"bccg"``, that of ``SolverSettings``); ``"bccg"`` holds one
-            more map, its residual.
-        fft_plan : {"pruned", "full"}, optional
-            The half-space's cuFFT plans (``SolverSettings.fft_plan``); ``"full"`` adds a
-            cuFFT work area as large as the work spectrum (free substrate on CUDA: + 16 B per
-            map pixel in float32, + 32 in float64).
-        device : str or warp Device, optional
-            A CUDA device: cuFFT's work area as cuFFT asks for it, instead of the estimate.
-
-        Returns
-        -------
-        int
-            The sum of :meth:`memory_terms`. Per map pixel, free boundary, large maps: float32
-            4 (kernel spectrum) + 4 (table) + 16 (work spectrum) + ≤ 2 (cuFFT work area,
-            estimated) + 20 (maps) + 1 (mask) + 4 (stiffness solve) + 4 (BCCG's residual)
-            ≈ 55 B; float64 ≈ 109 B; periodic float32 ≈ 1 + 4 + 4 + ≤ 0.5 + 20 + 1 + 4 + 4
-            ≈ 38.5 B. Without BCCG (``algorithm="pk"``) one map less.
-        """
-        terms = ContactSolver.memory_terms(shape, substrate, dtype, cuda=cuda,
-                                           algorithm=algorithm, fft_plan=fft_plan,
-                                           device=device)  # fmt: skip
-        return int(sum(terms.values()))
+    # the memory model (:mod:`warptrunc.contact.memory`), named here so that the API reference
+    # lists it with the solver (autodoc shows a class's own members only)
+    memory_terms = staticmethod(SolverMemory.memory_terms)
+    memory_bytes = staticmethod(SolverMemory.memory_bytes)
 
     # --- one solve ---------------------------------------------------------------------------
-
-    def _sums(self, offset: float) -> np.ndarray:
-        red = self.hs.reduction
-        red.launch(_kr.contact_sums_kernel, self.shape[0] * self.shape[1],
-                   [self.q, self.u, self.h, wp.float64(offset)], [])  # fmt: skip
-        return red.read((False, False, False, False))
 
     def solve(
         self, depth: float | None = None, *, load: float | None = None, plastic: bool | None = None
@@ -419,80 +301,6 @@ class ContactSolver(CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
         # a converged loading state is a solution of the capped problem on the flowed surface
         self._point = self._point_of(info, capped=True)
         return state
-
-    @staticmethod
-    def _point_of(info: dict[str, Any], *, capped: bool) -> tuple[float, float, bool] | None:
-        """(approach (m), load (N), on the capped curve) of a converged solve: a known point of
-        the elastic F(δ) of the current surface (every converged solve is one: where the
-        surface flowed, p = H and the gap is closed) and, when ``capped``, of the capped F(δ)
-        too, for the next secant load control; None if it did not converge."""
-        if info["converged"]:
-            return float(info["depth"]), float(info["load"]), bool(capped)
-        return None
-
-    def _state(self, info: dict[str, Any], flow: tuple[int, int] | None) -> ContactState:
-        self._depth = float(info["depth"])
-        dx, dy = self.pixel_size
-        n_c, n_p = (info["n_contact"], 0) if flow is None else flow
-        return ContactState(
-            depth=float(info["depth"]), load=float(info["load"]), n_contact=int(n_c),
-            contact_area=n_c * dx * dy, n_plastic=int(n_p), plastic_area=n_p * dx * dy,
-            plastic_volume=self.plastic_volume, mean_gap=float(info["mean_gap"]),
-            n_iterations=int(info["n_iterations"]), n_convolutions=float(info["n_convolutions"]),
-            residual=float(info["residual"]), max_tensile_force=float(info["max_tensile_force"]),
-            converged=bool(info["converged"]),
-        )  # fmt: skip
-
-    def _steady(self, new: float, old: float | None) -> bool:
-        """Whether a quantity (a total force in N, a height in m) changed by less than
-        ``thermotol`` relative to its new value since the last iteration (False without one)."""
-        if old is None:
-            return False
-        return new == old or (new != 0 and abs((new - old) / new) < self.thermotol)
-
-    def _iteration_info(self, offset: float, load: float, mean_gap: float, it: int,
-                        n_transforms: int, res: float, max_tensile: float, ok: bool,
-                        n_contact: int | None = None) -> dict[str, Any]:  # fmt: skip
-        """The info dict of one iteration of a solve loop (PK, BCCG, capped): approach (m), load
-        (N), mean gap (m), iterations, convolutions (two transforms each), residual (m), largest
-        tensile force (N), converged, and the contact pixels when counted; a non-finite residual
-        raises FloatingPointError (the solve diverged)."""
-        if not math.isfinite(res):
-            raise FloatingPointError(
-                f"the contact solve diverged at iteration {it} (residual {res})"
-            )
-        info = {
-            "depth": offset + self.h_max, "load": float(load), "mean_gap": mean_gap,
-            "n_iterations": it, "n_convolutions": n_transforms / 2, "residual": float(res),
-            "max_tensile_force": float(max_tensile), "converged": ok,
-        }  # fmt: skip
-        if n_contact is not None:
-            info["n_contact"] = int(n_contact)
-        return info
-
-    def _warm_start(self, offset: float) -> None:
-        """Warm start of a solve at ``offset`` (m): raise u where the map would penetrate and
-        add K⁻¹·(that increase) to q (two transforms; q may leave its bounds)."""
-        wp.launch(_k.clamp_displacement_kernel, dim=self.shape,
-                  inputs=[self.h, wp.float64(offset)], outputs=[self.u, self.t],
-                  device=self.device)  # fmt: skip
-        dq = self.hs.apply(self.t_buf, inverse=True)
-        wp.launch(_k.add_map_kernel, dim=self.shape, inputs=[dq], outputs=[self.q],
-                  device=self.device)  # fmt: skip
-
-    def _solve_elastic(self, depth: float | None, load: float | None) -> dict[str, Any]:
-        """The elastic solve on the current heights (the path of H = inf), by the settings'
-        algorithm: :mod:`warptrunc.contact.bccg` or :mod:`warptrunc.contact.pk`."""
-        load_control = load is not None
-        if self.settings.algorithm == "bccg":
-            if load_control:
-                start = self.offset if self._depth is not None else 0.0
-                if self._point is not None and self._slope:  # predicted by the last slope
-                    start = self._point[0] - self.h_max + (load - self._point[1]) / self._slope
-            else:
-                start = float(depth) - self.h_max
-            return self._solve_bccg(start, load, None)
-        return self._solve_pk(depth, load)
 
     # --- elastic–perfectly-plastic solves -------------------------------------------------------
 

@@ -1,0 +1,115 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""What the solve loops of :class:`~warptrunc.contact.ContactSolver` share: which iteration an
+elastic solve runs, the warm start, the map sums, the stopping test on a steady quantity, and
+the records a solve returns (the info dict of an iteration, the
+:class:`~warptrunc.contact.ContactState` of a solve, the known point of F(δ) for load control).
+
+The loops themselves are in :mod:`~warptrunc.contact.pk` (Polonsky–Keer),
+:mod:`~warptrunc.contact.bccg` (the default) and :mod:`~warptrunc.contact.plastic` (the capped
+solves); they run on the host, reading a few numbers back per iteration (the module docstring of
+:mod:`warptrunc.contact.solver`). A device-side solve loop (the iteration and its stopping test
+on the device, one read-back per solve) belongs here, chosen beside them in
+``SolveLoop._solve_elastic`` and reporting through ``SolveLoop._iteration_info``. The
+memory model, where a multi-device path starts, is :mod:`warptrunc.contact.memory` (whose
+docstring lists what lives where).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import warp as wp
+
+from ..kernels import contact as _k
+from ..kernels import contact_reduce as _kr
+from .results import ContactState
+
+__all__: list[str] = []  # methods of ContactSolver, all private
+
+
+class SolveLoop:
+    """The shared pieces of :class:`~warptrunc.contact.ContactSolver`'s solve loops (a base
+    class holding methods only; the solver's maps and settings are its own)."""
+
+    def _sums(self, offset: float) -> np.ndarray:
+        red = self.hs.reduction
+        red.launch(_kr.contact_sums_kernel, self.shape[0] * self.shape[1],
+                   [self.q, self.u, self.h, wp.float64(offset)], [])  # fmt: skip
+        return red.read((False, False, False, False))
+
+    @staticmethod
+    def _point_of(info: dict[str, Any], *, capped: bool) -> tuple[float, float, bool] | None:
+        """(approach (m), load (N), on the capped curve) of a converged solve: a known point of
+        the elastic F(δ) of the current surface (every converged solve is one: where the
+        surface flowed, p = H and the gap is closed) and, when ``capped``, of the capped F(δ)
+        too, for the next secant load control; None if it did not converge."""
+        if info["converged"]:
+            return float(info["depth"]), float(info["load"]), bool(capped)
+        return None
+
+    def _state(self, info: dict[str, Any], flow: tuple[int, int] | None) -> ContactState:
+        self._depth = float(info["depth"])
+        dx, dy = self.pixel_size
+        n_c, n_p = (info["n_contact"], 0) if flow is None else flow
+        return ContactState(
+            depth=float(info["depth"]), load=float(info["load"]), n_contact=int(n_c),
+            contact_area=n_c * dx * dy, n_plastic=int(n_p), plastic_area=n_p * dx * dy,
+            plastic_volume=self.plastic_volume, mean_gap=float(info["mean_gap"]),
+            n_iterations=int(info["n_iterations"]), n_convolutions=float(info["n_convolutions"]),
+            residual=float(info["residual"]), max_tensile_force=float(info["max_tensile_force"]),
+            converged=bool(info["converged"]),
+        )  # fmt: skip
+
+    def _steady(self, new: float, old: float | None) -> bool:
+        """Whether a quantity (a total force in N, a height in m) changed by less than
+        ``thermotol`` relative to its new value since the last iteration (False without one)."""
+        if old is None:
+            return False
+        return new == old or (new != 0 and abs((new - old) / new) < self.thermotol)
+
+    def _iteration_info(self, offset: float, load: float, mean_gap: float, it: int,
+                        n_transforms: int, res: float, max_tensile: float, ok: bool,
+                        n_contact: int | None = None) -> dict[str, Any]:  # fmt: skip
+        """The info dict of one iteration of a solve loop (PK, BCCG, capped): approach (m), load
+        (N), mean gap (m), iterations, convolutions (two transforms each), residual (m), largest
+        tensile force (N), converged, and the contact pixels when counted; a non-finite residual
+        raises FloatingPointError (the solve diverged)."""
+        if not math.isfinite(res):
+            raise FloatingPointError(
+                f"the contact solve diverged at iteration {it} (residual {res})"
+            )
+        info = {
+            "depth": offset + self.h_max, "load": float(load), "mean_gap": mean_gap,
+            "n_iterations": it, "n_convolutions": n_transforms / 2, "residual": float(res),
+            "max_tensile_force": float(max_tensile), "converged": ok,
+        }  # fmt: skip
+        if n_contact is not None:
+            info["n_contact"] = int(n_contact)
+        return info
+
+    def _warm_start(self, offset: float) -> None:
+        """Warm start of a solve at ``offset`` (m): raise u where the map would penetrate and
+        add K⁻¹·(that increase) to q (two transforms; q may leave its bounds)."""
+        wp.launch(_k.clamp_displacement_kernel, dim=self.shape,
+                  inputs=[self.h, wp.float64(offset)], outputs=[self.u, self.t],
+                  device=self.device)  # fmt: skip
+        dq = self.hs.apply(self.t_buf, inverse=True)
+        wp.launch(_k.add_map_kernel, dim=self.shape, inputs=[dq], outputs=[self.q],
+                  device=self.device)  # fmt: skip
+
+    def _solve_elastic(self, depth: float | None, load: float | None) -> dict[str, Any]:
+        """The elastic solve on the current heights (the path of H = inf), by the settings'
+        algorithm: :mod:`warptrunc.contact.bccg` or :mod:`warptrunc.contact.pk`."""
+        load_control = load is not None
+        if self.settings.algorithm == "bccg":
+            if load_control:
+                start = self.offset if self._depth is not None else 0.0
+                if self._point is not None and self._slope:  # predicted by the last slope
+                    start = self._point[0] - self.h_max + (load - self._point[1]) / self._slope
+            else:
+                start = float(depth) - self.h_max
+            return self._solve_bccg(start, load, None)
+        return self._solve_pk(depth, load)
