@@ -42,12 +42,14 @@ def test_analysis_matches_numpy_and_scipy(device):
     k = 1.1 * 2 / math.sqrt(math.pi) * (100e9 / (1 - 0.09)) * np.sqrt(n * pa)
     np.testing.assert_allclose(a.stiffness.stiffness, k, rtol=1e-12)
     np.testing.assert_allclose(a.stiffness.load, _trapezoid(k, a.curve.depth), rtol=1e-12)
-    # the fit: np.polyfit over the fit range (load > 0, ≥ 3 contact pixels)
+    # the fit: np.polyfit over the fit range (load > 0, ≥ 3 contact pixels) of E_c/E, E the
+    # Young's modulus: E_c/E = (E*/E)·β′·√(A_c/A), E*/E = 1/(1 − ν²) against a rigid flat
     sel = (a.stiffness.load > 0) & (n >= 3)
     slope, icpt = np.polyfit(np.log(a.stiffness.load[sel] / (100e9 * A)),
-                             np.log(1.1 * np.sqrt(n[sel] * pa / A)), 1)  # fmt: skip
+                             np.log(1.1 * np.sqrt(n[sel] * pa / A) / (1 - 0.09)), 1)  # fmt: skip
     assert a.fit.alpha == pytest.approx(slope, rel=1e-9)
     assert a.fit.beta == pytest.approx(math.exp(icpt), rel=1e-9)
+    assert a.fit.beta_contact_modulus == pytest.approx(math.exp(icpt) * (1 - 0.09), rel=1e-9)
     # the island-resolved model: Σ√A_i over scipy's 4-connected labels
     k_isl = np.empty_like(k)
     for i, t in enumerate(a.curve.threshold):

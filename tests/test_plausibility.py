@@ -122,11 +122,13 @@ def _curve(D, n, seed=1, delta=0.01):
 
 
 def test_the_sweep_fit_of_issue_30_is_flagged():
-    """256², D = 2.7, δ = 0.01, seed 1: 10 contact pixels, α ≈ 0, r² ≈ 0."""
+    """256², D = 2.7, δ = 0.01, seed 1: 10 contact pixels at every fitted increment, so E_c/E
+    is constant: α = 0 and r² undefined (NaN), both flagged."""
     sc = _curve(2.7, 256)
     fit = fit_power_law(sc)
+    assert fit.alpha == 0.0 and math.isnan(fit.r2)
     codes = {w.code for w in pl.check_fit(fit, sc)}
-    assert {"fit_contact_pixels", "fit_r2", "fit_load_decades"} <= codes
+    assert {"fit_contact_pixels", "fit_r2", "fit_alpha", "fit_load_decades"} <= codes
     assert pl.fit_error_text(pl.check_fit(fit, sc)).startswith("not worth reading")
 
 

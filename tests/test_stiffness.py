@@ -42,7 +42,9 @@ def test_eq2_eq3_and_trapezoid_load():
     k_expected = 1.2 * 2 / math.sqrt(math.pi) * mat.contact_modulus * math.sqrt(c) * depth
     np.testing.assert_allclose(sc.stiffness, k_expected, rtol=1e-12, atol=1e-30)
     np.testing.assert_allclose(sc.load, k_expected * depth / 2, rtol=1e-12, atol=1e-30)
-    np.testing.assert_allclose(sc.Ec_over_E, 1.2 * np.sqrt(c * depth**2 / 1e-6), rtol=1e-12)
+    Estar_over_E = 1 / (1 - 0.25**2)  # rigid flat
+    np.testing.assert_allclose(sc.Ec_over_Estar, 1.2 * np.sqrt(c * depth**2 / 1e-6), rtol=1e-12)
+    np.testing.assert_allclose(sc.Ec_over_E, Estar_over_E * sc.Ec_over_Estar, rtol=1e-14)
     np.testing.assert_allclose(sc.F_over_EA, sc.load / (100e9 * 1e-6), rtol=1e-12)
 
 
@@ -53,11 +55,12 @@ def test_fit_recovers_exact_power_law(alpha, beta):
     z = np.zeros(60)
     sc = StiffnessCurve(
         depth=np.linspace(1e-9, 1e-6, 60), n_contact_pixels=n * 1000, contact_area=z, stiffness=z,
-        load=f, Ec_over_E=beta * f**alpha, F_over_EA=f, material=Material(), beta_prime=1.0,
-        apparent_area=1.0, Rt=1e-5,
+        load=f, Ec_over_E=beta * f**alpha, F_over_EA=f, Ec_over_Estar=z, material=Material(),
+        beta_prime=1.0, apparent_area=1.0, Rt=1e-5,
     )  # fmt: skip
     fit = fit_power_law(sc, min_pixels=1)
     assert fit.alpha == pytest.approx(alpha, rel=1e-10)
+    assert fit.beta == pytest.approx(beta, rel=1e-10)  # the fitted column is E_c/E
     assert fit.beta == pytest.approx(beta, rel=1e-9)
     assert fit.r2 == pytest.approx(1.0)
     assert fit.n_points == 60
@@ -98,9 +101,9 @@ def test_csv_and_json_export(tmp_path):
     data = np.genfromtxt(p, delimiter=",", names=True)
     assert data.dtype.names == (
         "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
-        "Ec_over_E", "F_over_EA", "Ec_over_Estar", "Ec_over_E_young",
+        "Ec_over_E", "F_over_EA", "Ec_over_Estar",
     )  # fmt: skip
-    np.testing.assert_array_equal(data["Ec_over_Estar"], data["Ec_over_E"])
+    np.testing.assert_allclose(data["Ec_over_E"], data["Ec_over_Estar"] / (1 - 0.33**2), rtol=1e-14)
     np.testing.assert_array_equal(data["load_N"], sc.load)
     fit = fit_power_law(sc, min_pixels=1)
     import json
@@ -150,11 +153,14 @@ def test_separate_paraboloids_islands_vs_eq2(device, tiles):
     np.testing.assert_allclose(kN.load, N * k1.load, rtol=1e-9)
     np.testing.assert_allclose(eN.stiffness, math.sqrt(N) * k1.stiffness, rtol=1e-9)
     np.testing.assert_allclose(eN.load, math.sqrt(N) * k1.load, rtol=1e-9)
-    # one island: both models agree; E_c/E of the islands model is k/((2/√π)E*√A)
+    # one island: both models agree; E_c/E* of the islands model is k/((2/√π)E*√A), and
+    # E_c/E = E_c·(√π/2)/(E·√A) = k/((2/√π)E√A) with E the Young's modulus
     e1 = stiffness_curve(truncate(one, 30, **kw))
     np.testing.assert_allclose(k1.stiffness, e1.stiffness, rtol=1e-9)
     c = 2 / math.sqrt(math.pi) * kN.material.contact_modulus * math.sqrt(kN.apparent_area)
-    np.testing.assert_allclose(kN.Ec_over_E, kN.stiffness / c, rtol=1e-12)
+    np.testing.assert_allclose(kN.Ec_over_Estar, kN.stiffness / c, rtol=1e-12)
+    c_young = 2 / math.sqrt(math.pi) * kN.material.E * math.sqrt(kN.apparent_area)
+    np.testing.assert_allclose(kN.Ec_over_E, kN.stiffness / c_young, rtol=1e-12)
     assert kN.model == "islands" and eN.model == "area"
 
 
@@ -187,27 +193,49 @@ def test_two_normalisations_differ_by_Estar_over_E(mat, ratio):
     frac = np.linspace(0, 0.3, 11)  # A_c/A
     sc = stiffness_curve(curve_from_area(depth, frac * 1e-6), mat, beta_prime=1.1)
     np.testing.assert_allclose(sc.Ec_over_Estar, 1.1 * np.sqrt(frac), rtol=1e-14)
-    np.testing.assert_allclose(sc.Ec_over_E_young, ratio * 1.1 * np.sqrt(frac), rtol=1e-14)
-    np.testing.assert_allclose(sc.Ec_over_E_young[1:] / sc.Ec_over_Estar[1:], ratio, rtol=1e-15)
-    assert sc.Ec_over_Estar is sc.Ec_over_E  # the historical column, E_c/E*
+    np.testing.assert_allclose(sc.Ec_over_E, ratio * 1.1 * np.sqrt(frac), rtol=1e-14)
+    np.testing.assert_allclose(sc.Ec_over_E[1:] / sc.Ec_over_Estar[1:], ratio, rtol=1e-15)
     assert round(ratio, 2) == (1.12 if math.isinf(mat.E_i) else 1.05)
 
 
 def test_fit_reports_both_betas():
-    """α is the same on E_c/E* and E_c/E; β_E = β·E*/E; the fit says which β it is."""
+    """α is the same on E_c/E and E_c/E*; ``beta`` is that of E_c/E (E the Young's modulus, as
+    the paper's Fig. 6 and 9), β* = β·E/E*; the fit says which β it is."""
     depth = np.linspace(0, 1e-6, 41)
     mat = Material(E=200e9, nu=0.3)
     sc = stiffness_curve(curve_from_area(depth, 1e-12 * np.round(1e6 * (depth / 1e-6) ** 1.7)), mat)
     fit = fit_power_law(sc, min_pixels=1)
-    assert fit.normalisation == "E_c/E*"
-    assert fit.beta_young == pytest.approx(fit.beta / (1 - 0.3**2), rel=1e-14)
+    assert fit.normalisation == "E_c/E"
+    assert fit.beta_contact_modulus == pytest.approx(fit.beta * (1 - 0.3**2), rel=1e-14)
     sel = sc.load > 0
-    x, y = np.log(sc.F_over_EA[sel]), np.log(sc.Ec_over_E_young[sel])
-    slope, icpt = np.polyfit(x, y, 1)  # independent: numpy's least squares on E_c/E
+    # independent: numpy's least squares on E_c/E = β′√(A_c/A)/(1 − ν²) built here from the areas
+    y_young = np.sqrt(sc.contact_area[sel] / sc.apparent_area) / (1 - 0.3**2)
+    slope, icpt = np.polyfit(np.log(sc.F_over_EA[sel]), np.log(y_young), 1)
     assert fit.alpha == pytest.approx(slope, rel=1e-10)
-    assert fit.beta_young == pytest.approx(math.exp(icpt), rel=1e-10)
+    assert fit.beta == pytest.approx(math.exp(icpt), rel=1e-10)
+    slope_s, icpt_s = np.polyfit(np.log(sc.F_over_EA[sel]), np.log(sc.Ec_over_Estar[sel]), 1)
+    assert fit.alpha == pytest.approx(slope_s, rel=1e-10)
+    assert fit.beta_contact_modulus == pytest.approx(math.exp(icpt_s), rel=1e-10)
     d = fit.to_dict()
-    assert d["normalisation"] == "E_c/E*" and "beta_young" in d and "r" not in d
+    assert d["normalisation"] == "E_c/E" and "beta_contact_modulus" in d and "r" not in d
+    assert "beta_young" not in d
+
+
+def test_old_fit_json_is_read_with_its_meaning():
+    """A fit.json written before the one normalisation held β of E_c/E* in ``beta`` (and that
+    of E_c/E in ``beta_young``, ``normalisation`` "E_c/E*"): read back, ``beta`` is E_c/E's."""
+    from warptrunc.stiffness import NORMALISATION_E, NORMALISATION_ESTAR, PowerLawFit
+
+    old = {"alpha": 0.53, "beta": 6.5, "r2": 0.97, "n_points": 142, "depth_min": 2.9e-7,
+           "depth_max": 1e-6, "F_over_EA_min": 1.4e-6, "F_over_EA_max": 1e-5, "min_pixels": 10,
+           "depth_window": None, "beta_young": 7.3, "normalisation": NORMALISATION_ESTAR,
+           "surface": {"nx": 512}, "provenance": {}}  # fmt: skip
+    f = PowerLawFit.from_dict(old)
+    assert (f.beta, f.beta_contact_modulus, f.normalisation) == (7.3, 6.5, NORMALISATION_E)
+    new = PowerLawFit.from_dict({**old, "depth_window": [1e-7, 1e-6], "beta": 7.3,
+                                 "beta_contact_modulus": 6.5, "normalisation": NORMALISATION_E})  # fmt: skip
+    assert (new.beta, new.beta_contact_modulus, new.depth_window) == (7.3, 6.5, (1e-7, 1e-6))
+    assert PowerLawFit.from_dict(new.to_dict()) == new
 
 
 def test_fit_power_law_of_two_arrays():

@@ -218,6 +218,54 @@ def test_store_written_with_rt_measured_m_reads_as_Rt_measured_m(tmp_path):
     np.testing.assert_array_equal(resumed["seconds"], full["seconds"])
 
 
+def test_store_written_before_the_one_normalisation_reads_with_its_meaning(tmp_path):
+    """A store written when ``beta`` and ``Ec_over_E`` were E_c/E* (no ``beta_contact_modulus``
+    and ``Ec_over_Estar``): read, they are E_c/E = (E*/E)·E_c/E* (E the Young's modulus), the
+    old values under the contact-modulus names; from cases.parquet and from the parts alike,
+    and a resumed run recomputes nothing."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from warptrunc.material import Material
+
+    out = tmp_path / "s"
+    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0")
+    new = run_sweep(grid, out, progress=False, device="cpu", **OPTS, E=200e9, nu=0.3)
+    curves_new = load_curves(out)
+    ratio = Material(E=200e9, nu=0.3).contact_modulus / 200e9  # 1/(1 − ν²), rigid flat
+    assert ratio == pytest.approx(1 / (1 - 0.3**2), rel=1e-15)
+    ok = new["beta"].notna()
+    np.testing.assert_allclose(new["beta"][ok], new["beta_contact_modulus"][ok] * ratio, rtol=1e-12)
+    np.testing.assert_allclose(curves_new["Ec_over_E"], curves_new["Ec_over_Estar"] * ratio,
+                               rtol=1e-14)  # fmt: skip
+    # forge the old layout: E_c/E* under the plain names, the explicit columns absent
+    for f in part_files(out / "curves"):
+        table = pq.read_table(f)
+        rows = [[{k: (r["beta_contact_modulus"] if k == "beta" else v) for k, v in r.items()
+                  if k != "beta_contact_modulus"} for r in rs] for rs in part_rows(f)]  # fmt: skip
+        old = table.drop_columns(["Ec_over_E", "Ec_over_Estar"]).append_column(
+            "Ec_over_E", table.column("Ec_over_Estar"))
+        meta = {**(table.schema.metadata or {}), b"warptrunc.rows": json.dumps(rows).encode()}
+        pq.write_table(old.replace_schema_metadata(meta), f)
+    cases = pq.read_table(out / "cases.parquet")
+    old_cases = cases.drop_columns(["beta", "beta_contact_modulus"])
+    old_cases = old_cases.add_column(cases.column_names.index("beta"), "beta",
+                                     cases.column("beta_contact_modulus"))  # fmt: skip
+    pq.write_table(old_cases.replace_schema_metadata(cases.schema.metadata), out / "cases.parquet")
+    assert "beta_contact_modulus" not in pq.read_schema(out / "cases.parquet").names
+    assert isinstance(old_cases, pa.Table)
+    cols = ["case_id", "min_pixels", "alpha", "beta", "beta_contact_modulus"]
+    pd.testing.assert_frame_equal(load(out)[cols], new[cols], rtol=1e-14)
+    back = load_curves(out).sort_values(["case_id", "depth_m"]).reset_index(drop=True)
+    ref = curves_new.sort_values(["case_id", "depth_m"]).reset_index(drop=True)
+    pd.testing.assert_frame_equal(back[ref.columns], ref, rtol=1e-14)
+    (out / "cases.parquet").unlink()  # rebuilt from the parts' rows
+    pd.testing.assert_frame_equal(load(out)[cols], new[cols], rtol=1e-14)
+    resumed = run_sweep(grid, out, progress=False, device="cpu", **OPTS, E=200e9, nu=0.3)
+    np.testing.assert_array_equal(resumed["seconds"], new["seconds"])  # nothing recomputed
+    pd.testing.assert_frame_equal(resumed[cols], new[cols], rtol=1e-14)
+
+
 def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
     import warptrunc.sweep.engines as engines
 

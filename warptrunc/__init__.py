@@ -22,10 +22,10 @@ F       ``load``                normal load (N)
 E, ν    ``E``, ``nu``           Young's modulus (Pa), Poisson's ratio of the rough body
 E_r′    ``contact_modulus``     contact modulus E* = [(1−ν²)/E + (1−ν_i²)/E_i]⁻¹ (Pa)
 β′      ``beta_prime``          geometric factor of Eq. 2 (dimensionless)
-E_c/E*  ``Ec_over_Estar``       β′·√(A_c/A) (the ``Ec_over_E`` column; dimensionless)
-E_c/E   ``Ec_over_E_young``     (E*/E)·β′·√(A_c/A), E the Young's modulus (dimensionless)
-α, β    ``alpha``, ``beta``     exponent and amplitude of E_c/E* = β[F/(E·A)]^α
-β_E     ``beta_young``          amplitude of E_c/E = β_E[F/(E·A)]^α (the paper's β)
+E_c/E   ``Ec_over_E``           (E*/E)·β′·√(A_c/A), E the Young's modulus (dimensionless)
+E_c/E*  ``Ec_over_Estar``       β′·√(A_c/A), Eq. 3, E* the contact modulus (dimensionless)
+α, β    ``alpha``, ``beta``     exponent and amplitude of E_c/E = β[F/(E·A)]^α (the paper's)
+β*      ``beta_contact_modulus`` amplitude of E_c/E* = β*[F/(E·A)]^α, β·E/E*
 ======  ======================  ==========================================
 
 One public function per operation: generate :func:`wm_surface`, truncate :func:`truncate`,

@@ -109,14 +109,15 @@ class Analysis:
         -------
         dict of str to (n+1,) ndarray
             :meth:`StiffnessCurve.to_dict` of :attr:`stiffness`, then (with the island model)
-            ``stiffness_islands_N_per_m`` (N/m), ``load_islands_N`` (N) and
-            ``Ec_over_E_islands`` (dimensionless).
+            ``stiffness_islands_N_per_m`` (N/m), ``load_islands_N`` (N), ``Ec_over_E_islands``
+            (E_c/E, E the Young's modulus) and ``Ec_over_Estar_islands`` (E_c/E*), dimensionless.
         """
         cols = self.stiffness.to_dict()
         if self.islands is not None:
             cols["stiffness_islands_N_per_m"] = self.islands.stiffness
             cols["load_islands_N"] = self.islands.load
             cols["Ec_over_E_islands"] = self.islands.Ec_over_E
+            cols["Ec_over_Estar_islands"] = self.islands.Ec_over_Estar
         return cols
 
     def summary(self) -> dict[str, Any]:

@@ -3,13 +3,13 @@
 """Truncation analysis: contact area, stiffness and load against depth, and the power-law fit.
 
 Writes OUT/curve.csv (depth_m, n_contact_pixels, contact_area_m2, stiffness_N_per_m, load_N,
-Ec_over_E, F_over_EA, then the island-resolved model's stiffness_islands_N_per_m,
-load_islands_N, Ec_over_E_islands, then both normalisations under explicit names:
-Ec_over_Estar, Ec_over_E_young, Ec_over_Estar_islands, Ec_over_E_young_islands; Ec_over_E is
-E_c/E*, E* the contact modulus), OUT/fit.json (alpha, beta of E_c/E*, beta_young of E_c/E with
-E the Young's modulus, normalisation, r2 and the fit range of Eq. 2; "islands": the same fit
-of the island-resolved model), OUT/stiffness.png
-(E_c/E* against F/(E·A), log–log, with the fitted line, as the paper's Fig. 9) and
+Ec_over_E, F_over_EA, Ec_over_Estar, then the island-resolved model's
+stiffness_islands_N_per_m, load_islands_N, Ec_over_E_islands, Ec_over_Estar_islands; Ec_over_E
+is E_c/E with E the Young's modulus, as the paper's Figs. 6 and 9, Ec_over_Estar is E_c/E*, E*
+the contact modulus), OUT/fit.json (alpha and beta of E_c/E = beta·[F/(E·A)]^alpha,
+beta_contact_modulus of E_c/E*, normalisation "E_c/E", r2 and the fit range of Eq. 2;
+"islands": the same fit of the island-resolved model), OUT/stiffness.png
+(E_c/E against F/(E·A), log–log, with the fitted line, as the paper's Fig. 9) and
 OUT/area_fraction.png (A_c/A against depth).
 
 All or nothing: the files are written under temporary names and moved into OUT only when the
@@ -207,7 +207,7 @@ def run(args: argparse.Namespace) -> int:
         f"{nx}×{ny} surface ({_describe(a.path)}), R_t = {Rt * 1e6:.4g} µm; "
         f"{args.increments} increments to "
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; final contact {curve.area_fraction[-1]:.3%} of A\n"
-        f"E_c/E* = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}, "
+        f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (E Young's modulus; r² = {fit.r2:.4f}, "
         f"{fit.n_points} increments with ≥ {fit.min_pixels} contact pixels)\n"
         + _islands_note(a.islands_fit)
         + _clip_note(meta)
@@ -221,7 +221,7 @@ def run(args: argparse.Namespace) -> int:
 def _islands_note(fit) -> str:
     if fit is None:
         return ""
-    return (f"islands: E_c/E* = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}; "
+    return (f"islands: E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}; "
             "one flat punch per island)\n")  # fmt: skip
 
 

@@ -123,7 +123,7 @@ def run(args: argparse.Namespace) -> int:
     ]
     for name, fit in fits.items():
         lines.append(f"  {name:24s} " + ("no fit" if fit is None else
-                     f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}, "
+                     f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (E Young's modulus; r² = {fit.r2:.4f}, "
                      f"{fit.n_points} rows)"))  # fmt: skip
     print("\n".join(lines))
     print(f"wrote {args.out}/{', '.join(files)}")

@@ -241,7 +241,8 @@ class IndentationResult:
             depth = {"truncation": self.truncation_depth, "elastic": self.elastic_displacement,
                      "elastic_partial": self.elastic_displacement}.get(name, self.displacement)  # fmt: skip
             curve = SimpleNamespace(load=x[ok], n_contact_pixels=np.ones(int(ok.sum()), np.int64),
-                                    depth=depth[ok], F_over_EA=x[ok], Ec_over_E=y[ok])  # fmt: skip
+                                    depth=depth[ok], F_over_EA=x[ok], Ec_over_E=y[ok],
+                                    material=self.material)  # fmt: skip
             try:
                 out[name] = fit_power_law(curve, min_pixels=1)  # type: ignore[arg-type]
             except ValueError:

@@ -32,10 +32,11 @@ def stiffness_load(
     spread: str = "sd",
     path: str | Path | None = None,
 ):
-    """E_c/E* against F/(E·A) in log–log, with the fitted power laws (the paper's Fig. 9).
+    """E_c/E against F/(E·A) in log–log, with the fitted power laws (the paper's Fig. 9).
 
-    E* is the contact modulus (``Ec_over_E``, ``beta``); the paper's Fig. 9 normalises by the
-    Young's modulus E, a constant factor E*/E higher (``Ec_over_E_young``, ``beta_young``).
+    E is the Young's modulus of the rough body (``Ec_over_E``, ``beta``), as the paper's Fig. 9
+    normalises; the contact-modulus form E_c/E* (``Ec_over_Estar``, ``beta_contact_modulus``)
+    is a constant factor E/E* lower.
 
     Parameters
     ----------
@@ -50,7 +51,7 @@ def stiffness_load(
         Legend labels, one per curve or group.
     {title}
     spread : {"sd", "range"}
-        Shaded band of a group: ±1 standard deviation of log(E_c/E*), or min–max.
+        Shaded band of a group: ±1 standard deviation of log(E_c/E), or min–max.
     {path}
 
     {returns}
@@ -97,15 +98,15 @@ def stiffness_load(
                 np.exp(np.mean(np.log([g.F_over_EA_min for g in f]))),
                 np.exp(np.mean(np.log([g.F_over_EA_max for g in f]))), 50,
             )  # fmt: skip
-            text = f"fit α = {alpha:.3f}{sd}, β = {beta:.3g} (E$_c$/E$^*$)"
+            text = f"fit α = {alpha:.3f}{sd}, β = {beta:.3g} (E$_c$/E)"
         else:
             alpha, beta = f.alpha, f.beta
             xr = np.geomspace(f.F_over_EA_min, f.F_over_EA_max, 50)
-            text = f"fit α = {f.alpha:.3f}, β = {f.beta:.3g} (E$_c$/E$^*$), r² = {f.r2:.3f}"
+            text = f"fit α = {f.alpha:.3f}, β = {f.beta:.3g} (E$_c$/E), r² = {f.r2:.3f}"
         color = "k" if len(curves) == 1 else line.get_color()
         ax.loglog(xr, beta * xr**alpha, "--", color=color, lw=1.6, zorder=3, label=text)
     ax.set_xlabel("normalised load F/(E·A)")
-    ax.set_ylabel("normalised stiffness E$_c$/E$^*$ (E$^*$: contact modulus)")
+    ax.set_ylabel("normalised stiffness E$_c$/E (E: Young's modulus)")
     return finish_axes(fig, ax, path, title=title, which="both")
 
 

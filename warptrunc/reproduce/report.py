@@ -165,7 +165,7 @@ def fig10(res, ana, out) -> str:
         if f:
             xx = np.array([min(x for x, _ in pts), max(x for x, _ in pts)])
             ax.loglog(xx, f["b"] * xx ** f["p"], "-", color=p.get_color(), lw=1,
-                      label=f"{fit}: β(E$_c$/E$^*$) = {f['b']:.3g}·δ$^{{{f['p']:.3f}}}$")
+                      label=f"{fit}: β(E$_c$/E) = {f['b']:.3g}·δ$^{{{f['p']:.3f}}}$")
     xx = np.array([6.25e-4, 0.16])
     ax.loglog(xx, 0.0386 * xx**-1.122, "k--", lw=0.8, label="paper 0.0386·δ$^{-1.122}$")
     ax.set(xlabel="δ", ylabel="β")
@@ -278,7 +278,7 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
         # Fig. 5
         a("## Fig. 5 — resolution and increments\n")
         loads = res["fig5"]["loads"]
-        a("| pixels | increments | " + " | ".join(f"E_c/E* at F/(EA) = {x:g}" for x in loads) + " |")
+        a("| pixels | increments | " + " | ".join(f"E_c/E at F/(EA) = {x:g}" for x in loads) + " |")
         a("|---|---|" + "---|" * len(loads))
         for k, v in ana["fig5"].items():
             n, inc = k.split("|")
@@ -340,7 +340,7 @@ def markdown(meta: dict[str, Any], res: dict[str, Any], ana: dict[str, Any], nam
                 o, pp = per[k]["ours"], per[k]["paper"]
                 txt = "—" if o is None else f"{o['slope']:.3f}·D {o['intercept']:+.3f} (r = {fmt_value(o['r'])})"
                 a(f"| D_{k} | {fit} | {txt} | {pp['slope']}·D {pp['intercept']:+} (r = {pp['r']}) | {_dev(o and o['slope'], pp['slope'])} |")
-        a("\n| fit range | β (of E_c/E*) = b·δ^p, ours (r) | −mean α of group 1 | paper | p dev from paper |")
+        a("\n| fit range | β (of E_c/E) = b·δ^p, ours (r) | −mean α of group 1 | paper | p dev from paper |")
         a("|---|---|---|---|---|")
         for fit, b in ana["table3_beta"].items():
             o = b["ours"]

@@ -132,9 +132,11 @@ class StageStore:
             k for k in set(params) | set(old.get("params", {}))
             if params.get(k) != old.get("params", {}).get(k)
         )  # fmt: skip
+        why = ("; it was written before β and E_c/E were normalised by the Young's modulus "
+               "(E_c/E*, see the changelog)") if diff == ["normalisation"] else ""  # fmt: skip
         raise StageConflict(
             f"stage {name!r} in {self.out} was computed with other parameters (differing: "
-            f"{', '.join(diff)}); use another --out, or --overwrite to replace it"
+            f"{', '.join(diff)}{why}); use another --out, or --overwrite to replace it"
         )
 
     @fill_doc(STAGE_DOCS)

@@ -29,7 +29,7 @@ from ..calibrate import CalibrationError, CalibrationTarget, calibrate
 from ..fractal import METHODS, fractal_dimensions
 from ..islands.depths import island_curve
 from ..islands.fits import applicable_depth, slit_bootstrap
-from ..stiffness import DEFAULT_MIN_PIXELS, stiffness_curve
+from ..stiffness import DEFAULT_MIN_PIXELS, NORMALISATION_E, stiffness_curve
 from ..sweep.grid import SweepGrid
 from ..sweep.options import SweepOptions
 from ..sweep.read import load_curves
@@ -363,6 +363,8 @@ def _stage_call(name: str, profile: Profile, res: dict[str, Any], store: StageSt
                    "late_fit_fraction"),
     }  # fmt: skip
     base = {k: full[k] for k in keys.get(name, ())}
+    if name in ("fig5", "group1", "group2"):  # stages written before hold E_c/E* (changelog)
+        base["normalisation"] = NORMALISATION_E
     if name == "elastic":
         from .elastic import stage_elastic, stage_params
 

@@ -6,11 +6,14 @@ Host-side float64 arithmetic on a :class:`~warptrunc.truncation.TruncationCurve`
 of Eq. 2 (:func:`flat_punch_stiffness`) and of power-law fits (:func:`fit_power_law` →
 :class:`PowerLawFit`).
 
-Two normalisations of the contact modulus E_c = (√π/2)·k/√A (§4.1) appear side by side:
-E_c/E* = β′·√(A_c/A) (``Ec_over_Estar``, the historical ``Ec_over_E`` column, Eq. 3) and
-E_c/E = (E*/E)·β′·√(A_c/A) with E the Young's modulus (``Ec_over_E_young``, the paper's
-Figs. 6 and 9 and Table 3). They differ by the constant E*/E (1/(1 − ν²) = 1.12 against a rigid
-flat), so a power-law fit gives the same α on both and β_E = β·E*/E (``beta_young``).
+One normalisation of the contact modulus E_c = (√π/2)·k/√A (§4.1) is *the* one: E_c/E with E
+the Young's modulus of the rough body, E_c/E = (E*/E)·β′·√(A_c/A) (``Ec_over_E``), as the
+paper's Figs. 6 and 9 and Table 3 plot and fit it; ``alpha`` and ``beta`` of every fit are
+those of E_c/E = β·[F/(E·A)]^α. The contact-modulus form E_c/E* = β′·√(A_c/A) (Eq. 3) stays
+under explicit names (``Ec_over_Estar``, ``beta_contact_modulus``). The two differ by the
+constant E*/E (1/(1 − ν²) = 1.12 against a rigid flat): the same α, β* = β·E/E*. Outputs
+written before this one normalisation held the E* ones under ``Ec_over_E`` and ``beta``; they
+are read with that meaning (see the changelog).
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from .curve import (
 )
 from .fit import (
     DEFAULT_MIN_PIXELS,
+    NORMALISATION_E,
     NORMALISATION_ESTAR,
     NORMALISATION_NONE,
     PowerLawFit,
@@ -34,6 +38,7 @@ from .fit import (
 
 __all__ = [
     "DEFAULT_MIN_PIXELS",
+    "NORMALISATION_E",
     "NORMALISATION_ESTAR",
     "NORMALISATION_NONE",
     "STIFFNESS_MODELS",

@@ -58,11 +58,16 @@ class StiffnessCurve:
     load: np.ndarray
     """(n+1,) F(ω) = ∫₀^ω k dω' by the cumulative trapezoidal rule (N)."""
     Ec_over_E: np.ndarray
-    """(n+1,) E_c/E* = β'·√(A_c/A) (dimensionless), Eq. (3), normalised by the contact modulus
-    E* (not the Young's modulus, despite the historical name: see :attr:`Ec_over_Estar`, the
-    same array, and :attr:`Ec_over_E_young`); β'·Σ√A_i/√A for ``model="islands"``."""
+    """(n+1,) E_c/E with E the Young's modulus of the rough body (dimensionless), as the
+    paper's Figs. 6 and 9 plot it: (E*/E)·β'·√(A_c/A), E_c = (√π/2)·k/√A (§4.1);
+    (E*/E)·β'·Σ√A_i/√A for ``model="islands"``. Before the one normalisation (changelog) this
+    column held E_c/E* (now :attr:`Ec_over_Estar`)."""
     F_over_EA: np.ndarray
     """(n+1,) F/(E·A) with E the Young's modulus of the rough body (dimensionless)."""
+    Ec_over_Estar: np.ndarray
+    """(n+1,) E_c/E* = β'·√(A_c/A) (dimensionless), Eq. (3): normalised by the contact modulus
+    E* = ``material.contact_modulus`` instead, a constant factor E/E* = 1 − ν² (against a rigid
+    flat) below :attr:`Ec_over_E`; β'·Σ√A_i/√A for ``model="islands"``."""
     material: Material
     """Elastic constants used."""
     beta_prime: float
@@ -75,28 +80,16 @@ class StiffnessCurve:
     """``"area"`` (Eq. 2, one punch of the truncated area) or ``"islands"`` (one punch per
     island, :func:`island_stiffness_curve`): one of :data:`STIFFNESS_MODELS`."""
 
-    @property
-    def Ec_over_Estar(self) -> np.ndarray:
-        """(n+1,) E_c/E* = β'·√(A_c/A) (dimensionless): :attr:`Ec_over_E` under its explicit
-        name (the same array), E_c = (√π/2)·k/√A and E* = ``material.contact_modulus``."""
-        return self.Ec_over_E
-
-    @property
-    def Ec_over_E_young(self) -> np.ndarray:
-        """(n+1,) E_c/E with E the Young's modulus of the rough body (dimensionless), as the
-        paper's Figs. 6 and 9 plot it: (E_c/E*)·(E*/E), the constant factor E*/E = 1/(1 − ν²)
-        (1.12 for ν = 0.33) against a rigid flat."""
-        return self.Ec_over_E * (self.material.contact_modulus / self.material.E)
-
     def to_dict(self) -> dict[str, np.ndarray]:
         """Columns in the order of ``curve.csv``.
 
         Returns
         -------
         dict of str to ndarray
-            Seven (n+1,) columns: ``depth_m`` (m), ``n_contact_pixels`` (int64),
+            Eight (n+1,) columns: ``depth_m`` (m), ``n_contact_pixels`` (int64),
             ``contact_area_m2`` (m²), ``stiffness_N_per_m`` (N/m), ``load_N`` (N),
-            ``Ec_over_E`` and ``F_over_EA`` (dimensionless). The arrays are the fields
+            ``Ec_over_E`` (E_c/E, E the Young's modulus), ``F_over_EA`` and ``Ec_over_Estar``
+            (E_c/E*, E* the contact modulus), all dimensionless. The arrays are the fields
             themselves, not copies.
         """
         return fields_to_dict(
@@ -137,15 +130,9 @@ class StiffnessCurve:
             truncation depth.
         islands : StiffnessCurve, optional
             The island-resolved model on the same depths (:func:`island_stiffness_curve`);
-            appends ``stiffness_islands_N_per_m`` (N/m), ``load_islands_N`` (N) and
-            ``Ec_over_E_islands`` (E_c/E*, dimensionless), as ``analyze`` writes ``curve.csv``.
-
-        Notes
-        -----
-        After the columns of :meth:`to_dict` (and the island columns) come ``Ec_over_Estar``
-        (E_c/E*, equal to ``Ec_over_E``) and ``Ec_over_E_young`` (E_c/E, E the Young's
-        modulus), then, with ``islands``, ``Ec_over_Estar_islands`` and
-        ``Ec_over_E_young_islands``: both normalisations under explicit names.
+            appends ``stiffness_islands_N_per_m`` (N/m), ``load_islands_N`` (N),
+            ``Ec_over_E_islands`` (E_c/E, E the Young's modulus) and ``Ec_over_Estar_islands``
+            (E_c/E*), dimensionless, as ``analyze`` writes ``curve.csv``.
 
         {returns_path}
             ``path``.
@@ -160,11 +147,8 @@ class StiffnessCurve:
             if not np.array_equal(islands.depth, self.depth):
                 raise ValueError("islands must be on the same depths as this curve")
             cols = {**cols, "stiffness_islands_N_per_m": islands.stiffness,
-                    "load_islands_N": islands.load, "Ec_over_E_islands": islands.Ec_over_E}  # fmt: skip
-        cols.update(Ec_over_Estar=self.Ec_over_Estar, Ec_over_E_young=self.Ec_over_E_young)
-        if islands is not None:
-            cols.update(Ec_over_Estar_islands=islands.Ec_over_Estar,
-                        Ec_over_E_young_islands=islands.Ec_over_E_young)  # fmt: skip
+                    "load_islands_N": islands.load, "Ec_over_E_islands": islands.Ec_over_E,
+                    "Ec_over_Estar_islands": islands.Ec_over_Estar}  # fmt: skip
         return write_columns_csv(path, cols)
 
 
@@ -233,7 +217,7 @@ def stiffness_curve(
     Returns
     -------
     StiffnessCurve
-        k, F, E_c/E* (and E_c/E) and F/(E·A) at each of the n+1 depths of ``curve`` (float64).
+        k, F, E_c/E (E the Young's modulus), E_c/E* and F/(E·A) at each of the n+1 depths of ``curve`` (float64).
 
     Raises
     ------
@@ -244,8 +228,8 @@ def stiffness_curve(
     -----
     k = β'·(2/√π)·E_r'·√A_c (Eq. 2, :func:`flat_punch_stiffness`);
     F(ω_k) = Σ_{j<k} ½(k_j + k_{j+1})(ω_{j+1} − ω_j) (cumulative trapezoidal rule, F(0) = 0);
-    E_c/E* = β'·√(A_c/A) (Eq. 3, E_c = (√π/2)·k/√A); F/(E·A) with E the Young's modulus of
-    the rough body and A = Lx·Ly.
+    E_c/E* = β'·√(A_c/A) (Eq. 3, E_c = (√π/2)·k/√A) and E_c/E = (E*/E)·E_c/E*; F/(E·A) with
+    E the Young's modulus of the rough body and A = Lx·Ly.
 
     Examples
     --------
@@ -265,13 +249,19 @@ def stiffness_curve(
         contact_area=area,
         stiffness=k,
         load=load,
-        Ec_over_E=beta_prime * np.sqrt(area / A),
+        Ec_over_E=(Ec := beta_prime * np.sqrt(area / A)) * _young_factor(material),
         F_over_EA=load / (material.E * A),
+        Ec_over_Estar=Ec,
         material=material,
         beta_prime=beta_prime,
         apparent_area=A,
         Rt=curve.Rt,
     )
+
+
+def _young_factor(material: Material) -> float:
+    """E*/E: from E_c/E* (the contact modulus) to E_c/E (the Young's modulus of the rough body)."""
+    return material.contact_modulus / material.E
 
 
 def cumulative_load(stiffness: np.ndarray, depth: np.ndarray) -> np.ndarray:
@@ -303,7 +293,7 @@ def island_stiffness_curve(
     Returns
     -------
     StiffnessCurve
-        ``model="islands"``: k, F, E_c/E* and F/(E·A) at each depth of ``island_curve``
+        ``model="islands"``: k, F, E_c/E, E_c/E* and F/(E·A) at each depth of ``island_curve``
         (float64); ``contact_area`` is the total truncated area A' (m²).
 
     Raises
@@ -317,7 +307,7 @@ def island_stiffness_curve(
     interaction between them), against Eq. (2)'s k' = β'·(2/√π)·E_r'·√(Σ_i A_i); since
     Σ√A_i ≥ √ΣA_i, k_isl ≥ k', with equality for one island. N equal islands give
     k_isl = √N·k'. F_isl = ∫₀^ω k_isl dω' by the cumulative trapezoidal rule, as Eq. (2)'s F;
-    E_c/E* = β'·Σ√A_i/√A, so :func:`fit_power_law` applies unchanged.
+    E_c/E* = β'·Σ√A_i/√A and E_c/E = (E*/E)·E_c/E*, so :func:`fit_power_law` applies unchanged.
 
     Examples
     --------
@@ -347,8 +337,9 @@ def island_stiffness_curve(
         contact_area=np.asarray(island_curve.contact_area, dtype=np.float64),
         stiffness=k,
         load=load,
-        Ec_over_E=beta_prime * s / math.sqrt(A),
+        Ec_over_E=(Ec := beta_prime * s / math.sqrt(A)) * _young_factor(material),
         F_over_EA=load / (material.E * A),
+        Ec_over_Estar=Ec,
         material=material,
         beta_prime=beta_prime,
         apparent_area=A,

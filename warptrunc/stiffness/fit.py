@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -27,6 +27,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "DEFAULT_MIN_PIXELS",
+    "NORMALISATION_E",
     "NORMALISATION_ESTAR",
     "NORMALISATION_NONE",
     "PowerLawFit",
@@ -38,9 +39,15 @@ __all__ = [
 DEFAULT_MIN_PIXELS = 10
 
 
-NORMALISATION_ESTAR = "E_c/E*"
+NORMALISATION_E = "E_c/E"
 """:attr:`PowerLawFit.normalisation` of a stiffness-curve fit: β is that of
-E_c/E* = β·[F/(E·A)]^α, E* the contact modulus (``beta_young`` that of E_c/E)."""
+E_c/E = β·[F/(E·A)]^α with E the Young's modulus of the rough body (the paper's Figs. 6 and 9
+and Table 3); ``beta_contact_modulus`` is that of E_c/E*."""
+
+NORMALISATION_ESTAR = "E_c/E*"
+"""The ``normalisation`` of a stiffness-curve fit written before the one normalisation (an old
+``fit.json``): its ``beta`` was that of E_c/E*, E* the contact modulus, and ``beta_young`` that
+of E_c/E. :meth:`PowerLawFit.from_dict` reads such a dict with that meaning."""
 
 NORMALISATION_NONE = "y = beta*x^alpha"
 """:attr:`PowerLawFit.normalisation` of a fit of two arrays: β is the prefactor of y = β·x^α."""
@@ -50,16 +57,18 @@ NORMALISATION_NONE = "y = beta*x^alpha"
 class PowerLawFit:
     """Least-squares power law y = β·x^α, fitted as log y = log β + α·log x.
 
-    For a :class:`StiffnessCurve`, y = E_c/E* and x = F/(E·A) (:data:`NORMALISATION_ESTAR`):
-    ``beta`` is normalised by the contact modulus E*, ``beta_young`` by the Young's modulus E
-    (the β of the paper's Figs. 6 and 9 and Table 3).
+    For a :class:`StiffnessCurve`, y = E_c/E and x = F/(E·A), E the Young's modulus of the
+    rough body (:data:`NORMALISATION_E`): ``beta`` is the β of the paper's Figs. 6 and 9 and
+    Table 3; ``beta_contact_modulus`` that of E_c/E*, E* the contact modulus (a factor E/E*
+    = 1 − ν² smaller against a rigid flat, α the same).
     """
 
     alpha: float
     """Exponent α (dimensionless)."""
     beta: float
     """Amplitude β (unit of y per unit of x^α): for a stiffness curve, that of
-    E_c/E* = β·[F/(E·A)]^α (dimensionless; see :attr:`normalisation`)."""
+    E_c/E = β·[F/(E·A)]^α with E the Young's modulus (dimensionless; see
+    :attr:`normalisation`)."""
     r2: float
     """Coefficient of determination of the log–log fit (dimensionless)."""
     n_points: int
@@ -76,12 +85,12 @@ class PowerLawFit:
     """Contact-pixel threshold of the fit range (pixels)."""
     depth_window: tuple[float, float] | None
     """Depth window of the fit range (m), if one was given."""
-    beta_young: float = math.nan
-    """For a stiffness curve: β_E of E_c/E = β_E·[F/(E·A)]^α with E the Young's modulus,
-    β·E*/E (dimensionless); NaN for a fit of two arrays or of a curve without a material."""
-    normalisation: str = NORMALISATION_ESTAR
-    """Which quantity ``beta`` belongs to: :data:`NORMALISATION_ESTAR` (E_c/E*) for a stiffness
-    curve, :data:`NORMALISATION_NONE` (y = β·x^α) for two arrays."""
+    beta_contact_modulus: float = math.nan
+    """For a stiffness curve: β* of E_c/E* = β*·[F/(E·A)]^α with E* the contact modulus,
+    β·E/E* (dimensionless); NaN for a fit of two arrays or of a curve without a material."""
+    normalisation: str = NORMALISATION_E
+    """Which quantity ``beta`` belongs to: :data:`NORMALISATION_E` (E_c/E, E the Young's
+    modulus) for a stiffness curve, :data:`NORMALISATION_NONE` (y = β·x^α) for two arrays."""
     r: float = math.nan
     """Pearson correlation of log x and log y of a fit of two arrays (dimensionless; NaN when y
     is constant, and for a stiffness curve)."""
@@ -97,9 +106,39 @@ class PowerLawFit:
         """
         d = asdict(self)
         d["depth_window"] = None if self.depth_window is None else list(self.depth_window)
-        if self.normalisation == NORMALISATION_ESTAR:
+        if self.normalisation == NORMALISATION_E:
             del d["r"]
         return d
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> PowerLawFit:
+        """A fit from :meth:`to_dict` (or a ``fit.json``), old ones read with their meaning.
+
+        Parameters
+        ----------
+        d : dict
+            The fields; unknown keys (``provenance``, ``surface``, …) are ignored. A dict
+            whose ``normalisation`` is :data:`NORMALISATION_ESTAR` (written before the one
+            normalisation) held β of E_c/E* in ``beta`` and β of E_c/E in ``beta_young``: they
+            become ``beta_contact_modulus`` and ``beta``.
+
+        Returns
+        -------
+        PowerLawFit
+            With ``beta`` that of E_c/E (E the Young's modulus) for a stiffness curve.
+        """
+        d = dict(d)
+        if d.get("normalisation") == NORMALISATION_ESTAR:
+            d["beta_contact_modulus"] = d["beta"]
+            d["beta"] = d.pop("beta_young", math.nan)
+            d["normalisation"] = NORMALISATION_E
+        names = {f.name for f in fields(cls)}
+        kw = {k: (math.nan if v is None else v) for k, v in d.items() if k in names}
+        if kw.get("depth_window") is not None and kw["depth_window"] is not math.nan:
+            kw["depth_window"] = tuple(kw["depth_window"])
+        else:
+            kw["depth_window"] = None
+        return cls(**kw)
 
     @fill_doc(WRITE_DOCS)
     def to_json(self, path: str | Path) -> Path:
@@ -128,7 +167,8 @@ def fit_power_law(
 ) -> PowerLawFit:
     """Fit a power law y = β·x^α by least squares in log–log space.
 
-    ``fit_power_law(sc)`` fits a stiffness curve, E_c/E* = β·[F/(E·A)]^α (the paper's §4.4);
+    ``fit_power_law(sc)`` fits a stiffness curve, E_c/E = β·[F/(E·A)]^α with E the Young's
+    modulus (the paper's §4.4);
     ``fit_power_law(x, y)`` fits two arrays, y = β·x^α (k against F, β against δ, …). Every
     power-law fit of warptrunc is this function.
 
@@ -149,7 +189,7 @@ def fit_power_law(
     Returns
     -------
     PowerLawFit
-        α, β, r² and, for a stiffness curve, ``beta_young`` and the depth and F/(E·A) range of
+        α, β, r² and, for a stiffness curve, ``beta_contact_modulus`` and the depth and F/(E·A) range of
         the increments used; for two arrays, Pearson ``r`` of the logs and NaN ranges.
 
     Raises
@@ -162,9 +202,11 @@ def fit_power_law(
     Notes
     -----
     Stiffness curve: increments with zero load (ω = 0) are always left out (log 0); the line is
-    solved by the centred normal equations and r² is that of the regression of log(E_c/E*) on
-    log(F/(E·A)). β_E = β·E*/E (``beta_young``): E_c/E differs from E_c/E* by the constant E*/E,
-    which shifts log y and leaves α unchanged.
+    solved by the centred normal equations and r² is that of the regression of log(E_c/E) on
+    log(F/(E·A)) (NaN when E_c/E does not vary over the range: no regression to measure). β* = β·E/E* (``beta_contact_modulus``): E_c/E* differs from E_c/E by the
+    constant E/E*, which shifts log y and leaves α unchanged. An object without a ``material``
+    (duck-typed curves: ``load``, ``n_contact_pixels``, ``depth``, ``F_over_EA`` and
+    ``Ec_over_E`` arrays) gets NaN there.
 
     Two arrays: the line by :func:`numpy.polyfit` of natural logs,
     r² = 1 − Σ residual²/Σ(log y − mean)², r by :func:`numpy.corrcoef`.
@@ -172,7 +214,7 @@ def fit_power_law(
     Examples
     --------
     >>> fit = fit_power_law(stiffness_curve(tc), min_pixels=100)
-    >>> fit.alpha, fit.beta, fit.beta_young, fit.r2
+    >>> fit.alpha, fit.beta, fit.beta_contact_modulus, fit.r2
     >>> fit_power_law([1.0, 2.0, 4.0], [3.0, 6.0, 12.0]).alpha  # y = 3·x
     """
     if y is not None:
@@ -203,7 +245,10 @@ def fit_power_law(
     logb = ym - alpha * xm
     resid = yc - alpha * xc
     ss_tot = float(yc @ yc)
-    r2 = 1.0 - float(resid @ resid) / ss_tot if ss_tot > 0 else 1.0
+    # E_c/E constant over the range (the same few contact pixels at every increment): no
+    # regression to measure, so r² is undefined (NaN) rather than a value of round-off noise
+    flat = float(np.ptp(y)) <= 1e-12 * max(1.0, abs(ym))
+    r2 = math.nan if flat else 1.0 - float(resid @ resid) / ss_tot
     d = sc.depth[sel]
     f = sc.F_over_EA[sel]
     return PowerLawFit(
@@ -217,13 +262,15 @@ def fit_power_law(
         F_over_EA_max=float(f.max()),
         min_pixels=min_pixels,
         depth_window=None if depth_window is None else (lo, hi),
-        beta_young=_beta_young(float(np.exp(logb)), getattr(sc, "material", None)),
+        beta_contact_modulus=_beta_contact_modulus(
+            float(np.exp(logb)), getattr(sc, "material", None)
+        ),
     )
 
 
-def _beta_young(beta: float, material: Material | None) -> float:
-    """β·E*/E: the β of E_c/E from that of E_c/E* (NaN without a material)."""
-    return math.nan if material is None else beta * (material.contact_modulus / material.E)
+def _beta_contact_modulus(beta: float, material: Material | None) -> float:
+    """β·E/E*: the β of E_c/E* from that of E_c/E (NaN without a material)."""
+    return math.nan if material is None else beta * (material.E / material.contact_modulus)
 
 
 def _fit_arrays(x: Any, y: Any, *, min_points: int) -> PowerLawFit:

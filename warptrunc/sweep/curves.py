@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from .._support.results import jsonable
+from .normalisation import upgrade_curves, upgrade_rows
 
 __all__ = [
     "CURVE_COLUMNS",
@@ -37,9 +38,12 @@ __all__ = [
 
 CURVE_COLUMNS = (
     "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
-    "Ec_over_E", "F_over_EA",
+    "Ec_over_E", "F_over_EA", "Ec_over_Estar",
 )  # fmt: skip
-"""Curve columns of a part, after ``case_id`` (as ``warptrunc analyze``'s curve.csv)."""
+"""Curve columns of a part, after ``case_id`` (as ``warptrunc analyze``'s curve.csv): E_c/E (E
+the Young's modulus) is ``Ec_over_E``, E_c/E* ``Ec_over_Estar``. Parts written before the one
+normalisation lack ``Ec_over_Estar`` and are read with their meaning
+(:mod:`warptrunc.sweep.normalisation`)."""
 
 PART_GLOB = "part-*.parquet"
 """Names of the parts in ``OUT/curves``; temporaries start with a dot (readers skip them)."""
@@ -155,8 +159,9 @@ def part_rows(path: str | Path) -> list[list[dict[str, Any]]] | None:
     Returns
     -------
     list of list of dict, or None
-        Per case, its fit-range rows (the cases table's columns); None for a file that is
-        truncated, empty or not a part.
+        Per case, its fit-range rows (the cases table's columns; rows written before the one
+        normalisation are converted, :func:`~warptrunc.sweep.normalisation.upgrade_rows`);
+        None for a file that is truncated, empty or not a part.
     """
     import pyarrow.parquet as pq
 
@@ -164,7 +169,9 @@ def part_rows(path: str | Path) -> list[list[dict[str, Any]]] | None:
         meta = pq.read_schema(path).metadata or {}
     except (OSError, ValueError):  # truncated or empty (e.g. renamed, then power loss)
         return None
-    return json.loads(meta[_META_KEY]) if _META_KEY in meta else None
+    if _META_KEY not in meta:
+        return None
+    return [upgrade_rows(rs) for rs in json.loads(meta[_META_KEY])]
 
 
 def read_part_curves(path: str | Path, case_ids=None):
@@ -180,12 +187,16 @@ def read_part_curves(path: str | Path, case_ids=None):
     Returns
     -------
     pandas.DataFrame
-        ``case_id`` and CURVE_COLUMNS (SI units), one row per depth increment.
+        ``case_id`` and CURVE_COLUMNS (SI units), one row per depth increment (a part written
+        before the one normalisation converted, :func:`~warptrunc.sweep.normalisation.upgrade_curves`).
     """
     import pyarrow.parquet as pq
 
     filters = None if case_ids is None else [("case_id", "in", list(case_ids))]
-    return pq.read_table(path, filters=filters).to_pandas()
+    df = pq.read_table(path, filters=filters).to_pandas()
+    if "Ec_over_Estar" not in df.columns:
+        df = upgrade_curves(df, part_rows(path))
+    return df
 
 
 def _part_table(results: list[Result]):

@@ -132,7 +132,8 @@ def _finish(o: SweepOptions, base: dict[str, Any], sc, seconds: float, device) -
         if curve is not None:
             try:
                 f = fit_power_law(sc, min_pixels=mp, depth_window=o.depth_window)
-                row.update(alpha=f.alpha, beta=f.beta, r2=f.r2, n_points=f.n_points,
+                row.update(alpha=f.alpha, beta=f.beta, beta_contact_modulus=f.beta_contact_modulus,
+                           r2=f.r2, n_points=f.n_points,
                            fit_depth_min_m=f.depth_min, fit_depth_max_m=f.depth_max)  # fmt: skip
                 found = check_fit(f, sc)  # not worth reading: kept, with fit_error and warnings
                 row.update(fit_error=fit_error_text(found))

@@ -17,6 +17,7 @@ import numpy as np
 from .._support.atomic import read_json
 from .curves import CURVE_COLUMNS, part_files, part_rows, read_part_curves
 from .grid import FORMAT
+from .normalisation import upgrade_cases
 
 __all__ = ["BEM_QUANTITIES", "CASE_COLUMNS", "RUN_COLUMNS", "bem_long", "load", "load_curves"]
 
@@ -24,13 +25,18 @@ CASE_COLUMNS = (
     "case_id", "case_index", "D_in", "delta", "seed", "Rt_m", "Wr_m", "Lx_m", "Ly_m", "nx",
     "ny", "M", "gamma", "Wc_m", "cutoff", "increments", "max_depth_fraction", "max_depth_m",
     "E_Pa", "nu", "E_flat_Pa", "nu_flat", "beta_prime", "min_pixels", "min_pixels_fraction",
-    "depth_window_lo_m", "depth_window_hi_m", "alpha", "beta", "r2", "n_points",
+    "depth_window_lo_m", "depth_window_hi_m", "alpha", "beta", "beta_contact_modulus", "r2", "n_points",
     "fit_depth_min_m", "fit_depth_max_m", "final_contact_pixels", "final_area_fraction",
     "Rt_measured_m", "D_tri", "D_tri_r2", "D_box", "D_box_r2", "D_vs", "D_vs_r2", "D_sp",
     "D_sp_r2", "fractal_options", "fractal_seconds", "fit_error", "warnings", "error", "seconds", "device", "device_name", "host", "finished_utc",
     "warptrunc_version", "git_commit",
 )  # fmt: skip
 """Columns of ``cases.parquet``, in order; units in the names (SI).
+
+``alpha`` and ``beta`` are those of E_c/E = β·[F/(E·A)]^α with E the Young's modulus (the
+paper's Figs. 6 and 9), ``beta_contact_modulus`` the β of E_c/E*, E* the contact modulus (a
+store written before the one normalisation is read with its meaning:
+:mod:`warptrunc.sweep.normalisation`).
 
 ``min_pixels_fraction`` is NaN for a ``min_pixels`` fit range and f for a
 ``min_pixels_fraction`` one (``min_pixels`` then holds the count it resolved to, 0 when the
@@ -192,7 +198,8 @@ def load(path: str | Path):
     parts = _unique_parts(path)
     f = path / "cases.parquet"
     if f.exists() and manifest_parts(path) == {p.name for p, _ in parts}:
-        return sort_cases(pq.read_table(f).to_pandas().rename(columns=RENAMED_COLUMNS))
+        df = pq.read_table(f).to_pandas().rename(columns=RENAMED_COLUMNS)
+        return sort_cases(upgrade_cases(df))
     rows = [r for _, held in parts for rs in held for r in rs]
     return sort_cases(rows_frame(rows, columns))
 

@@ -58,6 +58,7 @@ def base_row(case: Case, o: SweepOptions) -> dict[str, Any]:
         "max_depth_m": np.nan if o.max_depth is None else o.max_depth, "E_Pa": o.E, "nu": o.nu,
         "E_flat_Pa": o.E_flat, "nu_flat": o.nu_flat, "beta_prime": o.beta_prime,
         "depth_window_lo_m": lo, "depth_window_hi_m": hi, "alpha": np.nan, "beta": np.nan,
+        "beta_contact_modulus": np.nan,
         "r2": np.nan, "n_points": None, "fit_depth_min_m": np.nan, "fit_depth_max_m": np.nan,
         "final_contact_pixels": None, "final_area_fraction": np.nan, "Rt_measured_m": np.nan,
         **{f"D_{m}{s}": np.nan for m in FRACTAL_METHODS for s in ("", "_r2")},

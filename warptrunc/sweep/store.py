@@ -62,6 +62,7 @@ from .curves import (
 )  # fmt: skip
 from .grid import FORMAT, STORE_FORMAT, SweepGrid
 from .migration import migrate
+from .normalisation import NORMALISATION
 from .options import SweepOptions
 from .read import (
     CASE_COLUMNS,
@@ -170,10 +171,12 @@ class Store:
         Returns
         -------
         dict of str to Any
-            ``format``, ``grid``, ``options`` and ``n_cases``.
+            ``format``, ``normalisation`` (:data:`~warptrunc.sweep.normalisation.NORMALISATION`,
+            the meaning of ``beta``), ``grid``, ``options`` and ``n_cases``.
         """
         return {
             "format": STORE_FORMAT,
+            "normalisation": NORMALISATION,
             "grid": self.grid.to_dict(),
             "options": self.options.to_dict(),
             "n_cases": len(self.grid),
