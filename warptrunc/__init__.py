@@ -5,28 +5,28 @@
 Symbols (paper notation → code name, SI unit); the full mapping, with the names that collide
 between the paper and the code, is the glossary (``docs/guide/glossary.md``):
 
-======  ======================  ==========================================
-D       ``D``                   fractal dimension D_in (dimensionless, 2 < D < 3)
-W_r     ``Wr``                  roll-off wavelength (m)
-W_c     ``Wc``                  cut-off wavelength (m)
-γ       ``gamma``               WM frequency density (dimensionless, > 1)
-M       ``M``                   number of superposed ridges
-G       ``G``                   topothesy (m)
-R_t     ``Rt``                  peak-to-valley height (m)
-δ       ``delta``               relative roughness R_t/W_r (dimensionless)
-ω       ``depth``               truncation depth from the top (m)
-A_c     ``contact_area``        truncated (contact) area A′ (m²)
-A       ``apparent_area``       apparent area Lx·Ly (m²)
-k       ``stiffness``           normal contact stiffness, Eq. 2 (N/m)
-F       ``load``                normal load (N)
-E, ν    ``E``, ``nu``           Young's modulus (Pa), Poisson's ratio of the rough body
-E_r′    ``contact_modulus``     contact modulus E* = [(1−ν²)/E + (1−ν_i²)/E_i]⁻¹ (Pa)
-β′      ``beta_prime``          geometric factor of Eq. 2 (dimensionless)
-E_c/E   ``Ec_over_E``           (E*/E)·β′·√(A_c/A), E the Young's modulus (dimensionless)
-E_c/E*  ``Ec_over_Estar``       β′·√(A_c/A), Eq. 3, E* the contact modulus (dimensionless)
-α, β    ``alpha``, ``beta``     exponent and amplitude of E_c/E = β[F/(E·A)]^α (the paper's)
-β*      ``beta_contact_modulus`` amplitude of E_c/E* = β*[F/(E·A)]^α, β·E/E*
-======  ======================  ==========================================
+======  ========================  ==========================================
+D       ``D``                     fractal dimension D_in (dimensionless, 2 < D < 3)
+W_r     ``Wr``                    roll-off wavelength (m)
+W_c     ``Wc``                    cut-off wavelength (m)
+γ       ``gamma``                 WM frequency density (dimensionless, > 1)
+M       ``M``                     number of superposed ridges
+G       ``G``                     topothesy (m)
+R_t     ``Rt``                    peak-to-valley height (m)
+δ       ``delta``                 relative roughness R_t/W_r (dimensionless)
+ω       ``depth``                 truncation depth from the top (m)
+A_c     ``contact_area``          truncated (contact) area A′ (m²)
+A       ``apparent_area``         apparent area Lx·Ly (m²)
+k       ``stiffness``             normal contact stiffness, Eq. 2 (N/m)
+F       ``load``                  normal load (N)
+E, ν    ``E``, ``nu``             Young's modulus (Pa), Poisson's ratio of the rough body
+E_r′    ``contact_modulus``       contact modulus E* = [(1−ν²)/E + (1−ν_i²)/E_i]⁻¹ (Pa)
+β′      ``beta_prime``            geometric factor of Eq. 2 (dimensionless)
+E_c/E   ``Ec_over_E``             (E*/E)·β′·√(A_c/A), E the Young's modulus (dimensionless)
+E_c/E*  ``Ec_over_Estar``         β′·√(A_c/A), Eq. 3, E* the contact modulus (dimensionless)
+α, β    ``alpha``, ``beta``       exponent and amplitude of E_c/E = β[F/(E·A)]^α (the paper's)
+β*      ``beta_contact_modulus``  amplitude of E_c/E* = β*[F/(E·A)]^α, β·E/E*
+======  ========================  ==========================================
 
 One public function per operation: generate :func:`wm_surface`, truncate :func:`truncate`,
 label :func:`label_islands`, fit :func:`fit_power_law`, solve a contact :func:`solve_contact`.

@@ -27,7 +27,7 @@ from ..kernels import contact as _k
 from ..kernels import contact_reduce as _kr
 from .results import ContactState
 
-__all__: list[str] = []  # methods of ContactSolver, all private
+__all__ = ["SolveLoop"]
 
 
 class SolveLoop:

@@ -38,7 +38,7 @@ from .halfspace import ElasticHalfSpace
 from .influence import GRID_DOCS
 from .settings import SolverSettings
 
-__all__: list[str] = []  # public as ContactSolver.memory_terms and .memory_bytes
+__all__ = ["SolverMemory"]
 
 
 class SolverMemory:

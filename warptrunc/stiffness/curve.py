@@ -4,7 +4,7 @@
 
 The one home of Eq. 2 (:func:`flat_punch_stiffness`), of the area model
 (:func:`stiffness_curve`) and the island-resolved model (:func:`island_stiffness_curve`), and of
-the load integral F = ∫k dω (:func:`cumulative_load`). The power-law fit of these curves is in
+the load integral F = ∫k dω (``cumulative_load``). The power-law fit of these curves is in
 :mod:`warptrunc.stiffness.fit`; everything is re-exported by :mod:`warptrunc.stiffness`.
 """
 
