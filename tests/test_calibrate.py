@@ -67,6 +67,19 @@ def test_given_targets_and_high_resolution_surface():
     json.dumps(s.params)
 
 
+@pytest.mark.parametrize(("D", "side", "D_in"), [(2.70, "upper", 2.4), (2.45, "lower", 2.3)])
+def test_calibration_ending_on_a_bound_says_so(D, side, D_in):
+    """D_vs of these 64² surfaces is 2.55 at D_in = 2.3 and 2.58 at 2.4 (measured): the target
+    is met within 5 % only at one end of [2.3, 2.4], and the result says which."""
+    target = CalibrationTarget(D=D, method="vs", Rrms=2e-6, Rt=15e-6, Wr=WR, L=L, n=64)
+    cal = calibrate(target, seeds=(0, 1), D_bounds=(2.3, 2.4), D_start=D_in, progress=False,
+                    device="cpu")  # fmt: skip
+    assert cal.D_in == D_in and cal.bound == side
+    assert abs(cal.D_out - D) <= 0.05 * D  # within tolerance, yet only on the bound
+    d = cal.to_dict()
+    assert d["bound"] == side and d["D_bounds"] == [2.3, 2.4]
+
+
 def test_unreachable_target():
     """D_tri in metres ("si") of a surface whose heights are tiny against the pixel size
     stays near 2."""
@@ -169,6 +182,25 @@ def test_cli_calibrate_from_file_and_errors(tmp_path, capsys):
     assert not (tmp_path / "o" / "surface.npz").exists()
     assert main(["calibrate", "--D", "2.4", "--no-progress"]) == 2
     assert "missing --Rrms, --Rt, --Wr, --L, --n" in capsys.readouterr().err
+
+
+def test_cli_calibrate_d_bounds(tmp_path, capsys):
+    """--D-bounds is the search interval; a result on a bound is said and recorded (the case
+    of test_calibration_ending_on_a_bound_says_so)."""
+    from warptrunc.cli import main
+
+    args = ["calibrate", "--method", "vs", "--D", "2.70", "--Rrms", "2e-6", "--Rt", "15e-6",
+            "--Wr", str(WR), "--L", str(L), "--n", "64", "--seeds", "0", "1", "--no-progress",
+            "--no-surface", "--device", "cpu", "--out", str(tmp_path / "o")]  # fmt: skip
+    assert main([*args, "--D-bounds", "2.3", "2.4"]) == 0
+    info = json.loads((tmp_path / "o" / "calibration.json").read_text())
+    assert info["bound"] == "upper" and info["D_bounds"] == [2.3, 2.4] and info["D_in"] == 2.4
+    assert "note: D_in' is the upper bound of --D-bounds (2.3, 2.4)" in capsys.readouterr().out
+    assert main([*args, "--D-bounds", "2.4", "2.3"]) == 2
+    assert "--D-bounds must be LO < HI inside (2, 3), got 2.4 2.3" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main([*args, "--D-bounds", "2.4", "3"])
+    assert "argument --D-bounds: must be in (2, 3), got '3'" in capsys.readouterr().err
 
 
 def test_calibration_history_figure(tmp_path):

@@ -150,6 +150,20 @@ class Calibration:
     """(k,) float64 seed standard deviation of D_out (dimensionless)."""
     history_Rrms: np.ndarray
     """(k,) float64 mean R_rms of every evaluation (m)."""
+    D_bounds: tuple[float, float] = (2.02, 2.98)
+    """Search interval of D_in (dimensionless)."""
+
+    @property
+    def bound(self) -> str | None:
+        """``"lower"`` or ``"upper"`` when D_in' is that bound of ``D_bounds``, else None.
+
+        A calibration that ends on a bound met the target within ``rtol`` only there (or the
+        bound is where the search stopped): not an interior match, so report it as such.
+        """
+        lo, hi = self.D_bounds
+        if self.D_in <= lo + 1e-9:
+            return "lower"
+        return "upper" if self.D_in >= hi - 1e-9 else None
 
     @property
     def iterations(self) -> int:
@@ -163,7 +177,8 @@ class Calibration:
         -------
         dict
             Scalars ``D_in``, ``D_out``, ``D_out_std`` (dimensionless), ``Rt_m``, ``Wr_m``,
-            ``Rrms_m`` (m), ``converged``, ``rtol``, ``iterations``, ``seeds``; the WM options
+            ``Rrms_m`` (m), ``converged``, ``rtol``, ``iterations``, ``seeds``, ``D_bounds``,
+            ``bound`` (``"lower"``, ``"upper"`` or None, see :attr:`bound`); the WM options
             as ``wm_<name>``; the target's :meth:`CalibrationTarget.to_dict` as
             ``target_<name>``; and the history arrays ``history_D_in``, ``history_Rt_m``,
             ``history_D_out``, ``history_D_out_std``, ``history_Rrms_m``, shape
@@ -181,6 +196,8 @@ class Calibration:
             "rtol": self.rtol,
             "iterations": self.iterations,
             "seeds": list(self.seeds),
+            "D_bounds": list(self.D_bounds),
+            "bound": self.bound,
             **{f"wm_{k}": v for k, v in self.wm_options.items()},
             **{f"target_{k}": v for k, v in self.target.to_dict().items()},
             "history_D_in": self.history_D_in,
@@ -278,7 +295,8 @@ def calibrate(
     D_start : float, optional
         First D_in; default the target D (as in the paper), clipped to ``D_bounds``.
     D_bounds : (float, float)
-        Search interval for D_in, inside (2, 3).
+        Search interval for D_in, inside (2, 3) (the WM model's range). A result on a bound is
+        flagged by :attr:`Calibration.bound`.
     max_iter : int
         Largest number of evaluations of the D loop per round.
     max_rounds : int
@@ -381,6 +399,7 @@ def calibrate(
         history_D_out=h[:, 2],
         history_D_out_std=h[:, 3],
         history_Rrms=h[:, 4],
+        D_bounds=(lo, hi),
     )
 
 

@@ -58,6 +58,8 @@ TABLE1: MappingProxyType = MappingProxyType({
 })  # fmt: skip
 """The paper's Table 1 simulated surfaces (name → :class:`~warptrunc.WMSpec`, SI units)."""
 
+TABLE1_TRI = TABLE1
+
 CALIBRATION: MappingProxyType = MappingProxyType({
     name: {
         "matched": "D_tri", "profile": "paper", "commit": "c3f7c18",

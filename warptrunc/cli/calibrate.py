@@ -57,6 +57,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     c.add_argument("--rtol", type=real(0.0, 1.0), default=0.05, help="relative tolerance on D")
     c.add_argument("--max-iter", type=integer(2, 1000), default=12, help="evaluations per D loop")
+    c.add_argument(
+        "--D-bounds", type=real(2.0, 3.0), nargs=2, default=[2.02, 2.98], metavar=("LO", "HI"),
+        help="search interval of D_in, inside (2, 3); a result on a bound is reported as such",
+    )  # fmt: skip
     c.add_argument("--no-progress", action="store_true", help="no progress bar")
     o = p.add_argument_group("output surface")
     o.add_argument(
@@ -117,8 +121,11 @@ def run(args: argparse.Namespace) -> int:
         f"{target.n[0]}×{target.n[1]} pixels over "
         f"{target.L[0] * 1e6:.4g}×{target.L[1] * 1e6:.4g} µm"
     )
+    lo, hi = args.D_bounds
+    if not lo < hi:
+        raise ValueError(f"--D-bounds must be LO < HI inside (2, 3), got {lo:g} {hi:g}")
     cal = calibrate(
-        target, seeds=args.seeds, rtol=args.rtol, max_iter=args.max_iter,
+        target, seeds=args.seeds, rtol=args.rtol, max_iter=args.max_iter, D_bounds=(lo, hi),
         progress=not args.no_progress, device=args.device,
     )  # fmt: skip
     d = cal.to_dict()
@@ -140,6 +147,12 @@ def run(args: argparse.Namespace) -> int:
         f"{cal.D_out:.4f} ± {cal.D_out_std:.4f}, R_rms = {cal.Rrms * 1e6:.4g} µm "
         f"({cal.iterations} evaluations × {len(cal.seeds)} seeds)"
     )
+    if cal.bound is not None:
+        print(
+            f"note: D_in' is the {cal.bound} bound of --D-bounds ({lo:g}, {hi:g}): the target is "
+            "met within --rtol only there, not at an interior D_in (widen --D-bounds if the "
+            "WM model allows it)"
+        )
     written = [str(args.out / "calibration.json")]
     if surf is not None:
         written.append(str(args.out / "surface.npz"))
