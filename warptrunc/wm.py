@@ -30,6 +30,7 @@ __all__ = [
     "WMTerms",
     "wm_spec",
     "wm_surface",
+    "wm_window",
 ]
 
 WM_DOCS = {
@@ -379,3 +380,75 @@ def surface_from_spec(spec: WMTerms, device: wp.context.Device) -> Surface:
     # device-resident, no host copy until one is asked for; the recorded extremes are exact and
     # finite, and every height lies between them, so no validation pass is needed
     return Surface._on_device(z, spec.dx, spec.dy, params, extremes)
+
+
+def wm_window(
+    params: dict[str, Any],
+    origin: tuple[int, int],
+    shape: tuple[int, int],
+    factor: int = 1,
+    *,
+    device: wp.DeviceLike = None,
+) -> np.ndarray:
+    """Rows and columns of a WM surface's map generated again, at its pixel or a finer one.
+
+    The same terms as the map (phases, W_r, cut-off W_c, so n_max) and the map's height
+    ``scale`` frozen: never scaled again to R_t, so a window at a finer pixel holds the same
+    surface as the map, sampled more densely.
+
+    Parameters
+    ----------
+    params : dict
+        The map's ``Surface.params`` from :func:`wm_surface`: its generation parameters, ``Wc``,
+        ``n_max`` and ``scale``.
+    origin : (int, int)
+        (iy0, ix0): the window's first row and column on the refined map of
+        (ny·factor, nx·factor) pixels.
+    shape : (int, int)
+        (wy, wx): the window's rows and columns (refined pixels).
+    factor : int
+        Pixels dx/factor, dy/factor. Sample (iy, ix) of the refined map lies at
+        (ix·dx/factor, iy·dy/factor), as the map's sample (iy, ix) lies at (ix·dx, iy·dy)
+        (:func:`wm_surface`), so the refined sample (factor·i, factor·j) is the map's (i, j).
+    device : str or warp.context.Device, optional
+        Warp device; see :func:`warptrunc.resolve_device`.
+
+    Returns
+    -------
+    (wy, wx) ndarray of float32
+        Heights (m): scale·S, S the raw WM sum of Eq. (4).
+
+    Raises
+    ------
+    ValueError
+        ``params`` not those of a WM map, its terms not reproduced (another n_max), or a
+        window, origin or factor out of range.
+    """
+    if params.get("generator") != "weierstrass-mandelbrot":
+        raise ValueError(f"params must be a WM surface's, got generator {params.get('generator')!r}")
+    f = int(factor)
+    if f < 1:
+        raise ValueError(f"factor must be an integer >= 1, got {factor!r}")
+    wy, wx = (int(v) for v in shape)
+    iy0, ix0 = (int(v) for v in origin)
+    if wy < 1 or wx < 1 or iy0 < 0 or ix0 < 0:
+        raise ValueError(f"window origin {origin!r} and shape {shape!r} must be >= 0 and >= 1")
+    spec = WMSpec(D=params["D"], Wr=params["Wr"], L=(params["Lx"], params["Ly"]),
+                  n=(params["nx"], params["ny"]), M=params["M"], gamma=params["gamma"],
+                  Wc=params["Wc"], cutoff=params["cutoff"], seed=params["seed"],
+                  Rt=params.get("Rt"), G=params.get("G"), method=params["method"])  # fmt: skip
+    terms = spec.terms()
+    if terms.n_max != params["n_max"]:
+        raise ValueError(
+            f"params give n_max = {terms.n_max}, the map has {params['n_max']}: not its terms"
+        )
+    dx, dy = terms.dx / f, terms.dy / f
+    # the window's first sample lies at (x0, y0): fold k·x0 into the phases (float64, mod 2π)
+    x0, y0 = ix0 * dx, iy0 * dy
+    alpha = np.mod(terms.alpha + terms.kx * x0 + terms.ky * y0, 2.0 * math.pi)
+    win = WMTerms(**{**terms.__dict__, "nx": wx, "ny": wy, "dx": dx, "dy": dy, "alpha": alpha})
+    dev = resolve_device(device)
+    z, _c0, _lo, _hi = _raw_sum(win, dev)
+    c0 = float(np.sum(terms.w * np.cos(terms.alpha)))  # the map's constant, not the window's
+    wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, float(params["scale"])], device=dev)
+    return z.numpy()

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -35,6 +36,7 @@ __all__ = [
     "lens_fraction",
     "place_punches",
     "punch_window",
+    "punch_window_at",
 ]
 
 
@@ -296,14 +298,60 @@ def punch_window(
     z = np.asarray(heights, dtype=np.float64)
     dx, dy = _pixel_pair(pixel_size)
     ny, nx = z.shape
+    if diameter is None:
+        lx, ly = nx * dx, ny * dy
+        c = (0.5 * lx, 0.5 * ly) if centre is None else tuple(float(v) for v in centre)
+        mask = np.ones((ny, nx), dtype=bool)
+        return PunchWindow(None, c, (0, 0), mask, z.copy(), float(z.min()), (dx, dy), lx * ly)
+    return punch_window_at(lambda o, s: z[o[0] : o[0] + s[0], o[1] : o[1] + s[1]],
+                           z.shape, (dx, dy), diameter, centre, drop=drop)  # fmt: skip
+
+
+def punch_window_at(
+    generate: Callable[[tuple[int, int], tuple[int, int]], np.ndarray],
+    map_shape: tuple[int, int],
+    pixel_size: float | tuple[float, float],
+    diameter: float,
+    centre: tuple[float, float] | None = None,
+    *,
+    drop: float | None = None,
+) -> PunchWindow:
+    """:func:`punch_window` on a map known through the heights of any window of it.
+
+    Only the disk's bounding window is asked for, so a map too large to hold (a WM surface
+    generated again at a finer pixel, :func:`warptrunc.wm.wm_window`) can be indented.
+
+    Parameters
+    ----------
+    generate : callable
+        ``generate((iy0, ix0), (wy, wx))`` → (wy, wx) heights (m) of rows iy0 … iy0 + wy − 1
+        and columns ix0 … ix0 + wx − 1 of the map.
+    map_shape : (int, int)
+        The map's size (ny, nx).
+    pixel_size : float or (float, float)
+        Pixel sides dx, dy (m).
+    diameter : float
+        Punch diameter d (m).
+    centre : (float, float), optional
+        Punch centre (x, y) (m); default the map centre. The disk must lie inside the map.
+    drop : float, optional
+        As for :func:`punch_window` (m).
+
+    Returns
+    -------
+    PunchWindow
+
+    Raises
+    ------
+    ValueError
+        A punch larger than the map, a disk reaching outside it or covering no pixel centre.
+    """
+    dx, dy = _pixel_pair(pixel_size)
+    ny, nx = (int(v) for v in map_shape)
     lx, ly = nx * dx, ny * dy
     if centre is None:
         centre = (0.5 * lx, 0.5 * ly)
     cx, cy = (float(v) for v in centre)
-    if diameter is None:
-        mask = np.ones((ny, nx), dtype=bool)
-        return PunchWindow(None, (cx, cy), (0, 0), mask, z.copy(), float(z.min()), (dx, dy),
-                           lx * ly)  # fmt: skip
     d = check_range("punch_diameter", diameter, 0.0, unit="m")
     if d > min(lx, ly) * (1 + 1e-12):
         raise ValueError(
@@ -333,7 +381,9 @@ def punch_window(
             f"a punch of diameter {d:.6g} m centred at ({cx:.6g}, {cy:.6g}) m covers no pixel "
             "centre; use a larger punch"
         )
-    win = z[iy0 : iy1 + 1, ix0 : ix1 + 1].copy()
+    win = np.array(generate((iy0, ix0), mask.shape), dtype=np.float64)
+    if win.shape != mask.shape:
+        raise ValueError(f"generate gave a {win.shape} window, {mask.shape} was asked for")
     inside = win[mask]
     if drop is None:
         drop = 10.0 * (float(np.ptp(inside)) + d)
