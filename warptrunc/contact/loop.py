@@ -107,6 +107,9 @@ class SolveLoop:
         if self.settings.algorithm == "bccg":
             if load_control:
                 start = self.offset if self._depth is not None else 0.0
+                hint = getattr(self, "_approach_hint", None)
+                if self._depth is None and hint is not None:  # a solution known elsewhere
+                    start = hint - self.h_max
                 if self._point is not None and self._slope:  # predicted by the last slope
                     start = self._point[0] - self.h_max + (load - self._point[1]) / self._slope
             else:

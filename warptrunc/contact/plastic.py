@@ -220,6 +220,8 @@ class CappedSolves:
                 x = lo + (load - f_lo) * (hi - lo) / (f_hi - f_lo)
             elif self._depth is not None and self._depth > 0:
                 x = self._depth
+            elif self._depth is None and getattr(self, "_approach_hint", None):
+                x = self._approach_hint  # a solution known elsewhere (hint_approach)
             elif self.substrate == "free":
                 dx, dy = self.pixel_size
                 a = 0.5 * math.hypot(self.shape[1] * dx, self.shape[0] * dy)

@@ -225,6 +225,7 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         self._point: tuple[float, float, bool] | None = None
         self._slope: float | None = None  # dF/dδ at or near the last solution (N/m)
         self._trial_failed = False  # an elastic trial of a capped load solve exceeded H
+        self._approach_hint: float | None = None  # where the first load solve starts (m)
 
     # the memory model (:mod:`warptrunc.contact.memory`), named here so that the API reference
     # lists it with the solver (autodoc shows a class's own members only)
@@ -340,6 +341,22 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         self._point = None
         self._slope = None
         self._trial_failed = False
+        self._approach_hint = None
+
+    def hint_approach(self, depth: float | None) -> None:
+        """Start the first load-controlled solve near the approach ``depth``.
+
+        A solution of the same contact known elsewhere — on a coarser grid of the same surface
+        (:mod:`warptrunc.indent.refine`) — starts the offset iteration (and, with a hardness,
+        the elastic trial and the secant) there instead of at first touch. It only moves the
+        start: the solve's answer is the same. Unused once the solver has a solution of its own.
+
+        Parameters
+        ----------
+        depth : float or None
+            Approach δ from first touch at the highest pixel of the map (m); None forgets it.
+        """
+        self._approach_hint = None if depth is None else float(depth)
 
     # --- after a solve -----------------------------------------------------------------------
 
