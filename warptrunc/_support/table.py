@@ -12,10 +12,13 @@ import numpy as np
 
 
 def csv_cell(v: Any) -> Any:
-    """One CSV cell: booleans and integers as integers, everything else as ``repr(float(v))``
-    (the shortest text that reads back to the same float64; ``nan``/``inf`` as such)."""
+    """One CSV cell: booleans and integers as integers, text as it is, everything else as
+    ``repr(float(v))`` (the shortest text that reads back to the same float64; ``nan``/``inf``
+    as such)."""
     if isinstance(v, (bool, np.bool_, np.integer)):
         return int(v)
+    if isinstance(v, str):  # np.str_ too
+        return str(v)
     return repr(float(v))
 
 

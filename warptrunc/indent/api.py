@@ -17,31 +17,26 @@ from .._support.progress import progress_bar
 from ..contact.settings import SolverSettings
 from ..material import Material
 from ..surface import Surface
-from .protocol import (
-    PAPER_PEAK_LOADS,
-    PAPER_PUNCH_DIAMETERS,
-    IndentProtocol,
-    default_material,
-    run_cycles,
-)
-from .punch import PunchWindow, place_punches, punch_window
-from .results import IndentationResult, modulus_from_stiffness
-from .truncated import truncation_at_loads
+from .placement import solve_placement
+from .protocol import PAPER_PEAK_LOADS, PAPER_PUNCH_DIAMETERS, IndentProtocol, default_material
+from .punch import PunchWindow, place_punches
+from .refine import NOTES, WindowSource
+from .results import IndentationResult
 
 __all__ = ["indent"]
 
 
-def _heights(surface: Any, pixel_size: Any) -> tuple[np.ndarray, tuple[float, float], dict]:
+def _heights(surface: Any, pixel_size: Any) -> tuple[np.ndarray, tuple[float, float], dict, Any]:
     if isinstance(surface, Surface):
         dx, dy = (surface.dx, surface.dy) if pixel_size is None else _pair(pixel_size)
-        return np.asarray(surface.heights), (dx, dy), surface.to_dict()
+        return np.asarray(surface.heights), (dx, dy), surface.to_dict(), surface.params
     if pixel_size is None:
         raise ValueError("pixel_size (m) is required for a height array")
     from ..surface import from_heights
 
     dx, dy = _pair(pixel_size)
     s = from_heights(np.asarray(surface), dx, dy)  # validates (finite, 2-D)
-    return np.asarray(s.heights), (dx, dy), s.to_dict()
+    return np.asarray(s.heights), (dx, dy), s.to_dict(), None
 
 
 def _pair(v: Any) -> tuple[float, float]:
@@ -67,7 +62,7 @@ def _check_loads(window: PunchWindow, protocol: IndentProtocol, hardness: float)
 
 
 _REUSED = {  # run_cycles column → to_dict column of an elastic run
-    "displacement": "displacement_m", "n_contact": "n_contact", "contact_area": "contact_area_m2",
+    "displacement": "displacement_m", "n_contact": "n_contact_pixels", "contact_area": "contact_area_m2",
     "max_pressure": "max_pressure_Pa", "unloading_stiffness": "unloading_stiffness_N_per_m",
     "partial_unloading_stiffness": "partial_unloading_stiffness_N_per_m", "converged": "converged",
 }  # fmt: skip
@@ -93,6 +88,8 @@ def _elastic_cycles(reuse: Any, windows: list, loads: np.ndarray, material: Mate
         if reuse.settings.get("solver_settings") != mine:
             raise ValueError("reuse was run with other solver settings; give the same settings")
         cols = reuse.to_dict()
+    if isinstance(cols, dict) and "n_contact_pixels" not in cols and "n_contact" in cols:
+        cols = {**cols, "n_contact_pixels": cols["n_contact"]}  # columns written before issue 38
     try:
         keys = (*_REUSED.values(), "punch_diameter_m", "placement", "peak_load_N", "centre_x_m",
                 "centre_y_m")  # fmt: skip
@@ -143,6 +140,9 @@ def indent(
     reuse: IndentationResult | dict[str, Any] | None = None,
     truncation_increments: int = 1000,
     overlap: str = "warn",
+    resolution_tol: float = 0.02,
+    min_contact_pixels: int = 100,
+    refine_max: int = 8,
     progress: bool = False,
     device: wp.DeviceLike = None,
 ) -> IndentationResult:
@@ -156,8 +156,10 @@ def indent(
 
     Parameters
     ----------
-    surface : Surface or (ny, nx) array_like
-        The rough surface: a :class:`warptrunc.Surface` or heights z (m).
+    surface : Surface, (ny, nx) array_like or list of Surface
+        The rough surface: a :class:`warptrunc.Surface` or heights z (m); or several
+        realisations of one surface (a list of Surfaces of one size and pixel: the same
+        punches and placements on each, rows numbered by ``realisation``).
     punch_diameter : float, sequence of float or None
         Punch diameters d (m); each at most the map's smaller side. Default: the paper's 54.1,
         108.7 and 502.6 µm. None: one flat larger than the map (every pixel can touch;
@@ -200,6 +202,17 @@ def indent(
     overlap : {"warn", "error"}
         Punches of one diameter that cannot be placed apart: warn and report the overlap
         (``overlap_fraction``), or raise.
+    resolution_tol : float
+        A cell (punch, placement, peak) is resolved when Barber's K and the contact area
+        change by less than this (relative) when the pixel is halved
+        (:mod:`warptrunc.indent.refine`).
+    min_contact_pixels : int
+        Fewest contact pixels of a resolved cell.
+    refine_max : int
+        Largest refinement of the pixel, a power of 2: the punch windows of a WM surface are
+        generated again (same terms, the map's height scale) at pixel/2, /4, … for the cells
+        not yet resolved. 1: nothing is refined, the cells are judged by their contact pixels
+        (so are those of a read map).
     progress : bool
         tqdm bar over the cycles (stderr).
     {warp_device_obj}
@@ -207,7 +220,8 @@ def indent(
     Returns
     -------
     IndentationResult
-        One row per punch × placement × peak load.
+        One row per realisation × punch × placement × peak load, each solved at its final
+        pixel; the fits use the cells ``in_fit`` (resolved, not saturated, converged).
 
     Raises
     ------
@@ -229,11 +243,12 @@ def indent(
     .. [2] W.C. Oliver, G.M. Pharr, J. Mater. Res. 7, 1564 (1992). doi:10.1557/JMR.1992.1564
     """
     t_start = time.perf_counter()
-    z, (dx, dy), surface_info = _heights(surface, pixel_size)
+    maps = _realisations(surface, pixel_size)
     protocol = IndentProtocol(
         punch_diameters=punch_diameter, peak_loads=peak_loads, unload_fraction=unload_fraction,
         placements=placements, placement_seed=seed, overlap=overlap,
-        truncation_increments=truncation_increments,
+        truncation_increments=truncation_increments, resolution_tol=resolution_tol,
+        min_contact_pixels=min_contact_pixels, refine_max=refine_max,
     )  # fmt: skip
     material = default_material() if material is None else material
     if not isinstance(material, Material):
@@ -242,10 +257,12 @@ def indent(
     if settings is not None and not isinstance(settings, SolverSettings):
         raise ValueError(f"settings must be a SolverSettings, got {type(settings).__name__}")
     dev = resolve_device(device)
+    z, (dx, dy), _info, _params = maps[0]
     ny, nx = z.shape
     lx, ly = nx * dx, ny * dy
+    sources = [WindowSource(zz, px, par, device=dev) for zz, px, _info, par in maps]
     diameters = (None,) if protocol.punch_diameters is None else protocol.punch_diameters
-    windows: list[tuple[int, int, PunchWindow, float]] = []
+    windows: list[tuple[int, int, int, PunchWindow, float]] = []
     for i, d in enumerate(diameters):
         if d is None:
             centres, frac = np.array([[0.5 * lx, 0.5 * ly]]), np.zeros(1)
@@ -254,84 +271,54 @@ def indent(
                 (lx, ly), d, protocol.placements, seed=(protocol.placement_seed, i),
                 overlap=protocol.overlap,
             )  # fmt: skip
-        for j, c in enumerate(centres):
-            w = punch_window(z, (dx, dy), d, (float(c[0]), float(c[1])))
-            _check_loads(w, protocol, hardness)
-            windows.append((i, j, w, float(frac[j])))
+        for k, src in enumerate(sources):
+            for j, c in enumerate(centres):
+                w = src.window(d, (float(c[0]), float(c[1])))
+                _check_loads(w, protocol, hardness)
+                windows.append((k, i, j, w, float(frac[j])))
+    windows.sort(key=lambda t: t[:3])  # realisation, punch, placement
     loads = np.asarray(protocol.peak_loads, dtype=np.float64)
     m = loads.size
-    two = elastic and math.isfinite(hardness)
-    given = (None if reuse is None or not math.isfinite(hardness)
-             else _elastic_cycles(reuse, windows, loads, material, settings))  # fmt: skip
+    given = None
+    if reuse is not None and math.isfinite(hardness):
+        if protocol.refine_max > 1 or len(maps) > 1:
+            raise ValueError(
+                f"reuse needs refine_max = 1 and one surface (its elastic cycles are those of "
+                f"the map's pixel), got refine_max = {protocol.refine_max} and {len(maps)} "
+                "surfaces"
+            )
+        given = _elastic_cycles(reuse, [t[1:] for t in windows], loads, material, settings)
     cols: dict[str, list] = {}
-
-    def add(name: str, values: Any) -> None:
-        cols.setdefault(name, []).append(np.asarray(values))
-
-    timings = {"elastic_plastic_s": 0.0, "elastic_s": 0.0, "truncation_s": 0.0}
+    timings = {"elastic_plastic_s": 0.0, "elastic_s": 0.0, "refinement_s": 0.0,
+               "truncation_s": 0.0}  # fmt: skip
     per_punch = []
     n_reused = 0
-    solve_elastic = two or (given is not None)
+    solve_elastic = (elastic and math.isfinite(hardness)) or (given is not None)
     with progress_bar(total=len(windows) * m * (2 if solve_elastic else 1),
-                      desc="indentation cycles", unit="cycle", enabled=progress) as bar:  # fmt: skip
-        for r, (_i, j, w, frac) in enumerate(windows):
-            t0 = time.perf_counter()
-            if given is not None:
-                el = given[r]
-                bar.update(m)
-            elif two:  # first, so that the elastic–plastic run can take its unyielded cycles
-                el = run_cycles(w, loads, protocol.unload_fraction, material, hardness=math.inf,
-                                settings=settings, device=dev, step=bar.update)  # fmt: skip
-            else:
-                el = None
-            t1 = time.perf_counter()
-            ep = run_cycles(w, loads, protocol.unload_fraction, material, hardness=hardness,
-                            settings=settings, device=dev, step=bar.update, elastic=el)  # fmt: skip
-            if el is not None:
-                below = (el["max_pressure"] < hardness) & el["converged"].astype(bool)
-                n_reused += m if below.all() else int(np.argmin(below))
-            if el is None and elastic:
-                el = ep
-            if not elastic:
-                el = None
-            t2 = time.perf_counter()
-            tr = truncation_at_loads(w, loads, material.contact_modulus,
-                                     n_increments=protocol.truncation_increments, device=dev)  # fmt: skip
-            t3 = time.perf_counter()
-            timings["elastic_plastic_s"] += t2 - t1
-            timings["elastic_s"] += t1 - t0
-            timings["truncation_s"] += t3 - t2
-            nan = np.full(m, np.nan)
-            add("punch_diameter", np.full(m, np.nan if w.diameter is None else w.diameter))
-            add("placement", np.full(m, j, dtype=np.int64))
-            add("centre_x", np.full(m, w.centre[0]))
-            add("centre_y", np.full(m, w.centre[1]))
-            add("overlap_fraction", np.full(m, frac))
-            add("punch_area", np.full(m, w.area))
-            add("n_punch_pixels", np.full(m, w.n_pixels, dtype=np.int64))
-            add("peak_load", loads)
-            for k in ("displacement", "n_contact", "contact_area", "plastic_area",
-                      "plastic_volume", "max_pressure", "unloading_stiffness", "partial_unloading_stiffness",
-                      "converged"):  # fmt: skip
-                add(k, ep[k])
-            add("E_c", modulus_from_stiffness(ep["unloading_stiffness"], w.area))
-            add("E_c_partial", modulus_from_stiffness(ep["partial_unloading_stiffness"], w.area))
-            for k in ("displacement", "contact_area", "unloading_stiffness",
-                      "partial_unloading_stiffness"):  # fmt: skip
-                add(f"elastic_{k}", nan if el is None else el[k])
-            add("elastic_converged", np.zeros(m, bool) if el is None else el["converged"])
-            add("truncation_depth", tr["depth"])
-            add("truncation_contact_area", tr["contact_area"])
-            add("truncation_stiffness", tr["stiffness"])
+                      desc="indentation cycles (map pixel)", unit="cycle",
+                      enabled=progress) as bar:  # fmt: skip
+        for r, (k, _i, j, w, frac) in enumerate(windows):
+            rows, info = solve_placement(
+                sources[k], w, protocol, material, settings=settings, device=dev,
+                elastic=elastic, given=None if given is None else given[r], step=bar.update,
+            )  # fmt: skip
+            n_reused += info["reused"]
+            for key, v in info["seconds"].items():
+                timings[key] += v
+            rows.update(placement=np.full(m, j, dtype=np.int64),
+                        realisation=np.full(m, k, dtype=np.int64),
+                        overlap_fraction=np.full(m, frac))  # fmt: skip
+            for key, v in rows.items():
+                cols.setdefault(key, []).append(np.asarray(v))
             per_punch.append({
-                "punch_diameter_m": w.diameter, "placement": j, "centre_m": list(w.centre),
-                "window": [int(v) for v in (*w.origin, *w.mask.shape)],
+                "realisation": k, "punch_diameter_m": w.diameter, "placement": j,
+                "centre_m": list(w.centre), "window": [int(v) for v in (*w.origin, *w.mask.shape)],
                 "n_punch_pixels": w.n_pixels, "overlap_fraction": frac,
-                "disk_Rt_m": float(np.ptp(w.disk_heights)),
+                "disk_Rt_m": float(np.ptp(w.disk_heights)), "refined_windows": info["windows"],
             })  # fmt: skip
     algo = (SolverSettings() if settings is None else settings).algorithm
     settings_info = {
-        "surface": surface_info,
+        "surface": maps[0][2] if len(maps) == 1 else [mp[2] for mp in maps],
         "device": str(dev),
         "solver": f"warptrunc contact solver, algorithm {algo!r} ("
         + ("bound-constrained CG, Vollebregt 2014" if algo == "bccg"
@@ -341,8 +328,30 @@ def indent(
         "reused_elastic_cycles": n_reused,
         "solver_settings": (SolverSettings() if settings is None else settings).to_dict(),
         "elastic_reference": bool(elastic),
+        "refinement": {
+            "resolution_tol": protocol.resolution_tol, "refine_max": protocol.refine_max,
+            "min_contact_pixels": protocol.min_contact_pixels,
+            "maps": [{"refinable": src.refinable, "note": src.why_not} for src in sources],
+            "notes": NOTES,
+        },
         "punches": per_punch,
         "seconds": {**timings, "total_s": time.perf_counter() - t_start},
     }  # fmt: skip
     arrays = {k: np.concatenate(v) for k, v in cols.items()}
     return IndentationResult(**arrays, material=material, protocol=protocol, settings=settings_info)
+
+
+def _realisations(surface: Any, pixel_size: Any) -> list[tuple]:
+    """(heights, pixel, Surface.to_dict(), Surface.params or None) of each realisation; all of
+    one size and pixel."""
+    many = isinstance(surface, (list, tuple)) and surface and all(
+        isinstance(v, Surface) for v in surface)  # fmt: skip
+    maps = [_heights(v, pixel_size) for v in (surface if many else [surface])]
+    z0, px0 = maps[0][:2]
+    for z, px, *_ in maps[1:]:
+        if z.shape != z0.shape or not np.allclose(px, px0, rtol=1e-12, atol=0):
+            raise ValueError(
+                f"surface: the realisations must share one size and pixel, got {z.shape} with "
+                f"pixels {px} m against {z0.shape} with {px0} m"
+            )
+    return maps

@@ -136,12 +136,29 @@ class IndentProtocol:
         1000, "depth increments of the Eq. 2 truncation curve under each punch", kind="int",
         ge=10, le=10_000_000, cli="truncation-increments", sweep=False,
     )  # fmt: skip
+    resolution_tol: float = param(
+        0.02, "a cell is resolved when its unloading stiffness and contact area change by less "
+        "than this (relative) when the pixel is halved", gt=0.0, lt=1.0, cli="resolution-tol",
+        sweep=False,
+    )  # fmt: skip
+    min_contact_pixels: int = param(
+        100, "fewest contact pixels of a resolved cell", kind="int", ge=1, le=10**9,
+        cli="min-contact-pixels", sweep=False,
+    )  # fmt: skip
+    refine_max: int = param(
+        8, "largest refinement of the pixel (a power of 2; 1 = none): a WM map's punch windows "
+        "are generated again at pixel/2, /4, … up to pixel/refine_max", kind="int", ge=1,
+        le=1024, cli="refine-max", sweep=False,
+    )  # fmt: skip
 
     def __post_init__(self) -> None:
         check_fields(self)
         f = self.peak_loads
         if any(not b > a for a, b in zip(f, f[1:], strict=False)):
             raise ValueError(f"peak_loads must be strictly increasing (N), got {list(f)!r}")
+        r = self.refine_max
+        if r & (r - 1):
+            raise ValueError(f"refine_max must be a power of 2 in [1, 1024], got {r!r}")
 
     def to_dict(self) -> dict[str, Any]:
         """The fields (SI; tuples as lists).
@@ -230,6 +247,7 @@ def run_cycles(
     device: Any = None,
     step: Any = None,
     elastic: dict[str, np.ndarray] | None = None,
+    approach: float | None = None,
 ) -> dict[str, np.ndarray]:
     """Load / partial-unload cycles under one punch, at increasing peak loads.
 
@@ -259,6 +277,10 @@ def run_cycles(
         occurs, and the surface the next cycle starts from is the original one. The cycles
         after the first that reaches H are solved, starting from the original surface (the
         state at a peak is that of monotonic loading to it).
+    approach : float, optional
+        A prediction of the approach at the first peak solved (m), from a coarser grid of the
+        same surface: the first load solve starts there (:meth:`ContactSolver.hint_approach`;
+        the answer is the same, the iterations fewer).
 
     Returns
     -------
@@ -291,6 +313,8 @@ def run_cycles(
     reach = window.top - window.floor  # an approach this deep would reach outside the disk
     solver = (make_solver(window, material, hardness=hardness, settings=settings, device=device)
               if n_reused < loads.size else None)  # fmt: skip
+    if solver is not None and approach is not None and approach > 0:
+        solver.hint_approach(approach)
     for load in loads[n_reused:]:
         solver.freeze_plastic(False)
         peak = solver.solve(load=float(load))

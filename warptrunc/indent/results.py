@@ -8,7 +8,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -18,21 +17,22 @@ from .._support.docs import fill_doc
 from .._support.results import WRITE_DOCS, all_converged_property
 from .._support.table import write_columns_csv
 from ..material import Material
-from ..stiffness import PowerLawFit, fit_power_law
+from .fits import MIN_FIT_POINTS, IndentFit, fit_cells
 from .protocol import IndentProtocol
 
 __all__ = ["MODELS", "IndentationResult", "modulus_from_stiffness"]
 
 MODELS = {
-    "elastic_plastic": ("E_c_over_E", "converged"),
-    "elastic_plastic_partial": ("E_c_partial_over_E", "converged"),
-    "elastic": ("elastic_E_c_over_E", "elastic_converged"),
-    "elastic_partial": ("elastic_E_c_partial_over_E", "elastic_converged"),
-    "truncation": ("truncation_E_c_over_E", None),
+    "elastic_plastic": ("E_c_over_E", "in_fit"),
+    "elastic_plastic_partial": ("E_c_partial_over_E", "in_fit"),
+    "elastic": ("elastic_E_c_over_E", "elastic_in_fit"),
+    "elastic_partial": ("elastic_E_c_partial_over_E", "elastic_in_fit"),
+    "truncation": ("truncation_E_c_over_E", "in_fit"),
 }
-"""Model name → (E_c/E column, convergence column) of the fits E_c/E = β·[F/(E·A)]^α:
-the elastic–plastic unloading stiffness (Barber's initial slope; ``_partial``: the secant of the
-partial unloading), the same for the elastic solution (H = ∞), and Eq. 2 truncation."""
+"""Model name → (E_c/E column, column of the cells it may use) of the fits
+E_c/E = β·[F/(E·A)]^α: the elastic–plastic unloading stiffness (Barber's initial slope;
+``_partial``: the secant of the partial unloading), the same for the elastic solution (H = ∞),
+and Eq. 2 truncation (on the elastic–plastic cells' disks and pixels, so their cells)."""
 
 
 def modulus_from_stiffness(stiffness: Any, area: Any) -> np.ndarray:
@@ -105,6 +105,27 @@ class IndentationResult:
     """(m,) float64 E_c from :attr:`partial_unloading_stiffness` (Pa)."""
     converged: np.ndarray
     """(m,) bool: every solve of the cycle (peak, punch stiffness, partial unloading) converged."""
+    realisation: np.ndarray
+    """(m,) int64 index of the surface realisation (0 for one surface)."""
+    pixel_size: np.ndarray
+    """(m,) float64 pixel side dx the cell was finally solved at (m): the map's, or a WM map's
+    divided by 2, 4, … (:mod:`warptrunc.indent.refine`)."""
+    resolution_change: np.ndarray
+    """(m,) float64 |K(p)/K(2p) − 1| of Barber's stiffness at the last halving of the pixel;
+    NaN if the cell was not refined."""
+    area_change: np.ndarray
+    """(m,) float64 |A(p)/A(2p) − 1| of the contact area at the last halving; NaN if not
+    refined."""
+    resolved: np.ndarray
+    """(m,) bool: K and A changed by less than ``protocol.resolution_tol`` at the last halving,
+    with at least ``protocol.min_contact_pixels`` contact pixels (a map that is not refined:
+    the pixel count alone)."""
+    saturated: np.ndarray
+    """(m,) bool: complete contact, every pixel of the punch face touches."""
+    in_fit: np.ndarray
+    """(m,) bool: resolved, not saturated and converged: used by the fits."""
+    resolution_note: np.ndarray
+    """(m,) str: why the refinement stopped (:data:`warptrunc.indent.refine.NOTES`)."""
     elastic_displacement: np.ndarray
     """(m,) float64 approach at the peak of the elastic solution, H = ∞ (m); NaN when not run."""
     elastic_contact_area: np.ndarray
@@ -115,6 +136,18 @@ class IndentationResult:
     """(m,) float64 the partial-unloading secant of the elastic solution (N/m)."""
     elastic_converged: np.ndarray
     """(m,) bool: every solve of the elastic cycle converged (False when not run)."""
+    elastic_pixel_size: np.ndarray
+    """(m,) float64 pixel side the elastic cell was finally solved at (m); NaN when not run."""
+    elastic_n_contact: np.ndarray
+    """(m,) int64 contact pixels of the elastic solution at the peak (0 when not run)."""
+    elastic_resolution_change: np.ndarray
+    """(m,) float64 :attr:`resolution_change` of the elastic solution."""
+    elastic_resolved: np.ndarray
+    """(m,) bool :attr:`resolved` of the elastic solution (False when not run)."""
+    elastic_saturated: np.ndarray
+    """(m,) bool :attr:`saturated` of the elastic solution."""
+    elastic_in_fit: np.ndarray
+    """(m,) bool :attr:`in_fit` of the elastic solution (False when not run)."""
     truncation_depth: np.ndarray
     """(m,) float64 truncation depth ω under the punch where Eq. 2's F(ω) = F (m)."""
     truncation_contact_area: np.ndarray
@@ -175,14 +208,19 @@ class IndentationResult:
         dict of str to (m,) ndarray
             ``punch_diameter_m, placement, peak_load_N, displacement_m, contact_area_m2,
             plastic_area_m2, unloading_stiffness_N_per_m, partial_unloading_stiffness_N_per_m,
-            E_c_Pa, E_c_over_E, F_over_EA, converged`` (the elastic–plastic model), then
+            E_c_Pa, E_c_over_E, F_over_EA, converged`` (the elastic–plastic model), its
+            resolution ``pixel_size_m, n_contact_pixels, resolution_change, area_change,
+            resolved, saturated, in_fit, resolution_note``, ``realisation``, then
             ``E_c_partial_Pa, E_c_partial_over_E, centre_x_m, centre_y_m, overlap_fraction,
-            punch_area_m2, n_punch_pixels, n_contact, plastic_volume_m3, max_pressure_Pa``, the elastic
-            solution's ``elastic_*`` columns (``displacement_m``, ``contact_area_m2``,
-            ``unloading_stiffness_N_per_m``, ``partial_unloading_stiffness_N_per_m``,
-            ``E_c_over_E``, ``E_c_partial_over_E``, ``converged``) and Eq. 2 truncation's
+            punch_area_m2, n_punch_pixels`` (at ``pixel_size_m``), ``plastic_volume_m3,
+            max_pressure_Pa``, the elastic solution's ``elastic_*`` columns
+            (``displacement_m``, ``contact_area_m2``, ``unloading_stiffness_N_per_m``,
+            ``partial_unloading_stiffness_N_per_m``, ``E_c_over_E``, ``E_c_partial_over_E``,
+            ``converged``, ``pixel_size_m``, ``n_contact_pixels``, ``resolution_change``,
+            ``resolved``, ``saturated``, ``in_fit``) and Eq. 2 truncation's
             ``truncation_depth_m``, ``truncation_contact_area_m2``,
-            ``truncation_stiffness_N_per_m``, ``truncation_E_c_over_E``.
+            ``truncation_stiffness_N_per_m``, ``truncation_E_c_over_E`` (on the disk at
+            ``pixel_size_m``).
         """
         return {
             "punch_diameter_m": self.punch_diameter,
@@ -197,6 +235,15 @@ class IndentationResult:
             "E_c_over_E": self.E_c_over_E,
             "F_over_EA": self.F_over_EA,
             "converged": self.converged,
+            "pixel_size_m": self.pixel_size,
+            "n_contact_pixels": self.n_contact,
+            "resolution_change": self.resolution_change,
+            "area_change": self.area_change,
+            "resolved": self.resolved,
+            "saturated": self.saturated,
+            "in_fit": self.in_fit,
+            "resolution_note": self.resolution_note,
+            "realisation": self.realisation,
             "E_c_partial_Pa": self.E_c_partial,
             "E_c_partial_over_E": self.E_c_partial_over_E,
             "centre_x_m": self.centre_x,
@@ -204,7 +251,6 @@ class IndentationResult:
             "overlap_fraction": self.overlap_fraction,
             "punch_area_m2": self.punch_area,
             "n_punch_pixels": self.n_punch_pixels,
-            "n_contact": self.n_contact,
             "plastic_volume_m3": self.plastic_volume,
             "max_pressure_Pa": self.max_pressure,
             "elastic_displacement_m": self.elastic_displacement,
@@ -214,39 +260,106 @@ class IndentationResult:
             "elastic_E_c_over_E": self.elastic_E_c_over_E,
             "elastic_E_c_partial_over_E": self.elastic_E_c_partial_over_E,
             "elastic_converged": self.elastic_converged,
+            "elastic_pixel_size_m": self.elastic_pixel_size,
+            "elastic_n_contact_pixels": self.elastic_n_contact,
+            "elastic_resolution_change": self.elastic_resolution_change,
+            "elastic_resolved": self.elastic_resolved,
+            "elastic_saturated": self.elastic_saturated,
+            "elastic_in_fit": self.elastic_in_fit,
             "truncation_depth_m": self.truncation_depth,
             "truncation_contact_area_m2": self.truncation_contact_area,
             "truncation_stiffness_N_per_m": self.truncation_stiffness,
             "truncation_E_c_over_E": self.truncation_E_c_over_E,
         }
 
-    def fits(self) -> dict[str, PowerLawFit | None]:
-        """E_c/E = β·[F/(E·A)]^α per model, over every converged row with E_c > 0.
+    def fit_cells(self, name: str) -> dict[str, np.ndarray]:
+        """The cells a model's fit uses: ``in_fit`` for that model, E_c/E and F/(E·A) > 0.
+
+        Parameters
+        ----------
+        name : str
+            A :data:`MODELS` name.
 
         Returns
         -------
-        dict of str to PowerLawFit or None
-            One entry per :data:`MODELS` name; None where fewer than 3 rows qualify or F/(E·A)
-            does not vary. ``depth_min``/``depth_max`` are the range of the punch approach δ
-            (m) of the rows used (truncation: ω).
+        dict of str to ndarray
+            ``x`` (F/(E·A)), ``y`` (E_c/E), ``depth`` (m: the approach δ, truncation's ω),
+            ``indent`` ((k, 3) realisation, punch diameter, placement) and ``stratum`` (punch
+            diameter) of the cells, and ``mask`` ((m,) bool over the rows).
         """
+        y_col, ok_col = MODELS[name]
         cols = self.to_dict()
-        out: dict[str, PowerLawFit | None] = {}
-        for name, (y_col, ok_col) in MODELS.items():
-            y = np.asarray(cols[y_col], dtype=np.float64)
-            x = self.F_over_EA
-            ok = np.isfinite(y) & (y > 0) & np.isfinite(x) & (x > 0)
-            if ok_col is not None:
-                ok &= np.asarray(cols[ok_col], dtype=bool)
-            depth = {"truncation": self.truncation_depth, "elastic": self.elastic_displacement,
-                     "elastic_partial": self.elastic_displacement}.get(name, self.displacement)  # fmt: skip
-            curve = SimpleNamespace(load=x[ok], n_contact_pixels=np.ones(int(ok.sum()), np.int64),
-                                    depth=depth[ok], F_over_EA=x[ok], Ec_over_E=y[ok],
-                                    material=self.material)  # fmt: skip
-            try:
-                out[name] = fit_power_law(curve, min_pixels=1)  # type: ignore[arg-type]
-            except ValueError:
-                out[name] = None
+        y = np.asarray(cols[y_col], dtype=np.float64)
+        x = self.F_over_EA
+        ok = np.isfinite(y) & (y > 0) & np.isfinite(x) & (x > 0) & np.asarray(cols[ok_col], bool)
+        depth = {"truncation": self.truncation_depth, "elastic": self.elastic_displacement,
+                 "elastic_partial": self.elastic_displacement}.get(name, self.displacement)  # fmt: skip
+        d = np.nan_to_num(self.punch_diameter, nan=0.0)
+        ind = np.stack([self.realisation.astype(np.float64), d, self.placement.astype(np.float64)], 1)
+        return {"x": x[ok], "y": y[ok], "depth": depth[ok], "indent": ind[ok], "stratum": d[ok],
+                "mask": ok}  # fmt: skip
+
+    def fits(self) -> dict[str, IndentFit | None]:
+        """E_c/E = β·[F/(E·A)]^α per model over its cells ``in_fit``, with 95 % intervals.
+
+        Returns
+        -------
+        dict of str to IndentFit or None
+            One entry per :data:`MODELS` name; None (the fit is not made) where fewer than
+            :data:`~warptrunc.indent.fits.MIN_FIT_POINTS` cells qualify or F/(E·A) does not
+            vary. ``alpha_ci95``/``beta_ci95`` by a bootstrap over indents
+            (:mod:`warptrunc.indent.fits`); ``depth_min``/``depth_max`` are the range of the
+            punch approach δ (m) of the cells used (truncation: ω).
+        """
+        out: dict[str, IndentFit | None] = {}
+        for name in MODELS:
+            c = self.fit_cells(name)
+            out[name] = fit_cells(c["x"], c["y"], c["depth"], c["indent"], c["stratum"],
+                                  self.material)  # fmt: skip
+        return out
+
+    def fit_summary(self) -> dict[str, dict[str, Any]]:
+        """The fits as ``indent.json`` holds them, the ones not made with their counts.
+
+        Returns
+        -------
+        dict of str to dict
+            Model → :meth:`IndentFit.to_dict`, or ``made`` False with ``n_points``,
+            ``n_indents`` and the ``reason``.
+        """
+        out: dict[str, dict[str, Any]] = {}
+        for name, fit in self.fits().items():
+            if fit is not None:
+                out[name] = fit.to_dict()
+                continue
+            c = self.fit_cells(name)
+            n_ind = len(np.unique(c["indent"], axis=0)) if c["x"].size else 0
+            out[name] = {"made": False, "n_points": int(c["x"].size), "n_indents": n_ind,
+                         "reason": f"{c['x'].size} cells in_fit (resolved, not saturated, "
+                         f"converged), at least {MIN_FIT_POINTS} with two loads needed"}  # fmt: skip
+        return out
+
+    def resolution_counts(self) -> dict[str, Any]:
+        """How many cells are resolved, saturated and in the fits, per contact model.
+
+        Returns
+        -------
+        dict
+            ``n_cells`` and, for ``elastic_plastic`` and ``elastic`` (when run), the counts
+            ``resolved``, ``saturated``, ``in_fit``, ``not_converged`` and per
+            ``resolution_note``.
+        """
+        out: dict[str, Any] = {"n_cells": int(self.peak_load.size)}
+        pairs = [("elastic_plastic", "")]
+        if bool(self.settings.get("elastic_reference", True)):
+            pairs.append(("elastic", "elastic_"))
+        cols = self.to_dict()
+        for name, pre in pairs:
+            conv = np.asarray(cols[f"{pre}converged"], bool)
+            out[name] = {k: int(np.sum(cols[f"{pre}{k}"])) for k in ("resolved", "saturated", "in_fit")}
+            out[name]["not_converged"] = int((~conv).sum())
+        notes, counts = np.unique(self.resolution_note.astype(str), return_counts=True)
+        out["elastic_plastic"]["notes"] = {str(k): int(v) for k, v in zip(notes, counts, strict=True)}
         return out
 
     def summary(self) -> dict[str, Any]:
@@ -256,15 +369,16 @@ class IndentationResult:
         Returns
         -------
         dict
-            ``protocol``, ``material`` (SI, with ``contact_modulus``), ``settings`` and
-            ``fits`` (model → :meth:`PowerLawFit.to_dict` or None), ``n_rows``,
+            ``protocol``, ``material`` (SI, with ``contact_modulus``), ``settings``, ``fits``
+            (:meth:`fit_summary`), ``resolution`` (:meth:`resolution_counts`), ``n_rows``,
             ``all_converged``.
         """
         return {
             "protocol": self.protocol.to_dict(),
             "material": self.material.to_dict(),
             "settings": self.settings,
-            "fits": {k: (None if v is None else v.to_dict()) for k, v in self.fits().items()},
+            "fits": self.fit_summary(),
+            "resolution": self.resolution_counts(),
             "fit_form": "E_c/E = beta * (F/(E*A))**alpha, E Young's modulus, A punch area",
             "n_rows": int(self.peak_load.size),
             "all_converged": self.all_converged,

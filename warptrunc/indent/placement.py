@@ -1,0 +1,191 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""One punch placement of :func:`warptrunc.indent`: its cycles for each contact model, refined
+in the pixel size (:mod:`.refine`), and Eq. 2 truncation on the same disk, as the rows of an
+:class:`~warptrunc.indent.IndentationResult`."""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from ..contact.settings import SolverSettings
+from ..material import Material
+from .protocol import COLUMNS, IndentProtocol, run_cycles
+from .punch import PunchWindow
+from .refine import CellRefinement, WindowSource, refine_cells
+from .results import modulus_from_stiffness
+from .truncated import truncation_at_loads
+
+__all__ = ["solve_placement"]
+
+
+def _subset(cycles: dict[int, dict[str, Any]], idx: np.ndarray) -> dict[str, np.ndarray] | None:
+    """The elastic cycles of loads ``idx`` solved at one pixel, when every one of them is."""
+    if idx.size == 0 or not all(int(i) in cycles for i in idx):
+        return None
+    keys = cycles[int(idx[0])]
+    return {c: np.asarray([cycles[int(i)][c] for i in idx]) for c in keys}
+
+
+def solve_placement(
+    source: WindowSource,
+    w: PunchWindow,
+    protocol: IndentProtocol,
+    material: Material,
+    *,
+    settings: SolverSettings | None,
+    device: Any,
+    elastic: bool,
+    given: dict[str, np.ndarray] | None = None,
+    step: Any = None,
+) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+    """The rows of one punch placement: both contact models refined, and truncation.
+
+    Parameters
+    ----------
+    source : WindowSource
+        The map (and, for a WM map, its finer windows).
+    w : PunchWindow
+        The punch window at the map's pixel.
+    protocol : IndentProtocol
+        Loads, unloading fraction, truncation increments and the refinement rule.
+    material : Material
+        Elastic constants and the hardness H (inf: elastic).
+    settings : SolverSettings, optional
+        Contact-solver settings.
+    device : warp.context.Device
+        Resolved Warp device.
+    elastic : bool
+        Also solve the elastic contact (H = ∞) on the same punch (its columns; NaN when off).
+    given : dict of str to (m,) ndarray, optional
+        The elastic cycles at the map's pixel, taken instead of solved (``indent``'s reuse).
+    step : callable, optional
+        Called once per cycle solved at the map's pixel (a progress bar's ``update``).
+
+    Returns
+    -------
+    rows : dict of str to (m,) ndarray
+        The result columns of this placement's cells (field names of IndentationResult).
+    info : dict
+        ``seconds`` per phase, ``reused`` (elastic cycles copied), ``windows`` (factor →
+        window shape) and ``why_not`` (None for a map refined).
+    """
+    loads = np.asarray(protocol.peak_loads, dtype=np.float64)
+    m, f = loads.size, protocol.unload_fraction
+    hardness = material.hardness
+    two = elastic and math.isfinite(hardness)
+    rule = {"resolution_tol": protocol.resolution_tol, "refine_max": protocol.refine_max,
+            "min_contact_pixels": protocol.min_contact_pixels}  # fmt: skip
+    windows: dict[int, PunchWindow] = {1: w}
+    el_cache: dict[int, dict[int, dict[str, Any]]] = {}  # factor → load index → elastic cycle
+    sec = {"elastic_s": 0.0, "elastic_plastic_s": 0.0, "refinement_s": 0.0, "truncation_s": 0.0}
+
+    def cycles(win: PunchWindow, idx: np.ndarray, h: float, el: Any = None, bar: Any = None,
+               approach: float | None = None):  # fmt: skip
+        return run_cycles(win, loads[idx], f, material, hardness=h, settings=settings,
+                          device=device, step=bar, elastic=el, approach=approach)  # fmt: skip
+
+    def keep(factor: int, idx: np.ndarray, out: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        by = el_cache.setdefault(factor, {})
+        for r, i in enumerate(idx):
+            by[int(i)] = {c: out[c][r] for c in COLUMNS if c in out}
+        return out
+
+    every = np.arange(m)
+    t0 = time.perf_counter()
+    el0 = None
+    if given is not None:
+        el0 = keep(1, every, given)
+        if step is not None:
+            step(m)
+    elif two:  # first, so that the elastic–plastic run can take its unyielded cycles
+        el0 = keep(1, every, cycles(w, every, math.inf, bar=step))
+    t1 = time.perf_counter()
+    ep0 = cycles(w, every, hardness, el0, step)
+    t2 = time.perf_counter()
+    reused = 0
+    if el0 is not None:
+        below = (np.asarray(el0["max_pressure"]) < hardness) & np.asarray(el0["converged"], bool)
+        reused = m if below.all() else int(np.argmin(below))
+    el_ref: CellRefinement | None = None
+    if two and given is None:
+        el_ref = refine_cells(
+            source, w, el0,
+            lambda win, idx, k, a: keep(k, idx, cycles(win, idx, math.inf, approach=a)),
+            windows=windows, **rule,
+        )  # fmt: skip
+    ep_ref = refine_cells(
+        source, w, ep0,
+        lambda win, idx, k, a: cycles(win, idx, hardness, _subset(el_cache.get(k, {}), idx),
+                                      approach=a),
+        windows=windows, **rule,
+    )  # fmt: skip
+    if el_ref is None and given is not None:  # the given elastic cycles, judged as they are
+        el_ref = refine_cells(source, w, el0, lambda *a: {}, windows=windows,
+                              **{**rule, "refine_max": 1})  # fmt: skip
+    if el_ref is None and elastic:  # H = inf: the elastic–plastic model is the elastic one
+        el_ref = ep_ref
+    t3 = time.perf_counter()
+    rows = _rows(w, loads, ep_ref, el_ref)
+    # Eq. 2 truncation on the disk at each cell's final pixel
+    tr = {k: np.zeros(m) for k in ("depth", "contact_area", "stiffness")}
+    for k in np.unique(ep_ref.factor):
+        idx = np.flatnonzero(ep_ref.factor == k)
+        t = truncation_at_loads(ep_ref.windows[int(k)], loads[idx], material.contact_modulus,
+                                n_increments=protocol.truncation_increments, device=device)  # fmt: skip
+        for c in tr:
+            tr[c][idx] = t[c]
+    rows.update(truncation_depth=tr["depth"], truncation_contact_area=tr["contact_area"],
+                truncation_stiffness=tr["stiffness"])  # fmt: skip
+    t4 = time.perf_counter()
+    sec.update(elastic_s=t1 - t0, elastic_plastic_s=t2 - t1, refinement_s=t3 - t2,
+               truncation_s=t4 - t3)  # fmt: skip
+    info = {"seconds": sec, "reused": reused, "why_not": source.why_not,
+            "windows": {int(k): [int(v) for v in win.mask.shape] for k, win in windows.items()}}
+    return rows, info
+
+
+def _rows(w: PunchWindow, loads: np.ndarray, ep: CellRefinement,
+          el: CellRefinement | None) -> dict[str, np.ndarray]:  # fmt: skip
+    """The result columns of one placement from its refined contact models."""
+    m = loads.size
+    c = ep.cycles
+    rows: dict[str, np.ndarray] = {
+        "punch_diameter": np.full(m, np.nan if w.diameter is None else w.diameter),
+        "centre_x": np.full(m, w.centre[0]),
+        "centre_y": np.full(m, w.centre[1]),
+        "punch_area": np.full(m, w.area),
+        "n_punch_pixels": ep.n_disk_pixels,
+        "peak_load": loads,
+        "E_c": modulus_from_stiffness(c["unloading_stiffness"], w.area),
+        "E_c_partial": modulus_from_stiffness(c["partial_unloading_stiffness"], w.area),
+        "pixel_size": ep.pixel_size,
+        "resolution_change": ep.change,
+        "area_change": ep.area_change,
+        "resolved": ep.resolved,
+        "saturated": ep.saturated,
+        "in_fit": ep.in_fit,
+        "resolution_note": ep.note,
+    }
+    for k in ("displacement", "n_contact", "contact_area", "plastic_area", "plastic_volume",
+              "max_pressure", "unloading_stiffness", "partial_unloading_stiffness", "converged"):
+        rows[k] = np.asarray(c[k])
+    nan = np.full(m, np.nan)
+    e = None if el is None else el.cycles
+    for k in ("displacement", "contact_area", "unloading_stiffness", "partial_unloading_stiffness"):
+        rows[f"elastic_{k}"] = nan if e is None else np.asarray(e[k], np.float64)
+    off = np.zeros(m, bool)
+    rows.update(
+        elastic_converged=off if e is None else np.asarray(e["converged"], bool),
+        elastic_pixel_size=nan if el is None else el.pixel_size,
+        elastic_n_contact=np.zeros(m, np.int64) if e is None else np.asarray(e["n_contact"], np.int64),
+        elastic_resolution_change=nan if el is None else el.change,
+        elastic_resolved=off if el is None else el.resolved,
+        elastic_saturated=off if el is None else el.saturated,
+        elastic_in_fit=off if el is None else el.in_fit,
+    )  # fmt: skip
+    return rows
