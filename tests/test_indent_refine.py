@@ -12,6 +12,7 @@ columns; synthetic power laws with a known spread between indents for the bootst
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -161,3 +162,186 @@ def test_saturated_cells_are_never_in_fit():
     assert d["saturated"].all() and d["resolved"].any()
     assert not d["in_fit"].any() and not d["elastic_in_fit"].any()
     assert all(not f["made"] for f in r.fit_summary().values())
+
+
+# --- item 2: fits over the cells in_fit, with intervals over indents ----------------------------
+
+
+@pytest.fixture(scope="module")
+def two_surfaces():
+    """Two realisations, three placements of two punches, four loads; judged by the pixel
+    rule (refine_max = 1) with min_contact_pixels = 1, so every converged, unsaturated cell."""
+    maps = [_wm(n=96, L=1.2e-3, Rt=4e-6, seed=k) for k in (3, 4)]
+    return indent(maps, punch_diameter=(0.1e-3, 0.2e-3), peak_loads=(2e-3, 8e-3, 32e-3, 128e-3),
+                  placements=3, seed=1, refine_max=1, min_contact_pixels=1, elastic=False,
+                  device="cpu")  # fmt: skip
+
+
+def test_rows_of_several_realisations(two_surfaces):
+    d = two_surfaces.to_dict()
+    assert d["peak_load_N"].size == 2 * 2 * 3 * 4
+    np.testing.assert_array_equal(d["realisation"], np.repeat([0, 1], 24))
+    # the same punches and placements on each realisation, on other heights
+    for k in ("punch_diameter_m", "placement", "centre_x_m", "centre_y_m", "peak_load_N"):
+        np.testing.assert_array_equal(d[k][:24], d[k][24:], err_msg=k)
+    assert not np.array_equal(d["E_c_over_E"][:24], d["E_c_over_E"][24:])
+    with pytest.raises(ValueError, match="one size and pixel"):
+        indent([_wm(n=64), _wm(n=96)], device="cpu")
+
+
+def test_fits_use_the_cells_in_fit_and_need_six(two_surfaces):
+    """The fit is the least-squares line through the cells in_fit only; n_points and n_indents
+    count them and their (realisation, punch, placement); its 95 % intervals hold the fit; with
+    fewer than six cells in_fit there is no fit."""
+    r = two_surfaces
+    d = r.to_dict()
+    use = d["in_fit"]
+    np.testing.assert_array_equal(use, d["converged"] & (d["n_contact_pixels"] >= 1)
+                                  & (d["n_contact_pixels"] < d["n_punch_pixels"]))  # fmt: skip
+    for name, col in (("elastic_plastic", "E_c_over_E"), ("truncation", "truncation_E_c_over_E")):
+        fit = r.fits()[name]
+        alpha, logb = np.polyfit(np.log(d["F_over_EA"][use]), np.log(d[col][use]), 1)
+        assert fit.alpha == pytest.approx(alpha, rel=1e-9)
+        assert fit.beta == pytest.approx(math.exp(logb), rel=1e-9)
+        assert fit.n_points == use.sum() >= MIN_FIT_POINTS
+        ind = {(a, b, c) for a, b, c, u in zip(d["realisation"], d["punch_diameter_m"],
+                                               d["placement"], use, strict=True) if u}  # fmt: skip
+        assert fit.n_indents == len(ind) == 12
+        lo, hi = fit.alpha_ci95
+        assert lo < fit.alpha < hi and hi - lo < 0.5
+        lo, hi = fit.beta_ci95
+        assert lo < fit.beta < hi
+        doc = r.fit_summary()[name]
+        assert doc["made"] and doc["alpha_ci95"] == list(fit.alpha_ci95)
+        assert doc["n_points"] == fit.n_points and doc["n_indents"] == 12
+    assert r.fits()["elastic"] is None  # not run (elastic=False): no cell in_fit
+    # five cells in_fit: not made; the summary says how many there were
+    keep = np.flatnonzero(use)[:5]
+    few = dict(r.__dict__)
+    few["in_fit"] = np.isin(np.arange(use.size), keep)
+    thin = type(r)(**few)
+    assert thin.fits()["elastic_plastic"] is None
+    doc = thin.fit_summary()["elastic_plastic"]
+    assert doc == {**doc, "made": False, "n_points": 5}
+
+
+def _indents(rng, n_ind, x):
+    """Synthetic indents, each a power law of its own: α_i ~ N(0.5, 0.05), ln β_i ~ N(0, 0.1)
+    between indents, 1 % noise within; cells (x, y) and their indent labels."""
+    xs, ys, ind = [], [], []
+    for i in range(n_ind):
+        a_i, lb_i = 0.5 + 0.05 * rng.standard_normal(), 0.1 * rng.standard_normal()
+        xs.append(x)
+        ys.append(np.exp(lb_i + a_i * np.log(x) + 0.01 * rng.standard_normal(x.size)))
+        ind.append(np.full(x.size, i))
+    return np.concatenate(xs), np.concatenate(ys), np.concatenate(ind)
+
+
+def test_intervals_narrow_with_more_indents():
+    """The 95 % interval of α from resampling indents narrows about as 1/√n with the number of
+    indents, and holds the α of the population in about 95 % of repeated experiments."""
+    rng = np.random.default_rng(7)
+    x = np.geomspace(1e-5, 1e-2, 6)
+    widths = {}
+    for n_ind in (4, 16, 64):  # the mean width over 20 experiments
+        w = []
+        for k in range(20):
+            xx, yy, ii = _indents(rng, n_ind, x)
+            b = bootstrap_power_law(xx, yy, ii, np.zeros(xx.size), n_boot=1000, seed=k)
+            assert b["n_indents"] == n_ind and b["n_bootstrap"] == 1000
+            w.append(b["alpha_ci95"][1] - b["alpha_ci95"][0])
+        widths[n_ind] = np.mean(w)
+    assert widths[4] > widths[16] > widths[64]
+    assert 1.6 < widths[16] / widths[64] < 2.5  # ≈ 2 = √(64/16)
+    # coverage over 200 experiments of 16 indents (a percentile bootstrap of 16 clusters
+    # undercovers a little: ≈ 0.91 here)
+    hits = 0
+    for k in range(200):
+        xx, yy, ii = _indents(rng, 16, x)
+        lo, hi = bootstrap_power_law(xx, yy, ii, np.zeros(xx.size), n_boot=500, seed=k)["alpha_ci95"]
+        hits += lo < 0.5 < hi
+    assert 0.85 <= hits / 200 <= 0.99
+    # one indent: nothing to resample, no interval (its loads are not independent)
+    xx, yy, ii = _indents(rng, 1, x)
+    assert np.isnan(bootstrap_power_law(xx, yy, ii, ii)["alpha_ci95"]).all()
+
+
+def test_intervals_resample_within_each_punch():
+    """Indents are drawn within their punch diameter: every replicate keeps each punch's number
+    of indents. Two punches of three indents, one load each (one F/(E·A) per punch): a
+    replicate of one punch's indents alone could not fit a line (drawn over all six indents,
+    2·(1/2)⁶ ≈ 3 % of replicates would be), yet every replicate fits."""
+    rng = np.random.default_rng(3)
+    xa, ya, ia = _indents(rng, 3, np.array([1e-5]))
+    xb, yb, ib = _indents(rng, 3, np.array([1e-3]))
+    x, y = np.concatenate([xa, xb]), np.concatenate([ya, yb])
+    ind, punch = np.concatenate([ia, ib + 3]), np.repeat([1.0, 2.0], 3)
+    b = bootstrap_power_law(x, y, ind, punch, n_boot=1000, seed=0)
+    assert b["n_bootstrap"] == 1000 and b["n_indents"] == 6
+
+
+# --- the command line ---------------------------------------------------------------------------
+
+NEW_COLUMNS = ["pixel_size_m", "n_contact_pixels", "resolution_change", "resolved", "saturated",
+               "in_fit"]  # fmt: skip
+
+
+def test_cli_writes_the_resolution_columns_and_the_intervals(tmp_path, capsys):
+    """Two realisations (--seeds), the cells judged by the pixel rule: indent.csv has the new
+    columns, indent.json the fits with their intervals and counts, the figure is written."""
+    import csv
+    import json
+
+    from warptrunc.cli import main
+
+    out = tmp_path / "ind"
+    argv = ["indent", "--n", "96", "--L", "1.2e-3", "--Rt", "4e-6", "--seeds", "3", "4",
+            "--punch-diameter", "1e-4", "2e-4", "--peak-loads", "2e-3", "8e-3", "32e-3", "128e-3",
+            "--placements", "3", "--placement-seed", "1", "--refine-max", "1",
+            "--min-contact-pixels", "1", "--no-elastic", "--no-progress", "--out", str(out)]  # fmt: skip
+    assert main(argv) == 0
+    with (out / "indent.csv").open() as fh:
+        rows = list(csv.DictReader(fh))
+    assert len(rows) == 48 and set(NEW_COLUMNS) <= set(rows[0])
+    for r in rows:
+        assert float(r["pixel_size_m"]) == pytest.approx(1.2e-3 / 96)
+        assert r["in_fit"] == str(int(r["resolved"] == "1" and r["saturated"] == "0"
+                                      and r["converged"] == "1"))  # fmt: skip
+        assert r["resolution_change"] == "nan" and r["resolution_note"] == "not-refined"
+    doc = json.loads((out / "indent.json").read_text())
+    fit = doc["fits"]["elastic_plastic"]
+    assert fit["made"] and fit["n_indents"] == 12 and fit["n_points"] >= MIN_FIT_POINTS
+    assert fit["alpha_ci95"][0] < fit["alpha"] < fit["alpha_ci95"][1]
+    assert fit["beta_ci95"][0] < fit["beta"] < fit["beta_ci95"][1]
+    assert not doc["fits"]["elastic"]["made"] and doc["fits"]["elastic"]["n_points"] == 0
+    assert doc["resolution"]["n_cells"] == 48
+    text = capsys.readouterr().out
+    assert "(2 realisations)" in text and "α 95 % [" in text and "cells of 12 indents" in text
+    assert (out / "indent.png").stat().st_size > 10_000
+
+
+def test_default_map_holds_the_default_placements_apart(tmp_path, capsys):
+    """A generated map is 3 mm per side at the preset's (or the defaults') pixel: the paper's
+    three punches at three placements each never overlap, and the command does not warn."""
+    from warptrunc.cli import main
+    from warptrunc.cli import build_parser
+    from warptrunc.cli.indent import map_spec
+    from warptrunc.indent import PAPER_PUNCH_DIAMETERS, IndentProtocol, place_punches
+
+    parse = build_parser(["indent"]).parse_args
+    spec = map_spec(parse(["indent", "--preset", "GB300s"]))
+    assert spec.L == 3e-3 and spec.n == 30720  # the preset's 97.7 nm pixel
+    assert map_spec(parse(["indent"])).n == 3072  # the defaults' 0.977 µm pixel
+    assert map_spec(parse(["indent", "--preset", "GB300s", "--n", "512"])).L == 3e-3
+    assert map_spec(parse(["indent", "--L", "1e-3"])).L == 1e-3
+    p = IndentProtocol()
+    for i, d in enumerate(PAPER_PUNCH_DIAMETERS):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            c, frac = place_punches((3e-3, 3e-3), d, p.placements, seed=(p.placement_seed, i))
+        sep = np.hypot(*(c[:, None] - c[None]).transpose(2, 0, 1))[np.triu_indices(len(c), 1)]
+        assert np.all(frac == 0) and sep.min() >= d
+    out = tmp_path / "ind"
+    assert main(["indent", "--n", "256", "--peak-loads", "0.5", "--refine-max", "1",
+                 "--no-elastic", "--no-plot", "--no-progress", "--out", str(out)]) == 0  # fmt: skip
+    assert "warning" not in capsys.readouterr().err

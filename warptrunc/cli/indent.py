@@ -11,10 +11,19 @@ E_c = √π·K/(2√A) (A the punch area). The elastic solution (H = ∞) and Eq
 the same punch disks and placements (--placements random positions per punch, apart, from
 --placement-seed).
 
-Writes OUT/indent.csv (one row per punch × placement × peak; SI units in the column names),
-OUT/indent.json (settings, the fits E_c/E = β·[F/(E·A)]^α per model, provenance; strict JSON:
-a hardness of null is ∞) and OUT/indent.png (E_c/E against F/(E·A), log–log, as Fig. 6). All or
-nothing: the files are moved into OUT only when every one of them is written.
+A generated map is 3 mm per side unless --L is given (the paper's island maps; the default
+placements of the 502.6 µm punch never overlap there), at the preset's or the defaults' pixel
+unless --n is given; --seeds indents several realisations. On a WM map each (punch,
+placement, peak) cell is solved again at half the pixel until its unloading stiffness and
+contact area change by less than --resolution-tol with at least --min-contact-pixels in
+contact, up to --refine-max; the fits use only the cells resolved, not saturated and
+converged (``in_fit``), at least 6, with 95 % intervals by a bootstrap over the indents.
+
+Writes OUT/indent.csv (one row per realisation × punch × placement × peak; SI units in the
+column names), OUT/indent.json (settings, the fits E_c/E = β·[F/(E·A)]^α per model with their
+intervals, the resolution counts, provenance; strict JSON: a hardness of null is ∞) and
+OUT/indent.png (E_c/E against F/(E·A), log–log, as Fig. 6; the cells left out of the fits
+hollow). All or nothing: the files are moved into OUT only when every one of them is written.
 
 Exit status: 0; 2 for bad input (one line naming the option and its allowed range); 3 when a
 solve did not converge (the outputs are written and flag it), unless --accept-unconverged.
@@ -31,18 +40,23 @@ from .._support.atomic import staged_output
 from ..contact.settings import SolverSettings
 from ..material import Material
 from ..params import add_options, from_args
-from ._common import add_run_outputs, add_surface_source, surface_from_args
+from ._common import add_run_outputs, add_surface_source, integer, read_input, wm_spec_from_args
 
 NAME = "indent"
 HELP = "flat-punch indentation with partial unloadings, against truncation (Fig. 6)"
 EXIT_NOT_CONVERGED = 3
 """Exit status when any solve did not converge (without --accept-unconverged)."""
 
+MAP_SIDE = 3e-3
+"""Side of ``indent``'s generated map (m) unless ``--L`` is given: the paper's island maps
+(3 mm, § 4.3), large enough that the default placements of the 502.6 µm punch never overlap."""
+
 _OPTION = {
     "punch_diameter": "--punch-diameter", "punch_diameters": "--punch-diameter",
     "peak_loads": "--peak-loads", "unload_fraction": "--unload-fraction",
     "placements": "--placements", "hardness": "--hardness", "placement_seed": "--placement-seed",
-    "truncation_increments": "--truncation-increments",
+    "truncation_increments": "--truncation-increments", "resolution_tol": "--resolution-tol",
+    "min_contact_pixels": "--min-contact-pixels", "refine_max": "--refine-max",
 }  # fmt: skip
 
 
@@ -50,7 +64,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc indent``."""
     from ..indent.protocol import MATERIAL_DEFAULTS, IndentProtocol
 
-    add_surface_source(p)
+    add_surface_source(p, scan_rule="read")
+    p.add_argument(
+        "--seeds", type=integer(0, 2**32 - 1), nargs="+", default=None, metavar="SEED",
+        help="WM surface realisations: the phase seeds of the surfaces indented (the same "
+        "punches and placements on each; the fits' intervals resample their indents); "
+        "default: the one surface of --seed",
+    )  # fmt: skip
     add_options(p, IndentProtocol, title="indentation protocol")
     add_options(p, Material, title="material (default: aluminium alloy against diamond)",
                 defaults=MATERIAL_DEFAULTS)  # fmt: skip
@@ -77,20 +97,24 @@ def run(args: argparse.Namespace) -> int:
     from .._support.version import __version__
     from .._support.provenance import git_commit
     from ..indent import IndentProtocol, PlacementOverlapWarning, indent
+    from ..indent.fits import MIN_FIT_POINTS
     from ..indent.protocol import MATERIAL_DEFAULTS
 
     try:
         material = from_args(Material, args, defaults=MATERIAL_DEFAULTS)
         protocol = from_args(IndentProtocol, args)
         settings = from_args(SolverSettings, args, substrate="free")
-        s = surface_from_args(args)
+        surfaces = _surfaces(args)
+        s = surfaces[0]
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", PlacementOverlapWarning)
             res = indent(
-                s, punch_diameter=protocol.punch_diameters, peak_loads=protocol.peak_loads,
+                surfaces, punch_diameter=protocol.punch_diameters, peak_loads=protocol.peak_loads,
                 unload_fraction=protocol.unload_fraction, material=material,
                 placements=protocol.placements, seed=protocol.placement_seed, overlap=protocol.overlap,
                 truncation_increments=protocol.truncation_increments, settings=settings,
+                resolution_tol=protocol.resolution_tol, refine_max=protocol.refine_max,
+                min_contact_pixels=protocol.min_contact_pixels,
                 elastic=not args.no_elastic, device=args.device,
                 progress=not args.no_progress and sys.stderr.isatty(),
             )  # fmt: skip
@@ -114,17 +138,27 @@ def run(args: argparse.Namespace) -> int:
                         title=f"{s.nx}×{s.ny} over {s.lx * 1e3:.3g} mm, R$_t$ = "
                         f"{s.Rt * 1e6:.3g} µm, H = {_h(material)}")  # fmt: skip
             files.append("indent.png")
-    fits = res.fits()
+    fits = res.fit_summary()
+    n_real = len(surfaces)
     lines = [
-        f"{s.nx}×{s.ny} surface over {s.lx * 1e3:.4g} × {s.ly * 1e3:.4g} mm, R_t = "
-        f"{s.Rt * 1e6:.4g} µm; E = {material.E / 1e9:.4g} GPa, E* = "
-        f"{material.contact_modulus / 1e9:.4g} GPa, H = {_h(material)}; {res.peak_load.size} "
-        f"cycles in {res.settings['seconds']['total_s']:.3g} s"
+        f"{s.nx}×{s.ny} surface over {s.lx * 1e3:.4g} × {s.ly * 1e3:.4g} mm"
+        + (f" ({n_real} realisations)" if n_real > 1 else "") + f", R_t = {s.Rt * 1e6:.4g} µm; "
+        f"E = {material.E / 1e9:.4g} GPa, E* = {material.contact_modulus / 1e9:.4g} GPa, "
+        f"H = {_h(material)}; {res.peak_load.size} cells in "
+        f"{res.settings['seconds']['total_s']:.3g} s",
+        _resolution_line(res),
     ]
     for name, fit in fits.items():
-        lines.append(f"  {name:24s} " + ("no fit" if fit is None else
-                     f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (E Young's modulus; r² = {fit.r2:.4f}, "
-                     f"{fit.n_points} rows)"))  # fmt: skip
+        if not fit["made"]:
+            lines.append(f"  {name:24s} no fit: {fit['n_points']} cells in_fit, "
+                         f"at least {MIN_FIT_POINTS} needed")  # fmt: skip
+            continue
+        (a0, a1), (b0, b1) = fit["alpha_ci95"], fit["beta_ci95"]
+        lines.append(
+            f"  {name:24s} E_c/E = {fit['beta']:.4g}·[F/(E·A)]^{fit['alpha']:.4f}  (E Young's "
+            f"modulus); α 95 % [{a0:.4f}, {a1:.4f}], β 95 % [{b0:.4g}, {b1:.4g}]; "
+            f"r² = {fit['r2']:.4f}, {fit['n_points']} cells of {fit['n_indents']} indents"
+        )  # fmt: skip
     print("\n".join(lines))
     print(f"wrote {args.out}/{', '.join(files)}")
     if not res.all_converged or not (args.no_elastic or res.elastic_converged.all()):
@@ -140,3 +174,56 @@ def run(args: argparse.Namespace) -> int:
 
 def _h(material: Material) -> str:
     return "∞ (elastic)" if material.elastic else f"{material.hardness / 1e9:.4g} GPa"
+
+
+def map_spec(args: argparse.Namespace):
+    """The WM surface of the options, on a map of :data:`MAP_SIDE` per side unless ``--L`` is
+    given, at the pixel of the preset or of the defaults unless ``--n`` is given.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``warptrunc indent``.
+
+    Returns
+    -------
+    WMSpec
+        E.g. ``--preset GB300s``: 3 mm over 30720 pixels (the preset's 97.7 nm); no preset:
+        3 mm over 3072 (the defaults' 0.977 µm); ``--n 512``: 3 mm over 512.
+    """
+    spec = wm_spec_from_args(args)
+    if args.L is None:
+        lx, ly = spec.L if isinstance(spec.L, tuple) else (spec.L, spec.L)
+        nx, ny = spec.n if isinstance(spec.n, tuple) else (spec.n, spec.n)
+        if args.n is None:  # the pixel of the preset or the defaults, on a larger map
+            nx, ny = round(nx * MAP_SIDE / lx), round(ny * MAP_SIDE / ly)
+        spec = spec.replace(L=MAP_SIDE, n=(nx, ny) if nx != ny else nx)
+    return spec
+
+
+def _surfaces(args: argparse.Namespace) -> list:
+    """The surfaces indented: the file of ``--input``, or the WM surface of :func:`map_spec`,
+    one per ``--seeds``."""
+    from ..wm import wm_surface
+
+    if args.input is not None:
+        if args.seeds is not None:
+            raise ValueError("--seeds generates WM surfaces; it cannot be used with --input")
+        return [read_input(args.input, args)]
+    spec = map_spec(args)
+    seeds = [spec.seed] if args.seeds is None else list(args.seeds)
+    return [wm_surface(spec.replace(seed=k), device=args.device) for k in seeds]
+
+
+def _resolution_line(res) -> str:
+    """One line: how many cells are resolved, saturated and in the fits."""
+    c = res.resolution_counts()
+    n = c["n_cells"]
+    ep = c["elastic_plastic"]
+    text = (f"  cells: {ep['resolved']}/{n} resolved, {ep['saturated']} saturated, "
+            f"{ep['in_fit']} in_fit (elastic–plastic)")  # fmt: skip
+    if "elastic" in c and not res.material.elastic:
+        el = c["elastic"]
+        text += f"; {el['resolved']} resolved, {el['saturated']} saturated, {el['in_fit']} in_fit (elastic)"
+    notes = ", ".join(f"{v} {k}" for k, v in sorted(ep["notes"].items()))
+    return text + f"; elastic–plastic notes: {notes}"

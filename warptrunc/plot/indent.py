@@ -17,9 +17,9 @@ if TYPE_CHECKING:
 __all__ = ["indentation"]
 
 _MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*")
-_DRAWN = (  # (model, column, colour, label, filled markers)
+_DRAWN = (  # (model, column, colour, label, solid fit line)
     ("elastic_plastic_partial", "E_c_partial_over_E", "C3", "elastic–plastic, {f:g} % unloading", True),
-    ("elastic_plastic", "E_c_over_E", "C3", "elastic–plastic, initial slope (Barber)", False),
+    ("elastic_plastic", "E_c_over_E", "C1", "elastic–plastic, initial slope (Barber)", False),
     ("elastic", "elastic_E_c_over_E", "C0", "elastic (H = ∞), initial slope", False),
     ("truncation", "truncation_E_c_over_E", "C2", "truncation (Eq. 2)", True),
 )  # fmt: skip
@@ -46,10 +46,11 @@ def indentation(
     -------
     matplotlib.figure.Figure
         One marker shape per punch diameter, one colour per model (the elastic–plastic model
-        twice: the paper's partial-unloading secant filled, Barber's initial slope open); each
-        model's fit E_c/E = β·[F/(E·A)]^α drawn over the rows it used, α and β in the legend.
-        Rows that did not converge are left out. With ``hardness = inf`` the elastic–plastic
-        model is the elastic one and is drawn once.
+        twice: the paper's partial-unloading secant red, Barber's initial slope orange); the
+        cells a model's fit uses (``in_fit``: resolved, not saturated, converged) filled, the
+        others hollow; each model's fit E_c/E = β·[F/(E·A)]^α drawn over the cells it used,
+        α and β with their 95 % intervals in the legend. With ``hardness = inf`` the
+        elastic–plastic model is the elastic one and is drawn once.
     """
     from matplotlib.lines import Line2D
 
@@ -62,34 +63,37 @@ def indentation(
     diam = result.punch_diameter
     keys = sorted({float(d) for d in diam[np.isfinite(diam)]})
     has_flat = bool(np.any(~np.isfinite(diam)))
-    for model, col, colour, label, filled in _DRAWN:
+    for model, col, colour, label, solid in _DRAWN:
         if elastic_only and model.startswith("elastic_plastic"):
             continue
         y = np.asarray(cols[col], dtype=np.float64)
         ok = np.isfinite(y) & (y > 0)
-        conv = {"truncation": None}.get(model, "elastic_converged" if model == "elastic"
-                                        else "converged")  # fmt: skip
-        if conv is not None:
-            ok &= np.asarray(cols[conv], dtype=bool)
         if not ok.any():
             continue
+        used = result.fit_cells(model)["mask"]
         for i, d in enumerate([*keys, None] if has_flat else keys):
             sel = ok & (~np.isfinite(diam) if d is None else np.isclose(diam, d))
-            ax.loglog(x[sel], y[sel], _MARKERS[i % len(_MARKERS)], ms=4, ls="none",
-                      color=colour, mfc=colour if filled else "none", alpha=0.8)  # fmt: skip
+            for part, face in ((sel & used, colour), (sel & ~used, "none")):  # excluded: hollow
+                ax.loglog(x[part], y[part], _MARKERS[i % len(_MARKERS)], ms=4, ls="none",
+                          color=colour, mfc=face, alpha=0.8)  # fmt: skip
         fit = fits.get(model)
         text = label.format(f=100 * result.protocol.unload_fraction)
         if fit is not None:
             g = np.geomspace(fit.F_over_EA_min, fit.F_over_EA_max, 50)
-            ax.loglog(g, fit.beta * g**fit.alpha, "-" if filled else "--", color=colour, lw=1.2,
-                      label=f"{text}: α = {fit.alpha:.3f}, β = {fit.beta:.3g}")  # fmt: skip
+            (a0, a1), (b0, b1) = fit.alpha_ci95, fit.beta_ci95
+            ax.loglog(g, fit.beta * g**fit.alpha, "-" if solid else "--", color=colour, lw=1.2,
+                      label=f"{text}: α = {fit.alpha:.3f} [{a0:.3f}, {a1:.3f}], "
+                      f"β = {fit.beta:.3g} [{b0:.3g}, {b1:.3g}]")  # fmt: skip
         else:
-            ax.plot([], [], "-", color=colour, label=f"{text}: no fit")
+            ax.plot([], [], "-", color=colour, label=f"{text}: no fit (< 6 cells in_fit)")
     handles, _ = ax.get_legend_handles_labels()
     for i, d in enumerate([*keys, None] if has_flat else keys):
         name = "flat ≥ map" if d is None else f"d = {d * 1e6:.4g} µm"
         handles.append(Line2D([], [], marker=_MARKERS[i % len(_MARKERS)], ls="none",
-                              color="0.3", mfc="none", label=name))  # fmt: skip
+                              color="0.3", mfc="0.3", label=name))  # fmt: skip
+    handles.append(Line2D([], [], marker="o", ls="none", color="0.3", mfc="none",
+                          label="hollow: left out of the fit (unresolved, saturated or not "
+                          "converged)"))  # fmt: skip
     ax.legend(handles=handles, fontsize=7)
     ax.set(xlabel="F/(E·A)", ylabel="E$_c$/E")
     ax.grid(True, which="both", alpha=0.3)
