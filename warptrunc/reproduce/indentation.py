@@ -63,7 +63,7 @@ COLUMNS = (
     "partial_unloading_stiffness_N_per_m", "E_c_over_E", "E_c_partial_over_E", "converged",
     "overlap_fraction", "n_punch_pixels", "truncation_depth_m", "truncation_contact_area_m2",
     "truncation_stiffness_N_per_m", "truncation_E_c_over_E", "centre_x_m", "centre_y_m",
-    "max_pressure_Pa",
+    "max_pressure_Pa", "pixel_size_m", "resolution_change", "resolved", "saturated", "in_fit",
 )  # fmt: skip
 """Columns of :meth:`warptrunc.indent.IndentationResult.to_dict` kept in each piece."""
 
@@ -116,8 +116,18 @@ def stage_params(p: Profile) -> dict[str, Any]:
         "hardness_factors": [("inf" if math.isinf(f) else f) for f in p.indentation_hardness_factors],
         "unload_fraction": p.indentation_unload_fraction, "dtype": p.indentation_dtype,
         "maxiter": p.indentation_maxiter, "truncation_increments": p.indentation_increments, "refine": p.indentation_refine,
-        "material": m.to_dict(),
+        "material": m.to_dict(), **_refinement(p),
     })  # fmt: skip
+
+
+def _refinement(p: Profile) -> dict[str, Any]:
+    """The cells' refinement rule (issue 38) when it is on; {} when off, so that pieces stored
+    before it keep their parameters."""
+    if p.indentation_refine_max <= 1:
+        return {}
+    return {"refine_max": p.indentation_refine_max,
+            "resolution_tol": p.indentation_resolution_tol,
+            "min_contact_pixels": p.indentation_min_contact_pixels}  # fmt: skip
 
 
 @fill_doc(_STAGE_DOCS)
@@ -145,6 +155,7 @@ def _piece_params(p: Profile, surface: str, factor: float) -> dict[str, Any]:
         "material": _material(factor).to_dict(),
         **{k: par[k] for k in ("punches_m", "loads_N", "placements", "seed", "unload_fraction",
                                "dtype", "maxiter", "truncation_increments")},
+        **_refinement(p),
     })  # fmt: skip
 
 
@@ -174,12 +185,15 @@ def _run_indent(surface, p: Profile, factor: float, *, placements, device, reuse
             material=_material(factor), placements=placements, seed=p.indentation_seed,
             settings=SolverSettings(dtype=p.indentation_dtype, maxiter=p.indentation_maxiter),
             truncation_increments=p.indentation_increments, elastic=math.isinf(factor),
-            reuse=reuse, device=device,
+            reuse=reuse, device=device, refine_max=p.indentation_refine_max,
+            resolution_tol=p.indentation_resolution_tol,
+            min_contact_pixels=p.indentation_min_contact_pixels,
         )  # fmt: skip
 
 
 def _piece_record(res, params: dict[str, Any], gen_s: float, wall_s: float) -> dict[str, Any]:
-    cols = res.to_dict()
+    cols = {**res.to_dict()}
+    cols["n_contact"] = cols["n_contact_pixels"]  # the pieces' name, kept
     sec = res.settings["seconds"]
     windows = [{"punch_diameter_m": w["punch_diameter_m"], "placement": w["placement"],
                 "window_px": w["window"][2:], "n_punch_pixels": w["n_punch_pixels"],
@@ -266,7 +280,8 @@ def stage_indentation(p: Profile, out: str | Path, device, *, overwrite: bool = 
             # the elastic piece's unyielded cycles are this piece's too (warptrunc.indent's reuse)
             el = done.get((s, math.inf))
             reuse = (el["rows"] if el is not None and not math.isinf(f)
-                     and "max_pressure_Pa" in el["rows"] else None)  # fmt: skip
+                     and "max_pressure_Pa" in el["rows"] and p.indentation_refine_max <= 1
+                     else None)  # fmt: skip
             res = _run_indent(surface, p, f, placements=p.indentation_placements, device=device,
                               reuse=reuse)  # fmt: skip
             rec = _piece_record(res, _piece_params(p, s, f), gen_s, time.perf_counter() - t1)
@@ -328,8 +343,9 @@ def _run_resolution(p: Profile, ref: dict[str, Any], device) -> dict[str, Any]:
                        placements=None,
                        settings=SolverSettings(dtype=ref["dtype"], maxiter=ref["maxiter"]),
                        truncation_increments=ref["truncation_increments"],
-                       elastic=math.isinf(fac), device=device)  # fmt: skip
-            cols = r.to_dict()
+                       elastic=math.isinf(fac), device=device, refine_max=1)  # fmt: skip
+            cols = {**r.to_dict()}
+            cols["n_contact"] = cols["n_contact_pixels"]
             g[model_name(fac)] = {c: cols[c] for c in (
                 "peak_load_N", "unloading_stiffness_N_per_m", "partial_unloading_stiffness_N_per_m",
                 "contact_area_m2", "plastic_area_m2", "n_contact", "E_c_over_E", "converged",
@@ -367,7 +383,7 @@ def summary_from_pieces(p: Profile, pieces: list[dict[str, Any]],
     rows: dict[str, list] = {"surface": [], "model": []}
     keep = ("punch_diameter_m", "placement", "peak_load_N", "F_over_EA", "displacement_m",
             "contact_area_m2", "plastic_area_m2", "n_contact", "E_c_over_E", "E_c_partial_over_E",
-            "converged", "overlap_fraction", "n_punch_pixels")  # fmt: skip
+            "converged", "overlap_fraction", "n_punch_pixels", "in_fit")  # fmt: skip
     timings, seen, trunc_same = [], set(), True
     first_trunc: dict[str, list] = {}
     for (s, f), rec in zip(piece_names(p), pieces, strict=True):
@@ -375,6 +391,7 @@ def summary_from_pieces(p: Profile, pieces: list[dict[str, Any]],
         m = len(r["peak_load_N"])
         rows["surface"] += [s] * m
         rows["model"] += [model_name(f)] * m
+        r = {**r, "in_fit": r["in_fit"] if "in_fit" in r else r["converged"]}  # older pieces
         for c in keep:
             rows.setdefault(c, []).extend(r[c])
         if s not in seen:  # truncation does not depend on H: once per surface
@@ -407,6 +424,9 @@ def summary_from_pieces(p: Profile, pieces: list[dict[str, Any]],
         "placements": p.indentation_placements,
         "n": p.indentation_n, "L_m": p.indentation_L, "dx_m": p.indentation_L / p.indentation_n,
         "dtype": p.indentation_dtype,
+        # the cells the fits use: every converged one without refinement (as before issue 38)
+        "fit_cells": "in_fit" if p.indentation_refine_max > 1 else "converged",
+        "refine_max": p.indentation_refine_max,
         "material": {"E_Pa": m.E, "nu": m.nu, "E_i_Pa": m.E_i, "nu_i": m.nu_i,
                      "E_star_Pa": m.contact_modulus, "H_alloy_Pa": ALUMINIUM_HARDNESS},
         "truncation_same_over_H": bool(trunc_same),

@@ -151,6 +151,7 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
 
     r = stage["rows"]
     n = len(r["surface"])
+    use = r.get(stage.get("fit_cells", "converged"), r["converged"])  # in_fit when refined
     fits: dict[str, dict[str, Any]] = {}
     for s in stage["surfaces"]:
         fits[s] = {}
@@ -159,7 +160,7 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
                 if m == "truncation" and kind:
                     continue
                 sel = [i for i in range(n) if r["surface"][i] == s and r["model"][i] == m
-                       and r["converged"][i] and r[col][i] is not None]  # fmt: skip
+                       and r["converged"][i] and use[i] and r[col][i] is not None]  # fmt: skip
                 try:
                     f = fit_power_law([r["F_over_EA"][i] for i in sel], [r[col][i] for i in sel])
                     fits[s][m + kind] = {"alpha": f.alpha, "beta": f.beta, "r2": f.r2,

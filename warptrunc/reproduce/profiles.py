@@ -125,6 +125,17 @@ class Profile:
     """Depth increments of the truncation curve under each punch (``indentation`` stage)."""
     indentation_refine: bool = True
     """Resolution check of the ``indentation`` stage: the smallest punch at dx and dx/2."""
+    indentation_refine_max: int = 1
+    """Refinement of the ``indentation`` stage's cells in the pixel size
+    (:mod:`warptrunc.indent.refine`, a power of 2): 1 = none, the cells judged by their
+    contact pixels and the fits over every converged cell (as before issue 38); above 1 the
+    punch windows are generated again at pixel/2 … pixel/refine_max until resolved and the fits
+    use the cells ``in_fit``."""
+    indentation_resolution_tol: float = 0.02
+    """Relative change of K and of the contact area at which a cell is resolved (``indentation``
+    stage, with ``indentation_refine_max`` > 1)."""
+    indentation_min_contact_pixels: int = 100
+    """Fewest contact pixels of a resolved cell (``indentation`` stage)."""
     extra: dict[str, Any] = field(default_factory=dict)
     """Free-form additions, recorded with the profile (no stage reads them)."""
 
