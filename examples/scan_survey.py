@@ -5,13 +5,16 @@
 
 Reads every file of the given folders with :func:`warptrunc.io.read_height_map` (missing
 points filled, plane levelled; ``dx = 1 µm`` only when the file has no spacing and the reader
-asks for one), runs the truncation analysis on the ``analyze`` defaults (200 increments to
-0.1·R_t, ``min_pixels = 10``), and sorts each file into
+asks for one), runs :func:`warptrunc.analysis.analyze` on the ``analyze`` defaults (200
+increments to 0.1·R_t, ``min_pixels = 10``, and the automatic rule of
+:mod:`warptrunc.robust` for maps read from files), and sorts each file into
 
-* **analysed** — read and fitted on the defaults;
+* **analysed** — read, and its fit is worth reading (the rule's decisions named);
+* **flagged** — read and fitted, but the fit is not worth reading (``fit_error``);
 * **read, advice** — read, the default fit range is empty, and the message names option values
   that work for this map (checked on the map);
-* **refused** — not read, with a one-line ValueError naming the problem;
+* **refused** — not read or not analysed (a map under 32 pixels a side), with a one-line
+  ValueError naming the problem;
 * **misread** — read into a map that disagrees with SurfaceTopography's reading of the same
   file (other shape, a 1-D scan read as a map, heights not proportional); must be 0;
 * **crashed** — any other exception (a traceback for the user); must be 0.
@@ -90,10 +93,9 @@ def _proportional(a: np.ndarray, b: np.ndarray) -> bool:
 
 def survey_file(f: Path, device: str) -> dict:
     """The category of one file and what decided it."""
+    from warptrunc.analysis import analyze
     from warptrunc.io import read_height_map
     from warptrunc.robust import fit_range_advice
-    from warptrunc.stiffness import fit_power_law, stiffness_curve
-    from warptrunc.truncation import truncate
 
     row = {"file": f.name, "options": "", "category": "", "detail": ""}
     ref = _reference(f)
@@ -127,8 +129,7 @@ def survey_file(f: Path, device: str) -> dict:
             row["category"], row["detail"] = "misread", "heights differ from SurfaceTopography's"
             return row
     try:
-        curve = truncate(s, 200, max_depth_fraction=0.1, device=device)
-        fit = fit_power_law(stiffness_curve(curve), min_pixels=10)
+        a = analyze(s, 200, islands=False, device=device)  # analyze's defaults and its rule
     except ValueError as exc:
         advice = fit_range_advice(
             s.heights, increments=200, max_depth_fraction=0.1, max_depth=None, min_pixels=10,
@@ -140,12 +141,15 @@ def survey_file(f: Path, device: str) -> dict:
         else:
             row["category"], row["detail"] = "refused", str(exc)[:160]
         return row
-    row["category"] = "analysed"
-    row["detail"] = f"{s.nx}×{s.ny}, α = {fit.alpha:.3f}, r² = {fit.r2:.3f}"
+    fit, rule = a.fit, a.fit_range
+    done = [k for k in ("spikes_masked", "depth_extended", "depth_cut") if rule.get(k)]
+    row["category"] = "analysed" if a.fit_error is None else "flagged"
+    row["detail"] = (f"{s.nx}×{s.ny}, α = {fit.alpha:.3f}, r² = {fit.r2:.3f}"
+                     + (f"; automatic: {', '.join(done)}" if done else ""))  # fmt: skip
     return row
 
 
-CATEGORIES = ("analysed", "read, advice", "refused", "misread", "crashed")
+CATEGORIES = ("analysed", "flagged", "read, advice", "refused", "misread", "crashed")
 
 
 def survey(dirs: list[Path], device: str = "cpu", quick: bool = False) -> list[dict]:
@@ -164,7 +168,8 @@ def table(rows: list[dict]) -> str:
     lines = ["| file | read options | category | detail |", "|---|---|---|---|"]
     lines += [f"| {r['file']} | {r['options']} | {r['category']} | {r['detail']} |" for r in rows]
     counts = {c: sum(r["category"] == c for r in rows) for c in CATEGORIES}
-    lines += ["", "| " + " | ".join(CATEGORIES) + " | total |", "|" + "---|" * 6]
+    rule = "|" + "---|" * (len(CATEGORIES) + 1)
+    lines += ["", "| " + " | ".join(CATEGORIES) + " | total |", rule]
     lines.append("| " + " | ".join(str(counts[c]) for c in CATEGORIES) + f" | {len(rows)} |")
     return "\n".join(lines) + "\n"
 
@@ -175,7 +180,7 @@ def figure(rows: list[dict], path: Path) -> None:
     from matplotlib.ticker import MaxNLocator
 
     counts = [sum(r["category"] == c for r in rows) for c in CATEGORIES]
-    colors = ["tab:green", "tab:olive", "tab:gray", "tab:red", "k"]
+    colors = ["tab:green", "tab:orange", "tab:olive", "tab:gray", "tab:red", "k"]
     fig = Figure(figsize=(5.0, 3.0), dpi=150, layout="constrained")
     ax = fig.subplots()
     y = np.arange(len(CATEGORIES))[::-1]
@@ -183,7 +188,7 @@ def figure(rows: list[dict], path: Path) -> None:
     for yi, c in zip(y, counts, strict=True):
         ax.text(c, yi, f" {c}", va="center", fontsize=8)
     ax.set_yticks(y, CATEGORIES)
-    ax.set_xlim(0, max(counts + [1]) * 1.15)
+    ax.set_xlim(0, max([*counts, 1]) * 1.15)
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_xlabel("instrument files")
     ax.set_title(f"{len(rows)} files read and analysed on the analyze defaults", fontsize=9)

@@ -101,6 +101,52 @@ def test_a_byte_flipped_pixel_is_flagged_at_its_place(sign):
     assert masked.params["n_spikes_masked"] == 1
 
 
+def _reference_passes(z, passes):
+    """The spike rule repeated on the map masked by the passes before, with NumPy: (set of
+    pixels flagged, masked heights)."""
+    z = np.asarray(z, dtype=np.float32).copy()
+    hit: set = set()
+    for _ in range(passes):
+        flags = _reference_spikes(z)
+        if not flags:
+            break
+        med = _neighbour_median(z)
+        for y, x in flags:
+            z[y, x] = np.float32(med[y, x])
+        hit |= set(flags)
+    return hit, z
+
+
+def test_repeated_passes_find_a_spike_population_one_pass_misses():
+    s = wm_surface(2.3, 100e-6, L=1e-3, n=128, Rt=10e-6, seed=5, device="cpu")
+    z = np.array(s.heights, dtype=np.float64)
+    rng = np.random.default_rng(8)
+    cells = np.array([(y, x) for y in range(2, 126, 2) for x in range(2, 126, 2)])
+    iy, ix = cells[rng.choice(len(cells), 60, replace=False)].T  # 0.37 % of the pixels
+    z[iy, ix] += rng.uniform(10, 60, 60) * z.std()
+    spiky = wt.from_heights(z, s.dx)
+    planted = set(zip(iy.tolist(), ix.tolist(), strict=True))
+    assert 0 < len(_reference_spikes(z)) < 60  # P99.9 lies among the spikes: one pass is short
+    masked, (w,) = pl.mask_spikes(spiky, passes=10)
+    hit, zref = _reference_passes(z, 10)
+    assert hit == planted and w.details["count"] == 60 and w.details["passes"] >= 2
+    np.testing.assert_array_equal(masked.heights, zref)
+    assert masked.params["n_spikes_masked"] == 60
+    _, (w1,) = pl.mask_spikes(spiky)  # the default: one pass, as before
+    assert w1.details["count"] == len(_reference_spikes(z)) and w1.details["passes"] == 1
+    with pytest.raises(ValueError, match="passes must be an integer ≥ 1"):
+        pl.mask_spikes(spiky, passes=0)
+
+
+def test_spikes_report_counts_one_pass(spiky_map, tmp_path):
+    """``analyze --spikes report``: the spikes reported as one pass finds them, the map kept."""
+    r = _cli("analyze", "--input", spiky_map / "spiky.npz", "--no-plot", "--out", tmp_path / "r",
+             "--device", "cpu", "--spikes", "report", cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2  # the spike alone is in contact at 0.1·R_t: nothing to fit
+    assert "warning: spikes: 1 spike pixel(s) (first at iy=40, ix=200)" in r.stderr
+    assert "reported, not masked" in r.stderr and "auto_spikes_masked" not in r.stderr
+
+
 def test_spike_options_are_checked():
     with pytest.raises(ValueError, match="k must be"):
         pl.find_spikes(np.zeros((4, 4)), k=0)
@@ -205,16 +251,23 @@ def test_analyze_flags_and_fits_a_spiky_map(spiky_map, tmp_path):
     r = _cli("analyze", "--input", spiky_map / "spiky.npz", "--no-plot", "--out", tmp_path / "a",
              "--device", "cpu", cwd=tmp_path)  # fmt: skip
     assert r.returncode == 0, r.stderr
-    assert "warning: spikes: 1 spike pixel(s) (first at iy=40, ix=200)" in r.stderr
+    assert "warning: auto_spikes_masked: 1 spike pixel(s) (first at iy=40, ix=200;" in r.stderr
     info = json.loads((tmp_path / "a" / "fit.json").read_text())
-    assert [w["code"] for w in info["warnings"]][0] == "spikes"
-    assert info["fit_range"]["rule"] == "auto" and info["fit_range"]["spikes_masked"] == 1
+    assert info["warnings"][0]["code"] == "auto_spikes_masked"
+    rule = info["fit_range"]
+    assert rule["rule"] == "auto" and rule["spikes_masked"]["count"] == 1
+    assert rule["reason"].startswith("the default fit is empty")
     assert info["fit_error"] is None and info["r2"] >= 0.9
     assert 0 < info["alpha"] <= 1
+    # the spike masked, the map is the clean one but for one pixel: the clean map's legacy fit
+    s = wt.read_height_map(spiky_map / "clean.npz")
+    fit = fit_power_law(stiffness_curve(wt.truncate(s, 200, max_depth_fraction=0.1)))
+    assert abs(info["alpha"] - fit.alpha) < 1e-3
     # the legacy range on the same map: ω_max = 0.1·R_t of the spike touches the spike alone
     r = _cli("analyze", "--input", spiky_map / "spiky.npz", "--no-plot", "--out", tmp_path / "b",
              "--device", "cpu", "--fit-range", "legacy", cwd=tmp_path)  # fmt: skip
     assert r.returncode == 2 and "only 0 increments in the fit range" in r.stderr
+    assert "warning: spikes: 1 spike pixel(s) (first at iy=40, ix=200)" in r.stderr
 
 
 def test_analyze_on_a_clean_map_keeps_the_legacy_range(spiky_map, tmp_path):
@@ -223,7 +276,12 @@ def test_analyze_on_a_clean_map_keeps_the_legacy_range(spiky_map, tmp_path):
     assert r.returncode == 0, r.stderr
     assert not [ln for ln in r.stderr.splitlines() if ln.startswith("warning:")], r.stderr
     info = json.loads((tmp_path / "a" / "fit.json").read_text())
-    assert info["warnings"] == [] and info["fit_range"] == {"rule": "legacy"}
+    assert info["warnings"] == []
+    # the rule auto chose, and why (issue 41, item 5)
+    assert info["fit_range"] == {
+        "asked": "auto", "rule": "legacy", "spikes_masked": None, "depth_extended": None,
+        "depth_cut": None, "reason": "the default fit is worth reading and no spike sets R_t",
+    }  # fmt: skip
     s = wt.read_height_map(spiky_map / "clean.npz")
     fit = fit_power_law(stiffness_curve(wt.truncate(s, 200, max_depth_fraction=0.1)))
     assert info["alpha"] == fit.alpha  # the legacy numbers, unchanged

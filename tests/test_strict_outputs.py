@@ -235,7 +235,7 @@ def test_rt_percentile_clips_spikes_and_is_recorded(tmp_path, capsys):
     # the automatic fit range (the default) masks the spike and fits without help
     assert run(*args, "--out", tmp_path / "c") == 0
     auto = strict_load(tmp_path / "c" / "fit.json")
-    assert auto["fit_range"]["rule"] == "auto" and auto["fit_range"]["spikes_masked"] == 1
+    assert auto["fit_range"]["rule"] == "auto" and auto["fit_range"]["spikes_masked"]["count"] == 1
     assert auto["warnings"][0]["details"]["locations"][0]["iy"] == 5
     assert run(*args, "--rt-percentile", 0.1, 99.9, "--out", tmp_path / "b") == 0
     fit = strict_load(tmp_path / "b" / "fit.json")

@@ -12,6 +12,7 @@ flat punch per island, :func:`warptrunc.stiffness.island_stiffness_curve`). The 
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -21,8 +22,22 @@ import warp as wp
 
 from ._support.device import resolve_device
 from .material import Material
-from .plausibility import PlausibilityWarning, check_fit, check_fit_depth, fit_error_text
-from .robust import auto_fit_range, clip_to_percentiles
+from .plausibility import (
+    PlausibilityWarning,
+    check_fit,
+    check_fit_depth,
+    check_spikes,
+    fit_error_text,
+)
+from .robust import (
+    AUTO_CONTACT_PIXELS,
+    AUTO_MAX_CONTACT_SHARE,
+    adjust_depth,
+    check_map_size,
+    clip_to_percentiles,
+    spike_rule,
+    spike_warning,
+)
 from .stiffness import (
     DEFAULT_MIN_PIXELS,
     PowerLawFit,
@@ -93,8 +108,11 @@ class Analysis:
     """Plausibility warnings of the fits (:mod:`warptrunc.plausibility`): a fit not worth
     reading, a fit range past § 4.3's validity depth."""
     fit_range: dict[str, Any] | None = None
-    """The fit-range rule used: ``{"rule": "legacy"}`` or the automatic rule's record
-    (:func:`warptrunc.robust.auto_fit_range`)."""
+    """The fit-range rule: ``asked`` (``"auto"`` or ``"legacy"``), ``rule`` (the one used),
+    ``reason`` (why), the automatic decisions ``spikes_masked`` (``count``, ``passes``,
+    ``sets``, ``Rt_before_m``, ``Rt_after_m``), ``depth_extended`` and ``depth_cut``
+    (:func:`warptrunc.robust.adjust_depth`), each None when not taken, and ``max_depth_m`` (m)
+    when the rule is ``"auto"``."""
     indicators: Any = None
     """§ 4.3's indicators (:class:`warptrunc.Indicators`) of the map when computed, else None."""
     fit_error: str | None = None
@@ -161,6 +179,7 @@ def analyze(
     stream: bool | Literal["auto"] = "auto",
     band_rows: int | None = None,
     fit_range: Literal["auto", "legacy"] = "auto",
+    auto_spikes: bool = True,
     progress: bool = True,
     device: wp.DeviceLike = None,
 ) -> Analysis:
@@ -200,10 +219,16 @@ def analyze(
         Rows per band when streaming.
     fit_range : {"auto", "legacy"}
         ``"legacy"``: increments to ω_max with ≥ ``min_pixels`` contact pixels. ``"auto"``: the
-        same, and for a :class:`Surface` (a map read from a file) whose legacy fit is not worth
-        reading (:func:`warptrunc.plausibility.check_fit`) with no range of the caller's own
-        (``max_depth``, ``depth_window``, ``rt_percentile``), the range stated in contact
-        pixels of :func:`warptrunc.robust.auto_fit_range`, kept when its fit is worth reading.
+        same, and for a :class:`Surface` (a map read from a file) with no range of the
+        caller's own (``max_depth``, ``depth_window``, ``rt_percentile``) the automatic rule of
+        :mod:`warptrunc.robust`: a map under 32 pixels a side is refused; spikes that set R_t
+        are masked; ω_max extends until the deepest increment has 50 contact pixels (or is cut
+        to 5 % of A in contact), when the default fit is empty or not worth reading.
+    auto_spikes : bool
+        For a :class:`Surface`: let the automatic rule mask the spikes that set R_t, and report
+        the spikes (:func:`warptrunc.plausibility.check_spikes`) where the rule does not run;
+        False leaves the map's heights as given and reports nothing (``--spikes report``,
+        ``mask`` and ``off`` do it as the map is read).
     progress : bool
         Show a progress bar over the bands of each streamed pass.
     device : str, optional
@@ -220,11 +245,14 @@ def analyze(
         The fit range of Eq. 2's fit holds fewer than 3 increments.
     ValueError
         ``stream=True`` with a :class:`Surface`, ``islands`` or ``rt_percentile`` with a
-        streamed surface, or parameters out of range.
+        streamed surface, a :class:`Surface` under 32 pixels a side with ``fit_range="auto"``
+        (:func:`warptrunc.robust.check_map_size`), or parameters out of range.
     """
     material = Material() if material is None else material
     if fit_range not in ("auto", "legacy"):
         raise ValueError(f"fit_range must be 'auto' or 'legacy', got {fit_range!r}")
+    if isinstance(source, Surface) and fit_range == "auto":
+        check_map_size(source)
     curve, surface, meta, path = _truncation(
         source, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction,
         rt_percentile=rt_percentile, islands=islands, stream=stream, band_rows=band_rows,
@@ -242,14 +270,20 @@ def analyze(
     indicators = _validity(surface, read_map, connectivity, device) if want_islands else None
     if fit is not None and indicators is not None:
         found += check_fit_depth(fit, indicators)
-    rule: dict[str, Any] = {"rule": "legacy"}
-    auto_ok = (fit_range == "auto" and read_map and surface is not None and depth_window is None
-               and max_depth is None and rt_percentile is None)  # fmt: skip
-    if (fit is None or found) and auto_ok:
-        auto = _auto_range(surface, material, n_increments, beta_prime, min_pixels, read_map,
-                           connectivity, want_islands, device)  # fmt: skip
+    own = [name for name, v in (("--max-depth", max_depth), ("--depth-window", depth_window),
+                                ("--rt-percentile", rt_percentile)) if v is not None]  # fmt: skip
+    rule = _rule_without_auto(fit_range, read_map, own)
+    decided: list = []
+    if rule is not None and read_map and auto_spikes:  # no rule: the spikes are reported
+        decided = check_spikes(source)
+    if rule is None:
+        legacy = fit, found, None if fit is not None else error
+        auto, rule, decided = _auto_rule(
+            surface, legacy, material, n_increments, max_depth_fraction, beta_prime,
+            min_pixels, connectivity, want_islands, auto_spikes, device,
+        )  # fmt: skip
         if auto is not None:
-            surface, max_depth, curve, sc, fit, found, indicators, rule = auto
+            surface, max_depth, curve, sc, fit, found, indicators = auto
             meta = surface.to_dict()
     if fit is None:
         raise FitRangeError(str(error), surface) from None
@@ -268,7 +302,7 @@ def analyze(
                 isl_found += check_fit_depth(isl_fit, indicators, label="islands fit")
     return Analysis(
         curve, sc, fit, isl, isl_fit, material, meta, path, connectivity,
-        warnings=tuple(found + isl_found), fit_range=rule, indicators=indicators,
+        warnings=tuple(decided + found + isl_found), fit_range=rule, indicators=indicators,
         fit_error=fit_error_text(found), islands_fit_error=fit_error_text(isl_found),
     )  # fmt: skip
 
@@ -299,26 +333,99 @@ def _validity(surface: Surface, read_map: bool, connectivity: int, device):
     return applicable_depth(ic)
 
 
-def _auto_range(surface, material, n_increments, beta_prime, min_pixels, read_map, connectivity,
-                want_islands, device):  # fmt: skip
-    """(surface, ω_max, curve, stiffness curve, fit, warnings, indicators, rule) on the
-    automatic fit range, or None when its fit is not worth reading either (the legacy result
-    is then kept)."""
-    try:
-        s, max_depth, rule = auto_fit_range(surface)
-        curve = truncate(s, n_increments, max_depth=max_depth, device=device)
+def _rule_without_auto(fit_range: str, read_map: bool, own: list[str]) -> dict | None:
+    """The ``fit_range`` record when the automatic rule does not apply; None when it does."""
+    base = {"asked": fit_range, "rule": "legacy", "spikes_masked": None, "depth_extended": None,
+            "depth_cut": None}  # fmt: skip
+    if fit_range == "legacy":
+        return {**base, "reason": "--fit-range legacy asked"}
+    if not read_map:
+        return {**base, "reason": "a generated surface: the automatic rule is for maps read from "
+                "files"}  # fmt: skip
+    if own:
+        return {**base, "reason": f"a range of the caller's own ({', '.join(own)})"}
+    return None
+
+
+def _legacy_state(fit, found, error, min_pixels: int) -> str | None:
+    """Why the default fit is not worth reading (None: it is)."""
+    if fit is None:
+        return f"empty (fewer than 3 increments with ≥ {min_pixels} contact pixels)"
+    why = fit_error_text(found)
+    return None if why is None else f"not worth reading ({why.split(': ', 1)[1]})"
+
+
+AUTO_DOUBLED = "; the fit on fewer was not worth reading, so the count doubled until it was"
+"""How the ``auto_depth_extended`` warning says that 50 contact pixels were not enough."""
+AUTO_TOO_FEW = "; the range to fewer held fewer than 3 fittable increments"
+"""... and that the range to 50 held no fit."""
+
+
+def _auto_rule(surface, legacy, material, n_increments, max_depth_fraction, beta_prime,
+               min_pixels, connectivity, want_islands, auto_spikes, device):  # fmt: skip
+    """The automatic rule of :mod:`warptrunc.robust` on a map read from a file: ((surface,
+    ω_max, curve, stiffness curve, fit, warnings, indicators) on the automatic range or None
+    when the default result stands, the ``fit_range`` record, the decisions' warnings)."""
+    state = _legacy_state(*legacy, min_pixels)
+    masked, found, sets = spike_rule(surface) if auto_spikes else (surface, [], [])
+    s = masked if sets else surface
+    rec = {"asked": "auto", "rule": "legacy", "spikes_masked": None, "depth_extended": None,
+           "depth_cut": None}  # fmt: skip
+    if state is None and not sets:
+        why = "the default fit is worth reading" + (" and no spike sets R_t" if auto_spikes else "")
+        return None, {**rec, "reason": why}, spike_warning(found, sets)
+    z = np.asarray(s.heights)
+    omega0 = max_depth_fraction * float(z.max() - z.min())
+    omega, action, depth, depth_w = adjust_depth(z, omega0)
+    ends = " and ".join({"top": "highest", "bottom": "lowest"}[e] for e in sets)
+    state = state or f"set by spikes (they include the {ends} pixel of the map)"
+    if not sets and action is None:
+        return None, {**rec, "reason": f"the default fit is {state}; no automatic decision "
+                      "applies: no spike sets R_t, and its deepest fitted increment has "
+                      f"{AUTO_CONTACT_PIXELS} contact pixels to {AUTO_MAX_CONTACT_SHARE:.0%} "
+                      "of the map"}, spike_warning(found, sets)  # fmt: skip
+
+    def fit_to(omega):
+        curve = truncate(s, n_increments, max_depth=omega, device=device)
         sc = stiffness_curve(curve, material, beta_prime=beta_prime)
         fit = fit_power_law(sc, min_pixels=min_pixels)
-    except ValueError:
-        return None
-    found = check_fit(fit, sc)
-    indicators = _validity(s, read_map, connectivity, device) if want_islands else None
+        return curve, sc, fit, check_fit(fit, sc)
+
+    fits = []  # (target, ω_max, record, warnings, curve, stiffness curve, fit, its warnings)
+    with contextlib.suppress(ValueError):
+        fits.append((AUTO_CONTACT_PIXELS, omega, depth, depth_w, *fit_to(omega)))
+    target, capped = AUTO_CONTACT_PIXELS, action == "extended" and depth["capped"]
+    while action == "extended" and not capped and not any(not f[-1] for f in fits):
+        target *= 2  # no fit worth reading yet: double the contact pixels
+        o2, more, d2, w2 = adjust_depth(z, omega0, contact_pixels=target)
+        if target > AUTO_MAX_CONTACT_SHARE * z.size or more is None:
+            break
+        capped = d2["capped"]
+        with contextlib.suppress(ValueError):
+            fits.append((target, o2, d2, w2, *fit_to(o2)))
+    if not fits:
+        why = (f"the default fit is {state}; the automatic range holds fewer than 3 increments "
+               f"with ≥ {min_pixels} contact pixels")  # fmt: skip
+        return None, {**rec, "reason": why}, spike_warning(found, sets)
+    target, omega, depth, depth_w, curve, sc, fit, found_fit = next(
+        (f for f in fits if not f[-1]), fits[0]
+    )  # the first worth reading, else the shallowest
+    if target > AUTO_CONTACT_PIXELS:  # the warning says why the count is what it is
+        note = AUTO_TOO_FEW if found_fit else AUTO_DOUBLED
+        _, _, depth, depth_w = adjust_depth(z, omega0, contact_pixels=target, note=note)
+    indicators = _validity(s, True, connectivity, device) if want_islands else None
     if indicators is not None:
-        found += check_fit_depth(fit, indicators)
-    if found:
-        return None
-    rule = {**rule, "reason": "the legacy fit range gave no fit worth reading"}
-    return s, max_depth, curve, sc, fit, found, indicators, rule
+        found_fit += check_fit_depth(fit, indicators)
+    spikes = None
+    decided = spike_warning(found, sets, s if sets else None)
+    if sets:
+        d = decided[0].details
+        spikes = {k: d[k] for k in ("count", "passes", "sets", "Rt_before_m", "Rt_after_m")}
+    rec = {**rec, "rule": "auto", "reason": f"the default fit is {state}", "spikes_masked": spikes,
+           "max_depth_m": omega}  # fmt: skip
+    if action is not None:
+        rec[f"depth_{action}"] = depth
+    return (s, omega, curve, sc, fit, found_fit, indicators), rec, decided + depth_w
 
 
 def _truncation(source, n_increments: int, *, max_depth, max_depth_fraction, rt_percentile,

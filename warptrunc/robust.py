@@ -1,10 +1,49 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Measured scans: an outlier-robust height range, and advice when the fit range is empty.
+"""Measured scans: the automatic rule of ``analyze``, a robust height range, advice.
 
 A measured scan's R_t is often set by a few spikes (dust, spikes of the instrument, unfilled
 edges). Truncated to ω_max = 0.1·R_t from such a spike, the map touches a handful of pixels
 and the power-law fit has no increments with ``min_pixels`` contact pixels.
+
+**The automatic rule** decides, for a map read from a file, what a careful user would when
+the default fit (increments to ω_max = 0.1·R_t with ≥ ``min_pixels`` contact pixels) is empty
+or not worth reading. ``analyze`` applies it with ``--fit-range auto`` (the default) and no
+range of the caller's own (``--max-depth``, ``--depth-window``, ``--rt-percentile``):
+
+0. *Size.* A map with fewer than 32 pixels on a side is refused, in one line naming its size
+   (:func:`check_map_size`).
+1. *Spikes.* The spike rule of :mod:`warptrunc.plausibility` runs in passes, each on the map
+   masked by the passes before (σ_d and R_robust recomputed), until a pass finds none (at
+   most 10; a population of spikes on more than 0.1 % of the map lifts P99.9 and so R_robust,
+   and one pass finds only its tallest). The spikes *dominate the top of the map* when its
+   highest or its lowest pixel is one of them: they set the top that the truncation starts
+   from, or R_t and with it ω_max. A fit from such a map is not worth reading either, and
+   the spikes are masked (each replaced by the median of its 8 neighbours) for R_t and the
+   truncation (:func:`spike_rule`). ``--spikes report`` keeps them (reported only).
+2. *The default first.* The default fit is kept when it is worth reading
+   (:func:`warptrunc.plausibility.check_fit`: r² ≥ 0.9, 0 < α ≤ 1, ≥ half a decade of load,
+   ≥ 50 contact pixels at the deepest fitted increment) and no spike sets R_t.
+3. *Depth.* Otherwise ω_max = 0.1·R_t of the (masked) map, brought to between 50 pixels and
+   5 % of the map in contact at the deepest increment (:func:`adjust_depth`): with fewer than
+   50 contact pixels there, it extends to halfway between the depths at which the 50th and
+   the 51st highest pixels touch (a map of 32 × 32 pixels or more has 50 within 5 % of its
+   area), and when the fit over that range is not worth reading, the count doubles (100,
+   200, … pixels, within 5 % of the map) until the fit is; an extension stops at 0.5·R_t
+   (the cap). With more than 5 % (R_t still set by pits), ω_max is cut back likewise to the
+   ⌊0.05·N⌋-th highest pixel.
+4. *Choice.* When step 1 or 3 decided something, the fit over that range (the first worth
+   reading, else the shallowest that fits) replaces the default one, with its warnings and
+   ``fit_error`` if it is still not worth reading. When neither applies, or the new range
+   holds fewer than 3 fittable increments, the default result (or its error, with advice)
+   stands.
+
+Each decision is one ``warning:`` line (``auto_spikes_masked``, ``auto_depth_extended``,
+``auto_depth_cut``) and a key of ``fit.json``'s ``fit_range`` (``spikes_masked``,
+``depth_extended``, ``depth_cut``), which also records the rule chosen (``"legacy"`` or
+``"auto"``) and why. Generated WM surfaces are not touched. ``compare`` and ``indent`` apply
+steps 0 and 1 to a map read from a file (spikes that set R_t are masked as it is read).
+
 :func:`clip_to_percentiles` clips the heights to the ``lo``-th and ``hi``-th percentiles
 (``warptrunc analyze --rt-percentile 0.1 99.9``): R_t becomes P_hi − P_lo, and the pixels
 above P_hi (a share of ``100 − hi`` %) touch at ω = 0. :func:`fit_range_advice` computes, for
@@ -18,15 +57,22 @@ import math
 
 import numpy as np
 
+from .plausibility import FIT_MIN_CONTACT_PIXELS, PlausibilityWarning, mask_spikes
 from .surface import Surface
 
 __all__ = [
-    "AUTO_END_FRACTION",
-    "AUTO_END_PIXELS",
+    "AUTO_CONTACT_PIXELS",
+    "AUTO_MAX_CONTACT_SHARE",
+    "AUTO_MAX_DEPTH_FRACTION",
     "MIN_FIT_POINTS",
-    "auto_fit_range",
+    "MIN_MAP_SIDE",
+    "SPIKE_PASSES",
+    "adjust_depth",
+    "check_map_size",
     "clip_to_percentiles",
     "fit_range_advice",
+    "spike_rule",
+    "spike_warning",
 ]
 
 MIN_FIT_POINTS = 3
@@ -160,70 +206,207 @@ def fit_range_advice(
     return out
 
 
+# --- the automatic rule for maps read from files (issue 41) ------------------------------------
 
-AUTO_END_FRACTION = 0.005
-"""Automatic fit range: the deepest increment has this share of A in contact (dimensionless) ..."""
-AUTO_END_PIXELS = 500
-"""... and at least this many contact pixels (pixels)."""
+MIN_MAP_SIDE = 32
+"""A map read from a file with fewer pixels than this on a side is refused (pixels)."""
+SPIKE_PASSES = 10
+"""Most passes of the spike rule in the automatic rule (:func:`spike_rule`)."""
+AUTO_CONTACT_PIXELS = FIT_MIN_CONTACT_PIXELS
+"""The extended depth range ends where this many pixels are in contact (pixels): the fewest
+with which a fit is worth reading (:data:`warptrunc.plausibility.FIT_MIN_CONTACT_PIXELS`)."""
+AUTO_MAX_DEPTH_FRACTION = 0.5
+"""The automatic depth range extends to at most this share of R_t (dimensionless): the depth
+to which § 4.3's indicators are computed on generated maps."""
+AUTO_MAX_CONTACT_SHARE = 0.05
+"""The automatic depth range ends where at most this share of the map is in contact
+(dimensionless): ≥ 50 pixels on a map of 32 × 32 or more."""
 
 
-def auto_fit_range(
-    surface: Surface,
-    *,
-    end_fraction: float = AUTO_END_FRACTION,
-    end_pixels: int = AUTO_END_PIXELS,
-) -> tuple[Surface, float, dict]:
-    """The map and ω_max of the automatic fit range, stated in contact pixels.
+def check_map_size(surface: Surface, name: str = "the map") -> None:
+    """Refuse a map with fewer than :data:`MIN_MAP_SIDE` pixels on a side.
 
     Parameters
     ----------
     surface : Surface
-        The map (m).
-    end_fraction : float
-        The deepest increment has a share ``end_fraction`` of the pixels in contact
-        (dimensionless, 0 < f < 1) ...
-    end_pixels : int
-        ... and at least ``end_pixels`` of them (pixels; capped at the map's size).
-
-    Returns
-    -------
-    surface : Surface
-        ``surface`` with its spike pixels masked (:func:`warptrunc.plausibility.mask_spikes`),
-        or ``surface`` itself when it has none.
-    max_depth : float
-        ω_max (m): from the highest pixel to the max(⌈f·N⌉, ``end_pixels``)-th highest one.
-    info : dict
-        The rule and its values, for ``fit.json``: ``rule`` (``"auto"``), ``end_fraction``,
-        ``end_pixels``, ``end_contact_pixels``, ``spikes_masked`` (pixels) and
-        ``max_depth_m`` (m).
+        The map read from a file.
+    name : str
+        How the message names the map (e.g. the file name).
 
     Raises
     ------
     ValueError
-        If the map is flat over that range of pixels.
-
-    Notes
-    -----
-    The depth range ends at a contact area, not at a share of R_t, which one spike or one pit
-    sets; spike pixels (which would start the truncation alone) are masked first. The fit then
-    uses the increments with at least ``min_pixels`` contact pixels, as the legacy range.
+        One line naming the map's size and the 32-pixel minimum.
     """
-    from .plausibility import mask_spikes
-
-    if not 0.0 < end_fraction < 1.0:
-        raise ValueError(f"end_fraction must be in (0, 1), got {end_fraction!r}")
-    masked, found = mask_spikes(surface)
-    z = np.asarray(masked.heights, dtype=np.float64).ravel()
-    n = z.size
-    end = min(max(math.ceil(end_fraction * n), int(end_pixels)), n)
-    z_end = float(-np.partition(-z, end - 1)[end - 1])
-    z_top = float(z.max())
-    if not z_top > z_end:
+    ny, nx = np.shape(surface.heights)
+    if min(nx, ny) < MIN_MAP_SIDE:
         raise ValueError(
-            f"the map is flat between its highest and {end}th highest pixels: no automatic fit "
-            "range; give --fit-range legacy"
+            f"{name} is {nx}×{ny} pixels (nx×ny): a truncation analysis needs at least "
+            f"{MIN_MAP_SIDE} pixels a side ({AUTO_CONTACT_PIXELS} contact pixels within "
+            f"{AUTO_MAX_CONTACT_SHARE:.0%} of the map); refused"
         )
-    info = {"rule": "auto", "end_fraction": float(end_fraction), "end_pixels": int(end_pixels),
-            "end_contact_pixels": end, "spikes_masked": found[0].details["count"] if found else 0,
-            "max_depth_m": z_top - z_end}  # fmt: skip
-    return masked, z_top - z_end, info
+
+
+def spike_rule(surface: Surface, *, passes: int = SPIKE_PASSES) -> tuple[Surface, list, list[str]]:
+    """The spike pixels of a map, found by repeated passes, and whether they set R_t.
+
+    Parameters
+    ----------
+    surface : Surface
+        The map read from a file (m).
+    passes : int
+        Most passes of the spike rule (:func:`warptrunc.plausibility.mask_spikes`; each pass on
+        the map masked by the ones before, σ_d and R_robust recomputed).
+
+    Returns
+    -------
+    masked : Surface
+        ``surface`` with every spike pixel replaced by the median of its 8 neighbours
+        (``surface`` itself when there is none).
+    found : list of PlausibilityWarning
+        The ``"spikes"`` warning of :func:`~warptrunc.plausibility.mask_spikes` (count over all
+        passes, first 20 locations), or empty.
+    sets : list of str
+        ``"top"`` when the highest pixel of ``surface`` is a spike pixel (the truncation would
+        start from it), ``"bottom"`` when the lowest one is (it sets R_t, so ω_max); empty
+        when the spikes dominate neither end of the height range.
+    """
+    masked, found = mask_spikes(surface, passes=passes)
+    if not found:
+        return surface, [], []
+    z0 = np.asarray(surface.heights)
+    hit = np.asarray(masked.heights) != z0
+    sets = [end for end, at in (("top", z0 == z0.max()), ("bottom", z0 == z0.min()))
+            if np.any(hit & at)]  # fmt: skip
+    return masked, found, sets
+
+
+def spike_warning(found: list, sets: list[str], masked: Surface | None = None) -> list:
+    """The warning line of :func:`spike_rule`'s finding: masked (a decision) or reported.
+
+    Parameters
+    ----------
+    found : list of PlausibilityWarning
+        :func:`spike_rule`'s ``found`` (empty: no warning).
+    sets : list of str
+        :func:`spike_rule`'s ``sets``.
+    masked : Surface, optional
+        The masked map when the rule masked the spikes (R_t after masking); None when they are
+        kept.
+
+    Returns
+    -------
+    list of PlausibilityWarning
+        ``"auto_spikes_masked"`` (``details``: those of ``"spikes"`` and ``sets``,
+        ``Rt_before_m``, ``Rt_after_m``, m) when masked, ``"spikes"`` (``action: "report"``)
+        when kept, or empty.
+    """
+    if not found:
+        return []
+    d = found[0].details
+    n, loc, passes = d["count"], d["locations"][0], d["passes"]
+    where = (f"{n} spike pixel(s) (first at iy={loc['iy']}, ix={loc['ix']}; {passes} pass(es) "
+             "of the spike rule)")  # fmt: skip
+    if masked is None:
+        why = ("they set neither the highest nor the lowest pixel" if not sets
+               else "the automatic range did not fit")  # fmt: skip
+        return [PlausibilityWarning(
+            "spikes", f"{where}: reported, not masked: {why} (--spikes mask replaces them)",
+            {**d, "action": "report", "sets": sets},
+        )]  # fmt: skip
+    ends = " and ".join({"top": "highest", "bottom": "lowest"}[e] for e in sets)
+    before, after = float(d["Rt_m"]), float(masked.Rt)
+    return [PlausibilityWarning(
+        "auto_spikes_masked",
+        f"{where} include the {ends} pixel of the map: masked for R_t and the truncation, R_t "
+        f"{before:.4g} m → {after:.4g} m (automatic rule; --spikes report keeps them)",
+        {**d, "action": "mask", "sets": sets, "Rt_before_m": before, "Rt_after_m": after},
+    )]  # fmt: skip
+
+
+def adjust_depth(
+    heights: np.ndarray,
+    max_depth: float,
+    *,
+    contact_pixels: int = AUTO_CONTACT_PIXELS,
+    max_share: float = AUTO_MAX_CONTACT_SHARE,
+    max_fraction: float = AUTO_MAX_DEPTH_FRACTION,
+    note: str = "",
+) -> tuple[float, str | None, dict | None, list]:
+    """ω_max brought to between ``contact_pixels`` pixels and ``max_share`` of A in contact.
+
+    Parameters
+    ----------
+    heights : ndarray
+        The map to truncate (m), any shape.
+    max_depth : float
+        ω_max of the default range (m).
+    contact_pixels : int
+        Pixels the deepest increment must have in contact (pixels).
+    max_share : float
+        Largest share of the map the deepest increment may have in contact (dimensionless,
+        0 < s < 1).
+    max_fraction : float
+        An extended ω_max is at most this share of R_t (dimensionless, 0 < f ≤ 1).
+    note : str
+        Appended to the warning's reason (why ``contact_pixels`` is what it is).
+
+    Returns
+    -------
+    max_depth : float
+        ω_max (m): unchanged when the pixels with z ≥ z_top − ω_max number from
+        ``contact_pixels`` to ⌊``max_share``·N⌋ (N pixels); else extended (too few) or cut (too
+        many) to halfway between the depths at which the m-th and the (m+1)-th highest pixels
+        touch, m = ``contact_pixels`` or ⌊``max_share``·N⌋ (above any tie there); an extension
+        stops at ``max_fraction``·R_t.
+    action : {"extended", "cut"} or None
+        The decision; None when ω_max is unchanged.
+    record : dict or None
+        The decision for ``fit.json`` (``from_m``, ``to_m`` (m), ``from_fraction``,
+        ``to_fraction`` (of R_t), ``contact_pixels_before``, ``contact_pixels``,
+        ``target_contact_pixels`` (``contact_pixels`` given), ``max_contact_share``,
+        ``max_depth_fraction``, ``capped`` (the extension stopped at ``max_fraction``·R_t)), or
+        None.
+    warnings : list of PlausibilityWarning
+        One ``"auto_depth_extended"`` or ``"auto_depth_cut"`` warning, or empty.
+    """
+    if not 0.0 < max_share < 1.0:
+        raise ValueError(f"max_share must be in (0, 1), got {max_share!r}")
+    if not 0.0 < max_fraction <= 1.0:
+        raise ValueError(f"max_fraction must be in (0, 1], got {max_fraction!r}")
+    z = np.sort(np.asarray(heights, dtype=np.float32).ravel())[::-1].astype(np.float64)
+    lo = int(contact_pixels)
+    hi = max(math.floor(max_share * z.size), lo)
+    top, Rt = z[0], z[0] - z[-1]
+    before = int(np.count_nonzero(z >= np.float32(top - max_depth)))
+    if lo <= before <= hi or z.size <= hi or not Rt > 0:
+        return float(max_depth), None, None, []
+    if before < lo:
+        action, m = "extended", lo
+    else:
+        action, m = "cut", hi
+        while m > lo and z[m - 1] == z[m]:  # stop above a tie
+            m -= 1
+    new = float(top - 0.5 * (z[m - 1] + z[m]))
+    capped = action == "extended" and new > max_fraction * Rt
+    new = min(new, max_fraction * Rt) if capped else new
+    if not new > max_depth and action == "extended":
+        return float(max_depth), None, None, []
+    after = int(np.count_nonzero(z >= np.float32(top - new)))
+    rec = {"from_m": float(max_depth), "to_m": new, "from_fraction": float(max_depth / Rt),
+           "to_fraction": new / Rt, "contact_pixels_before": before, "contact_pixels": after,
+           "target_contact_pixels": lo, "max_contact_share": float(max_share),
+           "max_depth_fraction": float(max_fraction), "capped": bool(capped)}  # fmt: skip
+    goal = (f"has at least {lo}" if action == "extended"
+            else f"has at most {max_share:.0%} of the map ({hi} pixels)")  # fmt: skip
+    if capped:
+        goal += f" (stopped at {max_fraction:g}·R_t, the cap)"
+    w = PlausibilityWarning(
+        f"auto_depth_{action}",
+        f"ω_max {action} from {rec['from_fraction']:.3g}·R_t ({max_depth:.4g} m, {before} contact "
+        f"pixels) to {rec['to_fraction']:.3g}·R_t ({new:.4g} m, {after} contact pixels) so that "
+        f"the deepest fitted increment {goal}{note} (automatic rule; --fit-range legacy keeps "
+        "the default range)",
+        rec,
+    )
+    return new, action, rec, [w]

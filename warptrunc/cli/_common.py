@@ -320,13 +320,16 @@ SURFACE_EXCLUDE = ("method",)
 reference for tests, not a surface parameter)."""
 
 
-def add_surface_source(p: argparse.ArgumentParser, *, defaults: dict | None = None) -> None:
+def add_surface_source(
+    p: argparse.ArgumentParser, *, defaults: dict | None = None, scan_rule: str | None = None
+) -> None:
     """A height-map file, a preset, or WM generation parameters (all SI).
 
     The WM options (``--D``, ``--Wr``, ``--L``, ``--n``, ``--Rt``, ``--G``, ``--M``,
     ``--gamma``, ``--Wc``, ``--cutoff``, ``--seed``) are generated from :class:`WMSpec`
     (:func:`warptrunc.params.add_options`); ``defaults`` are the command's own defaults where
-    they differ from the class's (pass the same to :func:`wm_spec_from_args`).
+    they differ from the class's (pass the same to :func:`wm_spec_from_args`); ``scan_rule``
+    as :func:`add_reader_options` takes it.
     """
     g = p.add_argument_group(
         "surface source (a height-map file, a preset, or WM generation parameters)"
@@ -339,7 +342,7 @@ def add_surface_source(p: argparse.ArgumentParser, *, defaults: dict | None = No
         help="height map file (.npz/.npy written by warptrunc, .npy/.csv/.txt matrix with "
         "--dx, or an instrument file); overrides the generation parameters",
     )
-    add_reader_options(g)
+    add_reader_options(g, scan_rule=scan_rule)
     g.add_argument(
         "--preset", choices=list(TABLE1), default=None,
         help="start from the paper's Table 1 simulated surface (warptrunc.presets: calibrated "
@@ -386,8 +389,14 @@ def material_from_args(args: argparse.Namespace, **overrides) -> Material:
     return from_args(Material, args, **overrides)
 
 
-def add_reader_options(g: argparse._ActionsContainer) -> None:
-    """Options for reading a height-map file (spacing, units, missing points, levelling)."""
+def add_reader_options(g: argparse._ActionsContainer, *, scan_rule: str | None = None) -> None:
+    """Options for reading a height-map file (spacing, units, missing points, levelling).
+
+    ``scan_rule``: the command applies the automatic rule of :mod:`warptrunc.robust` to a map
+    read from a file: ``"fit"`` (``analyze``: the analysis decides), ``"read"`` (``compare``,
+    ``indent``: spikes that set R_t are masked as the map is read); either refuses a map under
+    32 pixels a side and makes ``--spikes auto`` the default. None: ``--spikes report``.
+    """
     g.add_argument(
         "--dx", type=positive("m"), default=None,
         help="pixel spacing along x (m) if not in the file",
@@ -415,13 +424,23 @@ def add_reader_options(g: argparse._ActionsContainer) -> None:
     g.add_argument(
         "--channel", type=integer(0), default=None, help="data channel of instrument files"
     )
+    auto = {
+        "fit": "auto (default): reported, and masked for R_t and the truncation when they "
+        "include the highest or the lowest pixel (repeated passes of the rule; the automatic "
+        "rule of --fit-range auto), ",
+        "read": "auto (default): reported, and masked as the map is read when they include the "
+        "highest or the lowest pixel (repeated passes of the rule), ",
+    }.get(scan_rule, "")  # fmt: skip
     g.add_argument(
-        "--spikes", choices=["report", "mask", "off"], default="report",
+        "--spikes", choices=(["auto"] if scan_rule else []) + ["report", "mask", "off"],
+        default="auto" if scan_rule else "report",
         help="spike pixels of a map read from a file (warptrunc.plausibility: off their "
         "neighbours' median by > 10 robust sigmas and > half the P0.1–P99.9 height range): "
-        "report them as warnings, mask them (replace by the neighbours' median, R_t "
-        "recomputed), or skip the check",
+        f"{auto}report: only as warnings, mask: replace each by the neighbours' median (R_t "
+        "recomputed), off: skip the check",
     )  # fmt: skip
+    if scan_rule:
+        g.set_defaults(_scan_rule=scan_rule)
 
 
 def read_input(path: Path, args: argparse.Namespace) -> Surface:
@@ -431,6 +450,10 @@ def read_input(path: Path, args: argparse.Namespace) -> Surface:
         path, dx=args.dx, dy=args.dy, height_unit=args.height_unit, missing=args.missing,
         fill=args.fill, level=args.level, engine=args.engine, channel=args.channel,
     )  # fmt: skip
+    if getattr(args, "_scan_rule", None):
+        from ..robust import check_map_size
+
+        check_map_size(s, str(path))
     n_missing = s.params.get("n_missing", 0)
     if n_missing:
         print(f"{path}: {n_missing} missing points filled ({args.fill})", file=sys.stderr)
@@ -439,11 +462,19 @@ def read_input(path: Path, args: argparse.Namespace) -> Surface:
 
 def _map_checks(s: Surface, args: argparse.Namespace) -> Surface:
     """Spike check of a map read from a file (``--spikes``): warnings printed on stderr and
-    kept in ``args._warnings`` for the command's JSON (:func:`warnings_of`)."""
-    from .. import plausibility
+    kept in ``args._warnings`` for the command's JSON (:func:`warnings_of`). ``auto`` masks
+    the spikes that set R_t here for ``compare`` and ``indent``; ``analyze`` decides in the
+    analysis (:func:`warptrunc.analysis.analyze`, ``auto_spikes``)."""
+    from .. import plausibility, robust
 
     how = getattr(args, "spikes", "report")
-    if how == "mask":
+    if how == "auto" and getattr(args, "_scan_rule", None) == "fit":
+        return s
+    if how == "auto":
+        masked, found, sets = robust.spike_rule(s)
+        found = robust.spike_warning(found, sets, masked if sets else None)
+        s = masked if sets else s
+    elif how == "mask":
         s, found = plausibility.mask_spikes(s)
     elif how == "report":
         found = plausibility.check_spikes(s)

@@ -62,7 +62,7 @@ HELP = "truncation analysis to the stiffness–load power law"
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc analyze``."""
-    add_surface_source(p)
+    add_surface_source(p, scan_rule="fit")
     add_truncation_options(p)
     add_fit_options(p)
     add_device(p)
@@ -122,10 +122,11 @@ def add_fit_options(p: argparse.ArgumentParser, several: bool = False) -> None:
         f.add_argument(
             "--fit-range", choices=["auto", "legacy"], default="auto",
             help="legacy: increments to ω_max with ≥ --min-pixels contact pixels; auto: the "
-            "same, and for a map read from a file whose legacy fit is not worth reading "
-            "(warptrunc.plausibility.check_fit) the range stated in contact pixels "
-            "(warptrunc.robust.auto_fit_range: spike pixels masked, from the top to 0.5 %% of A "
-            "in contact, at least 500 pixels), kept when its fit is worth reading",
+            "same, and for a map read from a file (no --max-depth, --depth-window or "
+            "--rt-percentile) the automatic rule of warptrunc.robust when that fit is not worth "
+            "reading: spikes that set R_t masked (--spikes auto), ω_max brought to between 50 "
+            "contact pixels and 5 %% of A in contact at the deepest increment; each decision is "
+            "a warning and a key of fit.json's fit_range; maps under 32 pixels a side refused",
         )  # fmt: skip
         f.add_argument(
             "--rt-percentile", type=real(0.0, 100.0, lo_open=False, hi_open=False, unit="%"),
@@ -180,9 +181,13 @@ def run(args: argparse.Namespace) -> int:
             depth_window=args.depth_window, rt_percentile=rtp, islands=args.islands,
             connectivity=args.connectivity, stream=True if args.stream else "auto",
             band_rows=args.band_rows, fit_range=getattr(args, "fit_range", "auto"),
-            device=args.device,
+            auto_spikes=getattr(args, "spikes", "auto") == "auto", device=args.device,
         )  # fmt: skip
     except FitRangeError as exc:
+        if args.input is not None and getattr(args, "spikes", "auto") == "auto":
+            from ..plausibility import check_spikes
+
+            add_warnings(args, check_spikes(source))  # the rule's report never came back
         raise ValueError(_fit_range_message(exc, args)) from None
     curve, sc, fit, meta = a.curve, a.stiffness, a.fit, a.surface
     nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
@@ -235,13 +240,15 @@ def _plot_title(meta: dict, material: Material, nx: int, ny: int, Rt: float) -> 
 
 
 def _range_note(rule: dict) -> str:
-    if rule["rule"] != "auto":
+    if rule.get("rule") != "auto":
         return ""
-    return (
-        f"automatic fit range (--fit-range auto; {rule['reason']}): from the top to "
-        f"{rule['end_contact_pixels']} contact pixels, ω_max = {rule['max_depth_m'] * 1e6:.4g} µm"
-        f", {rule['spikes_masked']} spike pixels masked\n"
-    )
+    spikes = rule["spikes_masked"]
+    done = [f"{spikes['count']} spike pixels masked"] if spikes else []
+    for action in ("extended", "cut"):
+        if rule.get(f"depth_{action}"):
+            done.append(f"ω_max {action} to {rule[f'depth_{action}']['to_fraction']:.3g}·R_t")
+    return (f"automatic rule (--fit-range auto; {rule['reason']}): {', '.join(done)}; "
+            f"ω_max = {rule['max_depth_m'] * 1e6:.4g} µm\n")  # fmt: skip
 
 
 def _clip_note(meta: dict) -> str:

@@ -61,7 +61,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     s = p.add_argument_group("surfaces: your map, a WM study, or a reproduce profile")
     s.add_argument("--input", "-i", type=input_file, default=None,
                    help="your height map (formats as in `analyze`); one case")  # fmt: skip
-    add_reader_options(s)
+    add_reader_options(s, scan_rule="read")
     s.add_argument("--profile", choices=sorted(PROFILES), default=None,
                    help="the `elastic` stage of this reproduce profile (overrides the WM study "
                    "options) and its report section elastic.md")  # fmt: skip
