@@ -125,14 +125,20 @@ def test_cli_option_names_of_today_parse_to_the_same_objects():
 
 
 def test_presets_are_wmspecs_with_the_paper_wr():
-    assert set(TABLE1) == {"Ps", "SMATs", "GB300s", "GB50s"}
-    assert all(isinstance(s, WMSpec) for s in TABLE1.values())
-    # W_r from the paper's Table 1 (µm), Ps's "≫ 1024 µm" taken as 2048 µm
-    assert {k: round(s.Wr * 1e6, 9) for k, s in TABLE1.items()} == {
-        "Ps": 2048, "SMATs": 120, "GB300s": 60, "GB50s": 25}  # fmt: skip
-    assert all(s.L == 1e-3 and s.n == 10240 and s.M == 10 for s in TABLE1.values())
+    from warptrunc.presets import PRESETS, TABLE1_TRI
+
+    assert set(TABLE1) == set(TABLE1_TRI) == {"Ps", "SMATs", "GB300s", "GB50s"}
+    assert set(PRESETS) == set(TABLE1) | {f"{k}-tri" for k in TABLE1}
+    assert all(isinstance(s, WMSpec) for s in PRESETS.values())
+    # W_r from the paper's Table 1 (µm), Ps's "≫ 1024 µm" taken as 2·L of the calibration map
+    # (1 mm for the D_vs presets, 1.024 mm for the D_tri ones)
+    table = {"SMATs": 120, "GB300s": 60, "GB50s": 25}
+    assert {k: round(s.Wr * 1e6, 9) for k, s in TABLE1.items()} == {"Ps": 2000, **table}
+    assert {k: round(s.Wr * 1e6, 9) for k, s in TABLE1_TRI.items()} == {"Ps": 2048, **table}
+    assert all(s.L == 1e-3 and s.n == 10240 and s.M == 10 for s in PRESETS.values())
     assert preset("GB50s") is TABLE1["GB50s"]
-    with pytest.raises(ValueError, match="preset must be one of"):
+    assert preset("GB50s-tri") is TABLE1_TRI["GB50s"]
+    with pytest.raises(ValueError, match=r"preset must be one of Ps, SMATs, .*, GB50s-tri, got"):
         preset("GB100s")
 
 

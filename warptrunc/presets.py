@@ -8,36 +8,79 @@ command line (``warptrunc analyze --preset GB300s --n 2048``; options given win 
 preset's fields).
 
 Each preset is the paper's simulated surface (§ 3.2: 10240 × 10240 pixels over 1 mm × 1 mm,
-M = 10, W_r of Table 1) with the input fractal dimension D_in and the peak-to-valley height
-R_t′ that warptrunc's calibration (Fig. 4 loop, :func:`warptrunc.calibrate`) found for it,
-matched to the scan's D_tri (the first method of the ``paper`` profile, the one the island
-stage uses). The values are those printed in ``docs/reproduction/report.md`` ("Table 1 —
-calibrated simulated surfaces"): profile ``paper``, warptrunc 0.1.0 at commit ``c3f7c18``, on
-an NVIDIA H100 (``cuda:0``), 1024² calibration maps with 1 µm pixels, seeds 0, 1, 2, D
-tolerance 5 %. They are rounded as printed there (D_in to 3 decimals, R_t′ to 4 digits).
-To obtain them again, or matched to another method (``box``, ``vs``, ``sp``), run
-``warptrunc reproduce --profile paper`` (its ``table1`` stage) or
-``warptrunc calibrate --D <Table 1 D> --method tri --Rrms <R_rms> --Rt <R_t> --Wr <W_r>
---L 1.024e-3 --n 1024``.
+M = 10, W_r of Table 1) with the input fractal dimension D_in and the peak-to-valley height R_t′
+that warptrunc's calibration (the Fig. 4 loop, :func:`warptrunc.calibrate`) found for it. There
+are two sets, by the fractal method whose D the loop matched:
 
-======== ====== ========= ========== ====================================================
-preset   D_in   R_t′ (µm)  W_r (µm)  paper (Table 1): R_t′ (µm), D_tri
-======== ====== ========= ========== ====================================================
-Ps       2.091  0.2314    2048 (*)   0.263, 2.091
-SMATs    2.020  21.24     120        16.210, 2.225
-GB300s   2.555  38.97     60         36.865, 2.555
-GB50s    2.020  26.02     25         26.239, 2.625
-======== ====== ========= ========== ====================================================
+- :data:`TABLE1` (``Ps``, ``SMATs``, ``GB300s``, ``GB50s``, the default names): matched to
+  **D_vs**, the dimension with which Fig. 6's truncation curves are computed (its caption:
+  "using D_vs").
+- :data:`TABLE1_TRI` (``Ps-tri``, ``SMATs-tri``, ``GB300s-tri``, ``GB50s-tri`` on the command
+  line): matched to D_tri, the presets before issue 38, unchanged (``docs/reproduction/report.md``,
+  profile ``paper`` at ``c3f7c18`` on an NVIDIA H100, 1024² over 1.024 mm, D_in searched in
+  [2.02, 2.98]).
 
-(*) The paper gives W_r "≫ 1024 µm" for the polished surface Ps. The preset takes
-W_r = 2048 µm, twice the 1.024 mm calibration map: the value with which the calibration above
-found D_in and R_t′ (``warptrunc.reproduce.study.stage_table1`` uses W_r = 2·L when Table 1
-gives none). Any W_r well above the map size gives nearly the same surface on a 1 mm map, since
-wavelengths above L add only a tilt and a curvature.
+:data:`PRESETS` holds all eight names; :data:`CALIBRATION` records, per name, the method
+matched, the targets and what was reached, whether the loop ended on a search bound (``bound``)
+and whether the preset counts as calibrated (``calibrated``: D within the tolerance *and* not on a
+bound).
 
-SMATs and GB50s reached D_in = 2.020, the calibration's lower bound: their D_tri targets are
-met within the tolerance there (report: D_tri = 2.306 against 2.225 for SMATs, 2.681 against
-2.625 for GB50s), not at an interior optimum.
+The D_vs calibration. On the paper's calibration map, 1024² pixels over 1 mm (0.977 µm pixels;
+§ 3.2, Fig. 4: R_t′ depends on the map, and this is the area the presets cover), seeds 0, 1, 2,
+D tolerance 5 % (the paper's "error < 5 %"), D_in searched in [2.001, 2.99], M = 10, γ = 1.5,
+W_c = 2 pixels; targets: Table 1's D_vs and R_rms of the simulated rows. Found on a shared 2-core
+CPU at commit ``79581b0`` (``docs/benchmarks/table1_presets_cpu.json``); to find them again::
+
+    python examples/benchmarks/table1_presets.py --device cpu --check-n 10240 --out docs/benchmarks
+
+or, for one surface, ``warptrunc calibrate --method vs --D 2.813 --Rrms 4.102e-6 --Rt 36.865e-6
+--Wr 60e-6 --L 1e-3 --n 1024 --D-bounds 2.001 2.99 --no-surface``. D_in is rounded to 3
+decimals, R_t′ to 4 digits. D_vs and R_rms are means ± sd over the seeds on the calibration map.
+
+======== ====== ========= ======== ====================== ========== ==================== =====
+preset   D_in   R_t′ (µm) W_r (µm) D_vs reached / Table 1 R_rms (µm) R_t′ Table 1 (µm)    calib
+======== ====== ========= ======== ====================== ========== ==================== =====
+Ps       2.103  0.2324    2000 (*) 2.161 ± 0.002 / 2.103  0.053      0.263 ± 0.032: in    yes
+SMATs    2.417  23.20     120      2.441 ± 0.001 / 2.417  2.762      16.210 ± 1.569: out  yes
+GB300s   2.985  39.78     60       2.737 ± 0.000 / 2.813  4.102      36.865 ± 1.731: out  yes
+GB50s    2.990  27.43     25       2.708 ± 0.000 / 2.825  2.935      26.239 ± 1.157: out  no
+======== ====== ========= ======== ====================== ========== ==================== =====
+
+(*) The paper gives W_r "≫ 1024 µm" for Ps; the preset takes 2·L of the calibration map (2 mm;
+the D_tri preset: 2.048 mm, 2·1.024 mm), as ``warptrunc.reproduce.study.stage_table1`` does when
+Table 1 gives none. Wavelengths above L add only a tilt and a curvature on a 1 mm map.
+
+What is matched. § 3.2 matches D and R_rms; R_t′ is the output of the R_rms loop. R_t′ and
+R_rms cannot both be imposed: at fixed D_in, W_r, seed and map the heights are one shape scaled
+by R_t′, so R_t/R_rms is fixed and R_rms fixes R_t′. The presets follow § 3.2 and report R_t′
+against Table 1's R_t′ ± sd: within the band for Ps only (Ps −12 %, SMATs +43 %, GB300s +8 %,
+GB50s +5 %). The R_t′ that gives each seed the target R_rms scatters by 2–4.5 % (sd over the three
+seeds; Table 1's ± are 4–12 % of its R_t′).
+
+Not matched, and by how much (the D reached over D_in in [2.001, 2.99] is in ``CALIBRATION``):
+
+- GB50s ends on the upper bound D_in = 2.99: D_vs = 2.708 against 2.825, within 5 % only there,
+  so not counted as calibrated. 2.708 is the largest D_vs that WM surfaces with W_r = 25 µm reach
+  on this map: Table 1's D_vs cannot be matched, by 0.117 (4.1 %). The bound cannot usefully be
+  widened: the WM model needs D_in < 3; above 2.99 D_vs falls (2.682 at 2.993, where the W_r
+  estimate that sets the D_vs fit range jumps), and :func:`~warptrunc.wm_surface` overflows
+  computing ``G_equivalent`` near D_in = 3 (at these R_t′: from 2.997 for GB300s and GB50s,
+  2.995 for SMATs, 2.985 for Ps).
+- GB300s ends inside the interval (D_in = 2.985) with D_vs = 2.737 against 2.813 (−2.7 %), so it
+  counts as calibrated in the paper's 5 % sense, but Table 1's D_vs is above the largest D_vs
+  reached (2.745 at D_in = 2.96), by 0.068: D_vs is flat (2.73–2.745) for D_in in 2.94–2.985.
+- Ps: the loop stopped at its first evaluation (D_in = 2.103 → 2.161, +2.8 %); Table 1's 2.103 is
+  0.002 below the smallest D_vs reached (2.105 at D_in = 2.001).
+- At the presets' 10240² pixels (seed 0) the same D_in and R_t′ give R_rms = 0.043, 2.627, 3.534,
+  2.482 µm (−19, −5, −14, −15 % from the targets) and D_vs = 2.148, 2.430, 2.826, 2.780: § 3.2
+  keeps R_t′ from the coarser map, and near D_in = 3 the finer terms added at 10240² carry
+  almost as much height as the coarse ones.
+
+The D_tri presets, checked on the CPU with the same seeds on their map: Ps 2.110 / 2.091,
+SMATs 2.306 / 2.225, GB300s 2.674 / 2.555, GB50s 2.681 / 2.625 (D_tri reached / Table 1).
+SMATs-tri and GB50s-tri are on the lower bound 2.02 of their search and are not counted as
+calibrated; widening it does not help: at D_in = 2.001 D_tri is still 2.299 and 2.678, so
+Table 1's D_tri cannot be matched, by 0.074 and 0.053.
 """
 
 from __future__ import annotations
@@ -46,31 +89,116 @@ from types import MappingProxyType
 
 from .wm_params import WMSpec
 
-__all__ = ["CALIBRATION", "TABLE1", "preset"]
+__all__ = ["CALIBRATION", "PRESETS", "TABLE1", "TABLE1_TRI", "preset"]
 
 _PAPER = {"L": 1e-3, "n": 10240, "M": 10}
+_UM = 1e-6
 
 TABLE1: MappingProxyType = MappingProxyType({
+    "Ps": WMSpec(D=2.103, Rt=0.2324e-6, Wr=2000e-6, **_PAPER),
+    "SMATs": WMSpec(D=2.417, Rt=23.20e-6, Wr=120e-6, **_PAPER),
+    "GB300s": WMSpec(D=2.985, Rt=39.78e-6, Wr=60e-6, **_PAPER),
+    "GB50s": WMSpec(D=2.990, Rt=27.43e-6, Wr=25e-6, **_PAPER),
+})  # fmt: skip
+"""The paper's Table 1 simulated surfaces matched to D_vs (Fig. 6) (name → :class:`~warptrunc.WMSpec`,
+SI units)."""
+
+TABLE1_TRI: MappingProxyType = MappingProxyType({
     "Ps": WMSpec(D=2.091, Rt=0.2314e-6, Wr=2048e-6, **_PAPER),
     "SMATs": WMSpec(D=2.020, Rt=21.24e-6, Wr=120e-6, **_PAPER),
     "GB300s": WMSpec(D=2.555, Rt=38.97e-6, Wr=60e-6, **_PAPER),
     "GB50s": WMSpec(D=2.020, Rt=26.02e-6, Wr=25e-6, **_PAPER),
 })  # fmt: skip
-"""The paper's Table 1 simulated surfaces (name → :class:`~warptrunc.WMSpec`, SI units)."""
+"""The same surfaces matched to D_tri (the presets before issue 38); ``"<name>-tri"`` in
+:data:`PRESETS`."""
 
-TABLE1_TRI = TABLE1
+PRESETS: MappingProxyType = MappingProxyType(
+    {**TABLE1, **{f"{k}-tri": v for k, v in TABLE1_TRI.items()}}
+)
+"""Every preset by name: the D_vs ones (``"GB300s"``) and the D_tri ones (``"GB300s-tri"``)."""
 
-CALIBRATION: MappingProxyType = MappingProxyType({
-    name: {
-        "matched": "D_tri", "profile": "paper", "commit": "c3f7c18",
-        "source": "docs/reproduction/report.md, Table 1 — calibrated simulated surfaces",
-        "calibration_map": "1024² over 1.024 mm (1 µm pixels), seeds 0, 1, 2",
-        "Wr_choice": ("2·L of the calibration map; the paper gives W_r ≫ 1024 µm"
-                      if name == "Ps" else "Table 1"),
-    }
-    for name in TABLE1
-})  # fmt: skip
-"""Where each preset's D_in and R_t′ come from (name → dict of text)."""
+# Table 1, simulated rows (the paper's means ± sd): D_vs, D_tri, R_rms (µm), R_t′ (µm)
+_PAPER_ROWS = {
+    "Ps": ((2.103, 0.0562), (2.091, 0.0344), 0.053, (0.263, 0.032)),
+    "SMATs": ((2.417, 0.0487), (2.225, 0.0232), 2.762, (16.210, 1.569)),
+    "GB300s": ((2.813, 0.0521), (2.555, 0.0425), 4.102, (36.865, 1.731)),
+    "GB50s": ((2.825, 0.0876), (2.625, 0.0328), 2.935, (26.239, 1.157)),
+}
+_SOURCE = "docs/benchmarks/table1_presets_cpu.json"
+_VS = {"matched": "D_vs", "method": "vs", "D_bounds": (2.001, 2.99), "rtol": 0.05,
+       "calibration_map": "1024² over 1 mm (0.977 µm pixels)", "seeds": (0, 1, 2),
+       "commit": "79581b0", "device": "shared 2-core CPU (x86_64)", "source": _SOURCE}  # fmt: skip
+_TRI = {"matched": "D_tri", "method": "tri", "D_bounds": (2.02, 2.98), "rtol": 0.05,
+        "calibration_map": "1024² over 1.024 mm (1 µm pixels)", "seeds": (0, 1, 2),
+        "commit": "c3f7c18", "device": "NVIDIA H100 (cuda:0)",
+        "source": "docs/reproduction/report.md, Table 1 — calibrated simulated surfaces; D and "
+                  f"R_rms reached: {_SOURCE} (CPU, 79581b0)"}  # fmt: skip
+# reached on the calibration map (seeds 0, 1, 2): D mean, sd; R_rms (µm); R_t′ giving each seed
+# the target R_rms, mean, sd (µm); D reached over D_in in [2.001, 2.99], min, max; CPU s (loop)
+_REACHED = {
+    "Ps": (2.1614, 0.0017, 0.053, 0.2329, 0.01036, 2.1047, 2.8434, 0.72),
+    "SMATs": (2.4414, 0.0005, 2.762, 23.21, 0.4675, 2.203, 2.7718, 0.56),
+    "GB300s": (2.7374, 0.0001, 4.102, 39.81, 1.04, 2.225, 2.7452, 0.75),
+    "GB50s": (2.708, 0.0002, 2.935, 27.45, 0.7833, 2.2459, 2.708, 0.73),
+    "Ps-tri": (2.1098, 0.0015, 0.05299, 0.2319, 0.01044, 2.0677, 2.8035, None),
+    "SMATs-tri": (2.3064, 0.0047, 2.762, 21.27, 0.7951, 2.2988, 2.8359, None),
+    "GB300s-tri": (2.6738, 0.0041, 4.102, 39.05, 1.821, 2.4629, 2.8458, None),
+    "GB50s-tri": (2.6812, 0.0021, 2.935, 26.06, 1.082, 2.6775, 2.9004, None),
+}
+_NOTES = {
+    "Ps": "the loop stopped at its first evaluation; Table 1's D_vs is 0.002 below the smallest "
+          "D_vs reached (D_in = 2.001)",
+    "GB300s": "calibrated in the 5 % sense; Table 1's D_vs cannot be matched: 0.068 above the "
+              "largest D_vs reached (2.745 at D_in = 2.96)",
+    "GB50s": "on the upper bound; Table 1's D_vs cannot be matched: 0.117 (4.1 %) above the "
+             "largest D_vs reached (2.708 at D_in = 2.99); above 2.99 D_vs falls and wm_surface "
+             "overflows near 2.995",
+    "SMATs-tri": "on the lower bound; Table 1's D_tri cannot be matched: 0.074 below the smallest "
+                 "D_tri reached (2.299 at D_in = 2.001)",
+    "GB50s-tri": "on the lower bound; Table 1's D_tri cannot be matched: 0.053 below the smallest "
+                 "D_tri reached (2.678 at D_in = 2.001)",
+}  # fmt: skip
+
+
+def _record(name: str) -> dict:
+    surface = name.removesuffix("-tri")
+    tri = name != surface
+    spec = PRESETS[name]
+    d_vs, d_tri, rrms, rt = _PAPER_ROWS[surface]
+    target, target_sd = d_tri if tri else d_vs
+    d, d_sd, rrms_at, rt_mean, rt_sd, lo, hi, cpu = _REACHED[name]
+    base = _TRI if tri else _VS
+    b_lo, b_hi = base["D_bounds"]
+    bound = "lower" if spec.D <= b_lo + 1e-9 else "upper" if spec.D >= b_hi - 1e-9 else None
+    within = abs(d - target) <= base["rtol"] * target
+    return {
+        **base, "D_in": spec.D, "Rt_m": spec.Rt, "Wr_m": spec.Wr,
+        "D_target": target, "D_target_sd": target_sd, "D_reached": (d, d_sd),
+        "Rrms_target_m": rrms * _UM, "Rrms_reached_m": rrms_at * _UM,
+        "Rt_per_seed_m": (rt_mean * _UM, rt_sd * _UM), "Rt_paper_m": (rt[0] * _UM, rt[1] * _UM),
+        "Rt_within_paper_band": abs(spec.Rt / _UM - rt[0]) <= rt[1],
+        "bound": bound, "within_rtol": within, "calibrated": within and bound is None,
+        "D_reachable": (lo, hi), "target_reachable": lo <= target <= hi,
+        "unmatched_by": 0.0 if lo <= target <= hi else target - (hi if target > hi else lo),
+        "cpu_s": cpu, "note": _NOTES.get(name, ""),
+        "Wr_choice": ((f"2·L of the calibration map ({spec.Wr * 1e3:g} mm); the paper gives "
+                       "W_r ≫ 1024 µm") if surface == "Ps" else "Table 1"),
+    }  # fmt: skip
+
+
+CALIBRATION: MappingProxyType = MappingProxyType({name: _record(name) for name in PRESETS})
+"""How each preset was found and how far it matches (name → dict; SI units, D dimensionless).
+
+Keys: ``matched`` (``"D_vs"`` or ``"D_tri"``), ``method``; ``D_in``, ``Rt_m`` (R_t′), ``Wr_m``
+(the preset's inputs); ``D_target``, ``D_target_sd`` (Table 1's mean ± sd); ``D_reached``
+(mean, sd over ``seeds`` on ``calibration_map``); ``Rrms_target_m``, ``Rrms_reached_m``;
+``Rt_per_seed_m`` (mean, sd of the R_t′ giving each seed the target R_rms); ``Rt_paper_m``
+(Table 1's R_t′ mean, sd) and ``Rt_within_paper_band``; ``D_bounds`` (the search interval of
+D_in), ``bound`` (None, ``"lower"`` or ``"upper"``: the loop ended on that bound), ``rtol``,
+``within_rtol``, ``calibrated`` (within ``rtol`` and ``bound`` None); ``D_reachable`` (min, max of
+the D reached over D_in in [2.001, 2.99]), ``target_reachable``, ``unmatched_by`` (target minus
+the nearest reachable D; 0 when reachable); ``cpu_s`` (the D_vs loop on ``device``; None for the
+D_tri presets, found on a GPU); ``note``; ``Wr_choice``; ``commit``, ``device``, ``source``."""
 
 
 def preset(name: str) -> WMSpec:
@@ -79,12 +207,13 @@ def preset(name: str) -> WMSpec:
     Parameters
     ----------
     name : str
-        ``"Ps"``, ``"SMATs"``, ``"GB300s"`` or ``"GB50s"``.
+        ``"Ps"``, ``"SMATs"``, ``"GB300s"`` or ``"GB50s"`` (matched to D_vs, Fig. 6), or the same
+        with ``"-tri"`` (matched to D_tri, the presets before issue 38).
 
     Returns
     -------
     WMSpec
-        The preset (see the module's table for its D_in, R_t′ and W_r).
+        The preset (see the module's notes and :data:`CALIBRATION` for how it was found).
 
     Raises
     ------
@@ -95,8 +224,10 @@ def preset(name: str) -> WMSpec:
     --------
     >>> preset("GB300s").Wr
     6e-05
+    >>> preset("GB300s-tri").D
+    2.555
     """
     try:
-        return TABLE1[name]
+        return PRESETS[name]
     except KeyError:
-        raise ValueError(f"preset must be one of {', '.join(TABLE1)}, got {name!r}") from None
+        raise ValueError(f"preset must be one of {', '.join(PRESETS)}, got {name!r}") from None

@@ -5,7 +5,7 @@
 Every parameter of :class:`warptrunc.WMSpec` and :class:`warptrunc.Material` is declared once,
 with its default, unit, range and description (:mod:`warptrunc.params`). This writes
 ``docs/_generated/params_<name>.md`` from that metadata (:func:`warptrunc.params.markdown_table`)
-and ``docs/_generated/presets.md`` from :data:`warptrunc.presets.TABLE1`; the pages include them
+and ``docs/_generated/presets.md`` from :data:`warptrunc.presets.PRESETS`; the pages include them
 with ``{include}``, so a new field appears in the docs with no edit of a page.
 """
 
@@ -20,15 +20,18 @@ def _write(dest: Path, text: str) -> None:
 
 
 def presets_table() -> str:
-    """Markdown table of the Table 1 presets (SI values shown in µm)."""
-    from warptrunc.presets import CALIBRATION, TABLE1
+    """Markdown table of the Table 1 presets (SI values shown in µm), with their calibration."""
+    from warptrunc.presets import CALIBRATION, PRESETS
 
-    rows = ["| preset | D_in | R_t′ (µm) | W_r (µm) | L (mm) | n | M | W_r from |",
-            "|---|---|---|---|---|---|---|---|"]  # fmt: skip
-    for name, s in TABLE1.items():
+    rows = ["| preset | matched | D_in | R_t′ (µm) | W_r (µm) | L (mm) | n | M | "
+            "D reached / Table 1 | bound | calibrated | W_r from |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
+    for name, s in PRESETS.items():
+        c = CALIBRATION[name]
         rows.append(
-            f"| `{name}` | {s.D:g} | {s.Rt * 1e6:.4g} | {s.Wr * 1e6:.4g} | {s.L * 1e3:g} | "
-            f"{s.n} | {s.M} | {CALIBRATION[name]['Wr_choice']} |"
+            f"| `{name}` | {c['matched']} | {s.D:g} | {s.Rt * 1e6:.4g} | {s.Wr * 1e6:.4g} | "
+            f"{s.L * 1e3:g} | {s.n} | {s.M} | {c['D_reached'][0]:.3f} / {c['D_target']:.3f} | "
+            f"{c['bound'] or '—'} | {'yes' if c['calibrated'] else 'no'} | {c['Wr_choice']} |"
         )
     return "\n".join(rows) + "\n"
 

@@ -207,8 +207,13 @@ def main(argv=None) -> int:
                     help="search interval of D_in")  # fmt: skip
     ap.add_argument("--surfaces", nargs="+", default=list(TABLE1), choices=list(TABLE1))
     ap.add_argument("--no-tri", action="store_true", help="skip the D_tri presets' check")
-    ap.add_argument("--check-n", type=int, nargs="*", default=[],
-                    help="also measure R_rms, R_t, D_vs of each D_vs preset (seed 0) at these sizes")
+    ap.add_argument(
+        "--check-n",
+        type=int,
+        nargs="*",
+        default=[],
+        help="also measure R_rms, R_t, D_vs of each D_vs preset (seed 0) at these sizes",
+    )
     ap.add_argument("--device", default=None, help="Warp device (default: CUDA if present)")
     ap.add_argument("--out", type=Path, default=Path("out/presets"), help="output folder")
     args = ap.parse_args(argv)
@@ -239,7 +244,8 @@ def main(argv=None) -> int:
         "source": "examples/benchmarks/table1_presets.py",
         "notes": (f"Seeds {', '.join(map(str, args.seeds))}; D tolerance {args.rtol:.0%}; D_in "
                   f"searched in [{bounds[0]:g}, {bounds[1]:g}] (the D_tri presets: [2.02, 2.98]). "
-                  "'D reachable': the range of D over D_in in the search interval. A calibration "
+                  f"'D reachable': the range of D over D_in in [{bounds[0]:g}, {bounds[1]:g}] (every "
+                  "row). A calibration "
                   "that ended on a bound is not counted as calibrated. CPU time: the calibration loop "
                   "(D_vs presets) or one evaluation of the seeds (D_tri presets, calibrated on an "
                   "H100 at c3f7c18)."),

@@ -50,7 +50,7 @@ from .._support.validate import MAX_INCREMENTS
 from ..io import read_height_map
 from ..material import Material
 from ..params import add_options, from_args
-from ..presets import TABLE1
+from ..presets import PRESETS
 from ..surface import Surface
 from ..wm import wm_surface
 from ..wm_params import WMSpec
@@ -344,9 +344,10 @@ def add_surface_source(
     )
     add_reader_options(g, scan_rule=scan_rule)
     g.add_argument(
-        "--preset", choices=list(TABLE1), default=None,
-        help="start from the paper's Table 1 simulated surface (warptrunc.presets: calibrated "
-        "D_in and R_t', Table 1's W_r, 10240² over 1 mm); WM options given win over it",
+        "--preset", choices=list(PRESETS), default=None,
+        help="start from the paper's Table 1 simulated surface (warptrunc.presets: D_in and R_t' "
+        "calibrated to D_vs as Fig. 6, or to D_tri with -tri; Table 1's W_r, 10240² over 1 mm); "
+        "WM options given win over it",
     )  # fmt: skip
     add_options(g, WMSpec, exclude=SURFACE_EXCLUDE, defaults=defaults)
 
@@ -379,7 +380,7 @@ def wm_spec_from_args(args: argparse.Namespace, defaults: dict | None = None) ->
     base = dict(defaults or {})
     name = getattr(args, "preset", None)
     if name is not None:
-        base.update(TABLE1[name].to_dict() | {"L": TABLE1[name].L, "n": TABLE1[name].n})
+        base.update(PRESETS[name].to_dict() | {"L": PRESETS[name].L, "n": PRESETS[name].n})
     over = {"Rt": None} if getattr(args, "G", None) is not None else {}
     return from_args(WMSpec, args, defaults=base, **over)
 
