@@ -201,7 +201,7 @@ def test_instrument_format_without_extra(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "SurfaceTopography", None)  # import now fails
     p = tmp_path / "scan.sur"
     p.write_bytes(b"\0" * 64)
-    with pytest.raises(MissingExtraError, match=r'scan\.sur.*pip install "warptrunc\[scans\]"'):
+    with pytest.raises(MissingExtraError, match=r"scan\.sur.*pip install SurfaceTopography"):
         read_height_map(p)
 
 

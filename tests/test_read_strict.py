@@ -218,7 +218,7 @@ def test_describe_never_exits_0_on_garbage(tmp_path, capsys, data, suffix):
 def test_scan_survey_has_no_misread_and_no_crash(scans_dir, tmp_path):
     """examples/scan_survey.py on the measured scans (and SurfaceTopography's examples when
     WARPTRUNC_ST_EXAMPLES names them): every file analysed, advised or refused clearly."""
-    pytest.importorskip("SurfaceTopography")  # the instrument files need the 'scans' extra
+    pytest.importorskip("SurfaceTopography")  # the reader of the instrument files
     import importlib.util
 
     path = Path(__file__).resolve().parents[1] / "examples" / "scan_survey.py"

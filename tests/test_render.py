@@ -284,10 +284,11 @@ def test_downsampled_rendering_never_loses_contact_and_says_so(tmp_path):
     r2 = render_truncation(
         s, p, depth_fractions=[0.2], window_size=(200, 160), pooling="any", device="cpu"
     )
-    assert r2.downsample == 4  # ceil(512 / 160): the panel's shorter side
+    # the panel's shorter side: 160 px less the caption strip below it (at most a third)
+    assert r2.downsample == 5  # ceil(512 / (160 - 53))
     meta = Image.open(p).text
-    assert "down-sampled ×4" in meta["Description"]
-    assert json.loads(meta["warptrunc"])["downsample"] == 4
+    assert "down-sampled ×5" in meta["Description"]
+    assert json.loads(meta["warptrunc"])["downsample"] == 5
 
 
 def _redness(img):

@@ -231,12 +231,22 @@ def _islands_note(fit) -> str:
 
 
 def _plot_title(meta: dict, material: Material, nx: int, ny: int, Rt: float) -> str:
-    """stiffness.png's title: the map (D when generated), R_t and the material."""
+    """stiffness.png's title: the map (its file when read, D when generated), its size in
+    pixels and in µm or mm, R_t, and the material."""
+    from pathlib import Path
+
     d = meta.get("D")
-    where = f"D = {d:g}, " if isinstance(d, (int, float)) else ""
+    name = Path(str(meta.get("source") or "")).name.replace("$", r"\$")
+    name = f"{name[:28]}…{name[-12:]}" if len(name) > 41 else name
+    head = name or (f"WM surface, D = {d:g}" if isinstance(d, (int, float)) else "")
+    mm = max(meta.get("lx_m", 0.0), meta.get("ly_m", 0.0)) >= 1e-3
+    f, u = (1e3, "mm") if mm else (1e6, "µm")
+    size = f"{meta['lx_m'] * f:.4g}×{meta['ly_m'] * f:.4g} {u}, " if "lx_m" in meta else ""
     flat = "rigid flat" if math.isinf(material.E_i) else f"E$_i$ = {material.E_i / 1e9:.3g} GPa"
-    return (f"{nx}×{ny}, {where}R$_t$ = {Rt * 1e6:.3g} µm\nE = {material.E / 1e9:.3g} GPa, "
-            f"ν = {material.nu:g}, {flat}")
+    return (
+        f"{head + chr(10) if head else ''}{nx}×{ny} px, {size}R$_t$ = {Rt * 1e6:.3g} µm\n"
+        f"E = {material.E / 1e9:.3g} GPa, ν = {material.nu:g}, {flat}"
+    )
 
 
 def _range_note(rule: dict) -> str:

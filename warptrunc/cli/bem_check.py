@@ -19,6 +19,7 @@ arguments or a missing extra.
 from __future__ import annotations
 
 import argparse
+import itertools
 import sys
 
 from .._support.atomic import staged_output
@@ -100,6 +101,23 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_run_outputs(p, "bem", "skip the PNG")
 
 
+def _check_approaches(args: argparse.Namespace, Rt: float | None) -> None:
+    """--fractions / --depths increase strictly; --depths lie below R_t of the map (when
+    ``Rt`` is given). Errors name the option, the values as typed and the rule."""
+    for opt, vals, what in (("--fractions", args.fractions, "fractions of R_t, each in (0, 1)"),
+                            ("--depths", args.depths, "m, each in (0, R_t)")):  # fmt: skip
+        if vals is None:
+            continue
+        got = " ".join(f"{v:g}" for v in vals)
+        if any(b <= a for a, b in itertools.pairwise(vals)):
+            raise ValueError(f"{opt} must increase strictly (approaches δ in {what}), got {got}")
+        if opt == "--depths" and Rt is not None and max(vals) >= Rt:
+            raise ValueError(
+                f"--depths must be in (0, R_t) = (0, {Rt:.6g}) m for this surface, got {got} "
+                "(metres; --fractions takes fractions of R_t)"
+            )
+
+
 def _rng(r: list[float] | None) -> str:
     return "n/a (no BEM contact)" if r is None else f"{r[0]:.3g}–{r[1]:.3g}"
 
@@ -120,8 +138,10 @@ def run(args: argparse.Namespace) -> int:
         except ImportError as exc:
             print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
             return 2
+    _check_approaches(args, None)  # before the surface is made
     material = material_from_args(args)
     s = surface_from_args(args)
+    _check_approaches(args, s.Rt)
     res = bem_check(
         s, args.depths, fractions=args.fractions, material=material,
         beta_prime=args.beta_prime, substrate=args.substrate, increments=args.increments,

@@ -109,8 +109,9 @@ def run(args: argparse.Namespace) -> int:
         import pandas  # noqa: F401
         import pyarrow  # noqa: F401
     except ImportError as exc:
-        raise ValueError(f"compare stores Parquet: {exc.name} is missing; "
-                         'pip install "warptrunc[sweep]"') from None
+        raise ValueError(f"compare stores Parquet with pandas and pyarrow, dependencies of "
+                         f"warptrunc that this environment lacks ({exc.name} is missing): "
+                         "pip install pandas pyarrow") from None
     if args.input is not None and args.profile is not None:
         raise ValueError("give either --input or --profile, not both")
     material = material_from_args(args)

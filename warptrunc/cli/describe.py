@@ -44,7 +44,7 @@ HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four
 
 _FILE_HELP = (
     "height map: .npz/.npy (warptrunc or plain), .csv/.txt matrix, or an instrument file (.sur, "
-    ".x3p, .datx, ... needs the 'scans' extra)"
+    ".x3p, .datx, ... over forty formats, through SurfaceTopography)"
 )
 
 

@@ -21,8 +21,10 @@ Example: warptrunc sweep --D 2.1 2.3 2.5 --delta 0.005 0.01 --seeds 0-4 --n 2048
 from __future__ import annotations
 
 import argparse
+import re
 import signal
 import sys
+from collections import Counter
 
 from ..material import Material
 from ..params import add_options, param_info
@@ -30,7 +32,7 @@ from ..sweep.grid import SweepGrid
 from ..sweep.options import option_name
 from ..sweep.read import load, require_extra
 from ..sweep.run import run_sweep
-from ..sweep.stats import alpha_summary
+from ..sweep.stats import MIN_TREND_D, alpha_summary
 from ..wm_params import WMSpec
 from ._common import (
     add_device,
@@ -196,26 +198,7 @@ def run(args: argparse.Namespace) -> int:
     failed = df.loc[df["error"].notna(), "case_id"].nunique()
     print(f"{len(grid)} cases ({failed} failed) in {args.out}: sweep.json, cases.parquet, "
           "curves/part-*.parquet")
-    flagged = int((df["error"].isna() & df["fit_error"].notna() & df["alpha"].notna()).sum())
-    if flagged:
-        print(f"warning: {flagged} fits not worth reading (fit_error in cases.parquet) are left "
-              "out of the α summary", file=sys.stderr)  # fmt: skip
-    ranges = alpha_summary(df[df["error"].isna()])["fit_ranges"]
-    good = alpha_summary(df[df["error"].isna() & df["fit_error"].isna()])["fit_ranges"]
-    for mp in ranges:
-        if mp not in good:
-            label = mp if mp.startswith("fraction") else f"min_pixels={mp}"
-            print(f"{label}: α — no fit worth reading")
-            continue
-        v = good[mp]
-        line = v["alpha_vs_D"]
-        per_d = ", ".join(f"D={r['D_in']:g}: {r['alpha_mean']:.4f}±{r['alpha_sd']:.4f} (n={r['n']})"
-                          for r in v["per_D"])  # fmt: skip
-        label = mp if mp.startswith("fraction") else f"min_pixels={mp}"
-        print(f"{label}: α {per_d}"
-              + (f"; α = {line['slope']:.3f}·D {'−' if line['intercept'] < 0 else '+'} "
-                 f"{abs(line['intercept']):.3f} (r = {line['r']:.3f})"
-                 if line else ""))  # fmt: skip
+    _print_summary(df)
     return 0
 
 
@@ -230,3 +213,71 @@ def _migrate(out) -> int:
     if n == 0:
         print(f"{out} has the current layout already; nothing to convert")
     return 0
+
+
+def _print_summary(df) -> None:
+    """Per fit range: α per D_in (mean ± sd over seeds and δ), the line α(D_in) through at
+    least MIN_TREND_D values of D or why there is none, and why fits were left out (each
+    reason of ``fit_error``, counted)."""
+    ok = df["error"].isna()
+    flagged = int((ok & df["fit_error"].notna() & df["alpha"].notna()).sum())
+    if flagged:
+        print(f"warning: {flagged} fits not worth reading (fit_error in cases.parquet) are left "
+              "out of the α summary", file=sys.stderr)  # fmt: skip
+    ranges = alpha_summary(df[ok])["fit_ranges"]
+    good = alpha_summary(df[ok & df["fit_error"].isna()])["fit_ranges"]
+    keys = _range_keys(df)
+    for mp in ranges:
+        label = mp if mp.startswith("fraction") else f"min_pixels={mp}"
+        left = df.loc[ok & (keys == mp) & df["fit_error"].notna(), "fit_error"].tolist()
+        why = f"{len(left)} fit{'s' if len(left) != 1 else ''} left out (fit_error in cases.parquet)"
+        if mp not in good:
+            print(f"{label}: α — no fit worth reading; {why}:")
+        else:
+            rows = [r for r in good[mp]["per_D"] if r["n"] > 0]
+            per_d = ", ".join(
+                f"D={r['D_in']:g}: {r['alpha_mean']:.4f}"
+                + (f"±{r['alpha_sd']:.4f}" if r["n"] > 1 else "") + f" (n={r['n']})"
+                for r in rows
+            )
+            line = good[mp]["alpha_vs_D"]
+            trend = (
+                f"α = {line['slope']:.3f}·D {'−' if line['intercept'] < 0 else '+'} "
+                f"{abs(line['intercept']):.3f} (r = {line['r']:.3f})" if line
+                else f"no line α(D): α worth reading at {len(rows)} value"
+                f"{'s' if len(rows) != 1 else ''} of D, a line needs {MIN_TREND_D}"
+                + (" (through 2 it is exact, r = ±1)" if len(rows) == 2 else "")
+            )  # fmt: skip
+            print(f"{label}: α {per_d}; {trend}" + (f"; {why}:" if left else ""))
+        for text in _reasons(left):
+            print(f"  {text}")
+
+
+def _range_keys(df):
+    """The fit-range key of each row, as :func:`~warptrunc.sweep.alpha_summary` names it."""
+    keys = df["min_pixels"].map(lambda v: str(int(v)) if v == v else "")
+    if "min_pixels_fraction" in df:
+        frac = df["min_pixels_fraction"].astype(float)
+        keys = keys.where(frac.isna(), frac.map(lambda f: f"fraction={f:g}"))
+    return keys
+
+
+_NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
+
+
+def _reasons(errors: list[str], top: int = 3) -> list[str]:
+    """The reasons in ``fit_error`` texts, most common first: "N× reason" (reasons that
+    differ only in their numbers counted together, the first one shown)."""
+    count: Counter = Counter()
+    first: dict[str, str] = {}
+    for e in errors:
+        body = e.removeprefix("not worth reading: ")
+        parts = re.split(r"; (?=(?:islands )?fit: )", body) if body != e else [e]
+        for part in parts:
+            key = _NUMBER.sub("#", part)
+            count[key] += 1
+            first.setdefault(key, part)
+    out = [f"{n}× {first[k]}" for k, n in count.most_common(top)]
+    if len(count) > top:
+        out.append(f"… and {len(count) - top} other reasons")
+    return out

@@ -231,18 +231,23 @@ def _approaches(Rt: float, depths: Any, fractions: Any) -> np.ndarray:
     if depths is not None and fractions is not None:
         raise ValueError("give either depths (m) or fractions of R_t, not both")
     if depths is None:
-        fr = np.asarray(CHECK_FRACTIONS if fractions is None else fractions, dtype=np.float64)
-        for f in np.atleast_1d(fr):
-            check_range("fraction", f, 0.0, 1.0)
-        d = np.atleast_1d(fr) * Rt
+        name, unit = "fractions", "(fractions of R_t)"
+        given = np.atleast_1d(np.asarray(CHECK_FRACTIONS if fractions is None else fractions,
+                                         dtype=np.float64))  # fmt: skip
+        for f in given:
+            check_range("fractions: each fraction", float(f), 0.0, 1.0)
+        d = given * Rt
     else:
-        d = np.atleast_1d(np.asarray(depths, dtype=np.float64))
+        name, unit = "depths", "(m)"
+        given = d = np.atleast_1d(np.asarray(depths, dtype=np.float64))
         for v in d:
-            check_range("depth", v, 0.0, Rt, unit="m")
+            check_range("depths: each depth", float(v), 0.0, Rt, unit="m (0 < δ < R_t)")
     if d.size == 0:
-        raise ValueError("at least one approach is needed, got none")
-    if np.any(np.diff(d) <= 0):
-        raise ValueError(f"approaches must increase strictly, got {d.tolist()!r}")
+        raise ValueError(f"{name} needs at least one approach, got none")
+    if np.any(np.diff(given) <= 0):
+        raise ValueError(
+            f"{name} must increase strictly {unit}, got {', '.join(f'{v:g}' for v in given)}"
+        )
     return d
 
 

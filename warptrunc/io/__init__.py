@@ -19,9 +19,9 @@ plain ``.npy`` / ``.npz`` arrays
     ``nan`` and empty fields are missing points.
 
 Instrument formats (``.sur``, ``.x3p``, ``.datx``, ``.plu``, ``.opd``, ``.vk4``, ``.gwy``,
-``.di``, ``.top``, ``.asc``, ... over forty) are read through SurfaceTopography (MIT licence),
-an optional extra: ``pip install "warptrunc[scans]"``. It is imported only when such a file is
-read. Units and pixel sizes come from the file's metadata; SurfaceTopography indexes heights
+``.di``, ``.top``, ``.asc``, ... over forty: :data:`INSTRUMENT_SUFFIXES`) are read through
+SurfaceTopography (MIT licence), a dependency of warptrunc imported only when such a file is
+read. A file that no reader recognises is refused with the formats that are read. Units and pixel sizes come from the file's metadata; SurfaceTopography indexes heights
 as ``h[ix, iy]``, which is transposed here to ``z[iy, ix]``.
 
 Missing points (NaN) are never ignored: :func:`read_scan` returns them with a validity mask,
@@ -47,10 +47,18 @@ from ..surface import Surface
 from .builtin import read_numpy, read_text, write_warptrunc_file
 from .instrument import read_surfacetopography
 from .repair import FILL_METHODS, fill_missing, level_plane
-from .scan import ENGINES, NUMPY_SUFFIXES, TEXT_SUFFIXES, MissingExtraError, Scan
+from .scan import (
+    ENGINES,
+    INSTRUMENT_SUFFIXES,
+    NUMPY_SUFFIXES,
+    TEXT_SUFFIXES,
+    MissingExtraError,
+    Scan,
+)
 
 __all__ = [
     "FILL_METHODS",
+    "INSTRUMENT_SUFFIXES",
     "MissingExtraError",
     "Scan",
     "fill_missing",
@@ -106,7 +114,8 @@ def read_scan(
         The file is empty, damaged or not a height map, or the pixel spacing is missing; the
         message is one line of at most a few hundred characters that names the file.
     MissingExtraError
-        An instrument file needs SurfaceTopography (``pip install "warptrunc[scans]"``).
+        An instrument file needs SurfaceTopography and this environment lacks it
+        (``pip install SurfaceTopography``).
     """
     path = Path(path)
     if engine not in ENGINES:
@@ -185,7 +194,7 @@ def read_height_map(
     path : str or Path
         .npz/.npy written by :func:`write_height_map` (its ``params`` are kept), a plain
         .npy/.npz array, a .csv/.txt/.tsv
-        matrix, or an instrument file (needs the ``scans`` extra).
+        matrix, or an instrument file (through SurfaceTopography).
     dx, dy : float, optional
         Pixel spacings (m); required when the file does not declare them. See
         :func:`read_scan`.
@@ -216,7 +225,8 @@ def read_height_map(
         The file is malformed (message names the file and the problem), the pixel spacing is
         missing, or there are missing points with ``missing="error"``.
     MissingExtraError
-        An instrument file needs SurfaceTopography (``pip install "warptrunc[scans]"``).
+        An instrument file needs SurfaceTopography and this environment lacks it
+        (``pip install SurfaceTopography``).
 
     Examples
     --------

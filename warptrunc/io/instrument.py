@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Instrument formats (``.sur``, ``.x3p``, ``.datx``, ...) through SurfaceTopography, an optional
-extra imported only when such a file is read."""
+"""Instrument formats (``.sur``, ``.x3p``, ``.datx``, ...) through SurfaceTopography, a dependency
+imported only when such a file is read."""
 
 from __future__ import annotations
 
@@ -18,7 +18,15 @@ import numpy as np
 
 from .._support.messages import one_line
 from .builtin import need_spacing
-from .scan import LENGTH_UNITS, MissingExtraError, Scan
+from .scan import (
+    INSTRUMENT_SUFFIXES,
+    LENGTH_UNITS,
+    NUMPY_SUFFIXES,
+    TEXT_SUFFIXES,
+    MissingExtraError,
+    Scan,
+    unrecognised_format,
+)
 
 
 @contextlib.contextmanager
@@ -55,10 +63,12 @@ def _cannot_read(path: Path, exc: BaseException) -> str:
                 f"{path}: cannot read, the file is damaged or cut short ({r}: "
                 f"{one_line(why, 160)}; {len(tried)} readers tried)"
             )
-        return (
-            f"{path}: cannot read: no reader recognises this file ({len(tried)} tried: "
-            f"{one_line(', '.join(r for r, _ in tried), 160)})"
-        )
+        if ext and f".{ext}" in INSTRUMENT_SUFFIXES:
+            return (
+                f"{path}: cannot read, the file is damaged or not a .{ext} height map (none of "
+                f"the {len(tried)} SurfaceTopography readers that tried it recognises it)"
+            )
+        return unrecognised_format(path, tried=len(tried))
     return f"{path}: cannot read ({name}: {one_line(text, 200)})"
 
 
@@ -81,9 +91,11 @@ def read_surfacetopography(path: Path, dx, dy, height_unit, channel) -> Scan:
             warnings.simplefilter("ignore", ImportWarning)
             from SurfaceTopography import open_topography
     except ImportError:
+        if path.suffix.lower() not in INSTRUMENT_SUFFIXES + NUMPY_SUFFIXES + TEXT_SUFFIXES:
+            raise ValueError(unrecognised_format(path, tried=None)) from None
         raise MissingExtraError(
-            f"{path}: reading {path.suffix or 'this'} files needs SurfaceTopography; install the "
-            'optional extra: pip install "warptrunc[scans]" (or pip install SurfaceTopography)'
+            f"{path}: reading {path.suffix} files needs SurfaceTopography, a dependency of "
+            "warptrunc missing from this environment: pip install SurfaceTopography"
         ) from None
     reader = None
     try:

@@ -17,6 +17,51 @@ from .repair import FILL_METHODS, fill_missing, level_plane
 NUMPY_SUFFIXES = (".npz", ".npy")
 TEXT_SUFFIXES = (".csv", ".txt", ".tsv")
 ENGINES = ("auto", "builtin", "surfacetopography")
+INSTRUMENT_SUFFIXES = (
+    ".sur", ".x3p", ".datx", ".plu", ".plux", ".opd", ".opdx", ".vk4", ".vk6", ".vk7", ".gwy",
+    ".spm", ".mdt", ".nid", ".ibw", ".sdf", ".al3d", ".frt", ".lext", ".zon", ".asc", ".dat",
+    ".xyz", ".tif", ".tiff", ".vk3", ".apx", ".001", ".002", ".003", ".004", ".005", ".ezd",
+    ".os3d", ".oir", ".poir", ".zmg", ".mi", ".tmd", ".top", ".cur", ".stp", ".tom", ".hfm",
+    ".h5", ".nc", ".mat", ".xlsx", ".bcr", ".bcrf", ".jpk", ".mnt", ".qep", ".nms", ".hgt",
+    ".zip",
+)  # fmt: skip
+"""Suffixes of the instrument files SurfaceTopography (1.27) reads, most common first, the
+built-in suffixes left out (it also recognises a file by its content, whatever its suffix)."""
+_NAMED = 12  # instrument suffixes a message names before "and N more"
+
+
+def unrecognised_format(path: Any, *, tried: int | None) -> str:
+    """One line for a file that is no height-map format warptrunc reads.
+
+    Parameters
+    ----------
+    path : path
+        The file.
+    tried : int or None
+        How many of SurfaceTopography's readers tried the file; None when SurfaceTopography
+        is not installed.
+
+    Returns
+    -------
+    str
+        The file, its suffix, the formats read (built in, and instrument files through
+        SurfaceTopography) and, without SurfaceTopography, how to install it.
+    """
+    from pathlib import Path
+
+    p = Path(path)
+    what = p.suffix or "no suffix"
+    if tried is not None:
+        what += f"; none of the {tried} SurfaceTopography readers that tried it knows it"
+    formats = (
+        f"read: {' '.join(NUMPY_SUFFIXES + TEXT_SUFFIXES)} built in, and instrument files "
+        f"({' '.join(INSTRUMENT_SUFFIXES[:_NAMED])} and {len(INSTRUMENT_SUFFIXES) - _NAMED} more: "
+        "warptrunc.io.INSTRUMENT_SUFFIXES) through SurfaceTopography"
+    )
+    tail = "" if tried is not None else (
+        ", which this environment lacks (a dependency of warptrunc): pip install SurfaceTopography"
+    )  # fmt: skip
+    return f"{p}: not a recognised height-map format ({what}); {formats}{tail}"
 
 LENGTH_UNITS = {
     "m": 1.0,
@@ -32,7 +77,7 @@ LENGTH_UNITS = {
 
 
 class MissingExtraError(ImportError, ValueError):
-    """An optional dependency is missing; the message names the extra to install."""
+    """A dependency that reads the file is missing; the message says what to install."""
 
 
 @dataclass(frozen=True, eq=False)

@@ -58,11 +58,23 @@ def _tick_text(v: float) -> str:
     return f"$10^{{{k}}}$" if abs(m - 1) < 1e-6 else f"${m:.3g}\\times10^{{{k}}}$"
 
 
-def readable_log_ticks(axis: Any, max_ticks: int = 6) -> None:
-    """Give a log-scaled matplotlib axis 2–``max_ticks`` labelled major ticks that do not run
-    into each other, at 1–2–5-style values when the range spans less than a few decades and at
-    (every n-th) decade otherwise; minor ticks keep their marks but get no labels. The view
-    limits are frozen at their current values."""
+def readable_log_ticks(axis: Any, max_ticks: int = 6, min_ticks: int = 3) -> None:
+    """Give a log-scaled matplotlib axis up to ``max_ticks`` labelled major ticks that do not
+    run into each other, at 1–2–5-style values when the range spans less than a few decades and
+    at (every n-th) decade otherwise; minor ticks keep their marks but get no labels. The view
+    limits are frozen at their current values.
+
+    Parameters
+    ----------
+    axis : matplotlib.axis.Axis
+        A log-scaled axis (``ax.xaxis`` or ``ax.yaxis``) whose view limits are set.
+    max_ticks : int
+        Most labelled ticks.
+    min_ticks : int
+        The first of the mantissa sets 1; 1, 3; 1, 2, 5; 1, 2, 3, 5; 1, 1.5, 2, 3, 5, 7 that
+        gives at least this many ticks inside the view is used (the last one otherwise): more
+        labels where a range of under two decades holds the data.
+    """
     from matplotlib.ticker import (
         FixedLocator,
         FuncFormatter,
@@ -76,14 +88,15 @@ def readable_log_ticks(axis: Any, max_ticks: int = 6) -> None:
         return
     k0, k1 = int(np.floor(np.log10(lo))), int(np.ceil(np.log10(hi)))
     ticks: list[float] = []
-    for mant in ((1.0,), (1.0, 3.0), (1.0, 2.0, 5.0), (1.0, 1.5, 2.0, 3.0, 5.0, 7.0)):
+    for mant in ((1.0,), (1.0, 3.0), (1.0, 2.0, 5.0), (1.0, 2.0, 3.0, 5.0),
+                 (1.0, 1.5, 2.0, 3.0, 5.0, 7.0)):  # fmt: skip
         vals = [m * 10.0**k for k in range(k0, k1 + 1) for m in mant]
         vals = [v for v in vals if lo * (1 - 1e-9) <= v <= hi * (1 + 1e-9)]
         if len(vals) > max_ticks:
             step = int(np.ceil(len(vals) / max_ticks))
             vals = vals[::step]
         ticks = vals
-        if len(vals) >= 3:
+        if len(vals) >= min_ticks:
             break
     axis.set_major_locator(FixedLocator(ticks))
     axis.set_major_formatter(FuncFormatter(lambda v, _pos: _tick_text(v)))

@@ -30,7 +30,8 @@ def plot_bem_check(res: BemCheck, path: str | Path | None = None, *, title: str 
     matplotlib.figure.Figure
     """
     import matplotlib.pyplot as plt
-    from matplotlib.ticker import NullFormatter, ScalarFormatter
+
+    from ._style import readable_log_ticks
 
     dum = res.depth * 1e6
     fig, ax = plt.subplots(1, 3, figsize=(13, 4), constrained_layout=True)
@@ -45,8 +46,6 @@ def plot_bem_check(res: BemCheck, path: str | Path | None = None, *, title: str 
     ax[2].plot(dum, res.stiffness_ratio, "v-", label="k'/k$_{BEM}$")
     ax[2].axhline(1.0, color="0.6", lw=0.8)
     ax[2].set(xlabel="approach d (µm)", ylabel="truncation / BEM", yscale="log")
-    ax[2].yaxis.set_major_formatter(ScalarFormatter())
-    ax[2].yaxis.set_minor_formatter(NullFormatter())
     bad = ~res.converged
     if bad.any():
         for a, y in ((ax[0], res.bem_load), (ax[1], res.bem_stiffness)):
@@ -54,6 +53,10 @@ def plot_bem_check(res: BemCheck, path: str | Path | None = None, *, title: str 
     for a in ax:
         a.legend(fontsize=8)
         a.grid(True, which="both", alpha=0.3)
+    # ratios span about a decade around 1: label 1-2-3-5 values, so that the curves below 1
+    # (F'/F_BEM, k'/k_BEM of 0.3–0.8) sit between labelled ticks
+    ax[2].autoscale_view()
+    readable_log_ticks(ax[2].yaxis, max_ticks=8, min_ticks=6)
     if title:
         fig.suptitle(title)
     if path is not None:

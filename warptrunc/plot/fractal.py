@@ -37,7 +37,8 @@ def psd(
     title: str | None = None,
     path: str | Path | None = None,
 ):
-    """Power spectral densities against wavelength 1/f (µm), log–log.
+    """Power spectral densities against wavelength 1/f (µm), log–log, wavelength increasing
+    to the right; the y axis carries the unit (m⁴ radial, m³ profile).
 
     Parameters
     ----------
@@ -55,15 +56,19 @@ def psd(
     psds = as_list(psds)
     fig, axes = new_figure()
     ax = axes[0, 0]
+    units = {"radial": "m$^4$", "profile": "m$^3$"}
     for i, p in enumerate(psds):
-        unit = "m$^4$" if p.kind == "radial" else "m$^3$"
-        lab = labels[i] if labels is not None else f"{p.kind} ({unit})"
+        lab = labels[i] if labels is not None else p.kind
         ax.loglog(UM / p.frequency, p.psd, "-", lw=1.0, label=lab)
     if Wr is not None:
         ax.axvline(Wr * UM, color="k", ls=":", lw=1.0, label=f"W$_r$ = {Wr * UM:.3g} µm")
-    ax.invert_xaxis()
     ax.set_xlabel("wavelength 1/f (µm)")
-    ax.set_ylabel("PSD C(f)")
+    kinds = list(dict.fromkeys(p.kind for p in psds))
+    unit = (
+        units.get(kinds[0], "?") if len(kinds) == 1
+        else ", ".join(f"{k}: {units.get(k, '?')}" for k in kinds)
+    )  # fmt: skip
+    ax.set_ylabel(f"PSD C(f) ({unit})")
     return finish_axes(fig, ax, path, title=title, which="both")
 
 
@@ -95,11 +100,16 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
     for k, (m, f) in enumerate(items):
         ax = axes[k // ncols, k % ncols]
         x = f.scale * UM
-        ax.loglog(x, f.measure, "o", ms=3, mfc="none", color="0.5")
-        ax.loglog(x[f.fitted], f.measure[f.fitted], "o", ms=3, color="C0")
+        out = ~np.asarray(f.fitted, dtype=bool)
+        ax.loglog(x[out], f.measure[out], "o", ms=3, mfc="none", color="0.5",
+                  label="outside the fit range")  # fmt: skip
+        ax.loglog(x[f.fitted], f.measure[f.fitted], "o", ms=3, color="C0", label="fitted")
         xs = np.geomspace(f.fit_range[0] or x[f.fitted].min() / UM, f.fit_range[1], 20)
         xs = xs[(xs >= f.scale[f.fitted].min() * 0.999) & (xs <= f.scale[f.fitted].max() * 1.001)]
-        ax.loglog(xs * UM, 10 ** (f.intercept + f.slope * np.log10(xs)), "--", color="k", lw=1.2)
+        ax.loglog(xs * UM, 10 ** (f.intercept + f.slope * np.log10(xs)), "--", color="k", lw=1.2,
+                  label=f"fit, slope {f.slope:.3g}")  # fmt: skip
+        if out.any():  # two families of points: say which is which
+            ax.legend(fontsize=7)
         ax.set_title(f"{_METHOD_LABELS.get(m, m)} = {f.D:.3f} (r² = {f.r2:.3f})", fontsize=8)
         ax.set_xlabel("scale (µm)")
         ax.set_ylabel(ylab.get(m, "measure"))

@@ -4,7 +4,6 @@
 
 from __future__ import annotations
 
-import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -23,21 +22,48 @@ def tile(images: list[np.ndarray], nrows: int, ncols: int, size) -> np.ndarray:
     return out
 
 
-def draw_text(img: np.ndarray, text: str, xy, size: int, width: int) -> np.ndarray:
-    """Write ``text`` onto ``img`` with Pillow, wrapped to ``width`` pixels (spare panel)."""
-    from PIL import Image, ImageDraw, ImageFont
+def _font(size: int):
+    from PIL import ImageFont
 
-    im = Image.fromarray(img)
     font = font_file()
-    f = ImageFont.truetype(font, size) if font else ImageFont.load_default()
+    return ImageFont.truetype(font, size) if font else ImageFont.load_default()
+
+
+def text_lines(text: str, size: int, width: int) -> list[str]:
+    """``text`` wrapped at blanks to lines of at most ``width`` pixels in the font of ``size``."""
+    f = _font(size)
     lines: list[str] = []
     for word in text.split():
         if lines and f.getlength(lines[-1] + " " + word) <= width:
             lines[-1] += " " + word
         else:
             lines.append(word)
-    ImageDraw.Draw(im).multiline_text(xy, "\n".join(lines), fill=(0, 0, 0), font=f, spacing=5)
+    return lines
+
+
+def draw_text(img: np.ndarray, text: str, xy, size: int, width: int, fill=(0, 0, 0)) -> np.ndarray:
+    """Write ``text`` onto ``img`` with Pillow, wrapped to ``width`` pixels."""
+    from PIL import Image, ImageDraw
+
+    im = Image.fromarray(img)
+    ImageDraw.Draw(im).multiline_text(
+        xy, "\n".join(text_lines(text, size, width)), fill=fill, font=_font(size), spacing=5
+    )
     return np.asarray(im).copy()
+
+
+def caption_strip(text: str, width: int) -> tuple[int, int]:
+    """(height, font size) in pixels of a strip that holds ``text`` across ``width`` pixels,
+    below the panels of a picture without a spare panel."""
+    size = max(10, min(14, width // 60))
+    return len(text_lines(text, size, width - 24)) * (size + 5) + 10, size
+
+
+def with_caption(img: np.ndarray, text: str, strip: int, size: int) -> np.ndarray:
+    """``img`` with a white strip of ``strip`` rows below it holding ``text`` (dark grey)."""
+    band = np.full((strip, img.shape[1], 3), 255, dtype=np.uint8)
+    band = draw_text(band, text, (12, 5), size, img.shape[1] - 24, fill=(80, 80, 80))
+    return np.vstack([img, band])
 
 
 def grid_layout(n: int, ncols: int | None) -> tuple[int, int]:
@@ -52,22 +78,15 @@ def caption_text(
 ) -> str:
     s = (
         f"{surface.nx}×{surface.ny} px, {surface.lx * 1e6:.4g}×{surface.ly * 1e6:.4g} µm, "
-        f"Rt = {surface.Rt * 1e6:.3g} µm; heights ×{ve:g}"
+        f"Rt = {surface.Rt * 1e6:.3g} µm; heights ×{ve:g}; red: contact"
     )
     if factor > 1:
-        s += f"; mesh down-sampled ×{factor} ({shape[1]}×{shape[0]} blocks): "
+        s += f"; mesh down-sampled ×{factor} ({shape[1]}×{shape[0]} blocks), "
         if pooling == "any":
-            s += (
-                "max-pooling shows every contact spot (a block is red when any of its pixels "
-                "touches), so red overstates Ac/A"
-            )
+            s += "by max-pooling: a block is red when any of its pixels touches (overstates Ac/A)"
         else:
-            s += "a block's share of red is the fraction of its pixels in contact (red = Ac/A)"
-    return s + "; red: contact"
-
-
-def wrap_text(text: str, width: int) -> str:
-    return "\n".join(textwrap.wrap(text, width))
+            s += "each block as red as the fraction of its pixels in contact"
+    return s
 
 
 def save_png(img: np.ndarray, path: Path, result_meta: str, caption: str) -> None:

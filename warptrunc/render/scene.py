@@ -77,9 +77,9 @@ def _fill(annotate: bool) -> float:
     return 0.66 if annotate else 1.0
 
 
-#: In the annotated top view the map is raised by this share of the panel height, so that the
-#: tick labels, the x-axis title and the caption below it do not overlap.
-_TOP_RAISE = 0.04
+#: In the annotated top view the map is raised by this share of the panel height, leaving room
+#: below it for the tick labels and the x-axis title (the caption is outside the panels).
+_TOP_RAISE = 0.02
 
 
 def _top_scale(lx: float, ly: float, w: int, h: int, fill: float) -> float:
@@ -133,11 +133,16 @@ class Scene:
         ye = np.minimum(np.arange(my + 1) * f, surface.ny) * surface.dy * 1e6
         gx, gy = np.meshgrid(xe, ye)  # (my+1, mx+1), x fastest after ravel
         gz = (corners - top) * 1e6 * ve  # µm, exaggerated, top at 0
+        self.extent_um = (float(xe[-1]), float(ye[-1]))
+        self.z_low_um = float(gz.min())
+        self.Rt, self.ve = surface.Rt, ve
         pts = np.column_stack([gx.ravel(), gy.ravel(), gz.ravel()])
         self.grid = pv.StructuredGrid()
         self.grid.points = pts
         self.grid.dimensions = (mx + 1, my + 1, 1)
         lo, hi = float(hb.min()), float(hb.max())
+        self.height_range_um = ((lo - top) * 1e6, (hi - top) * 1e6)  # block means, top at 0
+        self.grey_range = _NEUTRAL if hi > lo else (160, 160)
         t = (hb - lo) / (hi - lo) if hi > lo else np.full_like(hb, 0.5)
         g = np.rint(_NEUTRAL[0] + (_NEUTRAL[1] - _NEUTRAL[0]) * t).astype(np.uint8).ravel()
         self.neutral = np.repeat(g[:, None], 3, axis=1)
@@ -179,7 +184,7 @@ class Panel:
     that can show µ) in the wrong viewport when a plotter holds several.
     """
 
-    def __init__(self, scene: Scene, size, *, top_view, lighting, annotate, ve, caption=None):
+    def __init__(self, scene: Scene, size, *, top_view, lighting, annotate, ve):
         pv = import_pyvista()
         self.scene, self.annotate = scene, annotate
         # text sizes scale with the panel (VTK sizes are in points at a fixed DPI)
@@ -195,34 +200,25 @@ class Panel:
             self.mesh, scalars="rgb", rgb=True, preference="cell", lighting=lighting,
             show_scalar_bar=False,
         )  # fmt: skip
-        if annotate:
-            axes = pl.show_bounds(
-                mesh=self.mesh, xtitle="x (µm)", ytitle="y (µm)", ztitle="z",
-                show_zaxis=False, show_zlabels=False, font_size=round(12 * self.scale),
-                color="black", bold=False, n_xlabels=3, n_ylabels=3, fmt="%.0f",
-                location="outer" if top_view else "front", use_3d_text=False, use_2d=True,
-            )  # fmt: skip
-            font = font_file()
-            if font is not None:
-                from vtkmodules.vtkCommonCore import VTK_FONT_FILE
-
-                for i in range(3):
-                    for prop in (axes.GetTitleTextProperty(i), axes.GetLabelTextProperty(i)):
-                        prop.SetFontFamily(VTK_FONT_FILE)
-                        prop.SetFontFile(font)
-            if caption:
-                self.caption = _text(pl, caption, "lower_left", round(8 * self.scale), "dimgray")
         _camera(pl, top_view, size, fill=_fill(annotate), raise_=_TOP_RAISE if annotate else 0.0)
+        self.size, self.top_view, self.overlay = size, top_view, None
 
-    def frame(self, mask: np.ndarray, title: str | None, caption: bool = True) -> np.ndarray:
+    def frame(self, mask: np.ndarray, title: str | None) -> np.ndarray:
         self.mesh.cell_data["rgb"] = self.scene.colours(mask)
-        if self.annotate:
-            if title:
-                _text(self.pl, title, "upper_edge", round(10 * self.scale), name="title")
-            if hasattr(self, "caption"):
-                self.caption.SetVisibility(caption)
+        if self.annotate and title:
+            _text(self.pl, title, "upper_edge", round(10 * self.scale), name="title")
         self.pl.render()
-        return np.asarray(self.pl.screenshot(return_img=True))[..., :3].copy()
+        img = np.asarray(self.pl.screenshot(return_img=True))[..., :3].copy()
+        if not self.annotate:
+            return img
+        if self.overlay is None:  # axes and height scale: the same on every frame
+            from .axes import layout
+
+            self.overlay = layout(self.pl, self.scene, self.size, top_view=self.top_view,
+                                  scale=self.scale)  # fmt: skip
+        from .axes import draw
+
+        return draw(img, self.overlay)
 
     def close(self) -> None:
         self.pl.close()

@@ -39,7 +39,16 @@ from ..plot.pooling import (
     check_pooling,
 )
 from ..surface import Surface
-from .image import caption_text, depth_title, draw_text, grid_layout, save_png, tile, wrap_text
+from .image import (
+    caption_strip,
+    caption_text,
+    depth_title,
+    draw_text,
+    grid_layout,
+    save_png,
+    tile,
+    with_caption,
+)
 from .scene import Panel, Scene, auto_exaggeration, auto_factor, import_pyvista, vtk_quiet
 
 __all__ = ["DEFAULT_DEPTH_FRACTIONS", "Rendering", "animate_truncation", "render_truncation"]
@@ -236,11 +245,16 @@ def render_truncation(
     w, h = (int(v) for v in window_size)
     if w < 16 or h < 16:
         raise ValueError(f"window_size must be at least 16×16 pixels, got {window_size!r}")
+    spare = nrows * ncols > depth.size
+    # no spare panel: the caption goes in a strip below the panels, sized for its longest form
+    longest = caption_text(surface, 2, (surface.ny, surface.nx), 10.0, pooling)
+    strip, fs = caption_strip(longest, w) if annotate and not spare else (0, 0)
+    strip = min(strip, h // 3)
+    pw, ph = w // ncols, (h - strip) // nrows
     if downsample is None:
         downsample = auto_factor(
-            surface, (w // ncols, h // nrows), top_view=top_view, annotate=annotate,
-            max_mesh=max_mesh,
-        )  # fmt: skip
+            surface, (pw, ph), top_view=top_view, annotate=annotate, max_mesh=max_mesh
+        )
     f = int(downsample)
     if f < 1 or f != downsample:
         raise ValueError(f"downsample must be an integer ≥ 1, got {downsample!r}")
@@ -255,21 +269,20 @@ def render_truncation(
     scene = Scene(surface, f, ve)
     caption = caption_text(surface, f, scene.shape, ve, pooling)
     Rt = surface.Rt
-    pw, ph = w // ncols, h // nrows
-    spare = nrows * ncols > depth.size
     with vtk_quiet():
         panel = Panel(
-            scene, (pw, ph), top_view=top_view, lighting=lighting, annotate=annotate, ve=ve,
-            caption=None if spare else wrap_text(caption, max(30, pw // 7)),
-        )  # fmt: skip
+            scene, (pw, ph), top_view=top_view, lighting=lighting, annotate=annotate, ve=ve
+        )
         try:
             images = [
-                panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i]), caption=i == 0)
+                panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i]))
                 for i in range(depth.size)
             ]
         finally:
             panel.close()
-    img = tile(images, nrows, ncols, (w, h))
+    img = tile(images, nrows, ncols, (w, h - strip))
+    if strip:
+        img = with_caption(img, caption, strip, fs)
     if annotate and spare:
         r, c = divmod(depth.size, ncols)
         fs = max(10, min(16, pw // 34))
@@ -356,14 +369,19 @@ def animate_truncation(
     blocks, frac = block_contact(surface, depth, f, check_pooling(pooling), device)
     scene = Scene(surface, f, ve)
     caption = caption_text(surface, f, scene.shape, ve, pooling)
+    strip, fs = caption_strip(caption, w)
+    strip = min(strip, h // 3)
     Rt = surface.Rt
     with vtk_quiet():
         panel = Panel(
-            scene, (w, h), top_view=top_view, lighting=not top_view, annotate=True, ve=ve,
-            caption=wrap_text(caption, max(30, w // 7)),
-        )  # fmt: skip
+            scene, (w, h - strip), top_view=top_view, lighting=not top_view, annotate=True, ve=ve
+        )
         try:
-            frames = [panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i])) for i in range(n)]
+            frames = [
+                with_caption(panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i])), caption,
+                             strip, fs)
+                for i in range(n)
+            ]  # fmt: skip
         finally:
             panel.close()
     path.parent.mkdir(parents=True, exist_ok=True)

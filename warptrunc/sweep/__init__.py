@@ -13,8 +13,8 @@ sweep.json, ``curves/part-*.parquet``, cases.parquet), ``read`` (the columns of 
 reading one part), ``engines`` (one case, one shard; in-process execution), ``batch`` (several light
 surfaces per launch on a GPU), ``rows`` and ``elastic`` (a case's columns), ``cluster`` (Dask),
 ``run`` (:func:`run_sweep`), ``stats`` (pandas summaries, :func:`linear_fit`, and the older
-in-memory :func:`sweep`/:class:`SweepTable`). pandas, pyarrow and dask are imported only
-inside these functions: ``pip install "warptrunc[sweep]"``.
+in-memory :func:`sweep`/:class:`SweepTable`). pandas, pyarrow and dask (dependencies of
+warptrunc) are imported only inside these functions, so ``import warptrunc`` stays light.
 """
 
 from .curves import CURVE_COLUMNS

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """The Dask engine: cases on a LocalCluster (one worker per GPU) or on an existing cluster.
 
-Imported only when ``workers`` or ``scheduler`` is given (needs ``warptrunc[sweep]``). Cases
+Imported only when ``workers`` or ``scheduler`` is given (dask.distributed loads then). Cases
 go out in shards (one task per shard, sized adaptively to about 1 s of work), so the task
 overhead is amortised when a case takes milliseconds. Each worker writes its shard as one
 part of the store (:func:`~warptrunc.sweep.engines.compute_shard`) and sends back only the

@@ -278,7 +278,7 @@ class SweepGrid:
         """
         try:
             import tomllib
-        except ImportError:  # Python 3.10: the sweep extra installs tomli
+        except ImportError:  # Python 3.10: warptrunc's dependencies include tomli
             import tomli as tomllib
 
         path = Path(path)

@@ -78,14 +78,14 @@ MANIFEST_KEY = b"warptrunc.parts"
 
 
 def require_extra() -> None:
-    """Import pandas and pyarrow, or raise ImportError naming the extra to install."""
+    """Import pandas and pyarrow, or raise ImportError naming what to install."""
     try:
         import pandas  # noqa: F401
         import pyarrow  # noqa: F401
     except ImportError as exc:
         raise ImportError(
-            f"sweeps need pandas and pyarrow ({exc.name} is missing): "
-            'pip install "warptrunc[sweep]"'
+            f"sweeps need pandas and pyarrow, dependencies of warptrunc that this environment "
+            f"lacks ({exc.name} is missing): pip install pandas pyarrow"
         ) from None
 
 

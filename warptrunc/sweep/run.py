@@ -178,8 +178,8 @@ def _run_group(todo, opts, store, *, workers, scheduler, device, total, progress
             from .cluster import run_dask
         except ImportError as exc:
             raise ImportError(
-                f"workers/scheduler need dask.distributed ({exc.name} is missing): "
-                'pip install "warptrunc[sweep]"'
+                f"workers/scheduler need dask.distributed, a dependency of warptrunc that this "
+                f'environment lacks ({exc.name} is missing): pip install "dask[distributed]"'
             ) from None
 
         run_dask(todo, opts, store, workers=workers, scheduler=scheduler, device=device,

@@ -21,7 +21,11 @@ from .grid import SweepGrid
 from .read import require_extra
 from .run import run_sweep
 
-__all__ = ["SweepTable", "alpha_summary", "group_stats", "linear_fit", "sweep"]
+__all__ = ["MIN_TREND_D", "SweepTable", "alpha_summary", "group_stats", "linear_fit", "sweep"]
+
+MIN_TREND_D = 3
+"""Fewest values of D (each with a finite mean α) that the line α(D_in) is fitted through: a
+line through two points fits them exactly (r = ±1) and says nothing about a trend."""
 
 
 def linear_fit(x: Iterable[float], y: Iterable[float]) -> dict[str, float]:
@@ -74,7 +78,7 @@ def group_stats(df, by: Sequence[str], value: str) -> list[dict[str, Any]]:
     Raises
     ------
     ImportError
-        If pandas or pyarrow (the ``sweep`` extra) is missing.
+        If pandas or pyarrow (dependencies of warptrunc) is missing from the environment.
     """
 
     require_extra()
@@ -95,7 +99,8 @@ def alpha_summary(df) -> dict[str, Any]:
 
     ``df`` is a cases table (:func:`warptrunc.sweep.load`) or a :class:`SweepTable`.
     ``per_D`` holds ``D_in``, ``alpha_mean``, ``alpha_sd`` (over seeds and δ) and ``n``;
-    ``alpha_vs_D`` is :func:`linear_fit` of the means against D_in (None below 2 points).
+    ``alpha_vs_D`` is :func:`linear_fit` of the means against D_in, or None with fewer than
+    ``MIN_TREND_D`` (3) values of D that have a finite mean.
 
     Parameters
     ----------
@@ -124,7 +129,7 @@ def alpha_summary(df) -> dict[str, Any]:
         ok = [r for r in stats if r["n"] > 0 and np.isfinite(r["alpha_mean"])]
         line = (
             linear_fit([r["D_in"] for r in ok], [r["alpha_mean"] for r in ok])
-            if len(ok) >= 2
+            if len(ok) >= MIN_TREND_D
             else None
         )
         out[key] = {"per_D": stats, "alpha_vs_D": line}
@@ -231,7 +236,7 @@ def sweep(
     ValueError
         If a grid value or option is out of range.
     ImportError
-        If pandas or pyarrow (the ``sweep`` extra) is missing.
+        If pandas or pyarrow (dependencies of warptrunc) is missing from the environment.
     """
 
     mat = {}
