@@ -323,8 +323,7 @@ def test_cli_writes_the_resolution_columns_and_the_intervals(tmp_path, capsys):
 def test_default_map_holds_the_default_placements_apart(tmp_path, capsys):
     """A generated map is 3 mm per side at the preset's (or the defaults') pixel: the paper's
     three punches at three placements each never overlap, and the command does not warn."""
-    from warptrunc.cli import main
-    from warptrunc.cli import build_parser
+    from warptrunc.cli import build_parser, main
     from warptrunc.cli.indent import map_spec
     from warptrunc.indent import PAPER_PUNCH_DIAMETERS, IndentProtocol, place_punches
 

@@ -94,8 +94,8 @@ def _options(msg: str) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run the experiment and write the outputs."""
-    from .._support.version import __version__
     from .._support.provenance import git_commit
+    from .._support.version import __version__
     from ..indent import IndentProtocol, PlacementOverlapWarning, indent
     from ..indent.fits import MIN_FIT_POINTS
     from ..indent.protocol import MATERIAL_DEFAULTS

@@ -85,7 +85,7 @@ def solve_placement(
     sec = {"elastic_s": 0.0, "elastic_plastic_s": 0.0, "refinement_s": 0.0, "truncation_s": 0.0}
 
     def cycles(win: PunchWindow, idx: np.ndarray, h: float, el: Any = None, bar: Any = None,
-               approach: float | None = None):  # fmt: skip
+               approach: Any = None):  # fmt: skip
         return run_cycles(win, loads[idx], f, material, hardness=h, settings=settings,
                           device=device, step=bar, elastic=el, approach=approach)  # fmt: skip
 

@@ -247,7 +247,7 @@ def run_cycles(
     device: Any = None,
     step: Any = None,
     elastic: dict[str, np.ndarray] | None = None,
-    approach: float | None = None,
+    approach: Any = None,
 ) -> dict[str, np.ndarray]:
     """Load / partial-unload cycles under one punch, at increasing peak loads.
 
@@ -277,10 +277,11 @@ def run_cycles(
         occurs, and the surface the next cycle starts from is the original one. The cycles
         after the first that reaches H are solved, starting from the original surface (the
         state at a peak is that of monotonic loading to it).
-    approach : float, optional
-        A prediction of the approach at the first peak solved (m), from a coarser grid of the
-        same surface: the first load solve starts there (:meth:`ContactSolver.hint_approach`;
-        the answer is the same, the iterations fewer).
+    approach : (m,) array_like, optional
+        A prediction of the approach at each peak (m), from a coarser grid of the same surface:
+        the first load solve (that of the first cycle not copied from ``elastic``) starts
+        there (:meth:`ContactSolver.hint_approach`; the answer is the same, the iterations
+        fewer).
 
     Returns
     -------
@@ -313,8 +314,10 @@ def run_cycles(
     reach = window.top - window.floor  # an approach this deep would reach outside the disk
     solver = (make_solver(window, material, hardness=hardness, settings=settings, device=device)
               if n_reused < loads.size else None)  # fmt: skip
-    if solver is not None and approach is not None and approach > 0:
-        solver.hint_approach(approach)
+    if solver is not None and approach is not None:
+        first = float(np.broadcast_to(np.asarray(approach, np.float64), loads.shape)[n_reused])
+        if first > 0:
+            solver.hint_approach(first)
     for load in loads[n_reused:]:
         solver.freeze_plastic(False)
         peak = solver.solve(load=float(load))

@@ -186,7 +186,7 @@ def refine_cells(
     source: WindowSource,
     window: PunchWindow,
     first: dict[str, np.ndarray],
-    solve: Callable[[PunchWindow, np.ndarray, int, float], dict[str, np.ndarray]],
+    solve: Callable[[PunchWindow, np.ndarray, int, np.ndarray], dict[str, np.ndarray]],
     *,
     resolution_tol: float,
     min_contact_pixels: int,
@@ -207,8 +207,8 @@ def refine_cells(
     solve : callable
         ``solve(window, idx, factor, approach)`` → the cycles of the peak loads ``idx``
         (increasing indices) on a finer ``window`` (pixel / ``factor``), as ``run_cycles``
-        returns them; ``approach`` (m) is the coarser grid's rigid plane at the first of them,
-        as an approach on the finer window (its start, ``run_cycles(approach=)``).
+        returns them; ``approach`` ((len(idx),) m) is the coarser grid's rigid plane at each
+        of them, as approaches on the finer window (the start, ``run_cycles(approach=)``).
     resolution_tol : float
         Largest relative change of K and of A at the last halving (dimensionless).
     min_contact_pixels : int
@@ -249,8 +249,8 @@ def refine_cells(
             w2 = wins.get(f2)
             if w2 is None:
                 w2 = wins[f2] = source.window(window.diameter, window.centre, f2)
-            # the coarser solution as the start: the rigid plane where it was (m below the top)
-            plane = wins[f].top - float(np.asarray(cur["displacement"], np.float64)[idx[0]])
+            # the coarser solution as the start: the rigid plane where it was, as approaches
+            plane = wins[f].top - np.asarray(cur["displacement"], np.float64)[idx]
             new = solve(w2, idx, f2, w2.top - plane)
         except MemoryError:
             note[idx] = "memory"
