@@ -316,4 +316,5 @@ def test_sweep_flags_the_fit_of_issue_30(tmp_path):
     good = df[df["D_in"] == 2.1].iloc[0]
     assert good["fit_error"] is None or str(good["fit_error"]) == "<NA>"
     assert "1 fits not worth reading" in r.stderr
-    assert "α = " not in r.stdout  # one D left: no trend line from a flagged fit
+    # one D left: no trend line α = a·D + b from a flagged fit, and the summary says why
+    assert "·D" not in r.stdout and "no line α(D)" in r.stdout
