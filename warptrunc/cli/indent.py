@@ -19,6 +19,11 @@ contact area change by less than --resolution-tol with at least --min-contact-pi
 contact, up to --refine-max; the fits use only the cells resolved, not saturated and
 converged (``in_fit``), at least 6, with 95 % intervals by a bootstrap over the indents.
 
+The punch as the experiment had it: --punch-tilt (degrees, a misaligned flat held against
+rotation) and a rough face, generated (--punch-roughness rms, --punch-hurst, --punch-cutoff-short,
+--punch-cutoff-long, --punch-face-seed) or read (--punch-face-file); the gap is the punch plane
+minus the sum of the sample's and the face's heights; truncation stays the sample's.
+
 Writes OUT/indent.csv (one row per realisation × punch × placement × peak; SI units in the
 column names), OUT/indent.json (settings, the fits E_c/E = β·[F/(E·A)]^α per model with their
 intervals, the resolution counts, provenance; strict JSON: a hardness of null is ∞) and
@@ -57,6 +62,10 @@ _OPTION = {
     "placements": "--placements", "hardness": "--hardness", "placement_seed": "--placement-seed",
     "truncation_increments": "--truncation-increments", "resolution_tol": "--resolution-tol",
     "min_contact_pixels": "--min-contact-pixels", "refine_max": "--refine-max",
+    "punch_tilt_deg": "--punch-tilt", "punch_tilt_azimuth_deg": "--punch-tilt-azimuth",
+    "punch_roughness": "--punch-roughness", "punch_hurst": "--punch-hurst",
+    "punch_cutoff_short": "--punch-cutoff-short", "punch_cutoff_long": "--punch-cutoff-long",
+    "punch_face_seed": "--punch-face-seed", "punch_face_file": "--punch-face-file",
 }  # fmt: skip
 
 
@@ -71,7 +80,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "punches and placements on each; the fits' intervals resample their indents); "
         "default: the one surface of --seed",
     )  # fmt: skip
-    add_options(p, IndentProtocol, title="indentation protocol")
+    g = add_options(p, IndentProtocol, title="indentation protocol")
+    g.add_argument(  # a path: not a numeric parameter field (IndentProtocol.punch_face_file)
+        "--punch-face-file", metavar="FILE", default=None,
+        help="a height map of the punch face (heights toward the sample, its own pixel), "
+        "centred on every punch, levelled over its disk and resampled bilinearly; instead of "
+        "--punch-roughness",
+    )  # fmt: skip
     add_options(p, Material, title="material (default: aluminium alloy against diamond)",
                 defaults=MATERIAL_DEFAULTS)  # fmt: skip
     add_options(p, SolverSettings, title="contact solver (free half-space on each punch's window)",
@@ -97,12 +112,13 @@ def run(args: argparse.Namespace) -> int:
     from .._support.provenance import git_commit
     from .._support.version import __version__
     from ..indent import IndentProtocol, PlacementOverlapWarning, indent
+    from ..indent.face import FACE_FIELDS
     from ..indent.fits import MIN_FIT_POINTS
     from ..indent.protocol import MATERIAL_DEFAULTS
 
     try:
         material = from_args(Material, args, defaults=MATERIAL_DEFAULTS)
-        protocol = from_args(IndentProtocol, args)
+        protocol = from_args(IndentProtocol, args, punch_face_file=args.punch_face_file)
         settings = from_args(SolverSettings, args, substrate="free")
         surfaces = _surfaces(args)
         s = surfaces[0]
@@ -115,6 +131,7 @@ def run(args: argparse.Namespace) -> int:
                 truncation_increments=protocol.truncation_increments, settings=settings,
                 resolution_tol=protocol.resolution_tol, refine_max=protocol.refine_max,
                 min_contact_pixels=protocol.min_contact_pixels,
+                **{k: getattr(protocol, k) for k in FACE_FIELDS},
                 elastic=not args.no_elastic, device=args.device,
                 progress=not args.no_progress and sys.stderr.isatty(),
             )  # fmt: skip
@@ -147,6 +164,7 @@ def run(args: argparse.Namespace) -> int:
         f"H = {_h(material)}; {res.peak_load.size} cells in "
         f"{res.settings['seconds']['total_s']:.3g} s",
         _resolution_line(res),
+        *_face_lines(res),
     ]
     for name, fit in fits.items():
         if not fit["made"]:
@@ -227,3 +245,21 @@ def _resolution_line(res) -> str:
         text += f"; {el['resolved']} resolved, {el['saturated']} saturated, {el['in_fit']} in_fit (elastic)"
     notes = ", ".join(f"{v} {k}" for k, v in sorted(ep["notes"].items()))
     return text + f"; elastic–plastic notes: {notes}"
+
+
+def _face_lines(res) -> list[str]:
+    """One line per punch face that is not an aligned smooth flat."""
+    out = []
+    for f in res.settings.get("punch_face") or []:
+        text = f"  punch {f['diameter_m'] * 1e6:.4g} µm: tilt {f['tilt_deg']:.4g}°"
+        if f["tilt_deg"] > 0:
+            text += (f" (azimuth {f['tilt_azimuth_deg']:.4g}°, "
+                     f"{f['tilt_rise_over_diameter_m'] * 1e6:.3g} µm over the diameter)")  # fmt: skip
+        r = f.get("roughness")
+        if r and "hurst" in r:
+            text += (f"; rough face R_q {r['rms_m'] * 1e6:.3g} µm, H {r['hurst']:.3g}, "
+                     f"λ {r['cutoff_short_m'] * 1e6:.3g}–{r['cutoff_long_m'] * 1e6:.4g} µm")  # fmt: skip
+        elif r:
+            text += f"; face read from {r['file']} (R_q {r['rms_m'] * 1e6:.3g} µm levelled)"
+        out.append(text)
+    return out

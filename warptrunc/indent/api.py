@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import time
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -17,6 +18,7 @@ from .._support.progress import progress_bar
 from ..contact.settings import SolverSettings
 from ..material import Material
 from ..surface import Surface
+from .face import DEFAULT_HURST, check_same_face, face_record, face_settings, punch_faces
 from .placement import solve_placement
 from .protocol import PAPER_PEAK_LOADS, PAPER_PUNCH_DIAMETERS, IndentProtocol, default_material
 from .punch import PunchWindow, place_punches
@@ -143,6 +145,14 @@ def indent(
     resolution_tol: float = 0.02,
     min_contact_pixels: int = 100,
     refine_max: int = 8,
+    punch_tilt_deg: float = 0.0,
+    punch_tilt_azimuth_deg: float = 0.0,
+    punch_roughness: float = 0.0,
+    punch_hurst: float = DEFAULT_HURST,
+    punch_cutoff_short: float | None = None,
+    punch_cutoff_long: float | None = None,
+    punch_face_seed: int = 0,
+    punch_face_file: str | Path | None = None,
     progress: bool = False,
     device: wp.DeviceLike = None,
 ) -> IndentationResult:
@@ -213,6 +223,33 @@ def indent(
         generated again (same terms, the map's height scale) at pixel/2, /4, … for the cells
         not yet resolved. 1: nothing is refined, the cells are judged by their contact pixels
         (so are those of a read map).
+    punch_tilt_deg : float
+        Tilt θ of every punch face against the sample's mean plane (degrees), in [0, 5]: a
+        misaligned flat, held fixed as the indenter's shaft holds it (the punch translates,
+        never rotates; Barber's K is that of the contact set). 0.1° rises 0.88 µm over
+        502.6 µm.
+    punch_tilt_azimuth_deg : float
+        Direction of the tilted face's edge nearest the sample (degrees, from +x toward +y),
+        the same at every placement; the tilt axis passes through the punch centre,
+        perpendicular to it.
+    punch_roughness : float
+        rms R_q of a generated self-affine rough punch face (m), over the disk after levelling;
+        0: smooth. One face per punch diameter (seed ``(punch_face_seed, diameter index)``),
+        the same at every placement and realisation; the gap is the punch plane minus the sum
+        of both surfaces' heights.
+    punch_hurst : float
+        Hurst exponent H of that face, in (0, 1]: C(q) ∝ q^(−2−2H).
+    punch_cutoff_short : float, optional
+        Its shortest wavelength λ_s (m); default 2 pixels of the map.
+    punch_cutoff_long : float, optional
+        Its longest wavelength λ_L (m); default the punch diameter.
+    punch_face_seed : int
+        Seed of the generated face (host NumPy: the same face on every device).
+    punch_face_file : str or Path, optional
+        A measured punch face, a height map read by :func:`warptrunc.io.read_height_map`,
+        instead of ``punch_roughness``: centred on each punch, levelled over its disk and
+        resampled to the window's pixel by bilinear interpolation
+        (:mod:`warptrunc.indent.face`).
     progress : bool
         tqdm bar over the cycles (stderr).
     {warp_device_obj}
@@ -249,6 +286,11 @@ def indent(
         placements=placements, placement_seed=seed, overlap=overlap,
         truncation_increments=truncation_increments, resolution_tol=resolution_tol,
         min_contact_pixels=min_contact_pixels, refine_max=refine_max,
+        punch_tilt_deg=punch_tilt_deg, punch_tilt_azimuth_deg=punch_tilt_azimuth_deg,
+        punch_roughness=punch_roughness, punch_hurst=punch_hurst,
+        punch_cutoff_short=punch_cutoff_short, punch_cutoff_long=punch_cutoff_long,
+        punch_face_seed=punch_face_seed,
+        punch_face_file=None if punch_face_file is None else str(punch_face_file),
     )  # fmt: skip
     material = default_material() if material is None else material
     if not isinstance(material, Material):
@@ -262,6 +304,7 @@ def indent(
     lx, ly = nx * dx, ny * dy
     sources = [WindowSource(zz, px, par, device=dev) for zz, px, _info, par in maps]
     diameters = (None,) if protocol.punch_diameters is None else protocol.punch_diameters
+    faces = punch_faces(protocol, diameters, max(dx, dy))
     windows: list[tuple[int, int, int, PunchWindow, float]] = []
     for i, d in enumerate(diameters):
         if d is None:
@@ -273,7 +316,7 @@ def indent(
             )  # fmt: skip
         for k, src in enumerate(sources):
             for j, c in enumerate(centres):
-                w = src.window(d, (float(c[0]), float(c[1])))
+                w = src.window(d, (float(c[0]), float(c[1])), face=faces[i])
                 _check_loads(w, protocol, hardness)
                 windows.append((k, i, j, w, float(frac[j])))
     windows.sort(key=lambda t: t[:3])  # realisation, punch, placement
@@ -281,6 +324,7 @@ def indent(
     m = loads.size
     given = None
     if reuse is not None and math.isfinite(hardness):
+        check_same_face(reuse, protocol)
         if protocol.refine_max > 1 or len(maps) > 1:
             raise ValueError(
                 f"reuse needs refine_max = 1 and one surface (its elastic cycles are those of "
@@ -314,7 +358,8 @@ def indent(
                 "realisation": k, "punch_diameter_m": w.diameter, "placement": j,
                 "centre_m": list(w.centre), "window": [int(v) for v in (*w.origin, *w.mask.shape)],
                 "n_punch_pixels": w.n_pixels, "overlap_fraction": frac,
-                "disk_Rt_m": float(np.ptp(w.disk_heights)), "refined_windows": info["windows"],
+                "disk_Rt_m": float(np.ptp(w.surface_disk_heights)),
+                "refined_windows": info["windows"], **face_record(w),
             })  # fmt: skip
     algo = (SolverSettings() if settings is None else settings).algorithm
     settings_info = {
@@ -334,6 +379,7 @@ def indent(
             "maps": [{"refinable": src.refinable, "note": src.why_not} for src in sources],
             "notes": NOTES,
         },
+        "punch_face": face_settings(diameters, faces),
         "punches": per_punch,
         "seconds": {**timings, "total_s": time.perf_counter() - t_start},
     }  # fmt: skip

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 from dataclasses import dataclass
 from typing import Any
 
@@ -93,6 +94,9 @@ MATERIAL_DEFAULTS = {"E_i": 1141e9, "nu_i": 0.07, "hardness": ALUMINIUM_HARDNESS
 class IndentProtocol:
     """The experiment of § 4.1: punches, peak loads, partial unloading and punch positions.
 
+    The ``punch_*`` face fields make the punch the experiment's: a tilt held fixed and a rough
+    face, generated or read (:mod:`warptrunc.indent.face`); by default an aligned smooth flat.
+
     Raises
     ------
     ValueError
@@ -150,9 +154,53 @@ class IndentProtocol:
         "are generated again at pixel/2, /4, … up to pixel/refine_max", kind="int", ge=1,
         le=1024, cli="refine-max", sweep=False,
     )  # fmt: skip
+    punch_tilt_deg: float = param(
+        0.0, "tilt θ of the punch face against the sample's mean plane, held fixed as the "
+        "indenter's shaft holds it (degrees; 0.1° rises 0.88 µm over 502.6 µm)", ge=0.0, le=5.0,
+        cli="punch-tilt",
+    )  # fmt: skip
+    punch_tilt_azimuth_deg: float = param(
+        0.0, "direction of the tilted face's edge nearest the sample, from +x toward +y, the "
+        "same for every placement (degrees)", ge=0.0, lt=360.0, cli="punch-tilt-azimuth",
+        sweep=False,
+    )  # fmt: skip
+    punch_roughness: float = param(
+        0.0, "rms R_q of a generated self-affine rough punch face, over the disk after "
+        "levelling; 0 = smooth", unit="m", ge=0.0, cli="punch-roughness",
+    )  # fmt: skip
+    punch_hurst: float = param(
+        0.8, "Hurst exponent H of the rough punch face, C(q) ∝ q^(−2−2H)", gt=0.0, le=1.0,
+        cli="punch-hurst", sweep=False,
+    )  # fmt: skip
+    punch_cutoff_short: float | None = param(
+        None, "shortest wavelength λ_s of the rough punch face; none = 2 pixels of the map",
+        unit="m", gt=0.0, optional=True, cli="punch-cutoff-short", sweep=False,
+    )  # fmt: skip
+    punch_cutoff_long: float | None = param(
+        None, "longest wavelength λ_L of the rough punch face; none = the punch diameter",
+        unit="m", gt=0.0, optional=True, cli="punch-cutoff-long", sweep=False,
+    )  # fmt: skip
+    punch_face_seed: int = param(
+        0, "seed of the rough punch face (one face per punch diameter, the same at every "
+        "placement)", kind="int", ge=0, le=2**32 - 1, cli="punch-face-seed", sweep=False,
+    )  # fmt: skip
+    punch_face_file: str | None = None
+    """A height map of the punch face (:func:`warptrunc.io.read_height_map`, heights toward the
+    sample, its own pixel), centred on every punch, levelled over its disk and resampled
+    bilinearly; instead of ``punch_roughness`` (:mod:`warptrunc.indent.face`). None: no file."""
 
     def __post_init__(self) -> None:
         check_fields(self)
+        path = self.punch_face_file
+        if path is not None:
+            if not isinstance(path, (str, os.PathLike)) or not str(path):
+                raise ValueError(f"punch_face_file must be a path, got {path!r}")
+            object.__setattr__(self, "punch_face_file", str(path))
+            if self.punch_roughness > 0:
+                raise ValueError(
+                    f"punch_roughness ({self.punch_roughness!r} m) and punch_face_file "
+                    f"({str(path)!r}) both give the punch face's roughness; give one"
+                )
         f = self.peak_loads
         if any(not b > a for a, b in zip(f, f[1:], strict=False)):
             raise ValueError(f"peak_loads must be strictly increasing (N), got {list(f)!r}")
@@ -203,8 +251,8 @@ def make_solver(window: PunchWindow, material: Material, *, hardness: float,
     Notes
     -----
     The default penetration tolerance (rms height/(10·mean n), ContactMechanics') takes the rms
-    over the disk only (the pixels outside it, far below, would inflate it) and n the window's
-    sides. A flat disk gets 10⁻⁶ of a pixel side. The default BCCG preconditioner rule
+    over the disk only (the pixels outside it, far below, would inflate it; a tilted face's
+    plane taken out, so that a tilt does not loosen it) and n the window's sides. A flat disk gets 10⁻⁶ of a pixel side. The default BCCG preconditioner rule
     (``precondition_above=None``) becomes 2 % of the window at every size
     (``warptrunc.contact.bccg.PRECONDITION_ABOVE``): under a punch on a rough surface always
     preconditioning the large windows costs more convolutions than it saves.
@@ -217,7 +265,7 @@ def make_solver(window: PunchWindow, material: Material, *, hardness: float,
         )
     if settings.pentol is None:
         # rms over the disk / (10·mean window side), not over the (1-D) list of disk pixels
-        pentol = float(np.std(window.disk_heights)) / (10 * np.mean(window.mask.shape))
+        pentol = float(np.std(window.untilted_disk_heights)) / (10 * np.mean(window.mask.shape))
         if pentol == 0.0:  # a flat punch face
             pentol = 1e-6 * min(window.pixel_size)
         settings = settings.replace(pentol=pentol)

@@ -14,6 +14,9 @@ free half-space of :mod:`warptrunc.contact.halfspace` zero-pads the window, so t
 it is the unloaded half-space. Inside the window the pixels outside the disk are set far below
 the disk (by ``drop``, m, beneath its lowest pixel), so that they never touch: the gap there
 stays larger than any approach the punch can make (:func:`punch_window`).
+
+A tilted or rough punch face (:mod:`warptrunc.indent.face`) is added to the heights inside the
+disk (``face``): the solver sees the composite surface, sample plus face.
 """
 
 from __future__ import annotations
@@ -240,6 +243,13 @@ class PunchWindow:
     """Pixel sides (dx, dy) (m)."""
     area: float
     """Punch area A (m²): πd²/4, or Lx·Ly of the map for ``diameter=None``."""
+    face: Any = None
+    """The punch face (:class:`~warptrunc.indent.face.PunchFace`: tilt, roughness), None for an
+    aligned smooth flat."""
+    face_heights: np.ndarray | None = None
+    """(wy, wx) float64 heights of the face toward the sample at the disk's pixels, 0 outside
+    (m); ``heights`` holds the sample's plus these (the composite surface). None without a
+    face."""
 
     @property
     def n_pixels(self) -> int:
@@ -257,6 +267,27 @@ class PunchWindow:
         return self.heights[self.mask]
 
     @property
+    def surface_disk_heights(self) -> np.ndarray:
+        """(n_pixels,) float64 heights of the sample alone at the disk's pixels (m): the
+        composite :attr:`disk_heights` less the punch face's."""
+        if self.face_heights is None:
+            return self.disk_heights
+        return (self.heights - self.face_heights)[self.mask]
+
+    @property
+    def untilted_disk_heights(self) -> np.ndarray:
+        """(n_pixels,) float64 composite heights at the disk's pixels less the face's tilt
+        plane (m): the sample and the face's roughness (the solver's default tolerance)."""
+        f = self.face
+        if f is None or f.tilt == 0.0:
+            return self.disk_heights
+        iy, ix = np.nonzero(self.mask)  # raster order, as the mask indexes
+        x = (ix + self.origin[1] + 0.5) * self.pixel_size[0] - self.centre[0]
+        y = (iy + self.origin[0] + 0.5) * self.pixel_size[1] - self.centre[1]
+        return self.disk_heights - math.tan(f.tilt) * (math.cos(f.azimuth) * x
+                                                       + math.sin(f.azimuth) * y)  # fmt: skip
+
+    @property
     def top(self) -> float:
         """Highest height inside the disk (m): where the punch first touches."""
         return float(self.disk_heights.max())
@@ -269,6 +300,7 @@ def punch_window(
     centre: tuple[float, float] | None = None,
     *,
     drop: float | None = None,
+    face: Any = None,
 ) -> PunchWindow:
     """The window of a map under a punch, with the pixels outside the disk set far below.
 
@@ -285,6 +317,9 @@ def punch_window(
     drop : float, optional
         How far below the disk's lowest pixel the outside pixels are put (m); it must exceed
         every approach of the punch. Default: 10·(R_t of the disk + d).
+    face : PunchFace, optional
+        The punch face (:func:`warptrunc.indent.face.make_face`): its heights are added to the
+        map's inside the disk. A finite punch only.
 
     Returns
     -------
@@ -293,18 +328,21 @@ def punch_window(
     Raises
     ------
     ValueError
-        A punch larger than the map, or a disk reaching outside it.
+        A punch larger than the map, a disk reaching outside it, or a face on a flat larger
+        than the map.
     """
     z = np.asarray(heights, dtype=np.float64)
     dx, dy = _pixel_pair(pixel_size)
     ny, nx = z.shape
     if diameter is None:
+        if face is not None:
+            raise ValueError("a tilted or rough punch face needs a finite punch_diameter, got none")
         lx, ly = nx * dx, ny * dy
         c = (0.5 * lx, 0.5 * ly) if centre is None else tuple(float(v) for v in centre)
         mask = np.ones((ny, nx), dtype=bool)
         return PunchWindow(None, c, (0, 0), mask, z.copy(), float(z.min()), (dx, dy), lx * ly)
     return punch_window_at(lambda o, s: z[o[0] : o[0] + s[0], o[1] : o[1] + s[1]],
-                           z.shape, (dx, dy), diameter, centre, drop=drop)  # fmt: skip
+                           z.shape, (dx, dy), diameter, centre, drop=drop, face=face)  # fmt: skip
 
 
 def punch_window_at(
@@ -315,6 +353,7 @@ def punch_window_at(
     centre: tuple[float, float] | None = None,
     *,
     drop: float | None = None,
+    face: Any = None,
 ) -> PunchWindow:
     """:func:`punch_window` on a map known through the heights of any window of it.
 
@@ -336,6 +375,9 @@ def punch_window_at(
         Punch centre (x, y) (m); default the map centre. The disk must lie inside the map.
     drop : float, optional
         As for :func:`punch_window` (m).
+    face : PunchFace, optional
+        As for :func:`punch_window`: evaluated at this window's pixel centres, so a finer
+        window holds the same face.
 
     Returns
     -------
@@ -384,6 +426,12 @@ def punch_window_at(
     win = np.array(generate((iy0, ix0), mask.shape), dtype=np.float64)
     if win.shape != mask.shape:
         raise ValueError(f"generate gave a {win.shape} window, {mask.shape} was asked for")
+    fh = None
+    if face is not None:  # the composite surface: the sample's heights plus the face's
+        x = (np.arange(ix0, ix0 + mask.shape[1]) + 0.5) * dx - cx
+        y = (np.arange(iy0, iy0 + mask.shape[0]) + 0.5) * dy - cy
+        fh = np.where(mask, face.heights(x, y), 0.0)
+        win = win + fh
     inside = win[mask]
     if drop is None:
         drop = 10.0 * (float(np.ptp(inside)) + d)
@@ -396,4 +444,7 @@ def punch_window_at(
     if (gy, gx) != (wy, wx):
         win = np.pad(win, ((0, gy - wy), (0, gx - wx)), constant_values=floor)
         mask = np.pad(mask, ((0, gy - wy), (0, gx - wx)), constant_values=False)
-    return PunchWindow(d, (cx, cy), (iy0, ix0), mask, win, floor, (dx, dy), math.pi * r * r)
+        if fh is not None:
+            fh = np.pad(fh, ((0, gy - wy), (0, gx - wx)))
+    return PunchWindow(d, (cx, cy), (iy0, ix0), mask, win, floor, (dx, dy), math.pi * r * r,
+                       face, fh)  # fmt: skip

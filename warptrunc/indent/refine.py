@@ -7,7 +7,9 @@ A WM surface is analytic (Eq. 4): the window under a punch can be generated agai
 pixel with the same content — the same terms (phases, W_r, cut-off W_c) and the map's height
 scale frozen, never scaled again to R_t (:func:`warptrunc.wm.wm_window`). A height map read
 from a file has no such source: nothing is refined, and its cells are judged by the
-contact-pixel rule alone.
+contact-pixel rule alone. A tilted or rough punch face is evaluated again at the finer pixel
+centres from its own definition (a plane; a band-limited Fourier sum of fixed seed and
+cut-offs; a bilinear read face): the same face at every pixel (:mod:`warptrunc.indent.face`).
 
 The rule, per cell and contact model: the pixel p is halved while the cell is not resolved; a
 cell is **resolved** at p/2 when Barber's unloading stiffness K and the contact area A both
@@ -112,7 +114,7 @@ class WindowSource:
         return None
 
     def window(self, diameter: float | None, centre: tuple[float, float],
-               factor: int = 1) -> PunchWindow:  # fmt: skip
+               factor: int = 1, face: Any = None) -> PunchWindow:  # fmt: skip
         """The punch window at pixel dx/factor, dy/factor.
 
         Parameters
@@ -123,6 +125,9 @@ class WindowSource:
             Punch centre (x, y) (m).
         factor : int
             Refinement of the pixel (1: the map's own pixels).
+        face : PunchFace, optional
+            The punch face (tilt, roughness), evaluated at the window's pixel centres: the
+            same face at every factor (:mod:`warptrunc.indent.face`).
 
         Returns
         -------
@@ -134,7 +139,7 @@ class WindowSource:
             ``factor`` > 1 on a map that cannot be refined, or for a flat larger than the map.
         """
         if factor == 1:
-            return punch_window(self.heights, self.pixel_size, diameter, centre)
+            return punch_window(self.heights, self.pixel_size, diameter, centre, face=face)
         if not self.refinable or diameter is None:
             raise ValueError(f"this map cannot be refined ({self.why_not or 'a flat'}): factor 1 only")
         from ..wm import wm_window
@@ -146,7 +151,7 @@ class WindowSource:
             return wm_window(self.params, origin, shape, factor, device=self.device)
 
         return punch_window_at(generate, (ny * factor, nx * factor), (dx / factor, dy / factor),
-                               diameter, centre)  # fmt: skip
+                               diameter, centre, face=face)  # fmt: skip
 
 
 @dataclass(frozen=True, eq=False)
@@ -248,7 +253,7 @@ def refine_cells(
         try:
             w2 = wins.get(f2)
             if w2 is None:
-                w2 = wins[f2] = source.window(window.diameter, window.centre, f2)
+                w2 = wins[f2] = source.window(window.diameter, window.centre, f2, window.face)
             # the coarser solution as the start: the rigid plane where it was, as approaches
             plane = wins[f].top - np.asarray(cur["displacement"], np.float64)[idx]
             new = solve(w2, idx, f2, w2.top - plane)

@@ -8,7 +8,9 @@ kernels as :func:`warptrunc.truncate` (``warptrunc.kernels.truncation``), run on
 pixels only, with float32 heights and float32 thresholds, so they equal
 ``numpy.count_nonzero(z_disk >= t_k)`` exactly. Stiffness and load follow
 :func:`warptrunc.stiffness_curve`: k = β'·(2/√π)·E*·√A_c (Eq. 2) and F = ∫k dω by the cumulative
-trapezoidal rule; here β' = 1 and the apparent area is the punch's, A = πd²/4.
+trapezoidal rule; here β' = 1 and the apparent area is the punch's, A = πd²/4. Truncation is
+the paper's model of the sample: it reads the sample's heights alone, never a tilted or rough
+punch face (:attr:`PunchWindow.surface_disk_heights`).
 """
 
 from __future__ import annotations
@@ -76,7 +78,7 @@ def disk_truncation(
     """
     n = check_int("n_increments", n_increments, 1, 10_000_000)
     dev = resolve_device(device)
-    z32 = np.ascontiguousarray(window.heights[window.mask], dtype=np.float32)
+    z32 = np.ascontiguousarray(window.surface_disk_heights, dtype=np.float32)
     lo, hi = float(z32.min()), float(z32.max())
     rng = float(np.float64(hi) - np.float64(lo))
     if max_depth is None and not rng > 0:
@@ -136,7 +138,8 @@ def truncation_at_loads(
         k = c * np.sqrt(tc.contact_area)
         return tc, k, cumulative_load(k, tc.depth)
 
-    tc, k, f = curve(None if float(np.ptp(window.disk_heights)) > 0 else window.pixel_size[0])
+    tc, k, f = curve(None if float(np.ptp(window.surface_disk_heights)) > 0
+                     else window.pixel_size[0])  # fmt: skip
     fmax = float(loads.max())
     if f[-1] >= fmax:
         j = int(np.searchsorted(f, fmax))

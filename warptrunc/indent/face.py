@@ -1,0 +1,476 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The punch face as the experiment had it (issue 38, item 5): a misaligned flat and a rough tip.
+
+Heights of the face are measured toward the sample (a protrusion of the face is positive), in
+the punch's own frame: x, y from the punch centre along the map's axes (m). The composite
+surface the contact solver sees inside the disk is the sample's heights plus the face's, so the
+gap is the punch's rigid plane minus the sum of both surfaces' heights.
+
+* **Tilt** (``punch_tilt_deg`` θ, ``punch_tilt_azimuth_deg`` φ): the plane
+  tan θ·(x cos φ + y sin φ) — a rotation of the flat about the axis through the punch centre
+  perpendicular to the direction φ (from +x toward +y), the edge in direction φ nearest the
+  sample. The tilt is held fixed, as the indenter's shaft holds it: the punch translates and
+  does not rotate (no moment equilibrium), so Barber's unloading stiffness is that of the
+  contact set, as for an aligned punch. The projection of the disk (its cos θ shortening,
+  1.5·10⁻⁶ at 0.1°) is neglected. Analytic: the same plane at any pixel.
+* **A generated rough face** (``punch_roughness`` R_q > 0): a self-affine, Fourier-filtered
+  Gaussian field, C(q) ∝ q^(−2−2H) for 2π/λ_L ≤ |q| ≤ 2π/λ_s and 0 outside, on a periodic
+  square of side P = 2·max(d, λ_L) centred on the punch; white noise from
+  ``numpy.random.default_rng(seed)`` on the host (the same face on every device), filtered by
+  its FFT. The face is the field's trigonometric interpolant (band-limited: no content beyond
+  2π/λ_s), evaluated at the pixel centres of any window by a separable Fourier sum, so a window
+  generated at a finer pixel (:mod:`warptrunc.indent.refine`) holds the same face, as a WM
+  window holds the same surface. It is then levelled (least-squares plane over the disk, on
+  its reference grid of spacing P/N ≤ λ_s/2) and scaled so that its rms over the disk is R_q:
+  a levelled face, as a profilometer reads a tip, so that the tilt alone is set by θ.
+  Defaults: Hurst exponent H = 0.8 (:data:`DEFAULT_HURST`); λ_s = 2 pixels of the map (the
+  finest wavelength its pixel holds); λ_L = the punch diameter (a longer wave is the face's
+  form — tilt, curvature — not its roughness).
+* **A measured face** (``punch_face_file``): a height map (:func:`warptrunc.io.read_height_map`,
+  with its own pixel) centred on the punch, levelled by its least-squares plane over the disk
+  and resampled to the window's pixel centres by bilinear interpolation of its pixel-centre
+  values (the same continuous face at any pixel). It must cover the disk.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "DEFAULT_HURST",
+    "FACE_FIELDS",
+    "MAX_FACE_GRID",
+    "PunchFace",
+    "check_same_face",
+    "face_record",
+    "face_settings",
+    "make_face",
+    "punch_faces",
+    "self_affine_field",
+]
+
+DEFAULT_HURST = 0.8
+"""Hurst exponent H of a generated rough face (dimensionless): C(q) ∝ q^(−2−2H), fractal
+dimension 3 − H = 2.2, the value most measured engineering surfaces fall near (Persson,
+Tribol. Lett. 2014, doi:10.1007/s11249-014-0313-4). The paper does not give the tip's
+spectrum, only its rms of about 0.05 µm."""
+
+MAX_FACE_GRID = 4096
+"""Largest side N of a generated face's reference grid (P/N ≤ λ_s/2): its Fourier modes span
+at most N/2 − 1 per axis."""
+
+
+def self_affine_field(n: int, period: float, hurst: float, cutoff_short: float,
+                      cutoff_long: float, seed: Any) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """A periodic self-affine Gaussian field by Fourier filtering of white noise (host, float64).
+
+    Parameters
+    ----------
+    n : int
+        Samples per side N of the square grid (even).
+    period : float
+        Side P of the periodic square (m); sample j lies at j·P/N.
+    hurst : float
+        Hurst exponent H in (0, 1]: C(q) ∝ q^(−2−2H) inside the band.
+    cutoff_short : float
+        Shortest wavelength λ_s (m); the band ends at q_s = 2π/λ_s.
+    cutoff_long : float
+        Longest wavelength λ_L (m); the band starts at q_L = 2π/λ_L.
+    seed : int or sequence of int
+        Seed of ``numpy.random.default_rng`` (the white noise, in raster order).
+
+    Returns
+    -------
+    field : (N, N) ndarray of float64
+        The field (arbitrary scale, zero mean).
+    spectrum : (N, N) ndarray of complex128
+        Its FFT (``numpy.fft.fft2`` of the field), zero outside q_L ≤ |q| ≤ q_s.
+    """
+    noise = np.random.default_rng(seed).standard_normal((n, n))
+    k = np.fft.fftfreq(n, d=period / n) * 2 * math.pi  # rad/m
+    q = np.hypot(k[:, None], k[None, :])
+    band = (q >= 2 * math.pi / cutoff_long) & (q <= 2 * math.pi / cutoff_short)
+    filt = np.zeros_like(q)
+    filt[band] = q[band] ** (-1.0 - hurst)  # |amplitude|² ∝ C(q) ∝ q^(−2−2H)
+    spectrum = np.fft.fft2(noise) * filt
+    return np.fft.ifft2(spectrum).real, spectrum
+
+
+def _plane_fit(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """Least-squares plane z ≈ a + b·x + c·y (coefficients a, b, c)."""
+    a = np.column_stack([np.ones_like(x), x, y])
+    return np.linalg.lstsq(a, z, rcond=None)[0]
+
+
+@dataclass(frozen=True, eq=False)
+class _Fourier:
+    """A levelled, scaled band-limited face: Re Σ c_kl e^{2πi(k·X + l·Y)/P} − plane."""
+
+    period: float
+    freqs: np.ndarray
+    coef: np.ndarray
+    plane: np.ndarray
+
+    def heights(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        ph = 2j * math.pi / self.period
+        ex = np.exp(ph * np.outer(x + 0.5 * self.period, self.freqs))
+        ey = np.exp(ph * np.outer(y + 0.5 * self.period, self.freqs))
+        z = ((ey @ self.coef) @ ex.T).real
+        a, b, c = self.plane
+        return z - (a + b * x[None, :] + c * y[:, None])
+
+
+@dataclass(frozen=True, eq=False)
+class _Bilinear:
+    """A face read from a file: bilinear in its pixel-centre values, centred on the punch."""
+
+    z: np.ndarray
+    pixel: tuple[float, float]
+    plane: np.ndarray
+
+    def heights(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        def axis(u: np.ndarray, n: int, h: float) -> tuple[np.ndarray, np.ndarray]:
+            s = np.clip(u / h + 0.5 * (n - 1), 0.0, n - 1.0)  # index in pixel centres
+            i = np.minimum(np.floor(s).astype(np.int64), n - 2)
+            return i, s - i
+
+        ny, nx = self.z.shape
+        ix, wx = axis(x, nx, self.pixel[0])
+        iy, wy = axis(y, ny, self.pixel[1])
+        z = self.z
+        top = z[iy][:, ix] * (1 - wx) + z[iy][:, ix + 1] * wx
+        bot = z[iy + 1][:, ix] * (1 - wx) + z[iy + 1][:, ix + 1] * wx
+        a, b, c = self.plane
+        return top * (1 - wy[:, None]) + bot * wy[:, None] - (a + b * x[None, :] + c * y[:, None])
+
+
+@dataclass(frozen=True, eq=False)
+class PunchFace:
+    """The face of one punch: its tilt and its roughness, as heights toward the sample (m)."""
+
+    diameter: float
+    """Punch diameter d (m)."""
+    tilt: float
+    """Tilt θ of the face against the sample's mean plane (rad), held fixed."""
+    azimuth: float
+    """Direction φ in which the face comes nearest the sample (rad, from +x toward +y)."""
+    rough: Any = None
+    """The roughness (a generated or a read face), None for a smooth face."""
+    info: dict = field(default_factory=dict)
+    """What the face is (JSON-able): tilt, roughness parameters, defaults taken."""
+
+    def heights(self, x: Any, y: Any) -> np.ndarray:
+        """Heights of the face toward the sample on a grid (m).
+
+        Parameters
+        ----------
+        x : (wx,) array_like
+            x of the columns from the punch centre (m).
+        y : (wy,) array_like
+            y of the rows from the punch centre (m).
+
+        Returns
+        -------
+        (wy, wx) ndarray of float64
+            tan θ·(x cos φ + y sin φ) plus the rough face.
+        """
+        x = np.asarray(x, dtype=np.float64)
+        y = np.asarray(y, dtype=np.float64)
+        t = math.tan(self.tilt)
+        out = t * (math.cos(self.azimuth) * x[None, :] + math.sin(self.azimuth) * y[:, None])
+        out = np.broadcast_to(out, (y.size, x.size)).copy()
+        if self.rough is not None:
+            out += self.rough.heights(x, y)
+        return out
+
+
+def _disk_points(n: int, h: float, d: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Reference-grid offsets (x, y) from the grid centre, and which lie in the disk."""
+    u = (np.arange(n) - n // 2) * h
+    x, y = np.meshgrid(u, u)
+    return x, y, x * x + y * y <= 0.25 * d * d
+
+
+def make_face(
+    diameter: float,
+    *,
+    tilt_deg: float = 0.0,
+    azimuth_deg: float = 0.0,
+    roughness: float = 0.0,
+    hurst: float = DEFAULT_HURST,
+    cutoff_short: float | None = None,
+    cutoff_long: float | None = None,
+    seed: Any = 0,
+    pixel: float | None = None,
+    surface: Any = None,
+    source: str | None = None,
+) -> PunchFace | None:
+    """The face of a punch of diameter d: tilted, rough (generated or read), or None if neither.
+
+    Parameters
+    ----------
+    diameter : float
+        Punch diameter d (m).
+    tilt_deg : float
+        Tilt θ (degrees), in [0, 5].
+    azimuth_deg : float
+        Direction φ of the edge nearest the sample (degrees, from +x toward +y).
+    roughness : float
+        rms R_q of a generated rough face over the disk after levelling (m); 0: none.
+    hurst : float
+        Hurst exponent H of the generated face, in (0, 1].
+    cutoff_short : float, optional
+        Shortest wavelength λ_s (m); default 2·``pixel``.
+    cutoff_long : float, optional
+        Longest wavelength λ_L (m); default the punch diameter.
+    seed : int or sequence of int
+        Seed of the generated face (``numpy.random.default_rng``).
+    pixel : float, optional
+        The map's pixel side (m), for the default λ_s.
+    surface : Surface, optional
+        A measured face (heights toward the sample, its own pixel); excludes ``roughness``.
+    source : str, optional
+        Where ``surface`` was read from, for the record.
+
+    Returns
+    -------
+    PunchFace or None
+        None for an aligned smooth face (θ = 0, no roughness).
+
+    Raises
+    ------
+    ValueError
+        A value out of range (named as the option's field), cut-offs that leave no band, a
+        band too wide for :data:`MAX_FACE_GRID`, or a read face that does not cover the disk.
+    """
+    d = float(diameter)
+    if not 0.0 <= tilt_deg <= 5.0:
+        raise ValueError(f"punch_tilt_deg must be in [0, 5] degrees, got {tilt_deg!r}")
+    info: dict[str, Any] = {
+        "tilt_deg": float(tilt_deg), "tilt_azimuth_deg": float(azimuth_deg),
+        "tilt_rise_over_diameter_m": d * math.tan(math.radians(tilt_deg)),
+        "tilt_axis": "through the punch centre, perpendicular to the azimuth; the punch is held "
+        "against rotation (no moment equilibrium)",
+        "composite": "gap = punch plane - (sample heights + face heights), face heights toward "
+        "the sample",
+    }  # fmt: skip
+    rough: Any = None
+    if surface is not None and roughness > 0:
+        raise ValueError(
+            f"punch_roughness ({roughness!r} m) and punch_face_file ({source!r}) both give the "
+            "face's roughness; give one"
+        )
+    if surface is not None:
+        rough, info["roughness"] = _read_face(surface, d, source)
+    elif roughness > 0:
+        rough, info["roughness"] = _generated_face(d, roughness, hurst, cutoff_short, cutoff_long,
+                                                   seed, pixel)  # fmt: skip
+    else:
+        info["roughness"] = None
+    if tilt_deg == 0.0 and rough is None:
+        return None
+    return PunchFace(d, math.radians(tilt_deg), math.radians(azimuth_deg), rough, info)
+
+
+def _generated_face(d: float, rms: float, hurst: float, cutoff_short: float | None,
+                    cutoff_long: float | None, seed: Any, pixel: float | None) -> tuple[_Fourier, dict]:  # fmt: skip
+    if not 0.0 < hurst <= 1.0:
+        raise ValueError(f"punch_hurst must be in (0, 1], got {hurst!r}")
+    if cutoff_short is None:
+        if pixel is None:
+            raise ValueError("punch_cutoff_short (m) is needed without the map's pixel")
+        lam_s, short_how = 2.0 * float(pixel), "default: 2 pixels of the map"
+    else:
+        lam_s, short_how = float(cutoff_short), "given"
+    lam_l, long_how = (d, "default: the punch diameter") if cutoff_long is None else (
+        float(cutoff_long), "given")  # fmt: skip
+    if not lam_l > lam_s:
+        raise ValueError(
+            f"punch_cutoff_long ({lam_l:.6g} m, {long_how}) must exceed punch_cutoff_short "
+            f"({lam_s:.6g} m, {short_how}): no wavelength is left for the face's roughness"
+        )
+    period = 2.0 * max(d, lam_l)
+    m = math.floor(period / lam_s * (1 + 1e-12))  # modes per axis: |k| ≤ P/λ_s
+    n = 2 * m + 2
+    if n > MAX_FACE_GRID:
+        raise ValueError(
+            f"punch_cutoff_short must be at least {period / (MAX_FACE_GRID / 2 - 1):.4g} m for "
+            f"this punch (its face's Fourier modes would exceed {MAX_FACE_GRID // 2 - 1} per "
+            f"axis), got {lam_s:.6g} m ({short_how})"
+        )
+    zc, spec = self_affine_field(n, period, hurst, lam_s, lam_l, seed)
+    h = period / n
+    x, y, disk = _disk_points(n, h, d)
+    # sample j lies at j·h = P/2 + (j − n/2)·h: sample n/2 is the punch centre
+    plane = _plane_fit(x[disk], y[disk], zc[disk])
+    res = zc[disk] - (plane[0] + plane[1] * x[disk] + plane[2] * y[disk])
+    scale = rms / float(np.sqrt(np.mean(res * res)))
+    freqs = np.arange(-m, m + 1)
+    sub = spec[np.ix_(freqs % n, freqs % n)] / (n * n)
+    face = _Fourier(period, freqs.astype(np.float64), scale * sub, scale * plane)
+    info = {
+        "kind": "self-affine (Fourier-filtered Gaussian), levelled over the disk",
+        "rms_m": float(rms), "hurst": float(hurst), "cutoff_short_m": lam_s,
+        "cutoff_short": short_how, "cutoff_long_m": lam_l, "cutoff_long": long_how,
+        "seed": list(np.atleast_1d(seed).tolist()), "period_m": period, "modes_per_axis": 2 * m + 1,
+        "reference_grid": n,
+    }  # fmt: skip
+    return face, info
+
+
+def _read_face(surface: Any, d: float, source: str | None) -> tuple[_Bilinear, dict]:
+    z = np.asarray(surface.heights, dtype=np.float64)
+    dx, dy = float(surface.dx), float(surface.dy)
+    ny, nx = z.shape
+    hx, hy = 0.5 * (nx - 1) * dx, 0.5 * (ny - 1) * dy  # half-extent of the pixel centres
+    if min(nx, ny) < 2 or hx < 0.5 * d * (1 - 1e-9) or hy < 0.5 * d * (1 - 1e-9):
+        raise ValueError(
+            f"punch_face_file must cover the punch disk: its pixel centres span "
+            f"{2 * hx:.6g} × {2 * hy:.6g} m, the punch is {d:.6g} m across (file {source!r})"
+        )
+    x = (np.arange(nx) - 0.5 * (nx - 1)) * dx
+    y = (np.arange(ny) - 0.5 * (ny - 1)) * dy
+    xx, yy = np.meshgrid(x, y)
+    disk = xx * xx + yy * yy <= 0.25 * d * d
+    plane = _plane_fit(xx[disk], yy[disk], z[disk])
+    res = z[disk] - (plane[0] + plane[1] * xx[disk] + plane[2] * yy[disk])
+    info = {
+        "kind": "read from a height map, centred on the punch, levelled over the disk, "
+        "resampled by bilinear interpolation of its pixel-centre values",
+        "file": source, "shape": [ny, nx], "pixel_m": [dx, dy],
+        "rms_m": float(np.sqrt(np.mean(res * res))),
+    }  # fmt: skip
+    return _Bilinear(z, (dx, dy), plane), info
+
+
+# --- the faces of a run (warptrunc.indent) -------------------------------------------------------
+
+FACE_FIELDS = ("punch_tilt_deg", "punch_tilt_azimuth_deg", "punch_roughness", "punch_hurst",
+               "punch_cutoff_short", "punch_cutoff_long", "punch_face_seed", "punch_face_file")  # fmt: skip
+"""The fields of :class:`~warptrunc.indent.IndentProtocol` that make the punch face."""
+
+
+def punch_faces(protocol: Any, diameters: tuple, pixel: float) -> list[PunchFace | None]:
+    """The face of each punch diameter of a protocol.
+
+    Parameters
+    ----------
+    protocol : IndentProtocol
+        Its ``punch_*`` face fields (:data:`FACE_FIELDS`).
+    diameters : tuple of float or None
+        The punch diameters (m); None: a flat larger than the map (no face allowed).
+    pixel : float
+        The map's larger pixel side (m), for the default short cut-off.
+
+    Returns
+    -------
+    list of PunchFace or None
+        One per diameter; the generated face of diameter i from the seed
+        ``(punch_face_seed, i)``.
+
+    Raises
+    ------
+    ValueError
+        A face on a flat larger than the map, or a face parameter out of range.
+    """
+    surface = None
+    if protocol.punch_face_file is not None:
+        from ..io import read_height_map
+
+        try:
+            surface = read_height_map(protocol.punch_face_file)
+        except (OSError, ValueError) as e:
+            raise ValueError(f"punch_face_file {protocol.punch_face_file!r}: {e}") from None
+    out: list[PunchFace | None] = []
+    for i, d in enumerate(diameters):
+        if d is None:
+            if protocol.punch_tilt_deg > 0 or protocol.punch_roughness > 0 or surface is not None:
+                raise ValueError(
+                    "a tilted or rough punch face needs a finite punch_diameter, got none "
+                    "(a flat larger than the map)"
+                )
+            out.append(None)
+            continue
+        out.append(make_face(
+            d, tilt_deg=protocol.punch_tilt_deg, azimuth_deg=protocol.punch_tilt_azimuth_deg,
+            roughness=protocol.punch_roughness, hurst=protocol.punch_hurst,
+            cutoff_short=protocol.punch_cutoff_short, cutoff_long=protocol.punch_cutoff_long,
+            seed=(protocol.punch_face_seed, i), pixel=pixel, surface=surface,
+            source=protocol.punch_face_file,
+        ))  # fmt: skip
+    return out
+
+
+def face_settings(diameters: tuple, faces: list[PunchFace | None]) -> list[dict] | None:
+    """What ``indent.json``'s ``settings`` records of the punch faces.
+
+    Parameters
+    ----------
+    diameters : tuple of float or None
+        The punch diameters (m).
+    faces : list of PunchFace or None
+        Their faces (:func:`punch_faces`).
+
+    Returns
+    -------
+    list of dict or None
+        Per diameter: ``diameter_m`` and the face's ``info`` (tilt, roughness parameters and
+        the defaults taken); None when every face is an aligned smooth flat.
+    """
+    if all(f is None for f in faces):
+        return None
+    return [{"diameter_m": d, **(f.info if f is not None else {"tilt_deg": 0.0, "roughness": None})}
+            for d, f in zip(diameters, faces, strict=True)]  # fmt: skip
+
+
+def face_record(window: Any) -> dict[str, float]:
+    """The face as the map's pixel sampled it under one punch placement (for ``settings``).
+
+    Parameters
+    ----------
+    window : PunchWindow
+        A punch window at the map's pixel.
+
+    Returns
+    -------
+    dict
+        ``face_Rt_m`` (peak-to-valley) and ``face_roughness_rms_m`` (rms of the face less its
+        tilt plane) over the disk's pixels, and ``composite_Rt_m``; empty without a face.
+    """
+    if window.face is None:
+        return {}
+    f = window.face_heights[window.mask]
+    rough = window.untilted_disk_heights - window.surface_disk_heights
+    return {"face_Rt_m": float(np.ptp(f)), "face_roughness_rms_m": float(np.std(rough)),
+            "composite_Rt_m": float(np.ptp(window.disk_heights))}  # fmt: skip
+
+
+def check_same_face(reuse: Any, protocol: Any) -> None:
+    """Refuse an elastic run given as ``reuse`` that was run with another punch face.
+
+    Parameters
+    ----------
+    reuse : IndentationResult or dict
+        The elastic run (its columns carry no face: a dict is not checked).
+    protocol : IndentProtocol
+        This run's protocol.
+
+    Raises
+    ------
+    ValueError
+        A face field that differs, named.
+    """
+    theirs = getattr(reuse, "protocol", None)
+    if theirs is None:
+        return
+    for k in FACE_FIELDS:
+        if getattr(theirs, k, None) != getattr(protocol, k):
+            raise ValueError(
+                f"reuse was run with {k} = {getattr(theirs, k, None)!r}, this run with "
+                f"{getattr(protocol, k)!r}; give the same punch face"
+            )
