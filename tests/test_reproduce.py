@@ -370,51 +370,60 @@ def test_report_commit_fallback(tiny, monkeypatch):
 
 
 def test_tiny_indentation_stage(tiny):
-    """Rows of every surface × model × punch × placement × load, F/(E·A) from the definition,
-    truncation independent of H, the section, its figure and the resolution check."""
+    """Rows of every surface × design × model × realisation × punch × placement × load, F/(E·A)
+    from the definition, truncation independent of H at the same pixel, the section, its figures
+    and the resolution check; the sweep's elastic–plastic pieces take the unyielded cycles of
+    the unrefined punches from the sweep's elastic piece."""
     from warptrunc.reproduce import get_profile
 
     out, doc = tiny
     p = get_profile("tiny")
     st, ana = doc["stages"]["indentation"], doc["analysis"]["indentation"]
     r = st["rows"]
-    n_models = len(p.indentation_hardness_factors) + 1  # + truncation
-    per = len(p.indentation_punches) * p.indentation_placements * len(p.indentation_loads)
-    assert len(r["surface"]) == len(p.indentation_surfaces) * n_models * per
-    assert set(r["model"]) == {"truncation", "elastic", "elastic_plastic_1H", "elastic_plastic_2H"}
+    n_punch = len(p.indentation_punches) * len(p.indentation_loads)
+    expect = 0
+    for t in st["timings"]:
+        if t["design"] != "face":  # the face pieces are kept apart (st["faces"])
+            expect += len(t["seeds"]) * t["placements"] * n_punch * (2 if t["model"] == "elastic" else 1)
+    assert len(r["surface"]) == expect  # + truncation once per surface and design (its elastic piece)
+    assert {"truncation", "elastic", "elastic_plastic_0.5GPa", "elastic_plastic_2GPa",
+            "elastic_plastic_8GPa"} == set(r["model"])  # fmt: skip
     d, f = np.array(r["punch_diameter_m"]), np.array(r["peak_load_N"])
     np.testing.assert_allclose(r["F_over_EA"], f / (70e9 * np.pi * d**2 / 4), rtol=1e-12)
-    assert st["truncation_same_over_H"]
-    ep = np.array(r["model"]) == "elastic_plastic_1H"
-    el = np.array(r["model"]) == "elastic"
-    assert np.all(np.array(r["plastic_area_m2"], dtype=float)[el] == 0)
-    assert np.any(np.array(r["plastic_area_m2"], dtype=float)[ep] > 0)
-    # mean pressure of 500 mN on the 54.1 µm punch: 218 MPa, below H
-    assert ana["mean_pressure"]["p_mean_Pa"] == pytest.approx(0.5 / (np.pi * 27.05e-6**2))
-    assert ana["mean_pressure"]["below_H"] and round(ana["mean_pressure"]["p_mean_Pa"] / 1e6) == 218
-    assert ana["smooth_Ec_over_E"] == pytest.approx(73.52e9 / 70e9, rel=1e-3)
+    model, design = np.array(r["model"]), np.array(r["design"])
+    trunc = np.array(r["truncation_E_c_over_E"], dtype=float)
+    px = np.array(r["pixel_size_m"], dtype=float)
     for s in p.indentation_surfaces:
-        assert set(ana["fits"][s]) >= {"truncation", "elastic", "elastic_plastic_1H"}
-        assert ana["tracking"][s]["tracked"] in (None, "elastic", "elastic_plastic_1H", "elastic_plastic_2H")
+        el = (model == "elastic") & (design == "sweep") & (np.array(r["surface"]) == s)
+        ep = (model == "elastic_plastic_2GPa") & (design == "sweep") & (np.array(r["surface"]) == s)
+        same = px[el] == px[ep]  # truncation does not depend on H at one pixel
+        assert same.any() and np.array_equal(trunc[el][same], trunc[ep][same])
+    assert np.all(np.array(r["plastic_area_m2"], dtype=float)[model == "elastic"] == 0)
+    assert np.any(np.array(r["plastic_area_m2"], dtype=float)[model == "elastic_plastic_0.5GPa"] > 0)
+    assert ana["mean_pressure"]["p_mean_Pa"] == pytest.approx(0.5 / (np.pi * 27.05e-6**2))
+    assert round(ana["mean_pressure"]["p_mean_Pa"] / 1e6) == 218
+    assert ana["smooth_Ec_over_E"] == pytest.approx(73.52e9 / 70e9, rel=1e-3)
     res = ana["resolution"]
     assert res["n_fine"] == 2 * res["n_coarse"] and res["dx_fine_m"] == pytest.approx(res["dx_coarse_m"] / 2)
     text = (out / "report.md").read_text()
     assert "## Indentation in silico (Fig. 6)" in text and "Which model truncation tracks" in text
-    assert "](indentation_fig6.png)" in text and "Resolution check" in text
-    assert "| Indentation punches | 54.1, 108.7, 502.6 µm |" in text
+    assert "](indentation_fig6.png)" in text and "](indentation_depth_vs_H.png)" in text
+    assert "Resolution check" in text and "| Indentation punches | 54.1, 108.7, 502.6 µm |" in text
+    assert "| Hardness H of the alloy | not stated | swept: ∞, 0.5, 2, 8 GPa | n/a |" in text
     pieces = sorted((out / "indentation").glob("*.json"))
-    assert len(pieces) == len(p.indentation_surfaces) * len(p.indentation_hardness_factors) + 1
-    # an elastic–plastic piece takes each punch's leading unyielded cycles from the elastic one
+    assert len(pieces) == len(st["timings"]) + 1  # + resolution
     assert "cycles taken from the elastic piece" in text
     recs = {f.stem: json.loads(f.read_text()) for f in pieces if f.stem != "resolution"}
     m = len(p.indentation_loads)
     for name, rec in recs.items():
-        if "__elastic_plastic_" not in name:
+        if "__sweep__elastic_plastic_" not in name:
             continue
-        hard = float(name.split("_")[-1].rstrip("H")) * 1e9
-        el = recs[name.split("__")[0] + "__elastic"]["rows"]
+        hard = float(name.split("_")[-1].removesuffix("GPa")) * 1e9
+        el = recs[name.split("__")[0] + "__sweep__elastic"]["rows"]
         expect = 0
         for b in range(0, len(el["peak_load_N"]), m):
+            if el["punch_diameter_m"][b] in p.indentation_refine_punches:
+                continue  # refined punches solve every cycle (reuse needs refine_max = 1)
             k = 0
             while k < m and el["max_pressure_Pa"][b + k] < hard and el["converged"][b + k]:
                 assert rec["rows"]["unloading_stiffness_N_per_m"][b + k] == el["unloading_stiffness_N_per_m"][b + k]
@@ -457,7 +466,8 @@ def _small_profile():
 
     return replace(get_profile("tiny"), name="indent-test", indentation_surfaces=("GB300s", "GB50s"),
                    indentation_punches=(108.7e-6,), indentation_loads=(0.125, 0.25),
-                   indentation_hardness_factors=(math.inf, 1.0), indentation_refine=False)
+                   indentation_hardness=(math.inf, 1e9), indentation_stats=("elastic",),
+                   indentation_refine=False, indentation_face_surface=None)
 
 
 def test_indentation_stage_resumes_after_interruption(tmp_path):
@@ -467,7 +477,7 @@ def test_indentation_stage_resumes_after_interruption(tmp_path):
 
     p = _small_profile()
     full = stage_indentation(p, tmp_path / "a", "cpu", progress=False)
-    with pytest.raises(StageIncomplete, match="0 of 4 pieces"):
+    with pytest.raises(StageIncomplete, match="0 of 6 planned pieces"):
         stage_indentation(p, tmp_path / "b", "cpu", deadline=0.0, progress=False)
     # interrupted after two pieces: keep two of the uninterrupted run's pieces, drop the others
     (tmp_path / "b" / "indentation").mkdir(parents=True, exist_ok=True)
@@ -479,7 +489,7 @@ def test_indentation_stage_resumes_after_interruption(tmp_path):
     again = stage_indentation(p, tmp_path / "b", "cpu", progress=False)
     for name, t in before.items():  # reused, not rewritten
         assert (tmp_path / "b" / "indentation" / name).stat().st_mtime_ns == t
-    assert len(list((tmp_path / "b" / "indentation").glob("*.json"))) == 4
+    assert len(list((tmp_path / "b" / "indentation").glob("*.json"))) == 6
     assert _nan_eq(again["rows"], full["rows"])
     # a piece stored with other parameters is refused, or replaced with overwrite
     from dataclasses import replace
@@ -515,7 +525,8 @@ def test_fig6_model_colours_are_distinct():
     took truncation's red)."""
     from warptrunc.reproduce.indentation_report import model_colours
 
-    models = ["truncation", "elastic", "elastic_plastic_1H", "elastic_plastic_2H", "elastic_plastic_4H"]
+    models = ["truncation", "elastic", "elastic_plastic_0.5GPa", "elastic_plastic_1GPa",
+              "elastic_plastic_2GPa", "elastic_plastic_4GPa", "elastic_plastic_8GPa"]
     c = model_colours(models)
     assert set(c) == set(models) and len(set(c.values())) == len(models)
     assert c["truncation"] == "C3" and c["elastic"] == "C0"

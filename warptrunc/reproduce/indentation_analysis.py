@@ -1,9 +1,15 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The numbers of the ``indentation`` stage's report: E_c/E per (surface, model, punch, load)
-cell, the power-law fits per surface and model, which model truncation tracks (the ±20 % rule,
-:data:`GOOD`) and the resolution check, all from the stage result
-(:func:`~warptrunc.reproduce.indentation.summary_from_pieces`)."""
+"""The numbers of the ``indentation`` stage's report, from the stage result
+(:func:`~warptrunc.reproduce.indentation.summary_from_pieces`): per surface × design × model
+the fits E_c/E = β·[F/(E·A)]^α with 95 % intervals over indents, the punch depth at the
+largest load, the H range consistent with the paper's ≈ 5 µm, how deep truncation stays within
+±20 % of each model (:data:`GOOD`), which model it tracks, the resolution of the cells per
+load and the cost per piece and refinement level.
+
+Every comparison uses the **resolved cells** only: ``in_fit`` (resolved in the pixel size or
+by the contact-pixel rule, not saturated, converged; :mod:`warptrunc.indent.refine`).
+"""
 
 from __future__ import annotations
 
@@ -13,9 +19,10 @@ from typing import Any
 import numpy as np
 
 from .._support.docs import fill_doc
+from .indentation_rules import agreement_depth, depth_at_load, depth_match, hardness_range
 from .store import STAGE_DOCS
 
-__all__ = ["GOOD", "analyse_indentation", "cells", "tracking"]
+__all__ = ["GOOD", "analyse_indentation", "cells", "ratio_cells", "tracking"]
 
 _STAGE_DOCS = {
     **STAGE_DOCS,
@@ -29,7 +36,7 @@ _STAGE_DOCS = {
 
 GOOD = 0.2
 """Truncation *tracks* a model at a (surface, punch, load) cell when
-abs(E_c,trunc/E_c,model − 1) ≤ GOOD (geometric means over the placements)."""
+abs(E_c,trunc/E_c,model − 1) ≤ GOOD (geometric mean over the indents)."""
 
 
 def _gmean(v: list[float]) -> float | None:
@@ -37,38 +44,73 @@ def _gmean(v: list[float]) -> float | None:
     return float(np.exp(np.mean(np.log(v)))) if v else None
 
 
+def _groups(r: dict[str, list]) -> dict[tuple[str, str, str], list[int]]:
+    out: dict[tuple[str, str, str], list[int]] = {}
+    for i in range(len(r["surface"])):
+        out.setdefault((r["surface"][i], r["design"][i], r["model"][i]), []).append(i)
+    return out
+
+
+def _ok(r: dict[str, list], i: int) -> bool:
+    """A resolved cell: in_fit (resolved, not saturated, converged)."""
+    return bool(r["in_fit"][i]) and bool(r["converged"][i])
+
+
 @fill_doc(_STAGE_DOCS)
-def cells(stage: dict[str, Any]) -> dict[tuple[str, str, float, float], dict[str, Any]]:
-    """Per (surface, model, punch, peak load): E_c/E and F/(E·A), geometric means over the
-    converged placements.
+def cells(stage: dict[str, Any]) -> dict[tuple[str, str, str, float, float], dict[str, Any]]:
+    """Per (surface, design, model, punch, peak load): E_c/E and F/(E·A), geometric means over
+    the resolved indents.
 
     {stage}
 
     Returns
     -------
     dict
-        (surface, model, punch diameter (m), peak load (N)) → ``E_c_over_E``,
-        ``E_c_partial_over_E`` (None where no placement converged), ``F_over_EA``,
-        ``contact_area_m2``, ``plastic_area_m2`` (means), ``n`` (placements used).
+        (surface, design, model, punch diameter (m), peak load (N)) → ``E_c_over_E`` (None
+        where no indent is resolved), ``F_over_EA``, ``n`` (indents used).
     """
     r = stage["rows"]
-    groups: dict[tuple, list[int]] = {}
-    for i in range(len(r["surface"])):
-        groups.setdefault((r["surface"][i], r["model"][i], r["punch_diameter_m"][i],
-                           r["peak_load_N"][i]), []).append(i)  # fmt: skip
-    out = {}
-    for k, idx in groups.items():
-        ok = [i for i in idx if r["converged"][i]]
-
-        def mean(c, ok=ok):
-            v = [r[c][i] for i in ok if r[c][i] is not None]
-            return float(np.mean(v)) if v else None
-
-        out[k] = {"E_c_over_E": _gmean([r["E_c_over_E"][i] for i in ok]),
-                  "E_c_partial_over_E": _gmean([r["E_c_partial_over_E"][i] for i in ok]),
-                  "F_over_EA": r["F_over_EA"][idx[0]], "contact_area_m2": mean("contact_area_m2"),
-                  "plastic_area_m2": mean("plastic_area_m2"), "n": len(ok)}  # fmt: skip
+    out: dict[tuple, dict[str, Any]] = {}
+    for (s, design, m), idx in _groups(r).items():
+        by: dict[tuple[float, float], list[int]] = {}
+        for i in idx:
+            by.setdefault((r["punch_diameter_m"][i], r["peak_load_N"][i]), []).append(i)
+        for (d, f), ii in by.items():
+            ok = [i for i in ii if _ok(r, i)]
+            out[(s, design, m, d, f)] = {"E_c_over_E": _gmean([r["E_c_over_E"][i] for i in ok]),
+                                         "F_over_EA": r["F_over_EA"][ii[0]], "n": len(ok)}  # fmt: skip
     return out
+
+
+@fill_doc(_STAGE_DOCS)
+def ratio_cells(stage: dict[str, Any], surface: str, design: str, model: str) -> dict[tuple[float, float], dict[str, Any]]:  # fmt: skip
+    """E_c,trunc/E_c,model per (punch, load) of one model, from the same indents' cells.
+
+    {stage}
+    surface, design, model : str
+        The group of rows.
+
+    Returns
+    -------
+    dict
+        (punch diameter (m), peak load (N)) → ``ratio`` (geometric mean over the resolved
+        indents of each indent's truncation E_c/E over the model's), ``omega_m`` (median
+        truncation depth ω of those indents, m) and ``n`` (indents); cells without a resolved
+        indent are left out.
+    """
+    return _ratios(stage["rows"], _groups(stage["rows"]).get((surface, design, model), []))
+
+
+def _ratios(r: dict[str, list], idx: list[int]) -> dict[tuple[float, float], dict[str, Any]]:
+    """:func:`ratio_cells` of the rows ``idx`` of the columns ``r``."""
+    by: dict[tuple[float, float], list[int]] = {}
+    for i in idx:
+        t, e = r["truncation_E_c_over_E"][i], r["E_c_over_E"][i]
+        if _ok(r, i) and t and e and t > 0 and e > 0:
+            by.setdefault((r["punch_diameter_m"][i], r["peak_load_N"][i]), []).append(i)
+    return {k: {"ratio": _gmean([r["truncation_E_c_over_E"][i] / r["E_c_over_E"][i] for i in ii]),
+                "omega_m": float(np.median([r["truncation_depth_m"][i] for i in ii])), "n": len(ii)}
+            for k, ii in sorted(by.items())}  # fmt: skip
 
 
 def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
@@ -87,16 +129,11 @@ def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
     dict
         ``per_model``: model → ``n_cells`` (cells with a ratio), ``n_good`` (within the band),
         ``runs`` (per punch, the loads within the band as contiguous runs of the loads that
-        have a ratio:
-        ``[punch_m, first_load_N, last_load_N, n_loads]``), ``median_ratio``, ``range``;
-        ``closest``: model → cells where it is the model nearest to truncation (smallest
-        abs(ln ratio)); ``tracked``: the model with most cells in the band (ties: more
-        ``closest`` cells, then the order given), None when no cell is in the band.
-
-    Notes
-    -----
-    The model tracked is the one with the largest *fraction* n_good/n_cells (cells where a
-    solve did not converge have no ratio); ties go to more ``n_good``, then more ``closest``.
+        have a ratio: ``[punch_m, first_load_N, last_load_N, n_loads]``), ``median_ratio``,
+        ``range``; ``closest``: model → cells where it is the model nearest to truncation
+        (smallest abs(ln ratio)); ``tracked``: the model with the largest fraction of its cells
+        in the band (ties: more such cells, then more ``closest`` cells, then the order given),
+        None when no cell is in the band.
     """
     per: dict[str, Any] = {}
     closest: dict[str, int] = {m: 0 for m in ratios}
@@ -132,69 +169,212 @@ def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
     return {"per_model": per, "closest": closest, "tracked": tracked, "band": good}
 
 
+def _fit(r: dict[str, list], idx: list[int], col: str) -> dict[str, Any]:
+    from ..indent import default_material
+    from ..indent.fits import MIN_FIT_POINTS, fit_cells
+
+    sel = [i for i in idx if _ok(r, i) and r[col][i] is not None and r[col][i] > 0
+           and r["F_over_EA"][i] > 0]  # fmt: skip
+    ind = [(r["realisation"][i], r["punch_diameter_m"][i], r["placement"][i]) for i in sel]
+    n_ind = len(set(ind))
+    f = None
+    if sel:
+        f = fit_cells([r["F_over_EA"][i] for i in sel], [r[col][i] for i in sel],
+                      [r["displacement_m"][i] for i in sel], np.asarray(ind, np.float64),
+                      [r["punch_diameter_m"][i] for i in sel], default_material())  # fmt: skip
+    if f is None:
+        return {"made": False, "n_points": len(sel), "n_indents": n_ind,
+                "reason": f"{len(sel)} resolved cells, at least {MIN_FIT_POINTS} with two loads needed"}  # fmt: skip
+    d = f.to_dict()
+    out = {k: d[k] for k in ("made", "alpha", "beta", "r2", "alpha_ci95", "beta_ci95", "n_points",
+                             "n_indents", "n_bootstrap")}  # fmt: skip
+    per_punch: dict[float, set] = {}
+    for t in ind:
+        per_punch.setdefault(t[1], set()).add(t)
+    if max(len(v) for v in per_punch.values()) < 2:  # resampled within each punch: no spread
+        out["alpha_ci95"] = out["beta_ci95"] = None
+    return out
+
+
+def _hardness_question(stage: dict[str, Any], depths: dict) -> dict[str, Any]:
+    """Per surface, from the sweep: the depth per H, the H range in the band and the match."""
+    out = {}
+    band, target = tuple(stage["depth_band_m"]), stage["depth_target_m"]
+    for s in stage["surfaces"]:
+        per = {m: v["deepest"] for (ss, design, m), v in depths.items()
+               if ss == s and design == "sweep" and m != "truncation"}  # fmt: skip
+        hs = [(stage["hardness_Pa"][m], m) for m in per if stage["hardness_Pa"].get(m)]
+        hs.sort()
+        dd = [None if per[m] is None else per[m]["median"] for _h, m in hs]
+        h = [x for x, _m in hs]
+        out[s] = {"hardness_Pa": h, "depth_m": dd,
+                  "elastic_depth_m": (per.get("elastic") or {}).get("median"),
+                  "range": hardness_range(h, dd, band), "match": depth_match(h, dd, target, band)}  # fmt: skip
+    return out
+
+
+def _resolution_table(stage: dict[str, Any]) -> dict[tuple[str, str, str, float], dict[str, Any]]:
+    """Per (surface, design, model, load): cells, resolved, in_fit, saturated, median contact
+    pixels and the largest refinement (map pixel / cell pixel)."""
+    r, dx = stage["rows"], stage["dx_m"]
+    out: dict[tuple, dict[str, Any]] = {}
+    for (s, design, m), idx in _groups(r).items():
+        if m == "truncation":
+            continue
+        for f in stage["loads_N"]:
+            ii = [i for i in idx if r["peak_load_N"][i] == f]
+            px = [r["n_contact"][i] for i in ii if r["n_contact"][i] is not None]
+            fac = [dx / r["pixel_size_m"][i] for i in ii if r["pixel_size_m"][i]]
+            out[(s, design, m, f)] = {
+                "n": len(ii), "resolved": sum(bool(r["resolved"][i]) for i in ii),
+                "in_fit": sum(_ok(r, i) for i in ii), "saturated": sum(bool(r["saturated"][i]) for i in ii),
+                "median_contact_px": float(np.median(px)) if px else None,
+                "max_refinement": round(max(fac)) if fac else 1,
+            }  # fmt: skip
+    return out
+
+
+def _cost(stage: dict[str, Any]) -> dict[str, Any]:
+    """Seconds per design and per refinement level. warptrunc.indent records the refinement's
+    seconds per punch call, not per level: they are apportioned to the levels by cells solved ×
+    window pixels at each level (marked as apportioned)."""
+    levels: dict[int, dict[str, float]] = {}
+    largest = 1
+    per_design: dict[str, float] = {}
+    for t in stage["timings"]:
+        per_design[t["design"]] = per_design.get(t["design"], 0.0) + t["piece_s"]
+        largest = max([largest, *(int(k) for k in t.get("cells_per_factor", {}))])
+        for pp in t.get("per_punch", []):
+            counts = {int(k): v for k, v in pp.get("cells_per_factor", {}).items()}
+            wins = {int(k): v for k, v in pp.get("refined_windows", {}).items() if int(k) > 1}
+            if not wins:
+                continue
+            n_cells = {f: sum(v for k, v in counts.items() if k >= f) for f in wins}
+            w = {f: n_cells[f] * wins[f][0] * wins[f][1] for f in wins}
+            tot = sum(w.values()) or 1.0
+            for f in wins:
+                lv = levels.setdefault(f, {"cells": 0, "window_px": 0, "seconds": 0.0})
+                lv["cells"] += n_cells[f]
+                lv["window_px"] = max(lv["window_px"], wins[f][0] * wins[f][1])
+                lv["seconds"] += pp["seconds"].get("refinement_s", 0.0) * w[f] / tot
+    total = sum(per_design.values())
+    return {"per_design": per_design, "levels": dict(sorted(levels.items())),
+            "largest_refinement": largest, "pieces_s": total, "apportioned": True}  # fmt: skip
+
+
+def _faces(stage: dict[str, Any], agree: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Each punch face against the aligned smooth flat of the sweep (the same indents, H and
+    truncation): how deep truncation stays within the band, K over the aligned K, and whether
+    the face explains the paper's divergence of Ps beyond its range (Table 2)."""
+    from .paper import TABLE2
+
+    out = []
+    r = stage["rows"]
+    for f in stage.get("faces", []):
+        s, m, fr = f["surface"], f["model"], f["rows"]
+        rt = stage["Rt_m"][s]
+        rc = _ratios(fr, list(range(len(fr["peak_load_N"]))))
+        a = agreement_depth([v["omega_m"] / rt * 100 for v in rc.values()],
+                            [v["ratio"] for v in rc.values()], GOOD)  # fmt: skip
+        ref = next((x for x in agree if (x["surface"], x["design"], x["model"]) == (s, "sweep", m)), None)
+        key = lambda rows, i: (rows["realisation"][i], rows["punch_diameter_m"][i],  # noqa: E731
+                               rows["placement"][i], rows["peak_load_N"][i])
+        aligned = {key(r, i): r["E_c_over_E"][i] for i in _groups(r).get((s, "sweep", m), []) if _ok(r, i)}
+        k = [fr["E_c_over_E"][i] / aligned[key(fr, i)] for i in range(len(fr["peak_load_N"]))
+             if _ok(fr, i) and key(fr, i) in aligned and fr["E_c_over_E"][i] and aligned[key(fr, i)]]  # fmt: skip
+        lo, hi = TABLE2.get(s, ((math.nan, math.nan),))[0]
+        out.append({"surface": s, "label": f["label"], "model": m, **a, "aligned": ref,
+                    "K_over_aligned_median": float(np.median(k)) if k else None,
+                    "K_over_aligned_range": [min(k), max(k)] if k else None,
+                    "paper_range": [lo, hi], "verdict": _verdict(a, ref, lo, hi)})  # fmt: skip
+    return out
+
+
+def _verdict(a: dict[str, Any], ref: dict[str, Any] | None, lo: float, hi: float) -> str:
+    """Does a face explain a divergence between ``lo`` and ``hi`` % R_t′ (the paper's range)?
+
+    Where truncation leaves the band lies between the ω of the last cell inside and that of
+    the first outside; it matches the paper when that bracket meets [lo, hi]."""
+    def meets(x: dict[str, Any]) -> bool:
+        return x["leaves_at"] is not None and (x["depth"] or 0.0) <= hi and x["leaves_at"] >= lo
+
+    if not a["n_cells"] or ref is None or not ref["n_cells"]:
+        return "no-cells"
+    if meets(ref) or (ref["leaves_at"] is not None and ref["leaves_at"] < lo):
+        return "aligned-leaves"  # the aligned smooth flat already leaves the band by then
+    if meets(a):
+        return "explains"
+    if a["leaves_at"] is not None and a["leaves_at"] < lo:
+        return "too-early"
+    if a["depth"] is not None and a["depth"] > hi and (ref["depth"] or 0.0) > hi:
+        return "does-not-explain"
+    return "undecided"  # no resolved cell deep enough on one side
+
+
 @fill_doc(_STAGE_DOCS)
 def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
-    """The numbers the section states: fits (surface × model), tracking per surface, the
-    resolution check and the mean pressure of the largest load on the smallest punch.
+    """The numbers the section states.
 
     {stage}
 
     Returns
     -------
     dict
-        ``fits``: surface → model → {alpha, beta, r2, n_points} or None (E_c/E = β·[F/(E·A)]^α
-        over every converged placement, punch and load; ``<model>_partial`` for the
-        partial-unloading secant); ``tracking``: surface → :func:`tracking` of truncation
-        against each contact model; ``mean_pressure``; ``resolution``; ``not_converged``.
+        ``fits``: (surface, design) → model → fit (``made``, α, β, their ``alpha_ci95`` /
+        ``beta_ci95``, ``n_points``, ``n_indents``; ``<model>_partial`` for the
+        partial-unloading secant), as a list of records; ``depths``: records of the punch depth
+        at the largest load per surface × design × model (:func:`depth_at_load`);
+        ``hardness``: surface → the depth per H of the sweep, ``range``
+        (:func:`hardness_range`) and ``match`` (:func:`depth_match`); ``agreement``: records of
+        :func:`agreement_depth` per surface × design × model in % R_t′; ``tracking``: records of
+        :func:`tracking` per surface × design; ``resolution_table``; ``cost``; ``faces``: per
+        punch face, :func:`agreement_depth` against truncation, K over the aligned flat's K
+        and the ``verdict`` on the paper's divergence of Ps;
+        ``mean_pressure``; ``resolution`` (the check); ``not_converged``.
     """
-    from ..stiffness import fit_power_law
-
     r = stage["rows"]
-    n = len(r["surface"])
-    use = r.get(stage.get("fit_cells", "converged"), r["converged"])  # in_fit when refined
-    fits: dict[str, dict[str, Any]] = {}
+    groups = _groups(r)
+    at = max(stage["loads_N"])
+    fits, depths, agree, track = [], {}, [], []
+    for (s, design, m), idx in groups.items():
+        rec = {"surface": s, "design": design, "model": m, **_fit(r, idx, "E_c_over_E")}
+        if m != "truncation":
+            rec["partial"] = _fit(r, idx, "E_c_partial_over_E")
+            depths[(s, design, m)] = depth_at_load(
+                [r["punch_diameter_m"][i] for i in idx], [r["peak_load_N"][i] for i in idx],
+                [r["displacement_m"][i] for i in idx], [bool(r["converged"][i]) for i in idx], at)
+            rc = ratio_cells(stage, s, design, m)
+            rt = stage["Rt_m"][s]
+            a = agreement_depth([v["omega_m"] / rt * 100 for v in rc.values()],
+                                [v["ratio"] for v in rc.values()], GOOD)  # fmt: skip
+            agree.append({"surface": s, "design": design, "model": m, **a})
+        fits.append(rec)
     for s in stage["surfaces"]:
-        fits[s] = {}
-        for m in ("truncation", *stage["models"]):
-            for kind, col in (("", "E_c_over_E"), ("_partial", "E_c_partial_over_E")):
-                if m == "truncation" and kind:
-                    continue
-                sel = [i for i in range(n) if r["surface"][i] == s and r["model"][i] == m
-                       and r["converged"][i] and use[i] and r[col][i] is not None]  # fmt: skip
-                try:
-                    f = fit_power_law([r["F_over_EA"][i] for i in sel], [r[col][i] for i in sel])
-                    fits[s][m + kind] = {"alpha": f.alpha, "beta": f.beta, "r2": f.r2,
-                                         "n_points": f.n_points}  # fmt: skip
-                except ValueError:
-                    fits[s][m + kind] = None
-    c = cells(stage)
-    track = {}
-    for s in stage["surfaces"]:
-        ratios: dict[str, dict] = {}
-        for m in stage["models"]:
-            ratios[m] = {}
-            for (ss, mm, d, f), v in c.items():
-                if ss != s or mm != "truncation":
-                    continue
-                w = c.get((s, m, d, f))
-                t = v["E_c_over_E"]
-                ratios[m][(d, f)] = (t / w["E_c_over_E"] if t and w and w["E_c_over_E"] else None)
-        track[s] = tracking(ratios)
-    loads, punches = stage["loads_N"], stage["punches_m"]
-    pmean = max(loads) / (math.pi * min(punches) ** 2 / 4)
-    finite = [v for v in stage["hardness_Pa"].values() if v is not None]
-    conv = [i for i in range(n) if r["model"][i] != "truncation"]
+        for design, models in stage["models"].items():
+            ratios = {m: {k: v["ratio"] for k, v in ratio_cells(stage, s, design, m).items()}
+                      for m in models if (s, design, m) in groups}  # fmt: skip
+            if ratios:
+                track.append({"surface": s, "design": design, **tracking(ratios)})
+    punches = stage["punches_m"]
+    pmean = at / (math.pi * min(punches) ** 2 / 4)
+    solved = [i for i in range(len(r["surface"])) if r["model"][i] != "truncation"]
     return {
         "good_band": GOOD,
         "fits": fits,
+        "depths": [{"surface": s, "design": d, "model": m, "load_N": at, **v}
+                   for (s, d, m), v in depths.items()],
+        "hardness": _hardness_question(stage, depths),
+        "agreement": agree,
         "tracking": track,
-        "mean_pressure": {"load_N": max(loads), "punch_m": min(punches), "p_mean_Pa": pmean,
-                          "H_min_Pa": min(finite) if finite else None,
-                          "below_H": bool(finite) and pmean < min(finite)},  # fmt: skip
+        "resolution_table": [{"surface": s, "design": d, "model": m, "load_N": f, **v}
+                             for (s, d, m, f), v in _resolution_table(stage).items()],
+        "cost": _cost(stage),
+        "faces": _faces(stage, agree),
+        "mean_pressure": {"load_N": at, "punch_m": min(punches), "p_mean_Pa": pmean},
         "smooth_Ec_over_E": stage["material"]["E_star_Pa"] / stage["material"]["E_Pa"],
-        "not_converged": sum(not r["converged"][i] for i in conv),
-        "n_solved_rows": len(conv),
-        "max_overlap": max((r["overlap_fraction"][i] for i in range(n)
+        "not_converged": sum(not r["converged"][i] for i in solved),
+        "n_solved_rows": len(solved),
+        "max_overlap": max((r["overlap_fraction"][i] for i in range(len(r["surface"]))
                             if r["punch_diameter_m"][i] == max(punches)), default=0.0),  # fmt: skip
         "resolution": _resolution_summary(stage.get("resolution")),
     }

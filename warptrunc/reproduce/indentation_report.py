@@ -15,10 +15,19 @@ import numpy as np
 
 from .._support.docs import fill_doc
 from .indentation_analysis import cells
+from .indentation_tables import (
+    agreement_lines,
+    cost_lines,
+    face_lines,
+    fit_lines,
+    hardness_lines,
+    model_label,
+    resolution_lines,
+)
 from .report_sections import fmt_value, new_figure, save_figure
 from .store import STAGE_DOCS
 
-__all__ = ["indentation_figures", "indentation_lines", "model_label"]
+__all__ = ["indentation_figures", "indentation_lines", "model_colours", "model_label"]
 
 COLOURS = {"truncation": "C3", "elastic": "C0"}
 MARKERS = ("o", "s", "^", "D", "v")
@@ -43,33 +52,13 @@ def model_colours(models: list[str]) -> dict[str, str]:
     return {m: COLOURS[m] if m in COLOURS else next(more) for m in models}
 
 
-def model_label(stage: dict[str, Any], model: str) -> str:
-    """Readable name of a model key of the stage.
-
-    Parameters
-    ----------
-    stage : dict
-        The stage result (its ``hardness_Pa``).
-    model : str
-        ``truncation``, ``elastic`` or ``elastic_plastic_<f>H`` (``_partial`` appended: the
-        partial-unloading secant).
-
-    Returns
-    -------
-    str
-        E.g. ``"elastic–plastic, H = 1 GPa"``.
-    """
-    base, part = (model[: -len("_partial")], " (partial unloading)") if model.endswith("_partial") else (model, "")
-    if base == "truncation":
-        return "truncation (Eq. 2)"
-    h = stage["hardness_Pa"].get(base)
-    if h is None:
-        return "elastic (H = ∞)" + part
-    return f"elastic–plastic, H = {h / 1e9:g} GPa" + part
+def _fig_design(stage: dict[str, Any], s: str) -> str:
+    """The design a surface's Fig. 6 panel shows: the statistics when it has any, else the sweep."""
+    return "stats" if any(t["surface"] == s and t["design"] == "stats" for t in stage["timings"]) else "sweep"
 
 
 def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | Path) -> list[str]:
-    """Fig. 6 in silico: one panel per surface, E_c/E against F/(E·A) for every model.
+    """Fig. 6 in silico (one panel per surface) and the depth at the largest load against H.
 
     Parameters
     ----------
@@ -83,44 +72,61 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
     Returns
     -------
     list of str
-        ``["indentation_fig6.png"]``.
+        ``["indentation_fig6.png", "indentation_depth_vs_H.png"]``.
     """
     surfaces = stage["surfaces"]
     ncol = 2 if len(surfaces) > 1 else 1
     nrow = math.ceil(len(surfaces) / ncol)
     fig, axs = new_figure(ncol, nrow, w=5.6, h=4.4)
     c = cells(stage)
-    models = ["truncation", *stage["models"]]
-    colours = model_colours(models)
+    fits = {(f["surface"], f["design"], f["model"]): f for f in ana["fits"]}
+    colours = model_colours(["truncation", *dict.fromkeys(m for v in stage["models"].values() for m in v)])
     for ax, s in zip(axs, surfaces, strict=False):
+        design = _fig_design(stage, s)
+        models = ["truncation", *[m for m in stage["models"][design] if (s, design, m) in fits]]
         for m in models:
-            colour = colours[m]
             xs_all = []
             for k, d in enumerate(stage["punches_m"]):
-                pts = sorted((v["F_over_EA"], v["E_c_over_E"]) for (ss, mm, dd, _f), v in c.items()
-                             if ss == s and mm == m and dd == d and v["E_c_over_E"])  # fmt: skip
+                pts = sorted((v["F_over_EA"], v["E_c_over_E"]) for (ss, dd_, mm, dd, _f), v in c.items()
+                             if ss == s and dd_ == design and mm == m and dd == d and v["E_c_over_E"])  # fmt: skip
                 if not pts:
                     continue
                 x, y = np.array(pts).T
                 xs_all += list(x)
-                ax.loglog(x, y, MARKERS[k % len(MARKERS)], color=colour, mfc="none", ms=4,
+                ax.loglog(x, y, MARKERS[k % len(MARKERS)], color=colours[m], mfc="none", ms=4,
                           ls="--" if m == "truncation" else "none", lw=0.6)  # fmt: skip
-            f = ana["fits"][s].get(m)
-            if f and xs_all:
+            f = fits.get((s, design, m))
+            if f and f["made"] and xs_all:
                 xx = np.geomspace(min(xs_all), max(xs_all), 20)
-                ax.loglog(xx, f["beta"] * xx ** f["alpha"], "-", color=colour, lw=1.2,
+                ax.loglog(xx, f["beta"] * xx ** f["alpha"], "-", color=colours[m], lw=1.2,
                           label=f"{model_label(stage, m)}: α = {f['alpha']:.3f}, β = {f['beta']:.3g}")  # fmt: skip
         ax.axhline(ana["smooth_Ec_over_E"], color="k", ls=":", lw=0.8, label="smooth punch: E*/E")
         for k, d in enumerate(stage["punches_m"]):
-            ax.plot([], [], MARKERS[k % len(MARKERS)], color="grey", mfc="none",
-                    label=f"d = {d * 1e6:g} µm")  # fmt: skip
-        ax.set(xlabel="F/(E·A)", ylabel="E$_c$/E", title=f"{s} ({stage['n']}² over {stage['L_m'] * 1e3:g} mm)")
+            ax.plot([], [], MARKERS[k % len(MARKERS)], color="grey", mfc="none", label=f"d = {d * 1e6:g} µm")
+        g = stage["designs"][design]
+        ax.set(xlabel="F/(E·A)", ylabel="E$_c$/E",
+               title=f"{s} ({stage['n']}² over {stage['L_m'] * 1e3:g} mm; {len(g['seeds'])}×{g['placements']} indents)")  # fmt: skip
         ax.legend(fontsize=6)
     for ax in axs[len(surfaces):]:
         ax.set_axis_off()
-    fig.suptitle("Fig. 6 in silico: unloading stiffness of three contact models and Eq. 2 truncation "
-                 "(geometric mean over placements; lines: fits over every punch and load)", fontsize=9)  # fmt: skip
-    return [save_figure(fig, Path(out), "indentation_fig6.png")]
+    fig.suptitle("Fig. 6 in silico: unloading stiffness of the contact models and Eq. 2 truncation on "
+                 "resolved cells (geometric mean over indents; lines: fits)", fontsize=9)  # fmt: skip
+    names = [save_figure(fig, Path(out), "indentation_fig6.png")]
+    fig, (ax,) = new_figure(1, 1, w=6.0, h=4.4)
+    lo, hi = stage["depth_band_m"]
+    for k, (s, v) in enumerate(ana["hardness"].items()):
+        pts = [(h, d) for h, d in zip(v["hardness_Pa"], v["depth_m"], strict=True) if d]
+        if pts:
+            x, y = np.array(pts).T
+            (ln,) = ax.loglog(x / 1e9, y * 1e6, "-" + MARKERS[k % len(MARKERS)], ms=4, label=s)
+            if v["elastic_depth_m"]:
+                ax.axhline(v["elastic_depth_m"] * 1e6, color=ln.get_color(), ls=":", lw=0.8)
+    ax.axhspan(lo * 1e6, hi * 1e6, color="0.85", zorder=0, label=f"{lo * 1e6:g}–{hi * 1e6:g} µm (paper: ≈ 5 µm)")
+    ax.set(xlabel="hardness H (GPa)", ylabel=f"depth at {max(stage['loads_N']) * 1e3:g} mN (µm)",
+           title="Punch depth at the largest load against H (sweep; dotted: H = ∞)")  # fmt: skip
+    ax.legend(fontsize=7)
+    names.append(save_figure(fig, Path(out), "indentation_depth_vs_H.png"))
+    return names
 
 
 def _runs(per: dict[str, Any]) -> str:
@@ -171,6 +177,25 @@ def tracking_sentence(stage: dict[str, Any], s: str, t: dict[str, Any]) -> str:
             + (f" Nearest model per cell: {closest}." if closest else ""))  # fmt: skip
 
 
+MATERIAL_TEXT = (
+    "**The material is assumed, not the paper's**: the paper names neither its alloy nor E, ν, E_i, "
+    "ν_i or H. E = {E:g} GPa and ν = {nu:g} are typical of wrought aluminium alloys (handbook values "
+    "of about 69–72 GPa and 0.33, e.g. ASM Handbook Vol. 2); the punches are diamond, E_i = {Ei:g} GPa, "
+    "ν_i = {nui:g} (Oliver & Pharr, J. Mater. Res. 7, 1564 (1992)); E* = {Es:.2f} GPa. **The hardness "
+    "is swept, not assumed**: handbook Vickers hardness of aluminium alloys runs from about HV 20–30 "
+    "(pure aluminium, annealed) to about HV 150–175 (7075-T6) (ASM Handbook Vol. 2; order-of-magnitude "
+    "ranges), i.e. H ≈ 0.0098·HV GPa ≈ 0.2–1.7 GPa (HV is the load over the indent's surface area; the "
+    "mean pressure over its projected area, which the model caps, is about 8 % higher); "
+    "nanoindentation a few hundred nm deep reads more, of the order of 1–2 GPa for common alloys (the "
+    "indentation size effect; W.D. Nix, H. Gao, J. Mech. Phys. Solids 46, 411 (1998)); and SMAT and "
+    "grit blasting work-harden the surface layer, by tens of percent or more (order of magnitude; for "
+    "SMAT e.g. K. Lu, J. Lu, Mater. Sci. Eng. A 375–377, 38 (2004)). Tabor's H ≈ 3σ_y (D. Tabor, *The "
+    "Hardness of Metals*, Oxford, 1951) links H to the yield stress. The sweep, {Hs} GPa, spans these "
+    "and more."
+)
+"""What the report says of the material, with the sources (issue 38, item 4)."""
+
+
 @fill_doc(STAGE_DOCS)
 def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float | None,
                       figure_names: list[str] | None = None) -> list[str]:  # fmt: skip
@@ -189,84 +214,75 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
 
     mat = stage["material"]
     mp = ana["mean_pressure"]
-    hs = [v for v in stage["hardness_Pa"].values() if v is not None]
+    hs = sorted(h for h in stage["hardness_Pa"].values() if h is not None)
     L = ["## Indentation in silico (Fig. 6)\n"]
-    surf = ", ".join(f"{s} (D_in = {TABLE1[s].D:g}, R_t′ = {TABLE1[s].Rt * 1e6:.4g} µm, "
+    surf = ", ".join(f"{s} (D_in = {TABLE1[s].D:g}, R_t′ = {stage['Rt_m'][s] * 1e6:.4g} µm, "
                      f"W_r = {TABLE1[s].Wr * 1e6:g} µm)" for s in stage["surfaces"])  # fmt: skip
+    des = stage["designs"]
     L.append(
         "The paper's experiment (§ 4.1) on its simulated Table 1 surfaces (`warptrunc.presets.TABLE1`: "
         f"{surf}), each {stage['n']}² over {stage['L_m'] * 1e3:g} mm (pixel {stage['dx_m'] * 1e9:.1f} nm), "
         f"by `warptrunc.indent`: rigid flat punches of {', '.join(f'{d * 1e6:g}' for d in stage['punches_m'])} µm, "
-        f"{stage['placements']} random placement(s) per punch (the same on every surface and every H), "
         f"{len(stage['loads_N'])} peak loads each twice the previous up to {max(stage['loads_N']) * 1e3:g} mN, "
-        "each peak followed by a partial unloading of 10 %. Aluminium alloy E = "
-        f"{mat['E_Pa'] / 1e9:g} GPa, ν = {mat['nu']:g} against diamond (E_i = {mat['E_i_Pa'] / 1e9:g} GPa, "
-        f"ν_i = {mat['nu_i']:g}; E* = {mat['E_star_Pa'] / 1e9:.2f} GPa). Three contact models on the same "
-        "punch windows (free half-space, contact solver in "
-        f"{stage['dtype']}): **elastic** (H = ∞), and **elastic–perfectly-plastic** with the local pressure "
-        "capped at H = " + " and ".join(f"{h / 1e9:g} GPa" for h in hs) + ": "
-        f"{mat['H_alloy_Pa'] / 1e9:g} GPa is a treated alloy's indentation hardness (6061-T6: 107 HV = "
-        "1.05 GPa, ASM Handbook Vol. 2, 1990; Tabor's H ≈ 3σ_y with σ_y = 276 MPa gives 0.83 GPa; the paper "
-        "does not name its alloy), and twice that brackets a harder treated surface. The unloading "
-        "stiffness K is Barber's initial slope at each peak (the plastic state frozen); the paper's "
-        "partial-unloading secant is fitted too. **Eq. 2 truncation** runs on the same punch disks: "
-        "A = the punch area πd²/4, first touch = the highest pixel inside the disk, "
-        "k = (2/√π)E*√A_c read where F(ω) = ∫k dω reaches each peak load. All models give "
-        "E_c = √π·K/(2√A), plotted as E_c/E against F/(E·A) with E the Young's modulus (Fig. 6's "
-        f"normalisation): a smooth surface gives E*/E = {ana['smooth_Ec_over_E']:.3f}, not 1.\n"
+        "each followed by a partial unloading of 10 %. Two designs: a **sweep** of the hardness, "
+        f"H = {', '.join(f'{h / 1e9:g}' for h in hs)} GPa and ∞, on {len(des['sweep']['seeds'])} realisation × "
+        f"{des['sweep']['placements']} random placement(s) per punch; and **statistics**, "
+        f"{len(des['stats']['seeds'])} realisations (phase seeds {', '.join(map(str, des['stats']['seeds']))}) "
+        f"× {des['stats']['placements']} placements per punch, for "
+        + (" and ".join({"elastic": "H = ∞", "depth-match": "the H of the sweep that best matches the "
+                         "paper's depth"}[m] for m in stage["stats_requested"]) or "nothing")
+        + ". Contact models on the same punch windows (free half-space, contact solver in "
+        f"{stage['dtype']}): **elastic** (H = ∞) and **elastic–perfectly-plastic**, the local pressure "
+        "capped at H. The unloading stiffness K is Barber's initial slope at each peak (the plastic state "
+        "frozen); the paper's partial-unloading secant is fitted too. **Eq. 2 truncation** runs on the "
+        "same punch disks: A = πd²/4, first touch = the highest pixel inside the disk, k = (2/√π)E*√A_c "
+        "read where F(ω) = ∫k dω reaches each peak load. All give E_c = √π·K/(2√A), plotted as E_c/E "
+        f"against F/(E·A) (Fig. 6): a smooth surface gives E*/E = {ana['smooth_Ec_over_E']:.3f}, not 1.\n"
     )  # fmt: skip
-    if mp["H_min_Pa"] is not None:
-        L.append(
-            f"The largest load, {mp['load_N'] * 1e3:g} mN on the {mp['punch_m'] * 1e6:g} µm punch, is a mean "
-            f"pressure of {mp['p_mean_Pa'] / 1e6:.0f} MPa, "
-            + (f"below H = {mp['H_min_Pa'] / 1e9:g} GPa: the punch as a whole never yields, and plasticity "
-               "stays at the scale of the asperities." if mp["below_H"] else
-               f"above H = {mp['H_min_Pa'] / 1e9:g} GPa: the whole punch area flows.")
-            + " H caps the pressure of each pixel, so the plastic area depends on the pixel size (resolution "
-            "check below).\n"
-        )  # fmt: skip
+    L.append(MATERIAL_TEXT.format(E=mat["E_Pa"] / 1e9, nu=mat["nu"], Ei=mat["E_i_Pa"] / 1e9,
+                                  nui=mat["nu_i"], Es=mat["E_star_Pa"] / 1e9,
+                                  Hs=", ".join(f"{h / 1e9:g}" for h in hs)) + "\n")  # fmt: skip
+    a = mp["punch_m"] / 2
+    L.append(
+        f"The largest load, {mp['load_N'] * 1e3:g} mN on the {mp['punch_m'] * 1e6:g} µm punch, is a mean "
+        f"pressure of {mp['p_mean_Pa'] / 1e6:.0f} MPa"
+        + (f", below every H of the sweep: the punch as a whole never yields, plasticity stays at the "
+           "asperities, and the depth cannot exceed the roughness under the punch plus the elastic sink "
+           f"(a smooth punch: F/(2E*a) = {mp['load_N'] / (2 * mat['E_star_Pa'] * a) * 1e6:.2f} µm)"
+           if hs and mp["p_mean_Pa"] < hs[0] else "")
+        + ". H caps the pressure of each pixel, so the plastic area depends on the pixel size (the "
+        "resolution table below).\n"
+    )  # fmt: skip
     if ana["max_overlap"] > 0:
         L.append(f"The {max(stage['punches_m']) * 1e6:g} µm punch's placements cannot be kept apart on a "
                  f"{stage['L_m'] * 1e3:g} mm map: they overlap by up to {100 * ana['max_overlap']:.0f} % of "
-                 "its area (the paper's 3 mm discs would hold them apart).\n")  # fmt: skip
-    L.append(f"Solves not converged: {ana['not_converged']} of {ana['n_solved_rows']} cycles "
-             "(left out of the fits and of the comparison).\n")  # fmt: skip
-    # alpha/beta
-    models = ["truncation", *stage["models"]] + [m + "_partial" for m in stage["models"]]
-    L.append("**E_c/E = β·[F/(E·A)]^α** per surface and model (least squares in log–log over every "
-             "converged punch × placement × load; r² in brackets):\n")  # fmt: skip
-    L.append("| surface | " + " | ".join(model_label(stage, m) for m in models) + " |")
-    L.append("|---|" + "---|" * len(models))
-    for s in stage["surfaces"]:
-        cells_ = []
-        for m in models:
-            f = ana["fits"][s].get(m)
-            cells_.append("—" if f is None else f"α = {f['alpha']:.3f}, β = {f['beta']:.3g} ({f['r2']:.2f})")
-        L.append(f"| {s} | " + " | ".join(cells_) + " |")
-    L.append("")
-    # tracking
+                 "its area (a 3 mm map would hold them apart).\n")  # fmt: skip
+    L.append(f"Solves not converged: {ana['not_converged']} of {ana['n_solved_rows']} cycles (left out of "
+             "the fits and the comparisons, as are the cells not resolved).\n")  # fmt: skip
+    L.append("**Hardness as a question** (issue 38, item 4): the punch depth at the largest load for each "
+             "H, beside the paper's ≈ 5 µm:\n")  # fmt: skip
+    L += hardness_lines(stage, ana)
+    L.append("**E_c/E = β·[F/(E·A)]^α** per surface, design (realisations × placements per punch) and "
+             "model, least squares in log–log over the resolved cells (`in_fit`) only, with 95 % "
+             "intervals from a bootstrap over indents (`warptrunc.indent.fits`; none with one indent); a "
+             "fit needs 6 cells:\n")  # fmt: skip
+    L += fit_lines(stage, ana)
+    L += agreement_lines(stage, ana)
     band = f"±{100 * ana['good_band']:.0f} %"
     L.append(
-        f"**Which model truncation tracks.** Rule: at each (surface, punch, peak load) cell, E_c/E of every "
-        "model is the geometric mean over the converged placements; truncation *tracks* a model there when "
-        f"E_c,trunc/E_c,model is within {band} of 1. Per surface, the model tracked is the one with the largest "
-        "fraction of its cells in the band (ties: more cells, then the one nearest to truncation in more "
-        "cells); the load ranges are the runs of consecutive peak loads in the band, per punch.\n"
+        f"**Which model truncation tracks, on resolved cells.** At each (surface, punch, load) cell, "
+        "E_c,trunc/E_c,model is the geometric mean over the resolved indents; truncation *tracks* a model "
+        f"there when it is within {band} of 1. Per surface and design, the model tracked is the one with "
+        "the largest fraction of its cells in the band (ties: more cells, then nearest to truncation in "
+        "more cells); the load ranges are runs of consecutive loads in the band, per punch.\n"
     )  # fmt: skip
-    L.append("| surface | model | cells within " + band + " | median E_c,trunc/E_c | range | load ranges in the band |")
-    L.append("|---|---|---|---|---|---|")
-    for s in stage["surfaces"]:
-        t = ana["tracking"][s]
-        for m, v in t["per_model"].items():
-            rng = "—" if v["range"] is None else f"{v['range'][0]:.2f}–{v['range'][1]:.2f}"
-            L.append(f"| {s} | {model_label(stage, m)} | {v['n_good']} of {v['n_cells']} | "
-                     f"{fmt_value(v['median_ratio'], '.2f')} | {rng} | {_runs(v)} |")  # fmt: skip
-    L.append("")
-    for s in stage["surfaces"]:
-        L.append(tracking_sentence(stage, s, ana["tracking"][s]) + "\n")
+    for t in ana["tracking"]:
+        d = stage["designs"][t["design"]]
+        L.append(f"*{'Sweep' if t['design'] == 'sweep' else 'Statistics'} ({len(d['seeds'])}×{d['placements']})* — "
+                 + tracking_sentence(stage, t["surface"], t) + "\n")  # fmt: skip
     for nme in figure_names or []:
         L.append(f"![{nme}]({nme})\n")
-    # resolution
+    L += face_lines(stage, ana)
     r = ana["resolution"]
     if r:
         L.append(
@@ -281,27 +297,15 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
                  "plastic_area_m2": "plastic area (µm²)", "truncation_E_c_over_E": "truncation E_c/E"}  # fmt: skip
         for m, v in r["models"].items():
             for q, lab in names.items():
-                a, b, ratio = v[q]
+                x, y, ratio = v[q]
                 scale = 1e12 if q.endswith("m2") else 1.0
-                fa = "—" if a is None else f"{a * scale:.4g}"
-                fb = "—" if b is None else f"{b * scale:.4g}"
+                fa = "—" if x is None else f"{x * scale:.4g}"
+                fb = "—" if y is None else f"{y * scale:.4g}"
                 L.append(f"| {model_label(stage, m)} | {lab} | {fa} | {fb} | {fmt_value(ratio, '.3f')} |")
         L.append("")
-    # timings
-    L.append("**Pieces** (one per surface × model; stored under "
-             f"`{stage['store']}/`, a rerun continues an interrupted stage):\n")  # fmt: skip
-    L.append("| surface | model | seconds | of which elastic–plastic / elastic / truncation | "
-             "cycles taken from the elastic piece | largest window (px) | not converged | device |")
-    L.append("|---|---|---|---|---|---|---|---|")
-    for t in stage["timings"]:
-        w = t["largest_window_px"]
-        L.append(f"| {t['surface']} | {model_label(stage, t['model'])} | {t['piece_s']:.1f} | "
-                 f"{t['elastic_plastic_s']:.1f} / {t['elastic_s']:.1f} / {t['truncation_s']:.1f} | "
-                 f"{t.get('reused_elastic_cycles', 0)} | "
-                 f"{w[0]}×{w[1]} | {t['n_not_converged']} | {t['device']} |")  # fmt: skip
-    L.append("\nAn elastic–plastic piece takes from the elastic piece each punch's leading cycles "
-             "whose elastic peak pressure stays below H (no pixel reaches the cap, so the two "
-             "solutions are one) and solves the rest.\n")
-    tot = "" if seconds is None else f" The stage took {seconds:.1f} s in its last run."
-    L.append(f"\nTotal over the pieces: {sum(t['piece_s'] for t in stage['timings']):.1f} s.{tot}\n")
+    L += resolution_lines(stage, ana)
+    L += cost_lines(stage, ana, seconds)
+    L.append("An elastic–plastic piece of the sweep takes from the sweep's elastic piece each unrefined "
+             "punch's leading cycles whose elastic peak pressure stays below H (no pixel reaches the cap, "
+             "so the two solutions are one) and solves the rest.\n")  # fmt: skip
     return L

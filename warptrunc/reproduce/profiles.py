@@ -9,9 +9,14 @@ increments, ω_max = 0.1·R_t; islands of Figs. 7–8 and Table 2 on 30720² ove
 uses 4 seeds per surface; the elastic comparison (not in the paper) goes to 7680² (L/W_r = 30
 at 256 pixels per W_r) and 5120² (L/W_r = 10, pixel size halved). The indentation stage (Fig. 6
 in silico, not in the paper's simulations) runs at the paper's pixel size with the paper's
-punches and loads; ``quick`` and ``tiny`` coarsen its pixels (512² and 256² over 1 mm) and use
-one placement (``tiny``: the last four loads). ``quick`` fits a 2-core CPU in minutes and
-``tiny`` is the CI check.
+punches and loads, in two designs (issue 38, items 4 and 7): a hardness sweep (H of
+``indentation_hardness``, one realisation × ``indentation_placements`` placements per punch)
+and statistics (``indentation_seeds`` × ``indentation_stats_placements`` indents per punch) for
+the models of ``indentation_stats``: H = ∞ and the H of the sweep that best matches the paper's
+≈ 5 µm depth at 500 mN. ``quick`` and ``tiny`` coarsen its pixels (512² and 256² over 1 mm), use
+fewer H, seeds and placements (``tiny``: the last four loads, every cell with a contact pixel
+judged resolved: a smoke run). ``quick`` fits a 2-core CPU in minutes and ``tiny`` is the CI
+check.
 """
 
 from __future__ import annotations
@@ -27,6 +32,7 @@ GROUP2_D = (2.1, 2.3, 2.5, 2.7, 2.9)
 INDENT_SURFACES = ("Ps", "SMATs", "GB300s", "GB50s")
 INDENT_PUNCHES = (54.1e-6, 108.7e-6, 502.6e-6)  # = warptrunc.indent.PAPER_PUNCH_DIAMETERS
 INDENT_LOADS = tuple(0.5 / 2**k for k in range(9, -1, -1))  # = warptrunc.indent.PAPER_PEAK_LOADS
+INDENT_HARDNESS = (math.inf, 0.5e9, 1e9, 2e9, 4e9, 8e9)
 
 
 @dataclass(frozen=True)
@@ -107,12 +113,43 @@ class Profile:
     indentation_loads: tuple[float, ...] = INDENT_LOADS
     """Peak loads of the ``indentation`` stage's cycles (N), increasing."""
     indentation_placements: int = 3
-    """Random punch placements per diameter in the ``indentation`` stage (count)."""
+    """Random punch placements per diameter in the ``indentation`` stage's hardness sweep, on
+    its one realisation (the first of ``indentation_seeds``) (count)."""
     indentation_seed: int = 0
-    """Seed of the punch placements of the ``indentation`` stage."""
-    indentation_hardness_factors: tuple[float, ...] = (math.inf, 1.0, 2.0)
-    """Hardness H of the ``indentation`` stage as multiples of the alloy's
-    (:data:`warptrunc.indent.ALUMINIUM_HARDNESS`, 1.0 GPa); inf = elastic (dimensionless)."""
+    """Seed of the punch placements of the ``indentation`` stage (punch k of
+    ``indentation_punches`` draws its positions with seed ``indentation_seed + k``)."""
+    indentation_hardness: tuple[float, ...] = INDENT_HARDNESS
+    """Hardness values H of the ``indentation`` stage's sweep (Pa); inf = elastic. The paper
+    states no hardness: H is swept, not assumed (aluminium alloys span about 0.2–1.7 GPa by
+    handbook Vickers values, more at shallow nanoindentation depths and after work hardening;
+    ``docs/guide/indentation.md``)."""
+    indentation_seeds: tuple[int, ...] = (0, 1, 2)
+    """Phase seeds of the realisations of the ``indentation`` stage's statistics pieces; the
+    hardness sweep runs on the first."""
+    indentation_stats_placements: int = 5
+    """Random punch placements per diameter and realisation of the statistics pieces (count)."""
+    indentation_stats: tuple[str, ...] = ("elastic", "depth-match")
+    """Models of the statistics pieces: ``"elastic"`` (H = ∞) and ``"depth-match"`` (per
+    surface, the H of the sweep whose depth at the largest load is nearest
+    ``indentation_depth_target``, when the sweep reaches ``indentation_depth_band``; none
+    otherwise). Empty: no statistics pieces."""
+    indentation_depth_target: float = 5e-6
+    """The paper's maximal indentation depth at 500 mN, "around 5 µm" (§ 4.1) (m)."""
+    indentation_depth_band: tuple[float, float] = (4e-6, 6e-6)
+    """Depths at the largest load taken as consistent with "around 5 µm" (m)."""
+    indentation_face_surface: str | None = "Ps"
+    """Surface of the punch-face runs of the ``indentation`` stage (None: none): the aligned
+    smooth flat of the sweep against tilted and rough faces (§ 4.2 names misalignment and the
+    tip's roughness among the causes of Ps's divergence beyond 15 % R_t′)."""
+    indentation_face_tilts_deg: tuple[float, ...] = (0.05, 0.1)
+    """Tilts of the punch face in those runs (degrees; :func:`warptrunc.indent`'s
+    ``punch_tilt_deg``); the aligned flat (0°) is the sweep's piece."""
+    indentation_face_roughness: float = 0.05e-6
+    """rms roughness of a generated punch face in those runs (m; 0: none): the paper's tip,
+    "measured to have an RMS roughness of around 0.05 µm" (§ 4.2)."""
+    indentation_face_hardness: float = 1e9
+    """H of the punch-face runs (Pa; one of ``indentation_hardness``, inf = elastic): the paper
+    states none; 1 GPa is :func:`warptrunc.indent`'s default, inside the handbook range."""
     indentation_unload_fraction: float = 0.1
     """Partial unloading of each cycle, a fraction of its peak load (dimensionless)."""
     indentation_dtype: str = "float64"
@@ -128,9 +165,13 @@ class Profile:
     indentation_refine_max: int = 1
     """Refinement of the ``indentation`` stage's cells in the pixel size
     (:mod:`warptrunc.indent.refine`, a power of 2): 1 = none, the cells judged by their
-    contact pixels and the fits over every converged cell (as before issue 38); above 1 the
-    punch windows are generated again at pixel/2 … pixel/refine_max until resolved and the fits
-    use the cells ``in_fit``."""
+    contact pixels; above 1 the punch windows of ``indentation_refine_punches`` are generated
+    again at pixel/2 … pixel/refine_max until resolved. The fits, the agreement depths and the
+    tracking rule use the cells ``in_fit`` either way."""
+    indentation_refine_punches: tuple[float, ...] | None = None
+    """Punch diameters whose cells are refined (m; None: every punch). Every cell of a refined
+    punch is solved at least once at half the pixel (the check), so refining the 502.6 µm
+    punch at the paper's pixel costs about four times its solves."""
     indentation_resolution_tol: float = 0.02
     """Relative change of K and of the contact area at which a cell is resolved (``indentation``
     stage, with ``indentation_refine_max`` > 1)."""
@@ -160,17 +201,25 @@ PROFILES = {
         elastic_fractions=(0.02, 0.05, 0.1, 0.2, 0.4),
         indentation_n=256, indentation_loads=INDENT_LOADS[-4:], indentation_placements=1,
         indentation_increments=200, indentation_maxiter=200,
+        indentation_hardness=(math.inf, 0.5e9, 2e9, 8e9), indentation_seeds=(0, 1),
+        indentation_stats_placements=1, indentation_min_contact_pixels=1,
+        indentation_refine_max=2, indentation_refine_punches=INDENT_PUNCHES[:1],
+        indentation_face_tilts_deg=(0.1,), indentation_face_hardness=2e9,
     ),
     "quick": Profile(
         name="quick", n=1024, seeds=3, fig5_sizes=(256, 512, 1024, 2048), fig5_seeds=3,
         table1_n=256, table1_seeds=1, islands_n=1024, islands_seeds=2, asperity_n=1024,
         elastic_pixels_per_Wr=16, indentation_n=512, indentation_placements=1,
+        indentation_seeds=(0, 1), indentation_stats_placements=2,
+        indentation_min_contact_pixels=10, indentation_refine_max=2,
+        indentation_refine_punches=INDENT_PUNCHES[:1],
     ),
     "paper": Profile(
         name="paper", n=10240, seeds=5, fig5_sizes=(1024, 2048, 4096, 8192, 10240),
         fig5_seeds=10, table1_n=1024, table1_seeds=3, table1_methods=("tri", "box", "vs", "sp"),
         islands_n=30720, islands_L=3e-3, islands_seeds=4, asperity_n=4096,
-        indentation_dtype="float32",
+        indentation_dtype="float32", indentation_refine_max=2,
+        indentation_refine_punches=INDENT_PUNCHES[:1],
     ),
 }
 
@@ -188,7 +237,8 @@ PAPER_DEPARTURES = (
     ("indentation_n", "Indentation (Fig. 6) maps", "1 mm over 10240 pixels (97.7 nm)", "{indentation_L_mm:g} mm over {indentation_n} pixels ({indentation_dx_nm:.1f} nm)"),
     ("indentation_punches", "Indentation punches", "54.1, 108.7, 502.6 µm", "{indentation_punches_um}"),
     ("indentation_loads", "Indentation cycles", "10 peaks, each twice the previous, to 500 mN", "{indentation_n_loads} peaks, each twice the previous, to {indentation_max_mN:g} mN"),
-    ("indentation_placements", "Indents per punch and surface", "not stated", "{indentation_placements} random placement(s), seed {indentation_seed}"),
+    ("indentation_placements", "Indents per punch and surface", "not stated", "{indentation_indents_text}"),
+    ("indentation_hardness", "Hardness H of the alloy", "not stated", "swept: {indentation_hardness_text}"),
 )
 
 

@@ -60,7 +60,8 @@ def departure_lines(p: dict[str, Any]) -> list[str]:
                  indentation_dx_nm=p["indentation_L"] / p["indentation_n"] * 1e9,
                  indentation_punches_um=", ".join(f"{d * 1e6:g}" for d in p["indentation_punches"]) + " µm",
                  indentation_n_loads=len(p["indentation_loads"]),
-                 indentation_max_mN=max(p["indentation_loads"]) * 1e3)  # fmt: skip
+                 indentation_max_mN=max(p["indentation_loads"]) * 1e3,
+                 **_indentation_design(p))  # fmt: skip
     out = ["| item | the paper | this run | same? |", "|---|---|---|---|"]
     for key, item, paper, ours in PAPER_DEPARTURES:
         if key.startswith("indentation") and "indentation_n" not in p:
@@ -71,6 +72,24 @@ def departure_lines(p: dict[str, Any]) -> list[str]:
         out.append(f"| {item} | {paper} | {txt} | {same} |")
     out.append("")
     return out
+
+
+def _indentation_design(p: dict[str, Any]) -> dict[str, str]:
+    """The indentation stage's indents and hardness values in words (profiles stored before
+    issue 38 item 7 have one design: placements on one realisation, H as multiples of 1 GPa)."""
+    seeds = p.get("indentation_seeds") or [0]
+    stats = p.get("indentation_stats") or []
+    text = (f"sweep: 1 realisation × {p['indentation_placements']} random placement(s), seed "
+            f"{p['indentation_seed']}")  # fmt: skip
+    if stats:
+        text += (f"; {' and '.join(stats)}: {len(seeds)} realisation(s) × "
+                 f"{p.get('indentation_stats_placements', p['indentation_placements'])}")
+    hs = p.get("indentation_hardness")
+    if hs is None:  # H factors × 1 GPa
+        hs = [f * 1e9 if f is not None and math.isfinite(f) else math.inf
+              for f in (p.get("indentation_hardness_factors") or [])]  # fmt: skip
+    h = ", ".join("∞" if v is None or not math.isfinite(v) else f"{v / 1e9:g}" for v in hs)
+    return {"indentation_indents_text": text, "indentation_hardness_text": f"{h} GPa"}
 
 
 def fig2_model_lines(res: dict[str, Any]) -> list[str]:

@@ -1,0 +1,266 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The ``indentation`` stage of ``warptrunc reproduce`` against the paper's text (issue 38,
+items 4, 6, 7): the H range consistent with the ≈ 5 µm depth, how deep truncation stays within
+±20 % of each model, the statistics pieces and the report's tables — the rules on hand-made
+tables against numpy, the stage on the ``tiny`` profile (CPU)."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from warptrunc.reproduce import get_profile, reproduce
+from warptrunc.reproduce.indentation_rules import (
+    agreement_depth,
+    depth_at_load,
+    depth_match,
+    hardness_range,
+)
+
+H = np.array([0.5, 1, 2, 4, 8]) * 1e9
+DEPTH = np.array([9.0, 6.5, 4.8, 3.1, 2.0]) * 1e-6  # decreasing with H, as a softer alloy sinks more
+BAND = (4e-6, 6e-6)
+
+
+def _interp_H(depth_at: float, h=H, d=DEPTH) -> float:
+    """H where the log–log line through (H, depth) reaches ``depth_at`` (numpy, depths increasing)."""
+    return float(np.exp(np.interp(np.log(depth_at), np.log(d)[::-1], np.log(h)[::-1])))
+
+
+def test_hardness_range_against_numpy_interpolation():
+    r = hardness_range(H, DEPTH, BAND)
+    assert r["contiguous"] and len(r["intervals"]) == 1
+    assert r["low"] == pytest.approx(_interp_H(6e-6), rel=1e-12)  # softer end: the deeper edge
+    assert r["high"] == pytest.approx(_interp_H(4e-6), rel=1e-12)
+    assert not r["open_below"] and not r["open_above"] and r["n_points"] == 5
+    # the order of the points, inf and missing depths do not matter
+    perm = [3, 0, 4, 1, 2]
+    r2 = hardness_range([*H[perm], math.inf], [*DEPTH[perm], 1e-7], BAND)
+    np.testing.assert_allclose(r2["intervals"], r["intervals"], rtol=1e-12)
+    m = depth_match(H, DEPTH, 5e-6, BAND)
+    assert m["H_target"] == pytest.approx(_interp_H(5e-6), rel=1e-12)
+    # nearest sweep H in log H to the interpolated one (1.81 GPa here → 2 GPa)
+    assert m["H_match"] == H[np.argmin(np.abs(np.log(H / m["H_target"])))] == 2e9
+
+
+def test_hardness_range_at_the_sweep_end_and_nowhere():
+    deep = DEPTH * 0.8  # 7.2, 5.2, 3.84, …: the band starts before the softest H
+    r = hardness_range(H, deep, BAND)
+    assert r["open_below"] is False and r["low"] == pytest.approx(_interp_H(6e-6, d=deep))
+    shallow = np.array([5.5, 5.0, 4.6, 4.3, 4.1]) * 1e-6  # every point in the band
+    r = hardness_range(H, shallow, BAND)
+    assert r["open_below"] and r["open_above"]
+    np.testing.assert_allclose(r["intervals"], [[H[0], H[-1]]], rtol=1e-12)
+    m = depth_match(H, np.array([5.5, 5.4, 5.3, 5.2, 5.1]) * 1e-6, 5e-6, BAND)
+    assert m["H_target"] is None and m["H_match"] == H[-1]  # not bracketed: nearest depth in band
+    none = hardness_range(H, DEPTH * 1e-2, BAND)
+    assert none["low"] is None and none["intervals"] == []
+    assert depth_match(H, DEPTH * 1e-2, 5e-6, BAND)["H_match"] is None
+    # a depth that does not fall monotonically: two intervals
+    r = hardness_range(H, np.array([7.0, 5.0, 7.0, 5.0, 3.0]) * 1e-6, BAND)
+    assert len(r["intervals"]) == 2 and not r["contiguous"]
+    with pytest.raises(ValueError, match="band must be"):
+        hardness_range(H, DEPTH, (6e-6, 4e-6))
+
+
+def test_agreement_depth_on_a_hand_made_series():
+    # ω (% R_t′) and E_c,trunc/E_c,model; walked by ω: 1 (1.05 in), 2 (0.90 in), 3 (1.15 in),
+    # 4 (1.25 out) → agreement to 3 %, leaves at 4 %; the cells deeper than 4 do not count
+    omega = [5.0, 1.0, 3.0, 2.0, 4.0, 6.0, 7.0]
+    ratio = [0.7, 1.05, 1.15, 0.9, 1.25, 1.0, None]
+    a = agreement_depth(omega, ratio, 0.2)
+    assert (a["depth"], a["leaves_at"], a["n_in"], a["n_cells"]) == (3.0, 4.0, 3, 6)
+    assert (a["shallowest"], a["deepest"]) == (1.0, 6.0)
+    assert agreement_depth([1, 2], [1.3, 1.0])["depth"] is None  # the shallowest is outside
+    every = agreement_depth([1, 2, 3], [1.2, 0.8, 1.0])  # the band's edges are inside
+    assert every["depth"] == 3 and every["leaves_at"] is None
+
+
+def test_face_verdict_rule():
+    """A face explains the paper's divergence (10–15 % R_t′) when truncation leaves the band
+    there with it and stays within beyond it with the aligned flat."""
+    from warptrunc.reproduce.indentation_analysis import _verdict
+
+    def walk(depth, leaves, n=5):
+        return {"depth": depth, "leaves_at": leaves, "n_cells": n}
+
+    aligned = walk(30.0, None)
+    assert _verdict(walk(12.0, 14.0), aligned, 10, 15) == "explains"
+    assert _verdict(walk(8.0, 11.0), aligned, 10, 15) == "explains"  # the bracket meets 10–15
+    assert _verdict(walk(4.0, 6.0), aligned, 10, 15) == "too-early"
+    assert _verdict(walk(25.0, 28.0), aligned, 10, 15) == "does-not-explain"
+    assert _verdict(walk(12.0, 14.0), walk(11.0, 13.0), 10, 15) == "aligned-leaves"
+    assert _verdict(walk(9.0, None), walk(9.0, None), 10, 15) == "undecided"
+    assert _verdict(walk(None, None, 0), aligned, 10, 15) == "no-cells"
+
+
+def test_depth_at_load_takes_the_deepest_punch():
+    punch = [1e-4, 1e-4, 1e-4, 5e-5, 5e-5, 5e-5]
+    load = [0.5, 0.5, 0.25, 0.5, 0.5, 0.5]
+    depth = [2e-6, 4e-6, 9e-6, 5e-6, 7e-6, 99e-6]
+    ok = [True, True, True, True, True, False]
+    d = depth_at_load(punch, load, depth, ok, 0.5)
+    assert d["per_punch"][1e-4] == {"median": 3e-6, "min": 2e-6, "max": 4e-6, "n": 2}
+    assert d["deepest"] == {"punch_m": 5e-5, "median": 6e-6, "min": 5e-6, "max": 7e-6, "n": 2}
+
+
+def test_paper_profile_design():
+    p = get_profile("paper")
+    assert {0.5e9, 1e9, 2e9, 4e9, 8e9, math.inf} <= set(p.indentation_hardness)
+    assert (len(p.indentation_seeds), p.indentation_stats_placements, p.indentation_placements) == (3, 5, 3)
+    assert p.indentation_stats == ("elastic", "depth-match")
+    assert p.indentation_refine_punches == (54.1e-6,) and p.indentation_refine_max > 1
+    assert p.indentation_depth_target == 5e-6 and p.indentation_depth_band == (4e-6, 6e-6)
+
+
+def test_bad_profile_fields_are_named(tmp_path):
+    from warptrunc.reproduce.indentation import stage_indentation
+
+    p = get_profile("tiny")
+    for kw, word in (({"indentation_stats": ("plastic",)}, "indentation_stats"),
+                     ({"indentation_depth_band": (6e-6, 7e-6)}, "indentation_depth_band"),
+                     ({"indentation_hardness": (0.0,)}, "indentation_hardness"),
+                     ({"indentation_face_hardness": 3e9}, "indentation_face_hardness"),
+                     ({"indentation_surfaces": ("SMATs",)}, "indentation_face_surface")):  # fmt: skip
+        with pytest.raises(ValueError, match=word) as e:
+            stage_indentation(replace(p, **kw), tmp_path, "cpu", progress=False)
+        assert "\n" not in str(e.value)
+
+
+@pytest.fixture(scope="module")
+def tiny_indent(tmp_path_factory):
+    out = tmp_path_factory.mktemp("indent")
+    return out, reproduce("tiny", out, device="cpu", stages="indentation")
+
+
+def test_tiny_report_has_each_table(tiny_indent):
+    out, doc = tiny_indent
+    text = (out / "report.md").read_text()
+    st = doc["stages"]["indentation"]
+    for head in ("**Hardness as a question**", "| surface | punch | H = 0.5 GPa |",
+                 "H with depth in 4–6 µm", "| surface | design | model | α [95 %] | β [95 %] | cells | indents | made |",
+                 "**How deep truncation stays within ±20 % of each model**", "the paper (vs experiment)",
+                 "**Which model truncation tracks, on resolved cells.**",
+                 "**Resolution of the cells per load.**", "| level | cells solved |",
+                 "Largest refinement reached: ×2", "**The material is assumed, not the paper's**",
+                 "**Ps with a tilted or rough punch face**", "| tilt 0.1° |", "| rough 0.05 µm rms |",
+                 "| aligned smooth flat (the sweep) |"):  # fmt: skip
+        assert head in text, head
+    for s in st["surfaces"]:  # the resolution table has every load of every surface
+        for f in st["loads_N"]:
+            assert f"| {s} | {f * 1e3:.4g} |" in text
+    assert "the paper's aluminium alloy" not in text and "2–4×" not in text
+    faces = doc["analysis"]["indentation"]["faces"]
+    assert [f["label"] for f in faces] == ["tilt 0.1°", "rough 0.05 µm rms"]
+    assert all(f["surface"] == "Ps" and f["model"] == "elastic_plastic_2GPa" for f in faces)
+
+
+def _depth_table(st, s):
+    """H → median depth at the largest load on the deepest punch, from the sweep's rows (numpy)."""
+    r = {k: np.array(v, dtype=object) for k, v in st["rows"].items()}
+    at = max(st["loads_N"])
+    out = {}
+    for m, h in st["hardness_Pa"].items():
+        sel = ((r["surface"] == s) & (r["design"] == "sweep") & (r["model"] == m)
+               & (r["peak_load_N"] == at) & r["converged"].astype(bool))  # fmt: skip
+        d = r["punch_diameter_m"][sel].astype(float)
+        z = r["displacement_m"][sel].astype(float)
+        out[math.inf if h is None else h] = max(np.median(z[d == x]) for x in np.unique(d))
+    return out
+
+
+def test_tiny_H_range_and_statistics_come_from_the_depths(tiny_indent):
+    _out, doc = tiny_indent
+    st, ana = doc["stages"]["indentation"], doc["analysis"]["indentation"]
+    band = tuple(st["depth_band_m"])
+    for s in st["surfaces"]:
+        tab = _depth_table(st, s)
+        hs = sorted(h for h in tab if math.isfinite(h))
+        dd = np.array([tab[h] for h in hs])
+        v = ana["hardness"][s]
+        assert v["depth_m"] == pytest.approx(list(dd), rel=1e-12)
+        assert v["elastic_depth_m"] == pytest.approx(tab[math.inf], rel=1e-12)
+        mono = np.all(np.diff(dd) < 0)
+        inside = [band[0] <= x <= band[1] for x in dd]
+        if mono and dd[0] >= band[1] >= dd[-1]:  # the deeper edge is crossed inside the sweep
+            assert v["range"]["low"] == pytest.approx(_interp_H(band[1], np.array(hs), dd), rel=1e-9)
+        if mono and dd[0] > band[0] > dd[-1]:
+            assert v["range"]["high"] == pytest.approx(_interp_H(band[0], np.array(hs), dd), rel=1e-9)
+        if v["range"]["low"] is None:
+            assert not any(inside)
+        # the statistics pieces: H = ∞ and the depth-matched H (none when the band is not reached)
+        stats = {t["model"] for t in st["timings"] if t["surface"] == s and t["design"] == "stats"}
+        h_match = v["match"]["H_match"]
+        want = {"elastic"} | (set() if h_match is None else {f"elastic_plastic_{h_match / 1e9:g}GPa"})
+        assert stats == want
+        if mono and v["match"]["H_target"] is not None:
+            assert v["match"]["H_target"] == pytest.approx(_interp_H(5e-6, np.array(hs), dd), rel=1e-9)
+
+
+def test_tiny_agreement_depth_by_hand(tiny_indent):
+    """The agreement depth of every surface × design × model recomputed from the rows: ratios per
+    indent, geometric mean per (punch, load) over resolved indents, walked by ω in % R_t′."""
+    _out, doc = tiny_indent
+    st, ana = doc["stages"]["indentation"], doc["analysis"]["indentation"]
+    r = st["rows"]
+    n = len(r["surface"])
+    for a in ana["agreement"]:
+        cells: dict = {}
+        for i in range(n):
+            if (r["surface"][i], r["design"][i], r["model"][i]) != (a["surface"], a["design"], a["model"]):
+                continue
+            t, e = r["truncation_E_c_over_E"][i], r["E_c_over_E"][i]
+            if r["in_fit"][i] and r["converged"][i] and t and e and t > 0 and e > 0:
+                c = cells.setdefault((r["punch_diameter_m"][i], r["peak_load_N"][i]), ([], []))
+                c[0].append(math.log(t / e))
+                c[1].append(r["truncation_depth_m"][i] / st["Rt_m"][a["surface"]] * 100)
+        walk = sorted((float(np.median(w)), math.exp(np.mean(lr))) for lr, w in cells.values())
+        depth = leaves = None
+        for w, q in walk:
+            if abs(q - 1) <= 0.2:
+                depth = w
+                continue
+            leaves = w
+            break
+        assert a["n_cells"] == len(walk)
+        assert (a["depth"] is None) == (depth is None) and (a["leaves_at"] is None) == (leaves is None)
+        if depth is not None:
+            assert a["depth"] == pytest.approx(depth, rel=1e-9)
+        if leaves is not None:
+            assert a["leaves_at"] == pytest.approx(leaves, rel=1e-9)
+
+
+def test_tiny_fits_have_intervals_over_indents(tiny_indent):
+    _out, doc = tiny_indent
+    ana = doc["analysis"]["indentation"]
+    stats = [f for f in ana["fits"] if f["design"] == "stats" and f["made"]]
+    assert stats and max(f["n_indents"] for f in stats) == 2 * 3  # 2 realisations × 3 punches
+    # two realisations of a punch: an interval, from the bootstrap over indents
+    assert all(f["alpha_ci95"] is not None and f["alpha_ci95"][0] < f["alpha_ci95"][1] for f in stats)
+    sweep = [f for f in ana["fits"] if f["design"] == "sweep" and f["made"]]
+    assert sweep and all(f["alpha_ci95"] is None for f in sweep)  # one indent per punch: no interval
+
+
+def test_statistics_piece_resumes(tmp_path):
+    """A stats piece lost is computed again alone; the others are reused, not rewritten."""
+    from warptrunc.reproduce.indentation import stage_indentation
+
+    p = get_profile("tiny")
+    p = replace(p, indentation_surfaces=("SMATs",), indentation_refine=False,
+                indentation_face_surface=None)
+    a = stage_indentation(p, tmp_path, "cpu", progress=False)
+    files = sorted((tmp_path / "indentation").glob("*.json"))
+    lost = next(f for f in files if "__stats__elastic_plastic" in f.name)
+    before = {f.name: f.stat().st_mtime_ns for f in files if f != lost}
+    lost.unlink()
+    b = stage_indentation(p, tmp_path, "cpu", progress=False)
+    assert lost.exists()
+    for f in files:
+        if f != lost:
+            assert f.stat().st_mtime_ns == before[f.name]
+    assert json.dumps(a["rows"]) == json.dumps(b["rows"])

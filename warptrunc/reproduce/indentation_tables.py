@@ -1,0 +1,384 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The tables of the report section "Indentation in silico (Fig. 6)": the hardness question,
+the fits with their intervals, the agreement depths against the paper's ranges, the
+resolution per load and the cost. Each function turns the stage result and its analysis
+(:func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`) into Markdown lines;
+every number comes from them."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from .paper import TABLE2
+from .report_sections import fmt_value
+
+__all__ = [
+    "agreement_lines",
+    "cost_lines",
+    "face_lines",
+    "fit_lines",
+    "hardness_lines",
+    "model_label",
+    "resolution_lines",
+]
+
+DESIGN_WORDS = {"sweep": "sweep", "stats": "statistics", "face": "punch face"}
+VERDICTS = {
+    "explains": "**explains it**: with this face truncation leaves the band where the paper's Ps leaves "
+    "the experiment, while with the aligned smooth flat it stays within it",
+    "does-not-explain": "**does not explain it**: truncation stays within the band beyond the paper's "
+    "range with this face too",
+    "too-early": "**too strong**: with this face truncation leaves the band before the paper's range",
+    "aligned-leaves": "not needed: truncation already leaves the band of the aligned smooth flat by the "
+    "paper's range",
+    "undecided": "undecided: no resolved cell deep enough to tell",
+    "no-cells": "no resolved cells",
+}
+"""The plain words of each verdict of :func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`'s ``faces``."""
+
+
+def model_label(stage: dict[str, Any], model: str) -> str:
+    """Readable name of a model key of the stage.
+
+    Parameters
+    ----------
+    stage : dict
+        The stage result (its ``hardness_Pa``).
+    model : str
+        ``truncation``, ``elastic`` or ``elastic_plastic_<H>GPa`` (``_partial`` appended: the
+        partial-unloading secant).
+
+    Returns
+    -------
+    str
+        E.g. ``"elastic–plastic, H = 1 GPa"``.
+    """
+    base, part = (model[: -len("_partial")], " (partial unloading)") if model.endswith("_partial") else (model, "")
+    if base == "truncation":
+        return "truncation (Eq. 2)"
+    h = stage["hardness_Pa"].get(base)
+    if h is None:
+        return "elastic (H = ∞)" + part
+    return f"elastic–plastic, H = {h / 1e9:g} GPa" + part
+
+
+def _um(v: float | None, fmt: str = ".3g") -> str:
+    return "—" if v is None else format(v * 1e6, fmt)
+
+
+def _gpa(v: float) -> str:
+    return f"{v / 1e9:.3g}"
+
+
+def _design(stage: dict[str, Any], design: str) -> str:
+    d = stage["designs"][design]
+    n = len(d["seeds"])
+    return f"{DESIGN_WORDS[design]} ({n}×{d['placements']})"
+
+
+def hardness_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
+    """The depth at the largest load per H against the paper's ≈ 5 µm, and the H it allows.
+
+    Parameters
+    ----------
+    stage : dict
+        The stage result.
+    ana : dict
+        Its analysis.
+
+    Returns
+    -------
+    list of str
+        Markdown lines: one table row per surface and a sentence per surface.
+    """
+    lo, hi = stage["depth_band_m"]
+    at = max(stage["loads_N"]) * 1e3
+    hs = sorted({h for v in ana["hardness"].values() for h in v["hardness_Pa"]})
+    L = [
+        "| surface | punch | " + " | ".join(f"H = {h / 1e9:g} GPa" for h in hs)
+        + f" | H = ∞ | H with depth in {_um(lo, 'g')}–{_um(hi, 'g')} µm | H for {_um(stage['depth_target_m'], 'g')} µm | statistics at |",
+        "|---|---|" + "---|" * (len(hs) + 4),
+    ]  # fmt: skip
+    words = []
+    stats_h = {(t["surface"]): t["model"] for t in stage["timings"]
+               if t["design"] == "stats" and t["model"] != "elastic"}  # fmt: skip
+    for s, v in ana["hardness"].items():
+        dep = {(d["model"]): d for d in ana["depths"] if d["surface"] == s and d["design"] == "sweep"}
+        cells = []
+        for h in hs:
+            m = next((k for k, x in stage["hardness_Pa"].items() if x == h), None)
+            dd = (dep.get(m) or {}).get("deepest")
+            cells.append("—" if dd is None else _um(dd["median"]) if dd["n"] == 1 else
+                         f"{_um(dd['median'])} [{_um(dd['min'])}–{_um(dd['max'])}]")  # fmt: skip
+        el = (dep.get("elastic") or {}).get("deepest")
+        punch = next((d["deepest"]["punch_m"] for d in dep.values() if d.get("deepest")), None)
+        rg, mt = v["range"], v["match"]
+        if rg["low"] is None:
+            span = "none in the sweep"
+        else:
+            span = " ∪ ".join(f"{a / 1e9:.3g}–{b / 1e9:.3g} GPa" for a, b in rg["intervals"])
+            span += (" (or softer)" if rg["open_below"] else "") + (" (or harder)" if rg["open_above"] else "")
+        st = stats_h.get(s)
+        L.append(f"| {s} | {'—' if punch is None else f'{punch * 1e6:g} µm'} | " + " | ".join(cells)
+                 + f" | {'—' if el is None else _um(el['median'])} | {span} | "
+                 f"{'—' if mt['H_target'] is None else _gpa(mt['H_target']) + ' GPa'} | "
+                 f"{model_label(stage, st) if st else 'none'} |")  # fmt: skip
+        deep = [x for x in v["depth_m"] if x is not None]
+        if rg["low"] is None and deep:
+            side = "shallower" if max(deep) < lo else "deeper"
+            words.append(f"{s}: every H of the sweep gives a depth {side} than {_um(lo, 'g')}–{_um(hi, 'g')} µm "
+                         f"({_um(min(deep))}–{_um(max(deep))} µm); no H in "
+                         f"{hs[0] / 1e9:g}–{hs[-1] / 1e9:g} GPa reproduces the paper's depth on this surface.")  # fmt: skip
+        elif rg["low"] is not None:
+            words.append(f"{s}: depths of {_um(lo, 'g')}–{_um(hi, 'g')} µm at {at:g} mN need H = {span}.")
+    L.append("")
+    L.append(
+        f"Depth: the punch's approach δ from first touch (the highest pixel under the punch) at the "
+        f"largest load, {at:g} mN, on the punch that goes deepest (named), median [min–max] over the "
+        "sweep's indents, in µm; the paper: the maximal indentation depth \"is around 5 µm\" (§ 4.1), "
+        f"taken here as {_um(lo, 'g')}–{_um(hi, 'g')} µm. The H range joins the sweep's points by "
+        "straight lines in log H – log depth; \"or softer/harder\": the band is met at the sweep's "
+        "end, beyond which it says nothing. The statistics use the sweep's H nearest the one that "
+        "gives the target depth (none when no H of the sweep reaches the band).\n"
+    )  # fmt: skip
+    L += [w + "\n" for w in words]
+    return L
+
+
+def _ci(f: dict[str, Any], key: str, fmt: str) -> str:
+    lo, hi = f.get(f"{key}_ci95") or (None, None)
+    if lo is None or hi is None or not (math.isfinite(lo) and math.isfinite(hi)):
+        return format(f[key], fmt)
+    return f"{format(f[key], fmt)} [{format(lo, fmt)}, {format(hi, fmt)}]"
+
+
+def fit_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
+    """α, β with 95 % intervals per surface × design × model.
+
+    Parameters
+    ----------
+    stage : dict
+        The stage result.
+    ana : dict
+        Its analysis.
+
+    Returns
+    -------
+    list of str
+        Markdown lines of the table and the partial-unloading note.
+    """
+    L = ["| surface | design | model | α [95 %] | β [95 %] | cells | indents | made |",
+         "|---|---|---|---|---|---|---|---|"]  # fmt: skip
+    dalpha = []
+    for f in ana["fits"]:
+        made = f["made"]
+        a = _ci(f, "alpha", ".3f") if made else "—"
+        b = _ci(f, "beta", ".3g") if made else "—"
+        L.append(f"| {f['surface']} | {_design(stage, f['design'])} | {model_label(stage, f['model'])} | "
+                 f"{a} | {b} | {f['n_points']} | {f['n_indents']} | {'yes' if made else 'no'} |")  # fmt: skip
+        pa = f.get("partial") or {}
+        if made and pa.get("made"):
+            dalpha.append(abs(pa["alpha"] - f["alpha"]))
+    L.append("")
+    L.append("No interval where each punch has a single indent (the bootstrap resamples indents within "
+             "each punch).\n")
+    if dalpha:
+        L.append(f"The paper's partial-unloading secant instead of Barber's initial slope changes α by at "
+                 f"most {max(dalpha):.3f} over these fits.\n")  # fmt: skip
+    return L
+
+
+def agreement_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
+    """How deep truncation stays within the band of each model, beside the paper's ranges.
+
+    Parameters
+    ----------
+    stage : dict
+        The stage result.
+    ana : dict
+        Its analysis.
+
+    Returns
+    -------
+    list of str
+        Markdown lines of the rule and the table.
+    """
+    band = f"±{100 * ana['good_band']:.0f} %"
+    L = [
+        f"**How deep truncation stays within {band} of each model** (issue 38, item 6). Rule: per "
+        "surface, design and model, each (punch, load) cell whose indents are resolved gives "
+        "E_c,trunc/E_c,model (the geometric mean over those indents of each indent's ratio, truncation "
+        "read on the same disk at the same pixel) and its truncation depth ω (the median over the same "
+        "indents, from the highest pixel under the punch, in % of the map's R_t′). The cells of all "
+        "punches are walked in order of ω from the shallowest; the agreement reaches the ω of the last "
+        "cell in the band before the first cell outside it, which is where it *leaves*. The paper's "
+        "ranges (§ 4.2, Table 2, first column) compare truncation with the **experiment**; here the "
+        "reference is a **contact model** on the same simulated surface, and ω is measured under each "
+        "punch, not from the top of the whole map as the paper's is.\n",
+        f"| surface | design | model | within {band} up to (% R_t′) | leaves at (% R_t′) | cells in / walked | "
+        "deepest cell (% R_t′) | the paper (vs experiment) |",
+        "|---|---|---|---|---|---|---|---|",
+    ]  # fmt: skip
+    for a in ana["agreement"]:
+        paper = TABLE2.get(a["surface"], ((None, None),))[0]
+        ptxt = "—" if paper[0] is None else f"{paper[0]:g}–{paper[1]:g} %"
+        upto = ("none (the shallowest cell is outside)" if a["depth"] is None and a["n_cells"] else
+                fmt_value(a["depth"], ".3g"))  # fmt: skip
+        leave = "never (to the deepest cell)" if a["leaves_at"] is None and a["n_cells"] else fmt_value(a["leaves_at"], ".3g")
+        L.append(f"| {a['surface']} | {_design(stage, a['design'])} | {model_label(stage, a['model'])} | "
+                 f"{upto} | {leave} | {a['n_in']} / {a['n_cells']} | {fmt_value(a['deepest'], '.3g')} | {ptxt} |")  # fmt: skip
+    L.append("")
+    return L
+
+
+def resolution_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
+    """Per surface × load, for each design and model: cells resolved, median contact pixels,
+    largest refinement.
+
+    Parameters
+    ----------
+    stage : dict
+        The stage result.
+    ana : dict
+        Its analysis.
+
+    Returns
+    -------
+    list of str
+        Markdown lines.
+    """
+    cols = []
+    for t in ana["resolution_table"]:
+        k = (t["design"], t["model"])
+        if k not in cols:
+            cols.append(k)
+    head = " | ".join(f"{model_label(stage, m)}, {_design(stage, d)}" for d, m in cols)
+    L = [
+        "**Resolution of the cells per load.** Each entry: cells resolved / cells, the median "
+        "number of contact pixels, and the largest refinement of the pixel reached (×1: the map's "
+        f"{stage['dx_m'] * 1e9:.1f} nm; refined punches: "
+        + ", ".join(f"{d * 1e6:g} µm" for d in stage["refine_punches_m"])
+        + f", up to ×{stage['refine_max']}; a resolved cell changes K and A by less than "
+        f"{100 * stage['resolution_tol']:g} % at its last halving and has at least "
+        f"{stage['min_contact_pixels']} contact pixels; unrefined punches: the contact-pixel rule "
+        "alone). Over every punch and indent.\n",
+        f"| surface | load (mN) | {head} |",
+        "|---|---|" + "---|" * len(cols),
+    ]  # fmt: skip
+    tab = {(t["surface"], t["design"], t["model"], t["load_N"]): t for t in ana["resolution_table"]}
+    for s in stage["surfaces"]:
+        for f in stage["loads_N"]:
+            row = []
+            for d, m in cols:
+                t = tab.get((s, d, m, f))
+                row.append("—" if t is None else
+                           f"{t['resolved']}/{t['n']}, {fmt_value(t['median_contact_px'], '.0f')} px, ×{t['max_refinement']}")  # fmt: skip
+            L.append(f"| {s} | {f * 1e3:.4g} | " + " | ".join(row) + " |")
+    L.append("")
+    return L
+
+
+def cost_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float | None) -> list[str]:
+    """Seconds per piece and per refinement level, the largest refinement reached.
+
+    Parameters
+    ----------
+    stage : dict
+        The stage result.
+    ana : dict
+        Its analysis.
+    seconds : float or None
+        Compute time of the stage's last run (s), if known.
+
+    Returns
+    -------
+    list of str
+        Markdown lines.
+    """
+    c = ana["cost"]
+    L = [f"**Cost.** Pieces (one per surface × design × H, and per punch face; stored under `{stage['store']}/`, a rerun "
+         "continues an interrupted stage):\n",
+         "| surface | design | model | realisations × placements | seconds | of which solves at the map's "
+         "pixel / refinement / truncation | cycles taken from the elastic piece | cells per pixel "
+         "(×f: n) | largest window (px) | not converged | device |",
+         "|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
+    for t in stage["timings"]:
+        w = t["largest_window_px"]
+        per = ", ".join(f"×{k}: {v}" for k, v in t["cells_per_factor"].items())
+        face = f", {t['face']}" if t.get("face") else ""
+        L.append(f"| {t['surface']} | {DESIGN_WORDS[t['design']]} | {model_label(stage, t['model'])}{face} | "
+                 f"{len(t['seeds'])} × {t['placements']} | {t['piece_s']:.1f} | "
+                 f"{t.get('elastic_plastic_s', 0) + t.get('elastic_s', 0):.1f} / "
+                 f"{t.get('refinement_s', 0):.1f} / {t.get('truncation_s', 0):.1f} | "
+                 f"{t.get('reused_elastic_cycles', 0)} | {per} | {w[0]}×{w[1]} | "
+                 f"{t['n_not_converged']} | {t['device']} |")  # fmt: skip
+    L.append("")
+    if c["levels"]:
+        L.append("Per refinement level (cells solved there: those whose final pixel is that fine or finer; "
+                 "seconds **apportioned**: `warptrunc.indent` records the refinement's seconds per punch, "
+                 "split here by cells × window pixels at each level):\n")  # fmt: skip
+        L += ["| level | cells solved | largest window (px) | seconds (apportioned) |", "|---|---|---|---|"]
+        for f, v in c["levels"].items():
+            side = round(math.sqrt(v["window_px"]))
+            L.append(f"| ×{f} | {v['cells']} | ≈{side}² | {v['seconds']:.1f} |")
+        L.append("")
+    L.append(f"Largest refinement reached: ×{c['largest_refinement']}. "
+             + "; ".join(f"{DESIGN_WORDS[d]}: {v:.1f} s" for d, v in c["per_design"].items())
+             + f"; total over the pieces {c['pieces_s']:.1f} s."
+             + ("" if seconds is None else f" The stage took {seconds:.1f} s in its last run.") + "\n")  # fmt: skip
+    return L
+
+
+def face_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
+    """The punch-face runs: whether a tilted or rough face explains the divergence of Ps.
+
+    Parameters
+    ----------
+    stage : dict
+        The stage result.
+    ana : dict
+        Its analysis.
+
+    Returns
+    -------
+    list of str
+        Markdown lines: the rule, the table and one sentence per face.
+    """
+    head = ("**Ps with a tilted or rough punch face** (§ 4.2: \"the misalignment of the indenter with "
+            "tested surfaces and roughness features that may be present on the flat diamond tip (measured "
+            "to have an RMS roughness of around 0.05 µm)\" among the likely causes of Ps's divergence for "
+            "interferences beyond 15 % R_t′). ")  # fmt: skip
+    if not ana.get("faces"):
+        return [head + "Not run: the profile names no punch face (`indentation_face_surface`, "
+                "`indentation_face_tilts_deg`, `indentation_face_roughness`).\n"]
+    f0 = ana["faces"][0]
+    lo, hi = f0["paper_range"]
+    band = f"±{100 * ana['good_band']:.0f} %"
+    L = [head + f"The sweep's indents of {f0['surface']} again, at {model_label(stage, f0['model'])}, with each "
+         "face (`warptrunc.indent`'s `punch_tilt_deg`, held fixed as the indenter's shaft holds it; "
+         "`punch_roughness`, a self-affine face of Hurst exponent 0.8 from 2 map pixels, or the finest its "
+         "punch's face grid holds, to the punch diameter), against the aligned smooth flat of the sweep; "
+         "truncation stays the sample's. A face **explains** the divergence when, with it, truncation "
+         f"leaves the {band} band of the model between the last cell inside and the first outside a "
+         f"bracket that meets the paper's {lo:g}–{hi:g} % R_t′, while with the aligned flat it stays "
+         "within the band beyond that range (the agreement walk above; ω in % of the map's R_t′).\n",
+         f"| face | within {band} up to (% R_t′) | leaves at (% R_t′) | cells in / walked | "
+         "K / K of the aligned flat, median [range] | verdict |",
+         "|---|---|---|---|---|---|"]  # fmt: skip
+    ref = f0["aligned"]
+    if ref is not None:
+        L.append(f"| aligned smooth flat (the sweep) | {fmt_value(ref['depth'], '.3g')} | "
+                 f"{'never' if ref['leaves_at'] is None else format(ref['leaves_at'], '.3g')} | "
+                 f"{ref['n_in']} / {ref['n_cells']} | 1 | reference |")  # fmt: skip
+    for f in ana["faces"]:
+        kr = f["K_over_aligned_range"]
+        ktxt = "—" if kr is None else f"{f['K_over_aligned_median']:.3g} [{kr[0]:.3g}–{kr[1]:.3g}]"
+        L.append(f"| {f['label']} | {fmt_value(f['depth'], '.3g')} | "
+                 f"{'never' if f['leaves_at'] is None else format(f['leaves_at'], '.3g')} | "
+                 f"{f['n_in']} / {f['n_cells']} | {ktxt} | {VERDICTS[f['verdict']].split(':')[0]} |")  # fmt: skip
+    L.append("")
+    for f in ana["faces"]:
+        L.append(f"{f['surface']}, {f['label']}: {VERDICTS[f['verdict']]}.\n")
+    return L
