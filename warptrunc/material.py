@@ -27,9 +27,15 @@ J. Mater. Res. 7, 1564 (1992), doi:10.1557/JMR.1992.1564)."""
 class Material(Parameters):
     """Elastic constants of the rough body and its counter-body, and the rough body's hardness.
 
-    ``Material()`` is the paper's aluminium alloy (E = 70 GPa, ν = 0.33) against a rigid flat
-    (E_i = inf), purely elastic (``hardness = inf``); :meth:`against_diamond` gives the
-    diamond counter-body of the paper's indentation tests.
+    ``Material()`` is an aluminium alloy as warptrunc assumes it (E = 70 GPa, ν = 0.33) against
+    a rigid flat (E_i = inf), purely elastic (``hardness = inf``); :meth:`against_diamond` gives
+    the diamond counter-body of the paper's indentation tests. These defaults are assumptions,
+    not the paper's: the paper tests "aluminium alloy" discs (§ 3) and states none of E, ν,
+    E_i, ν_i or H. E and ν are typical handbook values of wrought aluminium alloys (about
+    69–72 GPa and 0.33; e.g. ASM Handbook Vol. 2, order-of-magnitude ranges); the hardness of
+    such alloys spans about 0.2–1.7 GPa by handbook Vickers values (HV 20–30 for annealed pure
+    aluminium to HV 150–175 for 7075-T6, H ≈ 0.0098·HV GPa), more at shallow nanoindentation
+    depths and after work hardening (``docs/guide/indentation.md``, *Material*).
 
     Raises
     ------
