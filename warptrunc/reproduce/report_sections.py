@@ -79,11 +79,14 @@ def _indentation_design(p: dict[str, Any]) -> dict[str, str]:
     issue 38 item 7 have one design: placements on one realisation, H as multiples of 1 GPa)."""
     seeds = p.get("indentation_seeds") or [0]
     stats = p.get("indentation_stats") or []
-    text = (f"sweep: 1 realisation × {p['indentation_placements']} random placement(s), seed "
-            f"{p['indentation_seed']}")  # fmt: skip
+    text = (f"sweep: 1 realisation × {p['indentation_placements']} random placement(s) per punch "
+            f"(seed {p['indentation_seed']})")  # fmt: skip
     if stats:
-        text += (f"; {' and '.join(stats)}: {len(seeds)} realisation(s) × "
-                 f"{p.get('indentation_stats_placements', p['indentation_placements'])}")
+        names = {"elastic": "H = ∞", "depth-match": "the depth-matched H"}
+        text += (f"; statistics ({', '.join(names.get(m, m) for m in stats)}): {len(seeds)} "
+                 f"realisation(s) × {p.get('indentation_stats_placements')} per punch")
+    if p.get("indentation_face_surface"):
+        text += f"; punch faces on {p['indentation_face_surface']}: the sweep's indents"
     hs = p.get("indentation_hardness")
     if hs is None:  # H factors × 1 GPa
         hs = [f * 1e9 if f is not None and math.isfinite(f) else math.inf
