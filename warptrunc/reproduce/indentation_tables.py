@@ -128,9 +128,12 @@ def hardness_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
         deep = [x for x in v["depth_m"] if x is not None]
         if rg["low"] is None and deep:
             side = "shallower" if max(deep) < lo else "deeper"
+            need = (f"it would take H above {hs[-1] / 1e9:g} GPa" if side == "deeper" else
+                    f"a softer H than {hs[0] / 1e9:g} GPa would be needed, if any reaches it")  # fmt: skip
             words.append(f"{s}: every H of the sweep gives a depth {side} than {_um(lo, 'g')}–{_um(hi, 'g')} µm "
                          f"({_um(min(deep))}–{_um(max(deep))} µm); no H in "
-                         f"{hs[0] / 1e9:g}–{hs[-1] / 1e9:g} GPa reproduces the paper's depth on this surface.")  # fmt: skip
+                         f"{hs[0] / 1e9:g}–{hs[-1] / 1e9:g} GPa reproduces the paper's depth on this surface "
+                         f"({need}).")  # fmt: skip
         elif rg["low"] is not None:
             words.append(f"{s}: depths of {_um(lo, 'g')}–{_um(hi, 'g')} µm at {at:g} mN need H = {span}.")
     L.append("")
