@@ -270,7 +270,9 @@ def indent(
     -----
     Each punch is solved on its bounding window of the map (:mod:`warptrunc.indent.punch`),
     on a free half-space. The approach δ is measured from first touch at the highest pixel
-    inside the disk; so is the truncation depth ω. Cycles run load → peak → partial unload →
+    inside the disk (of the composite, sample plus punch face, when the face is tilted or
+    rough); the truncation depth ω from the sample's highest pixel (truncation reads the
+    sample alone). Cycles run load → peak → partial unload →
     next peak on one solver; since unloading and reloading below the previous peak are elastic,
     each peak's state is that of monotonic loading to it.
 

@@ -159,7 +159,8 @@ class IndentationResult:
     protocol: IndentProtocol
     """The protocol that was run."""
     settings: dict[str, Any] = field(default_factory=dict)
-    """Surface, solver settings, device and the pixel counts of each punch (JSON-able)."""
+    """Surface, solver settings, device, the pixel counts of each punch and its punch face
+    (``punch_face``: tilt and roughness per diameter, None for aligned smooth flats) (JSON-able)."""
 
     # --- derived columns -------------------------------------------------------------------
 
