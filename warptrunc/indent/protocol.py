@@ -59,17 +59,22 @@ PAPER_PEAK_LOADS = tuple(0.5 / 2**k for k in range(9, -1, -1))
 """The paper's ten peak loads (N): each twice the previous, the last 500 mN (§ 4.1)."""
 
 ALUMINIUM_HARDNESS = 1.0e9
-"""Hardness H of a treated (precipitation-hardened) aluminium alloy (Pa), the local pressure cap.
+"""Hardness H assumed for a treated (precipitation-hardened) aluminium alloy (Pa), the local
+pressure cap: an assumption, not the paper's (it names neither its alloy nor a hardness).
 
-6061-T6: Vickers hardness 107 HV = 1.05 GPa (ASM Handbook Vol. 2, *Properties and Selection:
-Nonferrous Alloys and Special-Purpose Materials*, ASM International, 1990,
-doi:10.31399/asm.hb.v02.9781627081627); Tabor's H ≈ 3σ_y with σ_y = 276 MPa gives 0.83 GPa
-(D. Tabor, *The Hardness of Metals*, Oxford, 1951). The paper does not name its alloy; 1.0 GPa is
-a round value between the two."""
+6061-T6: Vickers hardness about 107 HV ≈ 1.05 GPa (handbook value, e.g. ASM Handbook Vol. 2,
+*Properties and Selection: Nonferrous Alloys and Special-Purpose Materials*); Tabor's
+H ≈ 3σ_y with σ_y = 276 MPa gives 0.83 GPa (D. Tabor, *The Hardness of Metals*, Oxford, 1951).
+1.0 GPa is a round value between the two; ``reproduce`` sweeps H instead of assuming it
+(``docs/guide/indentation.md``)."""
 
 
 def default_material(**kw: Any) -> Material:
-    """The paper's aluminium alloy against its diamond punches, with a hardness.
+    """An aluminium alloy as warptrunc assumes it, against diamond punches, with a hardness.
+
+    The paper indents aluminium-alloy discs with diamond flat punches (§ 4.1) but states none
+    of E, ν, E_i, ν_i or H: these values are assumptions with the sources given in
+    :class:`~warptrunc.material.Material` and :data:`ALUMINIUM_HARDNESS`.
 
     Parameters
     ----------
