@@ -164,6 +164,28 @@ def test_saturated_cells_are_never_in_fit():
     assert all(not f["made"] for f in r.fit_summary().values())
 
 
+def test_cells_at_the_complete_contact_plateau_are_saturated():
+    """A cell whose K is within resolution_tol of Sneddon's complete-contact stiffness 2E*a of
+    the face is saturated (and out of the fits) even with a few face pixels free: a shallow
+    dome under a flat punch approaches the plateau as the load rises."""
+    n, dx, d = 64, 2e-6, 100e-6
+    y, x = (np.mgrid[0:n, 0:n] - (n - 1) / 2) * dx
+    dome = -(x**2 + y**2) / (2 * 0.5)  # R = 0.5 m: a rim 1.25 nm below the top at r = 50 µm
+    mat = Material.against_diamond()
+    r = indent(dome, pixel_size=dx, punch_diameter=(d,), peak_loads=(1e-4, 2e-2, 2.4e-2, 1.0),
+               placements=None, material=mat, device="cpu", min_contact_pixels=1)  # fmt: skip
+    c = r.to_dict()
+    k = c["unloading_stiffness_N_per_m"]
+    plateau = mat.contact_modulus * d  # 2E*·a
+    expected = (c["n_contact_pixels"] >= c["n_punch_pixels"]) | (k >= 0.98 * plateau)
+    np.testing.assert_array_equal(c["saturated"], expected)
+    assert not c["saturated"][0] and k[0] < 0.9 * plateau  # the first touch: far below it
+    # 24 mN: 1968 of 1976 face pixels touch, K = 0.996·2E*a: saturated by the plateau rule
+    by_plateau = c["saturated"] & (c["n_contact_pixels"] < c["n_punch_pixels"])
+    assert by_plateau[2] and not c["saturated"][1], (c["n_contact_pixels"], k / plateau)
+    assert not (c["in_fit"] & c["saturated"]).any()
+
+
 # --- item 2: fits over the cells in_fit, with intervals over indents ----------------------------
 
 

@@ -78,7 +78,11 @@ def solve_placement(
     m, f = loads.size, protocol.unload_fraction
     hardness = material.hardness
     two = elastic and math.isfinite(hardness)
+    # the complete-contact plateau of the face, 2E*·a = E*·d (Sneddon): K within the tolerance
+    # of it is saturated
+    plateau = None if w.diameter is None else material.contact_modulus * w.diameter
     rule = {"resolution_tol": protocol.resolution_tol, "refine_max": protocol.refine_max,
+            "plateau": plateau,
             "min_contact_pixels": protocol.min_contact_pixels}  # fmt: skip
     windows: dict[int, PunchWindow] = {1: w}
     el_cache: dict[int, dict[int, dict[str, Any]]] = {}  # factor → load index → elastic cycle

@@ -19,7 +19,9 @@ the contact holds at least ``min_contact_pixels`` pixels at p/2. Refinement stop
 window's solver (then the cells keep their last pixel). No cell is given up early: the
 contact area of a coarse grid says little about the finer one (an elastic contact on one
 coarse pixel spreads over many finer ones). A cell is **saturated** when every pixel
-of the punch face touches (complete contact). Only the cells that need it are solved again:
+of the punch face touches (complete contact) or when its K is already within
+``resolution_tol`` of the complete-contact plateau 2E*·a of the face (Sneddon's flat punch,
+``plateau``): such a cell measures the punch, not the roughness, whatever the last pixels do. Only the cells that need it are solved again:
 the loads of one punch that are not resolved, loaded straight to each peak (the state at a
 peak is that of monotonic loading to it, :mod:`warptrunc.indent.protocol`), the first solve
 starting where the coarser grid put the rigid plane.
@@ -197,6 +199,7 @@ def refine_cells(
     min_contact_pixels: int,
     refine_max: int,
     windows: dict[int, PunchWindow] | None = None,
+    plateau: float | None = None,
 ) -> CellRefinement:
     """Halve the pixel of the cells of one punch placement until they are resolved.
 
@@ -223,6 +226,9 @@ def refine_cells(
     windows : dict of int to PunchWindow, optional
         Windows already generated for this punch placement (factor → window), shared between
         contact models; filled here.
+    plateau : float, optional
+        Complete-contact stiffness 2E*·a of the punch face (N/m): cells with
+        K ≥ (1 − ``resolution_tol``)·plateau are saturated too. None: complete contact only.
 
     Returns
     -------
@@ -283,5 +289,8 @@ def refine_cells(
         resolved = np.asarray(cur["converged"], bool) & (n_contact >= min_contact_pixels)
     dx, _dy = window.pixel_size
     saturated = n_contact >= n_disk
+    if plateau is not None and math.isfinite(plateau) and plateau > 0:
+        k = np.asarray(cur["unloading_stiffness"], np.float64)
+        saturated |= np.isfinite(k) & (k >= (1.0 - resolution_tol) * plateau)
     return CellRefinement(cur, factor, dx / factor.astype(np.float64), n_disk, change,
                           area_change, resolved, saturated, note.astype(str), wins)  # fmt: skip
