@@ -277,7 +277,8 @@ def test_equals_contactmechanics_plastic_system(device, algorithm):
     assert math.isclose(k, k_cm, rel_tol=0.02)
 
 
-@pytest.mark.parametrize("algorithm", ["pk", "bccg"])
+# PK (not the default algorithm) takes 11–13 s per precision here: in the slow set
+@pytest.mark.parametrize("algorithm", [pytest.param("pk", marks=pytest.mark.slow), "bccg"])
 @pytest.mark.parametrize("dtype", ["float64", "float32"])
 def test_load_control_under_complete_contact_converges(device, dtype, algorithm):
     """A gently tilted plane (8 nm across 32 pixels of 1 µm) under loads that bring every pixel

@@ -70,6 +70,7 @@ def every_command(tmp_path_factory):
     return root
 
 
+@pytest.mark.slow  # runs every command once (about 20 s on 2 cores)
 def test_every_json_written_by_every_command_is_strict(every_command):
     files = sorted(every_command.rglob("*.json"))
     names = {p.relative_to(every_command).parts[0] for p in files}
