@@ -15,7 +15,7 @@ gap is the punch's rigid plane minus the sum of both surfaces' heights.
   contact set, as for an aligned punch. The projection of the disk (its cos θ shortening,
   1.5·10⁻⁶ at 0.1°) is neglected. Analytic: the same plane at any pixel.
 * **A generated rough face** (``punch_roughness`` R_q > 0): a self-affine, Fourier-filtered
-  Gaussian field, C(q) ∝ q^(−2−2H) for 2π/λ_L ≤ |q| ≤ 2π/λ_s and 0 outside, on a periodic
+  Gaussian field, C(q) ∝ q^(−2−2H) for 2π/λ_L ≤ abs(q) ≤ 2π/λ_s and 0 outside, on a periodic
   square of side P = 2·max(d, λ_L) centred on the punch; white noise from
   ``numpy.random.default_rng(seed)`` on the host (the same face on every device), filtered by
   its FFT. The face is the field's trigonometric interpolant (band-limited: no content beyond
@@ -89,7 +89,7 @@ def self_affine_field(n: int, period: float, hurst: float, cutoff_short: float,
     field : (N, N) ndarray of float64
         The field (arbitrary scale, zero mean).
     spectrum : (N, N) ndarray of complex128
-        Its FFT (``numpy.fft.fft2`` of the field), zero outside q_L ≤ |q| ≤ q_s.
+        Its FFT (``numpy.fft.fft2`` of the field), zero outside q_L ≤ abs(q) ≤ q_s.
     """
     noise = np.random.default_rng(seed).standard_normal((n, n))
     k = np.fft.fftfreq(n, d=period / n) * 2 * math.pi  # rad/m

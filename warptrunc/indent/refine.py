@@ -169,9 +169,9 @@ class CellRefinement:
     n_disk_pixels: np.ndarray
     """(m,) int64: pixels of the punch face at the final pixel."""
     change: np.ndarray
-    """(m,) float64: |K(p)/K(2p) − 1| at the last halving; NaN if never halved."""
+    """(m,) float64: abs(K(p)/K(2p) − 1) at the last halving; NaN if never halved."""
     area_change: np.ndarray
-    """(m,) float64: |A(p)/A(2p) − 1| at the last halving; NaN if never halved."""
+    """(m,) float64: abs(A(p)/A(2p) − 1) at the last halving; NaN if never halved."""
     resolved: np.ndarray
     """(m,) bool: the rule of the module is met at the final pixel; on a map that is not
     refined (a read map, an aliased WM map, ``refine_max = 1``) the contact-pixel rule alone:

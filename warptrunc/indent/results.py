@@ -111,10 +111,10 @@ class IndentationResult:
     """(m,) float64 pixel side dx the cell was finally solved at (m): the map's, or a WM map's
     divided by 2, 4, … (:mod:`warptrunc.indent.refine`)."""
     resolution_change: np.ndarray
-    """(m,) float64 |K(p)/K(2p) − 1| of Barber's stiffness at the last halving of the pixel;
+    """(m,) float64 abs(K(p)/K(2p) − 1) of Barber's stiffness at the last halving of the pixel;
     NaN if the cell was not refined."""
     area_change: np.ndarray
-    """(m,) float64 |A(p)/A(2p) − 1| of the contact area at the last halving; NaN if not
+    """(m,) float64 abs(A(p)/A(2p) − 1) of the contact area at the last halving; NaN if not
     refined."""
     resolved: np.ndarray
     """(m,) bool: K and A changed by less than ``protocol.resolution_tol`` at the last halving,
