@@ -12,11 +12,25 @@ projected centre) and a label that would overlap one already placed is left out.
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from .scene import font_file
+
+def font_file() -> str | None:
+    """DejaVu Sans from matplotlib: VTK's built-in fonts lack ω and µ.
+
+    Returns
+    -------
+    str or None
+        The font file's path, or None when matplotlib does not ship it.
+    """
+    import matplotlib
+
+    p = os.path.join(matplotlib.get_data_path(), "fonts", "ttf", "DejaVuSans.ttf")
+    return p if os.path.exists(p) else None
+
 
 __all__ = ["draw", "layout"]
 
@@ -185,8 +199,9 @@ def layout(pl, scene, size, *, top_view: bool, scale: float) -> Overlay:
     ys = np.arange(0.0, ly * (1 + 1e-9), nice_step(ly))
     _edge(ov, pl, h, centre, [0, 0, z0], [lx, 0, z0], xs, "x (µm)", scale, size_px)
     yx = 0.0 if top_view else lx  # the y axis on the left (top view) or the right (oblique)
-    _edge(ov, pl, h, centre, [yx, 0, z0], [yx, ly, z0], ys, "y (µm)", scale, size_px,
-          skip_first=True)  # y = 0 is a corner of the x axis too
+    _edge(
+        ov, pl, h, centre, [yx, 0, z0], [yx, ly, z0], ys, "y (µm)", scale, size_px, skip_first=True
+    )  # y = 0 is a corner of the x axis too
     if top_view:
         right = _display(pl, np.array([[lx, 0, 0], [lx, ly, 0]]), h)
         x0 = right[:, 0].max() + 0.25 * (w - right[:, 0].max())

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ..surface import Surface
-from .scene import font_file
+from .axes import font_file
 
 
 def tile(images: list[np.ndarray], nrows: int, ncols: int, size) -> np.ndarray:

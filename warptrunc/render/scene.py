@@ -6,7 +6,6 @@ with its camera, the down-sampling factor and the vertical exaggeration."""
 from __future__ import annotations
 
 import math
-import os
 from contextlib import contextmanager
 
 import numpy as np
@@ -15,6 +14,7 @@ from .._support.device import is_verbose
 from ..plot import CONTACT_RGB
 from ..plot.pooling import pool_blocks
 from ..surface import Surface
+from .axes import font_file
 
 _NEUTRAL = (95, 225)  # grey levels of the lowest and the highest non-contact cells
 
@@ -159,15 +159,6 @@ class Scene:
         c = self.neutral.astype(np.float32)
         c += w * (self.red.astype(np.float32) - c)
         return np.rint(c).astype(np.uint8)
-
-
-def font_file() -> str | None:
-    """DejaVu Sans from matplotlib: VTK's built-in fonts lack ω and µ."""
-
-    import matplotlib
-
-    p = os.path.join(matplotlib.get_data_path(), "fonts", "ttf", "DejaVuSans.ttf")
-    return p if os.path.exists(p) else None
 
 
 def _text(pl, text: str, position, font_size: int, color: str = "black", name=None):
