@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from .._support.docs import fill_doc
 from .paper import TABLE2
 from .report_sections import fmt_value
 
@@ -38,6 +39,13 @@ VERDICTS = {
 }
 """The plain words of each verdict of :func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`'s ``faces``."""
 
+
+TABLE_DOCS = {
+    "{stage_ana}": "Parameters\n----------\nstage : dict\n    The stage result.\nana : dict\n"
+                   "    Its analysis.",
+}
+"""The parameters every table of the stage's report takes, written once
+(:func:`~warptrunc._support.docs.fill_doc`)."""
 
 def model_label(stage: dict[str, Any], model: str) -> str:
     """Readable name of a model key of the stage.
@@ -78,15 +86,11 @@ def _design(stage: dict[str, Any], design: str) -> str:
     return f"{DESIGN_WORDS[design]} ({n}×{d['placements']})"
 
 
+@fill_doc(TABLE_DOCS)
 def hardness_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     """The depth at the largest load per H against the paper's ≈ 5 µm, and the H it allows.
 
-    Parameters
-    ----------
-    stage : dict
-        The stage result.
-    ana : dict
-        Its analysis.
+    {stage_ana}
 
     Returns
     -------
@@ -157,15 +161,11 @@ def _ci(f: dict[str, Any], key: str, fmt: str) -> str:
     return f"{format(f[key], fmt)} [{format(lo, fmt)}, {format(hi, fmt)}]"
 
 
+@fill_doc(TABLE_DOCS)
 def fit_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     """α, β with 95 % intervals per surface × design × model.
 
-    Parameters
-    ----------
-    stage : dict
-        The stage result.
-    ana : dict
-        Its analysis.
+    {stage_ana}
 
     Returns
     -------
@@ -193,15 +193,11 @@ def fit_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     return L
 
 
+@fill_doc(TABLE_DOCS)
 def agreement_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     """How deep truncation stays within the band of each model, beside the paper's ranges.
 
-    Parameters
-    ----------
-    stage : dict
-        The stage result.
-    ana : dict
-        Its analysis.
+    {stage_ana}
 
     Returns
     -------
@@ -236,16 +232,12 @@ def agreement_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     return L
 
 
+@fill_doc(TABLE_DOCS)
 def resolution_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     """Per surface × load, for each design and model: cells resolved, median contact pixels,
     largest refinement.
 
-    Parameters
-    ----------
-    stage : dict
-        The stage result.
-    ana : dict
-        Its analysis.
+    {stage_ana}
 
     Returns
     -------
@@ -283,15 +275,11 @@ def resolution_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     return L
 
 
+@fill_doc(TABLE_DOCS)
 def cost_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float | None) -> list[str]:
     """Seconds per piece and per refinement level, the largest refinement reached.
 
-    Parameters
-    ----------
-    stage : dict
-        The stage result.
-    ana : dict
-        Its analysis.
+    {stage_ana}
     seconds : float or None
         Compute time of the stage's last run (s), if known.
 
@@ -334,15 +322,11 @@ def cost_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float | None
     return L
 
 
+@fill_doc(TABLE_DOCS)
 def face_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     """The punch-face runs: whether a tilted or rough face explains the divergence of Ps.
 
-    Parameters
-    ----------
-    stage : dict
-        The stage result.
-    ana : dict
-        Its analysis.
+    {stage_ana}
 
     Returns
     -------
