@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 import pytest
+from cli_helpers import assert_refused_in_one_line
 
 import warptrunc
 from warptrunc.cli import main
@@ -385,12 +386,4 @@ def test_cli_face_options_reach_the_json(tmp_path, capsys):
     ],
 )  # fmt: skip
 def test_cli_bad_face_input_exits_2_with_the_option_named(tmp_path, capsys, extra, needles):
-    out = tmp_path / "ind"
-    with pytest.raises(SystemExit) as e:
-        raise SystemExit(main([*CLI, *extra, "--out", str(out)]))
-    assert e.value.code == 2
-    err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1, err
-    for n in needles:
-        assert n in err, (n, err)
-    assert not out.exists()
+    assert_refused_in_one_line([*CLI, *extra], tmp_path / "ind", capsys, needles)
