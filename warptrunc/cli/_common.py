@@ -147,6 +147,18 @@ def integer(lo: int, hi: int | None = None):
     return parse
 
 
+def workers_count(text: str) -> int | str:
+    """A ``type=`` for ``--workers``: an integer in [1, 4096], or ``auto`` (kept as "auto")."""
+    if text.strip().lower() == "auto":
+        return "auto"
+    try:
+        return integer(1, 4096)(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(
+            f"must be an integer in [1, 4096] or 'auto', got {show(text)}"
+        ) from None
+
+
 def odd_integer(lo: int = 1):
     """A ``type=`` for an odd integer ≥ ``lo``."""
     base = integer(lo)

@@ -2,7 +2,12 @@
 # SPDX-License-Identifier: MIT
 """The Dask engine: cases on a LocalCluster (one worker per GPU) or on an existing cluster.
 
-Imported only when ``workers`` or ``scheduler`` is given (dask.distributed loads then). Cases
+Imported only when ``workers`` or ``scheduler`` is given (dask.distributed loads then).
+:func:`open_client` opens the cluster once per command (``run_sweep`` and ``reproduce`` use
+it): ``workers="auto"`` is one worker per visible CUDA device (1 on a machine without one);
+dask-cuda's ``LocalCUDACluster`` is used when it is installed and every worker gets a GPU of
+its own, else a ``LocalCluster`` whose workers :class:`PinDevice` pins; either way every worker
+uses the kernel cache directory of this process, so a kernel compiled once is loaded by all. Cases
 go out in shards (one task per shard, sized adaptively to about 1 s of work), so the task
 overhead is amortised when a case takes milliseconds. Each worker writes its shard as one
 part of the store (:func:`~warptrunc.sweep.engines.compute_shard`) and sends back only the
@@ -18,18 +23,31 @@ import os
 import statistics
 import sys
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 from distributed import WorkerPlugin
 
 from .._support.device import cuda_device_count
 from .._support.progress import progress_bar
+from .._support.validate import check_int
 from .curves import part_name, part_rows
 from .engines import compute_shard, failed_case, pinned_device
 from .grid import Case
 from .options import SweepOptions
 
-__all__ = ["PinDevice", "run_dask", "shard_size_for"]
+__all__ = [
+    "PinDevice",
+    "kernel_cache_base",
+    "open_client",
+    "resolve_workers",
+    "run_dask",
+    "shard_size_for",
+]
+
+#: Set to ``0`` to use a LocalCluster with :class:`PinDevice` even where dask-cuda is installed.
+DASK_CUDA_ENV = "WARPTRUNC_DASK_CUDA"
 
 
 class PinDevice(WorkerPlugin):
@@ -104,6 +122,161 @@ def shard_size_for(
     return max(1, min(size, -(-remaining // (2 * max(n_workers, 1)))))
 
 
+def resolve_workers(workers: int | str | None) -> int | None:
+    """The worker count of a local cluster: ``"auto"`` is one per visible CUDA device.
+
+    Parameters
+    ----------
+    workers : int, str or None
+        A count ≥ 1 (an int or its decimal text), ``"auto"``, or None (Dask chooses).
+
+    Returns
+    -------
+    int or None
+        The count; ``"auto"`` gives the number of CUDA devices Warp sees (those that
+        ``CUDA_VISIBLE_DEVICES`` leaves visible), or 1 on a machine without one.
+
+    Raises
+    ------
+    ValueError
+        ``workers`` is neither a count ≥ 1, ``"auto"`` nor None.
+    """
+    if workers is None:
+        return None
+    if isinstance(workers, str):
+        text = workers.strip().lower()
+        if text == "auto":
+            return max(1, cuda_device_count())
+        if not text.isdigit():
+            raise ValueError(f"workers must be an integer ≥ 1 or 'auto', got {workers!r}")
+        workers = int(text)
+    return check_int("workers", workers, 1)
+
+
+def kernel_cache_base() -> str:
+    """The folder to give every worker as ``WARP_CACHE_PATH``: that of this process.
+
+    Warp appends its version to ``WARP_CACHE_PATH`` (or to ``wp.config.kernel_cache_dir`` set
+    before it initialises), so the folder returned is the resolved cache directory of this
+    process without that last component: a worker given it resolves the same directory and
+    loads the kernels any process compiled there, instead of compiling them again.
+
+    Returns
+    -------
+    str
+        Absolute path of the cache's base folder (Warp is initialised here if it was not).
+    """
+    import warp as wp
+
+    cuda_device_count()  # initialises Warp (quietly), which resolves the cache directory
+    resolved = os.path.realpath(str(wp.config.kernel_cache_dir))
+    head, tail = os.path.split(resolved)
+    return head if tail == wp.config.version else resolved
+
+
+def _dask_cuda_cluster():
+    """dask-cuda's LocalCUDACluster class, or None (not installed, or turned off)."""
+    if os.environ.get(DASK_CUDA_ENV, "").strip().lower() in ("0", "false", "no", "off"):
+        return None
+    try:
+        from dask_cuda import LocalCUDACluster
+    except Exception:  # not installed, or broken (no matching CUDA libraries)
+        return None
+    return LocalCUDACluster
+
+
+@contextmanager
+def open_client(
+    workers: int | str | None = None,
+    scheduler: Any = None,
+    device: Any = None,
+    progress: bool = True,
+) -> Iterator[tuple[Any, Any, bool]]:
+    """A Dask client for a command: a local cluster started once, or an existing cluster.
+
+    Parameters
+    ----------
+    workers : int or "auto", optional
+        Worker processes of a local cluster (one thread each); ``"auto"``: one per visible
+        CUDA device, 1 on a machine without one (:func:`resolve_workers`); None lets Dask
+        choose. Ignored with ``scheduler``.
+    scheduler : str or distributed.Client, optional
+        Address of an existing scheduler (``"tcp://host:8786"``, a dask-jobqueue cluster's
+        ``scheduler_address``), or a client, used as it is; None starts a local cluster.
+    device : str, optional
+        Warp device the caller passes to every task. None (and ``$WARPTRUNC_DEVICE`` unset):
+        the workers of a local cluster are pinned one per CUDA device.
+    progress : bool
+        Print the dashboard's address (stderr) when a local cluster starts.
+
+    Yields
+    ------
+    client : distributed.Client
+        The client to submit to.
+    cluster : distributed.LocalCluster or None
+        The local cluster started here (a ``dask_cuda.LocalCUDACluster`` where used), or None
+        with ``scheduler``.
+    own : bool
+        True when the client was opened here; it (and the cluster) is closed on exit. A
+        client passed as ``scheduler`` is left open (False).
+
+    Notes
+    -----
+    With CUDA devices, no ``device`` and dask-cuda installed, at most one worker per device
+    runs on a ``LocalCUDACluster`` (``CUDA_VISIBLE_DEVICES`` per worker, its device is its
+    ``cuda:0``); set ``WARPTRUNC_DASK_CUDA=0`` to use the LocalCluster instead. Otherwise a
+    ``LocalCluster`` whose worker i runs on ``cuda:{i mod n_gpus}`` (:class:`PinDevice`).
+    The workers of a local cluster get this process's ``WARP_CACHE_PATH``
+    (:func:`kernel_cache_base`), so they share one kernel cache on disk. Workers of an
+    existing cluster are not pinned: start one per GPU with its ``CUDA_VISIBLE_DEVICES``
+    (``dask-cuda-worker`` does) or ``WARPTRUNC_DEVICE``.
+    """
+    import dask
+    from distributed import Client, LocalCluster
+
+    if workers is not None and scheduler is not None:
+        raise ValueError("give workers (a local cluster) or scheduler (an existing one), not both")
+    if isinstance(scheduler, Client):
+        yield scheduler, None, False
+        return
+    cluster = None
+    if scheduler is not None:
+        client = Client(scheduler)
+    else:
+        n = resolve_workers(workers)
+        pin = device is None and not os.environ.get("WARPTRUNC_DEVICE")
+        n_gpus = cuda_device_count() if pin else 0
+        cuda_cls = _dask_cuda_cluster() if n_gpus > 0 and (n or n_gpus) <= n_gpus else None
+        environ = {**dask.config.get("distributed.nanny.environ", {}),
+                   "WARP_CACHE_PATH": kernel_cache_base()}  # fmt: skip
+        common = dict(threads_per_worker=1, dashboard_address=":0",
+                      silence_logs=logging.ERROR)  # fmt: skip
+        with dask.config.set({"distributed.nanny.environ": environ}):
+            if cuda_cls is not None:
+                cluster = cuda_cls(n_workers=n or n_gpus, **common)
+            else:
+                cluster = LocalCluster(n_workers=n, processes=True, **common)
+        try:
+            client = Client(cluster)
+            if pin:  # a LocalCUDACluster's worker sees its own device first: cuda:0
+                client.register_plugin(PinDevice(n_devices=1 if cuda_cls else None))
+        except BaseException:
+            cluster.close()
+            raise
+        if progress:
+            kind = type(cluster).__name__
+            print(f"Dask {kind} of {len(cluster.workers)} workers, dashboard: "
+                  f"{client.dashboard_link}", file=sys.stderr)  # fmt: skip
+    try:
+        yield client, cluster, True
+    finally:
+        try:
+            client.close()
+        finally:
+            if cluster is not None:
+                cluster.close()
+
+
 def run_dask(
     cases: list[Case], options: SweepOptions, store, *, workers: int | None = None,
     scheduler: Any = None, device=None, total: int, progress: bool = True,
@@ -119,11 +292,11 @@ def run_dask(
         Options shared by all cases.
     store : warptrunc.sweep.store.Store
         Records the parts (:meth:`~warptrunc.sweep.store.Store.record_part`).
-    workers : int, optional
-        Worker processes of the LocalCluster (count); None lets Dask choose. Ignored with
-        ``scheduler``.
+    workers : int or "auto", optional
+        Worker processes of the local cluster (count; ``"auto"``: one per visible CUDA
+        device, 1 without one); None lets Dask choose. Ignored with ``scheduler``.
     scheduler : str or distributed.Client, optional
-        Address of, or a client of, an existing cluster; None starts a LocalCluster.
+        Address of, or a client of, an existing cluster; None starts a local cluster.
     device : str, optional
         Warp device passed to every task; None lets each worker choose (pinned by
         :class:`PinDevice` on a LocalCluster unless ``WARPTRUNC_DEVICE`` is set).
@@ -141,11 +314,11 @@ def run_dask(
 
     Notes
     -----
-    ``scheduler`` (an address or a ``distributed.Client``) uses an existing cluster; else a
-    LocalCluster of ``workers`` processes with one thread each, one per CUDA device when
-    ``device`` is None and CUDA devices exist (:class:`PinDevice`; with more workers than
-    devices they share them). A client this function opens, and its LocalCluster, are closed
-    at the end; a client passed in is left open.
+    The client comes from :func:`open_client`: ``scheduler`` (an address or a
+    ``distributed.Client``) uses an existing cluster; else a local cluster of ``workers``
+    processes with one thread each, one per CUDA device when ``device`` is None and CUDA
+    devices exist (with more workers than devices they share them). A client this function
+    opens, and its cluster, are closed at the end; a client passed in is left open.
 
     Cases go to the workers in shards (one task each, :func:`compute_shard`): ``shard_size``
     cases, or an adaptive size (:func:`shard_size_for`: about ``shard_seconds`` of work per
@@ -158,25 +331,18 @@ def run_dask(
     ``max_retries`` times per case, then recorded as failed.
     """
 
-    from distributed import Client, LocalCluster, as_completed
+    with open_client(workers, scheduler, device, progress) as (client, _, _):
+        _run_on(client, cases, options, store, device=device, total=total, progress=progress,
+                max_retries=max_retries, shard_size=shard_size,
+                shard_seconds=shard_seconds)  # fmt: skip
+
+
+def _run_on(client, cases, options, store, *, device, total, progress, max_retries, shard_size,
+            shard_seconds) -> None:  # fmt: skip
+    """:func:`run_dask` on an open ``client``."""
+    from distributed import as_completed
 
     curves = str(store.curves.resolve()) if store.path is not None else None
-    cluster = None
-    own_client = True
-    if isinstance(scheduler, Client):
-        client, own_client = scheduler, False
-    elif scheduler is not None:
-        client = Client(scheduler)
-    else:
-        cluster = LocalCluster(
-            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
-            silence_logs=logging.ERROR,
-        )  # fmt: skip
-        client = Client(cluster)
-        if progress:
-            print(f"Dask dashboard: {client.dashboard_link}", file=sys.stderr)
-        if device is None and not os.environ.get("WARPTRUNC_DEVICE"):
-            client.register_plugin(PinDevice())
     by_id = {c.case_id: c for c in cases}
     attempts = dict.fromkeys(by_id, 0)
     queue = [c.case_id for c in cases]  # not yet submitted, in grid order
@@ -200,78 +366,72 @@ def run_dask(
                      and rs[0]["seconds"] == rs[0]["seconds"])  # fmt: skip
         return sum(new)
 
-    try:
-        futures: dict = {}
-        pending = as_completed()
+    futures: dict = {}
+    pending = as_completed()
 
-        def submit(ids: list[str]) -> None:
-            for cid in ids:
-                attempts[cid] += 1
-            key = f"warptrunc-shard-{ids[0]}-{len(ids)}-{attempts[ids[0]]}"
-            f = client.submit(compute_shard, [by_id[c] for c in ids], options, device, curves,
-                              key=key, pure=False)  # fmt: skip
-            futures[f] = ids
-            pending.add(f)
+    def submit(ids: list[str]) -> None:
+        for cid in ids:
+            attempts[cid] += 1
+        key = f"warptrunc-shard-{ids[0]}-{len(ids)}-{attempts[ids[0]]}"
+        f = client.submit(compute_shard, [by_id[c] for c in ids], options, device, curves,
+                          key=key, pure=False)  # fmt: skip
+        futures[f] = ids
+        pending.add(f)
 
-        def top_up() -> None:
-            w = workers_now()
-            while (retry or queue) and len(futures) < 2 * w:
-                if retry:
-                    submit(retry.pop(0))
-                    continue
-                size = shard_size or shard_size_for(
-                    statistics.median(times[-64:]) if times else None, len(queue), w,
-                    target_s=shard_seconds,
-                )  # fmt: skip
-                submit(queue[:size])
-                del queue[:size]
+    def top_up() -> None:
+        w = workers_now()
+        while (retry or queue) and len(futures) < 2 * w:
+            if retry:
+                submit(retry.pop(0))
+                continue
+            size = shard_size or shard_size_for(
+                statistics.median(times[-64:]) if times else None, len(queue), w,
+                target_s=shard_seconds,
+            )  # fmt: skip
+            submit(queue[:size])
+            del queue[:size]
 
-        top_up()
-        with progress_bar(
-            total=total,
-            initial=total - len(cases),
-            enabled=progress,
-            desc="sweep [dask]",
-            unit="case",
-        ) as bar:
-            while futures:
-                fut = next(pending)
-                ids = futures.pop(fut)
-                out = None
-                if fut.status == "finished":
-                    try:
-                        out = fut.result()
-                    except Exception:  # cancelled after it finished (client.restart()): lost
-                        out = None
-                if out is not None:
-                    bar.update(record(out["part"], out["rows"]))
+    top_up()
+    with progress_bar(
+        total=total,
+        initial=total - len(cases),
+        enabled=progress,
+        desc="sweep [dask]",
+        unit="case",
+    ) as bar:
+        while futures:
+            fut = next(pending)
+            ids = futures.pop(fut)
+            out = None
+            if fut.status == "finished":
+                try:
+                    out = fut.result()
+                except Exception:  # cancelled after it finished (client.restart()): lost
+                    out = None
+            if out is not None:
+                bar.update(record(out["part"], out["rows"]))
+            else:
+                if curves is not None:  # the worker may have written the part and died
+                    name = part_name(ids, min(by_id[c].index for c in ids))
+                    held = part_rows(os.path.join(curves, name))
+                    if held is not None:
+                        bar.update(record(name, held))
+                lost = [c for c in ids if c not in store.rows]
+                again = [c for c in lost if attempts[c] <= max_retries]
+                if again and len(again) == len(ids) and attempts[again[0]] == 1:
+                    retry.append(again)  # the same shard once more: the same part name
                 else:
-                    if curves is not None:  # the worker may have written the part and died
-                        name = part_name(ids, min(by_id[c].index for c in ids))
-                        held = part_rows(os.path.join(curves, name))
-                        if held is not None:
-                            bar.update(record(name, held))
-                    lost = [c for c in ids if c not in store.rows]
-                    again = [c for c in lost if attempts[c] <= max_retries]
-                    if again and len(again) == len(ids) and attempts[again[0]] == 1:
-                        retry.append(again)  # the same shard once more: the same part name
-                    else:
-                        retry += [[c] for c in again]
-                    if len(again) < len(lost):
-                        try:
-                            exc = fut.exception()
-                            why = f"{type(exc).__name__}: {exc}"
-                        except Exception as e:  # cancelled futures raise here
-                            why = f"{type(e).__name__}: {e}"
-                        for cid in set(lost) - set(again):
-                            rows, _ = failed_case(by_id[cid], options,
-                                                  f"lost {attempts[cid]} times: {why}")  # fmt: skip
-                            store.add(rows, None)
-                            bar.update()
-                fut.release()
-                top_up()
-    finally:
-        if own_client:
-            client.close()
-        if cluster is not None:
-            cluster.close()
+                    retry += [[c] for c in again]
+                if len(again) < len(lost):
+                    try:
+                        exc = fut.exception()
+                        why = f"{type(exc).__name__}: {exc}"
+                    except Exception as e:  # cancelled futures raise here
+                        why = f"{type(e).__name__}: {e}"
+                    for cid in set(lost) - set(again):
+                        rows, _ = failed_case(by_id[cid], options,
+                                              f"lost {attempts[cid]} times: {why}")  # fmt: skip
+                        store.add(rows, None)
+                        bar.update()
+            fut.release()
+            top_up()

@@ -70,10 +70,12 @@ def run_sweep(
         :mod:`warptrunc.sweep.store`). An existing store made by the same grid and options is
         resumed (one of the previous layout is converted first); another one is refused
         (ValueError) unless ``overwrite``. ``None`` keeps the results in memory only.
-    workers : int, optional
-        Run on a ``dask.distributed.LocalCluster`` of this many worker processes (one thread
-        each); with CUDA devices and ``device=None``, worker i is pinned to ``cuda:{i mod
-        n_gpus}``. Default: in this process. The workers are spawned processes, so a script
+    workers : int or "auto", optional
+        Run on a local Dask cluster of this many worker processes (one thread each; ``"auto"``:
+        one per visible CUDA device, 1 on a machine without one), started once for the whole
+        run (:func:`warptrunc.sweep.cluster.open_client`); with CUDA devices and
+        ``device=None``, worker i is pinned to ``cuda:{i mod n_gpus}`` (dask-cuda's
+        LocalCUDACluster where installed). Default: in this process. The workers are spawned processes, so a script
         that passes ``workers`` needs the ``if __name__ == "__main__":`` guard.
     scheduler : str or distributed.Client, optional
         Use an existing Dask cluster (e.g. ``"tcp://host:8786"``, or a dask-jobqueue
@@ -120,7 +122,7 @@ def run_sweep(
         allowed = sorted(f.name for f in fields(SweepOptions))
         bad = sorted(set(options) - set(allowed))
         raise ValueError(f"unknown sweep options {bad}; allowed: {allowed}") from None
-    if workers is not None:
+    if workers is not None and not (isinstance(workers, str) and workers.strip() == "auto"):
         workers = check_int("workers", workers, 1)
     if shard_size is not None:
         shard_size = check_int("shard_size", shard_size, 1)
@@ -154,6 +156,11 @@ def run_sweep(
         for c in todo:
             groups.setdefault(c.params, []).append(c)
         try:
+            if todo and (workers is not None or scheduler is not None):
+                # one cluster for every group: its start (and the workers' kernel loads) once
+                scheduler = held.enter_context(_open_client(workers, scheduler, device,
+                                                            progress))[0]  # fmt: skip
+                workers = None
             left = len(todo)
             for params, group in groups.items():
                 left -= len(group)
@@ -170,17 +177,23 @@ def run_sweep(
     return store.frame()
 
 
+def _open_client(workers, scheduler, device, progress):
+    """:func:`warptrunc.sweep.cluster.open_client`, with a clear message without Dask."""
+    try:
+        from .cluster import open_client
+    except ImportError as exc:
+        raise ImportError(
+            f"workers/scheduler need dask.distributed, a dependency of warptrunc that this "
+            f'environment lacks ({exc.name} is missing): pip install "dask[distributed]"'
+        ) from None
+    return open_client(workers, scheduler, device, progress)
+
+
 def _run_group(todo, opts, store, *, workers, scheduler, device, total, progress, shard_size,
                shard_seconds) -> None:  # fmt: skip
     """Run cases that share ``opts`` on the chosen engine."""
     if todo and (workers is not None or scheduler is not None):
-        try:
-            from .cluster import run_dask
-        except ImportError as exc:
-            raise ImportError(
-                f"workers/scheduler need dask.distributed, a dependency of warptrunc that this "
-                f'environment lacks ({exc.name} is missing): pip install "dask[distributed]"'
-            ) from None
+        from .cluster import run_dask
 
         run_dask(todo, opts, store, workers=workers, scheduler=scheduler, device=device,
                  total=total, progress=progress, shard_size=shard_size,

@@ -1,0 +1,129 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Opening the Dask cluster of a command (warptrunc.sweep.cluster.open_client): ``auto``
+workers, one kernel cache for every worker, dask-cuda's LocalCUDACluster where installed, a
+client passed in left open, and one cluster per sweep whatever its number of groups."""
+
+import os
+import sys
+import types
+
+import pytest
+
+pytest.importorskip("distributed")
+pd = pytest.importorskip("pandas")
+pytest.importorskip("pyarrow")
+
+from sweep_helpers import OPTS, results_only  # noqa: E402
+
+import warptrunc.sweep.cluster as cl  # noqa: E402
+from warptrunc.sweep import SweepGrid, run_sweep  # noqa: E402
+
+
+def test_resolve_workers(monkeypatch):
+    assert cl.resolve_workers(None) is None
+    assert cl.resolve_workers(3) == 3 and cl.resolve_workers("4") == 4
+    monkeypatch.setattr(cl, "cuda_device_count", lambda: 0)
+    assert cl.resolve_workers("auto") == 1  # a machine without a GPU: one worker
+    monkeypatch.setattr(cl, "cuda_device_count", lambda: 4)
+    assert cl.resolve_workers(" AUTO ") == 4
+    for bad in (0, "0", "two", -1, 1.5, True):
+        with pytest.raises(ValueError, match="workers"):
+            cl.resolve_workers(bad)
+
+
+def test_workers_option_parses_auto():
+    import argparse
+
+    from warptrunc.cli._common import workers_count
+
+    assert workers_count("auto") == "auto" and workers_count("3") == 3
+    for bad in ("0", "x", "1.5", "5000"):
+        with pytest.raises(argparse.ArgumentTypeError, match="or 'auto'"):
+            workers_count(bad)
+
+
+def _worker_env(client):
+    return client.run(
+        lambda: (os.environ.get("WARP_CACHE_PATH"), os.environ.get("WARPTRUNC_DEVICE"))
+    )
+
+
+@pytest.mark.timeout(180)
+def test_open_client_local_cluster_shares_the_kernel_cache(monkeypatch):
+    monkeypatch.delenv("WARPTRUNC_DEVICE", raising=False)
+    base = cl.kernel_cache_base()
+    import warp as wp
+
+    assert os.path.join(base, wp.config.version) == os.path.realpath(wp.config.kernel_cache_dir)
+    with cl.open_client(2, None, None, False) as (client, cluster, own):
+        assert own and cluster is not None and type(cluster).__name__ == "LocalCluster"
+        client.wait_for_workers(2, timeout=120)
+        env = _worker_env(client)
+        assert len(env) == 2 and {e[0] for e in env.values()} == {base}
+        # the workers resolve the same cache directory as this process
+        dirs = client.run(lambda: __import__("warptrunc.sweep.cluster").sweep.cluster
+                          .kernel_cache_base())  # fmt: skip
+        assert set(dirs.values()) == {base}
+        # a client passed in is used as it is and left open
+        with cl.open_client(None, client, None, False) as (c2, cluster2, own2):
+            assert c2 is client and cluster2 is None and not own2
+        assert client.status == "running"
+        with pytest.raises(ValueError, match="not both"):
+            with cl.open_client(2, client, None, False):
+                pass
+    assert client.status == "closed"
+
+
+@pytest.mark.timeout(180)
+def test_open_client_uses_dask_cuda_where_installed(monkeypatch):
+    """With dask-cuda and CUDA devices (faked here: 2), a LocalCUDACluster of one worker per
+    device, each on its own device's cuda:0; WARPTRUNC_DASK_CUDA=0 turns it off."""
+    from distributed import LocalCluster
+
+    made = {}
+
+    class FakeCUDACluster(LocalCluster):
+        def __init__(self, n_workers=None, **kw):
+            made.update(n_workers=n_workers, **kw)
+            super().__init__(n_workers=n_workers, processes=True, **kw)
+
+    monkeypatch.setitem(sys.modules, "dask_cuda", types.SimpleNamespace(
+        LocalCUDACluster=FakeCUDACluster))  # fmt: skip
+    monkeypatch.setattr(cl, "cuda_device_count", lambda: 2)
+    monkeypatch.delenv("WARPTRUNC_DEVICE", raising=False)
+    monkeypatch.delenv(cl.DASK_CUDA_ENV, raising=False)
+    assert cl._dask_cuda_cluster() is FakeCUDACluster
+    with cl.open_client("auto", None, None, False) as (client, cluster, _):
+        assert isinstance(cluster, FakeCUDACluster) and made["n_workers"] == 2
+        client.wait_for_workers(2, timeout=120)
+        assert {e[1] for e in _worker_env(client).values()} == {"cuda:0"}
+    monkeypatch.setenv(cl.DASK_CUDA_ENV, "0")
+    assert cl._dask_cuda_cluster() is None
+    monkeypatch.delenv(cl.DASK_CUDA_ENV)
+    # a device given: a LocalCluster, its workers not pinned
+    made.clear()
+    with cl.open_client(1, None, "cpu", False) as (client, cluster, _):
+        assert type(cluster) is LocalCluster and not made
+        assert {e[1] for e in _worker_env(client).values()} == {None}
+
+
+@pytest.mark.timeout(240)
+def test_one_cluster_for_every_group_of_a_sweep(tmp_path, monkeypatch):
+    """A grid with an extra axis runs as two groups on one cluster (started once)."""
+    opened = []
+    real = cl.open_client
+
+    def counting(workers, scheduler, *a, **kw):
+        from distributed import Client
+
+        if not isinstance(scheduler, Client):  # a client passed in is only used
+            opened.append((workers, scheduler))
+        return real(workers, scheduler, *a, **kw)
+
+    monkeypatch.setattr(cl, "open_client", counting)
+    grid = SweepGrid.from_values([2.4], [0.01], "0-1", axes={"M": [8, 10]})
+    ref = run_sweep(grid, None, progress=False, device="cpu", **OPTS)
+    df = run_sweep(grid, tmp_path / "s", workers=1, progress=False, device="cpu", **OPTS)
+    assert opened == [(1, None)]
+    pd.testing.assert_frame_equal(results_only(df), results_only(ref))
