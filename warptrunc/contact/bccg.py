@@ -164,7 +164,8 @@ class BCCGSolves:
             # convergence of the state reached by the last step (module docstring)
             rms = math.sqrt(s_gg / n_cg) if n_cg > 0 else 0.0
             res = max(rms, g_max, pen, open_cap, 0.0 if du is None else du)
-            ok = du is not None and res < self.pentol and viol < self.forcetol
+            tol = self._pentol_now(s_gap, n_c, n_map)  # pentol, adapted near full contact
+            ok = du is not None and res < tol and viol < self.forcetol
             if load_control:
                 ok = ok and total != 0 and abs((total - load) / total) < self.thermotol
                 height = self.h_max + offset

@@ -56,7 +56,8 @@ class SolverSettings(Parameters):
         "forcetol = pressure_tol·E*·dx·dy", gt=0.0,
     )  # fmt: skip
     pentol: float | None = param(
-        None, "tolerance on penetration; None = rms height/(10·mean(nx, ny)) (ContactMechanics)",
+        None, "tolerance on penetration; None = rms height/(10·mean(nx, ny)) (ContactMechanics), "
+        "lowered near full contact to 1 % of the mean open gap (contact.loop.OPEN_GAP_FRACTION)",
         unit="m", gt=0.0, optional=True,
     )  # fmt: skip
     thermotol: float = param(1e-6, "relative tolerance on the total force", gt=0.0)
