@@ -20,7 +20,7 @@ from ..reproduce import reproduce
 from ..reproduce.profiles import PROFILES
 from ..reproduce.study import STAGES
 from ..sweep.read import require_extra
-from ._common import add_device, output_dir
+from ._common import add_device, output_dir, workers_count
 
 NAME = "reproduce"
 HELP = "reproduce the paper's figures and tables with a report"
@@ -44,6 +44,14 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--time-budget", metavar="SECONDS", type=float, default=None,
                    help="stop the indentation stage between pieces after this many seconds; "
                         "its finished pieces are kept and a rerun continues (default: no limit)")  # fmt: skip
+    p.add_argument("--workers", type=workers_count, default=None, metavar="N|auto",
+                   help="run the indentation stage's parts (one punch × one realisation of a "
+                   "piece each) on a local Dask cluster of N worker processes, one per GPU; auto: "
+                   "one per visible GPU; the other stages run in this process (default: all in "
+                   "this process)")  # fmt: skip
+    p.add_argument("--scheduler", default=None,
+                   help="address of an existing Dask scheduler for the indentation stage's parts "
+                   "(workers started one per GPU, on a filesystem shared with --out)")  # fmt: skip
     add_device(p)
 
 
@@ -56,7 +64,8 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(str(exc)) from None
     doc = reproduce(args.profile, args.out, overwrite=args.overwrite, device=args.device,
                     commit=args.commit, command="warptrunc " + " ".join(sys.argv[1:]),
-                    stages=args.stages, time_budget=args.time_budget)  # fmt: skip
+                    stages=args.stages, time_budget=args.time_budget, workers=args.workers,
+                    scheduler=args.scheduler)  # fmt: skip
     m = doc["meta"]
     print(f"wrote {args.out}/report.md, results.json and {len(m['figures'])} figures "
           f"in {m['wall_s']:.1f} s on {m['device']} (reused: {', '.join(m['reused']) or 'none'})")  # fmt: skip

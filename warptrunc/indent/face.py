@@ -101,10 +101,24 @@ def self_affine_field(n: int, period: float, hurst: float, cutoff_short: float,
     return np.fft.ifft2(spectrum).real, spectrum
 
 
+def _one_blas_thread():
+    """One BLAS thread (threadpoolctl) for the products below: OpenBLAS splits a product
+    differently over a different number of threads, which changes its last bits, and a Dask
+    worker runs with one thread where this process has several."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # an install without it: the default threads
+        import contextlib
+
+        return contextlib.nullcontext()
+    return threadpool_limits(limits=1, user_api="blas")
+
+
 def _plane_fit(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
     """Least-squares plane z ≈ a + b·x + c·y (coefficients a, b, c)."""
     a = np.column_stack([np.ones_like(x), x, y])
-    return np.linalg.lstsq(a, z, rcond=None)[0]
+    with _one_blas_thread():
+        return np.linalg.lstsq(a, z, rcond=None)[0]
 
 
 @dataclass(frozen=True, eq=False)
@@ -120,7 +134,8 @@ class _Fourier:
         ph = 2j * math.pi / self.period
         ex = np.exp(ph * np.outer(x + 0.5 * self.period, self.freqs))
         ey = np.exp(ph * np.outer(y + 0.5 * self.period, self.freqs))
-        z = ((ey @ self.coef) @ ex.T).real
+        with _one_blas_thread():  # the sums' order, and so their last bits, as on any machine
+            z = ((ey @ self.coef) @ ex.T).real
         a, b, c = self.plane
         return z - (a + b * x[None, :] + c * y[:, None])
 

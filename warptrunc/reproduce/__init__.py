@@ -11,6 +11,7 @@ experiment of Fig. 6 in silico) are computed by
 
 from __future__ import annotations
 
+import contextlib
 import json
 import sys
 import time
@@ -38,6 +39,8 @@ def reproduce(
     commit: str | None = None,
     stages: str | tuple[str, ...] | None = None,
     time_budget: float | None = None,
+    workers: int | str | None = None,
+    scheduler: Any = None,
 ) -> dict[str, Any]:
     """Run the study at ``profile`` into ``out``; returns the content of ``results.json``.
 
@@ -68,6 +71,15 @@ def reproduce(
         Seconds from the start after which the ``indentation`` stage starts no new piece
         (its pieces are stored as they finish; a rerun continues). The report then says the
         stage is incomplete. Default: no limit.
+    workers : int or "auto", optional
+        Run the ``indentation`` stage's parts (one punch × one realisation of a piece each) on
+        a local Dask cluster of this many worker processes, one per GPU (``"auto"``: one per
+        visible GPU; :func:`warptrunc.sweep.cluster.open_client`). The other stages run in
+        this process. The stored result is the one an in-process run stores. Default: every
+        stage in this process.
+    scheduler : str or distributed.Client, optional
+        An existing Dask scheduler (address) or client for the same parts; its workers must
+        see ``out`` (a shared filesystem) and be pinned one per GPU.
 
     Returns
     -------
@@ -104,7 +116,9 @@ def reproduce(
         store = StageStore(out, overwrite=overwrite)
         t0 = time.perf_counter()
         deadline = None if time_budget is None else t0 + float(time_budget)
-        study = run_study(p, store, device=dev, stages=stages, deadline=deadline)
+        with _cluster(workers, scheduler, dev) as (client, task_device):
+            study = run_study(p, store, device=dev, stages=stages, deadline=deadline,
+                              client=client, task_device=task_device)  # fmt: skip
         res = study["results"]
         ana = analyse(res)
         if all(g in res and res[g].get("store") for g in ("group1", "group2")):  # re-fit
@@ -119,6 +133,20 @@ def reproduce(
             doc = _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, commit,
                                  None if stages is None else selected)  # fmt: skip
     return jsonable(doc)
+
+
+@contextlib.contextmanager
+def _cluster(workers, scheduler, dev):
+    """(client, the tasks' device): none without workers or scheduler; on a local cluster of a
+    CUDA machine each worker's pinned GPU (the tasks' device None), on the CPU ``"cpu"``."""
+    if workers is None and scheduler is None:
+        yield None, None
+        return
+    from ..sweep.cluster import open_client
+
+    task_device = "cpu" if dev.is_cpu else None
+    with open_client(workers, scheduler, task_device) as (client, _cluster, _own):
+        yield client, task_device
 
 
 def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, commit, selected):

@@ -43,19 +43,10 @@ from .indentation_analysis import (  # noqa: F401 - the analysis's names stay im
     cells,
     tracking,
 )
-from .indentation_pieces import (
-    SUBDIR,
-    design_of,
-    face_variants,
-    load_piece,
-    material,
-    model_name,
-    piece_file,
-    piece_params,
-    run_piece,
-    spec,
-)
-from .indentation_rules import depth_at_load, depth_match
+from .indentation_parts import parts_of
+from .indentation_pieces import SUBDIR, face_variants, load_piece, material, model_name, spec
+from .indentation_schedule import Plan, run_in_process, stats_hardness
+from .indentation_schedule import sweep_order as _sweep_order
 from .indentation_summary import summary_from_pieces
 from .profiles import Profile
 
@@ -111,12 +102,6 @@ def _check(p: Profile) -> None:
             raise ValueError(f"{name} must be ≥ 1 placement, got {getattr(p, name)!r}")
 
 
-def _sweep_order(p: Profile) -> list[float]:
-    """The sweep's H values, H = ∞ first (its cycles are the others' unyielded ones)."""
-    hs = sorted(set(p.indentation_hardness), key=lambda h: (math.isfinite(h), h))
-    return hs if math.isinf(hs[0]) else [math.inf, *hs]
-
-
 @fill_doc(_STAGE_DOCS)
 def stage_params(p: Profile) -> dict[str, Any]:
     """The parameters that identify a stored ``indentation`` stage.
@@ -143,55 +128,26 @@ def stage_params(p: Profile) -> dict[str, Any]:
 
 
 @fill_doc(_STAGE_DOCS)
-def stats_hardness(p: Profile, sweep_rows: dict[float, dict[str, list]]) -> dict[str, Any]:
-    """The H values of one surface's statistics pieces, from its sweep.
-
-    {indentation_profile}
-    sweep_rows : dict
-        H (Pa; inf = elastic) → the rows of that H's sweep piece.
-
-    Returns
-    -------
-    dict
-        ``hardness``: the H values (Pa, inf = elastic) in the order of
-        ``Profile.indentation_stats``; ``depths``: H → the median depth at the largest load on
-        the deepest punch (m); ``match``: :func:`~warptrunc.reproduce.indentation_rules.depth_match`
-        over the finite H values.
-    """
-    at = max(p.indentation_loads)
-    depths = {}
-    for h, r in sweep_rows.items():
-        dd = depth_at_load(r["punch_diameter_m"], r["peak_load_N"], r["displacement_m"],
-                           r["converged"], at)["deepest"]  # fmt: skip
-        depths[h] = None if dd is None else dd["median"]
-    finite = sorted(h for h in depths if math.isfinite(h))
-    match = depth_match(finite, [depths[h] for h in finite], p.indentation_depth_target,
-                        p.indentation_depth_band)  # fmt: skip
-    out: list[float] = []
-    for m in p.indentation_stats:
-        h = math.inf if m == "elastic" else match["H_match"]
-        if h is not None and h not in out:
-            out.append(h)
-    return {"hardness": out, "depths": depths, "match": match}
-
-
-@fill_doc(_STAGE_DOCS)
 def stage_indentation(p: Profile, out: str | Path, device, *, overwrite: bool = False,
-                      deadline: float | None = None, progress: bool = True) -> dict[str, Any]:  # fmt: skip
+                      deadline: float | None = None, progress: bool = True,
+                      client=None) -> dict[str, Any]:  # fmt: skip
     """Run (or continue) the pieces under ``out/indentation`` and summarise them.
 
     {indentation_profile}
     out : str or Path
         Reproduction folder; the pieces go to ``out/indentation``.
     device : str, optional
-        Warp device.
+        Warp device (with ``client``: the tasks' device, None for each worker's pinned one).
     overwrite : bool
         Recompute pieces stored with other parameters (else :class:`StageConflict`).
     deadline : float, optional
-        ``time.perf_counter()`` value after which no new piece is started; the stage then
-        raises :class:`StageIncomplete` (the pieces done are stored).
+        ``time.perf_counter()`` value after which no new part is started; the stage then
+        raises :class:`StageIncomplete` (the parts and pieces done are stored).
     progress : bool
-        Progress bar over the pieces (stderr).
+        Progress bar over the parts (stderr).
+    client : distributed.Client, optional
+        Run the parts as tasks of this Dask cluster, one in flight per worker
+        (:func:`~.indentation_schedule.run_on_cluster`); default in this process.
 
     Returns
     -------
@@ -201,79 +157,60 @@ def stage_indentation(p: Profile, out: str | Path, device, *, overwrite: bool = 
     Raises
     ------
     StageIncomplete
-        The deadline passed before the last piece.
+        The deadline passed before the last part.
     StageConflict
         A piece stored with other parameters and ``overwrite`` off.
     ValueError
         A profile field out of range (the message names it).
     """
     from .._support.progress import progress_bar
-    from ..wm import wm_surface
 
     _check(p)
     store = Path(out) / SUBDIR
     store.mkdir(parents=True, exist_ok=True)
-    sweep = _sweep_order(p)
-    faces = face_variants(p)
-    n_plan = len(p.indentation_surfaces) * (len(sweep) + len(p.indentation_stats)) + len(faces)
-    done: dict[tuple[str, str, float], dict[str, Any]] = {}
-    cache: dict[int, tuple[Any, float]] = {}  # seed → (surface, seconds): one surface at a time
+    plan = Plan(p, store, overwrite)
     ref = _resolution_params(p)
     rpath = store / "resolution.json"
     res_rec = load_piece(rpath, ref, overwrite) if ref is not None else None
-    bar = progress_bar(total=n_plan + (ref is not None and res_rec is None),
-                       desc="indentation pieces", unit="piece", enabled=progress)  # fmt: skip
+    n_parts = len(parts_of(p, p.indentation_surfaces[0], "sweep", math.inf))
+    n_plan = (len(p.indentation_surfaces) * (len(plan.sweep) + len(p.indentation_stats))
+              + len(face_variants(p)))  # fmt: skip
+    bar = progress_bar(total=None, desc="indentation parts", unit="part", enabled=progress)
+
+    def incomplete(what: str) -> StageIncomplete:
+        have, _ = plan.n_pieces()
+        return StageIncomplete(
+            f"stage 'indentation' stopped at its time budget before {what}: {have} of "
+            f"{n_plan} planned pieces ({n_parts} parts each for the sweep) stored in {store} "
+            f"(resolution check {'stored' if res_rec is not None else 'not run'}); run the same "
+            "command again to continue"
+        )
 
     def stop(what: str) -> None:
         if deadline is not None and time.perf_counter() > deadline:
-            raise StageIncomplete(
-                f"stage 'indentation' stopped at its time budget before {what}: {len(done)} of "
-                f"{n_plan} planned pieces stored in {store} (resolution check "
-                f"{'stored' if res_rec is not None else 'not run'}); run the same command again "
-                "to continue"
-            )
-
-    def piece(s: str, design: str, h: float, reuse: Any = None, face: Any = None) -> dict[str, Any]:
-        path = piece_file(store, s, design, h, None if face is None else face[0])
-        rec = load_piece(path, piece_params(p, s, design, h, face), overwrite)
-        if rec is None:
-            stop(path.name)
-            seeds = design_of(p, design)[0]
-            gen = 0.0
-            for k in seeds:
-                if k not in cache:
-                    t0 = time.perf_counter()
-                    surf = wm_surface(spec(p, s, k), device=device)
-                    surf.heights  # noqa: B018 - one host copy, shared by the pieces
-                    cache[k] = (surf, time.perf_counter() - t0)
-                gen += cache[k][1]
-            rec = run_piece([cache[k][0] for k in seeds], p, s, design, h, device=device,
-                            gen_s=gen, reuse=reuse, face=face)  # fmt: skip
-            write_atomic(path, json.dumps(rec, indent=None, allow_nan=False) + "\n")
-        bar.update()
-        done[(s, design if face is None else f"face:{face[0]}", h)] = rec
-        return rec
+            raise incomplete(what)
 
     with bar:
-        for s in p.indentation_surfaces:
-            cache.clear()
-            el = None
-            for h in sweep:
-                rec = piece(s, "sweep", h, reuse=None if el is None else el["rows"])
-                el = rec if math.isinf(h) else el
-            chosen = stats_hardness(p, {h: done[(s, "sweep", h)]["rows"] for h in sweep})
-            for h in chosen["hardness"]:
-                piece(s, "stats", h)
-            if s == p.indentation_face_surface:  # the same indents with a tilted or rough face
-                for face in faces:
-                    piece(s, "face", p.indentation_face_hardness, face=face)
-        cache.clear()
+        res_future = None
+        if client is not None:
+            from .indentation_schedule import run_on_cluster
+
+            if ref is not None and res_rec is None:
+                res_future = client.submit(_run_resolution, p, ref, device, pure=False, priority=10)
+            if not run_on_cluster(plan, client, device=device, deadline=deadline, bar=bar):
+                if res_future is not None and res_future.done() and res_future.status == "finished":
+                    write_atomic(rpath, json.dumps(res_future.result(), indent=None,
+                                                   allow_nan=False) + "\n")  # fmt: skip
+                raise incomplete("the next part")
+        else:
+            run_in_process(plan, device=device, stop=stop, bar=bar)
         if ref is not None and res_rec is None:
-            stop("the resolution check")
-            res_rec = _run_resolution(p, ref, device)
+            if res_future is None:
+                stop("the resolution check")
+            res_rec = _run_resolution(p, ref, device) if res_future is None else res_future.result()
             write_atomic(rpath, json.dumps(res_rec, indent=None, allow_nan=False) + "\n")
             bar.update()
-    return summary_from_pieces(p, list(done.items()), res_rec)
+    return summary_from_pieces(p, plan.records(), res_rec)
 
 
 # --- resolution check -------------------------------------------------------------------------

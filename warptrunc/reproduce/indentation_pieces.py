@@ -1,7 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """One piece of the ``indentation`` stage: a surface × design × hardness H, its parameters, its
-file and its run (:func:`warptrunc.indent`, one call per punch).
+file (its run: one :func:`warptrunc.indent` call per punch and realisation, the parts of
+:mod:`.indentation_parts`).
 
 Two designs (issue 38, item 7): ``sweep`` — one realisation (the first of
 ``Profile.indentation_seeds``) × ``indentation_placements`` placements per punch, for every H of
@@ -18,18 +19,14 @@ from __future__ import annotations
 
 import json
 import math
-import time
-import warnings
 from pathlib import Path
 from typing import Any
-
-import numpy as np
 
 from .._support.results import jsonable
 from .profiles import Profile
 from .store import StageConflict
 
-__all__ = ["COLUMNS", "DESIGNS", "SUBDIR", "face_variants", "model_name", "piece_params", "run_piece"]
+__all__ = ["COLUMNS", "DESIGNS", "SUBDIR", "face_variants", "model_name", "piece_params"]
 
 SUBDIR = "indentation"
 """Piece store of the stage, inside the reproduction folder."""
@@ -203,95 +200,3 @@ def _reuse_rows(rows: dict[str, list] | None, d: float) -> dict[str, list] | Non
         return None
     idx = [i for i, x in enumerate(rows["punch_diameter_m"]) if math.isclose(x, d, rel_tol=1e-9)]
     return {c: [v[i] for i in idx] for c, v in rows.items()}
-
-
-def run_piece(surfaces: list, p: Profile, surface: str, design: str, hardness: float, *,
-              device, gen_s: float, reuse: dict[str, list] | None = None,
-              face: tuple[str, dict[str, float]] | None = None) -> dict[str, Any]:  # fmt: skip
-    """Run one piece: one :func:`warptrunc.indent` call per punch on the piece's realisations.
-
-    Parameters
-    ----------
-    surfaces : list of Surface
-        The realisations of the piece's design (one for the sweep).
-    p : Profile
-        The profile.
-    surface : str
-        Table 1 name.
-    design : str
-        ``"sweep"`` or ``"stats"``.
-    hardness : float
-        H (Pa); inf = elastic.
-    device : str, optional
-        Warp device.
-    gen_s : float
-        Seconds the realisations took to generate (recorded).
-    reuse : dict, optional
-        The rows of the elastic piece of the same realisation and placements: each punch that
-        is not refined takes its unyielded leading cycles from them.
-    face : (str, dict), optional
-        A punch face of :func:`face_variants`.
-
-    Returns
-    -------
-    dict
-        The piece record: ``params``, ``rows`` (:data:`COLUMNS`), ``windows`` (one per
-        realisation × punch × placement), ``seconds``, ``per_punch`` (seconds and refined
-        windows of each punch's call), ``device``, ``n_not_converged``,
-        ``reused_elastic_cycles``.
-    """
-    from ..contact.settings import SolverSettings
-    from ..indent import PlacementOverlapWarning, indent
-
-    t0 = time.perf_counter()
-    _seeds, placements = design_of(p, design)
-    rows: dict[str, list] = {c: [] for c in COLUMNS}
-    windows, per_punch = [], []
-    sec: dict[str, float] = {}
-    n_reused, dev = 0, None
-    for k, d in enumerate(p.indentation_punches):
-        r = refine_of(p, d)
-        given = _reuse_rows(reuse, d) if (r <= 1 and len(surfaces) == 1
-                                          and math.isfinite(hardness)) else None  # fmt: skip
-        with warnings.catch_warnings():  # the overlap is recorded per row (overlap_fraction)
-            warnings.simplefilter("ignore", PlacementOverlapWarning)
-            res = indent(
-                surfaces if len(surfaces) > 1 else surfaces[0], punch_diameter=(d,),
-                peak_loads=tuple(p.indentation_loads), unload_fraction=p.indentation_unload_fraction,
-                material=material(hardness), placements=placements, seed=p.indentation_seed + k,
-                settings=SolverSettings(dtype=p.indentation_dtype, maxiter=p.indentation_maxiter),
-                truncation_increments=p.indentation_increments, elastic=math.isinf(hardness),
-                reuse=given, device=device, refine_max=r,
-                resolution_tol=p.indentation_resolution_tol,
-                min_contact_pixels=p.indentation_min_contact_pixels,
-                **({} if face is None else _face_kw(p, face[1], k, d)),
-            )  # fmt: skip
-        cols = res.to_dict()
-        cols["n_contact"] = cols["n_contact_pixels"]  # the pieces' name, kept
-        for c in COLUMNS:
-            rows[c].extend(np.asarray(cols[c]).tolist())
-        s = res.settings["seconds"]
-        for key, v in s.items():
-            sec[key] = sec.get(key, 0.0) + v
-        refined: dict[int, list[int]] = {}
-        for w in res.settings["punches"]:
-            windows.append({"realisation": w["realisation"], "punch_diameter_m": d,
-                            "placement": w["placement"], "window_px": w["window"][2:],
-                            "n_punch_pixels": w["n_punch_pixels"], "disk_Rt_m": w["disk_Rt_m"]})  # fmt: skip
-            for f, shape in w["refined_windows"].items():
-                old = refined.get(int(f), [0, 0])
-                refined[int(f)] = shape if shape[0] * shape[1] > old[0] * old[1] else old
-        per_punch.append({"punch_diameter_m": d, "refine_max": r, "seconds": s,
-                          "refined_windows": refined})  # fmt: skip
-        n_reused += int(res.settings.get("reused_elastic_cycles", 0))
-        dev = res.settings["device"]
-    return jsonable({
-        "params": piece_params(p, surface, design, hardness, face),
-        "rows": rows,
-        "windows": windows,
-        "seconds": {**sec, "surface_s": gen_s, "piece_s": time.perf_counter() - t0},
-        "per_punch": per_punch,
-        "device": dev,
-        "n_not_converged": int(sum(not c for c in rows["converged"])),
-        "reused_elastic_cycles": n_reused,
-    })  # fmt: skip

@@ -349,7 +349,7 @@ def select_stages(stages: Any = None) -> tuple[str, ...]:
 
 
 def _stage_call(name: str, profile: Profile, res: dict[str, Any], store: StageStore, device,
-                deadline: float | None):  # fmt: skip
+                deadline: float | None, client=None, task_device=None):  # fmt: skip
     """(parameters, function) of a stage; None when an input stage is missing."""
     full = profile.to_dict()
     keys = {
@@ -374,7 +374,8 @@ def _stage_call(name: str, profile: Profile, res: dict[str, Any], store: StageSt
         from .indentation import stage_params as indent_params
 
         return indent_params(profile), lambda: stage_indentation(
-            profile, store.out, device, overwrite=store.overwrite, deadline=deadline)
+            profile, store.out, device if client is None else task_device,
+            overwrite=store.overwrite, deadline=deadline, client=client)
     if name == "islands":
         if "table1" not in res:
             return None
@@ -389,7 +390,7 @@ def _stage_call(name: str, profile: Profile, res: dict[str, Any], store: StageSt
 
 
 def run_study(profile: Profile, store: StageStore, *, device=None, stages: Any = None,
-              deadline: float | None = None) -> dict[str, Any]:  # fmt: skip
+              deadline: float | None = None, client=None, task_device=None) -> dict[str, Any]:  # fmt: skip
     """Run (or reuse) the stages; returns {stage: result} and the wall time per stage.
 
     Parameters
@@ -406,6 +407,10 @@ def run_study(profile: Profile, store: StageStore, *, device=None, stages: Any =
     deadline : float, optional
         ``time.perf_counter()`` value after which the ``indentation`` stage starts no new
         piece (it is then reported in ``incomplete``, not stored).
+    client : distributed.Client, optional
+        Dask client on which the ``indentation`` stage runs its parts; None: in this process.
+    task_device : str, optional
+        Warp device of those parts (None: each worker's pinned GPU).
 
     Returns
     -------
@@ -431,7 +436,7 @@ def run_study(profile: Profile, store: StageStore, *, device=None, stages: Any =
     for name in bar:
         bar.set_postfix_str(name)
         t0 = time.perf_counter()
-        call = _stage_call(name, profile, res, store, device, deadline)
+        call = _stage_call(name, profile, res, store, device, deadline, client, task_device)
         if call is None:
             skipped.append(name)
             continue

@@ -1,0 +1,409 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The ``indentation`` stage's work plan: pieces, their parts, what each part waits for, and the
+two ways to run them — in this process, in the canonical order, or on a Dask cluster, one part
+per task (issue 39, item 2).
+
+The plan (:class:`Plan`) knows every piece of the stage as soon as it can: the hardness sweep
+(H = ∞ first), the elastic statistics and the face pieces from the start, the ``depth-match``
+statistics of a surface once its sweep is complete (:func:`stats_hardness`). A part is ready
+when its piece is planned and, for a finite-H sweep part that reuses elastic cycles, when the
+elastic part of its punch is done. Finished parts are written by whoever ran them
+(:func:`~.indentation_parts.compute_part`); the plan merges a piece when its last part arrives,
+writes the piece file and removes its part files. In-process the parts run one at a time in the
+canonical order (surface by surface, the sweep, the statistics, the faces); on a cluster the
+driver keeps one part in flight per worker, the most expensive ready part first (the elastic
+sweep parts, which unlock others, before all), so that ``time_budget`` stops new parts within
+one part's time and a worker lost mid-part loses that part only (it is submitted again; a part
+file already written is read). The stored result is the same whichever way it ran: parts are
+independent solves, merged in a fixed order.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+from .._support.results import write_atomic
+from .indentation_parts import (
+    Part,
+    compute_part,
+    elastic_of,
+    face_of,
+    load_part,
+    merge_parts,
+    part_file,
+    part_params,
+    parts_of,
+    reuses,
+)
+from .indentation_pieces import (
+    _reuse_rows,
+    design_of,
+    face_variants,
+    load_piece,
+    piece_file,
+    piece_params,
+    refine_of,
+)
+from .indentation_rules import depth_at_load, depth_match
+from .profiles import Profile
+
+__all__ = ["Plan", "run_in_process", "run_on_cluster", "stats_hardness", "sweep_order"]
+
+PieceKey = tuple[str, str, float, "str | None"]
+
+
+def sweep_order(p: Profile) -> list[float]:
+    """The sweep's H values, H = ∞ first (its cycles are the others' unyielded ones).
+
+    Parameters
+    ----------
+    p : Profile
+        The profile (``indentation_hardness``).
+
+    Returns
+    -------
+    list of float
+        H (Pa): inf, then the finite values increasing.
+    """
+    hs = sorted(set(p.indentation_hardness), key=lambda h: (math.isfinite(h), h))
+    return hs if math.isinf(hs[0]) else [math.inf, *hs]
+
+
+def stats_hardness(p: Profile, sweep_rows: dict[float, dict[str, list]]) -> dict[str, Any]:
+    """The H values of one surface's statistics pieces, from its sweep.
+
+    Parameters
+    ----------
+    p : Profile
+        The profile.
+    sweep_rows : dict
+        H (Pa; inf = elastic) → the rows of that H's sweep piece.
+
+    Returns
+    -------
+    dict
+        ``hardness``: the H values (Pa, inf = elastic) in the order of
+        ``Profile.indentation_stats``; ``depths``: H → the median depth at the largest load on
+        the deepest punch (m); ``match``: :func:`~warptrunc.reproduce.indentation_rules.depth_match`
+        over the finite H values.
+    """
+    at = max(p.indentation_loads)
+    depths = {}
+    for h, r in sweep_rows.items():
+        dd = depth_at_load(r["punch_diameter_m"], r["peak_load_N"], r["displacement_m"],
+                           r["converged"], at)["deepest"]  # fmt: skip
+        depths[h] = None if dd is None else dd["median"]
+    finite = sorted(h for h in depths if math.isfinite(h))
+    match = depth_match(finite, [depths[h] for h in finite], p.indentation_depth_target,
+                        p.indentation_depth_band)  # fmt: skip
+    out: list[float] = []
+    for m in p.indentation_stats:
+        h = math.inf if m == "elastic" else match["H_match"]
+        if h is not None and h not in out:
+            out.append(h)
+    return {"hardness": out, "depths": depths, "match": match}
+
+
+class Plan:
+    """The stage's pieces and parts, what is stored, and what is ready to run.
+
+    Parameters
+    ----------
+    p : Profile
+        The profile.
+    store : Path
+        The piece folder (``OUT/indentation``).
+    overwrite : bool
+        Recompute pieces stored with other parameters (else :class:`StageConflict`).
+    """
+
+    def __init__(self, p: Profile, store: Path, overwrite: bool) -> None:
+        self.p, self.store, self.overwrite = p, Path(store), overwrite
+        self.sweep = sweep_order(p)
+        self.pieces: dict[PieceKey, dict[str, Any] | None] = {}  # planned piece → record or None
+        self.parts: dict[Part, dict[str, Any]] = {}  # finished parts of unfinished pieces
+        self.stats_done: set[str] = set()
+        for s in p.indentation_surfaces:
+            for h in self.sweep:
+                self._plan((s, "sweep", h, None))
+            if "elastic" in p.indentation_stats:
+                self._plan((s, "stats", math.inf, None))
+            if s == p.indentation_face_surface:
+                for label, _kw in face_variants(p):
+                    self._plan((s, "face", p.indentation_face_hardness, label))
+        for s in p.indentation_surfaces:
+            self._stats(s)
+
+    # --- what is stored -----------------------------------------------------------------------
+
+    def _plan(self, key: PieceKey) -> None:
+        if key in self.pieces:
+            return
+        s, design, h, face = key
+        path = piece_file(self.store, s, design, h, face)
+        rec = load_piece(path, piece_params(self.p, s, design, h, face_of(self.p, face)), self.overwrite)
+        self.pieces[key] = rec
+        if rec is None:
+            for part in parts_of(self.p, s, design, h, face):
+                got = load_part(part_file(self.store, part), part_params(self.p, part))
+                if got is not None:
+                    self.parts[part] = got
+            self._merge(key)
+
+    def _merge(self, key: PieceKey) -> None:
+        """Write the piece when every part is done; then its part files go."""
+        parts = parts_of(self.p, *key)
+        if self.pieces.get(key) is not None or not all(q in self.parts for q in parts):
+            return
+        rec = merge_parts(self.p, key, {q: self.parts[q] for q in parts})
+        write_atomic(piece_file(self.store, *key), json.dumps(rec, indent=None, allow_nan=False) + "\n")
+        self.pieces[key] = rec
+        for q in parts:
+            part_file(self.store, q).unlink(missing_ok=True)
+            self.parts.pop(q, None)
+        self._stats(key[0])
+
+    def _stats(self, s: str) -> None:
+        """Plan the surface's depth-match statistics once its sweep is complete."""
+        if s in self.stats_done or "depth-match" not in self.p.indentation_stats:
+            return
+        rows = {h: self.pieces.get((s, "sweep", h, None)) for h in self.sweep}
+        if any(r is None for r in rows.values()):
+            return
+        self.stats_done.add(s)
+        for h in stats_hardness(self.p, {h: r["rows"] for h, r in rows.items()})["hardness"]:
+            self._plan((s, "stats", h, None))
+
+    # --- what runs --------------------------------------------------------------------------
+
+    def done(self, part: Part) -> bool:
+        """Whether ``part`` is finished (alone, or inside its stored piece).
+
+        Parameters
+        ----------
+        part : Part
+            The part.
+
+        Returns
+        -------
+        bool
+            True when its record is held or its piece is stored.
+        """
+        return part in self.parts or self.pieces.get(part.piece) is not None
+
+    def reuse_rows(self, part: Part) -> dict[str, list] | None:
+        """The elastic rows ``part`` takes its unyielded cycles from.
+
+        Parameters
+        ----------
+        part : Part
+            The part.
+
+        Returns
+        -------
+        dict or None
+            The rows of the elastic part of its punch; None when it solves them itself.
+        """
+        if not reuses(self.p, part):
+            return None
+        el = elastic_of(part)
+        if el in self.parts:
+            return self.parts[el]["rows"]
+        rec = self.pieces.get(el.piece)
+        return None if rec is None else _reuse_rows(rec["rows"], self.p.indentation_punches[part.punch])
+
+    def ready(self, running: set[Part]) -> list[Part]:
+        """Parts that can start now, in the canonical order.
+
+        Parameters
+        ----------
+        running : set of Part
+            Parts in flight (left out).
+
+        Returns
+        -------
+        list of Part
+            Parts of planned, unstored pieces, not done, whose elastic part (if any) is done.
+        """
+        out = []
+        for key, rec in list(self.pieces.items()):
+            if rec is not None:
+                continue
+            for q in parts_of(self.p, *key):
+                if q in running or self.done(q):
+                    continue
+                if reuses(self.p, q) and not self.done(elastic_of(q)):
+                    continue
+                out.append(q)
+        return out
+
+    def finish(self, part: Part, rec: dict[str, Any]) -> None:
+        """Record a finished part; merge its piece when it was the last.
+
+        Parameters
+        ----------
+        part : Part
+            The part.
+        rec : dict
+            Its record (:func:`~.indentation_parts.run_part`).
+        """
+        if self.pieces.get(part.piece) is None:
+            self.parts[part] = rec
+            self._merge(part.piece)
+
+    def complete(self) -> bool:
+        """Whether every planned piece is stored.
+
+        Returns
+        -------
+        bool
+            True when nothing is left to run.
+        """
+        return all(r is not None for r in self.pieces.values())
+
+    def n_pieces(self) -> tuple[int, int]:
+        """Pieces stored and planned.
+
+        Returns
+        -------
+        tuple of int
+            (stored, planned).
+        """
+        return sum(r is not None for r in self.pieces.values()), len(self.pieces)
+
+    def records(self) -> list[tuple[tuple[str, str, float], dict[str, Any]]]:
+        """The stored pieces in the canonical order, keyed as the summary reads them.
+
+        Returns
+        -------
+        list of ((str, str, float), dict)
+            ((surface, design or ``face:<label>``, H), piece record).
+        """
+        out = []
+        for s in self.p.indentation_surfaces:
+            keys = [k for k in self.pieces if k[0] == s]
+            keys.sort(key=lambda k: (("sweep", "stats", "face").index(k[1]),
+                                     self.sweep.index(k[2]) if k[1] == "sweep" else 0))  # fmt: skip
+            for k in keys:
+                if self.pieces[k] is not None:
+                    out.append(((s, k[1] if k[3] is None else f"face:{k[3]}", k[2]), self.pieces[k]))
+        return out
+
+    def cost(self, part: Part) -> float:
+        """A rough relative cost: placements × punch pixels × refinement × plasticity, and the
+        elastic sweep parts (which unlock the finite-H ones) first.
+
+        Parameters
+        ----------
+        part : Part
+            The part.
+
+        Returns
+        -------
+        float
+            Larger runs first on a cluster.
+        """
+        p = self.p
+        d = p.indentation_punches[part.punch]
+        dx = p.indentation_L / p.indentation_n
+        c = design_of(p, part.design)[1] * (d / dx) ** 2 * refine_of(p, d) ** 2
+        c *= 1.0 if math.isinf(part.hardness) else 2.0
+        return c * (1e6 if part.design == "sweep" and math.isinf(part.hardness) else 1.0)
+
+
+def run_in_process(plan: Plan, *, device, stop, bar) -> None:
+    """Run the ready parts one at a time, in the canonical order, until the plan is complete.
+
+    Parameters
+    ----------
+    plan : Plan
+        The plan.
+    device : str, optional
+        Warp device.
+    stop : callable
+        ``stop(what)`` raises when the time budget is spent.
+    bar : progress bar
+        Updated once per part.
+    """
+    while True:
+        ready = plan.ready(set())
+        if not ready:
+            return
+        part = ready[0]
+        stop(part.label())
+        rec = compute_part(plan.p, part, str(plan.store), device, plan.reuse_rows(part))
+        plan.finish(part, rec)
+        bar.update()
+
+
+def run_on_cluster(plan: Plan, client, *, device, deadline: float | None, bar,
+                   max_attempts: int = 3) -> bool:  # fmt: skip
+    """Run the ready parts on a Dask cluster, one part in flight per worker.
+
+    Parameters
+    ----------
+    plan : Plan
+        The plan.
+    client : distributed.Client
+        The cluster's client.
+    device : str, optional
+        Warp device of the tasks (None: each worker's pinned ``$WARPTRUNC_DEVICE``).
+    deadline : float, optional
+        ``time.perf_counter()`` after which no part is submitted (those in flight finish).
+    bar : progress bar
+        Updated once per part.
+    max_attempts : int
+        Submissions of one part before its error is raised (a lost worker, a killed process).
+
+    Returns
+    -------
+    bool
+        False when the deadline stopped the run before the plan was complete.
+    """
+    from distributed import as_completed
+
+    inflight: dict[Any, Part] = {}
+    attempts: dict[Part, int] = {}
+    pool = as_completed()
+    n_workers = [1, 0.0]
+
+    def capacity() -> int:
+        if time.monotonic() - n_workers[1] > 5:
+            n_workers[:] = [max(1, len(client.scheduler_info().get("workers", {}))), time.monotonic()]
+        return n_workers[0]
+
+    def submit() -> bool:
+        late = deadline is not None and time.perf_counter() > deadline
+        if late:
+            return False
+        running = set(inflight.values())
+        ready = sorted(plan.ready(running), key=plan.cost, reverse=True)
+        for part in ready[: max(0, capacity() - len(inflight))]:
+            attempts[part] = attempts.get(part, 0) + 1
+            fut = client.submit(compute_part, plan.p, part, str(plan.store.resolve()), device,
+                                plan.reuse_rows(part), key=f"indent-{part_file(plan.store, part).stem}-"
+                                f"{attempts[part]}", pure=False)  # fmt: skip
+            inflight[fut] = part
+            pool.add(fut)
+        return True
+
+    on_time = submit()
+    while inflight:
+        fut = next(pool)
+        part = inflight.pop(fut)
+        try:
+            rec = fut.result()
+        except Exception as exc:  # a lost worker or a failed solve: the file, else once more
+            rec = load_part(part_file(plan.store, part), part_params(plan.p, part))
+            if rec is None and attempts[part] >= max_attempts:
+                raise RuntimeError(f"indentation part {part.label()} failed {attempts[part]} times: {exc}") from exc
+        if rec is not None:
+            plan.finish(part, rec)
+            bar.update()
+        on_time = submit() and on_time
+    return on_time and plan.complete()
