@@ -39,7 +39,8 @@ COLUMNS = (
     "partial_unloading_stiffness_N_per_m", "E_c_over_E", "E_c_partial_over_E", "converged",
     "overlap_fraction", "n_punch_pixels", "truncation_depth_m", "truncation_contact_area_m2",
     "truncation_stiffness_N_per_m", "truncation_E_c_over_E", "centre_x_m", "centre_y_m",
-    "max_pressure_Pa", "pixel_size_m", "resolution_change", "resolved", "saturated", "in_fit",
+    "max_pressure_Pa", "pixel_size_m", "resolution_change", "area_change", "resolved", "saturated",
+    "in_fit",
 )  # fmt: skip
 """Columns of :meth:`warptrunc.indent.IndentationResult.to_dict` kept in each piece."""
 

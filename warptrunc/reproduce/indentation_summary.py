@@ -19,7 +19,8 @@ __all__ = ["summary_from_pieces"]
 KEEP = ("realisation", "punch_diameter_m", "placement", "peak_load_N", "F_over_EA",
         "displacement_m", "contact_area_m2", "plastic_area_m2", "n_contact", "E_c_over_E",
         "E_c_partial_over_E", "converged", "overlap_fraction", "n_punch_pixels", "in_fit",
-        "resolved", "saturated", "pixel_size_m", "truncation_E_c_over_E", "truncation_depth_m")  # fmt: skip
+        "resolved", "saturated", "pixel_size_m", "truncation_E_c_over_E", "truncation_depth_m",
+        "resolution_change", "area_change")  # fmt: skip
 """Columns of the pieces kept in the stage's rows (with ``surface``, ``design``, ``model``,
 ``hardness_Pa``)."""
 
@@ -31,8 +32,8 @@ def _append(rows: dict[str, list], s: str, design: str, model: str, h: float | N
     rows["design"] += [design] * m
     rows["model"] += [model] * m
     rows["hardness_Pa"] += [h] * m
-    for c in KEEP:
-        rows[c].extend((over or {}).get(c, r[c]))
+    for c in KEEP:  # a piece stored before a column existed: NaN there
+        rows[c].extend((over or {}).get(c, r.get(c, [math.nan] * m)))
 
 
 FACE_KEEP = ("realisation", "punch_diameter_m", "placement", "peak_load_N", "F_over_EA",
