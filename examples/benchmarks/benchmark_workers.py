@@ -1,0 +1,420 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Benchmark (issue 39, items 3 and 4): whole ``warptrunc sweep`` commands in process and on
+1, 2, 4 … Dask workers (one per GPU), side by side, and whether their rows are identical.
+
+What it measures
+    For each workload — ``light``: light cases (generate → truncate → fit), ``elastic``: the
+    same plus an elastic solve per case (``--bem-fractions``) — the same ``warptrunc sweep``
+    command is run as a child process, once in process (``--device`` as given, else the
+    default device: cuda:0 on a GPU machine) and once per worker count of ``--workers``
+    (``--workers N``; written ``--workers auto`` when N is the number of GPUs), each into a
+    fresh store. Before them an untimed warm-up command (the workload's first seed only)
+    compiles Warp's kernels into the shared kernel cache, so no timed command compiles.
+
+    Per run: the command's wall time (the whole process: imports, Warp's start, the cluster's
+    start and stop, the cases, the store's writes) and its speed-up against in process; where
+    the time goes, as far as the store tells it: ``fixed_s`` (the in-process command again on
+    its finished store: imports, Warp's start, reading the store; no cluster starts then),
+    ``start_s`` (a local cluster of N workers started, every worker's Warp started and a 64²
+    surface made there, the cluster closed; measured separately, in this process),
+    ``compute_s`` (the busiest device's sum of the cases' own times, the ``seconds`` column,
+    divided by the workers sharing it), ``tail_s`` (how long the first device to finish
+    waited for the last one: an imbalanced last task), and ``other_s`` = wall − fixed − start
+    − compute (the scheduler, host↔device copies outside a case, the store's writes and the
+    client's reads; negative in process, where the cases' own times overlap: generation,
+    fitting and writing run in threads side by side), with the parts (tasks of a cluster;
+    store writes) and the bytes written.
+
+    ``check`` (item 4): two small sweeps — light cases (several surfaces per launch on a GPU,
+    where the batches of a worker's task differ from those in process) and cases with elastic
+    solves and fractal dimensions — each run in process twice on the same device, then with
+    ``--workers 2`` (``--check-workers``). Every stored row and curve is compared bit for bit
+    (NaN equal to NaN) with the first run, leaving out the columns that say where, when and
+    how fast a case ran (``RUN_COLUMNS``, ``bem_seconds``); the columns that differ are
+    listed with the number of rows and the largest difference.
+
+Output
+    ``<out>/benchmark_workers.json`` (rewritten after every run, so a run cut short keeps what
+    finished): the machine (GPUs from ``nvidia-smi -L`` and Warp), the commit, every command
+    and its measures; a table on stdout at the end.
+
+Run
+    # CPU, small (the defaults: 64² grids, 2 workers): a minute
+    python examples/benchmarks/benchmark_workers.py --device cpu --workers 2 --out bench_w
+    # a GPU node, the issue's sizes (≥ 2000 light cases at 2048², 96 elastic at 4096²)
+    python examples/benchmarks/benchmark_workers.py --full --out bench_w
+    # see examples/gpu_checks/workers_bench.sh
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import shlex
+import shutil
+import subprocess
+import sys
+import time
+from datetime import datetime, timezone
+from pathlib import Path
+
+import numpy as np
+
+#: The workloads: (grid and options for ``warptrunc sweep``) small (CPU, CI) and full (issue 39).
+SIZES = {
+    "small": {
+        "light": ["--n", "64", "--D", "2.3", "2.6", "--delta", "0.01", "--seeds", "0-7"],
+        "elastic": ["--n", "64", "--D", "2.3", "2.6", "--delta", "0.01", "--seeds", "0-3",
+                    "--bem-fractions", "0.1"],
+        "check": {"light": dict(n=64, D=[2.3, 2.6], seeds="0-7"),
+                  "elastic": dict(n=64, D=[2.3, 2.6], seeds="0-3", bem=(0.1, 0.2),
+                                  fractal=("tri", "box"))},
+    },
+    "full": {  # 4 × 500 = 2000 light cases at 2048²; 2 × 48 = 96 elastic cases at 4096²
+        "light": ["--n", "2048", "--D", "2.2", "2.4", "2.6", "2.8", "--delta", "0.01",
+                  "--seeds", "0-499"],
+        "elastic": ["--n", "4096", "--D", "2.3", "2.6", "--delta", "0.01", "--seeds", "0-47",
+                    "--bem-fractions", "0.1"],
+        "check": {"light": dict(n=2048, D=[2.3, 2.6], seeds="0-31"),  # batched on a GPU
+                  "elastic": dict(n=1024, D=[2.3, 2.6], seeds="0-7", bem=(0.1, 0.2),
+                                  fractal=("tri", "box", "vs", "sp"))},
+    },
+}  # fmt: skip
+
+
+def gpus() -> list[str]:
+    """``nvidia-smi -L`` lines (empty without nvidia-smi or a GPU)."""
+    try:
+        r = subprocess.run(["nvidia-smi", "-L"], capture_output=True, text=True, timeout=30)
+    except (OSError, subprocess.SubprocessError):
+        return []
+    return [ln.strip() for ln in r.stdout.splitlines() if ln.strip().startswith("GPU")]
+
+
+def warp_devices() -> list[str]:
+    """``name (alias)`` of every Warp device."""
+    import warp as wp
+
+    from warptrunc._support.device import cuda_device_count
+
+    cuda_device_count()  # quiet init
+    return [f"{d.name} ({d.alias})" for d in wp.get_devices()]
+
+
+def _seeds_first(args: list[str]) -> list[str]:
+    """The workload's arguments with only its first seed (the warm-up)."""
+    out = list(args)
+    i = out.index("--seeds") + 1
+    out[i] = out[i].split(",")[0].split("-")[0]
+    return out
+
+
+def sweep_cmd(workload: list[str], store: Path, workers, device) -> list[str]:
+    """The ``warptrunc sweep`` command of one run."""
+    cmd = [sys.executable, "-m", "warptrunc", "sweep", *workload, "--out", str(store),
+           "--no-progress"]  # fmt: skip
+    if device:
+        cmd += ["--device", device]
+    if workers is not None:
+        cmd += ["--workers", str(workers)]
+    return cmd
+
+
+def timed(cmd: list[str], log: Path, timeout: float | None) -> tuple[float, int]:
+    """(wall time in s, return code) of ``cmd``; its output goes to ``log``."""
+    t0 = time.perf_counter()
+    with log.open("a") as fh:
+        fh.write(f"$ {' '.join(cmd)}\n")
+        fh.flush()
+        try:
+            rc = subprocess.run(cmd, stdout=fh, stderr=subprocess.STDOUT, timeout=timeout).returncode
+        except subprocess.TimeoutExpired:
+            rc = 124
+    return time.perf_counter() - t0, rc
+
+
+def cluster_start(n: int, device) -> dict:
+    """Seconds to start a local cluster of ``n`` workers (``start_s``), to warm every worker
+    (``warm_s``: Warp started, a 64² surface made on its device) and to close it (``stop_s``),
+    measured here, not inside a command; ``start_total_s`` is their sum."""
+    from warptrunc.sweep.cluster import open_client
+
+    def warm():
+        from warptrunc._support.device import resolve_device
+        from warptrunc.wm import wm_surface
+
+        dev = resolve_device(device)
+        wm_surface(2.5, 1e-3, L=1e-3, n=64, Rt=1e-5, seed=0, device=dev)
+        return str(dev)
+
+    t0 = time.perf_counter()
+    with open_client(n, None, device, False) as (client, cluster, _):
+        client.wait_for_workers(n, timeout=300)
+        t1 = time.perf_counter()
+        devices = sorted(client.run(warm).values())
+        t2 = time.perf_counter()
+        kind = type(cluster).__name__
+    t3 = time.perf_counter()
+    return dict(start_s=t1 - t0, warm_s=t2 - t1, stop_s=t3 - t2, start_total_s=t3 - t0,
+                cluster=kind, worker_devices=devices)  # fmt: skip
+
+
+def store_measures(store: Path, n_workers: int) -> dict:
+    """Where the time went, from the store: per device, parts (tasks), bytes, imbalance."""
+    from warptrunc.sweep import load
+    from warptrunc.sweep.curves import part_files, part_rows
+
+    df = load(store)
+    cases = df.drop_duplicates("case_id")
+    per_dev = {}
+    for dev, g in cases.groupby(cases["device"].fillna("none")):
+        stamps = pd_times(g["finished_utc"])
+        per_dev[str(dev)] = dict(cases=len(g), compute_s=float(np.nansum(g["seconds"])),
+                                 last_utc=str(max(g["finished_utc"])), _last=stamps.max())  # fmt: skip
+    lasts = [v.pop("_last") for v in per_dev.values()]
+    share = max(1.0, n_workers / max(1, len(per_dev)))  # workers per device (CPU: all on one)
+    parts = part_files(store / "curves")
+    sizes = [len(held or []) for held in (part_rows(p) for p in parts)]
+    return dict(
+        cases=len(cases), rows=len(df), failed=int(cases["error"].notna().sum()),
+        per_device=per_dev,
+        compute_s=max((v["compute_s"] / share for v in per_dev.values()), default=0.0),
+        compute_sum_s=float(np.nansum(cases["seconds"])),
+        tail_s=float(max(lasts) - min(lasts)) if lasts else 0.0,
+        parts=len(parts), cases_per_part=float(np.mean(sizes)) if sizes else 0.0,
+        store_bytes=sum(f.stat().st_size for f in store.rglob("*") if f.is_file()),
+        workers=n_workers,
+    )  # fmt: skip
+
+
+def pd_times(col) -> np.ndarray:
+    """ISO time stamps as seconds since the epoch."""
+    import pandas as pd
+
+    return pd.to_datetime(col, utc=True).astype("int64").to_numpy() / 1e9
+
+
+def bitwise_diff(a, b, skip=()) -> dict:
+    """Columns of frames ``a`` and ``b`` (same shape, same order) that are not identical bit
+    for bit (NaN equal to NaN): {column: {"rows": count, "max_abs": …, "max_rel": …}}."""
+    if a.shape != b.shape or list(a.columns) != list(b.columns):
+        return {"<shape>": {"a": list(a.shape), "b": list(b.shape)}}
+    out = {}
+    for c in a.columns:
+        if c in skip:
+            continue
+        x, y = a[c].to_numpy(), b[c].to_numpy()
+        if x.dtype.kind == "f" and y.dtype.kind == "f":
+            x, y = x.astype(np.float64), y.astype(np.float64)
+            same = (x.view(np.int64) == y.view(np.int64)) | (np.isnan(x) & np.isnan(y))
+            if not same.all():
+                d = np.abs(x - y)[~same]
+                rel = d / np.maximum(np.abs(x[~same]), np.finfo(float).tiny)
+                out[c] = dict(rows=int((~same).sum()), max_abs=float(np.nanmax(d, initial=0)),
+                              max_rel=float(np.nanmax(rel, initial=0)))  # fmt: skip
+        else:
+            same = np.array([_same(u, v) for u, v in zip(x, y, strict=True)])
+            if not same.all():
+                out[c] = dict(rows=int((~same).sum()))
+    return out
+
+
+def _isna(u) -> bool:
+    return u is None or (np.ndim(u) == 0 and bool(pd_isna(u)))
+
+
+def pd_isna(u) -> bool:
+    """pandas.isna of a scalar."""
+    import pandas as pd
+
+    return pd.isna(u)
+
+
+def _same(u, v) -> bool:
+    """Two cells of an object column equal (None/NA/NaN equal to each other)."""
+    if _isna(u) or _isna(v):
+        return _isna(u) and _isna(v)
+    return bool(np.all(u == v))
+
+
+def check(out: Path, spec: dict, device, workers: list[int]) -> dict:
+    """Item 4: in process twice on one device, then on each count of ``workers``, compared
+    bit for bit with the first in-process run."""
+    from warptrunc.sweep import RUN_COLUMNS, SweepGrid, load, load_curves, run_sweep
+
+    grid = SweepGrid.from_values(spec["D"], [0.01], spec["seeds"])
+    opts = dict(n=spec["n"], bem_fractions=tuple(spec.get("bem", ())),
+                fractal_methods=tuple(spec.get("fractal", ())))  # fmt: skip
+    runs = {"inproc_a": {}, "inproc_b": {}, **{f"workers_{w}": dict(workers=w) for w in workers}}
+    frames = {}
+    times = {}
+    for name, kw in runs.items():
+        t0 = time.perf_counter()
+        run_sweep(grid, out / f"check_{name}", progress=False, overwrite=True,
+                  device=device if not kw else (device if device == "cpu" else None),
+                  **kw, **opts)  # fmt: skip
+        times[name] = time.perf_counter() - t0
+        df = load(out / f"check_{name}")
+        frames[name] = (df, load_curves(out / f"check_{name}"), sorted(set(df["device"])))
+    ref_rows, ref_curves, _ = frames["inproc_a"]
+    res = dict(grid=dict(D=spec["D"], delta=[0.01], seeds=spec["seeds"]), options=opts,
+               cases=len(grid), seconds=times, devices={k: v[2] for k, v in frames.items()})  # fmt: skip
+    for name in list(runs)[1:]:
+        rows, curves, _ = frames[name]
+        skip = {*RUN_COLUMNS, *(c for c in rows.columns if c.endswith("seconds"))}  # times
+        res[name] = dict(rows_differ=bitwise_diff(ref_rows, rows, skip=skip),
+                         curves_differ=bitwise_diff(ref_curves, curves))  # fmt: skip
+        res[name]["identical"] = not res[name]["rows_differ"] and not res[name]["curves_differ"]
+    for name in runs:
+        shutil.rmtree(out / f"check_{name}", ignore_errors=True)
+    return res
+
+
+def default_workers(n_gpus: int) -> list[int]:
+    """1, 2, 4, … up to the GPUs present, and their count; [1, 2] without a GPU."""
+    if n_gpus <= 0:
+        return [1, 2]
+    ws = [w for w in (1, 2, 4, 8, 16, 32) if w <= n_gpus]
+    return ws if ws[-1] == n_gpus else [*ws, n_gpus]
+
+
+def table(results: dict) -> str:
+    """The runs as a plain-text table."""
+    head = (f"{'workload':9} {'run':10} {'cases':>6} {'wall s':>8} {'×':>6} {'fixed':>6} "
+            f"{'start':>6} {'compute':>8} {'tail':>6} {'other':>7} {'parts':>6}")  # fmt: skip
+    lines = [head, "-" * len(head)]
+    for r in results["runs"]:
+        if "wall_s" not in r:
+            lines.append(f"{r['workload']:9} {r['run']:10} {r.get('status', '')}")
+            continue
+        f = lambda k, w=6, r=r: f"{r[k]:{w}.1f}" if isinstance(r.get(k), float) else f"{'-':>{w}}"  # noqa: E731
+        lines.append(f"{r['workload']:9} {r['run']:10} {r.get('cases', 0):6d} {r['wall_s']:8.1f} "
+                     f"{r.get('speedup', float('nan')):6.2f} {f('fixed_s')} {f('start_s')} "
+                     f"{f('compute_s', 8)} {f('tail_s')} {f('other_s', 7)} "
+                     f"{r.get('parts', 0):6d}")  # fmt: skip
+    for kind, c in results.get("check", {}).items():
+        for name in [k for k in c if k.startswith(("inproc_b", "workers_"))]:
+            d = c[name]
+            what = "identical" if d["identical"] else "differ in " + ", ".join(
+                [*d["rows_differ"], *(f"curve:{k}" for k in d["curves_differ"])])  # fmt: skip
+            lines.append(f"check {kind} (n={c['options']['n']}, {c['cases']} cases): {name} vs "
+                         f"inproc_a: {what}")  # fmt: skip
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
+    ap.add_argument("--out", type=Path, default=Path("bench_workers"), help="output folder")
+    ap.add_argument("--full", action="store_true",
+                    help="the issue's sizes (2000 light cases at 2048², 96 elastic at 4096², "
+                    "check at 1024²) instead of the small CPU ones (64²)")  # fmt: skip
+    ap.add_argument("--runs", nargs="+", default=["light", "elastic", "check"],
+                    choices=("light", "elastic", "check"))  # fmt: skip
+    ap.add_argument("--workers", type=int, nargs="+", default=None,
+                    help="worker counts (default: 1, 2, 4, … up to the GPUs present; 1 2 "
+                    "without a GPU)")  # fmt: skip
+    ap.add_argument("--check-workers", type=int, nargs="+", default=[2],
+                    help="worker counts of the check")
+    ap.add_argument("--device", default=None,
+                    help="device of the in-process runs (and of every worker with cpu); "
+                    "default: cuda:0 on a GPU machine, the workers one GPU each")  # fmt: skip
+    ap.add_argument("--light-args", default=None,
+                    help="replace the light workload's sweep arguments (one quoted string, "
+                    "e.g. \"--n 512 --D 2.5 --delta 0.01 --seeds 0-99\")")  # fmt: skip
+    ap.add_argument("--elastic-args", default=None,
+                    help="replace the elastic workload's sweep arguments (one quoted string)")
+    ap.add_argument("--budget-s", type=float, default=None,
+                    help="start no timed run after this many seconds (s); the rest are listed "
+                    "as skipped (the check still runs)")  # fmt: skip
+    ap.add_argument("--timeout-s", type=float, default=None, help="limit of one command (s)")
+    args = ap.parse_args(argv)
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from _common import git_commit
+
+    sizes = SIZES["full" if args.full else "small"]
+    workloads = {
+        "light": shlex.split(args.light_args) if args.light_args else sizes["light"],
+        "elastic": shlex.split(args.elastic_args) if args.elastic_args else sizes["elastic"],
+    }
+    out = args.out.resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    log = out / "commands.log"
+    gpu_lines = gpus()
+    wdevs = warp_devices()
+    n_gpus = sum(1 for d in wdevs if "(cuda:" in d)
+    counts = args.workers or default_workers(n_gpus if args.device in (None, "") else 0)
+    results = dict(
+        benchmark="benchmark_workers", issue=39, commit=git_commit(), host=platform.node(),
+        started_utc=datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        gpus=gpu_lines, warp_devices=wdevs, cpus=os.cpu_count(), python=platform.python_version(),
+        sizes="full" if args.full else "small", device=args.device, workers=counts, runs=[],
+    )  # fmt: skip
+    path = out / "benchmark_workers.json"
+
+    def save():
+        path.write_text(json.dumps(results, indent=1, default=str) + "\n")
+
+    t_begin = time.perf_counter()
+    over = lambda: args.budget_s is not None and time.perf_counter() - t_begin > args.budget_s  # noqa: E731
+    starts: dict[int, dict] = {}
+    for wl in [w for w in ("light", "elastic") if w in args.runs]:
+        store = out / f"store_{wl}"
+        shutil.rmtree(store, ignore_errors=True)
+        spent, rc = timed(sweep_cmd(_seeds_first(workloads[wl]), store, None, args.device), log,
+                          args.timeout_s)  # fmt: skip
+        results.setdefault("warmup_s", {})[wl] = spent
+        base, fixed = None, 0.0
+        for n in [None, *counts]:
+            name = "inproc" if n is None else f"workers_{n}"
+            rec = dict(workload=wl, run=name)
+            results["runs"].append(rec)
+            if over():
+                rec["status"] = "skipped (budget)"
+                save()
+                continue
+            w = None if n is None else ("auto" if n == n_gpus and not args.device else n)
+            cmd = sweep_cmd(workloads[wl], store, w, args.device)
+            shutil.rmtree(store, ignore_errors=True)
+            wall, rc = timed(cmd, log, args.timeout_s)
+            rec.update(command=" ".join(cmd[1:]).replace(f"{out}/", "<out>/"), wall_s=wall, rc=rc)
+            if rc != 0:
+                rec["status"] = f"failed (rc {rc}, see commands.log)"
+                save()
+                continue
+            rec.update(store_measures(store, n or 1))
+            if n is None:
+                base = wall
+                rec["fixed_s"], _ = timed(cmd, log, args.timeout_s)  # a finished store: no work
+                fixed = rec["fixed_s"]
+                rec["start_s"] = 0.0
+            else:
+                if n not in starts:
+                    starts[n] = cluster_start(n, args.device if args.device == "cpu" else None)
+                rec.update(start_s=starts[n]["start_total_s"], cluster=starts[n]["cluster"],
+                           worker_devices=starts[n]["worker_devices"], fixed_s=fixed)  # fmt: skip
+            rec["other_s"] = wall - rec["fixed_s"] - rec["start_s"] - rec["compute_s"]
+            rec["speedup"] = base / wall if base else float("nan")
+            save()
+        shutil.rmtree(store, ignore_errors=True)
+    results["cluster_start"] = {str(k): v for k, v in starts.items()}
+    save()
+    if "check" in args.runs:  # after the timed runs (it uses this process's GPU); no budget
+        results["check"] = {}
+        for kind, spec in sizes["check"].items():
+            results["check"][kind] = check(out, spec, args.device, args.check_workers)
+            save()
+    results["total_s"] = time.perf_counter() - t_begin
+    save()
+    print(f"commit {results['commit']}; {len(gpu_lines)} GPU(s): "
+          f"{'; '.join(gpu_lines) or 'none'}; results in {path}")  # fmt: skip
+    print(table(results))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
