@@ -156,6 +156,8 @@ def _preload_plotting() -> threading.Thread:
 def run(args: argparse.Namespace) -> int:
     """Analyse and write the outputs."""
     check_increments(args.increments, "--increments")
+    # matplotlib's import starts first, to overlap Warp's (inside ..analysis) as well
+    preload = None if args.no_plot else _preload_plotting()
     from ..analysis import FitRangeError, analyze
 
     if args.depth_window is not None and not args.depth_window[0] < args.depth_window[1]:
@@ -171,7 +173,6 @@ def run(args: argparse.Namespace) -> int:
     if args.stream and rtp is not None:
         raise ValueError("--rt-percentile needs the map in memory; it cannot be streamed")
     material = material_from_args(args)
-    preload = None if args.no_plot else _preload_plotting()
     source = surface_from_args(args) if args.input is not None else wm_spec_from_args(args)
     try:
         a = analyze(
