@@ -229,7 +229,7 @@ def open_client(
     The workers of a local cluster get this process's ``WARP_CACHE_PATH``
     (:func:`kernel_cache_base`), so they share one kernel cache on disk. Workers of an
     existing cluster are not pinned: start one per GPU with its ``CUDA_VISIBLE_DEVICES``
-    (``dask-cuda-worker`` does) or ``WARPTRUNC_DEVICE``.
+    (``dask cuda worker`` does) or ``WARPTRUNC_DEVICE``.
     """
     import dask
     from distributed import Client, LocalCluster
