@@ -17,7 +17,7 @@ pytest.importorskip("pyarrow")
 from sweep_helpers import OPTS, results_only  # noqa: E402
 
 import warptrunc.sweep.cluster as cl  # noqa: E402
-from warptrunc.sweep import SweepGrid, run_sweep  # noqa: E402
+from warptrunc.sweep import SweepGrid, load, run_sweep  # noqa: E402
 
 
 def test_resolve_workers(monkeypatch):
@@ -109,8 +109,11 @@ def test_open_client_uses_dask_cuda_where_installed(monkeypatch):
 
 
 @pytest.mark.timeout(240)
-def test_one_cluster_for_every_group_of_a_sweep(tmp_path, monkeypatch):
-    """A grid with an extra axis runs as two groups on one cluster (started once)."""
+def test_one_cluster_for_every_group_of_a_sweep(tmp_path, monkeypatch, capsys):
+    """``warptrunc sweep --workers auto`` (1 worker without a GPU) on a grid with an extra axis:
+    two groups of cases on one cluster, started once; the table as in process."""
+    from warptrunc.cli import main
+
     opened = []
     real = cl.open_client
 
@@ -124,6 +127,10 @@ def test_one_cluster_for_every_group_of_a_sweep(tmp_path, monkeypatch):
     monkeypatch.setattr(cl, "open_client", counting)
     grid = SweepGrid.from_values([2.4], [0.01], "0-1", axes={"M": [8, 10]})
     ref = run_sweep(grid, None, progress=False, device="cpu", **OPTS)
-    df = run_sweep(grid, tmp_path / "s", workers=1, progress=False, device="cpu", **OPTS)
-    assert opened == [(1, None)]
-    pd.testing.assert_frame_equal(results_only(df), results_only(ref))
+    rc = main(["sweep", "--D", "2.4", "--delta", "0.01", "--seeds", "0-1", "--M", "8", "10",
+               "--n", "64", "--increments", "60", "--max-depth-fraction", "0.3",
+               "--min-pixels", "1", "20", "--device", "cpu", "--no-progress",
+               "--workers", "auto", "--out", str(tmp_path / "s")])  # fmt: skip
+    assert rc == 0 and "4 cases (0 failed)" in capsys.readouterr().out
+    assert opened == [("auto", None)]
+    pd.testing.assert_frame_equal(results_only(load(tmp_path / "s")), results_only(ref))
