@@ -341,7 +341,10 @@ def bench_problem(h, surface, substrate, n, args, tmp, budget) -> list[dict]:
     base = {"surface": surface, "substrate": substrate, "n": n}
     use_tamaas = substrate == "periodic" and have("tamaas") and "tamaas" in args.peers
     use_cm = have("ContactMechanics") and "contactmechanics" in args.peers
-    if use_tamaas and budget.get("tamaas", 0) < lim:
+    if args.reference == "warptrunc":
+        ref = solve_warptrunc(h, substrate, "float64", WT_REF_PENTOL * rms, args.device)
+        ref_by = f"warptrunc float64 pentol {WT_REF_PENTOL:g}·rms (--reference warptrunc)"
+    elif use_tamaas and budget.get("tamaas", 0) < lim:
         ref = run_worker("tamaas", path, substrate, None, [TAMAAS_REF_TOL], ncpu, lim)[0]
         ref_by = f"tamaas tol {TAMAAS_REF_TOL:g}"
     elif use_cm and budget.get(f"cm-{substrate}", 0) < lim:
@@ -360,8 +363,8 @@ def bench_problem(h, surface, substrate, n, args, tmp, budget) -> list[dict]:
 
     def record(name, chosen, tried, threads, extra=None):
         row = {**base, "solver": name, "threads": threads, "walk": tried, **(extra or {})}
-        if chosen is None:
-            row["matched"] = False
+        if chosen is None or not chosen.get("matches"):
+            row.update(matched=False, **{k: v for k, v in (chosen or {}).items() if k != "walk"})
         else:
             row.update(matched=True, **{k: v for k, v in chosen.items() if k != "walk"})
         rows.append(row)
@@ -372,11 +375,17 @@ def bench_problem(h, surface, substrate, n, args, tmp, budget) -> list[dict]:
 
     if use_tamaas and budget.get("tamaas", 0) < lim:
         t0 = time.perf_counter()
-        chosen, tried = run_worker("tamaas", path, substrate, ref, TAMAAS_TOLS, ncpu, lim)
-        record(f"tamaas ({ncpu} threads)", chosen, tried, ncpu)
-        if chosen is not None and ncpu > 1:
+        if args.tamaas_tol is None:
+            chosen, tried = run_worker("tamaas", path, substrate, ref, TAMAAS_TOLS, ncpu, lim)
+        else:  # one solve at the given tolerance, its match recorded
+            chosen = run_worker("tamaas", path, substrate, None, [args.tamaas_tol], ncpu, lim)[0]
+            chosen["matches"] = matches(chosen, ref)
+            tried = []
+        record(f"tamaas ({ncpu} threads)", chosen, tried, ncpu,
+               {"tol_given": args.tamaas_tol is not None})  # fmt: skip
+        if chosen is not None and "tol" in chosen and ncpu > 1 and args.tamaas_one_thread:
             one = run_worker("tamaas", path, substrate, None, [chosen["tol"]], 1, lim)[0]
-            matches(one, ref)
+            one["matches"] = matches(one, ref)
             record("tamaas (1 thread)", one, [], 1)
         budget["tamaas"] = time.perf_counter() - t0
     key = f"cm-{substrate}"
@@ -444,6 +453,26 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--time-limit", type=float, default=600.0,
                     help="s per peer and N; larger N skipped for a peer past it")  # fmt: skip
     ap.add_argument("--repeats", type=int, default=3, help="warptrunc's timed solves (median)")
+    ap.add_argument(
+        "--reference",
+        choices=["peer", "warptrunc"],
+        default="peer",
+        help="the tight reference: the peer's own (tamaas periodic, ContactMechanics "
+        "free) or warptrunc float64 at pentol 1e-11·rms (fast, for large N)",
+    )
+    ap.add_argument(
+        "--tamaas-tol",
+        type=float,
+        default=None,
+        help="time tamaas at this tolerance (one solve, its match recorded) "
+        "instead of walking its tolerance",
+    )
+    ap.add_argument(
+        "--tamaas-one-thread",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="also time tamaas with OMP_NUM_THREADS=1",
+    )
     ap.add_argument("--out", type=Path, default=None, help="folder for the JSON")
     ap.add_argument("--name", default=None, help="JSON file name (default peers_<device>.json)")
     args = ap.parse_args(argv)
@@ -469,6 +498,7 @@ def main(argv: list[str] | None = None) -> dict:
                           if not dev.is_cuda else f"one GPU, {dev_name}"),
         },
         "load": {"mean_pressure_over_E_star": P_MEAN / E_STAR, "E_star_Pa": E_STAR, "L_m": 1.0},
+        "reference": args.reference, "tamaas_tol_given": args.tamaas_tol,
         "rule": (f"area (p > 0) and mean gap within {MATCH:g} (relative) of the reference; each "
                  "solver loosens its tolerance by decades from a tight start while it matches, "
                  "timed at the loosest matching one (cold solve)"),
