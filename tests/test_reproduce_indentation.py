@@ -143,7 +143,7 @@ def test_tiny_report_has_each_table(tiny_indent):
     text = (out / "report.md").read_text()
     st = doc["stages"]["indentation"]
     for head in ("**Hardness as a question**", "| surface | punch | H = 0.5 GPa |",
-                 "H with depth in 4–6 µm", "| surface | design | model | α [95 %] | β [95 %] | cells | indents | made |",
+                 "H with depth in 4–6 µm", "| surface | design | model | α [95 %] | β [95 %] | cells | indents | α, β on K alone (cells) |",
                  "**How deep truncation stays within ±20 % of each model**", "the paper (vs experiment)",
                  "**Which model truncation tracks, on resolved cells.**",
                  "**Resolution of the cells per load.**", "| level | cells solved |",
@@ -264,3 +264,18 @@ def test_statistics_piece_resumes(tmp_path):
         if f != lost:
             assert f.stat().st_mtime_ns == before[f.name]
     assert json.dumps(a["rows"]) == json.dumps(b["rows"])
+
+
+def test_stiffness_rule_on_hand_made_cells():
+    """The rule on K alone: a halved cell counts when K changed < tol with ≥ min pixels and
+    converged, whatever its area did; a cell never halved keeps its contact-pixel verdict."""
+    from warptrunc.reproduce.indentation_summary import resolved_stiffness
+
+    p = replace(get_profile("tiny"), indentation_resolution_tol=0.02, indentation_min_contact_pixels=100)
+    r = {  # K change, pixels, converged, resolved (K and A) by hand
+        "resolution_change": [0.01, 0.03, 0.01, 0.01, float("nan"), float("nan"), 0.019999],
+        "n_contact": [150, 150, 99, 150, 120, 5, 100],
+        "converged": [True, True, True, False, True, True, True],
+        "resolved": [False, False, False, False, True, False, False],
+    }
+    assert resolved_stiffness(p, r) == [True, False, False, False, True, False, True]

@@ -169,11 +169,18 @@ def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
     return {"per_model": per, "closest": closest, "tracked": tracked, "band": good}
 
 
-def _fit(r: dict[str, list], idx: list[int], col: str) -> dict[str, Any]:
+def _ok_stiffness(r: dict[str, list], i: int) -> bool:
+    """A cell resolved by the rule on K alone (``resolved_stiffness``), not saturated, converged."""
+    rk = r.get("resolved_stiffness")
+    return (bool(rk[i]) if rk is not None else bool(r["resolved"][i])) and not bool(r["saturated"][i]) \
+        and bool(r["converged"][i])
+
+
+def _fit(r: dict[str, list], idx: list[int], col: str, ok=_ok) -> dict[str, Any]:
     from ..indent import default_material
     from ..indent.fits import MIN_FIT_POINTS, fit_cells
 
-    sel = [i for i in idx if _ok(r, i) and r[col][i] is not None and r[col][i] > 0
+    sel = [i for i in idx if ok(r, i) and r[col][i] is not None and r[col][i] > 0
            and r["F_over_EA"][i] > 0]  # fmt: skip
     ind = [(r["realisation"][i], r["punch_diameter_m"][i], r["placement"][i]) for i in sel]
     n_ind = len(set(ind))
@@ -322,7 +329,9 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
     dict
         ``fits``: (surface, design) → model → fit (``made``, α, β, their ``alpha_ci95`` /
         ``beta_ci95``, ``n_points``, ``n_indents``; ``<model>_partial`` for the
-        partial-unloading secant), as a list of records; ``depths``: records of the punch depth
+        partial-unloading secant; ``stiffness_rule``: the same fit over the cells resolved by
+        the rule on K alone, :func:`~.indentation_summary.resolved_stiffness`), as a list of
+        records; ``depths``: records of the punch depth
         at the largest load per surface × design × model (:func:`depth_at_load`);
         ``hardness``: surface → the depth per H of the sweep, ``range``
         (:func:`hardness_range`) and ``match`` (:func:`depth_match`); ``agreement``: records of
@@ -338,6 +347,7 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
     fits, depths, agree, track = [], {}, [], []
     for (s, design, m), idx in groups.items():
         rec = {"surface": s, "design": design, "model": m, **_fit(r, idx, "E_c_over_E")}
+        rec["stiffness_rule"] = _fit(r, idx, "E_c_over_E", _ok_stiffness)
         if m != "truncation":
             rec["partial"] = _fit(r, idx, "E_c_partial_over_E")
             depths[(s, design, m)] = depth_at_load(

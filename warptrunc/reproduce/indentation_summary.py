@@ -20,9 +20,37 @@ KEEP = ("realisation", "punch_diameter_m", "placement", "peak_load_N", "F_over_E
         "displacement_m", "contact_area_m2", "plastic_area_m2", "n_contact", "E_c_over_E",
         "E_c_partial_over_E", "converged", "overlap_fraction", "n_punch_pixels", "in_fit",
         "resolved", "saturated", "pixel_size_m", "truncation_E_c_over_E", "truncation_depth_m",
-        "resolution_change", "area_change")  # fmt: skip
+        "resolution_change", "area_change", "resolved_stiffness")  # fmt: skip
 """Columns of the pieces kept in the stage's rows (with ``surface``, ``design``, ``model``,
 ``hardness_Pa``)."""
+
+
+def resolved_stiffness(p: Profile, r: dict[str, list]) -> list[bool]:
+    """Per cell, the rule on K alone: converged, at least ``indentation_min_contact_pixels``
+    contact pixels and, where the cell was halved, K changed by less than
+    ``indentation_resolution_tol`` at the last halving (the contact area may still change).
+
+    Parameters
+    ----------
+    p : Profile
+        The profile (tolerance, fewest contact pixels).
+    r : dict of str to list
+        A piece's rows (``converged``, ``n_contact``, ``resolution_change``, ``resolved``).
+
+    Returns
+    -------
+    list of bool
+        One per row; a cell never halved keeps its ``resolved`` (the contact-pixel rule).
+    """
+    out = []
+    for i in range(len(r["converged"])):
+        dk, n = r["resolution_change"][i], r["n_contact"][i]
+        if dk is None or not math.isfinite(dk):
+            out.append(bool(r["resolved"][i]))
+        else:
+            out.append(bool(r["converged"][i]) and n is not None
+                       and n >= p.indentation_min_contact_pixels and dk < p.indentation_resolution_tol)  # fmt: skip
+    return out
 
 
 def _append(rows: dict[str, list], s: str, design: str, model: str, h: float | None,
@@ -124,7 +152,7 @@ def summary_from_pieces(p: Profile, pieces: list[tuple[tuple[str, str, float], d
             hardness[name] = None if math.isinf(h) else h
             if name not in models[design]:
                 models[design].append(name)
-            r = rec["rows"]
+            r = {**rec["rows"], "resolved_stiffness": resolved_stiffness(p, rec["rows"])}
             _append(rows, s, design, name, hardness[name], r)
             if rec is trunc:
                 m = len(r["peak_load_N"])
