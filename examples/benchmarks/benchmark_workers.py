@@ -55,6 +55,7 @@ import os
 import platform
 import shlex
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -124,14 +125,24 @@ def sweep_cmd(workload: list[str], store: Path, workers, device) -> list[str]:
 
 
 def timed(cmd: list[str], log: Path, timeout: float | None) -> tuple[float, int]:
-    """(wall time in s, return code) of ``cmd``; its output goes to ``log``."""
+    """(wall time in s, return code; 124 if stopped at ``timeout`` s) of ``cmd``, its output
+    appended to ``log``. The command runs in a session of its own, so a stop (SIGTERM, then
+    SIGKILL after 10 s) reaches its Dask workers too."""
     t0 = time.perf_counter()
     with log.open("a") as fh:
         fh.write(f"$ {' '.join(cmd)}\n")
         fh.flush()
+        p = subprocess.Popen(cmd, stdout=fh, stderr=subprocess.STDOUT, start_new_session=True)
         try:
-            rc = subprocess.run(cmd, stdout=fh, stderr=subprocess.STDOUT, timeout=timeout).returncode
+            rc = p.wait(timeout=timeout)
         except subprocess.TimeoutExpired:
+            for sig, wait in ((signal.SIGTERM, 10), (signal.SIGKILL, 30)):
+                try:
+                    os.killpg(p.pid, sig)
+                    p.wait(timeout=wait)
+                    break
+                except (ProcessLookupError, subprocess.TimeoutExpired):
+                    continue
             rc = 124
     return time.perf_counter() - t0, rc
 
@@ -286,9 +297,15 @@ def table(results: dict) -> str:
     head = (f"{'workload':9} {'run':10} {'cases':>6} {'wall s':>8} {'×':>6} {'fixed':>6} "
             f"{'start':>6} {'compute':>8} {'tail':>6} {'other':>7} {'parts':>6}")  # fmt: skip
     lines = [head, "-" * len(head)]
-    for r in results["runs"]:
-        if "wall_s" not in r:
-            lines.append(f"{r['workload']:9} {r['run']:10} {r.get('status', '')}")
+
+    def order(r):  # light before elastic; in process, then 1, 2, 4 … workers
+        n = 0 if r["run"] == "inproc" else int(r["run"].split("_")[1])
+        return (r["workload"] != "light", n)
+
+    for r in sorted(results["runs"], key=order):
+        if r.get("status"):  # skipped, failed or stopped
+            wall = f" after {r['wall_s']:.1f} s" if "wall_s" in r else ""
+            lines.append(f"{r['workload']:9} {r['run']:10} {r['status']}{wall}")
             continue
         f = lambda k, w=6, r=r: f"{r[k]:{w}.1f}" if isinstance(r.get(k), float) else f"{'-':>{w}}"  # noqa: E731
         lines.append(f"{r['workload']:9} {r['run']:10} {r.get('cases', 0):6d} {r['wall_s']:8.1f} "
@@ -330,6 +347,9 @@ def main(argv=None) -> int:
     ap.add_argument("--budget-s", type=float, default=None,
                     help="start no timed run after this many seconds (s); the rest are listed "
                     "as skipped (the check still runs)")  # fmt: skip
+    ap.add_argument("--grace-s", type=float, default=60.0,
+                    help="with --budget-s: a timed command is stopped this long after the budget "
+                    "(s), and listed as failed (rc 124)")  # fmt: skip
     ap.add_argument("--timeout-s", type=float, default=None, help="limit of one command (s)")
     args = ap.parse_args(argv)
 
@@ -361,6 +381,13 @@ def main(argv=None) -> int:
 
     t_begin = time.perf_counter()
     over = lambda: args.budget_s is not None and time.perf_counter() - t_begin > args.budget_s  # noqa: E731
+
+    def limit() -> float | None:
+        """A command's time limit (s): --timeout-s, and no later than budget + grace."""
+        if args.budget_s is None:
+            return args.timeout_s
+        left = max(1.0, args.budget_s + args.grace_s - (time.perf_counter() - t_begin))
+        return left if args.timeout_s is None else min(args.timeout_s, left)
     starts: dict[int, dict] = {}
     for wl in [w for w in ("light", "elastic") if w in args.runs]:
         store = out / f"store_{wl}"
@@ -369,7 +396,7 @@ def main(argv=None) -> int:
                           args.timeout_s)  # fmt: skip
         results.setdefault("warmup_s", {})[wl] = spent
         base, fixed = None, 0.0
-        for n in [None, *counts]:
+        for n in [None, *sorted(counts, reverse=True)]:  # past the budget, 1 worker goes first
             name = "inproc" if n is None else f"workers_{n}"
             rec = dict(workload=wl, run=name)
             results["runs"].append(rec)
@@ -380,7 +407,7 @@ def main(argv=None) -> int:
             w = None if n is None else ("auto" if n == n_gpus and not args.device else n)
             cmd = sweep_cmd(workloads[wl], store, w, args.device)
             shutil.rmtree(store, ignore_errors=True)
-            wall, rc = timed(cmd, log, args.timeout_s)
+            wall, rc = timed(cmd, log, limit())
             rec.update(command=" ".join(cmd[1:]).replace(f"{out}/", "<out>/"), wall_s=wall, rc=rc)
             if rc != 0:
                 rec["status"] = f"failed (rc {rc}, see commands.log)"

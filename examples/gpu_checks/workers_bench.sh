@@ -14,8 +14,9 @@
 # Time on 4 H100s, estimated from 2026-11-27 measurements (96 light 2048² cases: 2.6 s in
 # process; 24 elastic 2048² cases with two fractions: 14.3 s; a 4096² solve about 3× a
 # 2048² one): light ≈ 6 + 15 + 10 + 8 s, elastic ≈ 70 + 75 + 40 + 25 s, the check ≈ 40 s,
-# clusters timed alone ≈ 20 s, the first (compiling) warm-ups ≈ 60 s: about 6 min. No timed
-# run starts after BUDGET_S (default 330 s), each command stops after 240 s: under 7 min.
+# clusters timed alone ≈ 20 s, the first (compiling) warm-ups ≈ 60 s: about 6 min. Worker
+# counts run largest first; no timed run starts after BUDGET_S (default 300 s) and none runs
+# past it by more than 60 s (then listed as rc 124), the check (≈ 60 s) last: at most 7 min.
 set -uo pipefail
 OUT=${OUT:-workers_bench_out}
 mkdir -p "$OUT"
@@ -39,7 +40,7 @@ t0=$(date +%s)
 SIZES="--full"
 [ "${SMALL:-0}" = 1 ] && SIZES=""
 python examples/benchmarks/benchmark_workers.py $SIZES --out "$OUT" \
-    --budget-s "${BUDGET_S:-330}" --timeout-s 240 --check-workers $CHECK ${BENCH_ARGS:-} \
+    --budget-s "${BUDGET_S:-300}" --grace-s 60 --timeout-s 240 --check-workers $CHECK ${BENCH_ARGS:-} \
     2> "$OUT/benchmark_stderr.log"
 status=$?
 [ $status -ne 0 ] && tail -n 30 "$OUT/benchmark_stderr.log"
