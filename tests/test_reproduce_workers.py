@@ -130,3 +130,19 @@ def test_reproduce_workers_2_equals_workers_1(tmp_path):
     assert _rows(one["stages"]["indentation"]) == _rows(two["stages"]["indentation"])
     fa, fb = one["analysis"]["indentation"]["fits"], two["analysis"]["indentation"]["fits"]
     assert json.dumps(fa, sort_keys=True) == json.dumps(fb, sort_keys=True)
+
+
+@pytest.mark.timeout(400)
+def test_elastic_stage_on_two_workers_equals_in_process(tmp_path):
+    """The elastic stage's maps as tasks: the same stored rows as in process."""
+    from warptrunc.compare import load_comparison
+
+    p = get_profile("tiny")
+    one = reproduce(p, tmp_path / "a", device="cpu", stages="elastic")
+    two = reproduce(p, tmp_path / "b", device="cpu", stages="elastic", workers=2)
+    ra = load_comparison(tmp_path / "a" / "elastic").drop(columns=["solve_time_s", "case_seconds"])
+    rb = load_comparison(tmp_path / "b" / "elastic").drop(columns=["solve_time_s", "case_seconds"])
+    ra = ra.sort_values(list(ra.columns[:3])).reset_index(drop=True)
+    rb = rb.sort_values(list(rb.columns[:3])).reset_index(drop=True)
+    assert len(ra) and ra.equals(rb)
+    assert one["stages"]["elastic"]["alpha"] == two["stages"]["elastic"]["alpha"]

@@ -46,11 +46,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "its finished pieces are kept and a rerun continues (default: no limit)")  # fmt: skip
     p.add_argument("--workers", type=workers_count, default=None, metavar="N|auto",
                    help="run the indentation stage's parts (one punch × one realisation of a "
-                   "piece each) on a local Dask cluster of N worker processes, one per GPU; auto: "
-                   "one per visible GPU; the other stages run in this process (default: all in "
-                   "this process)")  # fmt: skip
+                   "piece each) and the elastic stage's maps on a local Dask cluster of N worker "
+                   "processes, one per GPU; auto: one per visible GPU; the other stages run in this "
+                   "process (default: all in this process)")  # fmt: skip
     p.add_argument("--scheduler", default=None,
-                   help="address of an existing Dask scheduler for the indentation stage's parts "
+                   help="address of an existing Dask scheduler for the same tasks "
                    "(workers started one per GPU, on a filesystem shared with --out)")  # fmt: skip
     add_device(p)
 

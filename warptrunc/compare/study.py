@@ -160,6 +160,7 @@ def compare_study(
     overwrite: bool = False,
     progress: bool = True,
     device: wp.DeviceLike = None,
+    client=None,
 ):
     """Run (or resume) a study of the three routes and store one Parquet file per case.
 
@@ -179,6 +180,10 @@ def compare_study(
     progress : bool
         tqdm bar over the cases.
     {warp_device}
+    client : distributed.Client, optional
+        Run the cases as tasks of this Dask cluster (one per case, the largest maps first),
+        each written by its worker into ``out`` (a filesystem the workers share); ``device``
+        is then the tasks' device (None: each worker's pinned GPU). Default: in this process.
 
     Returns
     -------
@@ -222,34 +227,60 @@ def compare_study(
     with store_rollback(out, keep=lambda: any((out / "cases").glob("*.parquet"))):
         _open_store(out, settings, overwrite)
         _run_cases(out, cases, surface, fractions, material, beta_prime, increments,
-                   connectivity, dtype, pressure_tol, pentol, maxiter, progress, device)  # fmt: skip
+                   connectivity, dtype, pressure_tol, pentol, maxiter, progress, device, client)  # fmt: skip
     rows = load_comparison(out)
     return rows[rows["case_id"].isin(ids)].reset_index(drop=True)
 
 
 def _run_cases(out, cases, surface, fractions, material, beta_prime, increments, connectivity,
-               dtype, pressure_tol, pentol, maxiter, progress, device) -> None:  # fmt: skip
-    """Compute and store the cases that ``out`` does not hold yet."""
+               dtype, pressure_tol, pentol, maxiter, progress, device, client=None) -> None:  # fmt: skip
+    """Compute and store the cases that ``out`` does not hold yet (in this process, or one
+    task per case on the Dask ``client``, each written by its worker)."""
     from .._support.progress import progress_bar
-    from ..wm import wm_surface
 
     todo = [c for c in cases if not _case_path(out, c["case_id"]).exists()]
-    bar = progress_bar(todo, desc="compare", unit="case", enabled=progress)
-    for c in bar:
-        t0 = time.perf_counter()
-        if surface is not None:
-            s = surface
-        else:
-            s = wm_surface(c["D_in"], c["Wr_m"], L=c["L_m"], n=c["n"], Rt=c["Rt_m"], M=c["M"],
-                           gamma=c["gamma"], Wc=c["Wc_m"], seed=c["seed"], device=device)  # fmt: skip
-        r = compare_models(
-            s, fractions, material=material, beta_prime=beta_prime, increments=increments,
-            connectivity=connectivity, dtype=dtype, pressure_tol=pressure_tol, pentol=pentol,
-            maxiter=maxiter, device=device,
-        )  # fmt: skip
-        c = {**c, "Rt_m": r.Rt}
-        _write_case(out, c, r, time.perf_counter() - t0)
-        del s, r
+    args = (surface, fractions, material, beta_prime, increments, connectivity, dtype,
+            pressure_tol, pentol, maxiter)  # fmt: skip
+    if client is None:
+        for c in progress_bar(todo, desc="compare", unit="case", enabled=progress):
+            _one_case(str(out), c, *args, device)
+        return
+    from distributed import as_completed
+
+    # the largest maps first, so that the last task is a small one
+    todo.sort(key=lambda c: -int(c["n"]) ** 2)
+    futs = {client.submit(_one_case, str(Path(out).resolve()), c, *args, device, pure=False,
+                          key=f"compare-{c['case_id']}"): c for c in todo}  # fmt: skip
+    with progress_bar(total=len(todo), desc="compare", unit="case", enabled=progress) as bar:
+        for fut in as_completed(futs):
+            c = futs[fut]
+            try:
+                fut.result()
+            except Exception:  # a lost worker: its case once more here, unless its file landed
+                if not _case_path(out, c["case_id"]).exists():
+                    _one_case(str(out), c, *args, device)
+            bar.update()
+
+
+def _one_case(out: str, c, surface, fractions, material, beta_prime, increments, connectivity,
+              dtype, pressure_tol, pentol, maxiter, device) -> str:  # fmt: skip
+    """Compute one case and write its file (atomically); returns its case id."""
+    from ..wm import wm_surface
+
+    t0 = time.perf_counter()
+    if surface is not None:
+        s = surface
+    else:
+        s = wm_surface(c["D_in"], c["Wr_m"], L=c["L_m"], n=c["n"], Rt=c["Rt_m"], M=c["M"],
+                       gamma=c["gamma"], Wc=c["Wc_m"], seed=c["seed"], device=device)  # fmt: skip
+    r = compare_models(
+        s, fractions, material=material, beta_prime=beta_prime, increments=increments,
+        connectivity=connectivity, dtype=dtype, pressure_tol=pressure_tol, pentol=pentol,
+        maxiter=maxiter, device=device,
+    )  # fmt: skip
+    c = {**c, "Rt_m": r.Rt}
+    _write_case(Path(out), c, r, time.perf_counter() - t0)
+    return c["case_id"]
 
 
 def _case_path(out: Path, case_id: str) -> Path:

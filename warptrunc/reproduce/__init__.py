@@ -72,13 +72,13 @@ def reproduce(
         (its pieces are stored as they finish; a rerun continues). The report then says the
         stage is incomplete. Default: no limit.
     workers : int or "auto", optional
-        Run the ``indentation`` stage's parts (one punch × one realisation of a piece each) on
-        a local Dask cluster of this many worker processes, one per GPU (``"auto"``: one per
+        Run the ``indentation`` stage's parts (one punch × one realisation of a piece each) and
+        the ``elastic`` stage's maps on a local Dask cluster of this many worker processes, one per GPU (``"auto"``: one per
         visible GPU; :func:`warptrunc.sweep.cluster.open_client`). The other stages run in
         this process. The stored result is the one an in-process run stores. Default: every
         stage in this process.
     scheduler : str or distributed.Client, optional
-        An existing Dask scheduler (address) or client for the same parts; its workers must
+        An existing Dask scheduler (address) or client for the same tasks; its workers must
         see ``out`` (a shared filesystem) and be pinned one per GPU.
 
     Returns

@@ -96,14 +96,18 @@ def stage_params(p: Profile) -> dict[str, Any]:
 
 
 @fill_doc(STAGE_DOCS)
-def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
+def stage_elastic(p: Profile, out: str | Path, device, client=None) -> dict[str, Any]:
     """Run (or resume) the comparison study under ``out/elastic`` and summarise it.
 
     {elastic_profile}
     out : str or Path
         Reproduction folder; the case store is ``out/elastic``.
     device : str, optional
-        Warp device of every route.
+        Warp device of every route (with ``client``: the tasks' device, None for each worker's
+        pinned GPU).
+    client : distributed.Client, optional
+        Run the maps as tasks of this Dask cluster (:func:`warptrunc.compare.compare_study`);
+        default in this process.
 
     Returns
     -------
@@ -115,7 +119,7 @@ def stage_elastic(p: Profile, out: str | Path, device) -> dict[str, Any]:
     store = Path(out) / SUBDIR
     rows = compare_study(
         store, profile_cases(p), fractions=p.elastic_fractions, material=default_material(),
-        dtype=p.elastic_dtype, overwrite=True, progress=True, device=device,
+        dtype=p.elastic_dtype, overwrite=True, progress=True, device=device, client=client,
     )  # fmt: skip
     return summary_from_rows(rows, store=SUBDIR)
 

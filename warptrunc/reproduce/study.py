@@ -368,7 +368,8 @@ def _stage_call(name: str, profile: Profile, res: dict[str, Any], store: StageSt
     if name == "elastic":
         from .elastic import stage_elastic, stage_params
 
-        return stage_params(profile), lambda: stage_elastic(profile, store.out, device)
+        return stage_params(profile), lambda: stage_elastic(
+            profile, store.out, device if client is None else task_device, client=client)
     if name == "indentation":
         from .indentation import stage_indentation
         from .indentation import stage_params as indent_params
@@ -408,7 +409,8 @@ def run_study(profile: Profile, store: StageStore, *, device=None, stages: Any =
         ``time.perf_counter()`` value after which the ``indentation`` stage starts no new
         piece (it is then reported in ``incomplete``, not stored).
     client : distributed.Client, optional
-        Dask client on which the ``indentation`` stage runs its parts; None: in this process.
+        Dask client on which the ``indentation`` stage runs its parts and the ``elastic`` stage
+        its maps; None: in this process.
     task_device : str, optional
         Warp device of those parts (None: each worker's pinned GPU).
 
