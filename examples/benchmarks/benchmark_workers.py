@@ -284,6 +284,16 @@ def check(out: Path, spec: dict, device, workers: list[int]) -> dict:
     return res
 
 
+def expected_s(base, fixed: float, n, n_gpus: int, starts: dict) -> float | None:
+    """A guess of a workers run's wall time (s), to skip one that would not finish in the
+    budget: the in-process work shared by min(n, GPUs) workers, the fixed cost and a cluster
+    start (measured, else 5 s). None for the in-process run or before it."""
+    if n is None or not base:
+        return None
+    start = starts.get(n, {}).get("start_total_s", 5.0)
+    return fixed + start + max(0.0, base - fixed) / max(1, min(n, n_gpus or 1))
+
+
 def default_workers(n_gpus: int) -> list[int]:
     """1, 2, 4, … up to the GPUs present, and their count; [1, 2] without a GPU."""
     if n_gpus <= 0:
@@ -345,8 +355,9 @@ def main(argv=None) -> int:
     ap.add_argument("--elastic-args", default=None,
                     help="replace the elastic workload's sweep arguments (one quoted string)")
     ap.add_argument("--budget-s", type=float, default=None,
-                    help="start no timed run after this many seconds (s); the rest are listed "
-                    "as skipped (the check still runs)")  # fmt: skip
+                    help="start no timed run after this many seconds (s), nor one expected to "
+                    "end past budget + grace; they are listed as skipped (the check still "
+                    "runs)")  # fmt: skip
     ap.add_argument("--grace-s", type=float, default=60.0,
                     help="with --budget-s: a timed command is stopped this long after the budget "
                     "(s), and listed as failed (rc 124)")  # fmt: skip
@@ -400,8 +411,9 @@ def main(argv=None) -> int:
             name = "inproc" if n is None else f"workers_{n}"
             rec = dict(workload=wl, run=name)
             results["runs"].append(rec)
-            if over():
-                rec["status"] = "skipped (budget)"
+            guess = expected_s(base, fixed, n, n_gpus, starts)
+            if over() or (guess is not None and limit() is not None and guess > limit()):
+                rec["status"] = "skipped (budget" + ("" if over() else f": ≈ {guess:.0f} s") + ")"
                 save()
                 continue
             w = None if n is None else ("auto" if n == n_gpus and not args.device else n)

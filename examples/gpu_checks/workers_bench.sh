@@ -4,23 +4,30 @@
 # `--workers auto`), for 2000 light cases at 2048² and 96 elastic cases at 4096²
 # (--bem-fractions 0.1), with where the time goes; then whether the stored rows are identical
 # bit for bit (in process twice on cuda:0, and 2 and N workers against in process).
-# Run on the 4-GPU kind (nvidia-h100-x4) or the 2-GPU kind, from the repo root:
-#   bash examples/gpu_checks/workers_bench.sh     # results in $OUT (or ./workers_bench_out)
-# Writes $OUT/benchmark_workers.json (GPUs, commit, commands, every measure) and
-# $OUT/commands.log; prints the table last. Extra arguments of the benchmark: $BENCH_ARGS.
+# Run on the 4-GPU kind (nvidia-h100-x4) or the 2-GPU kind, from the repo root, in the third
+# call of the staging of ../shared/device/README.md (.wdev/c with the dask wheels in extra/):
+#   bash .wdev/c/install.sh && export PYTHONPATH=/tmp/site && \
+#     python3 -m pip install -q --no-deps --no-build-isolation --no-index . && \
+#     WARPTRUNC_GIT_COMMIT=<sha> bash examples/gpu_checks/workers_bench.sh
+# (the machine has no git: name the commit). Results in $OUT (or ./workers_bench_out):
+# benchmark_workers.json (GPUs, commit, commands, every measure) and commands.log; the table
+# is printed last. Extra arguments of the benchmark: $BENCH_ARGS.
 # A dry run on a CPU machine: SMALL=1 BENCH_ARGS="--device cpu --workers 2" bash ...
-# Needs dask and distributed: the WHEELS line of sweep_two_gpus.sh (pip install --no-deps).
-# Not dask-cuda: without it the LocalCluster with one worker pinned per GPU is used.
-# Time on 4 H100s, estimated from 2026-11-27 measurements (96 light 2048² cases: 2.6 s in
-# process; 24 elastic 2048² cases with two fractions: 14.3 s; a 4096² solve about 3× a
-# 2048² one): light ≈ 6 + 15 + 10 + 8 s, elastic ≈ 70 + 75 + 40 + 25 s, the check ≈ 40 s,
-# clusters timed alone ≈ 20 s, the first (compiling) warm-ups ≈ 60 s: about 6 min. Worker
-# counts run largest first; no timed run starts after BUDGET_S (default 300 s) and none runs
-# past it by more than 60 s (then listed as rc 124), the check (≈ 60 s) last: at most 7 min.
+# Needs dask and distributed (the WHEELS line of sweep_two_gpus.sh), not dask-cuda: without it
+# the LocalCluster with one worker pinned per GPU is used.
+# Time on 4 H100s, estimated from measurements of 2026-11-27 (one H100, a smoke run of the
+# benchmark: first warm-ups 27 s light, 12 s elastic, kernels compiled; 128 light 2048² cases
+# 3.1 s in process, 10.2 s on one worker; 2 × H100 at b97493a: 24 elastic 2048² cases with two
+# fractions 14.3 s; a 4096² solve ≈ 0.45 s): warm-ups ≈ 45 s, light ≈ 60 s (the four commands,
+# the re-run, three clusters timed alone), elastic ≈ 80 + 30 + 50 + 90 s, the check ≈ 60 s:
+# about 7 min if nothing is cut. Worker counts run largest first; no timed run starts after
+# BUDGET_S (default 300 s) or when it is expected to end more than 45 s past it (skipped), and
+# none runs longer (stopped, rc 124); the check (≈ 60 s) runs last: at most about 7 min (the
+# elastic `--workers 1` run, ≈ in process + 5 s, is the first to be cut).
 set -uo pipefail
 OUT=${OUT:-workers_bench_out}
 mkdir -p "$OUT"
-pip install -q --no-deps --no-build-isolation -e . >/dev/null 2>&1 || true
+python -c "import warptrunc" 2>/dev/null || pip install -q --no-deps --no-build-isolation -e . >/dev/null 2>&1 || true
 nvidia-smi -L || true
 NGPU=$(nvidia-smi -L 2>/dev/null | grep -c '^GPU' || true)
 python - <<'PY' || { echo "dask/distributed missing: install the WHEELS of sweep_two_gpus.sh"; exit 1; }
@@ -33,6 +40,8 @@ try:
 except ImportError:
     print("no dask-cuda: LocalCluster, one worker pinned per GPU")
 PY
+export WARPTRUNC_GIT_COMMIT=${WARPTRUNC_GIT_COMMIT:-$(git rev-parse HEAD 2>/dev/null)}
+[ -z "$WARPTRUNC_GIT_COMMIT" ] && echo "warning: no commit (no git here): set WARPTRUNC_GIT_COMMIT"
 CHECK="2"
 [ "${NGPU:-0}" -gt 2 ] && CHECK="2 $NGPU"
 t0=$(date +%s)
@@ -40,7 +49,7 @@ t0=$(date +%s)
 SIZES="--full"
 [ "${SMALL:-0}" = 1 ] && SIZES=""
 python examples/benchmarks/benchmark_workers.py $SIZES --out "$OUT" \
-    --budget-s "${BUDGET_S:-300}" --grace-s 60 --timeout-s 240 --check-workers $CHECK ${BENCH_ARGS:-} \
+    --budget-s "${BUDGET_S:-300}" --grace-s 45 --timeout-s 240 --check-workers $CHECK ${BENCH_ARGS:-} \
     2> "$OUT/benchmark_stderr.log"
 status=$?
 [ $status -ne 0 ] && tail -n 30 "$OUT/benchmark_stderr.log"
