@@ -19,7 +19,7 @@ What it shows
       warptrunc (``substrate="free"``).
 
     Matched accuracy. Each problem (surface, substrate, N) has a tight reference: tamaas at
-    tolerance 10⁻¹² on the periodic substrate, ContactMechanics at pentol = 10⁻⁹·rms height on
+    tolerance 10⁻¹⁰ on the periodic substrate, ContactMechanics at pentol = 10⁻⁹·rms height on
     the free one (warptrunc float64 at 10⁻¹¹·rms when the peer is missing). The contact area
     (pixels with p > 0) and the mean gap (the gap map shifted to zero mean over the contact
     set, averaged over the map) of a solve *match* when both are within 10⁻⁴ (relative) of the
@@ -70,7 +70,7 @@ MATCH = 1e-4  # relative, on the contact area and the mean gap
 TAMAAS_TOLS = [10.0**-k for k in range(2, 11)]  # loosest first
 PENTOLS = [10.0**-k for k in range(2, 11)]  # × rms height, loosest first
 PENTOL32_START = 1e-6  # float32's walk starts here (× rms height: its round-off allows no less)
-TAMAAS_REF_TOL = 1e-12
+TAMAAS_REF_TOL = 1e-10  # 1e-12 stalls on the WM map at 512² (error ~1e-11)
 CM_REF_PENTOL = 1e-9
 WT_REF_PENTOL = 1e-11
 
@@ -125,7 +125,7 @@ def solve_tamaas(h: np.ndarray, tol: float) -> dict:
     model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
     model.E, model.nu = E_STAR, 0.0
     solver = tm.PolonskyKeerRey(model, h, tol)
-    solver.max_iter = 100000
+    solver.max_iter = 3000  # a stalled solve stops (not converged)
     t0 = time.perf_counter()
     solver.solve(P_MEAN)
     t = time.perf_counter() - t0
