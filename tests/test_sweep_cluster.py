@@ -23,9 +23,9 @@ from warptrunc.sweep import SweepGrid, load, run_sweep  # noqa: E402
 def test_resolve_workers(monkeypatch):
     assert cl.resolve_workers(None) is None
     assert cl.resolve_workers(3) == 3 and cl.resolve_workers("4") == 4
-    monkeypatch.setattr(cl, "cuda_device_count", lambda: 0)
+    monkeypatch.setattr(cl, "_gpu_count", lambda: 0)
     assert cl.resolve_workers("auto") == 1  # a machine without a GPU: one worker
-    monkeypatch.setattr(cl, "cuda_device_count", lambda: 4)
+    monkeypatch.setattr(cl, "_gpu_count", lambda: 4)
     assert cl.resolve_workers(" AUTO ") == 4
     for bad in (0, "0", "two", -1, 1.5, True):
         with pytest.raises(ValueError, match="workers"):
@@ -49,22 +49,43 @@ def _worker_env(client):
     )
 
 
-@pytest.mark.timeout(180)
-def test_open_client_local_cluster_shares_the_kernel_cache(monkeypatch):
-    monkeypatch.delenv("WARPTRUNC_DEVICE", raising=False)
-    base = cl.kernel_cache_base()
+def test_kernel_cache_base(monkeypatch, tmp_path):
     import warp as wp
 
-    assert os.path.join(base, wp.config.version) == os.path.realpath(wp.config.kernel_cache_dir)
+    monkeypatch.setattr(wp.config, "kernel_cache_dir", None)
+    monkeypatch.delenv("WARP_CACHE_PATH", raising=False)
+    assert cl.kernel_cache_base() is None  # the user's default folder, the same for all
+    monkeypatch.setenv("WARP_CACHE_PATH", str(tmp_path / "env"))
+    assert cl.kernel_cache_base() == str(tmp_path / "env")
+    monkeypatch.setattr(wp.config, "kernel_cache_dir", str(tmp_path / "set"))  # before start
+    assert cl.kernel_cache_base() == str(tmp_path / "set")
+    resolved = str(tmp_path / "start" / wp.config.version)  # as Warp's start leaves it
+    monkeypatch.setattr(wp.config, "kernel_cache_dir", resolved)
+    assert cl.kernel_cache_base() == str(tmp_path / "start")
+
+
+def test_gpu_count_agrees_with_warp():
+    from warptrunc._support.device import cuda_device_count
+
+    assert cl._gpu_count() == cuda_device_count()
+
+
+@pytest.mark.timeout(180)
+def test_open_client_local_cluster_shares_the_kernel_cache(monkeypatch, tmp_path):
+    import warp as wp
+
+    monkeypatch.delenv("WARPTRUNC_DEVICE", raising=False)
+    monkeypatch.setattr(wp.config, "kernel_cache_dir", str(tmp_path / "cache"))
     with cl.open_client(2, None, None, False) as (client, cluster, own):
         assert own and cluster is not None and type(cluster).__name__ == "LocalCluster"
         client.wait_for_workers(2, timeout=120)
         env = _worker_env(client)
-        assert len(env) == 2 and {e[0] for e in env.values()} == {base}
-        # the workers resolve the same cache directory as this process
-        dirs = client.run(lambda: __import__("warptrunc.sweep.cluster").sweep.cluster
-                          .kernel_cache_base())  # fmt: skip
-        assert set(dirs.values()) == {base}
+        assert len(env) == 2 and {e[0] for e in env.values()} == {str(tmp_path / "cache")}
+        # the workers resolve that folder (Warp appends its version)
+        dirs = client.run(lambda: (
+            __import__("warptrunc._support.device", fromlist=["_"]).cuda_device_count(),
+            __import__("os").path.realpath(__import__("warp").config.kernel_cache_dir))[1])
+        assert set(dirs.values()) == {str(tmp_path / "cache" / wp.config.version)}
         # a client passed in is used as it is and left open
         with cl.open_client(None, client, None, False) as (c2, cluster2, own2):
             assert c2 is client and cluster2 is None and not own2
@@ -90,7 +111,7 @@ def test_open_client_uses_dask_cuda_where_installed(monkeypatch):
 
     monkeypatch.setitem(sys.modules, "dask_cuda", types.SimpleNamespace(
         LocalCUDACluster=FakeCUDACluster))  # fmt: skip
-    monkeypatch.setattr(cl, "cuda_device_count", lambda: 2)
+    monkeypatch.setattr(cl, "_gpu_count", lambda: 2)
     monkeypatch.delenv("WARPTRUNC_DEVICE", raising=False)
     monkeypatch.delenv(cl.DASK_CUDA_ENV, raising=False)
     assert cl._dask_cuda_cluster() is FakeCUDACluster

@@ -146,32 +146,58 @@ def resolve_workers(workers: int | str | None) -> int | None:
     if isinstance(workers, str):
         text = workers.strip().lower()
         if text == "auto":
-            return max(1, cuda_device_count())
+            return max(1, _gpu_count())
         if not text.isdigit():
             raise ValueError(f"workers must be an integer ≥ 1 or 'auto', got {workers!r}")
         workers = int(text)
     return check_int("workers", workers, 1)
 
 
-def kernel_cache_base() -> str:
-    """The folder to give every worker as ``WARP_CACHE_PATH``: that of this process.
+def kernel_cache_base() -> str | None:
+    """The folder to give every worker as ``WARP_CACHE_PATH``: that of this process, if set.
 
     Warp appends its version to ``WARP_CACHE_PATH`` (or to ``wp.config.kernel_cache_dir`` set
-    before it initialises), so the folder returned is the resolved cache directory of this
-    process without that last component: a worker given it resolves the same directory and
-    loads the kernels any process compiled there, instead of compiling them again.
+    before it initialises) and resolves ``wp.config.kernel_cache_dir`` to the result when it
+    initialises; the folder returned is that directory without the version, so a worker given
+    it resolves the same directory and loads the kernels any process compiled there instead
+    of compiling them again. Warp is not initialised here.
 
     Returns
     -------
-    str
-        Absolute path of the cache's base folder (Warp is initialised here if it was not).
+    str or None
+        Absolute path of the cache's base folder: from ``wp.config.kernel_cache_dir`` (set by
+        the user, or resolved by Warp's start), else ``$WARP_CACHE_PATH``; None when neither
+        is set (every process of the user then resolves the same default folder).
     """
     import warp as wp
 
-    cuda_device_count()  # initialises Warp (quietly), which resolves the cache directory
-    resolved = os.path.realpath(str(wp.config.kernel_cache_dir))
+    where = wp.config.kernel_cache_dir
+    if where is None:
+        env = os.environ.get("WARP_CACHE_PATH")
+        return os.path.realpath(env) if env else None
+    resolved = os.path.realpath(str(where))
     head, tail = os.path.split(resolved)
     return head if tail == wp.config.version else resolved
+
+
+def _gpu_count() -> int:
+    """CUDA devices visible to this process (count), without starting Warp when the CUDA
+    driver answers directly (``cuInit`` + ``cuDeviceGetCount``, no context is created);
+    else, or once Warp has started here, the count Warp reports."""
+    from .._support import device as _device
+
+    if not _device._initialised and sys.platform.startswith("linux"):
+        import ctypes
+
+        try:
+            lib = ctypes.CDLL("libcuda.so.1")
+            count = ctypes.c_int(0)
+            if lib.cuInit(0) == 0 and lib.cuDeviceGetCount(ctypes.byref(count)) == 0:
+                return int(count.value)
+            return 0  # a driver without a usable device
+        except (OSError, AttributeError):  # no CUDA driver: Warp says the same, quickly
+            pass
+    return cuda_device_count()
 
 
 def _dask_cuda_cluster():
@@ -226,8 +252,10 @@ def open_client(
     runs on a ``LocalCUDACluster`` (``CUDA_VISIBLE_DEVICES`` per worker, its device is its
     ``cuda:0``); set ``WARPTRUNC_DASK_CUDA=0`` to use the LocalCluster instead. Otherwise a
     ``LocalCluster`` whose worker i runs on ``cuda:{i mod n_gpus}`` (:class:`PinDevice`).
-    The workers of a local cluster get this process's ``WARP_CACHE_PATH``
-    (:func:`kernel_cache_base`), so they share one kernel cache on disk. Workers of an
+    The workers of a local cluster get this process's kernel cache folder as
+    ``WARP_CACHE_PATH`` (:func:`kernel_cache_base`; with none set, all resolve the user's
+    default), so they share one kernel cache on disk. Warp is not started here: devices are
+    counted through the CUDA driver (only for ``"auto"`` and dask-cuda). Workers of an
     existing cluster are not pinned: start one per GPU with its ``CUDA_VISIBLE_DEVICES``
     (``dask cuda worker`` does) or ``WARPTRUNC_DEVICE``.
     """
@@ -245,10 +273,14 @@ def open_client(
     else:
         n = resolve_workers(workers)
         pin = device is None and not os.environ.get("WARPTRUNC_DEVICE")
-        n_gpus = cuda_device_count() if pin else 0
-        cuda_cls = _dask_cuda_cluster() if n_gpus > 0 and (n or n_gpus) <= n_gpus else None
-        environ = {**dask.config.get("distributed.nanny.environ", {}),
-                   "WARP_CACHE_PATH": kernel_cache_base()}  # fmt: skip
+        cuda_cls = _dask_cuda_cluster() if pin else None  # counted only where installed
+        n_gpus = _gpu_count() if cuda_cls is not None else 0
+        if not (n_gpus > 0 and (n or n_gpus) <= n_gpus):
+            cuda_cls = None
+        environ = dict(dask.config.get("distributed.nanny.environ", {}))
+        cache = kernel_cache_base()
+        if cache is not None:
+            environ["WARP_CACHE_PATH"] = cache
         common = dict(threads_per_worker=1, dashboard_address=":0",
                       silence_logs=logging.ERROR)  # fmt: skip
         with dask.config.set({"distributed.nanny.environ": environ}):
