@@ -133,8 +133,9 @@ def resolve_workers(workers: int | str | None) -> int | None:
     Returns
     -------
     int or None
-        The count; ``"auto"`` gives the number of CUDA devices Warp sees (those that
-        ``CUDA_VISIBLE_DEVICES`` leaves visible), or 1 on a machine without one.
+        The count; ``"auto"`` gives the number of visible CUDA devices (those that
+        ``CUDA_VISIBLE_DEVICES`` leaves, as Warp counts them; Warp is not started for it),
+        or 1 on a machine without one.
 
     Raises
     ------
