@@ -399,6 +399,7 @@ def main(argv=None) -> int:
             return args.timeout_s
         left = max(1.0, args.budget_s + args.grace_s - (time.perf_counter() - t_begin))
         return left if args.timeout_s is None else min(args.timeout_s, left)
+
     starts: dict[int, dict] = {}
     for wl in [w for w in ("light", "elastic") if w in args.runs]:
         store = out / f"store_{wl}"
