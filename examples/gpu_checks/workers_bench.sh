@@ -27,10 +27,10 @@
 set -uo pipefail
 OUT=${OUT:-workers_bench_out}
 mkdir -p "$OUT"
-python -c "import warptrunc" 2>/dev/null || pip install -q --no-deps --no-build-isolation -e . >/dev/null 2>&1 || true
+python3 -c "import warptrunc" 2>/dev/null || python3 -m pip install -q --no-deps --no-build-isolation -e . >/dev/null 2>&1 || true
 nvidia-smi -L || true
 NGPU=$(nvidia-smi -L 2>/dev/null | grep -c '^GPU' || true)
-python - <<'PY' || { echo "dask/distributed missing: install the WHEELS of sweep_two_gpus.sh"; exit 1; }
+python3 - <<'PY' || { echo "dask/distributed missing: install the WHEELS of sweep_two_gpus.sh"; exit 1; }
 import dask, distributed, pandas, pyarrow
 print("dask", dask.__version__, "distributed", distributed.__version__,
       "pandas", pandas.__version__, "pyarrow", pyarrow.__version__)
@@ -48,7 +48,7 @@ t0=$(date +%s)
 # shellcheck disable=SC2086  # BENCH_ARGS: several words
 SIZES="--full"
 [ "${SMALL:-0}" = 1 ] && SIZES=""
-python examples/benchmarks/benchmark_workers.py $SIZES --out "$OUT" \
+python3 examples/benchmarks/benchmark_workers.py $SIZES --out "$OUT" \
     --budget-s "${BUDGET_S:-300}" --grace-s 45 --timeout-s 240 --check-workers $CHECK ${BENCH_ARGS:-} \
     2> "$OUT/benchmark_stderr.log"
 status=$?
