@@ -104,9 +104,9 @@ class SolverMemory:
     def memory_bytes(
         shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
         cuda: bool = True, algorithm: str = "bccg", fft_plan: str = "pruned",
-        device: wp.DeviceLike = None,
+        device: wp.DeviceLike = None, devices: int = 1,
     ) -> int:  # fmt: skip
-        """Peak device memory of a solver and its stiffness solve (bytes).
+        """Peak device memory of a solver and its stiffness solve (bytes; per device when spread).
 
         Parameters
         ----------
@@ -126,16 +126,28 @@ class SolverMemory:
             map pixel in float32, + 32 in float64).
         device : str or warp Device, optional
             A CUDA device: cuFFT's work area as cuFFT asks for it, instead of the estimate.
+        devices : int, optional
+            Devices the map is spread over (``ContactSolver(..., devices=n)``; dimensionless
+            count, ≥ 1, default 1). Above 1: the bytes of one device, JAX's buffers included
+            (:func:`~warptrunc.contact.sharded_fft.sharded_memory_terms`; ``cuda``,
+            ``algorithm``, ``fft_plan`` and ``device`` do not apply).
 
         Returns
         -------
         int
-            The sum of :meth:`~warptrunc.contact.ContactSolver.memory_terms`. Per map pixel,
+            The sum of :meth:`~warptrunc.contact.ContactSolver.memory_terms` (one device), or of
+            the per-device terms (several). Per map pixel,
             free boundary, large maps: float32 4 (kernel spectrum) + 4 (table) + 16 (work
             spectrum) + ≤ 2 (cuFFT work area, estimated) + 20 (maps) + 1 (mask) + 4 (stiffness
             solve) + 4 (BCCG's residual) ≈ 55 B; float64 ≈ 109 B; periodic float32 ≈ 1 + 4 + 4
             + ≤ 0.5 + 20 + 1 + 4 + 4 ≈ 38.5 B. Without BCCG (``algorithm="pk"``) one map less.
         """
+        if isinstance(devices, bool) or not isinstance(devices, int | np.integer) or devices < 1:
+            raise ValueError(f"devices must be an integer ≥ 1, got {devices!r}")
+        if devices > 1:
+            from .sharded_fft import sharded_memory_terms
+
+            return int(sum(sharded_memory_terms(shape, substrate, dtype, int(devices)).values()))
         terms = SolverMemory.memory_terms(shape, substrate, dtype, cuda=cuda,
                                           algorithm=algorithm, fft_plan=fft_plan,
                                           device=device)  # fmt: skip

@@ -54,6 +54,7 @@ Elastic–perfectly-plastic contact (``hardness`` H < inf): :mod:`warptrunc.cont
 
 from __future__ import annotations
 
+import inspect
 import math
 from dataclasses import replace
 from typing import Any
@@ -126,6 +127,13 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         Hardness H (Pa), the local pressure cap, in (0, inf]; ``inf`` (default): elastic, the
         solver of today bit for bit.
     {warp_device_obj}
+    devices : list, int or "auto", optional
+        Spread the map over several devices (:class:`~warptrunc.contact.sharded.
+        ShardedContactSolver`, which this then returns; JAX, ``warptrunc[distributed]``): JAX
+        devices or their names (``["cuda:0", "cuda:1"]``), a count (the first N devices of
+        JAX's default backend), or ``"auto"``: this device when the solver fits it, else the
+        fewest devices that fit (:func:`~warptrunc.contact.sharded_devices.choose_devices`).
+        None (default), one device or a list of one: the one-device solver.
     **legacy
         The fields of :class:`~warptrunc.contact.SolverSettings` as keywords (``substrate=``,
         ``dtype=``, ``pressure_tol=``, ``pentol=``, ``thermotol=``, ``maxiter=``, ``refresh=``,
@@ -143,6 +151,13 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         before anything is allocated.
     """
 
+    def __new__(cls, *args: Any, devices: Any = None, **kwargs: Any) -> ContactSolver:
+        if cls is ContactSolver and devices is not None:  # spread over several devices?
+            from .sharded_devices import solver_class
+
+            cls = solver_class(devices, args, kwargs)
+        return super().__new__(cls)
+
     def __init__(
         self,
         heights: Any,
@@ -152,12 +167,13 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         settings: SolverSettings | None = None,
         hardness: float = math.inf,
         device: wp.DeviceLike = None,
+        devices: Any = None,
         **legacy: Any,
     ) -> None:
         unknown = sorted(set(legacy) - set(_LEGACY))
         if unknown:
             raise TypeError(f"ContactSolver got unexpected keyword(s) {unknown}; known: "
-                            f"settings, hardness, device, {', '.join(_LEGACY)}")  # fmt: skip
+                            f"settings, hardness, device, devices, {', '.join(_LEGACY)}")  # fmt: skip
         if settings is None:
             settings = SolverSettings()
         elif not isinstance(settings, SolverSettings):
@@ -181,6 +197,10 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         self.load_control = settings.load_control
         self.maxiter = settings.maxiter
         self.refresh = settings.refresh
+        if devices is not None:  # one device (several: ShardedContactSolver, from __new__)
+            from .sharded_devices import single_device
+
+            device = single_device(devices, device)
         self.device = resolve_device(device)
         direct_max = settings.direct_max
         if direct_max is None:
@@ -192,6 +212,22 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         self.dtype = dtype
         self.forcetol = self.pressure_tol * self.contact_modulus * dx * dy
         plan = self._fft_plan_that_fits(h.shape, settings)  # or MemoryError, before allocating
+        self._allocate(h, plan)
+        self.offset = 0.0
+        self.plastic_frozen = False
+        self.plastic_volume = 0.0  # Σ plastic displacement·dx·dy (m³)
+        self._depth: float | None = None  # approach of the last solve (m)
+        # (δ (m), F (N), also on the capped curve) of the last converged solve
+        self._point: tuple[float, float, bool] | None = None
+        self._slope: float | None = None  # dF/dδ at or near the last solution (N/m)
+        self._trial_failed = False  # an elastic trial of a capped load solve exceeded H
+        self._approach_hint: float | None = None  # where the first load solve starts (m)
+
+    def _allocate(self, h: np.ndarray, plan: str) -> None:
+        """The half-space and the device maps of the map ``h`` (m), with the cuFFT ``plan``
+        (:class:`~warptrunc.contact.sharded.ShardedContactSolver` allocates its own)."""
+        dx, dy = self.pixel_size
+        substrate, dtype = self.substrate, self.dtype
         self.fft_plan = plan
         """The cuFFT plans in use (``warptrunc.contact.halfspace.FFT_PLANS``; 'pruned' off
         CUDA and on the periodic substrate)."""
@@ -217,15 +253,6 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         self.change_index = wp.zeros(max(1, self.direct_max), dtype=wp.int32, device=dev)
         self.change_value = wp.zeros(max(1, self.direct_max), dtype=wp.float64, device=dev)
         self.tau = wp.zeros(1, dtype=wp.float64, device=dev)
-        self.offset = 0.0
-        self.plastic_frozen = False
-        self.plastic_volume = 0.0  # Σ plastic displacement·dx·dy (m³)
-        self._depth: float | None = None  # approach of the last solve (m)
-        # (δ (m), F (N), also on the capped curve) of the last converged solve
-        self._point: tuple[float, float, bool] | None = None
-        self._slope: float | None = None  # dF/dδ at or near the last solution (N/m)
-        self._trial_failed = False  # an elastic trial of a capped load solve exceeded H
-        self._approach_hint: float | None = None  # where the first load solve starts (m)
 
     # the memory model (:mod:`warptrunc.contact.memory`), named here so that the API reference
     # lists it with the solver (autodoc shows a class's own members only)
@@ -421,3 +448,9 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         h = self.h.numpy().astype(np.float64)
         dx, dy = self.pixel_size
         return q / (dx * dy), u - h - self.offset
+
+
+# the signature of the constructor is __init__'s (``__new__`` only picks the class)
+ContactSolver.__signature__ = inspect.signature(ContactSolver.__init__).replace(
+    parameters=list(inspect.signature(ContactSolver.__init__).parameters.values())[1:]
+)

@@ -1,0 +1,234 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The contact solver spread over two devices (``ContactSolver(..., devices=2)``,
+:mod:`warptrunc.contact.sharded`) equals the one-device solver.
+
+Two host devices (XLA's ``--xla_force_host_platform_device_count=2``, set below before JAX is
+first imported; the module is skipped without JAX or when JAX was started with one device).
+The reference is the one-device solver with ``direct_max=0``, the same iteration (the sharded
+solver transforms afresh where the one-device one may sum a few forces directly), and NumPy in
+float64 for the displacements: loads and approaches within 1e-9 (float64) and 1e-5 (float32)
+relative, the same contact pixels (float32: up to pixels whose pressure is within a few
+tolerances of zero), the same iteration counts in float64.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+if "jax" not in sys.modules:  # two host devices; harmless for anything else in the process
+    flags = os.environ.get("XLA_FLAGS", "")
+    if "xla_force_host_platform_device_count" not in flags:
+        os.environ["XLA_FLAGS"] = f"{flags} --xla_force_host_platform_device_count=2".strip()
+
+jax = pytest.importorskip("jax")
+if len(jax.devices("cpu")) < 2:
+    pytest.skip("JAX was started with one host device before this module", allow_module_level=True)
+
+from warptrunc.contact import ContactSolver, influence_spectrum  # noqa: E402
+from warptrunc.contact.sharded import ShardedContactSolver  # noqa: E402
+from warptrunc.contact.sharded_devices import devices_needed  # noqa: E402
+from warptrunc.contact.sharded_fft import slab_layout  # noqa: E402
+
+pytestmark = pytest.mark.timeout(300)
+
+DX, E = 1e-6, 1e9
+TOL = {"float64": 1e-9, "float32": 1e-5}
+
+
+def rough_map(n: int, seed: int = 1, rms: float = 1e-6) -> np.ndarray:
+    """A self-affine random map (m), n × n."""
+    rng = np.random.default_rng(seed)
+    k2 = np.fft.fftfreq(n)[:, None] ** 2 + np.fft.rfftfreq(n)[None, :] ** 2
+    spec = (rng.normal(size=k2.shape) + 1j * rng.normal(size=k2.shape)) * np.where(
+        k2 > 0, k2, 1.0
+    ) ** (-1.1)
+    spec[0, 0] = 0
+    h = np.fft.irfft2(spec, s=(n, n))
+    return h / h.std() * rms
+
+
+H256 = rough_map(256)
+LOAD = 5e-4 * E * (256 * DX) ** 2  # about 2 % contact
+
+
+def rel(a: float, b: float) -> float:
+    return abs(a - b) / abs(a)
+
+
+def same_contact(pa: np.ndarray, pb: np.ndarray, dtype: str) -> None:
+    """The same contact pixels; in float32 up to pixels within a few tolerances of zero."""
+    differ = (pa > 0) != (pb > 0)
+    if dtype == "float64":
+        assert not differ.any(), f"{int(differ.sum())} contact pixels differ"
+    else:
+        assert np.maximum(pa, pb)[differ].max(initial=0.0) < 1e-3 * E, "a loaded pixel differs"
+        assert differ.sum() <= 4
+
+
+def check_displacement(solver: ContactSolver) -> None:
+    """NumPy in float64: the solver's u is K·q (the padded or periodic convolution) and the
+    solution is one (no tension, gaps closed in contact to pentol)."""
+    p, gap = solver.maps()
+    q = p * DX * DX
+    ny, nx = solver.shape
+    grid = (2 * ny, 2 * nx) if solver.substrate == "free" else (ny, nx)
+    w = influence_spectrum(solver.shape, (DX, DX), E, solver.substrate)
+    u = np.fft.irfft2(np.fft.rfft2(q, s=grid) * w, s=grid)[:ny, :nx]
+    h = np.asarray(solver.h).astype(np.float64)
+    assert np.abs(u - (gap + h + solver.offset)).max() < 1e-9 * np.abs(u).max() + 1e-3 * (
+        solver.pentol if solver.dtype == "float32" else 1e-6 * solver.pentol
+    )
+    assert p.min() >= 0.0
+    assert np.abs(gap[p > 0]).max() < solver.pentol
+    assert gap.min() > -solver.pentol
+
+
+def test_convolution_is_two_all_to_alls_and_exact():
+    """The sharded padded convolution: XLA compiles two all-to-alls and no gather of a map, and
+    it equals NumPy's zero-padded (free) or periodic convolution with the same spectrum."""
+    devices = tuple(jax.devices("cpu")[:2])
+    shape = (64, 48)
+    rng = np.random.default_rng(0)
+    x = rng.random(shape)
+    for substrate in ("free", "periodic"):
+        lay = slab_layout(shape, substrate, "float64", devices)
+        w = lay.build_spectrum((DX, 1.2 * DX), E)
+        ref_w = influence_spectrum(shape, (DX, 1.2 * DX), E, substrate)
+        nk = ref_w.shape[1]
+        assert np.abs(np.asarray(w)[:, :nk] - ref_w[: w.shape[0]]).max() < 1e-12 * ref_w.max()
+        fn = jax.jit(lambda a, s, lay=lay: lay.conv(a, s), out_shardings=lay.rows)
+        xs = lay.put(x)
+        text = fn.lower(xs, w).compile().as_text()
+        assert text.count("all-to-all(") == 2
+        assert "all-gather(" not in text
+        grid = (2 * shape[0], 2 * shape[1]) if substrate == "free" else shape
+        ref = np.fft.irfft2(np.fft.rfft2(x, s=grid) * ref_w, s=grid)[: shape[0], : shape[1]]
+        got = fn(xs, w)
+        assert got.sharding.spec[0] == "d"  # row slabs
+        assert np.abs(np.asarray(got) - ref).max() < 1e-12 * np.abs(ref).max()
+
+
+@pytest.mark.parametrize("dtype", ["float64", "float32"])
+@pytest.mark.parametrize("substrate", ["free", "periodic"])
+def test_elastic_equals_one_device(substrate, dtype):
+    """Load control, then displacement control, then Barber's stiffness: the same numbers as
+    the one-device solver."""
+    kw = {"substrate": substrate, "dtype": dtype}
+    one = ContactSolver(H256, DX, E, device="cpu", direct_max=0, **kw)
+    two = ContactSolver(H256, DX, E, devices=2, **kw)
+    assert isinstance(two, ShardedContactSolver)
+    tol = TOL[dtype]
+    a, b = one.solve(load=LOAD), two.solve(load=LOAD)
+    assert a.converged and b.converged
+    assert rel(a.depth, b.depth) < tol
+    assert rel(a.mean_gap, b.mean_gap) < 10 * tol
+    if dtype == "float64":
+        assert (a.n_iterations, a.n_convolutions) == (b.n_iterations, b.n_convolutions)
+        check_displacement(two)
+    same_contact(one.maps()[0], two.maps()[0], dtype)
+    depth = 1.3 * a.depth
+    a, b = one.solve(depth), two.solve(depth)
+    assert a.converged and b.converged
+    assert rel(a.load, b.load) < tol
+    assert abs(a.n_contact - b.n_contact) <= (0 if dtype == "float64" else 4)
+    same_contact(one.maps()[0], two.maps()[0], dtype)
+    assert rel(one.max_pressure(), two.max_pressure()) < tol
+    ka, kb = one.punch_stiffness(), two.punch_stiffness()
+    assert ka[2] and kb[2]
+    assert rel(ka[0], kb[0]) < tol
+
+
+@pytest.mark.parametrize(
+    ("substrate", "dtype", "load_control"),
+    [("free", "float64", "offset"), ("periodic", "float64", "secant")],
+)
+def test_capped_equals_one_device(substrate, dtype, load_control):
+    """Elastic–plastic (a pressure cap at H): loading flows the surface, unloading is elastic;
+    the plastic state equals the one-device solver's."""
+    kw = {"substrate": substrate, "dtype": dtype, "load_control": load_control}
+    hardness = 2e-2 * E
+    one = ContactSolver(H256, DX, E, device="cpu", hardness=hardness, direct_max=0, **kw)
+    two = ContactSolver(H256, DX, E, devices=["cpu:0", "cpu:1"], hardness=hardness, **kw)
+    tol = TOL[dtype]
+    peak = None
+    for load in (LOAD, 0.5 * LOAD):
+        a, b = one.solve(load=load), two.solve(load=load)
+        peak = peak or a.depth
+        assert a.converged and b.converged
+        assert rel(a.depth, b.depth) < tol
+        assert a.n_plastic == b.n_plastic
+        assert rel(a.plastic_volume, b.plastic_volume) < 10 * tol
+    assert a.n_plastic == b.n_plastic == 0  # unloading was elastic
+    wa, wb = one.plastic_displacement(), two.plastic_displacement()
+    assert wa.max() > 0
+    assert np.abs(wa - wb).max() < 10 * tol * wa.max()
+    a, b = one.solve(1.1 * peak), two.solve(1.1 * peak)  # displacement control, capped
+    assert a.n_plastic > 0 and rel(a.load, b.load) < tol
+    assert rel(a.plastic_volume, b.plastic_volume) < 10 * tol
+
+
+def test_default_direct_max_agrees():
+    """Against the one-device solver's defaults (direct summation of a few forces), the same
+    answer to round-off here too (free, float64)."""
+    one = ContactSolver(H256, DX, E, device="cpu")
+    two = ContactSolver(H256, DX, E, devices=2)
+    a, b = one.solve(load=LOAD), two.solve(load=LOAD)
+    assert rel(a.depth, b.depth) < 1e-9
+
+
+def test_devices_argument():
+    """What ``devices`` accepts, and the messages for what it does not."""
+    assert type(ContactSolver(H256[:64, :64], DX, E, devices=1)) is ContactSolver
+    assert type(ContactSolver(H256[:64, :64], DX, E, devices=["cpu:0"])) is ContactSolver
+    assert type(ContactSolver(H256[:64, :64], DX, E, devices="auto")) is ContactSolver  # fits
+    two = ContactSolver(H256[:64, :64], DX, E, devices=jax.devices("cpu")[:2])
+    assert type(two) is ShardedContactSolver and len(two.hs.devices) == 2
+    bad = [
+        (0, "count ≥ 1, got 0"),
+        (3, r"devices must be in \[1, 2\]"),
+        ("many", "devices must be None, 'auto'"),
+        (["cpu:0", "cpu:0"], "must not repeat"),
+        (["cpu:7", "cpu:0"], "out of range"),
+        (["abc:0", "cpu:0"], "unknown device name"),
+    ]
+    for value, match in bad:
+        with pytest.raises(ValueError, match=match):
+            ContactSolver(H256[:64, :64], DX, E, devices=value)
+    with pytest.raises(ValueError, match="must divide ny; got 2"):
+        ContactSolver(H256[:63, :64], DX, E, devices=2)
+    with pytest.raises(ValueError, match=r"settings\.algorithm must be 'bccg'"):
+        ContactSolver(H256[:64, :64], DX, E, devices=2, algorithm="pk")
+
+
+def test_memory_bytes_per_device():
+    """``memory_bytes(..., devices=n)``: each device's share shrinks with n; ``devices_needed``
+    inverts it; a bad count is refused."""
+    shape = (16384, 16384)
+    one = ContactSolver.memory_bytes(shape, "free", "float32")
+    per = [ContactSolver.memory_bytes(shape, "free", "float32", devices=n) for n in (2, 4, 8)]
+    assert per[0] > per[1] > per[2]
+    assert 0.4 < per[1] / per[0] < 0.6 and per[0] < 1.5 * one
+    assert devices_needed(shape, "free", "float32", per[1]) == 4
+    assert devices_needed(shape, "free", "float32", per[1] - 1) == 8
+    with pytest.raises(ValueError, match="devices must be an integer ≥ 1, got 0"):
+        ContactSolver.memory_bytes(shape, devices=0)
+
+
+def test_jax_is_imported_lazily():
+    """``import warptrunc`` and a one-device solve never import JAX."""
+    code = (
+        "import sys, numpy as np, warptrunc\n"
+        "from warptrunc.contact import ContactSolver\n"
+        "import warptrunc.contact.sharded\n"
+        "ContactSolver(np.random.rand(16, 16) * 1e-6, 1e-6, 1e9, device='cpu').solve(1e-7)\n"
+        "assert 'jax' not in sys.modules, 'jax imported'\n"
+    )
+    env = dict(os.environ, WARPTRUNC_DEVICE="cpu")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    assert out.returncode == 0, out.stderr[-2000:]

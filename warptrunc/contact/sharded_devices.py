@@ -1,0 +1,284 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Which devices a contact solve runs on: the ``devices`` argument of
+:class:`~warptrunc.contact.ContactSolver` (checked here, with messages that name the value and
+what is allowed), ``devices="auto"`` (one device when the solver fits it, else the fewest that
+fit: spreading is slower per iteration on one host, since the transposes cost more than the
+transforms) and the per-device memory check. JAX is imported only when several devices are
+asked for (or ``"auto"`` finds that one does not suffice)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from .sharded_fft import import_jax, sharded_memory_terms
+
+__all__ = ["check_fits", "choose_devices", "devices_needed", "single_device", "solver_class"]
+
+_PLATFORMS = {"cuda": "gpu", "gpu": "gpu", "cpu": "cpu", "tpu": "tpu"}
+
+
+def _settings(settings: Any, legacy: dict[str, Any]):
+    from .settings import SolverSettings
+
+    s = settings if settings is not None else SolverSettings()
+    known = {k: v for k, v in legacy.items() if k in SolverSettings.__dataclass_fields__}
+    return replace(s, **known) if known else s
+
+
+def _jax_device(name: Any, jax: Any):
+    """A JAX device from a device object or a name ``"cuda:1"``, ``"gpu:1"``, ``"cpu:0"``."""
+    if not isinstance(name, str):
+        return name
+    platform, _, index = name.partition(":")
+    backend = _PLATFORMS.get(platform.lower())
+    if backend is None or (index and not index.isdigit()):
+        raise ValueError(f"devices: unknown device name {name!r}; allowed: 'cuda:N', 'gpu:N', "
+                         "'cpu:N' or JAX device objects")  # fmt: skip
+    try:
+        found = jax.devices(backend)
+    except RuntimeError as exc:
+        raise ValueError(f"devices: no JAX {backend} devices for {name!r} ({exc})") from None
+    i = int(index or 0)
+    if i >= len(found):
+        raise ValueError(f"devices: {name!r} is out of range; JAX has {len(found)} {backend} "
+                         f"device(s), 0 … {len(found) - 1}")  # fmt: skip
+    return found[i]
+
+
+def _free_bytes(device: Any) -> int | None:
+    """Free memory of a JAX device (B), or None where JAX does not report it (the CPU)."""
+    stats = device.memory_stats() if hasattr(device, "memory_stats") else None
+    if not stats or "bytes_limit" not in stats:
+        return None
+    return int(stats["bytes_limit"]) - int(stats.get("bytes_in_use", 0))
+
+
+def devices_needed(shape: tuple[int, int], substrate: str, dtype: str, free_bytes: int,
+                   limit: int = 64) -> int | None:  # fmt: skip
+    """The fewest devices of ``free_bytes`` each that hold a solve spread over them.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    substrate : {"free", "periodic"}
+        Half-space.
+    dtype : {"float64", "float32"}
+        Precision.
+    free_bytes : int
+        Free memory of each device (B).
+    limit : int, optional
+        Largest count tried (dimensionless).
+
+    Returns
+    -------
+    int or None
+        The count (2 or more, dividing ny), or None when none up to ``limit`` suffices.
+    """
+    for n in range(2, limit + 1):
+        if shape[0] % n == 0:
+            need = sum(sharded_memory_terms(shape, substrate, dtype, n).values())
+            if need <= free_bytes:
+                return n
+    return None
+
+
+def check_fits(shape: tuple[int, int], substrate: str, dtype: str, devices: list[Any]) -> int:
+    """Check that each device's share fits its free memory.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    substrate : {"free", "periodic"}
+        Half-space.
+    dtype : {"float64", "float32"}
+        Precision.
+    devices : list of jax Device
+        The devices.
+
+    Returns
+    -------
+    int
+        Bytes each device needs (the model, :func:`~warptrunc.contact.sharded_fft.
+        sharded_memory_terms`).
+
+    Raises
+    ------
+    MemoryError
+        A device has less free memory than its share; the message says how many would do.
+    """
+    need = sum(sharded_memory_terms(shape, substrate, dtype, len(devices)).values())
+    for dev in devices:
+        free = _free_bytes(dev)
+        if free is not None and need > free:
+            more = devices_needed(shape, substrate, dtype, free)
+            hint = f"devices={more}" if more else "float32 or a smaller map"
+            raise MemoryError(
+                f"the contact solver for a {shape[0]}×{shape[1]} map ({substrate}, {dtype}) over "
+                f"{len(devices)} devices needs {need / 1e9:.2f} GB per device, {free / 1e9:.2f} "
+                f"GB free on {dev}; use {hint}"
+            )
+    return need
+
+
+def _count_error(n: int, ny: int, avail: int) -> ValueError:
+    ok = [k for k in range(1, avail + 1) if ny % k == 0]
+    return ValueError(
+        f"devices: the map's ny = {ny} rows are split in equal slabs, so the device count must "
+        f"divide ny; got {n} (counts up to {avail} that do: {ok})"
+    )
+
+
+def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
+                   legacy: dict[str, Any] | None = None, device: Any = None) -> list[Any] | None:  # fmt: skip
+    """The JAX devices a solve is spread over, or None for the one-device solver.
+
+    Parameters
+    ----------
+    devices : None, int, "auto" or list
+        The solver's ``devices`` argument: None (one device); a count N ≥ 1 (the first N JAX
+        devices of the default backend); ``"auto"``; a list of JAX devices or names
+        (``"cuda:0"``, ``"gpu:1"``, ``"cpu:0"``).
+    shape : tuple of int
+        Shape of the height map (ny, nx).
+    settings : SolverSettings, optional
+        The solver's settings (substrate, dtype, algorithm).
+    legacy : dict, optional
+        Settings fields given as keywords (they override ``settings``).
+    device : str or warp Device, optional
+        The one-device solver's Warp device (``"auto"`` checks it first).
+
+    Returns
+    -------
+    list of jax Device or None
+        Two or more devices, or None: one device.
+
+    Raises
+    ------
+    ValueError
+        A bad value (the message names it and what is allowed), or a count that does not
+        divide ny.
+    MemoryError
+        ``"auto"``: no count of the available devices holds the solve.
+    """
+    if devices is None:
+        return None
+    ny = int(shape[0]) if len(shape) else 0
+    if isinstance(devices, str) and devices == "auto":
+        s = _settings(settings, legacy or {})
+        from .._support.device import free_memory_bytes, resolve_device
+        from .memory import SolverMemory
+
+        dev = resolve_device(device)
+        one = SolverMemory.memory_bytes(tuple(shape), s.substrate, s.dtype, cuda=dev.is_cuda,
+                                        algorithm=s.algorithm)  # fmt: skip
+        if one <= free_memory_bytes(dev):
+            return None
+        jax = import_jax()
+        avail = jax.devices()
+        for n in range(2, len(avail) + 1):
+            if ny % n == 0:
+                try:
+                    check_fits(tuple(shape), s.substrate, s.dtype, avail[:n])
+                except MemoryError:
+                    continue
+                return list(avail[:n])
+        raise MemoryError(
+            f"devices='auto': the contact solver for a {shape[0]}×{shape[1]} map "
+            f"({s.substrate}, {s.dtype}) fits neither {dev} ({one / 1e9:.2f} GB needed) nor any "
+            f"count of the {len(avail)} JAX devices that divides ny = {ny}"
+        )
+    if isinstance(devices, bool) or isinstance(devices, str | float):
+        raise ValueError(f"devices must be None, 'auto', a count ≥ 1 or a list of devices, got "
+                         f"{devices!r}")  # fmt: skip
+    if isinstance(devices, int | np.integer):
+        n = int(devices)
+        if n < 1:
+            raise ValueError(f"devices must be a count ≥ 1, got {n}")
+        if n == 1:
+            return None
+        jax = import_jax()
+        avail = jax.devices()
+        if n > len(avail):
+            raise ValueError(f"devices must be in [1, {len(avail)}] (the JAX devices of backend "
+                             f"{jax.default_backend()!r}), got {n}")  # fmt: skip
+        if ny % n:
+            raise _count_error(n, ny, len(avail))
+        return list(avail[:n])
+    try:
+        items = list(devices)
+    except TypeError:
+        raise ValueError(f"devices must be None, 'auto', a count ≥ 1 or a list of devices, got "
+                         f"{devices!r}") from None  # fmt: skip
+    if not items:
+        raise ValueError("devices must name at least one device, got an empty list")
+    if len(items) == 1:
+        return None
+    jax = import_jax()
+    found = [_jax_device(d, jax) for d in items]
+    if len({id(d) for d in found}) != len(found):
+        raise ValueError(f"devices must not repeat a device, got {items!r}")
+    if ny % len(found):
+        raise _count_error(len(found), ny, len(found))
+    return found
+
+
+def single_device(devices: Any, device: Any) -> Any:
+    """The Warp device of a one-device solve asked for through ``devices``.
+
+    Parameters
+    ----------
+    devices : int, "auto" or list
+        The solver's ``devices`` (1, ``"auto"`` or one device).
+    device : str or warp Device or None
+        The solver's ``device`` (kept for 1 and ``"auto"``).
+
+    Returns
+    -------
+    str or warp Device or None
+        ``device``, or the Warp name of the one device listed (``"cuda:N"``, ``"cpu"``).
+    """
+    if isinstance(devices, str) or not hasattr(devices, "__len__") or len(devices) != 1:
+        return device
+    d = next(iter(devices))
+    if isinstance(d, str):
+        platform, _, index = d.partition(":")
+        if platform.lower() in ("cuda", "gpu"):
+            return f"cuda:{index or 0}"
+        return "cpu" if platform.lower() == "cpu" else d
+    if getattr(d, "platform", "") == "gpu":
+        return f"cuda:{getattr(d, 'local_hardware_id', None) or d.id}"
+    return "cpu"
+
+
+def solver_class(devices: Any, args: tuple, kwargs: dict[str, Any]) -> type:
+    """:class:`~warptrunc.contact.ContactSolver` or, for two or more devices,
+    :class:`~warptrunc.contact.sharded.ShardedContactSolver` (``ContactSolver.__new__``).
+
+    Parameters
+    ----------
+    devices : None, int, "auto" or list
+        The ``devices`` argument (:func:`choose_devices`).
+    args : tuple
+        The solver's positional arguments (heights first).
+    kwargs : dict
+        Its keyword arguments.
+
+    Returns
+    -------
+    type
+        The class to make.
+    """
+    from .sharded import ShardedContactSolver
+    from .solver import ContactSolver
+
+    heights = args[0] if args else kwargs.get("heights")
+    legacy = {k: v for k, v in kwargs.items() if k not in ("settings", "device", "hardness")}
+    found = choose_devices(devices, np.shape(heights), kwargs.get("settings"), legacy,
+                           kwargs.get("device"))  # fmt: skip
+    return ContactSolver if found is None else ShardedContactSolver

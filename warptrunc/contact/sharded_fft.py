@@ -1,0 +1,441 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The elastic half-space over several devices: JAX/XLA's sharded FFT, the row-slab layout, the
+per-device memory model and the choice of devices (:class:`ShardedHalfSpace`).
+
+Engine. JAX (``pip install "warptrunc[distributed]"``; imported only when a solver is spread
+over several devices, never at ``import warptrunc``). One process drives the host's devices;
+several hosts would join through ``jax.distributed`` (not wired up here). It was chosen over
+cuFFTMp (nvmath-python) because it is in the GPU image and needs no MPI ranks; the cuFFTMp
+runtime wheel (about 205 MB) is not.
+
+Layout. The (ny, nx) maps are split in D equal slabs of rows (``ny`` a multiple of D), one per
+device (``PartitionSpec("d", None)``). The padded convolution of a map is, as on one device
+(:mod:`warptrunc.contact.transforms`), pruned: a real FFT along x of the map's rows (length Nx =
+2nx free, nx periodic; local to each slab), the half spectrum's Nx//2 + 1 columns padded to a
+multiple of D, a *sharding constraint* to column slabs (``PartitionSpec(None, "d")``; XLA turns
+it into one all-to-all), the zero rows of the pad appended (free), the FFT along y (local), the
+kernel spectrum W (held in column slabs, rows 0 … Ny//2, mirrored in y on the fly), the inverse
+FFT along y keeping the map's ny rows, a sharding constraint back to row slabs (the second
+all-to-all) and the inverse real FFT along x. The local FFTs run inside ``shard_map`` so that XLA
+sees them as per-slab work (without it XLA's sharding propagation gathers whole maps); the
+transposes are XLA's own: no hand-written all-to-all (``tests/test_sharded.py`` checks the
+compiled programme: two all-to-alls, no all-gather).
+
+The kernel spectrum W is the one-device solver's (:func:`~warptrunc.contact.influence.
+build_free_spectrum`): Love's coefficients mirrored in x, the x transform, then mirrored in y
+and the y transform, in float64 on the devices (the x stage in row slabs, the y stage in column
+slabs), rounded to the dtype; the periodic W is its closed form.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = ["ShardedHalfSpace", "SlabLayout", "import_jax", "sharded_memory_terms", "slab_layout"]
+
+
+def import_jax():
+    """JAX with 64-bit types enabled (the maps may be float64 and the sums are float64).
+
+    Returns
+    -------
+    module
+        The ``jax`` module.
+
+    Raises
+    ------
+    ImportError
+        JAX is not installed; the message gives the install line.
+    """
+    try:
+        import jax
+    except ImportError as exc:
+        raise ImportError(
+            f"a contact solve over several devices needs JAX ({exc}); install it with: "
+            'pip install "warptrunc[distributed]" (on CUDA machines: pip install "jax[cuda12]")'
+        ) from exc
+    if not jax.config.jax_enable_x64:
+        jax.config.update("jax_enable_x64", True)
+    return jax
+
+
+def _shard_map(jax):
+    """``jax.shard_map`` (JAX ≥ 0.7) or ``jax.experimental.shard_map.shard_map`` before."""
+    fn = getattr(jax, "shard_map", None)
+    if fn is not None:
+        return fn
+    from jax.experimental.shard_map import shard_map
+
+    def compat(f, *, mesh, in_specs, out_specs):
+        return shard_map(f, mesh, in_specs=in_specs, out_specs=out_specs, check_rep=False)
+
+    return compat
+
+
+def _grid(shape: tuple[int, int], substrate: str, n_dev: int) -> tuple[int, int, int, int]:
+    """(Ny, Nx, nk, nkp): the padded grid, its half spectrum's columns and those padded to a
+    multiple of ``n_dev``."""
+    ny, nx = shape
+    big_y, big_x = (2 * ny, 2 * nx) if substrate == "free" else (ny, nx)
+    nk = big_x // 2 + 1
+    return big_y, big_x, nk, -(-nk // n_dev) * n_dev
+
+
+def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
+                         n_devices: int) -> dict[str, int]:  # fmt: skip
+    """Bytes one device holds for a solve spread over ``n_devices`` (the model; measured peaks:
+    ``examples/benchmarks/benchmark_sharded.py``).
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    substrate : {"free", "periodic"}
+        Half-space.
+    dtype : {"float64", "float32"}
+        Precision of the maps.
+    n_devices : int
+        Devices the map is split over (dimensionless count, ≥ 1).
+
+    Returns
+    -------
+    dict of str to int
+        Per device: ``"maps"``: h, q, u, t, the BCCG residual and the last preconditioned
+        residual (six slabs of the dtype; Barber's punch reuses them); ``"mask"``: one byte per
+        pixel of the slab; ``"kernel spectrum"``: its rows 0 … Ny//2 in a column slab;
+        ``"fft work (XLA)"``: the transform's buffers, three padded half spectra of the slab
+        (the all-to-all's input and output and the y transform's; the model, XLA decides);
+        ``"step temporaries"``: two more slabs (the new q and u of a step before the old are
+        released).
+    """
+    ny, nx = shape
+    item = np.dtype(dtype).itemsize
+    big_y, _, _, nkp = _grid(shape, substrate, n_devices)
+    slab = -(-ny // n_devices) * nx
+    cols = nkp // n_devices
+    return {
+        "maps": 6 * slab * item,
+        "mask": slab,
+        "kernel spectrum": (big_y // 2 + 1) * cols * item,
+        "fft work (XLA)": 3 * big_y * cols * 2 * item,
+        "step temporaries": 2 * slab * item,
+    }
+
+
+def _love(jnp, x, y, a: float, b: float, contact_modulus: float):
+    """Love's (1929) displacement (m) at (x, y) under a unit pressure on [−a, a]×[−b, b], as
+    :func:`warptrunc.contact.influence._love` (in JAX)."""
+    xa, xm, yb, ym = x + a, x - a, y + b, y - b
+    v = (
+        xa * jnp.log((yb + jnp.hypot(yb, xa)) / (ym + jnp.hypot(ym, xa)))
+        + yb * jnp.log((xa + jnp.hypot(yb, xa)) / (xm + jnp.hypot(yb, xm)))
+        + xm * jnp.log((ym + jnp.hypot(ym, xm)) / (yb + jnp.hypot(yb, xm)))
+        + ym * jnp.log((xm + jnp.hypot(ym, xm)) / (xa + jnp.hypot(ym, xa)))
+    )
+    return v / (math.pi * contact_modulus)
+
+
+class SlabLayout:
+    """The row-slab layout of a map over several JAX devices and its padded convolution.
+
+    One per (shape, substrate, dtype, devices) (:func:`slab_layout` caches them), so that the
+    solvers of one layout share their compiled programmes (``steps``); it holds no map.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx); ny a multiple of the number of devices.
+    substrate : {"free", "periodic"}
+        Zero-padded isolated patch or periodic map.
+    dtype : {"float64", "float32"}
+        Precision of the maps and transforms.
+    devices : tuple of jax Device
+        The devices, one row slab each (two or more).
+    """
+
+    def __init__(self, shape: tuple[int, int], substrate: str, dtype: str,
+                 devices: tuple[Any, ...]) -> None:  # fmt: skip
+        jax = import_jax()
+        import jax.numpy as jnp
+        from jax.sharding import Mesh, NamedSharding
+        from jax.sharding import PartitionSpec as P
+
+        self.jax, self.jnp = jax, jnp
+        self.shape = (int(shape[0]), int(shape[1]))
+        self.substrate, self.dtype = substrate, dtype
+        self.devices = list(devices)
+        n_dev = len(self.devices)
+        self.mesh = Mesh(np.array(self.devices, dtype=object), ("d",))
+        self.row_spec, self.col_spec = P("d", None), P(None, "d")
+        self.rows = NamedSharding(self.mesh, self.row_spec)
+        self.cols = NamedSharding(self.mesh, self.col_spec)
+        self.replicated = NamedSharding(self.mesh, P())
+        self.grid_shape = _grid(self.shape, substrate, n_dev)
+        big_y, big_x, _, _ = self.grid_shape
+        self.n_total = big_y * big_x
+        self.np_dtype = np.dtype(dtype)
+        # donation reuses the state's buffers on accelerators (the CPU client warns and copies)
+        self.donate = self.devices[0].platform != "cpu"
+        self.steps: dict[str, Any] = {}  # the solver's jitted steps (sharded_steps.make_step)
+
+    # --- the transforms (pure functions, for jax.jit) -------------------------------------
+
+    def _stages(self):
+        """The three local stages (x transform, y transform with W, inverse x transform)."""
+        jnp = self.jnp
+        ny, nx = self.shape
+        big_y, big_x, nk, nkp = self.grid_shape
+
+        def rows_forward(x):
+            s = jnp.fft.rfft(x, n=big_x, axis=1)
+            return jnp.pad(s, ((0, 0), (0, nkp - nk)))
+
+        def columns(s, w_half, inverse):
+            if big_y > ny:
+                s = jnp.pad(s, ((0, big_y - ny), (0, 0)))
+            s = jnp.fft.fft(s, axis=0)
+            mirror = w_half[1 : big_y - big_y // 2][::-1]
+            w = jnp.concatenate([w_half, mirror], axis=0)
+            s = s / w if inverse else s * w
+            return jnp.fft.ifft(s, axis=0)[:ny]
+
+        def rows_inverse(s):
+            return jnp.fft.irfft(s[:, :nk], n=big_x, axis=1)[:, :nx].astype(self.np_dtype)
+
+        return rows_forward, columns, rows_inverse
+
+    def conv(self, x, w_half, inverse: bool = False):
+        """K·x (or K⁻¹·x) of a row-sharded map, inside ``jax.jit``.
+
+        Parameters
+        ----------
+        x : (ny, nx) jax array
+            Pixel forces (N), or displacements (m) with ``inverse``; row slabs.
+        w_half : (Ny//2 + 1, nkp) jax array
+            The kernel spectrum (:attr:`spectrum`), column slabs.
+        inverse : bool, optional
+            False: K·x (m); True: K⁻¹·x (N).
+
+        Returns
+        -------
+        (ny, nx) jax array
+            The map, row slabs, in the dtype.
+        """
+        jax = self.jax
+        shard_map = _shard_map(jax)
+        rows_forward, columns, rows_inverse = self._stages()
+        r, c = self.row_spec, self.col_spec
+        s = shard_map(rows_forward, mesh=self.mesh, in_specs=r, out_specs=r)(x)
+        s = jax.lax.with_sharding_constraint(s, self.cols)  # all-to-all (XLA)
+        s = shard_map(lambda a, w: columns(a, w, inverse), mesh=self.mesh, in_specs=(c, c),
+                      out_specs=c)(s, w_half)  # fmt: skip
+        s = jax.lax.with_sharding_constraint(s, self.rows)  # all-to-all (XLA)
+        return shard_map(rows_inverse, mesh=self.mesh, in_specs=r, out_specs=r)(s)
+
+    def apply(self, x, w_half, *, inverse: bool = False):
+        """Apply K (or K⁻¹) to a row-sharded map (one jitted convolution).
+
+        Parameters
+        ----------
+        x : (ny, nx) jax array
+            Pixel forces (N), or displacements (m) with ``inverse``; row slabs.
+        w_half : (Ny//2 + 1, nkp) jax array
+            The kernel spectrum (:meth:`build_spectrum`).
+        inverse : bool, optional
+            False: K·x (m); True: K⁻¹·x (N).
+
+        Returns
+        -------
+        (ny, nx) jax array
+            The map, row slabs.
+        """
+        key = "apply_inverse" if inverse else "apply"
+        fn = self.steps.get(key)
+        if fn is None:
+            fn = self.jax.jit(lambda a, w: self.conv(a, w, inverse), out_shardings=self.rows)
+            self.steps[key] = fn
+        return fn(x, w_half)
+
+    def put(self, array: np.ndarray, dtype: Any = None):
+        """Copy a host map to the devices in row slabs.
+
+        Parameters
+        ----------
+        array : (ny, nx) ndarray
+            The map (any units).
+        dtype : numpy dtype, optional
+            Its dtype on the devices (default the half-space's).
+
+        Returns
+        -------
+        (ny, nx) jax array
+            Row slabs.
+        """
+        a = np.ascontiguousarray(array, dtype=self.np_dtype if dtype is None else dtype)
+        return self.jax.device_put(a, self.rows)
+
+    def zeros(self, dtype: Any = None):
+        """A zeroed map in row slabs, made on the devices.
+
+        Parameters
+        ----------
+        dtype : numpy dtype, optional
+            Default the half-space's.
+
+        Returns
+        -------
+        (ny, nx) jax array
+            Zeros, row slabs.
+        """
+        dt = self.np_dtype if dtype is None else np.dtype(dtype)
+        return self.jax.jit(lambda: self.jnp.zeros(self.shape, dt), out_shardings=self.rows)()
+
+    # --- the kernel spectrum ----------------------------------------------------------------
+
+    def build_spectrum(self, pixel_size: tuple[float, float], contact_modulus: float):
+        """The kernel spectrum W's rows 0 … Ny//2 in column slabs (module docstring).
+
+        Parameters
+        ----------
+        pixel_size : (float, float)
+            Pixel sides (dx, dy) (m).
+        contact_modulus : float
+            Contact modulus E* (Pa).
+
+        Returns
+        -------
+        (Ny//2 + 1, nkp) jax array
+            W (m/N) in the dtype, column slabs; the padded columns (beyond Nx//2) hold 1.
+        """
+        jax, jnp = self.jax, self.jnp
+        shard_map = _shard_map(jax)
+        ny, nx = self.shape
+        big_y, _, nk, nkp = self.grid_shape
+        dx, dy = float(pixel_size[0]), float(pixel_size[1])
+        area = dx * dy
+        n_dev = len(self.devices)
+        out = self.np_dtype
+        rows_half = big_y // 2 + 1
+        r, c = self.row_spec, self.col_spec
+
+        def padded(w):  # the padded columns: 1 (K⁻¹ divides by W; their data is zero)
+            return jnp.where(jnp.arange(nkp)[None, :] < nk, w, 1.0).astype(out)
+
+        if self.substrate == "periodic":
+
+            def build():
+                fx = jnp.arange(nkp, dtype=jnp.float64)[None, :] / (nx * dx)
+                fy = jnp.arange(rows_half, dtype=jnp.float64)[:, None] / (ny * dy)
+                stiff = math.pi * contact_modulus * jnp.hypot(fx, fy)
+                zero = math.pi * contact_modulus * (1 / (nx * dx) + 1 / (ny * dy)) / 2
+                stiff = stiff.at[0, 0].set(zero)
+                return padded(1.0 / (stiff * area))
+
+            return jax.jit(build, out_shardings=self.cols)()
+
+        n_rows = -(-(ny + 1) // n_dev) * n_dev  # quadrant rows 0 … ny, padded to the devices
+
+        def quadrant_rows(j):  # (slab, 1) row numbers → x transform of the x-mirrored rows
+            xs = jnp.arange(nx + 1, dtype=jnp.float64)[None, :] * dx
+            quad = _love(jnp, xs, j.astype(jnp.float64) * dy, dx / 2, dy / 2, contact_modulus)
+            row = jnp.concatenate([quad, quad[:, nx - 1 : 0 : -1]], axis=1)  # 2nx
+            return jnp.pad(jnp.fft.rfft(row, axis=1).real, ((0, 0), (0, nkp - nk)))
+
+        def columns(a):  # (n_rows, slab) → y transform of the y-mirrored columns
+            a = a[: ny + 1]
+            col = jnp.concatenate([a, a[ny - 1 : 0 : -1]], axis=0)  # 2ny
+            return jnp.fft.rfft(col, axis=0).real / area
+
+        def build():
+            j = jax.lax.with_sharding_constraint(jnp.arange(n_rows)[:, None], self.rows)
+            a = shard_map(quadrant_rows, mesh=self.mesh, in_specs=r, out_specs=r)(j)
+            a = jax.lax.with_sharding_constraint(a, self.cols)
+            return padded(shard_map(columns, mesh=self.mesh, in_specs=c, out_specs=c)(a))
+
+        w = jax.jit(build, out_shardings=self.cols)()
+        assert w.shape == (rows_half, nkp)
+        return w
+
+
+@functools.lru_cache(maxsize=16)
+def slab_layout(shape: tuple[int, int], substrate: str, dtype: str,
+                devices: tuple[Any, ...]) -> SlabLayout:  # fmt: skip
+    """The layout of these arguments, made once (its compiled programmes are shared).
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    substrate : {"free", "periodic"}
+        Half-space.
+    dtype : {"float64", "float32"}
+        Precision.
+    devices : tuple of jax Device
+        The devices.
+
+    Returns
+    -------
+    SlabLayout
+        The layout.
+    """
+    return SlabLayout(shape, substrate, dtype, devices)
+
+
+class ShardedHalfSpace:
+    """Pixel-force → displacement operator K of an elastic half-space over several JAX devices:
+    a :class:`SlabLayout` and the kernel spectrum.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx); ny a multiple of the number of devices.
+    pixel_size : (float, float)
+        Pixel sides (dx, dy) (m).
+    contact_modulus : float
+        Contact modulus E* (Pa).
+    substrate : {"free", "periodic"}
+        Zero-padded isolated patch or periodic map.
+    dtype : {"float64", "float32"}
+        Precision of the maps and transforms.
+    devices : list of jax Device
+        The devices, one row slab each (two or more).
+
+    Notes
+    -----
+    The layout's attributes (``jax``, ``jnp``, ``rows``, ``np_dtype``, ``conv``, ``put``,
+    ``zeros``, ...) are the half-space's too.
+    """
+
+    def __init__(self, shape: tuple[int, int], pixel_size: tuple[float, float],
+                 contact_modulus: float, *, substrate: str, dtype: str,
+                 devices: list[Any]) -> None:  # fmt: skip
+        shape = (int(shape[0]), int(shape[1]))
+        self.layout = slab_layout(shape, substrate, dtype, tuple(devices))
+        self.spectrum = self.layout.build_spectrum(pixel_size, float(contact_modulus))
+
+    def __getattr__(self, name: str) -> Any:
+        if name == "layout":
+            raise AttributeError(name)
+        return getattr(self.layout, name)
+
+    def apply(self, x, *, inverse: bool = False):
+        """Apply K (or K⁻¹) to a row-sharded map.
+
+        Parameters
+        ----------
+        x : (ny, nx) jax array
+            Pixel forces (N), or displacements (m) with ``inverse``; row slabs.
+        inverse : bool, optional
+            False: K·x (m); True: K⁻¹·x (N).
+
+        Returns
+        -------
+        (ny, nx) jax array
+            The map, row slabs.
+        """
+        return self.layout.apply(x, self.spectrum, inverse=inverse)
