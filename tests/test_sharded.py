@@ -21,10 +21,11 @@ import sys
 import numpy as np
 import pytest
 
-if "jax" not in sys.modules:  # two host devices; harmless for anything else in the process
+if "jax" not in sys.modules:  # two host devices (JAX only; nothing else in the suite uses it)
     flags = os.environ.get("XLA_FLAGS", "")
     if "xla_force_host_platform_device_count" not in flags:
         os.environ["XLA_FLAGS"] = f"{flags} --xla_force_host_platform_device_count=2".strip()
+    os.environ.setdefault("JAX_PLATFORMS", "cpu")  # on a GPU machine too: the host devices
 
 jax = pytest.importorskip("jax")
 if len(jax.devices("cpu")) < 2:
