@@ -221,6 +221,31 @@ def test_memory_bytes_per_device():
         ContactSolver.memory_bytes(shape, devices=0)
 
 
+@pytest.mark.parametrize(("substrate", "dtype"), [("free", "float32"), ("periodic", "float32")])
+def test_memory_model_covers_the_compiled_steps(substrate, dtype):
+    """The per-device model is at least what XLA's compiled CG step and preconditioner need
+    (arguments, results and temporaries of the CPU compile, plus the maps held beside them),
+    and not far above."""
+    from warptrunc.contact.sharded_steps import make_step
+
+    shape = (256, 256)
+    lay = slab_layout(shape, substrate, dtype, tuple(jax.devices("cpu")[:2]))
+    w = lay.build_spectrum((DX, DX), E)
+    x, mask = lay.zeros(), lay.zeros(np.bool_)
+    slab = np.dtype(dtype).itemsize * shape[0] * shape[1] // 2
+
+    def need(name, args, held_maps):
+        m = make_step(lay, name).lower(*args).compile().memory_analysis()
+        size = m.argument_size_in_bytes + m.output_size_in_bytes + m.temp_size_in_bytes
+        return size + held_maps * slab
+
+    # + h and the old z_old; t, q and u are donated on accelerators (their results reuse them)
+    step = need("step", (x, 0.0, 0.0, mask, x, x, x, x, 1.0, 1e300, w), 2 - 3)
+    pc = need("precondition", (x, x, mask, w), 4)  # + h, q, u, t
+    model = ContactSolver.memory_bytes(shape, substrate, dtype, devices=2)
+    assert max(step, pc) <= model < 1.5 * max(step, pc)
+
+
 def test_jax_is_imported_lazily():
     """``import warptrunc`` and a one-device solve never import JAX."""
     code = (

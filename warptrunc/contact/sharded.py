@@ -8,7 +8,7 @@ map is spread over two or more devices, so every entry point that takes a
 than a branch inside the one-device solver because the state lives elsewhere (JAX arrays in row
 slabs, not Warp arrays on one device) while everything above the iteration is shared: ``solve``
 (displacement and load control, the offset and secant load controls, the elastic trial and the
-secant of the capped solves), the stopping tests (:meth:`SolveLoop._steady`), the records of a
+secant of the capped solves), the stopping tests (``SolveLoop._steady``), the records of a
 solve, the warm start's choice of approach and the preconditioner's rule are the one-device
 solver's own methods, inherited. What is re-written here is the BCCG iteration
 (:mod:`warptrunc.contact.bccg`, the default ``algorithm``) and its per-pixel steps, line for line,
@@ -169,8 +169,8 @@ class ShardedContactSolver(ContactSolver):
         return self._read([du])[0]
 
     def _solve_bccg(self, offset: float, load: float | None, cap: float | None) -> dict[str, Any]:
-        """:meth:`BCCGSolves._solve_bccg <warptrunc.contact.bccg.BCCGSolves._solve_bccg>`, step
-        for step, on the slabs (``direct_max`` 0)."""
+        """``BCCGSolves._solve_bccg`` (:mod:`warptrunc.contact.bccg`), step for step, on the
+        slabs (``direct_max`` 0)."""
         n_map = self.shape[0] * self.shape[1]
         hf = _HUGE if cap is None else float(cap)
         load_control = load is not None
@@ -365,8 +365,8 @@ class ShardedContactSolver(ContactSolver):
     @staticmethod
     def memory_terms_per_device(shape: tuple[int, int], substrate: str = "free",
                                 dtype: str = "float64", n_devices: int = 2) -> dict[str, int]:  # fmt: skip
-        """Bytes one device holds, term by term (:func:`~warptrunc.contact.sharded_fft.
-        sharded_memory_terms`).
+        """Bytes one device holds, term by term
+        (:func:`~warptrunc.contact.sharded_fft.sharded_memory_terms`).
 
         Parameters
         ----------

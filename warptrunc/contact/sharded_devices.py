@@ -104,8 +104,8 @@ def check_fits(shape: tuple[int, int], substrate: str, dtype: str, devices: list
     Returns
     -------
     int
-        Bytes each device needs (the model, :func:`~warptrunc.contact.sharded_fft.
-        sharded_memory_terms`).
+        Bytes each device needs (the model,
+        :func:`~warptrunc.contact.sharded_fft.sharded_memory_terms`).
 
     Raises
     ------

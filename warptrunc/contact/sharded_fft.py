@@ -22,8 +22,8 @@ sees them as per-slab work (without it XLA's sharding propagation gathers whole 
 transposes are XLA's own: no hand-written all-to-all (``tests/test_sharded.py`` checks the
 compiled programme: two all-to-alls, no all-gather).
 
-The kernel spectrum W is the one-device solver's (:func:`~warptrunc.contact.influence.
-build_free_spectrum`): Love's coefficients mirrored in x, the x transform, then mirrored in y
+The kernel spectrum W is the one-device solver's
+(:func:`~warptrunc.contact.influence.build_free_spectrum`): Love's coefficients mirrored in x, the x transform, then mirrored in y
 and the y transform, in float64 on the devices (the x stage in row slabs, the y stage in column
 slabs), rounded to the dtype; the periodic W is its closed form.
 """
@@ -105,13 +105,13 @@ def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
     Returns
     -------
     dict of str to int
-        Per device: ``"maps"``: h, q, u, t, the BCCG residual and the last preconditioned
-        residual (six slabs of the dtype; Barber's punch reuses them); ``"mask"``: one byte per
-        pixel of the slab; ``"kernel spectrum"``: its rows 0 … Ny//2 in a column slab;
-        ``"fft work (XLA)"``: the transform's buffers, three padded half spectra of the slab
-        (the all-to-all's input and output and the y transform's; the model, XLA decides);
-        ``"step temporaries"``: two more slabs (the new q and u of a step before the old are
-        released).
+        Per device: ``"maps"``: h, q, u, t, the BCCG residual r, the preconditioned residual z
+        and the last and new z − mean (eight slabs of the dtype; Barber's punch reuses them);
+        ``"mask"``: one byte per pixel of the slab; ``"kernel spectrum"``: its rows 0 … Ny//2 in
+        a column slab; ``"fft work (XLA)"``: the convolution's buffers, 2.5 padded half spectra
+        of the slab (XLA's temporary memory of one convolution compiled for the CPU:
+        ``tests/test_sharded.py``); ``"step temporaries"``: three float64 slabs, the rest of a
+        CG step's temporary memory (its float64 intermediates; the CPU compile needs 0–3).
     """
     ny, nx = shape
     item = np.dtype(dtype).itemsize
@@ -119,11 +119,11 @@ def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
     slab = -(-ny // n_devices) * nx
     cols = nkp // n_devices
     return {
-        "maps": 6 * slab * item,
+        "maps": 8 * slab * item,
         "mask": slab,
         "kernel spectrum": (big_y // 2 + 1) * cols * item,
-        "fft work (XLA)": 3 * big_y * cols * 2 * item,
-        "step temporaries": 2 * slab * item,
+        "fft work (XLA)": 5 * big_y * cols * item,  # 2.5 complex spectra of the slab
+        "step temporaries": 3 * slab * 8,
     }
 
 
@@ -217,7 +217,8 @@ class SlabLayout:
         x : (ny, nx) jax array
             Pixel forces (N), or displacements (m) with ``inverse``; row slabs.
         w_half : (Ny//2 + 1, nkp) jax array
-            The kernel spectrum (:attr:`spectrum`), column slabs.
+            The kernel spectrum
+            (:meth:`~warptrunc.contact.sharded_fft.SlabLayout.build_spectrum`), column slabs.
         inverse : bool, optional
             False: K·x (m); True: K⁻¹·x (N).
 

@@ -1,7 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """The per-pixel steps of :class:`~warptrunc.contact.sharded.ShardedContactSolver`, in
-``jax.numpy`` on the row slabs, one ``jax.jit`` programme each (:func:`make_step`).
+``jax.numpy`` on the row slabs, one ``jax.jit`` programme each
+(:func:`~warptrunc.contact.sharded_steps.make_step`).
 
 Each step is the Warp kernel (or kernels) of the one-device solver named beside it, with the
 same arithmetic: the maps in their dtype, gaps, sums and maxima in float64, the values cast to
@@ -34,7 +35,8 @@ def make_step(layout: Any, name: str):
     Returns
     -------
     callable
-        The jitted function (arguments and results: :class:`ShardedContactSolver`'s calls).
+        The jitted function (arguments and results: those of the calls in
+        :class:`~warptrunc.contact.sharded.ShardedContactSolver`).
 
     Raises
     ------

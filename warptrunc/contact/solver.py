@@ -128,8 +128,9 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         solver of today bit for bit.
     {warp_device_obj}
     devices : list, int or "auto", optional
-        Spread the map over several devices (:class:`~warptrunc.contact.sharded.
-        ShardedContactSolver`, which this then returns; JAX, ``warptrunc[distributed]``): JAX
+        Spread the map over several devices
+        (:class:`~warptrunc.contact.sharded.ShardedContactSolver`, which this then returns;
+        JAX, ``warptrunc[distributed]``): JAX
         devices or their names (``["cuda:0", "cuda:1"]``), a count (the first N devices of
         JAX's default backend), or ``"auto"``: this device when the solver fits it, else the
         fewest devices that fit (:func:`~warptrunc.contact.sharded_devices.choose_devices`).
