@@ -207,6 +207,19 @@ def test_devices_argument():
         ContactSolver(H256[:64, :64], DX, E, devices=2, algorithm="pk")
 
 
+def test_auto_spreads_what_does_not_fit(monkeypatch):
+    """``devices="auto"``: one device while the solver fits its free memory, else the fewest
+    devices that hold it (here both host devices: JAX reports no limit on the CPU)."""
+    import warptrunc._support.device as support
+
+    h = H256[:64, :64]
+    assert type(ContactSolver(h, DX, E, devices="auto")) is ContactSolver
+    monkeypatch.setattr(support, "free_memory_bytes", lambda device: 1000)
+    two = ContactSolver(h, DX, E, devices="auto")
+    assert type(two) is ShardedContactSolver and len(two.hs.devices) == 2
+    assert two.solve(load=1e-3 * LOAD).converged
+
+
 def test_memory_bytes_per_device():
     """``memory_bytes(..., devices=n)``: each device's share shrinks with n; ``devices_needed``
     inverts it; a bad count is refused."""

@@ -182,10 +182,14 @@ class SolverMemory:
         if need > free and cuda:
             free = release_cached_memory(self.device)  # pooled blocks are free for us too
         if need > free:
+            from .sharded_devices import devices_needed
+
+            spread = devices_needed(shape, substrate, dtype, free) if cuda else None
+            hint = f", devices={spread} (that many such GPUs)" if spread else ""
             raise MemoryError(
                 f"the contact solver for a {shape[0]}×{shape[1]} map ({substrate}, {dtype}, "
                 f"fft_plan {plan!r}) needs {need / 1e9:.2f} GB, {free / 1e9:.2f} GB free on "
                 f"{self.device} ({need} bytes needed, {free} free); use a smaller map, float32, "
-                "fft_plan='pruned' or another device"
+                f"fft_plan='pruned', another device{hint}"
             )
         return plan

@@ -160,7 +160,7 @@ class ShardedContactSolver(ContactSolver):
         if total > 0.0:
             self.q, self.u = self._fn("scale")(self.q, self.u, load / total)
             return True
-        self.mask = self.jnp.ones_like(self.mask)
+        self.mask = self.hs.full(True, np.bool_)
         self.q = self._fn("fill")(self.q, load / n_map)
         return False
 
@@ -184,8 +184,7 @@ class ShardedContactSolver(ContactSolver):
             total = float(load)
         self._exact_u()
         n_transforms = 4
-        self.t = self.jnp.zeros_like(self.t)
-        self.z_old = self.jnp.zeros_like(self.z_old)
+        self.t, self.z_old = self.hs.zeros(), self.hs.zeros()
         rz_old = None
         last_pc = None
         du = None
@@ -349,11 +348,8 @@ class ShardedContactSolver(ContactSolver):
         """Forget the solution and the plastic state: original heights, zero forces."""
         if self._h0 is not None:
             self.h = self.hs.put(self._h0)
-        zeros = self.jnp.zeros_like
-        self.q, self.u, self.t, self.r, self.z_old = (
-            zeros(a) for a in (self.q, self.u, self.t, self.r, self.z_old)
-        )
-        self.mask = zeros(self.mask)
+        self.q, self.u, self.t, self.r, self.z_old = (self.hs.zeros() for _ in range(5))
+        self.mask = self.hs.zeros(np.bool_)
         self.offset = 0.0
         self.plastic_volume = 0.0
         self._depth = None

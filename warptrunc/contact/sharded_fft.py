@@ -286,15 +286,39 @@ class SlabLayout:
         Parameters
         ----------
         dtype : numpy dtype, optional
-            Default the half-space's.
+            Default the layout's.
 
         Returns
         -------
         (ny, nx) jax array
             Zeros, row slabs.
         """
+        return self.full(0, dtype)
+
+    def full(self, value: Any, dtype: Any = None):
+        """A map of one value in row slabs, made on the devices (one jitted programme per
+        dtype, made once).
+
+        Parameters
+        ----------
+        value : scalar
+            The value (units of the map).
+        dtype : numpy dtype, optional
+            Default the layout's.
+
+        Returns
+        -------
+        (ny, nx) jax array
+            The map, row slabs.
+        """
         dt = self.np_dtype if dtype is None else np.dtype(dtype)
-        return self.jax.jit(lambda: self.jnp.zeros(self.shape, dt), out_shardings=self.rows)()
+        key = f"full_{dt.name}"
+        fn = self.steps.get(key)
+        if fn is None:
+            jnp = self.jnp
+            fn = self.jax.jit(lambda v: jnp.full(self.shape, v, dt), out_shardings=self.rows)
+            self.steps[key] = fn
+        return fn(value)
 
     # --- the kernel spectrum ----------------------------------------------------------------
 
