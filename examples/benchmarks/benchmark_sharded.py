@@ -243,10 +243,11 @@ def report(args) -> None:
     print(f"{'n':>6} {'substrate':>9} {'dtype':>8} {'load':>9} {'depth':>9} {'k':>9} "
           f"{'px':>4} {'pass':>5}")  # fmt: skip
     for r in rows:
-        if r["step"] != "check":
+        if r.get("step") != "check":
             continue
         if "error" in r:
-            print(f"{r['n']:>6} {r['substrate']:>9} {r['dtype']:>8}  ERROR {r['error'][:60]}")
+            print(f"{r.get('n', '?'):>6} {r.get('substrate', '?'):>9} {r.get('dtype', '?'):>8}"
+                  f"  ERROR {r['error'][:60]} {r.get('args', '')}")  # fmt: skip
             continue
         print(f"{r['n']:>6} {r['substrate']:>9} {r['dtype']:>8} {r['load_rel']:9.1e} "
               f"{r['depth_rel']:9.1e} {r['stiffness_rel']:9.1e} {r['pixels_differ']:>4} "
@@ -256,10 +257,11 @@ def report(args) -> None:
           f"{'warm s':>7} {'it':>4} {'ms/it':>7} {'ms/conv':>8} {'/floor':>6} {'peak GB':>8} "
           f"{'model GB':>8}")  # fmt: skip
     for r in rows:
-        if r["step"] != "solve":
+        if r.get("step") != "solve":
             continue
         if "error" in r:
-            print(f"{r['n']:>6} {r['ndev']:>3} {r['dtype']:>8}  ERROR {r['error'][:70]}")
+            print(f"{r.get('n', '?'):>6} {r.get('ndev', '?'):>3} {r.get('dtype', '?'):>8}"
+                  f"  ERROR {r['error'][:70]} {r.get('args', '')}")  # fmt: skip
             continue
         w = r["warm"]
         print(f"{r['n']:>6} {r['ndev']:>3} {r['dtype']:>8} {r['floor_ms']:9.1f} "

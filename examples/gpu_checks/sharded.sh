@@ -56,10 +56,10 @@ step 110 check --n "$CHECK_N"
 step 60 maps --n "$SCALE_N"
 [ "$NGPU" -ge 4 ] && step 60 maps --n "$WEAK_N"
 # 3. strong scaling at SCALE_N² (2 GPUs first: the case), then weak scaling on 4
-step 60 solve --n "$SCALE_N" --ndev 2 --dtype "$DTYPE"
+step 90 solve --n "$SCALE_N" --ndev 2 --dtype "$DTYPE"
 step 45 solve --n "$SCALE_N" --ndev 1 --dtype "$DTYPE"
-[ "$NGPU" -ge 4 ] && step 60 solve --n "$SCALE_N" --ndev 4 --dtype "$DTYPE"
-[ "$NGPU" -ge 4 ] && step 90 solve --n "$WEAK_N" --ndev 4 --dtype "$DTYPE"
+[ "$NGPU" -ge 4 ] && step 80 solve --n "$SCALE_N" --ndev 4 --dtype "$DTYPE"
+[ "$NGPU" -ge 4 ] && step 100 solve --n "$WEAK_N" --ndev 4 --dtype "$DTYPE"
 # shellcheck disable=SC2086
 [ -n "${EXTRA:-}" ] && step 120 $EXTRA
 python "$B" report --jsonl "$J"
