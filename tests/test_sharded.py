@@ -113,6 +113,17 @@ def test_convolution_is_two_all_to_alls_and_exact():
         got = fn(xs, w)
         assert got.sharding.spec[0] == "d"  # row slabs
         assert np.abs(np.asarray(got) - ref).max() < 1e-12 * np.abs(ref).max()
+        # the column stage in blocks (large slabs): the same result, less temporary memory
+        blocked = slab_layout(shape, substrate, "float64", devices, 4)
+        fb = jax.jit(lambda a, s, lay=blocked: lay.conv(a, s), out_shardings=lay.rows)
+        assert np.abs(np.asarray(fb(xs, w)) - ref).max() < 1e-12 * np.abs(ref).max()
+    temp = []
+    for blocks in (1, 4):
+        lay = slab_layout((256, 256), "free", "float32", devices, blocks)
+        w = lay.build_spectrum((DX, DX), E)
+        fn = jax.jit(lambda a, s, lay=lay: lay.conv(a, s), out_shardings=lay.rows)
+        temp.append(fn.lower(lay.zeros(), w).compile().memory_analysis().temp_size_in_bytes)
+    assert temp[1] < 0.8 * temp[0]
 
 
 @pytest.mark.parametrize("dtype", ["float64", "float32"])
@@ -172,6 +183,18 @@ def test_capped_equals_one_device(substrate, dtype, load_control):
     a, b = one.solve(1.1 * peak), two.solve(1.1 * peak)  # displacement control, capped
     assert a.n_plastic > 0 and rel(a.load, b.load) < tol
     assert rel(a.plastic_volume, b.plastic_volume) < 10 * tol
+
+
+def test_blocked_columns_equal_one_device(monkeypatch):
+    """The column stage in blocks (chosen for large slabs, forced here): the same solve."""
+    import warptrunc.contact.sharded_fft as sf
+
+    monkeypatch.setattr(sf, "BLOCKS_ABOVE", 0)
+    one = ContactSolver(H256, DX, E, device="cpu", direct_max=0)
+    two = ContactSolver(H256, DX, E, devices=2)
+    assert two.hs.layout.blocks == sf.COLUMN_BLOCKS
+    a, b = one.solve(load=LOAD), two.solve(load=LOAD)
+    assert rel(a.depth, b.depth) < 1e-9 and a.n_iterations == b.n_iterations
 
 
 def test_default_direct_max_agrees():
@@ -234,15 +257,23 @@ def test_memory_bytes_per_device():
         ContactSolver.memory_bytes(shape, devices=0)
 
 
-@pytest.mark.parametrize(("substrate", "dtype"), [("free", "float32"), ("periodic", "float32")])
-def test_memory_model_covers_the_compiled_steps(substrate, dtype):
+@pytest.mark.parametrize(
+    ("substrate", "dtype", "blocked"),
+    [("free", "float32", False), ("periodic", "float32", False), ("free", "float64", True)],
+)
+def test_memory_model_covers_the_compiled_steps(substrate, dtype, blocked, monkeypatch):
     """The per-device model is at least what XLA's compiled CG step and preconditioner need
     (arguments, results and temporaries of the CPU compile, plus the maps held beside them),
     and not far above."""
+    import warptrunc.contact.sharded_fft as sf
     from warptrunc.contact.sharded_steps import make_step
 
+    if blocked:
+        monkeypatch.setattr(sf, "BLOCKS_ABOVE", 0)
     shape = (256, 256)
-    lay = slab_layout(shape, substrate, dtype, tuple(jax.devices("cpu")[:2]))
+    blocks = sf.column_blocks(shape, substrate, dtype, 2)
+    assert (blocks > 1) == blocked
+    lay = slab_layout(shape, substrate, dtype, tuple(jax.devices("cpu")[:2]), blocks)
     w = lay.build_spectrum((DX, DX), E)
     x, mask = lay.zeros(), lay.zeros(np.bool_)
     slab = np.dtype(dtype).itemsize * shape[0] * shape[1] // 2

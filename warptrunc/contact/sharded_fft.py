@@ -36,7 +36,16 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["ShardedHalfSpace", "SlabLayout", "import_jax", "sharded_memory_terms", "slab_layout"]
+__all__ = [
+    "BLOCKS_ABOVE",
+    "COLUMN_BLOCKS",
+    "ShardedHalfSpace",
+    "SlabLayout",
+    "column_blocks",
+    "import_jax",
+    "sharded_memory_terms",
+    "slab_layout",
+]
 
 
 def import_jax():
@@ -86,6 +95,40 @@ def _grid(shape: tuple[int, int], substrate: str, n_dev: int) -> tuple[int, int,
     return big_y, big_x, nk, -(-nk // n_dev) * n_dev
 
 
+COLUMN_BLOCKS = 4
+"""Blocks of columns the y transforms of a large column slab run in, one after another (a
+``fori_loop``), so that XLA holds one block's padded transform at a time: the convolution's
+temporary memory drops from 2.5 to 1.5 padded half spectra of the slab (the CPU compile)."""
+
+BLOCKS_ABOVE = 1 << 28
+"""Bytes of a device's padded half spectrum above which its column stage runs in
+``COLUMN_BLOCKS`` blocks (below, in one piece)."""
+
+
+def column_blocks(shape: tuple[int, int], substrate: str, dtype: str, n_devices: int) -> int:
+    """Blocks of the column stage of a layout (``COLUMN_BLOCKS`` or 1, by ``BLOCKS_ABOVE``).
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    substrate : {"free", "periodic"}
+        Half-space.
+    dtype : {"float64", "float32"}
+        Precision.
+    n_devices : int
+        Devices (dimensionless count).
+
+    Returns
+    -------
+    int
+        The number of blocks (dimensionless).
+    """
+    big_y, _, _, nkp = _grid(shape, substrate, n_devices)
+    spectrum = big_y * (nkp // n_devices) * 2 * np.dtype(dtype).itemsize
+    return COLUMN_BLOCKS if spectrum > BLOCKS_ABOVE else 1
+
+
 def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
                          n_devices: int) -> dict[str, int]:  # fmt: skip
     """Bytes one device holds for a solve spread over ``n_devices`` (the model; measured peaks:
@@ -109,8 +152,8 @@ def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
         and the last and new z − mean (eight slabs of the dtype; Barber's punch reuses them);
         ``"mask"``: one byte per pixel of the slab; ``"kernel spectrum"``: its rows 0 … Ny//2 in
         a column slab; ``"fft work (XLA)"``: the convolution's buffers, 2.5 padded half spectra
-        of the slab (XLA's temporary memory of one convolution compiled for the CPU:
-        ``tests/test_sharded.py``); ``"step temporaries"``: three float64 slabs, the rest of a
+        of the slab, 1.5 when the column stage runs in blocks (:func:`column_blocks`; XLA's
+        temporary memory of one convolution compiled for the CPU: ``tests/test_sharded.py``); ``"step temporaries"``: three float64 slabs, the rest of a
         CG step's temporary memory (its float64 intermediates; the CPU compile needs 0–3).
     """
     ny, nx = shape
@@ -118,11 +161,13 @@ def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
     big_y, _, _, nkp = _grid(shape, substrate, n_devices)
     slab = -(-ny // n_devices) * nx
     cols = nkp // n_devices
+    blocks = column_blocks(shape, substrate, dtype, n_devices)
     return {
         "maps": 8 * slab * item,
         "mask": slab,
         "kernel spectrum": (big_y // 2 + 1) * cols * item,
-        "fft work (XLA)": 5 * big_y * cols * item,  # 2.5 complex spectra of the slab
+        # 2.5 (1.5 in blocks) complex spectra of the slab
+        "fft work (XLA)": (3 if blocks > 1 else 5) * big_y * cols * item,
         "step temporaries": 3 * slab * 8,
     }
 
@@ -156,10 +201,12 @@ class SlabLayout:
         Precision of the maps and transforms.
     devices : tuple of jax Device
         The devices, one row slab each (two or more).
+    blocks : int, optional
+        Blocks the column stage runs in (:func:`column_blocks`; default 1).
     """
 
     def __init__(self, shape: tuple[int, int], substrate: str, dtype: str,
-                 devices: tuple[Any, ...]) -> None:  # fmt: skip
+                 devices: tuple[Any, ...], blocks: int = 1) -> None:  # fmt: skip
         jax = import_jax()
         import jax.numpy as jnp
         from jax.sharding import Mesh, NamedSharding
@@ -169,6 +216,7 @@ class SlabLayout:
         self.shape = (int(shape[0]), int(shape[1]))
         self.substrate, self.dtype = substrate, dtype
         self.devices = list(devices)
+        self.blocks = max(1, int(blocks))
         n_dev = len(self.devices)
         self.mesh = Mesh(np.array(self.devices, dtype=object), ("d",))
         self.row_spec, self.col_spec = P("d", None), P(None, "d")
@@ -195,7 +243,7 @@ class SlabLayout:
             s = jnp.fft.rfft(x, n=big_x, axis=1)
             return jnp.pad(s, ((0, 0), (0, nkp - nk)))
 
-        def columns(s, w_half, inverse):
+        def columns_piece(s, w_half, inverse):
             if big_y > ny:
                 s = jnp.pad(s, ((0, big_y - ny), (0, 0)))
             s = jnp.fft.fft(s, axis=0)
@@ -203,6 +251,21 @@ class SlabLayout:
             w = jnp.concatenate([w_half, mirror], axis=0)
             s = s / w if inverse else s * w
             return jnp.fft.ifft(s, axis=0)[:ny]
+
+        def columns(s, w_half, inverse):
+            if self.blocks == 1:
+                return columns_piece(s, w_half, inverse)
+            lax = self.jax.lax
+            c = s.shape[1]
+            b = -(-c // self.blocks)
+
+            def block(i, out):  # the last block overlaps the one before: same values
+                j = jnp.minimum(i * b, c - b)
+                piece = columns_piece(lax.dynamic_slice_in_dim(s, j, b, axis=1),
+                                      lax.dynamic_slice_in_dim(w_half, j, b, axis=1), inverse)  # fmt: skip
+                return lax.dynamic_update_slice_in_dim(out, piece, j, axis=1)
+
+            return lax.fori_loop(0, self.blocks, block, jnp.zeros_like(s[:ny]))
 
         def rows_inverse(s):
             return jnp.fft.irfft(s[:, :nk], n=big_x, axis=1)[:, :nx].astype(self.np_dtype)
@@ -389,7 +452,7 @@ class SlabLayout:
 
 @functools.lru_cache(maxsize=16)
 def slab_layout(shape: tuple[int, int], substrate: str, dtype: str,
-                devices: tuple[Any, ...]) -> SlabLayout:  # fmt: skip
+                devices: tuple[Any, ...], blocks: int = 1) -> SlabLayout:  # fmt: skip
     """The layout of these arguments, made once (its compiled programmes are shared).
 
     Parameters
@@ -402,13 +465,15 @@ def slab_layout(shape: tuple[int, int], substrate: str, dtype: str,
         Precision.
     devices : tuple of jax Device
         The devices.
+    blocks : int, optional
+        Blocks of the column stage (default 1).
 
     Returns
     -------
     SlabLayout
         The layout.
     """
-    return SlabLayout(shape, substrate, dtype, devices)
+    return SlabLayout(shape, substrate, dtype, devices, blocks)
 
 
 class ShardedHalfSpace:
@@ -440,7 +505,8 @@ class ShardedHalfSpace:
                  contact_modulus: float, *, substrate: str, dtype: str,
                  devices: list[Any]) -> None:  # fmt: skip
         shape = (int(shape[0]), int(shape[1]))
-        self.layout = slab_layout(shape, substrate, dtype, tuple(devices))
+        blocks = column_blocks(shape, substrate, dtype, len(devices))
+        self.layout = slab_layout(shape, substrate, dtype, tuple(devices), blocks)
         self.spectrum = self.layout.build_spectrum(pixel_size, float(contact_modulus))
 
     def __getattr__(self, name: str) -> Any:
