@@ -22,8 +22,9 @@ its error and the next one goes on. Steps:
 ``report``  the table of the JSON lines (``--jsonl``), printed, and ``sharded_summary.json``.
 
 The map is a self-affine Gaussian surface (H = 0.8, 1 mm, rms 1 µm), made on the host and kept
-as ``.npy`` under ``--maps`` for the next process. Set ``XLA_PYTHON_CLIENT_PREALLOCATE=false``
-(done here before JAX is imported): JAX would otherwise take 75 % of every GPU.
+as ``.npy`` under ``--maps`` for the next process. ``XLA_PYTHON_CLIENT_PREALLOCATE=false`` and
+``XLA_PYTHON_CLIENT_MEM_FRACTION=0.95`` are set here before JAX is imported (unless given): JAX
+would otherwise take 75 % of every GPU at start, and no more.
 
 Run (GPU machine): ``OUT=out bash examples/gpu_checks/sharded.sh``, or one step,
 ``python examples/benchmarks/benchmark_sharded.py solve --n 16384 --ndev 2 --jsonl out/s.jsonl``.
@@ -42,6 +43,7 @@ import traceback
 from pathlib import Path
 
 os.environ.setdefault("XLA_PYTHON_CLIENT_PREALLOCATE", "false")
+os.environ.setdefault("XLA_PYTHON_CLIENT_MEM_FRACTION", "0.95")
 
 import numpy as np
 

@@ -15,6 +15,8 @@ set -uo pipefail
 OUT=${OUT:-sharded_out}
 mkdir -p "$OUT"
 export XLA_PYTHON_CLIENT_PREALLOCATE=false  # JAX would take 75 % of every GPU at start
+# the most JAX may allocate on a GPU (its default, 0.75, would refuse the largest maps)
+export XLA_PYTHON_CLIENT_MEM_FRACTION=${XLA_PYTHON_CLIENT_MEM_FRACTION:-0.95}
 CHECK_N=${CHECK_N:-4096}
 SCALE_N=${SCALE_N:-16384}
 WEAK_N=${WEAK_N:-32768}
