@@ -57,6 +57,16 @@ def _fig_design(stage: dict[str, Any], s: str) -> str:
     return "stats" if any(t["surface"] == s and t["design"] == "stats" for t in stage["timings"]) else "sweep"
 
 
+def _log_ticks(ax) -> None:
+    """Labels at 1, 2 and 5 × 10^k only, none on the minor ticks: a panel spanning less than a
+    decade otherwise labels every minor tick, and the labels run into each other."""
+    from matplotlib.ticker import LogLocator, NullFormatter
+
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+        axis.set_minor_formatter(NullFormatter())
+
+
 def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | Path) -> list[str]:
     """Fig. 6 in silico (one panel per surface) and the depth at the largest load against H.
 
@@ -106,6 +116,7 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
         g = stage["designs"][design]
         ax.set(xlabel="F/(E·A)", ylabel="E$_c$/E",
                title=f"{s} ({stage['n']}² over {stage['L_m'] * 1e3:g} mm; {len(g['seeds'])}×{g['placements']} indents)")  # fmt: skip
+        _log_ticks(ax)
         ax.legend(fontsize=6)
     for ax in axs[len(surfaces):]:
         ax.set_axis_off()
@@ -124,6 +135,10 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
     ax.axhspan(lo * 1e6, hi * 1e6, color="0.85", zorder=0, label=f"{lo * 1e6:g}–{hi * 1e6:g} µm (paper: ≈ 5 µm)")
     ax.set(xlabel="hardness H (GPa)", ylabel=f"depth at {max(stage['loads_N']) * 1e3:g} mN (µm)",
            title="Punch depth at the largest load against H (sweep; dotted: H = ∞)")  # fmt: skip
+    hs = sorted({h for v in ana["hardness"].values() for h in v["hardness_Pa"] if h and math.isfinite(h)})
+    _log_ticks(ax)
+    if hs:  # the swept H values themselves, in GPa
+        ax.set_xticks([h / 1e9 for h in hs], [f"{h / 1e9:g}" for h in hs])
     ax.legend(fontsize=7)
     names.append(save_figure(fig, Path(out), "indentation_depth_vs_H.png"))
     return names
