@@ -302,3 +302,34 @@ def test_jax_is_imported_lazily():
     env = dict(os.environ, WARPTRUNC_DEVICE="cpu")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
     assert out.returncode == 0, out.stderr[-2000:]
+
+
+def test_solve_contact_and_bem_check_take_devices(tmp_path, capsys):
+    """``solve_contact(..., devices=2)`` and ``warptrunc bem-check --devices 2`` give the
+    one-device numbers; a bad ``--devices`` is refused in one line."""
+    import json
+
+    from cli_helpers import assert_refused_in_one_line
+
+    from warptrunc.cli import main
+    from warptrunc.contact import solve_contact
+
+    h = H256[:64, :64]
+    kw = {"pixel_size": DX, "contact_modulus": E, "depths": [0.3e-6, 0.5e-6]}
+    one = solve_contact(h, device="cpu", **kw)
+    two = solve_contact(h, devices=2, **kw)
+    assert two.settings["device"] == "cpu:0+cpu:1" and one.settings["device"] == "cpu"
+    assert np.all(np.abs(one.load - two.load) < 1e-9 * one.load)
+    assert np.all(np.abs(one.stiffness - two.stiffness) < 1e-9 * one.stiffness)
+    loads = []
+    for devices in ("1", "2"):
+        out = tmp_path / f"bem{devices}"
+        args = ["bem-check", "--n", "64", "--device", "cpu", "--stiffness", "barber",
+                "--fractions", "0.1", "0.2", "--devices", devices, "--no-plot"]  # fmt: skip
+        assert main([*args, "--out", str(out)]) == 0
+        cols = json.loads((out / "bem.json").read_text())["columns"]
+        loads.append(np.array(cols["bem_load_N"] + cols["bem_stiffness_N_per_m"], float))
+    capsys.readouterr()
+    assert np.all(np.abs(loads[0] - loads[1]) <= 1e-9 * loads[0])
+    assert_refused_in_one_line(["bem-check", "--n", "64", "--devices", "0"],
+                               tmp_path / "bad", capsys, ["--devices", "[1, 64]", "'auto'"])  # fmt: skip

@@ -32,6 +32,7 @@ from ._common import (
     material_from_args,
     positive,
     real,
+    show,
     surface_from_args,
     warnings_of,
 )
@@ -40,6 +41,18 @@ NAME = "bem-check"
 HELP = "elastic boundary-element cross-check of truncation"
 EXIT_NOT_CONVERGED = 3
 """Exit status when any solve did not converge (without --accept-unconverged)."""
+
+
+def devices_count(text: str) -> int | str:
+    """A ``type=`` for ``--devices``: an integer in [1, 64], or ``auto`` (kept as "auto")."""
+    if text.strip().lower() == "auto":
+        return "auto"
+    try:
+        return integer(1, 64)(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(
+            f"must be an integer in [1, 64] or 'auto', got {show(text)}"
+        ) from None
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -95,6 +108,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )  # fmt: skip
     s.add_argument("--maxiter", type=integer(1), default=10000, help="largest CG iterations per solve")
     s.add_argument(
+        "--devices", type=devices_count, default=None,
+        help="spread the warptrunc solver over this many devices (JAX's default backend; "
+        'pip install "warptrunc[distributed]"), or auto: one device when it fits, else the '
+        "fewest that do (default: --device alone)",
+    )  # fmt: skip
+    s.add_argument(
         "--accept-unconverged", action="store_true",
         help=f"exit 0 even when a solve stopped at --maxiter (default: exit {EXIT_NOT_CONVERGED})",
     )  # fmt: skip
@@ -138,6 +157,14 @@ def run(args: argparse.Namespace) -> int:
         except ImportError as exc:
             print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
             return 2
+    if args.devices not in (None, 1) and args.solver == "warptrunc":
+        try:
+            from ..contact.sharded_fft import import_jax
+
+            import_jax()
+        except ImportError as exc:
+            print(f"warptrunc {NAME}: error: --devices {args.devices}: {exc}", file=sys.stderr)
+            return 2
     _check_approaches(args, None)  # before the surface is made
     material = material_from_args(args)
     s = surface_from_args(args)
@@ -148,6 +175,7 @@ def run(args: argparse.Namespace) -> int:
         fd_step=args.fd_step, pressure_tol=args.pressure_tol, pentol=args.pentol,
         maxiter=args.maxiter, solver=args.solver, stiffness=args.stiffness, dtype=args.dtype,
         progress=not args.no_progress and sys.stderr.isatty(), device=args.device,
+        devices=args.devices,
     )  # fmt: skip
     files = "bem.csv, bem.json"
     with staged_output(args.out) as out:  # all or nothing

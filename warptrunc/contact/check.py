@@ -269,6 +269,7 @@ def bem_check(
     dtype: str = "float64",
     progress: bool = True,
     device: wp.DeviceLike = None,
+    devices: Any = None,
 ) -> BemCheck:
     """Compare truncation with an elastic boundary-element contact solution at approaches δ.
 
@@ -314,6 +315,9 @@ def bem_check(
         Show a tqdm progress bar over the solves (stderr).
     device : str, optional
         Warp device for the truncation part and warptrunc's solver.
+    devices : int, "auto" or list, optional
+        Spread warptrunc's solver over several devices (``ContactSolver(..., devices=...)``;
+        JAX); default None: ``device`` alone.
 
     Returns
     -------
@@ -376,7 +380,8 @@ def bem_check(
     if solver == "contactmechanics":
         out, conv, nit, edge, solves, extra = run_contactmechanics(*args)
     else:
-        out, conv, nit, edge, solves, extra = run_warptrunc(*args, stiffness, dtype, device)
+        out, conv, nit, edge, solves, extra = run_warptrunc(*args, stiffness, dtype, device,
+                                                            devices)  # fmt: skip
     settings = {
         **extra,
         "substrate": substrate,

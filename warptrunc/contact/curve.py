@@ -48,6 +48,7 @@ def solve_contact(
     maps: bool = False,
     progress: bool = False,
     device: wp.DeviceLike = None,
+    devices: Any = None,
 ) -> ContactCurve:
     """Elastic (or elastic–perfectly-plastic) contact of a rough map against a rigid flat at
     increasing approaches or loads.
@@ -92,6 +93,9 @@ def solve_contact(
     progress : bool
         tqdm bar over the rows (stderr).
     {warp_device_obj}
+    devices : int, "auto" or list, optional
+        Spread the solver over several devices (``ContactSolver(..., devices=...)``,
+        :class:`~warptrunc.contact.sharded.ShardedContactSolver`; JAX); default None: one.
 
     Returns
     -------
@@ -153,7 +157,7 @@ def solve_contact(
         **{k: v for k, v in given.items() if settings is None or v != getattr(defaults, k)}
     )
     solver = ContactSolver(heights, pixel_size, contact_modulus, settings=settings,
-                           hardness=hardness, device=device)  # fmt: skip
+                           hardness=hardness, device=device, devices=devices)  # fmt: skip
     substrate, dtype = settings.substrate, settings.dtype
     rows: list[dict[str, Any]] = []
     p_maps, g_maps = [], []
@@ -191,7 +195,8 @@ def solve_contact(
         "stiffness_method": stiffness, "fd_step": fd_step, "pressure_tol": solver.pressure_tol,
         "forcetol_N": solver.forcetol, "pentol_m": solver.pentol, "thermotol": solver.thermotol,
         "maxiter": solver.maxiter, "refresh": solver.refresh,
-        "direct_max": solver.direct_max, "device": str(solver.device),
+        "direct_max": solver.direct_max,
+        "device": "+".join(getattr(solver, "device_names", [])) or str(solver.device),
         "grid": [solver.shape[1], solver.shape[0]], "pixel_size_m": [dx, dy],
         "control": "displacement" if key == "depth" else "load", "hardness_Pa": hardness if math.isfinite(hardness) else None,
     }  # fmt: skip

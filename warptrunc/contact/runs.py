@@ -245,7 +245,7 @@ def run_contactmechanics(
 
 @fill_doc(RUN_DOCS)
 def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress,
-                   stiffness, dtype, device):  # fmt: skip
+                   stiffness, dtype, device, devices=None):  # fmt: skip
     """warptrunc's solves on ``device``: δ(1 − h), δ, δ(1 + h) (central) or δ and Barber's punch.
 
     One :class:`~warptrunc.contact.solver.ContactSolver` serves all solves.
@@ -274,6 +274,9 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
         Precision of the solver.
     device : str or warp.context.Device or None
         Warp device of the solver.
+    devices : int, "auto" or list, optional
+        Spread the solver over several devices (``ContactSolver(..., devices=...)``,
+        :class:`~warptrunc.contact.sharded.ShardedContactSolver`; JAX); default None: one.
 
     Returns
     -------
@@ -300,8 +303,9 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
     pentol, pentol_note = pentol_or_default(surface.heights, pentol)
     solver = ContactSolver(
         surface.heights, (surface.dx, surface.dy), contact_modulus, substrate=substrate, dtype=dtype,
-        pressure_tol=pressure_tol, pentol=pentol, maxiter=maxiter, device=device,
+        pressure_tol=pressure_tol, pentol=pentol, maxiter=maxiter, device=device, devices=devices,
     )  # fmt: skip
+    where = "+".join(getattr(solver, "device_names", [])) or str(solver.device)
     m = d.size
     out, conv, nit, edge = _run_columns(m)
     solves: list[dict[str, Any]] = []
@@ -343,12 +347,12 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
     extra = {
         "solver": "warptrunc",
         "solver_description": "warptrunc.contact constrained conjugate gradients "
-        f"(Polonsky & Keer 1999) on {solver.device}, {dtype}",
+        f"(Polonsky & Keer 1999) on {where}, {dtype}",
         "stiffness_method": "central difference of F over δ(1 ± fd_step)" if stiffness == "central"
         else "Barber: flat punch of the contact set (linear CG)",
         "pentol_m": pentol,
         "pentol_source": pentol_note,
-        "device": str(solver.device),
+        "device": where,
         "dtype": dtype,
     }  # fmt: skip
     return out, conv, nit, edge, solves, extra

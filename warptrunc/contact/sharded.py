@@ -305,6 +305,11 @@ class ShardedContactSolver(ContactSolver):
             self._slope = float(k)
         return float(k), it, ok
 
+    @property
+    def device_names(self) -> list[str]:
+        """The devices the map is spread over, by name (``"cuda:0"``, ``"cpu:1"``, ...)."""
+        return [f"{'cuda' if d.platform == 'gpu' else d.platform}:{d.id}" for d in self.hs.devices]
+
     def max_pressure(self) -> float:
         """The largest contact pressure of the current solution.
 
