@@ -33,6 +33,7 @@ OPTIONAL = {
     "cupy": "gpu",
     "cupyx": "gpu",
     "imageio": None,  # MP4 animations only; the error names pip install imageio imageio-ffmpeg
+    "jax": "distributed",  # ContactSolver(..., devices=n): one problem over several devices
     "tomli": None,  # Python 3.10 only: a base dependency with a marker
 }
 """Third-party modules that the base install may lack, and the extra that brings each."""
