@@ -202,9 +202,7 @@ class ShardedContactSolver(ContactSolver):
             (n_f, s_r, n_cg, s_gg, g_max, pen, open_cap, n_c, s_gap) = self._read(sums)
             rms = math.sqrt(s_gg / n_cg) if n_cg > 0 else 0.0
             res = max(rms, g_max, pen, open_cap, 0.0 if du is None else du)
-            # the one-device loop's tolerance (adapted near full contact where it is)
-            tol = (self._pentol_now(s_gap, n_c, n_map) if hasattr(self, "_pentol_now")
-                   else self.pentol)  # fmt: skip
+            tol = self._pentol_now(s_gap, n_c, n_map)  # pentol, adapted near full contact
             ok = du is not None and res < tol and viol < self.forcetol
             if load_control:
                 ok = ok and total != 0 and abs((total - load) / total) < self.thermotol
