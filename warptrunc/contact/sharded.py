@@ -38,8 +38,9 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
 from .bccg import _HUGE
-from .sharded_fft import ShardedHalfSpace, sharded_memory_terms
+from .sharded_fft import SHARDED_DOCS, ShardedHalfSpace, sharded_memory_terms
 from .solver import ContactSolver
 
 __all__ = ["ShardedContactSolver"]
@@ -362,6 +363,7 @@ class ShardedContactSolver(ContactSolver):
         self._approach_hint = None
 
     @staticmethod
+    @fill_doc(SHARDED_DOCS)
     def memory_terms_per_device(shape: tuple[int, int], substrate: str = "free",
                                 dtype: str = "float64", n_devices: int = 2) -> dict[str, int]:  # fmt: skip
         """Bytes one device holds, term by term
@@ -369,14 +371,10 @@ class ShardedContactSolver(ContactSolver):
 
         Parameters
         ----------
-        shape : (int, int)
-            Map size (ny, nx).
-        substrate : {"free", "periodic"}
-            Half-space.
-        dtype : {"float64", "float32"}
-            Precision.
-        n_devices : int
-            Devices (dimensionless count).
+        {shape}
+        {substrate}
+        {dtype}
+        {n_devices}
 
         Returns
         -------

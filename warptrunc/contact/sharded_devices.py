@@ -14,7 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from .sharded_fft import import_jax, sharded_memory_terms
+from .._support.docs import fill_doc
+from .sharded_fft import SHARDED_DOCS, import_jax, sharded_memory_terms
 
 __all__ = ["check_fits", "choose_devices", "devices_needed", "single_device", "solver_class"]
 
@@ -57,18 +58,16 @@ def _free_bytes(device: Any) -> int | None:
     return int(stats["bytes_limit"]) - int(stats.get("bytes_in_use", 0))
 
 
+@fill_doc(SHARDED_DOCS)
 def devices_needed(shape: tuple[int, int], substrate: str, dtype: str, free_bytes: int,
                    limit: int = 64) -> int | None:  # fmt: skip
     """The fewest devices of ``free_bytes`` each that hold a solve spread over them.
 
     Parameters
     ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    substrate : {"free", "periodic"}
-        Half-space.
-    dtype : {"float64", "float32"}
-        Precision.
+    {shape}
+    {substrate}
+    {dtype}
     free_bytes : int
         Free memory of each device (B).
     limit : int, optional
@@ -87,17 +86,15 @@ def devices_needed(shape: tuple[int, int], substrate: str, dtype: str, free_byte
     return None
 
 
+@fill_doc(SHARDED_DOCS)
 def check_fits(shape: tuple[int, int], substrate: str, dtype: str, devices: list[Any]) -> int:
     """Check that each device's share fits its free memory.
 
     Parameters
     ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    substrate : {"free", "periodic"}
-        Half-space.
-    dtype : {"float64", "float32"}
-        Precision.
+    {shape}
+    {substrate}
+    {dtype}
     devices : list of jax Device
         The devices.
 

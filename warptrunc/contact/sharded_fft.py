@@ -36,6 +36,9 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
+from .influence import GRID_DOCS
+
 __all__ = [
     "BLOCKS_ABOVE",
     "COLUMN_BLOCKS",
@@ -105,19 +108,20 @@ BLOCKS_ABOVE = 1 << 28
 ``COLUMN_BLOCKS`` blocks (below, in one piece)."""
 
 
+SHARDED_DOCS = {**GRID_DOCS, "{n_devices}": "n_devices : int\n    Devices (dimensionless count)."}
+"""The sharded layout's shared parameter text (:func:`~warptrunc._support.docs.fill_doc`)."""
+
+
+@fill_doc(SHARDED_DOCS)
 def column_blocks(shape: tuple[int, int], substrate: str, dtype: str, n_devices: int) -> int:
     """Blocks of the column stage of a layout (``COLUMN_BLOCKS`` or 1, by ``BLOCKS_ABOVE``).
 
     Parameters
     ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    substrate : {"free", "periodic"}
-        Half-space.
-    dtype : {"float64", "float32"}
-        Precision.
-    n_devices : int
-        Devices (dimensionless count).
+    {shape}
+    {substrate}
+    {dtype}
+    {n_devices}
 
     Returns
     -------
@@ -451,18 +455,16 @@ class SlabLayout:
 
 
 @functools.lru_cache(maxsize=16)
+@fill_doc(GRID_DOCS)
 def slab_layout(shape: tuple[int, int], substrate: str, dtype: str,
                 devices: tuple[Any, ...], blocks: int = 1) -> SlabLayout:  # fmt: skip
     """The layout of these arguments, made once (its compiled programmes are shared).
 
     Parameters
     ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    substrate : {"free", "periodic"}
-        Half-space.
-    dtype : {"float64", "float32"}
-        Precision.
+    {shape}
+    {substrate}
+    {dtype}
     devices : tuple of jax Device
         The devices.
     blocks : int, optional
