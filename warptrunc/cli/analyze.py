@@ -196,7 +196,8 @@ def run(args: argparse.Namespace) -> int:
     add_warnings(args, list(a.warnings))
     with staged_output(args.out) as out:  # all or nothing
         sc.to_csv(out / "curve.csv", islands=a.islands)
-        (out / "fit.json").write_text(strict_json({**a.summary(), "provenance": provenance(args.device), "warnings": warnings_of(args)}))
+        (out / "fit.json").write_text(strict_json({**a.summary(), "provenance": provenance(
+            args.device), "warnings": warnings_of(args)}))  # fmt: skip
         if not args.no_plot:
             preload.join()
             from .. import plot

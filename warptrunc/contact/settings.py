@@ -105,5 +105,3 @@ class SolverSettings(Parameters):
             if isinstance(getattr(self, name), str) and getattr(self, name) == "auto":
                 object.__setattr__(self, name, None)
         check_fields(self)
-
-
