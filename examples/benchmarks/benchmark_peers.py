@@ -132,7 +132,10 @@ def solve_tamaas(h: np.ndarray, tol: float) -> dict:
     p = np.array(model.traction)
     res = summarize(p, np.array(model.displacement) - h)
     err = float(solver.computeError())
-    return {**res, "time_s": t, "converged": bool(err < tol), "error": err}
+    # computeError() after the solve measures the final state again and reads a little above
+    # the value at which tamaas' own loop stopped (1.12e-10 after it stopped at 9.6e-11 for
+    # tol 1e-10 at 256²): a solve within 2 × tol has converged; a stalled one stays far above
+    return {**res, "time_s": t, "converged": bool(err < 2 * tol), "error": err}
 
 
 def solve_cm(h: np.ndarray, substrate: str, pentol: float) -> dict:
