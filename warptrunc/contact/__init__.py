@@ -5,6 +5,7 @@ conjugate-gradient (Polonsky–Keer) boundary-element solver on a free (zero-pad
 half-space, with an optional pressure cap (the hardness), and the cross-check of truncation
 analysis against it (:func:`bem_check`)."""
 
+from . import sharded as _sharded  # noqa: F401 - registers ShardedContactSolver (no JAX import)
 from .curve import STIFFNESS_METHODS, solve_contact
 from .halfspace import ElasticHalfSpace
 from .influence import SUBSTRATES, influence_spectrum, influence_table

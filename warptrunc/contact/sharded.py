@@ -40,6 +40,8 @@ import numpy as np
 
 from .._support.docs import fill_doc
 from .bccg import _HUGE
+from .memory import SolverMemory
+from .sharded_devices import register_sharded
 from .sharded_fft import SHARDED_DOCS, ShardedHalfSpace, sharded_memory_terms
 from .solver import ContactSolver
 
@@ -51,6 +53,7 @@ def _is_free(jnp, q, g, hf):
     return ((q > 0) & (q < hf)) | ((q <= 0) & (g < 0)) | ((q >= hf) & (g > 0))
 
 
+@register_sharded
 class ShardedContactSolver(ContactSolver):
     """A :class:`~warptrunc.contact.ContactSolver` whose map is split in row slabs over several
     JAX devices (module docstring); made by ``ContactSolver(..., devices=...)``.
@@ -94,7 +97,8 @@ class ShardedContactSolver(ContactSolver):
         from .sharded_devices import choose_devices
 
         shape = np.shape(heights)
-        self._jax_devices = choose_devices(devices, shape, settings, legacy, device)
+        self._jax_devices = choose_devices(devices, shape, settings, legacy, device,
+                                           SolverMemory.memory_bytes)  # fmt: skip
         if self._jax_devices is None or len(self._jax_devices) < 2:
             raise ValueError(
                 f"devices: a ShardedContactSolver needs two or more devices, got {devices!r}; "

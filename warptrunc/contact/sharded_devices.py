@@ -132,7 +132,8 @@ def _count_error(n: int, ny: int, avail: int) -> ValueError:
 
 
 def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
-                   legacy: dict[str, Any] | None = None, device: Any = None) -> list[Any] | None:  # fmt: skip
+                   legacy: dict[str, Any] | None = None, device: Any = None,
+                   one_device_bytes: Any = None) -> list[Any] | None:  # fmt: skip
     """The JAX devices a solve is spread over, or None for the one-device solver.
 
     Parameters
@@ -149,6 +150,9 @@ def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
         Settings fields given as keywords (they override ``settings``).
     device : str or warp Device, optional
         The one-device solver's Warp device (``"auto"`` checks it first).
+    one_device_bytes : callable, optional
+        ``one_device_bytes(shape, substrate, dtype, cuda=, algorithm=)`` → bytes of the
+        one-device solver (``SolverMemory.memory_bytes``); needed by ``"auto"``.
 
     Returns
     -------
@@ -169,11 +173,12 @@ def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
     if isinstance(devices, str) and devices == "auto":
         s = _settings(settings, legacy or {})
         from .._support.device import free_memory_bytes, resolve_device
-        from .memory import SolverMemory
 
+        if one_device_bytes is None:
+            raise ValueError("devices='auto' needs the one-device memory model (one_device_bytes)")
         dev = resolve_device(device)
-        one = SolverMemory.memory_bytes(tuple(shape), s.substrate, s.dtype, cuda=dev.is_cuda,
-                                        algorithm=s.algorithm)  # fmt: skip
+        one = one_device_bytes(tuple(shape), s.substrate, s.dtype, cuda=dev.is_cuda,
+                               algorithm=s.algorithm)  # fmt: skip
         if one <= free_memory_bytes(dev):
             return None
         jax = import_jax()
@@ -253,29 +258,57 @@ def single_device(devices: Any, device: Any) -> Any:
     return "cpu"
 
 
-def solver_class(devices: Any, args: tuple, kwargs: dict[str, Any]) -> type:
-    """:class:`~warptrunc.contact.ContactSolver` or, for two or more devices,
-    :class:`~warptrunc.contact.sharded.ShardedContactSolver` (``ContactSolver.__new__``).
+_SHARDED: list[type] = []
+"""The several-device solver class, registered by :mod:`warptrunc.contact.sharded` when the
+package loads (no JAX then), so that this module imports neither solver."""
+
+
+def register_sharded(cls: type) -> type:
+    """Class decorator: the class :func:`solver_class` returns for two or more devices.
 
     Parameters
     ----------
+    cls : type
+        :class:`~warptrunc.contact.sharded.ShardedContactSolver`.
+
+    Returns
+    -------
+    type
+        ``cls``, unchanged.
+    """
+    _SHARDED[:] = [cls]
+    return cls
+
+
+def solver_class(base: type, devices: Any, args: tuple, kwargs: dict[str, Any],
+                 one_device_bytes: Any) -> type:  # fmt: skip
+    """``base`` (:class:`~warptrunc.contact.ContactSolver`) or, for two or more devices, the
+    registered :class:`~warptrunc.contact.sharded.ShardedContactSolver` (``ContactSolver.__new__``).
+
+    Parameters
+    ----------
+    base : type
+        The one-device solver class.
     devices : None, int, "auto" or list
         The ``devices`` argument (:func:`choose_devices`).
     args : tuple
         The solver's positional arguments (heights first).
     kwargs : dict
         Its keyword arguments.
+    one_device_bytes : callable
+        The one-device memory model (:func:`choose_devices`).
 
     Returns
     -------
     type
         The class to make.
     """
-    from .sharded import ShardedContactSolver
-    from .solver import ContactSolver
-
     heights = args[0] if args else kwargs.get("heights")
     legacy = {k: v for k, v in kwargs.items() if k not in ("settings", "device", "hardness")}
     found = choose_devices(devices, np.shape(heights), kwargs.get("settings"), legacy,
-                           kwargs.get("device"))  # fmt: skip
-    return ContactSolver if found is None else ShardedContactSolver
+                           kwargs.get("device"), one_device_bytes)  # fmt: skip
+    if found is None:
+        return base
+    if not _SHARDED:  # importing any module of warptrunc.contact registers it first
+        raise RuntimeError("the several-device solver is not registered: import warptrunc.contact")
+    return _SHARDED[0]

@@ -156,7 +156,7 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves,
         if cls is ContactSolver and devices is not None:  # spread over several devices?
             from .sharded_devices import solver_class
 
-            cls = solver_class(devices, args, kwargs)
+            cls = solver_class(cls, devices, args, kwargs, SolverMemory.memory_bytes)
         return super().__new__(cls)
 
     def __init__(
