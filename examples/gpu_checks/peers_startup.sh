@@ -19,7 +19,7 @@ set -uo pipefail
 : "${OUT:?set OUT to a folder for the results}"
 SIZES=${SIZES:-"256 512 1024 2048"}
 TAMAAS_TOL=${TAMAAS_TOL:-1e-4}
-TAMAAS_LIMIT=${TAMAAS_LIMIT:-170}
+TAMAAS_LIMIT=${TAMAAS_LIMIT:-190}
 N_START=${N_START:-10240}
 DEVICE=${DEVICE:-cuda:0}  # DEVICE=cpu SIZES=64 N_START=256: a dry run on any machine
 TAG=${DEVICE//:/}
