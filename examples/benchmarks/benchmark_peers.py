@@ -38,7 +38,10 @@ What it shows
     FFTs with ``workers=os.cpu_count()``; on ``--device cuda:0`` one GPU (cuFFT through CuPy).
 
     A peer whose work at one N (tolerance walk and timings) exceeds ``--time-limit`` seconds
-    is not run at larger N. The JSON records the machine (CPU model, cores, GPU name), the
+    is not run again (other surfaces at that N, larger N); a single solve is stopped at that
+    limit. For large N on a GPU, ``--reference warptrunc`` (the tight reference from warptrunc
+    float64 at 10⁻¹¹·rms) and ``--tamaas-tol`` (one tamaas solve at a given tolerance, its match
+    recorded, instead of its walk) keep the run short. The JSON records the machine (CPU model, cores, GPU name), the
     commit, the versions and how tamaas was installed; a table is printed last.
 
 Run
@@ -69,7 +72,7 @@ P_MEAN = 0.05 * E_STAR  # Pa
 MATCH = 1e-4  # relative, on the contact area and the mean gap
 TAMAAS_TOLS = [10.0**-k for k in range(2, 11)]  # loosest first
 PENTOLS = [10.0**-k for k in range(2, 11)]  # × rms height, loosest first
-PENTOL32_START = 1e-6  # float32's walk starts here (× rms height: its round-off allows no less)
+PENTOL32_START = 1e-6  # float32's walk ends here (× rms height: its round-off allows no less)
 TAMAAS_REF_TOL = 1e-10  # 1e-12 stalls on the WM map at 512² (error ~1e-11)
 CM_REF_PENTOL = 1e-9
 WT_REF_PENTOL = 1e-11
