@@ -330,7 +330,7 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
         ``fits``: (surface, design) → model → fit (``made``, α, β, their ``alpha_ci95`` /
         ``beta_ci95``, ``n_points``, ``n_indents``; ``<model>_partial`` for the
         partial-unloading secant; ``stiffness_rule``: the same fit over the cells resolved by
-        the rule on K alone, :func:`~.indentation_summary.resolved_stiffness`), as a list of
+        the rule on K alone, ``indentation_summary.resolved_stiffness``), as a list of
         records; ``depths``: records of the punch depth
         at the largest load per surface × design × model (:func:`depth_at_load`);
         ``hardness``: surface → the depth per H of the sweep, ``range``

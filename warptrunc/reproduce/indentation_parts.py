@@ -222,7 +222,7 @@ def run_part(p: Profile, part: Part, *, device, reuse: dict[str, list] | None = 
     device : str, optional
         Warp device (None: ``$WARPTRUNC_DEVICE``, else the default).
     reuse : dict, optional
-        Rows of :func:`elastic_of`'s part (when :func:`reuses`): the unyielded cycles.
+        Rows of ``elastic_of``'s part (when ``reuses``): the unyielded cycles.
 
     Returns
     -------
@@ -307,7 +307,7 @@ def compute_part(p: Profile, part: Part, store: str, device=None,
     device : str, optional
         Warp device (None: the worker's ``$WARPTRUNC_DEVICE``).
     reuse : dict, optional
-        Rows of the elastic part (:func:`reuses`).
+        Rows of the elastic part (``reuses``).
 
     Returns
     -------
