@@ -147,6 +147,28 @@ def integer(lo: int, hi: int | None = None):
     return parse
 
 
+def add_workers(p, what: str, scheduler_what: str) -> None:
+    """``--workers N|auto`` and ``--scheduler ADDRESS`` on a parser or group (one wording).
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser or argument group
+        Where the options go.
+    what : str
+        What runs on the cluster (``"the cases"``, ...), for the help text.
+    scheduler_what : str
+        What the existing scheduler runs, and what its workers need, for the help text.
+    """
+    p.add_argument("--workers", type=workers_count, default=None, metavar="N|auto",
+                   help=f"run {what} on a local Dask cluster of N worker processes, started once "
+                   "per command, one per GPU (worker i on cuda:i mod #GPUs; dask-cuda's "
+                   "LocalCUDACluster where installed); auto: one per visible GPU, 1 on a machine "
+                   "without one; default: in this process")  # fmt: skip
+    p.add_argument("--scheduler", default=None,
+                   help=f"address of an existing Dask scheduler (e.g. tcp://host:8786, or the "
+                   f"scheduler of a dask-jobqueue cluster) for {scheduler_what}")  # fmt: skip
+
+
 def workers_count(text: str) -> int | str:
     """A ``type=`` for ``--workers``: an integer in [1, 4096], or ``auto`` (kept as "auto")."""
     if text.strip().lower() == "auto":

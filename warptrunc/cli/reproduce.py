@@ -20,7 +20,7 @@ from ..reproduce import reproduce
 from ..reproduce.profiles import PROFILES
 from ..reproduce.study import STAGES
 from ..sweep.read import require_extra
-from ._common import add_device, output_dir, workers_count
+from ._common import add_device, add_workers, output_dir
 
 NAME = "reproduce"
 HELP = "reproduce the paper's figures and tables with a report"
@@ -44,14 +44,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--time-budget", metavar="SECONDS", type=float, default=None,
                    help="stop the indentation stage between pieces after this many seconds; "
                         "its finished pieces are kept and a rerun continues (default: no limit)")  # fmt: skip
-    p.add_argument("--workers", type=workers_count, default=None, metavar="N|auto",
-                   help="run the indentation stage's parts (one punch × one realisation of a "
-                   "piece each) and the elastic stage's maps on a local Dask cluster of N worker "
-                   "processes, one per GPU; auto: one per visible GPU; the other stages run in this "
-                   "process (default: all in this process)")  # fmt: skip
-    p.add_argument("--scheduler", default=None,
-                   help="address of an existing Dask scheduler for the same tasks "
-                   "(workers started one per GPU, on a filesystem shared with --out)")  # fmt: skip
+    add_workers(p, "the indentation stage's parts (one punch × one realisation of a piece each) "
+                "and the elastic stage's maps (the other stages in this process)",
+                "the same tasks (workers one per GPU, on a filesystem shared with --out)")
     add_device(p)
 
 

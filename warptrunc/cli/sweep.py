@@ -38,12 +38,12 @@ from ._common import (
     add_device,
     add_out,
     add_wm_shape,
+    add_workers,
     check_increments,
     input_file,
     integer,
     positive,
     real,
-    workers_count,
 )
 from .analyze import add_fit_options, add_truncation_options
 
@@ -88,14 +88,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    "F_ratio_<f>, A_ratio_<f>, k_ratio_<f> and bem_converged_<f>")  # fmt: skip
     e = p.add_argument_group("execution")
     add_device(e)
-    e.add_argument("--workers", type=workers_count, default=None, metavar="N|auto",
-                   help="run on a local Dask cluster of N worker processes, started once per "
-                   "command, one per GPU (worker i on cuda:i mod #GPUs; dask-cuda's "
-                   "LocalCUDACluster where installed); auto: one per visible GPU, 1 on a "
-                   "machine without one; default: in this process")  # fmt: skip
-    e.add_argument("--scheduler", default=None,
-                   help="address of an existing Dask scheduler (e.g. tcp://host:8786, or the "
-                   "scheduler of a dask-jobqueue cluster)")  # fmt: skip
+    add_workers(e, "the cases", "the cases (its workers write into --out: a shared filesystem)")
     e.add_argument("--shard-size", type=integer(1, 10**6), default=None,
                    help="with --workers/--scheduler: cases per Dask task, each written by its "
                    "worker as one part (default: adaptive, about --shard-seconds of work)")  # fmt: skip
