@@ -20,6 +20,8 @@ import pytest
 
 distributed = pytest.importorskip("distributed")
 
+from sweep_helpers import two_worker_client  # noqa: E402
+
 from warptrunc.reproduce import get_profile, reproduce  # noqa: E402
 from warptrunc.reproduce.indentation import StageIncomplete, stage_indentation  # noqa: E402
 
@@ -45,16 +47,7 @@ def reference(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def client():
-    import logging
-
-    cluster = distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
-        silence_logs=logging.ERROR,
-    )  # fmt: skip
-    c = distributed.Client(cluster)
-    yield c
-    c.close()
-    cluster.close()
+    yield from two_worker_client()
 
 
 def test_plan_has_every_kind_of_piece(reference):
@@ -88,7 +81,7 @@ def test_worker_killed_mid_stage_loses_and_duplicates_nothing(tmp_path, client, 
     def run():
         try:
             box["doc"] = stage_indentation(_profile(), tmp_path, "cpu", progress=False, client=client)
-        except BaseException as exc:  # noqa: BLE001 - reported by the assertion below
+        except BaseException as exc:  # reported by the assertion below
             box["exc"] = exc
 
     th = threading.Thread(target=run)

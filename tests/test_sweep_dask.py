@@ -13,7 +13,7 @@ import pytest
 pd = pytest.importorskip("pandas")
 pytest.importorskip("pyarrow")
 
-from sweep_helpers import OPTS, case_ids_on_disk, results_only  # noqa: E402
+from sweep_helpers import OPTS, case_ids_on_disk, results_only, two_worker_client  # noqa: E402
 
 from warptrunc.sweep import (  # noqa: E402
     SweepGrid,
@@ -27,17 +27,8 @@ from warptrunc.sweep import (  # noqa: E402
 
 @pytest.fixture(scope="module")
 def client():
-    distributed = pytest.importorskip("distributed")
-    import logging
-
-    cluster = distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
-        silence_logs=logging.ERROR,
-    )  # fmt: skip
-    c = distributed.Client(cluster)
-    yield c
-    c.close()
-    cluster.close()
+    pytest.importorskip("distributed")
+    yield from two_worker_client()
 
 
 DASK_GRID = SweepGrid.from_values([2.3, 2.6], [0.01], "0-3")
