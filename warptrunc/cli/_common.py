@@ -44,7 +44,6 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from .._support.atomic import probe_writable
 from .._support.messages import show
 from .._support.validate import MAX_INCREMENTS
 from ..io import read_height_map
@@ -54,6 +53,7 @@ from ..presets import PRESETS
 from ..surface import Surface
 from ..wm import wm_surface
 from ..wm_params import WMSpec
+from ._paths import input_file, output_dir, output_file  # noqa: F401 (re-exported)
 
 # --- validators for ``type=`` -----------------------------------------------------------------
 
@@ -181,6 +181,70 @@ def workers_count(text: str) -> int | str:
         ) from None
 
 
+DEVICES_HELP = (
+    "spread each contact solve of {what} over N devices (one problem split in row slabs; JAX's "
+    'default backend: pip install "warptrunc[distributed]", on CUDA machines "jax[cuda12]"), or '
+    "auto: one device while the solver fits it, else the fewest that hold it; N must divide "
+    "the map's rows; default: --device alone"
+)
+"""The help text of ``--devices`` (one wording for every command that solves contact)."""
+
+
+def add_devices(p, what: str) -> None:
+    """``--devices N|auto`` on a parser or group (:data:`DEVICES_HELP`).
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser or argument group
+        Where the option goes.
+    what : str
+        Which solves it spreads (``"the elastic cross-check"``, ...), for the help text.
+    """
+    p.add_argument("--devices", type=devices_count, default=None, metavar="N|auto",
+                   help=DEVICES_HELP.format(what=what))  # fmt: skip
+
+
+def devices_count(text: str) -> int | str:
+    """A ``type=`` for ``--devices``: an integer in [1, 64], or ``auto`` (kept as "auto")."""
+    if text.strip().lower() == "auto":
+        return "auto"
+    try:
+        return integer(1, 64)(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(
+            f"must be an integer in [1, 64] or 'auto', got {show(text)}"
+        ) from None
+
+
+def prepare_devices(devices: int | str | None) -> int | str | None:
+    """Before a solve over several devices: JAX importable (ValueError naming ``--devices``
+    otherwise), and JAX told not to take 75 % of every GPU at start (Warp shares them):
+    ``XLA_PYTHON_CLIENT_PREALLOCATE=false`` and ``XLA_PYTHON_CLIENT_MEM_FRACTION=0.95`` unless
+    set already. Nothing for None or 1.
+
+    Parameters
+    ----------
+    devices : int, "auto" or None
+        The parsed ``--devices``.
+
+    Returns
+    -------
+    int, "auto" or None
+        ``devices``, unchanged.
+    """
+    if devices in (None, 1):
+        return devices
+    os.environ.setdefault("XLA_PYTHON_CLIENT_PREALLOCATE", "false")
+    os.environ.setdefault("XLA_PYTHON_CLIENT_MEM_FRACTION", "0.95")
+    try:
+        from ..contact.sharded_fft import import_jax
+
+        import_jax()
+    except ImportError as exc:
+        raise ValueError(f"--devices {devices}: {exc}") from None
+    return devices
+
+
 def odd_integer(lo: int = 1):
     """A ``type=`` for an odd integer ≥ ``lo``."""
     base = integer(lo)
@@ -193,90 +257,6 @@ def odd_integer(lo: int = 1):
 
     parse.__name__ = "odd integer"
     return parse
-
-
-def _nearest_existing(p: Path) -> Path:
-    q = p.absolute()
-    while not q.exists() and q != q.parent:
-        q = q.parent
-    return q
-
-
-def _check_writable_parent(p: Path, text: str) -> None:
-    anc = _nearest_existing(p.parent if p.name else p)
-    if not anc.is_dir():
-        raise argparse.ArgumentTypeError(f"{show(anc)} is not a folder, so {show(text)} cannot be written")
-    if not os.access(anc, os.W_OK | os.X_OK):
-        raise argparse.ArgumentTypeError(f"cannot write under {show(anc)} (no permission), got {show(text)}")
-    why = probe_writable(anc)  # os.access is wrong for root and on /proc, /sys
-    if why is not None:
-        raise argparse.ArgumentTypeError(f"{why}, got {show(text)}")
-
-
-def _path_check(what: str):
-    """Turn an OSError met while looking at a path (no permission to enter a folder, a name too
-    long, ...) into the one-line ``argparse`` error of the option."""
-
-    def wrap(check):
-        def parse(text: str) -> Path:
-            try:
-                return check(text)
-            except OSError as exc:
-                why = exc.strerror or type(exc).__name__
-                raise argparse.ArgumentTypeError(
-                    f"cannot use {show(text)} as {what} ({why}"
-                    + (f": {show(exc.filename)}" if exc.filename not in (None, text) else "")
-                    + ")"
-                ) from None
-
-        parse.__name__ = check.__name__
-        parse.__doc__ = check.__doc__
-        return parse
-
-    return wrap
-
-
-@_path_check("an input file")
-def input_file(text: str) -> Path:
-    """A ``type=`` for an existing regular file (not a folder)."""
-    p = Path(text)
-    if not text:
-        raise argparse.ArgumentTypeError("must be a file name, got ''")
-    if not p.exists():
-        raise argparse.ArgumentTypeError(f"file not found: {show(text)}")
-    if not p.is_file():
-        raise argparse.ArgumentTypeError(f"must be a regular file, got a folder: {show(text)}")
-    if not os.access(p, os.R_OK):
-        raise argparse.ArgumentTypeError(f"file is not readable (no permission): {show(text)}")
-    return p
-
-
-@_path_check("an output file")
-def output_file(text: str) -> Path:
-    """A ``type=`` for a file to write: not an existing folder, in a writable folder."""
-    p = Path(text)
-    if not text:
-        raise argparse.ArgumentTypeError("must be a file name, got ''")
-    if p.is_dir():
-        raise argparse.ArgumentTypeError(f"must be a file name, got an existing folder: {show(text)}")
-    _check_writable_parent(p, text)
-    return p
-
-
-@_path_check("an output folder")
-def output_dir(text: str) -> Path:
-    """A ``type=`` for an output folder: an existing folder, or one that can be created."""
-    p = Path(text)
-    if not text:
-        raise argparse.ArgumentTypeError("must be a folder name, got ''")
-    if p.exists() and not p.is_dir():
-        raise argparse.ArgumentTypeError(f"must be a folder, got an existing file: {show(text)}")
-    if p.is_dir():
-        if not os.access(p, os.W_OK | os.X_OK) or probe_writable(p) is not None:
-            raise argparse.ArgumentTypeError(f"folder is not writable: {show(text)}")
-        return p
-    _check_writable_parent(p / "x", text)
-    return p
 
 
 def check_increments(value: int | None, option: str = "--increments") -> None:

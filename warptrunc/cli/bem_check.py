@@ -24,6 +24,7 @@ import sys
 
 from .._support.atomic import staged_output
 from ._common import (
+    add_devices,
     add_material,
     add_run_outputs,
     add_surface_source,
@@ -31,8 +32,8 @@ from ._common import (
     integer,
     material_from_args,
     positive,
+    prepare_devices,
     real,
-    show,
     surface_from_args,
     warnings_of,
 )
@@ -41,18 +42,6 @@ NAME = "bem-check"
 HELP = "elastic boundary-element cross-check of truncation"
 EXIT_NOT_CONVERGED = 3
 """Exit status when any solve did not converge (without --accept-unconverged)."""
-
-
-def devices_count(text: str) -> int | str:
-    """A ``type=`` for ``--devices``: an integer in [1, 64], or ``auto`` (kept as "auto")."""
-    if text.strip().lower() == "auto":
-        return "auto"
-    try:
-        return integer(1, 64)(text)
-    except argparse.ArgumentTypeError:
-        raise argparse.ArgumentTypeError(
-            f"must be an integer in [1, 64] or 'auto', got {show(text)}"
-        ) from None
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -107,12 +96,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="tolerance on penetration (m); default rms height/(10·mean n)",
     )  # fmt: skip
     s.add_argument("--maxiter", type=integer(1), default=10000, help="largest CG iterations per solve")
-    s.add_argument(
-        "--devices", type=devices_count, default=None,
-        help="spread the warptrunc solver over this many devices (JAX's default backend; "
-        'pip install "warptrunc[distributed]"), or auto: one device when it fits, else the '
-        "fewest that do (default: --device alone)",
-    )  # fmt: skip
+    add_devices(s, "the elastic cross-check (warptrunc solver)")
     s.add_argument(
         "--accept-unconverged", action="store_true",
         help=f"exit 0 even when a solve stopped at --maxiter (default: exit {EXIT_NOT_CONVERGED})",
@@ -157,14 +141,15 @@ def run(args: argparse.Namespace) -> int:
         except ImportError as exc:
             print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
             return 2
-    if args.devices not in (None, 1) and args.solver == "warptrunc":
-        try:
-            from ..contact.sharded_fft import import_jax
-
-            import_jax()
-        except ImportError as exc:
-            print(f"warptrunc {NAME}: error: --devices {args.devices}: {exc}", file=sys.stderr)
-            return 2
+    if args.devices not in (None, 1) and args.solver != "warptrunc":
+        print(f"warptrunc {NAME}: error: --devices {args.devices} needs --solver warptrunc "
+              "(ContactMechanics runs on the CPU)", file=sys.stderr)  # fmt: skip
+        return 2
+    try:
+        prepare_devices(args.devices)
+    except ValueError as exc:
+        print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
+        return 2
     _check_approaches(args, None)  # before the surface is made
     material = material_from_args(args)
     s = surface_from_args(args)

@@ -32,19 +32,21 @@ from pathlib import Path
 from ..params import add_options
 from ..wm_params import WMSpec
 from ._common import (
-    check_increments,
     add_device,
+    add_devices,
     add_material,
     add_out,
     add_reader_options,
+    check_increments,
     fraction,
     input_file,
     integer,
     material_from_args,
     positive,
+    prepare_devices,
     read_input,
-    warnings_of,
     real,
+    warnings_of,
 )
 
 NAME = "compare"
@@ -90,6 +92,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     m.add_argument("--pressure-tol", type=positive(), default=1e-5,
                    help="elastic solver tolerance on tensile pressure, relative to E*")  # fmt: skip
     m.add_argument("--maxiter", type=integer(1), default=10000, help="CG iterations per solve")
+    add_devices(m, "the elastic route")
     add_device(p)
     add_out(p, "compare")
     p.add_argument("--overwrite", action="store_true",
@@ -114,6 +117,7 @@ def run(args: argparse.Namespace) -> int:
                          "pip install pandas pyarrow") from None
     if args.input is not None and args.profile is not None:
         raise ValueError("give either --input or --profile, not both")
+    prepare_devices(args.devices)
     material = material_from_args(args)
     fractions, dtype, cases, surface = args.fractions, args.dtype, None, None
     prof = None
@@ -138,7 +142,7 @@ def run(args: argparse.Namespace) -> int:
         out, cases, surface=surface, fractions=fractions, material=material,
         increments=args.increments, connectivity=args.connectivity, dtype=dtype,
         pressure_tol=args.pressure_tol, maxiter=args.maxiter, overwrite=args.overwrite,
-        progress=not args.no_progress, device=args.device,
+        progress=not args.no_progress, device=args.device, devices=args.devices,
     )  # fmt: skip
     s = summarize(rows)
     from ..reproduce.elastic import analyse_elastic, summary_from_rows

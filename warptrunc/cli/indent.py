@@ -45,7 +45,15 @@ from .._support.atomic import staged_output
 from ..contact.settings import SolverSettings
 from ..material import Material
 from ..params import add_options, from_args
-from ._common import add_run_outputs, add_surface_source, integer, read_input, wm_spec_from_args
+from ._common import (
+    add_devices,
+    add_run_outputs,
+    add_surface_source,
+    integer,
+    prepare_devices,
+    read_input,
+    wm_spec_from_args,
+)
 
 NAME = "indent"
 HELP = "flat-punch indentation with partial unloadings, against truncation (Fig. 6)"
@@ -91,6 +99,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                 defaults=MATERIAL_DEFAULTS)  # fmt: skip
     add_options(p, SolverSettings, title="contact solver (free half-space on each punch's window)",
                 exclude=("substrate",))  # fmt: skip
+    add_devices(p, "the indentation cycles (each punch window; rows of its floor added where N "
+                "does not divide the window's)")
     p.add_argument(
         "--no-elastic", action="store_true",
         help="skip the elastic solution (H = ∞) on the same punches (its columns are NaN)",
@@ -120,6 +130,10 @@ def run(args: argparse.Namespace) -> int:
         material = from_args(Material, args, defaults=MATERIAL_DEFAULTS)
         protocol = from_args(IndentProtocol, args, punch_face_file=args.punch_face_file)
         settings = from_args(SolverSettings, args, substrate="free")
+        if args.devices not in (None, 1) and settings.algorithm != "bccg":
+            raise ValueError(f"--devices {args.devices} spreads only --algorithm bccg (the "
+                             f"default), got --algorithm {settings.algorithm}")  # fmt: skip
+        prepare_devices(args.devices)
         surfaces = _surfaces(args)
         s = surfaces[0]
         with warnings.catch_warnings(record=True) as caught:
@@ -132,7 +146,7 @@ def run(args: argparse.Namespace) -> int:
                 resolution_tol=protocol.resolution_tol, refine_max=protocol.refine_max,
                 min_contact_pixels=protocol.min_contact_pixels,
                 **{k: getattr(protocol, k) for k in FACE_FIELDS},
-                elastic=not args.no_elastic, device=args.device,
+                elastic=not args.no_elastic, device=args.device, devices=args.devices,
                 progress=not args.no_progress and sys.stderr.isatty(),
             )  # fmt: skip
     except ValueError as exc:

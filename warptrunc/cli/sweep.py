@@ -36,6 +36,7 @@ from ..sweep.stats import MIN_TREND_D, alpha_summary
 from ..wm_params import WMSpec
 from ._common import (
     add_device,
+    add_devices,
     add_out,
     add_wm_shape,
     add_workers,
@@ -43,6 +44,7 @@ from ._common import (
     input_file,
     integer,
     positive,
+    prepare_devices,
     real,
 )
 from .analyze import add_fit_options, add_truncation_options
@@ -88,6 +90,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    "F_ratio_<f>, A_ratio_<f>, k_ratio_<f> and bem_converged_<f>")  # fmt: skip
     e = p.add_argument_group("execution")
     add_device(e)
+    add_devices(e, "--bem-fractions (in this process: not yet with --workers or --scheduler)")
     add_workers(e, "the cases", "the cases (its workers write into --out: a shared filesystem)")
     e.add_argument("--shard-size", type=integer(1, 10**6), default=None,
                    help="with --workers/--scheduler: cases per Dask task, each written by its "
@@ -172,6 +175,15 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(str(exc)) from None
     if args.migrate:
         return _migrate(args.out)
+    if args.devices not in (None, 1):
+        if args.workers is not None or args.scheduler is not None:
+            raise ValueError(f"--devices {args.devices} with --workers/--scheduler (each worker "
+                             "taking several devices) is not supported yet; run without "
+                             "--workers")  # fmt: skip
+        if not args.bem_fractions:
+            raise ValueError(f"--devices {args.devices} spreads the elastic solves of "
+                             "--bem-fractions, and none are asked for")  # fmt: skip
+        prepare_devices(args.devices)
     grid = grid_from_args(args)
     old = signal.signal(signal.SIGTERM, _on_sigterm)
     try:
@@ -179,7 +191,8 @@ def run(args: argparse.Namespace) -> int:
             grid, args.out, workers=args.workers, scheduler=args.scheduler,
             overwrite=args.overwrite, retry_failed=args.retry_failed,
             shard_size=args.shard_size, shard_seconds=args.shard_seconds,
-            progress=not args.no_progress, device=args.device, **options_from_args(args),
+            progress=not args.no_progress, device=args.device, devices=args.devices,
+            **options_from_args(args),
         )  # fmt: skip
     except KeyboardInterrupt as exc:
         n = load(args.out)["case_id"].nunique() if (args.out / "sweep.json").exists() else 0

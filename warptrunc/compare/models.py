@@ -211,6 +211,7 @@ def compare_models(
     maxiter: int = 10000,
     progress: bool = False,
     device: wp.DeviceLike = None,
+    devices: Any = None,
 ) -> ModelComparison:
     """F, k and A by Eq. 2, by island-resolved truncation and by the elastic solver.
 
@@ -238,6 +239,9 @@ def compare_models(
         tqdm bar over the elastic solves.
     device : str, optional
         Warp device of all three routes.
+    devices : int, "auto" or list, optional
+        Spread the elastic solves over several devices (``ContactSolver(..., devices=...)``;
+        JAX); default None: ``device`` alone.
 
     Returns
     -------
@@ -280,7 +284,7 @@ def compare_models(
     cc = solve_contact(
         surface, d, contact_modulus=material.contact_modulus, substrate="free", dtype=dtype,
         stiffness="barber", pressure_tol=pressure_tol, pentol=pentol, maxiter=maxiter,
-        progress=progress, device=device,
+        progress=progress, device=device, devices=devices,
     )  # fmt: skip
     settings = {
         "material": asdict(material),

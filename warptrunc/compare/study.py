@@ -161,6 +161,7 @@ def compare_study(
     progress: bool = True,
     device: wp.DeviceLike = None,
     client=None,
+    devices: Any = None,
 ):
     """Run (or resume) a study of the three routes and store one Parquet file per case.
 
@@ -184,6 +185,9 @@ def compare_study(
         Run the cases as tasks of this Dask cluster (one per case, the largest maps first),
         each written by its worker into ``out`` (a filesystem the workers share); ``device``
         is then the tasks' device (None: each worker's pinned GPU). Default: in this process.
+    devices : int, "auto" or list, optional
+        Spread each elastic solve over several devices (``ContactSolver(..., devices=...)``;
+        JAX); default None: ``device`` alone. Not with ``client`` (ValueError).
 
     Returns
     -------
@@ -202,6 +206,9 @@ def compare_study(
     renamed (atomic), so an interrupted study resumes where it stopped.
     """
     out = Path(out)
+    if client is not None and devices not in (None, 1):
+        raise ValueError(f"devices={devices!r} with a Dask client (a worker spreading its solves "
+                         "over several devices) is not supported yet; run in this process")  # fmt: skip
     material = Material() if material is None else material
     fractions = [float(f) for f in _approaches(1.0, fractions)]
     settings = _settings(fractions, material, beta_prime, increments, connectivity, dtype,
@@ -227,13 +234,15 @@ def compare_study(
     with store_rollback(out, keep=lambda: any((out / "cases").glob("*.parquet"))):
         _open_store(out, settings, overwrite)
         _run_cases(out, cases, surface, fractions, material, beta_prime, increments,
-                   connectivity, dtype, pressure_tol, pentol, maxiter, progress, device, client)  # fmt: skip
+                   connectivity, dtype, pressure_tol, pentol, maxiter, progress, device, client,
+                   devices)  # fmt: skip
     rows = load_comparison(out)
     return rows[rows["case_id"].isin(ids)].reset_index(drop=True)
 
 
 def _run_cases(out, cases, surface, fractions, material, beta_prime, increments, connectivity,
-               dtype, pressure_tol, pentol, maxiter, progress, device, client=None) -> None:  # fmt: skip
+               dtype, pressure_tol, pentol, maxiter, progress, device, client=None,
+               devices=None) -> None:  # fmt: skip
     """Compute and store the cases that ``out`` does not hold yet (in this process, or one
     task per case on the Dask ``client``, each written by its worker)."""
     from .._support.progress import progress_bar
@@ -243,7 +252,7 @@ def _run_cases(out, cases, surface, fractions, material, beta_prime, increments,
             pressure_tol, pentol, maxiter)  # fmt: skip
     if client is None:
         for c in progress_bar(todo, desc="compare", unit="case", enabled=progress):
-            _one_case(str(out), c, *args, device)
+            _one_case(str(out), c, *args, device, devices)
         return
     from distributed import as_completed
 
@@ -263,7 +272,7 @@ def _run_cases(out, cases, surface, fractions, material, beta_prime, increments,
 
 
 def _one_case(out: str, c, surface, fractions, material, beta_prime, increments, connectivity,
-              dtype, pressure_tol, pentol, maxiter, device) -> str:  # fmt: skip
+              dtype, pressure_tol, pentol, maxiter, device, devices=None) -> str:  # fmt: skip
     """Compute one case and write its file (atomically); returns its case id."""
     from ..wm import wm_surface
 
@@ -276,7 +285,7 @@ def _one_case(out: str, c, surface, fractions, material, beta_prime, increments,
     r = compare_models(
         s, fractions, material=material, beta_prime=beta_prime, increments=increments,
         connectivity=connectivity, dtype=dtype, pressure_tol=pressure_tol, pentol=pentol,
-        maxiter=maxiter, device=device,
+        maxiter=maxiter, device=device, devices=devices,
     )  # fmt: skip
     c = {**c, "Rt_m": r.Rt}
     _write_case(Path(out), c, r, time.perf_counter() - t0)

@@ -155,6 +155,7 @@ def indent(
     punch_face_file: str | Path | None = None,
     progress: bool = False,
     device: wp.DeviceLike = None,
+    devices: Any = None,
 ) -> IndentationResult:
     """Flat-punch indentation with partial unloadings, as the paper's experiment (§ 4.1).
 
@@ -253,6 +254,11 @@ def indent(
     progress : bool
         tqdm bar over the cycles (stderr).
     {warp_device_obj}
+    devices : int, "auto" or list, optional
+        Spread each contact solve (every punch window's cycles) over several devices (``ContactSolver(..., devices=...)``;
+        JAX); default None: ``device`` alone. A window
+        whose rows a device count does not divide gets rows of its floor added (no contact
+        there: the same solution; :func:`~warptrunc.indent.protocol.make_solver`).
 
     Returns
     -------
@@ -345,7 +351,7 @@ def indent(
                       enabled=progress) as bar:  # fmt: skip
         for r, (k, _i, j, w, frac) in enumerate(windows):
             rows, info = solve_placement(
-                sources[k], w, protocol, material, settings=settings, device=dev,
+                sources[k], w, protocol, material, settings=settings, device=dev, devices=devices,
                 elastic=elastic, given=None if given is None else given[r], step=bar.update,
             )  # fmt: skip
             n_reused += info["reused"]

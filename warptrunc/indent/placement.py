@@ -42,6 +42,7 @@ def solve_placement(
     elastic: bool,
     given: dict[str, np.ndarray] | None = None,
     step: Any = None,
+    devices: Any = None,
 ) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
     """The rows of one punch placement: both contact models refined, and truncation.
 
@@ -65,6 +66,9 @@ def solve_placement(
         The elastic cycles at the map's pixel, taken instead of solved (``indent``'s reuse).
     step : callable, optional
         Called once per cycle solved at the map's pixel (a progress bar's ``update``).
+    devices : int, "auto" or list, optional
+        Spread each contact solve over several devices (``ContactSolver(..., devices=...)``;
+        JAX); default None: ``device`` alone.
 
     Returns
     -------
@@ -91,7 +95,8 @@ def solve_placement(
     def cycles(win: PunchWindow, idx: np.ndarray, h: float, el: Any = None, bar: Any = None,
                approach: Any = None):  # fmt: skip
         return run_cycles(win, loads[idx], f, material, hardness=h, settings=settings,
-                          device=device, step=bar, elastic=el, approach=approach)  # fmt: skip
+                          device=device, step=bar, elastic=el, approach=approach,
+                          devices=devices)  # fmt: skip
 
     def keep(factor: int, idx: np.ndarray, out: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         by = el_cache.setdefault(factor, {})

@@ -229,7 +229,8 @@ class IndentProtocol:
 
 @fill_doc(SHARED_DOCS)
 def make_solver(window: PunchWindow, material: Material, *, hardness: float,
-                settings: SolverSettings | None = None, device: Any = None) -> ContactSolver:  # fmt: skip
+                settings: SolverSettings | None = None, device: Any = None,
+                devices: Any = None) -> ContactSolver:  # fmt: skip
     """A contact solver on a punch window, with the penetration tolerance of the disk's heights.
 
     Parameters
@@ -243,6 +244,11 @@ def make_solver(window: PunchWindow, material: Material, *, hardness: float,
     settings : SolverSettings, optional
         Solver settings; a finite punch needs the free half-space.
     {warp_device_obj}
+    devices : int, "auto" or list, optional
+        Spread the solver over several devices (``ContactSolver(..., devices=...)``; JAX);
+        default None: ``device`` alone. When a count (or a list) does not divide the window's
+        rows, rows at the window's floor are added below it: they never touch (an approach
+        that deep is refused), so on the free half-space the solution is the same.
 
     Returns
     -------
@@ -276,8 +282,15 @@ def make_solver(window: PunchWindow, material: Material, *, hardness: float,
         settings = settings.replace(pentol=pentol)
     if settings.precondition_above is None:
         settings = settings.replace(precondition_above=PRECONDITION_ABOVE)
-    return ContactSolver(window.heights, window.pixel_size, material.contact_modulus,
-                         settings=settings, hardness=hardness, device=device)  # fmt: skip
+    heights = window.heights
+    n_dev = devices if isinstance(devices, int) else (
+        len(devices) if isinstance(devices, (list, tuple)) else 1)  # fmt: skip
+    if n_dev > 1 and heights.shape[0] % n_dev:  # row slabs: whole rows of the floor below
+        extra = n_dev - heights.shape[0] % n_dev
+        heights = np.vstack([heights, np.full((extra, heights.shape[1]), window.floor)])
+    return ContactSolver(heights, window.pixel_size, material.contact_modulus,
+                         settings=settings, hardness=hardness, device=device,
+                         devices=devices)  # fmt: skip
 
 
 COLUMNS = (
@@ -301,6 +314,7 @@ def run_cycles(
     step: Any = None,
     elastic: dict[str, np.ndarray] | None = None,
     approach: Any = None,
+    devices: Any = None,
 ) -> dict[str, np.ndarray]:
     """Load / partial-unload cycles under one punch, at increasing peak loads.
 
@@ -335,6 +349,8 @@ def run_cycles(
         the first load solve (that of the first cycle not copied from ``elastic``) starts
         there (:meth:`ContactSolver.hint_approach`; the answer is the same, the iterations
         fewer).
+    devices : int, "auto" or list, optional
+        Spread the solver over several devices (:func:`make_solver`); default None.
 
     Returns
     -------
@@ -365,7 +381,8 @@ def run_cycles(
                 step()
     f = float(unload_fraction)
     reach = window.top - window.floor  # an approach this deep would reach outside the disk
-    solver = (make_solver(window, material, hardness=hardness, settings=settings, device=device)
+    solver = (make_solver(window, material, hardness=hardness, settings=settings, device=device,
+                          devices=devices)
               if n_reused < loads.size else None)  # fmt: skip
     if solver is not None and approach is not None:
         first = float(np.broadcast_to(np.asarray(approach, np.float64), loads.shape)[n_reused])

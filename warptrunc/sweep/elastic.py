@@ -46,7 +46,8 @@ def bem_blank(o: SweepOptions) -> dict[str, Any]:
 
 
 @fill_doc(SHARED_DOCS)
-def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str, Any]:
+def elastic_record(surface, sc, options: SweepOptions, device=None, *,
+                   devices: Any = None) -> dict[str, Any]:  # fmt: skip
     """Elastic columns of one case: the free half-space solver against Eq. 2 at δ = f·R_t.
 
     Parameters
@@ -59,6 +60,9 @@ def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str,
     options : SweepOptions
         ``bem_fractions`` (f, dimensionless), material, β', increments.
     {warp_device}
+    devices : int, "auto" or list, optional
+        Spread the elastic solver over several devices (``ContactSolver(..., devices=...)``;
+        JAX); default None: ``device`` alone.
 
     Returns
     -------
@@ -95,7 +99,7 @@ def elastic_record(surface, sc, options: SweepOptions, device=None) -> dict[str,
     f_trunc = np.interp(d, deep.depth, deep.load)
     try:
         cc = solve_contact(surface, depths=d, contact_modulus=contact_modulus, substrate="free",
-                           stiffness="barber", device=device)  # fmt: skip
+                           stiffness="barber", device=device, devices=devices)  # fmt: skip
     except Exception as exc:  # recorded; the truncation results stand
         out["bem_error"] = f"{type(exc).__name__}: {exc}"
         out["bem_seconds"] = time.perf_counter() - t0

@@ -63,7 +63,7 @@ BatchSink = Callable[[list[Result]], Any]
 
 @fill_doc(SHARED_DOCS)
 def compute_case(
-    case: Case, options: SweepOptions, device: str | None = None
+    case: Case, options: SweepOptions, device: str | None = None, devices: Any = None
 ) -> tuple[list[dict[str, Any]], dict[str, np.ndarray] | None]:
     """Generate, truncate and fit one case; never raises for a failing case.
 
@@ -74,6 +74,9 @@ def compute_case(
     options : SweepOptions
         Grid size, material, increments, fit ranges and fractal methods.
     {warp_device}
+    devices : int, "auto" or list, optional
+        Spread the elastic solves (``bem_fractions``) over several devices
+        (``ContactSolver(..., devices=...)``; JAX); default None: ``device`` alone.
 
     Returns
     -------
@@ -107,7 +110,7 @@ def compute_case(
                       max_depth_fraction=o.max_depth_fraction, device=dev)  # fmt: skip
         sc = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
         if o.bem_fractions:
-            base.update(elastic_record(s, sc, o, dev))
+            base.update(elastic_record(s, sc, o, dev, devices=devices))
     except Exception as exc:  # recorded, the sweep goes on
         base.update(error=f"{type(exc).__name__}: {exc}")
     return _finish(o, base, sc, time.perf_counter() - t0, device)
@@ -228,7 +231,7 @@ def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
 @fill_doc(SHARED_DOCS)
 def run_inprocess(
     cases: list[Case], options: SweepOptions, sink: BatchSink, *, device=None, total: int,
-    progress: bool = True, shard_seconds: float = 1.0, max_shard: int = 4096,
+    progress: bool = True, shard_seconds: float = 1.0, max_shard: int = 4096, devices: Any = None,
 ) -> None:  # fmt: skip
     """Run ``cases`` one after another in this process, handing the results to ``sink``.
 
@@ -250,6 +253,8 @@ def run_inprocess(
         over whatever finished while the previous part was written.
     max_shard : int
         Most results handed to ``sink`` at once (count); also the queue length.
+    devices : int, "auto" or list, optional
+        Passed to :func:`compute_case` (the elastic solves over several devices).
 
     Raises
     ------
@@ -310,7 +315,7 @@ def run_inprocess(
             for case in cases if size <= 1 else ():
                 if failed:
                     break
-                q.put(compute_case(case, options, dev))
+                q.put(compute_case(case, options, dev, devices))
         finally:
             q.put(done)
             th.join()

@@ -54,6 +54,7 @@ def run_sweep(
     shard_seconds: float = 1.0,
     progress: bool = True,
     device: Any = None,
+    devices: Any = None,
     **options: Any,
 ):
     """Run every case of ``grid`` (or those a store at ``out`` still lacks).
@@ -99,6 +100,11 @@ def run_sweep(
     device : str, optional
         Warp device for every case; default ``$WARPTRUNC_DEVICE``, else CUDA when present
         (per-worker pinning with ``workers``).
+    devices : int, "auto" or list, optional
+        Spread each elastic solve (``bem_fractions``) over several devices
+        (``ContactSolver(..., devices=...)``; JAX), in this process; default None: ``device``
+        alone. Not yet with ``workers`` or ``scheduler`` (a worker taking several devices), nor
+        without ``bem_fractions`` (nothing to spread): ValueError.
     **options
         Fields of :class:`SweepOptions` (as ``warptrunc analyze``): Wr (m), L (m), n, M,
         gamma, Wc (m), cutoff, increments, max_depth_fraction, max_depth (m), E (Pa), nu,
@@ -129,6 +135,13 @@ def run_sweep(
     shard_seconds = check_range("shard_seconds", shard_seconds, 0, None, lo_open=False, unit="s")
     if workers is not None and scheduler is not None:
         raise ValueError("give workers (a local cluster) or scheduler (an existing one), not both")
+    if devices not in (None, 1):
+        if workers is not None or scheduler is not None:
+            raise ValueError(f"devices={devices!r} with workers or a scheduler (each worker taking "
+                             "several devices) is not supported yet; run in this process")  # fmt: skip
+        if not opts.bem_fractions:
+            raise ValueError(f"devices={devices!r} spreads the elastic solves of bem_fractions, "
+                             "and none are asked for")  # fmt: skip
     cases = grid.cases(opts)  # checks that the sweep can vary the grid's extra axes
     guard = ExitStack()  # a failed run on a new store that finished nothing leaves nothing
     store: Store | None = None
@@ -167,7 +180,7 @@ def run_sweep(
                 _run_group(group, opts.with_axes(dict(params)), store, workers=workers,
                            scheduler=scheduler, device=device, total=len(grid) - left,
                            progress=progress, shard_size=shard_size,
-                           shard_seconds=shard_seconds)  # fmt: skip
+                           shard_seconds=shard_seconds, devices=devices)  # fmt: skip
             store.remove_temporaries()  # of workers killed mid-write; their cases ran again
         finally:
             try:
@@ -190,7 +203,7 @@ def _open_client(workers, scheduler, device, progress):
 
 
 def _run_group(todo, opts, store, *, workers, scheduler, device, total, progress, shard_size,
-               shard_seconds) -> None:  # fmt: skip
+               shard_seconds, devices=None) -> None:  # fmt: skip
     """Run cases that share ``opts`` on the chosen engine."""
     if todo and (workers is not None or scheduler is not None):
         from .cluster import run_dask
@@ -202,4 +215,4 @@ def _run_group(todo, opts, store, *, workers, scheduler, device, total, progress
         from .engines import run_inprocess
 
         run_inprocess(todo, opts, store.add_many, device=device, total=total,
-                      progress=progress, shard_seconds=shard_seconds)  # fmt: skip
+                      progress=progress, shard_seconds=shard_seconds, devices=devices)  # fmt: skip
