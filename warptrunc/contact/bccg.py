@@ -121,7 +121,10 @@ class BCCGSolves:
     def _solve_bccg(self, offset: float, load: float | None, cap: float | None) -> dict[str, Any]:
         """One solve at ``offset`` (m; the start in load control) or at ``load`` (N), with the
         force cap ``cap`` (N per pixel; None: elastic). Returns the info dict of the default
-        solver's solves."""
+        solver's solves. With ``settings.loop="device"`` (the default) the iteration is
+        :mod:`warptrunc.contact.bccg_device`'s, one read-back per iteration."""
+        if getattr(self.settings, "loop", "host") == "device":
+            return self._solve_bccg_device(offset, load, cap)
         red, hs, dev = self.hs.reduction, self.hs, self.device
         n_map = self.shape[0] * self.shape[1]
         inv_n = 1.0 / hs.n_total

@@ -69,6 +69,7 @@ from ..kernels import contact as _k
 from ..material import Material
 from ..params import check_value
 from .bccg import BCCGSolves
+from .bccg_device import DeviceLoopSolves
 from .halfspace import DTYPES, ElasticHalfSpace
 from .loop import SolveLoop
 from .memory import SolverMemory
@@ -103,7 +104,8 @@ _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter
 
 
 @fill_doc(SHARED_DOCS)
-class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, PKSolves, PunchStiffness):
+class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, DeviceLoopSolves, PKSolves,
+                    PunchStiffness):  # fmt: skip
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
 
     With a finite ``hardness`` the local pressure is capped at H and the map flows plastically

@@ -1,0 +1,215 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The BCCG solve with one read-back per iteration (``SolverSettings.loop="device"``, the default).
+
+The iteration of :mod:`warptrunc.contact.bccg` reads a few numbers back after each of its
+reductions: the mean gap of load control, then the residual's sums, then r·z for Polak–Ribière's
+β, then the step's projected count, total force and change of u (and the direct correction's
+change). Each read drains the device's queue, so on a GPU the device waits while the host
+launches the next kernels, four to five times per iteration. Here those scalars are folded on the
+device by one-thread kernels (``kernels/contact_loop.py``) into the solve's scalar array and read
+by the next kernels from there; the host reads the array once per iteration, after the residual,
+and takes there, with the code of the host loop, every decision that chooses what to launch next:
+convergence, the preconditioner (its restart), and a transform afresh.
+
+Two decisions of the host loop come one iteration late, by construction identical in effect:
+
+* more projected pixels than the direct correction's list (``direct_max``): the device skips the
+  correction and flags u as stale; at the next read the host transforms afresh (u = K·q, as the
+  host loop does right after the step) and computes the residual again;
+* load control with no force left (Σ q ≤ 0): the device does not scale and flags it; at the next
+  read the host spreads the load evenly and transforms afresh, as the host loop does.
+
+The answers equal the host loop's at the same settings but for the order of the float64 sums of
+a few hundred partials (``tests/test_device_loop.py``: loads within 10⁻¹⁰ relative, the same
+contact set).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import warp as wp
+
+from ..kernels import contact as _k
+from ..kernels import contact_bccg as _kb
+from ..kernels import contact_loop as _kl
+from ..kernels import contact_reduce as _kr
+
+__all__ = ["DeviceLoopSolves"]
+
+_HUGE = 1e300  # the "cap" of an elastic solve (N)
+_RES = int(_kl.S_RES)
+
+
+class DeviceLoopSolves:
+    """The device-folded BCCG solve of :class:`~warptrunc.contact.ContactSolver` (a base class
+    holding methods only; the maps, settings and the host loop's helpers are the solver's)."""
+
+    def _loop_scalars(self) -> wp.array:
+        """The solve's scalar array (float64, ``kernels.contact_loop.S_SIZE``), made once."""
+        if getattr(self, "_s_loop", None) is None:
+            self._s_loop = wp.zeros(_kl.S_SIZE, dtype=wp.float64, device=self.device)
+        return self._s_loop
+
+    def _loop_top(self, s: wp.array, hf: float, load_control: bool) -> np.ndarray:
+        """The top of an iteration: (load control) move the offset by the mean free gap, then
+        the residual and its sums; returns the scalar array read back (the one sync point)."""
+        red, n_map = self.hs.reduction, self.shape[0] * self.shape[1]
+        if load_control:
+            red.launch(_kl.sums_loop_kernel, n_map, [self.q, self.u, self.h, s, wp.float64(hf)],
+                       [])  # fmt: skip
+            wp.launch(_kl.loop_offset_kernel, dim=1, inputs=[red.fold((False, False))],
+                      outputs=[s], device=self.device)  # fmt: skip
+        r_buf, _ = self._bccg_maps()
+        red.launch(_kl.residual_loop_kernel, n_map, [self.q, self.u, self.h, s, wp.float64(hf)],
+                   [r_buf, self.mask])  # fmt: skip
+        flags = (False, False, False, False, True, True, True, False, False)
+        wp.launch(_kl.loop_residual_kernel, dim=1, inputs=[red.fold(flags)], outputs=[s],
+                  device=self.device)  # fmt: skip
+        return s.numpy()  # sync point
+
+    def _set_scalars(self, s: wp.array, values: dict[int, float]) -> None:
+        """Write a few entries of the scalar array from the host (a small copy)."""
+        host = s.numpy()
+        for k, v in values.items():
+            host[int(k)] = v
+        s.assign(host)
+
+    def _solve_bccg_device(self, offset: float, load: float | None,
+                           cap: float | None) -> dict[str, Any]:  # fmt: skip
+        """:meth:`~warptrunc.contact.bccg.BCCGSolves._solve_bccg` with one read-back per
+        iteration (module docstring); same arguments and info dict."""
+        red, hs, dev = self.hs.reduction, self.hs, self.device
+        n_map = self.shape[0] * self.shape[1]
+        inv_n = 1.0 / hs.n_total
+        hf = _HUGE if cap is None else float(cap)
+        load_control = load is not None
+        lc = int(load_control)
+        r_buf, z_old = self._bccg_maps()
+        pc_above = self._precondition_above()
+        periodic = int(self.substrate == "periodic")
+        cap_list = int(self.direct_max)
+        s = self._loop_scalars()
+        self._warm_start(offset)  # then projected onto the box
+        wp.launch(_kb.clamp_force_kernel, dim=self.shape, inputs=[wp.float64(hf)],
+                  outputs=[self.q], device=dev)  # fmt: skip
+        total = float(self._sums(offset)[3])  # Σ q (N)
+        if load_control:
+            self._scale_to_load(load, total)
+            total = float(load)
+        self._exact_u()
+        s.zero_()
+        self._set_scalars(s, {_kl.S_OFF: offset, _kl.S_SETOFF: offset, _kl.S_TOTAL: total})
+        n_transforms = 4
+        self.t.zero_()
+        z_old.zero_()
+        have_rz = False  # no direction yet (the host loop's rz_old is None)
+        last_pc = None
+        du = None  # largest change of u in the last step (m); none yet
+        viol = 0.0
+        last_total = last_height = None
+        info: dict[str, Any] = {"converged": False}
+        for it in range(1, self.maxiter + 1):
+            top_offset = offset
+            v = self._loop_top(s, hf, load_control)  # sync point
+            flag = int(v[_kl.S_FLAG])
+            if flag and du is not None:
+                # the step before projected more pixels than the list holds (1), or left no
+                # force to scale to the load (2): as the host loop, u afresh after the step
+                du = float(v[_kl.S_DU])
+                if flag & 2:
+                    self._scale_to_load(load, 0.0)
+                du = max(du, self._exact_u())
+                n_transforms += 2
+                self._set_scalars(s, {_kl.S_OFF: top_offset, _kl.S_SETOFF: top_offset,
+                                      _kl.S_FLAG: 0.0, _kl.S_DU: du})  # fmt: skip
+                v = self._loop_top(s, hf, load_control)  # sync point
+            offset = float(v[_kl.S_OFF])
+            if du is not None:
+                du = float(v[_kl.S_DU])
+                viol = float(v[_kl.S_VIOL])
+                total = float(v[_kl.S_TOTAL])
+            (n_f, s_r, n_cg, s_gg, g_max, pen, open_cap, n_c, s_gap) = (
+                float(x) for x in v[_RES:_RES + 9]
+            )  # fmt: skip
+            # convergence of the state reached by the last step (as the host loop)
+            rms = math.sqrt(s_gg / n_cg) if n_cg > 0 else 0.0
+            res = max(rms, g_max, pen, open_cap, 0.0 if du is None else du)
+            tol = self._pentol_now(s_gap, n_c, n_map)
+            ok = du is not None and res < tol and viol < self.forcetol
+            if load_control:
+                ok = ok and total != 0 and abs((total - load) / total) < self.thermotol
+                height = self.h_max + offset
+                ok = ok and self._steady(height, last_height)
+                last_height = height
+            else:
+                ok = ok and self._steady(total, last_total)
+            last_total = total
+            info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res,
+                                        viol, ok, n_contact=n_c)  # fmt: skip
+            if ok:
+                break
+            if n_f == 0:
+                info["converged"] = pen <= self.pentol and open_cap <= self.pentol
+                break
+            use_pc = n_f > pc_above * n_map
+            restart = not have_rz or use_pc != last_pc
+            last_pc = use_pc
+            if use_pc:
+                z = hs.apply(r_buf, inverse=True)
+                n_transforms += 2
+            else:
+                z = r_buf
+            red.launch(_kb.bccg_dot_kernel, n_map, [z, r_buf, z_old, self.mask], [])
+            wp.launch(_kl.loop_dot_kernel, dim=1,
+                      inputs=[red.fold((False, False, False)), lc, int(restart)], outputs=[s],
+                      device=dev)  # fmt: skip
+            have_rz = True
+            red.launch(_kl.direction_loop_kernel, n_map, [z, s, self.mask, r_buf],
+                       [self.t, z_old])  # fmt: skip
+            del z
+            spec = hs.work
+            hs.forward(self.t_buf, spec)
+            hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
+            wp.launch(_k.step_length_kernel, dim=1,
+                      inputs=[red.fold((False, False)), wp.float64(n_f), wp.float64(inv_n)],
+                      outputs=[self.tau], device=dev)  # fmt: skip
+            kt = hs.inverse(spec)
+            n_transforms += 2
+            red.launch(_kb.bccg_update_kernel, n_map, [kt, self.tau, wp.float64(hf), self.t],
+                       [self.q, self.u, r_buf, self.mask, self.lane_count])  # fmt: skip
+            del kt
+            wp.launch(_kl.loop_update_kernel, dim=1,
+                      inputs=[red.fold((False, True, False, True)), lc,
+                              wp.float64(0.0 if load is None else load)],
+                      outputs=[s], device=dev)  # fmt: skip
+            if it % self.refresh != 0:
+                # the projection's few corrections by direct summation, on the device's count
+                geo = red.geometry(n_map)
+                wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
+                wp.launch(_kl.compact_gated_kernel, dim=red.lanes,
+                          inputs=[self.q, r_buf, self.mask, self.lane_offset, s, cap_list, *geo],
+                          outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
+                red.launch(_kl.correct_gated_kernel, n_map,
+                           [hs.table, periodic, self.change_index, self.change_value, s,
+                            cap_list], [self.u])  # fmt: skip
+                wp.launch(_kl.loop_correct_kernel, dim=1,
+                          inputs=[red.fold((True,)), cap_list], outputs=[s], device=dev)  # fmt: skip
+            if load_control:
+                wp.launch(_kl.scale_gated_kernel, dim=self.shape, inputs=[s],
+                          outputs=[self.q, self.u], device=dev)  # fmt: skip
+            if it % self.refresh == 0:
+                # u afresh on schedule (the flag of a load left without force is handled
+                # at the next read, which transforms afresh once more)
+                kq = hs.apply(self.q_buf)
+                red.launch(_kb.bccg_exact_kernel, n_map, [kq], [self.u])
+                del kq
+                wp.launch(_kl.loop_exact_kernel, dim=1, inputs=[red.fold((True,))], outputs=[s],
+                          device=dev)  # fmt: skip
+                n_transforms += 2
+            du = 0.0  # a step was taken: the next read carries its change of u
+        self.offset = offset
+        return info
