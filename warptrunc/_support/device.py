@@ -172,6 +172,14 @@ def release_cached_memory(device: wp.context.Device) -> int:
     return free_memory_bytes(device)
 
 
+def release_kept_pools() -> None:
+    """Give back what Warp's pools keep cached (up to a quarter of each GPU, see
+    ``resolve_device``) on every CUDA device warptrunc has used: before another allocator,
+    JAX's for a solve over several devices, takes the same GPUs."""
+    for name in sorted(_mempool_kept):
+        release_cached_memory(wp.get_device(name))
+
+
 def check_memory(nbytes: int, device: wp.context.Device, what: str) -> None:
     """Raise ``MemoryError`` before allocating when ``nbytes`` exceed the free memory."""
     free = free_memory_bytes(device)

@@ -327,7 +327,8 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
         t0 = time.perf_counter()
         lo = solve(delta * (1 - fd_step)) if stiffness == "central" else None
         mid = solve(delta)
-        pressure, _ = solver.maps()  # sync point; the contact of the solve at δ
+        # sync point; the contact of the solve at δ (over several devices: booleans only)
+        contact = solver.contact_map() if hasattr(solver, "contact_map") else solver.maps()[0] > 0
         if lo is not None:
             hi = solve(delta * (1 + fd_step))
             out["k"][i] = (hi.load - lo.load) / (2 * fd_step * delta)
@@ -338,7 +339,6 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
             out["k"][i] = k
             conv[i] = mid.converged and k_ok
         out["t"][i] = time.perf_counter() - t0
-        contact = pressure > 0
         out["F"][i] = mid.load
         out["A"][i] = np.count_nonzero(contact) * surface.pixel_area
         nit[i] = mid.n_iterations

@@ -111,9 +111,12 @@ class ShardedContactSolver(ContactSolver):
     # --- construction hooks of ContactSolver.__init__ -------------------------------------
 
     def _fft_plan_that_fits(self, shape: tuple[int, int], settings: Any) -> str:
-        """Check each device's share against its free memory (MemoryError before allocating)."""
+        """Check each device's share against its free memory (MemoryError before allocating),
+        after Warp's pools gave back what they keep cached on the GPUs (JAX allocates next)."""
+        from .._support.device import release_kept_pools
         from .sharded_devices import check_fits
 
+        release_kept_pools()
         check_fits(shape, settings.substrate, settings.dtype, self._jax_devices)
         return "pruned"
 
@@ -339,6 +342,17 @@ class ShardedContactSolver(ContactSolver):
         q, u, h = (np.asarray(a).astype(np.float64) for a in (self.q, self.u, self.h))
         dx, dy = self.pixel_size
         return q / (dx * dy), u - h - self.offset
+
+    def contact_map(self) -> np.ndarray:
+        """The contact set of the current solution, gathered to the host as booleans (1 B/px,
+        where :meth:`maps` gathers pressure and gap in float64, 16 B/px).
+
+        Returns
+        -------
+        (ny, nx) ndarray of bool
+            Pixels with a positive force.
+        """
+        return np.asarray(self.q > 0)
 
     def plastic_displacement(self) -> np.ndarray:
         """The plastic height change so far, copied to the host.
