@@ -6,13 +6,12 @@ the records a solve returns (the info dict of an iteration, the
 :class:`~warptrunc.contact.ContactState` of a solve, the known point of F(δ) for load control).
 
 The loops themselves are in :mod:`~warptrunc.contact.pk` (Polonsky–Keer),
-:mod:`~warptrunc.contact.bccg` (the default) and :mod:`~warptrunc.contact.plastic` (the capped
-solves); they run on the host, reading a few numbers back per iteration (the module docstring of
-:mod:`warptrunc.contact.solver`). A device-side solve loop (the iteration and its stopping test
-on the device, one read-back per solve) belongs here, chosen beside them in
-``SolveLoop._solve_elastic`` and reporting through ``SolveLoop._iteration_info``. The
-memory model, where a multi-device path starts, is :mod:`warptrunc.contact.memory` (whose
-docstring lists what lives where).
+:mod:`~warptrunc.contact.bccg` (BCCG with a read-back after each reduction, ``loop="host"``),
+:mod:`~warptrunc.contact.bccg_device` (BCCG with its scalar steps folded on the device and one
+read-back per iteration, ``loop="device"``, the default) and :mod:`~warptrunc.contact.plastic`
+(the capped solves); every decision that chooses what to launch next is taken on the host, with
+the code here. The memory model, where a multi-device path starts, is
+:mod:`warptrunc.contact.memory` (whose docstring lists what lives where).
 """
 
 from __future__ import annotations
