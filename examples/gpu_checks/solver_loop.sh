@@ -18,6 +18,7 @@
 set -uo pipefail
 : "${OUT:?set OUT to a folder for the results}"
 mkdir -p "$OUT"
+OUT=$(cd "$OUT" && pwd)  # absolute: the benchmarks run from examples/benchmarks
 cd "$(dirname "$0")/../.." || exit 1
 export PYTHONPATH=${PYTHONPATH:-/tmp/site} MPLBACKEND=Agg PYTHONUNBUFFERED=1
 export WARPTRUNC_GIT_COMMIT=${WARPTRUNC_GIT_COMMIT:-$(git rev-parse --short HEAD 2>/dev/null || echo unknown)}
@@ -50,18 +51,18 @@ fi
 
 # shellcheck disable=SC2086
 (cd examples/benchmarks && $PY iteration_breakdown.py --device "$DEVICE" --n $SIZES \
-    --out "$OLDPWD/$OUT/breakdown") 2>&1 | grep -v "^Warp " | tee "$OUT/breakdown.log"
+    --out "$OUT/breakdown") 2>&1 | grep -v "^Warp " | tee "$OUT/breakdown.log"
 [ "$DEVICE" != cpu ] && (cd examples/benchmarks && $PY iteration_breakdown.py --device "$DEVICE" \
-    --n 10240 --dtype float64 --out "$OLDPWD/$OUT/breakdown_f64") 2>&1 | grep -v "^Warp " \
+    --n 10240 --dtype float64 --out "$OUT/breakdown_f64") 2>&1 | grep -v "^Warp " \
     | tee -a "$OUT/breakdown.log"
 echo "breakdown: ${SECONDS} s"
 
 # shellcheck disable=SC2086
 (cd examples/benchmarks && $PY benchmark_solver_scaling.py --device "$DEVICE" --n $SIZES \
-    --dtype float32 float64 --budget 200 --out "$OLDPWD/$OUT/scaling") 2>&1 | grep -v "^Warp " \
+    --dtype float32 float64 --budget 200 --out "$OUT/scaling") 2>&1 | grep -v "^Warp " \
     | tee "$OUT/scaling.log"
 [ "$DEVICE" != cpu ] && (cd examples/benchmarks && $PY benchmark_solver_scaling.py \
-    --device "$DEVICE" --n "$BIG" --dtype float32 --budget 150 --out "$OLDPWD/$OUT/scaling_big") \
+    --device "$DEVICE" --n "$BIG" --dtype float32 --budget 150 --out "$OUT/scaling_big") \
     2>&1 | grep -v "^Warp " | tee -a "$OUT/scaling.log"
 echo "scaling: ${SECONDS} s"
 
