@@ -147,4 +147,23 @@ def test_batches_that_do_not_fit_fall_back_to_one_case_at_a_time(monkeypatch):
     want = [compute_case(c, OPTS, "cpu") for c in cases]
     for (ra, ca), (rb, cb) in zip(out, want, strict=True):
         np.testing.assert_array_equal(ca["n_contact_pixels"], cb["n_contact_pixels"])
-        assert ra[0]["alpha"] == rb[0]["alpha"]
+        np.testing.assert_allclose(ra[0]["alpha"], rb[0]["alpha"], rtol=1e-9)
+
+
+@pytest.mark.gpu
+def test_batches_on_a_second_gpu_while_the_default_is_the_first():
+    """A Dask worker pinned to cuda:1 keeps cuda:0 as Warp's default device: its batches
+    (events, copies, launches) must stay on cuda:1 and equal one case at a time there."""
+    import warp as wp
+
+    resolve_device(None)
+    if wp.get_cuda_device_count() < 2:
+        pytest.skip("needs two CUDA devices")
+    cases = GRID.cases(OPTS)[:5]
+    with wp.ScopedDevice("cuda:0"):
+        a = compute_many(cases, OPTS, "cuda:1")  # batched: 5 surfaces in one launch
+    b = [compute_case(c, OPTS, "cuda:1") for c in cases]
+    for (ra, ca), (rb, cb) in zip(a, b, strict=True):
+        assert ra[0]["device"] == "cuda:1" and ra[0]["error"] is None
+        np.testing.assert_array_equal(ca["n_contact_pixels"], cb["n_contact_pixels"])
+        np.testing.assert_allclose(ra[0]["alpha"], rb[0]["alpha"], rtol=1e-9)

@@ -100,7 +100,9 @@ class WMBatch:
     scaling and the histogram) and :meth:`collect` (waits for the histogram, returns the
     curves). On a GPU the small inputs travel through pinned host buffers and the results come
     back by asynchronous copies and events, so the host never waits for work queued after the
-    batch it asks about. :meth:`truncate` does the three steps at once.
+    batch it asks about. Every launch, copy and event goes to ``device``'s own stream, whatever
+    Warp's default device is (a Dask worker pinned to cuda:1 keeps cuda:0 as its default).
+    :meth:`truncate` does the three steps at once.
     """
 
     def __init__(self, options: SweepOptions, size: int, device: wp.context.Device, *,
@@ -238,7 +240,7 @@ class WMBatch:
                             device=dev)  # fmt: skip
             self._get(s.lo, tiles)
             self._get(s.hi, tiles)
-            wp.record_event(s.event)
+            dev.stream.record_event(s.event)  # this device's stream, not the default's
         s.job = SimpleNamespace(cases=cases, alpha=alpha, w=w, ext=None, depths=None, thr=None)
         return s
 
@@ -307,7 +309,7 @@ class WMBatch:
                   device=dev)  # fmt: skip
         if dev.is_cuda:
             self._get(s.hist, b * n1)
-            wp.record_event(s.event)
+            dev.stream.record_event(s.event)  # this device's stream, not the default's
 
     def collect(self, s: Any) -> list[TruncationCurve]:
         """Wait for the histogram of a batch and return its truncation curves.
