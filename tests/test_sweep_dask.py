@@ -263,3 +263,51 @@ def test_workers_pinned_one_device_each(client):
     client.register_plugin(PinDevice(n_devices=2))  # as on a node with 2 GPUs
     got = client.run(lambda dask_worker: (dask_worker.name, os.environ["WARPTRUNC_DEVICE"]))
     assert sorted(got.values()) == [(0, "cuda:0"), (1, "cuda:1")]
+
+
+def _batches_raise_on_worker_1_plugin():
+    """A worker plugin: on worker 1, every shard of more than one case raises (as batched
+    shards did on the workers pinned to cuda:1 before WMBatch recorded its events on its own
+    device's stream); undone when unregistered."""
+    from distributed import WorkerPlugin
+
+    class RaiseOnOne(WorkerPlugin):
+        name = "test-raise-on-worker-1"
+        idempotent = True
+
+        def setup(self, worker):
+            import warptrunc.sweep.engines as e
+
+            self.real = e.compute_many
+            if worker.name != 1:
+                return
+            real = self.real
+
+            def broken(cases, *a, **kw):
+                if len(cases) > 1:
+                    raise RuntimeError("Event from device cuda:1 cannot be recorded here")
+                return real(cases, *a, **kw)
+
+            e.compute_many = broken
+
+        def teardown(self, worker):
+            import warptrunc.sweep.engines as e
+
+            e.compute_many = self.real
+
+    return RaiseOnOne()
+
+
+@pytest.mark.timeout(300)
+def test_task_that_raises_is_retried_and_reported_once(tmp_path, client, dask_reference, capsys):
+    client.wait_for_workers(2, timeout=120)
+    client.register_plugin(_batches_raise_on_worker_1_plugin())
+    try:
+        df = run_sweep(DASK_GRID, tmp_path / "s", scheduler=client, progress=False,
+                       device="cpu", shard_size=4, **OPTS)  # fmt: skip
+    finally:
+        client.unregister_worker_plugin("test-raise-on-worker-1")
+    pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))
+    assert not df.duplicated(["case_id", "min_pixels"]).any()
+    err = capsys.readouterr().err
+    assert err.count("cannot be recorded here") == 1 and "submitted again" in err

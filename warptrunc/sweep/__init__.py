@@ -11,7 +11,7 @@ Modules: ``grid`` (SweepGrid, SweepOptions, case ids), ``store`` (the Parquet st
 sweep.json, ``curves/part-*.parquet``, cases.parquet), ``read`` (the columns of cases.parquet;
 :func:`load`, :func:`load_curves`), ``migration`` (:func:`migrate`, the previous layout), ``curves`` (writing and
 reading one part), ``engines`` (one case, one shard; in-process execution), ``batch`` (several light
-surfaces per launch on a GPU), ``rows`` and ``elastic`` (a case's columns), ``cluster`` (Dask),
+surfaces per launch on a GPU), ``rows`` and ``elastic`` (a case's columns), ``cluster`` (Dask), ``sharding`` (its shard sizes),
 ``run`` (:func:`run_sweep`), ``stats`` (pandas summaries, :func:`linear_fit`, and the older
 in-memory :func:`sweep`/:class:`SweepTable`). pandas, pyarrow and dask (dependencies of
 warptrunc) are imported only inside these functions, so ``import warptrunc`` stays light.

@@ -7,20 +7,20 @@ Imported only when ``workers`` or ``scheduler`` is given (dask.distributed loads
 it): ``workers="auto"`` is one worker per visible CUDA device (1 on a machine without one);
 dask-cuda's ``LocalCUDACluster`` is used when it is installed and every worker gets a GPU of
 its own, else a ``LocalCluster`` whose workers :class:`PinDevice` pins; either way every worker
-uses the kernel cache directory of this process, so a kernel compiled once is loaded by all. Cases
-go out in shards (one task per shard, sized adaptively to about 1 s of work), so the task
-overhead is amortised when a case takes milliseconds. Each worker writes its shard as one
-part of the store (:func:`~warptrunc.sweep.engines.compute_shard`) and sends back only the
-part's name and rows; the client records which parts exist and is the only writer of
-``cases.parquet``.
+uses the kernel cache directory of this process, so a kernel compiled once is loaded by all,
+and a local cluster's workers are warmed as it starts (:func:`warm_worker`: Warp started, the
+pinned device made the default, the light cases' kernels loaded). Cases go out in shards
+(one task per shard of about 1 s of work, at most about four per worker:
+:class:`~warptrunc.sweep.sharding.ShardPlanner`), so the task overhead is amortised when a
+case takes milliseconds. Each worker writes its shard as one part of the store
+(:func:`~warptrunc.sweep.engines.compute_shard`) and sends back only the part's name and rows;
+the client records which parts exist and is the only writer of ``cases.parquet``.
 """
 
 from __future__ import annotations
 
 import logging
-import math
 import os
-import statistics
 import sys
 import time
 from collections.abc import Iterator
@@ -36,6 +36,7 @@ from .curves import part_name, part_rows
 from .engines import compute_shard, failed_case, pinned_device
 from .grid import Case
 from .options import SweepOptions
+from .sharding import ShardPlanner
 
 __all__ = [
     "PinDevice",
@@ -43,7 +44,7 @@ __all__ = [
     "open_client",
     "resolve_workers",
     "run_dask",
-    "shard_size_for",
+    "warm_worker",
 ]
 
 #: Set to ``0`` to use a LocalCluster with :class:`PinDevice` even where dask-cuda is installed.
@@ -86,40 +87,48 @@ class PinDevice(WorkerPlugin):
             os.environ["WARPTRUNC_DEVICE"] = dev
 
 
-def shard_size_for(
-    case_seconds: float | None,
-    remaining: int,
-    n_workers: int,
-    *,
-    target_s: float = 1.0,
-    max_size: int = 4096,
-) -> int:
-    """Cases per task: about ``target_s`` of work, at most ``max_size``, and small enough
-    that the remaining cases still make ≥ 2 tasks per worker (so the load balances).
+def warm_worker(device: Any = None) -> str:
+    """Start Warp in this process and load the kernels every sweep case uses on its device.
+
+    Run in each worker of a local cluster as it starts (:func:`open_client`), so that a
+    worker's first task does not pay for Warp's start, the CUDA context and the kernel loads
+    (compiled kernels come from the shared cache, :func:`kernel_cache_base`).
 
     Parameters
     ----------
-    case_seconds : float or None
-        Median time of one case so far (s); None, 0 or NaN (none finished yet) gives 1.
-    remaining : int
-        Cases not yet submitted (count).
-    n_workers : int
-        Workers of the cluster (count); values below 1 count as 1.
-    target_s : float
-        Work per task to aim for (s).
-    max_size : int
-        Largest shard (cases).
+    device : str, optional
+        The device the tasks will be given; None: ``$WARPTRUNC_DEVICE`` (set by
+        :class:`PinDevice`), else CUDA when present, else the CPU.
 
     Returns
     -------
-    int
-        Cases per task, ≥ 1: ⌈target_s/case_seconds⌉ clipped to [1, max_size], then to
-        at most ⌈remaining/(2·n_workers)⌉.
+    str
+        The device, or ``"<device>: <error>"`` when it cannot be used here (never raises: the
+        tasks then record the error themselves).
+
+    Notes
+    -----
+    On a CUDA device it becomes Warp's default device in this process (``wp.set_device``), so
+    that nothing left on the default device or stream lands on another worker's GPU, and the
+    modules of generation, truncation and the reductions are loaded
+    (``wp.load_module``). On the CPU only Warp is started: its kernels load (and compile) on
+    first use, in the first task, as in process.
     """
-    if not case_seconds or case_seconds != case_seconds:  # None, 0 or NaN
-        return 1
-    size = max(1, min(max_size, math.ceil(target_s / case_seconds)))
-    return max(1, min(size, -(-remaining // (2 * max(n_workers, 1)))))
+    try:
+        import warp as wp
+
+        from .._support.device import resolve_device
+
+        dev = resolve_device(device)
+        if dev.is_cuda:
+            wp.set_device(dev)
+            from ..kernels import reduce, truncation, wm
+
+            for module in (wm, truncation, reduce):
+                wp.load_module(module, device=dev)
+        return str(dev)
+    except Exception as exc:  # reported by the tasks
+        return f"{device}: {type(exc).__name__}: {exc}"
 
 
 def resolve_workers(workers: int | str | None) -> int | None:
@@ -255,7 +264,8 @@ def open_client(
     ``LocalCluster`` whose worker i runs on ``cuda:{i mod n_gpus}`` (:class:`PinDevice`).
     The workers of a local cluster get this process's kernel cache folder as
     ``WARP_CACHE_PATH`` (:func:`kernel_cache_base`; with none set, all resolve the user's
-    default), so they share one kernel cache on disk. Warp is not started here: devices are
+    default), so they share one kernel cache on disk, and are warmed before the first task
+    (:func:`warm_worker`, on every worker at once). Warp is not started here: devices are
     counted through the CUDA driver (only for ``"auto"`` and dask-cuda). Workers of an
     existing cluster are not pinned: start one per GPU with its ``CUDA_VISIBLE_DEVICES``
     (``dask cuda worker`` does) or ``WARPTRUNC_DEVICE``.
@@ -293,13 +303,16 @@ def open_client(
             client = Client(cluster)
             if pin:  # a LocalCUDACluster's worker sees its own device first: cuda:0
                 client.register_plugin(PinDevice(n_devices=1 if cuda_cls else None))
+            t0 = time.perf_counter()
+            client.run(warm_worker, device)  # all workers at once; never raises in a worker
+            warm = time.perf_counter() - t0
         except BaseException:
             cluster.close()
             raise
         if progress:
             kind = type(cluster).__name__
-            print(f"Dask {kind} of {len(cluster.workers)} workers, dashboard: "
-                  f"{client.dashboard_link}", file=sys.stderr)  # fmt: skip
+            print(f"Dask {kind} of {len(cluster.workers)} workers (warmed in {warm:.1f} s), "
+                  f"dashboard: {client.dashboard_link}", file=sys.stderr)  # fmt: skip
     try:
         yield client, cluster, True
     finally:
@@ -341,7 +354,7 @@ def run_dask(
     max_retries : int
         Resubmissions of a case whose task was lost before it is recorded as failed (count).
     shard_size : int, optional
-        Cases per task; None: adaptive (:func:`shard_size_for`).
+        Cases per task; None: adaptive (:class:`~warptrunc.sweep.sharding.ShardPlanner`).
     shard_seconds : float
         Work per task that the adaptive size aims for (s).
 
@@ -354,14 +367,16 @@ def run_dask(
     opens, and its cluster, are closed at the end; a client passed in is left open.
 
     Cases go to the workers in shards (one task each, :func:`compute_shard`): ``shard_size``
-    cases, or an adaptive size (:func:`shard_size_for`: about ``shard_seconds`` of work per
-    task from the median case time so far, starting at 1 case), with about two tasks in
-    flight per worker. The workers write the parts into ``store.curves`` (a filesystem shared
+    cases, or an adaptive size (:class:`~warptrunc.sweep.sharding.ShardPlanner`: about
+    ``shard_seconds`` of work per task from the cases per second of the finished tasks, each
+    worker's first task left out; 1, 2, 4 … cases while none is known; at most about four
+    tasks per worker), with about two tasks in flight per worker. The workers write the parts into ``store.curves`` (a filesystem shared
     with this process) and send back only the part's name and rows. A task whose worker died
     or whose future was cancelled (``client.restart()``): if its part exists (written before
     the worker died) it is recorded; else the shard is submitted again whole (same part name,
     so two attempts never both land), and after a second loss one case per task, up to
-    ``max_retries`` times per case, then recorded as failed.
+    ``max_retries`` times per case, then recorded as failed. A task that raised (a bug: a
+    case records its own errors) is handled the same way, and its error printed once (stderr).
     """
 
     with open_client(workers, scheduler, device, progress) as (client, _, _):
@@ -380,8 +395,9 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
     attempts = dict.fromkeys(by_id, 0)
     queue = [c.case_id for c in cases]  # not yet submitted, in grid order
     retry: list[list[str]] = []  # lost shards, submitted again first
-    times: list[float] = []
+    plan = ShardPlanner(len(cases), target_s=shard_seconds)
     n_workers = [1, 0.0]
+    told: set[str] = set()  # errors of tasks already reported
 
     def workers_now() -> int:
         if time.monotonic() - n_workers[1] > 5:
@@ -394,9 +410,6 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
             new = store.add_many([(rows, None) for rows in held])
         else:
             new = store.record_part(part, held)
-        times.extend(rs[0]["seconds"] for rs in held
-                     if rs and isinstance(rs[0].get("seconds"), float)
-                     and rs[0]["seconds"] == rs[0]["seconds"])  # fmt: skip
         return sum(new)
 
     futures: dict = {}
@@ -417,10 +430,7 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
             if retry:
                 submit(retry.pop(0))
                 continue
-            size = shard_size or shard_size_for(
-                statistics.median(times[-64:]) if times else None, len(queue), w,
-                target_s=shard_seconds,
-            )  # fmt: skip
+            size = shard_size or plan.size(len(queue), w)
             submit(queue[:size])
             del queue[:size]
 
@@ -442,8 +452,15 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
                 except Exception:  # cancelled after it finished (client.restart()): lost
                     out = None
             if out is not None:
+                plan.finished(len(ids), plan.task_seconds(out), out.get("worker"))
                 bar.update(record(out["part"], out["rows"]))
             else:
+                if fut.status == "error":  # a bug, not a lost worker: say so once per message
+                    why = _task_error(fut)
+                    if why not in told:
+                        told.add(why)
+                        print(f"warning: a task of {len(ids)} cases raised {why}; its cases "
+                              "are submitted again", file=sys.stderr)  # fmt: skip
                 if curves is not None:  # the worker may have written the part and died
                     name = part_name(ids, min(by_id[c].index for c in ids))
                     held = part_rows(os.path.join(curves, name))
@@ -456,11 +473,7 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
                 else:
                     retry += [[c] for c in again]
                 if len(again) < len(lost):
-                    try:
-                        exc = fut.exception()
-                        why = f"{type(exc).__name__}: {exc}"
-                    except Exception as e:  # cancelled futures raise here
-                        why = f"{type(e).__name__}: {e}"
+                    why = _task_error(fut)
                     for cid in set(lost) - set(again):
                         rows, _ = failed_case(by_id[cid], options,
                                               f"lost {attempts[cid]} times: {why}")  # fmt: skip
@@ -468,3 +481,12 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
                         bar.update()
             fut.release()
             top_up()
+
+
+def _task_error(fut) -> str:
+    """``"<type>: <message>"`` of the exception of a failed or cancelled future."""
+    try:
+        exc = fut.exception()
+        return f"{type(exc).__name__}: {exc}"
+    except Exception as e:  # cancelled futures raise here
+        return f"{type(e).__name__}: {e}"

@@ -16,8 +16,10 @@ from __future__ import annotations
 
 import collections
 import json
+import os
 import queue
 import re
+import socket
 import threading
 import time
 import zlib
@@ -413,7 +415,9 @@ def compute_shard(
     -------
     dict
         ``part``: the part's file name (None without ``curves``); ``rows``: per case, its
-        fit-range rows as stored in that part.
+        fit-range rows as stored in that part; ``seconds``: the task's time on this worker
+        (s; None when an existing part was read instead); ``worker``: ``host:pid`` of this
+        process (the client leaves each worker's first task out of its shard sizing).
 
     Notes
     -----
@@ -423,17 +427,19 @@ def compute_shard(
     two attempts running at once write one part (the first rename wins, the other returns
     that part's rows).
     """
+    t0, me = time.perf_counter(), f"{socket.gethostname()}:{os.getpid()}"
     if curves is None:
-        return {"part": None, "rows": [r[0] for r in compute_many(cases, options, device)]}
+        rows = [r[0] for r in compute_many(cases, options, device)]
+        return {"part": None, "rows": rows, "seconds": time.perf_counter() - t0, "worker": me}
     folder = Path(curves)
     name = part_name([c.case_id for c in cases], min(c.index for c in cases))
     if (folder / name).exists():
         held = part_rows(folder / name)
         if held is not None:
-            return {"part": name, "rows": held}
+            return {"part": name, "rows": held, "seconds": None, "worker": me}
     results = compute_many(cases, options, device)
     name, held = write_part(folder, results)
-    return {"part": name, "rows": held}
+    return {"part": name, "rows": held, "seconds": time.perf_counter() - t0, "worker": me}
 
 
 def pinned_device(worker_name: Any, n_devices: int) -> str | None:
