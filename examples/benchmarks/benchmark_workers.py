@@ -44,6 +44,9 @@ Run
     python examples/benchmarks/benchmark_workers.py --device cpu --workers 2 --out bench_w
     # a GPU node, the issue's sizes (≥ 2000 light cases at 2048², 96 elastic at 4096²)
     python examples/benchmarks/benchmark_workers.py --full --out bench_w
+    # 20000 light cases (seeds 0-4999 over the 4 D values): where the cluster's start stops
+    # mattering
+    python examples/benchmarks/benchmark_workers.py --full --runs light --light-cases 20000
     # see examples/gpu_checks/workers_bench.sh
 """
 
@@ -110,6 +113,17 @@ def _seeds_first(args: list[str]) -> list[str]:
     out = list(args)
     i = out.index("--seeds") + 1
     out[i] = out[i].split(",")[0].split("-")[0]
+    return out
+
+
+def with_cases(args: list[str], n_cases: int) -> list[str]:
+    """The workload's arguments with ``--seeds 0-<k−1>``: ``n_cases`` cases over its ``--D``
+    values (k = n_cases / their number, rounded up)."""
+    out = list(args)
+    i = out.index("--D") + 1
+    n_d = next((j for j, a in enumerate(out[i:]) if a.startswith("--")), len(out) - i)
+    k = max(1, -(-int(n_cases) // max(1, n_d)))
+    out[out.index("--seeds") + 1] = f"0-{k - 1}"
     return out
 
 
@@ -352,6 +366,10 @@ def main(argv=None) -> int:
     ap.add_argument("--light-args", default=None,
                     help="replace the light workload's sweep arguments (one quoted string, "
                     "e.g. \"--n 512 --D 2.5 --delta 0.01 --seeds 0-99\")")  # fmt: skip
+    ap.add_argument("--light-cases", type=int, default=None,
+                    help="light cases (count) over the light workload's D values: its seeds "
+                    "become 0-(N/len(D)−1), e.g. 20000 with --full for seeds 0-4999 over 4 D "
+                    "values; default: the workload's own (2000 with --full)")  # fmt: skip
     ap.add_argument("--elastic-args", default=None,
                     help="replace the elastic workload's sweep arguments (one quoted string)")
     ap.add_argument("--budget-s", type=float, default=None,
@@ -372,6 +390,8 @@ def main(argv=None) -> int:
         "light": shlex.split(args.light_args) if args.light_args else sizes["light"],
         "elastic": shlex.split(args.elastic_args) if args.elastic_args else sizes["elastic"],
     }
+    if args.light_cases is not None:
+        workloads["light"] = with_cases(workloads["light"], args.light_cases)
     out = args.out.resolve()
     out.mkdir(parents=True, exist_ok=True)
     log = out / "commands.log"

@@ -13,6 +13,10 @@
 # benchmark_workers.json (GPUs, commit, commands, every measure) and commands.log; the table
 # is printed last. Extra arguments of the benchmark: $BENCH_ARGS.
 # A dry run on a CPU machine: SMALL=1 BENCH_ARGS="--device cpu --workers 2" bash ...
+# A subset of the GPUs of the host: GPUS=0,1 (sets CUDA_VISIBLE_DEVICES; worker counts 1 2 …
+# up to the GPUs named, the check on 2). More light cases: LIGHT_CASES=20000 (seeds 0-4999 over
+# the 4 D values, --light-cases of the benchmark), to see where the cluster's start stops
+# mattering.
 # Needs dask and distributed (the WHEELS line of sweep_two_gpus.sh), not dask-cuda: without it
 # the LocalCluster with one worker pinned per GPU is used.
 # Time on 4 H100s, estimated from measurements of 2026-11-27 (one H100, a smoke run of the
@@ -30,6 +34,17 @@ mkdir -p "$OUT"
 python3 -c "import warptrunc" 2>/dev/null || python3 -m pip install -q --no-deps --no-build-isolation -e . >/dev/null 2>&1 || true
 nvidia-smi -L || true
 NGPU=$(nvidia-smi -L 2>/dev/null | grep -c '^GPU' || true)
+COUNTS=""
+if [ -n "${GPUS:-}" ]; then  # a subset of the host's GPUs: the workers see only these
+    export CUDA_VISIBLE_DEVICES=$GPUS
+    NGPU=$(echo "$GPUS" | tr ',' '\n' | grep -c .)
+    c=1
+    while [ "$c" -lt "$NGPU" ]; do COUNTS="$COUNTS $c"; c=$((c * 2)); done
+    COUNTS="--workers$COUNTS $NGPU"
+    echo "GPUS=$GPUS: CUDA_VISIBLE_DEVICES=$CUDA_VISIBLE_DEVICES, $COUNTS"
+fi
+LIGHT=""
+[ -n "${LIGHT_CASES:-}" ] && LIGHT="--light-cases $LIGHT_CASES"
 python3 - <<'PY' || { echo "dask/distributed missing: install the WHEELS of sweep_two_gpus.sh"; exit 1; }
 import dask, distributed, pandas, pyarrow
 print("dask", dask.__version__, "distributed", distributed.__version__,
@@ -49,7 +64,8 @@ t0=$(date +%s)
 SIZES="--full"
 [ "${SMALL:-0}" = 1 ] && SIZES=""
 python3 examples/benchmarks/benchmark_workers.py $SIZES --out "$OUT" \
-    --budget-s "${BUDGET_S:-300}" --grace-s 45 --timeout-s 240 --check-workers $CHECK ${BENCH_ARGS:-} \
+    --budget-s "${BUDGET_S:-300}" --grace-s 45 --timeout-s 240 --check-workers $CHECK $COUNTS \
+    $LIGHT ${BENCH_ARGS:-} \
     2> "$OUT/benchmark_stderr.log"
 status=$?
 [ $status -ne 0 ] && tail -n 30 "$OUT/benchmark_stderr.log"
