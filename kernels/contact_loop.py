@@ -34,6 +34,7 @@ S_MEAN = wp.constant(8)  # mean of z over the free set (load control)
 S_FLAG = wp.constant(9)  # 1: u misses the projection's corrections; 2: Σ q ≤ 0, not scaled
 S_SCALE = wp.constant(10)  # load / Σ q (0: none)
 S_RES = wp.constant(11)  # 11 … 19: the residual kernel's nine sums, in its column order
+S_LOAD = wp.constant(20)  # the load of load control (N)
 S_SIZE = 24
 
 
@@ -98,14 +99,31 @@ def loop_dot_kernel(
 
 
 @wp.kernel
+def step_length_loop_kernel(
+    sums: wp.array2d(dtype=wp.float64),
+    s: wp.array[wp.float64],
+    inv_n: wp.float64,
+    tau: wp.array[wp.float64],
+):
+    """One thread: ``step_length_kernel`` (τ = Σ c·g·t / (t·K·t) from columns 0 and 1) with the
+    free-set count read from s[S_RES]."""
+    s_gt = fold(sums, 0, 0)
+    t_k_t = fold(sums, 1, 0) * inv_n
+    step = wp.float64(0.0)
+    if s[S_RES + 0] > wp.float64(0.0) and t_k_t > wp.float64(0.0):
+        step = s_gt / t_k_t
+    tau[0] = step
+
+
+@wp.kernel
 def loop_update_kernel(
     sums: wp.array2d(dtype=wp.float64),
     load_control: int,
-    load: wp.float64,
     s: wp.array[wp.float64],
 ):
     """One thread: [n projected, max projected, Σ q, max abs(τ·K·t)] of ``bccg_update_kernel``
-    into s; in load control the scale to the ``load`` (N), and Σ q becomes the load."""
+    into s; in load control the scale to the load s[S_LOAD] (N), and Σ q becomes the load."""
+    load = s[S_LOAD]
     n_p = fold(sums, 0, 0)
     viol = fold(sums, 1, 1)
     total = fold(sums, 2, 0)

@@ -71,6 +71,11 @@ def test_device_loop_equals_host_loop(case):
         assert d[1] == pytest.approx(h[1], rel=tol, abs=1e-15)  # approach (m)
 
 
+def test_graph_loop_off_cuda_is_the_device_loop():
+    """``loop="graph"`` off a CUDA device launches as ``"device"``: the same answers."""
+    assert run("graph", substrate="free") == run("device", substrate="free")
+
+
 def test_device_loop_is_the_default():
     assert SolverSettings().loop == "device"
     with pytest.raises(ValueError, match="loop"):

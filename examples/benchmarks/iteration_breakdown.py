@@ -7,7 +7,8 @@ What it shows
     Per map size N (D = 2.5 WM map, L = 1 mm, W_r = 100 µm, R_t = 10 µm, free boundary, as the
     scaling benchmark): the warm solve (δ = 0.21·R_t after a cold one at 0.20·R_t) with
     ``SolverSettings(loop="host")`` (four to five read-backs per iteration) and ``loop="device"``
-    (one), each in a solver of its own: time, iterations, convolutions, time per iteration and
+    (one) and ``loop="graph"`` (one, the steady iterations replayed from a CUDA graph), each in
+    a solver of its own: time, iterations, convolutions, time per iteration and
     per convolution against the FFT floor of the scaling benchmark (CuPy rfft2 + irfft2 of the
     padded grid) measured in the same run; then the parts of an iteration timed alone on the
     device (CUDA events, median of repeats): one convolution K·t and one K⁻¹·r (transforms and
@@ -121,7 +122,8 @@ def warm_solve(s, dtype: str, dev, loop: str) -> tuple[dict, ContactSolver]:
     row = {"loop": loop, "cold_iterations": cold.n_iterations, "warm_s": t,
            "warm_iterations": warm.n_iterations, "warm_convolutions": warm.n_convolutions,
            "load_N": warm.load, "n_contact": warm.n_contact,
-           "converged": bool(cold.converged and warm.converged)}  # fmt: skip
+           "converged": bool(cold.converged and warm.converged),
+           "graph_error": solver.graph_error()}  # fmt: skip
     return row, solver
 
 
@@ -143,7 +145,7 @@ def main(argv: list[str] | None = None) -> int:
         for dtype in a.dtype:
             floor = fft_floor(n, dtype, dev, a.repeats)
             row = {"n": n, "dtype": dtype, "fft_floor_s": floor, "loops": {}}
-            for loop in ("host", "device"):
+            for loop in ("host", "device", "graph"):
                 r, solver = warm_solve(s, dtype, dev, loop)
                 it, conv = r["warm_iterations"], r["warm_convolutions"]
                 r["per_iteration_s"] = r["warm_s"] / it
@@ -163,9 +165,12 @@ def main(argv: list[str] | None = None) -> int:
             for loop, r in row["loops"].items():
                 r["idle_per_iteration_s"] = r["per_iteration_s"] - busy
             rows.append(row)
-            h = row["loops"]["host"]
+            h, g = row["loops"]["host"], row["loops"]["graph"]
             print(f"N={n} {dtype}: warm host {h['warm_s'] * 1e3:.1f} ms ({h['warm_iterations']} it,"
-                  f" {h['warm_convolutions']} conv), device {d['warm_s'] * 1e3:.1f} ms "
+                  f" {h['warm_convolutions']} conv), graph {g['warm_s'] * 1e3:.1f} ms "
+                  f"({g['warm_iterations']} it, loads equal to "
+                  f"{abs(h['load_N'] - g['load_N']) / h['load_N']:.1e}, capture error "
+                  f"{g['graph_error']}), device {d['warm_s'] * 1e3:.1f} ms "
                   f"({d['warm_iterations']} it, {d['warm_convolutions']} conv); per conv "
                   f"{(d['per_convolution_over_floor'] or float('nan')):.2f}× floor "
                   f"({(floor or float('nan')) * 1e3:.2f} ms); busy/it {busy * 1e3:.2f} ms, "

@@ -123,7 +123,7 @@ class BCCGSolves:
         force cap ``cap`` (N per pixel; None: elastic). Returns the info dict of the default
         solver's solves. With ``settings.loop="device"`` (the default) the iteration is
         :mod:`warptrunc.contact.bccg_device`'s, one read-back per iteration."""
-        if getattr(self.settings, "loop", "host") == "device":
+        if getattr(self.settings, "loop", "host") in ("device", "graph"):
             return self._solve_bccg_device(offset, load, cap)
         red, hs, dev = self.hs.reduction, self.hs, self.device
         n_map = self.shape[0] * self.shape[1]

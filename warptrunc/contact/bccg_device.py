@@ -28,6 +28,7 @@ contact set).
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Any
 
 import numpy as np
@@ -54,9 +55,9 @@ class DeviceLoopSolves:
             self._s_loop = wp.zeros(_kl.S_SIZE, dtype=wp.float64, device=self.device)
         return self._s_loop
 
-    def _loop_top(self, s: wp.array, hf: float, load_control: bool) -> np.ndarray:
-        """The top of an iteration: (load control) move the offset by the mean free gap, then
-        the residual and its sums; returns the scalar array read back (the one sync point)."""
+    def _loop_top(self, s: wp.array, hf: float, load_control: bool) -> None:
+        """The top of an iteration (launches only): (load control) move the offset by the mean
+        free gap, then the residual and its sums into the scalar array."""
         red, n_map = self.hs.reduction, self.shape[0] * self.shape[1]
         if load_control:
             red.launch(_kl.sums_loop_kernel, n_map, [self.q, self.u, self.h, s, wp.float64(hf)],
@@ -69,7 +70,91 @@ class DeviceLoopSolves:
         flags = (False, False, False, False, True, True, True, False, False)
         wp.launch(_kl.loop_residual_kernel, dim=1, inputs=[red.fold(flags)], outputs=[s],
                   device=self.device)  # fmt: skip
-        return s.numpy()  # sync point
+
+    def _loop_step(self, s: wp.array, hf: float, load_control: bool, use_pc: bool,
+                   restart: bool, refresh_now: bool) -> None:  # fmt: skip
+        """The rest of an iteration (launches only): the (preconditioned) direction, the step
+        and its projection, the direct correction of a few projected forces, the scale to the
+        load, and u afresh when ``refresh_now``."""
+        red, hs, dev = self.hs.reduction, self.hs, self.device
+        n_map = self.shape[0] * self.shape[1]
+        r_buf, z_old = self._bccg_maps()
+        lc = int(load_control)
+        z = hs.apply(r_buf, inverse=True) if use_pc else r_buf
+        red.launch(_kb.bccg_dot_kernel, n_map, [z, r_buf, z_old, self.mask], [])
+        wp.launch(_kl.loop_dot_kernel, dim=1,
+                  inputs=[red.fold((False, False, False)), lc, int(restart)], outputs=[s],
+                  device=dev)  # fmt: skip
+        red.launch(_kl.direction_loop_kernel, n_map, [z, s, self.mask, r_buf], [self.t, z_old])
+        del z
+        spec = hs.work
+        hs.forward(self.t_buf, spec)
+        hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
+        wp.launch(_kl.step_length_loop_kernel, dim=1,
+                  inputs=[red.fold((False, False)), s, wp.float64(1.0 / hs.n_total)],
+                  outputs=[self.tau], device=dev)  # fmt: skip
+        kt = hs.inverse(spec)
+        red.launch(_kb.bccg_update_kernel, n_map, [kt, self.tau, wp.float64(hf), self.t],
+                   [self.q, self.u, r_buf, self.mask, self.lane_count])  # fmt: skip
+        del kt
+        wp.launch(_kl.loop_update_kernel, dim=1,
+                  inputs=[red.fold((False, True, False, True)), lc], outputs=[s],
+                  device=dev)  # fmt: skip
+        if not refresh_now:
+            # the projection's few corrections by direct summation, on the device's count
+            cap_list = int(self.direct_max)
+            wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
+            wp.launch(_kl.compact_gated_kernel, dim=red.lanes,
+                      inputs=[self.q, r_buf, self.mask, self.lane_offset, s, cap_list,
+                              *red.geometry(n_map)],
+                      outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
+            red.launch(_kl.correct_gated_kernel, n_map,
+                       [hs.table, int(self.substrate == "periodic"), self.change_index,
+                        self.change_value, s, cap_list], [self.u])  # fmt: skip
+            wp.launch(_kl.loop_correct_kernel, dim=1, inputs=[red.fold((True,)), cap_list],
+                      outputs=[s], device=dev)  # fmt: skip
+        if load_control:
+            wp.launch(_kl.scale_gated_kernel, dim=self.shape, inputs=[s],
+                      outputs=[self.q, self.u], device=dev)  # fmt: skip
+        if refresh_now:
+            # u afresh on schedule (the flag of a load left without force is handled at the
+            # next read, which transforms afresh once more)
+            kq = hs.apply(self.q_buf)
+            red.launch(_kb.bccg_exact_kernel, n_map, [kq], [self.u])
+            del kq
+            wp.launch(_kl.loop_exact_kernel, dim=1, inputs=[red.fold((True,))], outputs=[s],
+                      device=dev)  # fmt: skip
+
+    def _loop_iteration(self, key: tuple, launch) -> None:
+        """Run ``launch`` (the launches of one iteration's step and the next top): replayed
+        from a CUDA graph captured on first use (``settings.loop="graph"`` on a CUDA device),
+        else launched. A capture that fails is recorded in ``graph_error`` and the solver
+        launches from then on."""
+        if self.settings.loop != "graph" or not self.device.is_cuda or self.graph_error():
+            launch()
+            return
+        graphs = self.__dict__.setdefault("_loop_graphs", {})
+        graph = graphs.get(key)
+        if graph is None:
+            launch()  # once uncaptured: the kernels' modules are loaded before the capture
+            try:
+                with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
+                    launch()
+            except Exception as exc:  # noqa: BLE001 - any failure: launch uncaptured from now on
+                # the iteration ran uncaptured above; what the capture recorded never ran
+                self._graph_error = f"{type(exc).__name__}: {exc}"
+                warnings.warn(f"contact solver: CUDA graph capture failed ({self._graph_error}); "
+                              "the iterations are launched instead", RuntimeWarning,
+                              stacklevel=2)  # fmt: skip
+                return
+            graphs[key] = cap.graph
+            return  # the captured launches have not run: the uncaptured ones did
+        wp.capture_launch(graph)
+
+    def graph_error(self) -> str | None:
+        """Why the CUDA graph of the iteration could not be captured (None: it was, or was
+        not tried)."""
+        return getattr(self, "_graph_error", None)
 
     def _set_scalars(self, s: wp.array, values: dict[int, float]) -> None:
         """Write a few entries of the scalar array from the host (a small copy)."""
@@ -82,16 +167,12 @@ class DeviceLoopSolves:
                            cap: float | None) -> dict[str, Any]:  # fmt: skip
         """:meth:`~warptrunc.contact.bccg.BCCGSolves._solve_bccg` with one read-back per
         iteration (module docstring); same arguments and info dict."""
-        red, hs, dev = self.hs.reduction, self.hs, self.device
+        dev = self.device
         n_map = self.shape[0] * self.shape[1]
-        inv_n = 1.0 / hs.n_total
         hf = _HUGE if cap is None else float(cap)
         load_control = load is not None
-        lc = int(load_control)
-        r_buf, z_old = self._bccg_maps()
+        _, z_old = self._bccg_maps()
         pc_above = self._precondition_above()
-        periodic = int(self.substrate == "periodic")
-        cap_list = int(self.direct_max)
         s = self._loop_scalars()
         self._warm_start(offset)  # then projected onto the box
         wp.launch(_kb.clamp_force_kernel, dim=self.shape, inputs=[wp.float64(hf)],
@@ -102,7 +183,8 @@ class DeviceLoopSolves:
             total = float(load)
         self._exact_u()
         s.zero_()
-        self._set_scalars(s, {_kl.S_OFF: offset, _kl.S_SETOFF: offset, _kl.S_TOTAL: total})
+        self._set_scalars(s, {_kl.S_OFF: offset, _kl.S_SETOFF: offset, _kl.S_TOTAL: total,
+                              _kl.S_LOAD: 0.0 if load is None else float(load)})  # fmt: skip
         n_transforms = 4
         self.t.zero_()
         z_old.zero_()
@@ -112,9 +194,10 @@ class DeviceLoopSolves:
         viol = 0.0
         last_total = last_height = None
         info: dict[str, Any] = {"converged": False}
+        self._loop_top(s, hf, load_control)
+        v = s.numpy()  # sync point
         for it in range(1, self.maxiter + 1):
             top_offset = offset
-            v = self._loop_top(s, hf, load_control)  # sync point
             flag = int(v[_kl.S_FLAG])
             if flag and du is not None:
                 # the step before projected more pixels than the list holds (1), or left no
@@ -126,7 +209,8 @@ class DeviceLoopSolves:
                 n_transforms += 2
                 self._set_scalars(s, {_kl.S_OFF: top_offset, _kl.S_SETOFF: top_offset,
                                       _kl.S_FLAG: 0.0, _kl.S_DU: du})  # fmt: skip
-                v = self._loop_top(s, hf, load_control)  # sync point
+                self._loop_top(s, hf, load_control)
+                v = s.numpy()  # sync point
             offset = float(v[_kl.S_OFF])
             if du is not None:
                 du = float(v[_kl.S_DU])
@@ -157,59 +241,19 @@ class DeviceLoopSolves:
                 break
             use_pc = n_f > pc_above * n_map
             restart = not have_rz or use_pc != last_pc
-            last_pc = use_pc
-            if use_pc:
-                z = hs.apply(r_buf, inverse=True)
-                n_transforms += 2
+            last_pc, have_rz = use_pc, True
+            refresh_now = it % self.refresh == 0
+
+            def launch(use_pc=use_pc, restart=restart, refresh_now=refresh_now):
+                self._loop_step(s, hf, load_control, use_pc, restart, refresh_now)
+                self._loop_top(s, hf, load_control)
+
+            if restart or refresh_now:
+                launch()  # rare: not worth a graph
             else:
-                z = r_buf
-            red.launch(_kb.bccg_dot_kernel, n_map, [z, r_buf, z_old, self.mask], [])
-            wp.launch(_kl.loop_dot_kernel, dim=1,
-                      inputs=[red.fold((False, False, False)), lc, int(restart)], outputs=[s],
-                      device=dev)  # fmt: skip
-            have_rz = True
-            red.launch(_kl.direction_loop_kernel, n_map, [z, s, self.mask, r_buf],
-                       [self.t, z_old])  # fmt: skip
-            del z
-            spec = hs.work
-            hs.forward(self.t_buf, spec)
-            hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
-            wp.launch(_k.step_length_kernel, dim=1,
-                      inputs=[red.fold((False, False)), wp.float64(n_f), wp.float64(inv_n)],
-                      outputs=[self.tau], device=dev)  # fmt: skip
-            kt = hs.inverse(spec)
-            n_transforms += 2
-            red.launch(_kb.bccg_update_kernel, n_map, [kt, self.tau, wp.float64(hf), self.t],
-                       [self.q, self.u, r_buf, self.mask, self.lane_count])  # fmt: skip
-            del kt
-            wp.launch(_kl.loop_update_kernel, dim=1,
-                      inputs=[red.fold((False, True, False, True)), lc,
-                              wp.float64(0.0 if load is None else load)],
-                      outputs=[s], device=dev)  # fmt: skip
-            if it % self.refresh != 0:
-                # the projection's few corrections by direct summation, on the device's count
-                geo = red.geometry(n_map)
-                wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
-                wp.launch(_kl.compact_gated_kernel, dim=red.lanes,
-                          inputs=[self.q, r_buf, self.mask, self.lane_offset, s, cap_list, *geo],
-                          outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
-                red.launch(_kl.correct_gated_kernel, n_map,
-                           [hs.table, periodic, self.change_index, self.change_value, s,
-                            cap_list], [self.u])  # fmt: skip
-                wp.launch(_kl.loop_correct_kernel, dim=1,
-                          inputs=[red.fold((True,)), cap_list], outputs=[s], device=dev)  # fmt: skip
-            if load_control:
-                wp.launch(_kl.scale_gated_kernel, dim=self.shape, inputs=[s],
-                          outputs=[self.q, self.u], device=dev)  # fmt: skip
-            if it % self.refresh == 0:
-                # u afresh on schedule (the flag of a load left without force is handled
-                # at the next read, which transforms afresh once more)
-                kq = hs.apply(self.q_buf)
-                red.launch(_kb.bccg_exact_kernel, n_map, [kq], [self.u])
-                del kq
-                wp.launch(_kl.loop_exact_kernel, dim=1, inputs=[red.fold((True,))], outputs=[s],
-                          device=dev)  # fmt: skip
-                n_transforms += 2
+                self._loop_iteration((use_pc, load_control, hf), launch)
+            n_transforms += 2 + 2 * int(use_pc) + 2 * int(refresh_now)
             du = 0.0  # a step was taken: the next read carries its change of u
+            v = s.numpy()  # sync point
         self.offset = offset
         return info

@@ -86,9 +86,10 @@ class SolverSettings(Parameters):
     loop: str = param(
         "device", "where the BCCG iteration's scalar steps run: 'device' folds the offset of load "
         "control, the CG's beta and the projection's count on the device and reads back once per "
-        "iteration; 'host' reads back after each reduction (4-5 times per iteration; the loop of "
-        "earlier releases, equal to round-off)",
-        choices=("device", "host"),
+        "iteration; 'graph' the same, its steady iterations replayed from a CUDA graph (fewer "
+        "launches; as 'device' off CUDA); 'host' reads back after each reduction (4-5 times per "
+        "iteration; the loop of earlier releases, equal to round-off)",
+        choices=("device", "graph", "host"),
     )  # fmt: skip
     precondition_above: float | None = param(
         None, "BCCG applies its FFT preconditioner c·K⁻¹·c (one more convolution per iteration) "
