@@ -90,7 +90,7 @@ def fft_floor(n: int, dtype: str, dev, repeats: int) -> float | None:
 
 def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
             precondition_above: float | None = None, pentol: float | None = None,
-            direct_max: int | None = None) -> dict:
+            direct_max: int | None = None, loop: str | None = None) -> dict:
     """Make a solver, solve cold at 0.20·R_t and warm at 0.21·R_t; times, counts, memory."""
     h = s.heights  # the host copy of a device map: outside the window (Warp's tracker counts
     # host allocations too)
@@ -104,7 +104,8 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
         solver = ContactSolver(h, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev,
                                algorithm=algorithm, fft_plan=fft_plan,
                                precondition_above=precondition_above,
-                               pentol=pentol, direct_max=direct_max)  # fmt: skip
+                               pentol=pentol, direct_max=direct_max,
+                               **({} if loop is None else {"loop": loop}))  # fmt: skip
         wp.synchronize_device(dev)
         t1 = time.perf_counter()
         cold = solver.solve(COLD * s.Rt)
@@ -119,6 +120,7 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
         peak = int(core.wp_alloc_tracker_get_peak_bytes() - base)
         fft_work = solver.hs.fft_work.capacity if solver.hs.fft_work is not None else 0
         plan = solver.fft_plan
+        graph_error = solver.graph_error()
         del solver
     gc.collect()
     return {
@@ -129,7 +131,15 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
         "converged": bool(cold.converged and warm.converged),
         "load_N": warm.load, "n_contact": warm.n_contact,
         "peak_bytes": peak, "cufft_work_bytes": int(fft_work), "fft_plan": plan,
+        "loop": solver_loop(loop), "graph_error": graph_error,
     }  # fmt: skip
+
+
+def solver_loop(loop: str | None) -> str:
+    """The solver's ``SolverSettings.loop`` (its default when None)."""
+    from warptrunc.contact import SolverSettings
+
+    return SolverSettings().loop if loop is None else loop
 
 
 def _threshold(text: str) -> float | None:
@@ -163,6 +173,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--wc-pixels", type=float, default=None,
                    help="fixed content: the cut-off W_c as this many pixels of the first N "
                    "(default: W_c = 2 pixels at every N, finer pixels add roughness)")  # fmt: skip
+    p.add_argument("--loop", default=None, choices=["host", "device", "graph"],
+                   help="SolverSettings.loop (default: the solver's)")
     p.add_argument("--repeats", type=int, default=3, help="repeats of the FFT floor (median)")
     p.add_argument("--budget", type=float, default=480.0, help="time budget of the run (s)")
     p.add_argument("--quick", action="store_true", help="small sizes (128, 256), float32 only")
@@ -201,7 +213,7 @@ def main(argv: list[str] | None = None) -> int:
                 pentol = None
                 if a.pentol_rms is not None:
                     pentol = a.pentol_rms * float(np.std(s.heights))
-                r = run_one(s, dtype, dev, algorithm, a.fft_plan, pa, pentol, dm)
+                r = run_one(s, dtype, dev, algorithm, a.fft_plan, pa, pentol, dm, a.loop)
             except MemoryError as exc:
                 print(f"N={n} {dtype}: {exc}", flush=True)
                 rows.append({"n": n, "dtype": dtype, "algorithm": algorithm,

@@ -7,7 +7,8 @@
 #  2. On cuda:0: benchmarks/iteration_breakdown.py (the host loop against the device loop, the
 #     parts of an iteration) at 2048², 4096², 8192², 16384² float32 and 10240² float64; then
 #     benchmarks/benchmark_solver_scaling.py (the solver table: cold/warm, float32 and float64,
-#     per convolution ÷ the FFT floor) at 2048²–16384² both precisions and 32768² float32.
+#     per convolution ÷ the FFT floor) at 2048²–16384² both precisions and 32768² float32, with
+#     SolverSettings.loop=$LOOP (default graph).
 #  3. On cuda:0: benchmarks/startup.py, 5 fresh `warptrunc analyze --n 10240` processes against
 #     the floor `import warp; warp.init(); warp.get_device('cuda:0')`, with the breakdown.
 # Results under $OUT: breakdown/breakdown.json, scaling/scaling.json, peers_<dev>.json,
@@ -59,10 +60,11 @@ echo "breakdown: ${SECONDS} s"
 
 # shellcheck disable=SC2086
 (cd examples/benchmarks && $PY benchmark_solver_scaling.py --device "$DEVICE" --n $SIZES \
-    --dtype float32 float64 --budget 200 --out "$OUT/scaling") 2>&1 | grep -v "^Warp " \
+    --dtype float32 float64 --loop "${LOOP:-graph}" --budget 200 --out "$OUT/scaling") 2>&1 | grep -v "^Warp " \
     | tee "$OUT/scaling.log"
 [ "$DEVICE" != cpu ] && (cd examples/benchmarks && $PY benchmark_solver_scaling.py \
-    --device "$DEVICE" --n "$BIG" --dtype float32 --budget 150 --out "$OUT/scaling_big") \
+    --device "$DEVICE" --n "$BIG" --dtype float32 --loop "${LOOP:-graph}" --budget 150 \
+    --out "$OUT/scaling_big") \
     2>&1 | grep -v "^Warp " | tee -a "$OUT/scaling.log"
 echo "scaling: ${SECONDS} s"
 

@@ -100,7 +100,7 @@ def default_pentol(heights: np.ndarray) -> float:
 
 
 _LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter", "refresh",
-           "direct_max", "load_control", "algorithm", "fft_plan", "precondition_above")  # fmt: skip
+           "direct_max", "load_control", "algorithm", "fft_plan", "precondition_above", "loop")  # fmt: skip
 
 
 @fill_doc(SHARED_DOCS)
