@@ -145,7 +145,8 @@ def _cluster(workers, scheduler, dev):
     from ..sweep.cluster import open_client
 
     task_device = "cpu" if dev.is_cpu else None
-    with open_client(workers, scheduler, task_device) as (client, _cluster, _own):
+    with open_client(workers, scheduler, task_device, warm_contact=True) as (client, _cluster,
+                                                                             _own):  # fmt: skip
         yield client, task_device
 
 

@@ -87,7 +87,7 @@ class PinDevice(WorkerPlugin):
             os.environ["WARPTRUNC_DEVICE"] = dev
 
 
-def warm_worker(device: Any = None) -> str:
+def warm_worker(device: Any = None, contact: bool = False) -> str:
     """Start Warp in this process and load the kernels every sweep case uses on its device.
 
     Run in each worker of a local cluster as it starts (:func:`open_client`), so that a
@@ -99,6 +99,10 @@ def warm_worker(device: Any = None) -> str:
     device : str, optional
         The device the tasks will be given; None: ``$WARPTRUNC_DEVICE`` (set by
         :class:`PinDevice`), else CUDA when present, else the CPU.
+    contact : bool, optional
+        Also warm the contact solver (elastic cases, ``reproduce``): on a CUDA device one
+        solve of a 64² map, which loads its kernel modules, CuPy and cuFFT (about a second
+        the first task would otherwise pay).
 
     Returns
     -------
@@ -126,6 +130,15 @@ def warm_worker(device: Any = None) -> str:
 
             for module in (wm, truncation, reduce):
                 wp.load_module(module, device=dev)
+            if contact:
+                import numpy as np
+
+                from ..contact import ContactSolver
+
+                x = np.linspace(0.0, 2.0 * np.pi, 64)
+                h = 1e-6 * np.outer(np.cos(x), np.cos(x))  # m
+                ContactSolver(h, 1e-6, 1e11, dtype="float32", device=dev).solve(5e-7)
+                wp.synchronize_device(dev)
         return str(dev)
     except Exception as exc:  # reported by the tasks
         return f"{device}: {type(exc).__name__}: {exc}"
@@ -227,6 +240,7 @@ def open_client(
     scheduler: Any = None,
     device: Any = None,
     progress: bool = True,
+    warm_contact: bool = False,
 ) -> Iterator[tuple[Any, Any, bool]]:
     """A Dask client for a command: a local cluster started once, or an existing cluster.
 
@@ -244,6 +258,9 @@ def open_client(
         the workers of a local cluster are pinned one per CUDA device.
     progress : bool
         Print the dashboard's address (stderr) when a local cluster starts.
+    warm_contact : bool, optional
+        Warm the contact solver in every worker as it starts (``warm_worker(contact=True)``:
+        elastic sweeps, ``reproduce``).
 
     Yields
     ------
@@ -304,7 +321,8 @@ def open_client(
             if pin:  # a LocalCUDACluster's worker sees its own device first: cuda:0
                 client.register_plugin(PinDevice(n_devices=1 if cuda_cls else None))
             t0 = time.perf_counter()
-            client.run(warm_worker, device)  # all workers at once; never raises in a worker
+            # all workers at once; never raises in a worker
+            client.run(warm_worker, device, warm_contact)
             warm = time.perf_counter() - t0
         except BaseException:
             cluster.close()

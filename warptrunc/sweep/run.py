@@ -171,8 +171,8 @@ def run_sweep(
         try:
             if todo and (workers is not None or scheduler is not None):
                 # one cluster for every group: its start (and the workers' kernel loads) once
-                scheduler = held.enter_context(_open_client(workers, scheduler, device,
-                                                            progress))[0]  # fmt: skip
+                scheduler = held.enter_context(_open_client(
+                    workers, scheduler, device, progress, bool(opts.bem_fractions)))[0]
                 workers = None
             left = len(todo)
             for params, group in groups.items():
@@ -190,7 +190,7 @@ def run_sweep(
     return store.frame()
 
 
-def _open_client(workers, scheduler, device, progress):
+def _open_client(workers, scheduler, device, progress, warm_contact=False):
     """:func:`warptrunc.sweep.cluster.open_client`, with a clear message without Dask."""
     try:
         from .cluster import open_client
@@ -199,7 +199,7 @@ def _open_client(workers, scheduler, device, progress):
             f"workers/scheduler need dask.distributed, a dependency of warptrunc that this "
             f'environment lacks ({exc.name} is missing): pip install "dask[distributed]"'
         ) from None
-    return open_client(workers, scheduler, device, progress)
+    return open_client(workers, scheduler, device, progress, warm_contact)
 
 
 def _run_group(todo, opts, store, *, workers, scheduler, device, total, progress, shard_size,
