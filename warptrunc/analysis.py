@@ -13,7 +13,7 @@ flat punch per island, :func:`warptrunc.stiffness.island_stiffness_curve`). The 
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -182,6 +182,7 @@ def analyze(
     auto_spikes: bool = True,
     progress: bool = True,
     device: wp.DeviceLike = None,
+    on_curve: Callable[[TruncationCurve], Any] | None = None,
 ) -> Analysis:
     """Truncate a surface, compute Eq. 2's stiffness and load, and fit k ∝ F^α.
 
@@ -233,6 +234,10 @@ def analyze(
         Show a progress bar over the bands of each streamed pass.
     device : str, optional
         Warp device; see :func:`warptrunc.resolve_device`.
+    on_curve : callable, optional
+        Called once with the truncation curve of the result (:attr:`Analysis.curve`) as soon
+        as it is final and its fit succeeded, before the island pass: ``warptrunc analyze``
+        sends it to be drawn while the islands are counted.
 
     Returns
     -------
@@ -266,13 +271,16 @@ def analyze(
         found = check_fit(fit, sc)
     except ValueError as exc:
         fit, error = None, exc
+    own = [name for name, v in (("--max-depth", max_depth), ("--depth-window", depth_window),
+                                ("--rt-percentile", rt_percentile)) if v is not None]  # fmt: skip
+    rule = _rule_without_auto(fit_range, read_map, own)
+    if rule is not None and fit is not None and on_curve is not None:
+        on_curve(curve)  # final: no automatic rule can change it
+        on_curve = None
     want_islands = surface is not None and islands is not False
     indicators = _validity(surface, read_map, connectivity, device) if want_islands else None
     if fit is not None and indicators is not None:
         found += check_fit_depth(fit, indicators)
-    own = [name for name, v in (("--max-depth", max_depth), ("--depth-window", depth_window),
-                                ("--rt-percentile", rt_percentile)) if v is not None]  # fmt: skip
-    rule = _rule_without_auto(fit_range, read_map, own)
     decided: list = []
     if rule is not None and read_map and auto_spikes:  # no rule: the spikes are reported
         decided = check_spikes(source)
@@ -287,6 +295,8 @@ def analyze(
             meta = surface.to_dict()
     if fit is None:
         raise FitRangeError(str(error), surface) from None
+    if on_curve is not None:
+        on_curve(curve)
     isl = isl_fit = None
     isl_found: list = []
     if want_islands:

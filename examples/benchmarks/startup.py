@@ -12,11 +12,11 @@ What it shows
     * **excess** = median(job) − median(floor): what warptrunc adds to a Warp program's start
       (issue 40's target on one H100 at 10240²: ≤ 1.0 s);
     * **breakdown**: one more fresh process runs the job in-process (``warptrunc.cli.main``)
-      with timers around its phases — the imports (Warp, warptrunc's analysis path, matplotlib
-      and the figure module, which the job imports in a thread while it computes), ``wp.init``,
+      with timers around its phases — the imports (Warp, warptrunc's analysis path), ``wp.init``,
       the device (CUDA context), generation, truncation, the island pass, the fit, fit.json's
-      provenance, the two figures (the wait for the matplotlib import, then each drawing) and
-      the rest (CSV, JSON, the staged move) — each phase synchronising the device at its end.
+      provenance, the wait for the two figures (drawn by the job's figure process,
+      ``warptrunc.plot._worker``, which imports matplotlib while the job computes) and the rest
+      (CSV, JSON, the staged move) — each phase synchronising the device at its end.
       The job then runs a second time in the same process: the difference of a phase between
       the two runs is its one-time cost (loading the Warp modules from the kernel cache, lazy
       imports), the second run its steady cost;
@@ -44,8 +44,7 @@ from pathlib import Path
 
 PHASES = (
     "import warp", "wp.init", "device", "import analysis path", "generation", "truncation",
-    "island pass", "fit", "provenance", "wait for matplotlib", "stiffness.png",
-    "area_fraction.png", "rest (CSV, JSON, move)",
+    "island pass", "fit", "provenance", "wait for the figures", "rest (CSV, JSON, move)",
 )  # fmt: skip
 
 
@@ -126,15 +125,13 @@ def driver(n: int, device: str, out: Path) -> dict:
     import warptrunc.analysis as an
     import warptrunc.cli as cli
     import warptrunc.cli.analyze as ca
-    import warptrunc.plot as plot  # matplotlib inside its functions
 
     start["import analysis path"] = time.perf_counter() - t0
     targets = [
         (an, "surface_from_spec", "generation"), (an, "truncate", "truncation"),
         (an, "_validity", "island pass"), (an, "_islands", "island pass"),
         (an, "stiffness_curve", "fit"), (an, "fit_power_law", "fit"),
-        (ca, "provenance", "provenance"), (plot, "stiffness_load", "stiffness.png"),
-        (plot, "area_fraction", "area_fraction.png"),
+        (ca, "provenance", "provenance"), (ca.FigureWorker, "result", "wait for the figures"),
     ]  # fmt: skip
     result = {"start": start}
     for run in ("cold", "warm"):
@@ -142,19 +139,10 @@ def driver(n: int, device: str, out: Path) -> dict:
         saved = [(mod, attr, getattr(mod, attr)) for mod, attr, _ in targets]
         for mod, attr, name in targets:
             setattr(mod, attr, ph.wrap(name, getattr(mod, attr)))
-        preload = ca._preload_plotting
-
-        def timed_preload(preload=preload, ph=ph):
-            thread = preload()
-            thread.join = ph.wrap("wait for matplotlib", thread.join)
-            return thread
-
-        ca._preload_plotting = timed_preload
         shutil.rmtree(out, ignore_errors=True)
         t0 = time.perf_counter()
         code = cli.main(["analyze", "--n", str(n), "--device", device, "--out", str(out)])
         total = time.perf_counter() - t0
-        ca._preload_plotting = preload
         for mod, attr, fn in saved:
             setattr(mod, attr, fn)
         if code != 0:

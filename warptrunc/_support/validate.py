@@ -12,6 +12,11 @@ HEIGHT_LIMIT_M = float(np.finfo(np.float32).max) / 4
 """Largest height magnitude (m) a map may hold: float32 heights (on the device) and their
 differences stay finite up to a quarter of the float32 maximum (about 8.5·10³⁷)."""
 
+DEFAULT_MIN_PIXELS = 10
+"""Default fit range: increments with at least this many contact pixels (see README, "Fit
+range"); the first increments, where a handful of pixels touch, are left out. Here, with no
+Warp import, for the command-line parsers; :mod:`warptrunc.stiffness` exports it."""
+
 MAX_INCREMENTS = 1_000_000
 """Most depth increments of one truncation curve (a bound on the work of one run).
 

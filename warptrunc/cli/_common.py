@@ -42,18 +42,18 @@ import math
 import os
 import sys
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .._support.messages import show
 from .._support.validate import MAX_INCREMENTS
-from ..io import read_height_map
 from ..material import Material
 from ..params import add_options, from_args
 from ..presets import PRESETS
-from ..surface import Surface
-from ..wm import wm_surface
 from ..wm_params import WMSpec
 from ._paths import input_file, output_dir, output_file  # noqa: F401 (re-exported)
+
+if TYPE_CHECKING:
+    from ..surface import Surface
 
 # --- validators for ``type=`` -----------------------------------------------------------------
 
@@ -460,6 +460,7 @@ def add_reader_options(g: argparse._ActionsContainer, *, scan_rule: str | None =
 
 def read_input(path: Path, args: argparse.Namespace) -> Surface:
     """Read ``path`` with the options of :func:`add_reader_options`; reports filled points."""
+    from ..io import read_height_map  # the readers (and Warp) only when a map is read
 
     s = read_height_map(
         path, dx=args.dx, dy=args.dy, height_unit=args.height_unit, missing=args.missing,
@@ -516,5 +517,6 @@ def surface_from_args(args: argparse.Namespace) -> Surface:
     """Read ``--input`` or generate a WM surface from the parameters."""
     if args.input is not None:
         return read_input(args.input, args)
+    from ..wm import wm_surface  # Warp's import, when the surface is made
 
     return wm_surface(wm_spec_from_args(args), device=args.device)

@@ -32,13 +32,14 @@ pass (fit.json: "islands": null).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
-import threading
 
 from .._support.atomic import staged_output, strict_json
 from .._support.provenance import provenance
+from .._support.validate import DEFAULT_MIN_PIXELS
 from ..material import Material
-from ..stiffness import DEFAULT_MIN_PIXELS
+from ..plot._worker import FigureWorker, plain
 from ._common import (
     add_depth_options,
     add_device,
@@ -137,29 +138,9 @@ def add_fit_options(p: argparse.ArgumentParser, several: bool = False) -> None:
         )  # fmt: skip
 
 
-def _preload_plotting() -> threading.Thread:
-    """Import matplotlib and the figure module in a background thread while the surface is
-    generated and truncated: the import overlaps the device work and its waits (CUDA
-    initialisation, kernel loading, synchronisation release the GIL). Joined before drawing."""
-
-    def load() -> None:
-        import matplotlib.backends.backend_agg
-        import matplotlib.figure  # noqa: F401
-
-        from .. import plot  # noqa: F401
-
-    t = threading.Thread(target=load, name="warptrunc-plot-preload", daemon=True)
-    t.start()
-    return t
-
-
 def run(args: argparse.Namespace) -> int:
     """Analyse and write the outputs."""
     check_increments(args.increments, "--increments")
-    # matplotlib's import starts first, to overlap Warp's (inside ..analysis) as well
-    preload = None if args.no_plot else _preload_plotting()
-    from ..analysis import FitRangeError, analyze
-
     if args.depth_window is not None and not args.depth_window[0] < args.depth_window[1]:
         lo, hi = args.depth_window
         raise ValueError(f"--depth-window LO HI needs LO < HI (m), got {lo!r} {hi!r}")
@@ -172,8 +153,27 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--stream applies to generated surfaces, not to --input {args.input}")
     if args.stream and rtp is not None:
         raise ValueError("--rt-percentile needs the map in memory; it cannot be streamed")
+    # the figures' process starts first: matplotlib's import overlaps Warp's (in ..analysis)
+    figures = None if args.no_plot else FigureWorker()
+    with figures or contextlib.nullcontext():
+        return _run(args, figures)
+
+
+def _run(args: argparse.Namespace, figures) -> int:
+    """:func:`run` with its figure worker (None: ``--no-plot``)."""
+    from ..analysis import FitRangeError, analyze
+
+    rtp = getattr(args, "rt_percentile", None)
     material = material_from_args(args)
     source = surface_from_args(args) if args.input is not None else wm_spec_from_args(args)
+    tickets: dict[str, int] = {}
+
+    def draw_area(curve) -> None:  # drawn while the islands are counted
+        if figures is not None:
+            tickets["area"] = figures.submit(
+                "area_fraction", plain(curve, "depth", "Rt", "area_fraction"), log=True
+            )
+
     try:
         a = analyze(
             source, args.increments, max_depth=args.max_depth,
@@ -183,6 +183,7 @@ def run(args: argparse.Namespace) -> int:
             connectivity=args.connectivity, stream=True if args.stream else "auto",
             band_rows=args.band_rows, fit_range=getattr(args, "fit_range", "auto"),
             auto_spikes=getattr(args, "spikes", "auto") == "auto", device=args.device,
+            on_curve=draw_area,
         )  # fmt: skip
     except FitRangeError as exc:
         if args.input is not None and getattr(args, "spikes", "auto") == "auto":
@@ -194,22 +195,25 @@ def run(args: argparse.Namespace) -> int:
     nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
     isl, isl_fit = a.islands, a.islands_fit
     add_warnings(args, list(a.warnings))
+    if figures is not None:  # drawn while curve.csv and fit.json are written
+        if "area" not in tickets:
+            draw_area(curve)
+        both = isl_fit is not None
+        sc_, fit_ = _plain_stiffness(sc), _plain_fit(fit)
+        tickets["stiffness"] = figures.submit(
+            "stiffness_load", [sc_, _plain_stiffness(isl)] if both else sc_,
+            [fit_, _plain_fit(isl_fit)] if both else fit_,
+            labels=["Eq. 2 (one punch)", "islands (one punch each)"] if both
+            else ["truncation analysis"],
+            title=_plot_title(meta, material, nx, ny, Rt),
+        )  # fmt: skip
     with staged_output(args.out) as out:  # all or nothing
         sc.to_csv(out / "curve.csv", islands=a.islands)
         (out / "fit.json").write_text(strict_json({**a.summary(), "provenance": provenance(
             args.device), "warnings": warnings_of(args)}))  # fmt: skip
-        if not args.no_plot:
-            preload.join()
-            from .. import plot
-
-            both = isl_fit is not None
-            plot.stiffness_load(
-                [sc, isl] if both else sc, [fit, isl_fit] if both else fit,
-                labels=["Eq. 2 (one punch)", "islands (one punch each)"] if both
-                else ["truncation analysis"],
-                path=out / "stiffness.png", title=_plot_title(meta, material, nx, ny, Rt),
-            )  # fmt: skip
-            plot.area_fraction(curve, log=True, path=out / "area_fraction.png")
+        if figures is not None:
+            (out / "stiffness.png").write_bytes(figures.result(tickets["stiffness"]))
+            (out / "area_fraction.png").write_bytes(figures.result(tickets["area"]))
     print(
         f"{nx}×{ny} surface ({_describe(a.path)}), R_t = {Rt * 1e6:.4g} µm; "
         f"{args.increments} increments to "
@@ -223,6 +227,17 @@ def run(args: argparse.Namespace) -> int:
         + ("" if args.no_plot else ", stiffness.png, area_fraction.png")
     )
     return 0
+
+
+def _plain_stiffness(curve):
+    """What stiffness.png reads of a stiffness curve, for the figure process."""
+    return plain(curve, "load", "F_over_EA", "Ec_over_E")
+
+
+def _plain_fit(fit):
+    """What stiffness.png reads of a power-law fit (None stays None)."""
+    names = ("alpha", "beta", "r2", "F_over_EA_min", "F_over_EA_max")
+    return None if fit is None else plain(fit, *names)
 
 
 def _islands_note(fit) -> str:

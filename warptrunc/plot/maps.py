@@ -25,7 +25,6 @@ from ._style import (
     new_figure,
     shade_band,
 )
-from .pooling import check_pooling, pool_blocks
 
 
 @figure_doc
@@ -68,8 +67,7 @@ def height_map(
     ``imshow(z, origin="lower", extent=(0, Lx, 0, Ly))``: row iy of ``z`` is drawn at
     y = iy·dy, so x runs to the right and y up, as in the 3-D pictures.
     """
-
-
+    from .pooling import check_pooling, pool_blocks  # Warp's import, for height maps only
 
     check_pooling(pooling)
 

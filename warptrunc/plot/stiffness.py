@@ -9,7 +9,6 @@ from typing import Any
 
 import numpy as np
 
-from ..sweep.stats import alpha_summary
 from ._style import (
     PAPER_ALPHA_D,
     SPREAD_ALPHA,
@@ -175,5 +174,6 @@ def _alpha_ranges(summary: Any) -> dict:
     """{min_pixels: {"per_D": [...], "alpha_vs_D": line or None}} from a summary or a table."""
     if isinstance(summary, dict):
         return dict(summary["fit_ranges"])
+    from ..sweep.stats import alpha_summary  # the sweep package (and Warp) only for a table
 
     return alpha_summary(summary)["fit_ranges"]

@@ -19,6 +19,7 @@ import numpy as np
 
 from .._support.docs import fill_doc
 from .._support.results import WRITE_DOCS
+from .._support.validate import DEFAULT_MIN_PIXELS as _DEFAULT_MIN_PIXELS
 from .._support.validate import check_int
 from ..material import Material
 
@@ -36,7 +37,7 @@ __all__ = [
 
 #: Default fit range: increments with at least this many contact pixels (see README,
 #: "Fit range"); the first increments, where a handful of pixels touch, are left out.
-DEFAULT_MIN_PIXELS = 10
+DEFAULT_MIN_PIXELS = _DEFAULT_MIN_PIXELS
 
 
 NORMALISATION_E = "E_c/E"
