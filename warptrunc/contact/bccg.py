@@ -121,7 +121,7 @@ class BCCGSolves:
     def _solve_bccg(self, offset: float, load: float | None, cap: float | None) -> dict[str, Any]:
         """One solve at ``offset`` (m; the start in load control) or at ``load`` (N), with the
         force cap ``cap`` (N per pixel; None: elastic). Returns the info dict of the default
-        solver's solves. With ``settings.loop="device"`` (the default) the iteration is
+        solver's solves. With ``settings.loop="device"`` or ``"graph"`` the iteration is
         :mod:`warptrunc.contact.bccg_device`'s, one read-back per iteration."""
         if getattr(self.settings, "loop", "host") in ("device", "graph"):
             return self._solve_bccg_device(offset, load, cap)

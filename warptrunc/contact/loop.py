@@ -6,9 +6,9 @@ the records a solve returns (the info dict of an iteration, the
 :class:`~warptrunc.contact.ContactState` of a solve, the known point of F(δ) for load control).
 
 The loops themselves are in :mod:`~warptrunc.contact.pk` (Polonsky–Keer),
-:mod:`~warptrunc.contact.bccg` (BCCG with a read-back after each reduction, ``loop="host"``),
+:mod:`~warptrunc.contact.bccg` (BCCG with a read-back after each reduction, ``loop="host"``, the default),
 :mod:`~warptrunc.contact.bccg_device` (BCCG with its scalar steps folded on the device and one
-read-back per iteration, ``loop="device"``, the default) and :mod:`~warptrunc.contact.plastic`
+read-back per iteration, ``loop="device"``, and its CUDA-graph replay, ``loop="graph"``) and :mod:`~warptrunc.contact.plastic`
 (the capped solves); every decision that chooses what to launch next is taken on the host, with
 the code here. The memory model, where a multi-device path starts, is
 :mod:`warptrunc.contact.memory` (whose docstring lists what lives where).

@@ -84,12 +84,13 @@ class SolverSettings(Parameters):
         choices=("auto", "pruned", "full"),
     )  # fmt: skip
     loop: str = param(
-        "device", "where the BCCG iteration's scalar steps run: 'device' folds the offset of load "
-        "control, the CG's beta and the projection's count on the device and reads back once per "
-        "iteration; 'graph' the same, its steady iterations replayed from a CUDA graph (fewer "
-        "launches; as 'device' off CUDA); 'host' reads back after each reduction (4-5 times per "
-        "iteration; the loop of earlier releases, equal to round-off)",
-        choices=("device", "graph", "host"),
+        "host", "where the BCCG iteration's scalar steps run: 'host' reads back after each "
+        "reduction (4-5 times per iteration); 'device' folds the offset of load control, the "
+        "CG's beta and the projection's count on the device and reads back once per iteration; "
+        "'graph' the same, its steady iterations replayed from a CUDA graph (as 'device' off "
+        "CUDA). Equal to round-off; on an H200 'graph' was 8 % faster at 2048² and 1-3 % slower "
+        "from 8192² (guide/performance.md)",
+        choices=("host", "device", "graph"),
     )  # fmt: skip
     precondition_above: float | None = param(
         None, "BCCG applies its FFT preconditioner c·K⁻¹·c (one more convolution per iteration) "
