@@ -158,8 +158,14 @@ class DeviceLoopSolves:
         wp.capture_launch(graph)
 
     def graph_error(self) -> str | None:
-        """Why the CUDA graph of the iteration could not be captured (None: it was, or was
-        not tried)."""
+        """Why the CUDA graph of the iteration could not be captured (``loop="graph"``).
+
+        Returns
+        -------
+        str or None
+            The capture's error, as ``"<exception type>: <message>"``; None when the capture
+            worked or was not tried (another loop, or not a CUDA device).
+        """
         return getattr(self, "_graph_error", None)
 
     def _set_scalars(self, s: wp.array, values: dict[int, float]) -> None:
