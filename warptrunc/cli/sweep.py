@@ -26,6 +26,7 @@ import signal
 import sys
 from collections import Counter
 
+from .._support.interrupt import check_interrupt, latched_signals
 from ..material import Material
 from ..params import add_options, param_info
 from ..sweep.grid import SweepGrid
@@ -161,10 +162,6 @@ def options_from_args(args: argparse.Namespace) -> dict:
     )  # fmt: skip
 
 
-def _on_sigterm(signum, frame):
-    raise Terminated()
-
-
 def run(args: argparse.Namespace) -> int:
     """Run the sweep; print a summary."""
     check_increments(args.increments, "--increments")
@@ -185,15 +182,17 @@ def run(args: argparse.Namespace) -> int:
                              "--bem-fractions, and none are asked for")  # fmt: skip
         prepare_devices(args.devices)
     grid = grid_from_args(args)
-    old = signal.signal(signal.SIGTERM, _on_sigterm)
+    stops = latched_signals({signal.SIGINT: KeyboardInterrupt, signal.SIGTERM: Terminated})
     try:
-        df = run_sweep(
-            grid, args.out, workers=args.workers, scheduler=args.scheduler,
-            overwrite=args.overwrite, retry_failed=args.retry_failed,
-            shard_size=args.shard_size, shard_seconds=args.shard_seconds,
-            progress=not args.no_progress, device=args.device, devices=args.devices,
-            **options_from_args(args),
-        )  # fmt: skip
+        with stops:
+            df = run_sweep(
+                grid, args.out, workers=args.workers, scheduler=args.scheduler,
+                overwrite=args.overwrite, retry_failed=args.retry_failed,
+                shard_size=args.shard_size, shard_seconds=args.shard_seconds,
+                progress=not args.no_progress, device=args.device, devices=args.devices,
+                **options_from_args(args),
+            )  # fmt: skip
+            check_interrupt()  # a signal swallowed in a destructor after the last case
     except KeyboardInterrupt as exc:
         n = load(args.out)["case_id"].nunique() if (args.out / "sweep.json").exists() else 0
         what = "SIGTERM" if isinstance(exc, Terminated) else "interrupted"
@@ -202,8 +201,6 @@ def run(args: argparse.Namespace) -> int:
         return 143 if isinstance(exc, Terminated) else 130
     except ImportError as exc:
         raise ValueError(str(exc)) from None
-    finally:
-        signal.signal(signal.SIGTERM, old)
     failed = df.loc[df["error"].notna(), "case_id"].nunique()
     print(f"{len(grid)} cases ({failed} failed) in {args.out}: sweep.json, cases.parquet, "
           "curves/part-*.parquet")

@@ -30,6 +30,7 @@ from typing import Any
 from distributed import WorkerPlugin
 
 from .._support.device import cuda_device_count
+from .._support.interrupt import check_interrupt
 from .._support.progress import progress_bar
 from .._support.validate import check_int
 from .curves import part_name, part_rows
@@ -498,6 +499,7 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
                         store.add(rows, None)
                         bar.update()
             fut.release()
+            check_interrupt()  # a stop signal swallowed in a destructor
             top_up()
 
 

@@ -33,6 +33,7 @@ import warp as wp
 
 from .._support.device import resolve_device
 from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.interrupt import check_interrupt
 from .._support.progress import progress_bar
 from ..plausibility import check_dimensions, check_fit, fit_error_text
 from ..stiffness import fit_power_law, stiffness_curve
@@ -314,10 +315,12 @@ def run_inprocess(
                         q.put(r)
                     if failed:
                         break
+                    check_interrupt()  # a stop signal swallowed in a destructor
             for case in cases if size <= 1 else ():
                 if failed:
                     break
                 q.put(compute_case(case, options, dev, devices))
+                check_interrupt()
         finally:
             q.put(done)
             th.join()
