@@ -34,8 +34,9 @@ def is_free(qv: wp.float64, g: wp.float64, hf: wp.float64) -> int:
     return free
 
 
-@wp.kernel
-def bccg_sums_kernel(
+@wp.func
+def free_gap_walk(
+    lane: int,
     q: wp.array2d(dtype=Any),
     u: wp.array2d(dtype=Any),
     h: wp.array2d(dtype=Any),
@@ -45,8 +46,7 @@ def bccg_sums_kernel(
     chunk: int,
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the map (load control): part[i] = [n free, Σ_free g]."""
-    lane = wp.tid()
+    """One lane of ``bccg_sums_kernel`` (shared with ``kernels/contact_loop.py``)."""
     nx = h.shape[1]
     i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     n_f = wp.float64(0.0)
@@ -62,7 +62,23 @@ def bccg_sums_kernel(
 
 
 @wp.kernel
-def bccg_residual_kernel(
+def bccg_sums_kernel(
+    q: wp.array2d(dtype=Any),
+    u: wp.array2d(dtype=Any),
+    h: wp.array2d(dtype=Any),
+    offset: wp.float64,
+    hf: wp.float64,
+    stride: int,
+    chunk: int,
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the map (load control): part[i] = [n free, Σ_free g]."""
+    free_gap_walk(wp.tid(), q, u, h, offset, hf, stride, chunk, part)
+
+
+@wp.func
+def residual_walk(
+    lane: int,
     q: wp.array2d(dtype=Any),
     u: wp.array2d(dtype=Any),
     h: wp.array2d(dtype=Any),
@@ -75,11 +91,7 @@ def bccg_residual_kernel(
     mask: wp.array2d(dtype=wp.uint8),
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the map: the free set (gaps at ``set_offset``), r = free·g (gaps at
-    ``offset``), mask = free; and the state's convergence sums. part[i] = [n free, Σ r,
-    n(0 < q < hf), Σ_{0<q<hf} g², max_{0<q<hf} abs(g), max_{q≤0} (−g), max_{q≥hf} g, n(q > 0),
-    Σ g over the map]."""
-    lane = wp.tid()
+    """One lane of ``bccg_residual_kernel`` (shared with ``kernels/contact_loop.py``)."""
     nx = h.shape[1]
     i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     n_f = wp.float64(0.0)
@@ -128,6 +140,27 @@ def bccg_residual_kernel(
 
 
 @wp.kernel
+def bccg_residual_kernel(
+    q: wp.array2d(dtype=Any),
+    u: wp.array2d(dtype=Any),
+    h: wp.array2d(dtype=Any),
+    set_offset: wp.float64,
+    offset: wp.float64,
+    hf: wp.float64,
+    stride: int,
+    chunk: int,
+    r: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    part: wp.array2d(dtype=wp.float64),
+):
+    """Lanes over the map: the free set (gaps at ``set_offset``), r = free·g (gaps at
+    ``offset``), mask = free; and the state's convergence sums. part[i] = [n free, Σ r,
+    n(0 < q < hf), Σ_{0<q<hf} g², max_{0<q<hf} abs(g), max_{q≤0} (−g), max_{q≥hf} g, n(q > 0),
+    Σ g over the map]."""
+    residual_walk(wp.tid(), q, u, h, set_offset, offset, hf, stride, chunk, r, mask, part)
+
+
+@wp.kernel
 def bccg_dot_kernel(
     z: wp.array2d(dtype=Any),
     r: wp.array2d(dtype=Any),
@@ -158,6 +191,37 @@ def bccg_dot_kernel(
     part[lane, 2] = s_rzo
 
 
+@wp.func
+def direction_walk(
+    lane: int,
+    z: wp.array2d(dtype=Any),
+    mean: wp.float64,
+    beta: wp.float64,
+    mask: wp.array2d(dtype=wp.uint8),
+    r: wp.array2d(dtype=Any),
+    stride: int,
+    chunk: int,
+    t: wp.array2d(dtype=Any),
+    z_old: wp.array2d(dtype=Any),
+    part: wp.array2d(dtype=wp.float64),
+):
+    """One lane of ``bccg_direction_kernel`` (shared with ``kernels/contact_loop.py``)."""
+    nx = r.shape[1]
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, r.shape[0] * nx, nx)
+    s_rt = wp.float64(0.0)
+    while i < n:
+        zc = wp.float64(0.0)
+        tv = wp.float64(0.0)
+        if mask[iy, ix] != wp.uint8(0):
+            zc = wp.float64(z[iy, ix]) - mean
+            tv = zc + beta * wp.float64(t[iy, ix])
+            s_rt += wp.float64(r[iy, ix]) * tv
+        z_old[iy, ix] = z_old.dtype(zc)
+        t[iy, ix] = t.dtype(tv)
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
+    part[lane, 0] = s_rt
+
+
 @wp.kernel
 def bccg_direction_kernel(
     z: wp.array2d(dtype=Any),
@@ -173,21 +237,7 @@ def bccg_direction_kernel(
 ):
     """Lanes over the map: on the free set z_old ← z − mean, t ← z_old + β·t; both 0 elsewhere.
     part[i, 0] = Σ r·t."""
-    lane = wp.tid()
-    nx = r.shape[1]
-    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, r.shape[0] * nx, nx)
-    s_rt = wp.float64(0.0)
-    while i < n:
-        zc = wp.float64(0.0)
-        tv = wp.float64(0.0)
-        if mask[iy, ix] != wp.uint8(0):
-            zc = wp.float64(z[iy, ix]) - mean
-            tv = zc + beta * wp.float64(t[iy, ix])
-            s_rt += wp.float64(r[iy, ix]) * tv
-        z_old[iy, ix] = z_old.dtype(zc)
-        t[iy, ix] = t.dtype(tv)
-        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
-    part[lane, 0] = s_rt
+    direction_walk(wp.tid(), z, mean, beta, mask, r, stride, chunk, t, z_old, part)
 
 
 @wp.kernel

@@ -17,7 +17,7 @@ from typing import Any
 import warp as wp
 
 from .contact import direct_sum
-from .contact_bccg import is_free
+from .contact_bccg import direction_walk, free_gap_walk, residual_walk
 from .lanes import declare_overloads, lane_next, lane_start
 
 wp.set_module_options({"enable_backward": False})
@@ -243,54 +243,7 @@ def residual_loop_kernel(
     part: wp.array2d(dtype=wp.float64),
 ):
     """``bccg_residual_kernel`` with the offsets read from s[S_SETOFF] and s[S_OFF]."""
-    lane = wp.tid()
-    set_offset = s[S_SETOFF]
-    offset = s[S_OFF]
-    nx = h.shape[1]
-    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
-    n_f = wp.float64(0.0)
-    s_r = wp.float64(0.0)
-    n_cg = wp.float64(0.0)
-    s_gg = wp.float64(0.0)
-    g_max = wp.float64(0.0)
-    pen = wp.float64(0.0)
-    open_cap = wp.float64(0.0)
-    n_c = wp.float64(0.0)
-    s_gap = wp.float64(0.0)
-    while i < n:
-        qv = wp.float64(q[iy, ix])
-        d = wp.float64(u[iy, ix]) - wp.float64(h[iy, ix])
-        g = d - offset
-        s_gap += g
-        rv = r.dtype(0.0)
-        m = wp.uint8(0)
-        if is_free(qv, d - set_offset, hf) != 0:
-            rv = r.dtype(g)
-            m = wp.uint8(1)
-            n_f += wp.float64(1.0)
-            s_r += g
-        if qv > wp.float64(0.0):
-            n_c += wp.float64(1.0)
-            if qv < hf:
-                n_cg += wp.float64(1.0)
-                s_gg += g * g
-                g_max = wp.max(g_max, wp.abs(g))
-            else:
-                open_cap = wp.max(open_cap, g)
-        else:
-            pen = wp.max(pen, -g)
-        r[iy, ix] = rv
-        mask[iy, ix] = m
-        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
-    part[lane, 0] = n_f
-    part[lane, 1] = s_r
-    part[lane, 2] = n_cg
-    part[lane, 3] = s_gg
-    part[lane, 4] = g_max
-    part[lane, 5] = pen
-    part[lane, 6] = open_cap
-    part[lane, 7] = n_c
-    part[lane, 8] = s_gap
+    residual_walk(wp.tid(), q, u, h, s[S_SETOFF], s[S_OFF], hf, stride, chunk, r, mask, part)
 
 
 @wp.kernel
@@ -305,20 +258,7 @@ def sums_loop_kernel(
     part: wp.array2d(dtype=wp.float64),
 ):
     """``bccg_sums_kernel`` at the offset s[S_OFF]: part[i] = [n free, Σ_free g]."""
-    lane = wp.tid()
-    offset = s[S_OFF]
-    nx = h.shape[1]
-    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
-    n_f = wp.float64(0.0)
-    s_g = wp.float64(0.0)
-    while i < n:
-        g = wp.float64(u[iy, ix]) - wp.float64(h[iy, ix]) - offset
-        if is_free(wp.float64(q[iy, ix]), g, hf) != 0:
-            n_f += wp.float64(1.0)
-            s_g += g
-        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
-    part[lane, 0] = n_f
-    part[lane, 1] = s_g
+    free_gap_walk(wp.tid(), q, u, h, s[S_OFF], hf, stride, chunk, part)
 
 
 @wp.kernel
@@ -334,23 +274,7 @@ def direction_loop_kernel(
     part: wp.array2d(dtype=wp.float64),
 ):
     """``bccg_direction_kernel`` with the mean and β read from s[S_MEAN], s[S_BETA]."""
-    lane = wp.tid()
-    mean = s[S_MEAN]
-    beta = s[S_BETA]
-    nx = r.shape[1]
-    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, r.shape[0] * nx, nx)
-    s_rt = wp.float64(0.0)
-    while i < n:
-        zc = wp.float64(0.0)
-        tv = wp.float64(0.0)
-        if mask[iy, ix] != wp.uint8(0):
-            zc = wp.float64(z[iy, ix]) - mean
-            tv = zc + beta * wp.float64(t[iy, ix])
-            s_rt += wp.float64(r[iy, ix]) * tv
-        z_old[iy, ix] = z_old.dtype(zc)
-        t[iy, ix] = t.dtype(tv)
-        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
-    part[lane, 0] = s_rt
+    direction_walk(wp.tid(), z, s[S_MEAN], s[S_BETA], mask, r, stride, chunk, t, z_old, part)
 
 
 declare_overloads((

@@ -148,7 +148,7 @@ class BCCGSolves:
         last_pc = None
         du = None  # largest change of u in the last step (m); none yet
         viol = 0.0
-        last_total = last_height = None
+        last: dict[str, float] = {}  # the previous iteration's total and height
         info: dict[str, Any] = {"converged": False}
         for it in range(1, self.maxiter + 1):
             set_offset = offset
@@ -165,26 +165,10 @@ class BCCGSolves:
                 (False, False, False, False, True, True, True, False, False)
             )  # sync point
             # convergence of the state reached by the last step (module docstring)
-            rms = math.sqrt(s_gg / n_cg) if n_cg > 0 else 0.0
-            res = max(rms, g_max, pen, open_cap, 0.0 if du is None else du)
-            tol = self._pentol_now(s_gap, n_c, n_map)  # pentol, adapted near full contact
-            ok = du is not None and res < tol and viol < self.forcetol
-            if load_control:
-                ok = ok and total != 0 and abs((total - load) / total) < self.thermotol
-                height = self.h_max + offset
-                ok = ok and self._steady(height, last_height)
-                last_height = height
-            else:
-                ok = ok and self._steady(total, last_total)
-            last_total = total
-            info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res,
-                                        viol, ok, n_contact=n_c)  # fmt: skip
-            if ok:
-                break
-            if n_f == 0:
-                # nothing free: every pixel sits at a bound with its gradient pointing out of
-                # the box, so the (exact) state satisfies the conditions of the solution
-                info["converged"] = pen <= self.pentol and open_cap <= self.pentol
+            sums = (n_f, s_r, n_cg, s_gg, g_max, pen, open_cap, n_c, s_gap)
+            info, stop = self._bccg_stop(sums, offset, total, load, du, viol, it, n_transforms,
+                                         last)  # fmt: skip
+            if stop:
                 break
             # preconditioned residual z = c·K⁻¹·r (on a large free set; else z = r)
             use_pc = n_f > pc_above * n_map

@@ -33,14 +33,11 @@ and 1-3 % slower from 8192², and the host loop stays the default.
 
 from __future__ import annotations
 
-import math
 import warnings
 from typing import Any
 
-import numpy as np
 import warp as wp
 
-from ..kernels import contact as _k
 from ..kernels import contact_bccg as _kb
 from ..kernels import contact_loop as _kl
 from ..kernels import contact_reduce as _kr
@@ -146,7 +143,7 @@ class DeviceLoopSolves:
             try:
                 with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
                     launch()
-            except Exception as exc:  # noqa: BLE001 - any failure: launch uncaptured from now on
+            except Exception as exc:
                 # the iteration ran uncaptured above; what the capture recorded never ran
                 self._graph_error = f"{type(exc).__name__}: {exc}"
                 warnings.warn(f"contact solver: CUDA graph capture failed ({self._graph_error}); "
@@ -204,7 +201,7 @@ class DeviceLoopSolves:
         last_pc = None
         du = None  # largest change of u in the last step (m); none yet
         viol = 0.0
-        last_total = last_height = None
+        last: dict[str, float] = {}  # the previous iteration's total and height
         info: dict[str, Any] = {"converged": False}
         self._loop_top(s, hf, load_control)
         v = s.numpy()  # sync point
@@ -228,28 +225,10 @@ class DeviceLoopSolves:
                 du = float(v[_kl.S_DU])
                 viol = float(v[_kl.S_VIOL])
                 total = float(v[_kl.S_TOTAL])
-            (n_f, s_r, n_cg, s_gg, g_max, pen, open_cap, n_c, s_gap) = (
-                float(x) for x in v[_RES:_RES + 9]
-            )  # fmt: skip
-            # convergence of the state reached by the last step (as the host loop)
-            rms = math.sqrt(s_gg / n_cg) if n_cg > 0 else 0.0
-            res = max(rms, g_max, pen, open_cap, 0.0 if du is None else du)
-            tol = self._pentol_now(s_gap, n_c, n_map)
-            ok = du is not None and res < tol and viol < self.forcetol
-            if load_control:
-                ok = ok and total != 0 and abs((total - load) / total) < self.thermotol
-                height = self.h_max + offset
-                ok = ok and self._steady(height, last_height)
-                last_height = height
-            else:
-                ok = ok and self._steady(total, last_total)
-            last_total = total
-            info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res,
-                                        viol, ok, n_contact=n_c)  # fmt: skip
-            if ok:
-                break
-            if n_f == 0:
-                info["converged"] = pen <= self.pentol and open_cap <= self.pentol
+            n_f = float(v[_RES])
+            info, stop = self._bccg_stop(v[_RES:_RES + 9], offset, total, load, du, viol, it,
+                                         n_transforms, last)  # fmt: skip
+            if stop:
                 break
             use_pc = n_f > pc_above * n_map
             restart = not have_rz or use_pc != last_pc

@@ -89,6 +89,43 @@ class SolveLoop:
         adapted = OPEN_GAP_FRACTION * s_gap / n_open
         return min(self.pentol, max(adapted, PENTOL_FLOOR * eps * rms))
 
+    def _bccg_stop(self, sums: Any, offset: float, total: float, load: float | None,
+                   du: float | None, viol: float, it: int, n_transforms: int,
+                   last: dict[str, float]) -> tuple[dict[str, Any], bool]:  # fmt: skip
+        """The BCCG loops' test of the state reached by the last step (host, device and
+        sharded loops alike).
+
+        ``sums`` are the residual kernel's nine (n free, Σ r, n(0 < q < cap), Σ g², max abs g,
+        penetration, open gap at the cap, n(q > 0), Σ g); ``offset`` (m), ``total`` (N, the
+        load after scaling in load control), ``load`` (N; None: displacement control), ``du``
+        (m; None before the first step) and ``viol`` (N) those of the state; ``last`` holds
+        the previous iteration's total and height and is updated. Returns the iteration's
+        info dict and whether the solve stops: converged, or nothing free (every pixel at a
+        bound with its gradient pointing out of the box, so the exact state satisfies the
+        conditions of the solution)."""
+        n_map = self.shape[0] * self.shape[1]
+        (n_f, _s_r, n_cg, s_gg, g_max, pen, open_cap, n_c, s_gap) = (float(x) for x in sums)
+        rms = math.sqrt(s_gg / n_cg) if n_cg > 0 else 0.0
+        res = max(rms, g_max, pen, open_cap, 0.0 if du is None else du)
+        tol = self._pentol_now(s_gap, n_c, n_map)  # pentol, adapted near full contact
+        ok = du is not None and res < tol and viol < self.forcetol
+        if load is not None:
+            ok = ok and total != 0 and abs((total - load) / total) < self.thermotol
+            height = self.h_max + offset
+            ok = ok and self._steady(height, last.get("height"))
+            last["height"] = height
+        else:
+            ok = ok and self._steady(total, last.get("total"))
+        last["total"] = total
+        info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res, viol,
+                                    ok, n_contact=n_c)  # fmt: skip
+        if ok:
+            return info, True
+        if n_f == 0:
+            info["converged"] = pen <= self.pentol and open_cap <= self.pentol
+            return info, True
+        return info, False
+
     def _steady(self, new: float, old: float | None) -> bool:
         """Whether a quantity (a total force in N, a height in m) changed by less than
         ``thermotol`` relative to its new value since the last iteration (False without one)."""

@@ -197,7 +197,7 @@ class ShardedContactSolver(ContactSolver):
         last_pc = None
         du = None
         viol = 0.0
-        last_total = last_height = None
+        last: dict[str, float] = {}  # the previous iteration's total and height
         info: dict[str, Any] = {"converged": False}
         for it in range(1, self.maxiter + 1):
             set_offset = offset
@@ -207,25 +207,11 @@ class ShardedContactSolver(ContactSolver):
                     offset = offset + s_g / n_f
             self.r, self.mask, sums = self._fn("residual")(self.q, self.u, self.h, set_offset,
                                                           offset, hf)  # fmt: skip
-            (n_f, s_r, n_cg, s_gg, g_max, pen, open_cap, n_c, s_gap) = self._read(sums)
-            rms = math.sqrt(s_gg / n_cg) if n_cg > 0 else 0.0
-            res = max(rms, g_max, pen, open_cap, 0.0 if du is None else du)
-            tol = self._pentol_now(s_gap, n_c, n_map)  # pentol, adapted near full contact
-            ok = du is not None and res < tol and viol < self.forcetol
-            if load_control:
-                ok = ok and total != 0 and abs((total - load) / total) < self.thermotol
-                height = self.h_max + offset
-                ok = ok and self._steady(height, last_height)
-                last_height = height
-            else:
-                ok = ok and self._steady(total, last_total)
-            last_total = total
-            info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res,
-                                        viol, ok, n_contact=n_c)  # fmt: skip
-            if ok:
-                break
-            if n_f == 0:
-                info["converged"] = pen <= self.pentol and open_cap <= self.pentol
+            sums = self._read(sums)
+            n_f, s_r = float(sums[0]), float(sums[1])
+            info, stop = self._bccg_stop(sums, offset, total, load, du, viol, it, n_transforms,
+                                         last)  # fmt: skip
+            if stop:
                 break
             use_pc = n_f > pc_above * n_map
             if use_pc != last_pc:
