@@ -227,6 +227,31 @@ def rescale_force_kernel(
     q[iy, ix] = qv
 
 
+@wp.func
+def compact_walk(
+    lane: int,
+    q: wp.array2d(dtype=Any),
+    lin: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    scale: wp.float64,
+    offsets: wp.array[wp.int32],
+    stride: int,
+    chunk: int,
+    index: wp.array[wp.int32],
+    value: wp.array[wp.float64],
+):
+    """One lane of ``compact_changes_kernel`` (shared with ``kernels/contact_loop.py``)."""
+    nx = q.shape[1]
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, q.shape[0] * nx, nx)
+    k = offsets[lane]
+    while i < n:
+        if (int(mask[iy, ix]) & 4) != 0:
+            index[k] = iy * nx + ix
+            value[k] = wp.float64(q[iy, ix]) - scale * wp.float64(lin[iy, ix])
+            k += 1
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
+
+
 @wp.kernel
 def compact_changes_kernel(
     q: wp.array2d(dtype=Any),
@@ -243,16 +268,7 @@ def compact_changes_kernel(
     projection changed q) and their force correction Δp = q − scale·q_lin (N), written from
     offsets[i] (the exclusive scan of its lane counts), so the list's order is fixed. ``index``
     holds iy·nx + ix."""
-    lane = wp.tid()
-    nx = q.shape[1]
-    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, q.shape[0] * nx, nx)
-    k = offsets[lane]
-    while i < n:
-        if (int(mask[iy, ix]) & 4) != 0:
-            index[k] = iy * nx + ix
-            value[k] = wp.float64(q[iy, ix]) - scale * wp.float64(lin[iy, ix])
-            k += 1
-        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
+    compact_walk(wp.tid(), q, lin, mask, scale, offsets, stride, chunk, index, value)
 
 
 @wp.func

@@ -302,6 +302,31 @@ def bccg_update_kernel(
     lane_count[lane] = count
 
 
+@wp.func
+def correct_walk(
+    lane: int,
+    table: wp.array2d(dtype=Any),
+    periodic: int,
+    index: wp.array[wp.int32],
+    value: wp.array[wp.float64],
+    n_changes: int,
+    stride: int,
+    chunk: int,
+    u: wp.array2d(dtype=Any),
+):
+    """One lane of ``bccg_correct_kernel`` (shared with ``kernels/contact_loop.py``); returns
+    the lane's largest abs(correction) (m)."""
+    nx = u.shape[1]
+    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, u.shape[0] * nx, nx)
+    d_max = wp.float64(0.0)
+    while i < n:
+        acc = direct_sum(wp.float64(0.0), table, periodic, index, value, n_changes, iy, ix, nx)
+        u[iy, ix] = u.dtype(wp.float64(u[iy, ix]) + acc)
+        d_max = wp.max(d_max, wp.abs(acc))
+        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
+    return d_max
+
+
 @wp.kernel
 def bccg_correct_kernel(
     table: wp.array2d(dtype=Any),
@@ -318,15 +343,7 @@ def bccg_correct_kernel(
     corrections (N) by direct summation over the influence table, in the list's fixed order.
     part[i, 0] = max abs(correction) (m)."""
     lane = wp.tid()
-    nx = u.shape[1]
-    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, u.shape[0] * nx, nx)
-    d_max = wp.float64(0.0)
-    while i < n:
-        acc = direct_sum(wp.float64(0.0), table, periodic, index, value, n_changes, iy, ix, nx)
-        u[iy, ix] = u.dtype(wp.float64(u[iy, ix]) + acc)
-        d_max = wp.max(d_max, wp.abs(acc))
-        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
-    part[lane, 0] = d_max
+    part[lane, 0] = correct_walk(lane, table, periodic, index, value, n_changes, stride, chunk, u)
 
 
 @wp.kernel

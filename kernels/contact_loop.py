@@ -16,9 +16,9 @@ from typing import Any
 
 import warp as wp
 
-from .contact import direct_sum
-from .contact_bccg import direction_walk, free_gap_walk, residual_walk
-from .lanes import declare_overloads, lane_next, lane_start
+from .contact import compact_walk
+from .contact_bccg import correct_walk, direction_walk, free_gap_walk, residual_walk
+from .lanes import declare_overloads
 
 wp.set_module_options({"enable_backward": False})
 
@@ -158,18 +158,9 @@ def compact_gated_kernel(
     """``compact_changes_kernel`` (scale 1) when 0 < s[S_NPROJ] ≤ ``cap`` (the list's length);
     nothing otherwise."""
     n_p = int(s[S_NPROJ])
-    if n_p <= 0 or n_p > cap:
-        return
-    lane = wp.tid()
-    nx = q.shape[1]
-    i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, q.shape[0] * nx, nx)
-    k = offsets[lane]
-    while i < n:
-        if (int(mask[iy, ix]) & 4) != 0:
-            index[k] = iy * nx + ix
-            value[k] = wp.float64(q[iy, ix]) - wp.float64(lin[iy, ix])
-            k += 1
-        i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
+    if n_p > 0 and n_p <= cap:
+        compact_walk(wp.tid(), q, lin, mask, wp.float64(1.0), offsets, stride, chunk, index,
+                     value)  # fmt: skip
 
 
 @wp.kernel
@@ -191,13 +182,7 @@ def correct_gated_kernel(
     n_p = int(s[S_NPROJ])
     d_max = wp.float64(0.0)
     if n_p > 0 and n_p <= cap:
-        nx = u.shape[1]
-        i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, u.shape[0] * nx, nx)
-        while i < n:
-            acc = direct_sum(wp.float64(0.0), table, periodic, index, value, n_p, iy, ix, nx)
-            u[iy, ix] = u.dtype(wp.float64(u[iy, ix]) + acc)
-            d_max = wp.max(d_max, wp.abs(acc))
-            i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
+        d_max = correct_walk(lane, table, periodic, index, value, n_p, stride, chunk, u)
     part[lane, 0] = d_max
 
 
