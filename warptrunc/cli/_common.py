@@ -169,16 +169,24 @@ def add_workers(p, what: str, scheduler_what: str) -> None:
                    f"scheduler of a dask-jobqueue cluster) for {scheduler_what}")  # fmt: skip
 
 
-def workers_count(text: str) -> int | str:
-    """A ``type=`` for ``--workers``: an integer in [1, 4096], or ``auto`` (kept as "auto")."""
-    if text.strip().lower() == "auto":
-        return "auto"
-    try:
-        return integer(1, 4096)(text)
-    except argparse.ArgumentTypeError:
-        raise argparse.ArgumentTypeError(
-            f"must be an integer in [1, 4096] or 'auto', got {show(text)}"
-        ) from None
+def count_or_auto(hi: int):
+    """A ``type=`` for an option taking an integer in [1, ``hi``] or ``auto`` (kept as "auto")."""
+
+    def parse(text: str) -> int | str:
+        if text.strip().lower() == "auto":
+            return "auto"
+        try:
+            return integer(1, hi)(text)
+        except argparse.ArgumentTypeError:
+            raise argparse.ArgumentTypeError(
+                f"must be an integer in [1, {hi}] or 'auto', got {show(text)}"
+            ) from None
+
+    return parse
+
+
+workers_count = count_or_auto(4096)
+"""A ``type=`` for ``--workers``: an integer in [1, 4096], or ``auto``."""
 
 
 DEVICES_HELP = (
@@ -204,16 +212,8 @@ def add_devices(p, what: str) -> None:
                    help=DEVICES_HELP.format(what=what))  # fmt: skip
 
 
-def devices_count(text: str) -> int | str:
-    """A ``type=`` for ``--devices``: an integer in [1, 64], or ``auto`` (kept as "auto")."""
-    if text.strip().lower() == "auto":
-        return "auto"
-    try:
-        return integer(1, 64)(text)
-    except argparse.ArgumentTypeError:
-        raise argparse.ArgumentTypeError(
-            f"must be an integer in [1, 64] or 'auto', got {show(text)}"
-        ) from None
+devices_count = count_or_auto(64)
+"""A ``type=`` for ``--devices``: an integer in [1, 64], or ``auto``."""
 
 
 def prepare_devices(devices: int | str | None) -> int | str | None:
