@@ -333,3 +333,48 @@ def test_solve_contact_and_bem_check_take_devices(tmp_path, capsys):
     assert np.all(np.abs(loads[0] - loads[1]) <= 1e-9 * loads[0])
     assert_refused_in_one_line(["bem-check", "--n", "64", "--devices", "0"],
                                tmp_path / "bad", capsys, ["--devices", "[1, 64]", "'auto'"])  # fmt: skip
+
+
+def test_spectrum_in_pieces_equals_one_piece(monkeypatch):
+    """The kernel spectrum built in pieces (rows of the x stage, columns of the y stage; forced
+    small here) equals the one built in one piece (to round-off: XLA fuses the pieces
+    differently), and the one-device solver's spectrum."""
+    import warptrunc.contact.sharded_spectrum as ss
+
+    devs = tuple(jax.devices("cpu")[:2])
+    shape = (128, 96)
+    monkeypatch.setattr(ss, "BUILD_PIECE_BYTES", 1 << 62)
+    whole = np.asarray(ss.build_spectrum(slab_layout(shape, "free", "float64", devs), (DX, DX), E))
+    monkeypatch.setattr(ss, "BUILD_PIECE_BYTES", 3000)  # 1 row of the x stage, 1 column of y
+    pieces = np.asarray(ss.build_spectrum(slab_layout(shape, "free", "float64", devs), (DX, DX), E))
+    np.testing.assert_allclose(pieces, whole, rtol=0, atol=1e-13 * whole.max())  # last bits
+    ref = influence_spectrum(shape, (DX, DX), E, substrate="free")  # (2ny, nx + 1), numpy f64
+    nk = shape[1] + 1
+    np.testing.assert_allclose(pieces[:, :nk], np.asarray(ref)[: shape[0] + 1], rtol=0,
+                               atol=1e-12 * whole.max())  # fmt: skip
+    assert np.all(pieces[:, nk:] == 1.0)
+
+
+def test_spectrum_build_fits_the_model_at_65536():
+    """XLA's memory of the spectrum's build for a 65536² float32 map over two devices (compiled
+    for the CPU, not run): within the model (``build_bytes``), which is below the solve's own
+    per-device peak; the build in one piece (the cause of the out-of-memory error on 4 × H200)
+    needed more than the model allows."""
+    import warptrunc.contact.sharded_spectrum as ss
+
+    shape, devs = (65536, 65536), tuple(jax.devices("cpu")[:2])
+    lay = slab_layout(shape, "free", "float32", devs, 4)
+
+    def compiled(piece_bytes):
+        old = ss.BUILD_PIECE_BYTES
+        ss.BUILD_PIECE_BYTES = piece_bytes
+        try:
+            m = ss.spectrum_programme(lay, (DX, DX), E).lower().compile().memory_analysis()
+        finally:
+            ss.BUILD_PIECE_BYTES = old
+        return m.temp_size_in_bytes + m.output_size_in_bytes
+
+    model = ss.build_bytes(shape, "free", "float32", 2)
+    assert compiled(ss.BUILD_PIECE_BYTES) <= model < 1.5 * compiled(ss.BUILD_PIECE_BYTES)
+    assert model < ContactSolver.memory_bytes(shape, "free", "float32", devices=2)
+    assert compiled(1 << 62) > 1.3 * model

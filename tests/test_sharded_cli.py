@@ -148,3 +148,41 @@ def test_refusals_name_the_option(tmp_path, capsys):
     for cmd in ("compare", "indent", "sweep"):
         assert_refused_in_one_line([cmd, "--devices", "0"], tmp_path / cmd, capsys,
                                    ["--devices", "[1, 64]", "'auto'"])  # fmt: skip
+
+
+class XlaRuntimeError(RuntimeError):
+    """Stands for jaxlib's error type (matched by its name, as the CLI does)."""
+
+
+def test_xla_out_of_memory_ends_the_command(monkeypatch, capsys):
+    """XLA's out-of-memory error in a spread solve: one line naming the allocation, exit 2, and
+    the process ended at once (os._exit: the other devices may wait in a collective forever, as
+    a 65536² run on 4 × H200 did); a ValueError after a spread solve returns normally."""
+    import warptrunc.cli.bem_check as cmd
+    import warptrunc.contact.sharded_devices as sd
+
+    text = ("RESOURCE_EXHAUSTED: Out of memory while trying to allocate 60.81GiB.\n"
+            "=== Source Location Trace: ===\nexternal/xla+/xla/stream_executor/cuda/x.cc:45")
+
+    def boom(args):
+        raise XlaRuntimeError(text)
+
+    ended = []
+    monkeypatch.setattr(os, "_exit", lambda status: ended.append(status))
+    monkeypatch.setattr(sd, "_SPREAD", {"used": True})
+    monkeypatch.setattr(cmd, "run", boom)
+    assert main(["bem-check", "--n", "64"]) == 2 and ended == [2]
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1, err
+    for needle in ("bem-check: error: out of memory", "XLA asked for 60.81GiB", "--devices"):
+        assert needle in err, (needle, err)
+    assert "Source Location" not in err
+
+    def bad(args):
+        raise ValueError("n must be ≥ 64, got 1")
+
+    monkeypatch.setattr(cmd, "run", bad)
+    assert main(["bem-check", "--n", "64"]) == 2 and ended == [2]
+    capsys.readouterr()
+    assert sd.out_of_memory(ValueError(text)) is None  # not an XLA runtime error
+    assert sd.out_of_memory(XlaRuntimeError("INTERNAL: x")) is None

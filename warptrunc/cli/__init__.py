@@ -143,6 +143,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"warptrunc {args.command}: error: {_error_text(exc)}", file=sys.stderr)
         return 2
     except Exception as exc:  # a bug: still one line, the traceback with --verbose
+        oom = _xla_out_of_memory(exc)
+        if oom is not None:  # XLA's out-of-memory status: bad input (too large), not a bug
+            print(f"warptrunc {args.command}: error: {_error_text(oom)}", file=sys.stderr)
+            return _end_spread(2, exc)
         if getattr(args, "verbose", False):
             raise
         print(
@@ -150,9 +154,31 @@ def main(argv: list[str] | None = None) -> int:
             "report it with the command line; --verbose shows the traceback)",
             file=sys.stderr,
         )
-        return EXIT_INTERNAL_ERROR
+        return _end_spread(EXIT_INTERNAL_ERROR, exc)
     finally:
         set_command(None)
+
+
+def _xla_out_of_memory(exc: BaseException) -> MemoryError | None:
+    """XLA's out-of-memory error as a MemoryError, when a solve was spread (else None)."""
+    if "warptrunc.contact.sharded_devices" not in sys.modules:
+        return None
+    from ..contact.sharded_devices import out_of_memory
+
+    return out_of_memory(exc)
+
+
+def _end_spread(status: int, exc: BaseException) -> int:
+    """``status``; but after an error of the XLA runtime in a process that spread a solve over
+    several devices, end the process here (``os._exit``, streams flushed): the other devices
+    may wait in a collective forever, and the JAX runtime for them at exit (a 65536² run on
+    4 × H200 hung after its out-of-memory error until its time limit)."""
+    mod = sys.modules.get("warptrunc.contact.sharded_devices")
+    if mod is not None and type(exc).__name__ in mod.XLA_ERRORS and mod.spread_in_use():
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(status)
+    return status
 
 
 EXIT_INTERNAL_ERROR = 1

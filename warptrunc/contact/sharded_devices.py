@@ -15,9 +15,71 @@ from typing import Any
 import numpy as np
 
 from .._support.docs import fill_doc
-from .sharded_fft import SHARDED_DOCS, import_jax, sharded_memory_terms
+from .sharded_fft import SHARDED_DOCS, import_jax, sharded_memory_bytes
 
-__all__ = ["check_fits", "choose_devices", "devices_needed", "single_device", "solver_class"]
+__all__ = [
+    "check_fits",
+    "choose_devices",
+    "devices_needed",
+    "out_of_memory",
+    "single_device",
+    "solver_class",
+    "spread_in_use",
+]
+
+XLA_ERRORS = ("XlaRuntimeError", "JaxRuntimeError")
+"""Names of the XLA runtime's error types (jaxlib's, by version)."""
+
+_SPREAD = {"used": False}  # set once a solve was spread (ShardedHalfSpace): see spread_in_use
+
+
+def mark_spread() -> None:
+    """Record that this process spread a solve over several devices (:func:`spread_in_use`)."""
+    _SPREAD["used"] = True
+
+
+def spread_in_use() -> bool:
+    """Whether this process spread a contact solve over several devices.
+
+    Returns
+    -------
+    bool
+        True once a :class:`~warptrunc.contact.sharded.ShardedContactSolver` was made. After an
+        error in such a solve the other devices may still wait in a collective (an all-to-all
+        whose partner failed), and the JAX runtime then waits for them at interpreter exit; the
+        command line therefore ends the process at once after reporting the error
+        (``os._exit``, :func:`warptrunc.cli.main`).
+    """
+    return _SPREAD["used"]
+
+
+def out_of_memory(exc: BaseException) -> MemoryError | None:
+    """XLA's out-of-memory error as a :class:`MemoryError`, or None for any other error.
+
+    Parameters
+    ----------
+    exc : BaseException
+        An error raised by a JAX programme (an :data:`XLA_ERRORS` type with XLA's
+        ``RESOURCE_EXHAUSTED`` status: a device allocation refused).
+
+    Returns
+    -------
+    MemoryError or None
+        One line naming the failed allocation where XLA gave it, and what to do.
+    """
+    text = str(exc)
+    if "RESOURCE_EXHAUSTED" not in text or type(exc).__name__ not in XLA_ERRORS:
+        return None
+    import re
+
+    first = " ".join(text.split("=== Source Location Trace")[0].split())[:300]
+    asked = re.search(r"allocat\w* ([\d.]+\s*[KMGT]i?B)", text)
+    what = f" (XLA asked for {asked.group(1)})" if asked else ""
+    return MemoryError(
+        f"a device ran out of memory in a solve spread over several devices{what}: {first}; "
+        "use more devices (--devices), float32, or a smaller map, and see "
+        "ContactSolver.memory_bytes(..., devices=n)"
+    )
 
 _PLATFORMS = {"cuda": "gpu", "gpu": "gpu", "cpu": "cpu", "tpu": "tpu"}
 
@@ -80,7 +142,7 @@ def devices_needed(shape: tuple[int, int], substrate: str, dtype: str, free_byte
     """
     for n in range(2, limit + 1):
         if shape[0] % n == 0:
-            need = sum(sharded_memory_terms(shape, substrate, dtype, n).values())
+            need = sharded_memory_bytes(shape, substrate, dtype, n)
             if need <= free_bytes:
                 return n
     return None
@@ -102,14 +164,14 @@ def check_fits(shape: tuple[int, int], substrate: str, dtype: str, devices: list
     -------
     int
         Bytes each device needs (the model,
-        :func:`~warptrunc.contact.sharded_fft.sharded_memory_terms`).
+        :func:`~warptrunc.contact.sharded_fft.sharded_memory_bytes`).
 
     Raises
     ------
     MemoryError
         A device has less free memory than its share; the message says how many would do.
     """
-    need = sum(sharded_memory_terms(shape, substrate, dtype, len(devices)).values())
+    need = sharded_memory_bytes(shape, substrate, dtype, len(devices))
     for dev in devices:
         free = _free_bytes(dev)
         if free is not None and need > free:

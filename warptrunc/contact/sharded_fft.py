@@ -22,7 +22,7 @@ sees them as per-slab work (without it XLA's sharding propagation gathers whole 
 transposes are XLA's own: no hand-written all-to-all (``tests/test_sharded.py`` checks the
 compiled programme: two all-to-alls, no all-gather).
 
-The kernel spectrum W is the one-device solver's
+The kernel spectrum W (:mod:`warptrunc.contact.sharded_spectrum`) is the one-device solver's
 (:func:`~warptrunc.contact.influence.build_free_spectrum`): Love's coefficients mirrored in x, the x transform, then mirrored in y
 and the y transform, in float64 on the devices (the x stage in row slabs, the y stage in column
 slabs), rounded to the dtype; the periodic W is its closed form.
@@ -31,7 +31,6 @@ slabs), rounded to the dtype; the periodic W is its closed form.
 from __future__ import annotations
 
 import functools
-import math
 from typing import Any
 
 import numpy as np
@@ -46,6 +45,7 @@ __all__ = [
     "SlabLayout",
     "column_blocks",
     "import_jax",
+    "sharded_memory_bytes",
     "sharded_memory_terms",
     "slab_layout",
 ]
@@ -176,17 +176,32 @@ def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
     }
 
 
-def _love(jnp, x, y, a: float, b: float, contact_modulus: float):
-    """Love's (1929) displacement (m) at (x, y) under a unit pressure on [−a, a]×[−b, b], as
-    :func:`warptrunc.contact.influence._love` (in JAX)."""
-    xa, xm, yb, ym = x + a, x - a, y + b, y - b
-    v = (
-        xa * jnp.log((yb + jnp.hypot(yb, xa)) / (ym + jnp.hypot(ym, xa)))
-        + yb * jnp.log((xa + jnp.hypot(yb, xa)) / (xm + jnp.hypot(yb, xm)))
-        + xm * jnp.log((ym + jnp.hypot(ym, xm)) / (yb + jnp.hypot(yb, xm)))
-        + ym * jnp.log((xm + jnp.hypot(ym, xm)) / (xa + jnp.hypot(ym, xa)))
-    )
-    return v / (math.pi * contact_modulus)
+def sharded_memory_bytes(shape: tuple[int, int], substrate: str, dtype: str,
+                         n_devices: int) -> int:  # fmt: skip
+    """Peak bytes one device holds for a solve spread over ``n_devices`` (the model).
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    substrate : {"free", "periodic"}
+        Half-space.
+    dtype : {"float64", "float32"}
+        Precision of the maps.
+    n_devices : int
+        Devices the map is split over (dimensionless count, ≥ 2).
+
+    Returns
+    -------
+    int
+        The larger of the solve's terms summed (:func:`sharded_memory_terms`) and the kernel
+        spectrum's build, which comes first and alone
+        (:func:`~warptrunc.contact.sharded_spectrum.build_bytes`) (B).
+    """
+    from .sharded_spectrum import build_bytes
+
+    steady = sum(sharded_memory_terms(shape, substrate, dtype, n_devices).values())
+    return int(max(steady, build_bytes(shape, substrate, dtype, n_devices)))
 
 
 class SlabLayout:
@@ -390,7 +405,8 @@ class SlabLayout:
     # --- the kernel spectrum ----------------------------------------------------------------
 
     def build_spectrum(self, pixel_size: tuple[float, float], contact_modulus: float):
-        """The kernel spectrum W's rows 0 … Ny//2 in column slabs (module docstring).
+        """The kernel spectrum W's rows 0 … Ny//2 in column slabs
+        (:func:`~warptrunc.contact.sharded_spectrum.build_spectrum`).
 
         Parameters
         ----------
@@ -404,54 +420,9 @@ class SlabLayout:
         (Ny//2 + 1, nkp) jax array
             W (m/N) in the dtype, column slabs; the padded columns (beyond Nx//2) hold 1.
         """
-        jax, jnp = self.jax, self.jnp
-        shard_map = _shard_map(jax)
-        ny, nx = self.shape
-        big_y, _, nk, nkp = self.grid_shape
-        dx, dy = float(pixel_size[0]), float(pixel_size[1])
-        area = dx * dy
-        n_dev = len(self.devices)
-        out = self.np_dtype
-        rows_half = big_y // 2 + 1
-        r, c = self.row_spec, self.col_spec
+        from .sharded_spectrum import build_spectrum
 
-        def padded(w):  # the padded columns: 1 (K⁻¹ divides by W; their data is zero)
-            return jnp.where(jnp.arange(nkp)[None, :] < nk, w, 1.0).astype(out)
-
-        if self.substrate == "periodic":
-
-            def build():
-                fx = jnp.arange(nkp, dtype=jnp.float64)[None, :] / (nx * dx)
-                fy = jnp.arange(rows_half, dtype=jnp.float64)[:, None] / (ny * dy)
-                stiff = math.pi * contact_modulus * jnp.hypot(fx, fy)
-                zero = math.pi * contact_modulus * (1 / (nx * dx) + 1 / (ny * dy)) / 2
-                stiff = stiff.at[0, 0].set(zero)
-                return padded(1.0 / (stiff * area))
-
-            return jax.jit(build, out_shardings=self.cols)()
-
-        n_rows = -(-(ny + 1) // n_dev) * n_dev  # quadrant rows 0 … ny, padded to the devices
-
-        def quadrant_rows(j):  # (slab, 1) row numbers → x transform of the x-mirrored rows
-            xs = jnp.arange(nx + 1, dtype=jnp.float64)[None, :] * dx
-            quad = _love(jnp, xs, j.astype(jnp.float64) * dy, dx / 2, dy / 2, contact_modulus)
-            row = jnp.concatenate([quad, quad[:, nx - 1 : 0 : -1]], axis=1)  # 2nx
-            return jnp.pad(jnp.fft.rfft(row, axis=1).real, ((0, 0), (0, nkp - nk)))
-
-        def columns(a):  # (n_rows, slab) → y transform of the y-mirrored columns
-            a = a[: ny + 1]
-            col = jnp.concatenate([a, a[ny - 1 : 0 : -1]], axis=0)  # 2ny
-            return jnp.fft.rfft(col, axis=0).real / area
-
-        def build():
-            j = jax.lax.with_sharding_constraint(jnp.arange(n_rows)[:, None], self.rows)
-            a = shard_map(quadrant_rows, mesh=self.mesh, in_specs=r, out_specs=r)(j)
-            a = jax.lax.with_sharding_constraint(a, self.cols)
-            return padded(shard_map(columns, mesh=self.mesh, in_specs=c, out_specs=c)(a))
-
-        w = jax.jit(build, out_shardings=self.cols)()
-        assert w.shape == (rows_half, nkp)
-        return w
+        return build_spectrum(self, pixel_size, contact_modulus)
 
 
 @functools.lru_cache(maxsize=16)
@@ -506,6 +477,9 @@ class ShardedHalfSpace:
     def __init__(self, shape: tuple[int, int], pixel_size: tuple[float, float],
                  contact_modulus: float, *, substrate: str, dtype: str,
                  devices: list[Any]) -> None:  # fmt: skip
+        from .sharded_devices import mark_spread
+
+        mark_spread()
         shape = (int(shape[0]), int(shape[1]))
         blocks = column_blocks(shape, substrate, dtype, len(devices))
         self.layout = slab_layout(shape, substrate, dtype, tuple(devices), blocks)

@@ -1,0 +1,211 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The kernel spectrum of the half-space over several devices, built in pieces.
+
+The free half-space's spectrum W is the one-device solver's
+(:func:`~warptrunc.contact.influence.build_free_spectrum`): Love's coefficients of the map's
+quadrant, mirrored in x, transformed along x (row slabs, one device each), a sharding constraint
+to column slabs (XLA's all-to-all), mirrored in y and transformed along y, in float64, rounded
+to the dtype. The periodic W is its closed form.
+
+Both stages run in *pieces* of at most :data:`BUILD_PIECE_BYTES` of float64 input each — the x
+stage over blocks of rows (``lax.map``), the y stage over blocks of columns (``lax.fori_loop``
+writing into its output) — so that a device holds, besides the x stage's result before and after
+the all-to-all and W itself, one piece's temporaries. Built in one piece, XLA's temporaries of
+the free build at 65536² over 4 devices came to 51.5 GB per device on the CPU compile, and the
+GPU compile asked for one buffer of 60.8 GiB (4 × H200, 2026-11-27): more than the solve itself.
+:func:`build_bytes` is the model of the pieced build's peak per device.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = ["BUILD_PIECE_BYTES", "build_bytes", "build_spectrum", "spectrum_programme"]
+
+BUILD_PIECE_BYTES = 1 << 28
+"""Float64 input bytes of one piece of the spectrum's build (256 MiB): the x stage's rows
+(2·nx each) and the y stage's columns (2·ny each) are taken in blocks of at most this many
+bytes."""
+
+
+def _love(jnp, x, y, a: float, b: float, contact_modulus: float):
+    """Love's (1929) displacement (m) at (x, y) under a unit pressure on [−a, a]×[−b, b], as
+    :func:`warptrunc.contact.influence._love` (in JAX)."""
+    xa, xm, yb, ym = x + a, x - a, y + b, y - b
+    v = (
+        xa * jnp.log((yb + jnp.hypot(yb, xa)) / (ym + jnp.hypot(ym, xa)))
+        + yb * jnp.log((xa + jnp.hypot(yb, xa)) / (xm + jnp.hypot(yb, xm)))
+        + xm * jnp.log((ym + jnp.hypot(ym, xm)) / (yb + jnp.hypot(yb, xm)))
+        + ym * jnp.log((xm + jnp.hypot(ym, xm)) / (xa + jnp.hypot(ym, xa)))
+    )
+    return v / (math.pi * contact_modulus)
+
+
+def _pieces(length: int, per_item_bytes: int, count: int) -> int:
+    """Items per piece: at most ``count``, at least one, within :data:`BUILD_PIECE_BYTES`."""
+    return int(max(1, min(count, BUILD_PIECE_BYTES // max(1, per_item_bytes))))
+
+
+def _row_layout(ny: int, nx: int, n_dev: int) -> tuple[int, int, int]:
+    """(rows per piece, rows per device, rows in all) of the free x stage: quadrant rows
+    0 … ny, padded so that every device holds a whole number of pieces."""
+    per_dev = -(-(ny + 1) // n_dev)
+    piece = _pieces(ny + 1, 2 * nx * 8, per_dev)
+    slab = -(-per_dev // piece) * piece
+    return piece, slab, slab * n_dev
+
+
+def build_bytes(shape: tuple[int, int], substrate: str, dtype: str, n_devices: int) -> int:
+    """Peak bytes one device holds while the spectrum is built (the model).
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    substrate : {"free", "periodic"}
+        Half-space.
+    dtype : {"float64", "float32"}
+        Precision of W.
+    n_devices : int
+        Devices (dimensionless count, ≥ 2).
+
+    Returns
+    -------
+    int
+        Bytes: W's column slab, and for the free half-space three float64 slabs of the x
+        stage's result (in row slabs, in column slabs, and XLA's staging of the all-to-all
+        between them: the CPU compile), plus four float64 pieces of at most
+        :data:`BUILD_PIECE_BYTES` (a piece's input, its transform, the mirrored copy, the
+        result); for the periodic one, two float64 copies of W's slab.
+    """
+    from .sharded_fft import _grid
+
+    ny, nx = shape
+    big_y, _, _, nkp = _grid(shape, substrate, n_devices)
+    cols = nkp // n_devices
+    w = (big_y // 2 + 1) * cols * np.dtype(dtype).itemsize
+    if substrate == "periodic":
+        return int(w + 2 * (big_y // 2 + 1) * cols * 8)
+    _, slab_rows, n_rows = _row_layout(ny, nx, n_devices)
+    x_slab = max(slab_rows * nkp, n_rows * cols) * 8
+    return int(w + 3 * x_slab + 4 * min(BUILD_PIECE_BYTES, x_slab))
+
+
+def build_spectrum(layout: Any, pixel_size: tuple[float, float], contact_modulus: float):
+    """The kernel spectrum W's rows 0 … Ny//2 in column slabs (module docstring).
+
+    Parameters
+    ----------
+    layout : SlabLayout
+        The layout (:class:`~warptrunc.contact.sharded_fft.SlabLayout`).
+    pixel_size : (float, float)
+        Pixel sides (dx, dy) (m).
+    contact_modulus : float
+        Contact modulus E* (Pa).
+
+    Returns
+    -------
+    (Ny//2 + 1, nkp) jax array
+        W (m/N) in the layout's dtype, column slabs; the padded columns (beyond Nx//2) hold 1.
+    """
+    w = spectrum_programme(layout, pixel_size, contact_modulus)()
+    big_y, _, _, nkp = layout.grid_shape
+    assert w.shape == (big_y // 2 + 1, nkp)
+    return w
+
+
+def spectrum_programme(layout: Any, pixel_size: tuple[float, float], contact_modulus: float):
+    """The jitted programme that builds the kernel spectrum (:func:`build_spectrum` calls it;
+    ``.lower().compile().memory_analysis()`` gives XLA's memory of the build without running
+    it).
+
+    Parameters
+    ----------
+    layout : SlabLayout
+        The layout (:class:`~warptrunc.contact.sharded_fft.SlabLayout`).
+    pixel_size : (float, float)
+        Pixel sides (dx, dy) (m).
+    contact_modulus : float
+        Contact modulus E* (Pa).
+
+    Returns
+    -------
+    callable
+        ``jax.jit`` of a function of no arguments returning W (:func:`build_spectrum`).
+    """
+    from .sharded_fft import _shard_map
+
+    jax, jnp = layout.jax, layout.jnp
+    lax = jax.lax
+    shard_map = _shard_map(jax)
+    ny, nx = layout.shape
+    big_y, _, nk, nkp = layout.grid_shape
+    dx, dy = float(pixel_size[0]), float(pixel_size[1])
+    area = dx * dy
+    n_dev = len(layout.devices)
+    out = layout.np_dtype
+    rows_half = big_y // 2 + 1
+    r, c = layout.row_spec, layout.col_spec
+
+    if layout.substrate == "periodic":
+
+        def periodic():
+            fx = jnp.arange(nkp, dtype=jnp.float64)[None, :] / (nx * dx)
+            fy = jnp.arange(rows_half, dtype=jnp.float64)[:, None] / (ny * dy)
+            stiff = math.pi * contact_modulus * jnp.hypot(fx, fy)
+            zero = math.pi * contact_modulus * (1 / (nx * dx) + 1 / (ny * dy)) / 2
+            stiff = stiff.at[0, 0].set(zero)
+            w = 1.0 / (stiff * area)  # the padded columns: 1 (K⁻¹ divides by W; data zero)
+            return jnp.where(jnp.arange(nkp)[None, :] < nk, w, 1.0).astype(out)
+
+        return jax.jit(periodic, out_shardings=layout.cols)
+
+    piece_rows, _, n_rows = _row_layout(ny, nx, n_dev)
+
+    def x_stage(j):  # (slab, 1) quadrant row numbers → x transform of the x-mirrored rows
+        xs = jnp.arange(nx + 1, dtype=jnp.float64)[None, :] * dx
+
+        def piece(jp):
+            quad = _love(jnp, xs, jp.astype(jnp.float64) * dy, dx / 2, dy / 2, contact_modulus)
+            row = jnp.concatenate([quad, quad[:, nx - 1 : 0 : -1]], axis=1)  # 2nx
+            return jnp.pad(jnp.fft.rfft(row, axis=1).real, ((0, 0), (0, nkp - nk)))
+
+        n = j.shape[0] // piece_rows
+        if n == 1:
+            return piece(j)
+        return lax.map(piece, j.reshape(n, piece_rows, 1)).reshape(j.shape[0], nkp)
+
+    def y_stage(a):  # (n_rows, slab) → y transform of the y-mirrored columns, the dtype
+        cols = a.shape[1]
+        first = lax.axis_index("d") * cols  # this slab's first column of the half spectrum
+
+        def piece(p, j0):
+            p = p[: ny + 1]
+            col = jnp.concatenate([p, p[ny - 1 : 0 : -1]], axis=0)  # 2ny
+            w = jnp.fft.rfft(col, axis=0).real / area
+            k = first + j0 + jnp.arange(p.shape[1])[None, :]
+            return jnp.where(k < nk, w, 1.0).astype(out)
+
+        b = _pieces(cols, 2 * ny * 8, cols)
+        if b >= cols:
+            return piece(a, 0)
+
+        def block(i, acc):  # the last block overlaps the one before: the same values
+            j0 = jnp.minimum(i * b, cols - b)
+            w = piece(lax.dynamic_slice_in_dim(a, j0, b, axis=1), j0)
+            return lax.dynamic_update_slice_in_dim(acc, w, j0, axis=1)
+
+        acc = jnp.zeros_like(a[:rows_half], dtype=out)  # varying over the devices, as the pieces
+        return lax.fori_loop(0, -(-cols // b), block, acc)
+
+    def build():
+        j = lax.with_sharding_constraint(jnp.arange(n_rows)[:, None], layout.rows)
+        a = shard_map(x_stage, mesh=layout.mesh, in_specs=r, out_specs=r)(j)
+        a = lax.with_sharding_constraint(a, layout.cols)  # all-to-all (XLA)
+        return shard_map(y_stage, mesh=layout.mesh, in_specs=c, out_specs=c)(a)
+
+    return jax.jit(build, out_shardings=layout.cols)
