@@ -45,6 +45,18 @@ def test_lazy_host_copy_equals_device_array(device):
         h[0, 0] = 1.0
 
 
+def test_release_device_copies_keeps_the_heights(device):
+    """``release_device_copies``: the heights move to the host (the same values), the device
+    copies are dropped, and a later device use uploads them again (same truncation)."""
+    s = _wm(device)
+    ref = s.device_heights().numpy().copy()
+    before = truncate(s, 20, device=device).n_contact_pixels
+    assert s.release_device_copies() is s
+    assert s.device is None and s.has_host_copy and not s._dev
+    np.testing.assert_array_equal(s.heights, ref)
+    np.testing.assert_array_equal(truncate(s, 20, device=device).n_contact_pixels, before)
+
+
 def test_truncate_and_islands_make_no_host_copy(device):
     s = _wm(device)
     truncate(s, 50, device=device)

@@ -178,6 +178,22 @@ class Surface:
             self._dev[key] = z
         return z
 
+    def release_device_copies(self) -> Surface:
+        """Keep the heights on the host only: make the host copy (one device → host transfer)
+        and drop every device copy, so that Warp can give their memory back (before another
+        allocator, JAX's for a solve over several devices, takes the same GPUs).
+
+        Returns
+        -------
+        Surface
+            This surface, now host-resident (:attr:`device` is None); the heights are the same
+            values, and a later :meth:`device_heights` uploads them again.
+        """
+        self.heights  # noqa: B018 - makes the host copy
+        self._dev.clear()
+        object.__setattr__(self, "_home", None)
+        return self
+
     def extremes(self) -> tuple[float, float]:
         """(min z, max z) (m), float32 values as Python floats; from the validation reduction
         for a device surface, else one NumPy pass (cached).

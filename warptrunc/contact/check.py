@@ -317,7 +317,9 @@ def bem_check(
         Warp device for the truncation part and warptrunc's solver.
     devices : int, "auto" or list, optional
         Spread warptrunc's solver over several devices (``ContactSolver(..., devices=...)``;
-        JAX); default None: ``device`` alone.
+        JAX); default None: ``device`` alone. When spread, the surface's device copies are
+        released after the truncation part (:meth:`~warptrunc.Surface.release_device_copies`;
+        its heights stay on the host), so that the solve has the GPUs' memory.
 
     Returns
     -------
@@ -376,6 +378,8 @@ def bem_check(
     trunc_stiffness = flat_punch_stiffness(np.sqrt(trunc_area), contact_modulus, beta_prime=beta_prime)
     trunc_load = np.interp(d, sc.depth, sc.load)
 
+    if devices not in (None, 1) and solver != "contactmechanics":
+        surface.release_device_copies()  # the GPUs' memory to JAX: the heights on the host
     args = (surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress)
     if solver == "contactmechanics":
         out, conv, nit, edge, solves, extra = run_contactmechanics(*args)
