@@ -162,6 +162,35 @@ def _timed(fn, repeats: int) -> float:
     return float(np.median(ts))
 
 
+def programme_memory(solver) -> dict:
+    """XLA's memory of the sharded solver's programmes as compiled for these devices (bytes per
+    device: arguments, outputs, temporaries; ``memory_analysis()``), to set the model's XLA
+    terms on the devices' own compile: the spectrum's build, the CG step, the preconditioner,
+    one convolution."""
+    from warptrunc.contact.sharded_spectrum import spectrum_programme
+    from warptrunc.contact.sharded_steps import make_step
+
+    lay, w = solver.hs.layout, solver.hs.spectrum
+    x, mask = solver.q, solver.mask
+    calls = {
+        "build": (lambda: spectrum_programme(lay, solver.pixel_size, solver.contact_modulus), ()),
+        "step": (lambda: make_step(lay, "step"), (x, 0.0, 0.0, mask, x, x, x, x, 1.0, 1e300, w)),
+        "precondition": (lambda: make_step(lay, "precondition"), (x, x, mask, w)),
+        "apply": (lambda: lay.jax.jit(lambda a, b: lay.conv(a, b), out_shardings=lay.rows),
+                  (x, w)),
+    }  # fmt: skip
+    out = {}
+    for name, (make, fn_args) in calls.items():
+        try:
+            m = make().lower(*fn_args).compile().memory_analysis()
+            out[name] = {"argument": int(m.argument_size_in_bytes),
+                         "output": int(m.output_size_in_bytes),
+                         "temp": int(m.temp_size_in_bytes)}  # fmt: skip
+        except Exception as exc:  # recorded; the others go on
+            out[name] = {"error": f"{type(exc).__name__}: {exc}"[:300]}
+    return out
+
+
 def solve(args) -> None:
     """Floor, set-up, cold and warm solves, peak memory (module docstring)."""
     rec = {"step": "solve", "n": args.n, "ndev": args.ndev, "dtype": args.dtype,
@@ -231,6 +260,9 @@ def solve(args) -> None:
         else:
             stats = [d.memory_stats() or {} for d in devices]
             rec["peak_bytes"] = [int(s.get("peak_bytes_in_use", -1)) for s in stats]
+            rec["programmes"] = programme_memory(solver)
+            rec["model_terms"] = type(solver).memory_terms_per_device(
+                shape, args.substrate, args.dtype, args.ndev)  # fmt: skip
         rec["peak_over_model"] = max(rec["peak_bytes"]) / rec["model_bytes_per_device"]
     except Exception as exc:  # recorded; the script goes on
         rec["error"] = f"{type(exc).__name__}: {exc}"

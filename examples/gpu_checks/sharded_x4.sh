@@ -32,7 +32,8 @@
 #       stiffness (floor ≈ 140 ms, about 0.5 s an iteration)        ≈ 300–500 s (least certain)
 # So (a) + (b) fit one 10-minute call and (c) needs a second one (PARTS=c) on 4 H200s.
 # Sizes and settings: SCALE_N, WEAK_N, F64_N, BIG_N, DTYPE (float32, of (a)), BIG_FRACTIONS
-# ("0.1 0.2 0.3"), BIG_MAXITER (10000), MIN_GPU_GB (100). A CPU dry run of the logic (no GPU; JAX
+# ("0.1 0.2 0.3"), BIG_MAXITER (10000), F64_MAXITER (1000: (b)'s solves run to convergence;
+# (a) keeps benchmark_sharded.py's 100), MIN_GPU_GB (100). A CPU dry run of the logic (no GPU; JAX
 # on 4 host devices, Warp on the CPU):
 #   DRY_CPU=1 SCALE_N=128 WEAK_N=128 F64_N=128 BIG_N=128 OUT=/tmp/x4 \
 #       bash examples/gpu_checks/sharded_x4.sh
@@ -49,6 +50,7 @@ BIG_N=${BIG_N:-65536}
 DTYPE=${DTYPE:-float32}
 BIG_FRACTIONS=${BIG_FRACTIONS:-0.1 0.2 0.3}
 BIG_MAXITER=${BIG_MAXITER:-10000}
+F64_MAXITER=${F64_MAXITER:-1000}  # (b) converges: the warm step is timed to convergence
 MIN_GPU_GB=${MIN_GPU_GB:-100}
 BUDGET=${BUDGET:-570}
 MAPS=${MAPS:-$OUT/maps}
@@ -125,7 +127,7 @@ if has a; then
 fi
 if has b; then
     bench maps_f64 90 maps --n "$F64_N"
-    bench "f64_${F64_N}_2" 240 solve --n "$F64_N" --ndev 2 --dtype float64
+    bench "f64_${F64_N}_2" 420 solve --n "$F64_N" --ndev 2 --dtype float64 --maxiter "$F64_MAXITER"
 fi
 if has c; then
     need_mb=$((MIN_GPU_GB * 1000000000 / 1048576))
@@ -138,10 +140,27 @@ if has c; then
         bo="$OUT/bem_${BIG_N}"
         tv=()
         [ -x /usr/bin/time ] && tv=(/usr/bin/time -v)  # the host's peak memory, where present
+        smi=""
+        if [ -z "${DRY_CPU:-}" ]; then  # each GPU's memory in use (JAX and Warp) every 5 s
+            nvidia-smi --query-gpu=timestamp,index,memory.used --format=csv,noheader -l 5 \
+                >"$OUT/gpu_memory_c.csv" 2>/dev/null &
+            smi=$!
+        fi
         # shellcheck disable=SC2086
         run_step bem_check "bem_check_${BIG_N}_4" 560 "${tv[@]}" warptrunc bem-check --n "$BIG_N" \
             --devices 4 --dtype float32 --stiffness barber --fractions $BIG_FRACTIONS \
             --maxiter "$BIG_MAXITER" --accept-unconverged --no-progress --out "$bo"
+        [ -n "$smi" ] && kill "$smi" 2>/dev/null
+        [ -f "$OUT/gpu_memory_c.csv" ] && python - "$OUT/gpu_memory_c.csv" <<'EOF' >>"$J"
+import csv, json, sys
+peak = {}
+for row in csv.reader(open(sys.argv[1])):
+    if len(row) == 3:
+        i, mib = int(row[1]), float(row[2].split()[0])
+        peak[i] = max(peak.get(i, 0.0), mib)
+print(json.dumps({"step": "bem_check_gpu_memory", "sampled_every_s": 5,
+                  "peak_used_MiB_per_gpu": peak}))
+EOF
         [ -f "$bo/bem.json" ] && python - "$bo" "$BIG_N" "$OUT/log_bem_check_${BIG_N}_4.txt" <<'EOF' >>"$J"
 import json, re, sys, time
 from pathlib import Path
