@@ -118,8 +118,10 @@ def test_punch_window_rows_padded_for_the_devices():
 
 
 def test_sweep_devices(tmp_path, capsys):
-    """``sweep --bem-fractions --devices 2``: the elastic columns equal the one-device run's;
-    --devices with --workers, or without --bem-fractions, is refused in one line."""
+    """``sweep --bem-fractions --devices 2``: the elastic columns equal the one-device run's,
+    in process and on a Dask worker taking both host devices (``--workers 1 --devices 2``);
+    more workers × devices than present, ``--devices auto`` with workers, or --devices without
+    --bem-fractions, are refused in one line."""
     import pandas as pd
 
     args = ["sweep", "--D", "2.5", "--delta", "0.01", "--seeds", "0", "--n", "64",
@@ -130,11 +132,53 @@ def test_sweep_devices(tmp_path, capsys):
         assert one[f"bem_converged_{f}"].all() and two[f"bem_converged_{f}"].all()
         for q in ("F_bem_N", "k_bem_N_per_m", "A_bem_m2"):
             close(one[f"{q}_{f}"], two[f"{q}_{f}"], f"{q}_{f}")
+    out = tmp_path / "worker"
+    assert main([*args, "--devices", "2", "--workers", "1", "--out", str(out)]) == 0
+    capsys.readouterr()
+    grouped = pd.read_parquet(out / "cases.parquet")
+    assert grouped["bem_error"].isna().all()
+    for f in ("0.1", "0.2"):
+        for q in ("F_bem_N", "k_bem_N_per_m", "A_bem_m2"):
+            close(one[f"{q}_{f}"], grouped[f"{q}_{f}"], f"worker {q}_{f}")
     base = ["sweep", "--D", "2.5", "--delta", "0.01", "--n", "64", "--devices", "2"]
     assert_refused_in_one_line([*base, "--bem-fractions", "0.1", "--workers", "2"],
                                tmp_path / "bad1", capsys,
-                               ["--devices 2", "--workers", "not supported yet"])  # fmt: skip
+                               ["2 × 2 = 4 devices", "2 cpu devices", "--workers 1"])  # fmt: skip
+    auto = [*base[:-1], "auto", "--bem-fractions", "0.1", "--workers", "1"]
+    assert_refused_in_one_line(auto, tmp_path / "bad3", capsys, ["--devices auto", "a count"])
     assert_refused_in_one_line(base, tmp_path / "bad2", capsys, ["--devices 2", "--bem-fractions"])
+
+
+def test_worker_groups(monkeypatch):
+    """Worker i of a group size G takes devices i·G … i·G + G − 1 (modulo those present): its
+    Warp device the first (CUDA), the group in WARPTRUNC_DEVICE_GROUP; a solve's
+    ``devices=G`` in such a process is spread over that group."""
+    from types import SimpleNamespace
+
+    from warptrunc.contact.sharded_devices import choose_devices
+    from warptrunc.sweep.cluster import PinDevice
+    from warptrunc.sweep.groups import GROUP_ENV, group_size, worker_group
+
+    assert worker_group(0, 4, 2) == ["cuda:0", "cuda:1"]
+    assert worker_group(1, 4, 2) == ["cuda:2", "cuda:3"]
+    assert worker_group("gpu-worker-3", 4, 2, "cpu") == ["cpu:2", "cpu:3"]
+    with pytest.raises(ValueError, match="at most the 2 devices present, got 3"):
+        worker_group(0, 2, 3)
+    assert group_size(None) == 1 and group_size(2) == 2
+    with pytest.raises(ValueError, match="give a count"):
+        group_size("auto")
+    monkeypatch.delenv(GROUP_ENV, raising=False)
+    monkeypatch.delenv("WARPTRUNC_DEVICE", raising=False)
+    PinDevice(n_devices=4, group=2, platform="cuda").setup(SimpleNamespace(name=1))
+    assert os.environ[GROUP_ENV] == "cuda:2,cuda:3" and os.environ["WARPTRUNC_DEVICE"] == "cuda:2"
+    monkeypatch.delenv("WARPTRUNC_DEVICE")
+    PinDevice(n_devices=2, group=2, platform="cpu").setup(SimpleNamespace(name=0))
+    assert os.environ[GROUP_ENV] == "cpu:0,cpu:1" and "WARPTRUNC_DEVICE" not in os.environ
+    monkeypatch.setenv(GROUP_ENV, "cpu:1,cpu:0")  # the group's order is the slabs' order
+    cpu = jax.devices("cpu")
+    assert choose_devices(2, (64, 64)) == [cpu[1], cpu[0]]
+    with pytest.raises(ValueError, match="names 2"):
+        choose_devices(3, (63, 64))
 
 
 def test_refusals_name_the_option(tmp_path, capsys):

@@ -91,7 +91,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    "F_ratio_<f>, A_ratio_<f>, k_ratio_<f> and bem_converged_<f>")  # fmt: skip
     e = p.add_argument_group("execution")
     add_device(e)
-    add_devices(e, "--bem-fractions (in this process: not yet with --workers or --scheduler)")
+    add_devices(e, "--bem-fractions (with --workers N: each worker takes that many devices of its "
+                "own, and --workers auto is the GPUs divided by it)")
     add_workers(e, "the cases", "the cases (its workers write into --out: a shared filesystem)")
     e.add_argument("--shard-size", type=integer(1, 10**6), default=None,
                    help="with --workers/--scheduler: cases per Dask task, each written by its "
@@ -173,10 +174,9 @@ def run(args: argparse.Namespace) -> int:
     if args.migrate:
         return _migrate(args.out)
     if args.devices not in (None, 1):
-        if args.workers is not None or args.scheduler is not None:
-            raise ValueError(f"--devices {args.devices} with --workers/--scheduler (each worker "
-                             "taking several devices) is not supported yet; run without "
-                             "--workers")  # fmt: skip
+        if args.devices == "auto" and (args.workers is not None or args.scheduler is not None):
+            raise ValueError("--devices auto with --workers/--scheduler: give a count (each "
+                             "worker takes that many devices of its own)")  # fmt: skip
         if not args.bem_fractions:
             raise ValueError(f"--devices {args.devices} spreads the elastic solves of "
                              "--bem-fractions, and none are asked for")  # fmt: skip

@@ -185,6 +185,14 @@ def check_fits(shape: tuple[int, int], substrate: str, dtype: str, devices: list
     return need
 
 
+def _process_group() -> list[str] | None:
+    """The device names of ``$WARPTRUNC_DEVICE_GROUP`` (a Dask worker's group), or None."""
+    import os
+
+    text = os.environ.get("WARPTRUNC_DEVICE_GROUP", "").strip()
+    return [t.strip() for t in text.split(",") if t.strip()] or None
+
+
 def _count_error(n: int, ny: int, avail: int) -> ValueError:
     ok = [k for k in range(1, avail + 1) if ny % k == 0]
     return ValueError(
@@ -202,7 +210,8 @@ def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
     ----------
     devices : None, int, "auto" or list
         The solver's ``devices`` argument: None (one device); a count N ≥ 1 (the first N JAX
-        devices of the default backend); ``"auto"``; a list of JAX devices or names
+        devices of the default backend; in a process whose ``$WARPTRUNC_DEVICE_GROUP`` names
+        N devices, those: a Dask worker's group, :mod:`warptrunc.sweep.groups`); ``"auto"``; a list of JAX devices or names
         (``"cuda:0"``, ``"gpu:1"``, ``"cpu:0"``).
     shape : tuple of int
         Shape of the height map (ny, nx).
@@ -266,6 +275,12 @@ def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
             raise ValueError(f"devices must be a count ≥ 1, got {n}")
         if n == 1:
             return None
+        group = _process_group()
+        if group is not None:  # a Dask worker's own devices (warptrunc.sweep.groups)
+            if len(group) != n:
+                raise ValueError(f"devices={n}, but this process's device group "
+                                 f"(WARPTRUNC_DEVICE_GROUP) names {len(group)}: {group}")  # fmt: skip
+            return choose_devices(group, shape, settings, legacy, device, one_device_bytes)
         jax = import_jax()
         avail = jax.devices()
         if n > len(avail):

@@ -66,13 +66,23 @@ class PinDevice(WorkerPlugin):
     n_devices : int, optional
         Number of CUDA devices to spread the workers over (count). None: the count Warp
         reports in each worker.
+    group : int, optional
+        Devices per worker (count, default 1). Above 1, worker ``i`` takes devices
+        ``i·group …`` (:func:`~warptrunc.sweep.groups.worker_group`), written to
+        ``WARPTRUNC_DEVICE_GROUP``, and its Warp device is the group's first.
+    platform : {"cuda", "cpu"}, optional
+        Platform of the group's device names (``"cpu"``: JAX's host devices; no Warp pinning).
+    pin : bool, optional
+        Set ``WARPTRUNC_DEVICE`` (False: the caller passes a Warp device; only the group).
     """
 
     name = "warptrunc-pin-device"
     idempotent = True
 
-    def __init__(self, n_devices: int | None = None) -> None:
+    def __init__(self, n_devices: int | None = None, group: int = 1, platform: str = "cuda",
+                 pin: bool = True) -> None:  # fmt: skip
         self.n_devices = n_devices
+        self.group, self.platform, self.pin = int(group), platform, pin
 
     def setup(self, worker) -> None:
         """Set ``WARPTRUNC_DEVICE`` in this worker process (called by Dask at worker start).
@@ -83,7 +93,15 @@ class PinDevice(WorkerPlugin):
             The worker; its ``name`` picks the device (:func:`pinned_device`).
         """
         n = self.n_devices if self.n_devices is not None else cuda_device_count()
-        dev = pinned_device(worker.name, n)
+        if self.group > 1 and n > 0:  # a group of devices (warptrunc.sweep.groups)
+            from .groups import GROUP_ENV, worker_group
+
+            names = worker_group(worker.name, n, self.group, self.platform)
+            os.environ[GROUP_ENV] = ",".join(names)
+            if self.pin and self.platform == "cuda":
+                os.environ["WARPTRUNC_DEVICE"] = names[0]
+            return
+        dev = pinned_device(worker.name, n) if self.pin else None
         if dev is not None:
             os.environ["WARPTRUNC_DEVICE"] = dev
 
@@ -224,6 +242,24 @@ def _gpu_count() -> int:
     return cuda_device_count()
 
 
+def _grouped(workers: Any, n: int | None, group: int, pin: bool) -> tuple[int, PinDevice]:
+    """(worker count, the plugin) of a local cluster whose workers take ``group`` devices."""
+    n_gpus = _gpu_count()
+    if n_gpus > 0:
+        have, platform = n_gpus, "cuda"
+    else:
+        from ..contact.sharded_fft import import_jax
+
+        have, platform = len(import_jax().devices("cpu")), "cpu"
+    if isinstance(workers, str) or n is None:  # "auto" (or Dask's choice): as many as fit
+        n = max(1, have // group)
+    if n * group > have:
+        raise ValueError(f"workers × devices = {n} × {group} = {n * group} devices, but "
+                         f"{have} {platform} devices are present; use at most "
+                         f"--workers {max(1, have // group)} (or 'auto')")  # fmt: skip
+    return n, PinDevice(n_devices=have, group=group, platform=platform, pin=pin)
+
+
 def _dask_cuda_cluster():
     """dask-cuda's LocalCUDACluster class, or None (not installed, or turned off)."""
     if os.environ.get(DASK_CUDA_ENV, "").strip().lower() in ("0", "false", "no", "off"):
@@ -242,6 +278,7 @@ def open_client(
     device: Any = None,
     progress: bool = True,
     warm_contact: bool = False,
+    group: int = 1,
 ) -> Iterator[tuple[Any, Any, bool]]:
     """A Dask client for a command: a local cluster started once, or an existing cluster.
 
@@ -262,6 +299,11 @@ def open_client(
     warm_contact : bool, optional
         Warm the contact solver in every worker as it starts (``warm_worker(contact=True)``:
         elastic sweeps, ``reproduce``).
+    group : int, optional
+        Devices per worker of a local cluster (count, default 1; :mod:`warptrunc.sweep.groups`):
+        a LocalCluster whose worker ``i`` takes devices ``i·group …`` (CUDA devices, else
+        JAX's host devices); ``workers="auto"`` is then the devices present divided by
+        ``group``. Ignored with ``scheduler`` (give each worker its group there).
 
     Yields
     ------
@@ -302,6 +344,9 @@ def open_client(
     else:
         n = resolve_workers(workers)
         pin = device is None and not os.environ.get("WARPTRUNC_DEVICE")
+        if group > 1:
+            n, plugin = _grouped(workers, n, group, pin)
+            pin = False
         cuda_cls = _dask_cuda_cluster() if pin else None  # counted only where installed
         n_gpus = _gpu_count() if cuda_cls is not None else 0
         if not (n_gpus > 0 and (n or n_gpus) <= n_gpus):
@@ -321,6 +366,8 @@ def open_client(
             client = Client(cluster)
             if pin:  # a LocalCUDACluster's worker sees its own device first: cuda:0
                 client.register_plugin(PinDevice(n_devices=1 if cuda_cls else None))
+            elif group > 1:
+                client.register_plugin(plugin)
             t0 = time.perf_counter()
             # all workers at once; never raises in a worker
             client.run(warm_worker, device, warm_contact)
@@ -346,6 +393,7 @@ def run_dask(
     cases: list[Case], options: SweepOptions, store, *, workers: int | None = None,
     scheduler: Any = None, device=None, total: int, progress: bool = True,
     max_retries: int = 3, shard_size: int | None = None, shard_seconds: float = 1.0,
+    devices: Any = None,
 ) -> None:  # fmt: skip
     """Run ``cases`` on a Dask cluster; each task writes one part of ``store``.
 
@@ -376,6 +424,9 @@ def run_dask(
         Cases per task; None: adaptive (:class:`~warptrunc.sweep.sharding.ShardPlanner`).
     shard_seconds : float
         Work per task that the adaptive size aims for (s).
+    devices : int, optional
+        Devices each elastic solve is spread over (count; the worker's own group,
+        :mod:`warptrunc.sweep.groups`); None: one.
 
     Notes
     -----
@@ -398,14 +449,17 @@ def run_dask(
     case records its own errors) is handled the same way, and its error printed once (stderr).
     """
 
-    with open_client(workers, scheduler, device, progress) as (client, _, _):
+    from .groups import group_size
+
+    group = group_size(devices) if scheduler is None else 1
+    with open_client(workers, scheduler, device, progress, group=group) as (client, _, _):
         _run_on(client, cases, options, store, device=device, total=total, progress=progress,
                 max_retries=max_retries, shard_size=shard_size,
-                shard_seconds=shard_seconds)  # fmt: skip
+                shard_seconds=shard_seconds, devices=devices)  # fmt: skip
 
 
 def _run_on(client, cases, options, store, *, device, total, progress, max_retries, shard_size,
-            shard_seconds) -> None:  # fmt: skip
+            shard_seconds, devices=None) -> None:  # fmt: skip
     """:func:`run_dask` on an open ``client``."""
     from distributed import as_completed
 
@@ -439,7 +493,7 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
             attempts[cid] += 1
         key = f"warptrunc-shard-{ids[0]}-{len(ids)}-{attempts[ids[0]]}"
         f = client.submit(compute_shard, [by_id[c] for c in ids], options, device, curves,
-                          key=key, pure=False)  # fmt: skip
+                          devices, key=key, pure=False)  # fmt: skip
         futures[f] = ids
         pending.add(f)
 

@@ -205,7 +205,7 @@ def finish_batch(cases: list[Case], options: SweepOptions, curves, seconds: floa
 
 @fill_doc(SHARED_DOCS)
 def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
-                 batch: bool | None = None) -> list[Result]:  # fmt: skip
+                 batch: bool | None = None, devices: Any = None) -> list[Result]:  # fmt: skip
     """:func:`compute_case` of every case, several surfaces per launch where that applies.
 
     Parameters
@@ -218,6 +218,9 @@ def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
     batch : bool, optional
         None: batch where :func:`~warptrunc.sweep.batch.batch_size` allows (CUDA, light cases
         of tile-sized grids); True: batch on the CPU too; False: one case at a time.
+    devices : int, "auto" or list, optional
+        Passed to :func:`compute_case` (elastic solves over several devices; such cases are
+        never batched).
 
     Returns
     -------
@@ -227,7 +230,7 @@ def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
     dev = resolve_device(device)
     size = 1 if batch is False else batch_size(options, dev, force=bool(batch))
     if size <= 1 or len(cases) < 2:
-        return [compute_case(c, options, dev) for c in cases]
+        return [compute_case(c, options, dev, devices) for c in cases]
     return [r for rs in batched_results(cases, options, dev, min(size, len(cases))) for r in rs]
 
 
@@ -399,7 +402,7 @@ def batched_results(cases: list[Case], options: SweepOptions, device, size: int)
 @fill_doc(SHARED_DOCS)
 def compute_shard(
     cases: list[Case], options: SweepOptions, device: str | None = None,
-    curves: str | None = None,
+    curves: str | None = None, devices: Any = None,
 ) -> dict[str, Any]:  # fmt: skip
     """Run a shard of cases (one Dask task) and write it as one part of the store.
 
@@ -413,6 +416,9 @@ def compute_shard(
     curves : str, optional
         The store's ``curves/`` folder, on a filesystem this worker shares with the client;
         None (a sweep kept in memory) returns the rows without writing anything.
+    devices : int, optional
+        Devices of each elastic solve (:func:`compute_case`; in a worker of a device group,
+        its group: :mod:`warptrunc.sweep.groups`).
 
     Returns
     -------
@@ -432,7 +438,7 @@ def compute_shard(
     """
     t0, me = time.perf_counter(), f"{socket.gethostname()}:{os.getpid()}"
     if curves is None:
-        rows = [r[0] for r in compute_many(cases, options, device)]
+        rows = [r[0] for r in compute_many(cases, options, device, devices=devices)]
         return {"part": None, "rows": rows, "seconds": time.perf_counter() - t0, "worker": me}
     folder = Path(curves)
     name = part_name([c.case_id for c in cases], min(c.index for c in cases))
@@ -440,7 +446,7 @@ def compute_shard(
         held = part_rows(folder / name)
         if held is not None:
             return {"part": name, "rows": held, "seconds": None, "worker": me}
-    results = compute_many(cases, options, device)
+    results = compute_many(cases, options, device, devices=devices)
     name, held = write_part(folder, results)
     return {"part": name, "rows": held, "seconds": time.perf_counter() - t0, "worker": me}
 

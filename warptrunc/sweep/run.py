@@ -102,9 +102,11 @@ def run_sweep(
         (per-worker pinning with ``workers``).
     devices : int, "auto" or list, optional
         Spread each elastic solve (``bem_fractions``) over several devices
-        (``ContactSolver(..., devices=...)``; JAX), in this process; default None: ``device``
-        alone. Not yet with ``workers`` or ``scheduler`` (a worker taking several devices), nor
-        without ``bem_fractions`` (nothing to spread): ValueError.
+        (``ContactSolver(..., devices=...)``; JAX); default None: ``device`` alone. With
+        ``workers`` or ``scheduler``, a count G: each worker takes G devices of its own and
+        spreads its solves over them (:mod:`warptrunc.sweep.groups`; ``workers="auto"`` is
+        then the devices present divided by G). Without ``bem_fractions`` (nothing to spread):
+        ValueError.
     **options
         Fields of :class:`SweepOptions` (as ``warptrunc analyze``): Wr (m), L (m), n, M,
         gamma, Wc (m), cutoff, increments, max_depth_fraction, max_depth (m), E (Pa), nu,
@@ -135,10 +137,12 @@ def run_sweep(
     shard_seconds = check_range("shard_seconds", shard_seconds, 0, None, lo_open=False, unit="s")
     if workers is not None and scheduler is not None:
         raise ValueError("give workers (a local cluster) or scheduler (an existing one), not both")
+    group = 1
     if devices not in (None, 1):
         if workers is not None or scheduler is not None:
-            raise ValueError(f"devices={devices!r} with workers or a scheduler (each worker taking "
-                             "several devices) is not supported yet; run in this process")  # fmt: skip
+            from .groups import group_size
+
+            group = group_size(devices)  # each worker takes this many devices
         if not opts.bem_fractions:
             raise ValueError(f"devices={devices!r} spreads the elastic solves of bem_fractions, "
                              "and none are asked for")  # fmt: skip
@@ -172,7 +176,7 @@ def run_sweep(
             if todo and (workers is not None or scheduler is not None):
                 # one cluster for every group: its start (and the workers' kernel loads) once
                 scheduler = held.enter_context(_open_client(
-                    workers, scheduler, device, progress, bool(opts.bem_fractions)))[0]
+                    workers, scheduler, device, progress, bool(opts.bem_fractions), group))[0]
                 workers = None
             left = len(todo)
             for params, group in groups.items():
@@ -190,7 +194,7 @@ def run_sweep(
     return store.frame()
 
 
-def _open_client(workers, scheduler, device, progress, warm_contact=False):
+def _open_client(workers, scheduler, device, progress, warm_contact=False, group=1):
     """:func:`warptrunc.sweep.cluster.open_client`, with a clear message without Dask."""
     try:
         from .cluster import open_client
@@ -199,7 +203,7 @@ def _open_client(workers, scheduler, device, progress, warm_contact=False):
             f"workers/scheduler need dask.distributed, a dependency of warptrunc that this "
             f'environment lacks ({exc.name} is missing): pip install "dask[distributed]"'
         ) from None
-    return open_client(workers, scheduler, device, progress, warm_contact)
+    return open_client(workers, scheduler, device, progress, warm_contact, group)
 
 
 def _run_group(todo, opts, store, *, workers, scheduler, device, total, progress, shard_size,
@@ -210,7 +214,7 @@ def _run_group(todo, opts, store, *, workers, scheduler, device, total, progress
 
         run_dask(todo, opts, store, workers=workers, scheduler=scheduler, device=device,
                  total=total, progress=progress, shard_size=shard_size,
-                 shard_seconds=shard_seconds)  # fmt: skip
+                 shard_seconds=shard_seconds, devices=devices)  # fmt: skip
     elif todo:
         from .engines import run_inprocess
 

@@ -1,0 +1,86 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Device groups of Dask workers: each worker takes G devices, over which its elastic solves
+are spread (``run_sweep(..., workers=N, devices=G)``, ``warptrunc sweep --workers N --devices
+G --bem-fractions ...``).
+
+Worker ``i`` of a local cluster (named 0..N-1) gets devices ``i·G … i·G + G − 1`` (modulo the
+devices present): its Warp device is the first (``WARPTRUNC_DEVICE``, CUDA only) and the group
+is written to ``WARPTRUNC_DEVICE_GROUP`` (``"cuda:2,cuda:3"``) in the worker process
+(:class:`~warptrunc.sweep.cluster.PinDevice`). A solve given ``devices=G`` in a process whose
+group names G devices is spread over that group
+(:func:`~warptrunc.contact.sharded_devices.choose_devices`), not over the first G devices of
+the host. On an existing cluster (``scheduler``) give each worker its group yourself: start it
+with ``CUDA_VISIBLE_DEVICES`` naming its G GPUs (its first G JAX devices are then its own), or
+with ``WARPTRUNC_DEVICE_GROUP``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__all__ = ["GROUP_ENV", "group_size", "worker_group"]
+
+GROUP_ENV = "WARPTRUNC_DEVICE_GROUP"
+"""Environment variable naming this process's device group, comma-separated JAX device names
+(``"cuda:0,cuda:1"``; ``"cpu:0,cpu:1"`` for host devices)."""
+
+
+def group_size(devices: Any) -> int:
+    """Devices per worker for a ``devices`` argument of the sweep (count).
+
+    Parameters
+    ----------
+    devices : None, int or "auto"
+        The sweep's ``devices``.
+
+    Returns
+    -------
+    int
+        ``devices`` when it is a count ≥ 2; else 1 (one device per worker).
+
+    Raises
+    ------
+    ValueError
+        ``"auto"`` or a list with workers: a worker's group is a fixed count.
+    """
+    if devices is None or isinstance(devices, bool):
+        return 1
+    if isinstance(devices, int):
+        return max(1, devices)
+    raise ValueError(f"devices={devices!r} with workers: give a count (each worker takes that "
+                     "many devices), not 'auto' or a list")  # fmt: skip
+
+
+def worker_group(worker_name: Any, n_devices: int, group: int, platform: str = "cuda") -> list[str]:
+    """The device names of a worker's group.
+
+    Parameters
+    ----------
+    worker_name : Any
+        The Dask worker's name (its index: :func:`~warptrunc.sweep.engines.worker_index`).
+    n_devices : int
+        Devices present (count ≥ 1).
+    group : int
+        Devices per worker (count ≥ 1).
+    platform : {"cuda", "cpu"}, optional
+        JAX platform of the names.
+
+    Returns
+    -------
+    list of str
+        ``group`` names, ``"<platform>:<k>"`` for k = i·group … i·group + group − 1 modulo
+        ``n_devices``.
+
+    Raises
+    ------
+    ValueError
+        ``group`` exceeds ``n_devices``.
+    """
+    from .engines import worker_index
+
+    if group > n_devices:
+        raise ValueError(f"devices per worker must be at most the {n_devices} devices present, "
+                         f"got {group}")  # fmt: skip
+    first = worker_index(worker_name) * group
+    return [f"{platform}:{(first + k) % n_devices}" for k in range(group)]
