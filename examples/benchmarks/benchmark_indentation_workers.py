@@ -1,0 +1,525 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""Benchmark (issue 39, items 3(c) and 4): the ``warptrunc reproduce`` indentation stage in
+process and on 1, 2, 4 … Dask workers (one GPU each), side by side, as whole fresh processes,
+and whether the workers store what in process stores, bit for bit.
+
+What it runs
+    ``reproduce(profile, OUT, stages="indentation", workers=W, device=D)`` — the CLI's
+    ``warptrunc reproduce --profile paper --stages indentation --workers W`` — as a child process
+    of this script (its ``run`` subcommand), each time into a fresh folder under ``--timeout-s``:
+    first in process (W none, D = ``--device``), then once per count of ``--workers`` (written
+    ``auto`` where it is the number of visible GPUs; by default the largest count first, so a
+    budget cuts the 1-worker run, ≈ in process, first). Before them an untimed warm-up child
+    (the profile at ``--warmup-n`` pixels, one surface, H = ∞ and the faces' H, one placement)
+    compiles Warp's kernels into the kernel cache the workers share, so no timed process
+    compiles.
+
+The profile: a departure from the paper
+    At the paper's map (``indentation_n`` = 10240: 97.7 nm pixels over 1 mm) the stage costs
+    about 2250 GPU-seconds (``docs/benchmarks/indentation_paper_h100x4.json``), too much for one
+    10-minute GPU call. The runs use ``dataclasses.replace(PROFILES["paper"],
+    indentation_n=N)`` with ``--n`` N = 2048 by default: 488 nm pixels over ``indentation_L`` =
+    1 mm, every other field the paper profile's (surfaces, punches, loads, the H sweep, the
+    statistics, the punch faces, the refinement). The JSON records every field that differs
+    from ``PROFILES["paper"]`` (``profile.departures``).
+
+Per run
+    ``wall_s``: the whole child process (imports, Warp's start, the cluster's start and stop,
+    the stage, the figures and results.json); ``speedup``: in process's wall / this one's. From
+    the store (``OUT/indentation/*.json``, one file per piece, its parts merged): ``pieces``,
+    ``parts``, ``pieces_s`` (the pieces' own seconds, ``seconds.piece_s``: each part's solves,
+    device time), ``surfaces_s`` (the realisations' generation), ``resolution_s`` (the
+    resolution check), ``stage_s`` (the stage's wall time, ``stages/indentation.json``).
+    ``busiest_device_s``: in process, pieces + surfaces + resolution (one device); on workers,
+    the busiest device's sum of its tasks' compute times — a piece merged from parts on several
+    GPUs records only the list of them, so the child takes Dask's task stream around the
+    cluster that ``reproduce`` opens, and every worker's pinned device (with ``--device cpu``
+    all workers share the one CPU device). In process also ``fixed_s``: the same child again on
+    its finished store (imports, Warp, the stage read back, the figures: nothing to compute).
+
+Identity (item 4)
+    Each worker run's store against the in-process one, value by value: every piece file and
+    the resolution check (``OUT/indentation/*.json``: rows of loads, depths, contact areas,
+    unloading stiffnesses, E_c/E, truncation, cell resolution and ``in_fit``; windows;
+    parameters), ``stages/indentation.json`` (parameters and result: the stage's rows, cell
+    counts per pixel size) and ``results.json``'s ``analysis`` (the fits α, β and their
+    intervals, depths, agreement, tracking, the resolution table). Numbers by their IEEE bits
+    (NaN, stored as null, equal to itself), strings and booleans exactly. Left out: the keys
+    that say where, when or how fast something ran (:data:`EXCLUDED`, every key ending ``_s``:
+    seconds), results.json's ``meta`` (commit, command, wall, device, provenance) and the
+    figures. Per run ``identical`` and, per differing field (array indices merged), the count
+    and the largest absolute and relative difference.
+
+Output
+    ``<out>/benchmark_indentation_workers.json``, rewritten after every run (a run cut short
+    keeps what finished): the machine (``nvidia-smi -L`` GPUs or "cpu", Warp's version), the
+    commit (``$WARPTRUNC_GIT_COMMIT``, else git), the profile and its departures, every
+    command and its measures; ``commands.log`` (the children's output); a table at the end.
+
+Run
+    # CPU dry run (the tiny profile at 128², 2 local CPU workers): about 30 s on 2 cores
+    python examples/benchmarks/benchmark_indentation_workers.py --profile tiny --n 128 \\
+        --device cpu --workers 2 --out /tmp/biw
+    # a GPU node: the paper profile at 2048², in process, then N, 2, 1 workers
+    python examples/benchmarks/benchmark_indentation_workers.py --budget-s 420 --out bench_iw
+    # see examples/gpu_checks/indent_workers.sh
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import dataclasses
+import json
+import math
+import os
+import platform
+import re
+import shutil
+import struct
+import sys
+import time
+from datetime import datetime, timezone
+from pathlib import Path
+
+HERE = Path(__file__).resolve()
+EXCLUDED = frozenset({"seconds", "device", "devices", "cost", "worker", "host", "pid"})
+"""Keys left out of the identity check, with every key ending ``_s`` (seconds): where, when and
+how fast a piece ran (``cost`` is the analysis's table of seconds per design and level)."""
+PART_FILE = re.compile(r"__p\d+r\d+$")
+"""Stem of a part file (``<piece>__p<k>r<r>``): a piece not yet merged."""
+
+
+# --- the child: one reproduce call ------------------------------------------------------------
+
+
+def build_profile(name: str, n: int | None, warmup: bool = False):
+    """The run's profile: ``PROFILES[name]`` with ``indentation_n = n``; for the warm-up also
+    one surface (the faces'), one realisation, one placement, H = ∞ and the faces' H."""
+    from warptrunc.reproduce import PROFILES
+
+    p = PROFILES[name]
+    if n:
+        p = dataclasses.replace(p, indentation_n=int(n))
+    if warmup:
+        s = p.indentation_face_surface or p.indentation_surfaces[0]
+        finite = [h for h in p.indentation_hardness if math.isfinite(h)]
+        h = p.indentation_face_hardness if p.indentation_face_surface else (finite or [math.inf])[0]
+        p = dataclasses.replace(p, indentation_surfaces=(s,), indentation_seeds=p.indentation_seeds[:1],
+                                indentation_placements=1, indentation_stats_placements=1,
+                                indentation_hardness=tuple(sorted({math.inf, h})))  # fmt: skip
+    return p
+
+
+def departures(p) -> dict:
+    """The fields of ``p`` that the indentation stage reads (``name``, ``indentation_*``) and
+    that differ from ``PROFILES["paper"]``: {field: {paper, here}} (lengths in m)."""
+    from warptrunc.reproduce import PROFILES
+
+    ref, mine = PROFILES["paper"].to_dict(), p.to_dict()
+    out = {k: {"paper": ref[k], "here": v} for k, v in mine.items()
+           if (k == "name" or k.startswith("indentation_")) and ref.get(k) != v}  # fmt: skip
+    out = json.loads(json.dumps(out).replace("Infinity", '"inf"'))  # H = ∞ as "inf": plain JSON
+    if "indentation_n" in out or "indentation_L" in out:
+        out["indentation_dx_nm"] = {"paper": ref["indentation_L"] / ref["indentation_n"] * 1e9,
+                                    "here": p.indentation_L / p.indentation_n * 1e9}  # fmt: skip
+    return out
+
+
+def _worker_device() -> str:
+    """A worker's device: its pinned ``$WARPTRUNC_DEVICE``, else its first visible GPU."""
+    env = os.environ
+    if env.get("WARPTRUNC_DEVICE"):
+        return env["WARPTRUNC_DEVICE"]
+    vis = env.get("CUDA_VISIBLE_DEVICES", "")
+    return f"CUDA_VISIBLE_DEVICES={vis.split(',')[0]}" if vis else "default"
+
+
+def record_tasks(rec: dict, cpu: bool) -> None:
+    """Wrap :func:`warptrunc.sweep.cluster.open_client` (``reproduce`` imports it when it opens
+    its cluster) so that the cluster's task stream and every worker's device land in ``rec``."""
+    from distributed import get_task_stream
+
+    import warptrunc.sweep.cluster as cl
+
+    opened = cl.open_client
+
+    @contextlib.contextmanager
+    def recording(*a, **kw):
+        with opened(*a, **kw) as (client, cluster, own), get_task_stream(client=client) as ts:
+            try:
+                yield client, cluster, own
+            finally:
+                devs = client.run(_worker_device)
+                rec["worker_devices"] = {w: "cpu" if cpu else d for w, d in devs.items()}
+        rec["tasks"] = []
+        for t in ts.data:
+            ss = [s for s in t.get("startstops", ()) if s.get("action") == "compute"]
+            if ss:
+                rec["tasks"].append(dict(key=str(t.get("key")), worker=t.get("worker"),
+                                         status=t.get("status"), start=min(s["start"] for s in ss),
+                                         stop=max(s["stop"] for s in ss),
+                                         compute_s=sum(s["stop"] - s["start"] for s in ss)))  # fmt: skip
+
+    cl.open_client = recording
+
+
+def child(args: argparse.Namespace) -> int:
+    """The ``run`` subcommand: one ``reproduce`` call; its record goes to ``--record``."""
+    from warptrunc.reproduce import reproduce
+
+    t0 = time.perf_counter()
+    p = build_profile(args.profile, args.n, args.warmup)
+    w = None if args.workers == "none" else (args.workers if args.workers == "auto" else int(args.workers))
+    rec: dict = {"tasks": [], "worker_devices": {}}
+    if w is not None:
+        record_tasks(rec, args.device == "cpu")
+    cmd = (f"warptrunc reproduce --profile {args.profile} (indentation_n={p.indentation_n}) "
+           f"--stages indentation --device {args.device} --out {args.out}"
+           + ("" if w is None else f" --workers {w}"))  # fmt: skip
+    doc = reproduce(p, args.out, stages="indentation", workers=w, device=args.device,
+                    commit=os.environ.get("WARPTRUNC_GIT_COMMIT") or None, command=cmd)  # fmt: skip
+    m = doc["meta"]
+    rec.update(child_wall_s=time.perf_counter() - t0, reproduce_wall_s=m["wall_s"],
+               stage_wall_s=m["stage_wall_s"], computed=m["computed"], reused=m["reused"],
+               incomplete=m.get("incomplete"), device=m["device"])  # fmt: skip
+    if args.record:
+        Path(args.record).write_text(json.dumps(rec, indent=1, default=str) + "\n")
+    return 3 if m.get("incomplete") else 0
+
+
+# --- the parent: measures from the store ------------------------------------------------------
+
+
+def _load(path: Path):
+    return json.loads(path.read_text())
+
+
+def store_measures(store: Path, rec: dict | None, in_process: bool) -> dict:
+    """Pieces, parts and seconds from the store; the busiest device (see the module's doc)."""
+    folder = store / "indentation"
+    pieces = [_load(f) for f in sorted(folder.glob("*.json"))
+              if f.name != "resolution.json" and not PART_FILE.search(f.stem)]  # fmt: skip
+    res = folder / "resolution.json"
+    stage = store / "stages" / "indentation.json"
+    devs = set()
+    for d in pieces:
+        devs.update(d["device"] if isinstance(d.get("device"), list) else [str(d.get("device"))])
+    out = dict(pieces=len(pieces), parts=sum(int(d.get("n_parts", 1)) for d in pieces),
+               pieces_s=sum(d["seconds"].get("piece_s", 0.0) for d in pieces),
+               surfaces_s=sum(d["seconds"].get("surface_s", 0.0) for d in pieces),
+               resolution_s=_load(res).get("seconds", 0.0) if res.exists() else 0.0,
+               stage_s=_load(stage).get("seconds") if stage.exists() else None,
+               store_devices=sorted(devs))  # fmt: skip
+    if in_process or not rec or not rec.get("tasks"):
+        total = out["pieces_s"] + out["surfaces_s"] + out["resolution_s"]
+        out.update(per_device={",".join(out["store_devices"]): total}, busiest_device_s=total,
+                   busiest_from="store")  # fmt: skip
+        return out
+    per_worker: dict[str, float] = {}
+    for t in rec["tasks"]:
+        per_worker[t["worker"]] = per_worker.get(t["worker"], 0.0) + t["compute_s"]
+    per_dev: dict[str, float] = {}
+    for w, s in per_worker.items():
+        dev = rec["worker_devices"].get(w, w)
+        per_dev[dev] = per_dev.get(dev, 0.0) + s
+    out.update(tasks=len(rec["tasks"]), per_worker=per_worker, per_device=per_dev,
+               busiest_device_s=max(per_dev.values()), busiest_worker_s=max(per_worker.values()),
+               busiest_from="task stream")  # fmt: skip
+    return out
+
+
+# --- the identity check -----------------------------------------------------------------------
+
+
+def stored_values(store: Path) -> dict:
+    """What the identity check reads: {file or section: JSON value}."""
+    docs = {f"indentation/{f.name}": _load(f) for f in sorted((store / "indentation").glob("*.json"))}
+    st = _load(store / "stages" / "indentation.json")
+    docs["stages/indentation.json"] = {k: st.get(k) for k in ("params", "result")}
+    docs["results.json:analysis"] = _load(store / "results.json").get("analysis")
+    return docs
+
+
+def _number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def _same(a, b) -> bool:
+    """Equal bit for bit: floats by their IEEE bits (NaN = NaN), the rest exactly."""
+    if _number(a) and _number(b):
+        if isinstance(a, int) and isinstance(b, int):
+            return a == b
+        x, y = float(a), float(b)
+        return struct.pack("<d", x) == struct.pack("<d", y) or (math.isnan(x) and math.isnan(y))
+    return type(a) is type(b) and a == b
+
+
+def _note(out: dict, path: str, a, b, what: str | None = None) -> None:
+    e = out.setdefault(path, {"count": 0, "max_abs": 0.0, "max_rel": 0.0, "example": None})
+    e["count"] += 1
+    if e["example"] is None:
+        e["example"] = what or f"{a!r} → {b!r}"
+    if _number(a) and _number(b) and math.isfinite(a) and math.isfinite(b):
+        d = abs(float(a) - float(b))
+        e["max_abs"] = max(e["max_abs"], d)
+        e["max_rel"] = max(e["max_rel"], d / max(abs(float(a)), sys.float_info.min))
+
+
+def differences(a, b, path: str = "", out: dict | None = None, seen: list | None = None) -> dict:
+    """{field path (indices as ``[]``): count, max_abs, max_rel, example} of the values of
+    ``b`` that differ from ``a``, :data:`EXCLUDED` and ``*_s`` keys left out; ``seen[0]``
+    counts the values compared."""
+    out = {} if out is None else out
+    seen = [0] if seen is None else seen
+    if isinstance(a, dict) and isinstance(b, dict):
+        for k in sorted(set(a) | set(b), key=str):
+            if k in EXCLUDED or str(k).endswith("_s"):
+                continue
+            p = f"{path}{k}" if not path or path.endswith(":") else f"{path}.{k}"
+            if k not in a or k not in b:
+                _note(out, p, None, None, "only in " + ("the worker run" if k in b else "in process"))
+            else:
+                differences(a[k], b[k], p + (":" if not path else ""), out, seen)
+    elif isinstance(a, list) and isinstance(b, list):
+        if len(a) != len(b):
+            _note(out, path + "[]", None, None, f"length {len(a)} → {len(b)}")
+        else:
+            for x, y in zip(a, b, strict=True):
+                differences(x, y, path + "[]", out, seen)
+    else:
+        seen[0] += 1
+        if not _same(a, b):
+            _note(out, path, a, b)
+    return out
+
+
+def identity(ref: Path, other: Path) -> dict:
+    """The identity check of ``other``'s store against ``ref``'s."""
+    seen = [0]
+    a, b = stored_values(ref), stored_values(other)
+    d = differences(a, b, seen=seen)
+    top = sorted(d.items(), key=lambda kv: (-kv[1]["max_rel"], -kv[1]["count"]))
+    return {"identical": not d, "files": len(a), "values_compared": seen[0], "n_fields": len(d),
+            "fields": dict(top[:40])}  # fmt: skip
+
+
+# --- the parent -------------------------------------------------------------------------------
+
+
+def default_workers(n_gpus: int) -> list[int]:
+    """1, 2 and the visible GPUs' count, deduplicated, largest first ([2, 1] without a GPU)."""
+    return sorted({1, 2, *([n_gpus] if n_gpus > 0 else [])}, reverse=True)
+
+
+def child_cmd(args, store: Path, record: Path, workers, warmup: bool = False) -> list[str]:
+    """The command line of one child."""
+    cmd = [sys.executable, str(HERE), "run", "--profile", args.profile, "--n",
+           str(min(args.n, args.warmup_n) if warmup else args.n), "--device", args.device,
+           "--workers", "none" if workers is None else str(workers), "--out", str(store),
+           "--record", str(record)]  # fmt: skip
+    return [*cmd, "--warmup"] if warmup else cmd
+
+
+def _same_text(r: dict) -> str:
+    """The identity column of a run."""
+    ident = r.get("identity")
+    if ident is None:
+        return "(reference)" if r["run"] == "inproc" else "-"
+    if ident.get("error"):
+        return f"not compared: {ident['error']}"
+    if ident["identical"]:
+        return f"yes ({ident['values_compared']} values)"
+    field, worst = next(iter(ident["fields"].items()))
+    return f"no: {ident['n_fields']} fields, e.g. {field} (max rel {worst['max_rel']:.2g})"
+
+
+def table(results: dict) -> str:
+    """The runs as a plain-text table."""
+    head = (f"{'run':11} {'wall s':>8} {'×':>6} {'pieces':>6} {'parts':>6} {'Σpiece s':>9} "
+            f"{'busiest s':>9} {'fixed s':>7}  identical")  # fmt: skip
+    lines = [head, "-" * (len(head) + 8)]
+    order = lambda r: 0 if r["run"].startswith("inproc") else int(r["run"].split("_")[1])  # noqa: E731
+    num = lambda v, w: f"{v:{w}.{2 if w == 6 else 1}f}" if isinstance(v, float) else f"{'-':>{w}}"  # noqa: E731
+    for r in sorted(results["runs"], key=order):
+        if r.get("status"):
+            lines.append(f"{r['run']:11} {r['status']}"
+                         + (f" after {r['wall_s']:.1f} s" if "wall_s" in r else ""))  # fmt: skip
+            continue
+        lines.append(f"{r['run']:11} {r['wall_s']:8.1f} {num(r.get('speedup'), 6)} "
+                     f"{r['pieces']:6d} {r['parts']:6d} {r['pieces_s']:9.1f} "
+                     f"{r['busiest_device_s']:9.1f} {num(r.get('fixed_s'), 7)}  {_same_text(r)}")  # fmt: skip
+    return "\n".join(lines)
+
+
+def parser() -> argparse.ArgumentParser:
+    """The parent's options (the child's: ``run --help``)."""
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0] + " Subcommand `run`: one "
+                                 "child (see `run --help`).",
+                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
+    ap.add_argument("--out", type=Path, default=Path("bench_indentation_workers"),
+                    help="output folder (the JSON, commands.log, the stores while they run)")
+    ap.add_argument("--profile", default="paper", choices=("paper", "quick", "tiny"),
+                    help="reproduce profile, its indentation map replaced by --n")
+    ap.add_argument("--n", type=int, default=2048,
+                    help="pixels per side of the indentation maps over indentation_L (1 mm): "
+                    "2048 gives 488 nm pixels (the paper: 10240, 97.7 nm)")  # fmt: skip
+    ap.add_argument("--workers", type=int, nargs="+", default=None,
+                    help="worker counts, run in this order (default: the visible GPUs' count, "
+                    "2 and 1; 2 1 without a GPU)")  # fmt: skip
+    ap.add_argument("--device", default=None,
+                    help="device of the in-process run and of the driver (cpu: also of every "
+                    "worker); default cuda:0 where CUDA is visible, else cpu")  # fmt: skip
+    ap.add_argument("--warmup-n", type=int, default=256,
+                    help="pixels per side of the untimed warm-up run (capped at --n; 0: none)")
+    ap.add_argument("--budget-s", type=float, default=None,
+                    help="start no timed run after this many seconds (s) from the start, nor one "
+                    "expected to end past it; they are listed as 'skipped: budget'")  # fmt: skip
+    ap.add_argument("--grace-s", type=float, default=30.0,
+                    help="with --budget-s: a child is stopped this long after the budget (s)")
+    ap.add_argument("--timeout-s", type=float, default=None, help="limit of one child (s)")
+    ap.add_argument("--keep-stores", action="store_true",
+                    help="keep every run's reproduction folder under --out")
+    return ap
+
+
+def child_parser() -> argparse.ArgumentParser:
+    """The ``run`` subcommand's options."""
+    ap = argparse.ArgumentParser(prog=f"{HERE.name} run",
+                                 description="one reproduce call of the benchmark (a child)")
+    ap.add_argument("--profile", default="paper", choices=("paper", "quick", "tiny"))
+    ap.add_argument("--n", type=int, default=2048, help="pixels per side of the indentation maps")
+    ap.add_argument("--device", default="cpu", help="Warp device of the driver (cpu: also tasks)")
+    ap.add_argument("--workers", default="none", help="none (in process), a count or auto")
+    ap.add_argument("--out", type=Path, required=True, help="fresh reproduction folder")
+    ap.add_argument("--record", type=Path, default=None, help="JSON of the child's measures")
+    ap.add_argument("--warmup", action="store_true", help="the small warm-up profile")
+    return ap
+
+
+def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv and argv[0] == "run":
+        return child(child_parser().parse_args(argv[1:]))
+    args = parser().parse_args(argv)
+    sys.path.insert(0, str(HERE.parent))
+    from _common import ROOT, git_commit
+    from benchmark_workers import expected_s, gpus, timed
+
+    from warptrunc.sweep.cluster import resolve_workers
+
+    gpu_lines = gpus()
+    n_gpus = resolve_workers("auto") if gpu_lines else 0  # CUDA_VISIBLE_DEVICES respected
+    args.device = args.device or ("cuda:0" if n_gpus else "cpu")
+    counts = args.workers or default_workers(n_gpus if args.device != "cpu" else 0)
+    commit = git_commit()
+    if commit:  # every child records the same commit
+        os.environ["WARPTRUNC_GIT_COMMIT"] = commit
+    out = args.out.resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    log, path = out / "commands.log", out / "benchmark_indentation_workers.json"
+    try:
+        from importlib.metadata import version
+
+        warp_version = version("warp-lang")
+    except Exception:
+        warp_version = "unknown"
+    p = build_profile(args.profile, args.n)
+    results = dict(
+        benchmark="benchmark_indentation_workers", issue=39, items="3(c), 4", commit=commit,
+        host=platform.node(), started_utc=datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        machine=dict(gpus=gpu_lines or "cpu", visible_gpus=n_gpus, cpus=os.cpu_count(),
+                     cuda_visible_devices=os.environ.get("CUDA_VISIBLE_DEVICES"),
+                     warp=warp_version, python=platform.python_version()),
+        profile=dict(name=args.profile, indentation_n=p.indentation_n, indentation_L_m=p.indentation_L,
+                     departures=departures(p)),
+        device=args.device, workers=counts, budget_s=args.budget_s, timeout_s=args.timeout_s,
+        runs=[],
+    )  # fmt: skip
+
+    def save():
+        path.write_text(json.dumps(results, indent=1, default=str) + "\n")
+
+    t_begin = time.perf_counter()
+    spent = lambda: time.perf_counter() - t_begin  # noqa: E731
+
+    def limit() -> float | None:
+        if args.budget_s is None:
+            return args.timeout_s
+        left = max(1.0, args.budget_s + args.grace_s - spent())
+        return left if args.timeout_s is None else min(args.timeout_s, left)
+
+    def shown(cmd: list[str]) -> str:  # the command as recorded: paths relative
+        text = " ".join(cmd[1:]).replace(f"{out}/", "<out>/")
+        return text.replace(str(HERE), str(HERE.relative_to(ROOT)) if HERE.is_relative_to(ROOT) else str(HERE))
+
+    def run(name: str, workers, warmup: bool = False) -> tuple[dict, Path]:
+        store, record = out / f"store_{name}", out / f"record_{name}.json"
+        shutil.rmtree(store, ignore_errors=True)
+        record.unlink(missing_ok=True)
+        cmd = child_cmd(args, store, record, workers, warmup)
+        wall, rc = timed(cmd, log, limit())
+        rec = dict(run=name, command=shown(cmd), wall_s=wall, rc=rc)
+        if rc != 0:
+            rec["status"] = f"failed (rc {rc}, see commands.log)"
+        elif record.exists():
+            rec["child"] = _load(record)
+        record.unlink(missing_ok=True)
+        return rec, store
+
+    if args.warmup_n > 0:
+        w, store = run("warmup", None, warmup=True)
+        results["warmup"] = w
+        save()
+        shutil.rmtree(store, ignore_errors=True)
+    base = fixed = None
+    ref_store = None
+    for n in [None, *counts]:
+        name = "inproc" if n is None else f"workers_{n}"
+        guess = expected_s(base, fixed or 0.0, n, n_gpus, {})
+        left = None if args.budget_s is None else args.budget_s - spent()
+        if left is not None and (left <= 0 or (guess is not None and guess > left)):
+            results["runs"].append(dict(run=name, status="skipped: budget" + (
+                "" if guess is None else f" (≈ {guess:.0f} s, {max(left, 0):.0f} s left)")))  # fmt: skip
+            save()
+            continue
+        w = None if n is None else ("auto" if n == n_gpus and args.device != "cpu" else n)
+        rec, store = run(name, w)
+        results["runs"].append(rec)
+        if "status" not in rec:
+            try:
+                rec.update(store_measures(store, rec.get("child"), n is None))
+            except (OSError, KeyError, ValueError) as exc:  # a store the child left unfinished
+                rec["status"] = f"failed: store unreadable ({exc!r})"
+        if "status" not in rec:
+            if n is None:
+                base, ref_store = rec["wall_s"], store
+                again = child_cmd(args, store, out / "record_fixed.json", None)
+                rec["fixed_s"], frc = timed(again, log, limit())  # a finished store: no work
+                rec["fixed_command"] = shown(again)
+                (out / "record_fixed.json").unlink(missing_ok=True)
+                if frc != 0:
+                    rec["fixed_s"] = f"failed (rc {frc})"
+                fixed = rec["fixed_s"] if isinstance(rec["fixed_s"], float) else None
+            elif ref_store is not None:
+                try:
+                    rec["identity"] = identity(ref_store, store)
+                except (OSError, KeyError, ValueError) as exc:
+                    rec["identity"] = {"identical": None, "error": repr(exc)}
+            rec["speedup"] = base / rec["wall_s"] if base else None
+        save()
+        if n is not None and not args.keep_stores:
+            shutil.rmtree(store, ignore_errors=True)
+    if ref_store is not None and not args.keep_stores:
+        shutil.rmtree(ref_store, ignore_errors=True)
+    results["total_s"] = spent()
+    save()
+    print(f"commit {commit}; {len(gpu_lines)} GPU(s): {'; '.join(gpu_lines) or 'none'}; profile "
+          f"{args.profile} at indentation_n={p.indentation_n} on {args.device}; results in {path}")  # fmt: skip
+    print(table(results))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# The reproduce indentation stage on every GPU of the host (issue 39, items 3(c) and 4):
+# examples/benchmarks/benchmark_indentation_workers.py. Whole `warptrunc reproduce --profile paper
+# --stages indentation` processes, the paper profile with its indentation map at N² pixels
+# (default N=2048: 488 nm pixels over 1 mm instead of the paper's 10240², 97.7 nm; a departure,
+# recorded in the JSON), in process on cuda:0, then on N_GPU, 2 and 1 Dask workers (one per GPU;
+# the largest count written `--workers auto`), after an untimed warm-up that compiles the
+# kernels. Per run: wall time, speed-up, pieces, the sum of the pieces' own seconds, the busiest
+# device's seconds; the in-process run again on its finished store (fixed_s); and the stage's
+# stored numbers of each worker run compared bit for bit with in process.
+# Run on the 4-GPU kind (nvidia-h100-x4) or the 2-GPU kind, from the repo root, staged as for
+# workers_bench.sh (dask and distributed installed; the machine has no git: name the commit):
+#   WARPTRUNC_GIT_COMMIT=<sha> bash examples/gpu_checks/indent_workers.sh
+# Results in $OUT (or ./indent_workers_out): benchmark_indentation_workers.json (GPUs, Warp,
+# commit, the profile's departures from the paper, every command and measure), commands.log
+# (the children's output) and benchmark_stderr.log; the table is printed last.
+# A subset of the GPUs: GPUS=0,1 (sets CUDA_VISIBLE_DEVICES; worker counts 2 1). Map size: N
+# (pixels per side over 1 mm). Extra arguments of the benchmark: $BENCH_ARGS. A dry run on a CPU
+# machine (about 30 s on 2 cores): N=128 BENCH_ARGS="--profile tiny --device cpu --workers 2" bash ...
+# Time: unknown, not measured yet. An ESTIMATE from docs/benchmarks/indentation_paper_h100x4.json
+# (the paper's 10240² map on 4 H100s: the pieces' own seconds summed to 2254 GPU-s, the stage's
+# wall 428 + 202 s over two calls) scaled by the window pixels, (2048/10240)² = 0.04: about
+# 90 GPU-s of pieces at N=2048 (per-solve costs that do not shrink with the pixels make it more,
+# fewer iterations at the coarser pixel less). Hence in process ≈ 100-120 s, its rerun ≈ 15 s,
+# 4 workers ≈ 40 s, 2 ≈ 65 s, 1 ≈ 115 s, the warm-up (a fresh machine's kernel compilation and a
+# 256² Ps-only run) ≈ 60-120 s: about 7 min in all. No timed run starts after BUDGET_S (default
+# 420 s) or when it is expected to end past it (listed as "skipped: budget"; the 1-worker run,
+# ≈ in process, goes last and is the first to be cut), and none runs more than 30 s past it or
+# longer than 300 s (stopped, rc 124).
+set -uo pipefail
+OUT=${OUT:-indent_workers_out}
+mkdir -p "$OUT"
+python3 -c "import warptrunc" 2>/dev/null || python3 -m pip install -q --no-deps --no-build-isolation -e . >/dev/null 2>&1 || true
+nvidia-smi -L || true
+if [ -n "${GPUS:-}" ]; then  # a subset of the host's GPUs: the workers see only these
+    export CUDA_VISIBLE_DEVICES=$GPUS
+    echo "GPUS=$GPUS: CUDA_VISIBLE_DEVICES=$CUDA_VISIBLE_DEVICES"
+fi
+python3 - <<'PY' || { echo "dask/distributed missing: install the WHEELS of sweep_two_gpus.sh"; exit 1; }
+import dask, distributed
+print("dask", dask.__version__, "distributed", distributed.__version__)
+try:
+    import dask_cuda
+    print("dask-cuda", dask_cuda.__version__, "(LocalCUDACluster)")
+except ImportError:
+    print("no dask-cuda: LocalCluster, one worker pinned per GPU")
+PY
+export WARPTRUNC_GIT_COMMIT=${WARPTRUNC_GIT_COMMIT:-$(git rev-parse HEAD 2>/dev/null)}
+[ -z "$WARPTRUNC_GIT_COMMIT" ] && echo "warning: no commit (no git here): set WARPTRUNC_GIT_COMMIT"
+t0=$(date +%s)
+# shellcheck disable=SC2086  # BENCH_ARGS: several words
+python3 examples/benchmarks/benchmark_indentation_workers.py --out "$OUT" --n "${N:-2048}" \
+    --budget-s "${BUDGET_S:-420}" --grace-s 30 --timeout-s 300 ${BENCH_ARGS:-} \
+    2> "$OUT/benchmark_stderr.log"
+status=$?
+[ $status -ne 0 ] && tail -n 30 "$OUT/benchmark_stderr.log"
+echo "indent_workers.sh: $(( $(date +%s) - t0 )) s, exit $status"
+exit $status
