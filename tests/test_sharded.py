@@ -378,3 +378,53 @@ def test_spectrum_build_fits_the_model_at_65536():
     assert compiled(ss.BUILD_PIECE_BYTES) <= model < 1.5 * compiled(ss.BUILD_PIECE_BYTES)
     assert model < ContactSolver.memory_bytes(shape, "free", "float32", devices=2)
     assert compiled(1 << 62) > 1.3 * model
+
+
+def _fft_sizes(text: str) -> list[int]:
+    """Elements of the larger operand (input or output) of every FFT in a lowered programme."""
+    import re
+
+    sizes = []
+    for line in text.splitlines():
+        if "stablehlo.fft" in line:
+            shapes = re.findall(r"tensor<([\dx]+)x(?:f32|f64|complex<f\d\d>)>", line)
+            sizes.append(max(int(np.prod([int(d) for d in s.split("x")])) for s in shapes))
+    return sizes
+
+
+def test_fft_calls_stay_below_2_31_elements_at_65536(monkeypatch):
+    """No FFT call of the 65536² convolution over two devices (lowered for the CPU, not run)
+    holds 2³¹ elements or more: XLA's GPU FFT leaves such an inverse transform unscaled
+    (openxla/xla#45009), which made a 65536² solve on 4 × H200 about 10⁵ times too
+    compliant. Without the row blocks the same programme has such calls."""
+    import warptrunc.contact.sharded_fft as sf
+
+    shape, devs = (65536, 65536), tuple(jax.devices("cpu")[:2])
+    big_y, _, _, nkp = sf._grid(shape, "free", 2)
+
+    def sizes():
+        lay = sf.SlabLayout(shape, "free", "float32", devs,
+                            sf.column_blocks(shape, "free", "float32", 2))  # fmt: skip
+        x = jax.ShapeDtypeStruct(shape, np.float32, sharding=lay.rows)
+        w = jax.ShapeDtypeStruct((big_y // 2 + 1, nkp), np.float32, sharding=lay.cols)
+        fn = jax.jit(lambda a, b: lay.conv(a, b, inverse=False), out_shardings=lay.rows)
+        return _fft_sizes(fn.lower(x, w).as_text())
+
+    ok = sizes()
+    assert len(ok) == 4 and max(ok) <= sf.FFT_ELEMENTS_MAX < 2**31
+    monkeypatch.setattr(sf, "FFT_ELEMENTS_MAX", 1 << 62)
+    assert max(sizes()) >= 2**31
+
+
+def test_blocked_rows_equal_one_device(monkeypatch):
+    """Row (and column) transforms in blocks, forced by a small FFT_ELEMENTS_MAX: the same
+    solve as one device."""
+    import warptrunc.contact.sharded_fft as sf
+
+    monkeypatch.setattr(sf, "FFT_ELEMENTS_MAX", 1 << 12)
+    assert sf.row_blocks(128, 512) == 16 and sf.row_blocks(100, 512) == 20
+    one = ContactSolver(H256, DX, E, device="cpu", direct_max=0)
+    two = ContactSolver(H256, DX, E, devices=2)
+    assert two.hs.layout.blocks > 1
+    a, b = one.solve(load=LOAD), two.solve(load=LOAD)
+    assert rel(a.depth, b.depth) < 1e-9 and a.n_iterations == b.n_iterations

@@ -41,11 +41,12 @@ from .influence import GRID_DOCS
 __all__ = [
     "BLOCKS_ABOVE",
     "COLUMN_BLOCKS",
+    "FFT_ELEMENTS_MAX",
     "ShardedHalfSpace",
     "SlabLayout",
     "column_blocks",
     "import_jax",
-    "sharded_memory_bytes",
+    "row_blocks",
     "sharded_memory_terms",
     "slab_layout",
 ]
@@ -108,13 +109,45 @@ BLOCKS_ABOVE = 1 << 28
 ``COLUMN_BLOCKS`` blocks (below, in one piece)."""
 
 
+FFT_ELEMENTS_MAX = 1 << 30
+"""Most elements one FFT call of a device may hold (input or output, batch included). XLA's GPU
+FFT scales an inverse transform's output with cuBLAS, whose element count is a 32-bit int: at
+2³¹ elements or more the scaling is skipped and the result is N times too large
+(openxla/xla#45009, open in JAX 0.11.2). A 65536² map over 4 GPUs hit it exactly (16384 rows of
+131072 padded columns per device): its loads came out about 10⁵ times too small. Transforms
+that would hold more run in blocks (:func:`row_blocks`, :func:`column_blocks`)."""
+
+
+def row_blocks(rows: int, length: int) -> int:
+    """Blocks the row transforms of a slab run in: 1, or the fewest that divide ``rows`` and
+    keep each FFT call within :data:`FFT_ELEMENTS_MAX` elements.
+
+    Parameters
+    ----------
+    rows : int
+        Rows of the slab (count).
+    length : int
+        Transform length along the rows, padding included (count).
+
+    Returns
+    -------
+    int
+        The number of blocks (dimensionless), a divisor of ``rows``.
+    """
+    need = -(-rows * length // FFT_ELEMENTS_MAX)
+    if need <= 1:
+        return 1
+    return next(k for k in range(need, rows + 1) if rows % k == 0)
+
+
 SHARDED_DOCS = {**GRID_DOCS, "{n_devices}": "n_devices : int\n    Devices (dimensionless count)."}
 """The sharded layout's shared parameter text (:func:`~warptrunc._support.docs.fill_doc`)."""
 
 
 @fill_doc(SHARDED_DOCS)
 def column_blocks(shape: tuple[int, int], substrate: str, dtype: str, n_devices: int) -> int:
-    """Blocks of the column stage of a layout (``COLUMN_BLOCKS`` or 1, by ``BLOCKS_ABOVE``).
+    """Blocks of the column stage of a layout (``COLUMN_BLOCKS`` or 1, by ``BLOCKS_ABOVE``; more
+    where a block's transform would exceed :data:`FFT_ELEMENTS_MAX` elements).
 
     Parameters
     ----------
@@ -130,7 +163,8 @@ def column_blocks(shape: tuple[int, int], substrate: str, dtype: str, n_devices:
     """
     big_y, _, _, nkp = _grid(shape, substrate, n_devices)
     spectrum = big_y * (nkp // n_devices) * 2 * np.dtype(dtype).itemsize
-    return COLUMN_BLOCKS if spectrum > BLOCKS_ABOVE else 1
+    blocks = COLUMN_BLOCKS if spectrum > BLOCKS_ABOVE else 1
+    return max(blocks, -(-big_y * (nkp // n_devices) // FFT_ELEMENTS_MAX))
 
 
 def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
@@ -174,34 +208,6 @@ def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
         "fft work (XLA)": (3 if blocks > 1 else 5) * big_y * cols * item,
         "step temporaries": 3 * slab * 8,
     }
-
-
-def sharded_memory_bytes(shape: tuple[int, int], substrate: str, dtype: str,
-                         n_devices: int) -> int:  # fmt: skip
-    """Peak bytes one device holds for a solve spread over ``n_devices`` (the model).
-
-    Parameters
-    ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    substrate : {"free", "periodic"}
-        Half-space.
-    dtype : {"float64", "float32"}
-        Precision of the maps.
-    n_devices : int
-        Devices the map is split over (dimensionless count, ≥ 2).
-
-    Returns
-    -------
-    int
-        The larger of the solve's terms summed (:func:`sharded_memory_terms`) and the kernel
-        spectrum's build, which comes first and alone
-        (:func:`~warptrunc.contact.sharded_spectrum.build_bytes`) (B).
-    """
-    from .sharded_spectrum import build_bytes
-
-    steady = sum(sharded_memory_terms(shape, substrate, dtype, n_devices).values())
-    return int(max(steady, build_bytes(shape, substrate, dtype, n_devices)))
 
 
 class SlabLayout:
@@ -257,9 +263,17 @@ class SlabLayout:
         jnp = self.jnp
         ny, nx = self.shape
         big_y, big_x, nk, nkp = self.grid_shape
+        slab = ny // len(self.devices)
+        k = row_blocks(slab, big_x)  # FFT calls within FFT_ELEMENTS_MAX (openxla/xla#45009)
+
+        def in_row_blocks(fn, x):
+            if k == 1:
+                return fn(x)
+            out = self.jax.lax.map(fn, x.reshape(k, slab // k, x.shape[1]))
+            return out.reshape(slab, out.shape[2])
 
         def rows_forward(x):
-            s = jnp.fft.rfft(x, n=big_x, axis=1)
+            s = in_row_blocks(lambda a: jnp.fft.rfft(a, n=big_x, axis=1), x)
             return jnp.pad(s, ((0, 0), (0, nkp - nk)))
 
         def columns_piece(s, w_half, inverse):
@@ -287,7 +301,10 @@ class SlabLayout:
             return lax.fori_loop(0, self.blocks, block, jnp.zeros_like(s[:ny]))
 
         def rows_inverse(s):
-            return jnp.fft.irfft(s[:, :nk], n=big_x, axis=1)[:, :nx].astype(self.np_dtype)
+            def inverse(a):
+                return jnp.fft.irfft(a[:, :nk], n=big_x, axis=1)[:, :nx].astype(self.np_dtype)
+
+            return in_row_blocks(inverse, s)
 
         return rows_forward, columns, rows_inverse
 

@@ -24,7 +24,13 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["BUILD_PIECE_BYTES", "build_bytes", "build_spectrum", "spectrum_programme"]
+__all__ = [
+    "BUILD_PIECE_BYTES",
+    "build_bytes",
+    "build_spectrum",
+    "sharded_memory_bytes",
+    "spectrum_programme",
+]
 
 BUILD_PIECE_BYTES = 1 << 28
 """Float64 input bytes of one piece of the spectrum's build (256 MiB): the x stage's rows
@@ -93,6 +99,33 @@ def build_bytes(shape: tuple[int, int], substrate: str, dtype: str, n_devices: i
     _, slab_rows, n_rows = _row_layout(ny, nx, n_devices)
     x_slab = max(slab_rows * nkp, n_rows * cols) * 8
     return int(w + 3 * x_slab + 4 * min(BUILD_PIECE_BYTES, x_slab))
+
+
+def sharded_memory_bytes(shape: tuple[int, int], substrate: str, dtype: str,
+                         n_devices: int) -> int:  # fmt: skip
+    """Peak bytes one device holds for a solve spread over ``n_devices`` (the model).
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Map size (ny, nx).
+    substrate : {"free", "periodic"}
+        Half-space.
+    dtype : {"float64", "float32"}
+        Precision of the maps.
+    n_devices : int
+        Devices the map is split over (dimensionless count, ≥ 2).
+
+    Returns
+    -------
+    int
+        The larger of the solve's terms summed (:func:`~warptrunc.contact.sharded_fft.sharded_memory_terms`) and the kernel
+        spectrum's build, which comes first and alone (:func:`build_bytes`) (B).
+    """
+    from .sharded_fft import sharded_memory_terms
+
+    steady = sum(sharded_memory_terms(shape, substrate, dtype, n_devices).values())
+    return int(max(steady, build_bytes(shape, substrate, dtype, n_devices)))
 
 
 def build_spectrum(layout: Any, pixel_size: tuple[float, float], contact_modulus: float):
