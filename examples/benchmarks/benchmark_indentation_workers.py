@@ -31,39 +31,33 @@ Per run
     ``parts``, ``pieces_s`` (the pieces' own seconds, ``seconds.piece_s``: each part's solves,
     device time), ``surfaces_s`` (the realisations' generation), ``resolution_s`` (the
     resolution check), ``stage_s`` (the stage's wall time, ``stages/indentation.json``).
-    ``busiest_device_s``: in process, pieces + surfaces + resolution (one device); on workers,
-    the busiest device's sum of its tasks' compute times — a piece merged from parts on several
-    GPUs records only the list of them, so the child takes Dask's task stream around the
-    cluster that ``reproduce`` opens, and every worker's pinned device (with ``--device cpu``
-    all workers share the one CPU device). In process also ``fixed_s``: the same child again on
-    its finished store (imports, Warp, the stage read back, the figures: nothing to compute).
+    ``busiest_device_s``: in process, pieces + surfaces + resolution; on workers, the busiest
+    device's sum of its tasks' compute times (Dask's task stream, taken by the child around the
+    cluster ``reproduce`` opens: a piece merged from parts records only its devices). In process
+    also ``fixed_s``: the same child again on its finished store (nothing to compute).
 
 Identity (item 4)
     Each worker run's store against the in-process one, value by value: every piece file and
-    the resolution check (``OUT/indentation/*.json``: rows of loads, depths, contact areas,
-    unloading stiffnesses, E_c/E, truncation, cell resolution and ``in_fit``; windows;
-    parameters), ``stages/indentation.json`` (parameters and result: the stage's rows, cell
-    counts per pixel size) and ``results.json``'s ``analysis`` (the fits α, β and their
-    intervals, depths, agreement, tracking, the resolution table). Numbers by their IEEE bits
-    (NaN, stored as null, equal to itself), strings and booleans exactly. Left out: the keys
-    that say where, when or how fast something ran (:data:`EXCLUDED`, every key ending ``_s``:
-    seconds), results.json's ``meta`` (commit, command, wall, device, provenance) and the
-    figures. Per run ``identical`` and, per differing field (array indices merged), the count
-    and the largest absolute and relative difference.
+    the resolution check (``OUT/indentation/*.json``), ``stages/indentation.json`` (parameters
+    and result) and ``results.json``'s ``analysis`` (the fits α, β and their intervals, depths,
+    the resolution table). Numbers by their IEEE bits (NaN equal to itself), strings and
+    booleans exactly; left out: the keys that say where, when or how fast something ran
+    (:data:`EXCLUDED`, keys ending ``_s``), results.json's ``meta`` and the figures. Per run
+    ``identical`` and, per differing field, the count and the largest differences.
 
 Output
-    ``<out>/benchmark_indentation_workers.json``, rewritten after every run (a run cut short
-    keeps what finished): the machine (``nvidia-smi -L`` GPUs or "cpu", Warp's version), the
-    commit (``$WARPTRUNC_GIT_COMMIT``, else git), the profile and its departures, every
-    command and its measures; ``commands.log`` (the children's output); a table at the end.
+    ``<out>/benchmark_indentation_workers.json``, rewritten after every run: the machine, the
+    commit, the profile and its departures, every command and its measures; ``commands.log``;
+    ``values_<run>.json.gz`` (what the identity check reads, per run: a later call compares
+    against it with ``--reference``); a table at the end.
 
 Run
     # CPU dry run (the tiny profile at 128², 2 local CPU workers): about 30 s on 2 cores
     python examples/benchmarks/benchmark_indentation_workers.py --profile tiny --n 128 \\
         --device cpu --workers 2 --out /tmp/biw
-    # a GPU node: the paper profile at 2048², in process, then N, 2, 1 workers
-    python examples/benchmarks/benchmark_indentation_workers.py --budget-s 420 --out bench_iw
-    # see examples/gpu_checks/indent_workers.sh
+    # a GPU node: the paper profile at 2048², in process, then N, 2, 1 workers; or in two
+    # device calls: in process alone (--workers with no count), then the workers against it
+    # (--no-inprocess --reference A/values_inproc.json.gz --reference-wall S)
 """
 
 from __future__ import annotations
@@ -71,6 +65,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import dataclasses
+import gzip
 import json
 import math
 import os
@@ -295,14 +290,29 @@ def differences(a, b, path: str = "", out: dict | None = None, seen: list | None
     return out
 
 
-def identity(ref: Path, other: Path) -> dict:
-    """The identity check of ``other``'s store against ``ref``'s."""
+def identity(ref, other) -> dict:
+    """The identity check of ``other`` against ``ref``: stores (paths), or what
+    :func:`stored_values` read from them (dicts, e.g. a ``values_<run>.json.gz`` of an earlier
+    call)."""
     seen = [0]
-    a, b = stored_values(ref), stored_values(other)
+    a = ref if isinstance(ref, dict) else stored_values(ref)
+    b = other if isinstance(other, dict) else stored_values(other)
     d = differences(a, b, seen=seen)
     top = sorted(d.items(), key=lambda kv: (-kv[1]["max_rel"], -kv[1]["count"]))
     return {"identical": not d, "files": len(a), "values_compared": seen[0], "n_fields": len(d),
             "fields": dict(top[:40])}  # fmt: skip
+
+
+def write_values(path: Path, values: dict) -> None:
+    """What :func:`stored_values` read, as gzipped JSON (floats exactly: ``repr`` round-trips)."""
+    with gzip.open(path, "wt", encoding="utf-8") as f:
+        json.dump(values, f)
+
+
+def read_values(path: Path) -> dict:
+    """The values written by :func:`write_values`."""
+    with gzip.open(path, "rt", encoding="utf-8") as f:
+        return json.load(f)
 
 
 # --- the parent -------------------------------------------------------------------------------
@@ -365,7 +375,7 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--n", type=int, default=2048,
                     help="pixels per side of the indentation maps over indentation_L (1 mm): "
                     "2048 gives 488 nm pixels (the paper: 10240, 97.7 nm)")  # fmt: skip
-    ap.add_argument("--workers", type=int, nargs="+", default=None,
+    ap.add_argument("--workers", type=int, nargs="*", default=None,
                     help="worker counts, run in this order (default: the visible GPUs' count, "
                     "2 and 1; 2 1 without a GPU)")  # fmt: skip
     ap.add_argument("--device", default=None,
@@ -381,6 +391,14 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--timeout-s", type=float, default=None, help="limit of one child (s)")
     ap.add_argument("--keep-stores", action="store_true",
                     help="keep every run's reproduction folder under --out")
+    ap.add_argument("--no-inprocess", action="store_true",
+                    help="skip the in-process run (its figures from --reference and "
+                    "--reference-wall, e.g. of an earlier device call)")  # fmt: skip
+    ap.add_argument("--reference", type=Path, default=None,
+                    help="values_inproc.json.gz of an earlier in-process run: the worker runs' "
+                    "identity check against it (every run writes its values_<run>.json.gz)")  # fmt: skip
+    ap.add_argument("--reference-wall", type=float, default=None,
+                    help="that run's wall (s): the speed-ups against it")
     return ap
 
 
@@ -412,7 +430,9 @@ def main(argv=None) -> int:
     gpu_lines = gpus()
     n_gpus = resolve_workers("auto") if gpu_lines else 0  # CUDA_VISIBLE_DEVICES respected
     args.device = args.device or ("cuda:0" if n_gpus else "cpu")
-    counts = args.workers or default_workers(n_gpus if args.device != "cpu" else 0)
+    counts = args.workers
+    if counts is None:  # (an empty --workers: in process only)
+        counts = default_workers(n_gpus if args.device != "cpu" else 0)
     commit = git_commit()
     if commit:  # every child records the same commit
         os.environ["WARPTRUNC_GIT_COMMIT"] = commit
@@ -473,9 +493,9 @@ def main(argv=None) -> int:
         results["warmup"] = w
         save()
         shutil.rmtree(store, ignore_errors=True)
-    base = fixed = None
-    ref_store = None
-    for n in [None, *counts]:
+    base, fixed = args.reference_wall, None
+    ref_store = read_values(args.reference) if args.reference else None
+    for n in ([] if args.no_inprocess else [None]) + list(counts):
         name = "inproc" if n is None else f"workers_{n}"
         guess = expected_s(base, fixed or 0.0, n, n_gpus, {})
         left = None if args.budget_s is None else args.budget_s - spent()
@@ -493,6 +513,10 @@ def main(argv=None) -> int:
             except (OSError, KeyError, ValueError) as exc:  # a store the child left unfinished
                 rec["status"] = f"failed: store unreadable ({exc!r})"
         if "status" not in rec:
+            try:  # kept (small), so that a later call can compare against this run
+                write_values(out / f"values_{name}.json.gz", stored_values(store))
+            except (OSError, KeyError, ValueError) as exc:
+                rec["values_error"] = repr(exc)
             if n is None:
                 base, ref_store = rec["wall_s"], store
                 again = child_cmd(args, store, out / "record_fixed.json", None)
@@ -511,7 +535,7 @@ def main(argv=None) -> int:
         save()
         if n is not None and not args.keep_stores:
             shutil.rmtree(store, ignore_errors=True)
-    if ref_store is not None and not args.keep_stores:
+    if isinstance(ref_store, Path) and not args.keep_stores:
         shutil.rmtree(ref_store, ignore_errors=True)
     results["total_s"] = spent()
     save()

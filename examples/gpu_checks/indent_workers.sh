@@ -17,16 +17,15 @@
 # A subset of the GPUs: GPUS=0,1 (sets CUDA_VISIBLE_DEVICES; worker counts 2 1). Map size: N
 # (pixels per side over 1 mm). Extra arguments of the benchmark: $BENCH_ARGS. A dry run on a CPU
 # machine (about 30 s on 2 cores): N=128 BENCH_ARGS="--profile tiny --device cpu --workers 2" bash ...
-# Time: unknown, not measured yet. An ESTIMATE from docs/benchmarks/indentation_paper_h100x4.json
-# (the paper's 10240² map on 4 H100s: the pieces' own seconds summed to 2254 GPU-s, the stage's
-# wall 428 + 202 s over two calls) scaled by the window pixels, (2048/10240)² = 0.04: about
-# 90 GPU-s of pieces at N=2048 (per-solve costs that do not shrink with the pixels make it more,
-# fewer iterations at the coarser pixel less). Hence in process ≈ 100-120 s, its rerun ≈ 15 s,
-# 4 workers ≈ 40 s, 2 ≈ 65 s, 1 ≈ 115 s, the warm-up (a fresh machine's kernel compilation and a
-# 256² Ps-only run) ≈ 60-120 s: about 7 min in all. No timed run starts after BUDGET_S (default
-# 420 s) or when it is expected to end past it (listed as "skipped: budget"; the 1-worker run,
-# ≈ in process, goes last and is the first to be cut), and none runs more than 30 s past it or
-# longer than 300 s (stopped, rc 124).
+# Time, measured (4 x H200, fab6f70, docs/benchmarks/indentation_workers_h200x4.json): at N=2048
+# the pieces' own seconds sum to 536 GPU-s; in process 510.6 s, 4 workers 152.3 s; the warm-up on
+# a fresh machine about 60 s. So one 10-minute call holds in process alone, or the workers: run
+#   1st call: BENCH_ARGS="--workers" BUDGET_S=560 bash examples/gpu_checks/indent_workers.sh
+#   2nd call: BENCH_ARGS="--no-inprocess --workers 4 2 --reference A/values_inproc.json.gz
+#             --reference-wall WALL" bash examples/gpu_checks/indent_workers.sh
+# (A: the first call's OUT, carried back; WALL: its in-process wall). No timed run starts after
+# BUDGET_S (default 420 s) or when expected to end past it ("skipped: budget"), and none runs
+# more than 30 s past it or longer than TIMEOUT_S (default 580 s; stopped, rc 124).
 set -uo pipefail
 OUT=${OUT:-indent_workers_out}
 mkdir -p "$OUT"
@@ -50,7 +49,7 @@ export WARPTRUNC_GIT_COMMIT=${WARPTRUNC_GIT_COMMIT:-$(git rev-parse HEAD 2>/dev/
 t0=$(date +%s)
 # shellcheck disable=SC2086  # BENCH_ARGS: several words
 python3 examples/benchmarks/benchmark_indentation_workers.py --out "$OUT" --n "${N:-2048}" \
-    --budget-s "${BUDGET_S:-420}" --grace-s 30 --timeout-s 300 ${BENCH_ARGS:-} \
+    --budget-s "${BUDGET_S:-420}" --grace-s 30 --timeout-s "${TIMEOUT_S:-580}" ${BENCH_ARGS:-} \
     2> "$OUT/benchmark_stderr.log"
 status=$?
 [ $status -ne 0 ] && tail -n 30 "$OUT/benchmark_stderr.log"
