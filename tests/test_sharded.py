@@ -428,3 +428,23 @@ def test_blocked_rows_equal_one_device(monkeypatch):
     assert two.hs.layout.blocks > 1
     a, b = one.solve(load=LOAD), two.solve(load=LOAD)
     assert rel(a.depth, b.depth) < 1e-9 and a.n_iterations == b.n_iterations
+
+
+@pytest.mark.parametrize(("substrate", "dtype"), [("free", "float64"), ("periodic", "float32")])
+def test_unit_force_check(substrate, dtype, monkeypatch):
+    """The half-space's own check at construction (a unit force against the closed form):
+    passes for the real convolution, and raises when the convolution is 131072 times too
+    large, as XLA's unscaled inverse FFT of 2³¹ elements made it."""
+    import warptrunc.contact.sharded_fft as sf
+    from warptrunc.contact.sharded_spectrum import unit_force_check
+
+    shape = (128, 96)
+    hs = sf.ShardedHalfSpace(shape, (DX, 2 * DX), E, substrate=substrate, dtype=dtype,
+                             devices=jax.devices("cpu")[:2])  # fmt: skip
+    assert hs.check < (1e-4 if dtype == "float32" else 1e-12)
+    wrong = sf.ShardedHalfSpace(shape, (DX, 3 * DX), E, substrate=substrate, dtype=dtype,
+                                devices=jax.devices("cpu")[:2])  # fmt: skip
+    real = wrong.apply
+    monkeypatch.setattr(wrong, "apply", lambda x, **kw: real(x, **kw) * 131072)
+    with pytest.raises(RuntimeError, match="fails its check.*closed form"):
+        unit_force_check(wrong, (DX, 4 * DX), E)

@@ -185,6 +185,7 @@ def programme_memory(solver) -> dict:
             m = make().lower(*fn_args).compile().memory_analysis()
             out[name] = {"argument": int(m.argument_size_in_bytes),
                          "output": int(m.output_size_in_bytes),
+                         "alias": int(getattr(m, "alias_size_in_bytes", -1)),
                          "temp": int(m.temp_size_in_bytes)}  # fmt: skip
         except Exception as exc:  # recorded; the others go on
             out[name] = {"error": f"{type(exc).__name__}: {exc}"[:300]}

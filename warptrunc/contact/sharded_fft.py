@@ -501,6 +501,9 @@ class ShardedHalfSpace:
         blocks = column_blocks(shape, substrate, dtype, len(devices))
         self.layout = slab_layout(shape, substrate, dtype, tuple(devices), blocks)
         self.spectrum = self.layout.build_spectrum(pixel_size, float(contact_modulus))
+        from .sharded_spectrum import unit_force_check
+
+        self.check = unit_force_check(self, pixel_size, float(contact_modulus))
 
     def __getattr__(self, name: str) -> Any:
         if name == "layout":

@@ -30,6 +30,7 @@ __all__ = [
     "build_spectrum",
     "sharded_memory_bytes",
     "spectrum_programme",
+    "unit_force_check",
 ]
 
 BUILD_PIECE_BYTES = 1 << 28
@@ -242,3 +243,71 @@ def spectrum_programme(layout: Any, pixel_size: tuple[float, float], contact_mod
         return shard_map(y_stage, mesh=layout.mesh, in_specs=c, out_specs=c)(a)
 
     return jax.jit(build, out_shardings=layout.cols)
+
+
+def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: float) -> float:
+    """Check the spread convolution against a closed form: a unit force on the centre pixel.
+
+    The displacement under the force, u = K·e, is Love's coefficient of the pixel itself
+    divided by the pixel's area (free half-space: the zero-padded circulant reproduces the
+    linear convolution exactly), or the mean of the periodic spectrum over the whole grid (the
+    inverse transform at the origin, summed without an FFT). One convolution, made once per
+    layout, pixel size and modulus. It guards against a transform library that returns wrong
+    numbers silently at some size: XLA's GPU FFT left inverse transforms of 2³¹ elements
+    unscaled (openxla/xla#45009), which made a 65536² solve 131072 times too compliant.
+
+    Parameters
+    ----------
+    hs : ShardedHalfSpace
+        The half-space (:class:`~warptrunc.contact.sharded_fft.ShardedHalfSpace`).
+    pixel_size : (float, float)
+        Pixel sides (dx, dy) (m).
+    contact_modulus : float
+        Contact modulus E* (Pa).
+
+    Returns
+    -------
+    float
+        The relative difference from the closed form (dimensionless).
+
+    Raises
+    ------
+    RuntimeError
+        The difference exceeds 10⁻³ (float32) or 10⁻⁸ (float64): the message gives both values.
+    """
+    lay = hs.layout
+    jax, jnp = lay.jax, lay.jnp
+    done = lay.steps.setdefault("unit_force_checked", {})
+    key = (tuple(float(v) for v in pixel_size), float(contact_modulus))
+    if key in done:
+        return done[key]
+    ny, nx = lay.shape
+    i, j = ny // 2, nx // 2
+    unit = jax.jit(lambda: jnp.zeros(lay.shape, lay.np_dtype).at[i, j].set(1),
+                   out_shardings=lay.rows)  # fmt: skip
+    got = float(jax.device_get(hs.apply(unit())[i, j]))
+    dx, dy = (float(v) for v in pixel_size)
+    if lay.substrate == "free":
+        from .influence import _love
+
+        want = float(_love(0.0, 0.0, dx / 2, dy / 2, float(contact_modulus))) / (dx * dy)
+    else:  # the mean over the whole grid of a spectrum even in x and y, from its half
+        big_y, big_x, nk, nkp = lay.grid_shape
+        wy = np.where((np.arange(big_y // 2 + 1) == 0) | (2 * np.arange(big_y // 2 + 1) == big_y),
+                      1.0, 2.0)  # fmt: skip
+        c = np.arange(nkp)
+        wx = np.where(c >= nk, 0.0, np.where((c == 0) | (2 * c == big_x), 1.0, 2.0))
+        total = jax.jit(lambda w: jnp.sum(w.astype(jnp.float64) * wy[:, None] * wx[None, :]))
+        want = float(jax.device_get(total(hs.spectrum))) / (big_y * big_x)
+    rel = abs(got - want) / abs(want)
+    tol = 1e-3 if lay.np_dtype == np.float32 else 1e-8
+    if not rel <= tol:
+        raise RuntimeError(
+            f"the contact solver's convolution over {len(lay.devices)} devices fails its check: "
+            f"a unit force on pixel ({i}, {j}) of the {ny}×{nx} map ({lay.substrate}, "
+            f"{lay.np_dtype.name}) gives u = {got:.6g} m, the closed form {want:.6g} m "
+            f"(relative difference {rel:.3g} > {tol:g}); the FFT library returned wrong values "
+            "at this size (see warptrunc.contact.sharded_fft.FFT_ELEMENTS_MAX)"
+        )
+    done[key] = rel
+    return rel
