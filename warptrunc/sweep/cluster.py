@@ -242,24 +242,6 @@ def _gpu_count() -> int:
     return cuda_device_count()
 
 
-def _grouped(workers: Any, n: int | None, group: int, pin: bool) -> tuple[int, PinDevice]:
-    """(worker count, the plugin) of a local cluster whose workers take ``group`` devices."""
-    n_gpus = _gpu_count()
-    if n_gpus > 0:
-        have, platform = n_gpus, "cuda"
-    else:
-        from ..contact.sharded_fft import import_jax
-
-        have, platform = len(import_jax().devices("cpu")), "cpu"
-    if isinstance(workers, str) or n is None:  # "auto" (or Dask's choice): as many as fit
-        n = max(1, have // group)
-    if n * group > have:
-        raise ValueError(f"workers × devices = {n} × {group} = {n * group} devices, but "
-                         f"{have} {platform} devices are present; use at most "
-                         f"--workers {max(1, have // group)} (or 'auto')")  # fmt: skip
-    return n, PinDevice(n_devices=have, group=group, platform=platform, pin=pin)
-
-
 def _dask_cuda_cluster():
     """dask-cuda's LocalCUDACluster class, or None (not installed, or turned off)."""
     if os.environ.get(DASK_CUDA_ENV, "").strip().lower() in ("0", "false", "no", "off"):
@@ -300,10 +282,9 @@ def open_client(
         Warm the contact solver in every worker as it starts (``warm_worker(contact=True)``:
         elastic sweeps, ``reproduce``).
     group : int, optional
-        Devices per worker of a local cluster (count, default 1; :mod:`warptrunc.sweep.groups`):
-        a LocalCluster whose worker ``i`` takes devices ``i·group …`` (CUDA devices, else
-        JAX's host devices); ``workers="auto"`` is then the devices present divided by
-        ``group``. Ignored with ``scheduler`` (give each worker its group there).
+        Devices per worker of a local cluster (count, default 1; :mod:`warptrunc.sweep.groups`:
+        worker ``i`` takes devices ``i·group …``, ``workers="auto"`` is the devices present
+        divided by ``group``). Ignored with ``scheduler`` (give each worker its group there).
 
     Yields
     ------
@@ -345,7 +326,10 @@ def open_client(
         n = resolve_workers(workers)
         pin = device is None and not os.environ.get("WARPTRUNC_DEVICE")
         if group > 1:
-            n, plugin = _grouped(workers, n, group, pin)
+            from .groups import group_layout
+
+            n, have, platform = group_layout(workers, n, group, _gpu_count())
+            plugin = PinDevice(n_devices=have, group=group, platform=platform, pin=pin)
             pin = False
         cuda_cls = _dask_cuda_cluster() if pin else None  # counted only where installed
         n_gpus = _gpu_count() if cuda_cls is not None else 0

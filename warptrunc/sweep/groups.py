@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["GROUP_ENV", "group_size", "worker_group"]
+__all__ = ["GROUP_ENV", "group_layout", "group_size", "worker_group"]
 
 GROUP_ENV = "WARPTRUNC_DEVICE_GROUP"
 """Environment variable naming this process's device group, comma-separated JAX device names
@@ -84,3 +84,43 @@ def worker_group(worker_name: Any, n_devices: int, group: int, platform: str = "
                          f"got {group}")  # fmt: skip
     first = worker_index(worker_name) * group
     return [f"{platform}:{(first + k) % n_devices}" for k in range(group)]
+
+
+def group_layout(workers: Any, n: int | None, group: int, n_gpus: int) -> tuple[int, int, str]:
+    """Workers, devices and platform of a local cluster whose workers take ``group`` devices.
+
+    Parameters
+    ----------
+    workers : int, "auto" or None
+        The ``workers`` argument as given.
+    n : int or None
+        Its count (:func:`~warptrunc.sweep.cluster.resolve_workers`); None or ``"auto"``: as
+        many workers as whole groups fit.
+    group : int
+        Devices per worker (count ≥ 2).
+    n_gpus : int
+        CUDA devices visible (count); 0: JAX's host devices are the devices.
+
+    Returns
+    -------
+    (int, int, str)
+        Workers, devices present, and their platform (``"cuda"`` or ``"cpu"``).
+
+    Raises
+    ------
+    ValueError
+        More workers × devices than devices present; the message gives the largest count.
+    """
+    if n_gpus > 0:
+        have, platform = n_gpus, "cuda"
+    else:
+        from ..contact.sharded_fft import import_jax
+
+        have, platform = len(import_jax().devices("cpu")), "cpu"
+    if isinstance(workers, str) or n is None:
+        n = max(1, have // group)
+    if n * group > have:
+        raise ValueError(f"workers × devices = {n} × {group} = {n * group} devices, but "
+                         f"{have} {platform} devices are present; use at most "
+                         f"--workers {max(1, have // group)} (or 'auto')")  # fmt: skip
+    return n, have, platform
