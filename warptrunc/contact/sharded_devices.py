@@ -49,7 +49,7 @@ def spread_in_use() -> bool:
         error in such a solve the other devices may still wait in a collective (an all-to-all
         whose partner failed), and the JAX runtime then waits for them at interpreter exit; the
         command line therefore ends the process at once after reporting the error
-        (``os._exit``, :func:`warptrunc.cli.main`).
+        (``os._exit``, ``warptrunc.cli.main``).
     """
     return _SPREAD["used"]
 
@@ -60,7 +60,7 @@ def out_of_memory(exc: BaseException) -> MemoryError | None:
     Parameters
     ----------
     exc : BaseException
-        An error raised by a JAX programme (an :data:`XLA_ERRORS` type with XLA's
+        An error raised by a JAX programme (an ``XLA_ERRORS`` type with XLA's
         ``RESOURCE_EXHAUSTED`` status: a device allocation refused).
 
     Returns
