@@ -9,14 +9,9 @@
 # Results under $OUT/<mode>/ (default ./gpu_out). The machine has no git: pass
 # WARPTRUNC_GIT_COMMIT. Run after the staging of ../shared/device/README.md (PYTHONPATH=/tmp/site).
 set -uo pipefail
-OUT=${OUT:-gpu_out}
-mode=${1:?mode: sharded_ab, sharded_c, loop, workers or indent2}
-dir="$OUT/$mode"
-mkdir -p "$dir"
-export PYTHONPATH=${PYTHONPATH:-/tmp/site} MPLBACKEND=Agg PYTHONUNBUFFERED=1
-nvidia-smi --query-gpu=index,name,memory.total --format=csv,noheader | tee "$dir/device.txt"
-echo "commit ${WARPTRUNC_GIT_COMMIT:-unknown}" | tee "$dir/commit.txt"
-SECONDS=0
+MODES="sharded_ab, sharded_c, loop, workers or indent2"
+# shellcheck source=examples/gpu_checks/_wave_head.sh
+source "$(dirname "$0")/_wave_head.sh"
 case "$mode" in
 sharded_ab)
     OUT="$dir" PARTS="a b" BUDGET=${BUDGET:-400} bash examples/gpu_checks/sharded_x4.sh

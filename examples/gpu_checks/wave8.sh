@@ -10,14 +10,9 @@
 # Results under $OUT/<mode>/ (default ./gpu_out). The machine has no git: pass
 # WARPTRUNC_GIT_COMMIT. Run after the staging of ../shared/device/README.md (PYTHONPATH=/tmp/site).
 set -uo pipefail
-OUT=${OUT:-gpu_out}
-mode=${1:?mode: big, f64 or indent}
-dir="$OUT/$mode"
-mkdir -p "$dir"
-export PYTHONPATH=${PYTHONPATH:-/tmp/site} MPLBACKEND=Agg PYTHONUNBUFFERED=1
-nvidia-smi --query-gpu=index,name,memory.total --format=csv,noheader | tee "$dir/device.txt"
-echo "commit ${WARPTRUNC_GIT_COMMIT:-unknown}" | tee "$dir/commit.txt"
-SECONDS=0
+MODES="big, f64 or indent"
+# shellcheck source=examples/gpu_checks/_wave_head.sh
+source "$(dirname "$0")/_wave_head.sh"
 case "$mode" in
 big)
     OUT="$dir" PARTS=c BUDGET=${BUDGET:-540} bash examples/gpu_checks/sharded_x4.sh

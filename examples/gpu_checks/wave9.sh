@@ -13,15 +13,10 @@
 # /tmp/wave9_inproc for `workers`. The machine has no git: pass WARPTRUNC_GIT_COMMIT. Run after
 # the staging of ../shared/device/README.md (PYTHONPATH=/tmp/site).
 set -uo pipefail
-OUT=${OUT:-gpu_out}
-mode=${1:?mode: big, inproc or workers}
-dir="$OUT/$mode"
-mkdir -p "$dir"
-export PYTHONPATH=${PYTHONPATH:-/tmp/site} MPLBACKEND=Agg PYTHONUNBUFFERED=1
+MODES="big, inproc or workers"
+# shellcheck source=examples/gpu_checks/_wave_head.sh
+source "$(dirname "$0")/_wave_head.sh"
 export MAPS=${MAPS:-/tmp/maps}
-nvidia-smi --query-gpu=index,name,memory.total --format=csv,noheader | tee "$dir/device.txt"
-echo "commit ${WARPTRUNC_GIT_COMMIT:-unknown}" | tee "$dir/commit.txt"
-SECONDS=0
 case "$mode" in
 big)
     OUT="$dir" PARTS=c BUDGET=${BUDGET_C:-380} bash examples/gpu_checks/sharded_x4.sh

@@ -167,6 +167,7 @@ def column_blocks(shape: tuple[int, int], substrate: str, dtype: str, n_devices:
     return max(blocks, -(-big_y * (nkp // n_devices) // FFT_ELEMENTS_MAX))
 
 
+@fill_doc(SHARDED_DOCS)
 def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
                          n_devices: int) -> dict[str, int]:  # fmt: skip
     """Bytes one device holds for a solve spread over ``n_devices`` (the model; measured peaks:
@@ -174,14 +175,10 @@ def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
 
     Parameters
     ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    substrate : {"free", "periodic"}
-        Half-space.
-    dtype : {"float64", "float32"}
-        Precision of the maps.
-    n_devices : int
-        Devices the map is split over (dimensionless count, ≥ 1).
+    {shape}
+    {substrate}
+    {dtype}
+    {n_devices}
 
     Returns
     -------

@@ -24,6 +24,9 @@ from typing import Any
 
 import numpy as np
 
+from .._support.docs import fill_doc
+from .influence import GRID_DOCS
+
 __all__ = [
     "BUILD_PIECE_BYTES",
     "build_bytes",
@@ -32,6 +35,19 @@ __all__ = [
     "spectrum_programme",
     "unit_force_check",
 ]
+
+SPECTRUM_DOCS = {
+    "{shape}": GRID_DOCS["{shape}"],
+    "{substrate}": GRID_DOCS["{substrate}"],
+    "{dtype}": GRID_DOCS["{dtype}"],
+    "{n_devices}": "n_devices : int\n    Devices the map is split over (dimensionless count, ≥ 2).",
+    "{pixel_modulus}": ("pixel_size : (float, float)\n    Pixel sides (dx, dy) (m).\n"
+                        "contact_modulus : float\n    Contact modulus E* (Pa)."),
+}
+SPECTRUM_DOCS["{layout}"] = ("layout : SlabLayout\n    The layout "
+                             "(:class:`~warptrunc.contact.sharded_fft.SlabLayout`).\n"
+                             + SPECTRUM_DOCS["{pixel_modulus}"])
+"""The parameter text of this module's functions (:func:`~warptrunc._support.docs.fill_doc`)."""
 
 BUILD_PIECE_BYTES = 1 << 28
 """Float64 input bytes of one piece of the spectrum's build (256 MiB): the x stage's rows
@@ -66,19 +82,16 @@ def _row_layout(ny: int, nx: int, n_dev: int) -> tuple[int, int, int]:
     return piece, slab, slab * n_dev
 
 
+@fill_doc(SPECTRUM_DOCS)
 def build_bytes(shape: tuple[int, int], substrate: str, dtype: str, n_devices: int) -> int:
     """Peak bytes one device holds while the spectrum is built (the model).
 
     Parameters
     ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    substrate : {"free", "periodic"}
-        Half-space.
-    dtype : {"float64", "float32"}
-        Precision of W.
-    n_devices : int
-        Devices (dimensionless count, ≥ 2).
+    {shape}
+    {substrate}
+    {dtype}
+    {n_devices}
 
     Returns
     -------
@@ -102,20 +115,17 @@ def build_bytes(shape: tuple[int, int], substrate: str, dtype: str, n_devices: i
     return int(w + 3 * x_slab + 4 * min(BUILD_PIECE_BYTES, x_slab))
 
 
+@fill_doc(SPECTRUM_DOCS)
 def sharded_memory_bytes(shape: tuple[int, int], substrate: str, dtype: str,
                          n_devices: int) -> int:  # fmt: skip
     """Peak bytes one device holds for a solve spread over ``n_devices`` (the model).
 
     Parameters
     ----------
-    shape : (int, int)
-        Map size (ny, nx).
-    substrate : {"free", "periodic"}
-        Half-space.
-    dtype : {"float64", "float32"}
-        Precision of the maps.
-    n_devices : int
-        Devices the map is split over (dimensionless count, ≥ 2).
+    {shape}
+    {substrate}
+    {dtype}
+    {n_devices}
 
     Returns
     -------
@@ -129,17 +139,13 @@ def sharded_memory_bytes(shape: tuple[int, int], substrate: str, dtype: str,
     return int(max(steady, build_bytes(shape, substrate, dtype, n_devices)))
 
 
+@fill_doc(SPECTRUM_DOCS)
 def build_spectrum(layout: Any, pixel_size: tuple[float, float], contact_modulus: float):
     """The kernel spectrum W's rows 0 … Ny//2 in column slabs (module docstring).
 
     Parameters
     ----------
-    layout : SlabLayout
-        The layout (:class:`~warptrunc.contact.sharded_fft.SlabLayout`).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
+    {layout}
 
     Returns
     -------
@@ -152,6 +158,7 @@ def build_spectrum(layout: Any, pixel_size: tuple[float, float], contact_modulus
     return w
 
 
+@fill_doc(SPECTRUM_DOCS)
 def spectrum_programme(layout: Any, pixel_size: tuple[float, float], contact_modulus: float):
     """The jitted programme that builds the kernel spectrum (:func:`build_spectrum` calls it;
     ``.lower().compile().memory_analysis()`` gives XLA's memory of the build without running
@@ -159,12 +166,7 @@ def spectrum_programme(layout: Any, pixel_size: tuple[float, float], contact_mod
 
     Parameters
     ----------
-    layout : SlabLayout
-        The layout (:class:`~warptrunc.contact.sharded_fft.SlabLayout`).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
+    {layout}
 
     Returns
     -------
@@ -245,6 +247,7 @@ def spectrum_programme(layout: Any, pixel_size: tuple[float, float], contact_mod
     return jax.jit(build, out_shardings=layout.cols)
 
 
+@fill_doc(SPECTRUM_DOCS)
 def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: float) -> float:
     """Check the spread convolution against a closed form: a unit force on the centre pixel.
 
@@ -260,10 +263,7 @@ def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: 
     ----------
     hs : ShardedHalfSpace
         The half-space (:class:`~warptrunc.contact.sharded_fft.ShardedHalfSpace`).
-    pixel_size : (float, float)
-        Pixel sides (dx, dy) (m).
-    contact_modulus : float
-        Contact modulus E* (Pa).
+    {pixel_modulus}
 
     Returns
     -------
