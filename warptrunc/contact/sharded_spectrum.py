@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from .._support.docs import fill_doc
-from .influence import GRID_DOCS
+from .influence import GRID_DOCS, _love
 
 __all__ = [
     "BUILD_PIECE_BYTES",
@@ -53,19 +53,6 @@ BUILD_PIECE_BYTES = 1 << 28
 """Float64 input bytes of one piece of the spectrum's build (256 MiB): the x stage's rows
 (2·nx each) and the y stage's columns (2·ny each) are taken in blocks of at most this many
 bytes."""
-
-
-def _love(jnp, x, y, a: float, b: float, contact_modulus: float):
-    """Love's (1929) displacement (m) at (x, y) under a unit pressure on [−a, a]×[−b, b], as
-    :func:`warptrunc.contact.influence._love` (in JAX)."""
-    xa, xm, yb, ym = x + a, x - a, y + b, y - b
-    v = (
-        xa * jnp.log((yb + jnp.hypot(yb, xa)) / (ym + jnp.hypot(ym, xa)))
-        + yb * jnp.log((xa + jnp.hypot(yb, xa)) / (xm + jnp.hypot(yb, xm)))
-        + xm * jnp.log((ym + jnp.hypot(ym, xm)) / (yb + jnp.hypot(yb, xm)))
-        + ym * jnp.log((xm + jnp.hypot(ym, xm)) / (xa + jnp.hypot(ym, xa)))
-    )
-    return v / (math.pi * contact_modulus)
 
 
 def _pieces(length: int, per_item_bytes: int, count: int) -> int:
@@ -206,7 +193,8 @@ def spectrum_programme(layout: Any, pixel_size: tuple[float, float], contact_mod
         xs = jnp.arange(nx + 1, dtype=jnp.float64)[None, :] * dx
 
         def piece(jp):
-            quad = _love(jnp, xs, jp.astype(jnp.float64) * dy, dx / 2, dy / 2, contact_modulus)
+            quad = _love(xs, jp.astype(jnp.float64) * dy, dx / 2, dy / 2, contact_modulus,
+                         xp=jnp)  # fmt: skip
             row = jnp.concatenate([quad, quad[:, nx - 1 : 0 : -1]], axis=1)  # 2nx
             return jnp.pad(jnp.fft.rfft(row, axis=1).real, ((0, 0), (0, nkp - nk)))
 
@@ -288,8 +276,6 @@ def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: 
     got = float(jax.device_get(hs.apply(unit())[i, j]))
     dx, dy = (float(v) for v in pixel_size)
     if lay.substrate == "free":
-        from .influence import _love
-
         want = float(_love(0.0, 0.0, dx / 2, dy / 2, float(contact_modulus))) / (dx * dy)
     else:  # the mean over the whole grid of a spectrum even in x and y, from its half
         big_y, big_x, nk, nkp = lay.grid_shape
