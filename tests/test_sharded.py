@@ -187,7 +187,7 @@ def test_capped_equals_one_device(substrate, dtype, load_control):
 
 def test_blocked_columns_equal_one_device(monkeypatch):
     """The column stage in blocks (chosen for large slabs, forced here): the same solve."""
-    import warptrunc.contact.sharded_fft as sf
+    import warptrunc.contact.sharded_grid as sf
 
     monkeypatch.setattr(sf, "BLOCKS_ABOVE", 0)
     one = ContactSolver(H256, DX, E, device="cpu", direct_max=0)
@@ -265,7 +265,7 @@ def test_memory_model_covers_the_compiled_steps(substrate, dtype, blocked, monke
     """The per-device model is at least what XLA's compiled CG step and preconditioner need
     (arguments, results and temporaries of the CPU compile, plus the maps held beside them),
     and not far above."""
-    import warptrunc.contact.sharded_fft as sf
+    import warptrunc.contact.sharded_grid as sf
     from warptrunc.contact.sharded_steps import make_step
 
     if blocked:
@@ -339,13 +339,14 @@ def test_spectrum_in_pieces_equals_one_piece(monkeypatch):
     """The kernel spectrum built in pieces (rows of the x stage, columns of the y stage; forced
     small here) equals the one built in one piece (to round-off: XLA fuses the pieces
     differently), and the one-device solver's spectrum."""
+    import warptrunc.contact.sharded_grid as sg
     import warptrunc.contact.sharded_spectrum as ss
 
     devs = tuple(jax.devices("cpu")[:2])
     shape = (128, 96)
-    monkeypatch.setattr(ss, "BUILD_PIECE_BYTES", 1 << 62)
+    monkeypatch.setattr(sg, "BUILD_PIECE_BYTES", 1 << 62)
     whole = np.asarray(ss.build_spectrum(slab_layout(shape, "free", "float64", devs), (DX, DX), E))
-    monkeypatch.setattr(ss, "BUILD_PIECE_BYTES", 3000)  # 1 row of the x stage, 1 column of y
+    monkeypatch.setattr(sg, "BUILD_PIECE_BYTES", 3000)  # 1 row of the x stage, 1 column of y
     pieces = np.asarray(ss.build_spectrum(slab_layout(shape, "free", "float64", devs), (DX, DX), E))
     np.testing.assert_allclose(pieces, whole, rtol=0, atol=1e-13 * whole.max())  # last bits
     ref = influence_spectrum(shape, (DX, DX), E, substrate="free")  # (2ny, nx + 1), numpy f64
@@ -360,22 +361,23 @@ def test_spectrum_build_fits_the_model_at_65536():
     for the CPU, not run): within the model (``build_bytes``), which is below the solve's own
     per-device peak; the build in one piece (the cause of the out-of-memory error on 4 × H200)
     needed more than the model allows."""
+    import warptrunc.contact.sharded_grid as sg
     import warptrunc.contact.sharded_spectrum as ss
 
     shape, devs = (65536, 65536), tuple(jax.devices("cpu")[:2])
     lay = slab_layout(shape, "free", "float32", devs, 4)
 
     def compiled(piece_bytes):
-        old = ss.BUILD_PIECE_BYTES
-        ss.BUILD_PIECE_BYTES = piece_bytes
+        old = sg.BUILD_PIECE_BYTES
+        sg.BUILD_PIECE_BYTES = piece_bytes
         try:
             m = ss.spectrum_programme(lay, (DX, DX), E).lower().compile().memory_analysis()
         finally:
-            ss.BUILD_PIECE_BYTES = old
+            sg.BUILD_PIECE_BYTES = old
         return m.temp_size_in_bytes + m.output_size_in_bytes
 
-    model = ss.build_bytes(shape, "free", "float32", 2)
-    assert compiled(ss.BUILD_PIECE_BYTES) <= model < 1.5 * compiled(ss.BUILD_PIECE_BYTES)
+    model = sg.build_bytes(shape, "free", "float32", 2)
+    assert compiled(sg.BUILD_PIECE_BYTES) <= model < 1.5 * compiled(sg.BUILD_PIECE_BYTES)
     assert model < ContactSolver.memory_bytes(shape, "free", "float32", devices=2)
     assert compiled(1 << 62) > 1.3 * model
 
@@ -398,31 +400,32 @@ def test_fft_calls_stay_below_2_31_elements_at_65536(monkeypatch):
     (openxla/xla#45009), which made a 65536² solve on 4 × H200 about 10⁵ times too
     compliant. Without the row blocks the same programme has such calls."""
     import warptrunc.contact.sharded_fft as sf
+    import warptrunc.contact.sharded_grid as sg
 
     shape, devs = (65536, 65536), tuple(jax.devices("cpu")[:2])
-    big_y, _, _, nkp = sf._grid(shape, "free", 2)
+    big_y, _, _, nkp = sg._grid(shape, "free", 2)
 
     def sizes():
         lay = sf.SlabLayout(shape, "free", "float32", devs,
-                            sf.column_blocks(shape, "free", "float32", 2))  # fmt: skip
+                            sg.column_blocks(shape, "free", "float32", 2))  # fmt: skip
         x = jax.ShapeDtypeStruct(shape, np.float32, sharding=lay.rows)
         w = jax.ShapeDtypeStruct((big_y // 2 + 1, nkp), np.float32, sharding=lay.cols)
         fn = jax.jit(lambda a, b: lay.conv(a, b, inverse=False), out_shardings=lay.rows)
         return _fft_sizes(fn.lower(x, w).as_text())
 
     ok = sizes()
-    assert len(ok) == 4 and max(ok) <= sf.FFT_ELEMENTS_MAX < 2**31
-    monkeypatch.setattr(sf, "FFT_ELEMENTS_MAX", 1 << 62)
+    assert len(ok) == 4 and max(ok) <= sg.FFT_ELEMENTS_MAX < 2**31
+    monkeypatch.setattr(sg, "FFT_ELEMENTS_MAX", 1 << 62)
     assert max(sizes()) >= 2**31
 
 
 def test_blocked_rows_equal_one_device(monkeypatch):
     """Row (and column) transforms in blocks, forced by a small FFT_ELEMENTS_MAX: the same
     solve as one device."""
-    import warptrunc.contact.sharded_fft as sf
+    import warptrunc.contact.sharded_grid as sg
 
-    monkeypatch.setattr(sf, "FFT_ELEMENTS_MAX", 1 << 12)
-    assert sf.row_blocks(128, 512) == 16 and sf.row_blocks(100, 512) == 20
+    monkeypatch.setattr(sg, "FFT_ELEMENTS_MAX", 1 << 12)
+    assert sg.row_blocks(128, 512) == 16 and sg.row_blocks(100, 512) == 20
     one = ContactSolver(H256, DX, E, device="cpu", direct_max=0)
     two = ContactSolver(H256, DX, E, devices=2)
     assert two.hs.layout.blocks > 1

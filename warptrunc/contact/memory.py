@@ -129,7 +129,7 @@ class SolverMemory:
         devices : int, optional
             Devices the map is spread over (``ContactSolver(..., devices=n)``; dimensionless
             count, ≥ 1, default 1). Above 1: the bytes of one device, JAX's buffers included
-            (:func:`~warptrunc.contact.sharded_spectrum.sharded_memory_bytes`; ``cuda``,
+            (:func:`~warptrunc.contact.sharded_grid.sharded_memory_bytes`; ``cuda``,
             ``algorithm``, ``fft_plan`` and ``device`` do not apply).
 
         Returns
@@ -145,7 +145,7 @@ class SolverMemory:
         if isinstance(devices, bool) or not isinstance(devices, int | np.integer) or devices < 1:
             raise ValueError(f"devices must be an integer ≥ 1, got {devices!r}")
         if devices > 1:
-            from .sharded_spectrum import sharded_memory_bytes
+            from .sharded_grid import sharded_memory_bytes
 
             return sharded_memory_bytes(shape, substrate, dtype, int(devices))
         terms = SolverMemory.memory_terms(shape, substrate, dtype, cuda=cuda,

@@ -42,7 +42,8 @@ from .._support.docs import fill_doc
 from .bccg import _HUGE
 from .memory import SolverMemory
 from .sharded_devices import register_sharded
-from .sharded_fft import SHARDED_DOCS, ShardedHalfSpace, sharded_memory_terms
+from .sharded_fft import ShardedHalfSpace
+from .sharded_grid import SHARDED_DOCS, sharded_memory_terms
 from .solver import ContactSolver
 
 __all__ = ["ShardedContactSolver"]
@@ -94,7 +95,7 @@ class ShardedContactSolver(ContactSolver):
     def __init__(self, heights: Any, pixel_size: Any, contact_modulus: float, *,
                  settings: Any = None, hardness: float = math.inf, device: Any = None,
                  devices: Any = 2, **legacy: Any) -> None:  # fmt: skip
-        from .sharded_devices import choose_devices
+        from .sharded_devices import choose_devices, mark_spread
 
         shape = np.shape(heights)
         self._jax_devices = choose_devices(devices, shape, settings, legacy, device,
@@ -104,6 +105,7 @@ class ShardedContactSolver(ContactSolver):
                 f"devices: a ShardedContactSolver needs two or more devices, got {devices!r}; "
                 "use ContactSolver for one"
             )
+        mark_spread()  # an XLA runtime error ends the command at once (warptrunc.cli)
         super().__init__(heights, pixel_size, contact_modulus, settings=settings,
                          hardness=hardness, device=device, **legacy)  # fmt: skip
         self.direct_max = 0  # the projection's changes: transformed afresh (module docstring)
@@ -371,7 +373,7 @@ class ShardedContactSolver(ContactSolver):
     def memory_terms_per_device(shape: tuple[int, int], substrate: str = "free",
                                 dtype: str = "float64", n_devices: int = 2) -> dict[str, int]:  # fmt: skip
         """Bytes one device holds, term by term
-        (:func:`~warptrunc.contact.sharded_fft.sharded_memory_terms`).
+        (:func:`~warptrunc.contact.sharded_grid.sharded_memory_terms`).
 
         Parameters
         ----------

@@ -15,8 +15,7 @@ from typing import Any
 import numpy as np
 
 from .._support.docs import fill_doc
-from .sharded_fft import SHARDED_DOCS, import_jax
-from .sharded_spectrum import sharded_memory_bytes
+from .sharded_grid import SHARDED_DOCS, import_jax, sharded_memory_bytes
 
 __all__ = [
     "check_fits",
@@ -165,7 +164,7 @@ def check_fits(shape: tuple[int, int], substrate: str, dtype: str, devices: list
     -------
     int
         Bytes each device needs (the model,
-        :func:`~warptrunc.contact.sharded_spectrum.sharded_memory_bytes`).
+        :func:`~warptrunc.contact.sharded_grid.sharded_memory_bytes`).
 
     Raises
     ------

@@ -37,174 +37,13 @@ import numpy as np
 
 from .._support.docs import fill_doc
 from .influence import GRID_DOCS
+from .sharded_grid import _grid, _shard_map, column_blocks, import_jax, row_blocks
 
 __all__ = [
-    "BLOCKS_ABOVE",
-    "COLUMN_BLOCKS",
-    "FFT_ELEMENTS_MAX",
     "ShardedHalfSpace",
     "SlabLayout",
-    "column_blocks",
-    "import_jax",
-    "row_blocks",
-    "sharded_memory_terms",
     "slab_layout",
 ]
-
-
-def import_jax():
-    """JAX with 64-bit types enabled (the maps may be float64 and the sums are float64).
-
-    Returns
-    -------
-    module
-        The ``jax`` module.
-
-    Raises
-    ------
-    ImportError
-        JAX is not installed; the message gives the install line.
-    """
-    try:
-        import jax
-    except ImportError as exc:
-        raise ImportError(
-            f"a contact solve over several devices needs JAX ({exc}); install it with: "
-            'pip install "warptrunc[distributed]" (on CUDA machines: pip install "jax[cuda12]")'
-        ) from exc
-    if not jax.config.jax_enable_x64:
-        jax.config.update("jax_enable_x64", True)
-    return jax
-
-
-def _shard_map(jax):
-    """``jax.shard_map`` (JAX ≥ 0.7) or ``jax.experimental.shard_map.shard_map`` before."""
-    fn = getattr(jax, "shard_map", None)
-    if fn is not None:
-        return fn
-    from jax.experimental.shard_map import shard_map
-
-    def compat(f, *, mesh, in_specs, out_specs):
-        return shard_map(f, mesh, in_specs=in_specs, out_specs=out_specs, check_rep=False)
-
-    return compat
-
-
-def _grid(shape: tuple[int, int], substrate: str, n_dev: int) -> tuple[int, int, int, int]:
-    """(Ny, Nx, nk, nkp): the padded grid, its half spectrum's columns and those padded to a
-    multiple of ``n_dev``."""
-    ny, nx = shape
-    big_y, big_x = (2 * ny, 2 * nx) if substrate == "free" else (ny, nx)
-    nk = big_x // 2 + 1
-    return big_y, big_x, nk, -(-nk // n_dev) * n_dev
-
-
-COLUMN_BLOCKS = 4
-"""Blocks of columns the y transforms of a large column slab run in, one after another (a
-``fori_loop``), so that XLA holds one block's padded transform at a time: the convolution's
-temporary memory drops from 2.5 to 1.5 padded half spectra of the slab (the CPU compile)."""
-
-BLOCKS_ABOVE = 1 << 28
-"""Bytes of a device's padded half spectrum above which its column stage runs in
-``COLUMN_BLOCKS`` blocks (below, in one piece)."""
-
-
-FFT_ELEMENTS_MAX = 1 << 30
-"""Most elements one FFT call of a device may hold (input or output, batch included). XLA's GPU
-FFT scales an inverse transform's output with cuBLAS, whose element count is a 32-bit int: at
-2³¹ elements or more the scaling is skipped and the result is N times too large
-(openxla/xla#45009, open in JAX 0.11.2). A 65536² map over 4 GPUs hit it exactly (16384 rows of
-131072 padded columns per device): its loads came out about 10⁵ times too small. Transforms
-that would hold more run in blocks (:func:`row_blocks`, :func:`column_blocks`)."""
-
-
-def row_blocks(rows: int, length: int) -> int:
-    """Blocks the row transforms of a slab run in: 1, or the fewest that divide ``rows`` and
-    keep each FFT call within :data:`FFT_ELEMENTS_MAX` elements.
-
-    Parameters
-    ----------
-    rows : int
-        Rows of the slab (count).
-    length : int
-        Transform length along the rows, padding included (count).
-
-    Returns
-    -------
-    int
-        The number of blocks (dimensionless), a divisor of ``rows``.
-    """
-    need = -(-rows * length // FFT_ELEMENTS_MAX)
-    if need <= 1:
-        return 1
-    return next(k for k in range(need, rows + 1) if rows % k == 0)
-
-
-SHARDED_DOCS = {**GRID_DOCS, "{n_devices}": "n_devices : int\n    Devices (dimensionless count)."}
-"""The sharded layout's shared parameter text (:func:`~warptrunc._support.docs.fill_doc`)."""
-
-
-@fill_doc(SHARDED_DOCS)
-def column_blocks(shape: tuple[int, int], substrate: str, dtype: str, n_devices: int) -> int:
-    """Blocks of the column stage of a layout (``COLUMN_BLOCKS`` or 1, by ``BLOCKS_ABOVE``; more
-    where a block's transform would exceed :data:`FFT_ELEMENTS_MAX` elements).
-
-    Parameters
-    ----------
-    {shape}
-    {substrate}
-    {dtype}
-    {n_devices}
-
-    Returns
-    -------
-    int
-        The number of blocks (dimensionless).
-    """
-    big_y, _, _, nkp = _grid(shape, substrate, n_devices)
-    spectrum = big_y * (nkp // n_devices) * 2 * np.dtype(dtype).itemsize
-    blocks = COLUMN_BLOCKS if spectrum > BLOCKS_ABOVE else 1
-    return max(blocks, -(-big_y * (nkp // n_devices) // FFT_ELEMENTS_MAX))
-
-
-@fill_doc(SHARDED_DOCS)
-def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
-                         n_devices: int) -> dict[str, int]:  # fmt: skip
-    """Bytes one device holds for a solve spread over ``n_devices`` (the model; measured peaks:
-    ``examples/benchmarks/benchmark_sharded.py``).
-
-    Parameters
-    ----------
-    {shape}
-    {substrate}
-    {dtype}
-    {n_devices}
-
-    Returns
-    -------
-    dict of str to int
-        Per device: ``"maps"``: h, q, u, t, the BCCG residual r, the preconditioned residual z
-        and the last and new z − mean (eight slabs of the dtype; Barber's punch reuses them);
-        ``"mask"``: one byte per pixel of the slab; ``"kernel spectrum"``: its rows 0 … Ny//2 in
-        a column slab; ``"fft work (XLA)"``: the convolution's buffers, 2.5 padded half spectra
-        of the slab, 1.5 when the column stage runs in blocks (:func:`column_blocks`; XLA's
-        temporary memory of one convolution compiled for the CPU: ``tests/test_sharded.py``); ``"step temporaries"``: three float64 slabs, the rest of a
-        CG step's temporary memory (its float64 intermediates; the CPU compile needs 0–3).
-    """
-    ny, nx = shape
-    item = np.dtype(dtype).itemsize
-    big_y, _, _, nkp = _grid(shape, substrate, n_devices)
-    slab = -(-ny // n_devices) * nx
-    cols = nkp // n_devices
-    blocks = column_blocks(shape, substrate, dtype, n_devices)
-    return {
-        "maps": 8 * slab * item,
-        "mask": slab,
-        "kernel spectrum": (big_y // 2 + 1) * cols * item,
-        # 2.5 (1.5 in blocks) complex spectra of the slab
-        "fft work (XLA)": (3 if blocks > 1 else 5) * big_y * cols * item,
-        "step temporaries": 3 * slab * 8,
-    }
 
 
 class SlabLayout:
@@ -491,9 +330,6 @@ class ShardedHalfSpace:
     def __init__(self, shape: tuple[int, int], pixel_size: tuple[float, float],
                  contact_modulus: float, *, substrate: str, dtype: str,
                  devices: list[Any]) -> None:  # fmt: skip
-        from .sharded_devices import mark_spread
-
-        mark_spread()
         shape = (int(shape[0]), int(shape[1]))
         blocks = column_blocks(shape, substrate, dtype, len(devices))
         self.layout = slab_layout(shape, substrate, dtype, tuple(devices), blocks)

@@ -25,22 +25,12 @@ from typing import Any
 import numpy as np
 
 from .._support.docs import fill_doc
-from .influence import GRID_DOCS, _love
+from .influence import _love
+from .sharded_grid import _pieces, _row_layout, _shard_map
 
-__all__ = [
-    "BUILD_PIECE_BYTES",
-    "build_bytes",
-    "build_spectrum",
-    "sharded_memory_bytes",
-    "spectrum_programme",
-    "unit_force_check",
-]
+__all__ = ["build_spectrum", "spectrum_programme", "unit_force_check"]
 
 SPECTRUM_DOCS = {
-    "{shape}": GRID_DOCS["{shape}"],
-    "{substrate}": GRID_DOCS["{substrate}"],
-    "{dtype}": GRID_DOCS["{dtype}"],
-    "{n_devices}": "n_devices : int\n    Devices the map is split over (dimensionless count, ≥ 2).",
     "{pixel_modulus}": ("pixel_size : (float, float)\n    Pixel sides (dx, dy) (m).\n"
                         "contact_modulus : float\n    Contact modulus E* (Pa)."),
 }
@@ -48,83 +38,6 @@ SPECTRUM_DOCS["{layout}"] = ("layout : SlabLayout\n    The layout "
                              "(:class:`~warptrunc.contact.sharded_fft.SlabLayout`).\n"
                              + SPECTRUM_DOCS["{pixel_modulus}"])
 """The parameter text of this module's functions (:func:`~warptrunc._support.docs.fill_doc`)."""
-
-BUILD_PIECE_BYTES = 1 << 28
-"""Float64 input bytes of one piece of the spectrum's build (256 MiB): the x stage's rows
-(2·nx each) and the y stage's columns (2·ny each) are taken in blocks of at most this many
-bytes."""
-
-
-def _pieces(length: int, per_item_bytes: int, count: int) -> int:
-    """Items per piece: at most ``count``, at least one, within :data:`BUILD_PIECE_BYTES`."""
-    return int(max(1, min(count, BUILD_PIECE_BYTES // max(1, per_item_bytes))))
-
-
-def _row_layout(ny: int, nx: int, n_dev: int) -> tuple[int, int, int]:
-    """(rows per piece, rows per device, rows in all) of the free x stage: quadrant rows
-    0 … ny, padded so that every device holds a whole number of pieces."""
-    per_dev = -(-(ny + 1) // n_dev)
-    piece = _pieces(ny + 1, 2 * nx * 8, per_dev)
-    slab = -(-per_dev // piece) * piece
-    return piece, slab, slab * n_dev
-
-
-@fill_doc(SPECTRUM_DOCS)
-def build_bytes(shape: tuple[int, int], substrate: str, dtype: str, n_devices: int) -> int:
-    """Peak bytes one device holds while the spectrum is built (the model).
-
-    Parameters
-    ----------
-    {shape}
-    {substrate}
-    {dtype}
-    {n_devices}
-
-    Returns
-    -------
-    int
-        Bytes: W's column slab, and for the free half-space three float64 slabs of the x
-        stage's result (in row slabs, in column slabs, and XLA's staging of the all-to-all
-        between them: the CPU compile), plus four float64 pieces of at most
-        :data:`BUILD_PIECE_BYTES` (a piece's input, its transform, the mirrored copy, the
-        result); for the periodic one, two float64 copies of W's slab.
-    """
-    from .sharded_fft import _grid
-
-    ny, nx = shape
-    big_y, _, _, nkp = _grid(shape, substrate, n_devices)
-    cols = nkp // n_devices
-    w = (big_y // 2 + 1) * cols * np.dtype(dtype).itemsize
-    if substrate == "periodic":
-        return int(w + 2 * (big_y // 2 + 1) * cols * 8)
-    _, slab_rows, n_rows = _row_layout(ny, nx, n_devices)
-    x_slab = max(slab_rows * nkp, n_rows * cols) * 8
-    return int(w + 3 * x_slab + 4 * min(BUILD_PIECE_BYTES, x_slab))
-
-
-@fill_doc(SPECTRUM_DOCS)
-def sharded_memory_bytes(shape: tuple[int, int], substrate: str, dtype: str,
-                         n_devices: int) -> int:  # fmt: skip
-    """Peak bytes one device holds for a solve spread over ``n_devices`` (the model).
-
-    Parameters
-    ----------
-    {shape}
-    {substrate}
-    {dtype}
-    {n_devices}
-
-    Returns
-    -------
-    int
-        The larger of the solve's terms summed (:func:`~warptrunc.contact.sharded_fft.sharded_memory_terms`) and the kernel
-        spectrum's build, which comes first and alone (:func:`build_bytes`) (B).
-    """
-    from .sharded_fft import sharded_memory_terms
-
-    steady = sum(sharded_memory_terms(shape, substrate, dtype, n_devices).values())
-    return int(max(steady, build_bytes(shape, substrate, dtype, n_devices)))
-
 
 @fill_doc(SPECTRUM_DOCS)
 def build_spectrum(layout: Any, pixel_size: tuple[float, float], contact_modulus: float):
@@ -160,8 +73,6 @@ def spectrum_programme(layout: Any, pixel_size: tuple[float, float], contact_mod
     callable
         ``jax.jit`` of a function of no arguments returning W (:func:`build_spectrum`).
     """
-    from .sharded_fft import _shard_map
-
     jax, jnp = layout.jax, layout.jnp
     lax = jax.lax
     shard_map = _shard_map(jax)
@@ -293,7 +204,7 @@ def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: 
             f"a unit force on pixel ({i}, {j}) of the {ny}×{nx} map ({lay.substrate}, "
             f"{lay.np_dtype.name}) gives u = {got:.6g} m, the closed form {want:.6g} m "
             f"(relative difference {rel:.3g} > {tol:g}); the FFT library returned wrong values "
-            "at this size (see warptrunc.contact.sharded_fft.FFT_ELEMENTS_MAX)"
+            "at this size (see warptrunc.contact.sharded_grid.FFT_ELEMENTS_MAX)"
         )
     done[key] = rel
     return rel

@@ -114,7 +114,7 @@ def group_layout(workers: Any, n: int | None, group: int, n_gpus: int) -> tuple[
     if n_gpus > 0:
         have, platform = n_gpus, "cuda"
     else:
-        from ..contact.sharded_fft import import_jax
+        from ..contact.sharded_grid import import_jax
 
         have, platform = len(import_jax().devices("cpu")), "cpu"
     if isinstance(workers, str) or n is None:
