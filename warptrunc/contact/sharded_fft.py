@@ -1,7 +1,9 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The elastic half-space over several devices: JAX/XLA's sharded FFT, the row-slab layout, the
-per-device memory model and the choice of devices (:class:`ShardedHalfSpace`).
+"""The elastic half-space over several devices: JAX/XLA's sharded FFT and the row-slab layout
+(:class:`ShardedHalfSpace`); the grid, its blocks and the per-device memory model are in
+:mod:`~warptrunc.contact.sharded_grid`, the choice of devices in
+:mod:`~warptrunc.contact.sharded_devices`.
 
 Engine. JAX (``pip install "warptrunc[distributed]"``; imported only when a solver is spread
 over several devices, never at ``import warptrunc``). One process drives the host's devices;
@@ -63,7 +65,8 @@ class SlabLayout:
     devices : tuple of jax Device
         The devices, one row slab each (two or more).
     blocks : int, optional
-        Blocks the column stage runs in (:func:`column_blocks`; default 1).
+        Blocks the column stage runs in (default 1;
+        :func:`~warptrunc.contact.sharded_grid.column_blocks`).
     """
 
     def __init__(self, shape: tuple[int, int], substrate: str, dtype: str,

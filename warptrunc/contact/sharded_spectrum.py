@@ -8,13 +8,14 @@ quadrant, mirrored in x, transformed along x (row slabs, one device each), a sha
 to column slabs (XLA's all-to-all), mirrored in y and transformed along y, in float64, rounded
 to the dtype. The periodic W is its closed form.
 
-Both stages run in *pieces* of at most :data:`BUILD_PIECE_BYTES` of float64 input each — the x
-stage over blocks of rows (``lax.map``), the y stage over blocks of columns (``lax.fori_loop``
-writing into its output) — so that a device holds, besides the x stage's result before and after
-the all-to-all and W itself, one piece's temporaries. Built in one piece, XLA's temporaries of
-the free build at 65536² over 4 devices came to 51.5 GB per device on the CPU compile, and the
-GPU compile asked for one buffer of 60.8 GiB (4 × H200, 2026-11-27): more than the solve itself.
-:func:`build_bytes` is the model of the pieced build's peak per device.
+Both stages run in *pieces* of at most
+:data:`~warptrunc.contact.sharded_grid.BUILD_PIECE_BYTES` of float64 input each — the x stage
+over blocks of rows (``lax.map``), the y stage over blocks of columns (``lax.fori_loop`` writing
+into its output) — so that a device holds, besides the x stage's result before and after the
+all-to-all and W itself, one piece's temporaries. Built in one piece, XLA's temporaries of the
+free build at 65536² over 4 devices came to 51.5 GB per device on the CPU compile, and the GPU
+compile asked for one buffer of 60.8 GiB (4 × H200, 2026-11-27): more than the solve itself.
+:func:`~warptrunc.contact.sharded_grid.build_bytes` is the model of the pieced build's peak.
 """
 
 from __future__ import annotations
