@@ -52,9 +52,26 @@ E = 70e9 / (1 - 0.33**2)  # contact modulus (Pa)
 TOL = {"float64": 1e-9, "float32": 1e-5}
 
 
+MAP = {"kind": "selfaffine"}
+"""The map of every step (``--map``): ``selfaffine`` (below) or ``wm``."""
+
+
 def surface(n: int, maps: Path) -> np.ndarray:
-    """A self-affine map (m), n × n, seed 0 (cached as .npy; float64 up to 16384², float32
-    above to keep the host copy small)."""
+    """The map (m), n × n, seed 0, cached as .npy for the next process (float64 up to 16384²,
+    float32 above to keep the host copy small): ``--map selfaffine``, a self-affine Gaussian
+    surface; ``--map wm``, the paper's kind of map, the D = 2.5 WM surface of
+    ``benchmark_solver_scaling.py`` (W_r = 100 µm, R_t = 10 µm over 1 mm, made on Warp's
+    default device)."""
+    if MAP["kind"] == "wm":
+        path = maps / f"wm_{n}.npy"
+        if path.exists():
+            return np.load(path)
+        from warptrunc.wm import wm_surface
+
+        h = wm_surface(2.5, 100e-6, L=L, n=n, Rt=10e-6, seed=0).heights  # default device
+        maps.mkdir(parents=True, exist_ok=True)
+        np.save(path, h)
+        return h
     dtype = np.float64 if n <= 16384 else np.float32
     path = maps / f"selfaffine_{n}_{np.dtype(dtype).name}.npy"
     if path.exists():
@@ -194,7 +211,7 @@ def programme_memory(solver) -> dict:
 
 def solve(args) -> None:
     """Floor, set-up, cold and warm solves, peak memory (module docstring)."""
-    rec = {"step": "solve", "n": args.n, "ndev": args.ndev, "dtype": args.dtype,
+    rec = {"step": "solve", "map": args.map, "n": args.n, "ndev": args.ndev, "dtype": args.dtype,
            "substrate": args.substrate, "maxiter": args.maxiter}  # fmt: skip
     try:
         from warptrunc.contact import ContactSolver
@@ -323,7 +340,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--repeats", type=int, default=10, help="timed repeats of the floor")
     ap.add_argument("--maps", type=Path, default=Path("sharded_maps"), help="map cache folder")
     ap.add_argument("--jsonl", type=Path, default=Path("sharded.jsonl"), help="results file")
+    ap.add_argument("--map", default="selfaffine", choices=("selfaffine", "wm"),
+                    help="the map: a self-affine Gaussian surface (H = 0.8, rms 1 µm), or the "
+                    "D = 2.5 WM surface of benchmark_solver_scaling.py (R_t = 10 µm)")  # fmt: skip
     args = ap.parse_args(argv)
+    MAP["kind"] = args.map
     steps = {"check": check, "maps": maps, "solve": solve, "report": report}
     steps[args.step](args)
     return 0

@@ -51,6 +51,7 @@ DTYPE=${DTYPE:-float32}
 BIG_FRACTIONS=${BIG_FRACTIONS:-0.1 0.2 0.3}
 BIG_MAXITER=${BIG_MAXITER:-10000}
 F64_MAXITER=${F64_MAXITER:-1000}  # (b) converges: the warm step is timed to convergence
+F64_MAP=${F64_MAP:-selfaffine}  # (b)'s map: selfaffine, or wm (the paper's kind: D = 2.5 WM)
 MIN_GPU_GB=${MIN_GPU_GB:-100}
 BUDGET=${BUDGET:-570}
 MAPS=${MAPS:-$OUT/maps}
@@ -126,8 +127,9 @@ if has a; then
     fi
 fi
 if has b; then
-    bench maps_f64 90 maps --n "$F64_N"
-    bench "f64_${F64_N}_2" 420 solve --n "$F64_N" --ndev 2 --dtype float64 --maxiter "$F64_MAXITER"
+    bench maps_f64 90 maps --n "$F64_N" --map "$F64_MAP"
+    bench "f64_${F64_N}_2" 420 solve --n "$F64_N" --ndev 2 --dtype float64 --maxiter "$F64_MAXITER" \
+        --map "$F64_MAP"
 fi
 if has c; then
     need_mb=$((MIN_GPU_GB * 1000000000 / 1048576))
