@@ -43,7 +43,7 @@ from .bccg import _HUGE
 from .memory import SolverMemory
 from .sharded_devices import register_sharded
 from .sharded_fft import ShardedHalfSpace
-from .sharded_grid import SHARDED_DOCS, sharded_memory_terms
+from .sharded_grid import SHARDED_DOCS, host_array, sharded_memory_terms
 from .solver import ContactSolver
 
 __all__ = ["ShardedContactSolver"]
@@ -155,7 +155,8 @@ class ShardedContactSolver(ContactSolver):
 
     def _read(self, values: Any) -> list[float]:
         """Read device scalars back to the host (a synchronisation point)."""
-        return [float(v) for v in self.jax.device_get(values)]
+        parts = values if isinstance(values, list | tuple) else [values]
+        return [float(x) for v in parts for x in host_array(v).reshape(-1)]
 
     # --- the shared loop's primitives (SolveLoop, BCCGSolves) ------------------------------
 
@@ -327,7 +328,7 @@ class ShardedContactSolver(ContactSolver):
         gap : (ny, nx) ndarray of float64
             Gap u − h − offset (m).
         """
-        q, u, h = (np.asarray(a).astype(np.float64) for a in (self.q, self.u, self.h))
+        q, u, h = (host_array(a).astype(np.float64) for a in (self.q, self.u, self.h))
         dx, dy = self.pixel_size
         return q / (dx * dy), u - h - self.offset
 
@@ -340,7 +341,7 @@ class ShardedContactSolver(ContactSolver):
         (ny, nx) ndarray of bool
             Pixels with a positive force.
         """
-        return np.asarray(self.q > 0)
+        return host_array(self.q > 0)
 
     def plastic_displacement(self) -> np.ndarray:
         """The plastic height change so far, copied to the host.
@@ -352,7 +353,7 @@ class ShardedContactSolver(ContactSolver):
         """
         if self._h0 is None:
             return np.zeros(self.shape)
-        return self._h0.astype(np.float64) - np.asarray(self.h).astype(np.float64)
+        return self._h0.astype(np.float64) - host_array(self.h).astype(np.float64)
 
     def reset(self) -> None:
         """Forget the solution and the plastic state: original heights, zero forces."""

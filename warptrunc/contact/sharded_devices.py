@@ -114,6 +114,10 @@ def _jax_device(name: Any, jax: Any):
 
 def _free_bytes(device: Any) -> int | None:
     """Free memory of a JAX device (B), or None where JAX does not report it (the CPU)."""
+    import jax
+
+    if getattr(device, "process_index", 0) != jax.process_index():
+        return None  # another process's (host's) device: that process checks it
     stats = device.memory_stats() if hasattr(device, "memory_stats") else None
     if not stats or "bytes_limit" not in stats:
         return None

@@ -7,7 +7,9 @@
 
 Engine. JAX (``pip install "warptrunc[distributed]"``; imported only when a solver is spread
 over several devices, never at ``import warptrunc``). One process drives the host's devices;
-several hosts would join through ``jax.distributed`` (not wired up here). It was chosen over
+several processes (hosts) join through ``jax.distributed`` when
+:data:`~warptrunc.contact.sharded_grid.PROCESS_ENV` is set, each putting its own slabs. It was
+chosen over
 cuFFTMp (nvmath-python) because it is in the GPU image and needs no MPI ranks; the cuFFTMp
 runtime wheel (about 205 MB) is not.
 
@@ -216,7 +218,8 @@ class SlabLayout:
             Row slabs.
         """
         a = np.ascontiguousarray(array, dtype=self.np_dtype if dtype is None else dtype)
-        return self.jax.device_put(a, self.rows)
+        # each process (host) puts its own slabs: the same call over one or several processes
+        return self.jax.make_array_from_callback(a.shape, self.rows, lambda index: a[index])
 
     def zeros(self, dtype: Any = None):
         """A zeroed map in row slabs, made on the devices.

@@ -23,8 +23,10 @@ __all__ = [
     "COLUMN_BLOCKS",
     "FFT_ELEMENTS_MAX",
     "SHARDED_DOCS",
+    "PROCESS_ENV",
     "build_bytes",
     "column_blocks",
+    "host_array",
     "import_jax",
     "row_blocks",
     "sharded_memory_bytes",
@@ -54,7 +56,56 @@ def import_jax():
         ) from exc
     if not jax.config.jax_enable_x64:
         jax.config.update("jax_enable_x64", True)
+    _join_processes(jax)
     return jax
+
+
+PROCESS_ENV = ("WARPTRUNC_COORDINATOR", "WARPTRUNC_NUM_PROCESSES", "WARPTRUNC_PROCESS_ID")
+"""Environment of a solve spread over several processes (hosts): the coordinator's
+``host:port``, the number of processes and this one's index (0 … n − 1). Where the first is set,
+the first JAX import joins them (``jax.distributed.initialize``); every process then runs the
+same command on the same map, ``jax.devices()`` lists the devices of all of them, and a solve's
+``devices=N`` counts over all of them."""
+
+
+def _join_processes(jax) -> None:
+    """``jax.distributed.initialize`` from :data:`PROCESS_ENV`, once (host devices: Gloo's
+    collectives)."""
+    import os
+
+    address = os.environ.get(PROCESS_ENV[0], "").strip()
+    if not address or getattr(_join_processes, "done", False):
+        return
+    try:
+        n, rank = int(os.environ[PROCESS_ENV[1]]), int(os.environ[PROCESS_ENV[2]])
+    except (KeyError, ValueError):
+        raise ValueError(f"{PROCESS_ENV[0]}={address!r} needs {PROCESS_ENV[1]} (a count ≥ 1) and "
+                         f"{PROCESS_ENV[2]} (0 … count − 1) set as integers") from None  # fmt: skip
+    if os.environ.get("JAX_PLATFORMS", "").strip() == "cpu":
+        jax.config.update("jax_cpu_collectives_implementation", "gloo")
+    jax.distributed.initialize(address, num_processes=n, process_id=rank)
+    _join_processes.done = True
+
+
+def host_array(x) -> np.ndarray:
+    """A JAX array as a NumPy array on this host: the whole map, gathered from the other
+    processes where they hold part of it (``process_allgather``).
+
+    Parameters
+    ----------
+    x : jax array
+        Any array (row slabs, replicated, a scalar).
+
+    Returns
+    -------
+    ndarray
+        Its values.
+    """
+    if getattr(x, "is_fully_addressable", True) or getattr(x, "is_fully_replicated", False):
+        return np.asarray(x)
+    from jax.experimental import multihost_utils
+
+    return np.asarray(multihost_utils.process_allgather(x, tiled=True))
 
 
 def _shard_map(jax):

@@ -27,7 +27,7 @@ import numpy as np
 
 from .._support.docs import fill_doc
 from .influence import _love
-from .sharded_grid import _pieces, _row_layout, _shard_map
+from .sharded_grid import _pieces, _row_layout, _shard_map, host_array
 
 __all__ = ["build_spectrum", "spectrum_programme", "unit_force_check"]
 
@@ -185,7 +185,8 @@ def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: 
     i, j = ny // 2, nx // 2
     unit = jax.jit(lambda: jnp.zeros(lay.shape, lay.np_dtype).at[i, j].set(1),
                    out_shardings=lay.rows)  # fmt: skip
-    got = float(jax.device_get(hs.apply(unit())[i, j]))
+    pick = jax.jit(lambda u: u[i, j], out_shardings=lay.replicated)
+    got = float(host_array(pick(hs.apply(unit()))))
     dx, dy = (float(v) for v in pixel_size)
     if lay.substrate == "free":
         want = float(_love(0.0, 0.0, dx / 2, dy / 2, float(contact_modulus))) / (dx * dy)
@@ -196,7 +197,7 @@ def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: 
         c = np.arange(nkp)
         wx = np.where(c >= nk, 0.0, np.where((c == 0) | (2 * c == big_x), 1.0, 2.0))
         total = jax.jit(lambda w: jnp.sum(w.astype(jnp.float64) * wy[:, None] * wx[None, :]))
-        want = float(jax.device_get(total(hs.spectrum))) / (big_y * big_x)
+        want = float(host_array(total(hs.spectrum))) / (big_y * big_x)
     rel = abs(got - want) / abs(want)
     tol = 1e-3 if lay.np_dtype == np.float32 else 1e-8
     if not rel <= tol:
