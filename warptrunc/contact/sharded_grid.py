@@ -22,8 +22,8 @@ __all__ = [
     "BUILD_PIECE_BYTES",
     "COLUMN_BLOCKS",
     "FFT_ELEMENTS_MAX",
-    "SHARDED_DOCS",
     "PROCESS_ENV",
+    "SHARDED_DOCS",
     "build_bytes",
     "column_blocks",
     "host_array",
@@ -238,13 +238,6 @@ def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
     }
 
 
-GRID_BLOCK_DOCS = {
-    **GRID_DOCS,
-    "{n_devices}": "n_devices : int\n    Devices the map is split over (dimensionless count, ≥ 2).",
-}
-"""The parameter text of the spectrum's build model (:func:`build_bytes`)."""
-
-
 BUILD_PIECE_BYTES = 1 << 28
 """Float64 input bytes of one piece of the spectrum's build (256 MiB): the x stage's rows
 (2·nx each) and the y stage's columns (2·ny each) are taken in blocks of at most this many
@@ -265,7 +258,7 @@ def _row_layout(ny: int, nx: int, n_dev: int) -> tuple[int, int, int]:
     return piece, slab, slab * n_dev
 
 
-@fill_doc(GRID_BLOCK_DOCS)
+@fill_doc(SHARDED_DOCS)
 def build_bytes(shape: tuple[int, int], substrate: str, dtype: str, n_devices: int) -> int:
     """Peak bytes one device holds while the spectrum is built (the model).
 
@@ -296,7 +289,7 @@ def build_bytes(shape: tuple[int, int], substrate: str, dtype: str, n_devices: i
     return int(w + 3 * x_slab + 4 * min(BUILD_PIECE_BYTES, x_slab))
 
 
-@fill_doc(GRID_BLOCK_DOCS)
+@fill_doc(SHARDED_DOCS)
 def sharded_memory_bytes(shape: tuple[int, int], substrate: str, dtype: str,
                          n_devices: int) -> int:  # fmt: skip
     """Peak bytes one device holds for a solve spread over ``n_devices`` (the model).
