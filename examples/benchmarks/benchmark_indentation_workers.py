@@ -366,7 +366,8 @@ def table(results: dict) -> str:
 def parser() -> argparse.ArgumentParser:
     """The parent's options (the child's: ``run --help``)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0] + " Subcommand `run`: one "
-                                 "child (see `run --help`).",
+                                 "child (see `run --help`); `compare REF OTHER ...`: the identity "
+                                 "check of values files of separate benchmark processes.",
                                  formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
     ap.add_argument("--out", type=Path, default=Path("bench_indentation_workers"),
                     help="output folder (the JSON, commands.log, the stores while they run)")
@@ -416,10 +417,33 @@ def child_parser() -> argparse.ArgumentParser:
     return ap
 
 
+def compare(argv: list[str]) -> int:
+    """``compare REF OTHER ... [--json OUT]``: the identity check of runs written by
+    :func:`write_values` (e.g. runs made at the same time on different GPUs of one host, each by
+    its own benchmark process) against the reference; exit 1 if any differs."""
+    ap = argparse.ArgumentParser(prog=f"{HERE.name} compare",
+                                 description="compare values_<run>.json.gz files bit for bit")
+    ap.add_argument("reference", type=Path, help="values_inproc.json.gz of the reference run")
+    ap.add_argument("others", type=Path, nargs="+", help="values_<run>.json.gz to compare")
+    ap.add_argument("--json", type=Path, default=None, help="write the checks here")
+    args = ap.parse_args(argv)
+    ref = read_values(args.reference)
+    checks = {str(o): identity(ref, read_values(o)) for o in args.others}
+    for name, c in checks.items():
+        same = "identical" if c["identical"] else f"DIFFERENT in {c['n_fields']} fields"
+        print(f"{name}: {same} ({c['values_compared']} values, {c['files']} files)")
+    if args.json:
+        args.json.write_text(json.dumps(dict(reference=str(args.reference), checks=checks),
+                                        indent=1, default=str) + "\n")  # fmt: skip
+    return 0 if all(c["identical"] for c in checks.values()) else 1
+
+
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv and argv[0] == "run":
         return child(child_parser().parse_args(argv[1:]))
+    if argv and argv[0] == "compare":
+        return compare(argv[1:])
     args = parser().parse_args(argv)
     sys.path.insert(0, str(HERE.parent))
     from _common import ROOT, git_commit
