@@ -11,7 +11,12 @@ import subprocess
 import sys
 from pathlib import Path
 
-SCRIPT = Path(__file__).resolve().parents[1] / "examples" / "benchmarks" / "benchmark_indentation_workers.py"
+SCRIPT = (
+    Path(__file__).resolve().parents[1]
+    / "examples"
+    / "benchmarks"
+    / "benchmark_indentation_workers.py"
+)
 
 
 def _write(path: Path, values: dict) -> Path:
@@ -54,7 +59,7 @@ def test_compare_identical_and_one_ulp_apart(tmp_path):
     assert rc == 1, text
     bad = doc["checks"][str(off)]
     assert not bad["identical"] and bad["n_fields"] == 1
-    (field, e), = bad["fields"].items()
+    ((field, e),) = bad["fields"].items()
     assert field.startswith("indentation/piece_0.json") and e["count"] == 1
     assert e["max_abs"] == math.ulp(k)
     assert "DIFFERENT" in text
