@@ -75,12 +75,18 @@ def test_open_client_local_cluster_shares_the_kernel_cache(monkeypatch, tmp_path
     import warp as wp
 
     monkeypatch.delenv("WARPTRUNC_DEVICE", raising=False)
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
     monkeypatch.setattr(wp.config, "kernel_cache_dir", str(tmp_path / "cache"))
     with cl.open_client(2, None, None, False) as (client, cluster, own):
         assert own and cluster is not None and type(cluster).__name__ == "LocalCluster"
         client.wait_for_workers(2, timeout=120)
         env = _worker_env(client)
         assert len(env) == 2 and {e[0] for e in env.values()} == {str(tmp_path / "cache")}
+        # Dask's other pre-spawn settings stay; glibc's trim threshold is left unset
+        spawn = client.run(lambda: (os.environ.get("MALLOC_TRIM_THRESHOLD_"),
+                                    os.environ.get("OMP_NUM_THREADS")))  # fmt: skip
+        assert set(spawn.values()) == {(None, "1")}
+        assert "MALLOC_TRIM_THRESHOLD_" not in os.environ  # nor set in this process
         # the workers resolve that folder (Warp appends its version)
         dirs = client.run(lambda: (
             __import__("warptrunc._support.device", fromlist=["_"]).cuda_device_count(),

@@ -38,6 +38,7 @@ from .engines import compute_shard, failed_case, pinned_device
 from .grid import Case
 from .options import SweepOptions
 from .sharding import ShardPlanner
+from .spawn import kernel_cache_base, worker_environment
 
 __all__ = [
     "PinDevice",
@@ -111,7 +112,7 @@ def warm_worker(device: Any = None, contact: bool = False) -> str:
 
     Run in each worker of a local cluster as it starts (:func:`open_client`), so that a
     worker's first task does not pay for Warp's start, the CUDA context and the kernel loads
-    (compiled kernels come from the shared cache, :func:`kernel_cache_base`).
+    (compiled kernels come from the shared cache, :func:`~warptrunc.sweep.spawn.kernel_cache_base`).
 
     Parameters
     ----------
@@ -193,33 +194,6 @@ def resolve_workers(workers: int | str | None) -> int | None:
             raise ValueError(f"workers must be an integer ≥ 1 or 'auto', got {workers!r}")
         workers = int(text)
     return check_int("workers", workers, 1)
-
-
-def kernel_cache_base() -> str | None:
-    """The folder to give every worker as ``WARP_CACHE_PATH``: that of this process, if set.
-
-    Warp appends its version to ``WARP_CACHE_PATH`` (or to ``wp.config.kernel_cache_dir`` set
-    before it initialises) and resolves ``wp.config.kernel_cache_dir`` to the result when it
-    initialises; the folder returned is that directory without the version, so a worker given
-    it resolves the same directory and loads the kernels any process compiled there instead
-    of compiling them again. Warp is not initialised here.
-
-    Returns
-    -------
-    str or None
-        Absolute path of the cache's base folder: from ``wp.config.kernel_cache_dir`` (set by
-        the user, or resolved by Warp's start), else ``$WARP_CACHE_PATH``; None when neither
-        is set (every process of the user then resolves the same default folder).
-    """
-    import warp as wp
-
-    where = wp.config.kernel_cache_dir
-    if where is None:
-        env = os.environ.get("WARP_CACHE_PATH")
-        return os.path.realpath(env) if env else None
-    resolved = os.path.realpath(str(where))
-    head, tail = os.path.split(resolved)
-    return head if tail == wp.config.version else resolved
 
 
 def _gpu_count() -> int:
@@ -304,7 +278,7 @@ def open_client(
     ``cuda:0``); set ``WARPTRUNC_DASK_CUDA=0`` to use the LocalCluster instead. Otherwise a
     ``LocalCluster`` whose worker i runs on ``cuda:{i mod n_gpus}`` (:class:`PinDevice`).
     The workers of a local cluster get this process's kernel cache folder as
-    ``WARP_CACHE_PATH`` (:func:`kernel_cache_base`; with none set, all resolve the user's
+    ``WARP_CACHE_PATH`` (:func:`~warptrunc.sweep.spawn.kernel_cache_base`; with none set, all resolve the user's
     default), so they share one kernel cache on disk, and are warmed before the first task
     (:func:`warm_worker`, on every worker at once). Warp is not started here: devices are
     counted through the CUDA driver (only for ``"auto"`` and dask-cuda). Workers of an
@@ -335,13 +309,9 @@ def open_client(
         n_gpus = _gpu_count() if cuda_cls is not None else 0
         if not (n_gpus > 0 and (n or n_gpus) <= n_gpus):
             cuda_cls = None
-        environ = dict(dask.config.get("distributed.nanny.environ", {}))
-        cache = kernel_cache_base()
-        if cache is not None:
-            environ["WARP_CACHE_PATH"] = cache
         common = dict(threads_per_worker=1, dashboard_address=":0",
                       silence_logs=logging.ERROR)  # fmt: skip
-        with dask.config.set({"distributed.nanny.environ": environ}):
+        with dask.config.set(worker_environment()):
             if cuda_cls is not None:
                 cluster = cuda_cls(n_workers=n or n_gpus, **common)
             else:

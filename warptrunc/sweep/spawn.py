@@ -1,0 +1,83 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""What the worker processes of a local cluster inherit: Warp's kernel cache folder, and the
+process environment Dask sets before it spawns them, less glibc's trim threshold.
+
+Dask's nanny sets ``MALLOC_TRIM_THRESHOLD_=65536`` in every worker it spawns
+(``distributed.nanny.pre-spawn-environ``), so that workers give freed memory back to the
+operating system. Setting that variable turns glibc's dynamic mmap threshold off: every
+allocation above 128 KiB (a 2048² map, a solver's temporaries) is then mapped and unmapped
+afresh, and its pages are faulted in each time. Measured on the CPU (2-core VM, a 256² contact
+solve with its host work): 0.29–0.32 s in a worker against 0.16–0.18 s in process, and
+0.17–0.19 s in a worker without the variable (``tests/test_sweep_spawn.py`` checks the setting;
+the timing is not asserted). On the 4 × H200 host the indentation stage's pieces cost 1.24× as
+much on workers as in process (``docs/benchmarks/indentation_workers_h200x4_34cbf1b.json``),
+which is what this leaves out; that it closes the gap on GPUs is not measured.
+
+A user who sets ``MALLOC_TRIM_THRESHOLD_`` in their own environment keeps it: the workers
+inherit it. Workers of an existing cluster (``--scheduler``) are started by the user: give them
+``distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_: null`` in their Dask configuration
+file (Dask's ``DASK_*`` variables lowercase the key, so they cannot name it), or start them
+with ``--no-nanny``.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+__all__ = ["TRIM_VARIABLE", "kernel_cache_base", "worker_environment"]
+
+TRIM_VARIABLE = "MALLOC_TRIM_THRESHOLD_"
+"""glibc's trim threshold variable, which Dask's nanny sets in its workers unless told not to."""
+
+
+def kernel_cache_base() -> str | None:
+    """The folder to give every worker as ``WARP_CACHE_PATH``: that of this process, if set.
+
+    Warp appends its version to ``WARP_CACHE_PATH`` (or to ``wp.config.kernel_cache_dir`` set
+    before it initialises) and resolves ``wp.config.kernel_cache_dir`` to the result when it
+    initialises; the folder returned is that directory without the version, so a worker given
+    it resolves the same directory and loads the kernels any process compiled there instead
+    of compiling them again. Warp is not initialised here.
+
+    Returns
+    -------
+    str or None
+        Absolute path of the cache's base folder: from ``wp.config.kernel_cache_dir`` (set by
+        the user, or resolved by Warp's start), else ``$WARP_CACHE_PATH``; None when neither
+        is set (every process of the user then resolves the same default folder).
+    """
+    import warp as wp
+
+    where = wp.config.kernel_cache_dir
+    if where is None:
+        env = os.environ.get("WARP_CACHE_PATH")
+        return os.path.realpath(env) if env else None
+    resolved = os.path.realpath(str(where))
+    head, tail = os.path.split(resolved)
+    return head if tail == wp.config.version else resolved
+
+
+def worker_environment() -> dict[str, Any]:
+    """The Dask configuration a local cluster's workers are spawned under.
+
+    Returns
+    -------
+    dict of str to Any
+        ``{"distributed.nanny.environ": ..., "distributed.nanny.pre-spawn-environ": ...}`` for
+        ``dask.config.set``: the configured ``environ`` plus ``WARP_CACHE_PATH`` (from
+        :func:`kernel_cache_base`, where it gives a folder), and the configured pre-spawn
+        environment with :data:`TRIM_VARIABLE` set to None (Dask then leaves it unset) unless
+        this process's environment sets it.
+    """
+    import dask
+
+    environ = dict(dask.config.get("distributed.nanny.environ", {}) or {})
+    cache = kernel_cache_base()
+    if cache is not None:
+        environ["WARP_CACHE_PATH"] = cache
+    pre = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}) or {})
+    if TRIM_VARIABLE not in os.environ:
+        pre[TRIM_VARIABLE] = None
+    return {"distributed.nanny.environ": environ, "distributed.nanny.pre-spawn-environ": pre}
