@@ -7,12 +7,14 @@ Dask's nanny sets ``MALLOC_TRIM_THRESHOLD_=65536`` in every worker it spawns
 (``distributed.nanny.pre-spawn-environ``), so that workers give freed memory back to the
 operating system. Setting that variable turns glibc's dynamic mmap threshold off: every
 allocation above 128 KiB (a 2048² map, a solver's temporaries) is then mapped and unmapped
-afresh, and its pages are faulted in each time. Measured on the CPU (2-core VM, a 256² contact
-solve with its host work): 0.29–0.32 s in a worker against 0.16–0.18 s in process, and
-0.17–0.19 s in a worker without the variable (``tests/test_sweep_spawn.py`` checks the setting;
-the timing is not asserted). On the 4 × H200 host the indentation stage's pieces cost 1.24× as
-much on workers as in process (``docs/benchmarks/indentation_workers_h200x4_34cbf1b.json``),
-which is what this leaves out; that it closes the gap on GPUs is not measured.
+afresh, and its pages are faulted in each time. Measured on the CPU (2-core VM): a 256² contact
+solve with its host work took 0.29–0.32 s in a worker against 0.16–0.18 s in process, and
+0.17–0.19 s in a worker without the variable; the indentation stage's pieces (tiny profile at
+256²) cost 17.7 s with the variable and 13.8 s without, in process and in a worker alike
+(``docs/benchmarks/worker_trim_cpu.json``; ``tests/test_sweep_spawn.py`` checks the setting, the
+timing is not asserted). On the 4 × H200 host the indentation pieces cost 1.24× as much on
+workers as in process (``docs/benchmarks/indentation_workers_h200x4_34cbf1b.json``), the same
+ratio; that leaving the variable out closes that gap on GPUs is not measured.
 
 A user who sets ``MALLOC_TRIM_THRESHOLD_`` in their own environment keeps it: the workers
 inherit it. Workers of an existing cluster (``--scheduler``) are started by the user: give them
