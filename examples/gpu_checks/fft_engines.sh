@@ -36,6 +36,14 @@ if [ -n "${WHEELS:-}" ] && compgen -G "$WHEELS/*.whl" >/dev/null; then
     python3 -m pip install -q --no-index --no-deps --target /tmp/site "$WHEELS"/*.whl \
         >"$OUT/log_pip.txt" 2>&1 || echo "pip install of $WHEELS failed (log_pip.txt)"
 fi
+# cuda-pathfinder does not look on PYTHONPATH for libcufftMp (measured: "Failure finding
+# libcufftMp.so.12" with the wheel installed under /tmp/site): put its folder on LD_LIBRARY_PATH
+IFS=: read -ra entries <<< "$PYTHONPATH"
+for e in "${entries[@]}"; do
+    if [ -d "$e/nvidia/cufftmp/cu13/lib" ]; then
+        export LD_LIBRARY_PATH="$e/nvidia/cufftmp/cu13/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+    fi
+done
 echo "commit ${WARPTRUNC_GIT_COMMIT:-unknown}, GPUs $CUDA_VISIBLE_DEVICES"
 nvidia-smi -L
 timeout 60 python3 "$B" diag | tee "$OUT/diag.json"

@@ -220,7 +220,12 @@ def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
         a column slab; ``"fft work (XLA)"``: the convolution's buffers, 2.5 padded half spectra
         of the slab, 1.5 when the column stage runs in blocks (:func:`column_blocks`; XLA's
         temporary memory of one convolution compiled for the CPU: ``tests/test_sharded.py``); ``"step temporaries"``: three float64 slabs, the rest of a
-        CG step's temporary memory (its float64 intermediates; the CPU compile needs 0–3).
+        CG step's temporary memory (its float64 intermediates; the CPU compile needs 0–3);
+        float64 only, ``"step results"``: three more slabs, the CG step's results for t, q and u
+        beside its donated arguments (measured on 2 × H200 at 32768²: the peak, 90.74 GB, is the
+        step's compiled arguments, results and temporaries plus the maps held beside them, as
+        if XLA's 12.88 GB of aliased results did not reuse their arguments; float32 peaks lie
+        12–15 % under the model without this term).
     """
     ny, nx = shape
     item = np.dtype(dtype).itemsize
@@ -235,6 +240,7 @@ def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
         # 2.5 (1.5 in blocks) complex spectra of the slab
         "fft work (XLA)": (3 if blocks > 1 else 5) * big_y * cols * item,
         "step temporaries": 3 * slab * 8,
+        **({"step results": 3 * slab * item} if item == 8 else {}),
     }
 
 
