@@ -1,12 +1,25 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Shared fixtures: the ``device`` fixture runs a test on the CPU and on cuda:0 when present.
+"""Shared fixtures: the ``device`` fixture runs a test on the CPU and on cuda:0 when present;
+JAX, where a test uses it, starts with two host devices.
 
 ``WARPTRUNC_TEST_DEVICES=cpu`` (comma-separated) narrows the list.
 """
 
 import os
+import sys
 from pathlib import Path
+
+# Two host devices for the spread solver's tests (tests/test_sharded*.py), set before any module
+# imports JAX: XLA reads the flag once, when JAX starts, so a test module that imported JAX first
+# would otherwise leave those tests with one device.
+if "jax" not in sys.modules and "xla_force_host_platform_device_count" not in os.environ.get(
+    "XLA_FLAGS", ""
+):
+    os.environ["XLA_FLAGS"] = (
+        os.environ.get("XLA_FLAGS", "") + " --xla_force_host_platform_device_count=2"
+    ).strip()
+    os.environ.setdefault("JAX_PLATFORMS", "cpu")  # the commands' default backend in those tests
 
 import matplotlib
 import pytest

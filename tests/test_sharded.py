@@ -4,7 +4,7 @@
 :mod:`warptrunc.contact.sharded`) equals the one-device solver.
 
 Two host devices (XLA's ``--xla_force_host_platform_device_count=2``, set below before JAX is
-first imported; the module is skipped without JAX or when JAX was started with one device).
+first imported; the module is skipped without JAX, and fails when JAX was started with one device).
 The reference is the one-device solver with ``direct_max=0``, the same iteration (the sharded
 solver transforms afresh where the one-device one may sum a few forces directly), and NumPy in
 float64 for the displacements: loads and approaches within 1e-9 (float64) and 1e-5 (float32)
@@ -29,7 +29,8 @@ if "jax" not in sys.modules:  # two host devices (JAX only; nothing else in the 
 
 jax = pytest.importorskip("jax")
 if len(jax.devices("cpu")) < 2:
-    pytest.skip("JAX was started with one host device before this module", allow_module_level=True)
+    # tests/conftest.py sets the flag before any module imports JAX: never skip silently
+    raise RuntimeError("JAX was started with one host device before this module (XLA_FLAGS)")
 
 from warptrunc.contact import ContactSolver, influence_spectrum  # noqa: E402
 from warptrunc.contact.sharded import ShardedContactSolver  # noqa: E402
@@ -449,5 +450,5 @@ def test_unit_force_check(substrate, dtype, monkeypatch):
                                 devices=jax.devices("cpu")[:2])  # fmt: skip
     real = wrong.apply
     monkeypatch.setattr(wrong, "apply", lambda x, **kw: real(x, **kw) * 131072)
-    with pytest.raises(RuntimeError, match="fails its check.*closed form"):
+    with pytest.raises(RuntimeError, match=r"fails its check.*closed form"):
         unit_force_check(wrong, (DX, 4 * DX), E)

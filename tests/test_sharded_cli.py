@@ -7,7 +7,7 @@ loads and stiffnesses within 1e-9 relative in float64; the combinations that are
 are refused in one line naming the option and the value.
 
 Two host devices as in ``tests/test_sharded.py`` (``--xla_force_host_platform_device_count=2``
-set before JAX is first imported; skipped without JAX or when JAX was started with one).
+set before JAX is first imported; skipped without JAX, and fails when JAX was started with one).
 """
 
 from __future__ import annotations
@@ -26,7 +26,8 @@ if "jax" not in sys.modules:  # two host devices (JAX only; nothing else in the 
 
 jax = pytest.importorskip("jax")
 if len(jax.devices("cpu")) < 2:
-    pytest.skip("JAX was started with one host device before this module", allow_module_level=True)
+    # tests/conftest.py sets the flag before any module imports JAX: never skip silently
+    raise RuntimeError("JAX was started with one host device before this module (XLA_FLAGS)")
 
 from cli_helpers import assert_refused_in_one_line  # noqa: E402
 
@@ -167,8 +168,9 @@ def test_worker_groups(monkeypatch):
     assert group_size(None) == 1 and group_size(2) == 2
     with pytest.raises(ValueError, match="give a count"):
         group_size("auto")
-    monkeypatch.delenv(GROUP_ENV, raising=False)
-    monkeypatch.delenv("WARPTRUNC_DEVICE", raising=False)
+    for name in (GROUP_ENV, "WARPTRUNC_DEVICE"):  # recorded as they were, then removed: the
+        monkeypatch.setenv(name, "")  # setups below write os.environ, restored after the test
+        monkeypatch.delenv(name)
     PinDevice(n_devices=4, group=2, platform="cuda").setup(SimpleNamespace(name=1))
     assert os.environ[GROUP_ENV] == "cuda:2,cuda:3" and os.environ["WARPTRUNC_DEVICE"] == "cuda:2"
     monkeypatch.delenv("WARPTRUNC_DEVICE")
