@@ -42,7 +42,7 @@ Identity (item 4)
     and result) and ``results.json``'s ``analysis`` (the fits α, β and their intervals, depths,
     the resolution table). Numbers by their IEEE bits (NaN equal to itself), strings and
     booleans exactly; left out: the keys that say where, when or how fast something ran
-    (:data:`EXCLUDED`, keys ending ``_s``), results.json's ``meta`` and the figures. Per run
+    (``indentation_identity.EXCLUDED``, keys ending ``_s``), results.json's ``meta`` and the figures. Per run
     ``identical`` and, per differing field, the count and the largest differences.
 
 Output
@@ -65,23 +65,28 @@ from __future__ import annotations
 import argparse
 import contextlib
 import dataclasses
-import gzip
 import json
 import math
 import os
 import platform
 import re
 import shutil
-import struct
 import sys
 import time
 from datetime import datetime, timezone
 from pathlib import Path
 
 HERE = Path(__file__).resolve()
-EXCLUDED = frozenset({"seconds", "device", "devices", "cost", "worker", "host", "pid"})
-"""Keys left out of the identity check, with every key ending ``_s`` (seconds): where, when and
-how fast a piece ran (``cost`` is the analysis's table of seconds per design and level)."""
+sys.path.insert(0, str(HERE.parent))
+from indentation_identity import (  # noqa: E402  (beside this script)
+    _load,
+    compare,
+    identity,
+    read_values,
+    stored_values,
+    write_values,
+)
+
 PART_FILE = re.compile(r"__p\d+r\d+$")
 """Stem of a part file (``<piece>__p<k>r<r>``): a piece not yet merged."""
 
@@ -187,10 +192,6 @@ def child(args: argparse.Namespace) -> int:
 # --- the parent: measures from the store ------------------------------------------------------
 
 
-def _load(path: Path):
-    return json.loads(path.read_text())
-
-
 def store_measures(store: Path, rec: dict | None, in_process: bool) -> dict:
     """Pieces, parts and seconds from the store; the busiest device (see the module's doc)."""
     folder = store / "indentation"
@@ -223,96 +224,6 @@ def store_measures(store: Path, rec: dict | None, in_process: bool) -> dict:
                busiest_device_s=max(per_dev.values()), busiest_worker_s=max(per_worker.values()),
                busiest_from="task stream")  # fmt: skip
     return out
-
-
-# --- the identity check -----------------------------------------------------------------------
-
-
-def stored_values(store: Path) -> dict:
-    """What the identity check reads: {file or section: JSON value}."""
-    docs = {f"indentation/{f.name}": _load(f) for f in sorted((store / "indentation").glob("*.json"))}
-    st = _load(store / "stages" / "indentation.json")
-    docs["stages/indentation.json"] = {k: st.get(k) for k in ("params", "result")}
-    docs["results.json:analysis"] = _load(store / "results.json").get("analysis")
-    return docs
-
-
-def _number(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool)
-
-
-def _same(a, b) -> bool:
-    """Equal bit for bit: floats by their IEEE bits (NaN = NaN), the rest exactly."""
-    if _number(a) and _number(b):
-        if isinstance(a, int) and isinstance(b, int):
-            return a == b
-        x, y = float(a), float(b)
-        return struct.pack("<d", x) == struct.pack("<d", y) or (math.isnan(x) and math.isnan(y))
-    return type(a) is type(b) and a == b
-
-
-def _note(out: dict, path: str, a, b, what: str | None = None) -> None:
-    e = out.setdefault(path, {"count": 0, "max_abs": 0.0, "max_rel": 0.0, "example": None})
-    e["count"] += 1
-    if e["example"] is None:
-        e["example"] = what or f"{a!r} → {b!r}"
-    if _number(a) and _number(b) and math.isfinite(a) and math.isfinite(b):
-        d = abs(float(a) - float(b))
-        e["max_abs"] = max(e["max_abs"], d)
-        e["max_rel"] = max(e["max_rel"], d / max(abs(float(a)), sys.float_info.min))
-
-
-def differences(a, b, path: str = "", out: dict | None = None, seen: list | None = None) -> dict:
-    """{field path (indices as ``[]``): count, max_abs, max_rel, example} of the values of
-    ``b`` that differ from ``a``, :data:`EXCLUDED` and ``*_s`` keys left out; ``seen[0]``
-    counts the values compared."""
-    out = {} if out is None else out
-    seen = [0] if seen is None else seen
-    if isinstance(a, dict) and isinstance(b, dict):
-        for k in sorted(set(a) | set(b), key=str):
-            if k in EXCLUDED or str(k).endswith("_s"):
-                continue
-            p = f"{path}{k}" if not path or path.endswith(":") else f"{path}.{k}"
-            if k not in a or k not in b:
-                _note(out, p, None, None, "only in " + ("the worker run" if k in b else "in process"))
-            else:
-                differences(a[k], b[k], p + (":" if not path else ""), out, seen)
-    elif isinstance(a, list) and isinstance(b, list):
-        if len(a) != len(b):
-            _note(out, path + "[]", None, None, f"length {len(a)} → {len(b)}")
-        else:
-            for x, y in zip(a, b, strict=True):
-                differences(x, y, path + "[]", out, seen)
-    else:
-        seen[0] += 1
-        if not _same(a, b):
-            _note(out, path, a, b)
-    return out
-
-
-def identity(ref, other) -> dict:
-    """The identity check of ``other`` against ``ref``: stores (paths), or what
-    :func:`stored_values` read from them (dicts, e.g. a ``values_<run>.json.gz`` of an earlier
-    call)."""
-    seen = [0]
-    a = ref if isinstance(ref, dict) else stored_values(ref)
-    b = other if isinstance(other, dict) else stored_values(other)
-    d = differences(a, b, seen=seen)
-    top = sorted(d.items(), key=lambda kv: (-kv[1]["max_rel"], -kv[1]["count"]))
-    return {"identical": not d, "files": len(a), "values_compared": seen[0], "n_fields": len(d),
-            "fields": dict(top[:40])}  # fmt: skip
-
-
-def write_values(path: Path, values: dict) -> None:
-    """What :func:`stored_values` read, as gzipped JSON (floats exactly: ``repr`` round-trips)."""
-    with gzip.open(path, "wt", encoding="utf-8") as f:
-        json.dump(values, f)
-
-
-def read_values(path: Path) -> dict:
-    """The values written by :func:`write_values`."""
-    with gzip.open(path, "rt", encoding="utf-8") as f:
-        return json.load(f)
 
 
 # --- the parent -------------------------------------------------------------------------------
@@ -417,33 +328,13 @@ def child_parser() -> argparse.ArgumentParser:
     return ap
 
 
-def compare(argv: list[str]) -> int:
-    """``compare REF OTHER ... [--json OUT]``: the identity check of runs written by
-    :func:`write_values` (e.g. runs made at the same time on different GPUs of one host, each by
-    its own benchmark process) against the reference; exit 1 if any differs."""
-    ap = argparse.ArgumentParser(prog=f"{HERE.name} compare",
-                                 description="compare values_<run>.json.gz files bit for bit")
-    ap.add_argument("reference", type=Path, help="values_inproc.json.gz of the reference run")
-    ap.add_argument("others", type=Path, nargs="+", help="values_<run>.json.gz to compare")
-    ap.add_argument("--json", type=Path, default=None, help="write the checks here")
-    args = ap.parse_args(argv)
-    ref = read_values(args.reference)
-    checks = {str(o): identity(ref, read_values(o)) for o in args.others}
-    for name, c in checks.items():
-        same = "identical" if c["identical"] else f"DIFFERENT in {c['n_fields']} fields"
-        print(f"{name}: {same} ({c['values_compared']} values, {c['files']} files)")
-    if args.json:
-        args.json.write_text(json.dumps(dict(reference=str(args.reference), checks=checks),
-                                        indent=1, default=str) + "\n")  # fmt: skip
-    return 0 if all(c["identical"] for c in checks.values()) else 1
-
 
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv and argv[0] == "run":
         return child(child_parser().parse_args(argv[1:]))
     if argv and argv[0] == "compare":
-        return compare(argv[1:])
+        return compare(argv[1:], prog=f"{HERE.name} compare")
     args = parser().parse_args(argv)
     sys.path.insert(0, str(HERE.parent))
     from _common import ROOT, git_commit
