@@ -42,7 +42,7 @@ Identity (item 4)
     and result) and ``results.json``'s ``analysis`` (the fits α, β and their intervals, depths,
     the resolution table). Numbers by their IEEE bits (NaN equal to itself), strings and
     booleans exactly; left out: the keys that say where, when or how fast something ran
-    (``indentation_identity.EXCLUDED``, keys ending ``_s``), results.json's ``meta`` and the figures. Per run
+    (``_indentation_identity.EXCLUDED``, keys ending ``_s``), results.json's ``meta`` and the figures. Per run
     ``identical`` and, per differing field, the count and the largest differences.
 
 Output
@@ -78,7 +78,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve()
 sys.path.insert(0, str(HERE.parent))
-from indentation_identity import (  # noqa: E402  (beside this script)
+from _indentation_identity import (  # noqa: E402  (beside this script)
     _load,
     compare,
     identity,
