@@ -35,17 +35,8 @@ if [ -n "${GPUS:-}" ]; then  # a subset of the host's GPUs: the workers see only
     export CUDA_VISIBLE_DEVICES=$GPUS
     echo "GPUS=$GPUS: CUDA_VISIBLE_DEVICES=$CUDA_VISIBLE_DEVICES"
 fi
-python3 - <<'PY' || { echo "dask/distributed missing: install the WHEELS of sweep_two_gpus.sh"; exit 1; }
-import dask, distributed
-print("dask", dask.__version__, "distributed", distributed.__version__)
-try:
-    import dask_cuda
-    print("dask-cuda", dask_cuda.__version__, "(LocalCUDACluster)")
-except ImportError:
-    print("no dask-cuda: LocalCluster, one worker pinned per GPU")
-PY
-export WARPTRUNC_GIT_COMMIT=${WARPTRUNC_GIT_COMMIT:-$(git rev-parse HEAD 2>/dev/null)}
-[ -z "$WARPTRUNC_GIT_COMMIT" ] && echo "warning: no commit (no git here): set WARPTRUNC_GIT_COMMIT"
+# shellcheck source=examples/gpu_checks/_dask_head.sh
+source "$(dirname "$0")/_dask_head.sh"
 t0=$(date +%s)
 # shellcheck disable=SC2086  # BENCH_ARGS: several words
 python3 examples/benchmarks/benchmark_indentation_workers.py --out "$OUT" --n "${N:-2048}" \

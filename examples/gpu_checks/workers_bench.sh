@@ -45,18 +45,8 @@ if [ -n "${GPUS:-}" ]; then  # a subset of the host's GPUs: the workers see only
 fi
 LIGHT=""
 [ -n "${LIGHT_CASES:-}" ] && LIGHT="--light-cases $LIGHT_CASES"
-python3 - <<'PY' || { echo "dask/distributed missing: install the WHEELS of sweep_two_gpus.sh"; exit 1; }
-import dask, distributed, pandas, pyarrow
-print("dask", dask.__version__, "distributed", distributed.__version__,
-      "pandas", pandas.__version__, "pyarrow", pyarrow.__version__)
-try:
-    import dask_cuda
-    print("dask-cuda", dask_cuda.__version__, "(LocalCUDACluster)")
-except ImportError:
-    print("no dask-cuda: LocalCluster, one worker pinned per GPU")
-PY
-export WARPTRUNC_GIT_COMMIT=${WARPTRUNC_GIT_COMMIT:-$(git rev-parse HEAD 2>/dev/null)}
-[ -z "$WARPTRUNC_GIT_COMMIT" ] && echo "warning: no commit (no git here): set WARPTRUNC_GIT_COMMIT"
+# shellcheck source=examples/gpu_checks/_dask_head.sh
+DASK_HEAD_MODULES="pandas pyarrow" source "$(dirname "$0")/_dask_head.sh"
 CHECK="2"
 [ "${NGPU:-0}" -gt 2 ] && CHECK="2 $NGPU"
 t0=$(date +%s)
