@@ -45,6 +45,11 @@ warm)
         > "$dir/warm.txt" 2>&1
     echo "warm-up: exit $? at ${SECONDS} s"
     rm -rf "$W/warm"
+    # what the workers of a local cluster inherit (the trim fix of fcb7142): unset is wanted
+    python3 -c "from warptrunc.sweep.cluster import open_client; import os
+with open_client(workers=2, progress=False) as (c, _, _):
+    print('workers MALLOC_TRIM_THRESHOLD_:', c.run(lambda: os.environ.get('MALLOC_TRIM_THRESHOLD_')))" \
+        2>&1 | tail -n 3 | tee "$dir/worker_env.txt"
     ;;
 big)
     OUT="$dir" PARTS=c BUDGET=${BUDGET:-520} bash examples/gpu_checks/sharded_x4.sh
