@@ -76,6 +76,7 @@ def test_open_client_local_cluster_shares_the_kernel_cache(monkeypatch, tmp_path
 
     monkeypatch.delenv("WARPTRUNC_DEVICE", raising=False)
     monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    monkeypatch.delenv("WARPTRUNC_DASK_PROFILE", raising=False)
     monkeypatch.setattr(wp.config, "kernel_cache_dir", str(tmp_path / "cache"))
     with cl.open_client(2, None, None, False) as (client, cluster, own):
         assert own and cluster is not None and type(cluster).__name__ == "LocalCluster"
@@ -86,6 +87,12 @@ def test_open_client_local_cluster_shares_the_kernel_cache(monkeypatch, tmp_path
         spawn = client.run(lambda: (os.environ.get("MALLOC_TRIM_THRESHOLD_"),
                                     os.environ.get("OMP_NUM_THREADS")))  # fmt: skip
         assert set(spawn.values()) == {(None, "1")}
+        # Dask's statistical profiler is off in the workers (on in Dask's defaults)
+        import dask
+
+        assert dask.config.get("distributed.worker.profile.enabled") is True
+        prof = client.run(lambda: __import__("dask").config.get("distributed.worker.profile.enabled"))
+        assert set(prof.values()) == {False}
         assert "MALLOC_TRIM_THRESHOLD_" not in os.environ  # nor set in this process
         # the workers resolve that folder (Warp appends its version)
         dirs = client.run(lambda: (

@@ -40,3 +40,11 @@ def test_trim_threshold_left_unset_unless_the_user_sets_it(monkeypatch, tmp_path
     with dask.config.set({"distributed.nanny.pre-spawn-environ": pre}):
         got = _get_env_variables("distributed.nanny.pre-spawn-environ")
     assert got[spawn.TRIM_VARIABLE] == "131072"
+
+
+def test_profiler_off_unless_asked(monkeypatch):
+    monkeypatch.delenv(spawn.PROFILE_ENV, raising=False)
+    assert dask.config.get("distributed.worker.profile.enabled") is True  # Dask's default
+    assert spawn.worker_environment()["distributed.worker.profile.enabled"] is False
+    monkeypatch.setenv(spawn.PROFILE_ENV, "1")
+    assert spawn.worker_environment()["distributed.worker.profile.enabled"] is True

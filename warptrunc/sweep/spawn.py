@@ -1,7 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""What the worker processes of a local cluster inherit: Warp's kernel cache folder, and the
-process environment Dask sets before it spawns them, less glibc's trim threshold.
+"""What the worker processes of a local cluster inherit: Warp's kernel cache folder, the
+process environment Dask sets before it spawns them less glibc's trim threshold, and a
+configuration without Dask's statistical profiler (:data:`PROFILE_ENV`).
 
 Dask's nanny sets ``MALLOC_TRIM_THRESHOLD_=65536`` in every worker it spawns
 (``distributed.nanny.pre-spawn-environ``), so that workers give freed memory back to the
@@ -28,10 +29,15 @@ from __future__ import annotations
 import os
 from typing import Any
 
-__all__ = ["TRIM_VARIABLE", "kernel_cache_base", "worker_environment"]
+__all__ = ["PROFILE_ENV", "TRIM_VARIABLE", "kernel_cache_base", "worker_environment"]
 
 TRIM_VARIABLE = "MALLOC_TRIM_THRESHOLD_"
 """glibc's trim threshold variable, which Dask's nanny sets in its workers unless told not to."""
+
+PROFILE_ENV = "WARPTRUNC_DASK_PROFILE"
+"""Set to ``1`` to keep Dask's statistical profiler in a local cluster's workers (off by default:
+it samples every worker thread's stack every 10 ms, holding the GIL, and the solver's loop is
+host-bound on a GPU)."""
 
 
 def kernel_cache_base() -> str | None:
@@ -67,11 +73,20 @@ def worker_environment() -> dict[str, Any]:
     Returns
     -------
     dict of str to Any
-        ``{"distributed.nanny.environ": ..., "distributed.nanny.pre-spawn-environ": ...}`` for
-        ``dask.config.set``: the configured ``environ`` plus ``WARP_CACHE_PATH`` (from
-        :func:`kernel_cache_base`, where it gives a folder), and the configured pre-spawn
-        environment with :data:`TRIM_VARIABLE` set to None (Dask then leaves it unset) unless
-        this process's environment sets it.
+        For ``dask.config.set`` (the nanny hands its configuration to the worker it spawns):
+        ``"distributed.nanny.environ"``, the configured one plus ``WARP_CACHE_PATH`` (from
+        :func:`kernel_cache_base`, where it gives a folder); ``"distributed.nanny.pre-spawn-environ"``,
+        the configured one with :data:`TRIM_VARIABLE` set to None (Dask then leaves it unset)
+        unless this process's environment sets it; and ``"distributed.worker.profile.enabled"``
+        False (Dask's statistical profiler off; the dashboard's Profile page stays empty) unless
+        ``$WARPTRUNC_DASK_PROFILE`` is ``1``.
+
+    Notes
+    -----
+    The profiler, measured on 4 × H100 (``examples/benchmarks/benchmark_worker_overhead.py``,
+    an elastic and an elastic–plastic indentation part at 1024², ``docs/benchmarks/``): the parts
+    took 1.23× their in-process time on a worker as Dask configures it, 0.88× with the profiler
+    and the system monitor off; runs of one setting spread by up to 30 %.
     """
     import dask
 
@@ -82,4 +97,6 @@ def worker_environment() -> dict[str, Any]:
     pre = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}) or {})
     if TRIM_VARIABLE not in os.environ:
         pre[TRIM_VARIABLE] = None
-    return {"distributed.nanny.environ": environ, "distributed.nanny.pre-spawn-environ": pre}
+    profile = os.environ.get(PROFILE_ENV, "").strip().lower() in ("1", "true", "yes", "on")
+    return {"distributed.nanny.environ": environ, "distributed.nanny.pre-spawn-environ": pre,
+            "distributed.worker.profile.enabled": profile}
