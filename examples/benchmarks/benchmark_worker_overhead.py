@@ -22,6 +22,10 @@ the workers stopped inheriting ``MALLOC_TRIM_THRESHOLD_``. This benchmark runs t
 ``process``
     in a plain child process (``multiprocessing``, spawn), no Dask.
 
+The workers bind themselves to the CPUs near their GPU (``PinDevice``; ``WARPTRUNC_CPU_AFFINITY=0``
+turns that off) and ``--bind near`` binds this process the same way, so the settings compare
+bound with bound or, with both off, unbound with unbound; each run records its CPUs.
+
 Each setting runs ``--repeat`` times (the first is a warm-up, not counted); ``--profile-top K``
 also records the K most expensive functions (cProfile, cumulative and own time) of one more
 run, not counted, in ``main`` and in ``worker``. Prints a table and writes ``worker_overhead.json`` in ``--out``.
@@ -77,6 +81,10 @@ def run_parts(n: int, device: str | None, surface: str, hardness: float, top: in
     out["parts"] = [{k: r["seconds"][k] for k in ("part_s", "elastic_plastic_s", "refinement_s")
                      if k in r["seconds"]} for r in recs]  # fmt: skip
     out["device"] = recs[0]["device"]
+    if hasattr(os, "sched_getaffinity"):  # where this thread may run (bound or not)
+        from warptrunc._support.affinity import format_cpulist
+
+        out["cpus"] = format_cpulist(os.sched_getaffinity(0))
     if prof:
         s = io.StringIO()
         pstats.Stats(prof, stream=s).sort_stats("cumulative").print_stats(top)
@@ -110,8 +118,11 @@ def _worker(args, bare: bool):
                "distributed.admin.system-monitor.interval": "3600s",
                "distributed.nanny.pre-spawn-environ": pre}  # fmt: skip
     results = []
-    with dask.config.set(cfg), open_client(workers=1, progress=False, warm_contact=True) as (c, _, _):
-        for i in range(args.repeat):
+    with (
+        dask.config.set(cfg),
+        open_client(workers=1, progress=False, warm_contact=True) as (c, _, _),
+    ):
+        for _ in range(args.repeat):
             fut = c.submit(run_parts, args.n, args.device, args.surface, args.hardness, 0,
                            pure=False)  # fmt: skip
             results.append(fut.result())
@@ -131,16 +142,24 @@ def _process(args):
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--n", type=int, default=1536, help="indentation_n of the paper profile (pixels)")
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    ap.add_argument(
+        "--n", type=int, default=1536, help="indentation_n of the paper profile (pixels)"
+    )
     ap.add_argument("--device", default=None, help="Warp device (default: cuda:0, else cpu)")
     ap.add_argument("--surface", default="SMATs", help="Table 1 surface (default SMATs)")
-    ap.add_argument("--hardness", type=float, default=1e9, help="H of the elastic–plastic part (Pa)")
+    ap.add_argument(
+        "--hardness", type=float, default=1e9, help="H of the elastic–plastic part (Pa)"
+    )
     ap.add_argument("--repeat", type=int, default=3, help="runs per setting, the first a warm-up")
     ap.add_argument("--settings", nargs="+", default=list(SETTINGS), choices=SETTINGS)
     ap.add_argument("--profile-top", type=int, default=25, help="cProfile rows (0: none)")
     ap.add_argument("--out", default="worker_overhead_out", help="results folder")
+    ap.add_argument("--bind", choices=("none", "near"), default="none",
+                    help="near: bind this process to the CPUs near --device first (the workers "
+                    "bind themselves unless WARPTRUNC_CPU_AFFINITY=0)")  # fmt: skip
     args = ap.parse_args(argv)
     if args.device is None:
         from warptrunc._support.device import cuda_device_count
@@ -148,9 +167,18 @@ def main(argv=None) -> int:
         args.device = "cuda:0" if cuda_device_count() > 0 else "cpu"
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    bound = None
+    if args.bind == "near" and str(args.device).startswith("cuda"):
+        from warptrunc._support.affinity import bind_near, format_cpulist
+
+        ordinal = int(str(args.device).partition(":")[2] or 0)
+        bound = bind_near([ordinal])
+        print(f"bound to CPUs {format_cpulist(bound) if bound else '(unchanged)'}", flush=True)
     rec = {"benchmark": "worker_overhead", "issue": 39, "commit": os.environ.get("WARPTRUNC_GIT_COMMIT"),
            "host": platform.node(), "started_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-           "args": vars(args), "settings": {}}  # fmt: skip
+           "args": vars(args), "settings": {},
+           "bound": None if not bound else sorted(bound),
+           "cpu_affinity_env": os.environ.get("WARPTRUNC_CPU_AFFINITY")}  # fmt: skip
     for s in args.settings:
         t0 = time.perf_counter()
         if s == "main":

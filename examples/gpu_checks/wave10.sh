@@ -19,6 +19,9 @@
 # Results under $OUT/<mode>/ (default ./gpu_out). Running the three indentation runs at once puts
 # the in-process reference and the 1- and 2-worker runs under the same host load; the 4-worker run
 # follows alone (the in-process run alone took 510.6 s at fab6f70, so the record can tell).
+# BIND=1 (default) runs the in-process benchmark under `taskset -c` with the CPUs near its GPU
+# (`python -m warptrunc._support.affinity`), as the workers of a local cluster bind
+# themselves (PinDevice); BIND=0 leaves every process unbound (WARPTRUNC_CPU_AFFINITY=0).
 # A CPU dry run of indent3 and indent4 (tiny profile, about a minute on 2 cores):
 #   N=128 BENCH_ARGS="--profile tiny --device cpu" bash examples/gpu_checks/wave10.sh indent3
 set -uo pipefail
@@ -30,13 +33,22 @@ W=/tmp/wave10
 B=examples/benchmarks/benchmark_indentation_workers.py
 N=${N:-2048}
 indent() {  # indent NAME GPUS ARGS...: one benchmark process on GPUS, its folder $W/NAME
-    local name=$1 gpus=$2
+    local name=$1 gpus=$2 bind=()
     shift 2
+    # the in-process run bound to the CPUs near its GPU, as the workers bind themselves
+    # (PinDevice; BIND=0 leaves both unbound: WARPTRUNC_CPU_AFFINITY=0)
+    if [ "${BIND:-1}" = 1 ] && [ "$name" = inproc ] && command -v taskset > /dev/null; then
+        local cpus
+        cpus=$(CUDA_VISIBLE_DEVICES=$gpus python3 -m warptrunc._support.affinity 0)
+        [ -n "$cpus" ] && bind=(taskset -c "$cpus")
+    fi
+    echo "$name (GPUs $gpus): CPUs ${bind[2]:-not bound}" | tee -a "$W/binding.txt"
     # shellcheck disable=SC2086  # BENCH_ARGS: several words
-    CUDA_VISIBLE_DEVICES=$gpus python3 "$B" --out "$W/$name" --n "$N" --warmup-n 0 \
+    CUDA_VISIBLE_DEVICES=$gpus "${bind[@]}" python3 "$B" --out "$W/$name" --n "$N" --warmup-n 0 \
         --timeout-s "${TIMEOUT_S:-560}" ${BENCH_ARGS:-} "$@" > "$W/$name.txt" 2>&1
     echo "$name (GPUs $gpus): exit $? at ${SECONDS} s"
 }
+[ "${BIND:-1}" = 1 ] || export WARPTRUNC_CPU_AFFINITY=0
 case "$mode" in
 warm)
     python3 -m pip list 2>/dev/null | grep -i -E "nvmath|cupy|mpi4py|nvshmem|cufft|cuda|jax|dask" \
@@ -60,6 +72,7 @@ indent3)
     indent w1 1 --no-inprocess --workers 1 &
     indent w2 2,3 --no-inprocess --workers 2 &
     wait
+    cp "$W/binding.txt" "$dir/" 2>/dev/null
     for r in inproc w1 w2; do
         cp "$W/$r/benchmark_indentation_workers.json" "$dir/$r.json" 2>/dev/null
         cp "$W/$r"/values_*.json.gz "$W/$r.txt" "$dir/" 2>/dev/null

@@ -75,6 +75,13 @@ class PinDevice(WorkerPlugin):
         Platform of the group's device names (``"cpu"``: JAX's host devices; no Warp pinning).
     pin : bool, optional
         Set ``WARPTRUNC_DEVICE`` (False: the caller passes a Warp device; only the group).
+
+    Notes
+    -----
+    A worker given a CUDA device (or group) is also bound to the CPUs near it, those it may
+    use (:func:`~warptrunc._support.affinity.bind_near`: the GPU's socket on a host of several;
+    nothing where Linux or the driver does not say; ``WARPTRUNC_CPU_AFFINITY=0`` turns it off),
+    as dask-cuda's ``LocalCUDACluster`` binds its workers.
     """
 
     name = "warptrunc-pin-device"
@@ -99,12 +106,25 @@ class PinDevice(WorkerPlugin):
 
             names = worker_group(worker.name, n, self.group, self.platform)
             os.environ[GROUP_ENV] = ",".join(names)
-            if self.pin and self.platform == "cuda":
-                os.environ["WARPTRUNC_DEVICE"] = names[0]
+            if self.platform == "cuda":
+                if self.pin:
+                    os.environ["WARPTRUNC_DEVICE"] = names[0]
+                _bind_near(names)
             return
         dev = pinned_device(worker.name, n) if self.pin else None
         if dev is not None:
             os.environ["WARPTRUNC_DEVICE"] = dev
+            _bind_near([dev])
+
+
+def _bind_near(names: list[str]) -> None:
+    """Bind this worker to the CPUs near its CUDA devices (``"cuda:i"`` names;
+    :func:`~warptrunc._support.affinity.bind_near`), as dask-cuda binds its workers."""
+    from .._support.affinity import bind_near
+
+    ordinals = [int(d.split(":", 1)[1]) for d in names if d.startswith("cuda:")]
+    if ordinals:
+        bind_near(ordinals)
 
 
 def warm_worker(device: Any = None, contact: bool = False) -> str:

@@ -1,0 +1,198 @@
+# SPDX-FileCopyrightText: 2026 warptrunc developers
+# SPDX-License-Identifier: MIT
+"""The CPUs near a GPU, and binding a process to them (as dask-cuda's ``CPUAffinity`` does).
+
+On a host of several CPU sockets each GPU hangs off one socket's PCIe root. A process driving
+the GPU from the other socket pays for every kernel launch and copy across the socket link,
+and the contact solver's loop is bound by its launches on a GPU (about 46 000 Warp launches
+in the two indentation parts profiled by ``examples/benchmarks/benchmark_worker_overhead.py``).
+Linux places a process anywhere it is allowed to run, so an unbound process may land on either
+socket, and move.
+
+The GPU's PCI bus id comes from the CUDA driver (``cuDeviceGetPCIBusId``; the ordinal as this
+process counts devices, after ``CUDA_VISIBLE_DEVICES``; no context is created), and its CPUs
+from ``/sys/bus/pci/devices/<bus id>/local_cpulist``; both need Linux and a CUDA driver, and
+without either nothing is bound. :func:`bind_near` binds every thread of this process to
+those CPUs that it may already use; the workers of a local cluster that
+:class:`~warptrunc.sweep.cluster.PinDevice` pins call it (``WARPTRUNC_CPU_AFFINITY=0`` turns
+it off). ``python -m warptrunc._support.affinity 0`` prints device 0's CPUs (for ``taskset
+-c``), or nothing.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import sys
+from collections.abc import Iterable
+from pathlib import Path
+
+__all__ = [
+    "AFFINITY_ENV",
+    "bind_near",
+    "format_cpulist",
+    "gpu_local_cpus",
+    "parse_cpulist",
+    "pci_bus_id",
+]
+
+AFFINITY_ENV = "WARPTRUNC_CPU_AFFINITY"
+"""Set to ``0`` to leave the CPU affinity of a local cluster's pinned workers alone."""
+
+SYSFS_PCI = "/sys/bus/pci/devices"
+
+
+def parse_cpulist(text: str) -> set[int]:
+    """The CPUs of a Linux CPU list (``"0-31,64-95"``; ``"3"``; ``""`` is none).
+
+    Parameters
+    ----------
+    text : str
+        The list, as in ``local_cpulist`` or ``taskset -c``.
+
+    Returns
+    -------
+    set of int
+        The CPU numbers.
+
+    Raises
+    ------
+    ValueError
+        A part is not ``N`` or ``N-M`` with N ≤ M.
+    """
+    cpus: set[int] = set()
+    for part in text.strip().split(","):
+        part = part.strip()
+        if not part:
+            continue
+        lo, _, hi = part.partition("-")
+        try:
+            a, b = int(lo), int(hi or lo)
+        except ValueError:
+            raise ValueError(f"not a CPU list: {text!r}") from None
+        if a < 0 or b < a:
+            raise ValueError(f"not a CPU list: {text!r}")
+        cpus.update(range(a, b + 1))
+    return cpus
+
+
+def format_cpulist(cpus: Iterable[int]) -> str:
+    """A Linux CPU list of ``cpus`` in ranges (``{0, 1, 2, 3, 8}`` → ``"0-3,8"``; none → ``""``),
+    the inverse of :func:`parse_cpulist`."""
+    out: list[str] = []
+    run: list[int] = []
+    for c in sorted(set(int(c) for c in cpus)):
+        if run and c == run[-1] + 1:
+            run.append(c)
+            continue
+        if run:
+            out.append(f"{run[0]}-{run[-1]}" if len(run) > 1 else str(run[0]))
+        run = [c]
+    if run:
+        out.append(f"{run[0]}-{run[-1]}" if len(run) > 1 else str(run[0]))
+    return ",".join(out)
+
+
+def pci_bus_id(ordinal: int) -> str | None:
+    """PCI bus id (``"0000:1b:00.0"``, lower case as sysfs names it) of CUDA device ``ordinal``
+    as this process counts them; None without a CUDA driver or such a device."""
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        lib = ctypes.CDLL("libcuda.so.1")
+        dev = ctypes.c_int(0)
+        buf = ctypes.create_string_buffer(64)
+        if lib.cuInit(0) != 0 or lib.cuDeviceGet(ctypes.byref(dev), int(ordinal)) != 0:
+            return None
+        if lib.cuDeviceGetPCIBusId(buf, 64, dev) != 0:
+            return None
+    except (OSError, AttributeError):
+        return None
+    return buf.value.decode().lower() or None
+
+
+def gpu_local_cpus(ordinals: Iterable[int], sysfs: str = SYSFS_PCI) -> set[int] | None:
+    """The CPUs local to the CUDA devices ``ordinals`` (the union), or None when unknown.
+
+    Parameters
+    ----------
+    ordinals : iterable of int
+        CUDA device ordinals, as this process counts them.
+    sysfs : str
+        Folder of the PCI devices (tests give another).
+
+    Returns
+    -------
+    set of int or None
+        None when a device's bus id or its ``local_cpulist`` cannot be read (no Linux, no
+        CUDA driver, a virtual machine that does not say).
+    """
+    cpus: set[int] = set()
+    for o in ordinals:
+        bus = pci_bus_id(o)
+        if bus is None:
+            return None
+        try:
+            cpus |= parse_cpulist((Path(sysfs) / bus / "local_cpulist").read_text())
+        except (OSError, ValueError):
+            return None
+    return cpus or None
+
+
+def _set_all_threads(cpus: set[int]) -> None:
+    """``sched_setaffinity`` for every thread of this process (Linux applies it per thread;
+    threads started later inherit the caller's)."""
+    try:
+        tids = [int(t) for t in os.listdir("/proc/self/task")]
+    except OSError:
+        tids = [0]
+    for tid in tids:
+        try:
+            os.sched_setaffinity(tid, cpus)
+        except OSError:  # a thread that ended meanwhile
+            pass
+    os.sched_setaffinity(0, cpus)
+
+
+def bind_near(ordinals: Iterable[int], sysfs: str = SYSFS_PCI) -> set[int] | None:
+    """Bind this process to the CPUs near the CUDA devices ``ordinals`` that it may use now.
+
+    Parameters
+    ----------
+    ordinals : iterable of int
+        CUDA device ordinals, as this process counts them.
+    sysfs : str
+        Folder of the PCI devices (tests give another).
+
+    Returns
+    -------
+    set of int or None
+        The CPUs bound to; None when nothing changed: ``$WARPTRUNC_CPU_AFFINITY`` is ``0``, the
+        CPUs are unknown (:func:`gpu_local_cpus`), none of them is allowed now, or the process
+        is already limited to them.
+    """
+    if os.environ.get(AFFINITY_ENV, "").strip().lower() in ("0", "false", "no", "off"):
+        return None
+    if not hasattr(os, "sched_setaffinity"):
+        return None
+    near = gpu_local_cpus(list(ordinals), sysfs)
+    if near is None:
+        return None
+    allowed = os.sched_getaffinity(0)
+    keep = near & allowed
+    if not keep or keep == allowed:
+        return None
+    _set_all_threads(keep)
+    return keep
+
+
+def _main(argv: list[str]) -> int:
+    """Print the CPU list of the devices named (``taskset -c`` form), or nothing."""
+    cpus = gpu_local_cpus(int(a) for a in argv)
+    if cpus:
+        print(format_cpulist(cpus))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(_main(sys.argv[1:]))
