@@ -112,6 +112,30 @@ def read_values(path: Path) -> dict:
         return json.load(f)
 
 
+def piece_seconds(ref: dict, other: dict) -> dict:
+    """The pieces' own seconds (each piece file's top-level ``seconds``: ``total_s``,
+    ``elastic_plastic_s``, ``refinement_s`` …) summed over the pieces both runs stored, and each
+    sum of ``other`` over that of ``ref``: whether a piece costs the same wherever it ran."""
+    sums: dict[str, list[float]] = {}
+    n = 0
+    for f in sorted(set(ref) & set(other)):
+        a, b = ref[f], other[f]
+        if not (isinstance(a, dict) and isinstance(b, dict)):
+            continue
+        sa, sb = a.get("seconds"), b.get("seconds")
+        if not (isinstance(sa, dict) and isinstance(sb, dict)):
+            continue
+        n += 1
+        for k in sorted(set(sa) & set(sb)):
+            if _number(sa[k]) and _number(sb[k]):
+                t = sums.setdefault(k, [0.0, 0.0])
+                t[0] += float(sa[k])
+                t[1] += float(sb[k])
+    return {"pieces": n, "reference_s": {k: v[0] for k, v in sums.items()},
+            "run_s": {k: v[1] for k, v in sums.items()},
+            "ratio": {k: (v[1] / v[0] if v[0] > 0 else None) for k, v in sums.items()}}  # fmt: skip
+
+
 def compare(argv: list[str], prog: str = "compare") -> int:
     """``compare REF OTHER ... [--json OUT]``: the identity check of runs written by
     :func:`write_values` (e.g. runs made at the same time on different GPUs of one host, each by
@@ -123,11 +147,19 @@ def compare(argv: list[str], prog: str = "compare") -> int:
     ap.add_argument("--json", type=Path, default=None, help="write the checks here")
     args = ap.parse_args(argv)
     ref = read_values(args.reference)
-    checks = {str(o): identity(ref, read_values(o)) for o in args.others}
+    checks, seconds = {}, {}
+    for o in args.others:
+        values = read_values(o)
+        checks[str(o)] = identity(ref, values)
+        seconds[str(o)] = piece_seconds(ref, values)
     for name, c in checks.items():
         same = "identical" if c["identical"] else f"DIFFERENT in {c['n_fields']} fields"
         print(f"{name}: {same} ({c['values_compared']} values, {c['files']} files)")
+        r = seconds[name]["ratio"]
+        print("  pieces' seconds ÷ reference: " + ", ".join(
+            f"{k} {v:.2f}" for k, v in r.items() if v is not None and k != "surface_s"))
     if args.json:
-        args.json.write_text(json.dumps(dict(reference=str(args.reference), checks=checks),
+        args.json.write_text(json.dumps(dict(reference=str(args.reference), checks=checks,
+                                             piece_seconds=seconds),
                                         indent=1, default=str) + "\n")  # fmt: skip
     return 0 if all(c["identical"] for c in checks.values()) else 1

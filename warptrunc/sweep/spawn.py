@@ -83,10 +83,13 @@ def worker_environment() -> dict[str, Any]:
 
     Notes
     -----
-    The profiler, measured on 4 × H100 (``examples/benchmarks/benchmark_worker_overhead.py``,
-    an elastic and an elastic–plastic indentation part at 1024², ``docs/benchmarks/``): the parts
-    took 1.23× their in-process time on a worker as Dask configures it, 0.88× with the profiler
-    and the system monitor off; runs of one setting spread by up to 30 %.
+    The profiler, measured on one H100 (``examples/benchmarks/benchmark_worker_overhead.py``, an
+    elastic and an elastic–plastic indentation part at 1024²,
+    ``docs/benchmarks/worker_overhead_h100x4.json``): the parts took 1.23× their time in the main
+    thread on a worker as Dask configures it, 0.88× and 0.80× (two calls) with the profiler and
+    the system monitor off, 1.15× with only the profiler off; runs of one setting spread by up to
+    30 %, so the profiler's share is not pinned down. It is turned off because it costs the GIL
+    and gives nothing a command needs.
     """
     import dask
 
