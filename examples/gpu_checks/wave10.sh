@@ -11,6 +11,8 @@
 #                                               # benchmark processes at once on disjoint GPUs: in
 #                                               # process on GPU 0, 1 worker on GPU 1, 2 workers on
 #                                               # GPUs 2,3 (≈ 530 s; values kept in /tmp/wave10)
+#   bash examples/gpu_checks/wave10.sh probe    # benchmark_worker_overhead.py (main thread against a
+#                                               # one-worker cluster) unbound, then bound (≈ 150 s)
 #   bash examples/gpu_checks/wave10.sh indent4  # 4 workers against that in-process run, then every
 #                                               # worker count compared with it bit for bit (≈ 170 s)
 #   bash examples/gpu_checks/wave10.sh pair     # 42 (b) 32768² float64 on GPUs 0,1 on the D = 2.5
@@ -25,7 +27,7 @@
 # A CPU dry run of indent3 and indent4 (tiny profile, about a minute on 2 cores):
 #   N=128 BENCH_ARGS="--profile tiny --device cpu" bash examples/gpu_checks/wave10.sh indent3
 set -uo pipefail
-MODES="warm, big, indent3, indent4 or pair"
+MODES="warm, big, indent3, indent4, probe or pair"
 # shellcheck source=examples/gpu_checks/_wave_head.sh
 source "$(dirname "$0")/_wave_head.sh"
 export MAPS=${MAPS:-/tmp/maps}
@@ -57,11 +59,23 @@ warm)
         > "$dir/warm.txt" 2>&1
     echo "warm-up: exit $? at ${SECONDS} s"
     rm -rf "$W/warm"
-    # what the workers of a local cluster inherit (the trim fix of fcb7142): unset is wanted
+    # the host's GPU-CPU topology, and what the workers of a local cluster inherit: no
+    # MALLOC_TRIM_THRESHOLD_ (fcb7142), no Dask profiler, CPUs near their GPU (cc0e4f7)
+    nvidia-smi topo -m > "$dir/topo.txt" 2>&1
+    for g in $(nvidia-smi --query-gpu=index --format=csv,noheader); do
+        echo "GPU $g: CPUs $(python3 -m warptrunc._support.affinity "$g")"
+    done | tee "$dir/gpu_cpus.txt"
     python3 -c "from warptrunc.sweep.cluster import open_client; import os
-with open_client(workers=2, progress=False) as (c, _, _):
-    print('workers MALLOC_TRIM_THRESHOLD_:', c.run(lambda: os.environ.get('MALLOC_TRIM_THRESHOLD_')))" \
-        2>&1 | tail -n 3 | tee "$dir/worker_env.txt"
+from warptrunc._support.affinity import format_cpulist
+def env():
+    import dask
+    return (os.environ.get('WARPTRUNC_DEVICE'), os.environ.get('MALLOC_TRIM_THRESHOLD_'),
+            dask.config.get('distributed.worker.profile.enabled'),
+            format_cpulist(os.sched_getaffinity(0)))
+with open_client(workers='auto', progress=False) as (c, _, _):
+    for w, e in sorted(c.run(env).items(), key=lambda x: str(x[1])):
+        print('worker', w, 'device, trim, profiler, CPUs:', e)" \
+        2>&1 | tail -n 5 | tee "$dir/worker_env.txt"
     ;;
 big)
     OUT="$dir" PARTS=c BUDGET=${BUDGET:-520} bash examples/gpu_checks/sharded_x4.sh
@@ -78,6 +92,13 @@ indent3)
         cp "$W/$r"/values_*.json.gz "$W/$r.txt" "$dir/" 2>/dev/null
         tail -n 8 "$W/$r.txt"
     done
+    ;;
+probe)  # benchmark_worker_overhead.py on GPU 0 at 1024², unbound then bound (≈ 150 s)
+    P=examples/benchmarks/benchmark_worker_overhead.py
+    WARPTRUNC_CPU_AFFINITY=0 python3 "$P" --n "${PROBE_N:-1024}" --device cuda:0 --repeat 4 \
+        --profile-top 0 --settings main worker --out "$dir/unbound" 2>&1 | grep -v -i warn | tail -n 4
+    python3 "$P" --n "${PROBE_N:-1024}" --device cuda:0 --repeat 4 --bind near \
+        --profile-top 0 --settings main worker --out "$dir/bound" 2>&1 | grep -v -i warn | tail -n 5
     ;;
 indent4)
     ref=$W/inproc/values_inproc.json.gz
