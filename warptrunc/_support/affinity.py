@@ -27,6 +27,8 @@ import sys
 from collections.abc import Iterable
 from pathlib import Path
 
+from .docs import fill_doc
+
 __all__ = [
     "AFFINITY_ENV",
     "bind_near",
@@ -40,6 +42,15 @@ AFFINITY_ENV = "WARPTRUNC_CPU_AFFINITY"
 """Set to ``0`` to leave the CPU affinity of a local cluster's pinned workers alone."""
 
 SYSFS_PCI = "/sys/bus/pci/devices"
+
+_DOCS = {
+    "{ordinals}": (
+        "ordinals : iterable of int\n    CUDA device ordinals, as this process counts them.\n"
+        "sysfs : str\n    Folder of the PCI devices (tests give another)."
+    )
+}
+"""Parameter text :func:`gpu_local_cpus` and :func:`bind_near` share
+(:func:`~warptrunc._support.docs.fill_doc`)."""
 
 
 def parse_cpulist(text: str) -> set[int]:
@@ -79,18 +90,13 @@ def parse_cpulist(text: str) -> set[int]:
 def format_cpulist(cpus: Iterable[int]) -> str:
     """A Linux CPU list of ``cpus`` in ranges (``{0, 1, 2, 3, 8}`` → ``"0-3,8"``; none → ``""``),
     the inverse of :func:`parse_cpulist`."""
-    out: list[str] = []
-    run: list[int] = []
-    for c in sorted(set(int(c) for c in cpus)):
-        if run and c == run[-1] + 1:
-            run.append(c)
-            continue
-        if run:
-            out.append(f"{run[0]}-{run[-1]}" if len(run) > 1 else str(run[0]))
-        run = [c]
-    if run:
-        out.append(f"{run[0]}-{run[-1]}" if len(run) > 1 else str(run[0]))
-    return ",".join(out)
+    runs: list[list[int]] = []  # [first, last] of each run of consecutive CPUs
+    for c in sorted({int(c) for c in cpus}):
+        if runs and c == runs[-1][1] + 1:
+            runs[-1][1] = c
+        else:
+            runs.append([c, c])
+    return ",".join(str(a) if a == b else f"{a}-{b}" for a, b in runs)
 
 
 def pci_bus_id(ordinal: int) -> str | None:
@@ -111,15 +117,13 @@ def pci_bus_id(ordinal: int) -> str | None:
     return buf.value.decode().lower() or None
 
 
+@fill_doc(_DOCS)
 def gpu_local_cpus(ordinals: Iterable[int], sysfs: str = SYSFS_PCI) -> set[int] | None:
     """The CPUs local to the CUDA devices ``ordinals`` (the union), or None when unknown.
 
     Parameters
     ----------
-    ordinals : iterable of int
-        CUDA device ordinals, as this process counts them.
-    sysfs : str
-        Folder of the PCI devices (tests give another).
+    {ordinals}
 
     Returns
     -------
@@ -154,15 +158,13 @@ def _set_all_threads(cpus: set[int]) -> None:
     os.sched_setaffinity(0, cpus)
 
 
+@fill_doc(_DOCS)
 def bind_near(ordinals: Iterable[int], sysfs: str = SYSFS_PCI) -> set[int] | None:
     """Bind this process to the CPUs near the CUDA devices ``ordinals`` that it may use now.
 
     Parameters
     ----------
-    ordinals : iterable of int
-        CUDA device ordinals, as this process counts them.
-    sysfs : str
-        Folder of the PCI devices (tests give another).
+    {ordinals}
 
     Returns
     -------
