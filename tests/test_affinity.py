@@ -36,6 +36,15 @@ def test_parse_cpulist_rejects(text):
         affinity.parse_cpulist(text)
 
 
+@pytest.mark.parametrize(
+    ("bus", "name"),
+    [("00000000:1B:00.0", "0000:1b:00.0"), ("0000:9A:00.0", "0000:9a:00.0"),
+     ("0001:c1:1f.7\n", "0001:c1:1f.7"), ("", None), ("1B:00.0", None), ("zz:1b:00.0", None)],
+)  # fmt: skip
+def test_sysfs_name(bus, name):
+    assert affinity.sysfs_name(bus) == name
+
+
 def _fake_sysfs(tmp_path, lists: dict[str, str]):
     for bus, text in lists.items():
         (tmp_path / bus).mkdir()

@@ -3,9 +3,10 @@
 """The CPUs near a GPU, and binding a process to them (as dask-cuda's ``CPUAffinity`` does).
 
 On a host of several CPU sockets each GPU hangs off one socket's PCIe root. A process driving
-the GPU from the other socket pays for every kernel launch and copy across the socket link,
-and the contact solver's loop is bound by its launches on a GPU (about 46 000 Warp launches
-in the two indentation parts profiled by ``examples/benchmarks/benchmark_worker_overhead.py``).
+the GPU from the other socket pays for every kernel launch, copy and read-back across the socket
+link, and the contact solver's loop on a GPU launches a kernel every ≈ 150 µs and waits for the
+scalars it reads back (about 46 000 Warp launches in the two indentation parts profiled by
+``examples/benchmarks/benchmark_worker_overhead.py``), so where its thread runs shows in its time.
 Linux places a process anywhere it is allowed to run, so an unbound process may land on either
 socket, and move.
 
@@ -36,6 +37,7 @@ __all__ = [
     "gpu_local_cpus",
     "parse_cpulist",
     "pci_bus_id",
+    "sysfs_name",
 ]
 
 AFFINITY_ENV = "WARPTRUNC_CPU_AFFINITY"
@@ -114,7 +116,18 @@ def pci_bus_id(ordinal: int) -> str | None:
             return None
     except (OSError, AttributeError):
         return None
-    return buf.value.decode().lower() or None
+    return sysfs_name(buf.value.decode())
+
+
+def sysfs_name(bus_id: str) -> str | None:
+    """The sysfs folder name of a PCI bus id: ``"00000000:1B:00.0"`` or ``"0000:1B:00.0"`` →
+    ``"0000:1b:00.0"`` (a 4-digit domain, lower case); None when it is not such an id."""
+    try:
+        dom, bus, rest = bus_id.strip().split(":")
+        dev, fn = rest.split(".")
+        return f"{int(dom, 16):04x}:{int(bus, 16):02x}:{int(dev, 16):02x}.{int(fn, 16):x}"
+    except ValueError:
+        return None
 
 
 @fill_doc(_DOCS)
