@@ -15,7 +15,10 @@ solve with its host work took 0.29–0.32 s in a worker against 0.16–0.18 s in
 (``docs/benchmarks/worker_trim_cpu.json``; ``tests/test_sweep_spawn.py`` checks the setting, the
 timing is not asserted). On the 4 × H200 host the indentation pieces cost 1.24× as much on
 workers as in process (``docs/benchmarks/indentation_workers_h200x4_34cbf1b.json``), the same
-ratio; that leaving the variable out closes that gap on GPUs is not measured.
+ratio; but with the variable left out, on 4 × H100, they still cost 1.31× (2 workers) and 1.44×
+(4 workers) (``docs/benchmarks/indentation_workers_h100x4_cc1dcf5.json``): on GPUs it is not the
+whole cause (the profiler below, and where the worker runs:
+:mod:`warptrunc._support.affinity`).
 
 A user who sets ``MALLOC_TRIM_THRESHOLD_`` in their own environment keeps it: the workers
 inherit it. Workers of an existing cluster (``--scheduler``) are started by the user: give them
@@ -36,8 +39,8 @@ TRIM_VARIABLE = "MALLOC_TRIM_THRESHOLD_"
 
 PROFILE_ENV = "WARPTRUNC_DASK_PROFILE"
 """Set to ``1`` to keep Dask's statistical profiler in a local cluster's workers (off by default:
-it samples every worker thread's stack every 10 ms, holding the GIL, and the solver's loop is
-host-bound on a GPU)."""
+it samples every worker thread's stack every 10 ms, holding the GIL meanwhile, and the solver's
+loop on a GPU waits on its host thread between launches)."""
 
 
 def kernel_cache_base() -> str | None:
