@@ -28,7 +28,10 @@ bound with bound or, with both off, unbound with unbound; each run records its C
 
 Each setting runs ``--repeat`` times (the first is a warm-up, not counted); ``--profile-top K``
 also records the K most expensive functions (cProfile, cumulative and own time) of one more
-run, not counted, in ``main`` and in ``worker``. Prints a table and writes ``worker_overhead.json`` in ``--out``.
+run, not counted, in ``main`` and in ``worker``. Prints a table and writes
+``worker_overhead.json`` in ``--out``. Measured on one H100 (before the workers were bound and
+ran without the profiler): ``docs/benchmarks/worker_overhead_h100x4.json``, the table in
+``docs/guide/performance.md``; ``examples/gpu_checks/wave10.sh probe`` runs it unbound, then bound.
 
     python examples/benchmarks/benchmark_worker_overhead.py --n 1536 --device cuda:0
     python examples/benchmarks/benchmark_worker_overhead.py --n 128 --device cpu   # a dry run
