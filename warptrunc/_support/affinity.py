@@ -9,6 +9,10 @@ scalars it reads back (about 46 000 Warp launches in the two indentation parts p
 ``examples/benchmarks/benchmark_worker_overhead.py``), so where its thread runs shows in its time.
 Linux places a process anywhere it is allowed to run, so an unbound process may land on either
 socket, and move.
+(A reading, not a measurement: the one 4-GPU host whose topology was recorded, 4 × H100 at
+``1b64d9c``, is a single NUMA node whose GPUs all list CPUs 0–63, so binding changed nothing
+there; the workers' extra cost on that host was Dask's profiler, see
+:mod:`warptrunc.sweep.spawn`.)
 
 The GPU's PCI bus id comes from the CUDA driver (``cuDeviceGetPCIBusId``; the ordinal as this
 process counts devices, after ``CUDA_VISIBLE_DEVICES``; no context is created), and its CPUs

@@ -17,8 +17,9 @@ timing is not asserted). On the 4 × H200 host the indentation pieces cost 1.24�
 workers as in process (``docs/benchmarks/indentation_workers_h200x4_34cbf1b.json``), the same
 ratio; but with the variable left out, on 4 × H100, they still cost 1.31× (2 workers) and 1.44×
 (4 workers) (``docs/benchmarks/indentation_workers_h100x4_cc1dcf5.json``): on GPUs it is not the
-whole cause (the profiler below, and where the worker runs:
-:mod:`warptrunc._support.affinity`).
+whole cause. With the profiler off as well (below), on 4 × H100 at ``1b64d9c``, they cost
+1.04× (4 workers) and 1.10× (2), and 4 workers run the stage 3.44× faster than one process
+(``docs/benchmarks/indentation_workers_h100x4_1b64d9c.json``).
 
 A user who sets ``MALLOC_TRIM_THRESHOLD_`` in their own environment keeps it: the workers
 inherit it. Workers of an existing cluster (``--scheduler``) are started by the user: give them
@@ -92,7 +93,10 @@ def worker_environment() -> dict[str, Any]:
     thread on a worker as Dask configures it, 0.88× and 0.80× (two calls) with the profiler and
     the system monitor off, 1.15× with only the profiler off; runs of one setting spread by up to
     30 %, so the profiler's share is not pinned down. It is turned off because it costs the GIL
-    and gives nothing a command needs.
+    and gives nothing a command needs. With it off (``1b64d9c``, 4 × H100 of one NUMA node, so
+    the CPU binding changed nothing there), a worker took 1.03–1.08× the main thread
+    (``docs/benchmarks/worker_overhead_h100x4_1b64d9c.json``) and the indentation stage's pieces
+    1.04× on 4 workers.
     """
     import dask
 
