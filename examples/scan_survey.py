@@ -94,6 +94,7 @@ def _proportional(a: np.ndarray, b: np.ndarray) -> bool:
 def survey_file(f: Path, device: str) -> dict:
     """The category of one file and what decided it."""
     from warptrunc.analysis import analyze
+    from warptrunc.truncation import TruncationSettings
     from warptrunc.io import read_height_map
     from warptrunc.robust import fit_range_advice
 
@@ -129,7 +130,7 @@ def survey_file(f: Path, device: str) -> dict:
             row["category"], row["detail"] = "misread", "heights differ from SurfaceTopography's"
             return row
     try:
-        a = analyze(s, 200, islands=False, device=device)  # analyze's defaults and its rule
+        a = analyze(s, truncation=TruncationSettings(islands=False), device=device)  # analyze's defaults and its rule
     except ValueError as exc:
         advice = fit_range_advice(
             s.heights, increments=200, max_depth_fraction=0.1, max_depth=None, min_pixels=10,

@@ -1,9 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""One spelling of the command-line options (issue 37): every visible option is hyphenated,
-the generated ones included; the underscore spellings of the generated options are hidden,
-deprecated aliases for one release; an unknown option is reported by its sub-command. Parsers
-only: nothing here runs a command."""
+"""One spelling of the command-line options: every option is hyphenated, the generated ones
+included, and none is hidden (no underscore spellings, no aliases); an unknown option is reported
+by its sub-command. Parsers only: nothing here runs a command."""
 
 from __future__ import annotations
 
@@ -16,13 +15,11 @@ import pytest
 from warptrunc.cli import build_parser, main
 from warptrunc.contact.settings import SolverSettings
 from warptrunc.params import add_options, from_args
-from warptrunc.params._cli import DeprecatedSpelling
 
 COMMANDS = {"analyze", "bem-check", "calibrate", "compare", "describe", "generate", "indent",
             "islands", "render", "reproduce", "sweep"}  # fmt: skip
-GENERATED_OLD = {"--pressure_tol": "--pressure-tol", "--load_control": "--load-control",
-                 "--fft_plan": "--fft-plan", "--precondition_above": "--precondition-above",
-                 "--direct_max": "--direct-max"}  # fmt: skip
+GENERATED = {"--pressure-tol", "--load-control", "--fft-plan", "--precondition-above",
+             "--direct-max"}  # fmt: skip
 
 
 def _subparsers(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
@@ -37,11 +34,6 @@ def _visible(parser: argparse.ArgumentParser) -> list[str]:
 
 def _hidden(parser: argparse.ArgumentParser) -> dict[str, argparse.Action]:
     return {o: a for a in parser._actions if a.help == argparse.SUPPRESS for o in a.option_strings}
-
-
-def _note(cmd: str, old: str) -> str:
-    return (f"warptrunc {cmd}: warning: {old} is deprecated, use {old.replace('_', '-')} "
-            "(the underscore spelling is removed in the next release)\n")  # fmt: skip
 
 
 @pytest.fixture(scope="module")
@@ -59,20 +51,7 @@ def test_every_visible_option_of_every_command_is_hyphenated(parser):
             assert o in sub.format_help()
     assert bad == set()
     indent = _visible(subs["indent"])
-    assert set(GENERATED_OLD.values()) <= set(indent)  # the walk saw the generated options
-    assert not set(GENERATED_OLD) & set(indent)
-
-
-def test_hidden_options_are_only_deprecated_spellings_of_visible_ones(parser):
-    for name, sub in _subparsers(parser).items():
-        help_text = sub.format_help()
-        for old, action in _hidden(sub).items():
-            assert isinstance(action, DeprecatedSpelling), (name, old)
-            assert "_" in old and old not in help_text
-            new = old.replace("_", "-")
-            (current,) = [a for a in sub._actions if new in a.option_strings]
-            assert current.dest == action.dest and current.help != argparse.SUPPRESS
-    assert set(_hidden(_subparsers(parser)["indent"])) == set(GENERATED_OLD)
+    assert GENERATED <= set(indent)  # the walk saw the generated options
 
 
 def test_add_options_spells_fields_with_hyphens_and_keeps_the_dest():
@@ -97,32 +76,16 @@ def test_pressure_tol_hyphenated_parses_on_indent(capsys):
     assert capsys.readouterr().err == ""
 
 
-@pytest.mark.parametrize("old, value", [("--pressure_tol", "3e-5"), ("--fft_plan", "pruned"),
-                                        ("--load_control", "secant"),
-                                        ("--precondition_above", "none"),
-                                        ("--direct_max", "5")])  # fmt: skip
-def test_underscore_alias_parses_to_the_same_value_with_a_note(capsys, old, value):
-    p = build_parser(["indent"])
-    new = GENERATED_OLD[old]
-    want = p.parse_args(["indent", new, value])
-    assert capsys.readouterr().err == ""
-    got = p.parse_args(["indent", old, value])
-    assert capsys.readouterr().err == _note("indent", old)
-    assert vars(got) == vars(want)
-    dest = new[2:].replace("-", "_")
-    assert getattr(got, dest) is not None
-
-
-def test_underscore_alias_is_validated_like_the_option(capsys):
+def test_no_option_is_hidden(parser):
+    for name, sub in _subparsers(parser).items():
+        assert _hidden(sub) == {}, name
     p = build_parser(["indent"])
     with pytest.raises(SystemExit) as e:
-        p.parse_args(["indent", "--pressure_tol", "-1"])
+        p.parse_args(["indent", "--pressure_tol", "1e-5"])
     assert e.value.code == 2
-    err = capsys.readouterr().err
-    assert err.startswith("warptrunc indent: error: argument --pressure_tol: must be in (0, inf)")
 
 
-def test_abbreviation_is_the_option_not_ambiguous_with_its_old_spelling(capsys):
+def test_abbreviation_is_the_option(capsys):
     ns = build_parser(["indent"]).parse_args(["indent", "--pressure", "4e-5"])
     assert ns.pressure_tol == 4e-5 and capsys.readouterr().err == ""
 

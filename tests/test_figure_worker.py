@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from warptrunc.plot._worker import FigureProcessError, FigureWorker
+from warptrunc.truncation.settings import TruncationSettings
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -73,5 +74,6 @@ def test_on_curve_gets_the_result_curve_once():
     from warptrunc.wm_params import WMSpec
 
     seen = []
-    a = analyze(WMSpec(n=128), 50, on_curve=seen.append, device="cpu")
+    a = analyze(WMSpec(n=128), truncation=TruncationSettings(50), on_curve=seen.append,
+                device="cpu")
     assert len(seen) == 1 and seen[0] is a.curve

@@ -39,7 +39,6 @@ from .robust import (
     spike_warning,
 )
 from .stiffness import (
-    DEFAULT_MIN_PIXELS,
     PowerLawFit,
     StiffnessCurve,
     fit_power_law,
@@ -49,6 +48,7 @@ from .stiffness import (
 from .surface import Surface
 from .truncation.api import truncate
 from .truncation.curve import TruncationCurve
+from .truncation.settings import FitRange, TruncationSettings
 from .truncation.stream import as_wm_spec, banded_truncation, fits_in_memory
 from .wm import surface_from_spec
 from .wm_params import WMSpec, WMTerms
@@ -165,21 +165,12 @@ class Analysis:
 
 def analyze(
     source: Surface | WMSpec | WMTerms | Mapping,
-    n_increments: int = 200,
     *,
-    max_depth: float | None = None,
-    max_depth_fraction: float = 0.1,
+    truncation: TruncationSettings | None = None,
+    fit: FitRange | None = None,
     material: Material | None = None,
-    beta_prime: float = 1.0,
-    min_pixels: int = DEFAULT_MIN_PIXELS,
-    depth_window: tuple[float, float] | None = None,
-    rt_percentile: tuple[float, float] | None = None,
-    islands: bool | None = None,
-    connectivity: int = 4,
     stream: bool | Literal["auto"] = "auto",
     band_rows: int | None = None,
-    fit_range: Literal["auto", "legacy"] = "auto",
-    auto_spikes: bool = True,
     progress: bool = True,
     device: wp.DeviceLike = None,
     on_curve: Callable[[TruncationCurve], Any] | None = None,
@@ -191,45 +182,29 @@ def analyze(
     source : Surface, WMSpec, WMTerms or mapping
         The height map (m), or a WM surface to generate (as :func:`warptrunc.truncate`
         takes it).
-    n_increments : int
-        Number of depth increments n.
-    max_depth : float, optional
-        Largest depth ω_max (m); overrides ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of R_t (dimensionless).
+    truncation : TruncationSettings, optional
+        Depth increments, ω_max, β′ and the island-resolved model
+        (:class:`~warptrunc.truncation.settings.TruncationSettings`; its defaults when None).
+        ``islands=None`` runs the island-resolved model for a map in memory, not when streamed.
+    fit : FitRange, optional
+        The fit range (:class:`~warptrunc.truncation.settings.FitRange`; its defaults when
+        None). ``rule="legacy"``: increments to ω_max with ≥ ``min_pixels`` contact pixels.
+        ``rule="auto"``: the same, and for a :class:`Surface` (a map read from a file) with no
+        range of the caller's own (``truncation.max_depth``, ``depth_window``,
+        ``rt_percentile``) the automatic rule of :mod:`warptrunc.robust`: a map under 32 pixels
+        a side is refused; spikes that set R_t are masked (``spikes=True``); ω_max extends
+        until the deepest increment has 50 contact pixels (or is cut to 5 % of A in contact),
+        when the default fit is empty or not worth reading. ``spikes=False`` leaves the map's
+        heights as given and reports nothing. ``rt_percentile`` clips the heights first
+        (:func:`warptrunc.robust.clip_to_percentiles`); the map must be in memory.
     material : Material, optional
         Elastic constants; ``Material()`` (the default alloy on a rigid flat) when None.
-    beta_prime : float
-        Geometric factor β′ of Eq. 2 (dimensionless).
-    min_pixels : int
-        Fit only increments with at least this many contact pixels (pixels).
-    depth_window : (float, float), optional
-        Fit only depths LO ≤ ω ≤ HI (m).
-    rt_percentile : (float, float), optional
-        Clip the heights to these percentiles first (%, :func:`warptrunc.robust.clip_to_percentiles`);
-        the map must be in memory.
-    islands : bool, optional
-        Also the island-resolved model; None: on for a map in memory, off when streamed.
-    connectivity : {4, 8}
-        Island neighbourhood of the island-resolved model.
     stream : {"auto", True, False}
         For a WM surface: generate it by row bands (True), whole (False), or by bands only
         when the map needs more than half of the free memory ("auto"). A :class:`Surface` is
         always in memory (True raises).
     band_rows : int, optional
         Rows per band when streaming.
-    fit_range : {"auto", "legacy"}
-        ``"legacy"``: increments to ω_max with ≥ ``min_pixels`` contact pixels. ``"auto"``: the
-        same, and for a :class:`Surface` (a map read from a file) with no range of the
-        caller's own (``max_depth``, ``depth_window``, ``rt_percentile``) the automatic rule of
-        :mod:`warptrunc.robust`: a map under 32 pixels a side is refused; spikes that set R_t
-        are masked; ω_max extends until the deepest increment has 50 contact pixels (or is cut
-        to 5 % of A in contact), when the default fit is empty or not worth reading.
-    auto_spikes : bool
-        For a :class:`Surface`: let the automatic rule mask the spikes that set R_t, and report
-        the spikes (:func:`warptrunc.plausibility.check_spikes`) where the rule does not run;
-        False leaves the map's heights as given and reports nothing (``--spikes report``,
-        ``mask`` and ``off`` do it as the map is read).
     progress : bool
         Show a progress bar over the bands of each streamed pass.
     device : str, optional
@@ -250,12 +225,26 @@ def analyze(
         The fit range of Eq. 2's fit holds fewer than 3 increments.
     ValueError
         ``stream=True`` with a :class:`Surface`, ``islands`` or ``rt_percentile`` with a
-        streamed surface, a :class:`Surface` under 32 pixels a side with ``fit_range="auto"``
-        (:func:`warptrunc.robust.check_map_size`), or parameters out of range.
+        streamed surface, a :class:`Surface` under 32 pixels a side with ``rule="auto"``
+        (:func:`warptrunc.robust.check_map_size`).
+
+    Examples
+    --------
+    >>> from warptrunc import WMSpec, analyze
+    >>> from warptrunc.truncation import FitRange, TruncationSettings
+    >>> a = analyze(WMSpec(n=128), truncation=TruncationSettings(increments=50),
+    ...             fit=FitRange(min_pixels=5), device="cpu")  # doctest: +SKIP
     """
+    truncation = TruncationSettings() if truncation is None else truncation
+    fit_range_ = FitRange() if fit is None else fit
+    n_increments, max_depth = truncation.increments, truncation.max_depth
+    max_depth_fraction, beta_prime = truncation.max_depth_fraction, truncation.beta_prime
+    islands, connectivity = truncation.islands, truncation.connectivity
+    min_pixels, depth_window = fit_range_.min_pixels, fit_range_.depth_window
+    rt_percentile, fit_range, auto_spikes = (
+        fit_range_.rt_percentile, fit_range_.rule, fit_range_.spikes
+    )
     material = Material() if material is None else material
-    if fit_range not in ("auto", "legacy"):
-        raise ValueError(f"fit_range must be 'auto' or 'legacy', got {fit_range!r}")
     if isinstance(source, Surface) and fit_range == "auto":
         check_map_size(source)
     curve, surface, meta, path = _truncation(

@@ -60,11 +60,11 @@ class Material(Parameters):
     nu: float = param(0.33, "Poisson's ratio ν of the rough body", gt=-1.0, le=0.5)
     E_i: float = param(
         math.inf, "Young's modulus E_i of the counter-body; inf = rigid", unit="Pa",
-        gt=0.0, allow_inf=True, cli="E-i", aliases=("E-flat",),
+        gt=0.0, allow_inf=True, cli="E-i",
     )  # fmt: skip
     nu_i: float = param(
         0.0, "Poisson's ratio ν_i of the counter-body (irrelevant when rigid)",
-        gt=-1.0, le=0.5, cli="nu-i", aliases=("nu-flat",),
+        gt=-1.0, le=0.5, cli="nu-i",
     )  # fmt: skip
     hardness: float = param(
         math.inf, "hardness H of the rough body, the local pressure cap; inf = elastic",

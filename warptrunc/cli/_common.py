@@ -1,8 +1,18 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Shared pieces of the sub-commands: argument groups (surface source, device, output folder),
-argparse ``type=`` validators (the help formatter and the parser class are in
-:mod:`warptrunc.cli._parser`).
+"""Shared pieces of the sub-commands: the hand-written options, argument groups (surface
+source, device, output folder) and argparse ``type=`` validators (the help formatter and the
+parser class are in :mod:`warptrunc.cli._parser`).
+
+Options
+-------
+An option that says *what is computed* is generated from a field of a parameter object
+(:func:`warptrunc.params.add_options`: its default, unit, range and help in one place). Only
+the options that say *where it runs and where it goes* (``--device``, ``--devices``,
+``--workers``, ``--scheduler``, ``--out``, ``--no-plot``, ``--no-progress``, ``--overwrite``,
+...) and *which source* is read (``--input``, ``--preset``) are written by hand, here, each
+through :func:`shared_option`; ``tests/test_cli_fields.py`` checks every option of every
+sub-command against that rule.
 
 Validators
 ----------
@@ -54,6 +64,32 @@ from ._paths import input_file, output_dir, output_file  # noqa: F401 (re-export
 
 if TYPE_CHECKING:
     from ..surface import Surface
+
+SHARED = "warptrunc_shared"
+"""Attribute set on every hand-written option's argparse action (:func:`shared_option`)."""
+
+
+def shared_option(p: Any, *flags: str, **kw: Any) -> argparse.Action:
+    """A hand-written option (where it runs, where it goes, which source), tagged as such.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser or argument group
+        Where the option goes.
+    *flags : str
+        Its option strings (``"--device"``).
+    **kw
+        As for :meth:`argparse.ArgumentParser.add_argument`.
+
+    Returns
+    -------
+    argparse.Action
+        The option's action.
+    """
+    action = p.add_argument(*flags, **kw)
+    setattr(action, SHARED, True)
+    return action
+
 
 # --- validators for ``type=`` -----------------------------------------------------------------
 
@@ -159,12 +195,12 @@ def add_workers(p, what: str, scheduler_what: str) -> None:
     scheduler_what : str
         What the existing scheduler runs, and what its workers need, for the help text.
     """
-    p.add_argument("--workers", type=workers_count, default=None, metavar="N|auto",
+    shared_option(p, "--workers", type=workers_count, default=None, metavar="N|auto",
                    help=f"run {what} on a local Dask cluster of N worker processes, started once "
                    "per command, one per GPU (worker i on cuda:i mod #GPUs; dask-cuda's "
                    "LocalCUDACluster where installed); auto: one per visible GPU, 1 on a machine "
                    "without one; default: in this process")  # fmt: skip
-    p.add_argument("--scheduler", default=None,
+    shared_option(p, "--scheduler", default=None,
                    help=f"address of an existing Dask scheduler (e.g. tcp://host:8786, or the "
                    f"scheduler of a dask-jobqueue cluster) for {scheduler_what}")  # fmt: skip
 
@@ -208,7 +244,7 @@ def add_devices(p, what: str) -> None:
     what : str
         Which solves it spreads (``"the elastic cross-check"``, ...), for the help text.
     """
-    p.add_argument("--devices", type=devices_count, default=None, metavar="N|auto",
+    shared_option(p, "--devices", type=devices_count, default=None, metavar="N|auto",
                    help=DEVICES_HELP.format(what=what))  # fmt: skip
 
 
@@ -288,7 +324,7 @@ def check_increments(value: int | None, option: str = "--increments") -> None:
 
 def add_device(p: argparse.ArgumentParser) -> None:
     """``--device`` (checked when the command runs, against the devices Warp finds)."""
-    p.add_argument(
+    shared_option(p,
         "--device",
         default=None,
         help="Warp device: cpu, cuda:0, ... (default: $WARPTRUNC_DEVICE, else CUDA if present, "
@@ -298,35 +334,56 @@ def add_device(p: argparse.ArgumentParser) -> None:
 
 def add_out(p: argparse.ArgumentParser, default: str = "out") -> None:
     """``--out DIR``."""
-    p.add_argument("--out", type=output_dir, default=Path(default), help="output folder")
+    shared_option(p, "--out", type=output_dir, default=Path(default), help="output folder")
 
 
 def add_run_outputs(p: argparse.ArgumentParser, out: str, plot_help: str) -> None:
     """``--device``, ``--out DIR`` (default ``out``), ``--no-plot`` and ``--no-progress``."""
     add_device(p)
     add_out(p, out)
-    p.add_argument("--no-plot", action="store_true", help=plot_help)
-    p.add_argument(
+    shared_option(p, "--no-plot", action="store_true", help=plot_help)
+    shared_option(p,
         "--no-progress", action="store_true",
         help="no progress bar (it is on stderr, and off when stderr is not a terminal)",
     )  # fmt: skip
 
 
-def add_depth_options(g: Any, max_depth_fraction: float) -> None:
-    """``--increments``, ``--max-depth-fraction`` (default ``max_depth_fraction``) and
-    ``--max-depth`` on the argument group ``g``."""
-    g.add_argument(
-        "--increments", type=integer(1, 10_000_000), default=200,
-        help="number of depth increments n",
-    )  # fmt: skip
-    g.add_argument(
-        "--max-depth-fraction", type=fraction(), default=max_depth_fraction,
-        help="largest depth ω_max as a fraction of R_t (dimensionless)",
-    )  # fmt: skip
-    g.add_argument(
-        "--max-depth", type=positive("m"), default=None,
-        help="largest depth ω_max (m); overrides the fraction",
-    )  # fmt: skip
+def add_truncation(
+    g: Any, *, only: tuple[str, ...] | None = None, defaults: dict | None = None,
+    many: bool = False,
+) -> None:
+    """The options of :class:`~warptrunc.truncation.settings.TruncationSettings` (``--increments``,
+    ``--max-depth-fraction``, ``--max-depth``, ``--beta-prime``, ``--islands``,
+    ``--connectivity``) on the group ``g``; ``only`` some of them, with the command's
+    ``defaults``; ``many``: the sweepable ones take several values (a sweep axis)."""
+    from ..truncation.settings import TruncationSettings
+
+    add_options(g, TruncationSettings, only=only, defaults=defaults, many=many)
+
+
+def add_fit_range(g: Any, *, exclude: tuple[str, ...] = ("spikes",), many: bool = False) -> None:
+    """The options of :class:`~warptrunc.truncation.settings.FitRange` (``--fit-range``,
+    ``--min-pixels``, ``--depth-window``, ``--rt-percentile``) on the group ``g``; the rule's
+    ``spikes`` follows ``--spikes`` (:func:`fit_range_from_args`)."""
+    from ..truncation.settings import FitRange
+
+    add_options(g, FitRange, exclude=exclude, many=many)
+
+
+def truncation_from_args(args: argparse.Namespace, defaults: dict | None = None) -> Any:
+    """The :class:`~warptrunc.truncation.settings.TruncationSettings` of the parsed options."""
+    from ..truncation.settings import TruncationSettings
+
+    return from_args(TruncationSettings, args, defaults=defaults)
+
+
+def fit_range_from_args(args: argparse.Namespace, **overrides: Any) -> Any:
+    """The :class:`~warptrunc.truncation.settings.FitRange` of the parsed options; ``spikes``
+    is on where ``--spikes auto`` is (the default of the commands that apply the rule)."""
+    from ..truncation.settings import FitRange
+
+    overrides.setdefault("spikes", getattr(args, "spikes", "auto") == "auto")
+    return from_args(FitRange, args, **overrides)
 
 
 SURFACE_EXCLUDE = ("method",)
@@ -348,7 +405,8 @@ def add_surface_source(
     g = p.add_argument_group(
         "surface source (a height-map file, a preset, or WM generation parameters)"
     )
-    g.add_argument(
+    shared_option(
+        g,
         "--input",
         "-i",
         type=input_file,
@@ -357,8 +415,8 @@ def add_surface_source(
         "--dx, or an instrument file); overrides the generation parameters",
     )
     add_reader_options(g, scan_rule=scan_rule)
-    g.add_argument(
-        "--preset", choices=list(PRESETS), default=None,
+    shared_option(
+        g, "--preset", choices=list(PRESETS), default=None,
         help="start from the paper's Table 1 simulated surface (warptrunc.presets: D_in and R_t' "
         "calibrated to D_vs as Fig. 6, or to D_tri with -tri; Table 1's W_r, 10240² over 1 mm); "
         "WM options given win over it",
@@ -405,85 +463,51 @@ def material_from_args(args: argparse.Namespace, **overrides) -> Material:
 
 
 def add_reader_options(g: argparse._ActionsContainer, *, scan_rule: str | None = None) -> None:
-    """Options for reading a height-map file (spacing, units, missing points, levelling).
+    """Options for reading a height-map file, from :class:`~warptrunc.io.options.ReadOptions`
+    (spacing, units, missing points, levelling, reader, channel, spikes).
 
     ``scan_rule``: the command applies the automatic rule of :mod:`warptrunc.robust` to a map
     read from a file: ``"fit"`` (``analyze``: the analysis decides), ``"read"`` (``compare``,
     ``indent``: spikes that set R_t are masked as the map is read); either refuses a map under
     32 pixels a side and makes ``--spikes auto`` the default. None: ``--spikes report``.
     """
-    g.add_argument(
-        "--dx", type=positive("m"), default=None,
-        help="pixel spacing along x (m) if not in the file",
-    )  # fmt: skip
-    g.add_argument(
-        "--dy", type=positive("m"), default=None, help="pixel spacing along y (m); default dx"
-    )
-    g.add_argument(
-        "--height-unit", type=positive("m"), default=1.0,
-        help="metres per height unit, for files that declare none (e.g. 1e-6 for µm)",
-    )  # fmt: skip
-    g.add_argument(
-        "--missing", choices=["error", "fill"], default="error",
-        help="missing (NaN) points: stop with their count, or fill them",
-    )  # fmt: skip
-    g.add_argument(
-        "--fill", choices=["nearest", "harmonic", "mean"], default="nearest",
-        help="fill method with --missing fill",
-    )  # fmt: skip
-    g.add_argument("--level", action="store_true", help="subtract the least-squares plane")
-    g.add_argument(
-        "--engine", choices=["auto", "builtin", "surfacetopography"], default="auto",
-        help="reader: built-in for .npz/.npy/.csv/.txt/.tsv, SurfaceTopography otherwise",
-    )  # fmt: skip
-    g.add_argument(
-        "--channel", type=integer(0), default=None, help="data channel of instrument files"
-    )
-    auto = {
-        "fit": "auto (default): reported, and masked for R_t and the truncation when they "
-        "include the highest or the lowest pixel (repeated passes of the rule; the automatic "
-        "rule of --fit-range auto), ",
-        "read": "auto (default): reported, and masked as the map is read when they include the "
-        "highest or the lowest pixel (repeated passes of the rule), ",
-    }.get(scan_rule, "")  # fmt: skip
-    g.add_argument(
-        "--spikes", choices=(["auto"] if scan_rule else []) + ["report", "mask", "off"],
-        default="auto" if scan_rule else "report",
-        help="spike pixels of a map read from a file (warptrunc.plausibility: off their "
-        "neighbours' median by > 10 robust sigmas and > half the P0.1–P99.9 height range): "
-        f"{auto}report: only as warnings, mask: replace each by the neighbours' median (R_t "
-        "recomputed), off: skip the check",
-    )  # fmt: skip
-    if scan_rule:
-        g.set_defaults(_scan_rule=scan_rule)
+    from ..io.options import ReadOptions
+
+    add_options(g, ReadOptions, defaults={"spikes": "auto" if scan_rule else "report"})
+    g.set_defaults(_scan_rule=scan_rule)
+
+
+def read_options_from_args(args: argparse.Namespace) -> Any:
+    """The :class:`~warptrunc.io.options.ReadOptions` of the parsed options."""
+    from ..io.options import ReadOptions
+
+    rule = getattr(args, "_scan_rule", None)
+    return from_args(ReadOptions, args, defaults={"spikes": "auto" if rule else "report"})
 
 
 def read_input(path: Path, args: argparse.Namespace) -> Surface:
     """Read ``path`` with the options of :func:`add_reader_options`; reports filled points."""
     from ..io import read_height_map  # the readers (and Warp) only when a map is read
 
-    s = read_height_map(
-        path, dx=args.dx, dy=args.dy, height_unit=args.height_unit, missing=args.missing,
-        fill=args.fill, level=args.level, engine=args.engine, channel=args.channel,
-    )  # fmt: skip
+    opts = read_options_from_args(args)
+    s = read_height_map(path, **opts.reader_kwargs())
     if getattr(args, "_scan_rule", None):
         from ..robust import check_map_size
 
         check_map_size(s, str(path))
     n_missing = s.params.get("n_missing", 0)
     if n_missing:
-        print(f"{path}: {n_missing} missing points filled ({args.fill})", file=sys.stderr)
-    return _map_checks(s, args)
+        print(f"{path}: {n_missing} missing points filled ({opts.fill})", file=sys.stderr)
+    return _map_checks(s, args, opts.spikes)
 
 
-def _map_checks(s: Surface, args: argparse.Namespace) -> Surface:
+def _map_checks(s: Surface, args: argparse.Namespace, how: str) -> Surface:
     """Spike check of a map read from a file (``--spikes``): warnings printed on stderr and
     kept in ``args._warnings`` for the command's JSON (:func:`warnings_of`). ``auto`` masks
     the spikes that set R_t here for ``compare`` and ``indent``; ``analyze`` decides in the
     analysis (:func:`warptrunc.analysis.analyze`, ``auto_spikes``)."""
     from .. import plausibility, robust
 
-    how = getattr(args, "spikes", "report")
     if how == "auto" and getattr(args, "_scan_rule", None) == "fit":
         return s
     if how == "auto":

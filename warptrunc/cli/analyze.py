@@ -37,22 +37,22 @@ import math
 
 from .._support.atomic import staged_output, strict_json
 from .._support.provenance import provenance
-from .._support.validate import DEFAULT_MIN_PIXELS
 from ..material import Material
 from ..plot._worker import FigureWorker, plain
 from ._common import (
-    add_depth_options,
     add_device,
+    add_fit_range,
     add_material,
     add_out,
     add_surface_source,
+    add_truncation,
     add_warnings,
-    check_increments,
+    fit_range_from_args,
     integer,
     material_from_args,
-    positive,
-    real,
+    shared_option,
     surface_from_args,
+    truncation_from_args,
     warnings_of,
     wm_spec_from_args,
 )
@@ -65,105 +65,52 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc analyze``."""
     add_surface_source(p, scan_rule="fit")
     add_truncation_options(p)
-    add_fit_options(p)
+    add_fit_range(p.add_argument_group("fit range"))
     add_device(p)
-    p.add_argument(
-        "--stream", action="store_true",
+    shared_option(
+        p, "--stream", action="store_true",
         help="generate and truncate by row bands, never holding the map (default: only when "
         "the map needs more than half of the free memory)",
     )  # fmt: skip
-    p.add_argument(
-        "--band-rows", type=integer(1), default=None,
+    shared_option(
+        p, "--band-rows", type=integer(1), default=None,
         help="rows per band when streaming (default: about 2**28 pixels per band)",
     )  # fmt: skip
-    p.add_argument(
-        "--islands", action=argparse.BooleanOptionalAction, default=None,
-        help="also the island-resolved model k = β'(2/√π)E*·Σ√A_i (curve.csv columns "
-        "*_islands, fit.json 'islands'); default: on for maps in memory, off when streamed",
-    )  # fmt: skip
-    p.add_argument(
-        "--connectivity", type=int, choices=(4, 8), default=4,
-        help="island neighbourhood of the island-resolved model",
-    )  # fmt: skip
     add_out(p)
-    p.add_argument(
-        "--no-plot", action="store_true", help="skip stiffness.png and area_fraction.png"
+    shared_option(
+        p, "--no-plot", action="store_true", help="skip stiffness.png and area_fraction.png"
     )
 
 
 def add_truncation_options(p: argparse.ArgumentParser, *, many: bool = False) -> None:
-    """Depth increments, ω_max, material and β' (shared with ``warptrunc sweep``).
-
-    The material options come from :class:`Material`; ``many`` (the sweep) lets them take
-    several values (a sweep axis).
-    """
+    """Truncation (:class:`~warptrunc.truncation.settings.TruncationSettings`) and material
+    (:class:`Material`, no hardness) options (shared with ``warptrunc sweep``); ``many`` (the
+    sweep) lets the sweepable ones take several values (a sweep axis)."""
     g = p.add_argument_group("truncation and material")
-    add_depth_options(g, 0.1)
+    add_truncation(g, many=many)
     add_material(g, many=many)
-    g.add_argument(
-        "--beta-prime", type=positive(), default=1.0, help="geometric factor β' of Eq. 2"
-    )
-
-
-def add_fit_options(p: argparse.ArgumentParser, several: bool = False) -> None:
-    """``--min-pixels`` (one value, or several fit ranges) and ``--depth-window``."""
-    f = p.add_argument_group("fit range")
-    f.add_argument(
-        "--min-pixels", type=integer(1), nargs="+" if several else None,
-        default=[DEFAULT_MIN_PIXELS] if several else DEFAULT_MIN_PIXELS,
-        help="fit only increments with at least this many contact pixels (1 = all with load > 0)"
-        + ("; several values: one fit (row) each" if several else ""),
-    )  # fmt: skip
-    f.add_argument(
-        "--depth-window", type=real(0.0, lo_open=False, unit="m"), nargs=2, default=None,
-        metavar=("LO", "HI"),
-        help="fit only depths LO ≤ ω ≤ HI (m)",
-    )  # fmt: skip
-    if not several:
-        f.add_argument(
-            "--fit-range", choices=["auto", "legacy"], default="auto",
-            help="legacy: increments to ω_max with ≥ --min-pixels contact pixels; auto: the "
-            "same, and for a map read from a file (no --max-depth, --depth-window or "
-            "--rt-percentile) the automatic rule of warptrunc.robust when that fit is not worth "
-            "reading: spikes that set R_t masked (--spikes auto), ω_max brought to between 50 "
-            "contact pixels and 5 %% of A in contact at the deepest increment; each decision is "
-            "a warning and a key of fit.json's fit_range; maps under 32 pixels a side refused",
-        )  # fmt: skip
-        f.add_argument(
-            "--rt-percentile", type=real(0.0, 100.0, lo_open=False, hi_open=False, unit="%"),
-            nargs=2, default=None, metavar=("LO", "HI"),
-            help="robust R_t of a measured map: clip heights to their LO-th and HI-th "
-            "percentiles first (e.g. 0.1 99.9), so that a few spikes do not set R_t and ω_max; "
-            "recorded in fit.json (surface.rt_percentile, Rt_raw_m, n_clipped_above/below)",
-        )  # fmt: skip
 
 
 def run(args: argparse.Namespace) -> int:
     """Analyse and write the outputs."""
-    check_increments(args.increments, "--increments")
-    if args.depth_window is not None and not args.depth_window[0] < args.depth_window[1]:
-        lo, hi = args.depth_window
-        raise ValueError(f"--depth-window LO HI needs LO < HI (m), got {lo!r} {hi!r}")
-    rtp = getattr(args, "rt_percentile", None)
-    if rtp is not None and not rtp[0] < rtp[1]:
-        raise ValueError(f"--rt-percentile LO HI needs LO < HI (%), got {rtp[0]!r} {rtp[1]!r}")
-    if args.islands and args.stream:
+    truncation = truncation_from_args(args)
+    fit_range = fit_range_from_args(args)
+    if truncation.islands and args.stream:
         raise ValueError("--islands needs the map in memory; a streamed map has no island pass")
     if args.stream and args.input is not None:
         raise ValueError(f"--stream applies to generated surfaces, not to --input {args.input}")
-    if args.stream and rtp is not None:
+    if args.stream and fit_range.rt_percentile is not None:
         raise ValueError("--rt-percentile needs the map in memory; it cannot be streamed")
     # the figures' process starts first: matplotlib's import overlaps Warp's (in ..analysis)
     figures = None if args.no_plot else FigureWorker()
     with figures or contextlib.nullcontext():
-        return _run(args, figures)
+        return _run(args, truncation, fit_range, figures)
 
 
-def _run(args: argparse.Namespace, figures) -> int:
-    """:func:`run` with its figure worker (None: ``--no-plot``)."""
+def _run(args: argparse.Namespace, truncation, fit_range, figures) -> int:
+    """:func:`run` with its settings and figure worker (None: ``--no-plot``)."""
     from ..analysis import FitRangeError, analyze
 
-    rtp = getattr(args, "rt_percentile", None)
     material = material_from_args(args)
     source = surface_from_args(args) if args.input is not None else wm_spec_from_args(args)
     tickets: dict[str, int] = {}
@@ -176,21 +123,16 @@ def _run(args: argparse.Namespace, figures) -> int:
 
     try:
         a = analyze(
-            source, args.increments, max_depth=args.max_depth,
-            max_depth_fraction=args.max_depth_fraction, material=material,
-            beta_prime=args.beta_prime, min_pixels=args.min_pixels,
-            depth_window=args.depth_window, rt_percentile=rtp, islands=args.islands,
-            connectivity=args.connectivity, stream=True if args.stream else "auto",
-            band_rows=args.band_rows, fit_range=getattr(args, "fit_range", "auto"),
-            auto_spikes=getattr(args, "spikes", "auto") == "auto", device=args.device,
-            on_curve=draw_area,
+            source, truncation=truncation, fit=fit_range, material=material,
+            stream=True if args.stream else "auto", band_rows=args.band_rows,
+            device=args.device, on_curve=draw_area,
         )  # fmt: skip
     except FitRangeError as exc:
-        if args.input is not None and getattr(args, "spikes", "auto") == "auto":
+        if args.input is not None and fit_range.spikes:
             from ..plausibility import check_spikes
 
             add_warnings(args, check_spikes(source))  # the rule's report never came back
-        raise ValueError(_fit_range_message(exc, args)) from None
+        raise ValueError(_fit_range_message(exc, truncation, fit_range)) from None
     curve, sc, fit, meta = a.curve, a.stiffness, a.fit, a.surface
     nx, ny, Rt = meta["nx"], meta["ny"], meta["Rt_m"]
     isl, isl_fit = a.islands, a.islands_fit
@@ -216,7 +158,7 @@ def _run(args: argparse.Namespace, figures) -> int:
             (out / "area_fraction.png").write_bytes(figures.result(tickets["area"]))
     print(
         f"{nx}×{ny} surface ({_describe(a.path)}), R_t = {Rt * 1e6:.4g} µm; "
-        f"{args.increments} increments to "
+        f"{truncation.increments} increments to "
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; final contact {curve.area_fraction[-1]:.3%} of A\n"
         f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (E Young's modulus; r² = {fit.r2:.4f}, "
         f"{fit.n_points} increments with ≥ {fit.min_pixels} contact pixels)\n"
@@ -289,7 +231,7 @@ def _clip_note(meta: dict) -> str:
     )
 
 
-def _fit_range_message(exc, args: argparse.Namespace) -> str:
+def _fit_range_message(exc, truncation, fit_range) -> str:
     """The fit's error (a ``FitRangeError``) with the option values that would work for
     this map."""
     from ..robust import fit_range_advice
@@ -301,8 +243,9 @@ def _fit_range_message(exc, args: argparse.Namespace) -> str:
     if s is None:
         return f"{msg}; need at least 3: lower --min-pixels, raise --max-depth-fraction"
     advice = fit_range_advice(
-        s.heights, increments=args.increments, max_depth_fraction=args.max_depth_fraction,
-        max_depth=args.max_depth, min_pixels=args.min_pixels, depth_window=args.depth_window,
+        s.heights, increments=truncation.increments,
+        max_depth_fraction=truncation.max_depth_fraction, max_depth=truncation.max_depth,
+        min_pixels=fit_range.min_pixels, depth_window=fit_range.depth_window,
     )  # fmt: skip
     if not advice:
         return (

@@ -25,29 +25,31 @@ from ..islands.fits import applicable_depth
 from ..islands.results import MIN_ISLANDS, MIN_PIXELS, IslandCurve
 from ..plausibility import check_dimensions
 from ._common import (
-    add_depth_options,
     add_device,
     add_out,
     add_surface_source,
+    add_truncation,
     add_warnings,
-    check_increments,
     fraction,
     integer,
     odd_integer,
     real,
     surface_from_args,
+    truncation_from_args,
     warnings_of,
 )
 
 NAME = "islands"
 HELP = "contact islands against depth, slit-island exponent and the applicable depth (Fig. 8)"
+DEPTH_OPTIONS = ("increments", "max_depth_fraction", "max_depth")
+DEPTH_DEFAULTS = {"max_depth_fraction": 0.5}
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc islands``."""
     add_surface_source(p)
     g = p.add_argument_group("depths and islands")
-    add_depth_options(g, 0.5)
+    add_truncation(g, only=DEPTH_OPTIONS, defaults=DEPTH_DEFAULTS)
     g.add_argument(
         "--connectivity", type=int, choices=[4, 8], default=4,
         help="4: pixels sharing an edge form one island; 8: also pixels sharing a corner",
@@ -93,12 +95,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the islands and write the outputs."""
-    check_increments(args.increments, "--increments")
+    t = truncation_from_args(args, DEPTH_DEFAULTS)
     s = surface_from_args(args)
     snaps = [f * s.Rt for f in args.snapshots] if args.snapshots else None
     curve = island_curve(
-        s, args.increments, max_depth=args.max_depth,
-        max_depth_fraction=args.max_depth_fraction, connectivity=args.connectivity,
+        s, t.increments, max_depth=t.max_depth,
+        max_depth_fraction=t.max_depth_fraction, connectivity=args.connectivity,
         periodic=args.periodic, statistics=not args.counts_only, min_pixels=args.min_pixels,
         snapshot_depths=None if args.counts_only else snaps, progress=args.progress,
         device=args.device,

@@ -20,10 +20,10 @@ from .._support.atomic import staged_output, strict_json
 from .._support.provenance import provenance
 from ..io.vtk import export_vtk
 from ._common import (
-    check_increments,
     add_device,
     add_out,
     add_surface_source,
+    check_increments,
     fraction,
     integer,
     positive,

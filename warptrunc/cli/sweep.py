@@ -27,6 +27,7 @@ import sys
 from collections import Counter
 
 from .._support.interrupt import check_interrupt, latched_signals
+from .._support.validate import DEFAULT_MIN_PIXELS
 from ..material import Material
 from ..params import add_options, param_info
 from ..sweep.grid import SweepGrid
@@ -38,17 +39,18 @@ from ..wm_params import WMSpec
 from ._common import (
     add_device,
     add_devices,
+    add_material,
     add_out,
+    add_truncation,
     add_wm_shape,
     add_workers,
-    check_increments,
     input_file,
     integer,
     positive,
     prepare_devices,
     real,
+    truncation_from_args,
 )
-from .analyze import add_fit_options, add_truncation_options
 
 NAME = "sweep"
 HELP = "sweep D × δ × seeds into a resumable Parquet store (in-process or on Dask)"
@@ -73,8 +75,19 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "surface generation (SI; several values of --Wr, --M, --gamma, --Wc: more grid axes)"
     )
     add_wm_shape(s, many=True)
-    add_truncation_options(p, many=True)
-    add_fit_options(p, several=True)
+    g = p.add_argument_group("truncation and material")
+    add_truncation(g, only=("increments", "max_depth_fraction", "max_depth", "beta_prime"))
+    add_material(g, many=True)
+    f = p.add_argument_group("fit range")
+    f.add_argument(
+        "--min-pixels", type=integer(1), nargs="+", default=[DEFAULT_MIN_PIXELS],
+        help="fit only increments with at least this many contact pixels (1 = all with load > 0)"
+        "; several values: one fit (row) each",
+    )  # fmt: skip
+    f.add_argument(
+        "--depth-window", type=real(0.0, lo_open=False, unit="m"), nargs=2, default=None,
+        metavar=("LO", "HI"), help="fit only depths LO ≤ ω ≤ HI (m)",
+    )  # fmt: skip
     m = p.add_argument_group("extra measurements and fit ranges")
     m.add_argument("--min-pixels-fraction", type=float, nargs="+", default=[],
                    help="more fit ranges relative to each case: increments with ≥ f × its final "
@@ -153,10 +166,11 @@ def options_from_args(args: argparse.Namespace) -> dict:
     """Keyword options of :func:`warptrunc.sweep.run_sweep` from the parsed arguments."""
 
     wm_material, _ = _wm_material(args)
+    t = truncation_from_args(args)
     return dict(
-        **wm_material, increments=args.increments,
-        max_depth_fraction=args.max_depth_fraction, max_depth=args.max_depth,
-        beta_prime=args.beta_prime, min_pixels=tuple(args.min_pixels),
+        **wm_material, increments=t.increments,
+        max_depth_fraction=t.max_depth_fraction, max_depth=t.max_depth,
+        beta_prime=t.beta_prime, min_pixels=tuple(args.min_pixels),
         min_pixels_fraction=tuple(args.min_pixels_fraction),
         fractal_methods=tuple(args.fractal), bem_fractions=tuple(args.bem_fractions),
         depth_window=None if args.depth_window is None else tuple(args.depth_window),
@@ -165,8 +179,6 @@ def options_from_args(args: argparse.Namespace) -> dict:
 
 def run(args: argparse.Namespace) -> int:
     """Run the sweep; print a summary."""
-    check_increments(args.increments, "--increments")
-
     try:
         require_extra()
     except ImportError as exc:

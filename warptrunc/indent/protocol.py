@@ -119,7 +119,7 @@ class IndentProtocol:
     punch_diameters: tuple[float, ...] | None = param(
         PAPER_PUNCH_DIAMETERS, "punch diameters d; none = one flat larger than the map",
         unit="m", gt=0.0, many=True, optional=True, cli="punch-diameter",
-        aliases=("punch-diameters",), sweep=False,
+        sweep=False,
     )  # fmt: skip
     peak_loads: tuple[float, ...] = param(
         PAPER_PEAK_LOADS, "peak loads F of the cycles, increasing", unit="N", gt=0.0,

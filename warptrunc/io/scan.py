@@ -16,7 +16,6 @@ from .repair import FILL_METHODS, fill_missing, level_plane
 
 NUMPY_SUFFIXES = (".npz", ".npy")
 TEXT_SUFFIXES = (".csv", ".txt", ".tsv")
-ENGINES = ("auto", "builtin", "surfacetopography")
 INSTRUMENT_SUFFIXES = (
     ".sur", ".x3p", ".datx", ".plu", ".plux", ".opd", ".opdx", ".vk4", ".vk6", ".vk7", ".gwy",
     ".spm", ".mdt", ".nid", ".ibw", ".sdf", ".al3d", ".frt", ".lext", ".zon", ".asc", ".dat",

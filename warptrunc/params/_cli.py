@@ -8,7 +8,6 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import math
-import sys
 from collections.abc import Sequence
 from typing import Any
 
@@ -18,43 +17,13 @@ from ._fields import Param, param_info, sweep_fields
 
 
 def _option(name: str, meta: Param, prefix: str) -> list[str]:
-    """The option strings shown in the help: hyphenated (``--pressure-tol``), one spelling."""
-    names = [meta.cli or name, *meta.aliases]
-    return [f"--{prefix}{n}".replace("_", "-") for n in names]
+    """The option string of a field: hyphenated (``--pressure-tol`` for ``pressure_tol``)."""
+    return [f"--{prefix}{meta.cli or name}".replace("_", "-")]
 
 
-def _old_options(name: str, meta: Param, prefix: str) -> list[str]:
-    """The underscore spellings (``--pressure_tol``) of the options of :func:`_option`, still
-    accepted for one release (hidden from the help, with a deprecation note: issue 37)."""
-    names = [meta.cli or name, *meta.aliases]
-    return [f"--{prefix}{n}" for n in names if "_" in f"{prefix}{n}"]
-
-
-class DeprecatedSpelling(argparse.Action):
-    """A hidden, deprecated spelling of an option (``--pressure_tol`` for ``--pressure-tol``):
-    stores like the option it stands for and prints a one-line note on stderr. The underscore
-    spellings are removed in the next release.
-
-    Parameters
-    ----------
-    option_strings, dest, **kwargs
-        As for :class:`argparse.Action` (``help`` is always :data:`argparse.SUPPRESS`, the
-        default :data:`argparse.SUPPRESS`: the visible option sets it).
-    """
-
-    def __init__(self, option_strings, dest, **kwargs):
-        kwargs["help"] = argparse.SUPPRESS
-        kwargs.setdefault("default", argparse.SUPPRESS)
-        super().__init__(option_strings, dest, **kwargs)
-
-    def __call__(self, parser, namespace, values, option_string=None):
-        new = (option_string or self.option_strings[0]).replace("_", "-")
-        print(
-            f"{parser.prog}: warning: {option_string} is deprecated, use {new} "
-            "(the underscore spelling is removed in the next release)",
-            file=sys.stderr,
-        )
-        setattr(namespace, self.dest, values)
+FIELD = "warptrunc_field"
+"""Attribute set on every argparse action made by :func:`add_options`: ``"Class.field"``, the
+parameter the option sets (``tests/test_cli_fields.py`` checks every option against it)."""
 
 
 class _NoneGiven:
@@ -73,6 +42,20 @@ def _arg_type(name: str, meta: Param):
         if meta.optional and text.lower() == "none":
             return NONE_GIVEN
         v: Any = text
+        if meta.kind == "str":
+            return text
+        if meta.kind == "seeds":
+            try:
+                return meta.check(name, text)
+            except ValueError as exc:
+                raise argparse.ArgumentTypeError(str(exc).removeprefix(f"{name}: ")) from None
+        if meta.kind == "choice":
+            by_text = {str(c): c for c in meta.choices}
+            if text not in by_text:
+                raise argparse.ArgumentTypeError(
+                    f"must be one of {', '.join(by_text)}, got {text!r}"
+                )
+            return by_text[text]
         if meta.kind != "choice":
             try:
                 v = float(text)
@@ -151,9 +134,8 @@ def add_options(
 
     Notes
     -----
-    Options are spelled with hyphens (``--pressure-tol`` for field ``pressure_tol``; the
-    underscore spelling is a hidden, deprecated alias for one release, with a note on stderr)
-    and stored under ``{prefix}{field}`` with dashes as underscores; every option's
+    Options are spelled with hyphens (``--pressure-tol`` for field ``pressure_tol``) and stored
+    under ``{prefix}{field}`` with dashes as underscores; every option's
     default is ``None`` (= "not given"), so :func:`from_args` takes the class's default for
     options not given and a subclass's new field needs no other edit. The help shows the
     default, the unit and the allowed range.
@@ -174,7 +156,7 @@ def add_options(
         if name in exclude or (only is not None and name not in only):
             continue
         default = defaults.get(name, fields[name].default)
-        unit = f" ({meta.unit})" if meta.unit else ""
+        unit = f" ({meta.unit})" if meta.unit else " (dimensionless)" if meta.kind == "float" else ""
         rng = meta.interval() if meta.kind != "choice" else ""
         if meta.unit and rng.endswith(" " + meta.unit):
             rng = rng[: -len(meta.unit) - 1]  # the unit is named once, after the description
@@ -189,18 +171,23 @@ def add_options(
             "default": None,
             "help": help_.replace("%", "%%"),
         }
-        if meta.kind == "choice":
-            kw["choices"] = list(meta.choices)
+        if meta.kind == "bool":
+            kw["action"] = argparse.BooleanOptionalAction
         else:
             kw["type"] = _arg_type(name, meta)
-            kw["metavar"] = name.upper() if meta.kind == "int" else name
-        if meta.pair or meta.many or name in many:
+            if meta.kind == "choice":
+                kw["choices"] = list(meta.choices)
+                kw["metavar"] = "{" + ",".join(str(c) for c in meta.choices) + "}"
+            else:
+                kw["metavar"] = meta.metavar or (name.upper() if meta.kind in ("int", "seeds") else name)
+        if meta.length is not None:
+            kw["nargs"] = meta.length
+            if meta.metavar is None:
+                kw["metavar"] = tuple(f"{name.upper()}{i}" for i in range(meta.length))
+        elif meta.pair or meta.many or meta.kind == "seeds" or name in many:
             kw["nargs"] = "+"
-        g.add_argument(*_option(name, meta, prefix), **kw)
-        old = _old_options(name, meta, prefix)
-        if old:  # one release more: hidden, with a note (issue 37)
-            kw = {k: v for k, v in kw.items() if k not in ("help", "default")}
-            g.add_argument(*old, action=DeprecatedSpelling, **kw)
+        action = g.add_argument(*_option(name, meta, prefix), **kw)
+        setattr(action, FIELD, f"{spec_cls.__name__}.{name}")
     return g
 
 
@@ -247,7 +234,11 @@ def from_args(
         if v is NONE_GIVEN:
             kw[name] = None
             continue
-        if meta.pair:
+        if meta.kind == "seeds":
+            v = tuple(x for part in v for x in (part if isinstance(part, tuple) else (part,)))
+        elif meta.length is not None:
+            v = tuple(v)
+        elif meta.pair:
             if len(v) > 2:
                 raise ValueError(
                     f"{_option(name, meta, prefix)[0]} takes one or two values, got {len(v)}: {v!r}"
@@ -263,4 +254,13 @@ def from_args(
             v = v[0]
         kw[name] = v
     kw.update(overrides)
-    return spec_cls(**kw)
+    try:
+        return spec_cls(**kw)
+    except ValueError as exc:  # named by the option, as argparse names its own errors
+        msg = str(exc)
+        for name in sorted(param_info(spec_cls), key=len, reverse=True):
+            if msg.startswith(name) and msg[len(name): len(name) + 1] in (" ", "[", ":", ""):
+                meta = param_info(spec_cls)[name]
+                msg = _option(name, meta, prefix)[0] + msg[len(name):]
+                break
+        raise ValueError(msg) from None

@@ -6,11 +6,62 @@ and the views of a parameter class (info, sweep axes, JSON). Part of :mod:`warpt
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 from collections.abc import Iterable
 from typing import Any
 
 _KEY = "warptrunc"
+
+SEED_MAX = 2**32 - 1
+"""Largest seed (NumPy's ``SeedSequence`` entropy of one 32-bit word)."""
+
+MAX_SEEDS = 1_000_000
+"""Most seeds one field may hold."""
+
+
+def _seeds(name: str, spec: Any) -> tuple[int, ...]:
+    """Seeds from ``"0-4"``, ``"0,2,7"``, ``"0-2,9"``, an int or a list of those (ranges
+    inclusive, order kept, no repeats)."""
+    import re
+
+    if isinstance(spec, bool):
+        raise ValueError(f"{name} must be seeds like 0, '0-4' or '0,3,7', got {spec!r}")
+    if isinstance(spec, str):
+        items: list = [s for s in spec.replace(" ", "").split(",") if s]
+    elif isinstance(spec, Iterable):
+        items = []
+        for it in spec:
+            items += [s for s in it.replace(" ", "").split(",") if s] if isinstance(it, str) else [it]
+    else:
+        items = [spec]
+    out: list[int] = []
+    for it in items:
+        m = re.fullmatch(r"(\d+)-(\d+)", it) if isinstance(it, str) else None
+        if m:
+            lo, hi = int(m[1]), int(m[2])
+            if hi < lo:
+                raise ValueError(f"{name}: a seed range needs lo ≤ hi, got {it!r}")
+            if len(out) + hi - lo + 1 > MAX_SEEDS:
+                raise ValueError(f"{name}: more than {MAX_SEEDS} seeds")
+            out.extend(range(lo, hi + 1))
+            continue
+        try:
+            ok = not isinstance(it, bool) and float(it).is_integer()
+        except (TypeError, ValueError, OverflowError):
+            ok = False
+        if not ok:
+            raise ValueError(f"{name} must be seeds like 0, '0-4' or '0,3,7', got {it!r}")
+        out.append(int(float(it)))
+    if not out:
+        raise ValueError(f"{name} needs at least one seed, got none")
+    bad = [k for k in out if not 0 <= k <= SEED_MAX]
+    if bad:
+        raise ValueError(f"{name}: seeds must be in [0, {SEED_MAX}], got {bad[0]}")
+    if len(set(out)) != len(out):
+        dup = next(k for i, k in enumerate(out) if k in out[:i])
+        raise ValueError(f"{name}: seed {dup} is given twice")
+    return tuple(out)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -30,7 +81,8 @@ class Param:
     le: float | None = None
     """Inclusive upper bound."""
     kind: str = "float"
-    """``"float"``, ``"int"`` or ``"choice"``."""
+    """``"float"``, ``"int"``, ``"choice"``, ``"bool"``, ``"str"`` or ``"seeds"`` (a tuple of
+    seeds in [0, 2³² − 1], written ``0-4``, ``0,3,7`` or ``0-2,9`` on the command line)."""
     choices: tuple = ()
     """Allowed values of a ``"choice"`` field."""
     optional: bool = False
@@ -40,12 +92,17 @@ class Param:
     many: bool = False
     """A tuple of one or more values, each in the range (a scalar becomes a 1-tuple; CLI: one
     or more values)."""
+    length: int | None = None
+    """A tuple of exactly this many values, each in the range (e.g. 2 for a window LO, HI; CLI:
+    that many values)."""
+    increasing: bool = False
+    """The values of a ``many`` or ``length`` field must increase strictly (a window LO < HI)."""
     allow_inf: bool = False
     """+inf is allowed (e.g. the modulus of a rigid body, the hardness of an elastic one)."""
     cli: str | None = None
     """Option name without the dashes (default: the field name)."""
-    aliases: tuple = ()
-    """Further option names (without dashes) that users already call."""
+    metavar: str | tuple | None = None
+    """Name(s) of the value(s) in the command-line help (default: from the field)."""
     sweep: bool = True
     """The field can be a sweep axis."""
 
@@ -59,6 +116,12 @@ class Param:
         """
         if self.kind == "choice":
             return "{" + ", ".join(repr(c) for c in self.choices) + "}"
+        if self.kind == "bool":
+            return "{True, False}"
+        if self.kind == "str":
+            return "text"
+        if self.kind == "seeds":
+            return "seeds in [0, 4294967295]"
         lo, lo_open = (self.gt, True) if self.gt is not None else (self.ge, False)
         hi, hi_open = (self.lt, True) if self.lt is not None else (self.le, False)
         if hi is None and self.allow_inf:
@@ -103,6 +166,19 @@ class Param:
                 raise ValueError(f"{name} must be a scalar or an (x, y) pair, got {value!r}")
             checked = (self._one(f"{name} (x)", v[0]), self._one(f"{name} (y)", v[1]))
             return checked[0] if checked[0] == checked[1] else checked
+        if self.kind == "seeds":
+            return _seeds(name, value)
+        if self.length is not None:
+            if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
+                raise ValueError(
+                    f"{name} needs {self.length} values in {self.interval()}, got {value!r}"
+                )
+            v = tuple(value)
+            if len(v) != self.length:
+                raise ValueError(
+                    f"{name} needs {self.length} values in {self.interval()}, got {len(v)}: {value!r}"
+                )
+            return self._ordered(name, tuple(self._one(f"{name}[{i}]", x) for i, x in enumerate(v)))
         if self.many:
             if isinstance(value, (str, bytes)) or not isinstance(value, Iterable):
                 value = (value,)
@@ -111,13 +187,29 @@ class Param:
                 return None
             if not v:
                 raise ValueError(f"{name} needs at least one value in {self.interval()}, got none")
-            return tuple(self._one(f"{name}[{i}]", x) for i, x in enumerate(v))
+            return self._ordered(name, tuple(self._one(f"{name}[{i}]", x) for i, x in enumerate(v)))
         return self._one(name, value)
+
+    def _ordered(self, name: str, v: tuple) -> tuple:
+        if self.increasing and any(not a < b for a, b in itertools.pairwise(v)):
+            unit = f" ({self.unit})" if self.unit else ""
+            if len(v) == 2:
+                raise ValueError(f"{name} needs LO < HI{unit}, got {v[0]!r} {v[1]!r}")
+            raise ValueError(f"{name} must increase strictly{unit}, got {v!r}")
+        return v
 
     def _one(self, name: str, value: Any) -> Any:
         if self.kind == "choice":
-            if value not in self.choices:
+            if value not in self.choices or isinstance(value, bool):
                 raise ValueError(f"{name} must be one of {self.interval()}, got {value!r}")
+            return value
+        if self.kind == "bool":
+            if not (isinstance(value, bool) or type(value).__name__ == "bool_"):  # numpy's too
+                raise ValueError(f"{name} must be True or False, got {value!r}")
+            return bool(value)
+        if self.kind == "str":
+            if not isinstance(value, str):
+                raise ValueError(f"{name} must be text, got {value!r}")
             return value
         if self.kind == "int":
             try:
@@ -186,8 +278,8 @@ def param(default: Any, doc: str, *, unit: str = "", **kw: Any) -> Any:
         SI unit, "" for dimensionless quantities and counts.
     **kw
         Further :class:`Param` attributes: ``gt``, ``ge``, ``lt``, ``le``, ``kind``,
-        ``choices``, ``optional``, ``pair``, ``many``, ``allow_inf``, ``cli``, ``aliases``,
-        ``sweep``.
+        ``choices``, ``optional``, ``pair``, ``many``, ``length``, ``increasing``,
+        ``allow_inf``, ``cli``, ``metavar``, ``sweep``.
 
     Returns
     -------

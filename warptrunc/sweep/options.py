@@ -55,8 +55,8 @@ class SweepOptions:
     """ω_max (m); overrides the fraction."""
     E: float = param_like(Material, "E")
     nu: float = param_like(Material, "nu")
-    E_flat: float = param_like(Material, "E_i", cli="E-flat", aliases=())
-    nu_flat: float = param_like(Material, "nu_i", cli="nu-flat", aliases=())
+    E_flat: float = param_like(Material, "E_i", cli="E-flat")
+    nu_flat: float = param_like(Material, "nu_i", cli="nu-flat")
     beta_prime: float = 1.0
     """Geometric factor β' of Eq. 2."""
     min_pixels: tuple[int, ...] = (DEFAULT_MIN_PIXELS,)

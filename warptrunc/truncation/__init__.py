@@ -4,30 +4,26 @@
 
 :func:`truncate` (``api``) is the one entry point; it runs the in-memory path (``curve``: the
 curve, the depth grid, the contact index map) or the banded path for WM surfaces larger than
-device memory (``stream``). Every public name is importable from ``warptrunc.truncation``.
+device memory (``stream``); its parameters are declared in ``settings``, which loads no Warp.
+Every public name is importable from ``warptrunc.truncation`` (imported on first use).
 """
 
-from .api import truncate
-from .curve import (
-    TruncationCurve,
-    contact_histogram,
-    contact_index_device,
-    contact_index_map,
-    depth_grid,
-    height_range,
-)
-from .stream import StreamedTruncation, fits_in_memory, in_memory_bytes
-from .stream import wm_bands as wm_bands  # internal band generator, not in __all__
+from .._support.exports import lazy_exports
 
-__all__ = [
-    "StreamedTruncation",
-    "TruncationCurve",
-    "contact_histogram",
-    "contact_index_device",
-    "contact_index_map",
-    "depth_grid",
-    "fits_in_memory",
-    "height_range",
-    "in_memory_bytes",
-    "truncate",
-]
+__all__, __getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "FitRange": ".settings",
+        "StreamedTruncation": ".stream",
+        "TruncationCurve": ".curve",
+        "TruncationSettings": ".settings",
+        "contact_histogram": ".curve",
+        "contact_index_device": ".curve",
+        "contact_index_map": ".curve",
+        "depth_grid": ".curve",
+        "fits_in_memory": ".stream",
+        "height_range": ".curve",
+        "in_memory_bytes": ".stream",
+        "truncate": ".api",
+    },
+)
