@@ -45,8 +45,9 @@ def test_every_option_is_a_field_or_a_shared_option(command):
 
 
 def test_hand_written_options_live_in_one_module():
-    """``add_argument`` is called in ``_common.py`` (the shared options) and nowhere else in the
-    command line: the sub-commands add fields (``add_options``) and shared options."""
+    """``add_argument`` and ``shared_option`` are called in ``_common.py`` (the shared options)
+    and nowhere else in the command line: the sub-commands add fields (``add_options``) and the
+    shared options through the functions of ``_common.py``."""
     offenders = []
     for path in sorted(CLI.glob("*.py")):
         if path.name == "_common.py":
@@ -54,6 +55,8 @@ def test_hand_written_options_live_in_one_module():
         for node in ast.walk(ast.parse(path.read_text())):
             if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
                     and node.func.attr == "add_argument"):  # fmt: skip
+                offenders.append(f"{path.name}:{node.lineno}")
+            if isinstance(node, ast.Call) and getattr(node.func, "id", None) == "shared_option":
                 offenders.append(f"{path.name}:{node.lineno}")
     assert offenders == []
 

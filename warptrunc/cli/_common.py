@@ -332,6 +332,24 @@ def add_device(p: argparse.ArgumentParser) -> None:
     )
 
 
+def add_streaming(p: argparse.ArgumentParser) -> None:
+    """``--stream`` and ``--band-rows`` (how a generated map is held: whole or by row bands)."""
+    shared_option(
+        p, "--stream", action="store_true",
+        help="generate and truncate by row bands, never holding the map (default: only when "
+        "the map needs more than half of the free memory)",
+    )  # fmt: skip
+    shared_option(
+        p, "--band-rows", type=integer(1), default=None,
+        help="rows per band when streaming (default: about 2**28 pixels per band)",
+    )  # fmt: skip
+
+
+def add_no_plot(p: argparse.ArgumentParser, what: str) -> None:
+    """``--no-plot`` (skip the figures ``what``)."""
+    shared_option(p, "--no-plot", action="store_true", help=f"skip {what}")
+
+
 def add_out(p: argparse.ArgumentParser, default: str = "out") -> None:
     """``--out DIR``."""
     shared_option(p, "--out", type=output_dir, default=Path(default), help="output folder")

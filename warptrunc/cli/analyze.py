@@ -43,14 +43,14 @@ from ._common import (
     add_device,
     add_fit_range,
     add_material,
+    add_no_plot,
     add_out,
+    add_streaming,
     add_surface_source,
     add_truncation,
     add_warnings,
     fit_range_from_args,
-    integer,
     material_from_args,
-    shared_option,
     surface_from_args,
     truncation_from_args,
     warnings_of,
@@ -67,19 +67,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_truncation_options(p)
     add_fit_range(p.add_argument_group("fit range"))
     add_device(p)
-    shared_option(
-        p, "--stream", action="store_true",
-        help="generate and truncate by row bands, never holding the map (default: only when "
-        "the map needs more than half of the free memory)",
-    )  # fmt: skip
-    shared_option(
-        p, "--band-rows", type=integer(1), default=None,
-        help="rows per band when streaming (default: about 2**28 pixels per band)",
-    )  # fmt: skip
+    add_streaming(p)
     add_out(p)
-    shared_option(
-        p, "--no-plot", action="store_true", help="skip stiffness.png and area_fraction.png"
-    )
+    add_no_plot(p, "stiffness.png and area_fraction.png")
 
 
 def add_truncation_options(p: argparse.ArgumentParser, *, many: bool = False) -> None:
