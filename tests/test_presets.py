@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """The Table 1 presets (issue 38): D_vs ones by default, the D_tri ones by name, each with the
 record of its calibration checked against the paper's printed Table 1, against the recorded run
-(``docs/benchmarks/table1_presets_cpu.json``) and against its own flags."""
+(``benchmarks/records/table1_presets_cpu_79581b0.json``) and against its own flags."""
 
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ from warptrunc.reproduce.paper import TABLE1 as PAPER
 from warptrunc.reproduce.paper import TABLE1_SD as PAPER_SD
 
 ROOT = Path(__file__).resolve().parents[1]
-RUN = ROOT / "docs" / "benchmarks" / "table1_presets_cpu.json"
+RUN = ROOT / "benchmarks" / "records" / "table1_presets_cpu_79581b0.json"
 KEYS = {
     "matched", "method", "D_in", "Rt_m", "Wr_m", "D_target", "D_target_sd", "D_reached",
     "Rrms_target_m", "Rrms_reached_m", "Rt_per_seed_m", "Rt_paper_m", "Rt_within_paper_band",
@@ -117,7 +117,7 @@ def test_cli_preset_tri_generates_the_earlier_d_tri_surface(tmp_path):
     for name in ("GB300s-tri", "GB300s"):
         assert main(["generate", "--preset", name, "--n", "64", "--device", "cpu",
                      "--output", str(tmp_path / f"{name}.npz")]) == 0  # fmt: skip
-    # the D_tri preset before issue 38 (docs/reproduction/report.md, c3f7c18), typed in
+    # the D_tri preset before issue 38 (benchmarks/records/reproduce_paper_h100_c3f7c18/report.md, c3f7c18), typed in
     old = WMSpec(D=2.555, Rt=38.97e-6, Wr=60e-6, L=1e-3, n=64, M=10)
     got = read_height_map(tmp_path / "GB300s-tri.npz")
     np.testing.assert_array_equal(got.heights, wm_surface(old, device="cpu").heights)

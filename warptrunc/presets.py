@@ -16,7 +16,7 @@ are two sets, by the fractal method whose D the loop matched:
   **D_vs**, the dimension with which Fig. 6's truncation curves are computed (its caption:
   "using D_vs").
 - :data:`TABLE1_TRI` (``Ps-tri``, ``SMATs-tri``, ``GB300s-tri``, ``GB50s-tri`` on the command
-  line): matched to D_tri, the presets before issue 38, unchanged (``docs/reproduction/report.md``,
+  line): matched to D_tri, the presets before issue 38, unchanged (``benchmarks/records/reproduce_paper_h100_c3f7c18/report.md``,
   profile ``paper`` at ``c3f7c18`` on an NVIDIA H100, 1024² over 1.024 mm, D_in searched in
   [2.02, 2.98]).
 
@@ -29,9 +29,9 @@ The D_vs calibration. On the paper's calibration map, 1024² pixels over 1 mm (0
 § 3.2, Fig. 4: R_t′ depends on the map, and this is the area the presets cover), seeds 0, 1, 2,
 D tolerance 5 % (the paper's "error < 5 %"), D_in searched in [2.001, 2.99], M = 10, γ = 1.5,
 W_c = 2 pixels; targets: Table 1's D_vs and R_rms of the simulated rows. Found on a shared 2-core
-CPU at commit ``79581b0`` (``docs/benchmarks/table1_presets_cpu.json``); to find them again::
+CPU at commit ``79581b0`` (``benchmarks/records/table1_presets_cpu_79581b0.json``); to find them again::
 
-    python examples/benchmarks/table1_presets.py --device cpu --check-n 10240 --out docs/benchmarks
+    python examples/benchmarks/table1_presets.py --device cpu --check-n 10240 --out benchmarks/records
 
 or, for one surface, ``warptrunc calibrate --method vs --D 2.813 --Rrms 4.102e-6 --Rt 36.865e-6
 --Wr 60e-6 --L 1e-3 --n 1024 --D-bounds 2.001 2.99 --no-surface``. D_in is rounded to 3
@@ -124,14 +124,14 @@ _PAPER_ROWS = {
     "GB300s": ((2.813, 0.0521), (2.555, 0.0425), 4.102, (36.865, 1.731)),
     "GB50s": ((2.825, 0.0876), (2.625, 0.0328), 2.935, (26.239, 1.157)),
 }
-_SOURCE = "docs/benchmarks/table1_presets_cpu.json"
+_SOURCE = "benchmarks/records/table1_presets_cpu_79581b0.json"
 _VS = {"matched": "D_vs", "method": "vs", "D_bounds": (2.001, 2.99), "rtol": 0.05,
        "calibration_map": "1024² over 1 mm (0.977 µm pixels)", "seeds": (0, 1, 2),
        "commit": "79581b0", "device": "shared 2-core CPU (x86_64)", "source": _SOURCE}  # fmt: skip
 _TRI = {"matched": "D_tri", "method": "tri", "D_bounds": (2.02, 2.98), "rtol": 0.05,
         "calibration_map": "1024² over 1.024 mm (1 µm pixels)", "seeds": (0, 1, 2),
         "commit": "c3f7c18", "device": "NVIDIA H100 (cuda:0)",
-        "source": "docs/reproduction/report.md, Table 1 — calibrated simulated surfaces; D and "
+        "source": "benchmarks/records/reproduce_paper_h100_c3f7c18/report.md, Table 1 — calibrated simulated surfaces; D and "
                   f"R_rms reached: {_SOURCE} (CPU, 79581b0)"}  # fmt: skip
 # reached on the calibration map (seeds 0, 1, 2): D mean, sd; R_rms (µm); R_t′ giving each seed
 # the target R_rms, mean, sd (µm); D reached over D_in in [2.001, 2.99], min, max; CPU s (loop)

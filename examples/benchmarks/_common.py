@@ -1,6 +1,10 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Helpers shared by the scripts in ``examples/benchmarks/``: timing and provenance.
+"""Helpers shared by the scripts in ``examples/benchmarks/``: timing, provenance, record names.
+
+A run record kept in ``benchmarks/records/`` is named by what was measured, on which machine,
+at which commit: ``<what>_<machine>_<commit>.json`` (``record_name``), e.g.
+``table1_presets_cpu_79581b0.json``.
 
 The scripts import it as ``from _common import ...``: run as
 ``python examples/benchmarks/benchmark_x.py``, their own folder is first on ``sys.path``.
@@ -36,7 +40,40 @@ def timeit(fn: Callable[[], object], repeats: int, sync: Callable[[], object]) -
         ts.append(time.perf_counter() - t0)
     return statistics.median(ts)
 
-__all__ = ["ROOT", "git_commit", "timeit"]
+RECORDS = ROOT / "benchmarks" / "records"
+"""The folder of the run records (``benchmarks/records/``; its README lists every record)."""
+
+
+def machine_token(device: str | None) -> str:
+    """Short name of the machine a run used: ``cpu``, ``h100``, ``h200x4`` (GPU model and count).
+
+    A CUDA device is named by its model (the first word such as ``H100`` in its name) and, on a
+    host with several GPUs, ``x`` and their count.
+    """
+    import re
+
+    import warp as wp
+
+    dev = wp.get_device(device)
+    if not dev.is_cuda:
+        return "cpu"
+    m = re.search(r"\b([A-Z]{1,2}\d{2,4})\b", dev.name)
+    model = (m.group(1) if m else dev.name.split()[-1]).lower()
+    count = wp.get_cuda_device_count()
+    return f"{model}x{count}" if count > 1 else model
+
+
+def record_name(what: str, device: str | None, suffix: str = ".json") -> str:
+    """File name of a run record: ``<what>_<machine>_<commit>`` and ``suffix``.
+
+    ``machine`` is :func:`machine_token`; ``commit`` the checkout's short commit (or
+    ``$WARPTRUNC_GIT_COMMIT``), ``nocommit`` where neither is known.
+    """
+    commit = (git_commit() or "nocommit")[:7]
+    return f"{what}_{machine_token(device)}_{commit}{suffix}"
+
+
+__all__ = ["RECORDS", "ROOT", "git_commit", "machine_token", "record_name", "timeit"]
 
 
 def bench_parser(description: str | None) -> argparse.ArgumentParser:

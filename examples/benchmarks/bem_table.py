@@ -8,7 +8,7 @@ non-periodic elastic boundary-element solution at δ/R_t = 0.05 … 0.4. Writes 
 (every case's summary and columns) and OUT/bem_table.md (the ranges of the ratios, the solve
 time per case and per solve). Needs ``pip install "warptrunc[bem]"``.
 
-Run: ``python examples/benchmarks/bem_table.py --n 512 --out docs/benchmarks`` (about 1.5 min per case on 2 cores).
+Run: ``python examples/benchmarks/bem_table.py --n 512 --out out/bem_table`` (the record kept: ``benchmarks/records/bem_table_cpu_2026-11-23.json``) (about 1.5 min per case on 2 cores).
 """
 
 from __future__ import annotations

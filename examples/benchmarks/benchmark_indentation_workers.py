@@ -17,7 +17,7 @@ What it runs
 
 The profile: a departure from the paper
     At the paper's map (``indentation_n`` = 10240: 97.7 nm pixels over 1 mm) the stage costs
-    about 2250 GPU-seconds (``docs/benchmarks/indentation_paper_h100x4.json``), too much for one
+    about 2250 GPU-seconds (``benchmarks/records/reproduce_paper_indentation_h100x4_ad12c18/indentation_paper_h100x4.json``), too much for one
     10-minute GPU call. The runs use ``dataclasses.replace(PROFILES["paper"],
     indentation_n=N)`` with ``--n`` N = 2048 by default: 488 nm pixels over ``indentation_L`` =
     1 mm, every other field the paper profile's (surfaces, punches, loads, the H sweep, the

@@ -46,7 +46,7 @@ What it shows
 
 Run
     python examples/benchmarks/benchmark_peers.py --device cpu --sizes 256 512 1024 \\
-        --out docs/benchmarks --name peers_cpu.json
+        --out benchmarks/records --name peers_cpu_<commit>.json
     python examples/benchmarks/benchmark_peers.py --device cuda:0 --sizes 256 512 1024 2048 \\
         --out $OUT
 """

@@ -30,7 +30,7 @@ Each setting runs ``--repeat`` times (the first is a warm-up, not counted); ``--
 also records the K most expensive functions (cProfile, cumulative and own time) of one more
 run, not counted, in ``main`` and in ``worker``. Prints a table and writes
 ``worker_overhead.json`` in ``--out``. Measured on one H100 (before the workers were bound and
-ran without the profiler): ``docs/benchmarks/worker_overhead_h100x4.json``, the table in
+ran without the profiler): ``benchmarks/records/worker_overhead_h100x4_12e7a94.json``, the table in
 ``docs/guide/performance.md``; ``examples/gpu_checks/wave10.sh probe`` runs it unbound, then bound.
 
     python examples/benchmarks/benchmark_worker_overhead.py --n 1536 --device cuda:0

@@ -16,9 +16,9 @@ What it does
     smooth flat on a flat, 4E*a²·tan θ.
 
 Run
-    python examples/benchmarks/punch_face_ps.py --device cpu --out docs/benchmarks
+    python examples/benchmarks/punch_face_ps.py --device cpu --out benchmarks/records
     python examples/benchmarks/punch_face_ps.py --L 1e-3 --n 1024 --diameter 54.1e-6 \
-        --tilts 0.05 0.1 --cutoffs 0 --rough-tilt 0 --suffix _54um --device cpu --out docs/benchmarks
+        --tilts 0.05 0.1 --cutoffs 0 --rough-tilt 0 --suffix _54um --device cpu --out benchmarks/records
     python examples/benchmarks/punch_face_ps.py --n 256 --tilts 0.1 --cutoffs 0 --out out  # quick
 """
 
@@ -34,6 +34,8 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+
+from _common import record_name
 
 from warptrunc._support.provenance import git_commit
 from warptrunc.indent import PAPER_PEAK_LOADS, default_material, indent
@@ -99,7 +101,7 @@ def summarise(doc: dict) -> dict:
 
 
 def main(argv=None) -> int:
-    """Run every face and write ``punch_face_ps_<device>.json``."""
+    """Run every face and write ``punch_face_ps<suffix>_<machine>_<commit>.json``."""
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--n", type=int, default=512, help="pixels per side of the map")
     p.add_argument("--L", type=float, default=3e-3, help="map side (m)")
@@ -114,7 +116,7 @@ def main(argv=None) -> int:
                    help="tilt added to each rough tip (degrees); 0 = none")  # fmt: skip
     p.add_argument("--refine-max", type=int, default=8)
     p.add_argument("--device", default="cpu")
-    p.add_argument("--out", type=Path, default=Path("docs/benchmarks"))
+    p.add_argument("--out", type=Path, default=Path("out/punch_face_ps"))
     p.add_argument("--suffix", default="", help="appended to the JSON's name (another punch)")
     args = p.parse_args(argv)
 
@@ -166,7 +168,7 @@ def main(argv=None) -> int:
     }  # fmt: skip
     doc["summary"] = summarise(doc)
     args.out.mkdir(parents=True, exist_ok=True)
-    path = args.out / f"punch_face_ps_{args.device}{args.suffix}.json"
+    path = args.out / record_name(f"punch_face_ps{args.suffix}", args.device)
     path.write_text(json.dumps(doc, indent=1, default=float))
     print(f"wrote {path}")
     return 0

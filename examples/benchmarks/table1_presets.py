@@ -30,7 +30,7 @@ Choices
     calibration; R_rms at 10240² differs).
 
 Run
-    python examples/benchmarks/table1_presets.py --device cpu --check-n 10240 --out docs/benchmarks
+    python examples/benchmarks/table1_presets.py --device cpu --check-n 10240 --out benchmarks/records
     python examples/benchmarks/table1_presets.py --n 256 --device cpu --out out/presets  # quick
 """
 
@@ -43,6 +43,8 @@ import time
 from pathlib import Path
 
 import numpy as np
+
+from _common import record_name
 
 from warptrunc._support.provenance import provenance
 from warptrunc.calibrate import CalibrationError, CalibrationTarget, calibrate
@@ -254,7 +256,7 @@ def main(argv=None) -> int:
         "records": records(rows, maps, meta), "meta": meta, "rows": rows,
     }  # fmt: skip
     args.out.mkdir(parents=True, exist_ok=True)
-    dest = args.out / "table1_presets_cpu.json"
+    dest = args.out / record_name("table1_presets", args.device)
     dest.write_text(json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
     print(f"wrote {dest}")
     return 0

@@ -17,7 +17,7 @@
 # A subset of the GPUs: GPUS=0,1 (sets CUDA_VISIBLE_DEVICES; worker counts 2 1). Map size: N
 # (pixels per side over 1 mm). Extra arguments of the benchmark: $BENCH_ARGS. A dry run on a CPU
 # machine (about 30 s on 2 cores): N=128 BENCH_ARGS="--profile tiny --device cpu --workers 2" bash ...
-# Time, measured (4 x H200, fab6f70, docs/benchmarks/indentation_workers_h200x4.json): at N=2048
+# Time, measured (4 x H200, fab6f70, benchmarks/records/indentation_workers_h200x4_fab6f70.json): at N=2048
 # the pieces' own seconds sum to 536 GPU-s; in process 510.6 s, 4 workers 152.3 s; the warm-up on
 # a fresh machine about 60 s. So one 10-minute call holds in process alone, or the workers: run
 #   1st call: BENCH_ARGS="--workers" BUDGET_S=560 bash examples/gpu_checks/indent_workers.sh

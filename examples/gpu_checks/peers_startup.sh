@@ -4,7 +4,7 @@
 #  1. benchmarks/benchmark_peers.py: warptrunc's ContactSolver on cuda:0 (float64, float32)
 #     against tamaas' PolonskyKeerRey on every core, on tamaas' own surface (periodic, p̄ = 0.05 E*)
 #     at N = $SIZES. To stay short: tamaas is timed by one solve at $TAMAAS_TOL (the tolerance
-#     its walk chose on the CPU: docs/benchmarks/peers_cpu.json) and the tight reference is
+#     its walk chose on the CPU: benchmarks/records/peers_cpu_e2af04c.json) and the tight reference is
 #     warptrunc float64 at pentol 1e-11·rms (on the CPU the peers' own references agreed with it);
 #     every row records whether its area and mean gap are within 1e-4 of it. A tamaas solve is
 #     stopped after $TAMAAS_LIMIT s, and larger N are then skipped.

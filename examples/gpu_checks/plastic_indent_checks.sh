@@ -61,6 +61,6 @@ PY
 scaling)
   python3 examples/benchmarks/benchmark_solver_scaling.py --device cuda:0 --n ${2:-10240 16384 32768} --dtype float32 --budget ${3:-400} --algorithm ${4:-bccg pk} --out $OUT/scaling 2>&1 | tail -20 ;;
 iterations)
-  # iterations and convolutions against the grid, both algorithms (CPU table: docs/benchmarks/iterations_cpu.json)
+  # iterations and convolutions against the grid, both algorithms (CPU table: benchmarks/records/iterations_vs_grid_cpu_2026-11-25.json)
   timeout ${3:-400} python3 examples/benchmarks/iterations_vs_grid.py --device cuda:0 --dtype float32 --n ${2:-1024 2048 4096} --json $OUT/iterations_gpu.json 2>&1 | tail -40 ;;
 esac

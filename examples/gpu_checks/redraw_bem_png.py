@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: MIT
 """Redraw a bem-check's bem.png from its bem.csv and bem.json (the numbers the device computed),
 with warptrunc.plot.bem.plot_bem_check, where the PNG did not come back from the device (a call
-returns at most 8 files). Used for docs/benchmarks/bem_65536_h200x4/bem.png:
-    python examples/gpu_checks/redraw_bem_png.py docs/benchmarks/bem_65536_h200x4
+returns at most 8 files). Used for benchmarks/records/bem_check_65536_h200x4_34cbf1b/bem.png:
+    python examples/gpu_checks/redraw_bem_png.py benchmarks/records/bem_check_65536_h200x4_34cbf1b
 Prints True when the ratios recomputed from the columns equal the stored ones."""
 
 import csv

@@ -12,14 +12,14 @@ afresh, and its pages are faulted in each time. Measured on the CPU (2-core VM):
 solve with its host work took 0.29–0.32 s in a worker against 0.16–0.18 s in process, and
 0.17–0.19 s in a worker without the variable; the indentation stage's pieces (tiny profile at
 256²) cost 17.7 s with the variable and 13.8 s without, in process and in a worker alike
-(``docs/benchmarks/worker_trim_cpu.json``; ``tests/test_sweep_spawn.py`` checks the setting, the
+(``benchmarks/records/worker_trim_cpu_fcb7142.json``; ``tests/test_sweep_spawn.py`` checks the setting, the
 timing is not asserted). On the 4 × H200 host the indentation pieces cost 1.24× as much on
-workers as in process (``docs/benchmarks/indentation_workers_h200x4_34cbf1b.json``), the same
+workers as in process (``benchmarks/records/indentation_workers_h200x4_34cbf1b.json``), the same
 ratio; but with the variable left out, on 4 × H100, they still cost 1.31× (2 workers) and 1.44×
-(4 workers) (``docs/benchmarks/indentation_workers_h100x4_cc1dcf5.json``): on GPUs it is not the
+(4 workers) (``benchmarks/records/indentation_workers_h100x4_cc1dcf5.json``): on GPUs it is not the
 whole cause. With the profiler off as well (below), on 4 × H100 at ``1b64d9c``, they cost
 1.04× (4 workers) and 1.10× (2), and 4 workers run the stage 3.44× faster than one process
-(``docs/benchmarks/indentation_workers_h100x4_1b64d9c.json``).
+(``benchmarks/records/indentation_workers_h100x4_1b64d9c.json``).
 
 A user who sets ``MALLOC_TRIM_THRESHOLD_`` in their own environment keeps it: the workers
 inherit it. Workers of an existing cluster (``--scheduler``) are started by the user: give them
@@ -89,13 +89,13 @@ def worker_environment() -> dict[str, Any]:
     -----
     The profiler, measured on one H100 (``examples/benchmarks/benchmark_worker_overhead.py``, an
     elastic and an elastic–plastic indentation part at 1024²,
-    ``docs/benchmarks/worker_overhead_h100x4.json``): the parts took 1.23× their time in the main
+    ``benchmarks/records/worker_overhead_h100x4_12e7a94.json``): the parts took 1.23× their time in the main
     thread on a worker as Dask configures it, 0.88× and 0.80× (two calls) with the profiler and
     the system monitor off, 1.15× with only the profiler off; runs of one setting spread by up to
     30 %, so the profiler's share is not pinned down. It is turned off because it costs the GIL
     and gives nothing a command needs. With it off (``1b64d9c``, 4 × H100 of one NUMA node, so
     the CPU binding changed nothing there), a worker took 1.03–1.08× the main thread
-    (``docs/benchmarks/worker_overhead_h100x4_1b64d9c.json``) and the indentation stage's pieces
+    (``benchmarks/records/worker_overhead_h100x4_1b64d9c.json``) and the indentation stage's pieces
     1.04× on 4 workers.
     """
     import dask
