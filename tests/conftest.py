@@ -4,11 +4,24 @@
 JAX, where a test uses it, starts with two host devices.
 
 ``WARPTRUNC_TEST_DEVICES=cpu`` (comma-separated) narrows the list.
+
+The suite leaves the user's caches alone: matplotlib's configuration and font cache live in a
+temporary folder of the run (``MPLCONFIGDIR``, inherited by every child process), built here
+before any test starts, so a command that a test runs under a file-size limit finds the cache
+complete and never writes it, and another matplotlib process holding the user's cache lock does
+not matter. Warp's kernel cache stays shared (it is written atomically, one file per module).
 """
 
+import atexit
 import os
+import shutil
 import sys
+import tempfile
 from pathlib import Path
+
+_MPL_DIR = tempfile.mkdtemp(prefix="warptrunc-tests-mpl-")
+os.environ["MPLCONFIGDIR"] = _MPL_DIR
+atexit.register(shutil.rmtree, _MPL_DIR, ignore_errors=True)
 
 # Two host devices for the spread solver's tests (tests/test_sharded*.py), set before any module
 # imports JAX: XLA reads the flag once, when JAX starts, so a test module that imported JAX first
@@ -25,6 +38,7 @@ import matplotlib
 import pytest
 
 matplotlib.use("Agg")
+import matplotlib.font_manager  # noqa: E402, F401 - builds the font cache in _MPL_DIR now
 
 import warptrunc
 
