@@ -98,7 +98,7 @@ numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 numpydoc_validation_checks = set()  # tests/test_docstrings.py validates
 
-# -- performance tables from docs/benchmarks/*.json ------------------------------------------
+# -- measured tables from the run records of benchmarks/records/ ---------------------------
 perftables.write_tables(DOCS)
 
 # -- parameter tables from the declarations of WMSpec and Material (warptrunc.params) --------
@@ -295,7 +295,7 @@ copybutton_exclude = ".linenos, .gp, .go"
 
 
 def _copy_repo_files(app):
-    """Keep the pages' images that live outside docs/ reachable (none today)."""
+    """Nothing to copy: Sphinx finds the images of benchmarks/records/ by their relative paths."""
     return None
 
 
