@@ -360,9 +360,50 @@ def add_run_outputs(p: argparse.ArgumentParser, out: str, plot_help: str) -> Non
     add_device(p)
     add_out(p, out)
     shared_option(p, "--no-plot", action="store_true", help=plot_help)
-    shared_option(p,
-        "--no-progress", action="store_true",
+    add_no_progress(p)
+
+
+def add_no_progress(p: Any) -> None:
+    """``--no-progress``."""
+    shared_option(
+        p, "--no-progress", action="store_true",
         help="no progress bar (it is on stderr, and off when stderr is not a terminal)",
+    )  # fmt: skip
+
+
+def add_overwrite(p: Any, what: str) -> None:
+    """``--overwrite``: replace ``what`` (the results of an existing output folder)."""
+    shared_option(p, "--overwrite", action="store_true", help=f"replace {what}")
+
+
+def add_retry_failed(p: Any, what: str) -> None:
+    """``--retry-failed``: run again ``what`` (the parts a store records as failed)."""
+    shared_option(p, "--retry-failed", action="store_true", help=f"run again {what}")
+
+
+def add_shards(p: Any) -> None:
+    """``--shard-size`` and ``--shard-seconds``: how the cases of a sweep are cut into tasks and
+    parts of its store (:class:`~warptrunc.sweep.options.SweepExecution`; not given: its
+    defaults)."""
+    shared_option(
+        p, "--shard-size", type=integer(1, 10**6), default=None,
+        help="with --workers/--scheduler: cases per Dask task, each written by its worker as "
+        "one part (default: adaptive, about --shard-seconds of work)",
+    )  # fmt: skip
+    shared_option(
+        p, "--shard-seconds", type=real(0.0, None, lo_open=False, unit="s"), default=None,
+        help="work per part of the store (s; default 1); a hard kill loses at most about this "
+        "much per worker",
+    )  # fmt: skip
+
+
+def add_grid_file(p: Any) -> None:
+    """``--grid FILE``: a sweep grid read from a TOML file
+    (:meth:`~warptrunc.sweep.SweepGrid.from_toml`)."""
+    shared_option(
+        p, "--grid", type=input_file, default=None,
+        help="TOML file with D = [...], delta = [...], seeds = '0-4' and optionally a table "
+        "[axes] of more axes (e.g. M = [8, 10])",
     )  # fmt: skip
 
 
