@@ -376,6 +376,49 @@ def add_overwrite(p: Any, what: str) -> None:
     shared_option(p, "--overwrite", action="store_true", help=f"replace {what}")
 
 
+def add_accept_unconverged(p: Any, status: int) -> None:
+    """``--accept-unconverged``: exit 0 even when a solve did not converge (else ``status``)."""
+    shared_option(
+        p, "--accept-unconverged", action="store_true",
+        help=f"exit 0 even when a solve did not converge (default: exit {status})",
+    )  # fmt: skip
+
+
+def add_profile(p: Any, what: str, default: str | None) -> None:
+    """``--profile NAME``: a profile of :data:`warptrunc.reproduce.profiles.PROFILES` (the sizes
+    of a reproduction run; ``what`` it gives this command)."""
+    from ..reproduce.profiles import PROFILES
+
+    shared_option(p, "--profile", choices=sorted(PROFILES), default=default, help=what)
+
+
+def add_stages(p: Any, stages: tuple[str, ...]) -> None:
+    """``--stages NAME[,NAME...]``: compute only some of ``stages`` (the others reused)."""
+    shared_option(
+        p, "--stages", metavar="NAME[,NAME...]", default=None,
+        help=f"compute only these stages (of {', '.join(stages)}); the others are reused when "
+        "stored with the same parameters, else left out",
+    )  # fmt: skip
+
+
+def add_time_budget(p: Any, what: str) -> None:
+    """``--time-budget SECONDS``: stop ``what`` cleanly after this long (a rerun continues)."""
+    shared_option(
+        p, "--time-budget", metavar="SECONDS", type=positive("s"), default=None,
+        help=f"stop {what} after this many seconds; its finished work is kept and a rerun "
+        "continues (default: no limit)",
+    )  # fmt: skip
+
+
+def add_commit(p: Any) -> None:
+    """``--commit SHA``: the commit a report records."""
+    shared_option(
+        p, "--commit", metavar="SHA", default=None,
+        help="commit recorded in the report (default: $WARPTRUNC_GIT_COMMIT, else git rev-parse "
+        "HEAD of the checkout, else 'unknown')",
+    )  # fmt: skip
+
+
 def add_retry_failed(p: Any, what: str) -> None:
     """``--retry-failed``: run again ``what`` (the parts a store records as failed)."""
     shared_option(p, "--retry-failed", action="store_true", help=f"run again {what}")
