@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-# bem-check on the GPU machine (issue 12): the BEM itself runs on the host (ContactMechanics,
+# bem-check on the GPU machine: the BEM itself runs on the host (ContactMechanics,
 # NumPy/muGrid FFT); only generation and truncation use the Warp device. Checks that the
 # truncation columns are identical with --device cuda:0 and --device cpu (same seed, same map).
 set -euo pipefail

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-# Issue 16 (elastic contact solver on Warp) on the GPU machine: the contact tests on cpu and
+# The elastic contact solver on the GPU machine: the contact tests on cpu and
 # cuda:0 (closed forms, ContactMechanics on the same maps, float32), bem-check with the warptrunc
 # solver on cuda:0 against --solver contactmechanics, and the benchmark at 2048²–10240².
 set -euo pipefail

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The two distributed FFT engines' floors for the padded transform pair on 2 GPUs (issue 42,
-# item 1): examples/benchmarks/benchmark_fft_engines.py — JAX/XLA sharded in one process
+# The two distributed FFT engines' floors for the padded transform pair on 2 GPUs:
+# examples/benchmarks/benchmark_fft_engines.py — JAX/XLA sharded in one process
 # (`jax`, plus the solver's pruned convolution `jax-pruned`) against cuFFTMp through
 # nvmath-python in 2 MPI ranks (`cufftmp`), at N in NS (default "8192 16384", padded to 2N),
 # float32 then float64, each checked against numpy float64 at 256² first.
@@ -8,8 +8,8 @@
 # Run from the repository root on a machine with 2 or more GPUs:
 #   OUT=fft_engines_out WHEELS=/path/to/wheels bash examples/gpu_checks/fft_engines.sh
 # WHEELS (optional): a folder of wheels (nvmath-python, cupy, mpi4py, nvidia-nvshmem,
-# nvidia-cufftmp, ...) installed with --no-index --no-deps into /tmp/site, which the caller has
-# on PYTHONPATH (set here to /tmp/site if unset). GPUS (0,1), NS, REPEATS (10), BUDGET (240 s)
+# nvidia-cufftmp, ...) installed with --no-index --no-deps into $STAGE (default /tmp/site), which
+# is put on PYTHONPATH when PYTHONPATH is unset. GPUS (0,1), NS, REPEATS (10), BUDGET (240 s)
 # and STEP (75 s, the most one step may take) are read too. MPI: mpiexec on PATH (Open MPI gets
 # --allow-run-as-root).
 # Results: $OUT/fft_engines.jsonl (one JSON line per engine, n, ndev, dtype; errors included),
@@ -21,7 +21,8 @@
 set -uo pipefail
 OUT=${OUT:-fft_engines_out}
 mkdir -p "$OUT"
-export PYTHONPATH=${PYTHONPATH:-/tmp/site} PYTHONUNBUFFERED=1
+STAGE=${STAGE:-/tmp/site}
+export PYTHONPATH=${PYTHONPATH:-$STAGE} PYTHONUNBUFFERED=1
 export CUDA_VISIBLE_DEVICES=${GPUS:-0,1}
 export XLA_PYTHON_CLIENT_PREALLOCATE=false  # JAX would take 75 % of every GPU at start
 NS=${NS:-8192 16384}
@@ -33,11 +34,11 @@ B=examples/benchmarks/benchmark_fft_engines.py
 start=$SECONDS
 
 if [ -n "${WHEELS:-}" ] && compgen -G "$WHEELS/*.whl" >/dev/null; then
-    python3 -m pip install -q --no-index --no-deps --target /tmp/site "$WHEELS"/*.whl \
+    python3 -m pip install -q --no-index --no-deps --target "$STAGE" "$WHEELS"/*.whl \
         >"$OUT/log_pip.txt" 2>&1 || echo "pip install of $WHEELS failed (log_pip.txt)"
 fi
 # cuda-pathfinder does not look on PYTHONPATH for libcufftMp (measured: "Failure finding
-# libcufftMp.so.12" with the wheel installed under /tmp/site): put its folder on LD_LIBRARY_PATH
+# libcufftMp.so.12" with the wheel installed under $STAGE): put its folder on LD_LIBRARY_PATH
 IFS=: read -ra entries <<< "$PYTHONPATH"
 for e in "${entries[@]}"; do
     if [ -d "$e/nvidia/cufftmp/cu13/lib" ]; then

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fractal dimension, render and CLI output on cuda:0 (issue 11); run from the repository root.
+# Fractal dimension, render and CLI output on cuda:0; run from the repository root.
 # - D_tri/D_box with height_scaling="cube" upload a rescaled copy of the heights to cuda:0;
 #   the kernels are unchanged, so cpu and cuda:0 must agree (tests over the device fixture).
 # - Pictures: area pooling (block contact fraction) on a device-made contact index.

@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-# Large maps on cuda:0: sizes past 2^31 pixels in memory, streamed truncation and islands (issue 8,
-# items 4-5).
+# Large maps on cuda:0: sizes past 2^31 pixels in memory, streamed truncation and islands.
 #
 #   bash large_maps_and_streaming.sh            # tests + 32768², 46400², 65536² + 131072² streamed analyze
 #   SKIP_131072=1 bash large_maps_and_streaming.sh
@@ -12,7 +11,7 @@
 # Needs warptrunc installed in the active Python (pip install -e .). Results: $OUT (default
 # ./out_gpu_8b): tests_8b.txt, large_<n>.json, analyze_big/{fit.json,time.txt,smi_peak_MiB.txt} (n = 131072),
 # summary_8b.json. Big files (maps) go to a temporary folder that is deleted at the end.
-# Estimated on an H100 (not run yet): tests 1-3 min (cold kernel cache), the 46400² test ~1 min,
+# Expected on an H100: tests 1-3 min (cold kernel cache), the 46400² test ~1 min,
 # benchmarks 2-3 min; each step has its own timeout.
 set -uo pipefail
 OUT=${OUT:-$PWD/out_gpu_8b}

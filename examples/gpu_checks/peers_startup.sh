@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Issue 40, items 1 and 4 on the GPU machine (16 cores, one GPU), under 5 minutes with a warm
+# The contact solver against tamaas, and the start-up of `warptrunc analyze`, on a GPU host,
+# under 5 minutes with a warm
 # kernel cache (a cold one adds the compilation of the analyze and contact kernels, ~1 min):
 #  1. benchmarks/benchmark_peers.py: warptrunc's ContactSolver on cuda:0 (float64, float32)
 #     against tamaas' PolonskyKeerRey on every core, on tamaas' own surface (periodic, p̄ = 0.05 E*)
@@ -12,7 +13,8 @@
 #     against `python -c "import warp; warp.init(); warp.get_device('cuda:0')"` in the same run,
 #     with the phase breakdown.
 # Needs tamaas (pip install tamaas==2.9.0, a wheel) and warptrunc (pip install --no-deps .) with
-# warp-lang, numpy, scipy, matplotlib, cupy importable ($PYTHONPATH as the other checks: /tmp/site).
+# warp-lang, numpy, scipy, matplotlib, cupy importable (PYTHONPATH: when unset, $STAGE, default
+# /tmp/site, the folder the GPU machine's packages are installed into with `pip install --target`).
 # Results under $OUT: peers_cuda0.json, startup_cuda0.json, the two logs; a short table last.
 # Run from the repository root:  OUT=gpu_out bash examples/gpu_checks/peers_startup.sh
 set -uo pipefail
@@ -24,7 +26,7 @@ N_START=${N_START:-10240}
 DEVICE=${DEVICE:-cuda:0}  # DEVICE=cpu SIZES=64 N_START=256: a dry run on any machine
 TAG=${DEVICE//:/}
 PY=${PY:-python3}
-export PYTHONPATH=${PYTHONPATH:-/tmp/site} MPLBACKEND=Agg PYTHONUNBUFFERED=1
+export PYTHONPATH=${PYTHONPATH:-${STAGE-/tmp/site}} MPLBACKEND=Agg PYTHONUNBUFFERED=1
 mkdir -p "$OUT"
 cd "$(dirname "$0")/../.." || exit 1
 export WARPTRUNC_GIT_COMMIT=${WARPTRUNC_GIT_COMMIT:-$(git rev-parse --short HEAD 2>/dev/null || echo unknown)}

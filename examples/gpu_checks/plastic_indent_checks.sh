@@ -1,19 +1,31 @@
 #!/usr/bin/env bash
-# GPU checks of the elastic–plastic contact, indentation and parameter-object work, on a
-# machine where warp-lang is installed under /tmp/site (see ../shared/device/README.md).
-#   suite     the test suite on cuda:0 only
-#   analyze   `warptrunc analyze --n 10240` as a whole process, median of 5 (and of an older
-#             source tree in ./_base when present, for a before/after in the same run)
-#   indent    `reproduce --profile paper --stages indentation` (resumable; repeat until complete)
-#   scaling   the contact solver at 10240², 16384², 32768² (both algorithms)
-#   iterations  iterations against the grid on cuda:0 (benchmarks/iterations_vs_grid.py)
-# Results go under $OUT.
+# GPU checks of the elastic–plastic contact and the indentation in silico, one mode per call:
+#   suite [S]      the test suite on cuda:0 only (at most S seconds, default 420)
+#   analyze        `warptrunc analyze --n 10240` as a whole process, median of 5 (and of an older
+#                  source tree in ./_base when present, for a comparison in the same run)
+#   indent [B] [T] `reproduce --profile paper --stages indentation` on cuda:0 for at most B seconds
+#                  of new pieces (default 400; the command under `timeout T`, default 540);
+#                  resumable: pieces of earlier calls carried back in ./_gpu_pieces are reused
+#   refine         `warptrunc indent` on GB300s at the paper's pixel (10240² over 1 mm), the
+#                  54.1 µm punch, 3 placements, H = ∞: the refinement of indentation cells
+#   scaling [N] [B] [A]  the contact solver at 10240², 16384², 32768² (both algorithms)
+#   iterations [N] [T]   iterations against the grid on cuda:0 (benchmarks/iterations_vs_grid.py)
+# Run from the repository root: OUT=gpu_out bash examples/gpu_checks/plastic_indent_checks.sh MODE
+# Results under $OUT/MODE/ (_mode_head.sh: PYTHONPATH from $STAGE, default /tmp/site, when unset).
 set -uo pipefail
-export PYTHONPATH=/tmp/site MPLBACKEND=Agg
-what=${1:-suite}
-case $what in
+MODES="suite, analyze, indent, refine, scaling or iterations"
+DEFAULT_MODE=suite
+# shellcheck source=examples/gpu_checks/_mode_head.sh
+source "$(dirname "$0")/_mode_head.sh"
+OUT=$dir
+export OUT
+case $mode in
 suite)
   (cd tests && WARPTRUNC_TEST_DEVICES=cuda:0 timeout ${2:-420} python3 -m pytest -q -p no:cacheprovider 2>&1 | tail -25) ;;
+refine)
+  /usr/bin/time -v python3 -m warptrunc indent --preset GB300s --punch-diameter 54.1e-6 \
+    --placements 3 --L 1e-3 --n 10240 --hardness inf --device cuda:0 --dtype float32 --out "$OUT/refine_gb300s" \
+    2>&1 | tee "$OUT/refine_gb300s.txt" | grep -v "^\s" | tail -30 ;;
 analyze)
   python3 - <<'PY'
 import json, os, statistics, subprocess, sys, time
@@ -29,7 +41,7 @@ def bench(cwd, env, label):
 env = dict(os.environ)
 res = {"new": bench("/tmp", env, "new")}
 if os.path.isdir("_base"):
-    e2 = dict(env, PYTHONPATH=os.path.abspath("_base") + ":/tmp/site")
+    e2 = dict(env, PYTHONPATH=os.path.abspath("_base") + ":" + os.environ.get("PYTHONPATH", ""))
     res["base"] = bench(os.path.abspath("_base"), e2, "base")
 for k, v in res.items():
     print(f"analyze --n 10240 ({k}): median {statistics.median(v):.2f} s, min {min(v):.2f}, max {max(v):.2f}, runs {[round(x, 2) for x in v]}")
@@ -61,6 +73,9 @@ PY
 scaling)
   python3 examples/benchmarks/benchmark_solver_scaling.py --device cuda:0 --n ${2:-10240 16384 32768} --dtype float32 --budget ${3:-400} --algorithm ${4:-bccg pk} --out $OUT/scaling 2>&1 | tail -20 ;;
 iterations)
-  # iterations and convolutions against the grid, both algorithms (CPU table: benchmarks/records/iterations_vs_grid_cpu_2026-11-25.json)
+  # iterations and convolutions against the grid, both algorithms (the CPU record:
+  # benchmarks/records/iterations_vs_grid_cpu_2026-11-25.json)
   timeout ${3:-400} python3 examples/benchmarks/iterations_vs_grid.py --device cuda:0 --dtype float32 --n ${2:-1024 2048 4096} --json $OUT/iterations_gpu.json 2>&1 | tail -40 ;;
+*)
+  echo "unknown mode $mode (modes: $MODES)"; exit 2 ;;
 esac

@@ -1,11 +1,10 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Experiment behind BCCG's default preconditioner rule (issue 29): one placement of the paper's
+"""Experiment behind BCCG's default preconditioner rule: one placement of the paper's
 three punches at 10240² over 1 mm (H = ∞, float32, `warptrunc indent`), with BCCG's
 preconditioner rule given as RULE: "none" = from 2 % of the window (the default under a punch),
 "always" = precondition_above 0; prints the time and the iterations and convolutions per punch
-window. (The 10240² runs of 2026-11-26 on an H100 also tried "after K": the 2 % rule, and always
-from iteration K + 1 on windows of at least 1024² pixels, K = 4 and 10.)
+window (benchmarks/records/solver_precondition_h100_2026-11-26.json, ``indentation_one_placement_10240``).
 
 Run (GPU machine): python examples/gpu_checks/precondition_rule.py PRESET RULE
 """

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One contact problem over 2–4 GPUs (issue 42): 2 GPUs against 1 at CHECK_N² (free and periodic,
+# One contact problem over 2–4 GPUs: 2 GPUs against 1 at CHECK_N² (free and periodic,
 # float64 and float32), then the sharded FFT floor, per-iteration time and peak memory per GPU
 # at SCALE_N² on 1, 2, 4 GPUs (strong scaling) and WEAK_N² on 4 (weak scaling). Run on a 2- or
 # 4-GPU machine from the repo root:
@@ -57,7 +57,7 @@ step 110 check --n "$CHECK_N"
 # 2. the maps of the scaling runs, made once on the host (cached as .npy)
 step 60 maps --n "$SCALE_N"
 [ "$NGPU" -ge 4 ] && step 60 maps --n "$WEAK_N"
-# 3. strong scaling at SCALE_N² (2 GPUs first: the issue's case), then weak scaling on 4
+# 3. strong scaling at SCALE_N² (2 GPUs first), then weak scaling on 4
 step 90 solve --n "$SCALE_N" --ndev 2 --dtype "$DTYPE"
 step 45 solve --n "$SCALE_N" --ndev 1 --dtype "$DTYPE"
 [ "$NGPU" -ge 4 ] && step 80 solve --n "$SCALE_N" --ndev 4 --dtype "$DTYPE"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One contact problem over 4 GPUs (issue 42, items 4 and 5), on a host with 4 GPUs:
+# One contact problem over 4 GPUs, on a host with 4 GPUs:
 #   (a) strong scaling, SCALE_N² (16384²) float32 on 1, 2 and 4 GPUs, and weak scaling, WEAK_N²
 #       (32768²) float32 on 4: the sharded FFT floor (one K·x) measured in the same process,
 #       per-iteration and per-convolution time against it, peak memory per GPU against
@@ -20,7 +20,7 @@
 # and within what is left of BUDGET seconds (default 570: one 10-minute call); a step that fails
 # or times out is recorded and the next one goes on.
 #
-# Expected times, from docs/benchmarks/sharded_h100x2*.json (2 × H100, 789c425; 16384² f32: set-up
+# Expected times, from benchmarks/records/sharded_h100x2_789c425.jsonl (2 × H100; 16384² f32: set-up
 # 8.6 s, floor 25 ms, cold 12.4 s at maxiter 100, warm 7.6 s on 2 GPUs; 11.1 / 10.7 / 8.4 s on
 # one; the floor doubles with the pixels per GPU), plus about 10 s per process for imports and
 # compilation:

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Issue 40 on a GPU host, one call (about 6–8 min on an H100): items 1, 2 and 4 measured.
+# The contact solver's iteration on a GPU host, one call (about 6–8 min on an H100):
+#  0. With TESTS=1, first the device-loop and Westergaard tests on cuda:0 and the GPU-marked
+#     tests of the batched sweep.
 #  1. In the background on the LAST GPU ($PEER_DEVICE, default the highest cuda:N): the peer
 #     benchmark at N = $PEER_SIZES (default 2048) against tamaas on this host's cores, each
 #     tamaas solve stopped after $TAMAAS_LIMIT s (default 420): the largest N tamaas finishes.
@@ -12,8 +14,10 @@
 #  3. On cuda:0: benchmarks/startup.py, 5 fresh `warptrunc analyze --n 10240` processes against
 #     the floor `import warp; warp.init(); warp.get_device('cuda:0')`, with the breakdown.
 # Results under $OUT: breakdown/breakdown.json, scaling/scaling.json, peers_<dev>.json,
-# startup_cuda0.json and the logs. Run from the repo root after the staging of
-# ../shared/device/README.md (tamaas among the wheels):
+# startup_cuda0.json and the logs (the records solver_loop_*, solver_scaling_*, peers_*,
+# startup_* of benchmarks/records/). PYTHONPATH: when unset, $STAGE (default /tmp/site), the
+# folder the GPU machine's packages (tamaas among them) are installed into with
+# `pip install --target`. Run from the repo root:
 #   OUT=loop_out WARPTRUNC_GIT_COMMIT=<sha> bash examples/gpu_checks/solver_loop.sh
 # A dry run on the CPU: DEVICE=cpu PEER_DEVICE=cpu SIZES="256 512" PEER_SIZES=64 N_START=256 ...
 set -uo pipefail
@@ -21,7 +25,7 @@ set -uo pipefail
 mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)  # absolute: the benchmarks run from examples/benchmarks
 cd "$(dirname "$0")/../.." || exit 1
-export PYTHONPATH=${PYTHONPATH:-/tmp/site} MPLBACKEND=Agg PYTHONUNBUFFERED=1
+export PYTHONPATH=${PYTHONPATH:-${STAGE-/tmp/site}} MPLBACKEND=Agg PYTHONUNBUFFERED=1
 export WARPTRUNC_GIT_COMMIT=${WARPTRUNC_GIT_COMMIT:-$(git rev-parse --short HEAD 2>/dev/null || echo unknown)}
 PY=${PY:-python3}
 DEVICE=${DEVICE:-cuda:0}
@@ -36,6 +40,12 @@ N_START=${N_START:-10240}
 nvidia-smi -L 2>/dev/null || true
 nproc
 SECONDS=0
+
+if [ "${TESTS:-0}" = 1 ]; then
+    WARPTRUNC_DEVICE=cuda:0 WARPTRUNC_TEST_DEVICES=cuda:0 timeout 120 $PY -m pytest -q \
+        -p no:cacheprovider tests/test_device_loop.py tests/test_westergaard.py 2>&1 | tail -3
+    timeout 60 $PY -m pytest -q -p no:cacheprovider -m gpu tests/test_sweep_batch.py 2>&1 | tail -3
+fi
 
 peer_pid=
 if $PY -c "import tamaas" 2>/dev/null; then

@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# GPU checks of issue 29's iterations: BCCG's preconditioner by the default rule (auto: always on
-# maps of at least 1024² pixels) against the 2 % rule (0.02), at a fixed relative tolerance
-# (pentol = 1e-4·rms) on the scaling benchmark's maps (W_c = 2 px) and on a fixed-content family
-# (W_c = 8 px at the first N); one 32768² solve; one paper-scale indentation placement with
-# both rules. Needs warp-lang under /tmp/site (../shared/device/README.md); results under $OUT.
+# BCCG's preconditioner rule on cuda:0: the default rule (auto: always on maps of at least 1024²
+# pixels) against the 2 % rule (0.02), at a fixed relative tolerance (pentol = 1e-4·rms) on the
+# scaling benchmark's maps (W_c = 2 px) and on a fixed-content family (W_c = 8 px at the first
+# N); one 32768² solve; one paper-scale indentation placement with both rules (the record
+# benchmarks/records/solver_precondition_*.json). Results under $OUT. PYTHONPATH: when unset,
+# $STAGE (default /tmp/site), the folder the GPU machine's packages are installed into with
+# `pip install --target`.
 #   bash examples/gpu_checks/solver_precondition.sh [what] [sizes] [thresholds]
 #   what: iterations | 32768 | indent | all (default)
 set -uo pipefail
-export PYTHONPATH=/tmp/site MPLBACKEND=Agg
+export PYTHONPATH=${PYTHONPATH:-${STAGE-/tmp/site}} MPLBACKEND=Agg
+: "${OUT:?set OUT to a folder for the results}"
 what=${1:-all}
 sizes=${2:-2048 4096 8192 10240 16384}
 pcs=${3:-auto 0.02}

@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
-# `sweep --workers M --devices N` on a GPU host (issue 42, item 1: each worker takes N GPUs of its
-# own): the same elastic sweep run (1) in process with --devices N (one solve spread over GPUs
+# `sweep --workers M --devices N` on a GPU host (each worker takes N GPUs of its own): the same elastic sweep run (1) in process with --devices N (one solve spread over GPUs
 # 0 … N-1) and (2) on M workers taking N GPUs each; the stored rows compared bit for bit
 # (compare_outputs.py) and both walls printed. Needs M × N GPUs (default 2 × 2).
-# Run from the repo root after the staging of ../shared/device/README.md:
+# Run from the repo root (dask, distributed and JAX installed):
 #   OUT=groups_out bash examples/gpu_checks/sweep_groups.sh
 # Sizes: N_PX (4096), SEEDS (0-7), WORKERS (2), DEVICES (2). Expected: about 8 × 2 s of solves
 # plus the cluster's start (≈ 10 s): under 90 s.

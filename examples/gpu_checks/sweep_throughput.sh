@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Sweep throughput (issue 21). Each command prints one table naming the device; the results
+# Sweep throughput. Each command prints one table naming the device; the results
 # are appended to $OUT/bench_sweep.jsonl. Tables: docs/guide/sweeps_store.md ("Throughput").
 #  (a) one GPU (H100): light cases, the kernel loop (one surface at a time), the batched kernel
 #      loop and run_sweep in process (targets: 2048² ≥ 2000 surfaces/s, 10240² ≥ 200);
 #  (b) two workers sharing one GPU against one worker, elastic 512² cases (target ≥ 1.0×);
 #  (c) the machine's CPU cores: LocalCluster of 1, 2, 4, 8 CPU workers on elastic 512² cases
 #      (target: ≥ 0.8 × linear up to 8; about 6 minutes).
-# (b) and (c) need dask/distributed (stage them with the Warp wheel: see ../shared/device).
+# (b) and (c) need dask/distributed (the WHEELS line of sweep_two_gpus.sh).
 set -euo pipefail
 unset WARPTRUNC_DEVICE
 OUT=${OUT:-gpu_out}

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sweeps on GPUs (issue 9): CUDA sweep equal to the CPU one, --workers 2 pinned one per GPU,
+# Sweeps on GPUs: CUDA sweep equal to the CPU one, --workers 2 pinned one per GPU,
 # throughput. Run on the 2-GPU kind (nvidia-h200-x2) from the repo root.
 #   bash sweep_two_gpus.sh            # results in $OUT (or ./sweep_two_gpus_out)
 # The GPU machine has pandas and pyarrow but not dask/distributed; install these wheels first

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# Sweeps on every GPU of the host (issue 39, items 3 and 4): whole `warptrunc sweep` commands
+# Sweeps on every GPU of the host: whole `warptrunc sweep` commands
 # in process on cuda:0, then on 1, 2, 4 Dask workers (one per GPU; the largest count written
 # `--workers auto`), for 2000 light cases at 2048² and 96 elastic cases at 4096²
 # (--bem-fractions 0.1), with where the time goes; then whether the stored rows are identical
 # bit for bit (in process twice on cuda:0, and 2 and N workers against in process).
-# Run on the 4-GPU kind (nvidia-h100-x4) or the 2-GPU kind, from the repo root, in the third
-# call of the staging of ../shared/device/README.md (.wdev/c with the dask wheels in extra/):
-#   bash .wdev/c/install.sh && export PYTHONPATH=/tmp/site && \
-#     python3 -m pip install -q --no-deps --no-build-isolation --no-index . && \
+# Run on a 4- or 2-GPU host from the repo root, with warptrunc, dask and distributed importable
+# (where the GPU machine's packages live in $STAGE, default /tmp/site, installed with
+# `pip install --target`: PYTHONPATH=$STAGE):
+#   python3 -m pip install -q --no-deps --no-build-isolation --no-index . && \
 #     WARPTRUNC_GIT_COMMIT=<sha> bash examples/gpu_checks/workers_bench.sh
 # (the machine has no git: name the commit). Results in $OUT (or ./workers_bench_out):
 # benchmark_workers.json (GPUs, commit, commands, every measure) and commands.log; the table
@@ -19,15 +19,11 @@
 # mattering.
 # Needs dask and distributed (the WHEELS line of sweep_two_gpus.sh), not dask-cuda: without it
 # the LocalCluster with one worker pinned per GPU is used.
-# Time on 4 H100s, estimated from measurements of 2026-11-27 (one H100, a smoke run of the
-# benchmark: first warm-ups 27 s light, 12 s elastic, kernels compiled; 128 light 2048² cases
-# 3.1 s in process, 10.2 s on one worker; 2 × H100 at b97493a: 24 elastic 2048² cases with two
-# fractions 14.3 s; a 4096² solve ≈ 0.45 s): warm-ups ≈ 45 s, light ≈ 60 s (the four commands,
-# the re-run, three clusters timed alone), elastic ≈ 80 + 30 + 50 + 90 s, the check ≈ 60 s:
-# about 7 min if nothing is cut. Worker counts run largest first; no timed run starts after
-# BUDGET_S (default 300 s) or when it is expected to end more than 45 s past it (skipped), and
-# none runs longer (stopped, rc 124); the check (≈ 60 s) runs last: at most about 7 min (the
-# elastic `--workers 1` run, ≈ in process + 5 s, is the first to be cut).
+# Time on 4 H100s: about 6 min (total_s of benchmarks/records/workers_h100x4_1b64d9c.json). Worker
+# counts run largest first; no timed run starts after BUDGET_S (default 300 s) or when it is
+# expected to end more than 45 s past it (skipped), and none runs longer (stopped, rc 124); the
+# check (≈ 60 s) runs last (the elastic `--workers 1` run, ≈ in process + 5 s, is the first to be
+# cut).
 set -uo pipefail
 OUT=${OUT:-workers_bench_out}
 mkdir -p "$OUT"
