@@ -141,3 +141,35 @@ def test_recorded_extremes_equal_the_map(device, n, seed):
         s = wm_surface(2.4, 50e-6, L=1e-3, n=n, seed=seed, device=device, **kw)
         lo, hi = s.extremes()  # recorded by the generator, no pass over the map
         assert np.float32(lo) == s.heights.min() and np.float32(hi) == s.heights.max()
+
+
+def test_content_fixed_by_the_surface_a_finer_grid_samples_the_same_map():
+    """With W_c given as a length and R_t measured on the grid of ``Rt_pixel``, the height scale
+    is that grid's: 2N² and 4N² maps over the same L equal the N² map where their pixels
+    coincide, bit for bit (the same terms, phases and scale; the sums in the same order)."""
+    from warptrunc.wm_params import WMSpec
+
+    spec = WMSpec(D=2.4, Wr=1e-4, L=1e-3, n=128, Rt=10e-6, Wc=2e-3 / 128, Rt_pixel=1e-3 / 128,
+                  seed=1)  # fmt: skip
+    ref = wm_surface(spec, device="cpu")
+    assert np.ptp(ref.heights) == pytest.approx(10e-6, rel=1e-6)  # R_t at the reference pixel
+    for f in (2, 4):
+        fine = wm_surface(spec.replace(n=128 * f), device="cpu")
+        assert fine.params["scale"] == ref.params["scale"]
+        np.testing.assert_array_equal(fine.heights[::f, ::f], ref.heights)
+        assert np.ptp(fine.heights) >= np.ptp(ref.heights)  # finer samples, same surface
+    # without Rt_pixel each grid is scaled to its own R_t (the paper's procedure)
+    own = wm_surface(spec.replace(n=256, Rt_pixel=None), device="cpu")
+    assert np.ptp(own.heights) == pytest.approx(10e-6, rel=1e-6)
+
+
+def test_rt_pixel_streamed_equals_in_memory():
+    from warptrunc.wm_params import WMSpec
+
+    spec = WMSpec(D=2.3, Wr=1e-4, L=1e-3, n=192, Rt=5e-6, Wc=2e-3 / 96, Rt_pixel=1e-3 / 96)
+    mem = wm_surface(spec, device="cpu")
+    from warptrunc import truncate
+
+    a = truncate(mem, 40, max_depth_fraction=0.3, device="cpu")
+    b = truncate(spec.terms(), 40, max_depth_fraction=0.3, stream=True, band_rows=16, device="cpu")
+    np.testing.assert_array_equal(a.n_contact_pixels, b.n_contact_pixels)

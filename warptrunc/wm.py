@@ -270,16 +270,33 @@ def _generate(spec: WMTerms, device) -> tuple[wp.array, float, tuple[float, floa
     host therefore gives the extremes of the scaled map bit for bit, with no second pass.
     """
     z, c0, lo, hi = _raw_sum(spec, device)
-    scale = height_scale(spec, lo, hi)
+    scale = height_scale(spec, lo, hi, device)
     wp.launch(_k.affine_kernel, dim=z.shape, inputs=[z, c0, float(scale)], device=device)
     ext = tuple(float(np.float32((np.float64(v) + c0) * scale)) for v in (lo, hi))
     return z, scale, ext
 
 
-def height_scale(spec: WMTerms, lo: float, hi: float) -> float:
+def reference_grid(spec: WMTerms) -> tuple[int, int] | None:
+    """(nx, ny) of the grid over the map's L on which R_t is measured (``spec.Rt_pixel``), or
+    None when that is the map's own grid."""
+    if spec.Rt is None or getattr(spec, "Rt_pixel", None) is None:
+        return None
+    ref = (max(2, round(spec.Lx / spec.Rt_pixel)), max(2, round(spec.Ly / spec.Rt_pixel)))
+    return None if ref == (spec.nx, spec.ny) else ref
+
+
+def height_scale(spec: WMTerms, lo: float, hi: float, device: wp.DeviceLike = None) -> float:
     """Factor from the raw WM sum S − c0 to heights (m): R_t/(max − min) when ``spec.Rt`` is
-    set (``lo``, ``hi``: the raw sum's extremes), else the prefactor of Eq. (4) times
-    (G/W_r)^(D − 3)."""
+    set (``lo``, ``hi``: the raw sum's extremes on the map; on the grid of ``spec.Rt_pixel``
+    over L instead when it is set and differs, evaluated there on ``device``), else the
+    prefactor of Eq. (4) times (G/W_r)^(D − 3)."""
+    ref = reference_grid(spec)
+    if ref is not None:
+        nx, ny = ref
+        grid = WMTerms(**{**spec.__dict__, "nx": nx, "ny": ny, "dx": spec.Lx / nx,
+                          "dy": spec.Ly / ny})  # fmt: skip
+        _z, _c0, lo, hi = _raw_sum(grid, resolve_device(device))
+        del _z
     if spec.Rt is not None:
         if not hi > lo:
             raise ValueError("the WM sum is flat on this grid; cannot scale to Rt")

@@ -49,9 +49,10 @@ class WMTerms:
         dict
             ``generator="weierstrass-mandelbrot"`` and ``D``, ``Wr``, ``Lx``, ``Ly`` (m),
             ``nx``, ``ny``, ``M``, ``gamma``, ``Wc`` (m), ``cutoff``, ``n_max``, ``n_terms``,
-            ``seed``, ``G`` (m or None), ``Rt`` (m or None), ``method``.
+            ``seed``, ``G`` (m or None), ``Rt`` (m or None), ``Rt_pixel`` (m or None),
+            ``method``.
         """
-        keys = ("D Wr Lx Ly nx ny M gamma Wc cutoff n_max n_terms seed G Rt method").split()
+        keys = ("D Wr Lx Ly nx ny M gamma Wc cutoff n_max n_terms seed G Rt Rt_pixel method").split()
         return {"generator": "weierstrass-mandelbrot", **{k: getattr(self, k) for k in keys}}
 
 
@@ -162,7 +163,7 @@ def _terms(s: WMSpec) -> WMTerms:
     return WMTerms(
         D=D, Wr=Wr, Lx=Lx, Ly=Ly, nx=nx, ny=ny, dx=dx, dy=dy, M=M, gamma=gamma, Wc=Wc,
         cutoff=cutoff, n_max=n_max, n_terms=n_terms, seed=s.seed, G=s.G, Rt=s.Rt,
-        method=s.method, kx=k * np.cos(theta), ky=k * np.sin(theta), alpha=alpha,
+        Rt_pixel=s.Rt_pixel, method=s.method, kx=k * np.cos(theta), ky=k * np.sin(theta), alpha=alpha,
         w=wm_weights(D, gamma, nn),
     )  # fmt: skip
 
@@ -214,6 +215,11 @@ class WMSpec(Parameters):
     G: float | None = param(
         None, "topothesy G; when given, heights are not rescaled to R_t", unit="m", gt=0.0,
         optional=True, sweep=False,
+    )  # fmt: skip
+    Rt_pixel: float | None = param(
+        None, "pixel size at which R_t is measured (a calibration scan's): the height scale is "
+        "fixed on that grid over L, so finer grids resolve the same surface; none = the map's "
+        "own pixel", unit="m", gt=0.0, optional=True, sweep=False,
     )  # fmt: skip
     M: int = param(10, "number of superposed ridges M", kind="int", ge=1, le=10_000)
     gamma: float = param(1.5, "frequency density γ", gt=1.0)

@@ -42,6 +42,7 @@ from .._support.results import jsonable
 from .._support.validate import check_int
 from ..kernels import wm as _kwm
 from ..params import param_info
+from ..surface import Surface
 from ..wm import WMSpec, WMTerms, height_scale, pad_to, surface_params, wm_product, wm_tables
 from .curve import (
     DEEP_FRACTION,
@@ -52,10 +53,18 @@ from .curve import (
 )
 
 __all__ = [
+    "STREAM_GIVEN",
+    "TOO_BIG",
     "StreamedTruncation",
     "fits_in_memory",
     "in_memory_bytes",
+    "stream_reason",
 ]
+
+TOO_BIG = "the map needs more than half of the free memory"
+"""Why a WM surface is streamed when streaming was not asked for (``stream="auto"``)."""
+STREAM_GIVEN = "--stream given"
+"""Why a WM surface is streamed when ``stream=True`` (``warptrunc analyze --stream``)."""
 
 _DEFAULT_BAND_PIXELS = 2**28  # 1 GiB of float32 per band: a progress step every few ms on a GPU
 
@@ -220,7 +229,7 @@ def extremes_pass(bands: WMBands, progress: bool) -> tuple[float, float, float, 
             _z, blo, bhi = bands.raw(r0, r1)
             lo, hi = min(lo, blo), max(hi, bhi)
             bar.update()
-    scale = height_scale(spec, lo, hi)
+    scale = height_scale(spec, lo, hi, bands.device)
     # the scaled extremes by the same kernel as the heights (the affine map is monotone, so
     # they are the scaled map's min and max bit for bit)
     ext = wp.array(np.array([[lo, hi]], dtype=np.float32), device=bands.device)
@@ -353,6 +362,52 @@ def banded_truncation(
         "Rt_m": Rt, **{k: jsonable(v, nonfinite="text") for k, v in params.items()},
     }  # fmt: skip
     return StreamedTruncation(curve, meta, bands.rows, len(bands.bands))
+
+
+def stream_reason(
+    source, stream: bool | str, device: wp.DeviceLike = None
+) -> tuple[WMTerms | None, str | None]:
+    """Whether a surface is truncated in memory or by row bands: the one decision of
+    :func:`warptrunc.truncate` and :func:`warptrunc.analyze`.
+
+    Parameters
+    ----------
+    source : Surface, WMSpec, WMTerms or mapping
+        A height map in memory, or a WM surface to generate (as :func:`as_wm_spec` takes it).
+    stream : {"auto", True, False}
+        Generate a WM surface by row bands (True), whole (False), or by bands only when the map
+        needs more than half of the free device or host memory ("auto", :func:`fits`).
+    device : str or warp.context.Device, optional
+        Warp device the map would be made on; :func:`warptrunc.resolve_device`'s choice when
+        None.
+
+    Returns
+    -------
+    spec : WMTerms or None
+        The WM surface's terms; None for a :class:`~warptrunc.Surface`.
+    reason : str or None
+        Why it is streamed (:data:`STREAM_GIVEN`, :data:`TOO_BIG`); None for the in-memory path.
+
+    Raises
+    ------
+    ValueError
+        ``stream`` is not one of the three, or ``stream=True`` with a Surface.
+    """
+    if stream not in ("auto", True, False):
+        raise ValueError(f"stream must be 'auto', True or False, got {stream!r}")
+    if isinstance(source, Surface):
+        if stream is True:
+            raise ValueError(
+                "stream=True applies to generated surfaces (a WM spec or its params), not to a "
+                "Surface"
+            )
+        return None, None
+    spec = as_wm_spec(source)
+    if stream is True:
+        return spec, STREAM_GIVEN
+    if stream == "auto" and not fits(spec, resolve_device(device)):
+        return spec, TOO_BIG
+    return spec, None
 
 
 def fits_in_memory(spec_or_params, device: wp.DeviceLike = None) -> bool:
