@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The identity check of benchmark_indentation_workers.py (issue 39, item 4): what a reproduction
+"""The identity check of benchmark_indentation_workers.py: what a reproduction
 stores for the indentation stage, compared bit for bit between runs (floats by their IEEE bits,
 NaN equal to NaN), the keys that say where, when and how fast a piece ran left out; the values
 kept as gzipped JSON so that runs of separate processes or device calls can be compared

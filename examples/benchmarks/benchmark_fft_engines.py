@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Two distributed FFT engines for the padded transform pair of the elastic half-space (issue
-42, item 1: both engines' floors for the pair on 2 GPUs): JAX/XLA in one process, and cuFFTMp
+"""Two distributed FFT engines for the padded transform pair of the elastic half-space (both
+engines' floors for the pair on 2 GPUs): JAX/XLA in one process, and cuFFTMp
 (nvmath-python's ``nvmath.distributed.fft``) in MPI ranks.
 
 The pair: a real N × N map zero-padded to 2N × 2N, the forward real 2-D FFT, times a real kernel
@@ -55,7 +55,7 @@ os.environ.setdefault("XLA_PYTHON_CLIENT_PREALLOCATE", "false")
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
-FFT_ELEMENTS_MAX = 1 << 30  # per XLA FFT call, as warptrunc.contact.sharded_grid (bug: 2**31)
+FFT_ELEMENTS_MAX = 1 << 30  # per XLA FFT call, as warptrunc.contact.sharded.grid (bug: 2**31)
 WARMUP = 2
 PACKAGES = ("nvmath-python mpi4py cupy cupy-cuda12x cupy-cuda13x cuda-bindings cuda-python "
             "cuda-core cuda-pathfinder nvidia-nvshmem-cu12 nvidia-nvshmem-cu13 nvidia-cufftmp-cu12 "
@@ -303,7 +303,7 @@ def run_pruned(jax, devices, n: int, dtype: str, repeats: int, base: dict) -> di
     try:
         if str(ROOT) not in sys.path:
             sys.path.insert(1, str(ROOT))
-        from warptrunc.contact.sharded_fft import ShardedHalfSpace
+        from warptrunc.contact.sharded.fft import ShardedHalfSpace
 
         e_star = 70e9 / (1 - 0.33**2)
         hs = ShardedHalfSpace((n, n), (1e-3 / n, 1e-3 / n), e_star, substrate="free",

@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Benchmark (issue 39, items 3(c) and 4): the ``warptrunc reproduce`` indentation stage in
+"""Benchmark: the ``warptrunc reproduce`` indentation stage in
 process and on 1, 2, 4 … Dask workers (one GPU each), side by side, as whole fresh processes,
 and whether the workers store what in process stores, bit for bit.
 
@@ -362,7 +362,7 @@ def main(argv=None) -> int:
         warp_version = "unknown"
     p = build_profile(args.profile, args.n)
     results = dict(
-        benchmark="benchmark_indentation_workers", issue=39, items="3(c), 4", commit=commit,
+        benchmark="benchmark_indentation_workers", commit=commit,
         host=platform.node(), started_utc=datetime.now(timezone.utc).isoformat(timespec="seconds"),
         machine=dict(gpus=gpu_lines or "cpu", visible_gpus=n_gpus, cpus=os.cpu_count(),
                      cuda_visible_devices=os.environ.get("CUDA_VISIBLE_DEVICES"),

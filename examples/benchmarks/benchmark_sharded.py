@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""One contact problem over several GPUs (issue 42): correctness against one GPU, the sharded
+"""One contact problem over several GPUs: correctness against one GPU, the sharded
 FFT floor, per-iteration time and peak memory per device against ``memory_bytes``.
 
 Each step runs in its own process (``examples/gpu_checks/sharded.sh`` runs them under
@@ -184,8 +184,8 @@ def programme_memory(solver) -> dict:
     device: arguments, outputs, temporaries; ``memory_analysis()``), to set the model's XLA
     terms on the devices' own compile: the spectrum's build, the CG step, the preconditioner,
     one convolution."""
-    from warptrunc.contact.sharded_spectrum import spectrum_programme
-    from warptrunc.contact.sharded_steps import make_step
+    from warptrunc.contact.sharded.spectrum import spectrum_programme
+    from warptrunc.contact.sharded.steps import make_step
 
     lay, w = solver.hs.layout, solver.hs.spectrum
     x, mask = solver.q, solver.mask

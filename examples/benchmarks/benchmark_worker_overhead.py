@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Where a Dask worker's extra cost on an indentation part comes from (issue 39).
+"""Where a Dask worker's extra cost on an indentation part comes from.
 
-On 4 × H100 at ``cc1dcf5`` the indentation stage's parts cost 1.31× (2 workers) and 1.44×
-(4 workers) as much as in process, with the same iterations and bit-identical results, after
-the workers stopped inheriting ``MALLOC_TRIM_THRESHOLD_``. This benchmark runs the same parts
+On Dask workers the indentation stage's parts can cost more than in process, with the same
+iterations and bit-identical results (on 4 × H100 1.31× on 2 workers and 1.44× on 4:
+``benchmarks/records/indentation_workers_h100x4_cc1dcf5.json``). This benchmark runs the same parts
 (one surface's elastic part and one elastic–plastic part of the paper profile's stage at
 ``--n``) one after another, each timed, in these settings, on one device:
 
@@ -29,9 +29,9 @@ bound with bound or, with both off, unbound with unbound; each run records its C
 Each setting runs ``--repeat`` times (the first is a warm-up, not counted); ``--profile-top K``
 also records the K most expensive functions (cProfile, cumulative and own time) of one more
 run, not counted, in ``main`` and in ``worker``. Prints a table and writes
-``worker_overhead.json`` in ``--out``. Measured on one H100 (before the workers were bound and
-ran without the profiler): ``benchmarks/records/worker_overhead_h100x4_12e7a94.json``, the table in
-``docs/guide/performance.md``; ``examples/gpu_checks/wave10.sh probe`` runs it unbound, then bound.
+``worker_overhead.json`` in ``--out``. Records: ``benchmarks/records/worker_overhead_h100x4_12e7a94.json``
+(workers unbound, with Dask's profiler) and ``worker_overhead_h100x4_1b64d9c.json`` (unbound, then
+bound; ``examples/gpu_checks/indent_workers.sh probe`` runs it so).
 
     python examples/benchmarks/benchmark_worker_overhead.py --n 1536 --device cuda:0
     python examples/benchmarks/benchmark_worker_overhead.py --n 128 --device cpu   # a dry run
@@ -177,7 +177,7 @@ def main(argv=None) -> int:
         ordinal = int(str(args.device).partition(":")[2] or 0)
         bound = bind_near([ordinal])
         print(f"bound to CPUs {format_cpulist(bound) if bound else '(unchanged)'}", flush=True)
-    rec = {"benchmark": "worker_overhead", "issue": 39, "commit": os.environ.get("WARPTRUNC_GIT_COMMIT"),
+    rec = {"benchmark": "worker_overhead", "commit": os.environ.get("WARPTRUNC_GIT_COMMIT"),
            "host": platform.node(), "started_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
            "args": vars(args), "settings": {},
            "bound": None if not bound else sorted(bound),

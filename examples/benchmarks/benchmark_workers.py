@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Benchmark (issue 39, items 3 and 4): whole ``warptrunc sweep`` commands in process and on
+"""Benchmark: whole ``warptrunc sweep`` commands in process and on
 1, 2, 4 … Dask workers (one per GPU), side by side, and whether their rows are identical.
 
 What it measures
@@ -42,7 +42,7 @@ Output
 Run
     # CPU, small (the defaults: 64² grids, 2 workers): a minute
     python examples/benchmarks/benchmark_workers.py --device cpu --workers 2 --out bench_w
-    # a GPU node, the issue's sizes (≥ 2000 light cases at 2048², 96 elastic at 4096²)
+    # a GPU node, the full sizes (2000 light cases at 2048², 96 elastic at 4096²)
     python examples/benchmarks/benchmark_workers.py --full --out bench_w
     # 20000 light cases (seeds 0-4999 over the 4 D values): where the cluster's start stops
     # mattering
@@ -67,7 +67,7 @@ from pathlib import Path
 
 import numpy as np
 
-#: The workloads: (grid and options for ``warptrunc sweep``) small (CPU, CI) and full (issue 39).
+#: The workloads: (grid and options for ``warptrunc sweep``) small (CPU, CI) and full (a GPU node).
 SIZES = {
     "small": {
         "light": ["--n", "64", "--D", "2.3", "2.6", "--delta", "0.01", "--seeds", "0-7"],
@@ -351,7 +351,7 @@ def main(argv=None) -> int:
                                  formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
     ap.add_argument("--out", type=Path, default=Path("bench_workers"), help="output folder")
     ap.add_argument("--full", action="store_true",
-                    help="the issue's sizes (2000 light cases at 2048², 96 elastic at 4096², "
+                    help="the full sizes (2000 light cases at 2048², 96 elastic at 4096², "
                     "check at 1024²) instead of the small CPU ones (64²)")  # fmt: skip
     ap.add_argument("--runs", nargs="+", default=["light", "elastic", "check"],
                     choices=("light", "elastic", "check"))  # fmt: skip
@@ -400,7 +400,7 @@ def main(argv=None) -> int:
     n_gpus = sum(1 for d in wdevs if "(cuda:" in d)
     counts = args.workers or default_workers(n_gpus if args.device in (None, "") else 0)
     results = dict(
-        benchmark="benchmark_workers", issue=39, commit=git_commit(), host=platform.node(),
+        benchmark="benchmark_workers", commit=git_commit(), host=platform.node(),
         started_utc=datetime.now(timezone.utc).isoformat(timespec="seconds"),
         gpus=gpu_lines, warp_devices=wdevs, cpus=os.cpu_count(), python=platform.python_version(),
         sizes="full" if args.full else "small", device=args.device, workers=counts, runs=[],

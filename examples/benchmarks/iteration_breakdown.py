@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """Benchmark: where one BCCG iteration's time goes, and the loop with one read-back against the
-loop with one per reduction (issue 40, item 2).
+loop with one per reduction.
 
 What it shows
     Per map size N (D = 2.5 WM map, L = 1 mm, W_r = 100 µm, R_t = 10 µm, free boundary, as the

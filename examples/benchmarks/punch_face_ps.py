@@ -156,7 +156,7 @@ def main(argv=None) -> int:
                *(sys.argv[1:] if argv is None else argv)]  # fmt: skip
     doc = {
         "what": "Ps (Table 1, D_vs preset) under the 502.6 µm punch: tilt and tip roughness "
-        "against the aligned smooth flat (issue 38, item 5)",
+        "against the aligned smooth flat",
         "command": " ".join(command),
         "git_commit": git_commit(), "device": args.device, "platform": platform.platform(),
         "processor": platform.processor(), "date": time.strftime("%Y-%m-%d"),

@@ -10,7 +10,7 @@ What it shows
       ``python -c "import warp; warp.init(); warp.get_device(D)"``, interleaved with the job's
       runs (so both see the same machine load), and of ``python -c pass`` (the interpreter);
     * **excess** = median(job) − median(floor): what warptrunc adds to a Warp program's start
-      (issue 40's target on one H100 at 10240²: ≤ 1.0 s);
+      (at 10240² on one GPU it is about 1 s: ``benchmarks/records/startup_*.json``);
     * **breakdown**: one more fresh process runs the job in-process (``warptrunc.cli.main``)
       with timers around its phases — the imports (Warp, warptrunc's analysis path), ``wp.init``,
       the device (CUDA context), generation, truncation, the island pass, the fit, fit.json's
@@ -22,7 +22,8 @@ What it shows
       imports), the second run its steady cost;
     * **imports**: ``python -X importtime`` of the job, the largest top-level imports.
 
-    A JSON record (``startup_<device>.json``) goes under ``--out``; a table is printed last.
+    A JSON record (``startup_<device>.json``; kept as ``benchmarks/records/startup_<machine>_<commit>.json``)
+    goes under ``--out``; a table is printed last.
 
 Run
     python examples/benchmarks/startup.py --n 1024 --device cpu --out bench
