@@ -124,6 +124,8 @@ class _Package(_types.ModuleType):
 
     def __setattr__(self, name: str, value: _Any) -> None:
         if isinstance(value, _types.ModuleType) and _EXPORTS.get(name) == f".{name}":
+            if name not in vars(value):  # a package exporting lazily: bound on first access
+                return
             value = getattr(value, name)
         super().__setattr__(name, value)
 
