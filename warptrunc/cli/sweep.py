@@ -10,11 +10,12 @@ Writes OUT/sweep.json (grid and options), OUT/curves/part-*.parquet (one Parquet
 shard of about 1 s of work: its curves, and its rows in the metadata; a dataset that
 pd.read_parquet("OUT/curves") reads) and OUT/cases.parquet (one row per case × fit range,
 rebuilt from the parts). Running the same command again skips the finished cases (those some
-part holds); `--migrate OUT` converts a store of the previous layout (one curve file per case); another grid or option set on the same OUT is refused unless
---overwrite. SIGINT/SIGTERM stop after writing what has finished (exit 130/143). One sweep per store at a
+part holds); another grid or option set on the same OUT is refused unless --overwrite.
+SIGINT/SIGTERM stop after writing what has finished (exit 130/143). One sweep per store at a
 time: OUT/.lock holds the running sweep's pid and host, and a second sweep on the same OUT is
 refused at once (a lock left by a dead process on this host is taken over, with a message).
-sweep.json is strict JSON: "E_flat": null means a rigid flat (E_flat = inf).
+sweep.json is strict JSON and spells E_i, ν_i as the store always has: "E_flat": null means a
+rigid flat (E_i = inf).
 Example: warptrunc sweep --D 2.1 2.3 2.5 --delta 0.005 0.01 --seeds 0-4 --n 2048 --out runs/g2
 """
 
@@ -27,33 +28,36 @@ import sys
 from collections import Counter
 
 from .._support.interrupt import check_interrupt, latched_signals
-from .._support.validate import DEFAULT_MIN_PIXELS
-from ..material import Material
-from ..params import add_options, param_info
+from ..params import add_options, from_args
 from ..sweep.grid import SweepGrid
-from ..sweep.options import option_name
+from ..sweep.options import SweepExecution, SweepOptions, axis_names
 from ..sweep.read import load, require_extra
 from ..sweep.run import run_sweep
 from ..sweep.stats import MIN_TREND_D, alpha_summary
-from ..wm_params import WMSpec
 from ._common import (
     add_device,
     add_devices,
-    add_material,
+    add_grid_file,
+    add_no_progress,
     add_out,
-    add_truncation,
-    add_wm_shape,
+    add_overwrite,
+    add_retry_failed,
+    add_shards,
     add_workers,
-    input_file,
-    integer,
-    positive,
     prepare_devices,
-    real,
-    truncation_from_args,
 )
 
 NAME = "sweep"
 HELP = "sweep D × δ × seeds into a resumable Parquet store (in-process or on Dask)"
+
+AXES = tuple(axis_names(runnable=True))
+"""Options that take several values, each value a case of one more grid axis."""
+
+SURFACE = ("Wr", "L", "n", "M", "gamma", "Wc", "cutoff")
+TRUNCATION_MATERIAL = ("increments", "max_depth_fraction", "max_depth", "beta_prime",
+                       "E", "nu", "E_i", "nu_i")  # fmt: skip
+FIT_RANGE = ("min_pixels", "depth_window")
+EXTRA = ("min_pixels_fraction", "fractal_methods", "bem_fractions")
 
 
 class Terminated(KeyboardInterrupt):
@@ -61,96 +65,44 @@ class Terminated(KeyboardInterrupt):
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    """Arguments of ``warptrunc sweep``."""
+    """Arguments of ``warptrunc sweep``: the fields of :class:`~warptrunc.sweep.SweepGrid` and
+    :class:`~warptrunc.sweep.SweepOptions`, and where the cases run and the store goes."""
     g = p.add_argument_group("grid (values on the command line, or --grid FILE)")
-    add_options(g, WMSpec, only=("D",), many=("D",), defaults={"D": None},
-                docs={"D": "input fractal dimensions D_in"})  # fmt: skip
-    g.add_argument("--delta", type=positive(), nargs="+", default=None,
-                   help="relative roughness values δ = R_t/W_r (dimensionless); R_t = δ·W_r")  # fmt: skip
-    g.add_argument("--seeds", default=None, help="seeds: '0-4', '0,3,7' or '0-2,9' (default 0)")
-    g.add_argument("--grid", type=input_file, default=None,
-                   help="TOML file with D = [...], delta = [...], seeds = '0-4' and optionally "
-                   "a table [axes] of more axes (e.g. M = [8, 10])")  # fmt: skip
-    s = p.add_argument_group(
-        "surface generation (SI; several values of --Wr, --M, --gamma, --Wc: more grid axes)"
-    )
-    add_wm_shape(s, many=True)
-    g = p.add_argument_group("truncation and material")
-    add_truncation(g, only=("increments", "max_depth_fraction", "max_depth", "beta_prime"))
-    add_material(g, many=True)
-    f = p.add_argument_group("fit range")
-    f.add_argument(
-        "--min-pixels", type=integer(1), nargs="+", default=[DEFAULT_MIN_PIXELS],
-        help="fit only increments with at least this many contact pixels (1 = all with load > 0)"
-        "; several values: one fit (row) each",
+    add_options(g, SweepGrid, only=("D", "delta", "seeds"), defaults={"D": None, "delta": None})
+    add_grid_file(g)
+    groups = (
+        ("surface generation (SI; several values of --Wr, --M, --gamma, --Wc: more grid axes)",
+         SURFACE),
+        ("truncation and material (several values of --E, --nu, --E-i, --nu-i: more grid axes)",
+         TRUNCATION_MATERIAL),
+        ("fit range", FIT_RANGE),
+        ("extra measurements and fit ranges", EXTRA),
     )  # fmt: skip
-    f.add_argument(
-        "--depth-window", type=real(0.0, lo_open=False, unit="m"), nargs=2, default=None,
-        metavar=("LO", "HI"), help="fit only depths LO ≤ ω ≤ HI (m)",
-    )  # fmt: skip
-    m = p.add_argument_group("extra measurements and fit ranges")
-    m.add_argument("--min-pixels-fraction", type=float, nargs="+", default=[],
-                   help="more fit ranges relative to each case: increments with ≥ f × its final "
-                   "contact pixels (at least 10), f in (0, 1]")  # fmt: skip
-    m.add_argument("--fractal", nargs="+", default=[], choices=("tri", "box", "vs", "sp"),
-                   metavar="METHOD",
-                   help="measure D of each generated surface by these methods (tri box vs sp; "
-                   "fractal_dimensions' default options): columns D_<method>, D_<method>_r2, "
-                   "fractal_options")  # fmt: skip
-    m.add_argument("--bem-fractions", type=real(0.0, 1.0), nargs="+", default=[], metavar="F",
-                   help="elastic solves per case (free half-space, warptrunc.contact) at "
-                   "approaches δ = f·R_t, f in (0, 1): columns F_bem_N_<f>, A_bem_m2_<f>, "
-                   "k_bem_N_per_m_<f>, the truncation values F_trunc_N_<f>, ..., the ratios "
-                   "F_ratio_<f>, A_ratio_<f>, k_ratio_<f> and bem_converged_<f>")  # fmt: skip
+    for title, names in groups:
+        add_options(p.add_argument_group(title), SweepOptions, only=names,
+                    many=[k for k in names if k in AXES])  # fmt: skip
     e = p.add_argument_group("execution")
     add_device(e)
     add_devices(e, "--bem-fractions (with --workers N: each worker takes that many devices of its "
                 "own, and --workers auto is the GPUs divided by it)")
     add_workers(e, "the cases", "the cases (its workers write into --out: a shared filesystem)")
-    e.add_argument("--shard-size", type=integer(1, 10**6), default=None,
-                   help="with --workers/--scheduler: cases per Dask task, each written by its "
-                   "worker as one part (default: adaptive, about --shard-seconds of work)")  # fmt: skip
-    e.add_argument("--shard-seconds", type=real(0.0, None, lo_open=False), default=1.0,
-                   help="work per part of the store (s); a hard kill loses at most about this "
-                   "much per worker")  # fmt: skip
-    e.add_argument("--migrate", action="store_true",
-                   help="only convert the store at --out from the previous layout (one curve "
-                   "file per case) to parts, and exit")  # fmt: skip
-    e.add_argument("--overwrite", action="store_true",
-                   help="replace the results in an existing store made by another grid/options")  # fmt: skip
-    e.add_argument("--retry-failed", action="store_true",
-                   help="run again the cases recorded with an error")  # fmt: skip
-    e.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_shards(e)
+    add_overwrite(e, "the results in an existing store made by another grid/options")
+    add_retry_failed(e, "the cases recorded with an error")
+    add_no_progress(e)
     add_out(p, default="sweep")
 
 
-def _wm_material(args: argparse.Namespace) -> tuple[dict, dict]:
-    """(single-valued options, extra axes) of the WMSpec and Material options given."""
-    opts: dict = {}
-    axes: dict = {}
-    for cls in (WMSpec, Material):
-        for name, meta in param_info(cls).items():
-            v = getattr(args, name, None)
-            if name == "D" or v is None:
-                continue
-            if meta.pair:
-                if len(v) > 2:
-                    raise ValueError(f"--{meta.cli or name} takes one or two values, got {v}")
-                v = v[0] if len(v) == 1 else tuple(v)
-            elif isinstance(v, list) and len(v) > 1:
-                axes[name] = v
-                continue
-            elif isinstance(v, list):
-                v = v[0]
-            opts[option_name(name)] = v
-    return opts, axes
+def _axes(args: argparse.Namespace) -> dict:
+    """The options given several values: field → values (each an extra axis of the grid)."""
+    return {k: v for k in AXES if isinstance(v := getattr(args, k, None), list) and len(v) > 1}
 
 
-def grid_from_args(args: argparse.Namespace):
+def grid_from_args(args: argparse.Namespace) -> SweepGrid:
     """The :class:`SweepGrid` of ``--grid`` or of ``--D/--delta/--seeds``, with the extra
     axes of the options given several values."""
 
-    _, axes = _wm_material(args)
+    axes = _axes(args)
     if args.grid is not None:
         if args.D is not None or args.delta is not None or args.seeds is not None:
             raise ValueError("give --grid FILE or --D/--delta/--seeds, not both")
@@ -158,23 +110,23 @@ def grid_from_args(args: argparse.Namespace):
         return SweepGrid(D=g.D, delta=g.delta, seeds=g.seeds, axes=(*g.axes, *axes.items()))
     if args.D is None or args.delta is None:
         raise ValueError("the grid needs --D and --delta (and --seeds), or --grid FILE")
-    seeds = args.seeds if args.seeds is not None else "0"
-    return SweepGrid.from_values(args.D, args.delta, seeds, axes=axes)
+    return from_args(SweepGrid, args, axes=tuple(axes.items()))
 
 
-def options_from_args(args: argparse.Namespace) -> dict:
-    """Keyword options of :func:`warptrunc.sweep.run_sweep` from the parsed arguments."""
+def options_from_args(args: argparse.Namespace) -> SweepOptions:
+    """The :class:`SweepOptions` of the parsed arguments; an option given several values is an
+    axis of the grid (:func:`grid_from_args`) and keeps its default here."""
 
-    wm_material, _ = _wm_material(args)
-    t = truncation_from_args(args)
-    return dict(
-        **wm_material, increments=t.increments,
-        max_depth_fraction=t.max_depth_fraction, max_depth=t.max_depth,
-        beta_prime=t.beta_prime, min_pixels=tuple(args.min_pixels),
-        min_pixels_fraction=tuple(args.min_pixels_fraction),
-        fractal_methods=tuple(args.fractal), bem_fractions=tuple(args.bem_fractions),
-        depth_window=None if args.depth_window is None else tuple(args.depth_window),
-    )  # fmt: skip
+    single = argparse.Namespace(**{**vars(args), **dict.fromkeys(_axes(args))})
+    return from_args(SweepOptions, single)
+
+
+def execution_from_args(args: argparse.Namespace) -> SweepExecution:
+    """The :class:`SweepExecution` of ``--workers``, ``--scheduler``, ``--devices``,
+    ``--shard-size`` and ``--shard-seconds`` (those not given: its defaults)."""
+
+    return from_args(SweepExecution, args, workers=args.workers, scheduler=args.scheduler,
+                     devices=args.devices)  # fmt: skip
 
 
 def run(args: argparse.Namespace) -> int:
@@ -183,13 +135,13 @@ def run(args: argparse.Namespace) -> int:
         require_extra()
     except ImportError as exc:
         raise ValueError(str(exc)) from None
-    if args.migrate:
-        return _migrate(args.out)
-    if args.devices not in (None, 1):
-        if args.devices == "auto" and (args.workers is not None or args.scheduler is not None):
+    options = options_from_args(args)
+    execution = execution_from_args(args)
+    if execution.spread:
+        if args.devices == "auto" and execution.distributed:
             raise ValueError("--devices auto with --workers/--scheduler: give a count (each "
                              "worker takes that many devices of its own)")  # fmt: skip
-        if not args.bem_fractions:
+        if not options.bem_fractions:
             raise ValueError(f"--devices {args.devices} spreads the elastic solves of "
                              "--bem-fractions, and none are asked for")  # fmt: skip
         prepare_devices(args.devices)
@@ -198,11 +150,8 @@ def run(args: argparse.Namespace) -> int:
     try:
         with stops:
             df = run_sweep(
-                grid, args.out, workers=args.workers, scheduler=args.scheduler,
-                overwrite=args.overwrite, retry_failed=args.retry_failed,
-                shard_size=args.shard_size, shard_seconds=args.shard_seconds,
-                progress=not args.no_progress, device=args.device, devices=args.devices,
-                **options_from_args(args),
+                grid, args.out, options=options, execution=execution, overwrite=args.overwrite,
+                retry_failed=args.retry_failed, progress=not args.no_progress, device=args.device,
             )  # fmt: skip
             check_interrupt()  # a signal swallowed in a destructor after the last case
     except KeyboardInterrupt as exc:
@@ -217,19 +166,6 @@ def run(args: argparse.Namespace) -> int:
     print(f"{len(grid)} cases ({failed} failed) in {args.out}: sweep.json, cases.parquet, "
           "curves/part-*.parquet")
     _print_summary(df)
-    return 0
-
-
-def _migrate(out) -> int:
-    from ..sweep.lock import store_lock
-    from ..sweep.migration import migrate
-
-    if not (out / "sweep.json").exists():
-        raise ValueError(f"{out} is not a sweep store (no sweep.json)")
-    with store_lock(out, notify=lambda m: print(m, file=sys.stderr)):
-        n = migrate(out, notify=print)
-    if n == 0:
-        print(f"{out} has the current layout already; nothing to convert")
     return 0
 
 

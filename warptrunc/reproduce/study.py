@@ -212,9 +212,9 @@ def slit_band(curve, min_islands: int) -> dict[str, list]:
     return out
 
 
-def group_sweep(p: Profile, which: int) -> tuple[Any, dict[str, Any]]:
-    """The :class:`~warptrunc.sweep.SweepGrid` and :func:`~warptrunc.sweep.run_sweep` options
-    of Table 3 group 1 (D_in = 2.5, δ sweep) or group 2 (δ = 0.01, D_in sweep).
+def group_sweep(p: Profile, which: int) -> tuple[SweepGrid, SweepOptions]:
+    """The :class:`~warptrunc.sweep.SweepGrid` and :class:`~warptrunc.sweep.SweepOptions` of
+    Table 3 group 1 (D_in = 2.5, δ sweep) or group 2 (δ = 0.01, D_in sweep).
 
     Parameters
     ----------
@@ -227,9 +227,9 @@ def group_sweep(p: Profile, which: int) -> tuple[Any, dict[str, Any]]:
     -------
     grid : SweepGrid
         D_in × δ × seeds of the group.
-    options : dict of str to Any
-        Keyword options of :func:`~warptrunc.sweep.run_sweep` (lengths in m): size, W_r,
-        increments, both fit ranges and the fractal methods (all four for group 2).
+    options : SweepOptions
+        Options of :func:`~warptrunc.sweep.run_sweep` (lengths in m): size, W_r, increments,
+        both fit ranges and the fractal methods (all four for group 2).
     """
 
     ranges = fit_ranges(p, p.n)
@@ -240,10 +240,10 @@ def group_sweep(p: Profile, which: int) -> tuple[Any, dict[str, Any]]:
     else:
         grid = SweepGrid(D=tuple(p.group2_D), delta=(0.01,), seeds=seeds)
         fractal = True
-    opts = dict(
+    opts = SweepOptions(
         n=p.n, L=p.L, Wr=p.Wr, increments=p.increments, max_depth_fraction=p.max_depth_fraction,
         min_pixels=(ranges["default"],), min_pixels_fraction=(ranges["late"],),
-        fractal_methods=METHODS if fractal else (),
+        fractal_methods=METHODS if fractal else None,
     )  # fmt: skip
     return grid, opts
 
@@ -288,11 +288,11 @@ def stage_group(
 
     grid, opts = group_sweep(p, which)
     path = Path(out) / "sweeps" / f"group{which}"
-    why = conflict(path, grid, SweepOptions(**opts))
+    why = conflict(path, grid, opts)
     if why is not None and not overwrite:
         raise StageConflict(f"{why} (group {which} of warptrunc reproduce)")
-    df = run_sweep(grid, path, overwrite=why is not None, device=device,
-                   progress=True, **opts)  # fmt: skip
+    df = run_sweep(grid, path, options=opts, overwrite=why is not None, progress=True,
+                   device=device)  # fmt: skip
     ranges = fit_ranges(p, p.n)
     rows, failed = [], []
     curves = dict(tuple(load_curves(path).groupby("case_id", sort=False)))  # one pass over the parts

@@ -15,6 +15,34 @@ pinned device made the default, the light cases' kernels loaded). Cases go out i
 case takes milliseconds. Each worker writes its shard as one part of the store
 (:func:`~warptrunc.sweep.engines.compute_shard`) and sends back only the part's name and rows;
 the client records which parts exist and is the only writer of ``cases.parquet``.
+
+What the worker processes of a local cluster inherit (:func:`worker_environment`): Warp's
+kernel cache folder, the process environment Dask sets before it spawns them less glibc's
+trim threshold, and a configuration without Dask's statistical profiler
+(:data:`PROFILE_ENV`).
+
+Dask's nanny sets ``MALLOC_TRIM_THRESHOLD_=65536`` in every worker it spawns
+(``distributed.nanny.pre-spawn-environ``), so that workers give freed memory back to the
+operating system. Setting that variable turns glibc's dynamic mmap threshold off: every
+allocation above 128 KiB (a 2048² map, a solver's temporaries) is then mapped and unmapped
+afresh, and its pages are faulted in each time. Measured on the CPU (2-core VM): a 256² contact
+solve with its host work took 0.29–0.32 s in a worker against 0.16–0.18 s in process, and
+0.17–0.19 s in a worker without the variable; the indentation stage's pieces (tiny profile at
+256²) cost 17.7 s with the variable and 13.8 s without, in process and in a worker alike
+(``benchmarks/records/worker_trim_cpu_fcb7142.json``; ``tests/test_sweep_spawn.py`` checks the setting, the
+timing is not asserted). On the 4 × H200 host the indentation pieces cost 1.24× as much on
+workers as in process (``benchmarks/records/indentation_workers_h200x4_34cbf1b.json``), the same
+ratio; but with the variable left out, on 4 × H100, they still cost 1.31× (2 workers) and 1.44×
+(4 workers) (``benchmarks/records/indentation_workers_h100x4_cc1dcf5.json``): on GPUs it is not the
+whole cause. With the profiler off as well (:data:`PROFILE_ENV`), on 4 × H100 at ``1b64d9c``, they cost
+1.04× (4 workers) and 1.10× (2), and 4 workers run the stage 3.44× faster than one process
+(``benchmarks/records/indentation_workers_h100x4_1b64d9c.json``).
+
+A user who sets ``MALLOC_TRIM_THRESHOLD_`` in their own environment keeps it: the workers
+inherit it. Workers of an existing cluster (``--scheduler``) are started by the user: give them
+``distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_: null`` in their Dask configuration
+file (Dask's ``DASK_*`` variables lowercase the key, so they cannot name it), or start them
+with ``--no-nanny``.
 """
 
 from __future__ import annotations
@@ -34,23 +62,102 @@ from .._support.interrupt import check_interrupt
 from .._support.progress import progress_bar
 from .._support.validate import check_int
 from .curves import part_name, part_rows
-from .engines import compute_shard, failed_case, pinned_device
+from .engines import MAX_SHARD, compute_shard, failed_case, pinned_device
 from .grid import Case
-from .options import SweepOptions
+from .options import SweepExecution, SweepOptions
 from .sharding import ShardPlanner
-from .spawn import kernel_cache_base, worker_environment
 
 __all__ = [
+    "PROFILE_ENV",
+    "TRIM_VARIABLE",
     "PinDevice",
     "kernel_cache_base",
     "open_client",
     "resolve_workers",
     "run_dask",
     "warm_worker",
+    "worker_environment",
 ]
 
 #: Set to ``0`` to use a LocalCluster with :class:`PinDevice` even where dask-cuda is installed.
 DASK_CUDA_ENV = "WARPTRUNC_DASK_CUDA"
+
+TRIM_VARIABLE = "MALLOC_TRIM_THRESHOLD_"
+"""glibc's trim threshold variable, which Dask's nanny sets in its workers unless told not to."""
+
+PROFILE_ENV = "WARPTRUNC_DASK_PROFILE"
+"""Set to ``1`` to keep Dask's statistical profiler in a local cluster's workers (off by default:
+it samples every worker thread's stack every 10 ms, holding the GIL meanwhile, and the solver's
+loop on a GPU waits on its host thread between launches)."""
+
+
+def kernel_cache_base() -> str | None:
+    """The folder to give every worker as ``WARP_CACHE_PATH``: that of this process, if set.
+
+    Warp appends its version to ``WARP_CACHE_PATH`` (or to ``wp.config.kernel_cache_dir`` set
+    before it initialises) and resolves ``wp.config.kernel_cache_dir`` to the result when it
+    initialises; the folder returned is that directory without the version, so a worker given
+    it resolves the same directory and loads the kernels any process compiled there instead
+    of compiling them again. Warp is not initialised here.
+
+    Returns
+    -------
+    str or None
+        Absolute path of the cache's base folder: from ``wp.config.kernel_cache_dir`` (set by
+        the user, or resolved by Warp's start), else ``$WARP_CACHE_PATH``; None when neither
+        is set (every process of the user then resolves the same default folder).
+    """
+    import warp as wp
+
+    where = wp.config.kernel_cache_dir
+    if where is None:
+        env = os.environ.get("WARP_CACHE_PATH")
+        return os.path.realpath(env) if env else None
+    resolved = os.path.realpath(str(where))
+    head, tail = os.path.split(resolved)
+    return head if tail == wp.config.version else resolved
+
+
+def worker_environment() -> dict[str, Any]:
+    """The Dask configuration a local cluster's workers are spawned under.
+
+    Returns
+    -------
+    dict of str to Any
+        For ``dask.config.set`` (the nanny hands its configuration to the worker it spawns):
+        ``"distributed.nanny.environ"``, the configured one plus ``WARP_CACHE_PATH`` (from
+        :func:`kernel_cache_base`, where it gives a folder); ``"distributed.nanny.pre-spawn-environ"``,
+        the configured one with :data:`TRIM_VARIABLE` set to None (Dask then leaves it unset)
+        unless this process's environment sets it; and ``"distributed.worker.profile.enabled"``
+        False (Dask's statistical profiler off; the dashboard's Profile page stays empty) unless
+        ``$WARPTRUNC_DASK_PROFILE`` is ``1``.
+
+    Notes
+    -----
+    The profiler, measured on one H100 (``examples/benchmarks/benchmark_worker_overhead.py``, an
+    elastic and an elastic–plastic indentation part at 1024²,
+    ``benchmarks/records/worker_overhead_h100x4_12e7a94.json``): the parts took 1.23× their time in the main
+    thread on a worker as Dask configures it, 0.88× and 0.80× (two calls) with the profiler and
+    the system monitor off, 1.15× with only the profiler off; runs of one setting spread by up to
+    30 %, so the profiler's share is not pinned down. It is turned off because it costs the GIL
+    and gives nothing a command needs. With it off (``1b64d9c``, 4 × H100 of one NUMA node, so
+    the CPU binding changed nothing there), a worker took 1.03–1.08× the main thread
+    (``benchmarks/records/worker_overhead_h100x4_1b64d9c.json``) and the indentation stage's pieces
+    1.04× on 4 workers.
+    """
+    import dask
+
+    environ = dict(dask.config.get("distributed.nanny.environ", {}) or {})
+    cache = kernel_cache_base()
+    if cache is not None:
+        environ["WARP_CACHE_PATH"] = cache
+    pre = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}) or {})
+    if TRIM_VARIABLE not in os.environ:
+        pre[TRIM_VARIABLE] = None
+    profile = os.environ.get(PROFILE_ENV, "").strip().lower() in ("1", "true", "yes", "on")
+    return {"distributed.nanny.environ": environ, "distributed.nanny.pre-spawn-environ": pre,
+            "distributed.worker.profile.enabled": profile}
+
 
 
 class PinDevice(WorkerPlugin):
@@ -132,7 +239,7 @@ def warm_worker(device: Any = None, contact: bool = False) -> str:
 
     Run in each worker of a local cluster as it starts (:func:`open_client`), so that a
     worker's first task does not pay for Warp's start, the CUDA context and the kernel loads
-    (compiled kernels come from the shared cache, :func:`~warptrunc.sweep.spawn.kernel_cache_base`).
+    (compiled kernels come from the shared cache, :func:`kernel_cache_base`).
 
     Parameters
     ----------
@@ -298,7 +405,7 @@ def open_client(
     ``cuda:0``); set ``WARPTRUNC_DASK_CUDA=0`` to use the LocalCluster instead. Otherwise a
     ``LocalCluster`` whose worker i runs on ``cuda:{i mod n_gpus}`` (:class:`PinDevice`).
     The workers of a local cluster get this process's kernel cache folder as
-    ``WARP_CACHE_PATH`` (:func:`~warptrunc.sweep.spawn.kernel_cache_base`; with none set, all resolve the user's
+    ``WARP_CACHE_PATH`` (:func:`kernel_cache_base`; with none set, all resolve the user's
     default), so they share one kernel cache on disk, and are warmed before the first task
     (:func:`warm_worker`, on every worker at once). Warp is not started here: devices are
     counted through the CUDA driver (only for ``"auto"`` and dask-cuda). Workers of an
@@ -364,11 +471,15 @@ def open_client(
 
 
 def run_dask(
-    cases: list[Case], options: SweepOptions, store, *, workers: int | None = None,
-    scheduler: Any = None, device=None, total: int, progress: bool = True,
-    max_retries: int = 3, shard_size: int | None = None, shard_seconds: float = 1.0,
-    devices: Any = None,
-) -> None:  # fmt: skip
+    cases: list[Case],
+    options: SweepOptions,
+    store,
+    *,
+    execution: SweepExecution | None = None,
+    total: int | None = None,
+    progress: bool = True,
+    device: Any = None,
+) -> None:
     """Run ``cases`` on a Dask cluster; each task writes one part of ``store``.
 
     Parameters
@@ -379,28 +490,20 @@ def run_dask(
         Options shared by all cases.
     store : warptrunc.sweep.store.Store
         Records the parts (:meth:`~warptrunc.sweep.store.Store.record_part`).
-    workers : int or "auto", optional
-        Worker processes of the local cluster (count; ``"auto"``: one per visible CUDA
-        device, 1 without one); None lets Dask choose. Ignored with ``scheduler``.
-    scheduler : str or distributed.Client, optional
-        Address of, or a client of, an existing cluster; None starts a local cluster.
+    execution : SweepExecution, optional
+        The cluster (``workers`` of a local one, or ``scheduler``: an address or a client of an
+        existing one; neither: a local cluster of Dask's choosing), the shard sizes
+        (``shard_size``, ``shard_seconds``), ``max_retries`` and the devices of each elastic
+        solve (``devices``: a count, the worker's own group, :mod:`warptrunc.sweep.groups`).
+        Default ``SweepExecution()``.
+    total : int, optional
+        Cases of the whole grid (count), for the progress bar; ``total − len(cases)`` count
+        as done. Default ``len(cases)``.
+    progress : bool
+        Show a progress bar and print the dashboard link (stderr).
     device : str, optional
         Warp device passed to every task; None lets each worker choose (pinned by
         :class:`PinDevice` on a LocalCluster unless ``WARPTRUNC_DEVICE`` is set).
-    total : int
-        Cases of the whole grid (count), for the progress bar; ``total − len(cases)`` count
-        as done.
-    progress : bool
-        Show a progress bar and print the dashboard link (stderr).
-    max_retries : int
-        Resubmissions of a case whose task was lost before it is recorded as failed (count).
-    shard_size : int, optional
-        Cases per task; None: adaptive (:class:`~warptrunc.sweep.sharding.ShardPlanner`).
-    shard_seconds : float
-        Work per task that the adaptive size aims for (s).
-    devices : int, optional
-        Devices each elastic solve is spread over (count; the worker's own group,
-        :mod:`warptrunc.sweep.groups`); None: one.
 
     Notes
     -----
@@ -414,26 +517,27 @@ def run_dask(
     cases, or an adaptive size (:class:`~warptrunc.sweep.sharding.ShardPlanner`: about
     ``shard_seconds`` of work per task from the cases per second of the finished tasks, each
     worker's first task left out; 1, 2, 4 … cases while none is known; at most about four
-    tasks per worker), with about two tasks in flight per worker. The workers write the parts into ``store.curves`` (a filesystem shared
-    with this process) and send back only the part's name and rows. A task whose worker died
-    or whose future was cancelled (``client.restart()``): if its part exists (written before
-    the worker died) it is recorded; else the shard is submitted again whole (same part name,
-    so two attempts never both land), and after a second loss one case per task, up to
-    ``max_retries`` times per case, then recorded as failed. A task that raised (a bug: a
-    case records its own errors) is handled the same way, and its error printed once (stderr).
+    tasks per worker), with about two tasks in flight per worker. The workers write the parts
+    into ``store.curves`` (a filesystem shared with this process) and send back only the part's
+    name and rows. A task whose worker died or whose future was cancelled
+    (``client.restart()``): if its part exists (written before the worker died) it is
+    recorded; else the shard is submitted again whole (same part name, so two attempts never
+    both land), and after a second loss one case per task, up to ``max_retries`` times per
+    case, then recorded as failed. A task that raised (a bug: a case records its own errors)
+    is handled the same way, and its error printed once (stderr).
     """
 
     from .groups import group_size
 
-    group = group_size(devices) if scheduler is None else 1
-    with open_client(workers, scheduler, device, progress, group=group) as (client, _, _):
-        _run_on(client, cases, options, store, device=device, total=total, progress=progress,
-                max_retries=max_retries, shard_size=shard_size,
-                shard_seconds=shard_seconds, devices=devices)  # fmt: skip
+    ex = SweepExecution() if execution is None else execution
+    total = len(cases) if total is None else total
+    group = group_size(ex.devices) if ex.scheduler is None else 1
+    with open_client(ex.workers, ex.scheduler, device, progress, group=group) as (client, _, _):
+        _run_on(client, cases, options, store, ex, device=device, total=total, progress=progress)
 
 
-def _run_on(client, cases, options, store, *, device, total, progress, max_retries, shard_size,
-            shard_seconds, devices=None) -> None:  # fmt: skip
+def _run_on(client, cases, options, store, ex: SweepExecution, *, device, total,
+            progress) -> None:  # fmt: skip
     """:func:`run_dask` on an open ``client``."""
     from distributed import as_completed
 
@@ -442,7 +546,7 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
     attempts = dict.fromkeys(by_id, 0)
     queue = [c.case_id for c in cases]  # not yet submitted, in grid order
     retry: list[list[str]] = []  # lost shards, submitted again first
-    plan = ShardPlanner(len(cases), target_s=shard_seconds)
+    plan = ShardPlanner(len(cases), target_s=ex.shard_seconds, max_size=MAX_SHARD)
     n_workers = [1, 0.0]
     told: set[str] = set()  # errors of tasks already reported
 
@@ -467,7 +571,7 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
             attempts[cid] += 1
         key = f"warptrunc-shard-{ids[0]}-{len(ids)}-{attempts[ids[0]]}"
         f = client.submit(compute_shard, [by_id[c] for c in ids], options, device, curves,
-                          devices, key=key, pure=False)  # fmt: skip
+                          ex.devices, key=key, pure=False)  # fmt: skip
         futures[f] = ids
         pending.add(f)
 
@@ -477,7 +581,7 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
             if retry:
                 submit(retry.pop(0))
                 continue
-            size = shard_size or plan.size(len(queue), w)
+            size = ex.shard_size or plan.size(len(queue), w)
             submit(queue[:size])
             del queue[:size]
 
@@ -514,7 +618,7 @@ def _run_on(client, cases, options, store, *, device, total, progress, max_retri
                     if held is not None:
                         bar.update(record(name, held))
                 lost = [c for c in ids if c not in store.rows]
-                again = [c for c in lost if attempts[c] <= max_retries]
+                again = [c for c in lost if attempts[c] <= ex.max_retries]
                 if again and len(again) == len(ids) and attempts[again[0]] == 1:
                     retry.append(again)  # the same shard once more: the same part name
                 else:

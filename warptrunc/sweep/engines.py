@@ -41,12 +41,12 @@ from ..truncation.api import truncate
 from ..wm import wm_surface
 from .batch import WMBatch, batch_size
 from .curves import part_name, part_rows, write_part
-from .elastic import elastic_record
 from .grid import Case
-from .options import SweepOptions
-from .rows import base_row, fit_ranges, fractal_record, resolve_min_pixels
+from .options import SweepExecution, SweepOptions
+from .rows import base_row, elastic_record, fit_ranges, fractal_record, resolve_min_pixels
 
 __all__ = [
+    "MAX_SHARD",
     "batched_results",
     "compute_case",
     "compute_many",
@@ -58,6 +58,10 @@ __all__ = [
     "run_inprocess",
     "worker_index",
 ]
+
+MAX_SHARD = 4096
+"""Most cases in one part of the store (count): the in-process engine's queue, the Dask
+engine's largest shard."""
 
 Result = tuple[list[dict[str, Any]], "dict[str, np.ndarray] | None"]
 Sink = Callable[[list[dict[str, Any]], "dict[str, np.ndarray] | None"], bool]
@@ -236,9 +240,15 @@ def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
 
 @fill_doc(SHARED_DOCS)
 def run_inprocess(
-    cases: list[Case], options: SweepOptions, sink: BatchSink, *, device=None, total: int,
-    progress: bool = True, shard_seconds: float = 1.0, max_shard: int = 4096, devices: Any = None,
-) -> None:  # fmt: skip
+    cases: list[Case],
+    options: SweepOptions,
+    sink: BatchSink,
+    *,
+    execution: SweepExecution | None = None,
+    total: int | None = None,
+    progress: bool = True,
+    device: Any = None,
+) -> None:
     """Run ``cases`` one after another in this process, handing the results to ``sink``.
 
     Parameters
@@ -249,18 +259,17 @@ def run_inprocess(
         Options shared by all cases.
     sink : callable
         Takes a list of (rows, curve) results (:func:`compute_case`): one part of the store.
-    {warp_device}
-    total : int
-        Cases of the whole grid (count), for the progress bar.
+    execution : SweepExecution, optional
+        ``shard_seconds``: hand results to ``sink`` once they hold about this much computing
+        time (s; 0 hands over whatever finished while the previous part was written), at most
+        :data:`MAX_SHARD` at once; ``devices``: the elastic solves over several devices
+        (:func:`compute_case`). Default ``SweepExecution()``; its cluster fields are not
+        used here.
+    total : int, optional
+        Cases of the whole grid (count), for the progress bar. Default ``len(cases)``.
     progress : bool
         Show a progress bar.
-    shard_seconds : float
-        Hand results to ``sink`` once they hold about this much computing time (s); 0 hands
-        over whatever finished while the previous part was written.
-    max_shard : int
-        Most results handed to ``sink`` at once (count); also the queue length.
-    devices : int, "auto" or list, optional
-        Passed to :func:`compute_case` (the elastic solves over several devices).
+    {warp_device}
 
     Raises
     ------
@@ -275,6 +284,9 @@ def run_inprocess(
     function returns or an exception (Ctrl-C included) propagates; a hard kill loses at most
     the last ``shard_seconds`` of work.
     """
+    ex = SweepExecution() if execution is None else execution
+    total = len(cases) if total is None else total
+    shard_seconds, devices, max_shard = ex.shard_seconds, ex.devices, MAX_SHARD
     dev = str(resolve_device(device))
     q: queue.Queue = queue.Queue(maxsize=max_shard)
     failed: list[BaseException] = []

@@ -6,24 +6,26 @@ The options shared by every case, and which parameters may be axes, are
 :mod:`warptrunc.sweep.options`.
 
 A case is one surface: (D_in, δ, seed) with the options. Its id is a hash of exactly these
-values, so a store can tell finished cases from missing ones whatever order they ran in.
+values, so a store can tell finished cases from missing ones whatever order they ran in. The
+options enter the id, and ``sweep.json``, in the store's own spelling
+(:func:`stored_options`), fixed with the store's format so that a store resumes whatever the
+options are called in the API.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import itertools
 import json
-import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from .._support.docs import fill_doc
-from .._support.messages import show
-from .._support.validate import MAX_SEEDS, check_int, check_range
-from ..params import check_value, param_info
+from .._support.validate import MAX_SEEDS
+from ..params import check_fields, check_value, param, param_info, param_like
 from ..wm_params import WMSpec
 from .options import AXIS_SPECS, SweepOptions, axis_names
 
@@ -36,17 +38,82 @@ __all__ = [
 GRID_DOCS = {"{returns_grid}": "Returns\n-------\nSweepGrid\n    The grid.\n\nRaises\n------\nValueError"}
 """The end of every grid constructor's docstring, written once (:func:`fill_doc`)."""
 
-FORMAT = "warptrunc-sweep/1"
-"""Format tag of the case ids (part of every id; unchanged by the store layout of format 2)."""
+CASE_ID_FORMAT = "warptrunc-sweep/1"
+"""Format tag hashed into every case id (:func:`case_id`); fixed, so that the ids of every
+store stay valid."""
 
 STORE_FORMAT = "warptrunc-sweep/2"
-"""Layout tag in ``sweep.json``: ``curves/part-*.parquet`` (one part per shard of cases).
-``FORMAT`` in a ``sweep.json`` marks the layout before it (one curve file per case), which
-:func:`warptrunc.sweep.migration.migrate` converts."""
+"""Layout tag in ``sweep.json``: ``curves/part-*.parquet`` (one part per shard of cases). A
+``sweep.json`` tagged ``warptrunc-sweep/1`` is a store of the layout before it (one curve file
+per case), written only by development versions before 0.1 and no longer read."""
+
+STORED_NAMES = {"E_i": "E_flat", "nu_i": "nu_flat"}
+"""Fields of :class:`~warptrunc.sweep.options.SweepOptions` that the store spells otherwise:
+field → name in ``sweep.json`` and in every case id (the store's format)."""
+
+OMITTED_WHEN_OFF = ("min_pixels_fraction", "fractal_methods", "bem_fractions")
+"""Fields left out of the stored options (and so of the case ids) when they are None (off): the
+ids of a sweep without them are those of a store made before they existed."""
 
 
-def parse_seeds(spec: str | int | Iterable[int | str]) -> tuple[int, ...]:
-    """Seeds from ``"0-4"``, ``"0,2,7"``, ``"0-2,9"``, an int or a list of those.
+def stored_options(options: SweepOptions) -> dict[str, Any]:
+    """The options in the store's format: the ``options`` of ``sweep.json``, hashed into every
+    case id.
+
+    Parameters
+    ----------
+    options : SweepOptions
+        The options.
+
+    Returns
+    -------
+    dict of str to Any
+        One entry per field, in field order, tuples as lists; ``E_i``, ``nu_i`` under the names
+        of :data:`STORED_NAMES` (``E_flat``, ``nu_flat``); the fields of
+        :data:`OMITTED_WHEN_OFF` only when set.
+    """
+    out = {}
+    for f in dataclasses.fields(options):
+        v = getattr(options, f.name)
+        if f.name in OMITTED_WHEN_OFF and v is None:
+            continue
+        out[STORED_NAMES.get(f.name, f.name)] = list(v) if isinstance(v, tuple) else v
+    return out
+
+
+def options_from_stored(d: dict[str, Any]) -> SweepOptions:
+    """The inverse of :func:`stored_options`: :class:`SweepOptions` of a ``sweep.json``'s options.
+
+    Parameters
+    ----------
+    d : dict of str to Any
+        Stored options; lists become tuples, missing fields take their defaults (JSON's
+        ``null`` for ``E_flat`` is a rigid flat, E_i = inf).
+
+    Returns
+    -------
+    SweepOptions
+        The validated options.
+
+    Raises
+    ------
+    ValueError
+        If ``d`` names an unknown option or a value is out of range.
+    """
+    field_of = {v: k for k, v in STORED_NAMES.items()}
+    names = {f.name for f in dataclasses.fields(SweepOptions)}
+    kw = {field_of.get(k, k): tuple(v) if isinstance(v, list) else v for k, v in d.items()}
+    bad = sorted(set(kw) - names)
+    if bad:
+        raise ValueError(f"unknown sweep options {bad}; allowed: {sorted(names)}")
+    if "E_i" in kw and kw["E_i"] is None:
+        kw["E_i"] = float("inf")
+    return SweepOptions(**kw)
+
+
+def parse_seeds(spec: Any) -> tuple[int, ...]:
+    """Seeds from ``"0-4"``, ``"0,2,7"``, ``"0-2,9"``, an int or a list of those: the check of
+    :attr:`SweepGrid.seeds`.
 
     Ranges are inclusive: ``"0-4"`` is 0, 1, 2, 3, 4.
 
@@ -64,54 +131,15 @@ def parse_seeds(spec: str | int | Iterable[int | str]) -> tuple[int, ...]:
     ------
     ValueError
         If an item is not an integer or a range, a range has hi < lo, ``spec`` is a bool or
-        empty, a seed is outside [0, 2³² − 1], seeds repeat, or there are more than
-        :data:`~warptrunc._support.validate.MAX_SEEDS` (10⁶) of them.
+        empty, a seed is outside [0, 2³² − 1], seeds repeat, or there are more than 10⁶ of
+        them.
 
     Examples
     --------
     >>> parse_seeds("0-2,9")
     (0, 1, 2, 9)
     """
-    if isinstance(spec, bool):
-        raise ValueError(f"seeds must be integers or ranges like '0-4', got {show(spec)}")
-    if isinstance(spec, int):
-        items: list = [spec]
-    elif isinstance(spec, str):
-        items = [s for s in spec.replace(" ", "").split(",") if s]
-    else:
-        items = list(spec)
-    out: list[int] = []
-    for it in items:
-        m = re.fullmatch(r"(\d+)-(\d+)", it) if isinstance(it, str) else None
-        if m:
-            lo, hi = int(m[1]), int(m[2])
-            if hi < lo:
-                raise ValueError(f"seed range must have lo ≤ hi, got {show(it)}")
-            if len(out) + (hi - lo + 1) > MAX_SEEDS:  # refused before building the list
-                raise ValueError(
-                    f"seeds {show(it)} name {hi - lo + 1 + len(out)} seeds, more than the "
-                    f"{MAX_SEEDS} one sweep takes; split the grid into several sweeps"
-                )
-            out.extend(range(lo, hi + 1))
-            continue
-        try:
-            v = int(it) if isinstance(it, str) else it
-        except ValueError:
-            raise ValueError(f"seeds must be integers or ranges like '0-4', got {show(it)}") from None
-        out.append(v)
-        if len(out) > MAX_SEEDS:
-            raise ValueError(f"seeds name more than the {MAX_SEEDS} one sweep takes")
-    for s in out:
-        check_int("seed", s, 0, 2**32 - 1)
-    if not out:
-        raise ValueError(f"seeds must name at least one seed, got {show(spec)}")
-    if len(set(out)) != len(out):
-        raise ValueError(f"seeds must not repeat, got {show(spec)}")
-    return tuple(out)
-
-
-def _floats(name: str, values: Any, lo: float, hi: float | None) -> tuple[float, ...]:
-    return _values(name, values, lambda v: check_range(name, v, lo, hi))
+    return param_info(SweepGrid)["seeds"].check("seeds", spec)
 
 
 def _values(name: str, values: Any, check) -> tuple:
@@ -123,6 +151,11 @@ def _values(name: str, values: Any, check) -> tuple:
     if len(set(out)) != len(out):
         raise ValueError(f"{name} values must not repeat, got {values!r}")
     return out
+
+
+def _required(f: dataclasses.Field) -> Any:
+    """The field ``f`` (of :func:`param` or :func:`param_like`) without a default."""
+    return dataclasses.field(metadata=f.metadata)
 
 
 @dataclass(frozen=True)
@@ -147,10 +180,10 @@ class Case:
 
 @dataclass(frozen=True)
 class SweepGrid:
-    """The cases of a sweep: every (D_in, δ, seed) combination.
+    """The cases of a sweep: every (D_in, δ, seed) combination, and optional extra axes.
 
-    Build it from values, from the CLI's ``--D ... --delta ... --seeds 0-4`` with
-    :meth:`from_values`, or from a TOML file with :meth:`from_toml`::
+    Build it from values (``SweepGrid([2.1, 2.5], [0.01], "0-4")``, the CLI's
+    ``--D ... --delta ... --seeds 0-4``) or from a TOML file with :meth:`from_toml`::
 
         D = [2.1, 2.3, 2.5]      # input fractal dimensions (dimensionless)
         delta = [0.005, 0.01]    # δ = R_t/W_r (dimensionless)
@@ -159,19 +192,27 @@ class SweepGrid:
         [axes]                   # optional: more axes, outermost (slowest) first
         M = [8, 10]              # any sweepable field of WMSpec or Material (SI units)
 
-    The values are checked against the declarations of the fields
-    (:func:`warptrunc.params.check_value`): ``D`` against :class:`~warptrunc.WMSpec`'s, an extra axis against that of
-    the parameter class declaring it (``specs``). A grid without extra axes has the case ids
-    it always had; a case of a grid with extra axes has the id of the same case run with
-    those values as options.
+    ``D``, ``delta`` and ``seeds`` are declared fields (:func:`warptrunc.params.param`; ``D`` as
+    :class:`~warptrunc.WMSpec` declares it): a single value is a 1-tuple, a value that
+    repeats is refused. An extra axis is checked against the declaration of the parameter class
+    declaring it (``specs``; :func:`warptrunc.params.check_value`). A grid without extra axes
+    has the case ids it always had; a case of a grid with extra axes has the id of the same
+    case run with those values as options.
+
+    Raises
+    ------
+    ValueError
+        A value out of its range or repeated, an axis that is no sweepable parameter, or more
+        than 10⁶ cases.
     """
 
-    D: tuple[float, ...]
-    """Input fractal dimensions D_in, each in (2, 3) (dimensionless)."""
-    delta: tuple[float, ...]
-    """Relative roughness values δ = R_t/W_r > 0 (dimensionless)."""
-    seeds: tuple[int, ...]
-    """Phase seeds."""
+    D: tuple[float, ...] = _required(
+        param_like(WMSpec, "D", many=True, doc="input fractal dimensions D_in")
+    )
+    delta: tuple[float, ...] = _required(
+        param(None, "relative roughness values δ = R_t/W_r; R_t = δ·W_r", gt=0.0, many=True)
+    )
+    seeds: tuple[int, ...] = param((0,), "phase seeds: 0-4, 0,3,7 or 0-2,9", kind="seeds")
     axes: tuple[tuple[str, tuple], ...] = ()
     """More axes, ``((name, values), ...)`` (a dict is accepted): sweepable fields of
     ``specs`` other than D and R_t, outermost first."""
@@ -180,12 +221,13 @@ class SweepGrid:
 
     def __post_init__(self) -> None:
         s = object.__setattr__
+        check_fields(self)
+        for name in ("D", "delta"):
+            v = getattr(self, name)
+            if len(set(v)) != len(v):
+                raise ValueError(f"{name} values must not repeat, got {v!r}")
         specs = tuple(self.specs)
         s(self, "specs", specs)
-        home = next((c for c in specs if "D" in param_info(c)), WMSpec)
-        s(self, "D", _values("D", self.D, lambda v: check_value(home, "D", v)))
-        s(self, "delta", _floats("delta", self.delta, 0, None))
-        s(self, "seeds", parse_seeds(self.seeds))
         axes = self.axes.items() if isinstance(self.axes, dict) else self.axes
         allowed = axis_names(specs)
         out = []
@@ -199,7 +241,8 @@ class SweepGrid:
             if name in (a for a, _ in out):
                 raise ValueError(f"axis {name!r} is given twice")
             spec = next(c for c in specs if name in param_info(c))
-            out.append((name, _values(name, values, lambda v, c=spec, k=name: check_value(c, k, v))))
+            check = lambda v, c=spec, k=name: check_value(c, k, v)  # noqa: E731
+            out.append((name, _values(name, values, check)))
         s(self, "axes", tuple(out))
         if len(self) > MAX_SEEDS:
             raise ValueError(
@@ -210,38 +253,13 @@ class SweepGrid:
 
     @classmethod
     @fill_doc(GRID_DOCS)
-    def from_values(
-        cls, D: Sequence[float] | float, delta: Sequence[float] | float, seeds: Any,
-        axes: dict[str, Sequence] | None = None,
-    ) -> SweepGrid:
-        """From values; ``seeds`` may be ``"0-4"``, ``"0,3"``, an int or a list.
-
-        Parameters
-        ----------
-        D : float or sequence of float
-            Input fractal dimensions D_in in (2, 3) (dimensionless).
-        delta : float or sequence of float
-            Relative roughness δ = R_t/W_r > 0 (dimensionless).
-        seeds : str, int or sequence
-            Seeds, as for :func:`parse_seeds`.
-        axes : dict of str to sequence, optional
-            More axes: field name → values (see the class docstring).
-
-        {returns_grid}
-            If a value is out of range or a seed cannot be parsed.
-        """
-        axes = tuple((axes or {}).items())
-        return cls(D=D, delta=delta, seeds=seeds, axes=axes)  # type: ignore[arg-type]
-
-    @classmethod
-    @fill_doc(GRID_DOCS)
     def from_dict(cls, d: dict[str, Any], specs: Sequence[type] = AXIS_SPECS) -> SweepGrid:
         """From {"D": [...], "delta": [...], "seeds": ..., "axes": {...}}; other keys raise ValueError.
 
         Parameters
         ----------
         d : dict of str to Any
-            The keys ``D``, ``delta`` and ``seeds`` (as for :meth:`from_values`), and
+            The keys ``D``, ``delta`` and ``seeds`` (as the fields take them), and
             optionally ``axes`` (field name → values).
         specs : sequence of type
             Parameter classes declaring the axes.
@@ -329,17 +347,17 @@ class SweepGrid:
         out: list[Case] = []
         for combo in itertools.product(*(v for _, v in self.axes)):
             over = dict(zip(names, combo, strict=True))
-            opts = options.with_axes(over).to_dict()
+            stored = stored_options(options.with_axes(over))
             params = tuple(over.items())
             for D in self.D:
                 for delta in self.delta:
                     for seed in self.seeds:
-                        cid = case_id(D, delta, seed, opts)
+                        cid = _hash(D, delta, seed, stored)
                         out.append(Case(len(out), D, delta, seed, cid, params))
         return out
 
 
-def case_id(D: float, delta: float, seed: int, options: dict[str, Any]) -> str:
+def case_id(D: float, delta: float, seed: int, options: SweepOptions) -> str:
     """16 hex digits of SHA-256 over the format tag, the case values and the options.
 
     Parameters
@@ -350,15 +368,27 @@ def case_id(D: float, delta: float, seed: int, options: dict[str, Any]) -> str:
         Relative roughness δ = R_t/W_r (dimensionless).
     seed : int
         Phase seed.
-    options : dict of str to Any
-        :meth:`SweepOptions.to_dict` of the sweep.
+    options : SweepOptions
+        The case's options (its extra-axis values in place).
 
     Returns
     -------
     str
         The case id.
+
+    Notes
+    -----
+    The hash is over the JSON text (keys sorted, no spaces) of ``{"format":``
+    :data:`CASE_ID_FORMAT` ``, "D", "delta", "seed", "options":`` :func:`stored_options` ``}``:
+    the store's format, in which ``E_i`` and ``nu_i`` are ``E_flat`` and ``nu_flat`` and the
+    fields of :data:`OMITTED_WHEN_OFF` are left out when off (a rigid flat is ``Infinity``).
     """
-    key = {"format": FORMAT, "D": float(D), "delta": float(delta), "seed": int(seed)}
-    key["options"] = options
+    return _hash(D, delta, seed, stored_options(options))
+
+
+def _hash(D: float, delta: float, seed: int, stored: dict[str, Any]) -> str:
+    """:func:`case_id` of the stored options ``stored`` (computed once per set of options)."""
+    key = {"format": CASE_ID_FORMAT, "D": float(D), "delta": float(delta), "seed": int(seed)}
+    key["options"] = stored
     blob = json.dumps(key, sort_keys=True, separators=(",", ":"))
     return hashlib.sha256(blob.encode()).hexdigest()[:16]

@@ -9,7 +9,7 @@ devices present): its Warp device is the first (``WARPTRUNC_DEVICE``, CUDA only)
 is written to ``WARPTRUNC_DEVICE_GROUP`` (``"cuda:2,cuda:3"``) in the worker process
 (:class:`~warptrunc.sweep.cluster.PinDevice`). A solve given ``devices=G`` in a process whose
 group names G devices is spread over that group
-(:func:`~warptrunc.contact.sharded_devices.choose_devices`), not over the first G devices of
+(:func:`~warptrunc.contact.sharded.devices.choose_devices`), not over the first G devices of
 the host. On an existing cluster (``scheduler``) give each worker its group yourself: start it
 with ``CUDA_VISIBLE_DEVICES`` naming its G GPUs (its first G JAX devices are then its own), or
 with ``WARPTRUNC_DEVICE_GROUP``.
@@ -114,7 +114,7 @@ def group_layout(workers: Any, n: int | None, group: int, n_gpus: int) -> tuple[
     if n_gpus > 0:
         have, platform = n_gpus, "cuda"
     else:
-        from ..contact.sharded_grid import import_jax
+        from ..contact.sharded.grid import import_jax
 
         have, platform = len(import_jax().devices("cpu")), "cpu"
     if isinstance(workers, str) or n is None:

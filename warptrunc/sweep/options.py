@@ -1,21 +1,32 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The options shared by every case of a sweep (:class:`SweepOptions`) and the parameters a
-grid may vary as axes (:data:`AXIS_SPECS`, :func:`axis_names`, :func:`option_name`)."""
+"""The parameter objects of a sweep: what every case computes (:class:`SweepOptions`), which
+parameters a grid may vary as axes (:data:`AXIS_SPECS`, :func:`axis_names`), and where and how
+the cases run (:class:`SweepExecution`).
+
+Declared with :func:`warptrunc.params.param` (no Warp, no pandas, no Dask here: the command-line
+parser imports this module).
+"""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass, fields, replace
+from dataclasses import dataclass, fields, replace
 from typing import Any
 
-from .._support.validate import MAX_INCREMENTS, check_int, check_range
+from .._support.validate import DEFAULT_MIN_PIXELS, check_int
 from ..material import Material
-from ..params import check_fields, param_info, param_like, sweep_fields
-from ..stiffness import DEFAULT_MIN_PIXELS
+from ..params import Parameters, check_fields, param, param_info, param_like, sweep_fields
+from ..truncation.settings import FitRange, TruncationSettings
 from ..wm_params import WMSpec
 
-__all__ = ["AXIS_SPECS", "FRACTAL_METHODS", "SweepOptions", "axis_names", "option_name"]
+__all__ = [
+    "AXIS_SPECS",
+    "FRACTAL_METHODS",
+    "SweepExecution",
+    "SweepOptions",
+    "axis_names",
+]
 
 AXIS_SPECS = (WMSpec, Material)
 """The parameter classes whose sweepable fields (:func:`warptrunc.params.sweep_fields`) a grid
@@ -24,20 +35,33 @@ may name as axes."""
 _CORE = ("D", "Rt")
 """Not extra axes: D is one of the grid's own axes, R_t = δ·W_r follows from δ."""
 
+_NOT_AXES = ("L", "n", "cutoff")
+"""Fields of :class:`SweepOptions` that no axis may vary (the grid of every case is the same)."""
+
 FRACTAL_METHODS = ("tri", "box", "vs", "sp")
 """Methods of :func:`warptrunc.fractal_dimensions` that ``fractal_methods`` may name."""
 
-_OMIT_WHEN_EMPTY = ("min_pixels_fraction", "fractal_methods", "bem_fractions")
+_DISTINCT = ("min_pixels", "min_pixels_fraction", "fractal_methods", "bem_fractions")
+"""Fields holding several values, none of which may repeat (each value is a row or a column)."""
+
 
 @dataclass(frozen=True)
-class SweepOptions:
+class SweepOptions(Parameters):
     """Generation, truncation, material and fit options shared by every case (SI units).
 
-    Names follow ``warptrunc analyze``; R_t is not an option: each case has R_t = δ·W_r.
-    The generation and material fields are declared by :class:`~warptrunc.WMSpec` and
-    :class:`~warptrunc.Material` (:func:`warptrunc.params.param_like`: same default, unit,
-    range and description); ``E_flat`` and ``nu_flat`` are Material's ``E_i`` and ``nu_i``
-    under the names that the stores and their case ids have always used.
+    Each field is declared once, where it belongs: the generation fields by
+    :class:`~warptrunc.WMSpec`, the truncation fields by
+    :class:`~warptrunc.truncation.settings.TruncationSettings`, the fit range by
+    :class:`~warptrunc.truncation.settings.FitRange` and the material by
+    :class:`~warptrunc.Material` (:func:`warptrunc.params.param_like`: same name, default, unit,
+    range and description); R_t is not an option: each case has R_t = δ·W_r. The fields that
+    only a sweep has (several fit ranges, relative fit ranges, fractal dimensions, elastic
+    solves) are declared here; ``None`` turns each of them off.
+
+    Examples
+    --------
+    >>> SweepOptions(n=512, min_pixels=(1, 10)).min_pixels
+    (1, 10)
     """
 
     Wr: float = param_like(WMSpec, "Wr")
@@ -47,131 +71,58 @@ class SweepOptions:
     gamma: float = param_like(WMSpec, "gamma")
     Wc: float | None = param_like(WMSpec, "Wc")
     cutoff: str = param_like(WMSpec, "cutoff")
-    increments: int = 200
-    """Number of depth increments n."""
-    max_depth_fraction: float = 0.1
-    """ω_max as a fraction of R_t (dimensionless)."""
-    max_depth: float | None = None
-    """ω_max (m); overrides the fraction."""
+    increments: int = param_like(TruncationSettings, "increments")
+    max_depth_fraction: float = param_like(TruncationSettings, "max_depth_fraction")
+    max_depth: float | None = param_like(TruncationSettings, "max_depth")
     E: float = param_like(Material, "E")
     nu: float = param_like(Material, "nu")
-    E_flat: float = param_like(Material, "E_i", cli="E-flat")
-    nu_flat: float = param_like(Material, "nu_i", cli="nu-flat")
-    beta_prime: float = 1.0
-    """Geometric factor β' of Eq. 2."""
-    min_pixels: tuple[int, ...] = (DEFAULT_MIN_PIXELS,)
-    """Fit ranges: one row per value (increments with at least this many contact pixels)."""
-    depth_window: tuple[float, float] | None = None
-    """Fit only depths lo ≤ ω ≤ hi (m)."""
-    min_pixels_fraction: tuple[float, ...] = ()
-    """More fit ranges, relative to each case: one row per value f in (0, 1], fitting the
-    increments with at least max(DEFAULT_MIN_PIXELS, ⌈f·final contact pixels⌉) contact pixels
-    (the deep part of each curve). Stored with ``min_pixels`` = that resolved count."""
-    fractal_methods: tuple[str, ...] = ()
-    """Measure the fractal dimension of each generated surface by these methods of
-    :func:`warptrunc.fractal_dimensions` (``"tri"``, ``"box"``, ``"vs"``, ``"sp"``; that
-    function's default options). Columns ``D_<method>``, ``D_<method>_r2`` and
-    ``fractal_options`` (JSON: each fit's scalars and options). Off by default."""
-    bem_fractions: tuple[float, ...] = ()
-    """Elastic solves per case at approaches δ = f·R_t (measured R_t), f in (0, 1): the free
-    half-space solver :func:`warptrunc.contact.solve_contact` (Barber stiffness) against Eq. 2's
-    truncation values at the same depth, in wide columns ``<quantity>_<f>``
-    (:data:`warptrunc.sweep.read.BEM_QUANTITIES`). Off by default."""
+    E_i: float = param_like(Material, "E_i")
+    nu_i: float = param_like(Material, "nu_i")
+    beta_prime: float = param_like(TruncationSettings, "beta_prime")
+    min_pixels: tuple[int, ...] = param_like(
+        FitRange, "min_pixels", default=(DEFAULT_MIN_PIXELS,), many=True,
+        doc="fit ranges: fit only increments with at least this many contact pixels (1 = all "
+        "with load > 0); several values: one fit (row) each",
+    )  # fmt: skip
+    depth_window: tuple[float, float] | None = param_like(FitRange, "depth_window")
+    min_pixels_fraction: tuple[float, ...] | None = param(
+        None, "more fit ranges, relative to each case: one row per value f, fitting the "
+        f"increments with at least max({DEFAULT_MIN_PIXELS}, ⌈f·final contact pixels⌉) contact "
+        "pixels (stored with min_pixels = that count); none = no relative range",
+        gt=0.0, le=1.0, many=True, optional=True, metavar="F", sweep=False,
+    )  # fmt: skip
+    fractal_methods: tuple[str, ...] | None = param(
+        None, "measure D of each generated surface by these methods of fractal_dimensions "
+        "(its default options): columns D_<method>, D_<method>_r2, fractal_options; none = no "
+        "measurement", choices=FRACTAL_METHODS, many=True, optional=True, cli="fractal",
+        metavar="METHOD", sweep=False,
+    )  # fmt: skip
+    bem_fractions: tuple[float, ...] | None = param(
+        None, "elastic solves per case (free half-space, warptrunc.contact) at approaches "
+        "δ = f·R_t (measured R_t) against Eq. 2 at the same depth: columns F_bem_N_<f>, "
+        "A_bem_m2_<f>, k_bem_N_per_m_<f>, F_trunc_N_<f>, ..., the ratios F_ratio_<f>, "
+        "A_ratio_<f>, k_ratio_<f> and bem_converged_<f>; none = no elastic solve",
+        gt=0.0, lt=1.0, many=True, optional=True, metavar="F", sweep=False,
+    )  # fmt: skip
 
     def __post_init__(self) -> None:
-        s = object.__setattr__
-        check_fields(self, keep_pairs=True)  # the WMSpec and Material fields, by their metadata
-        s(self, "increments", check_int("increments", self.increments, 1, MAX_INCREMENTS))
-        s(self, "max_depth_fraction",
-          check_range("max_depth_fraction", self.max_depth_fraction, 0, 1, hi_open=False))  # fmt: skip
-        if self.max_depth is not None:
-            s(self, "max_depth", check_range("max_depth", self.max_depth, 0, None, unit="m"))
-        s(self, "beta_prime", check_range("beta_prime", self.beta_prime, 0, None))
-        mp = (self.min_pixels,) if isinstance(self.min_pixels, int) else tuple(self.min_pixels)
-        if not mp or len(set(mp)) != len(mp):
-            raise ValueError(f"min_pixels must hold distinct values, got {self.min_pixels!r}")
-        s(self, "min_pixels", tuple(check_int("min_pixels", v, 1) for v in mp))
-        if self.depth_window is not None:
-            lo, hi = (float(v) for v in self.depth_window)
-            if not 0 <= lo < hi:
-                raise ValueError(
-                    f"depth_window must be (lo, hi) with 0 ≤ lo < hi (m), got {self.depth_window!r}"
-                )
-            s(self, "depth_window", (lo, hi))
-        fr = self.min_pixels_fraction
-        fr = (fr,) if isinstance(fr, (int, float)) else tuple(fr)
-        fr = tuple(check_range("min_pixels_fraction", v, 0, 1, hi_open=False) for v in fr)
-        if len(set(fr)) != len(fr):
-            raise ValueError(f"min_pixels_fraction must hold distinct values, got {fr!r}")
-        s(self, "min_pixels_fraction", fr)
-        fm = (self.fractal_methods,) if isinstance(self.fractal_methods, str) else tuple(self.fractal_methods)
-        for m in fm:
-            if m not in FRACTAL_METHODS:
-                raise ValueError(f"fractal_methods must be among {FRACTAL_METHODS}, got {m!r}")
-        if len(set(fm)) != len(fm):
-            raise ValueError(f"fractal_methods must not repeat, got {fm!r}")
-        s(self, "fractal_methods", fm)
-        bf = self.bem_fractions
-        bf = (bf,) if isinstance(bf, (int, float)) else tuple(bf)
-        bf = tuple(check_range("bem_fractions", v, 0, 1) for v in bf)
-        if len(set(bf)) != len(bf):
-            raise ValueError(f"bem_fractions must hold distinct values, got {bf!r}")
-        s(self, "bem_fractions", tuple(sorted(bf)))
+        check_fields(self, keep_pairs=True)  # a pair stays a pair: it enters the case ids
+        for name in _DISTINCT:
+            v = getattr(self, name)
+            if v is not None and len(set(v)) != len(v):
+                raise ValueError(f"{name} must not repeat a value, got {v!r}")
+        if self.bem_fractions is not None:
+            object.__setattr__(self, "bem_fractions", tuple(sorted(self.bem_fractions)))
 
-    def to_dict(self) -> dict[str, Any]:
-        """The options as JSON-ready values (tuples as lists).
-
-        Options added after the store format was fixed (``min_pixels_fraction``,
-        ``fractal_methods``, ``bem_fractions``) appear only when set, so the case ids and ``sweep.json`` of
-        stores made without them stay valid.
-
-        Returns
-        -------
-        dict of str to Any
-            One entry per field (SI units), tuples converted to lists.
-        """
-        d = asdict(self)
-        for k in _OMIT_WHEN_EMPTY:
-            if not d[k]:
-                del d[k]
-        return {k: list(v) if isinstance(v, tuple) else v for k, v in d.items()}
-
-    @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> SweepOptions:
-        """Inverse of :meth:`to_dict`; unknown names raise ValueError.
-
-        Parameters
-        ----------
-        d : dict of str to Any
-            Field values; lists become tuples, missing fields take their defaults.
-
-        Returns
-        -------
-        SweepOptions
-            The validated options.
-
-        Raises
-        ------
-        ValueError
-            If ``d`` names an unknown option or a value is out of range.
-        """
-        names = {f.name for f in fields(cls)}
-        bad = sorted(set(d) - names)
-        if bad:
-            raise ValueError(f"unknown sweep options {bad}; allowed: {sorted(names)}")
-        kw = {k: tuple(v) if isinstance(v, list) else v for k, v in d.items()}
-        return cls(**kw)
-
-    def material(self):
+    def material(self) -> Material:
         """The :class:`warptrunc.Material` of these options.
 
         Returns
         -------
         Material
-            ``E``, ``nu``, ``E_flat`` and ``nu_flat`` as E, ν, E_i, ν_i (Pa, dimensionless).
+            ``E``, ``nu``, ``E_i`` and ``nu_i`` (Pa, dimensionless); purely elastic.
         """
-
-        return Material(E=self.E, nu=self.nu, E_i=self.E_flat, nu_i=self.nu_flat)
+        return Material(E=self.E, nu=self.nu, E_i=self.E_i, nu_i=self.nu_i)
 
     def wm_spec(self, D: float, Rt: float, seed: int = 0) -> WMSpec:
         """The :class:`~warptrunc.WMSpec` of one case: these options' generation fields.
@@ -199,8 +150,7 @@ class SweepOptions:
         Parameters
         ----------
         values : dict of str to Any
-            Field name (of :class:`~warptrunc.WMSpec` or :class:`~warptrunc.Material`: ``E_i``
-            and ``nu_i`` are this object's ``E_flat`` and ``nu_flat``) → value.
+            Field name (of :class:`~warptrunc.WMSpec` or :class:`~warptrunc.Material`) → value.
 
         Returns
         -------
@@ -214,38 +164,13 @@ class SweepOptions:
         if not values:
             return self
         mine = {f.name for f in fields(self)}
-        kw = {}
-        for name, v in values.items():
-            opt = option_name(name)
-            if opt not in mine or opt in _NOT_AXES:
+        for name in values:
+            if name not in mine or name in _NOT_AXES:
                 raise ValueError(
                     f"the sweep cannot vary {name!r}: it is not an option of the sweep "
                     f"(axes it can vary: {', '.join(axis_names(AXIS_SPECS, runnable=True))})"
                 )
-            kw[opt] = v
-        return replace(self, **kw)
-
-
-_OPTION_OF = {"E_i": "E_flat", "nu_i": "nu_flat"}
-"""Axis (parameter field) → SweepOptions field, where the names differ."""
-
-
-def option_name(name: str) -> str:
-    """The :class:`SweepOptions` field that holds parameter field ``name``.
-
-    Parameters
-    ----------
-    name : str
-        A field of :class:`~warptrunc.WMSpec` or :class:`~warptrunc.Material`.
-
-    Returns
-    -------
-    str
-        ``E_flat`` for ``E_i``, ``nu_flat`` for ``nu_i`` (the stores' names), else ``name``.
-    """
-    return _OPTION_OF.get(name, name)
-
-_NOT_AXES = ("L", "n", "cutoff")
+        return replace(self, **values)
 
 
 def axis_names(specs: Sequence[type] = AXIS_SPECS, *, runnable: bool = False) -> list[str]:
@@ -257,7 +182,7 @@ def axis_names(specs: Sequence[type] = AXIS_SPECS, *, runnable: bool = False) ->
         Parameter classes.
     runnable : bool
         Only those that :func:`~warptrunc.sweep.run_sweep` can vary (a field of
-        :class:`SweepOptions`).
+        :class:`SweepOptions` other than the grid's size and cut-off).
 
     Returns
     -------
@@ -269,9 +194,94 @@ def axis_names(specs: Sequence[type] = AXIS_SPECS, *, runnable: bool = False) ->
         for name in sweep_fields(spec):
             if name in _CORE or name in out:
                 continue
-            if runnable and option_name(name) not in mine:
+            if runnable and (name not in mine or name in _NOT_AXES):
                 continue
             out.append(name)
     return out
 
 
+@dataclass(frozen=True)
+class SweepExecution(Parameters):
+    """Where and how the cases of a sweep run; nothing here changes a number of the results.
+
+    ``SweepExecution()`` runs the cases in this process, one after another (several light
+    surfaces per launch on a GPU). ``workers`` starts a local Dask cluster for the run;
+    ``scheduler`` uses an existing one.
+
+    Parameters
+    ----------
+    workers : int or "auto", optional
+        Run on a local Dask cluster of this many worker processes (one thread each; ``"auto"``:
+        one per visible CUDA device, 1 on a machine without one), started once for the whole
+        run (:func:`warptrunc.sweep.cluster.open_client`); with CUDA devices and no ``device``,
+        worker i is pinned to ``cuda:{i mod n_gpus}`` (dask-cuda's LocalCUDACluster where
+        installed). The workers are spawned processes, so a script that passes ``workers``
+        needs the ``if __name__ == "__main__":`` guard.
+    scheduler : str or distributed.Client, optional
+        Use an existing Dask cluster (e.g. ``"tcp://host:8786"``, a dask-jobqueue cluster's
+        ``scheduler_address``, or a client) instead. Its workers write their parts into the
+        store themselves: the store must be on a filesystem that every worker shares.
+    devices : int, "auto" or sequence, optional
+        Spread each elastic solve (``bem_fractions``) over several devices
+        (``ContactSolver(..., devices=...)``; JAX); None: the case's device alone. With
+        ``workers`` or ``scheduler``, a count G: each worker takes G devices of its own and
+        spreads its solves over them (:mod:`warptrunc.sweep.groups`; ``workers="auto"`` is
+        then the devices present divided by G).
+
+    Raises
+    ------
+    ValueError
+        ``workers`` neither a count ≥ 1 nor ``"auto"``; ``workers`` and ``scheduler`` both
+        given; a shard field out of its range.
+
+    Examples
+    --------
+    >>> SweepExecution(workers=4, shard_seconds=2.0).distributed
+    True
+    """
+
+    workers: int | str | None = None
+    scheduler: Any = None
+    devices: int | str | tuple | None = None
+    shard_size: int | None = param(
+        None, "with workers or a scheduler: cases per Dask task, each written by its worker "
+        "as one part of the store; none = adaptive, about shard_seconds of work (from the "
+        "median case time so far, at most 4096 cases, and at least two tasks per worker for "
+        "what remains)", kind="int", ge=1, le=10**6, optional=True, sweep=False,
+    )  # fmt: skip
+    shard_seconds: float = param(
+        1.0, "work per part of the store: the adaptive shard size with workers, and how much "
+        "the in-process engine gathers before writing a part (0: whatever finished while the "
+        "previous part was written); a hard kill loses at most about this much per worker",
+        unit="s", ge=0.0, sweep=False,
+    )  # fmt: skip
+    max_retries: int = param(
+        3, "resubmissions of a case whose Dask task was lost before it is recorded as failed",
+        kind="int", ge=0, sweep=False,
+    )  # fmt: skip
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+        w = self.workers
+        if isinstance(w, str) and w.strip().lower() == "auto":
+            object.__setattr__(self, "workers", "auto")
+        elif w is not None:
+            if isinstance(w, str) and w.strip().isdigit():
+                w = int(w.strip())
+            object.__setattr__(self, "workers", check_int("workers", w, 1))
+        if self.workers is not None and self.scheduler is not None:
+            raise ValueError(
+                "give workers (a local cluster) or scheduler (an existing one), not both"
+            )
+        if isinstance(self.devices, list):
+            object.__setattr__(self, "devices", tuple(self.devices))
+
+    @property
+    def distributed(self) -> bool:
+        """True when the cases run on a Dask cluster (``workers`` or ``scheduler``)."""
+        return self.workers is not None or self.scheduler is not None
+
+    @property
+    def spread(self) -> bool:
+        """True when each elastic solve is spread over several devices (``devices`` ≠ 1)."""
+        return self.devices not in (None, 1)

@@ -16,7 +16,7 @@ import numpy as np
 
 from .._support.atomic import read_json
 from .curves import CURVE_COLUMNS, part_files, part_rows, read_part_curves
-from .grid import FORMAT
+from .grid import STORE_FORMAT
 from .normalisation import upgrade_cases
 
 __all__ = ["BEM_QUANTITIES", "CASE_COLUMNS", "RUN_COLUMNS", "bem_long", "load", "load_curves"]
@@ -38,9 +38,10 @@ paper's Figs. 6 and 9), ``beta_contact_modulus`` the β of E_c/E*, E* the contac
 store written before the one normalisation is read with its meaning:
 :mod:`warptrunc.sweep.normalisation`).
 
-``min_pixels_fraction`` is NaN for a ``min_pixels`` fit range and f for a
-``min_pixels_fraction`` one (``min_pixels`` then holds the count it resolved to, 0 when the
-case failed). ``D_<method>``, ``D_<method>_r2``, ``fractal_options`` (JSON) and
+``E_flat_Pa`` and ``nu_flat`` are the options' ``E_i`` and ``nu_i``, in the store's spelling
+(:data:`~warptrunc.sweep.grid.STORED_NAMES`). ``min_pixels_fraction`` is NaN for a
+``min_pixels`` fit range and f for a ``min_pixels_fraction`` one (``min_pixels`` then holds
+the count it resolved to, 0 when the case failed). ``D_<method>``, ``D_<method>_r2``, ``fractal_options`` (JSON) and
 ``fractal_seconds`` (s) are NaN/null unless the sweep ran with ``fractal_methods``.
 ``fit_error`` is set when the fit failed (α NaN) and when it is not worth reading
 (:func:`warptrunc.plausibility.check_fit`: α, β, r² kept); ``warnings`` is then a JSON list of
@@ -144,12 +145,20 @@ def _open_spec(path: Path) -> dict[str, Any]:
     if not meta.exists():
         raise FileNotFoundError(f"{path} is not a sweep store (no sweep.json)")
     spec = read_json(meta)
-    if spec.get("format") == FORMAT:
-        raise ValueError(
-            f"{path} is a sweep store of the previous layout (one curve file per case); "
-            f"convert it with: warptrunc sweep --migrate {path}"
-        )
+    if spec.get("format") != STORE_FORMAT:
+        raise ValueError(format_refusal(path, spec.get("format")))
     return spec
+
+
+def format_refusal(path: Path, found: Any) -> str:
+    """Why the store at ``path``, whose ``sweep.json`` has the format tag ``found``, is not read."""
+    if found == "warptrunc-sweep/1":
+        return (
+            f"{path} is a sweep store of the layout before {STORE_FORMAT} (one curve file per "
+            "case), written only by development versions before 0.1; warptrunc no longer reads "
+            "it: run the sweep again into a new --out (or with --overwrite)"
+        )
+    return f"{path} is a store of format {found!r}, not {STORE_FORMAT!r}; use --overwrite or a new --out"
 
 
 def _unique_parts(path: Path) -> list[tuple[Path, list[list[dict[str, Any]]]]]:
@@ -187,7 +196,8 @@ def load(path: str | Path):
     FileNotFoundError
         If ``path`` holds no ``sweep.json``.
     ValueError
-        If the store has the previous layout (the message gives the command converting it).
+        If the store has another format tag than ``warptrunc-sweep/2`` (the layout before it
+        included: :func:`format_refusal` says why).
     """
     require_extra()
     import pyarrow.parquet as pq

@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Summaries of a sweep's cases table with pandas, the α(D) line, and the in-memory API.
+"""Summaries of a sweep's cases table with pandas, the α(D) line, and the in-memory table
+(:func:`sweep`, :class:`SweepTable`).
 
 :func:`alpha_summary` gives, per fit range, the mean and standard deviation of α over the
 seeds at each D_in and the least-squares line α(D_in) (the paper's Table 3).
@@ -16,8 +17,6 @@ from typing import Any
 import numpy as np
 
 from .._support.docs import SHARED_DOCS, fill_doc
-from ..stiffness import DEFAULT_MIN_PIXELS
-from .grid import SweepGrid
 from .read import require_extra
 from .run import run_sweep
 
@@ -175,56 +174,29 @@ class SweepTable:
 
 @fill_doc(SHARED_DOCS)
 def sweep(
-    D_values: Sequence[float],
-    delta_values: Sequence[float],
-    seeds: Sequence[int],
+    grid: Any,
+    store: str | Path | None = None,
     *,
-    Wr: float = 100e-6,
-    L: float = 1e-3,
-    n: int = 1024,
-    n_increments: int = 200,
-    max_depth_fraction: float = 0.1,
-    min_pixels: Sequence[int] = (DEFAULT_MIN_PIXELS,),
-    material: Any = None,
-    out: str | Path | None = None,
+    options: Any = None,
     progress: bool = True,
     device: Any = None,
-    **wm_kwargs: Any,
 ) -> SweepTable:
-    """Run truncation analyses over D × δ × seeds; the table as a :class:`SweepTable`.
+    """Run truncation analyses over a grid in this process; the table as a :class:`SweepTable`.
 
-    A thin wrapper of :func:`warptrunc.sweep.run_sweep` (which returns a DataFrame and
-    takes every option); ``out`` is a result store folder, resumed when it exists.
+    :func:`warptrunc.sweep.run_sweep` with its default execution, returning NumPy columns
+    instead of a DataFrame.
 
     Parameters
     ----------
-    D_values : sequence of float
-        Input fractal dimensions D_in in (2, 3) (dimensionless).
-    delta_values : sequence of float
-        Relative roughness δ = R_t/W_r > 0 (dimensionless).
-    seeds : sequence of int
-        Phase seeds.
-    Wr : float
-        Roll-off wavelength W_r (m); R_t = δ·W_r.
-    L : float
-        Side length (m).
-    n : int
-        Pixels per side.
-    n_increments : int
-        Depth increments per truncation curve (count).
-    max_depth_fraction : float
-        Deepest truncation ω_max as a fraction of R_t (dimensionless).
-    min_pixels : sequence of int
-        Fit ranges (pixels): one row per value and case.
-    material : Material, optional
-        Elastic constants; None: the sweep's default (aluminium against a rigid flat).
-    out : str or Path, optional
-        Result store folder; None keeps the results in memory only.
+    grid : SweepGrid, dict or path
+        D_in × δ × seeds (and extra axes), as :func:`~warptrunc.sweep.run_sweep` takes it.
+    store : str or Path, optional
+        Result store folder, resumed when it exists; None keeps the results in memory only.
+    options : SweepOptions, optional
+        What every case computes; default ``SweepOptions()`` (aluminium against a rigid flat).
     progress : bool
         Show a progress bar.
     {warp_device}
-    **wm_kwargs
-        ``M``, ``gamma``, ``Wc``, ``cutoff`` of the WM surfaces (see :class:`SweepOptions`).
 
     Returns
     -------
@@ -238,13 +210,5 @@ def sweep(
     ImportError
         If pandas or pyarrow (dependencies of warptrunc) is missing from the environment.
     """
-
-    mat = {}
-    if material is not None:
-        mat = dict(E=material.E, nu=material.nu, E_flat=material.E_i, nu_flat=material.nu_i)
-    df = run_sweep(
-        SweepGrid(D=tuple(D_values), delta=tuple(delta_values), seeds=tuple(seeds)), out,
-        Wr=Wr, L=L, n=n, increments=n_increments, max_depth_fraction=max_depth_fraction,
-        min_pixels=tuple(min_pixels), progress=progress, device=device, **mat, **wm_kwargs,
-    )  # fmt: skip
+    df = run_sweep(grid, store, options=options, progress=progress, device=device)
     return SweepTable({c: df[c].to_numpy() for c in df.columns})

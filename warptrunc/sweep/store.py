@@ -28,9 +28,17 @@ all of whose cases are held elsewhere, and rewrites one that overlaps only in pa
 ``cases.parquet`` is rewritten at most every ``flush_interval`` seconds and on close; rows
 missing from it after a hard kill are read from the parts on the next open.
 
-Stores of format ``warptrunc-sweep/1`` (one ``curves/<case_id>.parquet`` per case) are
-converted by :func:`~warptrunc.sweep.migration.migrate` (``warptrunc sweep --migrate OUT``); :func:`run_sweep` converts
-them on open, :func:`~warptrunc.sweep.read.load` refuses them with that command.
+A store of the layout before (format ``warptrunc-sweep/1``, one ``curves/<case_id>.parquet``
+per case) was written only by development versions, for two days before 0.1 and never in a
+release; it is refused, with the reason, by :class:`Store` and :func:`~warptrunc.sweep.read.load`
+alike. The case ids did not change with the layout (:data:`~warptrunc.sweep.grid.CASE_ID_FORMAT`).
+
+One sweep writes a store at a time: :func:`store_lock` creates ``OUT/.lock`` exclusively
+(``O_CREAT | O_EXCL``) with the holder's pid, host and start time (JSON). A second sweep on the
+same store is refused at once with :class:`StoreLocked`, naming the holder. A lock whose holder
+is gone — same host, and no process of that pid — is stale: it is taken over, and the takeover
+is reported through the ``notify`` callback. A lock held from another host cannot be checked and
+is never taken over; the message says which file to remove once that sweep is known to be dead.
 
 Why a store apart from ``warptrunc.reproduce.store``: this one holds many small cases as
 Parquet rows, written concurrently by workers and resumed case by case; the reproduce store holds
@@ -41,8 +49,11 @@ one JSON document per stage of a fixed study. Both write through
 from __future__ import annotations
 
 import json
+import os
+import socket
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -60,23 +71,21 @@ from .curves import (
     read_part_curves,
     write_part,
 )  # fmt: skip
-from .grid import FORMAT, STORE_FORMAT, SweepGrid
-from .migration import migrate
+from .grid import STORE_FORMAT, SweepGrid, stored_options
 from .normalisation import NORMALISATION
 from .options import SweepOptions
 from .read import (
     CASE_COLUMNS,
     MANIFEST_KEY,
     bem_columns,
+    format_refusal,
     manifest_parts,
     require_extra,
     rows_frame,
     sort_cases,
 )  # fmt: skip
 
-__all__ = ["Store", "conflict"]
-
-_CHECK = True  # test hook: the per-part rows are checked against the grid
+__all__ = ["LOCK_NAME", "Store", "StoreLocked", "conflict", "read_lock", "store_lock"]
 
 _clean = clean_rows
 
@@ -98,8 +107,9 @@ class Store:
     flush_interval : float
         Rewrite ``cases.parquet`` at most this often while cases stream in (s); see
         :meth:`flush`.
-    notify : callable, optional
-        Called with a message when a store of the previous layout is converted.
+    device : str, optional
+        The Warp device of the run, recorded in the provenance of a new ``sweep.json``
+        (default: the one Warp resolves by default).
     """
 
     def __init__(
@@ -111,12 +121,12 @@ class Store:
         overwrite: bool = False,
         retry_failed: bool = False,
         flush_interval: float = 2.0,
-        notify: Callable[[str], Any] | None = None,
+        device: Any = None,
     ) -> None:
         require_extra()
         self.path = None if path is None else Path(path)
         self.grid, self.options = grid, options
-        self.columns = (*CASE_COLUMNS, *bem_columns(options.bem_fractions))
+        self.columns = (*CASE_COLUMNS, *bem_columns(options.bem_fractions or ()))
         self.flush_interval = flush_interval
         self.rows: dict[str, list[dict[str, Any]]] = {}
         self.part_of: dict[str, str] = {}
@@ -141,7 +151,6 @@ class Store:
                     "them) or a new --out"
                 ) from None
             _check_same(self.path, old, spec)
-            migrate(self.path, notify=notify)  # the previous layout, or its leftovers
         elif (self.path / "cases.parquet").exists() or self.curves.exists():
             raise ValueError(
                 f"{self.path} holds sweep results but no sweep.json; use --overwrite or a new --out"
@@ -149,7 +158,9 @@ class Store:
         self.curves.mkdir(parents=True, exist_ok=True)
         self.remove_temporaries()
         if not meta.exists():
-            doc = {**spec, "provenance": provenance()}  # of the run that made the store
+            import warp  # noqa: F401  (the provenance names Warp's version: the cases run on it)
+
+            doc = {**spec, "provenance": provenance(device)}  # of the run that made the store
             write_atomic(meta, strict_json(doc).encode())  # E_flat: null = rigid (inf)
         self._read_existing()
         if retry_failed:
@@ -172,13 +183,14 @@ class Store:
         -------
         dict of str to Any
             ``format``, ``normalisation`` (:data:`~warptrunc.sweep.normalisation.NORMALISATION`,
-            the meaning of ``beta``), ``grid``, ``options`` and ``n_cases``.
+            the meaning of ``beta``), ``grid``, ``options`` (in the store's spelling,
+            :func:`~warptrunc.sweep.grid.stored_options`) and ``n_cases``.
         """
         return {
             "format": STORE_FORMAT,
             "normalisation": NORMALISATION,
             "grid": self.grid.to_dict(),
-            "options": self.options.to_dict(),
+            "options": stored_options(self.options),
             "n_cases": len(self.grid),
         }
 
@@ -389,11 +401,8 @@ def _diff(a: Any, b: Any, prefix: str = "") -> list[str]:
 
 
 def _check_same(path: Path, old: dict[str, Any], new: dict[str, Any]) -> None:
-    if old.get("format") not in (FORMAT, STORE_FORMAT):
-        raise ValueError(
-            f"{path} is a store of format {old.get('format')!r}, not {new['format']!r}; "
-            "use --overwrite or a new --out"
-        )
+    if old.get("format") != STORE_FORMAT:
+        raise ValueError(format_refusal(path, old.get("format")))
     diff = _diff(jsonable_strict({"grid": old.get("grid"), "options": old.get("options")}),
                  jsonable_strict({"grid": new["grid"], "options": new["options"]}))  # fmt: skip
     if diff:
@@ -419,16 +428,145 @@ def conflict(path: str | Path, grid: SweepGrid, options: SweepOptions) -> str | 
     Returns
     -------
     str or None
-        The refusal message; None also when ``path`` holds no ``sweep.json`` yet (a new
-        store), and for a store of the previous layout with the same grid and options
-        (resuming converts it).
+        The refusal message; None when ``path`` holds no ``sweep.json`` yet (a new store).
     """
     meta = Path(path) / "sweep.json"
     if not meta.exists():
         return None
-    new = {"format": STORE_FORMAT, "grid": grid.to_dict(), "options": options.to_dict()}
+    new = {"format": STORE_FORMAT, "grid": grid.to_dict(), "options": stored_options(options)}
     try:
         _check_same(Path(path), read_json(meta), new)
     except ValueError as exc:
         return str(exc)
     return None
+
+
+# --- one writer per store: OUT/.lock ----------------------------------------------------------
+
+LOCK_NAME = ".lock"
+"""File name of the lock inside the store folder."""
+
+
+class StoreLocked(ValueError):
+    """Another process holds the store's lock; the message names its pid and host."""
+
+
+def read_lock(path: str | Path) -> dict[str, Any] | None:
+    """The holder recorded in ``path/.lock`` (pid, host, started_utc), or None if unlocked.
+
+    Parameters
+    ----------
+    path : str or Path
+        The store folder.
+
+    Returns
+    -------
+    dict or None
+        The lock file's JSON object (``pid``, ``host``, ``started_utc``); None when there is
+        no lock file. A lock file that cannot be read or parsed (half-written, damaged, a
+        folder) gives ``{"pid": None, "host": None, "started_utc": None, "unreadable": why}``.
+    """
+
+    f = Path(path) / LOCK_NAME
+    try:
+        info = json.loads(f.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        return None
+    except (OSError, ValueError) as exc:  # half-written or damaged: the holder is unknown
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else "not JSON"
+        return {"pid": None, "host": None, "started_utc": None, "unreadable": why}
+    if not isinstance(info, dict) or not isinstance(info.get("pid"), int):
+        return {"pid": None, "host": None, "started_utc": None,
+                "unreadable": "no pid recorded"}  # fmt: skip
+    return info
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # exists, owned by someone else
+        return True
+    return True
+
+
+def _try_create(f: Path, info: dict[str, Any]) -> bool:
+    try:
+        fd = os.open(f, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+    except FileExistsError:
+        return False
+    try:
+        with os.fdopen(fd, "w") as fh:
+            fh.write(json.dumps(info) + "\n")
+    except BaseException:  # e.g. a full disk: never leave a half-written lock behind
+        f.unlink(missing_ok=True)
+        raise
+    return True
+
+
+@contextmanager
+def store_lock(
+    path: str | Path, *, notify: Callable[[str], None] | None = None
+) -> Iterator[dict[str, Any]]:
+    """Hold ``path/.lock`` for the duration of the block.
+
+    Parameters
+    ----------
+    path : path
+        The store folder (created if missing).
+    notify : callable, optional
+        Called with a one-line message when a stale lock is taken over.
+
+    Yields
+    ------
+    dict
+        This holder's record (pid, host, started_utc).
+
+    Raises
+    ------
+    StoreLocked
+        A live process (or one on another host) holds the lock.
+    """
+    path = Path(path)
+    path.mkdir(parents=True, exist_ok=True)
+    f = path / LOCK_NAME
+    host = socket.gethostname()
+    me = {
+        "pid": os.getpid(),
+        "host": host,
+        "started_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+    }
+    for _ in range(3):
+        if _try_create(f, me):
+            break
+        held = read_lock(path)
+        if held is None:
+            continue  # released meanwhile
+        pid, h = held.get("pid"), held.get("host")
+        stale = h == host and isinstance(pid, int) and pid != os.getpid() and not _alive(pid)
+        if held.get("unreadable"):
+            raise StoreLocked(
+                f"{path} is locked, but its lock file {f} cannot be read ({held['unreadable']}; "
+                "half-written or damaged), so its holder is unknown; if no sweep is running on "
+                f"this store, remove {f}"
+            )
+        if not stale:
+            raise StoreLocked(
+                f"{path} is in use by another sweep (pid {pid} on host {h}, since "
+                f"{held.get('started_utc')}); wait for it to finish, or use another --out. If "
+                f"that process is gone, remove {f}"
+            )
+        f.unlink(missing_ok=True)
+        if notify is not None:
+            notify(
+                f"{path}: took over a stale lock of pid {pid} on {h} (started "
+                f"{held.get('started_utc')}; that process no longer exists)"
+            )
+    else:
+        raise StoreLocked(f"{path}: could not take the lock {f} (contended); try again")
+    try:
+        yield me
+    finally:
+        if read_lock(path) == me:
+            f.unlink(missing_ok=True)
