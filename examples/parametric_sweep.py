@@ -23,9 +23,9 @@ Resolution
     four fit ranges) are in :ref:`the method guide <alpha-vs-d-10240>`.
 
 Key steps
-    ``SweepGrid`` (D_in × δ × seeds) → ``run_sweep`` into a result store (resumable; in-process
-    or on Dask workers) → ``alpha_summary`` (α per case and fit range, linear fit α(D_in)) →
-    ``plot.alpha_vs_D``.
+    ``SweepGrid`` (D_in × δ × seeds) and ``SweepOptions`` (size, fit ranges) → ``run_sweep``
+    into a result store (resumable; in-process, or on Dask workers with ``SweepExecution``) →
+    ``alpha_summary`` (α per case and fit range, linear fit α(D_in)) → ``plot.alpha_vs_D``.
 
 Run::
 
@@ -100,7 +100,7 @@ def main(argv=None) -> int:
     if args.quick:
         args.n, args.seeds, args.D = 128, 2, [2.2, 2.5, 2.8]
 
-    from warptrunc.sweep import SweepGrid, alpha_summary, run_sweep
+    from warptrunc.sweep import SweepExecution, SweepGrid, SweepOptions, alpha_summary, run_sweep
 
     if args.refit:
         df = refit(args.out, args.refit)
@@ -108,9 +108,11 @@ def main(argv=None) -> int:
         args.n, args.seeds = spec["options"]["n"], len(spec["grid"]["seeds"])
         args.delta = spec["grid"]["delta"][0] if len(spec["grid"]["delta"]) == 1 else None
     else:
-        grid = SweepGrid.from_values(args.D, [args.delta], range(args.seeds))
-        df = run_sweep(grid, args.out, n=args.n, min_pixels=tuple(args.min_pixels),
-                       workers=args.workers, device=args.device, overwrite=args.overwrite)  # fmt: skip
+        grid = SweepGrid(args.D, [args.delta], range(args.seeds))
+        options = SweepOptions(n=args.n, min_pixels=tuple(args.min_pixels))
+        df = run_sweep(grid, args.out, options=options,
+                       execution=SweepExecution(workers=args.workers),
+                       overwrite=args.overwrite, device=args.device)  # fmt: skip
         df = df[df["error"].isna()]
     summary = {"n": args.n, "seeds": args.seeds, "delta": args.delta, "paper": PAPER,
                **alpha_summary(df)}  # fmt: skip

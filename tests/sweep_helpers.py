@@ -3,12 +3,13 @@
 """Helpers shared by the sweep tests (tests/test_sweep.py, tests/test_sweep_dask.py) and the
 reproduce-on-workers tests."""
 
-from warptrunc.sweep import RUN_COLUMNS
+from warptrunc.sweep import RUN_COLUMNS, SweepOptions
 from warptrunc.sweep.curves import part_files, part_rows
 
 __all__ = ["OPTS", "case_ids_on_disk", "results_only", "two_worker_client"]
 
-OPTS = dict(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
+OPTS = SweepOptions(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
+"""The options of the small sweeps of the tests (64², 60 increments to 0.3·R_t, two fit ranges)."""
 
 
 def results_only(df):

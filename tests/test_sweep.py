@@ -21,6 +21,7 @@ from sweep_helpers import OPTS, case_ids_on_disk, results_only  # noqa: E402
 from warptrunc.sweep import (  # noqa: E402
     CURVE_COLUMNS,
     Store,
+    SweepExecution,
     SweepGrid,
     SweepOptions,
     load,
@@ -37,14 +38,17 @@ def test_parse_seeds_and_grid_errors(tmp_path):
     assert parse_seeds("0-2,9") == (0, 1, 2, 9)
     assert parse_seeds([3, "5"]) == (3, 5)
     assert parse_seeds(7) == (7,)
-    for bad, msg in (("4-2", "lo ≤ hi"), ("a", "integers or ranges"), ("1,1", "repeat"),
+    for bad, msg in (("4-2", "lo ≤ hi"), ("a", "seeds like 0, '0-4'"), ("1,1", "seed 1 is given twice"),
                      ("", "at least one"), ("-3", "seed")):  # fmt: skip
         with pytest.raises(ValueError, match=msg):
             parse_seeds(bad)
-    with pytest.raises(ValueError, match=r"D must be in \(2, 3\).*3.2"):
-        SweepGrid.from_values([2.5, 3.2], [0.01], "0")
-    with pytest.raises(ValueError, match="delta must be in"):
-        SweepGrid.from_values([2.5], [-0.01], "0")
+    with pytest.raises(ValueError, match=r"D\[1\] must be in \(2, 3\).*3.2"):
+        SweepGrid([2.5, 3.2], [0.01], "0")
+    with pytest.raises(ValueError, match=r"delta\[0\] must be in \(0, inf\)"):
+        SweepGrid([2.5], [-0.01], "0")
+    with pytest.raises(ValueError, match=r"D values must not repeat"):
+        SweepGrid([2.5, 2.5], [0.01])
+    assert SweepGrid(2.5, 0.01).seeds == (0,)  # one value each; seed 0 by default
     f = tmp_path / "grid.toml"
     f.write_text('D = [2.1, 2.5]\ndelta = [0.01]\nseeds = "0-2"\n')
     g = SweepGrid.from_toml(f)
@@ -52,12 +56,14 @@ def test_parse_seeds_and_grid_errors(tmp_path):
     f.write_text('D = [2.1]\ndelta = [0.01]\nseed = "0-2"\n')
     with pytest.raises(ValueError, match=r"grid.toml.*unknown \['seed'\], missing \['seeds'\]"):
         SweepGrid.from_toml(f)
-    with pytest.raises(ValueError, match="min_pixels must be an integer in"):
+    with pytest.raises(ValueError, match=r"min_pixels\[0\] must be an integer in \[1, inf\)"):
         SweepOptions(min_pixels=(0,))
+    with pytest.raises(ValueError, match=r"min_pixels must not repeat a value, got \(5, 5\)"):
+        SweepOptions(min_pixels=(5, 5))
 
 
 def test_case_ids_identify_values_and_options():
-    g = SweepGrid.from_values([2.2, 2.5], [1], "0-1")
+    g = SweepGrid([2.2, 2.5], [1], "0-1")
     ids = [c.case_id for c in g.cases(SweepOptions(n=64))]
     assert len(set(ids)) == 4
     assert ids == [
@@ -65,13 +71,38 @@ def test_case_ids_identify_values_and_options():
     ]
     assert not set(ids) & {c.case_id for c in g.cases(SweepOptions(n=128))}
     # the id does not depend on the position in the grid
-    sub = SweepGrid.from_values([2.5], [1], "1").cases(SweepOptions(n=64))
+    sub = SweepGrid([2.5], [1], "1").cases(SweepOptions(n=64))
     assert sub[0].case_id == ids[3]
 
 
+# ids made by warptrunc at 8d1cbfc (SweepOptions then named E_i, nu_i E_flat, nu_flat) for
+# ``warptrunc sweep --D 2.3 2.5 --delta 0.01 --seeds 0-1 --n 128``: a store made then resumes
+BASELINE_IDS = ["caa310bdbf5aec0e", "40203015a08abf69", "2015798acdd0a980", "e5424a6e09f839d1"]
+
+
+def test_case_ids_are_those_of_the_stores_made_before():
+    import hashlib
+
+    from warptrunc.sweep.grid import stored_options
+
+    grid = SweepGrid([2.3, 2.5], [0.01], "0-1")
+    assert [c.case_id for c in grid.cases(SweepOptions(n=128))] == BASELINE_IDS
+    # the id hashes the store's spelling, written out here by hand
+    o = SweepOptions(n=128, E_i=1141e9, nu_i=0.07)
+    stored = {"Wr": 1e-4, "L": 1e-3, "n": 128, "M": 10, "gamma": 1.5, "Wc": None,
+              "cutoff": "nyquist", "increments": 200, "max_depth_fraction": 0.1,
+              "max_depth": None, "E": 70e9, "nu": 0.33, "E_flat": 1141e9, "nu_flat": 0.07,
+              "beta_prime": 1.0, "min_pixels": [10], "depth_window": None}  # fmt: skip
+    assert stored_options(o) == stored
+    key = {"format": "warptrunc-sweep/1", "D": 2.3, "delta": 0.01, "seed": 1, "options": stored}
+    blob = json.dumps(key, sort_keys=True, separators=(",", ":")).encode()
+    want = hashlib.sha256(blob).hexdigest()[:16]
+    assert SweepGrid(2.3, 0.01, 1).cases(o)[0].case_id == want
+
+
 def test_store_rows_and_curves_match_numpy(tmp_path):
-    grid = SweepGrid.from_values([2.3, 2.7], [0.01, 0.02], "0-1")
-    df = run_sweep(grid, tmp_path / "s", progress=False, device="cpu", **OPTS)
+    grid = SweepGrid([2.3, 2.7], [0.01, 0.02], "0-1")
+    df = run_sweep(grid, tmp_path / "s", progress=False, device="cpu", options=OPTS)
     assert len(df) == 8 * 2 and df["error"].isna().all()
     assert sorted((tmp_path / "s").iterdir()) == [tmp_path / "s" / n for n in
                                                   ("cases.parquet", "curves", "sweep.json")]  # fmt: skip
@@ -111,10 +142,10 @@ def test_store_rows_and_curves_match_numpy(tmp_path):
 def test_fractal_methods_and_relative_fit_range(tmp_path):
     from warptrunc.fractal import fractal_dimensions
 
-    grid = SweepGrid.from_values([2.3, 2.7], [0.01], "0-1")
-    kw = dict(OPTS, min_pixels=(20,), min_pixels_fraction=(0.05, 0.5),
-              fractal_methods=("tri", "box", "vs", "sp"))  # fmt: skip
-    df = run_sweep(grid, tmp_path / "s", progress=False, device="cpu", **kw)
+    grid = SweepGrid([2.3, 2.7], [0.01], "0-1")
+    opts = OPTS.replace(min_pixels=(20,), min_pixels_fraction=(0.05, 0.5),
+                        fractal_methods=("tri", "box", "vs", "sp"))  # fmt: skip
+    df = run_sweep(grid, tmp_path / "s", options=opts, progress=False, device="cpu")
     assert len(df) == 4 * 3 and df["error"].isna().all() and df["alpha"].notna().all()
     # every range fits; a fit_error here only says "not worth reading" (α kept beside it)
     assert df["fit_error"].dropna().str.startswith("not worth reading").all()
@@ -142,15 +173,15 @@ def test_fractal_methods_and_relative_fit_range(tmp_path):
             assert row.alpha == pytest.approx(a, rel=1e-12) and row.n_points == sel.sum()
     # off by default and then not part of the case identity (older stores stay valid);
     # part of it when on
-    assert "fractal_methods" not in SweepOptions(**OPTS).to_dict()
-    plain = {c.case_id for c in grid.cases(SweepOptions(**OPTS))}
+    from warptrunc.sweep.grid import stored_options
+
+    assert OPTS.fractal_methods is None and "fractal_methods" not in stored_options(OPTS)
+    plain = {c.case_id for c in grid.cases(OPTS)}
     assert plain.isdisjoint(df["case_id"])
-    assert plain.isdisjoint(
-        c.case_id for c in grid.cases(SweepOptions(**OPTS, fractal_methods="vs"))
-    )
-    with pytest.raises(ValueError, match=r"fractal_methods must be among .*'dim'"):
+    assert plain.isdisjoint(c.case_id for c in grid.cases(OPTS.replace(fractal_methods="vs")))
+    with pytest.raises(ValueError, match=r"fractal_methods\[1\] must be one of .*'dim'"):
         SweepOptions(fractal_methods=("tri", "dim"))
-    with pytest.raises(ValueError, match=r"min_pixels_fraction must be in \(0, 1\]"):
+    with pytest.raises(ValueError, match=r"min_pixels_fraction\[0\] must be in \(0, 1\]"):
         SweepOptions(min_pixels_fraction=(1.5,))
 
 
@@ -172,18 +203,18 @@ def test_cli_fractal_and_fraction_options(tmp_path, capsys):
 
 def test_rerun_skips_other_grid_refused_overwrite(tmp_path):
     out = tmp_path / "s"
-    grid = SweepGrid.from_values([2.3], [0.01], "0-2")
-    first = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
-    again = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    grid = SweepGrid([2.3], [0.01], "0-2")
+    first = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)
+    again = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)
     pd.testing.assert_frame_equal(first, again)  # nothing recomputed: same times and stamps
     with pytest.raises(ValueError, match=r"another grid or options \(grid.seeds: \[0, 1, 2\] → "
                        r"\[0, 1, 2, 3\]\); use --overwrite"):  # fmt: skip
-        run_sweep(SweepGrid.from_values([2.3], [0.01], "0-3"), out, progress=False, **OPTS)
+        run_sweep(SweepGrid([2.3], [0.01], "0-3"), out, progress=False, options=OPTS)
     with pytest.raises(ValueError, match=r"options.increments: 60 → 61"):
-        run_sweep(grid, out, progress=False, **{**OPTS, "increments": 61})
+        run_sweep(grid, out, progress=False, options=OPTS.replace(increments=61))
     assert load(out)["case_id"].nunique() == 3  # the refused runs changed nothing
-    new = run_sweep(SweepGrid.from_values([2.3], [0.01], "0-3"), out, overwrite=True,
-                    progress=False, device="cpu", **OPTS)  # fmt: skip
+    new = run_sweep(SweepGrid([2.3], [0.01], "0-3"), out, overwrite=True,
+                    progress=False, device="cpu", options=OPTS)  # fmt: skip
     assert new["case_id"].nunique() == 4 and sorted(case_ids_on_disk(out)) == sorted(
         new["case_id"].unique()
     )
@@ -192,13 +223,13 @@ def test_rerun_skips_other_grid_refused_overwrite(tmp_path):
 def test_rows_recovered_from_curves_after_hard_kill(tmp_path):
     """A process killed between a curve write and the next cases.parquet flush loses nothing."""
     out = tmp_path / "s"
-    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1")
-    full = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    grid = SweepGrid([2.3, 2.6], [0.01], "0-1")
+    full = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)
     (out / "cases.parquet").unlink()
     (out / "curves" / ".part-x.parquet.tmp-123").write_bytes(b"PAR1 trunc")  # a half-written part
     assert len(pd.read_parquet(out / "curves")) == 4 * 61  # the dot-named temporary is skipped
     pd.testing.assert_frame_equal(load(out), full)
-    resumed = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    resumed = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)
     pd.testing.assert_frame_equal(resumed, full)  # same stamps: nothing was recomputed
     assert not list((out / "curves").glob(".*tmp*"))
 
@@ -215,8 +246,8 @@ def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
 
     monkeypatch.setattr(engines, "wm_surface", flaky)
     out = tmp_path / "s"
-    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-2")
-    df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    grid = SweepGrid([2.3, 2.6], [0.01], "0-2")
+    df = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)
     bad = df[df["seed"] == 1]
     assert len(bad) == 4 and (bad["error"] == "RuntimeError: injected failure").all()
     assert bad["alpha"].isna().all() and bad["final_contact_pixels"].isna().all()
@@ -224,8 +255,8 @@ def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
     assert len(good) == 8 and good["error"].isna().all() and good["alpha"].notna().all()
     assert len(load_curves(out)) == 4 * 61  # failed cases have empty curves
     monkeypatch.setattr(engines, "wm_surface", real)
-    assert run_sweep(grid, out, progress=False, device="cpu", **OPTS)["error"].notna().sum() == 4
-    fixed = run_sweep(grid, out, retry_failed=True, progress=False, device="cpu", **OPTS)
+    assert run_sweep(grid, out, progress=False, device="cpu", options=OPTS)["error"].notna().sum() == 4
+    fixed = run_sweep(grid, out, retry_failed=True, progress=False, device="cpu", options=OPTS)
     assert fixed["error"].isna().all()
     assert sorted(case_ids_on_disk(out)) == sorted(
         fixed.case_id.unique()
@@ -249,7 +280,7 @@ def stall(fd):  # the part's bytes are in the temporary file: the worker dies he
     time.sleep(60)
 c.os.fsync = stall
 o = SweepOptions(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
-cases = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1").cases(o)
+cases = SweepGrid([2.3, 2.6], [0.01], "0-1").cases(o)
 compute_shard(cases, o, "cpu", sys.argv[1])
 """
 
@@ -257,8 +288,8 @@ compute_shard(cases, o, "cpu", sys.argv[1])
 @pytest.mark.timeout(240)
 def test_worker_killed_while_writing_leaves_no_readable_part(tmp_path):
     out = tmp_path / "s"
-    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1")
-    run_sweep(grid, out, progress=False, device="cpu", **OPTS)  # the store exists
+    grid = SweepGrid([2.3, 2.6], [0.01], "0-1")
+    run_sweep(grid, out, progress=False, device="cpu", options=OPTS)  # the store exists
     ref = load(out)
     for f in part_files(out / "curves"):
         f.unlink()
@@ -273,7 +304,7 @@ def test_worker_killed_while_writing_leaves_no_readable_part(tmp_path):
     assert left[0].stat().st_size > 0 and not part_files(out / "curves")
     # readers skip it, and so does resuming (which removes it and computes the four cases)
     assert len(pd.read_parquet(out / "curves")) == 0 and len(load(out)) == 0
-    df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    df = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)
     pd.testing.assert_frame_equal(results_only(df), results_only(ref))
     assert not list((out / "curves").glob(".*")) and len(case_ids_on_disk(out)) == 4
 
@@ -286,11 +317,9 @@ def test_shard_retried_concurrently_written_once(tmp_path):
     from warptrunc.sweep.engines import compute_shard
 
     out = tmp_path / "s"
-    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-2")
-    run_sweep(
-        SweepGrid.from_values([2.3], [0.01], "0"), None, progress=False, device="cpu", **OPTS
-    )  # fmt: skip  (kernels loaded before the race)
-    opts = SweepOptions(**OPTS)
+    grid = SweepGrid([2.3, 2.6], [0.01], "0-2")
+    run_sweep(SweepGrid(2.3, 0.01), options=OPTS, progress=False, device="cpu")  # kernels loaded
+    opts = OPTS
     cases = grid.cases(opts)
     Store(out, grid, opts)  # an empty store: sweep.json and curves/
     barrier, got = threading.Barrier(4), []
@@ -310,7 +339,7 @@ def test_shard_retried_concurrently_written_once(tmp_path):
     assert len(part_files(out / "curves")) == 1 and not list((out / "curves").glob(".*"))
     assert sorted(case_ids_on_disk(out)) == sorted(c.case_id for c in cases)
     # the store takes the part as it is: nothing recomputed
-    df = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    df = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)
     assert sorted(df.finished_utc.unique()) == sorted(
         {rs[0]["finished_utc"] for rs in got[0]["rows"]}
     )
@@ -322,12 +351,13 @@ def test_overlapping_parts_each_case_once(tmp_path):
     from warptrunc.sweep.engines import compute_shard
 
     out = tmp_path / "s"
-    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-2")
-    ref = run_sweep(grid, out, progress=False, device="cpu", shard_seconds=0, **OPTS)
+    grid = SweepGrid([2.3, 2.6], [0.01], "0-2")
+    ref = run_sweep(grid, out, options=OPTS, execution=SweepExecution(shard_seconds=0),
+                    progress=False, device="cpu")  # fmt: skip
     for f in part_files(out / "curves"):
         f.unlink()
     (out / "cases.parquet").unlink()
-    opts = SweepOptions(**OPTS)
+    opts = OPTS
     cases = grid.cases(opts)
     a = compute_shard(cases[:4], opts, "cpu", str(out / "curves"))
     b = compute_shard(cases[2:], opts, "cpu", str(out / "curves"))
@@ -335,7 +365,7 @@ def test_overlapping_parts_each_case_once(tmp_path):
     df = load(out)
     assert not df.duplicated(["case_id", "min_pixels"]).any() and len(df) == len(ref)
     assert len(load_curves(out)) == 6 * 61
-    again = run_sweep(grid, out, progress=False, device="cpu", **OPTS)  # nothing recomputed
+    again = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)  # nothing recomputed
     pd.testing.assert_frame_equal(results_only(again), results_only(ref))
     assert sorted(case_ids_on_disk(out)) == sorted(ref.case_id.unique())  # the overlap was dropped
     assert len(pd.read_parquet(out / "curves")) == 6 * 61
@@ -345,12 +375,12 @@ def test_overlapping_parts_each_case_once(tmp_path):
 
 
 def test_elastic_columns_match_the_contact_solver(tmp_path):
-    from warptrunc.contact import solve_contact
+    from warptrunc.contact import CurveSettings, SolverSettings, solve_contact
     from warptrunc.stiffness import Material
 
-    grid = SweepGrid.from_values([2.3, 2.7], [0.01], "0")
-    kw = dict(OPTS, bem_fractions=(0.2, 0.05))
-    df = run_sweep(grid, tmp_path / "s", progress=False, device="cpu", **kw)
+    grid = SweepGrid([2.3, 2.7], [0.01], "0")
+    df = run_sweep(grid, tmp_path / "s", options=OPTS.replace(bem_fractions=(0.2, 0.05)),
+                   progress=False, device="cpu")  # fmt: skip
     assert df["error"].isna().all() and df["bem_error"].isna().all()
     pd.testing.assert_frame_equal(load(tmp_path / "s"), df)
     assert json.loads((tmp_path / "s" / "sweep.json").read_text())["options"]["bem_fractions"] == [
@@ -378,8 +408,9 @@ def test_elastic_columns_match_the_contact_solver(tmp_path):
     for _, row in df.drop_duplicates("case_id").iterrows():
         s = wm_surface(row.D_in, 100e-6, n=64, Rt=0.01 * 100e-6, seed=int(row.seed), device="cpu")
         d = np.array([0.05, 0.2]) * row.Rt_measured_m
-        cc = solve_contact(s, depths=d, contact_modulus=contact_modulus, substrate="free",
-                           stiffness="barber", device="cpu")  # fmt: skip
+        cc = solve_contact(s, depths=d, material=Material(),
+                           settings=SolverSettings(substrate="free"),
+                           curve=CurveSettings(stiffness="barber"), device="cpu")  # fmt: skip
         z = s.heights
         for i, f in enumerate(("0.05", "0.2")):
             assert row[f"bem_depth_m_{f}"] == d[i]
@@ -416,9 +447,12 @@ def test_unconverged_solve_flagged_not_dropped(tmp_path, monkeypatch):
     import warptrunc.contact.curve as contact
 
     real = contact.solve_contact
-    monkeypatch.setattr(contact, "solve_contact", lambda *a, **kw: real(*a, **{**kw, "maxiter": 1}))
-    df = run_sweep(SweepGrid.from_values([2.5], [0.01], "0"), tmp_path / "s", progress=False,
-                   device="cpu", **dict(OPTS, bem_fractions=(0.1,)))  # fmt: skip
+    from warptrunc.contact import SolverSettings
+
+    one = SolverSettings(maxiter=1)
+    monkeypatch.setattr(contact, "solve_contact", lambda *a, **kw: real(*a, **kw, settings=one))
+    df = run_sweep(SweepGrid([2.5], [0.01], "0"), tmp_path / "s", progress=False,
+                   device="cpu", options=OPTS.replace(bem_fractions=(0.1,)))  # fmt: skip
     assert len(df) == 2 and df["error"].isna().all()
     assert (~df["bem_converged_0.1"]).all() and df["F_bem_N_0.1"].notna().all()
 
@@ -437,9 +471,9 @@ def _cli(out, *extra):
 @pytest.fixture(scope="module")
 def reference():
     """The uninterrupted sweep of KILL_ARGS, in process."""
-    grid = SweepGrid.from_values([2.2, 2.5, 2.8], [0.01, 0.02], "0-2")
-    return run_sweep(grid, None, progress=False, device="cpu", n=128, increments=60,
-                     max_depth_fraction=0.3, min_pixels=(1, 20))  # fmt: skip
+    grid = SweepGrid([2.2, 2.5, 2.8], [0.01, 0.02], "0-2")
+    opts = SweepOptions(n=128, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
+    return run_sweep(grid, options=opts, progress=False, device="cpu")
 
 
 @pytest.mark.timeout(300)
@@ -524,4 +558,4 @@ def test_missing_extra_is_named(monkeypatch):
     # that importing the sweep loads no pandas/pyarrow/dask: tests/test_import_weight.py
     monkeypatch.setitem(sys.modules, "pyarrow", None)  # as if pyarrow were not installed
     with pytest.raises(ImportError, match=r"pyarrow is missing.*pip install pandas pyarrow"):
-        run_sweep(SweepGrid.from_values([2.5], [0.01], "0"), None, progress=False, n=64)
+        run_sweep(SweepGrid([2.5], [0.01], "0"), options=SweepOptions(n=64), progress=False)

@@ -213,7 +213,8 @@ def elastic_record(surface, sc, options: SweepOptions, device=None, *,
     Truncation at δ: A' = (pixels with z ≥ z_max − δ)·pixel area (exact count, float32 as the
     kernels), k' = β'·(2/√π)·E*·√A' (Eq. 2), F'(δ) by linear interpolation of the curve's
     trapezoidal load; the same formulas as ``warptrunc.bem_check``. The elastic
-    solve is :func:`warptrunc.contact.solve_contact` (``substrate="free"``, Barber stiffness),
+    solve is :func:`warptrunc.contact.solve_contact` on its defaults (free substrate, Barber's
+    stiffness; :class:`~warptrunc.contact.SolverSettings`, :class:`~warptrunc.contact.CurveSettings`),
     warm-started over increasing δ; a solve that stops at its iteration limit is kept with
     ``bem_converged_<f>`` False. A solver error leaves the columns NaN and sets ``bem_error``.
     """
@@ -237,8 +238,9 @@ def elastic_record(surface, sc, options: SweepOptions, device=None, *,
         deep = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
     f_trunc = np.interp(d, deep.depth, deep.load)
     try:
-        cc = solve_contact(surface, depths=d, contact_modulus=contact_modulus, substrate="free",
-                           stiffness="barber", device=device, devices=devices)  # fmt: skip
+        # the solver's defaults: free substrate, float64, Barber's stiffness
+        cc = solve_contact(surface, depths=d, material=o.material(), device=device,
+                           devices=devices)  # fmt: skip
     except Exception as exc:  # recorded; the truncation results stand
         out["bem_error"] = f"{type(exc).__name__}: {exc}"
         out["bem_seconds"] = time.perf_counter() - t0
