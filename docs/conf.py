@@ -48,6 +48,7 @@ os.environ.pop("DISPLAY", None)
 import warptrunc  # noqa: E402
 
 import apigen  # noqa: E402
+import layout  # noqa: E402
 import paramtables  # noqa: E402
 import perftables  # noqa: E402
 import xref  # noqa: E402
@@ -100,6 +101,9 @@ numpydoc_validation_checks = set()  # tests/test_docstrings.py validates
 
 # -- measured tables from the run records of benchmarks/records/ ---------------------------
 perftables.write_tables(DOCS)
+
+# -- the module list of guide/layout.md, from the package tree ------------------------------
+layout.write_page(DOCS)
 
 # -- parameter tables from the declarations of WMSpec and Material (warptrunc.params) --------
 paramtables.write_tables(DOCS)
