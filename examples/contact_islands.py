@@ -35,7 +35,8 @@ from pathlib import Path
 
 import numpy as np
 
-from warptrunc.islands import applicable_depth, island_curve
+from warptrunc.islands import IndicatorSettings, IslandSettings, applicable_depth, island_curve
+from warptrunc.truncation import TruncationSettings
 from warptrunc.wm import wm_surface
 
 
@@ -65,18 +66,23 @@ def main(argv=None) -> int:
     n, inc = (128, 50) if args.quick else (args.n, args.increments)
     min_islands = 5 if args.quick else 50
 
+    depths = TruncationSettings(
+        increments=inc, max_depth_fraction=args.max_depth_fraction, connectivity=args.connectivity
+    )
     args.out.mkdir(parents=True, exist_ok=True)
     curves, inds, rows = [], [], []
     for seed in range(args.seed, args.seed + args.seeds):
         t0 = time.perf_counter()
         s = wm_surface(args.D, args.Wr, L=args.L, n=n, Rt=args.Rt, seed=seed, device=args.device)
+        snapshots = (0.1, 0.2, 0.3, 0.4) if seed == args.seed else None
         c = island_curve(
-            s, inc, max_depth_fraction=args.max_depth_fraction,
-            connectivity=args.connectivity, min_pixels=args.min_pixels,
-            snapshot_depths=[f * s.Rt for f in (0.1, 0.2, 0.3, 0.4)] if seed == args.seed else None,
-            progress=args.progress, device=args.device,
-        )  # fmt: skip
-        ind = applicable_depth(c, min_islands=min_islands)
+            s,
+            truncation=depths,
+            settings=IslandSettings(min_pixels=args.min_pixels, snapshots=snapshots),
+            progress=args.progress,
+            device=args.device,
+        )
+        ind = applicable_depth(c, IndicatorSettings(min_islands=min_islands))
         c.to_csv(args.out / f"islands_seed{seed}.csv")
         curves.append(c)
         inds.append(ind)

@@ -146,11 +146,12 @@ def main(argv=None) -> int:
     if importlib.util.find_spec("warptrunc.islands") and hasattr(plot, "island_number"):
         from warptrunc import islands
 
+        depths = islands.ISLANDS_TRUNCATION.replace(increments=100)
+        snapshots = islands.IslandSettings(snapshots=(0.1, 0.2, 0.3))
         ic = [
-            islands.island_curve(ss[0], 100, max_depth_fraction=0.5, device=args.device,
-                                 snapshot_depths=[f * ss[0].Rt for f in (0.1, 0.2, 0.3)])
+            islands.island_curve(ss[0], truncation=depths, settings=snapshots, device=args.device)
             for ss in surfaces.values()
-        ]  # fmt: skip
+        ]
         p = args.out / "islands.png"
         plot.island_number(ic, labels=[f"D$_{{in}}$ = {D}" for D in surfaces], path=p)
         written.append(p)

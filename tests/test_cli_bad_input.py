@@ -95,7 +95,7 @@ NUMERIC = [
     (["islands", "--min-islands", "1"], ["--min-islands", "[5, inf)", "'1'"]),
     (["islands", "--plateau-width", "0"], ["--plateau-width", "(0, 1]", "'0'"]),
     (["islands", "--persist", "-0.1"], ["--persist", "[0, 1]", "-0.1"]),
-    (["islands", "--smooth", "4"], ["--smooth", "odd", "'4'"]),
+    (["islands", "--smooth", "4"], ["--smooth must be odd, got 4"]),
     (["islands", "--smooth", "0"], ["--smooth", "[1, inf)", "'0'"]),
     # calibrate (typed-in targets)
     (["calibrate", "--D", "3"], ["--D", "(2, 3)", "'3'"]),

@@ -23,12 +23,20 @@ from islands_helpers import (
 
 import warptrunc
 from warptrunc.islands import (
+    ISLANDS_TRUNCATION,
     MIN_ISLANDS,
+    IslandSettings,
     island_curve,
     islands_at_depths,
     label_islands,
 )
 from warptrunc.islands import unionfind as _unionfind
+
+
+def island_depths(increments, **kw):
+    """The depths of an island curve: ``increments`` to 0.5·R_t unless ``kw`` says otherwise."""
+    return ISLANDS_TRUNCATION.replace(increments=increments, **kw)
+
 
 # --- labelling of one mask ----------------------------------------------------------------------
 
@@ -172,8 +180,7 @@ def test_carried_forest_equals_labelling_each_depth(device, connectivity, kind):
         np.testing.assert_array_equal(isl.labels, scratch.labels)
         np.testing.assert_array_equal(isl.perimeter, scratch.perimeter)
         assert isl.depth == d
-    with pytest.warns(DeprecationWarning, match="islands_at_depths"):
-        one = warptrunc.islands.islands_at_depth(s, depths[0], connectivity=connectivity, device=device)
+    (one,) = islands_at_depths(s, [depths[0]], connectivity=connectivity, device=device)
     np.testing.assert_array_equal(one.labels, got[0].labels)
 
 
@@ -184,7 +191,7 @@ def test_long_merge_chain_along_spiral(device):
     for step, (y, x) in enumerate(path):
         z[y, x] = -step / len(path) * 0.5  # the path's start is the top
     s = warptrunc.from_heights(z.astype(np.float32), 1.0)
-    c = island_curve(s, 40, max_depth_fraction=0.6, device=device)
+    c = island_curve(s, truncation=island_depths(40, max_depth_fraction=0.6), device=device)
     thr = thresholds(s, c.depth)
     ref = [scipy_labels(s.heights >= t, 4)[1] for t in thr]
     np.testing.assert_array_equal(c.n_islands, ref)
@@ -193,7 +200,9 @@ def test_long_merge_chain_along_spiral(device):
     for step, (y, x) in enumerate(path):
         z_rev[y, x] = -(len(path) - step) / len(path) * 0.5
     r = warptrunc.from_heights(z_rev.astype(np.float32), 1.0)
-    c2 = island_curve(r, 40, max_depth_fraction=1.0, connectivity=8, device=device)
+    c2 = island_curve(
+        r, truncation=island_depths(40, max_depth_fraction=1.0, connectivity=8), device=device
+    )
     thr2 = thresholds(r, c2.depth)
     np.testing.assert_array_equal(c2.n_islands, [scipy_labels(r.heights >= t, 8)[1] for t in thr2])
 
@@ -206,12 +215,8 @@ def test_island_curve_against_references(device, connectivity, periodic):
     snaps = [0.2 * s.Rt, 0.35 * s.Rt]
     c = island_curve(
         s,
-        30,
-        max_depth_fraction=0.9,
-        connectivity=connectivity,
-        periodic=periodic,
-        min_pixels=min_pixels,
-        snapshot_depths=snaps,
+        truncation=island_depths(30, max_depth_fraction=0.9, connectivity=connectivity),
+        settings=IslandSettings(periodic=periodic, min_pixels=min_pixels, snapshots=(0.2, 0.35)),
         device=device,
     )
     thr = thresholds(s, c.depth)
@@ -253,8 +258,10 @@ def test_island_curve_against_references(device, connectivity, periodic):
 
 def test_counts_only_equal_statistics_run(device):
     s = smooth_surface(48, seed=4)
-    a = island_curve(s, 25, device=device)
-    b = island_curve(s, 25, statistics=False, device=device)
+    a = island_curve(s, truncation=island_depths(25), device=device)
+    b = island_curve(
+        s, truncation=island_depths(25), settings=IslandSettings(statistics=False), device=device
+    )
     np.testing.assert_array_equal(a.n_islands, b.n_islands)
     np.testing.assert_array_equal(a.euler_characteristic, b.euler_characteristic)
     assert np.isnan(b.slit_exponent).all()
@@ -263,14 +270,14 @@ def test_counts_only_equal_statistics_run(device):
 
 def test_curve_invariants():
     s = smooth_surface(40, 52, seed=6)
-    a = island_curve(s, 20, device="cpu")
+    a = island_curve(s, truncation=island_depths(20), device="cpu")
     t = warptrunc.from_heights(s.heights.T.copy(), s.dx)
-    b = island_curve(t, 20, device="cpu")
+    b = island_curve(t, truncation=island_depths(20), device="cpu")
     np.testing.assert_array_equal(a.n_islands, b.n_islands)
     np.testing.assert_array_equal(a.euler_characteristic, b.euler_characteristic)
     assert np.diff(a.n_contact_pixels).min() >= 0
     big = warptrunc.from_heights(s.heights, 3 * s.dx)
-    d = island_curve(big, 20, device="cpu")
+    d = island_curve(big, truncation=island_depths(20), device="cpu")
     np.testing.assert_allclose(d.contact_area, 9 * a.contact_area, rtol=1e-12)
     np.testing.assert_allclose(d.total_perimeter, 3 * a.total_perimeter, rtol=1e-12)
     np.testing.assert_allclose(d.slit_exponent, a.slit_exponent, rtol=1e-9)
@@ -309,10 +316,10 @@ def test_bad_input_raises_clear_errors():
     with pytest.raises(TypeError, match=r"warptrunc\.Surface"):
         island_curve(np.zeros((4, 4), np.float32))
     s = smooth_surface(16)
-    with pytest.raises(ValueError, match="min_pixels must be an integer"):
-        island_curve(s, 5, min_pixels=0, device="cpu")
-    with pytest.raises(ValueError, match="connectivity must be 4 or 8, got 'four'"):
-        island_curve(s, 5, connectivity="four", device="cpu")
+    with pytest.raises(ValueError, match=r"min_pixels must be an integer in \[1, inf\), got 0"):
+        IslandSettings(min_pixels=0)
+    with pytest.raises(ValueError, match=r"connectivity must be one of \{4, 8\}, got 'four'"):
+        island_depths(5, connectivity="four")
     with pytest.raises(ValueError, match="depths must be finite"):
         islands_at_depths(s, [0.1e-6, np.nan], device="cpu")
     with pytest.raises(ValueError, match="depths must be finite and ≥ 0"):
@@ -358,9 +365,12 @@ def test_gpu_labels_deterministic_and_equal_scipy(connectivity):
 def test_gpu_island_curve_equals_cpu(connectivity):
     _cuda_or_skip()
     s = smooth_surface(256, 200, sigma=3.0, seed=13)
-    kw = dict(connectivity=connectivity, min_pixels=4, snapshot_depths=[0.3 * s.Rt])
-    a = island_curve(s, 60, device="cpu", **kw)
-    b = island_curve(s, 60, device="cuda:0", **kw)
+    kw = dict(
+        truncation=island_depths(60, connectivity=connectivity),
+        settings=IslandSettings(min_pixels=4, snapshots=(0.3,)),
+    )
+    a = island_curve(s, device="cpu", **kw)
+    b = island_curve(s, device="cuda:0", **kw)
     for key, col in a.to_dict().items():
         if key.startswith("slit_") and col.dtype.kind == "f":
             # float64 sums accumulated on the device in a thread-dependent order (and log10 of
@@ -384,7 +394,9 @@ def test_sqrt_area_sum_matches_scipy_label(device, connectivity):
     from warptrunc.wm import wm_surface
 
     s = wm_surface(2.5, 100e-6, L=1e-3, n=96, seed=3, device=device)
-    ic = island_curve(s, 40, max_depth_fraction=0.4, connectivity=connectivity, device=device)
+    ic = island_curve(
+        s, truncation=island_depths(40, max_depth_fraction=0.4, connectivity=connectivity), device=device
+    )
     z = s.heights
     top = np.float32(z.max())
     structure = np.ones((3, 3)) if connectivity == 8 else None
@@ -395,7 +407,9 @@ def test_sqrt_area_sum_matches_scipy_label(device, connectivity):
     np.testing.assert_allclose(ic.sqrt_area_sum, ref, rtol=1e-9, atol=0)
     assert ic.apparent_area == pytest.approx(s.apparent_area)
     # deterministic: a second run gives the same bits
-    again = island_curve(s, 40, max_depth_fraction=0.4, connectivity=connectivity, device=device)
+    again = island_curve(
+        s, truncation=island_depths(40, max_depth_fraction=0.4, connectivity=connectivity), device=device
+    )
     np.testing.assert_array_equal(again.sqrt_area_sum, ic.sqrt_area_sum)
 
 
@@ -405,7 +419,9 @@ def test_sqrt_area_sum_absent_without_statistics():
     from warptrunc.wm import wm_surface
 
     s = wm_surface(2.5, 100e-6, L=1e-3, n=32, seed=0, device="cpu")
-    ic = island_curve(s, 10, statistics=False, device="cpu")
+    ic = island_curve(
+        s, truncation=island_depths(10), settings=IslandSettings(statistics=False), device="cpu"
+    )
     assert ic.sqrt_area_sum is None
     with pytest.raises(ValueError, match="statistics=True"):
         island_stiffness_curve(ic)
@@ -416,7 +432,7 @@ def test_island_curve_csv_reads_back(tmp_path):
     import csv
 
     z = np.random.default_rng(4).normal(size=(48, 40))
-    c = island_curve(warptrunc.from_heights(z, 1e-6), 30, max_depth_fraction=0.5, device="cpu")
+    c = island_curve(warptrunc.from_heights(z, 1e-6), truncation=island_depths(30), device="cpu")
     with open(c.to_csv(tmp_path / "i.csv"), newline="") as fh:
         rows = list(csv.reader(fh))
     cols = c.to_dict()

@@ -14,7 +14,13 @@ import scipy.ndimage as ndi
 
 import warptrunc
 from warptrunc import plot
-from warptrunc.islands import applicable_depth, island_curve
+from warptrunc.islands import (
+    ISLANDS_TRUNCATION,
+    IndicatorSettings,
+    IslandSettings,
+    applicable_depth,
+    island_curve,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 PNG = b"\x89PNG\r\n\x1a\n"
@@ -64,8 +70,8 @@ def test_islands_cli_on_a_height_map(tmp_path):
         assert png[:8] == PNG and len(png) > 10_000
 
 
-def test_islands_cli_generates_and_counts_only(tmp_path):
-    r = cli("--n", 64, "--seed", 3, "--counts-only", "--connectivity", 8, "--increments", 20,
+def test_islands_cli_generates_counts_without_statistics(tmp_path):
+    r = cli("--n", 64, "--seed", 3, "--no-statistics", "--connectivity", 8, "--increments", 20,
             "--device", "cpu", "--out", tmp_path, "--no-plot")  # fmt: skip
     assert r.returncode == 0, r.stderr
     data = np.genfromtxt(tmp_path / "islands.csv", delimiter=",", names=True)
@@ -82,16 +88,20 @@ def test_islands_cli_generates_and_counts_only(tmp_path):
 def test_islands_cli_bad_connectivity(tmp_path):
     r = cli("--n", 32, "--connectivity", 6, "--device", "cpu", "--out", tmp_path)
     assert r.returncode == 2
-    assert "--connectivity: invalid choice: 6 (choose from 4, 8)" in r.stderr
+    assert "--connectivity: must be one of 4, 8, got '6'" in r.stderr
 
 
 def test_figures_from_python(tmp_path):
     rng = np.random.default_rng(2)
     z = ndi.gaussian_filter(rng.standard_normal((64, 64)), 2.0).astype(np.float32)
     s = warptrunc.from_heights(z * 1e-6, 1e-6)
-    c = island_curve(s, 30, max_depth_fraction=0.8, min_pixels=3,
-                     snapshot_depths=[0.2 * s.Rt, 0.5 * s.Rt], device="cpu")  # fmt: skip
-    ind = applicable_depth(c, min_islands=5)
+    c = island_curve(
+        s,
+        truncation=ISLANDS_TRUNCATION.replace(increments=30, max_depth_fraction=0.8),
+        settings=IslandSettings(min_pixels=3, snapshots=(0.2, 0.5)),
+        device="cpu",
+    )
+    ind = applicable_depth(c, IndicatorSettings(min_islands=5))
     fig = plot.island_number([c, c], [ind, None], labels=["a", "b"], path=tmp_path / "a.png")
     assert len(fig.axes[0].lines) >= 4
     fig = plot.slit_islands(c, path=tmp_path / "b.png")

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from warptrunc.islands import (
+    IndicatorSettings,
     IslandCurve,
     applicable_depth,
     label_islands,
@@ -72,7 +73,7 @@ def test_indicators_on_a_synthetic_curve():
     n = np.round(1000 * np.exp(-(((frac - 0.4) / 0.1) ** 2))).astype(int)  # peak at 40 %
     beta = np.where(frac <= 0.3, 0.75, 0.75 - 2.0 * (frac - 0.3))  # drops after 30 %
     beta[:3] = np.nan  # too few islands at the top
-    ind = applicable_depth(_synthetic_curve(n, beta, Rt=2e-6), smooth=1)
+    ind = applicable_depth(_synthetic_curve(n, beta, Rt=2e-6), IndicatorSettings(smooth=1))
     # the Gaussian's steepest rise is one standard deviation... /sqrt(2) before the peak
     assert ind.max_growth_depth / ind.Rt == pytest.approx(0.4 - 0.1 / math.sqrt(2), abs=0.006)
     assert ind.peak_depth / ind.Rt == pytest.approx(0.4)
@@ -96,15 +97,14 @@ def test_indicators_ignore_a_short_dip():
     beta = np.full(101, 0.7)
     beta[40:42] = 0.6  # 1 % R_t dip: shorter than persist = 2 %
     beta[80:] = 0.6  # a lasting drop from 40 % R_t
-    ind = applicable_depth(_synthetic_curve(n, beta), smooth=1)
+    ind = applicable_depth(_synthetic_curve(n, beta), IndicatorSettings(smooth=1))
     assert ind.fractal_depth == pytest.approx(frac[79])
-    ind = applicable_depth(_synthetic_curve(n, beta), smooth=1, persist=0.0)
+    ind = applicable_depth(_synthetic_curve(n, beta), IndicatorSettings(smooth=1, persist=0.0))
     assert ind.fractal_depth == pytest.approx(frac[39])
 
 
 def test_indicators_bad_options_raise_clear_errors():
-    c = _synthetic_curve(np.arange(5), np.full(5, 0.7))
     with pytest.raises(ValueError, match="smooth must be odd, got 4"):
-        applicable_depth(c, smooth=4)
-    with pytest.raises(ValueError, match="exponent_tolerance must be in"):
-        applicable_depth(c, exponent_tolerance=1.5)
+        IndicatorSettings(smooth=4)
+    with pytest.raises(ValueError, match=r"exponent_tolerance must be in \(0, 1\), got 1.5"):
+        IndicatorSettings(exponent_tolerance=1.5)

@@ -314,11 +314,18 @@ def test_fit_range_map_equals_direct_refit(tiny):
 
 
 def test_slit_bootstrap_band_contains_estimate_and_is_deterministic():
-    from warptrunc.islands import island_curve, slit_bootstrap, slit_island_fit
+    from warptrunc.islands import (
+        ISLANDS_TRUNCATION,
+        IslandSettings,
+        island_curve,
+        slit_bootstrap,
+        slit_island_fit,
+    )
     from warptrunc.wm import wm_surface
 
     s = wm_surface(2.5, 60e-6, L=1e-3, n=256, Rt=30e-6, seed=0, device="cpu")
-    c = island_curve(s, 50, max_depth_fraction=0.5, snapshot_depths=[0.3 * s.Rt], device="cpu")
+    t = ISLANDS_TRUNCATION.replace(increments=50)
+    c = island_curve(s, truncation=t, settings=IslandSettings(snapshots=(0.3,)), device="cpu")
     (sz,) = c.sizes
     e, lo, hi = slit_bootstrap(sz, min_islands=5)
     assert e == pytest.approx(slit_island_fit(sz, min_islands=5).exponent)

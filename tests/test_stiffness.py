@@ -137,25 +137,26 @@ def test_separate_paraboloids_islands_vs_eq2(device, tiles):
     from warptrunc.islands import island_curve
     from warptrunc.stiffness import island_stiffness_curve
     from warptrunc.surface import from_heights
-    from warptrunc.truncation import truncate
+    from warptrunc.truncation import TruncationSettings, truncate
 
     tile, dx = _paraboloid_tile()
     N = tiles[0] * tiles[1]
     one = from_heights(tile, dx)
     many = from_heights(np.tile(tile, tiles), dx)
-    kw = dict(max_depth_fraction=0.9, device=device)  # islands stay apart below R_t
-    ic1, icN = island_curve(one, 30, **kw), island_curve(many, 30, **kw)
+    # islands stay apart below R_t
+    kw = dict(truncation=TruncationSettings(increments=30, max_depth_fraction=0.9), device=device)
+    ic1, icN = island_curve(one, **kw), island_curve(many, **kw)
     assert np.all(icN.n_islands[1:] == N)
     k1 = island_stiffness_curve(ic1)
     kN = island_stiffness_curve(icN)
-    eN = stiffness_curve(truncate(many, 30, **kw))
+    eN = stiffness_curve(truncate(many, 30, max_depth_fraction=0.9, device=device))
     np.testing.assert_allclose(kN.stiffness, N * k1.stiffness, rtol=1e-9)
     np.testing.assert_allclose(kN.load, N * k1.load, rtol=1e-9)
     np.testing.assert_allclose(eN.stiffness, math.sqrt(N) * k1.stiffness, rtol=1e-9)
     np.testing.assert_allclose(eN.load, math.sqrt(N) * k1.load, rtol=1e-9)
     # one island: both models agree; E_c/E* of the islands model is k/((2/√π)E*√A), and
     # E_c/E = E_c·(√π/2)/(E·√A) = k/((2/√π)E√A) with E the Young's modulus
-    e1 = stiffness_curve(truncate(one, 30, **kw))
+    e1 = stiffness_curve(truncate(one, 30, max_depth_fraction=0.9, device=device))
     np.testing.assert_allclose(k1.stiffness, e1.stiffness, rtol=1e-9)
     c = 2 / math.sqrt(math.pi) * kN.material.contact_modulus * math.sqrt(kN.apparent_area)
     np.testing.assert_allclose(kN.Ec_over_Estar, kN.stiffness / c, rtol=1e-12)

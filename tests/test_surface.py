@@ -11,7 +11,7 @@ import warp as wp
 
 import warptrunc
 from warptrunc import Surface, from_heights, island_curve, label_islands, truncate
-from warptrunc.islands import MIN_ISLANDS
+from warptrunc.islands import ISLANDS_TRUNCATION, MIN_ISLANDS
 from warptrunc.wm import wm_surface
 
 
@@ -63,7 +63,7 @@ def test_truncate_and_islands_make_no_host_copy(device):
     warptrunc.truncation.contact_index_device(
         s, np.linspace(0, 0.3 * s.Rt, 11), warptrunc.resolve_device(device)
     )
-    island_curve(s, 20, device=device)
+    island_curve(s, truncation=ISLANDS_TRUNCATION.replace(increments=20), device=device)
     warptrunc.islands.islands_at_depths(s, [0.1 * s.Rt, 0.2 * s.Rt], device=device)
     assert not s.has_host_copy
     warptrunc.fractal_dimensions(s, ("tri", "box"), device=device)
@@ -96,8 +96,9 @@ def test_device_surface_counts_equal_host_surface(device):
     np.testing.assert_array_equal(
         a.n_contact_pixels, [np.count_nonzero(z >= t) for t in a.threshold]
     )
-    ca = island_curve(s, 30, device=device)
-    cb = island_curve(h, 30, device=device)
+    t = ISLANDS_TRUNCATION.replace(increments=30)
+    ca = island_curve(s, truncation=t, device=device)
+    cb = island_curve(h, truncation=t, device=device)
     for f in ("n_islands", "n_contact_pixels", "euler_characteristic", "slit_n_islands"):
         np.testing.assert_array_equal(getattr(ca, f), getattr(cb, f))
     np.testing.assert_array_equal(ca.area_histogram, cb.area_histogram)
@@ -190,7 +191,8 @@ def _edges(labels, n):
 @pytest.mark.parametrize("connectivity", [4, 8])
 def test_island_statistics_on_device_equal_scipy_per_depth(device, connectivity):
     s = _wm(device, n=192, seed=8)
-    c = island_curve(s, 40, max_depth_fraction=0.6, connectivity=connectivity, device=device)
+    t = ISLANDS_TRUNCATION.replace(increments=40, max_depth_fraction=0.6, connectivity=connectivity)
+    c = island_curve(s, truncation=t, device=device)
     assert not s.has_host_copy
     z = s.device_heights().numpy()
     thr = (np.float64(z.max()) - c.depth).astype(np.float32)

@@ -49,18 +49,14 @@ from .surface import Surface
 from .truncation.api import truncate
 from .truncation.curve import TruncationCurve
 from .truncation.settings import FitRange, TruncationSettings
-from .truncation.stream import as_wm_spec, banded_truncation, fits_in_memory
+from .truncation.stream import banded_truncation, stream_reason
 from .wm import surface_from_spec
 from .wm_params import WMSpec, WMTerms
 
-__all__ = ["ISLAND_MODEL", "TOO_BIG", "Analysis", "FitRangeError", "analyze"]
+__all__ = ["ISLAND_MODEL", "Analysis", "FitRangeError", "analyze"]
 
 ISLAND_MODEL = "k = β'(2/√π)E*·Σ_i √A_i, one flat punch per island"
 """How ``fit.json`` names the island-resolved model."""
-TOO_BIG = "the map needs more than half of the free memory"
-"""Why a WM surface was streamed when streaming was not asked for."""
-STREAM_GIVEN = "--stream given"
-"""Why a WM surface was streamed when ``stream=True`` (``warptrunc analyze --stream``)."""
 
 
 class FitRangeError(ValueError):
@@ -236,78 +232,82 @@ def analyze(
     ...             fit=FitRange(min_pixels=5), device="cpu")  # doctest: +SKIP
     """
     truncation = TruncationSettings() if truncation is None else truncation
-    fit_range_ = FitRange() if fit is None else fit
-    n_increments, max_depth = truncation.increments, truncation.max_depth
-    max_depth_fraction, beta_prime = truncation.max_depth_fraction, truncation.beta_prime
-    islands, connectivity = truncation.islands, truncation.connectivity
-    min_pixels, depth_window = fit_range_.min_pixels, fit_range_.depth_window
-    rt_percentile, fit_range, auto_spikes = (
-        fit_range_.rt_percentile, fit_range_.rule, fit_range_.spikes
-    )
+    fit = FitRange() if fit is None else fit
     material = Material() if material is None else material
-    if isinstance(source, Surface) and fit_range == "auto":
+    read_map = isinstance(source, Surface)
+    if read_map and fit.rule == "auto":
         check_map_size(source)
     curve, surface, meta, path = _truncation(
-        source, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction,
-        rt_percentile=rt_percentile, islands=islands, stream=stream, band_rows=band_rows,
-        progress=progress, device=device,
-    )  # fmt: skip
-    read_map = isinstance(source, Surface)
-    sc = stiffness_curve(curve, material, beta_prime=beta_prime)
+        source, truncation, fit.rt_percentile, stream, band_rows, progress, device
+    )
+    sc = stiffness_curve(curve, material, beta_prime=truncation.beta_prime)
     found: list = []
     try:
-        fit = fit_power_law(sc, min_pixels=min_pixels, depth_window=depth_window)
-        found = check_fit(fit, sc)
+        eq2 = fit_power_law(sc, min_pixels=fit.min_pixels, depth_window=fit.depth_window)
+        found = check_fit(eq2, sc)
     except ValueError as exc:
-        fit, error = None, exc
-    own = [name for name, v in (("--max-depth", max_depth), ("--depth-window", depth_window),
-                                ("--rt-percentile", rt_percentile)) if v is not None]  # fmt: skip
-    rule = _rule_without_auto(fit_range, read_map, own)
-    if rule is not None and fit is not None and on_curve is not None:
+        eq2, error = None, exc
+    own = [
+        name
+        for name, v in (
+            ("--max-depth", truncation.max_depth),
+            ("--depth-window", fit.depth_window),
+            ("--rt-percentile", fit.rt_percentile),
+        )
+        if v is not None
+    ]
+    rule = _rule_without_auto(fit.rule, read_map, own)
+    if rule is not None and eq2 is not None and on_curve is not None:
         on_curve(curve)  # final: no automatic rule can change it
         on_curve = None
-    want_islands = surface is not None and islands is not False
+    connectivity = truncation.connectivity
+    want_islands = surface is not None and truncation.islands is not False
     indicators = _validity(surface, read_map, connectivity, device) if want_islands else None
-    if fit is not None and indicators is not None:
-        found += check_fit_depth(fit, indicators)
+    if eq2 is not None and indicators is not None:
+        found += check_fit_depth(eq2, indicators)
     decided: list = []
-    if rule is not None and read_map and auto_spikes:  # no rule: the spikes are reported
+    if rule is not None and read_map and fit.spikes:  # no rule: the spikes are reported
         decided = check_spikes(source)
     if rule is None:
-        legacy = fit, found, None if fit is not None else error
-        auto, rule, decided = _auto_rule(
-            surface, legacy, material, n_increments, max_depth_fraction, beta_prime,
-            min_pixels, connectivity, want_islands, auto_spikes, device,
-        )  # fmt: skip
+        legacy = eq2, found, None if eq2 is not None else error
+        auto, rule, decided = _auto_rule(surface, legacy, material, truncation, fit, want_islands,
+                                         device)  # fmt: skip
         if auto is not None:
-            surface, max_depth, curve, sc, fit, found, indicators = auto
+            surface, omega, curve, sc, eq2, found, indicators = auto
+            truncation = truncation.replace(max_depth=omega)
             meta = surface.to_dict()
-    if fit is None:
+    if eq2 is None:
         raise FitRangeError(str(error), surface) from None
     if on_curve is not None:
         on_curve(curve)
     isl = isl_fit = None
     isl_found: list = []
     if want_islands:
-        isl, isl_fit = _islands(
-            surface, curve, material, n_increments, max_depth=max_depth,
-            max_depth_fraction=max_depth_fraction, beta_prime=beta_prime,
-            min_pixels=min_pixels, depth_window=depth_window, connectivity=connectivity,
-            device=device,
-        )  # fmt: skip
+        isl, isl_fit = _islands(surface, curve, material, truncation, fit, device)
         if isl_fit is not None:
             isl_found = check_fit(isl_fit, isl, label="islands fit")
             if indicators is not None:
                 isl_found += check_fit_depth(isl_fit, indicators, label="islands fit")
     return Analysis(
-        curve, sc, fit, isl, isl_fit, material, meta, path, connectivity,
-        warnings=tuple(decided + found + isl_found), fit_range=rule, indicators=indicators,
-        fit_error=fit_error_text(found), islands_fit_error=fit_error_text(isl_found),
-    )  # fmt: skip
+        curve,
+        sc,
+        eq2,
+        isl,
+        isl_fit,
+        material,
+        meta,
+        path,
+        connectivity,
+        warnings=tuple(decided + found + isl_found),
+        fit_range=rule,
+        indicators=indicators,
+        fit_error=fit_error_text(found),
+        islands_fit_error=fit_error_text(isl_found),
+    )
 
 
-#: Depth grid of the island counts that locate the maximum growth rate (§ 4.3, Table 2).
-VALIDITY_INCREMENTS, VALIDITY_DEPTH_FRACTION = 100, 0.5
+VALIDITY_TRUNCATION = TruncationSettings(increments=100, max_depth_fraction=0.5)
+"""Depth grid of the island counts that locate the maximum growth rate (§ 4.3, Table 2)."""
 
 
 def _validity(surface: Surface, read_map: bool, connectivity: int, device):
@@ -317,6 +317,7 @@ def _validity(surface: Surface, read_map: bool, connectivity: int, device):
     when that depth is not positive."""
     from .islands.depths import island_curve
     from .islands.fits import applicable_depth
+    from .islands.settings import IslandSettings
 
     max_depth = None
     if read_map:
@@ -324,11 +325,10 @@ def _validity(surface: Surface, read_map: bool, connectivity: int, device):
         max_depth = float(z.max()) - float(np.median(z))
         if not max_depth > 0:
             return None
+    depths = VALIDITY_TRUNCATION.replace(max_depth=max_depth, connectivity=connectivity)
     ic = island_curve(
-        surface, VALIDITY_INCREMENTS, max_depth=max_depth,
-        max_depth_fraction=VALIDITY_DEPTH_FRACTION, connectivity=connectivity,
-        statistics=False, device=device,
-    )  # fmt: skip
+        surface, truncation=depths, settings=IslandSettings(statistics=False), device=device
+    )
     return applicable_depth(ic)
 
 
@@ -360,11 +360,14 @@ AUTO_TOO_FEW = "; the range to fewer held fewer than 3 fittable increments"
 """... and that the range to 50 held no fit."""
 
 
-def _auto_rule(surface, legacy, material, n_increments, max_depth_fraction, beta_prime,
-               min_pixels, connectivity, want_islands, auto_spikes, device):  # fmt: skip
+def _auto_rule(surface, legacy, material: Material, truncation: TruncationSettings,
+               fit_range: FitRange, want_islands: bool, device):  # fmt: skip
     """The automatic rule of :mod:`warptrunc.robust` on a map read from a file: ((surface,
     ω_max, curve, stiffness curve, fit, warnings, indicators) on the automatic range or None
     when the default result stands, the ``fit_range`` record, the decisions' warnings)."""
+    n_increments, beta_prime = truncation.increments, truncation.beta_prime
+    max_depth_fraction, connectivity = truncation.max_depth_fraction, truncation.connectivity
+    min_pixels, auto_spikes = fit_range.min_pixels, fit_range.spikes
     state = _legacy_state(*legacy, min_pixels)
     masked, found, sets = spike_rule(surface) if auto_spikes else (surface, [], [])
     s = masked if sets else surface
@@ -427,53 +430,47 @@ def _auto_rule(surface, legacy, material, n_increments, max_depth_fraction, beta
     return (s, omega, curve, sc, fit, found_fit, indicators), rec, decided + depth_w
 
 
-def _truncation(source, n_increments: int, *, max_depth, max_depth_fraction, rt_percentile,
-                islands, stream, band_rows, progress, device):  # fmt: skip
+def _truncation(source, truncation: TruncationSettings, rt_percentile, stream, band_rows,
+                progress, device):  # fmt: skip
     """(curve, the Surface truncated or None when streamed, its metadata, the path record)."""
-    if stream not in ("auto", True, False):
-        raise ValueError(f"stream must be 'auto', True or False, got {stream!r}")
-    opts = {"max_depth": max_depth, "max_depth_fraction": max_depth_fraction}
-    spec = None if isinstance(source, Surface) else as_wm_spec(source)
-    streamed = spec is not None and (
-        stream is True or (stream == "auto" and not fits_in_memory(spec, device))
-    )  # fmt: skip
-    if not streamed:
-        if isinstance(source, Surface) and stream is True:
-            raise ValueError("stream=True applies to generated surfaces, not to a Surface")
+    opts = {"max_depth": truncation.max_depth,
+            "max_depth_fraction": truncation.max_depth_fraction}  # fmt: skip
+    spec, reason = stream_reason(source, stream, device)
+    if reason is None:
         s = source if spec is None else surface_from_spec(spec, resolve_device(device))
         if rt_percentile is not None:
             s = clip_to_percentiles(s, *rt_percentile)
-        curve = truncate(s, n_increments, **opts, device=device)
+        curve = truncate(s, truncation.increments, **opts, device=device)
         return curve, s, s.to_dict(), {"path": "in-memory"}
     if rt_percentile is not None:
         raise ValueError("rt_percentile needs the map in memory; it cannot be streamed")
-    if islands:
+    if truncation.islands:
         raise ValueError("islands=True needs the map in memory; a streamed map has no island pass")
     st = banded_truncation(
-        spec, n_increments, **opts, band_rows=band_rows, device=resolve_device(device),
+        spec, truncation.increments, **opts, band_rows=band_rows, device=resolve_device(device),
         progress=progress,
     )  # fmt: skip
-    reason = STREAM_GIVEN if stream is True else TOO_BIG
     info = {"band_rows": st.band_rows, "n_bands": st.n_bands, "reason": reason}
     return st.curve, None, st.surface, {"path": "streamed", "streaming": info}
 
 
-def _islands(surface: Surface, curve: TruncationCurve, material: Material, n_increments: int,
-             *, max_depth, max_depth_fraction, beta_prime, min_pixels, depth_window,
-             connectivity, device):  # fmt: skip
+def _islands(surface: Surface, curve: TruncationCurve, material: Material,
+             truncation: TruncationSettings, fit_range: FitRange, device):  # fmt: skip
     """(island-resolved StiffnessCurve, its fit or None) on the depths of ``curve``."""
     from .islands.depths import island_curve
+    from .islands.settings import IslandSettings
 
     ic = island_curve(
-        surface, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction,
-        connectivity=connectivity, statistics=True, device=device,
-    )  # fmt: skip
+        surface, truncation=truncation, settings=IslandSettings(snapshots=None), device=device
+    )
     if not (np.array_equal(ic.depth, curve.depth)
             and np.array_equal(ic.n_contact_pixels, curve.n_contact_pixels)):  # fmt: skip
         raise RuntimeError("internal error: island pass and truncation disagree on the depths")
-    isl = island_stiffness_curve(ic, material, beta_prime=beta_prime)
+    isl = island_stiffness_curve(ic, material, beta_prime=truncation.beta_prime)
     try:
-        fit = fit_power_law(isl, min_pixels=min_pixels, depth_window=depth_window)
+        fit = fit_power_law(
+            isl, min_pixels=fit_range.min_pixels, depth_window=fit_range.depth_window
+        )
     except ValueError:  # same range as Eq. 2's fit, which succeeded: cannot happen
         fit = None
     return isl, fit

@@ -63,6 +63,7 @@ import warp as wp  # noqa: E402
 from _common import git_commit, timeit  # noqa: E402
 
 from warptrunc.islands import (  # noqa: E402
+    IslandSettings,
     island_counts_device,
     island_curve,
     label_islands,
@@ -70,7 +71,11 @@ from warptrunc.islands import (  # noqa: E402
 from warptrunc.islands.forest import Forest  # noqa: E402
 from warptrunc.islands.topology import topology_hist  # noqa: E402
 from warptrunc.islands.unionfind import label_device  # noqa: E402
-from warptrunc.truncation import contact_index_device, depth_grid  # noqa: E402
+from warptrunc.truncation import (  # noqa: E402
+    TruncationSettings,
+    contact_index_device,
+    depth_grid,
+)
 from warptrunc.wm import wm_surface  # noqa: E402
 
 FRACTIONS = (0.1, 0.3, 0.5)
@@ -258,13 +263,15 @@ def run_case(n: int, device, args) -> dict:
     res["warp_label_per_depth_all_depths_extrapolated_s"] = float(np.mean(per_warp) * n1)
 
     # 3. end-to-end drivers from the host height map
+    depths = TruncationSettings(
+        increments=args.increments, max_depth_fraction=args.max_depth_fraction
+    )
     res["warp_island_curve_counts_s"] = guarded(
         res,
         "curve_counts",
         lambda: timeit(
             lambda: island_curve(
-                s, args.increments, max_depth_fraction=args.max_depth_fraction,
-                statistics=False, device=device,
+                s, truncation=depths, settings=IslandSettings(statistics=False), device=device
             ),
             rep, sync,
         ),
@@ -274,7 +281,7 @@ def run_case(n: int, device, args) -> dict:
         "curve_statistics",
         lambda: timeit(
             lambda: island_curve(
-                s, args.increments, max_depth_fraction=args.max_depth_fraction, device=device
+                s, truncation=depths, settings=IslandSettings(snapshots=None), device=device
             ),
             max(1, rep // 2), sync,
         ),

@@ -35,7 +35,7 @@ from _common import bench_parser, git_commit, timeit
 import warptrunc
 from warptrunc.descriptors import describe
 from warptrunc.fractal import fractal_dimensions
-from warptrunc.islands import island_curve
+from warptrunc.islands import IslandSettings, island_curve
 from warptrunc.stiffness import fit_power_law, stiffness_curve
 from warptrunc.truncation import truncate
 from warptrunc.wm import generate_on_device, wm_heights, wm_product, wm_spec, wm_surface, wm_tables
@@ -153,10 +153,12 @@ def run_end_to_end(n: int, device, repeats: int) -> dict:
     s = gen(0)
     rep = max(1, repeats // 2)
     res["island_curve_stats_200_s"] = timeit(
-        lambda: island_curve(s, 200, statistics=True, device=device), rep, sync
+        lambda: island_curve(s, settings=IslandSettings(snapshots=None), device=device), rep, sync
     )
     res["island_curve_counts_200_s"] = timeit(
-        lambda: island_curve(s, 200, statistics=False, device=device), rep, sync
+        lambda: island_curve(s, settings=IslandSettings(statistics=False), device=device),
+        rep,
+        sync,
     )
     res["describe_s"] = timeit(lambda: describe(s), rep, sync)
     res["fractal_dimensions_s"] = timeit(lambda: fractal_dimensions(s, device=device), rep, sync)

@@ -371,6 +371,150 @@ def add_no_progress(p: Any) -> None:
     )  # fmt: skip
 
 
+def add_progress(p: Any) -> None:
+    """``--progress`` (a progress bar, off by default: for commands whose bar is short)."""
+    shared_option(p, "--progress", action="store_true", help="show a progress bar (on stderr)")
+
+
+def add_output_file(p: Any, default: str, what: str) -> None:
+    """``--output/-o FILE``: the file a command writes (``what`` it holds)."""
+    shared_option(p, "--output", "-o", type=output_file, default=Path(default), help=what)
+
+
+def file_name_with(suffixes: tuple[str, ...]):
+    """A ``type=`` for a plain file name (written inside ``--out``) ending in one of
+    ``suffixes`` (checked at parse time)."""
+
+    def parse(text: str) -> str:
+        if not text or Path(text).name != text or text in (".", ".."):
+            raise argparse.ArgumentTypeError(f"must be a file name without folders, got {text!r}")
+        if not text.lower().endswith(suffixes):
+            raise argparse.ArgumentTypeError(f"must end in {' or '.join(suffixes)}, got {text!r}")
+        return text
+
+    parse.__name__ = "file name"
+    return parse
+
+
+def add_file_in_out(
+    p: Any,
+    option: str,
+    suffixes: tuple[str, ...],
+    default: str,
+    what: str,
+    *,
+    optional: bool = False,
+) -> None:
+    """``option FILE``: a file written inside ``--out``, named with one of ``suffixes``.
+
+    ``optional``: the file is written only when the option is given, named ``default`` when
+    the option has no value (``--vtk`` or ``--vtk surface.vtk``); otherwise it is always
+    written, named ``default`` unless the option names it.
+    """
+    kw: dict[str, Any] = {"type": file_name_with(suffixes), "help": what}
+    if optional:
+        kw.update(nargs="?", const=default, default=None, metavar="FILE")
+    else:
+        kw.update(default=default)
+    shared_option(p, option, **kw)
+
+
+def add_json_output(p: Any) -> None:
+    """``--json PATH``: write the command's JSON to a file, or to stdout with ``-``."""
+
+    def json_path(text: str) -> str:
+        return text if text == "-" else str(output_file(text))
+
+    json_path.__name__ = "path"
+    shared_option(
+        p, "--json", type=json_path, default=None, metavar="PATH", help="write JSON here ('-': stdout)"
+    )
+
+
+def add_figures_out(p: Any, what: str) -> None:
+    """``--out DIR`` of a command whose figures are optional: written only when given."""
+    shared_option(p, "--out", type=output_dir, default=None, help=f"folder for {what}")
+
+
+def add_no_surface(p: Any, what: str) -> None:
+    """``--no-surface``: write ``what`` only, not the surface file."""
+    shared_option(p, "--no-surface", action="store_true", help=f"write {what} only")
+
+
+SCAN_FILE_HELP = (
+    "height map: .npz/.npy (warptrunc or plain), .csv/.txt matrix, or an instrument file (.sur, "
+    ".x3p, .datx, ... over forty formats, through SurfaceTopography)"
+)
+"""The help of a command's FILE (``describe``, ``calibrate``)."""
+
+
+def add_scan_file(p: argparse.ArgumentParser, *, required: bool = True) -> Any:
+    """FILE (positional, or ``--input/-i FILE`` as in every other command) and the reader
+    options (:func:`add_reader_options`), of a command that reads one height map.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser.
+    required : bool
+        The command needs the file (else the targets may be typed in).
+
+    Returns
+    -------
+    argparse group
+        The group "reading the file".
+    """
+    shared_option(
+        p,
+        "file",
+        type=input_file,
+        nargs="?",
+        default=None,
+        metavar="FILE",
+        help=SCAN_FILE_HELP + ("" if required else " (optional: the targets may be typed in)"),
+    )
+    g = p.add_argument_group("reading the file")
+    shared_option(
+        g,
+        "--input",
+        "-i",
+        type=input_file,
+        default=None,
+        metavar="FILE",
+        help="the height map, as FILE (the same file; give one of the two)",
+    )
+    add_reader_options(g)
+    p.set_defaults(_file_required=required)
+    return g
+
+
+def scan_file(args: argparse.Namespace) -> Path | None:
+    """The file named by FILE or ``--input`` (None when neither is given and it is optional).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments of :func:`add_scan_file`; ``args.file`` is set to the file.
+
+    Returns
+    -------
+    Path or None
+        The file to read.
+
+    Raises
+    ------
+    ValueError
+        Both forms name a file, or neither does and the command needs one.
+    """
+    f, i = args.file, getattr(args, "input", None)
+    if f is not None and i is not None and f != i:
+        raise ValueError(f"give the height map once, as FILE or --input FILE, got {f} and {i}")
+    args.file = f if f is not None else i
+    if args.file is None and getattr(args, "_file_required", True):
+        raise ValueError("the height map is missing: give FILE or --input FILE")
+    return args.file
+
+
 def add_overwrite(p: Any, what: str) -> None:
     """``--overwrite``: replace ``what`` (the results of an existing output folder)."""
     shared_option(p, "--overwrite", action="store_true", help=f"replace {what}")

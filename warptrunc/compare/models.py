@@ -263,6 +263,8 @@ def compare_models(
     """
     from ..contact.curve import solve_contact
     from ..islands.depths import island_curve
+    from ..islands.settings import IslandSettings
+    from ..truncation.settings import TruncationSettings
 
     material = Material() if material is None else material
     beta_prime = check_range("beta_prime", beta_prime, 0.0)
@@ -270,10 +272,12 @@ def compare_models(
     Rt = float(surface.Rt)
     fr = _approaches(Rt, fractions)
     d = fr * Rt
+    depths = TruncationSettings(
+        increments=increments, max_depth=float(d[-1]), connectivity=connectivity
+    )
     ic = island_curve(
-        surface, increments, max_depth=float(d[-1]), connectivity=connectivity,
-        statistics=True, device=device,
-    )  # fmt: skip
+        surface, truncation=depths, settings=IslandSettings(snapshots=None), device=device
+    )
     sc = stiffness_curve(_AreaCurve(ic), material, beta_prime=beta_prime)
     si = island_stiffness_curve(ic, material, beta_prime=beta_prime)
 

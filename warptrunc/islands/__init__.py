@@ -34,47 +34,35 @@ intercept of a slit-island fit, not its exponent.
 components not touching the border, connectivity 8 for contact connectivity 4 and vice
 versa). With ``periodic=True``, χ is that of the set on the torus (χ = islands − holes only for
 sets that do not wrap around).
+
+Every public name is importable from ``warptrunc.islands`` (imported on first use, so that the
+parameters of ``settings`` load no Warp).
 """
 
-from .._support.deprecate import deprecated_function
-from .depths import (
-    _islands_at_depth,
-    island_counts_device as island_counts_device,  # internal fast path, not in __all__
-    island_curve,
-    islands_at_depths,
-)
-from .fits import applicable_depth, slit_bootstrap, slit_island_fit
-from .labelling import label_islands
-from .results import (
-    MIN_ISLANDS,
-    MIN_PIXELS,
-    Indicators,
-    IslandCurve,
-    Islands,
-    IslandSizes,
-    SlitIslandFit,
-    TopologyCurve,
-)
-from .topology import topology_curve
+from .._support.exports import lazy_exports
 
-islands_at_depth = deprecated_function(
-    _islands_at_depth, "warptrunc.islands.islands_at_depth", "islands_at_depths(surface, [depth])[0]"
+__all__, __getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "ISLANDS_TRUNCATION": ".settings",
+        "MIN_ISLANDS": ".settings",
+        "MIN_PIXELS": ".settings",
+        "IndicatorSettings": ".settings",
+        "Indicators": ".results",
+        "IslandCurve": ".results",
+        "IslandSettings": ".settings",
+        "IslandSizes": ".results",
+        "Islands": ".results",
+        "SlitIslandFit": ".results",
+        "TopologyCurve": ".results",
+        "applicable_depth": ".fits",
+        "island_counts_device": ".depths",
+        "island_curve": ".depths",
+        "islands_at_depths": ".depths",
+        "label_islands": ".labelling",
+        "slit_bootstrap": ".fits",
+        "slit_island_fit": ".fits",
+        "topology_curve": ".topology",
+    },
 )
-
-__all__ = [
-    "MIN_ISLANDS",
-    "MIN_PIXELS",
-    "Indicators",
-    "IslandCurve",
-    "IslandSizes",
-    "Islands",
-    "SlitIslandFit",
-    "TopologyCurve",
-    "applicable_depth",
-    "island_curve",
-    "islands_at_depths",
-    "label_islands",
-    "slit_bootstrap",
-    "slit_island_fit",
-    "topology_curve",
-]
+__all__ = [n for n in __all__ if n != "island_counts_device"]  # the internal fast path

@@ -15,7 +15,7 @@ import warp as wp
 from .._support.device import check_memory, resolve_device
 from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.progress import progress_bar
-from .._support.validate import check_int, check_range
+from .._support.validate import check_int
 from ..kernels import islands as _ki
 from ..surface import Surface
 from ..truncation.curve import (
@@ -24,15 +24,12 @@ from ..truncation.curve import (
     surface_device,
     surface_range,
 )
+from ..truncation.settings import TruncationSettings
 from .fits import slit_from_sums
 from .forest import Forest
 from .labelling import islands_from_labels
-from .results import (
-    MIN_PIXELS,
-    IslandCurve,
-    Islands,
-    IslandSizes,
-)
+from .results import IslandCurve, Islands, IslandSizes
+from .settings import ISLANDS_TRUNCATION, IslandSettings
 from .topology import topology_hist
 from .unionfind import check_connectivity, check_index_size, check_surface
 
@@ -176,63 +173,15 @@ def islands_at_depths(
     return out
 
 
-@fill_doc(SHARED_DOCS)
-def _islands_at_depth(
-    surface: Surface,
-    depth: float,
-    *,
-    connectivity: int = 4,
-    periodic: bool = False,
-    device: wp.DeviceLike = None,
-) -> Islands:
-    """Islands of the contact set ``z >= z_top − ω`` at one depth ω (m) (deprecated public
-    name ``islands_at_depth``: use ``islands_at_depths(surface, [depth])[0]``).
-
-    ``islands_at_depths(surface, [depth], ...)[0]``; see :func:`islands_at_depths`.
-
-    Parameters
-    ----------
-    {surface}
-    depth : float
-        Truncation depth ω (m), finite and ≥ 0; a pixel is in contact when
-        ``z >= float32(z_top − ω)``.
-    {label_options}
-
-    Returns
-    -------
-    Islands
-        The islands at ω (labels, areas (m²), perimeters (m)).
-
-    Raises
-    ------
-    ValueError
-        ``depth`` is negative or not finite, or ``connectivity`` is not 4 or 8.
-    """
-
-    check_range("depth", depth, 0.0, lo_open=False, unit="m")
-    return islands_at_depths(
-        surface, [depth], connectivity=connectivity, periodic=periodic, device=device
-    )[0]
-
-
-# --- topology by histograms -----------------------------------------------------------------------
-
-
 # --- island curve ---------------------------------------------------------------------------------
 
 
 @fill_doc(SHARED_DOCS)
 def island_curve(
     surface: Surface,
-    n_increments: int = 200,
     *,
-    max_depth: float | None = None,
-    max_depth_fraction: float = 0.5,
-    connectivity: int = 4,
-    periodic: bool = False,
-    statistics: bool = True,
-    min_pixels: int = MIN_PIXELS,
-    snapshot_depths: Sequence[float] | None = None,
+    truncation: TruncationSettings = ISLANDS_TRUNCATION,
+    settings: IslandSettings | None = None,
     progress: bool = False,
     device: wp.DeviceLike = None,
 ) -> IslandCurve:
@@ -241,24 +190,20 @@ def island_curve(
     Parameters
     ----------
     {surface}
-    n_increments : int
-        Number of depth increments n; depths ω_k = k·ω_max/n, k = 0..n.
-    max_depth : float, optional
-        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of R_t (dimensionless). 0.5 by default, not :func:`truncate`'s 0.1:
-        the island count rises and falls again deeper than the stiffness fit reads, and 0.5
-        covers its peak on the paper's surfaces (Fig. 8).
-    {connectivity}
-    {periodic}
-    statistics : bool
-        Also carry per-island areas and perimeters: slit-island fit, area histogram and
-        Σ√A_i (``sqrt_area_sum``) at every depth. ``False`` gives island counts, χ and total perimeter only (fastest).
-    min_pixels : int
-        Smallest island in the slit-island fits (pixels); see :data:`MIN_PIXELS`.
-    snapshot_depths : sequence of float, optional
-        Depths (m) at which to keep every island's area and perimeter (``sizes``); each is
-        moved to the nearest increment.
+    truncation : TruncationSettings
+        The depths ω_k = k·ω_max/n, k = 0..n (``increments`` n, ``max_depth_fraction``,
+        ``max_depth``) and the island ``connectivity``; its other fields are the stiffness
+        model's and are not read. Default :data:`~warptrunc.islands.settings.ISLANDS_TRUNCATION`:
+        200 increments to 0.5·R_t, not :func:`truncate`'s 0.1·R_t: the island count rises and
+        falls again deeper than the stiffness fit reads, and 0.5 covers its peak on the paper's
+        surfaces (Fig. 8).
+    settings : IslandSettings, optional
+        Periodic boundaries, per-island statistics (slit-island fit, area histogram and
+        Σ√A_i, ``sqrt_area_sum``, at every depth; without them island counts, χ and total
+        perimeter only, fastest), the smallest fitted island and the snapshot depths (as
+        fractions of R_t, each moved to the nearest increment) whose every island's area and
+        perimeter is kept in ``sizes`` (:class:`~warptrunc.islands.settings.IslandSettings`;
+        its defaults when None).
     progress : bool
         Show a tqdm progress bar over the increments.
     {device}
@@ -282,21 +227,33 @@ def island_curve(
     waits for the host. The fit is the least-squares fit of :func:`slit_island_fit` from those
     sums (equal to it to ~1e-12 relative). Perimeter and χ come from :func:`topology_curve`'s
     histograms.
+
+    Examples
+    --------
+    >>> from warptrunc.islands import IslandSettings, island_curve
+    >>> from warptrunc.truncation import TruncationSettings
+    >>> t = TruncationSettings(increments=50, max_depth_fraction=0.3)
+    >>> c = island_curve(surface, truncation=t, settings=IslandSettings(snapshots=None))  # doctest: +SKIP
     """
+    settings = IslandSettings() if settings is None else settings
     surface = check_surface(surface)
-    connectivity = check_connectivity(connectivity)
-    min_pixels = check_int("min_pixels", min_pixels, 1)
+    connectivity = check_connectivity(truncation.connectivity)
+    periodic, statistics = settings.periodic, settings.statistics
+    min_pixels = settings.min_pixels
     device = resolve_device(surface_device(surface, device))
     depth = depth_grid(
-        surface.Rt, n_increments, max_depth=max_depth, max_depth_fraction=max_depth_fraction
+        surface.Rt,
+        truncation.increments,
+        max_depth=truncation.max_depth,
+        max_depth_fraction=truncation.max_depth_fraction,
     )
     n1 = depth.size
     ny, nx = surface.ny, surface.nx
     check_index_size(ny * nx)  # before allocating
     check_memory(ny * nx * (52 if statistics else 32), device, "island curve")
     snaps: set[int] = set()
-    if snapshot_depths is not None:
-        sd = _check_depths(snapshot_depths, surface.Rt)
+    if statistics and settings.snapshots is not None:
+        sd = np.array([f * surface.Rt for f in settings.snapshots], dtype=np.float64)
         snaps = {int(np.argmin(np.abs(depth - v))) for v in sd}
     idx = contact_index_device(surface, depth, device).reshape((ny * nx,))
     topo = topology_hist(idx, (ny, nx), n1, connectivity, periodic, device)

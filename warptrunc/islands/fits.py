@@ -10,14 +10,13 @@ import numpy as np
 
 from .._support.validate import check_int, check_range
 from .results import (
-    MIN_ISLANDS,
-    MIN_PIXELS,
     Indicators,
     IslandCurve,
     Islands,
     IslandSizes,
     SlitIslandFit,
 )
+from .settings import MIN_ISLANDS, MIN_PIXELS, IndicatorSettings
 
 # --- slit-island analysis -------------------------------------------------------------------------
 
@@ -94,35 +93,20 @@ def _running(values: np.ndarray, window: int, how: str) -> np.ndarray:
     return out
 
 
-def applicable_depth(
-    curve: IslandCurve,
-    *,
-    exponent_tolerance: float = 0.05,
-    min_islands: int = 50,
-    plateau_width: float = 0.1,
-    persist: float = 0.02,
-    smooth: int = 5,
-) -> Indicators:
+def applicable_depth(curve: IslandCurve, settings: IndicatorSettings | None = None) -> Indicators:
     """Depths bounding the applicable range of the truncation method (Table 2, Fig. 8).
 
     Parameters
     ----------
     curve : IslandCurve
         Island statistics against depth (with ``statistics=True`` for the fractality depth).
-    exponent_tolerance : float
-        Relative drop X of the slit-island exponent below its plateau that ends fractality
-        (dimensionless, 0 < X < 1).
-    min_islands : int
-        Fewest fitted islands (``curve.slit_n_islands``) for a depth's exponent to count; the
-        first few contact spots give noisy fits.
-    plateau_width : float
-        Width of the plateau window, as a fraction of R_t (dimensionless).
-    persist : float
-        Depth span, as a fraction of R_t, over which the exponent must stay below the
-        threshold for a drop to count (dimensionless); 0 accepts a single sample.
-    smooth : int
-        Odd window (depth samples) of a running mean of the growth rate and a running median
-        of the exponent; 1 disables smoothing.
+    settings : IndicatorSettings, optional
+        The relative drop X of the slit-island exponent that ends fractality
+        (``exponent_tolerance``), the fewest fitted islands for a depth's exponent to count
+        (``min_islands``), the plateau window and the span a drop must last (``plateau_width``,
+        ``persist``, fractions of R_t) and the odd smoothing window (``smooth``, depth samples;
+        1 disables smoothing) (:class:`~warptrunc.islands.settings.IndicatorSettings`; its
+        defaults when None).
 
     Returns
     -------
@@ -130,26 +114,23 @@ def applicable_depth(
 
     Notes
     -----
-    * Maximum growth rate: the depth at which d(n/n_max)/d(ω/R_t), smoothed, is largest (the
-      dashed lines of Fig. 8a).
+    * Maximum growth rate: the depth at which d(n/n_max)/d(ω/R_t), smoothed (a running mean
+      over ``smooth`` samples), is largest (the dashed lines of Fig. 8a).
     * Fractality depth ("the deepest depth at which the slit-island exponent stays
-      constant"): only depths whose fit uses at least ``min_islands`` islands count. The
-      plateau exponent β₀ is the median of the smoothed exponent over the first
-      ``plateau_width``·R_t of those depths. Going deeper, the fractality depth is the last
-      counted depth before the exponent first falls below (1 − X)·β₀ and stays below for
-      every counted depth within the next ``persist``·R_t (the "obvious decrease" of §4.3; a
-      rise does not end it, nor does a one-sample dip of a noisy fit). When it never falls,
-      it is the deepest counted depth and ``fractal_depth_censored`` is set: the true value
-      lies beyond the analysed range.
+      constant"): only depths whose fit uses at least ``min_islands`` islands count (the
+      first few contact spots give noisy fits). The plateau exponent β₀ is the median of the
+      smoothed exponent (a running median) over the first ``plateau_width``·R_t of those
+      depths. Going deeper, the fractality depth is the last counted depth before the exponent
+      first falls below (1 − X)·β₀ and stays below for every counted depth within the next
+      ``persist``·R_t (the "obvious decrease" of §4.3; a rise does not end it, nor does a
+      one-sample dip of a noisy fit; ``persist`` 0 accepts a single sample). When it never
+      falls, it is the deepest counted depth and ``fractal_depth_censored`` is set: the true
+      value lies beyond the analysed range.
     * Island-count peak: the depth of the largest island count (the first one when tied).
     """
-    tol = check_range("exponent_tolerance", exponent_tolerance, 0.0, 1.0)
-    min_islands = check_int("min_islands", min_islands, MIN_ISLANDS)
-    width = check_range("plateau_width", plateau_width, 0.0, unit="(fraction of R_t)")
-    persist = check_range("persist", persist, 0.0, lo_open=False, unit="(fraction of R_t)")
-    smooth = check_int("smooth", smooth, 1)
-    if smooth % 2 == 0:
-        raise ValueError(f"smooth must be odd, got {smooth!r}")
+    settings = IndicatorSettings() if settings is None else settings
+    tol, min_islands = settings.exponent_tolerance, settings.min_islands
+    width, persist, smooth = settings.plateau_width, settings.persist, settings.smooth
     frac = curve.depth_fraction
     growth = _running(curve.island_growth_rate, smooth, "mean")
     k_growth = int(np.nanargmax(growth)) if np.isfinite(growth).any() else 0

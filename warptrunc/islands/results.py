@@ -28,13 +28,6 @@ _DOCS = {
 }
 """Docstring text of the results' writers and columns, written once (:func:`fill_doc`)."""
 
-MIN_PIXELS = 10
-"""Default smallest island (pixels) in a slit-island fit: below ~10 pixels the pixel-edge
-perimeter of an island is set by the grid (1 pixel: L = 4·dx, A = dx²), not by the surface."""
-
-MIN_ISLANDS = 5
-"""Fewest islands for a slit-island fit; fewer give NaN."""
-
 SEGMENT = 32  # pixels per thread in island_stats_kernel
 
 

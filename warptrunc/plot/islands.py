@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..islands.fits import slit_island_fit
-from ..islands.results import MIN_PIXELS
+from ..islands.settings import MIN_PIXELS
 from ._style import (
     UM,
     as_list,

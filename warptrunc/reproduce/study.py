@@ -29,6 +29,7 @@ from ..calibrate import CalibrationError, CalibrationTarget, calibrate
 from ..fractal import METHODS, fractal_dimensions
 from ..islands.depths import island_curve
 from ..islands.fits import applicable_depth, slit_bootstrap
+from ..islands.settings import ISLANDS_TRUNCATION, IndicatorSettings, IslandSettings
 from ..stiffness import DEFAULT_MIN_PIXELS, NORMALISATION_E, stiffness_curve
 from ..sweep.grid import SweepGrid
 from ..sweep.options import SweepOptions
@@ -165,11 +166,12 @@ def stage_islands(p: Profile, table1: dict[str, Any], device) -> dict[str, Any]:
         for seed in _tqdm(range(p.islands_seeds), f"islands {r['surface']}"):
             s = wm_surface(r["D_in"], r["Wr_m"], L=p.islands_L, n=p.islands_n, Rt=r["Rt_m"],
                            seed=seed, device=device)  # fmt: skip
-            snaps = np.asarray(SLIT_BAND["percent_Rt"]) / 100 * s.Rt
-            c = island_curve(s, p.islands_increments, max_depth_fraction=0.5,
-                             snapshot_depths=snaps, device=device)  # fmt: skip
+            snaps = tuple(np.asarray(SLIT_BAND["percent_Rt"]) / 100)
+            depths = ISLANDS_TRUNCATION.replace(increments=p.islands_increments)
+            c = island_curve(s, truncation=depths, settings=IslandSettings(snapshots=snaps),
+                             device=device)  # fmt: skip
             min_islands = 5 if p.islands_n < 512 else 50
-            ind = applicable_depth(c, min_islands=min_islands)
+            ind = applicable_depth(c, IndicatorSettings(min_islands=min_islands))
             per.append({"seed": seed, "indicators": ind.to_dict(),
                         "depth_fraction": c.depth_fraction, "normalised": c.normalised_island_number,
                         "slit_exponent": c.slit_exponent,

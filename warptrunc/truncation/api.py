@@ -16,7 +16,7 @@ from .._support.docs import SHARED_DOCS, fill_doc
 from ..surface import Surface
 from ..wm import WMTerms, surface_from_spec
 from .curve import TruncationCurve, surface_device, truncate_surface
-from .stream import as_wm_spec, banded_truncation, fits
+from .stream import banded_truncation, stream_reason
 
 __all__ = ["truncate"]
 
@@ -74,20 +74,13 @@ def truncate(
     the scaled heights are bit-identical to the in-memory map; device memory holds the tables
     and one band.
     """
-    if stream not in ("auto", True, False):
-        raise ValueError(f"stream must be 'auto', True or False, got {stream!r}")
+    spec, streamed = stream_reason(surface, stream, device)
     opts = {"max_depth": max_depth, "max_depth_fraction": max_depth_fraction}
-    if isinstance(surface, Surface):
-        if stream is True:
-            raise ValueError(
-                "stream=True generates a WM surface band by band: pass its spec or params, "
-                "not a Surface"
-            )
+    if spec is None:
         device = resolve_device(surface_device(surface, device))
         return truncate_surface(surface, n_increments, **opts, device=device)
-    spec = as_wm_spec(surface)
     device = resolve_device(device)
-    if stream is True or (stream == "auto" and not fits(spec, device)):
+    if streamed:
         return banded_truncation(
             spec, n_increments, **opts, band_rows=band_rows, device=device, progress=progress
         ).curve
