@@ -117,11 +117,10 @@ def test_all_extra_holds_every_extra_that_runs_anywhere():
     extras = PROJECT["optional-dependencies"]
     inside = {m.group(1) for r in extras["all"] for m in re.finditer(r"warptrunc\[([\w,-]+)\]", r)}
     inside = {e for group in inside for e in group.split(",")}
-    # gpu needs a CUDA device; test and docs are for developers; sweep and scans are empty
-    # names kept for older install lines
-    runtime = set(extras) - {"all", "gpu", "test", "docs", "sweep", "scans"}
+    # gpu needs a CUDA device; test and docs are for developers
+    runtime = set(extras) - {"all", "gpu", "test", "docs"}
     assert runtime and inside == runtime
-    assert extras["sweep"] == [] and extras["scans"] == []
+    assert "sweep" not in extras and "scans" not in extras  # both are in the base install
 
 
 def test_readme_first_section_says_what_the_install_brings():
