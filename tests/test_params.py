@@ -159,8 +159,10 @@ def test_wm_surface_takes_a_spec_or_the_legacy_arguments():
 def test_sweep_options_follow_the_declarations():
     with pytest.raises(ValueError, match=r"^gamma must be in \(1, inf\)"):
         SweepOptions(gamma=1.0)
-    with pytest.raises(ValueError, match=r"^E_flat must be in \(0, inf\] Pa"):
-        SweepOptions(E_flat=-1.0)
+    with pytest.raises(ValueError, match=r"^E_i must be in \(0, inf\] Pa"):
+        SweepOptions(E_i=-1.0)
+    with pytest.raises(ValueError, match=r"^increments must be an integer in \[1, 1000000\]"):
+        SweepOptions(increments=0)  # as TruncationSettings declares it
     o = SweepOptions(n=(256, 256), L=1e-3)
     assert o.n == (256, 256)  # a pair stays a pair: it enters the case ids
     assert o.wm_spec(2.4, 1e-6, 5) == WMSpec(D=2.4, Rt=1e-6, seed=5, n=256)
@@ -175,10 +177,10 @@ def test_sweep_cli_several_values_make_an_axis():
     grid = cli_sweep.grid_from_args(a)
     opts = cli_sweep.options_from_args(a)
     assert grid.axes == (("M", (8, 10)),) and len(grid) == 4
-    assert opts["gamma"] == 1.4 and opts["E_flat"] == 1141e9 and "M" not in opts
-    cases = grid.cases(SweepOptions(**opts))
+    assert opts.gamma == 1.4 and opts.E_i == 1141e9 and opts.M == SweepOptions().M
+    cases = grid.cases(opts)
     # a case of an axis is the case run with that value as an option
-    one = SweepGrid.from_values([2.2], [0.01], "0").cases(SweepOptions(**{**opts, "M": 8}))
+    one = SweepGrid([2.2], [0.01], "0").cases(opts.replace(M=8))
     assert cases[0].case_id == one[0].case_id and cases[0].params == (("M", 8),)
     with pytest.raises(ValueError, match="cannot vary 'hardness'"):
         SweepGrid.from_dict(

@@ -288,7 +288,7 @@ def test_describe_reports_each_method_and_calls_flat_maps_flat(tmp_path, capsys)
 
 
 def test_second_sweep_on_a_locked_store_is_refused_at_once(tmp_path, capsys):
-    from warptrunc.sweep.lock import store_lock
+    from warptrunc.sweep.store import store_lock
 
     out = tmp_path / "s"
     argv = ["sweep", "--D", 2.3, "--delta", 0.01, "--n", 32, "--min-pixels", 1, "--no-progress"]

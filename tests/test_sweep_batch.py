@@ -109,10 +109,9 @@ def test_run_sweep_in_process_with_batches_equals_one_at_a_time(tmp_path, monkey
     import warptrunc.sweep.batch as B
     import warptrunc.sweep.engines as E
 
-    opts = dict(n=128, increments=60, min_pixels=(5,), min_pixels_fraction=(0.01,))
-    one = run_sweep(GRID, tmp_path / "one", progress=False, device="cpu", **opts)
+    one = run_sweep(GRID, tmp_path / "one", options=OPTS, progress=False, device="cpu")
     monkeypatch.setattr(E, "batch_size", lambda o, d, force=False: B.batch_size(o, d, force=True) and 5)
-    many = run_sweep(GRID, tmp_path / "many", progress=False, device="cpu", **opts)
+    many = run_sweep(GRID, tmp_path / "many", options=OPTS, progress=False, device="cpu")
     assert len(many) == len(one) == 24
     key = ["case_id", "min_pixels", "min_pixels_fraction"]
     a = load(tmp_path / "many").sort_values(key).reset_index(drop=True)

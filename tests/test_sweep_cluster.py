@@ -2,7 +2,10 @@
 # SPDX-License-Identifier: MIT
 """Opening the Dask cluster of a command (warptrunc.sweep.cluster.open_client): ``auto``
 workers, one kernel cache for every worker, dask-cuda's LocalCUDACluster where installed, a
-client passed in left open, and one cluster per sweep whatever its number of groups."""
+client passed in left open, one cluster per sweep whatever its number of groups; what the workers
+inherit (cl.worker_environment): no Dask glibc trim threshold (which turns the dynamic mmap
+threshold off, so every large temporary is mapped and faulted in afresh) unless the user's
+environment sets it, Dask's other settings, the shared kernel cache, no statistical profiler."""
 
 import os
 import sys
@@ -159,8 +162,8 @@ def test_one_cluster_for_every_group_of_a_sweep(tmp_path, monkeypatch, capsys):
         return real(workers, scheduler, *a, **kw)
 
     monkeypatch.setattr(cl, "open_client", counting)
-    grid = SweepGrid.from_values([2.4], [0.01], "0-1", axes={"M": [8, 10]})
-    ref = run_sweep(grid, None, progress=False, device="cpu", **OPTS)
+    grid = SweepGrid([2.4], [0.01], "0-1", axes={"M": [8, 10]})
+    ref = run_sweep(grid, None, progress=False, device="cpu", options=OPTS)
     rc = main(["sweep", "--D", "2.4", "--delta", "0.01", "--seeds", "0-1", "--M", "8", "10",
                "--n", "64", "--increments", "60", "--max-depth-fraction", "0.3",
                "--min-pixels", "1", "20", "--device", "cpu", "--no-progress",
@@ -168,3 +171,43 @@ def test_one_cluster_for_every_group_of_a_sweep(tmp_path, monkeypatch, capsys):
     assert rc == 0 and "4 cases (0 failed)" in capsys.readouterr().out
     assert opened == [("auto", None)]
     pd.testing.assert_frame_equal(results_only(load(tmp_path / "s")), results_only(ref))
+
+
+def test_trim_threshold_left_unset_unless_the_user_sets_it(monkeypatch, tmp_path):
+    import dask
+    import warp as wp
+
+    monkeypatch.setattr(wp.config, "kernel_cache_dir", str(tmp_path / "cache"))
+    monkeypatch.delenv(cl.TRIM_VARIABLE, raising=False)
+    dask_default = dask.config.get("distributed.nanny.pre-spawn-environ")
+    assert cl.TRIM_VARIABLE in dask_default  # what Dask would set
+    cfg = cl.worker_environment()
+    pre = cfg["distributed.nanny.pre-spawn-environ"]
+    assert pre[cl.TRIM_VARIABLE] is None
+    # everything else Dask sets before spawning is kept as configured
+    assert {k: v for k, v in pre.items() if k != cl.TRIM_VARIABLE} == {
+        k: v for k, v in dask_default.items() if k != cl.TRIM_VARIABLE
+    }
+    assert cfg["distributed.nanny.environ"]["WARP_CACHE_PATH"] == str(tmp_path / "cache")
+    # Dask's own reading of the configuration leaves the variable out
+    from distributed.nanny import _get_env_variables
+
+    with dask.config.set(cfg):
+        assert cl.TRIM_VARIABLE not in _get_env_variables("distributed.nanny.pre-spawn-environ")
+
+    monkeypatch.setenv(cl.TRIM_VARIABLE, "131072")  # the user's own choice is kept
+    pre = cl.worker_environment()["distributed.nanny.pre-spawn-environ"]
+    assert pre[cl.TRIM_VARIABLE] is not None
+    with dask.config.set({"distributed.nanny.pre-spawn-environ": pre}):
+        got = _get_env_variables("distributed.nanny.pre-spawn-environ")
+    assert got[cl.TRIM_VARIABLE] == "131072"
+
+
+def test_profiler_off_unless_asked(monkeypatch):
+    import dask
+
+    monkeypatch.delenv(cl.PROFILE_ENV, raising=False)
+    assert dask.config.get("distributed.worker.profile.enabled") is True  # Dask's default
+    assert cl.worker_environment()["distributed.worker.profile.enabled"] is False
+    monkeypatch.setenv(cl.PROFILE_ENV, "1")
+    assert cl.worker_environment()["distributed.worker.profile.enabled"] is True

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """Sweep stores written by earlier versions, read with their meaning: a column spelled before R_t
 was ``Rt`` everywhere, β and E_c/E before the one normalisation (E_c/E*), and the previous
-layout (one curve file per case), refused by ``load`` and converted by ``--migrate``."""
+layout (one curve file per case), refused with the reason."""
 
 import json
 
@@ -24,15 +24,15 @@ def test_store_written_with_rt_measured_m_reads_as_Rt_measured_m(tmp_path):
     import pyarrow.parquet as pq
 
     out = tmp_path / "s"
-    grid = SweepGrid.from_values([2.3], [0.01], "0")
-    full = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
+    grid = SweepGrid([2.3], [0.01], "0")
+    full = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)
     table = pq.read_table(out / "cases.parquet")
     names = ["rt_measured_m" if n == "Rt_measured_m" else n for n in table.column_names]
     pq.write_table(table.rename_columns(names), out / "cases.parquet")
     old = load(out)
     assert "rt_measured_m" not in old and (full["Rt_measured_m"] > 0).all()
     np.testing.assert_array_equal(old["Rt_measured_m"], full["Rt_measured_m"])
-    resumed = run_sweep(grid, out, progress=False, device="cpu", **OPTS)  # nothing recomputed
+    resumed = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)  # nothing recomputed
     np.testing.assert_array_equal(resumed["Rt_measured_m"], full["Rt_measured_m"])
     np.testing.assert_array_equal(resumed["seconds"], full["seconds"])
 
@@ -48,8 +48,8 @@ def test_store_written_before_the_one_normalisation_reads_with_its_meaning(tmp_p
     from warptrunc.material import Material
 
     out = tmp_path / "s"
-    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0")
-    new = run_sweep(grid, out, progress=False, device="cpu", **OPTS, E=200e9, nu=0.3)
+    grid = SweepGrid([2.3, 2.6], [0.01], "0")
+    new = run_sweep(grid, out, progress=False, device="cpu", options=OPTS.replace(E=200e9, nu=0.3))
     curves_new = load_curves(out)
     ratio = Material(E=200e9, nu=0.3).contact_modulus / 200e9  # 1/(1 − ν²), rigid flat
     assert ratio == pytest.approx(1 / (1 - 0.3**2), rel=1e-15)
@@ -81,7 +81,7 @@ def test_store_written_before_the_one_normalisation_reads_with_its_meaning(tmp_p
     pd.testing.assert_frame_equal(back[ref.columns], ref, rtol=1e-14)
     (out / "cases.parquet").unlink()  # rebuilt from the parts' rows
     pd.testing.assert_frame_equal(load(out)[cols], new[cols], rtol=1e-14)
-    resumed = run_sweep(grid, out, progress=False, device="cpu", **OPTS, E=200e9, nu=0.3)
+    resumed = run_sweep(grid, out, progress=False, device="cpu", options=OPTS.replace(E=200e9, nu=0.3))
     np.testing.assert_array_equal(resumed["seconds"], new["seconds"])  # nothing recomputed
     pd.testing.assert_frame_equal(resumed[cols], new[cols], rtol=1e-14)
 
@@ -110,26 +110,28 @@ def _old_layout(out):
     (out / "sweep.json").write_text(json.dumps({**spec, "format": "warptrunc-sweep/1"}))
 
 
-def test_previous_layout_refused_by_load_converted_by_migrate(tmp_path):
+def test_earlier_layout_refused_with_the_reason(tmp_path):
+    """A store of the layout before parts (format 1, written only by development versions
+    before 0.1) is refused by load, load_curves, run_sweep and the CLI, naming the way out;
+    --overwrite replaces it, with the same case ids."""
     from warptrunc.cli import main
 
-    grid = SweepGrid.from_values([2.3, 2.6], [0.01], "0-1")
-    out, out2 = tmp_path / "s", tmp_path / "s2"
-    full = run_sweep(grid, out, progress=False, device="cpu", **OPTS)
-    curves = load_curves(out)
+    grid = SweepGrid([2.3, 2.6], [0.01], "0-1")
+    out = tmp_path / "s"
+    full = run_sweep(grid, out, options=OPTS, progress=False, device="cpu")
     _old_layout(out)
-    with pytest.raises(ValueError, match=r"previous layout.*warptrunc sweep --migrate .*s$"):
-        load(out)
-    assert main(["sweep", "--migrate", "--out", str(out)]) == 0
+    why = r"s is a sweep store of the layout before warptrunc-sweep/2 .* new --out \(or with --overwrite\)"
+    for read in (load, load_curves):
+        with pytest.raises(ValueError, match=why):
+            read(out)
+    with pytest.raises(ValueError, match=why):
+        run_sweep(grid, out, options=OPTS, progress=False, device="cpu")
+    assert json.loads((out / "sweep.json").read_text())["format"] == "warptrunc-sweep/1"  # untouched
+    assert main(["sweep", "--D", "2.3", "2.6", "--delta", "0.01", "--seeds", "0-1", "--n", "64",
+                 "--increments", "60", "--max-depth-fraction", "0.3", "--min-pixels", "1", "20",
+                 "--device", "cpu", "--no-progress", "--overwrite", "--out", str(out)]) == 0  # fmt: skip
+    again = load(out)
     assert json.loads((out / "sweep.json").read_text())["format"] == "warptrunc-sweep/2"
-    assert sorted(p.name for p in (out / "curves").iterdir())[0].startswith("part-")
-    assert len(list((out / "curves").iterdir())) == 1  # 4 cases in one part, no old file left
-    pd.testing.assert_frame_equal(load(out), full)  # the last case came from its curve file
-    pd.testing.assert_frame_equal(load_curves(out), curves)
-    assert main(["sweep", "--migrate", "--out", str(out)]) == 0  # nothing left to convert
-    # run_sweep converts on open, then resumes: nothing recomputed
-    run_sweep(grid, out2, progress=False, device="cpu", **OPTS)
-    _old_layout(out2)
-    again = run_sweep(grid, out2, progress=False, device="cpu", **OPTS)
     pd.testing.assert_frame_equal(results_only(again), results_only(full))
-    assert sorted(case_ids_on_disk(out2)) == sorted(full.case_id.unique())
+    assert sorted(case_ids_on_disk(out)) == sorted(full.case_id.unique())
+    assert all(p.name.startswith("part-") for p in (out / "curves").iterdir())

@@ -16,6 +16,7 @@ pytest.importorskip("pyarrow")
 from sweep_helpers import OPTS, case_ids_on_disk, results_only, two_worker_client  # noqa: E402
 
 from warptrunc.sweep import (  # noqa: E402
+    SweepExecution,
     SweepGrid,
     load,
     load_curves,
@@ -31,19 +32,20 @@ def client():
     yield from two_worker_client()
 
 
-DASK_GRID = SweepGrid.from_values([2.3, 2.6], [0.01], "0-3")
+DASK_GRID = SweepGrid([2.3, 2.6], [0.01], "0-3")
 
 
 @pytest.fixture(scope="module")
 def dask_reference():
-    return run_sweep(DASK_GRID, None, progress=False, device="cpu", **OPTS)
+    return run_sweep(DASK_GRID, None, progress=False, device="cpu", options=OPTS)
 
 
 @pytest.mark.timeout(240)
 def test_two_local_workers_same_table_as_in_process(tmp_path, dask_reference):
     pytest.importorskip("distributed")
     # the reference's device on the workers too (on a GPU machine they would pick cuda:0)
-    df = run_sweep(DASK_GRID, tmp_path / "s", workers=2, progress=False, device="cpu", **OPTS)
+    df = run_sweep(DASK_GRID, tmp_path / "s", options=OPTS, execution=SweepExecution(workers=2),
+                   progress=False, device="cpu")  # fmt: skip
     pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))
     assert df["host"].nunique() == 1 and (df["device"] == "cpu").all()
 
@@ -80,7 +82,8 @@ def _sweep_in_thread(out, **kw):
 
     def sweep():
         try:
-            box["df"] = run_sweep(DASK_GRID, out, progress=False, device="cpu", **kw, **OPTS)
+            box["df"] = run_sweep(DASK_GRID, out, options=OPTS, execution=SweepExecution(**kw),
+                                  progress=False, device="cpu")  # fmt: skip
         except BaseException as exc:  # pragma: no cover - reported by the caller
             box["exc"] = exc
 
@@ -161,7 +164,7 @@ def test_worker_written_parts(tmp_path, client, dask_reference, monkeypatch):
     # the curves on disk are those of the in-process engine, and carry the client's rows
     ref = tmp_path / "ref"
     monkeypatch.undo()
-    run_sweep(DASK_GRID, ref, progress=False, device="cpu", **OPTS)
+    run_sweep(DASK_GRID, ref, progress=False, device="cpu", options=OPTS)
     pd.testing.assert_frame_equal(load_curves(out), load_curves(ref))
     (out / "cases.parquet").unlink()  # rebuilt from the worker-written parts alone
     pd.testing.assert_frame_equal(load(out), df)
@@ -215,8 +218,9 @@ def test_worker_killed_after_writing_its_part_part_kept(tmp_path, client, dask_r
     client.register_plugin(_die_after_write_plugin(str(flag)))
     try:
         out = tmp_path / "s"
-        df = run_sweep(DASK_GRID, out, scheduler=client, progress=False, device="cpu",
-                       shard_size=3, **OPTS)  # fmt: skip
+        df = run_sweep(DASK_GRID, out, options=OPTS,
+                       execution=SweepExecution(scheduler=client, shard_size=3),
+                       progress=False, device="cpu")  # fmt: skip
     finally:
         client.unregister_worker_plugin("test-die-after-write")
     died = json.loads(flag.read_text())
@@ -312,8 +316,9 @@ def test_task_that_raises_is_retried_and_reported_once(tmp_path, client, dask_re
     client.wait_for_workers(2, timeout=120)
     client.register_plugin(_batches_raise_on_worker_1_plugin())
     try:
-        df = run_sweep(DASK_GRID, tmp_path / "s", scheduler=client, progress=False,
-                       device="cpu", shard_size=4, **OPTS)  # fmt: skip
+        df = run_sweep(DASK_GRID, tmp_path / "s", options=OPTS,
+                       execution=SweepExecution(scheduler=client, shard_size=4),
+                       progress=False, device="cpu")  # fmt: skip
     finally:
         client.unregister_worker_plugin("test-raise-on-worker-1")
     pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))

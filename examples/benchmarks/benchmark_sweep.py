@@ -52,8 +52,12 @@ from pathlib import Path
 D, DELTA = 2.5, 0.01
 
 
-def _opts(n: int, increments: int, bem: list[float]) -> dict:
-    return dict(n=n, increments=increments, min_pixels=(10,), bem_fractions=tuple(bem))
+def _opts(n: int, increments: int, bem: list[float]):
+    """The :class:`~warptrunc.sweep.SweepOptions` of the measured cases."""
+    from warptrunc.sweep import SweepOptions
+
+    return SweepOptions(n=n, increments=increments, min_pixels=(10,),
+                        bem_fractions=tuple(bem) or None)  # fmt: skip
 
 
 def kernel_loop(n: int, cases: int, device, increments: int, bem: list[float]) -> float:
@@ -61,12 +65,11 @@ def kernel_loop(n: int, cases: int, device, increments: int, bem: list[float]) -
     import warp as wp
 
     from warptrunc.stiffness import fit_power_law, stiffness_curve
-    from warptrunc.sweep import SweepOptions
     from warptrunc.sweep.engines import elastic_record
     from warptrunc.truncation import truncate
     from warptrunc.wm import wm_surface
 
-    o = SweepOptions(**_opts(n, increments, bem))
+    o = _opts(n, increments, bem)
     mat = o.material()
 
     def one(seed):
@@ -98,10 +101,10 @@ def batch_loop(n: int, cases: int, device, increments: int, bem: list[float]) ->
 
     from warptrunc._support.device import resolve_device
     from warptrunc.stiffness import fit_power_law, stiffness_curve
-    from warptrunc.sweep import SweepGrid, SweepOptions
+    from warptrunc.sweep import SweepGrid
     from warptrunc.sweep.batch import WMBatch, batch_size
 
-    o = SweepOptions(**_opts(n, increments, bem))
+    o = _opts(n, increments, bem)
     dev = resolve_device(device)
     size = batch_size(o, dev, force=True)
     if bem or size < 2:
@@ -134,12 +137,12 @@ def inprocess(n: int, cases: int, device, increments: int, bem: list[float]) -> 
     from warptrunc.sweep import SweepGrid, run_sweep
 
     opts = _opts(n, increments, bem)
-    run_sweep(SweepGrid([D], [DELTA], [10**6]), None, progress=False, device=device, **opts)
+    run_sweep(SweepGrid([D], [DELTA], [10**6]), options=opts, progress=False, device=device)
     tmp = Path(tempfile.mkdtemp(prefix="warptrunc-bench-sweep-"))
     try:
         t0 = time.perf_counter()
         df = run_sweep(SweepGrid([D], [DELTA], list(range(cases))), tmp / "store",
-                       progress=False, device=device, **opts)  # fmt: skip
+                       options=opts, progress=False, device=device)  # fmt: skip
         wall = time.perf_counter() - t0
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
@@ -175,7 +178,7 @@ def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: 
 
     from distributed import Client, LocalCluster
 
-    from warptrunc.sweep import SweepGrid, SweepOptions, run_sweep
+    from warptrunc.sweep import SweepExecution, SweepGrid, run_sweep
     from warptrunc.sweep.cluster import PinDevice
     from warptrunc.sweep.engines import compute_case
 
@@ -189,7 +192,7 @@ def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: 
             client.register_plugin(PinDevice())
         if pin:
             client.register_plugin(_pin_plugin())
-        o = SweepOptions(**opts)
+        o = opts
         warm = SweepGrid([D], [DELTA], list(range(10**6, 10**6 + workers))).cases(o)
         names = list(client.scheduler_info()["workers"])
         futs = [client.submit(compute_case, c, o, device, workers=[w], pure=False)
@@ -197,7 +200,8 @@ def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: 
         client.gather(futs)  # every worker has loaded its kernels
         t0 = time.perf_counter()
         df = run_sweep(SweepGrid([D], [DELTA], list(range(cases))), tmp / "store",
-                       scheduler=client, progress=False, device=device, **opts)  # fmt: skip
+                       options=opts, execution=SweepExecution(scheduler=client),
+                       progress=False, device=device)  # fmt: skip
         wall = time.perf_counter() - t0
         devices = sorted(df["device"].unique())
         case_s = df.drop_duplicates("case_id")["seconds"]

@@ -268,19 +268,28 @@ def _same(u, v) -> bool:
 def check(out: Path, spec: dict, device, workers: list[int]) -> dict:
     """Item 4: in process twice on one device, then on each count of ``workers``, compared
     bit for bit with the first in-process run."""
-    from warptrunc.sweep import RUN_COLUMNS, SweepGrid, load, load_curves, run_sweep
+    from warptrunc.sweep import (
+        RUN_COLUMNS,
+        SweepExecution,
+        SweepGrid,
+        SweepOptions,
+        load,
+        load_curves,
+        run_sweep,
+    )
 
-    grid = SweepGrid.from_values(spec["D"], [0.01], spec["seeds"])
+    grid = SweepGrid(spec["D"], [0.01], spec["seeds"])
     opts = dict(n=spec["n"], bem_fractions=tuple(spec.get("bem", ())),
                 fractal_methods=tuple(spec.get("fractal", ())))  # fmt: skip
+    options = SweepOptions(**{k: v or None for k, v in opts.items()})  # () is off: None
     runs = {"inproc_a": {}, "inproc_b": {}, **{f"workers_{w}": dict(workers=w) for w in workers}}
     frames = {}
     times = {}
     for name, kw in runs.items():
         t0 = time.perf_counter()
-        run_sweep(grid, out / f"check_{name}", progress=False, overwrite=True,
-                  device=device if not kw else (device if device == "cpu" else None),
-                  **kw, **opts)  # fmt: skip
+        run_sweep(grid, out / f"check_{name}", options=options,
+                  execution=SweepExecution(**kw), overwrite=True, progress=False,
+                  device=device if not kw else (device if device == "cpu" else None))  # fmt: skip
         times[name] = time.perf_counter() - t0
         df = load(out / f"check_{name}")
         frames[name] = (df, load_curves(out / f"check_{name}"), sorted(set(df["device"])))

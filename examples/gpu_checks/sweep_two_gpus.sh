@@ -28,21 +28,22 @@ import sys
 
 import numpy as np
 
-from warptrunc.sweep import RUN_COLUMNS, SweepGrid, run_sweep
+from warptrunc.sweep import RUN_COLUMNS, SweepExecution, SweepGrid, SweepOptions, run_sweep
 
 
 def main(out, ngpu):
-    g = SweepGrid.from_values([2.3, 2.7], [0.01], "0-3")
-    opts = dict(n=1024, min_pixels=(1, 10))
-    gpu = run_sweep(g, f"{out}/store_gpu", device="cuda:0", progress=False, overwrite=True, **opts)
-    cpu = run_sweep(g, f"{out}/store_cpu", device="cpu", progress=False, overwrite=True, **opts)
+    g = SweepGrid([2.3, 2.7], [0.01], "0-3")
+    opts = SweepOptions(n=1024, min_pixels=(1, 10))
+    gpu = run_sweep(g, f"{out}/store_gpu", options=opts, overwrite=True, progress=False, device="cuda:0")
+    cpu = run_sweep(g, f"{out}/store_cpu", options=opts, overwrite=True, progress=False, device="cpu")
     assert gpu["error"].isna().all(), gpu["error"].dropna().unique()
     assert set(gpu["device"]) == {"cuda:0"}
     same = (gpu["final_contact_pixels"].to_numpy() == cpu["final_contact_pixels"].to_numpy()).mean()
     print(f"cuda:0 vs cpu: final contact pixels identical in {same:.0%} of rows; "
           f"max |dalpha| = {np.nanmax(np.abs(gpu.alpha - cpu.alpha)):.2e}")
     if ngpu >= 2:
-        w = run_sweep(g, f"{out}/store_w2", workers=2, progress=False, overwrite=True, **opts)
+        w = run_sweep(g, f"{out}/store_w2", options=opts, execution=SweepExecution(workers=2),
+                      overwrite=True, progress=False)
         print("--workers 2 devices:", sorted(set(w["device"])), set(w["device_name"]))
         assert sorted(set(w["device"])) == ["cuda:0", "cuda:1"], "one worker per GPU"
         cols = [c for c in gpu.columns if c not in RUN_COLUMNS]
