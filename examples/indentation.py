@@ -53,7 +53,13 @@ from pathlib import Path
 import numpy as np
 
 from warptrunc import plot
-from warptrunc.indent import PAPER_PEAK_LOADS, PAPER_PUNCH_DIAMETERS, default_material, indent
+from warptrunc.indent import (
+    PAPER_PEAK_LOADS,
+    PAPER_PUNCH_DIAMETERS,
+    IndentProtocol,
+    default_material,
+    indent,
+)
 from warptrunc.wm import wm_surface
 
 
@@ -91,11 +97,10 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     s = wm_surface(args.D, 100e-6, L=1e-3, n=n, Rt=args.Rt, seed=args.seed, device=args.device)
     material = default_material(hardness=args.hardness)
-    res = indent(
-        s, punch_diameter=punches, peak_loads=loads, material=material, placements=placements,
-        overlap="warn", progress=args.progress, device=args.device, refine_max=refine,
-        min_contact_pixels=min_px,
-    )  # fmt: skip
+    protocol = IndentProtocol(punch_diameters=punches, peak_loads=loads, placements=placements,
+                              refine_max=refine, min_contact_pixels=min_px)
+    res = indent(s, protocol=protocol, material=material, progress=args.progress,
+                 device=args.device)
     args.out.mkdir(parents=True, exist_ok=True)
     res.to_csv(args.out / "indent.csv")
     res.to_json(args.out / "indent.json")

@@ -52,7 +52,7 @@ def test_flat_punch_stiffness_is_2_Estar_a(a_px):
     dx = 1e-6
     z = np.zeros((2 * a_px + 4, 2 * a_px + 4))
     w = punch_window(z, dx, 2 * a_px * dx)
-    r = run_cycles(w, [1.0], 0.1, MAT, hardness=math.inf, device="cpu")
+    r = run_cycles(w, IndentProtocol(peak_loads=[1.0]), MAT, device="cpu")
     assert r["converged"].all()
     k_ref = 2 * MAT.contact_modulus * a_px * dx
     k = r["unloading_stiffness"][0]
@@ -70,9 +70,8 @@ def test_flat_punch_error_falls_as_dx_over_a():
     for a_px in (25, 50, 100):
         z = np.zeros((2 * a_px + 2, 2 * a_px + 2))
         w = punch_window(z, dx, 2 * a_px * dx)
-        k = run_cycles(w, [1.0], 0.1, MAT, hardness=math.inf, device="cpu")["unloading_stiffness"][
-            0
-        ]
+        k = run_cycles(w, IndentProtocol(peak_loads=[1.0]), MAT, device="cpu")
+        k = k["unloading_stiffness"][0]
         a_eff = math.sqrt(w.n_pixels * dx * dx / math.pi)
         err[a_px] = abs(k / (2 * MAT.contact_modulus * a_eff) - 1)
     assert err[25] > err[50] > err[100]
@@ -112,7 +111,7 @@ def test_window_holds_exactly_the_disk_pixels():
 
 
 def test_punch_larger_than_the_map_is_refused():
-    with pytest.raises(ValueError, match=r"punch_diameter must be at most .*min\(Lx, Ly\)"):
+    with pytest.raises(ValueError, match=r"punch_diameters must be at most .*min\(Lx, Ly\)"):
         punch_window(np.zeros((16, 16)), 1e-6, 17e-6)
     with pytest.raises(ValueError, match="punch_diameter"):
         place_punches((16e-6, 32e-6), 17e-6, 1)
@@ -206,9 +205,9 @@ def result():
     s = _wm(n=96, L=0.6e-3)
     m = Material.against_diamond(hardness=1e9)
     with pytest.warns(PlacementOverlapWarning):  # 0.4 mm twice on 0.6 mm: they overlap
-        return indent(s, punch_diameter=(0.1e-3, 0.4e-3), peak_loads=(2e-3, 8e-3, 32e-3),
-                      material=m, placements=2, seed=4, device="cpu", refine_max=1,
-                      min_contact_pixels=1)  # fmt: skip
+        return indent(s, protocol=IndentProtocol(
+            punch_diameters=(0.1e-3, 0.4e-3), peak_loads=(2e-3, 8e-3, 32e-3), placements=2,
+            placement_seed=4, refine_max=1, min_contact_pixels=1), material=m, device="cpu")  # fmt: skip
 
 
 def test_result_columns_and_units(result):
@@ -265,10 +264,10 @@ def test_monotonic_loading_needs_no_replay_of_the_partial_unloads():
     straight to it (elastic unloading and reloading below the previous peak): same contact and
     plastic pixels, approach and both stiffnesses to the solver's tolerance."""
     s = _wm(n=128, L=0.25e-3, Rt=1e-6)
-    kw = {"punch_diameter": 0.2e-3, "placements": None, "elastic": False, "device": "cpu",
-          "material": Material.against_diamond(hardness=0.3e9), "refine_max": 1}  # fmt: skip
-    cycles = indent(s, peak_loads=(0.02, 0.04, 0.08, 0.16), **kw).to_dict()
-    straight = indent(s, peak_loads=(0.16,), **kw).to_dict()
+    at = IndentProtocol(punch_diameters=0.2e-3, placements=None, elastic=False, refine_max=1)
+    kw = {"device": "cpu", "material": Material.against_diamond(hardness=0.3e9)}
+    cycles = indent(s, protocol=at.replace(peak_loads=(0.02, 0.04, 0.08, 0.16)), **kw).to_dict()
+    straight = indent(s, protocol=at.replace(peak_loads=(0.16,)), **kw).to_dict()
     assert cycles["plastic_area_m2"][-1] > 50 * s.dx**2  # plasticity is there
     for k in ("contact_area_m2", "plastic_area_m2", "n_contact_pixels"):
         assert cycles[k][-1] == straight[k][0], k
@@ -282,7 +281,8 @@ def test_monotonic_loading_needs_no_replay_of_the_partial_unloads():
 
 def test_elastic_hardness_copies_the_elastic_columns():
     s = _wm()
-    r = indent(s, punch_diameter=None, peak_loads=(1e-3, 4e-3), material=MAT, device="cpu")
+    r = indent(s, protocol=IndentProtocol(punch_diameters=None, peak_loads=(1e-3, 4e-3)),
+               material=MAT, device="cpu")  # fmt: skip
     d = r.to_dict()
     assert d["n_punch_pixels"][0] == 64 * 64
     assert np.isnan(d["punch_diameter_m"]).all()
@@ -298,11 +298,11 @@ def test_unyielded_cycles_taken_from_the_elastic_run_equal_solving_them():
     solves every cycle (elastic=False), to round-off, and at least one cycle is copied and at
     least one solved (plasticity sets in within the loads)."""
     s = _wm(n=128, L=0.5e-3, Rt=1e-6)
-    kw = {"punch_diameter": (0.1e-3, 0.25e-3), "peak_loads": (1e-3, 4e-3, 16e-3, 64e-3),
-          "placements": 2, "seed": 3, "device": "cpu", "refine_max": 1,
-          "material": Material.against_diamond(hardness=1e9)}  # fmt: skip
-    both = indent(s, elastic=True, **kw)
-    alone = indent(s, elastic=False, **kw)
+    at = IndentProtocol(punch_diameters=(0.1e-3, 0.25e-3), peak_loads=(1e-3, 4e-3, 16e-3, 64e-3),
+                        placements=2, placement_seed=3, refine_max=1)  # fmt: skip
+    kw = {"device": "cpu", "material": Material.against_diamond(hardness=1e9)}
+    both = indent(s, protocol=at, **kw)
+    alone = indent(s, protocol=at.replace(elastic=False), **kw)
     n = both.settings["reused_elastic_cycles"]
     assert 0 < n < 16 and alone.settings["reused_elastic_cycles"] == 0
     a, b = both.to_dict(), alone.to_dict()
@@ -322,9 +322,9 @@ def test_unyielded_cycles_taken_from_the_elastic_run_equal_solving_them():
     assert np.all(a["plastic_area_m2"][a["max_pressure_Pa"] < 1e9] == 0)
     assert el.sum() >= n
     # an elastic run given as ``reuse`` (also as its columns) does the same without solving it
-    elastic = indent(s, **{**kw, "material": Material.against_diamond()})
+    elastic = indent(s, protocol=at, **{**kw, "material": Material.against_diamond()})
     for given in (elastic, elastic.to_dict()):
-        c = indent(s, elastic=True, reuse=given, **kw)
+        c = indent(s, protocol=at, reuse=given, **kw)
         assert c.settings["reused_elastic_cycles"] == n
         np.testing.assert_allclose(c.to_dict()["unloading_stiffness_N_per_m"],
                                    b["unloading_stiffness_N_per_m"], rtol=1e-6)  # fmt: skip
@@ -334,19 +334,19 @@ def test_unyielded_cycles_taken_from_the_elastic_run_equal_solving_them():
 
 def test_reuse_of_another_run_is_refused():
     s = _wm(n=64)
-    kw = {"punch_diameter": 0.1e-3, "peak_loads": (1e-3, 4e-3), "placements": 1, "device": "cpu",
-          "refine_max": 1}  # fmt: skip
-    elastic = indent(s, material=Material.against_diamond(), seed=0, **kw)
-    plastic = indent(s, material=Material.against_diamond(hardness=1e9), seed=0, **kw)
+    at = IndentProtocol(punch_diameters=0.1e-3, peak_loads=(1e-3, 4e-3), placements=1,
+                        refine_max=1)  # fmt: skip
+    elastic = indent(s, protocol=at, material=Material.against_diamond(), device="cpu")
+    plastic = indent(s, protocol=at, material=Material.against_diamond(hardness=1e9), device="cpu")
     m = Material.against_diamond(hardness=1e9)
-    with pytest.raises(ValueError, match="not the punch"):
-        indent(s, material=m, seed=5, reuse=elastic, **kw)  # another placement
+    with pytest.raises(ValueError, match="not the punch"):  # another placement
+        indent(s, protocol=at.replace(placement_seed=5), material=m, reuse=elastic, device="cpu")
     with pytest.raises(ValueError, match=r"reuse must be an elastic run"):
-        indent(s, material=m, seed=0, reuse=plastic, **kw)
+        indent(s, protocol=at, material=m, reuse=plastic, device="cpu")
     cols = elastic.to_dict()
     del cols["max_pressure_Pa"]
     with pytest.raises(ValueError, match="max_pressure_Pa"):
-        indent(s, material=m, seed=0, reuse=cols, **kw)
+        indent(s, protocol=at, material=m, reuse=cols, device="cpu")
 
 
 def test_max_pressure_is_the_largest_pixel_pressure():
@@ -364,7 +364,8 @@ def test_loads_above_what_the_punch_carries_are_refused():
     s = _wm()
     m = Material.against_diamond(hardness=1e9)
     with pytest.raises(ValueError, match=r"peak_loads must stay below .* H × A"):
-        indent(s, punch_diameter=50e-6, peak_loads=(1e-3, 10.0), material=m, placements=None)
+        indent(s, protocol=IndentProtocol(punch_diameters=50e-6, peak_loads=(1e-3, 10.0),
+                                          placements=None), material=m)  # fmt: skip
 
 
 @pytest.mark.parametrize(
@@ -389,13 +390,13 @@ def test_protocol_options_round_trip():
 
     p = argparse.ArgumentParser()
     add_options(p, IndentProtocol)
-    args = p.parse_args(["--punch-diameter", "1e-4", "2e-4", "--peak-loads", "0.01",
-                         "--placements", "none"])  # fmt: skip
+    args = p.parse_args(["--punch-diameters", "1e-4", "2e-4", "--peak-loads", "0.01",
+                         "--placements", "none", "--no-elastic"])  # fmt: skip
     pr = from_args(IndentProtocol, args)
     assert pr.punch_diameters == (1e-4, 2e-4) and pr.peak_loads == (0.01,)
-    assert pr.placements is None and pr.unload_fraction == 0.1
+    assert pr.placements is None and pr.unload_fraction == 0.1 and pr.elastic is False
     assert (
-        from_args(IndentProtocol, p.parse_args(["--punch-diameter", "none"])).punch_diameters
+        from_args(IndentProtocol, p.parse_args(["--punch-diameters", "none"])).punch_diameters
         is None
     )
     assert IndentProtocol(peak_loads=0.5).peak_loads == (0.5,)
@@ -474,7 +475,7 @@ def test_large_hardness_is_the_elastic_solution():
 
 # --- the command line ---------------------------------------------------------------------------
 
-CLI = ["indent", "--n", "64", "--L", "0.4e-3", "--Rt", "2e-6", "--punch-diameter", "1.5e-4",
+CLI = ["indent", "--n", "64", "--L", "0.4e-3", "--Rt", "2e-6", "--punch-diameters", "1.5e-4",
        "--peak-loads", "1e-3", "4e-3", "1.6e-2", "--placements", "2", "--no-progress",
        "--refine-max", "2"]  # fmt: skip
 
@@ -508,7 +509,7 @@ def test_cli_writes_csv_json_and_figure(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("extra", "needles"),
     [
-        (["--punch-diameter", "5e-4"], ["--punch-diameter", "min(Lx, Ly)", "0.0005"]),
+        (["--punch-diameters", "5e-4"], ["--punch-diameters", "min(Lx, Ly)", "0.0005"]),
         (["--hardness", "0"], ["--hardness", "(0, inf] Pa", "'0'"]),
         (["--hardness", "-1e9"], ["--hardness", "(0, inf] Pa", "-1e9"]),
         (["--peak-loads", "1e-3", "100"], ["--peak-loads", "H × A", "100"]),
@@ -517,7 +518,7 @@ def test_cli_writes_csv_json_and_figure(tmp_path, capsys):
         (["--unload-fraction", "0"], ["--unload-fraction", "(0, 1)", "'0'"]),
         (["--unload-fraction", "nan"], ["--unload-fraction", "(0, 1)", "nan"]),
         (["--placements", "0"], ["--placements", "[1, 10000]", "'0'"]),
-        (["--placements", "3", "--punch-diameter", "3e-4", "--overlap", "error"],
+        (["--placements", "3", "--punch-diameters", "3e-4", "--overlap", "error"],
          ["--placements", "per side"]),
     ],
 )  # fmt: skip

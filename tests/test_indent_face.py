@@ -23,7 +23,14 @@ from cli_helpers import assert_refused_in_one_line
 
 import warptrunc
 from warptrunc.cli import main
-from warptrunc.indent import IndentProtocol, indent, make_face, punch_window, run_cycles
+from warptrunc.indent import (
+    IndentProtocol,
+    PunchFaceSpec,
+    indent,
+    make_face,
+    punch_window,
+    run_cycles,
+)
 from warptrunc.indent.face import self_affine_field
 from warptrunc.indent.refine import WindowSource
 from warptrunc.material import Material
@@ -50,13 +57,13 @@ def test_tilt_softens_below_full_contact_and_is_sneddon_once_the_face_touches():
     a = a_px * dx
     theta = 1e-3
     z = np.zeros((2 * a_px + 4, 2 * a_px + 4))
-    face = make_face(2 * a, tilt_deg=math.degrees(math.atan(theta)))
+    face = make_face(2 * a, PunchFaceSpec(tilt_deg=math.degrees(math.atan(theta))))
     f_full = 4 * ES * a * a * theta
     loads = np.array([0.05, 0.2, 0.5, 2.0, 4.0]) * f_full
     flat = punch_window(z, dx, 2 * a)
     tilted = punch_window(z, dx, 2 * a, face=face)
-    r0 = run_cycles(flat, loads, 0.1, MAT, hardness=math.inf, device="cpu")
-    rt = run_cycles(tilted, loads, 0.1, MAT, hardness=math.inf, device="cpu")
+    r0 = run_cycles(flat, IndentProtocol(peak_loads=loads), MAT, device="cpu")
+    rt = run_cycles(tilted, IndentProtocol(peak_loads=loads), MAT, device="cpu")
     assert r0["converged"].all() and rt["converged"].all()
     k0, kt = r0["unloading_stiffness"], rt["unloading_stiffness"]
     partial, full = loads < f_full, loads >= 2 * f_full
@@ -80,16 +87,16 @@ def test_tilt_azimuth_turns_the_face_and_keeps_the_stiffness():
     dx, a_px = 1e-6, 30
     z = np.zeros((2 * a_px + 2, 2 * a_px + 2))
     d = 2 * a_px * dx
-    w0 = punch_window(z, dx, d, face=make_face(d, tilt_deg=0.05))
-    w90 = punch_window(z, dx, d, face=make_face(d, tilt_deg=0.05, azimuth_deg=90.0))
+    w0 = punch_window(z, dx, d, face=make_face(d, PunchFaceSpec(tilt_deg=0.05)))
+    w90 = punch_window(z, dx, d, face=make_face(d, PunchFaceSpec(tilt_deg=0.05, tilt_azimuth_deg=90.0)))
     np.testing.assert_allclose(w90.face_heights, w0.face_heights.T, rtol=0, atol=1e-18)
     tan = math.tan(math.radians(0.05))
     x = (np.arange(w0.mask.shape[1]) + w0.origin[1] + 0.5) * dx - w0.centre[0]
     np.testing.assert_allclose(w0.face_heights[w0.mask],
                                np.broadcast_to(tan * x, w0.mask.shape)[w0.mask], rtol=1e-12)  # fmt: skip
     loads = [2e-3]
-    k = [run_cycles(w, loads, 0.1, MAT, hardness=math.inf, device="cpu")["unloading_stiffness"][0]
-         for w in (w0, w90)]  # fmt: skip
+    at = IndentProtocol(peak_loads=loads)
+    k = [run_cycles(w, at, MAT, device="cpu")["unloading_stiffness"][0] for w in (w0, w90)]
     assert k[1] == pytest.approx(k[0], rel=1e-6)
 
 
@@ -138,7 +145,7 @@ def test_rough_face_has_the_requested_rms_levelled_over_the_disk():
     plane (numpy lstsq); it is the raw field less its plane, scaled (numpy); sampled at the
     map's pixel under a punch its rms is R_q within 10 % (other points of the same face)."""
     d, rq, px = 500e-6, 0.05e-6, 5e-6
-    face = make_face(d, roughness=rq, pixel=px, seed=(3, 0))
+    face = make_face(d, PunchFaceSpec(roughness=rq, seed=3), pixel=px)
     r = face.info["roughness"]
     assert r["hurst"] == 0.8 and r["cutoff_short_m"] == 2 * px and r["cutoff_long_m"] == d
     u, raw, _, _ = _reference(face)
@@ -164,7 +171,7 @@ def test_rough_face_between_its_samples_is_the_band_limited_field():
     direct Fourier sum over every mode (both less the same plane and scale, recovered from the
     face at the reference samples)."""
     d = 200e-6
-    face = make_face(d, roughness=1e-7, pixel=5e-6, seed=(1, 0))
+    face = make_face(d, PunchFaceSpec(roughness=1e-7, seed=1), pixel=5e-6)
     u, raw, n, period = _reference(face)
     f = face.heights(u, u)
     x, y = np.meshgrid(u, u)
@@ -195,11 +202,15 @@ def test_rough_face_between_its_samples_is_the_band_limited_field():
 
 
 def test_same_seed_same_face_another_seed_another():
-    kw = {"roughness": 5e-8, "pixel": 4e-6}
     u = np.linspace(-40e-6, 40e-6, 9)
-    f0 = make_face(100e-6, seed=(0, 0), **kw).heights(u, u)
-    np.testing.assert_array_equal(make_face(100e-6, seed=(0, 0), **kw).heights(u, u), f0)
-    assert not np.allclose(make_face(100e-6, seed=(1, 0), **kw).heights(u, u), f0)
+
+    def face(seed, index=0):
+        return make_face(100e-6, PunchFaceSpec(roughness=5e-8, seed=seed), index=index, pixel=4e-6)
+
+    f0 = face(0).heights(u, u)
+    np.testing.assert_array_equal(face(0).heights(u, u), f0)
+    assert not np.allclose(face(1).heights(u, u), f0)
+    assert not np.allclose(face(0, index=1).heights(u, u), f0)  # the next punch's face
 
 
 # --- refinement, the run, the record ----------------------------------------------------------
@@ -217,7 +228,7 @@ def test_finer_window_holds_the_same_face_and_the_same_sample():
     direct evaluation at the fine centres)."""
     s = _wm()
     d, c = 300e-6, (0.25e-3, 0.24e-3)
-    face = make_face(d, tilt_deg=0.02, roughness=3e-8, pixel=s.dx, seed=(0, 0))
+    face = make_face(d, PunchFaceSpec(tilt_deg=0.02, roughness=3e-8), pixel=s.dx)
     src = WindowSource(s.heights, (s.dx, s.dy), s.params, device="cpu")
     assert src.refinable
     for k in (1, 2):
@@ -239,8 +250,9 @@ def test_finer_window_holds_the_same_face_and_the_same_sample():
                                    rtol=0, atol=1e-18)  # fmt: skip
 
 
-KW = {"punch_diameter": 300e-6, "peak_loads": (2e-3, 8e-3, 32e-3), "placements": 1, "seed": 2,
-      "device": "cpu", "material": MAT, "refine_max": 2, "min_contact_pixels": 1}  # fmt: skip
+AT = IndentProtocol(punch_diameters=300e-6, peak_loads=(2e-3, 8e-3, 32e-3), placements=1,
+                    placement_seed=2, refine_max=2, min_contact_pixels=1)  # fmt: skip
+KW = {"device": "cpu", "material": MAT}
 
 
 def test_indent_records_the_face_and_keeps_truncation_the_samples():
@@ -249,9 +261,9 @@ def test_indent_records_the_face_and_keeps_truncation_the_samples():
     one; settings record the face, with the defaults it took; the same run twice gives the
     same numbers (the face from its seed on the host)."""
     s = _wm()
-    base = indent(s, **KW)
-    face = {"punch_tilt_deg": 0.05, "punch_roughness": 3e-8, "punch_face_seed": 7}
-    res = indent(s, **KW, **face)
+    base = indent(s, protocol=AT, **KW)
+    face = AT.replace(face=PunchFaceSpec(tilt_deg=0.05, roughness=3e-8, seed=7))
+    res = indent(s, protocol=face, **KW)
     a, b = base.to_dict(), res.to_dict()
     assert list(a) == list(b)
     for k in ("truncation_depth_m", "truncation_stiffness_N_per_m"):
@@ -269,8 +281,8 @@ def test_indent_records_the_face_and_keeps_truncation_the_samples():
     pun = res.settings["punches"][0]
     assert pun["face_Rt_m"] > 300e-6 * math.tan(math.radians(0.05))
     assert base.settings["punch_face"] is None
-    assert res.protocol.punch_tilt_deg == 0.05
-    again = indent(s, **KW, **face).to_dict()
+    assert res.protocol.face.tilt_deg == 0.05
+    again = indent(s, protocol=face, **KW).to_dict()
     np.testing.assert_array_equal(
         again["unloading_stiffness_N_per_m"], b["unloading_stiffness_N_per_m"]
     )
@@ -292,19 +304,18 @@ def test_a_read_face_is_levelled_and_resampled_bilinearly(tmp_path):
     plane_file = tmp_path / "plane.npz"
     write_height_map(warptrunc.from_heights(1e-7 + 2e-4 * xx - 1e-4 * yy, h, h), plane_file)
     s = _wm()
-    kw = {**KW, "punch_diameter": d, "refine_max": 1}
-    smooth = indent(s, **kw).to_dict()
-    flat = indent(s, **kw, punch_face_file=plane_file).to_dict()
+    at = AT.replace(punch_diameters=d, refine_max=1)
+    smooth = indent(s, protocol=at, **KW).to_dict()
+    flat = indent(s, protocol=at.replace(face=PunchFaceSpec(file=plane_file)), **KW).to_dict()
     np.testing.assert_allclose(flat["unloading_stiffness_N_per_m"],
                                smooth["unloading_stiffness_N_per_m"], rtol=1e-6)  # fmt: skip
     z = 1e-7 * np.cos(xx / 7e-6) * np.sin(yy / 9e-6 + 0.3) + 3e-9 * xx / h
     curved = tmp_path / "curved.npz"
     write_height_map(warptrunc.from_heights(z, h, h), curved)
     z = np.asarray(read_height_map(curved).heights, np.float64)  # as stored
-    proto = IndentProtocol(punch_diameters=d, punch_face_file=str(curved))
     from warptrunc.indent.face import punch_faces
 
-    face = punch_faces(proto, (d,), s.dx)[0]
+    face = punch_faces(PunchFaceSpec(file=str(curved)), (d,), s.dx)[0]
     w = punch_window(s.heights, s.dx, d, c, face=face)
     px = (np.arange(w.origin[1], w.origin[1] + w.mask.shape[1]) + 0.5) * s.dx - c[0]
     py = (np.arange(w.origin[0], w.origin[0] + w.mask.shape[0]) + 0.5) * s.dy - c[1]
@@ -319,55 +330,62 @@ def test_a_read_face_is_levelled_and_resampled_bilinearly(tmp_path):
     np.testing.assert_allclose(w.face_heights[inside], want, rtol=0, atol=1e-15)
     small = tmp_path / "small.npz"
     write_height_map(warptrunc.from_heights(z[:20, :20], h, h), small)
-    with pytest.raises(ValueError, match=r"punch_face_file must cover the punch disk"):
-        indent(s, **kw, punch_face_file=small)
+    with pytest.raises(ValueError, match=r"face.file must cover the punch disk"):
+        indent(s, protocol=at.replace(face=PunchFaceSpec(file=small)), **KW)
 
 
 @pytest.mark.parametrize(
     ("kw", "match"),
     [
-        ({"punch_tilt_deg": 6.0}, r"punch_tilt_deg must be in \[0, 5\]"),
-        ({"punch_tilt_deg": -0.1}, r"punch_tilt_deg must be in \[0, 5\]"),
-        ({"punch_tilt_azimuth_deg": 360.0}, r"punch_tilt_azimuth_deg must be in \[0, 360\)"),
-        ({"punch_roughness": -1e-9}, r"punch_roughness must be in \[0, inf\) m"),
-        ({"punch_hurst": 0.0}, r"punch_hurst must be in \(0, 1\]"),
-        ({"punch_cutoff_short": 0.0}, r"punch_cutoff_short must be in \(0, inf\) m"),
-        ({"punch_roughness": 1e-8, "punch_face_file": "f.npz"}, r"both give the punch face"),
+        ({"tilt_deg": 6.0}, r"tilt_deg must be in \[0, 5\]"),
+        ({"tilt_deg": -0.1}, r"tilt_deg must be in \[0, 5\]"),
+        ({"tilt_azimuth_deg": 360.0}, r"tilt_azimuth_deg must be in \[0, 360\)"),
+        ({"roughness": -1e-9}, r"roughness must be in \[0, inf\) m"),
+        ({"hurst": 0.0}, r"hurst must be in \(0, 1\]"),
+        ({"cutoff_short": 0.0}, r"cutoff_short must be in \(0, inf\) m"),
+        ({"roughness": 1e-8, "file": "f.npz"}, r"both give the punch face"),
+        ({"file": ""}, r"file must be a path"),
     ],
 )
-def test_protocol_refuses_bad_face_values(kw, match):
+def test_face_refuses_bad_values(kw, match):
     with pytest.raises(ValueError, match=match):
-        IndentProtocol(**kw)
+        PunchFaceSpec(**kw)
+    with pytest.raises(ValueError, match=r"face must be a warptrunc\.indent\.PunchFaceSpec"):
+        IndentProtocol(face=kw)
 
 
 def test_face_needs_a_band_a_finite_punch_and_the_same_face_to_reuse():
     s = _wm()
-    with pytest.raises(ValueError, match=r"punch_cutoff_long .* must exceed punch_cutoff_short"):
-        indent(s, **{**KW, "punch_roughness": 1e-8, "punch_cutoff_long": 5e-6})
-    with pytest.raises(ValueError, match=r"needs a finite punch_diameter"):
-        indent(s, **{**KW, "punch_diameter": None, "punch_tilt_deg": 0.01})
-    with pytest.raises(ValueError, match=r"punch_cutoff_short must be at least"):
-        indent(s, **{**KW, "punch_roughness": 1e-8, "punch_cutoff_short": 1e-9})
-    kw = {**KW, "refine_max": 1}
-    elastic = indent(s, **kw)
-    with pytest.raises(ValueError, match=r"reuse was run with punch_tilt_deg = 0.0"):
-        indent(s, **{**kw, "material": Material.against_diamond(hardness=1e9)}, reuse=elastic,
-               punch_tilt_deg=0.01)  # fmt: skip
+    def run(**face):
+        return indent(s, protocol=AT.replace(face=PunchFaceSpec(**face)), **KW)
+
+    with pytest.raises(ValueError, match=r"face.cutoff_long .* must exceed face.cutoff_short"):
+        run(roughness=1e-8, cutoff_long=5e-6)
+    with pytest.raises(ValueError, match=r"needs a finite punch_diameters"):
+        indent(s, protocol=AT.replace(punch_diameters=None,
+                                      face=PunchFaceSpec(tilt_deg=0.01)), **KW)  # fmt: skip
+    with pytest.raises(ValueError, match=r"face.cutoff_short must be at least"):
+        run(roughness=1e-8, cutoff_short=1e-9)
+    at = AT.replace(refine_max=1)
+    elastic = indent(s, protocol=at, **KW)
+    with pytest.raises(ValueError, match=r"reuse was run with face.tilt_deg = 0.0"):
+        indent(s, protocol=at.replace(face=PunchFaceSpec(tilt_deg=0.01)), reuse=elastic,
+               **{**KW, "material": Material.against_diamond(hardness=1e9)})  # fmt: skip
 
 
 # --- the command line ---------------------------------------------------------------------------
 
-CLI = ["indent", "--n", "64", "--L", "0.4e-3", "--Rt", "0.3e-6", "--punch-diameter", "1.5e-4",
+CLI = ["indent", "--n", "64", "--L", "0.4e-3", "--Rt", "0.3e-6", "--punch-diameters", "1.5e-4",
        "--peak-loads", "1e-3", "4e-3", "--placements", "1", "--no-progress", "--refine-max", "1",
        "--hardness", "inf", "--no-plot", "--accept-unconverged"]  # fmt: skip
 
 
 def test_cli_face_options_reach_the_json(tmp_path, capsys):
     out = tmp_path / "ind"
-    assert main([*CLI, "--punch-tilt", "0.05", "--punch-tilt-azimuth", "30",
-                 "--punch-roughness", "2e-8", "--punch-hurst", "0.6", "--out", str(out)]) == 0  # fmt: skip
+    assert main([*CLI, "--face-tilt-deg", "0.05", "--face-tilt-azimuth-deg", "30",
+                 "--face-roughness", "2e-8", "--face-hurst", "0.6", "--out", str(out)]) == 0  # fmt: skip
     doc = json.loads((out / "indent.json").read_text())
-    assert doc["protocol"]["punch_tilt_deg"] == 0.05 and doc["protocol"]["punch_hurst"] == 0.6
+    assert doc["protocol"]["face"]["tilt_deg"] == 0.05 and doc["protocol"]["face"]["hurst"] == 0.6
     face = doc["settings"]["punch_face"][0]
     assert face["tilt_azimuth_deg"] == 30 and face["roughness"]["hurst"] == 0.6
     assert "tilt 0.05°" in capsys.readouterr().out
@@ -376,13 +394,13 @@ def test_cli_face_options_reach_the_json(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("extra", "needles"),
     [
-        (["--punch-tilt", "9"], ["--punch-tilt", "[0, 5]", "'9'"]),
-        (["--punch-hurst", "1.5"], ["--punch-hurst", "(0, 1]", "'1.5'"]),
-        (["--punch-roughness", "1e-8", "--punch-cutoff-long", "1e-6"],
-         ["--punch-cutoff-long", "--punch-cutoff-short", "must exceed"]),
-        (["--punch-roughness", "1e-8", "--punch-face-file", "x.npz"],
-         ["--punch-roughness", "--punch-face-file", "give one"]),
-        (["--punch-face-file", "no_such_face.npz"], ["--punch-face-file", "no_such_face.npz"]),
+        (["--face-tilt-deg", "9"], ["--face-tilt-deg", "[0, 5]", "'9'"]),
+        (["--face-hurst", "1.5"], ["--face-hurst", "(0, 1]", "'1.5'"]),
+        (["--face-roughness", "1e-8", "--face-cutoff-long", "1e-6"],
+         ["--face-cutoff-long", "--face-cutoff-short", "must exceed"]),
+        (["--face-roughness", "1e-8", "--face-file", "x.npz"],
+         ["--face-roughness", "file ('x.npz')", "give one"]),
+        (["--face-file", "no_such_face.npz"], ["--face-file", "no_such_face.npz"]),
     ],
 )  # fmt: skip
 def test_cli_bad_face_input_exits_2_with_the_option_named(tmp_path, capsys, extra, needles):

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 import warptrunc
-from warptrunc.indent import indent, punch_window, run_cycles
+from warptrunc.indent import IndentProtocol, indent, punch_window, run_cycles
 from warptrunc.indent.fits import MIN_FIT_POINTS, bootstrap_power_law
 from warptrunc.indent.refine import WindowSource
 from warptrunc.material import Material
@@ -101,7 +101,7 @@ def _independent_cell(s, scale, centre, d, load, pixel, material):
     jy, jx = np.mgrid[0:n, 0:n]
     z = scale * _eq4((i0x + jx) * pixel, (i0y + jy) * pixel, s)
     w = punch_window(z.astype(np.float32), pixel, d, (cx - i0x * pixel, cy - i0y * pixel))
-    r = run_cycles(w, [load], 0.1, material, hardness=material.hardness, device="cpu")
+    r = run_cycles(w, IndentProtocol(peak_loads=[load]), material, device="cpu")
     assert r["converged"][0]
     return r["unloading_stiffness"][0], r["contact_area"][0], w.n_pixels
 
@@ -113,9 +113,9 @@ def test_a_resolved_cell_agrees_with_the_cell_solved_on_its_own_at_half_its_pixe
     s = _wm()
     mat = Material.against_diamond(hardness=0.05e9)  # soft: large plastic contacts
     tol = 0.02
-    r = indent(s, punch_diameter=(0.15e-3,), peak_loads=(16e-3, 64e-3), placements=2,
-               material=mat, refine_max=4, min_contact_pixels=50, resolution_tol=tol,
-               elastic=False, device="cpu")  # fmt: skip
+    at = IndentProtocol(punch_diameters=(0.15e-3,), peak_loads=(16e-3, 64e-3), placements=2,
+                        refine_max=4, min_contact_pixels=50, resolution_tol=tol, elastic=False)
+    r = indent(s, protocol=at, material=mat, device="cpu")
     d = r.to_dict()
     done = np.flatnonzero(d["resolved"])
     assert done.size >= 1 and not d["resolved"].all()
@@ -145,18 +145,19 @@ def test_saturated_cells_are_never_in_fit():
     """Complete contact (every disk pixel touches) is flagged saturated and left out of the fits,
     resolved or not: a flat read map under a punch, and a nearly flat WM map refined."""
     flat = np.zeros((64, 64))
-    r = indent(flat, pixel_size=2e-6, punch_diameter=(60e-6,), peak_loads=(1e-3, 2e-3),
-               placements=None, material=Material.against_diamond(), device="cpu",
-               min_contact_pixels=1)  # fmt: skip
+    at = IndentProtocol(punch_diameters=(60e-6,), peak_loads=(1e-3, 2e-3), placements=None,
+                        min_contact_pixels=1)  # fmt: skip
+    r = indent(flat, protocol=at, pixel_size=2e-6, material=Material.against_diamond(),
+               device="cpu")  # fmt: skip
     d = r.to_dict()
     assert np.all(d["n_contact_pixels"] == d["n_punch_pixels"]) and d["saturated"].all()
     assert d["resolved"].all() and not d["in_fit"].any()  # resolved by the pixel rule alone
     assert set(d["resolution_note"]) == {"read-map"} and np.isnan(d["resolution_change"]).all()
     assert np.all(d["pixel_size_m"] == 2e-6)
     s = _wm(n=64, L=0.2e-3, Rt=1e-9)  # 24 pixels of radius: K and A within 1 % at p/2
-    r = indent(s, punch_diameter=(0.15e-3,), peak_loads=(0.5, 1.0), placements=None,
-               material=Material.against_diamond(), refine_max=2, min_contact_pixels=10,
-               device="cpu")  # fmt: skip
+    at = IndentProtocol(punch_diameters=(0.15e-3,), peak_loads=(0.5, 1.0), placements=None,
+                        refine_max=2, min_contact_pixels=10)  # fmt: skip
+    r = indent(s, protocol=at, material=Material.against_diamond(), device="cpu")
     d = r.to_dict()
     np.testing.assert_array_equal(d["saturated"], d["n_contact_pixels"] >= d["n_punch_pixels"])
     assert d["saturated"].all() and d["resolved"].any()
@@ -172,8 +173,9 @@ def test_cells_at_the_complete_contact_plateau_are_saturated():
     y, x = (np.mgrid[0:n, 0:n] - (n - 1) / 2) * dx
     dome = -(x**2 + y**2) / (2 * 0.5)  # R = 0.5 m: a rim 1.25 nm below the top at r = 50 µm
     mat = Material.against_diamond()
-    r = indent(dome, pixel_size=dx, punch_diameter=(d,), peak_loads=(1e-4, 2e-2, 2.4e-2, 1.0),
-               placements=None, material=mat, device="cpu", min_contact_pixels=1)  # fmt: skip
+    at = IndentProtocol(punch_diameters=(d,), peak_loads=(1e-4, 2e-2, 2.4e-2, 1.0),
+                        placements=None, min_contact_pixels=1)  # fmt: skip
+    r = indent(dome, protocol=at, pixel_size=dx, material=mat, device="cpu")
     c = r.to_dict()
     k = c["unloading_stiffness_N_per_m"]
     plateau = mat.contact_modulus * d  # 2E*·a
@@ -194,9 +196,10 @@ def two_surfaces():
     """Two realisations, three placements of two punches, four loads; judged by the pixel
     rule (refine_max = 1) with min_contact_pixels = 1, so every converged, unsaturated cell."""
     maps = [_wm(n=96, L=1.2e-3, Rt=4e-6, seed=k) for k in (3, 4)]
-    return indent(maps, punch_diameter=(0.1e-3, 0.2e-3), peak_loads=(2e-3, 8e-3, 32e-3, 128e-3),
-                  placements=3, seed=1, refine_max=1, min_contact_pixels=1, elastic=False,
-                  device="cpu")  # fmt: skip
+    at = IndentProtocol(punch_diameters=(0.1e-3, 0.2e-3), peak_loads=(2e-3, 8e-3, 32e-3, 128e-3),
+                        placements=3, placement_seed=1, refine_max=1, min_contact_pixels=1,
+                        elastic=False)  # fmt: skip
+    return indent(maps, protocol=at, device="cpu")
 
 
 def test_rows_of_several_realisations(two_surfaces):
@@ -318,7 +321,7 @@ def test_cli_writes_the_resolution_columns_and_the_intervals(tmp_path, capsys):
 
     out = tmp_path / "ind"
     argv = ["indent", "--n", "96", "--L", "1.2e-3", "--Rt", "4e-6", "--seeds", "3", "4",
-            "--punch-diameter", "1e-4", "2e-4", "--peak-loads", "2e-3", "8e-3", "32e-3", "128e-3",
+            "--punch-diameters", "1e-4", "2e-4", "--peak-loads", "2e-3", "8e-3", "32e-3", "128e-3",
             "--placements", "3", "--placement-seed", "1", "--refine-max", "1",
             "--min-contact-pixels", "1", "--no-elastic", "--no-progress", "--out", str(out)]  # fmt: skip
     assert main(argv) == 0
@@ -346,15 +349,23 @@ def test_default_map_holds_the_default_placements_apart(tmp_path, capsys):
     """A generated map is 3 mm per side at the preset's (or the defaults') pixel: the paper's
     three punches at three placements each never overlap, and the command does not warn."""
     from warptrunc.cli import build_parser, main
-    from warptrunc.cli.indent import map_spec
-    from warptrunc.indent import PAPER_PUNCH_DIAMETERS, IndentProtocol, place_punches
+    from warptrunc.cli.indent import map_specs
+    from warptrunc.indent import PAPER_PUNCH_DIAMETERS, IndentMaps, IndentProtocol, place_punches
+    from warptrunc.presets import TABLE1
 
     parse = build_parser(["indent"]).parse_args
-    spec = map_spec(parse(["indent", "--preset", "GB300s"]))
+    (spec,) = map_specs(parse(["indent", "--preset", "GB300s"]))
     assert spec.L == 3e-3 and spec.n == 30720  # the preset's 97.7 nm pixel
-    assert map_spec(parse(["indent"])).n == 3072  # the defaults' 0.977 µm pixel
-    assert map_spec(parse(["indent", "--preset", "GB300s", "--n", "512"])).L == 3e-3
-    assert map_spec(parse(["indent", "--L", "1e-3"])).L == 1e-3
+    assert IndentMaps().specs(TABLE1["GB300s"]) == [spec]  # the library's default
+    assert map_specs(parse(["indent"]))[0].n == 3072  # the defaults' 0.977 µm pixel
+    (spec,) = map_specs(parse(["indent", "--preset", "GB300s", "--n", "512"]))
+    assert spec.L == 3e-3 and spec.n == 512
+    assert map_specs(parse(["indent", "--L", "1e-3"]))[0].L == 1e-3
+    assert map_specs(parse(["indent", "--map-side", "2e-3", "--n", "64"]))[0].L == 2e-3
+    specs = map_specs(parse(["indent", "--seeds", "0-2", "--n", "64"]))
+    assert [s.seed for s in specs] == [0, 1, 2] and {s.n for s in specs} == {64}
+    with pytest.raises(ValueError, match=r"--L and --map-side 0\.002 both"):
+        map_specs(parse(["indent", "--L", "1e-3", "--map-side", "2e-3"]))
     p = IndentProtocol()
     for i, d in enumerate(PAPER_PUNCH_DIAMETERS):
         with warnings.catch_warnings():

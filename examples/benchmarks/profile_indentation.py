@@ -15,6 +15,7 @@ import time
 import warptrunc as wt
 from warptrunc.contact.settings import SolverSettings
 from warptrunc.contact.solver import ContactSolver
+from warptrunc.indent import cycles
 from warptrunc.indent import protocol as P
 from warptrunc.indent.punch import place_punches, punch_window
 from warptrunc.presets import TABLE1
@@ -79,10 +80,9 @@ def main(argv=None):
                 w = punch_window(z, (dx, dx), d, tuple(c[0]))
                 phase[0] = f"{s}/{f:g}H/{d * 1e6:.0f}um/{w.mask.shape[0]}px"
                 t = time.perf_counter()
-                out = P.run_cycles(w, P.PAPER_PEAK_LOADS, 0.1, mat, hardness=mat.hardness,
-                                   settings=SolverSettings(dtype=dtype, maxiter=a.maxiter, load_control=lc,
-                                                          algorithm=a.algorithm),
-                                   device=dev)
+                out = cycles.run_cycles(w, P.IndentProtocol(), mat, device=dev,
+                                        solver=SolverSettings(dtype=dtype, maxiter=a.maxiter,
+                                                              load_control=lc, algorithm=a.algorithm))
                 print(phase[0], f"{time.perf_counter() - t:.2f}s", "contact pixels",
                       out["n_contact"][[0, -1]], "converged", bool(out["converged"].all()), flush=True)
     for k, v in stats.items():

@@ -34,11 +34,16 @@ import warnings
 from pathlib import Path
 
 import numpy as np
-
 from _common import record_name
 
 from warptrunc._support.provenance import git_commit
-from warptrunc.indent import PAPER_PEAK_LOADS, default_material, indent
+from warptrunc.indent import (
+    PAPER_PEAK_LOADS,
+    IndentProtocol,
+    PunchFaceSpec,
+    default_material,
+    indent,
+)
 from warptrunc.presets import preset
 from warptrunc.wm import wm_surface
 
@@ -51,17 +56,17 @@ COLUMNS = ("peak_load_N", "F_over_EA", "unloading_stiffness_N_per_m", "E_c_over_
 
 def _faces(args):
     out = [("aligned smooth", {})]
-    out += [(f"tilt {t:g}°", {"punch_tilt_deg": t}) for t in args.tilts if t > 0]
+    out += [(f"tilt {t:g}°", {"tilt_deg": t}) for t in args.tilts if t > 0]
     for c in args.cutoffs:
-        rough = {"punch_roughness": args.roughness}
+        rough = {"roughness": args.roughness}
         name = f"rough {args.roughness * 1e6:g} µm"
         if c > 0:
-            rough["punch_cutoff_short"] = c
+            rough["cutoff_short"] = c
             name += f", λ_s {c * 1e6:g} µm"
         out.append((name, rough))
         if args.rough_tilt > 0:
             out.append((f"{name} + tilt {args.rough_tilt:g}°",
-                        {**rough, "punch_tilt_deg": args.rough_tilt}))  # fmt: skip
+                        {**rough, "tilt_deg": args.rough_tilt}))  # fmt: skip
     return out
 
 
@@ -131,9 +136,9 @@ def main(argv=None) -> int:
         t0 = time.perf_counter()
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            res = indent(surface, punch_diameter=args.diameter, placements=args.placements,
-                         seed=0, material=material, refine_max=args.refine_max,
-                         device=args.device, **face)  # fmt: skip
+            protocol = IndentProtocol(punch_diameters=args.diameter, placements=args.placements,
+                                      refine_max=args.refine_max, face=PunchFaceSpec(**face))
+            res = indent(surface, protocol=protocol, material=material, device=args.device)
         d = res.to_dict()
         rows = {k: np.asarray(d[k]).tolist() for k in COLUMNS}
         rows["displacement_over_Rt"] = (d["displacement_m"] / rt).tolist()
@@ -143,7 +148,7 @@ def main(argv=None) -> int:
         for pre in ("", "elastic_"):
             k = f"{pre}unloading_stiffness_N_per_m"
             rows[f"{pre}K_over_reference"] = (d[k] / ref[k]).tolist()
-        tilt = math.radians(face.get("punch_tilt_deg", 0.0))
+        tilt = math.radians(face.get("tilt_deg", 0.0))
         cases.append({
             "face": name, "options": face, "seconds": time.perf_counter() - t0,
             "full_contact_load_smooth_flat_N": 4 * material.contact_modulus * a * a * math.tan(tilt),

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import math
 import time
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -18,9 +17,9 @@ from .._support.progress import progress_bar
 from ..contact.settings import SolverSettings
 from ..material import Material
 from ..surface import Surface
-from .face import DEFAULT_HURST, check_same_face, face_record, face_settings, punch_faces
+from .face import check_same_face, face_record, face_settings, punch_faces
 from .placement import solve_placement
-from .protocol import PAPER_PEAK_LOADS, PAPER_PUNCH_DIAMETERS, IndentProtocol, default_material
+from .protocol import IndentProtocol, default_material
 from .punch import PunchWindow, place_punches
 from .refine import NOTES, WindowSource
 from .results import IndentationResult
@@ -71,7 +70,7 @@ _REUSED = {  # run_cycles column → to_dict column of an elastic run
 
 
 def _elastic_cycles(reuse: Any, windows: list, loads: np.ndarray, material: Material,
-                    settings: SolverSettings | None) -> list[dict[str, np.ndarray]]:  # fmt: skip
+                    solver: SolverSettings) -> list[dict[str, np.ndarray]]:  # fmt: skip
     """Split an elastic run given as ``reuse`` into the run_cycles columns of each window,
     checking that it is one (H = inf, same E*, solver settings, punches, centres and loads)."""
     cols = reuse
@@ -86,12 +85,11 @@ def _elastic_cycles(reuse: Any, windows: list, loads: np.ndarray, material: Mate
                 f"reuse was run with E* = {reuse.material.contact_modulus!r} Pa, this run with "
                 f"{material.contact_modulus!r} Pa; give the same elastic constants"
             )
-        mine = (SolverSettings() if settings is None else settings).to_dict()
-        if reuse.settings.get("solver_settings") != mine:
+        if reuse.settings.get("solver_settings") != solver.to_dict():
             raise ValueError("reuse was run with other solver settings; give the same settings")
         cols = reuse.to_dict()
     if isinstance(cols, dict) and "n_contact_pixels" not in cols and "n_contact" in cols:
-        cols = {**cols, "n_contact_pixels": cols["n_contact"]}  # columns written before issue 38
+        cols = {**cols, "n_contact_pixels": cols["n_contact"]}  # the reproduce pieces' name
     try:
         keys = (*_REUSED.values(), "punch_diameter_m", "placement", "peak_load_N", "centre_x_m",
                 "centre_y_m")  # fmt: skip
@@ -130,29 +128,11 @@ def _elastic_cycles(reuse: Any, windows: list, loads: np.ndarray, material: Mate
 def indent(
     surface: Surface | Any,
     *,
-    punch_diameter: float | tuple[float, ...] | None = PAPER_PUNCH_DIAMETERS,
-    peak_loads: tuple[float, ...] = PAPER_PEAK_LOADS,
-    unload_fraction: float = 0.1,
+    protocol: IndentProtocol | None = None,
     material: Material | None = None,
-    placements: int | None = 3,
-    seed: int = 0,
-    pixel_size: float | tuple[float, float] | None = None,
-    settings: SolverSettings | None = None,
-    elastic: bool = True,
+    solver: SolverSettings | None = None,
     reuse: IndentationResult | dict[str, Any] | None = None,
-    truncation_increments: int = 1000,
-    overlap: str = "warn",
-    resolution_tol: float = 0.02,
-    min_contact_pixels: int = 100,
-    refine_max: int = 8,
-    punch_tilt_deg: float = 0.0,
-    punch_tilt_azimuth_deg: float = 0.0,
-    punch_roughness: float = 0.0,
-    punch_hurst: float = DEFAULT_HURST,
-    punch_cutoff_short: float | None = None,
-    punch_cutoff_long: float | None = None,
-    punch_face_seed: int = 0,
-    punch_face_file: str | Path | None = None,
+    pixel_size: float | tuple[float, float] | None = None,
     progress: bool = False,
     device: wp.DeviceLike = None,
     devices: Any = None,
@@ -171,94 +151,64 @@ def indent(
         The rough surface: a :class:`warptrunc.Surface` or heights z (m); or several
         realisations of one surface (a list of Surfaces of one size and pixel: the same
         punches and placements on each, rows numbered by ``realisation``).
-    punch_diameter : float, sequence of float or None
-        Punch diameters d (m); each at most the map's smaller side. Default: the paper's 54.1,
-        108.7 and 502.6 µm. None: one flat larger than the map (every pixel can touch;
-        A = Lx·Ly; one placement).
-    peak_loads : sequence of float
-        Peak loads F of the cycles (N), strictly increasing, below H × A of every punch.
-        Default: the paper's ten levels, each twice the previous, the last 500 mN.
-    unload_fraction : float
-        Partial unloading of each cycle as a fraction f of its peak load (dimensionless), in
-        (0, 1).
+    protocol : IndentProtocol, optional
+        The experiment (:class:`~warptrunc.indent.IndentProtocol`; its defaults when None: the
+        paper's three punches and ten peak loads, three placements each):
+
+        - ``punch_diameters`` (m), each at most the map's smaller side; None: one flat larger
+          than the map (every pixel can touch; A = Lx·Ly; one placement);
+        - ``peak_loads`` (N), strictly increasing, below H × A of every punch;
+        - ``unload_fraction``, the partial unloading of each cycle as a fraction of its peak;
+        - ``placements`` per diameter, random, inside the map and apart (seed
+          ``placement_seed``; ``overlap`` says what happens when they cannot be kept apart);
+          None: one punch at the map centre;
+        - ``truncation_increments`` of the Eq. 2 truncation curve under each punch;
+        - ``resolution_tol``, ``min_contact_pixels``, ``refine_max``: a cell (punch,
+          placement, peak) is resolved when Barber's K and the contact area change by less than
+          ``resolution_tol`` (relative) when the pixel is halved, with at least
+          ``min_contact_pixels`` in contact; the punch windows of a WM surface are generated
+          again (same terms, the map's height scale) at pixel/2, /4, … up to
+          pixel/``refine_max`` for the cells not yet resolved (:mod:`warptrunc.indent.refine`).
+          ``refine_max = 1``: nothing is refined, the cells are judged by their contact pixels
+          (so are those of a read map);
+        - ``elastic``: also solve the elastic contact (H = ∞) on the same punches (the
+          ``elastic_*`` columns; NaN when off). With ``hardness = inf`` the elastic–plastic
+          columns are the elastic solution and are copied. With a finite hardness the elastic
+          cycles run first, and the leading cycles of each punch whose elastic peak pressure
+          stays below H are copied into the elastic–plastic columns instead of solved again (no
+          pixel reaches the cap there, so the two solutions are one;
+          ``settings["reused_elastic_cycles"]``);
+        - ``face``, the punch face (:class:`~warptrunc.indent.face.PunchFaceSpec`): a tilt θ
+          (degrees, held fixed: the punch translates, never rotates; Barber's K is that of the
+          contact set) and a generated rough face (rms ``roughness``, one face per punch
+          diameter from the seed ``(face.seed, diameter index)``, the same at every placement
+          and realisation; the gap is the punch plane minus the sum of both surfaces' heights)
+          or a measured one (``file``: centred on each punch, levelled over its disk and
+          resampled to the window's pixel by bilinear interpolation).
     material : Material, optional
         Default :func:`~warptrunc.indent.protocol.default_material`: aluminium alloy
         (E = 70 GPa, ν = 0.33, H = 1.0 GPa) against diamond (E_i = 1141 GPa, ν_i = 0.07).
         ``hardness = inf``: elastic.
-    placements : int or None
-        Punch positions per diameter, random, inside the map and apart; None: one punch at
-        the map centre.
-    seed : int
-        Seed of the random positions (``IndentProtocol.placement_seed``).
-    pixel_size : float or (float, float), optional
-        Pixel sides (m); required for an array, taken from a Surface.
-    settings : SolverSettings, optional
+    solver : SolverSettings, optional
         Contact-solver settings (precision, tolerances, iteration limit); default the
         solver's, with the penetration tolerance of each disk's heights.
-    elastic : bool
-        Also solve the elastic contact (H = ∞) on the same punches (the ``elastic_*`` columns;
-        NaN when off). With ``hardness = inf`` the elastic–plastic columns are the elastic
-        solution and are copied. With a finite hardness the elastic cycles run first, and
-        the leading cycles of each punch whose elastic peak pressure stays below H are copied
-        into the elastic–plastic columns instead of solved again (no pixel reaches the cap
-        there, so the two solutions are one; ``settings["reused_elastic_cycles"]``).
     reuse : IndentationResult or dict, optional
         An elastic run (``hardness = inf``) of the same surface, punches, placements, seed,
         peak loads, unloading fraction, E* and solver settings, or its ``to_dict()`` columns
         (``max_pressure_Pa`` among them): its cycles are taken as the elastic ones instead of
-        solved, as above (several hardness values from one elastic run). Punches, centres
-        and loads are checked; the settings only for an IndentationResult.
-    truncation_increments : int
-        Depth increments of the Eq. 2 truncation curve under each punch.
-    overlap : {"warn", "error"}
-        Punches of one diameter that cannot be placed apart: warn and report the overlap
-        (``overlap_fraction``), or raise.
-    resolution_tol : float
-        A cell (punch, placement, peak) is resolved when Barber's K and the contact area
-        change by less than this (relative) when the pixel is halved
-        (:mod:`warptrunc.indent.refine`).
-    min_contact_pixels : int
-        Fewest contact pixels of a resolved cell.
-    refine_max : int
-        Largest refinement of the pixel, a power of 2: the punch windows of a WM surface are
-        generated again (same terms, the map's height scale) at pixel/2, /4, … for the cells
-        not yet resolved. 1: nothing is refined, the cells are judged by their contact pixels
-        (so are those of a read map).
-    punch_tilt_deg : float
-        Tilt θ of every punch face against the sample's mean plane (degrees), in [0, 5]: a
-        misaligned flat, held fixed as the indenter's shaft holds it (the punch translates,
-        never rotates; Barber's K is that of the contact set). 0.1° rises 0.88 µm over
-        502.6 µm.
-    punch_tilt_azimuth_deg : float
-        Direction of the tilted face's edge nearest the sample (degrees, from +x toward +y),
-        the same at every placement; the tilt axis passes through the punch centre,
-        perpendicular to it.
-    punch_roughness : float
-        rms R_q of a generated self-affine rough punch face (m), over the disk after levelling;
-        0: smooth. One face per punch diameter (seed ``(punch_face_seed, diameter index)``),
-        the same at every placement and realisation; the gap is the punch plane minus the sum
-        of both surfaces' heights.
-    punch_hurst : float
-        Hurst exponent H of that face, in (0, 1]: C(q) ∝ q^(−2−2H).
-    punch_cutoff_short : float, optional
-        Its shortest wavelength λ_s (m); default 2 pixels of the map.
-    punch_cutoff_long : float, optional
-        Its longest wavelength λ_L (m); default the punch diameter.
-    punch_face_seed : int
-        Seed of the generated face (host NumPy: the same face on every device).
-    punch_face_file : str or Path, optional
-        A measured punch face, a height map read by :func:`warptrunc.io.read_height_map`,
-        instead of ``punch_roughness``: centred on each punch, levelled over its disk and
-        resampled to the window's pixel by bilinear interpolation
-        (:mod:`warptrunc.indent.face`).
+        solved, as ``protocol.elastic`` describes (several hardness values from one elastic
+        run). Punches, centres and loads are checked; the settings and the face only for an
+        IndentationResult.
+    pixel_size : float or (float, float), optional
+        Pixel sides (m); required for an array, taken from a Surface.
     progress : bool
         tqdm bar over the cycles (stderr).
     {warp_device_obj}
     devices : int, "auto" or list, optional
-        Spread each contact solve (every punch window's cycles) over several devices (``ContactSolver(..., devices=...)``;
-        JAX); default None: ``device`` alone. A window
+        Spread each contact solve (every punch window's cycles) over several devices
+        (``ContactSolver(..., devices=...)``; JAX); default None: ``device`` alone. A window
         whose rows a device count does not divide gets rows of its floor added (no contact
-        there: the same solution; :func:`~warptrunc.indent.protocol.make_solver`).
+        there: the same solution; :func:`~warptrunc.indent.cycles.make_solver`).
 
     Returns
     -------
@@ -289,30 +239,26 @@ def indent(
     """
     t_start = time.perf_counter()
     maps = _realisations(surface, pixel_size)
-    protocol = IndentProtocol(
-        punch_diameters=punch_diameter, peak_loads=peak_loads, unload_fraction=unload_fraction,
-        placements=placements, placement_seed=seed, overlap=overlap,
-        truncation_increments=truncation_increments, resolution_tol=resolution_tol,
-        min_contact_pixels=min_contact_pixels, refine_max=refine_max,
-        punch_tilt_deg=punch_tilt_deg, punch_tilt_azimuth_deg=punch_tilt_azimuth_deg,
-        punch_roughness=punch_roughness, punch_hurst=punch_hurst,
-        punch_cutoff_short=punch_cutoff_short, punch_cutoff_long=punch_cutoff_long,
-        punch_face_seed=punch_face_seed,
-        punch_face_file=None if punch_face_file is None else str(punch_face_file),
-    )  # fmt: skip
+    protocol = IndentProtocol() if protocol is None else protocol
+    if not isinstance(protocol, IndentProtocol):
+        raise ValueError(
+            f"protocol must be a warptrunc.IndentProtocol, got {type(protocol).__name__}"
+        )
     material = default_material() if material is None else material
     if not isinstance(material, Material):
         raise ValueError(f"material must be a warptrunc.Material, got {type(material).__name__}")
     hardness = material.hardness
-    if settings is not None and not isinstance(settings, SolverSettings):
-        raise ValueError(f"settings must be a SolverSettings, got {type(settings).__name__}")
+    solver = SolverSettings() if solver is None else solver
+    if not isinstance(solver, SolverSettings):
+        raise ValueError(f"solver must be a SolverSettings, got {type(solver).__name__}")
+    elastic = protocol.elastic
     dev = resolve_device(device)
     z, (dx, dy), _info, _params = maps[0]
     ny, nx = z.shape
     lx, ly = nx * dx, ny * dy
     sources = [WindowSource(zz, px, par, device=dev) for zz, px, _info, par in maps]
     diameters = (None,) if protocol.punch_diameters is None else protocol.punch_diameters
-    faces = punch_faces(protocol, diameters, max(dx, dy))
+    faces = punch_faces(protocol.face, diameters, max(dx, dy))
     windows: list[tuple[int, int, int, PunchWindow, float]] = []
     for i, d in enumerate(diameters):
         if d is None:
@@ -339,7 +285,7 @@ def indent(
                 f"the map's pixel), got refine_max = {protocol.refine_max} and {len(maps)} "
                 "surfaces"
             )
-        given = _elastic_cycles(reuse, [t[1:] for t in windows], loads, material, settings)
+        given = _elastic_cycles(reuse, [t[1:] for t in windows], loads, material, solver)
     cols: dict[str, list] = {}
     timings = {"elastic_plastic_s": 0.0, "elastic_s": 0.0, "refinement_s": 0.0,
                "truncation_s": 0.0}  # fmt: skip
@@ -351,8 +297,9 @@ def indent(
                       enabled=progress) as bar:  # fmt: skip
         for r, (k, _i, j, w, frac) in enumerate(windows):
             rows, info = solve_placement(
-                sources[k], w, protocol, material, settings=settings, device=dev, devices=devices,
-                elastic=elastic, given=None if given is None else given[r], step=bar.update,
+                sources[k], w, protocol, material, solver=solver,
+                given=None if given is None else given[r], step=bar.update, device=dev,
+                devices=devices,
             )  # fmt: skip
             n_reused += info["reused"]
             for key, v in info["seconds"].items():
@@ -369,7 +316,7 @@ def indent(
                 "disk_Rt_m": float(np.ptp(w.surface_disk_heights)),
                 "refined_windows": info["windows"], **face_record(w),
             })  # fmt: skip
-    algo = (SolverSettings() if settings is None else settings).algorithm
+    algo = solver.algorithm
     settings_info = {
         "surface": maps[0][2] if len(maps) == 1 else [mp[2] for mp in maps],
         "device": str(dev),
@@ -379,7 +326,7 @@ def indent(
         + "), free half-space on each punch's window"
         + (", pressure capped at H" if math.isfinite(hardness) else ""),
         "reused_elastic_cycles": n_reused,
-        "solver_settings": (SolverSettings() if settings is None else settings).to_dict(),
+        "solver_settings": solver.to_dict(),
         "elastic_reference": bool(elastic),
         "refinement": {
             "resolution_tol": protocol.resolution_tol, "refine_max": protocol.refine_max,

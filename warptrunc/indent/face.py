@@ -1,20 +1,23 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The punch face as the experiment had it (issue 38, item 5): a misaligned flat and a rough tip.
+"""The punch face as the experiment had it: a misaligned flat and a rough tip.
+
+Its parameters are a :class:`PunchFaceSpec` (``IndentProtocol.face``); :func:`make_face` turns
+them into the :class:`PunchFace` of one punch diameter.
 
 Heights of the face are measured toward the sample (a protrusion of the face is positive), in
 the punch's own frame: x, y from the punch centre along the map's axes (m). The composite
 surface the contact solver sees inside the disk is the sample's heights plus the face's, so the
 gap is the punch's rigid plane minus the sum of both surfaces' heights.
 
-* **Tilt** (``punch_tilt_deg`` θ, ``punch_tilt_azimuth_deg`` φ): the plane
+* **Tilt** (``tilt_deg`` θ, ``tilt_azimuth_deg`` φ): the plane
   tan θ·(x cos φ + y sin φ) — a rotation of the flat about the axis through the punch centre
   perpendicular to the direction φ (from +x toward +y), the edge in direction φ nearest the
   sample. The tilt is held fixed, as the indenter's shaft holds it: the punch translates and
   does not rotate (no moment equilibrium), so Barber's unloading stiffness is that of the
   contact set, as for an aligned punch. The projection of the disk (its cos θ shortening,
   1.5·10⁻⁶ at 0.1°) is neglected. Analytic: the same plane at any pixel.
-* **A generated rough face** (``punch_roughness`` R_q > 0): a self-affine, Fourier-filtered
+* **A generated rough face** (``roughness`` R_q > 0): a self-affine, Fourier-filtered
   Gaussian field, C(q) ∝ q^(−2−2H) for 2π/λ_L ≤ abs(q) ≤ 2π/λ_s and 0 outside, on a periodic
   square of side P = 2·max(d, λ_L) centred on the punch; white noise from
   ``numpy.random.default_rng(seed)`` on the host (the same face on every device), filtered by
@@ -27,7 +30,7 @@ gap is the punch's rigid plane minus the sum of both surfaces' heights.
   Defaults: Hurst exponent H = 0.8 (:data:`DEFAULT_HURST`); λ_s = 2 pixels of the map (the
   finest wavelength its pixel holds); λ_L = the punch diameter (a longer wave is the face's
   form — tilt, curvature — not its roughness).
-* **A measured face** (``punch_face_file``): a height map (:func:`warptrunc.io.read_height_map`,
+* **A measured face** (``file``): a height map (:func:`warptrunc.io.read_height_map`,
   with its own pixel) centred on the punch, levelled by its least-squares plane over the disk
   and resampled to the window's pixel centres by bilinear interpolation of its pixel-centre
   values (the same continuous face at any pixel). It must cover the disk.
@@ -36,16 +39,19 @@ gap is the punch's rigid plane minus the sum of both surfaces' heights.
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from ..params import Parameters, check_fields, param
+
 __all__ = [
     "DEFAULT_HURST",
-    "FACE_FIELDS",
     "MAX_FACE_GRID",
     "PunchFace",
+    "PunchFaceSpec",
     "check_same_face",
     "face_record",
     "face_settings",
@@ -63,6 +69,79 @@ spectrum, only its rms of about 0.05 µm."""
 MAX_FACE_GRID = 4096
 """Largest side N of a generated face's reference grid (P/N ≤ λ_s/2): its Fourier modes span
 at most N/2 − 1 per axis."""
+
+
+@dataclass(frozen=True)
+class PunchFaceSpec(Parameters):
+    """The punch face's parameters: its tilt, held fixed, and its roughness, generated or read.
+
+    The default is an aligned smooth flat. A generated face (``roughness`` > 0) is one face per
+    punch diameter (seed ``(seed, diameter index)``), the same at every placement and
+    realisation; a read face (``file``) is centred on every punch.
+
+    Raises
+    ------
+    ValueError
+        A field out of its range (the message names it, its value and the range), or both
+        ``roughness`` and ``file``.
+
+    Examples
+    --------
+    >>> PunchFaceSpec(tilt_deg=0.1).is_flat
+    False
+    """
+
+    tilt_deg: float = param(
+        0.0, "tilt θ of the punch face against the sample's mean plane, held fixed as the "
+        "indenter's shaft holds it (degrees; 0.1° rises 0.88 µm over 502.6 µm)", ge=0.0, le=5.0,
+    )  # fmt: skip
+    tilt_azimuth_deg: float = param(
+        0.0, "direction of the tilted face's edge nearest the sample, from +x toward +y, the "
+        "same for every placement (degrees)", ge=0.0, lt=360.0, sweep=False,
+    )  # fmt: skip
+    roughness: float = param(
+        0.0, "rms R_q of a generated self-affine rough punch face, over the disk after "
+        "levelling; 0 = smooth", unit="m", ge=0.0,
+    )  # fmt: skip
+    hurst: float = param(
+        DEFAULT_HURST, "Hurst exponent H of the rough punch face, C(q) ∝ q^(−2−2H)", gt=0.0,
+        le=1.0, sweep=False,
+    )  # fmt: skip
+    cutoff_short: float | None = param(
+        None, "shortest wavelength λ_s of the rough punch face; none = 2 pixels of the map",
+        unit="m", gt=0.0, optional=True, sweep=False,
+    )  # fmt: skip
+    cutoff_long: float | None = param(
+        None, "longest wavelength λ_L of the rough punch face; none = the punch diameter",
+        unit="m", gt=0.0, optional=True, sweep=False,
+    )  # fmt: skip
+    seed: int = param(
+        0, "seed of the rough punch face (one face per punch diameter, the same at every "
+        "placement)", kind="int", ge=0, le=2**32 - 1, sweep=False,
+    )  # fmt: skip
+    file: str | None = param(
+        None, "a height map of the punch face (heights toward the sample, its own pixel), "
+        "centred on every punch, levelled over its disk and resampled bilinearly; instead of "
+        "a generated roughness", kind="str", optional=True, metavar="FILE", sweep=False,
+    )  # fmt: skip
+
+    def __post_init__(self) -> None:
+        if isinstance(self.file, os.PathLike):
+            object.__setattr__(self, "file", os.fspath(self.file))
+        check_fields(self)
+        if self.file is not None:
+            if not self.file:
+                raise ValueError(f"file must be a path, got {self.file!r}")
+            if self.roughness > 0:
+                raise ValueError(
+                    f"roughness ({self.roughness!r} m) and file ({self.file!r}) both give the "
+                    "punch face's roughness; give one"
+                )
+
+    @property
+    def is_flat(self) -> bool:
+        """Whether the face is an aligned smooth flat (no tilt, no roughness, no file)."""
+        return self.tilt_deg == 0.0 and self.roughness == 0.0 and self.file is None
 
 
 def self_affine_field(n: int, period: float, hurst: float, cutoff_short: float,
@@ -213,17 +292,11 @@ def _disk_points(n: int, h: float, d: float) -> tuple[np.ndarray, np.ndarray, np
 
 def make_face(
     diameter: float,
+    face: PunchFaceSpec | None = None,
     *,
-    tilt_deg: float = 0.0,
-    azimuth_deg: float = 0.0,
-    roughness: float = 0.0,
-    hurst: float = DEFAULT_HURST,
-    cutoff_short: float | None = None,
-    cutoff_long: float | None = None,
-    seed: Any = 0,
+    index: int = 0,
     pixel: float | None = None,
     surface: Any = None,
-    source: str | None = None,
 ) -> PunchFace | None:
     """The face of a punch of diameter d: tilted, rough (generated or read), or None if neither.
 
@@ -231,26 +304,16 @@ def make_face(
     ----------
     diameter : float
         Punch diameter d (m).
-    tilt_deg : float
-        Tilt θ (degrees), in [0, 5].
-    azimuth_deg : float
-        Direction φ of the edge nearest the sample (degrees, from +x toward +y).
-    roughness : float
-        rms R_q of a generated rough face over the disk after levelling (m); 0: none.
-    hurst : float
-        Hurst exponent H of the generated face, in (0, 1].
-    cutoff_short : float, optional
-        Shortest wavelength λ_s (m); default 2·``pixel``.
-    cutoff_long : float, optional
-        Longest wavelength λ_L (m); default the punch diameter.
-    seed : int or sequence of int
-        Seed of the generated face (``numpy.random.default_rng``).
+    face : PunchFaceSpec, optional
+        The face's tilt and roughness (default: an aligned smooth flat).
+    index : int
+        The punch's index among the run's diameters: a generated face draws its white noise
+        with the seed ``(face.seed, index)``.
     pixel : float, optional
         The map's pixel side (m), for the default λ_s.
     surface : Surface, optional
-        A measured face (heights toward the sample, its own pixel); excludes ``roughness``.
-    source : str, optional
-        Where ``surface`` was read from, for the record.
+        The measured face of ``face.file`` as read (heights toward the sample, its own pixel);
+        excludes ``face.roughness``.
 
     Returns
     -------
@@ -260,14 +323,14 @@ def make_face(
     Raises
     ------
     ValueError
-        A value out of range (named as the option's field), cut-offs that leave no band, a
-        band too wide for :data:`MAX_FACE_GRID`, or a read face that does not cover the disk.
+        Cut-offs that leave no band, a band too wide for :data:`MAX_FACE_GRID`, a read face that
+        does not cover the disk, or a read face beside a generated roughness.
     """
+    face = PunchFaceSpec() if face is None else face
     d = float(diameter)
-    if not 0.0 <= tilt_deg <= 5.0:
-        raise ValueError(f"punch_tilt_deg must be in [0, 5] degrees, got {tilt_deg!r}")
+    tilt_deg = face.tilt_deg
     info: dict[str, Any] = {
-        "tilt_deg": float(tilt_deg), "tilt_azimuth_deg": float(azimuth_deg),
+        "tilt_deg": float(tilt_deg), "tilt_azimuth_deg": float(face.tilt_azimuth_deg),
         "tilt_rise_over_diameter_m": d * math.tan(math.radians(tilt_deg)),
         "tilt_axis": "through the punch centre, perpendicular to the azimuth; the punch is held "
         "against rotation (no moment equilibrium)",
@@ -275,38 +338,36 @@ def make_face(
         "the sample",
     }  # fmt: skip
     rough: Any = None
-    if surface is not None and roughness > 0:
+    if surface is not None and face.roughness > 0:
         raise ValueError(
-            f"punch_roughness ({roughness!r} m) and punch_face_file ({source!r}) both give the "
-            "face's roughness; give one"
+            f"face.roughness ({face.roughness!r} m) and a read face ({face.file!r}) both give "
+            "the face's roughness; give one"
         )
     if surface is not None:
-        rough, info["roughness"] = _read_face(surface, d, source)
-    elif roughness > 0:
-        rough, info["roughness"] = _generated_face(d, roughness, hurst, cutoff_short, cutoff_long,
-                                                   seed, pixel)  # fmt: skip
+        rough, info["roughness"] = _read_face(surface, d, face.file)
+    elif face.roughness > 0:
+        rough, info["roughness"] = _generated_face(d, face, (face.seed, index), pixel)
     else:
         info["roughness"] = None
     if tilt_deg == 0.0 and rough is None:
         return None
-    return PunchFace(d, math.radians(tilt_deg), math.radians(azimuth_deg), rough, info)
+    return PunchFace(d, math.radians(tilt_deg), math.radians(face.tilt_azimuth_deg), rough, info)
 
 
-def _generated_face(d: float, rms: float, hurst: float, cutoff_short: float | None,
-                    cutoff_long: float | None, seed: Any, pixel: float | None) -> tuple[_Fourier, dict]:  # fmt: skip
-    if not 0.0 < hurst <= 1.0:
-        raise ValueError(f"punch_hurst must be in (0, 1], got {hurst!r}")
-    if cutoff_short is None:
+def _generated_face(d: float, face: PunchFaceSpec, seed: Any,
+                    pixel: float | None) -> tuple[_Fourier, dict]:  # fmt: skip
+    rms, hurst = face.roughness, face.hurst
+    if face.cutoff_short is None:
         if pixel is None:
-            raise ValueError("punch_cutoff_short (m) is needed without the map's pixel")
+            raise ValueError("face.cutoff_short (m) is needed without the map's pixel")
         lam_s, short_how = 2.0 * float(pixel), "default: 2 pixels of the map"
     else:
-        lam_s, short_how = float(cutoff_short), "given"
-    lam_l, long_how = (d, "default: the punch diameter") if cutoff_long is None else (
-        float(cutoff_long), "given")  # fmt: skip
+        lam_s, short_how = float(face.cutoff_short), "given"
+    lam_l, long_how = (d, "default: the punch diameter") if face.cutoff_long is None else (
+        float(face.cutoff_long), "given")  # fmt: skip
     if not lam_l > lam_s:
         raise ValueError(
-            f"punch_cutoff_long ({lam_l:.6g} m, {long_how}) must exceed punch_cutoff_short "
+            f"face.cutoff_long ({lam_l:.6g} m, {long_how}) must exceed face.cutoff_short "
             f"({lam_s:.6g} m, {short_how}): no wavelength is left for the face's roughness"
         )
     period = 2.0 * max(d, lam_l)
@@ -314,7 +375,7 @@ def _generated_face(d: float, rms: float, hurst: float, cutoff_short: float | No
     n = 2 * m + 2
     if n > MAX_FACE_GRID:
         raise ValueError(
-            f"punch_cutoff_short must be at least {period / (MAX_FACE_GRID / 2 - 1):.4g} m for "
+            f"face.cutoff_short must be at least {period / (MAX_FACE_GRID / 2 - 1):.4g} m for "
             f"this punch (its face's Fourier modes would exceed {MAX_FACE_GRID // 2 - 1} per "
             f"axis), got {lam_s:.6g} m ({short_how})"
         )
@@ -345,7 +406,7 @@ def _read_face(surface: Any, d: float, source: str | None) -> tuple[_Bilinear, d
     hx, hy = 0.5 * (nx - 1) * dx, 0.5 * (ny - 1) * dy  # half-extent of the pixel centres
     if min(nx, ny) < 2 or hx < 0.5 * d * (1 - 1e-9) or hy < 0.5 * d * (1 - 1e-9):
         raise ValueError(
-            f"punch_face_file must cover the punch disk: its pixel centres span "
+            f"face.file must cover the punch disk: its pixel centres span "
             f"{2 * hx:.6g} × {2 * hy:.6g} m, the punch is {d:.6g} m across (file {source!r})"
         )
     x = (np.arange(nx) - 0.5 * (nx - 1)) * dx
@@ -365,18 +426,14 @@ def _read_face(surface: Any, d: float, source: str | None) -> tuple[_Bilinear, d
 
 # --- the faces of a run (warptrunc.indent) -------------------------------------------------------
 
-FACE_FIELDS = ("punch_tilt_deg", "punch_tilt_azimuth_deg", "punch_roughness", "punch_hurst",
-               "punch_cutoff_short", "punch_cutoff_long", "punch_face_seed", "punch_face_file")  # fmt: skip
-"""The fields of :class:`~warptrunc.indent.IndentProtocol` that make the punch face."""
 
-
-def punch_faces(protocol: Any, diameters: tuple, pixel: float) -> list[PunchFace | None]:
-    """The face of each punch diameter of a protocol.
+def punch_faces(face: PunchFaceSpec, diameters: tuple, pixel: float) -> list[PunchFace | None]:
+    """The face of each punch diameter of a run.
 
     Parameters
     ----------
-    protocol : IndentProtocol
-        Its ``punch_*`` face fields (:data:`FACE_FIELDS`).
+    face : PunchFaceSpec
+        The face's parameters (``IndentProtocol.face``); its ``file`` is read here, once.
     diameters : tuple of float or None
         The punch diameters (m); None: a flat larger than the map (no face allowed).
     pixel : float
@@ -385,39 +442,33 @@ def punch_faces(protocol: Any, diameters: tuple, pixel: float) -> list[PunchFace
     Returns
     -------
     list of PunchFace or None
-        One per diameter; the generated face of diameter i from the seed
-        ``(punch_face_seed, i)``.
+        One per diameter; the generated face of diameter i from the seed ``(face.seed, i)``.
 
     Raises
     ------
     ValueError
-        A face on a flat larger than the map, or a face parameter out of range.
+        A face on a flat larger than the map, a file that cannot be read, or a face that
+        cannot be made (:func:`make_face`).
     """
     surface = None
-    if protocol.punch_face_file is not None:
+    if face.file is not None:
         from ..io import read_height_map
 
         try:
-            surface = read_height_map(protocol.punch_face_file)
+            surface = read_height_map(face.file)
         except (OSError, ValueError) as e:
-            raise ValueError(f"punch_face_file {protocol.punch_face_file!r}: {e}") from None
+            raise ValueError(f"face.file {face.file!r}: {e}") from None
     out: list[PunchFace | None] = []
     for i, d in enumerate(diameters):
         if d is None:
-            if protocol.punch_tilt_deg > 0 or protocol.punch_roughness > 0 or surface is not None:
+            if not face.is_flat:
                 raise ValueError(
-                    "a tilted or rough punch face needs a finite punch_diameter, got none "
+                    "a tilted or rough punch face needs a finite punch_diameters, got none "
                     "(a flat larger than the map)"
                 )
             out.append(None)
             continue
-        out.append(make_face(
-            d, tilt_deg=protocol.punch_tilt_deg, azimuth_deg=protocol.punch_tilt_azimuth_deg,
-            roughness=protocol.punch_roughness, hurst=protocol.punch_hurst,
-            cutoff_short=protocol.punch_cutoff_short, cutoff_long=protocol.punch_cutoff_long,
-            seed=(protocol.punch_face_seed, i), pixel=pixel, surface=surface,
-            source=protocol.punch_face_file,
-        ))  # fmt: skip
+        out.append(make_face(d, face, index=i, pixel=pixel, surface=surface))
     return out
 
 
@@ -483,9 +534,9 @@ def check_same_face(reuse: Any, protocol: Any) -> None:
     theirs = getattr(reuse, "protocol", None)
     if theirs is None:
         return
-    for k in FACE_FIELDS:
-        if getattr(theirs, k, None) != getattr(protocol, k):
+    for k, v in protocol.face.to_dict().items():
+        if getattr(theirs.face, k) != v:
             raise ValueError(
-                f"reuse was run with {k} = {getattr(theirs, k, None)!r}, this run with "
-                f"{getattr(protocol, k)!r}; give the same punch face"
+                f"reuse was run with face.{k} = {getattr(theirs.face, k)!r}, this run with "
+                f"{v!r}; give the same punch face"
             )

@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Power-law fits of indentation cells with 95 % confidence intervals (issue 38, item 2).
+"""Power-law fits of indentation cells with 95 % confidence intervals.
 
 A fit E_c/E = β·[F/(E·A)]^α of one contact model uses only the cells that may enter it
 (``in_fit``: resolved in the pixel size, not saturated, converged) and is made from at least

@@ -14,7 +14,8 @@ import numpy as np
 
 from ..contact.settings import SolverSettings
 from ..material import Material
-from .protocol import COLUMNS, IndentProtocol, run_cycles
+from .cycles import COLUMNS, run_cycles
+from .protocol import IndentProtocol
 from .punch import PunchWindow
 from .refine import CellRefinement, WindowSource, refine_cells
 from .results import modulus_from_stiffness
@@ -37,11 +38,10 @@ def solve_placement(
     protocol: IndentProtocol,
     material: Material,
     *,
-    settings: SolverSettings | None,
-    device: Any,
-    elastic: bool,
+    solver: SolverSettings | None = None,
     given: dict[str, np.ndarray] | None = None,
     step: Any = None,
+    device: Any = None,
     devices: Any = None,
 ) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
     """The rows of one punch placement: both contact models refined, and truncation.
@@ -53,19 +53,18 @@ def solve_placement(
     w : PunchWindow
         The punch window at the map's pixel.
     protocol : IndentProtocol
-        Loads, unloading fraction, truncation increments and the refinement rule.
+        Loads, unloading fraction, truncation increments, the refinement rule and ``elastic``
+        (also solve the elastic contact, H = ∞, on the same punch: its columns; NaN when off).
     material : Material
         Elastic constants and the hardness H (inf: elastic).
-    settings : SolverSettings, optional
+    solver : SolverSettings, optional
         Contact-solver settings.
-    device : warp.context.Device
-        Resolved Warp device.
-    elastic : bool
-        Also solve the elastic contact (H = ∞) on the same punch (its columns; NaN when off).
     given : dict of str to (m,) ndarray, optional
         The elastic cycles at the map's pixel, taken instead of solved (``indent``'s reuse).
     step : callable, optional
         Called once per cycle solved at the map's pixel (a progress bar's ``update``).
+    device : warp.context.Device, optional
+        Resolved Warp device.
     devices : int, "auto" or list, optional
         Spread each contact solve over several devices (``ContactSolver(..., devices=...)``;
         JAX); default None: ``device`` alone.
@@ -79,24 +78,23 @@ def solve_placement(
         window shape) and ``why_not`` (None for a map refined).
     """
     loads = np.asarray(protocol.peak_loads, dtype=np.float64)
-    m, f = loads.size, protocol.unload_fraction
+    m = loads.size
     hardness = material.hardness
+    elastic = protocol.elastic
     two = elastic and math.isfinite(hardness)
+    at_inf = material.replace(hardness=math.inf)
     # the complete-contact plateau of the face, 2E*·a = E*·d (Sneddon): K within the tolerance
     # of it is saturated
     plateau = None if w.diameter is None else material.contact_modulus * w.diameter
-    rule = {"resolution_tol": protocol.resolution_tol, "refine_max": protocol.refine_max,
-            "plateau": plateau,
-            "min_contact_pixels": protocol.min_contact_pixels}  # fmt: skip
     windows: dict[int, PunchWindow] = {1: w}
     el_cache: dict[int, dict[int, dict[str, Any]]] = {}  # factor → load index → elastic cycle
     sec = {"elastic_s": 0.0, "elastic_plastic_s": 0.0, "refinement_s": 0.0, "truncation_s": 0.0}
 
-    def cycles(win: PunchWindow, idx: np.ndarray, h: float, el: Any = None, bar: Any = None,
-               approach: Any = None):  # fmt: skip
-        return run_cycles(win, loads[idx], f, material, hardness=h, settings=settings,
-                          device=device, step=bar, elastic=el, approach=approach,
-                          devices=devices)  # fmt: skip
+    def cycles(win: PunchWindow, idx: np.ndarray, mat: Material, el: Any = None,
+               bar: Any = None, approach: Any = None):  # fmt: skip
+        at = protocol if idx.size == m else protocol.replace(peak_loads=tuple(loads[idx]))
+        return run_cycles(win, at, mat, solver=solver, elastic=el, approach=approach, step=bar,
+                          device=device, devices=devices)  # fmt: skip
 
     def keep(factor: int, idx: np.ndarray, out: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         by = el_cache.setdefault(factor, {})
@@ -112,9 +110,9 @@ def solve_placement(
         if step is not None:
             step(m)
     elif two:  # first, so that the elastic–plastic run can take its unyielded cycles
-        el0 = keep(1, every, cycles(w, every, math.inf, bar=step))
+        el0 = keep(1, every, cycles(w, every, at_inf, bar=step))
     t1 = time.perf_counter()
-    ep0 = cycles(w, every, hardness, el0, step)
+    ep0 = cycles(w, every, material, el0, step)
     t2 = time.perf_counter()
     reused = 0
     if el0 is not None:
@@ -124,18 +122,18 @@ def solve_placement(
     if two and given is None:
         el_ref = refine_cells(
             source, w, el0,
-            lambda win, idx, k, a: keep(k, idx, cycles(win, idx, math.inf, approach=a)),
-            windows=windows, **rule,
+            lambda win, idx, k, a: keep(k, idx, cycles(win, idx, at_inf, approach=a)),
+            protocol=protocol, windows=windows, plateau=plateau,
         )  # fmt: skip
     ep_ref = refine_cells(
         source, w, ep0,
-        lambda win, idx, k, a: cycles(win, idx, hardness, _subset(el_cache.get(k, {}), idx),
+        lambda win, idx, k, a: cycles(win, idx, material, _subset(el_cache.get(k, {}), idx),
                                       approach=a),
-        windows=windows, **rule,
+        protocol=protocol, windows=windows, plateau=plateau,
     )  # fmt: skip
     if el_ref is None and given is not None:  # the given elastic cycles, judged as they are
-        el_ref = refine_cells(source, w, el0, lambda *a: {}, windows=windows,
-                              **{**rule, "refine_max": 1})  # fmt: skip
+        el_ref = refine_cells(source, w, el0, lambda *a: {}, protocol=protocol.replace(
+            refine_max=1), windows=windows, plateau=plateau)  # fmt: skip
     if el_ref is None and elastic:  # H = inf: the elastic–plastic model is the elastic one
         el_ref = ep_ref
     t3 = time.perf_counter()

@@ -167,7 +167,7 @@ def place_punches(
     d = check_range("punch_diameter", diameter, 0.0, unit="m")
     if d > min(lx, ly) * (1 + 1e-12):
         raise ValueError(
-            f"punch_diameter must be at most the map's smaller side min(Lx, Ly) = "
+            f"punch_diameters must be at most the map's smaller side min(Lx, Ly) = "
             f"{min(lx, ly):.6g} m, got {d:.6g} m; use a larger map or a smaller punch"
         )
     if overlap not in ("warn", "error"):
@@ -336,7 +336,7 @@ def punch_window(
     ny, nx = z.shape
     if diameter is None:
         if face is not None:
-            raise ValueError("a tilted or rough punch face needs a finite punch_diameter, got none")
+            raise ValueError("a tilted or rough punch face needs a finite punch_diameters, got none")
         lx, ly = nx * dx, ny * dy
         c = (0.5 * lx, 0.5 * ly) if centre is None else tuple(float(v) for v in centre)
         mask = np.ones((ny, nx), dtype=bool)
@@ -397,7 +397,7 @@ def punch_window_at(
     d = check_range("punch_diameter", diameter, 0.0, unit="m")
     if d > min(lx, ly) * (1 + 1e-12):
         raise ValueError(
-            f"punch_diameter must be at most the map's smaller side min(Lx, Ly) = "
+            f"punch_diameters must be at most the map's smaller side min(Lx, Ly) = "
             f"{min(lx, ly):.6g} m, got {d:.6g} m; use a larger map or a smaller punch"
         )
     r = 0.5 * d

@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Cells that converge in the pixel size (issue 38): each (punch, placement, peak load) cell is
+"""Cells that converge in the pixel size: each (punch, placement, peak load) cell is
 solved again at half the pixel until its unloading stiffness and contact area stop changing.
 
 A WM surface is analytic (Eq. 4): the window under a punch can be generated again at a finer
@@ -195,9 +195,7 @@ def refine_cells(
     first: dict[str, np.ndarray],
     solve: Callable[[PunchWindow, np.ndarray, int, np.ndarray], dict[str, np.ndarray]],
     *,
-    resolution_tol: float,
-    min_contact_pixels: int,
-    refine_max: int,
+    protocol: Any,
     windows: dict[int, PunchWindow] | None = None,
     plateau: float | None = None,
 ) -> CellRefinement:
@@ -217,12 +215,11 @@ def refine_cells(
         (increasing indices) on a finer ``window`` (pixel / ``factor``), as ``run_cycles``
         returns them; ``approach`` ((len(idx),) m) is the coarser grid's rigid plane at each
         of them, as approaches on the finer window (the start, ``run_cycles(approach=)``).
-    resolution_tol : float
-        Largest relative change of K and of A at the last halving (dimensionless).
-    min_contact_pixels : int
-        Fewest contact pixels of a resolved cell.
-    refine_max : int
-        Largest refinement factor, a power of 2 (1: nothing is refined).
+    protocol : IndentProtocol
+        The rule: ``resolution_tol`` (largest relative change of K and of A at the last
+        halving, dimensionless), ``min_contact_pixels`` (fewest contact pixels of a resolved
+        cell) and ``refine_max`` (largest refinement factor, a power of 2; 1: nothing is
+        refined).
     windows : dict of int to PunchWindow, optional
         Windows already generated for this punch placement (factor → window), shared between
         contact models; filled here.
@@ -234,6 +231,9 @@ def refine_cells(
     -------
     CellRefinement
     """
+    resolution_tol = protocol.resolution_tol
+    min_contact_pixels = protocol.min_contact_pixels
+    refine_max = protocol.refine_max
     m = int(np.asarray(first["unloading_stiffness"]).size)
     cur = {k: np.array(v, copy=True) for k, v in first.items()}
     wins = {} if windows is None else windows

@@ -352,7 +352,7 @@ class IndentationResult:
         """
         out: dict[str, Any] = {"n_cells": int(self.peak_load.size)}
         pairs = [("elastic_plastic", "")]
-        if bool(self.settings.get("elastic_reference", True)):
+        if self.protocol.elastic:
             pairs.append(("elastic", "elastic_"))
         cols = self.to_dict()
         for name, pre in pairs:

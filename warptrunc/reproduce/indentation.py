@@ -242,7 +242,7 @@ def _resolution_params(p: Profile) -> dict[str, Any] | None:
 def _run_resolution(p: Profile, ref: dict[str, Any], device) -> dict[str, Any]:
     """The smallest punch at the map centre on the same surface at dx and dx/2."""
     from ..contact.settings import SolverSettings
-    from ..indent import indent
+    from ..indent import IndentProtocol, indent
     from ..wm import wm_surface
 
     sp = spec(p, ref["surface"])
@@ -259,12 +259,14 @@ def _run_resolution(p: Profile, ref: dict[str, Any], device) -> dict[str, Any]:
         for h in ref["hardness_Pa"]:
             h = math.inf if h is None else h
             t1 = time.perf_counter()
-            r = indent(surf, punch_diameter=(ref["punch_m"],), peak_loads=tuple(ref["loads_N"]),
-                       unload_fraction=ref["unload_fraction"], material=material(h),
-                       placements=None,
-                       settings=SolverSettings(dtype=ref["dtype"], maxiter=ref["maxiter"]),
-                       truncation_increments=ref["truncation_increments"],
-                       elastic=math.isinf(h), device=device, refine_max=1)  # fmt: skip
+            protocol = IndentProtocol(
+                punch_diameters=(ref["punch_m"],), peak_loads=tuple(ref["loads_N"]),
+                unload_fraction=ref["unload_fraction"], placements=None,
+                truncation_increments=ref["truncation_increments"], refine_max=1,
+                elastic=math.isinf(h),
+            )  # fmt: skip
+            r = indent(surf, protocol=protocol, material=material(h), device=device,
+                       solver=SolverSettings(dtype=ref["dtype"], maxiter=ref["maxiter"]))
             cols = {**r.to_dict()}
             cols["n_contact"] = cols["n_contact_pixels"]
             g[model_name(h)] = {c: cols[c] for c in (

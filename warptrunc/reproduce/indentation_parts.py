@@ -233,7 +233,7 @@ def run_part(p: Profile, part: Part, *, device, reuse: dict[str, list] | None = 
         ``reused_elastic_cycles``.
     """
     from ..contact.settings import SolverSettings
-    from ..indent import PlacementOverlapWarning, indent
+    from ..indent import IndentProtocol, PlacementOverlapWarning, PunchFaceSpec, indent
 
     seeds, placements = design_of(p, part.design)
     surf, gen = surface_for(p, part.surface, seeds[part.realisation], device)
@@ -242,16 +242,18 @@ def run_part(p: Profile, part: Part, *, device, reuse: dict[str, list] | None = 
     face = face_of(p, part.face)
     with warnings.catch_warnings():  # the overlap is recorded per row (overlap_fraction)
         warnings.simplefilter("ignore", PlacementOverlapWarning)
-        res = indent(
-            surf, punch_diameter=(d,), peak_loads=tuple(p.indentation_loads),
-            unload_fraction=p.indentation_unload_fraction, material=material(h),
-            placements=placements, seed=p.indentation_seed + k,
-            settings=SolverSettings(dtype=p.indentation_dtype, maxiter=p.indentation_maxiter),
-            truncation_increments=p.indentation_increments, elastic=math.isinf(h),
-            reuse=reuse if reuses(p, part) else None, device=device,
+        protocol = IndentProtocol(
+            punch_diameters=(d,), peak_loads=tuple(p.indentation_loads),
+            unload_fraction=p.indentation_unload_fraction, placements=placements,
+            placement_seed=p.indentation_seed + k, truncation_increments=p.indentation_increments,
             refine_max=refine_of(p, d), resolution_tol=p.indentation_resolution_tol,
-            min_contact_pixels=p.indentation_min_contact_pixels,
-            **({} if face is None else _face_kw(p, face[1], k, d)),
+            min_contact_pixels=p.indentation_min_contact_pixels, elastic=math.isinf(h),
+            face=PunchFaceSpec() if face is None else PunchFaceSpec(**_face_kw(p, face[1], k, d)),
+        )  # fmt: skip
+        res = indent(
+            surf, protocol=protocol, material=material(h),
+            solver=SolverSettings(dtype=p.indentation_dtype, maxiter=p.indentation_maxiter),
+            reuse=reuse if reuses(p, part) else None, device=device,
         )  # fmt: skip
     cols = res.to_dict()
     cols["n_contact"] = cols["n_contact_pixels"]  # the pieces' name, kept

@@ -95,10 +95,10 @@ def face_variants(p: Profile) -> list[tuple[str, dict[str, float]]]:
     """
     if p.indentation_face_surface is None:
         return []
-    out = [(f"tilt {t:g}°", {"punch_tilt_deg": float(t)}) for t in p.indentation_face_tilts_deg if t > 0]
+    out = [(f"tilt {t:g}°", {"tilt_deg": float(t)}) for t in p.indentation_face_tilts_deg if t > 0]
     if p.indentation_face_roughness > 0:
         out.append((f"rough {p.indentation_face_roughness * 1e6:g} µm rms",
-                    {"punch_roughness": float(p.indentation_face_roughness)}))  # fmt: skip
+                    {"roughness": float(p.indentation_face_roughness)}))  # fmt: skip
     return out
 
 
@@ -111,10 +111,10 @@ def _face_kw(p: Profile, face: dict[str, float], k: int, d: float) -> dict[str, 
     wavelength 2 map pixels or, when the punch's face grid cannot hold that, the shortest it can."""
     from ..indent.face import MAX_FACE_GRID
 
-    kw: dict[str, Any] = {**face, "punch_face_seed": k}
-    if face.get("punch_roughness", 0) > 0:
+    kw: dict[str, Any] = {**face, "seed": k}
+    if face.get("roughness", 0) > 0:
         dx = p.indentation_L / p.indentation_n
-        kw["punch_cutoff_short"] = max(2 * dx, 2 * d / (MAX_FACE_GRID / 2 - 1) * (1 + 1e-6))
+        kw["cutoff_short"] = max(2 * dx, 2 * d / (MAX_FACE_GRID / 2 - 1) * (1 + 1e-6))
     return kw
 
 
