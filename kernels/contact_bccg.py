@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """Preconditioned bound-constrained conjugate gradients (Vollebregt 2014): the lane kernels.
 
-Launched by ``warptrunc.contact.bccg`` (``ContactSolver`` with ``algorithm="bccg"``). Array
+Launched by ``warptrunc.contact.iteration.bccg`` (``ContactSolver`` with ``algorithm="bccg"``). Array
 layouts, the lane grid and the partials array ``part`` are those of ``kernels/contact.py``;
 ``hf`` is the force cap H·dx·dy (N; a huge number when elastic). The gap is
 ``g = u − h − offset`` (m). The *free set* is the set the CG moves: 0 < q < hf, plus the bound

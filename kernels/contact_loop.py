@@ -2,10 +2,10 @@
 # SPDX-License-Identifier: MIT
 """The BCCG iteration with its scalar steps on the device: one read-back per iteration.
 
-Launched by ``warptrunc.contact.bccg_device`` (``SolverSettings(loop="device")``). The lane
+Launched by ``warptrunc.contact.iteration.bccg_device`` (``SolverSettings(loop="device")``). The lane
 kernels, the partials ``part`` and their folded rows ``sums`` are those of
 ``kernels/contact_bccg.py`` and ``warptrunc.contact.influence.LaneReduction``; what the host loop
-of ``warptrunc.contact.bccg`` reads back after each reduction (the offset of load control, the
+of ``warptrunc.contact.iteration.bccg`` reads back after each reduction (the offset of load control, the
 Polak–Ribière β, the projection's count, the scale to the load) is instead folded by a one-thread
 kernel into the solve's scalar array ``s`` (float64, indices ``S_*`` below) and read by the next
 kernel from there, so the host reads ``s`` once per iteration, after the residual. The folds sum

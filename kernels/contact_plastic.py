@@ -3,7 +3,7 @@
 """Constrained conjugate gradients with a pressure cap (elastic–perfectly-plastic contact):
 the bound-constrained projection 0 ≤ q ≤ H·dx·dy and the plastic update of the heights.
 
-Launched by ``warptrunc.contact.plastic`` (``ContactSolver`` with a finite hardness). Array
+Launched by ``warptrunc.contact.iteration.plastic`` (``ContactSolver`` with a finite hardness). Array
 layouts, ``mask`` bits, the lane grid and the partials array ``part`` are those of
 ``kernels/contact.py``; ``hf`` is the force cap H·dx·dy (N). The CG set is 0 < q < hf (pixels at
 the cap have left it, as pixels at zero force have); the gap is ``g = u − h − offset`` (m) with

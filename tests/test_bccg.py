@@ -152,7 +152,7 @@ def test_default_rule_preconditions_large_maps(device, monkeypatch):
     PRECONDITION_LARGE pixels (here lowered to 96²) and from 2 % of a smaller one: its
     iterations and convolutions are those of precondition_above = 0 and 0.02 respectively; a
     punch window's solver takes 2 % at every size."""
-    import warptrunc.contact.bccg as bccg
+    import warptrunc.contact.iteration.bccg as bccg
     from warptrunc.indent import default_material, make_solver, punch_window
 
     monkeypatch.setattr(bccg, "PRECONDITION_LARGE", 96 * 96)

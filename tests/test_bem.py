@@ -16,6 +16,7 @@ import math
 import numpy as np
 import pytest
 
+from warptrunc.contact import BemCheckSettings, SolverSettings
 from warptrunc.contact import check as bem
 from warptrunc.stiffness import Material
 from warptrunc.surface import from_heights
@@ -46,8 +47,8 @@ def hertz(request):
     s = _sphere(n, L, R)
     # a = √(Rδ) = √f · L/2 for δ = f·(L/2)²/R: contact radius 20, 29 and 35 pixels
     depths = np.array([0.1, 0.2, 0.3]) * (L / 2) ** 2 / R
-    res = bem.bem_check(s, depths, material=MATERIAL, solver=request.param, progress=False,
-                        device="cpu")  # fmt: skip
+    check = BemCheckSettings(depths=depths, solver=request.param)
+    res = bem.bem_check(s, check=check, material=MATERIAL, progress=False, device="cpu")
     return s, R, res
 
 
@@ -93,10 +94,8 @@ def wm_small(request):
     if request.param == "contactmechanics":
         _needs_bem()
     s = wm_surface(2.5, 100e-6, L=0.25e-3, n=64, Rt=2e-6, seed=3, device="cpu")
-    res = bem.bem_check(
-        s, fractions=[0.05, 0.1, 0.2, 0.3, 0.4], material=MATERIAL, solver=request.param,
-        progress=False, device="cpu",
-    )  # fmt: skip
+    check = BemCheckSettings(fractions=[0.05, 0.1, 0.2, 0.3, 0.4], solver=request.param)
+    res = bem.bem_check(s, check=check, material=MATERIAL, progress=False, device="cpu")
     return s, res
 
 
@@ -170,7 +169,8 @@ def test_not_converged_is_flagged(solver):
     if solver == "contactmechanics":
         _needs_bem()
     s = wm_surface(2.5, 100e-6, L=0.25e-3, n=32, Rt=2e-6, seed=1, device="cpu")
-    res = bem.bem_check(s, fractions=[0.3], maxiter=1, solver=solver, progress=False, device="cpu")
+    res = bem.bem_check(s, check=BemCheckSettings(fractions=[0.3], solver=solver),
+                        settings=SolverSettings(maxiter=1), progress=False, device="cpu")
     assert not res.converged.any()
     assert res.summary()["n_not_converged"] == 1
     assert not any(x["success"] for x in res.settings["solves"])
@@ -178,14 +178,21 @@ def test_not_converged_is_flagged(solver):
 
 def test_bad_input():
     s = wm_surface(2.5, 100e-6, L=0.25e-3, n=32, Rt=2e-6, seed=1, device="cpu")
-    with pytest.raises(ValueError, match="fraction must be in"):
-        bem.bem_check(s, fractions=[1.5], progress=False, device="cpu")
+    with pytest.raises(ValueError, match=r"fractions\[0\] must be in \(0, 1\)"):
+        BemCheckSettings(fractions=[1.5])
     with pytest.raises(ValueError, match="increase strictly"):
-        bem.bem_check(s, fractions=[0.3, 0.2], progress=False, device="cpu")
+        BemCheckSettings(fractions=[0.3, 0.2])
+    with pytest.raises(ValueError, match="give one"):
+        BemCheckSettings(fractions=[0.1], depths=[1e-7])
     with pytest.raises(ValueError, match="substrate must be"):
-        bem.bem_check(s, substrate="rigid", progress=False, device="cpu")
+        SolverSettings(substrate="rigid")
     with pytest.raises(ValueError, match="solver must be one of"):
-        bem.bem_check(s, solver="fenics", progress=False, device="cpu")
+        BemCheckSettings(solver="fenics")
+    with pytest.raises(ValueError, match="barber needs solver warptrunc"):
+        BemCheckSettings(stiffness="barber", solver="contactmechanics")
+    with pytest.raises(ValueError, match=r"depths must be in \(0, R_t\)"):
+        bem.bem_check(s, check=BemCheckSettings(depths=[1e-6, 3e-6]), progress=False,
+                      device="cpu")  # fmt: skip
 
 
 def test_missing_extra_names_it(monkeypatch, capsys):
@@ -220,10 +227,9 @@ def test_periodic_westergaard(solver):
     dx = lam / n
     x = (np.arange(n) + 0.5) * dx
     s = from_heights(np.tile(h0 * np.cos(2 * np.pi * x / lam), (4, 1)), dx)
-    res = bem.bem_check(
-        s, fractions=[0.2, 0.4], material=MATERIAL, substrate="periodic", solver=solver,
-        progress=False, device="cpu",
-    )  # fmt: skip
+    res = bem.bem_check(s, check=BemCheckSettings(fractions=[0.2, 0.4], solver=solver),
+                        material=MATERIAL, settings=SolverSettings(substrate="periodic"),
+                        progress=False, device="cpu")  # fmt: skip
     if solver == "contactmechanics":
         assert res.settings["half_space"] == "PeriodicFFTElasticHalfSpace"
     assert res.all_converged

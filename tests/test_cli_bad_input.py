@@ -114,7 +114,7 @@ NUMERIC = [
     (["bem-check", "--fractions", "0.1", "1.2"], ["--fractions", "(0, 1)", "1.2"]),
     (["bem-check", "--depths", "-1e-6"], ["--depths", "(0, inf) m", "-1e-6"]),
     (["bem-check", "--E", "nan"], ["--E", "(0, inf) Pa", "nan"]),
-    (["bem-check", "--fd-step", "0"], ["--fd-step", "(0, 1)", "'0'"]),
+    (["bem-check", "--fd-step", "0"], ["--fd-step", "(0, 0.5)", "'0'"]),
     (["bem-check", "--pressure-tol", "-1"], ["--pressure-tol", "(0, inf)", "-1"]),
     (["bem-check", "--maxiter", "0"], ["--maxiter", "[1, inf)", "'0'"]),
     (["analyze", "--band-rows", "0"], ["--band-rows", "[1, inf)", "'0'"]),

@@ -16,10 +16,19 @@ import numpy as np
 import pytest
 import warp as wp
 
-from warptrunc.contact import ContactSolver, default_pentol, influence_spectrum, solve_contact
+from warptrunc.contact import (
+    ContactSolver,
+    CurveSettings,
+    SolverSettings,
+    default_pentol,
+    influence_spectrum,
+    solve_contact,
+)
+from warptrunc.material import Material
 from warptrunc.wm import wm_surface
 
-E_STAR = 70e9 / (1 - 0.33**2)  # aluminium on a rigid flat (Pa)
+MATERIAL = Material()  # aluminium on a rigid flat
+E_STAR = MATERIAL.contact_modulus  # E/(1 − ν²) (Pa)
 
 
 pytestmark = pytest.mark.usefixtures("cupy_on_cuda")  # cuFFT on a CUDA device
@@ -117,10 +126,12 @@ def test_spectrum_built_in_slabs(monkeypatch, substrate, shape, dtype):
     from warptrunc.contact import ElasticHalfSpace, influence_table
     from warptrunc.contact import influence as inf
 
-    monkeypatch.setattr(inf.build_free_spectrum, "__kwdefaults__", {"xp": np, "rfft": None,
-                                                                    "slab_elements": 300})
-    monkeypatch.setattr(inf.build_periodic_spectrum, "__kwdefaults__", {"xp": np,
-                                                                        "slab_elements": 70})
+    monkeypatch.setattr(
+        inf.build_free_spectrum, "__kwdefaults__", {"xp": np, "rfft": None, "slab_elements": 300}
+    )
+    monkeypatch.setattr(
+        inf.build_periodic_spectrum, "__kwdefaults__", {"xp": np, "slab_elements": 70}
+    )
     pixel = (1e-6, 1.3e-6)
     hs = ElasticHalfSpace(shape, pixel, E_STAR, substrate=substrate, dtype=dtype, device="cpu")
     w = influence_spectrum(shape, pixel, E_STAR, substrate)
@@ -153,8 +164,14 @@ def test_memory_model_equals_allocations(substrate, n, dtype, hardness):
     with wp.ScopedMemoryTracker("solver", print=False):
         runtime.core.wp_alloc_tracker_reset()
         base = runtime.core.wp_alloc_tracker_get_current_bytes()
-        sol = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, substrate=substrate, dtype=dtype,
-                            hardness=hardness, device="cpu")  # fmt: skip
+        sol = ContactSolver(
+            s.heights,
+            (s.dx, s.dy),
+            E_STAR,
+            hardness=hardness,
+            device="cpu",
+            settings=SolverSettings(substrate=substrate, dtype=dtype),
+        )
         sol.solve(0.2 * s.Rt)
         sol.punch_stiffness()
         peak = runtime.core.wp_alloc_tracker_get_peak_bytes() - base
@@ -198,8 +215,13 @@ def test_direct_corrections_equal_transforms(device):
     s = wm_surface(2.5, L=1e-3, n=96, seed=4, device="cpu")
     out = []
     for direct_max in (0, 10**6):
-        sol = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, direct_max=direct_max,
-                            algorithm="pk", device=device)  # fmt: skip
+        sol = ContactSolver(
+            s.heights,
+            (s.dx, s.dy),
+            E_STAR,
+            device=device,
+            settings=SolverSettings(direct_max=direct_max, algorithm="pk"),
+        )
         out.append([sol.solve(f * s.Rt) for f in (0.1, 0.2)])
     for a, b in zip(*out, strict=True):
         assert a.converged and b.converged
@@ -223,8 +245,14 @@ def test_hertz(device, method):
     """
     n, L, R = 128, 1e-3, 0.05  # contact radius 20, 29 and 35 pixels of 7.8 µm
     d = np.array([0.1, 0.2, 0.3]) * (L / 2) ** 2 / R
-    c = solve_contact(_sphere(n, L, R), d, pixel_size=L / n, contact_modulus=E_STAR,
-                      stiffness=method, device=device)  # fmt: skip
+    c = solve_contact(
+        _sphere(n, L, R),
+        d,
+        material=MATERIAL,
+        pixel_size=L / n,
+        device=device,
+        curve=CurveSettings(stiffness=method),
+    )
     assert c.all_converged
     np.testing.assert_allclose(c.load, 4 / 3 * E_STAR * math.sqrt(R) * d**1.5, rtol=0.02)
     np.testing.assert_allclose(np.sqrt(c.area / math.pi), np.sqrt(R * d), rtol=0.05)
@@ -238,10 +266,20 @@ def test_barber_equals_central_difference(device):
     z = _sphere(n, L, R)
     d = np.array([0.15, 0.3]) * (L / 2) ** 2 / R
     kb = solve_contact(
-        z, d, pixel_size=L / n, contact_modulus=E_STAR, stiffness="barber", device=device
+        z,
+        d,
+        material=MATERIAL,
+        pixel_size=L / n,
+        device=device,
+        curve=CurveSettings(stiffness="barber"),
     )
     kc = solve_contact(
-        z, d, pixel_size=L / n, contact_modulus=E_STAR, stiffness="central", device=device
+        z,
+        d,
+        material=MATERIAL,
+        pixel_size=L / n,
+        device=device,
+        curve=CurveSettings(stiffness="central"),
     )
     np.testing.assert_allclose(kb.stiffness, kc.stiffness, rtol=0.01)
 
@@ -258,7 +296,7 @@ def test_flat_punch(device):
     disk = X**2 + Y**2 <= (40 * dx) ** 2
     z = np.where(disk, 0.0, -1e-6)
     delta = 1e-9
-    c = solve_contact(z, [delta], pixel_size=dx, contact_modulus=E_STAR, device=device)
+    c = solve_contact(z, [delta], material=MATERIAL, pixel_size=dx, device=device)
     a = math.sqrt(np.count_nonzero(disk) / math.pi) * dx
     assert c.all_converged
     assert c.n_contact[0] == np.count_nonzero(disk)
@@ -277,8 +315,15 @@ def test_westergaard_periodic(device):
     p_star = math.pi * E_STAR * h0 / lam
     for frac in (0.1, 0.3, 0.6):
         load = frac * p_star * lam * ny * dx
-        c = solve_contact(z, loads=[load], pixel_size=dx, contact_modulus=E_STAR,
-                          substrate="periodic", stiffness="none", device=device)  # fmt: skip
+        c = solve_contact(
+            z,
+            material=MATERIAL,
+            loads=[load],
+            pixel_size=dx,
+            device=device,
+            settings=SolverSettings(substrate="periodic"),
+            curve=CurveSettings(stiffness="none"),
+        )
         assert c.all_converged
         np.testing.assert_allclose(c.load, load, rtol=1e-5)
         width = c.n_contact[0] / ny * dx  # 2a (m)
@@ -296,8 +341,15 @@ def _westergaard(nx: int, ny: int, device, fractions):
     z = np.tile(delta * np.cos(2 * np.pi * x / lam), (ny, 1))
     p_star = math.pi * E_STAR * delta / lam
     loads = [f * p_star * lam * ny * dx for f in fractions]
-    c = solve_contact(z, loads=loads, pixel_size=dx, contact_modulus=E_STAR,
-                      substrate="periodic", stiffness="none", device=device)  # fmt: skip
+    c = solve_contact(
+        z,
+        material=MATERIAL,
+        loads=loads,
+        pixel_size=dx,
+        device=device,
+        settings=SolverSettings(substrate="periodic"),
+        curve=CurveSettings(stiffness="none"),
+    )
     np.testing.assert_allclose(c.load, loads, rtol=1e-5)
     width = c.n_contact / ny  # 2a in pixels (the contact is uniform in y)
     expect = 2 * nx / math.pi * np.arcsin(np.sqrt(fractions))
@@ -340,8 +392,14 @@ def test_wm_map_equals_contactmechanics(device, substrate):
     s = wm_surface(2.5, L=1e-3, n=128, seed=3, device="cpu")
     d = np.array([0.05, 0.1, 0.2, 0.3]) * s.Rt
     ref = _cm_solves(s.heights, s.dx, d, substrate=substrate)
-    c = solve_contact(s, d, contact_modulus=E_STAR, substrate=substrate, stiffness="central",
-                      device=device)  # fmt: skip
+    c = solve_contact(
+        s,
+        d,
+        material=MATERIAL,
+        device=device,
+        settings=SolverSettings(substrate=substrate),
+        curve=CurveSettings(stiffness="central"),
+    )
     assert c.all_converged
     np.testing.assert_allclose(c.load, ref[:, 0], rtol=1e-3)
     np.testing.assert_allclose(c.area, ref[:, 1], rtol=1e-3)
@@ -358,7 +416,9 @@ def test_load_control_equals_contactmechanics(device):
     s = wm_surface(2.5, L=1e-3, n=64, seed=5, device="cpu")
     loads = [0.5, 2.0]
     ref = _cm_solves(s.heights, s.dx, loads, loads=loads)
-    c = solve_contact(s, loads=loads, contact_modulus=E_STAR, stiffness="none", device=device)
+    c = solve_contact(
+        s, material=MATERIAL, loads=loads, device=device, curve=CurveSettings(stiffness="none")
+    )
     assert c.all_converged
     np.testing.assert_allclose(c.load, ref[:, 0], rtol=1e-5)
     np.testing.assert_allclose(c.area, ref[:, 1], rtol=1e-3)
@@ -372,7 +432,9 @@ def test_measured_scan_equals_contactmechanics(scans_dir, device):
     s = read_height_map(scans_dir / "matrix-4.txt")
     d = np.array([0.1, 0.25]) * s.Rt
     ref = _cm_solves(s.heights, s.dx, d)
-    c = solve_contact(s, d, contact_modulus=E_STAR, stiffness="central", device=device)
+    c = solve_contact(
+        s, d, material=MATERIAL, device=device, curve=CurveSettings(stiffness="central")
+    )
     assert c.all_converged
     np.testing.assert_allclose(c.load, ref[:, 0], rtol=1e-3)
     np.testing.assert_allclose(c.area, ref[:, 1], rtol=1e-3)
@@ -384,8 +446,10 @@ def test_float32_close_to_float64(device):
     Barber k within 1e-4 relative (measured ≤ 5e-7, 0 and 3e-6 at 128²)."""
     s = wm_surface(2.5, L=1e-3, n=128, seed=1, device="cpu")
     d = np.array([0.1, 0.2, 0.3]) * s.Rt
-    a = solve_contact(s, d, contact_modulus=E_STAR, device=device)
-    b = solve_contact(s, d, contact_modulus=E_STAR, dtype="float32", device=device)
+    a = solve_contact(s, d, material=MATERIAL, device=device)
+    b = solve_contact(
+        s, d, material=MATERIAL, device=device, settings=SolverSettings(dtype="float32")
+    )
     assert a.all_converged and b.all_converged
     np.testing.assert_allclose(b.load, a.load, rtol=1e-5)
     np.testing.assert_allclose(b.area, a.area, rtol=1e-3)
@@ -399,7 +463,9 @@ def test_maps_and_columns(device):
     """Pressure and gap maps: pressure ≥ 0, gap ≥ −pentol, no pressure where the gap is open,
     Σ pressure·dx² = F; to_dict() gives 1-D columns."""
     s = wm_surface(2.5, L=1e-3, n=64, seed=2, device="cpu")
-    c = solve_contact(s, [0.2 * s.Rt], contact_modulus=E_STAR, maps=True, device=device)
+    c = solve_contact(
+        s, [0.2 * s.Rt], material=MATERIAL, device=device, curve=CurveSettings(maps=True)
+    )
     p, g = c.pressure[0], c.gap[0]
     assert p.shape == g.shape == (64, 64)
     tol = c.settings["pentol_m"]
@@ -415,7 +481,7 @@ def test_unconverged_rows_are_flagged(device):
     """A solve stopped at maxiter is kept and flagged, never dropped."""
     s = wm_surface(2.5, L=1e-3, n=64, seed=2, device="cpu")
     d = np.array([0.1, 0.2]) * s.Rt
-    c = solve_contact(s, d, contact_modulus=E_STAR, maxiter=1, device=device)
+    c = solve_contact(s, d, material=MATERIAL, device=device, settings=SolverSettings(maxiter=1))
     assert c.depth.size == 2
     assert not c.converged.any()
     assert np.all(c.n_iterations == 1)
@@ -443,8 +509,8 @@ def test_memory_refused_before_allocating(monkeypatch):
 def test_bad_arguments():
     z = np.zeros((8, 8))
     with pytest.raises(ValueError, match="substrate must be one of"):
-        ContactSolver(z, 1e-6, E_STAR, substrate="halfspace", device="cpu")
+        ContactSolver(z, 1e-6, E_STAR, device="cpu", settings=SolverSettings(substrate="halfspace"))
     with pytest.raises(ValueError, match="dtype must be one of"):
-        ContactSolver(z, 1e-6, E_STAR, dtype="float16", device="cpu")
+        ContactSolver(z, 1e-6, E_STAR, device="cpu", settings=SolverSettings(dtype="float16"))
     with pytest.raises(ValueError, match="exactly one of depths"):
-        solve_contact(z, pixel_size=1e-6, contact_modulus=E_STAR, device="cpu")
+        solve_contact(z, material=MATERIAL, pixel_size=1e-6, device="cpu")

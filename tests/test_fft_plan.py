@@ -68,8 +68,7 @@ def test_both_plans_same_solution_and_modelled_memory(dtype):
         with wp.ScopedMemoryTracker("plan", print=False):
             runtime.core.wp_alloc_tracker_reset()
             base = runtime.core.wp_alloc_tracker_get_current_bytes()
-            sol = ContactSolver(h, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev,
-                                fft_plan=plan)  # fmt: skip
+            sol = ContactSolver(h, (s.dx, s.dy), E_STAR, device=dev, settings=SolverSettings(dtype=dtype, fft_plan=plan))
             assert sol.fft_plan == plan
             r = sol.solve(0.2 * s.Rt)
             sol.punch_stiffness()

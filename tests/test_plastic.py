@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from warptrunc import Material, SolverSettings, wm_surface
-from warptrunc.contact import ContactSolver, influence_spectrum, solve_contact
+from warptrunc.contact import ContactSolver, CurveSettings, influence_spectrum, solve_contact
 
 E_STAR = 70e9 / (1 - 0.33**2)  # aluminium on a rigid flat (Pa)
 H_AL = 1.0e9  # a hardness with some 10–80 % of the contact at the cap on these maps (Pa)
@@ -38,10 +38,9 @@ def test_huge_hardness_equals_elastic(device, dtype):
     capped path and equals the elastic solver to round-off: same contact pixels, F within 1e-9
     (float64) or 1e-5 (float32), no plastic pixel."""
     s = _surface()
-    el = ContactSolver(s.heights, s.dx, E_STAR, dtype=dtype, device=device)
-    inf = ContactSolver(s.heights, s.dx, E_STAR, dtype=dtype, hardness=math.inf, device=device)
-    big = ContactSolver(s.heights, s.dx, E_STAR, dtype=dtype, hardness=1e6 * E_STAR,
-                        device=device)  # fmt: skip
+    el = ContactSolver(s.heights, s.dx, E_STAR, device=device, settings=SolverSettings(dtype=dtype))
+    inf = ContactSolver(s.heights, s.dx, E_STAR, hardness=math.inf, device=device, settings=SolverSettings(dtype=dtype))
+    big = ContactSolver(s.heights, s.dx, E_STAR, hardness=1e6 * E_STAR, device=device, settings=SolverSettings(dtype=dtype))
     rtol = 1e-9 if dtype == "float64" else 1e-5
     for f in (0.1, 0.2, 0.3):
         a, b, c = (x.solve(f * s.Rt) for x in (el, inf, big))
@@ -61,8 +60,7 @@ def test_complementarity(device, substrate, dtype, algorithm):
     """At convergence of every loading solve: gap ≥ −pentol, 0 ≤ p ≤ H, |gap| ≤ pentol where
     p > 0 (p·gap ≈ 0), and the plastic displacement grows only where p = H."""
     s = _surface()
-    sol = ContactSolver(s.heights, s.dx, E_STAR, hardness=H_AL, substrate=substrate,
-                        dtype=dtype, algorithm=algorithm, device=device)  # fmt: skip
+    sol = ContactSolver(s.heights, s.dx, E_STAR, hardness=H_AL, device=device, settings=SolverSettings(substrate=substrate, dtype=dtype, algorithm=algorithm))
     tol = sol.pentol * (1 + 1e-3) + (1e-12 if dtype == "float64" else 1e-6 * s.Rt)
     w_old = sol.plastic_displacement()
     for f in (0.15, 0.3, 0.45):
@@ -109,7 +107,7 @@ def test_reloading_and_unloading(device, dtype):
     no plastic volume beyond the solver's tolerance (each pixel at the cap may flow by at most
     ``pentol`` more: the peak's penetration was converged to within it)."""
     s = _surface()
-    sol = ContactSolver(s.heights, s.dx, E_STAR, hardness=H_AL, dtype=dtype, device=device)
+    sol = ContactSolver(s.heights, s.dx, E_STAR, hardness=H_AL, device=device, settings=SolverSettings(dtype=dtype))
     peak = sol.solve(0.4 * s.Rt)
     w_peak = sol.plastic_displacement()
     for f in (0.38, 0.3, 0.2):
@@ -188,8 +186,9 @@ def test_reset_forgets_the_plastic_state(device):
 
 
 def test_solve_contact_material_and_plastic_columns(device):
-    """``solve_contact`` reads E* and H from a Material (or ``hardness=``); the curve has the
-    plastic columns (zero when elastic); the central difference is refused with H < inf."""
+    """``solve_contact`` reads E* and H from a Material: its rows are those of a
+    ``ContactSolver`` with that E* and H; the curve has the plastic columns (zero when
+    elastic); the central difference is refused with H < inf."""
     s = _surface()
     m = Material(hardness=H_AL)
     d = np.array([0.1, 0.3]) * s.Rt
@@ -197,32 +196,31 @@ def test_solve_contact_material_and_plastic_columns(device):
     cols = c.to_dict()
     assert cols["plastic_area_m2"][-1] > 0 and cols["plastic_volume_m3"][-1] > 0
     assert np.all(np.diff(cols["plastic_volume_m3"]) >= 0)
-    e = solve_contact(s, d, contact_modulus=m.contact_modulus, device=device)
+    e = solve_contact(s, d, material=m.replace(hardness=math.inf), device=device)
     assert not np.any(e.to_dict()["plastic_area_m2"])
-    k = solve_contact(s, d, contact_modulus=m.contact_modulus, hardness=H_AL, device=device)
-    np.testing.assert_array_equal(k.n_plastic, c.n_plastic)
+    solver = ContactSolver(s.heights, s.dx, m.contact_modulus, hardness=H_AL, device=device)
+    np.testing.assert_array_equal([solver.solve(v).n_plastic for v in d], c.n_plastic)
     with pytest.raises(ValueError, match="central"):
-        solve_contact(s, d, material=m, stiffness="central", device=device)
+        solve_contact(s, d, material=m, device=device, curve=CurveSettings(stiffness="central"))
 
 
-def test_settings_and_legacy_keywords(device):
-    """Settings object and the legacy keywords build the same solver; bad values name the field;
-    the old dict access to a solve's result warns."""
+def test_settings_are_one_object(device):
+    """The solver's settings come in one object; bad values name the field; the settings'
+    fields are no keywords of the solver; a solve's result is read by attribute."""
     s = _surface(32)
     a = ContactSolver(s.heights, s.dx, E_STAR, settings=SolverSettings(dtype="float32",
                       maxiter=50), device=device)  # fmt: skip
-    b = ContactSolver(s.heights, s.dx, E_STAR, dtype="float32", maxiter=50, device=device)
-    assert (a.dtype, a.maxiter) == (b.dtype, b.maxiter) == ("float32", 50)
-    assert a.solve(0.2 * s.Rt) == b.solve(0.2 * s.Rt)
+    assert (a.dtype, a.maxiter) == ("float32", 50)
     with pytest.raises(ValueError, match="maxiter"):
         SolverSettings(maxiter=0)
     with pytest.raises(ValueError, match="hardness"):
         ContactSolver(s.heights, s.dx, E_STAR, hardness=-1.0, device=device)
-    with pytest.raises(TypeError, match="tolerance"):
-        ContactSolver(s.heights, s.dx, E_STAR, tolerance=1.0, device=device)
-    st = b.solve(0.2 * s.Rt)
-    with pytest.warns(DeprecationWarning, match="load"):
-        assert st["load"] == st.load
+    for kw in ({"tolerance": 1.0}, {"dtype": "float32"}):
+        with pytest.raises(TypeError, match=next(iter(kw))):
+            ContactSolver(s.heights, s.dx, E_STAR, device=device, **kw)
+    st = a.solve(0.2 * s.Rt)
+    with pytest.raises(TypeError):
+        st["load"]
     assert set(st.to_dict()) >= {"depth_m", "load_N", "plastic_area_m2", "plastic_volume_m3"}
 
 
@@ -247,7 +245,7 @@ def test_equals_contactmechanics_plastic_system(device, algorithm):
     sizes = (s.lx, s.ly)
     topo = PlasticTopography(Topography(hT, physical_sizes=sizes, periodic=False), H_AL)
     system = PlasticNonSmoothContactSystem(FreeFFTElasticHalfSpace(hT.shape, E_STAR, sizes), topo)
-    sol = ContactSolver(h, s.dx, E_STAR, hardness=H_AL, algorithm=algorithm, device=device)
+    sol = ContactSolver(h, s.dx, E_STAR, hardness=H_AL, device=device, settings=SolverSettings(algorithm=algorithm))
     kw = {"pentol": sol.pentol, "forcetol": sol.forcetol, "maxiter": 100000}
     cap = H_AL * s.dx * s.dx
     u0 = None
@@ -289,8 +287,7 @@ def test_load_control_under_complete_contact_converges(device, dtype, algorithm)
     y, x = np.mgrid[0:n, 0:n]
     z = -8e-9 * (x + y) / (2 * n)  # m
     area = (n * dx) ** 2
-    sol = ContactSolver(z, dx, E_STAR, hardness=H_AL, dtype=dtype, algorithm=algorithm,
-                        device=device)  # fmt: skip
+    sol = ContactSolver(z, dx, E_STAR, hardness=H_AL, device=device, settings=SolverSettings(dtype=dtype, algorithm=algorithm))
     for p_mean in (2e7, 5e7, 1e8):  # Pa, 2–10 % of H
         st = sol.solve(load=p_mean * area)
         assert st.converged, (dtype, p_mean)

@@ -32,10 +32,10 @@ if len(jax.devices("cpu")) < 2:
     # tests/conftest.py sets the flag before any module imports JAX: never skip silently
     raise RuntimeError("JAX was started with one host device before this module (XLA_FLAGS)")
 
-from warptrunc.contact import ContactSolver, influence_spectrum  # noqa: E402
+from warptrunc.contact import ContactSolver, SolverSettings, influence_spectrum  # noqa: E402
 from warptrunc.contact.sharded import ShardedContactSolver  # noqa: E402
-from warptrunc.contact.sharded_devices import devices_needed  # noqa: E402
-from warptrunc.contact.sharded_fft import slab_layout  # noqa: E402
+from warptrunc.contact.sharded.devices import devices_needed  # noqa: E402
+from warptrunc.contact.sharded.fft import slab_layout  # noqa: E402
 
 pytestmark = pytest.mark.timeout(300)
 
@@ -132,9 +132,9 @@ def test_convolution_is_two_all_to_alls_and_exact():
 def test_elastic_equals_one_device(substrate, dtype):
     """Load control, then displacement control, then Barber's stiffness: the same numbers as
     the one-device solver."""
-    kw = {"substrate": substrate, "dtype": dtype}
-    one = ContactSolver(H256, DX, E, device="cpu", direct_max=0, **kw)
-    two = ContactSolver(H256, DX, E, devices=2, **kw)
+    st = SolverSettings(substrate=substrate, dtype=dtype)
+    one = ContactSolver(H256, DX, E, device="cpu", settings=st.replace(direct_max=0))
+    two = ContactSolver(H256, DX, E, devices=2, settings=st)
     assert isinstance(two, ShardedContactSolver)
     tol = TOL[dtype]
     a, b = one.solve(load=LOAD), two.solve(load=LOAD)
@@ -164,10 +164,11 @@ def test_elastic_equals_one_device(substrate, dtype):
 def test_capped_equals_one_device(substrate, dtype, load_control):
     """Elastic–plastic (a pressure cap at H): loading flows the surface, unloading is elastic;
     the plastic state equals the one-device solver's."""
-    kw = {"substrate": substrate, "dtype": dtype, "load_control": load_control}
+    st = SolverSettings(substrate=substrate, dtype=dtype, load_control=load_control)
     hardness = 2e-2 * E
-    one = ContactSolver(H256, DX, E, device="cpu", hardness=hardness, direct_max=0, **kw)
-    two = ContactSolver(H256, DX, E, devices=["cpu:0", "cpu:1"], hardness=hardness, **kw)
+    direct = st.replace(direct_max=0)
+    one = ContactSolver(H256, DX, E, device="cpu", hardness=hardness, settings=direct)
+    two = ContactSolver(H256, DX, E, devices=["cpu:0", "cpu:1"], hardness=hardness, settings=st)
     tol = TOL[dtype]
     peak = None
     for load in (LOAD, 0.5 * LOAD):
@@ -188,10 +189,10 @@ def test_capped_equals_one_device(substrate, dtype, load_control):
 
 def test_blocked_columns_equal_one_device(monkeypatch):
     """The column stage in blocks (chosen for large slabs, forced here): the same solve."""
-    import warptrunc.contact.sharded_grid as sf
+    import warptrunc.contact.sharded.grid as sf
 
     monkeypatch.setattr(sf, "BLOCKS_ABOVE", 0)
-    one = ContactSolver(H256, DX, E, device="cpu", direct_max=0)
+    one = ContactSolver(H256, DX, E, device="cpu", settings=SolverSettings(direct_max=0))
     two = ContactSolver(H256, DX, E, devices=2)
     assert two.hs.layout.blocks == sf.COLUMN_BLOCKS
     a, b = one.solve(load=LOAD), two.solve(load=LOAD)
@@ -228,7 +229,7 @@ def test_devices_argument():
     with pytest.raises(ValueError, match="must divide ny; got 2"):
         ContactSolver(H256[:63, :64], DX, E, devices=2)
     with pytest.raises(ValueError, match=r"settings\.algorithm must be 'bccg'"):
-        ContactSolver(H256[:64, :64], DX, E, devices=2, algorithm="pk")
+        ContactSolver(H256[:64, :64], DX, E, devices=2, settings=SolverSettings(algorithm="pk"))
 
 
 def test_auto_spreads_what_does_not_fit(monkeypatch):
@@ -266,8 +267,8 @@ def test_memory_model_covers_the_compiled_steps(substrate, dtype, blocked, monke
     """The per-device model is at least what XLA's compiled CG step and preconditioner need
     (arguments, results and temporaries of the CPU compile, plus the maps held beside them),
     and not far above."""
-    import warptrunc.contact.sharded_grid as sf
-    from warptrunc.contact.sharded_steps import make_step
+    import warptrunc.contact.sharded.grid as sf
+    from warptrunc.contact.sharded.steps import make_step
 
     if blocked:
         monkeypatch.setattr(sf, "BLOCKS_ABOVE", 0)
@@ -314,9 +315,10 @@ def test_solve_contact_and_bem_check_take_devices(tmp_path, capsys):
 
     from warptrunc.cli import main
     from warptrunc.contact import solve_contact
+    from warptrunc.material import Material
 
     h = H256[:64, :64]
-    kw = {"pixel_size": DX, "contact_modulus": E, "depths": [0.3e-6, 0.5e-6]}
+    kw = {"pixel_size": DX, "material": Material(E=E, nu=0.0), "depths": [0.3e-6, 0.5e-6]}
     one = solve_contact(h, device="cpu", **kw)
     two = solve_contact(h, devices=2, **kw)
     assert two.settings["device"] == "cpu:0+cpu:1" and one.settings["device"] == "cpu"
@@ -340,8 +342,8 @@ def test_spectrum_in_pieces_equals_one_piece(monkeypatch):
     """The kernel spectrum built in pieces (rows of the x stage, columns of the y stage; forced
     small here) equals the one built in one piece (to round-off: XLA fuses the pieces
     differently), and the one-device solver's spectrum."""
-    import warptrunc.contact.sharded_grid as sg
-    import warptrunc.contact.sharded_spectrum as ss
+    import warptrunc.contact.sharded.grid as sg
+    import warptrunc.contact.sharded.spectrum as ss
 
     devs = tuple(jax.devices("cpu")[:2])
     shape = (128, 96)
@@ -362,8 +364,8 @@ def test_spectrum_build_fits_the_model_at_65536():
     for the CPU, not run): within the model (``build_bytes``), which is below the solve's own
     per-device peak; the build in one piece (the cause of the out-of-memory error on 4 × H200)
     needed more than the model allows."""
-    import warptrunc.contact.sharded_grid as sg
-    import warptrunc.contact.sharded_spectrum as ss
+    import warptrunc.contact.sharded.grid as sg
+    import warptrunc.contact.sharded.spectrum as ss
 
     shape, devs = (65536, 65536), tuple(jax.devices("cpu")[:2])
     lay = slab_layout(shape, "free", "float32", devs, 4)
@@ -400,8 +402,8 @@ def test_fft_calls_stay_below_2_31_elements_at_65536(monkeypatch):
     holds 2³¹ elements or more: XLA's GPU FFT leaves such an inverse transform unscaled
     (openxla/xla#45009), which made a 65536² solve on 4 × H200 about 10⁵ times too
     compliant. Without the row blocks the same programme has such calls."""
-    import warptrunc.contact.sharded_fft as sf
-    import warptrunc.contact.sharded_grid as sg
+    import warptrunc.contact.sharded.fft as sf
+    import warptrunc.contact.sharded.grid as sg
 
     shape, devs = (65536, 65536), tuple(jax.devices("cpu")[:2])
     big_y, _, _, nkp = sg._grid(shape, "free", 2)
@@ -423,11 +425,11 @@ def test_fft_calls_stay_below_2_31_elements_at_65536(monkeypatch):
 def test_blocked_rows_equal_one_device(monkeypatch):
     """Row (and column) transforms in blocks, forced by a small FFT_ELEMENTS_MAX: the same
     solve as one device."""
-    import warptrunc.contact.sharded_grid as sg
+    import warptrunc.contact.sharded.grid as sg
 
     monkeypatch.setattr(sg, "FFT_ELEMENTS_MAX", 1 << 12)
     assert sg.row_blocks(128, 512) == 16 and sg.row_blocks(100, 512) == 20
-    one = ContactSolver(H256, DX, E, device="cpu", direct_max=0)
+    one = ContactSolver(H256, DX, E, device="cpu", settings=SolverSettings(direct_max=0))
     two = ContactSolver(H256, DX, E, devices=2)
     assert two.hs.layout.blocks > 1
     a, b = one.solve(load=LOAD), two.solve(load=LOAD)
@@ -439,8 +441,8 @@ def test_unit_force_check(substrate, dtype, monkeypatch):
     """The half-space's own check at construction (a unit force against the closed form):
     passes for the real convolution, and raises when the convolution is 131072 times too
     large, as XLA's unscaled inverse FFT of 2³¹ elements made it."""
-    import warptrunc.contact.sharded_fft as sf
-    from warptrunc.contact.sharded_spectrum import unit_force_check
+    import warptrunc.contact.sharded.fft as sf
+    from warptrunc.contact.sharded.spectrum import unit_force_check
 
     shape = (128, 96)
     hs = sf.ShardedHalfSpace(shape, (DX, 2 * DX), E, substrate=substrate, dtype=dtype,

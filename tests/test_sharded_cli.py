@@ -156,7 +156,7 @@ def test_worker_groups(monkeypatch):
     ``devices=G`` in such a process is spread over that group."""
     from types import SimpleNamespace
 
-    from warptrunc.contact.sharded_devices import choose_devices
+    from warptrunc.contact.sharded.devices import choose_devices
     from warptrunc.sweep.cluster import PinDevice
     from warptrunc.sweep.groups import GROUP_ENV, group_size, worker_group
 
@@ -205,7 +205,7 @@ def test_xla_out_of_memory_ends_the_command(monkeypatch, capsys):
     the process ended at once (os._exit: the other devices may wait in a collective forever, as
     a 65536² run on 4 × H200 did); a ValueError after a spread solve returns normally."""
     import warptrunc.cli.bem_check as cmd
-    import warptrunc.contact.sharded_devices as sd
+    import warptrunc.contact.sharded.devices as sd
 
     text = ("RESOURCE_EXHAUSTED: Out of memory while trying to allocate 60.81GiB.\n"
             "=== Source Location Trace: ===\nexternal/xla+/xla/stream_executor/cuda/x.cc:45")

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """One contact problem over two *processes* (the way several hosts join: ``jax.distributed``,
-``warptrunc.contact.sharded_grid.PROCESS_ENV``), one host device each, against the one-device
+``warptrunc.contact.sharded.grid.PROCESS_ENV``), one host device each, against the one-device
 Warp solver run in each process: the same approach, load, contact pixels and Barber's stiffness
 within 1e-9 relative (float64), and the two processes identical to each other bit for bit.
 
@@ -25,7 +25,7 @@ pytestmark = pytest.mark.timeout(300)
 SCRIPT = r"""
 import json, sys
 import numpy as np
-from warptrunc.contact import ContactSolver
+from warptrunc.contact import ContactSolver, SolverSettings
 from warptrunc.contact.sharded import ShardedContactSolver
 
 n, dx, E = 128, 1e-6, 1e9
@@ -40,7 +40,7 @@ import jax
 two = ContactSolver(h, dx, E, devices=2)
 assert isinstance(two, ShardedContactSolver) and jax.process_count() == 2
 b = two.solve(load=load)
-one = ContactSolver(h, dx, E, device="cpu", direct_max=0)
+one = ContactSolver(h, dx, E, device="cpu", settings=SolverSettings(direct_max=0))
 a = one.solve(load=load)
 print("RESULT " + json.dumps({
     "process": jax.process_index(), "devices": [str(d) for d in two.hs.devices],

@@ -46,7 +46,7 @@ import warp as wp
 from _common import git_commit
 
 import warptrunc
-from warptrunc.contact import ContactSolver, default_pentol, influence_spectrum
+from warptrunc.contact import ContactSolver, SolverSettings, default_pentol, influence_spectrum
 from warptrunc.wm import wm_surface
 
 E_STAR = 70e9 / (1 - 0.33**2)
@@ -92,9 +92,8 @@ def run_solver(s, dtype: str, dev) -> dict:
     device memory the solver holds after them."""
     free_pools(dev)
     base = device_used_bytes(dev) if dev.is_cuda else 0
-    solver = ContactSolver(
-        s.heights, (s.dx, s.dy), E_STAR, dtype=dtype, direct_max=DIRECT_MAX, device=dev
-    )
+    settings = SolverSettings(dtype=dtype, direct_max=DIRECT_MAX)
+    solver = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, settings=settings, device=dev)
     _sync(dev)
     t0 = time.perf_counter()
     solver.solve(FRACTIONS[0] * s.Rt)

@@ -174,8 +174,8 @@ def solve_warptrunc(h: np.ndarray, substrate: str, dtype: str, pentol: float | N
     from warptrunc.contact import ContactSolver, SolverSettings
 
     n = h.shape[0]
-    st = SolverSettings(substrate=substrate, dtype=dtype, pentol=pentol)
-    s = ContactSolver(h, 1.0 / n, E_STAR, settings=st, device=device, maxiter=2000)
+    st = SolverSettings(substrate=substrate, dtype=dtype, pentol=pentol, maxiter=2000)
+    s = ContactSolver(h, 1.0 / n, E_STAR, settings=st, device=device)
     wp.synchronize_device(s.device)
     t0 = time.perf_counter()
     state = s.solve(load=P_MEAN)

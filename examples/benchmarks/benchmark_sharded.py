@@ -127,7 +127,7 @@ def check(args) -> None:
     """2 devices against 1 (module docstring)."""
     import jax
 
-    from warptrunc.contact import ContactSolver
+    from warptrunc.contact import ContactSolver, SolverSettings
 
     h = surface(args.n, args.maps).astype(np.float64)
     dx = L / args.n
@@ -137,10 +137,10 @@ def check(args) -> None:
             rec = {"step": "check", "n": args.n, "substrate": substrate, "dtype": dtype,
                    "ndev": 2, "devices": device_names()[:2]}  # fmt: skip
             try:
-                kw = {"substrate": substrate, "dtype": dtype}
+                st = SolverSettings(substrate=substrate, dtype=dtype)
                 t = time.perf_counter()
-                one = ContactSolver(h, dx, E, device=args.device, direct_max=0, **kw)
-                two = ContactSolver(h, dx, E, devices=jax.devices()[:2], **kw)
+                one = ContactSolver(h, dx, E, device=args.device, settings=st.replace(direct_max=0))
+                two = ContactSolver(h, dx, E, devices=jax.devices()[:2], settings=st)
                 rec["setup_s"] = time.perf_counter() - t
                 out = {}
                 for name, solver in (("one", one), ("two", two)):
@@ -214,14 +214,15 @@ def solve(args) -> None:
     rec = {"step": "solve", "map": args.map, "n": args.n, "ndev": args.ndev, "dtype": args.dtype,
            "substrate": args.substrate, "maxiter": args.maxiter}  # fmt: skip
     try:
-        from warptrunc.contact import ContactSolver
+        from warptrunc.contact import ContactSolver, SolverSettings
 
         t = time.perf_counter()
         h = surface(args.n, args.maps)
         rec["surface_s"] = time.perf_counter() - t
         dx = L / args.n
         rt = float(np.ptp(h))
-        kw = {"substrate": args.substrate, "dtype": args.dtype, "maxiter": args.maxiter}
+        kw = {"settings": SolverSettings(substrate=args.substrate, dtype=args.dtype,
+                                         maxiter=args.maxiter)}
         shape = (args.n, args.n)
         rec["model_bytes_per_device"] = ContactSolver.memory_bytes(
             shape, args.substrate, args.dtype, devices=args.ndev

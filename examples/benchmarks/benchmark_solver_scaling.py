@@ -41,7 +41,7 @@ import warp as wp
 from _common import git_commit
 
 import warptrunc
-from warptrunc.contact import ContactSolver
+from warptrunc.contact import ContactSolver, SolverSettings
 from warptrunc.wm import wm_surface
 
 E_STAR = 70e9 / (1 - 0.33**2)
@@ -101,11 +101,11 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
         core.wp_alloc_tracker_reset()
         base = core.wp_alloc_tracker_get_current_bytes()
         t0 = time.perf_counter()
-        solver = ContactSolver(h, (s.dx, s.dy), E_STAR, dtype=dtype, device=dev,
-                               algorithm=algorithm, fft_plan=fft_plan,
-                               precondition_above=precondition_above,
-                               pentol=pentol, direct_max=direct_max,
-                               **({} if loop is None else {"loop": loop}))  # fmt: skip
+        settings = SolverSettings(dtype=dtype, algorithm=algorithm, fft_plan=fft_plan,
+                                  precondition_above=precondition_above, pentol=pentol,
+                                  direct_max=direct_max,
+                                  **({} if loop is None else {"loop": loop}))  # fmt: skip
+        solver = ContactSolver(h, (s.dx, s.dy), E_STAR, settings=settings, device=dev)
         wp.synchronize_device(dev)
         t1 = time.perf_counter()
         cold = solver.solve(COLD * s.Rt)

@@ -13,7 +13,7 @@ import time
 
 import warp as wp
 
-from warptrunc.contact import ContactSolver
+from warptrunc.contact import ContactSolver, SolverSettings
 from warptrunc.wm import wm_surface
 
 n = int(sys.argv[1]) if len(sys.argv) > 1 else 32768
@@ -36,9 +36,9 @@ wp.synchronize_device(dev)
 print(f"surface {time.perf_counter() - t:.1f} s", flush=True)
 base = wp.get_mempool_used_mem_high(dev)
 t = time.perf_counter()
-solver = ContactSolver(h, (s.dx, s.dy), E, dtype="float32", device=dev, algorithm=algo,
-                       maxiter=maxiter, fft_plan=plan, substrate=substrate,
-                       precondition_above=pc_above)
+settings = SolverSettings(dtype="float32", algorithm=algo, maxiter=maxiter, fft_plan=plan,
+                          substrate=substrate, precondition_above=pc_above)
+solver = ContactSolver(h, (s.dx, s.dy), E, settings=settings, device=dev)
 wp.synchronize_device(dev)
 need = ContactSolver.memory_bytes((n, n), substrate, "float32", cuda=True, algorithm=algo,
                                   fft_plan=solver.fft_plan, device=dev)

@@ -161,9 +161,9 @@ def main(argv: list[str] | None = None) -> int:
 
 def _xla_out_of_memory(exc: BaseException) -> MemoryError | None:
     """XLA's out-of-memory error as a MemoryError, when a solve was spread (else None)."""
-    if "warptrunc.contact.sharded_devices" not in sys.modules:
+    if "warptrunc.contact.sharded.devices" not in sys.modules:
         return None
-    from ..contact.sharded_devices import out_of_memory
+    from ..contact.sharded.devices import out_of_memory
 
     return out_of_memory(exc)
 
@@ -173,7 +173,7 @@ def _end_spread(status: int, exc: BaseException) -> int:
     several devices, end the process here (``os._exit``, streams flushed): the other devices
     may wait in a collective forever, and the JAX runtime for them at exit (a 65536² run on
     4 × H200 hung after its out-of-memory error until its time limit)."""
-    mod = sys.modules.get("warptrunc.contact.sharded_devices")
+    mod = sys.modules.get("warptrunc.contact.sharded.devices")
     if mod is not None and type(exc).__name__ in mod.XLA_ERRORS and mod.spread_in_use():
         sys.stdout.flush()
         sys.stderr.flush()

@@ -273,7 +273,7 @@ def prepare_devices(devices: int | str | None) -> int | str | None:
     os.environ.setdefault("XLA_PYTHON_CLIENT_PREALLOCATE", "false")
     os.environ.setdefault("XLA_PYTHON_CLIENT_MEM_FRACTION", "0.95")
     try:
-        from ..contact.sharded_grid import import_jax
+        from ..contact.sharded.grid import import_jax
 
         import_jax()
     except ImportError as exc:

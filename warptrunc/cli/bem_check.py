@@ -19,22 +19,22 @@ arguments or a missing extra.
 from __future__ import annotations
 
 import argparse
-import itertools
 import sys
 
 from .._support.atomic import staged_output
+from ..contact.settings import ELASTIC_TRUNCATION, BemCheckSettings, SolverSettings
+from ..params import add_options, from_args
 from ._common import (
+    add_accept_unconverged,
     add_devices,
     add_material,
     add_run_outputs,
     add_surface_source,
-    check_increments,
-    integer,
+    add_truncation,
     material_from_args,
-    positive,
     prepare_devices,
-    real,
     surface_from_args,
+    truncation_from_args,
     warnings_of,
 )
 
@@ -43,82 +43,26 @@ HELP = "elastic boundary-element cross-check of truncation"
 EXIT_NOT_CONVERGED = 3
 """Exit status when any solve did not converge (without --accept-unconverged)."""
 
+SOLVER_FIELDS = ("dtype", "substrate", "pressure_tol", "pentol", "maxiter")
+"""The fields of :class:`~warptrunc.contact.SolverSettings` that ``bem-check`` sets."""
+
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc bem-check``."""
     add_surface_source(p)
-    a = p.add_argument_group("approaches (default: 0.05 0.1 0.15 0.2 0.3 0.4 of R_t)")
-    x = a.add_mutually_exclusive_group()
-    x.add_argument(
-        "--fractions", type=real(0.0, 1.0, unit="(fraction of R_t)"), nargs="+", default=None,
-        help="approaches δ as fractions of R_t, strictly increasing, in (0, 1)",
-    )  # fmt: skip
-    x.add_argument(
-        "--depths", type=positive("m"), nargs="+", default=None,
-        help="approaches δ (m), strictly increasing, in (0, R_t)",
-    )  # fmt: skip
-    g = p.add_argument_group("material (as analyze)")
+    add_options(p, BemCheckSettings, only=("fractions", "depths"),
+                title="approaches (default: 0.05 0.1 0.15 0.2 0.3 0.4 of R_t)")  # fmt: skip
+    g = p.add_argument_group("material and truncation (as analyze)")
     add_material(g)
-    g.add_argument("--beta-prime", type=positive(), default=1.0, help="geometric factor β' of Eq. 2")
-    g.add_argument(
-        "--increments", type=integer(1, 10_000_000), default=400,
-        help="truncation depth increments from 0 to the largest δ (load integral)",
-    )  # fmt: skip
+    add_truncation(g, only=("beta_prime", "increments"), defaults=ELASTIC_TRUNCATION.to_dict())
     s = p.add_argument_group("boundary-element solver")
-    s.add_argument(
-        "--solver", choices=["warptrunc", "contactmechanics"], default="warptrunc",
-        help="warptrunc: constrained CG on --device; contactmechanics: the CPU reference "
-        '(needs pip install "warptrunc[bem]")',
-    )  # fmt: skip
-    s.add_argument(
-        "--stiffness", choices=["central", "barber"], default="central",
-        help="k = dF/dδ by the central difference, or by Barber's flat punch of the contact set "
-        "(warptrunc solver only)",
-    )  # fmt: skip
-    s.add_argument(
-        "--dtype", choices=["float64", "float32"], default="float64",
-        help="precision of the warptrunc solver",
-    )  # fmt: skip
-    s.add_argument(
-        "--substrate", choices=["free", "periodic"], default="free",
-        help="free: non-periodic half-space, zero-padded to 2nx × 2ny; periodic: for periodic maps",
-    )  # fmt: skip
-    s.add_argument(
-        "--fd-step", type=real(0.0, 1.0), default=0.02,
-        help="relative step h of the central difference k = dF/dδ over δ(1 ± h)",
-    )  # fmt: skip
-    s.add_argument(
-        "--pressure-tol", type=positive(), default=1e-5,
-        help="tolerance on tensile/pad pressure relative to E* (dimensionless)",
-    )  # fmt: skip
-    s.add_argument(
-        "--pentol", type=positive("m"), default=None,
-        help="tolerance on penetration (m); default rms height/(10·mean n)",
-    )  # fmt: skip
-    s.add_argument("--maxiter", type=integer(1), default=10000, help="largest CG iterations per solve")
+    add_options(s, BemCheckSettings, only=("solver", "stiffness", "fd_step"))
+    add_options(s, SolverSettings, only=SOLVER_FIELDS, docs={
+        "pentol": "tolerance on penetration; none = rms height/(10·mean(nx, ny)), "
+        "ContactMechanics' (fixed for the whole check)"})
     add_devices(s, "the elastic cross-check (warptrunc solver)")
-    s.add_argument(
-        "--accept-unconverged", action="store_true",
-        help=f"exit 0 even when a solve stopped at --maxiter (default: exit {EXIT_NOT_CONVERGED})",
-    )  # fmt: skip
+    add_accept_unconverged(s, EXIT_NOT_CONVERGED)
     add_run_outputs(p, "bem", "skip the PNG")
-
-
-def _check_approaches(args: argparse.Namespace, Rt: float | None) -> None:
-    """--fractions / --depths increase strictly; --depths lie below R_t of the map (when
-    ``Rt`` is given). Errors name the option, the values as typed and the rule."""
-    for opt, vals, what in (("--fractions", args.fractions, "fractions of R_t, each in (0, 1)"),
-                            ("--depths", args.depths, "m, each in (0, R_t)")):  # fmt: skip
-        if vals is None:
-            continue
-        got = " ".join(f"{v:g}" for v in vals)
-        if any(b <= a for a, b in itertools.pairwise(vals)):
-            raise ValueError(f"{opt} must increase strictly (approaches δ in {what}), got {got}")
-        if opt == "--depths" and Rt is not None and max(vals) >= Rt:
-            raise ValueError(
-                f"--depths must be in (0, R_t) = (0, {Rt:.6g}) m for this surface, got {got} "
-                "(metres; --fractions takes fractions of R_t)"
-            )
 
 
 def _rng(r: list[float] | None) -> str:
@@ -127,21 +71,19 @@ def _rng(r: list[float] | None) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run the comparison and write the outputs."""
-    check_increments(args.increments, "--increments")
+    check = from_args(BemCheckSettings, args)
+    truncation = truncation_from_args(args, ELASTIC_TRUNCATION.to_dict())
+    settings = from_args(SolverSettings, args)
     from ..contact.check import bem_check, require_bem
     from ..plot.bem import plot_bem_check
 
-    if args.stiffness == "barber" and args.solver != "warptrunc":
-        print(f"warptrunc {NAME}: error: --stiffness barber needs --solver warptrunc",
-              file=sys.stderr)  # fmt: skip
-        return 2
-    if args.solver == "contactmechanics":
+    if check.solver == "contactmechanics":
         try:
             require_bem()
         except ImportError as exc:
             print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
             return 2
-    if args.devices not in (None, 1) and args.solver != "warptrunc":
+    if args.devices not in (None, 1) and check.solver != "warptrunc":
         print(f"warptrunc {NAME}: error: --devices {args.devices} needs --solver warptrunc "
               "(ContactMechanics runs on the CPU)", file=sys.stderr)  # fmt: skip
         return 2
@@ -150,15 +92,14 @@ def run(args: argparse.Namespace) -> int:
     except ValueError as exc:
         print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
         return 2
-    _check_approaches(args, None)  # before the surface is made
     material = material_from_args(args)
     s = surface_from_args(args)
-    _check_approaches(args, s.Rt)
+    try:
+        check.approaches(s.Rt)  # depths below R_t of this map, before any solve
+    except ValueError as exc:
+        raise ValueError(f"--{exc}") from None
     res = bem_check(
-        s, args.depths, fractions=args.fractions, material=material,
-        beta_prime=args.beta_prime, substrate=args.substrate, increments=args.increments,
-        fd_step=args.fd_step, pressure_tol=args.pressure_tol, pentol=args.pentol,
-        maxiter=args.maxiter, solver=args.solver, stiffness=args.stiffness, dtype=args.dtype,
+        s, check=check, truncation=truncation, material=material, settings=settings,
         progress=not args.no_progress and sys.stderr.isatty(), device=args.device,
         devices=args.devices,
     )  # fmt: skip
@@ -172,15 +113,15 @@ def run(args: argparse.Namespace) -> int:
             fig = plot_bem_check(
                 res, out / "bem.png",
                 title=f"{s.nx}×{s.ny}, R$_t$ = {s.Rt * 1e6:.3g} µm, E* = "
-                f"{material.contact_modulus / 1e9:.4g} GPa, {args.substrate} half-space "
-                f"({args.solver})",
+                f"{material.contact_modulus / 1e9:.4g} GPa, {settings.substrate} half-space "
+                f"({check.solver})",
             )  # fmt: skip
             plt.close(fig)
             files += ", bem.png"
     sm = res.summary()
     print(
         f"{s.nx}×{s.ny} surface, R_t = {s.Rt * 1e6:.4g} µm, E* = "
-        f"{material.contact_modulus / 1e9:.4g} GPa, {args.substrate} half-space ({args.solver} solver); "
+        f"{material.contact_modulus / 1e9:.4g} GPa, {settings.substrate} half-space ({check.solver} solver); "
         f"{res.depth.size} approaches δ/R_t = "
         f"{res.depth_fraction.min():.3g}–{res.depth_fraction.max():.3g}\n"
         f"F'/F_BEM {_rng(sm['load_ratio'])}, k'/k_BEM {_rng(sm['stiffness_ratio'])}, "

@@ -1,28 +1,44 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Elastic and elastic–perfectly-plastic contact of rough surfaces on Warp: a constrained
-conjugate-gradient (Polonsky–Keer) boundary-element solver on a free (zero-padded) or periodic
-half-space, with an optional pressure cap (the hardness), and the cross-check of truncation
-analysis against it (:func:`bem_check`)."""
+"""Elastic and elastic–perfectly-plastic contact of rough surfaces on Warp: a boundary-element
+solver (preconditioned bound-constrained CG, or Polonsky–Keer's constrained CG) on a free
+(zero-padded) or periodic half-space, with an optional pressure cap (the hardness), and the
+cross-check of truncation analysis against it (:func:`bem_check`).
 
-from . import sharded as _sharded  # noqa: F401 - registers ShardedContactSolver (no JAX import)
-from .curve import STIFFNESS_METHODS, solve_contact
-from .halfspace import ElasticHalfSpace
-from .influence import SUBSTRATES, influence_spectrum, influence_table
-from .results import ContactCurve, ContactState
-from .settings import SolverSettings
-from .solver import ContactSolver, default_pentol
+What lives where:
 
-__all__ = [
-    "STIFFNESS_METHODS",
-    "SUBSTRATES",
-    "ContactCurve",
-    "ContactSolver",
-    "ContactState",
-    "ElasticHalfSpace",
-    "SolverSettings",
-    "default_pentol",
-    "influence_spectrum",
-    "influence_table",
-    "solve_contact",
-]
+- ``settings``: the parameter objects (:class:`SolverSettings`, :class:`CurveSettings`,
+  :class:`BemCheckSettings`; no Warp, the command-line parsers import them);
+- ``solver``: the solver object, :class:`ContactSolver` (its state and public methods);
+  ``iteration``: the iterations it runs (what the loops share, Polonsky–Keer, BCCG with its
+  scalar steps on the host or on the device, the capped solves and the plastic flow, Barber's
+  punch); ``memory``: its memory model and the check against the free memory;
+- ``halfspace``, ``influence``, ``transforms``: the elastic half-space (kernel spectrum,
+  influence table, padded transforms, lane reductions);
+- ``sharded``: one contact problem spread over several devices (JAX), the same solver;
+- ``curve``: contact curves, :func:`solve_contact`; ``results``: their result objects;
+- ``check``, ``runs``: the bem-check and its two elastic solvers (warptrunc's, ContactMechanics').
+
+Every public name is importable from ``warptrunc.contact`` (imported on first use).
+"""
+
+from .._support.exports import lazy_exports
+
+__all__, __getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "BemCheckSettings": ".settings",
+        "ContactCurve": ".results",
+        "ContactSolver": ".solver",
+        "ContactState": ".results",
+        "CurveSettings": ".settings",
+        "ElasticHalfSpace": ".halfspace",
+        "STIFFNESS_METHODS": ".settings",
+        "SUBSTRATES": ".influence",
+        "SolverSettings": ".settings",
+        "default_pentol": ".solver",
+        "influence_spectrum": ".influence",
+        "influence_table": ".influence",
+        "solve_contact": ".curve",
+    },
+)

@@ -35,20 +35,15 @@ import warp as wp
 
 from .._support.results import all_converged_property
 from .._support.table import write_columns_csv
-from .._support.validate import check_int, check_range
 from ..stiffness import Material, flat_punch_stiffness, stiffness_curve
 from ..surface import Surface
 from ..truncation.api import truncate
+from ..truncation.settings import TruncationSettings
 from .runs import contactmechanics_versions, require_bem, run_contactmechanics, run_warptrunc
+from .settings import ELASTIC_TRUNCATION, BemCheckSettings, SolverSettings
 
-__all__ = ["SOLVERS", "BemCheck", "bem_check", "require_bem"]
+__all__ = ["BemCheck", "bem_check", "require_bem"]
 
-SOLVERS = ("warptrunc", "contactmechanics")
-
-#: Default approaches, as fractions of R_t (the range of the issue's measurement, 5–40 %).
-CHECK_FRACTIONS = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4)
-
-SUBSTRATES = ("free", "periodic")
 _PADDING = {
     "free": "zero-padded to 2nx × 2ny by FreeFFTElasticHalfSpace (Hockney): the map is an "
     "isolated patch, no force outside it",
@@ -227,46 +222,13 @@ def _ratio(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-def _approaches(Rt: float, depths: Any, fractions: Any) -> np.ndarray:
-    if depths is not None and fractions is not None:
-        raise ValueError("give either depths (m) or fractions of R_t, not both")
-    if depths is None:
-        name, unit = "fractions", "(fractions of R_t)"
-        given = np.atleast_1d(np.asarray(CHECK_FRACTIONS if fractions is None else fractions,
-                                         dtype=np.float64))  # fmt: skip
-        for f in given:
-            check_range("fractions: each fraction", float(f), 0.0, 1.0)
-        d = given * Rt
-    else:
-        name, unit = "depths", "(m)"
-        given = d = np.atleast_1d(np.asarray(depths, dtype=np.float64))
-        for v in d:
-            check_range("depths: each depth", float(v), 0.0, Rt, unit="m (0 < δ < R_t)")
-    if d.size == 0:
-        raise ValueError(f"{name} needs at least one approach, got none")
-    if np.any(np.diff(given) <= 0):
-        raise ValueError(
-            f"{name} must increase strictly {unit}, got {', '.join(f'{v:g}' for v in given)}"
-        )
-    return d
-
-
 def bem_check(
     surface: Surface,
-    depths: Any = None,
     *,
-    fractions: Any = None,
+    check: BemCheckSettings | None = None,
+    truncation: TruncationSettings | None = None,
     material: Material | None = None,
-    beta_prime: float = 1.0,
-    substrate: str = "free",
-    increments: int = 400,
-    fd_step: float = 0.02,
-    pressure_tol: float = 1e-5,
-    pentol: float | None = None,
-    maxiter: int = 10000,
-    solver: str = "warptrunc",
-    stiffness: str = "central",
-    dtype: str = "float64",
+    settings: SolverSettings | None = None,
     progress: bool = True,
     device: wp.DeviceLike = None,
     devices: Any = None,
@@ -277,40 +239,29 @@ def bem_check(
     ----------
     surface : Surface
         The rough height map (m). It is pressed against a rigid flat.
-    depths : sequence of float, optional
-        Approaches δ (m), strictly increasing, in (0, R_t).
-    fractions : sequence of float, optional
-        Approaches as fractions of R_t, in (0, 1); default ``CHECK_FRACTIONS`` = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4).
+    check : BemCheckSettings, optional
+        The approaches δ (fractions of R_t, or depths in m below R_t), the elastic solver
+        (warptrunc's CCG on ``device``, or ContactMechanics' on the CPU, the ``bem`` extra, the
+        reference it is tested against) and the stiffness method (the central difference
+        k_BEM = [F(δ(1+h)) − F(δ(1−h))]/(2hδ) with both solvers, or Barber's flat punch of the
+        contact set, warptrunc only: one linear solve instead of two contact solves)
+        (:class:`~warptrunc.contact.BemCheckSettings`; default ``BemCheckSettings()``).
+    truncation : TruncationSettings, optional
+        Its ``increments`` (the truncation grid from 0 to the largest δ, for the load integral)
+        and ``beta_prime`` (β' of Eq. 2, as in ``analyze``) are read; default
+        :data:`~warptrunc.contact.settings.ELASTIC_TRUNCATION` (400 increments).
     material : Material, optional
         Elastic constants; E* = ``material.contact_modulus`` is used by both methods.
-    beta_prime : float
-        Geometric factor β' of Eq. (2) (dimensionless), as in ``analyze``.
-    substrate : {"free", "periodic"}
-        ``"free"``: non-periodic half-space (``FreeFFTElasticHalfSpace``, zero-padded to 2nx × 2ny,
-        so the map is an isolated patch with no contact outside it). ``"periodic"``:
+    settings : SolverSettings, optional
+        The elastic solver's substrate, tolerances and iteration limit (both solvers) and
+        precision (warptrunc's; ContactMechanics is float64). ``"free"``: non-periodic
+        half-space (``FreeFFTElasticHalfSpace``, zero-padded to 2nx × 2ny, so the map is an
+        isolated patch with no contact outside it). ``"periodic"``:
         ``PeriodicFFTElasticHalfSpace``, for maps that are periodic; the mean (q = 0)
         displacement of a periodic half-space is undefined and ContactMechanics gives that mode
         the stiffness of the lowest non-zero wavevector, so there F(δ) and k depend on that
-        convention while F against A_BEM does not.
-    increments : int
-        Depth increments of the truncation grid from 0 to the largest δ, for the load integral.
-    fd_step : float
-        Relative step h of the central difference k_BEM = [F(δ(1+h)) − F(δ(1−h))]/(2hδ), in (0, 0.5).
-    pressure_tol : float
-        Solver tolerance on tensile/pad pressure, relative to E* (dimensionless); the solver's
-        absolute ``forcetol`` is ``pressure_tol·E*·dx·dy`` (N).
-    pentol : float, optional
-        Solver tolerance on penetration (m); default the library's rms height/(10·mean n).
-    maxiter : int
-        Largest number of CG iterations per solve.
-    solver : {"warptrunc", "contactmechanics"}
-        Elastic solver: warptrunc's CCG on ``device`` (default), or ContactMechanics' on the CPU
-        (the ``bem`` extra), the reference it is tested against.
-    stiffness : {"central", "barber"}
-        k_BEM by the central difference (both solvers), or by Barber's flat punch of the contact
-        set (warptrunc only; one linear solve instead of two contact solves).
-    dtype : {"float64", "float32"}
-        Precision of warptrunc's solver.
+        convention while F against A_BEM does not. The absolute force tolerance is
+        ``pressure_tol·E*·dx·dy`` (N); ``pentol`` None: rms height/(10·mean n).
     progress : bool
         Show a tqdm progress bar over the solves (stderr).
     device : str, optional
@@ -328,7 +279,7 @@ def bem_check(
     Raises
     ------
     ValueError
-        Parameters out of range, approaches not increasing, an unknown solver or method.
+        A depth not below R_t of the map.
     ImportError
         ``solver="contactmechanics"`` without the ``bem`` extra.
     MemoryError
@@ -345,27 +296,17 @@ def bem_check(
     A'(δ); F'(δ) by linear interpolation of its trapezoidal load on ``increments`` steps.
     Every solve is warm-started from the displacement of the previous one.
     """
-    if solver not in SOLVERS:
-        raise ValueError(f"solver must be one of {SOLVERS}, got {solver!r}")
-    if stiffness not in ("central", "barber"):
-        raise ValueError(f"stiffness must be 'central' or 'barber', got {stiffness!r}")
-    if stiffness == "barber" and solver != "warptrunc":
-        raise ValueError("stiffness='barber' needs solver='warptrunc'")
-    if solver == "contactmechanics":
-        require_bem()  # fail early, before the truncation part
+    check = BemCheckSettings() if check is None else check
+    truncation = ELASTIC_TRUNCATION if truncation is None else truncation
     material = Material() if material is None else material
-    beta_prime = check_range("beta_prime", beta_prime, 0.0)
-    if substrate not in SUBSTRATES:
-        raise ValueError(f"substrate must be one of {SUBSTRATES}, got {substrate!r}")
-    increments = check_int("increments", increments, 1, 10_000_000)
-    fd_step = check_range("fd_step", fd_step, 0.0, 0.5)
-    pressure_tol = check_range("pressure_tol", pressure_tol, 0.0)
-    if pentol is not None:
-        pentol = check_range("pentol", pentol, 0.0, unit="m")
-    maxiter = check_int("maxiter", maxiter, 1)
+    settings = SolverSettings() if settings is None else settings
+    if check.solver == "contactmechanics":
+        require_bem()  # fail early, before the truncation part
+    increments, beta_prime = truncation.increments, truncation.beta_prime
+    substrate, fd_step, pressure_tol = settings.substrate, check.fd_step, settings.pressure_tol
 
     Rt = float(surface.Rt)
-    d = _approaches(Rt, depths, fractions)
+    d = check.approaches(Rt)
     contact_modulus = material.contact_modulus
 
     # truncation, the same formulas as `analyze`
@@ -378,14 +319,14 @@ def bem_check(
     trunc_stiffness = flat_punch_stiffness(np.sqrt(trunc_area), contact_modulus, beta_prime=beta_prime)
     trunc_load = np.interp(d, sc.depth, sc.load)
 
-    if devices not in (None, 1) and solver != "contactmechanics":
+    if devices not in (None, 1) and check.solver != "contactmechanics":
         surface.release_device_copies()  # the GPUs' memory to JAX: the heights on the host
-    args = (surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress)
-    if solver == "contactmechanics":
-        out, conv, nit, edge, solves, extra = run_contactmechanics(*args)
+    kw = {"material": material, "settings": settings, "check": check, "progress": progress}
+    if check.solver == "contactmechanics":
+        out, conv, nit, edge, solves, extra = run_contactmechanics(surface, d, **kw)
     else:
-        out, conv, nit, edge, solves, extra = run_warptrunc(*args, stiffness, dtype, device,
-                                                            devices)  # fmt: skip
+        out, conv, nit, edge, solves, extra = run_warptrunc(surface, d, **kw, device=device,
+                                                            devices=devices)  # fmt: skip
     settings = {
         **extra,
         "substrate": substrate,
@@ -396,7 +337,7 @@ def bem_check(
         "fd_step": fd_step,
         "pressure_tol": pressure_tol,
         "forcetol_N": pressure_tol * contact_modulus * surface.pixel_area,
-        "maxiter": maxiter,
+        "maxiter": settings.maxiter,
         "increments": increments,
         "Rt_m": Rt,
         "grid": [surface.nx, surface.ny],

@@ -16,14 +16,11 @@ import warp as wp
 from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_range
 from ..material import Material
-from ..params import check_value
 from .results import ContactCurve
-from .settings import SolverSettings
+from .settings import CurveSettings, SolverSettings
 from .solver import ContactSolver
 
-__all__ = ["STIFFNESS_METHODS", "solve_contact"]
-
-STIFFNESS_METHODS = ("barber", "central", "none")
+__all__ = ["solve_contact"]
 
 
 @fill_doc(SHARED_DOCS)
@@ -33,19 +30,9 @@ def solve_contact(
     *,
     loads: Any = None,
     pixel_size: Any = None,
-    contact_modulus: float | None = None,
     material: Material | None = None,
-    hardness: float | None = None,
     settings: SolverSettings | None = None,
-    substrate: str = "free",
-    dtype: str = "float64",
-    stiffness: str = "barber",
-    fd_step: float = 0.02,
-    pressure_tol: float = 1e-5,
-    pentol: float | None = None,
-    thermotol: float = 1e-6,
-    maxiter: int = 10000,
-    maps: bool = False,
+    curve: CurveSettings | None = None,
     progress: bool = False,
     device: wp.DeviceLike = None,
     devices: Any = None,
@@ -64,32 +51,18 @@ def solve_contact(
         Total loads F (N), instead of ``depths`` (load control).
     pixel_size : float or (float, float), optional
         Pixel sides (m); required for an array, taken from a Surface.
-    contact_modulus : float, optional
-        Contact modulus E* (Pa); default ``material.contact_modulus``. One of the two is needed.
     material : Material, optional
-        Elastic constants and hardness (:class:`warptrunc.Material`): E* and H are read from it.
-    hardness : float, optional
-        Hardness H (Pa), the local pressure cap, in (0, inf]; default ``material.hardness``,
-        else inf (elastic). With a finite H the rows are a loading history: each solve starts
-        from the plastic state the previous ones left (see :mod:`warptrunc.contact.solver`).
+        Elastic constants and hardness (:class:`warptrunc.Material`; default ``Material()``):
+        E* = ``material.contact_modulus`` and H = ``material.hardness``. With a finite H the
+        rows are a loading history: each solve starts from the plastic state the previous ones
+        left (see :mod:`warptrunc.contact.iteration.plastic`).
     settings : SolverSettings, optional
-        Solver settings (:class:`~warptrunc.contact.SolverSettings`); the keywords
-        ``substrate``, ``dtype``, ``pressure_tol``, ``pentol``, ``thermotol`` and ``maxiter``
-        override its fields when they differ from their defaults.
-    substrate : {"free", "periodic"}
-        Zero-padded isolated patch or periodic map (:mod:`warptrunc.contact.halfspace`).
-    dtype : {"float64", "float32"}
-        Precision of maps and FFTs.
-    stiffness : {"barber", "central", "none"}
-        k = dF/dδ by Barber's flat punch of the contact set (one linear CG solve; with H < inf
-        the unloading stiffness of the deformed surface), by the central difference over
-        δ(1 ± fd_step) (two more CCG solves; elastic only), or not at all (NaN).
-    fd_step : float
-        Relative step h of the central difference (dimensionless), in (0, 0.5).
-    pressure_tol, pentol, thermotol, maxiter
-        Tolerances and iteration limit, see :class:`ContactSolver`.
-    maps : bool
-        Keep pressure (Pa) and gap (m) maps of every row (host memory: 16 bytes per pixel per row).
+        Precision, substrate, tolerances and iteration limits of the solver
+        (:class:`~warptrunc.contact.SolverSettings`; default ``SolverSettings()``).
+    curve : CurveSettings, optional
+        The stiffness method of each row (Barber's punch, the central difference, none) and
+        whether the pressure and gap maps are kept (:class:`~warptrunc.contact.CurveSettings`;
+        default ``CurveSettings()``: Barber, no maps).
     progress : bool
         tqdm bar over the rows (stderr).
     {warp_device_obj}
@@ -105,7 +78,7 @@ def solve_contact(
     ------
     ValueError
         Bad heights (NaN/inf, not 2-D), parameters out of range, neither or both of depths/loads,
-        neither contact_modulus nor material, or ``stiffness="central"`` with a finite hardness.
+        or the central difference with a finite hardness.
     MemoryError
         The solver would not fit the device's free memory (checked before allocating).
 
@@ -126,9 +99,10 @@ def solve_contact(
         heights = heights.heights
     if pixel_size is None:
         raise ValueError("pixel_size (m) is required for a height array")
-    if stiffness not in STIFFNESS_METHODS:
-        raise ValueError(f"stiffness must be one of {STIFFNESS_METHODS}, got {stiffness!r}")
-    fd_step = check_range("fd_step", fd_step, 0.0, 0.5)
+    material = Material() if material is None else material
+    settings = SolverSettings() if settings is None else settings
+    curve = CurveSettings() if curve is None else curve
+    stiffness, fd_step = curve.stiffness, curve.fd_step
     if (depths is None) == (loads is None):
         raise ValueError("give exactly one of depths (m) and loads (N)")
     key = "depth" if loads is None else "load"
@@ -137,26 +111,14 @@ def solve_contact(
         raise ValueError(f"at least one {key} is needed, got none")
     for v in values:
         check_range(key, v, 0.0, unit="m" if key == "depth" else "N")
-    if contact_modulus is None:
-        if material is None:
-            raise ValueError("give contact_modulus (Pa) or material (a warptrunc.Material)")
-        contact_modulus = material.contact_modulus
-    if hardness is None:
-        hardness = math.inf if material is None else material.hardness
-    hardness = float(check_value(Material, "hardness", hardness))
+    hardness = material.hardness
     if stiffness == "central" and math.isfinite(hardness):
         raise ValueError(
-            'stiffness="central" needs an elastic solve (hardness = inf); with a finite hardness '
-            f'({hardness:g} Pa) use "barber" (the unloading stiffness) or "none"'
+            'the central difference (CurveSettings(stiffness="central")) needs an elastic solve '
+            f'(hardness = inf); with a finite hardness ({hardness:g} Pa) use "barber" (the '
+            'unloading stiffness) or "none"'
         )
-    given = {"substrate": substrate, "dtype": dtype, "pressure_tol": pressure_tol,
-             "pentol": pentol, "thermotol": thermotol, "maxiter": maxiter}  # fmt: skip
-    base = SolverSettings() if settings is None else settings
-    defaults = SolverSettings()
-    settings = base.replace(
-        **{k: v for k, v in given.items() if settings is None or v != getattr(defaults, k)}
-    )
-    solver = ContactSolver(heights, pixel_size, contact_modulus, settings=settings,
+    solver = ContactSolver(heights, pixel_size, material.contact_modulus, settings=settings,
                            hardness=hardness, device=device, devices=devices)  # fmt: skip
     substrate, dtype = settings.substrate, settings.dtype
     rows: list[dict[str, Any]] = []
@@ -176,7 +138,7 @@ def solve_contact(
             conv = conv and lo.converged and hi.converged
         else:
             k = math.nan
-        if maps:
+        if curve.maps:
             p, g = solver.maps()
             p_maps.append(p)
             g_maps.append(g)
@@ -189,7 +151,7 @@ def solve_contact(
 
     dx, dy = solver.pixel_size
     n_contact = col("n_contact", np.int64)
-    settings = {
+    record = {
         "solver": "warptrunc constrained conjugate gradients (Polonsky & Keer 1999)",
         "substrate": substrate, "dtype": dtype, "contact_modulus_Pa": solver.contact_modulus,
         "stiffness_method": stiffness, "fd_step": fd_step, "pressure_tol": solver.pressure_tol,
@@ -208,6 +170,7 @@ def solve_contact(
         converged=col("converged", bool), solve_time=col("solve_time"),
         n_plastic=col("n_plastic", np.int64), plastic_area=col("plastic_area"),
         plastic_volume=col("plastic_volume"),
-        pressure=np.stack(p_maps) if maps else None, gap=np.stack(g_maps) if maps else None,
-        settings=settings,
+        pressure=np.stack(p_maps) if curve.maps else None,
+        gap=np.stack(g_maps) if curve.maps else None,
+        settings=record,
     )  # fmt: skip

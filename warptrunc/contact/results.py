@@ -5,8 +5,7 @@ approach δ (:class:`ContactCurve`, host NumPy arrays)."""
 
 from __future__ import annotations
 
-import warnings
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -18,11 +17,7 @@ __all__ = ["ContactCurve", "ContactState"]
 
 @dataclass(frozen=True)
 class ContactState:
-    """The state after one solve of :meth:`warptrunc.contact.ContactSolver.solve`.
-
-    Index access with the keys of the dict that ``solve`` returned before (``state["load"]``)
-    still works but is deprecated (:class:`DeprecationWarning`); use the attributes.
-    """
+    """The state after one solve of :meth:`warptrunc.contact.ContactSolver.solve`."""
 
     depth: float
     """Approach δ of the flat from first touch at the highest pixel of the original
@@ -74,29 +69,6 @@ class ContactState:
             "n_convolutions": self.n_convolutions, "residual_m": self.residual,
             "max_tensile_force_N": self.max_tensile_force, "converged": self.converged,
         }  # fmt: skip
-
-    def __getitem__(self, key: str) -> Any:
-        """Deprecated dict access (``state["load"]``); use the attribute (``state.load``).
-
-        Parameters
-        ----------
-        key : str
-            A field name (the keys of the dict that ``solve`` returned before).
-
-        Returns
-        -------
-        object
-            The field's value.
-        """
-        names = {f.name for f in fields(self)}
-        if key not in names:
-            raise KeyError(key)
-        warnings.warn(
-            f"ContactState[{key!r}] is deprecated; use the attribute ContactState.{key}",
-            DeprecationWarning,
-            stacklevel=2,
-        )
-        return getattr(self, key)
 
 
 @dataclass(frozen=True, eq=False)

@@ -2,8 +2,10 @@
 # SPDX-License-Identifier: MIT
 """The elastic solves of :func:`warptrunc.bem_check`: warptrunc's solver or ContactMechanics'.
 
-Each ``run_*`` solves the approaches δ of a :class:`~warptrunc.contact.check.BemCheck` and
-returns ``(columns, converged, n_iterations, edge_contact, solves, settings)``: F (N), A (m²),
+Each ``run_*`` solves the approaches δ of a :class:`~warptrunc.contact.check.BemCheck` (with E*
+of the :class:`~warptrunc.Material`, the tolerances of the
+:class:`~warptrunc.contact.SolverSettings` and the stiffness method of the
+:class:`~warptrunc.contact.BemCheckSettings`) and returns ``(columns, converged, n_iterations, edge_contact, solves, settings)``: F (N), A (m²),
 k (N/m) and the row's time (s) per δ, the flags, one dict per solve and the solver's settings.
 ContactMechanics (the ``bem`` extra) is imported only by :func:`require_bem`.
 """
@@ -17,7 +19,9 @@ from typing import Any
 import numpy as np
 
 from .._support.docs import fill_doc
+from ..material import Material
 from .results import ContactState
+from .settings import BemCheckSettings, SolverSettings
 from .solver import ContactSolver, default_pentol
 
 __all__ = [
@@ -34,7 +38,13 @@ RUN_DOCS = {
     "{surface_approaches}": (
         "surface : Surface\n    The rough height map (m), on the host.\n"
         "d : (m,) ndarray\n    Approaches δ (m), increasing.\n"
-        "contact_modulus : float\n    Reduced modulus E* (Pa)."
+        "material : Material\n    Its contact modulus E* (Pa) is the half-space's.\n"
+        "settings : SolverSettings\n    Substrate, ``pressure_tol`` (forcetol = "
+        "pressure_tol·E*·dx·dy, N), ``pentol`` (m; None: :func:`pentol_or_default`'s default) "
+        "and ``maxiter``.\n"
+        "check : BemCheckSettings\n    Its ``stiffness`` and ``fd_step`` (the relative step h of "
+        "the central difference, dimensionless).\n"
+        "progress : bool\n    Show a tqdm progress bar over the solves."
     ),
 }
 """Parameter text of both solvers' runs, written once (:func:`fill_doc`)."""
@@ -131,9 +141,8 @@ def _run_columns(m: int) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray,
 
 
 @fill_doc(RUN_DOCS)
-def run_contactmechanics(
-    surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress
-):
+def run_contactmechanics(surface, d: np.ndarray, *, material: Material, settings: SolverSettings,
+                         check: BemCheckSettings, progress: bool = True):
     """ContactMechanics' solves, three per approach (δ(1 − h), δ, δ(1 + h)), warm-started.
 
     The solves run on the CPU in float64 (``NonSmoothContactSystem.minimize_proxy``), each one
@@ -143,19 +152,6 @@ def run_contactmechanics(
     Parameters
     ----------
     {surface_approaches}
-    substrate : {"free", "periodic"}
-        ``FreeFFTElasticHalfSpace`` or ``PeriodicFFTElasticHalfSpace``.
-    fd_step : float
-        Relative step h of the central difference (dimensionless).
-    pressure_tol : float
-        Tolerance on tensile pressure relative to E* (dimensionless); ContactMechanics'
-        ``forcetol`` is ``pressure_tol·E*·dx·dy`` (N).
-    pentol : float or None
-        Penetration tolerance (m); None for :func:`pentol_or_default`'s default.
-    maxiter : int
-        Largest number of CG iterations per solve.
-    progress : bool
-        Show a tqdm progress bar over the 3m solves.
 
     Returns
     -------
@@ -179,17 +175,24 @@ def run_contactmechanics(
     ------
     ImportError
         ContactMechanics or SurfaceTopography is not installed (:func:`require_bem`).
+
+    Notes
+    -----
+    The substrate is ``FreeFFTElasticHalfSpace`` or ``PeriodicFFTElasticHalfSpace``; the
+    stiffness is always the central difference (``check.stiffness`` is not read).
     """
     from tqdm.auto import tqdm  # `import warptrunc` stays light
 
     Free, Periodic, System, Topography = require_bem()
+    contact_modulus, substrate = material.contact_modulus, settings.substrate
+    fd_step, maxiter = check.fd_step, settings.maxiter
     h = np.ascontiguousarray(surface.heights.T, dtype=np.float64)  # ContactMechanics: x first
     sizes = (surface.lx, surface.ly)
     topo = Topography(h, physical_sizes=sizes, periodic=substrate == "periodic")
     half_space = (Free if substrate == "free" else Periodic)(h.shape, contact_modulus, sizes)
     system = System(half_space, topo)
-    forcetol = pressure_tol * contact_modulus * surface.pixel_area
-    pentol, pentol_note = pentol_or_default(h, pentol)
+    forcetol = settings.pressure_tol * contact_modulus * surface.pixel_area
+    pentol, pentol_note = pentol_or_default(h, settings.pentol)
     h_max = float(h.max())
     m = d.size
     out, conv, nit, edge = _run_columns(m)
@@ -244,8 +247,9 @@ def run_contactmechanics(
 
 
 @fill_doc(RUN_DOCS)
-def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol, pentol, maxiter, progress,
-                   stiffness, dtype, device, devices=None):  # fmt: skip
+def run_warptrunc(surface, d: np.ndarray, *, material: Material, settings: SolverSettings,
+                  check: BemCheckSettings, progress: bool = True, device: Any = None,
+                  devices: Any = None):
     """warptrunc's solves on ``device``: δ(1 − h), δ, δ(1 + h) (central) or δ and Barber's punch.
 
     One :class:`~warptrunc.contact.solver.ContactSolver` serves all solves.
@@ -253,25 +257,6 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
     Parameters
     ----------
     {surface_approaches}
-    substrate : {"free", "periodic"}
-        Half-space of the solver.
-    fd_step : float
-        Relative step h of the central difference (dimensionless); unused with
-        ``stiffness="barber"``.
-    pressure_tol : float
-        Solver tolerance on tensile pressure relative to E* (dimensionless).
-    pentol : float or None
-        Penetration tolerance (m); None for :func:`pentol_or_default`'s default.
-    maxiter : int
-        Largest number of CG iterations per solve.
-    progress : bool
-        Show a tqdm progress bar over the solves.
-    stiffness : {"central", "barber"}
-        ``"central"``: k = [F(δ(1 + h)) − F(δ(1 − h))]/(2hδ), three contact solves per row;
-        otherwise Barber's flat punch of the contact set at δ (one contact solve and one
-        linear solve per row).
-    dtype : {"float64", "float32"}
-        Precision of the solver.
     device : str or warp.context.Device or None
         Warp device of the solver.
     devices : int, "auto" or list, optional
@@ -296,15 +281,21 @@ def run_warptrunc(surface, d, contact_modulus, substrate, fd_step, pressure_tol,
     settings : dict
         Solver name and description, stiffness method, ``pentol_m``, ``pentol_source``,
         ``device`` and ``dtype``.
-    """
 
+    Notes
+    -----
+    ``check.stiffness`` ``"central"``: k = [F(δ(1 + h)) − F(δ(1 − h))]/(2hδ), three contact
+    solves per row; ``"barber"``: Barber's flat punch of the contact set at δ (one contact
+    solve and one linear solve per row). The other fields of ``settings`` (``dtype``, ...) are
+    the solver's; its ``pentol`` None is replaced by :func:`pentol_or_default`'s default.
+    """
     from tqdm.auto import tqdm  # `import warptrunc` stays light
 
-    pentol, pentol_note = pentol_or_default(surface.heights, pentol)
-    solver = ContactSolver(
-        surface.heights, (surface.dx, surface.dy), contact_modulus, substrate=substrate, dtype=dtype,
-        pressure_tol=pressure_tol, pentol=pentol, maxiter=maxiter, device=device, devices=devices,
-    )  # fmt: skip
+    stiffness, fd_step, dtype = check.stiffness, check.fd_step, settings.dtype
+    pentol, pentol_note = pentol_or_default(surface.heights, settings.pentol)
+    solver = ContactSolver(surface.heights, (surface.dx, surface.dy), material.contact_modulus,
+                           settings=settings.replace(pentol=pentol), device=device,
+                           devices=devices)  # fmt: skip
     where = "+".join(getattr(solver, "device_names", [])) or str(solver.device)
     m = d.size
     out, conv, nit, edge = _run_columns(m)

@@ -1,20 +1,49 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Settings of the contact solver, declared once (:mod:`warptrunc.params`).
+"""The parameters of the contact solver and of what is computed with it, declared once
+(:mod:`warptrunc.params`).
 
 :class:`SolverSettings` holds the precision, the substrate, the tolerances and the iteration
-limits of :class:`~warptrunc.contact.ContactSolver`; validation, command-line options
-(:func:`warptrunc.params.add_options`) and the docs table (:func:`warptrunc.params.markdown_table`)
-are generated from its fields.
+limits of :class:`~warptrunc.contact.ContactSolver`; :class:`CurveSettings` what each row of
+:func:`~warptrunc.contact.solve_contact` holds beside the solve (the stiffness method, the
+maps); :class:`BemCheckSettings` the approaches of :func:`~warptrunc.bem_check` and how its
+elastic side is solved. Validation, command-line options (:func:`warptrunc.params.add_options`)
+and the docs tables (:func:`warptrunc.params.markdown_table`) are generated from their fields.
+No Warp here: the command-line parsers import this module.
 """
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
+from typing import Any
 
-from ..params import Parameters, check_fields, param
+from ..params import Parameters, check_fields, param, param_like
+from ..truncation.settings import TruncationSettings
 
-__all__ = ["SolverSettings"]
+__all__ = [
+    "BEM_SOLVERS",
+    "CHECK_FRACTIONS",
+    "ELASTIC_TRUNCATION",
+    "STIFFNESS_METHODS",
+    "BemCheckSettings",
+    "CurveSettings",
+    "SolverSettings",
+]
+
+STIFFNESS_METHODS = ("barber", "central", "none")
+"""How the stiffness k = dF/dδ of a contact curve's row is found (:class:`CurveSettings`)."""
+
+BEM_SOLVERS = ("warptrunc", "contactmechanics")
+"""The elastic solvers of a bem-check: warptrunc's own and ContactMechanics' (the reference)."""
+
+CHECK_FRACTIONS = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4)
+"""Approaches δ/R_t of a bem-check when none are given (dimensionless)."""
+
+ELASTIC_TRUNCATION = TruncationSettings(increments=400)
+"""The truncation of the elastic cross-checks (:func:`~warptrunc.bem_check`,
+:func:`~warptrunc.compare.compare_models`): 400 depth increments from 0 to the largest approach
+for the load integrals, β' = 1, 4-connected islands."""
 
 
 @dataclass(frozen=True)
@@ -34,7 +63,7 @@ class SolverSettings(Parameters):
     map of at least 1024² pixels (the iterations then hardly grow with the grid) and while the
     free set covers more than 2 % of a smaller map; the solvers of a punch's window
     (:mod:`warptrunc.indent`) take 2 % at every size, where always preconditioning costs more
-    convolutions than it saves (``warptrunc.contact.bccg.PRECONDITION_LARGE``; the
+    convolutions than it saves (``warptrunc.contact.iteration.bccg.PRECONDITION_LARGE``; the
     measurements behind the rule: ``guide/performance.md``).
 
     Examples
@@ -57,7 +86,7 @@ class SolverSettings(Parameters):
     )  # fmt: skip
     pentol: float | None = param(
         None, "tolerance on penetration; None = rms height/(10·mean(nx, ny)) (ContactMechanics), "
-        "lowered near full contact to 1 % of the mean open gap (contact.loop.OPEN_GAP_FRACTION)",
+        "lowered near full contact to 1 % of the mean open gap (contact.iteration.loop.OPEN_GAP_FRACTION)",
         unit="m", gt=0.0, optional=True,
     )  # fmt: skip
     thermotol: float = param(1e-6, "relative tolerance on the total force", gt=0.0)
@@ -114,3 +143,109 @@ class SolverSettings(Parameters):
             if isinstance(getattr(self, name), str) and getattr(self, name) == "auto":
                 object.__setattr__(self, name, None)
         check_fields(self)
+
+
+@dataclass(frozen=True)
+class CurveSettings(Parameters):
+    """What each row of a contact curve holds beside its solve (:func:`~warptrunc.contact.solve_contact`).
+
+    Examples
+    --------
+    >>> CurveSettings(stiffness="central", fd_step=0.01).fd_step
+    0.01
+    """
+
+    stiffness: str = param(
+        "barber", "k = dF/dδ by Barber's flat punch of the contact set (one linear CG solve; "
+        "with a finite hardness the unloading stiffness of the deformed surface), by the central "
+        "difference over δ(1 ± fd_step) (two more contact solves; elastic only), or none (NaN)",
+        choices=STIFFNESS_METHODS, sweep=False,
+    )  # fmt: skip
+    fd_step: float = param(
+        0.02, "relative step h of the central difference k = [F(δ(1 + h)) − F(δ(1 − h))]/(2hδ)",
+        gt=0.0, lt=0.5,
+    )  # fmt: skip
+    maps: bool = param(
+        False, "keep the pressure (Pa) and gap (m) maps of every row (host memory: 16 bytes per "
+        "pixel per row)", kind="bool", sweep=False,
+    )  # fmt: skip
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+
+
+@dataclass(frozen=True)
+class BemCheckSettings(Parameters):
+    """The approaches δ of a bem-check (:func:`~warptrunc.bem_check`) and how its elastic side is
+    solved and differentiated.
+
+    The approaches are ``fractions`` of R_t or ``depths`` (m), one or the other; neither:
+    :data:`CHECK_FRACTIONS`.
+
+    Examples
+    --------
+    >>> BemCheckSettings(fractions=(0.1, 0.2), stiffness="barber").fractions
+    (0.1, 0.2)
+    """
+
+    fractions: tuple[float, ...] | None = param(
+        None, "approaches δ as fractions of R_t, strictly increasing; none = 0.05 0.1 0.15 0.2 "
+        "0.3 0.4, unless depths are given", gt=0.0, lt=1.0, many=True, optional=True,
+        sweep=False,
+    )  # fmt: skip
+    depths: tuple[float, ...] | None = param(
+        None, "approaches δ, strictly increasing, below R_t of the map; instead of the fractions",
+        unit="m", gt=0.0, many=True, optional=True, sweep=False,
+    )  # fmt: skip
+    solver: str = param(
+        "warptrunc", "the elastic solver: warptrunc's constrained CG on the device, or "
+        "ContactMechanics' on the CPU, the reference (pip install \"warptrunc[bem]\")",
+        choices=BEM_SOLVERS, sweep=False,
+    )  # fmt: skip
+    stiffness: str = param_like(
+        CurveSettings, "stiffness", default="central", choices=("central", "barber"),
+        doc="k = dF/dδ by the central difference over δ(1 ± fd_step), or by Barber's flat punch "
+        "of the contact set (solver warptrunc only)",
+    )  # fmt: skip
+    fd_step: float = param_like(CurveSettings, "fd_step")
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+        for name, what in (("fractions", "fractions of R_t"), ("depths", "m")):
+            v = getattr(self, name)
+            if v is not None and any(b <= a for a, b in itertools.pairwise(v)):
+                raise ValueError(f"{name} must increase strictly (approaches δ, {what}), got "
+                                 f"{' '.join(f'{x:g}' for x in v)}")  # fmt: skip
+        if self.fractions is not None and self.depths is not None:
+            raise ValueError("fractions and depths both give the approaches: give one")
+        if self.stiffness == "barber" and self.solver != "warptrunc":
+            raise ValueError(f"stiffness barber needs solver warptrunc, got {self.solver}")
+
+    def approaches(self, Rt: float) -> Any:
+        """The approaches δ (m) on a map of height range ``Rt``.
+
+        Parameters
+        ----------
+        Rt : float
+            R_t of the map (m).
+
+        Returns
+        -------
+        (m,) ndarray of float64
+            ``fractions``·R_t, or ``depths`` (m).
+
+        Raises
+        ------
+        ValueError
+            A depth not below R_t, naming the range in metres.
+        """
+        import numpy as np
+
+        if self.depths is None:
+            return np.asarray(self.fractions or CHECK_FRACTIONS, dtype=np.float64) * Rt
+        if max(self.depths) >= Rt:
+            raise ValueError(
+                f"depths must be in (0, R_t) = (0, {Rt:.6g}) m for this surface, got "
+                f"{' '.join(f'{v:g}' for v in self.depths)} (metres; fractions are of R_t)"
+            )
+        return np.asarray(self.depths, dtype=np.float64)

@@ -1,16 +1,15 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Constrained conjugate gradients (Polonsky & Keer 1999) for a rough map on an elastic half-space.
+"""The contact solver object, :class:`ContactSolver`: a rough map on an elastic half-space.
 
-The default iteration is the preconditioned bound-constrained CG of :mod:`warptrunc.contact.bccg`
-(``SolverSettings.algorithm="bccg"``); Polonsky & Keer's is ``algorithm="pk"``, described below,
-its loop in :mod:`warptrunc.contact.pk`. This module holds the solver object: its settings, its
-state (the device maps, allocated in ``ContactSolver.__init__``, cleared by ``reset``) and its
-public methods (``solve``: displacement or load control, elastic or capped; the plastic state;
-Barber's stiffness; the read-backs ``maps`` and ``max_pressure``). What the solve loops share
-(and where a device-side loop goes) is :mod:`warptrunc.contact.loop`; the memory model and the
-check against the free memory (where a multi-device path starts) are
-:mod:`warptrunc.contact.memory`, whose docstring lists what lives where.
+This module holds the solver's settings, its state (the device maps, allocated in
+``ContactSolver.__init__``, cleared by ``reset``) and its public methods (``solve``: displacement
+or load control, elastic or capped; the plastic state; Barber's stiffness; the read-backs
+``maps`` and ``max_pressure``). The iterations it runs are :mod:`warptrunc.contact.iteration`:
+the preconditioned bound-constrained CG (``SolverSettings.algorithm="bccg"``, the default,
+:mod:`~warptrunc.contact.iteration.bccg`) or Polonsky & Keer's constrained CG
+(``algorithm="pk"``, described below, :mod:`~warptrunc.contact.iteration.pk`); its memory model
+and the check against the free memory are :mod:`warptrunc.contact.memory`.
 
 The iteration is that of ContactMechanics' ``constrained_conjugate_gradients`` (same gap sign,
 warm start, offset handling in load control and stopping criterion), so that both give the same
@@ -32,8 +31,8 @@ iteration costs one convolution (forward t, inverse) while the projection change
 ``direct_max`` pixels, 1.5 when it changes more; u is exact in every iteration (to round-off)
 and the iterates are those of ContactMechanics' algorithm. ``n_convolutions`` reports
 transforms / 2. Measured on D = 2.5 WM maps, warm-started solve at 0.2·R_t: 256², 13 iterations,
-16 convolutions (was 20); 512², 16 iterations, 19.5 (was 26); 2048², 26 iterations, 31 with
-``direct_max`` = 24 (was 48).
+16 convolutions; 512², 16 iterations, 19.5; 2048², 26 iterations, 31 with
+``direct_max`` = 24.
 
 Host synchronisation: two small read-backs per iteration. τ is formed on the device
 (``step_length_kernel``) and read back with the force update's counts (how many forces the
@@ -49,14 +48,13 @@ projection below ``forcetol`` (N); the relative change of the total force below 
 (displacement control) or the total force within ``thermotol`` of the target and the flat's
 position steady (load control).
 
-Elastic–perfectly-plastic contact (``hardness`` H < inf): :mod:`warptrunc.contact.plastic`.
+Elastic–perfectly-plastic contact (``hardness`` H < inf): :mod:`warptrunc.contact.iteration.plastic`.
 """
 
 from __future__ import annotations
 
 import inspect
 import math
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -68,14 +66,14 @@ from .._support.validate import check_height_map, check_range, pair
 from ..kernels import contact as _k
 from ..material import Material
 from ..params import check_value
-from .bccg import BCCGSolves
-from .bccg_device import DeviceLoopSolves
 from .halfspace import DTYPES, ElasticHalfSpace
-from .loop import SolveLoop
-from .memory import SolverMemory
-from .pk import PKSolves
-from .plastic import CappedSolves
-from .punch import PunchStiffness
+from .iteration.bccg import BCCGSolves
+from .iteration.bccg_device import DeviceLoopSolves
+from .iteration.loop import SolveLoop
+from .iteration.pk import PKSolves
+from .iteration.plastic import CappedSolves
+from .iteration.punch import PunchStiffness
+from .memory import fft_plan_that_fits, memory_bytes, memory_terms
 from .results import ContactState
 from .settings import SolverSettings
 
@@ -99,18 +97,22 @@ def default_pentol(heights: np.ndarray) -> float:
     return float(np.std(h)) / (10 * np.mean(h.shape))
 
 
-_LEGACY = ("substrate", "dtype", "pressure_tol", "pentol", "thermotol", "maxiter", "refresh",
-           "direct_max", "load_control", "algorithm", "fft_plan", "precondition_above", "loop")  # fmt: skip
-
-
 @fill_doc(SHARED_DOCS)
-class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, DeviceLoopSolves, PKSolves,
-                    PunchStiffness):  # fmt: skip
+class ContactSolver(SolveLoop, CappedSolves, BCCGSolves, DeviceLoopSolves, PKSolves, PunchStiffness):
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
 
     With a finite ``hardness`` the local pressure is capped at H and the map flows plastically
     (elastic–perfectly-plastic contact, see the module docstring): the plastic height change is
     state of the solver, so a sequence of solves is a loading history.
+
+    The iterations are base classes of the solver, each in its module of
+    :mod:`warptrunc.contact.iteration` (``SolveLoop``: what the loops share; ``PKSolves``,
+    ``BCCGSolves``, ``DeviceLoopSolves``, ``CappedSolves``: the loops; ``PunchStiffness``:
+    Barber's punch), rather than objects the solver holds, because every one of them reads and
+    writes the solver's device maps (forces, displacements, direction, mask, lane reductions)
+    in every iteration, and because :class:`~warptrunc.contact.sharded.ShardedContactSolver`
+    replaces some of them (the BCCG iteration, its sums and warm start, the plastic flow, the
+    punch) with their versions over several devices while inheriting everything above them.
 
     Parameters
     ----------
@@ -126,8 +128,7 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, DeviceLoo
         float32 against float64 on D = 2.5 WM maps of 128²–512²: F within 5e-7, the same contact
         pixels, k within 3e-5 (relative); about 0.6× the time on the CPU.
     hardness : float
-        Hardness H (Pa), the local pressure cap, in (0, inf]; ``inf`` (default): elastic, the
-        solver of today bit for bit.
+        Hardness H (Pa), the local pressure cap, in (0, inf]; ``inf`` (default): elastic.
     {warp_device_obj}
     devices : list, int or "auto", optional
         Spread the map over several devices
@@ -135,20 +136,13 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, DeviceLoo
         JAX, ``warptrunc[distributed]``): JAX
         devices or their names (``["cuda:0", "cuda:1"]``), a count (the first N devices of
         JAX's default backend), or ``"auto"``: this device when the solver fits it, else the
-        fewest devices that fit (:func:`~warptrunc.contact.sharded_devices.choose_devices`).
+        fewest devices that fit (:func:`~warptrunc.contact.sharded.devices.choose_devices`).
         None (default), one device or a list of one: the one-device solver.
-    **legacy
-        The fields of :class:`~warptrunc.contact.SolverSettings` as keywords (``substrate=``,
-        ``dtype=``, ``pressure_tol=``, ``pentol=``, ``thermotol=``, ``maxiter=``, ``refresh=``,
-        ``direct_max=``, ``"auto"`` allowed), as before the settings object; they override
-        ``settings``.
 
     Raises
     ------
     ValueError
         Non-finite or non-2-D heights, parameters out of range.
-    TypeError
-        An unknown keyword.
     MemoryError
         When the estimated memory (:meth:`memory_bytes`) exceeds the device's free memory,
         before anything is allocated.
@@ -156,9 +150,9 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, DeviceLoo
 
     def __new__(cls, *args: Any, devices: Any = None, **kwargs: Any) -> ContactSolver:
         if cls is ContactSolver and devices is not None:  # spread over several devices?
-            from .sharded_devices import solver_class
+            from .sharded.devices import solver_class
 
-            cls = solver_class(cls, devices, args, kwargs, SolverMemory.memory_bytes)
+            cls = solver_class(cls, devices, args, kwargs)
         return super().__new__(cls)
 
     def __init__(
@@ -171,18 +165,11 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, DeviceLoo
         hardness: float = math.inf,
         device: wp.DeviceLike = None,
         devices: Any = None,
-        **legacy: Any,
     ) -> None:
-        unknown = sorted(set(legacy) - set(_LEGACY))
-        if unknown:
-            raise TypeError(f"ContactSolver got unexpected keyword(s) {unknown}; known: "
-                            f"settings, hardness, device, devices, {', '.join(_LEGACY)}")  # fmt: skip
         if settings is None:
             settings = SolverSettings()
         elif not isinstance(settings, SolverSettings):
             raise ValueError(f"settings must be a SolverSettings, got {type(settings).__name__}")
-        if legacy:
-            settings = replace(settings, **legacy)
         self.settings = settings
         self.hardness = float(check_value(Material, "hardness", hardness))
         check_height_map(heights)
@@ -201,7 +188,7 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, DeviceLoo
         self.maxiter = settings.maxiter
         self.refresh = settings.refresh
         if devices is not None:  # one device (several: ShardedContactSolver, from __new__)
-            from .sharded_devices import single_device
+            from .sharded.devices import single_device
 
             device = single_device(devices, device)
         self.device = resolve_device(device)
@@ -259,8 +246,14 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, DeviceLoo
 
     # the memory model (:mod:`warptrunc.contact.memory`), named here so that the API reference
     # lists it with the solver (autodoc shows a class's own members only)
-    memory_terms = staticmethod(SolverMemory.memory_terms)
-    memory_bytes = staticmethod(SolverMemory.memory_bytes)
+    memory_terms = staticmethod(memory_terms)
+    memory_bytes = staticmethod(memory_bytes)
+
+    def _fft_plan_that_fits(self, shape: tuple[int, int], settings: SolverSettings) -> str:
+        """The cuFFT plans of a map of ``shape`` on this device, or MemoryError before anything
+        is allocated (:func:`~warptrunc.contact.memory.fft_plan_that_fits`; the solver over
+        several devices checks each device's share instead)."""
+        return fft_plan_that_fits(self.device, shape, settings)
 
     # --- one solve ---------------------------------------------------------------------------
 
@@ -394,7 +387,7 @@ class ContactSolver(SolveLoop, SolverMemory, CappedSolves, BCCGSolves, DeviceLoo
         """Barber's incremental stiffness of the current contact: a rigid flat punch shaped like
         the contact set, K·x = 1 m on the set, solved by linear CG (preconditioned with c·K⁻¹·c
         under ``algorithm="bccg"`` when the set covers more than ``settings.precondition_above``
-        of the map (by default 2 %); :mod:`warptrunc.contact.punch`); k = Σx (N/m).
+        of the map (by default 2 %); :mod:`warptrunc.contact.iteration.punch`); k = Σx (N/m).
 
         Parameters
         ----------

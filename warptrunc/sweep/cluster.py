@@ -280,11 +280,12 @@ def warm_worker(device: Any = None, contact: bool = False) -> str:
             if contact:
                 import numpy as np
 
-                from ..contact import ContactSolver
+                from ..contact import ContactSolver, SolverSettings
 
                 x = np.linspace(0.0, 2.0 * np.pi, 64)
                 h = 1e-6 * np.outer(np.cos(x), np.cos(x))  # m
-                ContactSolver(h, 1e-6, 1e11, dtype="float32", device=dev).solve(5e-7)
+                f32 = SolverSettings(dtype="float32")
+                ContactSolver(h, 1e-6, 1e11, settings=f32, device=dev).solve(5e-7)
                 wp.synchronize_device(dev)
         return str(dev)
     except Exception as exc:  # reported by the tasks

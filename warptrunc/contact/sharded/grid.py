@@ -5,8 +5,8 @@ slabs, the blocks and pieces its transforms run in (:data:`FFT_ELEMENTS_MAX`,
 :func:`row_blocks`, :func:`column_blocks`, :data:`BUILD_PIECE_BYTES`), the per-device memory
 model (:func:`sharded_memory_terms`, :func:`build_bytes`, :func:`sharded_memory_bytes`), and the
 import of JAX itself (:func:`import_jax`), made only when a solve is spread. The modules that run
-the spread solve (:mod:`~warptrunc.contact.sharded_fft`,
-:mod:`~warptrunc.contact.sharded_spectrum`, :mod:`~warptrunc.contact.sharded_devices`) take
+the spread solve (:mod:`~warptrunc.contact.sharded.fft`,
+:mod:`~warptrunc.contact.sharded.spectrum`, :mod:`~warptrunc.contact.sharded.devices`) take
 these from here.
 """
 
@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._support.docs import fill_doc
-from .influence import GRID_DOCS
+from ..._support.docs import fill_doc
+from ..influence import GRID_DOCS
 
 __all__ = [
     "BLOCKS_ABOVE",

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """The per-pixel steps of :class:`~warptrunc.contact.sharded.ShardedContactSolver`, in
 ``jax.numpy`` on the row slabs, one ``jax.jit`` programme each
-(:func:`~warptrunc.contact.sharded_steps.make_step`).
+(:func:`~warptrunc.contact.sharded.steps.make_step`).
 
 Each step is the Warp kernel (or kernels) of the one-device solver named beside it, with the
 same arithmetic: the maps in their dtype, gaps, sums and maxima in float64, the values cast to
@@ -24,7 +24,7 @@ def make_step(layout: Any, name: str):
     Parameters
     ----------
     layout : SlabLayout
-        The layout (:class:`~warptrunc.contact.sharded_fft.SlabLayout`: the dtype, the
+        The layout (:class:`~warptrunc.contact.sharded.fft.SlabLayout`: the dtype, the
         shardings and the convolution).
     name : str
         One of ``"sums"``, ``"free_sums"``, ``"warm_start"``, ``"clamp"``, ``"scale"``,

@@ -2,13 +2,13 @@
 # SPDX-License-Identifier: MIT
 """The elastic half-space over several devices: JAX/XLA's sharded FFT and the row-slab layout
 (:class:`ShardedHalfSpace`); the grid, its blocks and the per-device memory model are in
-:mod:`~warptrunc.contact.sharded_grid`, the choice of devices in
-:mod:`~warptrunc.contact.sharded_devices`.
+:mod:`~warptrunc.contact.sharded.grid`, the choice of devices in
+:mod:`~warptrunc.contact.sharded.devices`.
 
 Engine. JAX (``pip install "warptrunc[distributed]"``; imported only when a solver is spread
 over several devices, never at ``import warptrunc``). One process drives the host's devices;
 several processes (hosts) join through ``jax.distributed`` when
-:data:`~warptrunc.contact.sharded_grid.PROCESS_ENV` is set, each putting its own slabs. It was
+:data:`~warptrunc.contact.sharded.grid.PROCESS_ENV` is set, each putting its own slabs. It was
 chosen over
 cuFFTMp (nvmath-python) because it is in the GPU image and needs no MPI ranks; the cuFFTMp
 runtime wheel (about 205 MB) is not.
@@ -26,7 +26,7 @@ sees them as per-slab work (without it XLA's sharding propagation gathers whole 
 transposes are XLA's own: no hand-written all-to-all (``tests/test_sharded.py`` checks the
 compiled programme: two all-to-alls, no all-gather).
 
-The kernel spectrum W (:mod:`warptrunc.contact.sharded_spectrum`) is the one-device solver's
+The kernel spectrum W (:mod:`warptrunc.contact.sharded.spectrum`) is the one-device solver's
 (:func:`~warptrunc.contact.influence.build_free_spectrum`): Love's coefficients mirrored in x, the x transform, then mirrored in y
 and the y transform, in float64 on the devices (the x stage in row slabs, the y stage in column
 slabs), rounded to the dtype; the periodic W is its closed form.
@@ -39,9 +39,9 @@ from typing import Any
 
 import numpy as np
 
-from .._support.docs import fill_doc
-from .influence import GRID_DOCS
-from .sharded_grid import _grid, _shard_map, column_blocks, import_jax, row_blocks
+from ..._support.docs import fill_doc
+from ..influence import GRID_DOCS
+from .grid import _grid, _shard_map, column_blocks, import_jax, row_blocks
 
 __all__ = [
     "ShardedHalfSpace",
@@ -68,7 +68,7 @@ class SlabLayout:
         The devices, one row slab each (two or more).
     blocks : int, optional
         Blocks the column stage runs in (default 1;
-        :func:`~warptrunc.contact.sharded_grid.column_blocks`).
+        :func:`~warptrunc.contact.sharded.grid.column_blocks`).
     """
 
     def __init__(self, shape: tuple[int, int], substrate: str, dtype: str,
@@ -158,7 +158,7 @@ class SlabLayout:
             Pixel forces (N), or displacements (m) with ``inverse``; row slabs.
         w_half : (Ny//2 + 1, nkp) jax array
             The kernel spectrum
-            (:meth:`~warptrunc.contact.sharded_fft.SlabLayout.build_spectrum`), column slabs.
+            (:meth:`~warptrunc.contact.sharded.fft.SlabLayout.build_spectrum`), column slabs.
         inverse : bool, optional
             False: K·x (m); True: K⁻¹·x (N).
 
@@ -265,7 +265,7 @@ class SlabLayout:
 
     def build_spectrum(self, pixel_size: tuple[float, float], contact_modulus: float):
         """The kernel spectrum W's rows 0 … Ny//2 in column slabs
-        (:func:`~warptrunc.contact.sharded_spectrum.build_spectrum`).
+        (:func:`~warptrunc.contact.sharded.spectrum.build_spectrum`).
 
         Parameters
         ----------
@@ -279,7 +279,7 @@ class SlabLayout:
         (Ny//2 + 1, nkp) jax array
             W (m/N) in the dtype, column slabs; the padded columns (beyond Nx//2) hold 1.
         """
-        from .sharded_spectrum import build_spectrum
+        from .spectrum import build_spectrum
 
         return build_spectrum(self, pixel_size, contact_modulus)
 
@@ -340,7 +340,7 @@ class ShardedHalfSpace:
         blocks = column_blocks(shape, substrate, dtype, len(devices))
         self.layout = slab_layout(shape, substrate, dtype, tuple(devices), blocks)
         self.spectrum = self.layout.build_spectrum(pixel_size, float(contact_modulus))
-        from .sharded_spectrum import unit_force_check
+        from .spectrum import unit_force_check
 
         self.check = unit_force_check(self, pixel_size, float(contact_modulus))
 

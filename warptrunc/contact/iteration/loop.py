@@ -5,10 +5,10 @@ elastic solve runs, the warm start, the map sums, the stopping test on a steady 
 the records a solve returns (the info dict of an iteration, the
 :class:`~warptrunc.contact.ContactState` of a solve, the known point of F(δ) for load control).
 
-The loops themselves are in :mod:`~warptrunc.contact.pk` (Polonsky–Keer),
-:mod:`~warptrunc.contact.bccg` (BCCG with a read-back after each reduction, ``loop="host"``, the default),
-:mod:`~warptrunc.contact.bccg_device` (BCCG with its scalar steps folded on the device and one
-read-back per iteration, ``loop="device"``, and its CUDA-graph replay, ``loop="graph"``) and :mod:`~warptrunc.contact.plastic`
+The loops themselves are in :mod:`~warptrunc.contact.iteration.pk` (Polonsky–Keer),
+:mod:`~warptrunc.contact.iteration.bccg` (BCCG with a read-back after each reduction, ``loop="host"``, the default),
+:mod:`~warptrunc.contact.iteration.bccg_device` (BCCG with its scalar steps folded on the device and one
+read-back per iteration, ``loop="device"``, and its CUDA-graph replay, ``loop="graph"``) and :mod:`~warptrunc.contact.iteration.plastic`
 (the capped solves); every decision that chooses what to launch next is taken on the host, with
 the code here. The memory model, where a multi-device path starts, is
 :mod:`warptrunc.contact.memory` (whose docstring lists what lives where).
@@ -22,9 +22,9 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ..kernels import contact as _k
-from ..kernels import contact_reduce as _kr
-from .results import ContactState
+from ...kernels import contact as _k
+from ...kernels import contact_reduce as _kr
+from ..results import ContactState
 
 __all__ = ["OPEN_GAP_FRACTION", "PENTOL_FLOOR", "SolveLoop"]
 
@@ -165,7 +165,7 @@ class SolveLoop:
 
     def _solve_elastic(self, depth: float | None, load: float | None) -> dict[str, Any]:
         """The elastic solve on the current heights (the path of H = inf), by the settings'
-        algorithm: :mod:`warptrunc.contact.bccg` or :mod:`warptrunc.contact.pk`."""
+        algorithm: :mod:`warptrunc.contact.iteration.bccg` or :mod:`warptrunc.contact.iteration.pk`."""
         load_control = load is not None
         if self.settings.algorithm == "bccg":
             if load_control:

@@ -53,8 +53,8 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ..kernels import contact_plastic as _kp
-from ..kernels import contact_reduce as _kr
+from ...kernels import contact_plastic as _kp
+from ...kernels import contact_reduce as _kr
 
 __all__ = ["CappedSolves"]
 

@@ -9,13 +9,13 @@ to column slabs (XLA's all-to-all), mirrored in y and transformed along y, in fl
 to the dtype. The periodic W is its closed form.
 
 Both stages run in *pieces* of at most
-:data:`~warptrunc.contact.sharded_grid.BUILD_PIECE_BYTES` of float64 input each — the x stage
+:data:`~warptrunc.contact.sharded.grid.BUILD_PIECE_BYTES` of float64 input each — the x stage
 over blocks of rows (``lax.map``), the y stage over blocks of columns (``lax.fori_loop`` writing
 into its output) — so that a device holds, besides the x stage's result before and after the
 all-to-all and W itself, one piece's temporaries. Built in one piece, XLA's temporaries of the
 free build at 65536² over 4 devices came to 51.5 GB per device on the CPU compile, and the GPU
 compile asked for one buffer of 60.8 GiB (4 × H200, 2026-11-27): more than the solve itself.
-:func:`~warptrunc.contact.sharded_grid.build_bytes` is the model of the pieced build's peak.
+:func:`~warptrunc.contact.sharded.grid.build_bytes` is the model of the pieced build's peak.
 """
 
 from __future__ import annotations
@@ -25,9 +25,9 @@ from typing import Any
 
 import numpy as np
 
-from .._support.docs import fill_doc
-from .influence import _love
-from .sharded_grid import _pieces, _row_layout, _shard_map, host_array
+from ..._support.docs import fill_doc
+from ..influence import _love
+from .grid import _pieces, _row_layout, _shard_map, host_array
 
 __all__ = ["build_spectrum", "spectrum_programme", "unit_force_check"]
 
@@ -36,7 +36,7 @@ SPECTRUM_DOCS = {
                         "contact_modulus : float\n    Contact modulus E* (Pa)."),
 }
 SPECTRUM_DOCS["{layout}"] = ("layout : SlabLayout\n    The layout "
-                             "(:class:`~warptrunc.contact.sharded_fft.SlabLayout`).\n"
+                             "(:class:`~warptrunc.contact.sharded.fft.SlabLayout`).\n"
                              + SPECTRUM_DOCS["{pixel_modulus}"])
 """The parameter text of this module's functions (:func:`~warptrunc._support.docs.fill_doc`)."""
 
@@ -162,7 +162,7 @@ def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: 
     Parameters
     ----------
     hs : ShardedHalfSpace
-        The half-space (:class:`~warptrunc.contact.sharded_fft.ShardedHalfSpace`).
+        The half-space (:class:`~warptrunc.contact.sharded.fft.ShardedHalfSpace`).
     {pixel_modulus}
 
     Returns
@@ -206,7 +206,7 @@ def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: 
             f"a unit force on pixel ({i}, {j}) of the {ny}×{nx} map ({lay.substrate}, "
             f"{lay.np_dtype.name}) gives u = {got:.6g} m, the closed form {want:.6g} m "
             f"(relative difference {rel:.3g} > {tol:g}); the FFT library returned wrong values "
-            "at this size (see warptrunc.contact.sharded_grid.FFT_ELEMENTS_MAX)"
+            "at this size (see warptrunc.contact.sharded.grid.FFT_ELEMENTS_MAX)"
         )
     done[key] = rel
     return rel

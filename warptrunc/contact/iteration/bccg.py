@@ -25,7 +25,7 @@ to a thousand iterations per load. This solver follows Vollebregt (J. Optim. The
 * **Truncation, no restart**: after the step the forces are projected onto [0, H·dx·dy] and the
   CG continues with the Polak–Ribière β = max(0, r·(z − z_old)/(r_old·z_old)).
 * **Load control** (elastic only; with a cap the approach is found by the secant of
-  :mod:`warptrunc.contact.plastic`): the rigid offset moves so that the mean gap over the free
+  :mod:`warptrunc.contact.iteration.plastic`): the rigid offset moves so that the mean gap over the free
   set is zero, z is made mean-free on the set, and the forces are scaled to the load after each
   step (as in the default solver). The solve starts from the last approach or, after Barber's
   stiffness K (:meth:`~warptrunc.contact.ContactSolver.punch_stiffness`), from the approach it
@@ -47,9 +47,9 @@ from typing import Any
 
 import warp as wp
 
-from ..kernels import contact as _k
-from ..kernels import contact_bccg as _kb
-from ..kernels import contact_reduce as _kr
+from ...kernels import contact as _k
+from ...kernels import contact_bccg as _kb
+from ...kernels import contact_reduce as _kr
 
 __all__ = ["BCCGSolves"]
 
@@ -122,7 +122,7 @@ class BCCGSolves:
         """One solve at ``offset`` (m; the start in load control) or at ``load`` (N), with the
         force cap ``cap`` (N per pixel; None: elastic). Returns the info dict of the default
         solver's solves. With ``settings.loop="device"`` or ``"graph"`` the iteration is
-        :mod:`warptrunc.contact.bccg_device`'s, one read-back per iteration."""
+        :mod:`warptrunc.contact.iteration.bccg_device`'s, one read-back per iteration."""
         if getattr(self.settings, "loop", "host") in ("device", "graph"):
             return self._solve_bccg_device(offset, load, cap)
         red, hs, dev = self.hs.reduction, self.hs, self.device

@@ -11,10 +11,10 @@ slabs, not Warp arrays on one device) while everything above the iteration is sh
 secant of the capped solves), the stopping tests (``SolveLoop._steady``), the records of a
 solve, the warm start's choice of approach and the preconditioner's rule are the one-device
 solver's own methods, inherited. What is re-written here is the BCCG iteration
-(:mod:`warptrunc.contact.bccg`, the default ``algorithm``) and its per-pixel steps, line for line,
+(:mod:`warptrunc.contact.iteration.bccg`, the default ``algorithm``) and its per-pixel steps, line for line,
 plus Barber's punch, the plastic flow and the read-backs.
 
-Engine and layout: :mod:`warptrunc.contact.sharded_fft` (JAX/XLA, row slabs, two all-to-alls per
+Engine and layout: :mod:`warptrunc.contact.sharded.fft` (JAX/XLA, row slabs, two all-to-alls per
 convolution). The per-pixel work is ``jax.numpy`` on the slabs (``jax.jit``; XLA fuses each step
 into a few kernels per device), not Warp kernels: handing JAX's buffers to Warp (DLPack) inside
 one step would split every step into separate programmes and host calls; and the sums (loads,
@@ -38,13 +38,11 @@ from typing import Any
 
 import numpy as np
 
-from .._support.docs import fill_doc
-from .bccg import _HUGE
-from .memory import SolverMemory
-from .sharded_devices import register_sharded
-from .sharded_fft import ShardedHalfSpace
-from .sharded_grid import SHARDED_DOCS, host_array, sharded_memory_terms
-from .solver import ContactSolver
+from ..._support.docs import fill_doc
+from ..iteration.bccg import _HUGE
+from ..solver import ContactSolver
+from .fft import ShardedHalfSpace
+from .grid import SHARDED_DOCS, host_array, sharded_memory_terms
 
 __all__ = ["ShardedContactSolver"]
 
@@ -54,7 +52,6 @@ def _is_free(jnp, q, g, hf):
     return ((q > 0) & (q < hf)) | ((q <= 0) & (g < 0)) | ((q >= hf) & (g > 0))
 
 
-@register_sharded
 class ShardedContactSolver(ContactSolver):
     """A :class:`~warptrunc.contact.ContactSolver` whose map is split in row slabs over several
     JAX devices (module docstring); made by ``ContactSolver(..., devices=...)``.
@@ -77,9 +74,7 @@ class ShardedContactSolver(ContactSolver):
     devices : list, int or "auto"
         The JAX devices (``jax.Device`` objects, or names ``"cuda:0"``, ``"gpu:1"``,
         ``"cpu:0"``), a count (the first N of JAX's default backend) or ``"auto"``
-        (:func:`~warptrunc.contact.sharded_devices.choose_devices`).
-    **legacy
-        Settings fields as keywords, as for :class:`~warptrunc.contact.ContactSolver`.
+        (:func:`~warptrunc.contact.sharded.devices.choose_devices`).
 
     Raises
     ------
@@ -94,12 +89,11 @@ class ShardedContactSolver(ContactSolver):
 
     def __init__(self, heights: Any, pixel_size: Any, contact_modulus: float, *,
                  settings: Any = None, hardness: float = math.inf, device: Any = None,
-                 devices: Any = 2, **legacy: Any) -> None:  # fmt: skip
-        from .sharded_devices import choose_devices, mark_spread
+                 devices: Any = 2) -> None:  # fmt: skip
+        from .devices import choose_devices, mark_spread
 
         shape = np.shape(heights)
-        self._jax_devices = choose_devices(devices, shape, settings, legacy, device,
-                                           SolverMemory.memory_bytes)  # fmt: skip
+        self._jax_devices = choose_devices(devices, shape, settings, device)
         if self._jax_devices is None or len(self._jax_devices) < 2:
             raise ValueError(
                 f"devices: a ShardedContactSolver needs two or more devices, got {devices!r}; "
@@ -107,7 +101,7 @@ class ShardedContactSolver(ContactSolver):
             )
         mark_spread()  # an XLA runtime error ends the command at once (warptrunc.cli)
         super().__init__(heights, pixel_size, contact_modulus, settings=settings,
-                         hardness=hardness, device=device, **legacy)  # fmt: skip
+                         hardness=hardness, device=device)  # fmt: skip
         self.direct_max = 0  # the projection's changes: transformed afresh (module docstring)
 
     # --- construction hooks of ContactSolver.__init__ -------------------------------------
@@ -115,8 +109,8 @@ class ShardedContactSolver(ContactSolver):
     def _fft_plan_that_fits(self, shape: tuple[int, int], settings: Any) -> str:
         """Check each device's share against its free memory (MemoryError before allocating),
         after Warp's pools gave back what they keep cached on the GPUs (JAX allocates next)."""
-        from .._support.device import release_kept_pools
-        from .sharded_devices import check_fits
+        from ..._support.device import release_kept_pools
+        from .devices import check_fits
 
         release_kept_pools()
         check_fits(shape, settings.substrate, settings.dtype, self._jax_devices)
@@ -148,7 +142,7 @@ class ShardedContactSolver(ContactSolver):
         steps = self.hs.layout.steps
         fn = steps.get(name)
         if fn is None:
-            from .sharded_steps import make_step
+            from .steps import make_step
 
             fn = steps[name] = make_step(self.hs.layout, name)
         return fn
@@ -180,7 +174,7 @@ class ShardedContactSolver(ContactSolver):
         return self._read([du])[0]
 
     def _solve_bccg(self, offset: float, load: float | None, cap: float | None) -> dict[str, Any]:
-        """``BCCGSolves._solve_bccg`` (:mod:`warptrunc.contact.bccg`), step for step, on the
+        """``BCCGSolves._solve_bccg`` (:mod:`warptrunc.contact.iteration.bccg`), step for step, on the
         slabs (``direct_max`` 0)."""
         n_map = self.shape[0] * self.shape[1]
         hf = _HUGE if cap is None else float(cap)
@@ -260,7 +254,7 @@ class ShardedContactSolver(ContactSolver):
     def _punch_solve(self, rtol: float | None = None) -> tuple[float, int, bool]:
         """:meth:`~warptrunc.contact.ContactSolver.punch_stiffness` on the slabs: Barber's
         punch by CG, preconditioned with c·K⁻¹·c on a contact set above
-        ``_precondition_above(barber=True)`` of the map (:mod:`warptrunc.contact.punch`)."""
+        ``_precondition_above(barber=True)`` of the map (:mod:`warptrunc.contact.iteration.punch`)."""
         if rtol is None:
             rtol = 1e-10 if self.dtype == "float64" else 1e-5
         w = self.hs.spectrum
@@ -374,7 +368,7 @@ class ShardedContactSolver(ContactSolver):
     def memory_terms_per_device(shape: tuple[int, int], substrate: str = "free",
                                 dtype: str = "float64", n_devices: int = 2) -> dict[str, int]:  # fmt: skip
         """Bytes one device holds, term by term
-        (:func:`~warptrunc.contact.sharded_grid.sharded_memory_terms`).
+        (:func:`~warptrunc.contact.sharded.grid.sharded_memory_terms`).
 
         Parameters
         ----------

@@ -9,13 +9,12 @@ asked for (or ``"auto"`` finds that one does not suffice)."""
 
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
-from .._support.docs import fill_doc
-from .sharded_grid import SHARDED_DOCS, import_jax, sharded_memory_bytes
+from ..._support.docs import fill_doc
+from .grid import SHARDED_DOCS, import_jax, sharded_memory_bytes
 
 __all__ = [
     "check_fits",
@@ -84,12 +83,10 @@ def out_of_memory(exc: BaseException) -> MemoryError | None:
 _PLATFORMS = {"cuda": "gpu", "gpu": "gpu", "cpu": "cpu", "tpu": "tpu"}
 
 
-def _settings(settings: Any, legacy: dict[str, Any]):
-    from .settings import SolverSettings
+def _settings(settings: Any):
+    from ..settings import SolverSettings
 
-    s = settings if settings is not None else SolverSettings()
-    known = {k: v for k, v in legacy.items() if k in SolverSettings.__dataclass_fields__}
-    return replace(s, **known) if known else s
+    return settings if settings is not None else SolverSettings()
 
 
 def _jax_device(name: Any, jax: Any):
@@ -168,7 +165,7 @@ def check_fits(shape: tuple[int, int], substrate: str, dtype: str, devices: list
     -------
     int
         Bytes each device needs (the model,
-        :func:`~warptrunc.contact.sharded_grid.sharded_memory_bytes`).
+        :func:`~warptrunc.contact.sharded.grid.sharded_memory_bytes`).
 
     Raises
     ------
@@ -206,8 +203,7 @@ def _count_error(n: int, ny: int, avail: int) -> ValueError:
 
 
 def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
-                   legacy: dict[str, Any] | None = None, device: Any = None,
-                   one_device_bytes: Any = None) -> list[Any] | None:  # fmt: skip
+                   device: Any = None) -> list[Any] | None:
     """The JAX devices a solve is spread over, or None for the one-device solver.
 
     Parameters
@@ -221,13 +217,9 @@ def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
         Shape of the height map (ny, nx).
     settings : SolverSettings, optional
         The solver's settings (substrate, dtype, algorithm).
-    legacy : dict, optional
-        Settings fields given as keywords (they override ``settings``).
     device : str or warp Device, optional
-        The one-device solver's Warp device (``"auto"`` checks it first).
-    one_device_bytes : callable, optional
-        ``one_device_bytes(shape, substrate, dtype, cuda=, algorithm=)`` → bytes of the
-        one-device solver (``SolverMemory.memory_bytes``); needed by ``"auto"``.
+        The one-device solver's Warp device (``"auto"`` checks it first, against
+        :func:`~warptrunc.contact.memory.memory_bytes`).
 
     Returns
     -------
@@ -246,14 +238,13 @@ def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
         return None
     ny = int(shape[0]) if len(shape) else 0
     if isinstance(devices, str) and devices == "auto":
-        s = _settings(settings, legacy or {})
-        from .._support.device import free_memory_bytes, resolve_device
+        s = _settings(settings)
+        from ..._support.device import free_memory_bytes, resolve_device
+        from ..memory import memory_bytes
 
-        if one_device_bytes is None:
-            raise ValueError("devices='auto' needs the one-device memory model (one_device_bytes)")
         dev = resolve_device(device)
-        one = one_device_bytes(tuple(shape), s.substrate, s.dtype, cuda=dev.is_cuda,
-                               algorithm=s.algorithm)  # fmt: skip
+        one = memory_bytes(tuple(shape), s.substrate, s.dtype, cuda=dev.is_cuda,
+                           algorithm=s.algorithm)
         if one <= free_memory_bytes(dev):
             return None
         jax = import_jax()
@@ -284,7 +275,7 @@ def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
             if len(group) != n:
                 raise ValueError(f"devices={n}, but this process's device group "
                                  f"(WARPTRUNC_DEVICE_GROUP) names {len(group)}: {group}")  # fmt: skip
-            return choose_devices(group, shape, settings, legacy, device, one_device_bytes)
+            return choose_devices(group, shape, settings, device)
         jax = import_jax()
         avail = jax.devices()
         if n > len(avail):
@@ -339,32 +330,9 @@ def single_device(devices: Any, device: Any) -> Any:
     return "cpu"
 
 
-_SHARDED: list[type] = []
-"""The several-device solver class, registered by :mod:`warptrunc.contact.sharded` when the
-package loads (no JAX then), so that this module imports neither solver."""
-
-
-def register_sharded(cls: type) -> type:
-    """Class decorator: the class :func:`solver_class` returns for two or more devices.
-
-    Parameters
-    ----------
-    cls : type
-        :class:`~warptrunc.contact.sharded.ShardedContactSolver`.
-
-    Returns
-    -------
-    type
-        ``cls``, unchanged.
-    """
-    _SHARDED[:] = [cls]
-    return cls
-
-
-def solver_class(base: type, devices: Any, args: tuple, kwargs: dict[str, Any],
-                 one_device_bytes: Any) -> type:  # fmt: skip
-    """``base`` (:class:`~warptrunc.contact.ContactSolver`) or, for two or more devices, the
-    registered :class:`~warptrunc.contact.sharded.ShardedContactSolver` (``ContactSolver.__new__``).
+def solver_class(base: type, devices: Any, args: tuple, kwargs: dict[str, Any]) -> type:
+    """``base`` (:class:`~warptrunc.contact.ContactSolver`) or, for two or more devices,
+    :class:`~warptrunc.contact.sharded.ShardedContactSolver` (``ContactSolver.__new__``).
 
     Parameters
     ----------
@@ -376,8 +344,6 @@ def solver_class(base: type, devices: Any, args: tuple, kwargs: dict[str, Any],
         The solver's positional arguments (heights first).
     kwargs : dict
         Its keyword arguments.
-    one_device_bytes : callable
-        The one-device memory model (:func:`choose_devices`).
 
     Returns
     -------
@@ -385,11 +351,10 @@ def solver_class(base: type, devices: Any, args: tuple, kwargs: dict[str, Any],
         The class to make.
     """
     heights = args[0] if args else kwargs.get("heights")
-    legacy = {k: v for k, v in kwargs.items() if k not in ("settings", "device", "hardness")}
-    found = choose_devices(devices, np.shape(heights), kwargs.get("settings"), legacy,
-                           kwargs.get("device"), one_device_bytes)  # fmt: skip
+    found = choose_devices(devices, np.shape(heights), kwargs.get("settings"),
+                           kwargs.get("device"))
     if found is None:
         return base
-    if not _SHARDED:  # importing any module of warptrunc.contact registers it first
-        raise RuntimeError("the several-device solver is not registered: import warptrunc.contact")
-    return _SHARDED[0]
+    from .solver import ShardedContactSolver  # imports no JAX
+
+    return ShardedContactSolver

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """The BCCG solve with one read-back per iteration (``SolverSettings.loop="device"`` or ``"graph"``).
 
-The iteration of :mod:`warptrunc.contact.bccg` reads a few numbers back after each of its
+The iteration of :mod:`warptrunc.contact.iteration.bccg` reads a few numbers back after each of its
 reductions: the mean gap of load control, then the residual's sums, then r·z for Polak–Ribière's
 β, then the step's projected count, total force and change of u (and the direct correction's
 change). Each read drains the device's queue, so on a GPU the device waits while the host
@@ -38,9 +38,9 @@ from typing import Any
 
 import warp as wp
 
-from ..kernels import contact_bccg as _kb
-from ..kernels import contact_loop as _kl
-from ..kernels import contact_reduce as _kr
+from ...kernels import contact_bccg as _kb
+from ...kernels import contact_loop as _kl
+from ...kernels import contact_reduce as _kr
 
 __all__ = ["DeviceLoopSolves"]
 
@@ -174,7 +174,7 @@ class DeviceLoopSolves:
 
     def _solve_bccg_device(self, offset: float, load: float | None,
                            cap: float | None) -> dict[str, Any]:  # fmt: skip
-        """:meth:`~warptrunc.contact.bccg.BCCGSolves._solve_bccg` with one read-back per
+        """:meth:`~warptrunc.contact.iteration.bccg.BCCGSolves._solve_bccg` with one read-back per
         iteration (module docstring); same arguments and info dict."""
         dev = self.device
         n_map = self.shape[0] * self.shape[1]

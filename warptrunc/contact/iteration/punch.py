@@ -3,7 +3,7 @@
 """Barber's incremental stiffness of :class:`~warptrunc.contact.ContactSolver`'s current contact:
 a rigid flat punch shaped like the contact set (every pixel with p > 0), K·x = 1 m on the set,
 k = Σx (N/m); by plain CG (``algorithm="pk"``) or CG preconditioned with c·K⁻¹·c
-(``"bccg"``, :mod:`warptrunc.contact.bccg`).
+(``"bccg"``, :mod:`warptrunc.contact.iteration.bccg`).
 
 References: J.R. Barber, Proc. R. Soc. A 459, 53 (2003), doi:10.1098/rspa.2002.1038 (the
 incremental stiffness equals that of a rigid punch shaped like the contact area).
@@ -16,8 +16,8 @@ import math
 import numpy as np
 import warp as wp
 
-from ..kernels import contact as _k
-from .halfspace import DTYPES
+from ...kernels import contact as _k
+from ..halfspace import DTYPES
 
 __all__ = ["PunchStiffness"]
 
