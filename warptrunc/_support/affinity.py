@@ -12,7 +12,7 @@ socket, and move.
 (A reading, not a measurement: the one 4-GPU host whose topology was recorded, 4 × H100 at
 ``1b64d9c``, is a single NUMA node whose GPUs all list CPUs 0–63, so binding changed nothing
 there; the workers' extra cost on that host was Dask's profiler, see
-:mod:`warptrunc.sweep.spawn`.)
+:func:`warptrunc.sweep.cluster.worker_environment`.)
 
 The GPU's PCI bus id comes from the CUDA driver (``cuDeviceGetPCIBusId``; the ordinal as this
 process counts devices, after ``CUDA_VISIBLE_DEVICES``; no context is created), and its CPUs
