@@ -377,7 +377,7 @@ def workers(names: list[str]) -> str:
         by: OrderedDict[str, dict] = OrderedDict()
         for r in d["runs"]:
             by.setdefault(r["workload"], {})[r["run"]] = r
-        for wl, runs in by.items():
+        for runs in by.values():
             inproc = runs.get("inproc")
             body.append([f"{model} × {len(d.get('warp_devices', [])) - 1}",
                          f"`{_short(d['commit'])}`", _workload(inproc or next(iter(runs.values()))),
