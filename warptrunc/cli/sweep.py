@@ -54,8 +54,16 @@ AXES = tuple(axis_names(runnable=True))
 """Options that take several values, each value a case of one more grid axis."""
 
 SURFACE = ("Wr", "L", "n", "M", "gamma", "Wc", "cutoff")
-TRUNCATION_MATERIAL = ("increments", "max_depth_fraction", "max_depth", "beta_prime",
-                       "E", "nu", "E_i", "nu_i")  # fmt: skip
+TRUNCATION_MATERIAL = (
+    "increments",
+    "max_depth_fraction",
+    "max_depth",
+    "beta_prime",
+    "E",
+    "nu",
+    "E_i",
+    "nu_i",
+)
 FIT_RANGE = ("min_pixels", "depth_window")
 EXTRA = ("min_pixels_fraction", "fractal_methods", "bem_fractions")
 
@@ -71,20 +79,31 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_options(g, SweepGrid, only=("D", "delta", "seeds"), defaults={"D": None, "delta": None})
     add_grid_file(g)
     groups = (
-        ("surface generation (SI; several values of --Wr, --M, --gamma, --Wc: more grid axes)",
-         SURFACE),
-        ("truncation and material (several values of --E, --nu, --E-i, --nu-i: more grid axes)",
-         TRUNCATION_MATERIAL),
+        (
+            "surface generation (SI; several values of --Wr, --M, --gamma, --Wc: more grid axes)",
+            SURFACE,
+        ),
+        (
+            "truncation and material (several values of --E, --nu, --E-i, --nu-i: more grid axes)",
+            TRUNCATION_MATERIAL,
+        ),
         ("fit range", FIT_RANGE),
         ("extra measurements and fit ranges", EXTRA),
-    )  # fmt: skip
+    )
     for title, names in groups:
-        add_options(p.add_argument_group(title), SweepOptions, only=names,
-                    many=[k for k in names if k in AXES])  # fmt: skip
+        add_options(
+            p.add_argument_group(title),
+            SweepOptions,
+            only=names,
+            many=[k for k in names if k in AXES],
+        )
     e = p.add_argument_group("execution")
     add_device(e)
-    add_devices(e, "--bem-fractions (with --workers N: each worker takes that many devices of its "
-                "own, and --workers auto is the GPUs divided by it)")
+    add_devices(
+        e,
+        "--bem-fractions (with --workers N: each worker takes that many devices of its "
+        "own, and --workers auto is the GPUs divided by it)",
+    )
     add_workers(e, "the cases", "the cases (its workers write into --out: a shared filesystem)")
     add_shards(e)
     add_overwrite(e, "the results in an existing store made by another grid/options")
@@ -125,8 +144,9 @@ def execution_from_args(args: argparse.Namespace) -> SweepExecution:
     """The :class:`SweepExecution` of ``--workers``, ``--scheduler``, ``--devices``,
     ``--shard-size`` and ``--shard-seconds`` (those not given: its defaults)."""
 
-    return from_args(SweepExecution, args, workers=args.workers, scheduler=args.scheduler,
-                     devices=args.devices)  # fmt: skip
+    return from_args(
+        SweepExecution, args, workers=args.workers, scheduler=args.scheduler, devices=args.devices
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -139,32 +159,47 @@ def run(args: argparse.Namespace) -> int:
     execution = execution_from_args(args)
     if execution.spread:
         if args.devices == "auto" and execution.distributed:
-            raise ValueError("--devices auto with --workers/--scheduler: give a count (each "
-                             "worker takes that many devices of its own)")  # fmt: skip
+            raise ValueError(
+                "--devices auto with --workers/--scheduler: give a count (each "
+                "worker takes that many devices of its own)"
+            )
         if not options.bem_fractions:
-            raise ValueError(f"--devices {args.devices} spreads the elastic solves of "
-                             "--bem-fractions, and none are asked for")  # fmt: skip
+            raise ValueError(
+                f"--devices {args.devices} spreads the elastic solves of "
+                "--bem-fractions, and none are asked for"
+            )
         prepare_devices(args.devices)
     grid = grid_from_args(args)
     stops = latched_signals({signal.SIGINT: KeyboardInterrupt, signal.SIGTERM: Terminated})
     try:
         with stops:
             df = run_sweep(
-                grid, args.out, options=options, execution=execution, overwrite=args.overwrite,
-                retry_failed=args.retry_failed, progress=not args.no_progress, device=args.device,
-            )  # fmt: skip
+                grid,
+                args.out,
+                options=options,
+                execution=execution,
+                overwrite=args.overwrite,
+                retry_failed=args.retry_failed,
+                progress=not args.no_progress,
+                device=args.device,
+            )
             check_interrupt()  # a signal swallowed in a destructor after the last case
     except KeyboardInterrupt as exc:
         n = load(args.out)["case_id"].nunique() if (args.out / "sweep.json").exists() else 0
         what = "SIGTERM" if isinstance(exc, Terminated) else "interrupted"
-        print(f"\n{what}: {n} of {len(grid)} cases are in {args.out}; run the same command "
-              "again to finish the rest", file=sys.stderr)  # fmt: skip
+        print(
+            f"\n{what}: {n} of {len(grid)} cases are in {args.out}; run the same command "
+            "again to finish the rest",
+            file=sys.stderr,
+        )
         return 143 if isinstance(exc, Terminated) else 130
     except ImportError as exc:
         raise ValueError(str(exc)) from None
     failed = df.loc[df["error"].notna(), "case_id"].nunique()
-    print(f"{len(grid)} cases ({failed} failed) in {args.out}: sweep.json, cases.parquet, "
-          "curves/part-*.parquet")
+    print(
+        f"{len(grid)} cases ({failed} failed) in {args.out}: sweep.json, cases.parquet, "
+        "curves/part-*.parquet"
+    )
     _print_summary(df)
     return 0
 
@@ -176,32 +211,39 @@ def _print_summary(df) -> None:
     ok = df["error"].isna()
     flagged = int((ok & df["fit_error"].notna() & df["alpha"].notna()).sum())
     if flagged:
-        print(f"warning: {flagged} fits not worth reading (fit_error in cases.parquet) are left "
-              "out of the α summary", file=sys.stderr)  # fmt: skip
+        print(
+            f"warning: {flagged} fits not worth reading (fit_error in cases.parquet) are left "
+            "out of the α summary",
+            file=sys.stderr,
+        )
     ranges = alpha_summary(df[ok])["fit_ranges"]
     good = alpha_summary(df[ok & df["fit_error"].isna()])["fit_ranges"]
     keys = _range_keys(df)
     for mp in ranges:
         label = mp if mp.startswith("fraction") else f"min_pixels={mp}"
         left = df.loc[ok & (keys == mp) & df["fit_error"].notna(), "fit_error"].tolist()
-        why = f"{len(left)} fit{'s' if len(left) != 1 else ''} left out (fit_error in cases.parquet)"
+        why = (
+            f"{len(left)} fit{'s' if len(left) != 1 else ''} left out (fit_error in cases.parquet)"
+        )
         if mp not in good:
             print(f"{label}: α — no fit worth reading; {why}:")
         else:
             rows = [r for r in good[mp]["per_D"] if r["n"] > 0]
             per_d = ", ".join(
                 f"D={r['D_in']:g}: {r['alpha_mean']:.4f}"
-                + (f"±{r['alpha_sd']:.4f}" if r["n"] > 1 else "") + f" (n={r['n']})"
+                + (f"±{r['alpha_sd']:.4f}" if r["n"] > 1 else "")
+                + f" (n={r['n']})"
                 for r in rows
             )
             line = good[mp]["alpha_vs_D"]
             trend = (
                 f"α = {line['slope']:.3f}·D {'−' if line['intercept'] < 0 else '+'} "
-                f"{abs(line['intercept']):.3f} (r = {line['r']:.3f})" if line
+                f"{abs(line['intercept']):.3f} (r = {line['r']:.3f})"
+                if line
                 else f"no line α(D): α worth reading at {len(rows)} value"
                 f"{'s' if len(rows) != 1 else ''} of D, a line needs {MIN_TREND_D}"
                 + (" (through 2 it is exact, r = ±1)" if len(rows) == 2 else "")
-            )  # fmt: skip
+            )
             print(f"{label}: α {per_d}; {trend}" + (f"; {why}:" if left else ""))
         for text in _reasons(left):
             print(f"  {text}")

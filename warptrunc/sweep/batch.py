@@ -105,8 +105,9 @@ class WMBatch:
     :meth:`truncate` does the three steps at once.
     """
 
-    def __init__(self, options: SweepOptions, size: int, device: wp.context.Device, *,
-                 slots: int = 1):  # fmt: skip
+    def __init__(
+        self, options: SweepOptions, size: int, device: wp.context.Device, *, slots: int = 1
+    ):
         o = self.options = options
         ref = o.wm_spec(2.5, 1.0).terms()
         self.device, self.size = device, int(size)
@@ -115,9 +116,11 @@ class WMBatch:
         self.nn = np.tile(np.arange(self.n_f, dtype=np.float64), ref.M)
         self.K = pad_to(2 * self.T, _kw.TILE_K)
         self.grid = SimpleNamespace(
-            nx=ref.nx, ny=ref.ny, pixel_area=ref.dx * ref.dy,
+            nx=ref.nx,
+            ny=ref.ny,
+            pixel_area=ref.dx * ref.dy,
             apparent_area=(ref.nx * ref.dx) * (ref.ny * ref.dy),
-        )  # fmt: skip
+        )
         self.dx, self.dy = ref.dx, ref.dy
         B, nx, ny, K, T = self.size, self.nx, self.ny, self.K, self.T
         n1 = o.increments + 1
@@ -130,7 +133,9 @@ class WMBatch:
 
         def pair(shape, dtype):  # (device array, host staging array)
             d = wp.zeros(shape, dtype=dtype, device=device)
-            return d, (wp.zeros(shape, dtype=dtype, device="cpu", pinned=pinned) if pinned else None)
+            return d, (
+                wp.zeros(shape, dtype=dtype, device="cpu", pinned=pinned) if pinned else None
+            )
 
         self._slots = []
         for _ in range(max(1, int(slots))):
@@ -138,13 +143,19 @@ class WMBatch:
                 p=wp.zeros((B * ny, K), dtype=wp.float32, device=device),
                 q=wp.zeros((B * K, nx), dtype=wp.float32, device=device),
                 z=wp.empty((B * ny, nx), dtype=wp.float32, device=device),
-                alpha=pair((B, T), wp.float64), w=pair((B, T), wp.float64),
-                c0=pair(B, wp.float64), scale=pair(B, wp.float64),
-                t=pair(B * n1, wp.float32), top=pair(B, wp.float32), inv=pair(B, wp.float32),
+                alpha=pair((B, T), wp.float64),
+                w=pair((B, T), wp.float64),
+                c0=pair(B, wp.float64),
+                scale=pair(B, wp.float64),
+                t=pair(B * n1, wp.float32),
+                top=pair(B, wp.float32),
+                inv=pair(B, wp.float32),
                 hist=pair((B, n1), wp.int64),
-                lo=pair(max(tiles, 1), wp.float32), hi=pair(max(tiles, 1), wp.float32),
-                event=wp.Event(device) if device.is_cuda else None, job=None,
-            )  # fmt: skip
+                lo=pair(max(tiles, 1), wp.float32),
+                hi=pair(max(tiles, 1), wp.float32),
+                event=wp.Event(device) if device.is_cuda else None,
+                job=None,
+            )
             self._slots.append(b)
         self._last = None
 
@@ -226,18 +237,39 @@ class WMBatch:
         self._put(s.alpha, alpha)
         self._put(s.w, w)
         p, q, z = s.p[: b * ny], s.q[: b * K], s.z[: b * ny]
-        wp.launch(_kw.column_table_batch_kernel, dim=(b, T, nx),
-                  inputs=[self.kx, s.alpha[0][:b], self.dx, K], outputs=[q], device=dev)  # fmt: skip
-        wp.launch(_kw.row_table_batch_kernel, dim=(b, ny, T),
-                  inputs=[self.ky, s.w[0][:b], self.dy, ny], outputs=[p], device=dev)  # fmt: skip
+        wp.launch(
+            _kw.column_table_batch_kernel,
+            dim=(b, T, nx),
+            inputs=[self.kx, s.alpha[0][:b], self.dx, K],
+            outputs=[q],
+            device=dev,
+        )
+        wp.launch(
+            _kw.row_table_batch_kernel,
+            dim=(b, ny, T),
+            inputs=[self.ky, s.w[0][:b], self.dy, ny],
+            outputs=[p],
+            device=dev,
+        )
         tm = ny // int(_kw.TILE_M)
-        wp.launch_tiled(_kw.wm_tile_gemm_batch_kernel, dim=(b * tm, nx // int(_kw.TILE_N)),
-                        inputs=[p, q, tm], outputs=[z], block_dim=256, device=dev)  # fmt: skip
+        wp.launch_tiled(
+            _kw.wm_tile_gemm_batch_kernel,
+            dim=(b * tm, nx // int(_kw.TILE_N)),
+            inputs=[p, q, tm],
+            outputs=[z],
+            block_dim=256,
+            device=dev,
+        )
         if dev.is_cuda:  # whole tiles: nx·ny is a multiple of 128² = 2·TILE
             tiles = b * nx * ny // int(_kr.TILE)
-            wp.launch_tiled(_kr.min_max_tile_kernel, dim=tiles, inputs=[z.flatten()],
-                            outputs=[s.lo[0][:tiles], s.hi[0][:tiles]], block_dim=256,
-                            device=dev)  # fmt: skip
+            wp.launch_tiled(
+                _kr.min_max_tile_kernel,
+                dim=tiles,
+                inputs=[z.flatten()],
+                outputs=[s.lo[0][:tiles], s.hi[0][:tiles]],
+                block_dim=256,
+                device=dev,
+            )
             self._get(s.lo, tiles)
             self._get(s.hi, tiles)
             dev.stream.record_event(s.event)  # this device's stream, not the default's
@@ -277,19 +309,26 @@ class WMBatch:
             scale[i] = c.delta * o.Wr / (hi - lo)
         self._put(s.c0, c0)
         self._put(s.scale, scale)
-        wp.launch(_kw.affine_batch_kernel, dim=(b * ny, nx),
-                  inputs=[z, ny, s.c0[0][:b], s.scale[0][:b]], device=dev)  # fmt: skip
+        wp.launch(
+            _kw.affine_batch_kernel,
+            dim=(b * ny, nx),
+            inputs=[z, ny, s.c0[0][:b], s.scale[0][:b]],
+            device=dev,
+        )
         # exact float32 extremes of the scaled maps, as warptrunc.wm._generate records them
-        j.ext = [tuple(float(np.float32((np.float64(v) + c0[i]) * scale[i])) for v in raw[i])
-                 for i in range(b)]  # fmt: skip
+        j.ext = [
+            tuple(float(np.float32((np.float64(v) + c0[i]) * scale[i])) for v in raw[i])
+            for i in range(b)
+        ]
         # depth_grid and the thresholds of truncation.curve.depth_thresholds for every
         # surface at once (the same float64 operations, element by element); depth_grid
         # checks the options on the first
         n, n1 = o.increments, o.increments + 1
         lo_hi = np.array(j.ext, dtype=np.float64)
         rt = lo_hi[:, 1] - lo_hi[:, 0]
-        first = depth_grid(float(rt[0]), n, max_depth=o.max_depth,
-                           max_depth_fraction=o.max_depth_fraction)  # fmt: skip
+        first = depth_grid(
+            float(rt[0]), n, max_depth=o.max_depth, max_depth_fraction=o.max_depth_fraction
+        )
         wmax = np.full(b, first[-1]) if o.max_depth is not None else o.max_depth_fraction * rt
         if not np.all(wmax > 0):
             s.job = None
@@ -304,9 +343,13 @@ class WMBatch:
         hist = s.hist[0][:b]
         hist.zero_()
         z4 = wp.array(ptr=z.ptr, dtype=wp.vec4, shape=(b, nx * ny // 4), device=dev)
-        wp.launch(_kt.contact_histogram_batch_kernel, dim=(b, nx * ny // 4),
-                  inputs=[z4, s.t[0][: b * n1], s.top[0][:b], s.inv[0][:b]], outputs=[hist],
-                  device=dev)  # fmt: skip
+        wp.launch(
+            _kt.contact_histogram_batch_kernel,
+            dim=(b, nx * ny // 4),
+            inputs=[z4, s.t[0][: b * n1], s.top[0][:b], s.inv[0][:b]],
+            outputs=[hist],
+            device=dev,
+        )
         if dev.is_cuda:
             self._get(s.hist, b * n1)
             dev.stream.record_event(s.event)  # this device's stream, not the default's
@@ -331,8 +374,9 @@ class WMBatch:
         else:
             h = s.hist[0].numpy()[:b]
         s.job, self._last = None, s
-        return [curve_from_histogram(h[i], j.depths[i], j.thr[i], j.ext[i], self.grid)
-                for i in range(b)]  # fmt: skip
+        return [
+            curve_from_histogram(h[i], j.depths[i], j.thr[i], j.ext[i], self.grid) for i in range(b)
+        ]
 
     def release(self, s: Any) -> None:
         """Free the slot of a batch that failed between :meth:`submit` and :meth:`collect`.

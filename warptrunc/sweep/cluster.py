@@ -155,9 +155,11 @@ def worker_environment() -> dict[str, Any]:
     if TRIM_VARIABLE not in os.environ:
         pre[TRIM_VARIABLE] = None
     profile = os.environ.get(PROFILE_ENV, "").strip().lower() in ("1", "true", "yes", "on")
-    return {"distributed.nanny.environ": environ, "distributed.nanny.pre-spawn-environ": pre,
-            "distributed.worker.profile.enabled": profile}
-
+    return {
+        "distributed.nanny.environ": environ,
+        "distributed.nanny.pre-spawn-environ": pre,
+        "distributed.worker.profile.enabled": profile,
+    }
 
 
 class PinDevice(WorkerPlugin):
@@ -194,8 +196,9 @@ class PinDevice(WorkerPlugin):
     name = "warptrunc-pin-device"
     idempotent = True
 
-    def __init__(self, n_devices: int | None = None, group: int = 1, platform: str = "cuda",
-                 pin: bool = True) -> None:  # fmt: skip
+    def __init__(
+        self, n_devices: int | None = None, group: int = 1, platform: str = "cuda", pin: bool = True
+    ) -> None:
         self.n_devices = n_devices
         self.group, self.platform, self.pin = int(group), platform, pin
 
@@ -437,8 +440,7 @@ def open_client(
         n_gpus = _gpu_count() if cuda_cls is not None else 0
         if not (n_gpus > 0 and (n or n_gpus) <= n_gpus):
             cuda_cls = None
-        common = dict(threads_per_worker=1, dashboard_address=":0",
-                      silence_logs=logging.ERROR)  # fmt: skip
+        common = dict(threads_per_worker=1, dashboard_address=":0", silence_logs=logging.ERROR)
         with dask.config.set(worker_environment()):
             if cuda_cls is not None:
                 cluster = cuda_cls(n_workers=n or n_gpus, **common)
@@ -459,8 +461,11 @@ def open_client(
             raise
         if progress:
             kind = type(cluster).__name__
-            print(f"Dask {kind} of {len(cluster.workers)} workers (warmed in {warm:.1f} s), "
-                  f"dashboard: {client.dashboard_link}", file=sys.stderr)  # fmt: skip
+            print(
+                f"Dask {kind} of {len(cluster.workers)} workers (warmed in {warm:.1f} s), "
+                f"dashboard: {client.dashboard_link}",
+                file=sys.stderr,
+            )
     try:
         yield client, cluster, True
     finally:
@@ -537,8 +542,7 @@ def run_dask(
         _run_on(client, cases, options, store, ex, device=device, total=total, progress=progress)
 
 
-def _run_on(client, cases, options, store, ex: SweepExecution, *, device, total,
-            progress) -> None:  # fmt: skip
+def _run_on(client, cases, options, store, ex: SweepExecution, *, device, total, progress) -> None:
     """:func:`run_dask` on an open ``client``."""
     from distributed import as_completed
 
@@ -553,8 +557,10 @@ def _run_on(client, cases, options, store, ex: SweepExecution, *, device, total,
 
     def workers_now() -> int:
         if time.monotonic() - n_workers[1] > 5:
-            n_workers[:] = [max(1, len(client.scheduler_info().get("workers", {}))),
-                            time.monotonic()]  # fmt: skip
+            n_workers[:] = [
+                max(1, len(client.scheduler_info().get("workers", {}))),
+                time.monotonic(),
+            ]
         return n_workers[0]
 
     def record(part, held) -> int:
@@ -571,8 +577,16 @@ def _run_on(client, cases, options, store, ex: SweepExecution, *, device, total,
         for cid in ids:
             attempts[cid] += 1
         key = f"warptrunc-shard-{ids[0]}-{len(ids)}-{attempts[ids[0]]}"
-        f = client.submit(compute_shard, [by_id[c] for c in ids], options, device, curves,
-                          ex.devices, key=key, pure=False)  # fmt: skip
+        f = client.submit(
+            compute_shard,
+            [by_id[c] for c in ids],
+            options,
+            device,
+            curves,
+            ex.devices,
+            key=key,
+            pure=False,
+        )
         futures[f] = ids
         pending.add(f)
 
@@ -611,8 +625,11 @@ def _run_on(client, cases, options, store, ex: SweepExecution, *, device, total,
                     why = _task_error(fut)
                     if why not in told:
                         told.add(why)
-                        print(f"warning: a task of {len(ids)} cases raised {why}; its cases "
-                              "are submitted again", file=sys.stderr)  # fmt: skip
+                        print(
+                            f"warning: a task of {len(ids)} cases raised {why}; its cases "
+                            "are submitted again",
+                            file=sys.stderr,
+                        )
                 if curves is not None:  # the worker may have written the part and died
                     name = part_name(ids, min(by_id[c].index for c in ids))
                     held = part_rows(os.path.join(curves, name))
@@ -627,8 +644,9 @@ def _run_on(client, cases, options, store, ex: SweepExecution, *, device, total,
                 if len(again) < len(lost):
                     why = _task_error(fut)
                     for cid in set(lost) - set(again):
-                        rows, _ = failed_case(by_id[cid], options,
-                                              f"lost {attempts[cid]} times: {why}")  # fmt: skip
+                        rows, _ = failed_case(
+                            by_id[cid], options, f"lost {attempts[cid]} times: {why}"
+                        )
                         store.add(rows, None)
                         bar.update()
             fut.release()

@@ -34,7 +34,7 @@ __all__ = [
     "read_part_curves",
     "table_bytes",
     "write_part",
-]  # fmt: skip
+]
 
 CURVE_COLUMNS = (
     "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
@@ -218,8 +218,10 @@ _PLAIN = (float, int, str, bool, type(None))
 def clean_rows(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Rows with JSON-ready values (NaN kept): plain Python values pass as they are, others
     through :func:`warptrunc._support.results.jsonable`."""
-    return [{k: v if type(v) in _PLAIN else jsonable(v, nonfinite="keep") for k, v in r.items()}
-            for r in rows]  # fmt: skip
+    return [
+        {k: v if type(v) in _PLAIN else jsonable(v, nonfinite="keep") for k, v in r.items()}
+        for r in rows
+    ]
 
 
 def write_part(
@@ -272,7 +274,7 @@ def write_part(
             data = table_bytes(table)
             view = memoryview(data)
             while view:
-                view = view[os.write(fd, view):]
+                view = view[os.write(fd, view) :]
             os.fsync(fd)
         finally:
             os.close(fd)

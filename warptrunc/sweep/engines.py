@@ -113,8 +113,13 @@ def compute_case(
             if found:
                 base["warnings"] = _join_warnings(None, found)
             base["fractal_seconds"] = time.perf_counter() - t1
-        tc = truncate(s, o.increments, max_depth=o.max_depth,
-                      max_depth_fraction=o.max_depth_fraction, device=dev)  # fmt: skip
+        tc = truncate(
+            s,
+            o.increments,
+            max_depth=o.max_depth,
+            max_depth_fraction=o.max_depth_fraction,
+            device=dev,
+        )
         sc = stiffness_curve(tc, o.material(), beta_prime=o.beta_prime)
         if o.bem_fractions:
             base.update(elastic_record(s, sc, o, dev, devices=devices))
@@ -142,9 +147,15 @@ def _finish(o: SweepOptions, base: dict[str, Any], sc, seconds: float, device) -
         if curve is not None:
             try:
                 f = fit_power_law(sc, min_pixels=mp, depth_window=o.depth_window)
-                row.update(alpha=f.alpha, beta=f.beta, beta_contact_modulus=f.beta_contact_modulus,
-                           r2=f.r2, n_points=f.n_points,
-                           fit_depth_min_m=f.depth_min, fit_depth_max_m=f.depth_max)  # fmt: skip
+                row.update(
+                    alpha=f.alpha,
+                    beta=f.beta,
+                    beta_contact_modulus=f.beta_contact_modulus,
+                    r2=f.r2,
+                    n_points=f.n_points,
+                    fit_depth_min_m=f.depth_min,
+                    fit_depth_max_m=f.depth_max,
+                )
                 found = check_fit(f, sc)  # not worth reading: kept, with fit_error and warnings
                 row.update(fit_error=fit_error_text(found))
                 if found:
@@ -162,12 +173,14 @@ def _finish(o: SweepOptions, base: dict[str, Any], sc, seconds: float, device) -
 
 def _join_warnings(old: str | None, found: list) -> str:
     """The ``warnings`` column: a JSON list of ``{code, message, details}``."""
-    return json.dumps([*(json.loads(old) if old else []), *(w.to_dict() for w in found)],
-                      allow_nan=True)  # fmt: skip
+    return json.dumps(
+        [*(json.loads(old) if old else []), *(w.to_dict() for w in found)], allow_nan=True
+    )
 
 
-def finish_batch(cases: list[Case], options: SweepOptions, curves, seconds: float,
-                 device: wp.context.Device) -> list[Result]:  # fmt: skip
+def finish_batch(
+    cases: list[Case], options: SweepOptions, curves, seconds: float, device: wp.context.Device
+) -> list[Result]:
     """The results of ``cases`` from their batched truncation curves.
 
     Parameters
@@ -208,8 +221,14 @@ def finish_batch(cases: list[Case], options: SweepOptions, curves, seconds: floa
 
 
 @fill_doc(SHARED_DOCS)
-def compute_many(cases: list[Case], options: SweepOptions, device=None, *,
-                 batch: bool | None = None, devices: Any = None) -> list[Result]:  # fmt: skip
+def compute_many(
+    cases: list[Case],
+    options: SweepOptions,
+    device=None,
+    *,
+    batch: bool | None = None,
+    devices: Any = None,
+) -> list[Result]:
     """:func:`compute_case` of every case, several surfaces per launch where that applies.
 
     Parameters
@@ -293,7 +312,11 @@ def run_inprocess(
     done = object()
 
     with progress_bar(
-        total=total, initial=total - len(cases), enabled=progress, desc=f"sweep [{dev}]", unit="case"
+        total=total,
+        initial=total - len(cases),
+        enabled=progress,
+        desc=f"sweep [{dev}]",
+        unit="case",
     ) as bar:
 
         def writer() -> None:
@@ -325,7 +348,9 @@ def run_inprocess(
         try:
             size = batch_size(options, resolve_device(dev)) if len(cases) > 1 else 1
             if size > 1:
-                for rs in batched_results(cases, options, resolve_device(dev), min(size, len(cases))):
+                for rs in batched_results(
+                    cases, options, resolve_device(dev), min(size, len(cases))
+                ):
                     for r in rs:
                         q.put(r)
                     if failed:
@@ -413,9 +438,12 @@ def batched_results(cases: list[Case], options: SweepOptions, device, size: int)
 
 @fill_doc(SHARED_DOCS)
 def compute_shard(
-    cases: list[Case], options: SweepOptions, device: str | None = None,
-    curves: str | None = None, devices: Any = None,
-) -> dict[str, Any]:  # fmt: skip
+    cases: list[Case],
+    options: SweepOptions,
+    device: str | None = None,
+    curves: str | None = None,
+    devices: Any = None,
+) -> dict[str, Any]:
     """Run a shard of cases (one Dask task) and write it as one part of the store.
 
     Parameters
@@ -537,5 +565,6 @@ def failed_case(case: Case, options: SweepOptions, why: str):
     base = base_row(case, options)
     stamp = datetime.now(timezone.utc).isoformat(timespec="milliseconds")
     base.update(error=why, seconds=np.nan, finished_utc=stamp, device=None, device_name=None)
-    return [{**base, "min_pixels": mp or 0, "min_pixels_fraction": f}
-            for mp, f in fit_ranges(options)], None  # fmt: skip
+    return [
+        {**base, "min_pixels": mp or 0, "min_pixels_fraction": f} for mp, f in fit_ranges(options)
+    ], None

@@ -35,7 +35,9 @@ __all__ = [
     "parse_seeds",
 ]
 
-GRID_DOCS = {"{returns_grid}": "Returns\n-------\nSweepGrid\n    The grid.\n\nRaises\n------\nValueError"}
+GRID_DOCS = {
+    "{returns_grid}": "Returns\n-------\nSweepGrid\n    The grid.\n\nRaises\n------\nValueError"
+}
 """The end of every grid constructor's docstring, written once (:func:`fill_doc`)."""
 
 CASE_ID_FORMAT = "warptrunc-sweep/1"
@@ -277,8 +279,13 @@ class SweepGrid:
         axes = d.get("axes", {})
         if not isinstance(axes, dict):
             raise ValueError(f"axes must be a table of field = [values], got {axes!r}")
-        return cls(D=d["D"], delta=d["delta"], seeds=d["seeds"], axes=tuple(axes.items()),
-                   specs=tuple(specs))  # fmt: skip
+        return cls(
+            D=d["D"],
+            delta=d["delta"],
+            seeds=d["seeds"],
+            axes=tuple(axes.items()),
+            specs=tuple(specs),
+        )
 
     @classmethod
     @fill_doc(GRID_DOCS)
@@ -319,7 +326,11 @@ class SweepGrid:
             when the grid has extra axes (so that the ``sweep.json`` of a D × δ × seeds grid
             is what it always was).
         """
-        d: dict[str, Any] = {"D": list(self.D), "delta": list(self.delta), "seeds": list(self.seeds)}
+        d: dict[str, Any] = {
+            "D": list(self.D),
+            "delta": list(self.delta),
+            "seeds": list(self.seeds),
+        }
         if self.axes:
             d["axes"] = {k: list(v) for k, v in self.axes}
         return d

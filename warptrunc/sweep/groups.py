@@ -48,8 +48,10 @@ def group_size(devices: Any) -> int:
         return 1
     if isinstance(devices, int):
         return max(1, devices)
-    raise ValueError(f"devices={devices!r} with workers: give a count (each worker takes that "
-                     "many devices), not 'auto' or a list")  # fmt: skip
+    raise ValueError(
+        f"devices={devices!r} with workers: give a count (each worker takes that "
+        "many devices), not 'auto' or a list"
+    )
 
 
 def worker_group(worker_name: Any, n_devices: int, group: int, platform: str = "cuda") -> list[str]:
@@ -80,8 +82,9 @@ def worker_group(worker_name: Any, n_devices: int, group: int, platform: str = "
     from .engines import worker_index
 
     if group > n_devices:
-        raise ValueError(f"devices per worker must be at most the {n_devices} devices present, "
-                         f"got {group}")  # fmt: skip
+        raise ValueError(
+            f"devices per worker must be at most the {n_devices} devices present, got {group}"
+        )
     first = worker_index(worker_name) * group
     return [f"{platform}:{(first + k) % n_devices}" for k in range(group)]
 
@@ -120,7 +123,9 @@ def group_layout(workers: Any, n: int | None, group: int, n_gpus: int) -> tuple[
     if isinstance(workers, str) or n is None:
         n = max(1, have // group)
     if n * group > have:
-        raise ValueError(f"workers × devices = {n} × {group} = {n * group} devices, but "
-                         f"{have} {platform} devices are present; use at most "
-                         f"--workers {max(1, have // group)} (or 'auto')")  # fmt: skip
+        raise ValueError(
+            f"workers × devices = {n} × {group} = {n * group} devices, but "
+            f"{have} {platform} devices are present; use at most "
+            f"--workers {max(1, have // group)} (or 'auto')"
+        )
     return n, have, platform

@@ -44,8 +44,12 @@ def young_factor(row: dict[str, Any]) -> float:
     """
     e_i = row.get("E_flat_Pa")
     e_i = math.inf if e_i is None or (isinstance(e_i, float) and math.isnan(e_i)) else e_i
-    m = Material(E=float(row["E_Pa"]), nu=float(row["nu"]), E_i=float(e_i),
-                 nu_i=float(row.get("nu_flat") or 0.0))  # fmt: skip
+    m = Material(
+        E=float(row["E_Pa"]),
+        nu=float(row["nu"]),
+        E_i=float(e_i),
+        nu_i=float(row.get("nu_flat") or 0.0),
+    )
     return m.contact_modulus / m.E
 
 

@@ -80,30 +80,51 @@ class SweepOptions(Parameters):
     nu_i: float = param_like(Material, "nu_i")
     beta_prime: float = param_like(TruncationSettings, "beta_prime")
     min_pixels: tuple[int, ...] = param_like(
-        FitRange, "min_pixels", default=(DEFAULT_MIN_PIXELS,), many=True,
+        FitRange,
+        "min_pixels",
+        default=(DEFAULT_MIN_PIXELS,),
+        many=True,
         doc="fit ranges: fit only increments with at least this many contact pixels (1 = all "
         "with load > 0); several values: one fit (row) each",
-    )  # fmt: skip
+    )
     depth_window: tuple[float, float] | None = param_like(FitRange, "depth_window")
     min_pixels_fraction: tuple[float, ...] | None = param(
-        None, "more fit ranges, relative to each case: one row per value f, fitting the "
+        None,
+        "more fit ranges, relative to each case: one row per value f, fitting the "
         f"increments with at least max({DEFAULT_MIN_PIXELS}, ⌈f·final contact pixels⌉) contact "
         "pixels (stored with min_pixels = that count); none = no relative range",
-        gt=0.0, le=1.0, many=True, optional=True, metavar="F", sweep=False,
-    )  # fmt: skip
+        gt=0.0,
+        le=1.0,
+        many=True,
+        optional=True,
+        metavar="F",
+        sweep=False,
+    )
     fractal_methods: tuple[str, ...] | None = param(
-        None, "measure D of each generated surface by these methods of fractal_dimensions "
+        None,
+        "measure D of each generated surface by these methods of fractal_dimensions "
         "(its default options): columns D_<method>, D_<method>_r2, fractal_options; none = no "
-        "measurement", choices=FRACTAL_METHODS, many=True, optional=True, cli="fractal",
-        metavar="METHOD", sweep=False,
-    )  # fmt: skip
+        "measurement",
+        choices=FRACTAL_METHODS,
+        many=True,
+        optional=True,
+        cli="fractal",
+        metavar="METHOD",
+        sweep=False,
+    )
     bem_fractions: tuple[float, ...] | None = param(
-        None, "elastic solves per case (free half-space, warptrunc.contact) at approaches "
+        None,
+        "elastic solves per case (free half-space, warptrunc.contact) at approaches "
         "δ = f·R_t (measured R_t) against Eq. 2 at the same depth: columns F_bem_N_<f>, "
         "A_bem_m2_<f>, k_bem_N_per_m_<f>, F_trunc_N_<f>, ..., the ratios F_ratio_<f>, "
         "A_ratio_<f>, k_ratio_<f> and bem_converged_<f>; none = no elastic solve",
-        gt=0.0, lt=1.0, many=True, optional=True, metavar="F", sweep=False,
-    )  # fmt: skip
+        gt=0.0,
+        lt=1.0,
+        many=True,
+        optional=True,
+        metavar="F",
+        sweep=False,
+    )
 
     def __post_init__(self) -> None:
         check_fields(self, keep_pairs=True)  # a pair stays a pair: it enters the case ids
@@ -244,21 +265,33 @@ class SweepExecution(Parameters):
     scheduler: Any = None
     devices: int | str | tuple | None = None
     shard_size: int | None = param(
-        None, "with workers or a scheduler: cases per Dask task, each written by its worker "
+        None,
+        "with workers or a scheduler: cases per Dask task, each written by its worker "
         "as one part of the store; none = adaptive, about shard_seconds of work (from the "
         "median case time so far, at most 4096 cases, and at least two tasks per worker for "
-        "what remains)", kind="int", ge=1, le=10**6, optional=True, sweep=False,
-    )  # fmt: skip
+        "what remains)",
+        kind="int",
+        ge=1,
+        le=10**6,
+        optional=True,
+        sweep=False,
+    )
     shard_seconds: float = param(
-        1.0, "work per part of the store: the adaptive shard size with workers, and how much "
+        1.0,
+        "work per part of the store: the adaptive shard size with workers, and how much "
         "the in-process engine gathers before writing a part (0: whatever finished while the "
         "previous part was written); a hard kill loses at most about this much per worker",
-        unit="s", ge=0.0, sweep=False,
-    )  # fmt: skip
+        unit="s",
+        ge=0.0,
+        sweep=False,
+    )
     max_retries: int = param(
-        3, "resubmissions of a case whose Dask task was lost before it is recorded as failed",
-        kind="int", ge=0, sweep=False,
-    )  # fmt: skip
+        3,
+        "resubmissions of a case whose Dask task was lost before it is recorded as failed",
+        kind="int",
+        ge=0,
+        sweep=False,
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)

@@ -48,7 +48,15 @@ the count it resolved to, 0 when the case failed). ``D_<method>``, ``D_<method>_
 ``{code, message, details}`` (also for a measured D outside (2, 3)), else null. With
 ``bem_fractions`` the columns of ``bem_columns`` follow."""
 
-RUN_COLUMNS = ("seconds", "fractal_seconds", "device", "device_name", "host", "finished_utc", "git_commit")
+RUN_COLUMNS = (
+    "seconds",
+    "fractal_seconds",
+    "device",
+    "device_name",
+    "host",
+    "finished_utc",
+    "git_commit",
+)
 """Columns that describe how and where a case ran rather than its result."""
 
 BEM_QUANTITIES = (
@@ -127,7 +135,6 @@ def sort_cases(df):
         df = df.assign(min_pixels_fraction=np.nan)
     keys = ["case_index", "min_pixels_fraction", "min_pixels"]
     return df.sort_values(keys, kind="stable", na_position="first").reset_index(drop=True)
-
 
 
 def manifest_parts(path: Path) -> set[str] | None:
@@ -246,8 +253,12 @@ def load_curves(path: str | Path, case_id: str | None = None):
     if case_id is not None and not frames:
         raise ValueError(f"case_id {case_id!r} has no curve in {path}")
     if not frames:
-        return pd.DataFrame({"case_id": pd.Series(dtype=object),
-                             **{k: pd.Series(dtype=float) for k in CURVE_COLUMNS}})  # fmt: skip
+        return pd.DataFrame(
+            {
+                "case_id": pd.Series(dtype=object),
+                **{k: pd.Series(dtype=float) for k in CURVE_COLUMNS},
+            }
+        )
     return pd.concat(frames, ignore_index=True)
 
 
@@ -269,8 +280,9 @@ def bem_long(df):
     import pandas as pd
 
     keys = ["case_id", "min_pixels", "min_pixels_fraction", "D_in", "delta", "seed", "alpha"]
-    fracs = sorted({c[len("F_bem_N_"):] for c in df.columns if c.startswith("F_bem_N_")},
-                   key=float)  # fmt: skip
+    fracs = sorted(
+        {c[len("F_bem_N_") :] for c in df.columns if c.startswith("F_bem_N_")}, key=float
+    )
     parts = []
     for f in fracs:
         part = df[keys].copy()
@@ -281,4 +293,3 @@ def bem_long(df):
     if not parts:
         return pd.DataFrame(columns=[*keys, "bem_fraction", *BEM_QUANTITIES])
     return pd.concat(parts, ignore_index=True)
-

@@ -185,8 +185,9 @@ def bem_blank(o: SweepOptions) -> dict[str, Any]:
 
 
 @fill_doc(SHARED_DOCS)
-def elastic_record(surface, sc, options: SweepOptions, device=None, *,
-                   devices: Any = None) -> dict[str, Any]:  # fmt: skip
+def elastic_record(
+    surface, sc, options: SweepOptions, device=None, *, devices: Any = None
+) -> dict[str, Any]:
     """Elastic columns of one case: the free half-space solver against Eq. 2 at δ = f·R_t.
 
     Parameters
@@ -239,8 +240,7 @@ def elastic_record(surface, sc, options: SweepOptions, device=None, *,
     f_trunc = np.interp(d, deep.depth, deep.load)
     try:
         # the solver's defaults: free substrate, float64, Barber's stiffness
-        cc = solve_contact(surface, depths=d, material=o.material(), device=device,
-                           devices=devices)  # fmt: skip
+        cc = solve_contact(surface, depths=d, material=o.material(), device=device, devices=devices)
     except Exception as exc:  # recorded; the truncation results stand
         out["bem_error"] = f"{type(exc).__name__}: {exc}"
         out["bem_seconds"] = time.perf_counter() - t0
@@ -248,16 +248,21 @@ def elastic_record(surface, sc, options: SweepOptions, device=None, *,
     with np.errstate(divide="ignore", invalid="ignore"):
         for i, f in enumerate(o.bem_fractions):
             s = f"_{f:g}"
-            out.update({
-                "bem_depth_m" + s: float(d[i]), "F_bem_N" + s: float(cc.load[i]),
-                "A_bem_m2" + s: float(cc.area[i]), "k_bem_N_per_m" + s: float(cc.stiffness[i]),
-                "F_trunc_N" + s: float(f_trunc[i]), "A_trunc_m2" + s: float(a_trunc[i]),
-                "k_trunc_N_per_m" + s: float(k_trunc[i]),
-                "F_ratio" + s: float(np.float64(cc.load[i]) / f_trunc[i]),
-                "A_ratio" + s: float(np.float64(cc.area[i]) / a_trunc[i]),
-                "k_ratio" + s: float(np.float64(cc.stiffness[i]) / k_trunc[i]),
-                "bem_converged" + s: bool(cc.converged[i]),
-                "bem_iterations" + s: int(cc.n_iterations[i]),
-            })  # fmt: skip
+            out.update(
+                {
+                    "bem_depth_m" + s: float(d[i]),
+                    "F_bem_N" + s: float(cc.load[i]),
+                    "A_bem_m2" + s: float(cc.area[i]),
+                    "k_bem_N_per_m" + s: float(cc.stiffness[i]),
+                    "F_trunc_N" + s: float(f_trunc[i]),
+                    "A_trunc_m2" + s: float(a_trunc[i]),
+                    "k_trunc_N_per_m" + s: float(k_trunc[i]),
+                    "F_ratio" + s: float(np.float64(cc.load[i]) / f_trunc[i]),
+                    "A_ratio" + s: float(np.float64(cc.area[i]) / a_trunc[i]),
+                    "k_ratio" + s: float(np.float64(cc.stiffness[i]) / k_trunc[i]),
+                    "bem_converged" + s: bool(cc.converged[i]),
+                    "bem_iterations" + s: int(cc.n_iterations[i]),
+                }
+            )
     out["bem_seconds"] = time.perf_counter() - t0
     return out

@@ -111,8 +111,10 @@ def run_sweep(
     ex = SweepExecution() if execution is None else execution
     out = store
     if ex.spread and not opts.bem_fractions:
-        raise ValueError(f"devices={ex.devices!r} spreads the elastic solves of bem_fractions, "
-                         "and none are asked for")  # fmt: skip
+        raise ValueError(
+            f"devices={ex.devices!r} spreads the elastic solves of bem_fractions, "
+            "and none are asked for"
+        )
     group = 1
     if ex.spread and ex.distributed:
         from .groups import group_size
@@ -134,7 +136,9 @@ def run_sweep(
         if out is not None:
             held.enter_context(store_lock(out, notify=lambda m: print(m, file=sys.stderr)))
         try:
-            st = Store(out, grid, opts, overwrite=overwrite, retry_failed=retry_failed, device=device)
+            st = Store(
+                out, grid, opts, overwrite=overwrite, retry_failed=retry_failed, device=device
+            )
         except BaseException:
             held.close()
             raise
@@ -146,14 +150,22 @@ def run_sweep(
             run = ex
             if todo and ex.distributed:
                 # one cluster for every group: its start (and the workers' kernel loads) once
-                client = held.enter_context(_open_client(
-                    ex, device, progress, bool(opts.bem_fractions), group))[0]  # fmt: skip
+                client = held.enter_context(
+                    _open_client(ex, device, progress, bool(opts.bem_fractions), group)
+                )[0]
                 run = replace(ex, workers=None, scheduler=client)
             left = len(todo)
             for params, part in groups.items():
                 left -= len(part)
-                _run_group(part, opts.with_axes(dict(params)), st, run, total=len(grid) - left,
-                           progress=progress, device=device)  # fmt: skip
+                _run_group(
+                    part,
+                    opts.with_axes(dict(params)),
+                    st,
+                    run,
+                    total=len(grid) - left,
+                    progress=progress,
+                    device=device,
+                )
             st.remove_temporaries()  # of workers killed mid-write; their cases ran again
         finally:
             try:
@@ -184,5 +196,6 @@ def _run_group(todo, opts, store, ex: SweepExecution, *, total, progress, device
     elif todo:
         from .engines import run_inprocess
 
-        run_inprocess(todo, opts, store.add_many, execution=ex, total=total, progress=progress,
-                      device=device)  # fmt: skip
+        run_inprocess(
+            todo, opts, store.add_many, execution=ex, total=total, progress=progress, device=device
+        )

@@ -54,9 +54,16 @@ class ShardPlanner:
     counts for nothing.
     """
 
-    def __init__(self, total: int, *, target_s: float = 1.0, max_size: int = 4096,
-                 tasks_per_worker: int = 4, window: int = 16,
-                 tail_fraction: float = 0.125) -> None:  # fmt: skip
+    def __init__(
+        self,
+        total: int,
+        *,
+        target_s: float = 1.0,
+        max_size: int = 4096,
+        tasks_per_worker: int = 4,
+        window: int = 16,
+        tail_fraction: float = 0.125,
+    ) -> None:
         self.total = max(1, int(total))
         self.target_s = float(target_s)
         self.max_size = max(1, int(max_size))

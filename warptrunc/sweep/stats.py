@@ -85,10 +85,14 @@ def group_stats(df, by: Sequence[str], value: str) -> list[dict[str, Any]]:
     d = df.assign(_v=v.where(np.isfinite(v)))
     g = d.groupby(list(by), sort=True, dropna=False)["_v"].agg(["mean", "std", "count"])
     return [
-        {**dict(zip(by, key if isinstance(key, tuple) else (key,), strict=True)),
-         f"{value}_mean": float(r["mean"]), f"{value}_sd": float(r["std"]), "n": int(r["count"])}
+        {
+            **dict(zip(by, key if isinstance(key, tuple) else (key,), strict=True)),
+            f"{value}_mean": float(r["mean"]),
+            f"{value}_sd": float(r["std"]),
+            "n": int(r["count"]),
+        }
         for key, r in g.iterrows()
-    ]  # fmt: skip
+    ]
 
 
 def alpha_summary(df) -> dict[str, Any]:

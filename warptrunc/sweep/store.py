@@ -70,7 +70,7 @@ from .curves import (
     part_rows,
     read_part_curves,
     write_part,
-)  # fmt: skip
+)
 from .grid import STORE_FORMAT, SweepGrid, stored_options
 from .normalisation import NORMALISATION
 from .options import SweepOptions
@@ -83,7 +83,7 @@ from .read import (
     require_extra,
     rows_frame,
     sort_cases,
-)  # fmt: skip
+)
 
 __all__ = ["LOCK_NAME", "Store", "StoreLocked", "conflict", "read_lock", "store_lock"]
 
@@ -304,9 +304,12 @@ class Store:
             for rows in held:
                 self._record(_clean(rows), name)
             return new
-        self.duplicates += sum(1 for c, n in zip(ids, new, strict=True)
-                               if not n and self.part_of.get(c) != name)  # fmt: skip
-        if self.path is not None and not all(self.part_of.get(c) == name for c in ids if c in self.rows):
+        self.duplicates += sum(
+            1 for c, n in zip(ids, new, strict=True) if not n and self.part_of.get(c) != name
+        )
+        if self.path is not None and not all(
+            self.part_of.get(c) == name for c in ids if c in self.rows
+        ):
             keep = [c for c, n in zip(ids, new, strict=True) if n]
             kept = self._rewrite(name, keep)
             if kept is not None:
@@ -403,8 +406,10 @@ def _diff(a: Any, b: Any, prefix: str = "") -> list[str]:
 def _check_same(path: Path, old: dict[str, Any], new: dict[str, Any]) -> None:
     if old.get("format") != STORE_FORMAT:
         raise ValueError(format_refusal(path, old.get("format")))
-    diff = _diff(jsonable_strict({"grid": old.get("grid"), "options": old.get("options")}),
-                 jsonable_strict({"grid": new["grid"], "options": new["options"]}))  # fmt: skip
+    diff = _diff(
+        jsonable_strict({"grid": old.get("grid"), "options": old.get("options")}),
+        jsonable_strict({"grid": new["grid"], "options": new["options"]}),
+    )
     if diff:
         shown = "; ".join(diff[:4]) + (f"; and {len(diff) - 4} more" if len(diff) > 4 else "")
         raise ValueError(
@@ -476,8 +481,7 @@ def read_lock(path: str | Path) -> dict[str, Any] | None:
         why = exc.strerror if isinstance(exc, OSError) and exc.strerror else "not JSON"
         return {"pid": None, "host": None, "started_utc": None, "unreadable": why}
     if not isinstance(info, dict) or not isinstance(info.get("pid"), int):
-        return {"pid": None, "host": None, "started_utc": None,
-                "unreadable": "no pid recorded"}  # fmt: skip
+        return {"pid": None, "host": None, "started_utc": None, "unreadable": "no pid recorded"}
     return info
 
 
