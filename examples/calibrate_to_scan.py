@@ -26,7 +26,12 @@ import json
 from pathlib import Path
 
 from warptrunc import plot
-from warptrunc.calibrate import calibrate, calibrated_surface, target_from_surface
+from warptrunc.calibrate import (
+    CalibrationSettings,
+    calibrate,
+    calibrated_surface,
+    target_from_surface,
+)
 from warptrunc.descriptors import describe, radial_psd
 from warptrunc.fractal import METHODS, fractal_dimensions
 from warptrunc.io import read_height_map, write_height_map
@@ -65,11 +70,10 @@ def main(argv=None) -> int:
     print(f"1. {name}: R_t = {d.Rt * 1e6:.4g} µm, R_rms = {d.Rrms * 1e6:.4g} µm, "
           f"W_r = {d.Wr * 1e6:.4g} µm; {dims}")  # fmt: skip
 
-    target = target_from_surface(scan, args.method, Wr=args.Wr, device=args.device)
+    settings = CalibrationSettings(method=args.method, seeds=seeds, rtol=args.rtol)
+    target = target_from_surface(scan, settings, Wr=args.Wr, device=args.device)
     print(f"2. target D_{args.method} = {target.D:.4f}, R_rms = {target.Rrms * 1e6:.4g} µm")
-    cal = calibrate(
-        target, seeds=seeds, rtol=args.rtol, progress=not args.quick, device=args.device
-    )
+    cal = calibrate(target, settings=settings, progress=not args.quick, device=args.device)
     print(f"3. D_in' = {cal.D_in:.4f}, R_t' = {cal.Rt * 1e6:.4g} µm → D_{args.method} = "
           f"{cal.D_out:.4f} ± {cal.D_out_std:.4f}, R_rms = {cal.Rrms * 1e6:.4g} µm "
           f"after {cal.iterations} evaluations")  # fmt: skip

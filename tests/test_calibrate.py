@@ -14,6 +14,7 @@ import warptrunc
 from warptrunc._support.root_find import find_root, isotonic
 from warptrunc.calibrate import (
     CalibrationError,
+    CalibrationSettings,
     CalibrationTarget,
     calibrate,
     calibrated_surface,
@@ -34,8 +35,9 @@ def _scan(D=2.45, seed=42, n=128, Rt=300e-6):
 def test_calibration_matches_targets(method):
     """A 'scan' that is itself a WM surface (other seed): targets are met within tolerance."""
     scan = _scan()
-    target = target_from_surface(scan, method, Wr=WR)
-    cal = calibrate(target, seeds=(0, 1, 2), rtol=0.005, progress=False, device="cpu")
+    settings = CalibrationSettings(method=method, seeds=(0, 1, 2), rtol=0.005)
+    target = target_from_surface(scan, settings, Wr=WR)
+    cal = calibrate(target, settings=settings, progress=False, device="cpu")
     assert cal.converged
     assert abs(cal.D_out - target.D) <= 0.005 * target.D
     # R_rms ∝ R_t for fixed D_in and seeds: the rescaling is exact up to float32 heights
@@ -59,7 +61,7 @@ def test_given_targets_and_high_resolution_surface():
     target = CalibrationTarget(
         D=2.4, method="vs", Rrms=2e-6, Rt=15e-6, Wr=WR, L=(L, L), n=(64, 64), source="given"
     )
-    cal = calibrate(target, seeds=(0, 1), progress=False, device="cpu")
+    cal = calibrate(target, settings=CalibrationSettings(seeds=(0, 1)), progress=False, device="cpu")
     s = calibrated_surface(cal, n=128, seed=3, device="cpu")
     assert s.heights.shape == (128, 128)
     assert s.Rt == pytest.approx(cal.Rt, rel=1e-5)  # heights are scaled to R_t'
@@ -72,8 +74,8 @@ def test_calibration_ending_on_a_bound_says_so(D, side, D_in):
     """D_vs of these 64² surfaces is 2.55 at D_in = 2.3 and 2.58 at 2.4 (measured): the target
     is met within 5 % only at one end of [2.3, 2.4], and the result says which."""
     target = CalibrationTarget(D=D, method="vs", Rrms=2e-6, Rt=15e-6, Wr=WR, L=L, n=64)
-    cal = calibrate(target, seeds=(0, 1), D_bounds=(2.3, 2.4), D_start=D_in, progress=False,
-                    device="cpu")  # fmt: skip
+    settings = CalibrationSettings(seeds=(0, 1), D_bounds=(2.3, 2.4), D_start=D_in)
+    cal = calibrate(target, settings=settings, progress=False, device="cpu")
     assert cal.D_in == D_in and cal.bound == side
     assert abs(cal.D_out - D) <= 0.05 * D  # within tolerance, yet only on the bound
     d = cal.to_dict()
@@ -91,7 +93,7 @@ def test_unreachable_target():
         CalibrationError,
         match=r"2\.6000 cannot be reached with D_in in \[2\.02, 2\.98\]: the upper bound",
     ):
-        calibrate(target, seeds=(0,), progress=False, device="cpu")
+        calibrate(target, settings=CalibrationSettings(seeds=(0,)), progress=False, device="cpu")
 
 
 def test_target_validation():
@@ -101,15 +103,19 @@ def test_target_validation():
         CalibrationTarget(D=2.5, method="fft", Rrms=1e-6, Rt=5e-6, Wr=WR, L=L, n=64)
     with pytest.raises(ValueError, match="Rrms must be below Rt"):
         CalibrationTarget(D=2.5, method="sp", Rrms=6e-6, Rt=5e-6, Wr=WR, L=L, n=64)
-    t = CalibrationTarget(D=2.5, method="sp", Rrms=1e-6, Rt=5e-6, Wr=WR, L=L, n=64)
-    with pytest.raises(ValueError, match="D_bounds must satisfy"):
-        calibrate(t, D_bounds=(1.9, 2.9), progress=False)
+    with pytest.raises(ValueError, match=r"n must be an integer in \[8, 1048576\], got 4"):
+        CalibrationTarget(D=2.5, method="sp", Rrms=1e-6, Rt=5e-6, Wr=WR, L=L, n=4)
+    assert CalibrationTarget(D=2.5, method="sp", Rrms=1e-6, Rt=5e-6, Wr=WR, L=L, n=64).L == (L, L)
+    with pytest.raises(ValueError, match=r"D_bounds\[0\] must be in \(2, 3\), got 1\.9"):
+        CalibrationSettings(D_bounds=(1.9, 2.9))
+    with pytest.raises(ValueError, match="D_bounds needs LO < HI"):
+        CalibrationSettings(D_bounds=(2.9, 2.1))
 
 
 def test_target_from_unresolved_scan_needs_wr():
     scan = wm_surface(2.5, 3 * L, L=L, n=64, Rt=1e-6, seed=0, device="cpu")
     with pytest.raises(ValueError, match=r"does not resolve its roll-off wavelength.*give Wr"):
-        target_from_surface(scan, "sp")
+        target_from_surface(scan, CalibrationSettings(method="sp"))
 
 
 # --- the root search on its own ------------------------------------------------------------------
@@ -197,7 +203,7 @@ def test_cli_calibrate_d_bounds(tmp_path, capsys):
     assert info["bound"] == "upper" and info["D_bounds"] == [2.3, 2.4] and info["D_in"] == 2.4
     assert "note: D_in' is the upper bound of --D-bounds (2.3, 2.4)" in capsys.readouterr().out
     assert main([*args, "--D-bounds", "2.4", "2.3"]) == 2
-    assert "--D-bounds must be LO < HI inside (2, 3), got 2.4 2.3" in capsys.readouterr().err
+    assert "--D-bounds needs LO < HI, got 2.4 2.3" in capsys.readouterr().err
     with pytest.raises(SystemExit):
         main([*args, "--D-bounds", "2.4", "3"])
     assert "argument --D-bounds: must be in (2, 3), got '3'" in capsys.readouterr().err
@@ -207,6 +213,7 @@ def test_calibration_history_figure(tmp_path):
     from warptrunc import plot
 
     target = CalibrationTarget(D=2.45, method="vs", Rrms=2e-6, Rt=15e-6, Wr=WR, L=L, n=128)
-    cal = calibrate(target, seeds=(0,), rtol=0.005, progress=False, device="cpu")
+    settings = CalibrationSettings(seeds=(0,), rtol=0.005)
+    cal = calibrate(target, settings=settings, progress=False, device="cpu")
     fig = plot.calibration_history(cal, path=tmp_path / "h.png")
     assert len(fig.axes) == 1 and (tmp_path / "h.png").stat().st_size > 0

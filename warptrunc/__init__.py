@@ -51,7 +51,7 @@ _EXPORTS = {
     "BemCheck": ".contact.check",
     "Calibration": ".calibrate",
     "CalibrationError": ".calibrate",
-    "CalibrationTarget": ".calibrate",
+    "CalibrationTarget": ".calibrate_params",
     "Descriptors": ".descriptors",
     "FractalFit": ".fractal",
     "IndentProtocol": ".indent",
@@ -95,7 +95,7 @@ _EXPORTS = {
 
 _SUBMODULES = frozenset({
     "analysis", "calibrate", "cli", "compare", "contact", "descriptors", "fractal", "indent", "io",
-    "islands",
+    "islands", "calibrate_params",
     "material", "params", "plausibility", "plot", "presets", "render", "reproduce", "robust", "spectra",
     "stiffness", "surface", "sweep", "truncation", "wm", "wm_params",
 })  # fmt: skip
@@ -141,7 +141,8 @@ def __dir__() -> list[str]:
 if _TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerly
     from ._support.device import resolve_device  # after the kernels mapping above
     from .analysis import Analysis, analyze
-    from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
+    from .calibrate import Calibration, CalibrationError, calibrate
+    from .calibrate_params import CalibrationTarget
     from .contact.check import BemCheck, bem_check
     from .contact.curve import solve_contact
     from .contact.settings import SolverSettings

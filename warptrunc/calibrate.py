@@ -24,8 +24,7 @@ interpolation inside the bracket, secant extrapolation outside it, clipped to
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -35,85 +34,21 @@ from ._support.docs import SHARED_DOCS, fill_doc
 from ._support.progress import progress_bar
 from ._support.results import jsonable
 from ._support.root_find import CalibrationError, find_root
-from ._support.validate import check_int, check_range, pair
+from .calibrate_params import CalibrationSettings, CalibrationTarget
 from .descriptors import roll_off_wavelength, surface_statistics
-from .fractal import METHODS, fractal_dimension
+from .fractal import fractal_dimension
 from .surface import Surface
 from .wm import wm_surface
 
 __all__ = [
     "Calibration",
     "CalibrationError",
+    "CalibrationSettings",
     "CalibrationTarget",
     "calibrate",
     "calibrated_surface",
     "target_from_surface",
 ]
-
-
-@dataclass(frozen=True)
-class CalibrationTarget:
-    """Descriptors that the simulated surfaces must reproduce (SI units)."""
-
-    D: float
-    """Target fractal dimension by ``method`` (dimensionless, 2 < D < 3)."""
-    method: str
-    """Fractal method: ``"tri"``, ``"box"``, ``"vs"`` or ``"sp"``."""
-    Rrms: float
-    """Target R_rms (m)."""
-    Rt: float
-    """Peak-to-valley height of the scan, the R_t of the D loop's surfaces (m)."""
-    Wr: float
-    """Roll-off wavelength W_r (m)."""
-    L: tuple[float, float]
-    """Scan size (Lx, Ly) (m)."""
-    n: tuple[int, int]
-    """Scan resolution (nx, ny) (pixels)."""
-    method_options: dict[str, Any] = field(default_factory=dict)
-    """Options of the fractal method, used for the scan and the simulated surfaces alike."""
-    source: str = ""
-    """Where the targets come from (a file name, or ``"given"``)."""
-
-    def __post_init__(self) -> None:
-        if self.method not in METHODS:
-            raise ValueError(f"method must be one of {METHODS}, got {self.method!r}")
-        object.__setattr__(self, "D", check_range("D", self.D, 2.0, 3.0))
-        object.__setattr__(self, "Rrms", check_range("Rrms", self.Rrms, 0.0, unit="m"))
-        object.__setattr__(self, "Rt", check_range("Rt", self.Rt, 0.0, unit="m"))
-        object.__setattr__(self, "Wr", check_range("Wr", self.Wr, 0.0, unit="m"))
-        lx, ly = pair("L", self.L)
-        object.__setattr__(
-            self, "L", (check_range("Lx", lx, 0.0, unit="m"), check_range("Ly", ly, 0.0, unit="m"))
-        )
-        nx, ny = pair("n", self.n, int)
-        object.__setattr__(self, "n", (check_int("nx", nx, 8), check_int("ny", ny, 8)))
-        if self.Rrms >= self.Rt:
-            raise ValueError(f"Rrms must be below Rt = {self.Rt!r} m, got {self.Rrms!r} m")
-        object.__setattr__(self, "method_options", dict(self.method_options))
-
-    def to_dict(self) -> dict[str, Any]:
-        """Scalars (JSON-serialisable).
-
-        Returns
-        -------
-        dict
-            ``D``, ``method``, ``Rrms_m``, ``Rt_m``, ``Wr_m``, ``Lx_m``, ``Ly_m`` (m),
-            ``nx``, ``ny`` (pixels), ``method_options`` (non-finite numbers as text) and
-            ``source``.
-        """
-        return {
-            "D": self.D,
-            "method": self.method,
-            "Rrms_m": self.Rrms,
-            "Rt_m": self.Rt,
-            "Wr_m": self.Wr,
-            "Lx_m": self.L[0],
-            "Ly_m": self.L[1],
-            "nx": self.n[0],
-            "ny": self.n[1],
-            "method_options": jsonable(self.method_options, nonfinite="text"),
-            "source": self.source,
-        }
 
 
 @dataclass(frozen=True, eq=False)
@@ -212,10 +147,9 @@ class Calibration:
 @fill_doc(SHARED_DOCS)
 def target_from_surface(
     surface: Surface,
-    method: str = "tri",
+    settings: CalibrationSettings | None = None,
     *,
     Wr: float | None = None,
-    method_options: dict[str, Any] | None = None,
     device: wp.DeviceLike = None,
 ) -> CalibrationTarget:
     """Measure the calibration targets on a scan.
@@ -224,20 +158,21 @@ def target_from_surface(
     ----------
     surface : Surface
         The measured height map (m), levelled and without missing points.
-    method : {"tri", "box", "vs", "sp"}
-        Fractal method whose D is matched.
+    settings : CalibrationSettings, optional
+        Its ``method`` (the fractal method whose D is matched) and ``height_scaling`` (the
+        height convention of ``"tri"`` and ``"box"``) are read; its defaults when None.
     Wr : float, optional
         Roll-off wavelength (m). Defaults to :func:`warptrunc.descriptors.roll_off_wavelength`
         of the scan; a scan too small to resolve it raises ValueError asking for ``Wr``.
-    method_options : dict, optional
-        Options of the fractal method (see :func:`warptrunc.fractal.fractal_dimension`).
     {warp_device}
 
     Returns
     -------
     CalibrationTarget
     """
-    opts = dict(method_options or {})
+    settings = CalibrationSettings() if settings is None else settings
+    method = settings.method
+    opts = settings.method_options()
     d = fractal_dimension(surface, method, device=device, **opts).D
     st = surface_statistics(surface)
     if Wr is None:
@@ -270,15 +205,7 @@ def target_from_surface(
 def calibrate(
     target: CalibrationTarget,
     *,
-    seeds: Sequence[int] = (0, 1, 2),
-    rtol: float = 0.05,
-    D_start: float | None = None,
-    D_bounds: tuple[float, float] = (2.02, 2.98),
-    max_iter: int = 12,
-    max_rounds: int = 3,
-    M: int = 10,
-    gamma: float = 1.5,
-    cutoff: str = "nyquist",
+    settings: CalibrationSettings | None = None,
     progress: bool = True,
     device: wp.DeviceLike = None,
 ) -> Calibration:
@@ -287,23 +214,17 @@ def calibrate(
     Parameters
     ----------
     target : CalibrationTarget
-        Descriptors to match.
-    seeds : sequence of int
-        Seeds of the WM phases; D_out and R_rms are averaged over them at every evaluation.
-    rtol : float
-        Relative tolerance: abs(D_out − D) ≤ rtol·D (dimensionless). The paper uses 5 %.
-    D_start : float, optional
-        First D_in; default the target D (as in the paper), clipped to ``D_bounds``.
-    D_bounds : (float, float)
-        Search interval for D_in, inside (2, 3) (the WM model's range). A result on a bound is
-        flagged by :attr:`Calibration.bound`.
-    max_iter : int
-        Largest number of evaluations of the D loop per round.
-    max_rounds : int
-        Largest number of D-loop/R_t-loop rounds (a round is repeated only when D_out at R_t'
-        leaves the tolerance, which happens for amplitude-dependent methods).
-    M, gamma, cutoff
-        WM inputs (see :func:`warptrunc.wm.wm_surface`).
+        Descriptors to match (D by ``target.method`` with ``target.method_options``).
+    settings : CalibrationSettings, optional
+        The seeds averaged at every evaluation, the relative tolerance on D (abs(D_out − D) ≤
+        rtol·D; the paper uses 5 %), the first D_in (default the target D, as in the paper,
+        clipped to ``D_bounds``), the search interval ``D_bounds`` inside (2, 3) (a result on a
+        bound is flagged by :attr:`Calibration.bound`), the evaluations per D loop
+        (``max_iter``), the D-loop/R_t-loop rounds (``max_rounds``: a round is repeated only
+        when D_out at R_t' leaves the tolerance, which happens for amplitude-dependent methods)
+        and the WM inputs ``M``, ``gamma``, ``cutoff``
+        (:class:`~warptrunc.calibrate_params.CalibrationSettings`; its defaults when None; its
+        ``method``, ``height_scaling`` and output fields are not read here).
     progress : bool
         Show a tqdm progress bar.
     {warp_device}
@@ -318,20 +239,13 @@ def calibrate(
         The target D lies outside the D_out reached at the bounds of ``D_bounds`` (the message
         gives that range), or the loop did not converge within ``max_iter`` evaluations.
     """
-
-    rtol = check_range("rtol", rtol, 0.0, 1.0)
-    lo, hi = (float(v) for v in D_bounds)
-    if not 2.0 < lo < hi < 3.0:
-        raise ValueError(f"D_bounds must satisfy 2 < lo < hi < 3, got {D_bounds!r}")
-    max_iter = check_int("max_iter", max_iter, 2, 1000)
-    max_rounds = check_int("max_rounds", max_rounds, 1, 100)
-    seeds = tuple(int(s) for s in seeds)
-    if not seeds:
-        raise ValueError("seeds must not be empty")
-    x0 = target.D if D_start is None else check_range("D_start", D_start, 2.0, 3.0)
+    settings = CalibrationSettings() if settings is None else settings
+    rtol, (lo, hi) = settings.rtol, settings.D_bounds
+    max_iter, max_rounds, seeds = settings.max_iter, settings.max_rounds, settings.seeds
+    x0 = target.D if settings.D_start is None else settings.D_start
     x0 = min(max(x0, lo), hi)
     hist: list[tuple[float, float, float, float, float]] = []
-    wm_opts = {"M": M, "gamma": gamma, "cutoff": cutoff}
+    wm_opts = settings.wm_options()
 
     bar = progress_bar(
         total=max_iter * max_rounds, enabled=progress, desc="calibrate", unit="eval"

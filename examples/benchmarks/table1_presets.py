@@ -43,11 +43,15 @@ import time
 from pathlib import Path
 
 import numpy as np
-
 from _common import record_name
 
 from warptrunc._support.provenance import provenance
-from warptrunc.calibrate import CalibrationError, CalibrationTarget, calibrate
+from warptrunc.calibrate import (
+    CalibrationError,
+    CalibrationSettings,
+    CalibrationTarget,
+    calibrate,
+)
 from warptrunc.descriptors import surface_statistics
 from warptrunc.fractal import fractal_dimension
 from warptrunc.presets import TABLE1_TRI
@@ -122,8 +126,8 @@ def calibrate_vs(name, n, L, seeds, rtol, bounds, device):
                                L=L, n=n, source=f"Table 1 {name}")  # fmt: skip
     t0, w0 = time.process_time(), time.perf_counter()
     try:
-        cal = calibrate(target, seeds=seeds, rtol=rtol, D_bounds=bounds, progress=False,
-                        device=device)  # fmt: skip
+        settings = CalibrationSettings(seeds=seeds, rtol=rtol, D_bounds=bounds)
+        cal = calibrate(target, settings=settings, progress=False, device=device)
     except CalibrationError as exc:
         return {"surface": name, "matched": "D_vs", "status": "not reached", "message": str(exc),
                 "eval_D_in": exc.d_in, "eval_D_out": exc.d_out}  # fmt: skip

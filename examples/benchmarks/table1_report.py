@@ -30,7 +30,12 @@ from pathlib import Path
 
 import numpy as np
 
-from warptrunc.calibrate import CalibrationError, CalibrationTarget, calibrate
+from warptrunc.calibrate import (
+    CalibrationError,
+    CalibrationSettings,
+    CalibrationTarget,
+    calibrate,
+)
 from warptrunc.fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
 from warptrunc.reproduce.paper import TABLE1
 from warptrunc.wm import wm_surface
@@ -60,7 +65,8 @@ def report(n, L, seeds, rtol, methods, device, progress, height_scaling=DEFAULT_
             )  # fmt: skip
             t0 = time.perf_counter()
             try:
-                cal = calibrate(target, seeds=seeds, rtol=rtol, progress=progress, device=device)
+                settings = CalibrationSettings(seeds=seeds, rtol=rtol)
+                cal = calibrate(target, settings=settings, progress=progress, device=device)
             except CalibrationError as exc:
                 row.update(status="out of reach", message=str(exc), eval_D_in=exc.d_in,
                            eval_D_out=exc.d_out)  # fmt: skip

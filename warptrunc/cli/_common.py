@@ -60,7 +60,7 @@ from ..material import Material
 from ..params import add_options, from_args
 from ..presets import PRESETS
 from ..wm_params import WMSpec
-from ._paths import input_file, output_dir, output_file  # noqa: F401 (re-exported)
+from ._paths import input_file, output_dir, output_file
 
 if TYPE_CHECKING:
     from ..surface import Surface
@@ -515,6 +515,13 @@ def scan_file(args: argparse.Namespace) -> Path | None:
     return args.file
 
 
+def read_scan(args: argparse.Namespace) -> Surface | None:
+    """The Surface named by FILE or ``--input`` (:func:`scan_file`), read with the reader
+    options; None when neither is given and the file is optional."""
+    path = scan_file(args)
+    return None if path is None else read_input(path, args)
+
+
 def add_overwrite(p: Any, what: str) -> None:
     """``--overwrite``: replace ``what`` (the results of an existing output folder)."""
     shared_option(p, "--overwrite", action="store_true", help=f"replace {what}")
@@ -628,8 +635,15 @@ def fit_range_from_args(args: argparse.Namespace, **overrides: Any) -> Any:
     is on where ``--spikes auto`` is (the default of the commands that apply the rule)."""
     from ..truncation.settings import FitRange
 
-    overrides.setdefault("spikes", getattr(args, "spikes", "auto") == "auto")
+    how = getattr(args, "spikes", "auto")  # None: not given, the reader's default applies
+    how = read_options_from_args(args).spikes if how is None else how
+    overrides.setdefault("spikes", how == "auto")
     return from_args(FitRange, args, **overrides)
+
+
+def add_input(g: Any, help: str) -> None:
+    """``--input FILE`` (``-i``): the height-map file a command reads (checked to exist)."""
+    shared_option(g, "--input", "-i", type=input_file, default=None, help=help)
 
 
 SURFACE_EXCLUDE = ("method",)
@@ -651,15 +665,8 @@ def add_surface_source(
     g = p.add_argument_group(
         "surface source (a height-map file, a preset, or WM generation parameters)"
     )
-    shared_option(
-        g,
-        "--input",
-        "-i",
-        type=input_file,
-        default=None,
-        help="height map file (.npz/.npy written by warptrunc, .npy/.csv/.txt matrix with "
-        "--dx, or an instrument file); overrides the generation parameters",
-    )
+    add_input(g, "height map file (.npz/.npy written by warptrunc, .npy/.csv/.txt matrix with "
+              "--dx, or an instrument file); overrides the generation parameters")
     add_reader_options(g, scan_rule=scan_rule)
     shared_option(
         g, "--preset", choices=list(PRESETS), default=None,

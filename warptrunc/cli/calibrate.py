@@ -13,121 +13,90 @@ strict JSON (a value that could not be computed is null).
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 from .._support.atomic import staged_output, strict_json
 from .._support.provenance import provenance
-from ..calibrate import CalibrationTarget, calibrate, calibrated_surface, target_from_surface
-from ..fractal import METHODS
-from ..io import write_height_map
-from ..params import add_options
-from ..plausibility import check_dimensions
-from ..wm_params import WMSpec
-from ._common import add_device, add_warnings, integer, output_dir, positive, real, warnings_of
-from .describe import (
-    add_height_scaling,
-    add_scan_arguments,
-    method_options,
-    read_scan_args,
-    scan_file,
+from ..calibrate_params import CalibrationSettings, CalibrationTarget
+from ..params import add_options, from_args
+from ._common import (
+    add_device,
+    add_no_progress,
+    add_no_surface,
+    add_out,
+    add_scan_file,
+    add_warnings,
+    read_scan,
+    warnings_of,
 )
 
 NAME = "calibrate"
 HELP = "find D_in and R_t' that reproduce a scan's D and R_rms (Fig. 4), then generate"
-TARGET_FIELDS = ("D", "Wr", "L", "n", "Rt")
-"""The targets typed in with the options of :class:`WMSpec` (default: measured on FILE)."""
+TARGET_FIELDS = ("D", "Rrms", "Rt", "Wr", "L", "n")
+"""The targets that may be typed in (default: measured on FILE)."""
+LOOP_FIELDS = (
+    "seeds", "rtol", "D_start", "D_bounds", "max_iter", "max_rounds", "M", "gamma", "cutoff"
+)
+"""The fields of :class:`CalibrationSettings` that say how the loop runs."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc calibrate``."""
-    add_scan_arguments(p, required=False)
+    add_scan_file(p, required=False)
     t = p.add_argument_group("targets (typed in, or overriding those measured on FILE)")
-    t.add_argument("--method", choices=list(METHODS), default="tri", help="fractal method matched")
-    add_height_scaling(t)
-    t.add_argument("--Rrms", type=positive("m"), default=None, help="target R_rms (m)")
+    add_options(t, CalibrationSettings, only=("method", "height_scaling"))
     add_options(
-        t, WMSpec, only=TARGET_FIELDS, defaults=dict.fromkeys(TARGET_FIELDS),
-        docs={"D": "target fractal dimension (by --method)", "Rt": "scan's R_t, input of the D loop",
-              "Wr": "roll-off wavelength W_r", "L": "scan side L, or Lx Ly",
-              "n": "scan pixels per side, or nx ny"},
-    )  # fmt: skip
+        t,
+        CalibrationTarget,
+        only=TARGET_FIELDS,
+        defaults=dict.fromkeys(TARGET_FIELDS),
+        docs={"D": "target fractal dimension D (by --method)"},
+    )
     c = p.add_argument_group("loop")
-    c.add_argument(
-        "--seeds", type=integer(0), nargs="+", default=[0, 1, 2], help="seeds per evaluation"
-    )
-    c.add_argument("--rtol", type=real(0.0, 1.0), default=0.05, help="relative tolerance on D")
-    c.add_argument("--max-iter", type=integer(2, 1000), default=12, help="evaluations per D loop")
-    c.add_argument(
-        "--D-bounds", type=real(2.0, 3.0), nargs=2, default=[2.02, 2.98], metavar=("LO", "HI"),
-        help="search interval of D_in, inside (2, 3); a result on a bound is reported as such",
-    )  # fmt: skip
-    c.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_options(c, CalibrationSettings, only=LOOP_FIELDS)
+    add_no_progress(c)
     o = p.add_argument_group("output surface")
-    o.add_argument(
-        "--n-out", type=integer(2), nargs="+", default=None,
-        help="output pixels per side (or nx ny)",
-    )
-    o.add_argument("--seed-out", type=integer(0), default=0, help="seed of the output surface")
-    o.add_argument("--no-surface", action="store_true", help="write calibration.json only")
-    p.add_argument("--out", type=output_dir, default=Path("out"), help="output folder")
+    add_options(o, CalibrationSettings, only=("n_out", "seed_out"))
+    add_no_surface(o, "calibration.json")
+    add_out(p)
     add_device(p)
 
 
-def _pair(v, option: str):
-    if v is None:
-        return None
-    if len(v) == 1:
-        return (v[0], v[0])
-    if len(v) == 2:
-        return (v[0], v[1])
-    raise ValueError(f"{option} takes one or two values, got {len(v)}: {v!r}")
+def _target(args: argparse.Namespace, settings: CalibrationSettings) -> CalibrationTarget:
+    """The targets: measured on FILE (when given), then those typed in."""
+    from ..calibrate import target_from_surface
 
-
-def run(args: argparse.Namespace) -> int:
-    """Calibrate and write the outputs."""
-
-    if scan_file(args) is not None:
-        s = read_scan_args(args)
-        opts = method_options(args.method, args.height_scaling)
-        t = target_from_surface(
-            s, args.method, Wr=args.Wr, method_options=opts, device=args.device
-        )
-        fields = t.to_dict()
-        target = CalibrationTarget(
-            D=args.D if args.D is not None else t.D,
-            method=args.method,
-            Rrms=args.Rrms if args.Rrms is not None else t.Rrms,
-            Rt=args.Rt if args.Rt is not None else t.Rt,
-            Wr=t.Wr,
-            L=_pair(args.L, "--L") or t.L,
-            n=_pair(args.n, "--n") or t.n,
-            source=fields["source"] or str(args.file),
-            method_options=opts,
-        )
-    else:
-        missing = [k for k in ("D", "Rrms", "Rt", "Wr", "L", "n") if getattr(args, k) is None]
+    s = read_scan(args)
+    fixed = {"method": settings.method, "method_options": settings.method_options()}
+    if s is None:
+        missing = [k for k in TARGET_FIELDS if getattr(args, k) is None]
         if missing:
             raise ValueError(
                 "without FILE give every target: missing " + ", ".join(f"--{k}" for k in missing)
             )
-        target = CalibrationTarget(
-            D=args.D, method=args.method, Rrms=args.Rrms, Rt=args.Rt, Wr=args.Wr,
-            L=_pair(args.L, "--L"), n=_pair(args.n, "--n"), source="given",
-            method_options=method_options(args.method, args.height_scaling),
-        )  # fmt: skip
+        return from_args(CalibrationTarget, args, source="given", **fixed)
+    t = target_from_surface(s, settings, Wr=args.Wr, device=args.device)
+    measured = {k: getattr(t, k) for k in TARGET_FIELDS}
+    return from_args(
+        CalibrationTarget, args, defaults=measured, source=t.source or str(args.file), **fixed
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    """Calibrate and write the outputs."""
+    from ..calibrate import calibrate, calibrated_surface
+    from ..io import write_height_map
+    from ..plausibility import check_dimensions
+
+    settings = from_args(CalibrationSettings, args)
+    target = _target(args, settings)
     print(
         f"targets: D_{target.method} = {target.D:.4f}, R_rms = {target.Rrms * 1e6:.4g} µm, "
         f"R_t = {target.Rt * 1e6:.4g} µm, W_r = {target.Wr * 1e6:.4g} µm, "
         f"{target.n[0]}×{target.n[1]} pixels over "
         f"{target.L[0] * 1e6:.4g}×{target.L[1] * 1e6:.4g} µm"
     )
-    lo, hi = args.D_bounds
-    if not lo < hi:
-        raise ValueError(f"--D-bounds must be LO < HI inside (2, 3), got {lo:g} {hi:g}")
-    cal = calibrate(
-        target, seeds=args.seeds, rtol=args.rtol, max_iter=args.max_iter, D_bounds=(lo, hi),
-        progress=not args.no_progress, device=args.device,
-    )  # fmt: skip
+    lo, hi = settings.D_bounds
+    cal = calibrate(target, settings=settings, progress=not args.no_progress, device=args.device)
     d = cal.to_dict()
     d = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in d.items()}
     if target.source != "given":  # the D measured on the scan
@@ -136,8 +105,9 @@ def run(args: argparse.Namespace) -> int:
     d["provenance"] = provenance(args.device)
     surf = None
     if not args.no_surface:
-        n_out = _pair(args.n_out, "--n-out")
-        surf = calibrated_surface(cal, n=n_out, seed=args.seed_out, device=args.device)
+        surf = calibrated_surface(
+            cal, n=settings.n_out, seed=settings.seed_out, device=args.device
+        )
     with staged_output(args.out) as out:  # all or nothing
         (out / "calibration.json").write_text(strict_json(d))
         if surf is not None:

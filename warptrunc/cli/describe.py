@@ -24,17 +24,15 @@ import sys
 
 from .._support.atomic import staged_outputs, strict_json
 from .._support.provenance import provenance
-from ..descriptors import describe, profile_psd, radial_psd
-from ..fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
-from ..plausibility import check_dimensions
+from ..fractal.settings import METHODS, FractalSettings
+from ..params import add_options, from_args
 from ._common import (
     add_device,
-    add_reader_options,
+    add_figures_out,
+    add_json_output,
+    add_scan_file,
     add_warnings,
-    input_file,
-    output_dir,
-    output_file,
-    read_input,
+    read_scan,
     warnings_of,
 )
 
@@ -42,120 +40,31 @@ NAME = "describe"
 HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four methods"
 
 
-_FILE_HELP = (
-    "height map: .npz/.npy (warptrunc or plain), .csv/.txt matrix, or an instrument file (.sur, "
-    ".x3p, .datx, ... over forty formats, through SurfaceTopography)"
-)
-
-
-def add_scan_arguments(p: argparse.ArgumentParser, *, required: bool = True) -> None:
-    """FILE (positional, or ``--input/-i FILE`` as in every other command) and the reader
-    options shared by ``describe`` and ``calibrate``."""
-    p.add_argument(
-        "file", type=input_file, nargs="?", default=None, metavar="FILE",
-        help=_FILE_HELP + ("" if required else " (optional: the targets may be typed in)"),
-    )  # fmt: skip
-    g = p.add_argument_group("reading the file")
-    g.add_argument(
-        "--input", "-i", type=input_file, default=None, metavar="FILE",
-        help="the height map, as FILE (the same file; give one of the two)",
-    )  # fmt: skip
-    add_reader_options(g)
-    p.set_defaults(_file_required=required)
-
-
-def scan_file(args: argparse.Namespace):
-    """The file named by FILE or ``--input`` (None when neither is given and it is optional).
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        Parsed arguments of :func:`add_scan_arguments`; ``args.file`` is set to the file.
-
-    Returns
-    -------
-    Path or None
-        The file to read.
-
-    Raises
-    ------
-    ValueError
-        Both forms name a file, or neither does and the command needs one.
-    """
-    f, i = args.file, getattr(args, "input", None)
-    if f is not None and i is not None and f != i:
-        raise ValueError(f"give the height map once, as FILE or --input FILE, got {f} and {i}")
-    args.file = f if f is not None else i
-    if args.file is None and getattr(args, "_file_required", True):
-        raise ValueError("the height map is missing: give FILE or --input FILE")
-    return args.file
-
-
-def read_scan_args(args: argparse.Namespace):
-    """The Surface named by FILE or ``--input`` with the reader options; reports missing
-    points."""
-    return read_input(scan_file(args), args)
-
-
-def add_height_scaling(g) -> None:
-    """``--height-scaling`` of D_tri and D_box (shared with ``calibrate``)."""
-    g.add_argument(
-        "--height-scaling", choices=list(HEIGHT_SCALINGS), default=DEFAULT_HEIGHT_SCALING,
-        help="height convention of D_tri and D_box: 'cube' maps the height range onto the "
-        "lateral extent first (Gwyddion's; independent of units and amplitude), 'si' uses "
-        "metres as measured (D drifts to 2 on gently sloped maps)",
-    )  # fmt: skip
-
-
-def method_options(method: str, height_scaling: str) -> dict:
-    """The options of ``method`` that carry the height convention (tri, box)."""
-    return {"height_scaling": height_scaling} if method in ("tri", "box") else {}
-
-
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc describe``."""
-    add_scan_arguments(p)
-    g = p.add_argument_group("fractal methods")
-    g.add_argument(
-        "--methods", nargs="+", choices=list(METHODS), default=list(METHODS),
-        help="fractal methods to run",
-    )  # fmt: skip
-    add_height_scaling(g)
-    g.add_argument(
-        "--sp-kind", choices=["profile", "radial"], default="profile",
-        help="spectrum of the power-spectrum method",
-    )  # fmt: skip
-    g.add_argument(
-        "--vs-axis", choices=["both", "x", "y"], default="both",
-        help="profile direction of the vertical-sections method",
-    )  # fmt: skip
-    p.add_argument(
-        "--json", type=_json_path, default=None, metavar="PATH",
-        help="write JSON here ('-': stdout)",
-    )  # fmt: skip
-    p.add_argument(
-        "--out", type=output_dir, default=None, help="folder for psd.png and fractal_fits.png"
-    )
+    add_scan_file(p)
+    add_options(p.add_argument_group("fractal methods"), FractalSettings)
+    add_json_output(p)
+    add_figures_out(p, "psd.png and fractal_fits.png")
     add_device(p)
 
 
-def _json_path(text: str) -> str:
-    """``-`` (stdout) or a file to write (see :func:`warptrunc.cli._common.output_file`)."""
-
-    return text if text == "-" else str(output_file(text))
-
-
-def describe_surface(s, methods, options, device) -> dict:
-    """Descriptors and D values as one flat dict (the JSON of ``describe``)."""
+def describe_surface(s, settings: FractalSettings, device) -> dict:
+    """Descriptors and D values as one flat dict (the JSON of ``describe``): ``{"result":
+    that dict, "fits": {method: FractalFit}, "descriptors": Descriptors}``; a method that
+    cannot fit the map gives its reason in ``error_<method>``."""
+    from ..descriptors import describe
+    from ..fractal import fractal_dimensions
 
     d = describe(s)
     fits, errors = {}, {}
-    for m in methods:
+    options = settings.options()
+    for m in settings.methods:
         if not s.Rt > 0:
             errors[m] = "the map is flat (R_t = 0): no roughness to fit"
             continue
         try:
-            fits.update(fractal_dimensions(s, [m], options={m: options.get(m, {})}, device=device))
+            fits.update(fractal_dimensions(s, [m], options={m: options[m]}, device=device))
         except ValueError as exc:
             errors[m] = _user_words(str(exc), m, s)
     out = {k: v for k, v in d.to_dict().items() if k != "mean_m"}
@@ -193,15 +102,12 @@ def _user_words(msg: str, method: str, s) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Describe the file."""
-    s = read_scan_args(args)
-    options = {
-        "sp": {"kind": args.sp_kind},
-        "vs": {"axis": args.vs_axis},
-        "tri": method_options("tri", args.height_scaling),
-        "box": method_options("box", args.height_scaling),
-    }
-    options = {k: v for k, v in options.items() if k in args.methods}
-    res = describe_surface(s, args.methods, options, args.device)
+    from ..descriptors import profile_psd, radial_psd
+    from ..plausibility import check_dimensions
+
+    settings = from_args(FractalSettings, args)
+    s = read_scan(args)
+    res = describe_surface(s, settings, args.device)
     add_warnings(args, check_dimensions({m: res["result"][f"D_{m}"] for m in METHODS}))
     out = {"file": str(args.file), **res["result"], "warnings": warnings_of(args)}
     text = strict_json({**out, "provenance": provenance(args.device)})
@@ -218,7 +124,7 @@ def run(args: argparse.Namespace) -> int:
             ("kurtosis", f"{out['kurtosis']:.4g}"),
             ("W_r", f"{out['Wr_m'] * u:.4g} µm" + ("" if out["Wr_resolved"] else " (unresolved)")),
         ]
-        for m in args.methods:
+        for m in settings.methods:
             if out[f"D_{m}"] is None:
                 rows.append((f"D_{m}", f"— ({out[f'error_{m}']})"))
                 continue

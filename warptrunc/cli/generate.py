@@ -5,11 +5,10 @@
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 from .._support.atomic import staged_output
 from ..io import write_height_map
-from ._common import add_device, add_surface_source, output_file, surface_from_args
+from ._common import add_device, add_output_file, add_surface_source, surface_from_args
 
 NAME = "generate"
 HELP = "generate a WM surface and save it"
@@ -19,10 +18,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc generate``."""
     add_surface_source(p)
     add_device(p)
-    p.add_argument(
-        "--output", "-o", type=output_file, default=Path("surface.npz"),
-        help="output file: .npz (heights + metadata) or .npy (heights) + .json sidecar",
-    )  # fmt: skip
+    add_output_file(
+        p, "surface.npz", "output file: .npz (heights + metadata) or .npy (heights) + .json sidecar"
+    )
 
 
 def run(args: argparse.Namespace) -> int:

@@ -1,7 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Shared parts of the fractal-dimension methods: method keys, the height conventions, the
-:class:`FractalFit` result, input checks, the device upload and the log-log fit."""
+"""Shared parts of the fractal-dimension methods: the :class:`FractalFit` result, the height
+conventions' check and scaling, input checks, the device upload and the log-log fit (the method
+keys and the conventions are declared in :mod:`warptrunc.fractal.settings`)."""
 
 from __future__ import annotations
 
@@ -18,28 +19,7 @@ from .._support.validate import check_range
 from ..kernels import fractal as _k
 from ..surface import Surface
 from ..truncation.curve import surface_device, surface_range
-
-METHODS = ("tri", "box", "vs", "sp")
-"""Method keys, in the order of Table 1."""
-
-HEIGHT_SCALINGS = ("cube", "si")
-"""Height conventions of the triangulation and cube-counting methods (``height_scaling=``):
-
-``"cube"``
-    Gwyddion's convention: before the prisms or cubes are built, the heights are mapped onto
-    the lateral extent — z′ = (z − min z)·(N − 1)·h/(max z − min z), with h = √(dx·dy) and
-    N = max(nx, ny) pixels per side — so the map fills a cube and D does not depend on the
-    height unit or amplitude (Gwyddion ``libprocess/fractals.c``,
-    ``gwy_data_field_fractal_triangulation`` scales height differences by
-    2^k/(max − min) on a (2^k + 1)² grid in pixel units, and
-    ``gwy_data_field_fractal_cubecounting`` cuts the height range into as many levels as there
-    are boxes per side).
-``"si"``
-    Heights and lengths as measured, in metres: D then depends on the height amplitude
-    relative to the pixel size (it drifts to 2 on gently sloped maps).
-"""
-
-DEFAULT_HEIGHT_SCALING = "cube"
+from .settings import HEIGHT_SCALINGS
 
 FRACTAL_DOCS = {
     "{surface}": "surface : Surface\n    Height map (m).",
@@ -49,8 +29,6 @@ FRACTAL_DOCS = {
     ),
 }
 """Docstring text the fractal-dimension methods share, written once (:func:`fill_doc`)."""
-"""Default of ``height_scaling`` (see the README's evidence table: it recovers 3 − H of
-self-affine surfaces far better than ``"si"``)."""
 
 
 def check_scaling(height_scaling: str) -> str:

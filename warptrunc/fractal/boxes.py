@@ -15,7 +15,6 @@ from ..kernels import fractal as _k
 from ..surface import Surface
 from ..truncation.curve import surface_range
 from ._common import (
-    DEFAULT_HEIGHT_SCALING,
     FRACTAL_DOCS,
     FractalFit,
     check_scaling,
@@ -25,6 +24,7 @@ from ._common import (
     scaled_upload,
     upload,
 )
+from .settings import DEFAULT_HEIGHT_SCALING
 
 
 def default_box_sizes(surface: Surface) -> np.ndarray:

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from .._support.progress import progress_bar
-from ..calibrate import CalibrationError, CalibrationTarget, calibrate
+from ..calibrate import CalibrationError, CalibrationSettings, CalibrationTarget, calibrate
 from ..fractal import METHODS, fractal_dimensions
 from ..islands.depths import island_curve
 from ..islands.fits import applicable_depth, slit_bootstrap
@@ -138,7 +138,8 @@ def stage_table1(p: Profile, device) -> dict[str, Any]:
             target = CalibrationTarget(D=paper_d[m], method=m, Rrms=rrms * UM, Rt=Rt * UM,
                                        Wr=wr_m, L=L, n=p.table1_n, source=f"Table 1 {name}")  # fmt: skip
             try:
-                cal = calibrate(target, seeds=seeds, rtol=p.table1_rtol, progress=True, device=device)
+                settings = CalibrationSettings(seeds=seeds, rtol=p.table1_rtol)
+                cal = calibrate(target, settings=settings, progress=True, device=device)
             except (CalibrationError, ValueError) as exc:
                 row.update(status="not reached", message=str(exc))
                 rows.append(row)
