@@ -1,8 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """Device groups of Dask workers: each worker takes G devices, over which its elastic solves
-are spread (``run_sweep(..., workers=N, devices=G)``, ``warptrunc sweep --workers N --devices
-G --bem-fractions ...``).
+are spread (``run_sweep(..., execution=SweepExecution(workers=N, devices=G))``,
+``warptrunc sweep --workers N --devices G --bem-fractions ...``).
 
 Worker ``i`` of a local cluster (named 0..N-1) gets devices ``i·G … i·G + G − 1`` (modulo the
 devices present): its Warp device is the first (``WARPTRUNC_DEVICE``, CUDA only) and the group
