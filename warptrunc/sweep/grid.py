@@ -30,9 +30,15 @@ from ..wm_params import WMSpec
 from .options import AXIS_SPECS, SweepOptions, axis_names
 
 __all__ = [
+    "CASE_ID_FORMAT",
+    "OMITTED_WHEN_OFF",
+    "STORED_NAMES",
+    "STORE_FORMAT",
     "Case",
     "SweepGrid",
+    "case_id",
     "parse_seeds",
+    "stored_options",
 ]
 
 GRID_DOCS = {
@@ -83,39 +89,9 @@ def stored_options(options: SweepOptions) -> dict[str, Any]:
     return out
 
 
-def options_from_stored(d: dict[str, Any]) -> SweepOptions:
-    """The inverse of :func:`stored_options`: :class:`SweepOptions` of a ``sweep.json``'s options.
-
-    Parameters
-    ----------
-    d : dict of str to Any
-        Stored options; lists become tuples, missing fields take their defaults (JSON's
-        ``null`` for ``E_flat`` is a rigid flat, E_i = inf).
-
-    Returns
-    -------
-    SweepOptions
-        The validated options.
-
-    Raises
-    ------
-    ValueError
-        If ``d`` names an unknown option or a value is out of range.
-    """
-    field_of = {v: k for k, v in STORED_NAMES.items()}
-    names = {f.name for f in dataclasses.fields(SweepOptions)}
-    kw = {field_of.get(k, k): tuple(v) if isinstance(v, list) else v for k, v in d.items()}
-    bad = sorted(set(kw) - names)
-    if bad:
-        raise ValueError(f"unknown sweep options {bad}; allowed: {sorted(names)}")
-    if "E_i" in kw and kw["E_i"] is None:
-        kw["E_i"] = float("inf")
-    return SweepOptions(**kw)
-
-
 def parse_seeds(spec: Any) -> tuple[int, ...]:
     """Seeds from ``"0-4"``, ``"0,2,7"``, ``"0-2,9"``, an int or a list of those: the check of
-    :attr:`SweepGrid.seeds`.
+    ``SweepGrid.seeds``.
 
     Ranges are inclusive: ``"0-4"`` is 0, 1, 2, 3, 4.
 

@@ -19,7 +19,15 @@ from .curves import CURVE_COLUMNS, part_files, part_rows, read_part_curves
 from .grid import STORE_FORMAT
 from .normalisation import upgrade_cases
 
-__all__ = ["BEM_QUANTITIES", "CASE_COLUMNS", "RUN_COLUMNS", "bem_long", "load", "load_curves"]
+__all__ = [
+    "BEM_QUANTITIES",
+    "CASE_COLUMNS",
+    "RUN_COLUMNS",
+    "bem_long",
+    "format_refusal",
+    "load",
+    "load_curves",
+]
 
 CASE_COLUMNS = (
     "case_id", "case_index", "D_in", "delta", "seed", "Rt_m", "Wr_m", "Lx_m", "Ly_m", "nx",
