@@ -55,7 +55,7 @@ def commands(scan: Path, out: Path) -> dict[str, list[str]]:
         cmds["sweep"] = ["sweep", "--D", "2.3", "2.5", "--delta", "0.01", "--n", "64",
                          "--min-pixels", "1", "--no-progress", "--out", out / "sweep"]  # fmt: skip
         cmds["compare"] = ["compare", "--D", "2.3", "--size-ratios", "1", "--pixels-per-wr", "16",
-                           "--refine-ratio", "0", "--seeds", "1", "--fractions", "0.1", "0.2",
+                           "--refine-ratio", "none", "--seeds", "0", "--fractions", "0.1", "0.2",
                            "--no-progress", "--no-plot", "--out", out / "compare"]  # fmt: skip
     if _has("pyvista"):
         cmds["render"] = ["render", "--n", "32", "--depth-fractions", "0.3", "--size", "120",

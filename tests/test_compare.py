@@ -15,39 +15,34 @@ import pytest
 
 from warptrunc.compare import (
     CASE_COLUMNS,
+    MapStudy,
+    StudyDesign,
     compare_models,
     compare_study,
     load_comparison,
     study_cases,
     summarize,
 )
+from warptrunc.compare.models import _k_vs_F
 from warptrunc.stiffness import Material
 
 pd = pytest.importorskip("pandas")
 FR = (0.05, 0.1, 0.2, 0.4)
 
 
-def test_fit_k_vs_F_recovers_a_power_law():
-    from warptrunc.compare import fit_k_vs_F
-
+def test_k_vs_F_recovers_a_power_law():
     F = np.geomspace(1e-3, 1.0, 7)
-    with pytest.warns(DeprecationWarning, match="fit_power_law"):
-        f = fit_k_vs_F(F, 3.0 * F**0.62)
+    f = _k_vs_F(F, 3.0 * F**0.62)
     assert f["alpha"] == pytest.approx(0.62, rel=1e-12) and f["prefactor"] == pytest.approx(3.0)
     assert f["r2"] == pytest.approx(1.0) and f["n_points"] == 7
-    with pytest.warns(DeprecationWarning):
-        assert math.isnan(fit_k_vs_F([0, 1, 2], [1, 2, 3])["alpha"])  # two usable points
+    assert math.isnan(_k_vs_F([0, 1, 2], [1, 2, 3])["alpha"])  # two usable points
 
 
-@pytest.mark.parametrize("old, new", [("DEFAULT_FRACTIONS", "APPROACH_FRACTIONS"),
-                                      ("MODELS", "ROUTES")])  # fmt: skip
-def test_renamed_constants_warn(old, new):
+def test_deprecated_names_are_gone():
     import warptrunc.compare as c
-    import warptrunc.compare.models as m
 
-    for mod in (c, m):
-        with pytest.warns(DeprecationWarning, match=new):
-            assert getattr(mod, old) == getattr(mod, new)
+    for name in ("DEFAULT_FRACTIONS", "MODELS", "fit_k_vs_F"):
+        assert not hasattr(c, name)
 
 
 def test_compare_models_against_independent_formulas(device):
@@ -73,7 +68,7 @@ def test_compare_models_against_independent_formulas(device):
         assert c.islands_stiffness[i] == pytest.approx(pref * np.sqrt(a).sum(), rel=1e-9)
     assert np.all(c.islands_stiffness >= c.eq2_stiffness * (1 - 1e-9))
     assert np.all(c.islands_load >= c.eq2_load * (1 - 1e-9)) and np.all(np.diff(c.eq2_load) > 0)
-    cc = solve_contact(s, np.asarray(FR) * s.Rt, contact_modulus=m.contact_modulus, device=device)
+    cc = solve_contact(s, np.asarray(FR) * s.Rt, material=m, device=device)
     np.testing.assert_allclose(c.bem_load, cc.load, rtol=1e-12)
     np.testing.assert_allclose(c.bem_stiffness, cc.stiffness, rtol=1e-12)
     assert c.converged.all()
@@ -84,24 +79,26 @@ def test_compare_models_against_independent_formulas(device):
 
 
 def test_study_cases_grids():
-    cases = study_cases(D=(2.5,), size_ratios=(1, 3), pixels_per_Wr=16, refine_ratio=3, seeds=2)
+    cases = study_cases(StudyDesign(D=(2.5,), size_ratios=(1, 3), pixels_per_Wr=16,
+                                    refine_ratio=3, seeds="0-1"))  # fmt: skip
     grids = sorted({(c["size_ratio"], c["n"]) for c in cases})
     assert grids == [(1, 16), (3, 48), (3, 96)] and len(cases) == 6
     fine = [c for c in cases if c["n"] == 96]
     assert all(c["Wc_m"] == pytest.approx(2 * 100e-6 / 16) for c in cases)  # same surface
     assert all(c["dx_m"] == pytest.approx(100e-6 / 32) for c in fine)
     with pytest.raises(ValueError, match="whole number"):
-        study_cases(size_ratios=(1.5,), pixels_per_Wr=3, refine_ratio=None)
+        study_cases(StudyDesign(size_ratios=(1.5,), pixels_per_Wr=3, refine_ratio=None))
 
 
 def test_study_resumes_refuses_and_reloads(tmp_path, monkeypatch):
     import warptrunc.compare as cmp
     import warptrunc.compare.study as cmp_study
 
-    cases = study_cases(D=(2.2, 2.8), size_ratios=(1,), pixels_per_Wr=24, refine_ratio=None,
-                        seeds=1)  # fmt: skip
+    design = StudyDesign(D=(2.2, 2.8), size_ratios=(1,), pixels_per_Wr=24, refine_ratio=None,
+                         seeds=0, fractions=FR)  # fmt: skip
+    cases = study_cases(design)
     out = tmp_path / "study"
-    rows = compare_study(out, cases, fractions=FR, device="cpu", progress=False)
+    rows = compare_study(out, design, device="cpu", progress=False)
     assert list(rows.columns) == list(CASE_COLUMNS) and len(rows) == 2 * len(FR)
     meta = json.loads((out / "study.json").read_text())  # strict JSON
     assert meta["format"] == cmp.FORMAT and meta["settings"]["fractions"] == list(FR)
@@ -111,13 +108,14 @@ def test_study_resumes_refuses_and_reloads(tmp_path, monkeypatch):
     calls = []
     real = cmp.compare_models
     monkeypatch.setattr(cmp_study, "compare_models", lambda *a, **k: calls.append(1) or real(*a, **k))
-    again = compare_study(out, cases, fractions=FR, device="cpu", progress=False)
+    again = compare_study(out, design, device="cpu", progress=False)
     assert len(calls) == 1 and lost.exists()
     times = ["case_seconds", "solve_time_s"]  # the recomputed case: same numbers, new times
     pd.testing.assert_frame_equal(again.drop(columns=times), rows.drop(columns=times))
     # other settings: refused, store untouched
     with pytest.raises(ValueError, match="differing: fractions"):
-        compare_study(out, cases, fractions=(0.1, 0.2, 0.3), device="cpu", progress=False)
+        compare_study(out, design.replace(fractions=(0.1, 0.2, 0.3)), device="cpu",
+                      progress=False)  # fmt: skip
     # the tables are reproducible from the store
     s1, s2 = summarize(rows), summarize(load_comparison(out))
     for k in ("ratios", "alpha"):
@@ -148,3 +146,18 @@ def test_cli_compare_on_a_map(tmp_path):
     assert summ["stage"]["n_cases"] == 1
     assert len(pd.read_parquet(out / "ratios.parquet")) == len(FR)
     assert "α" in r.stdout and "wrote" in r.stdout
+
+
+def test_map_study_stores_the_map_at_its_approaches(tmp_path):
+    """A study of one map is that map's ``compare_models`` at its fractions, stored as the
+    case ``input``; fractions that do not increase are refused, naming them."""
+    from warptrunc.wm import wm_surface
+
+    s = wm_surface(2.5, 100e-6, L=200e-6, n=32, Rt=1e-6, seed=1, device="cpu")
+    rows = compare_study(tmp_path / "m", MapStudy(s, fractions=FR), device="cpu", progress=False)
+    c = compare_models(s, FR, device="cpu")
+    assert list(rows["case_id"].unique()) == ["input"]
+    np.testing.assert_array_equal(rows["bem_load_N"], c.bem_load)
+    np.testing.assert_array_equal(rows["eq2_stiffness_N_per_m"], c.eq2_stiffness)
+    with pytest.raises(ValueError, match=r"fractions must increase strictly .* got 0\.2 0\.1"):
+        MapStudy(s, fractions=(0.2, 0.1))

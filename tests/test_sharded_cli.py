@@ -64,7 +64,7 @@ def test_compare_devices(tmp_path, capsys):
     import pandas as pd
 
     args = ["compare", "--D", "2.5", "--size-ratios", "1", "--pixels-per-wr", "64",
-            "--refine-ratio", "0", "--seeds", "1", "--fractions", "0.1", "0.2", "--no-plot",
+            "--refine-ratio", "none", "--seeds", "0", "--fractions", "0.1", "0.2", "--no-plot",
             "--no-progress"]  # fmt: skip
     one, two = (pd.concat(pd.read_parquet(p) for p in sorted((o / "cases").glob("*.parquet")))
                 for o in run_both(tmp_path, capsys, args))  # fmt: skip

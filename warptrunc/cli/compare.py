@@ -9,7 +9,7 @@ solution and α of k ∝ F^α by the three routes.
 
 On your own map (--input FILE), or on a study of WM surfaces: D (--D), map size L/W_r at a fixed
 pixel size (--size-ratios, --pixels-per-wr: size effect), the pixel size halved once at
---refine-ratio (grid convergence on the same surface), --seeds; or exactly the ``elastic`` stage
+--refine-ratio (grid convergence on the same surface), --seeds (a list: 0-2, 0,3,7); or exactly the ``elastic`` stage
 of a reproduce profile (--profile tiny|quick|paper), which also writes the report section.
 
 Writes into OUT: study.json (the settings, strict JSON) and cases/<case_id>.parquet (one row
@@ -29,85 +29,67 @@ import io
 import sys
 from pathlib import Path
 
-from ..params import add_options
-from ..wm_params import WMSpec
+from ..compare.design import MapStudy, StudyDesign
+from ..contact.settings import ELASTIC_TRUNCATION, SolverSettings
+from ..params import add_options, from_args
 from ._common import (
     add_device,
     add_devices,
+    add_input,
     add_material,
+    add_no_plot,
+    add_no_progress,
     add_out,
+    add_overwrite,
+    add_profile,
     add_reader_options,
-    check_increments,
-    fraction,
-    input_file,
-    integer,
+    add_truncation,
     material_from_args,
-    positive,
     prepare_devices,
     read_input,
-    real,
+    truncation_from_args,
     warnings_of,
 )
 
 NAME = "compare"
 HELP = "Eq. 2, island-resolved truncation and elastic BEM on the same maps (study)"
-STUDY_D = (2.1, 2.5, 2.9)
-"""Default fractal dimensions D of the WM study (dimensionless)."""
+SOLVER_FIELDS = ("dtype", "pressure_tol", "pentol", "maxiter")
+"""The fields of :class:`~warptrunc.contact.SolverSettings` that ``compare`` sets (the
+half-space is the free one)."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc compare``."""
-    from ..compare.models import APPROACH_FRACTIONS
-    from ..reproduce.profiles import PROFILES
-
     s = p.add_argument_group("surfaces: your map, a WM study, or a reproduce profile")
-    s.add_argument("--input", "-i", type=input_file, default=None,
-                   help="your height map (formats as in `analyze`); one case")  # fmt: skip
+    add_input(s, "your height map (formats as in `analyze`); one case")
     add_reader_options(s, scan_rule="read")
-    s.add_argument("--profile", choices=sorted(PROFILES), default=None,
-                   help="the `elastic` stage of this reproduce profile (overrides the WM study "
-                   "options) and its report section elastic.md")  # fmt: skip
-    add_options(s, WMSpec, only=("D",), many=("D",), defaults={"D": STUDY_D},
-                docs={"D": "fractal dimensions D of the WM study"})  # fmt: skip
-    s.add_argument("--size-ratios", type=positive(), nargs="+", default=[1, 3, 10],
-                   help="map sizes L/W_r, at a fixed pixel size W_r/(--pixels-per-wr)")  # fmt: skip
-    s.add_argument("--pixels-per-wr", type=integer(2), default=32,
-                   help="pixels per roll-off wavelength (n = L/W_r × this)")  # fmt: skip
-    s.add_argument("--refine-ratio", type=real(0.0, lo_open=False), default=10,
-                   help="L/W_r at which the pixel size is halved once (grid convergence); 0: none")  # fmt: skip
-    s.add_argument("--seeds", type=integer(1), default=3, help="surfaces per (D, grid)")
-    add_options(s, WMSpec, only=("Wr",))
-    s.add_argument("--rt-over-wr", type=positive(), default=0.01,
-                   help="R_t/W_r (the paper's δ); ratios and α do not depend on it")  # fmt: skip
+    add_profile(s, "the `elastic` stage of this reproduce profile (overrides the WM study "
+                "options) and its report section elastic.md", None)  # fmt: skip
+    add_options(s, StudyDesign, exclude=("fractions", "M", "gamma"))
     m = p.add_argument_group("approaches, material, solver")
-    m.add_argument("--fractions", type=fraction(), nargs="+", default=list(APPROACH_FRACTIONS),
-                   help="approaches δ/R_t, increasing")  # fmt: skip
+    add_options(m, StudyDesign, only=("fractions",))
     add_material(m)
-    m.add_argument("--increments", type=integer(1, 10_000_000), default=400,
-                   help="depth increments of the truncation load integrals")  # fmt: skip
-    m.add_argument("--connectivity", type=int, choices=(4, 8), default=4,
-                   help="island neighbourhood")  # fmt: skip
-    m.add_argument("--dtype", choices=("float64", "float32"), default="float64",
-                   help="precision of the elastic solver")  # fmt: skip
-    m.add_argument("--pressure-tol", type=positive(), default=1e-5,
-                   help="elastic solver tolerance on tensile pressure, relative to E*")  # fmt: skip
-    m.add_argument("--maxiter", type=integer(1), default=10000, help="CG iterations per solve")
+    add_truncation(m, only=("increments", "beta_prime", "connectivity"),
+                   defaults=ELASTIC_TRUNCATION.to_dict())  # fmt: skip
+    add_options(m, SolverSettings, only=SOLVER_FIELDS)
     add_devices(m, "the elastic route")
     add_device(p)
     add_out(p, "compare")
-    p.add_argument("--overwrite", action="store_true",
-                   help="replace a store in OUT made with other settings")  # fmt: skip
-    p.add_argument("--no-plot", action="store_true", help="skip the PNGs")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_overwrite(p, "a store in OUT made with other settings")
+    add_no_plot(p, "the PNGs")
+    add_no_progress(p)
 
 
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study and write the summary."""
-    check_increments(args.increments, "--increments")
+    design = from_args(StudyDesign, args)
+    truncation = truncation_from_args(args, ELASTIC_TRUNCATION.to_dict())
+    settings = from_args(SolverSettings, args)
     from .._support.atomic import staged_outputs, strict_json
     from .._support.provenance import provenance
-    from ..compare.study import compare_study, study_cases, summarize
+    from ..compare.study import compare_study, summarize
     from ..stiffness import Material
+
     try:
         import pandas  # noqa: F401
         import pyarrow  # noqa: F401
@@ -119,37 +101,31 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError("give either --input or --profile, not both")
     prepare_devices(args.devices)
     material = material_from_args(args)
-    fractions, dtype, cases, surface = args.fractions, args.dtype, None, None
+    study: StudyDesign | MapStudy = design
     prof = None
     if args.profile is not None:
-        from ..reproduce.elastic import profile_cases
+        from ..reproduce.elastic import profile_design
         from ..reproduce.profiles import PROFILES
 
         prof = PROFILES[args.profile]
-        cases, fractions, dtype = profile_cases(prof), list(prof.elastic_fractions), prof.elastic_dtype
+        study = profile_design(prof)
+        settings = settings.replace(dtype=prof.elastic_dtype)
         material = Material()
     elif args.input is not None:
-        surface = read_input(args.input, args)
-    else:
-        cases = study_cases(
-            D=list(STUDY_D) if args.D is None else args.D, size_ratios=args.size_ratios,
-            pixels_per_Wr=args.pixels_per_wr, refine_ratio=args.refine_ratio or None,
-            seeds=args.seeds, Wr=WMSpec().Wr if args.Wr is None else args.Wr,
-            Rt_over_Wr=args.rt_over_wr,
-        )  # fmt: skip
+        study = MapStudy(read_input(args.input, args), fractions=design.fractions)
     out: Path = args.out
     rows = compare_study(
-        out, cases, surface=surface, fractions=fractions, material=material,
-        increments=args.increments, connectivity=args.connectivity, dtype=dtype,
-        pressure_tol=args.pressure_tol, maxiter=args.maxiter, overwrite=args.overwrite,
-        progress=not args.no_progress, device=args.device, devices=args.devices,
+        out, study, material=material, truncation=truncation, settings=settings,
+        overwrite=args.overwrite, progress=not args.no_progress, device=args.device,
+        devices=args.devices,
     )  # fmt: skip
     s = summarize(rows)
     from ..reproduce.elastic import analyse_elastic, summary_from_rows
     from ..reproduce.elastic_report import elastic_figures, elastic_lines
 
+    wm = isinstance(study, StudyDesign)
     stage = summary_from_rows(rows, store="cases")
-    a = analyse_elastic(stage) if cases is not None else None
+    a = analyse_elastic(stage) if wm else None
     files = ["study.json", f"cases/ ({stage['n_cases']} cases)", "ratios.parquet",
              "alpha.parquet", "summary.json"]  # fmt: skip
     names: list[str] = []
@@ -162,7 +138,7 @@ def run(args: argparse.Namespace) -> int:
         doc = {"stage": stage, "analysis": a, "provenance": provenance(args.device),
                "warnings": warnings_of(args)}
         (dest / "summary.json").write_text(strict_json(doc))
-        if not args.no_plot and cases is not None:
+        if not args.no_plot and wm:
             names = elastic_figures(stage, dest)
             files += names
         if prof is not None:
@@ -170,7 +146,7 @@ def run(args: argparse.Namespace) -> int:
             cmd = provenance()["command"]
             (dest / "elastic.md").write_text(f"<!-- {cmd} -->\n" + "\n".join(lines) + "\n")
             files.append("elastic.md")
-    _print_summary(s, rows, surface is not None)
+    _print_summary(s, rows, not wm)
     print(f"wrote {out}/: " + ", ".join(files))
     return 0
 

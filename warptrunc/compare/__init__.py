@@ -18,9 +18,10 @@ by a rigid flat to an approach d (measured from first touch at the highest pixel
     flat punch shaped like the real contact area).
 
 :func:`compare_models` does it for one surface (yours, or a generated one) and returns a
-:class:`ModelComparison`. :func:`compare_study` runs a study over WM surfaces: the fractal
-dimension D, the map size L/W_r at a fixed pixel size (size effect), the pixel size at a fixed
-L (grid convergence), seeds; every case is stored as one Parquet file of one row per approach
+:class:`ModelComparison`. :func:`compare_study` runs a study over WM surfaces
+(:class:`StudyDesign`: the fractal dimension D, the map size L/W_r at a fixed pixel size (size
+effect), the pixel size at a fixed L (grid convergence), seeds, the approaches) or over your map
+(:class:`MapStudy`); every case is stored as one Parquet file of one row per approach
 (SI unit suffixes in the column names) under ``OUT/cases/``, written atomically, and a rerun
 skips the cases already stored. :func:`load_comparison` reads the rows back into a pandas
 DataFrame and :func:`summarize` turns them into the tables (ratios to BEM, mean and range over
@@ -33,7 +34,7 @@ Store layout::
 
 Scaling: in the half-space (small-slope) approximation all three routes are linear in the
 height scale at a fixed d/R_t (A unchanged, F ∝ R_t, k unchanged), so the ratios and α do not
-depend on R_t; the study fixes R_t = ``Rt_over_Wr``·W_r.
+depend on R_t; the study fixes R_t = ``StudyDesign.Rt_over_Wr``·W_r.
 
 References
 ----------
@@ -46,41 +47,30 @@ doi:10.1103/PhysRevE.87.062809
 
 J.R. Barber, Bounds on the electrical resistance between contacting elastic rough bodies,
 Proc. R. Soc. A 459, 53 (2003). doi:10.1098/rspa.2002.1038
+
+Every public name is importable from ``warptrunc.compare`` (imported on first use; the study's
+design, ``design``, loads no Warp).
 """
 
-from .._support.deprecate import module_getattr
-from .models import (
-    APPROACH_FRACTIONS,
-    GOOD,
-    LOW_FRACTION,
-    ROUTES,
-    ModelComparison,
-    compare_models,
+from .._support.exports import lazy_exports
+
+__all__, __getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "APPROACH_FRACTIONS": ".design",
+        "CASE_COLUMNS": ".study",
+        "FORMAT": ".study",
+        "GOOD": ".models",
+        "LOW_FRACTION": ".models",
+        "MapStudy": ".design",
+        "ModelComparison": ".models",
+        "ROUTES": ".models",
+        "STUDY_D": ".design",
+        "StudyDesign": ".design",
+        "compare_models": ".models",
+        "compare_study": ".study",
+        "load_comparison": ".study",
+        "study_cases": ".study",
+        "summarize": ".study",
+    },
 )
-from .models import fit_k_vs_F as _fit_k_vs_F_deprecated
-from .study import CASE_COLUMNS, FORMAT, compare_study, load_comparison, study_cases, summarize
-
-__all__ = [
-    "APPROACH_FRACTIONS",
-    "CASE_COLUMNS",
-    "FORMAT",
-    "GOOD",
-    "LOW_FRACTION",
-    "ROUTES",
-    "ModelComparison",
-    "compare_models",
-    "compare_study",
-    "load_comparison",
-    "study_cases",
-    "summarize",
-]
-
-_RENAMED = {"DEFAULT_FRACTIONS": "APPROACH_FRACTIONS", "MODELS": "ROUTES"}
-_module_getattr = module_getattr(__name__, globals(), _RENAMED)
-
-
-def __getattr__(name: str) -> object:
-    """Deprecated names: ``DEFAULT_FRACTIONS``, ``MODELS``, ``fit_k_vs_F``."""
-    if name == "fit_k_vs_F":
-        return _fit_k_vs_F_deprecated
-    return _module_getattr(name)

@@ -13,10 +13,11 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._support.deprecate import deprecated_function, module_getattr
-from .._support.validate import MAX_INCREMENTS, check_int, check_range
+from ..contact.settings import ELASTIC_TRUNCATION, CurveSettings, SolverSettings
 from ..stiffness import Material, fit_power_law, island_stiffness_curve, stiffness_curve
 from ..surface import Surface
+from ..truncation.settings import TruncationSettings
+from .design import APPROACH_FRACTIONS, MapStudy
 
 __all__ = [
     "APPROACH_FRACTIONS",
@@ -26,10 +27,6 @@ __all__ = [
     "ModelComparison",
     "compare_models",
 ]
-
-APPROACH_FRACTIONS = (0.02, 0.05, 0.1, 0.2, 0.3, 0.4)
-"""Default approaches d/R_t of :func:`compare_models` (dimensionless): from first islands to
-large contact."""
 
 ROUTES = ("eq2", "islands", "bem")
 """The three routes (Eq. 2, island-resolved truncation, elastic BEM), in the order of the
@@ -179,36 +176,13 @@ def _k_vs_F(load: Any, stiffness: Any) -> dict[str, float]:
     return {"alpha": f.alpha, "prefactor": f.beta, "r2": f.r2, "n_points": f.n_points}
 
 
-fit_k_vs_F = deprecated_function(_k_vs_F, "warptrunc.compare.fit_k_vs_F", "warptrunc.fit_power_law")
-
-__getattr__ = module_getattr(
-    __name__, globals(), {"DEFAULT_FRACTIONS": "APPROACH_FRACTIONS", "MODELS": "ROUTES"}
-)
-
-
-def _approaches(Rt: float, fractions: Any) -> np.ndarray:
-    fr = np.atleast_1d(np.asarray(fractions, dtype=np.float64))
-    if fr.size == 0:
-        raise ValueError("at least one approach fraction is needed, got none")
-    for f in fr:
-        check_range("fraction", f, 0.0, 1.0)
-    if np.any(np.diff(fr) <= 0):
-        raise ValueError(f"fractions must increase strictly, got {fr.tolist()!r}")
-    return fr
-
-
 def compare_models(
     surface: Surface,
     fractions: Any = APPROACH_FRACTIONS,
     *,
     material: Material | None = None,
-    beta_prime: float = 1.0,
-    increments: int = 400,
-    connectivity: int = 4,
-    dtype: str = "float64",
-    pressure_tol: float = 1e-5,
-    pentol: float | None = None,
-    maxiter: int = 10000,
+    truncation: TruncationSettings | None = None,
+    settings: SolverSettings | None = None,
     progress: bool = False,
     device: wp.DeviceLike = None,
     devices: Any = None,
@@ -222,19 +196,19 @@ def compare_models(
     fractions : sequence of float
         Approaches d/R_t, strictly increasing, in (0, 1) (dimensionless).
     material : Material, optional
-        Elastic constants; E* = ``material.contact_modulus`` is used by all three routes.
-    beta_prime : float
-        Geometric factor β' of both truncation models (dimensionless).
-    increments : int
-        Depth increments from 0 to the largest d for the load integrals of the truncation
-        models. With the default 400 and the default fractions every approach is a grid depth;
-        elsewhere k and F are interpolated linearly between grid depths.
-    connectivity : {4, 8}
-        Island neighbourhood of the island-resolved model.
-    dtype : {"float64", "float32"}
-        Precision of the elastic solver.
-    pressure_tol, pentol, maxiter
-        Elastic solver tolerances, see :class:`warptrunc.contact.ContactSolver`.
+        Elastic constants; E* = ``material.contact_modulus`` is used by all three routes (the
+        elastic route is elastic: the hardness is not read).
+    truncation : TruncationSettings, optional
+        Its ``increments`` (from 0 to the largest d, for the load integrals of the truncation
+        models), ``beta_prime`` (β' of both truncation models) and ``connectivity`` (the
+        islands' neighbourhood) are read; default
+        :data:`~warptrunc.contact.settings.ELASTIC_TRUNCATION` (400 increments: with the
+        default fractions every approach is a grid depth; elsewhere k and F are interpolated
+        linearly between grid depths).
+    settings : SolverSettings, optional
+        The elastic solver's precision, substrate, tolerances and iteration limit
+        (:class:`~warptrunc.contact.SolverSettings`; default ``SolverSettings()``, the free
+        half-space).
     progress : bool
         tqdm bar over the elastic solves.
     device : str, optional
@@ -264,13 +238,14 @@ def compare_models(
     from ..contact.curve import solve_contact
     from ..islands.depths import island_curve
     from ..islands.settings import IslandSettings
-    from ..truncation.settings import TruncationSettings
 
     material = Material() if material is None else material
-    beta_prime = check_range("beta_prime", beta_prime, 0.0)
-    increments = check_int("increments", increments, 1, MAX_INCREMENTS)
+    truncation = ELASTIC_TRUNCATION if truncation is None else truncation
+    settings = SolverSettings() if settings is None else settings
+    fr = np.asarray(MapStudy(surface, fractions=fractions).fractions, dtype=np.float64)
+    beta_prime, increments = truncation.beta_prime, truncation.increments
+    connectivity = truncation.connectivity
     Rt = float(surface.Rt)
-    fr = _approaches(Rt, fractions)
     d = fr * Rt
     depths = TruncationSettings(
         increments=increments, max_depth=float(d[-1]), connectivity=connectivity
@@ -286,11 +261,10 @@ def compare_models(
 
     nearest = np.abs(ic.depth[:, None] - d[None, :]).argmin(axis=0)
     cc = solve_contact(
-        surface, d, contact_modulus=material.contact_modulus, substrate="free", dtype=dtype,
-        stiffness="barber", pressure_tol=pressure_tol, pentol=pentol, maxiter=maxiter,
-        progress=progress, device=device, devices=devices,
-    )  # fmt: skip
-    settings = {
+        surface, d, material=material.replace(hardness=math.inf), settings=settings,
+        curve=CurveSettings(stiffness="barber"), progress=progress, device=device, devices=devices,
+    )
+    record = {
         "material": asdict(material),
         "contact_modulus_Pa": material.contact_modulus,
         "beta_prime": beta_prime,
@@ -316,7 +290,7 @@ def compare_models(
         n_iterations=np.asarray(cc.n_iterations, dtype=np.int64),
         solve_time=np.asarray(cc.solve_time, dtype=np.float64),
         Rt=Rt,
-        settings=settings,
+        settings=record,
     )
 
 

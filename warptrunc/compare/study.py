@@ -22,18 +22,11 @@ from .._support.atomic import read_json, store_rollback, strict_json
 from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.provenance import provenance
 from .._support.results import write_atomic
-from .._support.validate import check_int, check_range
+from ..contact.settings import ELASTIC_TRUNCATION, SolverSettings
 from ..stiffness import Material
-from ..surface import Surface
-from .models import (
-    APPROACH_FRACTIONS,
-    LOW_FRACTION,
-    ROUTES,
-    ModelComparison,
-    _approaches,
-    _k_vs_F,
-    compare_models,
-)
+from ..truncation.settings import TruncationSettings
+from .design import MapStudy, StudyDesign
+from .models import LOW_FRACTION, ROUTES, ModelComparison, _k_vs_F, compare_models
 
 __all__ = ["CASE_COLUMNS", "FORMAT", "compare_study", "load_comparison", "study_cases", "summarize"]
 
@@ -54,72 +47,45 @@ ratios are model/BEM (``area_ratio`` = A'/A_BEM); ``case_seconds`` is the case's
 
 
 
-def study_cases(
-    *,
-    D: Any = (2.1, 2.5, 2.9),
-    size_ratios: Any = (1, 3, 10, 30),
-    pixels_per_Wr: int = 32,
-    refine_ratio: float | None = 10,
-    seeds: int = 3,
-    Wr: float = 100e-6,
-    Rt_over_Wr: float = 0.01,
-    M: int = 10,
-    gamma: float = 1.5,
-) -> list[dict[str, Any]]:
+def study_cases(design: StudyDesign | None = None) -> list[dict[str, Any]]:
     """The WM cases of a study: D × (L/W_r at a fixed pixel size, plus one halved pixel size)
     × seeds.
 
     Parameters
     ----------
-    D : sequence of float
-        Fractal dimensions, 2 < D < 3 (dimensionless).
-    size_ratios : sequence of float
-        Map sizes L/W_r (dimensionless); n = L/W_r × ``pixels_per_Wr`` pixels per side, so the
-        pixel size dx = W_r/``pixels_per_Wr`` is the same in every size (size effect).
-    pixels_per_Wr : int
-        Pixels per roll-off wavelength of the base grid.
-    refine_ratio : float, optional
-        L/W_r at which the pixel size is halved once (grid convergence at fixed L); None for none.
-        The refined map is the *same* WM surface (same phases, same cut-off W_c) sampled twice
-        as finely, so the change measures each route's discretisation error, not added
-        roughness.
-    seeds : int
-        Surfaces per (D, grid).
-    Wr : float
-        Roll-off wavelength W_r (m).
-    Rt_over_Wr : float
-        R_t/W_r, the paper's relative roughness δ (dimensionless); the ratios and α do not
-        depend on it (see the module notes).
-    M, gamma
-        WM parameters, see :func:`warptrunc.wm_surface`. The cut-off W_c is the Nyquist
-        wavelength of the base grid, 2·dx = 2·W_r/``pixels_per_Wr``, in every case.
+    design : StudyDesign, optional
+        The surfaces (:class:`~warptrunc.compare.StudyDesign`; default ``StudyDesign()``);
+        its ``fractions`` are not read here.
 
     Returns
     -------
     list of dict
         One dict per case: ``case_id``, ``D_in``, ``seed``, ``size_ratio``, ``n``, ``L_m``,
         ``dx_m``, ``Wr_m``, ``Wc_m``, ``Rt_m``, ``M``, ``gamma``; smallest maps first.
+
+    Raises
+    ------
+    ValueError
+        L/W_r × pixels per W_r is not a whole number of at least 4 pixels.
     """
-    pixels_per_Wr = check_int("pixels_per_Wr", pixels_per_Wr, 2)
-    seeds = check_int("seeds", seeds, 1)
+    g = StudyDesign() if design is None else design
+    ppw, Wr = g.pixels_per_Wr, g.Wr
     grids = []
-    for r in size_ratios:
-        r = check_range("size_ratio", r, 0.0)
-        grids.append((r, _pixels(r * pixels_per_Wr)))
-    if refine_ratio is not None:
-        grids.append((float(refine_ratio), _pixels(2 * refine_ratio * pixels_per_Wr)))
-    grids = sorted(set(grids), key=lambda g: (g[1], g[0]))
+    for r in g.size_ratios:
+        grids.append((r, _pixels(r * ppw)))
+    if g.refine_ratio is not None:
+        grids.append((float(g.refine_ratio), _pixels(2 * g.refine_ratio * ppw)))
+    grids = sorted(set(grids), key=lambda x: (x[1], x[0]))
     cases = []
     for r, n in grids:
-        for Dv in D:
-            Dv = check_range("D", Dv, 2.0, 3.0)
-            for s in range(seeds):
+        for Dv in g.D:
+            for s in g.seeds:
                 L = r * Wr
                 cases.append({
                     "case_id": f"D{Dv:g}_L{r:g}Wr_n{n}_s{s}",
                     "source": "wm", "D_in": Dv, "seed": s, "size_ratio": r, "n": n, "L_m": L,
-                    "dx_m": L / n, "Wr_m": Wr, "Wc_m": 2 * Wr / pixels_per_Wr,
-                    "Rt_m": Rt_over_Wr * Wr, "M": M, "gamma": gamma,
+                    "dx_m": L / n, "Wr_m": Wr, "Wc_m": 2 * Wr / ppw,
+                    "Rt_m": g.Rt_over_Wr * Wr, "M": g.M, "gamma": g.gamma,
                 })  # fmt: skip
     return cases
 
@@ -131,32 +97,27 @@ def _pixels(v: float) -> int:
     return int(n)
 
 
-def _settings(fractions, material, beta_prime, increments, connectivity, dtype, pressure_tol,
-              pentol, maxiter) -> dict[str, Any]:  # fmt: skip
+def _settings(fractions: Any, material: Material, truncation: TruncationSettings,
+              settings: SolverSettings) -> dict[str, Any]:
+    """The record of ``study.json``: what makes two stores of the same study."""
     return {
         "fractions": [float(f) for f in fractions], "material": asdict(material),
-        "E_star_Pa": material.contact_modulus, "beta_prime": float(beta_prime),
-        "increments": int(increments), "connectivity": int(connectivity), "dtype": dtype,
-        "pressure_tol": float(pressure_tol), "pentol_m": pentol, "maxiter": int(maxiter),
-        "substrate": "free", "stiffness_method": "barber",
+        "E_star_Pa": material.contact_modulus, "beta_prime": float(truncation.beta_prime),
+        "increments": int(truncation.increments), "connectivity": int(truncation.connectivity),
+        "dtype": settings.dtype, "pressure_tol": float(settings.pressure_tol),
+        "pentol_m": settings.pentol, "maxiter": int(settings.maxiter),
+        "substrate": settings.substrate, "stiffness_method": "barber",
     }  # fmt: skip
 
 
 @fill_doc(SHARED_DOCS)
 def compare_study(
     out: str | Path,
-    cases: list[dict[str, Any]] | None = None,
+    study: StudyDesign | MapStudy | None = None,
     *,
-    surface: Surface | None = None,
-    fractions: Any = APPROACH_FRACTIONS,
     material: Material | None = None,
-    beta_prime: float = 1.0,
-    increments: int = 400,
-    connectivity: int = 4,
-    dtype: str = "float64",
-    pressure_tol: float = 1e-5,
-    pentol: float | None = None,
-    maxiter: int = 10000,
+    truncation: TruncationSettings | None = None,
+    settings: SolverSettings | None = None,
     overwrite: bool = False,
     progress: bool = True,
     device: wp.DeviceLike = None,
@@ -169,13 +130,13 @@ def compare_study(
     ----------
     out : str or Path
         Store folder (``study.json``, ``cases/*.parquet``); created if needed.
-    cases : list of dict, optional
-        WM cases from :func:`study_cases`; default ``study_cases()``.
-    surface : Surface, optional
-        Your own map instead of WM cases: stored as the single case ``input``.
-    fractions, material, beta_prime, increments, connectivity, dtype, pressure_tol, pentol, maxiter
-        As in :func:`compare_models`; recorded in ``study.json``. A store made with other
-        values is refused unless ``overwrite``.
+    study : StudyDesign or MapStudy, optional
+        The WM cases of a :class:`~warptrunc.compare.StudyDesign` (:func:`study_cases`) at
+        its fractions, or your own map at its fractions (:class:`~warptrunc.compare.MapStudy`,
+        stored as the single case ``input``); default ``StudyDesign()``.
+    material, truncation, settings
+        As in :func:`compare_models`; recorded in ``study.json`` with the fractions. A store
+        made with other values is refused unless ``overwrite``.
     overwrite : bool
         Replace a store made with other settings (its case files are deleted).
     progress : bool
@@ -209,13 +170,15 @@ def compare_study(
     if client is not None and devices not in (None, 1):
         raise ValueError(f"devices={devices!r} with a Dask client (a worker spreading its solves "
                          "over several devices) is not supported yet; run in this process")  # fmt: skip
+    study = StudyDesign() if study is None else study
     material = Material() if material is None else material
-    fractions = [float(f) for f in _approaches(1.0, fractions)]
-    settings = _settings(fractions, material, beta_prime, increments, connectivity, dtype,
-                         pressure_tol, pentol, maxiter)  # fmt: skip
-    if surface is not None:
-        if cases is not None:
-            raise ValueError("give either cases (WM study) or surface (your map), not both")
+    truncation = ELASTIC_TRUNCATION if truncation is None else truncation
+    settings = SolverSettings() if settings is None else settings
+    fractions = [float(f) for f in study.fractions]
+    record = _settings(fractions, material, truncation, settings)
+    surface = None
+    if isinstance(study, MapStudy):
+        surface = study.surface
         p = dict(surface.params)
         cases = [{
             "case_id": "input", "source": str(p.get("source", "input")),
@@ -226,39 +189,35 @@ def compare_study(
             "Wc_m": float(p.get("Wc") or math.nan),
             "M": int(p.get("M", -1)), "gamma": float(p.get("gamma", math.nan)),
         }]  # fmt: skip
-    elif cases is None:
-        cases = study_cases()
+    else:
+        cases = study_cases(study)
     ids = [c["case_id"] for c in cases]
     if len(set(ids)) != len(ids):
-        raise ValueError("case_id values must be unique")
+        raise ValueError(f"case_id values must be unique (a D given twice?), got {ids}")
     with store_rollback(out, keep=lambda: any((out / "cases").glob("*.parquet"))):
-        _open_store(out, settings, overwrite)
-        _run_cases(out, cases, surface, fractions, material, beta_prime, increments,
-                   connectivity, dtype, pressure_tol, pentol, maxiter, progress, device, client,
-                   devices)  # fmt: skip
+        _open_store(out, record, overwrite)
+        job = (surface, fractions, material, truncation, settings)
+        _run_cases(out, cases, job, progress, device, client, devices)
     rows = load_comparison(out)
     return rows[rows["case_id"].isin(ids)].reset_index(drop=True)
 
 
-def _run_cases(out, cases, surface, fractions, material, beta_prime, increments, connectivity,
-               dtype, pressure_tol, pentol, maxiter, progress, device, client=None,
-               devices=None) -> None:  # fmt: skip
+def _run_cases(out, cases, job, progress, device, client=None, devices=None) -> None:
     """Compute and store the cases that ``out`` does not hold yet (in this process, or one
-    task per case on the Dask ``client``, each written by its worker)."""
+    task per case on the Dask ``client``, each written by its worker); ``job`` is
+    :func:`_one_case`'s (surface, fractions, material, truncation, settings)."""
     from .._support.progress import progress_bar
 
     todo = [c for c in cases if not _case_path(out, c["case_id"]).exists()]
-    args = (surface, fractions, material, beta_prime, increments, connectivity, dtype,
-            pressure_tol, pentol, maxiter)  # fmt: skip
     if client is None:
         for c in progress_bar(todo, desc="compare", unit="case", enabled=progress):
-            _one_case(str(out), c, *args, device, devices)
+            _one_case(str(out), c, job, device, devices)
         return
     from distributed import as_completed
 
     # the largest maps first, so that the last task is a small one
     todo.sort(key=lambda c: -int(c["n"]) ** 2)
-    futs = {client.submit(_one_case, str(Path(out).resolve()), c, *args, device, pure=False,
+    futs = {client.submit(_one_case, str(Path(out).resolve()), c, job, device, pure=False,
                           key=f"compare-{c['case_id']}"): c for c in todo}  # fmt: skip
     with progress_bar(total=len(todo), desc="compare", unit="case", enabled=progress) as bar:
         for fut in as_completed(futs):
@@ -267,26 +226,23 @@ def _run_cases(out, cases, surface, fractions, material, beta_prime, increments,
                 fut.result()
             except Exception:  # a lost worker: its case once more here, unless its file landed
                 if not _case_path(out, c["case_id"]).exists():
-                    _one_case(str(out), c, *args, device)
+                    _one_case(str(out), c, job, device)
             bar.update()
 
 
-def _one_case(out: str, c, surface, fractions, material, beta_prime, increments, connectivity,
-              dtype, pressure_tol, pentol, maxiter, device, devices=None) -> str:  # fmt: skip
+def _one_case(out: str, c: dict[str, Any], job: tuple, device: Any, devices: Any = None) -> str:
     """Compute one case and write its file (atomically); returns its case id."""
     from ..wm import wm_surface
 
+    surface, fractions, material, truncation, settings = job
     t0 = time.perf_counter()
     if surface is not None:
         s = surface
     else:
         s = wm_surface(c["D_in"], c["Wr_m"], L=c["L_m"], n=c["n"], Rt=c["Rt_m"], M=c["M"],
                        gamma=c["gamma"], Wc=c["Wc_m"], seed=c["seed"], device=device)  # fmt: skip
-    r = compare_models(
-        s, fractions, material=material, beta_prime=beta_prime, increments=increments,
-        connectivity=connectivity, dtype=dtype, pressure_tol=pressure_tol, pentol=pentol,
-        maxiter=maxiter, device=device, devices=devices,
-    )  # fmt: skip
+    r = compare_models(s, fractions, material=material, truncation=truncation,
+                       settings=settings, device=device, devices=devices)  # fmt: skip
     c = {**c, "Rt_m": r.Rt}
     _write_case(Path(out), c, r, time.perf_counter() - t0)
     return c["case_id"]

@@ -35,7 +35,7 @@ from .store import STAGE_DOCS
 __all__ = [
     "GOOD",
     "analyse_elastic",
-    "profile_cases",
+    "profile_design",
     "stage_elastic",
     "stage_params",
     "summary_from_rows",
@@ -57,24 +57,26 @@ def default_material():
     return Material()
 
 
-def profile_cases(p: Profile) -> list[dict[str, Any]]:
-    """The WM cases of a profile's ``elastic`` stage, one per (D, grid, seed).
+def profile_design(p: Profile):
+    """The comparison study of a profile's ``elastic`` stage: its WM surfaces, one per (D, grid,
+    seed), and its approaches.
 
     Parameters
     ----------
     p : Profile
-        Its ``elastic_*`` fields and ``Wr`` (m) set the cases.
+        Its ``elastic_*`` fields and ``Wr`` (m) set the study.
 
     Returns
     -------
-    list of dict
-        The cases as :func:`warptrunc.compare.study_cases` makes them.
+    StudyDesign
+        The :class:`~warptrunc.compare.StudyDesign` (seeds 0 … ``elastic_seeds`` − 1).
     """
-    from ..compare.study import study_cases
+    from ..compare.design import StudyDesign
 
-    return study_cases(
+    return StudyDesign(
         D=p.elastic_D, size_ratios=p.elastic_size_ratios, pixels_per_Wr=p.elastic_pixels_per_Wr,
-        refine_ratio=p.elastic_refine_ratio, seeds=p.elastic_seeds, Wr=p.Wr,
+        refine_ratio=p.elastic_refine_ratio, seeds=tuple(range(p.elastic_seeds)), Wr=p.Wr,
+        fractions=p.elastic_fractions,
     )  # fmt: skip
 
 
@@ -115,11 +117,13 @@ def stage_elastic(p: Profile, out: str | Path, device, client=None) -> dict[str,
         :func:`summary_from_rows` of the study's rows.
     """
     from ..compare.study import compare_study
+    from ..contact.settings import SolverSettings
 
     store = Path(out) / SUBDIR
     rows = compare_study(
-        store, profile_cases(p), fractions=p.elastic_fractions, material=default_material(),
-        dtype=p.elastic_dtype, overwrite=True, progress=True, device=device, client=client,
+        store, profile_design(p), material=default_material(),
+        settings=SolverSettings(dtype=p.elastic_dtype), overwrite=True, progress=True,
+        device=device, client=client,
     )  # fmt: skip
     return summary_from_rows(rows, store=SUBDIR)
 
