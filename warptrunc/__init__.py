@@ -97,7 +97,7 @@ _SUBMODULES = frozenset({
     "analysis", "calibrate", "cli", "compare", "contact", "descriptors", "fractal", "indent", "io",
     "islands", "calibrate_params",
     "material", "params", "plausibility", "plot", "presets", "render", "reproduce", "robust", "spectra",
-    "stiffness", "surface", "sweep", "truncation", "wm", "wm_params",
+    "stiffness", "surface", "sweep", "theory", "truncation", "wm", "wm_params",
 })  # fmt: skip
 """The public subpackages and modules (``warptrunc.<name>``): with ``__all__``, all that
 ``dir(warptrunc)`` lists."""
