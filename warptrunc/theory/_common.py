@@ -41,7 +41,7 @@ def check_pressure(pressure: Any) -> np.ndarray:
     return p
 
 
-def contact_modulus(material: Any) -> float:
+def modulus_of(material: Any) -> float:
     """E* (Pa) of a :class:`~warptrunc.Material` (its ``contact_modulus``)."""
     e = getattr(material, "contact_modulus", None)
     if e is None:

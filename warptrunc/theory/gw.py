@@ -27,7 +27,7 @@ from scipy.interpolate import CubicSpline, PchipInterpolator
 from scipy.special import gamma as gamma_fn
 from scipy.special import gammaincc, hyp1f1, ndtr, pbdv
 
-from ._common import check_pressure, columns, contact_modulus
+from ._common import check_pressure, columns, modulus_of
 from .psd import IsotropicPSD
 
 __all__ = [
@@ -308,7 +308,7 @@ def greenwood_williamson(
     if heights not in HEIGHTS:
         raise ValueError(f"heights must be one of {HEIGHTS}, got {heights!r}")
     p = check_pressure(pressure)
-    e_star = contact_modulus(material)
+    modulus = modulus_of(material)
     band = _band(psd, magnification)
     s = nayak_summits(band)
     eta, R, sig = s.density, s.radius, s.height_std
@@ -316,16 +316,16 @@ def greenwood_williamson(
         tail, origin, lo, hi = _gauss_tail, s.height_mean, -30.0, 37.0
     else:
         tail, origin, lo, hi = _exp_tail, s.height_mean - sig, -30.0, 700.0
-    scale_p = (4 / 3) * eta * e_star * math.sqrt(R) * sig**1.5
+    scale_p = (4 / 3) * eta * modulus * math.sqrt(R) * sig**1.5
     x = _invert(lambda v: tail(1.5, v), p / scale_p, lo, hi)
     return AsperityCurve(
         model=f"gw-{heights}",
         pressure=p,
         separation=origin + sig * x,
         area_fraction=math.pi * eta * R * sig * tail(1.0, x),
-        stiffness=2 * eta * e_star * math.sqrt(R) * math.sqrt(sig) * tail(0.5, x),
+        stiffness=2 * eta * modulus * math.sqrt(R) * math.sqrt(sig) * tail(0.5, x),
         contact_density=eta * tail(0.0, x),
-        contact_modulus=e_star,
+        contact_modulus=modulus,
         slope_rms=band.slope_rms,
         magnification=band.magnification,
         summit_density=eta,
@@ -432,7 +432,7 @@ def bush_gibson_thomas(
     doi:10.1016/j.jmps.2008.03.011.
     """
     p = check_pressure(pressure)
-    e_star = contact_modulus(material)
+    modulus = modulus_of(material)
     band = _band(psd, magnification)
     st = nayak_summits(band)
     m0, m2, m4, alpha = st.m0, st.m2, st.m4, st.bandwidth
@@ -454,9 +454,9 @@ def bush_gibson_thomas(
     def integral(c: float, k: float) -> np.ndarray:
         return np.trapezoid(wts[c][None, :] * v ** (k / 2) * _gauss_tail(k, x), s, axis=1)
 
-    p_d = (4 / 3) * e_star * integral(0.25, 1.5)
+    p_d = (4 / 3) * modulus * integral(0.25, 1.5)
     a_d = math.pi * integral(0.5, 1.0)
-    k_d = 2 * e_star * integral(0.25, 0.5)
+    k_d = 2 * modulus * integral(0.25, 0.5)
     n_d = integral(0.0, 0.0)
     ok = p_d > 0
     lp = np.log(p_d[ok])[::-1]  # increasing
@@ -474,7 +474,7 @@ def bush_gibson_thomas(
         area_fraction=area,
         stiffness=stiff,
         contact_density=count,
-        contact_modulus=e_star,
+        contact_modulus=modulus,
         slope_rms=band.slope_rms,
         magnification=band.magnification,
         summit_density=st.density,

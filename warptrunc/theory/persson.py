@@ -36,7 +36,7 @@ import numpy as np
 from scipy.integrate import cumulative_simpson
 from scipy.special import erf, erfcx, exp1, ndtr
 
-from ._common import check_pressure, columns, contact_modulus
+from ._common import check_pressure, columns, modulus_of
 from .psd import IsotropicPSD
 
 __all__ = [
@@ -430,13 +430,13 @@ def persson_contact(
     doi:10.1103/PhysRevE.70.026117.
     """
     p = check_pressure(pressure)
-    e_star = contact_modulus(material)
+    modulus = modulus_of(material)
     g = _gamma(gamma)
     band = _band(psd, magnification, points_per_decade)
     q = band.wavevector
     s = _slope_half(band)
     t = np.sqrt(s)
-    c = p / e_star
+    c = p / modulus
     area = erf(c / t[-1])
     u, du_dc = _separation(band, s, np.zeros_like(c), c, g)
     # u₀ = (2γ/√π) ∫ dt/q, with 1/q linear in t² as in the integral
@@ -446,10 +446,10 @@ def persson_contact(
     return PerssonCurve(
         pressure=p,
         area_fraction=area,
-        area_fraction_small_load=KAPPA_PERSSON * p / (e_star * band.slope_rms),
+        area_fraction_small_load=KAPPA_PERSSON * p / (modulus * band.slope_rms),
         mean_separation=u,
-        stiffness=-e_star / du_dc,
-        contact_modulus=e_star,
+        stiffness=-modulus / du_dc,
+        contact_modulus=modulus,
         slope_rms=band.slope_rms,
         h_rms=band.h_rms,
         magnification=band.magnification,
@@ -501,9 +501,9 @@ def persson_pressure_distribution(
     Persson (2006), Surf. Sci. Rep. 61, 201, doi:10.1016/j.surfrep.2006.04.001.
     """
     p = float(check_pressure(pressure)[0])
-    e_star = contact_modulus(material)
+    modulus = modulus_of(material)
     band = _band(psd, magnification, 8)
-    G = e_star**2 * float(_slope_half(band)[-1]) / 4
+    G = modulus**2 * float(_slope_half(band)[-1]) / 4
     if stress is None:
         sigma = np.linspace(0.0, p + 6 * math.sqrt(2 * G), 401)
     else:
@@ -581,13 +581,13 @@ def persson_gap_distribution(
     doi:10.1088/0953-8984/20/21/215214.
     """
     p = float(check_pressure(pressure)[0])
-    e_star = contact_modulus(material)
+    modulus = modulus_of(material)
     g = _gamma(gamma)
     band = _band(psd, magnification, points_per_decade)
     s = _slope_half(band)
     with np.errstate(divide="ignore"):
-        area = erf(np.where(s > 0, p / (e_star * np.sqrt(np.where(s > 0, s, 1.0))), np.inf))
-    c = p / (e_star * area)  # p(ζ)/E* at each ζ_j
+        area = erf(np.where(s > 0, p / (modulus * np.sqrt(np.where(s > 0, s, 1.0))), np.inf))
+    c = p / (modulus * area)  # p(ζ)/E* at each ζ_j
     # t²_(j, i) = S_i − S_j for i ≥ j: the roughness above ζ_j q₀ (0 below)
     ubar, _du = _separation(band, s, s, c, g)
     vol = area * ubar
