@@ -50,16 +50,26 @@ SOLVER_FIELDS = ("dtype", "substrate", "pressure_tol", "pentol", "maxiter")
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc bem-check``."""
     add_surface_source(p)
-    add_options(p, BemCheckSettings, only=("fractions", "depths"),
-                title="approaches (default: 0.05 0.1 0.15 0.2 0.3 0.4 of R_t)")  # fmt: skip
+    add_options(
+        p,
+        BemCheckSettings,
+        only=("fractions", "depths"),
+        title="approaches (default: 0.05 0.1 0.15 0.2 0.3 0.4 of R_t)",
+    )
     g = p.add_argument_group("material and truncation (as analyze)")
     add_material(g)
     add_truncation(g, only=("beta_prime", "increments"), defaults=ELASTIC_TRUNCATION.to_dict())
     s = p.add_argument_group("boundary-element solver")
     add_options(s, BemCheckSettings, only=("solver", "stiffness", "fd_step"))
-    add_options(s, SolverSettings, only=SOLVER_FIELDS, docs={
-        "pentol": "tolerance on penetration; none = rms height/(10·mean(nx, ny)), "
-        "ContactMechanics' (fixed for the whole check)"})
+    add_options(
+        s,
+        SolverSettings,
+        only=SOLVER_FIELDS,
+        docs={
+            "pentol": "tolerance on penetration; none = rms height/(10·mean(nx, ny)), "
+            "ContactMechanics' (fixed for the whole check)"
+        },
+    )
     add_devices(s, "the elastic cross-check (warptrunc solver)")
     add_accept_unconverged(s, EXIT_NOT_CONVERGED)
     add_run_outputs(p, "bem", "skip the PNG")
@@ -84,8 +94,11 @@ def run(args: argparse.Namespace) -> int:
             print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
             return 2
     if args.devices not in (None, 1) and check.solver != "warptrunc":
-        print(f"warptrunc {NAME}: error: --devices {args.devices} needs --solver warptrunc "
-              "(ContactMechanics runs on the CPU)", file=sys.stderr)  # fmt: skip
+        print(
+            f"warptrunc {NAME}: error: --devices {args.devices} needs --solver warptrunc "
+            "(ContactMechanics runs on the CPU)",
+            file=sys.stderr,
+        )
         return 2
     try:
         prepare_devices(args.devices)
@@ -99,10 +112,15 @@ def run(args: argparse.Namespace) -> int:
     except ValueError as exc:
         raise ValueError(f"--{exc}") from None
     res = bem_check(
-        s, check=check, truncation=truncation, material=material, settings=settings,
-        progress=not args.no_progress and sys.stderr.isatty(), device=args.device,
+        s,
+        check=check,
+        truncation=truncation,
+        material=material,
+        settings=settings,
+        progress=not args.no_progress and sys.stderr.isatty(),
+        device=args.device,
         devices=args.devices,
-    )  # fmt: skip
+    )
     files = "bem.csv, bem.json"
     with staged_output(args.out) as out:  # all or nothing
         res.to_csv(out / "bem.csv")
@@ -111,11 +129,12 @@ def run(args: argparse.Namespace) -> int:
             import matplotlib.pyplot as plt
 
             fig = plot_bem_check(
-                res, out / "bem.png",
+                res,
+                out / "bem.png",
                 title=f"{s.nx}×{s.ny}, R$_t$ = {s.Rt * 1e6:.3g} µm, E* = "
                 f"{material.contact_modulus / 1e9:.4g} GPa, {settings.substrate} half-space "
                 f"({check.solver})",
-            )  # fmt: skip
+            )
             plt.close(fig)
             files += ", bem.png"
     sm = res.summary()

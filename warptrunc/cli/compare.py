@@ -63,14 +63,19 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     s = p.add_argument_group("surfaces: your map, a WM study, or a reproduce profile")
     add_input(s, "your height map (formats as in `analyze`); one case")
     add_reader_options(s, scan_rule="read")
-    add_profile(s, "the `elastic` stage of this reproduce profile (overrides the WM study "
-                "options) and its report section elastic.md", None)  # fmt: skip
+    add_profile(
+        s,
+        "the `elastic` stage of this reproduce profile (overrides the WM study "
+        "options) and its report section elastic.md",
+        None,
+    )
     add_options(s, StudyDesign, exclude=("fractions", "M", "gamma"))
     m = p.add_argument_group("approaches, material, solver")
     add_options(m, StudyDesign, only=("fractions",))
     add_material(m)
-    add_truncation(m, only=("increments", "beta_prime", "connectivity"),
-                   defaults=ELASTIC_TRUNCATION.to_dict())  # fmt: skip
+    add_truncation(
+        m, only=("increments", "beta_prime", "connectivity"), defaults=ELASTIC_TRUNCATION.to_dict()
+    )
     add_options(m, SolverSettings, only=SOLVER_FIELDS)
     add_devices(m, "the elastic route")
     add_device(p)
@@ -94,9 +99,11 @@ def run(args: argparse.Namespace) -> int:
         import pandas  # noqa: F401
         import pyarrow  # noqa: F401
     except ImportError as exc:
-        raise ValueError(f"compare stores Parquet with pandas and pyarrow, dependencies of "
-                         f"warptrunc that this environment lacks ({exc.name} is missing): "
-                         "pip install pandas pyarrow") from None
+        raise ValueError(
+            f"compare stores Parquet with pandas and pyarrow, dependencies of "
+            f"warptrunc that this environment lacks ({exc.name} is missing): "
+            "pip install pandas pyarrow"
+        ) from None
     if args.input is not None and args.profile is not None:
         raise ValueError("give either --input or --profile, not both")
     prepare_devices(args.devices)
@@ -115,10 +122,16 @@ def run(args: argparse.Namespace) -> int:
         study = MapStudy(read_input(args.input, args), fractions=design.fractions)
     out: Path = args.out
     rows = compare_study(
-        out, study, material=material, truncation=truncation, settings=settings,
-        overwrite=args.overwrite, progress=not args.no_progress, device=args.device,
+        out,
+        study,
+        material=material,
+        truncation=truncation,
+        settings=settings,
+        overwrite=args.overwrite,
+        progress=not args.no_progress,
+        device=args.device,
         devices=args.devices,
-    )  # fmt: skip
+    )
     s = summarize(rows)
     from ..reproduce.elastic import analyse_elastic, summary_from_rows
     from ..reproduce.elastic_report import elastic_figures, elastic_lines
@@ -126,8 +139,13 @@ def run(args: argparse.Namespace) -> int:
     wm = isinstance(study, StudyDesign)
     stage = summary_from_rows(rows, store="cases")
     a = analyse_elastic(stage) if wm else None
-    files = ["study.json", f"cases/ ({stage['n_cases']} cases)", "ratios.parquet",
-             "alpha.parquet", "summary.json"]  # fmt: skip
+    files = [
+        "study.json",
+        f"cases/ ({stage['n_cases']} cases)",
+        "ratios.parquet",
+        "alpha.parquet",
+        "summary.json",
+    ]
     names: list[str] = []
     with staged_outputs() as st:  # the summary files, or none of them (cases/ is the store)
         dest = st.folder(out)
@@ -135,8 +153,12 @@ def run(args: argparse.Namespace) -> int:
             buf = io.BytesIO()
             s[name].to_parquet(buf, index=False)
             (dest / f"{name}.parquet").write_bytes(buf.getvalue())
-        doc = {"stage": stage, "analysis": a, "provenance": provenance(args.device),
-               "warnings": warnings_of(args)}
+        doc = {
+            "stage": stage,
+            "analysis": a,
+            "provenance": provenance(args.device),
+            "warnings": warnings_of(args),
+        }
         (dest / "summary.json").write_text(strict_json(doc))
         if not args.no_plot and wm:
             names = elastic_figures(stage, dest)
@@ -157,15 +179,22 @@ def _print_summary(s, rows, single: bool) -> None:
     print("k/k_BEM (seed mean): " + ("" if single else "D, L/W_r, n, δ/R_t: ") + "Eq. 2, islands")
     for _, x in r.iterrows():
         key = "" if single else f"{x['D_in']:g}, {x['size_ratio']:g}, {int(x['n'])}, "
-        print(f"  {key}{x['depth_fraction_of_Rt']:g}: {x['eq2_k_ratio_mean']:.3f}, "
-              f"{x['islands_k_ratio_mean']:.3f}")  # fmt: skip
+        print(
+            f"  {key}{x['depth_fraction_of_Rt']:g}: {x['eq2_k_ratio_mean']:.3f}, "
+            f"{x['islands_k_ratio_mean']:.3f}"
+        )
     al = s["alpha"][s["alpha"]["range"] == "all"]
     for _, x in al.iterrows():
-        key = "" if single else f"D = {x['D_in']:g}, L/W_r = {x['size_ratio']:g}, n = {int(x['n'])}: "
-        print(f"α {key}Eq. 2 {x['alpha_eq2_mean']:.3f}, islands {x['alpha_islands_mean']:.3f}, "
-              f"BEM {x['alpha_bem_mean']:.3f}")  # fmt: skip
+        key = (
+            "" if single else f"D = {x['D_in']:g}, L/W_r = {x['size_ratio']:g}, n = {int(x['n'])}: "
+        )
+        print(
+            f"α {key}Eq. 2 {x['alpha_eq2_mean']:.3f}, islands {x['alpha_islands_mean']:.3f}, "
+            f"BEM {x['alpha_bem_mean']:.3f}"
+        )
     bad = int((~rows["converged"].astype(bool)).sum())
     if bad:
-        print(f"warning: {bad} elastic solves did not converge (converged = False in cases/)",
-              file=sys.stderr)  # fmt: skip
-
+        print(
+            f"warning: {bad} elastic solves did not converge (converged = False in cases/)",
+            file=sys.stderr,
+        )

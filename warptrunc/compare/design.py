@@ -33,8 +33,10 @@ STUDY_D = (2.1, 2.5, 2.9)
 def _check_increasing(obj: Any) -> None:
     v = obj.fractions
     if any(b <= a for a, b in itertools.pairwise(v)):
-        raise ValueError(f"fractions must increase strictly (approaches δ/R_t), got "
-                         f"{' '.join(f'{x:g}' for x in v)}")  # fmt: skip
+        raise ValueError(
+            f"fractions must increase strictly (approaches δ/R_t), got "
+            f"{' '.join(f'{x:g}' for x in v)}"
+        )
 
 
 @dataclass(frozen=True)
@@ -59,29 +61,46 @@ class StudyDesign(Parameters):
         WMSpec, "D", default=STUDY_D, many=True, doc="fractal dimensions D of the WM study"
     )
     size_ratios: tuple[float, ...] = param(
-        (1.0, 3.0, 10.0), "map sizes L/W_r, at a fixed pixel size W_r/pixels_per_Wr", gt=0.0,
-        many=True, sweep=False,
-    )  # fmt: skip
+        (1.0, 3.0, 10.0),
+        "map sizes L/W_r, at a fixed pixel size W_r/pixels_per_Wr",
+        gt=0.0,
+        many=True,
+        sweep=False,
+    )
     pixels_per_Wr: int = param(
-        32, "pixels per roll-off wavelength W_r of the base grid (n = L/W_r × this)",
-        kind="int", ge=2, cli="pixels-per-wr", sweep=False,
-    )  # fmt: skip
+        32,
+        "pixels per roll-off wavelength W_r of the base grid (n = L/W_r × this)",
+        kind="int",
+        ge=2,
+        cli="pixels-per-wr",
+        sweep=False,
+    )
     refine_ratio: float | None = param(
-        10.0, "L/W_r at which the pixel size is halved once (grid convergence on the same "
-        "surface); none = never", gt=0.0, optional=True, sweep=False,
-    )  # fmt: skip
+        10.0,
+        "L/W_r at which the pixel size is halved once (grid convergence on the same "
+        "surface); none = never",
+        gt=0.0,
+        optional=True,
+        sweep=False,
+    )
     seeds: tuple[int, ...] = param((0, 1, 2), "seeds of the surfaces per (D, grid)", kind="seeds")
     Wr: float = param_like(WMSpec, "Wr")
     Rt_over_Wr: float = param(
-        0.01, "R_t/W_r, the paper's relative roughness δ; the ratios and α do not depend on it",
-        gt=0.0, cli="rt-over-wr",
-    )  # fmt: skip
+        0.01,
+        "R_t/W_r, the paper's relative roughness δ; the ratios and α do not depend on it",
+        gt=0.0,
+        cli="rt-over-wr",
+    )
     M: int = param_like(WMSpec, "M")
     gamma: float = param_like(WMSpec, "gamma")
     fractions: tuple[float, ...] = param(
-        APPROACH_FRACTIONS, "approaches δ/R_t, strictly increasing", gt=0.0, lt=1.0, many=True,
+        APPROACH_FRACTIONS,
+        "approaches δ/R_t, strictly increasing",
+        gt=0.0,
+        lt=1.0,
+        many=True,
         sweep=False,
-    )  # fmt: skip
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)

@@ -92,8 +92,9 @@ class ModelComparison:
             float64 ratio (dimensionless); NaN where the BEM value is 0.
         """
         if model not in ("eq2", "islands") or quantity not in ("stiffness", "load"):
-            raise ValueError(f"ratio of ('eq2'|'islands', 'stiffness'|'load'), got {model!r}, "
-                             f"{quantity!r}")  # fmt: skip
+            raise ValueError(
+                f"ratio of ('eq2'|'islands', 'stiffness'|'load'), got {model!r}, {quantity!r}"
+            )
         return _ratio(getattr(self, f"{model}_{quantity}"), getattr(self, f"bem_{quantity}"))
 
     @property
@@ -119,8 +120,10 @@ class ModelComparison:
         sel = np.ones(self.depth.size, bool)
         if max_fraction is not None:
             sel = self.depth_fraction <= max_fraction * (1 + 1e-9)
-        return {m: _k_vs_F(getattr(self, f"{m}_load")[sel], getattr(self, f"{m}_stiffness")[sel])
-                for m in ROUTES}  # fmt: skip
+        return {
+            m: _k_vs_F(getattr(self, f"{m}_load")[sel], getattr(self, f"{m}_stiffness")[sel])
+            for m in ROUTES
+        }
 
     def to_dict(self) -> dict[str, np.ndarray]:
         """1-D columns, SI units in the names.
@@ -261,8 +264,14 @@ def compare_models(
 
     nearest = np.abs(ic.depth[:, None] - d[None, :]).argmin(axis=0)
     cc = solve_contact(
-        surface, d, material=material.replace(hardness=math.inf), settings=settings,
-        curve=CurveSettings(stiffness="barber"), progress=progress, device=device, devices=devices,
+        surface,
+        d,
+        material=material.replace(hardness=math.inf),
+        settings=settings,
+        curve=CurveSettings(stiffness="barber"),
+        progress=progress,
+        device=device,
+        devices=devices,
     )
     record = {
         "material": asdict(material),

@@ -46,7 +46,6 @@ CASE_COLUMNS = (
 ratios are model/BEM (``area_ratio`` = A'/A_BEM); ``case_seconds`` is the case's wall time (s)."""
 
 
-
 def study_cases(design: StudyDesign | None = None) -> list[dict[str, Any]]:
     """The WM cases of a study: D × (L/W_r at a fixed pixel size, plus one halved pixel size)
     × seeds.
@@ -81,12 +80,23 @@ def study_cases(design: StudyDesign | None = None) -> list[dict[str, Any]]:
         for Dv in g.D:
             for s in g.seeds:
                 L = r * Wr
-                cases.append({
-                    "case_id": f"D{Dv:g}_L{r:g}Wr_n{n}_s{s}",
-                    "source": "wm", "D_in": Dv, "seed": s, "size_ratio": r, "n": n, "L_m": L,
-                    "dx_m": L / n, "Wr_m": Wr, "Wc_m": 2 * Wr / ppw,
-                    "Rt_m": g.Rt_over_Wr * Wr, "M": g.M, "gamma": g.gamma,
-                })  # fmt: skip
+                cases.append(
+                    {
+                        "case_id": f"D{Dv:g}_L{r:g}Wr_n{n}_s{s}",
+                        "source": "wm",
+                        "D_in": Dv,
+                        "seed": s,
+                        "size_ratio": r,
+                        "n": n,
+                        "L_m": L,
+                        "dx_m": L / n,
+                        "Wr_m": Wr,
+                        "Wc_m": 2 * Wr / ppw,
+                        "Rt_m": g.Rt_over_Wr * Wr,
+                        "M": g.M,
+                        "gamma": g.gamma,
+                    }
+                )
     return cases
 
 
@@ -97,17 +107,24 @@ def _pixels(v: float) -> int:
     return int(n)
 
 
-def _settings(fractions: Any, material: Material, truncation: TruncationSettings,
-              settings: SolverSettings) -> dict[str, Any]:
+def _settings(
+    fractions: Any, material: Material, truncation: TruncationSettings, settings: SolverSettings
+) -> dict[str, Any]:
     """The record of ``study.json``: what makes two stores of the same study."""
     return {
-        "fractions": [float(f) for f in fractions], "material": asdict(material),
-        "E_star_Pa": material.contact_modulus, "beta_prime": float(truncation.beta_prime),
-        "increments": int(truncation.increments), "connectivity": int(truncation.connectivity),
-        "dtype": settings.dtype, "pressure_tol": float(settings.pressure_tol),
-        "pentol_m": settings.pentol, "maxiter": int(settings.maxiter),
-        "substrate": settings.substrate, "stiffness_method": "barber",
-    }  # fmt: skip
+        "fractions": [float(f) for f in fractions],
+        "material": asdict(material),
+        "E_star_Pa": material.contact_modulus,
+        "beta_prime": float(truncation.beta_prime),
+        "increments": int(truncation.increments),
+        "connectivity": int(truncation.connectivity),
+        "dtype": settings.dtype,
+        "pressure_tol": float(settings.pressure_tol),
+        "pentol_m": settings.pentol,
+        "maxiter": int(settings.maxiter),
+        "substrate": settings.substrate,
+        "stiffness_method": "barber",
+    }
 
 
 @fill_doc(SHARED_DOCS)
@@ -168,8 +185,10 @@ def compare_study(
     """
     out = Path(out)
     if client is not None and devices not in (None, 1):
-        raise ValueError(f"devices={devices!r} with a Dask client (a worker spreading its solves "
-                         "over several devices) is not supported yet; run in this process")  # fmt: skip
+        raise ValueError(
+            f"devices={devices!r} with a Dask client (a worker spreading its solves "
+            "over several devices) is not supported yet; run in this process"
+        )
     study = StudyDesign() if study is None else study
     material = Material() if material is None else material
     truncation = ELASTIC_TRUNCATION if truncation is None else truncation
@@ -180,15 +199,23 @@ def compare_study(
     if isinstance(study, MapStudy):
         surface = study.surface
         p = dict(surface.params)
-        cases = [{
-            "case_id": "input", "source": str(p.get("source", "input")),
-            "D_in": float(p["D"]) if "D" in p else math.nan, "seed": int(p.get("seed", -1)),
-            "size_ratio": (surface.lx / p["Wr"]) if "Wr" in p else math.nan,
-            "n": surface.nx, "L_m": surface.lx, "dx_m": surface.dx,
-            "Wr_m": float(p.get("Wr", math.nan)), "Rt_m": surface.Rt,
-            "Wc_m": float(p.get("Wc") or math.nan),
-            "M": int(p.get("M", -1)), "gamma": float(p.get("gamma", math.nan)),
-        }]  # fmt: skip
+        cases = [
+            {
+                "case_id": "input",
+                "source": str(p.get("source", "input")),
+                "D_in": float(p["D"]) if "D" in p else math.nan,
+                "seed": int(p.get("seed", -1)),
+                "size_ratio": (surface.lx / p["Wr"]) if "Wr" in p else math.nan,
+                "n": surface.nx,
+                "L_m": surface.lx,
+                "dx_m": surface.dx,
+                "Wr_m": float(p.get("Wr", math.nan)),
+                "Rt_m": surface.Rt,
+                "Wc_m": float(p.get("Wc") or math.nan),
+                "M": int(p.get("M", -1)),
+                "gamma": float(p.get("gamma", math.nan)),
+            }
+        ]
     else:
         cases = study_cases(study)
     ids = [c["case_id"] for c in cases]
@@ -216,9 +243,19 @@ def _run_cases(out, cases, job, progress, device, client=None, devices=None) -> 
     from distributed import as_completed
 
     # the largest maps first, so that the last task is a small one
-    todo.sort(key=lambda c: -int(c["n"]) ** 2)
-    futs = {client.submit(_one_case, str(Path(out).resolve()), c, job, device, pure=False,
-                          key=f"compare-{c['case_id']}"): c for c in todo}  # fmt: skip
+    todo.sort(key=lambda c: -(int(c["n"]) ** 2))
+    futs = {
+        client.submit(
+            _one_case,
+            str(Path(out).resolve()),
+            c,
+            job,
+            device,
+            pure=False,
+            key=f"compare-{c['case_id']}",
+        ): c
+        for c in todo
+    }
     with progress_bar(total=len(todo), desc="compare", unit="case", enabled=progress) as bar:
         for fut in as_completed(futs):
             c = futs[fut]
@@ -239,10 +276,27 @@ def _one_case(out: str, c: dict[str, Any], job: tuple, device: Any, devices: Any
     if surface is not None:
         s = surface
     else:
-        s = wm_surface(c["D_in"], c["Wr_m"], L=c["L_m"], n=c["n"], Rt=c["Rt_m"], M=c["M"],
-                       gamma=c["gamma"], Wc=c["Wc_m"], seed=c["seed"], device=device)  # fmt: skip
-    r = compare_models(s, fractions, material=material, truncation=truncation,
-                       settings=settings, device=device, devices=devices)  # fmt: skip
+        s = wm_surface(
+            c["D_in"],
+            c["Wr_m"],
+            L=c["L_m"],
+            n=c["n"],
+            Rt=c["Rt_m"],
+            M=c["M"],
+            gamma=c["gamma"],
+            Wc=c["Wc_m"],
+            seed=c["seed"],
+            device=device,
+        )
+    r = compare_models(
+        s,
+        fractions,
+        material=material,
+        truncation=truncation,
+        settings=settings,
+        device=device,
+        devices=devices,
+    )
     c = {**c, "Rt_m": r.Rt}
     _write_case(Path(out), c, r, time.perf_counter() - t0)
     return c["case_id"]
@@ -257,8 +311,9 @@ def _open_store(out: Path, settings: dict[str, Any], overwrite: bool) -> None:
     doc = {"format": FORMAT, "settings": settings}
     if meta.exists():
         old = read_json(meta)
-        same = json.loads(strict_json(doc)) == json.loads(strict_json(
-            {"format": old.get("format"), "settings": old.get("settings")}))  # fmt: skip
+        same = json.loads(strict_json(doc)) == json.loads(
+            strict_json({"format": old.get("format"), "settings": old.get("settings")})
+        )
         if same:
             return
         if not overwrite:
@@ -273,8 +328,11 @@ def _open_store(out: Path, settings: dict[str, Any], overwrite: bool) -> None:
 
     from .._support.version import __version__ as version
 
-    doc["created"] = {"warptrunc_version": version, "warp_version": warp.config.version,
-                      "host": platform.node()}  # fmt: skip
+    doc["created"] = {
+        "warptrunc_version": version,
+        "warp_version": warp.config.version,
+        "host": platform.node(),
+    }
     doc["provenance"] = provenance()
     write_atomic(meta, strict_json(doc))
 
@@ -327,8 +385,9 @@ def load_comparison(out: str | Path):
     if not files:
         return pd.DataFrame(columns=list(CASE_COLUMNS))
     df = pd.concat([pd.read_parquet(f) for f in files], ignore_index=True)
-    return df.sort_values(["n", "size_ratio", "D_in", "seed", "depth_fraction_of_Rt"],
-                          kind="stable").reset_index(drop=True)  # fmt: skip
+    return df.sort_values(
+        ["n", "size_ratio", "D_in", "seed", "depth_fraction_of_Rt"], kind="stable"
+    ).reset_index(drop=True)
 
 
 def _stats(v) -> dict[str, float]:
@@ -361,11 +420,21 @@ def summarize(rows) -> dict[str, Any]:
     keys = ["D_in", "size_ratio", "n"]
     out_r = []
     for (Dv, r, n, f), g in rows.groupby([*keys, "depth_fraction_of_Rt"], sort=True, dropna=False):
-        rec: dict[str, Any] = {"D_in": Dv, "size_ratio": r, "n": n, "depth_fraction_of_Rt": f,
-                               "seeds": int(g["seed"].nunique()),
-                               "converged": int(g["converged"].sum())}  # fmt: skip
-        for col in ("eq2_k_ratio", "islands_k_ratio", "eq2_F_ratio", "islands_F_ratio",
-                    "area_ratio"):  # fmt: skip
+        rec: dict[str, Any] = {
+            "D_in": Dv,
+            "size_ratio": r,
+            "n": n,
+            "depth_fraction_of_Rt": f,
+            "seeds": int(g["seed"].nunique()),
+            "converged": int(g["converged"].sum()),
+        }
+        for col in (
+            "eq2_k_ratio",
+            "islands_k_ratio",
+            "eq2_F_ratio",
+            "islands_F_ratio",
+            "area_ratio",
+        ):
             s = _stats(g[col])
             for k in ("mean", "min", "max"):
                 rec[f"{col}_{k}"] = s[k]
@@ -378,8 +447,13 @@ def summarize(rows) -> dict[str, Any]:
                 c = c[c["depth_fraction_of_Rt"] <= lim * (1 + 1e-9)] if lim else c
                 for m in ROUTES:
                     fits[m].append(_k_vs_F(c[f"{m}_load_N"], c[f"{m}_stiffness_N_per_m"])["alpha"])
-            rec = {"D_in": Dv, "size_ratio": r, "n": n, "range": rng,
-                   "seeds": int(g["seed"].nunique())}  # fmt: skip
+            rec = {
+                "D_in": Dv,
+                "size_ratio": r,
+                "n": n,
+                "range": rng,
+                "seeds": int(g["seed"].nunique()),
+            }
             for m in ROUTES:
                 s = _stats(fits[m])
                 for k in ("mean", "min", "max"):

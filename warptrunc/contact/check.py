@@ -316,7 +316,9 @@ def bem_check(
     z_top = np.float32(z.max())
     n_trunc = np.array([np.count_nonzero(z >= np.float32(z_top - v)) for v in d], dtype=np.int64)
     trunc_area = n_trunc * surface.pixel_area
-    trunc_stiffness = flat_punch_stiffness(np.sqrt(trunc_area), contact_modulus, beta_prime=beta_prime)
+    trunc_stiffness = flat_punch_stiffness(
+        np.sqrt(trunc_area), contact_modulus, beta_prime=beta_prime
+    )
     trunc_load = np.interp(d, sc.depth, sc.load)
 
     if devices not in (None, 1) and check.solver != "contactmechanics":
@@ -325,8 +327,9 @@ def bem_check(
     if check.solver == "contactmechanics":
         out, conv, nit, edge, solves, extra = run_contactmechanics(surface, d, **kw)
     else:
-        out, conv, nit, edge, solves, extra = run_warptrunc(surface, d, **kw, device=device,
-                                                            devices=devices)  # fmt: skip
+        out, conv, nit, edge, solves, extra = run_warptrunc(
+            surface, d, **kw, device=device, devices=devices
+        )
     settings = {
         **extra,
         "substrate": substrate,

@@ -118,8 +118,15 @@ def solve_contact(
             f'(hardness = inf); with a finite hardness ({hardness:g} Pa) use "barber" (the '
             'unloading stiffness) or "none"'
         )
-    solver = ContactSolver(heights, pixel_size, material.contact_modulus, settings=settings,
-                           hardness=hardness, device=device, devices=devices)  # fmt: skip
+    solver = ContactSolver(
+        heights,
+        pixel_size,
+        material.contact_modulus,
+        settings=settings,
+        hardness=hardness,
+        device=device,
+        devices=devices,
+    )
     substrate, dtype = settings.substrate, settings.dtype
     rows: list[dict[str, Any]] = []
     p_maps, g_maps = [], []
@@ -153,24 +160,41 @@ def solve_contact(
     n_contact = col("n_contact", np.int64)
     record = {
         "solver": "warptrunc constrained conjugate gradients (Polonsky & Keer 1999)",
-        "substrate": substrate, "dtype": dtype, "contact_modulus_Pa": solver.contact_modulus,
-        "stiffness_method": stiffness, "fd_step": fd_step, "pressure_tol": solver.pressure_tol,
-        "forcetol_N": solver.forcetol, "pentol_m": solver.pentol, "thermotol": solver.thermotol,
-        "maxiter": solver.maxiter, "refresh": solver.refresh,
+        "substrate": substrate,
+        "dtype": dtype,
+        "contact_modulus_Pa": solver.contact_modulus,
+        "stiffness_method": stiffness,
+        "fd_step": fd_step,
+        "pressure_tol": solver.pressure_tol,
+        "forcetol_N": solver.forcetol,
+        "pentol_m": solver.pentol,
+        "thermotol": solver.thermotol,
+        "maxiter": solver.maxiter,
+        "refresh": solver.refresh,
         "direct_max": solver.direct_max,
         "device": "+".join(getattr(solver, "device_names", [])) or str(solver.device),
-        "grid": [solver.shape[1], solver.shape[0]], "pixel_size_m": [dx, dy],
-        "control": "displacement" if key == "depth" else "load", "hardness_Pa": hardness if math.isfinite(hardness) else None,
-    }  # fmt: skip
+        "grid": [solver.shape[1], solver.shape[0]],
+        "pixel_size_m": [dx, dy],
+        "control": "displacement" if key == "depth" else "load",
+        "hardness_Pa": hardness if math.isfinite(hardness) else None,
+    }
     return ContactCurve(
-        depth=col("depth"), load=col("load"), n_contact=n_contact, area=n_contact * (dx * dy),
-        stiffness=col("stiffness"), mean_gap=col("mean_gap"),
-        n_iterations=col("n_iterations", np.int64), n_convolutions=col("n_convolutions", np.float64),
-        residual=col("residual"), max_tensile_force=col("max_tensile_force"),
-        converged=col("converged", bool), solve_time=col("solve_time"),
-        n_plastic=col("n_plastic", np.int64), plastic_area=col("plastic_area"),
+        depth=col("depth"),
+        load=col("load"),
+        n_contact=n_contact,
+        area=n_contact * (dx * dy),
+        stiffness=col("stiffness"),
+        mean_gap=col("mean_gap"),
+        n_iterations=col("n_iterations", np.int64),
+        n_convolutions=col("n_convolutions", np.float64),
+        residual=col("residual"),
+        max_tensile_force=col("max_tensile_force"),
+        converged=col("converged", bool),
+        solve_time=col("solve_time"),
+        n_plastic=col("n_plastic", np.int64),
+        plastic_area=col("plastic_area"),
         plastic_volume=col("plastic_volume"),
         pressure=np.stack(p_maps) if curve.maps else None,
         gap=np.stack(g_maps) if curve.maps else None,
         settings=record,
-    )  # fmt: skip
+    )

@@ -26,10 +26,16 @@ __all__ = ["fft_plan_that_fits", "memory_bytes", "memory_terms"]
 
 @fill_doc(GRID_DOCS)
 def memory_terms(
-    shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
-    cuda: bool = True, direct_max: int = 24, algorithm: str = "bccg",
-    fft_plan: str = "pruned", device: wp.DeviceLike = None,
-) -> dict[str, int]:  # fmt: skip
+    shape: tuple[int, int],
+    substrate: str = "free",
+    dtype: str = "float64",
+    *,
+    cuda: bool = True,
+    direct_max: int = 24,
+    algorithm: str = "bccg",
+    fft_plan: str = "pruned",
+    device: wp.DeviceLike = None,
+) -> dict[str, int]:
     """The model of a solver's peak device memory, term by term (bytes).
 
     Parameters
@@ -66,8 +72,9 @@ def memory_terms(
     """
     ny, nx = shape
     item = np.dtype(dtype).itemsize
-    terms = ElasticHalfSpace.memory_terms(shape, substrate, dtype, cuda=cuda,
-                                          fft_plan=fft_plan, device=device)  # fmt: skip
+    terms = ElasticHalfSpace.memory_terms(
+        shape, substrate, dtype, cuda=cuda, fft_plan=fft_plan, device=device
+    )
     lanes = 65536 if cuda else 64
     terms["maps"] = 5 * ny * nx * item
     terms["mask"] = ny * nx
@@ -77,12 +84,19 @@ def memory_terms(
         terms["bccg residual"] = ny * nx * item
     return terms
 
+
 @fill_doc(GRID_DOCS)
 def memory_bytes(
-    shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", *,
-    cuda: bool = True, algorithm: str = "bccg", fft_plan: str = "pruned",
-    device: wp.DeviceLike = None, devices: int = 1,
-) -> int:  # fmt: skip
+    shape: tuple[int, int],
+    substrate: str = "free",
+    dtype: str = "float64",
+    *,
+    cuda: bool = True,
+    algorithm: str = "bccg",
+    fft_plan: str = "pruned",
+    device: wp.DeviceLike = None,
+    devices: int = 1,
+) -> int:
     """Peak device memory of a solver and its stiffness solve (bytes; per device when spread).
 
     Parameters
@@ -125,14 +139,15 @@ def memory_bytes(
         from .sharded.grid import sharded_memory_bytes
 
         return sharded_memory_bytes(shape, substrate, dtype, int(devices))
-    terms = memory_terms(shape, substrate, dtype, cuda=cuda,
-                                      algorithm=algorithm, fft_plan=fft_plan,
-                                      device=device)  # fmt: skip
+    terms = memory_terms(
+        shape, substrate, dtype, cuda=cuda, algorithm=algorithm, fft_plan=fft_plan, device=device
+    )
     return int(sum(terms.values()))
 
 
-def fft_plan_that_fits(device: wp.context.Device, shape: tuple[int, int],
-                       settings: SolverSettings) -> str:
+def fft_plan_that_fits(
+    device: wp.context.Device, shape: tuple[int, int], settings: SolverSettings
+) -> str:
     """The half-space's cuFFT plans for a solver of a map of ``shape`` on ``device``, checked
     against the free memory.
 
@@ -162,9 +177,15 @@ def fft_plan_that_fits(device: wp.context.Device, shape: tuple[int, int],
     plan = settings.fft_plan if cuda and substrate == "free" else "pruned"
 
     def needs(p: str) -> int:  # with the work area cuFFT asks for, on CUDA
-        return memory_bytes(shape, substrate, dtype, cuda=cuda,
-                                 algorithm=settings.algorithm, fft_plan=p,
-                                 device=device if cuda else None)  # fmt: skip
+        return memory_bytes(
+            shape,
+            substrate,
+            dtype,
+            cuda=cuda,
+            algorithm=settings.algorithm,
+            fft_plan=p,
+            device=device if cuda else None,
+        )
 
     free = free_memory_bytes(device)
     if plan == "auto":

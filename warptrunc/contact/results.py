@@ -62,13 +62,20 @@ class ContactState:
             ``max_tensile_force_N`` (N), ``converged``.
         """
         return {
-            "depth_m": self.depth, "load_N": self.load, "n_contact": self.n_contact,
-            "contact_area_m2": self.contact_area, "n_plastic": self.n_plastic,
-            "plastic_area_m2": self.plastic_area, "plastic_volume_m3": self.plastic_volume,
-            "mean_gap_m": self.mean_gap, "n_iterations": self.n_iterations,
-            "n_convolutions": self.n_convolutions, "residual_m": self.residual,
-            "max_tensile_force_N": self.max_tensile_force, "converged": self.converged,
-        }  # fmt: skip
+            "depth_m": self.depth,
+            "load_N": self.load,
+            "n_contact": self.n_contact,
+            "contact_area_m2": self.contact_area,
+            "n_plastic": self.n_plastic,
+            "plastic_area_m2": self.plastic_area,
+            "plastic_volume_m3": self.plastic_volume,
+            "mean_gap_m": self.mean_gap,
+            "n_iterations": self.n_iterations,
+            "n_convolutions": self.n_convolutions,
+            "residual_m": self.residual,
+            "max_tensile_force_N": self.max_tensile_force,
+            "converged": self.converged,
+        }
 
 
 @dataclass(frozen=True, eq=False)

@@ -106,8 +106,9 @@ def edge_contact(contact: np.ndarray) -> bool:
     bool
         True if any pixel of the first or last row or column is in contact.
     """
-    return bool(contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any()
-                or contact[:, -1].any())  # fmt: skip
+    return bool(
+        contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any() or contact[:, -1].any()
+    )
 
 
 def pentol_or_default(h: np.ndarray, pentol: float | None) -> tuple[float, str]:
@@ -141,8 +142,15 @@ def _run_columns(m: int) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray,
 
 
 @fill_doc(RUN_DOCS)
-def run_contactmechanics(surface, d: np.ndarray, *, material: Material, settings: SolverSettings,
-                         check: BemCheckSettings, progress: bool = True):
+def run_contactmechanics(
+    surface,
+    d: np.ndarray,
+    *,
+    material: Material,
+    settings: SolverSettings,
+    check: BemCheckSettings,
+    progress: bool = True,
+):
     """ContactMechanics' solves, three per approach (δ(1 − h), δ, δ(1 + h)), warm-started.
 
     The solves run on the CPU in float64 (``NonSmoothContactSystem.minimize_proxy``), each one
@@ -202,17 +210,23 @@ def run_contactmechanics(surface, d: np.ndarray, *, material: Material, settings
     def solve(delta: float) -> tuple[float, dict[str, Any], np.ndarray]:
         nonlocal u0
         kw: dict[str, Any] = {
-            "offset": delta - h_max, "forcetol": forcetol, "pentol": pentol, "maxiter": maxiter,
-        }  # fmt: skip
+            "offset": delta - h_max,
+            "forcetol": forcetol,
+            "pentol": pentol,
+            "maxiter": maxiter,
+        }
         if u0 is not None:
             kw["initial_displacements"] = u0
         r = system.minimize_proxy(**kw)
         u0 = r.x
         f = np.asarray(r.jac)  # per-pixel force on the map, compressive > 0 (N)
         info = {
-            "depth_m": delta, "success": bool(r.success), "n_iterations": int(r.nit),
-            "message": str(r.message), "load_N": float(f.sum()),
-        }  # fmt: skip
+            "depth_m": delta,
+            "success": bool(r.success),
+            "n_iterations": int(r.nit),
+            "message": str(r.message),
+            "load_N": float(f.sum()),
+        }
         return float(f.sum()), info, f
 
     bar = tqdm(total=3 * m, desc="BEM solves", unit="solve", disable=not progress)
@@ -247,9 +261,17 @@ def run_contactmechanics(surface, d: np.ndarray, *, material: Material, settings
 
 
 @fill_doc(RUN_DOCS)
-def run_warptrunc(surface, d: np.ndarray, *, material: Material, settings: SolverSettings,
-                  check: BemCheckSettings, progress: bool = True, device: Any = None,
-                  devices: Any = None):
+def run_warptrunc(
+    surface,
+    d: np.ndarray,
+    *,
+    material: Material,
+    settings: SolverSettings,
+    check: BemCheckSettings,
+    progress: bool = True,
+    device: Any = None,
+    devices: Any = None,
+):
     """warptrunc's solves on ``device``: δ(1 − h), δ, δ(1 + h) (central) or δ and Barber's punch.
 
     One :class:`~warptrunc.contact.solver.ContactSolver` serves all solves.
@@ -293,9 +315,14 @@ def run_warptrunc(surface, d: np.ndarray, *, material: Material, settings: Solve
 
     stiffness, fd_step, dtype = check.stiffness, check.fd_step, settings.dtype
     pentol, pentol_note = pentol_or_default(surface.heights, settings.pentol)
-    solver = ContactSolver(surface.heights, (surface.dx, surface.dy), material.contact_modulus,
-                           settings=settings.replace(pentol=pentol), device=device,
-                           devices=devices)  # fmt: skip
+    solver = ContactSolver(
+        surface.heights,
+        (surface.dx, surface.dy),
+        material.contact_modulus,
+        settings=settings.replace(pentol=pentol),
+        device=device,
+        devices=devices,
+    )
     where = "+".join(getattr(solver, "device_names", [])) or str(solver.device)
     m = d.size
     out, conv, nit, edge = _run_columns(m)
@@ -306,12 +333,17 @@ def run_warptrunc(surface, d: np.ndarray, *, material: Material, settings: Solve
     def solve(delta: float) -> ContactState:
         info = solver.solve(delta)
         bar.update()
-        solves.append({
-            "depth_m": float(delta), "success": bool(info.converged),
-            "n_iterations": int(info.n_iterations), "n_convolutions": float(info.n_convolutions),
-            "load_N": float(info.load), "residual_m": float(info.residual),
-            "message": "converged" if info.converged else f"reached maxiter = {solver.maxiter}",
-        })  # fmt: skip
+        solves.append(
+            {
+                "depth_m": float(delta),
+                "success": bool(info.converged),
+                "n_iterations": int(info.n_iterations),
+                "n_convolutions": float(info.n_convolutions),
+                "load_N": float(info.load),
+                "residual_m": float(info.residual),
+                "message": "converged" if info.converged else f"reached maxiter = {solver.maxiter}",
+            }
+        )
         return info
 
     for i, delta in enumerate(d):
@@ -339,11 +371,12 @@ def run_warptrunc(surface, d: np.ndarray, *, material: Material, settings: Solve
         "solver": "warptrunc",
         "solver_description": "warptrunc.contact constrained conjugate gradients "
         f"(Polonsky & Keer 1999) on {where}, {dtype}",
-        "stiffness_method": "central difference of F over δ(1 ± fd_step)" if stiffness == "central"
+        "stiffness_method": "central difference of F over δ(1 ± fd_step)"
+        if stiffness == "central"
         else "Barber: flat punch of the contact set (linear CG)",
         "pentol_m": pentol,
         "pentol_source": pentol_note,
         "device": where,
         "dtype": dtype,
-    }  # fmt: skip
+    }
     return out, conv, nit, edge, solves, extra

@@ -73,70 +73,88 @@ class SolverSettings(Parameters):
     """
 
     dtype: str = param(
-        "float64", "precision of the maps and FFTs (reductions are float64 in both)",
+        "float64",
+        "precision of the maps and FFTs (reductions are float64 in both)",
         choices=("float64", "float32"),
-    )  # fmt: skip
+    )
     substrate: str = param(
-        "free", "half-space: isolated zero-padded patch or periodic map",
+        "free",
+        "half-space: isolated zero-padded patch or periodic map",
         choices=("free", "periodic"),
-    )  # fmt: skip
+    )
     pressure_tol: float = param(
-        1e-5, "tolerance on tensile (and above-hardness) pixel pressure relative to E*; "
-        "forcetol = pressure_tol·E*·dx·dy", gt=0.0,
-    )  # fmt: skip
+        1e-5,
+        "tolerance on tensile (and above-hardness) pixel pressure relative to E*; "
+        "forcetol = pressure_tol·E*·dx·dy",
+        gt=0.0,
+    )
     pentol: float | None = param(
-        None, "tolerance on penetration; None = rms height/(10·mean(nx, ny)) (ContactMechanics), "
+        None,
+        "tolerance on penetration; None = rms height/(10·mean(nx, ny)) (ContactMechanics), "
         "lowered near full contact to 1 % of the mean open gap (contact.iteration.loop.OPEN_GAP_FRACTION)",
-        unit="m", gt=0.0, optional=True,
-    )  # fmt: skip
+        unit="m",
+        gt=0.0,
+        optional=True,
+    )
     thermotol: float = param(1e-6, "relative tolerance on the total force", gt=0.0)
     load_control: str = param(
-        "offset", "how a solve at a given load finds its approach: 'offset' moves the rigid "
+        "offset",
+        "how a solve at a given load finds its approach: 'offset' moves the rigid "
         "offset inside the CG (ContactMechanics'; with a hardness, an elastic trial that is "
         "kept when no pixel exceeds H, else the secant from it), 'secant' runs a safeguarded "
         "secant on the approach over displacement-controlled solves",
         choices=("offset", "secant"),
-    )  # fmt: skip
+    )
     algorithm: str = param(
-        "bccg", "iteration: 'pk' Polonsky & Keer's constrained CG (ContactMechanics'), 'bccg' "
+        "bccg",
+        "iteration: 'pk' Polonsky & Keer's constrained CG (ContactMechanics'), 'bccg' "
         "Vollebregt's bound-constrained CG with the FFT preconditioner K⁻¹ (one more convolution "
         "per iteration, far fewer iterations on large contacts)",
         choices=("pk", "bccg"),
-    )  # fmt: skip
+    )
     fft_plan: str = param(
-        "auto", "cuFFT plans of the free half-space on a CUDA device (ignored elsewhere): "
+        "auto",
+        "cuFFT plans of the free half-space on a CUDA device (ignored elsewhere): "
         "'pruned' transforms only the map's rows and the columns in slabs (least memory), "
         "'full' one 2-D plan each way over the padded grid (about 2× faster per convolution at "
         "16384², with cuFFT's work area as large as the work spectrum: +16 bytes per map pixel "
         "in float32), 'auto' full when the solver then fits in the free device memory, else "
         "pruned",
         choices=("auto", "pruned", "full"),
-    )  # fmt: skip
+    )
     loop: str = param(
-        "host", "where the BCCG iteration's scalar steps run: 'host' reads back after each "
+        "host",
+        "where the BCCG iteration's scalar steps run: 'host' reads back after each "
         "reduction (4-5 times per iteration); 'device' folds the offset of load control, the "
         "CG's beta and the projection's count on the device and reads back once per iteration; "
         "'graph' the same, its steady iterations replayed from a CUDA graph (as 'device' off "
         "CUDA). Equal to round-off; on an H200 'graph' was 8 % faster at 2048² and 1-3 % slower "
         "from 8192² (guide/performance.md)",
         choices=("host", "device", "graph"),
-    )  # fmt: skip
+    )
     precondition_above: float | None = param(
-        None, "BCCG applies its FFT preconditioner c·K⁻¹·c (one more convolution per iteration) "
+        None,
+        "BCCG applies its FFT preconditioner c·K⁻¹·c (one more convolution per iteration) "
         "while the free set covers more than this fraction of the map (dimensionless; 0 = "
         "always, 1 = never; Barber's punch solve likewise on its contact set); None = auto: "
         "0 on maps of at least 1024² pixels, else 0.02; 0.02 under a punch and in Barber's solve",
-        ge=0.0, le=1.0, optional=True,
-    )  # fmt: skip
+        ge=0.0,
+        le=1.0,
+        optional=True,
+    )
     maxiter: int = param(10000, "largest number of iterations per solve", kind="int", ge=1)
     refresh: int = param(
         50, "transform the forces afresh at least every this many iterations", kind="int", ge=1
     )
     direct_max: int | None = param(
-        None, "largest number of changed forces corrected by direct summation (algorithm "
+        None,
+        "largest number of changed forces corrected by direct summation (algorithm "
         "'pk'); None = auto "
-        "(24 on CUDA, 4 on the CPU)", kind="int", ge=0, optional=True,
-    )  # fmt: skip
+        "(24 on CUDA, 4 on the CPU)",
+        kind="int",
+        ge=0,
+        optional=True,
+    )
 
     def __post_init__(self) -> None:
         for name in ("direct_max", "precondition_above"):
@@ -156,19 +174,26 @@ class CurveSettings(Parameters):
     """
 
     stiffness: str = param(
-        "barber", "k = dF/dδ by Barber's flat punch of the contact set (one linear CG solve; "
+        "barber",
+        "k = dF/dδ by Barber's flat punch of the contact set (one linear CG solve; "
         "with a finite hardness the unloading stiffness of the deformed surface), by the central "
         "difference over δ(1 ± fd_step) (two more contact solves; elastic only), or none (NaN)",
-        choices=STIFFNESS_METHODS, sweep=False,
-    )  # fmt: skip
+        choices=STIFFNESS_METHODS,
+        sweep=False,
+    )
     fd_step: float = param(
-        0.02, "relative step h of the central difference k = [F(δ(1 + h)) − F(δ(1 − h))]/(2hδ)",
-        gt=0.0, lt=0.5,
-    )  # fmt: skip
+        0.02,
+        "relative step h of the central difference k = [F(δ(1 + h)) − F(δ(1 − h))]/(2hδ)",
+        gt=0.0,
+        lt=0.5,
+    )
     maps: bool = param(
-        False, "keep the pressure (Pa) and gap (m) maps of every row (host memory: 16 bytes per "
-        "pixel per row)", kind="bool", sweep=False,
-    )  # fmt: skip
+        False,
+        "keep the pressure (Pa) and gap (m) maps of every row (host memory: 16 bytes per "
+        "pixel per row)",
+        kind="bool",
+        sweep=False,
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -189,24 +214,39 @@ class BemCheckSettings(Parameters):
     """
 
     fractions: tuple[float, ...] | None = param(
-        None, "approaches δ as fractions of R_t, strictly increasing; none = 0.05 0.1 0.15 0.2 "
-        "0.3 0.4, unless depths are given", gt=0.0, lt=1.0, many=True, optional=True,
+        None,
+        "approaches δ as fractions of R_t, strictly increasing; none = 0.05 0.1 0.15 0.2 "
+        "0.3 0.4, unless depths are given",
+        gt=0.0,
+        lt=1.0,
+        many=True,
+        optional=True,
         sweep=False,
-    )  # fmt: skip
+    )
     depths: tuple[float, ...] | None = param(
-        None, "approaches δ, strictly increasing, below R_t of the map; instead of the fractions",
-        unit="m", gt=0.0, many=True, optional=True, sweep=False,
-    )  # fmt: skip
+        None,
+        "approaches δ, strictly increasing, below R_t of the map; instead of the fractions",
+        unit="m",
+        gt=0.0,
+        many=True,
+        optional=True,
+        sweep=False,
+    )
     solver: str = param(
-        "warptrunc", "the elastic solver: warptrunc's constrained CG on the device, or "
-        "ContactMechanics' on the CPU, the reference (pip install \"warptrunc[bem]\")",
-        choices=BEM_SOLVERS, sweep=False,
-    )  # fmt: skip
+        "warptrunc",
+        "the elastic solver: warptrunc's constrained CG on the device, or "
+        'ContactMechanics\' on the CPU, the reference (pip install "warptrunc[bem]")',
+        choices=BEM_SOLVERS,
+        sweep=False,
+    )
     stiffness: str = param_like(
-        CurveSettings, "stiffness", default="central", choices=("central", "barber"),
+        CurveSettings,
+        "stiffness",
+        default="central",
+        choices=("central", "barber"),
         doc="k = dF/dδ by the central difference over δ(1 ± fd_step), or by Barber's flat punch "
         "of the contact set (solver warptrunc only)",
-    )  # fmt: skip
+    )
     fd_step: float = param_like(CurveSettings, "fd_step")
 
     def __post_init__(self) -> None:
@@ -214,8 +254,10 @@ class BemCheckSettings(Parameters):
         for name, what in (("fractions", "fractions of R_t"), ("depths", "m")):
             v = getattr(self, name)
             if v is not None and any(b <= a for a, b in itertools.pairwise(v)):
-                raise ValueError(f"{name} must increase strictly (approaches δ, {what}), got "
-                                 f"{' '.join(f'{x:g}' for x in v)}")  # fmt: skip
+                raise ValueError(
+                    f"{name} must increase strictly (approaches δ, {what}), got "
+                    f"{' '.join(f'{x:g}' for x in v)}"
+                )
         if self.fractions is not None and self.depths is not None:
             raise ValueError("fractions and depths both give the approaches: give one")
         if self.stiffness == "barber" and self.solver != "warptrunc":

@@ -98,7 +98,9 @@ def default_pentol(heights: np.ndarray) -> float:
 
 
 @fill_doc(SHARED_DOCS)
-class ContactSolver(SolveLoop, CappedSolves, BCCGSolves, DeviceLoopSolves, PKSolves, PunchStiffness):
+class ContactSolver(
+    SolveLoop, CappedSolves, BCCGSolves, DeviceLoopSolves, PKSolves, PunchStiffness
+):
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
 
     With a finite ``hardness`` the local pressure is capped at H and the map flows plastically
@@ -221,8 +223,15 @@ class ContactSolver(SolveLoop, CappedSolves, BCCGSolves, DeviceLoopSolves, PKSol
         self.fft_plan = plan
         """The cuFFT plans in use (``warptrunc.contact.halfspace.FFT_PLANS``; 'pruned' off
         CUDA and on the periodic substrate)."""
-        self.hs = ElasticHalfSpace(h.shape, (dx, dy), self.contact_modulus, substrate=substrate,
-                                   dtype=dtype, device=self.device, fft_plan=plan)  # fmt: skip
+        self.hs = ElasticHalfSpace(
+            h.shape,
+            (dx, dy),
+            self.contact_modulus,
+            substrate=substrate,
+            dtype=dtype,
+            device=self.device,
+            fft_plan=plan,
+        )
         sc, _, npd = DTYPES[dtype]
         dev = self.device
         self.h_max = float(h.max())
@@ -304,13 +313,19 @@ class ContactSolver(SolveLoop, CappedSolves, BCCGSolves, DeviceLoopSolves, PKSol
             plastic = not self.plastic_frozen
         secant = load is not None and self.load_control == "secant"
         if math.isinf(self.hardness):
-            info = self._solve_load_secant(load, capped=False) if secant else (
-                self._solve_elastic(depth, load))  # fmt: skip
+            info = (
+                self._solve_load_secant(load, capped=False)
+                if secant
+                else (self._solve_elastic(depth, load))
+            )
             self._point = self._point_of(info, capped=True)
             return self._state(info, None)
         if not plastic:
-            info = self._solve_load_secant(load, capped=False) if secant else (
-                self._solve_elastic(depth, load))  # fmt: skip
+            info = (
+                self._solve_load_secant(load, capped=False)
+                if secant
+                else (self._solve_elastic(depth, load))
+            )
             flow = self._flow(apply=False)
             # below the cap everywhere, the elastic solution is the capped one at that approach
             self._point = self._point_of(info, capped=flow[1] == 0)
