@@ -351,8 +351,8 @@ def bgt_summit_weights(m2: float, m4: float, curvature: np.ndarray) -> dict[floa
     -------
     dict of float to (k,) ndarray
         For c = 0, 1/4, 1/2: ∫ n(s, r) (s² − r²)^(−c) dr, summits per unit area per unit s
-        weighted by (κ₁κ₂)^(−c) (m·m^(2c)/m²), the weights of the contact count, the load and
-        stiffness (R_e^(1/2)) and the area (R_e).
+        weighted by (κ₁κ₂)^(−c) (m^(2c−1)): the weights of the contact count, of the load and
+        stiffness (R_e^(1/2)) and of the area (R_e).
 
     Notes
     -----

@@ -157,7 +157,7 @@ class GapDistribution:
     contact_fraction: float
     """A/A₀: the weight of the delta function at u = 0 (dimensionless)."""
     mean_separation: float
-    """ū(p) of :func:`persson_contact` (m)."""
+    """ū(p), the separation integral of :func:`persson_contact` on this function's samples (m)."""
     slope_rms: float
     """h′_rms up to q₁ (dimensionless)."""
     magnification: float
