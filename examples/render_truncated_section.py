@@ -32,7 +32,12 @@ import json
 from pathlib import Path
 
 from warptrunc.io.vtk import export_vtk
-from warptrunc.render import animate_truncation, render_truncation
+from warptrunc.render import (
+    AnimationSettings,
+    RenderSettings,
+    animate_truncation,
+    render_truncation,
+)
 from warptrunc.wm import wm_surface
 
 
@@ -65,13 +70,14 @@ def main(argv=None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
 
     s = wm_surface(args.D, 100e-6, L=1e-3, n=args.n, Rt=10e-6, seed=args.seed, device=args.device)
-    r = render_truncation(
-        s, args.out / "truncation.png", window_size=size, pooling=args.pooling, device=args.device
-    )
+    oblique = RenderSettings(window_size=size, pooling=args.pooling)
+    r = render_truncation(s, args.out / "truncation.png", settings=oblique, device=args.device)
     top = render_truncation(
-        s, args.out / "truncation_top.png", top_view=True, window_size=size,
-        pooling=args.pooling, device=args.device,
-    )  # fmt: skip
+        s,
+        args.out / "truncation_top.png",
+        settings=oblique.replace(top_view=True),
+        device=args.device,
+    )
     vti = export_vtk(s, args.out / "surface.vti", n_increments=50 if args.quick else 200,
                      device=args.device)  # fmt: skip
     written = [r.path, top.path, vti]
@@ -79,10 +85,10 @@ def main(argv=None) -> int:
         for p in (r.path, top.path):
             _palette(p)
     if args.animate:
+        frames = AnimationSettings(frames=6, frame_size=(320, 260)) if args.quick else None
         a = animate_truncation(
-            s, args.out / "truncation.gif", n_frames=6 if args.quick else 26,
-            window_size=(320, 260) if args.quick else (640, 520), device=args.device,
-        )  # fmt: skip
+            s, args.out / "truncation.gif", animation=frames, device=args.device
+        )
         written.append(a.path)
     (args.out / "render.json").write_text(
         json.dumps({"oblique": r.to_dict(), "top": top.to_dict()}, indent=2, default=list) + "\n"

@@ -118,7 +118,7 @@ def test_input_that_cannot_be_read_is_one_line(scan, capsys, monkeypatch):
 )  # fmt: skip
 def test_increments_above_the_cap_are_refused_at_once(argv, option, tmp_path, capsys):
     code, err = cli([*argv, option, 10_000_000, "--out", tmp_path / "o"], capsys)
-    one_clean_line(code, err, f"{option} 10000000", f"at most {MAX_INCREMENTS}")
+    one_clean_line(code, err, f"{option}: must be an integer in [1, {MAX_INCREMENTS}]", "10000000")
     assert not (tmp_path / "o").exists()
 
 

@@ -81,8 +81,8 @@ NUMERIC = [
     (["render", "--fps", "0"], ["--fps", "(0, inf)", "'0'"]),
     (["render", "--fps", "nan"], ["--fps", "(0, inf)", "nan"]),
     (["render", "--max-depth-fraction", "-0.5"], ["--max-depth-fraction", "(0, 1]", "-0.5"]),
-    (["render", "--vtk-increments", "0"], ["--vtk-increments", "[1, 10000000]", "'0'"]),
-    (["render", "--pooling", "max"], ["--pooling", "'max'", "'area', 'any'"]),
+    (["render", "--vtk-increments", "0"], ["--vtk-increments", "[1, 1000000]", "'0'"]),
+    (["render", "--pooling", "max"], ["--pooling", "'max'", "area, any"]),
     (["render", "--output", "a/b.png"], ["--output", "without folders", "a/b.png"]),
     # islands
     (["islands", "--increments", "-3"], ["--increments", "[1, 1000000]", "-3"]),

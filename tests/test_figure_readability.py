@@ -126,11 +126,12 @@ def test_render_axes_stay_off_the_surface(surf):
     """Annotated and bare oblique panels share their camera (a spare panel holds the caption):
     wherever the annotations changed the picture, the bare one shows background, not surface."""
     _pv()
-    from warptrunc.render import render_truncation
+    from warptrunc.render import RenderSettings, render_truncation
 
-    kw = dict(depth_fractions=[0.1, 0.2, 0.3, 0.4, 0.5], window_size=(780, 440), device="cpu")
-    a = render_truncation(surf, **kw).image[:220, :260].astype(int)
-    b = render_truncation(surf, annotate=False, **kw).image[:220, :260].astype(int)
+    o = RenderSettings(depth_fractions=(0.1, 0.2, 0.3, 0.4, 0.5), window_size=(780, 440))
+    a = render_truncation(surf, settings=o, device="cpu").image[:220, :260].astype(int)
+    bare = o.replace(annotate=False)
+    b = render_truncation(surf, settings=bare, device="cpu").image[:220, :260].astype(int)
     surface = b.min(-1) < 250
     drawn = np.abs(a - b).max(-1) > 40
     assert drawn.sum() > 500  # ticks, labels, titles, the height bar
@@ -171,9 +172,9 @@ def test_render_labels_do_not_collide_and_show_the_height_scale(surf, top_view):
 
 def test_render_caption_says_once_what_red_means(surf):
     _pv()
-    from warptrunc.render import render_truncation
+    from warptrunc.render import RenderSettings, render_truncation
 
-    r = render_truncation(surf, depth_fractions=[0.3], window_size=(200, 200), downsample=2,
-                          device="cpu")  # fmt: skip
+    o = RenderSettings(depth_fractions=(0.3,), window_size=(200, 200), downsample=2)
+    r = render_truncation(surf, settings=o, device="cpu")
     assert r.caption.count("red") <= 2 and r.caption.count("red:") == 1
     assert "red = " not in r.caption and "fraction of its pixels" in r.caption

@@ -18,7 +18,13 @@ import pytest
 
 from warptrunc import from_heights, truncate
 from warptrunc.io.vtk import export_vtk
-from warptrunc.render import auto_exaggeration, contact_masks, pool_blocks
+from warptrunc.render import (
+    AnimationSettings,
+    RenderSettings,
+    auto_exaggeration,
+    contact_masks,
+    pool_blocks,
+)
 from warptrunc.wm import wm_surface
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -181,7 +187,9 @@ def test_missing_pyvista_gives_clear_message(monkeypatch, surf128):
 
     monkeypatch.setitem(sys.modules, "pyvista", None)  # import pyvista → ImportError
     with pytest.raises(ImportError, match="pip install pyvista"):
-        render.render_truncation(surf128, depth_fractions=[0.1], device="cpu")
+        render.render_truncation(
+            surf128, settings=RenderSettings(depth_fractions=(0.1,)), device="cpu"
+        )
 
 
 def test_top_view_red_pixels_equal_area_fraction_at_integer_scale(surf128):
@@ -204,10 +212,15 @@ def test_top_view_red_pixels_equal_area_fraction_at_integer_scale(surf128):
 def render_truncation_top(s, depths, px, window_size_override=None, **kw):
     from warptrunc.render import render_truncation
 
-    return render_truncation(
-        s, depths=depths, top_view=True, annotate=False, ncols=len(depths),
-        window_size=window_size_override or (px * len(depths), px), device="cpu", **kw,
-    )  # fmt: skip
+    settings = RenderSettings(
+        depths=tuple(depths),
+        top_view=True,
+        annotate=False,
+        ncols=len(depths),
+        window_size=window_size_override or (px * len(depths), px),
+        **kw,
+    )
+    return render_truncation(s, settings=settings, device="cpu")
 
 
 def test_top_view_pixels_match_mask_at_non_integer_scale(surf128):
@@ -281,9 +294,8 @@ def test_downsampled_rendering_never_loses_contact_and_says_so(tmp_path):
     from warptrunc.render import render_truncation
 
     p = tmp_path / "big.png"
-    r2 = render_truncation(
-        s, p, depth_fractions=[0.2], window_size=(200, 160), pooling="any", device="cpu"
-    )
+    settings = RenderSettings(depth_fractions=(0.2,), window_size=(200, 160), pooling="any")
+    r2 = render_truncation(s, p, settings=settings, device="cpu")
     # the panel's shorter side: 160 px less the caption strip below it (at most a third)
     assert r2.downsample == 5  # ceil(512 / (160 - 53))
     meta = Image.open(p).text
@@ -330,7 +342,9 @@ def test_annotated_top_view_red_fraction_and_caption_clear_of_the_axis_title():
     from warptrunc.render import render_truncation
 
     s = wm_surface(2.5, 100e-6, n=512, Rt=10e-6, seed=2, device="cpu")
-    r = render_truncation(s, depth_fractions=[0.3], top_view=True, device="cpu")
+    r = render_truncation(
+        s, settings=RenderSettings(depth_fractions=(0.3,), top_view=True), device="cpu"
+    )
     assert r.downsample > 1
     img = r.image.astype(int)
     grey = (np.abs(img[..., 1] - img[..., 2]) < 2) & (img.min(-1) > 60) & (img.max(-1) < 240)
@@ -356,7 +370,8 @@ def test_panel_picture_has_requested_size_and_is_not_blank(tmp_path, surf128):
     from warptrunc.render import render_truncation
 
     p = tmp_path / "panel.png"
-    r = render_truncation(surf128, p, window_size=(700, 330), device="cpu")  # 5 panels, 2×3
+    # 5 panels, 2×3
+    r = render_truncation(surf128, p, settings=RenderSettings(window_size=(700, 330)), device="cpu")
     assert r.image.shape == (330, 700, 3)
     with Image.open(p) as im:
         assert im.size == (700, 330)
@@ -381,7 +396,8 @@ def test_animation_gif(tmp_path):
     from warptrunc.render import animate_truncation
 
     s = wm_surface(2.5, 100e-6, n=64, Rt=10e-6, seed=3, device="cpu")
-    a = animate_truncation(s, tmp_path / "a.gif", n_frames=3, window_size=(160, 120), device="cpu")
+    frames = AnimationSettings(frames=3, frame_size=(160, 120))
+    a = animate_truncation(s, tmp_path / "a.gif", animation=frames, device="cpu")
     assert a.depth_fraction.tolist() == [0.0, 0.25, 0.5]
     with Image.open(a.path) as im:
         assert im.n_frames == 3 and im.size == (160, 120)
@@ -391,7 +407,7 @@ def test_animation_gif(tmp_path):
             frames.append(_red(np.asarray(im.convert("RGB"))).sum())
     assert frames[0] < frames[-1]
     with pytest.raises(ValueError, match=r"\.gif or \.mp4"):
-        animate_truncation(s, tmp_path / "a.avi", n_frames=2)
+        animate_truncation(s, tmp_path / "a.avi", animation=AnimationSettings(frames=2))
 
 
 def test_mp4_without_imageio_names_the_packages(tmp_path, monkeypatch):
@@ -402,7 +418,7 @@ def test_mp4_without_imageio_names_the_packages(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "imageio.v2", None)
     s = wm_surface(2.5, 100e-6, n=32, Rt=10e-6, seed=3, device="cpu")
     with pytest.raises(ImportError, match="pip install imageio imageio-ffmpeg"):
-        animate_truncation(s, tmp_path / "a.mp4", n_frames=2)
+        animate_truncation(s, tmp_path / "a.mp4", animation=AnimationSettings(frames=2))
 
 
 def test_cli_render_writes_picture_animation_vtk_and_json(tmp_path):

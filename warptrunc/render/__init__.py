@@ -2,22 +2,28 @@
 # SPDX-License-Identifier: MIT
 """3-D pictures of truncation sections (the paper's Fig. 7) with pyvista, off-screen.
 
-Layout: :class:`Rendering` and the two drivers in ``sections``; the mesh, panels and camera in
-``scene``; tiling, captions and PNG output in ``image``; block pooling of large maps in
-:mod:`warptrunc.plot.pooling`. Every name is importable from ``warptrunc.render``.
+Layout: the parameters of a picture and of an animation (:class:`RenderSettings`,
+:class:`AnimationSettings`; no Warp, no pyvista) in ``settings``; :class:`Rendering` and the two
+drivers in ``sections``; the mesh, panels and camera in ``scene``; tiling, captions and PNG
+output in ``image``; block pooling of large maps in :mod:`warptrunc.plot.pooling`. Every public
+name is importable from ``warptrunc.render`` (imported on first use).
 """
 
-from ..plot.pooling import POOLING, contact_masks, pool_blocks
-from .scene import auto_exaggeration
-from .sections import DEFAULT_DEPTH_FRACTIONS, Rendering, animate_truncation, render_truncation
+from .._support.exports import lazy_exports
 
-__all__ = [
-    "DEFAULT_DEPTH_FRACTIONS",
-    "POOLING",
-    "Rendering",
-    "animate_truncation",
-    "auto_exaggeration",
-    "contact_masks",
-    "pool_blocks",
-    "render_truncation",
-]
+__all__, __getattr__, __dir__ = lazy_exports(
+    __name__,
+    {
+        "DEFAULT_DEPTH_FRACTIONS": ".settings",
+        "MAX_MESH": ".settings",
+        "POOLING": "..plot.pooling",
+        "AnimationSettings": ".settings",
+        "RenderSettings": ".settings",
+        "Rendering": ".sections",
+        "animate_truncation": ".sections",
+        "auto_exaggeration": ".scene",
+        "contact_masks": "..plot.pooling",
+        "pool_blocks": "..plot.pooling",
+        "render_truncation": ".sections",
+    },
+)

@@ -23,8 +23,6 @@ Layout: the mesh, panels and camera in ``scene``; tiling, captions and PNG outpu
 from __future__ import annotations
 
 import json
-import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -50,15 +48,12 @@ from .image import (
     with_caption,
 )
 from .scene import Panel, Scene, auto_exaggeration, auto_factor, import_pyvista, vtk_quiet
+from .settings import AnimationSettings, RenderSettings
 
-__all__ = ["DEFAULT_DEPTH_FRACTIONS", "Rendering", "animate_truncation", "render_truncation"]
+__all__ = ["Rendering", "animate_truncation", "render_truncation"]
 
-#: Depths of the paper's Fig. 7, as fractions of R_t.
-DEFAULT_DEPTH_FRACTIONS = (0.1, 0.2, 0.3, 0.4, 0.5)
-#: Largest rendered mesh side (blocks) when the image would allow more.
-MAX_MESH = 1024
-#: Pixel size of one panel when no ``window_size`` is given (width, height).
 PANEL_SIZE = (520, 440)
+"""Pixel size of one panel when no ``window_size`` is given (width, height)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -158,17 +153,7 @@ def render_truncation(
     surface: Surface,
     path: str | Path | None = None,
     *,
-    depth_fractions: Sequence[float] = DEFAULT_DEPTH_FRACTIONS,
-    depths: Sequence[float] | None = None,
-    top_view: bool = False,
-    window_size: tuple[int, int] | None = None,
-    ncols: int | None = None,
-    vertical_exaggeration: float | None = None,
-    downsample: int | None = None,
-    pooling: str = "area",
-    max_mesh: int = MAX_MESH,
-    lighting: bool | None = None,
-    annotate: bool = True,
+    settings: RenderSettings | None = None,
     device: wp.DeviceLike = None,
 ) -> Rendering:
     """Render truncation sections: the surface with its contact set at each depth in red.
@@ -179,37 +164,24 @@ def render_truncation(
     path : path, optional
         Save the picture as PNG here (with the caption and the result's metadata in PNG text
         chunks).
-    depth_fractions : sequence of float
-        Depths as fractions of R_t, in (0, 1], one panel each (dimensionless); the paper's
-        Fig. 7 uses 0.1–0.5.
-    depths : sequence of float, optional
-        Depths ω in (0, R_t] (m); override ``depth_fractions``.
-    top_view : bool
-        View from above with an orthographic (parallel) projection, x to the right and y up
-        (as ``imshow(z, origin="lower")``); otherwise an oblique view from the −y side,
-        35° above the horizon.
-    window_size : (int, int), optional
-        Picture size (width, height) in pixels. Default: 520×440 per panel.
-    ncols : int, optional
-        Panels per row (default: up to 3).
-    vertical_exaggeration : float, optional
-        Factor on heights (dimensionless); default :func:`auto_exaggeration`.
-    downsample : int, optional
-        Block side f of the drawn mesh. Default: the smallest f that gives every block at
-        least one screen pixel (over the map's footprint in the top view, over the panel's
-        shorter side in the oblique view) and at most ``max_mesh`` blocks per side.
-    pooling : {"area", "any"}
-        How a block of f×f pixels is coloured when f > 1. ``"area"`` (default): its share of
-        red is the fraction of its pixels in contact, so the red in the picture measures A_c/A.
-        ``"any"``: max-pooling, red when any of its pixels touches; shows every contact spot
-        but overstates the area. The caption says which.
-    max_mesh : int
-        Largest number of blocks per side when ``downsample`` is not given.
-    lighting : bool, optional
-        Shade the surface by VTK lights. Default: on in the oblique view, off in the top
-        view (flat colours, so red pixels measure the contact area).
-    annotate : bool
-        Draw titles, axes in µm and the caption.
+    settings : RenderSettings, optional
+        The picture (:class:`~warptrunc.render.settings.RenderSettings`; its defaults when
+        None): the depths (``depth_fractions`` of R_t in (0, 1], one panel each, the paper's
+        Fig. 7 uses 0.1–0.5; or ``depths`` ω in (0, R_t] (m), which override them); the view
+        (``top_view``: from above with an orthographic projection, x to the right and y up, as
+        ``imshow(z, origin="lower")``; otherwise an oblique view from the −y side, 35° above
+        the horizon); the picture size ``window_size`` (width, height) in pixels (default
+        520×440 per panel) and ``ncols`` panels per row (default up to 3); the
+        ``vertical_exaggeration`` of heights (default :func:`auto_exaggeration`); the block side
+        ``downsample`` f of the drawn mesh (default: the smallest f that gives every block at
+        least one screen pixel, over the map's footprint in the top view, over the panel's
+        shorter side in the oblique view, and at most ``max_mesh`` blocks per side); the
+        ``pooling`` of a block of f×f pixels when f > 1 (``"area"``: its share of red is the
+        fraction of its pixels in contact, so the red in the picture measures A_c/A; ``"any"``:
+        max-pooling, red when any of its pixels touches, which shows every contact spot but
+        overstates the area; the caption says which); ``lighting`` by VTK lights (default on
+        in the oblique view, off in the top view: flat colours, so red pixels measure the
+        contact area); ``annotate``: titles, axes in µm and the caption.
     device : str, optional
         Warp device for the contact index; see :func:`warptrunc.resolve_device`.
 
@@ -231,20 +203,23 @@ def render_truncation(
     Examples
     --------
     >>> from warptrunc.wm import wm_surface
-    >>> from warptrunc.render import render_truncation
+    >>> from warptrunc.render import RenderSettings, render_truncation
     >>> s = wm_surface(2.5, 100e-6, n=2048, Rt=10e-6, seed=1)
-    >>> r = render_truncation(s, "truncation.png")  # doctest: +SKIP
+    >>> r = render_truncation(s, "truncation.png", settings=RenderSettings(top_view=True))  # doctest: +SKIP
     >>> r.downsample, r.area_fraction  # doctest: +SKIP
     """
+    o = RenderSettings() if settings is None else settings
+    depth_fractions, depths, top_view = o.depth_fractions, o.depths, o.top_view
+    window_size, ncols, vertical_exaggeration = o.window_size, o.ncols, o.vertical_exaggeration
+    downsample, pooling, max_mesh = o.downsample, o.pooling, o.max_mesh
+    lighting, annotate = o.lighting, o.annotate
     import_pyvista()
     depth = check_depths(surface, depth_fractions, depths, upto_rt=True)
     check_pooling(pooling)
     nrows, ncols = grid_layout(depth.size, ncols)
     if window_size is None:
         window_size = (PANEL_SIZE[0] * ncols, PANEL_SIZE[1] * nrows)
-    w, h = (int(v) for v in window_size)
-    if w < 16 or h < 16:
-        raise ValueError(f"window_size must be at least 16×16 pixels, got {window_size!r}")
+    w, h = window_size
     spare = nrows * ncols > depth.size
     # no spare panel: the caption goes in a strip below the panels, sized for its longest form
     longest = caption_text(surface, 2, (surface.ny, surface.nx), 10.0, pooling)
@@ -256,12 +231,9 @@ def render_truncation(
             surface, (pw, ph), top_view=top_view, annotate=annotate, max_mesh=max_mesh
         )
     f = int(downsample)
-    if f < 1 or f != downsample:
-        raise ValueError(f"downsample must be an integer ≥ 1, got {downsample!r}")
-    ve = auto_exaggeration(surface) if vertical_exaggeration is None else vertical_exaggeration
-    if not (ve > 0 and math.isfinite(ve)):
-        raise ValueError(f"vertical_exaggeration must be > 0, got {vertical_exaggeration!r}")
-    ve = float(ve)
+    ve = float(
+        auto_exaggeration(surface) if vertical_exaggeration is None else vertical_exaggeration
+    )
     if lighting is None:
         lighting = not top_view
 
@@ -298,15 +270,8 @@ def animate_truncation(
     surface: Surface,
     path: str | Path,
     *,
-    max_depth_fraction: float = 0.5,
-    n_frames: int = 26,
-    fps: float = 8.0,
-    top_view: bool = False,
-    window_size: tuple[int, int] = (640, 520),
-    vertical_exaggeration: float | None = None,
-    downsample: int | None = None,
-    pooling: str = "area",
-    max_mesh: int = MAX_MESH,
+    settings: RenderSettings | None = None,
+    animation: AnimationSettings | None = None,
     device: wp.DeviceLike = None,
 ) -> Rendering:
     """Animate the truncation deepening from ω = 0 to ``max_depth_fraction``·R_t.
@@ -317,22 +282,29 @@ def animate_truncation(
     path : path
         Output file: ``.gif`` (written with Pillow) or ``.mp4`` (needs
         ``pip install imageio imageio-ffmpeg``).
-    max_depth_fraction : float
-        Last depth as a fraction of R_t, in (0, 1] (dimensionless). 0.5 by default, the deepest
-        of the paper's Fig. 7 sections (:data:`DEFAULT_DEPTH_FRACTIONS`), not
-        :func:`warptrunc.truncate`'s 0.1: a picture shows the contact spreading.
-    n_frames : int
-        Number of frames (≥ 2); depths are equally spaced from 0.
-    fps : float
-        Frames per second.
-    top_view, window_size, vertical_exaggeration, downsample, pooling, max_mesh, device
-        As in :func:`render_truncation`.
+    settings : RenderSettings, optional
+        The view and the mesh, as for :func:`render_truncation`: ``top_view``,
+        ``vertical_exaggeration``, ``downsample``, ``pooling`` and ``max_mesh`` are read (the
+        frames are annotated, lit in the oblique view only); its defaults when None.
+    animation : AnimationSettings, optional
+        The last depth as a fraction of R_t in (0, 1] (``max_depth_fraction``, 0.5 by default:
+        the deepest of the paper's Fig. 7 sections, :data:`DEFAULT_DEPTH_FRACTIONS`, not
+        :func:`warptrunc.truncate`'s 0.1: a picture shows the contact spreading), the number of
+        frames (≥ 2, depths equally spaced from 0), frames per second and the frame size
+        (:class:`~warptrunc.render.settings.AnimationSettings`; its defaults when None).
+    device : str, optional
+        Warp device for the contact index; see :func:`warptrunc.resolve_device`.
 
     Returns
     -------
     Rendering
         The last frame, and one depth per frame.
     """
+    o = RenderSettings() if settings is None else settings
+    a = AnimationSettings() if animation is None else animation
+    top_view, vertical_exaggeration, downsample = o.top_view, o.vertical_exaggeration, o.downsample
+    pooling, max_mesh = o.pooling, o.max_mesh
+    max_depth_fraction, n, fps, frame_size = a.max_depth_fraction, a.frames, a.fps, a.frame_size
     import_pyvista()
     path = Path(path)
     suffix = path.suffix.lower()
@@ -347,14 +319,7 @@ def animate_truncation(
                 "MP4 animations need imageio and ffmpeg: pip install imageio imageio-ffmpeg "
                 "(or write a .gif, which needs only Pillow)"
             ) from exc
-    n = int(n_frames)
-    if n < 2 or n != n_frames:
-        raise ValueError(f"n_frames must be an integer ≥ 2, got {n_frames!r}")
-    if not 0 < max_depth_fraction <= 1:
-        raise ValueError(f"max_depth_fraction must be in (0, 1], got {max_depth_fraction!r}")
-    if not fps > 0:
-        raise ValueError(f"fps must be > 0, got {fps!r}")
-    w, h = (int(v) for v in window_size)
+    w, h = frame_size
     if downsample is None:
         downsample = auto_factor(
             surface, (w, h), top_view=top_view, annotate=True, max_mesh=max_mesh
