@@ -88,7 +88,7 @@ def slit_islands(
     Parameters
     ----------
     curve : IslandCurve or sequence of IslandSizes
-        The islands at a few depths (``IslandCurve.sizes``, from ``snapshot_depths=``).
+        The islands at a few depths (``IslandCurve.sizes``, from ``IslandSettings.snapshots``).
     min_pixels : int, optional
         Smallest island in the fits (pixels); the curve's own by default, else 10. Smaller
         islands are drawn in grey.

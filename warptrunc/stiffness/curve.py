@@ -311,7 +311,8 @@ def island_stiffness_curve(
 
     Examples
     --------
-    >>> ic = warptrunc.islands.island_curve(surface, 200, max_depth_fraction=0.1)
+    >>> t = warptrunc.truncation.TruncationSettings()  # 200 depths to 0.1·R_t
+    >>> ic = warptrunc.islands.island_curve(surface, truncation=t)
     >>> sc = island_stiffness_curve(ic)
     >>> fit_power_law(sc).alpha
     """
@@ -320,7 +321,8 @@ def island_stiffness_curve(
     s = getattr(island_curve, "sqrt_area_sum", None)
     if s is None:
         raise ValueError(
-            "island_curve has no Σ√A_i: compute it with island_curve(..., statistics=True)"
+            "island_curve has no Σ√A_i: compute it with island_curve(..., "
+            "settings=IslandSettings(statistics=True))"
         )
     s = np.asarray(s, dtype=np.float64)
     depth = np.asarray(island_curve.depth, dtype=np.float64)
