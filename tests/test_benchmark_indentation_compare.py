@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""examples/benchmarks/benchmark_indentation_workers.py ``compare`` (issue 39, item 4): values
+"""examples/benchmarks/benchmark_indentation_workers.py ``compare``: values
 files of runs made by separate benchmark processes (e.g. at the same time on different GPUs of
 one host) are compared bit for bit; a change of one unit in the last place is found."""
 

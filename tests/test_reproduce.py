@@ -260,7 +260,7 @@ def _nan_eq(a, b) -> bool:
     return a == b
 
 
-# --- issue 19: paper scale, fit-range map, slit band, Fig. 2 models, commit --------------------
+# --- paper scale, fit-range map, slit band, Fig. 2 models, commit -----------------------------
 
 
 def test_paper_profile_at_paper_scale():
@@ -373,7 +373,7 @@ def test_report_commit_fallback(tiny, monkeypatch):
     assert git_commit() == "abc123"
 
 
-# --- issue 28 item 6: the indentation stage (Fig. 6 in silico) --------------------------------
+# --- the indentation stage (Fig. 6 in silico) -------------------------------------------------
 
 
 def test_tiny_indentation_stage(tiny):
@@ -387,7 +387,8 @@ def test_tiny_indentation_stage(tiny):
     p = get_profile("tiny")
     st, ana = doc["stages"]["indentation"], doc["analysis"]["indentation"]
     r = st["rows"]
-    n_punch = len(p.indentation_punches) * len(p.indentation_loads)
+    pr = p.indentation.protocol
+    n_punch = len(pr.punch_diameters) * len(pr.peak_loads)
     expect = 0
     for t in st["timings"]:
         if t["design"] != "face":  # the face pieces are kept apart (st["faces"])
@@ -400,7 +401,7 @@ def test_tiny_indentation_stage(tiny):
     model, design = np.array(r["model"]), np.array(r["design"])
     trunc = np.array(r["truncation_E_c_over_E"], dtype=float)
     px = np.array(r["pixel_size_m"], dtype=float)
-    for s in p.indentation_surfaces:
+    for s in p.indentation.surfaces:
         el = (model == "elastic") & (design == "sweep") & (np.array(r["surface"]) == s)
         ep = (model == "elastic_plastic_2GPa") & (design == "sweep") & (np.array(r["surface"]) == s)
         same = px[el] == px[ep]  # truncation does not depend on H at one pixel
@@ -421,7 +422,7 @@ def test_tiny_indentation_stage(tiny):
     assert len(pieces) == len(st["timings"]) + 1  # + resolution
     assert "cycles taken from the elastic piece" in text
     recs = {f.stem: json.loads(f.read_text()) for f in pieces if f.stem != "resolution"}
-    m = len(p.indentation_loads)
+    m = len(pr.peak_loads)
     for name, rec in recs.items():
         if "__sweep__elastic_plastic_" not in name:
             continue
@@ -429,7 +430,7 @@ def test_tiny_indentation_stage(tiny):
         el = recs[name.split("__")[0] + "__sweep__elastic"]["rows"]
         expect = 0
         for b in range(0, len(el["peak_load_N"]), m):
-            if el["punch_diameter_m"][b] in p.indentation_refine_punches:
+            if el["punch_diameter_m"][b] in p.indentation.refine_punches:
                 continue  # refined punches solve every cycle (reuse needs refine_max = 1)
             k = 0
             while k < m and el["max_pressure_Pa"][b + k] < hard and el["converged"][b + k]:
@@ -441,7 +442,7 @@ def test_tiny_indentation_stage(tiny):
 
 
 def test_tracking_rule_on_hand_made_ratios():
-    from warptrunc.reproduce.indentation import tracking
+    from warptrunc.reproduce.indentation.analysis import tracking
 
     d1, d2 = 5e-5, 1e-4
     ratios = {
@@ -466,15 +467,21 @@ def test_tracking_rule_on_hand_made_ratios():
     assert tracking({"m": {(d1, 1.0): 1.3}}, good=0.2)["tracked"] is None
 
 
+def _small_stage():
+    from warptrunc.reproduce import get_profile
+
+    st = get_profile("tiny").indentation
+    return st.replace(surfaces=("GB300s", "GB50s"), hardness=(math.inf, 1e9), stats=("elastic",),
+                      refine=False, face_surface=None, protocol=st.protocol.replace(
+                          punch_diameters=(108.7e-6,), peak_loads=(0.125, 0.25)))  # fmt: skip
+
+
 def _small_profile():
     from dataclasses import replace
 
     from warptrunc.reproduce import get_profile
 
-    return replace(get_profile("tiny"), name="indent-test", indentation_surfaces=("GB300s", "GB50s"),
-                   indentation_punches=(108.7e-6,), indentation_loads=(0.125, 0.25),
-                   indentation_hardness=(math.inf, 1e9), indentation_stats=("elastic",),
-                   indentation_refine=False, indentation_face_surface=None)
+    return replace(get_profile("tiny"), name="indent-test", indentation=_small_stage())
 
 
 def test_indentation_stage_resumes_after_interruption(tmp_path):
@@ -482,7 +489,7 @@ def test_indentation_stage_resumes_after_interruption(tmp_path):
     gives the stage an uninterrupted run gives."""
     from warptrunc.reproduce.indentation import StageIncomplete, stage_indentation
 
-    p = _small_profile()
+    p = _small_stage()
     full = stage_indentation(p, tmp_path / "a", "cpu", progress=False)
     with pytest.raises(StageIncomplete, match="0 of 6 planned pieces"):
         stage_indentation(p, tmp_path / "b", "cpu", deadline=0.0, progress=False)
@@ -499,9 +506,7 @@ def test_indentation_stage_resumes_after_interruption(tmp_path):
     assert len(list((tmp_path / "b" / "indentation").glob("*.json"))) == 6
     assert _nan_eq(again["rows"], full["rows"])
     # a piece stored with other parameters is refused, or replaced with overwrite
-    from dataclasses import replace
-
-    q = replace(p, indentation_loads=(0.125, 0.3))
+    q = p.replace(protocol=p.protocol.replace(peak_loads=(0.125, 0.3)))
     with pytest.raises(StageConflict, match="other parameters"):
         stage_indentation(q, tmp_path / "b", "cpu", progress=False)
 
@@ -530,7 +535,7 @@ def test_reproduce_stages_and_time_budget(tmp_path):
 def test_fig6_model_colours_are_distinct():
     """Truncation and every contact model get their own colour (the elastic–plastic ones once
     took truncation's red)."""
-    from warptrunc.reproduce.indentation_report import model_colours
+    from warptrunc.reproduce.indentation.report import model_colours
 
     models = ["truncation", "elastic", "elastic_plastic_0.5GPa", "elastic_plastic_1GPa",
               "elastic_plastic_2GPa", "elastic_plastic_4GPa", "elastic_plastic_8GPa"]

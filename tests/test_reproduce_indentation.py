@@ -1,7 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The ``indentation`` stage of ``warptrunc reproduce`` against the paper's text (issue 38,
-items 4, 6, 7): the H range consistent with the ≈ 5 µm depth, how deep truncation stays within
+"""The ``indentation`` stage of ``warptrunc reproduce`` against the paper's text: the H range consistent with the ≈ 5 µm depth, how deep truncation stays within
 ±20 % of each model, the statistics pieces and the report's tables — the rules on hand-made
 tables against numpy, the stage on the ``tiny`` profile (CPU)."""
 
@@ -9,13 +8,12 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from warptrunc.reproduce import get_profile, reproduce
-from warptrunc.reproduce.indentation_rules import (
+from warptrunc.reproduce.indentation.rules import (
     agreement_depth,
     depth_at_load,
     depth_match,
@@ -84,7 +82,7 @@ def test_agreement_depth_on_a_hand_made_series():
 def test_face_verdict_rule():
     """A face explains the paper's divergence (10–15 % R_t′) when truncation leaves the band
     there with it and stays within beyond it with the aligned flat."""
-    from warptrunc.reproduce.indentation_analysis import _verdict
+    from warptrunc.reproduce.indentation.analysis import _verdict
 
     def walk(depth, leaves, n=5):
         return {"depth": depth, "leaves_at": leaves, "n_cells": n}
@@ -110,25 +108,30 @@ def test_depth_at_load_takes_the_deepest_punch():
 
 
 def test_paper_profile_design():
-    p = get_profile("paper")
-    assert {0.5e9, 1e9, 2e9, 4e9, 8e9, math.inf} <= set(p.indentation_hardness)
-    assert (len(p.indentation_seeds), p.indentation_stats_placements, p.indentation_placements) == (3, 5, 3)
-    assert p.indentation_stats == ("elastic", "depth-match")
-    assert p.indentation_refine_punches == (54.1e-6,) and p.indentation_refine_max > 1
-    assert p.indentation_depth_target == 5e-6 and p.indentation_depth_band == (4e-6, 6e-6)
+    st = get_profile("paper").indentation
+    assert {0.5e9, 1e9, 2e9, 4e9, 8e9, math.inf} <= set(st.hardness)
+    assert (len(st.seeds), st.stats_placements, st.protocol.placements) == (3, 5, 3)
+    assert st.stats == ("elastic", "depth-match")
+    assert st.refine_punches == (54.1e-6,) and st.protocol.refine_max > 1
+    assert st.depth_target == 5e-6 and st.depth_band == (4e-6, 6e-6)
+    assert st.protocol.punch_diameters == (54.1e-6, 108.7e-6, 502.6e-6)
+    assert st.protocol.peak_loads[-1] == 0.5 and len(st.protocol.peak_loads) == 10
+    assert st.solver.dtype == "float32" and st.solver.maxiter == 1000
 
 
-def test_bad_profile_fields_are_named(tmp_path):
-    from warptrunc.reproduce.indentation import stage_indentation
-
-    p = get_profile("tiny")
-    for kw, word in (({"indentation_stats": ("plastic",)}, "indentation_stats"),
-                     ({"indentation_depth_band": (6e-6, 7e-6)}, "indentation_depth_band"),
-                     ({"indentation_hardness": (0.0,)}, "indentation_hardness"),
-                     ({"indentation_face_hardness": 3e9}, "indentation_face_hardness"),
-                     ({"indentation_surfaces": ("SMATs",)}, "indentation_face_surface")):  # fmt: skip
+def test_bad_stage_fields_are_named():
+    st = get_profile("tiny").indentation
+    for kw, word in (({"stats": ("plastic",)}, "stats must name"),
+                     ({"depth_band": (6e-6, 7e-6)}, "depth_band must bracket depth_target"),
+                     ({"depth_band": (6e-6, 4e-6)}, "depth_band needs LO < HI"),
+                     ({"hardness": (0.0,)}, r"hardness\[0\] must be in \(0, inf\] Pa"),
+                     ({"face_hardness": 3e9}, "face_hardness must be one of hardness"),
+                     ({"surfaces": ("SMATs",)}, "face_surface must be one of surfaces"),
+                     ({"surfaces": ("Nope",)}, r"surfaces\[0\] must be one of"),
+                     ({"protocol": st.protocol.replace(placements=None)}, "protocol needs"),
+                     ({"stats_placements": 0}, "stats_placements must be")):  # fmt: skip
         with pytest.raises(ValueError, match=word) as e:
-            stage_indentation(replace(p, **kw), tmp_path, "cpu", progress=False)
+            st.replace(**kw)
         assert "\n" not in str(e.value)
 
 
@@ -250,9 +253,8 @@ def test_statistics_piece_resumes(tmp_path):
     """A stats piece lost is computed again alone; the others are reused, not rewritten."""
     from warptrunc.reproduce.indentation import stage_indentation
 
-    p = get_profile("tiny")
-    p = replace(p, indentation_surfaces=("SMATs",), indentation_refine=False,
-                indentation_face_surface=None)
+    p = get_profile("tiny").indentation.replace(surfaces=("SMATs",), refine=False,
+                                                face_surface=None)  # fmt: skip
     a = stage_indentation(p, tmp_path, "cpu", progress=False)
     files = sorted((tmp_path / "indentation").glob("*.json"))
     lost = next(f for f in files if "__stats__elastic_plastic" in f.name)
@@ -269,9 +271,10 @@ def test_statistics_piece_resumes(tmp_path):
 def test_stiffness_rule_on_hand_made_cells():
     """The rule on K alone: a halved cell counts when K changed < tol with ≥ min pixels and
     converged, whatever its area did; a cell never halved keeps its contact-pixel verdict."""
-    from warptrunc.reproduce.indentation_summary import resolved_stiffness
+    from warptrunc.reproduce.indentation.summary import resolved_stiffness
 
-    p = replace(get_profile("tiny"), indentation_resolution_tol=0.02, indentation_min_contact_pixels=100)
+    st = get_profile("tiny").indentation
+    p = st.replace(protocol=st.protocol.replace(resolution_tol=0.02, min_contact_pixels=100))
     r = {  # K change, pixels, converged, resolved (K and A) by hand
         "resolution_change": [0.01, 0.03, 0.01, 0.01, float("nan"), float("nan"), 0.019999],
         "n_contact": [150, 150, 99, 150, 120, 5, 100],

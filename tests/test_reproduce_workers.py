@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The ``indentation`` stage of ``warptrunc reproduce`` on a Dask cluster (issue 39, item 2):
+"""The ``indentation`` stage of ``warptrunc reproduce`` on a Dask cluster:
 its parts on two local worker processes give the rows an in-process run gives, ``reproduce
 --workers 2`` equals ``--workers 1``, and a worker killed mid-stage, or a time budget, loses
 nothing and duplicates nothing (the rerun completes the same stage)."""
@@ -30,9 +30,10 @@ def _profile():
     """Tiny, one surface, with every kind of piece: the sweep (finite H reusing elastic cycles
     on the unrefined punches), elastic and depth-matched statistics over two realisations (a
     band wide enough that an H matches), a refined punch, a tilted and a rough face."""
-    return replace(get_profile("tiny"), name="workers-test", indentation_surfaces=("Ps",),
-                   indentation_hardness=(math.inf, 0.5e9, 2e9), indentation_depth_band=(1e-9, 1e-3),
-                   indentation_depth_target=1e-6, indentation_refine=False)  # fmt: skip
+    p = get_profile("tiny")
+    st = p.indentation.replace(surfaces=("Ps",), hardness=(math.inf, 0.5e9, 2e9),
+                               depth_band=(1e-9, 1e-3), depth_target=1e-6, refine=False)
+    return replace(p, name="workers-test", indentation=st)
 
 
 def _rows(doc) -> str:
@@ -42,7 +43,7 @@ def _rows(doc) -> str:
 @pytest.fixture(scope="module")
 def reference(tmp_path_factory):
     out = tmp_path_factory.mktemp("ref")
-    return stage_indentation(_profile(), out, "cpu", progress=False), out
+    return stage_indentation(_profile().indentation, out, "cpu", progress=False), out
 
 
 @pytest.fixture(scope="module")
@@ -62,7 +63,7 @@ def test_plan_has_every_kind_of_piece(reference):
 @pytest.mark.timeout(300)
 def test_two_workers_store_what_in_process_stores(tmp_path, client, reference):
     ref, ref_out = reference
-    got = stage_indentation(_profile(), tmp_path, "cpu", progress=False, client=client)
+    got = stage_indentation(_profile().indentation, tmp_path, "cpu", progress=False, client=client)
     assert _rows(got) == _rows(ref)  # bit for bit: every part is an independent solve
     a = sorted(f.name for f in (ref_out / "indentation").glob("*.json"))
     b = sorted(f.name for f in (tmp_path / "indentation").glob("*.json"))
@@ -80,7 +81,7 @@ def test_worker_killed_mid_stage_loses_and_duplicates_nothing(tmp_path, client, 
 
     def run():
         try:
-            box["doc"] = stage_indentation(_profile(), tmp_path, "cpu", progress=False, client=client)
+            box["doc"] = stage_indentation(_profile().indentation, tmp_path, "cpu", progress=False, client=client)
         except BaseException as exc:  # reported by the assertion below
             box["exc"] = exc
 
@@ -103,11 +104,11 @@ def test_worker_killed_mid_stage_loses_and_duplicates_nothing(tmp_path, client, 
 def test_time_budget_on_the_cluster_then_rerun(tmp_path, client, reference):
     ref, _ = reference
     with pytest.raises(StageIncomplete, match="run the same command again"):
-        stage_indentation(_profile(), tmp_path, "cpu", progress=False, client=client,
+        stage_indentation(_profile().indentation, tmp_path, "cpu", progress=False, client=client,
                           deadline=time.perf_counter() + 1.0)  # fmt: skip
     stored = {f.name: f.stat().st_mtime_ns for f in (tmp_path / "indentation").glob("*.json")}
     assert stored  # the parts that ran before the budget are kept
-    again = stage_indentation(_profile(), tmp_path, "cpu", progress=False, client=client)
+    again = stage_indentation(_profile().indentation, tmp_path, "cpu", progress=False, client=client)
     assert _rows(again) == _rows(ref)
     for name, t in stored.items():  # a kept piece is reused, not rewritten
         f = tmp_path / "indentation" / name
@@ -117,7 +118,8 @@ def test_time_budget_on_the_cluster_then_rerun(tmp_path, client, reference):
 
 @pytest.mark.timeout(400)
 def test_reproduce_workers_2_equals_workers_1(tmp_path):
-    p = replace(_profile(), indentation_face_surface=None, indentation_stats=("elastic",))
+    st = _profile().indentation.replace(face_surface=None, stats=("elastic",))
+    p = replace(_profile(), indentation=st)
     one = reproduce(p, tmp_path / "w1", device="cpu", stages="indentation", workers=1)
     two = reproduce(p, tmp_path / "w2", device="cpu", stages="indentation", workers=2)
     assert _rows(one["stages"]["indentation"]) == _rows(two["stages"]["indentation"])

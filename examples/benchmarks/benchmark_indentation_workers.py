@@ -16,10 +16,10 @@ What it runs
     compiles.
 
 The profile: a departure from the paper
-    At the paper's map (``indentation_n`` = 10240: 97.7 nm pixels over 1 mm) the stage costs
+    At the paper's map (``indentation.n`` = 10240: 97.7 nm pixels over 1 mm) the stage costs
     about 2250 GPU-seconds (``benchmarks/records/reproduce_paper_indentation_h100x4_ad12c18/indentation_paper_h100x4.json``), too much for one
-    10-minute GPU call. The runs use ``dataclasses.replace(PROFILES["paper"],
-    indentation_n=N)`` with ``--n`` N = 2048 by default: 488 nm pixels over ``indentation_L`` =
+    10-minute GPU call. The runs use the paper profile with ``indentation.n`` = N
+    (``--n`` N = 2048 by default): 488 nm pixels over ``indentation.L`` =
     1 mm, every other field the paper profile's (surfaces, punches, loads, the H sweep, the
     statistics, the punch faces, the refinement). The JSON records every field that differs
     from ``PROFILES["paper"]`` (``profile.departures``).
@@ -95,35 +95,46 @@ PART_FILE = re.compile(r"__p\d+r\d+$")
 
 
 def build_profile(name: str, n: int | None, warmup: bool = False):
-    """The run's profile: ``PROFILES[name]`` with ``indentation_n = n``; for the warm-up also
+    """The run's profile: ``PROFILES[name]`` with ``indentation.n = n``; for the warm-up also
     one surface (the faces'), one realisation, one placement, H = ∞ and the faces' H."""
     from warptrunc.reproduce import PROFILES
 
     p = PROFILES[name]
+    st = p.indentation
     if n:
-        p = dataclasses.replace(p, indentation_n=int(n))
+        st = st.replace(n=int(n))
     if warmup:
-        s = p.indentation_face_surface or p.indentation_surfaces[0]
-        finite = [h for h in p.indentation_hardness if math.isfinite(h)]
-        h = p.indentation_face_hardness if p.indentation_face_surface else (finite or [math.inf])[0]
-        p = dataclasses.replace(p, indentation_surfaces=(s,), indentation_seeds=p.indentation_seeds[:1],
-                                indentation_placements=1, indentation_stats_placements=1,
-                                indentation_hardness=tuple(sorted({math.inf, h})))  # fmt: skip
-    return p
+        s = st.face_surface or st.surfaces[0]
+        finite = [h for h in st.hardness if math.isfinite(h)]
+        h = st.face_hardness if st.face_surface else (finite or [math.inf])[0]
+        st = st.replace(surfaces=(s,), seeds=st.seeds[:1], stats_placements=1,
+                        hardness=tuple(sorted({math.inf, h})),
+                        protocol=st.protocol.replace(placements=1))  # fmt: skip
+    return dataclasses.replace(p, indentation=st)
 
 
 def departures(p) -> dict:
-    """The fields of ``p`` that the indentation stage reads (``name``, ``indentation_*``) and
-    that differ from ``PROFILES["paper"]``: {field: {paper, here}} (lengths in m)."""
+    """The fields of ``p`` that the indentation stage reads (``name``, ``indentation``: its own,
+    then ``protocol.*``, ``solver.*``, ``material.*``) and that differ from ``PROFILES["paper"]``:
+    {field: {paper, here}} (lengths in m)."""
     from warptrunc.reproduce import PROFILES
 
-    ref, mine = PROFILES["paper"].to_dict(), p.to_dict()
-    out = {k: {"paper": ref[k], "here": v} for k, v in mine.items()
-           if (k == "name" or k.startswith("indentation_")) and ref.get(k) != v}  # fmt: skip
+    def flat(prof) -> dict:
+        st = prof.indentation.to_dict()
+        out = {"name": prof.name}
+        for k, v in st.items():
+            if isinstance(v, dict):
+                out.update({f"indentation.{k}.{kk}": vv for kk, vv in v.items()})
+            else:
+                out[f"indentation.{k}"] = v
+        return out
+
+    ref, mine = flat(PROFILES["paper"]), flat(p)
+    out = {k: {"paper": ref.get(k), "here": v} for k, v in mine.items() if ref.get(k) != v}
     out = json.loads(json.dumps(out).replace("Infinity", '"inf"'))  # H = ∞ as "inf": plain JSON
-    if "indentation_n" in out or "indentation_L" in out:
-        out["indentation_dx_nm"] = {"paper": ref["indentation_L"] / ref["indentation_n"] * 1e9,
-                                    "here": p.indentation_L / p.indentation_n * 1e9}  # fmt: skip
+    if "indentation.n" in out or "indentation.L" in out:
+        out["indentation.dx_nm"] = {"paper": PROFILES["paper"].indentation.pixel_size * 1e9,
+                                    "here": p.indentation.pixel_size * 1e9}  # fmt: skip
     return out
 
 
@@ -175,13 +186,13 @@ def child(args: argparse.Namespace) -> int:
     rec: dict = {"tasks": [], "worker_devices": {}}
     if w is not None:
         record_tasks(rec, args.device == "cpu")
-    cmd = (f"warptrunc reproduce --profile {args.profile} (indentation_n={p.indentation_n}) "
+    cmd = (f"warptrunc reproduce --profile {args.profile} (indentation.n={p.indentation.n}) "
            f"--stages indentation --device {args.device} --out {args.out}"
            + ("" if w is None else f" --workers {w}"))  # fmt: skip
     doc = reproduce(p, args.out, stages="indentation", workers=w, device=args.device,
-                    commit=os.environ.get("WARPTRUNC_GIT_COMMIT") or None, command=cmd)  # fmt: skip
+                    commit=os.environ.get("WARPTRUNC_GIT_COMMIT") or None)  # fmt: skip
     m = doc["meta"]
-    rec.update(child_wall_s=time.perf_counter() - t0, reproduce_wall_s=m["wall_s"],
+    rec.update(command=cmd, child_wall_s=time.perf_counter() - t0, reproduce_wall_s=m["wall_s"],
                stage_wall_s=m["stage_wall_s"], computed=m["computed"], reused=m["reused"],
                incomplete=m.get("incomplete"), device=m["device"])  # fmt: skip
     if args.record:
@@ -285,7 +296,7 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--profile", default="paper", choices=("paper", "quick", "tiny"),
                     help="reproduce profile, its indentation map replaced by --n")
     ap.add_argument("--n", type=int, default=2048,
-                    help="pixels per side of the indentation maps over indentation_L (1 mm): "
+                    help="pixels per side of the indentation maps over indentation.L (1 mm): "
                     "2048 gives 488 nm pixels (the paper: 10240, 97.7 nm)")  # fmt: skip
     ap.add_argument("--workers", type=int, nargs="*", default=None,
                     help="worker counts, run in this order (default: the visible GPUs' count, "
@@ -367,7 +378,7 @@ def main(argv=None) -> int:
         machine=dict(gpus=gpu_lines or "cpu", visible_gpus=n_gpus, cpus=os.cpu_count(),
                      cuda_visible_devices=os.environ.get("CUDA_VISIBLE_DEVICES"),
                      warp=warp_version, python=platform.python_version()),
-        profile=dict(name=args.profile, indentation_n=p.indentation_n, indentation_L_m=p.indentation_L,
+        profile=dict(name=args.profile, indentation_n=p.indentation.n, indentation_L_m=p.indentation.L,
                      departures=departures(p)),
         device=args.device, workers=counts, budget_s=args.budget_s, timeout_s=args.timeout_s,
         runs=[],
@@ -455,7 +466,7 @@ def main(argv=None) -> int:
     results["total_s"] = spent()
     save()
     print(f"commit {commit}; {len(gpu_lines)} GPU(s): {'; '.join(gpu_lines) or 'none'}; profile "
-          f"{args.profile} at indentation_n={p.indentation_n} on {args.device}; results in {path}")  # fmt: skip
+          f"{args.profile} at indentation.n={p.indentation.n} on {args.device}; results in {path}")  # fmt: skip
     print(table(results))
     return 0
 

@@ -50,12 +50,10 @@ from pathlib import Path
 SETTINGS = ("main", "thread", "worker", "worker-bare", "process")
 
 
-def _profile(n: int):
-    import dataclasses
-
+def _stage(n: int):
     from warptrunc.reproduce import PROFILES
 
-    return dataclasses.replace(PROFILES["paper"], indentation_n=int(n))
+    return PROFILES["paper"].indentation.replace(n=int(n))
 
 
 def run_parts(n: int, device: str | None, surface: str, hardness: float, top: int = 0) -> dict:
@@ -65,9 +63,9 @@ def run_parts(n: int, device: str | None, surface: str, hardness: float, top: in
     import io
     import pstats
 
-    from warptrunc.reproduce.indentation_parts import Part, run_part
+    from warptrunc.reproduce.indentation.pieces import Part, run_part
 
-    p = _profile(n)
+    p = _stage(n)
     parts = [Part(surface, "sweep", float("inf"), None, 0, 0),
              Part(surface, "sweep", float(hardness), None, 0, 0)]  # fmt: skip
     prof = cProfile.Profile() if top else None
@@ -149,7 +147,7 @@ def main(argv=None) -> int:
         description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
     )
     ap.add_argument(
-        "--n", type=int, default=1536, help="indentation_n of the paper profile (pixels)"
+        "--n", type=int, default=1536, help="pixels per side of the paper profile's indentation maps (indentation.n)"
     )
     ap.add_argument("--device", default=None, help="Warp device (default: cuda:0, else cpu)")
     ap.add_argument("--surface", default="SMATs", help="Table 1 surface (default SMATs)")

@@ -4,9 +4,10 @@
 
 Stages (Fig. 2 single asperity, Fig. 5 convergence, Table 1 calibration, Figs. 7–8/Table 2
 islands, Table 3 groups 1 and 2 with Figs. 9–10, the elastic BEM cross-check, the indentation
-experiment of Fig. 6 in silico) are computed by
-:mod:`.study`, stored and reused by :mod:`.store`, summarised by :mod:`.analysis` and written by :mod:`.report` as
-``report.md``, ``results.json`` and PNG figures.
+experiment of Fig. 6 in silico, :mod:`.indentation`) are computed by :mod:`.study` at the sizes
+of a :mod:`.profiles` profile, stored and reused by :mod:`.store`, summarised by
+:mod:`.analysis` and written as ``report.md`` (:mod:`.report`), ``results.json`` and PNG
+figures (:mod:`.figures`).
 """
 
 from __future__ import annotations
@@ -18,11 +19,11 @@ import time
 from pathlib import Path
 from typing import Any
 
-from .._support.version import __version__
 from .._support.atomic import staged_outputs, store_rollback
 from .._support.device import resolve_device
 from .._support.provenance import git_commit, provenance
 from .._support.results import jsonable
+from .._support.version import __version__
 from .profiles import PROFILES, Profile, get_profile
 from .store import StageConflict, StageStore
 
@@ -33,12 +34,11 @@ def reproduce(
     profile: str | Profile = "quick",
     out: str | Path = "reproduction",
     *,
-    overwrite: bool = False,
-    device=None,
-    command: str | None = None,
-    commit: str | None = None,
     stages: str | tuple[str, ...] | None = None,
+    overwrite: bool = False,
     time_budget: float | None = None,
+    commit: str | None = None,
+    device=None,
     workers: int | str | None = None,
     scheduler: Any = None,
 ) -> dict[str, Any]:
@@ -53,24 +53,22 @@ def reproduce(
         Sizes of the run: ``"tiny"``, ``"quick"``, ``"paper"`` or a :class:`Profile`.
     out : str or Path
         Output folder (created): ``stages/``, the figures, ``results.json`` and ``report.md``.
-    overwrite : bool
-        Recompute stages stored with other parameters instead of raising.
-    device : str, optional
-        Warp device.
-    command : str, optional
-        Command line recorded in the report; default the equivalent ``warptrunc reproduce``.
-    commit : str, optional
-        Commit recorded in the report; default ``$WARPTRUNC_GIT_COMMIT``, else ``git rev-parse
-        HEAD`` of the package's checkout, else "unknown".
     stages : str or sequence of str, optional
         Compute only these stages (names of :data:`~warptrunc.reproduce.study.STAGES`, or one
         comma-separated string; a stage's inputs are added). The others are read from
         ``out/stages`` when stored with the same parameters and left out of the report
         otherwise. Default: every stage.
+    overwrite : bool
+        Recompute stages stored with other parameters instead of raising.
     time_budget : float, optional
         Seconds from the start after which the ``indentation`` stage starts no new piece
         (its pieces are stored as they finish; a rerun continues). The report then says the
         stage is incomplete. Default: no limit.
+    commit : str, optional
+        Commit recorded in the report; default ``$WARPTRUNC_GIT_COMMIT``, else ``git rev-parse
+        HEAD`` of the package's checkout, else "unknown".
+    device : str, optional
+        Warp device.
     workers : int or "auto", optional
         Run the ``indentation`` stage's parts (one punch × one realisation of a piece each) and
         the ``elastic`` stage's maps on a local Dask cluster of this many worker processes, one per GPU (``"auto"``: one per
@@ -84,7 +82,10 @@ def reproduce(
     Returns
     -------
     dict of str to Any
-        ``{"meta": ..., "analysis": ..., "stages": ...}``, as written to ``results.json``.
+        ``{"meta": ..., "analysis": ..., "stages": ...}``, as written to ``results.json``;
+        ``meta`` holds the equivalent ``warptrunc reproduce`` command (``command``) and the
+        :func:`~warptrunc._support.provenance.provenance` of the run (its command line among
+        it).
 
     Raises
     ------
@@ -130,7 +131,7 @@ def reproduce(
                 ana["fit_range_map_missing"] = str(exc)
         with staged_outputs() as st:  # the figures, results.json and report.md, or none of them
             stage = st.folder(out)
-            doc = _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, commit,
+            doc = _final_outputs(stage, p, res, ana, study, store, dev, t0, out, commit,
                                  None if stages is None else selected)  # fmt: skip
     return jsonable(doc)
 
@@ -150,9 +151,10 @@ def _cluster(workers, scheduler, dev):
         yield client, task_device
 
 
-def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, commit, selected):
+def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, commit, selected):
     """Write the figures, results.json and report.md into ``stage``; returns the document."""
-    from .report import figures, markdown
+    from .figures import figures
+    from .report import markdown
 
     names = figures(res, ana, stage, device=dev)
     meta = {
@@ -160,7 +162,7 @@ def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, command, comm
         "device": f"{dev.alias} ({getattr(dev, 'name', '')})", "wall_s": time.perf_counter() - t0,
         "stage_wall_s": study["wall_s"], "stage_seconds": {k: store.seconds(k) for k in res},
         "reused": store.reused, "computed": store.computed,
-        "command": command or f"warptrunc reproduce --profile {p.name} --out {out}"
+        "command": f"warptrunc reproduce --profile {p.name} --out {out}"
         + ("" if selected is None else f" --stages {','.join(selected)}"),
         "python": sys.version.split()[0], "figures": names,
         "provenance": provenance(dev),

@@ -178,7 +178,7 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
 
         out["elastic"] = analyse_elastic(res["elastic"])
     if "indentation" in res:
-        from .indentation_analysis import analyse_indentation
+        from .indentation.analysis import analyse_indentation
 
         out["indentation"] = analyse_indentation(res["indentation"])
     return out

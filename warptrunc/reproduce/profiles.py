@@ -8,15 +8,15 @@ increments, ω_max = 0.1·R_t; islands of Figs. 7–8 and Table 2 on 30720² ove
 :data:`PAPER_DEPARTURES`: Fig. 5 goes to 10240² (the paper: 32760²) and the island analysis
 uses 4 seeds per surface; the elastic comparison (not in the paper) goes to 7680² (L/W_r = 30
 at 256 pixels per W_r) and 5120² (L/W_r = 10, pixel size halved). The indentation stage (Fig. 6
-in silico, not in the paper's simulations) runs at the paper's pixel size with the paper's
-punches and loads, in two designs (issue 38, items 4 and 7): a hardness sweep (H of
-``indentation_hardness``, one realisation × ``indentation_placements`` placements per punch)
-and statistics (``indentation_seeds`` × ``indentation_stats_placements`` indents per punch) for
-the models of ``indentation_stats``: H = ∞ and the H of the sweep that best matches the paper's
-≈ 5 µm depth at 500 mN. ``quick`` and ``tiny`` coarsen its pixels (512² and 256² over 1 mm), use
-fewer H, seeds and placements (``tiny``: the last four loads, every cell with a contact pixel
-judged resolved: a smoke run). ``quick`` fits a 2-core CPU in minutes and ``tiny`` is the CI
-check.
+in silico, not in the paper's simulations; :class:`~warptrunc.reproduce.indentation.design.IndentationStage`)
+runs at the paper's pixel size with the paper's punches and loads, in two designs: a hardness
+sweep (H of ``indentation.hardness``, one realisation × ``indentation.protocol.placements``
+placements per punch) and statistics (``indentation.seeds`` × ``indentation.stats_placements``
+indents per punch) for the models of ``indentation.stats``: H = ∞ and the H of the sweep that
+best matches the paper's ≈ 5 µm depth at 500 mN. ``quick`` and ``tiny`` coarsen its pixels
+(512² and 256² over 1 mm), use fewer H, seeds and placements (``tiny``: the last four loads,
+every cell with a contact pixel judged resolved: a smoke run). ``quick`` fits a 2-core CPU in
+minutes and ``tiny`` is the CI check.
 """
 
 from __future__ import annotations
@@ -25,14 +25,14 @@ import math
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from ..indent.protocol import PAPER_PEAK_LOADS, PAPER_PUNCH_DIAMETERS
+from ..truncation.settings import TruncationSettings
+from .indentation.design import IndentationStage
+
 __all__ = ["PAPER_DEPARTURES", "PROFILES", "Profile", "get_profile"]
 
 GROUP1_DELTA = (0.000625, 0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.08, 0.16)
 GROUP2_D = (2.1, 2.3, 2.5, 2.7, 2.9)
-INDENT_SURFACES = ("Ps", "SMATs", "GB300s", "GB50s")
-INDENT_PUNCHES = (54.1e-6, 108.7e-6, 502.6e-6)  # = warptrunc.indent.PAPER_PUNCH_DIAMETERS
-INDENT_LOADS = tuple(0.5 / 2**k for k in range(9, -1, -1))  # = warptrunc.indent.PAPER_PEAK_LOADS
-INDENT_HARDNESS = (math.inf, 0.5e9, 1e9, 2e9, 4e9, 8e9)
 
 
 @dataclass(frozen=True)
@@ -49,10 +49,10 @@ class Profile:
     """Side of the group surfaces (m)."""
     Wr: float = 100e-6
     """Roll-off wavelength of the group surfaces (m)."""
-    increments: int = 200
-    """Truncation increments of the stiffness curves."""
-    max_depth_fraction: float = 0.1
-    """ω_max/R_t of the groups (§4.4)."""
+    truncation: TruncationSettings = field(default=TruncationSettings())
+    """Truncation of the group surfaces (:class:`~warptrunc.truncation.settings.TruncationSettings`:
+    200 increments to ω_max = 0.1·R_t, §4.4; its ``increments``, ``max_depth_fraction``,
+    ``max_depth`` and ``beta_prime`` are the sweep's)."""
     group1_delta: tuple[float, ...] = GROUP1_DELTA
     """Relative roughness values δ = R_t/W_r of group 1 (dimensionless)."""
     group2_D: tuple[float, ...] = GROUP2_D
@@ -102,81 +102,10 @@ class Profile:
     """Approaches δ/R_t of the ``elastic`` stage (dimensionless)."""
     elastic_dtype: str = "float64"
     """Precision of the elastic solver in the ``elastic`` stage."""
-    indentation_surfaces: tuple[str, ...] = INDENT_SURFACES
-    """Table 1 presets of the ``indentation`` stage (:data:`warptrunc.presets.TABLE1`)."""
-    indentation_n: int = 10240
-    """Pixels per side of the ``indentation`` stage's maps (over ``indentation_L``)."""
-    indentation_L: float = 1e-3
-    """Side of the ``indentation`` stage's maps (m)."""
-    indentation_punches: tuple[float, ...] = INDENT_PUNCHES
-    """Flat-punch diameters of the ``indentation`` stage (m)."""
-    indentation_loads: tuple[float, ...] = INDENT_LOADS
-    """Peak loads of the ``indentation`` stage's cycles (N), increasing."""
-    indentation_placements: int = 3
-    """Random punch placements per diameter in the ``indentation`` stage's hardness sweep, on
-    its one realisation (the first of ``indentation_seeds``) (count)."""
-    indentation_seed: int = 0
-    """Seed of the punch placements of the ``indentation`` stage (punch k of
-    ``indentation_punches`` draws its positions with seed ``indentation_seed + k``)."""
-    indentation_hardness: tuple[float, ...] = INDENT_HARDNESS
-    """Hardness values H of the ``indentation`` stage's sweep (Pa); inf = elastic. The paper
-    states no hardness: H is swept, not assumed (aluminium alloys span about 0.2–1.7 GPa by
-    handbook Vickers values, more at shallow nanoindentation depths and after work hardening;
-    ``docs/guide/indentation.md``)."""
-    indentation_seeds: tuple[int, ...] = (0, 1, 2)
-    """Phase seeds of the realisations of the ``indentation`` stage's statistics pieces; the
-    hardness sweep runs on the first."""
-    indentation_stats_placements: int = 5
-    """Random punch placements per diameter and realisation of the statistics pieces (count)."""
-    indentation_stats: tuple[str, ...] = ("elastic", "depth-match")
-    """Models of the statistics pieces: ``"elastic"`` (H = ∞) and ``"depth-match"`` (per
-    surface, the H of the sweep whose depth at the largest load is nearest
-    ``indentation_depth_target``, when the sweep reaches ``indentation_depth_band``; none
-    otherwise). Empty: no statistics pieces."""
-    indentation_depth_target: float = 5e-6
-    """The paper's maximal indentation depth at 500 mN, "around 5 µm" (§ 4.1) (m)."""
-    indentation_depth_band: tuple[float, float] = (4e-6, 6e-6)
-    """Depths at the largest load taken as consistent with "around 5 µm" (m)."""
-    indentation_face_surface: str | None = "Ps"
-    """Surface of the punch-face runs of the ``indentation`` stage (None: none): the aligned
-    smooth flat of the sweep against tilted and rough faces (§ 4.2 names misalignment and the
-    tip's roughness among the causes of Ps's divergence beyond 15 % R_t′)."""
-    indentation_face_tilts_deg: tuple[float, ...] = (0.05, 0.1)
-    """Tilts of the punch face in those runs (degrees; :func:`warptrunc.indent`'s
-    ``punch_tilt_deg``); the aligned flat (0°) is the sweep's piece."""
-    indentation_face_roughness: float = 0.05e-6
-    """rms roughness of a generated punch face in those runs (m; 0: none): the paper's tip,
-    "measured to have an RMS roughness of around 0.05 µm" (§ 4.2)."""
-    indentation_face_hardness: float = 1e9
-    """H of the punch-face runs (Pa; one of ``indentation_hardness``, inf = elastic): the paper
-    states none; 1 GPa is :func:`warptrunc.indent`'s default, inside the handbook range."""
-    indentation_unload_fraction: float = 0.1
-    """Partial unloading of each cycle, a fraction of its peak load (dimensionless)."""
-    indentation_dtype: str = "float64"
-    """Precision of the contact solver in the ``indentation`` stage."""
-    indentation_maxiter: int = 1000
-    """Iteration limit of each contact solve in the ``indentation`` stage: bounds the work of a
-    solve that does not converge (complete contact under a small punch on the smooth Ps stalls
-    load control); such cycles are flagged, counted in the report and left out of the fits."""
-    indentation_increments: int = 1000
-    """Depth increments of the truncation curve under each punch (``indentation`` stage)."""
-    indentation_refine: bool = True
-    """Resolution check of the ``indentation`` stage: the smallest punch at dx and dx/2."""
-    indentation_refine_max: int = 1
-    """Refinement of the ``indentation`` stage's cells in the pixel size
-    (:mod:`warptrunc.indent.refine`, a power of 2): 1 = none, the cells judged by their
-    contact pixels; above 1 the punch windows of ``indentation_refine_punches`` are generated
-    again at pixel/2 … pixel/refine_max until resolved. The fits, the agreement depths and the
-    tracking rule use the cells ``in_fit`` either way."""
-    indentation_refine_punches: tuple[float, ...] | None = None
-    """Punch diameters whose cells are refined (m; None: every punch). Every cell of a refined
-    punch is solved at least once at half the pixel (the check), so refining the 502.6 µm
-    punch at the paper's pixel costs about four times its solves."""
-    indentation_resolution_tol: float = 0.02
-    """Relative change of K and of the contact area at which a cell is resolved (``indentation``
-    stage, with ``indentation_refine_max`` > 1)."""
-    indentation_min_contact_pixels: int = 100
-    """Fewest contact pixels of a resolved cell (``indentation`` stage)."""
+    indentation: IndentationStage = field(default=IndentationStage())
+    """The ``indentation`` stage (:class:`~warptrunc.reproduce.indentation.design.IndentationStage`:
+    its maps, hardness sweep, statistics, punch faces, resolution check, and the
+    :class:`~warptrunc.indent.IndentProtocol`, solver settings and material of its pieces)."""
     extra: dict[str, Any] = field(default_factory=dict)
     """Free-form additions, recorded with the profile (no stage reads them)."""
 
@@ -186,9 +115,21 @@ class Profile:
         Returns
         -------
         dict of str to Any
-            One entry per field (lengths in m).
+            One entry per field (lengths in m); ``truncation`` and ``indentation`` as the dicts
+            of their own ``to_dict``.
         """
-        return asdict(self)
+        return {**asdict(self), "truncation": self.truncation.to_dict(),
+                "indentation": self.indentation.to_dict()}  # fmt: skip
+
+
+def _indentation(protocol: dict[str, Any] | None = None, solver: dict[str, Any] | None = None,
+                 **kw: Any) -> IndentationStage:
+    """The stage's parameters: ``IndentationStage()`` with ``kw`` changed, its protocol (refined
+    at most once by default, ``refine_max`` 1) and solver settings with ``protocol`` and
+    ``solver`` changed."""
+    base = IndentationStage()
+    return base.replace(protocol=base.protocol.replace(**(protocol or {})),
+                        solver=base.solver.replace(**(solver or {})), **kw)  # fmt: skip
 
 
 PROFILES = {
@@ -199,27 +140,31 @@ PROFILES = {
         asperity_n=256, asperity_increments=200, elastic_D=(2.1, 2.9), elastic_size_ratios=(1, 3),
         elastic_pixels_per_Wr=16, elastic_refine_ratio=3, elastic_seeds=1,
         elastic_fractions=(0.02, 0.05, 0.1, 0.2, 0.4),
-        indentation_n=256, indentation_loads=INDENT_LOADS[-4:], indentation_placements=1,
-        indentation_increments=200, indentation_maxiter=200,
-        indentation_hardness=(math.inf, 0.5e9, 2e9, 8e9), indentation_seeds=(0, 1),
-        indentation_stats_placements=1, indentation_min_contact_pixels=1,
-        indentation_refine_max=2, indentation_refine_punches=INDENT_PUNCHES[:1],
-        indentation_face_tilts_deg=(0.1,), indentation_face_hardness=2e9,
+        indentation=_indentation(
+            n=256, hardness=(math.inf, 0.5e9, 2e9, 8e9), seeds=(0, 1), stats_placements=1,
+            refine_punches=PAPER_PUNCH_DIAMETERS[:1], face_tilts_deg=(0.1,), face_hardness=2e9,
+            protocol={"peak_loads": PAPER_PEAK_LOADS[-4:], "placements": 1,
+                      "truncation_increments": 200, "min_contact_pixels": 1, "refine_max": 2},
+            solver={"maxiter": 200},
+        ),
     ),
     "quick": Profile(
         name="quick", n=1024, seeds=3, fig5_sizes=(256, 512, 1024, 2048), fig5_seeds=3,
         table1_n=256, table1_seeds=1, islands_n=1024, islands_seeds=2, asperity_n=1024,
-        elastic_pixels_per_Wr=16, indentation_n=512, indentation_placements=1,
-        indentation_seeds=(0, 1), indentation_stats_placements=2,
-        indentation_min_contact_pixels=10, indentation_refine_max=2,
-        indentation_refine_punches=INDENT_PUNCHES[:1],
+        elastic_pixels_per_Wr=16,
+        indentation=_indentation(
+            n=512, seeds=(0, 1), stats_placements=2, refine_punches=PAPER_PUNCH_DIAMETERS[:1],
+            protocol={"placements": 1, "min_contact_pixels": 10, "refine_max": 2},
+        ),
     ),
     "paper": Profile(
         name="paper", n=10240, seeds=5, fig5_sizes=(1024, 2048, 4096, 8192, 10240),
         fig5_seeds=10, table1_n=1024, table1_seeds=3, table1_methods=("tri", "box", "vs", "sp"),
         islands_n=30720, islands_L=3e-3, islands_seeds=4, asperity_n=4096,
-        indentation_dtype="float32", indentation_refine_max=2,
-        indentation_refine_punches=INDENT_PUNCHES[:1],
+        indentation=_indentation(
+            refine_punches=PAPER_PUNCH_DIAMETERS[:1], protocol={"refine_max": 2},
+            solver={"dtype": "float32"},
+        ),
     ),
 }
 

@@ -35,8 +35,9 @@ STAGE_DOCS = {
 }
 STAGE_DOCS["{profile}"] = "Parameters\n----------\np : Profile\n    The reproduction profile."
 STAGE_DOCS["{elastic_profile}"] = STAGE_DOCS["{profile}"][:-1] + " (its ``elastic_*`` fields)."
-STAGE_DOCS["{indentation_profile}"] = (
-    STAGE_DOCS["{profile}"][:-1] + " (its ``indentation_*`` fields)."
+STAGE_DOCS["{indentation_stage}"] = (
+    "Parameters\n----------\nst : IndentationStage\n    The stage's parameters (a profile's "
+    "``indentation``, :class:`~warptrunc.reproduce.indentation.design.IndentationStage`)."
 )
 STAGE_DOCS["{stage_params_returns}"] = (
     "Returns\n-------\ndict\n"

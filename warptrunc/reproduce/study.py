@@ -2,9 +2,8 @@
 # SPDX-License-Identifier: MIT
 """The paper's study as stages (Fig. 2, Fig. 5, Table 1, Figs. 7–8/Table 2, Fig. 9/10, Table 3),
 and how far truncation is from elastic contact (stage ``elastic``, :mod:`warptrunc.reproduce.elastic`: Eq. 2,
-island-resolved truncation and warptrunc's BEM solver; it replaces the former ``bem`` stage), and
-the paper's indentation experiment in silico (stage ``indentation``,
-:mod:`warptrunc.reproduce.indentation`).
+island-resolved truncation and warptrunc's BEM solver), and the paper's indentation experiment in
+silico (stage ``indentation``, :mod:`warptrunc.reproduce.indentation`).
 
 Every stage is a function of the profile returning a JSON-serialisable dict; :func:`run_study`
 runs them through a :class:`~warptrunc.reproduce.store.StageStore`, so a rerun reuses finished
@@ -244,7 +243,9 @@ def group_sweep(p: Profile, which: int) -> tuple[SweepGrid, SweepOptions]:
         grid = SweepGrid(D=tuple(p.group2_D), delta=(0.01,), seeds=seeds)
         fractal = True
     opts = SweepOptions(
-        n=p.n, L=p.L, Wr=p.Wr, increments=p.increments, max_depth_fraction=p.max_depth_fraction,
+        n=p.n, L=p.L, Wr=p.Wr, increments=p.truncation.increments,
+        max_depth_fraction=p.truncation.max_depth_fraction, max_depth=p.truncation.max_depth,
+        beta_prime=p.truncation.beta_prime,
         min_pixels=(ranges["default"],), min_pixels_fraction=(ranges["late"],),
         fractal_methods=METHODS if fractal else None,
     )  # fmt: skip
@@ -354,7 +355,9 @@ def select_stages(stages: Any = None) -> tuple[str, ...]:
 def _stage_call(name: str, profile: Profile, res: dict[str, Any], store: StageStore, device,
                 deadline: float | None, client=None, task_device=None):  # fmt: skip
     """(parameters, function) of a stage; None when an input stage is missing."""
-    full = profile.to_dict()
+    t = profile.truncation
+    full = {**profile.to_dict(), "increments": t.increments,
+            "max_depth_fraction": t.max_depth_fraction}  # the groups' stored keys
     keys = {
         "asperity": ("asperity_n", "asperity_increments"),
         "fig5": ("fig5_sizes", "fig5_seeds", "fig5_increments"),
@@ -374,11 +377,11 @@ def _stage_call(name: str, profile: Profile, res: dict[str, Any], store: StageSt
         return stage_params(profile), lambda: stage_elastic(
             profile, store.out, device if client is None else task_device, client=client)
     if name == "indentation":
-        from .indentation import stage_indentation
-        from .indentation import stage_params as indent_params
+        from .indentation.stage import stage_indentation
+        from .indentation.stage import stage_params as indent_params
 
-        return indent_params(profile), lambda: stage_indentation(
-            profile, store.out, device if client is None else task_device,
+        return indent_params(profile.indentation), lambda: stage_indentation(
+            profile.indentation, store.out, device if client is None else task_device,
             overwrite=store.overwrite, deadline=deadline, client=client)
     if name == "islands":
         if "table1" not in res:
@@ -430,7 +433,7 @@ def run_study(profile: Profile, store: StageStore, *, device=None, stages: Any =
     ValueError
         ``stages`` names no stage.
     """
-    from .indentation import StageIncomplete
+    from .indentation.stage import StageIncomplete
 
     selected = select_stages(stages)
     res: dict[str, Any] = {}

@@ -18,9 +18,9 @@ from typing import Any
 
 import numpy as np
 
-from .._support.docs import fill_doc
-from .indentation_rules import agreement_depth, depth_at_load, depth_match, hardness_range
-from .store import STAGE_DOCS
+from ..._support.docs import fill_doc
+from ..store import STAGE_DOCS
+from .rules import agreement_depth, depth_at_load, depth_match, hardness_range
 
 __all__ = ["GOOD", "analyse_indentation", "cells", "ratio_cells", "tracking"]
 
@@ -32,7 +32,7 @@ _STAGE_DOCS = {
     ),
 }
 """The indentation stage functions' parameter text, written once (:func:`fill_doc`; shared with
-:mod:`.indentation`)."""
+:mod:`.stage` and :mod:`.summary`)."""
 
 GOOD = 0.2
 """Truncation *tracks* a model at a (surface, punch, load) cell when
@@ -150,7 +150,7 @@ def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
         for d in sorted({k[0] for k in have}):
             loads = sorted(k[1] for k in have if k[0] == d)
             run: list[float] = []
-            for f in loads + [None]:
+            for f in [*loads, None]:
                 if f is not None and (d, f) in goodk:
                     run.append(f)
                     continue
@@ -177,8 +177,8 @@ def _ok_stiffness(r: dict[str, list], i: int) -> bool:
 
 
 def _fit(r: dict[str, list], idx: list[int], col: str, ok=_ok) -> dict[str, Any]:
-    from ..indent import default_material
-    from ..indent.fits import MIN_FIT_POINTS, fit_cells
+    from ...indent import default_material
+    from ...indent.fits import MIN_FIT_POINTS, fit_cells
 
     sel = [i for i in idx if ok(r, i) and r[col][i] is not None and r[col][i] > 0
            and r["F_over_EA"][i] > 0]  # fmt: skip
@@ -273,7 +273,7 @@ def _faces(stage: dict[str, Any], agree: list[dict[str, Any]]) -> list[dict[str,
     """Each punch face against the aligned smooth flat of the sweep (the same indents, H and
     truncation): how deep truncation stays within the band, K over the aligned K, and whether
     the face explains the paper's divergence of Ps beyond its range (Table 2)."""
-    from .paper import TABLE2
+    from ..paper import TABLE2
 
     out = []
     r = stage["rows"]
@@ -330,7 +330,7 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
         ``fits``: (surface, design) → model → fit (``made``, α, β, their ``alpha_ci95`` /
         ``beta_ci95``, ``n_points``, ``n_indents``; ``<model>_partial`` for the
         partial-unloading secant; ``stiffness_rule``: the same fit over the cells resolved by
-        the rule on K alone, ``indentation_summary.resolved_stiffness``), as a list of
+        the rule on K alone, ``summary.resolved_stiffness``), as a list of
         records; ``depths``: records of the punch depth
         at the largest load per surface × design × model (:func:`depth_at_load`);
         ``hardness``: surface → the depth per H of the sweep, ``range``
@@ -385,7 +385,7 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
         "not_converged": sum(not r["converged"][i] for i in solved),
         "n_solved_rows": len(solved),
         "max_overlap": max((r["overlap_fraction"][i] for i in range(len(r["surface"]))
-                            if r["punch_diameter_m"][i] == max(punches)), default=0.0),  # fmt: skip
+                            if r["punch_diameter_m"][i] == max(punches)), default=0.0),
         "resolution": _resolution_summary(stage.get("resolution")),
     }
 

@@ -2,14 +2,14 @@
 # SPDX-License-Identifier: MIT
 """The ``indentation`` stage's work plan: pieces, their parts, what each part waits for, and the
 two ways to run them — in this process, in the canonical order, or on a Dask cluster, one part
-per task (issue 39, item 2).
+per task.
 
 The plan (:class:`Plan`) knows every piece of the stage as soon as it can: the hardness sweep
 (H = ∞ first), the elastic statistics and the face pieces from the start, the ``depth-match``
 statistics of a surface once its sweep is complete (:func:`stats_hardness`). A part is ready
 when its piece is planned and, for a finite-H sweep part that reuses elastic cycles, when the
 elastic part of its punch is done. Finished parts are written by whoever ran them
-(:func:`~.indentation_parts.compute_part`); the plan merges a piece when its last part arrives,
+(:func:`~.pieces.compute_part`); the plan merges a piece when its last part arrives,
 writes the piece file and removes its part files. In-process the parts run one at a time in the
 canonical order (surface by surface, the sweep, the statistics, the faces); on a cluster the
 driver keeps one part in flight per worker, the most expensive ready part first (the elastic
@@ -27,60 +27,38 @@ import time
 from pathlib import Path
 from typing import Any
 
-from .._support.results import write_atomic
-from .indentation_parts import (
+from ..._support.results import write_atomic
+from .design import IndentationStage, design_of, face_variants, refine_of, sweep_order
+from .pieces import (
     Part,
     compute_part,
     elastic_of,
     face_of,
     load_part,
+    load_piece,
     merge_parts,
     part_file,
     part_params,
     parts_of,
-    reuses,
-)
-from .indentation_pieces import (
-    _reuse_rows,
-    design_of,
-    face_variants,
-    load_piece,
     piece_file,
     piece_params,
-    refine_of,
+    reuse_rows,
+    reuses,
 )
-from .indentation_rules import depth_at_load, depth_match
-from .profiles import Profile
+from .rules import depth_at_load, depth_match
 
-__all__ = ["Plan", "run_in_process", "run_on_cluster", "stats_hardness", "sweep_order"]
+__all__ = ["Plan", "run_in_process", "run_on_cluster", "stats_hardness"]
 
 PieceKey = tuple[str, str, float, "str | None"]
 
 
-def sweep_order(p: Profile) -> list[float]:
-    """The sweep's H values, H = ∞ first (its cycles are the others' unyielded ones).
-
-    Parameters
-    ----------
-    p : Profile
-        The profile (``indentation_hardness``).
-
-    Returns
-    -------
-    list of float
-        H (Pa): inf, then the finite values increasing.
-    """
-    hs = sorted(set(p.indentation_hardness), key=lambda h: (math.isfinite(h), h))
-    return hs if math.isinf(hs[0]) else [math.inf, *hs]
-
-
-def stats_hardness(p: Profile, sweep_rows: dict[float, dict[str, list]]) -> dict[str, Any]:
+def stats_hardness(st: IndentationStage, sweep_rows: dict[float, dict[str, list]]) -> dict[str, Any]:
     """The H values of one surface's statistics pieces, from its sweep.
 
     Parameters
     ----------
-    p : Profile
-        The profile.
+    st : IndentationStage
+        The stage.
     sweep_rows : dict
         H (Pa; inf = elastic) → the rows of that H's sweep piece.
 
@@ -88,21 +66,20 @@ def stats_hardness(p: Profile, sweep_rows: dict[float, dict[str, list]]) -> dict
     -------
     dict
         ``hardness``: the H values (Pa, inf = elastic) in the order of
-        ``Profile.indentation_stats``; ``depths``: H → the median depth at the largest load on
-        the deepest punch (m); ``match``: :func:`~warptrunc.reproduce.indentation_rules.depth_match`
+        ``IndentationStage.stats``; ``depths``: H → the median depth at the largest load on
+        the deepest punch (m); ``match``: :func:`~warptrunc.reproduce.indentation.rules.depth_match`
         over the finite H values.
     """
-    at = max(p.indentation_loads)
+    at = max(st.protocol.peak_loads)
     depths = {}
     for h, r in sweep_rows.items():
         dd = depth_at_load(r["punch_diameter_m"], r["peak_load_N"], r["displacement_m"],
                            r["converged"], at)["deepest"]  # fmt: skip
         depths[h] = None if dd is None else dd["median"]
     finite = sorted(h for h in depths if math.isfinite(h))
-    match = depth_match(finite, [depths[h] for h in finite], p.indentation_depth_target,
-                        p.indentation_depth_band)  # fmt: skip
+    match = depth_match(finite, [depths[h] for h in finite], st.depth_target, st.depth_band)
     out: list[float] = []
-    for m in p.indentation_stats:
+    for m in st.stats:
         h = math.inf if m == "elastic" else match["H_match"]
         if h is not None and h not in out:
             out.append(h)
@@ -114,69 +91,69 @@ class Plan:
 
     Parameters
     ----------
-    p : Profile
-        The profile.
+    st : IndentationStage
+        The stage.
     store : Path
         The piece folder (``OUT/indentation``).
     overwrite : bool
         Recompute pieces stored with other parameters (else :class:`StageConflict`).
     """
 
-    def __init__(self, p: Profile, store: Path, overwrite: bool) -> None:
-        self.p, self.store, self.overwrite = p, Path(store), overwrite
-        self.sweep = sweep_order(p)
-        self.pieces: dict[PieceKey, dict[str, Any] | None] = {}  # planned piece → record or None
-        self.parts: dict[Part, dict[str, Any]] = {}  # finished parts of unfinished pieces
+    def __init__(self, st: IndentationStage, store: Path, overwrite: bool) -> None:
+        self.st, self.store, self.overwrite = st, Path(store), overwrite
+        self.sweep = sweep_order(st)
+        self.stieces: dict[PieceKey, dict[str, Any] | None] = {}  # planned piece → record or None
+        self.starts: dict[Part, dict[str, Any]] = {}  # finished parts of unfinished pieces
         self.stats_done: set[str] = set()
-        for s in p.indentation_surfaces:
+        for s in st.surfaces:
             for h in self.sweep:
                 self._plan((s, "sweep", h, None))
-            if "elastic" in p.indentation_stats:
+            if "elastic" in st.stats:
                 self._plan((s, "stats", math.inf, None))
-            if s == p.indentation_face_surface:
-                for label, _kw in face_variants(p):
-                    self._plan((s, "face", p.indentation_face_hardness, label))
-        for s in p.indentation_surfaces:
+            if s == st.face_surface:
+                for label, _kw in face_variants(st):
+                    self._plan((s, "face", st.face_hardness, label))
+        for s in st.surfaces:
             self._stats(s)
 
     # --- what is stored -----------------------------------------------------------------------
 
     def _plan(self, key: PieceKey) -> None:
-        if key in self.pieces:
+        if key in self.stieces:
             return
         s, design, h, face = key
         path = piece_file(self.store, s, design, h, face)
-        rec = load_piece(path, piece_params(self.p, s, design, h, face_of(self.p, face)), self.overwrite)
-        self.pieces[key] = rec
+        rec = load_piece(path, piece_params(self.st, s, design, h, face_of(self.st, face)), self.overwrite)
+        self.stieces[key] = rec
         if rec is None:
-            for part in parts_of(self.p, s, design, h, face):
-                got = load_part(part_file(self.store, part), part_params(self.p, part))
+            for part in parts_of(self.st, s, design, h, face):
+                got = load_part(part_file(self.store, part), part_params(self.st, part))
                 if got is not None:
-                    self.parts[part] = got
+                    self.starts[part] = got
             self._merge(key)
 
     def _merge(self, key: PieceKey) -> None:
         """Write the piece when every part is done; then its part files go."""
-        parts = parts_of(self.p, *key)
-        if self.pieces.get(key) is not None or not all(q in self.parts for q in parts):
+        parts = parts_of(self.st, *key)
+        if self.stieces.get(key) is not None or not all(q in self.starts for q in parts):
             return
-        rec = merge_parts(self.p, key, {q: self.parts[q] for q in parts})
+        rec = merge_parts(self.st, key, {q: self.starts[q] for q in parts})
         write_atomic(piece_file(self.store, *key), json.dumps(rec, indent=None, allow_nan=False) + "\n")
-        self.pieces[key] = rec
+        self.stieces[key] = rec
         for q in parts:
             part_file(self.store, q).unlink(missing_ok=True)
-            self.parts.pop(q, None)
+            self.starts.pop(q, None)
         self._stats(key[0])
 
     def _stats(self, s: str) -> None:
         """Plan the surface's depth-match statistics once its sweep is complete."""
-        if s in self.stats_done or "depth-match" not in self.p.indentation_stats:
+        if s in self.stats_done or "depth-match" not in self.st.stats:
             return
-        rows = {h: self.pieces.get((s, "sweep", h, None)) for h in self.sweep}
+        rows = {h: self.stieces.get((s, "sweep", h, None)) for h in self.sweep}
         if any(r is None for r in rows.values()):
             return
         self.stats_done.add(s)
-        for h in stats_hardness(self.p, {h: r["rows"] for h, r in rows.items()})["hardness"]:
+        for h in stats_hardness(self.st, {h: r["rows"] for h, r in rows.items()})["hardness"]:
             self._plan((s, "stats", h, None))
 
     # --- what runs --------------------------------------------------------------------------
@@ -194,7 +171,7 @@ class Plan:
         bool
             True when its record is held or its piece is stored.
         """
-        return part in self.parts or self.pieces.get(part.piece) is not None
+        return part in self.starts or self.stieces.get(part.piece) is not None
 
     def reuse_rows(self, part: Part) -> dict[str, list] | None:
         """The elastic rows ``part`` takes its unyielded cycles from.
@@ -209,13 +186,13 @@ class Plan:
         dict or None
             The rows of the elastic part of its punch; None when it solves them itself.
         """
-        if not reuses(self.p, part):
+        if not reuses(self.st, part):
             return None
         el = elastic_of(part)
-        if el in self.parts:
-            return self.parts[el]["rows"]
-        rec = self.pieces.get(el.piece)
-        return None if rec is None else _reuse_rows(rec["rows"], self.p.indentation_punches[part.punch])
+        if el in self.starts:
+            return self.starts[el]["rows"]
+        rec = self.stieces.get(el.piece)
+        return None if rec is None else reuse_rows(rec["rows"], self.st.protocol.punch_diameters[part.punch])
 
     def ready(self, running: set[Part]) -> list[Part]:
         """Parts that can start now, in the canonical order.
@@ -231,13 +208,13 @@ class Plan:
             Parts of planned, unstored pieces, not done, whose elastic part (if any) is done.
         """
         out = []
-        for key, rec in list(self.pieces.items()):
+        for key, rec in list(self.stieces.items()):
             if rec is not None:
                 continue
-            for q in parts_of(self.p, *key):
+            for q in parts_of(self.st, *key):
                 if q in running or self.done(q):
                     continue
-                if reuses(self.p, q) and not self.done(elastic_of(q)):
+                if reuses(self.st, q) and not self.done(elastic_of(q)):
                     continue
                 out.append(q)
         return out
@@ -250,10 +227,10 @@ class Plan:
         part : Part
             The part.
         rec : dict
-            Its record (:func:`~.indentation_parts.run_part`).
+            Its record (:func:`~.pieces.run_part`).
         """
-        if self.pieces.get(part.piece) is None:
-            self.parts[part] = rec
+        if self.stieces.get(part.piece) is None:
+            self.starts[part] = rec
             self._merge(part.piece)
 
     def complete(self) -> bool:
@@ -264,7 +241,7 @@ class Plan:
         bool
             True when nothing is left to run.
         """
-        return all(r is not None for r in self.pieces.values())
+        return all(r is not None for r in self.stieces.values())
 
     def n_pieces(self) -> tuple[int, int]:
         """Pieces stored and planned.
@@ -274,7 +251,7 @@ class Plan:
         tuple of int
             (stored, planned).
         """
-        return sum(r is not None for r in self.pieces.values()), len(self.pieces)
+        return sum(r is not None for r in self.stieces.values()), len(self.stieces)
 
     def records(self) -> list[tuple[tuple[str, str, float], dict[str, Any]]]:
         """The stored pieces in the canonical order, keyed as the summary reads them.
@@ -285,13 +262,13 @@ class Plan:
             ((surface, design or ``face:<label>``, H), piece record).
         """
         out = []
-        for s in self.p.indentation_surfaces:
-            keys = [k for k in self.pieces if k[0] == s]
+        for s in self.st.surfaces:
+            keys = [k for k in self.stieces if k[0] == s]
             keys.sort(key=lambda k: (("sweep", "stats", "face").index(k[1]),
                                      self.sweep.index(k[2]) if k[1] == "sweep" else 0))  # fmt: skip
             for k in keys:
-                if self.pieces[k] is not None:
-                    out.append(((s, k[1] if k[3] is None else f"face:{k[3]}", k[2]), self.pieces[k]))
+                if self.stieces[k] is not None:
+                    out.append(((s, k[1] if k[3] is None else f"face:{k[3]}", k[2]), self.stieces[k]))
         return out
 
     def cost(self, part: Part) -> float:
@@ -308,10 +285,9 @@ class Plan:
         float
             Larger runs first on a cluster.
         """
-        p = self.p
-        d = p.indentation_punches[part.punch]
-        dx = p.indentation_L / p.indentation_n
-        c = design_of(p, part.design)[1] * (d / dx) ** 2 * refine_of(p, d) ** 2
+        st = self.st
+        d = st.protocol.punch_diameters[part.punch]
+        c = design_of(st, part.design)[1] * (d / st.pixel_size) ** 2 * refine_of(st, d) ** 2
         c *= 1.0 if math.isinf(part.hardness) else 2.0
         return c * (1e6 if part.design == "sweep" and math.isinf(part.hardness) else 1.0)
 
@@ -336,7 +312,7 @@ def run_in_process(plan: Plan, *, device, stop, bar) -> None:
             return
         part = ready[0]
         stop(part.label())
-        rec = compute_part(plan.p, part, str(plan.store), device, plan.reuse_rows(part))
+        rec = compute_part(plan.st, part, str(plan.store), device, plan.reuse_rows(part))
         plan.finish(part, rec)
         bar.update()
 
@@ -385,7 +361,7 @@ def run_on_cluster(plan: Plan, client, *, device, deadline: float | None, bar,
         ready = sorted(plan.ready(running), key=plan.cost, reverse=True)
         for part in ready[: max(0, capacity() - len(inflight))]:
             attempts[part] = attempts.get(part, 0) + 1
-            fut = client.submit(compute_part, plan.p, part, str(plan.store.resolve()), device,
+            fut = client.submit(compute_part, plan.st, part, str(plan.store.resolve()), device,
                                 plan.reuse_rows(part), key=f"indent-{part_file(plan.store, part).stem}-"
                                 f"{attempts[part]}", pure=False)  # fmt: skip
             inflight[fut] = part
@@ -399,7 +375,7 @@ def run_on_cluster(plan: Plan, client, *, device, deadline: float | None, bar,
         try:
             rec = fut.result()
         except Exception as exc:  # a lost worker or a failed solve: the file, else once more
-            rec = load_part(part_file(plan.store, part), part_params(plan.p, part))
+            rec = load_part(part_file(plan.store, part), part_params(plan.st, part))
             if rec is None and attempts[part] >= max_attempts:
                 raise RuntimeError(f"indentation part {part.label()} failed {attempts[part]} times: {exc}") from exc
         if rec is not None:

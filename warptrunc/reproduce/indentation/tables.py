@@ -3,7 +3,7 @@
 """The tables of the report section "Indentation in silico (Fig. 6)": the hardness question,
 the fits with their intervals, the agreement depths against the paper's ranges, the
 resolution per load and the cost. Each function turns the stage result and its analysis
-(:func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`) into Markdown lines;
+(:func:`~warptrunc.reproduce.indentation.analysis.analyse_indentation`) into Markdown lines;
 every number comes from them."""
 
 from __future__ import annotations
@@ -11,9 +11,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from .._support.docs import fill_doc
-from .paper import TABLE2
-from .report_sections import fmt_value
+from ..._support.docs import fill_doc
+from ..paper import TABLE2
+from ..report import fmt_value
 
 __all__ = [
     "agreement_lines",
@@ -37,7 +37,7 @@ VERDICTS = {
     "undecided": "undecided: no resolved cell deep enough to tell",
     "no-cells": "no resolved cells",
 }
-"""The plain words of each verdict of :func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`'s ``faces``."""
+"""The plain words of each verdict of :func:`~warptrunc.reproduce.indentation.analysis.analyse_indentation`'s ``faces``."""
 
 
 TABLE_DOCS = {
@@ -189,7 +189,7 @@ def fit_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
             dalpha.append(abs(pa["alpha"] - f["alpha"]))
     L.append("")
     L.append("No interval where each punch has a single indent (the bootstrap resamples indents within "
-             "each punch). α, β use the cells resolved by the rule of issue 38 (K **and** the contact "
+             "each punch). α, β use the cells resolved by the refinement rule (K **and** the contact "
              "area change by less than the tolerance when the pixel halves); the last column fits the "
              "cells resolved on K alone (the contact area of a fractal surface keeps changing as finer "
              "roughness is resolved, while K, the quantity fitted, converges).\n")
@@ -212,7 +212,7 @@ def agreement_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     """
     band = f"±{100 * ana['good_band']:.0f} %"
     L = [
-        f"**How deep truncation stays within {band} of each model** (issue 38, item 6). Rule: per "
+        f"**How deep truncation stays within {band} of each model**. Rule: per "
         "surface, design and model, each (punch, load) cell whose indents are resolved gives "
         "E_c,trunc/E_c,model (the geometric mean over those indents of each indent's ratio, truncation "
         "read on the same disk at the same pixel) and its truncation depth ω (the median over the same "
@@ -344,14 +344,14 @@ def face_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
             "to have an RMS roughness of around 0.05 µm)\" among the likely causes of Ps's divergence for "
             "interferences beyond 15 % R_t′). ")  # fmt: skip
     if not ana.get("faces"):
-        return [head + "Not run: the profile names no punch face (`indentation_face_surface`, "
-                "`indentation_face_tilts_deg`, `indentation_face_roughness`).\n"]
+        return [head + "Not run: the profile names no punch face (`indentation.face_surface`, "
+                "`indentation.face_tilts_deg`, `indentation.face_roughness`).\n"]
     f0 = ana["faces"][0]
     lo, hi = f0["paper_range"]
     band = f"±{100 * ana['good_band']:.0f} %"
     L = [head + f"The sweep's indents of {f0['surface']} again, at {model_label(stage, f0['model'])}, with each "
-         "face (`warptrunc.indent`'s `punch_tilt_deg`, held fixed as the indenter's shaft holds it; "
-         "`punch_roughness`, a self-affine face of Hurst exponent 0.8 from 2 map pixels, or the finest its "
+         "face (`PunchFaceSpec.tilt_deg`, held fixed as the indenter's shaft holds it; "
+         "`PunchFaceSpec.roughness`, a self-affine face of Hurst exponent 0.8 from 2 map pixels, or the finest its "
          "punch's face grid holds, to the punch diameter), against the aligned smooth flat of the sweep; "
          "truncation stays the sample's. A face **explains** the divergence when, with it, truncation "
          f"leaves the {band} band of the model between the last cell inside and the first outside a "

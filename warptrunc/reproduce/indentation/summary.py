@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The ``indentation`` stage's result from its stored pieces (:mod:`.indentation_pieces`): one
+"""The ``indentation`` stage's result from its stored pieces (:mod:`.pieces`): one
 table of rows over every surface × design × model × realisation × punch × placement × load,
 the timings of each piece, the windows and the settings."""
 
@@ -9,10 +9,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from .._support.docs import fill_doc
-from .indentation_analysis import _STAGE_DOCS
-from .indentation_pieces import DESIGNS, SUBDIR, design_of, material, model_name, spec
-from .profiles import Profile
+from ..._support.docs import fill_doc
+from .analysis import _STAGE_DOCS
+from .design import DESIGNS, IndentationStage, design_of, material, model_name, spec
+from .pieces import SUBDIR
 
 __all__ = ["summary_from_pieces"]
 
@@ -25,15 +25,15 @@ KEEP = ("realisation", "punch_diameter_m", "placement", "peak_load_N", "F_over_E
 ``hardness_Pa``)."""
 
 
-def resolved_stiffness(p: Profile, r: dict[str, list]) -> list[bool]:
-    """Per cell, the rule on K alone: converged, at least ``indentation_min_contact_pixels``
+def resolved_stiffness(st: IndentationStage, r: dict[str, list]) -> list[bool]:
+    """Per cell, the rule on K alone: converged, at least ``protocol.min_contact_pixels``
     contact pixels and, where the cell was halved, K changed by less than
-    ``indentation_resolution_tol`` at the last halving (the contact area may still change).
+    ``protocol.resolution_tol`` at the last halving (the contact area may still change).
 
     Parameters
     ----------
-    p : Profile
-        The profile (tolerance, fewest contact pixels).
+    st : IndentationStage
+        The stage (tolerance, fewest contact pixels).
     r : dict of str to list
         A piece's rows (``converged``, ``n_contact``, ``resolution_change``, ``resolved``).
 
@@ -42,6 +42,7 @@ def resolved_stiffness(p: Profile, r: dict[str, list]) -> list[bool]:
     list of bool
         One per row; a cell never halved keeps its ``resolved`` (the contact-pixel rule).
     """
+    tol, fewest = st.protocol.resolution_tol, st.protocol.min_contact_pixels
     out = []
     for i in range(len(r["converged"])):
         dk, n = r["resolution_change"][i], r["n_contact"][i]
@@ -49,7 +50,7 @@ def resolved_stiffness(p: Profile, r: dict[str, list]) -> list[bool]:
             out.append(bool(r["resolved"][i]))
         else:
             out.append(bool(r["converged"][i]) and n is not None
-                       and n >= p.indentation_min_contact_pixels and dk < p.indentation_resolution_tol)  # fmt: skip
+                       and n >= fewest and dk < tol)  # fmt: skip
     return out
 
 
@@ -69,11 +70,11 @@ FACE_KEEP = ("realisation", "punch_diameter_m", "placement", "peak_load_N", "F_o
              "n_contact", "pixel_size_m", "truncation_E_c_over_E", "truncation_depth_m")  # fmt: skip
 
 
-def _timing(p: Profile, s: str, design: str, name: str, rec: dict[str, Any],
+def _timing(st: IndentationStage, s: str, design: str, name: str, rec: dict[str, Any],
             face: str | None = None) -> dict[str, Any]:  # fmt: skip
     """One piece's entry of the cost table: seconds, cells per final pixel (per punch too)."""
     r = rec["rows"]
-    dx = p.indentation_L / p.indentation_n
+    dx = st.pixel_size
 
     def factors(sel) -> dict[str, int]:
         out: dict[int, int] = {}
@@ -86,7 +87,7 @@ def _timing(p: Profile, s: str, design: str, name: str, rec: dict[str, Any],
     per_punch = [{**pp, "cells_per_factor": factors(
         lambda d, pp=pp: math.isclose(d, pp["punch_diameter_m"], rel_tol=1e-9))}
         for pp in rec.get("per_punch", [])]  # fmt: skip
-    seeds, placements = design_of(p, design)
+    seeds, placements = design_of(st, design)
     return {
         "surface": s, "design": design, "model": name, "face": face, "seeds": list(seeds),
         "placements": placements, **rec["seconds"],
@@ -98,7 +99,7 @@ def _timing(p: Profile, s: str, design: str, name: str, rec: dict[str, Any],
     }  # fmt: skip
 
 
-def _face(p: Profile, s: str, label: str, h: float, rec: dict[str, Any]) -> dict[str, Any]:
+def _face(s: str, label: str, h: float, rec: dict[str, Any]) -> dict[str, Any]:
     """A face piece: its face, its rows (the columns the comparison needs) and its seconds."""
     r = rec["rows"]
     return {"surface": s, "label": label, "model": model_name(h), "hardness_Pa": None if math.isinf(h) else h,
@@ -108,11 +109,11 @@ def _face(p: Profile, s: str, label: str, h: float, rec: dict[str, Any]) -> dict
 
 
 @fill_doc(_STAGE_DOCS)
-def summary_from_pieces(p: Profile, pieces: list[tuple[tuple[str, str, float], dict[str, Any]]],
+def summary_from_pieces(st: IndentationStage, pieces: list[tuple[tuple[str, str, float], dict[str, Any]]],
                         resolution: dict[str, Any] | None) -> dict[str, Any]:  # fmt: skip
     """The stage result from its stored pieces.
 
-    {profile}
+    {indentation_stage}
     pieces : list of ((str, str, float), dict)
         ((surface, design, H), piece record) in the order computed; H in Pa, inf = elastic;
         design ``"sweep"``, ``"stats"`` or ``"face:<label>"``.
@@ -131,7 +132,7 @@ def summary_from_pieces(p: Profile, pieces: list[tuple[tuple[str, str, float], d
         (the ``face`` pieces: surface, label, model, face, rows, seconds), the settings and
         the ``resolution`` record (JSON-able).
     """
-    from ..indent import ALUMINIUM_HARDNESS
+    from ...indent import ALUMINIUM_HARDNESS
 
     rows: dict[str, list] = {c: [] for c in ("surface", "design", "model", "hardness_Pa", *KEEP)}
     timings, windows = [], []
@@ -141,8 +142,8 @@ def summary_from_pieces(p: Profile, pieces: list[tuple[tuple[str, str, float], d
     faces, face_t = [], []
     for (s, design, h), rec in pieces:
         if design.startswith("face:"):
-            faces.append(_face(p, s, design[len("face:"):], h, rec))
-            face_t.append(_timing(p, s, "face", model_name(h), rec, design[len("face:"):]))
+            faces.append(_face(s, design[len("face:"):], h, rec))
+            face_t.append(_timing(st, s, "face", model_name(h), rec, design[len("face:"):]))
             continue
         by_sd.setdefault((s, design), []).append((h, rec))
     for (s, design), group in by_sd.items():
@@ -152,7 +153,7 @@ def summary_from_pieces(p: Profile, pieces: list[tuple[tuple[str, str, float], d
             hardness[name] = None if math.isinf(h) else h
             if name not in models[design]:
                 models[design].append(name)
-            r = {**rec["rows"], "resolved_stiffness": resolved_stiffness(p, rec["rows"])}
+            r = {**rec["rows"], "resolved_stiffness": resolved_stiffness(st, rec["rows"])}
             _append(rows, s, design, name, hardness[name], r)
             if rec is trunc:
                 m = len(r["peak_load_N"])
@@ -161,29 +162,30 @@ def summary_from_pieces(p: Profile, pieces: list[tuple[tuple[str, str, float], d
                     "contact_area_m2": r["truncation_contact_area_m2"],
                     "displacement_m": r["truncation_depth_m"], "plastic_area_m2": [None] * m,
                     "n_contact": [None] * m, "converged": [True] * m})  # fmt: skip
-            timings.append(_timing(p, s, design, name, rec))
+            timings.append(_timing(st, s, design, name, rec))
             windows += [{"surface": s, "design": design, "model": name, **w} for w in rec["windows"]]
-    m = material(math.inf)
+    m = material(st, math.inf)
+    pr = st.protocol
     return {
         "store": SUBDIR,
-        "surfaces": list(p.indentation_surfaces),
-        "Rt_m": {s: spec(p, s).Rt for s in p.indentation_surfaces},
-        "designs": {d: {"seeds": list(design_of(p, d)[0]), "placements": design_of(p, d)[1]}
-                    for d in (*DESIGNS, "face")},  # fmt: skip
+        "surfaces": list(st.surfaces),
+        "Rt_m": {s: spec(st, s).Rt for s in st.surfaces},
+        "designs": {d: {"seeds": list(design_of(st, d)[0]), "placements": design_of(st, d)[1]}
+                    for d in (*DESIGNS, "face")},
         "models": models,
         "hardness_Pa": hardness,
-        "punches_m": list(p.indentation_punches),
-        "loads_N": list(p.indentation_loads),
-        "n": p.indentation_n, "L_m": p.indentation_L, "dx_m": p.indentation_L / p.indentation_n,
-        "dtype": p.indentation_dtype,
-        "refine_max": p.indentation_refine_max,
-        "refine_punches_m": (list(p.indentation_punches) if p.indentation_refine_punches is None
-                             else list(p.indentation_refine_punches)),  # fmt: skip
-        "resolution_tol": p.indentation_resolution_tol,
-        "min_contact_pixels": p.indentation_min_contact_pixels,
-        "depth_target_m": p.indentation_depth_target,
-        "depth_band_m": list(p.indentation_depth_band),
-        "stats_requested": list(p.indentation_stats),
+        "punches_m": list(pr.punch_diameters),
+        "loads_N": list(pr.peak_loads),
+        "n": st.n, "L_m": st.L, "dx_m": st.pixel_size,
+        "dtype": st.solver.dtype,
+        "refine_max": pr.refine_max,
+        "refine_punches_m": (list(pr.punch_diameters) if st.refine_punches is None
+                             else list(st.refine_punches)),
+        "resolution_tol": pr.resolution_tol,
+        "min_contact_pixels": pr.min_contact_pixels,
+        "depth_target_m": st.depth_target,
+        "depth_band_m": list(st.depth_band),
+        "stats_requested": list(st.stats),
         "material": {"E_Pa": m.E, "nu": m.nu, "E_i_Pa": m.E_i, "nu_i": m.nu_i,
                      "E_star_Pa": m.contact_modulus, "H_default_Pa": ALUMINIUM_HARDNESS},
         "rows": rows,
@@ -191,4 +193,4 @@ def summary_from_pieces(p: Profile, pieces: list[tuple[tuple[str, str, float], d
         "timings": timings + face_t,
         "faces": faces,
         "resolution": resolution,
-    }  # fmt: skip
+    }

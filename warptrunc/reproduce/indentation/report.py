@@ -1,8 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """Figure and report section "Indentation in silico (Fig. 6)" of the ``indentation`` stage
-(:mod:`warptrunc.reproduce.indentation`). Every number and every claim of the text is computed
-from the stage result and its analysis (:func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`);
+(:mod:`warptrunc.reproduce.indentation.stage`). Every number and every claim of the text is computed
+from the stage result and its analysis (:func:`~warptrunc.reproduce.indentation.analysis.analyse_indentation`);
 which model truncation tracks follows the rule stated in the section."""
 
 from __future__ import annotations
@@ -13,9 +13,12 @@ from typing import Any
 
 import numpy as np
 
-from .._support.docs import fill_doc
-from .indentation_analysis import cells
-from .indentation_tables import (
+from ..._support.docs import fill_doc
+from ..figures import new_figure, save_figure
+from ..report import fmt_value
+from ..store import STAGE_DOCS
+from .analysis import cells
+from .tables import (
     agreement_lines,
     cost_lines,
     face_lines,
@@ -24,8 +27,6 @@ from .indentation_tables import (
     model_label,
     resolution_lines,
 )
-from .report_sections import fmt_value, new_figure, save_figure
-from .store import STAGE_DOCS
 
 __all__ = ["indentation_figures", "indentation_lines", "model_colours", "model_label"]
 
@@ -75,7 +76,7 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
     stage : dict
         The stage result.
     ana : dict
-        Its analysis (:func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`).
+        Its analysis (:func:`~warptrunc.reproduce.indentation.analysis.analyse_indentation`).
     out : str or Path
         Output folder.
 
@@ -163,7 +164,7 @@ def tracking_sentence(stage: dict[str, Any], s: str, t: dict[str, Any]) -> str:
     s : str
         Surface name.
     t : dict
-        :func:`~warptrunc.reproduce.indentation_analysis.tracking` of that surface.
+        :func:`~warptrunc.reproduce.indentation.analysis.tracking` of that surface.
 
     Returns
     -------
@@ -208,7 +209,7 @@ MATERIAL_TEXT = (
     "Hardness of Metals*, Oxford, 1951) links H to the yield stress. The sweep, {Hs} GPa, spans these "
     "and more."
 )
-"""What the report says of the material, with the sources (issue 38, item 4)."""
+"""What the report says of the material, with the sources."""
 
 
 @fill_doc(STAGE_DOCS)
@@ -219,13 +220,13 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
     Parameters
     ----------
     stage : dict
-        The stage result (:func:`~warptrunc.reproduce.indentation.summary_from_pieces`).
+        The stage result (:func:`~warptrunc.reproduce.indentation.summary.summary_from_pieces`).
     ana : dict
-        Its analysis (:func:`~warptrunc.reproduce.indentation_analysis.analyse_indentation`).
+        Its analysis (:func:`~warptrunc.reproduce.indentation.analysis.analyse_indentation`).
     {report_extras}
         Markdown lines; every number and every sentence's claim comes from ``stage`` and ``ana``.
     """
-    from ..presets import TABLE1
+    from ...presets import TABLE1
 
     mat = stage["material"]
     mp = ana["mean_pressure"]
@@ -274,7 +275,7 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
                  "its area (a 3 mm map would hold them apart).\n")  # fmt: skip
     L.append(f"Solves not converged: {ana['not_converged']} of {ana['n_solved_rows']} cycles (left out of "
              "the fits and the comparisons, as are the cells not resolved).\n")  # fmt: skip
-    L.append("**Hardness as a question** (issue 38, item 4): the punch depth at the largest load for each "
+    L.append("**Hardness as a question**: the punch depth at the largest load for each "
              "H, beside the paper's ≈ 5 µm:\n")  # fmt: skip
     L += hardness_lines(stage, ana)
     L.append("**E_c/E = β·[F/(E·A)]^α** per surface, design (realisations × placements per punch) and "

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The rules by which the ``indentation`` stage reads its numbers against the paper's text
-(issue 38, items 4 and 6), as functions of plain tables so that each can be checked by hand.
+"""The rules by which the ``indentation`` stage reads its numbers against the paper's text,
+as functions of plain tables so that each can be checked by hand.
 
 * :func:`hardness_range` — the hardness values H whose punch depth at the largest load lies in a
   band around the paper's "around 5 µm" (§ 4.1): the depths of the sweep's H values joined by
