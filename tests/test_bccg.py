@@ -172,6 +172,6 @@ def test_default_rule_preconditions_large_maps(device, monkeypatch):
     assert small == counts(h[:64, :64], 0.02) and small != counts(h[:64, :64], 0.0), small
     win = punch_window(h, s.dx, 0.6e-3, (0.5e-3, 0.5e-3))
     for given, taken in ((None, 0.02), (0.0, 0.0)):
-        sol = make_solver(win, default_material(), hardness=math.inf, device=device,
-                          settings=SolverSettings(precondition_above=given))  # fmt: skip
+        sol = make_solver(win, default_material(hardness=math.inf), device=device,
+                          solver=SolverSettings(precondition_above=given))  # fmt: skip
         assert sol.settings.precondition_above == taken, (given, sol.settings)

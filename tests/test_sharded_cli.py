@@ -98,7 +98,7 @@ def test_punch_window_rows_padded_for_the_devices():
     """A punch window with an odd number of rows on two devices: rows of its floor are added
     (they never touch), and the capped solve and Barber's stiffness equal the one-device ones
     on the window as it is."""
-    from warptrunc.indent.protocol import make_solver
+    from warptrunc.indent.cycles import make_solver
     from warptrunc.indent.punch import punch_window
     from warptrunc.material import Material
 
@@ -107,8 +107,8 @@ def test_punch_window_rows_padded_for_the_devices():
     w = punch_window(z, 1e-6, 21e-6, (20e-6, 20e-6))
     assert w.heights.shape[0] % 2 == 1
     mat = Material(E=70e9, nu=0.33, hardness=1e9)
-    one = make_solver(w, mat, hardness=1e9, device="cpu")
-    two = make_solver(w, mat, hardness=1e9, devices=2)
+    one = make_solver(w, mat, device="cpu")
+    two = make_solver(w, mat, devices=2)
     assert two.shape[0] == w.heights.shape[0] + 1 and one.shape == w.heights.shape
     load = 0.3 * 1e9 * np.pi * (10.5e-6) ** 2
     a, b = one.solve(load=load), two.solve(load=load)
