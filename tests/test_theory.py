@@ -15,12 +15,12 @@ from scipy import integrate
 from scipy.special import erf
 
 from warptrunc import Material, WMSpec
+from warptrunc.selfaffine import SelfAffineSpec
 from warptrunc.slope import wm_slope_statistics
 from warptrunc.theory import (
     KAPPA_BGT,
     KAPPA_PERSSON,
     IsotropicPSD,
-    SelfAffineSpec,
     bgt_summit_weights,
     bush_gibson_thomas,
     greenwood_williamson,
@@ -28,10 +28,23 @@ from warptrunc.theory import (
     persson_contact,
     persson_gap_distribution,
     persson_pressure_distribution,
+    self_affine_c0,
 )
 
 MAT = Material(E=70e9, nu=0.33)
 ESTAR = MAT.contact_modulus
+
+
+def _spec(H=0.5, q_L=None, q_r=2 * math.pi / 100e-6, q_s=2 * math.pi / 2e-6, h_rms=None,
+          slope_rms=None):  # fmt: skip
+    """The self-affine spectrum of wavevectors q_L ≤ q_r < q_s (1/m; q_L None: no roll-off) as
+    the surface's spec: the side L = 2π/q_L and enough pixels for λ_s (the grid does not enter
+    the continuous spectrum)."""
+    q_l = q_r if q_L is None else q_L
+    L = 2 * math.pi / q_l
+    n = min(1 << 20, 2 * math.ceil(L * q_s / (2 * math.pi)) + 2)
+    return SelfAffineSpec(hurst=H, L=L, n=n, rolloff=None if q_L is None else 2 * math.pi / q_r,
+                          short_cutoff=2 * math.pi / q_s, rms_height=h_rms, rms_slope=slope_rms)
 
 
 def _c_self_affine(q, c0, H, q_l, q_r, q_s):
@@ -54,9 +67,9 @@ def _quad_moment(k, c, q_l, q_r, q_s):
 @pytest.mark.parametrize("H", [0.3, 0.8, 1.0])
 def test_self_affine_moments_against_closed_form_integrals(H):
     q_l, q_r, q_s = 2e4, 1e5, 3e7
-    spec = SelfAffineSpec(H=H, q_L=q_l, q_r=q_r, q_s=q_s, h_rms=2e-6)
+    spec = _spec(H=H, q_L=q_l, q_r=q_r, q_s=q_s, h_rms=2e-6)
     psd = IsotropicPSD.from_self_affine(spec)
-    c = lambda q: _c_self_affine(q, spec.c0, H, q_l, q_r, q_s)  # noqa: E731
+    c = lambda q: _c_self_affine(q, self_affine_c0(spec), H, q_l, q_r, q_s)  # noqa: E731
     # the normalisation: ⟨h²⟩ = 2π ∫ q C dq = h_rms² (Persson's convention)
     assert psd.h_rms == pytest.approx(2e-6, rel=1e-12)
     assert _quad_moment(0, c, q_l, q_r, q_s) == pytest.approx(4e-12, rel=1e-9)
@@ -64,12 +77,12 @@ def test_self_affine_moments_against_closed_form_integrals(H):
         assert value == pytest.approx(_quad_moment(k, c, q_l, q_r, q_s), rel=1e-9)
     assert psd.m2 == pytest.approx(psd.slope_rms**2 / 2, rel=1e-14)
     assert psd.m4 == pytest.approx(3 * psd.curvature_rms**2 / 8, rel=1e-14)
-    by_slope = IsotropicPSD.from_self_affine(spec.replace(h_rms=None, slope_rms=0.2))
+    by_slope = IsotropicPSD.from_self_affine(spec.replace(rms_height=None, rms_slope=0.2))
     assert by_slope.slope_rms == pytest.approx(0.2, rel=1e-12)
 
 
 def test_psd_interpolant_band_and_refinement_keep_the_integrals():
-    psd = IsotropicPSD.from_self_affine(SelfAffineSpec(q_L=1e4), points_per_decade=4)
+    psd = IsotropicPSD.from_self_affine(_spec(q_L=1e4), points_per_decade=4)
     fine = psd.refined(100)
     assert fine.wavevector.size > 5 * psd.wavevector.size
     for k in (0, 2, 4):
@@ -95,8 +108,8 @@ def _random_map(psd: IsotropicPSD, n: int, dx: float, seed: int) -> np.ndarray:
 def test_height_map_estimate_and_noise_floor():
     n, dx = 256, 1e-6
     q_nyq = math.pi / dx
-    spec = SelfAffineSpec(H=0.5, q_L=2 * math.pi / (n * dx), q_r=2 * math.pi / (n * dx / 4),
-                          q_s=q_nyq, h_rms=1e-6)  # fmt: skip
+    spec = _spec(H=0.5, q_L=2 * math.pi / (n * dx), q_r=2 * math.pi / (n * dx / 4),
+                 q_s=q_nyq, h_rms=1e-6)  # fmt: skip
     ref = IsotropicPSD.from_self_affine(spec)
     z = _random_map(ref, n, dx, seed=0)
     est = IsotropicPSD.from_height_map(z, dx, window="none")
@@ -104,7 +117,7 @@ def test_height_map_estimate_and_noise_floor():
     # variance: the annuli up to the Nyquist circle hold all of it (the spectrum stops there)
     assert est.h_rms == pytest.approx(float(np.std(z)), rel=0.02)
     # the estimate follows C(q) in log bins of a fifth of a decade (hundreds of modes each)
-    edges = np.geomspace(2 * spec.q_r, q_nyq / 2, 8)
+    edges = np.geomspace(2 * spec.grid()["q_roll"], q_nyq / 2, 8)
     for a, b in itertools.pairwise(edges):
         m = (est.wavevector >= a) & (est.wavevector < b)
         assert np.mean(est.psd[m]) == pytest.approx(np.mean(ref.at(est.wavevector[m])), rel=0.15)
@@ -213,16 +226,16 @@ def _published_separation(p, c0, H, q0, q1, gamma):
 @pytest.mark.parametrize("gamma", [1.0, 0.45])
 def test_persson_separation_against_quadrature_of_the_published_integral(gamma):
     q0, q1, H = 1e5, 1e6, 0.8
-    spec = SelfAffineSpec(H=H, q_r=q0, q_s=q1, h_rms=1e-6)
+    spec = _spec(H=H, q_r=q0, q_s=q1, h_rms=1e-6)
     psd = IsotropicPSD.from_self_affine(spec)
     p = np.array([1e-4, 1e-2]) * ESTAR * psd.slope_rms
     r = persson_contact(psd, p, material=MAT, gamma=gamma)
-    ref = [_published_separation(v, spec.c0, H, q0, q1, gamma) for v in p]
+    ref = [_published_separation(v, self_affine_c0(spec), H, q0, q1, gamma) for v in p]
     np.testing.assert_allclose(r.mean_separation, ref, rtol=1e-6)
 
 
 def test_persson_stiffness_is_minus_dp_du_of_its_own_separation():
-    psd = IsotropicPSD.from_self_affine(SelfAffineSpec(q_L=2e4, H=0.7))
+    psd = IsotropicPSD.from_self_affine(_spec(q_L=2e4, H=0.7))
     p = np.geomspace(1e4, 1e9, 6)
     h = 1e-5
     r = persson_contact(psd, p, material=MAT)
@@ -235,7 +248,7 @@ def test_persson_stiffness_is_minus_dp_du_of_its_own_separation():
 
 
 def test_persson_pressure_distribution_carries_the_load_on_the_contact_area():
-    psd = IsotropicPSD.from_self_affine(SelfAffineSpec(H=0.8, slope_rms=0.05, h_rms=None))
+    psd = IsotropicPSD.from_self_affine(_spec(H=0.8, slope_rms=0.05, h_rms=None))
     for p in (1e6, 3e8):
         d = persson_pressure_distribution(psd, p, np.linspace(0, 2e10, 400_001), material=MAT)
         assert np.trapezoid(d.density, d.stress) == pytest.approx(d.area_fraction, rel=1e-6)
@@ -247,7 +260,7 @@ def test_persson_pressure_distribution_carries_the_load_on_the_contact_area():
 
 
 def test_persson_gap_distribution_is_normalised():
-    psd = IsotropicPSD.from_self_affine(SelfAffineSpec(H=0.8, q_L=2e4, slope_rms=0.1, h_rms=None))
+    psd = IsotropicPSD.from_self_affine(_spec(H=0.8, q_L=2e4, slope_rms=0.1, h_rms=None))
     for p in (1e6, 1e8):
         g = persson_gap_distribution(psd, p, np.linspace(0, 2e-5, 20_001), material=MAT)
         assert g.cumulative[-1] + g.contact_fraction == pytest.approx(1.0, abs=1e-9)
@@ -266,7 +279,7 @@ def test_persson_gap_distribution_is_normalised():
 
 @pytest.fixture(scope="module")
 def broad():
-    return IsotropicPSD.from_self_affine(SelfAffineSpec(H=0.8, q_L=2e4, q_r=6e4, q_s=6e6))
+    return IsotropicPSD.from_self_affine(_spec(H=0.8, q_L=2e4, q_r=6e4, q_s=6e6))
 
 
 def test_nayak_summits_from_the_random_process_density(broad):
@@ -319,7 +332,7 @@ def test_gw_gaussian_against_quadrature(broad):
 
 def test_bgt_small_load_kappa_and_stiffness():
     # a narrow spectrum (α ≈ 1.8): high summits are spheres soon, κ → √(2π) within a few σ
-    narrow = IsotropicPSD.from_self_affine(SelfAffineSpec(H=0.8, q_L=7e4, q_r=1e5, q_s=1.6e5))
+    narrow = IsotropicPSD.from_self_affine(_spec(H=0.8, q_L=7e4, q_r=1e5, q_s=1.6e5))
     p = np.geomspace(1e-9, 1e-3, 25) * ESTAR * narrow.slope_rms
     r = bush_gibson_thomas(narrow, p, material=MAT)
     assert 1.5 < r.bandwidth < 2.5
@@ -348,9 +361,23 @@ def test_results_are_columns_and_bad_input_is_refused(broad):
         persson_contact(broad, p, material=MAT, magnification=1e9)
     with pytest.raises(ValueError, match="pressure"):
         persson_contact(broad, [-1.0], material=MAT)
-    with pytest.raises(ValueError, match="h_rms or slope_rms"):
-        SelfAffineSpec(slope_rms=0.1)
+    with pytest.raises(ValueError, match="rms_height or rms_slope"):
+        _spec(h_rms=1e-6, slope_rms=0.1)
     with pytest.raises(ValueError, match="strictly increasing"):
         IsotropicPSD(np.array([2.0, 1.0]), np.array([1.0, 1.0]))
     with pytest.raises(TypeError, match="Material"):
         persson_contact(broad, p, material=70e9)
+
+
+def test_spectrum_of_a_generated_map_carries_its_own_c0():
+    from warptrunc.selfaffine import self_affine_surface
+
+    spec = SelfAffineSpec(hurst=0.8, L=1e-4, n=128, short_cutoff=4e-4 / 128, rolloff=2.5e-5,
+                          rms_slope=1.0)  # fmt: skip
+    s = self_affine_surface(spec, device="cpu")
+    from_map = IsotropicPSD.from_self_affine(s)
+    from_spec = IsotropicPSD.from_self_affine(spec)
+    assert from_map.params["c0"] == s.params["C0_m4"]
+    # the continuous spectrum's C₀ against the discrete sums' on 128² (modes fill the band)
+    assert from_spec.params["c0"] == pytest.approx(s.params["C0_m4"], rel=0.1)
+    np.testing.assert_array_equal(from_map.wavevector, from_spec.wavevector)

@@ -67,7 +67,7 @@ class SelfAffineSpec(Parameters):
     0.8
     """
 
-    hurst: float = param(0.8, "Hurst exponent H (D = 3 − H)", gt=0.0, lt=1.0)
+    hurst: float = param(0.8, "Hurst exponent H (D = 3 − H)", gt=0.0, le=1.0)
     L: float | tuple[float, float] = param(
         1e-3, "side length L, or Lx Ly (the period)", unit="m", gt=0.0, pair=True, sweep=False
     )

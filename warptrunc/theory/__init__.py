@@ -31,7 +31,7 @@ from .persson import (
     persson_gap_distribution,
     persson_pressure_distribution,
 )
-from .psd import IsotropicPSD, SelfAffineSpec
+from .psd import IsotropicPSD, self_affine_c0
 
 __all__ = [
     "KAPPA_BGT",
@@ -41,7 +41,6 @@ __all__ = [
     "IsotropicPSD",
     "PerssonCurve",
     "PressureDistribution",
-    "SelfAffineSpec",
     "SummitStatistics",
     "bgt_summit_weights",
     "bush_gibson_thomas",
@@ -50,4 +49,5 @@ __all__ = [
     "persson_contact",
     "persson_gap_distribution",
     "persson_pressure_distribution",
+    "self_affine_c0",
 ]

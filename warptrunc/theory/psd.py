@@ -3,7 +3,8 @@
 """The isotropic power spectral density C(q) that the contact theories read, and its moments.
 
 :class:`IsotropicPSD` holds C(q) (m⁴) sampled on wavevector magnitudes q (1/m) in Persson's
-normalisation, made from a self-affine description (:class:`SelfAffineSpec`), from the terms of
+normalisation, made from a self-affine surface (:class:`~warptrunc.selfaffine.SelfAffineSpec`,
+:meth:`IsotropicPSD.from_self_affine`), from the terms of
 a Weierstrass–Mandelbrot surface (:meth:`IsotropicPSD.from_wm`) or from a height map
 (:meth:`IsotropicPSD.from_height_map`, the radially averaged periodogram of
 :func:`warptrunc.spectra.radial_psd`). Everything is float64 NumPy on the host.
@@ -44,6 +45,7 @@ doi:10.1115/1.3451608.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -51,11 +53,16 @@ from typing import Any
 import numpy as np
 from scipy.special import exprel
 
-from ..params import Parameters, check_fields, param
 from ..wm_params import WMSpec
 from ._common import columns
 
-__all__ = ["INTERPOLATIONS", "IsotropicPSD", "SelfAffineSpec"]
+__all__ = [
+    "INTERPOLATIONS",
+    "IsotropicPSD",
+    "self_affine_band",
+    "self_affine_c0",
+    "self_affine_moment_per_c0",
+]
 
 INTERPOLATIONS = ("power-law", "linear")
 """How :class:`IsotropicPSD` interpolates between its samples."""
@@ -64,83 +71,50 @@ _x, _w = np.polynomial.legendre.leggauss(8)
 _GAUSS = (0.5 * (_x + 1.0), 0.5 * _w)  # nodes and weights on [0, 1]
 
 
-@dataclass(frozen=True)
-class SelfAffineSpec(Parameters):
-    """A self-affine isotropic spectrum with a flat roll-off, declared once.
+def self_affine_band(spec: Any) -> tuple[float, float, float, float]:
+    """(H, q_L, q_r, q_s) of a :class:`~warptrunc.selfaffine.SelfAffineSpec` (q in 1/m): its Hurst
+    exponent, long cut-off, roll-off (q_L when it has none) and short cut-off."""
+    g = spec.grid()
+    return float(spec.hurst), g["q_long"], g["q_roll"], g["q_short"]
 
-    C(q) = C₀ for q_L ≤ q < q_r, C₀ (q/q_r)^(−2(1+H)) for q_r ≤ q ≤ q_s, zero outside
-    [q_L, q_s]; C₀ (m⁴) is set by ``h_rms`` or by ``slope_rms`` (give one, set the other to
-    None, as ``WMSpec`` takes R_t or G). ``SelfAffineSpec()`` is the counterpart of the default
-    WM surface: H = 3 − D = 0.5, roll-off at λ_r = 100 µm, cut-off at λ_s = 2 µm (the Nyquist
-    wavelength of 1 mm at 1024²), no roll-off region, h_rms = 1 µm.
 
-    Raises
-    ------
-    ValueError
-        A field out of its range, q_L > q_r ≥ q_s, or both or neither of ``h_rms`` and
-        ``slope_rms``.
+def self_affine_moment_per_c0(spec: Any, k: float) -> float:
+    """The isotropic moment μ_k of a self-affine spectrum per unit C₀, in closed form (m^(−2−k)).
+
+    Parameters
+    ----------
+    spec : SelfAffineSpec
+        The spectrum (:class:`~warptrunc.selfaffine.SelfAffineSpec`).
+    k : float
+        Order: 0 (⟨h²⟩), 2 (⟨|∇h|²⟩), 4 (⟨(∇²h)²⟩) (dimensionless).
+
+    Returns
+    -------
+    float
+        μ_k/C₀ = 2π ∫ q^(k+1) C(q)/C₀ dq (m^(−2−k)).
 
     Notes
     -----
-    With ζ = q_s/q_r and the flat part's share, the isotropic moments are closed forms:
-    μ_k/(2π C₀) = (q_r^(k+2) − q_L^(k+2))/(k + 2) + q_r^(k+2) (ζ^(k−2H) − 1)/(k − 2H)
+    With ζ = q_s/q_r: μ_k/(2π C₀) = (q_r^(k+2) − q_L^(k+2))/(k + 2) + q_r^(k+2) (ζ^(k−2H) − 1)/(k − 2H)
     (q_r^(k+2) ln ζ when k = 2H).
     """
+    H, q_l, q_r, q_s = self_affine_band(spec)
+    flat = (q_r ** (k + 2) - q_l ** (k + 2)) / (k + 2)
+    e = k - 2 * H
+    zeta = q_s / q_r
+    tail = math.log(zeta) if e == 0 else (zeta**e - 1.0) / e
+    return 2 * math.pi * (flat + q_r ** (k + 2) * tail)
 
-    H: float = param(0.5, "Hurst exponent H (= 3 − D)", gt=0.0, le=1.0)
-    q_r: float = param(2 * math.pi / 100e-6, "roll-off wavevector q_r", unit="1/m", gt=0.0)
-    q_s: float = param(
-        2 * math.pi / 2e-6, "short-wavelength cut-off q_s (the largest q)", unit="1/m", gt=0.0
-    )
-    q_L: float | None = param(
-        None, "long-wavelength cut-off q_L (the smallest q); None = q_r, no roll-off",
-        unit="1/m", gt=0.0, optional=True,
-    )  # fmt: skip
-    h_rms: float | None = param(
-        1e-6, "rms height √⟨h²⟩; None when slope_rms is given", unit="m", gt=0.0, optional=True
-    )
-    slope_rms: float | None = param(
-        None, "rms slope h′_rms = √⟨|∇h|²⟩; when given, set h_rms to None", gt=0.0,
-        optional=True,
-    )  # fmt: skip
 
-    def __post_init__(self) -> None:
-        check_fields(self)
-        q_l = self.q_r if self.q_L is None else self.q_L
-        if not q_l <= self.q_r < self.q_s:
-            raise ValueError(
-                f"need q_L ≤ q_r < q_s, got q_L = {q_l:g}, q_r = {self.q_r:g}, "
-                f"q_s = {self.q_s:g} 1/m"
-            )
-        if (self.h_rms is None) == (self.slope_rms is None):
-            raise ValueError("give either h_rms or slope_rms (set the other to None), not both")
-
-    def moment_per_c0(self, k: float) -> float:
-        """The isotropic moment μ_k per unit C₀, in closed form (m^(−2−k)).
-
-        Parameters
-        ----------
-        k : float
-            Order: 0 (⟨h²⟩), 2 (⟨|∇h|²⟩), 4 (⟨(∇²h)²⟩) (dimensionless).
-
-        Returns
-        -------
-        float
-            μ_k/C₀ = 2π ∫ q^(k+1) C(q)/C₀ dq (m^(−2−k)).
-        """
-        q_l = self.q_r if self.q_L is None else self.q_L
-        flat = (self.q_r ** (k + 2) - q_l ** (k + 2)) / (k + 2)
-        e = k - 2 * self.H
-        zeta = self.q_s / self.q_r
-        tail = math.log(zeta) if e == 0 else (zeta**e - 1.0) / e
-        return 2 * math.pi * (flat + self.q_r ** (k + 2) * tail)
-
-    @property
-    def c0(self) -> float:
-        """The plateau C₀ (m⁴) that gives ``h_rms`` or ``slope_rms``."""
-        if self.h_rms is not None:
-            return self.h_rms**2 / self.moment_per_c0(0)
-        return self.slope_rms**2 / self.moment_per_c0(2)
+def self_affine_c0(spec: Any) -> float:
+    """C₀ (m⁴) of the continuous spectrum that has the spec's rms height (1 µm when neither is
+    given) or rms slope: h_rms²/μ₀ or h′_rms²/μ₂ per unit C₀. A map of the spec on its grid
+    (:func:`~warptrunc.selfaffine.self_affine_surface`) has the discrete sums' C₀ instead
+    (``Surface.params["C0_m4"]``), which the continuous one approaches as the modes fill the band."""
+    if spec.rms_slope is not None:
+        return spec.rms_slope**2 / self_affine_moment_per_c0(spec, 2)
+    h = 1e-6 if spec.rms_height is None else spec.rms_height
+    return h**2 / self_affine_moment_per_c0(spec, 0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -197,14 +171,17 @@ class IsotropicPSD:
 
     @classmethod
     def from_self_affine(
-        cls, spec: SelfAffineSpec | None = None, *, points_per_decade: int = 32
+        cls, source: Any = None, *, points_per_decade: int = 32
     ) -> IsotropicPSD:
-        """The self-affine spectrum of ``spec``, sampled on a logarithmic grid.
+        """The self-affine spectrum of a spec or of a generated map, sampled on a logarithmic grid.
 
         Parameters
         ----------
-        spec : SelfAffineSpec, optional
-            The spectrum; default ``SelfAffineSpec()``.
+        source : SelfAffineSpec or Surface, optional
+            A :class:`~warptrunc.selfaffine.SelfAffineSpec` (C₀ of the continuous spectrum,
+            :func:`self_affine_c0`), or a map of :func:`~warptrunc.selfaffine.self_affine_surface`
+            (its own C₀, from the discrete sums: the spectrum the map has); default
+            ``SelfAffineSpec()``.
         points_per_decade : int
             Samples per decade of q (count); q_L, q_r and q_s are always samples, so the
             interpolant is the spectrum itself and its moments are exact.
@@ -214,23 +191,34 @@ class IsotropicPSD:
         IsotropicPSD
             ``source="self-affine"``, ``params`` the spec's fields and C₀ (m⁴).
         """
-        spec = SelfAffineSpec() if spec is None else spec
+        from ..selfaffine import SelfAffineSpec
+
+        params = getattr(source, "params", None)
+        if isinstance(params, dict):  # a generated map
+            if params.get("generator") != "self-affine":
+                raise ValueError(
+                    f"a Surface must be a self-affine map, got generator {params.get('generator')!r}"
+                )
+            names = [f.name for f in dataclasses.fields(SelfAffineSpec)]
+            spec = SelfAffineSpec(**{k: params[k] for k in names})
+            spec = spec.replace(L=tuple(spec.L), n=tuple(spec.n)) if isinstance(spec.L, list) else spec
+            c0 = float(params["C0_m4"])
+        else:
+            spec = SelfAffineSpec() if source is None else source
+            c0 = self_affine_c0(spec)
         ppd = int(points_per_decade)
         if ppd < 1:
             raise ValueError(f"points_per_decade must be ≥ 1, got {points_per_decade!r}")
-        q_l = spec.q_r if spec.q_L is None else spec.q_L
+        H, q_l, q_r, q_s = self_affine_band(spec)
         parts = []
-        for lo, hi in ((q_l, spec.q_r), (spec.q_r, spec.q_s)):
+        for lo, hi in ((q_l, q_r), (q_r, q_s)):
             if hi > lo:
                 n = max(2, math.ceil(math.log10(hi / lo) * ppd) + 1)
                 parts.append(np.geomspace(lo, hi, n))
         q = np.unique(np.concatenate(parts))
-        q[0], q[-1] = q_l, spec.q_s
-        c0 = spec.c0
-        c = np.where(
-            q < spec.q_r, c0, c0 * (np.maximum(q, spec.q_r) / spec.q_r) ** (-2 * (1 + spec.H))
-        )
-        params = {**spec.to_dict(), "q_L": q_l, "c0": c0}
+        q[0], q[-1] = q_l, q_s
+        c = np.where(q < q_r, c0, c0 * (np.maximum(q, q_r) / q_r) ** (-2 * (1 + H)))
+        params = {**spec.to_dict(), "q_L": q_l, "q_r": q_r, "q_s": q_s, "c0": c0}
         return cls(q, c, "self-affine", "power-law", math.inf, params)
 
     @classmethod
