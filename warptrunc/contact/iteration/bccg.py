@@ -61,7 +61,7 @@ pixels, the preconditioned one's hardly: on D = 2.5 WM maps at 0.2·R_t (0.01–
 NVIDIA H100, float32, pentol = 10⁻⁴·rms) always preconditioning took the cold iterations from
 27 → 51 to 14 → 19 between 2048² and 16384² on a fixed-content family, and the warm solve at
 16384² from 3.4 to 1.5 s; on the CPU it is faster at 1024², slower at 512² and below
-(guide/performance.md). Under a punch (:func:`warptrunc.indent.protocol.make_solver`) the
+(guide/performance.md). Under a punch (:func:`warptrunc.indent.cycles.make_solver`) the
 default is ``PRECONDITION_ABOVE`` at every size: on one placement of the paper's punches on
 GB300s (10240² over 1 mm, H = ∞) always preconditioning took 1678 convolutions to 2482."""
 
