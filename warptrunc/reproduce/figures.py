@@ -21,7 +21,22 @@ __all__ = ["D_LABELS", "fig_fit_range", "figures", "new_figure", "save_figure"]
 D_LABELS = {"in": "D$_{in}$", "tri": "D$_{tri}$", "box": "D$_{box}$", "vs": "D$_{vs}$", "sp": "D$_{sp}$"}
 
 
-def new_figure(ncols=1, nrows=1, w=5.2, h=4.0):
+def new_figure(ncols: int = 1, nrows: int = 1, w: float = 5.2, h: float = 4.0):
+    """A matplotlib figure of ``nrows`` × ``ncols`` panels (no pyplot, constrained layout).
+
+    Parameters
+    ----------
+    ncols, nrows : int
+        Panels per row and rows.
+    w, h : float
+        Size of one panel (inches).
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    axes : ndarray of Axes
+        The panels, row by row.
+    """
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(w * ncols, h * nrows), layout="constrained")
@@ -29,7 +44,23 @@ def new_figure(ncols=1, nrows=1, w=5.2, h=4.0):
     return fig, axs.ravel()
 
 
-def save_figure(fig, out: Path, name: str) -> str:
+def save_figure(fig: Any, out: Path, name: str) -> str:
+    """Write ``fig`` as ``out/name`` (PNG, 110 dpi).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    out : Path
+        Output folder.
+    name : str
+        File name.
+
+    Returns
+    -------
+    str
+        ``name``.
+    """
     fig.savefig(out / name, dpi=110)
     return name
 
