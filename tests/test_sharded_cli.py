@@ -80,7 +80,7 @@ def test_indent_devices(tmp_path, capsys):
     (the refined window solved over the devices too), equal the one-device run."""
     import pandas as pd
 
-    args = ["indent", "--n", "64", "--L", "1e-3", "--punch-diameter", "400e-6", "--peak-loads",
+    args = ["indent", "--n", "64", "--L", "1e-3", "--punch-diameters", "400e-6", "--peak-loads",
             "2", "8", "--placements", "1", "--refine-max", "2", "--no-plot", "--no-progress"]  # fmt: skip
     one, two = (pd.read_csv(o / "indent.csv") for o in run_both(tmp_path, capsys, args))
     assert one["converged"].all() and two["converged"].all()
