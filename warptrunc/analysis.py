@@ -146,14 +146,24 @@ class Analysis:
             None; ``fit_range`` (the rule), ``fit_error``, ``applicable_depth`` (§ 4.3's
             indicators or None) and ``warnings`` (list of dicts).
         """
-        info = {**self.fit.to_dict(), "surface": self.surface,
-                "material": self.material.__dict__, **self.path}  # fmt: skip
+        info = {
+            **self.fit.to_dict(),
+            "surface": self.surface,
+            "material": self.material.__dict__,
+            **self.path,
+        }
         info["fit_range"] = self.fit_range or {"rule": "legacy"}
         info["fit_error"] = self.fit_error
-        info["islands"] = None if self.islands_fit is None else {
-            **self.islands_fit.to_dict(), "model": ISLAND_MODEL,
-            "connectivity": self.connectivity, "fit_error": self.islands_fit_error,
-        }  # fmt: skip
+        info["islands"] = (
+            None
+            if self.islands_fit is None
+            else {
+                **self.islands_fit.to_dict(),
+                "model": ISLAND_MODEL,
+                "connectivity": self.connectivity,
+                "fit_error": self.islands_fit_error,
+            }
+        )
         info["applicable_depth"] = None if self.indicators is None else self.indicators.to_dict()
         info["warnings"] = [w.to_dict() for w in self.warnings]
         return info
@@ -270,8 +280,9 @@ def analyze(
         decided = check_spikes(source)
     if rule is None:
         legacy = eq2, found, None if eq2 is not None else error
-        auto, rule, decided = _auto_rule(surface, legacy, material, truncation, fit, want_islands,
-                                         device)  # fmt: skip
+        auto, rule, decided = _auto_rule(
+            surface, legacy, material, truncation, fit, want_islands, device
+        )
         if auto is not None:
             surface, omega, curve, sc, eq2, found, indicators = auto
             truncation = truncation.replace(max_depth=omega)
@@ -334,13 +345,20 @@ def _validity(surface: Surface, read_map: bool, connectivity: int, device):
 
 def _rule_without_auto(fit_range: str, read_map: bool, own: list[str]) -> dict | None:
     """The ``fit_range`` record when the automatic rule does not apply; None when it does."""
-    base = {"asked": fit_range, "rule": "legacy", "spikes_masked": None, "depth_extended": None,
-            "depth_cut": None}  # fmt: skip
+    base = {
+        "asked": fit_range,
+        "rule": "legacy",
+        "spikes_masked": None,
+        "depth_extended": None,
+        "depth_cut": None,
+    }
     if fit_range == "legacy":
         return {**base, "reason": "--fit-range legacy asked"}
     if not read_map:
-        return {**base, "reason": "a generated surface: the automatic rule is for maps read from "
-                "files"}  # fmt: skip
+        return {
+            **base,
+            "reason": "a generated surface: the automatic rule is for maps read from files",
+        }
     if own:
         return {**base, "reason": f"a range of the caller's own ({', '.join(own)})"}
     return None
@@ -360,8 +378,15 @@ AUTO_TOO_FEW = "; the range to fewer held fewer than 3 fittable increments"
 """... and that the range to 50 held no fit."""
 
 
-def _auto_rule(surface, legacy, material: Material, truncation: TruncationSettings,
-               fit_range: FitRange, want_islands: bool, device):  # fmt: skip
+def _auto_rule(
+    surface,
+    legacy,
+    material: Material,
+    truncation: TruncationSettings,
+    fit_range: FitRange,
+    want_islands: bool,
+    device,
+):
     """The automatic rule of :mod:`warptrunc.robust` on a map read from a file: ((surface,
     ω_max, curve, stiffness curve, fit, warnings, indicators) on the automatic range or None
     when the default result stands, the ``fit_range`` record, the decisions' warnings)."""
@@ -371,8 +396,13 @@ def _auto_rule(surface, legacy, material: Material, truncation: TruncationSettin
     state = _legacy_state(*legacy, min_pixels)
     masked, found, sets = spike_rule(surface) if auto_spikes else (surface, [], [])
     s = masked if sets else surface
-    rec = {"asked": "auto", "rule": "legacy", "spikes_masked": None, "depth_extended": None,
-           "depth_cut": None}  # fmt: skip
+    rec = {
+        "asked": "auto",
+        "rule": "legacy",
+        "spikes_masked": None,
+        "depth_extended": None,
+        "depth_cut": None,
+    }
     if state is None and not sets:
         why = "the default fit is worth reading" + (" and no spike sets R_t" if auto_spikes else "")
         return None, {**rec, "reason": why}, spike_warning(found, sets)
@@ -382,10 +412,17 @@ def _auto_rule(surface, legacy, material: Material, truncation: TruncationSettin
     ends = " and ".join({"top": "highest", "bottom": "lowest"}[e] for e in sets)
     state = state or f"set by spikes (they include the {ends} pixel of the map)"
     if not sets and action is None:
-        return None, {**rec, "reason": f"the default fit is {state}; no automatic decision "
-                      "applies: no spike sets R_t, and its deepest fitted increment has "
-                      f"{AUTO_CONTACT_PIXELS} contact pixels to {AUTO_MAX_CONTACT_SHARE:.0%} "
-                      "of the map"}, spike_warning(found, sets)  # fmt: skip
+        return (
+            None,
+            {
+                **rec,
+                "reason": f"the default fit is {state}; no automatic decision "
+                "applies: no spike sets R_t, and its deepest fitted increment has "
+                f"{AUTO_CONTACT_PIXELS} contact pixels to {AUTO_MAX_CONTACT_SHARE:.0%} "
+                "of the map",
+            },
+            spike_warning(found, sets),
+        )
 
     def fit_to(omega):
         curve = truncate(s, n_increments, max_depth=omega, device=device)
@@ -406,8 +443,10 @@ def _auto_rule(surface, legacy, material: Material, truncation: TruncationSettin
         with contextlib.suppress(ValueError):
             fits.append((target, o2, d2, w2, *fit_to(o2)))
     if not fits:
-        why = (f"the default fit is {state}; the automatic range holds fewer than 3 increments "
-               f"with ≥ {min_pixels} contact pixels")  # fmt: skip
+        why = (
+            f"the default fit is {state}; the automatic range holds fewer than 3 increments "
+            f"with ≥ {min_pixels} contact pixels"
+        )
         return None, {**rec, "reason": why}, spike_warning(found, sets)
     target, omega, depth, depth_w, curve, sc, fit, found_fit = next(
         (f for f in fits if not f[-1]), fits[0]
@@ -423,18 +462,23 @@ def _auto_rule(surface, legacy, material: Material, truncation: TruncationSettin
     if sets:
         d = decided[0].details
         spikes = {k: d[k] for k in ("count", "passes", "sets", "Rt_before_m", "Rt_after_m")}
-    rec = {**rec, "rule": "auto", "reason": f"the default fit is {state}", "spikes_masked": spikes,
-           "max_depth_m": omega}  # fmt: skip
+    rec = {
+        **rec,
+        "rule": "auto",
+        "reason": f"the default fit is {state}",
+        "spikes_masked": spikes,
+        "max_depth_m": omega,
+    }
     if action is not None:
         rec[f"depth_{action}"] = depth
     return (s, omega, curve, sc, fit, found_fit, indicators), rec, decided + depth_w
 
 
-def _truncation(source, truncation: TruncationSettings, rt_percentile, stream, band_rows,
-                progress, device):  # fmt: skip
+def _truncation(
+    source, truncation: TruncationSettings, rt_percentile, stream, band_rows, progress, device
+):
     """(curve, the Surface truncated or None when streamed, its metadata, the path record)."""
-    opts = {"max_depth": truncation.max_depth,
-            "max_depth_fraction": truncation.max_depth_fraction}  # fmt: skip
+    opts = {"max_depth": truncation.max_depth, "max_depth_fraction": truncation.max_depth_fraction}
     spec, reason = stream_reason(source, stream, device)
     if reason is None:
         s = source if spec is None else surface_from_spec(spec, resolve_device(device))
@@ -447,15 +491,25 @@ def _truncation(source, truncation: TruncationSettings, rt_percentile, stream, b
     if truncation.islands:
         raise ValueError("islands=True needs the map in memory; a streamed map has no island pass")
     st = banded_truncation(
-        spec, truncation.increments, **opts, band_rows=band_rows, device=resolve_device(device),
+        spec,
+        truncation.increments,
+        **opts,
+        band_rows=band_rows,
+        device=resolve_device(device),
         progress=progress,
-    )  # fmt: skip
+    )
     info = {"band_rows": st.band_rows, "n_bands": st.n_bands, "reason": reason}
     return st.curve, None, st.surface, {"path": "streamed", "streaming": info}
 
 
-def _islands(surface: Surface, curve: TruncationCurve, material: Material,
-             truncation: TruncationSettings, fit_range: FitRange, device):  # fmt: skip
+def _islands(
+    surface: Surface,
+    curve: TruncationCurve,
+    material: Material,
+    truncation: TruncationSettings,
+    fit_range: FitRange,
+    device,
+):
     """(island-resolved StiffnessCurve, its fit or None) on the depths of ``curve``."""
     from .islands.depths import island_curve
     from .islands.settings import IslandSettings
@@ -463,8 +517,10 @@ def _islands(surface: Surface, curve: TruncationCurve, material: Material,
     ic = island_curve(
         surface, truncation=truncation, settings=IslandSettings(snapshots=None), device=device
     )
-    if not (np.array_equal(ic.depth, curve.depth)
-            and np.array_equal(ic.n_contact_pixels, curve.n_contact_pixels)):  # fmt: skip
+    if not (
+        np.array_equal(ic.depth, curve.depth)
+        and np.array_equal(ic.n_contact_pixels, curve.n_contact_pixels)
+    ):
         raise RuntimeError("internal error: island pass and truncation disagree on the depths")
     isl = island_stiffness_curve(ic, material, beta_prime=truncation.beta_prime)
     try:

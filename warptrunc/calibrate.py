@@ -247,9 +247,7 @@ def calibrate(
     hist: list[tuple[float, float, float, float, float]] = []
     wm_opts = settings.wm_options()
 
-    bar = progress_bar(
-        total=max_iter * max_rounds, enabled=progress, desc="calibrate", unit="eval"
-    )
+    bar = progress_bar(total=max_iter * max_rounds, enabled=progress, desc="calibrate", unit="eval")
 
     def evaluate(d_in: float, Rt: float) -> tuple[float, float, float]:
         ds, rms = [], []
@@ -368,9 +366,9 @@ def calibrated_surface(
         for k, v in calibration.to_dict().items()
         if not k.startswith("history_") and not k.startswith("wm_")
     }
-    return Surface(s.heights, s.dx, s.dy, {**s.params, "calibration": jsonable(info, nonfinite="text")})
+    return Surface(
+        s.heights, s.dx, s.dy, {**s.params, "calibration": jsonable(info, nonfinite="text")}
+    )
 
 
 # --- root search on a noisy, non-decreasing function -------------------------------------------
-
-

@@ -53,9 +53,10 @@ class CalibrationTarget(Parameters):
     method: str = param(dataclasses.MISSING, "fractal method of D", choices=METHODS, sweep=False)
     Rrms: float = param(dataclasses.MISSING, "target R_rms", unit="m", gt=0.0)
     Rt: float = _target_like(
-        "Rt", "peak-to-valley height R_t of the scan, the R_t of the D loop's surfaces",
+        "Rt",
+        "peak-to-valley height R_t of the scan, the R_t of the D loop's surfaces",
         optional=False,
-    )  # fmt: skip
+    )
     Wr: float = _target_like("Wr", "roll-off wavelength W_r")
     L: tuple[float, float] = _target_like("L", "scan side L, or Lx Ly")
     n: tuple[int, int] = _target_like("n", "scan pixels per side, or nx ny", ge=8)
@@ -112,37 +113,60 @@ class CalibrationSettings(Parameters):
     """
 
     method: str = param(
-        "tri", "fractal method whose D is matched, on the scan and the simulated surfaces alike",
-        choices=METHODS, sweep=False,
-    )  # fmt: skip
+        "tri",
+        "fractal method whose D is matched, on the scan and the simulated surfaces alike",
+        choices=METHODS,
+        sweep=False,
+    )
     height_scaling: str = param_like(FractalSettings, "height_scaling")
     seeds: tuple[int, ...] = param(
-        (0, 1, 2), "seeds of the WM phases; D_out and R_rms are averaged over them at every "
-        "evaluation", kind="seeds", sweep=False,
-    )  # fmt: skip
+        (0, 1, 2),
+        "seeds of the WM phases; D_out and R_rms are averaged over them at every evaluation",
+        kind="seeds",
+        sweep=False,
+    )
     rtol: float = param(
         0.05, "relative tolerance on D: abs(D_out − D) ≤ rtol·D (the paper: 5 %)", gt=0.0, lt=1.0
     )
     D_start: float | None = param(
-        None, "first D_in; none = the target D, clipped to D-bounds", gt=2.0, lt=3.0,
-        optional=True, sweep=False,
-    )  # fmt: skip
+        None,
+        "first D_in; none = the target D, clipped to D-bounds",
+        gt=2.0,
+        lt=3.0,
+        optional=True,
+        sweep=False,
+    )
     D_bounds: tuple[float, float] = param(
-        (2.02, 2.98), "search interval of D_in, inside (2, 3); a result on a bound is reported "
-        "as such", gt=2.0, lt=3.0, length=2, increasing=True, metavar=("LO", "HI"), sweep=False,
-    )  # fmt: skip
+        (2.02, 2.98),
+        "search interval of D_in, inside (2, 3); a result on a bound is reported as such",
+        gt=2.0,
+        lt=3.0,
+        length=2,
+        increasing=True,
+        metavar=("LO", "HI"),
+        sweep=False,
+    )
     max_iter: int = param(12, "evaluations of the D loop per round", kind="int", ge=2, le=1000)
     max_rounds: int = param(
-        3, "rounds of the D loop and the R_t loop (a round repeats only while D_out at R_t' "
-        "leaves the tolerance)", kind="int", ge=1, le=100,
-    )  # fmt: skip
+        3,
+        "rounds of the D loop and the R_t loop (a round repeats only while D_out at R_t' "
+        "leaves the tolerance)",
+        kind="int",
+        ge=1,
+        le=100,
+    )
     M: int = param_like(WMSpec, "M")
     gamma: float = param_like(WMSpec, "gamma")
     cutoff: str = param_like(WMSpec, "cutoff")
     n_out: int | tuple[int, int] | None = param(
-        None, "pixels per side of the calibrated surface written (or nx ny); none = the scan's",
-        kind="int", ge=2, pair=True, optional=True, sweep=False,
-    )  # fmt: skip
+        None,
+        "pixels per side of the calibrated surface written (or nx ny); none = the scan's",
+        kind="int",
+        ge=2,
+        pair=True,
+        optional=True,
+        sweep=False,
+    )
     seed_out: int = param_like(WMSpec, "seed", doc="seed of the phases of the surface written")
 
     def __post_init__(self) -> None:

@@ -34,7 +34,15 @@ HELP = "find D_in and R_t' that reproduce a scan's D and R_rms (Fig. 4), then ge
 TARGET_FIELDS = ("D", "Rrms", "Rt", "Wr", "L", "n")
 """The targets that may be typed in (default: measured on FILE)."""
 LOOP_FIELDS = (
-    "seeds", "rtol", "D_start", "D_bounds", "max_iter", "max_rounds", "M", "gamma", "cutoff"
+    "seeds",
+    "rtol",
+    "D_start",
+    "D_bounds",
+    "max_iter",
+    "max_rounds",
+    "M",
+    "gamma",
+    "cutoff",
 )
 """The fields of :class:`CalibrationSettings` that say how the loop runs."""
 
@@ -105,9 +113,7 @@ def run(args: argparse.Namespace) -> int:
     d["provenance"] = provenance(args.device)
     surf = None
     if not args.no_surface:
-        surf = calibrated_surface(
-            cal, n=settings.n_out, seed=settings.seed_out, device=args.device
-        )
+        surf = calibrated_surface(cal, n=settings.n_out, seed=settings.seed_out, device=args.device)
     with staged_output(args.out) as out:  # all or nothing
         (out / "calibration.json").write_text(strict_json(d))
         if surf is not None:

@@ -32,6 +32,8 @@ def run(args: argparse.Namespace) -> int:
         write_height_map(s, out / args.output.name)
     path = args.output
     meta = s.to_dict()
-    print(f"wrote {path}: {s.nx}×{s.ny} pixels, {s.lx * 1e3:g}×{s.ly * 1e3:g} mm, "
-          f"R_t = {s.Rt * 1e6:.4g} µm, n_max = {meta['n_max']}, {meta['n_terms']} terms")  # fmt: skip
+    print(
+        f"wrote {path}: {s.nx}×{s.ny} pixels, {s.lx * 1e3:g}×{s.ly * 1e3:g} mm, "
+        f"R_t = {s.Rt * 1e6:.4g} µm, n_max = {meta['n_max']}, {meta['n_terms']} terms"
+    )
     return 0

@@ -40,18 +40,27 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_surface_source(p)
     g = p.add_argument_group("picture")
     add_options(g, RenderSettings)
-    add_file_in_out(g, "--output", (".png",), "truncation.png", "picture file name (.png) inside --out")
+    add_file_in_out(
+        g, "--output", (".png",), "truncation.png", "picture file name (.png) inside --out"
+    )
     a = p.add_argument_group("animation and VTK export")
     add_file_in_out(
-        a, "--animate", (".gif", ".mp4"), "truncation.gif",
+        a,
+        "--animate",
+        (".gif", ".mp4"),
+        "truncation.gif",
         "also write an animation (.gif, or .mp4 with imageio-ffmpeg) inside --out",
         optional=True,
-    )  # fmt: skip
+    )
     add_options(a, AnimationSettings)
     add_file_in_out(
-        a, "--vtk", (".vti", ".vtk"), "surface.vti",
-        "also write heights and first-contact depths for ParaView (.vti or .vtk)", optional=True,
-    )  # fmt: skip
+        a,
+        "--vtk",
+        (".vti", ".vtk"),
+        "surface.vti",
+        "also write heights and first-contact depths for ParaView (.vti or .vtk)",
+        optional=True,
+    )
     add_options(
         a,
         TruncationSettings,

@@ -49,22 +49,30 @@ class IslandSettings(Parameters):
     """
 
     periodic: bool = param(
-        False, "wrap the map around in x and y (islands cut by the border join the other side)",
+        False,
+        "wrap the map around in x and y (islands cut by the border join the other side)",
         kind="bool",
-    )  # fmt: skip
+    )
     statistics: bool = param(
-        True, "also carry every island's area and perimeter: slit-island fits, area histogram, "
+        True,
+        "also carry every island's area and perimeter: slit-island fits, area histogram, "
         "Σ√A_i and the snapshots; false: island counts, χ and total perimeter only (fastest)",
         kind="bool",
-    )  # fmt: skip
+    )
     min_pixels: int = param(
         MIN_PIXELS, "smallest island in the slit-island fits (pixels)", kind="int", ge=1
     )
     snapshots: tuple[float, ...] | None = param(
-        (0.1, 0.2, 0.3, 0.4), "depths, as fractions of R_t, at which every island's area and "
+        (0.1, 0.2, 0.3, 0.4),
+        "depths, as fractions of R_t, at which every island's area and "
         "perimeter is kept (slit_islands.png), each moved to the nearest increment; only with "
-        "statistics; none = no snapshots", gt=0.0, le=1.0, many=True, optional=True, sweep=False,
-    )  # fmt: skip
+        "statistics; none = no snapshots",
+        gt=0.0,
+        le=1.0,
+        many=True,
+        optional=True,
+        sweep=False,
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -86,24 +94,35 @@ class IndicatorSettings(Parameters):
     """
 
     exponent_tolerance: float = param(
-        0.05, "relative drop X of the slit-island exponent below its plateau that ends "
-        "fractality", gt=0.0, lt=1.0,
-    )  # fmt: skip
+        0.05,
+        "relative drop X of the slit-island exponent below its plateau that ends fractality",
+        gt=0.0,
+        lt=1.0,
+    )
     min_islands: int = param(
-        50, "fewest fitted islands for a depth's exponent to count (the first contact spots "
-        "give noisy fits)", kind="int", ge=MIN_ISLANDS,
-    )  # fmt: skip
+        50,
+        "fewest fitted islands for a depth's exponent to count (the first contact spots "
+        "give noisy fits)",
+        kind="int",
+        ge=MIN_ISLANDS,
+    )
     plateau_width: float = param(
         0.1, "width of the plateau window, as a fraction of R_t", gt=0.0, le=1.0
     )
     persist: float = param(
-        0.02, "depth span, as a fraction of R_t, a drop of the exponent must last to count "
-        "(0: a single sample)", ge=0.0, le=1.0,
-    )  # fmt: skip
+        0.02,
+        "depth span, as a fraction of R_t, a drop of the exponent must last to count "
+        "(0: a single sample)",
+        ge=0.0,
+        le=1.0,
+    )
     smooth: int = param(
-        5, "odd window (depth samples) of the running mean of the growth rate and the running "
-        "median of the exponent; 1: no smoothing", kind="int", ge=1,
-    )  # fmt: skip
+        5,
+        "odd window (depth samples) of the running mean of the growth rate and the running "
+        "median of the exponent; 1: no smoothing",
+        kind="int",
+        ge=1,
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)

@@ -343,10 +343,11 @@ def animate_truncation(
         )
         try:
             frames = [
-                with_caption(panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i])), caption,
-                             strip, fs)
+                with_caption(
+                    panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i])), caption, strip, fs
+                )
                 for i in range(n)
-            ]  # fmt: skip
+            ]
         finally:
             panel.close()
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -355,9 +356,13 @@ def animate_truncation(
 
         ims = [Image.fromarray(fr) for fr in frames]
         ims[0].save(
-            path, save_all=True, append_images=ims[1:], duration=round(1000 / fps), loop=0,
+            path,
+            save_all=True,
+            append_images=ims[1:],
+            duration=round(1000 / fps),
+            loop=0,
             comment=caption.encode(),
-        )  # fmt: skip
+        )
     else:
         writer = imageio.get_writer(path, fps=fps)
         try:
