@@ -45,6 +45,7 @@ __all__ = [
     "Staging",
     "atomic_write",
     "jsonable_strict",
+    "kept_stores",
     "probe_writable",
     "read_json",
     "staged_output",
@@ -234,6 +235,17 @@ class Staging:
             shutil.rmtree(stage, ignore_errors=True)
         self._folders, self._files, self._created = [], [], []
 
+    def failed_output(self) -> Path | None:
+        """The output that a write without a file name in its error was most likely writing:
+        the destination of the staged file modified last (the write that failed leaves its
+        file the newest), else the first output asked for; None when none was asked for."""
+        staged = [(tmp, dest) for tmp, dest in self._files if tmp.exists()]
+        for stage, out in self._folders:
+            staged += [(f, out / f.relative_to(stage)) for f in stage.rglob("*") if f.is_file()]
+        if staged:
+            return max(staged, key=lambda s: (s[0].stat().st_mtime_ns, s[0].stat().st_size))[1]
+        return self.targets[0] if self.targets else None
+
     def rollback(self) -> None:
         """Remove every staged file, staging folder and folder this set created."""
         for stage, _ in self._folders:
@@ -282,9 +294,10 @@ def staged_outputs() -> Iterator[Staging]:
         yield st
         st.commit()
     except OSError as exc:  # a full disk, a file-size limit: say which output could not be made
+        where = st.failed_output() if exc.filename is None and exc.errno is not None else None
         st.rollback()
-        if exc.filename is None and st.targets and exc.errno is not None:
-            raise OSError(exc.errno, exc.strerror or str(exc), str(st.targets[0])) from exc
+        if where is not None:
+            raise OSError(exc.errno, exc.strerror or str(exc), str(where)) from exc
         raise
     except BaseException:
         st.rollback()
@@ -323,6 +336,15 @@ def atomic_write(path: str | Path) -> Iterator[Path]:
         yield st.file(path)
 
 
+_kept: list[Path] = []
+
+
+def kept_stores() -> list[Path]:
+    """The stores that :func:`store_rollback` kept after a failure in this process (oldest
+    first): a resumable store of finished cases, left for the same command to resume."""
+    return list(_kept)
+
+
 def _tree(out: Path) -> set[Path]:
     if not out.is_dir():
         return set()
@@ -347,7 +369,8 @@ def store_rollback(out: str | Path, keep: Callable[[], bool]) -> Iterator[None]:
     On an exception with ``keep()`` False, every file and folder under ``out`` that did not
     exist when the block started is removed (files first, deepest folders first), and so are
     ``out`` and its parents if the block created them; files of an earlier run are untouched.
-    The exception propagates.
+    With ``keep()`` True, ``out`` is recorded in :func:`kept_stores` (what the command's
+    one-line message after Ctrl-C names). The exception propagates.
     """
     out = Path(out)
     created = _created_parents(out)
@@ -355,7 +378,9 @@ def store_rollback(out: str | Path, keep: Callable[[], bool]) -> Iterator[None]:
     try:
         yield
     except BaseException:
-        if not keep():
+        if keep():
+            _kept.append(out)
+        else:
             new = sorted(_tree(out) - before, key=lambda p: len(p.parts), reverse=True)
             for p in new:
                 try:

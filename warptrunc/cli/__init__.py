@@ -10,6 +10,10 @@ exit status 2 (:class:`warptrunc.cli._parser.Parser`) and the help formatter of
 :mod:`warptrunc.cli._parser`; the ``type=`` validators of :mod:`warptrunc.cli._common` are the
 ones new commands should use.
 
+Ctrl-C: every sub-command stops with one line on stderr that says what was kept and how to go
+on, and exit status 130 (:func:`main`; ``--verbose`` shows the traceback). ``sweep`` says it
+itself, with the count of the cases in its store.
+
 Start-up: only the sub-command that runs is imported. ``NAME``, ``HELP`` and the module
 docstring of the others are read from their source (:mod:`ast`), so ``warptrunc --help``
 imports neither Warp nor NumPy.
@@ -19,10 +23,13 @@ from __future__ import annotations
 
 import argparse
 import ast
+import errno
 import importlib
 import os
 import pkgutil
+import signal
 import sys
+import threading
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -121,10 +128,74 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        The exit status: 0 on success, 2 for bad input (one line on stderr), or the
-        sub-command's own documented status.
+        The exit status: 0 on success, 2 for bad input (one line on stderr), 130 after Ctrl-C
+        (SIGINT; one line saying what was kept), or the sub-command's own documented status.
     """
     argv = sys.argv[1:] if argv is None else list(argv)
+    hook = sys.unraisablehook
+    sys.unraisablehook = _interrupt_in_destructor(hook)
+    before = len(_kept_stores())
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        if "--verbose" in argv or "-v" in argv:
+            raise
+        kept = _kept_stores()[before:]
+        print(_interrupted_text(_command_in(argv) or "", kept), file=sys.stderr)
+        return EXIT_INTERRUPTED
+    finally:
+        sys.unraisablehook = hook
+
+
+EXIT_INTERRUPTED = 130
+"""Exit status after Ctrl-C (SIGINT), as a shell reports a job that SIGINT ended (128 + 2)."""
+
+
+def _kept_stores() -> list:
+    """:func:`warptrunc._support.atomic.kept_stores` once a command has imported it (every
+    command that writes does), else none."""
+    atomic = sys.modules.get("warptrunc._support.atomic")
+    return atomic.kept_stores() if atomic is not None else []
+
+
+def _interrupted_text(command: str, kept: list) -> str:
+    """The one line after Ctrl-C: what was kept (``kept``: the resumable stores of finished
+    cases that the command kept; else nothing, as every other output is written whole or not
+    at all) and how to go on."""
+    from .._support.messages import show
+
+    head = f"warptrunc {command}: interrupted"
+    if kept:
+        return (f"{head}; the finished cases stay in {show(kept[-1])}: run the same command "
+                "again to finish the rest")  # fmt: skip
+    return (f"{head}; nothing was written (each output is written whole or not at all): run "
+            "the same command again to start over")  # fmt: skip
+
+
+def _interrupt_in_destructor(hook):
+    """An ``unraisablehook`` that does not drop Ctrl-C: a ``KeyboardInterrupt`` raised while a
+    destructor ran (Warp frees its arrays in ``__del__``; CPython prints it as "Exception
+    ignored in …" and goes on) is delivered again as SIGINT, so that it is raised where the
+    program goes on. Its subclasses (``sweep``'s SIGTERM) are left to the latch that raised
+    them (:mod:`warptrunc._support.interrupt`); every other unraisable exception goes to
+    ``hook``."""
+
+    def unraisable(info) -> None:
+        handled = signal.getsignal(signal.SIGINT) not in (signal.SIG_IGN, signal.SIG_DFL, None)
+        if not isinstance(info.exc_value, KeyboardInterrupt):
+            hook(info)
+        elif type(info.exc_value) is KeyboardInterrupt and handled:
+            # sent from another thread, a moment later: a signal sent here would be handled
+            # at once, inside this hook, and dropped again
+            again = threading.Timer(0.01, os.kill, (os.getpid(), signal.SIGINT))
+            again.daemon = True
+            again.start()
+
+    return unraisable
+
+
+def _main(argv: list[str]) -> int:
+    """:func:`main` without its Ctrl-C handling."""
     parser = build_parser(argv)
     try:
         args = parser.parse_args(argv)
@@ -140,7 +211,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return int(args._run(args) or 0)
     except (ValueError, MemoryError, OSError, OverflowError, RecursionError) as exc:
-        print(f"warptrunc {args.command}: error: {_error_text(exc)}", file=sys.stderr)
+        text = _error_text(exc, getattr(args, "out", None))
+        print(f"warptrunc {args.command}: error: {text}", file=sys.stderr)
         return 2
     except Exception as exc:  # a bug: still one line, the traceback with --verbose
         oom = _xla_out_of_memory(exc)
@@ -185,17 +257,28 @@ EXIT_INTERNAL_ERROR = 1
 """Exit status of an unexpected exception (a bug); bad input exits with 2."""
 
 
-def _error_text(exc: BaseException) -> str:
-    """The exception's message as one short line; its type when the message is empty."""
-    from .._support.messages import one_line
+def _error_text(exc: BaseException, out: object = None) -> str:
+    """The exception's message as one short line; its type when the message is empty.
+
+    An error of the file system names its file (``File too large: 'out/fit.json'``); one
+    that carries no file name names the command's output ``out`` when there is one
+    (``File too large, writing under 'sweep'``). A file-size limit (EFBIG) says where such a
+    limit comes from.
+    """
+    from .._support.messages import one_line, show
 
     msg = one_line(exc)
     if isinstance(exc, MemoryError):
         return f"out of memory{': ' + msg if msg else ''}"
-    if isinstance(exc, OSError) and exc.strerror and exc.filename is not None:
-        from .._support.messages import show
-
-        return one_line(f"{exc.strerror}: {show(exc.filename)}")
+    if isinstance(exc, OSError) and exc.strerror:
+        why = exc.strerror
+        if exc.errno == errno.EFBIG:
+            why += " (over a file-size limit: the shell's ulimit -f, or the file system's)"
+        if exc.filename is not None:
+            return one_line(f"{why}: {show(exc.filename)}")
+        if out is not None:
+            return one_line(f"{why}, writing under {show(out)}")
+        return one_line(why)
     return msg or type(exc).__name__
 
 

@@ -83,10 +83,62 @@ def load_warptrunc_file(path: Path) -> Surface:
     return Surface(z, meta["dx"], meta["dy"], meta.get("params", {}))
 
 
+NUMPY_MAGIC = {".npy": (b"\x93NUMPY",), ".npz": (b"PK\x03\x04", b"PK\x05\x06")}
+"""How a NumPy file starts: the ``.npy`` format's magic string, the zip archive of ``.npz``."""
+
+
+def check_numpy_file(path: Path) -> None:
+    """Refuse a ``.npy``/``.npz`` that is not a NumPy file (text renamed, another format).
+
+    Parameters
+    ----------
+    path : Path
+        An existing ``.npy`` or ``.npz`` file.
+
+    Raises
+    ------
+    ValueError
+        "not a numpy archive", naming the file and what it starts with (text, nothing,
+        other bytes), when its first bytes are not those of :data:`NUMPY_MAGIC`.
+    """
+    suffix = path.suffix.lower()
+    with open(path, "rb") as fh:
+        head = fh.read(64)
+    if head.startswith(NUMPY_MAGIC.get(suffix, (b"",))):
+        return
+    magic = "numpy's magic string \\x93NUMPY" if suffix == ".npy" else "a zip archive's PK"
+    try:
+        text = head.decode("utf-8")
+    except UnicodeDecodeError as exc:  # text whose last character the 64 bytes cut is text
+        text = head[: exc.start].decode("utf-8") if exc.start > len(head) - 4 else None
+    if not head:
+        found, hint = "it is empty", ""
+    elif text is not None and all(c.isprintable() or c.isspace() for c in text):
+        line = text.strip().splitlines()[0][:40] if text.strip() else ""
+        found = f"it holds text ({line!r} …)"
+        hint = "; a text matrix needs a .csv, .txt or .tsv name"
+    else:
+        found, hint = f"it starts with the bytes {head[:8]!r}", " (another format under this name?)"
+    raise ValueError(
+        f"{path}: not a numpy archive: a {suffix} file starts with {magic}, and {found}{hint}"
+    )
+
+
+def _pickled(path: Path, exc: ValueError) -> ValueError | None:
+    """numpy's refusal of pickled objects as warptrunc's words (None: another error)."""
+    if "allow_pickle" not in str(exc):
+        return None
+    return ValueError(
+        f"{path}: holds Python objects (pickled), not an array of numbers; warptrunc does not "
+        "unpickle files (unpickling can run code): save the heights as a float array"
+    )
+
+
 def try_warptrunc_file(path: Path) -> Surface | None:
     """A file written by :func:`write_warptrunc_file`, else None."""
     if not path.exists():
         return None
+    check_numpy_file(path)
     if path.suffix.lower() == ".npy":
         return load_warptrunc_file(path) if path.with_suffix(".json").exists() else None
     try:
@@ -94,6 +146,8 @@ def try_warptrunc_file(path: Path) -> Surface | None:
         with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as f:
             is_ours = "heights" in f.files and "metadata" in f.files
     except Exception as exc:
+        if isinstance(exc, ValueError) and (why := _pickled(path, exc)) is not None:
+            raise why from None
         raise ValueError(f"{path}: not a readable .npz file ({exc})") from None
     return load_warptrunc_file(path) if is_ours else None
 
@@ -103,6 +157,8 @@ def read_numpy(path: Path, dx, dy, height_unit) -> Scan:
     try:
         ours = try_warptrunc_file(path)
     except (ValueError, KeyError, json.JSONDecodeError) as exc:
+        if str(exc).startswith(f"{path}: "):  # not numpy, or pickled: said already
+            raise
         raise ValueError(f"{path}: corrupt warptrunc metadata ({exc})") from None
     if ours is not None:
         return Scan(
@@ -124,6 +180,8 @@ def read_numpy(path: Path, dx, dy, height_unit) -> Scan:
     except ValueError as exc:
         if str(exc).startswith(str(path)):
             raise
+        if (why := _pickled(path, exc)) is not None:
+            raise why from None
         raise ValueError(f"{path}: not a readable {suffix} file ({exc})") from None
     except (OSError, EOFError) as exc:
         raise ValueError(f"{path}: not a readable {suffix} file ({exc})") from None

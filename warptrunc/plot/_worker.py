@@ -25,6 +25,7 @@ from __future__ import annotations
 import os
 import pickle
 import queue
+import signal
 import subprocess
 import sys
 import threading
@@ -230,6 +231,8 @@ def serve() -> None:
     ``("ok", png)`` or ``("error", exception, traceback)``, in order, until stdin ends."""
     inp, out = sys.stdin.buffer, sys.stdout.buffer
     sys.stdout = sys.stderr  # a print never lands among the answers
+    # Ctrl-C reaches the whole process group: the job reports it, and ends this helper
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     import matplotlib.backends.backend_agg
     import matplotlib.figure  # noqa: F401
 

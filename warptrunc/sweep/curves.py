@@ -278,8 +278,10 @@ def write_part(
             os.fsync(fd)
         finally:
             os.close(fd)
-    except BaseException:  # a full disk, a file-size limit: no half-written .tmp left behind
+    except BaseException as exc:  # a full disk, a file-size limit: no half-written .tmp left
         tmp.unlink(missing_ok=True)
+        if isinstance(exc, OSError) and exc.filename is None and exc.errno is not None:
+            raise OSError(exc.errno, exc.strerror, str(final)) from exc  # names the part
         raise
     try:
         os.link(tmp, final)  # fails if another attempt of this shard got there first
