@@ -74,12 +74,23 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_options(p, IndentMaps, title="generated maps")
     add_options(p, IndentProtocol, title="indentation protocol")
     add_options(p, PunchFaceSpec, prefix=FACE, title="punch face (default: an aligned smooth flat)")
-    add_options(p, Material, title="material (default: aluminium alloy against diamond)",
-                defaults=MATERIAL_DEFAULTS)  # fmt: skip
-    add_options(p, SolverSettings, title="contact solver (free half-space on each punch's window)",
-                exclude=("substrate",))  # fmt: skip
-    add_devices(p, "the indentation cycles (each punch window; rows of its floor added where N "
-                "does not divide the window's)")  # fmt: skip
+    add_options(
+        p,
+        Material,
+        title="material (default: aluminium alloy against diamond)",
+        defaults=MATERIAL_DEFAULTS,
+    )
+    add_options(
+        p,
+        SolverSettings,
+        title="contact solver (free half-space on each punch's window)",
+        exclude=("substrate",),
+    )
+    add_devices(
+        p,
+        "the indentation cycles (each punch window; rows of its floor added where N "
+        "does not divide the window's)",
+    )
     add_accept_unconverged(p, EXIT_NOT_CONVERGED)
     add_run_outputs(p, "indent", "skip indent.png")
 
@@ -97,7 +108,7 @@ def _named_by_option(msg: str) -> str:
     names = list(param_info(IndentProtocol))
     lead = re.match(r"(" + "|".join(names) + r")\b", msg)
     if lead:
-        msg = option(lead.group(1)) + msg[lead.end():]
+        msg = option(lead.group(1)) + msg[lead.end() :]
     named = "|".join(n for n in names if "_" in n)
     return re.sub(rf"(?<![-\w])({named})\b", lambda m: option(m.group(1)), msg)
 
@@ -113,18 +124,24 @@ def run(args: argparse.Namespace) -> int:
         protocol = from_args(IndentProtocol, args, face=face)
         solver = from_args(SolverSettings, args, substrate="free")
         if args.devices not in (None, 1) and solver.algorithm != "bccg":
-            raise ValueError(f"--devices {args.devices} spreads only --algorithm bccg (the "
-                             f"default), got --algorithm {solver.algorithm}")  # fmt: skip
+            raise ValueError(
+                f"--devices {args.devices} spreads only --algorithm bccg (the "
+                f"default), got --algorithm {solver.algorithm}"
+            )
         prepare_devices(args.devices)
         surfaces = _surfaces(args)
         s = surfaces[0]
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", PlacementOverlapWarning)
             res = indent(
-                surfaces, protocol=protocol, material=material, solver=solver,
-                progress=not args.no_progress and sys.stderr.isatty(), device=args.device,
+                surfaces,
+                protocol=protocol,
+                material=material,
+                solver=solver,
+                progress=not args.no_progress and sys.stderr.isatty(),
+                device=args.device,
                 devices=args.devices,
-            )  # fmt: skip
+            )
     except ValueError as exc:
         raise ValueError(_named_by_option(str(exc))) from None
     for w in caught:
@@ -139,15 +156,19 @@ def run(args: argparse.Namespace) -> int:
         if not args.no_plot:
             from ..plot import indentation
 
-            indentation(res, out / "indent.png",
-                        title=f"{s.nx}×{s.ny} over {s.lx * 1e3:.3g} mm, R$_t$ = "
-                        f"{s.Rt * 1e6:.3g} µm, H = {_h(material)}")  # fmt: skip
+            indentation(
+                res,
+                out / "indent.png",
+                title=f"{s.nx}×{s.ny} over {s.lx * 1e3:.3g} mm, R$_t$ = "
+                f"{s.Rt * 1e6:.3g} µm, H = {_h(material)}",
+            )
             files.append("indent.png")
     fits = res.fit_summary()
     n_real = len(surfaces)
     lines = [
         f"{s.nx}×{s.ny} surface over {s.lx * 1e3:.4g} × {s.ly * 1e3:.4g} mm"
-        + (f" ({n_real} realisations)" if n_real > 1 else "") + f", R_t = {s.Rt * 1e6:.4g} µm; "
+        + (f" ({n_real} realisations)" if n_real > 1 else "")
+        + f", R_t = {s.Rt * 1e6:.4g} µm; "
         f"E = {material.E / 1e9:.4g} GPa, E* = {material.contact_modulus / 1e9:.4g} GPa, "
         f"H = {_h(material)}; {res.peak_load.size} cells in "
         f"{res.settings['seconds']['total_s']:.3g} s",
@@ -156,24 +177,31 @@ def run(args: argparse.Namespace) -> int:
     ]
     for name, fit in fits.items():
         if not fit["made"]:
-            lines.append(f"  {name:24s} no fit: {fit['n_points']} cells in_fit, "
-                         f"at least {MIN_FIT_POINTS} needed")  # fmt: skip
+            lines.append(
+                f"  {name:24s} no fit: {fit['n_points']} cells in_fit, "
+                f"at least {MIN_FIT_POINTS} needed"
+            )
             continue
         (a0, a1), (b0, b1) = fit["alpha_ci95"], fit["beta_ci95"]
         lines.append(
             f"  {name:24s} E_c/E = {fit['beta']:.4g}·[F/(E·A)]^{fit['alpha']:.4f}  (E Young's "
             f"modulus); α 95 % [{a0:.4f}, {a1:.4f}], β 95 % [{b0:.4g}, {b1:.4g}]; "
             f"r² = {fit['r2']:.4f}, {fit['n_points']} cells of {fit['n_indents']} indents"
-        )  # fmt: skip
+        )
     print("\n".join(lines))
     print(f"wrote {args.out}/{', '.join(files)}")
     elastic = protocol.elastic
     if not res.all_converged or not (not elastic or res.elastic_converged.all()):
-        n_bad = int((~res.converged).sum()) + (int((~res.elastic_converged).sum()) if elastic else 0)
+        n_bad = int((~res.converged).sum()) + (
+            int((~res.elastic_converged).sum()) if elastic else 0
+        )
         print(f"WARNING: {n_bad} cycles did not converge (flagged in indent.csv)", file=sys.stderr)
         if not args.accept_unconverged:
-            print(f"warptrunc {NAME}: exit {EXIT_NOT_CONVERGED}: not every solve converged "
-                  "(--accept-unconverged to exit 0)", file=sys.stderr)  # fmt: skip
+            print(
+                f"warptrunc {NAME}: exit {EXIT_NOT_CONVERGED}: not every solve converged "
+                "(--accept-unconverged to exit 0)",
+                file=sys.stderr,
+            )
             return EXIT_NOT_CONVERGED
     return 0
 
@@ -212,8 +240,7 @@ def map_specs(args: argparse.Namespace) -> list:
         3 mm over 3072 (the defaults' 0.977 µm); ``--n 512``: 3 mm over 512.
     """
     if args.L is not None and args.map_side is not None:
-        raise ValueError(f"--L and --map-side {args.map_side} both give the map's side; "
-                         "give one")  # fmt: skip
+        raise ValueError(f"--L and --map-side {args.map_side} both give the map's side; give one")
     maps = from_args(IndentMaps, args, **({"map_side": None} if args.L is not None else {}))
     return maps.specs(wm_spec_from_args(args), keep_n=args.n is not None)
 
@@ -223,8 +250,10 @@ def _resolution_line(res) -> str:
     c = res.resolution_counts()
     n = c["n_cells"]
     ep = c["elastic_plastic"]
-    text = (f"  cells: {ep['resolved']}/{n} resolved, {ep['saturated']} saturated, "
-            f"{ep['in_fit']} in_fit (elastic–plastic)")  # fmt: skip
+    text = (
+        f"  cells: {ep['resolved']}/{n} resolved, {ep['saturated']} saturated, "
+        f"{ep['in_fit']} in_fit (elastic–plastic)"
+    )
     if "elastic" in c and not res.material.elastic:
         el = c["elastic"]
         text += f"; {el['resolved']} resolved, {el['saturated']} saturated, {el['in_fit']} in_fit (elastic)"
@@ -238,12 +267,16 @@ def _face_lines(res) -> list[str]:
     for f in res.settings.get("punch_face") or []:
         text = f"  punch {f['diameter_m'] * 1e6:.4g} µm: tilt {f['tilt_deg']:.4g}°"
         if f["tilt_deg"] > 0:
-            text += (f" (azimuth {f['tilt_azimuth_deg']:.4g}°, "
-                     f"{f['tilt_rise_over_diameter_m'] * 1e6:.3g} µm over the diameter)")  # fmt: skip
+            text += (
+                f" (azimuth {f['tilt_azimuth_deg']:.4g}°, "
+                f"{f['tilt_rise_over_diameter_m'] * 1e6:.3g} µm over the diameter)"
+            )
         r = f.get("roughness")
         if r and "hurst" in r:
-            text += (f"; rough face R_q {r['rms_m'] * 1e6:.3g} µm, H {r['hurst']:.3g}, "
-                     f"λ {r['cutoff_short_m'] * 1e6:.3g}–{r['cutoff_long_m'] * 1e6:.4g} µm")  # fmt: skip
+            text += (
+                f"; rough face R_q {r['rms_m'] * 1e6:.3g} µm, H {r['hurst']:.3g}, "
+                f"λ {r['cutoff_short_m'] * 1e6:.3g}–{r['cutoff_long_m'] * 1e6:.4g} µm"
+            )
         elif r:
             text += f"; face read from {r['file']} (R_q {r['rms_m'] * 1e6:.3g} µm levelled)"
         out.append(text)

@@ -41,9 +41,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_commit(p)
     add_stages(p, STAGES)
     add_time_budget(p, "the indentation stage between pieces")
-    add_workers(p, "the indentation stage's parts (one punch × one realisation of a piece each) "
-                "and the elastic stage's maps (the other stages in this process)",
-                "the same tasks (workers one per GPU, on a filesystem shared with --out)")  # fmt: skip
+    add_workers(
+        p,
+        "the indentation stage's parts (one punch × one realisation of a piece each) "
+        "and the elastic stage's maps (the other stages in this process)",
+        "the same tasks (workers one per GPU, on a filesystem shared with --out)",
+    )
     add_device(p)
 
 
@@ -53,12 +56,22 @@ def run(args: argparse.Namespace) -> int:
         require_extra()
     except ImportError as exc:
         raise ValueError(str(exc)) from None
-    doc = reproduce(args.profile, args.out, stages=args.stages, overwrite=args.overwrite,
-                    time_budget=args.time_budget, commit=args.commit, device=args.device,
-                    workers=args.workers, scheduler=args.scheduler)  # fmt: skip
+    doc = reproduce(
+        args.profile,
+        args.out,
+        stages=args.stages,
+        overwrite=args.overwrite,
+        time_budget=args.time_budget,
+        commit=args.commit,
+        device=args.device,
+        workers=args.workers,
+        scheduler=args.scheduler,
+    )
     m = doc["meta"]
-    print(f"wrote {args.out}/report.md, results.json and {len(m['figures'])} figures "
-          f"in {m['wall_s']:.1f} s on {m['device']} (reused: {', '.join(m['reused']) or 'none'})")  # fmt: skip
+    print(
+        f"wrote {args.out}/report.md, results.json and {len(m['figures'])} figures "
+        f"in {m['wall_s']:.1f} s on {m['device']} (reused: {', '.join(m['reused']) or 'none'})"
+    )
     for msg in m.get("incomplete", {}).values():
         print(f"incomplete: {msg}")
     return 0

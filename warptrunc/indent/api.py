@@ -53,8 +53,11 @@ def _check_loads(window: PunchWindow, protocol: IndentProtocol, hardness: float)
     fmax = protocol.peak_loads[-1]
     cap = hardness * min(window.area, window.n_pixels * window.pixel_area)
     if not fmax < cap:
-        what = ("a flat as large as the map" if window.diameter is None
-                else f"the {window.diameter:.6g} m punch")  # fmt: skip
+        what = (
+            "a flat as large as the map"
+            if window.diameter is None
+            else f"the {window.diameter:.6g} m punch"
+        )
         raise ValueError(
             f"peak_loads must stay below what {what} can carry, H × A = {hardness:.4g} Pa × "
             f"{cap / hardness:.4g} m² = {cap:.4g} N (allowed: (0, {cap:.4g}) N), got "
@@ -63,14 +66,19 @@ def _check_loads(window: PunchWindow, protocol: IndentProtocol, hardness: float)
 
 
 _REUSED = {  # run_cycles column → to_dict column of an elastic run
-    "displacement": "displacement_m", "n_contact": "n_contact_pixels", "contact_area": "contact_area_m2",
-    "max_pressure": "max_pressure_Pa", "unloading_stiffness": "unloading_stiffness_N_per_m",
-    "partial_unloading_stiffness": "partial_unloading_stiffness_N_per_m", "converged": "converged",
-}  # fmt: skip
+    "displacement": "displacement_m",
+    "n_contact": "n_contact_pixels",
+    "contact_area": "contact_area_m2",
+    "max_pressure": "max_pressure_Pa",
+    "unloading_stiffness": "unloading_stiffness_N_per_m",
+    "partial_unloading_stiffness": "partial_unloading_stiffness_N_per_m",
+    "converged": "converged",
+}
 
 
-def _elastic_cycles(reuse: Any, windows: list, loads: np.ndarray, material: Material,
-                    solver: SolverSettings) -> list[dict[str, np.ndarray]]:  # fmt: skip
+def _elastic_cycles(
+    reuse: Any, windows: list, loads: np.ndarray, material: Material, solver: SolverSettings
+) -> list[dict[str, np.ndarray]]:
     """Split an elastic run given as ``reuse`` into the run_cycles columns of each window,
     checking that it is one (H = inf, same E*, solver settings, punches, centres and loads)."""
     cols = reuse
@@ -80,7 +88,9 @@ def _elastic_cycles(reuse: Any, windows: list, loads: np.ndarray, material: Mate
                 f"reuse must be an elastic run (material.hardness = inf), got hardness "
                 f"{reuse.material.hardness!r} Pa"
             )
-        if not math.isclose(reuse.material.contact_modulus, material.contact_modulus, rel_tol=1e-12):
+        if not math.isclose(
+            reuse.material.contact_modulus, material.contact_modulus, rel_tol=1e-12
+        ):
             raise ValueError(
                 f"reuse was run with E* = {reuse.material.contact_modulus!r} Pa, this run with "
                 f"{material.contact_modulus!r} Pa; give the same elastic constants"
@@ -91,8 +101,14 @@ def _elastic_cycles(reuse: Any, windows: list, loads: np.ndarray, material: Mate
     if isinstance(cols, dict) and "n_contact_pixels" not in cols and "n_contact" in cols:
         cols = {**cols, "n_contact_pixels": cols["n_contact"]}  # the reproduce pieces' name
     try:
-        keys = (*_REUSED.values(), "punch_diameter_m", "placement", "peak_load_N", "centre_x_m",
-                "centre_y_m")  # fmt: skip
+        keys = (
+            *_REUSED.values(),
+            "punch_diameter_m",
+            "placement",
+            "peak_load_N",
+            "centre_x_m",
+            "centre_y_m",
+        )
         cols = {k: np.asarray(cols[k]) for k in keys}
     except (KeyError, TypeError) as e:
         raise ValueError(
@@ -109,11 +125,13 @@ def _elastic_cycles(reuse: Any, windows: list, loads: np.ndarray, material: Mate
     for r, (_i, j, w, _f) in enumerate(windows):
         sl = slice(r * m, (r + 1) * m)
         d = np.nan if w.diameter is None else w.diameter
-        same = (np.allclose(cols["punch_diameter_m"][sl], d, rtol=1e-12, atol=0, equal_nan=True)
-                and np.all(cols["placement"][sl] == j)
-                and np.allclose(cols["centre_x_m"][sl], w.centre[0], rtol=1e-12, atol=0)
-                and np.allclose(cols["centre_y_m"][sl], w.centre[1], rtol=1e-12, atol=0)
-                and np.allclose(cols["peak_load_N"][sl], loads, rtol=1e-12, atol=0))  # fmt: skip
+        same = (
+            np.allclose(cols["punch_diameter_m"][sl], d, rtol=1e-12, atol=0, equal_nan=True)
+            and np.all(cols["placement"][sl] == j)
+            and np.allclose(cols["centre_x_m"][sl], w.centre[0], rtol=1e-12, atol=0)
+            and np.allclose(cols["centre_y_m"][sl], w.centre[1], rtol=1e-12, atol=0)
+            and np.allclose(cols["peak_load_N"][sl], loads, rtol=1e-12, atol=0)
+        )
         if not same:
             raise ValueError(
                 f"reuse rows {sl.start}–{sl.stop - 1} are not the punch of diameter {d!r} m, "
@@ -265,9 +283,12 @@ def indent(
             centres, frac = np.array([[0.5 * lx, 0.5 * ly]]), np.zeros(1)
         else:
             centres, frac = place_punches(
-                (lx, ly), d, protocol.placements, seed=(protocol.placement_seed, i),
+                (lx, ly),
+                d,
+                protocol.placements,
+                seed=(protocol.placement_seed, i),
                 overlap=protocol.overlap,
-            )  # fmt: skip
+            )
         for k, src in enumerate(sources):
             for j, c in enumerate(centres):
                 w = src.window(d, (float(c[0]), float(c[1])), face=faces[i])
@@ -287,49 +308,70 @@ def indent(
             )
         given = _elastic_cycles(reuse, [t[1:] for t in windows], loads, material, solver)
     cols: dict[str, list] = {}
-    timings = {"elastic_plastic_s": 0.0, "elastic_s": 0.0, "refinement_s": 0.0,
-               "truncation_s": 0.0}  # fmt: skip
+    timings = {"elastic_plastic_s": 0.0, "elastic_s": 0.0, "refinement_s": 0.0, "truncation_s": 0.0}
     per_punch = []
     n_reused = 0
     solve_elastic = (elastic and math.isfinite(hardness)) or (given is not None)
-    with progress_bar(total=len(windows) * m * (2 if solve_elastic else 1),
-                      desc="indentation cycles (map pixel)", unit="cycle",
-                      enabled=progress) as bar:  # fmt: skip
+    with progress_bar(
+        total=len(windows) * m * (2 if solve_elastic else 1),
+        desc="indentation cycles (map pixel)",
+        unit="cycle",
+        enabled=progress,
+    ) as bar:
         for r, (k, _i, j, w, frac) in enumerate(windows):
             rows, info = solve_placement(
-                sources[k], w, protocol, material, solver=solver,
-                given=None if given is None else given[r], step=bar.update, device=dev,
+                sources[k],
+                w,
+                protocol,
+                material,
+                solver=solver,
+                given=None if given is None else given[r],
+                step=bar.update,
+                device=dev,
                 devices=devices,
-            )  # fmt: skip
+            )
             n_reused += info["reused"]
             for key, v in info["seconds"].items():
                 timings[key] += v
-            rows.update(placement=np.full(m, j, dtype=np.int64),
-                        realisation=np.full(m, k, dtype=np.int64),
-                        overlap_fraction=np.full(m, frac))  # fmt: skip
+            rows.update(
+                placement=np.full(m, j, dtype=np.int64),
+                realisation=np.full(m, k, dtype=np.int64),
+                overlap_fraction=np.full(m, frac),
+            )
             for key, v in rows.items():
                 cols.setdefault(key, []).append(np.asarray(v))
-            per_punch.append({
-                "realisation": k, "punch_diameter_m": w.diameter, "placement": j,
-                "centre_m": list(w.centre), "window": [int(v) for v in (*w.origin, *w.mask.shape)],
-                "n_punch_pixels": w.n_pixels, "overlap_fraction": frac,
-                "disk_Rt_m": float(np.ptp(w.surface_disk_heights)),
-                "refined_windows": info["windows"], **face_record(w),
-            })  # fmt: skip
+            per_punch.append(
+                {
+                    "realisation": k,
+                    "punch_diameter_m": w.diameter,
+                    "placement": j,
+                    "centre_m": list(w.centre),
+                    "window": [int(v) for v in (*w.origin, *w.mask.shape)],
+                    "n_punch_pixels": w.n_pixels,
+                    "overlap_fraction": frac,
+                    "disk_Rt_m": float(np.ptp(w.surface_disk_heights)),
+                    "refined_windows": info["windows"],
+                    **face_record(w),
+                }
+            )
     algo = solver.algorithm
     settings_info = {
         "surface": maps[0][2] if len(maps) == 1 else [mp[2] for mp in maps],
         "device": str(dev),
         "solver": f"warptrunc contact solver, algorithm {algo!r} ("
-        + ("bound-constrained CG, Vollebregt 2014" if algo == "bccg"
-           else "constrained CG, Polonsky & Keer 1999")
+        + (
+            "bound-constrained CG, Vollebregt 2014"
+            if algo == "bccg"
+            else "constrained CG, Polonsky & Keer 1999"
+        )
         + "), free half-space on each punch's window"
         + (", pressure capped at H" if math.isfinite(hardness) else ""),
         "reused_elastic_cycles": n_reused,
         "solver_settings": solver.to_dict(),
         "elastic_reference": bool(elastic),
         "refinement": {
-            "resolution_tol": protocol.resolution_tol, "refine_max": protocol.refine_max,
+            "resolution_tol": protocol.resolution_tol,
+            "refine_max": protocol.refine_max,
             "min_contact_pixels": protocol.min_contact_pixels,
             "maps": [{"refinable": src.refinable, "note": src.why_not} for src in sources],
             "notes": NOTES,
@@ -337,7 +379,7 @@ def indent(
         "punch_face": face_settings(diameters, faces),
         "punches": per_punch,
         "seconds": {**timings, "total_s": time.perf_counter() - t_start},
-    }  # fmt: skip
+    }
     arrays = {k: np.concatenate(v) for k, v in cols.items()}
     return IndentationResult(**arrays, material=material, protocol=protocol, settings=settings_info)
 
@@ -345,8 +387,11 @@ def indent(
 def _realisations(surface: Any, pixel_size: Any) -> list[tuple]:
     """(heights, pixel, Surface.to_dict(), Surface.params or None) of each realisation; all of
     one size and pixel."""
-    many = isinstance(surface, (list, tuple)) and surface and all(
-        isinstance(v, Surface) for v in surface)  # fmt: skip
+    many = (
+        isinstance(surface, (list, tuple))
+        and surface
+        and all(isinstance(v, Surface) for v in surface)
+    )
     maps = [_heights(v, pixel_size) for v in (surface if many else [surface])]
     z0, px0 = maps[0][:2]
     for z, px, *_ in maps[1:]:

@@ -43,8 +43,14 @@ __all__ = ["COLUMNS", "make_solver", "run_cycles"]
 
 
 @fill_doc(SHARED_DOCS)
-def make_solver(window: PunchWindow, material: Material, *, solver: SolverSettings | None = None,
-                device: Any = None, devices: Any = None) -> ContactSolver:  # fmt: skip
+def make_solver(
+    window: PunchWindow,
+    material: Material,
+    *,
+    solver: SolverSettings | None = None,
+    device: Any = None,
+    devices: Any = None,
+) -> ContactSolver:
     """A contact solver on a punch window, with the penetration tolerance of the disk's heights.
 
     Parameters
@@ -95,21 +101,39 @@ def make_solver(window: PunchWindow, material: Material, *, solver: SolverSettin
     if settings.precondition_above is None:
         settings = settings.replace(precondition_above=PRECONDITION_ABOVE)
     heights = window.heights
-    n_dev = devices if isinstance(devices, int) else (
-        len(devices) if isinstance(devices, (list, tuple)) else 1)  # fmt: skip
+    n_dev = (
+        devices
+        if isinstance(devices, int)
+        else (len(devices) if isinstance(devices, (list, tuple)) else 1)
+    )
     if n_dev > 1 and heights.shape[0] % n_dev:  # row slabs: whole rows of the floor below
         extra = n_dev - heights.shape[0] % n_dev
         heights = np.vstack([heights, np.full((extra, heights.shape[1]), window.floor)])
-    return ContactSolver(heights, window.pixel_size, material.contact_modulus,
-                         settings=settings, hardness=material.hardness, device=device,
-                         devices=devices)  # fmt: skip
+    return ContactSolver(
+        heights,
+        window.pixel_size,
+        material.contact_modulus,
+        settings=settings,
+        hardness=material.hardness,
+        device=device,
+        devices=devices,
+    )
 
 
 COLUMNS = (
-    "displacement", "n_contact", "contact_area", "n_plastic", "plastic_area", "plastic_volume",
-    "max_pressure", "unloading_stiffness", "partial_unloading_stiffness",
-    "unloaded_displacement", "n_iterations", "converged",
-)  # fmt: skip
+    "displacement",
+    "n_contact",
+    "contact_area",
+    "n_plastic",
+    "plastic_area",
+    "plastic_volume",
+    "max_pressure",
+    "unloading_stiffness",
+    "partial_unloading_stiffness",
+    "unloaded_displacement",
+    "n_iterations",
+    "converged",
+)
 """Per-peak outputs of :func:`run_cycles`."""
 
 
@@ -174,23 +198,31 @@ def run_cycles(
     n_reused = 0
     if elastic is not None and math.isfinite(hardness):
         below = (np.asarray(elastic["max_pressure"], np.float64) < hardness) & np.asarray(
-            elastic["converged"], bool)  # fmt: skip
+            elastic["converged"], bool
+        )
         if below.shape != loads.shape:
             raise ValueError(f"elastic has {below.size} cycles, peak_loads {loads.size}")
         n_reused = int(np.argmin(below)) if not below.all() else loads.size
-        unyielded = {"n_plastic": 0, "plastic_area": 0.0, "plastic_volume": 0.0,
-                     "unloaded_displacement": math.nan, "n_iterations": 0}  # fmt: skip
+        unyielded = {
+            "n_plastic": 0,
+            "plastic_area": 0.0,
+            "plastic_volume": 0.0,
+            "unloaded_displacement": math.nan,
+            "n_iterations": 0,
+        }
         for c in COLUMNS:
             v = elastic.get(c)
-            out[c] = (list(np.asarray(v)[:n_reused]) if v is not None
-                      else [unyielded[c]] * n_reused)  # fmt: skip
+            out[c] = list(np.asarray(v)[:n_reused]) if v is not None else [unyielded[c]] * n_reused
         if step is not None:
             for _ in range(n_reused):
                 step()
     f = float(protocol.unload_fraction)
     reach = window.top - window.floor  # an approach this deep would reach outside the disk
-    cs = (make_solver(window, material, solver=solver, device=device, devices=devices)
-          if n_reused < loads.size else None)  # fmt: skip
+    cs = (
+        make_solver(window, material, solver=solver, device=device, devices=devices)
+        if n_reused < loads.size
+        else None
+    )
     if cs is not None and approach is not None:
         first = float(np.broadcast_to(np.asarray(approach, np.float64), loads.shape)[n_reused])
         if first > 0:
@@ -208,8 +240,11 @@ def run_cycles(
                 f"({reach:.4g} m below its top); give punch_window a larger drop"
             )
         # the loads the solves reached (each within thermotol of its target)
-        k_secant = ((peak.load - low.load) / (peak.depth - low.depth) if peak.depth > low.depth
-                    else math.nan)  # fmt: skip
+        k_secant = (
+            (peak.load - low.load) / (peak.depth - low.depth)
+            if peak.depth > low.depth
+            else math.nan
+        )
         out["displacement"].append(peak.depth)
         out["n_contact"].append(peak.n_contact)
         out["contact_area"].append(peak.contact_area)
@@ -221,12 +256,17 @@ def run_cycles(
         out["unloading_stiffness"].append(float(k_barber))
         out["partial_unloading_stiffness"].append(k_secant)
         out["unloaded_displacement"].append(low.depth)
-        out["converged"].append(peak.converged and low.converged and bool(ok_barber)
-                                and math.isfinite(k_secant))  # fmt: skip
+        out["converged"].append(
+            peak.converged and low.converged and bool(ok_barber) and math.isfinite(k_secant)
+        )
         if step is not None:
             step()
     if cs is not None:
         cs.freeze_plastic(False)
-    types = {"n_contact": np.int64, "n_plastic": np.int64, "n_iterations": np.int64,
-             "converged": bool}  # fmt: skip
+    types = {
+        "n_contact": np.int64,
+        "n_plastic": np.int64,
+        "n_iterations": np.int64,
+        "converged": bool,
+    }
     return {c: np.asarray(v, dtype=types.get(c, np.float64)) for c, v in out.items()}

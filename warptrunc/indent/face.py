@@ -92,38 +92,68 @@ class PunchFaceSpec(Parameters):
     """
 
     tilt_deg: float = param(
-        0.0, "tilt θ of the punch face against the sample's mean plane, held fixed as the "
-        "indenter's shaft holds it (degrees; 0.1° rises 0.88 µm over 502.6 µm)", ge=0.0, le=5.0,
-    )  # fmt: skip
+        0.0,
+        "tilt θ of the punch face against the sample's mean plane, held fixed as the "
+        "indenter's shaft holds it (degrees; 0.1° rises 0.88 µm over 502.6 µm)",
+        ge=0.0,
+        le=5.0,
+    )
     tilt_azimuth_deg: float = param(
-        0.0, "direction of the tilted face's edge nearest the sample, from +x toward +y, the "
-        "same for every placement (degrees)", ge=0.0, lt=360.0, sweep=False,
-    )  # fmt: skip
+        0.0,
+        "direction of the tilted face's edge nearest the sample, from +x toward +y, the "
+        "same for every placement (degrees)",
+        ge=0.0,
+        lt=360.0,
+        sweep=False,
+    )
     roughness: float = param(
-        0.0, "rms R_q of a generated self-affine rough punch face, over the disk after "
-        "levelling; 0 = smooth", unit="m", ge=0.0,
-    )  # fmt: skip
+        0.0,
+        "rms R_q of a generated self-affine rough punch face, over the disk after "
+        "levelling; 0 = smooth",
+        unit="m",
+        ge=0.0,
+    )
     hurst: float = param(
-        DEFAULT_HURST, "Hurst exponent H of the rough punch face, C(q) ∝ q^(−2−2H)", gt=0.0,
-        le=1.0, sweep=False,
-    )  # fmt: skip
+        DEFAULT_HURST,
+        "Hurst exponent H of the rough punch face, C(q) ∝ q^(−2−2H)",
+        gt=0.0,
+        le=1.0,
+        sweep=False,
+    )
     cutoff_short: float | None = param(
-        None, "shortest wavelength λ_s of the rough punch face; none = 2 pixels of the map",
-        unit="m", gt=0.0, optional=True, sweep=False,
-    )  # fmt: skip
+        None,
+        "shortest wavelength λ_s of the rough punch face; none = 2 pixels of the map",
+        unit="m",
+        gt=0.0,
+        optional=True,
+        sweep=False,
+    )
     cutoff_long: float | None = param(
-        None, "longest wavelength λ_L of the rough punch face; none = the punch diameter",
-        unit="m", gt=0.0, optional=True, sweep=False,
-    )  # fmt: skip
+        None,
+        "longest wavelength λ_L of the rough punch face; none = the punch diameter",
+        unit="m",
+        gt=0.0,
+        optional=True,
+        sweep=False,
+    )
     seed: int = param(
-        0, "seed of the rough punch face (one face per punch diameter, the same at every "
-        "placement)", kind="int", ge=0, le=2**32 - 1, sweep=False,
-    )  # fmt: skip
+        0,
+        "seed of the rough punch face (one face per punch diameter, the same at every placement)",
+        kind="int",
+        ge=0,
+        le=2**32 - 1,
+        sweep=False,
+    )
     file: str | None = param(
-        None, "a height map of the punch face (heights toward the sample, its own pixel), "
+        None,
+        "a height map of the punch face (heights toward the sample, its own pixel), "
         "centred on every punch, levelled over its disk and resampled bilinearly; instead of "
-        "a generated roughness", kind="str", optional=True, metavar="FILE", sweep=False,
-    )  # fmt: skip
+        "a generated roughness",
+        kind="str",
+        optional=True,
+        metavar="FILE",
+        sweep=False,
+    )
 
     def __post_init__(self) -> None:
         if isinstance(self.file, os.PathLike):
@@ -144,8 +174,9 @@ class PunchFaceSpec(Parameters):
         return self.tilt_deg == 0.0 and self.roughness == 0.0 and self.file is None
 
 
-def self_affine_field(n: int, period: float, hurst: float, cutoff_short: float,
-                      cutoff_long: float, seed: Any) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+def self_affine_field(
+    n: int, period: float, hurst: float, cutoff_short: float, cutoff_long: float, seed: Any
+) -> tuple[np.ndarray, np.ndarray]:
     """A periodic self-affine Gaussian field by Fourier filtering of white noise (host, float64).
 
     Parameters
@@ -330,13 +361,14 @@ def make_face(
     d = float(diameter)
     tilt_deg = face.tilt_deg
     info: dict[str, Any] = {
-        "tilt_deg": float(tilt_deg), "tilt_azimuth_deg": float(face.tilt_azimuth_deg),
+        "tilt_deg": float(tilt_deg),
+        "tilt_azimuth_deg": float(face.tilt_azimuth_deg),
         "tilt_rise_over_diameter_m": d * math.tan(math.radians(tilt_deg)),
         "tilt_axis": "through the punch centre, perpendicular to the azimuth; the punch is held "
         "against rotation (no moment equilibrium)",
         "composite": "gap = punch plane - (sample heights + face heights), face heights toward "
         "the sample",
-    }  # fmt: skip
+    }
     rough: Any = None
     if surface is not None and face.roughness > 0:
         raise ValueError(
@@ -354,8 +386,9 @@ def make_face(
     return PunchFace(d, math.radians(tilt_deg), math.radians(face.tilt_azimuth_deg), rough, info)
 
 
-def _generated_face(d: float, face: PunchFaceSpec, seed: Any,
-                    pixel: float | None) -> tuple[_Fourier, dict]:  # fmt: skip
+def _generated_face(
+    d: float, face: PunchFaceSpec, seed: Any, pixel: float | None
+) -> tuple[_Fourier, dict]:
     rms, hurst = face.roughness, face.hurst
     if face.cutoff_short is None:
         if pixel is None:
@@ -363,8 +396,11 @@ def _generated_face(d: float, face: PunchFaceSpec, seed: Any,
         lam_s, short_how = 2.0 * float(pixel), "default: 2 pixels of the map"
     else:
         lam_s, short_how = float(face.cutoff_short), "given"
-    lam_l, long_how = (d, "default: the punch diameter") if face.cutoff_long is None else (
-        float(face.cutoff_long), "given")  # fmt: skip
+    lam_l, long_how = (
+        (d, "default: the punch diameter")
+        if face.cutoff_long is None
+        else (float(face.cutoff_long), "given")
+    )
     if not lam_l > lam_s:
         raise ValueError(
             f"face.cutoff_long ({lam_l:.6g} m, {long_how}) must exceed face.cutoff_short "
@@ -391,11 +427,17 @@ def _generated_face(d: float, face: PunchFaceSpec, seed: Any,
     face = _Fourier(period, freqs.astype(np.float64), scale * sub, scale * plane)
     info = {
         "kind": "self-affine (Fourier-filtered Gaussian), levelled over the disk",
-        "rms_m": float(rms), "hurst": float(hurst), "cutoff_short_m": lam_s,
-        "cutoff_short": short_how, "cutoff_long_m": lam_l, "cutoff_long": long_how,
-        "seed": list(np.atleast_1d(seed).tolist()), "period_m": period, "modes_per_axis": 2 * m + 1,
+        "rms_m": float(rms),
+        "hurst": float(hurst),
+        "cutoff_short_m": lam_s,
+        "cutoff_short": short_how,
+        "cutoff_long_m": lam_l,
+        "cutoff_long": long_how,
+        "seed": list(np.atleast_1d(seed).tolist()),
+        "period_m": period,
+        "modes_per_axis": 2 * m + 1,
         "reference_grid": n,
-    }  # fmt: skip
+    }
     return face, info
 
 
@@ -418,9 +460,11 @@ def _read_face(surface: Any, d: float, source: str | None) -> tuple[_Bilinear, d
     info = {
         "kind": "read from a height map, centred on the punch, levelled over the disk, "
         "resampled by bilinear interpolation of its pixel-centre values",
-        "file": source, "shape": [ny, nx], "pixel_m": [dx, dy],
+        "file": source,
+        "shape": [ny, nx],
+        "pixel_m": [dx, dy],
         "rms_m": float(np.sqrt(np.mean(res * res))),
-    }  # fmt: skip
+    }
     return _Bilinear(z, (dx, dy), plane), info
 
 
@@ -490,8 +534,10 @@ def face_settings(diameters: tuple, faces: list[PunchFace | None]) -> list[dict]
     """
     if all(f is None for f in faces):
         return None
-    return [{"diameter_m": d, **(f.info if f is not None else {"tilt_deg": 0.0, "roughness": None})}
-            for d, f in zip(diameters, faces, strict=True)]  # fmt: skip
+    return [
+        {"diameter_m": d, **(f.info if f is not None else {"tilt_deg": 0.0, "roughness": None})}
+        for d, f in zip(diameters, faces, strict=True)
+    ]
 
 
 def face_record(window: Any) -> dict[str, float]:
@@ -512,8 +558,11 @@ def face_record(window: Any) -> dict[str, float]:
         return {}
     f = window.face_heights[window.mask]
     rough = window.untilted_disk_heights - window.surface_disk_heights
-    return {"face_Rt_m": float(np.ptp(f)), "face_roughness_rms_m": float(np.std(rough)),
-            "composite_Rt_m": float(np.ptp(window.disk_heights))}  # fmt: skip
+    return {
+        "face_Rt_m": float(np.ptp(f)),
+        "face_roughness_rms_m": float(np.std(rough)),
+        "composite_Rt_m": float(np.ptp(window.disk_heights)),
+    }
 
 
 def check_same_face(reuse: Any, protocol: Any) -> None:

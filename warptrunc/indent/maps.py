@@ -34,16 +34,24 @@ class IndentMaps(Parameters):
     """
 
     map_side: float | None = param(
-        MAP_SIDE, "side of a generated map, at the pixel of its preset or of the defaults unless "
+        MAP_SIDE,
+        "side of a generated map, at the pixel of its preset or of the defaults unless "
         "--n is given (3 mm: the paper's island maps; the default placements of the 502.6 µm "
-        "punch never overlap there); none = the surface's own --L", unit="m", gt=0.0,
-        optional=True, sweep=False,
-    )  # fmt: skip
+        "punch never overlap there); none = the surface's own --L",
+        unit="m",
+        gt=0.0,
+        optional=True,
+        sweep=False,
+    )
     seeds: tuple[int, ...] | None = param(
-        None, "WM surface realisations: the phase seeds of the surfaces indented (the same "
+        None,
+        "WM surface realisations: the phase seeds of the surfaces indented (the same "
         "punches and placements on each; the fits' intervals resample their indents); none = "
-        "the one surface of --seed", kind="seeds", optional=True, sweep=False,
-    )  # fmt: skip
+        "the one surface of --seed",
+        kind="seeds",
+        optional=True,
+        sweep=False,
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)

@@ -90,11 +90,26 @@ def solve_placement(
     el_cache: dict[int, dict[int, dict[str, Any]]] = {}  # factor → load index → elastic cycle
     sec = {"elastic_s": 0.0, "elastic_plastic_s": 0.0, "refinement_s": 0.0, "truncation_s": 0.0}
 
-    def cycles(win: PunchWindow, idx: np.ndarray, mat: Material, el: Any = None,
-               bar: Any = None, approach: Any = None):  # fmt: skip
+    def cycles(
+        win: PunchWindow,
+        idx: np.ndarray,
+        mat: Material,
+        el: Any = None,
+        bar: Any = None,
+        approach: Any = None,
+    ):
         at = protocol if idx.size == m else protocol.replace(peak_loads=tuple(loads[idx]))
-        return run_cycles(win, at, mat, solver=solver, elastic=el, approach=approach, step=bar,
-                          device=device, devices=devices)  # fmt: skip
+        return run_cycles(
+            win,
+            at,
+            mat,
+            solver=solver,
+            elastic=el,
+            approach=approach,
+            step=bar,
+            device=device,
+            devices=devices,
+        )
 
     def keep(factor: int, idx: np.ndarray, out: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         by = el_cache.setdefault(factor, {})
@@ -121,19 +136,35 @@ def solve_placement(
     el_ref: CellRefinement | None = None
     if two and given is None:
         el_ref = refine_cells(
-            source, w, el0,
+            source,
+            w,
+            el0,
             lambda win, idx, k, a: keep(k, idx, cycles(win, idx, at_inf, approach=a)),
-            protocol=protocol, windows=windows, plateau=plateau,
-        )  # fmt: skip
+            protocol=protocol,
+            windows=windows,
+            plateau=plateau,
+        )
     ep_ref = refine_cells(
-        source, w, ep0,
-        lambda win, idx, k, a: cycles(win, idx, material, _subset(el_cache.get(k, {}), idx),
-                                      approach=a),
-        protocol=protocol, windows=windows, plateau=plateau,
-    )  # fmt: skip
+        source,
+        w,
+        ep0,
+        lambda win, idx, k, a: cycles(
+            win, idx, material, _subset(el_cache.get(k, {}), idx), approach=a
+        ),
+        protocol=protocol,
+        windows=windows,
+        plateau=plateau,
+    )
     if el_ref is None and given is not None:  # the given elastic cycles, judged as they are
-        el_ref = refine_cells(source, w, el0, lambda *a: {}, protocol=protocol.replace(
-            refine_max=1), windows=windows, plateau=plateau)  # fmt: skip
+        el_ref = refine_cells(
+            source,
+            w,
+            el0,
+            lambda *a: {},
+            protocol=protocol.replace(refine_max=1),
+            windows=windows,
+            plateau=plateau,
+        )
     if el_ref is None and elastic:  # H = inf: the elastic–plastic model is the elastic one
         el_ref = ep_ref
     t3 = time.perf_counter()
@@ -142,22 +173,36 @@ def solve_placement(
     tr = {k: np.zeros(m) for k in ("depth", "contact_area", "stiffness")}
     for k in np.unique(ep_ref.factor):
         idx = np.flatnonzero(ep_ref.factor == k)
-        t = truncation_at_loads(ep_ref.windows[int(k)], loads[idx], material.contact_modulus,
-                                n_increments=protocol.truncation_increments, device=device)  # fmt: skip
+        t = truncation_at_loads(
+            ep_ref.windows[int(k)],
+            loads[idx],
+            material.contact_modulus,
+            n_increments=protocol.truncation_increments,
+            device=device,
+        )
         for c in tr:
             tr[c][idx] = t[c]
-    rows.update(truncation_depth=tr["depth"], truncation_contact_area=tr["contact_area"],
-                truncation_stiffness=tr["stiffness"])  # fmt: skip
+    rows.update(
+        truncation_depth=tr["depth"],
+        truncation_contact_area=tr["contact_area"],
+        truncation_stiffness=tr["stiffness"],
+    )
     t4 = time.perf_counter()
-    sec.update(elastic_s=t1 - t0, elastic_plastic_s=t2 - t1, refinement_s=t3 - t2,
-               truncation_s=t4 - t3)  # fmt: skip
-    info = {"seconds": sec, "reused": reused, "why_not": source.why_not,
-            "windows": {int(k): [int(v) for v in win.mask.shape] for k, win in windows.items()}}
+    sec.update(
+        elastic_s=t1 - t0, elastic_plastic_s=t2 - t1, refinement_s=t3 - t2, truncation_s=t4 - t3
+    )
+    info = {
+        "seconds": sec,
+        "reused": reused,
+        "why_not": source.why_not,
+        "windows": {int(k): [int(v) for v in win.mask.shape] for k, win in windows.items()},
+    }
     return rows, info
 
 
-def _rows(w: PunchWindow, loads: np.ndarray, ep: CellRefinement,
-          el: CellRefinement | None) -> dict[str, np.ndarray]:  # fmt: skip
+def _rows(
+    w: PunchWindow, loads: np.ndarray, ep: CellRefinement, el: CellRefinement | None
+) -> dict[str, np.ndarray]:
     """The result columns of one placement from its refined contact models."""
     m = loads.size
     c = ep.cycles
@@ -178,8 +223,17 @@ def _rows(w: PunchWindow, loads: np.ndarray, ep: CellRefinement,
         "in_fit": ep.in_fit,
         "resolution_note": ep.note,
     }
-    for k in ("displacement", "n_contact", "contact_area", "plastic_area", "plastic_volume",
-              "max_pressure", "unloading_stiffness", "partial_unloading_stiffness", "converged"):
+    for k in (
+        "displacement",
+        "n_contact",
+        "contact_area",
+        "plastic_area",
+        "plastic_volume",
+        "max_pressure",
+        "unloading_stiffness",
+        "partial_unloading_stiffness",
+        "converged",
+    ):
         rows[k] = np.asarray(c[k])
     nan = np.full(m, np.nan)
     e = None if el is None else el.cycles
@@ -189,10 +243,12 @@ def _rows(w: PunchWindow, loads: np.ndarray, ep: CellRefinement,
     rows.update(
         elastic_converged=off if e is None else np.asarray(e["converged"], bool),
         elastic_pixel_size=nan if el is None else el.pixel_size,
-        elastic_n_contact=np.zeros(m, np.int64) if e is None else np.asarray(e["n_contact"], np.int64),
+        elastic_n_contact=np.zeros(m, np.int64)
+        if e is None
+        else np.asarray(e["n_contact"], np.int64),
         elastic_resolution_change=nan if el is None else el.change,
         elastic_resolved=off if el is None else el.resolved,
         elastic_saturated=off if el is None else el.saturated,
         elastic_in_fit=off if el is None else el.in_fit,
-    )  # fmt: skip
+    )
     return rows

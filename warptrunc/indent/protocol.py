@@ -94,47 +94,91 @@ class IndentProtocol(Parameters):
     """
 
     punch_diameters: tuple[float, ...] | None = param(
-        PAPER_PUNCH_DIAMETERS, "punch diameters d; none = one flat larger than the map",
-        unit="m", gt=0.0, many=True, optional=True, sweep=False,
-    )  # fmt: skip
+        PAPER_PUNCH_DIAMETERS,
+        "punch diameters d; none = one flat larger than the map",
+        unit="m",
+        gt=0.0,
+        many=True,
+        optional=True,
+        sweep=False,
+    )
     peak_loads: tuple[float, ...] = param(
-        PAPER_PEAK_LOADS, "peak loads F of the cycles, increasing", unit="N", gt=0.0,
-        many=True, sweep=False,
-    )  # fmt: skip
+        PAPER_PEAK_LOADS,
+        "peak loads F of the cycles, increasing",
+        unit="N",
+        gt=0.0,
+        many=True,
+        sweep=False,
+    )
     unload_fraction: float = param(
-        0.1, "partial unloading of each cycle, as a fraction of its peak load", gt=0.0, lt=1.0,
+        0.1,
+        "partial unloading of each cycle, as a fraction of its peak load",
+        gt=0.0,
+        lt=1.0,
     )
     placements: int | None = param(
-        3, "punch positions per diameter (random, apart); none = one at the map centre",
-        kind="int", ge=1, le=10_000, optional=True, sweep=False,
-    )  # fmt: skip
+        3,
+        "punch positions per diameter (random, apart); none = one at the map centre",
+        kind="int",
+        ge=1,
+        le=10_000,
+        optional=True,
+        sweep=False,
+    )
     placement_seed: int = param(
-        0, "seed of the random punch positions", kind="int", ge=0, le=2**32 - 1, sweep=False,
-    )  # fmt: skip
+        0,
+        "seed of the random punch positions",
+        kind="int",
+        ge=0,
+        le=2**32 - 1,
+        sweep=False,
+    )
     overlap: str = param(
-        "warn", "punches of one diameter that cannot be placed apart: 'warn' (placed as far "
-        "apart as found, overlap reported) or 'error'", choices=("warn", "error"), sweep=False,
-    )  # fmt: skip
+        "warn",
+        "punches of one diameter that cannot be placed apart: 'warn' (placed as far "
+        "apart as found, overlap reported) or 'error'",
+        choices=("warn", "error"),
+        sweep=False,
+    )
     truncation_increments: int = param(
-        1000, "depth increments of the Eq. 2 truncation curve under each punch", kind="int",
-        ge=10, le=10_000_000, sweep=False,
-    )  # fmt: skip
+        1000,
+        "depth increments of the Eq. 2 truncation curve under each punch",
+        kind="int",
+        ge=10,
+        le=10_000_000,
+        sweep=False,
+    )
     resolution_tol: float = param(
-        0.02, "a cell is resolved when its unloading stiffness and contact area change by less "
-        "than this (relative) when the pixel is halved", gt=0.0, lt=1.0, sweep=False,
-    )  # fmt: skip
+        0.02,
+        "a cell is resolved when its unloading stiffness and contact area change by less "
+        "than this (relative) when the pixel is halved",
+        gt=0.0,
+        lt=1.0,
+        sweep=False,
+    )
     min_contact_pixels: int = param(
-        100, "fewest contact pixels of a resolved cell", kind="int", ge=1, le=10**9, sweep=False,
-    )  # fmt: skip
+        100,
+        "fewest contact pixels of a resolved cell",
+        kind="int",
+        ge=1,
+        le=10**9,
+        sweep=False,
+    )
     refine_max: int = param(
-        8, "largest refinement of the pixel (a power of 2; 1 = none): a WM map's punch windows "
-        "are generated again at pixel/2, /4, … up to pixel/refine_max", kind="int", ge=1,
-        le=1024, sweep=False,
-    )  # fmt: skip
+        8,
+        "largest refinement of the pixel (a power of 2; 1 = none): a WM map's punch windows "
+        "are generated again at pixel/2, /4, … up to pixel/refine_max",
+        kind="int",
+        ge=1,
+        le=1024,
+        sweep=False,
+    )
     elastic: bool = param(
-        True, "also solve the elastic contact (H = ∞) on the same punches (else its columns "
-        "are NaN)", kind="bool", sweep=False,
-    )  # fmt: skip
+        True,
+        "also solve the elastic contact (H = ∞) on the same punches (else its columns are NaN)",
+        kind="bool",
+        sweep=False,
+    )
     face: PunchFaceSpec = field(default=PunchFaceSpec())
     """The punch face (:class:`~warptrunc.indent.face.PunchFaceSpec`): tilt and roughness,
     generated or read; default an aligned smooth flat."""

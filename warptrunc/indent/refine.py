@@ -70,8 +70,14 @@ class WindowSource:
         Warp device of the generation.
     """
 
-    def __init__(self, heights: Any, pixel_size: tuple[float, float],
-                 params: dict[str, Any] | None = None, *, device: Any = None) -> None:  # fmt: skip
+    def __init__(
+        self,
+        heights: Any,
+        pixel_size: tuple[float, float],
+        params: dict[str, Any] | None = None,
+        *,
+        device: Any = None,
+    ) -> None:
         self.heights = np.asarray(heights, dtype=np.float64)
         self.pixel_size = (float(pixel_size[0]), float(pixel_size[1]))
         self.params = params
@@ -93,9 +99,11 @@ class WindowSource:
         if p.get("generator") != "weierstrass-mandelbrot":
             return "read-map"
         try:
-            same = ((p["nx"], p["ny"]) == (nx, ny)
-                    and math.isclose(p["Lx"] / p["nx"], dx, rel_tol=1e-9)
-                    and math.isclose(p["Ly"] / p["ny"], dy, rel_tol=1e-9))  # fmt: skip
+            same = (
+                (p["nx"], p["ny"]) == (nx, ny)
+                and math.isclose(p["Lx"] / p["nx"], dx, rel_tol=1e-9)
+                and math.isclose(p["Ly"] / p["ny"], dy, rel_tol=1e-9)
+            )
         except (KeyError, TypeError, ZeroDivisionError):
             return "read-map"
         if not same:
@@ -111,12 +119,15 @@ class WindowSource:
         except (KeyError, ValueError, TypeError):
             return "read-map"
         ref = self.heights[o[0] : o[0] + sy, o[1] : o[1] + sx]
-        if not np.allclose(patch, ref, rtol=0, atol=1e-5 * max(float(np.ptp(self.heights)), 1e-300)):
+        if not np.allclose(
+            patch, ref, rtol=0, atol=1e-5 * max(float(np.ptp(self.heights)), 1e-300)
+        ):
             return "read-map"
         return None
 
-    def window(self, diameter: float | None, centre: tuple[float, float],
-               factor: int = 1, face: Any = None) -> PunchWindow:  # fmt: skip
+    def window(
+        self, diameter: float | None, centre: tuple[float, float], factor: int = 1, face: Any = None
+    ) -> PunchWindow:
         """The punch window at pixel dx/factor, dy/factor.
 
         Parameters
@@ -143,7 +154,9 @@ class WindowSource:
         if factor == 1:
             return punch_window(self.heights, self.pixel_size, diameter, centre, face=face)
         if not self.refinable or diameter is None:
-            raise ValueError(f"this map cannot be refined ({self.why_not or 'a flat'}): factor 1 only")
+            raise ValueError(
+                f"this map cannot be refined ({self.why_not or 'a flat'}): factor 1 only"
+            )
         from ..wm import wm_window
 
         ny, nx = self.heights.shape
@@ -152,8 +165,14 @@ class WindowSource:
         def generate(origin: tuple[int, int], shape: tuple[int, int]) -> np.ndarray:
             return wm_window(self.params, origin, shape, factor, device=self.device)
 
-        return punch_window_at(generate, (ny * factor, nx * factor), (dx / factor, dy / factor),
-                               diameter, centre, face=face)  # fmt: skip
+        return punch_window_at(
+            generate,
+            (ny * factor, nx * factor),
+            (dx / factor, dy / factor),
+            diameter,
+            centre,
+            face=face,
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -278,8 +297,13 @@ def refine_cells(
             dk = np.abs(np.asarray(new["unloading_stiffness"], np.float64) / k0 - 1.0)
             da = np.abs(np.asarray(new["contact_area"], np.float64) / a0 - 1.0)
         change[idx], area_change[idx] = dk, da
-        good = (ok0 & np.asarray(new["converged"], bool) & (dk < resolution_tol)
-                & (da < resolution_tol) & (np.asarray(new["n_contact"]) >= min_contact_pixels))  # fmt: skip
+        good = (
+            ok0
+            & np.asarray(new["converged"], bool)
+            & (dk < resolution_tol)
+            & (da < resolution_tol)
+            & (np.asarray(new["n_contact"]) >= min_contact_pixels)
+        )
         resolved[idx[good]] = True
         note[idx[good]] = "resolved"
         active[idx[good]] = False
@@ -292,5 +316,15 @@ def refine_cells(
     if plateau is not None and math.isfinite(plateau) and plateau > 0:
         k = np.asarray(cur["unloading_stiffness"], np.float64)
         saturated |= np.isfinite(k) & (k >= (1.0 - resolution_tol) * plateau)
-    return CellRefinement(cur, factor, dx / factor.astype(np.float64), n_disk, change,
-                          area_change, resolved, saturated, note.astype(str), wins)  # fmt: skip
+    return CellRefinement(
+        cur,
+        factor,
+        dx / factor.astype(np.float64),
+        n_disk,
+        change,
+        area_change,
+        resolved,
+        saturated,
+        note.astype(str),
+        wins,
+    )

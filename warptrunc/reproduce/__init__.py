@@ -118,21 +118,41 @@ def reproduce(
         t0 = time.perf_counter()
         deadline = None if time_budget is None else t0 + float(time_budget)
         with _cluster(workers, scheduler, dev) as (client, task_device):
-            study = run_study(p, store, device=dev, stages=stages, deadline=deadline,
-                              client=client, task_device=task_device)  # fmt: skip
+            study = run_study(
+                p,
+                store,
+                device=dev,
+                stages=stages,
+                deadline=deadline,
+                client=client,
+                task_device=task_device,
+            )
         res = study["results"]
         ana = analyse(res)
         if all(g in res and res[g].get("store") for g in ("group1", "group2")):  # re-fit
             from .fitrange import fit_range_map
 
             try:
-                ana["fit_range_map"] = fit_range_map(out / res["group1"]["store"], out / res["group2"]["store"])
+                ana["fit_range_map"] = fit_range_map(
+                    out / res["group1"]["store"], out / res["group2"]["store"]
+                )
             except FileNotFoundError as exc:  # stages reused from a folder without the stores
                 ana["fit_range_map_missing"] = str(exc)
         with staged_outputs() as st:  # the figures, results.json and report.md, or none of them
             stage = st.folder(out)
-            doc = _final_outputs(stage, p, res, ana, study, store, dev, t0, out, commit,
-                                 None if stages is None else selected)  # fmt: skip
+            doc = _final_outputs(
+                stage,
+                p,
+                res,
+                ana,
+                study,
+                store,
+                dev,
+                t0,
+                out,
+                commit,
+                None if stages is None else selected,
+            )
     return jsonable(doc)
 
 
@@ -146,8 +166,11 @@ def _cluster(workers, scheduler, dev):
     from ..sweep.cluster import open_client
 
     task_device = "cpu" if dev.is_cpu else None
-    with open_client(workers, scheduler, task_device, warm_contact=True) as (client, _cluster,
-                                                                             _own):  # fmt: skip
+    with open_client(workers, scheduler, task_device, warm_contact=True) as (
+        client,
+        _cluster,
+        _own,
+    ):
         yield client, task_device
 
 
@@ -158,15 +181,21 @@ def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, commit, selec
 
     names = figures(res, ana, stage, device=dev)
     meta = {
-        "profile": p.to_dict(), "version": __version__, "git_commit": commit or git_commit(),
-        "device": f"{dev.alias} ({getattr(dev, 'name', '')})", "wall_s": time.perf_counter() - t0,
-        "stage_wall_s": study["wall_s"], "stage_seconds": {k: store.seconds(k) for k in res},
-        "reused": store.reused, "computed": store.computed,
+        "profile": p.to_dict(),
+        "version": __version__,
+        "git_commit": commit or git_commit(),
+        "device": f"{dev.alias} ({getattr(dev, 'name', '')})",
+        "wall_s": time.perf_counter() - t0,
+        "stage_wall_s": study["wall_s"],
+        "stage_seconds": {k: store.seconds(k) for k in res},
+        "reused": store.reused,
+        "computed": store.computed,
         "command": f"warptrunc reproduce --profile {p.name} --out {out}"
         + ("" if selected is None else f" --stages {','.join(selected)}"),
-        "python": sys.version.split()[0], "figures": names,
+        "python": sys.version.split()[0],
+        "figures": names,
         "provenance": provenance(dev),
-    }  # fmt: skip
+    }
     if selected is not None:
         meta["stages_selected"] = list(selected)
     if study["skipped"]:

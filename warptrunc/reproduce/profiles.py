@@ -118,51 +118,104 @@ class Profile:
             One entry per field (lengths in m); ``truncation`` and ``indentation`` as the dicts
             of their own ``to_dict``.
         """
-        return {**asdict(self), "truncation": self.truncation.to_dict(),
-                "indentation": self.indentation.to_dict()}  # fmt: skip
+        return {
+            **asdict(self),
+            "truncation": self.truncation.to_dict(),
+            "indentation": self.indentation.to_dict(),
+        }
 
 
-def _indentation(protocol: dict[str, Any] | None = None, solver: dict[str, Any] | None = None,
-                 **kw: Any) -> IndentationStage:
+def _indentation(
+    protocol: dict[str, Any] | None = None, solver: dict[str, Any] | None = None, **kw: Any
+) -> IndentationStage:
     """The stage's parameters: ``IndentationStage()`` with ``kw`` changed, its protocol (refined
     at most once by default, ``refine_max`` 1) and solver settings with ``protocol`` and
     ``solver`` changed."""
     base = IndentationStage()
-    return base.replace(protocol=base.protocol.replace(**(protocol or {})),
-                        solver=base.solver.replace(**(solver or {})), **kw)  # fmt: skip
+    return base.replace(
+        protocol=base.protocol.replace(**(protocol or {})),
+        solver=base.solver.replace(**(solver or {})),
+        **kw,
+    )
 
 
 PROFILES = {
     "tiny": Profile(
-        name="tiny", n=256, seeds=2, group1_delta=(0.0025, 0.01, 0.04), group2_D=(2.2, 2.5, 2.8),
-        fig5_sizes=(64, 128), fig5_seeds=1, fig5_increments=(50, 200), table1_n=64,
-        table1_methods=("vs",), islands_n=128, islands_seeds=1, islands_increments=50,
-        asperity_n=256, asperity_increments=200, elastic_D=(2.1, 2.9), elastic_size_ratios=(1, 3),
-        elastic_pixels_per_Wr=16, elastic_refine_ratio=3, elastic_seeds=1,
+        name="tiny",
+        n=256,
+        seeds=2,
+        group1_delta=(0.0025, 0.01, 0.04),
+        group2_D=(2.2, 2.5, 2.8),
+        fig5_sizes=(64, 128),
+        fig5_seeds=1,
+        fig5_increments=(50, 200),
+        table1_n=64,
+        table1_methods=("vs",),
+        islands_n=128,
+        islands_seeds=1,
+        islands_increments=50,
+        asperity_n=256,
+        asperity_increments=200,
+        elastic_D=(2.1, 2.9),
+        elastic_size_ratios=(1, 3),
+        elastic_pixels_per_Wr=16,
+        elastic_refine_ratio=3,
+        elastic_seeds=1,
         elastic_fractions=(0.02, 0.05, 0.1, 0.2, 0.4),
         indentation=_indentation(
-            n=256, hardness=(math.inf, 0.5e9, 2e9, 8e9), seeds=(0, 1), stats_placements=1,
-            refine_punches=PAPER_PUNCH_DIAMETERS[:1], face_tilts_deg=(0.1,), face_hardness=2e9,
-            protocol={"peak_loads": PAPER_PEAK_LOADS[-4:], "placements": 1,
-                      "truncation_increments": 200, "min_contact_pixels": 1, "refine_max": 2},
+            n=256,
+            hardness=(math.inf, 0.5e9, 2e9, 8e9),
+            seeds=(0, 1),
+            stats_placements=1,
+            refine_punches=PAPER_PUNCH_DIAMETERS[:1],
+            face_tilts_deg=(0.1,),
+            face_hardness=2e9,
+            protocol={
+                "peak_loads": PAPER_PEAK_LOADS[-4:],
+                "placements": 1,
+                "truncation_increments": 200,
+                "min_contact_pixels": 1,
+                "refine_max": 2,
+            },
             solver={"maxiter": 200},
         ),
     ),
     "quick": Profile(
-        name="quick", n=1024, seeds=3, fig5_sizes=(256, 512, 1024, 2048), fig5_seeds=3,
-        table1_n=256, table1_seeds=1, islands_n=1024, islands_seeds=2, asperity_n=1024,
+        name="quick",
+        n=1024,
+        seeds=3,
+        fig5_sizes=(256, 512, 1024, 2048),
+        fig5_seeds=3,
+        table1_n=256,
+        table1_seeds=1,
+        islands_n=1024,
+        islands_seeds=2,
+        asperity_n=1024,
         elastic_pixels_per_Wr=16,
         indentation=_indentation(
-            n=512, seeds=(0, 1), stats_placements=2, refine_punches=PAPER_PUNCH_DIAMETERS[:1],
+            n=512,
+            seeds=(0, 1),
+            stats_placements=2,
+            refine_punches=PAPER_PUNCH_DIAMETERS[:1],
             protocol={"placements": 1, "min_contact_pixels": 10, "refine_max": 2},
         ),
     ),
     "paper": Profile(
-        name="paper", n=10240, seeds=5, fig5_sizes=(1024, 2048, 4096, 8192, 10240),
-        fig5_seeds=10, table1_n=1024, table1_seeds=3, table1_methods=("tri", "box", "vs", "sp"),
-        islands_n=30720, islands_L=3e-3, islands_seeds=4, asperity_n=4096,
+        name="paper",
+        n=10240,
+        seeds=5,
+        fig5_sizes=(1024, 2048, 4096, 8192, 10240),
+        fig5_seeds=10,
+        table1_n=1024,
+        table1_seeds=3,
+        table1_methods=("tri", "box", "vs", "sp"),
+        islands_n=30720,
+        islands_L=3e-3,
+        islands_seeds=4,
+        asperity_n=4096,
         indentation=_indentation(
-            refine_punches=PAPER_PUNCH_DIAMETERS[:1], protocol={"refine_max": 2},
+            refine_punches=PAPER_PUNCH_DIAMETERS[:1],
+            protocol={"refine_max": 2},
             solver={"dtype": "float32"},
         ),
     ),
@@ -170,6 +223,7 @@ PROFILES = {
 
 #: Where a profile's parameters differ from the paper: (item, what the paper did, what the
 #: profile does), per profile field; the report's header table prints the rows that apply.
+# fmt: off
 PAPER_DEPARTURES = (
     ("fig5_sizes", "Fig. 5a resolutions", "1024² to 32760² over 1 mm", "{fig5_min}² to {fig5_max}² over 1 mm"),
     ("fig5_increments", "Fig. 5b increments", "200 to 5000", "{fig5_increments[0]} to {fig5_max_inc} (at {fig5_max}²)"),
@@ -185,6 +239,7 @@ PAPER_DEPARTURES = (
     ("indentation_placements", "Indents per punch and surface", "not stated", "{indentation_indents_text}"),
     ("indentation_hardness", "Hardness H of the alloy", "not stated", "swept: {indentation_hardness_text}"),
 )
+# fmt: on
 
 
 def get_profile(name: str) -> Profile:

@@ -72,69 +72,114 @@ class IndentationStage(Parameters):
     """
 
     surfaces: tuple[str, ...] = param(
-        INDENT_SURFACES, "Table 1 presets indented (warptrunc.presets.TABLE1)",
-        choices=tuple(TABLE1), many=True, sweep=False,
-    )  # fmt: skip
+        INDENT_SURFACES,
+        "Table 1 presets indented (warptrunc.presets.TABLE1)",
+        choices=tuple(TABLE1),
+        many=True,
+        sweep=False,
+    )
     n: int = param(10240, "pixels per side of the maps (over L)", kind="int", ge=8, sweep=False)
     L: float = param(1e-3, "side of the maps", unit="m", gt=0.0, sweep=False)
     hardness: tuple[float, ...] = param(
-        INDENT_HARDNESS, "hardness values H of the sweep; inf = elastic (the paper states no "
+        INDENT_HARDNESS,
+        "hardness values H of the sweep; inf = elastic (the paper states no "
         "hardness: H is swept, not assumed; aluminium alloys span about 0.2–1.7 GPa by "
         "handbook Vickers values, more at shallow nanoindentation depths and after work "
-        "hardening; docs/guide/indentation.md)", unit="Pa", gt=0.0, allow_inf=True, many=True,
+        "hardening; docs/guide/indentation.md)",
+        unit="Pa",
+        gt=0.0,
+        allow_inf=True,
+        many=True,
         sweep=False,
-    )  # fmt: skip
+    )
     seeds: tuple[int, ...] = param(
-        (0, 1, 2), "phase seeds of the realisations of the statistics pieces; the hardness "
-        "sweep runs on the first", kind="seeds", sweep=False,
-    )  # fmt: skip
+        (0, 1, 2),
+        "phase seeds of the realisations of the statistics pieces; the hardness "
+        "sweep runs on the first",
+        kind="seeds",
+        sweep=False,
+    )
     stats_placements: int = param(
-        5, "random punch placements per diameter and realisation of the statistics pieces",
-        kind="int", ge=1, le=10_000, sweep=False,
-    )  # fmt: skip
+        5,
+        "random punch placements per diameter and realisation of the statistics pieces",
+        kind="int",
+        ge=1,
+        le=10_000,
+        sweep=False,
+    )
     stats: tuple[str, ...] = field(default=STATS_MODELS)
     """Models of the statistics pieces: ``"elastic"`` (H = ∞) and ``"depth-match"`` (per
     surface, the H of the sweep whose depth at the largest load is nearest
     :attr:`depth_target`, when the sweep reaches :attr:`depth_band`; none otherwise). Empty:
     no statistics pieces."""
     depth_target: float = param(
-        5e-6, "the paper's maximal indentation depth at 500 mN, \"around 5 µm\" (§ 4.1)",
-        unit="m", gt=0.0, sweep=False,
-    )  # fmt: skip
+        5e-6,
+        'the paper\'s maximal indentation depth at 500 mN, "around 5 µm" (§ 4.1)',
+        unit="m",
+        gt=0.0,
+        sweep=False,
+    )
     depth_band: tuple[float, float] = param(
-        (4e-6, 6e-6), "depths at the largest load taken as consistent with \"around 5 µm\"",
-        unit="m", gt=0.0, length=2, increasing=True, sweep=False,
-    )  # fmt: skip
+        (4e-6, 6e-6),
+        'depths at the largest load taken as consistent with "around 5 µm"',
+        unit="m",
+        gt=0.0,
+        length=2,
+        increasing=True,
+        sweep=False,
+    )
     face_surface: str | None = param(
-        "Ps", "surface of the punch-face runs (none: none): the aligned smooth flat of the "
+        "Ps",
+        "surface of the punch-face runs (none: none): the aligned smooth flat of the "
         "sweep against tilted and rough faces (§ 4.2 names misalignment and the tip's roughness "
-        "among the causes of Ps's divergence beyond 15 % R_t')", choices=tuple(TABLE1),
-        optional=True, sweep=False,
-    )  # fmt: skip
+        "among the causes of Ps's divergence beyond 15 % R_t')",
+        choices=tuple(TABLE1),
+        optional=True,
+        sweep=False,
+    )
     face_tilts_deg: tuple[float, ...] = param(
-        (0.05, 0.1), "tilts of the punch face in those runs (degrees; PunchFaceSpec.tilt_deg); "
-        "the aligned flat (0°) is the sweep's piece", ge=0.0, le=5.0, many=True, sweep=False,
-    )  # fmt: skip
+        (0.05, 0.1),
+        "tilts of the punch face in those runs (degrees; PunchFaceSpec.tilt_deg); "
+        "the aligned flat (0°) is the sweep's piece",
+        ge=0.0,
+        le=5.0,
+        many=True,
+        sweep=False,
+    )
     face_roughness: float = param(
-        0.05e-6, "rms roughness of a generated punch face in those runs (0: none): the paper's "
-        "tip, \"measured to have an RMS roughness of around 0.05 µm\" (§ 4.2)", unit="m",
-        ge=0.0, sweep=False,
-    )  # fmt: skip
+        0.05e-6,
+        "rms roughness of a generated punch face in those runs (0: none): the paper's "
+        'tip, "measured to have an RMS roughness of around 0.05 µm" (§ 4.2)',
+        unit="m",
+        ge=0.0,
+        sweep=False,
+    )
     face_hardness: float = param(
-        1e9, "H of the punch-face runs (one of hardness; inf = elastic): the paper states none; "
-        "1 GPa is warptrunc.indent's default, inside the handbook range", unit="Pa", gt=0.0,
-        allow_inf=True, sweep=False,
-    )  # fmt: skip
+        1e9,
+        "H of the punch-face runs (one of hardness; inf = elastic): the paper states none; "
+        "1 GPa is warptrunc.indent's default, inside the handbook range",
+        unit="Pa",
+        gt=0.0,
+        allow_inf=True,
+        sweep=False,
+    )
     refine: bool = param(
-        True, "resolution check: the smallest punch at the map centre at dx and dx/2",
-        kind="bool", sweep=False,
-    )  # fmt: skip
+        True,
+        "resolution check: the smallest punch at the map centre at dx and dx/2",
+        kind="bool",
+        sweep=False,
+    )
     refine_punches: tuple[float, ...] | None = param(
-        None, "punch diameters whose cells are refined up to protocol.refine_max (none: every "
+        None,
+        "punch diameters whose cells are refined up to protocol.refine_max (none: every "
         "punch); every cell of a refined punch is solved at least once at half the pixel, so "
         "refining the 502.6 µm punch at the paper's pixel costs about four times its solves",
-        unit="m", gt=0.0, many=True, optional=True, sweep=False,
-    )  # fmt: skip
+        unit="m",
+        gt=0.0,
+        many=True,
+        optional=True,
+        sweep=False,
+    )
     protocol: IndentProtocol = field(default=IndentProtocol(refine_max=1))
     """The experiment (:class:`~warptrunc.indent.IndentProtocol`): the paper's punches and ten
     loads, 3 placements per punch in the sweep (seed 0 + punch index), 10 % unloading, 1000
@@ -192,8 +237,12 @@ class IndentationStage(Parameters):
         -------
         dict
         """
-        return {**super().to_dict(), "protocol": self.protocol.to_dict(),
-                "solver": self.solver.to_dict(), "material": self.material.to_dict()}  # fmt: skip
+        return {
+            **super().to_dict(),
+            "protocol": self.protocol.to_dict(),
+            "solver": self.solver.to_dict(),
+            "material": self.material.to_dict(),
+        }
 
     @property
     def pixel_size(self) -> float:
@@ -292,8 +341,9 @@ def face_variants(st: IndentationStage) -> list[tuple[str, dict[str, float]]]:
         return []
     out = [(f"tilt {t:g}°", {"tilt_deg": float(t)}) for t in st.face_tilts_deg if t > 0]
     if st.face_roughness > 0:
-        out.append((f"rough {st.face_roughness * 1e6:g} µm rms",
-                    {"roughness": float(st.face_roughness)}))  # fmt: skip
+        out.append(
+            (f"rough {st.face_roughness * 1e6:g} µm rms", {"roughness": float(st.face_roughness)})
+        )
     return out
 
 
@@ -324,8 +374,9 @@ def face_fields(st: IndentationStage, face: dict[str, float], k: int, d: float) 
     return kw
 
 
-def face_spec(st: IndentationStage, face: tuple[str, dict[str, float]] | None, k: int,
-              d: float) -> PunchFaceSpec:  # fmt: skip
+def face_spec(
+    st: IndentationStage, face: tuple[str, dict[str, float]] | None, k: int, d: float
+) -> PunchFaceSpec:
     """The punch face of punch k in a piece: an aligned smooth flat, or the variant ``face``.
 
     Parameters
@@ -384,4 +435,3 @@ def refine_of(st: IndentationStage, d: float) -> int:
     if sel is None or any(math.isclose(d, x, rel_tol=1e-9) for x in sel):
         return st.protocol.refine_max
     return 1
-

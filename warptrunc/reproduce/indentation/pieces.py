@@ -66,14 +66,36 @@ __all__ = [
 SUBDIR = "indentation"
 """Piece store of the stage, inside the reproduction folder."""
 COLUMNS = (
-    "punch_diameter_m", "placement", "realisation", "peak_load_N", "F_over_EA", "displacement_m",
-    "contact_area_m2", "plastic_area_m2", "n_contact", "unloading_stiffness_N_per_m",
-    "partial_unloading_stiffness_N_per_m", "E_c_over_E", "E_c_partial_over_E", "converged",
-    "overlap_fraction", "n_punch_pixels", "truncation_depth_m", "truncation_contact_area_m2",
-    "truncation_stiffness_N_per_m", "truncation_E_c_over_E", "centre_x_m", "centre_y_m",
-    "max_pressure_Pa", "pixel_size_m", "resolution_change", "area_change", "resolved", "saturated",
+    "punch_diameter_m",
+    "placement",
+    "realisation",
+    "peak_load_N",
+    "F_over_EA",
+    "displacement_m",
+    "contact_area_m2",
+    "plastic_area_m2",
+    "n_contact",
+    "unloading_stiffness_N_per_m",
+    "partial_unloading_stiffness_N_per_m",
+    "E_c_over_E",
+    "E_c_partial_over_E",
+    "converged",
+    "overlap_fraction",
+    "n_punch_pixels",
+    "truncation_depth_m",
+    "truncation_contact_area_m2",
+    "truncation_stiffness_N_per_m",
+    "truncation_E_c_over_E",
+    "centre_x_m",
+    "centre_y_m",
+    "max_pressure_Pa",
+    "pixel_size_m",
+    "resolution_change",
+    "area_change",
+    "resolved",
+    "saturated",
     "in_fit",
-)  # fmt: skip
+)
 """Columns of :meth:`warptrunc.indent.IndentationResult.to_dict` kept in each piece."""
 
 PLACEMENT_SEEDS = "indentation_seed + punch index"
@@ -84,8 +106,13 @@ the wording of the stored pieces' parameters, which identify them."""
 # --- pieces -------------------------------------------------------------------------------------
 
 
-def piece_params(st: IndentationStage, surface: str, design: str, hardness: float,
-                 face: tuple[str, dict[str, float]] | None = None) -> dict[str, Any]:  # fmt: skip
+def piece_params(
+    st: IndentationStage,
+    surface: str,
+    design: str,
+    hardness: float,
+    face: tuple[str, dict[str, float]] | None = None,
+) -> dict[str, Any]:
     """The parameters that identify one stored piece.
 
     Parameters
@@ -110,27 +137,52 @@ def piece_params(st: IndentationStage, surface: str, design: str, hardness: floa
     """
     seeds, placements = design_of(st, design)
     pr = st.protocol
-    refine = {"refine_max": {f"{d:g}": refine_of(st, d) for d in pr.punch_diameters},
-              "resolution_tol": pr.resolution_tol,
-              "min_contact_pixels": pr.min_contact_pixels}  # fmt: skip
-    return jsonable({
-        "surface": surface, "design": design, "spec": spec(st, surface).to_dict(),
-        "seeds": list(seeds), "placements": placements, "hardness_Pa": hardness,
-        "material": material(st, hardness).to_dict(), "punches_m": list(pr.punch_diameters),
-        "loads_N": list(pr.peak_loads), "placement_seed": pr.placement_seed,
-        "placement_seeds": PLACEMENT_SEEDS, "unload_fraction": pr.unload_fraction,
-        "dtype": st.solver.dtype, "maxiter": st.solver.maxiter,
-        "truncation_increments": pr.truncation_increments, "refinement": refine,
-        **({} if face is None else {"face": {"label": face[0], "per_punch": [
-            face_fields(st, face[1], k, d) for k, d in enumerate(pr.punch_diameters)]}}),
-    })  # fmt: skip
+    refine = {
+        "refine_max": {f"{d:g}": refine_of(st, d) for d in pr.punch_diameters},
+        "resolution_tol": pr.resolution_tol,
+        "min_contact_pixels": pr.min_contact_pixels,
+    }
+    return jsonable(
+        {
+            "surface": surface,
+            "design": design,
+            "spec": spec(st, surface).to_dict(),
+            "seeds": list(seeds),
+            "placements": placements,
+            "hardness_Pa": hardness,
+            "material": material(st, hardness).to_dict(),
+            "punches_m": list(pr.punch_diameters),
+            "loads_N": list(pr.peak_loads),
+            "placement_seed": pr.placement_seed,
+            "placement_seeds": PLACEMENT_SEEDS,
+            "unload_fraction": pr.unload_fraction,
+            "dtype": st.solver.dtype,
+            "maxiter": st.solver.maxiter,
+            "truncation_increments": pr.truncation_increments,
+            "refinement": refine,
+            **(
+                {}
+                if face is None
+                else {
+                    "face": {
+                        "label": face[0],
+                        "per_punch": [
+                            face_fields(st, face[1], k, d) for k, d in enumerate(pr.punch_diameters)
+                        ],
+                    }
+                }
+            ),
+        }
+    )
 
 
 def _slug(label: str) -> str:
     return label.replace(" µm rms", "um").replace("°", "deg").replace(" ", "")
 
 
-def piece_file(store: Path, surface: str, design: str, hardness: float, face: str | None = None) -> Path:
+def piece_file(
+    store: Path, surface: str, design: str, hardness: float, face: str | None = None
+) -> Path:
     """The piece's file.
 
     Parameters
@@ -263,8 +315,10 @@ class Part:
             E.g. ``Ps sweep H=1e+09 Pa punch 2 realisation 0``.
         """
         face = "" if self.face is None else f" face {self.face!r}"
-        return (f"{self.surface} {self.design} H={self.hardness:g} Pa{face} punch {self.punch} "
-                f"realisation {self.realisation}")  # fmt: skip
+        return (
+            f"{self.surface} {self.design} H={self.hardness:g} Pa{face} punch {self.punch} "
+            f"realisation {self.realisation}"
+        )
 
 
 def face_of(st: IndentationStage, label: str | None) -> tuple[str, dict[str, float]] | None:
@@ -277,7 +331,9 @@ def face_of(st: IndentationStage, label: str | None) -> tuple[str, dict[str, flo
     raise ValueError(f"face must be one of {[f[0] for f in face_variants(st)]}, got {label!r}")
 
 
-def parts_of(st: IndentationStage, surface: str, design: str, hardness: float, face: str | None = None) -> list[Part]:
+def parts_of(
+    st: IndentationStage, surface: str, design: str, hardness: float, face: str | None = None
+) -> list[Part]:
     """The parts of one piece, punch-major (the order of its rows).
 
     Parameters
@@ -297,8 +353,11 @@ def parts_of(st: IndentationStage, surface: str, design: str, hardness: float, f
         ``len(protocol.punch_diameters) × len(seeds of the design)`` parts.
     """
     seeds, _ = design_of(st, design)
-    return [Part(surface, design, float(hardness), face, k, r)
-            for k in range(len(st.protocol.punch_diameters)) for r in range(len(seeds))]  # fmt: skip
+    return [
+        Part(surface, design, float(hardness), face, k, r)
+        for k in range(len(st.protocol.punch_diameters))
+        for r in range(len(seeds))
+    ]
 
 
 def part_params(st: IndentationStage, part: Part) -> dict[str, Any]:
@@ -318,11 +377,16 @@ def part_params(st: IndentationStage, part: Part) -> dict[str, Any]:
         ``seed``, ``realisation``.
     """
     seeds, _ = design_of(st, part.design)
-    return jsonable({
-        "piece": piece_params(st, part.surface, part.design, part.hardness, face_of(st, part.face)),
-        "punch_m": st.protocol.punch_diameters[part.punch], "seed": seeds[part.realisation],
-        "realisation": part.realisation,
-    })  # fmt: skip
+    return jsonable(
+        {
+            "piece": piece_params(
+                st, part.surface, part.design, part.hardness, face_of(st, part.face)
+            ),
+            "punch_m": st.protocol.punch_diameters[part.punch],
+            "seed": seeds[part.realisation],
+            "realisation": part.realisation,
+        }
+    )
 
 
 def part_file(store: Path, part: Part) -> Path:
@@ -359,8 +423,12 @@ def reuses(st: IndentationStage, part: Part) -> bool:
     bool
         A finite-H sweep part of a punch that is not refined.
     """
-    return (part.design == "sweep" and math.isfinite(part.hardness) and part.face is None
-            and refine_of(st, st.protocol.punch_diameters[part.punch]) <= 1)  # fmt: skip
+    return (
+        part.design == "sweep"
+        and math.isfinite(part.hardness)
+        and part.face is None
+        and refine_of(st, st.protocol.punch_diameters[part.punch]) <= 1
+    )
 
 
 def elastic_of(part: Part) -> Part:
@@ -413,7 +481,9 @@ def surface_for(st: IndentationStage, name: str, seed: int, device) -> tuple[Any
     return _SURFACES[key]
 
 
-def run_part(st: IndentationStage, part: Part, *, device, reuse: dict[str, list] | None = None) -> dict[str, Any]:
+def run_part(
+    st: IndentationStage, part: Part, *, device, reuse: dict[str, list] | None = None
+) -> dict[str, Any]:
     """Run one part: :func:`warptrunc.indent` with one punch on one realisation.
 
     Parameters
@@ -442,35 +512,59 @@ def run_part(st: IndentationStage, part: Part, *, device, reuse: dict[str, list]
     t0 = time.perf_counter()
     k, d, h = part.punch, st.protocol.punch_diameters[part.punch], part.hardness
     protocol = st.protocol.replace(
-        punch_diameters=(d,), placements=placements,
-        placement_seed=st.protocol.placement_seed + k, refine_max=refine_of(st, d),
-        elastic=math.isinf(h), face=face_spec(st, face_of(st, part.face), k, d),
-    )  # fmt: skip
+        punch_diameters=(d,),
+        placements=placements,
+        placement_seed=st.protocol.placement_seed + k,
+        refine_max=refine_of(st, d),
+        elastic=math.isinf(h),
+        face=face_spec(st, face_of(st, part.face), k, d),
+    )
     with warnings.catch_warnings():  # the overlap is recorded per row (overlap_fraction)
         warnings.simplefilter("ignore", PlacementOverlapWarning)
-        res = indent(surf, protocol=protocol, material=material(st, h), solver=st.solver,
-                     reuse=reuse if reuses(st, part) else None, device=device)  # fmt: skip
+        res = indent(
+            surf,
+            protocol=protocol,
+            material=material(st, h),
+            solver=st.solver,
+            reuse=reuse if reuses(st, part) else None,
+            device=device,
+        )
     cols = res.to_dict()
     cols["n_contact"] = cols["n_contact_pixels"]  # the pieces' name, kept
     cols["realisation"] = [part.realisation] * len(cols["peak_load_N"])
     rows = {c: np.asarray(cols[c]).tolist() for c in COLUMNS}
     windows, refined = [], {}
     for w in res.settings["punches"]:
-        windows.append({"realisation": part.realisation, "punch_diameter_m": d,
-                        "placement": w["placement"], "window_px": w["window"][2:],
-                        "n_punch_pixels": w["n_punch_pixels"], "disk_Rt_m": w["disk_Rt_m"]})  # fmt: skip
+        windows.append(
+            {
+                "realisation": part.realisation,
+                "punch_diameter_m": d,
+                "placement": w["placement"],
+                "window_px": w["window"][2:],
+                "n_punch_pixels": w["n_punch_pixels"],
+                "disk_Rt_m": w["disk_Rt_m"],
+            }
+        )
         for f, shape in w["refined_windows"].items():
             old = refined.get(str(int(f)), [0, 0])
             refined[str(int(f))] = shape if shape[0] * shape[1] > old[0] * old[1] else old
     s = dict(res.settings["seconds"])
-    return jsonable({
-        "params": part_params(st, part), "rows": rows, "windows": windows,
-        "per_punch": {"punch_diameter_m": d, "refine_max": refine_of(st, d), "seconds": s,
-                      "refined_windows": refined},
-        "seconds": {**s, "surface_s": gen, "part_s": time.perf_counter() - t0},
-        "device": res.settings["device"],
-        "reused_elastic_cycles": int(res.settings.get("reused_elastic_cycles", 0)),
-    })  # fmt: skip
+    return jsonable(
+        {
+            "params": part_params(st, part),
+            "rows": rows,
+            "windows": windows,
+            "per_punch": {
+                "punch_diameter_m": d,
+                "refine_max": refine_of(st, d),
+                "seconds": s,
+                "refined_windows": refined,
+            },
+            "seconds": {**s, "surface_s": gen, "part_s": time.perf_counter() - t0},
+            "device": res.settings["device"],
+            "reused_elastic_cycles": int(res.settings.get("reused_elastic_cycles", 0)),
+        }
+    )
 
 
 def load_part(path: Path, params: dict[str, Any]) -> dict[str, Any] | None:
@@ -497,8 +591,9 @@ def load_part(path: Path, params: dict[str, Any]) -> dict[str, Any] | None:
     return rec if rec.get("params") == params else None
 
 
-def compute_part(st: IndentationStage, part: Part, store: str, device=None,
-                 reuse: dict[str, list] | None = None) -> dict[str, Any]:  # fmt: skip
+def compute_part(
+    st: IndentationStage, part: Part, store: str, device=None, reuse: dict[str, list] | None = None
+) -> dict[str, Any]:
     """Run ``part`` unless its file is stored, write it atomically, return its record.
 
     The task of a Dask worker (and of the in-process run): a part whose file exists with the
@@ -532,7 +627,9 @@ def compute_part(st: IndentationStage, part: Part, store: str, device=None,
     return rec
 
 
-def merge_parts(st: IndentationStage, piece: tuple[str, str, float, str | None], recs: dict[Part, dict]) -> dict[str, Any]:
+def merge_parts(
+    st: IndentationStage, piece: tuple[str, str, float, str | None], recs: dict[Part, dict]
+) -> dict[str, Any]:
     """The piece record of a piece's parts (the layout of an undivided piece).
 
     Parameters
@@ -581,12 +678,16 @@ def merge_parts(st: IndentationStage, piece: tuple[str, str, float, str | None],
             devices.add(rec["device"])
             n_reused += int(rec.get("reused_elastic_cycles", 0))
         per_punch.append(pp)
-    return jsonable({
-        "params": piece_params(st, s, design, h, face_of(st, face)),
-        "rows": rows, "windows": windows,
-        "seconds": {**sec, "surface_s": sum(gen.values())},
-        "per_punch": per_punch,
-        "device": next(iter(devices)) if len(devices) == 1 else sorted(devices),
-        "n_not_converged": int(sum(not c for c in rows["converged"])),
-        "reused_elastic_cycles": n_reused, "n_parts": len(order),
-    })  # fmt: skip
+    return jsonable(
+        {
+            "params": piece_params(st, s, design, h, face_of(st, face)),
+            "rows": rows,
+            "windows": windows,
+            "seconds": {**sec, "surface_s": sum(gen.values())},
+            "per_punch": per_punch,
+            "device": next(iter(devices)) if len(devices) == 1 else sorted(devices),
+            "n_not_converged": int(sum(not c for c in rows["converged"])),
+            "reused_elastic_cycles": n_reused,
+            "n_parts": len(order),
+        }
+    )

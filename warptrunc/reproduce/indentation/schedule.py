@@ -52,7 +52,9 @@ __all__ = ["Plan", "run_in_process", "run_on_cluster", "stats_hardness"]
 PieceKey = tuple[str, str, float, "str | None"]
 
 
-def stats_hardness(st: IndentationStage, sweep_rows: dict[float, dict[str, list]]) -> dict[str, Any]:
+def stats_hardness(
+    st: IndentationStage, sweep_rows: dict[float, dict[str, list]]
+) -> dict[str, Any]:
     """The H values of one surface's statistics pieces, from its sweep.
 
     Parameters
@@ -73,8 +75,9 @@ def stats_hardness(st: IndentationStage, sweep_rows: dict[float, dict[str, list]
     at = max(st.protocol.peak_loads)
     depths = {}
     for h, r in sweep_rows.items():
-        dd = depth_at_load(r["punch_diameter_m"], r["peak_load_N"], r["displacement_m"],
-                           r["converged"], at)["deepest"]  # fmt: skip
+        dd = depth_at_load(
+            r["punch_diameter_m"], r["peak_load_N"], r["displacement_m"], r["converged"], at
+        )["deepest"]
         depths[h] = None if dd is None else dd["median"]
     finite = sorted(h for h in depths if math.isfinite(h))
     match = depth_match(finite, [depths[h] for h in finite], st.depth_target, st.depth_band)
@@ -123,7 +126,9 @@ class Plan:
             return
         s, design, h, face = key
         path = piece_file(self.store, s, design, h, face)
-        rec = load_piece(path, piece_params(self.st, s, design, h, face_of(self.st, face)), self.overwrite)
+        rec = load_piece(
+            path, piece_params(self.st, s, design, h, face_of(self.st, face)), self.overwrite
+        )
         self.stieces[key] = rec
         if rec is None:
             for part in parts_of(self.st, s, design, h, face):
@@ -138,7 +143,9 @@ class Plan:
         if self.stieces.get(key) is not None or not all(q in self.starts for q in parts):
             return
         rec = merge_parts(self.st, key, {q: self.starts[q] for q in parts})
-        write_atomic(piece_file(self.store, *key), json.dumps(rec, indent=None, allow_nan=False) + "\n")
+        write_atomic(
+            piece_file(self.store, *key), json.dumps(rec, indent=None, allow_nan=False) + "\n"
+        )
         self.stieces[key] = rec
         for q in parts:
             part_file(self.store, q).unlink(missing_ok=True)
@@ -192,7 +199,11 @@ class Plan:
         if el in self.starts:
             return self.starts[el]["rows"]
         rec = self.stieces.get(el.piece)
-        return None if rec is None else reuse_rows(rec["rows"], self.st.protocol.punch_diameters[part.punch])
+        return (
+            None
+            if rec is None
+            else reuse_rows(rec["rows"], self.st.protocol.punch_diameters[part.punch])
+        )
 
     def ready(self, running: set[Part]) -> list[Part]:
         """Parts that can start now, in the canonical order.
@@ -264,11 +275,17 @@ class Plan:
         out = []
         for s in self.st.surfaces:
             keys = [k for k in self.stieces if k[0] == s]
-            keys.sort(key=lambda k: (("sweep", "stats", "face").index(k[1]),
-                                     self.sweep.index(k[2]) if k[1] == "sweep" else 0))  # fmt: skip
+            keys.sort(
+                key=lambda k: (
+                    ("sweep", "stats", "face").index(k[1]),
+                    self.sweep.index(k[2]) if k[1] == "sweep" else 0,
+                )
+            )
             for k in keys:
                 if self.stieces[k] is not None:
-                    out.append(((s, k[1] if k[3] is None else f"face:{k[3]}", k[2]), self.stieces[k]))
+                    out.append(
+                        ((s, k[1] if k[3] is None else f"face:{k[3]}", k[2]), self.stieces[k])
+                    )
         return out
 
     def cost(self, part: Part) -> float:
@@ -317,8 +334,9 @@ def run_in_process(plan: Plan, *, device, stop, bar) -> None:
         bar.update()
 
 
-def run_on_cluster(plan: Plan, client, *, device, deadline: float | None, bar,
-                   max_attempts: int = 3) -> bool:  # fmt: skip
+def run_on_cluster(
+    plan: Plan, client, *, device, deadline: float | None, bar, max_attempts: int = 3
+) -> bool:
     """Run the ready parts on a Dask cluster, one part in flight per worker.
 
     Parameters
@@ -350,7 +368,10 @@ def run_on_cluster(plan: Plan, client, *, device, deadline: float | None, bar,
 
     def capacity() -> int:
         if time.monotonic() - n_workers[1] > 5:
-            n_workers[:] = [max(1, len(client.scheduler_info().get("workers", {}))), time.monotonic()]
+            n_workers[:] = [
+                max(1, len(client.scheduler_info().get("workers", {}))),
+                time.monotonic(),
+            ]
         return n_workers[0]
 
     def submit() -> bool:
@@ -361,9 +382,16 @@ def run_on_cluster(plan: Plan, client, *, device, deadline: float | None, bar,
         ready = sorted(plan.ready(running), key=plan.cost, reverse=True)
         for part in ready[: max(0, capacity() - len(inflight))]:
             attempts[part] = attempts.get(part, 0) + 1
-            fut = client.submit(compute_part, plan.st, part, str(plan.store.resolve()), device,
-                                plan.reuse_rows(part), key=f"indent-{part_file(plan.store, part).stem}-"
-                                f"{attempts[part]}", pure=False)  # fmt: skip
+            fut = client.submit(
+                compute_part,
+                plan.st,
+                part,
+                str(plan.store.resolve()),
+                device,
+                plan.reuse_rows(part),
+                key=f"indent-{part_file(plan.store, part).stem}-{attempts[part]}",
+                pure=False,
+            )
             inflight[fut] = part
             pool.add(fut)
         return True
@@ -377,7 +405,9 @@ def run_on_cluster(plan: Plan, client, *, device, deadline: float | None, bar,
         except Exception as exc:  # a lost worker or a failed solve: the file, else once more
             rec = load_part(part_file(plan.store, part), part_params(plan.st, part))
             if rec is None and attempts[part] >= max_attempts:
-                raise RuntimeError(f"indentation part {part.label()} failed {attempts[part]} times: {exc}") from exc
+                raise RuntimeError(
+                    f"indentation part {part.label()} failed {attempts[part]} times: {exc}"
+                ) from exc
         if rec is not None:
             plan.finish(part, rec)
             bar.update()

@@ -61,26 +61,44 @@ def stage_params(st: IndentationStage) -> dict[str, Any]:
     """
     m = material(st, math.inf)
     pr = st.protocol
-    return jsonable({
-        "surfaces": {s: spec(st, s).to_dict() for s in st.surfaces},
-        "punches_m": list(pr.punch_diameters), "loads_N": list(pr.peak_loads),
-        "placements": pr.placements, "seed": pr.placement_seed,
-        "hardness_Pa": sweep_order(st), "seeds": list(st.seeds),
-        "stats_placements": st.stats_placements, "stats": list(st.stats),
-        "depth_target_m": st.depth_target, "depth_band_m": list(st.depth_band),
-        "unload_fraction": pr.unload_fraction, "dtype": st.solver.dtype,
-        "maxiter": st.solver.maxiter, "truncation_increments": pr.truncation_increments,
-        "refine": st.refine, "refine_max": pr.refine_max,
-        "refine_punches_m": None if st.refine_punches is None else list(st.refine_punches),
-        "resolution_tol": pr.resolution_tol,
-        "min_contact_pixels": pr.min_contact_pixels, "material": m.to_dict(),
-    })
+    return jsonable(
+        {
+            "surfaces": {s: spec(st, s).to_dict() for s in st.surfaces},
+            "punches_m": list(pr.punch_diameters),
+            "loads_N": list(pr.peak_loads),
+            "placements": pr.placements,
+            "seed": pr.placement_seed,
+            "hardness_Pa": sweep_order(st),
+            "seeds": list(st.seeds),
+            "stats_placements": st.stats_placements,
+            "stats": list(st.stats),
+            "depth_target_m": st.depth_target,
+            "depth_band_m": list(st.depth_band),
+            "unload_fraction": pr.unload_fraction,
+            "dtype": st.solver.dtype,
+            "maxiter": st.solver.maxiter,
+            "truncation_increments": pr.truncation_increments,
+            "refine": st.refine,
+            "refine_max": pr.refine_max,
+            "refine_punches_m": None if st.refine_punches is None else list(st.refine_punches),
+            "resolution_tol": pr.resolution_tol,
+            "min_contact_pixels": pr.min_contact_pixels,
+            "material": m.to_dict(),
+        }
+    )
 
 
 @fill_doc(_STAGE_DOCS)
-def stage_indentation(st: IndentationStage, out: str | Path, device, *, overwrite: bool = False,
-                      deadline: float | None = None, progress: bool = True,
-                      client=None) -> dict[str, Any]:  # fmt: skip
+def stage_indentation(
+    st: IndentationStage,
+    out: str | Path,
+    device,
+    *,
+    overwrite: bool = False,
+    deadline: float | None = None,
+    progress: bool = True,
+    client=None,
+) -> dict[str, Any]:
     """Run (or continue) the pieces under ``out/indentation`` and summarise them.
 
     {indentation_stage}
@@ -142,18 +160,23 @@ def stage_indentation(st: IndentationStage, out: str | Path, device, *, overwrit
             from .schedule import run_on_cluster
 
             if ref is not None and res_rec is None:
-                res_future = client.submit(_run_resolution, st, ref, device, pure=False, priority=10)
+                res_future = client.submit(
+                    _run_resolution, st, ref, device, pure=False, priority=10
+                )
             if not run_on_cluster(plan, client, device=device, deadline=deadline, bar=bar):
                 if res_future is not None and res_future.done() and res_future.status == "finished":
-                    write_atomic(rpath, json.dumps(res_future.result(), indent=None,
-                                                   allow_nan=False) + "\n")  # fmt: skip
+                    write_atomic(
+                        rpath, json.dumps(res_future.result(), indent=None, allow_nan=False) + "\n"
+                    )
                 raise incomplete("the next part")
         else:
             run_in_process(plan, device=device, stop=stop, bar=bar)
         if ref is not None and res_rec is None:
             if res_future is None:
                 stop("the resolution check")
-            res_rec = _run_resolution(st, ref, device) if res_future is None else res_future.result()
+            res_rec = (
+                _run_resolution(st, ref, device) if res_future is None else res_future.result()
+            )
             write_atomic(rpath, json.dumps(res_rec, indent=None, allow_nan=False) + "\n")
             bar.update()
     return summary_from_pieces(st, plan.records(), res_rec)
@@ -176,14 +199,22 @@ def _resolution_params(st: IndentationStage) -> dict[str, Any] | None:
     s = RESOLUTION_SURFACE if RESOLUTION_SURFACE in st.surfaces else st.surfaces[0]
     h = _resolution_hardness(st)
     pr = st.protocol
-    return jsonable({
-        "surface": s, "spec": spec(st, s).to_dict(), "n_coarse": st.n,
-        "n_fine": 2 * st.n, "punch_m": min(pr.punch_diameters),
-        "hardness_Pa": [None] + ([] if h is None else [h]), "placement": "map centre",
-        "loads_N": list(pr.peak_loads), "unload_fraction": pr.unload_fraction,
-        "dtype": st.solver.dtype, "maxiter": st.solver.maxiter,
-        "truncation_increments": pr.truncation_increments,
-    })
+    return jsonable(
+        {
+            "surface": s,
+            "spec": spec(st, s).to_dict(),
+            "n_coarse": st.n,
+            "n_fine": 2 * st.n,
+            "punch_m": min(pr.punch_diameters),
+            "hardness_Pa": [None] + ([] if h is None else [h]),
+            "placement": "map centre",
+            "loads_N": list(pr.peak_loads),
+            "unload_fraction": pr.unload_fraction,
+            "dtype": st.solver.dtype,
+            "maxiter": st.solver.maxiter,
+            "truncation_increments": pr.truncation_increments,
+        }
+    )
 
 
 def _run_resolution(st: IndentationStage, ref: dict[str, Any], device) -> dict[str, Any]:
@@ -196,8 +227,9 @@ def _run_resolution(st: IndentationStage, ref: dict[str, Any], device) -> dict[s
     coarse = wm_surface(sp, device=device)
     # the same surface twice as finely: the coarse map's height scale (as a topothesy) and
     # cut-off, so that no term is added and none aliases
-    fine_spec = sp.replace(n=ref["n_fine"], Rt=None, G=coarse.params["G_equivalent"],
-                           Wc=coarse.params["Wc"])  # fmt: skip
+    fine_spec = sp.replace(
+        n=ref["n_fine"], Rt=None, G=coarse.params["G_equivalent"], Wc=coarse.params["Wc"]
+    )
     t0 = time.perf_counter()
     fine = wm_surface(fine_spec, device=device)
     out: dict[str, Any] = {"params": ref, "grids": {}, "fine_spec": fine_spec.to_dict()}
@@ -207,19 +239,38 @@ def _run_resolution(st: IndentationStage, ref: dict[str, Any], device) -> dict[s
             h = math.inf if h is None else h
             t1 = time.perf_counter()
             protocol = IndentProtocol(
-                punch_diameters=(ref["punch_m"],), peak_loads=tuple(ref["loads_N"]),
-                unload_fraction=ref["unload_fraction"], placements=None,
-                truncation_increments=ref["truncation_increments"], refine_max=1,
+                punch_diameters=(ref["punch_m"],),
+                peak_loads=tuple(ref["loads_N"]),
+                unload_fraction=ref["unload_fraction"],
+                placements=None,
+                truncation_increments=ref["truncation_increments"],
+                refine_max=1,
                 elastic=math.isinf(h),
-            )  # fmt: skip
-            r = indent(surf, protocol=protocol, material=material(st, h), device=device,
-                       solver=SolverSettings(dtype=ref["dtype"], maxiter=ref["maxiter"]))
+            )
+            r = indent(
+                surf,
+                protocol=protocol,
+                material=material(st, h),
+                device=device,
+                solver=SolverSettings(dtype=ref["dtype"], maxiter=ref["maxiter"]),
+            )
             cols = {**r.to_dict()}
             cols["n_contact"] = cols["n_contact_pixels"]
-            g[model_name(h)] = {c: cols[c] for c in (
-                "peak_load_N", "unloading_stiffness_N_per_m", "partial_unloading_stiffness_N_per_m",
-                "contact_area_m2", "plastic_area_m2", "n_contact", "E_c_over_E", "converged",
-                "truncation_E_c_over_E", "n_punch_pixels")}  # fmt: skip
+            g[model_name(h)] = {
+                c: cols[c]
+                for c in (
+                    "peak_load_N",
+                    "unloading_stiffness_N_per_m",
+                    "partial_unloading_stiffness_N_per_m",
+                    "contact_area_m2",
+                    "plastic_area_m2",
+                    "n_contact",
+                    "E_c_over_E",
+                    "converged",
+                    "truncation_E_c_over_E",
+                    "n_punch_pixels",
+                )
+            }
             g[model_name(h)]["seconds"] = time.perf_counter() - t1
         out["grids"][tag] = g
     out["seconds"] = time.perf_counter() - t0
