@@ -94,14 +94,16 @@ class PunchFaceSpec(Parameters):
     tilt_deg: float = param(
         0.0,
         "tilt θ of the punch face against the sample's mean plane, held fixed as the "
-        "indenter's shaft holds it (degrees; 0.1° rises 0.88 µm over 502.6 µm)",
+        "indenter's shaft holds it (0.1° rises 0.88 µm over 502.6 µm)",
+        unit="°",
         ge=0.0,
         le=5.0,
     )
     tilt_azimuth_deg: float = param(
         0.0,
         "direction of the tilted face's edge nearest the sample, from +x toward +y, the "
-        "same for every placement (degrees)",
+        "same for every placement",
+        unit="°",
         ge=0.0,
         lt=360.0,
         sweep=False,
