@@ -14,7 +14,8 @@ of the same relative path in NEW_TREE; the Parquet parts of a dataset folder
 ``case_id``. Numbers are compared bit for bit (floats by their IEEE bits, so −0.0 ≠ 0.0 and
 NaN = NaN of the same payload); strings and booleans exactly. Provenance values are skipped:
 version, commit, times and durations, command lines, device and host names, paths (``SKIP``).
-Keys and columns renamed on purpose are mapped with ``RENAMED`` (baseline name → new name)
+Keys and columns renamed on purpose are mapped with ``RENAMED`` (baseline name → new name), and
+keys moved into another object with ``--moves FILE`` (regular expressions on the new key path),
 before the comparison; keys only in NEW_TREE are listed as additions (new columns beside the
 old ones are allowed), keys missing from NEW_TREE are failures.
 
@@ -40,7 +41,7 @@ RENAMED: dict[str, str] = {}
 SKIP = re.compile(
     r"^(version|warptrunc_version|commit|git_commit|date|time|created|finished_utc|started_utc|"
     r"command|command_line|argv|cmd|device|device_name|devices|host|hostname|out|path|paths|"
-    r"store|python|platform|numpy|warp|wall_time|wall_s|duration|elapsed|cwd|file|files)$"
+    r"store|python|platform|numpy|warp|wall_time|wall_s|duration|elapsed|cwd|file|files|cost)$"
     r"|seconds|_time$|^time_|_s$|_utc$|_path$|_dir$"
 )
 """Provenance keys (matched against the last component of a key path or a column name)."""
@@ -80,10 +81,23 @@ def _same(a, b) -> bool:
     return a == b
 
 
+MOVED: list[tuple[str, str]] = []
+"""(regex on a new key path, replacement giving the baseline path): keys moved on purpose into
+another object (``--moves FILE``: one ``REGEX => REPLACEMENT`` per line, ``#`` comments)."""
+
+
+def _moved(path: str) -> str:
+    for pat, rep in MOVED:
+        new = re.sub(pat, rep, path)
+        if new != path:
+            return new
+    return path
+
+
 def compare_json(a: Path, b: Path, report: list[str]) -> int:
     """Compare two JSON files leaf by leaf; returns the number of values compared."""
     la = dict(_leaves(json.loads(a.read_text())))
-    lb = dict(_leaves(json.loads(b.read_text())))
+    lb = {_moved(k): v for k, v in _leaves(json.loads(b.read_text()))}
     n = 0
     for k, v in la.items():
         if _skipped(k):
@@ -159,12 +173,24 @@ def compare_table(a: Path, b: Path, report: list[str]) -> int:
     return n
 
 
+def _load_moves(path):
+    for line in Path(path).read_text().splitlines():
+        if line.strip() and not line.startswith("#"):
+            pat, rep = line.split(" => ")
+            MOVED.append((pat.strip(), rep.strip()))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Compare the trees; print a summary and the differences."""
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("baseline", type=Path)
     p.add_argument("new", type=Path)
+    p.add_argument("--moves", default=None, metavar="FILE",
+                   help="keys moved on purpose: lines 'REGEX => REPLACEMENT' that map a new key "
+                   "path to the baseline's")  # fmt: skip
     args = p.parse_args(argv)
+    if args.moves:
+        _load_moves(args.moves)
     report: list[str] = []
     n_files = n_values = 0
     done_dirs: set[Path] = set()
