@@ -67,30 +67,38 @@ def main(argv=None) -> int:
     d = describe(scan)
     fits = fractal_dimensions(scan, device=args.device)
     dims = ", ".join(f"D_{m} = {f.D:.3f}" for m, f in fits.items())
-    print(f"1. {name}: R_t = {d.Rt * 1e6:.4g} µm, R_rms = {d.Rrms * 1e6:.4g} µm, "
-          f"W_r = {d.Wr * 1e6:.4g} µm; {dims}")  # fmt: skip
+    print(
+        f"1. {name}: R_t = {d.Rt * 1e6:.4g} µm, R_rms = {d.Rrms * 1e6:.4g} µm, "
+        f"W_r = {d.Wr * 1e6:.4g} µm; {dims}"
+    )
 
     settings = CalibrationSettings(method=args.method, seeds=seeds, rtol=args.rtol)
     target = target_from_surface(scan, settings, Wr=args.Wr, device=args.device)
     print(f"2. target D_{args.method} = {target.D:.4f}, R_rms = {target.Rrms * 1e6:.4g} µm")
     cal = calibrate(target, settings=settings, progress=not args.quick, device=args.device)
-    print(f"3. D_in' = {cal.D_in:.4f}, R_t' = {cal.Rt * 1e6:.4g} µm → D_{args.method} = "
-          f"{cal.D_out:.4f} ± {cal.D_out_std:.4f}, R_rms = {cal.Rrms * 1e6:.4g} µm "
-          f"after {cal.iterations} evaluations")  # fmt: skip
+    print(
+        f"3. D_in' = {cal.D_in:.4f}, R_t' = {cal.Rt * 1e6:.4g} µm → D_{args.method} = "
+        f"{cal.D_out:.4f} ± {cal.D_out_std:.4f}, R_rms = {cal.Rrms * 1e6:.4g} µm "
+        f"after {cal.iterations} evaluations"
+    )
 
     s = calibrated_surface(cal, n=n_out, seed=args.seed, device=args.device)
     ds = describe(s)
-    print(f"4. {n_out}² surface: R_t = {ds.Rt * 1e6:.4g} µm, R_rms = {ds.Rrms * 1e6:.4g} µm "
-          f"(at fixed R_t' it moves with the resolution), W_r = {ds.Wr * 1e6:.4g} µm")  # fmt: skip
+    print(
+        f"4. {n_out}² surface: R_t = {ds.Rt * 1e6:.4g} µm, R_rms = {ds.Rrms * 1e6:.4g} µm "
+        f"(at fixed R_t' it moves with the resolution), W_r = {ds.Wr * 1e6:.4g} µm"
+    )
     path = write_height_map(s, args.out / "calibrated_surface.npz")
     info = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in cal.to_dict().items()}
     info["output"] = {"path": str(path), **ds.to_dict()}
     (args.out / "calibration.json").write_text(json.dumps(info, indent=2) + "\n")
     plot.calibration_history(cal, path=args.out / "calibration_history.png")
     plot.psd(
-        [radial_psd(scan), radial_psd(s)], labels=[name, f"calibrated, {n_out}²"], Wr=target.Wr,
+        [radial_psd(scan), radial_psd(s)],
+        labels=[name, f"calibrated, {n_out}²"],
+        Wr=target.Wr,
         path=args.out / "psd.png",
-    )  # fmt: skip
+    )
     print(f"wrote {path}, {args.out}/calibration.json, calibration_history.png, psd.png")
     if not args.no_show:
         plot.show_pngs([args.out / "calibration_history.png", args.out / "psd.png"])

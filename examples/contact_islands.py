@@ -107,9 +107,16 @@ def main(argv=None) -> int:
         counted = ok.sum(axis=0)
         mean = np.where(counted > 0, np.nansum(beta_ok, axis=0) / np.maximum(counted, 1), np.nan)
     summary = {
-        "D": args.D, "Wr_m": args.Wr, "L_m": args.L, "Rt_m": args.Rt, "n": n,
-        "increments": inc, "connectivity": args.connectivity, "min_pixels": args.min_pixels,
-        "min_islands": min_islands, "seeds": rows,
+        "D": args.D,
+        "Wr_m": args.Wr,
+        "L_m": args.L,
+        "Rt_m": args.Rt,
+        "n": n,
+        "increments": inc,
+        "connectivity": args.connectivity,
+        "min_pixels": args.min_pixels,
+        "min_islands": min_islands,
+        "seeds": rows,
         "max_growth_rate_depth_percent_Rt": stats("max_growth_rate_depth_percent_Rt"),
         "island_peak_depth_percent_Rt": stats("island_peak_depth_percent_Rt"),
         "fractality_depth_percent_Rt": stats("fractality_depth_percent_Rt"),
@@ -119,18 +126,22 @@ def main(argv=None) -> int:
             "mean": [None if not np.isfinite(v) else float(v) for v in mean],
             "seeds_counted": counted.tolist(),
         },
-    }  # fmt: skip
+    }
     (args.out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
 
     from warptrunc import plot
 
     title = f"D = {args.D}, {n}², {len(curves)} seed(s)"
     plot.island_number(
-        curves, inds, labels=[f"seed {r['seed']}" for r in rows], title=title,
+        curves,
+        inds,
+        labels=[f"seed {r['seed']}" for r in rows],
+        title=title,
         path=args.out / "island_number.png",
-    )  # fmt: skip
-    plot.slit_islands(curves[0], title=f"D = {args.D}, {n}², seed {args.seed}",
-                      path=args.out / "slit_islands.png")  # fmt: skip
+    )
+    plot.slit_islands(
+        curves[0], title=f"D = {args.D}, {n}², seed {args.seed}", path=args.out / "slit_islands.png"
+    )
     print(f"wrote {args.out}/summary.json, islands_seed*.csv, island_number.png, slit_islands.png")
     if not args.no_show:  # pragma: no cover - interactive use only
         plot.show_pngs([args.out / "island_number.png", args.out / "slit_islands.png"])

@@ -55,8 +55,10 @@ def resolution_caveat(n: int) -> str:
     """Title lines that warn about an α-vs-D figure below 8192² (empty from 8192² up)."""
     if n >= 8192:
         return ""
-    return (f"\n{n}² — below the resolution where α(D) converges\n"
-            "(§ 3.3 asks ≥ 8192²); see the 10240² figure in the docs")
+    return (
+        f"\n{n}² — below the resolution where α(D) converges\n"
+        "(§ 3.3 asks ≥ 8192²); see the 10240² figure in the docs"
+    )
 
 
 def main(argv=None) -> int:
@@ -81,9 +83,12 @@ def main(argv=None) -> int:
     written = []
 
     surfaces = {
-        D: [wm_surface(D, Wr, n=args.n, Rt=args.delta * Wr, seed=s, device=args.device) for s in seeds]
+        D: [
+            wm_surface(D, Wr, n=args.n, Rt=args.delta * Wr, seed=s, device=args.device)
+            for s in seeds
+        ]
         for D in args.D
-    }  # fmt: skip
+    }
     first = surfaces[args.D[len(args.D) // 2]][0]
 
     p = args.out / "height_map.png"
@@ -102,33 +107,44 @@ def main(argv=None) -> int:
 
     # Fig. 9: 200 increments to 0.1 R_t, fits from 10 contact pixels on (the package default)
     curves = {
-        D: [stiffness_curve(truncate(s, 200, max_depth_fraction=0.1, device=args.device)) for s in ss]
+        D: [
+            stiffness_curve(truncate(s, 200, max_depth_fraction=0.1, device=args.device))
+            for s in ss
+        ]
         for D, ss in surfaces.items()
-    }  # fmt: skip
+    }
     fits = {D: [_fit(c) for c in cs] for D, cs in curves.items()}
     p = args.out / "stiffness_load.png"
     plot.stiffness_load(
-        list(curves.values()), list(fits.values()),
+        list(curves.values()),
+        list(fits.values()),
         labels=[f"D$_{{in}}$ = {D}" for D in curves],
-        title=f"δ = {args.delta}, {args.n}², {args.seeds} seeds", path=p,
-    )  # fmt: skip
+        title=f"δ = {args.delta}, {args.n}², {args.seeds} seeds",
+        path=p,
+    )
     written.append(p)
 
     per_D = []
     for D, fs in fits.items():
         a = np.array([f.alpha for f in fs if f is not None])
-        per_D.append({
-            "D_in": D, "alpha_mean": float(a.mean()) if a.size else float("nan"),
-            "alpha_sd": float(a.std(ddof=1)) if a.size > 1 else float("nan"), "n": int(a.size),
-        })  # fmt: skip
+        per_D.append(
+            {
+                "D_in": D,
+                "alpha_mean": float(a.mean()) if a.size else float("nan"),
+                "alpha_sd": float(a.std(ddof=1)) if a.size > 1 else float("nan"),
+                "n": int(a.size),
+            }
+        )
     ok = [r for r in per_D if r["n"] > 0]
     line = (
         linear_fit([r["D_in"] for r in ok], [r["alpha_mean"] for r in ok]) if len(ok) > 1 else None
     )
     summary = {"fit_ranges": {"10": {"per_D": per_D, "alpha_vs_D": line}}}
     p = args.out / "alpha_vs_D.png"
-    fig = plot.alpha_vs_D(summary, title=f"δ = {args.delta}, {args.n}², {args.seeds} seeds"
-                          + resolution_caveat(args.n))
+    fig = plot.alpha_vs_D(
+        summary,
+        title=f"δ = {args.delta}, {args.n}², {args.seeds} seeds" + resolution_caveat(args.n),
+    )
     fig.axes[0].title.set_fontsize(8)
     fig.savefig(p)
     written.append(p)
@@ -139,8 +155,10 @@ def main(argv=None) -> int:
         p = args.out / "psd.png"
         plot.psd(
             [profile_psd(ss[0]) for ss in surfaces.values()],
-            labels=[f"D$_{{in}}$ = {D}" for D in surfaces], Wr=Wr, path=p,
-        )  # fmt: skip
+            labels=[f"D$_{{in}}$ = {D}" for D in surfaces],
+            Wr=Wr,
+            path=p,
+        )
         written.append(p)
 
     if importlib.util.find_spec("warptrunc.islands") and hasattr(plot, "island_number"):

@@ -81,9 +81,12 @@ def main(argv=None) -> int:
         rising = bool(np.all(np.diff(mean[m]) > 0))
         print(f"   D_{m} rises monotonically with D_in: {rising}")
     plot.d_out_vs_d_in(
-        d_in, mean, d_out_std=std, path=args.out / "d_out_vs_d_in.png",
+        d_in,
+        mean,
+        d_out_std=std,
+        path=args.out / "d_out_vs_d_in.png",
         title=f"WM, {n}², R$_t$ = 36.9 µm, W$_r$ = 60 µm",
-    )  # fmt: skip
+    )
     plot.fractal_fits(last, path=args.out / "fractal_fits.png", title=f"WM D$_{{in}}$ = {d_in[-1]}")
     (args.out / "fractal_dimension.json").write_text(
         json.dumps(

@@ -72,13 +72,25 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=0, help="phase seed of the surface")
     ap.add_argument("--D", type=float, default=2.5, help="fractal dimension D")
     ap.add_argument("--Rt", type=float, default=10e-6, help="peak-to-valley height R_t (m)")
-    ap.add_argument("--hardness", type=float, default=1e9,
-                    help="hardness H (Pa), an assumption (the paper states none); inf = elastic")
+    ap.add_argument(
+        "--hardness",
+        type=float,
+        default=1e9,
+        help="hardness H (Pa), an assumption (the paper states none); inf = elastic",
+    )
     ap.add_argument("--placements", type=int, default=3, help="punch positions per diameter")
-    ap.add_argument("--refine-max", type=int, default=8,
-                    help="largest refinement of the pixel of a cell (a power of 2; 1 = none)")
-    ap.add_argument("--min-contact-pixels", type=int, default=100,
-                    help="fewest contact pixels of a resolved cell")
+    ap.add_argument(
+        "--refine-max",
+        type=int,
+        default=8,
+        help="largest refinement of the pixel of a cell (a power of 2; 1 = none)",
+    )
+    ap.add_argument(
+        "--min-contact-pixels",
+        type=int,
+        default=100,
+        help="fewest contact pixels of a resolved cell",
+    )
     ap.add_argument("--out", type=Path, default=Path("results/indentation"), help="output folder")
     ap.add_argument(
         "--quick", action="store_true", help="a 128² map, two punches, five loads, 2 placements"
@@ -97,29 +109,45 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     s = wm_surface(args.D, 100e-6, L=1e-3, n=n, Rt=args.Rt, seed=args.seed, device=args.device)
     material = default_material(hardness=args.hardness)
-    protocol = IndentProtocol(punch_diameters=punches, peak_loads=loads, placements=placements,
-                              refine_max=refine, min_contact_pixels=min_px)
-    res = indent(s, protocol=protocol, material=material, progress=args.progress,
-                 device=args.device)
+    protocol = IndentProtocol(
+        punch_diameters=punches,
+        peak_loads=loads,
+        placements=placements,
+        refine_max=refine,
+        min_contact_pixels=min_px,
+    )
+    res = indent(
+        s, protocol=protocol, material=material, progress=args.progress, device=args.device
+    )
     args.out.mkdir(parents=True, exist_ok=True)
     res.to_csv(args.out / "indent.csv")
     res.to_json(args.out / "indent.json")
-    plot.indentation(res, args.out / "indent.png",
-                     title=f"D = {args.D}, {n}² over 1 mm, R$_t$ = {args.Rt * 1e6:.3g} µm")  # fmt: skip
+    plot.indentation(
+        res,
+        args.out / "indent.png",
+        title=f"D = {args.D}, {n}² over 1 mm, R$_t$ = {args.Rt * 1e6:.3g} µm",
+    )
     print(f"{res.peak_load.size} cells on a {n}² map in {time.perf_counter() - t0:.1f} s")
     c = res.resolution_counts()["elastic_plastic"]
-    print(f"  {c['resolved']} resolved, {c['saturated']} saturated, {c['in_fit']} in the fits "
-          "(elastic–plastic)")
+    print(
+        f"  {c['resolved']} resolved, {c['saturated']} saturated, {c['in_fit']} in the fits "
+        "(elastic–plastic)"
+    )
     at = max(loads)
     for d in punches:  # the depth at the largest load, beside the paper's ≈ 5 µm
         sel = (res.punch_diameter == d) & (res.peak_load == at) & res.converged
         if sel.any():
-            print(f"  depth at {at * 1e3:g} mN, {d * 1e6:g} µm punch: median "
-                  f"{np.median(res.displacement[sel]) * 1e6:.3g} µm (the paper: around 5 µm, § 4.1)")
+            print(
+                f"  depth at {at * 1e3:g} mN, {d * 1e6:g} µm punch: median "
+                f"{np.median(res.displacement[sel]) * 1e6:.3g} µm (the paper: around 5 µm, § 4.1)"
+            )
     for name, fit in res.fits().items():
-        text = ("no fit (fewer than 6 cells in_fit)" if fit is None else
-                f"α = {fit.alpha:.3f} [{fit.alpha_ci95[0]:.3f}, {fit.alpha_ci95[1]:.3f}], "
-                f"β = {fit.beta:.3g} [{fit.beta_ci95[0]:.3g}, {fit.beta_ci95[1]:.3g}]")  # fmt: skip
+        text = (
+            "no fit (fewer than 6 cells in_fit)"
+            if fit is None
+            else f"α = {fit.alpha:.3f} [{fit.alpha_ci95[0]:.3f}, {fit.alpha_ci95[1]:.3f}], "
+            f"β = {fit.beta:.3g} [{fit.beta_ci95[0]:.3g}, {fit.beta_ci95[1]:.3g}]"
+        )
         print(f"  {name:24s} {text}")
     print(f"wrote {args.out}/indent.csv, indent.json, indent.png")
     if not args.no_show:  # pragma: no cover - interactive use only

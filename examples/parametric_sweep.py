@@ -48,8 +48,10 @@ def resolution_caveat(n: int) -> str:
     """Title lines that warn about an α-vs-D figure below 8192² (empty from 8192² up)."""
     if n >= 8192:
         return ""
-    return (f"\n{n}² — below the resolution where α(D) converges\n"
-            "(§ 3.3 asks ≥ 8192²); see the 10240² figure in the docs")
+    return (
+        f"\n{n}² — below the resolution where α(D) converges\n"
+        "(§ 3.3 asks ≥ 8192²); see the 10240² figure in the docs"
+    )
 
 
 def refit(out: Path, min_pixels: list[int]):
@@ -68,8 +70,9 @@ def refit(out: Path, min_pixels: list[int]):
             alpha = np.nan
             if sel.sum() >= 3:
                 alpha = np.polyfit(np.log(c["F_over_EA"][sel]), np.log(c["Ec_over_E"][sel]), 1)[0]
-            rows.append({"case_id": cid, "D_in": cases.at[cid, "D_in"], "min_pixels": mp,
-                         "alpha": alpha})  # fmt: skip
+            rows.append(
+                {"case_id": cid, "D_in": cases.at[cid, "D_in"], "min_pixels": mp, "alpha": alpha}
+            )
     return pd.DataFrame(rows)
 
 
@@ -90,8 +93,14 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, default=None, help="Dask workers (one per GPU)")
     ap.add_argument("--out", type=Path, default=Path("results/group2"), help="result store")
     ap.add_argument("--overwrite", action="store_true", help="replace a store of another run")
-    ap.add_argument("--refit", type=int, nargs="+", default=None, metavar="MIN_PIXELS",
-                    help="only re-fit the stored curves with these fit ranges")  # fmt: skip
+    ap.add_argument(
+        "--refit",
+        type=int,
+        nargs="+",
+        default=None,
+        metavar="MIN_PIXELS",
+        help="only re-fit the stored curves with these fit ranges",
+    )
     ap.add_argument("--quick", action="store_true", help="128², 2 seeds, 3 values of D")
     ap.add_argument(
         "--no-show", action="store_true", help="do not open a window (figures are saved)"
@@ -110,31 +119,49 @@ def main(argv=None) -> int:
     else:
         grid = SweepGrid(args.D, [args.delta], range(args.seeds))
         options = SweepOptions(n=args.n, min_pixels=tuple(args.min_pixels))
-        df = run_sweep(grid, args.out, options=options,
-                       execution=SweepExecution(workers=args.workers),
-                       overwrite=args.overwrite, device=args.device)  # fmt: skip
+        df = run_sweep(
+            grid,
+            args.out,
+            options=options,
+            execution=SweepExecution(workers=args.workers),
+            overwrite=args.overwrite,
+            device=args.device,
+        )
         df = df[df["error"].isna()]
-    summary = {"n": args.n, "seeds": args.seeds, "delta": args.delta, "paper": PAPER,
-               **alpha_summary(df)}  # fmt: skip
+    summary = {
+        "n": args.n,
+        "seeds": args.seeds,
+        "delta": args.delta,
+        "paper": PAPER,
+        **alpha_summary(df),
+    }
     for mp, v in summary["fit_ranges"].items():
         print(f"\nmin_pixels = {mp}:")
         for r in v["per_D"]:
-            print(f"  D_in = {r['D_in']:.1f}: α = {r['alpha_mean']:.3f} ± {r['alpha_sd']:.3f} "
-                  f"({r['n']} fits)")  # fmt: skip
+            print(
+                f"  D_in = {r['D_in']:.1f}: α = {r['alpha_mean']:.3f} ± {r['alpha_sd']:.3f} "
+                f"({r['n']} fits)"
+            )
         line = v["alpha_vs_D"]
         if line:
-            print(f"  α = {line['slope']:.3f}·D_in + {line['intercept']:.3f} (r = {line['r']:.3f});"
-                  f" paper: α = 0.209·D_in + 0.090 (r = 0.940)")  # fmt: skip
+            print(
+                f"  α = {line['slope']:.3f}·D_in + {line['intercept']:.3f} (r = {line['r']:.3f});"
+                f" paper: α = 0.209·D_in + 0.090 (r = 0.940)"
+            )
     name = "summary_refit.json" if args.refit else "summary.json"
     (args.out / name).write_text(json.dumps(summary, indent=2, default=float) + "\n")
     from warptrunc import plot
 
     png = "alpha_vs_D_refit.png" if args.refit else "alpha_vs_D.png"
-    fig = plot.alpha_vs_D(summary, title=f"δ = {args.delta}, {args.n}², {args.seeds} seeds"
-                          + resolution_caveat(args.n))
+    fig = plot.alpha_vs_D(
+        summary,
+        title=f"δ = {args.delta}, {args.n}², {args.seeds} seeds" + resolution_caveat(args.n),
+    )
     fig.axes[0].title.set_fontsize(8)
     fig.savefig(args.out / png)
-    print(f"\nstore {args.out} (sweep.json, cases.parquet, curves/part-*.parquet); wrote {name}, {png}")
+    print(
+        f"\nstore {args.out} (sweep.json, cases.parquet, curves/part-*.parquet); wrote {name}, {png}"
+    )
     return 0
 
 

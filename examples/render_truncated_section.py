@@ -50,17 +50,26 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=1, help="phase seed")
     ap.add_argument("--D", type=float, default=2.5, help="fractal dimension D_in")
     ap.add_argument("--out", type=Path, default=Path("results/render"), help="output folder")
-    ap.add_argument("--size", type=int, nargs=2, default=[1560, 880], metavar=("W", "H"),
-                    help="picture size in pixels")  # fmt: skip
+    ap.add_argument(
+        "--size",
+        type=int,
+        nargs=2,
+        default=[1560, 880],
+        metavar=("W", "H"),
+        help="picture size in pixels",
+    )
     ap.add_argument("--animate", action="store_true", help="also write truncation.gif")
     ap.add_argument(
-        "--pooling", choices=["area", "any"], default="area",
+        "--pooling",
+        choices=["area", "any"],
+        default="area",
         help="block colour: contact fraction ('area') or red when any pixel touches ('any')",
-    )  # fmt: skip
+    )
     ap.add_argument(
-        "--palette", action="store_true",
+        "--palette",
+        action="store_true",
         help="re-save the PNGs with 256 colours (about half the size; the docs/ images)",
-    )  # fmt: skip
+    )
     ap.add_argument("--quick", action="store_true", help="128², small pictures")
     ap.add_argument("--no-show", action="store_true", help="do not open the pictures")
     args = ap.parse_args(argv)
@@ -78,17 +87,16 @@ def main(argv=None) -> int:
         settings=oblique.replace(top_view=True),
         device=args.device,
     )
-    vti = export_vtk(s, args.out / "surface.vti", n_increments=50 if args.quick else 200,
-                     device=args.device)  # fmt: skip
+    vti = export_vtk(
+        s, args.out / "surface.vti", n_increments=50 if args.quick else 200, device=args.device
+    )
     written = [r.path, top.path, vti]
     if args.palette:
         for p in (r.path, top.path):
             _palette(p)
     if args.animate:
         frames = AnimationSettings(frames=6, frame_size=(320, 260)) if args.quick else None
-        a = animate_truncation(
-            s, args.out / "truncation.gif", animation=frames, device=args.device
-        )
+        a = animate_truncation(s, args.out / "truncation.gif", animation=frames, device=args.device)
         written.append(a.path)
     (args.out / "render.json").write_text(
         json.dumps({"oblique": r.to_dict(), "top": top.to_dict()}, indent=2, default=list) + "\n"

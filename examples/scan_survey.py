@@ -130,12 +130,18 @@ def survey_file(f: Path, device: str) -> dict:
             row["category"], row["detail"] = "misread", "heights differ from SurfaceTopography's"
             return row
     try:
-        a = analyze(s, truncation=TruncationSettings(islands=False), device=device)  # analyze's defaults and its rule
+        a = analyze(
+            s, truncation=TruncationSettings(islands=False), device=device
+        )  # analyze's defaults and its rule
     except ValueError as exc:
         advice = fit_range_advice(
-            s.heights, increments=200, max_depth_fraction=0.1, max_depth=None, min_pixels=10,
+            s.heights,
+            increments=200,
+            max_depth_fraction=0.1,
+            max_depth=None,
+            min_pixels=10,
             depth_window=None,
-        )  # fmt: skip
+        )
         if "fit range" in str(exc) and advice:
             row["category"] = "read, advice"
             row["detail"] = "; ".join(a.split(" (")[0] for a in advice)
@@ -145,8 +151,9 @@ def survey_file(f: Path, device: str) -> dict:
     fit, rule = a.fit, a.fit_range
     done = [k for k in ("spikes_masked", "depth_extended", "depth_cut") if rule.get(k)]
     row["category"] = "analysed" if a.fit_error is None else "flagged"
-    row["detail"] = (f"{s.nx}×{s.ny}, α = {fit.alpha:.3f}, r² = {fit.r2:.3f}"
-                     + (f"; automatic: {', '.join(done)}" if done else ""))  # fmt: skip
+    row["detail"] = f"{s.nx}×{s.ny}, α = {fit.alpha:.3f}, r² = {fit.r2:.3f}" + (
+        f"; automatic: {', '.join(done)}" if done else ""
+    )
     return row
 
 

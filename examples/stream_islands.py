@@ -56,8 +56,13 @@ def _island_sizes(res, spec, path: Path) -> None:
         a, count = np.unique(r.area_pixels, return_counts=True)
         n_ge = np.cumsum(count[::-1])[::-1]  # islands with area ≥ a
         word = "island" if r.n_islands == 1 else "islands"
-        ax.loglog(a * pixel_um2, n_ge, "o-", ms=3,
-                  label=f"ω = {r.depth / spec.Rt:.2f}·R$_t$: {r.n_islands} {word}")  # fmt: skip
+        ax.loglog(
+            a * pixel_um2,
+            n_ge,
+            "o-",
+            ms=3,
+            label=f"ω = {r.depth / spec.Rt:.2f}·R$_t$: {r.n_islands} {word}",
+        )
     ax.set_xlabel("island area a (µm²)")
     ax.set_ylabel("islands with area ≥ a")
     ax.set_title(f"streamed labelling, {spec.nx}×{spec.ny} WM surface, D = {spec.D}", fontsize=9)
@@ -76,12 +81,14 @@ def main(argv=None) -> int:
     )
     ap.add_argument("--n", type=int, default=1024, help="pixels per side")
     ap.add_argument("--seed", type=int, default=0, help="phase seed")
-    ap.add_argument("--fractions", type=float, nargs="+", default=[0.05, 0.2],
-                    help="depths as fractions of R_t")  # fmt: skip
+    ap.add_argument(
+        "--fractions", type=float, nargs="+", default=[0.05, 0.2], help="depths as fractions of R_t"
+    )
     ap.add_argument("--band-rows", type=int, default=None, help="rows per band")
     ap.add_argument("--device", default=None, help="cpu, cuda:0, ... (default: CUDA if present)")
-    ap.add_argument("--out", type=Path, default=None,
-                    help="folder for stream_islands.json and island_sizes.png")
+    ap.add_argument(
+        "--out", type=Path, default=None, help="folder for stream_islands.json and island_sizes.png"
+    )
     ap.add_argument("--json", default=None, help="also write the JSON to this file")
     ap.add_argument("--quick", action="store_true", help="256², bands of 32 rows")
     ap.add_argument("--no-show", action="store_true", help="(no figures; accepted for symmetry)")
@@ -102,11 +109,14 @@ def main(argv=None) -> int:
     run()
     res, seconds = run()
     out = {
-        "device": str(device), "n": args.n, "depths_m": depths.tolist(), "seconds": seconds,
+        "device": str(device),
+        "n": args.n,
+        "depths_m": depths.tolist(),
+        "seconds": seconds,
         "n_islands": [r.n_islands for r in res],
         "largest_island_pixels": [int(r.area_pixels.max(initial=0)) for r in res],
         "n_border_merges": [r.n_border_merges for r in res],
-    }  # fmt: skip
+    }
     if device.is_cuda:
         out["mempool_high_GiB"] = wp.get_mempool_used_mem_high(device) / 2**30
     if args.n**2 < 2**30:

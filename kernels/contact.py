@@ -347,8 +347,17 @@ def advance_kernel(
         uo = u[iy, ix]
         un = r[iy, ix]
         if linear != 0:
-            acc = direct_sum(scale * (wp.float64(uo) - tau * wp.float64(un)), table, periodic,
-                             index, value, n_changes, iy, ix, nx)
+            acc = direct_sum(
+                scale * (wp.float64(uo) - tau * wp.float64(un)),
+                table,
+                periodic,
+                index,
+                value,
+                n_changes,
+                iy,
+                ix,
+                nx,
+            )
             un = u.dtype(acc)
         u[iy, ix] = un
         du_max = wp.max(du_max, wp.abs(wp.float64(un) - wp.float64(uo)))
@@ -447,8 +456,20 @@ def max_force_kernel(
     part[lane, 0] = qm
 
 
-declare_overloads((
-    clamp_displacement_kernel, add_map_kernel, copy_map_kernel, fill_map_kernel,
-    cg_direction_kernel, update_force_kernel, compact_changes_kernel, rescale_force_kernel, advance_kernel,
-    punch_step_kernel, punch_direction_kernel, contact_mask_kernel, max_force_kernel,
-))  # fmt: skip
+declare_overloads(
+    (
+        clamp_displacement_kernel,
+        add_map_kernel,
+        copy_map_kernel,
+        fill_map_kernel,
+        cg_direction_kernel,
+        update_force_kernel,
+        compact_changes_kernel,
+        rescale_force_kernel,
+        advance_kernel,
+        punch_step_kernel,
+        punch_direction_kernel,
+        contact_mask_kernel,
+        max_force_kernel,
+    )
+)

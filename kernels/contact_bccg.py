@@ -386,7 +386,16 @@ def scale_state_kernel(s: wp.float64, q: wp.array2d(dtype=Any), u: wp.array2d(dt
     u[iy, ix] = u.dtype(s * wp.float64(u[iy, ix]))
 
 
-declare_overloads((
-    bccg_sums_kernel, bccg_residual_kernel, bccg_dot_kernel, bccg_direction_kernel,
-    bccg_update_kernel, bccg_correct_kernel, bccg_exact_kernel, clamp_force_kernel, scale_state_kernel,
-))  # fmt: skip
+declare_overloads(
+    (
+        bccg_sums_kernel,
+        bccg_residual_kernel,
+        bccg_dot_kernel,
+        bccg_direction_kernel,
+        bccg_update_kernel,
+        bccg_correct_kernel,
+        bccg_exact_kernel,
+        clamp_force_kernel,
+        scale_state_kernel,
+    )
+)

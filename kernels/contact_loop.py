@@ -159,8 +159,7 @@ def compact_gated_kernel(
     nothing otherwise."""
     n_p = int(s[S_NPROJ])
     if n_p > 0 and n_p <= cap:
-        compact_walk(wp.tid(), q, lin, mask, wp.float64(1.0), offsets, stride, chunk, index,
-                     value)  # fmt: skip
+        compact_walk(wp.tid(), q, lin, mask, wp.float64(1.0), offsets, stride, chunk, index, value)
 
 
 @wp.kernel
@@ -204,8 +203,7 @@ def loop_exact_kernel(sums: wp.array2d(dtype=wp.float64), s: wp.array[wp.float64
 
 
 @wp.kernel
-def scale_gated_kernel(s: wp.array[wp.float64], q: wp.array2d(dtype=Any),
-                       u: wp.array2d(dtype=Any)):  # fmt: skip
+def scale_gated_kernel(s: wp.array[wp.float64], q: wp.array2d(dtype=Any), u: wp.array2d(dtype=Any)):
     """q ← f·q, u ← f·u with f = s[S_SCALE] (load control; nothing when f = 0)."""
     f = s[S_SCALE]
     if f > wp.float64(0.0):
@@ -262,7 +260,13 @@ def direction_loop_kernel(
     direction_walk(wp.tid(), z, s[S_MEAN], s[S_BETA], mask, r, stride, chunk, t, z_old, part)
 
 
-declare_overloads((
-    compact_gated_kernel, correct_gated_kernel, scale_gated_kernel, residual_loop_kernel,
-    sums_loop_kernel, direction_loop_kernel,
-))  # fmt: skip
+declare_overloads(
+    (
+        compact_gated_kernel,
+        correct_gated_kernel,
+        scale_gated_kernel,
+        residual_loop_kernel,
+        sums_loop_kernel,
+        direction_loop_kernel,
+    )
+)

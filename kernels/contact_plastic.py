@@ -238,8 +238,17 @@ def capped_advance_kernel(
         uo = u[iy, ix]
         un = r[iy, ix]
         if linear != 0:
-            acc = direct_sum(wp.float64(uo) - tau * wp.float64(un), table, periodic, index,
-                             value, n_changes, iy, ix, nx)
+            acc = direct_sum(
+                wp.float64(uo) - tau * wp.float64(un),
+                table,
+                periodic,
+                index,
+                value,
+                n_changes,
+                iy,
+                ix,
+                nx,
+            )
             un = u.dtype(acc)
         u[iy, ix] = un
         du_max = wp.max(du_max, wp.abs(wp.float64(un) - wp.float64(uo)))
@@ -305,7 +314,12 @@ def plastic_flow_kernel(
     part[lane, 2] = s_dw
 
 
-declare_overloads((
-    capped_sums_kernel, capped_direction_kernel, capped_update_kernel, capped_advance_kernel,
-    plastic_flow_kernel,
-))  # fmt: skip
+declare_overloads(
+    (
+        capped_sums_kernel,
+        capped_direction_kernel,
+        capped_update_kernel,
+        capped_advance_kernel,
+        plastic_flow_kernel,
+    )
+)

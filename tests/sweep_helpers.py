@@ -30,9 +30,12 @@ def two_worker_client():
     import distributed
 
     cluster = distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
+        n_workers=2,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=":0",
         silence_logs=logging.ERROR,
-    )  # fmt: skip
+    )
     c = distributed.Client(cluster)
     yield c
     c.close()

@@ -38,9 +38,15 @@ def test_parse_cpulist_rejects(text):
 
 @pytest.mark.parametrize(
     ("bus", "name"),
-    [("00000000:1B:00.0", "0000:1b:00.0"), ("0000:9A:00.0", "0000:9a:00.0"),
-     ("0001:c1:1f.7\n", "0001:c1:1f.7"), ("", None), ("1B:00.0", None), ("zz:1b:00.0", None)],
-)  # fmt: skip
+    [
+        ("00000000:1B:00.0", "0000:1b:00.0"),
+        ("0000:9A:00.0", "0000:9a:00.0"),
+        ("0001:c1:1f.7\n", "0001:c1:1f.7"),
+        ("", None),
+        ("1B:00.0", None),
+        ("zz:1b:00.0", None),
+    ],
+)
 def test_sysfs_name(bus, name):
     assert affinity.sysfs_name(bus) == name
 

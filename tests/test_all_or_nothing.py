@@ -41,25 +41,107 @@ def commands(scan: Path, out: Path) -> dict[str, list[str]]:
     """Small command lines of the commands that write files, all into ``out``."""
     cmds = {
         "analyze": ["analyze", *SMALL, "--min-pixels", "1", "--out", out / "analyze"],
-        "bem-check": ["bem-check", "--n", "32", "--maxiter", "200", "--accept-unconverged",
-                      "--no-progress", "--out", out / "bem"],
-        "describe": ["describe", scan, "--dx", "1e-6", "--methods", "box", "--json",
-                     out / "d.json", "--out", out / "describe"],
+        "bem-check": [
+            "bem-check",
+            "--n",
+            "32",
+            "--maxiter",
+            "200",
+            "--accept-unconverged",
+            "--no-progress",
+            "--out",
+            out / "bem",
+        ],
+        "describe": [
+            "describe",
+            scan,
+            "--dx",
+            "1e-6",
+            "--methods",
+            "box",
+            "--json",
+            out / "d.json",
+            "--out",
+            out / "describe",
+        ],
         "islands": ["islands", *SMALL, "--increments", "50", "--out", out / "islands"],
         "generate": ["generate", "--n", "256", "-o", out / "surface.npz"],
-        "calibrate": ["calibrate", "--D", "2.4", "--Rrms", "1e-7", "--Rt", "1e-6", "--Wr", "2e-5",
-                      "--L", "1e-4", "--n", "32", "--n-out", "128", "--seeds", "0",
-                      "--max-iter", "2", "--rtol", "0.9", "--no-progress", "--out", out / "cal"],
-    }  # fmt: skip
+        "calibrate": [
+            "calibrate",
+            "--D",
+            "2.4",
+            "--Rrms",
+            "1e-7",
+            "--Rt",
+            "1e-6",
+            "--Wr",
+            "2e-5",
+            "--L",
+            "1e-4",
+            "--n",
+            "32",
+            "--n-out",
+            "128",
+            "--seeds",
+            "0",
+            "--max-iter",
+            "2",
+            "--rtol",
+            "0.9",
+            "--no-progress",
+            "--out",
+            out / "cal",
+        ],
+    }
     if _has("pyarrow"):
-        cmds["sweep"] = ["sweep", "--D", "2.3", "2.5", "--delta", "0.01", "--n", "64",
-                         "--min-pixels", "1", "--no-progress", "--out", out / "sweep"]  # fmt: skip
-        cmds["compare"] = ["compare", "--D", "2.3", "--size-ratios", "1", "--pixels-per-wr", "16",
-                           "--refine-ratio", "none", "--seeds", "0", "--fractions", "0.1", "0.2",
-                           "--no-progress", "--no-plot", "--out", out / "compare"]  # fmt: skip
+        cmds["sweep"] = [
+            "sweep",
+            "--D",
+            "2.3",
+            "2.5",
+            "--delta",
+            "0.01",
+            "--n",
+            "64",
+            "--min-pixels",
+            "1",
+            "--no-progress",
+            "--out",
+            out / "sweep",
+        ]
+        cmds["compare"] = [
+            "compare",
+            "--D",
+            "2.3",
+            "--size-ratios",
+            "1",
+            "--pixels-per-wr",
+            "16",
+            "--refine-ratio",
+            "none",
+            "--seeds",
+            "0",
+            "--fractions",
+            "0.1",
+            "0.2",
+            "--no-progress",
+            "--no-plot",
+            "--out",
+            out / "compare",
+        ]
     if _has("pyvista"):
-        cmds["render"] = ["render", "--n", "32", "--depth-fractions", "0.3", "--size", "120",
-                          "100", "--out", out / "render"]  # fmt: skip
+        cmds["render"] = [
+            "render",
+            "--n",
+            "32",
+            "--depth-fractions",
+            "0.3",
+            "--size",
+            "120",
+            "100",
+            "--out",
+            out / "render",
+        ]
     return {k: [str(a) for a in v] for k, v in cmds.items()}
 
 
@@ -88,8 +170,20 @@ sys.exit(main(sys.argv[1:]))
 """
 
 
-@pytest.mark.parametrize("name", ["analyze", "bem-check", "describe", "islands", "generate",
-                                  "calibrate", "sweep", "compare", "render"])  # fmt: skip
+@pytest.mark.parametrize(
+    "name",
+    [
+        "analyze",
+        "bem-check",
+        "describe",
+        "islands",
+        "generate",
+        "calibrate",
+        "sweep",
+        "compare",
+        "render",
+    ],
+)
 def test_a_file_size_limit_keeps_the_earlier_outputs_and_adds_nothing(name, scan, tmp_path, capsys):
     cmds = commands(scan, tmp_path / "out")
     if name not in cmds:
@@ -104,9 +198,13 @@ def test_a_file_size_limit_keeps_the_earlier_outputs_and_adds_nothing(name, scan
     path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)
     env = {**os.environ, "PYTHONPATH": path, "WARPTRUNC_DEVICE": "cpu", "MPLBACKEND": "Agg"}
     r = subprocess.run(
-        [sys.executable, "-c", LIMITED.format(limit=4000), *argv], capture_output=True,
-        text=True, env=env, cwd=tmp_path, timeout=300,
-    )  # fmt: skip
+        [sys.executable, "-c", LIMITED.format(limit=4000), *argv],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=300,
+    )
     # plausibility warnings (one "warning:" line each) may precede the error
     lines = [ln for ln in r.stderr.strip().splitlines() if not ln.startswith("warning:")]
     assert r.returncode == 2, r.stderr[-2000:]
@@ -125,8 +223,9 @@ def full_disk(tmp_path, monkeypatch):
     d.mkdir()
     mounted = False
     if hasattr(os, "geteuid") and os.geteuid() == 0 and sys.platform.startswith("linux"):
-        r = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=16k", "tmpfs", str(d)],
-                           capture_output=True)  # fmt: skip
+        r = subprocess.run(
+            ["mount", "-t", "tmpfs", "-o", "size=16k", "tmpfs", str(d)], capture_output=True
+        )
         mounted = r.returncode == 0
     if not mounted:
         _inject_enospc(monkeypatch, d, 2048)
@@ -179,8 +278,10 @@ def _inject_enospc(monkeypatch, root: Path, limit: int) -> None:
     monkeypatch.setattr(io, "open", fake_open)
 
 
-@pytest.mark.parametrize("name", ["analyze", "bem-check", "describe", "islands", "generate",
-                                  "calibrate", "sweep", "compare"])  # fmt: skip
+@pytest.mark.parametrize(
+    "name",
+    ["analyze", "bem-check", "describe", "islands", "generate", "calibrate", "sweep", "compare"],
+)
 def test_a_full_disk_leaves_nothing_behind(name, scan, full_disk, capsys):
     cmds = commands(scan, full_disk / "out")
     if name not in cmds:
@@ -213,8 +314,22 @@ def test_an_unreachable_scheduler_leaves_nothing(tmp_path, capsys):
 
     out = tmp_path / "s"
     with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
-        code = main(["sweep", "--D", "2.3", "--delta", "0.01", "--n", "32", "--no-progress",
-                     "--scheduler", "tcp://127.0.0.1:1", "--out", str(out)])  # fmt: skip
+        code = main(
+            [
+                "sweep",
+                "--D",
+                "2.3",
+                "--delta",
+                "0.01",
+                "--n",
+                "32",
+                "--no-progress",
+                "--scheduler",
+                "tcp://127.0.0.1:1",
+                "--out",
+                str(out),
+            ]
+        )
     err = capsys.readouterr().err
     assert code == 2 and len(err.strip().splitlines()) == 1, err
     assert not out.exists()
@@ -235,8 +350,12 @@ def test_staged_outputs_commits_folders_and_files_together(tmp_path):
         (st.folder(tmp_path / "old") / "a.txt").write_text("new a")
         st.file(tmp_path / "new" / "b.json").write_text("{}")
         assert not (tmp_path / "new" / "b.json").exists()  # nothing is in place before the end
-    assert snapshot(tmp_path) == {"new": None, "new/b.json": b"{}", "old": None,
-                                  "old/a.txt": b"new a"}  # fmt: skip
+    assert snapshot(tmp_path) == {
+        "new": None,
+        "new/b.json": b"{}",
+        "old": None,
+        "old/a.txt": b"new a",
+    }
     assert oct((tmp_path / "new" / "b.json").stat().st_mode & 0o777) == "0o644"
 
 

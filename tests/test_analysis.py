@@ -34,10 +34,13 @@ def _trapezoid(k, w):
 def test_analysis_matches_numpy_and_scipy(device):
     z = _bumps()
     mat = Material(E=100e9, nu=0.3)
-    a = analyze(from_heights(z, DX), material=mat, device=device,
-                truncation=TruncationSettings(60, max_depth_fraction=0.5, beta_prime=1.1,
-                                              connectivity=4),
-                fit=FitRange(min_pixels=3))  # fmt: skip
+    a = analyze(
+        from_heights(z, DX),
+        material=mat,
+        device=device,
+        truncation=TruncationSettings(60, max_depth_fraction=0.5, beta_prime=1.1, connectivity=4),
+        fit=FitRange(min_pixels=3),
+    )
     z32 = z.astype(np.float32)
     A, pa = z.size * DX * DX, DX * DX
     # counts: z ≥ threshold on the same float32 heights and thresholds (exact)
@@ -50,8 +53,11 @@ def test_analysis_matches_numpy_and_scipy(device):
     # the fit: np.polyfit over the fit range (load > 0, ≥ 3 contact pixels) of E_c/E, E the
     # Young's modulus: E_c/E = (E*/E)·β′·√(A_c/A), E*/E = 1/(1 − ν²) against a rigid flat
     sel = (a.stiffness.load > 0) & (n >= 3)
-    slope, icpt = np.polyfit(np.log(a.stiffness.load[sel] / (100e9 * A)),
-                             np.log(1.1 * np.sqrt(n[sel] * pa / A) / (1 - 0.09)), 1)  # fmt: skip
+    slope, icpt = np.polyfit(
+        np.log(a.stiffness.load[sel] / (100e9 * A)),
+        np.log(1.1 * np.sqrt(n[sel] * pa / A) / (1 - 0.09)),
+        1,
+    )
     assert a.fit.alpha == pytest.approx(slope, rel=1e-9)
     assert a.fit.beta == pytest.approx(math.exp(icpt), rel=1e-9)
     assert a.fit.beta_contact_modulus == pytest.approx(math.exp(icpt) * (1 - 0.09), rel=1e-9)
@@ -73,28 +79,44 @@ def test_analysis_matches_numpy_and_scipy(device):
 
 def test_islands_off_and_empty_fit_range():
     s = from_heights(_bumps(), DX)
-    a = analyze(s, truncation=TruncationSettings(40, max_depth_fraction=0.5, islands=False),
-                fit=FitRange(min_pixels=3), device="cpu")
+    a = analyze(
+        s,
+        truncation=TruncationSettings(40, max_depth_fraction=0.5, islands=False),
+        fit=FitRange(min_pixels=3),
+        device="cpu",
+    )
     assert a.islands is None and a.summary()["islands"] is None
     assert "stiffness_islands_N_per_m" not in a.to_dict()
     with pytest.raises(FitRangeError, match="increments in the fit range") as e:
-        analyze(s, truncation=TruncationSettings(40, max_depth_fraction=0.5),
-                fit=FitRange(min_pixels=10**6), device="cpu")
+        analyze(
+            s,
+            truncation=TruncationSettings(40, max_depth_fraction=0.5),
+            fit=FitRange(min_pixels=10**6),
+            device="cpu",
+        )
     assert e.value.surface is s  # the surface to advise a fit range on
 
 
 def test_streamed_wm_surface_equals_in_memory():
     wm = dict(D=2.3, Wr=100e-6, L=1e-3, n=64, Rt=10e-6, seed=3)
     mem = analyze(wm, truncation=T50, stream=False, fit=FitRange(min_pixels=1), device="cpu")
-    st = analyze(wm, truncation=T50, stream=True, band_rows=16, fit=FitRange(min_pixels=1),
-                 progress=False, device="cpu")
+    st = analyze(
+        wm,
+        truncation=T50,
+        stream=True,
+        band_rows=16,
+        fit=FitRange(min_pixels=1),
+        progress=False,
+        device="cpu",
+    )
     np.testing.assert_array_equal(mem.curve.n_contact_pixels, st.curve.n_contact_pixels)
     assert st.path["path"] == "streamed" and st.islands is None
     assert st.fit == mem.fit
     with pytest.raises(ValueError, match="islands=True needs the map in memory"):
         analyze(wm, truncation=T50.replace(islands=True), stream=True, device="cpu")
     with pytest.raises(ValueError, match="rt_percentile needs the map in memory"):
-        analyze(wm, truncation=T50, stream=True, fit=FitRange(rt_percentile=(0.1, 99.9)),
-                device="cpu")
+        analyze(
+            wm, truncation=T50, stream=True, fit=FitRange(rt_percentile=(0.1, 99.9)), device="cpu"
+        )
     with pytest.raises(ValueError, match="stream=True applies to generated surfaces"):
         analyze(from_heights(_bumps(), DX), truncation=T50, stream=True, device="cpu")

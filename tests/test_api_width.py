@@ -30,8 +30,10 @@ def _wide(path: Path) -> list[str]:
                     names = names[1:]
                 count = len(names) + (a.vararg is not None) + (a.kwarg is not None)
                 if count > MAX_PARAMETERS:
-                    out.append(f"{path.relative_to(PACKAGE.parent)}:{n.lineno} "
-                               f"{owner + '.' if owner else ''}{n.name} ({count})")  # fmt: skip
+                    out.append(
+                        f"{path.relative_to(PACKAGE.parent)}:{n.lineno} "
+                        f"{owner + '.' if owner else ''}{n.name} ({count})"
+                    )
 
     walk(tree, None)
     return out

@@ -18,8 +18,10 @@ E_STAR = 70e9 / (1 - 0.33**2)  # aluminium on a rigid flat (Pa)
 
 
 def _solvers(h, dx, device, **kw):
-    return [ContactSolver(h, dx, E_STAR, settings=SolverSettings(algorithm=a, **kw), device=device)
-            for a in ("pk", "bccg")]  # fmt: skip
+    return [
+        ContactSolver(h, dx, E_STAR, settings=SolverSettings(algorithm=a, **kw), device=device)
+        for a in ("pk", "bccg")
+    ]
 
 
 @pytest.mark.parametrize("substrate", ["free", "periodic"])
@@ -32,8 +34,13 @@ def test_same_solution_as_pk(device, substrate, dtype):
     h = np.asarray(s.heights, dtype=np.float64)
     pk, bc = _solvers(h, s.dx, device, substrate=substrate, dtype=dtype)
     rtol = 2e-4 if dtype == "float64" else 1e-3
-    for kw in ({"depth": 0.2 * s.Rt}, {"depth": 0.5 * s.Rt}, {"load": 40.0}, {"load": 8.0},
-               {"depth": 0.05 * s.Rt}):  # fmt: skip
+    for kw in (
+        {"depth": 0.2 * s.Rt},
+        {"depth": 0.5 * s.Rt},
+        {"load": 40.0},
+        {"load": 8.0},
+        {"depth": 0.05 * s.Rt},
+    ):
         a, b = pk.solve(**kw), bc.solve(**kw)
         assert a.converged and b.converged, kw
         assert math.isclose(a.load, b.load, rel_tol=rtol), (kw, a.load, b.load)
@@ -55,8 +62,12 @@ def test_capped_same_as_pk(device):
     the default solver's load, contact and plastic pixels and plastic volume."""
     s = wm_surface(2.5, L=1e-3, n=96, seed=4, device="cpu")
     h = np.asarray(s.heights, dtype=np.float64)
-    sols = [ContactSolver(h, s.dx, E_STAR, hardness=1e9, device=device,
-                          settings=SolverSettings(algorithm=a)) for a in ("pk", "bccg")]  # fmt: skip
+    sols = [
+        ContactSolver(
+            h, s.dx, E_STAR, hardness=1e9, device=device, settings=SolverSettings(algorithm=a)
+        )
+        for a in ("pk", "bccg")
+    ]
     load = None
     for kw in ({"depth": 0.2 * s.Rt}, {"depth": 0.4 * s.Rt}, "load"):
         if kw == "load":
@@ -107,8 +118,9 @@ def test_iterations_stop_growing_under_a_punch(device):
         inside = h > h.min()
         pentol = 1e-4 * float(np.std(h[inside]))
         for a in its:
-            sol = ContactSolver(h, dx, E_STAR, device=device,
-                                settings=SolverSettings(algorithm=a, pentol=pentol))  # fmt: skip
+            sol = ContactSolver(
+                h, dx, E_STAR, device=device, settings=SolverSettings(algorithm=a, pentol=pentol)
+            )
             st = sol.solve(depth)
             assert st.converged
             assert st.n_contact > 0.6 * np.count_nonzero(inside)
@@ -136,8 +148,13 @@ def test_preconditioner_always_stops_the_growth_on_a_whole_map(device):
         h = np.asarray(s.heights, dtype=np.float64)
         loads = []
         for pa in its:
-            sol = ContactSolver(h, s.dx, E_STAR, device=device, settings=SolverSettings(
-                pentol=1e-4 * float(np.std(h)), precondition_above=pa))  # fmt: skip
+            sol = ContactSolver(
+                h,
+                s.dx,
+                E_STAR,
+                device=device,
+                settings=SolverSettings(pentol=1e-4 * float(np.std(h)), precondition_above=pa),
+            )
             st = sol.solve(0.2 * float(np.ptp(h)))
             assert st.converged
             its[pa].append(st.n_iterations)
@@ -161,8 +178,9 @@ def test_default_rule_preconditions_large_maps(device, monkeypatch):
     depth = 0.2 * float(np.ptp(h))
 
     def counts(z, pa):
-        sol = ContactSolver(z, s.dx, E_STAR, device=device,
-                            settings=SolverSettings(precondition_above=pa))  # fmt: skip
+        sol = ContactSolver(
+            z, s.dx, E_STAR, device=device, settings=SolverSettings(precondition_above=pa)
+        )
         st = sol.solve(depth - (h.max() - z.max()))
         assert st.converged
         return st.n_iterations, st.n_convolutions
@@ -172,6 +190,10 @@ def test_default_rule_preconditions_large_maps(device, monkeypatch):
     assert small == counts(h[:64, :64], 0.02) and small != counts(h[:64, :64], 0.0), small
     win = punch_window(h, s.dx, 0.6e-3, (0.5e-3, 0.5e-3))
     for given, taken in ((None, 0.02), (0.0, 0.0)):
-        sol = make_solver(win, default_material(hardness=math.inf), device=device,
-                          solver=SolverSettings(precondition_above=given))  # fmt: skip
+        sol = make_solver(
+            win,
+            default_material(hardness=math.inf),
+            device=device,
+            solver=SolverSettings(precondition_above=given),
+        )
         assert sol.settings.precondition_above == taken, (given, sol.settings)

@@ -141,9 +141,26 @@ def test_cli_writes_files(tmp_path, solver):
 
     out = tmp_path / "b"
     rc = main(
-        ["bem-check", "--n", "48", "--L", "2e-4", "--Rt", "1e-6", "--fractions", "0.1", "0.3",
-         "--device", "cpu", "--no-progress", "--solver", solver, "--out", str(out)]
-    )  # fmt: skip
+        [
+            "bem-check",
+            "--n",
+            "48",
+            "--L",
+            "2e-4",
+            "--Rt",
+            "1e-6",
+            "--fractions",
+            "0.1",
+            "0.3",
+            "--device",
+            "cpu",
+            "--no-progress",
+            "--solver",
+            solver,
+            "--out",
+            str(out),
+        ]
+    )
     assert rc == 0
     assert {p.name for p in out.iterdir()} == {"bem.csv", "bem.json", "bem.png"}
     assert json.loads((out / "bem.json").read_text())["settings"]["solver"] == solver
@@ -154,8 +171,23 @@ def test_cli_exit_code_when_not_converged(tmp_path, capsys):
     --accept-unconverged."""
     from warptrunc.cli import main
 
-    args = ["bem-check", "--n", "32", "--L", "2e-4", "--Rt", "1e-6", "--fractions", "0.3",
-            "--device", "cpu", "--no-progress", "--no-plot", "--maxiter", "1"]  # fmt: skip
+    args = [
+        "bem-check",
+        "--n",
+        "32",
+        "--L",
+        "2e-4",
+        "--Rt",
+        "1e-6",
+        "--fractions",
+        "0.3",
+        "--device",
+        "cpu",
+        "--no-progress",
+        "--no-plot",
+        "--maxiter",
+        "1",
+    ]
     assert main([*args, "--out", str(tmp_path / "a")]) == 3
     assert "not every solve converged" in capsys.readouterr().err
     d = json.loads((tmp_path / "a" / "bem.json").read_text())
@@ -169,8 +201,13 @@ def test_not_converged_is_flagged(solver):
     if solver == "contactmechanics":
         _needs_bem()
     s = wm_surface(2.5, 100e-6, L=0.25e-3, n=32, Rt=2e-6, seed=1, device="cpu")
-    res = bem.bem_check(s, check=BemCheckSettings(fractions=[0.3], solver=solver),
-                        settings=SolverSettings(maxiter=1), progress=False, device="cpu")
+    res = bem.bem_check(
+        s,
+        check=BemCheckSettings(fractions=[0.3], solver=solver),
+        settings=SolverSettings(maxiter=1),
+        progress=False,
+        device="cpu",
+    )
     assert not res.converged.any()
     assert res.summary()["n_not_converged"] == 1
     assert not any(x["success"] for x in res.settings["solves"])
@@ -191,8 +228,7 @@ def test_bad_input():
     with pytest.raises(ValueError, match="barber needs solver warptrunc"):
         BemCheckSettings(stiffness="barber", solver="contactmechanics")
     with pytest.raises(ValueError, match=r"depths must be in \(0, R_t\)"):
-        bem.bem_check(s, check=BemCheckSettings(depths=[1e-6, 3e-6]), progress=False,
-                      device="cpu")  # fmt: skip
+        bem.bem_check(s, check=BemCheckSettings(depths=[1e-6, 3e-6]), progress=False, device="cpu")
 
 
 def test_missing_extra_names_it(monkeypatch, capsys):
@@ -227,9 +263,14 @@ def test_periodic_westergaard(solver):
     dx = lam / n
     x = (np.arange(n) + 0.5) * dx
     s = from_heights(np.tile(h0 * np.cos(2 * np.pi * x / lam), (4, 1)), dx)
-    res = bem.bem_check(s, check=BemCheckSettings(fractions=[0.2, 0.4], solver=solver),
-                        material=MATERIAL, settings=SolverSettings(substrate="periodic"),
-                        progress=False, device="cpu")  # fmt: skip
+    res = bem.bem_check(
+        s,
+        check=BemCheckSettings(fractions=[0.2, 0.4], solver=solver),
+        material=MATERIAL,
+        settings=SolverSettings(substrate="periodic"),
+        progress=False,
+        device="cpu",
+    )
     if solver == "contactmechanics":
         assert res.settings["half_space"] == "PeriodicFFTElasticHalfSpace"
     assert res.all_converged

@@ -19,15 +19,36 @@ pytestmark = pytest.mark.skipif(importlib.util.find_spec("jax") is None, reason=
 SCRIPT = (
     Path(__file__).resolve().parents[1] / "examples" / "benchmarks" / "benchmark_fft_engines.py"
 )
-FIELDS = {"engine", "n", "padded_shape", "ndev", "dtype", "devices", "versions", "commit",
-          "floor_ms", "repeats_ms", "max_rel_error", "check_n", "elements_per_fft_call"}  # fmt: skip
+FIELDS = {
+    "engine",
+    "n",
+    "padded_shape",
+    "ndev",
+    "dtype",
+    "devices",
+    "versions",
+    "commit",
+    "floor_ms",
+    "repeats_ms",
+    "max_rel_error",
+    "check_n",
+    "elements_per_fft_call",
+}
 
 
 def run(*args, timeout=60):
-    env = {**os.environ, "JAX_PLATFORMS": "cpu",
-           "XLA_FLAGS": "--xla_force_host_platform_device_count=2"}  # fmt: skip
-    r = subprocess.run([sys.executable, str(SCRIPT), *args], capture_output=True, text=True,
-                       env=env, timeout=timeout)  # fmt: skip
+    env = {
+        **os.environ,
+        "JAX_PLATFORMS": "cpu",
+        "XLA_FLAGS": "--xla_force_host_platform_device_count=2",
+    }
+    r = subprocess.run(
+        [sys.executable, str(SCRIPT), *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=timeout,
+    )
     assert r.returncode == 0, (r.stdout + r.stderr)[-4000:]
     return r.stdout
 
@@ -35,8 +56,22 @@ def run(*args, timeout=60):
 @pytest.mark.timeout(120)
 def test_jax_engine_two_cpu_devices_matches_numpy_and_records(tmp_path):
     out = tmp_path / "fe.jsonl"
-    run("jax", "--n", "32", "--ndev", "2", "--dtype", "float64", "float32", "--repeats", "2",
-        "--check-n", "32", "--jsonl", str(out))  # fmt: skip
+    run(
+        "jax",
+        "--n",
+        "32",
+        "--ndev",
+        "2",
+        "--dtype",
+        "float64",
+        "float32",
+        "--repeats",
+        "2",
+        "--check-n",
+        "32",
+        "--jsonl",
+        str(out),
+    )
     lines = [json.loads(x) for x in out.read_text().splitlines()]
     assert lines[0]["record"] == "diagnostics" and "jax" in lines[0]["versions"]
     recs = {r["dtype"]: r for r in lines if r.get("engine") == "jax"}

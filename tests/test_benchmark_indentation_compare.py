@@ -33,8 +33,12 @@ def _values(k: float) -> dict:
 
 
 def _compare(*paths: Path, out: Path) -> tuple[int, dict, str]:
-    r = subprocess.run([sys.executable, str(SCRIPT), "compare", *map(str, paths), "--json", str(out)],
-                       capture_output=True, text=True, timeout=120)  # fmt: skip
+    r = subprocess.run(
+        [sys.executable, str(SCRIPT), "compare", *map(str, paths), "--json", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     return r.returncode, json.loads(out.read_text()), r.stdout + r.stderr
 
 

@@ -21,11 +21,25 @@ SCRIPT = Path(__file__).resolve().parents[1] / "examples" / "benchmarks" / "benc
 @pytest.mark.timeout(300)
 def test_benchmark_workers_cpu_two_workers_rows_equal_in_process(tmp_path):
     r = subprocess.run(
-        [sys.executable, str(SCRIPT), "--device", "cpu", "--workers", "2", "--runs", "light",
-         "check", "--light-args", "--n 64 --D 2.4 --delta 0.01 --seeds 0-5",
-         "--out", str(tmp_path)],
-        capture_output=True, text=True, timeout=280,
-    )  # fmt: skip
+        [
+            sys.executable,
+            str(SCRIPT),
+            "--device",
+            "cpu",
+            "--workers",
+            "2",
+            "--runs",
+            "light",
+            "check",
+            "--light-args",
+            "--n 64 --D 2.4 --delta 0.01 --seeds 0-5",
+            "--out",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=280,
+    )
     assert r.returncode == 0, (r.stdout + r.stderr)[-4000:]
     doc = json.loads((tmp_path / "benchmark_workers.json").read_text())
     assert doc["commit"] and doc["device"] == "cpu" and doc["workers"] == [2]

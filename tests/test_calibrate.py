@@ -61,7 +61,9 @@ def test_given_targets_and_high_resolution_surface():
     target = CalibrationTarget(
         D=2.4, method="vs", Rrms=2e-6, Rt=15e-6, Wr=WR, L=(L, L), n=(64, 64), source="given"
     )
-    cal = calibrate(target, settings=CalibrationSettings(seeds=(0, 1)), progress=False, device="cpu")
+    cal = calibrate(
+        target, settings=CalibrationSettings(seeds=(0, 1)), progress=False, device="cpu"
+    )
     s = calibrated_surface(cal, n=128, seed=3, device="cpu")
     assert s.heights.shape == (128, 128)
     assert s.Rt == pytest.approx(cal.Rt, rel=1e-5)  # heights are scaled to R_t'
@@ -86,9 +88,16 @@ def test_unreachable_target():
     """D_tri in metres ("si") of a surface whose heights are tiny against the pixel size
     stays near 2."""
     target = CalibrationTarget(
-        D=2.6, method="tri", Rrms=0.2e-6, Rt=1e-6, Wr=WR, L=L, n=64, source="given",
+        D=2.6,
+        method="tri",
+        Rrms=0.2e-6,
+        Rt=1e-6,
+        Wr=WR,
+        L=L,
+        n=64,
+        source="given",
         method_options={"height_scaling": "si"},
-    )  # fmt: skip
+    )
     with pytest.raises(
         CalibrationError,
         match=r"2\.6000 cannot be reached with D_in in \[2\.02, 2\.98\]: the upper bound",
@@ -163,10 +172,34 @@ def test_cli_calibrate_typed_targets(tmp_path, capsys):
 
     out = tmp_path / "cal"
     rc = main(
-        ["calibrate", "--method", "sp", "--D", "2.4", "--Rrms", "2e-6", "--Rt", "15e-6",
-         "--Wr", str(WR), "--L", str(L), "--n", "128", "--seeds", "0", "1", "--n-out", "96",
-         "--no-progress", "--out", str(out), "--device", "cpu"]
-    )  # fmt: skip
+        [
+            "calibrate",
+            "--method",
+            "sp",
+            "--D",
+            "2.4",
+            "--Rrms",
+            "2e-6",
+            "--Rt",
+            "15e-6",
+            "--Wr",
+            str(WR),
+            "--L",
+            str(L),
+            "--n",
+            "128",
+            "--seeds",
+            "0",
+            "1",
+            "--n-out",
+            "96",
+            "--no-progress",
+            "--out",
+            str(out),
+            "--device",
+            "cpu",
+        ]
+    )
     assert rc == 0
     info = json.loads((out / "calibration.json").read_text())
     assert abs(info["D_out"] - 2.4) <= 0.05 * 2.4
@@ -180,8 +213,22 @@ def test_cli_calibrate_from_file_and_errors(tmp_path, capsys):
     from warptrunc.cli import main
 
     p = warptrunc.write_height_map(_scan(n=64), tmp_path / "scan.npz")
-    rc = main(["calibrate", str(p), "--method", "vs", "--Wr", str(WR), "--seeds", "0",
-               "--no-progress", "--no-surface", "--out", str(tmp_path / "o")])  # fmt: skip
+    rc = main(
+        [
+            "calibrate",
+            str(p),
+            "--method",
+            "vs",
+            "--Wr",
+            str(WR),
+            "--seeds",
+            "0",
+            "--no-progress",
+            "--no-surface",
+            "--out",
+            str(tmp_path / "o"),
+        ]
+    )
     assert rc == 0
     info = json.loads((tmp_path / "o" / "calibration.json").read_text())
     assert info["target_nx"] == 64 and info["target_source"].endswith("scan.npz")
@@ -195,9 +242,32 @@ def test_cli_calibrate_d_bounds(tmp_path, capsys):
     of test_calibration_ending_on_a_bound_says_so)."""
     from warptrunc.cli import main
 
-    args = ["calibrate", "--method", "vs", "--D", "2.70", "--Rrms", "2e-6", "--Rt", "15e-6",
-            "--Wr", str(WR), "--L", str(L), "--n", "64", "--seeds", "0", "1", "--no-progress",
-            "--no-surface", "--device", "cpu", "--out", str(tmp_path / "o")]  # fmt: skip
+    args = [
+        "calibrate",
+        "--method",
+        "vs",
+        "--D",
+        "2.70",
+        "--Rrms",
+        "2e-6",
+        "--Rt",
+        "15e-6",
+        "--Wr",
+        str(WR),
+        "--L",
+        str(L),
+        "--n",
+        "64",
+        "--seeds",
+        "0",
+        "1",
+        "--no-progress",
+        "--no-surface",
+        "--device",
+        "cpu",
+        "--out",
+        str(tmp_path / "o"),
+    ]
     assert main([*args, "--D-bounds", "2.3", "2.4"]) == 0
     info = json.loads((tmp_path / "o" / "calibration.json").read_text())
     assert info["bound"] == "upper" and info["D_bounds"] == [2.3, 2.4] and info["D_in"] == 2.4

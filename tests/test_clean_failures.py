@@ -26,8 +26,18 @@ from warptrunc._support.messages import MAX_MESSAGE_CHARS
 from warptrunc._support.validate import MAX_INCREMENTS, MAX_SEEDS
 from warptrunc.cli import main
 
-COMMANDS = ["analyze", "bem-check", "calibrate", "compare", "describe", "generate", "islands",
-            "render", "reproduce", "sweep"]  # fmt: skip
+COMMANDS = [
+    "analyze",
+    "bem-check",
+    "calibrate",
+    "compare",
+    "describe",
+    "generate",
+    "islands",
+    "render",
+    "reproduce",
+    "sweep",
+]
 
 
 def cli(argv, capsys) -> tuple[int, str]:
@@ -95,13 +105,17 @@ def test_out_inside_a_folder_one_cannot_enter_is_one_line(cmd, scan, tmp_path, c
 
     monkeypatch.setattr(pathlib.Path, "stat", stat)
     code, err = cli(out_argv(cmd, str(locked / "sub"), scan), capsys)
-    one_clean_line(code, err, "Permission denied", "locked/sub")  # long paths are shortened in the middle
+    one_clean_line(
+        code, err, "Permission denied", "locked/sub"
+    )  # long paths are shortened in the middle
     assert not any(locked.iterdir())
 
 
 def test_input_that_cannot_be_read_is_one_line(scan, capsys, monkeypatch):
     real_access = os.access
-    monkeypatch.setattr(os, "access", lambda p, m, **k: False if str(p) == str(scan) else real_access(p, m, **k))
+    monkeypatch.setattr(
+        os, "access", lambda p, m, **k: False if str(p) == str(scan) else real_access(p, m, **k)
+    )
     code, err = cli(["analyze", "-i", scan, "--dx", "1e-6"], capsys)
     one_clean_line(code, err, "--input", "not readable", str(scan))
 
@@ -111,11 +125,16 @@ def test_input_that_cannot_be_read_is_one_line(scan, capsys, monkeypatch):
 
 @pytest.mark.parametrize(
     "argv, option",
-    [(["analyze"], "--increments"), (["islands"], "--increments"), (["bem-check"], "--increments"),
-     (["compare"], "--increments"), (["sweep", "--D", "2.3", "--delta", "0.01"], "--increments"),
-     (["render"], "--vtk-increments")],
+    [
+        (["analyze"], "--increments"),
+        (["islands"], "--increments"),
+        (["bem-check"], "--increments"),
+        (["compare"], "--increments"),
+        (["sweep", "--D", "2.3", "--delta", "0.01"], "--increments"),
+        (["render"], "--vtk-increments"),
+    ],
     ids=["analyze", "islands", "bem-check", "compare", "sweep", "render"],
-)  # fmt: skip
+)
 def test_increments_above_the_cap_are_refused_at_once(argv, option, tmp_path, capsys):
     code, err = cli([*argv, option, 10_000_000, "--out", tmp_path / "o"], capsys)
     one_clean_line(code, err, f"{option}: must be an integer in [1, {MAX_INCREMENTS}]", "10000000")
@@ -126,14 +145,18 @@ def test_library_refuses_increments_above_the_cap():
     from warptrunc import from_heights, truncate
 
     s = from_heights(np.arange(16.0).reshape(4, 4), 1e-6)
-    with pytest.raises(ValueError, match=rf"n_increments must be an integer in \[1, {MAX_INCREMENTS}\]"):
+    with pytest.raises(
+        ValueError, match=rf"n_increments must be an integer in \[1, {MAX_INCREMENTS}\]"
+    ):
         truncate(s, MAX_INCREMENTS + 1, device="cpu")
 
 
 @pytest.mark.parametrize("seeds", ["0-100000000000", "0-600000,700000-1100000"])
 def test_a_huge_seed_range_names_the_count_and_the_cap(seeds, tmp_path, capsys):
-    code, err = cli(["sweep", "--D", "2.3", "--delta", "0.01", "--seeds", seeds,
-                     "--out", tmp_path / "s"], capsys)  # fmt: skip
+    code, err = cli(
+        ["sweep", "--D", "2.3", "--delta", "0.01", "--seeds", seeds, "--out", tmp_path / "s"],
+        capsys,
+    )
     one_clean_line(code, err, "--seeds", f"more than {MAX_SEEDS} seeds")
     assert not (tmp_path / "s").exists()
 
@@ -161,8 +184,18 @@ def test_a_topothesy_that_makes_heights_overflow_is_refused(tmp_path, capsys):
 
 # --- damaged store files -----------------------------------------------------------------------
 
-SWEEP = ["sweep", "--D", "2.3", "--delta", "0.01", "--n", "32", "--min-pixels", "1",
-         "--no-progress"]  # fmt: skip
+SWEEP = [
+    "sweep",
+    "--D",
+    "2.3",
+    "--delta",
+    "0.01",
+    "--n",
+    "32",
+    "--min-pixels",
+    "1",
+    "--no-progress",
+]
 
 
 @pytest.fixture
@@ -182,7 +215,8 @@ def test_a_truncated_sweep_json_is_named(store, capsys):
 
 
 @pytest.mark.parametrize(
-    "lock", [b'{"pid":', b"\xff\xfe garbage", b'{"host": "x"}', "folder"],
+    "lock",
+    [b'{"pid":', b"\xff\xfe garbage", b'{"host": "x"}', "folder"],
     ids=["half-written", "binary", "no-pid", "a-folder"],
 )
 def test_an_unreadable_lock_says_so_not_pid_none(store, capsys, lock):
@@ -203,9 +237,12 @@ def opd_bytes(nx: int = 64, ny: int = 48) -> bytes:
     """A small Wyko OPD file (the layout of SurfaceTopography's OPD reader): a directory of
     blocks, a float32 raster, the wavelength and the pixel size."""
     z = np.random.default_rng(0).normal(size=(nx, ny)).astype("<f4")
-    blocks = [("RAW_DATA", 3, struct.pack("<HHH", nx, ny, 4) + z.tobytes()),
-              ("Wavelength", 7, struct.pack("<f", 632.8)), ("Mult", 6, struct.pack("<h", 1)),
-              ("Pixel_size", 7, struct.pack("<f", 0.001))]  # fmt: skip
+    blocks = [
+        ("RAW_DATA", 3, struct.pack("<HHH", nx, ny, 4) + z.tobytes()),
+        ("Wavelength", 7, struct.pack("<f", 632.8)),
+        ("Mult", 6, struct.pack("<h", 1)),
+        ("Pixel_size", 7, struct.pack("<f", 0.001)),
+    ]
 
     def head(name: str, typ: int, length: int) -> bytes:
         return struct.pack("<16shlH", name.encode().ljust(16, b"\0"), typ, length, 0)
@@ -236,8 +273,11 @@ def test_an_empty_file_is_called_empty(suffix, tmp_path, capsys):
     assert "pixel spacing" not in line
 
 
-@pytest.mark.parametrize("where", [(3, 0, np.inf), (5, 1, -np.inf), (7, 0, np.nan)],
-                         ids=["x-inf", "y-minus-inf", "x-nan"])  # fmt: skip
+@pytest.mark.parametrize(
+    "where",
+    [(3, 0, np.inf), (5, 1, -np.inf), (7, 0, np.nan)],
+    ids=["x-inf", "y-minus-inf", "x-nan"],
+)
 def test_an_xyz_list_with_a_non_finite_coordinate_is_refused(where, tmp_path):
     from warptrunc.io import read_scan
 
@@ -246,7 +286,10 @@ def test_an_xyz_list_with_a_non_finite_coordinate_is_refused(where, tmp_path):
     row, col, value = where
     pts[row, col] = value
     np.savetxt(tmp_path / "p.txt", pts)
-    with pytest.raises(ValueError, match=rf"XYZ point list with a coordinate that is not finite \(data row {row + 1}"):
+    with pytest.raises(
+        ValueError,
+        match=rf"XYZ point list with a coordinate that is not finite \(data row {row + 1}",
+    ):
         read_scan(tmp_path / "p.txt", dx=1e-6)  # no RuntimeWarning (warnings are errors)
 
 

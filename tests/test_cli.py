@@ -15,27 +15,69 @@ from warptrunc import read_height_map
 def cli(*args, cwd=None):
     return subprocess.run(
         [sys.executable, "-m", "warptrunc", *map(str, args)],
-        capture_output=True, text=True, cwd=cwd, timeout=300,
-    )  # fmt: skip
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        timeout=300,
+    )
 
 
 def test_generate_then_analyze(tmp_path):
-    r = cli("generate", "--n", 128, 96, "--L", 1e-3, 0.75e-3, "--D", 2.4, "--Rt", 2e-6,
-            "--seed", 3, "--device", "cpu", "-o", tmp_path / "s.npz")  # fmt: skip
+    r = cli(
+        "generate",
+        "--n",
+        128,
+        96,
+        "--L",
+        1e-3,
+        0.75e-3,
+        "--D",
+        2.4,
+        "--Rt",
+        2e-6,
+        "--seed",
+        3,
+        "--device",
+        "cpu",
+        "-o",
+        tmp_path / "s.npz",
+    )
     assert r.returncode == 0, r.stderr
     s = read_height_map(tmp_path / "s.npz")
     assert s.heights.shape == (96, 128) and s.Rt == pytest.approx(2e-6, rel=1e-6)
     assert s.params["D"] == 2.4 and s.params["seed"] == 3
     out = tmp_path / "out"
-    r = cli("analyze", "--input", tmp_path / "s.npz", "--device", "cpu", "--out", out,
-            "--increments", 50, "--max-depth-fraction", 0.3, "--min-pixels", 3)  # fmt: skip
+    r = cli(
+        "analyze",
+        "--input",
+        tmp_path / "s.npz",
+        "--device",
+        "cpu",
+        "--out",
+        out,
+        "--increments",
+        50,
+        "--max-depth-fraction",
+        0.3,
+        "--min-pixels",
+        3,
+    )
     assert r.returncode == 0, r.stderr
     data = np.genfromtxt(out / "curve.csv", delimiter=",", names=True)
     assert data.dtype.names == (
-        "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
-        "Ec_over_E", "F_over_EA", "Ec_over_Estar", "stiffness_islands_N_per_m", "load_islands_N",
-        "Ec_over_E_islands", "Ec_over_Estar_islands",
-    )  # fmt: skip
+        "depth_m",
+        "n_contact_pixels",
+        "contact_area_m2",
+        "stiffness_N_per_m",
+        "load_N",
+        "Ec_over_E",
+        "F_over_EA",
+        "Ec_over_Estar",
+        "stiffness_islands_N_per_m",
+        "load_islands_N",
+        "Ec_over_E_islands",
+        "Ec_over_Estar_islands",
+    )
     assert len(data) == 51
     # one punch per island is at least one punch of the total area (Σ√A_i ≥ √ΣA_i)
     assert np.all(data["stiffness_islands_N_per_m"] >= data["stiffness_N_per_m"] * (1 - 1e-9))
@@ -53,8 +95,20 @@ def test_generate_then_analyze(tmp_path):
 def test_analyze_generates_from_parameters_same_as_python(tmp_path):
     from warptrunc.wm import wm_surface
 
-    r = cli("analyze", "--n", 64, "--seed", 9, "--device", "cpu", "--out", tmp_path,
-            "--no-plot", "--min-pixels", 1)  # fmt: skip
+    r = cli(
+        "analyze",
+        "--n",
+        64,
+        "--seed",
+        9,
+        "--device",
+        "cpu",
+        "--out",
+        tmp_path,
+        "--no-plot",
+        "--min-pixels",
+        1,
+    )
     assert r.returncode == 0, r.stderr
     data = np.genfromtxt(tmp_path / "curve.csv", delimiter=",", names=True)
     z = wm_surface(2.5, 100e-6, n=64, seed=9, device="cpu").heights

@@ -55,8 +55,11 @@ def test_hand_written_options_live_in_one_module():
         if path.name == "_common.py":
             continue
         for node in ast.walk(ast.parse(path.read_text())):
-            if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
-                    and node.func.attr == "add_argument"):  # fmt: skip
+            if (
+                isinstance(node, ast.Call)
+                and isinstance(node.func, ast.Attribute)
+                and node.func.attr == "add_argument"
+            ):
                 flags = [a.value for a in node.args if isinstance(a, ast.Constant)]
                 if path.name == "__init__.py" and flags[:1] == ["--verbose"]:
                     continue

@@ -29,13 +29,45 @@ COMMANDS = {
     "analyze": ["analyze", "--n", "512"],
     "bem-check": ["bem-check", "--n", "128", "--no-progress"],
     "islands": ["islands", "--n", "256"],
-    "compare": ["compare", "--D", "2.3", "--size-ratios", "1", "--pixels-per-wr", "32",
-                "--refine-ratio", "none", "--seeds", "0-3", "--fractions", "0.1", "0.2",
-                "--no-progress", "--no-plot"],
-    "indent": ["indent", "--n", "64", "--L", "0.4e-3", "--Rt", "2e-6", "--punch-diameters",
-               "1.5e-4", "--peak-loads", "1e-3", "4e-3", "1.6e-2", "--placements", "2",
-               "--no-progress", "--refine-max", "2"],
-}  # fmt: skip
+    "compare": [
+        "compare",
+        "--D",
+        "2.3",
+        "--size-ratios",
+        "1",
+        "--pixels-per-wr",
+        "32",
+        "--refine-ratio",
+        "none",
+        "--seeds",
+        "0-3",
+        "--fractions",
+        "0.1",
+        "0.2",
+        "--no-progress",
+        "--no-plot",
+    ],
+    "indent": [
+        "indent",
+        "--n",
+        "64",
+        "--L",
+        "0.4e-3",
+        "--Rt",
+        "2e-6",
+        "--punch-diameters",
+        "1.5e-4",
+        "--peak-loads",
+        "1e-3",
+        "4e-3",
+        "1.6e-2",
+        "--placements",
+        "2",
+        "--no-progress",
+        "--refine-max",
+        "2",
+    ],
+}
 
 # Python's own SIGINT handler in the child: a shell's background job (`bash .ci/run &`) starts
 # it with SIGINT ignored, and then no KeyboardInterrupt ever comes
@@ -50,14 +82,21 @@ CHILD = (
 @pytest.mark.parametrize("name", list(COMMANDS))
 def test_ctrl_c_is_one_line_and_exit_130(name, tmp_path):
     out = tmp_path / "out"
-    env = {**os.environ, "WARPTRUNC_DEVICE": "cpu", "MPLBACKEND": "Agg",
-           "PYTHONPATH": os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH"))
-                                         if p)}  # fmt: skip
+    env = {
+        **os.environ,
+        "WARPTRUNC_DEVICE": "cpu",
+        "MPLBACKEND": "Agg",
+        "PYTHONPATH": os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p),
+    }
     p = subprocess.Popen(
-        [sys.executable, "-c", CHILD, *COMMANDS[name], "--out", str(out)], cwd=tmp_path,
-        env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        [sys.executable, "-c", CHILD, *COMMANDS[name], "--out", str(out)],
+        cwd=tmp_path,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
         start_new_session=True,
-    )  # fmt: skip
+    )
     try:
         assert p.stdout.readline().strip() == "ready"
         time.sleep(1.0)
@@ -87,8 +126,10 @@ def test_the_message_names_the_store_kept_and_how_to_go_on(tmp_path):
     kept = kept_stores()[before:]
     assert kept == [store]
     text = _interrupted_text("compare", kept)
-    assert text == (f"warptrunc compare: interrupted; the finished cases stay in '{store}': "
-                    "run the same command again to finish the rest")  # fmt: skip
+    assert text == (
+        f"warptrunc compare: interrupted; the finished cases stay in '{store}': "
+        "run the same command again to finish the rest"
+    )
     assert "start over" in _interrupted_text("analyze", [])
 
 
@@ -115,8 +156,9 @@ except KeyboardInterrupt:
 
 def test_ctrl_c_in_a_destructor_is_raised_where_the_program_goes_on():
     """In a plain interpreter: CPython drops an exception raised inside ``__del__``."""
-    r = subprocess.run([sys.executable, "-c", SWALLOWED], capture_output=True, text=True,
-                       timeout=120, cwd=ROOT)  # fmt: skip
+    r = subprocess.run(
+        [sys.executable, "-c", SWALLOWED], capture_output=True, text=True, timeout=120, cwd=ROOT
+    )
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == "raised where the program went on", r
     assert "Exception ignored" not in r.stderr

@@ -23,8 +23,12 @@ def cli(*args, cwd, env_extra=None):
     env.update(env_extra or {})
     return subprocess.run(
         [sys.executable, "-m", "warptrunc", *map(str, args)],
-        capture_output=True, text=True, cwd=cwd, timeout=300, env=env,
-    )  # fmt: skip
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        timeout=300,
+        env=env,
+    )
 
 
 def _no_cuda_driver() -> bool:
@@ -46,8 +50,19 @@ def test_generate_prints_only_its_result(tmp_path):
 
 def test_render_prints_only_its_result(tmp_path):
     pytest.importorskip("pyvista")
-    r = cli("render", "--n", 32, "--depth-fractions", 0.3, "--size", 200, 160, "--out", "r",
-            cwd=tmp_path)  # fmt: skip
+    r = cli(
+        "render",
+        "--n",
+        32,
+        "--depth-fractions",
+        0.3,
+        "--size",
+        200,
+        160,
+        "--out",
+        "r",
+        cwd=tmp_path,
+    )
     assert r.returncode == 0, r.stderr
     assert not [n for n in NOTICES if n in r.stdout + r.stderr], r.stdout + r.stderr
     assert r.stderr == ""
@@ -58,7 +73,9 @@ def test_verbose_shows_the_warp_notice_on_a_cpu_only_machine(tmp_path):
         pytest.skip("a CUDA driver is present: Warp has nothing to say")
     r = cli("--verbose", "generate", "--n", 32, "-o", "s.npz", cwd=tmp_path)
     assert r.returncode == 0 and "CUDA driver" in r.stdout + r.stderr
-    r = cli("generate", "--n", 32, "-o", "s.npz", cwd=tmp_path, env_extra={"WARPTRUNC_VERBOSE": "1"})
+    r = cli(
+        "generate", "--n", 32, "-o", "s.npz", cwd=tmp_path, env_extra={"WARPTRUNC_VERBOSE": "1"}
+    )
     assert r.returncode == 0 and "CUDA driver" in r.stdout + r.stderr
 
 
@@ -68,8 +85,17 @@ def test_describe_json_names_the_convention_of_each_d(tmp_path, scaling):
 
     s = self_affine_surface(0.5, n=128, L=1e-3, Rrms=1e-6, seed=3)
     warptrunc.write_height_map(s, tmp_path / "s.npz")
-    r = cli("describe", "s.npz", "--json", "-", "--height-scaling", scaling, "--device", "cpu",
-            cwd=tmp_path)  # fmt: skip
+    r = cli(
+        "describe",
+        "s.npz",
+        "--json",
+        "-",
+        "--height-scaling",
+        scaling,
+        "--device",
+        "cpu",
+        cwd=tmp_path,
+    )
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
     assert d["convention_tri"] == d["convention_box"] == scaling

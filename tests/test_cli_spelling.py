@@ -16,10 +16,26 @@ from warptrunc.cli import build_parser, main
 from warptrunc.contact.settings import SolverSettings
 from warptrunc.params import add_options, from_args
 
-COMMANDS = {"analyze", "bem-check", "calibrate", "compare", "describe", "generate", "indent",
-            "islands", "render", "reproduce", "sweep"}  # fmt: skip
-GENERATED = {"--pressure-tol", "--load-control", "--fft-plan", "--precondition-above",
-             "--direct-max"}  # fmt: skip
+COMMANDS = {
+    "analyze",
+    "bem-check",
+    "calibrate",
+    "compare",
+    "describe",
+    "generate",
+    "indent",
+    "islands",
+    "render",
+    "reproduce",
+    "sweep",
+}
+GENERATED = {
+    "--pressure-tol",
+    "--load-control",
+    "--fft-plan",
+    "--precondition-above",
+    "--direct-max",
+}
 
 
 def _subparsers(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
@@ -67,8 +83,21 @@ def test_add_options_spells_fields_with_hyphens_and_keeps_the_dest():
 
 def test_pressure_tol_hyphenated_parses_on_indent(capsys):
     p = build_parser(["indent"])
-    ns = p.parse_args(["indent", "--n", "64", "--pressure-tol", "1e-5", "--fft-plan", "full",
-                       "--load-control", "secant", "--precondition-above", "0.5"])  # fmt: skip
+    ns = p.parse_args(
+        [
+            "indent",
+            "--n",
+            "64",
+            "--pressure-tol",
+            "1e-5",
+            "--fft-plan",
+            "full",
+            "--load-control",
+            "secant",
+            "--precondition-above",
+            "0.5",
+        ]
+    )
     assert (ns.pressure_tol, ns.fft_plan, ns.load_control) == (1e-5, "full", "secant")
     assert ns.precondition_above == 0.5
     s = from_args(SolverSettings, ns)
@@ -96,16 +125,22 @@ def test_unknown_option_names_the_command_and_its_help(capsys, cmd):
         main([cmd, "--frobnicate", "3"])
     assert e.value.code == 2
     out = capsys.readouterr()
-    assert out.err == (f"warptrunc {cmd}: error: unrecognized arguments: --frobnicate 3 "
-                       f"(see warptrunc {cmd} --help)\n")  # fmt: skip
+    assert out.err == (
+        f"warptrunc {cmd}: error: unrecognized arguments: --frobnicate 3 "
+        f"(see warptrunc {cmd} --help)\n"
+    )
     assert out.out == ""
 
 
 def test_unknown_option_as_a_user_sees_it():
     r = subprocess.run(
         [sys.executable, "-m", "warptrunc", "indent", "--n", "64", "--frobnicate", "3"],
-        capture_output=True, text=True, timeout=120,
-    )  # fmt: skip
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert r.returncode == 2
-    assert r.stderr == ("warptrunc indent: error: unrecognized arguments: --frobnicate 3 "
-                        "(see warptrunc indent --help)\n")  # fmt: skip
+    assert r.stderr == (
+        "warptrunc indent: error: unrecognized arguments: --frobnicate 3 "
+        "(see warptrunc indent --help)\n"
+    )

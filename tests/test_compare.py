@@ -79,8 +79,9 @@ def test_compare_models_against_independent_formulas(device):
 
 
 def test_study_cases_grids():
-    cases = study_cases(StudyDesign(D=(2.5,), size_ratios=(1, 3), pixels_per_Wr=16,
-                                    refine_ratio=3, seeds="0-1"))  # fmt: skip
+    cases = study_cases(
+        StudyDesign(D=(2.5,), size_ratios=(1, 3), pixels_per_Wr=16, refine_ratio=3, seeds="0-1")
+    )
     grids = sorted({(c["size_ratio"], c["n"]) for c in cases})
     assert grids == [(1, 16), (3, 48), (3, 96)] and len(cases) == 6
     fine = [c for c in cases if c["n"] == 96]
@@ -94,8 +95,9 @@ def test_study_resumes_refuses_and_reloads(tmp_path, monkeypatch):
     import warptrunc.compare as cmp
     import warptrunc.compare.study as cmp_study
 
-    design = StudyDesign(D=(2.2, 2.8), size_ratios=(1,), pixels_per_Wr=24, refine_ratio=None,
-                         seeds=0, fractions=FR)  # fmt: skip
+    design = StudyDesign(
+        D=(2.2, 2.8), size_ratios=(1,), pixels_per_Wr=24, refine_ratio=None, seeds=0, fractions=FR
+    )
     cases = study_cases(design)
     out = tmp_path / "study"
     rows = compare_study(out, design, device="cpu", progress=False)
@@ -107,15 +109,16 @@ def test_study_resumes_refuses_and_reloads(tmp_path, monkeypatch):
     lost.unlink()
     calls = []
     real = cmp.compare_models
-    monkeypatch.setattr(cmp_study, "compare_models", lambda *a, **k: calls.append(1) or real(*a, **k))
+    monkeypatch.setattr(
+        cmp_study, "compare_models", lambda *a, **k: calls.append(1) or real(*a, **k)
+    )
     again = compare_study(out, design, device="cpu", progress=False)
     assert len(calls) == 1 and lost.exists()
     times = ["case_seconds", "solve_time_s"]  # the recomputed case: same numbers, new times
     pd.testing.assert_frame_equal(again.drop(columns=times), rows.drop(columns=times))
     # other settings: refused, store untouched
     with pytest.raises(ValueError, match="differing: fractions"):
-        compare_study(out, design.replace(fractions=(0.1, 0.2, 0.3)), device="cpu",
-                      progress=False)  # fmt: skip
+        compare_study(out, design.replace(fractions=(0.1, 0.2, 0.3)), device="cpu", progress=False)
     # the tables are reproducible from the store
     s1, s2 = summarize(rows), summarize(load_comparison(out))
     for k in ("ratios", "alpha"):
@@ -134,10 +137,25 @@ def test_cli_compare_on_a_map(tmp_path):
     write_height_map(s, tmp_path / "s.npz")
     out = tmp_path / "out"
     r = subprocess.run(
-        [sys.executable, "-m", "warptrunc", "compare", "--input", str(tmp_path / "s.npz"),
-         "--fractions", *map(str, FR), "--device", "cpu", "--out", str(out), "--no-progress"],
-        capture_output=True, text=True, timeout=600,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "warptrunc",
+            "compare",
+            "--input",
+            str(tmp_path / "s.npz"),
+            "--fractions",
+            *map(str, FR),
+            "--device",
+            "cpu",
+            "--out",
+            str(out),
+            "--no-progress",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert r.returncode == 0, r.stderr
     rows = load_comparison(out)
     assert list(rows["case_id"].unique()) == ["input"] and len(rows) == len(FR)

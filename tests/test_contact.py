@@ -404,9 +404,11 @@ def test_wm_map_equals_contactmechanics(device, substrate):
     np.testing.assert_allclose(c.load, ref[:, 0], rtol=1e-3)
     np.testing.assert_allclose(c.area, ref[:, 1], rtol=1e-3)
     np.testing.assert_allclose(c.stiffness, ref[:, 2], rtol=1e-3)
-    print(f"iterations ({substrate}): warptrunc {c.n_iterations.tolist()}, "
-          f"ContactMechanics {ref[:, 3].astype(int).tolist()}; convolutions per solve "
-          f"{c.n_convolutions.tolist()}")  # fmt: skip
+    print(
+        f"iterations ({substrate}): warptrunc {c.n_iterations.tolist()}, "
+        f"ContactMechanics {ref[:, 3].astype(int).tolist()}; convolutions per solve "
+        f"{c.n_convolutions.tolist()}"
+    )
     assert np.all(c.n_iterations <= 2 * ref[:, 3] + 5)
 
 

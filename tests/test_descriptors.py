@@ -113,8 +113,10 @@ def test_roll_off_random_phase(H):
     """Random-phase surfaces with a flat PSD below 1/W_r: within 25 % (the f² C(f) maximum is a
     cusp on a noisy spectrum; measured −15 … −4 % on 3 seeds)."""
     wr_true = L / 8
-    got = [roll_off_wavelength(self_affine_surface(H, 256, L, rolloff=wr_true, seed=k))[0]
-           for k in range(3)]  # fmt: skip
+    got = [
+        roll_off_wavelength(self_affine_surface(H, 256, L, rolloff=wr_true, seed=k))[0]
+        for k in range(3)
+    ]
     assert np.mean(got) == pytest.approx(wr_true, rel=0.25)
 
 

@@ -29,8 +29,9 @@ def rough_map(seed: int = 1) -> np.ndarray:
 
 def run(loop: str, *, hardness: float = np.inf, **settings) -> list[tuple]:
     """Three displacement-controlled solves, then (elastic) two load-controlled ones."""
-    solver = ContactSolver(rough_map(), DX, E_STAR, hardness=hardness,
-                           settings=SolverSettings(loop=loop, **settings))  # fmt: skip
+    solver = ContactSolver(
+        rough_map(), DX, E_STAR, hardness=hardness, settings=SolverSettings(loop=loop, **settings)
+    )
     out = []
     for d in (0.5e-6, 1.0e-6, 1.6e-6):
         c = solver.solve(d)

@@ -21,8 +21,13 @@ ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
 RECORDS = ROOT / "benchmarks" / "records"
 # written by the docs build, not committed: a pointer into them is not checked here
-GENERATED = ("docs/_build", "docs/_generated", "docs/gallery", "docs/api/generated",
-             "docs/api/backreferences")  # fmt: skip
+GENERATED = (
+    "docs/_build",
+    "docs/_generated",
+    "docs/gallery",
+    "docs/api/generated",
+    "docs/api/backreferences",
+)
 
 FENCE = re.compile(r"^(`{3,}|~{3,})(.*)$")
 LINK = re.compile(r"!?\[(?:[^\[\]]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
@@ -32,7 +37,11 @@ HEADING = re.compile(r"^(#{1,6})\s+(.*?)\s*#*\s*$")
 
 def pages() -> list[Path]:
     """The Markdown pages whose pointers are checked."""
-    out = [ROOT / "README.md", RECORDS / "README.md", *sorted((ROOT / "examples").rglob("README.md"))]
+    out = [
+        ROOT / "README.md",
+        RECORDS / "README.md",
+        *sorted((ROOT / "examples").rglob("README.md")),
+    ]
     out += [p for p in sorted(DOCS.rglob("*.md")) if not _generated(p)]
     return out
 
@@ -50,7 +59,11 @@ def split_code(text: str) -> tuple[list[tuple[int, str]], list[tuple[int, str, s
         m = FENCE.match(line.strip())
         if fence is None and m:
             fence, info, body, start = m.group(1), m.group(2).strip(), [], i
-        elif fence is not None and line.strip().startswith(fence) and not line.strip()[len(fence):].strip():
+        elif (
+            fence is not None
+            and line.strip().startswith(fence)
+            and not line.strip()[len(fence) :].strip()
+        ):
             blocks.append((start, info, "\n".join(body)))
             fence = None
         elif fence is not None:
@@ -70,8 +83,11 @@ def slug(title: str) -> str:
 def includes(path: Path) -> list[Path]:
     """The files a page includes with MyST's ``{include}`` directive."""
     _, blocks = split_code(path.read_text())
-    return [(path.parent / info.split(None, 1)[1].strip()).resolve()
-            for _, info, _ in blocks if info.startswith("{include}") and len(info.split()) > 1]
+    return [
+        (path.parent / info.split(None, 1)[1].strip()).resolve()
+        for _, info, _ in blocks
+        if info.startswith("{include}") and len(info.split()) > 1
+    ]
 
 
 def anchors(path: Path, _seen: frozenset = frozenset()) -> set[str]:
@@ -152,19 +168,22 @@ def test_a_broken_pointer_is_found(tmp_path):
         "[gone](b.md) [no heading](a.md#the-third-part) and also a.md#nothing\n"
         "```{include} missing.md\n```\n```bash\n[in code](c.md)\n```\n"
     )
-    assert sorted(broken(page)) == sorted([
-        f"{page}:4: b.md does not exist",
-        f"{page}:4: a.md has no heading #the-third-part",
-        f"{page}:4: a.md has no heading #nothing",
-        f"{page}:5: missing.md does not exist",
-    ])  # fmt: skip
+    assert sorted(broken(page)) == sorted(
+        [
+            f"{page}:4: b.md does not exist",
+            f"{page}:4: a.md has no heading #the-third-part",
+            f"{page}:4: a.md has no heading #nothing",
+            f"{page}:5: missing.md does not exist",
+        ]
+    )
 
 
 def test_anchors_follow_github():
     assert slug("`--devices` on the commands") == "--devices-on-the-commands"
     assert slug("Height convention of D_tri and D_box") == "height-convention-of-d_tri-and-d_box"
     assert slug("Against the peers: tamaas and ContactMechanics") == (
-        "against-the-peers-tamaas-and-contactmechanics")
+        "against-the-peers-tamaas-and-contactmechanics"
+    )
     assert slug("65536² on four GPUs") == "65536²-on-four-gpus"
 
 

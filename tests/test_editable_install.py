@@ -31,8 +31,13 @@ def _from_parent(tmp_path: Path, path: list[str]) -> subprocess.CompletedProcess
     with ``-S`` (no ``.pth`` files of this venv) and ``path`` behind the current folder."""
     (tmp_path / "warptrunc").symlink_to(ROOT, target_is_directory=True)
     boot = f"import sys; sys.path[1:1] = {path!r}; "
-    return subprocess.run([sys.executable, "-S", "-c", boot + PROBE], cwd=tmp_path,
-                          capture_output=True, text=True, timeout=120)  # fmt: skip
+    return subprocess.run(
+        [sys.executable, "-S", "-c", boot + PROBE],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
 
 
 def test_the_compat_editable_path_wins_over_the_clone_folder(tmp_path):

@@ -29,8 +29,14 @@ sys.exit(main(sys.argv[1:]))
 def _limited(argv: list[str], cwd: Path) -> subprocess.CompletedProcess:
     path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)
     env = {**os.environ, "PYTHONPATH": path, "WARPTRUNC_DEVICE": "cpu", "MPLBACKEND": "Agg"}
-    return subprocess.run([sys.executable, "-c", LIMITED, *argv], capture_output=True,
-                          text=True, env=env, cwd=cwd, timeout=300)  # fmt: skip
+    return subprocess.run(
+        [sys.executable, "-c", LIMITED, *argv],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=cwd,
+        timeout=300,
+    )
 
 
 def _error_line(r: subprocess.CompletedProcess) -> str:
@@ -43,11 +49,27 @@ def _error_line(r: subprocess.CompletedProcess) -> str:
     ("argv", "named"),
     [
         (["generate", "--n", "256", "-o", "uf_s.npz"], "'uf_s.npz'"),
-        (["analyze", "--n", "64", "--Rt", "1e-6", "--Wr", "20e-6", "--L", "1e-4",
-          "--min-pixels", "1", "--out", "res"], "'res/curve.csv'"),
+        (
+            [
+                "analyze",
+                "--n",
+                "64",
+                "--Rt",
+                "1e-6",
+                "--Wr",
+                "20e-6",
+                "--L",
+                "1e-4",
+                "--min-pixels",
+                "1",
+                "--out",
+                "res",
+            ],
+            "'res/curve.csv'",
+        ),
     ],
     ids=["generate", "analyze"],
-)  # fmt: skip
+)
 def test_a_file_size_limit_names_the_file(argv, named, tmp_path):
     line = _error_line(_limited(argv, tmp_path))
     assert "File too large" in line and "ulimit -f" in line, line
@@ -56,8 +78,21 @@ def test_a_file_size_limit_names_the_file(argv, named, tmp_path):
 
 def test_a_sweep_under_a_file_size_limit_names_its_part(tmp_path):
     pytest.importorskip("pyarrow")
-    argv = ["sweep", "--D", "2.3", "2.5", "--delta", "0.01", "--n", "64", "--min-pixels", "1",
-            "--no-progress", "--out", "sw"]  # fmt: skip
+    argv = [
+        "sweep",
+        "--D",
+        "2.3",
+        "2.5",
+        "--delta",
+        "0.01",
+        "--n",
+        "64",
+        "--min-pixels",
+        "1",
+        "--no-progress",
+        "--out",
+        "sw",
+    ]
     line = _error_line(_limited(argv, tmp_path))
     assert "File too large" in line, line
     assert "'sw/curves/part-" in line and line.endswith(".parquet'"), line
@@ -78,8 +113,11 @@ def test_a_text_file_with_a_numpy_name_is_not_a_numpy_archive(suffix, tmp_path):
 def test_other_bytes_and_pickled_objects_are_named_as_such(tmp_path):
     other = tmp_path / "other.npz"
     other.write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(100))
-    with pytest.raises(ValueError, match=r"other\.npz: not a numpy archive: .*starts with the "
-                       r"bytes b'\\x89PNG"):  # fmt: skip
+    with pytest.raises(
+        ValueError,
+        match=r"other\.npz: not a numpy archive: .*starts with the "
+        r"bytes b'\\x89PNG",
+    ):
         read_height_map(other, dx=1e-6)
     objects = tmp_path / "objects.npy"
     np.save(objects, np.array([{"z": 1.0}], dtype=object), allow_pickle=True)

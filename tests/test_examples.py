@@ -83,32 +83,52 @@ def _check_stream(out: Path) -> None:
 
 
 EXAMPLES: dict[str, Example] = {
-    "quickstart": Example(("--n", "128"), ("curve.csv", "fit.json", "stiffness.png"),
-                          check=_check_quickstart),
+    "quickstart": Example(
+        ("--n", "128"), ("curve.csv", "fit.json", "stiffness.png"), check=_check_quickstart
+    ),
     "calibrate_to_scan": Example(
-        outputs=("calibrated_surface.npz", "calibration.json", "calibration_history.png",
-                 "psd.png"),
-        check=_check_calibrate),
+        outputs=(
+            "calibrated_surface.npz",
+            "calibration.json",
+            "calibration_history.png",
+            "psd.png",
+        ),
+        check=_check_calibrate,
+    ),
     "contact_islands": Example(
         outputs=("islands_seed0.csv", "summary.json", "island_number.png", "slit_islands.png"),
-        check=_check_islands),
-    "figures": Example(outputs=("height_map.png", "area_fraction.png", "stiffness_load.png",
-                                "alpha_vs_D.png", "psd.png")),
-    "indentation": Example(outputs=("indent.csv", "indent.json", "indent.png"),
-                           check=_check_indentation),
+        check=_check_islands,
+    ),
+    "figures": Example(
+        outputs=(
+            "height_map.png",
+            "area_fraction.png",
+            "stiffness_load.png",
+            "alpha_vs_D.png",
+            "psd.png",
+        )
+    ),
+    "indentation": Example(
+        outputs=("indent.csv", "indent.json", "indent.png"), check=_check_indentation
+    ),
     "fractal_dimension": Example(
         outputs=("fractal_dimension.json", "fractal_fits.png", "d_out_vs_d_in.png"),
-        check=_check_fractal),
+        check=_check_fractal,
+    ),
     "parametric_sweep": Example(
         outputs=("summary.json", "alpha_vs_D.png", "sweep.json", "cases.parquet"),
-        needs=("pandas", "pyarrow"), check=_check_sweep),
+        needs=("pandas", "pyarrow"),
+        check=_check_sweep,
+    ),
     "render_truncated_section": Example(
         outputs=("truncation.png", "truncation_top.png", "surface.vti", "render.json"),
-        needs=("pyvista",)),
-    "stream_islands": Example(outputs=("stream_islands.json", "island_sizes.png"),
-                              check=_check_stream),
+        needs=("pyvista",),
+    ),
+    "stream_islands": Example(
+        outputs=("stream_islands.json", "island_sizes.png"), check=_check_stream
+    ),
     "scan_survey": Example(outputs=("scan_survey.md", "scan_survey.json", "survey.png")),
-}  # fmt: skip
+}
 
 
 def _env() -> dict[str, str]:
@@ -118,8 +138,14 @@ def _env() -> dict[str, str]:
 
 
 def _run(script: Path, *args: str, timeout: float = 150) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, str(script), *args], cwd=ROOT, env=_env(),
-                          capture_output=True, text=True, timeout=timeout)  # fmt: skip
+    return subprocess.run(
+        [sys.executable, str(script), *args],
+        cwd=ROOT,
+        env=_env(),
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
 
 
 def test_every_example_is_listed():
@@ -233,16 +259,31 @@ def test_example_does_not_exit_on_success(path):
                 assert getattr(args[0].func, "id", None) != "main", f"{path.name}:{node.lineno}"
         if isinstance(node, ast.Call) and getattr(node.func, "attr", None) == "exit":
             args = node.args
-            assert not (args and isinstance(args[0], ast.Call)
-                        and getattr(args[0].func, "id", None) == "main"), path.name
+            assert not (
+                args
+                and isinstance(args[0], ast.Call)
+                and getattr(args[0].func, "id", None) == "main"
+            ), path.name
 
 
 def test_indentation_profiler_runs_small():
     """The indentation profiler runs one small case on the CPU and reports every phase (loading,
     Barber's stiffness, partial unloading) with converged cycles."""
     script = BENCHMARKS_DIR / "profile_indentation.py"
-    r = _run(script, "--n", "256", "--surfaces", "GB300s", "--hardness-factors", "1",
-             "--punches-um", "108.7", "--device", "cpu", timeout=300)  # fmt: skip
+    r = _run(
+        script,
+        "--n",
+        "256",
+        "--surfaces",
+        "GB300s",
+        "--hardness-factors",
+        "1",
+        "--punches-um",
+        "108.7",
+        "--device",
+        "cpu",
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr[-4000:]
     assert "converged True" in r.stdout
     for phase in ("/load ", "/barber ", "/load/frozen "):
@@ -260,6 +301,9 @@ def test_iterations_vs_grid_runs_small(tmp_path):
     rows = json.loads(out.read_text())["rows"]
     assert {row["algorithm"] for row in rows} == {"pk", "bccg"}
     assert all(row["converged"] for row in rows)
-    punch = {row["algorithm"]: row["iterations"] for row in rows
-             if row["n"] == 128 and row["case"].startswith("punch")}  # fmt: skip
+    punch = {
+        row["algorithm"]: row["iterations"]
+        for row in rows
+        if row["n"] == 128 and row["case"].startswith("punch")
+    }
     assert punch["bccg"] < punch["pk"], punch

@@ -34,12 +34,15 @@ def test_full_plan_adds_one_work_spectrum(dtype):
     assert full["cufft work area"] == spectrum
     assert pruned["cufft work area"] <= spectrum  # the largest slab (the whole, when small)
     assert {k: v for k, v in full.items() if k != "cufft work area"} == {
-        k: v for k, v in pruned.items() if k != "cufft work area"}
+        k: v for k, v in pruned.items() if k != "cufft work area"
+    }
     # periodic and the CPU: no such plan
-    assert (ContactSolver.memory_terms(shape, "periodic", dtype, fft_plan="full")
-            == ContactSolver.memory_terms(shape, "periodic", dtype, fft_plan="pruned"))  # fmt: skip
-    assert (ContactSolver.memory_bytes(shape, "free", dtype, cuda=False, fft_plan="full")
-            == ContactSolver.memory_bytes(shape, "free", dtype, cuda=False))  # fmt: skip
+    assert ContactSolver.memory_terms(
+        shape, "periodic", dtype, fft_plan="full"
+    ) == ContactSolver.memory_terms(shape, "periodic", dtype, fft_plan="pruned")
+    assert ContactSolver.memory_bytes(
+        shape, "free", dtype, cuda=False, fft_plan="full"
+    ) == ContactSolver.memory_bytes(shape, "free", dtype, cuda=False)
 
 
 def test_fft_plan_setting_is_checked_and_cpu_takes_pruned():
@@ -68,7 +71,13 @@ def test_both_plans_same_solution_and_modelled_memory(dtype):
         with wp.ScopedMemoryTracker("plan", print=False):
             runtime.core.wp_alloc_tracker_reset()
             base = runtime.core.wp_alloc_tracker_get_current_bytes()
-            sol = ContactSolver(h, (s.dx, s.dy), E_STAR, device=dev, settings=SolverSettings(dtype=dtype, fft_plan=plan))
+            sol = ContactSolver(
+                h,
+                (s.dx, s.dy),
+                E_STAR,
+                device=dev,
+                settings=SolverSettings(dtype=dtype, fft_plan=plan),
+            )
             assert sol.fft_plan == plan
             r = sol.solve(0.2 * s.Rt)
             sol.punch_stiffness()

@@ -25,8 +25,11 @@ def _labelled_ticks(axis) -> list[float]:
     ax = axis.axes
     ax.figure.canvas.draw()
     lo, hi = sorted(axis.get_view_interval())
-    return [t.get_loc() for t in axis.get_major_ticks()
-            if t.label1.get_text() and lo <= t.get_loc() <= hi]  # fmt: skip
+    return [
+        t.get_loc()
+        for t in axis.get_major_ticks()
+        if t.label1.get_text() and lo <= t.get_loc() <= hi
+    ]
 
 
 def test_bem_ratio_panel_labels_values_where_its_curves_lie():
@@ -37,9 +40,17 @@ def test_bem_ratio_panel_labels_values_where_its_curves_lie():
     stiff = np.array([0.62, 0.41, 0.32, 0.35, 0.51, 0.75])  # k'/k_BEM
     area = np.array([1.14, 1.21, 1.46, 2.26, 4.9, 8.7])  # A'/A_BEM
     f = np.geomspace(1, 100, d.size)
-    res = SimpleNamespace(depth=d, bem_load=f, trunc_load=f * load, bem_stiffness=f * 1e6,
-                          trunc_stiffness=f * 1e6 * stiff, area_ratio=area, load_ratio=load,
-                          stiffness_ratio=stiff, converged=np.ones(d.size, bool))  # fmt: skip
+    res = SimpleNamespace(
+        depth=d,
+        bem_load=f,
+        trunc_load=f * load,
+        bem_stiffness=f * 1e6,
+        trunc_stiffness=f * 1e6 * stiff,
+        area_ratio=area,
+        load_ratio=load,
+        stiffness_ratio=stiff,
+        converged=np.ones(d.size, bool),
+    )
     fig = plot_bem_check(res)
     ratio = fig.axes[2]
     ticks = _labelled_ticks(ratio.yaxis)
@@ -107,8 +118,23 @@ def test_analyze_figure_of_a_scan_names_the_file_and_its_size(tmp_path, monkeypa
         return real(*a, **kw)
 
     monkeypatch.setattr(plot, "stiffness_load", spy)
-    code = main(["analyze", "--input", str(p), "--dx", "2e-6", "--out", str(tmp_path / "o"),
-                 "--device", "cpu", "--fit-range", "legacy", "--min-pixels", "1"])  # fmt: skip
+    code = main(
+        [
+            "analyze",
+            "--input",
+            str(p),
+            "--dx",
+            "2e-6",
+            "--out",
+            str(tmp_path / "o"),
+            "--device",
+            "cpu",
+            "--fit-range",
+            "legacy",
+            "--min-pixels",
+            "1",
+        ]
+    )
     assert code == 0
     title = seen["title"]
     assert title.splitlines()[0] == "sample 7.txt"
@@ -145,8 +171,7 @@ def test_render_labels_do_not_collide_and_show_the_height_scale(surf, top_view):
 
     scene = Scene(surf, 1, 10.0)
     with vtk_quiet():
-        panel = Panel(scene, (520, 440), top_view=top_view, lighting=False, annotate=True,
-                      ve=10.0)  # fmt: skip
+        panel = Panel(scene, (520, 440), top_view=top_view, lighting=False, annotate=True, ve=10.0)
         try:
             panel.frame(np.zeros(scene.shape, bool), "ω")
         finally:

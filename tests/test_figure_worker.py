@@ -59,10 +59,19 @@ def test_analyze_figures_equal_in_and_out_of_process(tmp_path):
     for mode in ("1", "0"):
         out = tmp_path / f"o{mode}"
         env = {**os.environ, "WARPTRUNC_FIGURE_PROCESS": mode}
-        cmd = [sys.executable, "-m", "warptrunc", "analyze", "--n", "128", "--device", "cpu",
-               "--out", str(out)]  # fmt: skip
-        r = subprocess.run(cmd, cwd=tmp_path, env=env, capture_output=True, text=True,
-                           timeout=300)  # fmt: skip
+        cmd = [
+            sys.executable,
+            "-m",
+            "warptrunc",
+            "analyze",
+            "--n",
+            "128",
+            "--device",
+            "cpu",
+            "--out",
+            str(out),
+        ]
+        r = subprocess.run(cmd, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300)
         assert r.returncode == 0, r.stderr
         outs[mode] = out
     for name in ("stiffness.png", "area_fraction.png", "curve.csv"):
@@ -74,6 +83,7 @@ def test_on_curve_gets_the_result_curve_once():
     from warptrunc.wm_params import WMSpec
 
     seen = []
-    a = analyze(WMSpec(n=128), truncation=TruncationSettings(50), on_curve=seen.append,
-                device="cpu")
+    a = analyze(
+        WMSpec(n=128), truncation=TruncationSettings(50), on_curve=seen.append, device="cpu"
+    )
     assert len(seen) == 1 and seen[0] is a.curve

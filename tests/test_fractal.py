@@ -106,8 +106,12 @@ def test_cube_convention_is_si_on_heights_mapped_onto_the_lateral_extent(device)
     tri = triangular_prism(s, box_sizes=sizes, device=device)  # default: cube
     box = box_counting(s, box_sizes=sizes, device=device)
     assert tri.options["height_scaling"] == box.options["height_scaling"] == "cube"
-    np.testing.assert_allclose(tri.measure, [numpy_prism_ratio(zc, k, 1e-6, 1.5e-6) for k in sizes], rtol=1e-6)
-    np.testing.assert_allclose(box.measure, [numpy_box_count(zc, k, k * h) for k in sizes], rtol=1e-6)
+    np.testing.assert_allclose(
+        tri.measure, [numpy_prism_ratio(zc, k, 1e-6, 1.5e-6) for k in sizes], rtol=1e-6
+    )
+    np.testing.assert_allclose(
+        box.measure, [numpy_box_count(zc, k, k * h) for k in sizes], rtol=1e-6
+    )
 
 
 @pytest.mark.parametrize("H", [0.2, 0.5, 0.8])
@@ -121,8 +125,13 @@ def test_self_affine_in_si_units_recovers_known_d(H):
     fits = []
     for seed in (0, 1):
         s = fbm(H, 256, seed, rms_px=1e-6 / dx)
-        fits.append((triangular_prism(s, device="cpu").D, box_counting(s, device="cpu").D,
-                     triangular_prism(s, height_scaling="si", device="cpu").D))  # fmt: skip
+        fits.append(
+            (
+                triangular_prism(s, device="cpu").D,
+                box_counting(s, device="cpu").D,
+                triangular_prism(s, height_scaling="si", device="cpu").D,
+            )
+        )
     tri, box, tri_si = np.mean(fits, axis=0)
     D = 3.0 - H
     assert D - 0.15 < tri < D + 0.15, tri
@@ -338,10 +347,20 @@ def test_both_structure_function_layouts_agree(device):
     for along_x in (1, 0):
         cols = wp.zeros((3, 31), dtype=wp.float64, device=device)
         rows = wp.zeros((3, 23), dtype=wp.float64, device=device)
-        wp.launch(_k.structure_function_kernel, (3, 31), inputs=[zd, lags, along_x],
-                  outputs=[cols], device=device)  # fmt: skip
-        wp.launch(_k.structure_function_rows_kernel, (3, 23), inputs=[zd, lags, along_x],
-                  outputs=[rows], device=device)  # fmt: skip
+        wp.launch(
+            _k.structure_function_kernel,
+            (3, 31),
+            inputs=[zd, lags, along_x],
+            outputs=[cols],
+            device=device,
+        )
+        wp.launch(
+            _k.structure_function_rows_kernel,
+            (3, 23),
+            inputs=[zd, lags, along_x],
+            outputs=[rows],
+            device=device,
+        )
         np.testing.assert_allclose(cols.numpy().sum(1), rows.numpy().sum(1), rtol=1e-12)
 
 
@@ -352,7 +371,8 @@ def test_figures(tmp_path):
     fits = fractal_dimensions(s)
     fig = plot.fractal_fits(fits, path=tmp_path / "fits.png")
     assert len([a for a in fig.axes if a.get_visible()]) == 4
-    fig = plot.d_out_vs_d_in([2.2, 2.5], {"tri": [2.1, 2.3], "sp": [2.2, 2.5]},
-                             path=tmp_path / "d.png")  # fmt: skip
+    fig = plot.d_out_vs_d_in(
+        [2.2, 2.5], {"tri": [2.1, 2.3], "sp": [2.2, 2.5]}, path=tmp_path / "d.png"
+    )
     assert len(fig.axes[0].lines) >= 1
     assert (tmp_path / "fits.png").stat().st_size > 0 and (tmp_path / "d.png").stat().st_size > 0

@@ -36,9 +36,12 @@ PROBE = (
 def _run(extra_path: list[str], code: str = PROBE):
     boot = f"import sys; sys.path[1:1] = {[*extra_path, DEPS]!r}; "
     return subprocess.run(
-        [sys.executable, "-S", "-c", boot + code], cwd=ROOT, capture_output=True, text=True,
+        [sys.executable, "-S", "-c", boot + code],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
         timeout=120,
-    )  # fmt: skip
+    )
 
 
 def _fake_install(dest: Path) -> Path:
@@ -66,8 +69,11 @@ def test_installed_copy_keeps_its_own_kernels(tmp_path):
     code = PROBE
     r = subprocess.run(
         [sys.executable, "-S", "-c", f"import sys; sys.path[:0] = {[str(site), DEPS]!r}; " + code],
-        cwd=tmp_path, capture_output=True, text=True, timeout=120,
-    )  # fmt: skip
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert r.returncode == 0, r.stderr
     pkg, kern, _ = r.stdout.strip().splitlines()[-3:]
     assert Path(pkg).parent == site / "warptrunc"

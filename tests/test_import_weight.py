@@ -13,17 +13,29 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 HEAVY = (
-    "matplotlib", "pyvista", "vtk", "vtkmodules", "pandas", "pyarrow", "dask", "distributed",
-    "cupy", "SurfaceTopography", "tqdm",
-)  # fmt: skip
+    "matplotlib",
+    "pyvista",
+    "vtk",
+    "vtkmodules",
+    "pandas",
+    "pyarrow",
+    "dask",
+    "distributed",
+    "cupy",
+    "SurfaceTopography",
+    "tqdm",
+)
 REPORT = f"import sys; print(sorted({{m.split('.')[0] for m in sys.modules}} & set({HEAVY!r})))"
 
 
 def _loaded(code: str, cwd: Path) -> str:
     r = subprocess.run(
-        [sys.executable, "-c", f"{code}\n{REPORT}"], cwd=cwd, capture_output=True, text=True,
+        [sys.executable, "-c", f"{code}\n{REPORT}"],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
         timeout=300,
-    )  # fmt: skip
+    )
     assert r.returncode == 0, r.stderr
     return r.stdout.strip().splitlines()[-1]
 
@@ -68,8 +80,13 @@ def test_help_and_import_load_no_warp(code):
     names load on first use), so the help answers at once; building one sub-command's parser
     loads only what that sub-command's module imports (Warp, for ``generate``)."""
     check = "import sys; print(sorted({m.split('.')[0] for m in sys.modules} & {'warp', 'numpy'}))"
-    r = subprocess.run([sys.executable, "-c", f"{code}\n{check}"], cwd=ROOT, capture_output=True,
-                       text=True, timeout=300)  # fmt: skip
+    r = subprocess.run(
+        [sys.executable, "-c", f"{code}\n{check}"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr
     loaded = r.stdout.strip().splitlines()[-1]
     expect = "['numpy', 'warp']" if "generate" in code else "[]"
@@ -90,6 +107,7 @@ def test_lazy_names_resolve_to_their_objects():
         "    assert obj is getattr(mod, n), n\n"
         "print('ok')"
     )
-    r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True,
-                       timeout=300)  # fmt: skip
+    r = subprocess.run(
+        [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=300
+    )
     assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr

@@ -195,9 +195,20 @@ def test_truncation_at_loads_flat_and_paraboloid():
 
 # --- the protocol and its result ---------------------------------------------------------------
 
-HEADER = ["punch_diameter_m", "placement", "peak_load_N", "displacement_m", "contact_area_m2",
-          "plastic_area_m2", "unloading_stiffness_N_per_m", "partial_unloading_stiffness_N_per_m",
-          "E_c_Pa", "E_c_over_E", "F_over_EA", "converged"]  # fmt: skip
+HEADER = [
+    "punch_diameter_m",
+    "placement",
+    "peak_load_N",
+    "displacement_m",
+    "contact_area_m2",
+    "plastic_area_m2",
+    "unloading_stiffness_N_per_m",
+    "partial_unloading_stiffness_N_per_m",
+    "E_c_Pa",
+    "E_c_over_E",
+    "F_over_EA",
+    "converged",
+]
 
 
 @pytest.fixture(scope="module")
@@ -205,9 +216,19 @@ def result():
     s = _wm(n=96, L=0.6e-3)
     m = Material.against_diamond(hardness=1e9)
     with pytest.warns(PlacementOverlapWarning):  # 0.4 mm twice on 0.6 mm: they overlap
-        return indent(s, protocol=IndentProtocol(
-            punch_diameters=(0.1e-3, 0.4e-3), peak_loads=(2e-3, 8e-3, 32e-3), placements=2,
-            placement_seed=4, refine_max=1, min_contact_pixels=1), material=m, device="cpu")  # fmt: skip
+        return indent(
+            s,
+            protocol=IndentProtocol(
+                punch_diameters=(0.1e-3, 0.4e-3),
+                peak_loads=(2e-3, 8e-3, 32e-3),
+                placements=2,
+                placement_seed=4,
+                refine_max=1,
+                min_contact_pixels=1,
+            ),
+            material=m,
+            device="cpu",
+        )
 
 
 def test_result_columns_and_units(result):
@@ -220,17 +241,23 @@ def test_result_columns_and_units(result):
     np.testing.assert_array_equal(d["peak_load_N"], np.tile([2e-3, 8e-3, 32e-3], 4))
     area = math.pi * d["punch_diameter_m"] ** 2 / 4
     E = 70e9
-    for k, ec, over in (("unloading_stiffness_N_per_m", "E_c_Pa", "E_c_over_E"),
-                        ("partial_unloading_stiffness_N_per_m", "E_c_partial_Pa",
-                         "E_c_partial_over_E")):  # fmt: skip
+    for k, ec, over in (
+        ("unloading_stiffness_N_per_m", "E_c_Pa", "E_c_over_E"),
+        ("partial_unloading_stiffness_N_per_m", "E_c_partial_Pa", "E_c_partial_over_E"),
+    ):
         np.testing.assert_allclose(d[ec], math.sqrt(math.pi) * d[k] / (2 * np.sqrt(area)))
         np.testing.assert_allclose(d[over], d[ec] / E)
     np.testing.assert_allclose(d["F_over_EA"], d["peak_load_N"] / (E * area))
     np.testing.assert_allclose(
         d["truncation_E_c_over_E"],
-        2 / math.sqrt(math.pi) * MAT.contact_modulus * np.sqrt(d["truncation_contact_area_m2"])
-        * math.sqrt(math.pi) / (2 * np.sqrt(area)) / E,
-    )  # fmt: skip
+        2
+        / math.sqrt(math.pi)
+        * MAT.contact_modulus
+        * np.sqrt(d["truncation_contact_area_m2"])
+        * math.sqrt(math.pi)
+        / (2 * np.sqrt(area))
+        / E,
+    )
     # every contact pixel carries at most H: F ≤ H·A_c; plastic area within the contact area
     assert np.all(d["peak_load_N"] <= 1e9 * d["contact_area_m2"] * (1 + 1e-9))
     assert np.all(d["plastic_area_m2"] <= d["contact_area_m2"])
@@ -238,8 +265,9 @@ def test_result_columns_and_units(result):
     assert np.all(d["overlap_fraction"][:6] == 0) and np.all(d["overlap_fraction"][6:] > 0)
     # the unloading starts steeper than the secant: Barber's slope ≥ the partial-unloading
     # secant, which is accurate to 2·thermotol·F/(0.1·F) = 2e-5 (each load within 1e-6)
-    assert np.all(d["unloading_stiffness_N_per_m"] >= d["partial_unloading_stiffness_N_per_m"]
-                  * (1 - 2e-5))  # fmt: skip
+    assert np.all(
+        d["unloading_stiffness_N_per_m"] >= d["partial_unloading_stiffness_N_per_m"] * (1 - 2e-5)
+    )
     cx, cy, dd = d["centre_x_m"], d["centre_y_m"], d["punch_diameter_m"]
     assert np.all(cx - dd / 2 >= 0) and np.all(cx + dd / 2 <= 0.6e-3)
     assert np.all(cy - dd / 2 >= 0) and np.all(cy + dd / 2 <= 0.6e-3)
@@ -248,8 +276,12 @@ def test_result_columns_and_units(result):
 def test_fits_are_the_least_squares_line_in_log_log(result):
     d = result.to_dict()
     use = d["in_fit"]  # min_contact_pixels = 1, not refined: every converged, unsaturated cell
-    np.testing.assert_array_equal(use, d["converged"] & (d["n_contact_pixels"] >= 1)
-                                  & (d["n_contact_pixels"] < d["n_punch_pixels"]))  # fmt: skip
+    np.testing.assert_array_equal(
+        use,
+        d["converged"]
+        & (d["n_contact_pixels"] >= 1)
+        & (d["n_contact_pixels"] < d["n_punch_pixels"]),
+    )
     assert use.sum() >= 6
     for name, col in (("elastic_plastic", "E_c_over_E"), ("truncation", "truncation_E_c_over_E")):
         fit = result.fits()[name]
@@ -281,14 +313,19 @@ def test_monotonic_loading_needs_no_replay_of_the_partial_unloads():
 
 def test_elastic_hardness_copies_the_elastic_columns():
     s = _wm()
-    r = indent(s, protocol=IndentProtocol(punch_diameters=None, peak_loads=(1e-3, 4e-3)),
-               material=MAT, device="cpu")  # fmt: skip
+    r = indent(
+        s,
+        protocol=IndentProtocol(punch_diameters=None, peak_loads=(1e-3, 4e-3)),
+        material=MAT,
+        device="cpu",
+    )
     d = r.to_dict()
     assert d["n_punch_pixels"][0] == 64 * 64
     assert np.isnan(d["punch_diameter_m"]).all()
     np.testing.assert_allclose(d["punch_area_m2"], s.lx * s.ly)
-    np.testing.assert_array_equal(d["elastic_unloading_stiffness_N_per_m"],
-                                  d["unloading_stiffness_N_per_m"])  # fmt: skip
+    np.testing.assert_array_equal(
+        d["elastic_unloading_stiffness_N_per_m"], d["unloading_stiffness_N_per_m"]
+    )
     assert np.all(d["plastic_area_m2"] == 0)
 
 
@@ -311,8 +348,12 @@ def test_unyielded_cycles_taken_from_the_elastic_run_equal_solving_them():
         np.testing.assert_array_equal(a[k], b[k], err_msg=k)
     # the first solved cycle starts from zero forces instead of the previous peak's: equal to
     # the solver's tolerances (loads within thermotol = 1e-6)
-    for k in ("displacement_m", "max_pressure_Pa", "unloading_stiffness_N_per_m",
-              "partial_unloading_stiffness_N_per_m"):  # fmt: skip
+    for k in (
+        "displacement_m",
+        "max_pressure_Pa",
+        "unloading_stiffness_N_per_m",
+        "partial_unloading_stiffness_N_per_m",
+    ):
         np.testing.assert_allclose(a[k], b[k], rtol=1e-6, atol=0, err_msg=k)
     # a few plastic pixels' interference is small next to δ, so δ's change weighs more there
     np.testing.assert_allclose(a["plastic_volume_m3"], b["plastic_volume_m3"], rtol=1e-4, atol=0)
@@ -326,16 +367,17 @@ def test_unyielded_cycles_taken_from_the_elastic_run_equal_solving_them():
     for given in (elastic, elastic.to_dict()):
         c = indent(s, protocol=at, reuse=given, **kw)
         assert c.settings["reused_elastic_cycles"] == n
-        np.testing.assert_allclose(c.to_dict()["unloading_stiffness_N_per_m"],
-                                   b["unloading_stiffness_N_per_m"], rtol=1e-6)  # fmt: skip
-        np.testing.assert_array_equal(c.to_dict()["elastic_contact_area_m2"],
-                                      a["elastic_contact_area_m2"])  # fmt: skip
+        np.testing.assert_allclose(
+            c.to_dict()["unloading_stiffness_N_per_m"], b["unloading_stiffness_N_per_m"], rtol=1e-6
+        )
+        np.testing.assert_array_equal(
+            c.to_dict()["elastic_contact_area_m2"], a["elastic_contact_area_m2"]
+        )
 
 
 def test_reuse_of_another_run_is_refused():
     s = _wm(n=64)
-    at = IndentProtocol(punch_diameters=0.1e-3, peak_loads=(1e-3, 4e-3), placements=1,
-                        refine_max=1)  # fmt: skip
+    at = IndentProtocol(punch_diameters=0.1e-3, peak_loads=(1e-3, 4e-3), placements=1, refine_max=1)
     elastic = indent(s, protocol=at, material=Material.against_diamond(), device="cpu")
     plastic = indent(s, protocol=at, material=Material.against_diamond(hardness=1e9), device="cpu")
     m = Material.against_diamond(hardness=1e9)
@@ -364,8 +406,13 @@ def test_loads_above_what_the_punch_carries_are_refused():
     s = _wm()
     m = Material.against_diamond(hardness=1e9)
     with pytest.raises(ValueError, match=r"peak_loads must stay below .* H × A"):
-        indent(s, protocol=IndentProtocol(punch_diameters=50e-6, peak_loads=(1e-3, 10.0),
-                                          placements=None), material=m)  # fmt: skip
+        indent(
+            s,
+            protocol=IndentProtocol(
+                punch_diameters=50e-6, peak_loads=(1e-3, 10.0), placements=None
+            ),
+            material=m,
+        )
 
 
 @pytest.mark.parametrize(
@@ -390,8 +437,18 @@ def test_protocol_options_round_trip():
 
     p = argparse.ArgumentParser()
     add_options(p, IndentProtocol)
-    args = p.parse_args(["--punch-diameters", "1e-4", "2e-4", "--peak-loads", "0.01",
-                         "--placements", "none", "--no-elastic"])  # fmt: skip
+    args = p.parse_args(
+        [
+            "--punch-diameters",
+            "1e-4",
+            "2e-4",
+            "--peak-loads",
+            "0.01",
+            "--placements",
+            "none",
+            "--no-elastic",
+        ]
+    )
     pr = from_args(IndentProtocol, args)
     assert pr.punch_diameters == (1e-4, 2e-4) and pr.peak_loads == (0.01,)
     assert pr.placements is None and pr.unload_fraction == 0.1 and pr.elastic is False
@@ -475,9 +532,26 @@ def test_large_hardness_is_the_elastic_solution():
 
 # --- the command line ---------------------------------------------------------------------------
 
-CLI = ["indent", "--n", "64", "--L", "0.4e-3", "--Rt", "2e-6", "--punch-diameters", "1.5e-4",
-       "--peak-loads", "1e-3", "4e-3", "1.6e-2", "--placements", "2", "--no-progress",
-       "--refine-max", "2"]  # fmt: skip
+CLI = [
+    "indent",
+    "--n",
+    "64",
+    "--L",
+    "0.4e-3",
+    "--Rt",
+    "2e-6",
+    "--punch-diameters",
+    "1.5e-4",
+    "--peak-loads",
+    "1e-3",
+    "4e-3",
+    "1.6e-2",
+    "--placements",
+    "2",
+    "--no-progress",
+    "--refine-max",
+    "2",
+]
 
 
 def test_cli_writes_csv_json_and_figure(tmp_path, capsys):
@@ -493,8 +567,13 @@ def test_cli_writes_csv_json_and_figure(tmp_path, capsys):
         raise AssertionError(f"non-standard JSON constant {name}")
 
     doc = json.loads((out / "indent.json").read_text(), parse_constant=no_constants)
-    assert set(doc["fits"]) == {"elastic_plastic", "elastic_plastic_partial", "elastic",
-                                "elastic_partial", "truncation"}  # fmt: skip
+    assert set(doc["fits"]) == {
+        "elastic_plastic",
+        "elastic_plastic_partial",
+        "elastic",
+        "elastic_partial",
+        "truncation",
+    }
     assert doc["material"]["hardness"] == 1e9 and doc["material"]["E_i"] == 1141e9
     assert doc["protocol"]["peak_loads"] == [1e-3, 4e-3, 1.6e-2]
     assert "git_commit" in doc["provenance"]
@@ -518,9 +597,11 @@ def test_cli_writes_csv_json_and_figure(tmp_path, capsys):
         (["--unload-fraction", "0"], ["--unload-fraction", "(0, 1)", "'0'"]),
         (["--unload-fraction", "nan"], ["--unload-fraction", "(0, 1)", "nan"]),
         (["--placements", "0"], ["--placements", "[1, 10000]", "'0'"]),
-        (["--placements", "3", "--punch-diameters", "3e-4", "--overlap", "error"],
-         ["--placements", "per side"]),
+        (
+            ["--placements", "3", "--punch-diameters", "3e-4", "--overlap", "error"],
+            ["--placements", "per side"],
+        ),
     ],
-)  # fmt: skip
+)
 def test_cli_bad_input_exits_2_with_the_option_named(tmp_path, capsys, extra, needles):
     assert_refused_in_one_line([*CLI, *extra], tmp_path / "ind", capsys, needles)

@@ -73,11 +73,13 @@ def test_tilt_softens_below_full_contact_and_is_sneddon_once_the_face_touches():
     np.testing.assert_allclose(kt[full], k0[full], rtol=1e-8)
     np.testing.assert_allclose(k0, 2 * ES * a, rtol=0.01)
     x_top = (a_px - 0.5) * dx  # the pixel centre nearest the +x edge, inside the disk
-    np.testing.assert_allclose(rt["displacement"][full] - r0["displacement"][full],
-                               theta * x_top, rtol=1e-4)  # fmt: skip
+    np.testing.assert_allclose(
+        rt["displacement"][full] - r0["displacement"][full], theta * x_top, rtol=1e-4
+    )
     # the face rises toward +x (azimuth 0): first touch on the +x edge
-    _, ix = np.unravel_index(np.argmax(np.where(tilted.mask, tilted.heights, -np.inf)),
-                              tilted.mask.shape)  # fmt: skip
+    _, ix = np.unravel_index(
+        np.argmax(np.where(tilted.mask, tilted.heights, -np.inf)), tilted.mask.shape
+    )
     assert (ix + tilted.origin[1] + 0.5) * dx - tilted.centre[0] == pytest.approx(x_top)
 
 
@@ -88,12 +90,15 @@ def test_tilt_azimuth_turns_the_face_and_keeps_the_stiffness():
     z = np.zeros((2 * a_px + 2, 2 * a_px + 2))
     d = 2 * a_px * dx
     w0 = punch_window(z, dx, d, face=make_face(d, PunchFaceSpec(tilt_deg=0.05)))
-    w90 = punch_window(z, dx, d, face=make_face(d, PunchFaceSpec(tilt_deg=0.05, tilt_azimuth_deg=90.0)))
+    w90 = punch_window(
+        z, dx, d, face=make_face(d, PunchFaceSpec(tilt_deg=0.05, tilt_azimuth_deg=90.0))
+    )
     np.testing.assert_allclose(w90.face_heights, w0.face_heights.T, rtol=0, atol=1e-18)
     tan = math.tan(math.radians(0.05))
     x = (np.arange(w0.mask.shape[1]) + w0.origin[1] + 0.5) * dx - w0.centre[0]
-    np.testing.assert_allclose(w0.face_heights[w0.mask],
-                               np.broadcast_to(tan * x, w0.mask.shape)[w0.mask], rtol=1e-12)  # fmt: skip
+    np.testing.assert_allclose(
+        w0.face_heights[w0.mask], np.broadcast_to(tan * x, w0.mask.shape)[w0.mask], rtol=1e-12
+    )
     loads = [2e-3]
     at = IndentProtocol(peak_loads=loads)
     k = [run_cycles(w, at, MAT, device="cpu")["unloading_stiffness"][0] for w in (w0, w90)]
@@ -134,8 +139,9 @@ def _reference(face):
     """The face's reference grid, offsets from the punch centre, and the raw field (numpy)."""
     r = face.info["roughness"]
     n, period = r["reference_grid"], r["period_m"]
-    raw, _ = self_affine_field(n, period, r["hurst"], r["cutoff_short_m"], r["cutoff_long_m"],
-                               tuple(r["seed"]))  # fmt: skip
+    raw, _ = self_affine_field(
+        n, period, r["hurst"], r["cutoff_short_m"], r["cutoff_long_m"], tuple(r["seed"])
+    )
     u = (np.arange(n) - n // 2) * (period / n)
     return u, raw, n, period
 
@@ -246,8 +252,9 @@ def test_finer_window_holds_the_same_face_and_the_same_sample():
             w.face_heights[w.mask], (tilt + rough)[w.mask], rtol=0, atol=1e-18
         )
         # the untilted heights (the solver's tolerance) take the plane out exactly
-        np.testing.assert_allclose(w.untilted_disk_heights, (bare.heights + rough)[w.mask],
-                                   rtol=0, atol=1e-18)  # fmt: skip
+        np.testing.assert_allclose(
+            w.untilted_disk_heights, (bare.heights + rough)[w.mask], rtol=0, atol=1e-18
+        )
 
 
 AT = IndentProtocol(punch_diameters=300e-6, peak_loads=(2e-3, 8e-3, 32e-3), placements=1,
@@ -267,8 +274,10 @@ def test_indent_records_the_face_and_keeps_truncation_the_samples():
     a, b = base.to_dict(), res.to_dict()
     assert list(a) == list(b)
     for k in ("truncation_depth_m", "truncation_stiffness_N_per_m"):
-        np.testing.assert_array_equal(a[k][a["pixel_size_m"] == b["pixel_size_m"]],
-                                      b[k][a["pixel_size_m"] == b["pixel_size_m"]])  # fmt: skip
+        np.testing.assert_array_equal(
+            a[k][a["pixel_size_m"] == b["pixel_size_m"]],
+            b[k][a["pixel_size_m"] == b["pixel_size_m"]],
+        )
     assert not np.array_equal(a["displacement_m"], b["displacement_m"])
     rec = res.settings["punch_face"]
     assert len(rec) == 1 and rec[0]["diameter_m"] == 300e-6 and rec[0]["tilt_deg"] == 0.05
@@ -307,8 +316,9 @@ def test_a_read_face_is_levelled_and_resampled_bilinearly(tmp_path):
     at = AT.replace(punch_diameters=d, refine_max=1)
     smooth = indent(s, protocol=at, **KW).to_dict()
     flat = indent(s, protocol=at.replace(face=PunchFaceSpec(file=plane_file)), **KW).to_dict()
-    np.testing.assert_allclose(flat["unloading_stiffness_N_per_m"],
-                               smooth["unloading_stiffness_N_per_m"], rtol=1e-6)  # fmt: skip
+    np.testing.assert_allclose(
+        flat["unloading_stiffness_N_per_m"], smooth["unloading_stiffness_N_per_m"], rtol=1e-6
+    )
     z = 1e-7 * np.cos(xx / 7e-6) * np.sin(yy / 9e-6 + 0.3) + 3e-9 * xx / h
     curved = tmp_path / "curved.npz"
     write_height_map(warptrunc.from_heights(z, h, h), curved)
@@ -356,34 +366,76 @@ def test_face_refuses_bad_values(kw, match):
 
 def test_face_needs_a_band_a_finite_punch_and_the_same_face_to_reuse():
     s = _wm()
+
     def run(**face):
         return indent(s, protocol=AT.replace(face=PunchFaceSpec(**face)), **KW)
 
     with pytest.raises(ValueError, match=r"face.cutoff_long .* must exceed face.cutoff_short"):
         run(roughness=1e-8, cutoff_long=5e-6)
     with pytest.raises(ValueError, match=r"needs a finite punch_diameters"):
-        indent(s, protocol=AT.replace(punch_diameters=None,
-                                      face=PunchFaceSpec(tilt_deg=0.01)), **KW)  # fmt: skip
+        indent(
+            s, protocol=AT.replace(punch_diameters=None, face=PunchFaceSpec(tilt_deg=0.01)), **KW
+        )
     with pytest.raises(ValueError, match=r"face.cutoff_short must be at least"):
         run(roughness=1e-8, cutoff_short=1e-9)
     at = AT.replace(refine_max=1)
     elastic = indent(s, protocol=at, **KW)
     with pytest.raises(ValueError, match=r"reuse was run with face.tilt_deg = 0.0"):
-        indent(s, protocol=at.replace(face=PunchFaceSpec(tilt_deg=0.01)), reuse=elastic,
-               **{**KW, "material": Material.against_diamond(hardness=1e9)})  # fmt: skip
+        indent(
+            s,
+            protocol=at.replace(face=PunchFaceSpec(tilt_deg=0.01)),
+            reuse=elastic,
+            **{**KW, "material": Material.against_diamond(hardness=1e9)},
+        )
 
 
 # --- the command line ---------------------------------------------------------------------------
 
-CLI = ["indent", "--n", "64", "--L", "0.4e-3", "--Rt", "0.3e-6", "--punch-diameters", "1.5e-4",
-       "--peak-loads", "1e-3", "4e-3", "--placements", "1", "--no-progress", "--refine-max", "1",
-       "--hardness", "inf", "--no-plot", "--accept-unconverged"]  # fmt: skip
+CLI = [
+    "indent",
+    "--n",
+    "64",
+    "--L",
+    "0.4e-3",
+    "--Rt",
+    "0.3e-6",
+    "--punch-diameters",
+    "1.5e-4",
+    "--peak-loads",
+    "1e-3",
+    "4e-3",
+    "--placements",
+    "1",
+    "--no-progress",
+    "--refine-max",
+    "1",
+    "--hardness",
+    "inf",
+    "--no-plot",
+    "--accept-unconverged",
+]
 
 
 def test_cli_face_options_reach_the_json(tmp_path, capsys):
     out = tmp_path / "ind"
-    assert main([*CLI, "--face-tilt-deg", "0.05", "--face-tilt-azimuth-deg", "30",
-                 "--face-roughness", "2e-8", "--face-hurst", "0.6", "--out", str(out)]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                *CLI,
+                "--face-tilt-deg",
+                "0.05",
+                "--face-tilt-azimuth-deg",
+                "30",
+                "--face-roughness",
+                "2e-8",
+                "--face-hurst",
+                "0.6",
+                "--out",
+                str(out),
+            ]
+        )
+        == 0
+    )
     doc = json.loads((out / "indent.json").read_text())
     assert doc["protocol"]["face"]["tilt_deg"] == 0.05 and doc["protocol"]["face"]["hurst"] == 0.6
     face = doc["settings"]["punch_face"][0]
@@ -396,12 +448,16 @@ def test_cli_face_options_reach_the_json(tmp_path, capsys):
     [
         (["--face-tilt-deg", "9"], ["--face-tilt-deg", "[0, 5]", "'9'"]),
         (["--face-hurst", "1.5"], ["--face-hurst", "(0, 1]", "'1.5'"]),
-        (["--face-roughness", "1e-8", "--face-cutoff-long", "1e-6"],
-         ["--face-cutoff-long", "--face-cutoff-short", "must exceed"]),
-        (["--face-roughness", "1e-8", "--face-file", "x.npz"],
-         ["--face-roughness", "file ('x.npz')", "give one"]),
+        (
+            ["--face-roughness", "1e-8", "--face-cutoff-long", "1e-6"],
+            ["--face-cutoff-long", "--face-cutoff-short", "must exceed"],
+        ),
+        (
+            ["--face-roughness", "1e-8", "--face-file", "x.npz"],
+            ["--face-roughness", "file ('x.npz')", "give one"],
+        ),
         (["--face-file", "no_such_face.npz"], ["--face-file", "no_such_face.npz"]),
     ],
-)  # fmt: skip
+)
 def test_cli_bad_face_input_exits_2_with_the_option_named(tmp_path, capsys, extra, needles):
     assert_refused_in_one_line([*CLI, *extra], tmp_path / "ind", capsys, needles)

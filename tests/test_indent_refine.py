@@ -42,7 +42,9 @@ def _eq4(x, y, s):
         th = math.pi * m / M
         for n in range(n_f):
             k, a = 2 * math.pi * GAMMA**n / WR, alpha[m - 1, n]
-            out += GAMMA ** ((D - 3) * n) * (math.cos(a) - np.cos(k * (x * math.cos(th) + y * math.sin(th)) + a))
+            out += GAMMA ** ((D - 3) * n) * (
+                math.cos(a) - np.cos(k * (x * math.cos(th) + y * math.sin(th)) + a)
+            )
     return out
 
 
@@ -68,10 +70,13 @@ def test_wm_window_at_a_finer_pixel_is_the_same_surface(factor):
     z = np.asarray(s.heights, np.float64)
     scale = _scale(s)
     (iy, ix), (wy, wx) = (10, 5), (20, 30)
-    fine = wm_window(s.params, (factor * iy, factor * ix), (factor * wy, factor * wx), factor,
-                     device="cpu").astype(np.float64)  # fmt: skip
+    fine = wm_window(
+        s.params, (factor * iy, factor * ix), (factor * wy, factor * wx), factor, device="cpu"
+    ).astype(np.float64)
     tol = 2e-6 * np.ptp(z)  # float32 heights and float32 products of float32 tables
-    np.testing.assert_allclose(fine[::factor, ::factor], z[iy : iy + wy, ix : ix + wx], rtol=0, atol=tol)
+    np.testing.assert_allclose(
+        fine[::factor, ::factor], z[iy : iy + wy, ix : ix + wx], rtol=0, atol=tol
+    )
     fy, fx = np.mgrid[0 : factor * wy, 0 : factor * wx]
     ref = scale * _eq4((factor * ix + fx) * s.dx / factor, (factor * iy + fy) * s.dy / factor, s)
     np.testing.assert_allclose(fine, ref, rtol=0, atol=tol)
@@ -113,8 +118,15 @@ def test_a_resolved_cell_agrees_with_the_cell_solved_on_its_own_at_half_its_pixe
     s = _wm()
     mat = Material.against_diamond(hardness=0.05e9)  # soft: large plastic contacts
     tol = 0.02
-    at = IndentProtocol(punch_diameters=(0.15e-3,), peak_loads=(16e-3, 64e-3), placements=2,
-                        refine_max=4, min_contact_pixels=50, resolution_tol=tol, elastic=False)
+    at = IndentProtocol(
+        punch_diameters=(0.15e-3,),
+        peak_loads=(16e-3, 64e-3),
+        placements=2,
+        refine_max=4,
+        min_contact_pixels=50,
+        resolution_tol=tol,
+        elastic=False,
+    )
     r = indent(s, protocol=at, material=mat, device="cpu")
     d = r.to_dict()
     done = np.flatnonzero(d["resolved"])
@@ -145,18 +157,25 @@ def test_saturated_cells_are_never_in_fit():
     """Complete contact (every disk pixel touches) is flagged saturated and left out of the fits,
     resolved or not: a flat read map under a punch, and a nearly flat WM map refined."""
     flat = np.zeros((64, 64))
-    at = IndentProtocol(punch_diameters=(60e-6,), peak_loads=(1e-3, 2e-3), placements=None,
-                        min_contact_pixels=1)  # fmt: skip
-    r = indent(flat, protocol=at, pixel_size=2e-6, material=Material.against_diamond(),
-               device="cpu")  # fmt: skip
+    at = IndentProtocol(
+        punch_diameters=(60e-6,), peak_loads=(1e-3, 2e-3), placements=None, min_contact_pixels=1
+    )
+    r = indent(
+        flat, protocol=at, pixel_size=2e-6, material=Material.against_diamond(), device="cpu"
+    )
     d = r.to_dict()
     assert np.all(d["n_contact_pixels"] == d["n_punch_pixels"]) and d["saturated"].all()
     assert d["resolved"].all() and not d["in_fit"].any()  # resolved by the pixel rule alone
     assert set(d["resolution_note"]) == {"read-map"} and np.isnan(d["resolution_change"]).all()
     assert np.all(d["pixel_size_m"] == 2e-6)
     s = _wm(n=64, L=0.2e-3, Rt=1e-9)  # 24 pixels of radius: K and A within 1 % at p/2
-    at = IndentProtocol(punch_diameters=(0.15e-3,), peak_loads=(0.5, 1.0), placements=None,
-                        refine_max=2, min_contact_pixels=10)  # fmt: skip
+    at = IndentProtocol(
+        punch_diameters=(0.15e-3,),
+        peak_loads=(0.5, 1.0),
+        placements=None,
+        refine_max=2,
+        min_contact_pixels=10,
+    )
     r = indent(s, protocol=at, material=Material.against_diamond(), device="cpu")
     d = r.to_dict()
     np.testing.assert_array_equal(d["saturated"], d["n_contact_pixels"] >= d["n_punch_pixels"])
@@ -173,8 +192,12 @@ def test_cells_at_the_complete_contact_plateau_are_saturated():
     y, x = (np.mgrid[0:n, 0:n] - (n - 1) / 2) * dx
     dome = -(x**2 + y**2) / (2 * 0.5)  # R = 0.5 m: a rim 1.25 nm below the top at r = 50 µm
     mat = Material.against_diamond()
-    at = IndentProtocol(punch_diameters=(d,), peak_loads=(1e-4, 2e-2, 2.4e-2, 1.0),
-                        placements=None, min_contact_pixels=1)  # fmt: skip
+    at = IndentProtocol(
+        punch_diameters=(d,),
+        peak_loads=(1e-4, 2e-2, 2.4e-2, 1.0),
+        placements=None,
+        min_contact_pixels=1,
+    )
     r = indent(dome, protocol=at, pixel_size=dx, material=mat, device="cpu")
     c = r.to_dict()
     k = c["unloading_stiffness_N_per_m"]
@@ -221,16 +244,25 @@ def test_fits_use_the_cells_in_fit_and_need_six(two_surfaces):
     r = two_surfaces
     d = r.to_dict()
     use = d["in_fit"]
-    np.testing.assert_array_equal(use, d["converged"] & (d["n_contact_pixels"] >= 1)
-                                  & (d["n_contact_pixels"] < d["n_punch_pixels"]))  # fmt: skip
+    np.testing.assert_array_equal(
+        use,
+        d["converged"]
+        & (d["n_contact_pixels"] >= 1)
+        & (d["n_contact_pixels"] < d["n_punch_pixels"]),
+    )
     for name, col in (("elastic_plastic", "E_c_over_E"), ("truncation", "truncation_E_c_over_E")):
         fit = r.fits()[name]
         alpha, logb = np.polyfit(np.log(d["F_over_EA"][use]), np.log(d[col][use]), 1)
         assert fit.alpha == pytest.approx(alpha, rel=1e-9)
         assert fit.beta == pytest.approx(math.exp(logb), rel=1e-9)
         assert fit.n_points == use.sum() >= MIN_FIT_POINTS
-        ind = {(a, b, c) for a, b, c, u in zip(d["realisation"], d["punch_diameter_m"],
-                                               d["placement"], use, strict=True) if u}  # fmt: skip
+        ind = {
+            (a, b, c)
+            for a, b, c, u in zip(
+                d["realisation"], d["punch_diameter_m"], d["placement"], use, strict=True
+            )
+            if u
+        }
         assert fit.n_indents == len(ind) == 12
         lo, hi = fit.alpha_ci95
         assert lo < fit.alpha < hi and hi - lo < 0.5
@@ -283,7 +315,9 @@ def test_intervals_narrow_with_more_indents():
     hits = 0
     for k in range(200):
         xx, yy, ii = _indents(rng, 16, x)
-        lo, hi = bootstrap_power_law(xx, yy, ii, np.zeros(xx.size), n_boot=500, seed=k)["alpha_ci95"]
+        lo, hi = bootstrap_power_law(xx, yy, ii, np.zeros(xx.size), n_boot=500, seed=k)[
+            "alpha_ci95"
+        ]
         hits += lo < 0.5 < hi
     assert 0.85 <= hits / 200 <= 0.99
     # one indent: nothing to resample, no interval (its loads are not independent)
@@ -307,8 +341,14 @@ def test_intervals_resample_within_each_punch():
 
 # --- the command line ---------------------------------------------------------------------------
 
-NEW_COLUMNS = ["pixel_size_m", "n_contact_pixels", "resolution_change", "resolved", "saturated",
-               "in_fit"]  # fmt: skip
+NEW_COLUMNS = [
+    "pixel_size_m",
+    "n_contact_pixels",
+    "resolution_change",
+    "resolved",
+    "saturated",
+    "in_fit",
+]
 
 
 def test_cli_writes_the_resolution_columns_and_the_intervals(tmp_path, capsys):
@@ -320,18 +360,47 @@ def test_cli_writes_the_resolution_columns_and_the_intervals(tmp_path, capsys):
     from warptrunc.cli import main
 
     out = tmp_path / "ind"
-    argv = ["indent", "--n", "96", "--L", "1.2e-3", "--Rt", "4e-6", "--seeds", "3", "4",
-            "--punch-diameters", "1e-4", "2e-4", "--peak-loads", "2e-3", "8e-3", "32e-3", "128e-3",
-            "--placements", "3", "--placement-seed", "1", "--refine-max", "1",
-            "--min-contact-pixels", "1", "--no-elastic", "--no-progress", "--out", str(out)]  # fmt: skip
+    argv = [
+        "indent",
+        "--n",
+        "96",
+        "--L",
+        "1.2e-3",
+        "--Rt",
+        "4e-6",
+        "--seeds",
+        "3",
+        "4",
+        "--punch-diameters",
+        "1e-4",
+        "2e-4",
+        "--peak-loads",
+        "2e-3",
+        "8e-3",
+        "32e-3",
+        "128e-3",
+        "--placements",
+        "3",
+        "--placement-seed",
+        "1",
+        "--refine-max",
+        "1",
+        "--min-contact-pixels",
+        "1",
+        "--no-elastic",
+        "--no-progress",
+        "--out",
+        str(out),
+    ]
     assert main(argv) == 0
     with (out / "indent.csv").open() as fh:
         rows = list(csv.DictReader(fh))
     assert len(rows) == 48 and set(NEW_COLUMNS) <= set(rows[0])
     for r in rows:
         assert float(r["pixel_size_m"]) == pytest.approx(1.2e-3 / 96)
-        assert r["in_fit"] == str(int(r["resolved"] == "1" and r["saturated"] == "0"
-                                      and r["converged"] == "1"))  # fmt: skip
+        assert r["in_fit"] == str(
+            int(r["resolved"] == "1" and r["saturated"] == "0" and r["converged"] == "1")
+        )
         assert r["resolution_change"] == "nan" and r["resolution_note"] == "not-refined"
     doc = json.loads((out / "indent.json").read_text())
     fit = doc["fits"]["elastic_plastic"]
@@ -374,6 +443,23 @@ def test_default_map_holds_the_default_placements_apart(tmp_path, capsys):
         sep = np.hypot(*(c[:, None] - c[None]).transpose(2, 0, 1))[np.triu_indices(len(c), 1)]
         assert np.all(frac == 0) and sep.min() >= d
     out = tmp_path / "ind"
-    assert main(["indent", "--n", "256", "--peak-loads", "0.5", "--refine-max", "1",
-                 "--no-elastic", "--no-plot", "--no-progress", "--out", str(out)]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "indent",
+                "--n",
+                "256",
+                "--peak-loads",
+                "0.5",
+                "--refine-max",
+                "1",
+                "--no-elastic",
+                "--no-plot",
+                "--no-progress",
+                "--out",
+                str(out),
+            ]
+        )
+        == 0
+    )
     assert "warning" not in capsys.readouterr().err

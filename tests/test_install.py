@@ -56,8 +56,11 @@ def _imported_modules() -> set[str]:
                 mods.update(a.name.split(".")[0] for a in node.names)
             elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
                 mods.add(node.module.split(".")[0])
-    return {m for m in mods if m not in sys.stdlib_module_names
-            and m not in ("warptrunc", "kernels", "__future__")}  # fmt: skip
+    return {
+        m
+        for m in mods
+        if m not in sys.stdlib_module_names and m not in ("warptrunc", "kernels", "__future__")
+    }
 
 
 def _extras(req: str) -> set[str]:
@@ -103,9 +106,10 @@ def test_every_imported_library_comes_with_the_base_install_or_an_extra():
 
 
 @pytest.mark.parametrize(
-    "dist", ["pandas", "pyarrow", "dask", "SurfaceTopography"],
+    "dist",
+    ["pandas", "pyarrow", "dask", "SurfaceTopography"],
     ids=["sweep-store", "sweep-parquet", "sweep-dask", "instrument-readers"],
-)  # fmt: skip
+)
 def test_sweeps_and_instrument_readers_are_base_dependencies(dist):
     reqs = {_name(r): r for r in PROJECT["dependencies"]}
     assert _norm(dist) in reqs
@@ -125,6 +129,11 @@ def test_all_extra_holds_every_extra_that_runs_anywhere():
 
 def test_readme_first_section_says_what_the_install_brings():
     intro = (ROOT / "README.md").read_text().split("\n## ", 1)[0]
-    for word in ("`pip install .`", "SurfaceTopography", "`warptrunc sweep`", "`all`",
-                 'pip install ".[all]"'):  # fmt: skip
+    for word in (
+        "`pip install .`",
+        "SurfaceTopography",
+        "`warptrunc sweep`",
+        "`all`",
+        'pip install ".[all]"',
+    ):
         assert word in intro, word

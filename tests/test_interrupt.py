@@ -41,8 +41,9 @@ with latched_signals({signal.SIGUSR1: Stop}):
 
 def test_signal_swallowed_in_a_destructor_is_raised_at_the_check():
     """In a plain interpreter (pytest's own hook would re-raise the ignored exception)."""
-    out = subprocess.run([sys.executable, "-c", SCRIPT], capture_output=True, text=True,
-                         timeout=120)  # fmt: skip
+    out = subprocess.run(
+        [sys.executable, "-c", SCRIPT], capture_output=True, text=True, timeout=120
+    )
     assert out.returncode == 0, out.stderr
     assert out.stdout.split("\n")[:3] == ["went on", "raised at the check", "once"], out
     assert "Exception ignored" in out.stderr  # the destructor did swallow it

@@ -25,17 +25,28 @@ from warptrunc.islands import (
 ROOT = Path(__file__).resolve().parents[1]
 PNG = b"\x89PNG\r\n\x1a\n"
 COLUMNS = (
-    "depth_m", "depth_fraction_of_Rt", "n_islands", "euler_characteristic", "total_perimeter_m",
-    "contact_area_m2", "slit_exponent", "slit_r2", "slit_n_islands", "n_contact_pixels",
-    "normalised_island_number", "island_growth_rate",
-)  # fmt: skip
+    "depth_m",
+    "depth_fraction_of_Rt",
+    "n_islands",
+    "euler_characteristic",
+    "total_perimeter_m",
+    "contact_area_m2",
+    "slit_exponent",
+    "slit_r2",
+    "slit_n_islands",
+    "n_contact_pixels",
+    "normalised_island_number",
+    "island_growth_rate",
+)
 
 
 def cli(*args):
     return subprocess.run(
         [sys.executable, "-m", "warptrunc", "islands", *map(str, args)],
-        capture_output=True, text=True, timeout=300,
-    )  # fmt: skip
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
 
 
 def test_islands_cli_on_a_height_map(tmp_path):
@@ -43,9 +54,29 @@ def test_islands_cli_on_a_height_map(tmp_path):
     z = ndi.gaussian_filter(rng.standard_normal((72, 64)), 2.0).astype(np.float32)
     np.save(tmp_path / "z.npy", z)
     out = tmp_path / "out"
-    r = cli("--input", tmp_path / "z.npy", "--dx", 2e-6, "--height-unit", 1e-6,
-            "--increments", 40, "--max-depth-fraction", 0.8, "--min-pixels", 4,
-            "--min-islands", 5, "--snapshots", 0.2, 0.4, "--device", "cpu", "--out", out)  # fmt: skip
+    r = cli(
+        "--input",
+        tmp_path / "z.npy",
+        "--dx",
+        2e-6,
+        "--height-unit",
+        1e-6,
+        "--increments",
+        40,
+        "--max-depth-fraction",
+        0.8,
+        "--min-pixels",
+        4,
+        "--min-islands",
+        5,
+        "--snapshots",
+        0.2,
+        0.4,
+        "--device",
+        "cpu",
+        "--out",
+        out,
+    )
     assert r.returncode == 0, r.stderr
     assert "max. growth rate" in r.stdout
     data = np.genfromtxt(out / "islands.csv", delimiter=",", names=True)
@@ -57,8 +88,11 @@ def test_islands_cli_on_a_height_map(tmp_path):
     np.testing.assert_array_equal(data["n_islands"], [ndi.label(zm >= t, cross)[1] for t in thr])
     np.testing.assert_allclose(data["contact_area_m2"], data["n_contact_pixels"] * 4e-12)
     ind = json.loads((out / "indicators.json").read_text())
-    for key in ("max_growth_rate_depth_percent_Rt", "fractality_depth_percent_Rt",
-                "island_peak_depth_percent_Rt"):  # fmt: skip
+    for key in (
+        "max_growth_rate_depth_percent_Rt",
+        "fractality_depth_percent_Rt",
+        "island_peak_depth_percent_Rt",
+    ):
         assert key in ind
     k = int(np.argmax(data["n_islands"]))
     assert ind["island_peak_depth_percent_Rt"] == pytest.approx(
@@ -71,8 +105,22 @@ def test_islands_cli_on_a_height_map(tmp_path):
 
 
 def test_islands_cli_generates_counts_without_statistics(tmp_path):
-    r = cli("--n", 64, "--seed", 3, "--no-statistics", "--connectivity", 8, "--increments", 20,
-            "--device", "cpu", "--out", tmp_path, "--no-plot")  # fmt: skip
+    r = cli(
+        "--n",
+        64,
+        "--seed",
+        3,
+        "--no-statistics",
+        "--connectivity",
+        8,
+        "--increments",
+        20,
+        "--device",
+        "cpu",
+        "--out",
+        tmp_path,
+        "--no-plot",
+    )
     assert r.returncode == 0, r.stderr
     data = np.genfromtxt(tmp_path / "islands.csv", delimiter=",", names=True)
     from warptrunc.wm import wm_surface
@@ -110,10 +158,22 @@ def test_figures_from_python(tmp_path):
 
 def test_example_runs(tmp_path):
     r = subprocess.run(
-        [sys.executable, str(ROOT / "examples" / "contact_islands.py"), "--quick", "--no-show",
-         "--device", "cpu", "--seeds", "2", "--out", str(tmp_path)],
-        capture_output=True, text=True, timeout=300,
-    )  # fmt: skip
+        [
+            sys.executable,
+            str(ROOT / "examples" / "contact_islands.py"),
+            "--quick",
+            "--no-show",
+            "--device",
+            "cpu",
+            "--seeds",
+            "2",
+            "--out",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr
     summary = json.loads((tmp_path / "summary.json").read_text())
     assert len(summary["seeds"]) == 2

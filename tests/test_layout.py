@@ -45,8 +45,9 @@ def test_no_folder_holds_more_than_fifteen_modules():
 def test_no_family_of_prefixed_module_names():
     families = {}
     for f in _folders():
-        prefixes = Counter(p.stem.lstrip("_").split("_")[0] for p in _modules(f)
-                           if "_" in p.stem.lstrip("_"))  # fmt: skip
+        prefixes = Counter(
+            p.stem.lstrip("_").split("_")[0] for p in _modules(f) if "_" in p.stem.lstrip("_")
+        )
         many = {k: n for k, n in prefixes.items() if n > MAX_FAMILY}
         if many:
             families[str(f.relative_to(ROOT))] = many

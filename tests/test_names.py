@@ -26,10 +26,14 @@ def test_dir_is_the_public_api():
 
 @pytest.mark.parametrize(
     "name, module",
-    [("wm_surface", "warptrunc.wm"), ("truncate", "warptrunc.truncation"),
-     ("label_islands", "warptrunc.islands"), ("fit_power_law", "warptrunc.stiffness"),
-     ("solve_contact", "warptrunc.contact")],
-)  # fmt: skip
+    [
+        ("wm_surface", "warptrunc.wm"),
+        ("truncate", "warptrunc.truncation"),
+        ("label_islands", "warptrunc.islands"),
+        ("fit_power_law", "warptrunc.stiffness"),
+        ("solve_contact", "warptrunc.contact"),
+    ],
+)
 def test_one_public_function_per_operation_at_the_top(name, module):
     assert name in warptrunc.__all__
     assert getattr(warptrunc, name) is getattr(importlib.import_module(module), name)
@@ -69,7 +73,11 @@ def test_no_other_name_for_the_contact_modulus():
     hits = []
     for path in root.rglob("*.py"):
         for node in ast.walk(ast.parse(path.read_text())):
-            name = getattr(node, "id", None) or getattr(node, "attr", None) or getattr(node, "arg", None)
+            name = (
+                getattr(node, "id", None)
+                or getattr(node, "attr", None)
+                or getattr(node, "arg", None)
+            )
             if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
                 name = node.name
             if name in bad:

@@ -109,12 +109,15 @@ def test_cli_option_names_of_today_parse_to_the_same_objects():
     p = argparse.ArgumentParser()
     _common.add_surface_source(p)
     _common.add_material(p)
-    a = p.parse_args("--D 2.3 --Wr 5e-5 --L 1e-3 2e-3 --n 128 64 --M 8 --gamma 1.4 --Wc 3e-5 "
-                     "--cutoff pixel --seed 7 --E 2e11 --nu 0.3 --E-i 1141e9 "
-                     "--nu-i 0.07".split())  # fmt: skip
+    a = p.parse_args(
+        "--D 2.3 --Wr 5e-5 --L 1e-3 2e-3 --n 128 64 --M 8 --gamma 1.4 --Wc 3e-5 "
+        "--cutoff pixel --seed 7 --E 2e11 --nu 0.3 --E-i 1141e9 "
+        "--nu-i 0.07".split()
+    )
     spec = _common.wm_spec_from_args(a)
-    assert spec == WMSpec(D=2.3, Wr=5e-5, L=(1e-3, 2e-3), n=(128, 64), M=8, gamma=1.4, Wc=3e-5,
-                          cutoff="pixel", seed=7)  # fmt: skip
+    assert spec == WMSpec(
+        D=2.3, Wr=5e-5, L=(1e-3, 2e-3), n=(128, 64), M=8, gamma=1.4, Wc=3e-5, cutoff="pixel", seed=7
+    )
     assert _common.material_from_args(a) == Material(E=2e11, nu=0.3, E_i=1141e9, nu_i=0.07)
     # --G given: the heights are not rescaled (Rt None), as before
     g = _common.wm_spec_from_args(p.parse_args(["--G", "1e-9", "--Rt", "5e-6"]))

@@ -40,9 +40,24 @@ def _rel(a: float, b: float) -> float:
 @pytest.mark.timeout(300)
 def test_peer_benchmark_at_256_holds_its_accuracy_rule(tmp_path):
     bench = _bench()
-    rec = bench.main(["--device", "cpu", "--sizes", "256", "--surfaces", "tamaas", "--dtypes",
-                      "float64", "--repeats", "1", "--time-limit", "120", "--out",
-                      str(tmp_path)])  # fmt: skip
+    rec = bench.main(
+        [
+            "--device",
+            "cpu",
+            "--sizes",
+            "256",
+            "--surfaces",
+            "tamaas",
+            "--dtypes",
+            "float64",
+            "--repeats",
+            "1",
+            "--time-limit",
+            "120",
+            "--out",
+            str(tmp_path),
+        ]
+    )
     assert (tmp_path / "peers_cpu.json").exists()
     rows = rec["rows"]
     refs = {r["substrate"]: r for r in rows if r["solver"] == "reference"}
@@ -50,8 +65,12 @@ def test_peer_benchmark_at_256_holds_its_accuracy_rule(tmp_path):
     assert refs["free"]["by"].startswith("ContactMechanics")
     timed = [r for r in rows if r["solver"] != "reference"]
     names = {r["solver"] for r in timed}
-    assert {"warptrunc periodic float64", "warptrunc free float64",
-            "ContactMechanics periodic", "ContactMechanics free"} <= names  # fmt: skip
+    assert {
+        "warptrunc periodic float64",
+        "warptrunc free float64",
+        "ContactMechanics periodic",
+        "ContactMechanics free",
+    } <= names
     assert any(n.startswith("tamaas") for n in names)
     for r in timed:
         ref = refs[r["substrate"]]

@@ -39,8 +39,22 @@ def test_huge_hardness_equals_elastic(device, dtype):
     (float64) or 1e-5 (float32), no plastic pixel."""
     s = _surface()
     el = ContactSolver(s.heights, s.dx, E_STAR, device=device, settings=SolverSettings(dtype=dtype))
-    inf = ContactSolver(s.heights, s.dx, E_STAR, hardness=math.inf, device=device, settings=SolverSettings(dtype=dtype))
-    big = ContactSolver(s.heights, s.dx, E_STAR, hardness=1e6 * E_STAR, device=device, settings=SolverSettings(dtype=dtype))
+    inf = ContactSolver(
+        s.heights,
+        s.dx,
+        E_STAR,
+        hardness=math.inf,
+        device=device,
+        settings=SolverSettings(dtype=dtype),
+    )
+    big = ContactSolver(
+        s.heights,
+        s.dx,
+        E_STAR,
+        hardness=1e6 * E_STAR,
+        device=device,
+        settings=SolverSettings(dtype=dtype),
+    )
     rtol = 1e-9 if dtype == "float64" else 1e-5
     for f in (0.1, 0.2, 0.3):
         a, b, c = (x.solve(f * s.Rt) for x in (el, inf, big))
@@ -60,7 +74,14 @@ def test_complementarity(device, substrate, dtype, algorithm):
     """At convergence of every loading solve: gap ≥ −pentol, 0 ≤ p ≤ H, |gap| ≤ pentol where
     p > 0 (p·gap ≈ 0), and the plastic displacement grows only where p = H."""
     s = _surface()
-    sol = ContactSolver(s.heights, s.dx, E_STAR, hardness=H_AL, device=device, settings=SolverSettings(substrate=substrate, dtype=dtype, algorithm=algorithm))
+    sol = ContactSolver(
+        s.heights,
+        s.dx,
+        E_STAR,
+        hardness=H_AL,
+        device=device,
+        settings=SolverSettings(substrate=substrate, dtype=dtype, algorithm=algorithm),
+    )
     tol = sol.pentol * (1 + 1e-3) + (1e-12 if dtype == "float64" else 1e-6 * s.Rt)
     w_old = sol.plastic_displacement()
     for f in (0.15, 0.3, 0.45):
@@ -96,8 +117,9 @@ def test_plastic_volume_is_the_interference_removed(device):
     scale = float(w.max())
     np.testing.assert_allclose(w, np.maximum(interference, 0), atol=1e-6 * scale + 2 * sol.pentol)
     assert math.isclose(w.sum() * s.dx * s.dx, st.plastic_volume, rel_tol=1e-9)
-    assert math.isclose(np.maximum(interference, 0).sum() * s.dx**2, st.plastic_volume,
-                        rel_tol=1e-3)  # fmt: skip
+    assert math.isclose(
+        np.maximum(interference, 0).sum() * s.dx**2, st.plastic_volume, rel_tol=1e-3
+    )
 
 
 @pytest.mark.parametrize("dtype", ["float64", "float32"])
@@ -107,7 +129,9 @@ def test_reloading_and_unloading(device, dtype):
     no plastic volume beyond the solver's tolerance (each pixel at the cap may flow by at most
     ``pentol`` more: the peak's penetration was converged to within it)."""
     s = _surface()
-    sol = ContactSolver(s.heights, s.dx, E_STAR, hardness=H_AL, device=device, settings=SolverSettings(dtype=dtype))
+    sol = ContactSolver(
+        s.heights, s.dx, E_STAR, hardness=H_AL, device=device, settings=SolverSettings(dtype=dtype)
+    )
     peak = sol.solve(0.4 * s.Rt)
     w_peak = sol.plastic_displacement()
     for f in (0.38, 0.3, 0.2):
@@ -208,8 +232,9 @@ def test_settings_are_one_object(device):
     """The solver's settings come in one object; bad values name the field; the settings'
     fields are no keywords of the solver; a solve's result is read by attribute."""
     s = _surface(32)
-    a = ContactSolver(s.heights, s.dx, E_STAR, settings=SolverSettings(dtype="float32",
-                      maxiter=50), device=device)  # fmt: skip
+    a = ContactSolver(
+        s.heights, s.dx, E_STAR, settings=SolverSettings(dtype="float32", maxiter=50), device=device
+    )
     assert (a.dtype, a.maxiter) == ("float32", 50)
     with pytest.raises(ValueError, match="maxiter"):
         SolverSettings(maxiter=0)
@@ -245,7 +270,9 @@ def test_equals_contactmechanics_plastic_system(device, algorithm):
     sizes = (s.lx, s.ly)
     topo = PlasticTopography(Topography(hT, physical_sizes=sizes, periodic=False), H_AL)
     system = PlasticNonSmoothContactSystem(FreeFFTElasticHalfSpace(hT.shape, E_STAR, sizes), topo)
-    sol = ContactSolver(h, s.dx, E_STAR, hardness=H_AL, device=device, settings=SolverSettings(algorithm=algorithm))
+    sol = ContactSolver(
+        h, s.dx, E_STAR, hardness=H_AL, device=device, settings=SolverSettings(algorithm=algorithm)
+    )
     kw = {"pentol": sol.pentol, "forcetol": sol.forcetol, "maxiter": 100000}
     cap = H_AL * s.dx * s.dx
     u0 = None
@@ -287,7 +314,14 @@ def test_load_control_under_complete_contact_converges(device, dtype, algorithm)
     y, x = np.mgrid[0:n, 0:n]
     z = -8e-9 * (x + y) / (2 * n)  # m
     area = (n * dx) ** 2
-    sol = ContactSolver(z, dx, E_STAR, hardness=H_AL, device=device, settings=SolverSettings(dtype=dtype, algorithm=algorithm))
+    sol = ContactSolver(
+        z,
+        dx,
+        E_STAR,
+        hardness=H_AL,
+        device=device,
+        settings=SolverSettings(dtype=dtype, algorithm=algorithm),
+    )
     for p_mean in (2e7, 5e7, 1e8):  # Pa, 2–10 % of H
         st = sol.solve(load=p_mean * area)
         assert st.converged, (dtype, p_mean)

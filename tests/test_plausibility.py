@@ -140,8 +140,19 @@ def test_repeated_passes_find_a_spike_population_one_pass_misses():
 
 def test_spikes_report_counts_one_pass(spiky_map, tmp_path):
     """``analyze --spikes report``: the spikes reported as one pass finds them, the map kept."""
-    r = _cli("analyze", "--input", spiky_map / "spiky.npz", "--no-plot", "--out", tmp_path / "r",
-             "--device", "cpu", "--spikes", "report", cwd=tmp_path)  # fmt: skip
+    r = _cli(
+        "analyze",
+        "--input",
+        spiky_map / "spiky.npz",
+        "--no-plot",
+        "--out",
+        tmp_path / "r",
+        "--device",
+        "cpu",
+        "--spikes",
+        "report",
+        cwd=tmp_path,
+    )
     assert r.returncode == 2  # the spike alone is in contact at 0.1·R_t: nothing to fit
     assert "warning: spikes: 1 spike pixel(s) (first at iy=40, ix=200)" in r.stderr
     assert "reported, not masked" in r.stderr and "auto_spikes_masked" not in r.stderr
@@ -159,7 +170,9 @@ def test_spike_options_are_checked():
 def test_dimensions_outside_2_3():
     ws = pl.check_dimensions({"sp": 3.27, "tri": 2.4, "box": None, "vs": math.nan, "x": 2.0})
     assert [(w.code, w.details["method"]) for w in ws] == [
-        ("dimension_range", "sp"), ("dimension_range", "x")]  # fmt: skip
+        ("dimension_range", "sp"),
+        ("dimension_range", "x"),
+    ]
 
 
 def _curve(D, n, seed=1, delta=0.01):
@@ -200,10 +213,19 @@ def test_alpha_outside_0_1_is_flagged():
 
 
 def _indicators(growth, fractal, censored, Rt=1e-6):
-    return Indicators(max_growth_depth=growth, fractal_depth=fractal, peak_depth=growth,
-                      plateau_exponent=0.6, fractal_depth_censored=censored, Rt=Rt,
-                      exponent_tolerance=0.05, min_islands=50, persist=0.02,
-                      plateau_range=(0.0, 0.1), smooth=5)  # fmt: skip
+    return Indicators(
+        max_growth_depth=growth,
+        fractal_depth=fractal,
+        peak_depth=growth,
+        plateau_exponent=0.6,
+        fractal_depth_censored=censored,
+        Rt=Rt,
+        exponent_tolerance=0.05,
+        min_islands=50,
+        persist=0.02,
+        plateau_range=(0.0, 0.1),
+        smooth=5,
+    )
 
 
 def test_fit_past_the_applicable_depth():
@@ -223,7 +245,9 @@ def test_report_prints_one_line_each(capsys):
     ws = pl.check_dimensions({"sp": 3.5, "tri": 1.9})
     out = pl.report(ws)
     err = capsys.readouterr().err.splitlines()
-    assert err == [str(w) for w in ws] and all(e.startswith("warning: dimension_range: ") for e in err)
+    assert err == [str(w) for w in ws] and all(
+        e.startswith("warning: dimension_range: ") for e in err
+    )
     assert out == [w.to_dict() for w in ws] and json.dumps(out)
 
 
@@ -231,8 +255,13 @@ def test_report_prints_one_line_each(capsys):
 
 
 def _cli(*args, cwd):
-    r = subprocess.run([sys.executable, "-m", "warptrunc", *map(str, args)], cwd=cwd,
-                       capture_output=True, text=True, timeout=300)  # fmt: skip
+    r = subprocess.run(
+        [sys.executable, "-m", "warptrunc", *map(str, args)],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     return r
 
 
@@ -248,8 +277,17 @@ def spiky_map(tmp_path_factory):
 
 
 def test_analyze_flags_and_fits_a_spiky_map(spiky_map, tmp_path):
-    r = _cli("analyze", "--input", spiky_map / "spiky.npz", "--no-plot", "--out", tmp_path / "a",
-             "--device", "cpu", cwd=tmp_path)  # fmt: skip
+    r = _cli(
+        "analyze",
+        "--input",
+        spiky_map / "spiky.npz",
+        "--no-plot",
+        "--out",
+        tmp_path / "a",
+        "--device",
+        "cpu",
+        cwd=tmp_path,
+    )
     assert r.returncode == 0, r.stderr
     assert "warning: auto_spikes_masked: 1 spike pixel(s) (first at iy=40, ix=200;" in r.stderr
     info = json.loads((tmp_path / "a" / "fit.json").read_text())
@@ -264,24 +302,48 @@ def test_analyze_flags_and_fits_a_spiky_map(spiky_map, tmp_path):
     fit = fit_power_law(stiffness_curve(wt.truncate(s, 200, max_depth_fraction=0.1)))
     assert abs(info["alpha"] - fit.alpha) < 1e-3
     # the legacy range on the same map: ω_max = 0.1·R_t of the spike touches the spike alone
-    r = _cli("analyze", "--input", spiky_map / "spiky.npz", "--no-plot", "--out", tmp_path / "b",
-             "--device", "cpu", "--fit-range", "legacy", cwd=tmp_path)  # fmt: skip
+    r = _cli(
+        "analyze",
+        "--input",
+        spiky_map / "spiky.npz",
+        "--no-plot",
+        "--out",
+        tmp_path / "b",
+        "--device",
+        "cpu",
+        "--fit-range",
+        "legacy",
+        cwd=tmp_path,
+    )
     assert r.returncode == 2 and "only 0 increments in the fit range" in r.stderr
     assert "warning: spikes: 1 spike pixel(s) (first at iy=40, ix=200)" in r.stderr
 
 
 def test_analyze_on_a_clean_map_keeps_the_legacy_range(spiky_map, tmp_path):
-    r = _cli("analyze", "--input", spiky_map / "clean.npz", "--no-plot", "--out", tmp_path / "a",
-             "--device", "cpu", cwd=tmp_path)  # fmt: skip
+    r = _cli(
+        "analyze",
+        "--input",
+        spiky_map / "clean.npz",
+        "--no-plot",
+        "--out",
+        tmp_path / "a",
+        "--device",
+        "cpu",
+        cwd=tmp_path,
+    )
     assert r.returncode == 0, r.stderr
     assert not [ln for ln in r.stderr.splitlines() if ln.startswith("warning:")], r.stderr
     info = json.loads((tmp_path / "a" / "fit.json").read_text())
     assert info["warnings"] == []
     # the rule auto chose, and why (issue 41, item 5)
     assert info["fit_range"] == {
-        "asked": "auto", "rule": "legacy", "spikes_masked": None, "depth_extended": None,
-        "depth_cut": None, "reason": "the default fit is worth reading and no spike sets R_t",
-    }  # fmt: skip
+        "asked": "auto",
+        "rule": "legacy",
+        "spikes_masked": None,
+        "depth_extended": None,
+        "depth_cut": None,
+        "reason": "the default fit is worth reading and no spike sets R_t",
+    }
     s = wt.read_height_map(spiky_map / "clean.npz")
     fit = fit_power_law(stiffness_curve(wt.truncate(s, 200, max_depth_fraction=0.1)))
     assert info["alpha"] == fit.alpha  # the legacy numbers, unchanged
@@ -291,13 +353,17 @@ def test_analyze_on_a_clean_map_keeps_the_legacy_range(spiky_map, tmp_path):
 def test_describe_warns_about_d_outside_2_3(tmp_path):
     # white noise: D_sp of a flat spectrum is above 3
     rng = np.random.default_rng(5)
-    wt.write_height_map(wt.from_heights(rng.normal(size=(128, 128)) * 1e-6, 1e-6),
-                        tmp_path / "noise.npz")  # fmt: skip
+    wt.write_height_map(
+        wt.from_heights(rng.normal(size=(128, 128)) * 1e-6, 1e-6), tmp_path / "noise.npz"
+    )
     r = _cli("describe", tmp_path / "noise.npz", "--json", "-", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
-    bad = {m for m in ("tri", "box", "vs", "sp")
-           if out[f"D_{m}"] is not None and not 2 < out[f"D_{m}"] < 3}  # fmt: skip
+    bad = {
+        m
+        for m in ("tri", "box", "vs", "sp")
+        if out[f"D_{m}"] is not None and not 2 < out[f"D_{m}"] < 3
+    }
     assert bad  # the case is one the check must catch
     assert {w["details"]["method"] for w in out["warnings"]} == bad
     assert r.stderr.count("warning: dimension_range:") == len(bad)
@@ -305,8 +371,24 @@ def test_describe_warns_about_d_outside_2_3(tmp_path):
 
 def test_sweep_flags_the_fit_of_issue_30(tmp_path):
     pytest.importorskip("pandas")
-    r = _cli("sweep", "--D", "2.1", "2.7", "--delta", "0.01", "--seeds", "1", "--n", "256",
-             "--out", tmp_path / "s", "--no-progress", "--device", "cpu", cwd=tmp_path)  # fmt: skip
+    r = _cli(
+        "sweep",
+        "--D",
+        "2.1",
+        "2.7",
+        "--delta",
+        "0.01",
+        "--seeds",
+        "1",
+        "--n",
+        "256",
+        "--out",
+        tmp_path / "s",
+        "--no-progress",
+        "--device",
+        "cpu",
+        cwd=tmp_path,
+    )
     assert r.returncode == 0, r.stderr
     df = wt.sweep.load(tmp_path / "s")
     bad = df[df["D_in"] == 2.7].iloc[0]

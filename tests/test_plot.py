@@ -179,10 +179,17 @@ def test_alpha_vs_D_from_summary_and_from_table():
     np.testing.assert_allclose(line.get_ydata(), np.polyval(fitted, [2.1, 2.9]))
     paper = next(ln for ln in ax.lines if ln.get_linestyle() == ":")
     np.testing.assert_allclose(paper.get_ydata(), [0.209 * 2.1 + 0.090, 0.209 * 2.9 + 0.090])
-    summary = {"fit_ranges": {"10": {"per_D": [
-        {"D_in": 2.1, "alpha_mean": 0.5, "alpha_sd": 0.02, "n": 4},
-        {"D_in": 2.5, "alpha_mean": float("nan"), "alpha_sd": float("nan"), "n": 0},
-    ], "alpha_vs_D": None}}}  # fmt: skip
+    summary = {
+        "fit_ranges": {
+            "10": {
+                "per_D": [
+                    {"D_in": 2.1, "alpha_mean": 0.5, "alpha_sd": 0.02, "n": 4},
+                    {"D_in": 2.5, "alpha_mean": float("nan"), "alpha_sd": float("nan"), "n": 0},
+                ],
+                "alpha_vs_D": None,
+            }
+        }
+    }
     fig = plot.alpha_vs_D(summary, min_pixels=10)
     np.testing.assert_allclose(fig.axes[0].containers[0].lines[0].get_ydata(), [0.5])
     with pytest.raises(ValueError, match="min_pixels = 100"):
@@ -191,10 +198,18 @@ def test_alpha_vs_D_from_summary_and_from_table():
 
 def test_figures_example_runs_quick(tmp_path):
     r = subprocess.run(
-        [sys.executable, str(ROOT / "examples" / "figures.py"), "--quick", "--no-show",
-         "--out", str(tmp_path)],
-        capture_output=True, text=True, timeout=300,
-    )  # fmt: skip
+        [
+            sys.executable,
+            str(ROOT / "examples" / "figures.py"),
+            "--quick",
+            "--no-show",
+            "--out",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr
     for f in ("height_map.png", "area_fraction.png", "stiffness_load.png", "alpha_vs_D.png"):
         assert (tmp_path / f).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -240,8 +255,11 @@ def _alpha_table():
     d = np.array([2.1, 2.3, 2.5, 2.7, 2.9])
     rows = {"D_in": d, "size_ratio": 8.0, "n": 256, "range": "all"}
     # points wherever a legend could go: high and low at both ends
-    for m, y in {"eq2": [0.95, 0.9, 0.5, 0.35, 0.3], "islands": [0.3, 0.4, 0.6, 0.9, 0.97],
-                 "bem": [0.5, 0.6, 0.65, 0.7, 0.8]}.items():
+    for m, y in {
+        "eq2": [0.95, 0.9, 0.5, 0.35, 0.3],
+        "islands": [0.3, 0.4, 0.6, 0.9, 0.97],
+        "bem": [0.5, 0.6, 0.65, 0.7, 0.8],
+    }.items():
         rows[f"alpha_{m}_mean"] = y
         rows[f"alpha_{m}_min"] = np.array(y) - 0.02
         rows[f"alpha_{m}_max"] = np.array(y) + 0.02
@@ -258,10 +276,16 @@ def test_alpha_vs_D_routes_legend_covers_no_data_point():
     legends = [lg for lg in [ax.get_legend(), *fig.legends] if lg is not None]
     assert len(legends) == 1 and len(legends[0].get_texts()) == 5
     lb = legends[0].get_window_extent()
-    pts = np.concatenate([ax.transData.transform(np.column_stack(line.get_data()))
-                          for line in ax.get_lines() if len(line.get_xdata()) == 5])
+    pts = np.concatenate(
+        [
+            ax.transData.transform(np.column_stack(line.get_data()))
+            for line in ax.get_lines()
+            if len(line.get_xdata()) == 5
+        ]
+    )
     assert len(pts) >= 15
-    inside = ((pts[:, 0] >= lb.x0) & (pts[:, 0] <= lb.x1) & (pts[:, 1] >= lb.y0)
-              & (pts[:, 1] <= lb.y1))
+    inside = (
+        (pts[:, 0] >= lb.x0) & (pts[:, 0] <= lb.x1) & (pts[:, 1] >= lb.y0) & (pts[:, 1] <= lb.y1)
+    )
     assert not inside.any()
     assert not lb.overlaps(ax.get_window_extent())  # outside the axes altogether

@@ -22,12 +22,36 @@ from warptrunc.reproduce.paper import TABLE1_SD as PAPER_SD
 ROOT = Path(__file__).resolve().parents[1]
 RUN = ROOT / "benchmarks" / "records" / "table1_presets_cpu_79581b0.json"
 KEYS = {
-    "matched", "method", "D_in", "Rt_m", "Wr_m", "D_target", "D_target_sd", "D_reached",
-    "Rrms_target_m", "Rrms_reached_m", "Rt_per_seed_m", "Rt_paper_m", "Rt_within_paper_band",
-    "D_bounds", "bound", "rtol", "within_rtol", "calibrated", "D_reachable", "target_reachable",
-    "unmatched_by", "cpu_s", "note", "Wr_choice", "calibration_map", "seeds", "commit", "device",
+    "matched",
+    "method",
+    "D_in",
+    "Rt_m",
+    "Wr_m",
+    "D_target",
+    "D_target_sd",
+    "D_reached",
+    "Rrms_target_m",
+    "Rrms_reached_m",
+    "Rt_per_seed_m",
+    "Rt_paper_m",
+    "Rt_within_paper_band",
+    "D_bounds",
+    "bound",
+    "rtol",
+    "within_rtol",
+    "calibrated",
+    "D_reachable",
+    "target_reachable",
+    "unmatched_by",
+    "cpu_s",
+    "note",
+    "Wr_choice",
+    "calibration_map",
+    "seeds",
+    "commit",
+    "device",
     "source",
-}  # fmt: skip
+}
 COLUMN = {"tri": 3, "vs": 5}  # of reproduce.paper.TABLE1: R_t', R_rms, W_r, D_tri, D_box, D_vs
 
 
@@ -72,7 +96,10 @@ def test_a_preset_on_a_search_bound_is_not_reported_as_calibrated(name):
 
 def test_the_searches_that_ended_on_a_bound():
     assert {n: c["bound"] for n, c in CALIBRATION.items() if c["bound"]} == {
-        "GB50s": "upper", "SMATs-tri": "lower", "GB50s-tri": "lower"}  # fmt: skip
+        "GB50s": "upper",
+        "SMATs-tri": "lower",
+        "GB50s-tri": "lower",
+    }
     assert [n for n in TABLE1 if not CALIBRATION[n]["calibrated"]] == ["GB50s"]
 
 
@@ -105,8 +132,10 @@ def test_the_d_vs_preset_is_closer_to_table1_d_vs_than_the_d_tri_one(surface):
     target = PAPER[surface][COLUMN["vs"]]
     dist = {}
     for spec in (TABLE1[surface], TABLE1_TRI[surface]):
-        ds = [fractal_dimension(wm_surface(spec.replace(n=256, seed=s), device="cpu"), "vs").D
-              for s in (0, 1, 2)]  # fmt: skip
+        ds = [
+            fractal_dimension(wm_surface(spec.replace(n=256, seed=s), device="cpu"), "vs").D
+            for s in (0, 1, 2)
+        ]
         dist[spec.D] = abs(np.mean(ds) - target)
     assert dist[TABLE1[surface].D] < dist[TABLE1_TRI[surface].D]
 
@@ -115,8 +144,22 @@ def test_cli_preset_tri_generates_the_earlier_d_tri_surface(tmp_path):
     from warptrunc.cli import main
 
     for name in ("GB300s-tri", "GB300s"):
-        assert main(["generate", "--preset", name, "--n", "64", "--device", "cpu",
-                     "--output", str(tmp_path / f"{name}.npz")]) == 0  # fmt: skip
+        assert (
+            main(
+                [
+                    "generate",
+                    "--preset",
+                    name,
+                    "--n",
+                    "64",
+                    "--device",
+                    "cpu",
+                    "--output",
+                    str(tmp_path / f"{name}.npz"),
+                ]
+            )
+            == 0
+        )
     # the D_tri preset before issue 38 (benchmarks/records/reproduce_paper_h100_c3f7c18/report.md, c3f7c18), typed in
     old = WMSpec(D=2.555, Rt=38.97e-6, Wr=60e-6, L=1e-3, n=64, M=10)
     got = read_height_map(tmp_path / "GB300s-tri.npz")

@@ -16,8 +16,16 @@ from warptrunc import __version__, resolve_device
 from warptrunc._support.provenance import provenance
 from warptrunc.cli import main
 
-KEYS = {"warptrunc_version", "git_commit", "command", "device", "device_name", "created_utc",
-        "python_version", "warp_version"}  # fmt: skip
+KEYS = {
+    "warptrunc_version",
+    "git_commit",
+    "command",
+    "device",
+    "device_name",
+    "created_utc",
+    "python_version",
+    "warp_version",
+}
 SMALL = ["--n", "64", "--Rt", "1e-6", "--Wr", "20e-6", "--L", "1e-4"]
 
 
@@ -57,21 +65,86 @@ def run(*argv) -> list[str]:
 def test_every_command_output_carries_provenance(tmp_path, capsys):
     z = tmp_path / "z.npy"
     np.save(z, np.random.default_rng(0).normal(size=(32, 32)) * 1e-6)
-    a = run("analyze", *SMALL, "--min-pixels", 1, "--no-plot", "--device", "cpu",
-            "--out", tmp_path / "a")  # fmt: skip
+    a = run(
+        "analyze",
+        *SMALL,
+        "--min-pixels",
+        1,
+        "--no-plot",
+        "--device",
+        "cpu",
+        "--out",
+        tmp_path / "a",
+    )
     check(json.loads((tmp_path / "a" / "fit.json").read_text())["provenance"], a)
-    i = run("islands", *SMALL, "--increments", 20, "--no-plot", "--device", "cpu",
-            "--out", tmp_path / "i")  # fmt: skip
+    i = run(
+        "islands",
+        *SMALL,
+        "--increments",
+        20,
+        "--no-plot",
+        "--device",
+        "cpu",
+        "--out",
+        tmp_path / "i",
+    )
     check(json.loads((tmp_path / "i" / "indicators.json").read_text())["provenance"], i)
-    d = run("describe", "-i", z, "--dx", 1e-6, "--methods", "box", "--device", "cpu",
-            "--json", tmp_path / "d.json")  # fmt: skip
+    d = run(
+        "describe",
+        "-i",
+        z,
+        "--dx",
+        1e-6,
+        "--methods",
+        "box",
+        "--device",
+        "cpu",
+        "--json",
+        tmp_path / "d.json",
+    )
     check(json.loads((tmp_path / "d.json").read_text())["provenance"], d)
-    b = run("bem-check", "--n", 32, "--maxiter", 200, "--accept-unconverged", "--no-plot",
-            "--no-progress", "--device", "cpu", "--out", tmp_path / "b")  # fmt: skip
+    b = run(
+        "bem-check",
+        "--n",
+        32,
+        "--maxiter",
+        200,
+        "--accept-unconverged",
+        "--no-plot",
+        "--no-progress",
+        "--device",
+        "cpu",
+        "--out",
+        tmp_path / "b",
+    )
     check(json.loads((tmp_path / "b" / "bem.json").read_text())["provenance"], b)
-    c = run("calibrate", "--D", 2.4, "--Rrms", 1e-7, "--Rt", 1e-6, "--Wr", 2e-5, "--L", 1e-4,
-            "--n", 32, "--seeds", 0, "--max-iter", 2, "--rtol", 0.9, "--no-progress",
-            "--no-surface", "--device", "cpu", "--out", tmp_path / "c")  # fmt: skip
+    c = run(
+        "calibrate",
+        "--D",
+        2.4,
+        "--Rrms",
+        1e-7,
+        "--Rt",
+        1e-6,
+        "--Wr",
+        2e-5,
+        "--L",
+        1e-4,
+        "--n",
+        32,
+        "--seeds",
+        0,
+        "--max-iter",
+        2,
+        "--rtol",
+        0.9,
+        "--no-progress",
+        "--no-surface",
+        "--device",
+        "cpu",
+        "--out",
+        tmp_path / "c",
+    )
     check(json.loads((tmp_path / "c" / "calibration.json").read_text())["provenance"], c)
     g = run("generate", "--n", 32, "--device", "cpu", "-o", tmp_path / "s.npz")
     with np.load(tmp_path / "s.npz") as f:
@@ -81,8 +154,22 @@ def test_every_command_output_carries_provenance(tmp_path, capsys):
 
 def test_sweep_store_carries_the_provenance_of_the_run_that_made_it(tmp_path, capsys):
     pytest.importorskip("pyarrow")
-    argv = run("sweep", "--D", 2.3, "--delta", 0.01, "--n", 32, "--min-pixels", 1,
-               "--no-progress", "--device", "cpu", "--out", tmp_path / "s")  # fmt: skip
+    argv = run(
+        "sweep",
+        "--D",
+        2.3,
+        "--delta",
+        0.01,
+        "--n",
+        32,
+        "--min-pixels",
+        1,
+        "--no-progress",
+        "--device",
+        "cpu",
+        "--out",
+        tmp_path / "s",
+    )
     check(json.loads((tmp_path / "s" / "sweep.json").read_text())["provenance"], argv)
     run(*argv)  # resumes: provenance does not enter the grid/options comparison
     capsys.readouterr()
@@ -90,8 +177,20 @@ def test_sweep_store_carries_the_provenance_of_the_run_that_made_it(tmp_path, ca
 
 def test_render_json_carries_provenance(tmp_path, capsys):
     pytest.importorskip("pyvista")
-    argv = run("render", "--n", 32, "--depth-fractions", 0.3, "--size", 120, 100,
-               "--device", "cpu", "--out", tmp_path / "r")  # fmt: skip
+    argv = run(
+        "render",
+        "--n",
+        32,
+        "--depth-fractions",
+        0.3,
+        "--size",
+        120,
+        100,
+        "--device",
+        "cpu",
+        "--out",
+        tmp_path / "r",
+    )
     check(json.loads((tmp_path / "r" / "render.json").read_text())["provenance"], argv)
     capsys.readouterr()
 
@@ -116,9 +215,31 @@ def test_describe_and_calibrate_take_input(form, tmp_path, capsys):
     where = [str(z)] if form == "positional" else [form, str(z)]
     assert main(["describe", *where, "--dx", "1e-6", "--methods", "box", "--json", "-"]) == 0
     assert json.loads(capsys.readouterr().out)["file"] == str(z)
-    assert main(["calibrate", *where, "--dx", "1e-6", "--method", "box", "--seeds", "0",
-                 "--max-iter", "2", "--rtol", "0.9", "--no-progress", "--no-surface",
-                 "--n", "32", "--out", str(tmp_path / "c")]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "calibrate",
+                *where,
+                "--dx",
+                "1e-6",
+                "--method",
+                "box",
+                "--seeds",
+                "0",
+                "--max-iter",
+                "2",
+                "--rtol",
+                "0.9",
+                "--no-progress",
+                "--no-surface",
+                "--n",
+                "32",
+                "--out",
+                str(tmp_path / "c"),
+            ]
+        )
+        == 0
+    )
     cal = json.loads((tmp_path / "c" / "calibration.json").read_text())
     assert str(z) in json.dumps(cal)
     capsys.readouterr()
@@ -134,8 +255,9 @@ def test_input_given_twice_or_missing_is_one_line(tmp_path, capsys):
     assert "the height map is missing: give FILE or --input FILE" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("cmd", ["analyze", "bem-check", "calibrate", "compare", "describe",
-                                 "islands", "render"])  # fmt: skip
+@pytest.mark.parametrize(
+    "cmd", ["analyze", "bem-check", "calibrate", "compare", "describe", "islands", "render"]
+)
 def test_every_command_that_reads_a_map_lists_input(cmd, capsys):
     with pytest.raises(SystemExit):
         main([cmd, "--help"])

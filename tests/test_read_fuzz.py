@@ -22,8 +22,10 @@ import pytest
 from warptrunc._support.messages import MAX_MESSAGE_CHARS
 from warptrunc.io import read_scan, write_height_map
 
-SEED = int(os.environ.get("WARPTRUNC_FUZZ_SEED") or (20260 if os.environ.get("CI") else
-                                                      np.random.SeedSequence().entropy % 2**32))  # fmt: skip
+SEED = int(
+    os.environ.get("WARPTRUNC_FUZZ_SEED")
+    or (20260 if os.environ.get("CI") else np.random.SeedSequence().entropy % 2**32)
+)
 MUTANTS = 25
 """Damaged copies per source file."""
 TIMEOUT_S = 30
@@ -45,8 +47,11 @@ def sources(tmp: Path, scans: Path | None) -> list[Path]:
     rng = np.random.default_rng(0)
     z = rng.normal(size=(12, 10)) * 1e-6
     s = from_heights(z, 1e-6)
-    out = [write_height_map(s, tmp / "w.npz"), write_height_map(s, tmp / "w.npy"),
-           write_height_map(s, tmp / "w.csv")]  # fmt: skip
+    out = [
+        write_height_map(s, tmp / "w.npz"),
+        write_height_map(s, tmp / "w.npy"),
+        write_height_map(s, tmp / "w.csv"),
+    ]
     np.save(tmp / "plain.npy", z)
     np.savez(tmp / "plain.npz", heights=z)
     np.savetxt(tmp / "m.txt", z, header="dx = 1 um")

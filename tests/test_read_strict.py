@@ -182,10 +182,13 @@ def test_readers_on_random_bytes_raise_only_documented_errors(tmp_path, data, su
 
 @FUZZ
 @given(
-    z=hnp.arrays(np.float64, hnp.array_shapes(min_dims=2, max_dims=2, min_side=2, max_side=8),
-                 elements=st.floats(allow_nan=True, allow_infinity=True, width=64)),
+    z=hnp.arrays(
+        np.float64,
+        hnp.array_shapes(min_dims=2, max_dims=2, min_side=2, max_side=8),
+        elements=st.floats(allow_nan=True, allow_infinity=True, width=64),
+    ),
     cut=st.floats(0.0, 1.0),
-)  # fmt: skip
+)
 def test_truncated_text_files_are_refused_or_read_whole(tmp_path, z, cut):
     f = tmp_path / "m.txt"
     np.savetxt(f, z, header=f"nx={z.shape[1]} ny={z.shape[0]}")
@@ -199,7 +202,9 @@ def test_truncated_text_files_are_refused_or_read_whole(tmp_path, z, cut):
 
 
 @settings(
-    max_examples=8, deadline=None, derandomize=CI_FIXED,
+    max_examples=8,
+    deadline=None,
+    derandomize=CI_FIXED,
     suppress_health_check=[HealthCheck.function_scoped_fixture],
 )
 @given(data=st.binary(min_size=1, max_size=200), suffix=st.sampled_from([".csv", ".npy", ".sur"]))

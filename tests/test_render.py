@@ -381,8 +381,10 @@ def test_panel_picture_has_requested_size_and_is_not_blank(tmp_path, surf128):
     grey = (np.abs(img[..., 0] - img[..., 1]) < 4) & (img.max(-1) < 235) & (img.min(-1) > 60)
     assert _red(img).sum() > 1000 and grey.sum() > 10_000  # contact over a grey surface
     # deeper panels show more red (panels 1..5, row-major, 233×165 px each)
-    reds = [_red(img[(k // 3) * 165 : (k // 3 + 1) * 165, (k % 3) * 233 : (k % 3 + 1) * 233]).sum()
-            for k in range(5)]  # fmt: skip
+    reds = [
+        _red(img[(k // 3) * 165 : (k // 3 + 1) * 165, (k % 3) * 233 : (k % 3 + 1) * 233]).sum()
+        for k in range(5)
+    ]
     assert reds == sorted(reds) and reds[0] < reds[-1]
     d = r.to_dict()
     assert d["image_width"] == 700 and d["downsample"] == 1 and d["vertical_exaggeration"] == 10
@@ -425,11 +427,34 @@ def test_cli_render_writes_picture_animation_vtk_and_json(tmp_path):
     pytest.importorskip("pyvista")
     out = tmp_path / "out"
     r = subprocess.run(
-        [sys.executable, "-m", "warptrunc", "render", "--n", "64", "--seed", "2", "--device",
-         "cpu", "--out", str(out), "--size", "600", "300", "--depth-fractions", "0.2", "0.4",
-         "--animate", "--frames", "3", "--vtk"],
-        capture_output=True, text=True, timeout=300,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "warptrunc",
+            "render",
+            "--n",
+            "64",
+            "--seed",
+            "2",
+            "--device",
+            "cpu",
+            "--out",
+            str(out),
+            "--size",
+            "600",
+            "300",
+            "--depth-fractions",
+            "0.2",
+            "0.4",
+            "--animate",
+            "--frames",
+            "3",
+            "--vtk",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr
     for f in ("truncation.png", "truncation.gif", "surface.vti", "render.json"):
         assert (out / f).stat().st_size > 0
@@ -443,9 +468,17 @@ def test_cli_render_writes_picture_animation_vtk_and_json(tmp_path):
 def test_example_runs_quick(tmp_path):
     pytest.importorskip("pyvista")
     r = subprocess.run(
-        [sys.executable, str(ROOT / "examples" / "render_truncated_section.py"), "--quick",
-         "--no-show", "--out", str(tmp_path)],
-        capture_output=True, text=True, timeout=300,
-    )  # fmt: skip
+        [
+            sys.executable,
+            str(ROOT / "examples" / "render_truncated_section.py"),
+            "--quick",
+            "--no-show",
+            "--out",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "truncation.png").exists() and (tmp_path / "surface.vti").exists()

@@ -50,7 +50,9 @@ def test_closed_form_truncation_load_matches_quadrature():
 
     d = np.array([1e-7, 3e-6, 2e-5, 4e-4])
     _, f = closed_form_truncation(d, R, MAT)
-    k = lambda s: 2 / math.sqrt(math.pi) * MAT.contact_modulus * math.sqrt(math.pi * (2 * R * s - s * s))  # noqa: E731
+    k = lambda s: (  # noqa: E731
+        2 / math.sqrt(math.pi) * MAT.contact_modulus * math.sqrt(math.pi * (2 * R * s - s * s))
+    )
     ref = [quad(k, 0, x, epsabs=0, epsrel=1e-10)[0] for x in d]
     np.testing.assert_allclose(f, ref, rtol=1e-7)
 
@@ -86,7 +88,9 @@ def test_stage_store_reuses_and_refuses(tmp_path):
     st = StageStore(tmp_path)
     calls = []
     st.run("s", {"a": 1}, lambda: calls.append(1) or {"x": 1.5})
-    assert StageStore(tmp_path).run("s", {"a": 1}, lambda: calls.append(2) or {"x": 9}) == {"x": 1.5}
+    assert StageStore(tmp_path).run("s", {"a": 1}, lambda: calls.append(2) or {"x": 9}) == {
+        "x": 1.5
+    }
     assert calls == [1]
     with pytest.raises(StageConflict, match="differing: a"):
         StageStore(tmp_path).run("s", {"a": 2}, lambda: {"x": 3})
@@ -148,9 +152,21 @@ def _drop_case(store, case_id):
         curves = read_part_curves(f)
         f.unlink()
         if keep:
-            write_part(store / "curves", [
-                (rs, {k: v.to_numpy() for k, v in curves[curves.case_id == rs[0]["case_id"]]
-                      .drop(columns="case_id").items()}) for rs in keep])  # fmt: skip
+            write_part(
+                store / "curves",
+                [
+                    (
+                        rs,
+                        {
+                            k: v.to_numpy()
+                            for k, v in curves[curves.case_id == rs[0]["case_id"]]
+                            .drop(columns="case_id")
+                            .items()
+                        },
+                    )
+                    for rs in keep
+                ],
+            )
 
 
 def test_tiny_group_stores_loadable_and_reused(tiny):
@@ -192,8 +208,9 @@ def test_tiny_group_stores_loadable_and_reused(tiny):
     assert (g1[~kept].finished_utc > before["group1"][~kept].finished_utc.max()).all()
     from warptrunc.sweep import RUN_COLUMNS
 
-    pd.testing.assert_frame_equal(g1.drop(columns=list(RUN_COLUMNS)),
-                                  before["group1"].drop(columns=list(RUN_COLUMNS)))  # fmt: skip
+    pd.testing.assert_frame_equal(
+        g1.drop(columns=list(RUN_COLUMNS)), before["group1"].drop(columns=list(RUN_COLUMNS))
+    )
     assert again["stages"]["group2"] == doc["stages"]["group2"]
     assert again["analysis"]["table3_beta"] == doc["analysis"]["table3_beta"]
     assert "sweeps/group2" in (out / "report.md").read_text()
@@ -220,7 +237,9 @@ def test_tiny_elastic_section(tiny):
         assert r["islands_k_ratio_mean"] >= r["eq2_k_ratio_mean"] * (1 - 1e-9)  # √a to 2^-31
     for key in ("eq2_k_ratio", "islands_k_ratio"):
         m = ana["models"][key]
-        assert m["cells"] == len(p.elastic_D) * len(p.elastic_size_ratios) * len(p.elastic_fractions)
+        assert m["cells"] == len(p.elastic_D) * len(p.elastic_size_ratios) * len(
+            p.elastic_fractions
+        )
     assert "within ±20 %" in text and "Reading the paper in this light" in text
     for name in ("elastic_ratio_vs_size.png", "elastic_alpha_vs_D.png"):
         assert name in doc["meta"]["figures"] and f"]({name})" in text
@@ -240,8 +259,9 @@ def test_tiny_elastic_tables_from_store(tiny):
     for k in ("ratios", "alpha", "grid", "n_cases", "n_rows"):
         assert _nan_eq(again[k], stage[k]), k
     # the ratio columns are the quotients of the stored columns
-    np.testing.assert_allclose(rows["eq2_k_ratio"],
-                               rows["eq2_stiffness_N_per_m"] / rows["bem_stiffness_N_per_m"])  # fmt: skip
+    np.testing.assert_allclose(
+        rows["eq2_k_ratio"], rows["eq2_stiffness_N_per_m"] / rows["bem_stiffness_N_per_m"]
+    )
     np.testing.assert_allclose(rows["islands_F_ratio"], rows["islands_load_N"] / rows["bem_load_N"])
 
 
@@ -286,8 +306,10 @@ def test_fit_range_map_equals_direct_refit(tiny):
     for cid, part in cases[cases["error"].isna()].groupby("case_id", sort=False):
         c = load_curves(g2, cid)
         sc = __import__("types").SimpleNamespace(
-            depth=c["depth_m"].to_numpy(), n_contact_pixels=c["n_contact_pixels"].to_numpy(),
-            load=c["load_N"].to_numpy(), Ec_over_E=c["Ec_over_E"].to_numpy(),
+            depth=c["depth_m"].to_numpy(),
+            n_contact_pixels=c["n_contact_pixels"].to_numpy(),
+            load=c["load_N"].to_numpy(),
+            Ec_over_E=c["Ec_over_E"].to_numpy(),
             F_over_EA=c["F_over_EA"].to_numpy(),
         )
         stored = part[part["min_pixels_fraction"].isna() & (part["min_pixels"] == 10)].iloc[0]
@@ -392,10 +414,19 @@ def test_tiny_indentation_stage(tiny):
     expect = 0
     for t in st["timings"]:
         if t["design"] != "face":  # the face pieces are kept apart (st["faces"])
-            expect += len(t["seeds"]) * t["placements"] * n_punch * (2 if t["model"] == "elastic" else 1)
-    assert len(r["surface"]) == expect  # + truncation once per surface and design (its elastic piece)
-    assert {"truncation", "elastic", "elastic_plastic_0.5GPa", "elastic_plastic_2GPa",
-            "elastic_plastic_8GPa"} == set(r["model"])  # fmt: skip
+            expect += (
+                len(t["seeds"]) * t["placements"] * n_punch * (2 if t["model"] == "elastic" else 1)
+            )
+    assert (
+        len(r["surface"]) == expect
+    )  # + truncation once per surface and design (its elastic piece)
+    assert {
+        "truncation",
+        "elastic",
+        "elastic_plastic_0.5GPa",
+        "elastic_plastic_2GPa",
+        "elastic_plastic_8GPa",
+    } == set(r["model"])
     d, f = np.array(r["punch_diameter_m"]), np.array(r["peak_load_N"])
     np.testing.assert_allclose(r["F_over_EA"], f / (70e9 * np.pi * d**2 / 4), rtol=1e-12)
     model, design = np.array(r["model"]), np.array(r["design"])
@@ -407,12 +438,16 @@ def test_tiny_indentation_stage(tiny):
         same = px[el] == px[ep]  # truncation does not depend on H at one pixel
         assert same.any() and np.array_equal(trunc[el][same], trunc[ep][same])
     assert np.all(np.array(r["plastic_area_m2"], dtype=float)[model == "elastic"] == 0)
-    assert np.any(np.array(r["plastic_area_m2"], dtype=float)[model == "elastic_plastic_0.5GPa"] > 0)
+    assert np.any(
+        np.array(r["plastic_area_m2"], dtype=float)[model == "elastic_plastic_0.5GPa"] > 0
+    )
     assert ana["mean_pressure"]["p_mean_Pa"] == pytest.approx(0.5 / (np.pi * 27.05e-6**2))
     assert round(ana["mean_pressure"]["p_mean_Pa"] / 1e6) == 218
     assert ana["smooth_Ec_over_E"] == pytest.approx(73.52e9 / 70e9, rel=1e-3)
     res = ana["resolution"]
-    assert res["n_fine"] == 2 * res["n_coarse"] and res["dx_fine_m"] == pytest.approx(res["dx_coarse_m"] / 2)
+    assert res["n_fine"] == 2 * res["n_coarse"] and res["dx_fine_m"] == pytest.approx(
+        res["dx_coarse_m"] / 2
+    )
     text = (out / "report.md").read_text()
     assert "## Indentation in silico (Fig. 6)" in text and "Which model truncation tracks" in text
     assert "](indentation_fig6.png)" in text and "](indentation_depth_vs_H.png)" in text
@@ -434,7 +469,10 @@ def test_tiny_indentation_stage(tiny):
                 continue  # refined punches solve every cycle (reuse needs refine_max = 1)
             k = 0
             while k < m and el["max_pressure_Pa"][b + k] < hard and el["converged"][b + k]:
-                assert rec["rows"]["unloading_stiffness_N_per_m"][b + k] == el["unloading_stiffness_N_per_m"][b + k]
+                assert (
+                    rec["rows"]["unloading_stiffness_N_per_m"][b + k]
+                    == el["unloading_stiffness_N_per_m"][b + k]
+                )
                 k += 1
             expect += k
         assert rec["reused_elastic_cycles"] == expect
@@ -447,11 +485,23 @@ def test_tracking_rule_on_hand_made_ratios():
     d1, d2 = 5e-5, 1e-4
     ratios = {
         # elastic: in the band at the two smallest loads of d1 and the middle one of d2
-        "elastic": {(d1, 1.0): 1.1, (d1, 2.0): 0.85, (d1, 4.0): 1.5, (d2, 1.0): 2.0,
-                    (d2, 2.0): 1.19, (d2, 4.0): 0.7},
+        "elastic": {
+            (d1, 1.0): 1.1,
+            (d1, 2.0): 0.85,
+            (d1, 4.0): 1.5,
+            (d2, 1.0): 2.0,
+            (d2, 2.0): 1.19,
+            (d2, 4.0): 0.7,
+        },
         # plastic: in the band at one cell only, nearer to 1 there than elastic
-        "plastic": {(d1, 1.0): 0.3, (d1, 2.0): 0.5, (d1, 4.0): 1.01, (d2, 1.0): 0.1,
-                    (d2, 2.0): 0.2, (d2, 4.0): None},
+        "plastic": {
+            (d1, 1.0): 0.3,
+            (d1, 2.0): 0.5,
+            (d1, 4.0): 1.01,
+            (d2, 1.0): 0.1,
+            (d2, 2.0): 0.2,
+            (d2, 4.0): None,
+        },
     }
     t = tracking(ratios, good=0.2)
     e, p = t["per_model"]["elastic"], t["per_model"]["plastic"]
@@ -471,9 +521,14 @@ def _small_stage():
     from warptrunc.reproduce import get_profile
 
     st = get_profile("tiny").indentation
-    return st.replace(surfaces=("GB300s", "GB50s"), hardness=(math.inf, 1e9), stats=("elastic",),
-                      refine=False, face_surface=None, protocol=st.protocol.replace(
-                          punch_diameters=(108.7e-6,), peak_loads=(0.125, 0.25)))  # fmt: skip
+    return st.replace(
+        surfaces=("GB300s", "GB50s"),
+        hardness=(math.inf, 1e9),
+        stats=("elastic",),
+        refine=False,
+        face_surface=None,
+        protocol=st.protocol.replace(punch_diameters=(108.7e-6,), peak_loads=(0.125, 0.25)),
+    )
 
 
 def _small_profile():
@@ -537,8 +592,15 @@ def test_fig6_model_colours_are_distinct():
     took truncation's red)."""
     from warptrunc.reproduce.indentation.report import model_colours
 
-    models = ["truncation", "elastic", "elastic_plastic_0.5GPa", "elastic_plastic_1GPa",
-              "elastic_plastic_2GPa", "elastic_plastic_4GPa", "elastic_plastic_8GPa"]
+    models = [
+        "truncation",
+        "elastic",
+        "elastic_plastic_0.5GPa",
+        "elastic_plastic_1GPa",
+        "elastic_plastic_2GPa",
+        "elastic_plastic_4GPa",
+        "elastic_plastic_8GPa",
+    ]
     c = model_colours(models)
     assert set(c) == set(models) and len(set(c.values())) == len(models)
     assert c["truncation"] == "C3" and c["elastic"] == "C0"

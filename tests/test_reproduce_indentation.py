@@ -21,7 +21,9 @@ from warptrunc.reproduce.indentation.rules import (
 )
 
 H = np.array([0.5, 1, 2, 4, 8]) * 1e9
-DEPTH = np.array([9.0, 6.5, 4.8, 3.1, 2.0]) * 1e-6  # decreasing with H, as a softer alloy sinks more
+DEPTH = (
+    np.array([9.0, 6.5, 4.8, 3.1, 2.0]) * 1e-6
+)  # decreasing with H, as a softer alloy sinks more
 BAND = (4e-6, 6e-6)
 
 
@@ -121,15 +123,17 @@ def test_paper_profile_design():
 
 def test_bad_stage_fields_are_named():
     st = get_profile("tiny").indentation
-    for kw, word in (({"stats": ("plastic",)}, "stats must name"),
-                     ({"depth_band": (6e-6, 7e-6)}, "depth_band must bracket depth_target"),
-                     ({"depth_band": (6e-6, 4e-6)}, "depth_band needs LO < HI"),
-                     ({"hardness": (0.0,)}, r"hardness\[0\] must be in \(0, inf\] Pa"),
-                     ({"face_hardness": 3e9}, "face_hardness must be one of hardness"),
-                     ({"surfaces": ("SMATs",)}, "face_surface must be one of surfaces"),
-                     ({"surfaces": ("Nope",)}, r"surfaces\[0\] must be one of"),
-                     ({"protocol": st.protocol.replace(placements=None)}, "protocol needs"),
-                     ({"stats_placements": 0}, "stats_placements must be")):  # fmt: skip
+    for kw, word in (
+        ({"stats": ("plastic",)}, "stats must name"),
+        ({"depth_band": (6e-6, 7e-6)}, "depth_band must bracket depth_target"),
+        ({"depth_band": (6e-6, 4e-6)}, "depth_band needs LO < HI"),
+        ({"hardness": (0.0,)}, r"hardness\[0\] must be in \(0, inf\] Pa"),
+        ({"face_hardness": 3e9}, "face_hardness must be one of hardness"),
+        ({"surfaces": ("SMATs",)}, "face_surface must be one of surfaces"),
+        ({"surfaces": ("Nope",)}, r"surfaces\[0\] must be one of"),
+        ({"protocol": st.protocol.replace(placements=None)}, "protocol needs"),
+        ({"stats_placements": 0}, "stats_placements must be"),
+    ):
         with pytest.raises(ValueError, match=word) as e:
             st.replace(**kw)
         assert "\n" not in str(e.value)
@@ -145,14 +149,23 @@ def test_tiny_report_has_each_table(tiny_indent):
     out, doc = tiny_indent
     text = (out / "report.md").read_text()
     st = doc["stages"]["indentation"]
-    for head in ("**Hardness as a question**", "| surface | punch | H = 0.5 GPa |",
-                 "H with depth in 4–6 µm", "| surface | design | model | α [95 %] | β [95 %] | cells | indents | α, β on K alone (cells) |",
-                 "**How deep truncation stays within ±20 % of each model**", "the paper (vs experiment)",
-                 "**Which model truncation tracks, on resolved cells.**",
-                 "**Resolution of the cells per load.**", "| level | cells solved |",
-                 "Largest refinement reached: ×2", "**The material is assumed, not the paper's**",
-                 "**Ps with a tilted or rough punch face**", "| tilt 0.1° |", "| rough 0.05 µm rms |",
-                 "| aligned smooth flat (the sweep) |"):  # fmt: skip
+    for head in (
+        "**Hardness as a question**",
+        "| surface | punch | H = 0.5 GPa |",
+        "H with depth in 4–6 µm",
+        "| surface | design | model | α [95 %] | β [95 %] | cells | indents | α, β on K alone (cells) |",
+        "**How deep truncation stays within ±20 % of each model**",
+        "the paper (vs experiment)",
+        "**Which model truncation tracks, on resolved cells.**",
+        "**Resolution of the cells per load.**",
+        "| level | cells solved |",
+        "Largest refinement reached: ×2",
+        "**The material is assumed, not the paper's**",
+        "**Ps with a tilted or rough punch face**",
+        "| tilt 0.1° |",
+        "| rough 0.05 µm rms |",
+        "| aligned smooth flat (the sweep) |",
+    ):
         assert head in text, head
     for s in st["surfaces"]:  # the resolution table has every load of every surface
         for f in st["loads_N"]:
@@ -169,8 +182,13 @@ def _depth_table(st, s):
     at = max(st["loads_N"])
     out = {}
     for m, h in st["hardness_Pa"].items():
-        sel = ((r["surface"] == s) & (r["design"] == "sweep") & (r["model"] == m)
-               & (r["peak_load_N"] == at) & r["converged"].astype(bool))  # fmt: skip
+        sel = (
+            (r["surface"] == s)
+            & (r["design"] == "sweep")
+            & (r["model"] == m)
+            & (r["peak_load_N"] == at)
+            & r["converged"].astype(bool)
+        )
         d = r["punch_diameter_m"][sel].astype(float)
         z = r["displacement_m"][sel].astype(float)
         out[math.inf if h is None else h] = max(np.median(z[d == x]) for x in np.unique(d))
@@ -191,18 +209,26 @@ def test_tiny_H_range_and_statistics_come_from_the_depths(tiny_indent):
         mono = np.all(np.diff(dd) < 0)
         inside = [band[0] <= x <= band[1] for x in dd]
         if mono and dd[0] >= band[1] >= dd[-1]:  # the deeper edge is crossed inside the sweep
-            assert v["range"]["low"] == pytest.approx(_interp_H(band[1], np.array(hs), dd), rel=1e-9)
+            assert v["range"]["low"] == pytest.approx(
+                _interp_H(band[1], np.array(hs), dd), rel=1e-9
+            )
         if mono and dd[0] > band[0] > dd[-1]:
-            assert v["range"]["high"] == pytest.approx(_interp_H(band[0], np.array(hs), dd), rel=1e-9)
+            assert v["range"]["high"] == pytest.approx(
+                _interp_H(band[0], np.array(hs), dd), rel=1e-9
+            )
         if v["range"]["low"] is None:
             assert not any(inside)
         # the statistics pieces: H = ∞ and the depth-matched H (none when the band is not reached)
         stats = {t["model"] for t in st["timings"] if t["surface"] == s and t["design"] == "stats"}
         h_match = v["match"]["H_match"]
-        want = {"elastic"} | (set() if h_match is None else {f"elastic_plastic_{h_match / 1e9:g}GPa"})
+        want = {"elastic"} | (
+            set() if h_match is None else {f"elastic_plastic_{h_match / 1e9:g}GPa"}
+        )
         assert stats == want
         if mono and v["match"]["H_target"] is not None:
-            assert v["match"]["H_target"] == pytest.approx(_interp_H(5e-6, np.array(hs), dd), rel=1e-9)
+            assert v["match"]["H_target"] == pytest.approx(
+                _interp_H(5e-6, np.array(hs), dd), rel=1e-9
+            )
 
 
 def test_tiny_agreement_depth_by_hand(tiny_indent):
@@ -215,7 +241,11 @@ def test_tiny_agreement_depth_by_hand(tiny_indent):
     for a in ana["agreement"]:
         cells: dict = {}
         for i in range(n):
-            if (r["surface"][i], r["design"][i], r["model"][i]) != (a["surface"], a["design"], a["model"]):
+            if (r["surface"][i], r["design"][i], r["model"][i]) != (
+                a["surface"],
+                a["design"],
+                a["model"],
+            ):
                 continue
             t, e = r["truncation_E_c_over_E"][i], r["E_c_over_E"][i]
             if r["in_fit"][i] and r["converged"][i] and t and e and t > 0 and e > 0:
@@ -231,7 +261,9 @@ def test_tiny_agreement_depth_by_hand(tiny_indent):
             leaves = w
             break
         assert a["n_cells"] == len(walk)
-        assert (a["depth"] is None) == (depth is None) and (a["leaves_at"] is None) == (leaves is None)
+        assert (a["depth"] is None) == (depth is None) and (a["leaves_at"] is None) == (
+            leaves is None
+        )
         if depth is not None:
             assert a["depth"] == pytest.approx(depth, rel=1e-9)
         if leaves is not None:
@@ -244,17 +276,22 @@ def test_tiny_fits_have_intervals_over_indents(tiny_indent):
     stats = [f for f in ana["fits"] if f["design"] == "stats" and f["made"]]
     assert stats and max(f["n_indents"] for f in stats) == 2 * 3  # 2 realisations × 3 punches
     # two realisations of a punch: an interval, from the bootstrap over indents
-    assert all(f["alpha_ci95"] is not None and f["alpha_ci95"][0] < f["alpha_ci95"][1] for f in stats)
+    assert all(
+        f["alpha_ci95"] is not None and f["alpha_ci95"][0] < f["alpha_ci95"][1] for f in stats
+    )
     sweep = [f for f in ana["fits"] if f["design"] == "sweep" and f["made"]]
-    assert sweep and all(f["alpha_ci95"] is None for f in sweep)  # one indent per punch: no interval
+    assert sweep and all(
+        f["alpha_ci95"] is None for f in sweep
+    )  # one indent per punch: no interval
 
 
 def test_statistics_piece_resumes(tmp_path):
     """A stats piece lost is computed again alone; the others are reused, not rewritten."""
     from warptrunc.reproduce.indentation import stage_indentation
 
-    p = get_profile("tiny").indentation.replace(surfaces=("SMATs",), refine=False,
-                                                face_surface=None)  # fmt: skip
+    p = get_profile("tiny").indentation.replace(
+        surfaces=("SMATs",), refine=False, face_surface=None
+    )
     a = stage_indentation(p, tmp_path, "cpu", progress=False)
     files = sorted((tmp_path / "indentation").glob("*.json"))
     lost = next(f for f in files if "__stats__elastic_plastic" in f.name)

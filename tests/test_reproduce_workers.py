@@ -31,8 +31,13 @@ def _profile():
     on the unrefined punches), elastic and depth-matched statistics over two realisations (a
     band wide enough that an H matches), a refined punch, a tilted and a rough face."""
     p = get_profile("tiny")
-    st = p.indentation.replace(surfaces=("Ps",), hardness=(math.inf, 0.5e9, 2e9),
-                               depth_band=(1e-9, 1e-3), depth_target=1e-6, refine=False)
+    st = p.indentation.replace(
+        surfaces=("Ps",),
+        hardness=(math.inf, 0.5e9, 2e9),
+        depth_band=(1e-9, 1e-3),
+        depth_target=1e-6,
+        refine=False,
+    )
     return replace(p, name="workers-test", indentation=st)
 
 
@@ -81,7 +86,9 @@ def test_worker_killed_mid_stage_loses_and_duplicates_nothing(tmp_path, client, 
 
     def run():
         try:
-            box["doc"] = stage_indentation(_profile().indentation, tmp_path, "cpu", progress=False, client=client)
+            box["doc"] = stage_indentation(
+                _profile().indentation, tmp_path, "cpu", progress=False, client=client
+            )
         except BaseException as exc:  # reported by the assertion below
             box["exc"] = exc
 
@@ -104,11 +111,19 @@ def test_worker_killed_mid_stage_loses_and_duplicates_nothing(tmp_path, client, 
 def test_time_budget_on_the_cluster_then_rerun(tmp_path, client, reference):
     ref, _ = reference
     with pytest.raises(StageIncomplete, match="run the same command again"):
-        stage_indentation(_profile().indentation, tmp_path, "cpu", progress=False, client=client,
-                          deadline=time.perf_counter() + 1.0)  # fmt: skip
+        stage_indentation(
+            _profile().indentation,
+            tmp_path,
+            "cpu",
+            progress=False,
+            client=client,
+            deadline=time.perf_counter() + 1.0,
+        )
     stored = {f.name: f.stat().st_mtime_ns for f in (tmp_path / "indentation").glob("*.json")}
     assert stored  # the parts that ran before the budget are kept
-    again = stage_indentation(_profile().indentation, tmp_path, "cpu", progress=False, client=client)
+    again = stage_indentation(
+        _profile().indentation, tmp_path, "cpu", progress=False, client=client
+    )
     assert _rows(again) == _rows(ref)
     for name, t in stored.items():  # a kept piece is reused, not rewritten
         f = tmp_path / "indentation" / name

@@ -25,8 +25,19 @@ pytestmark = pytest.mark.usefixtures("quiet_surfacetopography")
 
 
 def _analyze(path: Path, out: Path, *extra) -> tuple[int, dict | None]:
-    status = main(["analyze", "-i", str(path), "--no-plot", "--device", "cpu", "--out", str(out),
-                   *map(str, extra)])  # fmt: skip
+    status = main(
+        [
+            "analyze",
+            "-i",
+            str(path),
+            "--no-plot",
+            "--device",
+            "cpu",
+            "--out",
+            str(out),
+            *map(str, extra),
+        ]
+    )
     fit = out / "fit.json"
     return status, json.loads(fit.read_text()) if status == 0 else None
 
@@ -135,9 +146,14 @@ def test_depth_extends_to_50_contact_pixels(sparse, tmp_path, capsys):
     assert 10 <= before < FIT_MIN_CONTACT_PIXELS  # the class: fitted on the legacy range, flagged
     status, legacy = _analyze(path, tmp_path / "l", "--fit-range", "legacy")
     assert status == 0 and legacy["fit_error"].startswith("not worth reading")
-    assert legacy["fit_range"] == {"asked": "legacy", "rule": "legacy", "reason":
-                                   "--fit-range legacy asked", "spikes_masked": None,
-                                   "depth_extended": None, "depth_cut": None}  # fmt: skip
+    assert legacy["fit_range"] == {
+        "asked": "legacy",
+        "rule": "legacy",
+        "reason": "--fit-range legacy asked",
+        "spikes_masked": None,
+        "depth_extended": None,
+        "depth_cut": None,
+    }
     capsys.readouterr()
     status, fit = _analyze(path, tmp_path / "a")
     err = capsys.readouterr().err
@@ -229,8 +245,23 @@ def test_compare_refuses_a_tiny_map_and_masks_spikes_as_it_reads(spiky, tmp_path
 
 def test_generated_surface_keeps_the_default_fit(tmp_path, capsys):
     out = tmp_path / "g"
-    assert main(["analyze", "--n", "64", "--min-pixels", "1", "--no-plot", "--device", "cpu",
-                 "--out", str(out)]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "analyze",
+                "--n",
+                "64",
+                "--min-pixels",
+                "1",
+                "--no-plot",
+                "--device",
+                "cpu",
+                "--out",
+                str(out),
+            ]
+        )
+        == 0
+    )
     assert "warning: auto_" not in capsys.readouterr().err
     fit = json.loads((out / "fit.json").read_text())
     rule = fit["fit_range"]
@@ -263,7 +294,9 @@ def test_real_scans_give_a_fit_worth_reading_on_defaults(scans_dir, tmp_path, ca
         rule = fit["fit_range"]
         assert rule["asked"] == "auto" and rule["reason"], f.name
         # every automatic decision is one warning line and one key
-        for key, code in (("spikes_masked", "auto_spikes_masked"),
-                          ("depth_extended", "auto_depth_extended"),
-                          ("depth_cut", "auto_depth_cut")):  # fmt: skip
+        for key, code in (
+            ("spikes_masked", "auto_spikes_masked"),
+            ("depth_extended", "auto_depth_extended"),
+            ("depth_cut", "auto_depth_cut"),
+        ):
             assert len(_warning_lines(err, code)) == (rule[key] is not None), (f.name, code)

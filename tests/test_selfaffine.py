@@ -16,8 +16,9 @@ import pytest
 from warptrunc.selfaffine import SelfAffineSpec, self_affine_surface
 
 L, N = 1e-4, 256
-SPEC = SelfAffineSpec(hurst=0.8, L=L, n=N, short_cutoff=4 * L / N, rolloff=L / 4, rms_slope=1.0,
-                      seed=3)  # fmt: skip
+SPEC = SelfAffineSpec(
+    hurst=0.8, L=L, n=N, short_cutoff=4 * L / N, rolloff=L / 4, rms_slope=1.0, seed=3
+)
 
 
 def _spectrum(s):
@@ -92,17 +93,28 @@ def test_bad_parameters_are_refused_with_their_values():
 def test_statistics_agree_with_surfacetopography():
     gen = pytest.importorskip("SurfaceTopography.Generation")
     # SurfaceTopography's long_cutoff is the wavelength below which its PSD is flat (our roll-off)
-    st = [gen.fourier_synthesis((N, N), (L, L), hurst=0.8, rms_slope=1.0, short_cutoff=4 * L / N,
-                                long_cutoff=L / 4, rng=np.random.default_rng(k))
-          for k in range(8)]  # fmt: skip
+    st = [
+        gen.fourier_synthesis(
+            (N, N),
+            (L, L),
+            hurst=0.8,
+            rms_slope=1.0,
+            short_cutoff=4 * L / N,
+            long_cutoff=L / 4,
+            rng=np.random.default_rng(k),
+        )
+        for k in range(8)
+    ]
     with warnings.catch_warnings():  # its statistics call deprecated names of its own
         warnings.simplefilter("ignore", DeprecationWarning)
         st_h = np.mean([t.rms_height_from_area() for t in st])
         st_g = np.mean([t.rms_gradient() for t in st])
     from warptrunc.slope import slope_statistics
 
-    ours = [slope_statistics(self_affine_surface(SPEC.replace(seed=k), device="cpu"),
-                             per_decade=False) for k in range(8)]  # fmt: skip
+    ours = [
+        slope_statistics(self_affine_surface(SPEC.replace(seed=k), device="cpu"), per_decade=False)
+        for k in range(8)
+    ]
     # SurfaceTopography draws Rayleigh amplitudes (its PSD is C(q) on average) and sets C₀ from
     # the continuous integral; ours are exact: the means agree to their scatter over 8 maps
     assert np.mean([o.h_rms for o in ours]) == pytest.approx(st_h, rel=0.08)

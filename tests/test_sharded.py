@@ -327,15 +327,32 @@ def test_solve_contact_and_bem_check_take_devices(tmp_path, capsys):
     loads = []
     for devices in ("1", "2"):
         out = tmp_path / f"bem{devices}"
-        args = ["bem-check", "--n", "64", "--device", "cpu", "--stiffness", "barber",
-                "--fractions", "0.1", "0.2", "--devices", devices, "--no-plot"]  # fmt: skip
+        args = [
+            "bem-check",
+            "--n",
+            "64",
+            "--device",
+            "cpu",
+            "--stiffness",
+            "barber",
+            "--fractions",
+            "0.1",
+            "0.2",
+            "--devices",
+            devices,
+            "--no-plot",
+        ]
         assert main([*args, "--out", str(out)]) == 0
         cols = json.loads((out / "bem.json").read_text())["columns"]
         loads.append(np.array(cols["bem_load_N"] + cols["bem_stiffness_N_per_m"], float))
     capsys.readouterr()
     assert np.all(np.abs(loads[0] - loads[1]) <= 1e-9 * loads[0])
-    assert_refused_in_one_line(["bem-check", "--n", "64", "--devices", "0"],
-                               tmp_path / "bad", capsys, ["--devices", "[1, 64]", "'auto'"])  # fmt: skip
+    assert_refused_in_one_line(
+        ["bem-check", "--n", "64", "--devices", "0"],
+        tmp_path / "bad",
+        capsys,
+        ["--devices", "[1, 64]", "'auto'"],
+    )
 
 
 def test_spectrum_in_pieces_equals_one_piece(monkeypatch):
@@ -354,8 +371,9 @@ def test_spectrum_in_pieces_equals_one_piece(monkeypatch):
     np.testing.assert_allclose(pieces, whole, rtol=0, atol=1e-13 * whole.max())  # last bits
     ref = influence_spectrum(shape, (DX, DX), E, substrate="free")  # (2ny, nx + 1), numpy f64
     nk = shape[1] + 1
-    np.testing.assert_allclose(pieces[:, :nk], np.asarray(ref)[: shape[0] + 1], rtol=0,
-                               atol=1e-12 * whole.max())  # fmt: skip
+    np.testing.assert_allclose(
+        pieces[:, :nk], np.asarray(ref)[: shape[0] + 1], rtol=0, atol=1e-12 * whole.max()
+    )
     assert np.all(pieces[:, nk:] == 1.0)
 
 
@@ -409,8 +427,9 @@ def test_fft_calls_stay_below_2_31_elements_at_65536(monkeypatch):
     big_y, _, _, nkp = sg._grid(shape, "free", 2)
 
     def sizes():
-        lay = sf.SlabLayout(shape, "free", "float32", devs,
-                            sg.column_blocks(shape, "free", "float32", 2))  # fmt: skip
+        lay = sf.SlabLayout(
+            shape, "free", "float32", devs, sg.column_blocks(shape, "free", "float32", 2)
+        )
         x = jax.ShapeDtypeStruct(shape, np.float32, sharding=lay.rows)
         w = jax.ShapeDtypeStruct((big_y // 2 + 1, nkp), np.float32, sharding=lay.cols)
         fn = jax.jit(lambda a, b: lay.conv(a, b, inverse=False), out_shardings=lay.rows)
@@ -445,11 +464,13 @@ def test_unit_force_check(substrate, dtype, monkeypatch):
     from warptrunc.contact.sharded.spectrum import unit_force_check
 
     shape = (128, 96)
-    hs = sf.ShardedHalfSpace(shape, (DX, 2 * DX), E, substrate=substrate, dtype=dtype,
-                             devices=jax.devices("cpu")[:2])  # fmt: skip
+    hs = sf.ShardedHalfSpace(
+        shape, (DX, 2 * DX), E, substrate=substrate, dtype=dtype, devices=jax.devices("cpu")[:2]
+    )
     assert hs.check < (1e-4 if dtype == "float32" else 1e-12)
-    wrong = sf.ShardedHalfSpace(shape, (DX, 3 * DX), E, substrate=substrate, dtype=dtype,
-                                devices=jax.devices("cpu")[:2])  # fmt: skip
+    wrong = sf.ShardedHalfSpace(
+        shape, (DX, 3 * DX), E, substrate=substrate, dtype=dtype, devices=jax.devices("cpu")[:2]
+    )
     real = wrong.apply
     monkeypatch.setattr(wrong, "apply", lambda x, **kw: real(x, **kw) * 131072)
     with pytest.raises(RuntimeError, match=r"fails its check.*closed form"):

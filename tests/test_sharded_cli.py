@@ -63,11 +63,28 @@ def test_compare_devices(tmp_path, capsys):
     map equal the one-device solver's; the rows name both devices."""
     import pandas as pd
 
-    args = ["compare", "--D", "2.5", "--size-ratios", "1", "--pixels-per-wr", "64",
-            "--refine-ratio", "none", "--seeds", "0", "--fractions", "0.1", "0.2", "--no-plot",
-            "--no-progress"]  # fmt: skip
-    one, two = (pd.concat(pd.read_parquet(p) for p in sorted((o / "cases").glob("*.parquet")))
-                for o in run_both(tmp_path, capsys, args))  # fmt: skip
+    args = [
+        "compare",
+        "--D",
+        "2.5",
+        "--size-ratios",
+        "1",
+        "--pixels-per-wr",
+        "64",
+        "--refine-ratio",
+        "none",
+        "--seeds",
+        "0",
+        "--fractions",
+        "0.1",
+        "0.2",
+        "--no-plot",
+        "--no-progress",
+    ]
+    one, two = (
+        pd.concat(pd.read_parquet(p) for p in sorted((o / "cases").glob("*.parquet")))
+        for o in run_both(tmp_path, capsys, args)
+    )
     assert len(one) == 2 and one["converged"].all() and two["converged"].all()
     for col in ("bem_load_N", "bem_stiffness_N_per_m", "bem_area_m2"):
         close(one[col], two[col], col)
@@ -80,15 +97,37 @@ def test_indent_devices(tmp_path, capsys):
     (the refined window solved over the devices too), equal the one-device run."""
     import pandas as pd
 
-    args = ["indent", "--n", "64", "--L", "1e-3", "--punch-diameters", "400e-6", "--peak-loads",
-            "2", "8", "--placements", "1", "--refine-max", "2", "--no-plot", "--no-progress"]  # fmt: skip
+    args = [
+        "indent",
+        "--n",
+        "64",
+        "--L",
+        "1e-3",
+        "--punch-diameters",
+        "400e-6",
+        "--peak-loads",
+        "2",
+        "8",
+        "--placements",
+        "1",
+        "--refine-max",
+        "2",
+        "--no-plot",
+        "--no-progress",
+    ]
     one, two = (pd.read_csv(o / "indent.csv") for o in run_both(tmp_path, capsys, args))
     assert one["converged"].all() and two["converged"].all()
     assert (one["max_pressure_Pa"] == 1e9).all()  # the cap is reached: capped solves
-    for col in ("displacement_m", "unloading_stiffness_N_per_m",
-                "partial_unloading_stiffness_N_per_m", "plastic_volume_m3",
-                "elastic_displacement_m", "elastic_unloading_stiffness_N_per_m",
-                "elastic_partial_unloading_stiffness_N_per_m", "max_pressure_Pa"):  # fmt: skip
+    for col in (
+        "displacement_m",
+        "unloading_stiffness_N_per_m",
+        "partial_unloading_stiffness_N_per_m",
+        "plastic_volume_m3",
+        "elastic_displacement_m",
+        "elastic_unloading_stiffness_N_per_m",
+        "elastic_partial_unloading_stiffness_N_per_m",
+        "max_pressure_Pa",
+    ):
         close(one[col], two[col], col)
     for col in ("n_contact_pixels", "elastic_n_contact_pixels", "pixel_size_m"):
         assert (one[col] == two[col]).all(), col
@@ -125,8 +164,21 @@ def test_sweep_devices(tmp_path, capsys):
     --bem-fractions, are refused in one line."""
     import pandas as pd
 
-    args = ["sweep", "--D", "2.5", "--delta", "0.01", "--seeds", "0", "--n", "64",
-            "--bem-fractions", "0.1", "0.2", "--no-progress"]  # fmt: skip
+    args = [
+        "sweep",
+        "--D",
+        "2.5",
+        "--delta",
+        "0.01",
+        "--seeds",
+        "0",
+        "--n",
+        "64",
+        "--bem-fractions",
+        "0.1",
+        "0.2",
+        "--no-progress",
+    ]
     one, two = (pd.read_parquet(o / "cases.parquet") for o in run_both(tmp_path, capsys, args))
     assert one["bem_error"].isna().all() and two["bem_error"].isna().all()
     for f in ("0.1", "0.2"):
@@ -142,9 +194,12 @@ def test_sweep_devices(tmp_path, capsys):
         for q in ("F_bem_N", "k_bem_N_per_m", "A_bem_m2"):
             close(one[f"{q}_{f}"], grouped[f"{q}_{f}"], f"worker {q}_{f}")
     base = ["sweep", "--D", "2.5", "--delta", "0.01", "--n", "64", "--devices", "2"]
-    assert_refused_in_one_line([*base, "--bem-fractions", "0.1", "--workers", "2"],
-                               tmp_path / "bad1", capsys,
-                               ["2 × 2 = 4 devices", "2 cpu devices", "--workers 1"])  # fmt: skip
+    assert_refused_in_one_line(
+        [*base, "--bem-fractions", "0.1", "--workers", "2"],
+        tmp_path / "bad1",
+        capsys,
+        ["2 × 2 = 4 devices", "2 cpu devices", "--workers 1"],
+    )
     auto = [*base[:-1], "auto", "--bem-fractions", "0.1", "--workers", "1"]
     assert_refused_in_one_line(auto, tmp_path / "bad3", capsys, ["--devices auto", "a count"])
     assert_refused_in_one_line(base, tmp_path / "bad2", capsys, ["--devices 2", "--bem-fractions"])
@@ -186,14 +241,22 @@ def test_worker_groups(monkeypatch):
 def test_refusals_name_the_option(tmp_path, capsys):
     """What the sharded path does not run is refused, naming the option and the value:
     ``indent --algorithm pk``, ``bem-check --solver contactmechanics``, a bad count."""
-    assert_refused_in_one_line(["indent", "--n", "64", "--devices", "2", "--algorithm", "pk"],
-                               tmp_path / "a", capsys, ["--devices 2", "--algorithm pk"])  # fmt: skip
-    assert_refused_in_one_line(["bem-check", "--n", "64", "--devices", "2", "--solver",
-                                "contactmechanics"], tmp_path / "b", capsys,
-                               ["--devices 2", "--solver warptrunc"])  # fmt: skip
+    assert_refused_in_one_line(
+        ["indent", "--n", "64", "--devices", "2", "--algorithm", "pk"],
+        tmp_path / "a",
+        capsys,
+        ["--devices 2", "--algorithm pk"],
+    )
+    assert_refused_in_one_line(
+        ["bem-check", "--n", "64", "--devices", "2", "--solver", "contactmechanics"],
+        tmp_path / "b",
+        capsys,
+        ["--devices 2", "--solver warptrunc"],
+    )
     for cmd in ("compare", "indent", "sweep"):
-        assert_refused_in_one_line([cmd, "--devices", "0"], tmp_path / cmd, capsys,
-                                   ["--devices", "[1, 64]", "'auto'"])  # fmt: skip
+        assert_refused_in_one_line(
+            [cmd, "--devices", "0"], tmp_path / cmd, capsys, ["--devices", "[1, 64]", "'auto'"]
+        )
 
 
 class XlaRuntimeError(RuntimeError):
@@ -207,8 +270,10 @@ def test_xla_out_of_memory_ends_the_command(monkeypatch, capsys):
     import warptrunc.cli.bem_check as cmd
     import warptrunc.contact.sharded.devices as sd
 
-    text = ("RESOURCE_EXHAUSTED: Out of memory while trying to allocate 60.81GiB.\n"
-            "=== Source Location Trace: ===\nexternal/xla+/xla/stream_executor/cuda/x.cc:45")
+    text = (
+        "RESOURCE_EXHAUSTED: Out of memory while trying to allocate 60.81GiB.\n"
+        "=== Source Location Trace: ===\nexternal/xla+/xla/stream_executor/cuda/x.cc:45"
+    )
 
     def boom(args):
         raise XlaRuntimeError(text)

@@ -62,12 +62,24 @@ def test_two_processes_equal_one_device():
     port = _free_port()
     procs = []
     for rank in (0, 1):
-        env = dict(os.environ, JAX_PLATFORMS="cpu", WARPTRUNC_DEVICE="cpu",
-                   WARPTRUNC_COORDINATOR=f"127.0.0.1:{port}", WARPTRUNC_NUM_PROCESSES="2",
-                   WARPTRUNC_PROCESS_ID=str(rank))  # fmt: skip
+        env = dict(
+            os.environ,
+            JAX_PLATFORMS="cpu",
+            WARPTRUNC_DEVICE="cpu",
+            WARPTRUNC_COORDINATOR=f"127.0.0.1:{port}",
+            WARPTRUNC_NUM_PROCESSES="2",
+            WARPTRUNC_PROCESS_ID=str(rank),
+        )
         env.pop("XLA_FLAGS", None)  # one host device per process
-        procs.append(subprocess.Popen([sys.executable, "-c", SCRIPT], env=env, text=True,
-                                      stdout=subprocess.PIPE, stderr=subprocess.STDOUT))  # fmt: skip
+        procs.append(
+            subprocess.Popen(
+                [sys.executable, "-c", SCRIPT],
+                env=env,
+                text=True,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.STDOUT,
+            )
+        )
     outs = []
     for p in procs:
         out, _ = p.communicate(timeout=240)

@@ -15,14 +15,27 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-UNUSED = ("pyvista", "vtk", "vtkmodules", "SurfaceTopography", "pandas", "pyarrow", "dask",
-          "distributed")  # fmt: skip
+UNUSED = (
+    "pyvista",
+    "vtk",
+    "vtkmodules",
+    "SurfaceTopography",
+    "pandas",
+    "pyarrow",
+    "dask",
+    "distributed",
+)
 
 
 def _loaded(code: str, cwd: Path) -> set[str]:
     report = "import sys, json; print(json.dumps(sorted({m.split('.')[0] for m in sys.modules})))"
-    r = subprocess.run([sys.executable, "-c", f"{code}\n{report}"], cwd=cwd, capture_output=True,
-                       text=True, timeout=300)  # fmt: skip
+    r = subprocess.run(
+        [sys.executable, "-c", f"{code}\n{report}"],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr
     return set(json.loads(r.stdout.strip().splitlines()[-1]))
 
@@ -55,8 +68,7 @@ def test_analyze_with_figures_loads_nothing_unused(tmp_path):
 
 
 def test_analyze_parser_loads_no_warp():
-    code = ("import warptrunc.cli.analyze as a, argparse\n"
-            "a.add_arguments(argparse.ArgumentParser())")  # fmt: skip
+    code = "import warptrunc.cli.analyze as a, argparse\na.add_arguments(argparse.ArgumentParser())"
     assert "warp" not in _loaded(code, ROOT)
 
 

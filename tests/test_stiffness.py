@@ -20,10 +20,16 @@ from warptrunc.truncation import TruncationCurve
 def curve_from_area(depth, area, A=1e-6, pixel_area=1e-12):
     n = np.round(np.asarray(area) / pixel_area).astype(np.int64)
     return TruncationCurve(
-        depth=np.asarray(depth, float), threshold=np.zeros(len(depth), np.float32),
-        n_contact_pixels=n, contact_area=np.asarray(area, float), apparent_area=A,
-        pixel_area=pixel_area, n_pixels=int(A / pixel_area), z_top=0.0, Rt=float(depth[-1]) * 10,
-    )  # fmt: skip
+        depth=np.asarray(depth, float),
+        threshold=np.zeros(len(depth), np.float32),
+        n_contact_pixels=n,
+        contact_area=np.asarray(area, float),
+        apparent_area=A,
+        pixel_area=pixel_area,
+        n_pixels=int(A / pixel_area),
+        z_top=0.0,
+        Rt=float(depth[-1]) * 10,
+    )
 
 
 def test_contact_modulus():
@@ -54,10 +60,19 @@ def test_fit_recovers_exact_power_law(alpha, beta):
     n = np.arange(60, dtype=np.int64) + 1
     z = np.zeros(60)
     sc = StiffnessCurve(
-        depth=np.linspace(1e-9, 1e-6, 60), n_contact_pixels=n * 1000, contact_area=z, stiffness=z,
-        load=f, Ec_over_E=beta * f**alpha, F_over_EA=f, Ec_over_Estar=z, material=Material(),
-        beta_prime=1.0, apparent_area=1.0, Rt=1e-5,
-    )  # fmt: skip
+        depth=np.linspace(1e-9, 1e-6, 60),
+        n_contact_pixels=n * 1000,
+        contact_area=z,
+        stiffness=z,
+        load=f,
+        Ec_over_E=beta * f**alpha,
+        F_over_EA=f,
+        Ec_over_Estar=z,
+        material=Material(),
+        beta_prime=1.0,
+        apparent_area=1.0,
+        Rt=1e-5,
+    )
     fit = fit_power_law(sc, min_pixels=1)
     assert fit.alpha == pytest.approx(alpha, rel=1e-10)
     assert fit.beta == pytest.approx(beta, rel=1e-10)  # the fitted column is E_c/E
@@ -100,9 +115,15 @@ def test_csv_and_json_export(tmp_path):
     p = sc.to_csv(tmp_path / "c.csv")
     data = np.genfromtxt(p, delimiter=",", names=True)
     assert data.dtype.names == (
-        "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
-        "Ec_over_E", "F_over_EA", "Ec_over_Estar",
-    )  # fmt: skip
+        "depth_m",
+        "n_contact_pixels",
+        "contact_area_m2",
+        "stiffness_N_per_m",
+        "load_N",
+        "Ec_over_E",
+        "F_over_EA",
+        "Ec_over_Estar",
+    )
     np.testing.assert_allclose(data["Ec_over_E"], data["Ec_over_Estar"] / (1 - 0.33**2), rtol=1e-14)
     np.testing.assert_array_equal(data["load_N"], sc.load)
     fit = fit_power_law(sc, min_pixels=1)
@@ -185,9 +206,11 @@ def test_flat_punch_stiffness_is_eq2(beta_prime):
 
 @pytest.mark.parametrize(
     "mat, ratio",
-    [(Material(), 1 / (1 - 0.33**2)),  # rigid flat: E*/E = 1/(1 − ν²) = 1.12
-     (Material.against_diamond(), 1 / (1 - 0.33**2 + (1 - 0.07**2) * 70 / 1141))],  # 1.05
-)  # fmt: skip
+    [
+        (Material(), 1 / (1 - 0.33**2)),  # rigid flat: E*/E = 1/(1 − ν²) = 1.12
+        (Material.against_diamond(), 1 / (1 - 0.33**2 + (1 - 0.07**2) * 70 / 1141)),
+    ],  # 1.05
+)
 def test_two_normalisations_differ_by_Estar_over_E(mat, ratio):
     """For a known A_c/A: E_c/E* = β'·√(A_c/A) and E_c/E = (E*/E)·β'·√(A_c/A), closed forms."""
     depth = np.linspace(0, 1e-6, 11)
@@ -227,14 +250,33 @@ def test_old_fit_json_is_read_with_its_meaning():
     of E_c/E in ``beta_young``, ``normalisation`` "E_c/E*"): read back, ``beta`` is E_c/E's."""
     from warptrunc.stiffness import NORMALISATION_E, NORMALISATION_ESTAR, PowerLawFit
 
-    old = {"alpha": 0.53, "beta": 6.5, "r2": 0.97, "n_points": 142, "depth_min": 2.9e-7,
-           "depth_max": 1e-6, "F_over_EA_min": 1.4e-6, "F_over_EA_max": 1e-5, "min_pixels": 10,
-           "depth_window": None, "beta_young": 7.3, "normalisation": NORMALISATION_ESTAR,
-           "surface": {"nx": 512}, "provenance": {}}  # fmt: skip
+    old = {
+        "alpha": 0.53,
+        "beta": 6.5,
+        "r2": 0.97,
+        "n_points": 142,
+        "depth_min": 2.9e-7,
+        "depth_max": 1e-6,
+        "F_over_EA_min": 1.4e-6,
+        "F_over_EA_max": 1e-5,
+        "min_pixels": 10,
+        "depth_window": None,
+        "beta_young": 7.3,
+        "normalisation": NORMALISATION_ESTAR,
+        "surface": {"nx": 512},
+        "provenance": {},
+    }
     f = PowerLawFit.from_dict(old)
     assert (f.beta, f.beta_contact_modulus, f.normalisation) == (7.3, 6.5, NORMALISATION_E)
-    new = PowerLawFit.from_dict({**old, "depth_window": [1e-7, 1e-6], "beta": 7.3,
-                                 "beta_contact_modulus": 6.5, "normalisation": NORMALISATION_E})  # fmt: skip
+    new = PowerLawFit.from_dict(
+        {
+            **old,
+            "depth_window": [1e-7, 1e-6],
+            "beta": 7.3,
+            "beta_contact_modulus": 6.5,
+            "normalisation": NORMALISATION_E,
+        }
+    )
     assert (new.beta, new.beta_contact_modulus, new.depth_window) == (7.3, 6.5, (1e-7, 1e-6))
     assert PowerLawFit.from_dict(new.to_dict()) == new
 

@@ -35,12 +35,18 @@ def test_streamed_counts_equal_in_memory_and_numpy(device, nx, ny, band_rows):
     s = wm_surface(**kw, device=device)
     ref = truncate(s, 60, max_depth_fraction=0.4, device=device)
     st = banded_truncation(
-        as_wm_spec(s.params), 60, max_depth=None, max_depth_fraction=0.4, band_rows=band_rows,
-        device=resolve_device(device), progress=False,
-    )  # fmt: skip
+        as_wm_spec(s.params),
+        60,
+        max_depth=None,
+        max_depth_fraction=0.4,
+        band_rows=band_rows,
+        device=resolve_device(device),
+        progress=False,
+    )
     c = st.curve
-    public = truncate(s.params, 60, max_depth_fraction=0.4, stream=True, band_rows=band_rows,
-                      device=device)  # fmt: skip
+    public = truncate(
+        s.params, 60, max_depth_fraction=0.4, stream=True, band_rows=band_rows, device=device
+    )
     np.testing.assert_array_equal(public.n_contact_pixels, c.n_contact_pixels)
     # independent: NumPy counts on the in-memory heights at the streamed thresholds
     np.testing.assert_array_equal(c.n_contact_pixels, numpy_counts(s.heights, c.threshold))
@@ -127,8 +133,22 @@ def test_memory_estimate():
 
 
 def _analyze(out, *extra):
-    args = ["analyze", "--n", "128", "120", "--max-depth-fraction", "0.3", "--increments",
-            "50", "--no-plot", "--device", "cpu", "--out", str(out), *extra]  # fmt: skip
+    args = [
+        "analyze",
+        "--n",
+        "128",
+        "120",
+        "--max-depth-fraction",
+        "0.3",
+        "--increments",
+        "50",
+        "--no-plot",
+        "--device",
+        "cpu",
+        "--out",
+        str(out),
+        *extra,
+    ]
     assert main(args) == 0
 
 
@@ -161,16 +181,37 @@ def test_cli_streams_when_the_map_does_not_fit(tmp_path, monkeypatch):
 def test_cli_stream_refuses_an_input_file(tmp_path, capsys):
     z = np.random.default_rng(0).normal(size=(32, 32)).astype(np.float32)
     np.save(tmp_path / "z.npy", z)
-    rc = main(["analyze", "-i", str(tmp_path / "z.npy"), "--dx", "1e-6", "--stream",
-               "--no-plot", "--out", str(tmp_path / "o")])  # fmt: skip
+    rc = main(
+        [
+            "analyze",
+            "-i",
+            str(tmp_path / "z.npy"),
+            "--dx",
+            "1e-6",
+            "--stream",
+            "--no-plot",
+            "--out",
+            str(tmp_path / "o"),
+        ]
+    )
     assert rc == 2
     assert "--stream applies to generated surfaces" in capsys.readouterr().err
 
 
 def test_cli_stream_refuses_islands(tmp_path, capsys):
     """The island-resolved model needs the map in memory: --islands with --stream is an error."""
-    args = ["analyze", "--n", "64", "--stream", "--islands", "--no-plot", "--device", "cpu",
-            "--out", str(tmp_path / "o")]  # fmt: skip
+    args = [
+        "analyze",
+        "--n",
+        "64",
+        "--stream",
+        "--islands",
+        "--no-plot",
+        "--device",
+        "cpu",
+        "--out",
+        str(tmp_path / "o"),
+    ]
     assert main(args) == 2
     assert "--islands needs the map in memory" in capsys.readouterr().err
     assert not (tmp_path / "o").exists()

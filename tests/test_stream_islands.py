@@ -81,8 +81,14 @@ def test_spiral_merges_across_every_border():
 def test_streamed_islands_equal_scipy_on_the_in_memory_map(device, band_rows, connectivity):
     s = wm_surface(2.4, 100e-6, n=(96, 150), seed=5, device=device)
     depths = np.array([0.05, 0.2, 0.45]) * s.Rt
-    got = streamed_islands(s.params, depths, band_rows=band_rows, connectivity=connectivity,
-                           device=device, progress=False)  # fmt: skip
+    got = streamed_islands(
+        s.params,
+        depths,
+        band_rows=band_rows,
+        connectivity=connectivity,
+        device=device,
+        progress=False,
+    )
     thr = (np.float64(s.heights.max()) - depths).astype(np.float32)
     for g, t, d in zip(got, thr, depths, strict=True):
         np.testing.assert_array_equal(g.area_pixels, scipy_areas(s.heights >= t, connectivity))

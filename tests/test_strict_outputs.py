@@ -52,16 +52,68 @@ def every_command(tmp_path_factory):
     assert run("analyze", *SMALL, "--min-pixels", 1, "--no-plot", "--out", root / "analyze") == 0
     assert run("describe", root / "noise.npy", "--dx", 1e-6, "--json", root / "describe.json") == 0
     assert run("islands", *SMALL, "--increments", 20, "--no-plot", "--out", root / "islands") == 0
-    assert run("sweep", "--D", 2.3, "--delta", 0.01, "--n", 64, "--min-pixels", 1,
-               "--no-progress", "--out", root / "sweep") == 0  # fmt: skip
-    assert run("calibrate", "--D", 2.4, "--Rrms", 1e-7, "--Rt", 1e-6, "--Wr", 2e-5, "--L", 1e-4,
-               "--n", 32, "--seeds", 0, "--max-iter", 2, "--rtol", 0.9, "--no-progress",
-               "--out", root / "calibrate") == 0  # fmt: skip
+    assert (
+        run(
+            "sweep",
+            "--D",
+            2.3,
+            "--delta",
+            0.01,
+            "--n",
+            64,
+            "--min-pixels",
+            1,
+            "--no-progress",
+            "--out",
+            root / "sweep",
+        )
+        == 0
+    )
+    assert (
+        run(
+            "calibrate",
+            "--D",
+            2.4,
+            "--Rrms",
+            1e-7,
+            "--Rt",
+            1e-6,
+            "--Wr",
+            2e-5,
+            "--L",
+            1e-4,
+            "--n",
+            32,
+            "--seeds",
+            0,
+            "--max-iter",
+            2,
+            "--rtol",
+            0.9,
+            "--no-progress",
+            "--out",
+            root / "calibrate",
+        )
+        == 0
+    )
     try:
         import pyvista  # noqa: F401
 
-        assert run("render", "--n", 32, "--depth-fractions", 0.3, "--size", 120, 100,
-                   "--out", root / "render") == 0  # fmt: skip
+        assert (
+            run(
+                "render",
+                "--n",
+                32,
+                "--depth-fractions",
+                0.3,
+                "--size",
+                120,
+                100,
+                "--out",
+                root / "render",
+            )
+            == 0
+        )
     except ImportError:
         pass
     from warptrunc.reproduce import reproduce
@@ -88,15 +140,32 @@ def test_every_json_written_by_every_command_is_strict(every_command):
 
 def test_sweep_resumes_a_store_with_null_e_flat(every_command, capsys):
     # null in sweep.json means inf: the same command resumes instead of reporting a conflict
-    assert run("sweep", "--D", 2.3, "--delta", 0.01, "--n", 64, "--min-pixels", 1,
-               "--no-progress", "--out", every_command / "sweep") == 0  # fmt: skip
+    assert (
+        run(
+            "sweep",
+            "--D",
+            2.3,
+            "--delta",
+            0.01,
+            "--n",
+            64,
+            "--min-pixels",
+            1,
+            "--no-progress",
+            "--out",
+            every_command / "sweep",
+        )
+        == 0
+    )
 
 
 def test_strict_json_maps_non_finite_to_null():
     text = strict_json({"a": math.inf, "b": [np.float32("nan"), 1.5], "E_i": -math.inf})
     assert json.loads(text, parse_constant=lambda c: pytest.fail(c)) == {
-        "a": None, "b": [None, 1.5], "E_i": None,
-    }  # fmt: skip
+        "a": None,
+        "b": [None, 1.5],
+        "E_i": None,
+    }
 
 
 # --- 2. all or nothing -----------------------------------------------------------------------
@@ -163,8 +232,11 @@ def test_write_failing_half_way_leaves_no_partial_result_and_a_rerun_completes(
     monkeypatch.setattr(plot, "stiffness_load", real_plot)
     assert run("analyze", "--n", 64, "--min-pixels", 1, "--out", out) == 0
     assert sorted(p.name for p in out.iterdir()) == [
-        "area_fraction.png", "curve.csv", "fit.json", "stiffness.png",
-    ]  # fmt: skip
+        "area_fraction.png",
+        "curve.csv",
+        "fit.json",
+        "stiffness.png",
+    ]
     strict_load(out / "fit.json")
     assert not leftovers(tmp_path)
 
@@ -298,8 +370,15 @@ def test_second_sweep_on_a_locked_store_is_refused_at_once(tmp_path, capsys):
     assert f"pid {os.getpid()} on host {socket.gethostname()}" in err
     assert not (out / "sweep.json").exists()
     # a lock left by a dead process on this host is taken over, and said so
-    (out / ".lock").write_text(json.dumps({"pid": 2**22 + 12345, "host": socket.gethostname(),
-                                           "started_utc": "2026-01-01T00:00:00Z"}))  # fmt: skip
+    (out / ".lock").write_text(
+        json.dumps(
+            {
+                "pid": 2**22 + 12345,
+                "host": socket.gethostname(),
+                "started_utc": "2026-01-01T00:00:00Z",
+            }
+        )
+    )
     assert run(*argv, "--out", out) == 0
     assert "took over a stale lock of pid" in capsys.readouterr().err
     assert not (out / ".lock").exists()

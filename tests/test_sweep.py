@@ -38,8 +38,13 @@ def test_parse_seeds_and_grid_errors(tmp_path):
     assert parse_seeds("0-2,9") == (0, 1, 2, 9)
     assert parse_seeds([3, "5"]) == (3, 5)
     assert parse_seeds(7) == (7,)
-    for bad, msg in (("4-2", "lo ≤ hi"), ("a", "seeds like 0, '0-4'"), ("1,1", "seed 1 is given twice"),
-                     ("", "at least one"), ("-3", "seed")):  # fmt: skip
+    for bad, msg in (
+        ("4-2", "lo ≤ hi"),
+        ("a", "seeds like 0, '0-4'"),
+        ("1,1", "seed 1 is given twice"),
+        ("", "at least one"),
+        ("-3", "seed"),
+    ):
         with pytest.raises(ValueError, match=msg):
             parse_seeds(bad)
     with pytest.raises(ValueError, match=r"D\[1\] must be in \(2, 3\).*3.2"):
@@ -89,10 +94,25 @@ def test_case_ids_are_those_of_the_stores_made_before():
     assert [c.case_id for c in grid.cases(SweepOptions(n=128))] == BASELINE_IDS
     # the id hashes the store's spelling, written out here by hand
     o = SweepOptions(n=128, E_i=1141e9, nu_i=0.07)
-    stored = {"Wr": 1e-4, "L": 1e-3, "n": 128, "M": 10, "gamma": 1.5, "Wc": None,
-              "cutoff": "nyquist", "increments": 200, "max_depth_fraction": 0.1,
-              "max_depth": None, "E": 70e9, "nu": 0.33, "E_flat": 1141e9, "nu_flat": 0.07,
-              "beta_prime": 1.0, "min_pixels": [10], "depth_window": None}  # fmt: skip
+    stored = {
+        "Wr": 1e-4,
+        "L": 1e-3,
+        "n": 128,
+        "M": 10,
+        "gamma": 1.5,
+        "Wc": None,
+        "cutoff": "nyquist",
+        "increments": 200,
+        "max_depth_fraction": 0.1,
+        "max_depth": None,
+        "E": 70e9,
+        "nu": 0.33,
+        "E_flat": 1141e9,
+        "nu_flat": 0.07,
+        "beta_prime": 1.0,
+        "min_pixels": [10],
+        "depth_window": None,
+    }
     assert stored_options(o) == stored
     key = {"format": "warptrunc-sweep/1", "D": 2.3, "delta": 0.01, "seed": 1, "options": stored}
     blob = json.dumps(key, sort_keys=True, separators=(",", ":")).encode()
@@ -104,8 +124,9 @@ def test_store_rows_and_curves_match_numpy(tmp_path):
     grid = SweepGrid([2.3, 2.7], [0.01, 0.02], "0-1")
     df = run_sweep(grid, tmp_path / "s", progress=False, device="cpu", options=OPTS)
     assert len(df) == 8 * 2 and df["error"].isna().all()
-    assert sorted((tmp_path / "s").iterdir()) == [tmp_path / "s" / n for n in
-                                                  ("cases.parquet", "curves", "sweep.json")]  # fmt: skip
+    assert sorted((tmp_path / "s").iterdir()) == [
+        tmp_path / "s" / n for n in ("cases.parquet", "curves", "sweep.json")
+    ]
     spec = json.loads((tmp_path / "s" / "sweep.json").read_text())
     assert spec["grid"]["seeds"] == [0, 1] and spec["options"]["n"] == 64
     pd.testing.assert_frame_equal(load(tmp_path / "s"), df)
@@ -132,9 +153,11 @@ def test_store_rows_and_curves_match_numpy(tmp_path):
     import pyarrow.dataset as ds
 
     direct = pd.read_parquet(tmp_path / "s" / "curves")
-    pd.testing.assert_frame_equal(direct.sort_values(["case_id", "depth_m"]).reset_index(drop=True),
-                                  load_curves(tmp_path / "s").sort_values(["case_id", "depth_m"])
-                                  .reset_index(drop=True), check_dtype=False)  # fmt: skip
+    pd.testing.assert_frame_equal(
+        direct.sort_values(["case_id", "depth_m"]).reset_index(drop=True),
+        load_curves(tmp_path / "s").sort_values(["case_id", "depth_m"]).reset_index(drop=True),
+        check_dtype=False,
+    )
     assert ds.dataset(tmp_path / "s" / "curves").count_rows() == 8 * 61
     pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "s" / "cases.parquet"), df)
 
@@ -143,8 +166,11 @@ def test_fractal_methods_and_relative_fit_range(tmp_path):
     from warptrunc.fractal import fractal_dimensions
 
     grid = SweepGrid([2.3, 2.7], [0.01], "0-1")
-    opts = OPTS.replace(min_pixels=(20,), min_pixels_fraction=(0.05, 0.5),
-                        fractal_methods=("tri", "box", "vs", "sp"))  # fmt: skip
+    opts = OPTS.replace(
+        min_pixels=(20,),
+        min_pixels_fraction=(0.05, 0.5),
+        fractal_methods=("tri", "box", "vs", "sp"),
+    )
     df = run_sweep(grid, tmp_path / "s", options=opts, progress=False, device="cpu")
     assert len(df) == 4 * 3 and df["error"].isna().all() and df["alpha"].notna().all()
     # every range fits; a fit_error here only says "not worth reading" (α kept beside it)
@@ -189,9 +215,31 @@ def test_cli_fractal_and_fraction_options(tmp_path, capsys):
     from warptrunc.cli import main
 
     out = tmp_path / "run"
-    rc = main(["sweep", "--D", "2.5", "--delta", "0.01", "--n", "64", "--increments", "30",
-               "--device", "cpu", "--no-progress", "--fractal", "vs", "sp",
-               "--min-pixels-fraction", "0.1", "--bem-fractions", "0.1", "--out", str(out)])  # fmt: skip
+    rc = main(
+        [
+            "sweep",
+            "--D",
+            "2.5",
+            "--delta",
+            "0.01",
+            "--n",
+            "64",
+            "--increments",
+            "30",
+            "--device",
+            "cpu",
+            "--no-progress",
+            "--fractal",
+            "vs",
+            "sp",
+            "--min-pixels-fraction",
+            "0.1",
+            "--bem-fractions",
+            "0.1",
+            "--out",
+            str(out),
+        ]
+    )
     assert rc == 0 and "fraction=0.1: α" in capsys.readouterr().out
     df = load(out)
     assert df["D_vs"].notna().all() and df["D_tri"].isna().all() and len(df) == 2
@@ -207,14 +255,23 @@ def test_rerun_skips_other_grid_refused_overwrite(tmp_path):
     first = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)
     again = run_sweep(grid, out, progress=False, device="cpu", options=OPTS)
     pd.testing.assert_frame_equal(first, again)  # nothing recomputed: same times and stamps
-    with pytest.raises(ValueError, match=r"another grid or options \(grid.seeds: \[0, 1, 2\] → "
-                       r"\[0, 1, 2, 3\]\); use --overwrite"):  # fmt: skip
+    with pytest.raises(
+        ValueError,
+        match=r"another grid or options \(grid.seeds: \[0, 1, 2\] → "
+        r"\[0, 1, 2, 3\]\); use --overwrite",
+    ):
         run_sweep(SweepGrid([2.3], [0.01], "0-3"), out, progress=False, options=OPTS)
     with pytest.raises(ValueError, match=r"options.increments: 60 → 61"):
         run_sweep(grid, out, progress=False, options=OPTS.replace(increments=61))
     assert load(out)["case_id"].nunique() == 3  # the refused runs changed nothing
-    new = run_sweep(SweepGrid([2.3], [0.01], "0-3"), out, overwrite=True,
-                    progress=False, device="cpu", options=OPTS)  # fmt: skip
+    new = run_sweep(
+        SweepGrid([2.3], [0.01], "0-3"),
+        out,
+        overwrite=True,
+        progress=False,
+        device="cpu",
+        options=OPTS,
+    )
     assert new["case_id"].nunique() == 4 and sorted(case_ids_on_disk(out)) == sorted(
         new["case_id"].unique()
     )
@@ -255,7 +312,9 @@ def test_failing_case_recorded_and_retried(tmp_path, monkeypatch):
     assert len(good) == 8 and good["error"].isna().all() and good["alpha"].notna().all()
     assert len(load_curves(out)) == 4 * 61  # failed cases have empty curves
     monkeypatch.setattr(engines, "wm_surface", real)
-    assert run_sweep(grid, out, progress=False, device="cpu", options=OPTS)["error"].notna().sum() == 4
+    assert (
+        run_sweep(grid, out, progress=False, device="cpu", options=OPTS)["error"].notna().sum() == 4
+    )
     fixed = run_sweep(grid, out, retry_failed=True, progress=False, device="cpu", options=OPTS)
     assert fixed["error"].isna().all()
     assert sorted(case_ids_on_disk(out)) == sorted(
@@ -294,8 +353,11 @@ def test_worker_killed_while_writing_leaves_no_readable_part(tmp_path):
     for f in part_files(out / "curves"):
         f.unlink()
     (out / "cases.parquet").unlink()
-    p = subprocess.Popen([sys.executable, "-c", _KILL_MID_WRITE, str(out / "curves")],
-                         stdout=subprocess.PIPE, text=True)  # fmt: skip
+    p = subprocess.Popen(
+        [sys.executable, "-c", _KILL_MID_WRITE, str(out / "curves")],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
     assert p.stdout.readline().strip() == "writing"
     p.kill()  # kill -9 mid-write
     p.communicate(timeout=30)
@@ -352,8 +414,14 @@ def test_overlapping_parts_each_case_once(tmp_path):
 
     out = tmp_path / "s"
     grid = SweepGrid([2.3, 2.6], [0.01], "0-2")
-    ref = run_sweep(grid, out, options=OPTS, execution=SweepExecution(shard_seconds=0),
-                    progress=False, device="cpu")  # fmt: skip
+    ref = run_sweep(
+        grid,
+        out,
+        options=OPTS,
+        execution=SweepExecution(shard_seconds=0),
+        progress=False,
+        device="cpu",
+    )
     for f in part_files(out / "curves"):
         f.unlink()
     (out / "cases.parquet").unlink()
@@ -379,8 +447,13 @@ def test_elastic_columns_match_the_contact_solver(tmp_path):
     from warptrunc.stiffness import Material
 
     grid = SweepGrid([2.3, 2.7], [0.01], "0")
-    df = run_sweep(grid, tmp_path / "s", options=OPTS.replace(bem_fractions=(0.2, 0.05)),
-                   progress=False, device="cpu")  # fmt: skip
+    df = run_sweep(
+        grid,
+        tmp_path / "s",
+        options=OPTS.replace(bem_fractions=(0.2, 0.05)),
+        progress=False,
+        device="cpu",
+    )
     assert df["error"].isna().all() and df["bem_error"].isna().all()
     pd.testing.assert_frame_equal(load(tmp_path / "s"), df)
     assert json.loads((tmp_path / "s" / "sweep.json").read_text())["options"]["bem_fractions"] == [
@@ -408,9 +481,14 @@ def test_elastic_columns_match_the_contact_solver(tmp_path):
     for _, row in df.drop_duplicates("case_id").iterrows():
         s = wm_surface(row.D_in, 100e-6, n=64, Rt=0.01 * 100e-6, seed=int(row.seed), device="cpu")
         d = np.array([0.05, 0.2]) * row.Rt_measured_m
-        cc = solve_contact(s, depths=d, material=Material(),
-                           settings=SolverSettings(substrate="free"),
-                           curve=CurveSettings(stiffness="barber"), device="cpu")  # fmt: skip
+        cc = solve_contact(
+            s,
+            depths=d,
+            material=Material(),
+            settings=SolverSettings(substrate="free"),
+            curve=CurveSettings(stiffness="barber"),
+            device="cpu",
+        )
         z = s.heights
         for i, f in enumerate(("0.05", "0.2")):
             assert row[f"bem_depth_m_{f}"] == d[i]
@@ -421,9 +499,11 @@ def test_elastic_columns_match_the_contact_solver(tmp_path):
             assert row[f"bem_converged_{f}"] == bool(cc.converged[i])
             n = np.count_nonzero(z >= np.float32(np.float32(z.max()) - d[i]))
             assert row[f"A_trunc_m2_{f}"] == n * s.pixel_area
-            np.testing.assert_allclose(row[f"k_trunc_N_per_m_{f}"],
-                                       2 / np.sqrt(np.pi) * contact_modulus * np.sqrt(n * s.pixel_area),
-                                       rtol=1e-12)  # fmt: skip
+            np.testing.assert_allclose(
+                row[f"k_trunc_N_per_m_{f}"],
+                2 / np.sqrt(np.pi) * contact_modulus * np.sqrt(n * s.pixel_area),
+                rtol=1e-12,
+            )
             for q in ("F", "A", "k"):
                 assert row[f"{q}_ratio_{f}"] == pytest.approx(
                     row[f"{q}_bem_{'N' if q == 'F' else 'm2' if q == 'A' else 'N_per_m'}_{f}"]
@@ -451,17 +531,42 @@ def test_unconverged_solve_flagged_not_dropped(tmp_path, monkeypatch):
 
     one = SolverSettings(maxiter=1)
     monkeypatch.setattr(contact, "solve_contact", lambda *a, **kw: real(*a, **kw, settings=one))
-    df = run_sweep(SweepGrid([2.5], [0.01], "0"), tmp_path / "s", progress=False,
-                   device="cpu", options=OPTS.replace(bem_fractions=(0.1,)))  # fmt: skip
+    df = run_sweep(
+        SweepGrid([2.5], [0.01], "0"),
+        tmp_path / "s",
+        progress=False,
+        device="cpu",
+        options=OPTS.replace(bem_fractions=(0.1,)),
+    )
     assert len(df) == 2 and df["error"].isna().all()
     assert (~df["bem_converged_0.1"]).all() and df["F_bem_N_0.1"].notna().all()
 
 
 # --- the CLI killed by a signal, then resumed ---------------------------------------------------
 
-KILL_ARGS = ["--D", "2.2", "2.5", "2.8", "--delta", "0.01", "0.02", "--seeds", "0-2", "--n", "128",
-             "--increments", "60", "--max-depth-fraction", "0.3", "--min-pixels", "1", "20",
-             "--device", "cpu", "--no-progress"]  # fmt: skip
+KILL_ARGS = [
+    "--D",
+    "2.2",
+    "2.5",
+    "2.8",
+    "--delta",
+    "0.01",
+    "0.02",
+    "--seeds",
+    "0-2",
+    "--n",
+    "128",
+    "--increments",
+    "60",
+    "--max-depth-fraction",
+    "0.3",
+    "--min-pixels",
+    "1",
+    "20",
+    "--device",
+    "cpu",
+    "--no-progress",
+]
 
 
 def _cli(out, *extra):
@@ -484,9 +589,12 @@ def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
     # SIGINT, and a Python started with it ignored never raises KeyboardInterrupt; the child
     # sets Python's handler itself (no preexec_fn: a fork with JAX loaded here warns)
     cmd = _cli(out, "--shard-seconds", "0")
-    cmd[1:3] = ["-c", "import runpy, signal, sys; signal.signal(signal.SIGINT, "
-                "signal.default_int_handler); sys.argv[0] = 'warptrunc'; "
-                "runpy.run_module('warptrunc', run_name='__main__', alter_sys=True)"]
+    cmd[1:3] = [
+        "-c",
+        "import runpy, signal, sys; signal.signal(signal.SIGINT, "
+        "signal.default_int_handler); sys.argv[0] = 'warptrunc'; "
+        "runpy.run_module('warptrunc', run_name='__main__', alter_sys=True)",
+    ]
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     t0 = time.monotonic()
     while len(case_ids_on_disk(out)) < 2:
@@ -515,13 +623,34 @@ def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
 
 def test_cli_refuses_other_grid(tmp_path):
     out = tmp_path / "run"
-    args = ["--D", "2.5", "--delta", "0.01", "--n", "64", "--increments", "20", "--device", "cpu",
-            "--no-progress", "--out", str(out)]  # fmt: skip
-    r = subprocess.run([sys.executable, "-m", "warptrunc", "sweep", *args], capture_output=True,
-                       text=True, timeout=120)  # fmt: skip
+    args = [
+        "--D",
+        "2.5",
+        "--delta",
+        "0.01",
+        "--n",
+        "64",
+        "--increments",
+        "20",
+        "--device",
+        "cpu",
+        "--no-progress",
+        "--out",
+        str(out),
+    ]
+    r = subprocess.run(
+        [sys.executable, "-m", "warptrunc", "sweep", *args],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert r.returncode == 0, r.stderr
-    r = subprocess.run([sys.executable, "-m", "warptrunc", "sweep", *args, "--seeds", "0-1"],
-                       capture_output=True, text=True, timeout=120)  # fmt: skip
+    r = subprocess.run(
+        [sys.executable, "-m", "warptrunc", "sweep", *args, "--seeds", "0-1"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert r.returncode == 2
     assert (
         r.stderr.strip()
@@ -540,8 +669,22 @@ def test_parametric_sweep_example_and_refit_from_curves(tmp_path):
     ex = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(ex)
     out = tmp_path / "g2"
-    args = ["--device", "cpu", "--n", "64", "--seeds", "2", "--D", "2.3", "2.7",
-            "--min-pixels", "1", "10", "--out", str(out)]  # fmt: skip
+    args = [
+        "--device",
+        "cpu",
+        "--n",
+        "64",
+        "--seeds",
+        "2",
+        "--D",
+        "2.3",
+        "2.7",
+        "--min-pixels",
+        "1",
+        "10",
+        "--out",
+        str(out),
+    ]
     assert ex.main(args) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert set(summary["fit_ranges"]) == {"1", "10"}
@@ -550,8 +693,9 @@ def test_parametric_sweep_example_and_refit_from_curves(tmp_path):
     assert json.loads((out / "summary.json").read_text()) == summary
     refit = ex.refit(out, [10])  # NumPy fit of the stored curves = the sweep's fit
     stored = load(out).query("min_pixels == 10").set_index("case_id")["alpha"]
-    np.testing.assert_allclose(refit.set_index("case_id")["alpha"][stored.index], stored,
-                               rtol=1e-12)  # fmt: skip
+    np.testing.assert_allclose(
+        refit.set_index("case_id")["alpha"][stored.index], stored, rtol=1e-12
+    )
 
 
 def test_missing_extra_is_named(monkeypatch):

@@ -27,8 +27,16 @@ def test_batched_heights_match_the_direct_float64_sum_and_counts_match_numpy(dev
     curves = wb.truncate(cases)
     for i, c in enumerate(cases):
         z = wb.heights(i)
-        ref = wm_surface(c.D, OPTS.Wr, L=OPTS.L, n=OPTS.n, Rt=c.delta * OPTS.Wr, seed=c.seed,
-                         method="direct", device="cpu").heights  # fmt: skip
+        ref = wm_surface(
+            c.D,
+            OPTS.Wr,
+            L=OPTS.L,
+            n=OPTS.n,
+            Rt=c.delta * OPTS.Wr,
+            seed=c.seed,
+            method="direct",
+            device="cpu",
+        ).heights
         rt = c.delta * OPTS.Wr
         assert np.ptp(z) == pytest.approx(rt, rel=1e-5)
         assert np.max(np.abs(z - ref)) < 1e-5 * rt  # float32 tables and sums
@@ -110,7 +118,9 @@ def test_run_sweep_in_process_with_batches_equals_one_at_a_time(tmp_path, monkey
     import warptrunc.sweep.engines as E
 
     one = run_sweep(GRID, tmp_path / "one", options=OPTS, progress=False, device="cpu")
-    monkeypatch.setattr(E, "batch_size", lambda o, d, force=False: B.batch_size(o, d, force=True) and 5)
+    monkeypatch.setattr(
+        E, "batch_size", lambda o, d, force=False: B.batch_size(o, d, force=True) and 5
+    )
     many = run_sweep(GRID, tmp_path / "many", options=OPTS, progress=False, device="cpu")
     assert len(many) == len(one) == 24
     key = ["case_id", "min_pixels", "min_pixels_fraction"]

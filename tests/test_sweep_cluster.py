@@ -87,20 +87,26 @@ def test_open_client_local_cluster_shares_the_kernel_cache(monkeypatch, tmp_path
         env = _worker_env(client)
         assert len(env) == 2 and {e[0] for e in env.values()} == {str(tmp_path / "cache")}
         # Dask's other pre-spawn settings stay; glibc's trim threshold is left unset
-        spawn = client.run(lambda: (os.environ.get("MALLOC_TRIM_THRESHOLD_"),
-                                    os.environ.get("OMP_NUM_THREADS")))  # fmt: skip
+        spawn = client.run(
+            lambda: (os.environ.get("MALLOC_TRIM_THRESHOLD_"), os.environ.get("OMP_NUM_THREADS"))
+        )
         assert set(spawn.values()) == {(None, "1")}
         # Dask's statistical profiler is off in the workers (on in Dask's defaults)
         import dask
 
         assert dask.config.get("distributed.worker.profile.enabled") is True
-        prof = client.run(lambda: __import__("dask").config.get("distributed.worker.profile.enabled"))
+        prof = client.run(
+            lambda: __import__("dask").config.get("distributed.worker.profile.enabled")
+        )
         assert set(prof.values()) == {False}
         assert "MALLOC_TRIM_THRESHOLD_" not in os.environ  # nor set in this process
         # the workers resolve that folder (Warp appends its version)
-        dirs = client.run(lambda: (
-            __import__("warptrunc._support.device", fromlist=["_"]).cuda_device_count(),
-            __import__("os").path.realpath(__import__("warp").config.kernel_cache_dir))[1])
+        dirs = client.run(
+            lambda: (
+                __import__("warptrunc._support.device", fromlist=["_"]).cuda_device_count(),
+                __import__("os").path.realpath(__import__("warp").config.kernel_cache_dir),
+            )[1]
+        )
         assert set(dirs.values()) == {str(tmp_path / "cache" / wp.config.version)}
         # a client passed in is used as it is and left open
         with cl.open_client(None, client, None, False) as (c2, cluster2, own2):
@@ -125,8 +131,9 @@ def test_open_client_uses_dask_cuda_where_installed(monkeypatch):
             made.update(n_workers=n_workers, **kw)
             super().__init__(n_workers=n_workers, processes=True, **kw)
 
-    monkeypatch.setitem(sys.modules, "dask_cuda", types.SimpleNamespace(
-        LocalCUDACluster=FakeCUDACluster))  # fmt: skip
+    monkeypatch.setitem(
+        sys.modules, "dask_cuda", types.SimpleNamespace(LocalCUDACluster=FakeCUDACluster)
+    )
     monkeypatch.setattr(cl, "_gpu_count", lambda: 2)
     monkeypatch.delenv("WARPTRUNC_DEVICE", raising=False)
     monkeypatch.delenv(cl.DASK_CUDA_ENV, raising=False)
@@ -164,10 +171,36 @@ def test_one_cluster_for_every_group_of_a_sweep(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(cl, "open_client", counting)
     grid = SweepGrid([2.4], [0.01], "0-1", axes={"M": [8, 10]})
     ref = run_sweep(grid, None, progress=False, device="cpu", options=OPTS)
-    rc = main(["sweep", "--D", "2.4", "--delta", "0.01", "--seeds", "0-1", "--M", "8", "10",
-               "--n", "64", "--increments", "60", "--max-depth-fraction", "0.3",
-               "--min-pixels", "1", "20", "--device", "cpu", "--no-progress",
-               "--workers", "auto", "--out", str(tmp_path / "s")])  # fmt: skip
+    rc = main(
+        [
+            "sweep",
+            "--D",
+            "2.4",
+            "--delta",
+            "0.01",
+            "--seeds",
+            "0-1",
+            "--M",
+            "8",
+            "10",
+            "--n",
+            "64",
+            "--increments",
+            "60",
+            "--max-depth-fraction",
+            "0.3",
+            "--min-pixels",
+            "1",
+            "20",
+            "--device",
+            "cpu",
+            "--no-progress",
+            "--workers",
+            "auto",
+            "--out",
+            str(tmp_path / "s"),
+        ]
+    )
     assert rc == 0 and "4 cases (0 failed)" in capsys.readouterr().out
     assert opened == [("auto", None)]
     pd.testing.assert_frame_equal(results_only(load(tmp_path / "s")), results_only(ref))

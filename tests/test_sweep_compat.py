@@ -55,13 +55,23 @@ def test_store_written_before_the_one_normalisation_reads_with_its_meaning(tmp_p
     assert ratio == pytest.approx(1 / (1 - 0.3**2), rel=1e-15)
     ok = new["beta"].notna()
     np.testing.assert_allclose(new["beta"][ok], new["beta_contact_modulus"][ok] * ratio, rtol=1e-12)
-    np.testing.assert_allclose(curves_new["Ec_over_E"], curves_new["Ec_over_Estar"] * ratio,
-                               rtol=1e-14)  # fmt: skip
+    np.testing.assert_allclose(
+        curves_new["Ec_over_E"], curves_new["Ec_over_Estar"] * ratio, rtol=1e-14
+    )
     # forge the old layout: E_c/E* under the plain names, the explicit columns absent
     for f in part_files(out / "curves"):
         table = pq.read_table(f)
-        rows = [[{k: (r["beta_contact_modulus"] if k == "beta" else v) for k, v in r.items()
-                  if k != "beta_contact_modulus"} for r in rs] for rs in part_rows(f)]  # fmt: skip
+        rows = [
+            [
+                {
+                    k: (r["beta_contact_modulus"] if k == "beta" else v)
+                    for k, v in r.items()
+                    if k != "beta_contact_modulus"
+                }
+                for r in rs
+            ]
+            for rs in part_rows(f)
+        ]
         old = table.drop_columns(["Ec_over_E", "Ec_over_Estar"]).append_column(
             "Ec_over_E", table.column("Ec_over_Estar")
         )
@@ -69,8 +79,9 @@ def test_store_written_before_the_one_normalisation_reads_with_its_meaning(tmp_p
         pq.write_table(old.replace_schema_metadata(meta), f)
     cases = pq.read_table(out / "cases.parquet")
     old_cases = cases.drop_columns(["beta", "beta_contact_modulus"])
-    old_cases = old_cases.add_column(cases.column_names.index("beta"), "beta",
-                                     cases.column("beta_contact_modulus"))  # fmt: skip
+    old_cases = old_cases.add_column(
+        cases.column_names.index("beta"), "beta", cases.column("beta_contact_modulus")
+    )
     pq.write_table(old_cases.replace_schema_metadata(cases.schema.metadata), out / "cases.parquet")
     assert "beta_contact_modulus" not in pq.read_schema(out / "cases.parquet").names
     assert isinstance(old_cases, pa.Table)
@@ -81,7 +92,9 @@ def test_store_written_before_the_one_normalisation_reads_with_its_meaning(tmp_p
     pd.testing.assert_frame_equal(back[ref.columns], ref, rtol=1e-14)
     (out / "cases.parquet").unlink()  # rebuilt from the parts' rows
     pd.testing.assert_frame_equal(load(out)[cols], new[cols], rtol=1e-14)
-    resumed = run_sweep(grid, out, progress=False, device="cpu", options=OPTS.replace(E=200e9, nu=0.3))
+    resumed = run_sweep(
+        grid, out, progress=False, device="cpu", options=OPTS.replace(E=200e9, nu=0.3)
+    )
     np.testing.assert_array_equal(resumed["seconds"], new["seconds"])  # nothing recomputed
     pd.testing.assert_frame_equal(resumed[cols], new[cols], rtol=1e-14)
 
@@ -126,10 +139,39 @@ def test_earlier_layout_refused_with_the_reason(tmp_path):
             read(out)
     with pytest.raises(ValueError, match=why):
         run_sweep(grid, out, options=OPTS, progress=False, device="cpu")
-    assert json.loads((out / "sweep.json").read_text())["format"] == "warptrunc-sweep/1"  # untouched
-    assert main(["sweep", "--D", "2.3", "2.6", "--delta", "0.01", "--seeds", "0-1", "--n", "64",
-                 "--increments", "60", "--max-depth-fraction", "0.3", "--min-pixels", "1", "20",
-                 "--device", "cpu", "--no-progress", "--overwrite", "--out", str(out)]) == 0  # fmt: skip
+    assert (
+        json.loads((out / "sweep.json").read_text())["format"] == "warptrunc-sweep/1"
+    )  # untouched
+    assert (
+        main(
+            [
+                "sweep",
+                "--D",
+                "2.3",
+                "2.6",
+                "--delta",
+                "0.01",
+                "--seeds",
+                "0-1",
+                "--n",
+                "64",
+                "--increments",
+                "60",
+                "--max-depth-fraction",
+                "0.3",
+                "--min-pixels",
+                "1",
+                "20",
+                "--device",
+                "cpu",
+                "--no-progress",
+                "--overwrite",
+                "--out",
+                str(out),
+            ]
+        )
+        == 0
+    )
     again = load(out)
     assert json.loads((out / "sweep.json").read_text())["format"] == "warptrunc-sweep/2"
     pd.testing.assert_frame_equal(results_only(again), results_only(full))

@@ -44,8 +44,14 @@ def dask_reference():
 def test_two_local_workers_same_table_as_in_process(tmp_path, dask_reference):
     pytest.importorskip("distributed")
     # the reference's device on the workers too (on a GPU machine they would pick cuda:0)
-    df = run_sweep(DASK_GRID, tmp_path / "s", options=OPTS, execution=SweepExecution(workers=2),
-                   progress=False, device="cpu")  # fmt: skip
+    df = run_sweep(
+        DASK_GRID,
+        tmp_path / "s",
+        options=OPTS,
+        execution=SweepExecution(workers=2),
+        progress=False,
+        device="cpu",
+    )
     pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))
     assert df["host"].nunique() == 1 and (df["device"] == "cpu").all()
 
@@ -82,8 +88,14 @@ def _sweep_in_thread(out, **kw):
 
     def sweep():
         try:
-            box["df"] = run_sweep(DASK_GRID, out, options=OPTS, execution=SweepExecution(**kw),
-                                  progress=False, device="cpu")  # fmt: skip
+            box["df"] = run_sweep(
+                DASK_GRID,
+                out,
+                options=OPTS,
+                execution=SweepExecution(**kw),
+                progress=False,
+                device="cpu",
+            )
         except BaseException as exc:  # pragma: no cover - reported by the caller
             box["exc"] = exc
 
@@ -218,9 +230,14 @@ def test_worker_killed_after_writing_its_part_part_kept(tmp_path, client, dask_r
     client.register_plugin(_die_after_write_plugin(str(flag)))
     try:
         out = tmp_path / "s"
-        df = run_sweep(DASK_GRID, out, options=OPTS,
-                       execution=SweepExecution(scheduler=client, shard_size=3),
-                       progress=False, device="cpu")  # fmt: skip
+        df = run_sweep(
+            DASK_GRID,
+            out,
+            options=OPTS,
+            execution=SweepExecution(scheduler=client, shard_size=3),
+            progress=False,
+            device="cpu",
+        )
     finally:
         client.unregister_worker_plugin("test-die-after-write")
     died = json.loads(flag.read_text())
@@ -250,8 +267,14 @@ def test_worker_device_is_a_stable_function_of_its_name():
     )
     for seed in ("1", "2", "12345"):
         env = {**os.environ, "PYTHONHASHSEED": seed}
-        r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
-                           text=True, timeout=120, check=True)  # fmt: skip
+        r = subprocess.run(
+            [sys.executable, "-c", code],
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=120,
+            check=True,
+        )
         assert r.stdout.strip() == repr(expected)
 
 
@@ -270,8 +293,7 @@ def test_workers_pinned_one_device_each(client):
     # not captured, and passed in two reruns there; a late restart is the likely cause)
     want, deadline = [(0, "cuda:0"), (1, "cuda:1")], time.monotonic() + 120
     while True:
-        got = client.run(lambda dask_worker: (dask_worker.name,
-                                              os.environ.get("WARPTRUNC_DEVICE")))  # fmt: skip
+        got = client.run(lambda dask_worker: (dask_worker.name, os.environ.get("WARPTRUNC_DEVICE")))
         if sorted(got.values()) == want or time.monotonic() > deadline:
             break
         time.sleep(0.5)
@@ -316,9 +338,14 @@ def test_task_that_raises_is_retried_and_reported_once(tmp_path, client, dask_re
     client.wait_for_workers(2, timeout=120)
     client.register_plugin(_batches_raise_on_worker_1_plugin())
     try:
-        df = run_sweep(DASK_GRID, tmp_path / "s", options=OPTS,
-                       execution=SweepExecution(scheduler=client, shard_size=4),
-                       progress=False, device="cpu")  # fmt: skip
+        df = run_sweep(
+            DASK_GRID,
+            tmp_path / "s",
+            options=OPTS,
+            execution=SweepExecution(scheduler=client, shard_size=4),
+            progress=False,
+            device="cpu",
+        )
     finally:
         client.unregister_worker_plugin("test-raise-on-worker-1")
     pd.testing.assert_frame_equal(results_only(df), results_only(dask_reference))

@@ -129,8 +129,12 @@ def test_first_task_per_worker_left_out_and_unknown_times_ignored():
 
 
 def test_task_seconds_from_the_result():
-    rows = [[{"seconds": 0.5}, {"seconds": 0.5}], [{"seconds": float("nan")}], [{"x": 1}],
-            [{"seconds": 0.25}]]  # fmt: skip
+    rows = [
+        [{"seconds": 0.5}, {"seconds": 0.5}],
+        [{"seconds": float("nan")}],
+        [{"x": 1}],
+        [{"seconds": 0.25}],
+    ]
     assert ShardPlanner.task_seconds({"seconds": 2.0, "rows": rows}) == 2.0
     assert ShardPlanner.task_seconds({"seconds": None, "rows": rows}) == 0.75
     assert ShardPlanner.task_seconds({"rows": [[{"seconds": float("nan")}]]}) is None

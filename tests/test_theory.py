@@ -35,16 +35,24 @@ MAT = Material(E=70e9, nu=0.33)
 ESTAR = MAT.contact_modulus
 
 
-def _spec(H=0.5, q_L=None, q_r=2 * math.pi / 100e-6, q_s=2 * math.pi / 2e-6, h_rms=None,
-          slope_rms=None):  # fmt: skip
+def _spec(
+    H=0.5, q_L=None, q_r=2 * math.pi / 100e-6, q_s=2 * math.pi / 2e-6, h_rms=None, slope_rms=None
+):
     """The self-affine spectrum of wavevectors q_L ≤ q_r < q_s (1/m; q_L None: no roll-off) as
     the surface's spec: the side L = 2π/q_L and enough pixels for λ_s (the grid does not enter
     the continuous spectrum)."""
     q_l = q_r if q_L is None else q_L
     L = 2 * math.pi / q_l
     n = min(1 << 20, 2 * math.ceil(L * q_s / (2 * math.pi)) + 2)
-    return SelfAffineSpec(hurst=H, L=L, n=n, rolloff=None if q_L is None else 2 * math.pi / q_r,
-                          short_cutoff=2 * math.pi / q_s, rms_height=h_rms, rms_slope=slope_rms)
+    return SelfAffineSpec(
+        hurst=H,
+        L=L,
+        n=n,
+        rolloff=None if q_L is None else 2 * math.pi / q_r,
+        short_cutoff=2 * math.pi / q_s,
+        rms_height=h_rms,
+        rms_slope=slope_rms,
+    )
 
 
 def _c_self_affine(q, c0, H, q_l, q_r, q_s):
@@ -57,8 +65,11 @@ def _c_self_affine(q, c0, H, q_l, q_r, q_s):
 def _quad_moment(k, c, q_l, q_r, q_s):
     """2π ∫ q^(k+1) C dq by adaptive quadrature, split at the kink."""
     f = lambda q: 2 * math.pi * q ** (k + 1) * c(q)  # noqa: E731
-    return sum(integrate.quad(f, a, b, epsabs=0, epsrel=1e-13, limit=200)[0]
-               for a, b in ((q_l, q_r), (q_r, q_s)) if b > a)  # fmt: skip
+    return sum(
+        integrate.quad(f, a, b, epsabs=0, epsrel=1e-13, limit=200)[0]
+        for a, b in ((q_l, q_r), (q_r, q_s))
+        if b > a
+    )
 
 
 # --- the PSD ---------------------------------------------------------------------------------
@@ -108,8 +119,9 @@ def _random_map(psd: IsotropicPSD, n: int, dx: float, seed: int) -> np.ndarray:
 def test_height_map_estimate_and_noise_floor():
     n, dx = 256, 1e-6
     q_nyq = math.pi / dx
-    spec = _spec(H=0.5, q_L=2 * math.pi / (n * dx), q_r=2 * math.pi / (n * dx / 4),
-                 q_s=q_nyq, h_rms=1e-6)  # fmt: skip
+    spec = _spec(
+        H=0.5, q_L=2 * math.pi / (n * dx), q_r=2 * math.pi / (n * dx / 4), q_s=q_nyq, h_rms=1e-6
+    )
     ref = IsotropicPSD.from_self_affine(spec)
     z = _random_map(ref, n, dx, seed=0)
     est = IsotropicPSD.from_height_map(z, dx, window="none")
@@ -189,8 +201,9 @@ def test_persson_area_single_scale_and_small_load_limit():
     slope2 = 2 * math.pi * c * (q1**4 - q0**4) / 4  # ⟨|∇h|²⟩ of the box spectrum
     p = np.geomspace(1e-6, 2, 9) * ESTAR * math.sqrt(slope2)
     r = persson_contact(psd, p, material=MAT)
-    np.testing.assert_allclose(r.area_fraction, erf(math.sqrt(2) * p / (ESTAR * math.sqrt(slope2))),
-                               rtol=1e-12)  # fmt: skip
+    np.testing.assert_allclose(
+        r.area_fraction, erf(math.sqrt(2) * p / (ESTAR * math.sqrt(slope2))), rtol=1e-12
+    )
     assert r.slope_rms == pytest.approx(math.sqrt(slope2), rel=1e-12)
     # A/A₀ = κ p/(E* h′_rms)(1 − (2/3)(p/(E* h′))² …), κ = √(8/π)
     assert r.kappa[0] == pytest.approx(math.sqrt(8 / math.pi), rel=1e-10)
@@ -210,17 +223,21 @@ def _published_separation(p, c0, H, q0, q1, gamma):
 
     def inner(q):
         wq = w(q)
-        f = lambda pp: (gamma + 3 * (1 - gamma) * erf(wq * pp / ESTAR) ** 2) * math.exp(  # noqa: E731
-            -((wq * pp / ESTAR) ** 2)) / pp  # fmt: skip
+        f = lambda pp: (  # noqa: E731
+            (gamma + 3 * (1 - gamma) * erf(wq * pp / ESTAR) ** 2)
+            * math.exp(-((wq * pp / ESTAR) ** 2))
+            / pp
+        )
         top = 12 * ESTAR / wq  # e^(−144) beyond
-        return (integrate.quad(f, p, top, epsabs=0, epsrel=1e-11, limit=400)[0]
-                if top > p else 0.0)  # fmt: skip
+        return integrate.quad(f, p, top, epsabs=0, epsrel=1e-11, limit=400)[0] if top > p else 0.0
 
     outer = lambda q: q**2 * c0 * (q / q0) ** (-2 - 2 * H) * w(q) * inner(q)  # noqa: E731
     # q = q₀ + v²: w(q) ∝ (q − q₀)^(−1/2) near q₀ becomes smooth in v
     f_v = lambda v: 2 * v * outer(q0 + v * v)  # noqa: E731
-    return math.sqrt(math.pi) * integrate.quad(f_v, 0, math.sqrt(q1 - q0), epsabs=0,
-                                               epsrel=1e-10, limit=1000)[0]  # fmt: skip
+    return (
+        math.sqrt(math.pi)
+        * integrate.quad(f_v, 0, math.sqrt(q1 - q0), epsabs=0, epsrel=1e-10, limit=1000)[0]
+    )
 
 
 @pytest.mark.parametrize("gamma", [1.0, 0.45])
@@ -304,8 +321,9 @@ def test_gw_exponential_against_its_closed_form(broad):
     d = r.separation - (s.height_mean - sig)  # from the start of the exponential
     assert np.all(d > 0)
     # GW (1966): p = η E* √(πR) σ^(3/2) e^(−d/σ), A/A₀ = πηRσ e^(−d/σ), K = p/σ
-    np.testing.assert_allclose(eta * ESTAR * math.sqrt(math.pi * R) * sig**1.5 * np.exp(-d / sig), p,
-                               rtol=1e-9)  # fmt: skip
+    np.testing.assert_allclose(
+        eta * ESTAR * math.sqrt(math.pi * R) * sig**1.5 * np.exp(-d / sig), p, rtol=1e-9
+    )
     np.testing.assert_allclose(
         r.area_fraction, math.pi * eta * R * sig * np.exp(-d / sig), rtol=1e-9
     )
@@ -317,11 +335,22 @@ def test_gw_gaussian_against_quadrature(broad):
     s = nayak_summits(broad)
     p = np.array([1e3, 1e6])
     r = greenwood_williamson(broad, p, material=MAT)
-    phi = lambda z: math.exp(-0.5 * ((z - s.height_mean) / s.height_std) ** 2) / (  # noqa: E731
-        math.sqrt(2 * math.pi) * s.height_std)  # fmt: skip
+    phi = lambda z: (  # noqa: E731
+        math.exp(-0.5 * ((z - s.height_mean) / s.height_std) ** 2)
+        / (math.sqrt(2 * math.pi) * s.height_std)
+    )
     for i, d in enumerate(r.separation):
-        mom = lambda k: integrate.quad(lambda z: (z - d) ** k * phi(z), d, d + 40 * s.height_std,  # noqa: E731, B023
-                                       epsabs=0, epsrel=1e-12, limit=200)[0]  # fmt: skip
+
+        def mom(k, d=d):
+            return integrate.quad(
+                lambda z: (z - d) ** k * phi(z),
+                d,
+                d + 40 * s.height_std,
+                epsabs=0,
+                epsrel=1e-12,
+                limit=200,
+            )[0]
+
         root_r = math.sqrt(s.radius)
         assert 4 / 3 * s.density * ESTAR * root_r * mom(1.5) == pytest.approx(p[i], rel=1e-7)
         assert r.area_fraction[i] == pytest.approx(
@@ -346,11 +375,14 @@ def test_bgt_small_load_kappa_and_stiffness():
 
 def test_results_are_columns_and_bad_input_is_refused(broad):
     p = np.geomspace(1e4, 1e7, 4)
-    for res in (persson_contact(broad, p, material=MAT),
-                greenwood_williamson(broad, p, material=MAT),
-                bush_gibson_thomas(broad, p, material=MAT),
-                persson_pressure_distribution(broad, 1e6, material=MAT),
-                persson_gap_distribution(broad, 1e6, material=MAT), broad):  # fmt: skip
+    for res in (
+        persson_contact(broad, p, material=MAT),
+        greenwood_williamson(broad, p, material=MAT),
+        bush_gibson_thomas(broad, p, material=MAT),
+        persson_pressure_distribution(broad, 1e6, material=MAT),
+        persson_gap_distribution(broad, 1e6, material=MAT),
+        broad,
+    ):
         cols = res.to_dict()
         n = {np.asarray(v).shape for v in cols.values()}
         assert len(n) == 1 and len(next(iter(n))) == 1
@@ -372,8 +404,9 @@ def test_results_are_columns_and_bad_input_is_refused(broad):
 def test_spectrum_of_a_generated_map_carries_its_own_c0():
     from warptrunc.selfaffine import self_affine_surface
 
-    spec = SelfAffineSpec(hurst=0.8, L=1e-4, n=128, short_cutoff=4e-4 / 128, rolloff=2.5e-5,
-                          rms_slope=1.0)  # fmt: skip
+    spec = SelfAffineSpec(
+        hurst=0.8, L=1e-4, n=128, short_cutoff=4e-4 / 128, rolloff=2.5e-5, rms_slope=1.0
+    )
     s = self_affine_surface(spec, device="cpu")
     from_map = IsotropicPSD.from_self_affine(s)
     from_spec = IsotropicPSD.from_self_affine(spec)

@@ -56,9 +56,13 @@ def test_block_topology_histograms_equal_atomic(device, monkeypatch, connectivit
     for mode in ("atomic", "block"):
         monkeypatch.setattr(dep, "TOPOLOGY_KERNEL", mode)
         out[mode] = topology_curve(
-            s, 40, max_depth_fraction=0.9, connectivity=connectivity, periodic=periodic,
+            s,
+            40,
+            max_depth_fraction=0.9,
+            connectivity=connectivity,
+            periodic=periodic,
             device=device,
-        )  # fmt: skip
+        )
     for name in ("n_contact_pixels", "total_perimeter", "euler_characteristic"):
         np.testing.assert_array_equal(getattr(out["block"], name), getattr(out["atomic"], name))
     assert out["atomic"].n_contact_pixels[-1] > 0

@@ -86,8 +86,21 @@ class _EmulatedCuFFT:
         emu = self
 
         class PlanNd:
-            def __init__(self, n, inembed, istride, idist, onembed, ostride, odist, kind,
-                         batch, order, last_axis, last_size):  # fmt: skip
+            def __init__(
+                self,
+                n,
+                inembed,
+                istride,
+                idist,
+                onembed,
+                ostride,
+                odist,
+                kind,
+                batch,
+                order,
+                last_axis,
+                last_size,
+            ):
                 self.args = (n[0], istride, idist, ostride, odist, kind, batch)
                 # a work area through the current allocator, as CuPy's PlanNd does
                 self.work_area = emu.allocator(16 * n[0] * batch) if emu.allocator else None
@@ -96,9 +109,12 @@ class _EmulatedCuFFT:
                 n, istride, idist, ostride, odist, kind, batch = self.args
                 single = kind in (emu.CUFFT_R2C, emu.CUFFT_C2R, emu.CUFFT_C2C)
                 real, cplx = (np.float32, np.complex64) if single else (np.float64, np.complex128)
-                src_t, dst_t = {emu.CUFFT_R2C: (real, cplx), emu.CUFFT_D2Z: (real, cplx),
-                                emu.CUFFT_C2R: (cplx, real), emu.CUFFT_Z2D: (cplx, real)}.get(
-                                    kind, (cplx, cplx))  # fmt: skip
+                src_t, dst_t = {
+                    emu.CUFFT_R2C: (real, cplx),
+                    emu.CUFFT_D2Z: (real, cplx),
+                    emu.CUFFT_C2R: (cplx, real),
+                    emu.CUFFT_Z2D: (cplx, real),
+                }.get(kind, (cplx, cplx))
                 n_in = n // 2 + 1 if src_t is cplx and dst_t is real else n
                 n_out = n // 2 + 1 if src_t is real else n
                 b, x = np.arange(batch)[:, None], np.arange(n_in)[None, :]
@@ -138,9 +154,10 @@ class _EmulatedCuFFT:
                 ptr=ptr, size=size, owner=owner
             ),
             MemoryPointer=MemoryPointer,
-            cufft=types.SimpleNamespace(PlanNd=PlanNd, **{
-                k: getattr(self, k) for k in dir(self) if k.startswith("CUFFT_")}),
-        )  # fmt: skip
+            cufft=types.SimpleNamespace(
+                PlanNd=PlanNd, **{k: getattr(self, k) for k in dir(self) if k.startswith("CUFFT_")}
+            ),
+        )
         self.ndarray = lambda shape, dtype, memptr: types.SimpleNamespace(data=memptr)
 
     def memory(self, ptr, dtype):
@@ -164,8 +181,9 @@ def test_cuda_transform_layouts_emulated(monkeypatch, substrate, shape, dtype):
     pixel = (1e-6, 1.3e-6)
     hs = ElasticHalfSpace(shape, pixel, E_STAR, substrate=substrate, dtype=dtype, device="cpu")
     hs._cp = (_EmulatedCuFFT(), None)
-    monkeypatch.setattr(hsmod, "cupy_stream", lambda cupy, stream, ordinal: __import__(
-        "contextlib").nullcontext())  # fmt: skip
+    monkeypatch.setattr(
+        hsmod, "cupy_stream", lambda cupy, stream, ordinal: __import__("contextlib").nullcontext()
+    )
     monkeypatch.setattr(hsmod.wp, "get_stream", lambda device: None)
     monkeypatch.setattr(hsmod, "_SLAB_MIN_BYTES", 1024)  # several slabs of two sizes
     x = np.random.default_rng(2).random(shape)

@@ -33,12 +33,15 @@ def test_the_font_cache_is_built_and_complete_before_the_tests():
 def test_a_child_under_a_file_size_limit_writes_nothing(tmp_path):
     folder = Path(os.environ["MPLCONFIGDIR"])
     before = {p.name: p.stat().st_mtime_ns for p in folder.iterdir()}
-    code = ("import resource; resource.setrlimit(resource.RLIMIT_FSIZE, (8192, 8192))\n"
-            "import matplotlib; matplotlib.use('Agg')\n"
-            "import matplotlib.font_manager, matplotlib.pyplot as plt\n"
-            "f = plt.figure(); f.text(0.5, 0.5, 'x'); f.canvas.draw()\n")  # fmt: skip
-    r = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True,
-                       text=True, timeout=120)  # fmt: skip
+    code = (
+        "import resource; resource.setrlimit(resource.RLIMIT_FSIZE, (8192, 8192))\n"
+        "import matplotlib; matplotlib.use('Agg')\n"
+        "import matplotlib.font_manager, matplotlib.pyplot as plt\n"
+        "f = plt.figure(); f.text(0.5, 0.5, 'x'); f.canvas.draw()\n"
+    )
+    r = subprocess.run(
+        [sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=120
+    )
     assert r.returncode == 0, r.stderr
     assert "Could not save font_manager cache" not in r.stderr
     after = {p.name: p.stat().st_mtime_ns for p in folder.iterdir()}

@@ -39,8 +39,9 @@ def _cli(argv, capsys) -> tuple[int, str, str]:
         ("--depths", ["5e-6", "2e-6"], "got 5e-06 2e-06"),
     ],
 )
-def test_bem_check_order_error_names_the_option_and_the_values_typed(opt, vals, want, capsys,
-                                                                      tmp_path):  # fmt: skip
+def test_bem_check_order_error_names_the_option_and_the_values_typed(
+    opt, vals, want, capsys, tmp_path
+):
     out = tmp_path / "b"
     code, _, err = _cli(["bem-check", "--n", "32", opt, *vals, "--out", str(out)], capsys)
     assert code == 2 and not out.exists()
@@ -51,8 +52,21 @@ def test_bem_check_order_error_names_the_option_and_the_values_typed(opt, vals, 
 
 
 def test_bem_check_depth_above_rt_names_the_range_in_metres(capsys, tmp_path):
-    code, _, err = _cli(["bem-check", "--n", "32", "--Rt", "1e-5", "--depths", "5e-6", "2e-5",
-                         "--out", str(tmp_path / "b")], capsys)  # fmt: skip
+    code, _, err = _cli(
+        [
+            "bem-check",
+            "--n",
+            "32",
+            "--Rt",
+            "1e-5",
+            "--depths",
+            "5e-6",
+            "2e-5",
+            "--out",
+            str(tmp_path / "b"),
+        ],
+        capsys,
+    )
     assert code == 2
     assert "--depths must be in (0, R_t) = (0, 1e-05) m" in err and "got 5e-06 2e-05" in err
 
@@ -105,7 +119,9 @@ def test_instrument_suffixes_are_those_surfacetopography_reads():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         from SurfaceTopography.IO import readers
-    theirs = {f".{e.lower()}" for r in readers for e in (getattr(r, "_file_extensions", None) or [])}
+    theirs = {
+        f".{e.lower()}" for r in readers for e in (getattr(r, "_file_extensions", None) or [])
+    }
     assert set(INSTRUMENT_SUFFIXES) == theirs - set(NUMPY_SUFFIXES + TEXT_SUFFIXES)
     assert len(INSTRUMENT_SUFFIXES) == len(set(INSTRUMENT_SUFFIXES))
 
@@ -123,29 +139,41 @@ def _table(rows):
     return df
 
 
-STAIRS = ("not worth reading: fit: only {} contact pixels at the deepest fitted increment "
-          "(< 50): A_c moves by whole pixels, the fit reads the pixel staircase")  # fmt: skip
+STAIRS = (
+    "not worth reading: fit: only {} contact pixels at the deepest fitted increment "
+    "(< 50): A_c moves by whole pixels, the fit reads the pixel staircase"
+)
 SHORT = "not worth reading: fit: the fit spans 0.3 decades of load (< 0.5)"
-FEW = ("only 0 increments in the fit range (min_pixels=10, depth_window=None); need at least 3: "
-       "lower min_pixels or widen the window")  # fmt: skip
+FEW = (
+    "only 0 increments in the fit range (min_pixels=10, depth_window=None); need at least 3: "
+    "lower min_pixels or widen the window"
+)
 
 
 def test_sweep_summary_all_flagged_prints_the_reasons_counted(capsys):
     from warptrunc.cli.sweep import _print_summary
 
-    df = _table([
-        (2.3, 10, 0.84, STAIRS.format(31) + "; fit: the fit spans 0.332 decades of load (< 0.5)",
-         None),
-        (2.5, 10, 0.80, STAIRS.format(12), None),
-        (2.7, 10, np.nan, FEW, None),
-    ])  # fmt: skip
+    df = _table(
+        [
+            (
+                2.3,
+                10,
+                0.84,
+                STAIRS.format(31) + "; fit: the fit spans 0.332 decades of load (< 0.5)",
+                None,
+            ),
+            (2.5, 10, 0.80, STAIRS.format(12), None),
+            (2.7, 10, np.nan, FEW, None),
+        ]
+    )
     _print_summary(df)
     out = capsys.readouterr().out.splitlines()
     assert out[0].startswith("min_pixels=10: α — no fit worth reading; 3 fits left out")
     # the staircase twice (31 and 12 pixels: one reason), the short load range once, FEW once
     assert out[1] == "  2× " + STAIRS.format(31).removeprefix("not worth reading: ")
-    assert sorted(out[2:]) == sorted(["  1× fit: the fit spans 0.332 decades of load (< 0.5)",
-                                      "  1× " + FEW])  # fmt: skip
+    assert sorted(out[2:]) == sorted(
+        ["  1× fit: the fit spans 0.332 decades of load (< 0.5)", "  1× " + FEW]
+    )
 
 
 def test_sweep_summary_two_values_of_d_draw_no_line(capsys):
@@ -179,8 +207,22 @@ def test_sweep_summary_three_values_of_d_give_the_least_squares_line(capsys):
 def test_sweep_cli_prints_why_no_fit_is_worth_reading(capsys, tmp_path):
     pytest.importorskip("pyarrow")
     # 64² maps of D 2.3 and 2.7: no increment has 10 contact pixels within 0.1·R_t
-    code, out, _ = _cli(["sweep", "--D", "2.3", "2.7", "--delta", "0.1", "--n", "64",
-                         "--no-progress", "--out", str(tmp_path / "s")], capsys)  # fmt: skip
+    code, out, _ = _cli(
+        [
+            "sweep",
+            "--D",
+            "2.3",
+            "2.7",
+            "--delta",
+            "0.1",
+            "--n",
+            "64",
+            "--no-progress",
+            "--out",
+            str(tmp_path / "s"),
+        ],
+        capsys,
+    )
     assert code == 0
     lines = out.splitlines()
     i = next(k for k, s in enumerate(lines) if "no fit worth reading" in s)

@@ -70,8 +70,9 @@ def test_closed_form_is_westergaards_solution():
 def _open_width(f: float, dtype: str = "float64") -> tuple[np.ndarray, bool]:
     x = (np.arange(LAM) + 0.5) * DX
     h = np.tile(DELTA * np.cos(2 * np.pi * x / (LAM * DX)), (ROWS, 1))
-    solver = ContactSolver(h, DX, E_STAR, settings=SolverSettings(substrate="periodic",
-                                                                  dtype=dtype), device="cpu")  # fmt: skip
+    solver = ContactSolver(
+        h, DX, E_STAR, settings=SolverSettings(substrate="periodic", dtype=dtype), device="cpu"
+    )
     state = solver.solve(load=mean_pressure(f) * h.size * DX * DX)
     p, _ = solver.maps()
     return (p <= 0).sum(axis=1), state.converged

@@ -93,12 +93,37 @@ _EXPORTS = {
 }
 """Public name → the module that defines it (imported on first access, PEP 562)."""
 
-_SUBMODULES = frozenset({
-    "analysis", "calibrate", "cli", "compare", "contact", "descriptors", "fractal", "indent", "io",
-    "islands", "calibrate_params",
-    "material", "params", "plausibility", "plot", "presets", "render", "reproduce", "robust", "spectra",
-    "stiffness", "surface", "sweep", "theory", "truncation", "wm", "wm_params",
-})  # fmt: skip
+_SUBMODULES = frozenset(
+    {
+        "analysis",
+        "calibrate",
+        "cli",
+        "compare",
+        "contact",
+        "descriptors",
+        "fractal",
+        "indent",
+        "io",
+        "islands",
+        "calibrate_params",
+        "material",
+        "params",
+        "plausibility",
+        "plot",
+        "presets",
+        "render",
+        "reproduce",
+        "robust",
+        "spectra",
+        "stiffness",
+        "surface",
+        "sweep",
+        "theory",
+        "truncation",
+        "wm",
+        "wm_params",
+    }
+)
 """The public subpackages and modules (``warptrunc.<name>``): with ``__all__``, all that
 ``dir(warptrunc)`` lists."""
 

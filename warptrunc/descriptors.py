@@ -241,8 +241,10 @@ def describe(surface: Surface, *, smoothing: float = 0.05) -> Descriptors:
                 else f"a profile of {surface.ny} points along y"
             )
         )
-        raise ValueError(f"describe needs a map of at least 2 × 2 pixels; this one is "
-                         f"{surface.ny}×{surface.nx}, {what}")  # fmt: skip
+        raise ValueError(
+            f"describe needs a map of at least 2 × 2 pixels; this one is "
+            f"{surface.ny}×{surface.nx}, {what}"
+        )
     st = surface_statistics(surface)
     wr, resolved = roll_off_wavelength(surface, smoothing=smoothing)
     return Descriptors(

@@ -59,17 +59,27 @@ class Material(Parameters):
     E: float = param(70e9, "Young's modulus E of the rough body", unit="Pa", gt=0.0)
     nu: float = param(0.33, "Poisson's ratio ν of the rough body", gt=-1.0, le=0.5)
     E_i: float = param(
-        math.inf, "Young's modulus E_i of the counter-body; inf = rigid", unit="Pa",
-        gt=0.0, allow_inf=True, cli="E-i",
-    )  # fmt: skip
+        math.inf,
+        "Young's modulus E_i of the counter-body; inf = rigid",
+        unit="Pa",
+        gt=0.0,
+        allow_inf=True,
+        cli="E-i",
+    )
     nu_i: float = param(
-        0.0, "Poisson's ratio ν_i of the counter-body (irrelevant when rigid)",
-        gt=-1.0, le=0.5, cli="nu-i",
-    )  # fmt: skip
+        0.0,
+        "Poisson's ratio ν_i of the counter-body (irrelevant when rigid)",
+        gt=-1.0,
+        le=0.5,
+        cli="nu-i",
+    )
     hardness: float = param(
-        math.inf, "hardness H of the rough body, the local pressure cap; inf = elastic",
-        unit="Pa", gt=0.0, allow_inf=True,
-    )  # fmt: skip
+        math.inf,
+        "hardness H of the rough body, the local pressure cap; inf = elastic",
+        unit="Pa",
+        gt=0.0,
+        allow_inf=True,
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -115,7 +125,6 @@ class Material(Parameters):
     def elastic(self) -> bool:
         """True when the hardness is infinite (no plasticity)."""
         return math.isinf(self.hardness)
-
 
     def to_dict(self) -> dict[str, Any]:
         """The fields (SI) and ``contact_modulus`` (Pa).

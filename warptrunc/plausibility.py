@@ -145,8 +145,14 @@ def _neighbour_stack(z: np.ndarray, r0: int, r1: int) -> np.ndarray:
     bottom = 1 if r1 == ny else 0
     p = np.pad(block, ((top, bottom), (1, 1)), mode="reflect" if min(ny, nx) > 1 else "edge")
     n = r1 - r0
-    return np.stack([p[1 + dy : 1 + dy + n, 1 + dx : 1 + dx + nx]
-                     for dy in (-1, 0, 1) for dx in (-1, 0, 1) if (dy, dx) != (0, 0)])  # fmt: skip
+    return np.stack(
+        [
+            p[1 + dy : 1 + dy + n, 1 + dx : 1 + dx + nx]
+            for dy in (-1, 0, 1)
+            for dx in (-1, 0, 1)
+            if (dy, dx) != (0, 0)
+        ]
+    )
 
 
 def _bands(ny: int, nx: int) -> Iterable[tuple[int, int]]:
@@ -203,8 +209,11 @@ def find_spikes(
     empty = np.zeros(0, dtype=np.int64)
     Rt = float(z.max() - z.min()) if z.size else 0.0
     if min(z.shape) < 3 or Rt == 0.0:
-        return empty, empty, {"sigma_d_m": 0.0, "R_robust_m": 0.0, "Rt_m": Rt,
-                              "neighbour_median_m": []}  # fmt: skip
+        return (
+            empty,
+            empty,
+            {"sigma_d_m": 0.0, "R_robust_m": 0.0, "Rt_m": Rt, "neighbour_median_m": []},
+        )
     d64, med = _residual(z)
     sigma = 1.4826 * float(np.median(np.abs(d64 - np.median(d64))))
     p_lo, p_hi = np.percentile(z, [0.1, 99.9])
@@ -218,29 +227,53 @@ def find_spikes(
         close = np.count_nonzero(np.abs(nb - float(z[y, x])) < ad[y, x] / 2)
         keep[j] = close < 4
     iy, ix = iy[keep].astype(np.int64), ix[keep].astype(np.int64)
-    scales = {"sigma_d_m": sigma, "R_robust_m": r_robust, "Rt_m": Rt,
-              "neighbour_median_m": med[iy, ix].tolist()}  # fmt: skip
+    scales = {
+        "sigma_d_m": sigma,
+        "R_robust_m": r_robust,
+        "Rt_m": Rt,
+        "neighbour_median_m": med[iy, ix].tolist(),
+    }
     return iy, ix, scales
 
 
-def _spike_warning(surface: Any, iy, ix, scales, k, share, action: str,
-                   passes: int = 1) -> PlausibilityWarning:  # fmt: skip
+def _spike_warning(
+    surface: Any, iy, ix, scales, k, share, action: str, passes: int = 1
+) -> PlausibilityWarning:
     z = np.asarray(surface.heights)
-    locs = [{"iy": int(y), "ix": int(x), "x_m": float(x * surface.dx),
-             "y_m": float(y * surface.dy), "z_m": float(z[y, x])}
-            for y, x in zip(iy[:_LISTED], ix[:_LISTED], strict=True)]  # fmt: skip
+    locs = [
+        {
+            "iy": int(y),
+            "ix": int(x),
+            "x_m": float(x * surface.dx),
+            "y_m": float(y * surface.dy),
+            "z_m": float(z[y, x]),
+        }
+        for y, x in zip(iy[:_LISTED], ix[:_LISTED], strict=True)
+    ]
     first = locs[0]
-    what = "masked (replaced by the median of their 8 neighbours)" if action == "mask" else (
-        "reported, not masked (--spikes mask replaces them)")  # fmt: skip
+    what = (
+        "masked (replaced by the median of their 8 neighbours)"
+        if action == "mask"
+        else ("reported, not masked (--spikes mask replaces them)")
+    )
     more = f" ({passes} passes of the rule)" if passes > 1 else ""
     return PlausibilityWarning(
         "spikes",
         f"{iy.size} spike pixel(s) (first at iy={first['iy']}, ix={first['ix']}): off the median "
         f"of their neighbours by more than {k:g}·σ_d and {share:g}·R_robust; {what}{more}",
-        {"count": int(iy.size), "locations": locs, "listed": len(locs), "action": action,
-         "k": k, "share": share, "sigma_d_m": scales["sigma_d_m"],
-         "R_robust_m": scales["R_robust_m"], "Rt_m": scales["Rt_m"], "passes": passes},
-    )  # fmt: skip
+        {
+            "count": int(iy.size),
+            "locations": locs,
+            "listed": len(locs),
+            "action": action,
+            "k": k,
+            "share": share,
+            "sigma_d_m": scales["sigma_d_m"],
+            "R_robust_m": scales["R_robust_m"],
+            "Rt_m": scales["Rt_m"],
+            "passes": passes,
+        },
+    )
 
 
 @fill_doc(SPIKE_DOCS)
@@ -339,12 +372,14 @@ def check_dimensions(dimensions: Mapping[str, float | None]) -> list[Plausibilit
             continue
         D = float(D)
         if not 2.0 < D < 3.0:
-            out.append(PlausibilityWarning(
-                "dimension_range",
-                f"D_{m} = {D:.4g} is outside (2, 3), the range of a rough surface: the map is "
-                "not self-affine over the scales this method fits (noise, tilt, form, spikes)",
-                {"method": m, "D": D},
-            ))  # fmt: skip
+            out.append(
+                PlausibilityWarning(
+                    "dimension_range",
+                    f"D_{m} = {D:.4g} is outside (2, 3), the range of a rough surface: the map is "
+                    "not self-affine over the scales this method fits (noise, tilt, form, spikes)",
+                    {"method": m, "D": D},
+                )
+            )
     return out
 
 
@@ -388,30 +423,40 @@ def check_fit(
     n_last = int(np.asarray(curve.n_contact_pixels)[sel].max()) if sel.any() else 0
     base = {"alpha": fit.alpha, "r2": fit.r2, "n_points": fit.n_points}
     if n_last < min_contact_pixels:
-        out.append(PlausibilityWarning(
-            "fit_contact_pixels",
-            f"{label}: only {n_last} contact pixels at the deepest fitted increment (< "
-            f"{min_contact_pixels}): A_c moves by whole pixels, the fit reads the pixel staircase",
-            {**base, "contact_pixels": n_last, "min_contact_pixels": min_contact_pixels},
-        ))  # fmt: skip
+        out.append(
+            PlausibilityWarning(
+                "fit_contact_pixels",
+                f"{label}: only {n_last} contact pixels at the deepest fitted increment (< "
+                f"{min_contact_pixels}): A_c moves by whole pixels, the fit reads the pixel staircase",
+                {**base, "contact_pixels": n_last, "min_contact_pixels": min_contact_pixels},
+            )
+        )
     if not fit.r2 >= min_r2:
-        out.append(PlausibilityWarning(
-            "fit_r2", f"{label}: r² = {fit.r2:.3g} < {min_r2:g}: not a power law over this range",
-            {**base, "min_r2": min_r2},
-        ))  # fmt: skip
+        out.append(
+            PlausibilityWarning(
+                "fit_r2",
+                f"{label}: r² = {fit.r2:.3g} < {min_r2:g}: not a power law over this range",
+                {**base, "min_r2": min_r2},
+            )
+        )
     if not 0.0 < fit.alpha <= 1.0:
-        out.append(PlausibilityWarning(
-            "fit_alpha", f"{label}: α = {fit.alpha:.4g} is outside (0, 1]",
-            {**base, "allowed": [0.0, 1.0]},
-        ))  # fmt: skip
+        out.append(
+            PlausibilityWarning(
+                "fit_alpha",
+                f"{label}: α = {fit.alpha:.4g} is outside (0, 1]",
+                {**base, "allowed": [0.0, 1.0]},
+            )
+        )
     lo, hi = float(fit.F_over_EA_min), float(fit.F_over_EA_max)
     decades = math.log10(hi / lo) if lo > 0 and hi > 0 else 0.0
     if decades < min_decades:
-        out.append(PlausibilityWarning(
-            "fit_load_decades",
-            f"{label}: the fit spans {decades:.3g} decades of load (< {min_decades:g})",
-            {**base, "decades": decades, "min_decades": min_decades},
-        ))  # fmt: skip
+        out.append(
+            PlausibilityWarning(
+                "fit_load_decades",
+                f"{label}: the fit spans {decades:.3g} decades of load (< {min_decades:g})",
+                {**base, "decades": decades, "min_decades": min_decades},
+            )
+        )
     return out
 
 
@@ -429,8 +474,9 @@ def fit_error_text(warnings: Iterable[PlausibilityWarning]) -> str | None:
         ``"not worth reading: <message>; <message>"``, or None when there is no ``fit_*``
         warning other than ``fit_past_validity``.
     """
-    msgs = [w.message for w in warnings
-            if w.code.startswith("fit_") and w.code != "fit_past_validity"]  # fmt: skip
+    msgs = [
+        w.message for w in warnings if w.code.startswith("fit_") and w.code != "fit_past_validity"
+    ]
     return "not worth reading: " + "; ".join(msgs) if msgs else None
 
 
@@ -468,12 +514,15 @@ def check_fit_depth(fit: Any, indicators: Any, *, label: str = "fit") -> list[Pl
     if not fit.depth_max > bound:
         return []
     Rt = float(indicators.Rt)
-    which = " and ".join(k.replace("_m", "").replace("_", " ") for k, v in limits.items()
-                         if fit.depth_max > v)  # fmt: skip
-    return [PlausibilityWarning(
-        "fit_past_validity",
-        f"{label}: the fit range reaches ω = {100 * fit.depth_max / Rt:.3g} % of R_t, past the "
-        f"{which} ({100 * bound / Rt:.3g} % of R_t), where § 4.3 (Table 2) ends the method's "
-        "applicable range",
-        {"fit_depth_max_m": float(fit.depth_max), **limits, "Rt_m": Rt},
-    )]  # fmt: skip
+    which = " and ".join(
+        k.replace("_m", "").replace("_", " ") for k, v in limits.items() if fit.depth_max > v
+    )
+    return [
+        PlausibilityWarning(
+            "fit_past_validity",
+            f"{label}: the fit range reaches ω = {100 * fit.depth_max / Rt:.3g} % of R_t, past the "
+            f"{which} ({100 * bound / Rt:.3g} % of R_t), where § 4.3 (Table 2) ends the method's "
+            "applicable range",
+            {"fit_depth_max_m": float(fit.depth_max), **limits, "Rt_m": Rt},
+        )
+    ]

@@ -94,21 +94,25 @@ __all__ = ["CALIBRATION", "PRESETS", "TABLE1", "TABLE1_TRI", "preset"]
 _PAPER = {"L": 1e-3, "n": 10240, "M": 10}
 _UM = 1e-6
 
-TABLE1: MappingProxyType = MappingProxyType({
-    "Ps": WMSpec(D=2.103, Rt=0.2324e-6, Wr=2000e-6, **_PAPER),
-    "SMATs": WMSpec(D=2.417, Rt=23.20e-6, Wr=120e-6, **_PAPER),
-    "GB300s": WMSpec(D=2.985, Rt=39.78e-6, Wr=60e-6, **_PAPER),
-    "GB50s": WMSpec(D=2.990, Rt=27.43e-6, Wr=25e-6, **_PAPER),
-})  # fmt: skip
+TABLE1: MappingProxyType = MappingProxyType(
+    {
+        "Ps": WMSpec(D=2.103, Rt=0.2324e-6, Wr=2000e-6, **_PAPER),
+        "SMATs": WMSpec(D=2.417, Rt=23.20e-6, Wr=120e-6, **_PAPER),
+        "GB300s": WMSpec(D=2.985, Rt=39.78e-6, Wr=60e-6, **_PAPER),
+        "GB50s": WMSpec(D=2.990, Rt=27.43e-6, Wr=25e-6, **_PAPER),
+    }
+)
 """The paper's Table 1 simulated surfaces matched to D_vs (Fig. 6) (name → :class:`~warptrunc.WMSpec`,
 SI units)."""
 
-TABLE1_TRI: MappingProxyType = MappingProxyType({
-    "Ps": WMSpec(D=2.091, Rt=0.2314e-6, Wr=2048e-6, **_PAPER),
-    "SMATs": WMSpec(D=2.020, Rt=21.24e-6, Wr=120e-6, **_PAPER),
-    "GB300s": WMSpec(D=2.555, Rt=38.97e-6, Wr=60e-6, **_PAPER),
-    "GB50s": WMSpec(D=2.020, Rt=26.02e-6, Wr=25e-6, **_PAPER),
-})  # fmt: skip
+TABLE1_TRI: MappingProxyType = MappingProxyType(
+    {
+        "Ps": WMSpec(D=2.091, Rt=0.2314e-6, Wr=2048e-6, **_PAPER),
+        "SMATs": WMSpec(D=2.020, Rt=21.24e-6, Wr=120e-6, **_PAPER),
+        "GB300s": WMSpec(D=2.555, Rt=38.97e-6, Wr=60e-6, **_PAPER),
+        "GB50s": WMSpec(D=2.020, Rt=26.02e-6, Wr=25e-6, **_PAPER),
+    }
+)
 """The same surfaces matched to D_tri (the presets before issue 38); ``"<name>-tri"`` in
 :data:`PRESETS`."""
 
@@ -125,14 +129,29 @@ _PAPER_ROWS = {
     "GB50s": ((2.825, 0.0876), (2.625, 0.0328), 2.935, (26.239, 1.157)),
 }
 _SOURCE = "benchmarks/records/table1_presets_cpu_79581b0.json"
-_VS = {"matched": "D_vs", "method": "vs", "D_bounds": (2.001, 2.99), "rtol": 0.05,
-       "calibration_map": "1024² over 1 mm (0.977 µm pixels)", "seeds": (0, 1, 2),
-       "commit": "79581b0", "device": "shared 2-core CPU (x86_64)", "source": _SOURCE}  # fmt: skip
-_TRI = {"matched": "D_tri", "method": "tri", "D_bounds": (2.02, 2.98), "rtol": 0.05,
-        "calibration_map": "1024² over 1.024 mm (1 µm pixels)", "seeds": (0, 1, 2),
-        "commit": "c3f7c18", "device": "NVIDIA H100 (cuda:0)",
-        "source": "benchmarks/records/reproduce_paper_h100_c3f7c18/report.md, Table 1 — calibrated simulated surfaces; D and "
-                  f"R_rms reached: {_SOURCE} (CPU, 79581b0)"}  # fmt: skip
+_VS = {
+    "matched": "D_vs",
+    "method": "vs",
+    "D_bounds": (2.001, 2.99),
+    "rtol": 0.05,
+    "calibration_map": "1024² over 1 mm (0.977 µm pixels)",
+    "seeds": (0, 1, 2),
+    "commit": "79581b0",
+    "device": "shared 2-core CPU (x86_64)",
+    "source": _SOURCE,
+}
+_TRI = {
+    "matched": "D_tri",
+    "method": "tri",
+    "D_bounds": (2.02, 2.98),
+    "rtol": 0.05,
+    "calibration_map": "1024² over 1.024 mm (1 µm pixels)",
+    "seeds": (0, 1, 2),
+    "commit": "c3f7c18",
+    "device": "NVIDIA H100 (cuda:0)",
+    "source": "benchmarks/records/reproduce_paper_h100_c3f7c18/report.md, Table 1 — calibrated simulated surfaces; D and "
+    f"R_rms reached: {_SOURCE} (CPU, 79581b0)",
+}
 # reached on the calibration map (seeds 0, 1, 2): D mean, sd; R_rms (µm); R_t′ giving each seed
 # the target R_rms, mean, sd (µm); D reached over D_in in [2.001, 2.99], min, max; CPU s (loop)
 _REACHED = {
@@ -147,17 +166,17 @@ _REACHED = {
 }
 _NOTES = {
     "Ps": "the loop stopped at its first evaluation; Table 1's D_vs is 0.002 below the smallest "
-          "D_vs reached (D_in = 2.001)",
+    "D_vs reached (D_in = 2.001)",
     "GB300s": "calibrated in the 5 % sense; Table 1's D_vs cannot be matched: 0.068 above the "
-              "largest D_vs reached (2.745 at D_in = 2.96)",
+    "largest D_vs reached (2.745 at D_in = 2.96)",
     "GB50s": "on the upper bound; Table 1's D_vs cannot be matched: 0.117 (4.1 %) above the "
-             "largest D_vs reached (2.708 at D_in = 2.99); above 2.99 D_vs falls and wm_surface "
-             "overflows near 2.995",
+    "largest D_vs reached (2.708 at D_in = 2.99); above 2.99 D_vs falls and wm_surface "
+    "overflows near 2.995",
     "SMATs-tri": "on the lower bound; Table 1's D_tri cannot be matched: 0.074 below the smallest "
-                 "D_tri reached (2.299 at D_in = 2.001)",
+    "D_tri reached (2.299 at D_in = 2.001)",
     "GB50s-tri": "on the lower bound; Table 1's D_tri cannot be matched: 0.053 below the smallest "
-                 "D_tri reached (2.678 at D_in = 2.001)",
-}  # fmt: skip
+    "D_tri reached (2.678 at D_in = 2.001)",
+}
 
 
 def _record(name: str) -> dict:
@@ -172,18 +191,32 @@ def _record(name: str) -> dict:
     bound = "lower" if spec.D <= b_lo + 1e-9 else "upper" if spec.D >= b_hi - 1e-9 else None
     within = abs(d - target) <= base["rtol"] * target
     return {
-        **base, "D_in": spec.D, "Rt_m": spec.Rt, "Wr_m": spec.Wr,
-        "D_target": target, "D_target_sd": target_sd, "D_reached": (d, d_sd),
-        "Rrms_target_m": rrms * _UM, "Rrms_reached_m": rrms_at * _UM,
-        "Rt_per_seed_m": (rt_mean * _UM, rt_sd * _UM), "Rt_paper_m": (rt[0] * _UM, rt[1] * _UM),
+        **base,
+        "D_in": spec.D,
+        "Rt_m": spec.Rt,
+        "Wr_m": spec.Wr,
+        "D_target": target,
+        "D_target_sd": target_sd,
+        "D_reached": (d, d_sd),
+        "Rrms_target_m": rrms * _UM,
+        "Rrms_reached_m": rrms_at * _UM,
+        "Rt_per_seed_m": (rt_mean * _UM, rt_sd * _UM),
+        "Rt_paper_m": (rt[0] * _UM, rt[1] * _UM),
         "Rt_within_paper_band": abs(spec.Rt / _UM - rt[0]) <= rt[1],
-        "bound": bound, "within_rtol": within, "calibrated": within and bound is None,
-        "D_reachable": (lo, hi), "target_reachable": lo <= target <= hi,
+        "bound": bound,
+        "within_rtol": within,
+        "calibrated": within and bound is None,
+        "D_reachable": (lo, hi),
+        "target_reachable": lo <= target <= hi,
         "unmatched_by": 0.0 if lo <= target <= hi else target - (hi if target > hi else lo),
-        "cpu_s": cpu, "note": _NOTES.get(name, ""),
-        "Wr_choice": ((f"2·L of the calibration map ({spec.Wr * 1e3:g} mm); the paper gives "
-                       "W_r ≫ 1024 µm") if surface == "Ps" else "Table 1"),
-    }  # fmt: skip
+        "cpu_s": cpu,
+        "note": _NOTES.get(name, ""),
+        "Wr_choice": (
+            (f"2·L of the calibration map ({spec.Wr * 1e3:g} mm); the paper gives W_r ≫ 1024 µm")
+            if surface == "Ps"
+            else "Table 1"
+        ),
+    }
 
 
 CALIBRATION: MappingProxyType = MappingProxyType({name: _record(name) for name in PRESETS})

@@ -75,21 +75,33 @@ class SelfAffineSpec(Parameters):
         1024, "pixels per side, or nx ny", kind="int", ge=8, le=1 << 20, pair=True, sweep=False
     )
     rolloff: float | None = param(
-        None, "roll-off wavelength λ_r: C(q) flat above it; none = no roll-off", unit="m",
-        gt=0.0, optional=True,
-    )  # fmt: skip
+        None,
+        "roll-off wavelength λ_r: C(q) flat above it; none = no roll-off",
+        unit="m",
+        gt=0.0,
+        optional=True,
+    )
     long_cutoff: float | None = param(
-        None, "long cut-off wavelength λ_L: no content above it; none = the side L", unit="m",
-        gt=0.0, optional=True,
-    )  # fmt: skip
+        None,
+        "long cut-off wavelength λ_L: no content above it; none = the side L",
+        unit="m",
+        gt=0.0,
+        optional=True,
+    )
     short_cutoff: float | None = param(
-        None, "short cut-off wavelength λ_s: no content below it; none = 2 pixels of the grid",
-        unit="m", gt=0.0, optional=True,
-    )  # fmt: skip
+        None,
+        "short cut-off wavelength λ_s: no content below it; none = 2 pixels of the grid",
+        unit="m",
+        gt=0.0,
+        optional=True,
+    )
     rms_height: float | None = param(
-        None, "rms height h_rms the map has; none = 1 µm unless rms_slope is given", unit="m",
-        gt=0.0, optional=True,
-    )  # fmt: skip
+        None,
+        "rms height h_rms the map has; none = 1 µm unless rms_slope is given",
+        unit="m",
+        gt=0.0,
+        optional=True,
+    )
     rms_slope: float | None = param(
         None, "rms slope h′_rms the map has (instead of rms_height)", gt=0.0, optional=True
     )
@@ -133,8 +145,17 @@ class SelfAffineSpec(Parameters):
         long_ = self.long_cutoff if self.long_cutoff is not None else max(lx, ly)
         q_long, q_short = 2 * math.pi / long_, 2 * math.pi / short
         q_roll = 2 * math.pi / self.rolloff if self.rolloff is not None else q_long
-        return {"Lx": lx, "Ly": ly, "nx": nx, "ny": ny, "dx": dx, "dy": dy,
-                "q_long": q_long, "q_roll": q_roll, "q_short": q_short}  # fmt: skip
+        return {
+            "Lx": lx,
+            "Ly": ly,
+            "nx": nx,
+            "ny": ny,
+            "dx": dx,
+            "dy": dy,
+            "q_long": q_long,
+            "q_roll": q_roll,
+            "q_short": q_short,
+        }
 
     def psd(self, q: Any, c0: float) -> np.ndarray:
         """C(q) (m⁴) at wavevectors ``q`` (rad/m) for the prefactor ``c0`` (m⁴).
@@ -196,8 +217,16 @@ def self_affine_surface(spec: SelfAffineSpec | None = None, *, device: Any = Non
     dev = resolve_device(device)
     g = spec.grid()
     nx, ny = g["nx"], g["ny"]
-    geo = [nx, ny, float(g["Lx"]), float(g["Ly"]), float(spec.hurst), float(g["q_roll"]),
-           float(g["q_long"]), float(g["q_short"])]  # fmt: skip
+    geo = [
+        nx,
+        ny,
+        float(g["Lx"]),
+        float(g["Ly"]),
+        float(spec.hurst),
+        float(g["q_roll"]),
+        float(g["q_long"]),
+        float(g["q_short"]),
+    ]
     sums = wp.zeros((ny, 2), dtype=wp.float64, device=dev)
     wp.launch(_k.mode_sums_kernel, dim=ny, inputs=geo, outputs=[sums], device=dev)
     s0, s2 = (float(v) for v in sums.numpy().sum(axis=0))  # sync point
@@ -212,16 +241,26 @@ def self_affine_surface(spec: SelfAffineSpec | None = None, *, device: Any = Non
         s = (1e-6 if spec.rms_height is None else spec.rms_height) / math.sqrt(s0)
     spectrum = wp.empty((ny, nx // 2 + 1), dtype=wp.vec2d, device=dev)
     key = int(np.random.SeedSequence(spec.seed).generate_state(1, dtype=np.uint32)[0] >> 1)
-    wp.launch(_k.fill_spectrum_kernel, dim=spectrum.shape,
-              inputs=[*geo, float(nx * ny * s), key], outputs=[spectrum], device=dev)  # fmt: skip
+    wp.launch(
+        _k.fill_spectrum_kernel,
+        dim=spectrum.shape,
+        inputs=[*geo, float(nx * ny * s), key],
+        outputs=[spectrum],
+        device=dev,
+    )
     z = wp.empty((ny, nx), dtype=wp.float32, device=dev)
     h = _inverse_real_fft(spectrum, (ny, nx), dev)
     wp.launch(_k.to_float32_kernel, dim=z.shape, inputs=[h], outputs=[z], device=dev)
     del spectrum, h
     c0 = s**2 * g["Lx"] * g["Ly"] / (2 * math.pi) ** 2
-    params = {"generator": "self-affine", **spec.to_dict(), "C0_m4": c0,
-              "h_rms_m": s * math.sqrt(s0), "slope_rms": s * math.sqrt(s2),
-              **{k: g[k] for k in ("q_long", "q_roll", "q_short")}}  # fmt: skip
+    params = {
+        "generator": "self-affine",
+        **spec.to_dict(),
+        "C0_m4": c0,
+        "h_rms_m": s * math.sqrt(s0),
+        "slope_rms": s * math.sqrt(s2),
+        **{k: g[k] for k in ("q_long", "q_roll", "q_short")},
+    }
     return Surface(z, g["dx"], g["dy"], params)
 
 

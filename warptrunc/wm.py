@@ -293,8 +293,9 @@ def height_scale(spec: WMTerms, lo: float, hi: float, device: wp.DeviceLike = No
     ref = reference_grid(spec)
     if ref is not None:
         nx, ny = ref
-        grid = WMTerms(**{**spec.__dict__, "nx": nx, "ny": ny, "dx": spec.Lx / nx,
-                          "dy": spec.Ly / ny})  # fmt: skip
+        grid = WMTerms(
+            **{**spec.__dict__, "nx": nx, "ny": ny, "dx": spec.Lx / nx, "dy": spec.Ly / ny}
+        )
         _z, _c0, lo, hi = _raw_sum(grid, resolve_device(device))
         del _z
     if spec.Rt is not None:
@@ -332,56 +333,56 @@ def wm_surface(
 ) -> Surface:
     """Generate a Weierstrass–Mandelbrot rough surface (paper Eq. 4).
 
-    ``wm_surface(WMSpec(D=2.3, n=2048))``, ``wm_surface(D=2.3, n=2048)`` and, as before
-    :class:`WMSpec` existed, ``wm_surface(2.3, 100e-6, n=2048)`` give the same surface.
+        ``wm_surface(WMSpec(D=2.3, n=2048))``, ``wm_surface(D=2.3, n=2048)`` and, as before
+        :class:`WMSpec` existed, ``wm_surface(2.3, 100e-6, n=2048)`` give the same surface.
 
-    Parameters
-    ----------
-    spec : WMSpec or float, optional
-        The parameters (a preset such as ``warptrunc.presets.TABLE1["GB300s"]`` is one); or the
-        fractal dimension D, then ``Wr`` may follow positionally. Default: ``WMSpec()``.
-    *args
-        ``Wr`` (m), when ``spec`` is D.
-    device : str, optional
-        Warp device; see :func:`warptrunc.resolve_device`.
-    **params
-        Fields of :class:`WMSpec` (they override those of ``spec``). ``Rt`` scales the heights
-        so that max − min = R_t (the paper's procedure, §3.2); set ``Rt=None`` and give ``G``
-        for the unscaled formula. ``cutoff="nyquist"`` (default W_c = 2·max(dx, dy)) is the
-        shortest wavelength the grid resolves (no term aliases); ``"pixel"`` (max(dx, dy)) is
-        the paper's literal "smallest distance between two adjacent pixels", whose finest
-        terms alias onto longer wavelengths. The phases α_mn are drawn on the host by
-        ``numpy.random.default_rng(seed)`` in (m, n) order, so the same seed gives the same
-        surface on every device. ``method="tile"``: separable tables and a Warp tile GEMM
-        (fast); ``"direct"``: one thread per pixel summing every term with float64 phases
-        (reference). The fields:
+        Parameters
+        ----------
+        spec : WMSpec or float, optional
+            The parameters (a preset such as ``warptrunc.presets.TABLE1["GB300s"]`` is one); or the
+            fractal dimension D, then ``Wr`` may follow positionally. Default: ``WMSpec()``.
+        *args
+            ``Wr`` (m), when ``spec`` is D.
+        device : str, optional
+            Warp device; see :func:`warptrunc.resolve_device`.
+        **params
+            Fields of :class:`WMSpec` (they override those of ``spec``). ``Rt`` scales the heights
+            so that max − min = R_t (the paper's procedure, §3.2); set ``Rt=None`` and give ``G``
+            for the unscaled formula. ``cutoff="nyquist"`` (default W_c = 2·max(dx, dy)) is the
+            shortest wavelength the grid resolves (no term aliases); ``"pixel"`` (max(dx, dy)) is
+            the paper's literal "smallest distance between two adjacent pixels", whose finest
+            terms alias onto longer wavelengths. The phases α_mn are drawn on the host by
+            ``numpy.random.default_rng(seed)`` in (m, n) order, so the same seed gives the same
+            surface on every device. ``method="tile"``: separable tables and a Warp tile GEMM
+            (fast); ``"direct"``: one thread per pixel summing every term with float64 phases
+            (reference). The fields:
 
-{fields}
+    {fields}
 
-    Returns
-    -------
-    Surface
-        Heights (m) and ``params`` holding every generation parameter, ``n_max`` (highest
-        frequency index, the largest n with W_r/γ^n ≥ W_c), ``n_terms`` = M·(n_max + 1),
-        ``scale`` (m per unit of the raw sum) and ``G_equivalent`` (the topothesy giving that
-        scale).
+        Returns
+        -------
+        Surface
+            Heights (m) and ``params`` holding every generation parameter, ``n_max`` (highest
+            frequency index, the largest n with W_r/γ^n ≥ W_c), ``n_terms`` = M·(n_max + 1),
+            ``scale`` (m per unit of the raw sum) and ``G_equivalent`` (the topothesy giving that
+            scale).
 
-    Raises
-    ------
-    ValueError
-        A parameter out of its range (the message names it, its value and the range).
-    TypeError
-        More than two positional arguments, or a field given twice.
+        Raises
+        ------
+        ValueError
+            A parameter out of its range (the message names it, its value and the range).
+        TypeError
+            More than two positional arguments, or a field given twice.
 
-    Notes
-    -----
-    z(x, y) = W_r (G/W_r)^{D−3} (ln γ/M)^{1/2} Σ_{m=1}^{M} Σ_{n=0}^{n_max} γ^{(D−3)n}
-    [cos α_mn − cos(2π γ^n r cos(θ − πm/M)/W_r + α_mn)], with r cos(θ − πm/M) =
-    x cos(πm/M) + y sin(πm/M).
+        Notes
+        -----
+        z(x, y) = W_r (G/W_r)^{D−3} (ln γ/M)^{1/2} Σ_{m=1}^{M} Σ_{n=0}^{n_max} γ^{(D−3)n}
+        [cos α_mn − cos(2π γ^n r cos(θ − πm/M)/W_r + α_mn)], with r cos(θ − πm/M) =
+        x cos(πm/M) + y sin(πm/M).
 
-    References
-    ----------
-    Yan & Komvopoulos (1998), J. Appl. Phys. 84, 3617, doi:10.1063/1.368536.
+        References
+        ----------
+        Yan & Komvopoulos (1998), J. Appl. Phys. 84, 3617, doi:10.1063/1.368536.
     """
     terms = spec_of_call(spec, args, params, "wm_surface").terms()
     return surface_from_spec(terms, resolve_device(device))
@@ -442,7 +443,9 @@ def wm_window(
         window, origin or factor out of range.
     """
     if params.get("generator") != "weierstrass-mandelbrot":
-        raise ValueError(f"params must be a WM surface's, got generator {params.get('generator')!r}")
+        raise ValueError(
+            f"params must be a WM surface's, got generator {params.get('generator')!r}"
+        )
     f = int(factor)
     if f < 1:
         raise ValueError(f"factor must be an integer >= 1, got {factor!r}")
@@ -450,10 +453,20 @@ def wm_window(
     iy0, ix0 = (int(v) for v in origin)
     if wy < 1 or wx < 1 or iy0 < 0 or ix0 < 0:
         raise ValueError(f"window origin {origin!r} and shape {shape!r} must be >= 0 and >= 1")
-    spec = WMSpec(D=params["D"], Wr=params["Wr"], L=(params["Lx"], params["Ly"]),
-                  n=(params["nx"], params["ny"]), M=params["M"], gamma=params["gamma"],
-                  Wc=params["Wc"], cutoff=params["cutoff"], seed=params["seed"],
-                  Rt=params.get("Rt"), G=params.get("G"), method=params["method"])  # fmt: skip
+    spec = WMSpec(
+        D=params["D"],
+        Wr=params["Wr"],
+        L=(params["Lx"], params["Ly"]),
+        n=(params["nx"], params["ny"]),
+        M=params["M"],
+        gamma=params["gamma"],
+        Wc=params["Wc"],
+        cutoff=params["cutoff"],
+        seed=params["seed"],
+        Rt=params.get("Rt"),
+        G=params.get("G"),
+        method=params["method"],
+    )
     terms = spec.terms()
     if terms.n_max != params["n_max"]:
         raise ValueError(

@@ -52,42 +52,44 @@ class WMTerms:
             ``seed``, ``G`` (m or None), ``Rt`` (m or None), ``Rt_pixel`` (m or None),
             ``method``.
         """
-        keys = ("D Wr Lx Ly nx ny M gamma Wc cutoff n_max n_terms seed G Rt Rt_pixel method").split()
+        keys = (
+            "D Wr Lx Ly nx ny M gamma Wc cutoff n_max n_terms seed G Rt Rt_pixel method"
+        ).split()
         return {"generator": "weierstrass-mandelbrot", **{k: getattr(self, k) for k in keys}}
 
 
 def wm_spec(spec: WMSpec | float | None = None, /, *args: Any, **params: Any) -> WMTerms:
     """Validate the WM parameters and draw the phases on the host (see :func:`wm_surface`).
 
-    Parameters
-    ----------
-    spec : WMSpec or float, optional
-        The parameters; or, as before :class:`WMSpec` existed, the fractal dimension D
-        (then ``Wr`` may follow as the second positional argument).
-    *args
-        ``Wr`` (m), when ``spec`` is D.
-    **params
-        Fields of :class:`WMSpec` (they override those of ``spec``):
+        Parameters
+        ----------
+        spec : WMSpec or float, optional
+            The parameters; or, as before :class:`WMSpec` existed, the fractal dimension D
+            (then ``Wr`` may follow as the second positional argument).
+        *args
+            ``Wr`` (m), when ``spec`` is D.
+        **params
+            Fields of :class:`WMSpec` (they override those of ``spec``):
 
-{fields}
+    {fields}
 
-    Returns
-    -------
-    WMTerms
-        The validated parameters, dx, dy (m), n_max (the largest n with W_r/γ^n ≥ W_c),
-        n_terms = M·(n_max + 1), and per term the wavevector components kx, ky (rad/m), the
-        phase α (rad) and the weight w = γ^((D − 3)n) (dimensionless).
+        Returns
+        -------
+        WMTerms
+            The validated parameters, dx, dy (m), n_max (the largest n with W_r/γ^n ≥ W_c),
+            n_terms = M·(n_max + 1), and per term the wavevector components kx, ky (rad/m), the
+            phase α (rad) and the weight w = γ^((D − 3)n) (dimensionless).
 
-    Raises
-    ------
-    ValueError
-        A parameter out of range, an unknown ``cutoff`` or ``method``, a default W_c not
-        below W_r, or both or neither of ``Rt`` and ``G``.
+        Raises
+        ------
+        ValueError
+            A parameter out of range, an unknown ``cutoff`` or ``method``, a default W_c not
+            below W_r, or both or neither of ``Rt`` and ``G``.
 
-    Notes
-    -----
-    The terms are those of the paper's Eq. (4), with the spatial frequency of term (m, n)
-    k = 2πγⁿ/W_r along the direction θ = πm/M.
+        Notes
+        -----
+        The terms are those of the paper's Eq. (4), with the spatial frequency of term (m, n)
+        k = 2πγⁿ/W_r along the direction θ = πm/M.
     """
     return spec_of_call(spec, args, params, "wm_spec").terms()
 
@@ -161,11 +163,30 @@ def _terms(s: WMSpec) -> WMTerms:
     k = 2.0 * math.pi * gamma**nn / Wr
     theta = math.pi * m / M
     return WMTerms(
-        D=D, Wr=Wr, Lx=Lx, Ly=Ly, nx=nx, ny=ny, dx=dx, dy=dy, M=M, gamma=gamma, Wc=Wc,
-        cutoff=cutoff, n_max=n_max, n_terms=n_terms, seed=s.seed, G=s.G, Rt=s.Rt,
-        Rt_pixel=s.Rt_pixel, method=s.method, kx=k * np.cos(theta), ky=k * np.sin(theta), alpha=alpha,
+        D=D,
+        Wr=Wr,
+        Lx=Lx,
+        Ly=Ly,
+        nx=nx,
+        ny=ny,
+        dx=dx,
+        dy=dy,
+        M=M,
+        gamma=gamma,
+        Wc=Wc,
+        cutoff=cutoff,
+        n_max=n_max,
+        n_terms=n_terms,
+        seed=s.seed,
+        G=s.G,
+        Rt=s.Rt,
+        Rt_pixel=s.Rt_pixel,
+        method=s.method,
+        kx=k * np.cos(theta),
+        ky=k * np.sin(theta),
+        alpha=alpha,
         w=wm_weights(D, gamma, nn),
-    )  # fmt: skip
+    )
 
 
 def wm_phases(seed: int, M: int, n_f: int) -> np.ndarray:
@@ -209,35 +230,57 @@ class WMSpec(Parameters):
         1024, "pixels per side, or nx ny", kind="int", ge=2, le=1 << 20, pair=True, sweep=False
     )
     Rt: float | None = param(
-        10e-6, "target peak-to-valley height R_t; None (none) when G is given", unit="m", gt=0.0,
-        le=HEIGHT_LIMIT_M, optional=True,
-    )  # fmt: skip
+        10e-6,
+        "target peak-to-valley height R_t; None (none) when G is given",
+        unit="m",
+        gt=0.0,
+        le=HEIGHT_LIMIT_M,
+        optional=True,
+    )
     G: float | None = param(
-        None, "topothesy G; when given, heights are not rescaled to R_t", unit="m", gt=0.0,
-        optional=True, sweep=False,
-    )  # fmt: skip
+        None,
+        "topothesy G; when given, heights are not rescaled to R_t",
+        unit="m",
+        gt=0.0,
+        optional=True,
+        sweep=False,
+    )
     Rt_pixel: float | None = param(
-        None, "pixel size at which R_t is measured (a calibration scan's): the height scale is "
+        None,
+        "pixel size at which R_t is measured (a calibration scan's): the height scale is "
         "fixed on that grid over L, so finer grids resolve the same surface; none = the map's "
-        "own pixel", unit="m", gt=0.0, optional=True, sweep=False,
-    )  # fmt: skip
+        "own pixel",
+        unit="m",
+        gt=0.0,
+        optional=True,
+        sweep=False,
+    )
     M: int = param(10, "number of superposed ridges M", kind="int", ge=1, le=10_000)
     gamma: float = param(1.5, "frequency density γ", gt=1.0)
     Wc: float | None = param(
         None, "cut-off wavelength W_c (default from cutoff)", unit="m", gt=0.0, optional=True
     )
     cutoff: str = param(
-        "nyquist", "default W_c: 'nyquist' = 2 pixel spacings (no aliasing), 'pixel' = 1 "
-        "spacing (the paper's literal reading)", choices=("nyquist", "pixel"), sweep=False,
-    )  # fmt: skip
-    seed: int = param(
-        0, "seed of the random phases α_mn (drawn on the host)", kind="int", ge=0, le=2**32 - 1,
+        "nyquist",
+        "default W_c: 'nyquist' = 2 pixel spacings (no aliasing), 'pixel' = 1 "
+        "spacing (the paper's literal reading)",
+        choices=("nyquist", "pixel"),
         sweep=False,
-    )  # fmt: skip
+    )
+    seed: int = param(
+        0,
+        "seed of the random phases α_mn (drawn on the host)",
+        kind="int",
+        ge=0,
+        le=2**32 - 1,
+        sweep=False,
+    )
     method: str = param(
-        "tile", "evaluation: 'tile' (separable GEMM) or 'direct' (per-pixel sum)",
-        choices=("tile", "direct"), sweep=False,
-    )  # fmt: skip
+        "tile",
+        "evaluation: 'tile' (separable GEMM) or 'direct' (per-pixel sum)",
+        choices=("tile", "direct"),
+        sweep=False,
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -265,8 +308,6 @@ class WMSpec(Parameters):
     def n_terms(self) -> int:
         """Number of WM terms M·(n_max + 1)."""
         return self.terms().n_terms
-
-
 
 
 wm_spec.__doc__ = wm_spec.__doc__.replace("{fields}", numpydoc_fields(WMSpec, indent=8))

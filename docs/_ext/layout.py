@@ -38,9 +38,12 @@ def summary(path: Path) -> str:
 def rows(package: Path, prefix: str, depth: int = 0) -> list[tuple[str, str]]:
     """(path shown, summary) of a package's modules and sub-packages, depth first."""
     out = []
-    entries = sorted(p for p in package.iterdir()
-                     if (p.suffix == ".py" and not p.name.startswith("__"))
-                     or (p.is_dir() and (p / "__init__.py").is_file()))  # fmt: skip
+    entries = sorted(
+        p
+        for p in package.iterdir()
+        if (p.suffix == ".py" and not p.name.startswith("__"))
+        or (p.is_dir() and (p / "__init__.py").is_file())
+    )
     for p in entries:
         if p.is_dir():
             out.append((f"{prefix}{p.name}/", summary(p / "__init__.py")))

@@ -23,9 +23,11 @@ def presets_table() -> str:
     """Markdown table of the Table 1 presets (SI values shown in µm), with their calibration."""
     from warptrunc.presets import CALIBRATION, PRESETS
 
-    rows = ["| preset | matched | D_in | R_t′ (µm) | W_r (µm) | L (mm) | n | M | "
-            "D reached / Table 1 | bound | calibrated | W_r from |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
+    rows = [
+        "| preset | matched | D_in | R_t′ (µm) | W_r (µm) | L (mm) | n | M | "
+        "D reached / Table 1 | bound | calibrated | W_r from |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
     for name, s in PRESETS.items():
         c = CALIBRATION[name]
         rows.append(

@@ -43,8 +43,7 @@ def _esc(v: object) -> str:
 
 
 def _md_table(header: list[str], rows: list[list[str]]) -> str:
-    out = ["| " + " | ".join(_esc(h) for h in header) + " |",
-           "|" + "---|" * len(header)]
+    out = ["| " + " | ".join(_esc(h) for h in header) + " |", "|" + "---|" * len(header)]
     out += ["| " + " | ".join(_esc(c) for c in r) + " |" for r in rows]
     return "\n".join(out) + "\n"
 
@@ -74,7 +73,9 @@ def _commit(commit: str | None, name: str) -> str:
     return f"`{m.group(1)}`†" if m else "not recorded"
 
 
-UNRECORDED = "† not in the record: the commit its file name gives (see benchmarks/records/README.md)."
+UNRECORDED = (
+    "† not in the record: the commit its file name gives (see benchmarks/records/README.md)."
+)
 
 
 def _gpu_model(name: str | None) -> str:
@@ -84,7 +85,9 @@ def _gpu_model(name: str | None) -> str:
 
 
 def _source(names: list[str], machine: str) -> str:
-    return f"\n*Record{'s' if len(names) > 1 else ''}:* {', '.join(map(_link, names))} ({machine}).\n"
+    return (
+        f"\n*Record{'s' if len(names) > 1 else ''}:* {', '.join(map(_link, names))} ({machine}).\n"
+    )
 
 
 def _s(x: float) -> str:
@@ -99,8 +102,9 @@ def _ratio(x: float) -> str:
 # -- transcribed tables ----------------------------------------------------------------------
 
 
-def records_table(doc: dict, name: str, columns: dict[str, str] | None = None,
-                  drop_rows: tuple[str, ...] = ()) -> str:
+def records_table(
+    doc: dict, name: str, columns: dict[str, str] | None = None, drop_rows: tuple[str, ...] = ()
+) -> str:
     """Markdown of one transcribed table: the table and a line naming its record and runs.
 
     ``columns`` keeps only these columns, renamed (old name → header), and leaves out the
@@ -168,18 +172,33 @@ def bem_tables(doc: dict, name: str) -> tuple[str, str]:
         conv = sum(bool(c["all_converged"]) for c in cases)
         tps = sum(c["time_per_solve_s"] for c in cases) / len(cases)
         wall = sum(c["wall_s"] for c in cases) / len(cases)
-        summary.append([f"{d}", _rng(lr), _rng(kr), _rng(ar), f"{conv}/{len(cases)}",
-                        f"{tps:.1f}", f"{wall:.0f}"])
+        summary.append(
+            [
+                f"{d}",
+                _rng(lr),
+                _rng(kr),
+                _rng(ar),
+                f"{conv}/{len(cases)}",
+                f"{tps:.1f}",
+                f"{wall:.0f}",
+            ]
+        )
         for i, frac in enumerate(cols[0]["depth_fraction_of_Rt"]):
             area = [c["bem_area_m2"][i] / c.get("apparent_area_m2", 1e-6) for c in cols]
             frac_pct = 100 * sum(area) / len(area)
-            per.append([f"{d}", f"{frac:.2f}",
-                        _mean_rng([c["load_ratio"][i] for c in cols]),
-                        _mean_rng([c["stiffness_ratio"][i] for c in cols]),
-                        _mean_rng([c["area_ratio"][i] for c in cols]),
-                        f"{frac_pct:.2g} %"])
-    t1 = _md_table(["D", "F'/F_BEM", "k'/k_BEM", "A'/A_BEM", "converged", "s per solve",
-                    "s per case"], summary)
+            per.append(
+                [
+                    f"{d}",
+                    f"{frac:.2f}",
+                    _mean_rng([c["load_ratio"][i] for c in cols]),
+                    _mean_rng([c["stiffness_ratio"][i] for c in cols]),
+                    _mean_rng([c["area_ratio"][i] for c in cols]),
+                    f"{frac_pct:.2g} %",
+                ]
+            )
+    t1 = _md_table(
+        ["D", "F'/F_BEM", "k'/k_BEM", "A'/A_BEM", "converged", "s per solve", "s per case"], summary
+    )
     t2 = _md_table(["D", "δ/R_t", "F'/F_BEM", "k'/k_BEM", "A'/A_BEM", "A_BEM/A"], per)
     note = _source([name], doc.get("machine", "") + ", commit not recorded")
     return t1 + note, t2 + note
@@ -197,19 +216,32 @@ def solver_scaling(name: str) -> str:
             continue
         it_w, conv_w = r["warm_iterations"], r["warm_convolutions"]
         peak = r.get("peak_bytes") or r.get("mempool_high_water_bytes")
-        body.append([
-            f"{r['n']}²", r["dtype"],
-            f"{r['cold_s']:.3f} ({r['cold_iterations']})",
-            f"{r['warm_s']:.3f} ({it_w})",
-            f"{conv_w / it_w:.2f}",
-            f"{1e3 * r['warm_per_convolution_s']:.2f}",
-            f"{r['per_convolution_over_floor']:.2f}",
-            f"{peak / 1e9:.2f}" if peak else "–",
-            f"{peak / r['memory_model_bytes']:.3f}" if peak and r.get("memory_model_bytes") else "–",
-        ])  # fmt: skip
-    header = ["N", "dtype", "cold solve (s, iterations)", "warm solve (s, iterations)",
-              "convolutions per iteration", "ms per convolution", "÷ FFT floor",
-              "peak memory (GB)", "peak ÷ model"]
+        body.append(
+            [
+                f"{r['n']}²",
+                r["dtype"],
+                f"{r['cold_s']:.3f} ({r['cold_iterations']})",
+                f"{r['warm_s']:.3f} ({it_w})",
+                f"{conv_w / it_w:.2f}",
+                f"{1e3 * r['warm_per_convolution_s']:.2f}",
+                f"{r['per_convolution_over_floor']:.2f}",
+                f"{peak / 1e9:.2f}" if peak else "–",
+                f"{peak / r['memory_model_bytes']:.3f}"
+                if peak and r.get("memory_model_bytes")
+                else "–",
+            ]
+        )
+    header = [
+        "N",
+        "dtype",
+        "cold solve (s, iterations)",
+        "warm solve (s, iterations)",
+        "convolutions per iteration",
+        "ms per convolution",
+        "÷ FFT floor",
+        "peak memory (GB)",
+        "peak ÷ model",
+    ]
     machine = f"{doc.get('device_name', '?')}, `{_short(doc.get('commit'))}`"
     return _md_table(header, body) + _source([name], machine)
 
@@ -253,8 +285,14 @@ def peers(names: list[str]) -> str:
         for (surface, substrate, n), by in groups.items():
             wt = by.get("warptrunc float64")
             wt_s = wt["time_s"] if wt and wt.get("matched") else None
-            line = [f"{_gpu_model(d['device_name'])} ({d['cpu_cores']} cores)",
-                    f"`{_short(d['commit'])}`"] if many else []  # fmt: skip
+            line = (
+                [
+                    f"{_gpu_model(d['device_name'])} ({d['cpu_cores']} cores)",
+                    f"`{_short(d['commit'])}`",
+                ]
+                if many
+                else []
+            )
             what = "tamaas' H = 0.8" if surface == "tamaas" else "WM D = 2.5"
             line += [f"{what}, {substrate}", f"{n}²"] + [_peer_cell(by.get(c)) for c in cols]
             for p in peers_:
@@ -269,10 +307,15 @@ def peers(names: list[str]) -> str:
                     line.append("–")
             body.append(line)
     d0 = docs[0][1]
-    machine = ("; ".join(f"{d['device_name']}, {d['cpu']} ({d['cpu_cores']} cores), "
-                         f"`{_short(d['commit'])}`, {d['date'][:10]}" for _, d in docs))  # fmt: skip
-    note = (f"\nEach cell: the time of one cold solve at the loosest tolerance that matches "
-            f"(tolerance, iterations); {d0['rule']}.\n")
+    machine = "; ".join(
+        f"{d['device_name']}, {d['cpu']} ({d['cpu_cores']} cores), "
+        f"`{_short(d['commit'])}`, {d['date'][:10]}"
+        for _, d in docs
+    )
+    note = (
+        f"\nEach cell: the time of one cold solve at the loosest tolerance that matches "
+        f"(tolerance, iterations); {d0['rule']}.\n"
+    )
     return _md_table(header, body) + note + _source([n for n, _ in docs], machine)
 
 
@@ -286,12 +329,24 @@ def startup(names: list[str]) -> str:
         d = load(name)
         med = d["median_s"]
         dev = "CPU" if d["device"] == "cpu" else "one GPU"
-        body.append([f"{d['device_name']} ({dev}; {d['cpu_cores']}-core host)",
-                     f"`{_short(d['commit'])}`",
-                     f"{d['n']}²", f"{med['job']:.2f}", f"{med['floor']:.2f}",
-                     f"**{d['excess_s']:.2f}**"])  # fmt: skip
-    header = ["machine", "commit", "`--n`", "`warptrunc analyze` (s, median of 5)",
-              "floor: `import warp; warp.init()` (s)", "job − floor (s)"]
+        body.append(
+            [
+                f"{d['device_name']} ({dev}; {d['cpu_cores']}-core host)",
+                f"`{_short(d['commit'])}`",
+                f"{d['n']}²",
+                f"{med['job']:.2f}",
+                f"{med['floor']:.2f}",
+                f"**{d['excess_s']:.2f}**",
+            ]
+        )
+    header = [
+        "machine",
+        "commit",
+        "`--n`",
+        "`warptrunc analyze` (s, median of 5)",
+        "floor: `import warp; warp.init()` (s)",
+        "job − floor (s)",
+    ]
     return _md_table(header, body) + _source(names, "fresh processes, warm kernel cache")
 
 
@@ -313,20 +368,42 @@ def sharded(names: list[str]) -> str:
             model = r.get("model_bytes_per_device") or r.get("model_GB", 0) * 1e9
             conv = w.get("converged")
             capped = w["iterations"] >= r.get("maxiter", 1 << 30)
-            its = f"{w['iterations']}" + (" (not converged)" if conv is False else
-                                          " (maxiter)" if conv is None and capped else "")  # fmt: skip
+            its = f"{w['iterations']}" + (
+                " (not converged)"
+                if conv is False
+                else " (maxiter)"
+                if conv is None and capped
+                else ""
+            )
             commit = _commit(r.get("commit"), name)
             marked |= commit.endswith("†")
             kind = "WM D = 2.5" if r.get("map") == "wm" else "self-affine"
-            body.append([
-                f"{_gpu_model(r['devices'][0])} × {r['ndev']}", commit,
-                f"{r['n']}², {r['dtype']}, {kind}", f"{r['floor_ms']:.1f}",
-                f"{w['s']:.2f}", its, f"{w['ms_per_iteration']:.1f}", f"{r['warm_over_floor']:.2f}",
-                _gb(peak), _gb(model),
-            ])  # fmt: skip
-    header = ["GPUs", "commit", "map", "FFT floor (ms)", "warm solve (s)", "iterations",
-              "ms per iteration", "per convolution ÷ floor", "peak GB per GPU",
-              "model GB per GPU (at that commit)"]
+            body.append(
+                [
+                    f"{_gpu_model(r['devices'][0])} × {r['ndev']}",
+                    commit,
+                    f"{r['n']}², {r['dtype']}, {kind}",
+                    f"{r['floor_ms']:.1f}",
+                    f"{w['s']:.2f}",
+                    its,
+                    f"{w['ms_per_iteration']:.1f}",
+                    f"{r['warm_over_floor']:.2f}",
+                    _gb(peak),
+                    _gb(model),
+                ]
+            )
+    header = [
+        "GPUs",
+        "commit",
+        "map",
+        "FFT floor (ms)",
+        "warm solve (s)",
+        "iterations",
+        "ms per iteration",
+        "per convolution ÷ floor",
+        "peak GB per GPU",
+        "model GB per GPU (at that commit)",
+    ]
     note = f"\n{UNRECORDED}\n" if marked else ""
     return _md_table(header, body) + note + _source(names, "free boundary, one host each")
 
@@ -337,16 +414,35 @@ def sharded_bem_check(name: str) -> str:
     for r in load(name):
         if r.get("step") != "bem_check" or not r.get("valid"):
             continue
-        ratios = [t / b for t, b in zip(r.get("trunc_stiffness_N_per_m", []),
-                                        r["bem_stiffness_N_per_m"], strict=False)]  # fmt: skip
-        body.append([f"`{r['command']}`", f"`{_short(r['commit'])}`",
-                     ", ".join(f"{x:.2g}" for x in r["depth_fraction_of_Rt"]),
-                     ", ".join(map(str, r["n_iterations"])),
-                     ", ".join(f"{x:.1f}" for x in r["solve_time_s"]),
-                     f"{r['seconds_per_solve']:.1f}", r.get("wall", "–"),
-                     _gb(r["model_bytes_per_device"])] + ([_rng(ratios)] if ratios else []))  # fmt: skip
-    header = ["command", "commit", "δ/R_t", "iterations", "s per solve", "mean s per solve",
-              "whole command (m:s)", "model GB per GPU"]
+        ratios = [
+            t / b
+            for t, b in zip(
+                r.get("trunc_stiffness_N_per_m", []), r["bem_stiffness_N_per_m"], strict=False
+            )
+        ]
+        body.append(
+            [
+                f"`{r['command']}`",
+                f"`{_short(r['commit'])}`",
+                ", ".join(f"{x:.2g}" for x in r["depth_fraction_of_Rt"]),
+                ", ".join(map(str, r["n_iterations"])),
+                ", ".join(f"{x:.1f}" for x in r["solve_time_s"]),
+                f"{r['seconds_per_solve']:.1f}",
+                r.get("wall", "–"),
+                _gb(r["model_bytes_per_device"]),
+            ]
+            + ([_rng(ratios)] if ratios else [])
+        )
+    header = [
+        "command",
+        "commit",
+        "δ/R_t",
+        "iterations",
+        "s per solve",
+        "mean s per solve",
+        "whole command (m:s)",
+        "model GB per GPU",
+    ]
     return _md_table(header, body) + _source([name], "4 × NVIDIA H200, one host")
 
 
@@ -368,20 +464,33 @@ def _wall(r: dict | None) -> str:
 def workers(names: list[str]) -> str:
     """``benchmark_workers.py``: whole ``warptrunc sweep`` commands in process and on N workers."""
     body = []
-    counts = sorted({int(r["run"].split("_")[1]) for n in names for r in load(n)["runs"]
-                     if r["run"].startswith("workers_")})  # fmt: skip
+    counts = sorted(
+        {
+            int(r["run"].split("_")[1])
+            for n in names
+            for r in load(n)["runs"]
+            if r["run"].startswith("workers_")
+        }
+    )
     for name in names:
         d = load(name)
-        model = _gpu_model(d.get("warp_devices", ["", "?"])[1] if len(d.get("warp_devices", [])) > 1
-                           else "?")  # fmt: skip
+        model = _gpu_model(
+            d.get("warp_devices", ["", "?"])[1] if len(d.get("warp_devices", [])) > 1 else "?"
+        )
         by: OrderedDict[str, dict] = OrderedDict()
         for r in d["runs"]:
             by.setdefault(r["workload"], {})[r["run"]] = r
         for runs in by.values():
             inproc = runs.get("inproc")
-            body.append([f"{model} × {len(d.get('warp_devices', [])) - 1}",
-                         f"`{_short(d['commit'])}`", _workload(inproc or next(iter(runs.values()))),
-                         _wall(inproc)] + [_wall(runs.get(f"workers_{c}")) for c in counts])  # fmt: skip
+            body.append(
+                [
+                    f"{model} × {len(d.get('warp_devices', [])) - 1}",
+                    f"`{_short(d['commit'])}`",
+                    _workload(inproc or next(iter(runs.values()))),
+                    _wall(inproc),
+                ]
+                + [_wall(runs.get(f"workers_{c}")) for c in counts]
+            )
     header = ["GPUs", "commit", "sweep", "in process on cuda:0 (s)"]
     header += [f"{c} worker{'s' if c > 1 else ''} (s, speed-up)" for c in counts]
     return _md_table(header, body) + _source(names, "whole commands, one worker per GPU")
@@ -390,8 +499,14 @@ def workers(names: list[str]) -> str:
 def indentation_workers(names: list[str]) -> str:
     """``benchmark_indentation_workers.py``: the reproduce indentation stage on N workers."""
     body = []
-    counts = sorted({int(r["run"].split("_")[1]) for n in names for r in load(n)["runs"]
-                     if r["run"].startswith("workers_")})  # fmt: skip
+    counts = sorted(
+        {
+            int(r["run"].split("_")[1])
+            for n in names
+            for r in load(n)["runs"]
+            if r["run"].startswith("workers_")
+        }
+    )
     for name in names:
         d = load(name)
         gpus = d.get("machine", {}).get("gpus") or d.get("gpus_csv") or []
@@ -399,13 +514,23 @@ def indentation_workers(names: list[str]) -> str:
         by = {r["run"]: r for r in d["runs"]}
         prof = d["profile"]
         inproc = by.get("inproc")
-        body.append([f"{model} × {len(gpus)}", f"`{_short(d['commit'])}`",
-                     f"{prof['indentation_n']}² over {prof['indentation_L_m'] * 1e3:g} mm",
-                     f"{inproc['pieces']} pieces, {inproc['pieces_s']:.0f} s" if inproc else "–",
-                     _wall(inproc)] + [_wall(by.get(f"workers_{c}")) for c in counts])  # fmt: skip
-    header = ["GPUs", "commit", "indentation map", "work (sum of the pieces' seconds)",
-              "in process (s)"] + [f"{c} worker{'s' if c > 1 else ''} (s, speed-up)"
-                                   for c in counts]  # fmt: skip
+        body.append(
+            [
+                f"{model} × {len(gpus)}",
+                f"`{_short(d['commit'])}`",
+                f"{prof['indentation_n']}² over {prof['indentation_L_m'] * 1e3:g} mm",
+                f"{inproc['pieces']} pieces, {inproc['pieces_s']:.0f} s" if inproc else "–",
+                _wall(inproc),
+            ]
+            + [_wall(by.get(f"workers_{c}")) for c in counts]
+        )
+    header = [
+        "GPUs",
+        "commit",
+        "indentation map",
+        "work (sum of the pieces' seconds)",
+        "in process (s)",
+    ] + [f"{c} worker{'s' if c > 1 else ''} (s, speed-up)" for c in counts]
     return _md_table(header, body) + _source(names, "whole processes, `--profile paper`")
 
 
@@ -415,16 +540,35 @@ TRANSCRIBED: dict[str, tuple[str, dict[str, str] | None, tuple[str, ...]]] = {
     "kernels": ("kernels_cpu_h200_0943db8_12ef4a7.json", None, ()),
     "islands": ("islands_cpu_h200_0943db8_faabd2b.json", None, ()),
     "fractal": ("fractal_methods_cpu_h200_0943db8.json", None, ()),
-    "pipeline": ("pipeline_before_after_h100_e4e7e82.json",
-                 {"target": "what", "after": "time", "reference in the same run":
-                  "reference in the same run"},
-                 ("`island_curve`", "`warptrunc analyze --n 10240`", "label one mask")),
+    "pipeline": (
+        "pipeline_before_after_h100_e4e7e82.json",
+        {
+            "target": "what",
+            "after": "time",
+            "reference in the same run": "reference in the same run",
+        },
+        ("`island_curve`", "`warptrunc analyze --n 10240`", "label one mask"),
+    ),
     "contact_cpu": ("contact_solver_cpu_5e9d35d.json", None, ()),
-    "contact_h100": ("contact_solver_h100_7b6aa4a.json",
-                     {**{c: c for c in ("N", "dtype", "warm solve", "iterations (conv.)",
-                                        "per iteration", "CuPy convolution floor",
-                                        "memory estimate / held")},
-                      "× floor (target ≤ 1.3)": "× floor"}, ()),
+    "contact_h100": (
+        "contact_solver_h100_7b6aa4a.json",
+        {
+            **{
+                c: c
+                for c in (
+                    "N",
+                    "dtype",
+                    "warm solve",
+                    "iterations (conv.)",
+                    "per iteration",
+                    "CuPy convolution floor",
+                    "memory estimate / held",
+                )
+            },
+            "× floor (target ≤ 1.3)": "× floor",
+        },
+        (),
+    ),
     "sweep_throughput": ("sweep_throughput_cpu_h200x2_28b7361_34c794c.json", None, ()),
     "table1_presets": ("table1_presets_cpu_79581b0.json", None, ()),
 }
@@ -437,15 +581,24 @@ TABLES: dict[str, Callable[[], str]] = {
     "solver_scaling": lambda: solver_scaling("solver_scaling_h200x4_6af94f0.json"),
     "peers_cpu": lambda: peers(["peers_cpu_e2af04c.json"]),
     "peers_gpu": lambda: peers(["peers_h100x4_ec597f6.json", "peers_h200x4_6af94f0.json"]),
-    "startup": lambda: startup(["startup_cpu_4d0cc1f.json", "startup_h100x4_ec597f6.json",
-                                "startup_h200x4_6af94f0.json"]),
-    "sharded": lambda: sharded(["sharded_h100x2_789c425.jsonl", "sharded_h200x4_6af94f0.jsonl",
-                                "sharded_h200x4_fab6f70.jsonl", "sharded_h200x4_34cbf1b.jsonl"]),
+    "startup": lambda: startup(
+        ["startup_cpu_4d0cc1f.json", "startup_h100x4_ec597f6.json", "startup_h200x4_6af94f0.json"]
+    ),
+    "sharded": lambda: sharded(
+        [
+            "sharded_h100x2_789c425.jsonl",
+            "sharded_h200x4_6af94f0.jsonl",
+            "sharded_h200x4_fab6f70.jsonl",
+            "sharded_h200x4_34cbf1b.jsonl",
+        ]
+    ),
     "sharded_bem_check": lambda: sharded_bem_check("sharded_h200x4_34cbf1b.jsonl"),
     "workers": lambda: workers(["workers_h100x4_1b64d9c.json", "workers_h200x4_34cbf1b.json"]),
     "indentation_workers": lambda: indentation_workers(["indentation_workers_h100x4_1b64d9c.json"]),
-    **{k: (lambda f=f, c=c, d=d: records_table(load(f), f, c, d))
-       for k, (f, c, d) in TRANSCRIBED.items()},
+    **{
+        k: (lambda f=f, c=c, d=d: records_table(load(f), f, c, d))
+        for k, (f, c, d) in TRANSCRIBED.items()
+    },
     "bem_table_by_D": lambda: bem_tables(load(BEM_TABLE), BEM_TABLE)[0],
     "bem_table_by_depth": lambda: bem_tables(load(BEM_TABLE), BEM_TABLE)[1],
 }

@@ -27,7 +27,9 @@ def _load(path: Path):
 
 def stored_values(store: Path) -> dict:
     """What the identity check reads: {file or section: JSON value}."""
-    docs = {f"indentation/{f.name}": _load(f) for f in sorted((store / "indentation").glob("*.json"))}
+    docs = {
+        f"indentation/{f.name}": _load(f) for f in sorted((store / "indentation").glob("*.json"))
+    }
     st = _load(store / "stages" / "indentation.json")
     docs["stages/indentation.json"] = {k: st.get(k) for k in ("params", "result")}
     docs["results.json:analysis"] = _load(store / "results.json").get("analysis")
@@ -71,7 +73,9 @@ def differences(a, b, path: str = "", out: dict | None = None, seen: list | None
                 continue
             p = f"{path}{k}" if not path or path.endswith(":") else f"{path}.{k}"
             if k not in a or k not in b:
-                _note(out, p, None, None, "only in " + ("the worker run" if k in b else "in process"))
+                _note(
+                    out, p, None, None, "only in " + ("the worker run" if k in b else "in process")
+                )
             else:
                 differences(a[k], b[k], p + (":" if not path else ""), out, seen)
     elif isinstance(a, list) and isinstance(b, list):
@@ -96,8 +100,13 @@ def identity(ref, other) -> dict:
     b = other if isinstance(other, dict) else stored_values(other)
     d = differences(a, b, seen=seen)
     top = sorted(d.items(), key=lambda kv: (-kv[1]["max_rel"], -kv[1]["count"]))
-    return {"identical": not d, "files": len(a), "values_compared": seen[0], "n_fields": len(d),
-            "fields": dict(top[:40])}  # fmt: skip
+    return {
+        "identical": not d,
+        "files": len(a),
+        "values_compared": seen[0],
+        "n_fields": len(d),
+        "fields": dict(top[:40]),
+    }
 
 
 def write_values(path: Path, values: dict) -> None:
@@ -131,17 +140,21 @@ def piece_seconds(ref: dict, other: dict) -> dict:
                 t = sums.setdefault(k, [0.0, 0.0])
                 t[0] += float(sa[k])
                 t[1] += float(sb[k])
-    return {"pieces": n, "reference_s": {k: v[0] for k, v in sums.items()},
-            "run_s": {k: v[1] for k, v in sums.items()},
-            "ratio": {k: (v[1] / v[0] if v[0] > 0 else None) for k, v in sums.items()}}  # fmt: skip
+    return {
+        "pieces": n,
+        "reference_s": {k: v[0] for k, v in sums.items()},
+        "run_s": {k: v[1] for k, v in sums.items()},
+        "ratio": {k: (v[1] / v[0] if v[0] > 0 else None) for k, v in sums.items()},
+    }
 
 
 def compare(argv: list[str], prog: str = "compare") -> int:
     """``compare REF OTHER ... [--json OUT]``: the identity check of runs written by
     :func:`write_values` (e.g. runs made at the same time on different GPUs of one host, each by
     its own benchmark process) against the reference; exit 1 if any differs."""
-    ap = argparse.ArgumentParser(prog=prog,
-                                 description="compare values_<run>.json.gz files bit for bit")
+    ap = argparse.ArgumentParser(
+        prog=prog, description="compare values_<run>.json.gz files bit for bit"
+    )
     ap.add_argument("reference", type=Path, help="values_inproc.json.gz of the reference run")
     ap.add_argument("others", type=Path, nargs="+", help="values_<run>.json.gz to compare")
     ap.add_argument("--json", type=Path, default=None, help="write the checks here")
@@ -156,10 +169,17 @@ def compare(argv: list[str], prog: str = "compare") -> int:
         same = "identical" if c["identical"] else f"DIFFERENT in {c['n_fields']} fields"
         print(f"{name}: {same} ({c['values_compared']} values, {c['files']} files)")
         r = seconds[name]["ratio"]
-        print("  pieces' seconds ÷ reference: " + ", ".join(
-            f"{k} {v:.2f}" for k, v in r.items() if v is not None and k != "surface_s"))
+        print(
+            "  pieces' seconds ÷ reference: "
+            + ", ".join(f"{k} {v:.2f}" for k, v in r.items() if v is not None and k != "surface_s")
+        )
     if args.json:
-        args.json.write_text(json.dumps(dict(reference=str(args.reference), checks=checks,
-                                             piece_seconds=seconds),
-                                        indent=1, default=str) + "\n")  # fmt: skip
+        args.json.write_text(
+            json.dumps(
+                dict(reference=str(args.reference), checks=checks, piece_seconds=seconds),
+                indent=1,
+                default=str,
+            )
+            + "\n"
+        )
     return 0 if all(c["identical"] for c in checks.values()) else 1

@@ -104,10 +104,16 @@ def main(argv: list[str] | None = None) -> int:
             res = bem_check(s, material=material, progress=False, device=a.device)
             wall = time.perf_counter() - t0
             sm = res.summary()
-            cases.append({
-                "D": D, "seed": seed, "n": n, "wall_s": wall, **sm,
-                "columns": {k: np.asarray(v).tolist() for k, v in res.to_dict().items()},
-            })  # fmt: skip
+            cases.append(
+                {
+                    "D": D,
+                    "seed": seed,
+                    "n": n,
+                    "wall_s": wall,
+                    **sm,
+                    "columns": {k: np.asarray(v).tolist() for k, v in res.to_dict().items()},
+                }
+            )
             print(
                 f"D={D} seed={seed}: F'/F {sm['load_ratio']}, k'/k {sm['stiffness_ratio']}, "
                 f"A'/A {sm['area_ratio']}, converged={sm['all_converged']}, "

@@ -112,13 +112,16 @@ def summarise_solver(s, dtype: str, dev, runs: list[dict], rss0: int) -> dict:
     """Medians of the timed runs, iterations and memory."""
     info = runs[-1]["info"]
     out = {
-        "dtype": dtype, "time_warm_solve_s": statistics.median(r["warm"] for r in runs),
+        "dtype": dtype,
+        "time_warm_solve_s": statistics.median(r["warm"] for r in runs),
         "time_cold_solve_s": statistics.median(r["cold"] for r in runs),
-        "n_iterations": info.n_iterations, "n_convolutions": info.n_convolutions,
-        "converged": bool(info.converged), "load_N": info.load,
+        "n_iterations": info.n_iterations,
+        "n_convolutions": info.n_convolutions,
+        "converged": bool(info.converged),
+        "load_N": info.load,
         "area_m2": info.n_contact * s.pixel_area,
         "memory_estimate_bytes": ContactSolver.memory_bytes(s.shape, "free", dtype),
-    }  # fmt: skip
+    }
     out["time_per_iteration_s"] = out["time_warm_solve_s"] / info.n_iterations
     if dev.is_cuda:
         import cupy as cp
@@ -203,10 +206,13 @@ def run_contactmechanics(s, system) -> dict:
         )
         t2 = time.perf_counter()
     return {
-        "time_cold_solve_s": t1 - t0, "time_warm_solve_s": t2 - t1, "n_iterations": int(r.nit),
-        "converged": bool(r.success), "load_N": float(r.jac.sum()),
+        "time_cold_solve_s": t1 - t0,
+        "time_warm_solve_s": t2 - t1,
+        "n_iterations": int(r.nit),
+        "converged": bool(r.success),
+        "load_N": float(r.jac.sum()),
         "area_m2": int(np.count_nonzero(r.jac > 0)) * s.pixel_area,
-    }  # fmt: skip
+    }
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -222,9 +228,10 @@ def main(argv: list[str] | None = None) -> int:
     )
     p.add_argument("--no-reference", action="store_true", help="skip ContactMechanics on the CPU")
     p.add_argument(
-        "--direct-max", default="auto",
+        "--direct-max",
+        default="auto",
         help="ContactSolver(direct_max=...): changed forces summed directly (int or auto)",
-    )  # fmt: skip
+    )
     p.add_argument("--json", type=Path, default=None, help="write all figures to this JSON file")
     a = p.parse_args(argv)
     global DIRECT_MAX
@@ -265,8 +272,9 @@ def main(argv: list[str] | None = None) -> int:
                 r["time_ratio_to_contactmechanics"] = (
                     r["time_warm_solve_s"] / ref["time_warm_solve_s"]
                 )
-                r["total_ratio_to_contactmechanics"] = (r["time_warm_solve_s"] + r["time_cold_solve_s"]) / (
-                    ref["time_warm_solve_s"] + ref["time_cold_solve_s"])  # fmt: skip
+                r["total_ratio_to_contactmechanics"] = (
+                    r["time_warm_solve_s"] + r["time_cold_solve_s"]
+                ) / (ref["time_warm_solve_s"] + ref["time_cold_solve_s"])
                 r["load_rel_diff"] = r["load_N"] / ref["load_N"] - 1
                 r["area_rel_diff"] = r["area_m2"] / ref["area_m2"] - 1
             rows.append(r)
@@ -291,10 +299,17 @@ def main(argv: list[str] | None = None) -> int:
         del runs, refs, system, s
         free_pools(dev)
     if a.json:
-        doc = {"device": str(dev), "device_name": name, "warp": wp.config.version,
-               "commit": git_commit(), "platform": platform.platform(), "cpu_count": os.cpu_count(),
-               "surface": "wm_surface(D=2.5, Wr=100 µm, L=1 mm, Rt=10 µm, seed=0)",
-               "fractions_of_Rt": FRACTIONS, "rows": rows}  # fmt: skip
+        doc = {
+            "device": str(dev),
+            "device_name": name,
+            "warp": wp.config.version,
+            "commit": git_commit(),
+            "platform": platform.platform(),
+            "cpu_count": os.cpu_count(),
+            "surface": "wm_surface(D=2.5, Wr=100 µm, L=1 mm, Rt=10 µm, seed=0)",
+            "fractions_of_Rt": FRACTIONS,
+            "rows": rows,
+        }
         a.json.parent.mkdir(parents=True, exist_ok=True)
         a.json.write_text(json.dumps(doc, indent=1) + "\n")
         print(f"wrote {a.json}")

@@ -57,10 +57,12 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 FFT_ELEMENTS_MAX = 1 << 30  # per XLA FFT call, as warptrunc.contact.sharded.grid (bug: 2**31)
 WARMUP = 2
-PACKAGES = ("nvmath-python mpi4py cupy cupy-cuda12x cupy-cuda13x cuda-bindings cuda-python "
-            "cuda-core cuda-pathfinder nvidia-nvshmem-cu12 nvidia-nvshmem-cu13 nvidia-cufftmp-cu12 "
-            "nvidia-cufftmp-cu13 jax jaxlib jax-cuda12-plugin jax-cuda12-pjrt jax-cuda13-plugin "
-            "jax-cuda13-pjrt numpy").split()  # fmt: skip
+PACKAGES = (
+    "nvmath-python mpi4py cupy cupy-cuda12x cupy-cuda13x cuda-bindings cuda-python "
+    "cuda-core cuda-pathfinder nvidia-nvshmem-cu12 nvidia-nvshmem-cu13 nvidia-cufftmp-cu12 "
+    "nvidia-cufftmp-cu13 jax jaxlib jax-cuda12-plugin jax-cuda12-pjrt jax-cuda13-plugin "
+    "jax-cuda13-pjrt numpy"
+).split()
 
 
 # --- shared: environment, records, the kernel and the reference ---------------------------------
@@ -91,16 +93,25 @@ def commit() -> str | None:
     if os.environ.get("WARPTRUNC_GIT_COMMIT"):
         return os.environ["WARPTRUNC_GIT_COMMIT"].strip()
     with contextlib.suppress(OSError, subprocess.SubprocessError):
-        r = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "HEAD"], capture_output=True,
-                           text=True, timeout=10)  # fmt: skip
+        r = subprocess.run(
+            ["git", "-C", str(ROOT), "rev-parse", "HEAD"],
+            capture_output=True,
+            text=True,
+            timeout=10,
+        )
         return r.stdout.strip() or None
     return None
 
 
 def diagnostics() -> dict:
-    return {"record": "diagnostics", "python": sys.version.split()[0], "versions": versions(),
-            "nvidia_smi": nvidia_smi(), "cuda_visible_devices": os.environ.get("CUDA_VISIBLE_DEVICES"),
-            "commit": commit()}  # fmt: skip
+    return {
+        "record": "diagnostics",
+        "python": sys.version.split()[0],
+        "versions": versions(),
+        "nvidia_smi": nvidia_smi(),
+        "cuda_visible_devices": os.environ.get("CUDA_VISIBLE_DEVICES"),
+        "commit": commit(),
+    }
 
 
 def emit(path: Path | None, record: dict) -> None:
@@ -163,7 +174,8 @@ def shard_map_fn(jax):
     from jax.experimental.shard_map import shard_map
 
     return lambda f, *, mesh, in_specs, out_specs: shard_map(
-        f, mesh, in_specs=in_specs, out_specs=out_specs, check_rep=False)  # fmt: skip
+        f, mesh, in_specs=in_specs, out_specs=out_specs, check_rep=False
+    )
 
 
 class JaxPair:
@@ -259,8 +271,13 @@ def run_jax(args) -> None:
     jax.config.update("jax_enable_x64", True)
     from jax.sharding import Mesh
 
-    base = {"record": "measurement", "versions": versions(), "commit": commit(),
-            "ndev": args.ndev, "check_n": args.check_n}  # fmt: skip
+    base = {
+        "record": "measurement",
+        "versions": versions(),
+        "commit": commit(),
+        "ndev": args.ndev,
+        "check_n": args.check_n,
+    }
     try:
         devices = jax.devices()[: args.ndev]
         if len(devices) < args.ndev:
@@ -280,8 +297,14 @@ def run_jax(args) -> None:
             err = f"check failed: {type(exc).__name__}: {exc}"
             traceback.print_exc()
         for n in args.n:
-            rec = {**base, "engine": "jax", "n": n, "padded_shape": [2 * n, 2 * n],
-                   "dtype": dtype, "max_rel_error": err}  # fmt: skip
+            rec = {
+                **base,
+                "engine": "jax",
+                "n": n,
+                "padded_shape": [2 * n, 2 * n],
+                "dtype": dtype,
+                "max_rel_error": err,
+            }
             try:
                 pair = JaxPair(jax, mesh, n, dtype)
                 rec["elements_per_fft_call"], rec["fft_blocks"] = pair.elements, pair.blocks
@@ -298,16 +321,28 @@ def run_jax(args) -> None:
 
 def run_pruned(jax, devices, n: int, dtype: str, repeats: int, base: dict) -> dict:
     """The solver's pruned convolution (benchmark_sharded.py's floor: ``hs.apply(q)``)."""
-    rec = {**base, "engine": "jax-pruned", "n": n, "padded_shape": [2 * n, 2 * n],
-           "dtype": dtype, "max_rel_error": None}  # fmt: skip
+    rec = {
+        **base,
+        "engine": "jax-pruned",
+        "n": n,
+        "padded_shape": [2 * n, 2 * n],
+        "dtype": dtype,
+        "max_rel_error": None,
+    }
     try:
         if str(ROOT) not in sys.path:
             sys.path.insert(1, str(ROOT))
         from warptrunc.contact.sharded.fft import ShardedHalfSpace
 
         e_star = 70e9 / (1 - 0.33**2)
-        hs = ShardedHalfSpace((n, n), (1e-3 / n, 1e-3 / n), e_star, substrate="free",
-                              dtype=dtype, devices=list(devices))  # fmt: skip
+        hs = ShardedHalfSpace(
+            (n, n),
+            (1e-3 / n, 1e-3 / n),
+            e_star,
+            substrate="free",
+            dtype=dtype,
+            devices=list(devices),
+        )
         rec["unit_force_check"] = float(hs.check)
         rec["grid_shape"], rec["column_blocks"] = list(hs.layout.grid_shape), hs.layout.blocks
         q = hs.full(1.0)
@@ -345,8 +380,13 @@ class CufftmpPair:
         cdt = np.dtype(np.complex64 if self.rdt == np.float32 else np.complex128)
         names = {f.name for f in dataclasses.fields(fft.FFTOptions)}  # 1.0 renamed reshape
         opts = {"redistribute" if "redistribute" in names else "reshape": False}
-        self.a = fft.allocate_operand((self.nrows, big), cp, input_dtype=self.rdt if r2c else cdt,
-                                      distribution=Slab.X, fft_type=self.transform)  # fmt: skip
+        self.a = fft.allocate_operand(
+            (self.nrows, big),
+            cp,
+            input_dtype=self.rdt if r2c else cdt,
+            distribution=Slab.X,
+            fft_type=self.transform,
+        )
         self.a.fill(0)
         if r2c:
             self.fwd = fft.FFT(self.a, distribution=Slab.X, options={**opts, "fft_type": "R2C"})
@@ -410,9 +450,16 @@ def run_cufftmp(args) -> None:
     rank, size = comm.Get_rank(), comm.Get_size()
     out = args.jsonl if rank == 0 else None
     emit(out, diagnostics())  # every rank prints its own; rank 0 writes
-    base = {"record": "measurement", "engine": "cufftmp", "versions": versions(),
-            "commit": commit(), "ndev": size, "ndev_asked": args.ndev, "check_n": args.check_n,
-            "mpi": MPI.Get_library_version().strip()[:200]}  # fmt: skip
+    base = {
+        "record": "measurement",
+        "engine": "cufftmp",
+        "versions": versions(),
+        "commit": commit(),
+        "ndev": size,
+        "ndev_asked": args.ndev,
+        "check_n": args.check_n,
+        "mpi": MPI.Get_library_version().strip()[:200],
+    }
     try:
         import cupy as cp
 
@@ -423,8 +470,9 @@ def run_cufftmp(args) -> None:
         base["devices"] = comm.allgather(f"{name} (cuda:{device_id}, rank {rank})")
         if size != args.ndev:  # e.g. an mpiexec of another MPI than mpi4py's: singletons
             raise RuntimeError(f"MPI world size {size}, --ndev {args.ndev}")
-        os.environ.setdefault("NVSHMEM_SYMMETRIC_SIZE",
-                              str(heap_bytes([*args.n, args.check_n], args.dtype, size)))  # fmt: skip
+        os.environ.setdefault(
+            "NVSHMEM_SYMMETRIC_SIZE", str(heap_bytes([*args.n, args.check_n], args.dtype, size))
+        )
         base["nvshmem_symmetric_size"] = os.environ["NVSHMEM_SYMMETRIC_SIZE"]
         import nvmath.distributed as nvd
 
@@ -459,10 +507,17 @@ def run_cufftmp(args) -> None:
                 pair.free()
         order = (transform,)
         for n in args.n:
-            rec = {**base, "n": n, "padded_shape": [2 * n, 2 * n], "dtype": dtype,
-                   "transform": transform, "max_rel_error": err, "transforms_failed": tried,
-                   "api": "nvmath.distributed.fft: allocate_operand, FFT.plan/execute, no redistribution, "
-                          + ("R2C on Slab.X, C2R on Slab.Y" if transform == "R2C" else "C2C")}  # fmt: skip
+            rec = {
+                **base,
+                "n": n,
+                "padded_shape": [2 * n, 2 * n],
+                "dtype": dtype,
+                "transform": transform,
+                "max_rel_error": err,
+                "transforms_failed": tried,
+                "api": "nvmath.distributed.fft: allocate_operand, FFT.plan/execute, no redistribution, "
+                + ("R2C on Slab.X, C2R on Slab.Y" if transform == "R2C" else "C2C"),
+            }
             pair = CufftmpPair(nvd, Slab, cp, comm, n, dtype, transform)
             try:
                 pair.setup()
@@ -506,8 +561,10 @@ def report(args) -> None:
         if r.get("record") == "measurement":
             last[(r.get("engine"), r.get("n"), r.get("ndev"), r.get("dtype"))] = r
     jax_floor = {k[1:]: r["floor_ms"] for k, r in last.items() if k[0] == "jax" and "floor_ms" in r}
-    print(f"\n{'engine':<11} {'n':>6} {'ndev':>4} {'dtype':>8} {'floor ms':>9} {'min ms':>8} "
-          f"{'error':>9} {'/ jax':>6}  transform, device")  # fmt: skip
+    print(
+        f"\n{'engine':<11} {'n':>6} {'ndev':>4} {'dtype':>8} {'floor ms':>9} {'min ms':>8} "
+        f"{'error':>9} {'/ jax':>6}  transform, device"
+    )
     key = lambda kv: (kv[0][1] or 0, kv[0][2] or 0, str(kv[0][3]), str(kv[0][0]))  # noqa: E731
     for (engine, n, ndev, dtype), r in sorted(last.items(), key=key):
         head = f"{engine!s:<11} {n!s:>6} {ndev!s:>4} {dtype!s:>8}"
@@ -519,24 +576,33 @@ def report(args) -> None:
         base = jax_floor.get((n, ndev, dtype))
         ratio = f"{r['floor_ms'] / base:6.2f}" if base and engine != "jax" else " " * 6
         dev = (r.get("devices") or [""])[0]
-        print(f"{head} {r['floor_ms']:9.2f} {min(r['repeats_ms']):8.2f} {e} {ratio}  "
-              f"{r.get('transform', '')} {dev}".rstrip())  # fmt: skip
-    print("\n/ jax: the floor over the jax (plain pair) floor of the same n, ndev, dtype (cufftmp:"
-          " cuFFTMp/JAX). error: max|y - y_ref| / max|y_ref| at check_n against numpy float64; "
-          "jax-pruned: the solver's unit-force check (Love's kernel).")  # fmt: skip
+        print(
+            f"{head} {r['floor_ms']:9.2f} {min(r['repeats_ms']):8.2f} {e} {ratio}  "
+            f"{r.get('transform', '')} {dev}".rstrip()
+        )
+    print(
+        "\n/ jax: the floor over the jax (plain pair) floor of the same n, ndev, dtype (cufftmp:"
+        " cuFFTMp/JAX). error: max|y - y_ref| / max|y_ref| at check_n against numpy float64; "
+        "jax-pruned: the solver's unit-force check (Love's kernel)."
+    )
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.ArgumentDefaultsHelpFormatter
+    )
     ap.add_argument("engine", choices=("jax", "cufftmp", "report", "diag"))
     ap.add_argument("--n", type=int, nargs="+", default=[8192, 16384], help="map sides N")
     ap.add_argument("--ndev", type=int, default=2, help="devices (jax); mpiexec -n (cufftmp)")
     ap.add_argument("--dtype", nargs="+", default=["float32"], choices=("float32", "float64"))
     ap.add_argument("--repeats", type=int, default=10, help="timed calls after 2 warm-up calls")
     ap.add_argument("--check-n", type=int, default=256, help="N of the check against numpy")
-    ap.add_argument("--no-pruned", dest="pruned", action="store_false",
-                    help="skip the solver's pruned convolution (jax)")  # fmt: skip
+    ap.add_argument(
+        "--no-pruned",
+        dest="pruned",
+        action="store_false",
+        help="skip the solver's pruned convolution (jax)",
+    )
     ap.add_argument("--jsonl", type=Path, default=Path("fft_engines.jsonl"), help="results file")
     args = ap.parse_args(argv)
     diag = lambda _: emit(None, diagnostics())  # noqa: E731

@@ -107,9 +107,13 @@ def build_profile(name: str, n: int | None, warmup: bool = False):
         s = st.face_surface or st.surfaces[0]
         finite = [h for h in st.hardness if math.isfinite(h)]
         h = st.face_hardness if st.face_surface else (finite or [math.inf])[0]
-        st = st.replace(surfaces=(s,), seeds=st.seeds[:1], stats_placements=1,
-                        hardness=tuple(sorted({math.inf, h})),
-                        protocol=st.protocol.replace(placements=1))  # fmt: skip
+        st = st.replace(
+            surfaces=(s,),
+            seeds=st.seeds[:1],
+            stats_placements=1,
+            hardness=tuple(sorted({math.inf, h})),
+            protocol=st.protocol.replace(placements=1),
+        )
     return dataclasses.replace(p, indentation=st)
 
 
@@ -133,8 +137,10 @@ def departures(p) -> dict:
     out = {k: {"paper": ref.get(k), "here": v} for k, v in mine.items() if ref.get(k) != v}
     out = json.loads(json.dumps(out).replace("Infinity", '"inf"'))  # H = ∞ as "inf": plain JSON
     if "indentation.n" in out or "indentation.L" in out:
-        out["indentation.dx_nm"] = {"paper": PROFILES["paper"].indentation.pixel_size * 1e9,
-                                    "here": p.indentation.pixel_size * 1e9}  # fmt: skip
+        out["indentation.dx_nm"] = {
+            "paper": PROFILES["paper"].indentation.pixel_size * 1e9,
+            "here": p.indentation.pixel_size * 1e9,
+        }
     return out
 
 
@@ -168,10 +174,16 @@ def record_tasks(rec: dict, cpu: bool) -> None:
         for t in ts.data:
             ss = [s for s in t.get("startstops", ()) if s.get("action") == "compute"]
             if ss:
-                rec["tasks"].append(dict(key=str(t.get("key")), worker=t.get("worker"),
-                                         status=t.get("status"), start=min(s["start"] for s in ss),
-                                         stop=max(s["stop"] for s in ss),
-                                         compute_s=sum(s["stop"] - s["start"] for s in ss)))  # fmt: skip
+                rec["tasks"].append(
+                    dict(
+                        key=str(t.get("key")),
+                        worker=t.get("worker"),
+                        status=t.get("status"),
+                        start=min(s["start"] for s in ss),
+                        stop=max(s["stop"] for s in ss),
+                        compute_s=sum(s["stop"] - s["start"] for s in ss),
+                    )
+                )
 
     cl.open_client = recording
 
@@ -182,19 +194,38 @@ def child(args: argparse.Namespace) -> int:
 
     t0 = time.perf_counter()
     p = build_profile(args.profile, args.n, args.warmup)
-    w = None if args.workers == "none" else (args.workers if args.workers == "auto" else int(args.workers))
+    w = (
+        None
+        if args.workers == "none"
+        else (args.workers if args.workers == "auto" else int(args.workers))
+    )
     rec: dict = {"tasks": [], "worker_devices": {}}
     if w is not None:
         record_tasks(rec, args.device == "cpu")
-    cmd = (f"warptrunc reproduce --profile {args.profile} (indentation.n={p.indentation.n}) "
-           f"--stages indentation --device {args.device} --out {args.out}"
-           + ("" if w is None else f" --workers {w}"))  # fmt: skip
-    doc = reproduce(p, args.out, stages="indentation", workers=w, device=args.device,
-                    commit=os.environ.get("WARPTRUNC_GIT_COMMIT") or None)  # fmt: skip
+    cmd = (
+        f"warptrunc reproduce --profile {args.profile} (indentation.n={p.indentation.n}) "
+        f"--stages indentation --device {args.device} --out {args.out}"
+        + ("" if w is None else f" --workers {w}")
+    )
+    doc = reproduce(
+        p,
+        args.out,
+        stages="indentation",
+        workers=w,
+        device=args.device,
+        commit=os.environ.get("WARPTRUNC_GIT_COMMIT") or None,
+    )
     m = doc["meta"]
-    rec.update(command=cmd, child_wall_s=time.perf_counter() - t0, reproduce_wall_s=m["wall_s"],
-               stage_wall_s=m["stage_wall_s"], computed=m["computed"], reused=m["reused"],
-               incomplete=m.get("incomplete"), device=m["device"])  # fmt: skip
+    rec.update(
+        command=cmd,
+        child_wall_s=time.perf_counter() - t0,
+        reproduce_wall_s=m["wall_s"],
+        stage_wall_s=m["stage_wall_s"],
+        computed=m["computed"],
+        reused=m["reused"],
+        incomplete=m.get("incomplete"),
+        device=m["device"],
+    )
     if args.record:
         Path(args.record).write_text(json.dumps(rec, indent=1, default=str) + "\n")
     return 3 if m.get("incomplete") else 0
@@ -206,23 +237,32 @@ def child(args: argparse.Namespace) -> int:
 def store_measures(store: Path, rec: dict | None, in_process: bool) -> dict:
     """Pieces, parts and seconds from the store; the busiest device (see the module's doc)."""
     folder = store / "indentation"
-    pieces = [_load(f) for f in sorted(folder.glob("*.json"))
-              if f.name != "resolution.json" and not PART_FILE.search(f.stem)]  # fmt: skip
+    pieces = [
+        _load(f)
+        for f in sorted(folder.glob("*.json"))
+        if f.name != "resolution.json" and not PART_FILE.search(f.stem)
+    ]
     res = folder / "resolution.json"
     stage = store / "stages" / "indentation.json"
     devs = set()
     for d in pieces:
         devs.update(d["device"] if isinstance(d.get("device"), list) else [str(d.get("device"))])
-    out = dict(pieces=len(pieces), parts=sum(int(d.get("n_parts", 1)) for d in pieces),
-               pieces_s=sum(d["seconds"].get("piece_s", 0.0) for d in pieces),
-               surfaces_s=sum(d["seconds"].get("surface_s", 0.0) for d in pieces),
-               resolution_s=_load(res).get("seconds", 0.0) if res.exists() else 0.0,
-               stage_s=_load(stage).get("seconds") if stage.exists() else None,
-               store_devices=sorted(devs))  # fmt: skip
+    out = dict(
+        pieces=len(pieces),
+        parts=sum(int(d.get("n_parts", 1)) for d in pieces),
+        pieces_s=sum(d["seconds"].get("piece_s", 0.0) for d in pieces),
+        surfaces_s=sum(d["seconds"].get("surface_s", 0.0) for d in pieces),
+        resolution_s=_load(res).get("seconds", 0.0) if res.exists() else 0.0,
+        stage_s=_load(stage).get("seconds") if stage.exists() else None,
+        store_devices=sorted(devs),
+    )
     if in_process or not rec or not rec.get("tasks"):
         total = out["pieces_s"] + out["surfaces_s"] + out["resolution_s"]
-        out.update(per_device={",".join(out["store_devices"]): total}, busiest_device_s=total,
-                   busiest_from="store")  # fmt: skip
+        out.update(
+            per_device={",".join(out["store_devices"]): total},
+            busiest_device_s=total,
+            busiest_from="store",
+        )
         return out
     per_worker: dict[str, float] = {}
     for t in rec["tasks"]:
@@ -231,9 +271,14 @@ def store_measures(store: Path, rec: dict | None, in_process: bool) -> dict:
     for w, s in per_worker.items():
         dev = rec["worker_devices"].get(w, w)
         per_dev[dev] = per_dev.get(dev, 0.0) + s
-    out.update(tasks=len(rec["tasks"]), per_worker=per_worker, per_device=per_dev,
-               busiest_device_s=max(per_dev.values()), busiest_worker_s=max(per_worker.values()),
-               busiest_from="task stream")  # fmt: skip
+    out.update(
+        tasks=len(rec["tasks"]),
+        per_worker=per_worker,
+        per_device=per_dev,
+        busiest_device_s=max(per_dev.values()),
+        busiest_worker_s=max(per_worker.values()),
+        busiest_from="task stream",
+    )
     return out
 
 
@@ -247,10 +292,23 @@ def default_workers(n_gpus: int) -> list[int]:
 
 def child_cmd(args, store: Path, record: Path, workers, warmup: bool = False) -> list[str]:
     """The command line of one child."""
-    cmd = [sys.executable, str(HERE), "run", "--profile", args.profile, "--n",
-           str(min(args.n, args.warmup_n) if warmup else args.n), "--device", args.device,
-           "--workers", "none" if workers is None else str(workers), "--out", str(store),
-           "--record", str(record)]  # fmt: skip
+    cmd = [
+        sys.executable,
+        str(HERE),
+        "run",
+        "--profile",
+        args.profile,
+        "--n",
+        str(min(args.n, args.warmup_n) if warmup else args.n),
+        "--device",
+        args.device,
+        "--workers",
+        "none" if workers is None else str(workers),
+        "--out",
+        str(store),
+        "--record",
+        str(record),
+    ]
     return [*cmd, "--warmup"] if warmup else cmd
 
 
@@ -269,66 +327,121 @@ def _same_text(r: dict) -> str:
 
 def table(results: dict) -> str:
     """The runs as a plain-text table."""
-    head = (f"{'run':11} {'wall s':>8} {'×':>6} {'pieces':>6} {'parts':>6} {'Σpiece s':>9} "
-            f"{'busiest s':>9} {'fixed s':>7}  identical")  # fmt: skip
+    head = (
+        f"{'run':11} {'wall s':>8} {'×':>6} {'pieces':>6} {'parts':>6} {'Σpiece s':>9} "
+        f"{'busiest s':>9} {'fixed s':>7}  identical"
+    )
     lines = [head, "-" * (len(head) + 8)]
     order = lambda r: 0 if r["run"].startswith("inproc") else int(r["run"].split("_")[1])  # noqa: E731
     num = lambda v, w: f"{v:{w}.{2 if w == 6 else 1}f}" if isinstance(v, float) else f"{'-':>{w}}"  # noqa: E731
     for r in sorted(results["runs"], key=order):
         if r.get("status"):
-            lines.append(f"{r['run']:11} {r['status']}"
-                         + (f" after {r['wall_s']:.1f} s" if "wall_s" in r else ""))  # fmt: skip
+            lines.append(
+                f"{r['run']:11} {r['status']}"
+                + (f" after {r['wall_s']:.1f} s" if "wall_s" in r else "")
+            )
             continue
-        lines.append(f"{r['run']:11} {r['wall_s']:8.1f} {num(r.get('speedup'), 6)} "
-                     f"{r['pieces']:6d} {r['parts']:6d} {r['pieces_s']:9.1f} "
-                     f"{r['busiest_device_s']:9.1f} {num(r.get('fixed_s'), 7)}  {_same_text(r)}")  # fmt: skip
+        lines.append(
+            f"{r['run']:11} {r['wall_s']:8.1f} {num(r.get('speedup'), 6)} "
+            f"{r['pieces']:6d} {r['parts']:6d} {r['pieces_s']:9.1f} "
+            f"{r['busiest_device_s']:9.1f} {num(r.get('fixed_s'), 7)}  {_same_text(r)}"
+        )
     return "\n".join(lines)
 
 
 def parser() -> argparse.ArgumentParser:
     """The parent's options (the child's: ``run --help``)."""
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0] + " Subcommand `run`: one "
-                                 "child (see `run --help`); `compare REF OTHER ...`: the identity "
-                                 "check of values files of separate benchmark processes.",
-                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
-    ap.add_argument("--out", type=Path, default=Path("bench_indentation_workers"),
-                    help="output folder (the JSON, commands.log, the stores while they run)")
-    ap.add_argument("--profile", default="paper", choices=("paper", "quick", "tiny"),
-                    help="reproduce profile, its indentation map replaced by --n")
-    ap.add_argument("--n", type=int, default=2048,
-                    help="pixels per side of the indentation maps over indentation.L (1 mm): "
-                    "2048 gives 488 nm pixels (the paper: 10240, 97.7 nm)")  # fmt: skip
-    ap.add_argument("--workers", type=int, nargs="*", default=None,
-                    help="worker counts, run in this order (default: the visible GPUs' count, "
-                    "2 and 1; 2 1 without a GPU)")  # fmt: skip
-    ap.add_argument("--device", default=None,
-                    help="device of the in-process run and of the driver (cpu: also of every "
-                    "worker); default cuda:0 where CUDA is visible, else cpu")  # fmt: skip
-    ap.add_argument("--warmup-n", type=int, default=256,
-                    help="pixels per side of the untimed warm-up run (capped at --n; 0: none)")
-    ap.add_argument("--budget-s", type=float, default=None,
-                    help="start no timed run after this many seconds (s) from the start, nor one "
-                    "expected to end past it; they are listed as 'skipped: budget'")  # fmt: skip
-    ap.add_argument("--grace-s", type=float, default=30.0,
-                    help="with --budget-s: a child is stopped this long after the budget (s)")
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0] + " Subcommand `run`: one "
+        "child (see `run --help`); `compare REF OTHER ...`: the identity "
+        "check of values files of separate benchmark processes.",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+    )
+    ap.add_argument(
+        "--out",
+        type=Path,
+        default=Path("bench_indentation_workers"),
+        help="output folder (the JSON, commands.log, the stores while they run)",
+    )
+    ap.add_argument(
+        "--profile",
+        default="paper",
+        choices=("paper", "quick", "tiny"),
+        help="reproduce profile, its indentation map replaced by --n",
+    )
+    ap.add_argument(
+        "--n",
+        type=int,
+        default=2048,
+        help="pixels per side of the indentation maps over indentation.L (1 mm): "
+        "2048 gives 488 nm pixels (the paper: 10240, 97.7 nm)",
+    )
+    ap.add_argument(
+        "--workers",
+        type=int,
+        nargs="*",
+        default=None,
+        help="worker counts, run in this order (default: the visible GPUs' count, "
+        "2 and 1; 2 1 without a GPU)",
+    )
+    ap.add_argument(
+        "--device",
+        default=None,
+        help="device of the in-process run and of the driver (cpu: also of every "
+        "worker); default cuda:0 where CUDA is visible, else cpu",
+    )
+    ap.add_argument(
+        "--warmup-n",
+        type=int,
+        default=256,
+        help="pixels per side of the untimed warm-up run (capped at --n; 0: none)",
+    )
+    ap.add_argument(
+        "--budget-s",
+        type=float,
+        default=None,
+        help="start no timed run after this many seconds (s) from the start, nor one "
+        "expected to end past it; they are listed as 'skipped: budget'",
+    )
+    ap.add_argument(
+        "--grace-s",
+        type=float,
+        default=30.0,
+        help="with --budget-s: a child is stopped this long after the budget (s)",
+    )
     ap.add_argument("--timeout-s", type=float, default=None, help="limit of one child (s)")
-    ap.add_argument("--keep-stores", action="store_true",
-                    help="keep every run's reproduction folder under --out")
-    ap.add_argument("--no-inprocess", action="store_true",
-                    help="skip the in-process run (its figures from --reference and "
-                    "--reference-wall, e.g. of an earlier device call)")  # fmt: skip
-    ap.add_argument("--reference", type=Path, default=None,
-                    help="values_inproc.json.gz of an earlier in-process run: the worker runs' "
-                    "identity check against it (every run writes its values_<run>.json.gz)")  # fmt: skip
-    ap.add_argument("--reference-wall", type=float, default=None,
-                    help="that run's wall (s): the speed-ups against it")
+    ap.add_argument(
+        "--keep-stores",
+        action="store_true",
+        help="keep every run's reproduction folder under --out",
+    )
+    ap.add_argument(
+        "--no-inprocess",
+        action="store_true",
+        help="skip the in-process run (its figures from --reference and "
+        "--reference-wall, e.g. of an earlier device call)",
+    )
+    ap.add_argument(
+        "--reference",
+        type=Path,
+        default=None,
+        help="values_inproc.json.gz of an earlier in-process run: the worker runs' "
+        "identity check against it (every run writes its values_<run>.json.gz)",
+    )
+    ap.add_argument(
+        "--reference-wall",
+        type=float,
+        default=None,
+        help="that run's wall (s): the speed-ups against it",
+    )
     return ap
 
 
 def child_parser() -> argparse.ArgumentParser:
     """The ``run`` subcommand's options."""
-    ap = argparse.ArgumentParser(prog=f"{HERE.name} run",
-                                 description="one reproduce call of the benchmark (a child)")
+    ap = argparse.ArgumentParser(
+        prog=f"{HERE.name} run", description="one reproduce call of the benchmark (a child)"
+    )
     ap.add_argument("--profile", default="paper", choices=("paper", "quick", "tiny"))
     ap.add_argument("--n", type=int, default=2048, help="pixels per side of the indentation maps")
     ap.add_argument("--device", default="cpu", help="Warp device of the driver (cpu: also tasks)")
@@ -337,7 +450,6 @@ def child_parser() -> argparse.ArgumentParser:
     ap.add_argument("--record", type=Path, default=None, help="JSON of the child's measures")
     ap.add_argument("--warmup", action="store_true", help="the small warm-up profile")
     return ap
-
 
 
 def main(argv=None) -> int:
@@ -373,16 +485,30 @@ def main(argv=None) -> int:
         warp_version = "unknown"
     p = build_profile(args.profile, args.n)
     results = dict(
-        benchmark="benchmark_indentation_workers", commit=commit,
-        host=platform.node(), started_utc=datetime.now(timezone.utc).isoformat(timespec="seconds"),
-        machine=dict(gpus=gpu_lines or "cpu", visible_gpus=n_gpus, cpus=os.cpu_count(),
-                     cuda_visible_devices=os.environ.get("CUDA_VISIBLE_DEVICES"),
-                     warp=warp_version, python=platform.python_version()),
-        profile=dict(name=args.profile, indentation_n=p.indentation.n, indentation_L_m=p.indentation.L,
-                     departures=departures(p)),
-        device=args.device, workers=counts, budget_s=args.budget_s, timeout_s=args.timeout_s,
+        benchmark="benchmark_indentation_workers",
+        commit=commit,
+        host=platform.node(),
+        started_utc=datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        machine=dict(
+            gpus=gpu_lines or "cpu",
+            visible_gpus=n_gpus,
+            cpus=os.cpu_count(),
+            cuda_visible_devices=os.environ.get("CUDA_VISIBLE_DEVICES"),
+            warp=warp_version,
+            python=platform.python_version(),
+        ),
+        profile=dict(
+            name=args.profile,
+            indentation_n=p.indentation.n,
+            indentation_L_m=p.indentation.L,
+            departures=departures(p),
+        ),
+        device=args.device,
+        workers=counts,
+        budget_s=args.budget_s,
+        timeout_s=args.timeout_s,
         runs=[],
-    )  # fmt: skip
+    )
 
     def save():
         path.write_text(json.dumps(results, indent=1, default=str) + "\n")
@@ -398,7 +524,9 @@ def main(argv=None) -> int:
 
     def shown(cmd: list[str]) -> str:  # the command as recorded: paths relative
         text = " ".join(cmd[1:]).replace(f"{out}/", "<out>/")
-        return text.replace(str(HERE), str(HERE.relative_to(ROOT)) if HERE.is_relative_to(ROOT) else str(HERE))
+        return text.replace(
+            str(HERE), str(HERE.relative_to(ROOT)) if HERE.is_relative_to(ROOT) else str(HERE)
+        )
 
     def run(name: str, workers, warmup: bool = False) -> tuple[dict, Path]:
         store, record = out / f"store_{name}", out / f"record_{name}.json"
@@ -426,8 +554,13 @@ def main(argv=None) -> int:
         guess = expected_s(base, fixed or 0.0, n, n_gpus, {})
         left = None if args.budget_s is None else args.budget_s - spent()
         if left is not None and (left <= 0 or (guess is not None and guess > left)):
-            results["runs"].append(dict(run=name, status="skipped: budget" + (
-                "" if guess is None else f" (≈ {guess:.0f} s, {max(left, 0):.0f} s left)")))  # fmt: skip
+            results["runs"].append(
+                dict(
+                    run=name,
+                    status="skipped: budget"
+                    + ("" if guess is None else f" (≈ {guess:.0f} s, {max(left, 0):.0f} s left)"),
+                )
+            )
             save()
             continue
         w = None if n is None else ("auto" if n == n_gpus and args.device != "cpu" else n)
@@ -465,8 +598,10 @@ def main(argv=None) -> int:
         shutil.rmtree(ref_store, ignore_errors=True)
     results["total_s"] = spent()
     save()
-    print(f"commit {commit}; {len(gpu_lines)} GPU(s): {'; '.join(gpu_lines) or 'none'}; profile "
-          f"{args.profile} at indentation.n={p.indentation.n} on {args.device}; results in {path}")  # fmt: skip
+    print(
+        f"commit {commit}; {len(gpu_lines)} GPU(s): {'; '.join(gpu_lines) or 'none'}; profile "
+        f"{args.profile} at indentation.n={p.indentation.n} on {args.device}; results in {path}"
+    )
     print(table(results))
     return 0
 

@@ -273,9 +273,10 @@ def run_case(n: int, device, args) -> dict:
             lambda: island_curve(
                 s, truncation=depths, settings=IslandSettings(statistics=False), device=device
             ),
-            rep, sync,
+            rep,
+            sync,
         ),
-    )  # fmt: skip
+    )
     res["warp_island_curve_statistics_s"] = guarded(
         res,
         "curve_statistics",
@@ -283,9 +284,10 @@ def run_case(n: int, device, args) -> dict:
             lambda: island_curve(
                 s, truncation=depths, settings=IslandSettings(snapshots=None), device=device
             ),
-            max(1, rep // 2), sync,
+            max(1, rep // 2),
+            sync,
         ),
-    )  # fmt: skip
+    )
     return res
 
 

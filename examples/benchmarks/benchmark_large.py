@@ -49,8 +49,9 @@ def run_device(spec, device):
 
 
 def run_surface(spec, device):
-    s = wm_surface(spec.D, spec.Wr, L=(spec.Lx, spec.Ly), n=(spec.nx, spec.ny), seed=spec.seed,
-                   device=device)  # fmt: skip
+    s = wm_surface(
+        spec.D, spec.Wr, L=(spec.Lx, spec.Ly), n=(spec.nx, spec.ny), seed=spec.seed, device=device
+    )
     return truncate(s, N_INCREMENTS, device=device).n_contact_pixels
 
 
@@ -89,10 +90,14 @@ def main() -> None:
                 times.append(time.perf_counter() - t0)
         counts[path] = np.asarray(c)
         row = {
-            "n": args.n, "pixels": args.n**2, "path": path, "fits_in_memory": fits,
-            "seconds": min(times), "seconds_all": times,
+            "n": args.n,
+            "pixels": args.n**2,
+            "path": path,
+            "fits_in_memory": fits,
+            "seconds": min(times),
+            "seconds_all": times,
             "final_contact_pixels": int(c[-1]),
-        }  # fmt: skip
+        }
         if device.is_cuda:
             row["mempool_high_GiB"] = wp.get_mempool_used_mem_high(device) / 2**30
             row["free_GiB_after"] = device.free_memory / 2**30
@@ -102,10 +107,14 @@ def main() -> None:
     first = next(iter(counts.values()))
     equal = all(np.array_equal(first, c) for c in counts.values())
     out = {
-        "device": str(device), "device_name": getattr(device, "name", ""),
-        "host": platform.node(), "commit": git_commit(), "n_terms": spec.n_terms,
-        "counts_equal_across_paths": equal, "rows": rows,
-    }  # fmt: skip
+        "device": str(device),
+        "device_name": getattr(device, "name", ""),
+        "host": platform.node(),
+        "commit": git_commit(),
+        "n_terms": spec.n_terms,
+        "counts_equal_across_paths": equal,
+        "rows": rows,
+    }
     print(f"counts equal across {list(counts)}: {equal}")
     if args.json:
         with open(args.json, "w") as fh:

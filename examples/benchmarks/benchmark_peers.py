@@ -155,9 +155,13 @@ def solve_cm(h: np.ndarray, substrate: str, pentol: float) -> dict:
     hs = cls(ht.shape, E_STAR, (1.0, 1.0))
     t0 = time.perf_counter()
     r = constrained_conjugate_gradients(
-        hs, topo, external_force=P_MEAN, pentol=pentol, forcetol=1e-5 * E_STAR / n**2,
+        hs,
+        topo,
+        external_force=P_MEAN,
+        pentol=pentol,
+        forcetol=1e-5 * E_STAR / n**2,
         maxiter=100000,
-    )  # fmt: skip
+    )
     t = time.perf_counter() - t0
     f = np.asarray(r.jac)
     u = np.asarray(r.x)[:n, :n]
@@ -165,8 +169,9 @@ def solve_cm(h: np.ndarray, substrate: str, pentol: float) -> dict:
     return {**res, "time_s": t, "converged": bool(r.success), "iterations": int(r.nit)}
 
 
-def solve_warptrunc(h: np.ndarray, substrate: str, dtype: str, pentol: float | None,
-                    device: str) -> dict:  # fmt: skip
+def solve_warptrunc(
+    h: np.ndarray, substrate: str, dtype: str, pentol: float | None, device: str
+) -> dict:
     """One cold warptrunc ContactSolver solve at mean pressure P_MEAN (``pentol`` None: the
     default tolerance)."""
     import warp as wp
@@ -182,8 +187,12 @@ def solve_warptrunc(h: np.ndarray, substrate: str, dtype: str, pentol: float | N
     wp.synchronize_device(s.device)
     t = time.perf_counter() - t0
     p, gap = s.maps()
-    return {**summarize(p, gap), "time_s": t, "converged": bool(state.converged),
-            "iterations": int(state.n_iterations)}  # fmt: skip
+    return {
+        **summarize(p, gap),
+        "time_s": t,
+        "converged": bool(state.converged),
+        "iterations": int(state.n_iterations),
+    }
 
 
 # --- matched accuracy ------------------------------------------------------------------------
@@ -256,13 +265,28 @@ def _text(x) -> str:
     return x.decode() if isinstance(x, bytes) else (x or "")
 
 
-def run_worker(kind: str, path: Path, substrate: str, ref: dict | None, tols: list[float],
-               threads: int, limit: float) -> tuple:  # fmt: skip
+def run_worker(
+    kind: str,
+    path: Path,
+    substrate: str,
+    ref: dict | None,
+    tols: list[float],
+    threads: int,
+    limit: float,
+) -> tuple:
     """A peer's walk (or one solve, without ``ref``) in a fresh process with OMP_NUM_THREADS =
     ``threads``; ``limit`` (s) stops it. Returns (chosen record or None, every solve's record)."""
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), OPENBLAS_NUM_THREADS=str(threads))
-    cmd = [sys.executable, __file__, "--worker", kind, str(path), substrate, json.dumps(ref),
-           ",".join(repr(t) for t in tols)]  # fmt: skip
+    cmd = [
+        sys.executable,
+        __file__,
+        "--worker",
+        kind,
+        str(path),
+        substrate,
+        json.dumps(ref),
+        ",".join(repr(t) for t in tols),
+    ]
     timed_out = False
     try:
         r = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=limit)
@@ -315,8 +339,10 @@ def versions() -> dict:
         installer = (d.read_text("INSTALLER") or "").strip()
         direct = d.read_text("direct_url.json")
         whl = (d.read_text("WHEEL") or "").split("Tag:")[-1].strip()
-        out["tamaas_install"] = (f"{installer or '?'} install tamaas=={d.version} "
-                                 f"({'from ' + direct if direct else 'PyPI'} wheel {whl})")  # fmt: skip
+        out["tamaas_install"] = (
+            f"{installer or '?'} install tamaas=={d.version} "
+            f"({'from ' + direct if direct else 'PyPI'} wheel {whl})"
+        )
         import tamaas as tm
 
         out["tamaas_backend"] = str(tm.TamaasInfo.backend)
@@ -364,8 +390,11 @@ def bench_problem(h, surface, substrate, n, args, tmp, budget) -> list[dict]:
         ref_by = f"warptrunc float64 pentol {WT_REF_PENTOL:g}·rms (the peer's did not converge)"
     ref_row = {**base, "solver": "reference", "by": ref_by, **ref}
     rows.append(ref_row)
-    print(f"  {surface} {substrate} {n}²: reference {ref_by}: A/A0 {ref['area_fraction']:.6f}, "
-          f"mean gap {ref['mean_gap_m']:.6e} m, {ref['time_s']:.2f} s", flush=True)  # fmt: skip
+    print(
+        f"  {surface} {substrate} {n}²: reference {ref_by}: A/A0 {ref['area_fraction']:.6f}, "
+        f"mean gap {ref['mean_gap_m']:.6e} m, {ref['time_s']:.2f} s",
+        flush=True,
+    )
 
     def record(name, chosen, tried, threads, extra=None):
         row = {**base, "solver": name, "threads": threads, "walk": tried, **(extra or {})}
@@ -375,9 +404,12 @@ def bench_problem(h, surface, substrate, n, args, tmp, budget) -> list[dict]:
             row.update(matched=True, **{k: v for k, v in chosen.items() if k != "walk"})
         rows.append(row)
         t = row.get("time_s")
-        print(f"    {name:34s} tol {row.get('tol', float('nan')):8.0e} "
-              f"{f'{t:.3f} s' if row.get('matched') else 'no match':>10s} "
-              f"it {row.get('iterations', '-')}", flush=True)  # fmt: skip
+        print(
+            f"    {name:34s} tol {row.get('tol', float('nan')):8.0e} "
+            f"{f'{t:.3f} s' if row.get('matched') else 'no match':>10s} "
+            f"it {row.get('iterations', '-')}",
+            flush=True,
+        )
 
     if use_tamaas and budget.get("tamaas", 0) < lim:
         t0 = time.perf_counter()
@@ -387,8 +419,13 @@ def bench_problem(h, surface, substrate, n, args, tmp, budget) -> list[dict]:
             chosen = run_worker("tamaas", path, substrate, None, [args.tamaas_tol], ncpu, lim)[0]
             chosen["matches"] = matches(chosen, ref)
             tried = []
-        record(f"tamaas ({ncpu} threads)", chosen, tried, ncpu,
-               {"tol_given": args.tamaas_tol is not None})  # fmt: skip
+        record(
+            f"tamaas ({ncpu} threads)",
+            chosen,
+            tried,
+            ncpu,
+            {"tol_given": args.tamaas_tol is not None},
+        )
         if chosen is not None and "tol" in chosen and ncpu > 1 and args.tamaas_one_thread:
             one = run_worker("tamaas", path, substrate, None, [chosen["tol"]], 1, lim)[0]
             one["matches"] = matches(one, ref)
@@ -408,36 +445,56 @@ def bench_problem(h, surface, substrate, n, args, tmp, budget) -> list[dict]:
         tols = PENTOLS if dtype == "float64" else [t for t in PENTOLS if t >= PENTOL32_START]
         chosen, tried = walk(
             lambda tol, d=dtype: solve_warptrunc(h, substrate, d, tol * rms, args.device),
-            tols, ref, time.perf_counter() + lim,
-        )  # fmt: skip
+            tols,
+            ref,
+            time.perf_counter() + lim,
+        )
         if chosen is not None and args.repeats > 1:  # the median of repeats at that tolerance
             ts = [chosen["time_s"]] + [
                 solve_warptrunc(h, substrate, dtype, chosen["tol"] * rms, args.device)["time_s"]
                 for _ in range(args.repeats - 1)
-            ]  # fmt: skip
+            ]
             chosen = {**chosen, "time_s": float(np.median(ts)), "times_s": ts}
         default = solve_warptrunc(h, substrate, dtype, None, args.device)
         matches(default, ref)
-        record(f"warptrunc {substrate} {dtype}", chosen, tried, None,
-               {"tol_unit": "× rms height", "default_tolerance": default})  # fmt: skip
+        record(
+            f"warptrunc {substrate} {dtype}",
+            chosen,
+            tried,
+            None,
+            {"tol_unit": "× rms height", "default_tolerance": default},
+        )
     return rows
 
 
 def table(rows: list[dict], device_name: str) -> str:
     """The printed table: time at matched accuracy per solver, and tamaas' time ÷ warptrunc's."""
-    lines = [f"| surface | substrate | N | solver | tol | iterations | time (s) | vs warptrunc f64 "
-             f"({device_name}) |", "|---|---|---|---|---|---|---|---|"]  # fmt: skip
+    lines = [
+        f"| surface | substrate | N | solver | tol | iterations | time (s) | vs warptrunc f64 "
+        f"({device_name}) |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
     for r in rows:
         if r["solver"] == "reference":
             continue
-        wt = next((x for x in rows if x["solver"] == f"warptrunc {r['substrate']} float64"
-                   and x["n"] == r["n"] and x["surface"] == r["surface"]
-                   and x.get("matched")), None)  # fmt: skip
+        wt = next(
+            (
+                x
+                for x in rows
+                if x["solver"] == f"warptrunc {r['substrate']} float64"
+                and x["n"] == r["n"]
+                and x["surface"] == r["surface"]
+                and x.get("matched")
+            ),
+            None,
+        )
         t = r.get("time_s") if r.get("matched") else None
         ratio = f"{t / wt['time_s']:.1f}×" if t and wt else "-"
-        lines.append(f"| {r['surface']} | {r['substrate']} | {r['n']}² | {r['solver']} | "
-                     f"{r.get('tol', float('nan')):.0e} | {r.get('iterations', '-')} | "
-                     f"{f'{t:.3f}' if t else 'no match'} | {ratio} |")  # fmt: skip
+        lines.append(
+            f"| {r['surface']} | {r['substrate']} | {r['n']}² | {r['solver']} | "
+            f"{r.get('tol', float('nan')):.0e} | {r.get('iterations', '-')} | "
+            f"{f'{t:.3f}' if t else 'no match'} | {ratio} |"
+        )
     return "\n".join(lines)
 
 
@@ -447,17 +504,23 @@ def main(argv: list[str] | None = None) -> dict:
     if argv[:1] == ["--worker"]:
         worker_main(argv[1:])
         return {}
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.ArgumentDefaultsHelpFormatter
+    )
     ap.add_argument("--device", default="cpu", help="warptrunc's device: cpu, cuda:0, ...")
     ap.add_argument("--sizes", type=int, nargs="+", default=[256, 512, 1024], help="N (N² maps)")
     ap.add_argument("--surfaces", nargs="+", default=["tamaas", "wm"], choices=["tamaas", "wm"])
-    ap.add_argument("--substrates", nargs="+", default=["periodic", "free"],
-                    choices=["periodic", "free"])  # fmt: skip
+    ap.add_argument(
+        "--substrates", nargs="+", default=["periodic", "free"], choices=["periodic", "free"]
+    )
     ap.add_argument("--dtypes", nargs="+", default=["float64", "float32"])
     ap.add_argument("--peers", nargs="+", default=["tamaas", "contactmechanics"])
-    ap.add_argument("--time-limit", type=float, default=600.0,
-                    help="s per peer and N; larger N skipped for a peer past it")  # fmt: skip
+    ap.add_argument(
+        "--time-limit",
+        type=float,
+        default=600.0,
+        help="s per peer and N; larger N skipped for a peer past it",
+    )
     ap.add_argument("--repeats", type=int, default=3, help="warptrunc's timed solves (median)")
     ap.add_argument(
         "--reference",
@@ -494,30 +557,43 @@ def main(argv: list[str] | None = None) -> dict:
         print("tamaas is not installed: its surface and solver are skipped")
         args.surfaces = [s for s in args.surfaces if s != "tamaas"]
     record = {
-        "benchmark": "benchmark_peers", "date": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
-        "commit": git_commit(), "device": args.device, "device_name": dev_name,
-        "cpu": cpu_name(), "cpu_cores": os.cpu_count(), "versions": versions(),
+        "benchmark": "benchmark_peers",
+        "date": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
+        "commit": git_commit(),
+        "device": args.device,
+        "device_name": dev_name,
+        "cpu": cpu_name(),
+        "cpu_cores": os.cpu_count(),
+        "versions": versions(),
         "threads": {
             "tamaas": "worker processes, OMP_NUM_THREADS = 1 and = cpu_count",
             "ContactMechanics": "NumPy FFT, one thread",
-            "warptrunc": ("Warp CPU kernels on one core, scipy.fft workers = cpu_count"
-                          if not dev.is_cuda else f"one GPU, {dev_name}"),
+            "warptrunc": (
+                "Warp CPU kernels on one core, scipy.fft workers = cpu_count"
+                if not dev.is_cuda
+                else f"one GPU, {dev_name}"
+            ),
         },
         "load": {"mean_pressure_over_E_star": P_MEAN / E_STAR, "E_star_Pa": E_STAR, "L_m": 1.0},
-        "reference": args.reference, "tamaas_tol_given": args.tamaas_tol,
-        "rule": (f"area (p > 0) and mean gap within {MATCH:g} (relative) of the reference; each "
-                 "solver loosens its tolerance by decades from a tight start while it matches, "
-                 "timed at the loosest matching one (cold solve)"),
-        "sizes": args.sizes, "rows": [],
-    }  # fmt: skip
+        "reference": args.reference,
+        "tamaas_tol_given": args.tamaas_tol,
+        "rule": (
+            f"area (p > 0) and mean gap within {MATCH:g} (relative) of the reference; each "
+            "solver loosens its tolerance by decades from a tight start while it matches, "
+            "timed at the loosest matching one (cold solve)"
+        ),
+        "sizes": args.sizes,
+        "rows": [],
+    }
     budget: dict[str, float] = {}
     with tempfile.TemporaryDirectory() as tmp:
         for n in args.sizes:
             for surface in args.surfaces:
                 h = tamaas_surface(n) if surface == "tamaas" else wm_map(n)
                 for substrate in args.substrates:
-                    record["rows"] += bench_problem(h, surface, substrate, n, args, Path(tmp),
-                                                    budget)  # fmt: skip
+                    record["rows"] += bench_problem(
+                        h, surface, substrate, n, args, Path(tmp), budget
+                    )
             record["peer_seconds_at_last_n"] = dict(budget)
             if args.out is not None:  # written after every N, in case a later one is stopped
                 args.out.mkdir(parents=True, exist_ok=True)

@@ -134,8 +134,14 @@ def check(args) -> None:
     depth = 0.2 * float(np.ptp(h))
     for dtype in ("float64", "float32"):
         for substrate in ("free", "periodic"):
-            rec = {"step": "check", "n": args.n, "substrate": substrate, "dtype": dtype,
-                   "ndev": 2, "devices": device_names()[:2]}  # fmt: skip
+            rec = {
+                "step": "check",
+                "n": args.n,
+                "substrate": substrate,
+                "dtype": dtype,
+                "ndev": 2,
+                "devices": device_names()[:2],
+            }
             try:
                 st = SolverSettings(substrate=substrate, dtype=dtype)
                 t = time.perf_counter()
@@ -160,8 +166,10 @@ def check(args) -> None:
                 rec["converged"] = ok
                 rec["one_device_s"], rec["two_devices_s"] = t1, t2
                 tol = TOL[dtype]
-                rec["pass"] = bool(rec["converged"] and max(rec["load_rel"], rec["depth_rel"],
-                                                            rec["stiffness_rel"]) < tol)  # fmt: skip
+                rec["pass"] = bool(
+                    rec["converged"]
+                    and max(rec["load_rel"], rec["depth_rel"], rec["stiffness_rel"]) < tol
+                )
                 del one, two
             except Exception as exc:  # recorded; the next case goes on
                 rec["error"] = f"{type(exc).__name__}: {exc}"
@@ -193,17 +201,18 @@ def programme_memory(solver) -> dict:
         "build": (lambda: spectrum_programme(lay, solver.pixel_size, solver.contact_modulus), ()),
         "step": (lambda: make_step(lay, "step"), (x, 0.0, 0.0, mask, x, x, x, x, 1.0, 1e300, w)),
         "precondition": (lambda: make_step(lay, "precondition"), (x, x, mask, w)),
-        "apply": (lambda: lay.jax.jit(lambda a, b: lay.conv(a, b), out_shardings=lay.rows),
-                  (x, w)),
-    }  # fmt: skip
+        "apply": (lambda: lay.jax.jit(lambda a, b: lay.conv(a, b), out_shardings=lay.rows), (x, w)),
+    }
     out = {}
     for name, (make, fn_args) in calls.items():
         try:
             m = make().lower(*fn_args).compile().memory_analysis()
-            out[name] = {"argument": int(m.argument_size_in_bytes),
-                         "output": int(m.output_size_in_bytes),
-                         "alias": int(getattr(m, "alias_size_in_bytes", -1)),
-                         "temp": int(m.temp_size_in_bytes)}  # fmt: skip
+            out[name] = {
+                "argument": int(m.argument_size_in_bytes),
+                "output": int(m.output_size_in_bytes),
+                "alias": int(getattr(m, "alias_size_in_bytes", -1)),
+                "temp": int(m.temp_size_in_bytes),
+            }
         except Exception as exc:  # recorded; the others go on
             out[name] = {"error": f"{type(exc).__name__}: {exc}"[:300]}
     return out
@@ -211,8 +220,15 @@ def programme_memory(solver) -> dict:
 
 def solve(args) -> None:
     """Floor, set-up, cold and warm solves, peak memory (module docstring)."""
-    rec = {"step": "solve", "map": args.map, "n": args.n, "ndev": args.ndev, "dtype": args.dtype,
-           "substrate": args.substrate, "maxiter": args.maxiter}  # fmt: skip
+    rec = {
+        "step": "solve",
+        "map": args.map,
+        "n": args.n,
+        "ndev": args.ndev,
+        "dtype": args.dtype,
+        "substrate": args.substrate,
+        "maxiter": args.maxiter,
+    }
     try:
         from warptrunc.contact import ContactSolver, SolverSettings
 
@@ -221,8 +237,11 @@ def solve(args) -> None:
         rec["surface_s"] = time.perf_counter() - t
         dx = L / args.n
         rt = float(np.ptp(h))
-        kw = {"settings": SolverSettings(substrate=args.substrate, dtype=args.dtype,
-                                         maxiter=args.maxiter)}
+        kw = {
+            "settings": SolverSettings(
+                substrate=args.substrate, dtype=args.dtype, maxiter=args.maxiter
+            )
+        }
         shape = (args.n, args.n)
         rec["model_bytes_per_device"] = ContactSolver.memory_bytes(
             shape, args.substrate, args.dtype, devices=args.ndev
@@ -263,11 +282,16 @@ def solve(args) -> None:
             r = solver.solve(frac * rt)
             sync()
             dt = time.perf_counter() - t
-            rec[name] = {"s": dt, "iterations": r.n_iterations, "convolutions": r.n_convolutions,
-                         "converged": r.converged, "load": r.load,
-                         "contact_fraction": r.n_contact / args.n**2,
-                         "ms_per_iteration": 1e3 * dt / max(1, r.n_iterations),
-                         "ms_per_convolution": 1e3 * dt / max(1.0, r.n_convolutions)}  # fmt: skip
+            rec[name] = {
+                "s": dt,
+                "iterations": r.n_iterations,
+                "convolutions": r.n_convolutions,
+                "converged": r.converged,
+                "load": r.load,
+                "contact_fraction": r.n_contact / args.n**2,
+                "ms_per_iteration": 1e3 * dt / max(1, r.n_iterations),
+                "ms_per_convolution": 1e3 * dt / max(1.0, r.n_convolutions),
+            }
         rec["warm_over_floor"] = rec["warm"]["ms_per_convolution"] / rec["floor_ms"]
         if args.ndev == 1:
             import warp as wp
@@ -281,7 +305,8 @@ def solve(args) -> None:
             rec["peak_bytes"] = [int(s.get("peak_bytes_in_use", -1)) for s in stats]
             rec["programmes"] = programme_memory(solver)
             rec["model_terms"] = type(solver).memory_terms_per_device(
-                shape, args.substrate, args.dtype, args.ndev)  # fmt: skip
+                shape, args.substrate, args.dtype, args.ndev
+            )
         rec["peak_over_model"] = max(rec["peak_bytes"]) / rec["model_bytes_per_device"]
     except Exception as exc:  # recorded; the script goes on
         rec["error"] = f"{type(exc).__name__}: {exc}"
@@ -293,35 +318,47 @@ def report(args) -> None:
     """The table of the JSON lines, and sharded_summary.json beside them."""
     rows = [json.loads(x) for x in args.jsonl.read_text().splitlines() if x.strip()]
     print("\ncheck: 2 devices against 1 (relative differences; tolerance 1e-9 f64, 1e-5 f32)")
-    print(f"{'n':>6} {'substrate':>9} {'dtype':>8} {'load':>9} {'depth':>9} {'k':>9} "
-          f"{'px':>4} {'pass':>5}")  # fmt: skip
+    print(
+        f"{'n':>6} {'substrate':>9} {'dtype':>8} {'load':>9} {'depth':>9} {'k':>9} "
+        f"{'px':>4} {'pass':>5}"
+    )
     for r in rows:
         if r.get("step") != "check":
             continue
         if "error" in r:
-            print(f"{r.get('n', '?'):>6} {r.get('substrate', '?'):>9} {r.get('dtype', '?'):>8}"
-                  f"  ERROR {r['error'][:60]} {r.get('args', '')}")  # fmt: skip
+            print(
+                f"{r.get('n', '?'):>6} {r.get('substrate', '?'):>9} {r.get('dtype', '?'):>8}"
+                f"  ERROR {r['error'][:60]} {r.get('args', '')}"
+            )
             continue
-        print(f"{r['n']:>6} {r['substrate']:>9} {r['dtype']:>8} {r['load_rel']:9.1e} "
-              f"{r['depth_rel']:9.1e} {r['stiffness_rel']:9.1e} {r['pixels_differ']:>4} "
-              f"{r['pass']!s:>5}")  # fmt: skip
+        print(
+            f"{r['n']:>6} {r['substrate']:>9} {r['dtype']:>8} {r['load_rel']:9.1e} "
+            f"{r['depth_rel']:9.1e} {r['stiffness_rel']:9.1e} {r['pixels_differ']:>4} "
+            f"{r['pass']!s:>5}"
+        )
     print("\nsolve: floor = one K·x; per convolution (warm) against it; peak memory per device")
-    print(f"{'n':>6} {'dev':>3} {'dtype':>8} {'floor ms':>9} {'setup s':>8} {'cold s':>7} "
-          f"{'warm s':>7} {'it':>4} {'ms/it':>7} {'ms/conv':>8} {'/floor':>6} {'peak GB':>8} "
-          f"{'model GB':>8}")  # fmt: skip
+    print(
+        f"{'n':>6} {'dev':>3} {'dtype':>8} {'floor ms':>9} {'setup s':>8} {'cold s':>7} "
+        f"{'warm s':>7} {'it':>4} {'ms/it':>7} {'ms/conv':>8} {'/floor':>6} {'peak GB':>8} "
+        f"{'model GB':>8}"
+    )
     for r in rows:
         if r.get("step") != "solve":
             continue
         if "error" in r:
-            print(f"{r.get('n', '?'):>6} {r.get('ndev', '?'):>3} {r.get('dtype', '?'):>8}"
-                  f"  ERROR {r['error'][:70]} {r.get('args', '')}")  # fmt: skip
+            print(
+                f"{r.get('n', '?'):>6} {r.get('ndev', '?'):>3} {r.get('dtype', '?'):>8}"
+                f"  ERROR {r['error'][:70]} {r.get('args', '')}"
+            )
             continue
         w = r["warm"]
-        print(f"{r['n']:>6} {r['ndev']:>3} {r['dtype']:>8} {r['floor_ms']:9.1f} "
-              f"{r['setup_s']:8.1f} {r['cold']['s']:7.2f} {w['s']:7.2f} {w['iterations']:>4} "
-              f"{w['ms_per_iteration']:7.1f} {w['ms_per_convolution']:8.1f} "
-              f"{r['warm_over_floor']:6.2f} {max(r['peak_bytes']) / 1e9:8.2f} "
-              f"{r['model_bytes_per_device'] / 1e9:8.2f}")  # fmt: skip
+        print(
+            f"{r['n']:>6} {r['ndev']:>3} {r['dtype']:>8} {r['floor_ms']:9.1f} "
+            f"{r['setup_s']:8.1f} {r['cold']['s']:7.2f} {w['s']:7.2f} {w['iterations']:>4} "
+            f"{w['ms_per_iteration']:7.1f} {w['ms_per_convolution']:8.1f} "
+            f"{r['warm_over_floor']:6.2f} {max(r['peak_bytes']) / 1e9:8.2f} "
+            f"{r['model_bytes_per_device'] / 1e9:8.2f}"
+        )
     out = args.jsonl.with_name("sharded_summary.json")
     out.write_text(json.dumps(rows, indent=1, default=float))
     print(f"\nwritten: {out}")
@@ -329,8 +366,9 @@ def report(args) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     sys.path.insert(0, str(Path(__file__).resolve().parent))
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.ArgumentDefaultsHelpFormatter
+    )
     ap.add_argument("step", choices=("check", "maps", "solve", "report"))
     ap.add_argument("--n", type=int, default=4096, help="pixels per side")
     ap.add_argument("--ndev", type=int, default=2, help="devices (solve)")
@@ -341,9 +379,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--repeats", type=int, default=10, help="timed repeats of the floor")
     ap.add_argument("--maps", type=Path, default=Path("sharded_maps"), help="map cache folder")
     ap.add_argument("--jsonl", type=Path, default=Path("sharded.jsonl"), help="results file")
-    ap.add_argument("--map", default="selfaffine", choices=("selfaffine", "wm"),
-                    help="the map: a self-affine Gaussian surface (H = 0.8, rms 1 µm), or the "
-                    "D = 2.5 WM surface of benchmark_solver_scaling.py (R_t = 10 µm)")  # fmt: skip
+    ap.add_argument(
+        "--map",
+        default="selfaffine",
+        choices=("selfaffine", "wm"),
+        help="the map: a self-affine Gaussian surface (H = 0.8, rms 1 µm), or the "
+        "D = 2.5 WM surface of benchmark_solver_scaling.py (R_t = 10 µm)",
+    )
     args = ap.parse_args(argv)
     MAP["kind"] = args.map
     steps = {"check": check, "maps": maps, "solve": solve, "report": report}

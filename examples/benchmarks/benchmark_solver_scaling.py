@@ -82,15 +82,24 @@ def fft_floor(n: int, dtype: str, dev, repeats: int) -> float | None:
     ts = []
     for _ in range(repeats + 1):
         t0 = time.perf_counter()
-        scipy.fft.irfft2(scipy.fft.rfft2(x, workers=os.cpu_count()), s=x.shape,
-                         workers=os.cpu_count())  # fmt: skip
+        scipy.fft.irfft2(
+            scipy.fft.rfft2(x, workers=os.cpu_count()), s=x.shape, workers=os.cpu_count()
+        )
         ts.append(time.perf_counter() - t0)
     return statistics.median(ts[1:])
 
 
-def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
-            precondition_above: float | None = None, pentol: float | None = None,
-            direct_max: int | None = None, loop: str | None = None) -> dict:
+def run_one(
+    s,
+    dtype: str,
+    dev,
+    algorithm: str = "bccg",
+    fft_plan: str = "auto",
+    precondition_above: float | None = None,
+    pentol: float | None = None,
+    direct_max: int | None = None,
+    loop: str | None = None,
+) -> dict:
     """Make a solver, solve cold at 0.20·R_t and warm at 0.21·R_t; times, counts, memory."""
     h = s.heights  # the host copy of a device map: outside the window (Warp's tracker counts
     # host allocations too)
@@ -101,10 +110,15 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
         core.wp_alloc_tracker_reset()
         base = core.wp_alloc_tracker_get_current_bytes()
         t0 = time.perf_counter()
-        settings = SolverSettings(dtype=dtype, algorithm=algorithm, fft_plan=fft_plan,
-                                  precondition_above=precondition_above, pentol=pentol,
-                                  direct_max=direct_max,
-                                  **({} if loop is None else {"loop": loop}))  # fmt: skip
+        settings = SolverSettings(
+            dtype=dtype,
+            algorithm=algorithm,
+            fft_plan=fft_plan,
+            precondition_above=precondition_above,
+            pentol=pentol,
+            direct_max=direct_max,
+            **({} if loop is None else {"loop": loop}),
+        )
         solver = ContactSolver(h, (s.dx, s.dy), E_STAR, settings=settings, device=dev)
         wp.synchronize_device(dev)
         t1 = time.perf_counter()
@@ -124,15 +138,25 @@ def run_one(s, dtype: str, dev, algorithm: str = "bccg", fft_plan: str = "auto",
         del solver
     gc.collect()
     return {
-        "setup_s": t1 - t0, "cold_s": t2 - t1, "warm_s": t3 - t2, "punch_s": t4 - t3,
-        "stiffness_N_per_m": k, "punch_converged": bool(k_ok),
-        "cold_iterations": cold.n_iterations, "cold_convolutions": cold.n_convolutions,
-        "warm_iterations": warm.n_iterations, "warm_convolutions": warm.n_convolutions,
+        "setup_s": t1 - t0,
+        "cold_s": t2 - t1,
+        "warm_s": t3 - t2,
+        "punch_s": t4 - t3,
+        "stiffness_N_per_m": k,
+        "punch_converged": bool(k_ok),
+        "cold_iterations": cold.n_iterations,
+        "cold_convolutions": cold.n_convolutions,
+        "warm_iterations": warm.n_iterations,
+        "warm_convolutions": warm.n_convolutions,
         "converged": bool(cold.converged and warm.converged),
-        "load_N": warm.load, "n_contact": warm.n_contact,
-        "peak_bytes": peak, "cufft_work_bytes": int(fft_work), "fft_plan": plan,
-        "loop": solver_loop(loop), "graph_error": graph_error,
-    }  # fmt: skip
+        "load_N": warm.load,
+        "n_contact": warm.n_contact,
+        "peak_bytes": peak,
+        "cufft_work_bytes": int(fft_work),
+        "fft_plan": plan,
+        "loop": solver_loop(loop),
+        "graph_error": graph_error,
+    }
 
 
 def solver_loop(loop: str | None) -> str:
@@ -152,29 +176,66 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(
         description=__doc__.split("\n")[0], formatter_class=argparse.ArgumentDefaultsHelpFormatter
     )
-    p.add_argument("--n", type=int, nargs="+", default=None,
-                   help="map sizes N (default 2048 … 32768 on CUDA, 128 256 512 on the CPU)")  # fmt: skip
-    p.add_argument("--dtype", nargs="+", default=["float32", "float64"],
-                   choices=["float32", "float64"])  # fmt: skip
+    p.add_argument(
+        "--n",
+        type=int,
+        nargs="+",
+        default=None,
+        help="map sizes N (default 2048 … 32768 on CUDA, 128 256 512 on the CPU)",
+    )
+    p.add_argument(
+        "--dtype", nargs="+", default=["float32", "float64"], choices=["float32", "float64"]
+    )
     p.add_argument("--device", default=None, help="Warp device (cpu, cuda:0)")
-    p.add_argument("--algorithm", nargs="+", default=["bccg"], choices=["bccg", "pk"],
-                   help="the solver's iteration(s) (SolverSettings.algorithm)")  # fmt: skip
-    p.add_argument("--fft-plan", default="auto", choices=["auto", "pruned", "full"],
-                   help="the free half-space's cuFFT plans (SolverSettings.fft_plan)")  # fmt: skip
-    p.add_argument("--precondition-above", type=_threshold, nargs="+", default=[None],
-                   help="BCCG's preconditioner threshold(s) (SolverSettings.precondition_above; "
-                   "0 = always, auto = the default rule)")  # fmt: skip
-    p.add_argument("--pentol-rms", type=float, default=None,
-                   help="a fixed relative tolerance: pentol = this × the map's rms height "
-                   "(default: the solver's, rms/(10·N), which tightens with N)")  # fmt: skip
-    p.add_argument("--direct-max", type=int, nargs="+", default=[None],
-                   help="largest number of projection corrections summed directly "
-                   "(SolverSettings.direct_max; default auto)")  # fmt: skip
-    p.add_argument("--wc-pixels", type=float, default=None,
-                   help="fixed content: the cut-off W_c as this many pixels of the first N "
-                   "(default: W_c = 2 pixels at every N, finer pixels add roughness)")  # fmt: skip
-    p.add_argument("--loop", default=None, choices=["host", "device", "graph"],
-                   help="SolverSettings.loop (default: the solver's)")
+    p.add_argument(
+        "--algorithm",
+        nargs="+",
+        default=["bccg"],
+        choices=["bccg", "pk"],
+        help="the solver's iteration(s) (SolverSettings.algorithm)",
+    )
+    p.add_argument(
+        "--fft-plan",
+        default="auto",
+        choices=["auto", "pruned", "full"],
+        help="the free half-space's cuFFT plans (SolverSettings.fft_plan)",
+    )
+    p.add_argument(
+        "--precondition-above",
+        type=_threshold,
+        nargs="+",
+        default=[None],
+        help="BCCG's preconditioner threshold(s) (SolverSettings.precondition_above; "
+        "0 = always, auto = the default rule)",
+    )
+    p.add_argument(
+        "--pentol-rms",
+        type=float,
+        default=None,
+        help="a fixed relative tolerance: pentol = this × the map's rms height "
+        "(default: the solver's, rms/(10·N), which tightens with N)",
+    )
+    p.add_argument(
+        "--direct-max",
+        type=int,
+        nargs="+",
+        default=[None],
+        help="largest number of projection corrections summed directly "
+        "(SolverSettings.direct_max; default auto)",
+    )
+    p.add_argument(
+        "--wc-pixels",
+        type=float,
+        default=None,
+        help="fixed content: the cut-off W_c as this many pixels of the first N "
+        "(default: W_c = 2 pixels at every N, finer pixels add roughness)",
+    )
+    p.add_argument(
+        "--loop",
+        default=None,
+        choices=["host", "device", "graph"],
+        help="SolverSettings.loop (default: the solver's)",
+    )
     p.add_argument("--repeats", type=int, default=3, help="repeats of the FFT floor (median)")
     p.add_argument("--budget", type=float, default=480.0, help="time budget of the run (s)")
     p.add_argument("--quick", action="store_true", help="small sizes (128, 256), float32 only")
@@ -185,8 +246,13 @@ def main(argv: list[str] | None = None) -> int:
     start = time.perf_counter()
     dev = warptrunc.resolve_device(a.device)
     name = wp.get_device(dev).name
-    sizes = a.n or ([128, 256] if a.quick else
-                    [2048, 4096, 8192, 10240, 16384, 32768] if dev.is_cuda else [128, 256, 512])  # fmt: skip
+    sizes = a.n or (
+        [128, 256]
+        if a.quick
+        else [2048, 4096, 8192, 10240, 16384, 32768]
+        if dev.is_cuda
+        else [128, 256, 512]
+    )
     dtypes = ["float32"] if a.quick else a.dtype
     print(f"device {dev} ({name}), warp {wp.config.version}, commit {git_commit()}", flush=True)
     # fixed content: W_c the same length at every N; else None (2 pixels, wm_surface's default)
@@ -195,38 +261,63 @@ def main(argv: list[str] | None = None) -> int:
     last: tuple[int, float] | None = None
     stopped = None
     for n in sizes:
-        for dtype, algorithm, pa, dm in [(d, al, pa, dm) for d in dtypes for al in a.algorithm
-                                         for pa in a.precondition_above
-                                         for dm in a.direct_max]:  # fmt: skip
+        for dtype, algorithm, pa, dm in [
+            (d, al, pa, dm)
+            for d in dtypes
+            for al in a.algorithm
+            for pa in a.precondition_above
+            for dm in a.direct_max
+        ]:
             if last is not None:
                 predicted = last[1] * 4.5 ** np.log2(n / last[0])
                 left = a.budget - (time.perf_counter() - start)
                 if predicted > left:
                     stopped = f"stopped before N={n} {dtype}: predicted {predicted:.0f} s, {left:.0f} s left"
                     break
-            need = ContactSolver.memory_bytes((n, n), "free", dtype, cuda=dev.is_cuda,
-                                              algorithm=algorithm)  # fmt: skip
+            need = ContactSolver.memory_bytes(
+                (n, n), "free", dtype, cuda=dev.is_cuda, algorithm=algorithm
+            )
             t0 = time.perf_counter()
             try:
-                s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=a.seed, device=dev,
-                               **wc)  # fmt: skip
+                s = wm_surface(2.5, 100e-6, L=1e-3, n=n, Rt=10e-6, seed=a.seed, device=dev, **wc)
                 pentol = None
                 if a.pentol_rms is not None:
                     pentol = a.pentol_rms * float(np.std(s.heights))
                 r = run_one(s, dtype, dev, algorithm, a.fft_plan, pa, pentol, dm, a.loop)
             except MemoryError as exc:
                 print(f"N={n} {dtype}: {exc}", flush=True)
-                rows.append({"n": n, "dtype": dtype, "algorithm": algorithm,
-                             "memory_model_bytes": need, "error": str(exc)})  # fmt: skip
+                rows.append(
+                    {
+                        "n": n,
+                        "dtype": dtype,
+                        "algorithm": algorithm,
+                        "memory_model_bytes": need,
+                        "error": str(exc),
+                    }
+                )
                 continue
             floor = fft_floor(n, dtype, dev, a.repeats)
             del s
-            need = ContactSolver.memory_bytes((n, n), "free", dtype, cuda=dev.is_cuda,
-                                              algorithm=algorithm, fft_plan=r["fft_plan"],
-                                              device=dev if dev.is_cuda else None)  # fmt: skip
-            r.update(n=n, dtype=dtype, algorithm=algorithm, memory_model_bytes=need,
-                     fft_floor_s=floor, precondition_above=pa, pentol_m=pentol, direct_max=dm,
-                     Wc_m=wc.get("Wc"))  # fmt: skip
+            need = ContactSolver.memory_bytes(
+                (n, n),
+                "free",
+                dtype,
+                cuda=dev.is_cuda,
+                algorithm=algorithm,
+                fft_plan=r["fft_plan"],
+                device=dev if dev.is_cuda else None,
+            )
+            r.update(
+                n=n,
+                dtype=dtype,
+                algorithm=algorithm,
+                memory_model_bytes=need,
+                fft_floor_s=floor,
+                precondition_above=pa,
+                pentol_m=pentol,
+                direct_max=dm,
+                Wc_m=wc.get("Wc"),
+            )
             conv = r["warm_convolutions"]
             r["warm_per_convolution_s"] = r["warm_s"] / conv if conv else None
             r["per_convolution_over_floor"] = (
@@ -253,12 +344,19 @@ def main(argv: list[str] | None = None) -> int:
     if stopped:
         print(stopped, flush=True)
     if a.out is not None:
-        doc = {"device": str(dev), "device_name": name, "warp": wp.config.version,
-               "commit": git_commit(), "platform": platform.platform(),
-               "surface": "wm_surface(D=2.5, Wr=100 µm, L=1 mm, Rt=10 µm), free boundary",
-               "Wc_m": wc.get("Wc"),
-               "cold_fraction_of_Rt": COLD, "warm_fraction_of_Rt": WARM,
-               "stopped": stopped, "rows": rows}  # fmt: skip
+        doc = {
+            "device": str(dev),
+            "device_name": name,
+            "warp": wp.config.version,
+            "commit": git_commit(),
+            "platform": platform.platform(),
+            "surface": "wm_surface(D=2.5, Wr=100 µm, L=1 mm, Rt=10 µm), free boundary",
+            "Wc_m": wc.get("Wc"),
+            "cold_fraction_of_Rt": COLD,
+            "warm_fraction_of_Rt": WARM,
+            "stopped": stopped,
+            "rows": rows,
+        }
         a.out.mkdir(parents=True, exist_ok=True)
         (a.out / "scaling.json").write_text(json.dumps(doc, indent=1) + "\n")
         print(f"wrote {a.out / 'scaling.json'}")

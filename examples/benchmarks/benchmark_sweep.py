@@ -56,8 +56,9 @@ def _opts(n: int, increments: int, bem: list[float]):
     """The :class:`~warptrunc.sweep.SweepOptions` of the measured cases."""
     from warptrunc.sweep import SweepOptions
 
-    return SweepOptions(n=n, increments=increments, min_pixels=(10,),
-                        bem_fractions=tuple(bem) or None)  # fmt: skip
+    return SweepOptions(
+        n=n, increments=increments, min_pixels=(10,), bem_fractions=tuple(bem) or None
+    )
 
 
 def kernel_loop(n: int, cases: int, device, increments: int, bem: list[float]) -> float:
@@ -74,8 +75,9 @@ def kernel_loop(n: int, cases: int, device, increments: int, bem: list[float]) -
 
     def one(seed):
         s = wm_surface(D, o.Wr, L=o.L, n=n, Rt=DELTA * o.Wr, seed=seed, device=device)
-        sc = stiffness_curve(truncate(s, increments, max_depth_fraction=o.max_depth_fraction,
-                                      device=device), mat)  # fmt: skip
+        sc = stiffness_curve(
+            truncate(s, increments, max_depth_fraction=o.max_depth_fraction, device=device), mat
+        )
         try:
             fit_power_law(sc, min_pixels=10)
         except ValueError:  # too few increments in the range: the sweep records it too
@@ -141,8 +143,13 @@ def inprocess(n: int, cases: int, device, increments: int, bem: list[float]) -> 
     tmp = Path(tempfile.mkdtemp(prefix="warptrunc-bench-sweep-"))
     try:
         t0 = time.perf_counter()
-        df = run_sweep(SweepGrid([D], [DELTA], list(range(cases))), tmp / "store",
-                       options=opts, progress=False, device=device)  # fmt: skip
+        df = run_sweep(
+            SweepGrid([D], [DELTA], list(range(cases))),
+            tmp / "store",
+            options=opts,
+            progress=False,
+            device=device,
+        )
         wall = time.perf_counter() - t0
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
@@ -171,8 +178,9 @@ def _pin_plugin():
     return PinCores()
 
 
-def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: list[float],
-                pin: bool):  # fmt: skip
+def workers_run(
+    n: int, cases: int, workers: int, device, increments: int, bem: list[float], pin: bool
+):
     """Wall time (s) of run_sweep on a warmed-up LocalCluster of ``workers`` processes."""
     import logging
 
@@ -183,8 +191,13 @@ def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: 
     from warptrunc.sweep.engines import compute_case
 
     opts = _opts(n, increments, bem)
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                           dashboard_address=":0", silence_logs=logging.ERROR)  # fmt: skip
+    cluster = LocalCluster(
+        n_workers=workers,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=":0",
+        silence_logs=logging.ERROR,
+    )
     client = Client(cluster)
     tmp = Path(tempfile.mkdtemp(prefix="warptrunc-bench-sweep-"))
     try:
@@ -195,13 +208,20 @@ def workers_run(n: int, cases: int, workers: int, device, increments: int, bem: 
         o = opts
         warm = SweepGrid([D], [DELTA], list(range(10**6, 10**6 + workers))).cases(o)
         names = list(client.scheduler_info()["workers"])
-        futs = [client.submit(compute_case, c, o, device, workers=[w], pure=False)
-                for c, w in zip(warm, names, strict=True)]  # fmt: skip
+        futs = [
+            client.submit(compute_case, c, o, device, workers=[w], pure=False)
+            for c, w in zip(warm, names, strict=True)
+        ]
         client.gather(futs)  # every worker has loaded its kernels
         t0 = time.perf_counter()
-        df = run_sweep(SweepGrid([D], [DELTA], list(range(cases))), tmp / "store",
-                       options=opts, execution=SweepExecution(scheduler=client),
-                       progress=False, device=device)  # fmt: skip
+        df = run_sweep(
+            SweepGrid([D], [DELTA], list(range(cases))),
+            tmp / "store",
+            options=opts,
+            execution=SweepExecution(scheduler=client),
+            progress=False,
+            device=device,
+        )
         wall = time.perf_counter() - t0
         devices = sorted(df["device"].unique())
         case_s = df.drop_duplicates("case_id")["seconds"]
@@ -222,18 +242,36 @@ def main(argv=None) -> int:
     )
     ap.add_argument("--n", type=int, nargs="+", default=[512], help="pixels per side")
     ap.add_argument("--cases", type=int, default=16, help="surfaces per run")
-    ap.add_argument("--runs", nargs="+", default=["kernel", "inproc"],
-                    choices=("kernel", "batch", "inproc", "workers"),
-                    help="which runs: the kernel loop (one surface at a time), the batched "
-                         "kernel loop, run_sweep in process, --workers")  # fmt: skip
-    ap.add_argument("--workers", type=int, nargs="+", default=[1, 2],
-                    help="LocalCluster sizes for --runs workers")  # fmt: skip
+    ap.add_argument(
+        "--runs",
+        nargs="+",
+        default=["kernel", "inproc"],
+        choices=("kernel", "batch", "inproc", "workers"),
+        help="which runs: the kernel loop (one surface at a time), the batched "
+        "kernel loop, run_sweep in process, --workers",
+    )
+    ap.add_argument(
+        "--workers",
+        type=int,
+        nargs="+",
+        default=[1, 2],
+        help="LocalCluster sizes for --runs workers",
+    )
     ap.add_argument("--increments", type=int, default=200, help="depth increments")
-    ap.add_argument("--bem-fractions", type=float, nargs="+", default=[],
-                    help="elastic solves per case at δ = f·R_t (as warptrunc sweep)")  # fmt: skip
+    ap.add_argument(
+        "--bem-fractions",
+        type=float,
+        nargs="+",
+        default=[],
+        help="elastic solves per case at δ = f·R_t (as warptrunc sweep)",
+    )
     ap.add_argument("--device", default=None, help="cpu, cuda:0, ... (default: resolved)")
-    ap.add_argument("--pin-cores", action=argparse.BooleanOptionalAction, default=None,
-                    help="worker i on CPU core i, single-threaded (default: on with --device cpu)")
+    ap.add_argument(
+        "--pin-cores",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="worker i on CPU core i, single-threaded (default: on with --device cpu)",
+    )
     ap.add_argument("--json", type=Path, default=None, help="append the results here")
     args = ap.parse_args(argv)
     import warp as wp
@@ -246,59 +284,108 @@ def main(argv=None) -> int:
     device = args.device if args.device is not None else None
     if "workers" not in args.runs:
         device = str(dev)
+
     class Runs(list):  # each run is printed as it ends: a run cut short keeps the others
         def append(self, r):
             super().append(r)
             extra = "".join(f" {k}={r[k]:.3f}" for k in ("case_s", "busy") if k in r)
-            print(f"[run] n={r['n']} {r['run']}: {args.cases} cases in {r['wall_s']:.2f} s{extra}",
-                  flush=True)  # fmt: skip
+            print(
+                f"[run] n={r['n']} {r['run']}: {args.cases} cases in {r['wall_s']:.2f} s{extra}",
+                flush=True,
+            )
 
     results = Runs()
     for n in args.n:
         if "kernel" in args.runs:
-            results.append(dict(n=n, run="kernel", workers=0,
-                                wall_s=kernel_loop(n, args.cases, str(dev), args.increments,
-                                                   args.bem_fractions)))  # fmt: skip
+            results.append(
+                dict(
+                    n=n,
+                    run="kernel",
+                    workers=0,
+                    wall_s=kernel_loop(
+                        n, args.cases, str(dev), args.increments, args.bem_fractions
+                    ),
+                )
+            )
         if "batch" in args.runs:
-            results.append(dict(n=n, run="batch", workers=0,
-                                wall_s=batch_loop(n, args.cases, str(dev), args.increments,
-                                                  args.bem_fractions)))  # fmt: skip
+            results.append(
+                dict(
+                    n=n,
+                    run="batch",
+                    workers=0,
+                    wall_s=batch_loop(n, args.cases, str(dev), args.increments, args.bem_fractions),
+                )
+            )
         if "inproc" in args.runs:
-            results.append(dict(n=n, run="inproc", workers=0,
-                                wall_s=inprocess(n, args.cases, str(dev), args.increments,
-                                                 args.bem_fractions)))  # fmt: skip
+            results.append(
+                dict(
+                    n=n,
+                    run="inproc",
+                    workers=0,
+                    wall_s=inprocess(n, args.cases, str(dev), args.increments, args.bem_fractions),
+                )
+            )
         if "workers" in args.runs:
             for w in args.workers:
                 pin = args.pin_cores if args.pin_cores is not None else str(dev) == "cpu"
-                wall, devs, case_s, busy = workers_run(n, args.cases, w, device, args.increments,
-                                                       args.bem_fractions, pin)  # fmt: skip
-                results.append(dict(n=n, run=f"{w} workers", workers=w, wall_s=wall,
-                                    devices=devs, case_s=case_s, busy=busy))  # fmt: skip
+                wall, devs, case_s, busy = workers_run(
+                    n, args.cases, w, device, args.increments, args.bem_fractions, pin
+                )
+                results.append(
+                    dict(
+                        n=n,
+                        run=f"{w} workers",
+                        workers=w,
+                        wall_s=wall,
+                        devices=devs,
+                        case_s=case_s,
+                        busy=busy,
+                    )
+                )
     for r in results:
         r["surfaces_per_s"] = args.cases / r["wall_s"]
-        ref = [q for q in results if q["n"] == r["n"] and q["run"] == ("kernel" if r["run"] in ("inproc", "batch") else "1 workers")]
+        ref = [
+            q
+            for q in results
+            if q["n"] == r["n"]
+            and q["run"] == ("kernel" if r["run"] in ("inproc", "batch") else "1 workers")
+        ]
         if r["run"] in ("inproc", "batch") and ref:
             r["ratio"] = r["surfaces_per_s"] / ref[0]["surfaces_per_s"]
         elif r["workers"] and ref:
             r["ratio"] = r["surfaces_per_s"] / (r["workers"] * ref[0]["surfaces_per_s"])
-        r.update(cases=args.cases, bem_fractions=args.bem_fractions, device=str(dev),
-                 device_name=str(dev.name), host=platform.node(), cpus=os.cpu_count(),
-                 warp=wp.config.version, warptrunc=__version__, commit=git_commit())  # fmt: skip
+        r.update(
+            cases=args.cases,
+            bem_fractions=args.bem_fractions,
+            device=str(dev),
+            device_name=str(dev.name),
+            host=platform.node(),
+            cpus=os.cpu_count(),
+            warp=wp.config.version,
+            warptrunc=__version__,
+            commit=git_commit(),
+        )
     bem = f", elastic solves at {args.bem_fractions} R_t" if args.bem_fractions else ""
-    print(f"\ndevice {dev} ({dev.name}); host {platform.node()}, {os.cpu_count()} CPUs; "
-          f"warp {wp.config.version}; {args.cases} cases per run, {args.increments} increments{bem}")  # fmt: skip
+    print(
+        f"\ndevice {dev} ({dev.name}); host {platform.node()}, {os.cpu_count()} CPUs; "
+        f"warp {wp.config.version}; {args.cases} cases per run, {args.increments} increments{bem}"
+    )
     print("ratio: batch and inproc / kernel loop; N workers: rate / (N × rate of 1 worker)\n")
     print("case s: median wall time of one case; busy: Σ case times / (workers × wall)\n")
-    print(f"| {'n':>6} | {'run':<10} | {'devices':<16} | {'wall s':>8} | {'surfaces/s':>10} | "
-          f"{'ratio':>6} | {'case s':>7} | {'busy':>5} |")  # fmt: skip
+    print(
+        f"| {'n':>6} | {'run':<10} | {'devices':<16} | {'wall s':>8} | {'surfaces/s':>10} | "
+        f"{'ratio':>6} | {'case s':>7} | {'busy':>5} |"
+    )
     print(f"|{'-' * 8}|{'-' * 12}|{'-' * 18}|{'-' * 10}|{'-' * 12}|{'-' * 8}|{'-' * 9}|{'-' * 7}|")
     for r in results:
         devs = ",".join(r.get("devices", [str(dev)]))
         ratio = f"{r['ratio']:.2f}" if "ratio" in r else ""
         case_s = f"{r['case_s']:.3f}" if "case_s" in r else ""
         busy = f"{r['busy']:.2f}" if "busy" in r else ""
-        print(f"| {r['n']:>6} | {r['run']:<10} | {devs:<16} | {r['wall_s']:>8.2f} | "
-              f"{r['surfaces_per_s']:>10.1f} | {ratio:>6} | {case_s:>7} | {busy:>5} |")  # fmt: skip
+        print(
+            f"| {r['n']:>6} | {r['run']:<10} | {devs:<16} | {r['wall_s']:>8.2f} | "
+            f"{r['surfaces_per_s']:>10.1f} | {ratio:>6} | {case_s:>7} | {busy:>5} |"
+        )
     if args.json:
         with args.json.open("a") as fh:
             for r in results:

@@ -66,12 +66,24 @@ def run_parts(n: int, device: str | None, surface: str, hardness: float, top: in
     from warptrunc.reproduce.indentation.pieces import Part, run_part
 
     p = _stage(n)
-    parts = [Part(surface, "sweep", float("inf"), None, 0, 0),
-             Part(surface, "sweep", float(hardness), None, 0, 0)]  # fmt: skip
+    parts = [
+        Part(surface, "sweep", float("inf"), None, 0, 0),
+        Part(surface, "sweep", float(hardness), None, 0, 0),
+    ]
     prof = cProfile.Profile() if top else None
-    out: dict = {"thread": threading.current_thread().name, "pid": os.getpid(),
-                 "env": {k: os.environ.get(k) for k in ("MALLOC_TRIM_THRESHOLD_",
-                         "OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")}}  # fmt: skip
+    out: dict = {
+        "thread": threading.current_thread().name,
+        "pid": os.getpid(),
+        "env": {
+            k: os.environ.get(k)
+            for k in (
+                "MALLOC_TRIM_THRESHOLD_",
+                "OMP_NUM_THREADS",
+                "MKL_NUM_THREADS",
+                "OPENBLAS_NUM_THREADS",
+            )
+        },
+    }
     t0 = time.perf_counter()
     if prof:
         prof.enable()
@@ -79,8 +91,14 @@ def run_parts(n: int, device: str | None, surface: str, hardness: float, top: in
     if prof:
         prof.disable()
     out["wall_s"] = time.perf_counter() - t0
-    out["parts"] = [{k: r["seconds"][k] for k in ("part_s", "elastic_plastic_s", "refinement_s")
-                     if k in r["seconds"]} for r in recs]  # fmt: skip
+    out["parts"] = [
+        {
+            k: r["seconds"][k]
+            for k in ("part_s", "elastic_plastic_s", "refinement_s")
+            if k in r["seconds"]
+        }
+        for r in recs
+    ]
     out["device"] = recs[0]["device"]
     if hasattr(os, "sched_getaffinity"):  # where this thread may run (bound or not)
         from warptrunc._support.affinity import format_cpulist
@@ -115,21 +133,33 @@ def _worker(args, bare: bool):
         for k in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
             if k not in os.environ:
                 pre[k] = None
-        cfg = {"distributed.worker.profile.enabled": False,
-               "distributed.admin.system-monitor.interval": "3600s",
-               "distributed.nanny.pre-spawn-environ": pre}  # fmt: skip
+        cfg = {
+            "distributed.worker.profile.enabled": False,
+            "distributed.admin.system-monitor.interval": "3600s",
+            "distributed.nanny.pre-spawn-environ": pre,
+        }
     results = []
     with (
         dask.config.set(cfg),
         open_client(workers=1, progress=False, warm_contact=True) as (c, _, _),
     ):
         for _ in range(args.repeat):
-            fut = c.submit(run_parts, args.n, args.device, args.surface, args.hardness, 0,
-                           pure=False)  # fmt: skip
+            fut = c.submit(
+                run_parts, args.n, args.device, args.surface, args.hardness, 0, pure=False
+            )
             results.append(fut.result())
         if args.profile_top and not bare:  # one more run, profiled, not counted
-            results.append(c.submit(run_parts, args.n, args.device, args.surface, args.hardness,
-                                    args.profile_top, pure=False).result())  # fmt: skip
+            results.append(
+                c.submit(
+                    run_parts,
+                    args.n,
+                    args.device,
+                    args.surface,
+                    args.hardness,
+                    args.profile_top,
+                    pure=False,
+                ).result()
+            )
     return results
 
 
@@ -138,8 +168,10 @@ def _process(args):
 
     ctx = mp.get_context("spawn")
     with ctx.Pool(1) as pool:
-        return [pool.apply(run_parts, (args.n, args.device, args.surface, args.hardness))
-                for _ in range(args.repeat)]  # fmt: skip
+        return [
+            pool.apply(run_parts, (args.n, args.device, args.surface, args.hardness))
+            for _ in range(args.repeat)
+        ]
 
 
 def main(argv=None) -> int:
@@ -147,7 +179,10 @@ def main(argv=None) -> int:
         description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
     )
     ap.add_argument(
-        "--n", type=int, default=1536, help="pixels per side of the paper profile's indentation maps (indentation.n)"
+        "--n",
+        type=int,
+        default=1536,
+        help="pixels per side of the paper profile's indentation maps (indentation.n)",
     )
     ap.add_argument("--device", default=None, help="Warp device (default: cuda:0, else cpu)")
     ap.add_argument("--surface", default="SMATs", help="Table 1 surface (default SMATs)")
@@ -158,9 +193,13 @@ def main(argv=None) -> int:
     ap.add_argument("--settings", nargs="+", default=list(SETTINGS), choices=SETTINGS)
     ap.add_argument("--profile-top", type=int, default=25, help="cProfile rows (0: none)")
     ap.add_argument("--out", default="worker_overhead_out", help="results folder")
-    ap.add_argument("--bind", choices=("none", "near"), default="none",
-                    help="near: bind this process to the CPUs near --device first (the workers "
-                    "bind themselves unless WARPTRUNC_CPU_AFFINITY=0)")  # fmt: skip
+    ap.add_argument(
+        "--bind",
+        choices=("none", "near"),
+        default="none",
+        help="near: bind this process to the CPUs near --device first (the workers "
+        "bind themselves unless WARPTRUNC_CPU_AFFINITY=0)",
+    )
     args = ap.parse_args(argv)
     if args.device is None:
         from warptrunc._support.device import cuda_device_count
@@ -175,22 +214,32 @@ def main(argv=None) -> int:
         ordinal = int(str(args.device).partition(":")[2] or 0)
         bound = bind_near([ordinal])
         print(f"bound to CPUs {format_cpulist(bound) if bound else '(unchanged)'}", flush=True)
-    rec = {"benchmark": "worker_overhead", "commit": os.environ.get("WARPTRUNC_GIT_COMMIT"),
-           "host": platform.node(), "started_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-           "args": vars(args), "settings": {},
-           "bound": None if not bound else sorted(bound),
-           "cpu_affinity_env": os.environ.get("WARPTRUNC_CPU_AFFINITY")}  # fmt: skip
+    rec = {
+        "benchmark": "worker_overhead",
+        "commit": os.environ.get("WARPTRUNC_GIT_COMMIT"),
+        "host": platform.node(),
+        "started_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+        "args": vars(args),
+        "settings": {},
+        "bound": None if not bound else sorted(bound),
+        "cpu_affinity_env": os.environ.get("WARPTRUNC_CPU_AFFINITY"),
+    }
     for s in args.settings:
         t0 = time.perf_counter()
         if s == "main":
-            runs = [run_parts(args.n, args.device, args.surface, args.hardness, 0)
-                    for _ in range(args.repeat)]  # fmt: skip
+            runs = [
+                run_parts(args.n, args.device, args.surface, args.hardness, 0)
+                for _ in range(args.repeat)
+            ]
             if args.profile_top:  # one more run, profiled, not counted
-                runs.append(run_parts(args.n, args.device, args.surface, args.hardness,
-                                      args.profile_top))  # fmt: skip
+                runs.append(
+                    run_parts(args.n, args.device, args.surface, args.hardness, args.profile_top)
+                )
         elif s == "thread":
-            runs = [_in_thread(args.n, args.device, args.surface, args.hardness, 0)
-                    for _ in range(args.repeat)]  # fmt: skip
+            runs = [
+                _in_thread(args.n, args.device, args.surface, args.hardness, 0)
+                for _ in range(args.repeat)
+            ]
         elif s == "worker":
             runs = _worker(args, bare=False)
         elif s == "worker-bare":
@@ -200,10 +249,16 @@ def main(argv=None) -> int:
         counted = [r for r in runs if "profile" not in r]
         counted = counted[1:] if len(counted) > 1 else counted
         walls = [r["wall_s"] for r in counted]
-        rec["settings"][s] = {"runs": runs, "wall_s": walls, "best_s": min(walls),
-                              "setting_s": time.perf_counter() - t0}  # fmt: skip
-        print(f"{s:12s} best {min(walls):7.2f} s  runs " + " ".join(f"{w:.2f}" for w in walls),
-              flush=True)  # fmt: skip
+        rec["settings"][s] = {
+            "runs": runs,
+            "wall_s": walls,
+            "best_s": min(walls),
+            "setting_s": time.perf_counter() - t0,
+        }
+        print(
+            f"{s:12s} best {min(walls):7.2f} s  runs " + " ".join(f"{w:.2f}" for w in walls),
+            flush=True,
+        )
         (out / "worker_overhead.json").write_text(json.dumps(rec, indent=1, default=str))
     base = rec["settings"].get("main", {}).get("best_s")
     if base:

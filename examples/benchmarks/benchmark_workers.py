@@ -71,22 +71,65 @@ import numpy as np
 SIZES = {
     "small": {
         "light": ["--n", "64", "--D", "2.3", "2.6", "--delta", "0.01", "--seeds", "0-7"],
-        "elastic": ["--n", "64", "--D", "2.3", "2.6", "--delta", "0.01", "--seeds", "0-3",
-                    "--bem-fractions", "0.1"],
-        "check": {"light": dict(n=64, D=[2.3, 2.6], seeds="0-7"),
-                  "elastic": dict(n=64, D=[2.3, 2.6], seeds="0-3", bem=(0.1, 0.2),
-                                  fractal=("tri", "box"))},
+        "elastic": [
+            "--n",
+            "64",
+            "--D",
+            "2.3",
+            "2.6",
+            "--delta",
+            "0.01",
+            "--seeds",
+            "0-3",
+            "--bem-fractions",
+            "0.1",
+        ],
+        "check": {
+            "light": dict(n=64, D=[2.3, 2.6], seeds="0-7"),
+            "elastic": dict(
+                n=64, D=[2.3, 2.6], seeds="0-3", bem=(0.1, 0.2), fractal=("tri", "box")
+            ),
+        },
     },
     "full": {  # 4 × 500 = 2000 light cases at 2048²; 2 × 48 = 96 elastic cases at 4096²
-        "light": ["--n", "2048", "--D", "2.2", "2.4", "2.6", "2.8", "--delta", "0.01",
-                  "--seeds", "0-499"],
-        "elastic": ["--n", "4096", "--D", "2.3", "2.6", "--delta", "0.01", "--seeds", "0-47",
-                    "--bem-fractions", "0.1"],
-        "check": {"light": dict(n=2048, D=[2.3, 2.6], seeds="0-31"),  # batched on a GPU
-                  "elastic": dict(n=1024, D=[2.3, 2.6], seeds="0-7", bem=(0.1, 0.2),
-                                  fractal=("tri", "box", "vs", "sp"))},
+        "light": [
+            "--n",
+            "2048",
+            "--D",
+            "2.2",
+            "2.4",
+            "2.6",
+            "2.8",
+            "--delta",
+            "0.01",
+            "--seeds",
+            "0-499",
+        ],
+        "elastic": [
+            "--n",
+            "4096",
+            "--D",
+            "2.3",
+            "2.6",
+            "--delta",
+            "0.01",
+            "--seeds",
+            "0-47",
+            "--bem-fractions",
+            "0.1",
+        ],
+        "check": {
+            "light": dict(n=2048, D=[2.3, 2.6], seeds="0-31"),  # batched on a GPU
+            "elastic": dict(
+                n=1024,
+                D=[2.3, 2.6],
+                seeds="0-7",
+                bem=(0.1, 0.2),
+                fractal=("tri", "box", "vs", "sp"),
+            ),
+        },
     },
-}  # fmt: skip
+}
 
 
 def gpus() -> list[str]:
@@ -129,8 +172,16 @@ def with_cases(args: list[str], n_cases: int) -> list[str]:
 
 def sweep_cmd(workload: list[str], store: Path, workers, device) -> list[str]:
     """The ``warptrunc sweep`` command of one run."""
-    cmd = [sys.executable, "-m", "warptrunc", "sweep", *workload, "--out", str(store),
-           "--no-progress"]  # fmt: skip
+    cmd = [
+        sys.executable,
+        "-m",
+        "warptrunc",
+        "sweep",
+        *workload,
+        "--out",
+        str(store),
+        "--no-progress",
+    ]
     if device:
         cmd += ["--device", device]
     if workers is not None:
@@ -183,8 +234,14 @@ def cluster_start(n: int, device) -> dict:
         t2 = time.perf_counter()
         kind = type(cluster).__name__
     t3 = time.perf_counter()
-    return dict(start_s=t1 - t0, warm_s=t2 - t1, stop_s=t3 - t2, start_total_s=t3 - t0,
-                cluster=kind, worker_devices=devices)  # fmt: skip
+    return dict(
+        start_s=t1 - t0,
+        warm_s=t2 - t1,
+        stop_s=t3 - t2,
+        start_total_s=t3 - t0,
+        cluster=kind,
+        worker_devices=devices,
+    )
 
 
 def store_measures(store: Path, n_workers: int) -> dict:
@@ -197,22 +254,29 @@ def store_measures(store: Path, n_workers: int) -> dict:
     per_dev = {}
     for dev, g in cases.groupby(cases["device"].fillna("none")):
         stamps = pd_times(g["finished_utc"])
-        per_dev[str(dev)] = dict(cases=len(g), compute_s=float(np.nansum(g["seconds"])),
-                                 last_utc=str(max(g["finished_utc"])), _last=stamps.max())  # fmt: skip
+        per_dev[str(dev)] = dict(
+            cases=len(g),
+            compute_s=float(np.nansum(g["seconds"])),
+            last_utc=str(max(g["finished_utc"])),
+            _last=stamps.max(),
+        )
     lasts = [v.pop("_last") for v in per_dev.values()]
     share = max(1.0, n_workers / max(1, len(per_dev)))  # workers per device (CPU: all on one)
     parts = part_files(store / "curves")
     sizes = [len(held or []) for held in (part_rows(p) for p in parts)]
     return dict(
-        cases=len(cases), rows=len(df), failed=int(cases["error"].notna().sum()),
+        cases=len(cases),
+        rows=len(df),
+        failed=int(cases["error"].notna().sum()),
         per_device=per_dev,
         compute_s=max((v["compute_s"] / share for v in per_dev.values()), default=0.0),
         compute_sum_s=float(np.nansum(cases["seconds"])),
         tail_s=float(max(lasts) - min(lasts)) if lasts else 0.0,
-        parts=len(parts), cases_per_part=float(np.mean(sizes)) if sizes else 0.0,
+        parts=len(parts),
+        cases_per_part=float(np.mean(sizes)) if sizes else 0.0,
         store_bytes=sum(f.stat().st_size for f in store.rglob("*") if f.is_file()),
         workers=n_workers,
-    )  # fmt: skip
+    )
 
 
 def pd_times(col) -> np.ndarray:
@@ -238,8 +302,11 @@ def bitwise_diff(a, b, skip=()) -> dict:
             if not same.all():
                 d = np.abs(x - y)[~same]
                 rel = d / np.maximum(np.abs(x[~same]), np.finfo(float).tiny)
-                out[c] = dict(rows=int((~same).sum()), max_abs=float(np.nanmax(d, initial=0)),
-                              max_rel=float(np.nanmax(rel, initial=0)))  # fmt: skip
+                out[c] = dict(
+                    rows=int((~same).sum()),
+                    max_abs=float(np.nanmax(d, initial=0)),
+                    max_rel=float(np.nanmax(rel, initial=0)),
+                )
         else:
             same = np.array([_same(u, v) for u, v in zip(x, y, strict=True)])
             if not same.all():
@@ -279,28 +346,44 @@ def check(out: Path, spec: dict, device, workers: list[int]) -> dict:
     )
 
     grid = SweepGrid(spec["D"], [0.01], spec["seeds"])
-    opts = dict(n=spec["n"], bem_fractions=tuple(spec.get("bem", ())),
-                fractal_methods=tuple(spec.get("fractal", ())))  # fmt: skip
+    opts = dict(
+        n=spec["n"],
+        bem_fractions=tuple(spec.get("bem", ())),
+        fractal_methods=tuple(spec.get("fractal", ())),
+    )
     options = SweepOptions(**{k: v or None for k, v in opts.items()})  # () is off: None
     runs = {"inproc_a": {}, "inproc_b": {}, **{f"workers_{w}": dict(workers=w) for w in workers}}
     frames = {}
     times = {}
     for name, kw in runs.items():
         t0 = time.perf_counter()
-        run_sweep(grid, out / f"check_{name}", options=options,
-                  execution=SweepExecution(**kw), overwrite=True, progress=False,
-                  device=device if not kw else (device if device == "cpu" else None))  # fmt: skip
+        run_sweep(
+            grid,
+            out / f"check_{name}",
+            options=options,
+            execution=SweepExecution(**kw),
+            overwrite=True,
+            progress=False,
+            device=device if not kw else (device if device == "cpu" else None),
+        )
         times[name] = time.perf_counter() - t0
         df = load(out / f"check_{name}")
         frames[name] = (df, load_curves(out / f"check_{name}"), sorted(set(df["device"])))
     ref_rows, ref_curves, _ = frames["inproc_a"]
-    res = dict(grid=dict(D=spec["D"], delta=[0.01], seeds=spec["seeds"]), options=opts,
-               cases=len(grid), seconds=times, devices={k: v[2] for k, v in frames.items()})  # fmt: skip
+    res = dict(
+        grid=dict(D=spec["D"], delta=[0.01], seeds=spec["seeds"]),
+        options=opts,
+        cases=len(grid),
+        seconds=times,
+        devices={k: v[2] for k, v in frames.items()},
+    )
     for name in list(runs)[1:]:
         rows, curves, _ = frames[name]
         skip = {*RUN_COLUMNS, *(c for c in rows.columns if c.endswith("seconds"))}  # times
-        res[name] = dict(rows_differ=bitwise_diff(ref_rows, rows, skip=skip),
-                         curves_differ=bitwise_diff(ref_curves, curves))  # fmt: skip
+        res[name] = dict(
+            rows_differ=bitwise_diff(ref_rows, rows, skip=skip),
+            curves_differ=bitwise_diff(ref_curves, curves),
+        )
         res[name]["identical"] = not res[name]["rows_differ"] and not res[name]["curves_differ"]
     for name in runs:
         shutil.rmtree(out / f"check_{name}", ignore_errors=True)
@@ -327,8 +410,10 @@ def default_workers(n_gpus: int) -> list[int]:
 
 def table(results: dict) -> str:
     """The runs as a plain-text table."""
-    head = (f"{'workload':9} {'run':10} {'cases':>6} {'wall s':>8} {'×':>6} {'fixed':>6} "
-            f"{'start':>6} {'compute':>8} {'tail':>6} {'other':>7} {'parts':>6}")  # fmt: skip
+    head = (
+        f"{'workload':9} {'run':10} {'cases':>6} {'wall s':>8} {'×':>6} {'fixed':>6} "
+        f"{'start':>6} {'compute':>8} {'tail':>6} {'other':>7} {'parts':>6}"
+    )
     lines = [head, "-" * len(head)]
 
     def order(r):  # light before elastic; in process, then 1, 2, 4 … workers
@@ -341,53 +426,95 @@ def table(results: dict) -> str:
             lines.append(f"{r['workload']:9} {r['run']:10} {r['status']}{wall}")
             continue
         f = lambda k, w=6, r=r: f"{r[k]:{w}.1f}" if isinstance(r.get(k), float) else f"{'-':>{w}}"  # noqa: E731
-        lines.append(f"{r['workload']:9} {r['run']:10} {r.get('cases', 0):6d} {r['wall_s']:8.1f} "
-                     f"{r.get('speedup', float('nan')):6.2f} {f('fixed_s')} {f('start_s')} "
-                     f"{f('compute_s', 8)} {f('tail_s')} {f('other_s', 7)} "
-                     f"{r.get('parts', 0):6d}")  # fmt: skip
+        lines.append(
+            f"{r['workload']:9} {r['run']:10} {r.get('cases', 0):6d} {r['wall_s']:8.1f} "
+            f"{r.get('speedup', float('nan')):6.2f} {f('fixed_s')} {f('start_s')} "
+            f"{f('compute_s', 8)} {f('tail_s')} {f('other_s', 7)} "
+            f"{r.get('parts', 0):6d}"
+        )
     for kind, c in results.get("check", {}).items():
         for name in [k for k in c if k.startswith(("inproc_b", "workers_"))]:
             d = c[name]
-            what = "identical" if d["identical"] else "differ in " + ", ".join(
-                [*d["rows_differ"], *(f"curve:{k}" for k in d["curves_differ"])])  # fmt: skip
-            lines.append(f"check {kind} (n={c['options']['n']}, {c['cases']} cases): {name} vs "
-                         f"inproc_a: {what}")  # fmt: skip
+            what = (
+                "identical"
+                if d["identical"]
+                else "differ in "
+                + ", ".join([*d["rows_differ"], *(f"curve:{k}" for k in d["curves_differ"])])
+            )
+            lines.append(
+                f"check {kind} (n={c['options']['n']}, {c['cases']} cases): {name} vs "
+                f"inproc_a: {what}"
+            )
     return "\n".join(lines)
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.ArgumentDefaultsHelpFormatter
+    )
     ap.add_argument("--out", type=Path, default=Path("bench_workers"), help="output folder")
-    ap.add_argument("--full", action="store_true",
-                    help="the full sizes (2000 light cases at 2048², 96 elastic at 4096², "
-                    "check at 1024²) instead of the small CPU ones (64²)")  # fmt: skip
-    ap.add_argument("--runs", nargs="+", default=["light", "elastic", "check"],
-                    choices=("light", "elastic", "check"))  # fmt: skip
-    ap.add_argument("--workers", type=int, nargs="+", default=None,
-                    help="worker counts (default: 1, 2, 4, … up to the GPUs present; 1 2 "
-                    "without a GPU)")  # fmt: skip
-    ap.add_argument("--check-workers", type=int, nargs="+", default=[2],
-                    help="worker counts of the check")
-    ap.add_argument("--device", default=None,
-                    help="device of the in-process runs (and of every worker with cpu); "
-                    "default: cuda:0 on a GPU machine, the workers one GPU each")  # fmt: skip
-    ap.add_argument("--light-args", default=None,
-                    help="replace the light workload's sweep arguments (one quoted string, "
-                    "e.g. \"--n 512 --D 2.5 --delta 0.01 --seeds 0-99\")")  # fmt: skip
-    ap.add_argument("--light-cases", type=int, default=None,
-                    help="light cases (count) over the light workload's D values: its seeds "
-                    "become 0-(N/len(D)−1), e.g. 20000 with --full for seeds 0-4999 over 4 D "
-                    "values; default: the workload's own (2000 with --full)")  # fmt: skip
-    ap.add_argument("--elastic-args", default=None,
-                    help="replace the elastic workload's sweep arguments (one quoted string)")
-    ap.add_argument("--budget-s", type=float, default=None,
-                    help="start no timed run after this many seconds (s), nor one expected to "
-                    "end past budget + grace; they are listed as skipped (the check still "
-                    "runs)")  # fmt: skip
-    ap.add_argument("--grace-s", type=float, default=60.0,
-                    help="with --budget-s: a timed command is stopped this long after the budget "
-                    "(s), and listed as failed (rc 124)")  # fmt: skip
+    ap.add_argument(
+        "--full",
+        action="store_true",
+        help="the full sizes (2000 light cases at 2048², 96 elastic at 4096², "
+        "check at 1024²) instead of the small CPU ones (64²)",
+    )
+    ap.add_argument(
+        "--runs",
+        nargs="+",
+        default=["light", "elastic", "check"],
+        choices=("light", "elastic", "check"),
+    )
+    ap.add_argument(
+        "--workers",
+        type=int,
+        nargs="+",
+        default=None,
+        help="worker counts (default: 1, 2, 4, … up to the GPUs present; 1 2 without a GPU)",
+    )
+    ap.add_argument(
+        "--check-workers", type=int, nargs="+", default=[2], help="worker counts of the check"
+    )
+    ap.add_argument(
+        "--device",
+        default=None,
+        help="device of the in-process runs (and of every worker with cpu); "
+        "default: cuda:0 on a GPU machine, the workers one GPU each",
+    )
+    ap.add_argument(
+        "--light-args",
+        default=None,
+        help="replace the light workload's sweep arguments (one quoted string, "
+        'e.g. "--n 512 --D 2.5 --delta 0.01 --seeds 0-99")',
+    )
+    ap.add_argument(
+        "--light-cases",
+        type=int,
+        default=None,
+        help="light cases (count) over the light workload's D values: its seeds "
+        "become 0-(N/len(D)−1), e.g. 20000 with --full for seeds 0-4999 over 4 D "
+        "values; default: the workload's own (2000 with --full)",
+    )
+    ap.add_argument(
+        "--elastic-args",
+        default=None,
+        help="replace the elastic workload's sweep arguments (one quoted string)",
+    )
+    ap.add_argument(
+        "--budget-s",
+        type=float,
+        default=None,
+        help="start no timed run after this many seconds (s), nor one expected to "
+        "end past budget + grace; they are listed as skipped (the check still "
+        "runs)",
+    )
+    ap.add_argument(
+        "--grace-s",
+        type=float,
+        default=60.0,
+        help="with --budget-s: a timed command is stopped this long after the budget "
+        "(s), and listed as failed (rc 124)",
+    )
     ap.add_argument("--timeout-s", type=float, default=None, help="limit of one command (s)")
     args = ap.parse_args(argv)
 
@@ -409,11 +536,19 @@ def main(argv=None) -> int:
     n_gpus = sum(1 for d in wdevs if "(cuda:" in d)
     counts = args.workers or default_workers(n_gpus if args.device in (None, "") else 0)
     results = dict(
-        benchmark="benchmark_workers", commit=git_commit(), host=platform.node(),
+        benchmark="benchmark_workers",
+        commit=git_commit(),
+        host=platform.node(),
         started_utc=datetime.now(timezone.utc).isoformat(timespec="seconds"),
-        gpus=gpu_lines, warp_devices=wdevs, cpus=os.cpu_count(), python=platform.python_version(),
-        sizes="full" if args.full else "small", device=args.device, workers=counts, runs=[],
-    )  # fmt: skip
+        gpus=gpu_lines,
+        warp_devices=wdevs,
+        cpus=os.cpu_count(),
+        python=platform.python_version(),
+        sizes="full" if args.full else "small",
+        device=args.device,
+        workers=counts,
+        runs=[],
+    )
     path = out / "benchmark_workers.json"
 
     def save():
@@ -433,8 +568,9 @@ def main(argv=None) -> int:
     for wl in [w for w in ("light", "elastic") if w in args.runs]:
         store = out / f"store_{wl}"
         shutil.rmtree(store, ignore_errors=True)
-        spent, rc = timed(sweep_cmd(_seeds_first(workloads[wl]), store, None, args.device), log,
-                          args.timeout_s)  # fmt: skip
+        spent, rc = timed(
+            sweep_cmd(_seeds_first(workloads[wl]), store, None, args.device), log, args.timeout_s
+        )
         results.setdefault("warmup_s", {})[wl] = spent
         base, fixed = None, 0.0
         for n in [None, *sorted(counts, reverse=True)]:  # past the budget, 1 worker goes first
@@ -464,8 +600,12 @@ def main(argv=None) -> int:
             else:
                 if n not in starts:
                     starts[n] = cluster_start(n, args.device if args.device == "cpu" else None)
-                rec.update(start_s=starts[n]["start_total_s"], cluster=starts[n]["cluster"],
-                           worker_devices=starts[n]["worker_devices"], fixed_s=fixed)  # fmt: skip
+                rec.update(
+                    start_s=starts[n]["start_total_s"],
+                    cluster=starts[n]["cluster"],
+                    worker_devices=starts[n]["worker_devices"],
+                    fixed_s=fixed,
+                )
             rec["other_s"] = wall - rec["fixed_s"] - rec["start_s"] - rec["compute_s"]
             rec["speedup"] = base / wall if base else float("nan")
             save()
@@ -479,8 +619,10 @@ def main(argv=None) -> int:
             save()
     results["total_s"] = time.perf_counter() - t_begin
     save()
-    print(f"commit {results['commit']}; {len(gpu_lines)} GPU(s): "
-          f"{'; '.join(gpu_lines) or 'none'}; results in {path}")  # fmt: skip
+    print(
+        f"commit {results['commit']}; {len(gpu_lines)} GPU(s): "
+        f"{'; '.join(gpu_lines) or 'none'}; results in {path}"
+    )
     print(table(results))
     return 0
 

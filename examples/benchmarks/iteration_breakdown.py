@@ -74,30 +74,64 @@ def parts(solver, dev, repeats: int) -> dict:
     out = {
         "convolution": gpu_time(lambda: hs.apply(solver.t_buf), dev, repeats),
         "preconditioner": gpu_time(lambda: hs.apply(r_buf, inverse=True), dev, repeats),
-        "residual": gpu_time(lambda: red.launch(
-            _kl.residual_loop_kernel, n_map, [solver.q, solver.u, solver.h, s, hf],
-            [r_buf, solver.mask]), dev, repeats),  # fmt: skip
-        "dot": gpu_time(lambda: red.launch(
-            _kb.bccg_dot_kernel, n_map, [r_buf, r_buf, z_old, solver.mask], []), dev, repeats),
-        "direction": gpu_time(lambda: red.launch(
-            _kl.direction_loop_kernel, n_map, [r_buf, s, solver.mask, r_buf],
-            [solver.t, z_old]), dev, repeats),  # fmt: skip
-        "update": gpu_time(lambda: red.launch(
-            _kb.bccg_update_kernel, n_map, [solver.t, solver.tau, hf, solver.t],
-            [solver.q, solver.u, r_buf, solver.mask, solver.lane_count]), dev, repeats),
-        "fold + scalar kernel": gpu_time(lambda: wp.launch(
-            _kl.loop_residual_kernel, dim=1, inputs=[red.fold((False,) * 9)], outputs=[s],
-            device=dev), dev, repeats),  # fmt: skip
+        "residual": gpu_time(
+            lambda: red.launch(
+                _kl.residual_loop_kernel,
+                n_map,
+                [solver.q, solver.u, solver.h, s, hf],
+                [r_buf, solver.mask],
+            ),
+            dev,
+            repeats,
+        ),
+        "dot": gpu_time(
+            lambda: red.launch(_kb.bccg_dot_kernel, n_map, [r_buf, r_buf, z_old, solver.mask], []),
+            dev,
+            repeats,
+        ),
+        "direction": gpu_time(
+            lambda: red.launch(
+                _kl.direction_loop_kernel, n_map, [r_buf, s, solver.mask, r_buf], [solver.t, z_old]
+            ),
+            dev,
+            repeats,
+        ),
+        "update": gpu_time(
+            lambda: red.launch(
+                _kb.bccg_update_kernel,
+                n_map,
+                [solver.t, solver.tau, hf, solver.t],
+                [solver.q, solver.u, r_buf, solver.mask, solver.lane_count],
+            ),
+            dev,
+            repeats,
+        ),
+        "fold + scalar kernel": gpu_time(
+            lambda: wp.launch(
+                _kl.loop_residual_kernel,
+                dim=1,
+                inputs=[red.fold((False,) * 9)],
+                outputs=[s],
+                device=dev,
+            ),
+            dev,
+            repeats,
+        ),
         "read-back (round trip)": statistics.median(
-            _wall(lambda: s.numpy(), dev) for _ in range(repeats)),
-    }  # fmt: skip
+            _wall(lambda: s.numpy(), dev) for _ in range(repeats)
+        ),
+    }
     wp.synchronize_device(dev)
     t0 = time.perf_counter()
     k = 200
     for _ in range(k):
-        wp.launch(_k.step_length_kernel, dim=1,
-                  inputs=[red.fold((False, False)), wp.float64(0.0), wp.float64(1.0)],
-                  outputs=[solver.tau], device=dev)  # fmt: skip
+        wp.launch(
+            _k.step_length_kernel,
+            dim=1,
+            inputs=[red.fold((False, False)), wp.float64(0.0), wp.float64(1.0)],
+            outputs=[solver.tau],
+            device=dev,
+        )
     out["launch (host, per kernel)"] = (time.perf_counter() - t0) / (2 * k)
     wp.synchronize_device(dev)
     return out
@@ -111,19 +145,26 @@ def _wall(fn, dev) -> float:
 
 
 def warm_solve(s, dtype: str, dev, loop: str) -> tuple[dict, ContactSolver]:
-    solver = ContactSolver(s.heights, (s.dx, s.dy), E_STAR, device=dev,
-                           settings=SolverSettings(dtype=dtype, loop=loop))  # fmt: skip
+    solver = ContactSolver(
+        s.heights, (s.dx, s.dy), E_STAR, device=dev, settings=SolverSettings(dtype=dtype, loop=loop)
+    )
     cold = solver.solve(COLD * s.Rt)
     wp.synchronize_device(dev)
     t0 = time.perf_counter()
     warm = solver.solve(WARM * s.Rt)
     wp.synchronize_device(dev)
     t = time.perf_counter() - t0
-    row = {"loop": loop, "cold_iterations": cold.n_iterations, "warm_s": t,
-           "warm_iterations": warm.n_iterations, "warm_convolutions": warm.n_convolutions,
-           "load_N": warm.load, "n_contact": warm.n_contact,
-           "converged": bool(cold.converged and warm.converged),
-           "graph_error": solver.graph_error()}  # fmt: skip
+    row = {
+        "loop": loop,
+        "cold_iterations": cold.n_iterations,
+        "warm_s": t,
+        "warm_iterations": warm.n_iterations,
+        "warm_convolutions": warm.n_convolutions,
+        "load_N": warm.load,
+        "n_contact": warm.n_contact,
+        "converged": bool(cold.converged and warm.converged),
+        "graph_error": solver.graph_error(),
+    }
     return row, solver
 
 
@@ -150,8 +191,9 @@ def main(argv: list[str] | None = None) -> int:
                 it, conv = r["warm_iterations"], r["warm_convolutions"]
                 r["per_iteration_s"] = r["warm_s"] / it
                 r["per_convolution_s"] = r["warm_s"] / conv if conv else None
-                r["per_convolution_over_floor"] = (r["warm_s"] / conv / floor
-                                                   if conv and floor else None)  # fmt: skip
+                r["per_convolution_over_floor"] = (
+                    r["warm_s"] / conv / floor if conv and floor else None
+                )
                 if loop == "device":
                     row["parts_s"] = parts(solver, dev, a.repeats)
                 row["loops"][loop] = r
@@ -159,32 +201,48 @@ def main(argv: list[str] | None = None) -> int:
             d = row["loops"]["device"]
             ps = row["parts_s"]
             conv_it = d["warm_convolutions"] / d["warm_iterations"]
-            busy = (ps["convolution"] * conv_it + ps["residual"] + ps["dot"] + ps["direction"]
-                    + ps["update"] + 4 * ps["fold + scalar kernel"])  # fmt: skip
+            busy = (
+                ps["convolution"] * conv_it
+                + ps["residual"]
+                + ps["dot"]
+                + ps["direction"]
+                + ps["update"]
+                + 4 * ps["fold + scalar kernel"]
+            )
             row["device_busy_per_iteration_s"] = busy
             for loop, r in row["loops"].items():
                 r["idle_per_iteration_s"] = r["per_iteration_s"] - busy
             rows.append(row)
             h, g = row["loops"]["host"], row["loops"]["graph"]
-            print(f"N={n} {dtype}: warm host {h['warm_s'] * 1e3:.1f} ms ({h['warm_iterations']} it,"
-                  f" {h['warm_convolutions']} conv), graph {g['warm_s'] * 1e3:.1f} ms "
-                  f"({g['warm_iterations']} it, loads equal to "
-                  f"{abs(h['load_N'] - g['load_N']) / h['load_N']:.1e}, capture error "
-                  f"{g['graph_error']}), device {d['warm_s'] * 1e3:.1f} ms "
-                  f"({d['warm_iterations']} it, {d['warm_convolutions']} conv); per conv "
-                  f"{(d['per_convolution_over_floor'] or float('nan')):.2f}× floor "
-                  f"({(floor or float('nan')) * 1e3:.2f} ms); busy/it {busy * 1e3:.2f} ms, "
-                  f"idle/it host {h['idle_per_iteration_s'] * 1e3:.2f} ms, device "
-                  f"{d['idle_per_iteration_s'] * 1e3:.2f} ms; loads equal to "
-                  f"{abs(h['load_N'] - d['load_N']) / h['load_N']:.1e}", flush=True)
-            print("   parts (ms): " + ", ".join(f"{k} {v * 1e3:.3f}" for k, v in ps.items()),
-                  flush=True)
+            print(
+                f"N={n} {dtype}: warm host {h['warm_s'] * 1e3:.1f} ms ({h['warm_iterations']} it,"
+                f" {h['warm_convolutions']} conv), graph {g['warm_s'] * 1e3:.1f} ms "
+                f"({g['warm_iterations']} it, loads equal to "
+                f"{abs(h['load_N'] - g['load_N']) / h['load_N']:.1e}, capture error "
+                f"{g['graph_error']}), device {d['warm_s'] * 1e3:.1f} ms "
+                f"({d['warm_iterations']} it, {d['warm_convolutions']} conv); per conv "
+                f"{(d['per_convolution_over_floor'] or float('nan')):.2f}× floor "
+                f"({(floor or float('nan')) * 1e3:.2f} ms); busy/it {busy * 1e3:.2f} ms, "
+                f"idle/it host {h['idle_per_iteration_s'] * 1e3:.2f} ms, device "
+                f"{d['idle_per_iteration_s'] * 1e3:.2f} ms; loads equal to "
+                f"{abs(h['load_N'] - d['load_N']) / h['load_N']:.1e}",
+                flush=True,
+            )
+            print(
+                "   parts (ms): " + ", ".join(f"{k} {v * 1e3:.3f}" for k, v in ps.items()),
+                flush=True,
+            )
         del s
     if a.out is not None:
         a.out.mkdir(parents=True, exist_ok=True)
-        doc = {"device": str(dev), "device_name": name, "warp": wp.config.version,
-               "commit": git_commit(), "rows": rows,
-               "surface": "wm_surface(D=2.5, Wr=100 µm, L=1 mm, Rt=10 µm, seed 0), free"}  # fmt: skip
+        doc = {
+            "device": str(dev),
+            "device_name": name,
+            "warp": wp.config.version,
+            "commit": git_commit(),
+            "rows": rows,
+            "surface": "wm_surface(D=2.5, Wr=100 µm, L=1 mm, Rt=10 µm, seed 0), free",
+        }
         (a.out / "breakdown.json").write_text(json.dumps(doc, indent=1) + "\n")
         print(f"wrote {a.out / 'breakdown.json'}")
     return 0

@@ -46,14 +46,20 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--device", default="cpu", help="Warp device")
     ap.add_argument("--dtype", default="float64", choices=("float64", "float32"))
     ap.add_argument("--json", type=Path, default=None, help="write the rows here")
-    ap.add_argument("--variants", nargs="+", default=["pk", "bccg"],
-                    choices=["pk", "bccg", "bccg/always", "bccg/2%"],
-                    help="iterations (bccg/always: precondition_above=0; bccg/2%%: 0.02)")
+    ap.add_argument(
+        "--variants",
+        nargs="+",
+        default=["pk", "bccg"],
+        choices=["pk", "bccg", "bccg/always", "bccg/2%"],
+        help="iterations (bccg/always: precondition_above=0; bccg/2%%: 0.02)",
+    )
     ap.add_argument("--no-punch", action="store_true", help="the whole-map cases only")
     a = ap.parse_args(argv)
     rows = []
-    print(f"{'case':34s} {'N':>6s} {'algorithm':>11s} {'iterations':>10s} {'convolutions':>12s} "
-          f"{'seconds':>8s} {'load (N)':>12s}")  # fmt: skip
+    print(
+        f"{'case':34s} {'N':>6s} {'algorithm':>11s} {'iterations':>10s} {'convolutions':>12s} "
+        f"{'seconds':>8s} {'load (N)':>12s}"
+    )
     for family in ("fixed content", "W_c = pixel"):
         for n in a.n:
             h = _maps(n, family)
@@ -75,23 +81,40 @@ def main(argv: list[str] | None = None) -> int:
                 for alg in a.variants:
                     algorithm, _, rule = alg.partition("/")
                     pc = {"": None, "always": 0.0, "2%": 0.02}[rule]
-                    sol = ContactSolver(z, 1e-3 / n, E_STAR, device=a.device,
-                                        settings=SolverSettings(algorithm=algorithm, pentol=pentol,
-                                                                dtype=a.dtype,
-                                                                precondition_above=pc))  # fmt: skip
+                    sol = ContactSolver(
+                        z,
+                        1e-3 / n,
+                        E_STAR,
+                        device=a.device,
+                        settings=SolverSettings(
+                            algorithm=algorithm, pentol=pentol, dtype=a.dtype, precondition_above=pc
+                        ),
+                    )
                     for d in depths[:-1]:
                         sol.solve(d)
                     t = time.perf_counter()
                     st = sol.solve(depths[-1])
                     dt = time.perf_counter() - t
-                    row = {"family": family, "case": name, "n": n, "algorithm": alg,
-                           "iterations": st.n_iterations, "convolutions": st.n_convolutions,
-                           "seconds": dt, "load_N": st.load, "converged": st.converged,
-                           "device": a.device, "dtype": a.dtype}  # fmt: skip
+                    row = {
+                        "family": family,
+                        "case": name,
+                        "n": n,
+                        "algorithm": alg,
+                        "iterations": st.n_iterations,
+                        "convolutions": st.n_convolutions,
+                        "seconds": dt,
+                        "load_N": st.load,
+                        "converged": st.converged,
+                        "device": a.device,
+                        "dtype": a.dtype,
+                    }
                     rows.append(row)
-                    print(f"{family + ': ' + name:34s} {n:6d} {alg:>11s} {st.n_iterations:10d} "
-                          f"{st.n_convolutions:12.1f} {dt:8.2f} {st.load:12.6g}"
-                          f"{'' if st.converged else ' (not converged)'}", flush=True)  # fmt: skip
+                    print(
+                        f"{family + ': ' + name:34s} {n:6d} {alg:>11s} {st.n_iterations:10d} "
+                        f"{st.n_convolutions:12.1f} {dt:8.2f} {st.load:12.6g}"
+                        f"{'' if st.converged else ' (not converged)'}",
+                        flush=True,
+                    )
     if a.json:
         a.json.parent.mkdir(parents=True, exist_ok=True)
         a.json.write_text(json.dumps({"rows": rows}, indent=1) + "\n")

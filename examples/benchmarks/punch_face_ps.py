@@ -47,11 +47,26 @@ from warptrunc.indent import (
 from warptrunc.presets import preset
 from warptrunc.wm import wm_surface
 
-COLUMNS = ("peak_load_N", "F_over_EA", "unloading_stiffness_N_per_m", "E_c_over_E",
-           "n_contact_pixels", "elastic_unloading_stiffness_N_per_m", "elastic_E_c_over_E",
-           "elastic_n_contact_pixels", "pixel_size_m", "resolved", "saturated", "in_fit",
-           "elastic_resolved", "displacement_m", "truncation_depth_m", "truncation_E_c_over_E",
-           "converged", "elastic_converged")  # fmt: skip
+COLUMNS = (
+    "peak_load_N",
+    "F_over_EA",
+    "unloading_stiffness_N_per_m",
+    "E_c_over_E",
+    "n_contact_pixels",
+    "elastic_unloading_stiffness_N_per_m",
+    "elastic_E_c_over_E",
+    "elastic_n_contact_pixels",
+    "pixel_size_m",
+    "resolved",
+    "saturated",
+    "in_fit",
+    "elastic_resolved",
+    "displacement_m",
+    "truncation_depth_m",
+    "truncation_E_c_over_E",
+    "converged",
+    "elastic_converged",
+)
 
 
 def _faces(args):
@@ -65,8 +80,9 @@ def _faces(args):
             name += f", λ_s {c * 1e6:g} µm"
         out.append((name, rough))
         if args.rough_tilt > 0:
-            out.append((f"{name} + tilt {args.rough_tilt:g}°",
-                        {**rough, "tilt_deg": args.rough_tilt}))  # fmt: skip
+            out.append(
+                (f"{name} + tilt {args.rough_tilt:g}°", {**rough, "tilt_deg": args.rough_tilt})
+            )
     return out
 
 
@@ -81,11 +97,20 @@ def summarise(doc: dict) -> dict:
         return np.asarray(v, np.float64).reshape(-1, m)
 
     ref = doc["cases"][0]["rows"]
-    out = {"peak_loads_N": doc["peak_loads_N"],
-           "reference": {k: per(ref[k]).mean(0).tolist() for k in (
-               "E_c_over_E", "elastic_E_c_over_E", "truncation_E_c_over_E",
-               "displacement_over_Rt", "truncation_depth_over_Rt")},
-           "faces": []}  # fmt: skip
+    out = {
+        "peak_loads_N": doc["peak_loads_N"],
+        "reference": {
+            k: per(ref[k]).mean(0).tolist()
+            for k in (
+                "E_c_over_E",
+                "elastic_E_c_over_E",
+                "truncation_E_c_over_E",
+                "displacement_over_Rt",
+                "truncation_depth_over_Rt",
+            )
+        },
+        "faces": [],
+    }
     for c in doc["cases"]:
         r = c["rows"]
         x, y = np.log(r["F_over_EA"]), np.log(r["E_c_over_E"])
@@ -93,10 +118,13 @@ def summarise(doc: dict) -> dict:
         fits = {"all_cells": np.polyfit(x, y, 1).tolist()}
         if ok.sum() >= 3:
             fits["in_fit"] = np.polyfit(x[ok], y[ok], 1).tolist()
-        row = {"face": c["face"], "n_in_fit": int(ok.sum()),
-               "alpha_beta": {k: {"alpha": v[0], "beta": math.exp(v[1])} for k, v in fits.items()},
-               "resolved_per_load": per(r["resolved"]).sum(0).astype(int).tolist(),
-               "n_contact_pixels_mean": per(r["n_contact_pixels"]).mean(0).tolist()}  # fmt: skip
+        row = {
+            "face": c["face"],
+            "n_in_fit": int(ok.sum()),
+            "alpha_beta": {k: {"alpha": v[0], "beta": math.exp(v[1])} for k, v in fits.items()},
+            "resolved_per_load": per(r["resolved"]).sum(0).astype(int).tolist(),
+            "n_contact_pixels_mean": per(r["n_contact_pixels"]).mean(0).tolist(),
+        }
         for pre in ("", "elastic_"):
             q = per(r[f"{pre}K_over_reference"])
             row[f"{pre}K_over_reference_geomean"] = np.exp(np.log(q).mean(0)).tolist()
@@ -112,13 +140,27 @@ def main(argv=None) -> int:
     p.add_argument("--L", type=float, default=3e-3, help="map side (m)")
     p.add_argument("--diameter", type=float, default=502.6e-6, help="punch diameter (m)")
     p.add_argument("--placements", type=int, default=1)
-    p.add_argument("--tilts", type=float, nargs="+", default=[0.02, 0.05, 0.1],
-                   help="tilts of the smooth punch (degrees)")  # fmt: skip
+    p.add_argument(
+        "--tilts",
+        type=float,
+        nargs="+",
+        default=[0.02, 0.05, 0.1],
+        help="tilts of the smooth punch (degrees)",
+    )
     p.add_argument("--roughness", type=float, default=0.05e-6, help="tip rms (m)")
-    p.add_argument("--cutoffs", type=float, nargs="+", default=[0.0, 2e-6],
-                   help="short cut-offs of the rough tip (m); 0 = 2 map pixels")  # fmt: skip
-    p.add_argument("--rough-tilt", type=float, default=0.05,
-                   help="tilt added to each rough tip (degrees); 0 = none")  # fmt: skip
+    p.add_argument(
+        "--cutoffs",
+        type=float,
+        nargs="+",
+        default=[0.0, 2e-6],
+        help="short cut-offs of the rough tip (m); 0 = 2 map pixels",
+    )
+    p.add_argument(
+        "--rough-tilt",
+        type=float,
+        default=0.05,
+        help="tilt added to each rough tip (degrees); 0 = none",
+    )
     p.add_argument("--refine-max", type=int, default=8)
     p.add_argument("--device", default="cpu")
     p.add_argument("--out", type=Path, default=Path("out/punch_face_ps"))
@@ -136,8 +178,12 @@ def main(argv=None) -> int:
         t0 = time.perf_counter()
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            protocol = IndentProtocol(punch_diameters=args.diameter, placements=args.placements,
-                                      refine_max=args.refine_max, face=PunchFaceSpec(**face))
+            protocol = IndentProtocol(
+                punch_diameters=args.diameter,
+                placements=args.placements,
+                refine_max=args.refine_max,
+                face=PunchFaceSpec(**face),
+            )
             res = indent(surface, protocol=protocol, material=material, device=args.device)
         d = res.to_dict()
         rows = {k: np.asarray(d[k]).tolist() for k in COLUMNS}
@@ -149,28 +195,54 @@ def main(argv=None) -> int:
             k = f"{pre}unloading_stiffness_N_per_m"
             rows[f"{pre}K_over_reference"] = (d[k] / ref[k]).tolist()
         tilt = math.radians(face.get("tilt_deg", 0.0))
-        cases.append({
-            "face": name, "options": face, "seconds": time.perf_counter() - t0,
-            "full_contact_load_smooth_flat_N": 4 * material.contact_modulus * a * a * math.tan(tilt),
-            "settings_punch_face": res.settings["punch_face"],
-            "punches": res.settings["punches"], "rows": rows,
-        })  # fmt: skip
-        print(f"{name}: {cases[-1]['seconds']:.1f} s; K/K_ref (elastic–plastic) "
-              + " ".join(f"{v:.2f}" for v in rows["K_over_reference"]))  # fmt: skip
-    command = ["python", "examples/benchmarks/punch_face_ps.py",
-               *(sys.argv[1:] if argv is None else argv)]  # fmt: skip
+        cases.append(
+            {
+                "face": name,
+                "options": face,
+                "seconds": time.perf_counter() - t0,
+                "full_contact_load_smooth_flat_N": 4
+                * material.contact_modulus
+                * a
+                * a
+                * math.tan(tilt),
+                "settings_punch_face": res.settings["punch_face"],
+                "punches": res.settings["punches"],
+                "rows": rows,
+            }
+        )
+        print(
+            f"{name}: {cases[-1]['seconds']:.1f} s; K/K_ref (elastic–plastic) "
+            + " ".join(f"{v:.2f}" for v in rows["K_over_reference"])
+        )
+    command = [
+        "python",
+        "examples/benchmarks/punch_face_ps.py",
+        *(sys.argv[1:] if argv is None else argv),
+    ]
     doc = {
         "what": "Ps (Table 1, D_vs preset) under the 502.6 µm punch: tilt and tip roughness "
         "against the aligned smooth flat",
         "command": " ".join(command),
-        "git_commit": git_commit(), "device": args.device, "platform": platform.platform(),
-        "processor": platform.processor(), "date": time.strftime("%Y-%m-%d"),
-        "surface": {"preset": "Ps", "n": args.n, "L_m": args.L, "pixel_m": surface.dx, "Rt_m": rt,
-                    "params": surface.params},
-        "punch_diameter_m": args.diameter, "placements": args.placements,
-        "peak_loads_N": list(PAPER_PEAK_LOADS), "material": material.to_dict(),
-        "refine_max": args.refine_max, "cases": cases,
-    }  # fmt: skip
+        "git_commit": git_commit(),
+        "device": args.device,
+        "platform": platform.platform(),
+        "processor": platform.processor(),
+        "date": time.strftime("%Y-%m-%d"),
+        "surface": {
+            "preset": "Ps",
+            "n": args.n,
+            "L_m": args.L,
+            "pixel_m": surface.dx,
+            "Rt_m": rt,
+            "params": surface.params,
+        },
+        "punch_diameter_m": args.diameter,
+        "placements": args.placements,
+        "peak_loads_N": list(PAPER_PEAK_LOADS),
+        "material": material.to_dict(),
+        "refine_max": args.refine_max,
+        "cases": cases,
+    }
     doc["summary"] = summarise(doc)
     args.out.mkdir(parents=True, exist_ok=True)
     path = args.out / record_name(f"punch_face_ps{args.suffix}", args.device)

@@ -44,9 +44,18 @@ import time
 from pathlib import Path
 
 PHASES = (
-    "import warp", "wp.init", "device", "import analysis path", "generation", "truncation",
-    "island pass", "fit", "provenance", "wait for the figures", "rest (CSV, JSON, move)",
-)  # fmt: skip
+    "import warp",
+    "wp.init",
+    "device",
+    "import analysis path",
+    "generation",
+    "truncation",
+    "island pass",
+    "fit",
+    "provenance",
+    "wait for the figures",
+    "rest (CSV, JSON, move)",
+)
 
 
 def job_cmd(n: int, device: str, out: Path) -> list[str]:
@@ -129,11 +138,15 @@ def driver(n: int, device: str, out: Path) -> dict:
 
     start["import analysis path"] = time.perf_counter() - t0
     targets = [
-        (an, "surface_from_spec", "generation"), (an, "truncate", "truncation"),
-        (an, "_validity", "island pass"), (an, "_islands", "island pass"),
-        (an, "stiffness_curve", "fit"), (an, "fit_power_law", "fit"),
-        (ca, "provenance", "provenance"), (ca.FigureWorker, "result", "wait for the figures"),
-    ]  # fmt: skip
+        (an, "surface_from_spec", "generation"),
+        (an, "truncate", "truncation"),
+        (an, "_validity", "island pass"),
+        (an, "_islands", "island pass"),
+        (an, "stiffness_curve", "fit"),
+        (an, "fit_power_law", "fit"),
+        (ca, "provenance", "provenance"),
+        (ca.FigureWorker, "result", "wait for the figures"),
+    ]
     result = {"start": start}
     for run in ("cold", "warm"):
         ph = Phases(lambda: wp.synchronize_device(dev))
@@ -156,10 +169,13 @@ def driver(n: int, device: str, out: Path) -> dict:
 def import_times(n: int, device: str, out: Path, top: int = 12) -> dict:
     """``python -X importtime`` of the job: the largest top-level imports (cumulative s) and
     which heavy libraries it loaded."""
-    code = (f"from warptrunc.cli import main; raise SystemExit(main(['analyze', '--n', '{n}', "
-            f"'--device', '{device}', '--out', {str(out)!r}]))")  # fmt: skip
-    r = subprocess.run([sys.executable, "-X", "importtime", "-c", code], capture_output=True,
-                       text=True)  # fmt: skip
+    code = (
+        f"from warptrunc.cli import main; raise SystemExit(main(['analyze', '--n', '{n}', "
+        f"'--device', '{device}', '--out', {str(out)!r}]))"
+    )
+    r = subprocess.run(
+        [sys.executable, "-X", "importtime", "-c", code], capture_output=True, text=True
+    )
     rows = []
     for line in r.stderr.splitlines():
         if not line.startswith("import time:") or "cumulative" in line:
@@ -167,11 +183,24 @@ def import_times(n: int, device: str, out: Path, top: int = 12) -> dict:
         _, cum, name = line[len("import time:") :].split("|")
         rows.append((name.rstrip(), int(cum) * 1e-6))
     level0 = sorted(((nm, c) for nm, c in rows if not nm.startswith("  ")), key=lambda x: -x[1])
-    heavy = ("pyvista", "vtk", "vtkmodules", "SurfaceTopography", "pandas", "pyarrow", "dask",
-             "distributed", "cupy", "scipy", "matplotlib")  # fmt: skip
+    heavy = (
+        "pyvista",
+        "vtk",
+        "vtkmodules",
+        "SurfaceTopography",
+        "pandas",
+        "pyarrow",
+        "dask",
+        "distributed",
+        "cupy",
+        "scipy",
+        "matplotlib",
+    )
     names = {nm.strip().split(".")[0] for nm, _ in rows}
-    return {"top_level_cumulative_s": {nm.strip(): round(c, 4) for nm, c in level0[:top]},
-            "heavy_loaded": sorted(names & set(heavy))}  # fmt: skip
+    return {
+        "top_level_cumulative_s": {nm.strip(): round(c, 4) for nm, c in level0[:top]},
+        "heavy_loaded": sorted(names & set(heavy)),
+    }
 
 
 def main(argv: list[str] | None = None) -> dict:
@@ -181,16 +210,16 @@ def main(argv: list[str] | None = None) -> dict:
         res = driver(int(argv[1]), argv[2], Path(argv[3]))
         print("RESULT " + json.dumps(res), flush=True)
         return res
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)  # fmt: skip
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.ArgumentDefaultsHelpFormatter
+    )
     ap.add_argument("--n", type=int, default=1024, help="pixels per side of the job's surface")
     ap.add_argument("--device", default="cpu", help="cpu, cuda:0, ...")
     ap.add_argument("--runs", type=int, default=5, help="fresh processes of each kind")
     ap.add_argument("--out", type=Path, default=Path("bench"), help="folder for the JSON")
     ap.add_argument("--name", default=None, help="JSON name (default startup_<device>.json)")
     args = ap.parse_args(argv)
-    floor = [sys.executable, "-c",
-             f"import warp; warp.init(); warp.get_device({args.device!r})"]  # fmt: skip
+    floor = [sys.executable, "-c", f"import warp; warp.init(); warp.get_device({args.device!r})"]
     interp = [sys.executable, "-c", "pass"]
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "job"
@@ -202,8 +231,18 @@ def main(argv: list[str] | None = None) -> dict:
             times["floor"].append(wall(floor))
             times["job"].append(wall(job_cmd(args.n, args.device, out)))
             times["interpreter"].append(wall(interp))
-        r = subprocess.run([sys.executable, __file__, "--driver", str(args.n), args.device,
-                            str(Path(tmp) / "drv")], capture_output=True, text=True)  # fmt: skip
+        r = subprocess.run(
+            [
+                sys.executable,
+                __file__,
+                "--driver",
+                str(args.n),
+                args.device,
+                str(Path(tmp) / "drv"),
+            ],
+            capture_output=True,
+            text=True,
+        )
         lines = [ln for ln in r.stdout.splitlines() if ln.startswith("RESULT ")]
         breakdown = json.loads(lines[-1][7:]) if lines else {"failed": r.stderr[-2000:]}
         imports = import_times(args.n, args.device, Path(tmp) / "imp")
@@ -215,14 +254,23 @@ def main(argv: list[str] | None = None) -> dict:
 
     med = {k: statistics.median(v) for k, v in times.items()}
     rec = {
-        "benchmark": "startup", "date": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
-        "commit": git_commit(), "device": args.device,
-        "device_name": dev.name if dev.is_cuda else platform_cpu(), "cpu_cores": os.cpu_count(),
-        "warp": wp.config.version, "n": args.n, "runs": args.runs,
-        "job": " ".join(job_cmd(args.n, args.device, Path("OUT"))), "floor": floor[-1],
-        "times_s": times, "median_s": med, "excess_s": med["job"] - med["floor"],
-        "breakdown_s": breakdown, "imports": imports,
-    }  # fmt: skip
+        "benchmark": "startup",
+        "date": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
+        "commit": git_commit(),
+        "device": args.device,
+        "device_name": dev.name if dev.is_cuda else platform_cpu(),
+        "cpu_cores": os.cpu_count(),
+        "warp": wp.config.version,
+        "n": args.n,
+        "runs": args.runs,
+        "job": " ".join(job_cmd(args.n, args.device, Path("OUT"))),
+        "floor": floor[-1],
+        "times_s": times,
+        "median_s": med,
+        "excess_s": med["job"] - med["floor"],
+        "breakdown_s": breakdown,
+        "imports": imports,
+    }
     args.out.mkdir(parents=True, exist_ok=True)
     name = args.name or f"startup_{args.device.replace(':', '')}.json"
     (args.out / name).write_text(json.dumps(rec, indent=1))
@@ -246,9 +294,12 @@ def platform_cpu() -> str:
 def table(rec: dict) -> str:
     """The printed summary: medians, excess, and the breakdown (cold / warm run)."""
     med, ts = rec["median_s"], rec["times_s"]
-    lines = [f"startup, {rec['device']} ({rec['device_name']}), --n {rec['n']}, "
-             f"{rec['runs']} fresh processes each",
-             "| process | median (s) | runs (s) |", "|---|---|---|"]  # fmt: skip
+    lines = [
+        f"startup, {rec['device']} ({rec['device_name']}), --n {rec['n']}, "
+        f"{rec['runs']} fresh processes each",
+        "| process | median (s) | runs (s) |",
+        "|---|---|---|",
+    ]
     for k in ("job", "floor", "interpreter"):
         lines.append(f"| {k} | {med[k]:.2f} | {', '.join(f'{t:.2f}' for t in ts[k])} |")
     lines.append(f"excess of the job over the floor: {rec['excess_s']:.2f} s")
@@ -259,11 +310,14 @@ def table(rec: dict) -> str:
             lines.append(f"| {k} | {v:.3f} | |")
         for k in PHASES[4:]:
             lines.append(f"| {k} | {b['cold'].get(k, 0.0):.3f} | {b['warm'].get(k, 0.0):.3f} |")
-        lines.append(f"| total of the job in-process | {b['cold']['total']:.3f} | "
-                     f"{b['warm']['total']:.3f} |")  # fmt: skip
+        lines.append(
+            f"| total of the job in-process | {b['cold']['total']:.3f} | {b['warm']['total']:.3f} |"
+        )
         inside = sum(b["start"].values()) + b["cold"]["total"]
-        lines.append(f"| outside (interpreter, entry point, exit): median job − {inside:.3f} | "
-                     f"{med['job'] - inside:.3f} | |")  # fmt: skip
+        lines.append(
+            f"| outside (interpreter, entry point, exit): median job − {inside:.3f} | "
+            f"{med['job'] - inside:.3f} | |"
+        )
     imp = rec["imports"]
     lines.append(f"heavy libraries the job imports: {', '.join(imp['heavy_loaded']) or 'none'}")
     return "\n".join(lines)

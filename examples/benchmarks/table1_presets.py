@@ -100,44 +100,73 @@ def _summary(name, method, D_in, Rt, Wr, ds, rms, rtol, bounds, reach):
     within = abs(ds.mean() - target) <= rtol * target
     reached = [r[1] for r in reach if r[1] is not None]
     return {
-        "surface": name, "matched": f"D_{method}", "method": method,
-        "D_in": D_in, "Rt_m": Rt, "Wr_m": Wr,
-        "D_target": target, "D_target_sd": sd[method],
-        "D_reached": float(ds.mean()), "D_reached_sd": float(ds.std()),
+        "surface": name,
+        "matched": f"D_{method}",
+        "method": method,
+        "D_in": D_in,
+        "Rt_m": Rt,
+        "Wr_m": Wr,
+        "D_target": target,
+        "D_target_sd": sd[method],
+        "D_reached": float(ds.mean()),
+        "D_reached_sd": float(ds.std()),
         "D_per_seed": ds.tolist(),
-        "Rrms_target_m": Rrms_p * UM, "Rrms_reached_m": float(rms.mean()),
+        "Rrms_target_m": Rrms_p * UM,
+        "Rrms_reached_m": float(rms.mean()),
         "Rrms_per_seed_m": rms.tolist(),
         "Rt_per_seed_m": [float(rt_seed.mean()), float(rt_seed.std())],
         "Rt_paper_m": [Rt_p * UM, sd["Rt"] * UM],
         "Rt_within_paper_band": bool(abs(Rt - Rt_p * UM) <= sd["Rt"] * UM),
-        "D_bounds": list(bounds), "bound": bound, "within_rtol": bool(within),
+        "D_bounds": list(bounds),
+        "bound": bound,
+        "within_rtol": bool(within),
         "calibrated": bool(within and bound is None),
         "D_reachable": [min(reached), max(reached)] if reached else None,
         "target_reachable": bool(reached and min(reached) <= target <= max(reached)),
         "reach": reach,
-    }  # fmt: skip
+    }
 
 
 def calibrate_vs(name, n, L, seeds, rtol, bounds, device):
     """Fig. 4 loop on D_vs and R_rms for one Table 1 surface; its record."""
     Rt_p, Rrms_p, wr, *d_paper = TABLE1[name]
     Wr = 2 * L if wr is None else wr * UM
-    target = CalibrationTarget(D=d_paper[2], method="vs", Rrms=Rrms_p * UM, Rt=Rt_p * UM, Wr=Wr,
-                               L=L, n=n, source=f"Table 1 {name}")  # fmt: skip
+    target = CalibrationTarget(
+        D=d_paper[2],
+        method="vs",
+        Rrms=Rrms_p * UM,
+        Rt=Rt_p * UM,
+        Wr=Wr,
+        L=L,
+        n=n,
+        source=f"Table 1 {name}",
+    )
     t0, w0 = time.process_time(), time.perf_counter()
     try:
         settings = CalibrationSettings(seeds=seeds, rtol=rtol, D_bounds=bounds)
         cal = calibrate(target, settings=settings, progress=False, device=device)
     except CalibrationError as exc:
-        return {"surface": name, "matched": "D_vs", "status": "not reached", "message": str(exc),
-                "eval_D_in": exc.d_in, "eval_D_out": exc.d_out}  # fmt: skip
+        return {
+            "surface": name,
+            "matched": "D_vs",
+            "status": "not reached",
+            "message": str(exc),
+            "eval_D_in": exc.d_in,
+            "eval_D_out": exc.d_out,
+        }
     cpu, wall = time.process_time() - t0, time.perf_counter() - w0
     ds, rms = _measure(cal.D_in, Wr, L, n, cal.Rt, seeds, "vs", device)
     reach = _reach(Wr, L, n, cal.Rt, seeds, "vs", device, bounds)
     rec = _summary(name, "vs", cal.D_in, cal.Rt, Wr, ds, rms, rtol, bounds, reach)
-    rec.update(status="ok", cpu_s=cpu, wall_s=wall, iterations=cal.iterations,
-               history_D_in=cal.history_D_in.tolist(), history_D_out=cal.history_D_out.tolist(),
-               history_Rt_m=cal.history_Rt.tolist())  # fmt: skip
+    rec.update(
+        status="ok",
+        cpu_s=cpu,
+        wall_s=wall,
+        iterations=cal.iterations,
+        history_D_in=cal.history_D_in.tolist(),
+        history_D_out=cal.history_D_out.tolist(),
+        history_Rt_m=cal.history_Rt.tolist(),
+    )
     return rec
 
 
@@ -162,14 +191,16 @@ def _fmt(r):
         "R_t′ (µm)": f"{r['Rt_m'] * um:.4g}",
         "D reached / target": f"{r['D_reached']:.3f} ± {r['D_reached_sd']:.3f} / {r['D_target']:.3f}",
         "R_rms reached / target (µm)": f"{r['Rrms_reached_m'] * um:.4g} / {r['Rrms_target_m'] * um:.4g}",
-        "R_t′ vs Table 1 (µm)": (f"{r['Rt_m'] * um:.4g} vs {r['Rt_paper_m'][0] * um:.4g} ± "
-                                 f"{r['Rt_paper_m'][1] * um:.4g}: "
-                                 + ("within" if lo * um <= r["Rt_m"] * um <= hi * um else "outside")),
+        "R_t′ vs Table 1 (µm)": (
+            f"{r['Rt_m'] * um:.4g} vs {r['Rt_paper_m'][0] * um:.4g} ± "
+            f"{r['Rt_paper_m'][1] * um:.4g}: "
+            + ("within" if lo * um <= r["Rt_m"] * um <= hi * um else "outside")
+        ),
         "D reachable": "{:.3f}–{:.3f}".format(*r["D_reachable"]),
         "bound": r["bound"] or "—",
         "calibrated": "yes" if r["calibrated"] else "no",
         "CPU time": f"{r['cpu_s']:.1f} s",
-    }  # fmt: skip
+    }
 
 
 def check_resolution(rec, n, L, device):
@@ -177,14 +208,31 @@ def check_resolution(rec, n, L, device):
     t0 = time.perf_counter()
     srf = wm_surface(rec["D_in"], rec["Wr_m"], L=L, n=n, Rt=rec["Rt_m"], seed=0, device=device)
     st = surface_statistics(srf)
-    return {"n": n, "L_m": L, "seed": 0, "Rrms_m": st["Rrms"], "Rt_m": st["Rt"],
-            "D_vs": fractal_dimension(srf, "vs", device=device).D,
-            "wall_s": time.perf_counter() - t0}  # fmt: skip
+    return {
+        "n": n,
+        "L_m": L,
+        "seed": 0,
+        "Rrms_m": st["Rrms"],
+        "Rt_m": st["Rt"],
+        "D_vs": fractal_dimension(srf, "vs", device=device).D,
+        "wall_s": time.perf_counter() - t0,
+    }
 
 
-COLUMNS = ["preset", "matched", "calibration map", "D_in", "R_t′ (µm)", "D reached / target",
-           "R_rms reached / target (µm)", "R_t′ vs Table 1 (µm)", "D reachable", "bound",
-           "calibrated", "CPU time"]  # fmt: skip
+COLUMNS = [
+    "preset",
+    "matched",
+    "calibration map",
+    "D_in",
+    "R_t′ (µm)",
+    "D reached / target",
+    "R_rms reached / target (µm)",
+    "R_t′ vs Table 1 (µm)",
+    "D reachable",
+    "bound",
+    "calibrated",
+    "CPU time",
+]
 
 
 def records(rows, maps, meta):
@@ -194,10 +242,20 @@ def records(rows, maps, meta):
             continue
         name = r["surface"] + ("" if r["method"] == "vs" else "-tri")
         for fig, val in _fmt(r).items():
-            out.append({"device": meta["device"], "date": meta["date"], "commit": meta["commit"],
-                        "row": {"preset": name, "matched": r["matched"],
-                                "calibration map": maps[r["method"]]},
-                        "figure": fig, "value": val})  # fmt: skip
+            out.append(
+                {
+                    "device": meta["device"],
+                    "date": meta["date"],
+                    "commit": meta["commit"],
+                    "row": {
+                        "preset": name,
+                        "matched": r["matched"],
+                        "calibration map": maps[r["method"]],
+                    },
+                    "figure": fig,
+                    "value": val,
+                }
+            )
     return out
 
 
@@ -209,8 +267,9 @@ def main(argv=None) -> int:
     ap.add_argument("--L", type=float, default=1e-3, help="calibration map side (m)")
     ap.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2], help="seeds")
     ap.add_argument("--rtol", type=float, default=0.05, help="relative tolerance on D")
-    ap.add_argument("--D-bounds", type=float, nargs=2, default=[2.001, 2.99],
-                    help="search interval of D_in")  # fmt: skip
+    ap.add_argument(
+        "--D-bounds", type=float, nargs=2, default=[2.001, 2.99], help="search interval of D_in"
+    )
     ap.add_argument("--surfaces", nargs="+", default=list(TABLE1), choices=list(TABLE1))
     ap.add_argument("--no-tri", action="store_true", help="skip the D_tri presets' check")
     ap.add_argument(
@@ -225,11 +284,22 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     bounds = tuple(args.D_bounds)
     prov = provenance(args.device)
-    dev = (f"shared {__import__('os').cpu_count()}-core CPU ({platform.machine()})"
-           if prov["device"] == "cpu" else prov["device_name"] or prov["device"])  # fmt: skip
-    meta = {"n": args.n, "L_m": args.L, "seeds": args.seeds, "rtol": args.rtol,
-            "D_bounds": list(bounds), "device": dev, "date": prov["created_utc"][:10],
-            "commit": (prov["git_commit"] or "")[:7], "provenance": prov}  # fmt: skip
+    dev = (
+        f"shared {__import__('os').cpu_count()}-core CPU ({platform.machine()})"
+        if prov["device"] == "cpu"
+        else prov["device_name"] or prov["device"]
+    )
+    meta = {
+        "n": args.n,
+        "L_m": args.L,
+        "seeds": args.seeds,
+        "rtol": args.rtol,
+        "D_bounds": list(bounds),
+        "device": dev,
+        "date": prov["created_utc"][:10],
+        "commit": (prov["git_commit"] or "")[:7],
+        "provenance": prov,
+    }
     rows = []
     for name in args.surfaces:
         r = calibrate_vs(name, args.n, args.L, tuple(args.seeds), args.rtol, bounds, args.device)
@@ -248,17 +318,26 @@ def main(argv=None) -> int:
     doc = {
         "title": "Table 1 presets (warptrunc.presets): calibration on D_vs, and the D_tri ones",
         "source": "examples/benchmarks/table1_presets.py",
-        "notes": (f"Seeds {', '.join(map(str, args.seeds))}; D tolerance {args.rtol:.0%}; D_in "
-                  f"searched in [{bounds[0]:g}, {bounds[1]:g}] (the D_tri presets: [2.02, 2.98]). "
-                  f"'D reachable': the range of D over D_in in [{bounds[0]:g}, {bounds[1]:g}] (every "
-                  "row). A calibration "
-                  "that ended on a bound is not counted as calibrated. CPU time: the calibration loop "
-                  "(D_vs presets) or one evaluation of the seeds (D_tri presets, calibrated on an "
-                  "H100 at c3f7c18)."),
-        "columns": [{"name": c, "kind": "label" if c in ("preset", "matched", "calibration map")
-                     else "figure"} for c in COLUMNS],
-        "records": records(rows, maps, meta), "meta": meta, "rows": rows,
-    }  # fmt: skip
+        "notes": (
+            f"Seeds {', '.join(map(str, args.seeds))}; D tolerance {args.rtol:.0%}; D_in "
+            f"searched in [{bounds[0]:g}, {bounds[1]:g}] (the D_tri presets: [2.02, 2.98]). "
+            f"'D reachable': the range of D over D_in in [{bounds[0]:g}, {bounds[1]:g}] (every "
+            "row). A calibration "
+            "that ended on a bound is not counted as calibrated. CPU time: the calibration loop "
+            "(D_vs presets) or one evaluation of the seeds (D_tri presets, calibrated on an "
+            "H100 at c3f7c18)."
+        ),
+        "columns": [
+            {
+                "name": c,
+                "kind": "label" if c in ("preset", "matched", "calibration map") else "figure",
+            }
+            for c in COLUMNS
+        ],
+        "records": records(rows, maps, meta),
+        "meta": meta,
+        "rows": rows,
+    }
     args.out.mkdir(parents=True, exist_ok=True)
     dest = args.out / record_name("table1_presets", args.device)
     dest.write_text(json.dumps(doc, indent=1, ensure_ascii=False) + "\n")

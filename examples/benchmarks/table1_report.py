@@ -56,20 +56,37 @@ def report(n, L, seeds, rtol, methods, device, progress, height_scaling=DEFAULT_
         wr_m = 2 * L if wr is None else wr * UM
         paper_d = dict(zip(METHODS, d_paper, strict=True))
         for m in methods:
-            row = {"surface": name, "matched": m, "Wr_m": wr_m, "paper_Rt_m": Rt * UM,
-                   "paper_Rrms_m": rrms * UM, "height_scaling": height_scaling}  # fmt: skip
+            row = {
+                "surface": name,
+                "matched": m,
+                "Wr_m": wr_m,
+                "paper_Rt_m": Rt * UM,
+                "paper_Rrms_m": rrms * UM,
+                "height_scaling": height_scaling,
+            }
             row.update({f"paper_D_{k}": v for k, v in paper_d.items()})
             target = CalibrationTarget(
-                D=paper_d[m], method=m, Rrms=rrms * UM, Rt=Rt * UM, Wr=wr_m, L=L, n=n,
-                source=f"Table 1 {name}", method_options=opts.get(m, {}),
-            )  # fmt: skip
+                D=paper_d[m],
+                method=m,
+                Rrms=rrms * UM,
+                Rt=Rt * UM,
+                Wr=wr_m,
+                L=L,
+                n=n,
+                source=f"Table 1 {name}",
+                method_options=opts.get(m, {}),
+            )
             t0 = time.perf_counter()
             try:
                 settings = CalibrationSettings(seeds=seeds, rtol=rtol)
                 cal = calibrate(target, settings=settings, progress=progress, device=device)
             except CalibrationError as exc:
-                row.update(status="out of reach", message=str(exc), eval_D_in=exc.d_in,
-                           eval_D_out=exc.d_out)  # fmt: skip
+                row.update(
+                    status="out of reach",
+                    message=str(exc),
+                    eval_D_in=exc.d_in,
+                    eval_D_out=exc.d_out,
+                )
                 rows.append(row)
                 print(f"{name:7s} D_{m}: {exc}")
                 continue
@@ -81,16 +98,21 @@ def report(n, L, seeds, rtol, methods, device, progress, height_scaling=DEFAULT_
             fits = [
                 fractal_dimensions(
                     wm_surface(cal.D_in, wr_m, L=L, n=n, Rt=cal.Rt, seed=s, device=device),
-                    options=opts, device=device,
+                    options=opts,
+                    device=device,
                 )
                 for s in seeds
             ]
             row.update(
-                status="ok", D_in=cal.D_in, Rt_m=cal.Rt, Rrms_m=cal.Rrms,
-                iterations=cal.iterations, seconds=time.perf_counter() - t0,
+                status="ok",
+                D_in=cal.D_in,
+                Rt_m=cal.Rt,
+                Rrms_m=cal.Rrms,
+                iterations=cal.iterations,
+                seconds=time.perf_counter() - t0,
                 **{f"D_{k}": float(np.mean([f[k].D for f in fits])) for k in METHODS},
                 **{f"D_{k}_std": float(np.std([f[k].D for f in fits])) for k in METHODS},
-            )  # fmt: skip
+            )
             rows.append(row)
             print(
                 f"{name:7s} D_{m}: D_in = {cal.D_in:.3f}, R_t' = {cal.Rt / UM:.4g} µm → "
@@ -148,9 +170,11 @@ def main(argv=None) -> int:
     ap.add_argument("--rtol", type=float, default=0.01, help="relative tolerance on D")
     ap.add_argument("--methods", nargs="+", choices=METHODS, default=list(METHODS))
     ap.add_argument(
-        "--height-scaling", choices=HEIGHT_SCALINGS, default=DEFAULT_HEIGHT_SCALING,
+        "--height-scaling",
+        choices=HEIGHT_SCALINGS,
+        default=DEFAULT_HEIGHT_SCALING,
         help="height convention of D_tri and D_box: 'cube' (Gwyddion's) or 'si' (metres)",
-    )  # fmt: skip
+    )
     ap.add_argument("--device", default=None, help="Warp device (default: CUDA if present)")
     ap.add_argument("--out", type=Path, default=Path("out/table1"), help="output folder")
     ap.add_argument("--no-show", action="store_true", help="(no figures; accepted for symmetry)")
@@ -164,9 +188,12 @@ def main(argv=None) -> int:
     )
     args.out.mkdir(parents=True, exist_ok=True)
     meta = {
-        "n": n, "L_m": L, "seeds": list(seeds), "rtol": args.rtol,
+        "n": n,
+        "L_m": L,
+        "seeds": list(seeds),
+        "rtol": args.rtol,
         "height_scaling": args.height_scaling,
-    }  # fmt: skip
+    }
     (args.out / "table1.json").write_text(json.dumps({"meta": meta, "rows": rows}, indent=2) + "\n")
     md = f"D_tri and D_box with height convention '{args.height_scaling}'.\n\n" + markdown(rows)
     (args.out / "table1.md").write_text(md)

@@ -51,7 +51,9 @@ def _leaves(v, prefix: str = ""):
     """(path, value) of every leaf of a JSON value."""
     if isinstance(v, dict):
         for k, x in v.items():
-            yield from _leaves(x, f"{prefix}.{RENAMED_INV.get(k, k)}" if prefix else RENAMED_INV.get(k, k))
+            yield from _leaves(
+                x, f"{prefix}.{RENAMED_INV.get(k, k)}" if prefix else RENAMED_INV.get(k, k)
+            )
     elif isinstance(v, list):
         for i, x in enumerate(v):
             yield from _leaves(x, f"{prefix}[{i}]")
@@ -159,11 +161,18 @@ def compare_table(a: Path, b: Path, report: list[str]) -> int:
                 report.append(f"{b}: column {c}: dtype {sa.dtype} → {sb.dtype}")
             elif not np.array_equal(_bits(sa), _bits(sb)):
                 i = int(np.flatnonzero(_bits(sa) != _bits(sb))[0])
-                report.append(f"{b}: column {c} differs (first at row {i}: {sa.iloc[i]!r} → "
-                              f"{sb.iloc[i]!r})")  # fmt: skip
+                report.append(
+                    f"{b}: column {c} differs (first at row {i}: {sa.iloc[i]!r} → {sb.iloc[i]!r})"
+                )
         else:
-            va = [None if (v is pd.NA or (isinstance(v, float) and math.isnan(v))) else v for v in sa.tolist()]
-            vb = [None if (v is pd.NA or (isinstance(v, float) and math.isnan(v))) else v for v in sb.tolist()]
+            va = [
+                None if (v is pd.NA or (isinstance(v, float) and math.isnan(v))) else v
+                for v in sa.tolist()
+            ]
+            vb = [
+                None if (v is pd.NA or (isinstance(v, float) and math.isnan(v))) else v
+                for v in sb.tolist()
+            ]
             if va != vb:
                 i = next(i for i, (x, y) in enumerate(zip(va, vb)) if x != y)
                 report.append(f"{b}: column {c} differs (first at row {i}: {va[i]!r} → {vb[i]!r})")
@@ -185,9 +194,13 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("baseline", type=Path)
     p.add_argument("new", type=Path)
-    p.add_argument("--moves", default=None, metavar="FILE",
-                   help="keys moved on purpose: lines 'REGEX => REPLACEMENT' that map a new key "
-                   "path to the baseline's")  # fmt: skip
+    p.add_argument(
+        "--moves",
+        default=None,
+        metavar="FILE",
+        help="keys moved on purpose: lines 'REGEX => REPLACEMENT' that map a new key "
+        "path to the baseline's",
+    )
     args = p.parse_args(argv)
     if args.moves:
         _load_moves(args.moves)
@@ -210,8 +223,10 @@ def main(argv: list[str] | None = None) -> int:
         n_files += 1
         n_values += (compare_json if f.suffix == ".json" else compare_table)(f, g, report)
     fails = [r for r in report if not r.startswith("(addition)")]
-    print(f"compared {n_values} values in {n_files} files/datasets "
-          f"({args.baseline} → {args.new}); renamed keys: {RENAMED or 'none'}")  # fmt: skip
+    print(
+        f"compared {n_values} values in {n_files} files/datasets "
+        f"({args.baseline} → {args.new}); renamed keys: {RENAMED or 'none'}"
+    )
     for r in report:
         print("  " + r)
     print("IDENTICAL" if not fails else f"{len(fails)} DIFFERENCES")

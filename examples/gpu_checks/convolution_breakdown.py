@@ -85,7 +85,8 @@ def phases(hs, buf, dev, repeats):
         "cols_inv": timed(run("cols", cols, inv), dev, repeats),
         "rows_c2r": timed(run("rows_inv", rows, inv), dev, repeats),
         "apply": timed(lambda: hs.apply(buf), dev, repeats),
-        "slabs_rows": len(rows), "slabs_cols": len(cols),
+        "slabs_rows": len(rows),
+        "slabs_cols": len(cols),
         "cufft_work_bytes": int(hs.fft_work.capacity),
     }
     return out
@@ -98,8 +99,11 @@ def plan_2d(hs, dev, repeats):
 
     big_y, big_x = hs.grid
     nk = hs.spectrum_shape[1]
-    r2c, c2r = ((cufft.CUFFT_R2C, cufft.CUFFT_C2R) if hs.dtype == "float32"
-                else (cufft.CUFFT_D2Z, cufft.CUFFT_Z2D))  # fmt: skip
+    r2c, c2r = (
+        (cufft.CUFFT_R2C, cufft.CUFFT_C2R)
+        if hs.dtype == "float32"
+        else (cufft.CUFFT_D2Z, cufft.CUFFT_Z2D)
+    )
     sizes = []
     scratch = hs.work  # only for learning the work sizes; never executed
 
@@ -109,10 +113,34 @@ def plan_2d(hs, dev, repeats):
         return cupy.cuda.MemoryPointer(mem, 0)
 
     def make():
-        pf = cufft.PlanNd((big_y, big_x), (big_y, 2 * nk), 1, big_y * 2 * nk, (big_y, nk), 1,
-                          big_y * nk, r2c, 1, "C", 1, nk)  # fmt: skip
-        pi = cufft.PlanNd((big_y, big_x), (big_y, nk), 1, big_y * nk, (big_y, 2 * nk), 1,
-                          big_y * 2 * nk, c2r, 1, "C", 1, big_x)  # fmt: skip
+        pf = cufft.PlanNd(
+            (big_y, big_x),
+            (big_y, 2 * nk),
+            1,
+            big_y * 2 * nk,
+            (big_y, nk),
+            1,
+            big_y * nk,
+            r2c,
+            1,
+            "C",
+            1,
+            nk,
+        )
+        pi = cufft.PlanNd(
+            (big_y, big_x),
+            (big_y, nk),
+            1,
+            big_y * nk,
+            (big_y, 2 * nk),
+            1,
+            big_y * 2 * nk,
+            c2r,
+            1,
+            "C",
+            1,
+            big_x,
+        )
         return pf, pi
 
     with cupy.cuda.Device(dev.ordinal):
@@ -149,7 +177,9 @@ def main() -> int:
     for n in a.n:
         row = {"n": n, "dtype": a.dtype}
         t0 = time.perf_counter()
-        hs = ElasticHalfSpace((n, n), (1e-3 / n, 1e-3 / n), 78e9, substrate="free", dtype=a.dtype, device=dev)
+        hs = ElasticHalfSpace(
+            (n, n), (1e-3 / n, 1e-3 / n), 78e9, substrate="free", dtype=a.dtype, device=dev
+        )
         row["setup_s"] = time.perf_counter() - t0
         buf, _ = hs.map_buffer()
         buf.fill_(1.0)
@@ -158,7 +188,9 @@ def main() -> int:
         saved = hsmod.FFT_SLABS
         hsmod.FFT_SLABS = 1
         try:
-            hs1 = ElasticHalfSpace((n, n), (1e-3 / n, 1e-3 / n), 78e9, substrate="free", dtype=a.dtype, device=dev)
+            hs1 = ElasticHalfSpace(
+                (n, n), (1e-3 / n, 1e-3 / n), 78e9, substrate="free", dtype=a.dtype, device=dev
+            )
             b1, _ = hs1.map_buffer()
             b1.fill_(1.0)
             row["apply_one_slab"] = timed(lambda: hs1.apply(b1), dev, a.repeats)
@@ -173,12 +205,17 @@ def main() -> int:
         wp.synchronize_device(dev)
         row["floor"] = fft_floor(n, a.dtype, dev, a.repeats)
         res.append(row)
-        ms = {k: round(v * 1e3, 2) for k, v in row.items() if isinstance(v, float) and k != "setup_s"}
-        print(f"N={n} {a.dtype}: " + ", ".join(f"{k} {v} ms" for k, v in ms.items())
-              + f"; slabs rows/cols {row['slabs_rows']}/{row['slabs_cols']}, cufft work "
-              f"{row['cufft_work_bytes'] / 2**30:.2f} GiB (one slab "
-              f"{row['cufft_work_bytes_one_slab'] / 2**30:.2f}), 2-D work {row.get('work_bytes_2d')}",
-              flush=True)  # fmt: skip
+        ms = {
+            k: round(v * 1e3, 2) for k, v in row.items() if isinstance(v, float) and k != "setup_s"
+        }
+        print(
+            f"N={n} {a.dtype}: "
+            + ", ".join(f"{k} {v} ms" for k, v in ms.items())
+            + f"; slabs rows/cols {row['slabs_rows']}/{row['slabs_cols']}, cufft work "
+            f"{row['cufft_work_bytes'] / 2**30:.2f} GiB (one slab "
+            f"{row['cufft_work_bytes_one_slab'] / 2**30:.2f}), 2-D work {row.get('work_bytes_2d')}",
+            flush=True,
+        )
     if a.out:
         with open(a.out, "w") as fh:
             json.dump(res, fh, indent=1)

@@ -10,13 +10,24 @@ __all__ = ["progress_bar"]
 
 
 def progress_bar(
-    iterable: Iterable | None = None, *, total: int | None = None, desc: str, unit: str,
-    enabled: bool = True, initial: int = 0, leave: bool = True,
-):  # fmt: skip
+    iterable: Iterable | None = None,
+    *,
+    total: int | None = None,
+    desc: str,
+    unit: str,
+    enabled: bool = True,
+    initial: int = 0,
+    leave: bool = True,
+):
     """A ``tqdm.auto`` bar (hidden when ``enabled`` is false), usable as a context manager."""
     from tqdm.auto import tqdm  # here, not at the top: tqdm.auto costs ~65 ms of start-up
 
     return tqdm(
-        iterable, total=total, desc=desc, unit=unit, disable=not enabled, initial=initial,
+        iterable,
+        total=total,
+        desc=desc,
+        unit=unit,
+        disable=not enabled,
+        initial=initial,
         leave=leave,
-    )  # fmt: skip
+    )

@@ -132,6 +132,7 @@ def provenance(device: Any = None, argv: list[str] | None = None) -> dict[str, A
         "device_name": name,
         "created_utc": _utc_now(),
         "python_version": platform.python_version(),
-        "warp_version": None if warp is None else getattr(getattr(warp, "config", None),
-                                                          "version", None),  # fmt: skip
+        "warp_version": None
+        if warp is None
+        else getattr(getattr(warp, "config", None), "version", None),
     }

@@ -54,9 +54,13 @@ def _height_range_flat(z: wp.array, device: wp.context.Device) -> tuple[float, f
         lo = wp.empty(full, dtype=wp.float32, device=device)
         hi = wp.empty(full, dtype=wp.float32, device=device)
         wp.launch_tiled(
-            _kr.min_max_tile_kernel, dim=full, inputs=[z], outputs=[lo, hi], block_dim=256,
+            _kr.min_max_tile_kernel,
+            dim=full,
+            inputs=[z],
+            outputs=[lo, hi],
+            block_dim=256,
             device=device,
-        )  # fmt: skip
+        )
         parts_lo, parts_hi = [lo.numpy()], [hi.numpy()]  # sync point
         if n > full * _kr.TILE:  # the remainder (< TILE values) on the host
             tail = z[full * _kr.TILE :].numpy()

@@ -138,7 +138,9 @@ def real(
         try:
             v = float(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"must be a number in {rng}{u}, got {show(text)}") from None
+            raise argparse.ArgumentTypeError(
+                f"must be a number in {rng}{u}, got {show(text)}"
+            ) from None
         bad = math.isnan(v) or (math.isinf(v) and not (allow_inf and v > 0))
         if lo is not None:
             bad |= v <= lo if lo_open else v < lo
@@ -174,7 +176,9 @@ def integer(lo: int, hi: int | None = None):
         try:
             v = int(text, 10)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"must be an integer in {rng}, got {show(text)}") from None
+            raise argparse.ArgumentTypeError(
+                f"must be an integer in {rng}, got {show(text)}"
+            ) from None
         if v < lo or (hi is not None and v > hi):
             raise argparse.ArgumentTypeError(f"must be an integer in {rng}, got {show(text)}")
         return v
@@ -195,14 +199,24 @@ def add_workers(p, what: str, scheduler_what: str) -> None:
     scheduler_what : str
         What the existing scheduler runs, and what its workers need, for the help text.
     """
-    shared_option(p, "--workers", type=workers_count, default=None, metavar="N|auto",
-                   help=f"run {what} on a local Dask cluster of N worker processes, started once "
-                   "per command, one per GPU (worker i on cuda:i mod #GPUs; dask-cuda's "
-                   "LocalCUDACluster where installed); auto: one per visible GPU, 1 on a machine "
-                   "without one; default: in this process")  # fmt: skip
-    shared_option(p, "--scheduler", default=None,
-                   help=f"address of an existing Dask scheduler (e.g. tcp://host:8786, or the "
-                   f"scheduler of a dask-jobqueue cluster) for {scheduler_what}")  # fmt: skip
+    shared_option(
+        p,
+        "--workers",
+        type=workers_count,
+        default=None,
+        metavar="N|auto",
+        help=f"run {what} on a local Dask cluster of N worker processes, started once "
+        "per command, one per GPU (worker i on cuda:i mod #GPUs; dask-cuda's "
+        "LocalCUDACluster where installed); auto: one per visible GPU, 1 on a machine "
+        "without one; default: in this process",
+    )
+    shared_option(
+        p,
+        "--scheduler",
+        default=None,
+        help=f"address of an existing Dask scheduler (e.g. tcp://host:8786, or the "
+        f"scheduler of a dask-jobqueue cluster) for {scheduler_what}",
+    )
 
 
 def count_or_auto(hi: int):
@@ -244,8 +258,14 @@ def add_devices(p, what: str) -> None:
     what : str
         Which solves it spreads (``"the elastic cross-check"``, ...), for the help text.
     """
-    shared_option(p, "--devices", type=devices_count, default=None, metavar="N|auto",
-                   help=DEVICES_HELP.format(what=what))  # fmt: skip
+    shared_option(
+        p,
+        "--devices",
+        type=devices_count,
+        default=None,
+        metavar="N|auto",
+        help=DEVICES_HELP.format(what=what),
+    )
 
 
 devices_count = count_or_auto(64)
@@ -324,7 +344,8 @@ def check_increments(value: int | None, option: str = "--increments") -> None:
 
 def add_device(p: argparse.ArgumentParser) -> None:
     """``--device`` (checked when the command runs, against the devices Warp finds)."""
-    shared_option(p,
+    shared_option(
+        p,
         "--device",
         default=None,
         help="Warp device: cpu, cuda:0, ... (default: $WARPTRUNC_DEVICE, else CUDA if present, "
@@ -335,14 +356,19 @@ def add_device(p: argparse.ArgumentParser) -> None:
 def add_streaming(p: argparse.ArgumentParser) -> None:
     """``--stream`` and ``--band-rows`` (how a generated map is held: whole or by row bands)."""
     shared_option(
-        p, "--stream", action="store_true",
+        p,
+        "--stream",
+        action="store_true",
         help="generate and truncate by row bands, never holding the map (default: only when "
         "the map needs more than half of the free memory)",
-    )  # fmt: skip
+    )
     shared_option(
-        p, "--band-rows", type=integer(1), default=None,
+        p,
+        "--band-rows",
+        type=integer(1),
+        default=None,
         help="rows per band when streaming (default: about 2**28 pixels per band)",
-    )  # fmt: skip
+    )
 
 
 def add_no_plot(p: argparse.ArgumentParser, what: str) -> None:
@@ -366,9 +392,11 @@ def add_run_outputs(p: argparse.ArgumentParser, out: str, plot_help: str) -> Non
 def add_no_progress(p: Any) -> None:
     """``--no-progress``."""
     shared_option(
-        p, "--no-progress", action="store_true",
+        p,
+        "--no-progress",
+        action="store_true",
         help="no progress bar (it is on stderr, and off when stderr is not a terminal)",
-    )  # fmt: skip
+    )
 
 
 def add_progress(p: Any) -> None:
@@ -427,7 +455,12 @@ def add_json_output(p: Any) -> None:
 
     json_path.__name__ = "path"
     shared_option(
-        p, "--json", type=json_path, default=None, metavar="PATH", help="write JSON here ('-': stdout)"
+        p,
+        "--json",
+        type=json_path,
+        default=None,
+        metavar="PATH",
+        help="write JSON here ('-': stdout)",
     )
 
 
@@ -530,9 +563,11 @@ def add_overwrite(p: Any, what: str) -> None:
 def add_accept_unconverged(p: Any, status: int) -> None:
     """``--accept-unconverged``: exit 0 even when a solve did not converge (else ``status``)."""
     shared_option(
-        p, "--accept-unconverged", action="store_true",
+        p,
+        "--accept-unconverged",
+        action="store_true",
         help=f"exit 0 even when a solve did not converge (default: exit {status})",
-    )  # fmt: skip
+    )
 
 
 def add_profile(p: Any, what: str, default: str | None) -> None:
@@ -546,28 +581,38 @@ def add_profile(p: Any, what: str, default: str | None) -> None:
 def add_stages(p: Any, stages: tuple[str, ...]) -> None:
     """``--stages NAME[,NAME...]``: compute only some of ``stages`` (the others reused)."""
     shared_option(
-        p, "--stages", metavar="NAME[,NAME...]", default=None,
+        p,
+        "--stages",
+        metavar="NAME[,NAME...]",
+        default=None,
         help=f"compute only these stages (of {', '.join(stages)}); the others are reused when "
         "stored with the same parameters, else left out",
-    )  # fmt: skip
+    )
 
 
 def add_time_budget(p: Any, what: str) -> None:
     """``--time-budget SECONDS``: stop ``what`` cleanly after this long (a rerun continues)."""
     shared_option(
-        p, "--time-budget", metavar="SECONDS", type=positive("s"), default=None,
+        p,
+        "--time-budget",
+        metavar="SECONDS",
+        type=positive("s"),
+        default=None,
         help=f"stop {what} after this many seconds; its finished work is kept and a rerun "
         "continues (default: no limit)",
-    )  # fmt: skip
+    )
 
 
 def add_commit(p: Any) -> None:
     """``--commit SHA``: the commit a report records."""
     shared_option(
-        p, "--commit", metavar="SHA", default=None,
+        p,
+        "--commit",
+        metavar="SHA",
+        default=None,
         help="commit recorded in the report (default: $WARPTRUNC_GIT_COMMIT, else git rev-parse "
         "HEAD of the checkout, else 'unknown')",
-    )  # fmt: skip
+    )
 
 
 def add_retry_failed(p: Any, what: str) -> None:
@@ -580,29 +625,41 @@ def add_shards(p: Any) -> None:
     parts of its store (:class:`~warptrunc.sweep.options.SweepExecution`; not given: its
     defaults)."""
     shared_option(
-        p, "--shard-size", type=integer(1, 10**6), default=None,
+        p,
+        "--shard-size",
+        type=integer(1, 10**6),
+        default=None,
         help="with --workers/--scheduler: cases per Dask task, each written by its worker as "
         "one part (default: adaptive, about --shard-seconds of work)",
-    )  # fmt: skip
+    )
     shared_option(
-        p, "--shard-seconds", type=real(0.0, None, lo_open=False, unit="s"), default=None,
+        p,
+        "--shard-seconds",
+        type=real(0.0, None, lo_open=False, unit="s"),
+        default=None,
         help="work per part of the store (s; default 1); a hard kill loses at most about this "
         "much per worker",
-    )  # fmt: skip
+    )
 
 
 def add_grid_file(p: Any) -> None:
     """``--grid FILE``: a sweep grid read from a TOML file
     (:meth:`~warptrunc.sweep.SweepGrid.from_toml`)."""
     shared_option(
-        p, "--grid", type=input_file, default=None,
+        p,
+        "--grid",
+        type=input_file,
+        default=None,
         help="TOML file with D = [...], delta = [...], seeds = '0-4' and optionally a table "
         "[axes] of more axes (e.g. M = [8, 10])",
-    )  # fmt: skip
+    )
 
 
 def add_truncation(
-    g: Any, *, only: tuple[str, ...] | None = None, defaults: dict | None = None,
+    g: Any,
+    *,
+    only: tuple[str, ...] | None = None,
+    defaults: dict | None = None,
     many: bool = False,
 ) -> None:
     """The options of :class:`~warptrunc.truncation.settings.TruncationSettings` (``--increments``,
@@ -665,15 +722,21 @@ def add_surface_source(
     g = p.add_argument_group(
         "surface source (a height-map file, a preset, or WM generation parameters)"
     )
-    add_input(g, "height map file (.npz/.npy written by warptrunc, .npy/.csv/.txt matrix with "
-              "--dx, or an instrument file); overrides the generation parameters")
+    add_input(
+        g,
+        "height map file (.npz/.npy written by warptrunc, .npy/.csv/.txt matrix with "
+        "--dx, or an instrument file); overrides the generation parameters",
+    )
     add_reader_options(g, scan_rule=scan_rule)
     shared_option(
-        g, "--preset", choices=list(PRESETS), default=None,
+        g,
+        "--preset",
+        choices=list(PRESETS),
+        default=None,
         help="start from the paper's Table 1 simulated surface (warptrunc.presets: D_in and R_t' "
         "calibrated to D_vs as Fig. 6, or to D_tri with -tri; Table 1's W_r, 10240² over 1 mm); "
         "WM options given win over it",
-    )  # fmt: skip
+    )
     add_options(g, WMSpec, exclude=SURFACE_EXCLUDE, defaults=defaults)
 
 

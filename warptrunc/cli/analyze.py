@@ -113,10 +113,15 @@ def _run(args: argparse.Namespace, truncation, fit_range, figures) -> int:
 
     try:
         a = analyze(
-            source, truncation=truncation, fit=fit_range, material=material,
-            stream=True if args.stream else "auto", band_rows=args.band_rows,
-            device=args.device, on_curve=draw_area,
-        )  # fmt: skip
+            source,
+            truncation=truncation,
+            fit=fit_range,
+            material=material,
+            stream=True if args.stream else "auto",
+            band_rows=args.band_rows,
+            device=args.device,
+            on_curve=draw_area,
+        )
     except FitRangeError as exc:
         if args.input is not None and fit_range.spikes:
             from ..plausibility import check_spikes
@@ -133,16 +138,25 @@ def _run(args: argparse.Namespace, truncation, fit_range, figures) -> int:
         both = isl_fit is not None
         sc_, fit_ = _plain_stiffness(sc), _plain_fit(fit)
         tickets["stiffness"] = figures.submit(
-            "stiffness_load", [sc_, _plain_stiffness(isl)] if both else sc_,
+            "stiffness_load",
+            [sc_, _plain_stiffness(isl)] if both else sc_,
             [fit_, _plain_fit(isl_fit)] if both else fit_,
-            labels=["Eq. 2 (one punch)", "islands (one punch each)"] if both
+            labels=["Eq. 2 (one punch)", "islands (one punch each)"]
+            if both
             else ["truncation analysis"],
             title=_plot_title(meta, material, nx, ny, Rt),
-        )  # fmt: skip
+        )
     with staged_output(args.out) as out:  # all or nothing
         sc.to_csv(out / "curve.csv", islands=a.islands)
-        (out / "fit.json").write_text(strict_json({**a.summary(), "provenance": provenance(
-            args.device), "warnings": warnings_of(args)}))  # fmt: skip
+        (out / "fit.json").write_text(
+            strict_json(
+                {
+                    **a.summary(),
+                    "provenance": provenance(args.device),
+                    "warnings": warnings_of(args),
+                }
+            )
+        )
         if figures is not None:
             (out / "stiffness.png").write_bytes(figures.result(tickets["stiffness"]))
             (out / "area_fraction.png").write_bytes(figures.result(tickets["area"]))
@@ -175,8 +189,10 @@ def _plain_fit(fit):
 def _islands_note(fit) -> str:
     if fit is None:
         return ""
-    return (f"islands: E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}; "
-            "one flat punch per island)\n")  # fmt: skip
+    return (
+        f"islands: E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (r² = {fit.r2:.4f}; "
+        "one flat punch per island)\n"
+    )
 
 
 def _plot_title(meta: dict, material: Material, nx: int, ny: int, Rt: float) -> str:
@@ -206,8 +222,10 @@ def _range_note(rule: dict) -> str:
     for action in ("extended", "cut"):
         if rule.get(f"depth_{action}"):
             done.append(f"ω_max {action} to {rule[f'depth_{action}']['to_fraction']:.3g}·R_t")
-    return (f"automatic rule (--fit-range auto; {rule['reason']}): {', '.join(done)}; "
-            f"ω_max = {rule['max_depth_m'] * 1e6:.4g} µm\n")  # fmt: skip
+    return (
+        f"automatic rule (--fit-range auto; {rule['reason']}): {', '.join(done)}; "
+        f"ω_max = {rule['max_depth_m'] * 1e6:.4g} µm\n"
+    )
 
 
 def _clip_note(meta: dict) -> str:
@@ -233,10 +251,13 @@ def _fit_range_message(exc, truncation, fit_range) -> str:
     if s is None:
         return f"{msg}; need at least 3: lower --min-pixels, raise --max-depth-fraction"
     advice = fit_range_advice(
-        s.heights, increments=truncation.increments,
-        max_depth_fraction=truncation.max_depth_fraction, max_depth=truncation.max_depth,
-        min_pixels=fit_range.min_pixels, depth_window=fit_range.depth_window,
-    )  # fmt: skip
+        s.heights,
+        increments=truncation.increments,
+        max_depth_fraction=truncation.max_depth_fraction,
+        max_depth=truncation.max_depth,
+        min_pixels=fit_range.min_pixels,
+        depth_window=fit_range.depth_window,
+    )
     if not advice:
         return (
             f"{msg}; need at least 3, and no single change of --max-depth-fraction, "

@@ -35,13 +35,41 @@ FORMAT = "warptrunc-compare/1"
 
 
 CASE_COLUMNS = (
-    "case_id", "source", "D_in", "seed", "size_ratio", "Wr_m", "L_m", "n", "dx_m", "Rt_m",
-    "Wc_m", "M", "gamma", "depth_fraction_of_Rt", "depth_m", "trunc_area_m2", "n_islands",
-    "eq2_stiffness_N_per_m", "eq2_load_N", "islands_stiffness_N_per_m", "islands_load_N",
-    "bem_stiffness_N_per_m", "bem_load_N", "bem_area_m2", "eq2_k_ratio", "eq2_F_ratio",
-    "islands_k_ratio", "islands_F_ratio", "area_ratio", "converged", "n_iterations",
-    "solve_time_s", "case_seconds", "device",
-)  # fmt: skip
+    "case_id",
+    "source",
+    "D_in",
+    "seed",
+    "size_ratio",
+    "Wr_m",
+    "L_m",
+    "n",
+    "dx_m",
+    "Rt_m",
+    "Wc_m",
+    "M",
+    "gamma",
+    "depth_fraction_of_Rt",
+    "depth_m",
+    "trunc_area_m2",
+    "n_islands",
+    "eq2_stiffness_N_per_m",
+    "eq2_load_N",
+    "islands_stiffness_N_per_m",
+    "islands_load_N",
+    "bem_stiffness_N_per_m",
+    "bem_load_N",
+    "bem_area_m2",
+    "eq2_k_ratio",
+    "eq2_F_ratio",
+    "islands_k_ratio",
+    "islands_F_ratio",
+    "area_ratio",
+    "converged",
+    "n_iterations",
+    "solve_time_s",
+    "case_seconds",
+    "device",
+)
 """Columns of a case file, in order; SI units in the names. ``size_ratio`` is L/W_r; the
 ratios are model/BEM (``area_ratio`` = A'/A_BEM); ``case_seconds`` is the case's wall time (s)."""
 

@@ -90,6 +90,7 @@ def fft_size(n: int) -> int:
             return m
         m += 1
 
+
 DTYPES = {
     "float64": (wp.float64, wp.vec2d, np.float64),
     "float32": (wp.float32, wp.vec2f, np.float32),
@@ -167,12 +168,12 @@ class ElasticHalfSpace(PaddedTransforms):
             self._cp = (cupy, cupyx.scipy.fft)
         self._plans = None
         # one 2-D plan over the padded grid: the free half-space on a CUDA device only
-        self.fft_plan = (fft_plan if substrate == "free" and self.device.is_cuda
-                         else "pruned")  # fmt: skip
+        self.fft_plan = fft_plan if substrate == "free" and self.device.is_cuda else "pruned"
         self._views: dict[int, Any] = {}
         self.fft_work = None  # the cuFFT plans' one shared work area (CUDA)
-        self.spectrum = wp.empty((rows, self.spectrum_shape[1]), dtype=self.scalar,
-                                 device=self.device)  # fmt: skip
+        self.spectrum = wp.empty(
+            (rows, self.spectrum_shape[1]), dtype=self.scalar, device=self.device
+        )
         self.table = wp.empty(self.shape, dtype=self.scalar, device=self.device)
         self.work = wp.zeros(self.spectrum_shape, dtype=self.vec2, device=self.device)
         self._build(pixel, float(contact_modulus))
@@ -193,14 +194,16 @@ class ElasticHalfSpace(PaddedTransforms):
             def rfft(x, axis):
                 return cfft.rfft(x, axis=axis)
 
-            spectrum, table, raw = (self._cupy_array(a) for a in (self.spectrum, self.table,
-                                                                   self.work))  # fmt: skip
+            spectrum, table, raw = (
+                self._cupy_array(a) for a in (self.spectrum, self.table, self.work)
+            )
         ctx = self._cupy_context() if self._cp is not None else contextlib.nullcontext()
         with ctx:
             if self.substrate == "free":
                 scratch = raw[: (ny + 1) * (nx + 1) * 8].view(xp.float64).reshape(ny + 1, nx + 1)
-                build_free_spectrum(self.shape, pixel, contact_modulus, spectrum, table, scratch,
-                                    xp=xp, rfft=rfft)  # fmt: skip
+                build_free_spectrum(
+                    self.shape, pixel, contact_modulus, spectrum, table, scratch, xp=xp, rfft=rfft
+                )
                 del scratch
             else:
                 build_periodic_spectrum(self.shape, pixel, contact_modulus, spectrum, xp=xp)
@@ -208,9 +211,13 @@ class ElasticHalfSpace(PaddedTransforms):
             if self._cp is not None:
                 self._cp[0].fft.config.get_plan_cache().clear()
         if self.substrate == "periodic":  # the table: the inverse transform of the spectrum
-            wp.launch(_kr.expand_spectrum_kernel, dim=self.spectrum_shape,
-                      inputs=[self.spectrum, wp.float64(1.0 / self.n_total)], outputs=[self.work],
-                      device=self.device)  # fmt: skip
+            wp.launch(
+                _kr.expand_spectrum_kernel,
+                dim=self.spectrum_shape,
+                inputs=[self.spectrum, wp.float64(1.0 / self.n_total)],
+                outputs=[self.work],
+                device=self.device,
+            )
             wp.copy(self.table, self.inverse(self.work))
         self.work.zero_()
 
@@ -237,8 +244,12 @@ class ElasticHalfSpace(PaddedTransforms):
     def _cupy_array(self, arr: wp.array):
         """A CuPy array of the same shape and dtype over a contiguous Warp array (no copy)."""
         cupy = self._cp[0]
-        dt = {wp.float32: np.float32, wp.float64: np.float64, wp.vec2f: np.float32,
-              wp.vec2d: np.float64}[arr.dtype]  # fmt: skip
+        dt = {
+            wp.float32: np.float32,
+            wp.float64: np.float64,
+            wp.vec2f: np.float32,
+            wp.vec2d: np.float64,
+        }[arr.dtype]
         shape = arr.shape + ((2,) if arr.dtype in (wp.vec2f, wp.vec2d) else ())
         mem = cupy.cuda.UnownedMemory(arr.ptr, arr.capacity, arr, self.device.ordinal)
         out = cupy.ndarray(shape, dtype=dt, memptr=cupy.cuda.MemoryPointer(mem, 0))
@@ -293,17 +304,27 @@ class ElasticHalfSpace(PaddedTransforms):
         ny, nx = self.shape
         row = 2 * self.spectrum_shape[1]  # reals per complex row: the in-place C2R layout
         item = np.dtype(self.np_dtype).itemsize
-        view = wp.array(ptr=spec.ptr, dtype=self.scalar, shape=(ny, nx),
-                        strides=(row * item, item), device=self.device)  # fmt: skip
+        view = wp.array(
+            ptr=spec.ptr,
+            dtype=self.scalar,
+            shape=(ny, nx),
+            strides=(row * item, item),
+            device=self.device,
+        )
         view._spectrum_owner = spec  # keeps the spectrum alive as long as the view
         return view
 
     @staticmethod
     @fill_doc(GRID_DOCS)
     def memory_terms(
-        shape: tuple[int, int], substrate: str, dtype: str, *, cuda: bool = True,
-        fft_plan: str = "pruned", device: wp.DeviceLike = None,
-    ) -> dict[str, int]:  # fmt: skip
+        shape: tuple[int, int],
+        substrate: str,
+        dtype: str,
+        *,
+        cuda: bool = True,
+        fft_plan: str = "pruned",
+        device: wp.DeviceLike = None,
+    ) -> dict[str, int]:
         """Bytes a half-space holds for its life, term by term (its peak: the construction
         works inside these arrays, with temporaries of a few MiB).
 
@@ -347,8 +368,11 @@ class ElasticHalfSpace(PaddedTransforms):
             "work spectrum": big_y * nk * 2 * item,
             "lane partials": (lanes + (256 if cuda else 0)) * LaneReduction.COLUMNS * 8,
         }
-        exact = (ElasticHalfSpace.cufft_work_bytes(shape, substrate, dtype, fft_plan, device)
-                 if cuda and device is not None else None)  # fmt: skip
+        exact = (
+            ElasticHalfSpace.cufft_work_bytes(shape, substrate, dtype, fft_plan, device)
+            if cuda and device is not None
+            else None
+        )
         if exact is not None:
             terms["cufft work area"] = exact
         elif cuda and fft_plan == "full" and substrate == "free":
@@ -364,8 +388,9 @@ class ElasticHalfSpace(PaddedTransforms):
 
     @staticmethod
     @fill_doc(GRID_DOCS)
-    def memory_bytes(shape: tuple[int, int], substrate: str, dtype: str,
-                     fft_plan: str = "pruned") -> tuple[int, int]:  # fmt: skip
+    def memory_bytes(
+        shape: tuple[int, int], substrate: str, dtype: str, fft_plan: str = "pruned"
+    ) -> tuple[int, int]:
         """Device bytes of a half-space on a CUDA device: (held, while made).
 
         Parameters
@@ -412,11 +437,21 @@ class ElasticHalfSpace(PaddedTransforms):
         red = self.reduction
         stride, chunk = red.geometry(spec.shape[0] * spec.shape[1])
         wp.launch(
-            _kr.spectral_kernel, dim=red.lanes,
-            inputs=[spec, self.spectrum, int(mode), wp.float64(1.0 / self.n_total), self.grid[1],
-                    int(col), stride, chunk],
-            outputs=[red.part], device=self.device,
-        )  # fmt: skip
+            _kr.spectral_kernel,
+            dim=red.lanes,
+            inputs=[
+                spec,
+                self.spectrum,
+                int(mode),
+                wp.float64(1.0 / self.n_total),
+                self.grid[1],
+                int(col),
+                stride,
+                chunk,
+            ],
+            outputs=[red.part],
+            device=self.device,
+        )
 
     def apply(self, buf: wp.array, *, inverse: bool = False, energy_column: int = -1) -> wp.array:
         """Apply the operator K, or its inverse, to a map by FFT convolution.

@@ -219,8 +219,13 @@ def influence_spectrum(
     if substrate == "free":
         # separations i·dx for i ≤ nx and (i − 2nx)·dx above; Love's G is even in x and y, so it
         # is evaluated on one quadrant (|x| ≤ nx·dx, |y| ≤ ny·dy) and mirrored
-        quad = _love(np.arange(nx + 1)[None, :] * dx, np.arange(ny + 1)[:, None] * dy,
-                     dx / 2, dy / 2, contact_modulus)  # fmt: skip
+        quad = _love(
+            np.arange(nx + 1)[None, :] * dx,
+            np.arange(ny + 1)[:, None] * dy,
+            dx / 2,
+            dy / 2,
+            contact_modulus,
+        )
         jx = np.arange(2 * nx)
         jy = np.arange(2 * ny)
         g = quad[np.minimum(jy, 2 * ny - jy)[:, None], np.minimum(jx, 2 * nx - jx)[None, :]]
@@ -259,8 +264,13 @@ def influence_table(
     ny, nx = shape
     dx, dy = pixel_size
     if substrate == "free":
-        quad = _love(np.arange(nx)[None, :] * dx, np.arange(ny)[:, None] * dy, dx / 2, dy / 2,
-                     contact_modulus)  # fmt: skip
+        quad = _love(
+            np.arange(nx)[None, :] * dx,
+            np.arange(ny)[:, None] * dy,
+            dx / 2,
+            dy / 2,
+            contact_modulus,
+        )
         return quad / (dx * dy)
     w = influence_spectrum(shape, pixel_size, contact_modulus, substrate)
     return scipy.fft.irfft2(w, s=shape)
@@ -330,9 +340,12 @@ class LaneReduction:
         """
         stride, chunk = self.geometry(n)
         wp.launch(
-            kernel, dim=self.lanes, inputs=[*inputs, stride, chunk], outputs=[*outputs, self.part],
+            kernel,
+            dim=self.lanes,
+            inputs=[*inputs, stride, chunk],
+            outputs=[*outputs, self.part],
             device=self.device,
-        )  # fmt: skip
+        )
 
     def fold(self, is_max: tuple[bool, ...]) -> wp.array:
         """Fold the lane partials of the first ``len(is_max)`` columns into a few rows.
@@ -360,9 +373,12 @@ class LaneReduction:
             f = [int(v) for v in is_max] + [0] * (self.COLUMNS - ncol)
             flags = self._flags[is_max] = wp.array(f, dtype=wp.int32, device=self.device)
         wp.launch(
-            _kr.sum_lanes_kernel, dim=(self.rows, ncol), inputs=[self.part, flags],
-            outputs=[self.out], device=self.device,
-        )  # fmt: skip
+            _kr.sum_lanes_kernel,
+            dim=(self.rows, ncol),
+            inputs=[self.part, flags],
+            outputs=[self.out],
+            device=self.device,
+        )
         return self.out
 
     def read(self, is_max: tuple[bool, ...]) -> np.ndarray:

@@ -158,28 +158,33 @@ class PaddedTransforms:
             plans = {}
             if fft_plan == "full" and free:  # in place over the whole padded grid, one batch
                 # (the distances between batches are unused: 1, since past 2³¹ they overflow)
-                plans["full"] = cufft.PlanNd((big_y, big_x), (big_y, 2 * nk), 1, 1,
-                                             (big_y, nk), 1, 1, r2c, 1, "C", 1, nk)  # fmt: skip
-                plans["full_inv"] = cufft.PlanNd((big_y, big_x), (big_y, nk), 1, 1,
-                                                 (big_y, 2 * nk), 1, 1, c2r, 1, "C", 1,
-                                                 big_x)  # fmt: skip
+                plans["full"] = cufft.PlanNd(
+                    (big_y, big_x), (big_y, 2 * nk), 1, 1, (big_y, nk), 1, 1, r2c, 1, "C", 1, nk
+                )
+                plans["full_inv"] = cufft.PlanNd(
+                    (big_y, big_x), (big_y, nk), 1, 1, (big_y, 2 * nk), 1, 1, c2r, 1, "C", 1, big_x
+                )
                 return plans
             for _, c in rows:
-                plans["rows", c] = cufft.PlanNd((big_x,), (in_row,), 1, in_row, (nk,), 1, nk,
-                                                r2c, c, "C", 1, nk)  # fmt: skip
-                plans["rows_inv", c] = cufft.PlanNd((big_x,), (nk,), 1, nk, (2 * nk,), 1,
-                                                    2 * nk, c2r, c, "C", 1, big_x)  # fmt: skip
+                plans["rows", c] = cufft.PlanNd(
+                    (big_x,), (in_row,), 1, in_row, (nk,), 1, nk, r2c, c, "C", 1, nk
+                )
+                plans["rows_inv", c] = cufft.PlanNd(
+                    (big_x,), (nk,), 1, nk, (2 * nk,), 1, 2 * nk, c2r, c, "C", 1, big_x
+                )
             for _, c in cols:
-                plans["cols", c] = cufft.PlanNd((big_y,), (big_y,), nk, 1, (big_y,), nk, 1, c2c,
-                                                c, "C", 0, None)  # fmt: skip
+                plans["cols", c] = cufft.PlanNd(
+                    (big_y,), (big_y,), nk, 1, (big_y,), nk, 1, c2c, c, "C", 0, None
+                )
             return plans
 
         return make, rows, cols
 
     @staticmethod
     @fill_doc(GRID_DOCS)
-    def cufft_work_bytes(shape: tuple[int, int], substrate: str, dtype: str, fft_plan: str,
-                         device: wp.DeviceLike) -> int | None:  # fmt: skip
+    def cufft_work_bytes(
+        shape: tuple[int, int], substrate: str, dtype: str, fft_plan: str, device: wp.DeviceLike
+    ) -> int | None:
         """The work area cuFFT asks for the half-space's plans, learnt by making them (no
         transform runs and nothing of that size is allocated).
 
@@ -237,14 +242,12 @@ class PaddedTransforms:
         then with one shared work area (they run one after another on one stream)."""
         cupy = self._cp[0]
         cufft = cupy.cuda.cufft  # loaded by cupyx.scipy.fft (imported in __init__)
-        make, rows, cols = self._plan_layout(self.shape, self.substrate, self.dtype,
-                                             self.fft_plan)  # fmt: skip
+        make, rows, cols = self._plan_layout(self.shape, self.substrate, self.dtype, self.fft_plan)
         sizes = []
 
         def record(size):
             sizes.append(int(size))
-            mem = cupy.cuda.UnownedMemory(self.work.ptr, int(size), self.work,
-                                          self.device.ordinal)  # fmt: skip
+            mem = cupy.cuda.UnownedMemory(self.work.ptr, int(size), self.work, self.device.ordinal)
             return cupy.cuda.MemoryPointer(mem, 0)
 
         with cupy.cuda.Device(self.device.ordinal):
@@ -255,10 +258,12 @@ class PaddedTransforms:
             # work area at 32768²: 2³¹ + 2¹⁶ words) is beyond Warp's int32 shapes
             words = -(-max(1, max(sizes, default=1)) // 8)
             width = min(words, 1 << 20)
-            self.fft_work = wp.empty((-(-words // width), width), dtype=wp.float64,
-                                     device=self.device)  # fmt: skip
-            shared = cupy.cuda.UnownedMemory(self.fft_work.ptr, self.fft_work.capacity,
-                                             self.fft_work, self.device.ordinal)  # fmt: skip
+            self.fft_work = wp.empty(
+                (-(-words // width), width), dtype=wp.float64, device=self.device
+            )
+            shared = cupy.cuda.UnownedMemory(
+                self.fft_work.ptr, self.fft_work.capacity, self.fft_work, self.device.ordinal
+            )
             with cupy.cuda.using_allocator(lambda size: cupy.cuda.MemoryPointer(shared, 0)):
                 plans = make(cufft)
         self._plans = (plans, rows, cols)
@@ -279,8 +284,11 @@ class PaddedTransforms:
         if view is None or view[0] is not arr:
             cupy = self._cp[0]
             mem = cupy.cuda.UnownedMemory(arr.ptr, arr.capacity, arr, self.device.ordinal)
-            data = cupy.ndarray((arr.capacity - offset,), dtype=cupy.uint8,
-                                memptr=cupy.cuda.MemoryPointer(mem, offset))  # fmt: skip
+            data = cupy.ndarray(
+                (arr.capacity - offset,),
+                dtype=cupy.uint8,
+                memptr=cupy.cuda.MemoryPointer(mem, offset),
+            )
             view = self._views[key] = (arr, data)
         return view[1]
 
@@ -300,8 +308,9 @@ class PaddedTransforms:
         """The first ny real rows of a spectrum's memory in the in-place layout, 2·(Nx//2 + 1)
         reals each (a view, no copy)."""
         nk2 = 2 * self.spectrum_shape[1]
-        view = wp.array(ptr=spec.ptr, dtype=self.scalar, shape=(self.shape[0], nk2),
-                        device=self.device)  # fmt: skip
+        view = wp.array(
+            ptr=spec.ptr, dtype=self.scalar, shape=(self.shape[0], nk2), device=self.device
+        )
         view._spectrum_owner = spec
         return view
 
@@ -336,8 +345,13 @@ class PaddedTransforms:
         free = self.substrate == "free"
         if free:
             rows_view = self._real_rows(spec)
-            wp.launch(_kr.pad_rows_kernel, dim=rows_view.shape, inputs=[buf],
-                      outputs=[rows_view], device=self.device)  # fmt: skip
+            wp.launch(
+                _kr.pad_rows_kernel,
+                dim=rows_view.shape,
+                inputs=[buf],
+                outputs=[rows_view],
+                device=self.device,
+            )
         with self._cufft() as (plans, rows, cols, nk, item):
             fwd = self._directions[0]
             if self.fft_plan == "full":

@@ -33,13 +33,13 @@ FRACTAL_DOCS = {
 
 def check_scaling(height_scaling: str) -> str:
     if height_scaling not in HEIGHT_SCALINGS:
-        raise ValueError(
-            f"height_scaling must be one of {HEIGHT_SCALINGS}, got {height_scaling!r}"
-        )
+        raise ValueError(f"height_scaling must be one of {HEIGHT_SCALINGS}, got {height_scaling!r}")
     return height_scaling
 
 
-def cube_height_factor(surface: Surface, z_min: float | None = None, z_max: float | None = None) -> float:
+def cube_height_factor(
+    surface: Surface, z_min: float | None = None, z_max: float | None = None
+) -> float:
     """Factor of the ``"cube"`` convention: (N − 1)·√(dx·dy)/(max z − min z) (dimensionless).
 
     Heights times this factor span the map's lateral extent (N = max(nx, ny)).
@@ -74,10 +74,12 @@ def scaled_upload(zd: wp.array, surface: Surface, height_scaling: str) -> wp.arr
     lo, hi = surface_range(surface, zd.flatten(), zd.device)
     out = wp.empty(zd.shape, dtype=wp.float32, device=zd.device)
     wp.launch(
-        _k.cube_scale_kernel, dim=zd.shape,
-        inputs=[zd, float(lo), cube_height_factor(surface, lo, hi)], outputs=[out],
+        _k.cube_scale_kernel,
+        dim=zd.shape,
+        inputs=[zd, float(lo), cube_height_factor(surface, lo, hi)],
+        outputs=[out],
         device=zd.device,
-    )  # fmt: skip
+    )
     return out
 
 

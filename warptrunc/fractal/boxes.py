@@ -31,6 +31,7 @@ def default_box_sizes(surface: Surface) -> np.ndarray:
     smax = max(4, (min(surface.nx, surface.ny) - 1) // 8)
     return 2 ** np.arange(int(math.log2(smax)) + 1)
 
+
 @fill_doc(FRACTAL_DOCS)
 def triangular_prism(
     surface: Surface,
@@ -185,6 +186,10 @@ def box_fit(zd, surface, box_sizes, fit_range, height_scaling=DEFAULT_HEIGHT_SCA
         n = int(out.numpy().sum())  # sync point
         counts[i] = n * ((surface.nx - 1) * (surface.ny - 1)) / (ncx * s * ncy * s)
     return fit_log_log(
-        "box", sizes * h, counts, fit_range, lambda k: -k,
+        "box",
+        sizes * h,
+        counts,
+        fit_range,
+        lambda k: -k,
         {"box_sizes": sizes.tolist(), "height_scaling": height_scaling},
-    )  # fmt: skip
+    )

@@ -30,8 +30,10 @@ MIN_FIT_POINTS = 6
 """Fewest cells of a fit; with fewer, the fit is not made."""
 N_BOOTSTRAP = 2000
 """Bootstrap replicates of the intervals."""
-CI_METHOD = ("percentile bootstrap over indents (punch placement × surface realisation), "
-             "resampled within each punch diameter")  # fmt: skip
+CI_METHOD = (
+    "percentile bootstrap over indents (punch placement × surface realisation), "
+    "resampled within each punch diameter"
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,10 +71,16 @@ class IndentFit:
             :meth:`PowerLawFit.to_dict` and ``made`` (True), ``alpha_ci95``, ``beta_ci95``
             ([low, high]), ``n_points``, ``n_indents``, ``n_bootstrap``, ``ci_method``.
         """
-        return {**self.fit.to_dict(), "made": True, "alpha_ci95": list(self.alpha_ci95),
-                "beta_ci95": list(self.beta_ci95), "n_points": self.n_points,
-                "n_indents": self.n_indents, "n_bootstrap": self.n_bootstrap,
-                "ci_method": CI_METHOD}  # fmt: skip
+        return {
+            **self.fit.to_dict(),
+            "made": True,
+            "alpha_ci95": list(self.alpha_ci95),
+            "beta_ci95": list(self.beta_ci95),
+            "n_points": self.n_points,
+            "n_indents": self.n_indents,
+            "n_bootstrap": self.n_bootstrap,
+            "ci_method": CI_METHOD,
+        }
 
 
 def bootstrap_power_law(
@@ -137,16 +145,34 @@ def bootstrap_power_law(
         var = sxx - sx * sx / n
         alpha = (sxy - sx * sy / n) / var
         beta = np.exp((sy - alpha * sx) / n)
-    ok = (n >= min_points) & (var > 1e-12 * np.maximum(n, 1)) & np.isfinite(alpha) & np.isfinite(beta)
+    ok = (
+        (n >= min_points)
+        & (var > 1e-12 * np.maximum(n, 1))
+        & np.isfinite(alpha)
+        & np.isfinite(beta)
+    )
     if not ok.any():
         return {"alpha_ci95": nan2, "beta_ci95": nan2, "n_bootstrap": 0, "n_indents": n_ind}
     q = lambda v: tuple(float(t) for t in np.percentile(v[ok], [2.5, 97.5]))  # noqa: E731
-    return {"alpha_ci95": q(alpha), "beta_ci95": q(beta), "n_bootstrap": int(ok.sum()),
-            "n_indents": n_ind}  # fmt: skip
+    return {
+        "alpha_ci95": q(alpha),
+        "beta_ci95": q(beta),
+        "n_bootstrap": int(ok.sum()),
+        "n_indents": n_ind,
+    }
 
 
-def fit_cells(x: Any, y: Any, depth: Any, indent: Any, stratum: Any, material: Any, *,
-              n_boot: int = N_BOOTSTRAP, seed: int = 0) -> IndentFit | None:  # fmt: skip
+def fit_cells(
+    x: Any,
+    y: Any,
+    depth: Any,
+    indent: Any,
+    stratum: Any,
+    material: Any,
+    *,
+    n_boot: int = N_BOOTSTRAP,
+    seed: int = 0,
+) -> IndentFit | None:
     """The fit E_c/E = β·[F/(E·A)]^α of given cells with its bootstrap intervals.
 
     Parameters
@@ -174,13 +200,24 @@ def fit_cells(x: Any, y: Any, depth: Any, indent: Any, stratum: Any, material: A
     x, y = np.asarray(x, np.float64), np.asarray(y, np.float64)
     if x.size < MIN_FIT_POINTS:
         return None
-    curve = SimpleNamespace(load=x, n_contact_pixels=np.ones(x.size, np.int64),
-                            depth=np.asarray(depth, np.float64), F_over_EA=x, Ec_over_E=y,
-                            material=material)  # fmt: skip
+    curve = SimpleNamespace(
+        load=x,
+        n_contact_pixels=np.ones(x.size, np.int64),
+        depth=np.asarray(depth, np.float64),
+        F_over_EA=x,
+        Ec_over_E=y,
+        material=material,
+    )
     try:
         fit = fit_power_law(curve, min_pixels=1)  # type: ignore[arg-type]
     except ValueError:
         return None
     b = bootstrap_power_law(x, y, indent, stratum, n_boot=n_boot, seed=seed)
-    return IndentFit(fit, b["alpha_ci95"], b["beta_ci95"], int(x.size), int(b["n_indents"]),
-                     int(b["n_bootstrap"]))  # fmt: skip
+    return IndentFit(
+        fit,
+        b["alpha_ci95"],
+        b["beta_ci95"],
+        int(x.size),
+        int(b["n_indents"]),
+        int(b["n_bootstrap"]),
+    )

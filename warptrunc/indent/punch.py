@@ -47,8 +47,13 @@ class PlacementOverlapWarning(UserWarning):
     """Random punch placements that could not be kept apart on the map (they overlap)."""
 
 
-def _disk_in(rows: np.ndarray, cols: np.ndarray, pixel_size: tuple[float, float],
-             centre: tuple[float, float], diameter: float) -> np.ndarray:  # fmt: skip
+def _disk_in(
+    rows: np.ndarray,
+    cols: np.ndarray,
+    pixel_size: tuple[float, float],
+    centre: tuple[float, float],
+    diameter: float,
+) -> np.ndarray:
     dx, dy = pixel_size
     x = (cols.astype(np.float64) + 0.5) * dx - centre[0]
     y = (rows.astype(np.float64) + 0.5) * dy - centre[1]
@@ -90,7 +95,9 @@ def _pixel_pair(pixel_size: Any) -> tuple[float, float]:
         v = check_range("pixel_size", pixel_size, 0.0, unit="m")
         return v, v
     dx, dy = pixel_size
-    return check_range("pixel_size", dx, 0.0, unit="m"), check_range("pixel_size", dy, 0.0, unit="m")
+    return check_range("pixel_size", dx, 0.0, unit="m"), check_range(
+        "pixel_size", dy, 0.0, unit="m"
+    )
 
 
 def lens_fraction(distance: Any, diameter: float) -> np.ndarray:
@@ -284,8 +291,9 @@ class PunchWindow:
         iy, ix = np.nonzero(self.mask)  # raster order, as the mask indexes
         x = (ix + self.origin[1] + 0.5) * self.pixel_size[0] - self.centre[0]
         y = (iy + self.origin[0] + 0.5) * self.pixel_size[1] - self.centre[1]
-        return self.disk_heights - math.tan(f.tilt) * (math.cos(f.azimuth) * x
-                                                       + math.sin(f.azimuth) * y)  # fmt: skip
+        return self.disk_heights - math.tan(f.tilt) * (
+            math.cos(f.azimuth) * x + math.sin(f.azimuth) * y
+        )
 
     @property
     def top(self) -> float:
@@ -336,13 +344,22 @@ def punch_window(
     ny, nx = z.shape
     if diameter is None:
         if face is not None:
-            raise ValueError("a tilted or rough punch face needs a finite punch_diameters, got none")
+            raise ValueError(
+                "a tilted or rough punch face needs a finite punch_diameters, got none"
+            )
         lx, ly = nx * dx, ny * dy
         c = (0.5 * lx, 0.5 * ly) if centre is None else tuple(float(v) for v in centre)
         mask = np.ones((ny, nx), dtype=bool)
         return PunchWindow(None, c, (0, 0), mask, z.copy(), float(z.min()), (dx, dy), lx * ly)
-    return punch_window_at(lambda o, s: z[o[0] : o[0] + s[0], o[1] : o[1] + s[1]],
-                           z.shape, (dx, dy), diameter, centre, drop=drop, face=face)  # fmt: skip
+    return punch_window_at(
+        lambda o, s: z[o[0] : o[0] + s[0], o[1] : o[1] + s[1]],
+        z.shape,
+        (dx, dy),
+        diameter,
+        centre,
+        drop=drop,
+        face=face,
+    )
 
 
 def punch_window_at(
@@ -446,5 +463,6 @@ def punch_window_at(
         mask = np.pad(mask, ((0, gy - wy), (0, gx - wx)), constant_values=False)
         if fh is not None:
             fh = np.pad(fh, ((0, gy - wy), (0, gx - wx)))
-    return PunchWindow(d, (cx, cy), (iy0, ix0), mask, win, floor, (dx, dy), math.pi * r * r,
-                       face, fh)  # fmt: skip
+    return PunchWindow(
+        d, (cx, cy), (iy0, ix0), mask, win, floor, (dx, dy), math.pi * r * r, face, fh
+    )

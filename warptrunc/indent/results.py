@@ -293,12 +293,23 @@ class IndentationResult:
         y = np.asarray(cols[y_col], dtype=np.float64)
         x = self.F_over_EA
         ok = np.isfinite(y) & (y > 0) & np.isfinite(x) & (x > 0) & np.asarray(cols[ok_col], bool)
-        depth = {"truncation": self.truncation_depth, "elastic": self.elastic_displacement,
-                 "elastic_partial": self.elastic_displacement}.get(name, self.displacement)  # fmt: skip
+        depth = {
+            "truncation": self.truncation_depth,
+            "elastic": self.elastic_displacement,
+            "elastic_partial": self.elastic_displacement,
+        }.get(name, self.displacement)
         d = np.nan_to_num(self.punch_diameter, nan=0.0)
-        ind = np.stack([self.realisation.astype(np.float64), d, self.placement.astype(np.float64)], 1)
-        return {"x": x[ok], "y": y[ok], "depth": depth[ok], "indent": ind[ok], "stratum": d[ok],
-                "mask": ok}  # fmt: skip
+        ind = np.stack(
+            [self.realisation.astype(np.float64), d, self.placement.astype(np.float64)], 1
+        )
+        return {
+            "x": x[ok],
+            "y": y[ok],
+            "depth": depth[ok],
+            "indent": ind[ok],
+            "stratum": d[ok],
+            "mask": ok,
+        }
 
     def fits(self) -> dict[str, IndentFit | None]:
         """E_c/E = β·[F/(E·A)]^α per model over its cells ``in_fit``, with 95 % intervals.
@@ -315,8 +326,9 @@ class IndentationResult:
         out: dict[str, IndentFit | None] = {}
         for name in MODELS:
             c = self.fit_cells(name)
-            out[name] = fit_cells(c["x"], c["y"], c["depth"], c["indent"], c["stratum"],
-                                  self.material)  # fmt: skip
+            out[name] = fit_cells(
+                c["x"], c["y"], c["depth"], c["indent"], c["stratum"], self.material
+            )
         return out
 
     def fit_summary(self) -> dict[str, dict[str, Any]]:
@@ -335,9 +347,13 @@ class IndentationResult:
                 continue
             c = self.fit_cells(name)
             n_ind = len(np.unique(c["indent"], axis=0)) if c["x"].size else 0
-            out[name] = {"made": False, "n_points": int(c["x"].size), "n_indents": n_ind,
-                         "reason": f"{c['x'].size} cells in_fit (resolved, not saturated, "
-                         f"converged), at least {MIN_FIT_POINTS} with two loads needed"}  # fmt: skip
+            out[name] = {
+                "made": False,
+                "n_points": int(c["x"].size),
+                "n_indents": n_ind,
+                "reason": f"{c['x'].size} cells in_fit (resolved, not saturated, "
+                f"converged), at least {MIN_FIT_POINTS} with two loads needed",
+            }
         return out
 
     def resolution_counts(self) -> dict[str, Any]:
@@ -357,10 +373,14 @@ class IndentationResult:
         cols = self.to_dict()
         for name, pre in pairs:
             conv = np.asarray(cols[f"{pre}converged"], bool)
-            out[name] = {k: int(np.sum(cols[f"{pre}{k}"])) for k in ("resolved", "saturated", "in_fit")}
+            out[name] = {
+                k: int(np.sum(cols[f"{pre}{k}"])) for k in ("resolved", "saturated", "in_fit")
+            }
             out[name]["not_converged"] = int((~conv).sum())
         notes, counts = np.unique(self.resolution_note.astype(str), return_counts=True)
-        out["elastic_plastic"]["notes"] = {str(k): int(v) for k, v in zip(notes, counts, strict=True)}
+        out["elastic_plastic"]["notes"] = {
+            str(k): int(v) for k, v in zip(notes, counts, strict=True)
+        }
         return out
 
     def summary(self) -> dict[str, Any]:

@@ -138,8 +138,9 @@ def truncation_at_loads(
         k = c * np.sqrt(tc.contact_area)
         return tc, k, cumulative_load(k, tc.depth)
 
-    tc, k, f = curve(None if float(np.ptp(window.surface_disk_heights)) > 0
-                     else window.pixel_size[0])  # fmt: skip
+    tc, k, f = curve(
+        None if float(np.ptp(window.surface_disk_heights)) > 0 else window.pixel_size[0]
+    )
     fmax = float(loads.max())
     if f[-1] >= fmax:
         j = int(np.searchsorted(f, fmax))

@@ -34,39 +34,58 @@ class ReadOptions(Parameters):
     """
 
     dx: float | None = param(
-        None, "pixel spacing along x if not in the file; none = from the file", unit="m",
-        gt=0.0, optional=True, sweep=False,
-    )  # fmt: skip
+        None,
+        "pixel spacing along x if not in the file; none = from the file",
+        unit="m",
+        gt=0.0,
+        optional=True,
+        sweep=False,
+    )
     dy: float | None = param(
         None, "pixel spacing along y; none = dx", unit="m", gt=0.0, optional=True, sweep=False
     )
     height_unit: float = param(
-        1.0, "metres per height unit, for files that declare none (e.g. 1e-6 for µm)",
-        unit="m", gt=0.0, sweep=False,
-    )  # fmt: skip
-    missing: str = param(
-        "error", "missing (NaN) points: stop with their count, or fill them",
-        choices=("error", "fill"), sweep=False,
-    )  # fmt: skip
-    fill: str = param(
-        "nearest", "fill method of missing points (with missing = fill)", choices=FILL_METHODS,
+        1.0,
+        "metres per height unit, for files that declare none (e.g. 1e-6 for µm)",
+        unit="m",
+        gt=0.0,
         sweep=False,
-    )  # fmt: skip
+    )
+    missing: str = param(
+        "error",
+        "missing (NaN) points: stop with their count, or fill them",
+        choices=("error", "fill"),
+        sweep=False,
+    )
+    fill: str = param(
+        "nearest",
+        "fill method of missing points (with missing = fill)",
+        choices=FILL_METHODS,
+        sweep=False,
+    )
     level: bool = param(False, "subtract the least-squares plane", kind="bool", sweep=False)
     engine: str = param(
-        "auto", "reader: built-in for .npz/.npy/.csv/.txt/.tsv, SurfaceTopography otherwise",
-        choices=ENGINES, sweep=False,
-    )  # fmt: skip
+        "auto",
+        "reader: built-in for .npz/.npy/.csv/.txt/.tsv, SurfaceTopography otherwise",
+        choices=ENGINES,
+        sweep=False,
+    )
     channel: int | None = param(
-        None, "data channel of instrument files; none = the first", kind="int", ge=0,
-        optional=True, sweep=False,
-    )  # fmt: skip
+        None,
+        "data channel of instrument files; none = the first",
+        kind="int",
+        ge=0,
+        optional=True,
+        sweep=False,
+    )
     spikes: str = param(
-        "report", "spike pixels: auto = reported, and masked where they include the highest or "
+        "report",
+        "spike pixels: auto = reported, and masked where they include the highest or "
         "the lowest pixel (repeated passes); report = only as warnings; mask = each replaced by "
         "its neighbours' median (R_t recomputed); off = no check",
-        choices=SPIKE_RULES, sweep=False,
-    )  # fmt: skip
+        choices=SPIKE_RULES,
+        sweep=False,
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)

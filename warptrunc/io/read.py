@@ -121,8 +121,17 @@ def read_scan(
         raise ValueError(_damaged(path, suffix, exc)) from None
 
 
-_IO_ERRNOS = {errno.EACCES, errno.EPERM, errno.EIO, errno.ENOENT, errno.EISDIR, errno.ENOMEM,
-              errno.EMFILE, errno.ENFILE, errno.ETIMEDOUT}  # fmt: skip
+_IO_ERRNOS = {
+    errno.EACCES,
+    errno.EPERM,
+    errno.EIO,
+    errno.ENOENT,
+    errno.EISDIR,
+    errno.ENOMEM,
+    errno.EMFILE,
+    errno.ENFILE,
+    errno.ETIMEDOUT,
+}
 """Errors of the file system (not of the file's content), kept as OSError by :func:`read_scan`."""
 
 

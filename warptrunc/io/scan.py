@@ -17,13 +17,63 @@ from .repair import FILL_METHODS, fill_missing, level_plane
 NUMPY_SUFFIXES = (".npz", ".npy")
 TEXT_SUFFIXES = (".csv", ".txt", ".tsv")
 INSTRUMENT_SUFFIXES = (
-    ".sur", ".x3p", ".datx", ".plu", ".plux", ".opd", ".opdx", ".vk4", ".vk6", ".vk7", ".gwy",
-    ".spm", ".mdt", ".nid", ".ibw", ".sdf", ".al3d", ".frt", ".lext", ".zon", ".asc", ".dat",
-    ".xyz", ".tif", ".tiff", ".vk3", ".apx", ".001", ".002", ".003", ".004", ".005", ".ezd",
-    ".os3d", ".oir", ".poir", ".zmg", ".mi", ".tmd", ".top", ".cur", ".stp", ".tom", ".hfm",
-    ".h5", ".nc", ".mat", ".xlsx", ".bcr", ".bcrf", ".jpk", ".mnt", ".qep", ".nms", ".hgt",
+    ".sur",
+    ".x3p",
+    ".datx",
+    ".plu",
+    ".plux",
+    ".opd",
+    ".opdx",
+    ".vk4",
+    ".vk6",
+    ".vk7",
+    ".gwy",
+    ".spm",
+    ".mdt",
+    ".nid",
+    ".ibw",
+    ".sdf",
+    ".al3d",
+    ".frt",
+    ".lext",
+    ".zon",
+    ".asc",
+    ".dat",
+    ".xyz",
+    ".tif",
+    ".tiff",
+    ".vk3",
+    ".apx",
+    ".001",
+    ".002",
+    ".003",
+    ".004",
+    ".005",
+    ".ezd",
+    ".os3d",
+    ".oir",
+    ".poir",
+    ".zmg",
+    ".mi",
+    ".tmd",
+    ".top",
+    ".cur",
+    ".stp",
+    ".tom",
+    ".hfm",
+    ".h5",
+    ".nc",
+    ".mat",
+    ".xlsx",
+    ".bcr",
+    ".bcrf",
+    ".jpk",
+    ".mnt",
+    ".qep",
+    ".nms",
+    ".hgt",
     ".zip",
-)  # fmt: skip
+)
 """Suffixes of the instrument files SurfaceTopography (1.27) reads, most common first, the
 built-in suffixes left out (it also recognises a file by its content, whatever its suffix)."""
 _NAMED = 12  # instrument suffixes a message names before "and N more"
@@ -57,10 +107,15 @@ def unrecognised_format(path: Any, *, tried: int | None) -> str:
         f"({' '.join(INSTRUMENT_SUFFIXES[:_NAMED])} and {len(INSTRUMENT_SUFFIXES) - _NAMED} more: "
         "warptrunc.io.INSTRUMENT_SUFFIXES) through SurfaceTopography"
     )
-    tail = "" if tried is not None else (
-        ", which this environment lacks (a dependency of warptrunc): pip install SurfaceTopography"
-    )  # fmt: skip
+    tail = (
+        ""
+        if tried is not None
+        else (
+            ", which this environment lacks (a dependency of warptrunc): pip install SurfaceTopography"
+        )
+    )
     return f"{p}: not a recognised height-map format ({what}); {formats}{tail}"
+
 
 LENGTH_UNITS = {
     "m": 1.0,
@@ -177,10 +232,12 @@ class Scan:
         n_missing = self.n_missing
         n_inf = int(np.count_nonzero(np.isinf(z)))
         what = (
-            "missing (NaN)" if not n_inf
-            else "infinite (±inf)" if n_inf == n_missing
+            "missing (NaN)"
+            if not n_inf
+            else "infinite (±inf)"
+            if n_inf == n_missing
             else f"missing (NaN) or infinite ({n_inf} ±inf)"
-        )  # fmt: skip
+        )
         if n_missing == z.size:
             raise ValueError(f"{self.source}: every point is {what}")
         if n_missing and missing == "error":

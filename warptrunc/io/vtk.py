@@ -88,9 +88,15 @@ def export_vtk(
     z = surface.heights
     arrays = [
         ("height", "Float32", "float", np.dtype("<f4"), lambda a, b: z[a:b]),
-        ("first_contact_depth", "Float64", "double", np.dtype("<f8"), lambda a, b: lookup[index[a:b]]),
+        (
+            "first_contact_depth",
+            "Float64",
+            "double",
+            np.dtype("<f8"),
+            lambda a, b: lookup[index[a:b]],
+        ),
         ("contact_index", "Int32", "int", np.dtype("<i4"), lambda a, b: index[a:b]),
-    ]  # fmt: skip
+    ]
     path.parent.mkdir(parents=True, exist_ok=True)
     if suffix == ".vti":
         _write_vti(path, surface, arrays)

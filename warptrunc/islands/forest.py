@@ -22,7 +22,6 @@ _BLOCK = 256  # threads per block of the statistics kernels (CUDA)
 _STRIDE_THREADS = 1 << 16  # most threads striding over the candidate roots of one increment
 
 
-
 def _launch_bucket(cmd: Any, start: int, count: int, k: int) -> None:
     """Launch the recorded ``cmd`` over the ``count`` pixels of bucket k from ``start`` (none
     when the bucket is empty)."""
@@ -31,6 +30,7 @@ def _launch_bucket(cmd: Any, start: int, count: int, k: int) -> None:
         cmd.set_param_by_name("start", start)
         cmd.set_param_by_name("k", k)
         cmd.launch()
+
 
 class Forest:
     """One union-find forest carried through increasing depths (see ``kernels/islands.py``)."""
@@ -140,15 +140,25 @@ class Forest:
                 wp.launch_tiled(
                     _ki.compact_roots_kernel,
                     dim=blocks,
-                    inputs=[src, -1, self.order, 0, 0, self.parent, *acc, 0, self.min_pixels,
-                            self.aspect, blocks],
-                    outputs=[self.root_counts, dst, self.hist, self.slit_sums,
-                             self.sqrt_sums],
+                    inputs=[
+                        src,
+                        -1,
+                        self.order,
+                        0,
+                        0,
+                        self.parent,
+                        *acc,
+                        0,
+                        self.min_pixels,
+                        self.aspect,
+                        blocks,
+                    ],
+                    outputs=[self.root_counts, dst, self.hist, self.slit_sums, self.sqrt_sums],
                     block_dim=_BLOCK,
                     device=dev,
                     record_cmd=True,
                 )
-            )  # fmt: skip
+            )
         self._add = wp.launch(
             _ki.add_pixels_kernel,
             dim=1,

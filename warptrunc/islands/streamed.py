@@ -99,8 +99,13 @@ class _BandMerger:
         rows = labels.shape[0]
         area = wp.zeros(n + 1, dtype=wp.int64, device=labels.device)
         flat = labels.flatten()
-        wp.launch(_k.label_area_kernel, dim=flat.shape[0], inputs=[flat], outputs=[area],
-                  device=labels.device)  # fmt: skip
+        wp.launch(
+            _k.label_area_kernel,
+            dim=flat.shape[0],
+            inputs=[flat],
+            outputs=[area],
+            device=labels.device,
+        )
         self.areas.append(area.numpy()[1:].copy())  # sync point
         first = self._global(labels[0:1].numpy()[0])
         last = self._global(labels[rows - 1 : rows].numpy()[0])
@@ -287,12 +292,16 @@ def streamed_islands(
     ) as bar:
         for r0, r1 in bands.bands:
             z, _, _ = bands.raw(r0, r1)
-            wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale],
-                      device=device)  # fmt: skip
+            wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale], device=device)
             m = mask[: r1 - r0]
             for t, merger in zip(thr, mergers, strict=True):
-                wp.launch(_k.contact_mask_kernel, dim=z.size, inputs=[z.flatten(), float(t)],
-                          outputs=[m.flatten()], device=device)  # fmt: skip
+                wp.launch(
+                    _k.contact_mask_kernel,
+                    dim=z.size,
+                    inputs=[z.flatten(), float(t)],
+                    outputs=[m.flatten()],
+                    device=device,
+                )
                 merger.add(*label_device(m, connectivity))
             bar.update()
     return [mg.finish(d) for mg, d in zip(mergers, depth, strict=True)]

@@ -44,9 +44,13 @@ def _topology_hist_blocks(
         blocks = max(1, min(-(-n // bd), 8 * device.sm_count if device.is_cuda else 64))
         chunk = -(-n // blocks)
         wp.launch_tiled(
-            kernel, dim=blocks, inputs=[*args, chunk, -(-chunk // bd)], outputs=[hist],
-            block_dim=bd, device=device,
-        )  # fmt: skip
+            kernel,
+            dim=blocks,
+            inputs=[*args, chunk, -(-chunk // bd)],
+            outputs=[hist],
+            block_dim=bd,
+            device=device,
+        )
 
     launch(
         _ke.pixel_histogram_block_kernel,

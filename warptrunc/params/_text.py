@@ -32,8 +32,10 @@ def markdown_table(spec_cls: Any, *, prefix: str = "") -> str:
         The table (Markdown).
     """
     fields = {f.name: f for f in dataclasses.fields(spec_cls)}
-    rows = ["| field | option | default | unit | allowed | description |",
-            "|---|---|---|---|---|---|"]  # fmt: skip
+    rows = [
+        "| field | option | default | unit | allowed | description |",
+        "|---|---|---|---|---|---|",
+    ]
     for name, meta in param_info(spec_cls).items():
         opt = " ".join(f"`{o}`" for o in _option(name, meta, prefix))
         default = fields[name].default

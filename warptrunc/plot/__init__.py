@@ -19,14 +19,30 @@ import importlib as _importlib
 from typing import Any as _Any
 
 _HOME = {
-    "CONTACT_COLOR": "_style", "CONTACT_RGB": "_style", "DPI": "_style", "FIGSIZE": "_style",
-    "HEIGHT_CMAP": "_style", "PAPER_ALPHA_D": "_style", "SPREAD_ALPHA": "_style", "UM": "_style",
-    "show_pngs": "_style", "plot_bem_check": "bem", "alpha_vs_D_routes": "compare",
-    "ratio_vs_size": "compare", "calibration_history": "fractal", "d_out_vs_d_in": "fractal",
-    "fractal_fits": "fractal", "psd": "fractal", "indentation": "indent",
-    "island_number": "islands", "slit_islands": "islands", "area_fraction": "maps",
-    "height_map": "maps", "alpha_vs_D": "stiffness", "stiffness_load": "stiffness",
-}  # fmt: skip
+    "CONTACT_COLOR": "_style",
+    "CONTACT_RGB": "_style",
+    "DPI": "_style",
+    "FIGSIZE": "_style",
+    "HEIGHT_CMAP": "_style",
+    "PAPER_ALPHA_D": "_style",
+    "SPREAD_ALPHA": "_style",
+    "UM": "_style",
+    "show_pngs": "_style",
+    "plot_bem_check": "bem",
+    "alpha_vs_D_routes": "compare",
+    "ratio_vs_size": "compare",
+    "calibration_history": "fractal",
+    "d_out_vs_d_in": "fractal",
+    "fractal_fits": "fractal",
+    "psd": "fractal",
+    "indentation": "indent",
+    "island_number": "islands",
+    "slit_islands": "islands",
+    "area_fraction": "maps",
+    "height_map": "maps",
+    "alpha_vs_D": "stiffness",
+    "stiffness_load": "stiffness",
+}
 """The module of each public name, imported on first use (PEP 562): drawing one figure loads
 its own module only (``stiffness_load`` does not load the island figures, which need Warp)."""
 

@@ -88,8 +88,13 @@ def readable_log_ticks(axis: Any, max_ticks: int = 6, min_ticks: int = 3) -> Non
         return
     k0, k1 = int(np.floor(np.log10(lo))), int(np.ceil(np.log10(hi)))
     ticks: list[float] = []
-    for mant in ((1.0,), (1.0, 3.0), (1.0, 2.0, 5.0), (1.0, 2.0, 3.0, 5.0),
-                 (1.0, 1.5, 2.0, 3.0, 5.0, 7.0)):  # fmt: skip
+    for mant in (
+        (1.0,),
+        (1.0, 3.0),
+        (1.0, 2.0, 5.0),
+        (1.0, 2.0, 3.0, 5.0),
+        (1.0, 1.5, 2.0, 3.0, 5.0, 7.0),
+    ):
         vals = [m * 10.0**k for k in range(k0, k1 + 1) for m in mant]
         vals = [v for v in vals if lo * (1 - 1e-9) <= v <= hi * (1 + 1e-9)]
         if len(vals) > max_ticks:
@@ -101,8 +106,9 @@ def readable_log_ticks(axis: Any, max_ticks: int = 6, min_ticks: int = 3) -> Non
     axis.set_major_locator(FixedLocator(ticks))
     axis.set_major_formatter(FuncFormatter(lambda v, _pos: _tick_text(v)))
     wide = k1 - k0 > 4  # many decades: minor marks would only clutter the grid
-    axis.set_minor_locator(NullLocator() if wide else LogLocator(subs=np.arange(2, 10),
-                                                                 numticks=12))
+    axis.set_minor_locator(
+        NullLocator() if wide else LogLocator(subs=np.arange(2, 10), numticks=12)
+    )
     axis.set_minor_formatter(NullFormatter())
     if axis.axis_name == "x":
         axis.axes.set_xlim(lo, hi)
@@ -119,7 +125,12 @@ def finish_figure(fig: Any, path: str | Path | None) -> Any:
 
 
 def finish_axes(
-    fig: Any, ax: Any, path: str | Path | None, *, title: str | None, which: str = "major",
+    fig: Any,
+    ax: Any,
+    path: str | Path | None,
+    *,
+    title: str | None,
+    which: str = "major",
     legend: bool = True,
 ) -> Any:
     """Grid (``which`` ticks), title and legend of a one-axes figure, then

@@ -103,8 +103,10 @@ class FigureWorker:
         self._reader: threading.Thread | None = None
         if process:
             root = str(Path(__file__).resolve().parents[2])
-            code = (f"import sys; sys.path.insert(0, {root!r}); "
-                    "from warptrunc.plot._worker import serve; serve()")  # fmt: skip
+            code = (
+                f"import sys; sys.path.insert(0, {root!r}); "
+                "from warptrunc.plot._worker import serve; serve()"
+            )
             try:
                 self._proc = subprocess.Popen(
                     [sys.executable, "-c", code], stdin=subprocess.PIPE, stdout=subprocess.PIPE

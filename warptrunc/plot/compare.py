@@ -73,9 +73,17 @@ def ratio_vs_size(
                 y = g[f"{col}_mean"].to_numpy()
                 err = [y - g[f"{col}_min"].to_numpy(), g[f"{col}_max"].to_numpy() - y]
                 st = _MODEL_STYLE[m]
-                ax.errorbar(g["size_ratio"], y, yerr=err, color=c, marker=st["marker"],
-                            ls=st["ls"], capsize=2, ms=4,
-                            label=f"{st['label']}, D = {Dv:g}")  # fmt: skip
+                ax.errorbar(
+                    g["size_ratio"],
+                    y,
+                    yerr=err,
+                    color=c,
+                    marker=st["marker"],
+                    ls=st["ls"],
+                    capsize=2,
+                    ms=4,
+                    label=f"{st['label']}, D = {Dv:g}",
+                )
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("L/W$_r$ (fixed pixel size)")
@@ -130,16 +138,36 @@ def alpha_vs_D_routes(
     d = np.linspace(2.0, 3.0, 11)
     (d0, a0), (d1, a1) = POHRT_POPOV
     pp = a0 + (a1 - a0) * (d - d0) / (d1 - d0)
-    ax.plot(d, pp, color="goldenrod", lw=4, alpha=0.5,
-            label="Pohrt & Popov 2012, BEM: 0.51 → 0.77 (linear interpolation)")  # fmt: skip
-    ax.plot(d, PAPER_ALPHA_D[0] * d + PAPER_ALPHA_D[1], color="k", lw=1.0, ls="-.",
-            label=f"paper, Table 3: α = {PAPER_ALPHA_D[0]}·D + {PAPER_ALPHA_D[1]:.3f}")  # fmt: skip
+    ax.plot(
+        d,
+        pp,
+        color="goldenrod",
+        lw=4,
+        alpha=0.5,
+        label="Pohrt & Popov 2012, BEM: 0.51 → 0.77 (linear interpolation)",
+    )
+    ax.plot(
+        d,
+        PAPER_ALPHA_D[0] * d + PAPER_ALPHA_D[1],
+        color="k",
+        lw=1.0,
+        ls="-.",
+        label=f"paper, Table 3: α = {PAPER_ALPHA_D[0]}·D + {PAPER_ALPHA_D[1]:.3f}",
+    )
     off = {"eq2": -0.01, "islands": 0.0, "bem": 0.01}
     for m, st in _MODEL_STYLE.items():
         y = df[f"alpha_{m}_mean"].to_numpy()
         err = [y - df[f"alpha_{m}_min"].to_numpy(), df[f"alpha_{m}_max"].to_numpy() - y]
-        ax.errorbar(df["D_in"] + off[m], y, yerr=err, marker=st["marker"], ls=st["ls"],
-                    color=st["color"], capsize=2, label=st["label"])  # fmt: skip
+        ax.errorbar(
+            df["D_in"] + off[m],
+            y,
+            yerr=err,
+            marker=st["marker"],
+            ls=st["ls"],
+            color=st["color"],
+            capsize=2,
+            label=st["label"],
+        )
     ax.set_xlabel("D")
     ax.set_ylabel("α  (k ∝ F$^α$)")
     rng = "all approaches" if fit_range == "all" else "δ/R$_t$ ≤ 0.1"
@@ -148,6 +176,11 @@ def alpha_vs_D_routes(
     ax.set_xlim(2.0, 3.0)
     ax.grid(True, alpha=0.3)
     # below the axes: inside, five entries cover points wherever they sit (α spans 0.3–1)
-    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", fontsize=7,
-               ncols=1, frameon=False)
+    fig.legend(
+        *ax.get_legend_handles_labels(),
+        loc="outside lower center",
+        fontsize=7,
+        ncols=1,
+        frameon=False,
+    )
     return finish_figure(fig, path)

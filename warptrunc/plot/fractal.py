@@ -65,9 +65,10 @@ def psd(
     ax.set_xlabel("wavelength 1/f (µm)")
     kinds = list(dict.fromkeys(p.kind for p in psds))
     unit = (
-        units.get(kinds[0], "?") if len(kinds) == 1
+        units.get(kinds[0], "?")
+        if len(kinds) == 1
         else ", ".join(f"{k}: {units.get(k, '?')}" for k in kinds)
-    )  # fmt: skip
+    )
     ax.set_ylabel(f"PSD C(f) ({unit})")
     return finish_axes(fig, ax, path, title=title, which="both")
 
@@ -101,13 +102,26 @@ def fractal_fits(fits: Any, *, title: str | None = None, path: str | Path | None
         ax = axes[k // ncols, k % ncols]
         x = f.scale * UM
         out = ~np.asarray(f.fitted, dtype=bool)
-        ax.loglog(x[out], f.measure[out], "o", ms=3, mfc="none", color="0.5",
-                  label="outside the fit range")  # fmt: skip
+        ax.loglog(
+            x[out],
+            f.measure[out],
+            "o",
+            ms=3,
+            mfc="none",
+            color="0.5",
+            label="outside the fit range",
+        )
         ax.loglog(x[f.fitted], f.measure[f.fitted], "o", ms=3, color="C0", label="fitted")
         xs = np.geomspace(f.fit_range[0] or x[f.fitted].min() / UM, f.fit_range[1], 20)
         xs = xs[(xs >= f.scale[f.fitted].min() * 0.999) & (xs <= f.scale[f.fitted].max() * 1.001)]
-        ax.loglog(xs * UM, 10 ** (f.intercept + f.slope * np.log10(xs)), "--", color="k", lw=1.2,
-                  label=f"fit, slope {f.slope:.3g}")  # fmt: skip
+        ax.loglog(
+            xs * UM,
+            10 ** (f.intercept + f.slope * np.log10(xs)),
+            "--",
+            color="k",
+            lw=1.2,
+            label=f"fit, slope {f.slope:.3g}",
+        )
         if out.any():  # two families of points: say which is which
             ax.legend(fontsize=7)
         ax.set_title(f"{_METHOD_LABELS.get(m, m)} = {f.D:.3f} (r² = {f.r2:.3f})", fontsize=8)
@@ -182,9 +196,15 @@ def calibration_history(cal: Any, *, path: str | Path | None = None):
     ax.axhspan(t.D - tol, t.D + tol, color="C2", alpha=0.15, label=f"target ± {cal.rtol:.0%}")
     ax.axhline(t.D, color="C2", lw=1.0)
     ax.errorbar(
-        cal.history_D_in, cal.history_D_out, yerr=cal.history_D_out_std, fmt="o", ms=4,
-        capsize=2, color="C0", label="evaluations (mean ± sd over seeds)",
-    )  # fmt: skip
+        cal.history_D_in,
+        cal.history_D_out,
+        yerr=cal.history_D_out_std,
+        fmt="o",
+        ms=4,
+        capsize=2,
+        color="C0",
+        label="evaluations (mean ± sd over seeds)",
+    )
     for i, (x, y) in enumerate(zip(cal.history_D_in, cal.history_D_out, strict=True)):
         ax.annotate(str(i + 1), (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
     ax.plot([cal.D_in], [cal.D_out], "*", ms=12, color="C3", label=f"D$_{{in}}$' = {cal.D_in:.3f}")

@@ -18,11 +18,17 @@ __all__ = ["indentation"]
 
 _MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*")
 _DRAWN = (  # (model, column, colour, label, solid fit line)
-    ("elastic_plastic_partial", "E_c_partial_over_E", "C3", "elastic–plastic, {f:g} % unloading", True),
+    (
+        "elastic_plastic_partial",
+        "E_c_partial_over_E",
+        "C3",
+        "elastic–plastic, {f:g} % unloading",
+        True,
+    ),
     ("elastic_plastic", "E_c_over_E", "C1", "elastic–plastic, initial slope (Barber)", False),
     ("elastic", "elastic_E_c_over_E", "C0", "elastic (H = ∞), initial slope", False),
     ("truncation", "truncation_E_c_over_E", "C2", "truncation (Eq. 2)", True),
-)  # fmt: skip
+)
 
 
 @figure_doc
@@ -74,31 +80,64 @@ def indentation(
         for i, d in enumerate([*keys, None] if has_flat else keys):
             sel = ok & (~np.isfinite(diam) if d is None else np.isclose(diam, d))
             for part, face in ((sel & used, colour), (sel & ~used, "none")):  # excluded: hollow
-                ax.loglog(x[part], y[part], _MARKERS[i % len(_MARKERS)], ms=4, ls="none",
-                          color=colour, mfc=face, alpha=0.8)  # fmt: skip
+                ax.loglog(
+                    x[part],
+                    y[part],
+                    _MARKERS[i % len(_MARKERS)],
+                    ms=4,
+                    ls="none",
+                    color=colour,
+                    mfc=face,
+                    alpha=0.8,
+                )
         fit = fits.get(model)
         text = label.format(f=100 * result.protocol.unload_fraction)
         if fit is not None:
             g = np.geomspace(fit.F_over_EA_min, fit.F_over_EA_max, 50)
             (a0, a1), (b0, b1) = fit.alpha_ci95, fit.beta_ci95
-            ax.loglog(g, fit.beta * g**fit.alpha, "-" if solid else "--", color=colour, lw=1.2,
-                      label=f"{text}: α = {fit.alpha:.3f} [{a0:.3f}, {a1:.3f}], "
-                      f"β = {fit.beta:.3g} [{b0:.3g}, {b1:.3g}]")  # fmt: skip
+            ax.loglog(
+                g,
+                fit.beta * g**fit.alpha,
+                "-" if solid else "--",
+                color=colour,
+                lw=1.2,
+                label=f"{text}: α = {fit.alpha:.3f} [{a0:.3f}, {a1:.3f}], "
+                f"β = {fit.beta:.3g} [{b0:.3g}, {b1:.3g}]",
+            )
         else:
             ax.plot([], [], "-", color=colour, label=f"{text}: no fit (< 6 cells in_fit)")
     handles, _ = ax.get_legend_handles_labels()
     for i, d in enumerate([*keys, None] if has_flat else keys):
         name = "flat ≥ map" if d is None else f"d = {d * 1e6:.4g} µm"
-        handles.append(Line2D([], [], marker=_MARKERS[i % len(_MARKERS)], ls="none",
-                              color="0.3", mfc="0.3", label=name))  # fmt: skip
-    handles.append(Line2D([], [], marker="o", ls="none", color="0.3", mfc="none",
-                          label="hollow: left out of the fit (unresolved, saturated or not "
-                          "converged)"))  # fmt: skip
+        handles.append(
+            Line2D(
+                [],
+                [],
+                marker=_MARKERS[i % len(_MARKERS)],
+                ls="none",
+                color="0.3",
+                mfc="0.3",
+                label=name,
+            )
+        )
+    handles.append(
+        Line2D(
+            [],
+            [],
+            marker="o",
+            ls="none",
+            color="0.3",
+            mfc="none",
+            label="hollow: left out of the fit (unresolved, saturated or not converged)",
+        )
+    )
     ax.legend(handles=handles, fontsize=7)
     ax.set(xlabel="F/(E·A)", ylabel="E$_c$/E")
     ax.grid(True, which="both", alpha=0.3)
     m = result.material
     h = "∞" if elastic_only else f"{m.hardness / 1e9:.3g} GPa"
-    ax.set_title(title or f"H = {h}, E = {m.E / 1e9:.3g} GPa, E* = "
-                 f"{m.contact_modulus / 1e9:.4g} GPa", fontsize=9)  # fmt: skip
+    ax.set_title(
+        title or f"H = {h}, E = {m.E / 1e9:.3g} GPa, E* = {m.contact_modulus / 1e9:.4g} GPa",
+        fontsize=9,
+    )
     return finish_figure(fig, path)

@@ -65,10 +65,16 @@ def island_number(
                 d = getattr(ind, name)
                 if d == d:  # not NaN
                     ax.axvline(
-                        100 * d / ind.Rt, ls=style, lw=1.0, color=line.get_color(),
-                        label=(what if len(curves) > 1 else f"{what}: {100 * d / ind.Rt:.1f} % R$_t$")
-                        if i == 0 else None,
-                    )  # fmt: skip
+                        100 * d / ind.Rt,
+                        ls=style,
+                        lw=1.0,
+                        color=line.get_color(),
+                        label=(
+                            what if len(curves) > 1 else f"{what}: {100 * d / ind.Rt:.1f} % R$_t$"
+                        )
+                        if i == 0
+                        else None,
+                    )
     ax.set_xlabel("truncation depth ω (% R$_t$)")
     ax.set_ylabel("normalised island number n/n$_{max}$")
     ax.set_ylim(bottom=0)
@@ -99,7 +105,6 @@ def slit_islands(
     {returns}
     """
 
-
     sizes = list(getattr(curve, "sizes", curve))
     if min_pixels is None:
         min_pixels = getattr(curve, "min_pixels", MIN_PIXELS)
@@ -117,11 +122,14 @@ def slit_islands(
         if fit.exponent == fit.exponent:
             a = np.geomspace(sz.area[big].min(), sz.area[big].max(), 20)
             ax.loglog(
-                a * UM**2, 10**fit.intercept * a**fit.exponent * UM, "-",
-                color=pts.get_color(), lw=1.4,
+                a * UM**2,
+                10**fit.intercept * a**fit.exponent * UM,
+                "-",
+                color=pts.get_color(),
+                lw=1.4,
                 label=f"{at}: exponent {fit.exponent:.3f} (D = {fit.dimension:.2f}, "
                 f"r² = {fit.r2:.3f}, {fit.n_islands} islands)",
-            )  # fmt: skip
+            )
         else:
             pts.set_label(f"{at}: too few islands ≥ {min_pixels} px")
     ax.set_xlabel("island area A (µm²)")

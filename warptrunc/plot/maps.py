@@ -82,9 +82,12 @@ def height_map(
     ax = axes[0, 0]
     ext = (0.0, surface.lx * UM, 0.0, surface.ly * UM)
     im = ax.imshow(
-        shown * UM, origin="lower", extent=ext, interpolation="nearest",
+        shown * UM,
+        origin="lower",
+        extent=ext,
+        interpolation="nearest",
         cmap=cmap or (HEIGHT_CMAP if depth is None else "gray"),
-    )  # fmt: skip
+    )
     fig.colorbar(im, ax=ax, label="height z (µm)", shrink=0.9)
     label = ""
     if depth is not None:

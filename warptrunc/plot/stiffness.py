@@ -72,8 +72,9 @@ def stiffness_load(
             x, m, lo, hi = shade_band(
                 [g.F_over_EA[s] for g, s in zip(c, sels, strict=True)],
                 [g.Ec_over_E[s] for g, s in zip(c, sels, strict=True)],
-                log=True, spread=spread,
-            )  # fmt: skip
+                log=True,
+                spread=spread,
+            )
             what = "±1 sd" if spread == "sd" else "min–max"
             (line,) = ax.loglog(
                 x, m, "-", lw=1.4, label=f"{lab} ({len(c)} seeds, {what})" if lab else None
@@ -95,8 +96,9 @@ def stiffness_load(
             sd = f" ± {al.std(ddof=1):.3f}" if al.size > 1 else ""
             xr = np.geomspace(
                 np.exp(np.mean(np.log([g.F_over_EA_min for g in f]))),
-                np.exp(np.mean(np.log([g.F_over_EA_max for g in f]))), 50,
-            )  # fmt: skip
+                np.exp(np.mean(np.log([g.F_over_EA_max for g in f]))),
+                50,
+            )
             text = f"fit α = {alpha:.3f}{sd}, β = {beta:.3g} (E$_c$/E)"
         else:
             alpha, beta = f.alpha, f.beta
@@ -157,14 +159,24 @@ def alpha_vs_D(
         if line:
             x = np.array([d.min(), d.max()])
             ax.plot(
-                x, line["slope"] * x + line["intercept"], "-", color=eb[0].get_color(), lw=1.2,
+                x,
+                line["slope"] * x + line["intercept"],
+                "-",
+                color=eb[0].get_color(),
+                lw=1.2,
                 label=f"α = {line['slope']:.3f}·D$_{{in}}$ {'+' if line['intercept'] >= 0 else '−'} "
                 f"{abs(line['intercept']):.3f} (r = {line['r']:.2f})",
-            )  # fmt: skip
+            )
     if paper and d_all:
         x = np.array([min(d_all), max(d_all)])
-        ax.plot(x, PAPER_ALPHA_D[0] * x + PAPER_ALPHA_D[1], ":", color="k", lw=1.4,
-                label="paper: α = 0.209·D$_{in}$ + 0.090")  # fmt: skip
+        ax.plot(
+            x,
+            PAPER_ALPHA_D[0] * x + PAPER_ALPHA_D[1],
+            ":",
+            color="k",
+            lw=1.4,
+            label="paper: α = 0.209·D$_{in}$ + 0.090",
+        )
     ax.set_xlabel("input fractal dimension D$_{in}$")
     ax.set_ylabel("stiffness exponent α")
     return finish_axes(fig, ax, path, title=title)

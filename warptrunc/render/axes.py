@@ -211,12 +211,15 @@ def layout(pl, scene, size, *, top_view: bool, scale: float) -> Overlay:
         ov.ramp = (*bar, *scene.grey_range)
         lo, hi = scene.height_range_um
         ov.lines.append(((bar[0], bar[1], bar[2], bar[1]), 1))
-        _place(ov, (bar[2] + 4 * scale, bar[1]), _num(float(f"{hi:.3g}")), "lm", size_px,
-               force=True)  # fmt: skip
-        _place(ov, (bar[2] + 4 * scale, bar[3]), _num(float(f"{lo:.3g}")), "lm", size_px,
-               force=True)  # fmt: skip
-        _place(ov, (0.5 * (bar[0] + bar[2]), bar[1] - 6 * scale), "z (µm)", "md", size_px,
-               force=True)  # fmt: skip
+        _place(
+            ov, (bar[2] + 4 * scale, bar[1]), _num(float(f"{hi:.3g}")), "lm", size_px, force=True
+        )
+        _place(
+            ov, (bar[2] + 4 * scale, bar[3]), _num(float(f"{lo:.3g}")), "lm", size_px, force=True
+        )
+        _place(
+            ov, (0.5 * (bar[0] + bar[2]), bar[1] - 6 * scale), "z (µm)", "md", size_px, force=True
+        )
     else:
         hz = nice_height(scene.Rt)
         top = _display(pl, np.array([[0, ly, 0.0], [0, ly, hz * 1e6 * scene.ve]]), h)
@@ -224,8 +227,14 @@ def layout(pl, scene, size, *, top_view: bool, scale: float) -> Overlay:
         ov.lines.append(((bx, by0, bx, by1), max(2, round(3 * scale))))
         for y in (by0, by1):
             ov.lines.append(((bx - 4 * scale, y, bx + 4 * scale, y), max(1, round(2 * scale))))
-        _place(ov, (bx - 8 * scale, 0.5 * (by0 + by1)), f"height\n{hz * 1e6:g} µm", "rm",
-               size_px, force=True)  # fmt: skip
+        _place(
+            ov,
+            (bx - 8 * scale, 0.5 * (by0 + by1)),
+            f"height\n{hz * 1e6:g} µm",
+            "rm",
+            size_px,
+            force=True,
+        )
     return ov
 
 
@@ -258,6 +267,12 @@ def draw(img: np.ndarray, ov: Overlay) -> np.ndarray:
     for (x0, y0, x1, y1), width in ov.lines:
         d.line([(x0, y0), (x1, y1)], fill=(0, 0, 0), width=width)
     for xy, text, anchor, size in ov.texts:
-        d.multiline_text(xy, text, fill=(0, 0, 0), font=_font(size), anchor=anchor, align="right"
-                         if anchor.startswith("r") else "left")  # fmt: skip
+        d.multiline_text(
+            xy,
+            text,
+            fill=(0, 0, 0),
+            font=_font(size),
+            anchor=anchor,
+            align="right" if anchor.startswith("r") else "left",
+        )
     return np.asarray(im).copy()

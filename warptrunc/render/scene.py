@@ -163,9 +163,13 @@ class Scene:
 
 def _text(pl, text: str, position, font_size: int, color: str = "black", name=None):
     return pl.add_text(
-        text, position=position, font_size=font_size, color=color, font_file=font_file(),
+        text,
+        position=position,
+        font_size=font_size,
+        color=color,
+        font_file=font_file(),
         name=name,
-    )  # fmt: skip
+    )
 
 
 class Panel:
@@ -188,9 +192,13 @@ class Panel:
         self.mesh = scene.grid.copy(deep=False)
         self.mesh.cell_data["rgb"] = scene.neutral
         pl.add_mesh(
-            self.mesh, scalars="rgb", rgb=True, preference="cell", lighting=lighting,
+            self.mesh,
+            scalars="rgb",
+            rgb=True,
+            preference="cell",
+            lighting=lighting,
             show_scalar_bar=False,
-        )  # fmt: skip
+        )
         _camera(pl, top_view, size, fill=_fill(annotate), raise_=_TOP_RAISE if annotate else 0.0)
         self.size, self.top_view, self.overlay = size, top_view, None
 
@@ -205,8 +213,9 @@ class Panel:
         if self.overlay is None:  # axes and height scale: the same on every frame
             from .axes import layout
 
-            self.overlay = layout(self.pl, self.scene, self.size, top_view=self.top_view,
-                                  scale=self.scale)  # fmt: skip
+            self.overlay = layout(
+                self.pl, self.scene, self.size, top_view=self.top_view, scale=self.scale
+            )
         from .axes import draw
 
         return draw(img, self.overlay)

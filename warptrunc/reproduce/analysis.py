@@ -87,7 +87,12 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
             t3[fit] = {}
             for k in D_KEYS:
                 f = _line(*_points(g2["rows"], fit, k))
-                t3[fit][k] = {"ours": f, "paper": dict(zip(("slope", "intercept", "r"), TABLE3["alpha"][k], strict=True))}
+                t3[fit][k] = {
+                    "ours": f,
+                    "paper": dict(
+                        zip(("slope", "intercept", "r"), TABLE3["alpha"][k], strict=True)
+                    ),
+                }
         out["table3_alpha"] = t3
         # group 1: β(δ) and the scaling argument β ∝ δ^−α
         b1: dict[str, Any] = {}
@@ -96,12 +101,13 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
             pf = _power([r["delta"] for r in rows], [r["fits"][fit]["beta"] for r in rows])
             alphas = np.array([r["fits"][fit]["alpha"] for r in rows])
             b1[fit] = {
-                "ours": pf, "alpha_mean": float(alphas.mean()) if alphas.size else None,
+                "ours": pf,
+                "alpha_mean": float(alphas.mean()) if alphas.size else None,
                 "alpha_sd": float(alphas.std(ddof=1)) if alphas.size > 1 else None,
                 "minus_alpha": -float(alphas.mean()) if alphas.size else None,
                 "paper": {"b": TABLE3["beta"][0], "p": TABLE3["beta"][1], "r": TABLE3["beta"][2]},
                 "n_surfaces": len(rows),
-            }  # fmt: skip
+            }
         out["table3_beta"] = b1
         # α per D_in (group 2) and per δ (group 1), mean ± sd
         for name, g, key in (("group2_alpha", g2, "D_in"), ("group1_alpha", g1, "delta")):
@@ -112,8 +118,14 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
                     a = r["fits"][fit].get("alpha")
                     if a is not None:
                         per.setdefault(r[key], []).append(a)
-                out[name][fit] = {str(k): {"mean": float(np.mean(v)), "sd": float(np.std(v, ddof=1)) if len(v) > 1 else None, "n": len(v)}
-                                  for k, v in sorted(per.items())}  # fmt: skip
+                out[name][fit] = {
+                    str(k): {
+                        "mean": float(np.mean(v)),
+                        "sd": float(np.std(v, ddof=1)) if len(v) > 1 else None,
+                        "n": len(v),
+                    }
+                    for k, v in sorted(per.items())
+                }
         # D convention: the options each method ran with
         first = next((r for r in g2["rows"] if "D" in r), None)
         out["d_options"] = {k: v["options"] for k, v in first["D"].items()} if first else {}
@@ -124,19 +136,36 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
         for r in f5["rows"]:
             conv.setdefault(f"{r['n']}|{r['increments']}", []).append(r["Ec_over_E"])
         out["fig5"] = {
-            k: [None if all(x[i] is None for x in v) else float(np.mean([x[i] for x in v if x[i] is not None]))
-                for i in range(len(f5["loads"]))]
+            k: [
+                None
+                if all(x[i] is None for x in v)
+                else float(np.mean([x[i] for x in v if x[i] is not None]))
+                for i in range(len(f5["loads"]))
+            ]
             for k, v in conv.items()
-        }  # fmt: skip
+        }
     if "table1" in res:
         # Table 1
         t1 = []
         for r in res["table1"]["rows"]:
             Rt, rrms, _wr, *d_paper = TABLE1[r["surface"]]
-            row = {"surface": r["surface"], "matched": r["matched"], "status": r["status"],
-                   "paper": {"Rt_um": Rt, "Rrms_um": rrms, "D": dict(zip(D_KEYS[1:], d_paper, strict=True))}}  # fmt: skip
+            row = {
+                "surface": r["surface"],
+                "matched": r["matched"],
+                "status": r["status"],
+                "paper": {
+                    "Rt_um": Rt,
+                    "Rrms_um": rrms,
+                    "D": dict(zip(D_KEYS[1:], d_paper, strict=True)),
+                },
+            }
             if r["status"] == "ok":
-                row.update(D_in=r["D_in"], Rt_um=r["Rt_m"] / 1e-6, Rrms_um=r["Rrms_m"] / 1e-6, D_out=r["D_out"])
+                row.update(
+                    D_in=r["D_in"],
+                    Rt_um=r["Rt_m"] / 1e-6,
+                    Rrms_um=r["Rrms_m"] / 1e-6,
+                    D_out=r["D_out"],
+                )
             else:
                 row["message"] = r.get("message")
             t1.append(row)
@@ -152,27 +181,39 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
                 return float(np.mean(v)) if v else None
 
             frac = np.asarray(s["seeds"][0]["depth_fraction"])
-            ex = np.array([[np.nan if v is None else v for v in x["slit_exponent"]] for x in s["seeds"]])
+            ex = np.array(
+                [[np.nan if v is None else v for v in x["slit_exponent"]] for x in s["seeds"]]
+            )
             ok = np.isfinite(ex)
             cnt = ok.sum(axis=0)
-            mean_ex = np.where(cnt > 0, np.where(ok, ex, 0.0).sum(axis=0) / np.maximum(cnt, 1), np.nan)
-            trend = {f"{int(p)}": (None if not np.isfinite(v) else float(v))
-                     for p in (5, 10, 20, 30, 40, 50)
-                     for v in [mean_ex[int(np.argmin(np.abs(frac - p / 100)))]]}  # fmt: skip
+            mean_ex = np.where(
+                cnt > 0, np.where(ok, ex, 0.0).sum(axis=0) / np.maximum(cnt, 1), np.nan
+            )
+            trend = {
+                f"{int(p)}": (None if not np.isfinite(v) else float(v))
+                for p in (5, 10, 20, 30, 40, 50)
+                for v in [mean_ex[int(np.argmin(np.abs(frac - p / 100)))]]
+            }
             t2[name] = {
                 "max_growth_rate_depth_percent_Rt": m("max_growth_rate_depth_percent_Rt"),
                 "fractality_depth_percent_Rt": m("fractality_depth_percent_Rt"),
                 "island_peak_depth_percent_Rt": m("island_peak_depth_percent_Rt"),
                 "plateau_exponent": m("plateau_exponent"),
                 "slit_exponent_at_percent_Rt": trend,
-                "paper": dict(zip(("applicable", "max_growth", "fractality"), TABLE2[name], strict=True)),
-            }  # fmt: skip
+                "paper": dict(
+                    zip(("applicable", "max_growth", "fractality"), TABLE2[name], strict=True)
+                ),
+            }
         out["table2"] = t2
         out["slit_band"] = slit_band_summary(res["islands"])
     if "asperity" in res:
-        out["asperity"] = {k: v for k, v in res["asperity"]["bounds"].items() if not isinstance(v, list)}
+        out["asperity"] = {
+            k: v for k, v in res["asperity"]["bounds"].items() if not isinstance(v, list)
+        }
         out["asperity"]["pixel_bound_holds"] = res["asperity"]["pixel_bound_holds"]
-        out["asperity"]["max_rel_area_error_last_half"] = res["asperity"]["max_rel_area_error_last_half"]
+        out["asperity"]["max_rel_area_error_last_half"] = res["asperity"][
+            "max_rel_area_error_last_half"
+        ]
     if "elastic" in res:
         from .elastic import analyse_elastic
 
@@ -184,7 +225,9 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def slit_band_summary(islands: dict[str, Any], tolerance: float = 0.05, plateau_width: float = 10.0) -> dict[str, Any]:
+def slit_band_summary(
+    islands: dict[str, Any], tolerance: float = 0.05, plateau_width: float = 10.0
+) -> dict[str, Any]:
     """Slit exponent with its bootstrap band per surface (seed 0) and, for every seed, where a
     drop below (1 − ``tolerance``)·plateau is possible and where it is established.
 
@@ -215,7 +258,10 @@ def slit_band_summary(islands: dict[str, Any], tolerance: float = 0.05, plateau_
             if not b:
                 break
             pct = np.asarray(b["percent_Rt"], float)
-            e, lo, hi = (np.array([np.nan if v is None else v for v in b[k]]) for k in ("exponent", "lo", "hi"))
+            e, lo, hi = (
+                np.array([np.nan if v is None else v for v in b[k]])
+                for k in ("exponent", "lo", "hi")
+            )
             ok = np.isfinite(e) & np.isfinite(lo) & np.isfinite(hi)
             if not ok.any():
                 poss.append(None)
@@ -225,7 +271,9 @@ def slit_band_summary(islands: dict[str, Any], tolerance: float = 0.05, plateau_
             first = pct[ok][0]
             plateau = float(np.median(e[ok & (pct <= first + plateau_width)]))
             thr = (1 - tolerance) * plateau
-            after = ok & (pct > first + plateau_width)  # a drop is looked for past the plateau window
+            after = ok & (
+                pct > first + plateau_width
+            )  # a drop is looked for past the plateau window
             p_ = pct[after & (lo < thr)]
             e_ = pct[after & (hi < thr)]
             poss.append(float(p_[0]) if p_.size else None)
@@ -234,8 +282,15 @@ def slit_band_summary(islands: dict[str, Any], tolerance: float = 0.05, plateau_
         if not plateaus:
             continue
         b0 = s["seeds"][0]["slit_band"]
-        out[name] = {"percent_Rt": b0["percent_Rt"], "exponent": b0["exponent"], "lo": b0["lo"],
-                     "hi": b0["hi"], "plateau": plateaus[0], "plateaus": plateaus,
-                     "possible_drop_percent_Rt": poss, "established_drop_percent_Rt": est,
-                     "paper": list(TABLE2[name][2])}  # fmt: skip
+        out[name] = {
+            "percent_Rt": b0["percent_Rt"],
+            "exponent": b0["exponent"],
+            "lo": b0["lo"],
+            "hi": b0["hi"],
+            "plateau": plateaus[0],
+            "plateaus": plateaus,
+            "possible_drop_percent_Rt": poss,
+            "established_drop_percent_Rt": est,
+            "paper": list(TABLE2[name][2]),
+        }
     return out

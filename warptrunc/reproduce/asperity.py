@@ -80,8 +80,11 @@ class AsperityMaterial:
         """Deprecated name of :attr:`contact_modulus` (Pa)."""
         import warnings
 
-        warnings.warn("AsperityMaterial.E_r is deprecated; use AsperityMaterial.contact_modulus",
-                      DeprecationWarning, stacklevel=2)  # fmt: skip
+        warnings.warn(
+            "AsperityMaterial.E_r is deprecated; use AsperityMaterial.contact_modulus",
+            DeprecationWarning,
+            stacklevel=2,
+        )
         return self.contact_modulus
 
     @property
@@ -105,10 +108,7 @@ class AsperityMaterial:
         return self.sigma_y ** (1.0 - m) * self.E**m
 
 
-_D_R = (
-    "Parameters\n----------\nd : ndarray\n    (k,) {} (m)."
-    "\nR : float\n    Sphere radius (m)."
-)
+_D_R = "Parameters\n----------\nd : ndarray\n    (k,) {} (m).\nR : float\n    Sphere radius (m)."
 _CURVE_DOCS = {
     "{d_R}": _D_R.format("interferences"),
     "{depth_R}": _D_R.format("truncation depths"),
@@ -191,8 +191,10 @@ def closed_form_truncation(
     a = math.pi * (2.0 * R * d - d**2)
 
     def prim(s):
-        return 0.5 * ((s - R) * np.sqrt(np.maximum(2 * R * s - s**2, 0.0))
-                      + R**2 * np.arcsin(np.clip((s - R) / R, -1.0, 1.0)))  # fmt: skip
+        return 0.5 * (
+            (s - R) * np.sqrt(np.maximum(2 * R * s - s**2, 0.0))
+            + R**2 * np.arcsin(np.clip((s - R) / R, -1.0, 1.0))
+        )
 
     return a, 2.0 * mat.contact_modulus * (prim(d) - prim(0.0))
 
@@ -347,9 +349,13 @@ class AsperityResult:
         """
         s = math.pi * self.R**2
         out: dict[str, Any] = {
-            "R_m": self.R, "omega_c_m": self.omega_c, "n": self.n, "dx_m": self.dx,
-            "material": asdict(self.material), "d_m": self.d.tolist(),
-        }  # fmt: skip
+            "R_m": self.R,
+            "omega_c_m": self.omega_c,
+            "n": self.n,
+            "dx_m": self.dx,
+            "material": asdict(self.material),
+            "d_m": self.d.tolist(),
+        }
         for k, (a, f) in self.curves.items():
             out[f"{k}_area_norm"] = (a / s).tolist()
             out[f"{k}_load_norm"] = (f / (self.material.E * s)).tolist()
@@ -442,11 +448,12 @@ def bounds_summary(res: AsperityResult) -> dict[str, Any]:
     d = res.d[sel]
     between = (rh > 1) & (rp <= 1)
     out.update(
-        d_star_m=d_star, d_star_over_omega_c=d_star / res.omega_c,
+        d_star_m=d_star,
+        d_star_over_omega_c=d_star / res.omega_c,
         fraction_between=float(between.mean()),
         first_between_d_over_omega_c=float(d[between][0] / res.omega_c) if between.any() else None,
         above_hertz_everywhere=bool((rh > 1).all()),
         hertz_ratio_closed_form=2 ** (2 / 3),
         hertz_ratio_median=float(np.median(rh)),
-    )  # fmt: skip
+    )
     return out

@@ -74,10 +74,14 @@ def profile_design(p: Profile):
     from ..compare.design import StudyDesign
 
     return StudyDesign(
-        D=p.elastic_D, size_ratios=p.elastic_size_ratios, pixels_per_Wr=p.elastic_pixels_per_Wr,
-        refine_ratio=p.elastic_refine_ratio, seeds=tuple(range(p.elastic_seeds)), Wr=p.Wr,
+        D=p.elastic_D,
+        size_ratios=p.elastic_size_ratios,
+        pixels_per_Wr=p.elastic_pixels_per_Wr,
+        refine_ratio=p.elastic_refine_ratio,
+        seeds=tuple(range(p.elastic_seeds)),
+        Wr=p.Wr,
         fractions=p.elastic_fractions,
-    )  # fmt: skip
+    )
 
 
 @fill_doc(STAGE_DOCS)
@@ -89,12 +93,18 @@ def stage_params(p: Profile) -> dict[str, Any]:
     {stage_params_returns}
     """
     m = default_material()
-    return {"elastic_D": list(p.elastic_D), "elastic_size_ratios": list(p.elastic_size_ratios),
-            "elastic_pixels_per_Wr": p.elastic_pixels_per_Wr,
-            "elastic_refine_ratio": p.elastic_refine_ratio, "elastic_seeds": p.elastic_seeds,
-            "elastic_fractions": list(p.elastic_fractions), "elastic_dtype": p.elastic_dtype,
-            "Wr": p.Wr, "material": {"E_Pa": m.E, "nu": m.nu, "E_star_Pa": m.contact_modulus},
-            "solver": "warptrunc"}  # fmt: skip
+    return {
+        "elastic_D": list(p.elastic_D),
+        "elastic_size_ratios": list(p.elastic_size_ratios),
+        "elastic_pixels_per_Wr": p.elastic_pixels_per_Wr,
+        "elastic_refine_ratio": p.elastic_refine_ratio,
+        "elastic_seeds": p.elastic_seeds,
+        "elastic_fractions": list(p.elastic_fractions),
+        "elastic_dtype": p.elastic_dtype,
+        "Wr": p.Wr,
+        "material": {"E_Pa": m.E, "nu": m.nu, "E_star_Pa": m.contact_modulus},
+        "solver": "warptrunc",
+    }
 
 
 @fill_doc(STAGE_DOCS)
@@ -121,10 +131,15 @@ def stage_elastic(p: Profile, out: str | Path, device, client=None) -> dict[str,
 
     store = Path(out) / SUBDIR
     rows = compare_study(
-        store, profile_design(p), material=default_material(),
-        settings=SolverSettings(dtype=p.elastic_dtype), overwrite=True, progress=True,
-        device=device, client=client,
-    )  # fmt: skip
+        store,
+        profile_design(p),
+        material=default_material(),
+        settings=SolverSettings(dtype=p.elastic_dtype),
+        overwrite=True,
+        progress=True,
+        device=device,
+        client=client,
+    )
     return summary_from_rows(rows, store=SUBDIR)
 
 
@@ -148,8 +163,9 @@ def summary_from_rows(rows, store: str = SUBDIR) -> dict[str, Any]:
 
     s = summarize(rows)
     conv = rows["converged"].astype(bool)
-    per_n = (rows.groupby("n")[["solve_time_s", "case_seconds"]].mean()
-             .reset_index().to_dict("records"))  # fmt: skip
+    per_n = (
+        rows.groupby("n")[["solve_time_s", "case_seconds"]].mean().reset_index().to_dict("records")
+    )
     return {
         "store": store,
         "n_cases": int(rows["case_id"].nunique()),
@@ -157,8 +173,9 @@ def summary_from_rows(rows, store: str = SUBDIR) -> dict[str, Any]:
         "not_converged_rows": int((~conv).sum()),
         "device": sorted(set(rows["device"].astype(str))),
         "fractions": sorted(float(f) for f in rows["depth_fraction_of_Rt"].unique()),
-        "grids": sorted({(float(r), int(n))
-                         for r, n in zip(rows["size_ratio"], rows["n"], strict=True)}),
+        "grids": sorted(
+            {(float(r), int(n)) for r, n in zip(rows["size_ratio"], rows["n"], strict=True)}
+        ),
         "Wr_m": float(rows["Wr_m"].iloc[0]),
         "Rt_m": sorted({float(v) for v in rows["Rt_m"]}),
         "ratios": s["ratios"].to_dict("records"),
@@ -181,11 +198,25 @@ def _grid_pairs(rows) -> list[dict[str, Any]]:
         b = rows[(rows["size_ratio"] == r) & (rows["n"] == hi)]
         m = a.merge(b, on=["D_in", "seed", "depth_fraction_of_Rt"], suffixes=("_c", "_f"))
         for (Dv, f), g in m.groupby(["D_in", "depth_fraction_of_Rt"], sort=True):
-            rec: dict[str, Any] = {"D_in": float(Dv), "size_ratio": float(r), "n_coarse": int(lo),
-                                   "n_fine": int(hi), "depth_fraction_of_Rt": float(f)}  # fmt: skip
-            for q in ("eq2_stiffness_N_per_m", "islands_stiffness_N_per_m",
-                      "bem_stiffness_N_per_m", "eq2_load_N", "islands_load_N", "bem_load_N",
-                      "trunc_area_m2", "bem_area_m2", "eq2_k_ratio", "islands_k_ratio"):  # fmt: skip
+            rec: dict[str, Any] = {
+                "D_in": float(Dv),
+                "size_ratio": float(r),
+                "n_coarse": int(lo),
+                "n_fine": int(hi),
+                "depth_fraction_of_Rt": float(f),
+            }
+            for q in (
+                "eq2_stiffness_N_per_m",
+                "islands_stiffness_N_per_m",
+                "bem_stiffness_N_per_m",
+                "eq2_load_N",
+                "islands_load_N",
+                "bem_load_N",
+                "trunc_area_m2",
+                "bem_area_m2",
+                "eq2_k_ratio",
+                "islands_k_ratio",
+            ):
                 v = (g[f"{q}_f"] / g[f"{q}_c"]).to_numpy(dtype=float)
                 v = v[np.isfinite(v)]
                 rec[f"{q}_fine_over_coarse"] = float(v.mean()) if v.size else None
@@ -229,7 +260,9 @@ def analyse_elastic(stage: dict[str, Any]) -> dict[str, Any]:
             key = f"{m}_{q}_ratio"
             cells = [r for r in ratios if is_finite(r[f"{key}_mean"])]
             good = [r for r in cells if abs(r[f"{key}_mean"] - 1) <= GOOD]
-            all_good = [r for r in good if r[f"{key}_min"] >= 1 - GOOD and r[f"{key}_max"] <= 1 + GOOD]
+            all_good = [
+                r for r in good if r[f"{key}_min"] >= 1 - GOOD and r[f"{key}_max"] <= 1 + GOOD
+            ]
             bad = [r[f"{key}_mean"] for r in cells if abs(r[f"{key}_mean"] - 1) > GOOD]
             low = [r for r in cells if r["depth_fraction_of_Rt"] <= 0.1 + 1e-9]
             res["models"][key] = {
@@ -237,11 +270,21 @@ def analyse_elastic(stage: dict[str, Any]) -> dict[str, Any]:
                 "good": [[r["D_in"], r["size_ratio"], r["depth_fraction_of_Rt"]] for r in good],
                 "good_all_seeds": len(all_good),
                 "below_one": sum(r[f"{key}_mean"] < 1 for r in cells),
-                "range": [min(r[f"{key}_mean"] for r in cells), max(r[f"{key}_mean"] for r in cells)] if cells else None,
+                "range": [
+                    min(r[f"{key}_mean"] for r in cells),
+                    max(r[f"{key}_mean"] for r in cells),
+                ]
+                if cells
+                else None,
                 "outside_range": [min(bad), max(bad)] if bad else None,
-                "low_range": [min(r[f"{key}_mean"] for r in low), max(r[f"{key}_mean"] for r in low)] if low else None,
+                "low_range": [
+                    min(r[f"{key}_mean"] for r in low),
+                    max(r[f"{key}_mean"] for r in low),
+                ]
+                if low
+                else None,
                 "size_trend": _size_trend(cells, key),
-            }  # fmt: skip
+            }
     res["alpha"] = _alpha_vs_refs(stage["alpha"])
     res["grid"] = _grid_summary(stage["grid"])
     return res
@@ -260,9 +303,15 @@ def _size_trend(cells: list[dict[str, Any]], key: str) -> dict[str, Any] | None:
             f.append(b / a)
     if not f:
         return None
-    return {"smallest": sizes[0], "largest": sizes[-1], "factor_min": min(f),
-            "factor_median": float(np.median(f)), "factor_max": max(f),
-            "decreasing": sum(v < 1 for v in f), "n": len(f)}  # fmt: skip
+    return {
+        "smallest": sizes[0],
+        "largest": sizes[-1],
+        "factor_min": min(f),
+        "factor_median": float(np.median(f)),
+        "factor_max": max(f),
+        "decreasing": sum(v < 1 for v in f),
+        "n": len(f),
+    }
 
 
 def _alpha_vs_refs(alpha: list[dict[str, Any]]) -> list[dict[str, Any]]:
@@ -270,18 +319,34 @@ def _alpha_vs_refs(alpha: list[dict[str, Any]]) -> list[dict[str, Any]]:
     (d0, a0), (d1, a1) = POHRT_POPOV
     for r in base_records(alpha):
         D = r["D_in"]
-        out.append({**r, "pohrt_popov": a0 + (a1 - a0) * (D - d0) / (d1 - d0),
-                    "paper_table3": PAPER_ALPHA[0] * D + PAPER_ALPHA[1]})  # fmt: skip
+        out.append(
+            {
+                **r,
+                "pohrt_popov": a0 + (a1 - a0) * (D - d0) / (d1 - d0),
+                "paper_table3": PAPER_ALPHA[0] * D + PAPER_ALPHA[1],
+            }
+        )
     return out
 
 
 def _grid_summary(grid: list[dict[str, Any]]) -> dict[str, Any] | None:
     if not grid:
         return None
-    out: dict[str, Any] = {"size_ratio": grid[0]["size_ratio"], "n_coarse": grid[0]["n_coarse"],
-                           "n_fine": grid[0]["n_fine"]}  # fmt: skip
-    for q in ("eq2_stiffness_N_per_m", "islands_stiffness_N_per_m", "bem_stiffness_N_per_m",
-              "bem_load_N", "trunc_area_m2", "bem_area_m2", "eq2_k_ratio", "islands_k_ratio"):  # fmt: skip
+    out: dict[str, Any] = {
+        "size_ratio": grid[0]["size_ratio"],
+        "n_coarse": grid[0]["n_coarse"],
+        "n_fine": grid[0]["n_fine"],
+    }
+    for q in (
+        "eq2_stiffness_N_per_m",
+        "islands_stiffness_N_per_m",
+        "bem_stiffness_N_per_m",
+        "bem_load_N",
+        "trunc_area_m2",
+        "bem_area_m2",
+        "eq2_k_ratio",
+        "islands_k_ratio",
+    ):
         v = [g[f"{q}_fine_over_coarse"] for g in grid if is_finite(g[f"{q}_fine_over_coarse"])]
         out[q] = [min(v), max(v)] if v else None
     return out

@@ -18,7 +18,13 @@ from .analysis import D_KEYS
 __all__ = ["D_LABELS", "fig_fit_range", "figures", "new_figure", "save_figure"]
 
 
-D_LABELS = {"in": "D$_{in}$", "tri": "D$_{tri}$", "box": "D$_{box}$", "vs": "D$_{vs}$", "sp": "D$_{sp}$"}
+D_LABELS = {
+    "in": "D$_{in}$",
+    "tri": "D$_{tri}$",
+    "box": "D$_{box}$",
+    "vs": "D$_{vs}$",
+    "sp": "D$_{sp}$",
+}
 
 
 def new_figure(ncols: int = 1, nrows: int = 1, w: float = 5.2, h: float = 4.0):
@@ -68,18 +74,37 @@ def save_figure(fig: Any, out: Path, name: str) -> str:
 def fig2(res, out) -> str:
     c = res["asperity"]["curves"]
     fig, (ax,) = new_figure(w=6.4, h=5.0)
-    for key, style, lab in (("hertz", "k--", "Hertz"), ("plastic", "k:", "fully plastic"),
-                            ("truncation_exact", "r-", "truncation, closed form")):  # fmt: skip
+    for key, style, lab in (
+        ("hertz", "k--", "Hertz"),
+        ("plastic", "k:", "fully plastic"),
+        ("truncation_exact", "r-", "truncation, closed form"),
+    ):
         ax.loglog(c[f"{key}_load_norm"][1:], c[f"{key}_area_norm"][1:], style, label=lab)
     n = len(c["truncation_load_norm"])
     step = max(1, n // 60)
-    ax.loglog(c["truncation_load_norm"][1::step], c["truncation_area_norm"][1::step], "ro", ms=3,
-              mfc="none", label=f"truncation, {c['n']}² pixel sphere")  # fmt: skip
-    ms = sorted(float(k[len("storakers_m"):-len("_area_norm")]) for k in c if k.startswith("storakers_m") and k.endswith("_area_norm"))
+    ax.loglog(
+        c["truncation_load_norm"][1::step],
+        c["truncation_area_norm"][1::step],
+        "ro",
+        ms=3,
+        mfc="none",
+        label=f"truncation, {c['n']}² pixel sphere",
+    )
+    ms = sorted(
+        float(k[len("storakers_m") : -len("_area_norm")])
+        for k in c
+        if k.startswith("storakers_m") and k.endswith("_area_norm")
+    )
     cmap = __import__("matplotlib").colormaps["viridis"]
     for i, m in enumerate(ms):
-        ax.loglog(c[f"storakers_m{m:g}_load_norm"][1:], c[f"storakers_m{m:g}_area_norm"][1:], "-",
-                  color=cmap(i / max(1, len(ms) - 1)), lw=1, label=f"Storåkers m$_B$ = {m:g}")  # fmt: skip
+        ax.loglog(
+            c[f"storakers_m{m:g}_load_norm"][1:],
+            c[f"storakers_m{m:g}_area_norm"][1:],
+            "-",
+            color=cmap(i / max(1, len(ms) - 1)),
+            lw=1,
+            label=f"Storåkers m$_B$ = {m:g}",
+        )
     ax.set_xlabel("F/(E·πR²)")
     ax.set_ylabel("A$_c$/(πR²)")
     ax.set_title("Fig. 2: single asperity, d ≤ 100 ω$_c$")
@@ -111,13 +136,21 @@ def fig7(res, out, device) -> str:
     rows = [r for r in res["table1"]["rows"] if r["status"] == "ok"]
     r = next((x for x in rows if x["surface"] == "GB300s"), rows[0])
     n = res["table1"]["n"]
-    s = wm_surface(r["D_in"], r["Wr_m"], L=res["table1"]["L_m"], n=n, Rt=r["Rt_m"], seed=0, device=device)
+    s = wm_surface(
+        r["D_in"], r["Wr_m"], L=res["table1"]["L_m"], n=n, Rt=r["Rt_m"], seed=0, device=device
+    )
     fig, axs = new_figure(5, 1, w=2.6, h=2.8)
     fr = (0.1, 0.2, 0.3, 0.4, 0.5)
     idx = contact_index_map(s, np.asarray(fr) * s.Rt, device=device)
     for k, (ax, f) in enumerate(zip(axs, fr, strict=True)):
         ax.imshow(s.heights, cmap="gray")
-        ax.imshow(np.ma.masked_where(idx > k, np.ones_like(s.heights)), cmap="autumn", alpha=0.8, vmin=0, vmax=1)
+        ax.imshow(
+            np.ma.masked_where(idx > k, np.ones_like(s.heights)),
+            cmap="autumn",
+            alpha=0.8,
+            vmin=0,
+            vmax=1,
+        )
         ax.set_title(f"{int(f * 100)} % R$_t$", fontsize=9)
         ax.set_axis_off()
     fig.suptitle(f"Fig. 7: truncation sections, simulated {r['surface']} ({n}²)")
@@ -134,15 +167,23 @@ def fig8(res, out) -> str:
         g = [v for v in g if v is not None]
         if g:
             a1.axvline(np.mean(g), color=ln.get_color(), ls="--", lw=0.8)
-        ex = np.array([[np.nan if v is None else v for v in x["slit_exponent"]] for x in s["seeds"]])
+        ex = np.array(
+            [[np.nan if v is None else v for v in x["slit_exponent"]] for x in s["seeds"]]
+        )
         a2.plot(fr, ex[0], color=ln.get_color(), lw=0.8, label=name)
         b = s["seeds"][0].get("slit_band")
         if b:  # the bootstrap band over islands at the snapshot depths
             nan = lambda v: [np.nan if x is None else x for x in v]  # noqa: E731
-            a2.fill_between(b["percent_Rt"], nan(b["lo"]), nan(b["hi"]), color=ln.get_color(), alpha=0.25, lw=0)
+            a2.fill_between(
+                b["percent_Rt"], nan(b["lo"]), nan(b["hi"]), color=ln.get_color(), alpha=0.25, lw=0
+            )
             a2.plot(b["percent_Rt"], nan(b["exponent"]), "o", color=ln.get_color(), ms=3)
     a1.set(xlabel="depth (% R$_t$)", ylabel="normalised island number", title="Fig. 8a")
-    a2.set(xlabel="depth (% R$_t$)", ylabel="slit-island exponent (L ∝ A$^x$)", title="Fig. 8b: seed 0, 95 % bootstrap band")
+    a2.set(
+        xlabel="depth (% R$_t$)",
+        ylabel="slit-island exponent (L ∝ A$^x$)",
+        title="Fig. 8b: seed 0, 95 % bootstrap band",
+    )
     a1.legend(fontsize=8)
     return save_figure(fig, out, "fig8_islands.png")
 
@@ -156,7 +197,10 @@ def _mean_curves(rows, key, fit="default"):
 
 def fig9(res, out) -> list[str]:
     names = []
-    for g, key, lab, tag in ((res["group1"], "delta", "δ", "a"), (res["group2"], "D_in", "D$_{in}$", "b")):
+    for g, key, lab, tag in (
+        (res["group1"], "delta", "δ", "a"),
+        (res["group2"], "D_in", "D$_{in}$", "b"),
+    ):
         fig, (ax,) = new_figure(w=6, h=4.6)
         for k, cs in sorted(_mean_curves(g["rows"], key).items()):
             x = np.exp(np.mean([np.log(np.maximum(c["F_over_EA"], 1e-300)) for c in cs], axis=0))
@@ -185,8 +229,14 @@ def fig10(res, ana, out) -> str:
             f = ana["table3_alpha"][fit][k]["ours"]
             if f:
                 xx = np.linspace(min(xs), max(xs), 2)
-                ax.plot(xx, f["slope"] * xx + f["intercept"], "-", color=p.get_color(), lw=1,
-                        label=f"{f['slope']:.3f}·D + {f['intercept']:.3f}, r = {f['r']:.3f}")
+                ax.plot(
+                    xx,
+                    f["slope"] * xx + f["intercept"],
+                    "-",
+                    color=p.get_color(),
+                    lw=1,
+                    label=f"{f['slope']:.3f}·D + {f['intercept']:.3f}, r = {f['r']:.3f}",
+                )
         pp = ana["table3_alpha"]["default"][k]["paper"]
         xx = np.linspace(2.0, 3.0, 2)
         ax.plot(xx, pp["slope"] * xx + pp["intercept"], "k--", lw=0.8, label="paper")
@@ -195,15 +245,23 @@ def fig10(res, ana, out) -> str:
     ax = axs[5]
     g1 = res["group1"]
     for fit, mk in zip(g1["fit_ranges"], ("o", "s"), strict=False):
-        pts = [(r["delta"], r["fits"][fit]["beta"]) for r in g1["rows"] if r["fits"][fit].get("beta")]
+        pts = [
+            (r["delta"], r["fits"][fit]["beta"]) for r in g1["rows"] if r["fits"][fit].get("beta")
+        ]
         if not pts:
             continue
         (p,) = ax.loglog(*zip(*pts, strict=True), mk, mfc="none", ms=4)
         f = ana["table3_beta"][fit]["ours"]
         if f:
             xx = np.array([min(x for x, _ in pts), max(x for x, _ in pts)])
-            ax.loglog(xx, f["b"] * xx ** f["p"], "-", color=p.get_color(), lw=1,
-                      label=f"{fit}: β(E$_c$/E) = {f['b']:.3g}·δ$^{{{f['p']:.3f}}}$")
+            ax.loglog(
+                xx,
+                f["b"] * xx ** f["p"],
+                "-",
+                color=p.get_color(),
+                lw=1,
+                label=f"{fit}: β(E$_c$/E) = {f['b']:.3g}·δ$^{{{f['p']:.3f}}}$",
+            )
     xx = np.array([6.25e-4, 0.16])
     ax.loglog(xx, 0.0386 * xx**-1.122, "k--", lw=0.8, label="paper 0.0386·δ$^{-1.122}$")
     ax.set(xlabel="δ", ylabel="β")
@@ -228,8 +286,10 @@ def fig_fit_range(fm: dict[str, Any], out: Path) -> str:
         File name written (``fit_range_map.png``).
     """
     fig, axs = new_figure(3, 2, w=4.3, h=3.3)
-    kinds = (("min_pixels", "fit range: ≥ m contact pixels", "log"),
-             ("fraction", "fit range: ≥ f × final contact pixels", "log"))  # fmt: skip
+    kinds = (
+        ("min_pixels", "fit range: ≥ m contact pixels", "log"),
+        ("fraction", "fit range: ≥ f × final contact pixels", "log"),
+    )
     for row, (kind, xlabel, scale) in enumerate(kinds):
         rs = [r for r in fm["ranges"] if r["kind"] == kind]
         xs = [r["value"] for r in rs]
@@ -245,10 +305,21 @@ def fig_fit_range(fm: dict[str, Any], out: Path) -> str:
             a_a.plot(xs, aa, "o-", ms=3, color=p.get_color(), label=D_LABELS[k])
             a_a.axhline(fm["paper"][k]["alpha_2_5"], color=p.get_color(), ls="--", lw=0.7)
         bs = [fm["beta"][r["name"]] for r in rs]
-        a_b.plot(xs, [np.nan if b is None else b["p"] for b in bs], "o-", ms=3, label="p of β = b·δ^p")
-        a_b.plot(xs, [np.nan if b is None else b["minus_alpha"] for b in bs], "x:", label="−mean α, group 1")
+        a_b.plot(
+            xs, [np.nan if b is None else b["p"] for b in bs], "o-", ms=3, label="p of β = b·δ^p"
+        )
+        a_b.plot(
+            xs,
+            [np.nan if b is None else b["minus_alpha"] for b in bs],
+            "x:",
+            label="−mean α, group 1",
+        )
         a_b.axhline(fm["paper_beta"]["p"], color="k", ls="--", lw=0.7, label="paper −1.122")
-        for ax, yl in ((a_s, "slope of α(D)"), (a_a, "α(2.5) of the α(D) line"), (a_b, "exponent p of β(δ)")):
+        for ax, yl in (
+            (a_s, "slope of α(D)"),
+            (a_a, "α(2.5) of the α(D) line"),
+            (a_b, "exponent p of β(δ)"),
+        ):
             ax.set_xscale(scale)
             ax.set(xlabel=xlabel, ylabel=yl)
         a_s.legend(fontsize=6, title="dashed: Table 3", title_fontsize=6)

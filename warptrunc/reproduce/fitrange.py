@@ -83,18 +83,31 @@ def refit_store(
             continue
         c = by_case[cid]
         sc = SimpleNamespace(
-            depth=c["depth_m"].to_numpy(), n_contact_pixels=c["n_contact_pixels"].to_numpy(),
-            load=c["load_N"].to_numpy(), Ec_over_E=c["Ec_over_E"].to_numpy(),
+            depth=c["depth_m"].to_numpy(),
+            n_contact_pixels=c["n_contact_pixels"].to_numpy(),
+            load=c["load_N"].to_numpy(),
+            Ec_over_E=c["Ec_over_E"].to_numpy(),
             F_over_EA=c["F_over_EA"].to_numpy(),
-        )  # fmt: skip
+        )
         final = int(sc.n_contact_pixels[-1])
-        D = {m: float(first[f"D_{m}"]) for m in D_KEYS[1:]
-             if f"D_{m}" in part and np.isfinite(first[f"D_{m}"])}  # fmt: skip
+        D = {
+            m: float(first[f"D_{m}"])
+            for m in D_KEYS[1:]
+            if f"D_{m}" in part and np.isfinite(first[f"D_{m}"])
+        }
         for name, kind, value in _ranges(min_pixels, fractions):
             mp = _threshold(kind, value, final)
-            row = {"case_id": cid, "D_in": float(first["D_in"]), "delta": float(first["delta"]),
-                   "seed": int(first["seed"]), "D": D, "range": name, "kind": kind,
-                   "value": value, "threshold": mp}  # fmt: skip
+            row = {
+                "case_id": cid,
+                "D_in": float(first["D_in"]),
+                "delta": float(first["delta"]),
+                "seed": int(first["seed"]),
+                "D": D,
+                "range": name,
+                "kind": kind,
+                "value": value,
+                "threshold": mp,
+            }
             try:
                 f = fit_power_law(sc, min_pixels=max(1, mp))
                 row.update(alpha=f.alpha, beta=f.beta, r2=f.r2, n_points=f.n_points)
@@ -142,8 +155,10 @@ def fit_range_map(
     r1 = refit_store(group1, min_pixels=min_pixels, fractions=fractions)
     alpha: dict[str, Any] = {}
     beta: dict[str, Any] = {}
-    paper = {k: {"slope": s, "intercept": i, "r": r, "alpha_2_5": s * 2.5 + i}
-             for k, (s, i, r) in TABLE3["alpha"].items()}  # fmt: skip
+    paper = {
+        k: {"slope": s, "intercept": i, "r": r, "alpha_2_5": s * 2.5 + i}
+        for k, (s, i, r) in TABLE3["alpha"].items()
+    }
     for name, _kind, _v in ranges:
         alpha[name] = {}
         rows = [r for r in r2 if r["range"] == name and r["alpha"] is not None]
@@ -163,12 +178,21 @@ def fit_range_map(
             pf["p_dev"] = _rel(pf["p"], TABLE3["beta"][1])
         beta[name] = pf
     reproduces = {
-        k: [n for n, _, _ in ranges
-            if (f := alpha[n][k]) is not None and abs(f["slope_dev"]) <= tolerance
-            and abs(f["alpha_2_5_dev"]) <= tolerance]
+        k: [
+            n
+            for n, _, _ in ranges
+            if (f := alpha[n][k]) is not None
+            and abs(f["slope_dev"]) <= tolerance
+            and abs(f["alpha_2_5_dev"]) <= tolerance
+        ]
         for k in D_KEYS
-    }  # fmt: skip
-    return {"ranges": [{"name": n, "kind": k, "value": v} for n, k, v in ranges],
-            "alpha": alpha, "beta": beta, "reproduces": reproduces, "paper": paper,
-            "paper_beta": dict(zip(("b", "p", "r"), TABLE3["beta"], strict=True)),
-            "tolerance": tolerance}  # fmt: skip
+    }
+    return {
+        "ranges": [{"name": n, "kind": k, "value": v} for n, k, v in ranges],
+        "alpha": alpha,
+        "beta": beta,
+        "reproduces": reproduces,
+        "paper": paper,
+        "paper_beta": dict(zip(("b", "p", "r"), TABLE3["beta"], strict=True)),
+        "tolerance": tolerance,
+    }

@@ -55,7 +55,6 @@ class StageConflict(ValueError):
     """A stage file exists with different parameters and ``overwrite`` is off."""
 
 
-
 class StageStore:
     """Stage files ``<out>/stages/<name>.json`` with parameter checks.
 
@@ -130,11 +129,18 @@ class StageStore:
         if self.overwrite:
             return False
         diff = sorted(
-            k for k in set(params) | set(old.get("params", {}))
+            k
+            for k in set(params) | set(old.get("params", {}))
             if params.get(k) != old.get("params", {}).get(k)
-        )  # fmt: skip
-        why = ("; it was written before β and E_c/E were normalised by the Young's modulus "
-               "(E_c/E*, see the changelog)") if diff == ["normalisation"] else ""  # fmt: skip
+        )
+        why = (
+            (
+                "; it was written before β and E_c/E were normalised by the Young's modulus "
+                "(E_c/E*, see the changelog)"
+            )
+            if diff == ["normalisation"]
+            else ""
+        )
         raise StageConflict(
             f"stage {name!r} in {self.out} was computed with other parameters (differing: "
             f"{', '.join(diff)}{why}); use another --out, or --overwrite to replace it"

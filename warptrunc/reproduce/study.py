@@ -94,17 +94,20 @@ def stage_asperity(p: Profile, device) -> dict[str, Any]:
     with np.errstate(divide="ignore", invalid="ignore"):
         rel = np.where(exact > 0, np.abs(a - exact) / exact, 0.0)
     return {
-        "curves": res.to_dict(), "bounds": bounds_summary(res),
+        "curves": res.to_dict(),
+        "bounds": bounds_summary(res),
         "pixel_bound_holds": bool(((a >= lo) & (a <= hi)).all()),
         "max_rel_area_error_last_half": float(rel[rel.size // 2 :].max()),
-    }  # fmt: skip
+    }
 
 
 def _read_at(sc, loads) -> list[float | None]:
     sel = sc.load > 0
     x, y = np.log(sc.F_over_EA[sel]), np.log(sc.Ec_over_E[sel])
-    return [float(np.exp(np.interp(math.log(v), x, y))) if x[0] <= math.log(v) <= x[-1] else None
-            for v in loads]  # fmt: skip
+    return [
+        float(np.exp(np.interp(math.log(v), x, y))) if x[0] <= math.log(v) <= x[-1] else None
+        for v in loads
+    ]
 
 
 def stage_fig5(p: Profile, device) -> dict[str, Any]:
@@ -112,8 +115,12 @@ def stage_fig5(p: Profile, device) -> dict[str, Any]:
 
     kw = {"D": 2.5, "Wr": 100e-6, "L": 1e-3, "Rt": 10e-6}
     rows = []
-    cases = [(n, inc, s) for n in p.fig5_sizes for inc in (p.fig5_increments[0],)
-             for s in range(p.fig5_seeds)]  # fmt: skip
+    cases = [
+        (n, inc, s)
+        for n in p.fig5_sizes
+        for inc in (p.fig5_increments[0],)
+        for s in range(p.fig5_seeds)
+    ]
     n_last = p.fig5_sizes[-1]
     cases += [(n_last, inc, s) for inc in p.fig5_increments[1:] for s in range(p.fig5_seeds)]
     for n, inc, seed in _tqdm(cases, "Fig. 5"):
@@ -134,8 +141,16 @@ def stage_table1(p: Profile, device) -> dict[str, Any]:
         paper_d = dict(zip(METHODS, d_paper, strict=True))
         for m in p.table1_methods:
             row: dict[str, Any] = {"surface": name, "matched": m, "Wr_m": wr_m}
-            target = CalibrationTarget(D=paper_d[m], method=m, Rrms=rrms * UM, Rt=Rt * UM,
-                                       Wr=wr_m, L=L, n=p.table1_n, source=f"Table 1 {name}")  # fmt: skip
+            target = CalibrationTarget(
+                D=paper_d[m],
+                method=m,
+                Rrms=rrms * UM,
+                Rt=Rt * UM,
+                Wr=wr_m,
+                L=L,
+                n=p.table1_n,
+                source=f"Table 1 {name}",
+            )
             try:
                 settings = CalibrationSettings(seeds=seeds, rtol=p.table1_rtol)
                 cal = calibrate(target, settings=settings, progress=True, device=device)
@@ -143,12 +158,22 @@ def stage_table1(p: Profile, device) -> dict[str, Any]:
                 row.update(status="not reached", message=str(exc))
                 rows.append(row)
                 continue
-            ds = [_fractal(wm_surface(cal.D_in, wr_m, L=L, n=p.table1_n, Rt=cal.Rt, seed=s,
-                                      device=device), device) for s in seeds]  # fmt: skip
-            row.update(status="ok", D_in=cal.D_in, Rt_m=cal.Rt, Rrms_m=cal.Rrms,
-                       iterations=cal.iterations,
-                       D_out={k: float(np.mean([d[k]["D"] for d in ds])) for k in METHODS},
-                       D_options={k: ds[0][k]["options"] for k in METHODS})  # fmt: skip
+            ds = [
+                _fractal(
+                    wm_surface(cal.D_in, wr_m, L=L, n=p.table1_n, Rt=cal.Rt, seed=s, device=device),
+                    device,
+                )
+                for s in seeds
+            ]
+            row.update(
+                status="ok",
+                D_in=cal.D_in,
+                Rt_m=cal.Rt,
+                Rrms_m=cal.Rrms,
+                iterations=cal.iterations,
+                D_out={k: float(np.mean([d[k]["D"] for d in ds])) for k in METHODS},
+                D_options={k: ds[0][k]["options"] for k in METHODS},
+            )
             rows.append(row)
     return {"n": p.table1_n, "L_m": L, "seeds": list(seeds), "rows": rows}
 
@@ -164,25 +189,47 @@ def stage_islands(p: Profile, table1: dict[str, Any], device) -> dict[str, Any]:
         done.add(r["surface"])
         per = []
         for seed in _tqdm(range(p.islands_seeds), f"islands {r['surface']}"):
-            s = wm_surface(r["D_in"], r["Wr_m"], L=p.islands_L, n=p.islands_n, Rt=r["Rt_m"],
-                           seed=seed, device=device)  # fmt: skip
+            s = wm_surface(
+                r["D_in"],
+                r["Wr_m"],
+                L=p.islands_L,
+                n=p.islands_n,
+                Rt=r["Rt_m"],
+                seed=seed,
+                device=device,
+            )
             snaps = tuple(np.asarray(SLIT_BAND["percent_Rt"]) / 100)
             depths = ISLANDS_TRUNCATION.replace(increments=p.islands_increments)
-            c = island_curve(s, truncation=depths, settings=IslandSettings(snapshots=snaps),
-                             device=device)  # fmt: skip
+            c = island_curve(
+                s, truncation=depths, settings=IslandSettings(snapshots=snaps), device=device
+            )
             min_islands = 5 if p.islands_n < 512 else 50
             ind = applicable_depth(c, IndicatorSettings(min_islands=min_islands))
-            per.append({"seed": seed, "indicators": ind.to_dict(),
-                        "depth_fraction": c.depth_fraction, "normalised": c.normalised_island_number,
-                        "slit_exponent": c.slit_exponent,
-                        "slit_band": slit_band(c, min_islands)})  # fmt: skip
-        out["surfaces"][r["surface"]] = {"D_in": r["D_in"], "Rt_m": r["Rt_m"], "Wr_m": r["Wr_m"],
-                                         "seeds": per}  # fmt: skip
+            per.append(
+                {
+                    "seed": seed,
+                    "indicators": ind.to_dict(),
+                    "depth_fraction": c.depth_fraction,
+                    "normalised": c.normalised_island_number,
+                    "slit_exponent": c.slit_exponent,
+                    "slit_band": slit_band(c, min_islands),
+                }
+            )
+        out["surfaces"][r["surface"]] = {
+            "D_in": r["D_in"],
+            "Rt_m": r["Rt_m"],
+            "Wr_m": r["Wr_m"],
+            "seeds": per,
+        }
     return out
 
 
-SLIT_BAND = {"percent_Rt": tuple(2.5 * k for k in range(1, 21)), "resamples": 200,
-             "level": 0.95, "seed": 0}
+SLIT_BAND = {
+    "percent_Rt": tuple(2.5 * k for k in range(1, 21)),
+    "resamples": 200,
+    "level": 0.95,
+    "seed": 0,
+}
 """Depths (% R_t) and bootstrap of the slit-exponent band of the island stage."""
 
 
@@ -204,9 +251,14 @@ def slit_band(curve, min_islands: int) -> dict[str, list]:
     """
     out: dict[str, list] = {"percent_Rt": [], "exponent": [], "lo": [], "hi": [], "n_islands": []}
     for sz in curve.sizes:
-        e, lo, hi = slit_bootstrap(sz, resamples=SLIT_BAND["resamples"], level=SLIT_BAND["level"],
-                                   min_pixels=curve.min_pixels, min_islands=min_islands,
-                                   seed=SLIT_BAND["seed"])  # fmt: skip
+        e, lo, hi = slit_bootstrap(
+            sz,
+            resamples=SLIT_BAND["resamples"],
+            level=SLIT_BAND["level"],
+            min_pixels=curve.min_pixels,
+            min_islands=min_islands,
+            seed=SLIT_BAND["seed"],
+        )
         out["percent_Rt"].append(100 * sz.depth / curve.Rt)
         for k, v in (("exponent", e), ("lo", lo), ("hi", hi)):
             out[k].append(v if math.isfinite(v) else None)
@@ -243,51 +295,80 @@ def group_sweep(p: Profile, which: int) -> tuple[SweepGrid, SweepOptions]:
         grid = SweepGrid(D=tuple(p.group2_D), delta=(0.01,), seeds=seeds)
         fractal = True
     opts = SweepOptions(
-        n=p.n, L=p.L, Wr=p.Wr, increments=p.truncation.increments,
-        max_depth_fraction=p.truncation.max_depth_fraction, max_depth=p.truncation.max_depth,
+        n=p.n,
+        L=p.L,
+        Wr=p.Wr,
+        increments=p.truncation.increments,
+        max_depth_fraction=p.truncation.max_depth_fraction,
+        max_depth=p.truncation.max_depth,
         beta_prime=p.truncation.beta_prime,
-        min_pixels=(ranges["default"],), min_pixels_fraction=(ranges["late"],),
+        min_pixels=(ranges["default"],),
+        min_pixels_fraction=(ranges["late"],),
         fractal_methods=METHODS if fractal else None,
-    )  # fmt: skip
+    )
     return grid, opts
 
 
 def _row(case_rows, curve, ranges: dict[str, int | float], curve_points: int) -> dict[str, Any]:
     """A stage row (as the report reads it) from a case's store rows and curve."""
     first = case_rows[0]
-    row: dict[str, Any] = {"D_in": first["D_in"], "delta": first["delta"], "seed": first["seed"],
-                           "Rt_m": first["Rt_measured_m"], "case_id": first["case_id"], "fits": {}}  # fmt: skip
+    row: dict[str, Any] = {
+        "D_in": first["D_in"],
+        "delta": first["delta"],
+        "seed": first["seed"],
+        "Rt_m": first["Rt_measured_m"],
+        "case_id": first["case_id"],
+        "fits": {},
+    }
     for name, mp in ranges.items():
         if isinstance(mp, int):  # an absolute fit range
-            r = next(x for x in case_rows if x["min_pixels_fraction"] is None and x["min_pixels"] == mp)
+            r = next(
+                x for x in case_rows if x["min_pixels_fraction"] is None and x["min_pixels"] == mp
+            )
         else:  # relative to the surface's final contact pixels
             r = next(x for x in case_rows if x["min_pixels_fraction"] == mp)
         fitted = r["alpha"] is not None and math.isfinite(float(r["alpha"]))
         if r["fit_error"] is None or fitted:  # a fit, worth reading or not
-            row["fits"][name] = {"alpha": r["alpha"], "beta": r["beta"], "r2": r["r2"],
-                                 "n_points": r["n_points"], "min_pixels": r["min_pixels"]}  # fmt: skip
+            row["fits"][name] = {
+                "alpha": r["alpha"],
+                "beta": r["beta"],
+                "r2": r["r2"],
+                "n_points": r["n_points"],
+                "min_pixels": r["min_pixels"],
+            }
             if r["fit_error"] is not None:
                 row["fits"][name]["warning"] = r["fit_error"]
         else:  # too few increments: recorded, not dropped
-            row["fits"][name] = {"alpha": None, "beta": None, "error": r["fit_error"],
-                                 "min_pixels": r["min_pixels"]}  # fmt: skip
+            row["fits"][name] = {
+                "alpha": None,
+                "beta": None,
+                "error": r["fit_error"],
+                "min_pixels": r["min_pixels"],
+            }
     if first["fractal_options"] is not None:
         info = json.loads(first["fractal_options"])
         row["D"] = {
-            m: {"D": first[f"D_{m}"], "r2": first[f"D_{m}_r2"],
+            m: {
+                "D": first[f"D_{m}"],
+                "r2": first[f"D_{m}_r2"],
                 "fit_range_m": [v["fit_min_m"], v["fit_max_m"]],
-                "options": {k: o for k, o in v["options"].items() if k not in ("box_sizes", "lags")}}
+                "options": {
+                    k: o for k, o in v["options"].items() if k not in ("box_sizes", "lags")
+                },
+            }
             for m, v in info.items()
-        }  # fmt: skip
+        }
     k = np.unique(np.linspace(0, len(curve) - 1, curve_points).astype(int))
-    row["curve"] = {"F_over_EA": curve["F_over_EA"].to_numpy()[k],
-                    "Ec_over_E": curve["Ec_over_E"].to_numpy()[k]}  # fmt: skip
+    row["curve"] = {
+        "F_over_EA": curve["F_over_EA"].to_numpy()[k],
+        "Ec_over_E": curve["Ec_over_E"].to_numpy()[k],
+    }
     return row
 
 
 def stage_group(
     p: Profile, which: int, out, device, *, overwrite: bool = False, curve_points: int = 60
-) -> dict[str, Any]:  # fmt: skip
+) -> dict[str, Any]:
     """Table 3 group 1 or 2 through the sweep store ``<out>/sweeps/group<which>`` (resumed)."""
 
     grid, opts = group_sweep(p, which)
@@ -295,19 +376,28 @@ def stage_group(
     why = conflict(path, grid, opts)
     if why is not None and not overwrite:
         raise StageConflict(f"{why} (group {which} of warptrunc reproduce)")
-    df = run_sweep(grid, path, options=opts, overwrite=why is not None, progress=True,
-                   device=device)  # fmt: skip
+    df = run_sweep(
+        grid, path, options=opts, overwrite=why is not None, progress=True, device=device
+    )
     ranges = fit_ranges(p, p.n)
     rows, failed = [], []
-    curves = dict(tuple(load_curves(path).groupby("case_id", sort=False)))  # one pass over the parts
+    curves = dict(
+        tuple(load_curves(path).groupby("case_id", sort=False))
+    )  # one pass over the parts
     for cid, part in df.groupby("case_id", sort=False):
-        recs = [{k: (None if _isna(v) else v) for k, v in r.items()} for r in part.to_dict("records")]
+        recs = [
+            {k: (None if _isna(v) else v) for k, v in r.items()} for r in part.to_dict("records")
+        ]
         if recs[0]["error"] is not None:
             failed.append({k: recs[0][k] for k in ("case_id", "D_in", "delta", "seed", "error")})
             continue
         rows.append(_row(recs, curves[cid].reset_index(drop=True), ranges, curve_points))
-    return {"fit_ranges": ranges, "rows": rows, "failed": failed,
-            "store": str(Path("sweeps") / f"group{which}")}  # fmt: skip
+    return {
+        "fit_ranges": ranges,
+        "rows": rows,
+        "failed": failed,
+        "store": str(Path("sweeps") / f"group{which}"),
+    }
 
 
 def _isna(v) -> bool:
@@ -352,22 +442,50 @@ def select_stages(stages: Any = None) -> tuple[str, ...]:
     return tuple(n for n in STAGES if n in names)
 
 
-def _stage_call(name: str, profile: Profile, res: dict[str, Any], store: StageStore, device,
-                deadline: float | None, client=None, task_device=None):  # fmt: skip
+def _stage_call(
+    name: str,
+    profile: Profile,
+    res: dict[str, Any],
+    store: StageStore,
+    device,
+    deadline: float | None,
+    client=None,
+    task_device=None,
+):
     """(parameters, function) of a stage; None when an input stage is missing."""
     t = profile.truncation
-    full = {**profile.to_dict(), "increments": t.increments,
-            "max_depth_fraction": t.max_depth_fraction}  # the groups' stored keys
+    full = {
+        **profile.to_dict(),
+        "increments": t.increments,
+        "max_depth_fraction": t.max_depth_fraction,
+    }  # the groups' stored keys
     keys = {
         "asperity": ("asperity_n", "asperity_increments"),
         "fig5": ("fig5_sizes", "fig5_seeds", "fig5_increments"),
         "table1": ("table1_n", "table1_seeds", "table1_methods", "table1_rtol"),
         "islands": ("islands_n", "islands_L", "islands_seeds", "islands_increments"),
-        "group1": ("n", "seeds", "L", "Wr", "increments", "max_depth_fraction", "group1_delta",
-                   "fractal_on_group1", "late_fit_fraction"),
-        "group2": ("n", "seeds", "L", "Wr", "increments", "max_depth_fraction", "group2_D",
-                   "late_fit_fraction"),
-    }  # fmt: skip
+        "group1": (
+            "n",
+            "seeds",
+            "L",
+            "Wr",
+            "increments",
+            "max_depth_fraction",
+            "group1_delta",
+            "fractal_on_group1",
+            "late_fit_fraction",
+        ),
+        "group2": (
+            "n",
+            "seeds",
+            "L",
+            "Wr",
+            "increments",
+            "max_depth_fraction",
+            "group2_D",
+            "late_fit_fraction",
+        ),
+    }
     base = {k: full[k] for k in keys.get(name, ())}
     if name in ("fig5", "group1", "group2"):  # stages written before hold E_c/E* (changelog)
         base["normalisation"] = NORMALISATION_E
@@ -375,29 +493,48 @@ def _stage_call(name: str, profile: Profile, res: dict[str, Any], store: StageSt
         from .elastic import stage_elastic, stage_params
 
         return stage_params(profile), lambda: stage_elastic(
-            profile, store.out, device if client is None else task_device, client=client)
+            profile, store.out, device if client is None else task_device, client=client
+        )
     if name == "indentation":
         from .indentation.stage import stage_indentation
         from .indentation.stage import stage_params as indent_params
 
         return indent_params(profile.indentation), lambda: stage_indentation(
-            profile.indentation, store.out, device if client is None else task_device,
-            overwrite=store.overwrite, deadline=deadline, client=client)
+            profile.indentation,
+            store.out,
+            device if client is None else task_device,
+            overwrite=store.overwrite,
+            deadline=deadline,
+            client=client,
+        )
     if name == "islands":
         if "table1" not in res:
             return None
-        return ({**base, "table1": res["table1"], "slit_band": SLIT_BAND},
-                lambda: stage_islands(profile, res["table1"], device))  # fmt: skip
+        return (
+            {**base, "table1": res["table1"], "slit_band": SLIT_BAND},
+            lambda: stage_islands(profile, res["table1"], device),
+        )
     if name.startswith("group"):
         return base, lambda w=int(name[-1]): stage_group(
-            profile, w, store.out, device, overwrite=store.overwrite)
-    return base, {"asperity": lambda: stage_asperity(profile, device),
-                  "fig5": lambda: stage_fig5(profile, device),
-                  "table1": lambda: stage_table1(profile, device)}[name]  # fmt: skip
+            profile, w, store.out, device, overwrite=store.overwrite
+        )
+    return base, {
+        "asperity": lambda: stage_asperity(profile, device),
+        "fig5": lambda: stage_fig5(profile, device),
+        "table1": lambda: stage_table1(profile, device),
+    }[name]
 
 
-def run_study(profile: Profile, store: StageStore, *, device=None, stages: Any = None,
-              deadline: float | None = None, client=None, task_device=None) -> dict[str, Any]:  # fmt: skip
+def run_study(
+    profile: Profile,
+    store: StageStore,
+    *,
+    device=None,
+    stages: Any = None,
+    deadline: float | None = None,
+    client=None,
+    task_device=None,
+) -> dict[str, Any]:
     """Run (or reuse) the stages; returns {stage: result} and the wall time per stage.
 
     Parameters

@@ -94,10 +94,14 @@ class StiffnessCurve:
         """
         return fields_to_dict(
             self,
-            {"depth": "depth_m", "contact_area": "contact_area_m2",
-             "stiffness": "stiffness_N_per_m", "load": "load_N"},
+            {
+                "depth": "depth_m",
+                "contact_area": "contact_area_m2",
+                "stiffness": "stiffness_N_per_m",
+                "load": "load_N",
+            },
             skip=("material", "beta_prime", "apparent_area", "Rt", "model"),
-        )  # fmt: skip
+        )
 
     @fill_doc(WRITE_DOCS)
     def to_json(self, path: str | Path) -> Path:
@@ -146,9 +150,13 @@ class StiffnessCurve:
         if islands is not None:
             if not np.array_equal(islands.depth, self.depth):
                 raise ValueError("islands must be on the same depths as this curve")
-            cols = {**cols, "stiffness_islands_N_per_m": islands.stiffness,
-                    "load_islands_N": islands.load, "Ec_over_E_islands": islands.Ec_over_E,
-                    "Ec_over_Estar_islands": islands.Ec_over_Estar}  # fmt: skip
+            cols = {
+                **cols,
+                "stiffness_islands_N_per_m": islands.stiffness,
+                "load_islands_N": islands.load,
+                "Ec_over_E_islands": islands.Ec_over_E,
+                "Ec_over_Estar_islands": islands.Ec_over_Estar,
+            }
         return write_columns_csv(path, cols)
 
 

@@ -294,7 +294,16 @@ def _fit_arrays(x: Any, y: Any, *, min_points: int) -> PowerLawFit:
     r2 = 1.0 - float(np.sum(res**2)) / ss if ss > 0 else 1.0
     nan = math.nan
     return PowerLawFit(
-        alpha=alpha, beta=math.exp(logb), r2=r2, n_points=n, depth_min=nan, depth_max=nan,
-        F_over_EA_min=nan, F_over_EA_max=nan, min_pixels=0, depth_window=None,
-        normalisation=NORMALISATION_NONE, r=r,
-    )  # fmt: skip
+        alpha=alpha,
+        beta=math.exp(logb),
+        r2=r2,
+        n_points=n,
+        depth_min=nan,
+        depth_max=nan,
+        F_over_EA_min=nan,
+        F_over_EA_max=nan,
+        min_pixels=0,
+        depth_window=None,
+        normalisation=NORMALISATION_NONE,
+        r=r,
+    )

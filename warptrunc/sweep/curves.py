@@ -37,9 +37,15 @@ __all__ = [
 ]
 
 CURVE_COLUMNS = (
-    "depth_m", "n_contact_pixels", "contact_area_m2", "stiffness_N_per_m", "load_N",
-    "Ec_over_E", "F_over_EA", "Ec_over_Estar",
-)  # fmt: skip
+    "depth_m",
+    "n_contact_pixels",
+    "contact_area_m2",
+    "stiffness_N_per_m",
+    "load_N",
+    "Ec_over_E",
+    "F_over_EA",
+    "Ec_over_Estar",
+)
 """Curve columns of a part, after ``case_id`` (as ``warptrunc analyze``'s curve.csv): E_c/E (E
 the Young's modulus) is ``Ec_over_E``, E_c/E* ``Ec_over_Estar``. Parts written before the one
 normalisation lack ``Ec_over_Estar`` and are read with their meaning

@@ -30,15 +30,64 @@ __all__ = [
 ]
 
 CASE_COLUMNS = (
-    "case_id", "case_index", "D_in", "delta", "seed", "Rt_m", "Wr_m", "Lx_m", "Ly_m", "nx",
-    "ny", "M", "gamma", "Wc_m", "cutoff", "increments", "max_depth_fraction", "max_depth_m",
-    "E_Pa", "nu", "E_flat_Pa", "nu_flat", "beta_prime", "min_pixels", "min_pixels_fraction",
-    "depth_window_lo_m", "depth_window_hi_m", "alpha", "beta", "beta_contact_modulus", "r2", "n_points",
-    "fit_depth_min_m", "fit_depth_max_m", "final_contact_pixels", "final_area_fraction",
-    "Rt_measured_m", "D_tri", "D_tri_r2", "D_box", "D_box_r2", "D_vs", "D_vs_r2", "D_sp",
-    "D_sp_r2", "fractal_options", "fractal_seconds", "fit_error", "warnings", "error", "seconds", "device", "device_name", "host", "finished_utc",
-    "warptrunc_version", "git_commit",
-)  # fmt: skip
+    "case_id",
+    "case_index",
+    "D_in",
+    "delta",
+    "seed",
+    "Rt_m",
+    "Wr_m",
+    "Lx_m",
+    "Ly_m",
+    "nx",
+    "ny",
+    "M",
+    "gamma",
+    "Wc_m",
+    "cutoff",
+    "increments",
+    "max_depth_fraction",
+    "max_depth_m",
+    "E_Pa",
+    "nu",
+    "E_flat_Pa",
+    "nu_flat",
+    "beta_prime",
+    "min_pixels",
+    "min_pixels_fraction",
+    "depth_window_lo_m",
+    "depth_window_hi_m",
+    "alpha",
+    "beta",
+    "beta_contact_modulus",
+    "r2",
+    "n_points",
+    "fit_depth_min_m",
+    "fit_depth_max_m",
+    "final_contact_pixels",
+    "final_area_fraction",
+    "Rt_measured_m",
+    "D_tri",
+    "D_tri_r2",
+    "D_box",
+    "D_box_r2",
+    "D_vs",
+    "D_vs_r2",
+    "D_sp",
+    "D_sp_r2",
+    "fractal_options",
+    "fractal_seconds",
+    "fit_error",
+    "warnings",
+    "error",
+    "seconds",
+    "device",
+    "device_name",
+    "host",
+    "finished_utc",
+    "warptrunc_version",
+    "git_commit",
+)
 """Columns of ``cases.parquet``, in order; units in the names (SI).
 
 ``alpha`` and ``beta`` are those of E_c/E = β·[F/(E·A)]^α with E the Young's modulus (the
@@ -68,9 +117,19 @@ RUN_COLUMNS = (
 """Columns that describe how and where a case ran rather than its result."""
 
 BEM_QUANTITIES = (
-    "bem_depth_m", "F_bem_N", "A_bem_m2", "k_bem_N_per_m", "F_trunc_N", "A_trunc_m2",
-    "k_trunc_N_per_m", "F_ratio", "A_ratio", "k_ratio", "bem_converged", "bem_iterations",
-)  # fmt: skip
+    "bem_depth_m",
+    "F_bem_N",
+    "A_bem_m2",
+    "k_bem_N_per_m",
+    "F_trunc_N",
+    "A_trunc_m2",
+    "k_trunc_N_per_m",
+    "F_ratio",
+    "A_ratio",
+    "k_ratio",
+    "bem_converged",
+    "bem_iterations",
+)
 """Elastic columns per approach fraction f, named ``<quantity>_<f>`` (``F_bem_N_0.1``).
 
 δ = f·R_t (m, measured R_t) is the approach; ``*_bem_*`` are the elastic solver's load (N), real
@@ -89,8 +148,21 @@ def bem_columns(fractions) -> tuple[str, ...]:
 
 _INT = ("case_index", "seed", "nx", "ny", "M", "increments", "min_pixels")
 _NULLABLE_INT = ("n_points", "final_contact_pixels")
-_STR = ("case_id", "cutoff", "fractal_options", "fit_error", "warnings", "error", "device", "device_name", "host",
-        "finished_utc", "warptrunc_version", "git_commit", "bem_error")  # fmt: skip
+_STR = (
+    "case_id",
+    "cutoff",
+    "fractal_options",
+    "fit_error",
+    "warnings",
+    "error",
+    "device",
+    "device_name",
+    "host",
+    "finished_utc",
+    "warptrunc_version",
+    "git_commit",
+    "bem_error",
+)
 MANIFEST_KEY = b"warptrunc.parts"
 
 

@@ -79,10 +79,15 @@ class SummitStatistics:
             ``height_std_m``, ``height_mean_m``.
         """
         return {
-            "m0_m2": self.m0, "m2": self.m2, "m4_per_m2": self.m4, "bandwidth": self.bandwidth,
-            "density_per_m2": self.density, "radius_m": self.radius,
-            "height_std_m": self.height_std, "height_mean_m": self.height_mean,
-        }  # fmt: skip
+            "m0_m2": self.m0,
+            "m2": self.m2,
+            "m4_per_m2": self.m4,
+            "bandwidth": self.bandwidth,
+            "density_per_m2": self.density,
+            "radius_m": self.radius,
+            "height_std_m": self.height_std,
+            "height_mean_m": self.height_mean,
+        }
 
 
 @dataclass(frozen=True, eq=False)
@@ -134,12 +139,19 @@ class AsperityCurve:
             ``slope_rms``, ``magnification``, ``summit_density_per_m2``, ``summit_radius_m``,
             ``summit_height_std_m``, ``bandwidth``.
         """
-        return columns(self, {
-            "pressure": "pressure_Pa", "separation": "separation_m",
-            "stiffness": "stiffness_Pa_per_m", "contact_density": "contact_density_per_m2",
-            "contact_modulus": "contact_modulus_Pa", "summit_density": "summit_density_per_m2",
-            "summit_radius": "summit_radius_m", "summit_height_std": "summit_height_std_m",
-        })  # fmt: skip
+        return columns(
+            self,
+            {
+                "pressure": "pressure_Pa",
+                "separation": "separation_m",
+                "stiffness": "stiffness_Pa_per_m",
+                "contact_density": "contact_density_per_m2",
+                "contact_modulus": "contact_modulus_Pa",
+                "summit_density": "summit_density_per_m2",
+                "summit_radius": "summit_radius_m",
+                "summit_height_std": "summit_height_std_m",
+            },
+        )
 
 
 def _band(psd: IsotropicPSD, magnification: float | None) -> IsotropicPSD:

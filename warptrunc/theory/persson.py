@@ -101,11 +101,17 @@ class PerssonCurve:
             ``mean_separation_m``, ``stiffness_Pa_per_m``, ``contact_modulus_Pa``,
             ``slope_rms``, ``h_rms_m``, ``magnification``, ``gamma``, ``separation_scale_m``.
         """
-        return columns(self, {
-            "pressure": "pressure_Pa", "mean_separation": "mean_separation_m",
-            "stiffness": "stiffness_Pa_per_m", "contact_modulus": "contact_modulus_Pa",
-            "h_rms": "h_rms_m", "separation_scale": "separation_scale_m",
-        })  # fmt: skip
+        return columns(
+            self,
+            {
+                "pressure": "pressure_Pa",
+                "mean_separation": "mean_separation_m",
+                "stiffness": "stiffness_Pa_per_m",
+                "contact_modulus": "contact_modulus_Pa",
+                "h_rms": "h_rms_m",
+                "separation_scale": "separation_scale_m",
+            },
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -136,10 +142,15 @@ class PressureDistribution:
             Also ``pressure_Pa``, ``area_fraction``, ``stress_variance_Pa2``, ``slope_rms``,
             ``magnification``.
         """
-        return columns(self, {
-            "stress": "stress_Pa", "density": "density_per_Pa", "pressure": "pressure_Pa",
-            "stress_variance": "stress_variance_Pa2",
-        })  # fmt: skip
+        return columns(
+            self,
+            {
+                "stress": "stress_Pa",
+                "density": "density_per_Pa",
+                "pressure": "pressure_Pa",
+                "stress_variance": "stress_variance_Pa2",
+            },
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -174,10 +185,15 @@ class GapDistribution:
             Also ``pressure_Pa``, ``contact_fraction``, ``mean_separation_m``, ``slope_rms``,
             ``magnification``, ``gamma``.
         """
-        return columns(self, {
-            "gap": "gap_m", "density": "density_per_m", "pressure": "pressure_Pa",
-            "mean_separation": "mean_separation_m",
-        })  # fmt: skip
+        return columns(
+            self,
+            {
+                "gap": "gap_m",
+                "density": "density_per_m",
+                "pressure": "pressure_Pa",
+                "mean_separation": "mean_separation_m",
+            },
+        )
 
 
 # --- the functions of the separation integral ------------------------------------------------
@@ -231,8 +247,12 @@ def _antiderivative(t: np.ndarray, c: np.ndarray, gamma: float) -> tuple[np.ndar
         x = np.where(t > 0, c / np.where(t > 0, t, 1.0), np.inf)
     i, k = _i_k(x, gamma)
     pos = t > 0
-    return (np.where(pos, t * i - c * k, 0.0), np.where(pos, t**3 * i / 3, 0.0),
-            np.where(pos, k, 0.0), np.where(pos, _g(x, gamma), 0.0))  # fmt: skip
+    return (
+        np.where(pos, t * i - c * k, 0.0),
+        np.where(pos, t**3 * i / 3, 0.0),
+        np.where(pos, k, 0.0),
+        np.where(pos, _g(x, gamma), 0.0),
+    )
 
 
 def _g(x: np.ndarray, gamma: float) -> np.ndarray:
@@ -347,8 +367,9 @@ def _separation(
     with np.errstate(divide="ignore", invalid="ignore"):
         dtt_dc = np.where(t > 0, -(t**3) * g_end / (3 * cc), 0.0)  # ∂T/∂c
     u = (alpha * np.diff(f, axis=1) + beta * (np.diff(tt, axis=1) - int_t2g / 3) + rem).sum(axis=1)
-    du = (-alpha * np.diff(k, axis=1) + beta * (np.diff(dtt_dc, axis=1) - dint_t2g / 3)
-          + drem).sum(axis=1)  # fmt: skip
+    du = (-alpha * np.diff(k, axis=1) + beta * (np.diff(dtt_dc, axis=1) - dint_t2g / 3) + drem).sum(
+        axis=1
+    )
     return 2 / math.sqrt(math.pi) * u, 2 / math.sqrt(math.pi) * du
 
 

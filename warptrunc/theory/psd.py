@@ -170,9 +170,7 @@ class IsotropicPSD:
     # --- construction ------------------------------------------------------------------------
 
     @classmethod
-    def from_self_affine(
-        cls, source: Any = None, *, points_per_decade: int = 32
-    ) -> IsotropicPSD:
+    def from_self_affine(cls, source: Any = None, *, points_per_decade: int = 32) -> IsotropicPSD:
         """The self-affine spectrum of a spec or of a generated map, sampled on a logarithmic grid.
 
         Parameters
@@ -201,7 +199,9 @@ class IsotropicPSD:
                 )
             names = [f.name for f in dataclasses.fields(SelfAffineSpec)]
             spec = SelfAffineSpec(**{k: params[k] for k in names})
-            spec = spec.replace(L=tuple(spec.L), n=tuple(spec.n)) if isinstance(spec.L, list) else spec
+            spec = (
+                spec.replace(L=tuple(spec.L), n=tuple(spec.n)) if isinstance(spec.L, list) else spec
+            )
             c0 = float(params["C0_m4"])
         else:
             spec = SelfAffineSpec() if source is None else source
@@ -291,9 +291,12 @@ class IsotropicPSD:
 
     @classmethod
     def from_height_map(
-        cls, surface: Any, pixel_size: float | tuple[float, float] | None = None, *,
+        cls,
+        surface: Any,
+        pixel_size: float | tuple[float, float] | None = None,
+        *,
         window: str = "hann",
-    ) -> IsotropicPSD:  # fmt: skip
+    ) -> IsotropicPSD:
         """The radially averaged periodogram of a height map, with its noise floor.
 
         Parameters
@@ -344,8 +347,12 @@ class IsotropicPSD:
         c = np.concatenate((c[:1], c, c[-1:]))
         pixel = max(surface.dx, surface.dy)
         noise = _noise_wavevector(q, c, math.pi / (2 * pixel))
-        params = {"window": window, "dx": float(surface.dx), "dy": float(surface.dy),
-                  "n_modes": est.n_modes.tolist()}  # fmt: skip
+        params = {
+            "window": window,
+            "dx": float(surface.dx),
+            "dy": float(surface.dy),
+            "n_modes": est.n_modes.tolist(),
+        }
         return cls(q, c, "height map", "linear", noise, params)
 
     # --- the interpolant and its integrals ---------------------------------------------------
@@ -465,8 +472,14 @@ class IsotropicPSD:
             )
         lo, hi = max(lo, x[0]), min(hi, x[-1])
         q = np.concatenate(([lo], x[(x > lo) & (x < hi)], [hi]))
-        return IsotropicPSD(q, self.at(q), self.source, self.interpolation,
-                            self.noise_wavevector, {**self.params, "band": [lo, hi]})  # fmt: skip
+        return IsotropicPSD(
+            q,
+            self.at(q),
+            self.source,
+            self.interpolation,
+            self.noise_wavevector,
+            {**self.params, "band": [lo, hi]},
+        )
 
     def refined(self, points_per_decade: int = 64) -> IsotropicPSD:
         """The same spectrum with samples added so that no interval spans more than
@@ -494,8 +507,9 @@ class IsotropicPSD:
         q = np.concatenate((x[seg] * (x[seg + 1] / x[seg]) ** frac, x[-1:]))
         c = self.at(q)
         c[np.concatenate((np.cumsum(n) - n, [q.size - 1]))] = self.psd  # the samples themselves
-        return IsotropicPSD(q, c, self.source, self.interpolation, self.noise_wavevector,
-                            dict(self.params))  # fmt: skip
+        return IsotropicPSD(
+            q, c, self.source, self.interpolation, self.noise_wavevector, dict(self.params)
+        )
 
     def to_dict(self) -> dict[str, Any]:
         """Columns ``wavevector_per_m``, ``psd_m4``, ``source`` and ``noise_wavevector_per_m``.
@@ -507,10 +521,13 @@ class IsotropicPSD:
         """
         return columns(
             self,
-            {"wavevector": "wavevector_per_m", "psd": "psd_m4",
-             "noise_wavevector": "noise_wavevector_per_m"},
+            {
+                "wavevector": "wavevector_per_m",
+                "psd": "psd_m4",
+                "noise_wavevector": "noise_wavevector_per_m",
+            },
             skip=("params",),
-        )  # fmt: skip
+        )
 
 
 def _segments(psd: IsotropicPSD, k: float) -> np.ndarray:

@@ -137,8 +137,9 @@ def contact_histogram(
         mode = "block" if deep else "vec4"
     if mode == "block" and (n1 > _k.HIST_BINS or n4 == 0):
         mode = "vec4"
-    hist = wp.zeros(max(n1, int(_k.HIST_BINS)) if mode == "block" else n1, dtype=wp.int64,
-                    device=device)  # fmt: skip
+    hist = wp.zeros(
+        max(n1, int(_k.HIST_BINS)) if mode == "block" else n1, dtype=wp.int64, device=device
+    )
     if mode == "pixel" or n4 == 0:
         n4 = 0
     elif mode == "block":
@@ -307,9 +308,11 @@ def truncate_surface(
     z = upload_heights(surface, device)
     lo, hi = surface_range(surface, z, device)  # recorded by the generator, or one reduction
     depth = depth_grid(
-        float(np.float64(hi) - np.float64(lo)), n_increments,
-        max_depth=max_depth, max_depth_fraction=max_depth_fraction,
-    )  # fmt: skip
+        float(np.float64(hi) - np.float64(lo)),
+        n_increments,
+        max_depth=max_depth,
+        max_depth_fraction=max_depth_fraction,
+    )
     t, lo, hi, thr, inv_step = depth_thresholds(z, depth, device, (lo, hi))
     Rt = float(np.float64(hi) - np.float64(lo))
     hist = histogram_bands(z, t, hi, inv_step, device, deep=depth[-1] > DEEP_FRACTION * Rt)
@@ -362,11 +365,15 @@ def contact_index_map(
         The island labelling carries its union-find forest across depths in this order. The
         same map left on the device is :func:`contact_index_device`.
     """
-    return contact_index_device(surface, depth, resolve_device(surface_device(surface, device))).numpy()
+    return contact_index_device(
+        surface, depth, resolve_device(surface_device(surface, device))
+    ).numpy()
 
 
 @fill_doc(SHARED_DOCS)
-def contact_index_device(surface: Surface, depth: np.ndarray, device: wp.context.Device) -> wp.array:
+def contact_index_device(
+    surface: Surface, depth: np.ndarray, device: wp.context.Device
+) -> wp.array:
     """:func:`contact_index_map` as a (ny, nx) int32 Warp array left on the resolved ``device``.
 
     Parameters

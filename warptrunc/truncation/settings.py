@@ -32,24 +32,38 @@ class TruncationSettings(Parameters):
     """
 
     increments: int = param(
-        200, "number of depth increments n", kind="int", ge=1, le=MAX_INCREMENTS,
-    )  # fmt: skip
+        200,
+        "number of depth increments n",
+        kind="int",
+        ge=1,
+        le=MAX_INCREMENTS,
+    )
     max_depth_fraction: float = param(
-        0.1, "largest depth ω_max as a fraction of R_t", gt=0.0, le=1.0,
-    )  # fmt: skip
+        0.1,
+        "largest depth ω_max as a fraction of R_t",
+        gt=0.0,
+        le=1.0,
+    )
     max_depth: float | None = param(
-        None, "largest depth ω_max; overrides the fraction; none = the fraction",
-        unit="m", gt=0.0, optional=True,
-    )  # fmt: skip
+        None,
+        "largest depth ω_max; overrides the fraction; none = the fraction",
+        unit="m",
+        gt=0.0,
+        optional=True,
+    )
     beta_prime: float = param(1.0, "geometric factor β' of Eq. 2", gt=0.0)
     islands: bool | None = param(
-        None, "also the island-resolved model k = β'(2/√π)E*·Σ√A_i; none = on for maps in "
-        "memory, off when streamed", kind="bool", optional=True,
-    )  # fmt: skip
+        None,
+        "also the island-resolved model k = β'(2/√π)E*·Σ√A_i; none = on for maps in "
+        "memory, off when streamed",
+        kind="bool",
+        optional=True,
+    )
     connectivity: int = param(
-        4, "island neighbourhood of the island-resolved model (4 or 8 neighbours)",
+        4,
+        "island neighbourhood of the island-resolved model (4 or 8 neighbours)",
         choices=(4, 8),
-    )  # fmt: skip
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -71,31 +85,52 @@ class FitRange(Parameters):
     """
 
     rule: str = param(
-        "auto", "legacy: increments to ω_max with at least min-pixels contact pixels; auto: the "
+        "auto",
+        "legacy: increments to ω_max with at least min-pixels contact pixels; auto: the "
         "same, and for a map read from a file with no range of its own the automatic rule of "
         "warptrunc.robust (spikes that set R_t masked, ω_max brought to between 50 contact "
         "pixels and 5 % of A in contact) when that fit is not worth reading",
-        choices=("auto", "legacy"), cli="fit-range", sweep=False,
-    )  # fmt: skip
+        choices=("auto", "legacy"),
+        cli="fit-range",
+        sweep=False,
+    )
     min_pixels: int = param(
-        DEFAULT_MIN_PIXELS, "fit only increments with at least this many contact pixels "
-        "(1 = all with load > 0)", kind="int", ge=1,
-    )  # fmt: skip
+        DEFAULT_MIN_PIXELS,
+        "fit only increments with at least this many contact pixels (1 = all with load > 0)",
+        kind="int",
+        ge=1,
+    )
     depth_window: tuple[float, float] | None = param(
-        None, "fit only depths LO ≤ ω ≤ HI; none = every depth", unit="m", ge=0.0,
-        length=2, increasing=True, optional=True, metavar=("LO", "HI"), sweep=False,
-    )  # fmt: skip
+        None,
+        "fit only depths LO ≤ ω ≤ HI; none = every depth",
+        unit="m",
+        ge=0.0,
+        length=2,
+        increasing=True,
+        optional=True,
+        metavar=("LO", "HI"),
+        sweep=False,
+    )
     rt_percentile: tuple[float, float] | None = param(
-        None, "robust R_t of a measured map: clip the heights to their LO-th and HI-th "
+        None,
+        "robust R_t of a measured map: clip the heights to their LO-th and HI-th "
         "percentiles first (e.g. 0.1 99.9); the map must be in memory; none = no clipping",
-        unit="%", ge=0.0, le=100.0, length=2, increasing=True, optional=True,
-        metavar=("LO", "HI"), sweep=False,
-    )  # fmt: skip
+        unit="%",
+        ge=0.0,
+        le=100.0,
+        length=2,
+        increasing=True,
+        optional=True,
+        metavar=("LO", "HI"),
+        sweep=False,
+    )
     spikes: bool = param(
-        True, "let the automatic rule mask the spikes that set R_t of a map read from a file, "
+        True,
+        "let the automatic rule mask the spikes that set R_t of a map read from a file, "
         "and report the spikes where the rule does not run; false: the heights as given",
-        kind="bool", sweep=False,
-    )  # fmt: skip
+        kind="bool",
+        sweep=False,
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)

@@ -233,8 +233,9 @@ def extremes_pass(bands: WMBands, progress: bool) -> tuple[float, float, float, 
     # the scaled extremes by the same kernel as the heights (the affine map is monotone, so
     # they are the scaled map's min and max bit for bit)
     ext = wp.array(np.array([[lo, hi]], dtype=np.float32), device=bands.device)
-    wp.launch(_kwm.affine_kernel, dim=ext.shape, inputs=[ext, bands.c0, float(scale)],
-              device=bands.device)  # fmt: skip
+    wp.launch(
+        _kwm.affine_kernel, dim=ext.shape, inputs=[ext, bands.c0, float(scale)], device=bands.device
+    )
     zlo, zhi = (float(v) for v in ext.numpy()[0])  # sync point
     return lo, hi, float(scale), zlo, zhi
 
@@ -338,8 +339,7 @@ def banded_truncation(
         # integer counts do not depend on the order)
         for i, (r0, r1) in enumerate(reversed(bands.bands)):
             z = bands.buffer[: r1 - r0] if i == 0 else bands.raw(r0, r1)[0]
-            wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale],
-                      device=device)  # fmt: skip
+            wp.launch(_kwm.affine_kernel, dim=z.shape, inputs=[z, bands.c0, scale], device=device)
             hist += histogram_bands(z, t, zhi, inv_step, device, deep=deep)
             bar.update()
     counts = np.cumsum(hist).astype(np.int64)
@@ -358,9 +358,15 @@ def banded_truncation(
     )
     params = surface_params(spec, scale)
     meta = {
-        "nx": spec.nx, "ny": spec.ny, "dx_m": spec.dx, "dy_m": spec.dy, "lx_m": lx, "ly_m": ly,
-        "Rt_m": Rt, **{k: jsonable(v, nonfinite="text") for k, v in params.items()},
-    }  # fmt: skip
+        "nx": spec.nx,
+        "ny": spec.ny,
+        "dx_m": spec.dx,
+        "dy_m": spec.dy,
+        "lx_m": lx,
+        "ly_m": ly,
+        "Rt_m": Rt,
+        **{k: jsonable(v, nonfinite="text") for k, v in params.items()},
+    }
     return StreamedTruncation(curve, meta, bands.rows, len(bands.bands))
 
 

@@ -100,21 +100,32 @@ class BCCGSolves:
         """Scale q and u (= K·q) to the ``load`` (N) from their ``total`` (N); without any force,
         spread the load evenly (u is then stale). Returns whether u is still K·q."""
         if total > 0.0:
-            wp.launch(_kb.scale_state_kernel, dim=self.shape, inputs=[wp.float64(load / total)],
-                      outputs=[self.q, self.u], device=self.device)  # fmt: skip
+            wp.launch(
+                _kb.scale_state_kernel,
+                dim=self.shape,
+                inputs=[wp.float64(load / total)],
+                outputs=[self.q, self.u],
+                device=self.device,
+            )
             return True
         self.mask.fill_(1)
         n_map = self.shape[0] * self.shape[1]
-        wp.launch(_k.fill_map_kernel, dim=self.shape, inputs=[self.mask, wp.float64(load / n_map)],
-                  outputs=[self.q], device=self.device)  # fmt: skip
+        wp.launch(
+            _k.fill_map_kernel,
+            dim=self.shape,
+            inputs=[self.mask, wp.float64(load / n_map)],
+            outputs=[self.q],
+            device=self.device,
+        )
         return False
 
     def _exact_u(self) -> float:
         """u ← K·q by a transform afresh (one convolution); returns the largest change of u (m;
         a synchronisation point)."""
         kq = self.hs.apply(self.q_buf)
-        self.hs.reduction.launch(_kb.bccg_exact_kernel, self.shape[0] * self.shape[1], [kq],
-                                 [self.u])  # fmt: skip
+        self.hs.reduction.launch(
+            _kb.bccg_exact_kernel, self.shape[0] * self.shape[1], [kq], [self.u]
+        )
         del kq
         return float(self.hs.reduction.read((True,))[0])
 
@@ -134,8 +145,13 @@ class BCCGSolves:
         pc_above = self._precondition_above()
         periodic = int(self.substrate == "periodic")
         self._warm_start(offset)  # then projected onto the box
-        wp.launch(_kb.clamp_force_kernel, dim=self.shape, inputs=[wp.float64(hf)],
-                  outputs=[self.q], device=dev)  # fmt: skip
+        wp.launch(
+            _kb.clamp_force_kernel,
+            dim=self.shape,
+            inputs=[wp.float64(hf)],
+            outputs=[self.q],
+            device=dev,
+        )
         total = float(self._sums(offset)[3])  # Σ q (N)
         if load_control:
             self._scale_to_load(load, total)
@@ -153,21 +169,36 @@ class BCCGSolves:
         for it in range(1, self.maxiter + 1):
             set_offset = offset
             if load_control:
-                red.launch(_kb.bccg_sums_kernel, n_map,
-                           [self.q, self.u, self.h, wp.float64(offset), wp.float64(hf)], [])  # fmt: skip
+                red.launch(
+                    _kb.bccg_sums_kernel,
+                    n_map,
+                    [self.q, self.u, self.h, wp.float64(offset), wp.float64(hf)],
+                    [],
+                )
                 n_f, s_g = red.read((False, False))  # sync point
                 if n_f > 0:
                     offset = offset + s_g / n_f
-            red.launch(_kb.bccg_residual_kernel, n_map,
-                       [self.q, self.u, self.h, wp.float64(set_offset), wp.float64(offset),
-                        wp.float64(hf)], [r_buf, self.mask])  # fmt: skip
+            red.launch(
+                _kb.bccg_residual_kernel,
+                n_map,
+                [
+                    self.q,
+                    self.u,
+                    self.h,
+                    wp.float64(set_offset),
+                    wp.float64(offset),
+                    wp.float64(hf),
+                ],
+                [r_buf, self.mask],
+            )
             (n_f, s_r, n_cg, s_gg, g_max, pen, open_cap, n_c, s_gap) = red.read(
                 (False, False, False, False, True, True, True, False, False)
             )  # sync point
             # convergence of the state reached by the last step (module docstring)
             sums = (n_f, s_r, n_cg, s_gg, g_max, pen, open_cap, n_c, s_gap)
-            info, stop = self._bccg_stop(sums, offset, total, load, du, viol, it, n_transforms,
-                                         last)  # fmt: skip
+            info, stop = self._bccg_stop(
+                sums, offset, total, load, du, viol, it, n_transforms, last
+            )
             if stop:
                 break
             # preconditioned residual z = c·K⁻¹·r (on a large free set; else z = r)
@@ -188,20 +219,31 @@ class BCCGSolves:
             if rz_old is not None and rz_old > 0.0:
                 beta = max(0.0, (rz - rzo) / rz_old)
             rz_old = rz
-            red.launch(_kb.bccg_direction_kernel, n_map,
-                       [z, wp.float64(mean), wp.float64(beta), self.mask, r_buf],
-                       [self.t, z_old])  # fmt: skip
+            red.launch(
+                _kb.bccg_direction_kernel,
+                n_map,
+                [z, wp.float64(mean), wp.float64(beta), self.mask, r_buf],
+                [self.t, z_old],
+            )
             del z
             spec = hs.work
             hs.forward(self.t_buf, spec)
             hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
-            wp.launch(_k.step_length_kernel, dim=1,
-                      inputs=[red.fold((False, False)), wp.float64(n_f), wp.float64(inv_n)],
-                      outputs=[self.tau], device=dev)  # fmt: skip
+            wp.launch(
+                _k.step_length_kernel,
+                dim=1,
+                inputs=[red.fold((False, False)), wp.float64(n_f), wp.float64(inv_n)],
+                outputs=[self.tau],
+                device=dev,
+            )
             kt = hs.inverse(spec)
             n_transforms += 2
-            red.launch(_kb.bccg_update_kernel, n_map, [kt, self.tau, wp.float64(hf), self.t],
-                       [self.q, self.u, r_buf, self.mask, self.lane_count])  # fmt: skip
+            red.launch(
+                _kb.bccg_update_kernel,
+                n_map,
+                [kt, self.tau, wp.float64(hf), self.t],
+                [self.q, self.u, r_buf, self.mask, self.lane_count],
+            )
             del kt
             n_proj, viol, total, du = red.read((False, True, False, True))  # sync point
             n_proj = int(n_proj)
@@ -210,9 +252,12 @@ class BCCGSolves:
                 # the projection's few corrections by direct summation (r is free until the
                 # next residual: it holds the projected pixels' forces before the projection)
                 self._compact_changes(r_buf, 1.0)
-                red.launch(_kb.bccg_correct_kernel, n_map,
-                           [hs.table, periodic, self.change_index, self.change_value, n_proj],
-                           [self.u])  # fmt: skip
+                red.launch(
+                    _kb.bccg_correct_kernel,
+                    n_map,
+                    [hs.table, periodic, self.change_index, self.change_value, n_proj],
+                    [self.u],
+                )
                 du += float(red.read((True,))[0])  # sync point
             if load_control:
                 if not self._scale_to_load(load, total):
@@ -224,8 +269,7 @@ class BCCGSolves:
         self.offset = offset
         return info
 
-    def _punch_pcg(self, x: Any, res: Any, n_set: float,
-                   rtol: float) -> tuple[float, int, bool]:  # fmt: skip
+    def _punch_pcg(self, x: Any, res: Any, n_set: float, rtol: float) -> tuple[float, int, bool]:
         """Barber's punch (K·x = 1 m on the contact set, ``mask``) by CG preconditioned with
         c·K⁻¹·c, from x = 0 and res = 1 m on the set; k = Σx (N/m). Returns (k, iterations,
         converged)."""
@@ -238,8 +282,12 @@ class BCCGSolves:
         z = hs.apply(res, inverse=True)
         red.launch(_kb.bccg_dot_kernel, n_map, [z, res, d, self.mask], [])
         rz = float(red.read((False, False))[1])  # sync point
-        red.launch(_kb.bccg_direction_kernel, n_map,
-                   [z, wp.float64(0.0), wp.float64(0.0), self.mask, res], [d, scratch])  # fmt: skip
+        red.launch(
+            _kb.bccg_direction_kernel,
+            n_map,
+            [z, wp.float64(0.0), wp.float64(0.0), self.mask, res],
+            [d, scratch],
+        )
         del z
         k, it, ok = 0.0, 0, False
         for it in range(1, self.maxiter + 1):  # noqa: B007
@@ -248,8 +296,7 @@ class BCCGSolves:
             if not d_k_d > 0.0:
                 break
             alpha = rz / d_k_d
-            red.launch(_k.punch_step_kernel, n_map, [kd, d, self.mask, wp.float64(alpha)],
-                       [x, res])  # fmt: skip
+            red.launch(_k.punch_step_kernel, n_map, [kd, d, self.mask, wp.float64(alpha)], [x, res])
             del kd
             rr_new, k = red.read((False, False))  # sync point
             if math.sqrt(rr_new / n_set) < rtol:
@@ -258,9 +305,12 @@ class BCCGSolves:
             z = hs.apply(res, inverse=True)
             red.launch(_kb.bccg_dot_kernel, n_map, [z, res, d, self.mask], [])
             rz_new = float(red.read((False, False))[1])  # sync point
-            red.launch(_kb.bccg_direction_kernel, n_map,
-                       [z, wp.float64(0.0), wp.float64(rz_new / rz), self.mask, res],
-                       [d, scratch])  # fmt: skip
+            red.launch(
+                _kb.bccg_direction_kernel,
+                n_map,
+                [z, wp.float64(0.0), wp.float64(rz_new / rz), self.mask, res],
+                [d, scratch],
+            )
             del z
             rz = rz_new
         return float(k), it, ok

@@ -63,19 +63,39 @@ class DeviceLoopSolves:
         free gap, then the residual and its sums into the scalar array."""
         red, n_map = self.hs.reduction, self.shape[0] * self.shape[1]
         if load_control:
-            red.launch(_kl.sums_loop_kernel, n_map, [self.q, self.u, self.h, s, wp.float64(hf)],
-                       [])  # fmt: skip
-            wp.launch(_kl.loop_offset_kernel, dim=1, inputs=[red.fold((False, False))],
-                      outputs=[s], device=self.device)  # fmt: skip
+            red.launch(_kl.sums_loop_kernel, n_map, [self.q, self.u, self.h, s, wp.float64(hf)], [])
+            wp.launch(
+                _kl.loop_offset_kernel,
+                dim=1,
+                inputs=[red.fold((False, False))],
+                outputs=[s],
+                device=self.device,
+            )
         r_buf, _ = self._bccg_maps()
-        red.launch(_kl.residual_loop_kernel, n_map, [self.q, self.u, self.h, s, wp.float64(hf)],
-                   [r_buf, self.mask])  # fmt: skip
+        red.launch(
+            _kl.residual_loop_kernel,
+            n_map,
+            [self.q, self.u, self.h, s, wp.float64(hf)],
+            [r_buf, self.mask],
+        )
         flags = (False, False, False, False, True, True, True, False, False)
-        wp.launch(_kl.loop_residual_kernel, dim=1, inputs=[red.fold(flags)], outputs=[s],
-                  device=self.device)  # fmt: skip
+        wp.launch(
+            _kl.loop_residual_kernel,
+            dim=1,
+            inputs=[red.fold(flags)],
+            outputs=[s],
+            device=self.device,
+        )
 
-    def _loop_step(self, s: wp.array, hf: float, load_control: bool, use_pc: bool,
-                   restart: bool, refresh_now: bool) -> None:  # fmt: skip
+    def _loop_step(
+        self,
+        s: wp.array,
+        hf: float,
+        load_control: bool,
+        use_pc: bool,
+        restart: bool,
+        refresh_now: bool,
+    ) -> None:
         """The rest of an iteration (launches only): the (preconditioned) direction, the step
         and its projection, the direct correction of a few projected forces, the scale to the
         load, and u afresh when ``refresh_now``."""
@@ -85,48 +105,96 @@ class DeviceLoopSolves:
         lc = int(load_control)
         z = hs.apply(r_buf, inverse=True) if use_pc else r_buf
         red.launch(_kb.bccg_dot_kernel, n_map, [z, r_buf, z_old, self.mask], [])
-        wp.launch(_kl.loop_dot_kernel, dim=1,
-                  inputs=[red.fold((False, False, False)), lc, int(restart)], outputs=[s],
-                  device=dev)  # fmt: skip
+        wp.launch(
+            _kl.loop_dot_kernel,
+            dim=1,
+            inputs=[red.fold((False, False, False)), lc, int(restart)],
+            outputs=[s],
+            device=dev,
+        )
         red.launch(_kl.direction_loop_kernel, n_map, [z, s, self.mask, r_buf], [self.t, z_old])
         del z
         spec = hs.work
         hs.forward(self.t_buf, spec)
         hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
-        wp.launch(_kl.step_length_loop_kernel, dim=1,
-                  inputs=[red.fold((False, False)), s, wp.float64(1.0 / hs.n_total)],
-                  outputs=[self.tau], device=dev)  # fmt: skip
+        wp.launch(
+            _kl.step_length_loop_kernel,
+            dim=1,
+            inputs=[red.fold((False, False)), s, wp.float64(1.0 / hs.n_total)],
+            outputs=[self.tau],
+            device=dev,
+        )
         kt = hs.inverse(spec)
-        red.launch(_kb.bccg_update_kernel, n_map, [kt, self.tau, wp.float64(hf), self.t],
-                   [self.q, self.u, r_buf, self.mask, self.lane_count])  # fmt: skip
+        red.launch(
+            _kb.bccg_update_kernel,
+            n_map,
+            [kt, self.tau, wp.float64(hf), self.t],
+            [self.q, self.u, r_buf, self.mask, self.lane_count],
+        )
         del kt
-        wp.launch(_kl.loop_update_kernel, dim=1,
-                  inputs=[red.fold((False, True, False, True)), lc], outputs=[s],
-                  device=dev)  # fmt: skip
+        wp.launch(
+            _kl.loop_update_kernel,
+            dim=1,
+            inputs=[red.fold((False, True, False, True)), lc],
+            outputs=[s],
+            device=dev,
+        )
         if not refresh_now:
             # the projection's few corrections by direct summation, on the device's count
             cap_list = int(self.direct_max)
             wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
-            wp.launch(_kl.compact_gated_kernel, dim=red.lanes,
-                      inputs=[self.q, r_buf, self.mask, self.lane_offset, s, cap_list,
-                              *red.geometry(n_map)],
-                      outputs=[self.change_index, self.change_value], device=dev)  # fmt: skip
-            red.launch(_kl.correct_gated_kernel, n_map,
-                       [hs.table, int(self.substrate == "periodic"), self.change_index,
-                        self.change_value, s, cap_list], [self.u])  # fmt: skip
-            wp.launch(_kl.loop_correct_kernel, dim=1, inputs=[red.fold((True,)), cap_list],
-                      outputs=[s], device=dev)  # fmt: skip
+            wp.launch(
+                _kl.compact_gated_kernel,
+                dim=red.lanes,
+                inputs=[
+                    self.q,
+                    r_buf,
+                    self.mask,
+                    self.lane_offset,
+                    s,
+                    cap_list,
+                    *red.geometry(n_map),
+                ],
+                outputs=[self.change_index, self.change_value],
+                device=dev,
+            )
+            red.launch(
+                _kl.correct_gated_kernel,
+                n_map,
+                [
+                    hs.table,
+                    int(self.substrate == "periodic"),
+                    self.change_index,
+                    self.change_value,
+                    s,
+                    cap_list,
+                ],
+                [self.u],
+            )
+            wp.launch(
+                _kl.loop_correct_kernel,
+                dim=1,
+                inputs=[red.fold((True,)), cap_list],
+                outputs=[s],
+                device=dev,
+            )
         if load_control:
-            wp.launch(_kl.scale_gated_kernel, dim=self.shape, inputs=[s],
-                      outputs=[self.q, self.u], device=dev)  # fmt: skip
+            wp.launch(
+                _kl.scale_gated_kernel,
+                dim=self.shape,
+                inputs=[s],
+                outputs=[self.q, self.u],
+                device=dev,
+            )
         if refresh_now:
             # u afresh on schedule (the flag of a load left without force is handled at the
             # next read, which transforms afresh once more)
             kq = hs.apply(self.q_buf)
             red.launch(_kb.bccg_exact_kernel, n_map, [kq], [self.u])
             del kq
-            wp.launch(_kl.loop_exact_kernel, dim=1, inputs=[red.fold((True,))], outputs=[s],
-                      device=dev)  # fmt: skip
+            wp.launch(
+                _kl.loop_exact_kernel, dim=1, inputs=[red.fold((True,))], outputs=[s], device=dev
+            )
 
     def _loop_iteration(self, key: tuple, launch) -> None:
         """Run ``launch`` (the launches of one iteration's step and the next top): replayed
@@ -146,9 +214,12 @@ class DeviceLoopSolves:
             except Exception as exc:
                 # the iteration ran uncaptured above; what the capture recorded never ran
                 self._graph_error = f"{type(exc).__name__}: {exc}"
-                warnings.warn(f"contact solver: CUDA graph capture failed ({self._graph_error}); "
-                              "the iterations are launched instead", RuntimeWarning,
-                              stacklevel=2)  # fmt: skip
+                warnings.warn(
+                    f"contact solver: CUDA graph capture failed ({self._graph_error}); "
+                    "the iterations are launched instead",
+                    RuntimeWarning,
+                    stacklevel=2,
+                )
                 return
             graphs[key] = cap.graph
             return  # the captured launches have not run: the uncaptured ones did
@@ -172,8 +243,9 @@ class DeviceLoopSolves:
             host[int(k)] = v
         s.assign(host)
 
-    def _solve_bccg_device(self, offset: float, load: float | None,
-                           cap: float | None) -> dict[str, Any]:  # fmt: skip
+    def _solve_bccg_device(
+        self, offset: float, load: float | None, cap: float | None
+    ) -> dict[str, Any]:
         """:meth:`~warptrunc.contact.iteration.bccg.BCCGSolves._solve_bccg` with one read-back per
         iteration (module docstring); same arguments and info dict."""
         dev = self.device
@@ -184,16 +256,28 @@ class DeviceLoopSolves:
         pc_above = self._precondition_above()
         s = self._loop_scalars()
         self._warm_start(offset)  # then projected onto the box
-        wp.launch(_kb.clamp_force_kernel, dim=self.shape, inputs=[wp.float64(hf)],
-                  outputs=[self.q], device=dev)  # fmt: skip
+        wp.launch(
+            _kb.clamp_force_kernel,
+            dim=self.shape,
+            inputs=[wp.float64(hf)],
+            outputs=[self.q],
+            device=dev,
+        )
         total = float(self._sums(offset)[3])  # Σ q (N)
         if load_control:
             self._scale_to_load(load, total)
             total = float(load)
         self._exact_u()
         s.zero_()
-        self._set_scalars(s, {_kl.S_OFF: offset, _kl.S_SETOFF: offset, _kl.S_TOTAL: total,
-                              _kl.S_LOAD: 0.0 if load is None else float(load)})  # fmt: skip
+        self._set_scalars(
+            s,
+            {
+                _kl.S_OFF: offset,
+                _kl.S_SETOFF: offset,
+                _kl.S_TOTAL: total,
+                _kl.S_LOAD: 0.0 if load is None else float(load),
+            },
+        )
         n_transforms = 4
         self.t.zero_()
         z_old.zero_()
@@ -216,8 +300,15 @@ class DeviceLoopSolves:
                     self._scale_to_load(load, 0.0)
                 du = max(du, self._exact_u())
                 n_transforms += 2
-                self._set_scalars(s, {_kl.S_OFF: top_offset, _kl.S_SETOFF: top_offset,
-                                      _kl.S_FLAG: 0.0, _kl.S_DU: du})  # fmt: skip
+                self._set_scalars(
+                    s,
+                    {
+                        _kl.S_OFF: top_offset,
+                        _kl.S_SETOFF: top_offset,
+                        _kl.S_FLAG: 0.0,
+                        _kl.S_DU: du,
+                    },
+                )
                 self._loop_top(s, hf, load_control)
                 v = s.numpy()  # sync point
             offset = float(v[_kl.S_OFF])
@@ -226,8 +317,9 @@ class DeviceLoopSolves:
                 viol = float(v[_kl.S_VIOL])
                 total = float(v[_kl.S_TOTAL])
             n_f = float(v[_RES])
-            info, stop = self._bccg_stop(v[_RES:_RES + 9], offset, total, load, du, viol, it,
-                                         n_transforms, last)  # fmt: skip
+            info, stop = self._bccg_stop(
+                v[_RES : _RES + 9], offset, total, load, du, viol, it, n_transforms, last
+            )
             if stop:
                 break
             use_pc = n_f > pc_above * n_map

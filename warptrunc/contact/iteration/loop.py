@@ -49,8 +49,12 @@ class SolveLoop:
 
     def _sums(self, offset: float) -> np.ndarray:
         red = self.hs.reduction
-        red.launch(_kr.contact_sums_kernel, self.shape[0] * self.shape[1],
-                   [self.q, self.u, self.h, wp.float64(offset)], [])  # fmt: skip
+        red.launch(
+            _kr.contact_sums_kernel,
+            self.shape[0] * self.shape[1],
+            [self.q, self.u, self.h, wp.float64(offset)],
+            [],
+        )
         return red.read((False, False, False, False))
 
     @staticmethod
@@ -68,13 +72,20 @@ class SolveLoop:
         dx, dy = self.pixel_size
         n_c, n_p = (info["n_contact"], 0) if flow is None else flow
         return ContactState(
-            depth=float(info["depth"]), load=float(info["load"]), n_contact=int(n_c),
-            contact_area=n_c * dx * dy, n_plastic=int(n_p), plastic_area=n_p * dx * dy,
-            plastic_volume=self.plastic_volume, mean_gap=float(info["mean_gap"]),
-            n_iterations=int(info["n_iterations"]), n_convolutions=float(info["n_convolutions"]),
-            residual=float(info["residual"]), max_tensile_force=float(info["max_tensile_force"]),
+            depth=float(info["depth"]),
+            load=float(info["load"]),
+            n_contact=int(n_c),
+            contact_area=n_c * dx * dy,
+            n_plastic=int(n_p),
+            plastic_area=n_p * dx * dy,
+            plastic_volume=self.plastic_volume,
+            mean_gap=float(info["mean_gap"]),
+            n_iterations=int(info["n_iterations"]),
+            n_convolutions=float(info["n_convolutions"]),
+            residual=float(info["residual"]),
+            max_tensile_force=float(info["max_tensile_force"]),
             converged=bool(info["converged"]),
-        )  # fmt: skip
+        )
 
     def _pentol_now(self, s_gap: float, n_contact: float, n_map: int) -> float:
         """The penetration tolerance (m) of the state whose gaps sum to ``s_gap`` (m) with
@@ -89,9 +100,18 @@ class SolveLoop:
         adapted = OPEN_GAP_FRACTION * s_gap / n_open
         return min(self.pentol, max(adapted, PENTOL_FLOOR * eps * rms))
 
-    def _bccg_stop(self, sums: Any, offset: float, total: float, load: float | None,
-                   du: float | None, viol: float, it: int, n_transforms: int,
-                   last: dict[str, float]) -> tuple[dict[str, Any], bool]:  # fmt: skip
+    def _bccg_stop(
+        self,
+        sums: Any,
+        offset: float,
+        total: float,
+        load: float | None,
+        du: float | None,
+        viol: float,
+        it: int,
+        n_transforms: int,
+        last: dict[str, float],
+    ) -> tuple[dict[str, Any], bool]:
         """The BCCG loops' test of the state reached by the last step (host, device and
         sharded loops alike).
 
@@ -117,8 +137,9 @@ class SolveLoop:
         else:
             ok = ok and self._steady(total, last.get("total"))
         last["total"] = total
-        info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res, viol,
-                                    ok, n_contact=n_c)  # fmt: skip
+        info = self._iteration_info(
+            offset, total, s_gap / n_map, it, n_transforms, res, viol, ok, n_contact=n_c
+        )
         if ok:
             return info, True
         if n_f == 0:
@@ -133,9 +154,18 @@ class SolveLoop:
             return False
         return new == old or (new != 0 and abs((new - old) / new) < self.thermotol)
 
-    def _iteration_info(self, offset: float, load: float, mean_gap: float, it: int,
-                        n_transforms: int, res: float, max_tensile: float, ok: bool,
-                        n_contact: int | None = None) -> dict[str, Any]:  # fmt: skip
+    def _iteration_info(
+        self,
+        offset: float,
+        load: float,
+        mean_gap: float,
+        it: int,
+        n_transforms: int,
+        res: float,
+        max_tensile: float,
+        ok: bool,
+        n_contact: int | None = None,
+    ) -> dict[str, Any]:
         """The info dict of one iteration of a solve loop (PK, BCCG, capped): approach (m), load
         (N), mean gap (m), iterations, convolutions (two transforms each), residual (m), largest
         tensile force (N), converged, and the contact pixels when counted; a non-finite residual
@@ -145,10 +175,15 @@ class SolveLoop:
                 f"the contact solve diverged at iteration {it} (residual {res})"
             )
         info = {
-            "depth": offset + self.h_max, "load": float(load), "mean_gap": mean_gap,
-            "n_iterations": it, "n_convolutions": n_transforms / 2, "residual": float(res),
-            "max_tensile_force": float(max_tensile), "converged": ok,
-        }  # fmt: skip
+            "depth": offset + self.h_max,
+            "load": float(load),
+            "mean_gap": mean_gap,
+            "n_iterations": it,
+            "n_convolutions": n_transforms / 2,
+            "residual": float(res),
+            "max_tensile_force": float(max_tensile),
+            "converged": ok,
+        }
         if n_contact is not None:
             info["n_contact"] = int(n_contact)
         return info
@@ -156,12 +191,17 @@ class SolveLoop:
     def _warm_start(self, offset: float) -> None:
         """Warm start of a solve at ``offset`` (m): raise u where the map would penetrate and
         add K⁻¹·(that increase) to q (two transforms; q may leave its bounds)."""
-        wp.launch(_k.clamp_displacement_kernel, dim=self.shape,
-                  inputs=[self.h, wp.float64(offset)], outputs=[self.u, self.t],
-                  device=self.device)  # fmt: skip
+        wp.launch(
+            _k.clamp_displacement_kernel,
+            dim=self.shape,
+            inputs=[self.h, wp.float64(offset)],
+            outputs=[self.u, self.t],
+            device=self.device,
+        )
         dq = self.hs.apply(self.t_buf, inverse=True)
-        wp.launch(_k.add_map_kernel, dim=self.shape, inputs=[dq], outputs=[self.q],
-                  device=self.device)  # fmt: skip
+        wp.launch(
+            _k.add_map_kernel, dim=self.shape, inputs=[dq], outputs=[self.q], device=self.device
+        )
 
     def _solve_elastic(self, depth: float | None, load: float | None) -> dict[str, Any]:
         """The elastic solve on the current heights (the path of H = inf), by the settings'

@@ -29,10 +29,20 @@ class PKSolves:
         times ``scale``. Used by the PK, capped and BCCG loops."""
         red = self.hs.reduction
         wp.utils.array_scan(self.lane_count, self.lane_offset, inclusive=False)
-        wp.launch(_k.compact_changes_kernel, dim=red.lanes,
-                  inputs=[self.q, before, self.mask, wp.float64(scale), self.lane_offset,
-                          *red.geometry(self.shape[0] * self.shape[1])],
-                  outputs=[self.change_index, self.change_value], device=self.device)  # fmt: skip
+        wp.launch(
+            _k.compact_changes_kernel,
+            dim=red.lanes,
+            inputs=[
+                self.q,
+                before,
+                self.mask,
+                wp.float64(scale),
+                self.lane_offset,
+                *red.geometry(self.shape[0] * self.shape[1]),
+            ],
+            outputs=[self.change_index, self.change_value],
+            device=self.device,
+        )
 
     def _exact_or_listed(self, spec: Any, exact: bool, n_changed: int, scale: float) -> int:
         """After a step of the PK or capped loop: ``exact`` puts W·Q̂/N of the forces afresh
@@ -74,20 +84,30 @@ class PKSolves:
                 s_gg, s_g, offset = s_gg + 2 * d * s_g + d * d * n_c, s_g + d * n_c, new
             g, a_cg = s_gg, n_c
             beta = g / g_old if (cg and g_old > 0) else 0.0
-            red.launch(_k.cg_direction_kernel, n_map,
-                       [self.q, self.u, self.h, wp.float64(offset), wp.float64(beta)],
-                       [self.t, self.mask])  # fmt: skip
+            red.launch(
+                _k.cg_direction_kernel,
+                n_map,
+                [self.q, self.u, self.h, wp.float64(offset), wp.float64(beta)],
+                [self.t, self.mask],
+            )
             spec = hs.work
             hs.forward(self.t_buf, spec)  # T̂
             # N·t·K·t by Parseval, and T̂ ← W·T̂/N in the same pass (not yet known whether K·t
             # is needed: a transform of q afresh overwrites it)
             hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
-            wp.launch(_k.step_length_kernel, dim=1,
-                      inputs=[red.fold((False, False)), wp.float64(n_c), wp.float64(inv_n)],
-                      outputs=[self.tau], device=dev)  # fmt: skip
-            red.launch(_k.update_force_kernel, n_map,
-                       [self.t, self.u, self.h, wp.float64(offset), self.tau, int(load_control)],
-                       [self.q, self.mask, self.lin, self.lane_count])  # fmt: skip
+            wp.launch(
+                _k.step_length_kernel,
+                dim=1,
+                inputs=[red.fold((False, False)), wp.float64(n_c), wp.float64(inv_n)],
+                outputs=[self.tau],
+                device=dev,
+            )
+            red.launch(
+                _k.update_force_kernel,
+                n_map,
+                [self.t, self.u, self.h, wp.float64(offset), self.tau, int(load_control)],
+                [self.q, self.mask, self.lin, self.lane_count],
+            )
             _, t_k_t, n_nc, n_zero, max_tens, total, tau, n_changed = red.read(
                 update_cols
             )  # sync point
@@ -100,28 +120,61 @@ class PKSolves:
             if load_control:
                 if total != 0.0:
                     scale = load / total
-                    wp.launch(_k.rescale_force_kernel, dim=self.shape,
-                              inputs=[self.u, self.h, wp.float64(offset), wp.float64(tau),
-                                      wp.float64(scale), self.mask], outputs=[self.q], device=dev)  # fmt: skip
+                    wp.launch(
+                        _k.rescale_force_kernel,
+                        dim=self.shape,
+                        inputs=[
+                            self.u,
+                            self.h,
+                            wp.float64(offset),
+                            wp.float64(tau),
+                            wp.float64(scale),
+                            self.mask,
+                        ],
+                        outputs=[self.q],
+                        device=dev,
+                    )
                 else:
                     self.mask.fill_(1)
-                    wp.launch(_k.fill_map_kernel, dim=self.shape,
-                              inputs=[self.mask, wp.float64(load / n_map)], outputs=[self.q], device=dev)  # fmt: skip
+                    wp.launch(
+                        _k.fill_map_kernel,
+                        dim=self.shape,
+                        inputs=[self.mask, wp.float64(load / n_map)],
+                        outputs=[self.q],
+                        device=dev,
+                    )
                     exact = True
             # u = K·q afresh, or the projection's few corrections listed in a fixed order
             n_transforms += self._exact_or_listed(spec, exact, n_changed, scale)
             r = hs.inverse(spec)  # K·q (exact) or K·t (linear)
             n_transforms += 1
-            red.launch(_k.advance_kernel, n_map,
-                       [r, int(not exact), wp.float64(tau), wp.float64(scale), hs.table, periodic,
-                        self.change_index, self.change_value, 0 if exact else n_changed, self.q,
-                        self.h, wp.float64(offset), self.mask],
-                       [self.u])  # fmt: skip
+            red.launch(
+                _k.advance_kernel,
+                n_map,
+                [
+                    r,
+                    int(not exact),
+                    wp.float64(tau),
+                    wp.float64(scale),
+                    hs.table,
+                    periodic,
+                    self.change_index,
+                    self.change_value,
+                    0 if exact else n_changed,
+                    self.q,
+                    self.h,
+                    wp.float64(offset),
+                    self.mask,
+                ],
+                [self.u],
+            )
             du, n_c, s_g, s_gg, pen, s_gap, total = red.read(advance_cols)  # sync point
             del r
             g_old = g
             cg = n_nc == 0 and n_zero == 0
-            rms_pen = math.sqrt(max(g, 0.0) / a_cg if a_cg > 0 else max(g, 0.0))  # g ≥ 0 up to round-off
+            rms_pen = math.sqrt(
+                max(g, 0.0) / a_cg if a_cg > 0 else max(g, 0.0)
+            )  # g ≥ 0 up to round-off
             ok = True
             if load_control:
                 ok = total != 0 and abs((total - load) / total) < self.thermotol
@@ -135,8 +188,9 @@ class PKSolves:
             res = max(rms_pen, pen, du)
             ok = ok and rms_pen < self.pentol and pen < self.pentol and du < self.pentol
             ok = ok and max_tens < self.forcetol
-            info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res,
-                                        max_tens, ok, n_contact=n_c)  # fmt: skip
+            info = self._iteration_info(
+                offset, total, s_gap / n_map, it, n_transforms, res, max_tens, ok, n_contact=n_c
+            )
             if ok:
                 break
         self.offset = offset

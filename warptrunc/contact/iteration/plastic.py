@@ -86,8 +86,9 @@ class CappedSolves:
         fallback = wp.float64(1.0 / self._self_influence())
         self._warm_start(offset)
         n_transforms = 2
-        red.launch(_kp.capped_sums_kernel, n_map, [self.q, self.u, self.h, wp.float64(offset), hf],
-                   [])  # fmt: skip
+        red.launch(
+            _kp.capped_sums_kernel, n_map, [self.q, self.u, self.h, wp.float64(offset), hf], []
+        )
         n_c, _, s_gg, _ = red.read((False, False, False, False))
         self.t.zero_()
         g_old, cg = 1.0, False
@@ -99,18 +100,28 @@ class CappedSolves:
         for it in range(1, self.maxiter + 1):
             g, a_cg = s_gg, n_c
             beta = g / g_old if (cg and g_old > 0) else 0.0
-            red.launch(_kp.capped_direction_kernel, n_map,
-                       [self.q, self.u, self.h, wp.float64(offset), wp.float64(beta), hf],
-                       [self.t, self.mask])  # fmt: skip
+            red.launch(
+                _kp.capped_direction_kernel,
+                n_map,
+                [self.q, self.u, self.h, wp.float64(offset), wp.float64(beta), hf],
+                [self.t, self.mask],
+            )
             spec = hs.work
             hs.forward(self.t_buf, spec)
             hs.spectral(_kr.SPECTRUM_APPLY, spec, col=1)
-            wp.launch(_kp.capped_step_kernel, dim=1,
-                      inputs=[red.fold((False, False)), wp.float64(n_c), wp.float64(inv_n),
-                              fallback], outputs=[self.tau], device=dev)  # fmt: skip
-            red.launch(_kp.capped_update_kernel, n_map,
-                       [self.t, self.u, self.h, wp.float64(offset), self.tau, hf],
-                       [self.q, self.mask, self.lin, self.lane_count])  # fmt: skip
+            wp.launch(
+                _kp.capped_step_kernel,
+                dim=1,
+                inputs=[red.fold((False, False)), wp.float64(n_c), wp.float64(inv_n), fallback],
+                outputs=[self.tau],
+                device=dev,
+            )
+            red.launch(
+                _kp.capped_update_kernel,
+                n_map,
+                [self.t, self.u, self.h, wp.float64(offset), self.tau, hf],
+                [self.q, self.mask, self.lin, self.lane_count],
+            )
             _, t_k_t, n_nc, n_clamp, max_viol, total, tau, n_changed = red.read(
                 update_cols
             )  # sync point
@@ -122,11 +133,26 @@ class CappedSolves:
             n_transforms += self._exact_or_listed(spec, exact, n_changed, 1.0)
             r = hs.inverse(spec)
             n_transforms += 1
-            red.launch(_kp.capped_advance_kernel, n_map,
-                       [r, int(not exact), wp.float64(tau), hs.table, periodic, self.change_index,
-                        self.change_value, 0 if exact else n_changed, self.q, self.h,
-                        wp.float64(offset), hf, self.mask],
-                       [self.u])  # fmt: skip
+            red.launch(
+                _kp.capped_advance_kernel,
+                n_map,
+                [
+                    r,
+                    int(not exact),
+                    wp.float64(tau),
+                    hs.table,
+                    periodic,
+                    self.change_index,
+                    self.change_value,
+                    0 if exact else n_changed,
+                    self.q,
+                    self.h,
+                    wp.float64(offset),
+                    hf,
+                    self.mask,
+                ],
+                [self.u],
+            )
             du, n_c, _, s_gg, viol, s_gap, total = red.read(advance_cols)  # sync point
             del r
             g_old = g
@@ -136,8 +162,9 @@ class CappedSolves:
             last_total = total
             res = max(rms_pen, viol, du)
             ok = ok and res < self.pentol and max_viol < self.forcetol and n_nc == 0
-            info = self._iteration_info(offset, total, s_gap / n_map, it, n_transforms, res,
-                                        max_viol, ok)  # fmt: skip
+            info = self._iteration_info(
+                offset, total, s_gap / n_map, it, n_transforms, res, max_viol, ok
+            )
             if ok:
                 break
         self.offset = offset
@@ -162,12 +189,15 @@ class CappedSolves:
         # trial (the offset iteration can stall under complete contact) tells nothing
         start = float(trial["depth"]) if trial["converged"] else None
         info = self._solve_load_secant(load, capped=True, start=start)
-        info.update(n_iterations=info["n_iterations"] + trial["n_iterations"],
-                    n_convolutions=info["n_convolutions"] + trial["n_convolutions"])  # fmt: skip
+        info.update(
+            n_iterations=info["n_iterations"] + trial["n_iterations"],
+            n_convolutions=info["n_convolutions"] + trial["n_convolutions"],
+        )
         return info
 
-    def _solve_load_secant(self, load: float, *, capped: bool,
-                           start: float | None = None) -> dict[str, Any]:  # fmt: skip
+    def _solve_load_secant(
+        self, load: float, *, capped: bool, start: float | None = None
+    ) -> dict[str, Any]:
         """Load control by the approach: δ with F(δ) = load, by a safeguarded secant iteration
         on displacement-controlled solves of the current surface, capped (``capped``; the
         heights flow once, after the last) or elastic, each warm-started from the last.
@@ -235,6 +265,7 @@ class CappedSolves:
         flats: set[float] = set()  # approaches of points on a flat below the load
         history: list[tuple[float, float]] = []  # (bracket width, |F − load|) per bracketed step
         collapsed = False
+
         def solve_at(x: float) -> dict[str, Any]:
             return self._solve_capped(x - self.h_max) if capped else self._solve_elastic(x, None)
 
@@ -308,8 +339,11 @@ class CappedSolves:
                 n_conv += info["n_convolutions"]
                 conv = info["converged"]
         info = dict(info)
-        info.update(n_iterations=n_it, n_convolutions=n_conv,
-                    converged=conv and (collapsed or abs(info["load"] - load) <= tol))  # fmt: skip
+        info.update(
+            n_iterations=n_it,
+            n_convolutions=n_conv,
+            converged=conv and (collapsed or abs(info["load"] - load) <= tol),
+        )
         return info
 
     def _scale(self) -> float:
@@ -322,9 +356,12 @@ class CappedSolves:
         """Count contact and capped pixels; with ``apply``, let the capped pixels flow (the
         heights there drop to close the gap) and add the removed volume to the state."""
         red = self.hs.reduction
-        red.launch(_kp.plastic_flow_kernel, self.shape[0] * self.shape[1],
-                   [self.q, self.u, wp.float64(self.offset), wp.float64(self._cap), int(apply)],
-                   [self.h])  # fmt: skip
+        red.launch(
+            _kp.plastic_flow_kernel,
+            self.shape[0] * self.shape[1],
+            [self.q, self.u, wp.float64(self.offset), wp.float64(self._cap), int(apply)],
+            [self.h],
+        )
         n_c, n_p, s_dw = red.read((False, False, False))  # sync point
         dx, dy = self.pixel_size
         self.plastic_volume += float(s_dw) * dx * dy

@@ -59,8 +59,9 @@ class PunchStiffness:
             self._slope = float(k)  # dF/dδ of unloading from here: the next secant's first step
         return float(k), it, ok
 
-    def _punch_cg(self, x: wp.array, res: wp.array, n_set: float,
-                  rtol: float) -> tuple[float, int, bool]:  # fmt: skip
+    def _punch_cg(
+        self, x: wp.array, res: wp.array, n_set: float, rtol: float
+    ) -> tuple[float, int, bool]:
         """Barber's punch by plain CG from x = 0, res = 1 m on the set, d = res (in self.t)."""
         dev, red, hs = self.device, self.hs.reduction, self.hs
         ny, nx = self.shape
@@ -77,7 +78,12 @@ class PunchStiffness:
             if math.sqrt(rr_new / n_set) < rtol:
                 ok = True
                 break
-            wp.launch(_k.punch_direction_kernel, dim=self.shape,
-                      inputs=[res, self.mask, wp.float64(rr_new / rr)], outputs=[d], device=dev)  # fmt: skip
+            wp.launch(
+                _k.punch_direction_kernel,
+                dim=self.shape,
+                inputs=[res, self.mask, wp.float64(rr_new / rr)],
+                outputs=[d],
+                device=dev,
+            )
             rr = rr_new
         return k, it, ok

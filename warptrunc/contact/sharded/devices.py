@@ -80,6 +80,7 @@ def out_of_memory(exc: BaseException) -> MemoryError | None:
         "ContactSolver.memory_bytes(..., devices=n)"
     )
 
+
 _PLATFORMS = {"cuda": "gpu", "gpu": "gpu", "cpu": "cpu", "tpu": "tpu"}
 
 
@@ -96,16 +97,20 @@ def _jax_device(name: Any, jax: Any):
     platform, _, index = name.partition(":")
     backend = _PLATFORMS.get(platform.lower())
     if backend is None or (index and not index.isdigit()):
-        raise ValueError(f"devices: unknown device name {name!r}; allowed: 'cuda:N', 'gpu:N', "
-                         "'cpu:N' or JAX device objects")  # fmt: skip
+        raise ValueError(
+            f"devices: unknown device name {name!r}; allowed: 'cuda:N', 'gpu:N', "
+            "'cpu:N' or JAX device objects"
+        )
     try:
         found = jax.devices(backend)
     except RuntimeError as exc:
         raise ValueError(f"devices: no JAX {backend} devices for {name!r} ({exc})") from None
     i = int(index or 0)
     if i >= len(found):
-        raise ValueError(f"devices: {name!r} is out of range; JAX has {len(found)} {backend} "
-                         f"device(s), 0 … {len(found) - 1}")  # fmt: skip
+        raise ValueError(
+            f"devices: {name!r} is out of range; JAX has {len(found)} {backend} "
+            f"device(s), 0 … {len(found) - 1}"
+        )
     return found[i]
 
 
@@ -122,8 +127,9 @@ def _free_bytes(device: Any) -> int | None:
 
 
 @fill_doc(SHARDED_DOCS)
-def devices_needed(shape: tuple[int, int], substrate: str, dtype: str, free_bytes: int,
-                   limit: int = 64) -> int | None:  # fmt: skip
+def devices_needed(
+    shape: tuple[int, int], substrate: str, dtype: str, free_bytes: int, limit: int = 64
+) -> int | None:
     """The fewest devices of ``free_bytes`` each that hold a solve spread over them.
 
     Parameters
@@ -202,8 +208,9 @@ def _count_error(n: int, ny: int, avail: int) -> ValueError:
     )
 
 
-def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
-                   device: Any = None) -> list[Any] | None:
+def choose_devices(
+    devices: Any, shape: tuple[int, ...], settings: Any = None, device: Any = None
+) -> list[Any] | None:
     """The JAX devices a solve is spread over, or None for the one-device solver.
 
     Parameters
@@ -243,8 +250,9 @@ def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
         from ..memory import memory_bytes
 
         dev = resolve_device(device)
-        one = memory_bytes(tuple(shape), s.substrate, s.dtype, cuda=dev.is_cuda,
-                           algorithm=s.algorithm)
+        one = memory_bytes(
+            tuple(shape), s.substrate, s.dtype, cuda=dev.is_cuda, algorithm=s.algorithm
+        )
         if one <= free_memory_bytes(dev):
             return None
         jax = import_jax()
@@ -262,8 +270,9 @@ def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
             f"count of the {len(avail)} JAX devices that divides ny = {ny}"
         )
     if isinstance(devices, bool) or isinstance(devices, str | float):
-        raise ValueError(f"devices must be None, 'auto', a count ≥ 1 or a list of devices, got "
-                         f"{devices!r}")  # fmt: skip
+        raise ValueError(
+            f"devices must be None, 'auto', a count ≥ 1 or a list of devices, got {devices!r}"
+        )
     if isinstance(devices, int | np.integer):
         n = int(devices)
         if n < 1:
@@ -273,22 +282,27 @@ def choose_devices(devices: Any, shape: tuple[int, ...], settings: Any = None,
         group = _process_group()
         if group is not None:  # a Dask worker's own devices (warptrunc.sweep.groups)
             if len(group) != n:
-                raise ValueError(f"devices={n}, but this process's device group "
-                                 f"(WARPTRUNC_DEVICE_GROUP) names {len(group)}: {group}")  # fmt: skip
+                raise ValueError(
+                    f"devices={n}, but this process's device group "
+                    f"(WARPTRUNC_DEVICE_GROUP) names {len(group)}: {group}"
+                )
             return choose_devices(group, shape, settings, device)
         jax = import_jax()
         avail = jax.devices()
         if n > len(avail):
-            raise ValueError(f"devices must be in [1, {len(avail)}] (the JAX devices of backend "
-                             f"{jax.default_backend()!r}), got {n}")  # fmt: skip
+            raise ValueError(
+                f"devices must be in [1, {len(avail)}] (the JAX devices of backend "
+                f"{jax.default_backend()!r}), got {n}"
+            )
         if ny % n:
             raise _count_error(n, ny, len(avail))
         return list(avail[:n])
     try:
         items = list(devices)
     except TypeError:
-        raise ValueError(f"devices must be None, 'auto', a count ≥ 1 or a list of devices, got "
-                         f"{devices!r}") from None  # fmt: skip
+        raise ValueError(
+            f"devices must be None, 'auto', a count ≥ 1 or a list of devices, got {devices!r}"
+        ) from None
     if not items:
         raise ValueError("devices must name at least one device, got an empty list")
     if len(items) == 1:
@@ -351,8 +365,7 @@ def solver_class(base: type, devices: Any, args: tuple, kwargs: dict[str, Any]) 
         The class to make.
     """
     heights = args[0] if args else kwargs.get("heights")
-    found = choose_devices(devices, np.shape(heights), kwargs.get("settings"),
-                           kwargs.get("device"))
+    found = choose_devices(devices, np.shape(heights), kwargs.get("settings"), kwargs.get("device"))
     if found is None:
         return base
     from .solver import ShardedContactSolver  # imports no JAX

@@ -71,8 +71,14 @@ class SlabLayout:
         :func:`~warptrunc.contact.sharded.grid.column_blocks`).
     """
 
-    def __init__(self, shape: tuple[int, int], substrate: str, dtype: str,
-                 devices: tuple[Any, ...], blocks: int = 1) -> None:  # fmt: skip
+    def __init__(
+        self,
+        shape: tuple[int, int],
+        substrate: str,
+        dtype: str,
+        devices: tuple[Any, ...],
+        blocks: int = 1,
+    ) -> None:
         jax = import_jax()
         import jax.numpy as jnp
         from jax.sharding import Mesh, NamedSharding
@@ -135,8 +141,11 @@ class SlabLayout:
 
             def block(i, out):  # the last block overlaps the one before: same values
                 j = jnp.minimum(i * b, c - b)
-                piece = columns_piece(lax.dynamic_slice_in_dim(s, j, b, axis=1),
-                                      lax.dynamic_slice_in_dim(w_half, j, b, axis=1), inverse)  # fmt: skip
+                piece = columns_piece(
+                    lax.dynamic_slice_in_dim(s, j, b, axis=1),
+                    lax.dynamic_slice_in_dim(w_half, j, b, axis=1),
+                    inverse,
+                )
                 return lax.dynamic_update_slice_in_dim(out, piece, j, axis=1)
 
             return lax.fori_loop(0, self.blocks, block, jnp.zeros_like(s[:ny]))
@@ -173,8 +182,9 @@ class SlabLayout:
         r, c = self.row_spec, self.col_spec
         s = shard_map(rows_forward, mesh=self.mesh, in_specs=r, out_specs=r)(x)
         s = jax.lax.with_sharding_constraint(s, self.cols)  # all-to-all (XLA)
-        s = shard_map(lambda a, w: columns(a, w, inverse), mesh=self.mesh, in_specs=(c, c),
-                      out_specs=c)(s, w_half)  # fmt: skip
+        s = shard_map(
+            lambda a, w: columns(a, w, inverse), mesh=self.mesh, in_specs=(c, c), out_specs=c
+        )(s, w_half)
         s = jax.lax.with_sharding_constraint(s, self.rows)  # all-to-all (XLA)
         return shard_map(rows_inverse, mesh=self.mesh, in_specs=r, out_specs=r)(s)
 
@@ -286,8 +296,9 @@ class SlabLayout:
 
 @functools.lru_cache(maxsize=16)
 @fill_doc(GRID_DOCS)
-def slab_layout(shape: tuple[int, int], substrate: str, dtype: str,
-                devices: tuple[Any, ...], blocks: int = 1) -> SlabLayout:  # fmt: skip
+def slab_layout(
+    shape: tuple[int, int], substrate: str, dtype: str, devices: tuple[Any, ...], blocks: int = 1
+) -> SlabLayout:
     """The layout of these arguments, made once (its compiled programmes are shared).
 
     Parameters
@@ -333,9 +344,16 @@ class ShardedHalfSpace:
     ``zeros``, ...) are the half-space's too.
     """
 
-    def __init__(self, shape: tuple[int, int], pixel_size: tuple[float, float],
-                 contact_modulus: float, *, substrate: str, dtype: str,
-                 devices: list[Any]) -> None:  # fmt: skip
+    def __init__(
+        self,
+        shape: tuple[int, int],
+        pixel_size: tuple[float, float],
+        contact_modulus: float,
+        *,
+        substrate: str,
+        dtype: str,
+        devices: list[Any],
+    ) -> None:
         shape = (int(shape[0]), int(shape[1]))
         blocks = column_blocks(shape, substrate, dtype, len(devices))
         self.layout = slab_layout(shape, substrate, dtype, tuple(devices), blocks)

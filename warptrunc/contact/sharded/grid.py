@@ -79,8 +79,10 @@ def _join_processes(jax) -> None:
     try:
         n, rank = int(os.environ[PROCESS_ENV[1]]), int(os.environ[PROCESS_ENV[2]])
     except (KeyError, ValueError):
-        raise ValueError(f"{PROCESS_ENV[0]}={address!r} needs {PROCESS_ENV[1]} (a count ≥ 1) and "
-                         f"{PROCESS_ENV[2]} (0 … count − 1) set as integers") from None  # fmt: skip
+        raise ValueError(
+            f"{PROCESS_ENV[0]}={address!r} needs {PROCESS_ENV[1]} (a count ≥ 1) and "
+            f"{PROCESS_ENV[2]} (0 … count − 1) set as integers"
+        ) from None
     if os.environ.get("JAX_PLATFORMS", "").strip() == "cpu":
         jax.config.update("jax_cpu_collectives_implementation", "gloo")
     jax.distributed.initialize(address, num_processes=n, process_id=rank)
@@ -199,8 +201,9 @@ def column_blocks(shape: tuple[int, int], substrate: str, dtype: str, n_devices:
 
 
 @fill_doc(SHARDED_DOCS)
-def sharded_memory_terms(shape: tuple[int, int], substrate: str, dtype: str,
-                         n_devices: int) -> dict[str, int]:  # fmt: skip
+def sharded_memory_terms(
+    shape: tuple[int, int], substrate: str, dtype: str, n_devices: int
+) -> dict[str, int]:
     """Bytes one device holds for a solve spread over ``n_devices`` (the model; measured peaks:
     ``examples/benchmarks/benchmark_sharded.py``).
 
@@ -296,8 +299,7 @@ def build_bytes(shape: tuple[int, int], substrate: str, dtype: str, n_devices: i
 
 
 @fill_doc(SHARDED_DOCS)
-def sharded_memory_bytes(shape: tuple[int, int], substrate: str, dtype: str,
-                         n_devices: int) -> int:  # fmt: skip
+def sharded_memory_bytes(shape: tuple[int, int], substrate: str, dtype: str, n_devices: int) -> int:
     """Peak bytes one device holds for a solve spread over ``n_devices`` (the model).
 
     Parameters

@@ -87,9 +87,17 @@ class ShardedContactSolver(ContactSolver):
         When one device's share exceeds its free memory, before anything is allocated.
     """
 
-    def __init__(self, heights: Any, pixel_size: Any, contact_modulus: float, *,
-                 settings: Any = None, hardness: float = math.inf, device: Any = None,
-                 devices: Any = 2) -> None:  # fmt: skip
+    def __init__(
+        self,
+        heights: Any,
+        pixel_size: Any,
+        contact_modulus: float,
+        *,
+        settings: Any = None,
+        hardness: float = math.inf,
+        device: Any = None,
+        devices: Any = 2,
+    ) -> None:
         from .devices import choose_devices, mark_spread
 
         shape = np.shape(heights)
@@ -100,8 +108,14 @@ class ShardedContactSolver(ContactSolver):
                 "use ContactSolver for one"
             )
         mark_spread()  # an XLA runtime error ends the command at once (warptrunc.cli)
-        super().__init__(heights, pixel_size, contact_modulus, settings=settings,
-                         hardness=hardness, device=device)  # fmt: skip
+        super().__init__(
+            heights,
+            pixel_size,
+            contact_modulus,
+            settings=settings,
+            hardness=hardness,
+            device=device,
+        )
         self.direct_max = 0  # the projection's changes: transformed afresh (module docstring)
 
     # --- construction hooks of ContactSolver.__init__ -------------------------------------
@@ -124,9 +138,14 @@ class ShardedContactSolver(ContactSolver):
                 f"{self.settings.algorithm!r}"
             )
         self.fft_plan = plan
-        self.hs = ShardedHalfSpace(h.shape, self.pixel_size, self.contact_modulus,
-                                   substrate=self.substrate, dtype=self.dtype,
-                                   devices=self._jax_devices)  # fmt: skip
+        self.hs = ShardedHalfSpace(
+            h.shape,
+            self.pixel_size,
+            self.contact_modulus,
+            substrate=self.substrate,
+            dtype=self.dtype,
+            devices=self._jax_devices,
+        )
         self.jax, self.jnp = self.hs.jax, self.hs.jnp
         self.h_max = float(h.max())
         h_dev = h.astype(self.hs.np_dtype)
@@ -202,20 +221,23 @@ class ShardedContactSolver(ContactSolver):
                 n_f, s_g = self._read(self._fn("free_sums")(self.q, self.u, self.h, offset, hf))
                 if n_f > 0:
                     offset = offset + s_g / n_f
-            self.r, self.mask, sums = self._fn("residual")(self.q, self.u, self.h, set_offset,
-                                                          offset, hf)  # fmt: skip
+            self.r, self.mask, sums = self._fn("residual")(
+                self.q, self.u, self.h, set_offset, offset, hf
+            )
             sums = self._read(sums)
             n_f, s_r = float(sums[0]), float(sums[1])
-            info, stop = self._bccg_stop(sums, offset, total, load, du, viol, it, n_transforms,
-                                         last)  # fmt: skip
+            info, stop = self._bccg_stop(
+                sums, offset, total, load, du, viol, it, n_transforms, last
+            )
             if stop:
                 break
             use_pc = n_f > pc_above * n_map
             if use_pc != last_pc:
                 rz_old = None
             last_pc = use_pc
-            z, dots = self._fn("precondition" if use_pc else "dots")(self.r, self.z_old,
-                                                                     self.mask, w)  # fmt: skip
+            z, dots = self._fn("precondition" if use_pc else "dots")(
+                self.r, self.z_old, self.mask, w
+            )
             if use_pc:
                 n_transforms += 2
             s_z, rz, rzo = self._read(dots)
@@ -365,8 +387,9 @@ class ShardedContactSolver(ContactSolver):
 
     @staticmethod
     @fill_doc(SHARDED_DOCS)
-    def memory_terms_per_device(shape: tuple[int, int], substrate: str = "free",
-                                dtype: str = "float64", n_devices: int = 2) -> dict[str, int]:  # fmt: skip
+    def memory_terms_per_device(
+        shape: tuple[int, int], substrate: str = "free", dtype: str = "float64", n_devices: int = 2
+    ) -> dict[str, int]:
         """Bytes one device holds, term by term
         (:func:`~warptrunc.contact.sharded.grid.sharded_memory_terms`).
 

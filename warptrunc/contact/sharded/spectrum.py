@@ -32,13 +32,17 @@ from .grid import _pieces, _row_layout, _shard_map, host_array
 __all__ = ["build_spectrum", "spectrum_programme", "unit_force_check"]
 
 SPECTRUM_DOCS = {
-    "{pixel_modulus}": ("pixel_size : (float, float)\n    Pixel sides (dx, dy) (m).\n"
-                        "contact_modulus : float\n    Contact modulus E* (Pa)."),
+    "{pixel_modulus}": (
+        "pixel_size : (float, float)\n    Pixel sides (dx, dy) (m).\n"
+        "contact_modulus : float\n    Contact modulus E* (Pa)."
+    ),
 }
-SPECTRUM_DOCS["{layout}"] = ("layout : SlabLayout\n    The layout "
-                             "(:class:`~warptrunc.contact.sharded.fft.SlabLayout`).\n"
-                             + SPECTRUM_DOCS["{pixel_modulus}"])
+SPECTRUM_DOCS["{layout}"] = (
+    "layout : SlabLayout\n    The layout "
+    "(:class:`~warptrunc.contact.sharded.fft.SlabLayout`).\n" + SPECTRUM_DOCS["{pixel_modulus}"]
+)
 """The parameter text of this module's functions (:func:`~warptrunc._support.docs.fill_doc`)."""
+
 
 @fill_doc(SPECTRUM_DOCS)
 def build_spectrum(layout: Any, pixel_size: tuple[float, float], contact_modulus: float):
@@ -105,8 +109,7 @@ def spectrum_programme(layout: Any, pixel_size: tuple[float, float], contact_mod
         xs = jnp.arange(nx + 1, dtype=jnp.float64)[None, :] * dx
 
         def piece(jp):
-            quad = _love(xs, jp.astype(jnp.float64) * dy, dx / 2, dy / 2, contact_modulus,
-                         xp=jnp)  # fmt: skip
+            quad = _love(xs, jp.astype(jnp.float64) * dy, dx / 2, dy / 2, contact_modulus, xp=jnp)
             row = jnp.concatenate([quad, quad[:, nx - 1 : 0 : -1]], axis=1)  # 2nx
             return jnp.pad(jnp.fft.rfft(row, axis=1).real, ((0, 0), (0, nkp - nk)))
 
@@ -183,8 +186,9 @@ def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: 
         return done[key]
     ny, nx = lay.shape
     i, j = ny // 2, nx // 2
-    unit = jax.jit(lambda: jnp.zeros(lay.shape, lay.np_dtype).at[i, j].set(1),
-                   out_shardings=lay.rows)  # fmt: skip
+    unit = jax.jit(
+        lambda: jnp.zeros(lay.shape, lay.np_dtype).at[i, j].set(1), out_shardings=lay.rows
+    )
     pick = jax.jit(lambda u: u[i, j], out_shardings=lay.replicated)
     got = float(host_array(pick(hs.apply(unit()))))
     dx, dy = (float(v) for v in pixel_size)
@@ -192,8 +196,9 @@ def unit_force_check(hs: Any, pixel_size: tuple[float, float], contact_modulus: 
         want = float(_love(0.0, 0.0, dx / 2, dy / 2, float(contact_modulus))) / (dx * dy)
     else:  # the mean over the whole grid of a spectrum even in x and y, from its half
         big_y, big_x, nk, nkp = lay.grid_shape
-        wy = np.where((np.arange(big_y // 2 + 1) == 0) | (2 * np.arange(big_y // 2 + 1) == big_y),
-                      1.0, 2.0)  # fmt: skip
+        wy = np.where(
+            (np.arange(big_y // 2 + 1) == 0) | (2 * np.arange(big_y // 2 + 1) == big_y), 1.0, 2.0
+        )
         c = np.arange(nkp)
         wx = np.where(c >= nk, 0.0, np.where((c == 0) | (2 * c == big_x), 1.0, 2.0))
         total = jax.jit(lambda w: jnp.sum(w.astype(jnp.float64) * wy[:, None] * wx[None, :]))

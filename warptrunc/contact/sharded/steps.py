@@ -64,8 +64,12 @@ def make_step(layout: Any, name: str):
     def sums(q, u, h, offset):  # contact_sums_kernel
         c = q > 0
         g = d(u) - d(h) - offset
-        return vec(jnp.sum(c), jnp.sum(jnp.where(c, g, 0.0)), jnp.sum(jnp.where(c, g * g, 0.0)),
-                   jnp.sum(jnp.where(c, d(q), 0.0)))  # fmt: skip
+        return vec(
+            jnp.sum(c),
+            jnp.sum(jnp.where(c, g, 0.0)),
+            jnp.sum(jnp.where(c, g * g, 0.0)),
+            jnp.sum(jnp.where(c, d(q), 0.0)),
+        )
 
     def free_sums(q, u, h, offset, hf):  # bccg_sums_kernel
         g = d(u) - d(h) - offset
@@ -99,16 +103,26 @@ def make_step(layout: Any, name: str):
         free = is_free(qv, dd - set_offset, hf)
         inner = (qv > 0) & (qv < hf)
         r = jnp.where(free, g, 0.0).astype(dt)
-        out = vec(jnp.sum(free), jnp.sum(jnp.where(free, g, 0.0)), jnp.sum(inner),
-                  jnp.sum(jnp.where(inner, g * g, 0.0)), gmax(jnp.where(inner, jnp.abs(g), 0.0)),
-                  gmax(jnp.where(qv <= 0, -g, 0.0)), gmax(jnp.where(qv >= hf, g, 0.0)),
-                  jnp.sum(qv > 0), jnp.sum(g))  # fmt: skip
+        out = vec(
+            jnp.sum(free),
+            jnp.sum(jnp.where(free, g, 0.0)),
+            jnp.sum(inner),
+            jnp.sum(jnp.where(inner, g * g, 0.0)),
+            gmax(jnp.where(inner, jnp.abs(g), 0.0)),
+            gmax(jnp.where(qv <= 0, -g, 0.0)),
+            gmax(jnp.where(qv >= hf, g, 0.0)),
+            jnp.sum(qv > 0),
+            jnp.sum(g),
+        )
         return r, free, out
 
     def dots(z, r, z_old, mask):  # bccg_dot_kernel
         zv, rv = d(z), d(r)
-        return vec(jnp.sum(jnp.where(mask, zv, 0.0)), jnp.sum(jnp.where(mask, rv * zv, 0.0)),
-                   jnp.sum(jnp.where(mask, rv * d(z_old), 0.0)))  # fmt: skip
+        return vec(
+            jnp.sum(jnp.where(mask, zv, 0.0)),
+            jnp.sum(jnp.where(mask, rv * zv, 0.0)),
+            jnp.sum(jnp.where(mask, rv * d(z_old), 0.0)),
+        )
 
     def plain(r, z_old, mask, w):
         return r, dots(r, r, z_old, mask)
@@ -160,8 +174,9 @@ def make_step(layout: Any, name: str):
         alpha = jnp.where(d_k_d > 0, num / jnp.where(d_k_d > 0, d_k_d, 1.0), 0.0).astype(dt)
         xv = jnp.where(mask, x + alpha * dd, x)
         rv = jnp.where(mask, res - alpha * kd, res)
-        out = vec(d_k_d, jnp.sum(jnp.where(mask, d(rv) ** 2, 0.0)),
-                  jnp.sum(jnp.where(mask, d(xv), 0.0)))  # fmt: skip
+        out = vec(
+            d_k_d, jnp.sum(jnp.where(mask, d(rv) ** 2, 0.0)), jnp.sum(jnp.where(mask, d(xv), 0.0))
+        )
         return xv, rv, out
 
     def punch_cg(res, dd, mask, beta, w):  # punch_direction_kernel

@@ -77,13 +77,18 @@ def cells(stage: dict[str, Any]) -> dict[tuple[str, str, str, float, float], dic
             by.setdefault((r["punch_diameter_m"][i], r["peak_load_N"][i]), []).append(i)
         for (d, f), ii in by.items():
             ok = [i for i in ii if _ok(r, i)]
-            out[(s, design, m, d, f)] = {"E_c_over_E": _gmean([r["E_c_over_E"][i] for i in ok]),
-                                         "F_over_EA": r["F_over_EA"][ii[0]], "n": len(ok)}  # fmt: skip
+            out[(s, design, m, d, f)] = {
+                "E_c_over_E": _gmean([r["E_c_over_E"][i] for i in ok]),
+                "F_over_EA": r["F_over_EA"][ii[0]],
+                "n": len(ok),
+            }
     return out
 
 
 @fill_doc(_STAGE_DOCS)
-def ratio_cells(stage: dict[str, Any], surface: str, design: str, model: str) -> dict[tuple[float, float], dict[str, Any]]:  # fmt: skip
+def ratio_cells(
+    stage: dict[str, Any], surface: str, design: str, model: str
+) -> dict[tuple[float, float], dict[str, Any]]:
     """E_c,trunc/E_c,model per (punch, load) of one model, from the same indents' cells.
 
     {stage}
@@ -108,13 +113,19 @@ def _ratios(r: dict[str, list], idx: list[int]) -> dict[tuple[float, float], dic
         t, e = r["truncation_E_c_over_E"][i], r["E_c_over_E"][i]
         if _ok(r, i) and t and e and t > 0 and e > 0:
             by.setdefault((r["punch_diameter_m"][i], r["peak_load_N"][i]), []).append(i)
-    return {k: {"ratio": _gmean([r["truncation_E_c_over_E"][i] / r["E_c_over_E"][i] for i in ii]),
-                "omega_m": float(np.median([r["truncation_depth_m"][i] for i in ii])), "n": len(ii)}
-            for k, ii in sorted(by.items())}  # fmt: skip
+    return {
+        k: {
+            "ratio": _gmean([r["truncation_E_c_over_E"][i] / r["E_c_over_E"][i] for i in ii]),
+            "omega_m": float(np.median([r["truncation_depth_m"][i] for i in ii])),
+            "n": len(ii),
+        }
+        for k, ii in sorted(by.items())
+    }
 
 
-def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
-             good: float = GOOD) -> dict[str, Any]:  # fmt: skip
+def tracking(
+    ratios: dict[str, dict[tuple[float, float], float | None]], good: float = GOOD
+) -> dict[str, Any]:
     """Which model truncation tracks, by the rule abs(ratio − 1) ≤ ``good``, per model.
 
     Parameters
@@ -139,8 +150,14 @@ def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
     closest: dict[str, int] = {m: 0 for m in ratios}
     keys = sorted({k for v in ratios.values() for k in v})
     for k in keys:
-        best = min(((abs(math.log(v[k])), m) for m, v in ratios.items()
-                    if v.get(k) is not None and v[k] > 0), default=None)  # fmt: skip
+        best = min(
+            (
+                (abs(math.log(v[k])), m)
+                for m, v in ratios.items()
+                if v.get(k) is not None and v[k] > 0
+            ),
+            default=None,
+        )
         if best is not None:
             closest[best[1]] += 1
     for m, v in ratios.items():
@@ -158,43 +175,84 @@ def tracking(ratios: dict[str, dict[tuple[float, float], float | None]],
                     runs.append([d, run[0], run[-1], len(run)])
                 run = []
         xs = list(have.values())
-        per[m] = {"n_cells": len(have), "n_good": len(goodk), "runs": runs,
-                  "median_ratio": float(np.median(xs)) if xs else None,
-                  "range": [min(xs), max(xs)] if xs else None}  # fmt: skip
+        per[m] = {
+            "n_cells": len(have),
+            "n_good": len(goodk),
+            "runs": runs,
+            "median_ratio": float(np.median(xs)) if xs else None,
+            "range": [min(xs), max(xs)] if xs else None,
+        }
     order = list(ratios)
     cand = [m for m in order if per[m]["n_good"] > 0]
-    tracked = (max(cand, key=lambda m: (per[m]["n_good"] / per[m]["n_cells"], per[m]["n_good"],
-                                        closest[m], -order.index(m)))
-               if cand else None)  # fmt: skip
+    tracked = (
+        max(
+            cand,
+            key=lambda m: (
+                per[m]["n_good"] / per[m]["n_cells"],
+                per[m]["n_good"],
+                closest[m],
+                -order.index(m),
+            ),
+        )
+        if cand
+        else None
+    )
     return {"per_model": per, "closest": closest, "tracked": tracked, "band": good}
 
 
 def _ok_stiffness(r: dict[str, list], i: int) -> bool:
     """A cell resolved by the rule on K alone (``resolved_stiffness``), not saturated, converged."""
     rk = r.get("resolved_stiffness")
-    return (bool(rk[i]) if rk is not None else bool(r["resolved"][i])) and not bool(r["saturated"][i]) \
+    return (
+        (bool(rk[i]) if rk is not None else bool(r["resolved"][i]))
+        and not bool(r["saturated"][i])
         and bool(r["converged"][i])
+    )
 
 
 def _fit(r: dict[str, list], idx: list[int], col: str, ok=_ok) -> dict[str, Any]:
     from ...indent import default_material
     from ...indent.fits import MIN_FIT_POINTS, fit_cells
 
-    sel = [i for i in idx if ok(r, i) and r[col][i] is not None and r[col][i] > 0
-           and r["F_over_EA"][i] > 0]  # fmt: skip
+    sel = [
+        i
+        for i in idx
+        if ok(r, i) and r[col][i] is not None and r[col][i] > 0 and r["F_over_EA"][i] > 0
+    ]
     ind = [(r["realisation"][i], r["punch_diameter_m"][i], r["placement"][i]) for i in sel]
     n_ind = len(set(ind))
     f = None
     if sel:
-        f = fit_cells([r["F_over_EA"][i] for i in sel], [r[col][i] for i in sel],
-                      [r["displacement_m"][i] for i in sel], np.asarray(ind, np.float64),
-                      [r["punch_diameter_m"][i] for i in sel], default_material())  # fmt: skip
+        f = fit_cells(
+            [r["F_over_EA"][i] for i in sel],
+            [r[col][i] for i in sel],
+            [r["displacement_m"][i] for i in sel],
+            np.asarray(ind, np.float64),
+            [r["punch_diameter_m"][i] for i in sel],
+            default_material(),
+        )
     if f is None:
-        return {"made": False, "n_points": len(sel), "n_indents": n_ind,
-                "reason": f"{len(sel)} resolved cells, at least {MIN_FIT_POINTS} with two loads needed"}  # fmt: skip
+        return {
+            "made": False,
+            "n_points": len(sel),
+            "n_indents": n_ind,
+            "reason": f"{len(sel)} resolved cells, at least {MIN_FIT_POINTS} with two loads needed",
+        }
     d = f.to_dict()
-    out = {k: d[k] for k in ("made", "alpha", "beta", "r2", "alpha_ci95", "beta_ci95", "n_points",
-                             "n_indents", "n_bootstrap")}  # fmt: skip
+    out = {
+        k: d[k]
+        for k in (
+            "made",
+            "alpha",
+            "beta",
+            "r2",
+            "alpha_ci95",
+            "beta_ci95",
+            "n_points",
+            "n_indents",
+            "n_bootstrap",
+        )
+    }
     per_punch: dict[float, set] = {}
     for t in ind:
         per_punch.setdefault(t[1], set()).add(t)
@@ -208,15 +266,22 @@ def _hardness_question(stage: dict[str, Any], depths: dict) -> dict[str, Any]:
     out = {}
     band, target = tuple(stage["depth_band_m"]), stage["depth_target_m"]
     for s in stage["surfaces"]:
-        per = {m: v["deepest"] for (ss, design, m), v in depths.items()
-               if ss == s and design == "sweep" and m != "truncation"}  # fmt: skip
+        per = {
+            m: v["deepest"]
+            for (ss, design, m), v in depths.items()
+            if ss == s and design == "sweep" and m != "truncation"
+        }
         hs = [(stage["hardness_Pa"][m], m) for m in per if stage["hardness_Pa"].get(m)]
         hs.sort()
         dd = [None if per[m] is None else per[m]["median"] for _h, m in hs]
         h = [x for x, _m in hs]
-        out[s] = {"hardness_Pa": h, "depth_m": dd,
-                  "elastic_depth_m": (per.get("elastic") or {}).get("median"),
-                  "range": hardness_range(h, dd, band), "match": depth_match(h, dd, target, band)}  # fmt: skip
+        out[s] = {
+            "hardness_Pa": h,
+            "depth_m": dd,
+            "elastic_depth_m": (per.get("elastic") or {}).get("median"),
+            "range": hardness_range(h, dd, band),
+            "match": depth_match(h, dd, target, band),
+        }
     return out
 
 
@@ -233,11 +298,13 @@ def _resolution_table(stage: dict[str, Any]) -> dict[tuple[str, str, str, float]
             px = [r["n_contact"][i] for i in ii if r["n_contact"][i] is not None]
             fac = [dx / r["pixel_size_m"][i] for i in ii if r["pixel_size_m"][i]]
             out[(s, design, m, f)] = {
-                "n": len(ii), "resolved": sum(bool(r["resolved"][i]) for i in ii),
-                "in_fit": sum(_ok(r, i) for i in ii), "saturated": sum(bool(r["saturated"][i]) for i in ii),
+                "n": len(ii),
+                "resolved": sum(bool(r["resolved"][i]) for i in ii),
+                "in_fit": sum(_ok(r, i) for i in ii),
+                "saturated": sum(bool(r["saturated"][i]) for i in ii),
                 "median_contact_px": float(np.median(px)) if px else None,
                 "max_refinement": round(max(fac)) if fac else 1,
-            }  # fmt: skip
+            }
     return out
 
 
@@ -265,8 +332,13 @@ def _cost(stage: dict[str, Any]) -> dict[str, Any]:
                 lv["window_px"] = max(lv["window_px"], wins[f][0] * wins[f][1])
                 lv["seconds"] += pp["seconds"].get("refinement_s", 0.0) * w[f] / tot
     total = sum(per_design.values())
-    return {"per_design": per_design, "levels": dict(sorted(levels.items())),
-            "largest_refinement": largest, "pieces_s": total, "apportioned": True}  # fmt: skip
+    return {
+        "per_design": per_design,
+        "levels": dict(sorted(levels.items())),
+        "largest_refinement": largest,
+        "pieces_s": total,
+        "apportioned": True,
+    }
 
 
 def _faces(stage: dict[str, Any], agree: list[dict[str, Any]]) -> list[dict[str, Any]]:
@@ -281,19 +353,40 @@ def _faces(stage: dict[str, Any], agree: list[dict[str, Any]]) -> list[dict[str,
         s, m, fr = f["surface"], f["model"], f["rows"]
         rt = stage["Rt_m"][s]
         rc = _ratios(fr, list(range(len(fr["peak_load_N"]))))
-        a = agreement_depth([v["omega_m"] / rt * 100 for v in rc.values()],
-                            [v["ratio"] for v in rc.values()], GOOD)  # fmt: skip
-        ref = next((x for x in agree if (x["surface"], x["design"], x["model"]) == (s, "sweep", m)), None)
-        key = lambda rows, i: (rows["realisation"][i], rows["punch_diameter_m"][i],  # noqa: E731
-                               rows["placement"][i], rows["peak_load_N"][i])
-        aligned = {key(r, i): r["E_c_over_E"][i] for i in _groups(r).get((s, "sweep", m), []) if _ok(r, i)}
-        k = [fr["E_c_over_E"][i] / aligned[key(fr, i)] for i in range(len(fr["peak_load_N"]))
-             if _ok(fr, i) and key(fr, i) in aligned and fr["E_c_over_E"][i] and aligned[key(fr, i)]]  # fmt: skip
+        a = agreement_depth(
+            [v["omega_m"] / rt * 100 for v in rc.values()], [v["ratio"] for v in rc.values()], GOOD
+        )
+        ref = next(
+            (x for x in agree if (x["surface"], x["design"], x["model"]) == (s, "sweep", m)), None
+        )
+        key = lambda rows, i: (  # noqa: E731
+            rows["realisation"][i],
+            rows["punch_diameter_m"][i],
+            rows["placement"][i],
+            rows["peak_load_N"][i],
+        )
+        aligned = {
+            key(r, i): r["E_c_over_E"][i] for i in _groups(r).get((s, "sweep", m), []) if _ok(r, i)
+        }
+        k = [
+            fr["E_c_over_E"][i] / aligned[key(fr, i)]
+            for i in range(len(fr["peak_load_N"]))
+            if _ok(fr, i) and key(fr, i) in aligned and fr["E_c_over_E"][i] and aligned[key(fr, i)]
+        ]
         lo, hi = TABLE2.get(s, ((math.nan, math.nan),))[0]
-        out.append({"surface": s, "label": f["label"], "model": m, **a, "aligned": ref,
-                    "K_over_aligned_median": float(np.median(k)) if k else None,
-                    "K_over_aligned_range": [min(k), max(k)] if k else None,
-                    "paper_range": [lo, hi], "verdict": _verdict(a, ref, lo, hi)})  # fmt: skip
+        out.append(
+            {
+                "surface": s,
+                "label": f["label"],
+                "model": m,
+                **a,
+                "aligned": ref,
+                "K_over_aligned_median": float(np.median(k)) if k else None,
+                "K_over_aligned_range": [min(k), max(k)] if k else None,
+                "paper_range": [lo, hi],
+                "verdict": _verdict(a, ref, lo, hi),
+            }
+        )
     return out
 
 
@@ -302,6 +395,7 @@ def _verdict(a: dict[str, Any], ref: dict[str, Any] | None, lo: float, hi: float
 
     Where truncation leaves the band lies between the ω of the last cell inside and that of
     the first outside; it matches the paper when that bracket meets [lo, hi]."""
+
     def meets(x: dict[str, Any]) -> bool:
         return x["leaves_at"] is not None and (x["depth"] or 0.0) <= hi and x["leaves_at"] >= lo
 
@@ -351,18 +445,28 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
         if m != "truncation":
             rec["partial"] = _fit(r, idx, "E_c_partial_over_E")
             depths[(s, design, m)] = depth_at_load(
-                [r["punch_diameter_m"][i] for i in idx], [r["peak_load_N"][i] for i in idx],
-                [r["displacement_m"][i] for i in idx], [bool(r["converged"][i]) for i in idx], at)
+                [r["punch_diameter_m"][i] for i in idx],
+                [r["peak_load_N"][i] for i in idx],
+                [r["displacement_m"][i] for i in idx],
+                [bool(r["converged"][i]) for i in idx],
+                at,
+            )
             rc = ratio_cells(stage, s, design, m)
             rt = stage["Rt_m"][s]
-            a = agreement_depth([v["omega_m"] / rt * 100 for v in rc.values()],
-                                [v["ratio"] for v in rc.values()], GOOD)  # fmt: skip
+            a = agreement_depth(
+                [v["omega_m"] / rt * 100 for v in rc.values()],
+                [v["ratio"] for v in rc.values()],
+                GOOD,
+            )
             agree.append({"surface": s, "design": design, "model": m, **a})
         fits.append(rec)
     for s in stage["surfaces"]:
         for design, models in stage["models"].items():
-            ratios = {m: {k: v["ratio"] for k, v in ratio_cells(stage, s, design, m).items()}
-                      for m in models if (s, design, m) in groups}  # fmt: skip
+            ratios = {
+                m: {k: v["ratio"] for k, v in ratio_cells(stage, s, design, m).items()}
+                for m in models
+                if (s, design, m) in groups
+            }
             if ratios:
                 track.append({"surface": s, "design": design, **tracking(ratios)})
     punches = stage["punches_m"]
@@ -371,21 +475,31 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
     return {
         "good_band": GOOD,
         "fits": fits,
-        "depths": [{"surface": s, "design": d, "model": m, "load_N": at, **v}
-                   for (s, d, m), v in depths.items()],
+        "depths": [
+            {"surface": s, "design": d, "model": m, "load_N": at, **v}
+            for (s, d, m), v in depths.items()
+        ],
         "hardness": _hardness_question(stage, depths),
         "agreement": agree,
         "tracking": track,
-        "resolution_table": [{"surface": s, "design": d, "model": m, "load_N": f, **v}
-                             for (s, d, m, f), v in _resolution_table(stage).items()],
+        "resolution_table": [
+            {"surface": s, "design": d, "model": m, "load_N": f, **v}
+            for (s, d, m, f), v in _resolution_table(stage).items()
+        ],
         "cost": _cost(stage),
         "faces": _faces(stage, agree),
         "mean_pressure": {"load_N": at, "punch_m": min(punches), "p_mean_Pa": pmean},
         "smooth_Ec_over_E": stage["material"]["E_star_Pa"] / stage["material"]["E_Pa"],
         "not_converged": sum(not r["converged"][i] for i in solved),
         "n_solved_rows": len(solved),
-        "max_overlap": max((r["overlap_fraction"][i] for i in range(len(r["surface"]))
-                            if r["punch_diameter_m"][i] == max(punches)), default=0.0),
+        "max_overlap": max(
+            (
+                r["overlap_fraction"][i]
+                for i in range(len(r["surface"]))
+                if r["punch_diameter_m"][i] == max(punches)
+            ),
+            default=0.0,
+        ),
         "resolution": _resolution_summary(stage.get("resolution")),
     }
 
@@ -394,17 +508,27 @@ def _resolution_summary(rec: dict[str, Any] | None) -> dict[str, Any] | None:
     if not rec:
         return None
     g = rec["grids"]
-    out: dict[str, Any] = {"surface": rec["params"]["surface"], "punch_m": rec["params"]["punch_m"],
-                           "n_coarse": g["coarse"]["n"], "n_fine": g["fine"]["n"],
-                           "dx_coarse_m": g["coarse"]["dx_m"], "dx_fine_m": g["fine"]["dx_m"],
-                           "models": {}}  # fmt: skip
+    out: dict[str, Any] = {
+        "surface": rec["params"]["surface"],
+        "punch_m": rec["params"]["punch_m"],
+        "n_coarse": g["coarse"]["n"],
+        "n_fine": g["fine"]["n"],
+        "dx_coarse_m": g["coarse"]["dx_m"],
+        "dx_fine_m": g["fine"]["dx_m"],
+        "models": {},
+    }
     for m in g["coarse"]:
         if not isinstance(g["coarse"][m], dict):
             continue
         a, b = g["coarse"][m], g["fine"][m]
         rec_m = {"load_N": a["peak_load_N"][-1]}
-        for q in ("unloading_stiffness_N_per_m", "partial_unloading_stiffness_N_per_m",
-                  "contact_area_m2", "plastic_area_m2", "truncation_E_c_over_E"):  # fmt: skip
+        for q in (
+            "unloading_stiffness_N_per_m",
+            "partial_unloading_stiffness_N_per_m",
+            "contact_area_m2",
+            "plastic_area_m2",
+            "truncation_E_c_over_E",
+        ):
             x, y = a[q][-1], b[q][-1]
             rec_m[q] = [x, y, (y / x if x else None) if x is not None and y is not None else None]
         rec_m["converged"] = bool(a["converged"][-1] and b["converged"][-1])

@@ -55,7 +55,11 @@ def model_colours(models: list[str]) -> dict[str, str]:
 
 def _fig_design(stage: dict[str, Any], s: str) -> str:
     """The design a surface's Fig. 6 panel shows: the statistics when it has any, else the sweep."""
-    return "stats" if any(t["surface"] == s and t["design"] == "stats" for t in stage["timings"]) else "sweep"
+    return (
+        "stats"
+        if any(t["surface"] == s and t["design"] == "stats" for t in stage["timings"])
+        else "sweep"
+    )
 
 
 def _log_ticks(ax) -> None:
@@ -91,38 +95,70 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
     fig, axs = new_figure(ncol, nrow, w=5.6, h=4.4)
     c = cells(stage)
     fits = {(f["surface"], f["design"], f["model"]): f for f in ana["fits"]}
-    colours = model_colours(["truncation", *dict.fromkeys(m for v in stage["models"].values() for m in v)])
+    colours = model_colours(
+        ["truncation", *dict.fromkeys(m for v in stage["models"].values() for m in v)]
+    )
     for ax, s in zip(axs, surfaces, strict=False):
         design = _fig_design(stage, s)
         models = ["truncation", *[m for m in stage["models"][design] if (s, design, m) in fits]]
         for m in models:
             xs_all = []
             for k, d in enumerate(stage["punches_m"]):
-                pts = sorted((v["F_over_EA"], v["E_c_over_E"]) for (ss, dd_, mm, dd, _f), v in c.items()
-                             if ss == s and dd_ == design and mm == m and dd == d and v["E_c_over_E"])  # fmt: skip
+                pts = sorted(
+                    (v["F_over_EA"], v["E_c_over_E"])
+                    for (ss, dd_, mm, dd, _f), v in c.items()
+                    if ss == s and dd_ == design and mm == m and dd == d and v["E_c_over_E"]
+                )
                 if not pts:
                     continue
                 x, y = np.array(pts).T
                 xs_all += list(x)
-                ax.loglog(x, y, MARKERS[k % len(MARKERS)], color=colours[m], mfc="none", ms=4,
-                          ls="--" if m == "truncation" else "none", lw=0.6)  # fmt: skip
+                ax.loglog(
+                    x,
+                    y,
+                    MARKERS[k % len(MARKERS)],
+                    color=colours[m],
+                    mfc="none",
+                    ms=4,
+                    ls="--" if m == "truncation" else "none",
+                    lw=0.6,
+                )
             f = fits.get((s, design, m))
             if f and f["made"] and xs_all:
                 xx = np.geomspace(min(xs_all), max(xs_all), 20)
-                ax.loglog(xx, f["beta"] * xx ** f["alpha"], "-", color=colours[m], lw=1.2,
-                          label=f"{model_label(stage, m)}: α = {f['alpha']:.3f}, β = {f['beta']:.3g}")  # fmt: skip
+                ax.loglog(
+                    xx,
+                    f["beta"] * xx ** f["alpha"],
+                    "-",
+                    color=colours[m],
+                    lw=1.2,
+                    label=f"{model_label(stage, m)}: α = {f['alpha']:.3f}, β = {f['beta']:.3g}",
+                )
         ax.axhline(ana["smooth_Ec_over_E"], color="k", ls=":", lw=0.8, label="smooth punch: E*/E")
         for k, d in enumerate(stage["punches_m"]):
-            ax.plot([], [], MARKERS[k % len(MARKERS)], color="grey", mfc="none", label=f"d = {d * 1e6:g} µm")
+            ax.plot(
+                [],
+                [],
+                MARKERS[k % len(MARKERS)],
+                color="grey",
+                mfc="none",
+                label=f"d = {d * 1e6:g} µm",
+            )
         g = stage["designs"][design]
-        ax.set(xlabel="F/(E·A)", ylabel="E$_c$/E",
-               title=f"{s} ({stage['n']}² over {stage['L_m'] * 1e3:g} mm; {len(g['seeds'])}×{g['placements']} indents)")  # fmt: skip
+        ax.set(
+            xlabel="F/(E·A)",
+            ylabel="E$_c$/E",
+            title=f"{s} ({stage['n']}² over {stage['L_m'] * 1e3:g} mm; {len(g['seeds'])}×{g['placements']} indents)",
+        )
         _log_ticks(ax)
         ax.legend(fontsize=6)
-    for ax in axs[len(surfaces):]:
+    for ax in axs[len(surfaces) :]:
         ax.set_axis_off()
-    fig.suptitle("Fig. 6 in silico: unloading stiffness of the contact models and Eq. 2 truncation on "
-                 "resolved cells (geometric mean over indents; lines: fits)", fontsize=9)  # fmt: skip
+    fig.suptitle(
+        "Fig. 6 in silico: unloading stiffness of the contact models and Eq. 2 truncation on "
+        "resolved cells (geometric mean over indents; lines: fits)",
+        fontsize=9,
+    )
     names = [save_figure(fig, Path(out), "indentation_fig6.png")]
     fig, (ax,) = new_figure(1, 1, w=6.0, h=4.4)
     lo, hi = stage["depth_band_m"]
@@ -133,10 +169,21 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
             (ln,) = ax.loglog(x / 1e9, y * 1e6, "-" + MARKERS[k % len(MARKERS)], ms=4, label=s)
             if v["elastic_depth_m"]:
                 ax.axhline(v["elastic_depth_m"] * 1e6, color=ln.get_color(), ls=":", lw=0.8)
-    ax.axhspan(lo * 1e6, hi * 1e6, color="0.85", zorder=0, label=f"{lo * 1e6:g}–{hi * 1e6:g} µm (paper: ≈ 5 µm)")
-    ax.set(xlabel="hardness H (GPa)", ylabel=f"depth at {max(stage['loads_N']) * 1e3:g} mN (µm)",
-           title="Punch depth at the largest load against H (sweep; dotted: H = ∞)")  # fmt: skip
-    hs = sorted({h for v in ana["hardness"].values() for h in v["hardness_Pa"] if h and math.isfinite(h)})
+    ax.axhspan(
+        lo * 1e6,
+        hi * 1e6,
+        color="0.85",
+        zorder=0,
+        label=f"{lo * 1e6:g}–{hi * 1e6:g} µm (paper: ≈ 5 µm)",
+    )
+    ax.set(
+        xlabel="hardness H (GPa)",
+        ylabel=f"depth at {max(stage['loads_N']) * 1e3:g} mN (µm)",
+        title="Punch depth at the largest load against H (sweep; dotted: H = ∞)",
+    )
+    hs = sorted(
+        {h for v in ana["hardness"].values() for h in v["hardness_Pa"] if h and math.isfinite(h)}
+    )
     _log_ticks(ax)
     if hs:  # the swept H values themselves, in GPa
         ax.set_xticks([h / 1e9 for h in hs], [f"{h / 1e9:g}" for h in hs])
@@ -150,7 +197,9 @@ def _runs(per: dict[str, Any]) -> str:
         return "nowhere"
     by: dict[float, list[str]] = {}
     for d, lo, hi, _n in per["runs"]:
-        by.setdefault(d, []).append(f"{lo * 1e3:.3g} mN" if lo == hi else f"{lo * 1e3:.3g}–{hi * 1e3:.3g} mN")
+        by.setdefault(d, []).append(
+            f"{lo * 1e3:.3g} mN" if lo == hi else f"{lo * 1e3:.3g}–{hi * 1e3:.3g} mN"
+        )
     return "; ".join(f"{d * 1e6:g} µm at {', '.join(v)}" for d, v in sorted(by.items()))
 
 
@@ -174,23 +223,32 @@ def tracking_sentence(stage: dict[str, Any], s: str, t: dict[str, Any]) -> str:
     band = f"±{100 * t['band']:.0f} %"
     n = max((v["n_cells"] for v in t["per_model"].values()), default=0)
     if t["tracked"] is None:
-        head = (f"**{s}: truncation tracks none of the contact models** within {band} at any of the "
-                f"{n} (punch, load) cells.")  # fmt: skip
+        head = (
+            f"**{s}: truncation tracks none of the contact models** within {band} at any of the "
+            f"{n} (punch, load) cells."
+        )
     else:
         m = t["tracked"]
-        head = (f"**{s}: truncation tracks the {model_label(stage, m)} unloading stiffness** "
-                f"(within {band} in {t['per_model'][m]['n_good']} of {t['per_model'][m]['n_cells']} "
-                f"(punch, load) cells: {_runs(t['per_model'][m])}).")  # fmt: skip
+        head = (
+            f"**{s}: truncation tracks the {model_label(stage, m)} unloading stiffness** "
+            f"(within {band} in {t['per_model'][m]['n_good']} of {t['per_model'][m]['n_cells']} "
+            f"(punch, load) cells: {_runs(t['per_model'][m])})."
+        )
     rest = []
     for m, v in t["per_model"].items():
         if m == t["tracked"] or not v["n_cells"]:
             continue
-        rest.append(f"{model_label(stage, m)}: {v['n_good']} of {v['n_cells']} cells"
-                    + (f" ({_runs(v)})" if v["n_good"] else "")
-                    + f", median E_c,trunc/E_c = {v['median_ratio']:.2f}")  # fmt: skip
+        rest.append(
+            f"{model_label(stage, m)}: {v['n_good']} of {v['n_cells']} cells"
+            + (f" ({_runs(v)})" if v["n_good"] else "")
+            + f", median E_c,trunc/E_c = {v['median_ratio']:.2f}"
+        )
     closest = ", ".join(f"{model_label(stage, m)} {k}" for m, k in t["closest"].items() if k)
-    return (head + (" Against the others: " + "; ".join(rest) + "." if rest else "")
-            + (f" Nearest model per cell: {closest}." if closest else ""))  # fmt: skip
+    return (
+        head
+        + (" Against the others: " + "; ".join(rest) + "." if rest else "")
+        + (f" Nearest model per cell: {closest}." if closest else "")
+    )
 
 
 MATERIAL_TEXT = (
@@ -213,8 +271,12 @@ MATERIAL_TEXT = (
 
 
 @fill_doc(STAGE_DOCS)
-def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float | None,
-                      figure_names: list[str] | None = None) -> list[str]:  # fmt: skip
+def indentation_lines(
+    stage: dict[str, Any],
+    ana: dict[str, Any],
+    seconds: float | None,
+    figure_names: list[str] | None = None,
+) -> list[str]:
     """The report section "Indentation in silico (Fig. 6)".
 
     Parameters
@@ -232,8 +294,11 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
     mp = ana["mean_pressure"]
     hs = sorted(h for h in stage["hardness_Pa"].values() if h is not None)
     L = ["## Indentation in silico (Fig. 6)\n"]
-    surf = ", ".join(f"{s} (D_in = {TABLE1[s].D:g}, R_t′ = {stage['Rt_m'][s] * 1e6:.4g} µm, "
-                     f"W_r = {TABLE1[s].Wr * 1e6:g} µm)" for s in stage["surfaces"])  # fmt: skip
+    surf = ", ".join(
+        f"{s} (D_in = {TABLE1[s].D:g}, R_t′ = {stage['Rt_m'][s] * 1e6:.4g} µm, "
+        f"W_r = {TABLE1[s].Wr * 1e6:g} µm)"
+        for s in stage["surfaces"]
+    )
     des = stage["designs"]
     L.append(
         "The paper's experiment (§ 4.1) on its simulated Table 1 surfaces (`warptrunc.presets.TABLE1`: "
@@ -245,8 +310,16 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
         f"{des['sweep']['placements']} random placement(s) per punch; and **statistics**, "
         f"{len(des['stats']['seeds'])} realisations (phase seeds {', '.join(map(str, des['stats']['seeds']))}) "
         f"× {des['stats']['placements']} placements per punch, for "
-        + (" and ".join({"elastic": "H = ∞", "depth-match": "the H of the sweep that best matches the "
-                         "paper's depth"}[m] for m in stage["stats_requested"]) or "nothing")
+        + (
+            " and ".join(
+                {
+                    "elastic": "H = ∞",
+                    "depth-match": "the H of the sweep that best matches the paper's depth",
+                }[m]
+                for m in stage["stats_requested"]
+            )
+            or "nothing"
+        )
         + ". Contact models on the same punch windows (free half-space, contact solver in "
         f"{stage['dtype']}): **elastic** (H = ∞) and **elastic–perfectly-plastic**, the local pressure "
         "capped at H. The unloading stiffness K is Barber's initial slope at each peak (the plastic state "
@@ -254,34 +327,53 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
         "same punch disks: A = πd²/4, first touch = the highest pixel inside the disk, k = (2/√π)E*√A_c "
         "read where F(ω) = ∫k dω reaches each peak load. All give E_c = √π·K/(2√A), plotted as E_c/E "
         f"against F/(E·A) (Fig. 6): a smooth surface gives E*/E = {ana['smooth_Ec_over_E']:.3f}, not 1.\n"
-    )  # fmt: skip
-    L.append(MATERIAL_TEXT.format(E=mat["E_Pa"] / 1e9, nu=mat["nu"], Ei=mat["E_i_Pa"] / 1e9,
-                                  nui=mat["nu_i"], Es=mat["E_star_Pa"] / 1e9,
-                                  Hs=", ".join(f"{h / 1e9:g}" for h in hs)) + "\n")  # fmt: skip
+    )
+    L.append(
+        MATERIAL_TEXT.format(
+            E=mat["E_Pa"] / 1e9,
+            nu=mat["nu"],
+            Ei=mat["E_i_Pa"] / 1e9,
+            nui=mat["nu_i"],
+            Es=mat["E_star_Pa"] / 1e9,
+            Hs=", ".join(f"{h / 1e9:g}" for h in hs),
+        )
+        + "\n"
+    )
     a = mp["punch_m"] / 2
     L.append(
         f"The largest load, {mp['load_N'] * 1e3:g} mN on the {mp['punch_m'] * 1e6:g} µm punch, is a mean "
         f"pressure of {mp['p_mean_Pa'] / 1e6:.0f} MPa"
-        + (f", below every H of the sweep: the punch as a whole never yields, plasticity stays at the "
-           "asperities, and the depth cannot exceed the roughness under the punch plus the elastic sink "
-           f"(a smooth punch: F/(2E*a) = {mp['load_N'] / (2 * mat['E_star_Pa'] * a) * 1e6:.2f} µm)"
-           if hs and mp["p_mean_Pa"] < hs[0] else "")
+        + (
+            f", below every H of the sweep: the punch as a whole never yields, plasticity stays at the "
+            "asperities, and the depth cannot exceed the roughness under the punch plus the elastic sink "
+            f"(a smooth punch: F/(2E*a) = {mp['load_N'] / (2 * mat['E_star_Pa'] * a) * 1e6:.2f} µm)"
+            if hs and mp["p_mean_Pa"] < hs[0]
+            else ""
+        )
         + ". H caps the pressure of each pixel, so the plastic area depends on the pixel size (the "
         "resolution table below).\n"
-    )  # fmt: skip
+    )
     if ana["max_overlap"] > 0:
-        L.append(f"The {max(stage['punches_m']) * 1e6:g} µm punch's placements cannot be kept apart on a "
-                 f"{stage['L_m'] * 1e3:g} mm map: they overlap by up to {100 * ana['max_overlap']:.0f} % of "
-                 "its area (a 3 mm map would hold them apart).\n")  # fmt: skip
-    L.append(f"Solves not converged: {ana['not_converged']} of {ana['n_solved_rows']} cycles (left out of "
-             "the fits and the comparisons, as are the cells not resolved).\n")  # fmt: skip
-    L.append("**Hardness as a question**: the punch depth at the largest load for each "
-             "H, beside the paper's ≈ 5 µm:\n")  # fmt: skip
+        L.append(
+            f"The {max(stage['punches_m']) * 1e6:g} µm punch's placements cannot be kept apart on a "
+            f"{stage['L_m'] * 1e3:g} mm map: they overlap by up to {100 * ana['max_overlap']:.0f} % of "
+            "its area (a 3 mm map would hold them apart).\n"
+        )
+    L.append(
+        f"Solves not converged: {ana['not_converged']} of {ana['n_solved_rows']} cycles (left out of "
+        "the fits and the comparisons, as are the cells not resolved).\n"
+    )
+    L.append(
+        "**Hardness as a question**: the punch depth at the largest load for each "
+        "H, beside the paper's ≈ 5 µm:\n"
+    )
     L += hardness_lines(stage, ana)
-    L.append("**E_c/E = β·[F/(E·A)]^α** per surface, design (realisations × placements per punch) and "
-             "model, least squares in log–log over the resolved cells (`in_fit`) only, with 95 % "
-             "intervals from a bootstrap over indents (`warptrunc.indent.fits`; none with one indent); a "
-             "fit needs 6 cells:\n")  # fmt: skip
+    L.append(
+        "**E_c/E = β·[F/(E·A)]^α** per surface, design (realisations × placements per punch) and "
+        "model, least squares in log–log over the resolved cells (`in_fit`) only, with 95 % "
+        "intervals from a bootstrap over indents (`warptrunc.indent.fits`; none with one indent); a "
+        "fit needs 6 cells:\n"
+    )
     L += fit_lines(stage, ana)
     L += agreement_lines(stage, ana)
     band = f"±{100 * ana['good_band']:.0f} %"
@@ -291,11 +383,14 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
         f"there when it is within {band} of 1. Per surface and design, the model tracked is the one with "
         "the largest fraction of its cells in the band (ties: more cells, then nearest to truncation in "
         "more cells); the load ranges are runs of consecutive loads in the band, per punch.\n"
-    )  # fmt: skip
+    )
     for t in ana["tracking"]:
         d = stage["designs"][t["design"]]
-        L.append(f"*{'Sweep' if t['design'] == 'sweep' else 'Statistics'} ({len(d['seeds'])}×{d['placements']})* — "
-                 + tracking_sentence(stage, t["surface"], t) + "\n")  # fmt: skip
+        L.append(
+            f"*{'Sweep' if t['design'] == 'sweep' else 'Statistics'} ({len(d['seeds'])}×{d['placements']})* — "
+            + tracking_sentence(stage, t["surface"], t)
+            + "\n"
+        )
     for nme in figure_names or []:
         L.append(f"![{nme}]({nme})\n")
     L += face_lines(stage, ana)
@@ -305,23 +400,31 @@ def indentation_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float
             f"**Resolution check** ({r['surface']}, {r['punch_m'] * 1e6:g} µm punch at the map centre, the "
             f"largest load; the same surface — same phases and cut-off — at {r['n_coarse']}² "
             f"({r['dx_coarse_m'] * 1e9:.1f} nm pixels) and {r['n_fine']}² ({r['dx_fine_m'] * 1e9:.1f} nm)):\n"
-        )  # fmt: skip
+        )
         L.append("| model | quantity | coarse | fine | fine/coarse |")
         L.append("|---|---|---|---|---|")
-        names = {"unloading_stiffness_N_per_m": "K (N/m)", "partial_unloading_stiffness_N_per_m":
-                 "K partial (N/m)", "contact_area_m2": "contact area (µm²)",
-                 "plastic_area_m2": "plastic area (µm²)", "truncation_E_c_over_E": "truncation E_c/E"}  # fmt: skip
+        names = {
+            "unloading_stiffness_N_per_m": "K (N/m)",
+            "partial_unloading_stiffness_N_per_m": "K partial (N/m)",
+            "contact_area_m2": "contact area (µm²)",
+            "plastic_area_m2": "plastic area (µm²)",
+            "truncation_E_c_over_E": "truncation E_c/E",
+        }
         for m, v in r["models"].items():
             for q, lab in names.items():
                 x, y, ratio = v[q]
                 scale = 1e12 if q.endswith("m2") else 1.0
                 fa = "—" if x is None else f"{x * scale:.4g}"
                 fb = "—" if y is None else f"{y * scale:.4g}"
-                L.append(f"| {model_label(stage, m)} | {lab} | {fa} | {fb} | {fmt_value(ratio, '.3f')} |")
+                L.append(
+                    f"| {model_label(stage, m)} | {lab} | {fa} | {fb} | {fmt_value(ratio, '.3f')} |"
+                )
         L.append("")
     L += resolution_lines(stage, ana)
     L += cost_lines(stage, ana, seconds)
-    L.append("An elastic–plastic piece of the sweep takes from the sweep's elastic piece each unrefined "
-             "punch's leading cycles whose elastic peak pressure stays below H (no pixel reaches the cap, "
-             "so the two solutions are one) and solves the rest.\n")  # fmt: skip
+    L.append(
+        "An elastic–plastic piece of the sweep takes from the sweep's elastic piece each unrefined "
+        "punch's leading cycles whose elastic peak pressure stays below H (no pixel reaches the cap, "
+        "so the two solutions are one) and solves the rest.\n"
+    )
     return L

@@ -36,8 +36,12 @@ def _clean(hardness: Any, depth: Any) -> tuple[np.ndarray, np.ndarray]:
 
 def _exact(hardness: Any, log_h: float) -> float:
     """The value of ``hardness`` whose logarithm is ``log_h`` (as given, not exp(log))."""
-    return float(min((h for h in hardness if h is not None and 0 < h < math.inf),
-                     key=lambda h: abs(math.log(h) - log_h)))  # fmt: skip
+    return float(
+        min(
+            (h for h in hardness if h is not None and 0 < h < math.inf),
+            key=lambda h: abs(math.log(h) - log_h),
+        )
+    )
 
 
 def hardness_range(hardness: Any, depth: Any, band: tuple[float, float]) -> dict[str, Any]:
@@ -90,15 +94,19 @@ def hardness_range(hardness: Any, depth: Any, band: tuple[float, float]) -> dict
             merged.append(list(s))
     iv = [[float(math.exp(u)), float(math.exp(v))] for u, v in merged]
     return {
-        "intervals": iv, "low": iv[0][0] if iv else None, "high": iv[-1][1] if iv else None,
+        "intervals": iv,
+        "low": iv[0][0] if iv else None,
+        "high": iv[-1][1] if iv else None,
         "contiguous": len(iv) == 1,
         "open_below": bool(iv) and x.size > 0 and math.isclose(merged[0][0], x[0], abs_tol=1e-12),
         "open_above": bool(iv) and x.size > 0 and math.isclose(merged[-1][1], x[-1], abs_tol=1e-12),
         "n_points": int(x.size),
-    }  # fmt: skip
+    }
 
 
-def depth_match(hardness: Any, depth: Any, target: float, band: tuple[float, float]) -> dict[str, Any]:
+def depth_match(
+    hardness: Any, depth: Any, target: float, band: tuple[float, float]
+) -> dict[str, Any]:
     """The sweep's H that best matches the target depth.
 
     Parameters
@@ -141,13 +149,19 @@ def depth_match(hardness: Any, depth: Any, target: float, band: tuple[float, flo
         h_target = math.exp(x[0])
     if h_target is not None:
         k = int(np.argmin(np.abs(x - math.log(h_target))))
-        return {"H_target": h_target, "H_match": _exact(hardness, x[k]),
-                "reason": "the sweep's H nearest (log H) to the interpolated target"}  # fmt: skip
+        return {
+            "H_target": h_target,
+            "H_match": _exact(hardness, x[k]),
+            "reason": "the sweep's H nearest (log H) to the interpolated target",
+        }
     inb = [k for k in range(x.size) if band[0] <= math.exp(y[k]) <= band[1]]
     if inb:  # only an end point of the sweep in the band (points that straddle it bracket it)
         k = min(inb, key=lambda k: abs(y[k] - t))
-        return {"H_target": None, "H_match": _exact(hardness, x[k]),
-                "reason": "the target is not bracketed; the H whose depth is nearest in the band"}  # fmt: skip
+        return {
+            "H_target": None,
+            "H_match": _exact(hardness, x[k]),
+            "reason": "the target is not bracketed; the H whose depth is nearest in the band",
+        }
     return {"H_target": None, "H_match": None, "reason": "no depth of the sweep reaches the band"}
 
 
@@ -192,9 +206,14 @@ def agreement_depth(omega: Any, ratio: Any, good: float = 0.2) -> dict[str, Any]
             continue
         leaves = float(w[k])
         break
-    return {"depth": depth, "leaves_at": leaves, "n_cells": int(w.size), "n_in": n_in,
-            "deepest": float(w.max()) if w.size else None,
-            "shallowest": float(w.min()) if w.size else None}  # fmt: skip
+    return {
+        "depth": depth,
+        "leaves_at": leaves,
+        "n_cells": int(w.size),
+        "n_in": n_in,
+        "deepest": float(w.max()) if w.size else None,
+        "shallowest": float(w.min()) if w.size else None,
+    }
 
 
 def depth_at_load(punch: Any, load: Any, depth: Any, ok: Any, at: float) -> dict[str, Any]:
@@ -222,9 +241,15 @@ def depth_at_load(punch: Any, load: Any, depth: Any, ok: Any, at: float) -> dict
     """
     per: dict[float, dict[str, Any]] = {}
     for d in sorted({float(x) for x in punch}):
-        v = [float(z) for x, f, z, good in zip(punch, load, depth, ok, strict=True)
-             if good and math.isclose(x, d, rel_tol=1e-9) and math.isclose(f, at, rel_tol=1e-9)
-             and z is not None and math.isfinite(z)]  # fmt: skip
+        v = [
+            float(z)
+            for x, f, z, good in zip(punch, load, depth, ok, strict=True)
+            if good
+            and math.isclose(x, d, rel_tol=1e-9)
+            and math.isclose(f, at, rel_tol=1e-9)
+            and z is not None
+            and math.isfinite(z)
+        ]
         if v:
             per[d] = {"median": float(np.median(v)), "min": min(v), "max": max(v), "n": len(v)}
     if not per:

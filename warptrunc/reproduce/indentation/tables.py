@@ -42,10 +42,11 @@ VERDICTS = {
 
 TABLE_DOCS = {
     "{stage_ana}": "Parameters\n----------\nstage : dict\n    The stage result.\nana : dict\n"
-                   "    Its analysis.",
+    "    Its analysis.",
 }
 """The parameters every table of the stage's report takes, written once
 (:func:`~warptrunc._support.docs.fill_doc`)."""
+
 
 def model_label(stage: dict[str, Any], model: str) -> str:
     """Readable name of a model key of the stage.
@@ -63,7 +64,11 @@ def model_label(stage: dict[str, Any], model: str) -> str:
     str
         E.g. ``"elastic–plastic, H = 1 GPa"``.
     """
-    base, part = (model[: -len("_partial")], " (partial unloading)") if model.endswith("_partial") else (model, "")
+    base, part = (
+        (model[: -len("_partial")], " (partial unloading)")
+        if model.endswith("_partial")
+        else (model, "")
+    )
     if base == "truncation":
         return "truncation (Eq. 2)"
     h = stage["hardness_Pa"].get(base)
@@ -101,21 +106,32 @@ def hardness_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     at = max(stage["loads_N"]) * 1e3
     hs = sorted({h for v in ana["hardness"].values() for h in v["hardness_Pa"]})
     L = [
-        "| surface | punch | " + " | ".join(f"H = {h / 1e9:g} GPa" for h in hs)
+        "| surface | punch | "
+        + " | ".join(f"H = {h / 1e9:g} GPa" for h in hs)
         + f" | H = ∞ | H with depth in {_um(lo, 'g')}–{_um(hi, 'g')} µm | H for {_um(stage['depth_target_m'], 'g')} µm | statistics at |",
         "|---|---|" + "---|" * (len(hs) + 4),
-    ]  # fmt: skip
+    ]
     words = []
-    stats_h = {(t["surface"]): t["model"] for t in stage["timings"]
-               if t["design"] == "stats" and t["model"] != "elastic"}  # fmt: skip
+    stats_h = {
+        (t["surface"]): t["model"]
+        for t in stage["timings"]
+        if t["design"] == "stats" and t["model"] != "elastic"
+    }
     for s, v in ana["hardness"].items():
-        dep = {(d["model"]): d for d in ana["depths"] if d["surface"] == s and d["design"] == "sweep"}
+        dep = {
+            (d["model"]): d for d in ana["depths"] if d["surface"] == s and d["design"] == "sweep"
+        }
         cells = []
         for h in hs:
             m = next((k for k, x in stage["hardness_Pa"].items() if x == h), None)
             dd = (dep.get(m) or {}).get("deepest")
-            cells.append("—" if dd is None else _um(dd["median"]) if dd["n"] == 1 else
-                         f"{_um(dd['median'])} [{_um(dd['min'])}–{_um(dd['max'])}]")  # fmt: skip
+            cells.append(
+                "—"
+                if dd is None
+                else _um(dd["median"])
+                if dd["n"] == 1
+                else f"{_um(dd['median'])} [{_um(dd['min'])}–{_um(dd['max'])}]"
+            )
         el = (dep.get("elastic") or {}).get("deepest")
         punch = next((d["deepest"]["punch_m"] for d in dep.values() if d.get("deepest")), None)
         rg, mt = v["range"], v["match"]
@@ -123,33 +139,45 @@ def hardness_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
             span = "none in the sweep"
         else:
             span = " ∪ ".join(f"{a / 1e9:.3g}–{b / 1e9:.3g} GPa" for a, b in rg["intervals"])
-            span += (" (or softer)" if rg["open_below"] else "") + (" (or harder)" if rg["open_above"] else "")
+            span += (" (or softer)" if rg["open_below"] else "") + (
+                " (or harder)" if rg["open_above"] else ""
+            )
         st = stats_h.get(s)
-        L.append(f"| {s} | {'—' if punch is None else f'{punch * 1e6:g} µm'} | " + " | ".join(cells)
-                 + f" | {'—' if el is None else _um(el['median'])} | {span} | "
-                 f"{'—' if mt['H_target'] is None else _gpa(mt['H_target']) + ' GPa'} | "
-                 f"{model_label(stage, st) if st else 'none'} |")  # fmt: skip
+        L.append(
+            f"| {s} | {'—' if punch is None else f'{punch * 1e6:g} µm'} | "
+            + " | ".join(cells)
+            + f" | {'—' if el is None else _um(el['median'])} | {span} | "
+            f"{'—' if mt['H_target'] is None else _gpa(mt['H_target']) + ' GPa'} | "
+            f"{model_label(stage, st) if st else 'none'} |"
+        )
         deep = [x for x in v["depth_m"] if x is not None]
         if rg["low"] is None and deep:
             side = "shallower" if max(deep) < lo else "deeper"
-            need = (f"it would take H above {hs[-1] / 1e9:g} GPa" if side == "deeper" else
-                    f"a softer H than {hs[0] / 1e9:g} GPa would be needed, if any reaches it")  # fmt: skip
-            words.append(f"{s}: every H of the sweep gives a depth {side} than {_um(lo, 'g')}–{_um(hi, 'g')} µm "
-                         f"({_um(min(deep))}–{_um(max(deep))} µm); no H in "
-                         f"{hs[0] / 1e9:g}–{hs[-1] / 1e9:g} GPa reproduces the paper's depth on this surface "
-                         f"({need}).")  # fmt: skip
+            need = (
+                f"it would take H above {hs[-1] / 1e9:g} GPa"
+                if side == "deeper"
+                else f"a softer H than {hs[0] / 1e9:g} GPa would be needed, if any reaches it"
+            )
+            words.append(
+                f"{s}: every H of the sweep gives a depth {side} than {_um(lo, 'g')}–{_um(hi, 'g')} µm "
+                f"({_um(min(deep))}–{_um(max(deep))} µm); no H in "
+                f"{hs[0] / 1e9:g}–{hs[-1] / 1e9:g} GPa reproduces the paper's depth on this surface "
+                f"({need})."
+            )
         elif rg["low"] is not None:
-            words.append(f"{s}: depths of {_um(lo, 'g')}–{_um(hi, 'g')} µm at {at:g} mN need H = {span}.")
+            words.append(
+                f"{s}: depths of {_um(lo, 'g')}–{_um(hi, 'g')} µm at {at:g} mN need H = {span}."
+            )
     L.append("")
     L.append(
         f"Depth: the punch's approach δ from first touch (the highest pixel under the punch) at the "
         f"largest load, {at:g} mN, on the punch that goes deepest (named), median [min–max] over the "
-        "sweep's indents, in µm; the paper: the maximal indentation depth \"is around 5 µm\" (§ 4.1), "
+        'sweep\'s indents, in µm; the paper: the maximal indentation depth "is around 5 µm" (§ 4.1), '
         f"taken here as {_um(lo, 'g')}–{_um(hi, 'g')} µm. The H range joins the sweep's points by "
-        "straight lines in log H – log depth; \"or softer/harder\": the band is met at the sweep's "
+        'straight lines in log H – log depth; "or softer/harder": the band is met at the sweep\'s '
         "end, beyond which it says nothing. The statistics use the sweep's H nearest the one that "
         "gives the target depth (none when no H of the sweep reaches the band).\n"
-    )  # fmt: skip
+    )
     L += [w + "\n" for w in words]
     return L
 
@@ -172,30 +200,41 @@ def fit_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     list of str
         Markdown lines of the table and the partial-unloading note.
     """
-    L = ["| surface | design | model | α [95 %] | β [95 %] | cells | indents | α, β on K alone (cells) |",
-         "|---|---|---|---|---|---|---|---|"]  # fmt: skip
+    L = [
+        "| surface | design | model | α [95 %] | β [95 %] | cells | indents | α, β on K alone (cells) |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
     dalpha = []
     for f in ana["fits"]:
         made = f["made"]
         a = _ci(f, "alpha", ".3f") if made else "not made"
         b = _ci(f, "beta", ".3g") if made else "—"
         k = f.get("stiffness_rule") or {}
-        kk = (f"{_ci(k, 'alpha', '.3f')}, {_ci(k, 'beta', '.3g')} ({k['n_points']})" if k.get("made")
-              else f"not made ({k.get('n_points', 0)})")  # fmt: skip
-        L.append(f"| {f['surface']} | {_design(stage, f['design'])} | {model_label(stage, f['model'])} | "
-                 f"{a} | {b} | {f['n_points']} | {f['n_indents']} | {kk} |")  # fmt: skip
+        kk = (
+            f"{_ci(k, 'alpha', '.3f')}, {_ci(k, 'beta', '.3g')} ({k['n_points']})"
+            if k.get("made")
+            else f"not made ({k.get('n_points', 0)})"
+        )
+        L.append(
+            f"| {f['surface']} | {_design(stage, f['design'])} | {model_label(stage, f['model'])} | "
+            f"{a} | {b} | {f['n_points']} | {f['n_indents']} | {kk} |"
+        )
         pa = f.get("partial") or {}
         if made and pa.get("made"):
             dalpha.append(abs(pa["alpha"] - f["alpha"]))
     L.append("")
-    L.append("No interval where each punch has a single indent (the bootstrap resamples indents within "
-             "each punch). α, β use the cells resolved by the refinement rule (K **and** the contact "
-             "area change by less than the tolerance when the pixel halves); the last column fits the "
-             "cells resolved on K alone (the contact area of a fractal surface keeps changing as finer "
-             "roughness is resolved, while K, the quantity fitted, converges).\n")
+    L.append(
+        "No interval where each punch has a single indent (the bootstrap resamples indents within "
+        "each punch). α, β use the cells resolved by the refinement rule (K **and** the contact "
+        "area change by less than the tolerance when the pixel halves); the last column fits the "
+        "cells resolved on K alone (the contact area of a fractal surface keeps changing as finer "
+        "roughness is resolved, while K, the quantity fitted, converges).\n"
+    )
     if dalpha:
-        L.append(f"The paper's partial-unloading secant instead of Barber's initial slope changes α by at "
-                 f"most {max(dalpha):.3f} over these fits.\n")  # fmt: skip
+        L.append(
+            f"The paper's partial-unloading secant instead of Barber's initial slope changes α by at "
+            f"most {max(dalpha):.3f} over these fits.\n"
+        )
     return L
 
 
@@ -225,15 +264,24 @@ def agreement_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
         f"| surface | design | model | within {band} up to (% R_t′) | leaves at (% R_t′) | cells in / walked | "
         "deepest cell (% R_t′) | the paper (vs experiment) |",
         "|---|---|---|---|---|---|---|---|",
-    ]  # fmt: skip
+    ]
     for a in ana["agreement"]:
         paper = TABLE2.get(a["surface"], ((None, None),))[0]
         ptxt = "—" if paper[0] is None else f"{paper[0]:g}–{paper[1]:g} %"
-        upto = ("none (the shallowest cell is outside)" if a["depth"] is None and a["n_cells"] else
-                fmt_value(a["depth"], ".3g"))  # fmt: skip
-        leave = "never (to the deepest cell)" if a["leaves_at"] is None and a["n_cells"] else fmt_value(a["leaves_at"], ".3g")
-        L.append(f"| {a['surface']} | {_design(stage, a['design'])} | {model_label(stage, a['model'])} | "
-                 f"{upto} | {leave} | {a['n_in']} / {a['n_cells']} | {fmt_value(a['deepest'], '.3g')} | {ptxt} |")  # fmt: skip
+        upto = (
+            "none (the shallowest cell is outside)"
+            if a["depth"] is None and a["n_cells"]
+            else fmt_value(a["depth"], ".3g")
+        )
+        leave = (
+            "never (to the deepest cell)"
+            if a["leaves_at"] is None and a["n_cells"]
+            else fmt_value(a["leaves_at"], ".3g")
+        )
+        L.append(
+            f"| {a['surface']} | {_design(stage, a['design'])} | {model_label(stage, a['model'])} | "
+            f"{upto} | {leave} | {a['n_in']} / {a['n_cells']} | {fmt_value(a['deepest'], '.3g')} | {ptxt} |"
+        )
     L.append("")
     return L
 
@@ -267,15 +315,18 @@ def resolution_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
         "alone). Over every punch and indent.\n",
         f"| surface | load (mN) | {head} |",
         "|---|---|" + "---|" * len(cols),
-    ]  # fmt: skip
+    ]
     tab = {(t["surface"], t["design"], t["model"], t["load_N"]): t for t in ana["resolution_table"]}
     for s in stage["surfaces"]:
         for f in stage["loads_N"]:
             row = []
             for d, m in cols:
                 t = tab.get((s, d, m, f))
-                row.append("—" if t is None else
-                           f"{t['resolved']}/{t['n']}, {fmt_value(t['median_contact_px'], '.0f')} px, ×{t['max_refinement']}")  # fmt: skip
+                row.append(
+                    "—"
+                    if t is None
+                    else f"{t['resolved']}/{t['n']}, {fmt_value(t['median_contact_px'], '.0f')} px, ×{t['max_refinement']}"
+                )
             L.append(f"| {s} | {f * 1e3:.4g} | " + " | ".join(row) + " |")
     L.append("")
     return L
@@ -295,36 +346,48 @@ def cost_lines(stage: dict[str, Any], ana: dict[str, Any], seconds: float | None
         Markdown lines.
     """
     c = ana["cost"]
-    L = [f"**Cost.** Pieces (one per surface × design × H, and per punch face; stored under `{stage['store']}/`, a rerun "
-         "continues an interrupted stage):\n",
-         "| surface | design | model | realisations × placements | seconds | of which solves at the map's "
-         "pixel / refinement / truncation | cycles taken from the elastic piece | cells per pixel "
-         "(×f: n) | largest window (px) | not converged | device |",
-         "|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
+    L = [
+        f"**Cost.** Pieces (one per surface × design × H, and per punch face; stored under `{stage['store']}/`, a rerun "
+        "continues an interrupted stage):\n",
+        "| surface | design | model | realisations × placements | seconds | of which solves at the map's "
+        "pixel / refinement / truncation | cycles taken from the elastic piece | cells per pixel "
+        "(×f: n) | largest window (px) | not converged | device |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
     for t in stage["timings"]:
         w = t["largest_window_px"]
         per = ", ".join(f"×{k}: {v}" for k, v in t["cells_per_factor"].items())
         face = f", {t['face']}" if t.get("face") else ""
-        L.append(f"| {t['surface']} | {DESIGN_WORDS[t['design']]} | {model_label(stage, t['model'])}{face} | "
-                 f"{len(t['seeds'])} × {t['placements']} | {t['piece_s']:.1f} | "
-                 f"{t.get('elastic_plastic_s', 0) + t.get('elastic_s', 0):.1f} / "
-                 f"{t.get('refinement_s', 0):.1f} / {t.get('truncation_s', 0):.1f} | "
-                 f"{t.get('reused_elastic_cycles', 0)} | {per} | {w[0]}×{w[1]} | "
-                 f"{t['n_not_converged']} | {t['device']} |")  # fmt: skip
+        L.append(
+            f"| {t['surface']} | {DESIGN_WORDS[t['design']]} | {model_label(stage, t['model'])}{face} | "
+            f"{len(t['seeds'])} × {t['placements']} | {t['piece_s']:.1f} | "
+            f"{t.get('elastic_plastic_s', 0) + t.get('elastic_s', 0):.1f} / "
+            f"{t.get('refinement_s', 0):.1f} / {t.get('truncation_s', 0):.1f} | "
+            f"{t.get('reused_elastic_cycles', 0)} | {per} | {w[0]}×{w[1]} | "
+            f"{t['n_not_converged']} | {t['device']} |"
+        )
     L.append("")
     if c["levels"]:
-        L.append("Per refinement level (cells solved there: those whose final pixel is that fine or finer; "
-                 "seconds **apportioned**: `warptrunc.indent` records the refinement's seconds per punch, "
-                 "split here by cells × window pixels at each level):\n")  # fmt: skip
-        L += ["| level | cells solved | largest window (px) | seconds (apportioned) |", "|---|---|---|---|"]
+        L.append(
+            "Per refinement level (cells solved there: those whose final pixel is that fine or finer; "
+            "seconds **apportioned**: `warptrunc.indent` records the refinement's seconds per punch, "
+            "split here by cells × window pixels at each level):\n"
+        )
+        L += [
+            "| level | cells solved | largest window (px) | seconds (apportioned) |",
+            "|---|---|---|---|",
+        ]
         for f, v in c["levels"].items():
             side = round(math.sqrt(v["window_px"]))
             L.append(f"| ×{f} | {v['cells']} | ≈{side}² | {v['seconds']:.1f} |")
         L.append("")
-    L.append(f"Largest refinement reached: ×{c['largest_refinement']}. "
-             + "; ".join(f"{DESIGN_WORDS[d]}: {v:.1f} s" for d, v in c["per_design"].items())
-             + f"; total over the pieces {c['pieces_s']:.1f} s."
-             + ("" if seconds is None else f" The stage took {seconds:.1f} s in its last run.") + "\n")  # fmt: skip
+    L.append(
+        f"Largest refinement reached: ×{c['largest_refinement']}. "
+        + "; ".join(f"{DESIGN_WORDS[d]}: {v:.1f} s" for d, v in c["per_design"].items())
+        + f"; total over the pieces {c['pieces_s']:.1f} s."
+        + ("" if seconds is None else f" The stage took {seconds:.1f} s in its last run.")
+        + "\n"
+    )
     return L
 
 
@@ -339,38 +402,49 @@ def face_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
     list of str
         Markdown lines: the rule, the table and one sentence per face.
     """
-    head = ("**Ps with a tilted or rough punch face** (§ 4.2: \"the misalignment of the indenter with "
-            "tested surfaces and roughness features that may be present on the flat diamond tip (measured "
-            "to have an RMS roughness of around 0.05 µm)\" among the likely causes of Ps's divergence for "
-            "interferences beyond 15 % R_t′). ")  # fmt: skip
+    head = (
+        '**Ps with a tilted or rough punch face** (§ 4.2: "the misalignment of the indenter with '
+        "tested surfaces and roughness features that may be present on the flat diamond tip (measured "
+        "to have an RMS roughness of around 0.05 µm)\" among the likely causes of Ps's divergence for "
+        "interferences beyond 15 % R_t′). "
+    )
     if not ana.get("faces"):
-        return [head + "Not run: the profile names no punch face (`indentation.face_surface`, "
-                "`indentation.face_tilts_deg`, `indentation.face_roughness`).\n"]
+        return [
+            head + "Not run: the profile names no punch face (`indentation.face_surface`, "
+            "`indentation.face_tilts_deg`, `indentation.face_roughness`).\n"
+        ]
     f0 = ana["faces"][0]
     lo, hi = f0["paper_range"]
     band = f"±{100 * ana['good_band']:.0f} %"
-    L = [head + f"The sweep's indents of {f0['surface']} again, at {model_label(stage, f0['model'])}, with each "
-         "face (`PunchFaceSpec.tilt_deg`, held fixed as the indenter's shaft holds it; "
-         "`PunchFaceSpec.roughness`, a self-affine face of Hurst exponent 0.8 from 2 map pixels, or the finest its "
-         "punch's face grid holds, to the punch diameter), against the aligned smooth flat of the sweep; "
-         "truncation stays the sample's. A face **explains** the divergence when, with it, truncation "
-         f"leaves the {band} band of the model between the last cell inside and the first outside a "
-         f"bracket that meets the paper's {lo:g}–{hi:g} % R_t′, while with the aligned flat it stays "
-         "within the band beyond that range (the agreement walk above; ω in % of the map's R_t′).\n",
-         f"| face | within {band} up to (% R_t′) | leaves at (% R_t′) | cells in / walked | "
-         "K / K of the aligned flat, median [range] | verdict |",
-         "|---|---|---|---|---|---|"]  # fmt: skip
+    L = [
+        head
+        + f"The sweep's indents of {f0['surface']} again, at {model_label(stage, f0['model'])}, with each "
+        "face (`PunchFaceSpec.tilt_deg`, held fixed as the indenter's shaft holds it; "
+        "`PunchFaceSpec.roughness`, a self-affine face of Hurst exponent 0.8 from 2 map pixels, or the finest its "
+        "punch's face grid holds, to the punch diameter), against the aligned smooth flat of the sweep; "
+        "truncation stays the sample's. A face **explains** the divergence when, with it, truncation "
+        f"leaves the {band} band of the model between the last cell inside and the first outside a "
+        f"bracket that meets the paper's {lo:g}–{hi:g} % R_t′, while with the aligned flat it stays "
+        "within the band beyond that range (the agreement walk above; ω in % of the map's R_t′).\n",
+        f"| face | within {band} up to (% R_t′) | leaves at (% R_t′) | cells in / walked | "
+        "K / K of the aligned flat, median [range] | verdict |",
+        "|---|---|---|---|---|---|",
+    ]
     ref = f0["aligned"]
     if ref is not None:
-        L.append(f"| aligned smooth flat (the sweep) | {fmt_value(ref['depth'], '.3g')} | "
-                 f"{'never' if ref['leaves_at'] is None else format(ref['leaves_at'], '.3g')} | "
-                 f"{ref['n_in']} / {ref['n_cells']} | 1 | reference |")  # fmt: skip
+        L.append(
+            f"| aligned smooth flat (the sweep) | {fmt_value(ref['depth'], '.3g')} | "
+            f"{'never' if ref['leaves_at'] is None else format(ref['leaves_at'], '.3g')} | "
+            f"{ref['n_in']} / {ref['n_cells']} | 1 | reference |"
+        )
     for f in ana["faces"]:
         kr = f["K_over_aligned_range"]
         ktxt = "—" if kr is None else f"{f['K_over_aligned_median']:.3g} [{kr[0]:.3g}–{kr[1]:.3g}]"
-        L.append(f"| {f['label']} | {fmt_value(f['depth'], '.3g')} | "
-                 f"{'never' if f['leaves_at'] is None else format(f['leaves_at'], '.3g')} | "
-                 f"{f['n_in']} / {f['n_cells']} | {ktxt} | {VERDICTS[f['verdict']].split(':')[0]} |")  # fmt: skip
+        L.append(
+            f"| {f['label']} | {fmt_value(f['depth'], '.3g')} | "
+            f"{'never' if f['leaves_at'] is None else format(f['leaves_at'], '.3g')} | "
+            f"{f['n_in']} / {f['n_cells']} | {ktxt} | {VERDICTS[f['verdict']].split(':')[0]} |"
+        )
     L.append("")
     for f in ana["faces"]:
         L.append(f"{f['surface']}, {f['label']}: {VERDICTS[f['verdict']]}.\n")
