@@ -12,8 +12,8 @@ holds the mode; the conjugate mode (−mx, −my) takes −φ, so the map is rea
 
 Kernels
 -------
-``mode_sums_kernel``: one thread per row of the half spectrum (ny, nx//2 + 1); Σ f² and Σ |q|²f²
-over the row's modes and their conjugates, in a fixed order (float64).
+``mode_sums_kernel``: one thread per row of the half spectrum (ny, nx//2 + 1); Σ f², Σ |q|²f² and
+Σ |q|⁴f² over the row's modes and their conjugates, in a fixed order (float64).
 ``fill_spectrum_kernel``: one thread per mode of the half spectrum; writes nx·ny·s·f·e^{iφ}
 (float64 complex as ``vec2d``), the coefficients of an unnormalised inverse real FFT.
 ``to_float32_kernel``: one thread per pixel; float64 heights to the float32 map.
@@ -78,13 +78,14 @@ def mode_sums_kernel(
     q_short: wp.float64,
     sums: wp.array2d[wp.float64],
 ):
-    """One thread per row iy of the half spectrum: sums[iy] = (Σ f², Σ |q|² f²) over the row's
-    columns, each column that stands for its conjugate too counted twice."""
+    """One thread per row iy of the half spectrum: sums[iy] = (Σ f², Σ |q|² f², Σ |q|⁴ f²) over
+    the row's columns, each column that stands for its conjugate too counted twice."""
     iy = wp.tid()
     my = wavenumber(iy, ny)
     qy = wp.float64(6.283185307179586) * wp.float64(my) / ly
     s0 = wp.float64(0.0)
     s2 = wp.float64(0.0)
+    s4 = wp.float64(0.0)
     for ix in range(nx // 2 + 1):
         mx = ix
         if nyquist(mx, my, nx, ny):
@@ -97,8 +98,10 @@ def mode_sums_kernel(
             w = wp.float64(1.0)  # column 0 holds both (0, my) and (0, −my)
         s0 += w * f * f
         s2 += w * q2 * f * f
+        s4 += w * q2 * q2 * f * f
     sums[iy, 0] = s0
     sums[iy, 1] = s2
+    sums[iy, 2] = s4
 
 
 @wp.kernel

@@ -119,3 +119,11 @@ def test_statistics_agree_with_surfacetopography():
     # the continuous integral; ours are exact: the means agree to their scatter over 8 maps
     assert np.mean([o.h_rms for o in ours]) == pytest.approx(st_h, rel=0.08)
     assert np.mean([o.slope_rms for o in ours]) == pytest.approx(st_g, rel=0.04)
+
+
+def test_curvature_is_the_spectrum_sum():
+    s = self_affine_surface(SPEC, device="cpu")
+    c, q = _spectrum(s)
+    dq2 = (2 * np.pi) ** 2 / (s.lx * s.ly)
+    got = math.sqrt((q**4 * c * dq2).sum())
+    assert got == pytest.approx(s.params["curvature_rms_per_m"], rel=1e-5)

@@ -90,3 +90,23 @@ def test_warning_above_the_limit_only():
     (w,) = check_slope(st, limit=st.slope_rms / 2)
     assert w.code == "slope" and w.details["slope_rms"] == st.slope_rms
     assert SMALL_SLOPE_LIMIT == 0.5
+
+
+def test_record_of_a_wm_map_has_both_methods_and_the_warning(device):
+    from warptrunc.slope import slope_record, slope_warnings
+    from warptrunc.wm import wm_surface
+
+    s = wm_surface(D=2.9, Wr=L / 8, L=L, n=256, Rt=20e-6, seed=0, device=device)
+    rec = slope_record(s)
+    assert rec["method"] == "finite differences"
+    assert rec["finite_differences"]["slope_rms"] == rec["slope_rms"]
+    assert rec["spectrum"]["method"] == "spectrum"
+    # a steep map (D near 3, 2-pixel cut-off) is outside the small-slope range: one warning
+    assert rec["slope_rms"] > 0.5 and rec["small_slope"] is False
+    (w,) = slope_warnings(rec)
+    assert w.code == "slope"
+    cpu = slope_record(wm_surface(D=2.9, Wr=L / 8, L=L, n=256, Rt=20e-6, seed=0, device="cpu"))
+    assert rec["slope_rms"] == pytest.approx(cpu["slope_rms"], rel=1e-12)  # same on every device
+    # a streamed map has no map: the spectrum alone
+    only = slope_record(params=s.to_dict())
+    assert only["method"] == "spectrum" and only["finite_differences"] is None

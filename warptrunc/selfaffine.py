@@ -196,8 +196,9 @@ def self_affine_surface(spec: SelfAffineSpec | None = None, *, device: Any = Non
     -------
     Surface
         The (ny, nx) map (m), float32 heights with zero mean, device-resident; ``params`` hold
-        ``generator="self-affine"``, the spec's fields, ``C0_m4`` (C₀, m⁴), ``h_rms_m`` and
-        ``slope_rms`` (the discrete sums of the spectrum, which the map has to round-off) and
+        ``generator="self-affine"``, the spec's fields, ``C0_m4`` (C₀, m⁴), ``h_rms_m``,
+        ``slope_rms`` and ``curvature_rms_per_m`` (the discrete sums of the spectrum, which the map
+        has to round-off; the last the rms Laplacian, 1/m) and
         ``q_long``, ``q_roll``, ``q_short`` (rad/m).
 
     Raises
@@ -227,9 +228,9 @@ def self_affine_surface(spec: SelfAffineSpec | None = None, *, device: Any = Non
         float(g["q_long"]),
         float(g["q_short"]),
     ]
-    sums = wp.zeros((ny, 2), dtype=wp.float64, device=dev)
+    sums = wp.zeros((ny, 3), dtype=wp.float64, device=dev)
     wp.launch(_k.mode_sums_kernel, dim=ny, inputs=geo, outputs=[sums], device=dev)
-    s0, s2 = (float(v) for v in sums.numpy().sum(axis=0))  # sync point
+    s0, s2, s4 = (float(v) for v in sums.numpy().sum(axis=0))  # sync point
     if not s0 > 0:
         raise ValueError(
             f"no mode of the {nx}×{ny} grid lies between the cut-offs "
@@ -259,6 +260,7 @@ def self_affine_surface(spec: SelfAffineSpec | None = None, *, device: Any = Non
         "C0_m4": c0,
         "h_rms_m": s * math.sqrt(s0),
         "slope_rms": s * math.sqrt(s2),
+        "curvature_rms_per_m": s * math.sqrt(s4),
         **{k: g[k] for k in ("q_long", "q_roll", "q_short")},
     }
     return Surface(z, g["dx"], g["dy"], params)

@@ -34,7 +34,10 @@ __all__ = [
     "SMALL_SLOPE_LIMIT",
     "SlopeStatistics",
     "check_slope",
+    "slope_record",
     "slope_statistics",
+    "slope_warnings",
+    "spectrum_slope",
     "wm_slope_statistics",
 ]
 
@@ -46,8 +49,6 @@ the exact solution by about θ²/2 in relative terms), and numerical studies of 
 h′_rms ≲ 0.5–1 (Müser et al., Tribol. Lett. 65, 118 (2017), doi:10.1007/s11249-017-0900-2, whose
 common test problem fixes h′_rms = 1 at the finest scale; Pastewka & Robbins, PNAS 111, 3298
 (2014), doi:10.1073/pnas.1320846111). Commands take another limit where the user sets one."""
-
-_ROWS = 1024  # rows per block of the finite differences (bounded float64 temporaries)
 
 
 @dataclass(frozen=True)
@@ -114,7 +115,7 @@ def _per_decade(wavelength: np.ndarray, slope_sq: np.ndarray, edges: np.ndarray)
     return tuple(out)
 
 
-def slope_statistics(surface: Any, *, per_decade: bool = True) -> SlopeStatistics:
+def slope_statistics(surface: Any, *, per_decade: bool = True, device: Any = None) -> SlopeStatistics:
     """Rms height, slope and curvature of a height map by finite differences at its pixel.
 
     Parameters
@@ -123,7 +124,9 @@ def slope_statistics(surface: Any, *, per_decade: bool = True) -> SlopeStatistic
         The height map (m), ``z[iy, ix]`` with pixel sizes ``dx``, ``dy`` (m).
     per_decade : bool
         Also the rms slope per decade of wavelength, from the map's periodogram (one real FFT
-        of the map, float64).
+        of the map, float64, on the host).
+    device : str or warp.context.Device, optional
+        Where the sums run (a Warp kernel, one thread per row): the surface's device by default.
 
     Returns
     -------
@@ -135,44 +138,41 @@ def slope_statistics(surface: Any, *, per_decade: bool = True) -> SlopeStatistic
     h′_rms² = ⟨(Δ_x h/dx)²⟩ + ⟨(Δ_y h/dy)²⟩ with forward differences over the (ny, nx − 1) and
     (ny − 1, nx) pixel pairs; h″_rms² = ⟨(∇²h)²⟩ with the five-point Laplacian
     (h[i, j+1] − 2h[i, j] + h[i, j−1])/dx² + (h[i+1, j] − 2h[i, j] + h[i−1, j])/dy² on the
-    interior pixels. The per-decade values come from the periodogram |ĥ(q)|² of the map with its
-    mean removed and a Hann window (so that the jump between opposite edges of a map that is not
-    periodic does not leak into the short wavelengths), normalised by the window's mean square:
-    the slope content of wavevector q is q²|ĥ(q)|²/N² (Parseval), summed over the q whose
-    wavelength 2π/|q| lies in each decade.
+    interior pixels. The sums run in float64 on the surface's device, row by row
+    (``warptrunc.kernels.slope``). The per-decade values come from the periodogram |ĥ(q)|² of the
+    map with its mean removed and a Hann window (so that the jump between opposite edges of a map
+    that is not periodic does not leak into the short wavelengths), normalised by the window's
+    mean square: the slope content of wavevector q is q²|ĥ(q)|²/N² (Parseval), summed over the q
+    whose wavelength 2π/|q| lies in each decade.
     """
-    z = np.asarray(surface.heights)
+    import warp as wp
+
+    from ._support.device import resolve_device
+    from .kernels import slope as _k
+
+    dev = resolve_device(device if device is not None else surface.device)
+    z = surface.device_heights(dev)
     dx, dy = float(surface.dx), float(surface.dy)
-    ny, nx = z.shape
-    mean = float(np.mean(z, dtype=np.float64))
-    sq = gx = gy = lap = 0.0
+    ny, nx = surface.ny, surface.nx
+    sums = wp.zeros((ny, 5), dtype=wp.float64, device=dev)
+    wp.launch(_k.slope_sums_kernel, dim=ny, inputs=[z, dx, dy], outputs=[sums], device=dev)
+    h1, h2, gx, gy, lap = (float(v) for v in sums.numpy().sum(axis=0))  # sync point
+    n = nx * ny
+    sq = max(h2 - h1 * h1 / n, 0.0)  # Σ (h − h̄)², about the first height r
+    mean = float(np.float64(z[0:1, 0:1].numpy()[0, 0])) + h1 / n
     n_lap = max(ny - 2, 0) * max(nx - 2, 0)
-    for r0 in range(0, ny, _ROWS):
-        r1 = min(ny, r0 + _ROWS)
-        b = z[r0:r1].astype(np.float64)
-        sq += float(np.square(b - mean).sum())
-        gx += float(np.square(np.diff(b, axis=1) / dx).sum())
-        nb = z[r0:min(ny, r1 + 1)].astype(np.float64)  # one row more: the pairs across blocks
-        gy += float(np.square(np.diff(nb, axis=0) / dy).sum())
-        if n_lap:
-            lo, hi = max(r0, 1), min(r1, ny - 1)
-            if hi > lo:
-                w = z[lo - 1:hi + 1].astype(np.float64)
-                c = w[1:-1, 1:-1]
-                lx = (w[1:-1, 2:] - 2.0 * c + w[1:-1, :-2]) / dx**2
-                ly = (w[2:, 1:-1] - 2.0 * c + w[:-2, 1:-1]) / dy**2
-                lap += float(np.square(lx + ly).sum())
     slope_sq = (gx / (ny * (nx - 1)) if nx > 1 else 0.0) + (gy / ((ny - 1) * nx) if ny > 1 else 0.0)
     edges: tuple = ()
     decades: tuple = ()
     if per_decade and nx > 1 and ny > 1:
+        h = np.asarray(surface.heights, dtype=np.float64) - mean
         wy, wx = np.hanning(ny + 2)[1:-1], np.hanning(nx + 2)[1:-1]  # no zero weights
         window = wy[:, None] * wx[None, :]
-        h = np.fft.rfft2((z.astype(np.float64) - mean) * window)
+        spec = np.fft.rfft2(h * window)
         qx = 2 * np.pi * np.fft.rfftfreq(nx, dx)
         qy = 2 * np.pi * np.fft.fftfreq(ny, dy)
         q2 = qx[None, :] ** 2 + qy[:, None] ** 2
-        power = np.abs(h) ** 2 / (nx * ny) ** 2 / float(np.mean(window**2))
+        power = np.abs(spec) ** 2 / (nx * ny) ** 2 / float(np.mean(window**2))
         power[:, 1:] *= 2.0  # the half spectrum stands for both halves ...
         if nx % 2 == 0:
             power[:, -1] /= 2.0  # ... except the Nyquist column, its own mirror
@@ -181,7 +181,7 @@ def slope_statistics(surface: Any, *, per_decade: bool = True) -> SlopeStatistic
         e = _decades(max(nx * dx, ny * dy), min(wavelength[np.isfinite(wavelength)]))
         edges, decades = tuple(float(v) for v in e), _per_decade(wavelength, q2 * power, e)
     return SlopeStatistics(
-        h_rms=math.sqrt(sq / z.size),
+        h_rms=math.sqrt(sq / n),
         slope_rms=math.sqrt(slope_sq),
         curvature_rms=math.sqrt(lap / n_lap) if n_lap else math.nan,
         method="finite differences",
@@ -263,3 +263,106 @@ def check_slope(stats: SlopeStatistics, limit: float = SMALL_SLOPE_LIMIT) -> lis
             {"slope_rms": stats.slope_rms, "limit": limit, "dx_m": stats.dx, "method": stats.method},
         )
     ]
+
+
+def spectrum_slope(params: dict[str, Any]) -> SlopeStatistics | None:
+    """The slope statistics of a generated surface from its known spectrum, or None.
+
+    Parameters
+    ----------
+    params : dict
+        A surface's ``params`` (or its ``to_dict()``): a WM surface's (``generator =
+        "weierstrass-mandelbrot"``, its fields and ``scale``, m) or a self-affine one's
+        (``generator = "self-affine"``, ``slope_rms``, ``curvature_rms_per_m``, ``h_rms_m``).
+
+    Returns
+    -------
+    SlopeStatistics or None
+        ``method="spectrum"``: for WM the moments of its terms (:func:`wm_slope_statistics`), for
+        a self-affine map the discrete sums of its spectrum; None for any other surface (a map
+        read from a file has no known spectrum).
+    """
+    gen = params.get("generator")
+    if gen == "weierstrass-mandelbrot" and params.get("scale") is not None:
+        from .wm_params import WMSpec
+
+        nx, ny = params.get("nx"), params.get("ny")
+        lx = params.get("Lx", params.get("lx_m"))
+        ly = params.get("Ly", params.get("ly_m"))
+        spec = WMSpec(D=params["D"], Wr=params["Wr"], L=(lx, ly), n=(nx, ny), M=params["M"],
+                      gamma=params["gamma"], Wc=params["Wc"], cutoff=params["cutoff"],
+                      seed=params["seed"], Rt=params.get("Rt"), G=params.get("G"),
+                      Rt_pixel=params.get("Rt_pixel"))  # fmt: skip
+        return wm_slope_statistics(spec.terms(), float(params["scale"]))
+    if gen == "self-affine":
+        dx = float(params.get("dx_m", math.nan))
+        return SlopeStatistics(
+            h_rms=float(params["h_rms_m"]),
+            slope_rms=float(params["slope_rms"]),
+            curvature_rms=float(params.get("curvature_rms_per_m", math.nan)),
+            method="spectrum",
+            dx=dx,
+            dy=float(params.get("dy_m", dx)),
+            details={"shortest_wavelength_m": 2 * math.pi / float(params["q_short"])},
+        )
+    return None
+
+
+def slope_record(surface: Any = None, *, params: dict[str, Any] | None = None,
+                 limit: float = SMALL_SLOPE_LIMIT) -> dict[str, Any]:  # fmt: skip
+    """The slope regime of a surface as an output records it, at the pixel the computation used.
+
+    Parameters
+    ----------
+    surface : Surface, optional
+        The map the computation used: its finite differences are measured
+        (:func:`slope_statistics`, no per-decade values). None for a streamed map, which is never
+        held whole.
+    params : dict, optional
+        The surface's metadata (``Surface.to_dict()``; for a streamed map the only record): its
+        known spectrum, where it has one (:func:`spectrum_slope`). Default: ``surface``'s.
+    limit : float
+        The small-slope limit the record and its warning use (dimensionless).
+
+    Returns
+    -------
+    dict
+        ``slope_rms`` and ``curvature_rms_per_m`` (the finite differences where the map is there,
+        else the spectrum's), ``method`` (which), ``finite_differences`` and ``spectrum`` (each
+        :meth:`SlopeStatistics.to_dict` or None), ``limit`` and ``small_slope`` (h′_rms ≤ limit).
+    """
+    params = dict(params if params is not None else surface.to_dict() if surface is not None else {})
+    fd = slope_statistics(surface, per_decade=False) if surface is not None else None
+    sp = spectrum_slope({**params, **getattr(surface, "params", {})})
+    main = fd if fd is not None else sp
+    return {
+        "slope_rms": None if main is None else main.slope_rms,
+        "curvature_rms_per_m": None if main is None else main.curvature_rms,
+        "method": None if main is None else main.method,
+        "finite_differences": None if fd is None else fd.to_dict(),
+        "spectrum": None if sp is None else sp.to_dict(),
+        "limit": limit,
+        "small_slope": None if main is None else bool(main.slope_rms <= limit),
+    }
+
+
+def slope_warnings(record: dict[str, Any]) -> list[PlausibilityWarning]:
+    """The ``"slope"`` warning of a :func:`slope_record`, where h′_rms exceeds its limit.
+
+    Parameters
+    ----------
+    record : dict
+        A :func:`slope_record`.
+
+    Returns
+    -------
+    list of PlausibilityWarning
+        Empty or one warning (:func:`check_slope`).
+    """
+    if record.get("slope_rms") is None:
+        return []
+    src = record["finite_differences"] or record["spectrum"]
+    stats = SlopeStatistics(h_rms=src["h_rms_m"], slope_rms=src["slope_rms"],
+                            curvature_rms=src["curvature_rms_per_m"], method=src["method"],
+                            dx=src["dx_m"], dy=src["dy_m"])  # fmt: skip
+    return check_slope(stats, record["limit"])
