@@ -279,6 +279,7 @@ html_theme = "pydata_sphinx_theme"
 html_title = f"warptrunc {release}"
 html_static_path = ["_static", "_generated/static"]
 html_css_files = ["warptrunc.css"]
+html_js_files = ["wide_tables.js"]  # the note above a table wider than the column
 html_logo = None
 html_show_sourcelink = False
 html_theme_options = {
@@ -287,7 +288,9 @@ html_theme_options = {
     "show_toc_level": 2,
     "navigation_with_keys": False,
     "header_links_before_dropdown": 8,
-    "secondary_sidebar_items": ["page-toc"],
+    # the parameters page gives its width to the presets table (12 columns) instead of a
+    # page outline on the right
+    "secondary_sidebar_items": {"**": ["page-toc"], "guide/parameters": []},
     "footer_start": ["copyright"],
     "footer_end": ["sphinx-version"],
 }
