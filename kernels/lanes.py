@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: MIT
 """The lane walk shared by the reduction kernels, and their float32/float64 overloads.
 
-Used by ``kernels/contact.py``, ``kernels/contact_plastic.py``, ``kernels/contact_reduce.py`` and
-``kernels/reduce.py``. A launch of ``lanes`` threads walks ``n`` flattened elements: on the GPU
+Used by ``kernels/contact/cg.py``, ``kernels/contact/plastic.py``,
+``kernels/contact/spectral.py``, ``kernels/contact/bccg.py`` and ``kernels/reduce.py``. A launch of ``lanes`` threads walks ``n`` flattened elements: on the GPU
 (``chunk == 0``) lane ``i`` takes every ``stride``-th element from ``i`` (coalesced), on the CPU
 the contiguous chunk ``[i·chunk, (i+1)·chunk)``. Integer index arithmetic only: the kernels'
 floating-point operations and their order are their own.

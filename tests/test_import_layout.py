@@ -26,10 +26,12 @@ PROBE = (
     "import sys, warptrunc, warptrunc.kernels, warptrunc.truncation.stream, warptrunc.io.vtk;"
     "import warptrunc.islands.streamed, warptrunc.plot.pooling;"
     "from warptrunc.kernels import truncation as _k;"
+    "from warptrunc.kernels.contact import bccg as _kb;"
     "assert 'kernels' not in sys.modules, 'top-level kernels package';"
     "s = warptrunc.from_heights([[0.0, 1.0], [2.0, 3.0]], 1e-6);"
     "c = warptrunc.truncate(s, 3, max_depth_fraction=1.0, device='cpu');"
-    "print(warptrunc.__file__); print(_k.__file__); print([int(v) for v in c.n_contact_pixels])"
+    "print(warptrunc.__file__); print(_kb.__file__); print(_k.__file__);"
+    "print([int(v) for v in c.n_contact_pixels])"
 )
 
 
@@ -57,9 +59,10 @@ def test_root_import_with_a_non_editable_install_shadowed_by_the_source(tmp_path
     site = _fake_install(tmp_path)
     r = _run([str(site)])
     assert r.returncode == 0, r.stderr
-    pkg, kern, counts = r.stdout.strip().splitlines()[-3:]
+    pkg, sub, kern, counts = r.stdout.strip().splitlines()[-4:]
     assert Path(pkg).parent == ROOT / "warptrunc"  # the source folder wins the lookup
     assert Path(kern) == ROOT / "kernels" / "truncation.py"  # and finds its kernels
+    assert Path(sub) == ROOT / "kernels" / "contact" / "bccg.py"  # their sub-packages too
     assert counts == "[1, 2, 3, 4]"  # z ≥ 3 − ω at ω = 0, 1, 2, 3 (z = 0, 1, 2, 3)
 
 
@@ -75,15 +78,18 @@ def test_installed_copy_keeps_its_own_kernels(tmp_path):
         timeout=120,
     )
     assert r.returncode == 0, r.stderr
-    pkg, kern, _ = r.stdout.strip().splitlines()[-3:]
+    pkg, sub, kern, _ = r.stdout.strip().splitlines()[-4:]
     assert Path(pkg).parent == site / "warptrunc"
     assert Path(kern) == site / "warptrunc" / "kernels" / "truncation.py"
+    assert Path(sub) == site / "warptrunc" / "kernels" / "contact" / "bccg.py"
 
 
 def test_root_import_from_an_uninstalled_checkout():
     r = _run([])
     assert r.returncode == 0, r.stderr
-    assert Path(r.stdout.strip().splitlines()[-2]) == ROOT / "kernels" / "truncation.py"
+    sub, kern = r.stdout.strip().splitlines()[-3:-1]
+    assert Path(kern) == ROOT / "kernels" / "truncation.py"
+    assert Path(sub) == ROOT / "kernels" / "contact" / "bccg.py"
 
 
 def test_root_import_with_this_venv_as_installed():
@@ -94,16 +100,19 @@ def test_root_import_with_this_venv_as_installed():
     assert r.returncode == 0, r.stderr
 
 
-@pytest.mark.parametrize("mod", ["warptrunc.kernels.wm", "warptrunc.kernels.label"])
+@pytest.mark.parametrize(
+    "mod", ["warptrunc.kernels.wm", "warptrunc.kernels.label", "warptrunc.kernels.contact.cg"]
+)
 def test_kernel_modules_are_submodules_of_the_package(mod):
     import importlib
 
     m = importlib.import_module(mod)
-    assert m.__name__ == mod and m.__package__ == "warptrunc.kernels"
+    assert m.__name__ == mod and m.__package__ == mod.rpartition(".")[0]
 
 
 def test_pyproject_lists_every_package_of_the_tree():
-    """``packages`` in pyproject.toml = the folders of ``warptrunc/`` with an ``__init__.py``."""
+    """``packages`` in pyproject.toml = the folders of ``warptrunc/`` and ``kernels/`` (installed
+    as ``warptrunc.kernels``) with an ``__init__.py``, and ``package-dir`` maps the kernels."""
     try:
         import tomllib
     except ModuleNotFoundError:  # Python 3.10
@@ -114,7 +123,14 @@ def test_pyproject_lists_every_package_of_the_tree():
         for p in (ROOT / "warptrunc").rglob("__init__.py")
         if "__pycache__" not in p.parts
     }
-    assert set(cfg["packages"]) == tree | {"warptrunc.kernels"}
+    kernels = {
+        ".".join(("warptrunc", *p.parent.relative_to(ROOT).parts))
+        for p in (ROOT / "kernels").rglob("__init__.py")
+        if "__pycache__" not in p.parts
+    }
+    assert "warptrunc.kernels.contact" in kernels
+    assert set(cfg["packages"]) == tree | kernels
+    assert cfg["package-dir"]["warptrunc.kernels"] == "kernels"
 
 
 @pytest.mark.parametrize(

@@ -38,9 +38,9 @@ from benchmark_solver_scaling import COLD, E_STAR, WARM, fft_floor
 
 import warptrunc
 from warptrunc.contact import ContactSolver, SolverSettings
-from warptrunc.kernels import contact as _k
-from warptrunc.kernels import contact_bccg as _kb
-from warptrunc.kernels import contact_loop as _kl
+from warptrunc.kernels.contact import cg as _k
+from warptrunc.kernels.contact import bccg as _kb
+from warptrunc.kernels.contact import bccg_device as _kl
 from warptrunc.wm import wm_surface
 
 

@@ -49,7 +49,7 @@ def timed(fn, dev, repeats):
 def phases(hs, buf, dev, repeats):
     import cupy
 
-    from warptrunc.kernels import contact_reduce as _kr
+    from warptrunc.kernels.contact import spectral as _kr
 
     spec = hs.work
     ny = hs.shape[0]

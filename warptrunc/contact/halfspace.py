@@ -39,7 +39,7 @@ import warp as wp
 
 from .._support.device import resolve_device
 from .._support.docs import fill_doc
-from ..kernels import contact_reduce as _kr
+from ..kernels.contact import spectral as _kr
 from .influence import (
     GRID_DOCS,
     SUBSTRATES,
@@ -416,7 +416,7 @@ class ElasticHalfSpace(PaddedTransforms):
     def spectral(self, mode: int, spec: wp.array, *, col: int = LaneReduction.COLUMNS - 1) -> None:
         """Launch the spectral kernel on a half spectrum, over the lanes of ``reduction``.
 
-        The kernel is ``spectral_kernel`` of ``warptrunc.kernels.contact_reduce``; it multiplies by
+        The kernel is ``spectral_kernel`` of ``warptrunc.kernels.contact.spectral``; it multiplies by
         the half-space's spectrum W (m/N) and, for the sums, counts each column that stands for
         two conjugate modes twice. Nothing is read back.
 

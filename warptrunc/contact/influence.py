@@ -4,7 +4,7 @@
 coefficients of a pixel grid (Love's closed form, their spectrum and real-space table) and the
 deterministic float64 lane reductions that the half-space and the solver share.
 
-The spectral kernels these serve are in ``warptrunc.kernels.contact_reduce``.
+The spectral kernels these serve are in ``warptrunc.kernels.contact.spectral``.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ import scipy.fft
 import warp as wp
 
 from .._support.docs import fill_doc
-from ..kernels import contact_reduce as _kr
+from ..kernels.contact import spectral as _kr
 
 __all__ = [
     "SUBSTRATES",
@@ -277,7 +277,7 @@ def influence_table(
 
 
 class LaneReduction:
-    """Deterministic float64 partial sums/maxima of the lane kernels of ``kernels/contact.py``.
+    """Deterministic float64 partial sums/maxima of the lane kernels of ``kernels/contact/cg.py``.
 
     Parameters
     ----------

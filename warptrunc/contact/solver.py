@@ -14,7 +14,7 @@ and the check against the free memory are :mod:`warptrunc.contact.memory`.
 The iteration is that of ContactMechanics' ``constrained_conjugate_gradients`` (same gap sign,
 warm start, offset handling in load control and stopping criterion), so that both give the same
 answers on the same discretisation (:mod:`warptrunc.contact.halfspace`); its kernels are in
-``warptrunc.kernels.contact`` and ``warptrunc.kernels.contact_reduce``.
+``warptrunc.kernels.contact.cg`` and ``warptrunc.kernels.contact.spectral``.
 
 Work per iteration, in transforms (a convolution = one forward and one inverse transform, each
 pruned to the map: :mod:`warptrunc.contact.halfspace`). PK needs t·K·t (for the step τ) and
@@ -63,7 +63,7 @@ import warp as wp
 from .._support.device import resolve_device
 from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_height_map, check_range, pair
-from ..kernels import contact as _k
+from ..kernels.contact import cg as _k
 from ..material import Material
 from ..params import check_value
 from .halfspace import DTYPES, ElasticHalfSpace

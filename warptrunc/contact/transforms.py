@@ -13,7 +13,7 @@ first ny rows only. Both equal the full zero-padded transforms to round-off
 (``tests/test_contact.py::test_pruned_transform_equals_full``) at about three quarters of their
 work (the x transforms of the pad rows are skipped both ways). The periodic half-space is the
 same with no pad (Nx = nx, Ny = ny). Transforms are unnormalised both ways; the 1/N of the
-inverse is folded into the spectral kernel (``warptrunc.kernels.contact_reduce.spectral_kernel``),
+inverse is folded into the spectral kernel (``warptrunc.kernels.contact.spectral.spectral_kernel``),
 which also forms t·K·t by Parseval in the same pass. A few forces are also applied by direct
 summation over the real-space influence table (:func:`influence_table`, held by the half-space).
 
@@ -47,7 +47,7 @@ import warp as wp
 
 from .._support.device import resolve_device
 from .._support.docs import fill_doc
-from ..kernels import contact_reduce as _kr
+from ..kernels.contact import spectral as _kr
 from .influence import GRID_DOCS
 
 __all__ = ["FFT_PLANS", "FFT_SLABS", "PaddedTransforms", "cupy_stream"]

@@ -47,9 +47,9 @@ from typing import Any
 
 import warp as wp
 
-from ...kernels import contact as _k
-from ...kernels import contact_bccg as _kb
-from ...kernels import contact_reduce as _kr
+from ...kernels.contact import cg as _k
+from ...kernels.contact import bccg as _kb
+from ...kernels.contact import spectral as _kr
 
 __all__ = ["BCCGSolves"]
 

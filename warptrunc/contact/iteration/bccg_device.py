@@ -7,7 +7,7 @@ reductions: the mean gap of load control, then the residual's sums, then r·z fo
 β, then the step's projected count, total force and change of u (and the direct correction's
 change). Each read drains the device's queue, so on a GPU the device waits while the host
 launches the next kernels, four to five times per iteration. Here those scalars are folded on the
-device by one-thread kernels (``kernels/contact_loop.py``) into the solve's scalar array and read
+device by one-thread kernels (``kernels/contact/bccg_device.py``) into the solve's scalar array and read
 by the next kernels from there; the host reads the array once per iteration, after the residual,
 and takes there, with the code of the host loop, every decision that chooses what to launch next:
 convergence, the preconditioner (its restart), and a transform afresh.
@@ -38,9 +38,9 @@ from typing import Any
 
 import warp as wp
 
-from ...kernels import contact_bccg as _kb
-from ...kernels import contact_loop as _kl
-from ...kernels import contact_reduce as _kr
+from ...kernels.contact import bccg as _kb
+from ...kernels.contact import bccg_device as _kl
+from ...kernels.contact import spectral as _kr
 
 __all__ = ["DeviceLoopSolves"]
 
@@ -53,7 +53,7 @@ class DeviceLoopSolves:
     holding methods only; the maps, settings and the host loop's helpers are the solver's)."""
 
     def _loop_scalars(self) -> wp.array:
-        """The solve's scalar array (float64, ``kernels.contact_loop.S_SIZE``), made once."""
+        """The solve's scalar array (float64, ``kernels.contact.bccg_device.S_SIZE``), made once."""
         if getattr(self, "_s_loop", None) is None:
             self._s_loop = wp.zeros(_kl.S_SIZE, dtype=wp.float64, device=self.device)
         return self._s_loop

@@ -22,8 +22,8 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ...kernels import contact as _k
-from ...kernels import contact_reduce as _kr
+from ...kernels.contact import cg as _k
+from ...kernels.contact import spectral as _kr
 from ..results import ContactState
 
 __all__ = ["OPEN_GAP_FRACTION", "PENTOL_FLOOR", "SolveLoop"]

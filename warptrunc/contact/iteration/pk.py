@@ -12,8 +12,8 @@ from typing import Any
 
 import warp as wp
 
-from ...kernels import contact as _k
-from ...kernels import contact_reduce as _kr
+from ...kernels.contact import cg as _k
+from ...kernels.contact import spectral as _kr
 
 __all__ = ["PKSolves"]
 

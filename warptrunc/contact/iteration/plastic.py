@@ -4,7 +4,7 @@
 ``hardness``): the capped constrained CG, load control by the approach, and the plastic flow.
 
 Elastic–perfectly-plastic contact (``hardness`` H < inf; kernels in
-``warptrunc.kernels.contact_plastic``). The local pressure is capped: 0 ≤ p ≤ H, i.e. each
+``warptrunc.kernels.contact.plastic``). The local pressure is capped: 0 ≤ p ≤ H, i.e. each
 pixel force 0 ≤ q ≤ H·dx·dy. One solve at a fixed approach is the bound-constrained problem
 min ½·q·K·q − q·(h + offset) over that box, solved by the same constrained CG with the hardness
 bound of ContactMechanics' ``constrained_conjugate_gradients`` (Almqvist et al. 2007): the CG
@@ -53,8 +53,8 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ...kernels import contact_plastic as _kp
-from ...kernels import contact_reduce as _kr
+from ...kernels.contact import plastic as _kp
+from ...kernels.contact import spectral as _kr
 
 __all__ = ["CappedSolves"]
 

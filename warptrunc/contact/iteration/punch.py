@@ -16,7 +16,7 @@ import math
 import numpy as np
 import warp as wp
 
-from ...kernels import contact as _k
+from ...kernels.contact import cg as _k
 from ..halfspace import DTYPES
 
 __all__ = ["PunchStiffness"]

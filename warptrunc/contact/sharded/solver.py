@@ -48,7 +48,7 @@ __all__ = ["ShardedContactSolver"]
 
 
 def _is_free(jnp, q, g, hf):
-    """The BCCG free set (``warptrunc.kernels.contact_bccg.is_free``), float64 arguments."""
+    """The BCCG free set (``warptrunc.kernels.contact.bccg.is_free``), float64 arguments."""
     return ((q > 0) & (q < hf)) | ((q <= 0) & (g < 0)) | ((q >= hf) & (g > 0))
 
 

@@ -58,7 +58,7 @@ def make_step(layout: Any, name: str):
     def gmax(a):  # the lane kernels' maxima start at 0
         return jnp.maximum(jnp.max(a), 0.0)
 
-    def is_free(qv, g, hf):  # kernels/contact_bccg.py is_free
+    def is_free(qv, g, hf):  # kernels/contact/bccg.py is_free
         return ((qv > 0) & (qv < hf)) | ((qv <= 0) & (g < 0)) | ((qv >= hf) & (g > 0))
 
     def sums(q, u, h, offset):  # contact_sums_kernel

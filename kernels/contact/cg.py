@@ -1,11 +1,14 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Constrained conjugate gradients (Polonsky–Keer) for elastic contact: projections, updates,
-spectral products and float64 reductions.
+"""Constrained conjugate gradients (Polonsky–Keer) for elastic contact: projections, updates
+and the map kernels that every iteration shares.
 
-Launched by ``warptrunc.contact.solver`` (spectral products and reductions: ``contact_reduce``). State
-arrays are float32 or float64 (one overload each) and live on the (ny, nx) map: heights ``h`` (m), compressive pixel forces ``q`` (N, > 0 in contact), surface
-displacements ``u`` (m), the CG direction ``t`` (m). ``q`` and ``t`` are views of (ny, Nx) buffers
+Launched by ``warptrunc.contact.iteration.pk`` (the CG steps), ``warptrunc.contact.iteration.bccg``,
+``warptrunc.contact.iteration.punch``, ``warptrunc.contact.iteration.loop`` and
+``warptrunc.contact.solver`` (map copies, sums, masks); the spectral products and reductions are
+in ``kernels/contact/spectral.py``. State arrays are float32 or float64 (one overload each) and
+live on the (ny, nx) map: heights ``h`` (m), compressive pixel forces ``q`` (N, > 0 in contact),
+surface displacements ``u`` (m), the CG direction ``t`` (m). ``q`` and ``t`` are views of (ny, Nx) buffers
 whose columns ``nx … Nx−1`` are the zero pad of the free half-space (Nx = 2nx; Nx = nx for the
 periodic one) and are never written here. The gap is ``g = u − h − offset`` (m), penetration where
 ``g < 0``. ``mask`` (ny, nx) uint8: bit 0 = in the CG set at the start of the iteration (q > 0),
@@ -17,8 +20,8 @@ arrays of vec2 (re, im), the kernel spectrum ``w`` is real and even in y and sto
 Grids: the ``*_kernel`` launches with partial sums use ``lanes`` threads: on the GPU lane ``i``
 walks the flattened array with stride ``lanes`` (coalesced), on the CPU lane ``i`` walks the
 contiguous chunk ``[i·chunk, (i+1)·chunk)``. Every lane writes its float64 partials to
-``part[i, j]`` without atomics; ``sum_lanes_kernel`` (``contact_reduce``) folds them into a few rows in a fixed
-order, so the reductions are deterministic for a given device. Columns of ``part`` within one
+``part[i, j]`` without atomics; ``sum_lanes_kernel`` (``kernels/contact/spectral.py``) folds
+them into a few rows in a fixed order, so the reductions are deterministic for a given device. Columns of ``part`` within one
 iteration: 0 Σ c·g·t, 1 N·t·K·t, 2–5 the force update, 6 the step τ (lane 0 only), 7 the number
 of forces the projection changed (those are listed by ``compact_changes_kernel`` and their
 displacements summed directly over the influence table by ``advance_kernel``). Elementwise
@@ -29,7 +32,7 @@ from typing import Any
 
 import warp as wp
 
-from .lanes import declare_overloads, lane_next, lane_start
+from ..lanes import declare_overloads, lane_next, lane_start
 
 wp.set_module_options({"enable_backward": False})
 
@@ -240,7 +243,7 @@ def compact_walk(
     index: wp.array[wp.int32],
     value: wp.array[wp.float64],
 ):
-    """One lane of ``compact_changes_kernel`` (shared with ``kernels/contact_loop.py``)."""
+    """One lane of ``compact_changes_kernel`` (shared with ``kernels/contact/bccg_device.py``)."""
     nx = q.shape[1]
     i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, q.shape[0] * nx, nx)
     k = offsets[lane]

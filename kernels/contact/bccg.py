@@ -3,7 +3,7 @@
 """Preconditioned bound-constrained conjugate gradients (Vollebregt 2014): the lane kernels.
 
 Launched by ``warptrunc.contact.iteration.bccg`` (``ContactSolver`` with ``algorithm="bccg"``). Array
-layouts, the lane grid and the partials array ``part`` are those of ``kernels/contact.py``;
+layouts, the lane grid and the partials array ``part`` are those of ``kernels/contact/cg.py``;
 ``hf`` is the force cap H·dx·dy (N; a huge number when elastic). The gap is
 ``g = u − h − offset`` (m). The *free set* is the set the CG moves: 0 < q < hf, plus the bound
 pixels whose gradient points into the box (q ≤ 0 with g < 0: a pixel at zero force that
@@ -15,8 +15,8 @@ from typing import Any
 
 import warp as wp
 
-from .contact import direct_sum
-from .lanes import declare_overloads, lane_next, lane_start
+from .cg import direct_sum
+from ..lanes import declare_overloads, lane_next, lane_start
 
 wp.set_module_options({"enable_backward": False})
 
@@ -46,7 +46,7 @@ def free_gap_walk(
     chunk: int,
     part: wp.array2d(dtype=wp.float64),
 ):
-    """One lane of ``bccg_sums_kernel`` (shared with ``kernels/contact_loop.py``)."""
+    """One lane of ``bccg_sums_kernel`` (shared with ``kernels/contact/bccg_device.py``)."""
     nx = h.shape[1]
     i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     n_f = wp.float64(0.0)
@@ -91,7 +91,7 @@ def residual_walk(
     mask: wp.array2d(dtype=wp.uint8),
     part: wp.array2d(dtype=wp.float64),
 ):
-    """One lane of ``bccg_residual_kernel`` (shared with ``kernels/contact_loop.py``)."""
+    """One lane of ``bccg_residual_kernel`` (shared with ``kernels/contact/bccg_device.py``)."""
     nx = h.shape[1]
     i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     n_f = wp.float64(0.0)
@@ -205,7 +205,7 @@ def direction_walk(
     z_old: wp.array2d(dtype=Any),
     part: wp.array2d(dtype=wp.float64),
 ):
-    """One lane of ``bccg_direction_kernel`` (shared with ``kernels/contact_loop.py``)."""
+    """One lane of ``bccg_direction_kernel`` (shared with ``kernels/contact/bccg_device.py``)."""
     nx = r.shape[1]
     i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, r.shape[0] * nx, nx)
     s_rt = wp.float64(0.0)
@@ -314,7 +314,7 @@ def correct_walk(
     chunk: int,
     u: wp.array2d(dtype=Any),
 ):
-    """One lane of ``bccg_correct_kernel`` (shared with ``kernels/contact_loop.py``); returns
+    """One lane of ``bccg_correct_kernel`` (shared with ``kernels/contact/bccg_device.py``); returns
     the lane's largest abs(correction) (m)."""
     nx = u.shape[1]
     i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, u.shape[0] * nx, nx)

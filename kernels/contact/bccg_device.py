@@ -4,7 +4,7 @@
 
 Launched by ``warptrunc.contact.iteration.bccg_device`` (``SolverSettings(loop="device")``). The lane
 kernels, the partials ``part`` and their folded rows ``sums`` are those of
-``kernels/contact_bccg.py`` and ``warptrunc.contact.influence.LaneReduction``; what the host loop
+``kernels/contact/bccg.py`` and ``warptrunc.contact.influence.LaneReduction``; what the host loop
 of ``warptrunc.contact.iteration.bccg`` reads back after each reduction (the offset of load control, the
 Polak–Ribière β, the projection's count, the scale to the load) is instead folded by a one-thread
 kernel into the solve's scalar array ``s`` (float64, indices ``S_*`` below) and read by the next
@@ -16,9 +16,9 @@ from typing import Any
 
 import warp as wp
 
-from .contact import compact_walk
-from .contact_bccg import correct_walk, direction_walk, free_gap_walk, residual_walk
-from .lanes import declare_overloads
+from .cg import compact_walk
+from .bccg import correct_walk, direction_walk, free_gap_walk, residual_walk
+from ..lanes import declare_overloads
 
 wp.set_module_options({"enable_backward": False})
 

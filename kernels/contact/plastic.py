@@ -5,7 +5,7 @@ the bound-constrained projection 0 ≤ q ≤ H·dx·dy and the plastic update of
 
 Launched by ``warptrunc.contact.iteration.plastic`` (``ContactSolver`` with a finite hardness). Array
 layouts, ``mask`` bits, the lane grid and the partials array ``part`` are those of
-``kernels/contact.py``; ``hf`` is the force cap H·dx·dy (N). The CG set is 0 < q < hf (pixels at
+``kernels/contact/cg.py``; ``hf`` is the force cap H·dx·dy (N). The CG set is 0 < q < hf (pixels at
 the cap have left it, as pixels at zero force have); the gap is ``g = u − h − offset`` (m) with
 ``h`` the current (plastically lowered) heights. Float32 and float64 instances of every kernel
 (``wp.overload``); reductions are float64.
@@ -15,8 +15,8 @@ from typing import Any
 
 import warp as wp
 
-from .contact import direct_sum
-from .lanes import declare_overloads, lane_next, lane_start
+from .cg import direct_sum
+from ..lanes import declare_overloads, lane_next, lane_start
 
 wp.set_module_options({"enable_backward": False})
 
@@ -219,7 +219,7 @@ def capped_advance_kernel(
     u: wp.array2d(dtype=Any),
     part: wp.array2d(dtype=wp.float64),
 ):
-    """Lanes over the map: the new displacement, as ``advance_kernel`` of ``kernels/contact.py``
+    """Lanes over the map: the new displacement, as ``advance_kernel`` of ``kernels/contact/cg.py``
     (``linear == 0``: u ← r = K·q; else u ← u − τ·r + the listed corrections). part[i] =
     [max |Δu|, n(0 < q < hf), Σ c·g, Σ c·g², max(penetration over the previous CG set, open gap
     at the cap), Σ g, Σ q] with c = 0 < q < hf and the new u."""

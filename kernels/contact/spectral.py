@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """Spectral products and float64 lane reductions of the constrained conjugate gradients of
-``kernels/contact.py`` (array layouts, ``mask`` bits and the lane grids are described there).
+``kernels/contact/cg.py`` (array layouts, ``mask`` bits and the lane grids are described there).
 
 Launched by ``warptrunc.contact.halfspace`` (``spectral_kernel``; ``expand_spectrum_kernel`` and
 ``pad_rows_kernel``, which fill a spectrum from the kernel's half rows and the real rows of an
@@ -16,7 +16,7 @@ from typing import Any
 
 import warp as wp
 
-from .lanes import declare_overloads, lane_more, lane_next, lane_next_rc, lane_start, lane_start_rc
+from ..lanes import declare_overloads, lane_more, lane_next, lane_next_rc, lane_start, lane_start_rc
 
 wp.set_module_options({"enable_backward": False})
 
