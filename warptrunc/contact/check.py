@@ -36,7 +36,6 @@ import warp as wp
 from .._support.results import all_converged_property
 from .._support.table import write_columns_csv
 from ..stiffness import Material, flat_punch_stiffness, stiffness_curve
-from ..slope import slope_record
 from ..surface import Surface
 from ..truncation.api import truncate
 from ..truncation.settings import TruncationSettings
@@ -309,7 +308,6 @@ def bem_check(
     Rt = float(surface.Rt)
     d = check.approaches(Rt)
     contact_modulus = material.contact_modulus
-    slope = slope_record(surface, limit=check.slope_limit)  # the half-space's small-slope regime
 
     # truncation, the same formulas as `analyze`
     curve = truncate(surface, increments, max_depth=float(d[-1]), device=device)
@@ -348,7 +346,7 @@ def bem_check(
         "grid": [surface.nx, surface.ny],
         "pixel_size_m": [surface.dx, surface.dy],
         "versions": contactmechanics_versions(),
-        "surface": {**surface.to_dict(), "slope": slope},
+        "surface": surface.to_dict(),
         "solves": solves,
     }
     return BemCheck(
