@@ -12,7 +12,6 @@ flat punch per island, :func:`warptrunc.stiffness.island_stiffness_curve`). The 
 
 from __future__ import annotations
 
-import contextlib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -29,15 +28,8 @@ from .plausibility import (
     check_spikes,
     fit_error_text,
 )
-from .robust import (
-    AUTO_CONTACT_PIXELS,
-    AUTO_MAX_CONTACT_SHARE,
-    adjust_depth,
-    check_map_size,
-    clip_to_percentiles,
-    spike_rule,
-    spike_warning,
-)
+from .robust import automatic_range, check_map_size, clip_to_percentiles
+from .slope import slope_record
 from .stiffness import (
     PowerLawFit,
     StiffnessCurve,
@@ -280,8 +272,10 @@ def analyze(
         decided = check_spikes(source)
     if rule is None:
         legacy = eq2, found, None if eq2 is not None else error
-        auto, rule, decided = _auto_rule(
-            surface, legacy, material, truncation, fit, want_islands, device
+        auto, rule, decided = automatic_range(
+            surface, legacy, material=material, truncation=truncation, fit_range=fit,
+            indicators=(lambda s: _validity(s, True, connectivity, device)) if want_islands
+            else None, device=device,
         )
         if auto is not None:
             surface, omega, curve, sc, eq2, found, indicators = auto
@@ -299,6 +293,7 @@ def analyze(
             isl_found = check_fit(isl_fit, isl, label="islands fit")
             if indicators is not None:
                 isl_found += check_fit_depth(isl_fit, indicators, label="islands fit")
+    meta = {**meta, "slope": slope_record(surface, params=meta)}  # h′_rms at the pixel used
     return Analysis(
         curve,
         sc,
@@ -362,116 +357,6 @@ def _rule_without_auto(fit_range: str, read_map: bool, own: list[str]) -> dict |
     if own:
         return {**base, "reason": f"a range of the caller's own ({', '.join(own)})"}
     return None
-
-
-def _legacy_state(fit, found, error, min_pixels: int) -> str | None:
-    """Why the default fit is not worth reading (None: it is)."""
-    if fit is None:
-        return f"empty (fewer than 3 increments with ≥ {min_pixels} contact pixels)"
-    why = fit_error_text(found)
-    return None if why is None else f"not worth reading ({why.split(': ', 1)[1]})"
-
-
-AUTO_DOUBLED = "; the fit on fewer was not worth reading, so the count doubled until it was"
-"""How the ``auto_depth_extended`` warning says that 50 contact pixels were not enough."""
-AUTO_TOO_FEW = "; the range to fewer held fewer than 3 fittable increments"
-"""... and that the range to 50 held no fit."""
-
-
-def _auto_rule(
-    surface,
-    legacy,
-    material: Material,
-    truncation: TruncationSettings,
-    fit_range: FitRange,
-    want_islands: bool,
-    device,
-):
-    """The automatic rule of :mod:`warptrunc.robust` on a map read from a file: ((surface,
-    ω_max, curve, stiffness curve, fit, warnings, indicators) on the automatic range or None
-    when the default result stands, the ``fit_range`` record, the decisions' warnings)."""
-    n_increments, beta_prime = truncation.increments, truncation.beta_prime
-    max_depth_fraction, connectivity = truncation.max_depth_fraction, truncation.connectivity
-    min_pixels, auto_spikes = fit_range.min_pixels, fit_range.spikes
-    state = _legacy_state(*legacy, min_pixels)
-    masked, found, sets = spike_rule(surface) if auto_spikes else (surface, [], [])
-    s = masked if sets else surface
-    rec = {
-        "asked": "auto",
-        "rule": "legacy",
-        "spikes_masked": None,
-        "depth_extended": None,
-        "depth_cut": None,
-    }
-    if state is None and not sets:
-        why = "the default fit is worth reading" + (" and no spike sets R_t" if auto_spikes else "")
-        return None, {**rec, "reason": why}, spike_warning(found, sets)
-    z = np.asarray(s.heights)
-    omega0 = max_depth_fraction * float(z.max() - z.min())
-    omega, action, depth, depth_w = adjust_depth(z, omega0)
-    ends = " and ".join({"top": "highest", "bottom": "lowest"}[e] for e in sets)
-    state = state or f"set by spikes (they include the {ends} pixel of the map)"
-    if not sets and action is None:
-        return (
-            None,
-            {
-                **rec,
-                "reason": f"the default fit is {state}; no automatic decision "
-                "applies: no spike sets R_t, and its deepest fitted increment has "
-                f"{AUTO_CONTACT_PIXELS} contact pixels to {AUTO_MAX_CONTACT_SHARE:.0%} "
-                "of the map",
-            },
-            spike_warning(found, sets),
-        )
-
-    def fit_to(omega):
-        curve = truncate(s, n_increments, max_depth=omega, device=device)
-        sc = stiffness_curve(curve, material, beta_prime=beta_prime)
-        fit = fit_power_law(sc, min_pixels=min_pixels)
-        return curve, sc, fit, check_fit(fit, sc)
-
-    fits = []  # (target, ω_max, record, warnings, curve, stiffness curve, fit, its warnings)
-    with contextlib.suppress(ValueError):
-        fits.append((AUTO_CONTACT_PIXELS, omega, depth, depth_w, *fit_to(omega)))
-    target, capped = AUTO_CONTACT_PIXELS, action == "extended" and depth["capped"]
-    while action == "extended" and not capped and not any(not f[-1] for f in fits):
-        target *= 2  # no fit worth reading yet: double the contact pixels
-        o2, more, d2, w2 = adjust_depth(z, omega0, contact_pixels=target)
-        if target > AUTO_MAX_CONTACT_SHARE * z.size or more is None:
-            break
-        capped = d2["capped"]
-        with contextlib.suppress(ValueError):
-            fits.append((target, o2, d2, w2, *fit_to(o2)))
-    if not fits:
-        why = (
-            f"the default fit is {state}; the automatic range holds fewer than 3 increments "
-            f"with ≥ {min_pixels} contact pixels"
-        )
-        return None, {**rec, "reason": why}, spike_warning(found, sets)
-    target, omega, depth, depth_w, curve, sc, fit, found_fit = next(
-        (f for f in fits if not f[-1]), fits[0]
-    )  # the first worth reading, else the shallowest
-    if target > AUTO_CONTACT_PIXELS:  # the warning says why the count is what it is
-        note = AUTO_TOO_FEW if found_fit else AUTO_DOUBLED
-        _, _, depth, depth_w = adjust_depth(z, omega0, contact_pixels=target, note=note)
-    indicators = _validity(s, True, connectivity, device) if want_islands else None
-    if indicators is not None:
-        found_fit += check_fit_depth(fit, indicators)
-    spikes = None
-    decided = spike_warning(found, sets, s if sets else None)
-    if sets:
-        d = decided[0].details
-        spikes = {k: d[k] for k in ("count", "passes", "sets", "Rt_before_m", "Rt_after_m")}
-    rec = {
-        **rec,
-        "rule": "auto",
-        "reason": f"the default fit is {state}",
-        "spikes_masked": spikes,
-        "max_depth_m": omega,
-    }
-    if action is not None:
-        rec[f"depth_{action}"] = depth
-    return (s, omega, curve, sc, fit, found_fit, indicators), rec, decided + depth_w
 
 
 def _truncation(

@@ -371,6 +371,24 @@ def add_streaming(p: argparse.ArgumentParser) -> None:
     )
 
 
+def slope_line(record: dict | None) -> str:
+    """One line of a command's output: the rms slope h′_rms and curvature h″_rms of a
+    :func:`warptrunc.slope.slope_record`, with the method, and the spectrum's where both are
+    known ("" without a record)."""
+    if not record or record.get("slope_rms") is None:
+        return ""
+    fd, sp = record.get("finite_differences"), record.get("spectrum")
+    main = fd or sp
+    how = "finite differences" if fd else "from its spectrum"
+    line = (
+        f"h′_rms = {main['slope_rms']:.3g}, h″_rms = {main['curvature_rms_per_m']:.3g} 1/m "
+        f"at the {main['dx_m'] * 1e9:.4g} nm pixel ({how}"
+    )
+    if fd and sp:
+        line += f"; spectrum {sp['slope_rms']:.3g}, {sp['curvature_rms_per_m']:.3g} 1/m"
+    return line + ")\n"
+
+
 def add_no_plot(p: argparse.ArgumentParser, what: str) -> None:
     """``--no-plot`` (skip the figures ``what``)."""
     shared_option(p, "--no-plot", action="store_true", help=f"skip {what}")
@@ -728,6 +746,31 @@ def add_surface_source(
         "--dx, or an instrument file); overrides the generation parameters",
     )
     add_reader_options(g, scan_rule=scan_rule)
+    add_generation(g, defaults=defaults)
+
+
+SELF_AFFINE_SHARED = ("L", "n", "seed")
+"""Fields of :class:`~warptrunc.selfaffine.SelfAffineSpec` that share the WM options of the same
+name (``--L``, ``--n``, ``--seed``: the grid and the phases' seed mean the same for both)."""
+
+
+def add_generation(g: Any, *, defaults: dict | None = None) -> None:
+    """A generated surface: ``--surface`` (which generator), ``--preset`` and the fields of
+    :class:`WMSpec` (``--D``, ``--Wr``, ...) and of
+    :class:`~warptrunc.selfaffine.SelfAffineSpec` (``--hurst``, ``--rolloff``, ``--long-cutoff``,
+    ``--short-cutoff``, ``--rms-height``, ``--rms-slope``; ``--L``, ``--n``, ``--seed`` shared).
+    ``defaults`` are the command's own WM defaults (pass the same to :func:`wm_spec_from_args`)."""
+    from ..selfaffine import SelfAffineSpec
+
+    shared_option(
+        g,
+        "--surface",
+        choices=("wm", "self-affine"),
+        default="wm",
+        help="the generator: a Weierstrass–Mandelbrot surface (Eq. 4, the --D ... options) or a "
+        "self-affine one from its power spectrum (warptrunc.selfaffine: --hurst, the cut-offs, "
+        "--rms-height or --rms-slope)",
+    )
     shared_option(
         g,
         "--preset",
@@ -738,6 +781,38 @@ def add_surface_source(
         "WM options given win over it",
     )
     add_options(g, WMSpec, exclude=SURFACE_EXCLUDE, defaults=defaults)
+    add_options(g, SelfAffineSpec, exclude=SELF_AFFINE_SHARED)
+
+
+def self_affine_from_args(args: argparse.Namespace) -> Any:
+    """The :class:`~warptrunc.selfaffine.SelfAffineSpec` of the parsed options (with
+    ``--surface self-affine``)."""
+    from ..selfaffine import SelfAffineSpec
+
+    return from_args(SelfAffineSpec, args)
+
+
+def spec_from_args(args: argparse.Namespace, defaults: dict | None = None) -> Any:
+    """The generated surface's spec: a :class:`WMSpec` (:func:`wm_spec_from_args`), or a
+    :class:`~warptrunc.selfaffine.SelfAffineSpec` with ``--surface self-affine``."""
+    if getattr(args, "surface", "wm") == "self-affine":
+        if getattr(args, "preset", None) is not None:
+            raise ValueError("--preset names a WM surface; it cannot be used with --surface self-affine")
+        return self_affine_from_args(args)
+    return wm_spec_from_args(args, defaults)
+
+
+def generate_surface(spec: Any, device: Any) -> Surface:
+    """The surface of a spec from :func:`spec_from_args`, on ``device``."""
+    from ..selfaffine import SelfAffineSpec
+
+    if isinstance(spec, SelfAffineSpec):
+        from ..selfaffine import self_affine_surface
+
+        return self_affine_surface(spec, device=device)
+    from ..wm import wm_surface  # Warp's import, when the surface is made
+
+    return wm_surface(spec, device=device)
 
 
 def add_wm_shape(g: argparse._ActionsContainer, *, many: bool = False) -> None:
@@ -854,9 +929,8 @@ def warnings_of(args: argparse.Namespace) -> list[dict]:
 
 
 def surface_from_args(args: argparse.Namespace) -> Surface:
-    """Read ``--input`` or generate a WM surface from the parameters."""
+    """Read ``--input`` or generate the surface of the parameters (WM, or self-affine with
+    ``--surface self-affine``)."""
     if args.input is not None:
         return read_input(args.input, args)
-    from ..wm import wm_surface  # Warp's import, when the surface is made
-
-    return wm_surface(wm_spec_from_args(args), device=args.device)
+    return generate_surface(spec_from_args(args), args.device)

@@ -49,6 +49,7 @@ from ._common import (
     add_surface_source,
     add_truncation,
     add_warnings,
+    slope_line,
     fit_range_from_args,
     material_from_args,
     surface_from_args,
@@ -102,7 +103,8 @@ def _run(args: argparse.Namespace, truncation, fit_range, figures) -> int:
     from ..analysis import FitRangeError, analyze
 
     material = material_from_args(args)
-    source = surface_from_args(args) if args.input is not None else wm_spec_from_args(args)
+    generated_whole = args.input is not None or getattr(args, "surface", "wm") == "self-affine"
+    source = surface_from_args(args) if generated_whole else wm_spec_from_args(args)
     tickets: dict[str, int] = {}
 
     def draw_area(curve) -> None:  # drawn while the islands are counted
@@ -167,6 +169,7 @@ def _run(args: argparse.Namespace, truncation, fit_range, figures) -> int:
         f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (E Young's modulus; r² = {fit.r2:.4f}, "
         f"{fit.n_points} increments with ≥ {fit.min_pixels} contact pixels)\n"
         + _islands_note(a.islands_fit)
+        + slope_line(meta.get("slope"))
         + _clip_note(meta)
         + _range_note(a.fit_range)
         + f"wrote {args.out}/curve.csv, fit.json"

@@ -31,8 +31,10 @@ from ._common import (
     add_run_outputs,
     add_surface_source,
     add_truncation,
+    add_warnings,
     material_from_args,
     prepare_devices,
+    slope_line,
     surface_from_args,
     truncation_from_args,
     warnings_of,
@@ -86,6 +88,7 @@ def run(args: argparse.Namespace) -> int:
     settings = from_args(SolverSettings, args)
     from ..contact.check import bem_check, require_bem
     from ..plot.bem import plot_bem_check
+    from ..slope import slope_warnings
 
     if check.solver == "contactmechanics":
         try:
@@ -121,6 +124,8 @@ def run(args: argparse.Namespace) -> int:
         device=args.device,
         devices=args.devices,
     )
+    slope = res.settings["surface"]["slope"]
+    add_warnings(args, slope_warnings(slope))
     files = "bem.csv, bem.json"
     with staged_output(args.out) as out:  # all or nothing
         res.to_csv(out / "bem.csv")
@@ -145,7 +150,7 @@ def run(args: argparse.Namespace) -> int:
         f"{res.depth_fraction.min():.3g}–{res.depth_fraction.max():.3g}\n"
         f"F'/F_BEM {_rng(sm['load_ratio'])}, k'/k_BEM {_rng(sm['stiffness_ratio'])}, "
         f"A'/A_BEM {_rng(sm['area_ratio'])}; "
-        f"{sm['time_per_solve_s']:.3g} s per solve"
+        f"{sm['time_per_solve_s']:.3g} s per solve\n" + slope_line(slope).rstrip("\n")
     )
     if not sm["all_converged"]:
         bad = res.depth[~res.converged]

@@ -35,6 +35,7 @@ import warp as wp
 
 from .._support.results import all_converged_property
 from .._support.table import write_columns_csv
+from ..slope import slope_record
 from ..stiffness import Material, flat_punch_stiffness, stiffness_curve
 from ..surface import Surface
 from ..truncation.api import truncate
@@ -308,6 +309,7 @@ def bem_check(
     Rt = float(surface.Rt)
     d = check.approaches(Rt)
     contact_modulus = material.contact_modulus
+    slope = slope_record(surface, limit=settings.slope_limit)  # the half-space's small-slope regime
 
     # truncation, the same formulas as `analyze`
     curve = truncate(surface, increments, max_depth=float(d[-1]), device=device)
@@ -346,7 +348,7 @@ def bem_check(
         "grid": [surface.nx, surface.ny],
         "pixel_size_m": [surface.dx, surface.dy],
         "versions": contactmechanics_versions(),
-        "surface": surface.to_dict(),
+        "surface": {**surface.to_dict(), "slope": slope},
         "solves": solves,
     }
     return BemCheck(

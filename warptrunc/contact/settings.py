@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..params import Parameters, check_fields, param, param_like
+from ..slope import SMALL_SLOPE_LIMIT
 from ..truncation.settings import TruncationSettings
 
 __all__ = [
@@ -154,6 +155,13 @@ class SolverSettings(Parameters):
         kind="int",
         ge=0,
         optional=True,
+    )
+    slope_limit: float = param(
+        SMALL_SLOPE_LIMIT,
+        "the largest rms slope h′_rms of the surface at the pixel solved that counts as inside the "
+        "small-slope range of the half-space solution: a warning above it (it changes no number)",
+        gt=0.0,
+        sweep=False,
     )
 
     def __post_init__(self) -> None:
