@@ -93,7 +93,38 @@ def _device(device: Any) -> tuple[str | None, str | None]:
         return (None if device is None else str(device)), None
 
 
-def provenance(device: Any = None, argv: list[str] | None = None) -> dict[str, Any]:
+def input_file(path: str | Path) -> dict[str, Any]:
+    """The record of a file an output was computed from: ``path`` as given, ``resolved`` (the
+    absolute path), ``bytes`` and ``sha256`` (hex) of its content.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file read.
+
+    Returns
+    -------
+    dict
+        JSON-ready.
+    """
+    import hashlib
+
+    p = Path(path)
+    h = hashlib.sha256()
+    with p.open("rb") as f:
+        for block in iter(lambda: f.read(1 << 22), b""):
+            h.update(block)
+    return {
+        "path": str(path),
+        "resolved": str(p.resolve()),
+        "bytes": p.stat().st_size,
+        "sha256": h.hexdigest(),
+    }
+
+
+def provenance(
+    device: Any = None, argv: list[str] | None = None, *, input_path: str | Path | None = None
+) -> dict[str, Any]:
     """What made an output and when, as a JSON-ready dict.
 
     Parameters
@@ -104,6 +135,9 @@ def provenance(device: Any = None, argv: list[str] | None = None) -> dict[str, A
     argv : list of str, optional
         The command line, program name first (default: the running ``warptrunc`` command,
         else ``sys.argv``).
+    input_path : str or Path, optional
+        The height-map file the output was computed from: recorded as ``"input"``
+        (:func:`input_file`).
 
     Returns
     -------
@@ -111,7 +145,8 @@ def provenance(device: Any = None, argv: list[str] | None = None) -> dict[str, A
         ``warptrunc_version``, ``git_commit`` (None where unknown), ``command`` (one string,
         shell-quoted), ``device`` (e.g. ``"cuda:0"``), ``device_name``, ``created_utc``
         (ISO 8601, ``$SOURCE_DATE_EPOCH`` when set), ``python_version`` and
-        ``warp_version`` (None when Warp is not loaded).
+        ``warp_version`` (None when Warp is not loaded); with ``input_path``, ``input`` (the
+        file's path, absolute path, size and SHA-256).
 
     Examples
     --------
@@ -124,7 +159,7 @@ def provenance(device: Any = None, argv: list[str] | None = None) -> dict[str, A
         argv = _command if _command is not None else list(sys.argv)
     dev, name = _device(device)
     warp = sys.modules.get("warp")
-    return {
+    out = {
         "warptrunc_version": __version__,
         "git_commit": git_commit(),
         "command": shlex.join(str(a) for a in argv),
@@ -136,3 +171,6 @@ def provenance(device: Any = None, argv: list[str] | None = None) -> dict[str, A
         if warp is None
         else getattr(getattr(warp, "config", None), "version", None),
     }
+    if input_path is not None:
+        out["input"] = input_file(input_path)
+    return out
