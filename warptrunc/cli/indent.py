@@ -57,6 +57,7 @@ from ._common import (
     add_surface_source,
     prepare_devices,
     read_input,
+    slope_line,
     wm_spec_from_args,
 )
 
@@ -149,10 +150,21 @@ def run(args: argparse.Namespace) -> int:
             print(f"warptrunc {NAME}: warning: {w.message}", file=sys.stderr)
         else:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    from ..plausibility import report
+    from ..slope import slope_warnings
+
+    metas = res.settings["surface"]
+    metas = metas if isinstance(metas, list) else [metas]
+    slope_found = slope_warnings({**metas[0]["slope"], "limit": solver.slope_limit})
+    report(slope_found)
     files = ["indent.csv", "indent.json"]
     with staged_output(args.out) as out:  # all or nothing
         res.to_csv(out / "indent.csv")
-        res.to_json(out / "indent.json", provenance=provenance(args.device))
+        res.to_json(
+            out / "indent.json",
+            provenance=provenance(args.device),
+            warnings=[w.to_dict() for w in slope_found],
+        )
         if not args.no_plot:
             from ..plot import indentation
 
@@ -174,6 +186,7 @@ def run(args: argparse.Namespace) -> int:
         f"{res.settings['seconds']['total_s']:.3g} s",
         _resolution_line(res),
         *_face_lines(res),
+        *[line for line in [slope_line(metas[0]["slope"]).rstrip()] if line],
     ]
     for name, fit in fits.items():
         if not fit["made"]:

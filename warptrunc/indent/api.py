@@ -16,6 +16,7 @@ from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.progress import progress_bar
 from ..contact.settings import SolverSettings
 from ..material import Material
+from ..slope import slope_record
 from ..surface import Surface
 from .face import check_same_face, face_record, face_settings, punch_faces
 from .placement import solve_placement
@@ -30,14 +31,15 @@ __all__ = ["indent"]
 def _heights(surface: Any, pixel_size: Any) -> tuple[np.ndarray, tuple[float, float], dict, Any]:
     if isinstance(surface, Surface):
         dx, dy = (surface.dx, surface.dy) if pixel_size is None else _pair(pixel_size)
-        return np.asarray(surface.heights), (dx, dy), surface.to_dict(), surface.params
+        meta = {**surface.to_dict(), "slope": slope_record(surface)}  # h′_rms at the map's pixel
+        return np.asarray(surface.heights), (dx, dy), meta, surface.params
     if pixel_size is None:
         raise ValueError("pixel_size (m) is required for a height array")
     from ..surface import from_heights
 
     dx, dy = _pair(pixel_size)
     s = from_heights(np.asarray(surface), dx, dy)  # validates (finite, 2-D)
-    return np.asarray(s.heights), (dx, dy), s.to_dict(), None
+    return np.asarray(s.heights), (dx, dy), {**s.to_dict(), "slope": slope_record(s)}, None
 
 
 def _pair(v: Any) -> tuple[float, float]:
