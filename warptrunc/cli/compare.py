@@ -44,6 +44,7 @@ from ._common import (
     add_profile,
     add_reader_options,
     add_truncation,
+    add_warnings,
     material_from_args,
     prepare_devices,
     read_input,
@@ -133,6 +134,20 @@ def run(args: argparse.Namespace) -> int:
         devices=args.devices,
     )
     s = summarize(rows)
+    steep = rows.drop_duplicates("case_id")
+    steep = steep[steep["slope_rms"] > settings.slope_limit]
+    if len(steep):
+        from ..plausibility import PlausibilityWarning
+
+        worst = float(steep["slope_rms"].max())
+        add_warnings(args, [PlausibilityWarning(
+            "slope",
+            f"{len(steep)} of {rows['case_id'].nunique()} maps have h′_rms above "
+            f"{settings.slope_limit:g} at their pixel (up to {worst:.3g}): outside the small-slope "
+            "range of the half-space solution, the BEM columns of those cases are not a physical "
+            "model (cases/*.parquet: slope_rms)",
+            {"n_cases": len(steep), "max_slope_rms": worst, "limit": settings.slope_limit},
+        )])  # fmt: skip
     from ..reproduce.elastic import analyse_elastic, summary_from_rows
     from ..reproduce.elastic_report import elastic_figures, elastic_lines
 

@@ -69,9 +69,15 @@ CASE_COLUMNS = (
     "solve_time_s",
     "case_seconds",
     "device",
+    "slope_rms",
+    "curvature_rms_per_m",
+    "slope_rms_spectrum",
 )
 """Columns of a case file, in order; SI units in the names. ``size_ratio`` is L/W_r; the
-ratios are model/BEM (``area_ratio`` = A'/A_BEM); ``case_seconds`` is the case's wall time (s)."""
+ratios are model/BEM (``area_ratio`` = A'/A_BEM); ``case_seconds`` is the case's wall time (s);
+``slope_rms`` and ``curvature_rms_per_m`` are the map's h′_rms (dimensionless) and h″_rms (1/m)
+by finite differences at its pixel, ``slope_rms_spectrum`` the WM terms' h′_rms (NaN for a map
+read from a file) (:func:`warptrunc.slope.slope_record`)."""
 
 
 def study_cases(design: StudyDesign | None = None) -> list[dict[str, Any]]:
@@ -297,6 +303,7 @@ def _run_cases(out, cases, job, progress, device, client=None, devices=None) -> 
 
 def _one_case(out: str, c: dict[str, Any], job: tuple, device: Any, devices: Any = None) -> str:
     """Compute one case and write its file (atomically); returns its case id."""
+    from ..slope import slope_record
     from ..wm import wm_surface
 
     surface, fractions, material, truncation, settings = job
@@ -316,6 +323,7 @@ def _one_case(out: str, c: dict[str, Any], job: tuple, device: Any, devices: Any
             seed=c["seed"],
             device=device,
         )
+    rec = slope_record(s, limit=settings.slope_limit)  # before the solves release the map
     r = compare_models(
         s,
         fractions,
@@ -325,7 +333,9 @@ def _one_case(out: str, c: dict[str, Any], job: tuple, device: Any, devices: Any
         device=device,
         devices=devices,
     )
-    c = {**c, "Rt_m": r.Rt}
+    spectrum = rec["spectrum"]["slope_rms"] if rec["spectrum"] else float("nan")
+    c = {**c, "Rt_m": r.Rt, "slope_rms": rec["slope_rms"],
+         "curvature_rms_per_m": rec["curvature_rms_per_m"], "slope_rms_spectrum": spectrum}
     _write_case(Path(out), c, r, time.perf_counter() - t0)
     return c["case_id"]
 

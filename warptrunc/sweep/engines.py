@@ -36,6 +36,7 @@ from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.interrupt import check_interrupt
 from .._support.progress import progress_bar
 from ..plausibility import check_dimensions, check_fit, fit_error_text
+from ..slope import slope_record, slope_warnings
 from ..stiffness import fit_power_law, stiffness_curve
 from ..truncation.api import truncate
 from ..wm import wm_surface
@@ -104,6 +105,16 @@ def compute_case(
         dev = resolve_device(device)
         base.update(device=str(dev), device_name=str(dev.name))
         s = wm_surface(o.wm_spec(case.D, case.delta * o.Wr, case.seed), device=dev)
+        slope = slope_record(s)  # h′_rms at the pixel (finite differences) and of the terms
+        base.update(
+            slope_rms=slope["slope_rms"],
+            curvature_rms_per_m=slope["curvature_rms_per_m"],
+            slope_rms_spectrum=slope["spectrum"]["slope_rms"],
+        )
+        if o.bem_fractions:  # the elastic columns hold for small slopes only
+            found = slope_warnings(slope)
+            if found:
+                base["warnings"] = _join_warnings(base["warnings"], found)
         if o.fractal_methods:
             from ..fractal import fractal_dimensions
 
