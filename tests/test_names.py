@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""One name per quantity, one home per operation: the public face of the package, and the old
-names that keep working with a DeprecationWarning."""
+"""One name per quantity, one home per operation: the public face of the package, and no old
+name beside it (0.1 is unreleased: a rename leaves no alias)."""
 
 import importlib
 import math
@@ -39,32 +39,46 @@ def test_one_public_function_per_operation_at_the_top(name, module):
     assert getattr(warptrunc, name) is getattr(importlib.import_module(module), name)
 
 
-def test_reproduce_fits_are_deprecated_aliases_of_the_one_fit():
+@pytest.mark.parametrize(
+    "module, old",
+    [
+        ("warptrunc.reproduce.analysis", "line_fit"),  # warptrunc.sweep.linear_fit
+        ("warptrunc.reproduce.analysis", "power_fit"),  # warptrunc.fit_power_law
+        ("warptrunc.stiffness", "MODELS"),  # STIFFNESS_MODELS
+        ("warptrunc._support", "deprecate"),  # the alias machinery itself
+    ],
+)
+def test_renamed_names_leave_no_alias(module, old):
+    mod = importlib.import_module(module)
+    assert not hasattr(mod, old)
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module(f"{module}.{old}")
+
+
+def test_reproduce_fits_are_the_one_fit():
+    """The report's fits are :func:`warptrunc.fit_power_law` and the sweep's ``linear_fit``:
+    y = 0.0386·x^−1.122 (the paper's Table 3 β(δ)) and a line of slope 0.125 come back."""
     import warptrunc.reproduce.analysis as a
 
-    assert "power_fit" not in a.__all__ and "line_fit" not in a.__all__
     x = np.array([0.01, 0.02, 0.04, 0.08])
-    y = 0.0386 * x**-1.122  # the paper's Table 3 β(δ)
-    with pytest.warns(DeprecationWarning, match="fit_power_law"):
-        f = a.power_fit(x, y)
+    f = a._power(x, 0.0386 * x**-1.122)
     assert f["p"] == pytest.approx(-1.122, rel=1e-12) and f["b"] == pytest.approx(0.0386)
-    with pytest.warns(DeprecationWarning, match="linear_fit"):
-        g = a.line_fit([2.1, 2.5, 2.9], [0.40, 0.45, 0.50])
+    g = a._line([2.1, 2.5, 2.9], [0.40, 0.45, 0.50])
     assert g["slope"] == pytest.approx(0.125) and g["n"] == 3
 
 
-def test_asperity_contact_modulus_renamed():
+def test_contact_modulus_has_one_name():
+    """``contact_modulus`` on both materials; the old property names are gone."""
     from warptrunc.reproduce.asperity import AsperityMaterial
 
     m = AsperityMaterial(E=70e9, nu=0.33)
     assert m.contact_modulus == pytest.approx(70e9 / (1 - 0.33**2), rel=1e-15)
-    with pytest.warns(DeprecationWarning, match="contact_modulus"):
-        assert m.E_r == m.contact_modulus
+    assert not hasattr(m, "E_r")
+    assert not hasattr(warptrunc.Material(), "reduced_modulus")
 
 
 def test_no_other_name_for_the_contact_modulus():
-    """E* is called contact_modulus in the code: no reduced_modulus/e_star/E_r identifiers
-    outside their deprecated aliases."""
+    """E* is called contact_modulus in the code: no reduced_modulus/e_star/E_r identifiers."""
     import ast
     import pathlib
 
@@ -82,6 +96,5 @@ def test_no_other_name_for_the_contact_modulus():
                 name = node.name
             if name in bad:
                 hits.append(f"{path.relative_to(root)}:{node.lineno}: {name}")
-    allowed = {"material.py", "reproduce/asperity.py"}  # the deprecated properties themselves
-    assert [h for h in hits if h.split(":")[0] not in allowed] == []
+    assert hits == []
     assert math.isfinite(warptrunc.Material().contact_modulus)

@@ -297,8 +297,8 @@ def test_fit_power_law_of_two_arrays():
     assert fit_power_law([1.0, 2.0], [1.0, 2.0], min_points=2).alpha == pytest.approx(1.0)
 
 
-def test_models_renamed_with_a_warning():
+def test_models_have_one_name():
     import warptrunc.stiffness as st
 
-    with pytest.warns(DeprecationWarning, match="STIFFNESS_MODELS"):
-        assert st.MODELS == st.STIFFNESS_MODELS == ("area", "islands")
+    assert st.STIFFNESS_MODELS == ("area", "islands")
+    assert not hasattr(st, "MODELS")

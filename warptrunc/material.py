@@ -10,7 +10,6 @@ default, unit, allowed range and description, and the command-line options ``--E
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -110,16 +109,6 @@ class Material(Parameters):
         if math.isfinite(self.E_i):
             inv += (1.0 - self.nu_i**2) / self.E_i
         return 1.0 / inv
-
-    @property
-    def reduced_modulus(self) -> float:
-        """Deprecated name of :attr:`contact_modulus` (Pa)."""
-        warnings.warn(
-            "Material.reduced_modulus is deprecated; use Material.contact_modulus",
-            DeprecationWarning,
-            stacklevel=2,
-        )
-        return self.contact_modulus
 
     @property
     def elastic(self) -> bool:

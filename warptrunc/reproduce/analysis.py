@@ -8,7 +8,6 @@ from typing import Any
 
 import numpy as np
 
-from .._support.deprecate import deprecated_function
 from ..stiffness import fit_power_law
 from ..sweep.stats import linear_fit
 from .paper import TABLE1, TABLE2, TABLE3
@@ -40,13 +39,6 @@ def _power(x, y) -> dict[str, float] | None:
         return None
     return {"b": f.beta, "p": f.alpha, "r": f.r, "n": f.n_points}
 
-
-line_fit = deprecated_function(
-    _line, "warptrunc.reproduce.analysis.line_fit", "warptrunc.sweep.linear_fit"
-)
-power_fit = deprecated_function(
-    _power, "warptrunc.reproduce.analysis.power_fit", "warptrunc.fit_power_law"
-)
 
 
 def _points(rows, fit, key):

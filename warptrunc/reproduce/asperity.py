@@ -76,18 +76,6 @@ class AsperityMaterial:
         return self.E / (1.0 - self.nu**2)
 
     @property
-    def E_r(self) -> float:
-        """Deprecated name of :attr:`contact_modulus` (Pa)."""
-        import warnings
-
-        warnings.warn(
-            "AsperityMaterial.E_r is deprecated; use AsperityMaterial.contact_modulus",
-            DeprecationWarning,
-            stacklevel=2,
-        )
-        return self.contact_modulus
-
-    @property
     def sigma_y(self) -> float:
         """Yield stress σ_y (Pa)."""
         return self.sigma_y_over_H * self.H

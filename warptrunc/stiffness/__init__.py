@@ -18,7 +18,6 @@ are read with that meaning (see the changelog).
 
 from __future__ import annotations
 
-from .._support.deprecate import module_getattr
 from ..material import Material
 from .curve import (
     STIFFNESS_MODELS,
@@ -50,5 +49,3 @@ __all__ = [
     "island_stiffness_curve",
     "stiffness_curve",
 ]
-
-__getattr__ = module_getattr(__name__, globals(), {"MODELS": "STIFFNESS_MODELS"})
