@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from .._support.atomic import staged_outputs, strict_json
 from .._support.provenance import provenance
@@ -29,10 +30,13 @@ from ..params import add_options, from_args
 from ._common import (
     add_device,
     add_figures_out,
+    add_generation,
     add_json_output,
     add_scan_file,
     add_warnings,
+    generate_surface,
     read_scan,
+    spec_from_args,
     warnings_of,
 )
 
@@ -42,7 +46,10 @@ HELP = "descriptors (R_t, R_rms, R_a, skewness, kurtosis, W_r) and D by the four
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``warptrunc describe``."""
-    add_scan_file(p)
+    add_scan_file(p, required=False)
+    add_generation(
+        p.add_argument_group("or a generated surface (no FILE: a preset or the WM / self-affine options)")
+    )
     add_options(p.add_argument_group("fractal methods"), FractalSettings)
     add_json_output(p)
     add_figures_out(p, "psd.png and fractal_fits.png")
@@ -55,6 +62,7 @@ def describe_surface(s, settings: FractalSettings, device) -> dict:
     cannot fit the map gives its reason in ``error_<method>``."""
     from ..descriptors import describe
     from ..fractal import fractal_dimensions
+    from ..slope import slope_statistics, spectrum_slope
 
     d = describe(s)
     fits, errors = {}, {}
@@ -80,6 +88,21 @@ def describe_surface(s, settings: FractalSettings, device) -> dict:
     for m in METHODS:
         out[f"error_{m}"] = errors.get(m)
     out.update({"nx": s.nx, "ny": s.ny, "dx_m": s.dx, "dy_m": s.dy, "flat": not s.Rt > 0})
+    fd = slope_statistics(s)  # at the map's pixel, with the rms slope per decade of wavelength
+    sp = spectrum_slope(s.params)
+    out.update(
+        {
+            "slope_rms": fd.slope_rms,
+            "curvature_rms_per_m": fd.curvature_rms,
+            "slope_method": fd.method,
+            "decade_edges_m": list(fd.decade_edges),
+            "slope_rms_per_decade": list(fd.slope_rms_per_decade),
+            "slope_rms_spectrum": None if sp is None else sp.slope_rms,
+            "curvature_rms_spectrum_per_m": None if sp is None else sp.curvature_rms,
+            "slope_rms_per_decade_spectrum": None if sp is None else list(sp.slope_rms_per_decade),
+            "decade_edges_spectrum_m": None if sp is None else list(sp.decade_edges),
+        }
+    )
     return {"result": out, "fits": fits, "descriptors": d}
 
 
@@ -100,13 +123,32 @@ def _user_words(msg: str, method: str, s) -> str:
     return f"cannot fit on this {s.nx}×{s.ny} map: {msg}"
 
 
+def _with_spectrum(fd: float, sp: float | None, unit: str, dx: float) -> str:
+    """A slope or curvature by finite differences at the pixel, and the spectrum's where known."""
+    text = f"{fd:.4g}{unit} (finite differences at the {dx * 1e9:.4g} nm pixel"
+    return text + (f"; spectrum {sp:.4g}{unit})" if sp is not None else ")")
+
+
+def _generated_name(args: argparse.Namespace, s) -> str:
+    """How the output names a generated surface: its preset or generator and parameters."""
+    gen = s.params.get("generator")
+    if getattr(args, "preset", None):
+        return f"preset {args.preset}"
+    if gen == "self-affine":
+        return f"self-affine surface, H = {s.params['hurst']:g}"
+    return f"WM surface, D = {s.params.get('D'):g}"
+
+
 def run(args: argparse.Namespace) -> int:
-    """Describe the file."""
+    """Describe the file, or the generated surface."""
     from ..descriptors import profile_psd, radial_psd
     from ..plausibility import check_dimensions
 
     settings = from_args(FractalSettings, args)
     s = read_scan(args)
+    if s is None:  # no FILE: the generated surface of the options
+        s = generate_surface(spec_from_args(args), args.device)
+        args.file = Path(_generated_name(args, s))
     res = describe_surface(s, settings, args.device)
     add_warnings(args, check_dimensions({m: res["result"][f"D_{m}"] for m in METHODS}))
     out = {"file": str(args.file), **res["result"], "warnings": warnings_of(args)}
@@ -123,6 +165,9 @@ def run(args: argparse.Namespace) -> int:
             ("skewness", f"{out['skewness']:.4g}"),
             ("kurtosis", f"{out['kurtosis']:.4g}"),
             ("W_r", f"{out['Wr_m'] * u:.4g} µm" + ("" if out["Wr_resolved"] else " (unresolved)")),
+            ("h′_rms", _with_spectrum(out["slope_rms"], out["slope_rms_spectrum"], "", s.dx)),
+            ("h″_rms", _with_spectrum(out["curvature_rms_per_m"],
+                                      out["curvature_rms_spectrum_per_m"], " 1/m", s.dx)),
         ]
         for m in settings.methods:
             if out[f"D_{m}"] is None:
