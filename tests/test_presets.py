@@ -160,8 +160,38 @@ def test_cli_preset_tri_generates_the_earlier_d_tri_surface(tmp_path):
             )
             == 0
         )
-    # the D_tri preset before issue 38 (benchmarks/records/reproduce_paper_h100_c3f7c18/report.md, c3f7c18), typed in
-    old = WMSpec(D=2.555, Rt=38.97e-6, Wr=60e-6, L=1e-3, n=64, M=10)
+    # the D_tri calibration (benchmarks/records/reproduce_paper_h100_c3f7c18/report.md), typed in,
+    # with the content of its 1024² scan over 1.024 mm (W_c = 2 µm, R_t at its 1 µm pixel)
+    old = WMSpec(D=2.555, Rt=38.97e-6, Wr=60e-6, L=1e-3, n=64, M=10, Wc=2e-6, Rt_pixel=1e-6)
     got = read_height_map(tmp_path / "GB300s-tri.npz")
     np.testing.assert_array_equal(got.heights, wm_surface(old, device="cpu").heights)
     assert read_height_map(tmp_path / "GB300s.npz").params["D"] == preset("GB300s").D == 2.985
+
+
+@pytest.mark.parametrize("name", ["Ps", "GB300s"])
+def test_a_preset_at_twice_the_pixels_resolves_the_same_surface(name):
+    """A preset's content (W_c = 2 pixels of its 1024² calibration scan over 1 mm) and its R_t
+    (measured at that scan's pixel) are the surface's, not the grid's: on 2N² over the same side
+    the map equals the N² one where the pixels coincide, bit for bit."""
+    from warptrunc.wm import wm_surface
+
+    spec = TABLE1[name].replace(L=0.25e-3, n=256)
+    assert spec.Wc == pytest.approx(2e-3 / 1024) and spec.Rt_pixel == pytest.approx(1e-3 / 1024)
+    coarse = wm_surface(spec, device="cpu").heights
+    fine = wm_surface(spec.replace(n=512), device="cpu").heights
+    np.testing.assert_array_equal(fine[::2, ::2], coarse)
+
+
+def test_calibration_records_the_slope_at_the_calibration_pixel():
+    from warptrunc.slope import slope_statistics, wm_slope_statistics
+
+    for name in ("SMATs", "GB300s"):
+        rec = CALIBRATION[name]["slope_rms"]
+        spec = TABLE1[name].replace(n=1024)
+        s = wm_surface(spec, device="cpu")
+        # finite differences at the 1024² calibration pixel, and the terms' (the content's)
+        assert slope_statistics(s, per_decade=False).slope_rms == pytest.approx(
+            rec["calibration_pixel"], rel=2e-3
+        )
+        terms = wm_slope_statistics(spec.terms(), s.params["scale"]).slope_rms
+        assert terms == pytest.approx(rec["spectrum"], rel=2e-3)

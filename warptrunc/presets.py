@@ -16,9 +16,23 @@ are two sets, by the fractal method whose D the loop matched:
   **D_vs**, the dimension with which Fig. 6's truncation curves are computed (its caption:
   "using D_vs").
 - :data:`TABLE1_TRI` (``Ps-tri``, ``SMATs-tri``, ``GB300s-tri``, ``GB50s-tri`` on the command
-  line): matched to D_tri, the presets before issue 38, unchanged (``benchmarks/records/reproduce_paper_h100_c3f7c18/report.md``,
+  line): matched to D_tri (``benchmarks/records/reproduce_paper_h100_c3f7c18/report.md``,
   profile ``paper`` at ``c3f7c18`` on an NVIDIA H100, 1024² over 1.024 mm, D_in searched in
   [2.02, 2.98]).
+
+Content. A preset's surface holds the content its calibration data resolved, whatever grid it
+is drawn on: its shortest wavelength is W_c = 2 pixels of the calibration scan (1.953 µm for the
+D_vs presets, 1024² over 1 mm; 2 µm for the D_tri ones, 1024² over 1.024 mm), and its R_t′ is
+measured on a grid of that scan's pixel (``Rt_pixel``), so the 10240² maps of the paper resolve
+the calibrated surface at 97.7 nm with the same terms and height scale, and a map at 2N² equals
+the N² one where the pixels coincide. This is an assumption, stated: the scans measured nothing
+finer, so the presets add nothing finer (the paper extends the series to 2 pixels of the
+simulated grid, § 3.2; that content, and its slope, grow with every halving of the pixel). An
+explicit ``Wc`` still extends the series. h′_rms (seed 0, finite differences) at the calibration
+pixel and at 97.7 nm: Ps 0.0007 and 0.0007, SMATs 0.78 and 0.87, GB300s 4.15 and 4.79, GB50s
+3.46 and 4.07 (:data:`CALIBRATION` ``slope_rms``): the grit-blasted surfaces stay outside the
+small-slope range of the half-space solver (h′_rms ≲ 0.5) at every pixel, because their
+calibrated D_in near 3 and R_t′ over W_r of 60 and 25 µm make them steep at 2 µm already.
 
 :data:`PRESETS` holds all eight names; :data:`CALIBRATION` records, per name, the method
 matched, the targets and what was reached, whether the loop ended on a search bound (``bound``)
@@ -91,15 +105,18 @@ from .wm_params import WMSpec
 
 __all__ = ["CALIBRATION", "PRESETS", "TABLE1", "TABLE1_TRI", "preset"]
 
+_SCAN_VS, _SCAN_TRI = 1e-3 / 1024, 1.024e-3 / 1024  # the calibration maps' pixels (m)
 _PAPER = {"L": 1e-3, "n": 10240, "M": 10}
+_CONTENT_VS = {"Wc": 2 * _SCAN_VS, "Rt_pixel": _SCAN_VS}
+_CONTENT_TRI = {"Wc": 2 * _SCAN_TRI, "Rt_pixel": _SCAN_TRI}
 _UM = 1e-6
 
 TABLE1: MappingProxyType = MappingProxyType(
     {
-        "Ps": WMSpec(D=2.103, Rt=0.2324e-6, Wr=2000e-6, **_PAPER),
-        "SMATs": WMSpec(D=2.417, Rt=23.20e-6, Wr=120e-6, **_PAPER),
-        "GB300s": WMSpec(D=2.985, Rt=39.78e-6, Wr=60e-6, **_PAPER),
-        "GB50s": WMSpec(D=2.990, Rt=27.43e-6, Wr=25e-6, **_PAPER),
+        "Ps": WMSpec(D=2.103, Rt=0.2324e-6, Wr=2000e-6, **_PAPER, **_CONTENT_VS),
+        "SMATs": WMSpec(D=2.417, Rt=23.20e-6, Wr=120e-6, **_PAPER, **_CONTENT_VS),
+        "GB300s": WMSpec(D=2.985, Rt=39.78e-6, Wr=60e-6, **_PAPER, **_CONTENT_VS),
+        "GB50s": WMSpec(D=2.990, Rt=27.43e-6, Wr=25e-6, **_PAPER, **_CONTENT_VS),
     }
 )
 """The paper's Table 1 simulated surfaces matched to D_vs (Fig. 6) (name → :class:`~warptrunc.WMSpec`,
@@ -107,14 +124,13 @@ SI units)."""
 
 TABLE1_TRI: MappingProxyType = MappingProxyType(
     {
-        "Ps": WMSpec(D=2.091, Rt=0.2314e-6, Wr=2048e-6, **_PAPER),
-        "SMATs": WMSpec(D=2.020, Rt=21.24e-6, Wr=120e-6, **_PAPER),
-        "GB300s": WMSpec(D=2.555, Rt=38.97e-6, Wr=60e-6, **_PAPER),
-        "GB50s": WMSpec(D=2.020, Rt=26.02e-6, Wr=25e-6, **_PAPER),
+        "Ps": WMSpec(D=2.091, Rt=0.2314e-6, Wr=2048e-6, **_PAPER, **_CONTENT_TRI),
+        "SMATs": WMSpec(D=2.020, Rt=21.24e-6, Wr=120e-6, **_PAPER, **_CONTENT_TRI),
+        "GB300s": WMSpec(D=2.555, Rt=38.97e-6, Wr=60e-6, **_PAPER, **_CONTENT_TRI),
+        "GB50s": WMSpec(D=2.020, Rt=26.02e-6, Wr=25e-6, **_PAPER, **_CONTENT_TRI),
     }
 )
-"""The same surfaces matched to D_tri (the presets before issue 38); ``"<name>-tri"`` in
-:data:`PRESETS`."""
+"""The same surfaces matched to D_tri; ``"<name>-tri"`` in :data:`PRESETS`."""
 
 PRESETS: MappingProxyType = MappingProxyType(
     {**TABLE1, **{f"{k}-tri": v for k, v in TABLE1_TRI.items()}}
@@ -179,6 +195,17 @@ _NOTES = {
 }
 
 
+# h′_rms of the D_vs presets (seed 0): finite differences at the calibration scan's pixel
+# (1 mm/1024) and at the paper's (1 mm/10240), and the content's own (its WM terms; the same on
+# every grid, since W_c is fixed); examples/benchmarks/content_sensitivity.py measures them again
+_SLOPES = {
+    "Ps": (0.000714, 0.000714, 0.000714),
+    "SMATs": (0.7812, 0.8692, 0.8705),
+    "GB300s": (4.154, 4.792, 4.799),
+    "GB50s": (3.460, 4.072, 4.079),
+}
+
+
 def _record(name: str) -> dict:
     surface = name.removesuffix("-tri")
     tri = name != surface
@@ -211,6 +238,16 @@ def _record(name: str) -> dict:
         "unmatched_by": 0.0 if lo <= target <= hi else target - (hi if target > hi else lo),
         "cpu_s": cpu,
         "note": _NOTES.get(name, ""),
+        "Wc_m": spec.Wc,
+        "Rt_pixel_m": spec.Rt_pixel,
+        "slope_rms": None
+        if name not in _SLOPES
+        else {
+            "calibration_pixel": _SLOPES[name][0],
+            "paper_pixel": _SLOPES[name][1],
+            "spectrum": _SLOPES[name][2],
+            "small_slope_limit": 0.5,
+        },
         "Wr_choice": (
             (f"2·L of the calibration map ({spec.Wr * 1e3:g} mm); the paper gives W_r ≫ 1024 µm")
             if surface == "Ps"
@@ -231,7 +268,10 @@ D_in), ``bound`` (None, ``"lower"`` or ``"upper"``: the loop ended on that bound
 ``within_rtol``, ``calibrated`` (within ``rtol`` and ``bound`` None); ``D_reachable`` (min, max of
 the D reached over D_in in [2.001, 2.99]), ``target_reachable``, ``unmatched_by`` (target minus
 the nearest reachable D; 0 when reachable); ``cpu_s`` (the D_vs loop on ``device``; None for the
-D_tri presets, found on a GPU); ``note``; ``Wr_choice``; ``commit``, ``device``, ``source``."""
+D_tri presets, found on a GPU); ``note``; ``Wr_choice``; ``commit``, ``device``, ``source``;
+``Wc_m`` and ``Rt_pixel_m`` (the content: the shortest wavelength, m, and the pixel R_t′ is
+measured at, m); ``slope_rms`` (the D_vs presets, seed 0: h′_rms by finite differences at the
+calibration pixel and at the paper's 97.7 nm pixel, and of the WM terms; None for the D_tri ones)."""
 
 
 def preset(name: str) -> WMSpec:
@@ -241,7 +281,7 @@ def preset(name: str) -> WMSpec:
     ----------
     name : str
         ``"Ps"``, ``"SMATs"``, ``"GB300s"`` or ``"GB50s"`` (matched to D_vs, Fig. 6), or the same
-        with ``"-tri"`` (matched to D_tri, the presets before issue 38).
+        with ``"-tri"`` (matched to D_tri).
 
     Returns
     -------
