@@ -130,6 +130,7 @@ def main(argv=None) -> int:
         per_D.append(
             {
                 "D_in": D,
+                "delta": args.delta,
                 "alpha_mean": float(a.mean()) if a.size else float("nan"),
                 "alpha_sd": float(a.std(ddof=1)) if a.size > 1 else float("nan"),
                 "n": int(a.size),
@@ -139,7 +140,8 @@ def main(argv=None) -> int:
     line = (
         linear_fit([r["D_in"] for r in ok], [r["alpha_mean"] for r in ok]) if len(ok) > 1 else None
     )
-    summary = {"fit_ranges": {"10": {"per_D": per_D, "alpha_vs_D": line}}}
+    lines = [{"delta": args.delta, **line}] if line else []
+    summary = {"fit_ranges": {"10": {"per_D": per_D, "alpha_vs_D": lines}}}
     p = args.out / "alpha_vs_D.png"
     fig = plot.alpha_vs_D(
         summary,

@@ -140,10 +140,9 @@ def main(argv=None) -> int:
         for r in v["per_D"]:
             print(
                 f"  D_in = {r['D_in']:.1f}: α = {r['alpha_mean']:.3f} ± {r['alpha_sd']:.3f} "
-                f"({r['n']} fits)"
+                f"({r['n']} seeds; {r['n_flagged']} fits not worth reading left out)"
             )
-        line = v["alpha_vs_D"]
-        if line:
+        for line in v["alpha_vs_D"]:
             print(
                 f"  α = {line['slope']:.3f}·D_in + {line['intercept']:.3f} (r = {line['r']:.3f});"
                 f" paper: α = 0.209·D_in + 0.090 (r = 0.940)"

@@ -183,10 +183,10 @@ def test_sweep_summary_two_values_of_d_draw_no_line(capsys):
     rows = [(2.3, 10, 0.61, None, None), (2.3, 10, 0.63, None, None),
             (2.7, 10, 0.50, None, None), (2.7, 10, 0.52, SHORT, None)]  # fmt: skip
     df = _table(rows)
-    assert alpha_summary(df)["fit_ranges"]["10"]["alpha_vs_D"] is None
+    assert alpha_summary(df)["fit_ranges"]["10"]["alpha_vs_D"] == []
     _print_summary(df)
     out = capsys.readouterr().out.splitlines()
-    assert "D=2.3: 0.6200±0.0141 (n=2), D=2.7: 0.5000 (n=1)" in out[0]  # the flagged fit out
+    assert "D=2.3: 0.6200±0.0141 (n=2 seeds), D=2.7: 0.5000 (n=1 seed)" in out[0]  # flagged out
     assert "α = " not in out[0]  # no line
     assert "no line α(D): α worth reading at 2 values of D, a line needs 3" in out[0]
     assert out[1] == "  1× fit: the fit spans 0.3 decades of load (< 0.5)"

@@ -33,7 +33,7 @@ from ..sweep.grid import SweepGrid
 from ..sweep.options import SweepExecution, SweepOptions, axis_names
 from ..sweep.read import load, require_extra
 from ..sweep.run import run_sweep
-from ..sweep.stats import MIN_TREND_D, alpha_summary
+from ..sweep.stats import MIN_TREND_D, alpha_summary, worth_reading
 from ._common import (
     add_device,
     add_devices,
@@ -205,11 +205,12 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _print_summary(df) -> None:
-    """Per fit range: α per D_in (mean ± sd over seeds and δ), the line α(D_in) through at
-    least MIN_TREND_D values of D or why there is none, and why fits were left out (each
-    reason of ``fit_error``, counted)."""
+    """Per fit range and δ: α per D_in (mean ± sd over the seeds, n seeds), the line α(D_in)
+    through at least MIN_TREND_D values of D or why there is none, and why fits were left out
+    (each reason of ``fit_error``, counted). The fits are those
+    :func:`~warptrunc.sweep.worth_reading` keeps, as in ``summary.json`` and the figures."""
     ok = df["error"].isna()
-    flagged = int((ok & df["fit_error"].notna() & df["alpha"].notna()).sum())
+    flagged = int((ok & ~worth_reading(df) & df["alpha"].notna()).sum())
     if flagged:
         print(
             f"warning: {flagged} fits not worth reading (fit_error in cases.parquet) are left "
@@ -217,25 +218,30 @@ def _print_summary(df) -> None:
             file=sys.stderr,
         )
     ranges = alpha_summary(df[ok])["fit_ranges"]
-    good = alpha_summary(df[ok & df["fit_error"].isna()])["fit_ranges"]
     keys = _range_keys(df)
-    for mp in ranges:
+    several = "delta" in df and df.loc[ok, "delta"].nunique() > 1
+    for mp, summary in ranges.items():
         label = mp if mp.startswith("fraction") else f"min_pixels={mp}"
         left = df.loc[ok & (keys == mp) & df["fit_error"].notna(), "fit_error"].tolist()
         why = (
             f"{len(left)} fit{'s' if len(left) != 1 else ''} left out (fit_error in cases.parquet)"
         )
-        if mp not in good:
-            print(f"{label}: α — no fit worth reading; {why}:")
-        else:
-            rows = [r for r in good[mp]["per_D"] if r["n"] > 0]
+        lines = {line["delta"]: line for line in summary["alpha_vs_D"]}
+        deltas = list(dict.fromkeys(r["delta"] for r in summary["per_D"]))
+        for i, delta in enumerate(deltas):
+            head = f"{label}, δ={delta:g}" if several and delta is not None else label
+            tail = f"; {why}:" if left and i == len(deltas) - 1 else ""
+            rows = [r for r in summary["per_D"] if r["delta"] == delta and r["n"] > 0]
+            if not rows:
+                print(f"{head}: α — no fit worth reading{tail}")
+                continue
             per_d = ", ".join(
                 f"D={r['D_in']:g}: {r['alpha_mean']:.4f}"
                 + (f"±{r['alpha_sd']:.4f}" if r["n"] > 1 else "")
-                + f" (n={r['n']})"
+                + f" (n={r['n']} seed{'s' if r['n'] != 1 else ''})"
                 for r in rows
             )
-            line = good[mp]["alpha_vs_D"]
+            line = lines.get(delta)
             trend = (
                 f"α = {line['slope']:.3f}·D {'−' if line['intercept'] < 0 else '+'} "
                 f"{abs(line['intercept']):.3f} (r = {line['r']:.3f})"
@@ -244,7 +250,7 @@ def _print_summary(df) -> None:
                 f"{'s' if len(rows) != 1 else ''} of D, a line needs {MIN_TREND_D}"
                 + (" (through 2 it is exact, r = ±1)" if len(rows) == 2 else "")
             )
-            print(f"{label}: α {per_d}; {trend}" + (f"; {why}:" if left else ""))
+            print(f"{head}: α {per_d}; {trend}{tail}")
         for text in _reasons(left):
             print(f"  {text}")
 

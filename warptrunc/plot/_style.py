@@ -19,6 +19,9 @@ CONTACT_COLOR = "#d62728"  # the same red for matplotlib
 SPREAD_ALPHA = 0.25  # shaded spread over seeds
 HEIGHT_CMAP = "viridis"  # height maps; "gray" under a red contact overlay
 PAPER_ALPHA_D = (0.209, 0.090)  # the paper's α = 0.209·D_in + 0.090 (Table 3, D_in)
+FLAGGED_LABEL = "not worth reading (hollow; left out of means and lines)"
+"""Legend text of the fits a figure draws hollow: flagged by
+:func:`warptrunc.plausibility.check_fit` (``fit_error``), kept in the data, out of every fit."""
 
 
 FIGURE_DOCS = {
@@ -116,6 +119,102 @@ def readable_log_ticks(axis: Any, max_ticks: int = 6, min_ticks: int = 3) -> Non
         axis.axes.set_ylim(lo, hi)
 
 
+def _data_points(ax: Any) -> np.ndarray:
+    """Display coordinates of what ``ax`` draws as data: the vertices of its lines (straight
+    segments sampled at 32 points), markers, error bars and scatter points; (k, 2)."""
+    pts = []
+    for ln in ax.get_lines():
+        xy = np.asarray(ln.get_xydata(), dtype=float)
+        if len(xy) == 0 or not ln.get_visible() or ln.get_label() == "_nolegend_axline":
+            continue
+        if len(xy) == 2 and ln.get_linestyle() not in ("None", "none", ""):
+            t = np.linspace(0.0, 1.0, 32)[:, None]
+            xy = xy[0] + t * (xy[1] - xy[0])
+        pts.append(ln.get_transform().transform(xy))
+    for c in ax.collections:
+        if not c.get_visible() or type(c).__name__ in (
+            "PolyCollection",
+            "FillBetweenPolyCollection",
+        ):
+            continue  # a shaded band may lie under a legend
+        off = np.asarray(c.get_offsets(), dtype=float)
+        if (
+            len(off)
+            and c.get_offset_transform() is not None
+            and type(c).__name__ == "PathCollection"
+        ):
+            pts.append(c.get_offset_transform().transform(off))
+        for path in c.get_paths() if type(c).__name__ == "LineCollection" else ():
+            pts.append(c.get_transform().transform(path.vertices))
+    pts = [p[np.all(np.isfinite(p), axis=1)] for p in pts]
+    return np.concatenate(pts) if pts else np.empty((0, 2))
+
+
+def legend_covers_data(ax: Any, legend: Any = None) -> int:
+    """How many data points of ``ax`` (:func:`_data_points`) lie under its legend (display
+    coordinates, after a draw)."""
+    legend = legend if legend is not None else ax.get_legend()
+    if legend is None:
+        return 0
+    fig = ax.figure
+    fig.draw_without_rendering()
+    box = legend.get_window_extent()
+    p = _data_points(ax)
+    inside = (p[:, 0] >= box.x0) & (p[:, 0] <= box.x1) & (p[:, 1] >= box.y0) & (p[:, 1] <= box.y1)
+    return int(inside.sum())
+
+
+def place_legend(ax: Any, *, fontsize: float = 7, ncols: int = 1, **kw: Any) -> Any:
+    """The legend of ``ax`` where it covers no data: matplotlib's best place inside the axes
+    when that is clear of every point, line and error bar, else under the axes.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes whose labelled artists are listed.
+    fontsize : float
+        Legend text size (pt).
+    ncols : int
+        Columns of the legend when it goes under the axes.
+    **kw
+        As for :meth:`matplotlib.axes.Axes.legend` (``handles``, ``title``, ...).
+
+    Returns
+    -------
+    matplotlib.legend.Legend or None
+        The legend (None when nothing is labelled).
+    """
+    handles, labels = kw.pop("handles", None), kw.pop("labels", None)
+    if handles is None:
+        handles, labels = ax.get_legend_handles_labels()
+    elif labels is None:
+        labels = [h.get_label() for h in handles]
+    if not handles:
+        return None
+    leg = ax.legend(handles, labels, fontsize=fontsize, loc="best", **kw)
+    if legend_covers_data(ax, leg):
+        from matplotlib.transforms import ScaledTranslation
+
+        leg.remove()
+        fig = ax.figure
+        # under the tick labels and the x label: their height in points does not change when
+        # the constrained layout later shrinks the axes to make room
+        below = (ax.get_window_extent().y0 - ax.get_tightbbox().y0) * 72.0 / fig.dpi + 4.0
+        anchor = ax.transAxes + ScaledTranslation(0.0, -below / 72.0, fig.dpi_scale_trans)
+        leg = ax.legend(
+            handles,
+            labels,
+            fontsize=fontsize,
+            loc="upper center",
+            bbox_to_anchor=(0.5, 0.0),
+            bbox_transform=anchor,
+            ncols=ncols,
+            borderaxespad=0.0,
+            **kw,
+        )
+    return leg
+
+
 def finish_figure(fig: Any, path: str | Path | None) -> Any:
     if path is not None:
         path = Path(path)
@@ -133,13 +232,13 @@ def finish_axes(
     which: str = "major",
     legend: bool = True,
 ) -> Any:
-    """Grid (``which`` ticks), title and legend of a one-axes figure, then
-    :func:`finish_figure`."""
+    """Grid (``which`` ticks), title and legend (:func:`place_legend`: off the data) of a
+    one-axes figure, then :func:`finish_figure`."""
     ax.grid(True, which=which, alpha=0.3)
     if title:
         ax.set_title(title)
     if legend:
-        ax.legend(fontsize=7)
+        place_legend(ax)
     return finish_figure(fig, path)
 
 

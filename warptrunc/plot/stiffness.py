@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from ._style import (
+    FLAGGED_LABEL,
     PAPER_ALPHA_D,
     SPREAD_ALPHA,
     as_list,
@@ -120,14 +121,22 @@ def alpha_vs_D(
     title: str | None = None,
     path: str | Path | None = None,
 ):
-    """Exponent α (mean ± sd over seeds) against D_in, with the fitted line (Fig. 10, Table 3).
+    """Exponent α against D_in: mean ± sd over the seeds per δ, the line α(D_in), and the
+    fits left out drawn hollow (Fig. 10, Table 3).
+
+    The means, error bars and lines use only the fits worth reading
+    (:func:`warptrunc.sweep.worth_reading`, the filter of ``warptrunc sweep``'s summary):
+    a fit flagged ``fit_error`` is drawn as a hollow marker at its α and enters neither a
+    mean nor a line. The statistics are over the seeds (independent surfaces); each δ is its
+    own series, never pooled.
 
     Parameters
     ----------
-    summary : dict or SweepTable
-        The ``summary.json`` content of ``examples/parametric_sweep.py`` (``fit_ranges`` →
-        {min_pixels: {"per_D": [...], "alpha_vs_D": {...}}}), or a sweep's cases table
-        (:func:`warptrunc.sweep.load`, a DataFrame) or :class:`~warptrunc.sweep.SweepTable`.
+    summary : dict or DataFrame or SweepTable
+        :func:`warptrunc.sweep.alpha_summary`'s dict (``fit_ranges`` → {key: {"per_D":
+        [...], "alpha_vs_D": [...], "flagged": [...]}}, as ``summary.json`` of
+        ``examples/parametric_sweep.py`` holds it), or a sweep's cases table
+        (:func:`warptrunc.sweep.load`) or :class:`~warptrunc.sweep.SweepTable`, summarised so.
     min_pixels : int, optional
         Draw this fit range only (default: every fit range in ``summary``).
     paper : bool
@@ -140,33 +149,89 @@ def alpha_vs_D(
 
     ranges = _alpha_ranges(summary)
     if min_pixels is not None:
-        ranges = {k: v for k, v in ranges.items() if int(k) == int(min_pixels)}
+        ranges = {k: v for k, v in ranges.items() if k == str(int(min_pixels))}
         if not ranges:
             raise ValueError(f"no fit range with min_pixels = {min_pixels} in the summary")
     fig, axes = new_figure()
     ax = axes[0, 0]
-    d_all = []
-    for k, v in sorted(ranges.items(), key=lambda kv: int(kv[0])):
-        rows = [r for r in v["per_D"] if r["n"] > 0 and np.isfinite(r["alpha_mean"])]
-        if not rows:
+    d_all: list[float] = []
+    several_ranges = len(ranges) > 1
+    any_flagged = False
+    series = [
+        (k, delta)
+        for k, v in sorted(ranges.items(), key=lambda kv: _range_order(kv[0]))
+        for delta in dict.fromkeys(r.get("delta") for r in v["per_D"])
+    ]
+    d_values = sorted({r["D_in"] for v in ranges.values() for r in v["per_D"]})
+    # series side by side at each D (a tenth of the closest spacing between them), so that
+    # equal values (the δ of one seed give one α) stay visible
+    step = 0.1 * (min(np.diff(d_values)) if len(d_values) > 1 else 0.1) / max(1, len(series) - 1)
+    for i, (k, delta) in enumerate(series):
+        v = ranges[k]
+        rows_all = v["per_D"]
+        lines = {line.get("delta"): line for line in v.get("alpha_vs_D") or []}
+        shift = step * (i - (len(series) - 1) / 2) if len(series) > 1 else 0.0
+        rows = [
+            r
+            for r in rows_all
+            if r.get("delta") == delta and r["n"] > 0 and np.isfinite(r["alpha_mean"])
+        ]
+        flagged = [f for f in v.get("flagged", []) if f.get("delta") == delta]
+        if not rows and not flagged:
             continue
-        d = np.array([r["D_in"] for r in rows], dtype=float)
-        a = np.array([r["alpha_mean"] for r in rows], dtype=float)
-        s = np.array([r["alpha_sd"] if np.isfinite(r["alpha_sd"]) else 0.0 for r in rows])
-        d_all.extend(d)
-        eb = ax.errorbar(d, a, yerr=s, fmt="o", ms=4, capsize=3, label=f"min_pixels = {k}")
-        line = v.get("alpha_vs_D")
-        if line:
+        name = ", ".join(
+            ([f"min_pixels = {k}" if k[0].isdigit() else k] if several_ranges else [])
+            + ([f"δ = {delta:g}"] if delta is not None else [])
+        )
+        color = None
+        if rows:
+            d = np.array([r["D_in"] for r in rows], dtype=float) + shift
+            a = np.array([r["alpha_mean"] for r in rows], dtype=float)
+            sd = [r["alpha_sd"] if np.isfinite(r["alpha_sd"]) else 0.0 for r in rows]
+            d_all.extend(d)
+            n = sorted({int(r["n"]) for r in rows})
+            seeds = f"{n[0]}" if len(n) == 1 else f"{n[0]}–{n[-1]}"
+            eb = ax.errorbar(
+                d,
+                a,
+                yerr=sd,
+                fmt="o",
+                ms=5,
+                capsize=3,
+                label=(f"{name}: " if name else "")
+                + f"mean ± sd over {seeds} seed{'s' if n[-1] != 1 else ''}",
+            )
+            color = eb[0].get_color()
+        if flagged:
+            any_flagged = True
+            (h,) = ax.plot(
+                [f["D_in"] + shift for f in flagged],
+                [f["alpha"] for f in flagged],
+                ls="none",
+                marker="o",
+                ms=6,
+                mfc="none",
+                mew=1.2,
+                color=color,
+            )
+            color = h.get_color()
+            d_all.extend(f["D_in"] for f in flagged)
+        line = lines.get(delta)
+        if line and rows:
             x = np.array([d.min(), d.max()])
+            sign = "+" if line["intercept"] >= 0 else "−"
+            slope = f"{line['slope']:.3f}".replace("-", "−")
             ax.plot(
                 x,
-                line["slope"] * x + line["intercept"],
+                line["slope"] * (x - shift) + line["intercept"],
                 "-",
-                color=eb[0].get_color(),
+                color=color,
                 lw=1.2,
-                label=f"α = {line['slope']:.3f}·D$_{{in}}$ {'+' if line['intercept'] >= 0 else '−'} "
+                label=f"α = {slope}·D$_{{in}}$ {sign} "
                 f"{abs(line['intercept']):.3f} (r = {line['r']:.2f})",
             )
+    if any_flagged:
+        ax.plot([], [], ls="none", marker="o", ms=6, mfc="none", color="0.4", label=FLAGGED_LABEL)
     if paper and d_all:
         x = np.array([min(d_all), max(d_all)])
         ax.plot(
@@ -177,13 +242,22 @@ def alpha_vs_D(
             lw=1.4,
             label="paper: α = 0.209·D$_{in}$ + 0.090",
         )
+    if 0 < len(d_values) <= 8:
+        ax.set_xticks(d_values, [f"{d:g}" for d in d_values])
     ax.set_xlabel("input fractal dimension D$_{in}$")
     ax.set_ylabel("stiffness exponent α")
     return finish_axes(fig, ax, path, title=title)
 
 
+def _range_order(key: str) -> tuple[int, float]:
+    """Sort key of a fit range: the ``min_pixels`` counts first, then the fractions."""
+    if key.startswith("fraction="):
+        return (1, float(key.split("=", 1)[1]))
+    return (0, float(key))
+
+
 def _alpha_ranges(summary: Any) -> dict:
-    """{min_pixels: {"per_D": [...], "alpha_vs_D": line or None}} from a summary or a table."""
+    """{key: {"per_D": [...], "alpha_vs_D": [...], "flagged": [...]}} from a summary or a table."""
     if isinstance(summary, dict):
         return dict(summary["fit_ranges"])
     from ..sweep.stats import alpha_summary  # the sweep package (and Warp) only for a table

@@ -31,7 +31,7 @@ from .grid import Case, SweepGrid, parse_seeds
 from .options import SweepExecution, SweepOptions
 from .read import BEM_QUANTITIES, CASE_COLUMNS, RUN_COLUMNS, bem_long, load, load_curves
 from .run import run_sweep
-from .stats import SweepTable, alpha_summary, linear_fit, sweep
+from .stats import SweepTable, alpha_summary, linear_fit, sweep, worth_reading
 from .store import Store
 
 __all__ = [
@@ -53,4 +53,5 @@ __all__ = [
     "parse_seeds",
     "run_sweep",
     "sweep",
+    "worth_reading",
 ]

@@ -3,8 +3,10 @@
 """Summaries of a sweep's cases table with pandas, the α(D) line, and the in-memory table
 (:func:`sweep`, :class:`SweepTable`).
 
-:func:`alpha_summary` gives, per fit range, the mean and standard deviation of α over the
-seeds at each D_in and the least-squares line α(D_in) (the paper's Table 3).
+:func:`alpha_summary` gives, per fit range and δ, the mean and standard deviation of α over the
+seeds at each D_in and the least-squares line α(D_in) (the paper's Table 3), from the fits
+:func:`worth_reading` keeps: the one filter of the sweep's summary, of ``summary.json`` and of
+:func:`warptrunc.plot.alpha_vs_D`.
 """
 
 from __future__ import annotations
@@ -20,7 +22,15 @@ from .._support.docs import SHARED_DOCS, fill_doc
 from .read import require_extra
 from .run import run_sweep
 
-__all__ = ["MIN_TREND_D", "SweepTable", "alpha_summary", "group_stats", "linear_fit", "sweep"]
+__all__ = [
+    "MIN_TREND_D",
+    "SweepTable",
+    "alpha_summary",
+    "group_stats",
+    "linear_fit",
+    "sweep",
+    "worth_reading",
+]
 
 MIN_TREND_D = 3
 """Fewest values of D (each with a finite mean α) that the line α(D_in) is fitted through: a
@@ -95,47 +105,122 @@ def group_stats(df, by: Sequence[str], value: str) -> list[dict[str, Any]]:
     ]
 
 
+def worth_reading(df) -> Any:
+    """Which rows of a cases table hold a fit worth reading: the one filter of every summary
+    and figure of α.
+
+    A row is kept when its case ran (``error`` null), its fit is not flagged (``fit_error``
+    null: :func:`warptrunc.plausibility.check_fit` found nothing, or the fit range had enough
+    increments) and α is finite. A column that is absent flags nothing.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        Cases table (:func:`warptrunc.sweep.load`), or any frame with an ``alpha`` column.
+
+    Returns
+    -------
+    pandas.Series of bool
+        True for the rows worth reading, indexed as ``df``.
+    """
+    alpha = df["alpha"].astype(float)
+    keep = alpha.notna() & np.isfinite(alpha.fillna(0.0))
+    for col in ("error", "fit_error"):
+        if col in df:
+            keep &= df[col].isna()
+    return keep
+
+
+def _fit_range_parts(df) -> list[tuple[str, Any]]:
+    """(key, rows) per fit range: ``"10"`` for ``min_pixels``, ``"fraction=f"`` for
+    ``min_pixels_fraction``."""
+    if "min_pixels_fraction" in df and df["min_pixels_fraction"].notna().any():
+        frac = df["min_pixels_fraction"].astype(float)
+        parts = [(str(int(mp)), p) for mp, p in df[frac.isna()].groupby("min_pixels", sort=True)]
+        parts += [(f"fraction={f:g}", p) for f, p in df[frac.notna()].groupby(frac[frac.notna()])]
+        return parts
+    return [(str(int(mp)), p) for mp, p in df.groupby("min_pixels", sort=True)]
+
+
 def alpha_summary(df) -> dict[str, Any]:
-    """{"fit_ranges": {min_pixels: {"per_D": [...], "alpha_vs_D": line or None}}} of a table.
+    """α per fit range, δ and D_in over the seeds, and the line α(D_in) per δ (Table 3).
+
+    Only the fits :func:`worth_reading` keeps enter the statistics and the lines; the others
+    are listed under ``flagged`` with their reason. The statistics are over independent
+    surfaces: the seeds of one (D_in, δ), each seed counted once. δ (= R_t/W_r) is its own
+    axis, never pooled: the maps of one seed at two δ are one surface scaled in height, so
+    pooling them would count one surface twice.
 
     Fit ranges relative to each case (``min_pixels_fraction`` f) are keyed ``"fraction=f"``.
-
-    ``df`` is a cases table (:func:`warptrunc.sweep.load`) or a :class:`SweepTable`.
-    ``per_D`` holds ``D_in``, ``alpha_mean``, ``alpha_sd`` (over seeds and δ) and ``n``;
-    ``alpha_vs_D`` is :func:`linear_fit` of the means against D_in, or None with fewer than
-    ``MIN_TREND_D`` (3) values of D that have a finite mean.
 
     Parameters
     ----------
     df : pandas.DataFrame or SweepTable
-        Cases table with the columns ``min_pixels``, ``D_in`` and ``alpha`` (and optionally
+        Cases table (:func:`warptrunc.sweep.load`) with the columns ``min_pixels``, ``D_in``
+        and ``alpha`` (and where present ``delta``, ``seed``, ``error``, ``fit_error``,
         ``min_pixels_fraction``).
 
     Returns
     -------
     dict
-        ``{"fit_ranges": {key: {"per_D": [...], "alpha_vs_D": dict or None}}}``.
+        ``{"fit_ranges": {key: {"per_D": [...], "alpha_vs_D": [...], "flagged": [...]}}}``.
+        ``per_D``: one row per (D_in, δ) with ``D_in``, ``delta`` (None without the column),
+        ``alpha_mean``, ``alpha_sd`` (sample sd over the seeds, dimensionless), ``n`` (seeds
+        whose fit is worth reading) and ``n_flagged`` (seeds whose fit is left out).
+        ``alpha_vs_D``: per δ with at least ``MIN_TREND_D`` (3) values of D holding a mean,
+        ``{"delta", "slope", "intercept", "r"}`` (:func:`linear_fit` of the means against
+        D_in). ``flagged``: ``{"D_in", "delta", "seed", "alpha", "fit_error"}`` of each fit
+        left out that has a finite α (for figures that draw them hollow).
     """
     import pandas as pd
 
     if isinstance(df, SweepTable):
         df = pd.DataFrame(df.columns)
+    df = df.assign(_keep=worth_reading(df))
+    if "delta" not in df:
+        df = df.assign(delta=np.nan)
+    if "seed" not in df:
+        df = df.assign(seed=np.arange(len(df)))
+    if "fit_error" not in df:
+        df = df.assign(fit_error=None)
+
+    def opt(v: Any) -> float | None:
+        return None if pd.isna(v) else float(v)
+
     out = {}
-    if "min_pixels_fraction" in df and df["min_pixels_fraction"].notna().any():
-        frac = df["min_pixels_fraction"].astype(float)
-        parts = [(str(int(mp)), p) for mp, p in df[frac.isna()].groupby("min_pixels", sort=True)]
-        parts += [(f"fraction={f:g}", p) for f, p in df[frac.notna()].groupby(frac[frac.notna()])]
-    else:
-        parts = [(str(int(mp)), p) for mp, p in df.groupby("min_pixels", sort=True)]
-    for key, part in parts:
-        stats = group_stats(part, ["D_in"], "alpha")
-        ok = [r for r in stats if r["n"] > 0 and np.isfinite(r["alpha_mean"])]
-        line = (
-            linear_fit([r["D_in"] for r in ok], [r["alpha_mean"] for r in ok])
-            if len(ok) >= MIN_TREND_D
-            else None
-        )
-        out[key] = {"per_D": stats, "alpha_vs_D": line}
+    for key, part in _fit_range_parts(df):
+        per_d = []
+        for (d_in, delta), g in part.groupby(["D_in", "delta"], sort=True, dropna=False):
+            good = g[g["_keep"]].drop_duplicates("seed")  # one value per surface
+            a = good["alpha"].astype(float).to_numpy()
+            per_d.append(
+                {
+                    "D_in": float(d_in),
+                    "delta": opt(delta),
+                    "alpha_mean": float(a.mean()) if a.size else float("nan"),
+                    "alpha_sd": float(a.std(ddof=1)) if a.size > 1 else float("nan"),
+                    "n": int(a.size),
+                    "n_flagged": int(g.loc[~g["_keep"], "seed"].nunique()),
+                }
+            )
+        lines = []
+        for delta in dict.fromkeys(r["delta"] for r in per_d):
+            ok = [r for r in per_d if r["delta"] == delta and r["n"] > 0]
+            if len(ok) >= MIN_TREND_D:
+                line = linear_fit([r["D_in"] for r in ok], [r["alpha_mean"] for r in ok])
+                lines.append({"delta": delta, **line})
+        bad = part[~part["_keep"] & np.isfinite(part["alpha"].astype(float))]
+        flagged = [
+            {
+                "D_in": float(r.D_in),
+                "delta": opt(r.delta),
+                "seed": int(r.seed),
+                "alpha": float(r.alpha),
+                "fit_error": None if pd.isna(r.fit_error) else str(r.fit_error),
+            }
+            for r in bad.itertuples()
+        ]
+        out[key] = {"per_D": per_d, "alpha_vs_D": lines, "flagged": flagged}
     return {"fit_ranges": out}
 
 
