@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from warptrunc._support.atomic import staged_outputs, store_rollback
+from warptrunc._support.outputs import staged_outputs, store_rollback
 from warptrunc.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from warptrunc._support.atomic import kept_stores, store_rollback
+from warptrunc._support.outputs import kept_stores, store_rollback
 from warptrunc.cli import _interrupted_text
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from warptrunc._support.atomic import read_json, staged_output, strict_json
+from warptrunc._support.outputs import read_json, staged_output, strict_json
 from warptrunc.cli import main
 
 SMALL = ["--n", "64", "--Rt", "1e-6", "--Wr", "20e-6", "--L", "1e-4"]

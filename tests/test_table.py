@@ -9,7 +9,7 @@ import csv
 import numpy as np
 import pytest
 
-from warptrunc._support.table import write_columns_csv
+from warptrunc._support.outputs import write_columns_csv
 
 
 def test_columns_round_trip(tmp_path):

@@ -31,8 +31,8 @@ import numpy as np
 import warp as wp
 
 from ._support.docs import SHARED_DOCS, fill_doc
+from ._support.outputs import jsonable
 from ._support.progress import progress_bar
-from ._support.results import jsonable
 from ._support.root_find import CalibrationError, find_root
 from .calibrate_params import CalibrationSettings, CalibrationTarget
 from .descriptors import roll_off_wavelength, surface_statistics

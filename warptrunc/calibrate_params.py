@@ -16,7 +16,7 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
-from ._support.results import jsonable
+from ._support.outputs import jsonable
 from .fractal.settings import METHODS, FractalSettings, height_options
 from .params import Parameters, check_fields, param, param_like
 from .wm_params import WMSpec

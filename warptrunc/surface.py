@@ -19,7 +19,7 @@ import numpy as np
 import warp as wp
 
 from ._support.device import check_memory, resolve_device
-from ._support.results import jsonable
+from ._support.outputs import jsonable
 from ._support.validate import check_height_map, check_range
 from .kernels import reduce as _kr
 

@@ -3,17 +3,16 @@
 """Internal helpers shared by every package of warptrunc (not public API).
 
 =================  ===========================================================================
-``atomic``         all-or-nothing file writes (temporary sibling, rename)
 ``device``         Warp device resolution, free memory, pool trimming
-``docs``           shared docstring blocks (``fill_doc``)
+``docs``           shared docstring blocks that are not a field's (``fill_doc``)
 ``limits``         size limits (int32 indexing, row bands)
 ``messages``       error messages of one short line
+``outputs``        every file written: strict JSON, full-precision CSV, all-or-nothing writes
 ``progress``       progress bars
 ``provenance``     version, commit, command line, device and time of an output
 ``reduce``         device min/max reductions
-``results``        ``to_dict`` helpers of result dataclasses
+``results``        helpers of result dataclasses (fields as columns, ``all_converged``)
 ``root_find``      bracketing root finders of the calibration
-``table``          CSV/strict-JSON column writers
 ``validate``       input checks whose messages name the parameter, value and range
 =================  ===========================================================================
 """

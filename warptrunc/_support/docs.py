@@ -42,6 +42,8 @@ SHARED_DOCS = {
     ),
     "{periodic}": "periodic : bool\n    Wrap the map around in x and y.",
     "{connectivity}": "connectivity : {4, 8}\n    Neighbourhood of an island.",
+    "{path}": "Parameters\n----------\npath : str or Path\n    File to write (overwritten).",
+    "{returns_path}": "Returns\n-------\nPath",
 }
 SHARED_DOCS["{label_options}"] = "\n".join(
     SHARED_DOCS[k] for k in ("{connectivity}", "{periodic}", "{device}")

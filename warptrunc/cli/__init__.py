@@ -152,9 +152,9 @@ EXIT_INTERRUPTED = 130
 
 
 def _kept_stores() -> list:
-    """:func:`warptrunc._support.atomic.kept_stores` once a command has imported it (every
+    """:func:`warptrunc._support.outputs.kept_stores` once a command has imported it (every
     command that writes does), else none."""
-    atomic = sys.modules.get("warptrunc._support.atomic")
+    atomic = sys.modules.get("warptrunc._support.outputs")
     return atomic.kept_stores() if atomic is not None else []
 
 

@@ -10,8 +10,8 @@ import argparse
 import os
 from pathlib import Path
 
-from .._support.atomic import probe_writable
 from .._support.messages import show
+from .._support.outputs import probe_writable
 
 __all__ = ["input_file", "output_dir", "output_file"]
 

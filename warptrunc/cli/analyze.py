@@ -35,7 +35,7 @@ import argparse
 import contextlib
 import math
 
-from .._support.atomic import staged_output, strict_json
+from .._support.outputs import staged_output, strict_json
 from .._support.provenance import provenance
 from ..material import Material
 from ..plot._worker import FigureWorker, plain

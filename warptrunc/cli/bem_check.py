@@ -21,7 +21,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .._support.atomic import staged_output
+from .._support.outputs import staged_output
 from ..contact.settings import ELASTIC_TRUNCATION, BemCheckSettings, SolverSettings
 from ..params import add_options, from_args
 from ._common import (

@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
     design = from_args(StudyDesign, args)
     truncation = truncation_from_args(args, ELASTIC_TRUNCATION.to_dict())
     settings = from_args(SolverSettings, args)
-    from .._support.atomic import staged_outputs, strict_json
+    from .._support.outputs import staged_outputs, strict_json
     from .._support.provenance import provenance
     from ..compare.study import compare_study, summarize
     from ..stiffness import Material

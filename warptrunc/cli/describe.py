@@ -23,7 +23,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from .._support.atomic import staged_outputs, strict_json
+from .._support.outputs import staged_outputs, strict_json
 from .._support.provenance import provenance
 from ..fractal.settings import METHODS, FractalSettings
 from ..params import add_options, from_args

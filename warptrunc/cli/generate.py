@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import argparse
 
-from .._support.atomic import staged_output
+from .._support.outputs import staged_output
 from ..io import write_height_map
 from ._common import add_device, add_output_file, add_surface_source, surface_from_args
 

@@ -42,7 +42,7 @@ import re
 import sys
 import warnings
 
-from .._support.atomic import staged_output
+from .._support.outputs import staged_output
 from .._support.provenance import provenance
 from ..contact.settings import SolverSettings
 from ..indent.face import PunchFaceSpec

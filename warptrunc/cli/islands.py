@@ -18,7 +18,7 @@ import argparse
 import math
 from pathlib import Path
 
-from .._support.atomic import staged_output, strict_json
+from .._support.outputs import staged_output, strict_json
 from .._support.provenance import provenance
 from ..islands.settings import ISLANDS_TRUNCATION, IndicatorSettings, IslandSettings
 from ..params import add_options, from_args

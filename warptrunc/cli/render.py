@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import argparse
 
-from .._support.atomic import staged_output, strict_json
+from .._support.outputs import staged_output, strict_json
 from .._support.provenance import provenance
 from ..params import add_options, from_args
 from ..render.settings import AnimationSettings, RenderSettings

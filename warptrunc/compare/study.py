@@ -18,10 +18,9 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from .._support.atomic import read_json, store_rollback, strict_json
 from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.outputs import read_json, store_rollback, strict_json, write_atomic
 from .._support.provenance import provenance
-from .._support.results import write_atomic
 from ..contact.settings import ELASTIC_TRUNCATION, SolverSettings
 from ..stiffness import Material
 from ..truncation.settings import TruncationSettings

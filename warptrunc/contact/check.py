@@ -33,8 +33,8 @@ from typing import Any
 import numpy as np
 import warp as wp
 
+from .._support.outputs import write_columns_csv
 from .._support.results import all_converged_property
-from .._support.table import write_columns_csv
 from ..slope import slope_record
 from ..stiffness import Material, flat_punch_stiffness, stiffness_curve
 from ..surface import Surface

@@ -12,10 +12,9 @@ from typing import Any
 
 import numpy as np
 
-from .._support.atomic import strict_json
-from .._support.docs import fill_doc
-from .._support.results import WRITE_DOCS, all_converged_property
-from .._support.table import write_columns_csv
+from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.outputs import strict_json, write_columns_csv
+from .._support.results import all_converged_property
 from ..material import Material
 from .fits import MIN_FIT_POINTS, IndentFit, fit_cells
 from .protocol import IndentProtocol
@@ -405,7 +404,7 @@ class IndentationResult:
             "all_converged": self.all_converged,
         }
 
-    @fill_doc(WRITE_DOCS)
+    @fill_doc(SHARED_DOCS)
     def to_csv(self, path: str | Path) -> Path:
         """Write :meth:`to_dict` as CSV (full float64 precision).
 
@@ -416,7 +415,7 @@ class IndentationResult:
         """
         return write_columns_csv(path, self.to_dict())
 
-    @fill_doc(WRITE_DOCS)
+    @fill_doc(SHARED_DOCS)
     def to_json(self, path: str | Path, **extra: Any) -> Path:
         """Write :meth:`summary` (and ``extra`` keys) as strict JSON (NaN/inf as null).
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._support.results import jsonable
+from .._support.outputs import jsonable
 from ..surface import Surface
 from .detect import find_data_start, header_units, npz_height_key, shape_words, table_to_map
 from .scan import LENGTH_UNITS, Scan

@@ -11,12 +11,11 @@ from typing import Any
 
 import numpy as np
 
-from .._support.docs import fill_doc
-from .._support.results import WRITE_DOCS
-from .._support.table import write_columns_csv
+from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.outputs import write_columns_csv
 
 _DOCS = {
-    **WRITE_DOCS,
+    **SHARED_DOCS,
     "{island_columns}": (
         "Returns\n-------\ndict of str to ndarray\n"
         "    (n,) columns, one row per island (areas in m², lengths in m)."

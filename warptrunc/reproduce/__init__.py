@@ -19,10 +19,9 @@ import time
 from pathlib import Path
 from typing import Any
 
-from .._support.atomic import staged_outputs, store_rollback
 from .._support.device import resolve_device
+from .._support.outputs import jsonable, staged_outputs, store_rollback
 from .._support.provenance import git_commit, provenance
-from .._support.results import jsonable
 from .._support.version import __version__
 from .profiles import PROFILES, Profile, get_profile
 from .store import StageConflict, StageStore

@@ -370,7 +370,7 @@ def main(argv: list[str] | None = None) -> int:
     import json
     import time
 
-    from .._support.results import jsonable, write_atomic
+    from .._support.outputs import jsonable, write_atomic
     from .profiles import PROFILES
     from .store import StageStore
 

@@ -11,7 +11,7 @@ file or the new one.
 Why a store apart from ``warptrunc.sweep.store``: a stage is one JSON document (parameters and
 results of a fixed study step) reused or refused as a whole, where the sweep store holds Parquet
 rows of many cases written by workers and resumed case by case. Both write through
-:func:`warptrunc._support.results.write_atomic` and convert values with :func:`warptrunc._support.results.jsonable`.
+:func:`warptrunc._support.outputs.write_atomic` and convert values with :func:`warptrunc._support.outputs.jsonable`.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from .._support.docs import fill_doc
-from .._support.results import jsonable, write_atomic
+from .._support.outputs import jsonable, write_atomic
 
 __all__ = ["StageConflict", "StageStore"]
 

@@ -18,9 +18,9 @@ from typing import Any
 
 import numpy as np
 
-from .._support.docs import fill_doc
-from .._support.results import WRITE_DOCS, fields_to_dict
-from .._support.table import write_columns_csv
+from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.outputs import write_columns_csv
+from .._support.results import fields_to_dict
 from .._support.validate import check_range
 from ..material import Material
 from ..truncation.curve import TruncationCurve
@@ -103,7 +103,7 @@ class StiffnessCurve:
             skip=("material", "beta_prime", "apparent_area", "Rt", "model"),
         )
 
-    @fill_doc(WRITE_DOCS)
+    @fill_doc(SHARED_DOCS)
     def to_json(self, path: str | Path) -> Path:
         """Write the columns of :meth:`to_dict` (lists) plus the material and β' as JSON.
 
@@ -123,7 +123,7 @@ class StiffnessCurve:
         path.write_text(json.dumps(d, indent=1, default=str) + "\n")
         return path
 
-    @fill_doc(WRITE_DOCS)
+    @fill_doc(SHARED_DOCS)
     def to_csv(self, path: str | Path, islands: StiffnessCurve | None = None) -> Path:
         """Write the columns of :meth:`to_dict` as CSV (full float64 precision).
 

@@ -17,8 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._support.docs import fill_doc
-from .._support.results import WRITE_DOCS
+from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import DEFAULT_MIN_PIXELS as _DEFAULT_MIN_PIXELS
 from .._support.validate import check_int
 from ..material import Material
@@ -141,7 +140,7 @@ class PowerLawFit:
             kw["depth_window"] = None
         return cls(**kw)
 
-    @fill_doc(WRITE_DOCS)
+    @fill_doc(SHARED_DOCS)
     def to_json(self, path: str | Path) -> Path:
         """Write :meth:`to_dict` as JSON.
 

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from .._support.results import jsonable
+from .._support.outputs import jsonable
 from .normalisation import upgrade_curves, upgrade_rows
 
 __all__ = [
@@ -223,7 +223,7 @@ _PLAIN = (float, int, str, bool, type(None))
 
 def clean_rows(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Rows with JSON-ready values (NaN kept): plain Python values pass as they are, others
-    through :func:`warptrunc._support.results.jsonable`."""
+    through :func:`warptrunc._support.outputs.jsonable`."""
     return [
         {k: v if type(v) in _PLAIN else jsonable(v, nonfinite="keep") for k, v in r.items()}
         for r in rows

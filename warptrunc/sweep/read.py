@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from .._support.atomic import read_json
+from .._support.outputs import read_json
 from .curves import CURVE_COLUMNS, part_files, part_rows, read_part_curves
 from .grid import STORE_FORMAT
 from .normalisation import upgrade_cases

@@ -10,8 +10,8 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from .._support.atomic import store_rollback
 from .._support.docs import fill_doc
+from .._support.outputs import store_rollback
 from .grid import GRID_DOCS, SweepGrid
 from .options import SweepExecution, SweepOptions
 from .store import Store, store_lock

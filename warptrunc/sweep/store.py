@@ -43,7 +43,7 @@ is never taken over; the message says which file to remove once that sweep is kn
 Why a store apart from ``warptrunc.reproduce.store``: this one holds many small cases as
 Parquet rows, written concurrently by workers and resumed case by case; the reproduce store holds
 one JSON document per stage of a fixed study. Both write through
-:func:`warptrunc._support.results.write_atomic` and convert values with :func:`warptrunc._support.results.jsonable`.
+:func:`warptrunc._support.outputs.write_atomic` and convert values with :func:`warptrunc._support.outputs.jsonable`.
 """
 
 from __future__ import annotations
@@ -59,9 +59,8 @@ from typing import Any
 
 import numpy as np
 
-from .._support.atomic import jsonable_strict, read_json, strict_json
+from .._support.outputs import jsonable, read_json, strict_json, write_atomic
 from .._support.provenance import provenance
-from .._support.results import write_atomic
 from .curves import (
     CURVE_COLUMNS,
     clean_rows,
@@ -407,8 +406,8 @@ def _check_same(path: Path, old: dict[str, Any], new: dict[str, Any]) -> None:
     if old.get("format") != STORE_FORMAT:
         raise ValueError(format_refusal(path, old.get("format")))
     diff = _diff(
-        jsonable_strict({"grid": old.get("grid"), "options": old.get("options")}),
-        jsonable_strict({"grid": new["grid"], "options": new["options"]}),
+        jsonable({"grid": old.get("grid"), "options": old.get("options")}),
+        jsonable({"grid": new["grid"], "options": new["options"]}),
     )
     if diff:
         shown = "; ".join(diff[:4]) + (f"; and {len(diff) - 4} more" if len(diff) > 4 else "")

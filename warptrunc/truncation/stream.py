@@ -37,8 +37,8 @@ import warp as wp
 from .._support.device import as_device, free_memory_bytes, resolve_device
 from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.limits import band_pixel_limit, row_bands
+from .._support.outputs import jsonable
 from .._support.progress import progress_bar
-from .._support.results import jsonable
 from .._support.validate import check_int
 from ..kernels import wm as _kwm
 from ..params import param_info

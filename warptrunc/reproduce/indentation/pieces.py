@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ..._support.results import jsonable, write_atomic
+from ..._support.outputs import jsonable, write_atomic
 from ..store import StageConflict
 from .design import (
     IndentationStage,

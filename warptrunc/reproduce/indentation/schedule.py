@@ -27,7 +27,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ..._support.results import write_atomic
+from ..._support.outputs import write_atomic
 from .design import IndentationStage, design_of, face_variants, refine_of, sweep_order
 from .pieces import (
     Part,

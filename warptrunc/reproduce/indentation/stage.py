@@ -34,7 +34,7 @@ from pathlib import Path
 from typing import Any
 
 from ..._support.docs import fill_doc
-from ..._support.results import jsonable, write_atomic
+from ..._support.outputs import jsonable, write_atomic
 from .analysis import _STAGE_DOCS
 from .design import IndentationStage, face_variants, material, model_name, spec, sweep_order
 from .pieces import SUBDIR, load_piece, parts_of

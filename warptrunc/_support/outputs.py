@@ -1,13 +1,21 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""All-or-nothing outputs and strict JSON.
+"""Every file warptrunc writes: strict JSON, full-precision CSV, and all-or-nothing writes.
 
-Strict JSON
-    :func:`strict_json` writes standard JSON (RFC 8259): no ``NaN``/``Infinity`` tokens. A
-    non-finite float becomes ``null``; the key's documentation says what ``null`` means
-    (``E_i``/``E_flat_Pa`` = null: a rigid flat, E = ∞; a fit value = null: no fit).
-    :func:`read_json` reads such a file back and maps ``null`` to ``inf`` for the keys of
-    :data:`INF_KEYS` (the moduli of a rigid flat).
+The one module of JSON values and file writes; the commands, the result types and the stores
+(sweep, compare, reproduce) all write through it.
+
+JSON values
+    :func:`jsonable` turns nested dicts, lists, NumPy arrays and scalars into plain JSON types
+    (``nonfinite`` says what becomes of NaN and ±inf). :func:`strict_json` writes standard JSON
+    (RFC 8259): no ``NaN``/``Infinity`` tokens. A non-finite float becomes ``null``; the key's
+    documentation says what ``null`` means (``E_i``/``E_flat_Pa`` = null: a rigid flat,
+    E = ∞; a fit value = null: no fit). :func:`read_json` reads such a file back and maps
+    ``null`` to ``inf`` for the keys of :data:`INF_KEYS` (the moduli of a rigid flat).
+
+CSV
+    :func:`write_columns_csv` writes equal-length columns (``to_dict`` of the result classes)
+    at full float64 precision (:func:`csv_cell`).
 
 All-or-nothing outputs
     :func:`staged_outputs` is the one mechanism of every command: it hands out staging folders
@@ -18,7 +26,12 @@ All-or-nothing outputs
     into ``--out`` (each rename atomic on POSIX). On an exception the staging folder is removed,
     and so is ``--out`` itself (and the parents) if the command created it: a failed command
     leaves nothing new behind, and files of an earlier run in ``--out`` are untouched.
-    :func:`atomic_write` does the same for a single file.
+
+Records of a store
+    :func:`write_atomic` writes one file of a resumable store (sweep, compare, reproduce)
+    through a fsynced temporary file in the same folder and a rename, so a crash leaves either
+    the old file or the new one; :func:`store_rollback` removes what a failed run that
+    finished nothing created.
 
 Writable paths
     :func:`probe_writable` creates and removes a temporary folder in the nearest existing
@@ -28,23 +41,24 @@ Writable paths
 
 from __future__ import annotations
 
+import csv
 import json
 import math
 import os
 import shutil
 import tempfile
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
 __all__ = [
     "INF_KEYS",
     "Staging",
-    "atomic_write",
-    "jsonable_strict",
+    "csv_cell",
+    "jsonable",
     "kept_stores",
     "probe_writable",
     "read_json",
@@ -52,6 +66,8 @@ __all__ = [
     "staged_outputs",
     "store_rollback",
     "strict_json",
+    "write_atomic",
+    "write_columns_csv",
 ]
 
 INF_KEYS = frozenset({"E_i", "E_flat", "E_flat_Pa"})
@@ -61,18 +77,24 @@ STAGING_PREFIX = ".warptrunc-partial-"
 """Name prefix of the staging folders inside an output folder (removed on failure)."""
 
 
-def jsonable_strict(v: Any) -> Any:
-    """Nested dicts/lists/tuples/NumPy values → JSON types; NaN and ±inf → None."""
-    if isinstance(v, dict):
-        return {str(k): jsonable_strict(x) for k, x in v.items()}
+def jsonable(v: Any, *, nonfinite: Literal["null", "text", "keep"] = "null") -> Any:
+    """Nested mappings/lists/tuples, NumPy arrays and NumPy scalars → JSON types; a path → str.
+
+    ``nonfinite`` says what becomes of NaN and ±inf floats: ``"null"`` → ``None`` (strict JSON:
+    every JSON file, the reproduce store), ``"text"`` → ``"nan"``/``"inf"``/``"-inf"`` (read
+    back by ``float()``: surface metadata, calibration targets), ``"keep"`` → the float itself
+    (Parquet rows of the sweep store, where NaN is a missing value).
+    """
+    if isinstance(v, Mapping):
+        return {str(k): jsonable(x, nonfinite=nonfinite) for k, x in v.items()}
     if isinstance(v, (list, tuple)):
-        return [jsonable_strict(x) for x in v]
+        return [jsonable(x, nonfinite=nonfinite) for x in v]
     if isinstance(v, np.ndarray):
-        return jsonable_strict(v.tolist())
+        return jsonable(v.tolist(), nonfinite=nonfinite)
     if isinstance(v, np.generic):
-        return jsonable_strict(v.item())
+        return jsonable(v.item(), nonfinite=nonfinite)
     if isinstance(v, float) and not math.isfinite(v):
-        return None
+        return None if nonfinite == "null" else str(v) if nonfinite == "text" else v
     if isinstance(v, Path):
         return str(v)
     return v
@@ -80,7 +102,7 @@ def jsonable_strict(v: Any) -> Any:
 
 def strict_json(obj: Any, *, indent: int | None = 2) -> str:
     """``obj`` as strict JSON text (non-finite floats as null), ending in a newline."""
-    return json.dumps(jsonable_strict(obj), indent=indent, allow_nan=False, default=str) + "\n"
+    return json.dumps(jsonable(obj), indent=indent, allow_nan=False, default=str) + "\n"
 
 
 def _null_to_inf(v: Any) -> Any:
@@ -109,6 +131,31 @@ def read_json(path: str | Path) -> Any:
         raise ValueError(
             f"{path}: not valid JSON, the file is damaged (cut short?): {one_line(exc, 120)}"
         ) from None
+
+
+def csv_cell(v: Any) -> Any:
+    """One CSV cell: booleans and integers as integers, text as it is, everything else as
+    ``repr(float(v))`` (the shortest text that reads back to the same float64; ``nan``/``inf``
+    as such)."""
+    if isinstance(v, (bool, np.bool_, np.integer)):
+        return int(v)
+    if isinstance(v, str):  # np.str_ too
+        return str(v)
+    return repr(float(v))
+
+
+def write_columns_csv(path: str | Path, columns: dict[str, Any]) -> Path:
+    """Write equal-length columns as CSV: a header row of the keys, then one row per index.
+
+    Raises ValueError (from ``zip(strict=True)``) when the columns differ in length.
+    """
+    path = Path(path)
+    with path.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(columns)
+        for row in zip(*columns.values(), strict=True):
+            w.writerow([csv_cell(v) for v in row])
+    return path
 
 
 def _nearest_existing(p: Path) -> Path:
@@ -329,11 +376,28 @@ def staged_output(out: str | Path) -> Iterator[Path]:
         yield st.folder(out)
 
 
-@contextmanager
-def atomic_write(path: str | Path) -> Iterator[Path]:
-    """A temporary path next to ``path``, renamed onto ``path`` only if the block succeeds."""
-    with staged_outputs() as st:
-        yield st.file(path)
+def write_atomic(path: str | Path, data: str | bytes) -> Path:
+    """Write ``data`` to ``path`` through a fsynced temporary file in the same folder and a rename.
+
+    One record of a store, durable on its own (the commands' outputs are staged together by
+    :func:`staged_outputs` instead). The temporary file is named
+    ``.<name>.tmp-<pid>-<random>``, so a store can find and delete those a crash left behind
+    (``.*.tmp-*``).
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.tmp-{os.getpid()}-")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data.encode() if isinstance(data, str) else data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
 
 
 _kept: list[Path] = []
