@@ -195,3 +195,19 @@ def test_calibration_records_the_slope_at_the_calibration_pixel():
         )
         terms = wm_slope_statistics(spec.terms(), s.params["scale"]).slope_rms
         assert terms == pytest.approx(rec["spectrum"], rel=2e-3)
+
+
+def test_self_affine_presets_have_the_table1_rms_height_and_spectral_dimension():
+    from warptrunc.presets import SELF_AFFINE
+    from warptrunc.selfaffine import self_affine_surface
+
+    assert set(SELF_AFFINE) == {f"{k}-sa" for k in TABLE1}
+    for name, spec in SELF_AFFINE.items():
+        _rt, rrms, _wr, _tri, _box, _vs, d_sp = PAPER[name.removesuffix("-sa")]
+        assert spec.hurst == pytest.approx(3 - d_sp, abs=1e-9)
+        assert spec.rms_height == pytest.approx(rrms * 1e-6, rel=1e-12)
+        assert spec.short_cutoff == TABLE1[name.removesuffix("-sa")].Wc  # the same content
+    s = self_affine_surface(SELF_AFFINE["GB300s-sa"].replace(n=1024), device="cpu")
+    assert float(np.std(s.heights.astype(np.float64))) == pytest.approx(4.102e-6, rel=1e-5)
+    d_sp = fractal_dimension(s, "sp", device="cpu").D
+    assert d_sp == pytest.approx(2.282, abs=0.05)  # the spectrum's slope, measured back

@@ -101,9 +101,10 @@ from __future__ import annotations
 
 from types import MappingProxyType
 
+from .selfaffine import SelfAffineSpec
 from .wm_params import WMSpec
 
-__all__ = ["CALIBRATION", "PRESETS", "TABLE1", "TABLE1_TRI", "preset"]
+__all__ = ["CALIBRATION", "PRESETS", "SELF_AFFINE", "TABLE1", "TABLE1_TRI", "preset"]
 
 _SCAN_VS, _SCAN_TRI = 1e-3 / 1024, 1.024e-3 / 1024  # the calibration maps' pixels (m)
 _PAPER = {"L": 1e-3, "n": 10240, "M": 10}
@@ -304,3 +305,31 @@ def preset(name: str) -> WMSpec:
         return PRESETS[name]
     except KeyError:
         raise ValueError(f"preset must be one of {', '.join(PRESETS)}, got {name!r}") from None
+
+
+def _self_affine(name: str) -> SelfAffineSpec:
+    """The self-affine counterpart of a D_vs preset: the same Table 1 descriptors (§ 3.1)."""
+    d_sp = {"Ps": 2.315, "SMATs": 2.421, "GB300s": 2.282, "GB50s": 2.284}[name]
+    wm = TABLE1[name]
+    return SelfAffineSpec(
+        hurst=round(3.0 - d_sp, 3),
+        L=_PAPER["L"],
+        n=_PAPER["n"],
+        rolloff=None if name == "Ps" else wm.Wr,
+        short_cutoff=_CONTENT_VS["Wc"],
+        rms_height=_PAPER_ROWS[name][2] * _UM,
+    )
+
+
+SELF_AFFINE: MappingProxyType = MappingProxyType(
+    {f"{k}-sa": _self_affine(k) for k in ("Ps", "SMATs", "GB300s", "GB50s")}
+)
+"""The Table 1 surfaces as self-affine random surfaces (name ``"<name>-sa"`` →
+:class:`~warptrunc.selfaffine.SelfAffineSpec`, SI units), so that a study can run on both kinds of
+surface. Matched to the same descriptors of Table 1's simulated rows: the rms height R_rms, the
+fractal dimension from the power spectrum D_sp (the spectrum's slope: H = 3 − D_sp, the Hurst
+exponent a PSD C(q) ∝ q^(−2(1+H)) has), the roll-off W_r (none for Ps, whose W_r is ≫ 1024 µm:
+a power law to the map's side), and the same content as the WM presets (short cut-off 1.953 µm,
+2 pixels of the calibration scan), 10240² over 1 mm. D_sp rather than D_vs: it is the dimension
+measured on the spectrum, the quantity this generator sets; the WM presets match D_vs (Fig. 6),
+which for the grit-blasted surfaces (D_vs ≈ 2.8, D_sp ≈ 2.28) describes a very different spectrum."""

@@ -771,14 +771,17 @@ def add_generation(g: Any, *, defaults: dict | None = None) -> None:
         "self-affine one from its power spectrum (warptrunc.selfaffine: --hurst, the cut-offs, "
         "--rms-height or --rms-slope)",
     )
+    from ..presets import SELF_AFFINE
+
     shared_option(
         g,
         "--preset",
-        choices=list(PRESETS),
+        choices=[*PRESETS, *SELF_AFFINE],
         default=None,
         help="start from the paper's Table 1 simulated surface (warptrunc.presets: D_in and R_t' "
-        "calibrated to D_vs as Fig. 6, or to D_tri with -tri; Table 1's W_r, 10240² over 1 mm); "
-        "WM options given win over it",
+        "calibrated to D_vs as Fig. 6, or to D_tri with -tri; Table 1's W_r, 10240² over 1 mm; "
+        "-sa: the self-affine surface of the same descriptors, with --surface self-affine); "
+        "options given win over it",
     )
     add_options(g, WMSpec, exclude=SURFACE_EXCLUDE, defaults=defaults)
     add_options(g, SelfAffineSpec, exclude=SELF_AFFINE_SHARED)
@@ -786,18 +789,31 @@ def add_generation(g: Any, *, defaults: dict | None = None) -> None:
 
 def self_affine_from_args(args: argparse.Namespace) -> Any:
     """The :class:`~warptrunc.selfaffine.SelfAffineSpec` of the parsed options (with
-    ``--surface self-affine``)."""
+    ``--surface self-affine``): a ``-sa`` preset's fields, then the options given."""
+    from ..presets import SELF_AFFINE
     from ..selfaffine import SelfAffineSpec
 
-    return from_args(SelfAffineSpec, args)
+    name = getattr(args, "preset", None)
+    base = SELF_AFFINE[name].to_dict() if name in SELF_AFFINE else {}
+    if base:
+        base.update(L=SELF_AFFINE[name].L, n=SELF_AFFINE[name].n)
+        if getattr(args, "rms_slope", None) is not None:
+            base["rms_height"] = None  # the slope given sets the scale instead
+    return from_args(SelfAffineSpec, args, defaults=base)
 
 
 def spec_from_args(args: argparse.Namespace, defaults: dict | None = None) -> Any:
     """The generated surface's spec: a :class:`WMSpec` (:func:`wm_spec_from_args`), or a
     :class:`~warptrunc.selfaffine.SelfAffineSpec` with ``--surface self-affine``."""
-    if getattr(args, "surface", "wm") == "self-affine":
-        if getattr(args, "preset", None) is not None:
-            raise ValueError("--preset names a WM surface; it cannot be used with --surface self-affine")
+    from ..presets import SELF_AFFINE
+
+    name = getattr(args, "preset", None)
+    if getattr(args, "surface", "wm") == "self-affine" or name in SELF_AFFINE:
+        if name is not None and name not in SELF_AFFINE:
+            raise ValueError(
+                f"--preset {name} is a WM surface; with --surface self-affine give one of "
+                f"{', '.join(SELF_AFFINE)}"
+            )
         return self_affine_from_args(args)
     return wm_spec_from_args(args, defaults)
 
@@ -842,6 +858,8 @@ def wm_spec_from_args(args: argparse.Namespace, defaults: dict | None = None) ->
     (``Rt`` is None)."""
     base = dict(defaults or {})
     name = getattr(args, "preset", None)
+    if name is not None and name not in PRESETS:
+        raise ValueError(f"--preset {name} is a self-affine surface: use it with --surface self-affine")
     if name is not None:
         base.update(PRESETS[name].to_dict() | {"L": PRESETS[name].L, "n": PRESETS[name].n})
     over = {"Rt": None} if getattr(args, "G", None) is not None else {}
