@@ -3,16 +3,18 @@
 """Survey of instrument files: read, analysed on the defaults, refused clearly, misread
 ====================================================================================
 
-Reads every file of the given folders with :func:`warptrunc.io.read_height_map` (missing
-points filled, plane levelled; ``dx = 1 µm`` only when the file has no spacing and the reader
-asks for one), runs :func:`warptrunc.analysis.analyze` on the ``analyze`` defaults (200
-increments to 0.1·R_t, ``min_pixels = 10``, and the automatic rule of
-:mod:`warptrunc.robust` for maps read from files), and sorts each file into
+Reads every file of the given folders with :func:`warptrunc.io.read_height_map` as
+``warptrunc analyze --input FILE --missing fill`` does (missing points filled, the map as
+measured; ``dx = 1 µm`` only when the file has no spacing and the reader asks for one), runs
+:func:`warptrunc.analysis.analyze` on the ``analyze`` defaults (200 increments to 0.1·R_t,
+``min_pixels = 10``, and the automatic rule of :mod:`warptrunc.robust` for maps read from
+files), and sorts each file into
 
 * **analysed** — read, and its fit is worth reading (the rule's decisions named);
 * **flagged** — read and fitted, but the fit is not worth reading (``fit_error``);
-* **read, advice** — read, the default fit range is empty, and the message names option values
-  that work for this map (checked on the map);
+* **read, advice** — read, no range gives a fit worth reading, and the message names option
+  values that do for this map (each checked on the map), or what on the map keeps every range
+  from one;
 * **refused** — not read or not analysed (a map under 32 pixels a side), with a one-line
   ValueError naming the problem;
 * **misread** — read into a map that disagrees with SurfaceTopography's reading of the same
@@ -96,11 +98,11 @@ def survey_file(f: Path, device: str) -> dict:
     from warptrunc.analysis import analyze
     from warptrunc.truncation import TruncationSettings
     from warptrunc.io import read_height_map
-    from warptrunc.robust import fit_range_advice
+    from warptrunc.robust import AutoRangeError, fit_range_advice
 
     row = {"file": f.name, "options": "", "category": "", "detail": ""}
     ref = _reference(f)
-    kw = {"missing": "fill", "level": True}
+    kw = {"missing": "fill"}
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -133,6 +135,10 @@ def survey_file(f: Path, device: str) -> dict:
         a = analyze(
             s, truncation=TruncationSettings(islands=False), device=device
         )  # analyze's defaults and its rule
+    except AutoRangeError as exc:  # no fit worth reading: what to change, checked on the map
+        row["category"] = "read, advice"
+        row["detail"] = str(exc).replace(str(f), f"{f.name} ({s.nx}×{s.ny})")
+        return row
     except ValueError as exc:
         advice = fit_range_advice(
             s.heights,
@@ -149,7 +155,8 @@ def survey_file(f: Path, device: str) -> dict:
             row["category"], row["detail"] = "refused", str(exc)[:160]
         return row
     fit, rule = a.fit, a.fit_range
-    done = [k for k in ("spikes_masked", "depth_extended", "depth_cut") if rule.get(k)]
+    keys = ("levelled", "spikes_masked", "depth_extended", "depth_cut")
+    done = [k for k in keys if rule.get(k)]
     row["category"] = "analysed" if a.fit_error is None else "flagged"
     row["detail"] = f"{s.nx}×{s.ny}, α = {fit.alpha:.3f}, r² = {fit.r2:.3f}" + (
         f"; automatic: {', '.join(done)}" if done else ""

@@ -339,10 +339,12 @@ def test_analyze_on_a_clean_map_keeps_the_legacy_range(spiky_map, tmp_path):
     assert info["fit_range"] == {
         "asked": "auto",
         "rule": "legacy",
+        "levelled": None,
         "spikes_masked": None,
         "depth_extended": None,
         "depth_cut": None,
-        "reason": "the default fit is worth reading and no spike sets R_t",
+        "reason": "the default fit is worth reading, no spike sets R_t and no tilt spans more "
+        "than the roughness",
     }
     s = wt.read_height_map(spiky_map / "clean.npz")
     fit = fit_power_law(stiffness_curve(wt.truncate(s, 200, max_depth_fraction=0.1)))

@@ -149,6 +149,7 @@ def test_depth_extends_to_50_contact_pixels(sparse, tmp_path, capsys):
     assert legacy["fit_range"] == {
         "asked": "legacy",
         "rule": "legacy",
+        "levelled": None,
         "reason": "--fit-range legacy asked",
         "spikes_masked": None,
         "depth_extended": None,
@@ -295,6 +296,7 @@ def test_real_scans_give_a_fit_worth_reading_on_defaults(scans_dir, tmp_path, ca
         assert rule["asked"] == "auto" and rule["reason"], f.name
         # every automatic decision is one warning line and one key
         for key, code in (
+            ("levelled", "auto_levelled"),
             ("spikes_masked", "auto_spikes_masked"),
             ("depth_extended", "auto_depth_extended"),
             ("depth_cut", "auto_depth_cut"),

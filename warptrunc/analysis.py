@@ -190,10 +190,12 @@ def analyze(
         ``rule="auto"``: the same, and for a :class:`Surface` (a map read from a file) with no
         range of the caller's own (``truncation.max_depth``, ``depth_window``,
         ``rt_percentile``) the automatic rule of :mod:`warptrunc.robust`: a map under 32 pixels
-        a side is refused; spikes that set R_t are masked (``spikes=True``); ω_max extends
-        until the deepest increment has 50 contact pixels (or is cut to 5 % of A in contact),
-        when the default fit is empty or not worth reading. ``spikes=False`` leaves the map's
-        heights as given and reports nothing. ``rt_percentile`` clips the heights first
+        a side is refused; a tilt that spans more than the roughness is levelled; spikes that
+        set R_t are masked (``spikes=True``); ω_max extends until the deepest increment has 50
+        contact pixels (or is cut to 5 % of A in contact), and deeper while the fit is not
+        worth reading, when the default fit is empty or not worth reading; no fit worth reading
+        is refused (:class:`~warptrunc.robust.AutoRangeError`). ``spikes=False`` leaves the
+        spikes as given and reports nothing. ``rt_percentile`` clips the heights first
         (:func:`warptrunc.robust.clip_to_percentiles`); the map must be in memory.
     material : Material, optional
         Elastic constants; ``Material()`` (the default alloy on a rigid flat) when None.
@@ -225,6 +227,9 @@ def analyze(
         ``stream=True`` with a :class:`Surface`, ``islands`` or ``rt_percentile`` with a
         streamed surface, a :class:`Surface` under 32 pixels a side with ``rule="auto"``
         (:func:`warptrunc.robust.check_map_size`).
+    AutoRangeError
+        ``rule="auto"`` on a map read from a file: no range of the automatic rule gives a fit
+        worth reading; the message names the settings that give one on this map.
 
     Examples
     --------
@@ -272,10 +277,15 @@ def analyze(
         decided = check_spikes(source)
     if rule is None:
         legacy = eq2, found, None if eq2 is not None else error
+        validity = (lambda s: _validity(s, True, connectivity, device)) if want_islands else None
         auto, rule, decided = automatic_range(
-            surface, legacy, material=material, truncation=truncation, fit_range=fit,
-            indicators=(lambda s: _validity(s, True, connectivity, device)) if want_islands
-            else None, device=device,
+            surface,
+            legacy,
+            material=material,
+            truncation=truncation,
+            fit_range=fit,
+            indicators=validity,
+            device=device,
         )
         if auto is not None:
             surface, omega, curve, sc, eq2, found, indicators = auto
@@ -343,6 +353,7 @@ def _rule_without_auto(fit_range: str, read_map: bool, own: list[str]) -> dict |
     base = {
         "asked": fit_range,
         "rule": "legacy",
+        "levelled": None,
         "spikes_masked": None,
         "depth_extended": None,
         "depth_cut": None,

@@ -13,7 +13,13 @@ range of the caller's own (``--max-depth``, ``--depth-window``, ``--rt-percentil
 
 0. *Size.* A map with fewer than 32 pixels on a side is refused, in one line naming its size
    (:func:`check_map_size`).
-1. *Spikes.* The spike rule of :mod:`warptrunc.plausibility` runs in passes, each on the map
+1. *Tilt.* When the least-squares plane of the map spans more height across it than the
+   roughness about the plane does (R_robust = P99.9 − P0.1 of the levelled heights), the
+   truncation would read the tilt: contact starts along the high side and spreads as a band.
+   The plane is subtracted, as ``--level`` does (:func:`tilt_rule`). A surface's own longest
+   wavelength makes a smaller plane: on WM surfaces with W_r = L it spans under 0.5·R_robust.
+   A map read with ``--level`` is not levelled again.
+2. *Spikes.* The spike rule of :mod:`warptrunc.plausibility` runs in passes, each on the map
    masked by the passes before (σ_d and R_robust recomputed), until a pass finds none (at
    most 10; a population of spikes on more than 0.1 % of the map lifts P99.9 and so R_robust,
    and one pass finds only its tallest). The spikes *dominate the top of the map* when its
@@ -21,28 +27,35 @@ range of the caller's own (``--max-depth``, ``--depth-window``, ``--rt-percentil
    from, or R_t and with it ω_max. A fit from such a map is not worth reading either, and
    the spikes are masked (each replaced by the median of its 8 neighbours) for R_t and the
    truncation (:func:`spike_rule`). ``--spikes report`` keeps them (reported only).
-2. *The default first.* The default fit is kept when it is worth reading
+3. *The default first.* The default fit is kept when it is worth reading
    (:func:`warptrunc.plausibility.check_fit`: r² ≥ 0.9, 0 < α ≤ 1, ≥ half a decade of load,
-   ≥ 50 contact pixels at the deepest fitted increment) and no spike sets R_t.
-3. *Depth.* Otherwise ω_max = 0.1·R_t of the (masked) map, brought to between 50 pixels and
-   5 % of the map in contact at the deepest increment (:func:`adjust_depth`): with fewer than
-   50 contact pixels there, it extends to halfway between the depths at which the 50th and
-   the 51st highest pixels touch (a map of 32 × 32 pixels or more has 50 within 5 % of its
-   area), and when the fit over that range is not worth reading, the count doubles (100,
-   200, … pixels, within 5 % of the map) until the fit is; an extension stops at 0.5·R_t
-   (the cap). With more than 5 % (R_t still set by pits), ω_max is cut back likewise to the
-   ⌊0.05·N⌋-th highest pixel.
-4. *Choice.* When step 1 or 3 decided something, the fit over that range (the first worth
-   reading, else the shallowest that fits) replaces the default one, with its warnings and
-   ``fit_error`` if it is still not worth reading. When neither applies, or the new range
-   holds fewer than 3 fittable increments, the default result (or its error, with advice)
-   stands.
+   ≥ 50 contact pixels at the deepest fitted increment), no spike sets R_t and no tilt was
+   levelled.
+4. *Depth.* Otherwise ω_max = 0.1·R_t of the (levelled, masked) map, brought to between 50
+   pixels and 5 % of the map in contact at the deepest increment (:func:`adjust_depth`): with
+   fewer than 50 contact pixels there, it extends to halfway between the depths at which the
+   50th and the 51st highest pixels touch (a map of 32 × 32 pixels or more has 50 within 5 %
+   of its area). While the fit over the range is not worth reading, the count doubles (from
+   50, or from the pixels the range holds already: 100, 200, … within 5 % of the map) until
+   it is; an extension stops at 0.5·R_t (the cap). With more than 5 % (R_t still set by
+   pits), ω_max is cut back likewise to the ⌊0.05·N⌋-th highest pixel.
+5. *Choice.* The first range whose fit is worth reading replaces the default one. When no
+   range of the rule gives such a fit, ``analyze`` stops (:class:`AutoRangeError`, exit
+   status 2) with one line: what the rule decided, why the fit of its deepest range is not
+   worth reading, and the settings that give a fit worth reading on this map, each checked on
+   it (:func:`refusal_advice`: ``--rt-percentile`` and ``--max-depth``, after ``--level`` and
+   ``--spikes mask`` when the rule levelled or masked), or, when none does, what on the map
+   keeps every range from one (a flat top of many pixels at the highest height, a large share
+   of filled points). ``--fit-range legacy`` writes the default fit with its ``fit_error``.
+   When neither the default range nor any range of the rule holds 3 fittable increments, the
+   fit range's own error (with advice) stands.
 
-Each decision is one ``warning:`` line (``auto_spikes_masked``, ``auto_depth_extended``,
-``auto_depth_cut``) and a key of ``fit.json``'s ``fit_range`` (``spikes_masked``,
-``depth_extended``, ``depth_cut``), which also records the rule chosen (``"legacy"`` or
-``"auto"``) and why. Generated WM surfaces are not touched. ``compare`` and ``indent`` apply
-steps 0 and 1 to a map read from a file (spikes that set R_t are masked as it is read).
+Each decision is one ``warning:`` line (``auto_levelled``, ``auto_spikes_masked``,
+``auto_depth_extended``, ``auto_depth_cut``) and a key of ``fit.json``'s ``fit_range``
+(``levelled``, ``spikes_masked``, ``depth_extended``, ``depth_cut``), which also records the
+rule chosen (``"legacy"`` or ``"auto"``) and why. Generated WM surfaces are not touched.
+``compare`` and ``indent`` apply steps 0 and 2 to a map read from a file (spikes that set R_t
+are masked as it is read).
 
 :func:`clip_to_percentiles` clips the heights to the ``lo``-th and ``hi``-th percentiles
 (``warptrunc analyze --rt-percentile 0.1 99.9``): R_t becomes P_hi − P_lo, and the pixels
@@ -53,11 +66,21 @@ can name them.
 
 from __future__ import annotations
 
+import contextlib
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
-from .plausibility import FIT_MIN_CONTACT_PIXELS, PlausibilityWarning, mask_spikes
+from .plausibility import (
+    FIT_MIN_CONTACT_PIXELS,
+    PlausibilityWarning,
+    check_fit,
+    check_fit_depth,
+    fit_error_text,
+    mask_spikes,
+)
 from .surface import Surface
 
 __all__ = [
@@ -66,13 +89,18 @@ __all__ = [
     "AUTO_MAX_DEPTH_FRACTION",
     "MIN_FIT_POINTS",
     "MIN_MAP_SIDE",
+    "REFUSAL_DEPTHS",
     "SPIKE_PASSES",
+    "AutoRangeError",
     "adjust_depth",
+    "automatic_range",
     "check_map_size",
     "clip_to_percentiles",
     "fit_range_advice",
+    "refusal_advice",
     "spike_rule",
     "spike_warning",
+    "tilt_rule",
 ]
 
 MIN_FIT_POINTS = 3
@@ -206,7 +234,7 @@ def fit_range_advice(
     return out
 
 
-# --- the automatic rule for maps read from files (issue 41) ------------------------------------
+# --- the automatic rule for maps read from files ----------------------------------------------
 
 MIN_MAP_SIDE = 32
 """A map read from a file with fewer pixels than this on a side is refused (pixels)."""
@@ -276,8 +304,9 @@ def spike_rule(surface: Surface, *, passes: int = SPIKE_PASSES) -> tuple[Surface
         return surface, [], []
     z0 = np.asarray(surface.heights)
     hit = np.asarray(masked.heights) != z0
-    sets = [end for end, at in (("top", z0 == z0.max()), ("bottom", z0 == z0.min()))
-            if np.any(hit & at)]  # fmt: skip
+    sets = [
+        end for end, at in (("top", z0 == z0.max()), ("bottom", z0 == z0.min())) if np.any(hit & at)
+    ]
     return masked, found, sets
 
 
@@ -305,23 +334,33 @@ def spike_warning(found: list, sets: list[str], masked: Surface | None = None) -
         return []
     d = found[0].details
     n, loc, passes = d["count"], d["locations"][0], d["passes"]
-    where = (f"{n} spike pixel(s) (first at iy={loc['iy']}, ix={loc['ix']}; {passes} pass(es) "
-             "of the spike rule)")  # fmt: skip
+    where = (
+        f"{n} spike pixel(s) (first at iy={loc['iy']}, ix={loc['ix']}; {passes} pass(es) "
+        "of the spike rule)"
+    )
     if masked is None:
-        why = ("they set neither the highest nor the lowest pixel" if not sets
-               else "the automatic range did not fit")  # fmt: skip
-        return [PlausibilityWarning(
-            "spikes", f"{where}: reported, not masked: {why} (--spikes mask replaces them)",
-            {**d, "action": "report", "sets": sets},
-        )]  # fmt: skip
+        why = (
+            "they set neither the highest nor the lowest pixel"
+            if not sets
+            else "the automatic range did not fit"
+        )
+        return [
+            PlausibilityWarning(
+                "spikes",
+                f"{where}: reported, not masked: {why} (--spikes mask replaces them)",
+                {**d, "action": "report", "sets": sets},
+            )
+        ]
     ends = " and ".join({"top": "highest", "bottom": "lowest"}[e] for e in sets)
     before, after = float(d["Rt_m"]), float(masked.Rt)
-    return [PlausibilityWarning(
-        "auto_spikes_masked",
-        f"{where} include the {ends} pixel of the map: masked for R_t and the truncation, R_t "
-        f"{before:.4g} m → {after:.4g} m (automatic rule; --spikes report keeps them)",
-        {**d, "action": "mask", "sets": sets, "Rt_before_m": before, "Rt_after_m": after},
-    )]  # fmt: skip
+    return [
+        PlausibilityWarning(
+            "auto_spikes_masked",
+            f"{where} include the {ends} pixel of the map: masked for R_t and the truncation, R_t "
+            f"{before:.4g} m → {after:.4g} m (automatic rule; --spikes report keeps them)",
+            {**d, "action": "mask", "sets": sets, "Rt_before_m": before, "Rt_after_m": after},
+        )
+    ]
 
 
 def adjust_depth(
@@ -393,12 +432,23 @@ def adjust_depth(
     if not new > max_depth and action == "extended":
         return float(max_depth), None, None, []
     after = int(np.count_nonzero(z >= np.float32(top - new)))
-    rec = {"from_m": float(max_depth), "to_m": new, "from_fraction": float(max_depth / Rt),
-           "to_fraction": new / Rt, "contact_pixels_before": before, "contact_pixels": after,
-           "target_contact_pixels": lo, "max_contact_share": float(max_share),
-           "max_depth_fraction": float(max_fraction), "capped": bool(capped)}  # fmt: skip
-    goal = (f"has at least {lo}" if action == "extended"
-            else f"has at most {max_share:.0%} of the map ({hi} pixels)")  # fmt: skip
+    rec = {
+        "from_m": float(max_depth),
+        "to_m": new,
+        "from_fraction": float(max_depth / Rt),
+        "to_fraction": new / Rt,
+        "contact_pixels_before": before,
+        "contact_pixels": after,
+        "target_contact_pixels": lo,
+        "max_contact_share": float(max_share),
+        "max_depth_fraction": float(max_fraction),
+        "capped": bool(capped),
+    }
+    goal = (
+        f"has at least {lo}"
+        if action == "extended"
+        else f"has at most {max_share:.0%} of the map ({hi} pixels)"
+    )
     if capped:
         goal += f" (stopped at {max_fraction:g}·R_t, the cap)"
     w = PlausibilityWarning(
@@ -410,3 +460,378 @@ def adjust_depth(
         rec,
     )
     return new, action, rec, [w]
+
+
+def tilt_rule(surface: Surface) -> tuple[Surface, dict | None, list]:
+    """The map levelled when its tilt spans more height than its roughness does.
+
+    Parameters
+    ----------
+    surface : Surface
+        The map read from a file (m); one read with ``level=True`` (``params["levelled"]``)
+        is left as it is.
+
+    Returns
+    -------
+    levelled : Surface
+        ``surface`` minus its least-squares plane (``params["levelled"] = True``) when the
+        plane's range over the map exceeds R_robust = P99.9 − P0.1 of the levelled heights;
+        ``surface`` itself otherwise.
+    record : dict or None
+        The decision for ``fit.json`` (``plane_range_m``, ``roughness_range_m``,
+        ``Rt_before_m``, ``Rt_after_m``, m), or None.
+    warnings : list of PlausibilityWarning
+        One ``"auto_levelled"`` warning, or empty.
+
+    Notes
+    -----
+    Truncated from its highest pixel, a tilted map touches first along its high side, and the
+    fit reads the plane rather than the roughness. A surface's own longest wavelength gives a
+    plane too, but a small one: on WM surfaces with W_r = L (one wavelength across the map) the
+    plane spans less than 0.5·R_robust. A plane that spans more than R_robust is the
+    instrument's or the mounting's tilt.
+    """
+    from .io.repair import level_plane
+
+    if surface.params.get("levelled"):
+        return surface, None, []
+    z = np.asarray(surface.heights, dtype=np.float64)
+    flat = level_plane(z, surface.dx, surface.dy)
+    span = float(np.ptp(z - flat))
+    lo, hi = np.percentile(flat, [0.1, 99.9])
+    rough = float(hi - lo)
+    if not (rough > 0 and span > rough):
+        return surface, None, []
+    rec = {
+        "plane_range_m": span,
+        "roughness_range_m": rough,
+        "Rt_before_m": float(np.ptp(z)),
+        "Rt_after_m": float(np.ptp(flat)),
+    }
+    w = PlausibilityWarning(
+        "auto_levelled",
+        f"the least-squares plane spans {span:.4g} m across the map, more than the roughness "
+        f"about it (P99.9 − P0.1 = {rough:.4g} m): a truncation would read the tilt; levelled "
+        f"(the plane subtracted, as --level), R_t {rec['Rt_before_m']:.4g} m → "
+        f"{rec['Rt_after_m']:.4g} m (automatic rule; --fit-range legacy keeps the map as read)",
+        rec,
+    )
+    return Surface(flat, surface.dx, surface.dy, {**surface.params, "levelled": True}), rec, [w]
+
+
+AUTO_DOUBLED = "; the fit on fewer was not worth reading, so the count doubled until it was"
+"""How the ``auto_depth_extended`` warning says that the first count was not enough."""
+
+REFUSAL_DEPTHS = (0.02, 0.05, 0.2, 0.3, 0.5)
+"""Fractions of R_t tried as ``--max-depth`` by :func:`refusal_advice` (dimensionless)."""
+
+
+class AutoRangeError(ValueError):
+    """The automatic rule found no fit worth reading on a map read from a file; the message
+    names what the rule decided, why the fit is not worth reading, and the option values that
+    give one on this map (:func:`refusal_advice`)."""
+
+
+def _legacy_state(fit, found, error, min_pixels: int) -> str | None:
+    """Why the default fit is not worth reading (None: it is)."""
+    if fit is None:
+        return f"empty (fewer than 3 increments with ≥ {min_pixels} contact pixels)"
+    why = fit_error_text(found)
+    return None if why is None else f"not worth reading ({why.split(': ', 1)[1]})"
+
+
+def _fit_on(
+    surface: Surface,
+    increments: int,
+    max_depth: float,
+    material,
+    beta_prime: float,
+    min_pixels: int,
+    device,
+) -> tuple:
+    """(curve, stiffness curve, fit, its check_fit warnings) on ``surface`` to ``max_depth``;
+    ValueError when the range holds fewer than 3 fittable increments."""
+    from .stiffness import fit_power_law, stiffness_curve
+    from .truncation.api import truncate
+
+    curve = truncate(surface, increments, max_depth=max_depth, device=device)
+    sc = stiffness_curve(curve, material, beta_prime=beta_prime)
+    fit = fit_power_law(sc, min_pixels=min_pixels)
+    return curve, sc, fit, check_fit(fit, sc)
+
+
+def refusal_advice(
+    surface: Surface,
+    *,
+    levelled: bool,
+    spikes_masked: bool,
+    material: Any,
+    truncation: Any,
+    min_pixels: int,
+    device: Any = None,
+) -> list[str]:
+    """Option settings that give a fit worth reading on this map, each checked on it.
+
+    Parameters
+    ----------
+    surface : Surface
+        The map as read (m).
+    levelled, spikes_masked : bool
+        Whether the automatic rule levelled the map and masked spikes: the settings then start
+        with ``--level`` and ``--spikes mask``, which do so as the map is read (one pass of the
+        spike rule).
+    material : Material
+        Elastic constants of the analysis.
+    truncation : TruncationSettings
+        Its increments, ω_max as a fraction of R_t, and β′.
+    min_pixels : int
+        The fit range's ``min_pixels`` (pixels).
+    device : str, optional
+        Warp device.
+
+    Returns
+    -------
+    list of str
+        At most two settings, each with the α and r² it gives, e.g. ``"--level
+        --rt-percentile 0.1 99.9 (α 0.49, r² 0.95)"``. Tried in this order: the robust height
+        ranges ``--rt-percentile 0.1 99.9`` and ``1 99`` at the default depth, then
+        ``--max-depth`` at the fractions :data:`REFUSAL_DEPTHS` of R_t, then each robust
+        range with those fractions (``--max-depth-fraction``). A range of one's own turns the
+        automatic rule off, so each is checked as the default fit on the map read with the
+        settings' ``--level`` and ``--spikes mask``.
+    """
+    s = surface
+    prefix = []
+    if levelled:
+        from .io.repair import level_plane
+
+        flat = level_plane(np.asarray(s.heights, np.float64), s.dx, s.dy)
+        s = Surface(flat, s.dx, s.dy, {**s.params, "levelled": True})
+        prefix.append("--level")
+    if spikes_masked:
+        s, _ = mask_spikes(s)  # what --spikes mask does as the map is read
+        prefix.append("--spikes mask")
+    n, bp, frac = truncation.increments, truncation.beta_prime, truncation.max_depth_fraction
+    clipped = {rng: clip_to_percentiles(s, *rng) for rng in ((0.1, 99.9), (1.0, 99.0))}
+    pct = {rng: f"--rt-percentile {rng[0]:g} {rng[1]:g}" for rng in clipped}
+    tries = [(pct[r], m, frac) for r, m in clipped.items()]
+    tries += [(f"--max-depth {f * float(s.Rt):.3g}", s, f) for f in REFUSAL_DEPTHS]
+    tries += [
+        (f"{pct[r]} --max-depth-fraction {f:g}", m, f)
+        for r, m in clipped.items()
+        for f in REFUSAL_DEPTHS
+    ]
+    out: list[str] = []
+    for option, mapped, fraction in tries:
+        try:
+            depth = fraction * float(mapped.Rt)
+            _, _, fit, found = _fit_on(mapped, n, depth, material, bp, min_pixels, device)
+        except ValueError:
+            continue
+        if not found:
+            out.append(f"{' '.join([*prefix, option])} (α {fit.alpha:.2f}, r² {fit.r2:.2f})")
+            if len(out) == 2:
+                break
+    return out
+
+
+_SHORT = {
+    "fit_r2": lambda d: f"r² {d['r2']:.3g} < {d['min_r2']:g}",
+    "fit_alpha": lambda d: f"α {d['alpha']:.2f} outside (0, 1]",
+    "fit_contact_pixels": lambda d: (
+        f"{d['contact_pixels']} contact pixels < {d['min_contact_pixels']}"
+    ),
+    "fit_load_decades": lambda d: f"{d['decades']:.2f} decades of load < {d['min_decades']:g}",
+}
+"""The reason of each ``check_fit`` warning in a few words (the refusal's line)."""
+
+
+def _diagnosis(surface: Surface) -> str:
+    """What on the map keeps every range from a fit worth reading, where it can be named."""
+    z = np.asarray(surface.heights)
+    top = int(np.count_nonzero(z == z.max()))
+    notes = []
+    if top >= AUTO_CONTACT_PIXELS:
+        notes.append(
+            f"its highest height is shared by {top} pixels (a flat top: saturated or filled points)"
+        )
+    missing = int(surface.params.get("n_missing") or 0)
+    if missing > 0.1 * z.size:
+        notes.append(f"{missing / z.size:.0%} of its points were missing and filled")
+    return ": " + " and ".join(notes) if notes else ""
+
+
+def automatic_range(
+    surface: Surface,
+    legacy: tuple,
+    *,
+    material: Any,
+    truncation: Any,
+    fit_range: Any,
+    indicators: Callable[[Surface], Any] | None = None,
+    device: Any = None,
+) -> tuple[tuple | None, dict, list]:
+    """The automatic rule on a map read from a file, as :func:`warptrunc.analysis.analyze`
+    applies it (the module docstring states the rule).
+
+    Parameters
+    ----------
+    surface : Surface
+        The map as read (m), at least 32 pixels a side.
+    legacy : tuple
+        The default range's result on ``surface``: (PowerLawFit or None, its warnings, the
+        fit's ValueError or None).
+    material : Material
+        Elastic constants.
+    truncation : TruncationSettings
+        Increments, ω_max as a fraction of R_t, β′.
+    fit_range : FitRange
+        ``min_pixels``; ``spikes`` lets the rule mask the spikes that set R_t.
+    indicators : callable, optional
+        Surface → § 4.3's indicators (or None) of the map the automatic range is fitted on;
+        None: none computed.
+    device : str, optional
+        Warp device.
+
+    Returns
+    -------
+    result : tuple or None
+        (surface, ω_max (m), TruncationCurve, StiffnessCurve, PowerLawFit, its warnings,
+        indicators) on the automatic range, or None when the default result stands.
+    record : dict
+        ``fit.json``'s ``fit_range``: ``asked``, ``rule``, ``reason``, ``levelled``,
+        ``spikes_masked``, ``depth_extended``, ``depth_cut`` (each None when not decided) and,
+        for ``rule = "auto"``, ``max_depth_m`` (m).
+    decided : list of PlausibilityWarning
+        One warning line per decision (and the spikes reported but kept).
+
+    Raises
+    ------
+    AutoRangeError
+        No range of the rule gives a fit worth reading: the message names the decisions, the
+        reason, and the settings that give one on this map (:func:`refusal_advice`).
+    """
+    n_inc, beta_prime = truncation.increments, truncation.beta_prime
+    min_pixels, auto_spikes = fit_range.min_pixels, fit_range.spikes
+    state = _legacy_state(*legacy, min_pixels)
+    flat, tilt, tilt_w = tilt_rule(surface)
+    masked, found, sets = spike_rule(flat) if auto_spikes else (flat, [], [])
+    s = masked if sets else flat
+    rec = {
+        "asked": "auto",
+        "rule": "legacy",
+        "levelled": None,
+        "spikes_masked": None,
+        "depth_extended": None,
+        "depth_cut": None,
+    }
+    if state is None and not sets and tilt is None:
+        why = (
+            "the default fit is worth reading"
+            + (", no spike sets R_t" if auto_spikes else "")
+            + " and no tilt spans more than the roughness"
+        )
+        return None, {**rec, "reason": why}, spike_warning(found, sets)
+    ends = " and ".join({"top": "highest", "bottom": "lowest"}[e] for e in sets)
+    state = state or (
+        f"set by spikes (they include the {ends} pixel of the map)"
+        if sets
+        else "read on a tilted map"
+    )
+    z = np.asarray(s.heights)
+    omega0 = truncation.max_depth_fraction * float(z.max() - z.min())
+    omega, action, depth, depth_w = adjust_depth(z, omega0)
+
+    def fit_to(omega):
+        return _fit_on(s, n_inc, omega, material, beta_prime, min_pixels, device)
+
+    fits = []  # (target, action, ω_max, record, warnings, curve, stiffness curve, fit, warnings)
+    with contextlib.suppress(ValueError):
+        fits.append((AUTO_CONTACT_PIXELS, action, omega, depth, depth_w, *fit_to(omega)))
+    # no fit worth reading yet: the contact pixels of the deepest increment double (from 50,
+    # or from those of a range that holds more already), within 5 % of A and 0.5·R_t
+    held = int(np.count_nonzero(z >= np.float32(z.max()) - np.float32(omega)))
+    target = AUTO_CONTACT_PIXELS if action == "extended" else max(AUTO_CONTACT_PIXELS, held)
+    capped = action == "extended" and depth["capped"]
+    while action != "cut" and not capped and not any(not f[-1] for f in fits):
+        target *= 2
+        o2, more, d2, w2 = adjust_depth(z, omega0, contact_pixels=target)
+        if target > AUTO_MAX_CONTACT_SHARE * z.size or more is None:
+            break
+        capped = d2["capped"]
+        with contextlib.suppress(ValueError):
+            fits.append((target, more, o2, d2, w2, *fit_to(o2)))
+    decided = tilt_w + spike_warning(found, sets, s if sets else None)
+    if not fits and legacy[0] is None:  # nothing to fit either way: the fit range's error
+        why = (f"the default fit is {state}; the automatic range holds fewer than 3 increments "
+               f"with ≥ {min_pixels} contact pixels")  # fmt: skip
+        return None, {**rec, "reason": why}, spike_warning(found, sets)
+    good = [f for f in fits if not f[-1]]
+    if not good:
+        raise AutoRangeError(
+            _refusal(surface, s, fits, tilt, sets, material, truncation, min_pixels, device)
+        )
+    target, action, omega, depth, depth_w, curve, sc, fit, found_fit = good[0]
+    if action == "extended" and target > AUTO_CONTACT_PIXELS:  # the warning says why
+        _, _, depth, depth_w = adjust_depth(z, omega0, contact_pixels=target, note=AUTO_DOUBLED)
+    ind = indicators(s) if indicators is not None else None
+    if ind is not None:
+        found_fit = found_fit + check_fit_depth(fit, ind)
+    spikes = None
+    if sets:
+        d = decided[len(tilt_w)].details
+        spikes = {k: d[k] for k in ("count", "passes", "sets", "Rt_before_m", "Rt_after_m")}
+    rec = {
+        **rec,
+        "rule": "auto",
+        "reason": f"the default fit is {state}",
+        "levelled": tilt,
+        "spikes_masked": spikes,
+        "max_depth_m": omega,
+    }
+    if action is not None:
+        rec[f"depth_{action}"] = depth
+    return (s, omega, curve, sc, fit, found_fit, ind), rec, decided + depth_w
+
+
+def _refusal(
+    surface: Surface,
+    s: Surface,
+    fits: list,
+    tilt,
+    sets,
+    material,
+    truncation,
+    min_pixels: int,
+    device,
+) -> str:
+    """The one line of :class:`AutoRangeError`: ``surface`` as read, ``s`` as the rule made
+    it, ``fits`` the ranges it tried."""
+    name = str(surface.params.get("source") or "the map")
+    done = (["levelled"] if tilt else []) + (["spikes masked"] if sets else [])
+    if fits:
+        depths = sorted({f[2] / float(s.Rt) for f in fits})
+        span = f"{depths[0]:.2g}" + (f"–{depths[-1]:.2g}" if len(depths) > 1 else "")
+        done.append(f"ω_max {span}·R_t")
+        why = ", ".join(_SHORT[w.code](w.details) for w in fits[-1][-1] if w.code in _SHORT)
+    else:
+        why = f"fewer than 3 increments with ≥ {min_pixels} contact pixels"
+    advice = refusal_advice(
+        surface,
+        levelled=tilt is not None,
+        spikes_masked=bool(sets),
+        material=material,
+        truncation=truncation,
+        min_pixels=min_pixels,
+        device=device,
+    )
+    head = (
+        f"{name}: no fit worth reading (automatic rule: {', '.join(done) or 'no decision'}; {why})"
+    )
+    tail = "; or --fit-range legacy: the default fit, flagged"
+    if advice:
+        return f"{head}; on this map these give one: " + "; ".join(advice) + tail
+    return (
+        f"{head}; no --rt-percentile or --max-depth gives one on this map"
+        f"{_diagnosis(surface)}{tail}"
+    )
