@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Figures drawn in a helper process while the job computes (issue 40, item 4).
+"""Figures drawn in a helper process while the job computes.
 
 ``warptrunc analyze`` spends most of what it adds to a Warp program's start on matplotlib: its
 import (about 0.3 s) and two figures (0.1–0.3 s each). In the job's own process both run under
