@@ -6,8 +6,10 @@
    resolution — measured on a scan (:func:`target_from_surface`) or typed in
    (:class:`CalibrationTarget`).
 2. D loop: find D_in such that the mean D_out of WM surfaces (one per seed) generated at the
-   scan's size and resolution with the scan's W_r and R_t matches the target D within
-   ``rtol`` (the paper: error < 5 %).
+   scan's size and resolution with the scan's W_r and R_t matches the target D within the
+   tolerance: ``rtol``·D (the paper: error < 5 %), or ``scatter_sd`` standard deviations of
+   D_out over the seeds where that is tighter (a difference inside the scatter of D between
+   realisations is all the loop can resolve).
 3. R_t loop: R_t' such that the mean R_rms matches. Heights are scaled to R_t, so R_rms is
    proportional to R_t for fixed D_in and seed, and R_t' = R_t · R_rms,target / R_rms.
    When D_out depends on the amplitude (``"tri"``, ``"box"`` in physical units), D_out is
@@ -68,7 +70,8 @@ class Calibration:
     Rrms: float
     """Mean R_rms over the seeds at (D_in', R_t') (m)."""
     converged: bool
-    """True when abs(D_out − D) ≤ rtol·D at (D_in', R_t')."""
+    """True when abs(D_out − D) ≤ :attr:`tolerance` at (D_in', R_t'): the evaluation after the
+    R_t loop, the last of the history."""
     rtol: float
     """Relative tolerance on D (dimensionless)."""
     seeds: tuple[int, ...]
@@ -87,6 +90,14 @@ class Calibration:
     """(k,) float64 mean R_rms of every evaluation (m)."""
     D_bounds: tuple[float, float] = (2.02, 2.98)
     """Search interval of D_in (dimensionless)."""
+    tolerance: float = float("nan")
+    """The tolerance on D met by a converged calibration: the smaller of rtol·D and
+    scatter_sd times the sample sd of D_out over the seeds at the first D_in
+    (dimensionless)."""
+    tolerance_basis: str = "rtol"
+    """Which bound set :attr:`tolerance`: ``"rtol"`` or ``"scatter"``."""
+    reason: str | None = None
+    """Why the calibration did not converge (None when it did)."""
 
     @property
     def bound(self) -> str | None:
@@ -112,7 +123,9 @@ class Calibration:
         -------
         dict
             Scalars ``D_in``, ``D_out``, ``D_out_std`` (dimensionless), ``Rt_m``, ``Wr_m``,
-            ``Rrms_m`` (m), ``converged``, ``rtol``, ``iterations``, ``seeds``, ``D_bounds``,
+            ``Rrms_m`` (m), ``converged``, ``rtol``, ``tolerance`` (on D, absolute),
+            ``tolerance_basis`` (``"rtol"`` or ``"scatter"``), ``reason`` (why not converged,
+            or None), ``iterations``, ``seeds``, ``D_bounds``,
             ``bound`` (``"lower"``, ``"upper"`` or None, see :attr:`bound`); the WM options
             as ``wm_<name>``; the target's :meth:`CalibrationTarget.to_dict` as
             ``target_<name>``; and the history arrays ``history_D_in``, ``history_Rt_m``,
@@ -129,6 +142,9 @@ class Calibration:
             "Rrms_m": self.Rrms,
             "converged": self.converged,
             "rtol": self.rtol,
+            "tolerance": self.tolerance,
+            "tolerance_basis": self.tolerance_basis,
+            "reason": self.reason,
             "iterations": self.iterations,
             "seeds": list(self.seeds),
             "D_bounds": list(self.D_bounds),
@@ -216,8 +232,9 @@ def calibrate(
     target : CalibrationTarget
         Descriptors to match (D by ``target.method`` with ``target.method_options``).
     settings : CalibrationSettings, optional
-        The seeds averaged at every evaluation, the relative tolerance on D (abs(D_out − D) ≤
-        rtol·D; the paper uses 5 %), the first D_in (default the target D, as in the paper,
+        The seeds averaged at every evaluation, the tolerance on D (abs(D_out − D) ≤ rtol·D,
+        the paper's 5 %, or ``scatter_sd`` standard deviations of D_out over the seeds where
+        that is tighter), the first D_in (default the target D, as in the paper,
         clipped to ``D_bounds``), the search interval ``D_bounds`` inside (2, 3) (a result on a
         bound is flagged by :attr:`Calibration.bound`), the evaluations per D loop
         (``max_iter``), the D-loop/R_t-loop rounds (``max_rounds``: a round is repeated only
@@ -226,18 +243,22 @@ def calibrate(
         (:class:`~warptrunc.calibrate_params.CalibrationSettings`; its defaults when None; its
         ``method``, ``height_scaling`` and output fields are not read here).
     progress : bool
-        Show a tqdm progress bar.
+        Report the evaluations on stderr (a bar on a terminal, a line per evaluation
+        otherwise).
     {warp_device}
 
     Returns
     -------
     Calibration
+        ``converged`` is False when D_out at (D_in', R_t') leaves the tolerance in each of
+        ``max_rounds`` rounds (the result is that of the last round).
 
     Raises
     ------
     CalibrationError
         The target D lies outside the D_out reached at the bounds of ``D_bounds`` (the message
-        gives that range), or the loop did not converge within ``max_iter`` evaluations.
+        gives that range), or a D loop did not reach the tolerance within ``max_iter``
+        evaluations.
     """
     settings = CalibrationSettings() if settings is None else settings
     rtol, (lo, hi) = settings.rtol, settings.D_bounds
@@ -245,6 +266,7 @@ def calibrate(
     x0 = target.D if settings.D_start is None else settings.D_start
     x0 = min(max(x0, lo), hi)
     hist: list[tuple[float, float, float, float, float]] = []
+    spread: list[float] = []  # sample sd of D_out over the seeds, per evaluation
     wm_opts = settings.wm_options()
 
     bar = progress_bar(total=max_iter * max_rounds, enabled=progress, desc="calibrate", unit="eval")
@@ -259,38 +281,54 @@ def calibrate(
             rms.append(surface_statistics(s)["Rrms"])  # on the device, no host copy
         out = (float(np.mean(ds)), float(np.std(ds)), float(np.mean(rms)))
         hist.append((d_in, Rt, *out))
+        spread.append(float(np.std(ds, ddof=1)) if len(ds) > 1 else 0.0)
         bar.update(1)
         bar.set_postfix(D_in=f"{d_in:.4f}", D_out=f"{out[0]:.4f}", target=f"{target.D:.4f}")
         return out
 
-    atol = rtol * target.D
     Rt = target.Rt
     d_in = x0
-    known = None
     try:
+        first = evaluate(x0, Rt)
+        atol, basis = rtol * target.D, "rtol"
+        if settings.scatter_sd > 0 and spread[0] > 0 and settings.scatter_sd * spread[0] < atol:
+            atol, basis = settings.scatter_sd * spread[0], "scatter"
+        known = (x0, first[0])
+        converged, reason = False, None
         for _ in range(max_rounds):
-            d_in = find_root(
-                lambda x, Rt=Rt: evaluate(x, Rt)[0],
-                target.D,
-                atol,
-                (lo, hi),
-                d_in,
-                max_iter,
-                what=f"D_out by {target.method!r}",
-                known=known,
-            )
+            try:
+                d_in = find_root(
+                    lambda x, Rt=Rt: evaluate(x, Rt)[0],
+                    target.D,
+                    atol,
+                    (lo, hi),
+                    d_in,
+                    max_iter,
+                    what=f"D_out by {target.method!r}",
+                    known=known,
+                )
+            except CalibrationError as exc:
+                # the scatter tolerance out of reach: the closest evaluation within rtol·D is
+                # the result, reported as not converged
+                near = [h for h in hist if h[1] == Rt and abs(h[2] - target.D) <= rtol * target.D]
+                if basis != "scatter" or not near:
+                    raise
+                d_in = min(near, key=lambda h: abs(h[2] - target.D))[0]
+                reason = str(exc).split(" Evaluations (D_in")[0].split(" Use another method")[0]
             # R_t' from the evaluation at the chosen D_in (R_rms ∝ R_t for fixed D_in, seeds)
             rms_at = next(h[4] for h in reversed(hist) if h[0] == d_in and h[1] == Rt)
             Rt = Rt * target.Rrms / rms_at
             d_out, d_std, rms = evaluate(d_in, Rt)
             if abs(d_out - target.D) <= atol:
+                converged, reason = True, None
+                break
+            if reason is not None:
                 break
             known = (d_in, d_out)
-        else:
-            raise CalibrationError(
-                f"D_out by {target.method!r} drifts out of tolerance after rescaling to R_t' in "
-                f"each of {max_rounds} rounds (last D_in = {d_in:.4f}, R_t' = {Rt:.4g} m, "
-                f"D_out = {d_out:.4f}, target {target.D:.4f} ± {atol:.4f})"
+        if not converged and reason is None:
+            reason = (
+                f"D_out at R_t' leaves the tolerance in each of {max_rounds} rounds (D_out "
+                f"depends on the amplitude for this method)"
             )
     finally:
         bar.close()
@@ -302,8 +340,11 @@ def calibrate(
         D_out=d_out,
         D_out_std=d_std,
         Rrms=rms,
-        converged=True,
+        converged=converged,
         rtol=rtol,
+        tolerance=float(atol),
+        tolerance_basis=basis,
+        reason=reason,
         seeds=seeds,
         wm_options=wm_opts,
         history_D_in=h[:, 0],

@@ -126,7 +126,20 @@ class CalibrationSettings(Parameters):
         sweep=False,
     )
     rtol: float = param(
-        0.05, "relative tolerance on D: abs(D_out − D) ≤ rtol·D (the paper: 5 %)", gt=0.0, lt=1.0
+        0.05,
+        "relative tolerance on D: abs(D_out − D) ≤ rtol·D (the paper: 5 %), or the scatter "
+        "tolerance where that is tighter",
+        gt=0.0,
+        lt=1.0,
+    )
+    scatter_sd: float = param(
+        2.0,
+        "tolerance on D in standard deviations of D_out over the seeds (measured at the first "
+        "D_in): abs(D_out − D) ≤ scatter-sd·sd where that is tighter than rtol·D, since a "
+        "difference inside the descriptor's own scatter is all a calibration can resolve; 0, "
+        "or a single seed: rtol alone",
+        ge=0.0,
+        le=100.0,
     )
     D_start: float | None = param(
         None,

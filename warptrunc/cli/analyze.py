@@ -19,7 +19,8 @@ fit.json is strict JSON: "E_i": null in "material" means a rigid flat (E_i = ∞
 A generated surface that needs more than half of the free memory of the device or of the host
 (which holds the map's copy) is streamed: generated and truncated by row bands, never held whole
 (``warptrunc.stream``; ``--stream`` forces it). The counts are those of the in-memory path.
-fit.json says which path ran (``"path": "in-memory"`` or ``"streamed"``).
+fit.json says which path the computation took (``"path": "in-memory"`` or ``"streamed"``); a
+map read from a file is named in its provenance (``"input"``: path, size, SHA-256).
 
 Island-resolved truncation (``--islands``, on by default for maps in memory): besides Eq. 2's
 one flat punch of the whole truncated area, k' = β'(2/√π)E*√A', every island of the truncated
@@ -49,9 +50,9 @@ from ._common import (
     add_surface_source,
     add_truncation,
     add_warnings,
-    slope_line,
     fit_range_from_args,
     material_from_args,
+    slope_line,
     surface_from_args,
     truncation_from_args,
     warnings_of,
@@ -154,7 +155,7 @@ def _run(args: argparse.Namespace, truncation, fit_range, figures) -> int:
             strict_json(
                 {
                     **a.summary(),
-                    "provenance": provenance(args.device),
+                    "provenance": provenance(args.device, input_path=args.input),
                     "warnings": warnings_of(args),
                 }
             )
@@ -163,7 +164,7 @@ def _run(args: argparse.Namespace, truncation, fit_range, figures) -> int:
             (out / "stiffness.png").write_bytes(figures.result(tickets["stiffness"]))
             (out / "area_fraction.png").write_bytes(figures.result(tickets["area"]))
     print(
-        f"{nx}×{ny} surface ({_describe(a.path)}), R_t = {Rt * 1e6:.4g} µm; "
+        f"{nx}×{ny} surface{_source(args)} ({_describe(a.path)}), R_t = {Rt * 1e6:.4g} µm; "
         f"{truncation.increments} increments to "
         f"ω_max = {curve.depth[-1] * 1e6:.4g} µm; final contact {curve.area_fraction[-1]:.3%} of A\n"
         f"E_c/E = {fit.beta:.4g}·[F/(E·A)]^{fit.alpha:.4f}  (E Young's modulus; r² = {fit.r2:.4f}, "
@@ -267,6 +268,11 @@ def _fit_range_message(exc, truncation, fit_range) -> str:
             "--min-pixels or --rt-percentile gives them on this map"
         )
     return f"{msg}; need at least 3; for this map any one of these works: " + "; ".join(advice)
+
+
+def _source(args: argparse.Namespace) -> str:
+    """The words naming the file a map was read from (empty for a generated map)."""
+    return "" if args.input is None else f" from {args.input}"
 
 
 def _describe(path: dict) -> str:

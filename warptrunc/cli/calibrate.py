@@ -118,11 +118,7 @@ def run(args: argparse.Namespace) -> int:
         (out / "calibration.json").write_text(strict_json(d))
         if surf is not None:
             write_height_map(surf, out / "surface.npz")
-    print(
-        f"D_in' = {cal.D_in:.4f}, R_t' = {cal.Rt * 1e6:.4g} µm → D_{target.method} = "
-        f"{cal.D_out:.4f} ± {cal.D_out_std:.4f}, R_rms = {cal.Rrms * 1e6:.4g} µm "
-        f"({cal.iterations} evaluations × {len(cal.seeds)} seeds)"
-    )
+    print(_result_lines(cal, settings))
     if cal.bound is not None:
         print(
             f"note: D_in' is the {cal.bound} bound of --D-bounds ({lo:g}, {hi:g}): the target is "
@@ -134,3 +130,33 @@ def run(args: argparse.Namespace) -> int:
         written.append(str(args.out / "surface.npz"))
     print("wrote " + ", ".join(written))
     return 0
+
+
+def _result_lines(cal, settings: CalibrationSettings) -> str:
+    """D_in' and R_t', every evaluation at D_in' (at R_t in the D loop, at R_t' after the R_t
+    loop), the tolerance and its basis, and whether the last evaluation met it."""
+    t = cal.target
+    at = [i for i in range(cal.iterations) if cal.history_D_in[i] == cal.D_in]
+    evals = "; ".join(
+        f"R_t = {cal.history_Rt[i] * 1e6:.4g} µm: D_{t.method} = {cal.history_D_out[i]:.4f} ± "
+        f"{cal.history_D_out_std[i]:.4f}"
+        for i in at
+    )
+    basis = (
+        f"{settings.scatter_sd:g} sd of D_out over the seeds at the first D_in, tighter than "
+        f"rtol·D = {cal.rtol * t.D:.4f}"
+        if cal.tolerance_basis == "scatter"
+        else f"rtol·D, rtol = {cal.rtol:g}"
+    )
+    miss = abs(cal.D_out - t.D)
+    verdict = (
+        f"converged: |D_out − D| = {miss:.4f} ≤ {cal.tolerance:.4f}"
+        if cal.converged
+        else f"NOT converged: |D_out − D| = {miss:.4f} > {cal.tolerance:.4f}; {cal.reason}"
+    )
+    return (
+        f"D_in' = {cal.D_in:.4f}, R_t' = {cal.Rt * 1e6:.4g} µm, R_rms = {cal.Rrms * 1e6:.4g} µm "
+        f"({cal.iterations} evaluations × {len(cal.seeds)} seeds)\n"
+        f"at D_in': {evals}\n"
+        f"target D_{t.method} = {t.D:.4f} ± {cal.tolerance:.4f} ({basis}); {verdict}"
+    )
