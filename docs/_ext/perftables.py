@@ -577,7 +577,38 @@ the rows left out)."""
 
 BEM_TABLE = "bem_table_cpu_2026-11-23.json"
 
+def preset_slopes() -> str:
+    """The D_vs presets' content and h′_rms (``warptrunc.presets.CALIBRATION``)."""
+    from warptrunc.presets import CALIBRATION, TABLE1
+
+    rows = []
+    for name in TABLE1:
+        c = CALIBRATION[name]
+        sl = c["slope_rms"]
+        rows.append(
+            [
+                name,
+                f"{c['D_in']:.3f}",
+                f"{c['Wc_m'] * 1e6:.3g}",
+                f"{c['Rt_pixel_m'] * 1e9:.4g}",
+                f"{sl['calibration_pixel']:.3g}",
+                f"{sl['paper_pixel']:.3g}",
+                f"{sl['spectrum']:.3g}",
+                "yes" if sl["paper_pixel"] <= sl["small_slope_limit"] else "**no**",
+            ]
+        )
+    header = ["preset", "D_in", "W_c (µm)", "R_t′ measured at (nm)", "h′_rms at 977 nm",
+              "h′_rms at 97.7 nm", "h′_rms of the terms", "small slope (≤ 0.5)"]  # fmt: skip
+    return _md_table(header, rows) + (
+        "\nSeed 0, finite differences at the pixel (`warptrunc.slope.slope_statistics`); the "
+        "terms' value is the content's own, the same on every grid (`wm_slope_statistics`). "
+        "Source: `warptrunc.presets.CALIBRATION`, measured again by "
+        "`examples/benchmarks/content_sensitivity.py`.\n"
+    )
+
+
 TABLES: dict[str, Callable[[], str]] = {
+    "preset_slopes": preset_slopes,
     "solver_scaling": lambda: solver_scaling("solver_scaling_h200x4_6af94f0.json"),
     "peers_cpu": lambda: peers(["peers_cpu_e2af04c.json"]),
     "peers_gpu": lambda: peers(["peers_h100x4_ec597f6.json", "peers_h200x4_6af94f0.json"]),

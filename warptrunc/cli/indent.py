@@ -55,10 +55,11 @@ from ._common import (
     add_devices,
     add_run_outputs,
     add_surface_source,
+    generate_surface,
     prepare_devices,
     read_input,
     slope_line,
-    wm_spec_from_args,
+    spec_from_args,
 )
 
 NAME = "indent"
@@ -224,16 +225,15 @@ def _h(material: Material) -> str:
 
 
 def _surfaces(args: argparse.Namespace) -> list:
-    """The surfaces indented: the file of ``--input``, or the WM surfaces of the options on the
-    maps of :class:`~warptrunc.indent.maps.IndentMaps` (``--map-side`` unless ``--L`` is given),
-    one per ``--seeds``."""
-    from ..wm import wm_surface
-
+    """The surfaces indented: the file of ``--input``, or the generated surfaces of the options
+    (WM, or self-affine with ``--surface self-affine``) on the maps of
+    :class:`~warptrunc.indent.maps.IndentMaps` (``--map-side`` unless ``--L`` is given), one per
+    ``--seeds``."""
     if args.input is not None:
         if args.seeds is not None:
             raise ValueError("--seeds generates WM surfaces; it cannot be used with --input")
         return [read_input(args.input, args)]
-    return [wm_surface(spec, device=args.device) for spec in map_specs(args)]
+    return [generate_surface(spec, args.device) for spec in map_specs(args)]
 
 
 def map_specs(args: argparse.Namespace) -> list:
@@ -255,7 +255,7 @@ def map_specs(args: argparse.Namespace) -> list:
     if args.L is not None and args.map_side is not None:
         raise ValueError(f"--L and --map-side {args.map_side} both give the map's side; give one")
     maps = from_args(IndentMaps, args, **({"map_side": None} if args.L is not None else {}))
-    return maps.specs(wm_spec_from_args(args), keep_n=args.n is not None)
+    return maps.specs(spec_from_args(args), keep_n=args.n is not None)
 
 
 def _resolution_line(res) -> str:
