@@ -192,7 +192,7 @@ if _TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eager
     from .wm import wm_surface
     from .wm_params import WMSpec
 
-from ._support.version import __version__  # noqa: E402, F401 (re-exported)
+from ._support.provenance import __version__  # noqa: E402, F401 (re-exported)
 
 __all__ = [
     "Analysis",

@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Provenance of results: what made an output, and when.
+"""Provenance of results: what made an output, and when; the package version.
 
 :func:`provenance` is the one record every output carries (``"provenance"`` in ``fit.json``,
 ``fit.to_json()``, ``render.json``, ``bem.json``, ``indicators.json``, ``calibration.json``,
@@ -9,21 +9,25 @@ version, the git commit where known, the command line, the device, the time (UTC
 versions of Python and Warp. The command line is the ``warptrunc`` command while one runs
 (:func:`set_command`, called by :func:`warptrunc.cli.main`), else ``sys.argv``.
 ``$SOURCE_DATE_EPOCH``, when set, fixes the time (reproducible outputs).
+
+:data:`__version__` is warptrunc's version (``warptrunc.__version__`` re-exports it). This
+module imports only the standard library, and git, :mod:`platform` and :mod:`shlex` only
+when a record is made, so ``import warptrunc`` reads the version at no cost.
 """
 
 from __future__ import annotations
 
 import functools
 import os
-import platform
-import shlex
-import subprocess
 import sys
 import time
 from pathlib import Path
 from typing import Any
 
-__all__ = ["git_commit", "provenance", "set_command"]
+__all__ = ["__version__", "git_commit", "provenance", "set_command"]
+
+__version__ = "0.1.0"
+"""warptrunc's version, the first field of every provenance record."""
 
 _command: list[str] | None = None
 
@@ -42,6 +46,8 @@ def set_command(argv: list[str] | None) -> None:
 
 @functools.lru_cache(maxsize=8)
 def _git_head(root: str) -> str | None:
+    import subprocess
+
     try:
         out = subprocess.run(
             ["git", "-C", root, "rev-parse", "HEAD"], capture_output=True, text=True, timeout=10
@@ -153,7 +159,8 @@ def provenance(
     >>> sorted(provenance())[:3]
     ['command', 'created_utc', 'device']
     """
-    from .version import __version__
+    import platform
+    import shlex
 
     if argv is None:
         argv = _command if _command is not None else list(sys.argv)

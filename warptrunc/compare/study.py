@@ -363,7 +363,7 @@ def _open_store(out: Path, settings: dict[str, Any], overwrite: bool) -> None:
             f.unlink()
     import warp
 
-    from .._support.version import __version__ as version
+    from .._support.provenance import __version__ as version
 
     doc["created"] = {
         "warptrunc_version": version,

@@ -21,8 +21,7 @@ from typing import Any
 
 from .._support.device import resolve_device
 from .._support.outputs import jsonable, staged_outputs, store_rollback
-from .._support.provenance import git_commit, provenance
-from .._support.version import __version__
+from .._support.provenance import __version__, git_commit, provenance
 from .profiles import PROFILES, Profile, get_profile
 from .store import StageConflict, StageStore
 

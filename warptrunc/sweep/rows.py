@@ -19,8 +19,7 @@ from typing import Any
 import numpy as np
 
 from .._support.docs import SHARED_DOCS, fill_doc
-from .._support.provenance import git_commit
-from .._support.version import __version__
+from .._support.provenance import __version__, git_commit
 from ..stiffness import DEFAULT_MIN_PIXELS, flat_punch_stiffness, stiffness_curve
 from ..truncation.api import truncate
 from .grid import Case
