@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""warptrunc.sweep.affinity: the CPUs near a GPU (sysfs ``local_cpulist`` of the bus id the
+"""warptrunc.sweep._affinity: the CPUs near a GPU (sysfs ``local_cpulist`` of the bus id the
 CUDA driver gives) and binding a process to them; the pinned workers of a local cluster call
 it with their devices."""
 
@@ -10,7 +10,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from warptrunc.sweep import affinity
+from warptrunc.sweep import _affinity as affinity
 
 linux_only = pytest.mark.skipif(not hasattr(os, "sched_setaffinity"), reason="Linux only")
 

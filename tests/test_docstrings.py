@@ -52,7 +52,7 @@ numpydoc_validate = pytest.importorskip("numpydoc.validate")
 numpydoc_docscrape = pytest.importorskip("numpydoc.docscrape")
 
 
-from warptrunc._public import SKIP_PREFIXES, public_modules  # noqa: E402
+from warptrunc._support.public import SKIP_PREFIXES, public_modules  # noqa: E402
 
 FUNCTION_CODES = frozenset({"GL08", "SS01", "SS03", "PR01", "PR02", "RT01"})
 CLASS_CODES = frozenset({"GL08", "SS01", "SS03", "PR01", "PR02"})

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import warptrunc
-from warptrunc._public import public_modules
+from warptrunc._support.public import public_modules
 
 
 def test_dir_is_the_public_api():

@@ -42,7 +42,7 @@ import types as _types
 from typing import TYPE_CHECKING as _TYPE_CHECKING
 from typing import Any as _Any
 
-from ._source import map_source_kernels as _map_source_kernels
+from ._support.checkout import map_source_kernels as _map_source_kernels
 
 _map_source_kernels(__name__, __path__)
 

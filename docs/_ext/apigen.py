@@ -18,7 +18,7 @@ import importlib
 import inspect
 from pathlib import Path
 
-from warptrunc._public import public_modules
+from warptrunc._support.public import public_modules
 
 
 def page_of(modname: str) -> str:

@@ -101,7 +101,7 @@ def run_parts(n: int, device: str | None, surface: str, hardness: float, top: in
     ]
     out["device"] = recs[0]["device"]
     if hasattr(os, "sched_getaffinity"):  # where this thread may run (bound or not)
-        from warptrunc.sweep.affinity import format_cpulist
+        from warptrunc.sweep._affinity import format_cpulist
 
         out["cpus"] = format_cpulist(os.sched_getaffinity(0))
     if prof:
@@ -209,7 +209,7 @@ def main(argv=None) -> int:
     out.mkdir(parents=True, exist_ok=True)
     bound = None
     if args.bind == "near" and str(args.device).startswith("cuda"):
-        from warptrunc.sweep.affinity import bind_near, format_cpulist
+        from warptrunc.sweep._affinity import bind_near, format_cpulist
 
         ordinal = int(str(args.device).partition(":")[2] or 0)
         bound = bind_near([ordinal])

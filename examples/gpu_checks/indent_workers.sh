@@ -38,7 +38,7 @@
 #            bound to the CPUs near the GPU
 # warm, split, four and probe write under $OUT/MODE/ (default ./gpu_out; _mode_head.sh). BIND=1
 # (default) runs the in-process benchmark of split under `taskset -c` with the CPUs near its GPU
-# (`python -m warptrunc.sweep.affinity`), as the workers of a local cluster bind themselves;
+# (`python -m warptrunc.sweep._affinity`), as the workers of a local cluster bind themselves;
 # BIND=0 leaves every process unbound (WARPTRUNC_CPU_AFFINITY=0).
 # CPU dry runs (about a minute on 2 cores):
 #   N=128 BENCH_ARGS="--profile tiny --device cpu --workers 2" bash examples/gpu_checks/indent_workers.sh
@@ -77,7 +77,7 @@ indent() {  # indent NAME GPUS ARGS...: one benchmark process on GPUS, its folde
     # the in-process run bound to the CPUs near its GPU, as the workers bind themselves
     if [ "${BIND:-1}" = 1 ] && [ "$name" = inproc ] && command -v taskset > /dev/null; then
         local cpus
-        cpus=$(CUDA_VISIBLE_DEVICES=$gpus python3 -m warptrunc.sweep.affinity 0)
+        cpus=$(CUDA_VISIBLE_DEVICES=$gpus python3 -m warptrunc.sweep._affinity 0)
         [ -n "$cpus" ] && bind=(taskset -c "$cpus")
     fi
     echo "$name (GPUs $gpus): CPUs ${bind[2]:-not bound}" | tee -a "$W/binding.txt"
@@ -97,10 +97,10 @@ warm)
     rm -rf "$W/warm"
     nvidia-smi topo -m > "$dir/topo.txt" 2>&1
     for g in $(nvidia-smi --query-gpu=index --format=csv,noheader); do
-        echo "GPU $g: CPUs $(python3 -m warptrunc.sweep.affinity "$g")"
+        echo "GPU $g: CPUs $(python3 -m warptrunc.sweep._affinity "$g")"
     done | tee "$dir/gpu_cpus.txt"
     python3 -c "from warptrunc.sweep.cluster import open_client; import os
-from warptrunc.sweep.affinity import format_cpulist
+from warptrunc.sweep._affinity import format_cpulist
 def env():
     import dask
     return (os.environ.get('WARPTRUNC_DEVICE'), os.environ.get('MALLOC_TRIM_THRESHOLD_'),

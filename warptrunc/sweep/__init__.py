@@ -19,7 +19,7 @@ cases.parquet; :func:`load`, :func:`load_curves`), ``curves`` (writing and readi
 ``normalisation`` (rows written before the one normalisation), ``engines`` (one case, one
 shard; in-process execution), ``batch`` (several light surfaces per launch on a GPU), ``rows``
 (a case's columns: fit ranges, fractal dimensions, elastic solves), ``cluster`` (the Dask
-engine and its local cluster), ``affinity`` (the CPUs near a GPU, where the cluster's pinned
+engine and its local cluster), ``_affinity`` (the CPUs near a GPU, where the cluster's pinned
 workers bind), ``groups`` (devices per Dask worker), ``sharding`` (the Dask
 engine's shard sizes), ``run`` (:func:`run_sweep`), ``stats`` (pandas summaries,
 :func:`linear_fit`, the in-memory :func:`sweep`/:class:`SweepTable`). pandas, pyarrow and dask

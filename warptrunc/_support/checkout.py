@@ -13,8 +13,9 @@ root the *source* folder ``warptrunc/`` shadows any installed copy, and it has n
 :func:`map_source_kernels` closes that gap. When ``warptrunc`` is imported from a folder that
 has no ``kernels/`` of its own and the folder beside it (the repository root) has
 ``kernels/__init__.py``, it registers that folder as ``warptrunc.kernels`` before anything
-imports it. An installed copy (which has ``warptrunc/kernels/``) is left alone, and a top-level
-``kernels`` package is never created.
+imports it; its sub-packages (``kernels/contact/`` → ``warptrunc.kernels.contact``) are found
+through the registered package's path, as in an installed copy. An installed copy (which has
+``warptrunc/kernels/``) is left alone, and a top-level ``kernels`` package is never created.
 """
 
 from __future__ import annotations

@@ -20,7 +20,7 @@ from ``/sys/bus/pci/devices/<bus id>/local_cpulist``; both need Linux and a CUDA
 without either nothing is bound. :func:`bind_near` binds every thread of this process to
 those CPUs that it may already use; the workers of a local cluster that
 :class:`~warptrunc.sweep.cluster.PinDevice` pins call it (``WARPTRUNC_CPU_AFFINITY=0`` turns
-it off). ``python -m warptrunc.sweep.affinity 0`` prints device 0's CPUs (for ``taskset
+it off). ``python -m warptrunc.sweep._affinity 0`` prints device 0's CPUs (for ``taskset
 -c``), or nothing.
 """
 
