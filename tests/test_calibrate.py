@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 import warptrunc
-from warptrunc._support.root_find import find_root, isotonic
 from warptrunc.calibrate import (
     CalibrationError,
     CalibrationSettings,
@@ -20,6 +19,7 @@ from warptrunc.calibrate import (
     calibrated_surface,
     target_from_surface,
 )
+from warptrunc.calibrate.root_find import find_root, isotonic
 from warptrunc.fractal import fractal_dimension
 from warptrunc.wm import wm_surface
 

@@ -51,7 +51,7 @@ _EXPORTS = {
     "BemCheck": ".contact.check",
     "Calibration": ".calibrate",
     "CalibrationError": ".calibrate",
-    "CalibrationTarget": ".calibrate_params",
+    "CalibrationTarget": ".calibrate",
     "Descriptors": ".descriptors",
     "FractalFit": ".fractal",
     "IndentProtocol": ".indent",
@@ -105,7 +105,6 @@ _SUBMODULES = frozenset(
         "indent",
         "io",
         "islands",
-        "calibrate_params",
         "material",
         "params",
         "plausibility",
@@ -166,8 +165,7 @@ def __dir__() -> list[str]:
 if _TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerly
     from ._support.device import resolve_device  # after the kernels mapping above
     from .analysis import Analysis, analyze
-    from .calibrate import Calibration, CalibrationError, calibrate
-    from .calibrate_params import CalibrationTarget
+    from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
     from .contact.check import BemCheck, bem_check
     from .contact.curve import solve_contact
     from .contact.settings import SolverSettings

@@ -12,7 +12,6 @@
 ``provenance``     version, commit, command line, device and time of an output
 ``reduce``         device min/max reductions
 ``results``        helpers of result dataclasses (fields as columns, ``all_converged``)
-``root_find``      bracketing root finders of the calibration
 ``validate``       input checks whose messages name the parameter, value and range
 =================  ===========================================================================
 """

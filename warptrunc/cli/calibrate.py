@@ -16,7 +16,7 @@ import argparse
 
 from .._support.outputs import staged_output, strict_json
 from .._support.provenance import provenance
-from ..calibrate_params import CalibrationSettings, CalibrationTarget
+from ..calibrate.settings import CalibrationSettings, CalibrationTarget
 from ..params import add_options, from_args
 from ._common import (
     add_device,
@@ -71,7 +71,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def _target(args: argparse.Namespace, settings: CalibrationSettings) -> CalibrationTarget:
     """The targets: measured on FILE (when given), then those typed in."""
-    from ..calibrate import target_from_surface
+    from ..calibrate.api import target_from_surface
 
     s = read_scan(args)
     fixed = {"method": settings.method, "method_options": settings.method_options()}
@@ -91,7 +91,7 @@ def _target(args: argparse.Namespace, settings: CalibrationSettings) -> Calibrat
 
 def run(args: argparse.Namespace) -> int:
     """Calibrate and write the outputs."""
-    from ..calibrate import calibrate, calibrated_surface
+    from ..calibrate.api import calibrate, calibrated_surface
     from ..io import write_height_map
     from ..plausibility import check_dimensions
 

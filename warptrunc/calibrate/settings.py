@@ -16,10 +16,10 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
-from ._support.outputs import jsonable
-from .fractal.settings import METHODS, FractalSettings, height_options
-from .params import Parameters, check_fields, param, param_like
-from .wm_params import WMSpec
+from .._support.outputs import jsonable
+from ..fractal.settings import METHODS, FractalSettings, height_options
+from ..params import Parameters, check_fields, param, param_like
+from ..wm_params import WMSpec
 
 __all__ = ["CalibrationSettings", "CalibrationTarget"]
 

@@ -32,15 +32,15 @@ from typing import Any
 import numpy as np
 import warp as wp
 
-from ._support.docs import SHARED_DOCS, fill_doc
-from ._support.outputs import jsonable
-from ._support.progress import progress_bar
-from ._support.root_find import CalibrationError, find_root
-from .calibrate_params import CalibrationSettings, CalibrationTarget
-from .descriptors import roll_off_wavelength, surface_statistics
-from .fractal import fractal_dimension
-from .surface import Surface
-from .wm import wm_surface
+from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.outputs import jsonable
+from .._support.progress import progress_bar
+from ..descriptors import roll_off_wavelength, surface_statistics
+from ..fractal import fractal_dimension
+from ..surface import Surface
+from ..wm import wm_surface
+from .root_find import CalibrationError, find_root
+from .settings import CalibrationSettings, CalibrationTarget
 
 __all__ = [
     "Calibration",
@@ -240,7 +240,7 @@ def calibrate(
         (``max_iter``), the D-loop/R_t-loop rounds (``max_rounds``: a round is repeated only
         when D_out at R_t' leaves the tolerance, which happens for amplitude-dependent methods)
         and the WM inputs ``M``, ``gamma``, ``cutoff``
-        (:class:`~warptrunc.calibrate_params.CalibrationSettings`; its defaults when None; its
+        (:class:`~warptrunc.calibrate.settings.CalibrationSettings`; its defaults when None; its
         ``method``, ``height_scaling`` and output fields are not read here).
     progress : bool
         Report the evaluations on stderr (a bar on a terminal, a line per evaluation

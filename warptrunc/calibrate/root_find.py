@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The 1-D root finder of :func:`warptrunc.calibrate` (isotonic interpolation inside the bracket,
-secant extrapolation outside it) and its error type; moved verbatim from ``calibrate``.
+"""The 1-D root finder of the calibration's D loop (isotonic interpolation inside the bracket,
+secant extrapolation outside it) and its error type, :class:`CalibrationError`.
 """
 
 from __future__ import annotations
