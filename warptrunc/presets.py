@@ -1,6 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The paper's simulated surfaces of Table 1 as :class:`~warptrunc.WMSpec` presets.
+"""The paper's simulated surfaces of Table 1 as :class:`~warptrunc.WMSpec` presets, and the
+contact-mechanics challenge's surface and material (:data:`CHALLENGE`, :data:`CHALLENGE_MATERIAL`).
 
 ``TABLE1["GB300s"]`` is a :class:`~warptrunc.WMSpec` like any other: pass it to
 :func:`~warptrunc.wm_surface`, change a field with ``.replace(n=2048)``, or name it on the
@@ -101,10 +102,20 @@ from __future__ import annotations
 
 from types import MappingProxyType
 
+from .material import Material
 from .selfaffine import SelfAffineSpec
 from .wm_params import WMSpec
 
-__all__ = ["CALIBRATION", "PRESETS", "SELF_AFFINE", "TABLE1", "TABLE1_TRI", "preset"]
+__all__ = [
+    "CALIBRATION",
+    "CHALLENGE",
+    "CHALLENGE_MATERIAL",
+    "PRESETS",
+    "SELF_AFFINE",
+    "TABLE1",
+    "TABLE1_TRI",
+    "preset",
+]
 
 _SCAN_VS, _SCAN_TRI = 1e-3 / 1024, 1.024e-3 / 1024  # the calibration maps' pixels (m)
 _PAPER = {"L": 1e-3, "n": 10240, "M": 10}
@@ -333,3 +344,28 @@ a power law to the map's side), and the same content as the WM presets (short cu
 2 pixels of the calibration scan), 10240² over 1 mm. D_sp rather than D_vs: it is the dimension
 measured on the spectrum, the quantity this generator sets; the WM presets match D_vs (Fig. 6),
 which for the grit-blasted surfaces (D_vs ≈ 2.8, D_sp ≈ 2.28) describes a very different spectrum."""
+
+
+CHALLENGE = SelfAffineSpec(
+    hurst=0.8,
+    L=100e-6,
+    n=32768,
+    rolloff=20e-6,
+    short_cutoff=0.1e-6,
+    rms_slope=1.0,
+)
+"""The surface of the contact-mechanics challenge (Müser et al., Tribol. Lett. 65, 118 (2017),
+doi:10.1007/s11249-017-0900-2) as a :class:`~warptrunc.selfaffine.SelfAffineSpec` (SI units):
+periodic, L = 100 µm, Hurst H = 0.8, C(q) flat from the box (q_L = 2π/L) to the roll-off
+λ_r = 20 µm, a power law to the short cut-off λ_s = 0.1 µm, rms gradient h′_rms = 1, on the
+challenge's 32768² grid (3.05 nm pixels, λ_s ≈ 33 pixels). The values are read from the paper as
+remembered (λ_r, λ_s, H, h′_rms), not checked against its text here; the random phases are
+warptrunc's (seed 0), so this is a surface of the challenge's spectrum, not the challenge's own
+realisation (read that from its HDF5 file: :func:`warptrunc.compare.challenge.read_challenge_surface`).
+:func:`warptrunc.compare.challenge.challenge_spec` gives it on another grid (λ_s coarsened to 2
+pixels where the grid is coarser, the spectrum kept); :data:`CHALLENGE_MATERIAL` is its elastic
+body."""
+
+CHALLENGE_MATERIAL = Material(E=25e6, nu=0.0)
+"""The challenge's elastic body: contact modulus E* = 25 MPa against a rigid counter-body
+(E = 25 MPa, ν = 0, so that E/(1 − ν²) = E*; only E* enters the frictionless half-space problem)."""
