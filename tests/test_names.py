@@ -16,12 +16,20 @@ from warptrunc._support.public import public_modules
 def test_dir_is_the_public_api():
     """dir(warptrunc) = __all__ ∪ the public top-level modules: no Any, sys, importlib …"""
     top = {m.split(".")[1] for m in public_modules() if m.count(".") >= 1}
-    assert warptrunc._SUBMODULES == top | {"cli"}  # cli: public, documented by --help
-    assert set(dir(warptrunc)) == set(warptrunc.__all__) | warptrunc._SUBMODULES
-    for leaked in ("Any", "TYPE_CHECKING", "importlib", "sys", "types", "annotations"):
+    top |= {"cli"}  # cli: public, documented by --help
+    assert set(dir(warptrunc)) == set(warptrunc.__all__) | top
+    for leaked in ("Any", "TYPE_CHECKING", "importlib", "sys", "types", "annotations", "kernels"):
         assert leaked not in dir(warptrunc)
-    for name in warptrunc._SUBMODULES:  # each listed module is reachable
-        assert importlib.import_module(f"warptrunc.{name}") is not None
+    for name in top:  # each listed module is reachable as an attribute
+        assert getattr(warptrunc, name) is not None
+    with pytest.raises(AttributeError, match="no attribute '_support'"):
+        warptrunc.__getattr__("_support")  # an internal package is not served as a name
+
+
+def test_public_names_are_written_once():
+    """``__all__`` is the export mapping's keys: the package names each public name once."""
+    assert warptrunc.__all__ == sorted(warptrunc._EXPORTS)
+    assert "TYPE_CHECKING" not in vars(warptrunc)
 
 
 @pytest.mark.parametrize(

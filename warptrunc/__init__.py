@@ -34,17 +34,24 @@ label :func:`label_islands`, fit :func:`fit_power_law`, solve a contact :func:`s
 ``import warptrunc`` is light: every public name (and subpackage) is imported on first use
 (PEP 562), so ``import warptrunc`` and ``warptrunc --help`` load neither Warp nor NumPy; the
 first computing call loads Warp, plotting and rendering load matplotlib and pyvista.
+
+The public names are written once, in ``_EXPORTS`` (name → the module that defines it):
+``__all__``, ``dir()`` and attribute access all come from it
+(:func:`warptrunc._support.exports.lazy_exports`); the public subpackages and modules are
+those of the package's folder. Type checkers see the names through the module
+``__getattr__`` (typed ``Any``); import from the defining module for precise types.
 """
 
-import importlib as _importlib
 import sys as _sys
 import types as _types
-from typing import TYPE_CHECKING as _TYPE_CHECKING
 from typing import Any as _Any
 
 from ._support.checkout import map_source_kernels as _map_source_kernels
 
 _map_source_kernels(__name__, __path__)
+
+from ._support.exports import lazy_exports as _lazy_exports
+from ._support.provenance import __version__  # noqa: F401 (re-exported)
 
 _EXPORTS = {
     "Analysis": ".analysis",
@@ -91,59 +98,18 @@ _EXPORTS = {
     "wm_surface": ".wm",
     "write_height_map": ".io",
 }
-"""Public name → the module that defines it (imported on first access, PEP 562)."""
+"""Public name → the module that defines it (imported on first access, PEP 562): the one list
+of the package's face."""
 
-_SUBMODULES = frozenset(
-    {
-        "analysis",
-        "calibrate",
-        "cli",
-        "compare",
-        "contact",
-        "descriptors",
-        "fractal",
-        "indent",
-        "io",
-        "islands",
-        "material",
-        "params",
-        "plausibility",
-        "plot",
-        "presets",
-        "render",
-        "reproduce",
-        "robust",
-        "spectra",
-        "stiffness",
-        "surface",
-        "sweep",
-        "theory",
-        "truncation",
-        "wm",
-        "wm_params",
-    }
-)
-"""The public subpackages and modules (``warptrunc.<name>``): with ``__all__``, all that
-``dir(warptrunc)`` lists."""
-
-
-def __getattr__(name: str) -> _Any:
-    """Import a public name (or a subpackage) on first access."""
-    if name in _EXPORTS:
-        value = getattr(_importlib.import_module(_EXPORTS[name], __name__), name)
-    elif name in _SUBMODULES:
-        value = _importlib.import_module(f".{name}", __name__)
-    else:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    globals()[name] = value
-    return value
+__all__, __getattr__, __dir__ = _lazy_exports(__name__, _EXPORTS, submodules=True, hide={"kernels"})
 
 
 class _Package(_types.ModuleType):
-    """The package module: keeps a public function that shares its module's name.
+    """The package module: keeps a public function that shares its subpackage's name.
 
     The import system binds every imported submodule as an attribute of its package; for
-    ``calibrate`` (function of module ``warptrunc.calibrate``) the function must stay bound.
+    ``calibrate`` and ``indent`` (functions of the packages ``warptrunc.calibrate`` and
+    ``warptrunc.indent``) the function must stay bound.
     """
 
     def __setattr__(self, name: str, value: _Any) -> None:
@@ -155,85 +121,3 @@ class _Package(_types.ModuleType):
 
 
 _sys.modules[__name__].__class__ = _Package
-
-
-def __dir__() -> list[str]:
-    """The public API: ``__all__`` and the public subpackages and modules, nothing else."""
-    return sorted(set(__all__) | _SUBMODULES)
-
-
-if _TYPE_CHECKING:  # for type checkers and IDEs: the same names, imported eagerly
-    from ._support.device import resolve_device  # after the kernels mapping above
-    from .analysis import Analysis, analyze
-    from .calibrate import Calibration, CalibrationError, CalibrationTarget, calibrate
-    from .contact.check import BemCheck, bem_check
-    from .contact.curve import solve_contact
-    from .contact.settings import SolverSettings
-    from .descriptors import Descriptors, describe
-    from .fractal import FractalFit, fractal_dimension, fractal_dimensions
-    from .indent import IndentationResult, IndentProtocol, indent
-    from .io import read_height_map, write_height_map
-    from .io.vtk import export_vtk
-    from .islands import (
-        Indicators,
-        IslandCurve,
-        Islands,
-        applicable_depth,
-        island_curve,
-        label_islands,
-    )
-    from .material import Material
-    from .presets import TABLE1, preset
-    from .stiffness import PowerLawFit, StiffnessCurve, fit_power_law, stiffness_curve
-    from .surface import Surface, from_heights
-    from .truncation import TruncationCurve, contact_index_map, depth_grid, truncate
-    from .wm import wm_surface
-    from .wm_params import WMSpec
-
-from ._support.provenance import __version__  # noqa: E402, F401 (re-exported)
-
-__all__ = [
-    "Analysis",
-    "BemCheck",
-    "Calibration",
-    "CalibrationError",
-    "CalibrationTarget",
-    "Descriptors",
-    "FractalFit",
-    "IndentProtocol",
-    "IndentationResult",
-    "Indicators",
-    "IslandCurve",
-    "Islands",
-    "Material",
-    "PowerLawFit",
-    "SolverSettings",
-    "StiffnessCurve",
-    "Surface",
-    "TABLE1",
-    "TruncationCurve",
-    "WMSpec",
-    "analyze",
-    "applicable_depth",
-    "bem_check",
-    "calibrate",
-    "contact_index_map",
-    "depth_grid",
-    "describe",
-    "export_vtk",
-    "fit_power_law",
-    "fractal_dimension",
-    "fractal_dimensions",
-    "from_heights",
-    "indent",
-    "island_curve",
-    "label_islands",
-    "preset",
-    "read_height_map",
-    "resolve_device",
-    "solve_contact",
-    "stiffness_curve",
-    "truncate",
-    "wm_surface",
-    "write_height_map",
-]
