@@ -205,9 +205,11 @@ def _main(argv: list[str]) -> int:
 
     if getattr(args, "verbose", False):
         os.environ["WARPTRUNC_VERBOSE"] = "1"  # read by warptrunc._support.device.is_verbose
+    from .._support.progress import silence_progress
     from .._support.provenance import set_command
 
     set_command(["warptrunc", *argv])  # the command line in every output's provenance
+    silence_progress(getattr(args, "no_progress", False))  # every report of the command
     try:
         return int(args._run(args) or 0)
     except (ValueError, MemoryError, OSError, OverflowError, RecursionError) as exc:
@@ -229,6 +231,7 @@ def _main(argv: list[str]) -> int:
         return _end_spread(EXIT_INTERNAL_ERROR, exc)
     finally:
         set_command(None)
+        silence_progress(False)
 
 
 def _xla_out_of_memory(exc: BaseException) -> MemoryError | None:

@@ -408,18 +408,15 @@ def add_run_outputs(p: argparse.ArgumentParser, out: str, plot_help: str) -> Non
 
 
 def add_no_progress(p: Any) -> None:
-    """``--no-progress``."""
+    """``--no-progress``: silence the progress report (:mod:`warptrunc._support.progress`),
+    which every long command writes on stderr."""
     shared_option(
         p,
         "--no-progress",
         action="store_true",
-        help="no progress bar (it is on stderr, and off when stderr is not a terminal)",
+        help="no progress report on stderr (default: a bar on a terminal, else a line every "
+        "few seconds)",
     )
-
-
-def add_progress(p: Any) -> None:
-    """``--progress`` (a progress bar, off by default: for commands whose bar is short)."""
-    shared_option(p, "--progress", action="store_true", help="show a progress bar (on stderr)")
 
 
 def add_output_file(p: Any, default: str, what: str) -> None:
@@ -859,7 +856,9 @@ def wm_spec_from_args(args: argparse.Namespace, defaults: dict | None = None) ->
     base = dict(defaults or {})
     name = getattr(args, "preset", None)
     if name is not None and name not in PRESETS:
-        raise ValueError(f"--preset {name} is a self-affine surface: use it with --surface self-affine")
+        raise ValueError(
+            f"--preset {name} is a self-affine surface: use it with --surface self-affine"
+        )
     if name is not None:
         base.update(PRESETS[name].to_dict() | {"L": PRESETS[name].L, "n": PRESETS[name].n})
     over = {"Rt": None} if getattr(args, "G", None) is not None else {}

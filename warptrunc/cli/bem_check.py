@@ -120,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
         truncation=truncation,
         material=material,
         settings=settings,
-        progress=not args.no_progress and sys.stderr.isatty(),
+        progress=not args.no_progress,
         device=args.device,
         devices=args.devices,
     )

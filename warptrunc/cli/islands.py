@@ -26,8 +26,8 @@ from ..truncation.settings import TruncationSettings
 from ._common import (
     add_device,
     add_no_plot,
+    add_no_progress,
     add_out,
-    add_progress,
     add_surface_source,
     add_warnings,
     surface_from_args,
@@ -58,7 +58,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_device(p)
     add_out(p)
     add_no_plot(p, "the PNGs")
-    add_progress(p)
+    add_no_progress(p)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -71,7 +71,11 @@ def run(args: argparse.Namespace) -> int:
     indicators = from_args(IndicatorSettings, args)
     s = surface_from_args(args)
     curve = island_curve(
-        s, truncation=truncation, settings=settings, progress=args.progress, device=args.device
+        s,
+        truncation=truncation,
+        settings=settings,
+        progress=not args.no_progress,
+        device=args.device,
     )
     ind = applicable_depth(curve, indicators)
     if math.isfinite(ind.plateau_exponent):  # D = 2β + 1 of the slit-island plateau

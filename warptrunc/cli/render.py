@@ -23,6 +23,7 @@ from ..truncation.settings import TruncationSettings
 from ._common import (
     add_device,
     add_file_in_out,
+    add_no_progress,
     add_out,
     add_surface_source,
     surface_from_args,
@@ -70,6 +71,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     add_device(p)
     add_out(p)
+    add_no_progress(p)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -127,7 +129,12 @@ def _render(s, args: argparse.Namespace, out, picture, animation, vtk):
         info = {"picture": r.to_dict()}
         if args.animate:
             a = render.animate_truncation(
-                s, out / args.animate, settings=picture, animation=animation, device=args.device
+                s,
+                out / args.animate,
+                settings=picture,
+                animation=animation,
+                progress=not args.no_progress,
+                device=args.device,
             )
             written.append(a.path)
             info["animation"] = a.to_dict()

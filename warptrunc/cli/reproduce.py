@@ -20,6 +20,7 @@ from ..sweep.read import require_extra
 from ._common import (
     add_commit,
     add_device,
+    add_no_progress,
     add_out,
     add_overwrite,
     add_profile,
@@ -48,6 +49,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "the same tasks (workers one per GPU, on a filesystem shared with --out)",
     )
     add_device(p)
+    add_no_progress(p)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -213,7 +213,7 @@ def compare_models(
         (:class:`~warptrunc.contact.SolverSettings`; default ``SolverSettings()``, the free
         half-space).
     progress : bool
-        tqdm bar over the elastic solves.
+        Report the elastic solves on stderr (a bar on a terminal, else lines).
     device : str, optional
         Warp device of all three routes.
     devices : int, "auto" or list, optional

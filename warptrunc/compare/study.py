@@ -190,7 +190,7 @@ def compare_study(
     overwrite : bool
         Replace a store made with other settings (its case files are deleted).
     progress : bool
-        tqdm bar over the cases.
+        Report the cases on stderr (a bar on a terminal, else lines).
     {warp_device}
     client : distributed.Client, optional
         Run the cases as tasks of this Dask cluster (one per case, the largest maps first),

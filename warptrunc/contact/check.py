@@ -264,7 +264,7 @@ def bem_check(
         convention while F against A_BEM does not. The absolute force tolerance is
         ``pressure_tol·E*·dx·dy`` (N); ``pentol`` None: rms height/(10·mean n).
     progress : bool
-        Show a tqdm progress bar over the solves (stderr).
+        Report the solves on stderr (a bar on a terminal, else lines).
     device : str, optional
         Warp device for the truncation part and warptrunc's solver.
     devices : int, "auto" or list, optional

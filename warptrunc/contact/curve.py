@@ -64,7 +64,7 @@ def solve_contact(
         whether the pressure and gap maps are kept (:class:`~warptrunc.contact.CurveSettings`;
         default ``CurveSettings()``: Barber, no maps).
     progress : bool
-        tqdm bar over the rows (stderr).
+        Report the rows on stderr (a bar on a terminal, else lines).
     {warp_device_obj}
     devices : int, "auto" or list, optional
         Spread the solver over several devices (``ContactSolver(..., devices=...)``,
@@ -91,7 +91,7 @@ def solve_contact(
     .. [1] I.A. Polonsky, L.M. Keer, Wear 231, 206 (1999). doi:10.1016/S0043-1648(99)00113-1
     .. [2] J.R. Barber, Proc. R. Soc. A 459, 53 (2003). doi:10.1098/rspa.2002.1038
     """
-    from tqdm.auto import tqdm
+    from .._support.progress import progress_bar
 
     if hasattr(heights, "heights") and hasattr(heights, "dx"):
         if pixel_size is None:
@@ -130,7 +130,7 @@ def solve_contact(
     substrate, dtype = settings.substrate, settings.dtype
     rows: list[dict[str, Any]] = []
     p_maps, g_maps = [], []
-    for v in tqdm(values, desc="contact solves", unit="solve", disable=not progress):
+    for v in progress_bar(values, desc="contact solves", unit="solve", enabled=progress):
         t0 = time.perf_counter()
         if stiffness == "central":
             lo = solver.solve(**{key: v * (1 - fd_step)})

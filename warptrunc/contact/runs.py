@@ -44,7 +44,7 @@ RUN_DOCS = {
         "and ``maxiter``.\n"
         "check : BemCheckSettings\n    Its ``stiffness`` and ``fd_step`` (the relative step h of "
         "the central difference, dimensionless).\n"
-        "progress : bool\n    Show a tqdm progress bar over the solves."
+        "progress : bool\n    Report the solves on stderr (a bar on a terminal, else lines)."
     ),
 }
 """Parameter text of both solvers' runs, written once (:func:`fill_doc`)."""
@@ -189,7 +189,7 @@ def run_contactmechanics(
     The substrate is ``FreeFFTElasticHalfSpace`` or ``PeriodicFFTElasticHalfSpace``; the
     stiffness is always the central difference (``check.stiffness`` is not read).
     """
-    from tqdm.auto import tqdm  # `import warptrunc` stays light
+    from .._support.progress import progress_bar
 
     Free, Periodic, System, Topography = require_bem()
     contact_modulus, substrate = material.contact_modulus, settings.substrate
@@ -229,7 +229,7 @@ def run_contactmechanics(
         }
         return float(f.sum()), info, f
 
-    bar = tqdm(total=3 * m, desc="BEM solves", unit="solve", disable=not progress)
+    bar = progress_bar(total=3 * m, desc="BEM solves", unit="solve", enabled=progress)
     for i, delta in enumerate(d):
         t0 = time.perf_counter()
         lo, i_lo, _ = solve(delta * (1 - fd_step))
@@ -311,7 +311,7 @@ def run_warptrunc(
     solve and one linear solve per row). The other fields of ``settings`` (``dtype``, ...) are
     the solver's; its ``pentol`` None is replaced by :func:`pentol_or_default`'s default.
     """
-    from tqdm.auto import tqdm  # `import warptrunc` stays light
+    from .._support.progress import progress_bar
 
     stiffness, fd_step, dtype = check.stiffness, check.fd_step, settings.dtype
     pentol, pentol_note = pentol_or_default(surface.heights, settings.pentol)
@@ -328,7 +328,7 @@ def run_warptrunc(
     out, conv, nit, edge = _run_columns(m)
     solves: list[dict[str, Any]] = []
     per_row = 3 if stiffness == "central" else 1
-    bar = tqdm(total=per_row * m, desc="BEM solves", unit="solve", disable=not progress)
+    bar = progress_bar(total=per_row * m, desc="BEM solves", unit="solve", enabled=progress)
 
     def solve(delta: float) -> ContactState:
         info = solver.solve(delta)

@@ -205,7 +205,7 @@ def island_curve(
         perimeter is kept in ``sizes`` (:class:`~warptrunc.islands.settings.IslandSettings`;
         its defaults when None).
     progress : bool
-        Show a tqdm progress bar over the increments.
+        Report the increments on stderr (a bar on a terminal, else lines).
     {device}
 
     Returns

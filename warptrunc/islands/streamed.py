@@ -263,7 +263,7 @@ def streamed_islands(
     device : str, optional
         Warp device; see :func:`warptrunc.resolve_device`.
     progress : bool
-        Show tqdm progress bars over the bands.
+        Report the bands on stderr (a bar on a terminal, else lines).
 
     Returns
     -------

@@ -31,6 +31,7 @@ import numpy as np
 import warp as wp
 
 from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.progress import progress_bar
 from ..plot.pooling import (
     block_contact,
     check_depths,
@@ -272,6 +273,7 @@ def animate_truncation(
     *,
     settings: RenderSettings | None = None,
     animation: AnimationSettings | None = None,
+    progress: bool = True,
     device: wp.DeviceLike = None,
 ) -> Rendering:
     """Animate the truncation deepening from ω = 0 to ``max_depth_fraction``·R_t.
@@ -292,6 +294,8 @@ def animate_truncation(
         :func:`warptrunc.truncate`'s 0.1: a picture shows the contact spreading), the number of
         frames (≥ 2, depths equally spaced from 0), frames per second and the frame size
         (:class:`~warptrunc.render.settings.AnimationSettings`; its defaults when None).
+    progress : bool
+        Report the frames on stderr (a bar on a terminal, else a line every few seconds).
     device : str, optional
         Warp device for the contact index; see :func:`warptrunc.resolve_device`.
 
@@ -330,46 +334,58 @@ def animate_truncation(
         if vertical_exaggeration is None
         else float(vertical_exaggeration)
     )
-    depth = np.linspace(0.0, max_depth_fraction, n) * surface.Rt
-    blocks, frac = block_contact(surface, depth, f, check_pooling(pooling), device)
-    scene = Scene(surface, f, ve)
-    caption = caption_text(surface, f, scene.shape, ve, pooling)
-    strip, fs = caption_strip(caption, w)
-    strip = min(strip, h // 3)
-    Rt = surface.Rt
-    with vtk_quiet():
-        panel = Panel(
-            scene, (w, h - strip), top_view=top_view, lighting=not top_view, annotate=True, ve=ve
-        )
-        try:
-            frames = [
-                with_caption(
-                    panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i])), caption, strip, fs
-                )
-                for i in range(n)
-            ]
-        finally:
-            panel.close()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if suffix == ".gif":
-        from PIL import Image
+    bar = progress_bar(total=n + 1, desc="animation", unit="frame", enabled=progress)
+    try:
+        bar.set_postfix_str("contact of every frame")
+        depth = np.linspace(0.0, max_depth_fraction, n) * surface.Rt
+        blocks, frac = block_contact(surface, depth, f, check_pooling(pooling), device)
+        scene = Scene(surface, f, ve)
+        caption = caption_text(surface, f, scene.shape, ve, pooling)
+        strip, fs = caption_strip(caption, w)
+        strip = min(strip, h // 3)
+        Rt = surface.Rt
+        with vtk_quiet():
+            panel = Panel(
+                scene,
+                (w, h - strip),
+                top_view=top_view,
+                lighting=not top_view,
+                annotate=True,
+                ve=ve,
+            )
+            bar.set_postfix_str("")
+            frames = []
+            try:
+                for i in range(n):
+                    image = panel.frame(blocks[i], depth_title(depth[i], Rt, frac[i]))
+                    frames.append(with_caption(image, caption, strip, fs))
+                    bar.update()
+            finally:
+                panel.close()
+            bar.set_postfix_str(f"writing {path.name}")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        if suffix == ".gif":
+            from PIL import Image
 
-        ims = [Image.fromarray(fr) for fr in frames]
-        ims[0].save(
-            path,
-            save_all=True,
-            append_images=ims[1:],
-            duration=round(1000 / fps),
-            loop=0,
-            comment=caption.encode(),
-        )
-    else:
-        writer = imageio.get_writer(path, fps=fps)
-        try:
-            for fr in frames:
-                writer.append_data(fr)
-        finally:
-            writer.close()
+            ims = [Image.fromarray(fr) for fr in frames]
+            ims[0].save(
+                path,
+                save_all=True,
+                append_images=ims[1:],
+                duration=round(1000 / fps),
+                loop=0,
+                comment=caption.encode(),
+            )
+        else:
+            writer = imageio.get_writer(path, fps=fps)
+            try:
+                for fr in frames:
+                    writer.append_data(fr)
+            finally:
+                writer.close()
+        bar.update()
+    finally:
+        bar.close()
     return _rendering(
         path, frames[-1], depth, frac, f, pooling, scene, surface, ve, top_view, caption
     )

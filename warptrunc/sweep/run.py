@@ -81,7 +81,8 @@ def run_sweep(
     retry_failed : bool
         Run again the cases that the store records as failed.
     progress : bool
-        tqdm progress bar (every engine).
+        Report the cases on stderr (every engine): a bar on a terminal, else a line every
+        few seconds.
     device : str, optional
         Warp device for every case; default ``$WARPTRUNC_DEVICE``, else CUDA when present
         (per-worker pinning with ``workers``).

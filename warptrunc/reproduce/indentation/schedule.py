@@ -108,6 +108,7 @@ class Plan:
         self.stieces: dict[PieceKey, dict[str, Any] | None] = {}  # planned piece → record or None
         self.starts: dict[Part, dict[str, Any]] = {}  # finished parts of unfinished pieces
         self.stats_done: set[str] = set()
+        self.extra_parts = 0  # runs outside the pieces (the resolution check), for the total
         for s in st.surfaces:
             for h in self.sweep:
                 self._plan((s, "sweep", h, None))
@@ -264,6 +265,34 @@ class Plan:
         """
         return sum(r is not None for r in self.stieces.values()), len(self.stieces)
 
+    def parts_left(self) -> int:
+        """Parts of the planned pieces not done yet, and :attr:`extra_parts`: the total of the
+        progress report (it grows when a surface's sweep plans its depth-match pieces).
+
+        Returns
+        -------
+        int
+            Parts still to run.
+        """
+        left = sum(
+            not self.done(q)
+            for key, rec in self.stieces.items()
+            if rec is None
+            for q in parts_of(self.st, *key)
+        )
+        return left + self.extra_parts
+
+    def count(self, bar: Any) -> None:
+        """One part done on ``bar``, whose total follows :meth:`parts_left`.
+
+        Parameters
+        ----------
+        bar : progress report
+            :func:`warptrunc._support.progress.progress_bar`.
+        """
+        bar.update()
+        bar.total = max(bar.total or 0, bar.n + self.parts_left())
+
     def records(self) -> list[tuple[tuple[str, str, float], dict[str, Any]]]:
         """The stored pieces in the canonical order, keyed as the summary reads them.
 
@@ -331,7 +360,7 @@ def run_in_process(plan: Plan, *, device, stop, bar) -> None:
         stop(part.label())
         rec = compute_part(plan.st, part, str(plan.store), device, plan.reuse_rows(part))
         plan.finish(part, rec)
-        bar.update()
+        plan.count(bar)
 
 
 def run_on_cluster(
@@ -410,6 +439,6 @@ def run_on_cluster(
                 ) from exc
         if rec is not None:
             plan.finish(part, rec)
-            bar.update()
+            plan.count(bar)
         on_time = submit() and on_time
     return on_time and plan.complete()

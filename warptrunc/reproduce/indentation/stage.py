@@ -139,7 +139,10 @@ def stage_indentation(
     res_rec = load_piece(rpath, ref, overwrite) if ref is not None else None
     n_parts = len(parts_of(st, st.surfaces[0], "sweep", math.inf))
     n_plan = len(st.surfaces) * (len(plan.sweep) + len(st.stats)) + len(face_variants(st))
-    bar = progress_bar(total=None, desc="indentation parts", unit="part", enabled=progress)
+    plan.extra_parts = int(ref is not None and res_rec is None)
+    bar = progress_bar(
+        total=plan.parts_left(), desc="indentation parts", unit="part", enabled=progress
+    )
 
     def incomplete(what: str) -> StageIncomplete:
         have, _ = plan.n_pieces()
@@ -178,6 +181,7 @@ def stage_indentation(
                 _run_resolution(st, ref, device) if res_future is None else res_future.result()
             )
             write_atomic(rpath, json.dumps(res_rec, indent=None, allow_nan=False) + "\n")
+            plan.extra_parts = 0
             bar.update()
     return summary_from_pieces(st, plan.records(), res_rec)
 
