@@ -8,9 +8,10 @@ import math
 
 import numpy as np
 
-HEIGHT_LIMIT_M = float(np.finfo(np.float32).max) / 4
-"""Largest height magnitude (m) a map may hold: float32 heights (on the device) and their
-differences stay finite up to a quarter of the float32 maximum (about 8.5·10³⁷)."""
+HEIGHT_LIMIT_M = 1e37
+"""Largest height magnitude (m) a map may hold: a round bound below a quarter of the float32
+maximum (3.4·10³⁸/4 = 8.5·10³⁷), up to which float32 heights (on the device) and their
+differences stay finite; the ranges of R_t say ``(0, 1e+37] m``."""
 
 DEFAULT_MIN_PIXELS = 10
 """Default fit range: increments with at least this many contact pixels (see README, "Fit
