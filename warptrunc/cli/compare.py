@@ -8,9 +8,11 @@ warptrunc's elastic solver (free half-space, Barber stiffness), with the ratios 
 solution and α of k ∝ F^α by the three routes.
 
 On your own map (--input FILE), or on a study of WM surfaces: D (--D), map size L/W_r at a fixed
-pixel size (--size-ratios, --pixels-per-wr: size effect), the pixel size halved once at
---refine-ratio (grid convergence on the same surface), --seeds (a list: 0-2, 0,3,7); or exactly the ``elastic`` stage
-of a reproduce profile (--profile tiny|quick|paper), which also writes the report section.
+pixel size (--size-ratios, --pixels-per-wr: size effect; the sizes listed are the sizes run),
+the pixel size halved once more at --refine-ratio, one of the sizes (default 10; none: no
+refined grid; grid convergence on the same surface), --seeds (a list: 0-2, 0,3,7); or exactly
+the ``elastic`` stage of a reproduce profile (--profile tiny|quick|paper), which also writes
+the report section.
 
 Writes into OUT: study.json (the settings, strict JSON) and cases/<case_id>.parquet (one row
 per approach, SI units in the column names; a rerun skips the cases already there, so an
@@ -121,6 +123,8 @@ def run(args: argparse.Namespace) -> int:
         material = Material()
     elif args.input is not None:
         study = MapStudy(read_input(args.input, args), fractions=design.fractions)
+    if isinstance(study, StudyDesign):
+        print(_design_line(study))
     out: Path = args.out
     rows = compare_study(
         out,
@@ -186,6 +190,25 @@ def run(args: argparse.Namespace) -> int:
     _print_summary(s, rows, not wm)
     print(f"wrote {out}/: " + ", ".join(files))
     return 0
+
+
+def _design_line(d: StudyDesign) -> str:
+    """The study's grids in one line: the sizes listed, and the one refined grid as its own,
+    stated choice."""
+    from ..compare.study import study_cases
+
+    sizes = " ".join(f"{r:g}" for r in d.size_ratios)
+    refine = (
+        "no refined grid (--refine-ratio none)"
+        if d.refine_ratio is None
+        else f"and L/W_r = {d.refine_ratio:g} once more at dx = W_r/{2 * d.pixels_per_Wr} "
+        "(--refine-ratio: grid convergence)"
+    )
+    return (
+        f"study: D {' '.join(f'{x:g}' for x in d.D)} × L/W_r {sizes} at dx = "
+        f"W_r/{d.pixels_per_Wr}, {refine}; seeds {' '.join(map(str, d.seeds))}: "
+        f"{len(study_cases(d))} maps"
+    )
 
 
 def _print_summary(s, rows, single: bool) -> None:

@@ -11,6 +11,7 @@ command-line parser imports this module.
 from __future__ import annotations
 
 import itertools
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -46,8 +47,8 @@ class StudyDesign(Parameters):
 
     Every case has n = L/W_r × ``pixels_per_Wr`` pixels a side, so the pixel size
     dx = W_r/``pixels_per_Wr`` is the same in every size (size effect); at L/W_r =
-    ``refine_ratio`` the same surface (same phases, same cut-off W_c) is sampled once more
-    with half that pixel (grid convergence: the change measures each route's discretisation
+    ``refine_ratio``, one of ``size_ratios``, the same surface (same phases, same cut-off
+    W_c) is sampled once more with half that pixel (grid convergence: the change measures each route's discretisation
     error, not added roughness). The cut-off W_c is the Nyquist wavelength of the base grid,
     2·W_r/``pixels_per_Wr``, in every case; R_t = ``Rt_over_Wr``·W_r.
 
@@ -77,8 +78,8 @@ class StudyDesign(Parameters):
     )
     refine_ratio: float | None = param(
         10.0,
-        "L/W_r at which the pixel size is halved once (grid convergence on the same "
-        "surface); none = never",
+        "one of the size ratios, at which the pixel size is halved once more (grid "
+        "convergence on the same surface: one more grid of that size); none = never",
         gt=0.0,
         optional=True,
         sweep=False,
@@ -105,6 +106,14 @@ class StudyDesign(Parameters):
     def __post_init__(self) -> None:
         check_fields(self)
         _check_increasing(self)
+        r = self.refine_ratio
+        if r is not None and not any(math.isclose(r, x, rel_tol=1e-9) for x in self.size_ratios):
+            sizes = " ".join(f"{x:g}" for x in self.size_ratios)
+            raise ValueError(
+                f"refine_ratio {r:g} is not one of the size ratios ({sizes}): the pixel is "
+                f"halved once more at one of the sizes the study runs; give one of them, none "
+                f"(no refined grid), or add {r:g} to the size ratios"
+            )
 
 
 @dataclass(frozen=True)
