@@ -20,6 +20,7 @@ COMMANDS = {
     "analyze",
     "bem-check",
     "calibrate",
+    "challenge",
     "compare",
     "describe",
     "generate",

@@ -78,6 +78,12 @@ def _check_indentation(out: Path) -> None:
     assert _json(out / "indent.json")["fits"]["truncation"]["alpha"] > 0
 
 
+def _check_challenge(out: Path) -> None:
+    doc = _json(out / "challenge.json")
+    assert doc["grid_study"]["n"] == [128, 256]
+    assert doc["kappa"]["bem"] > doc["kappa"]["persson_limit"]
+
+
 def _check_stream(out: Path) -> None:
     assert _json(out / "stream_islands.json")["equal_to_in_memory"] is True
 
@@ -94,6 +100,9 @@ EXAMPLES: dict[str, Example] = {
             "psd.png",
         ),
         check=_check_calibrate,
+    ),
+    "contact_challenge": Example(
+        outputs=("challenge.json", "challenge.png"), check=_check_challenge
     ),
     "contact_islands": Example(
         outputs=("islands_seed0.csv", "summary.json", "island_number.png", "slit_islands.png"),
