@@ -34,8 +34,8 @@ if len(jax.devices("cpu")) < 2:
 
 from warptrunc.contact import ContactSolver, SolverSettings, influence_spectrum  # noqa: E402
 from warptrunc.contact.sharded import ShardedContactSolver  # noqa: E402
-from warptrunc.contact.sharded.devices import devices_needed  # noqa: E402
 from warptrunc.contact.sharded.fft import slab_layout  # noqa: E402
+from warptrunc.contact.sharded.grid import devices_needed  # noqa: E402
 
 pytestmark = pytest.mark.timeout(300)
 

@@ -35,12 +35,12 @@ import numpy as np
 import warp as wp
 from _common import git_commit
 from benchmark_solver_scaling import COLD, E_STAR, WARM, fft_floor
+from warptrunc.kernels.contact import bccg as _kb
+from warptrunc.kernels.contact import bccg_device as _kl
+from warptrunc.kernels.contact import cg as _k
 
 import warptrunc
 from warptrunc.contact import ContactSolver, SolverSettings
-from warptrunc.kernels.contact import cg as _k
-from warptrunc.kernels.contact import bccg as _kb
-from warptrunc.kernels.contact import bccg_device as _kl
 from warptrunc.wm import wm_surface
 
 

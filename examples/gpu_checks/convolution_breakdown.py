@@ -48,7 +48,6 @@ def timed(fn, dev, repeats):
 
 def phases(hs, buf, dev, repeats):
     import cupy
-
     from warptrunc.kernels.contact import spectral as _kr
 
     spec = hs.work

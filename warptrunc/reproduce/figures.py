@@ -1,8 +1,8 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """The figures of ``warptrunc reproduce`` (PNG) from the stage results and analysis: Fig. 2, 5,
-7, 8, 9, 10, the fit-range map, and those of the ``elastic`` and ``indentation`` stages; and the
-figure helpers the stages' own figures share (:func:`new_figure`, :func:`save_figure`)."""
+7, 8, 9, 10, the fit-range map, and those of the ``elastic`` and ``indentation`` stages (drawn
+with the helpers of :mod:`.style`)."""
 
 from __future__ import annotations
 
@@ -14,8 +14,9 @@ import numpy as np
 from ..truncation.curve import contact_index_map
 from ..wm import wm_surface
 from .analysis import D_KEYS
+from .style import new_figure, save_figure
 
-__all__ = ["D_LABELS", "fig_fit_range", "figures", "new_figure", "save_figure"]
+__all__ = ["D_LABELS", "fig_fit_range", "figures"]
 
 
 D_LABELS = {
@@ -25,50 +26,6 @@ D_LABELS = {
     "vs": "D$_{vs}$",
     "sp": "D$_{sp}$",
 }
-
-
-def new_figure(ncols: int = 1, nrows: int = 1, w: float = 5.2, h: float = 4.0):
-    """A matplotlib figure of ``nrows`` × ``ncols`` panels (no pyplot, constrained layout).
-
-    Parameters
-    ----------
-    ncols, nrows : int
-        Panels per row and rows.
-    w, h : float
-        Size of one panel (inches).
-
-    Returns
-    -------
-    fig : matplotlib.figure.Figure
-    axes : ndarray of Axes
-        The panels, row by row.
-    """
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(w * ncols, h * nrows), layout="constrained")
-    axs = fig.subplots(nrows, ncols, squeeze=False)
-    return fig, axs.ravel()
-
-
-def save_figure(fig: Any, out: Path, name: str) -> str:
-    """Write ``fig`` as ``out/name`` (PNG, 110 dpi).
-
-    Parameters
-    ----------
-    fig : matplotlib.figure.Figure
-        The figure.
-    out : Path
-        Output folder.
-    name : str
-        File name.
-
-    Returns
-    -------
-    str
-        ``name``.
-    """
-    fig.savefig(out / name, dpi=110)
-    return name
 
 
 def fig2(res, out) -> str:

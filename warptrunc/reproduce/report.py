@@ -13,32 +13,15 @@ import numpy as np
 
 from .analysis import D_KEYS
 from .profiles import PAPER_DEPARTURES
+from .style import fmt_value
 
 __all__ = [
     "departure_lines",
     "fig2_model_lines",
     "fit_range_lines",
-    "fmt_value",
     "markdown",
     "slit_band_lines",
 ]
-
-
-def fmt_value(v: Any, fmt: str = ".3f") -> str:
-    """A number for a table cell: ``format(v, fmt)``, or "—" for None, NaN and ±inf.
-
-    Parameters
-    ----------
-    v : float or None
-        The value.
-    fmt : str
-        Format specification.
-
-    Returns
-    -------
-    str
-    """
-    return "—" if v is None or (isinstance(v, float) and not math.isfinite(v)) else format(v, fmt)
 
 
 def _dev(ours, paper, fmt=".3f"):

@@ -47,8 +47,8 @@ from typing import Any
 
 import warp as wp
 
-from ...kernels.contact import cg as _k
 from ...kernels.contact import bccg as _kb
+from ...kernels.contact import cg as _k
 from ...kernels.contact import spectral as _kr
 
 __all__ = ["BCCGSolves"]

@@ -14,12 +14,11 @@ from typing import Any
 import numpy as np
 
 from ..._support.docs import fill_doc
-from .grid import SHARDED_DOCS, import_jax, sharded_memory_bytes
+from .grid import SHARDED_DOCS, devices_needed, import_jax, sharded_memory_bytes
 
 __all__ = [
     "check_fits",
     "choose_devices",
-    "devices_needed",
     "out_of_memory",
     "single_device",
     "solver_class",
@@ -124,35 +123,6 @@ def _free_bytes(device: Any) -> int | None:
     if not stats or "bytes_limit" not in stats:
         return None
     return int(stats["bytes_limit"]) - int(stats.get("bytes_in_use", 0))
-
-
-@fill_doc(SHARDED_DOCS)
-def devices_needed(
-    shape: tuple[int, int], substrate: str, dtype: str, free_bytes: int, limit: int = 64
-) -> int | None:
-    """The fewest devices of ``free_bytes`` each that hold a solve spread over them.
-
-    Parameters
-    ----------
-    {shape}
-    {substrate}
-    {dtype}
-    free_bytes : int
-        Free memory of each device (B).
-    limit : int, optional
-        Largest count tried (dimensionless).
-
-    Returns
-    -------
-    int or None
-        The count (2 or more, dividing ny), or None when none up to ``limit`` suffices.
-    """
-    for n in range(2, limit + 1):
-        if shape[0] % n == 0:
-            need = sharded_memory_bytes(shape, substrate, dtype, n)
-            if need <= free_bytes:
-                return n
-    return None
 
 
 @fill_doc(SHARDED_DOCS)

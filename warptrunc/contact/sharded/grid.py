@@ -26,6 +26,7 @@ __all__ = [
     "SHARDED_DOCS",
     "build_bytes",
     "column_blocks",
+    "devices_needed",
     "host_array",
     "import_jax",
     "row_blocks",
@@ -317,3 +318,32 @@ def sharded_memory_bytes(shape: tuple[int, int], substrate: str, dtype: str, n_d
     """
     steady = sum(sharded_memory_terms(shape, substrate, dtype, n_devices).values())
     return int(max(steady, build_bytes(shape, substrate, dtype, n_devices)))
+
+
+@fill_doc(SHARDED_DOCS)
+def devices_needed(
+    shape: tuple[int, int], substrate: str, dtype: str, free_bytes: int, limit: int = 64
+) -> int | None:
+    """The fewest devices of ``free_bytes`` each that hold a solve spread over them.
+
+    Parameters
+    ----------
+    {shape}
+    {substrate}
+    {dtype}
+    free_bytes : int
+        Free memory of each device (B).
+    limit : int, optional
+        Largest count tried (dimensionless).
+
+    Returns
+    -------
+    int or None
+        The count (2 or more, dividing ny), or None when none up to ``limit`` suffices.
+    """
+    for n in range(2, limit + 1):
+        if shape[0] % n == 0:
+            need = sharded_memory_bytes(shape, substrate, dtype, n)
+            if need <= free_bytes:
+                return n
+    return None

@@ -14,9 +14,8 @@ from typing import Any
 import numpy as np
 
 from ..._support.docs import fill_doc
-from ..figures import new_figure, save_figure
-from ..report import fmt_value
 from ..store import STAGE_DOCS
+from ..style import fmt_value, new_figure, save_figure
 from .analysis import cells
 from .tables import (
     agreement_lines,

@@ -13,7 +13,7 @@ from typing import Any
 
 from ..._support.docs import fill_doc
 from ..paper import TABLE2
-from ..report import fmt_value
+from ..style import fmt_value
 
 __all__ = [
     "agreement_lines",
