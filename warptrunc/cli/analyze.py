@@ -147,6 +147,7 @@ def _run(args: argparse.Namespace, truncation, fit_range, figures) -> int:
             labels=["Eq. 2 (one punch)", "islands (one punch each)"]
             if both
             else ["truncation analysis"],
+            flags=[a.fit_error, a.islands_fit_error] if both else [a.fit_error],
             title=_plot_title(meta, material, nx, ny, Rt),
         )
     with staged_output(args.out) as out:  # all or nothing

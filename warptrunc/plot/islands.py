@@ -38,7 +38,9 @@ def island_number(
         Island counts against depth; each is normalised by its maximum.
     indicators : Indicators or sequence, optional
         One per curve: the depth of the largest growth rate (dashed), the fractality depth
-        (dotted) and the island-count peak (dash-dotted) are marked in the curve's colour.
+        (dotted) and the island-count peak (dash-dotted) are marked in the curve's colour. A
+        fractality depth that is censored (the exponent never left its plateau) is labelled
+        as the lower bound it is, "≥ x % R_t (never left it)", with an arrow past it.
     labels : sequence of str, optional
         Legend labels.
     {title}
@@ -63,17 +65,30 @@ def island_number(
             ind = indicators[i]
             for name, style, what in marks:
                 d = getattr(ind, name)
-                if d == d:  # not NaN
-                    ax.axvline(
-                        100 * d / ind.Rt,
-                        ls=style,
-                        lw=1.0,
-                        color=line.get_color(),
-                        label=(
-                            what if len(curves) > 1 else f"{what}: {100 * d / ind.Rt:.1f} % R$_t$"
-                        )
-                        if i == 0
-                        else None,
+                if d != d:  # NaN: not found
+                    continue
+                x = 100 * d / ind.Rt
+                censored = name == "fractal_depth" and getattr(ind, "fractal_depth_censored", False)
+                if censored:  # never left the plateau: a lower bound, not an end
+                    what = "constant slit exponent to the deepest depth analysed"
+                    text = f"{what}: ≥ {x:.1f} % R$_t$ (never left it)"
+                else:
+                    text = f"{what}: {x:.1f} % R$_t$"
+                ax.axvline(
+                    x,
+                    ls=style,
+                    lw=1.0,
+                    color=line.get_color(),
+                    label=(what if len(curves) > 1 else text) if i == 0 or censored else None,
+                )
+                if censored:  # an arrow: the plateau goes on past the last depth
+                    ax.annotate(
+                        "",
+                        xy=(x + 0.04 * (ax.get_xlim()[1] - ax.get_xlim()[0]), 0.5),
+                        xytext=(x, 0.5),
+                        xycoords=("data", "axes fraction"),
+                        arrowprops={"arrowstyle": "->", "color": line.get_color(), "lw": 1.0},
+                        annotation_clip=False,
                     )
     ax.set_xlabel("truncation depth ω (% R$_t$)")
     ax.set_ylabel("normalised island number n/n$_{max}$")

@@ -18,6 +18,7 @@ from ._style import (
     finish_axes,
     is_group,
     new_figure,
+    readable_log_ticks,
     shade_band,
 )
 
@@ -28,6 +29,7 @@ def stiffness_load(
     fits: Any = None,
     *,
     labels: Any = None,
+    flags: Any = None,
     title: str | None = None,
     spread: str = "sd",
     path: str | Path | None = None,
@@ -49,6 +51,10 @@ def stiffness_load(
         fits, drawn with mean α ± sd and the geometric mean β.
     labels : sequence of str, optional
         Legend labels, one per curve or group.
+    flags : sequence of str or None, optional
+        One per fit: why it is not worth reading (``fit_error`` of ``fit.json``, the sweep's
+        :func:`~warptrunc.sweep.worth_reading`), or None. A flagged fit is drawn thin and
+        dotted, its legend entry says "not worth reading", and it is no reading of the data.
     {title}
     spread : {"sd", "range"}
         Shaded band of a group: ±1 standard deviation of log(E_c/E), or min–max.
@@ -106,9 +112,24 @@ def stiffness_load(
             xr = np.geomspace(f.F_over_EA_min, f.F_over_EA_max, 50)
             text = f"fit α = {f.alpha:.3f}, β = {f.beta:.3g} (E$_c$/E), r² = {f.r2:.3f}"
         color = "k" if len(curves) == 1 else line.get_color()
+        if flags is not None and flags[i]:
+            ax.loglog(
+                xr,
+                beta * xr**alpha,
+                ":",
+                color=color,
+                lw=1.0,
+                alpha=0.7,
+                zorder=3,
+                label=f"{text} — not worth reading (fit_error)",
+            )
+            continue
         ax.loglog(xr, beta * xr**alpha, "--", color=color, lw=1.6, zorder=3, label=text)
     ax.set_xlabel("normalised load F/(E·A)")
     ax.set_ylabel("normalised stiffness E$_c$/E (E: Young's modulus)")
+    ax.get_xlim(), ax.get_ylim()  # the autoscaled limits, which the ticks below freeze
+    readable_log_ticks(ax.xaxis)
+    readable_log_ticks(ax.yaxis)
     return finish_axes(fig, ax, path, title=title, which="both")
 
 
