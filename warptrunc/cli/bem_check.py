@@ -152,6 +152,15 @@ def run(args: argparse.Namespace) -> int:
         f"A'/A_BEM {_rng(sm['area_ratio'])}; "
         f"{sm['time_per_solve_s']:.3g} s per solve\n" + slope_line(slope).rstrip("\n")
     )
+    kappa = sm.get("kappa") or {}
+    if kappa.get("bem") is not None:
+        print(
+            f"κ = (A/A₀)E*h′_rms/p at small load ({kappa['n_solves']} approaches, A/A₀ ≤ "
+            f"{kappa['max_area_fraction']:g}): BEM {kappa['bem']:.3g}, Persson "
+            f"{kappa['persson']:.3g} (√(8/π) = {kappa['persson_limit']:.3f}), GW "
+            f"{kappa['gw']:.3g}; BGT's limit √(2π) = {kappa['bgt_limit']:.3f} "
+            "(persson_*, gw_* columns in bem.csv)"
+        )
     if not sm["all_converged"]:
         bad = res.depth[~res.converged]
         print(

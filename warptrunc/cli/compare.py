@@ -16,9 +16,11 @@ the report section.
 
 Writes into OUT: study.json (the settings, strict JSON) and cases/<case_id>.parquet (one row
 per approach, SI units in the column names; a rerun skips the cases already there, so an
-interrupted study resumes), ratios.parquet and alpha.parquet (the summary tables, mean/min/max
-over seeds), summary.json, elastic_ratio_vs_size.png and elastic_alpha_vs_D.png (unless
---no-plot; not for one map), and with
+interrupted study resumes; beside the three routes, Persson's and Greenwood–Williamson's area,
+mean gap and stiffness at the nominal pressure F_BEM/L² of each row, and κ), ratios.parquet and
+alpha.parquet (the summary tables, mean/min/max over seeds), summary.json (with the small-load κ
+of each case beside Persson's √(8/π) and BGT's √(2π)), elastic_ratio_vs_size.png and
+elastic_alpha_vs_D.png (unless --no-plot; not for one map), and with
 --profile elastic.md (the report section "How far is truncation from elastic contact?"). Each
 file is written whole or not at all. Load the rows with
 ``warptrunc.compare.load_comparison(OUT)`` or ``pandas.read_parquet(OUT / "cases")``.
@@ -175,6 +177,7 @@ def run(args: argparse.Namespace) -> int:
         doc = {
             "stage": stage,
             "analysis": a,
+            "kappa": _kappa_by_case(rows),
             "provenance": provenance(args.device),
             "warnings": warnings_of(args),
         }
@@ -211,6 +214,21 @@ def _design_line(d: StudyDesign) -> str:
     )
 
 
+def _kappa_by_case(rows) -> dict:
+    """The small-load κ of each case's elastic solves beside Persson's and BGT's
+    (:func:`warptrunc.theory.columns.kappa_record`), by case id."""
+    from ..theory.columns import kappa_record
+
+    out = {}
+    for case, g in rows.groupby("case_id", sort=True):
+        if "bem_kappa" not in g or g["bem_kappa"].isna().all():
+            continue
+        a0 = float(g["L_m"].iloc[0]) ** 2
+        px = float(g["dx_m"].iloc[0]) ** 2
+        out[str(case)] = kappa_record(g, g["bem_area_m2"], a0, pixel_area=px)
+    return out
+
+
 def _print_summary(s, rows, single: bool) -> None:
     """A short table on stdout: seed-mean k ratios and α by the three routes."""
     r = s["ratios"]
@@ -230,6 +248,12 @@ def _print_summary(s, rows, single: bool) -> None:
             f"α {key}Eq. 2 {x['alpha_eq2_mean']:.3f}, islands {x['alpha_islands_mean']:.3f}, "
             f"BEM {x['alpha_bem_mean']:.3f}"
         )
+    for case, k in _kappa_by_case(rows).items():
+        if k["bem"] is not None:
+            print(
+                f"κ at small load, {case}: BEM {k['bem']:.3g}, Persson {k['persson']:.3g} "
+                f"(√(8/π) = {k['persson_limit']:.3f}; BGT √(2π) = {k['bgt_limit']:.3f})"
+            )
     bad = int((~rows["converged"].astype(bool)).sum())
     if bad:
         print(

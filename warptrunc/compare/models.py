@@ -75,6 +75,8 @@ class ModelComparison:
     """Peak-to-valley height R_t of the map (m)."""
     settings: dict[str, Any] = field(default_factory=dict)
     """Material, β', grid, solver settings (JSON-able)."""
+    bem_mean_gap: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """(m,) float64 elastic mean gap ū between the flat and the deformed surface over the map (m)."""
 
     def ratio(self, model: str, quantity: str = "stiffness") -> np.ndarray:
         """Model over BEM at every approach.
@@ -145,6 +147,7 @@ class ModelComparison:
             "bem_stiffness_N_per_m": self.bem_stiffness,
             "bem_load_N": self.bem_load,
             "bem_area_m2": self.bem_area,
+            "bem_mean_gap_m": self.bem_mean_gap,
             "eq2_k_ratio": self.ratio("eq2"),
             "eq2_F_ratio": self.ratio("eq2", "load"),
             "islands_k_ratio": self.ratio("islands"),
@@ -300,6 +303,7 @@ def compare_models(
         solve_time=np.asarray(cc.solve_time, dtype=np.float64),
         Rt=Rt,
         settings=record,
+        bem_mean_gap=np.asarray(cc.mean_gap, dtype=np.float64),
     )
 
 

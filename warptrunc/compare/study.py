@@ -23,6 +23,7 @@ from .._support.outputs import read_json, store_rollback, strict_json, write_ato
 from .._support.provenance import provenance
 from ..contact.settings import ELASTIC_TRUNCATION, SolverSettings
 from ..stiffness import Material
+from ..theory.columns import THEORY_COLUMNS
 from ..truncation.settings import TruncationSettings
 from .design import MapStudy, StudyDesign
 from .models import LOW_FRACTION, ROUTES, ModelComparison, _k_vs_F, compare_models
@@ -58,6 +59,7 @@ CASE_COLUMNS = (
     "bem_stiffness_N_per_m",
     "bem_load_N",
     "bem_area_m2",
+    "bem_mean_gap_m",
     "eq2_k_ratio",
     "eq2_F_ratio",
     "islands_k_ratio",
@@ -71,12 +73,16 @@ CASE_COLUMNS = (
     "slope_rms",
     "curvature_rms_per_m",
     "slope_rms_spectrum",
+    *THEORY_COLUMNS,
 )
 """Columns of a case file, in order; SI units in the names. ``size_ratio`` is L/W_r; the
 ratios are model/BEM (``area_ratio`` = A'/A_BEM); ``case_seconds`` is the case's wall time (s);
 ``slope_rms`` and ``curvature_rms_per_m`` are the map's h′_rms (dimensionless) and h″_rms (1/m)
 by finite differences at its pixel, ``slope_rms_spectrum`` the WM terms' h′_rms (NaN for a map
-read from a file) (:func:`warptrunc.slope.slope_record`)."""
+read from a file) (:func:`warptrunc.slope.slope_record`); ``bem_mean_gap_m`` the elastic mean gap
+(m); then Persson's and GW's predictions at the nominal pressure F_BEM/L² of each row
+(:data:`warptrunc.theory.columns.THEORY_COLUMNS`: from the WM terms' spectrum, or a file's
+periodogram up to its noise floor ``spectrum_q_max_per_m``)."""
 
 
 def study_cases(design: StudyDesign | None = None) -> list[dict[str, Any]]:
@@ -332,11 +338,31 @@ def _one_case(out: str, c: dict[str, Any], job: tuple, device: Any, devices: Any
         device=device,
         devices=devices,
     )
+    theory = _theory_columns(s, r, material)
     spectrum = rec["spectrum"]["slope_rms"] if rec["spectrum"] else float("nan")
-    c = {**c, "Rt_m": r.Rt, "slope_rms": rec["slope_rms"],
-         "curvature_rms_per_m": rec["curvature_rms_per_m"], "slope_rms_spectrum": spectrum}
-    _write_case(Path(out), c, r, time.perf_counter() - t0)
+    c = {
+        **c,
+        "Rt_m": r.Rt,
+        "slope_rms": rec["slope_rms"],
+        "curvature_rms_per_m": rec["curvature_rms_per_m"],
+        "slope_rms_spectrum": spectrum,
+    }
+    _write_case(Path(out), c, r, time.perf_counter() - t0, theory)
     return c["case_id"]
+
+
+def _theory_columns(s: Any, r: ModelComparison, material: Material) -> dict[str, Any]:
+    """Persson's and GW's columns at the rows' nominal pressures (NaN when the map has no
+    spectrum to read)."""
+    from ..theory.columns import surface_spectrum, theory_columns
+
+    a0 = s.lx * s.ly
+    try:
+        psd = surface_spectrum(s)
+    except ValueError:
+        m = r.depth.size
+        return {k: np.full(m, "" if k == "spectrum_source" else np.nan) for k in THEORY_COLUMNS}
+    return theory_columns(psd, r.bem_load, a0, material=material, area=r.bem_area)
 
 
 def _case_path(out: Path, case_id: str) -> Path:
@@ -374,10 +400,16 @@ def _open_store(out: Path, settings: dict[str, Any], overwrite: bool) -> None:
     write_atomic(meta, strict_json(doc))
 
 
-def _write_case(out: Path, case: dict[str, Any], r: ModelComparison, seconds: float) -> None:
+def _write_case(
+    out: Path,
+    case: dict[str, Any],
+    r: ModelComparison,
+    seconds: float,
+    theory: dict[str, Any] | None = None,
+) -> None:
     import pandas as pd
 
-    cols = r.to_dict()
+    cols = {**r.to_dict(), **(theory or {})}
     m = r.depth.size
     data: dict[str, Any] = {}
     for k in CASE_COLUMNS:

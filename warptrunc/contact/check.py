@@ -84,7 +84,13 @@ class BemCheck:
     edge_contact: np.ndarray
     """(m,) bool: BEM contact reaches the border of the map (free boundary: the map ends there)."""
     settings: dict[str, Any] = field(default_factory=dict)
-    """Solver settings, elastic constants, versions and the surface description (JSON-able)."""
+    """Solver settings, elastic constants, versions and the surface description (JSON-able);
+    ``theory``: the spectrum the theory columns read and the small-load κ
+    (:func:`warptrunc.theory.columns.kappa_record`)."""
+    theory: dict[str, np.ndarray] = field(default_factory=dict)
+    """(m,) columns of Persson's and GW's predictions at the nominal pressure F_BEM/A₀ of each
+    row (:data:`warptrunc.theory.columns.THEORY_COLUMNS`: areas m², mean gap m, stiffness N/m,
+    κ); empty when the map's spectrum could not be had."""
 
     @property
     def load_ratio(self) -> np.ndarray:
@@ -114,7 +120,8 @@ class BemCheck:
             (N), ``bem_area_m2`` and ``trunc_area_m2`` (m²), ``bem_stiffness_N_per_m`` and
             ``trunc_stiffness_N_per_m`` (N/m), ``load_ratio``, ``stiffness_ratio``,
             ``area_ratio`` (truncation over BEM, dimensionless), ``converged``,
-            ``n_iterations``, ``solve_time_s`` (s) and ``edge_contact``.
+            ``n_iterations``, ``solve_time_s`` (s) and ``edge_contact``, then the theory
+            columns (:attr:`theory`).
         """
         return {
             "depth_m": self.depth,
@@ -132,6 +139,7 @@ class BemCheck:
             "n_iterations": self.n_iterations,
             "solve_time_s": self.solve_time,
             "edge_contact": self.edge_contact,
+            **self.theory,
         }
 
     def summary(self) -> dict[str, Any]:
@@ -144,7 +152,8 @@ class BemCheck:
             finite values (dimensionless), or None when none is finite; ``all_converged``,
             ``n_not_converged``, ``any_edge_contact``; ``time_per_solve_s`` (total solve time
             over the number of solves in ``settings["solves"]``, else over 3 solves per depth)
-            and ``total_solve_time_s`` (s).
+            and ``total_solve_time_s`` (s); ``kappa``: the small-load κ of the BEM beside
+            Persson's and BGT's (:func:`warptrunc.theory.columns.kappa_record`), or None.
         """
         out: dict[str, Any] = {}
         for name, r in (
@@ -160,6 +169,7 @@ class BemCheck:
         n_solves = len(self.settings.get("solves", [])) or 3 * self.depth.size
         out["time_per_solve_s"] = float(self.solve_time.sum() / n_solves)
         out["total_solve_time_s"] = float(self.solve_time.sum())
+        out["kappa"] = self.settings.get("theory", {}).get("kappa")
         return out
 
     def to_csv(self, path: str | Path) -> Path:
@@ -332,6 +342,7 @@ def bem_check(
         out, conv, nit, edge, solves, extra = run_warptrunc(
             surface, d, **kw, device=device, devices=devices
         )
+    theory, theory_record = _theory(surface, out["F"], out["A"], material, substrate)
     settings = {
         **extra,
         "substrate": substrate,
@@ -350,6 +361,7 @@ def bem_check(
         "versions": contactmechanics_versions(),
         "surface": {**surface.to_dict(), "slope": slope},
         "solves": solves,
+        "theory": theory_record,
     }
     return BemCheck(
         depth=d,
@@ -365,4 +377,44 @@ def bem_check(
         solve_time=out["t"],
         edge_contact=edge,
         settings=settings,
+        theory=theory,
     )
+
+
+def _theory(
+    surface: Surface, load: np.ndarray, area: np.ndarray, material: Material, substrate: str
+) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+    """The theory columns of the rows and their record: the spectrum read (its source, its
+    wavevector range, a map's noise floor) and the small-load κ."""
+    from ..theory.columns import kappa_record, surface_spectrum, theory_columns
+
+    a0 = surface.lx * surface.ly
+    try:
+        psd = surface_spectrum(surface)
+    except ValueError as exc:  # a map without a spectrum to read (e.g. constant)
+        return {}, {"error": str(exc)}
+    cols = theory_columns(psd, load, a0, material=material, area=area)
+    q = psd.wavevector
+    record = {
+        "spectrum": {
+            "source": psd.source,
+            "q_min_per_m": float(q[0]),
+            "q_max_per_m": float(q[-1]),
+            "noise_wavevector_per_m": psd.noise_wavevector,
+            "noise_wavelength_m": 2 * math.pi / psd.noise_wavevector
+            if math.isfinite(psd.noise_wavevector)
+            else None,
+            "h_rms_m": psd.h_rms,
+            "slope_rms": psd.slope_rms,
+        },
+        "nominal_pressure": "F_BEM/A₀, A₀ the map's area",
+        "stiffness": "Persson's and GW's K·A₀ = −dF/dū"
+        + (
+            ""
+            if substrate == "periodic"
+            else "; on the free half-space k_BEM = dF/dδ is not −dF/dū (δ holds the bulk "
+            "displacement under the patch)"
+        ),
+        "kappa": kappa_record(cols, area, a0, pixel_area=surface.pixel_area),
+    }
+    return cols, record

@@ -53,6 +53,9 @@ KAPPA_MAX_AREA_FRACTION = 0.05
 """The small-load κ of :func:`kappa_record` reads the solves with A/A₀ up to this
 (dimensionless)."""
 
+KAPPA_MIN_PIXELS = 100
+"""... and with at least this many contact pixels (count)."""
+
 
 def surface_spectrum(surface: Any, *, window: str = "hann") -> IsotropicPSD:
     """The isotropic spectrum C(q) the theories read for a map.
@@ -132,13 +135,20 @@ def theory_columns(
     out: dict[str, Any] = {k: nan.copy() for k in THEORY_COLUMNS}
     out["nominal_pressure_Pa"] = np.where(np.isfinite(p), p, np.nan)
     if ok.any():
-        pc = persson_contact(psd, p[ok], material=material)
-        gw = greenwood_williamson(psd, p[ok], material=material)
-        out["persson_area_m2"][ok] = pc.area_fraction * a0
-        out["persson_mean_gap_m"][ok] = pc.mean_separation
-        out["persson_stiffness_N_per_m"][ok] = pc.stiffness * a0
-        out["gw_area_m2"][ok] = gw.area_fraction * a0
-        out["gw_stiffness_N_per_m"][ok] = gw.stiffness * a0
+        # a map's periodogram can hold empty annuli (a line spectrum: a sinusoid), where the
+        # theories divide by zero-width steps of the slope integral: those values become NaN
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            pc = persson_contact(psd, p[ok], material=material)
+            gw = greenwood_williamson(psd, p[ok], material=material)
+            vals = {
+                "persson_area_m2": pc.area_fraction * a0,
+                "persson_mean_gap_m": pc.mean_separation,
+                "persson_stiffness_N_per_m": pc.stiffness * a0,
+                "gw_area_m2": gw.area_fraction * a0,
+                "gw_stiffness_N_per_m": gw.stiffness * a0,
+            }
+        for k, v in vals.items():
+            out[k][ok] = np.where(np.isfinite(v), v, np.nan)
     e_star = float(material.contact_modulus)
     slope = psd.slope_rms
     if area is not None:
@@ -154,56 +164,64 @@ def theory_columns(
 
 
 def kappa_record(
-    load: Any, area: Any, apparent_area: float, *, psd: IsotropicPSD, material: Any
+    columns: Any, area: Any, apparent_area: float, *, pixel_area: float | None = None
 ) -> dict[str, Any]:
     """The small-load κ of elastic solves (A/A₀ = κ p/(E* h′_rms)) beside the theories'.
 
     Parameters
     ----------
-    load, area : (m,) array_like
-        The solves' loads F (N) and contact areas A (m²).
+    columns : mapping
+        The :func:`theory_columns` of the solves (a dict or a DataFrame's columns):
+        ``bem_kappa``, ``persson_area_m2``, ``gw_area_m2``, ``spectrum_slope_rms``.
+    area : (m,) array_like
+        The solves' contact areas A (m²).
     apparent_area : float
-        A₀ (m²): p = F/A₀.
-    psd : IsotropicPSD
-        The map's spectrum: its h′_rms is the one κ is measured with.
-    material : Material
-        E* = ``material.contact_modulus`` (Pa).
+        A₀ (m²).
+    pixel_area : float, optional
+        The map's pixel area (m²): solves with fewer than :data:`KAPPA_MIN_PIXELS` contact
+        pixels are left out (a contact of a few pixels does not resolve its area).
 
     Returns
     -------
     dict
         ``bem``: the mean κ of the solves with 0 < A/A₀ ≤ :data:`KAPPA_MAX_AREA_FRACTION`
-        (None when there is none), ``bem_range`` (min, max), ``n_solves``; ``persson`` and
+        (and at least :data:`KAPPA_MIN_PIXELS` contact pixels, given ``pixel_area``; None
+        when there is none), ``bem_range`` (min, max), ``n_solves``, ``min_pixels``; ``persson`` and
         ``gw``: the theories' κ at the same pressures (mean); ``persson_limit`` √(8/π) and
         ``bgt_limit`` √(2π), the small-load limits (all dimensionless); ``max_area_fraction``;
-        ``slope_rms`` (h′_rms of the spectrum).
+        ``slope_rms`` (h′_rms of the spectrum, the one κ is measured with).
+
+    Notes
+    -----
+    κ of a theory at the same p is κ_BEM·A_theory/A_BEM (both are A/A₀ · E* h′_rms/p).
     """
-    f = np.atleast_1d(np.asarray(load, dtype=np.float64))
+    k = np.asarray(columns["bem_kappa"], dtype=np.float64)
     a = np.atleast_1d(np.asarray(area, dtype=np.float64))
-    a0 = float(apparent_area)
-    e_star, slope = float(material.contact_modulus), psd.slope_rms
-    p = f / a0
-    ar = a / a0
-    sel = np.isfinite(p) & (p > 0) & (ar > 0) & (ar <= KAPPA_MAX_AREA_FRACTION)
+    ar = a / float(apparent_area)
+    slope = np.asarray(columns["spectrum_slope_rms"], dtype=np.float64)
+    sel = np.isfinite(k) & (ar > 0) & (ar <= KAPPA_MAX_AREA_FRACTION)
+    if pixel_area is not None:
+        sel &= a >= KAPPA_MIN_PIXELS * float(pixel_area) * (1 - 1e-9)
     out: dict[str, Any] = {
         "bem": None,
         "bem_range": None,
         "n_solves": int(sel.sum()),
+        "min_pixels": KAPPA_MIN_PIXELS if pixel_area is not None else None,
         "persson": None,
         "gw": None,
         "persson_limit": KAPPA_PERSSON,
         "bgt_limit": KAPPA_BGT,
         "max_area_fraction": KAPPA_MAX_AREA_FRACTION,
-        "slope_rms": slope,
+        "slope_rms": float(slope[0]) if slope.size else None,
     }
     if sel.any():
-        kappa = ar[sel] * e_star * slope / p[sel]
-        pc = persson_contact(psd, p[sel], material=material)
-        gw = greenwood_williamson(psd, p[sel], material=material)
+        kb = k[sel]
+        kp = kb * np.asarray(columns["persson_area_m2"], dtype=np.float64)[sel] / a[sel]
+        kg = kb * np.asarray(columns["gw_area_m2"], dtype=np.float64)[sel] / a[sel]
         out.update(
-            bem=float(kappa.mean()),
-            bem_range=[float(kappa.min()), float(kappa.max())],
-            persson=float(np.mean(pc.kappa)),
-            gw=float(np.mean(gw.kappa)),
+            bem=float(kb.mean()),
+            bem_range=[float(kb.min()), float(kb.max())],
+            persson=float(kp.mean()),
+            gw=float(kg.mean()),
         )
     return out
