@@ -203,3 +203,104 @@ def test_render_caption_says_once_what_red_means(surf):
     r = render_truncation(surf, settings=o, device="cpu")
     assert r.caption.count("red") <= 2 and r.caption.count("red:") == 1
     assert "red = " not in r.caption and "fraction of its pixels" in r.caption
+
+
+# --- figures that say no more than their data -------------------------------------------------
+
+
+def _points_under_legend(ax) -> int:
+    """Data vertices (lines and markers, in display coordinates) inside the legend's box."""
+    ax.figure.draw_without_rendering()
+    leg = ax.get_legend()
+    if leg is None:
+        return 0
+    box = leg.get_window_extent()
+    n = 0
+    for ln in ax.get_lines():
+        xy = np.asarray(ln.get_xydata(), dtype=float)
+        if not len(xy):
+            continue
+        p = ax.transData.transform(xy)
+        p = p[np.isfinite(p).all(axis=1)]
+        n += int(((p[:, 0] >= box.x0) & (p[:, 0] <= box.x1) & (p[:, 1] >= box.y0)
+                  & (p[:, 1] <= box.y1)).sum())  # fmt: skip
+    return n
+
+
+def test_alpha_vs_D_legend_covers_no_point_and_names_the_hollow_ones():
+    pd = pytest.importorskip("pandas")
+    from warptrunc import plot
+
+    rng = np.random.default_rng(3)
+    rows = [(d, 0.01, s, 0.5 + 0.3 * (d - 2.2) + 0.05 * rng.standard_normal(), None)
+            for d in (2.2, 2.5, 2.8) for s in range(5)]  # fmt: skip
+    rows[0] = (2.2, 0.01, 0, 1.05, "not worth reading: fit: α = 1.05 is outside (0, 1]")
+    df = pd.DataFrame(rows, columns=["D_in", "delta", "seed", "alpha", "fit_error"])
+    df["min_pixels"] = 10
+    ax = plot.alpha_vs_D(df).axes[0]
+    assert _points_under_legend(ax) == 0
+    assert _labelled_ticks(ax.xaxis) == [2.2, 2.5, 2.8]  # one tick per D of the sweep
+
+
+def test_stiffness_figure_marks_a_fit_not_worth_reading():
+    from types import SimpleNamespace
+
+    from warptrunc import plot
+
+    F = np.geomspace(1e-8, 1e-5, 40)
+    curve = SimpleNamespace(load=F, F_over_EA=F, Ec_over_E=20 * F**0.6)
+    fit = SimpleNamespace(alpha=1.181, beta=3e3, r2=0.8, F_over_EA_min=1e-7, F_over_EA_max=1e-6)
+    ok = SimpleNamespace(alpha=0.6, beta=20.0, r2=1.0, F_over_EA_min=1e-8, F_over_EA_max=1e-5)
+    fig = plot.stiffness_load([curve, curve], [ok, fit], labels=["Eq. 2", "islands"],
+                              flags=[None, "not worth reading: islands fit: r² = 0.8"])  # fmt: skip
+    fig.draw_without_rendering()
+    ax = fig.axes[0]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    flagged = [t for t in labels if "1.181" in t]
+    assert flagged and all("not worth reading" in t for t in flagged)
+    assert not any("not worth reading" in t for t in labels if "0.600" in t)
+    assert len(_labelled_ticks(ax.yaxis)) >= 3
+
+
+def test_island_number_says_the_plateau_was_never_left():
+    from types import SimpleNamespace
+
+    from warptrunc import plot
+
+    frac = np.linspace(0, 0.5, 51)
+    curve = SimpleNamespace(depth_fraction=frac, normalised_island_number=np.sin(np.pi * frac))
+    ind = SimpleNamespace(max_growth_depth=0.2, fractal_depth=0.5, peak_depth=0.45, Rt=1.0,
+                          fractal_depth_censored=True)  # fmt: skip
+    labels = [t.get_text() for t in plot.island_number(curve, ind).axes[0].get_legend().get_texts()]
+    assert not any(t.startswith("end of constant slit exponent") for t in labels)
+    assert any("≥ 50.0 % R$_t$" in t and "never left" in t for t in labels)
+    done = SimpleNamespace(**{**vars(ind), "fractal_depth_censored": False, "fractal_depth": 0.3})
+    labels = [
+        t.get_text() for t in plot.island_number(curve, done).axes[0].get_legend().get_texts()
+    ]
+    assert "end of constant slit exponent: 30.0 % R$_t$" in labels
+
+
+def test_ratio_vs_size_ticks_at_the_sizes_labels_inside_the_data_and_a_title():
+    pd = pytest.importorskip("pandas")
+    from warptrunc.plot import ratio_vs_size
+
+    rows = []
+    for d in (2.1, 2.9):
+        for r in (1, 3, 10):
+            rec = {"D_in": d, "size_ratio": r, "n": 16 * r, "depth_fraction_of_Rt": 0.1,
+                   "seeds": 3}  # fmt: skip
+            for m in ("eq2", "islands"):
+                v = 1.4 + (d - 2) * (1.6 if m == "eq2" else 1.1) / (1 + r / 10)
+                rec |= {f"{m}_k_ratio_mean": v, f"{m}_k_ratio_min": 0.95 * v,
+                        f"{m}_k_ratio_max": 1.05 * v}  # fmt: skip
+            rows.append(rec)
+    fig = ratio_vs_size(pd.DataFrame(rows))
+    fig.draw_without_rendering()  # the tick labels are made at a draw
+    ax = fig.axes[0]
+    assert _labelled_ticks(ax.xaxis) == [1.0, 3.0, 10.0]
+    y = [v for rec in rows for k, v in rec.items() if k.endswith("_ratio_mean")]
+    inside = [t for t in _labelled_ticks(ax.yaxis) if min(y) <= t <= max(y)]
+    assert len(inside) >= 2, _labelled_ticks(ax.yaxis)
+    title = fig.get_suptitle()
+    assert "3 seeds" in title and "min–max" in title

@@ -49,21 +49,28 @@ def ratio_vs_size(
     Returns
     -------
     matplotlib.figure.Figure
-        Log–log axes; mean over seeds with min–max error bars; the finest grid of each size
-        is left out (the base pixel size only).
+        Log–log axes, ticks at the sizes of the study and at readable ratios; the mean over
+        the seeds with min–max bars (the title says how many seeds); the finest grid of each
+        size is left out (the base pixel size only). The legend is under the panels.
     """
+    from ._style import readable_log_ticks
+
     df = _base_grid(ratios)
     fr = sorted(df["depth_fraction_of_Rt"].unique())
     if fractions is None:
         fractions = [fr[i] for i in sorted({0, len(fr) // 2, len(fr) - 1})] if fr else []
     fig, axes = new_figure(ncols=max(1, len(fractions)))
     import matplotlib as mpl
+    from matplotlib.ticker import FixedLocator, NullFormatter, NullLocator
 
     cmap = mpl.colormaps["viridis"]
     Ds = sorted(df["D_in"].unique())
+    sizes = sorted(df["size_ratio"].unique())
+    seeds = sorted({int(v) for v in df["seeds"]}) if "seeds" in df else []
+    what = {"k": "stiffness k", "F": "load F"}[quantity]
     for ax, f in zip(axes[0], fractions, strict=False):
         sub = df[np.isclose(df["depth_fraction_of_Rt"], f)]
-        ax.axhspan(1 - band, 1 + band, color="0.9", zorder=0, label=f"±{100 * band:.0f} %")
+        ax.axhspan(1 - band, 1 + band, color="0.9", zorder=0, label=f"BEM ±{100 * band:.0f} %")
         ax.axhline(1.0, color="0.5", lw=0.8)
         for i, Dv in enumerate(Ds):
             g = sub[sub["D_in"] == Dv].sort_values("size_ratio")
@@ -86,11 +93,34 @@ def ratio_vs_size(
                 )
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("L/W$_r$ (fixed pixel size)")
+        lo, hi = ax.get_xlim()
+        ax.set_xlim(min(lo, sizes[0] / 1.3), max(hi, sizes[-1] * 1.3))
+        ax.xaxis.set_major_locator(FixedLocator(sizes))
+        ax.xaxis.set_major_formatter(mpl.ticker.FuncFormatter(lambda v, _p: f"{v:g}"))
+        ax.xaxis.set_minor_locator(NullLocator())
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.get_ylim()  # autoscaled: the ticks read the data's range
+        readable_log_ticks(ax.yaxis, max_ticks=7, min_ticks=4)
+        ax.grid(True, which="major", alpha=0.3)
+        ax.set_xlabel("map size L/W$_r$ (fixed pixel size)")
         ax.set_ylabel(f"{quantity}$_{{model}}$/{quantity}$_{{BEM}}$")
-        ax.set_title(f"δ/R$_t$ = {f:g}")
+        ax.set_title(f"approach δ/R$_t$ = {f:g}", fontsize=9)
     if len(fractions):
-        axes[0][-1].legend(fontsize=6, loc="best")
+        n_seeds = (
+            f"{seeds[0]}" if len(seeds) == 1 else f"{seeds[0]}–{seeds[-1]}" if seeds else "the"
+        )
+        fig.suptitle(
+            f"Truncation's {what} over the elastic (BEM) solution against the map size: "
+            f"mean of {n_seeds} seeds, bars min–max",
+            fontsize=9,
+        )
+        fig.legend(
+            *axes[0][0].get_legend_handles_labels(),
+            loc="outside lower center",
+            fontsize=7,
+            ncols=min(4, 1 + 2 * len(Ds)),
+            frameon=False,
+        )
     return finish_figure(fig, path)
 
 
