@@ -19,7 +19,7 @@ from warptrunc.calibrate import (
     calibrated_surface,
     target_from_surface,
 )
-from warptrunc.calibrate.root_find import find_root, isotonic
+from warptrunc.calibrate._root_find import find_root, isotonic
 from warptrunc.fractal import fractal_dimension
 from warptrunc.wm import wm_surface
 

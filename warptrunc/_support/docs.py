@@ -1,6 +1,12 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""Shared docstring text: parameter blocks that sibling functions share are written once."""
+"""Shared docstring text that is not a field's: parameter blocks that sibling functions share
+(the device, the surface, a written file) are written once, and :func:`fill_doc` fills them in.
+
+A parameter that is a field of a parameter object (``max_depth_fraction``, ``periodic``, ...)
+is documented from the field's declaration (:func:`warptrunc.params.field_docs`), through the
+same :func:`fill_doc`.
+"""
 
 from __future__ import annotations
 
@@ -35,18 +41,11 @@ SHARED_DOCS = {
     "{warp_device}": "device : str, optional\n    Warp device.",
     "{warp_device_obj}": "device : str or warp Device, optional\n    Warp device.",
     "{surface}": "surface : Surface\n    The height map (m).",
-    "{depth_range}": (
-        "n_increments : int\n    Number of depth increments n (≥ 1).\n"
-        "max_depth : float or None\n    Largest depth ω_max (m); None to use ``max_depth_fraction``.\n"
-        "max_depth_fraction : float\n    ω_max as a fraction of R_t, in (0, 1] (dimensionless)."
-    ),
-    "{periodic}": "periodic : bool\n    Wrap the map around in x and y.",
-    "{connectivity}": "connectivity : {4, 8}\n    Neighbourhood of an island.",
     "{path}": "Parameters\n----------\npath : str or Path\n    File to write (overwritten).",
     "{returns_path}": "Returns\n-------\nPath",
 }
-SHARED_DOCS["{label_options}"] = "\n".join(
-    SHARED_DOCS[k] for k in ("{connectivity}", "{periodic}", "{device}")
-)
-"""Parameter text that functions of several packages share, written once: a docstring line
-holding only a key is replaced by its block (:func:`fill_doc`)."""
+"""Parameter text that functions of several packages share and that is no field of a parameter
+object, written once: a docstring line holding only a key is replaced by its block
+(:func:`fill_doc`). A parameter that is a field documents itself from its declaration
+(:func:`warptrunc.params.field_docs`, e.g. ``TRUNCATION_DOCS`` of
+:mod:`warptrunc.truncation.settings`)."""

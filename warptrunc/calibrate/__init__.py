@@ -6,7 +6,7 @@ Layout: the descriptors to reproduce (:class:`CalibrationTarget`) and how the lo
 (:class:`CalibrationSettings`; no Warp, the command-line parser reads them) in ``settings``;
 the loop (:func:`calibrate`, :class:`Calibration`, :func:`target_from_surface`,
 :func:`calibrated_surface`) in ``api``; its 1-D root finder and :class:`CalibrationError` in
-``root_find``. Every public name is importable from ``warptrunc.calibrate`` (imported on first
+``_root_find``. Every public name is importable from ``warptrunc.calibrate`` (imported on first
 use); ``warptrunc.calibrate`` itself, at the top of the package, is the function.
 """
 
@@ -16,7 +16,7 @@ __all__, __getattr__, __dir__ = lazy_exports(
     __name__,
     {
         "Calibration": ".api",
-        "CalibrationError": ".root_find",
+        "CalibrationError": "._root_find",
         "CalibrationSettings": ".settings",
         "CalibrationTarget": ".settings",
         "calibrate": ".api",

@@ -39,7 +39,7 @@ from ..descriptors import roll_off_wavelength, surface_statistics
 from ..fractal import fractal_dimension
 from ..surface import Surface
 from ..wm import wm_surface
-from .root_find import CalibrationError, find_root
+from ._root_find import CalibrationError, find_root
 from .settings import CalibrationSettings, CalibrationTarget
 
 __all__ = [

@@ -28,16 +28,17 @@ from pathlib import Path
 import numpy as np
 import warp as wp
 
-from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.docs import fill_doc
 from ..surface import Surface
 from ..truncation.curve import contact_index_map, depth_grid
+from ..truncation.settings import TRUNCATION_DOCS
 
 __all__ = ["export_vtk"]
 
 _ROWS = 512  # rows per write, so large maps are not copied whole
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(TRUNCATION_DOCS)
 def export_vtk(
     surface: Surface,
     path: str | Path,
@@ -54,15 +55,12 @@ def export_vtk(
     {surface}
     path : path
         ``.vti`` (VTK XML image data) or ``.vtk`` (legacy structured points).
-    n_increments : int
-        Number of depth increments n; depths ω_k = k·ω_max/n, k = 0..n, as in
-        :func:`warptrunc.truncate`.
-    max_depth : float, optional
-        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of R_t (dimensionless). 1 by default, not :func:`truncate`'s 0.1:
-        the exported contact index covers the whole height range, so every point gets the
-        depth at which it touches.
+    {n_increments}
+        The depths are ω_k = k·ω_max/n, k = 0..n, as in :func:`warptrunc.truncate`.
+    {max_depth}
+    {max_depth_fraction}
+        1 by default, not :func:`truncate`'s 0.1: the exported contact index covers the whole
+        height range, so every point gets the depth at which it touches.
     device : str, optional
         Warp device for the contact index; see :func:`warptrunc.resolve_device`.
 

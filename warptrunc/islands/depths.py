@@ -13,7 +13,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import check_memory, resolve_device
-from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.docs import fill_doc
 from .._support.progress import progress_bar
 from .._support.validate import check_int
 from ..kernels import islands as _ki
@@ -29,14 +29,14 @@ from .fits import slit_from_sums
 from .forest import Forest
 from .labelling import islands_from_labels
 from .results import IslandCurve, Islands, IslandSizes
-from .settings import ISLANDS_TRUNCATION, IslandSettings
+from .settings import ISLAND_DOCS, ISLANDS_TRUNCATION, IslandSettings
 from .topology import topology_hist
 from .unionfind import check_connectivity, check_index_size, check_surface
 
 # --- carried forest across depths -----------------------------------------------------------------
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(ISLAND_DOCS)
 def island_counts_device(
     index: wp.array,
     n_depths: int,
@@ -106,7 +106,7 @@ def _check_depths(depths: Any, Rt: float) -> np.ndarray:
     return d
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(ISLAND_DOCS)
 def islands_at_depths(
     surface: Surface,
     depths: Sequence[float] | np.ndarray,
@@ -176,7 +176,7 @@ def islands_at_depths(
 # --- island curve ---------------------------------------------------------------------------------
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(ISLAND_DOCS)
 def island_curve(
     surface: Surface,
     *,

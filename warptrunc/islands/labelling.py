@@ -10,7 +10,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import check_memory, resolve_device
-from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.docs import fill_doc
 from .._support.validate import check_range
 from ..kernels import islands as _ki
 from .results import (
@@ -18,6 +18,7 @@ from .results import (
     Islands,
     IslandSizes,
 )
+from .settings import ISLAND_DOCS
 from .streamed import label_in_bands
 from .unionfind import (
     check_connectivity,
@@ -89,7 +90,7 @@ def islands_from_labels(
     )
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(ISLAND_DOCS)
 def label_islands(
     mask: np.ndarray,
     dx: float = 1.0,
@@ -112,9 +113,9 @@ def label_islands(
         Pixel spacing along x (m). The default 1 makes areas and perimeters pixel units.
     dy : float, optional
         Pixel spacing along y (m); ``dx`` when omitted.
-    connectivity : {4, 8}
-        Neighbourhood of an island. 4 (default): pixels touching at a corner only are separate
-        islands (see the module Notes).
+    {connectivity}
+        4 (default): pixels touching at a corner only are separate islands (see the module
+        Notes).
     {periodic}
     band_rows : int, optional
         Label by row bands of this many rows, 1 ≤ band_rows ≤ ny, holding one band on the

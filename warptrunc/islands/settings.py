@@ -13,11 +13,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..params import Parameters, check_fields, param
-from ..truncation.settings import TruncationSettings
+from ..params import Parameters, check_fields, field_docs, param
+from ..truncation.settings import TRUNCATION_DOCS, TruncationSettings
 
 __all__ = [
     "ISLANDS_TRUNCATION",
+    "ISLAND_DOCS",
     "MIN_ISLANDS",
     "MIN_PIXELS",
     "IndicatorSettings",
@@ -128,3 +129,12 @@ class IndicatorSettings(Parameters):
         check_fields(self)
         if self.smooth % 2 == 0:
             raise ValueError(f"smooth must be odd, got {self.smooth!r}")
+
+
+ISLAND_DOCS = {**TRUNCATION_DOCS, **field_docs(IslandSettings, "periodic")}
+ISLAND_DOCS["{label_options}"] = "\n".join(
+    ISLAND_DOCS[k] for k in ("{connectivity}", "{periodic}", "{device}")
+)
+"""Docstring blocks of the island functions: the truncation fields' and ``{periodic}`` from
+their declarations, ``{label_options}`` (connectivity, periodic, device) and
+:data:`~warptrunc._support.docs.SHARED_DOCS` (:func:`~warptrunc._support.docs.fill_doc`)."""

@@ -35,13 +35,14 @@ import numpy as np
 import warp as wp
 
 from .._support.device import resolve_device
-from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.docs import fill_doc
 from .._support.progress import progress_bar
 from .._support.validate import check_int
 from ..kernels import stream_islands as _k
 from ..kernels import wm as _kwm
 from ..truncation.stream import WMBands, as_wm_spec, extremes_pass
 from .results import Islands
+from .settings import ISLAND_DOCS
 from .unionfind import check_connectivity, label_device
 
 __all__ = ["BandedIslands", "streamed_islands"]
@@ -158,6 +159,7 @@ def _band_rows(band_rows: int, ny: int) -> int:
     return check_int("band_rows", band_rows, 1, ny)
 
 
+@fill_doc(ISLAND_DOCS)
 def label_in_bands(
     m: np.ndarray, dx: float, dy: float, connectivity: int, band_rows: int, device: wp.Device
 ) -> Islands:
@@ -175,8 +177,8 @@ def label_in_bands(
         Contact mask (non-zero: contact), already checked by the caller.
     dx, dy : float
         Pixel spacings along x and y (m).
-    connectivity : {4, 8}
-        Neighbourhood of an island, already checked.
+    {connectivity}
+        Already checked.
     band_rows : int
         Rows of ``m`` per band, in [1, ny].
     device : warp.context.Device
@@ -238,7 +240,7 @@ def _edge_counts(labels: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
     return counts[0], counts[1]
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(ISLAND_DOCS)
 def streamed_islands(
     spec_or_params,
     depths: Sequence[float] | np.ndarray,

@@ -14,11 +14,12 @@ import numpy as np
 import warp as wp
 
 from .._support.device import resolve_device
-from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.docs import fill_doc
 from ..kernels import euler as _ke
 from ..surface import Surface
 from ..truncation.curve import contact_index_device, depth_grid, surface_device
 from .results import TopologyCurve
+from .settings import ISLAND_DOCS
 from .unionfind import check_connectivity, check_index_size, check_surface
 
 __all__ = ["topology_curve"]
@@ -94,7 +95,7 @@ def topology_hist(
     return np.cumsum(hist.numpy(), axis=0)  # sync point
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(ISLAND_DOCS)
 def topology_curve(
     surface: Surface,
     n_increments: int = 200,
@@ -110,15 +111,14 @@ def topology_curve(
     Parameters
     ----------
     {surface}
-    n_increments : int
-        Number of depth increments n; depths ω_k = k·ω_max/n, k = 0..n (as :func:`truncate`).
-    max_depth : float, optional
-        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of R_t (dimensionless). 0.5 by default, as :func:`island_curve`
-        (the topology is read over the same depths as the island count).
-    connectivity : {4, 8}
-        Connectivity of the contact set, which fixes the cell complex of χ.
+    {n_increments}
+        The depths are ω_k = k·ω_max/n, k = 0..n (as :func:`truncate`).
+    {max_depth}
+    {max_depth_fraction}
+        0.5 by default, as :func:`island_curve` (the topology is read over the same depths as
+        the island count).
+    {connectivity}
+        It fixes the cell complex of χ.
     {periodic}
     {device}
 

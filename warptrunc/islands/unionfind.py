@@ -11,12 +11,13 @@ import functools
 import numpy as np
 import warp as wp
 
-from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.docs import fill_doc
 from ..kernels import label as _kl
 from ..surface import Surface
 from .results import (
     SEGMENT,
 )
+from .settings import ISLAND_DOCS
 
 
 def check_connectivity(connectivity: int) -> int:
@@ -55,7 +56,7 @@ def check_index_size(n: int) -> None:
         raise ValueError(f"grid of {n} pixels is too large for int32 indices (limit 2**30)")
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(ISLAND_DOCS)
 def label_device(
     mask: wp.array, connectivity: int = 4, *, periodic: bool = False
 ) -> tuple[wp.array, int]:
@@ -65,8 +66,8 @@ def label_device(
     ----------
     mask : (ny, nx) warp array of uint8
         Contact mask, non-zero = contact, contiguous, on the device to run on.
-    connectivity : {4, 8}
-        Neighbourhood of an island (see the module Notes).
+    {connectivity}
+        See the module Notes.
     {periodic}
 
     Returns

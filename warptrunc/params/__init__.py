@@ -13,7 +13,9 @@ else is generated from that metadata:
 - command-line options (:func:`add_options`: ``--D``, ``--Wr`` … with unit and range in the
   help) and the object made back from the parsed arguments (:func:`from_args`);
 - sweep axes (:func:`sweep_fields`) and their validation (:func:`check_value`);
-- the parameter tables of the documentation (:func:`markdown_table`);
+- the parameter tables of the documentation (:func:`markdown_table`), and the parameter text of
+  every docstring that documents a field (:func:`numpydoc_fields`, :func:`field_doc`,
+  :func:`field_docs`);
 - the JSON provenance of results (:func:`to_dict`).
 
 So adding a field to a parameter object makes it appear in the CLI, the sweep grid and the docs
@@ -31,7 +33,7 @@ from ._fields import (
     sweep_fields,
     to_dict,
 )
-from ._text import markdown_table, numpydoc_fields
+from ._text import field_doc, field_docs, markdown_table, numpydoc_fields
 
 __all__ = [
     "Param",
@@ -39,6 +41,8 @@ __all__ = [
     "add_options",
     "check_fields",
     "check_value",
+    "field_doc",
+    "field_docs",
     "from_args",
     "markdown_table",
     "numpydoc_fields",

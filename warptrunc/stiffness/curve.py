@@ -23,7 +23,9 @@ from .._support.outputs import write_columns_csv
 from .._support.results import fields_to_dict
 from .._support.validate import check_range
 from ..material import Material
+from ..params import field_docs
 from ..truncation.curve import TruncationCurve
+from ..truncation.settings import TRUNCATION_DOCS, TruncationSettings
 
 __all__ = [
     "STIFFNESS_MODELS",
@@ -32,6 +34,10 @@ __all__ = [
     "island_stiffness_curve",
     "stiffness_curve",
 ]
+
+STIFFNESS_DOCS = {**TRUNCATION_DOCS, **field_docs(TruncationSettings, "beta_prime")}
+"""Docstring blocks of the stiffness functions: β' from its declaration
+(:class:`~warptrunc.truncation.settings.TruncationSettings`), and the shared ones."""
 
 
 STIFFNESS_MODELS = ("area", "islands")
@@ -160,6 +166,7 @@ class StiffnessCurve:
         return write_columns_csv(path, cols)
 
 
+@fill_doc(STIFFNESS_DOCS)
 def flat_punch_stiffness(
     sqrt_area: Any,
     contact_modulus: float,
@@ -178,8 +185,8 @@ def flat_punch_stiffness(
         taken as independent punches.
     contact_modulus : float
         Contact modulus E* = E_r′ (Pa), :attr:`Material.contact_modulus`.
-    beta_prime : float
-        Geometric factor β' (dimensionless); 1 is the flat punch.
+    {beta_prime}
+        1 is the flat punch.
 
     Returns
     -------
@@ -205,6 +212,7 @@ def flat_punch_stiffness(
     return beta_prime * _TWO_OVER_SQRT_PI * contact_modulus * sqrt_area
 
 
+@fill_doc(STIFFNESS_DOCS)
 def stiffness_curve(
     curve: TruncationCurve,
     material: Material | None = None,
@@ -219,8 +227,8 @@ def stiffness_curve(
         Truncated areas A_c(ω) (m²).
     material : Material, optional
         Elastic constants; default aluminium (E = 70 GPa, ν = 0.33) against a rigid flat.
-    beta_prime : float
-        Geometric factor β' of Eq. (2) (dimensionless); 1 is the flat punch.
+    {beta_prime}
+        1 is the flat punch.
 
     Returns
     -------
@@ -280,6 +288,7 @@ def cumulative_load(stiffness: np.ndarray, depth: np.ndarray) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum(0.5 * (k[1:] + k[:-1]) * dw)])
 
 
+@fill_doc(STIFFNESS_DOCS)
 def island_stiffness_curve(
     island_curve: Any,
     material: Material | None = None,
@@ -295,8 +304,8 @@ def island_stiffness_curve(
         ``statistics=True`` (which carries Σ_i √A_i, m).
     material : Material, optional
         Elastic constants; default aluminium (E = 70 GPa, ν = 0.33) against a rigid flat.
-    beta_prime : float
-        Geometric factor β' (dimensionless); 1 is the flat punch.
+    {beta_prime}
+        1 is the flat punch.
 
     Returns
     -------

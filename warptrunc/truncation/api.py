@@ -12,16 +12,17 @@ from typing import Literal
 import warp as wp
 
 from .._support.device import resolve_device
-from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.docs import fill_doc
 from ..surface import Surface
 from ..wm import WMTerms, surface_from_spec
 from .curve import TruncationCurve, surface_device, truncate_surface
+from .settings import TRUNCATION_DOCS
 from .stream import banded_truncation, stream_reason
 
 __all__ = ["truncate"]
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(TRUNCATION_DOCS)
 def truncate(
     surface: Surface | WMTerms | Mapping,
     n_increments: int = 200,
@@ -42,13 +43,11 @@ def truncate(
         mapping of its keywords (``D``, ``Wr`` (m), ``L`` (m), ``n``, ``Rt`` (m), ``G`` (m),
         ``M``, ``gamma``, ``Wc`` (m), ``cutoff``, ``seed``), or the ``params`` of a surface
         from :func:`warptrunc.wm_surface`.
-    n_increments : int
-        Number of depth increments n; depths are ω_k = k·ω_max/n, k = 0..n.
-    max_depth : float, optional
-        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
-    max_depth_fraction : float
-        ω_max as a fraction of the map's R_t (dimensionless). 0.1 by default: the stiffness fit
-        reads the first contact, where the truncation model holds (paper §3).
+    {n_increments}
+    {max_depth}
+    {max_depth_fraction}
+        0.1 by default: the stiffness fit reads the first contact, where the truncation model
+        holds (paper §3).
     stream : {"auto", True, False}
         For a WM surface: generate it by row bands and never hold it whole (True), generate it
         whole (False), or stream only when the map needs more than half of the free device or
@@ -67,9 +66,10 @@ def truncate(
 
     Notes
     -----
-    In memory: one pass over the heights; each pixel's contact index (the first k with
-    z ≥ z_top − ω_k) is found in a Warp kernel and counted in an integer atomic histogram; the
-    cumulative sum gives the number of contact pixels at every depth. Streamed: two passes
+    The depths are ω_k = k·ω_max/n, k = 0..n. In memory: one pass over the heights; each
+    pixel's contact index (the first k with z ≥ z_top − ω_k) is found in a Warp kernel and
+    counted in an integer atomic histogram; the cumulative sum gives the number of contact
+    pixels at every depth. Streamed: two passes
     (extremes, then histogram) regenerate the same bands with the same tables and kernels, so
     the scaled heights are bit-identical to the in-memory map; device memory holds the tables
     and one band.

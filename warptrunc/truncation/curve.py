@@ -19,12 +19,13 @@ import numpy as np
 import warp as wp
 
 from .._support.device import resolve_device
-from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.docs import fill_doc
 from .._support.limits import flat_row_bands, row_bands
 from .._support.reduce import height_range
 from .._support.validate import MAX_INCREMENTS, check_int, check_range
 from ..kernels import truncation as _k
 from ..surface import Surface
+from .settings import TRUNCATION_DOCS
 
 __all__ = [
     "TruncationCurve",
@@ -174,6 +175,7 @@ def contact_histogram(
     return hist
 
 
+@fill_doc(TRUNCATION_DOCS)
 def depth_grid(
     Rt: float,
     n_increments: int = 200,
@@ -187,12 +189,7 @@ def depth_grid(
     ----------
     Rt : float
         Peak-to-valley height R_t (m).
-    n_increments : int
-        Number of increments n (≥ 1).
-    max_depth : float, optional
-        Largest depth ω_max (m). Overrides ``max_depth_fraction``.
-    max_depth_fraction : float
-        Largest depth as a fraction of R_t, in (0, 1] (dimensionless).
+    {depth_range}
 
     Returns
     -------
@@ -270,7 +267,7 @@ def depth_thresholds(z: wp.array, depth: np.ndarray, device, lo_hi=None):
     return wp.array(thr, dtype=wp.float32, device=device), lo, hi, thr, inv_step
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(TRUNCATION_DOCS)
 def truncate_surface(
     surface: Surface,
     n_increments: int,
@@ -342,7 +339,7 @@ def curve_from_histogram(
     )
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(TRUNCATION_DOCS)
 def contact_index_map(
     surface: Surface,
     depth: np.ndarray,
@@ -370,7 +367,7 @@ def contact_index_map(
     ).numpy()
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(TRUNCATION_DOCS)
 def contact_index_device(
     surface: Surface, depth: np.ndarray, device: wp.context.Device
 ) -> wp.array:

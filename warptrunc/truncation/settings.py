@@ -12,10 +12,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .._support.docs import SHARED_DOCS
 from .._support.validate import DEFAULT_MIN_PIXELS, MAX_INCREMENTS
-from ..params import Parameters, check_fields, param
+from ..params import Parameters, check_fields, field_docs, param
 
-__all__ = ["FitRange", "TruncationSettings"]
+__all__ = ["TRUNCATION_DOCS", "FitRange", "TruncationSettings"]
 
 
 @dataclass(frozen=True)
@@ -61,7 +62,7 @@ class TruncationSettings(Parameters):
     )
     connectivity: int = param(
         4,
-        "island neighbourhood of the island-resolved model (4 or 8 neighbours)",
+        "neighbourhood of an island, 4 or 8 neighbours (island counts, island-resolved model)",
         choices=(4, 8),
     )
 
@@ -134,3 +135,17 @@ class FitRange(Parameters):
 
     def __post_init__(self) -> None:
         check_fields(self)
+
+
+TRUNCATION_DOCS = {
+    **SHARED_DOCS,
+    **field_docs(TruncationSettings, "max_depth", "max_depth_fraction", "connectivity"),
+    **field_docs(TruncationSettings, n_increments="increments"),
+}
+TRUNCATION_DOCS["{depth_range}"] = "\n".join(
+    TRUNCATION_DOCS[k] for k in ("{n_increments}", "{max_depth}", "{max_depth_fraction}")
+)
+"""Docstring blocks of the functions that take truncation fields as parameters of their own
+(``n_increments``, ``max_depth``, ``max_depth_fraction``, ``connectivity``; ``{depth_range}``:
+the first three), from the declarations above, beside :data:`~warptrunc._support.docs.SHARED_DOCS`
+(:func:`~warptrunc._support.docs.fill_doc`)."""

@@ -35,7 +35,7 @@ import numpy as np
 import warp as wp
 
 from .._support.device import as_device, free_memory_bytes, resolve_device
-from .._support.docs import SHARED_DOCS, fill_doc
+from .._support.docs import fill_doc
 from .._support.limits import band_pixel_limit, row_bands
 from .._support.outputs import jsonable
 from .._support.progress import progress_bar
@@ -51,6 +51,7 @@ from .curve import (
     depth_thresholds,
     histogram_bands,
 )
+from .settings import TRUNCATION_DOCS
 
 __all__ = [
     "STREAM_GIVEN",
@@ -284,7 +285,7 @@ def wm_bands(
         yield r0, r1, z.numpy().copy()
 
 
-@fill_doc(SHARED_DOCS)
+@fill_doc(TRUNCATION_DOCS)
 def banded_truncation(
     spec: WMTerms,
     n_increments: int,
