@@ -165,7 +165,13 @@ class ChallengeSettings(Parameters):
         return contact_modulus * np.geomspace(self.p_min, self.p_max, m)
 
     def spec(self) -> SelfAffineSpec:
-        """The generated surface: :func:`challenge_spec` at ``n``, ``short_cutoff``, ``seed``."""
+        """The generated surface at ``n``, ``short_cutoff`` and ``seed``.
+
+        Returns
+        -------
+        SelfAffineSpec
+            :func:`challenge_spec` of these fields.
+        """
         return challenge_spec(self.n, short_cutoff=self.short_cutoff, seed=self.seed)
 
 
@@ -717,9 +723,9 @@ def challenge_study(
         )
     study = ChallengeSettings() if study is None else study
     material = material.replace(hardness=math.inf)
-    e_star = float(material.contact_modulus)
-    p = study.pressures(e_star)
-    ref = float(study.reference_pressure) * e_star
+    modulus = float(material.contact_modulus)
+    p = study.pressures(modulus)
+    ref = float(study.reference_pressure) * modulus
     fine, coarse, origin = _grids(surface, study, device)
     a0 = fine.lx * fine.ly
     curve = CurveSettings(stiffness="none")
@@ -756,7 +762,7 @@ def challenge_study(
         "slope_rms": slope,
     }
     if resolved.any():
-        k = ar[resolved] * e_star * slope / p[resolved]
+        k = ar[resolved] * modulus * slope / p[resolved]
         kappa.update(
             bem=float(k.mean()),
             bem_range=[float(k.min()), float(k.max())],
@@ -831,7 +837,7 @@ def challenge_study(
         truncation_mean_gap=tr["separation"],
         truncation_stiffness=tr["stiffness"],
         truncation_resolved=tr["resolved"],
-        contact_modulus=e_star,
+        contact_modulus=modulus,
         apparent_area=a0,
         slope_rms=slope,
         h_rms=psd.h_rms,
@@ -992,7 +998,7 @@ def _distributions(
     )
 
     a0 = surface.lx * surface.ly
-    e_star = float(material.contact_modulus)
+    modulus = float(material.contact_modulus)
     cc = solve_contact(
         surface,
         loads=[ref * a0],
@@ -1021,7 +1027,7 @@ def _distributions(
         "bin_edges_Pa": s_edges,
         "bem_density_per_Pa": _density(pm[contact], s_edges, total),
         "persson_density_per_Pa": pp.density,
-        "gw_density_per_Pa": gw_pressure_density(summits, d_gw, s_mid, modulus=e_star),
+        "gw_density_per_Pa": gw_pressure_density(summits, d_gw, s_mid, modulus=modulus),
         "bem_area_fraction": a_r,
         "persson_area_fraction": pp.area_fraction,
         "gw_area_fraction": float(gw.area_fraction[0]),
@@ -1085,7 +1091,7 @@ def _distributions(
     }
     return {
         "reference_pressure_Pa": ref,
-        "reference_pressure_over_contact_modulus": ref / e_star,
+        "reference_pressure_over_contact_modulus": ref / modulus,
         "converged": bool(cc.converged[0]),
         "pressure": pressure,
         "gap": gap,

@@ -149,13 +149,13 @@ def theory_columns(
             }
         for k, v in vals.items():
             out[k][ok] = np.where(np.isfinite(v), v, np.nan)
-    e_star = float(material.contact_modulus)
+    modulus = float(material.contact_modulus)
     slope = psd.slope_rms
     if area is not None:
         a = np.atleast_1d(np.asarray(area, dtype=np.float64))
         with np.errstate(divide="ignore", invalid="ignore"):
             out["bem_kappa"] = np.where(
-                ok, (a / a0) * e_star * slope / np.where(ok, p, 1.0), np.nan
+                ok, (a / a0) * modulus * slope / np.where(ok, p, 1.0), np.nan
             )
     out["spectrum_source"] = np.full(m, psd.source, dtype=object)
     out["spectrum_slope_rms"] = np.full(m, slope)
