@@ -22,6 +22,7 @@ KEYS = {
     "command",
     "device",
     "device_name",
+    "host",
     "created_utc",
     "python_version",
     "warp_version",

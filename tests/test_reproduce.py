@@ -114,7 +114,7 @@ def test_tiny_report_structure(tiny):
         img = __import__("matplotlib.image", fromlist=["imread"]).imread(out / name)
         assert img[..., :3].std() > 0.01  # not blank
     res = json.loads((out / "results.json").read_text())
-    assert res["meta"]["device"].startswith("cpu") and res["meta"]["wall_s"] > 0
+    assert res["meta"]["provenance"]["device"] == "cpu" and res["meta"]["wall_s"] > 0
     stages = {"asperity", "fig5", "table1", "islands", "group1", "group2", "elastic", "indentation"}
     assert set(res["stages"]) == stages
     assert res["analysis"]["asperity"]["pixel_bound_holds"]
@@ -387,7 +387,8 @@ def test_report_commit_fallback(tiny, monkeypatch):
     assert "| Fig. 5 seeds per resolution | 10 | 10 | yes |" in rows
     out, _ = tiny
     doc = json.loads((out / "results.json").read_text())
-    meta = {**doc["meta"], "git_commit": None}  # made where neither the variable nor git says
+    # made where neither the variable nor git says
+    meta = {**doc["meta"], "provenance": {**doc["meta"]["provenance"], "git_commit": None}}
     text = markdown(meta, doc["stages"], doc["analysis"], doc["meta"]["figures"])
     assert "commit unknown (set `WARPTRUNC_GIT_COMMIT` or pass `--commit SHA`)" in text
     assert "commit `None`" not in text

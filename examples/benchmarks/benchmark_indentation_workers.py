@@ -224,7 +224,7 @@ def child(args: argparse.Namespace) -> int:
         computed=m["computed"],
         reused=m["reused"],
         incomplete=m.get("incomplete"),
-        device=m["device"],
+        device=f"{m['provenance']['device']} ({m['provenance']['device_name'] or ''})",
     )
     if args.record:
         Path(args.record).write_text(json.dumps(rec, indent=1, default=str) + "\n")

@@ -129,7 +129,11 @@ def input_file(path: str | Path) -> dict[str, Any]:
 
 
 def provenance(
-    device: Any = None, argv: list[str] | None = None, *, input_path: str | Path | None = None
+    device: Any = None,
+    argv: list[str] | None = None,
+    *,
+    input_path: str | Path | None = None,
+    commit: str | None = None,
 ) -> dict[str, Any]:
     """What made an output and when, as a JSON-ready dict.
 
@@ -144,14 +148,16 @@ def provenance(
     input_path : str or Path, optional
         The height-map file the output was computed from: recorded as ``"input"``
         (:func:`input_file`).
+    commit : str, optional
+        The commit to record (``warptrunc reproduce --commit``); default :func:`git_commit`.
 
     Returns
     -------
     dict
         ``warptrunc_version``, ``git_commit`` (None where unknown), ``command`` (one string,
-        shell-quoted), ``device`` (e.g. ``"cuda:0"``), ``device_name``, ``created_utc``
-        (ISO 8601, ``$SOURCE_DATE_EPOCH`` when set), ``python_version`` and
-        ``warp_version`` (None when Warp is not loaded); with ``input_path``, ``input`` (the
+        shell-quoted), ``device`` (e.g. ``"cuda:0"``), ``device_name``, ``host`` (the
+        machine's network name), ``created_utc`` (ISO 8601, ``$SOURCE_DATE_EPOCH`` when set),
+        ``python_version`` and ``warp_version`` (None when Warp is not loaded); with ``input_path``, ``input`` (the
         file's path, absolute path, size and SHA-256).
 
     Examples
@@ -168,10 +174,11 @@ def provenance(
     warp = sys.modules.get("warp")
     out = {
         "warptrunc_version": __version__,
-        "git_commit": git_commit(),
+        "git_commit": commit or git_commit(),
         "command": shlex.join(str(a) for a in argv),
         "device": dev,
         "device_name": name,
+        "host": platform.node(),
         "created_utc": _utc_now(),
         "python_version": platform.python_version(),
         "warp_version": None

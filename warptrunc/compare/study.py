@@ -9,7 +9,6 @@ from __future__ import annotations
 import io
 import json
 import math
-import platform
 import time
 from dataclasses import asdict
 from pathlib import Path
@@ -387,15 +386,6 @@ def _open_store(out: Path, settings: dict[str, Any], overwrite: bool) -> None:
             )
         for f in (out / "cases").glob("*.parquet"):
             f.unlink()
-    import warp
-
-    from .._support.provenance import __version__ as version
-
-    doc["created"] = {
-        "warptrunc_version": version,
-        "warp_version": warp.config.version,
-        "host": platform.node(),
-    }
     doc["provenance"] = provenance()
     write_atomic(meta, strict_json(doc))
 

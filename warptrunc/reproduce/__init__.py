@@ -14,14 +14,13 @@ from __future__ import annotations
 
 import contextlib
 import json
-import sys
 import time
 from pathlib import Path
 from typing import Any
 
 from .._support.device import resolve_device
 from .._support.outputs import jsonable, staged_outputs, store_rollback
-from .._support.provenance import __version__, git_commit, provenance
+from .._support.provenance import provenance
 from .profiles import PROFILES, Profile, get_profile
 from .store import StageConflict, StageStore
 
@@ -180,9 +179,6 @@ def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, commit, selec
     names = figures(res, ana, stage, device=dev)
     meta = {
         "profile": p.to_dict(),
-        "version": __version__,
-        "git_commit": commit or git_commit(),
-        "device": f"{dev.alias} ({getattr(dev, 'name', '')})",
         "wall_s": time.perf_counter() - t0,
         "stage_wall_s": study["wall_s"],
         "stage_seconds": {k: store.seconds(k) for k in res},
@@ -190,9 +186,8 @@ def _final_outputs(stage, p, res, ana, study, store, dev, t0, out, commit, selec
         "computed": store.computed,
         "command": f"warptrunc reproduce --profile {p.name} --out {out}"
         + ("" if selected is None else f" --stages {','.join(selected)}"),
-        "python": sys.version.split()[0],
         "figures": names,
-        "provenance": provenance(dev),
+        "provenance": provenance(dev, commit=commit),
     }
     if selected is not None:
         meta["stages_selected"] = list(selected)

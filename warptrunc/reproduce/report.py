@@ -283,7 +283,8 @@ def markdown(
     Parameters
     ----------
     meta : dict of str to Any
-        Run metadata (profile, version, commit, device, wall time, command, ...).
+        Run metadata (profile, wall time, the equivalent command, ``provenance``: version,
+        commit, device, ...).
     res : dict of str to Any
         Stage results (:func:`~warptrunc.reproduce.study.run_study`).
     ana : dict of str to Any
@@ -302,12 +303,14 @@ def markdown(
     a(
         f"# Reproduction of *Contact stiffness of multiscale surfaces by truncation analysis* — profile `{p['name']}`\n"
     )
-    commit = meta.get("git_commit")
+    prov = meta["provenance"]
+    commit = prov.get("git_commit")
     commit = (
         f"`{commit}`" if commit else "unknown (set `WARPTRUNC_GIT_COMMIT` or pass `--commit SHA`)"
     )
     a(
-        f"warptrunc {meta['version']}, commit {commit}, device **{meta['device']}**, "
+        f"warptrunc {prov['warptrunc_version']}, commit {commit}, "
+        f"device **{prov['device']} ({prov.get('device_name') or ''})**, "
         f"wall time **{meta['wall_s']:.1f} s** (stages reused from an earlier run: {', '.join(meta['reused']) or 'none'})."
     )
     a(
