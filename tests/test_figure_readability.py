@@ -304,3 +304,63 @@ def test_ratio_vs_size_ticks_at_the_sizes_labels_inside_the_data_and_a_title():
     assert len(inside) >= 2, _labelled_ticks(ax.yaxis)
     title = fig.get_suptitle()
     assert "3 seeds" in title and "min–max" in title
+
+
+def _reproduce_figure(monkeypatch, make, *args):
+    """The Figure a ``warptrunc.reproduce.figures`` function saves (not written)."""
+    from warptrunc.reproduce import figures
+
+    saved = []
+    monkeypatch.setattr(figures, "save_figure", lambda fig, out, name: saved.append(fig) or name)
+    getattr(figures, make)(*args)
+    return saved[0]
+
+
+def test_fig10_one_series_for_identical_fit_ranges_signs_once_and_flags_hollow(monkeypatch):
+    from warptrunc.reproduce.analysis import D_KEYS
+    from warptrunc.sweep import linear_fit
+
+    d = np.array([2.2, 2.2, 2.5, 2.5, 2.8, 2.8])
+    a = 0.61 * d - 0.618 + np.array([0.01, -0.01, 0.02, -0.02, 0.0, 0.01])
+    flag = [False, False, False, True, False, False]
+
+    def fits(i):
+        f = {"alpha": float(a[i]), "beta": 10.0}
+        return f | ({"warning": "not worth reading: fit: r² = 0.8"} if flag[i] else {})
+
+    rows = [{"D_in": float(x), "delta": 0.01, "fits": {"default": fits(i), "late": fits(i)},
+             "D": {k: {"D": float(x)} for k in D_KEYS if k != "in"}} for i, x in enumerate(d)]  # fmt: skip
+    keep = ~np.array(flag)
+    line = linear_fit(d[keep], a[keep])
+    paper = {"slope": 0.209, "intercept": 0.09, "r": 0.94}
+    t3 = {k: {"ours": line, "paper": paper} for k in D_KEYS}
+    ana = {"table3_alpha": {"default": t3, "late": t3},
+           "table3_beta": {f: {"ours": {"b": 10.0, "p": -0.6}} for f in ("default", "late")}}  # fmt: skip
+    g = {"fit_ranges": {"default": 10, "late": 0.05}, "rows": rows}
+    fig = _reproduce_figure(monkeypatch, "fig10", {"group1": g, "group2": g}, ana, None)
+    fig.draw_without_rendering()
+    ax = fig.axes[0]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "fit range default = late" in labels  # one series, both ranges named
+    assert sum(t.startswith("fit range") for t in labels) == 1
+    assert "+ -" not in " ".join(labels) and any("·D − " in t for t in labels)
+    hollow = [ln for ln in ax.lines if ln.get_markerfacecolor() == "none"]
+    assert len(hollow) == 1 and len(hollow[0].get_xdata()) == 1
+    assert fig.axes[5].get_title() and "paper" in fig.axes[5].get_title()
+
+
+def test_fig7_paints_contact_in_the_contact_red_with_a_scale_bar(monkeypatch):
+    from matplotlib.colors import to_rgba
+    from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
+
+    from warptrunc.plot import CONTACT_COLOR
+
+    row = {"status": "ok", "surface": "GB300s", "D_in": 2.5, "Wr_m": 20e-6, "Rt_m": 1e-6}
+    res = {"table1": {"rows": [row], "n": 64, "L_m": 64e-6}}
+    fig = _reproduce_figure(monkeypatch, "fig7", res, None, "cpu")
+    for ax in fig.axes:
+        contact = ax.get_images()[1].get_cmap()
+        assert contact(1.0) == to_rgba(CONTACT_COLOR)
+        bars = [c for c in ax.get_children() if isinstance(c, AnchoredSizeBar)]
+        assert bars and bars[0].txt_label.get_text().endswith("µm")
+    assert "red" in fig.get_suptitle()

@@ -150,23 +150,29 @@ def _data_points(ax: Any) -> np.ndarray:
     return np.concatenate(pts) if pts else np.empty((0, 2))
 
 
-def legend_covers_data(ax: Any, legend: Any = None) -> int:
+def legend_covers_data(ax: Any, legend: Any = None, *, draw: bool = True) -> int:
     """How many data points of ``ax`` (:func:`_data_points`) lie under its legend (display
-    coordinates, after a draw)."""
+    coordinates; after a draw of the figure unless ``draw`` is false)."""
     legend = legend if legend is not None else ax.get_legend()
     if legend is None:
         return 0
-    fig = ax.figure
-    fig.draw_without_rendering()
+    if draw:
+        ax.figure.draw_without_rendering()
     box = legend.get_window_extent()
     p = _data_points(ax)
     inside = (p[:, 0] >= box.x0) & (p[:, 0] <= box.x1) & (p[:, 1] >= box.y0) & (p[:, 1] <= box.y1)
     return int(inside.sum())
 
 
+_PLACED = "_warptrunc_placed"
+"""Attribute of a legend made by :func:`place_legend`: what it needs to move under its axes."""
+
+
 def place_legend(ax: Any, *, fontsize: float = 7, ncols: int = 1, **kw: Any) -> Any:
-    """The legend of ``ax`` where it covers no data: matplotlib's best place inside the axes
-    when that is clear of every point, line and error bar, else under the axes.
+    """A legend for ``ax`` that covers no data: inside the axes where matplotlib's best place
+    is clear of every point, line and error bar, else under the axes. The choice is made when
+    the figure is laid out for good (:func:`settle_legends`, which :func:`finish_figure`
+    calls), since a layout that shrinks the axes moves the data under a legend.
 
     Parameters
     ----------
@@ -192,30 +198,69 @@ def place_legend(ax: Any, *, fontsize: float = 7, ncols: int = 1, **kw: Any) -> 
     if not handles:
         return None
     leg = ax.legend(handles, labels, fontsize=fontsize, loc="best", **kw)
-    if legend_covers_data(ax, leg):
-        from matplotlib.transforms import ScaledTranslation
-
-        leg.remove()
-        fig = ax.figure
-        # under the tick labels and the x label: their height in points does not change when
-        # the constrained layout later shrinks the axes to make room
-        below = (ax.get_window_extent().y0 - ax.get_tightbbox().y0) * 72.0 / fig.dpi + 4.0
-        anchor = ax.transAxes + ScaledTranslation(0.0, -below / 72.0, fig.dpi_scale_trans)
-        leg = ax.legend(
-            handles,
-            labels,
-            fontsize=fontsize,
-            loc="upper center",
-            bbox_to_anchor=(0.5, 0.0),
-            bbox_transform=anchor,
-            ncols=ncols,
-            borderaxespad=0.0,
-            **kw,
-        )
+    setattr(leg, _PLACED, {"handles": handles, "labels": labels, "fontsize": fontsize,
+                           "ncols": ncols, "kw": kw, "below": False})  # fmt: skip
     return leg
 
 
+def _move_below(ax: Any, leg: Any) -> Any:
+    """Replace a :func:`place_legend` legend by one under the axes' tick labels and x label."""
+    from matplotlib.transforms import ScaledTranslation
+
+    spec = getattr(leg, _PLACED)
+    leg.remove()
+    fig = ax.figure
+    # under the tick labels and the x label: their height in points does not change when the
+    # constrained layout shrinks the axes to make room
+    below = (ax.get_window_extent().y0 - ax.get_tightbbox().y0) * 72.0 / fig.dpi + 4.0
+    anchor = ax.transAxes + ScaledTranslation(0.0, -below / 72.0, fig.dpi_scale_trans)
+    new = ax.legend(
+        spec["handles"],
+        spec["labels"],
+        fontsize=spec["fontsize"],
+        loc="upper center",
+        bbox_to_anchor=(0.5, 0.0),
+        bbox_transform=anchor,
+        ncols=spec["ncols"],
+        borderaxespad=0.0,
+        **spec["kw"],
+    )
+    setattr(new, _PLACED, {**spec, "below": True})
+    return new
+
+
+def settle_legends(fig: Any, rounds: int = 4) -> None:
+    """Lay ``fig`` out and move every :func:`place_legend` legend that covers data under its
+    axes, until none does (each move changes the layout, so a few rounds).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure, complete but for saving.
+    rounds : int
+        Most layouts tried.
+    """
+    placed = [ax for ax in fig.axes if getattr(ax.get_legend(), _PLACED, None)]
+    if not placed:
+        return
+    for _ in range(rounds):
+        fig.draw_without_rendering()
+        moved = False
+        for ax in placed:
+            leg = ax.get_legend()
+            if getattr(leg, _PLACED)["below"]:
+                continue
+            if legend_covers_data(ax, leg, draw=False):
+                _move_below(ax, leg)
+                moved = True
+        if not moved:
+            break  # the saved picture is laid out as this last check was
+
+
 def finish_figure(fig: Any, path: str | Path | None) -> Any:
+    """Settle the legends (:func:`settle_legends`), then save the figure as PNG at ``path``
+    (parent folders created) when given; returns ``fig``."""
+    settle_legends(fig)
     if path is not None:
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)

@@ -40,12 +40,19 @@ def _power(x, y) -> dict[str, float] | None:
     return {"b": f.beta, "p": f.alpha, "r": f.r, "n": f.n_points}
 
 
+def worth_reading(f: dict[str, Any]) -> bool:
+    """A stage row's fit enters the lines, means and figures: it has an α and is not flagged
+    not worth reading (``warning``, the sweep's ``fit_error``; as
+    :func:`warptrunc.sweep.worth_reading`). Flagged fits stay in the rows and are drawn
+    hollow."""
+    return f.get("alpha") is not None and not f.get("warning")
+
 
 def _points(rows, fit, key):
     xs, a = [], []
     for r in rows:
         f = r["fits"][fit]
-        if f.get("alpha") is None:
+        if not worth_reading(f):
             continue
         x = r["D_in"] if key == "in" else r.get("D", {}).get(key, {}).get("D")
         if x is None:
@@ -89,7 +96,11 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
         # group 1: β(δ) and the scaling argument β ∝ δ^−α
         b1: dict[str, Any] = {}
         for fit in g1["fit_ranges"]:
-            rows = [r for r in g1["rows"] if r["fits"][fit].get("beta") is not None]
+            rows = [
+                r
+                for r in g1["rows"]
+                if r["fits"][fit].get("beta") is not None and worth_reading(r["fits"][fit])
+            ]
             pf = _power([r["delta"] for r in rows], [r["fits"][fit]["beta"] for r in rows])
             alphas = np.array([r["fits"][fit]["alpha"] for r in rows])
             b1[fit] = {
@@ -107,9 +118,8 @@ def analyse(res: dict[str, Any]) -> dict[str, Any]:
             for fit in g["fit_ranges"]:
                 per = {}
                 for r in g["rows"]:
-                    a = r["fits"][fit].get("alpha")
-                    if a is not None:
-                        per.setdefault(r[key], []).append(a)
+                    if worth_reading(r["fits"][fit]):
+                        per.setdefault(r[key], []).append(r["fits"][fit]["alpha"])
                 out[name][fit] = {
                     str(k): {
                         "mean": float(np.mean(v)),

@@ -69,27 +69,71 @@ def fig2(res, out) -> str:
     return save_figure(fig, out, "fig2_asperity.png")
 
 
+def _fixed_log_ticks(axis: Any, values: Any) -> None:
+    """Major ticks of a log axis at ``values`` (the values the data were made at), labelled
+    as plain numbers; no minor labels."""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter, NullLocator
+
+    axis.set_major_locator(FixedLocator(sorted(values)))
+    axis.set_major_formatter(FuncFormatter(lambda v, _p: f"{v:g}"))
+    axis.set_minor_locator(NullLocator())
+    axis.set_minor_formatter(NullFormatter())
+
+
 def fig5(res, ana, out) -> str:
+    from ..plot._style import readable_log_ticks
+
     f5 = ana["fig5"]
     loads = res["fig5"]["loads"]
     fig, (a1, a2) = new_figure(2)
     incs = sorted({int(k.split("|")[1]) for k in f5})
     base = incs[0]
     ns = sorted({int(k.split("|")[0]) for k in f5 if int(k.split("|")[1]) == base})
+    missing = []
     for i, L in enumerate(loads):
         y = [f5[f"{n}|{base}"][i] for n in ns]
-        a1.semilogy(ns, [np.nan if v is None else v for v in y], "o-", label=f"F/(EA) = {L:g}")
         ys = [f5.get(f"{ns[-1]}|{k}", [None] * len(loads))[i] for k in incs]
-        a2.semilogy(incs, [np.nan if v is None else v for v in ys], "o-", label=f"F/(EA) = {L:g}")
+        if all(v is None for v in (*y, *ys)):  # no map reaches this load: no series to list
+            missing.append(f"{L:g}")
+            continue
+        (ln,) = a1.semilogy(
+            ns, [np.nan if v is None else v for v in y], "o-", label=f"F/(EA) = {L:g}"
+        )
+        a2.semilogy(incs, [np.nan if v is None else v for v in ys], "o-", color=ln.get_color())
     a1.set_xscale("log", base=2)
-    a1.set(xlabel="pixels per side (1 mm)", ylabel="E$_c$/E", title=f"Fig. 5a ({base} increments)")
     a2.set_xscale("log")
+    _fixed_log_ticks(a1.xaxis, ns)
+    _fixed_log_ticks(a2.xaxis, incs)
+    for ax in (a1, a2):
+        ax.get_ylim()
+        readable_log_ticks(ax.yaxis, min_ticks=3)
+        ax.grid(True, which="major", alpha=0.3)
+    a1.set(xlabel="pixels per side (1 mm)", ylabel="E$_c$/E", title=f"Fig. 5a ({base} increments)")
     a2.set(xlabel="increments", ylabel="E$_c$/E", title=f"Fig. 5b ({ns[-1]}²)")
-    a1.legend(fontsize=7)
+    note = (
+        f"; F/(EA) = {', '.join(missing)} not reached on these maps (the deepest increment's "
+        "load is below it)"
+        if missing
+        else ""
+    )
+    fig.suptitle(f"Fig. 5: E$_c$/E at fixed loads, mean over the seeds{note}", fontsize=9)
+    if a1.get_legend_handles_labels()[0]:
+        fig.legend(
+            *a1.get_legend_handles_labels(),
+            loc="outside lower center",
+            ncols=4,
+            fontsize=7,
+            frameon=False,
+        )
     return save_figure(fig, out, "fig5_convergence.png")
 
 
 def fig7(res, out, device) -> str:
+    from matplotlib.colors import ListedColormap
+    from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
+
+    from ..plot._style import CONTACT_COLOR
+
     rows = [r for r in res["table1"]["rows"] if r["status"] == "ok"]
     r = next((x for x in rows if x["surface"] == "GB300s"), rows[0])
     n = res["table1"]["n"]
@@ -99,18 +143,42 @@ def fig7(res, out, device) -> str:
     fig, axs = new_figure(5, 1, w=2.6, h=2.8)
     fr = (0.1, 0.2, 0.3, 0.4, 0.5)
     idx = contact_index_map(s, np.asarray(fr) * s.Rt, device=device)
+    lx, ly = s.lx * 1e6, s.ly * 1e6  # µm
+    e = 10.0 ** np.floor(np.log10(lx / 4))
+    bar = max(m * e for m in (1, 2, 5) if m * e <= lx / 4 * (1 + 1e-9))  # 1-2-5 µm, ≤ L/4
+    red = ListedColormap([CONTACT_COLOR])  # the contact red of every picture (render's too)
     for k, (ax, f) in enumerate(zip(axs, fr, strict=True)):
-        ax.imshow(s.heights, cmap="gray")
+        ext = (0.0, lx, 0.0, ly)
+        ax.imshow(s.heights, cmap="gray", origin="lower", extent=ext)
         ax.imshow(
             np.ma.masked_where(idx > k, np.ones_like(s.heights)),
-            cmap="autumn",
-            alpha=0.8,
+            cmap=red,
+            origin="lower",
+            extent=ext,
             vmin=0,
             vmax=1,
+            interpolation="nearest",
         )
-        ax.set_title(f"{int(f * 100)} % R$_t$", fontsize=9)
+        ax.add_artist(
+            AnchoredSizeBar(
+                ax.transData,
+                bar,
+                f"{bar:g} µm",
+                "lower right",
+                pad=0.3,
+                color="white",
+                frameon=False,
+                size_vertical=ly / 80,
+                fontproperties={"size": 7},
+            )
+        )
+        ax.set_title(f"ω = {int(f * 100)} % R$_t$", fontsize=9)
         ax.set_axis_off()
-    fig.suptitle(f"Fig. 7: truncation sections, simulated {r['surface']} ({n}²)")
+    fig.suptitle(
+        f"Fig. 7: truncation sections of the simulated {r['surface']} ({n}² over "
+        f"{s.lx * 1e3:.3g} mm); red: contact, the pixels within ω of the highest",
+        fontsize=10,
+    )
     return save_figure(fig, out, "fig7_sections.png")
 
 
@@ -153,6 +221,8 @@ def _mean_curves(rows, key, fit="default"):
 
 
 def fig9(res, out) -> list[str]:
+    from ..plot._style import place_legend, readable_log_ticks, settle_legends
+
     names = []
     for g, key, lab, tag in (
         (res["group1"], "delta", "δ", "a"),
@@ -165,26 +235,73 @@ def fig9(res, out) -> list[str]:
             sel = x > 1e-299
             ax.loglog(x[sel], y[sel], label=f"{lab} = {k:g}")
         ax.set(xlabel="F/(E·A)", ylabel="E$_c$/E", title=f"Fig. 9{tag} (geometric mean over seeds)")
-        ax.legend(fontsize=7)
+        ax.get_xlim(), ax.get_ylim()
+        readable_log_ticks(ax.xaxis)
+        readable_log_ticks(ax.yaxis, min_ticks=4)
+        ax.grid(True, which="major", alpha=0.3)
+        place_legend(ax)
+        settle_legends(fig)
         names.append(save_figure(fig, out, f"fig9{tag}.png"))
     return names
 
 
+def _line_text(f: dict[str, float]) -> str:
+    """``0.610·D − 0.618, r = 0.935``: the sign of the intercept once."""
+    sign = "−" if f["intercept"] < 0 else "+"
+    slope = f"{f['slope']:.3f}".replace("-", "−")
+    return f"{slope}·D {sign} {abs(f['intercept']):.3f}, r = {f['r']:.3f}"
+
+
+def _same_fits(rows, a: str, b: str) -> bool:
+    """Fit ranges ``a`` and ``b`` gave every row the same fit (α, β and flag): one series."""
+
+    def num(v):
+        return np.nan if v is None else float(v)
+
+    return all(
+        np.allclose(
+            [num(r["fits"][a].get("alpha")), num(r["fits"][a].get("beta"))],
+            [num(r["fits"][b].get("alpha")), num(r["fits"][b].get("beta"))],
+            rtol=1e-9,
+            equal_nan=True,
+        )
+        and bool(r["fits"][a].get("warning")) == bool(r["fits"][b].get("warning"))
+        for r in rows
+    )
+
+
 def fig10(res, ana, out) -> str:
+    """α against D by each method and β against δ: the fits worth reading filled, those flagged
+    (``warning``: not worth reading) hollow and out of the lines; fit ranges that give the same
+    line drawn once."""
+    from ..plot._style import place_legend, settle_legends
+
     g2 = res["group2"]
     fig, axs = new_figure(3, 2, w=4.2, h=3.5)
+    ranges = list(g2["fit_ranges"])
     for ax, k in zip(axs[:5], D_KEYS, strict=True):
-        for fit, mk in zip(g2["fit_ranges"], ("o", "s"), strict=False):
-            xs, ys = [], []
+        lines = {fit: ana["table3_alpha"][fit][k]["ours"] for fit in ranges}
+        drawn: list[str] = []
+        for fit, mk in zip(ranges, ("o", "s"), strict=False):
+            if any(_same_fits(g2["rows"], d, fit) for d in drawn):
+                continue  # identical points and line: named in the first one's label
+            twins = [f for f in ranges if f != fit and _same_fits(g2["rows"], fit, f)]
+            name = " = ".join([fit, *twins])
+            pts = {"ok": ([], []), "flagged": ([], [])}
             for r in g2["rows"]:
-                a = r["fits"][fit].get("alpha")
+                fr = r["fits"][fit]
                 x = r["D_in"] if k == "in" else r.get("D", {}).get(k, {}).get("D")
-                if a is not None and x is not None:
-                    xs.append(x)
-                    ys.append(a)
-            (p,) = ax.plot(xs, ys, mk, mfc="none", ms=4, label=f"fit range {fit}")
-            f = ana["table3_alpha"][fit][k]["ours"]
-            if f:
+                if fr.get("alpha") is not None and x is not None:
+                    key = "flagged" if fr.get("warning") else "ok"
+                    pts[key][0].append(x)
+                    pts[key][1].append(fr["alpha"])
+            (p,) = ax.plot(*pts["ok"], mk, ms=4, label=f"fit range {name}")
+            if pts["flagged"][0]:
+                ax.plot(*pts["flagged"], mk, mfc="none", ms=5, color=p.get_color(),
+                        label=f"{name}: not worth reading (left out of the line)")  # fmt: skip
+            f = lines[fit]
+            xs = pts["ok"][0]
+            if f and xs:
                 xx = np.linspace(min(xs), max(xs), 2)
                 ax.plot(
                     xx,
@@ -192,23 +309,30 @@ def fig10(res, ana, out) -> str:
                     "-",
                     color=p.get_color(),
                     lw=1,
-                    label=f"{f['slope']:.3f}·D + {f['intercept']:.3f}, r = {f['r']:.3f}",
+                    label=_line_text(f),
                 )
+            drawn.append(fit)
         pp = ana["table3_alpha"]["default"][k]["paper"]
         xx = np.linspace(2.0, 3.0, 2)
-        ax.plot(xx, pp["slope"] * xx + pp["intercept"], "k--", lw=0.8, label="paper")
+        ax.plot(xx, pp["slope"] * xx + pp["intercept"], "k--", lw=0.8,
+                label=f"paper: {_line_text(pp)}")  # fmt: skip
         ax.set(xlabel=D_LABELS[k], ylabel="α")
-        ax.legend(fontsize=6)
+        ax.grid(True, alpha=0.3)
+        place_legend(ax, fontsize=6)
     ax = axs[5]
     g1 = res["group1"]
+    fits_b = {fit: ana["table3_beta"][fit]["ours"] for fit in g1["fit_ranges"]}
+    shown: list[str] = []
     for fit, mk in zip(g1["fit_ranges"], ("o", "s"), strict=False):
         pts = [
-            (r["delta"], r["fits"][fit]["beta"]) for r in g1["rows"] if r["fits"][fit].get("beta")
+            (r["delta"], r["fits"][fit]["beta"])
+            for r in g1["rows"]
+            if r["fits"][fit].get("beta") and not r["fits"][fit].get("warning")
         ]
-        if not pts:
+        f = fits_b[fit]
+        if not pts or any(_same_fits(g1["rows"], d, fit) for d in shown):
             continue
-        (p,) = ax.loglog(*zip(*pts, strict=True), mk, mfc="none", ms=4)
-        f = ana["table3_beta"][fit]["ours"]
+        (p,) = ax.loglog(*zip(*pts, strict=True), mk, ms=4)
         if f:
             xx = np.array([min(x for x, _ in pts), max(x for x, _ in pts)])
             ax.loglog(
@@ -217,13 +341,35 @@ def fig10(res, ana, out) -> str:
                 "-",
                 color=p.get_color(),
                 lw=1,
-                label=f"{fit}: β(E$_c$/E) = {f['b']:.3g}·δ$^{{{f['p']:.3f}}}$",
+                label=f"{fit}: β = {f['b']:.3g}·δ$^{{{f['p']:.3f}}}$",
             )
+        shown.append(fit)
+    flagged = [
+        (r["delta"], r["fits"][fit]["beta"])
+        for fit in list(g1["fit_ranges"])[:1]
+        for r in g1["rows"]
+        if r["fits"][fit].get("beta") and r["fits"][fit].get("warning")
+    ]
+    if flagged:
+        ax.loglog(*zip(*flagged, strict=True), "o", mfc="none", ms=5, color="0.4",
+                  label="not worth reading (left out)")  # fmt: skip
+    if not shown:
+        ax.text(0.5, 0.5, "no β worth reading", transform=ax.transAxes, ha="center", fontsize=8)
     xx = np.array([6.25e-4, 0.16])
-    ax.loglog(xx, 0.0386 * xx**-1.122, "k--", lw=0.8, label="paper 0.0386·δ$^{-1.122}$")
-    ax.set(xlabel="δ", ylabel="β")
-    ax.legend(fontsize=6)
-    fig.suptitle("Fig. 10: α against D by each method (one point per surface); β against δ")
+    ax.loglog(xx, 0.0386 * xx**-1.122, "k--", lw=0.8, label="paper: 0.0386·δ$^{-1.122}$")
+    ax.set(xlabel="δ = R$_t$/W$_r$", ylabel="β of E$_c$/E = β·[F/(E·A)]$^α$")
+    ax.set_title(
+        "β ∝ δ$^{−α}$ here: one surface scaled in height by δ (report, Table 3);\n"
+        "the paper's β differs in magnitude and slope",
+        fontsize=7,
+    )
+    ax.grid(True, which="major", alpha=0.3)
+    place_legend(ax, fontsize=6)
+    fig.suptitle(
+        "Fig. 10: α against D by each method (one point per surface; hollow: not worth "
+        "reading, out of the lines); β against δ"
+    )
+    settle_legends(fig)
     return save_figure(fig, out, "fig10.png")
 
 
