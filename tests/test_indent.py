@@ -284,11 +284,14 @@ def test_fits_are_the_least_squares_line_in_log_log(result):
     )
     assert use.sum() >= 6
     for name, col in (("elastic_plastic", "E_c_over_E"), ("truncation", "truncation_E_c_over_E")):
-        fit = result.fits()[name]
-        assert fit.n_points == use.sum()
-        alpha, logb = np.polyfit(np.log(d["F_over_EA"][use]), np.log(d[col][use]), 1)
-        assert fit.alpha == pytest.approx(alpha, rel=1e-9)
-        assert fit.beta == pytest.approx(math.exp(logb), rel=1e-9)
+        fits = result.punch_fits()[name]  # one fit per punch, over its loads
+        assert sorted(fits) == [0.1e-3, 0.4e-3]
+        for d0, fit in fits.items():
+            on = use & (d["punch_diameter_m"] == d0)
+            assert fit.n_points == on.sum() and fit.n_loads == 3
+            alpha, logb = np.polyfit(np.log(d["F_over_EA"][on]), np.log(d[col][on]), 1)
+            assert fit.alpha == pytest.approx(alpha, rel=1e-9)
+            assert fit.beta == pytest.approx(math.exp(logb), rel=1e-9)
 
 
 def test_monotonic_loading_needs_no_replay_of_the_partial_unloads():
@@ -580,9 +583,11 @@ def test_cli_writes_csv_json_and_figure(tmp_path, capsys):
     assert (out / "indent.png").stat().st_size > 10_000
     text = capsys.readouterr().out
     assert "cells: " in text and "resolved" in text and "in_fit" in text
-    # 64² over 0.4 mm: no cell has 100 contact pixels at pixel/2, so no fit is made
-    assert "no fit: 0 cells in_fit, at least 6 needed" in text
-    assert all(not f["made"] for f in doc["fits"].values())
+    # 64² over 0.4 mm: no cell has 100 contact pixels, so no fit is made, per punch or pooled
+    assert "no fit: 0 distinct peak load(s) of the 150 µm punch with cells in_fit" in text
+    for f in doc["fits"].values():
+        assert [r["n_loads"] for r in f["per_punch"]] == [0]
+        assert not f["per_punch"][0]["made"] and not f["pooled"]["made"]
 
 
 @pytest.mark.parametrize(

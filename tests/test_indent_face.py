@@ -461,3 +461,61 @@ def test_cli_face_options_reach_the_json(tmp_path, capsys):
 )
 def test_cli_bad_face_input_exits_2_with_the_option_named(tmp_path, capsys, extra, needles):
     assert_refused_in_one_line([*CLI, *extra], tmp_path / "ind", capsys, needles)
+
+
+# --- a tilt relative to the surface under the punch -------------------------------------------
+
+
+def _plane_slopes(w, heights):
+    """Least-squares slopes (∂z/∂x, ∂z/∂y) of ``heights`` over the window's disk, numpy."""
+    iy, ix = np.nonzero(w.mask)
+    x = (ix + w.origin[1] + 0.5) * w.pixel_size[0] - w.centre[0]
+    y = (iy + w.origin[0] + 0.5) * w.pixel_size[1] - w.centre[1]
+    a = np.column_stack([np.ones_like(x), x, y])
+    return np.linalg.lstsq(a, heights, rcond=None)[0][1:]
+
+
+def test_a_local_tilt_is_relative_to_the_sample_plane_under_each_placement():
+    """tilt_reference = "local": at every placement the composite (sample + face) has, over the
+    disk, the least-squares plane of the tilt θ toward its azimuth; the azimuth turns by
+    360°/n from one placement to the next (tilt_azimuths); 0° local aligns the face with the
+    surface (its composite plane is flat) while 0° against the map is no face at all; the
+    sample's heights, and so truncation, are unchanged; a finer window keeps the same face."""
+    s = warptrunc.wm_surface(2.2, 0.5e-3, L=1e-3, n=128, Rt=2e-6, seed=2, device="cpu")
+    theta = 0.05
+    spec = PunchFaceSpec(tilt_deg=theta, tilt_reference="local", tilt_azimuths=3,
+                         tilt_azimuth_deg=10.0)  # fmt: skip
+    at = IndentProtocol(punch_diameters=(0.2e-3,), peak_loads=(1e-3,), placements=3,
+                        refine_max=1, min_contact_pixels=1, elastic=False, face=spec)  # fmt: skip
+    r = indent(s, protocol=at, material=MAT, device="cpu")
+    flat = indent(s, protocol=at.replace(face=PunchFaceSpec()), material=MAT, device="cpu")
+    src = WindowSource(np.asarray(s.heights), (s.dx, s.dy), s.params, device="cpu")
+    t = math.tan(math.radians(theta))
+    for j, rec in enumerate(r.settings["punches"]):
+        phi = math.radians(10.0 + 120.0 * j)
+        assert rec["face_tilt_azimuth_deg"] == pytest.approx(math.degrees(phi))
+        w0 = src.window(0.2e-3, tuple(rec["centre_m"]))  # the sample alone
+        b, c = _plane_slopes(w0, w0.disk_heights)
+        assert rec["local_plane_tilt_deg"] == pytest.approx(
+            math.degrees(math.atan(math.hypot(b, c))), rel=1e-6
+        )
+        from warptrunc.indent.face import make_face, placement_face
+
+        face = placement_face(make_face(0.2e-3, spec), spec, j, w0)
+        w = src.window(0.2e-3, tuple(rec["centre_m"]), face=face)
+        np.testing.assert_allclose(
+            _plane_slopes(w, w.disk_heights), [t * math.cos(phi), t * math.sin(phi)], atol=1e-9
+        )
+        np.testing.assert_allclose(w.surface_disk_heights, w0.disk_heights, atol=1e-15)
+        w2 = src.window(0.2e-3, tuple(rec["centre_m"]), 2, face=w.face)  # the same face finer
+        np.testing.assert_allclose(
+            _plane_slopes(w2, w2.disk_heights - w2.surface_disk_heights),
+            np.array([t * math.cos(phi), t * math.sin(phi)]) - [b, c],
+            atol=1e-12,
+        )
+        level = placement_face(make_face(0.2e-3, spec.replace(tilt_deg=0.0)), spec, j, w0)
+        wl = src.window(0.2e-3, tuple(rec["centre_m"]), face=level)
+        np.testing.assert_allclose(_plane_slopes(wl, wl.disk_heights), [0, 0], atol=1e-12)
+    np.testing.assert_array_equal(r.truncation_stiffness, flat.truncation_stiffness)
+    assert make_face(0.2e-3, PunchFaceSpec()) is None
+    assert not PunchFaceSpec(tilt_reference="local").is_flat

@@ -118,7 +118,6 @@ def _named_by_option(msg: str) -> str:
 def run(args: argparse.Namespace) -> int:
     """Run the experiment and write the outputs."""
     from ..indent import PlacementOverlapWarning, indent
-    from ..indent.fits import MIN_FIT_POINTS
 
     try:
         material = from_args(Material, args, defaults=MATERIAL_DEFAULTS)
@@ -189,19 +188,7 @@ def run(args: argparse.Namespace) -> int:
         *_face_lines(res),
         *[line for line in [slope_line(metas[0]["slope"]).rstrip()] if line],
     ]
-    for name, fit in fits.items():
-        if not fit["made"]:
-            lines.append(
-                f"  {name:24s} no fit: {fit['n_points']} cells in_fit, "
-                f"at least {MIN_FIT_POINTS} needed"
-            )
-            continue
-        (a0, a1), (b0, b1) = fit["alpha_ci95"], fit["beta_ci95"]
-        lines.append(
-            f"  {name:24s} E_c/E = {fit['beta']:.4g}·[F/(E·A)]^{fit['alpha']:.4f}  (E Young's "
-            f"modulus); α 95 % [{a0:.4f}, {a1:.4f}], β 95 % [{b0:.4g}, {b1:.4g}]; "
-            f"r² = {fit['r2']:.4f}, {fit['n_points']} cells of {fit['n_indents']} indents"
-        )
+    lines += _fit_lines(fits, res)
     print("\n".join(lines))
     print(f"wrote {args.out}/{', '.join(files)}")
     elastic = protocol.elastic
@@ -272,6 +259,27 @@ def _resolution_line(res) -> str:
         text += f"; {el['resolved']} resolved, {el['saturated']} saturated, {el['in_fit']} in_fit (elastic)"
     notes = ", ".join(f"{v} {k}" for k, v in sorted(ep["notes"].items()))
     return text + f"; elastic–plastic notes: {notes}"
+
+
+def _fit_lines(fits: dict, res) -> list[str]:
+    """Per model, one line per punch (its fit over loads, or why not) and the pooled fit."""
+    out = []
+    for name, mf in fits.items():
+        for f in [*mf["per_punch"], {**mf["pooled"], "pooled": True}]:
+            d = f.get("punch_diameter_m")
+            who = "pooled" if f.get("pooled") else ("flat" if d is None else f"{d * 1e6:.4g} µm")
+            head = f"  {name:24s} {who:>9s}"
+            if not f["made"]:
+                out.append(f"{head} no fit: {f['reason']}")
+                continue
+            (a0, a1), (b0, b1) = f["alpha_ci95"], f["beta_ci95"]
+            out.append(
+                f"{head} E_c/E = {f['beta']:.4g}·[F/(E·A)]^{f['alpha']:.4f}; α 95 % "
+                f"[{a0:.4f}, {a1:.4f}], β 95 % [{b0:.4g}, {b1:.4g}] (both cell rules); "
+                f"r² = {f['r2']:.4f}, {f['n_points']} cells, {f['n_loads']} loads, "
+                f"{f['n_indents']} indents"
+            )
+    return out
 
 
 def _face_lines(res) -> list[str]:

@@ -18,7 +18,7 @@ from ..contact.settings import SolverSettings
 from ..material import Material
 from ..slope import slope_record
 from ..surface import Surface
-from .face import check_same_face, face_record, face_settings, punch_faces
+from .face import check_same_face, face_record, face_settings, placement_face, punch_faces
 from .placement import solve_placement
 from .protocol import IndentProtocol, default_material
 from .punch import PunchWindow, place_punches
@@ -111,7 +111,11 @@ def _elastic_cycles(
             "centre_x_m",
             "centre_y_m",
         )
-        cols = {k: np.asarray(cols[k]) for k in keys}
+        have = cols
+        cols = {k: np.asarray(have[k]) for k in keys}
+        n = cols["peak_load_N"].size
+        det = have.get("detection_displacement_m")  # optional: NaN where not stored
+        cols["detection_displacement_m"] = np.full(n, np.nan) if det is None else np.asarray(det)
     except (KeyError, TypeError) as e:
         raise ValueError(
             f"reuse must be an IndentationResult or its to_dict() columns, with max_pressure_Pa "
@@ -140,7 +144,12 @@ def _elastic_cycles(
                 f"placement {j} at {w.centre} m with these peak loads; run it with the same "
                 "surface, punches, placements, seed and loads"
             )
-        out.append({k: cols[c][sl] for k, c in _REUSED.items()})
+        out.append(
+            {
+                **{k: cols[c][sl] for k, c in _REUSED.items()},
+                "detection_displacement": cols["detection_displacement_m"][sl],
+            }
+        )
     return out
 
 
@@ -293,7 +302,10 @@ def indent(
             )
         for k, src in enumerate(sources):
             for j, c in enumerate(centres):
-                w = src.window(d, (float(c[0]), float(c[1])), face=faces[i])
+                at = (float(c[0]), float(c[1]))
+                sample = src.window(d, at) if protocol.face.tilt_reference == "local" else None
+                face = placement_face(faces[i], protocol.face, k * len(centres) + j, sample)
+                w = src.window(d, at, face=face)
                 _check_loads(w, protocol, hardness)
                 windows.append((k, i, j, w, float(frac[j])))
     windows.sort(key=lambda t: t[:3])  # realisation, punch, placement

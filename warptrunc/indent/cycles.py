@@ -133,6 +133,7 @@ COLUMNS = (
     "unloaded_displacement",
     "n_iterations",
     "converged",
+    "detection_displacement",
 )
 """Per-peak outputs of :func:`run_cycles`."""
 
@@ -147,6 +148,8 @@ def run_cycles(
     elastic: dict[str, np.ndarray] | None = None,
     approach: Any = None,
     step: Any = None,
+    detection: bool = True,
+    boxes: bool = False,
     device: Any = None,
     devices: Any = None,
 ) -> dict[str, np.ndarray]:
@@ -179,6 +182,18 @@ def run_cycles(
         fewer).
     step : callable, optional
         Called once per cycle (a progress bar's ``update``).
+    detection : bool
+        Solve at the protocol's ``detection_load`` F_s before the first cycle solved (loading
+        monotonically: F_s is below every peak) and give its approach δ(F_s) as
+        ``detection_displacement`` (:mod:`warptrunc.indent.depth`); when every cycle is copied
+        from ``elastic``, its value there. False, or no ``detection_load``: NaN.
+    boxes : bool
+        Also return, per peak, the bounding boxes of the contact and of the pixels near it
+        (``contact_box``, ``near_box``: (m, 4) int64 (iy0, ix0, iy1, ix1) in window pixels,
+        inclusive, -1 where none or unknown): near = the disk's pixels whose gap is within
+        :func:`gap_margin` of contact, the set a sub-window at a finer pixel must hold
+        (:mod:`warptrunc.indent.refine`). A copied elastic cycle takes the boxes of
+        ``elastic`` when it has them.
     {warp_device_obj}
     devices : int, "auto" or list, optional
         Spread the solver over several devices (:func:`make_solver`); default None.
@@ -190,11 +205,16 @@ def run_cycles(
         (m), contact pixels and area (m²), plastic pixels, area (m²) and volume (m³), the
         largest contact pressure (Pa), Barber's unloading stiffness and the partial-unloading
         secant (N/m), the approach after the partial unloading (m), the constrained-CG
-        iterations of the peak solve and whether every solve of the cycle converged.
+        iterations of the peak solve, whether every solve of the cycle converged and the
+        approach at the detection load (m, the same at every peak).
     """
     loads = np.asarray(protocol.peak_loads, dtype=np.float64)
     hardness = material.hardness
     out: dict[str, list] = {c: [] for c in COLUMNS}
+    box_cols = ("contact_box", "near_box") if boxes else ()
+    for c in box_cols:
+        out[c] = []
+    margin = gap_margin(window) if boxes else 0.0
     n_reused = 0
     if elastic is not None and math.isfinite(hardness):
         below = (np.asarray(elastic["max_pressure"], np.float64) < hardness) & np.asarray(
@@ -209,10 +229,14 @@ def run_cycles(
             "plastic_volume": 0.0,
             "unloaded_displacement": math.nan,
             "n_iterations": 0,
+            "detection_displacement": math.nan,
         }
         for c in COLUMNS:
             v = elastic.get(c)
             out[c] = list(np.asarray(v)[:n_reused]) if v is not None else [unyielded[c]] * n_reused
+        for c in box_cols:
+            v = elastic.get(c)
+            out[c] = list(np.asarray(v)[:n_reused]) if v is not None else [[-1] * 4] * n_reused
         if step is not None:
             for _ in range(n_reused):
                 step()
@@ -231,6 +255,7 @@ def run_cycles(
         cs.freeze_plastic(False)
         peak = cs.solve(load=float(load))
         p_max = cs.max_pressure()
+        peak_boxes = _boxes(cs, window, margin) if boxes else ()  # before the unloading
         cs.freeze_plastic(True)  # the unloading below is elastic from the deformed surface
         k_barber, _, ok_barber = cs.punch_stiffness()
         low = cs.solve(load=(1.0 - f) * float(load))
@@ -259,14 +284,75 @@ def run_cycles(
         out["converged"].append(
             peak.converged and low.converged and bool(ok_barber) and math.isfinite(k_secant)
         )
+        for c, b in zip(box_cols, peak_boxes, strict=True):
+            out[c].append(b)
         if step is not None:
             step()
+    f_s = protocol.detection_load if detection else None
+    det = math.nan
+    if f_s is not None and cs is None and elastic is not None:
+        det = float(np.asarray(elastic.get("detection_displacement", [math.nan]))[0])
     if cs is not None:
         cs.freeze_plastic(False)
+        if f_s is not None:  # surface detection: loading from the original surface to F_s
+            cs.reset()
+            state = cs.solve(load=float(f_s))
+            det = float(state.depth) if state.converged else math.nan
+    out["detection_displacement"] = [det] * loads.size
+    for c in box_cols:
+        out[c] = np.asarray(out[c], np.int64).reshape(-1, 4)
     types = {
         "n_contact": np.int64,
         "n_plastic": np.int64,
         "n_iterations": np.int64,
         "converged": bool,
     }
-    return {c: np.asarray(v, dtype=types.get(c, np.float64)) for c, v in out.items()}
+    return {
+        c: (v if c in box_cols else np.asarray(v, dtype=types.get(c, np.float64)))
+        for c, v in out.items()
+    }
+
+
+def gap_margin(window: PunchWindow) -> float:
+    """How near contact a pixel of the disk must be to belong to the contact's interaction
+    range at a finer pixel (m): twice the largest height step between neighbouring disk pixels,
+    the most a sample between them can rise above both on a surface whose content the pixel
+    resolves (a WM map with W_c ≥ 2 pixels).
+
+    Parameters
+    ----------
+    window : PunchWindow
+        The punch and the heights under it.
+
+    Returns
+    -------
+    float
+        The margin (m); 0 for a flat disk.
+    """
+    z, mk = window.heights, window.mask
+    steps = [0.0]
+    for ax in (0, 1):
+        both = np.logical_and(
+            np.take(mk, range(1, mk.shape[ax]), axis=ax),
+            np.take(mk, range(mk.shape[ax] - 1), axis=ax),
+        )
+        if both.any():
+            steps.append(float(np.abs(np.diff(z, axis=ax))[both].max()))
+    return 2.0 * max(steps)
+
+
+def _box(sel: np.ndarray) -> list[int]:
+    if not sel.any():
+        return [-1, -1, -1, -1]
+    rows, cols = np.flatnonzero(sel.any(axis=1)), np.flatnonzero(sel.any(axis=0))
+    return [int(rows[0]), int(cols[0]), int(rows[-1]), int(cols[-1])]
+
+
+def _boxes(cs: ContactSolver, window: PunchWindow, margin: float) -> tuple[list[int], list[int]]:
+    """The contact's and the near-contact set's bounding boxes of the current solution."""
+    p, gap = cs.maps()
+    wy, wx = window.mask.shape
+    p, gap = p[:wy, :wx], gap[:wy, :wx]
+    contact = window.mask & (p > 0)
+    near = window.mask & ((p > 0) | (np.abs(gap) <= margin))
+    return _box(contact), _box(near)

@@ -17,6 +17,14 @@ gap is the punch's rigid plane minus the sum of both surfaces' heights.
   does not rotate (no moment equilibrium), so Barber's unloading stiffness is that of the
   contact set, as for an aligned punch. The projection of the disk (its cos θ shortening,
   1.5·10⁻⁶ at 0.1°) is neglected. Analytic: the same plane at any pixel.
+  ``tilt_reference = "local"`` measures θ against the sample's least-squares plane over the
+  disk at each placement instead of the map's mean plane (a long wave tilts the sample under a
+  punch by itself: Ps's 2 mm wave by about 0.02° rms): the face's plane is the tilt less that
+  local plane, fitted once at the map's pixel and kept at every finer pixel, so that the
+  composite's mean plane over the disk is tilted by θ exactly, and 0° is a face aligned with
+  the surface under it. ``tilt_azimuths = n`` turns the azimuth by 360°/n from one placement
+  to the next (:func:`placement_face`), so that averages over the placements are averages over
+  azimuth, as over the unknown orientation of an instrument's misalignment.
 * **A generated rough face** (``roughness`` R_q > 0): a self-affine, Fourier-filtered
   Gaussian field, C(q) ∝ q^(−2−2H) for 2π/λ_L ≤ abs(q) ≤ 2π/λ_s and 0 outside, on a periodic
   square of side P = 2·max(d, λ_L) centred on the punch; white noise from
@@ -56,6 +64,7 @@ __all__ = [
     "face_record",
     "face_settings",
     "make_face",
+    "placement_face",
     "punch_faces",
     "self_affine_field",
 ]
@@ -102,10 +111,30 @@ class PunchFaceSpec(Parameters):
     tilt_azimuth_deg: float = param(
         0.0,
         "direction of the tilted face's edge nearest the sample, from +x toward +y, the "
-        "same for every placement",
+        "same for every placement (tilt_azimuths spreads it)",
         unit="°",
         ge=0.0,
         lt=360.0,
+        sweep=False,
+    )
+    tilt_reference: str = param(
+        "map",
+        "what the tilt is measured against: 'map' (the map's mean plane: one misalignment "
+        "at every placement) or 'local' (the sample's least-squares plane over the disk at "
+        "each placement: the tilt of the punch relative to the surface under it; 0° then "
+        "aligns the face with that plane)",
+        choices=("map", "local"),
+        sweep=False,
+    )
+    tilt_azimuths: int = param(
+        1,
+        "azimuths of the tilt spread over the placements: the i-th placement of a punch "
+        "(counted over realisations, then placements) tilts toward tilt_azimuth_deg + "
+        "360°·(i mod n)/n, so that averages over the placements average over azimuth; 1 = "
+        "tilt_azimuth_deg at every placement",
+        kind="int",
+        ge=1,
+        le=360,
         sweep=False,
     )
     roughness: float = param(
@@ -172,8 +201,14 @@ class PunchFaceSpec(Parameters):
 
     @property
     def is_flat(self) -> bool:
-        """Whether the face is an aligned smooth flat (no tilt, no roughness, no file)."""
-        return self.tilt_deg == 0.0 and self.roughness == 0.0 and self.file is None
+        """Whether the face is an aligned smooth flat (no tilt against the map, no roughness,
+        no file)."""
+        return (
+            self.tilt_deg == 0.0
+            and self.tilt_reference == "map"
+            and self.roughness == 0.0
+            and self.file is None
+        )
 
 
 def self_affine_field(
@@ -290,6 +325,29 @@ class PunchFace:
     """The roughness (a generated or a read face), None for a smooth face."""
     info: dict = field(default_factory=dict)
     """What the face is (JSON-able): tilt, roughness parameters, defaults taken."""
+    level: tuple[float, float] = (0.0, 0.0)
+    """Slopes (∂z/∂x, ∂z/∂y) of the sample's local plane under this placement that the face
+    takes out (dimensionless): the face's plane is the tilt less this plane, so that the tilt
+    is relative to the surface under the punch (``tilt_reference = "local"``); zeros
+    otherwise."""
+
+    def plane(self, x: Any, y: Any) -> np.ndarray:
+        """The face's plane at points (m): tan θ·(x cos φ + y sin φ) − (b·x + c·y).
+
+        Parameters
+        ----------
+        x, y : array_like
+            Offsets from the punch centre (m), broadcast together.
+
+        Returns
+        -------
+        ndarray of float64
+        """
+        x = np.asarray(x, dtype=np.float64)
+        y = np.asarray(y, dtype=np.float64)
+        t = math.tan(self.tilt)
+        b, c = self.level
+        return (t * math.cos(self.azimuth) - b) * x + (t * math.sin(self.azimuth) - c) * y
 
     def heights(self, x: Any, y: Any) -> np.ndarray:
         """Heights of the face toward the sample on a grid (m).
@@ -304,13 +362,12 @@ class PunchFace:
         Returns
         -------
         (wy, wx) ndarray of float64
-            tan θ·(x cos φ + y sin φ) plus the rough face.
+            :meth:`plane` (the tilt, less the local plane it is measured against) plus the
+            rough face.
         """
         x = np.asarray(x, dtype=np.float64)
         y = np.asarray(y, dtype=np.float64)
-        t = math.tan(self.tilt)
-        out = t * (math.cos(self.azimuth) * x[None, :] + math.sin(self.azimuth) * y[:, None])
-        out = np.broadcast_to(out, (y.size, x.size)).copy()
+        out = np.broadcast_to(self.plane(x[None, :], y[:, None]), (y.size, x.size)).copy()
         if self.rough is not None:
             out += self.rough.heights(x, y)
         return out
@@ -383,9 +440,59 @@ def make_face(
         rough, info["roughness"] = _generated_face(d, face, (face.seed, index), pixel)
     else:
         info["roughness"] = None
-    if tilt_deg == 0.0 and rough is None:
+    info["tilt_reference"] = face.tilt_reference
+    info["tilt_azimuths"] = int(face.tilt_azimuths)
+    if tilt_deg == 0.0 and rough is None and face.tilt_reference == "map":
         return None
     return PunchFace(d, math.radians(tilt_deg), math.radians(face.tilt_azimuth_deg), rough, info)
+
+
+def placement_face(
+    face: PunchFace | None, spec: PunchFaceSpec, index: int, sample: Any = None
+) -> PunchFace | None:
+    """The face of one placement: its azimuth (``spec.tilt_azimuths``) and, for a tilt
+    relative to the surface (``spec.tilt_reference = "local"``), the sample's plane under it
+    taken out.
+
+    Parameters
+    ----------
+    face : PunchFace or None
+        The punch diameter's face (:func:`make_face`).
+    spec : PunchFaceSpec
+        Its parameters.
+    index : int
+        The placement's index among the punch's placements, counted over realisations then
+        placements.
+    sample : PunchWindow, optional
+        The placement's window without a face (the sample's heights at the map's pixel): the
+        local plane is the least-squares plane of its disk pixels. Needed for ``"local"``.
+
+    Returns
+    -------
+    PunchFace or None
+        ``face`` itself when neither applies; else a copy with the azimuth
+        φ = ``tilt_azimuth_deg`` + 360°·(index mod n)/n and the local plane's slopes in
+        :attr:`PunchFace.level`, ``info`` recording both (``local_plane_tilt_deg``, the local
+        plane's own tilt against the map).
+    """
+    if face is None or (spec.tilt_reference == "map" and spec.tilt_azimuths == 1):
+        return face
+    azimuth = math.radians(
+        spec.tilt_azimuth_deg + 360.0 * (index % spec.tilt_azimuths) / spec.tilt_azimuths
+    )
+    info = {**face.info, "tilt_azimuth_deg": math.degrees(azimuth) % 360.0}
+    level = (0.0, 0.0)
+    if spec.tilt_reference == "local":
+        if sample is None:
+            raise ValueError("a tilt relative to the local plane needs the placement's window")
+        iy, ix = np.nonzero(sample.mask)
+        x = (ix + sample.origin[1] + 0.5) * sample.pixel_size[0] - sample.centre[0]
+        y = (iy + sample.origin[0] + 0.5) * sample.pixel_size[1] - sample.centre[1]
+        _a, b, c = _plane_fit(x, y, sample.surface_disk_heights)
+        level = (float(b), float(c))
+        info["local_plane_tilt_deg"] = math.degrees(math.atan(math.hypot(b, c)))
+        info["local_plane_slopes"] = list(level)
+    return PunchFace(face.diameter, face.tilt, azimuth, face.rough, info, level)
 
 
 def _generated_face(
@@ -554,17 +661,23 @@ def face_record(window: Any) -> dict[str, float]:
     -------
     dict
         ``face_Rt_m`` (peak-to-valley) and ``face_roughness_rms_m`` (rms of the face less its
-        tilt plane) over the disk's pixels, and ``composite_Rt_m``; empty without a face.
+        plane) over the disk's pixels, ``composite_Rt_m``, ``face_tilt_azimuth_deg`` and, for a
+        tilt relative to the surface, ``local_plane_tilt_deg`` (the sample's local plane
+        against the map); empty without a face.
     """
     if window.face is None:
         return {}
     f = window.face_heights[window.mask]
     rough = window.untilted_disk_heights - window.surface_disk_heights
-    return {
+    out = {
         "face_Rt_m": float(np.ptp(f)),
         "face_roughness_rms_m": float(np.std(rough)),
         "composite_Rt_m": float(np.ptp(window.disk_heights)),
+        "face_tilt_azimuth_deg": math.degrees(window.face.azimuth) % 360.0,
     }
+    if "local_plane_tilt_deg" in window.face.info:
+        out["local_plane_tilt_deg"] = window.face.info["local_plane_tilt_deg"]
+    return out
 
 
 def check_same_face(reuse: Any, protocol: Any) -> None:

@@ -15,6 +15,7 @@ import numpy as np
 from ..contact.settings import SolverSettings
 from ..material import Material
 from .cycles import COLUMNS, run_cycles
+from .depth import bulk_yield
 from .protocol import IndentProtocol
 from .punch import PunchWindow
 from .refine import CellRefinement, WindowSource, refine_cells
@@ -22,6 +23,9 @@ from .results import modulus_from_stiffness
 from .truncated import truncation_at_loads
 
 __all__ = ["solve_placement"]
+
+BOX_COLUMNS = ("contact_box", "near_box")
+"""The near-contact boxes :func:`~warptrunc.indent.cycles.run_cycles` returns when asked."""
 
 
 def _subset(cycles: dict[int, dict[str, Any]], idx: np.ndarray) -> dict[str, np.ndarray] | None:
@@ -87,6 +91,14 @@ def solve_placement(
     # of it is saturated
     plateau = None if w.diameter is None else material.contact_modulus * w.diameter
     windows: dict[int, PunchWindow] = {1: w}
+    # the near-contact boxes a sub-window is cut to, when a refined whole window may not fit
+    max_px = protocol.max_window_pixels
+    boxes = (
+        source.refinable
+        and protocol.refine_max > 1
+        and w.diameter is not None
+        and w.mask.size * protocol.refine_max**2 > max_px
+    )
     el_cache: dict[int, dict[int, dict[str, Any]]] = {}  # factor → load index → elastic cycle
     sec = {"elastic_s": 0.0, "elastic_plastic_s": 0.0, "refinement_s": 0.0, "truncation_s": 0.0}
 
@@ -107,6 +119,7 @@ def solve_placement(
             elastic=el,
             approach=approach,
             step=bar,
+            boxes=boxes,
             device=device,
             devices=devices,
         )
@@ -114,7 +127,7 @@ def solve_placement(
     def keep(factor: int, idx: np.ndarray, out: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         by = el_cache.setdefault(factor, {})
         for r, i in enumerate(idx):
-            by[int(i)] = {c: out[c][r] for c in COLUMNS if c in out}
+            by[int(i)] = {c: out[c][r] for c in (*COLUMNS, *BOX_COLUMNS) if c in out}
         return out
 
     every = np.arange(m)
@@ -169,10 +182,13 @@ def solve_placement(
         el_ref = ep_ref
     t3 = time.perf_counter()
     rows = _rows(w, loads, ep_ref, el_ref)
+    # the cap model does not hold where the bulk would yield under the whole punch
+    rows["bulk_yield"] = bulk_yield(loads, w.area, hardness)
+    rows["in_fit"] = rows["in_fit"] & ~rows["bulk_yield"]
     # Eq. 2 truncation on the disk at each cell's final pixel
     tr = {k: np.zeros(m) for k in ("depth", "contact_area", "stiffness")}
-    for k in np.unique(ep_ref.factor):
-        idx = np.flatnonzero(ep_ref.factor == k)
+    for k in np.unique(ep_ref.truncation_factor):
+        idx = np.flatnonzero(ep_ref.truncation_factor == k)
         t = truncation_at_loads(
             ep_ref.windows[int(k)],
             loads[idx],
@@ -186,6 +202,7 @@ def solve_placement(
         truncation_depth=tr["depth"],
         truncation_contact_area=tr["contact_area"],
         truncation_stiffness=tr["stiffness"],
+        truncation_pixel_size=w.pixel_size[0] / ep_ref.truncation_factor.astype(np.float64),
     )
     t4 = time.perf_counter()
     sec.update(
@@ -218,8 +235,14 @@ def _rows(
         "pixel_size": ep.pixel_size,
         "resolution_change": ep.change,
         "area_change": ep.area_change,
+        "stiffness_extrapolated": ep.stiffness_extrapolated,
+        "stiffness_error": ep.stiffness_error,
+        "contact_area_extrapolated": ep.area_extrapolated,
+        "contact_area_error": ep.area_error,
         "resolved": ep.resolved,
+        "area_resolved": ep.area_resolved,
         "saturated": ep.saturated,
+        "sub_window": ep.sub_window,
         "in_fit": ep.in_fit,
         "resolution_note": ep.note,
     }
@@ -233,11 +256,18 @@ def _rows(
         "unloading_stiffness",
         "partial_unloading_stiffness",
         "converged",
+        "detection_displacement",
     ):
         rows[k] = np.asarray(c[k])
     nan = np.full(m, np.nan)
     e = None if el is None else el.cycles
-    for k in ("displacement", "contact_area", "unloading_stiffness", "partial_unloading_stiffness"):
+    for k in (
+        "displacement",
+        "contact_area",
+        "unloading_stiffness",
+        "partial_unloading_stiffness",
+        "detection_displacement",
+    ):
         rows[f"elastic_{k}"] = nan if e is None else np.asarray(e[k], np.float64)
     off = np.zeros(m, bool)
     rows.update(
@@ -247,7 +277,11 @@ def _rows(
         if e is None
         else np.asarray(e["n_contact"], np.int64),
         elastic_resolution_change=nan if el is None else el.change,
+        elastic_stiffness_extrapolated=nan if el is None else el.stiffness_extrapolated,
+        elastic_stiffness_error=nan if el is None else el.stiffness_error,
+        elastic_contact_area_error=nan if el is None else el.area_error,
         elastic_resolved=off if el is None else el.resolved,
+        elastic_area_resolved=off if el is None else el.area_resolved,
         elastic_saturated=off if el is None else el.saturated,
         elastic_in_fit=off if el is None else el.in_fit,
     )

@@ -16,7 +16,12 @@ from typing import Any
 
 from ..material import DIAMOND, Material
 from ..params import Parameters, check_fields, param
+from .depth import DETECTION_LOAD
 from .face import PunchFaceSpec
+
+DEFAULT_MAX_WINDOW_PIXELS = 2**26
+"""Largest punch window solved whole at a refined pixel by default (pixels): 8192², about
+13 GB of solver state in float32 (``IndentProtocol.max_window_pixels``)."""
 
 __all__ = [
     "ALUMINIUM_HARDNESS",
@@ -150,8 +155,9 @@ class IndentProtocol(Parameters):
     )
     resolution_tol: float = param(
         0.02,
-        "a cell is resolved when its unloading stiffness and contact area change by less "
-        "than this (relative) when the pixel is halved",
+        "a refined cell is resolved when the error estimate of its unloading stiffness K "
+        "(Richardson, over the last two halvings of the pixel) is below this, relative to the "
+        "extrapolated K; its contact area is reported with the same estimate",
         gt=0.0,
         lt=1.0,
         sweep=False,
@@ -171,6 +177,26 @@ class IndentProtocol(Parameters):
         kind="int",
         ge=1,
         le=1024,
+        sweep=False,
+    )
+    max_window_pixels: int = param(
+        DEFAULT_MAX_WINDOW_PIXELS,
+        "largest punch window solved whole at a refined pixel (rows × columns, 8192² by "
+        "default); a larger one is cut to a sub-window that holds the contact and its "
+        "interaction range",
+        kind="int",
+        ge=64,
+        le=2**40,
+        sweep=False,
+    )
+    detection_load: float | None = param(
+        DETECTION_LOAD,
+        "surface-detection force F_s: the threshold depth is measured from where the punch "
+        "first carries F_s, as an indenter reads depth (10 µN: an assumption; none = only "
+        "the depth from the highest point)",
+        unit="N",
+        gt=0.0,
+        optional=True,
         sweep=False,
     )
     elastic: bool = param(
@@ -195,6 +221,11 @@ class IndentProtocol(Parameters):
         r = self.refine_max
         if r & (r - 1):
             raise ValueError(f"refine_max must be a power of 2 in [1, 1024], got {r!r}")
+        if self.detection_load is not None and not self.detection_load < f[0]:
+            raise ValueError(
+                f"detection_load must be below the first peak load {f[0]!r} N (the surface is "
+                f"detected before the first cycle), got {self.detection_load!r} N"
+            )
 
     def to_dict(self) -> dict[str, Any]:
         """The fields (SI; tuples as lists), the face as a dict of its own.

@@ -35,7 +35,9 @@ from ..contact.halfspace import fft_size
 __all__ = [
     "PlacementOverlapWarning",
     "PunchWindow",
+    "disk_bounds",
     "disk_mask",
+    "disk_pixel_count",
     "lens_fraction",
     "place_punches",
     "punch_window",
@@ -257,11 +259,26 @@ class PunchWindow:
     """(wy, wx) float64 heights of the face toward the sample at the disk's pixels, 0 outside
     (m); ``heights`` holds the sample's plus these (the composite surface). None without a
     face."""
+    n_disk: int | None = None
+    """Pixels of the whole disk when this window is a sub-window of it (``region`` of
+    :func:`punch_window_at`: the part of the disk that holds the contact and its interaction
+    range; the disk's other pixels are left out of the solve); None for the whole disk."""
 
     @property
     def n_pixels(self) -> int:
-        """Pixels the punch can touch (count)."""
+        """Pixels of the window the punch can touch (count)."""
         return int(np.count_nonzero(self.mask))
+
+    @property
+    def is_sub_window(self) -> bool:
+        """Whether the window holds only part of the disk (:attr:`n_disk`)."""
+        return self.n_disk is not None
+
+    @property
+    def n_disk_pixels(self) -> int:
+        """Pixels of the whole disk (count): :attr:`n_pixels`, or :attr:`n_disk` for a
+        sub-window."""
+        return self.n_pixels if self.n_disk is None else self.n_disk
 
     @property
     def pixel_area(self) -> float:
@@ -283,17 +300,16 @@ class PunchWindow:
 
     @property
     def untilted_disk_heights(self) -> np.ndarray:
-        """(n_pixels,) float64 composite heights at the disk's pixels less the face's tilt
-        plane (m): the sample and the face's roughness (the solver's default tolerance)."""
+        """(n_pixels,) float64 composite heights at the disk's pixels less the face's plane
+        (m; its tilt and the local plane it takes out): the sample and the face's roughness
+        (the solver's default tolerance)."""
         f = self.face
-        if f is None or f.tilt == 0.0:
+        if f is None or (f.tilt == 0.0 and f.level == (0.0, 0.0)):
             return self.disk_heights
         iy, ix = np.nonzero(self.mask)  # raster order, as the mask indexes
         x = (ix + self.origin[1] + 0.5) * self.pixel_size[0] - self.centre[0]
         y = (iy + self.origin[0] + 0.5) * self.pixel_size[1] - self.centre[1]
-        return self.disk_heights - math.tan(f.tilt) * (
-            math.cos(f.azimuth) * x + math.sin(f.azimuth) * y
-        )
+        return self.disk_heights - f.plane(x, y)
 
     @property
     def top(self) -> float:
@@ -371,11 +387,13 @@ def punch_window_at(
     *,
     drop: float | None = None,
     face: Any = None,
+    region: tuple[int, int, int, int] | None = None,
 ) -> PunchWindow:
     """:func:`punch_window` on a map known through the heights of any window of it.
 
     Only the disk's bounding window is asked for, so a map too large to hold (a WM surface
-    generated again at a finer pixel, :func:`warptrunc.wm.wm_window`) can be indented.
+    generated again at a finer pixel, :func:`warptrunc.wm.wm_window`) can be indented; with
+    ``region``, only the part of it inside a rectangle (a sub-window).
 
     Parameters
     ----------
@@ -395,6 +413,11 @@ def punch_window_at(
     face : PunchFace, optional
         As for :func:`punch_window`: evaluated at this window's pixel centres, so a finer
         window holds the same face.
+    region : (int, int, int, int), optional
+        (iy0, ix0, iy1, ix1), first and last row and column of the map (inclusive): the window
+        is the disk's bounding box cut to this rectangle, and only the disk's pixels inside it
+        can touch (a sub-window; :attr:`PunchWindow.n_disk` counts the whole disk). None: the
+        whole disk.
 
     Returns
     -------
@@ -403,7 +426,8 @@ def punch_window_at(
     Raises
     ------
     ValueError
-        A punch larger than the map, a disk reaching outside it or covering no pixel centre.
+        A punch larger than the map, a disk reaching outside it or covering no pixel centre, or
+        a region that holds no pixel of the disk.
     """
     dx, dy = _pixel_pair(pixel_size)
     ny, nx = (int(v) for v in map_shape)
@@ -434,7 +458,16 @@ def punch_window_at(
             f"a punch of diameter {d:.6g} m covers no pixel centre of a map with pixels of "
             f"{dx:.6g} × {dy:.6g} m; use a larger punch"
         )
+    n_disk = None
+    if region is not None:
+        n_disk = disk_pixel_count((iy0, ix0, iy1, ix1), (dx, dy), (cx, cy), d)
+        ry0, rx0, ry1, rx1 = (int(v) for v in region)
+        iy0, ix0, iy1, ix1 = max(iy0, ry0), max(ix0, rx0), min(iy1, ry1), min(ix1, rx1)
+        if ix1 < ix0 or iy1 < iy0:
+            raise ValueError(f"region {tuple(region)!r} holds no pixel of the punch's disk")
     mask = _disk_in(np.arange(iy0, iy1 + 1), np.arange(ix0, ix1 + 1), (dx, dy), (cx, cy), d)
+    if region is not None and int(mask.sum()) == n_disk:
+        n_disk = None  # the region holds the whole disk
     if not mask.any():
         raise ValueError(
             f"a punch of diameter {d:.6g} m centred at ({cx:.6g}, {cy:.6g}) m covers no pixel "
@@ -464,5 +497,78 @@ def punch_window_at(
         if fh is not None:
             fh = np.pad(fh, ((0, gy - wy), (0, gx - wx)))
     return PunchWindow(
-        d, (cx, cy), (iy0, ix0), mask, win, floor, (dx, dy), math.pi * r * r, face, fh
+        d, (cx, cy), (iy0, ix0), mask, win, floor, (dx, dy), math.pi * r * r, face, fh, n_disk
     )
+
+
+def disk_bounds(
+    map_shape: tuple[int, int],
+    pixel_size: float | tuple[float, float],
+    diameter: float,
+    centre: tuple[float, float],
+) -> tuple[int, int, int, int]:
+    """The rows and columns of a map whose pixel centre can lie in a disk.
+
+    Parameters
+    ----------
+    map_shape : (int, int)
+        The map's size (ny, nx).
+    pixel_size : float or (float, float)
+        Pixel sides dx, dy (m).
+    diameter : float
+        Disk diameter d (m).
+    centre : (float, float)
+        Disk centre (x, y) (m).
+
+    Returns
+    -------
+    (int, int, int, int)
+        (iy0, ix0, iy1, ix1), inclusive, clipped to the map: (i + ½)·dx ∈ [x_c − d/2, x_c + d/2].
+    """
+    dx, dy = _pixel_pair(pixel_size)
+    ny, nx = (int(v) for v in map_shape)
+    cx, cy = (float(v) for v in centre)
+    r = 0.5 * float(diameter)
+    return (
+        max(0, math.ceil((cy - r) / dy - 0.5)),
+        max(0, math.ceil((cx - r) / dx - 0.5)),
+        min(ny - 1, math.floor((cy + r) / dy - 0.5)),
+        min(nx - 1, math.floor((cx + r) / dx - 0.5)),
+    )
+
+
+def disk_pixel_count(
+    bounds: tuple[int, int, int, int],
+    pixel_size: tuple[float, float],
+    centre: tuple[float, float],
+    diameter: float,
+) -> int:
+    """Pixels whose centre lies in a disk, counted row by row without a mask.
+
+    Parameters
+    ----------
+    bounds : (int, int, int, int)
+        (iy0, ix0, iy1, ix1) that hold the disk (:func:`disk_bounds`).
+    pixel_size : (float, float)
+        Pixel sides dx, dy (m).
+    centre : (float, float)
+        Disk centre (x, y) (m).
+    diameter : float
+        Disk diameter d (m).
+
+    Returns
+    -------
+    int
+        The count of :func:`disk_mask` (the same closed-disk test, row by row).
+    """
+    iy0, ix0, iy1, ix1 = bounds
+    dx, dy = pixel_size
+    cx, cy = centre
+    r2 = (0.5 * diameter) ** 2
+    cols = np.arange(ix0, ix1 + 1)
+    x2 = ((cols + 0.5) * dx - cx) ** 2
+    n = 0
+    for iy in range(iy0, iy1 + 1):  # one row at a time: a fine window's mask need not exist
+        y2 = ((iy + 0.5) * dy - cy) ** 2
+        n += int(np.count_nonzero(x2 + y2 <= r2))
+    return n
