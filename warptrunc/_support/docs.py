@@ -41,7 +41,7 @@ SHARED_DOCS = {
     "{warp_device}": "device : str, optional\n    Warp device.",
     "{warp_device_obj}": "device : str or warp Device, optional\n    Warp device.",
     "{surface}": "surface : Surface\n    The height map (m).",
-    "{path}": "Parameters\n----------\npath : str or Path\n    File to write (overwritten).",
+    "{write_path}": "Parameters\n----------\npath : str or Path\n    File to write (overwritten).",
     "{returns_path}": "Returns\n-------\nPath",
 }
 """Parameter text that functions of several packages share and that is no field of a parameter

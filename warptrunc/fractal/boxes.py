@@ -28,6 +28,19 @@ from .settings import DEFAULT_HEIGHT_SCALING
 
 
 def default_box_sizes(surface: Surface) -> np.ndarray:
+    """Box sides of the triangulation and box counting: powers of two up to an eighth of the
+    shorter side.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m).
+
+    Returns
+    -------
+    ndarray of int64
+        Box sides 1, 2, 4, … (pixels), the largest at most max(4, (min(nx, ny) − 1) // 8).
+    """
     smax = max(4, (min(surface.nx, surface.ny) - 1) // 8)
     return 2 ** np.arange(int(math.log2(smax)) + 1)
 

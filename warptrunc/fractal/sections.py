@@ -18,6 +18,19 @@ from ._common import FRACTAL_DOCS, FractalFit, check_sizes, fit_log_log, upload
 
 
 def default_lags(surface: Surface) -> np.ndarray:
+    """Lags of the vertical sections' structure function: 16 log-spaced lags up to an eighth of
+    the shorter side.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map (m).
+
+    Returns
+    -------
+    ndarray of int64
+        Distinct lags τ (pixels) from 1 to max(4, (min(nx, ny) − 1) // 8).
+    """
     tmax = max(4, (min(surface.nx, surface.ny) - 1) // 8)
     return np.unique(np.round(np.geomspace(1, tmax, 16)).astype(np.int64))
 

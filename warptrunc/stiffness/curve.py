@@ -113,7 +113,7 @@ class StiffnessCurve:
     def to_json(self, path: str | Path) -> Path:
         """Write the columns of :meth:`to_dict` (lists) plus the material and β' as JSON.
 
-        {path}
+        {write_path}
 
         {returns_path}
             ``path``. Besides the columns, the object holds ``material`` (the fields of

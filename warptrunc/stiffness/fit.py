@@ -144,7 +144,7 @@ class PowerLawFit:
     def to_json(self, path: str | Path) -> Path:
         """Write :meth:`to_dict` as JSON.
 
-        {path}
+        {write_path}
 
         {returns_path}
             ``path``. Besides the fields of :meth:`to_dict`, the object holds ``provenance``

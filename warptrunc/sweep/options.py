@@ -229,26 +229,6 @@ class SweepExecution(Parameters):
     surfaces per launch on a GPU). ``workers`` starts a local Dask cluster for the run;
     ``scheduler`` uses an existing one.
 
-    Parameters
-    ----------
-    workers : int or "auto", optional
-        Run on a local Dask cluster of this many worker processes (one thread each; ``"auto"``:
-        one per visible CUDA device, 1 on a machine without one), started once for the whole
-        run (:func:`warptrunc.sweep.cluster.open_client`); with CUDA devices and no ``device``,
-        worker i is pinned to ``cuda:{i mod n_gpus}`` (dask-cuda's LocalCUDACluster where
-        installed). The workers are spawned processes, so a script that passes ``workers``
-        needs the ``if __name__ == "__main__":`` guard.
-    scheduler : str or distributed.Client, optional
-        Use an existing Dask cluster (e.g. ``"tcp://host:8786"``, a dask-jobqueue cluster's
-        ``scheduler_address``, or a client) instead. Its workers write their parts into the
-        store themselves: the store must be on a filesystem that every worker shares.
-    devices : int, "auto" or sequence, optional
-        Spread each elastic solve (``bem_fractions``) over several devices
-        (``ContactSolver(..., devices=...)``; JAX); None: the case's device alone. With
-        ``workers`` or ``scheduler``, a count G: each worker takes G devices of its own and
-        spreads its solves over them (:mod:`warptrunc.sweep.groups`; ``workers="auto"`` is
-        then the devices present divided by G).
-
     Raises
     ------
     ValueError
@@ -262,8 +242,22 @@ class SweepExecution(Parameters):
     """
 
     workers: int | str | None = None
+    """Run on a local Dask cluster of this many worker processes (one thread each; ``"auto"``:
+    one per visible CUDA device, 1 on a machine without one), started once for the whole run
+    (:func:`warptrunc.sweep.cluster.open_client`); with CUDA devices and no ``device``, worker i
+    is pinned to ``cuda:{i mod n_gpus}`` (dask-cuda's LocalCUDACluster where installed). The
+    workers are spawned processes, so a script that passes ``workers`` needs the
+    ``if __name__ == "__main__":`` guard. None: in this process."""
     scheduler: Any = None
+    """An existing Dask cluster to use instead (e.g. ``"tcp://host:8786"``, a dask-jobqueue
+    cluster's ``scheduler_address``, or a ``distributed.Client``). Its workers write their parts
+    into the store themselves: the store must be on a filesystem that every worker shares."""
     devices: int | str | tuple | None = None
+    """Spread each elastic solve (``bem_fractions``) over several devices
+    (``ContactSolver(..., devices=...)``; JAX): a count, ``"auto"`` or a sequence; None: the
+    case's device alone. With ``workers`` or ``scheduler``, a count G: each worker takes G
+    devices of its own and spreads its solves over them (:mod:`warptrunc.sweep.groups`;
+    ``workers="auto"`` is then the devices present divided by G)."""
     shard_size: int | None = param(
         None,
         "with workers or a scheduler: cases per Dask task, each written by its worker "

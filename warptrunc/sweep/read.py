@@ -241,7 +241,20 @@ def _open_spec(path: Path) -> dict[str, Any]:
 
 
 def format_refusal(path: Path, found: Any) -> str:
-    """Why the store at ``path``, whose ``sweep.json`` has the format tag ``found``, is not read."""
+    """Why the store at ``path``, whose ``sweep.json`` has the format tag ``found``, is not read.
+
+    Parameters
+    ----------
+    path : Path
+        The store folder.
+    found : object
+        The format tag its ``sweep.json`` holds.
+
+    Returns
+    -------
+    str
+        The message: what the store is and what to do (a new ``--out`` or ``--overwrite``).
+    """
     if found == "warptrunc-sweep/1":
         return (
             f"{path} is a sweep store of the layout before {STORE_FORMAT} (one curve file per "

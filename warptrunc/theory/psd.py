@@ -72,8 +72,19 @@ _GAUSS = (0.5 * (_x + 1.0), 0.5 * _w)  # nodes and weights on [0, 1]
 
 
 def self_affine_band(spec: Any) -> tuple[float, float, float, float]:
-    """(H, q_L, q_r, q_s) of a :class:`~warptrunc.selfaffine.SelfAffineSpec` (q in 1/m): its Hurst
-    exponent, long cut-off, roll-off (q_L when it has none) and short cut-off."""
+    """The band of a self-affine spectrum: its Hurst exponent and its three wavenumbers.
+
+    Parameters
+    ----------
+    spec : SelfAffineSpec
+        The spectrum (:class:`~warptrunc.selfaffine.SelfAffineSpec`).
+
+    Returns
+    -------
+    tuple of float
+        (H, q_L, q_r, q_s): the Hurst exponent (dimensionless), the long cut-off, the roll-off
+        (q_L when it has none) and the short cut-off (1/m).
+    """
     g = spec.grid()
     return float(spec.hurst), g["q_long"], g["q_roll"], g["q_short"]
 
@@ -107,10 +118,25 @@ def self_affine_moment_per_c0(spec: Any, k: float) -> float:
 
 
 def self_affine_c0(spec: Any) -> float:
-    """C₀ (m⁴) of the continuous spectrum that has the spec's rms height (1 µm when neither is
-    given) or rms slope: h_rms²/μ₀ or h′_rms²/μ₂ per unit C₀. A map of the spec on its grid
-    (:func:`~warptrunc.selfaffine.self_affine_surface`) has the discrete sums' C₀ instead
-    (``Surface.params["C0_m4"]``), which the continuous one approaches as the modes fill the band."""
+    """C₀ of the continuous spectrum that has the spec's rms height or rms slope.
+
+    Parameters
+    ----------
+    spec : SelfAffineSpec
+        The spectrum (:class:`~warptrunc.selfaffine.SelfAffineSpec`); its ``rms_slope`` when
+        given, else its ``rms_height`` (1 µm when neither is).
+
+    Returns
+    -------
+    float
+        C₀ (m⁴): h′_rms²/μ₂ or h_rms²/μ₀ per unit C₀.
+
+    Notes
+    -----
+    A map of the spec on its grid (:func:`~warptrunc.selfaffine.self_affine_surface`) has the
+    discrete sums' C₀ instead (``Surface.params["C0_m4"]``), which the continuous one
+    approaches as the modes fill the band.
+    """
     if spec.rms_slope is not None:
         return spec.rms_slope**2 / self_affine_moment_per_c0(spec, 2)
     h = 1e-6 if spec.rms_height is None else spec.rms_height
