@@ -441,8 +441,9 @@ def test_cli_writes_the_resolution_columns_and_the_intervals(tmp_path, capsys):
 
 
 def test_default_map_holds_the_default_placements_apart(tmp_path, capsys):
-    """A generated map is 3 mm per side at the preset's (or the defaults') pixel: the paper's
-    three punches at three placements each never overlap, and the command does not warn."""
+    """A generated map is 1 mm per side at the preset's (or the defaults') pixel: the paper's
+    three punches at the default two placements each never overlap, and the command does not
+    warn."""
     from warptrunc.cli import build_parser, main
     from warptrunc.cli.indent import map_specs
     from warptrunc.indent import PAPER_PUNCH_DIAMETERS, IndentMaps, IndentProtocol, place_punches
@@ -450,11 +451,11 @@ def test_default_map_holds_the_default_placements_apart(tmp_path, capsys):
 
     parse = build_parser(["indent"]).parse_args
     (spec,) = map_specs(parse(["indent", "--preset", "GB300s"]))
-    assert spec.L == 3e-3 and spec.n == 30720  # the preset's 97.7 nm pixel
+    assert spec.L == 1e-3 and spec.n == 10240  # the preset's 97.7 nm pixel
     assert IndentMaps().specs(TABLE1["GB300s"]) == [spec]  # the library's default
-    assert map_specs(parse(["indent"]))[0].n == 3072  # the defaults' 0.977 µm pixel
+    assert map_specs(parse(["indent"]))[0].n == 1024  # the defaults' 0.977 µm pixel
     (spec,) = map_specs(parse(["indent", "--preset", "GB300s", "--n", "512"]))
-    assert spec.L == 3e-3 and spec.n == 512
+    assert spec.L == 1e-3 and spec.n == 512
     assert map_specs(parse(["indent", "--L", "1e-3"]))[0].L == 1e-3
     assert map_specs(parse(["indent", "--map-side", "2e-3", "--n", "64"]))[0].L == 2e-3
     specs = map_specs(parse(["indent", "--seeds", "0-2", "--n", "64"]))
@@ -465,7 +466,7 @@ def test_default_map_holds_the_default_placements_apart(tmp_path, capsys):
     for i, d in enumerate(PAPER_PUNCH_DIAMETERS):
         with warnings.catch_warnings():
             warnings.simplefilter("error")
-            c, frac = place_punches((3e-3, 3e-3), d, p.placements, seed=(p.placement_seed, i))
+            c, frac = place_punches((1e-3, 1e-3), d, p.placements, seed=(p.placement_seed, i))
         sep = np.hypot(*(c[:, None] - c[None]).transpose(2, 0, 1))[np.triu_indices(len(c), 1)]
         assert np.all(frac == 0) and sep.min() >= d
     out = tmp_path / "ind"
@@ -489,6 +490,7 @@ def test_default_map_holds_the_default_placements_apart(tmp_path, capsys):
         == 0
     )
     assert "warning" not in capsys.readouterr().err
+
 
 # --- sub-windows: the contact and its interaction range ---------------------------------------
 

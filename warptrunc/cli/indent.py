@@ -3,21 +3,25 @@
 """Flat-punch indentation in silico: the paper's nanoindentation experiment (§ 4.1, Fig. 6).
 
 Rigid circular flat punches (--punch-diameters, default the paper's 54.1, 108.7 and 502.6 µm)
-press on the surface at increasing peak loads (--peak-loads, default ten levels doubling up to
-500 mN); at each peak the unloading stiffness K of the elastic–perfectly-plastic contact
-(pressure capped at --hardness) is measured with the plastic state frozen, as Barber's initial
-slope and as the secant of a partial unloading by --unload-fraction, and turned into
-E_c = √π·K/(2√A) (A the punch area). The elastic solution (H = ∞; --no-elastic skips it) and
-Eq. 2 truncation run on the same punch disks and placements (--placements random positions
-per punch, apart, from --placement-seed).
+press on the surface at increasing peak loads (--peak-loads, default the paper's five heaviest,
+31.25–500 mN, each twice the previous); at each peak the unloading stiffness K of the
+elastic–perfectly-plastic contact (pressure capped at --hardness) is measured with the plastic
+state frozen, as Barber's initial slope and as the secant of a partial unloading by
+--unload-fraction, and turned into E_c = √π·K/(2√A) (A the punch area). The elastic solution (H
+= ∞; --no-elastic skips it) and Eq. 2 truncation run on the same punch disks and placements
+(--placements random positions per punch, apart, from --placement-seed).
 
-A generated map is --map-side per side (default 3 mm, the paper's island maps; the default
-placements of the 502.6 µm punch never overlap there) unless --L is given, at the preset's or
-the defaults' pixel unless --n is given; --seeds indents several realisations. On a WM map each
-(punch, placement, peak) cell is solved again at half the pixel until its unloading stiffness
-and contact area change by less than --resolution-tol with at least --min-contact-pixels in
-contact, up to --refine-max; the fits use only the cells resolved, not saturated and converged
-(``in_fit``), at least 6, with 95 % intervals by a bootstrap over the indents.
+A generated map is --map-side per side (default 1 mm, the paper's simulated maps; the default
+two placements of the 502.6 µm punch are apart there) unless --L is given, at the preset's or
+the defaults' pixel unless --n is given; --seeds indents several realisations. A cell (punch,
+placement, peak) is resolved when converged with at least --min-contact-pixels in contact;
+with --refine-max above 1 (default 1), a WM map's cell is solved again at half the pixel until
+its unloading stiffness and contact area change by less than --resolution-tol, up to
+--refine-max. The fits use only the cells resolved, not saturated and converged (``in_fit``),
+at least 6, with 95 % intervals by a bootstrap over the indents. The defaults are a quick run
+of the experiment (about a minute on two CPU cores at the defaults' 0.977 µm pixel); the
+paper's design, its ten loads, three placements and refined cells, is the indentation stage of
+``warptrunc reproduce --profile paper``.
 
 The punch as the experiment had it: --face-tilt-deg (a misaligned flat held against rotation)
 and a rough face, generated (--face-roughness rms, --face-hurst, --face-cutoff-short,
@@ -139,7 +143,7 @@ def run(args: argparse.Namespace) -> int:
                 protocol=protocol,
                 material=material,
                 solver=solver,
-                progress=not args.no_progress and sys.stderr.isatty(),
+                progress=not args.no_progress,
                 device=args.device,
                 devices=args.devices,
             )
@@ -171,8 +175,8 @@ def run(args: argparse.Namespace) -> int:
             indentation(
                 res,
                 out / "indent.png",
-                title=f"{s.nx}×{s.ny} over {s.lx * 1e3:.3g} mm, R$_t$ = "
-                f"{s.Rt * 1e6:.3g} µm, H = {_h(material)}",
+                title=f"{_case_name(args, s, len(surfaces))}\n{s.nx}×{s.ny} over "
+                f"{s.lx * 1e3:.3g} mm, R$_t$ = {s.Rt * 1e6:.3g} µm, H = {_h(material)}",
             )
             files.append("indent.png")
     fits = res.fit_summary()
@@ -223,9 +227,24 @@ def _surfaces(args: argparse.Namespace) -> list:
     return [generate_surface(spec, args.device) for spec in map_specs(args)]
 
 
+def _case_name(args: argparse.Namespace, s, n_real: int) -> str:
+    """What was indented, for the figure's title: the file read, the preset, or the WM
+    surface's D (and the realisations)."""
+    from pathlib import Path
+
+    if getattr(args, "input", None) is not None:
+        name = Path(str(args.input)).name.replace("$", r"\$")
+    elif getattr(args, "preset", None) is not None:
+        name = f"preset {args.preset}"
+    else:
+        d = s.params.get("D")
+        name = f"WM surface, D = {d:g}" if isinstance(d, (int, float)) else "surface"
+    return name + (f", {n_real} realisations" if n_real > 1 else "")
+
+
 def map_specs(args: argparse.Namespace) -> list:
     """The WM surfaces of the options, one per ``--seeds``, on maps of ``--map-side``
-    (:class:`~warptrunc.indent.maps.IndentMaps`, 3 mm) unless ``--L`` is given, at the pixel of
+    (:class:`~warptrunc.indent.maps.IndentMaps`, 1 mm) unless ``--L`` is given, at the pixel of
     the preset or of the defaults unless ``--n`` is given.
 
     Parameters
@@ -236,8 +255,8 @@ def map_specs(args: argparse.Namespace) -> list:
     Returns
     -------
     list of WMSpec
-        E.g. ``--preset GB300s``: 3 mm over 30720 pixels (the preset's 97.7 nm); no preset:
-        3 mm over 3072 (the defaults' 0.977 µm); ``--n 512``: 3 mm over 512.
+        E.g. ``--preset GB300s``: 1 mm over 10240 pixels (the preset's 97.7 nm); no preset:
+        1 mm over 1024 (the defaults' 0.977 µm); ``--n 512``: 1 mm over 512.
     """
     if args.L is not None and args.map_side is not None:
         raise ValueError(f"--L and --map-side {args.map_side} both give the map's side; give one")

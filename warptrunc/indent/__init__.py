@@ -23,10 +23,12 @@ __all__, __getattr__, __dir__ = lazy_exports(
     {
         "ALUMINIUM_HARDNESS": ".protocol",
         "COLUMNS": ".cycles",
+        "DEFAULT_PEAK_LOADS": ".protocol",
         "MAP_SIDE": ".maps",
         "MATERIAL_DEFAULTS": ".protocol",
         "MODELS": ".results",
         "PAPER_PEAK_LOADS": ".protocol",
+        "PAPER_PROTOCOL": ".protocol",
         "PAPER_PUNCH_DIAMETERS": ".protocol",
         "IndentMaps": ".maps",
         "IndentProtocol": ".protocol",

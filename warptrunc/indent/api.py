@@ -182,7 +182,9 @@ def indent(
         punches and placements on each, rows numbered by ``realisation``).
     protocol : IndentProtocol, optional
         The experiment (:class:`~warptrunc.indent.IndentProtocol`; its defaults when None: the
-        paper's three punches and ten peak loads, three placements each):
+        paper's three punches, its five heaviest peak loads, two placements each, cells judged
+        by their contact pixels; :data:`~warptrunc.indent.PAPER_PROTOCOL` is the paper's ten
+        loads and three placements):
 
         - ``punch_diameters`` (m), each at most the map's smaller side; None: one flat larger
           than the map (every pixel can touch; A = Lx·Ly; one placement);
@@ -231,7 +233,7 @@ def indent(
     pixel_size : float or (float, float), optional
         Pixel sides (m); required for an array, taken from a Surface.
     progress : bool
-        tqdm bar over the cycles (stderr).
+        Report the cycles on stderr (a bar on a terminal, else a line every few seconds).
     {warp_device_obj}
     devices : int, "auto" or list, optional
         Spread each contact solve (every punch window's cycles) over several devices

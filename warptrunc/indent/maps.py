@@ -12,9 +12,10 @@ from ..wm_params import WMSpec
 
 __all__ = ["MAP_SIDE", "IndentMaps"]
 
-MAP_SIDE = 3e-3
-"""Side of a generated indentation map (m): the paper's island maps (3 mm, § 4.3), large enough
-that the default placements of the 502.6 µm punch never overlap."""
+MAP_SIDE = 1e-3
+"""Side of a generated indentation map (m): the paper's simulated maps (1 mm; Table 1's 10240²
+at 97.7 nm), which hold the default two placements of the 502.6 µm punch apart (three overlap
+there: ``map_side`` 3e-3, the paper's island maps of § 4.3, holds them)."""
 
 
 @dataclass(frozen=True)
@@ -29,15 +30,15 @@ class IndentMaps(Parameters):
     Examples
     --------
     >>> from warptrunc.presets import TABLE1
-    >>> [s.n for s in IndentMaps().specs(TABLE1["GB300s"])]  # 3 mm at the preset's 97.7 nm
-    [30720]
+    >>> [s.n for s in IndentMaps().specs(TABLE1["GB300s"])]  # 1 mm at the preset's 97.7 nm
+    [10240]
     """
 
     map_side: float | None = param(
         MAP_SIDE,
         "side of a generated map, at the pixel of its preset or of the defaults unless "
-        "--n is given (3 mm: the paper's island maps; the default placements of the 502.6 µm "
-        "punch never overlap there); none = the surface's own --L",
+        "--n is given (1 mm: the paper's simulated maps, which hold two placements of the "
+        "502.6 µm punch apart; 3e-3, its island maps, hold three); none = the surface's own --L",
         unit="m",
         gt=0.0,
         optional=True,
@@ -71,8 +72,8 @@ class IndentMaps(Parameters):
         -------
         list of WMSpec
             One per seed of :attr:`seeds` (``spec.seed`` alone when None), each of side
-            :attr:`map_side` (``spec.L`` when None). E.g. the preset GB300s: 3 mm over 30720
-            pixels (its 97.7 nm); ``WMSpec()``: 3 mm over 3072 (its 0.977 µm).
+            :attr:`map_side` (``spec.L`` when None). E.g. the preset GB300s: 1 mm over 10240
+            pixels (its 97.7 nm); ``WMSpec()``: 1 mm over 1024 (its 0.977 µm).
         """
         side = self.map_side
         if side is not None:

@@ -204,7 +204,8 @@ def place_legend(ax: Any, *, fontsize: float = 7, ncols: int = 1, **kw: Any) -> 
 
 
 def _move_below(ax: Any, leg: Any) -> Any:
-    """Replace a :func:`place_legend` legend by one under the axes' tick labels and x label."""
+    """Replace a :func:`place_legend` legend by one under the axes' tick labels and x label
+    (the constrained layout makes room for it below; keep it narrower than the figure)."""
     from matplotlib.transforms import ScaledTranslation
 
     spec = getattr(leg, _PLACED)
@@ -248,7 +249,7 @@ def settle_legends(fig: Any, rounds: int = 4) -> None:
         moved = False
         for ax in placed:
             leg = ax.get_legend()
-            if getattr(leg, _PLACED)["below"]:
+            if leg is None or getattr(leg, _PLACED)["below"]:
                 continue
             if legend_covers_data(ax, leg, draw=False):
                 _move_below(ax, leg)

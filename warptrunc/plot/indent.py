@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._style import figure_doc, finish_figure, new_figure
+from ._style import figure_doc, finish_figure, new_figure, place_legend
 
 if TYPE_CHECKING:
     from ..indent import IndentationResult
@@ -131,7 +131,6 @@ def indentation(
             label="hollow: left out of the fit (unresolved, saturated or not converged)",
         )
     )
-    ax.legend(handles=handles, fontsize=7)
     ax.set(xlabel="F/(E·A)", ylabel="E$_c$/E")
     ax.grid(True, which="both", alpha=0.3)
     m = result.material
@@ -140,4 +139,5 @@ def indentation(
         title or f"H = {h}, E = {m.E / 1e9:.3g} GPa, E* = {m.contact_modulus / 1e9:.4g} GPa",
         fontsize=9,
     )
+    place_legend(ax, handles=handles, fontsize=7)  # off the points
     return finish_figure(fig, path)
