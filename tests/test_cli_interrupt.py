@@ -6,7 +6,8 @@ status 130 (``warptrunc.cli.main``).
 The commands run in a child process of their own session; SIGINT goes to the whole process
 group about 1 s after the child reaches the command line, as a terminal's Ctrl-C does (so the
 figure helper of ``analyze`` gets it too). The sizes are small CPU runs that take several
-seconds here, so the signal comes while they compute.
+seconds here, so the signal comes while they compute; ``--no-progress`` where a command has
+it, so that the lines counted are the command's own.
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ ROOT = Path(__file__).resolve().parents[1]
 COMMANDS = {
     "analyze": ["analyze", "--n", "512"],
     "bem-check": ["bem-check", "--n", "128", "--no-progress"],
-    "islands": ["islands", "--n", "256"],
+    "islands": ["islands", "--n", "256", "--no-progress"],
     "compare": [
         "compare",
         "--D",

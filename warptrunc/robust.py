@@ -521,6 +521,8 @@ def tilt_rule(surface: Surface) -> tuple[Surface, dict | None, list]:
 
 AUTO_DOUBLED = "; the fit on fewer was not worth reading, so the count doubled until it was"
 """How the ``auto_depth_extended`` warning says that the first count was not enough."""
+AUTO_TOO_FEW = "; the range to fewer held fewer than 3 fittable increments"
+"""... and that the range to the first count held no fit."""
 
 REFUSAL_DEPTHS = (0.02, 0.05, 0.2, 0.3, 0.5)
 """Fractions of R_t tried as ``--max-depth`` by :func:`refusal_advice` (dimensionless)."""
@@ -773,7 +775,8 @@ def automatic_range(
         )
     target, action, omega, depth, depth_w, curve, sc, fit, found_fit = good[0]
     if action == "extended" and target > AUTO_CONTACT_PIXELS:  # the warning says why
-        _, _, depth, depth_w = adjust_depth(z, omega0, contact_pixels=target, note=AUTO_DOUBLED)
+        note = AUTO_DOUBLED if fits.index(good[0]) > 0 else AUTO_TOO_FEW
+        _, _, depth, depth_w = adjust_depth(z, omega0, contact_pixels=target, note=note)
     ind = indicators(s) if indicators is not None else None
     if ind is not None:
         found_fit = found_fit + check_fit_depth(fit, ind)
