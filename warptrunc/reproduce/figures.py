@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """The figures of ``warptrunc reproduce`` (PNG) from the stage results and analysis: Fig. 2, 5,
 7, 8, 9, 10, the fit-range map, and those of the ``elastic`` and ``indentation`` stages (drawn
-with the helpers of :mod:`.style`)."""
+with the helpers of :mod:`warptrunc.reproduce.style`)."""
 
 from __future__ import annotations
 

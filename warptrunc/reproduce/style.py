@@ -3,8 +3,9 @@
 """The report's house style, shared by every stage's pages: a figure of panels, its file, and a
 number in a table cell.
 
-:mod:`.figures` and :mod:`.report` assemble the report from the stages' figures and sections
-(:mod:`.elastic_report`, :mod:`.indentation.report`); these helpers sit below all of them.
+:mod:`warptrunc.reproduce.figures` and :mod:`warptrunc.reproduce.report` assemble the report
+from the stages' figures and sections (:mod:`warptrunc.reproduce.elastic_report`,
+:mod:`warptrunc.reproduce.indentation.report`); these helpers sit below all of them.
 """
 
 from __future__ import annotations

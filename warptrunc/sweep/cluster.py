@@ -188,7 +188,7 @@ class PinDevice(WorkerPlugin):
     Notes
     -----
     A worker given a CUDA device (or group) is also bound to the CPUs near it, those it may
-    use (:func:`~warptrunc.sweep._affinity.bind_near`: the GPU's socket on a host of several;
+    use (``bind_near`` of ``warptrunc.sweep._affinity``: the GPU's socket on a host of several;
     nothing where Linux or the driver does not say; ``WARPTRUNC_CPU_AFFINITY=0`` turns it off),
     as dask-cuda's ``LocalCUDACluster`` binds its workers.
     """
@@ -229,7 +229,7 @@ class PinDevice(WorkerPlugin):
 
 def _bind_near(names: list[str]) -> None:
     """Bind this worker to the CPUs near its CUDA devices (``"cuda:i"`` names;
-    :func:`~warptrunc.sweep._affinity.bind_near`), as dask-cuda binds its workers."""
+    ``bind_near`` of ``warptrunc.sweep._affinity``), as dask-cuda binds its workers."""
     from ._affinity import bind_near
 
     ordinals = [int(d.split(":", 1)[1]) for d in names if d.startswith("cuda:")]
