@@ -80,7 +80,7 @@ def main(argv=None):
                 w = punch_window(z, (dx, dx), d, tuple(c[0]))
                 phase[0] = f"{s}/{f:g}H/{d * 1e6:.0f}um/{w.mask.shape[0]}px"
                 t = time.perf_counter()
-                out = cycles.run_cycles(w, P.IndentProtocol(), mat, device=dev,
+                out = cycles.run_cycles(w, P.PAPER_PROTOCOL, mat, device=dev,
                                         solver=SolverSettings(dtype=dtype, maxiter=a.maxiter,
                                                               load_control=lc, algorithm=a.algorithm))
                 print(phase[0], f"{time.perf_counter() - t:.2f}s", "contact pixels",

@@ -180,6 +180,7 @@ def main(argv=None) -> int:
             warnings.simplefilter("ignore")
             protocol = IndentProtocol(
                 punch_diameters=args.diameter,
+                peak_loads=PAPER_PEAK_LOADS,
                 placements=args.placements,
                 refine_max=args.refine_max,
                 face=PunchFaceSpec(**face),
