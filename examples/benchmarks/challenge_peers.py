@@ -46,7 +46,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from _common import record_name  # noqa: E402
+from _common import git_commit, record_name  # noqa: E402
 from benchmark_peers import cpu_name, summarize, versions  # noqa: E402
 
 TOLERANCES = {
@@ -212,6 +212,7 @@ def main(argv: list[str] | None = None) -> dict:
     h, info = challenge_heights(args.n)
     record = {
         "benchmark": "challenge_peers",
+        "commit": git_commit(),
         "date": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
         "device": "cpu",
         "cpu": cpu_name(),

@@ -170,6 +170,12 @@ def _distribution_row(ax, study: ChallengeStudy) -> None:
         ax[2].plot(
             a[ok], y[ok], style, color=color, mfc="none" if style == "s" else color, ms=4, label=lab
         )
+    seen = np.concatenate(
+        [np.asarray(pa[f"{k}_density_per_m4"]) * scale for k in ("bem", "truncation")]
+    )
+    seen = seen[seen > 0]
+    if seen.size:  # GW's Gaussian tail falls by hundreds of decades: keep the counted range
+        ax[2].set_ylim(seen.min() / 30, seen.max() * 30)
     ax[2].set(
         xlabel="patch area a (µm²)",
         ylabel="patches per µm² of A₀ per µm² of a",
