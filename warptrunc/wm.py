@@ -388,7 +388,7 @@ def wm_surface(
     return surface_from_spec(terms, resolve_device(device))
 
 
-wm_surface.__doc__ = wm_surface.__doc__.replace("{fields}", numpydoc_fields(WMSpec, indent=12))
+wm_surface.__doc__ = wm_surface.__doc__.replace("    {fields}", numpydoc_fields(WMSpec, indent=12))
 
 
 def surface_from_spec(spec: WMTerms, device: wp.context.Device) -> Surface:

@@ -310,4 +310,4 @@ class WMSpec(Parameters):
         return self.terms().n_terms
 
 
-wm_spec.__doc__ = wm_spec.__doc__.replace("{fields}", numpydoc_fields(WMSpec, indent=12))
+wm_spec.__doc__ = wm_spec.__doc__.replace("    {fields}", numpydoc_fields(WMSpec, indent=12))
