@@ -74,9 +74,10 @@ def readable_log_ticks(axis: Any, max_ticks: int = 6, min_ticks: int = 3) -> Non
     max_ticks : int
         Most labelled ticks.
     min_ticks : int
-        The first of the mantissa sets 1; 1, 3; 1, 2, 5; 1, 2, 3, 5; 1, 1.5, 2, 3, 5, 7 that
-        gives at least this many ticks inside the view is used (the last one otherwise): more
-        labels where a range of under two decades holds the data.
+        The first of the mantissa sets 1; 1, 3; 1, 2, 5; 1, 2, 3, 5; 1, 1.5, 2, 3, 5, 7; 1, 1.2,
+        1.5, 2, 2.5, 3, 4, 5, 6, 7, 8 that gives at least this many ticks inside the view is used
+        (the last one otherwise): more labels where a range of under two decades holds the
+        data.
     """
     from matplotlib.ticker import (
         FixedLocator,
@@ -97,6 +98,7 @@ def readable_log_ticks(axis: Any, max_ticks: int = 6, min_ticks: int = 3) -> Non
         (1.0, 2.0, 5.0),
         (1.0, 2.0, 3.0, 5.0),
         (1.0, 1.5, 2.0, 3.0, 5.0, 7.0),
+        (1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0),
     ):
         vals = [m * 10.0**k for k in range(k0, k1 + 1) for m in mant]
         vals = [v for v in vals if lo * (1 - 1e-9) <= v <= hi * (1 + 1e-9)]
