@@ -75,7 +75,9 @@ def _check_sweep(out: Path) -> None:
 
 def _check_indentation(out: Path) -> None:
     assert _csv_header(out / "indent.csv")[:3] == ["punch_diameter_m", "placement", "peak_load_N"]
-    assert _json(out / "indent.json")["fits"]["truncation"]["alpha"] > 0
+    fits = _json(out / "indent.json")["fits"]["truncation"]  # per punch, over its loads
+    assert all("n_loads" in f for f in fits["per_punch"])
+    assert any(f["made"] and f["alpha"] > 0 for f in fits["per_punch"])
 
 
 def _check_challenge(out: Path) -> None:

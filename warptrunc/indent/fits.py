@@ -638,6 +638,11 @@ def fit_model(
                 f"{len(made)} punch(es) fitted over loads; a pooled fit is given only beside at "
                 "least two per-punch fits that agree"
             )
+    elif not all(all(math.isfinite(x) for x in v) for v in intervals.values()):
+        reasons["pooled"] = (
+            "a per-punch fit has no interval (a single indent): whether the punches share one "
+            "exponent cannot be tested"
+        )
     else:
         ok = agree_within_intervals([tuple(v) for v in intervals.values()])
         agreement["agree"] = ok

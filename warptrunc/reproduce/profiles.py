@@ -9,11 +9,15 @@ increments, ω_max = 0.1·R_t; islands of Figs. 7–8 and Table 2 on 30720² ove
 uses 4 seeds per surface; the elastic comparison (not in the paper) goes to 7680² (L/W_r = 30
 at 256 pixels per W_r) and 5120² (L/W_r = 10, pixel size halved). The indentation stage (Fig. 6
 in silico, not in the paper's simulations; :class:`~warptrunc.reproduce.indentation.design.IndentationStage`)
-runs at the paper's pixel size with the paper's punches and loads, in two designs: a hardness
-sweep (H of ``indentation.hardness``, one realisation × ``indentation.protocol.placements``
+runs with the paper's punches and loads on 1 mm maps of 1280² (781 nm, the surfaces' content
+W_c = 1.95 µm at 2.5 pixels) whose punch windows are generated again at every punch down to
+the paper's 97.7 nm (``refine_max`` 8) until K has converged over two halvings; two
+placements per punch, which the 502.6 µm punch's hold apart on 1 mm (``overlap = "error"``:
+three overlap), traded for six realisations in the statistics. Two designs: a hardness sweep
+(H of ``indentation.hardness`` from 0.2 GPa, one realisation × ``indentation.protocol.placements``
 placements per punch) and statistics (``indentation.seeds`` × ``indentation.stats_placements``
-indents per punch) for the models of ``indentation.stats``: H = ∞ and the H of the sweep that
-best matches the paper's ≈ 5 µm depth at 500 mN. ``quick`` and ``tiny`` coarsen its pixels
+indents per punch) for the models of ``indentation.stats``: H = ∞ and the one H of the sweep
+whose largest threshold depth at 500 mN over every surface best matches the paper's ≈ 5 µm. ``quick`` and ``tiny`` coarsen its pixels
 (512² and 256² over 1 mm), use fewer H, seeds and placements (``tiny``: the last four loads,
 every cell with a contact pixel judged resolved: a smoke run). ``quick`` fits a 2-core CPU in
 minutes and ``tiny`` is the CI check.
@@ -214,8 +218,11 @@ PROFILES = {
         islands_seeds=4,
         asperity_n=4096,
         indentation=_indentation(
-            refine_punches=PAPER_PUNCH_DIAMETERS[:1],
-            protocol={"refine_max": 2},
+            n=1280,
+            seeds=(0, 1, 2, 3, 4, 5),
+            stats_placements=2,
+            refine_punches=None,
+            protocol={"refine_max": 8, "placements": 2, "overlap": "error"},
             solver={"dtype": "float32"},
         ),
     ),

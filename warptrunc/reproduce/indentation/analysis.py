@@ -200,89 +200,100 @@ def tracking(
     return {"per_model": per, "closest": closest, "tracked": tracked, "band": good}
 
 
-def _ok_stiffness(r: dict[str, list], i: int) -> bool:
-    """A cell resolved by the rule on K alone (``resolved_stiffness``), not saturated, converged."""
-    rk = r.get("resolved_stiffness")
-    return (
-        (bool(rk[i]) if rk is not None else bool(r["resolved"][i]))
-        and not bool(r["saturated"][i])
-        and bool(r["converged"][i])
-    )
+def _ok_area(r: dict[str, list], i: int) -> bool:
+    """A cell of the second rule: in_fit and its contact area converged too (``area_resolved``)."""
+    a = r.get("area_resolved")
+    return _ok(r, i) and a is not None and bool(a[i])
 
 
-def _fit(r: dict[str, list], idx: list[int], col: str, ok=_ok) -> dict[str, Any]:
+def _fit(r: dict[str, list], idx: list[int], col: str) -> dict[str, Any]:
+    """The fits of one group's model column: per punch over its loads, the pooled one where the
+    punches agree (:func:`warptrunc.indent.fits.fit_model`), under both cell rules."""
     from ...indent import default_material
-    from ...indent.fits import MIN_FIT_POINTS, fit_cells
+    from ...indent.fits import fit_model
 
     sel = [
         i
         for i in idx
-        if ok(r, i) and r[col][i] is not None and r[col][i] > 0 and r["F_over_EA"][i] > 0
+        if _ok(r, i) and r[col][i] is not None and r[col][i] > 0 and r["F_over_EA"][i] > 0
     ]
-    ind = [(r["realisation"][i], r["punch_diameter_m"][i], r["placement"][i]) for i in sel]
-    n_ind = len(set(ind))
-    f = None
-    if sel:
-        f = fit_cells(
-            [r["F_over_EA"][i] for i in sel],
-            [r[col][i] for i in sel],
-            [r["displacement_m"][i] for i in sel],
-            np.asarray(ind, np.float64),
-            [r["punch_diameter_m"][i] for i in sel],
-            default_material(),
-        )
-    if f is None:
-        return {
-            "made": False,
-            "n_points": len(sel),
-            "n_indents": n_ind,
-            "reason": f"{len(sel)} resolved cells, at least {MIN_FIT_POINTS} with two loads needed",
-        }
-    d = f.to_dict()
-    out = {
-        k: d[k]
-        for k in (
-            "made",
-            "alpha",
-            "beta",
-            "r2",
-            "alpha_ci95",
-            "beta_ci95",
-            "n_points",
-            "n_indents",
-            "n_bootstrap",
-        )
+    punches = sorted({r["punch_diameter_m"][i] for i in idx})
+    cells = {
+        "x": [r["F_over_EA"][i] for i in sel],
+        "y": [r[col][i] for i in sel],
+        "depth": [r["displacement_m"][i] for i in sel],
+        "load": [r["peak_load_N"][i] for i in sel],
+        "punch": [r["punch_diameter_m"][i] for i in sel],
+        "realisation": [r["realisation"][i] for i in sel],
+        "placement": [r["placement"][i] for i in sel],
+        "rules": {
+            "stiffness": [True] * len(sel),
+            "stiffness_and_area": [_ok_area(r, i) for i in sel],
+        },
     }
-    per_punch: dict[float, set] = {}
-    for t in ind:
-        per_punch.setdefault(t[1], set()).add(t)
-    if max(len(v) for v in per_punch.values()) < 2:  # resampled within each punch: no spread
-        out["alpha_ci95"] = out["beta_ci95"] = None
-    return out
+    out = fit_model(cells, default_material(), punches=punches).to_dict()
+    keep = (
+        "made", "punch_diameter_m", "n_loads", "reason", "alpha", "beta", "r2", "alpha_ci95",
+        "beta_ci95", "alpha_ci95_flat", "n_points", "n_indents", "n_realisations",
+        "n_bootstrap", "rules", "rule_shift_alpha", "punch_diameters_m",
+    )  # fmt: skip
+    trim = lambda f: {k: f[k] for k in keep if k in f}  # noqa: E731
+    return {
+        "per_punch": [trim(f) for f in out["per_punch"]],
+        "pooled": trim(out["pooled"]),
+        "agreement": out["agreement"],
+        "n_points": len(sel),
+    }
 
 
 def _hardness_question(stage: dict[str, Any], depths: dict) -> dict[str, Any]:
-    """Per surface, from the sweep: the depth per H, the H range in the band and the match."""
-    out = {}
+    """Per surface, from the sweep: the threshold depth at the largest load per H on the punch
+    that goes deepest, with its spread over the placements (min–max), and the H range where its
+    deepest placement lies in the band; and, since the paper's ≈ 5 µm is its maximum over all
+    tests, ``all``: per H the largest threshold depth over every surface, punch and placement,
+    the H range where it lies in the band and the one H matched (the statistics' H)."""
+    out: dict[str, Any] = {}
     band, target = tuple(stage["depth_band_m"]), stage["depth_target_m"]
+    top: dict[float, tuple[float, str]] = {}
     for s in stage["surfaces"]:
         per = {
-            m: v["deepest"]
+            m: v
             for (ss, design, m), v in depths.items()
             if ss == s and design == "sweep" and m != "truncation"
         }
-        hs = [(stage["hardness_Pa"][m], m) for m in per if stage["hardness_Pa"].get(m)]
-        hs.sort()
-        dd = [None if per[m] is None else per[m]["median"] for _h, m in hs]
+        hs = sorted((stage["hardness_Pa"][m], m) for m in per if stage["hardness_Pa"].get(m))
+        deep = [per[m]["deepest"] for _h, m in hs]
         h = [x for x, _m in hs]
+        dmax = [None if d is None else d["max"] for d in deep]
+        for x, m in hs:
+            v = max((p["max"] for p in per[m]["per_punch"].values()), default=None)
+            if v is not None and (x not in top or v > top[x][0]):
+                top[x] = (v, s)
+        el = (per.get("elastic") or {}).get("deepest") or {}
         out[s] = {
             "hardness_Pa": h,
-            "depth_m": dd,
-            "elastic_depth_m": (per.get("elastic") or {}).get("median"),
-            "range": hardness_range(h, dd, band),
-            "match": depth_match(h, dd, target, band),
+            "depth_m": [None if d is None else d["median"] for d in deep],
+            "depth_min_m": [None if d is None else d["min"] for d in deep],
+            "depth_max_m": dmax,
+            "punch_m": [None if d is None else d["punch_m"] for d in deep],
+            "highest_point_depth_m": [
+                ((per[m]["highest_point"] or {}).get("deepest") or {}).get("median") for _h, m in hs
+            ],
+            "elastic_depth_m": el.get("median"),
+            "elastic_depth_range_m": [el.get("min"), el.get("max")] if el else None,
+            "range": hardness_range(h, dmax, band),
+            "reading": next(iter(per.values()))["reading"] if per else None,
         }
-    return out
+    hh = sorted(top)
+    dd = [top[x][0] for x in hh]
+    out_all = {
+        "hardness_Pa": hh,
+        "max_depth_m": dd,
+        "surface": [top[x][1] for x in hh],
+        "range": hardness_range(hh, dd, band),
+        "match": depth_match(hh, dd, target, band),
+    }
+    return {"surfaces": out, "all": out_all}
 
 
 def _resolution_table(stage: dict[str, Any]) -> dict[tuple[str, str, str, float], dict[str, Any]]:
@@ -356,28 +367,56 @@ def _faces(stage: dict[str, Any], agree: list[dict[str, Any]]) -> list[dict[str,
         a = agreement_depth(
             [v["omega_m"] / rt * 100 for v in rc.values()], [v["ratio"] for v in rc.values()], GOOD
         )
-        ref = next(
-            (x for x in agree if (x["surface"], x["design"], x["model"]) == (s, "sweep", m)), None
-        )
+        base = _face_reference(stage, f)
+        if base is not None:  # a tilt relative to the surface: against its 0° face
+            bf = base["rows"]
+            rb = _ratios(bf, list(range(len(bf["peak_load_N"]))))
+            ref = agreement_depth(
+                [v["omega_m"] / rt * 100 for v in rb.values()],
+                [v["ratio"] for v in rb.values()],
+                GOOD,
+            )
+        else:
+            ref = next(
+                (x for x in agree if (x["surface"], x["design"], x["model"]) == (s, "sweep", m)),
+                None,
+            )
         key = lambda rows, i: (  # noqa: E731
             rows["realisation"][i],
             rows["punch_diameter_m"][i],
             rows["placement"][i],
             rows["peak_load_N"][i],
         )
-        aligned = {
-            key(r, i): r["E_c_over_E"][i] for i in _groups(r).get((s, "sweep", m), []) if _ok(r, i)
-        }
+        if base is not None:
+            bf = base["rows"]
+            aligned = {
+                key(bf, i): bf["E_c_over_E"][i] for i in range(len(bf["peak_load_N"])) if _ok(bf, i)
+            }
+        else:
+            aligned = {
+                key(r, i): r["E_c_over_E"][i]
+                for i in _groups(r).get((s, "sweep", m), [])
+                if _ok(r, i)
+            }
         k = [
             fr["E_c_over_E"][i] / aligned[key(fr, i)]
             for i in range(len(fr["peak_load_N"]))
             if _ok(fr, i) and key(fr, i) in aligned and fr["E_c_over_E"][i] and aligned[key(fr, i)]
         ]
         lo, hi = TABLE2.get(s, ((math.nan, math.nan),))[0]
+        local = [
+            float(x)
+            for x in (f.get("local_plane_tilt_deg") or [])
+            if x is not None and math.isfinite(x)
+        ]
         out.append(
             {
                 "surface": s,
                 "label": f["label"],
+                "reference": "tilt 0° local" if base is not None else "the sweep's aligned flat",
+                "local_plane_tilt_deg_rms": (
+                    float(np.sqrt(np.mean(np.square(local)))) if local else None
+                ),
                 "model": m,
                 **a,
                 "aligned": ref,
@@ -388,6 +427,20 @@ def _faces(stage: dict[str, Any], agree: list[dict[str, Any]]) -> list[dict[str,
             }
         )
     return out
+
+
+def _face_reference(stage: dict[str, Any], f: dict[str, Any]) -> dict[str, Any] | None:
+    """The 0° face relative to the surface of the same surface and model (the reference of a
+    local tilt and of the tip), when the stage ran one; None otherwise or for itself."""
+    for g in stage.get("faces", []):
+        if (
+            g["surface"] == f["surface"]
+            and g["model"] == f["model"]
+            and g["label"] == "tilt 0° local"
+            and g is not f
+        ):
+            return g
+    return None
 
 
 def _verdict(a: dict[str, Any], ref: dict[str, Any] | None, lo: float, hi: float) -> str:
@@ -441,16 +494,26 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
     fits, depths, agree, track = [], {}, [], []
     for (s, design, m), idx in groups.items():
         rec = {"surface": s, "design": design, "model": m, **_fit(r, idx, "E_c_over_E")}
-        rec["stiffness_rule"] = _fit(r, idx, "E_c_over_E", _ok_stiffness)
         if m != "truncation":
             rec["partial"] = _fit(r, idx, "E_c_partial_over_E")
-            depths[(s, design, m)] = depth_at_load(
+            args = (
                 [r["punch_diameter_m"][i] for i in idx],
                 [r["peak_load_N"][i] for i in idx],
-                [r["displacement_m"][i] for i in idx],
-                [bool(r["converged"][i]) for i in idx],
-                at,
             )
+            ok = [bool(r["converged"][i]) for i in idx]
+            thr = r.get("threshold_depth_m")
+            col = [
+                (r["displacement_m"][i] if thr is None else thr[i]) for i in idx
+            ]  # a store written before the threshold depth: the highest point's
+            depths[(s, design, m)] = {
+                **depth_at_load(*args, col, ok, at),
+                "reading": "from surface detection"
+                if thr is not None
+                else "from the highest point",
+                "highest_point": depth_at_load(
+                    *args, [r["displacement_m"][i] for i in idx], ok, at
+                ),
+            }
             rc = ratio_cells(stage, s, design, m)
             rt = stage["Rt_m"][s]
             a = agreement_depth(
@@ -469,6 +532,7 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
             }
             if ratios:
                 track.append({"surface": s, "design": design, **tracking(ratios)})
+    hq = _hardness_question(stage, depths)
     punches = stage["punches_m"]
     pmean = at / (math.pi * min(punches) ** 2 / 4)
     solved = [i for i in range(len(r["surface"])) if r["model"][i] != "truncation"]
@@ -479,7 +543,8 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
             {"surface": s, "design": d, "model": m, "load_N": at, **v}
             for (s, d, m), v in depths.items()
         ],
-        "hardness": _hardness_question(stage, depths),
+        "hardness": hq["surfaces"],
+        "hardness_all": hq["all"],
         "agreement": agree,
         "tracking": track,
         "resolution_table": [
@@ -490,8 +555,10 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
         "faces": _faces(stage, agree),
         "mean_pressure": {"load_N": at, "punch_m": min(punches), "p_mean_Pa": pmean},
         "smooth_Ec_over_E": stage["material"]["E_star_Pa"] / stage["material"]["E_Pa"],
-        "not_converged": sum(not r["converged"][i] for i in solved),
+        "not_converged": sum(not r["converged"][i] and not _bulk(r, i) for i in solved),
         "n_solved_rows": len(solved),
+        "bulk_yield": _bulk_yield(r, solved),
+        "in_fit_fraction": _in_fit_fraction(r, groups),
         "max_overlap": max(
             (
                 r["overlap_fraction"][i]
@@ -502,6 +569,51 @@ def analyse_indentation(stage: dict[str, Any]) -> dict[str, Any]:
         ),
         "resolution": _resolution_summary(stage.get("resolution")),
     }
+
+
+def _bulk(r: dict[str, list], i: int) -> bool:
+    b = r.get("bulk_yield")
+    return b is not None and b[i] is True
+
+
+def _bulk_yield(r: dict[str, list], solved: list[int]) -> dict[str, Any]:
+    """The cells flagged bulk_yield (mean punch pressure at or above (2.84/3)·H), by model."""
+    from ...indent.depth import BULK_YIELD_SOURCE
+
+    cells = sorted(
+        {
+            (r["surface"][i], r["design"][i], r["model"][i], r["punch_diameter_m"][i],
+             r["peak_load_N"][i])
+            for i in solved
+            if _bulk(r, i)
+        }
+    )  # fmt: skip
+    return {
+        "criterion": BULK_YIELD_SOURCE,
+        "n_rows": sum(_bulk(r, i) for i in solved),
+        "cells": [list(c) for c in cells],
+    }
+
+
+def _in_fit_fraction(r: dict[str, list], groups: dict) -> list[dict[str, Any]]:
+    """Per surface × design × model, the cells in_fit by the one rule, the cells whose contact
+    area converged too, and all cells solved (bulk-yield rows left out)."""
+    out = []
+    for (s, design, m), idx in groups.items():
+        if m == "truncation":
+            continue
+        ii = [i for i in idx if not _bulk(r, i)]
+        out.append(
+            {
+                "surface": s,
+                "design": design,
+                "model": m,
+                "n_cells": len(ii),
+                "in_fit": sum(_ok(r, i) for i in ii),
+                "in_fit_with_area": sum(_ok_area(r, i) for i in ii),
+            }
+        )
+    return out
 
 
 def _resolution_summary(rec: dict[str, Any] | None) -> dict[str, Any] | None:

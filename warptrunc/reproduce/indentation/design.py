@@ -358,9 +358,7 @@ def face_variants(st: IndentationStage) -> list[tuple[str, dict[str, float]]]:
         return []
     if st.face_tilt_reference == "local":
         tilts = sorted({0.0, *(float(t) for t in st.face_tilts_deg)})
-        out = [
-            (f"tilt {t:g}° local", {"tilt_deg": t, "tilt_reference": "local"}) for t in tilts
-        ]
+        out = [(f"tilt {t:g}° local", {"tilt_deg": t, "tilt_reference": "local"}) for t in tilts]
     else:
         out = [(f"tilt {t:g}°", {"tilt_deg": float(t)}) for t in st.face_tilts_deg if t > 0]
     if st.face_roughness > 0:

@@ -17,7 +17,7 @@ store of whole pieces is read as it is.
 
 Parts of finite H in the hardness sweep take their unyielded cycles from the elastic part of
 the same punch (``reuse``) when that punch is not refined: that is the only dependency between
-parts, besides the ``depth-match`` statistics, whose H is known once the surface's sweep is.
+parts, besides the ``depth-match`` statistics, whose H is known once every surface's sweep is.
 """
 
 from __future__ import annotations
@@ -95,8 +95,25 @@ COLUMNS = (
     "resolved",
     "saturated",
     "in_fit",
+    "area_resolved",
+    "sub_window",
+    "bulk_yield",
+    "mean_pressure_Pa",
+    "stiffness_extrapolated_N_per_m",
+    "stiffness_error_N_per_m",
+    "contact_area_error_m2",
+    "detection_displacement_m",
+    "threshold_depth_m",
+    "truncation_pixel_size_m",
+    "resolution_note",
 )
 """Columns of :meth:`warptrunc.indent.IndentationResult.to_dict` kept in each piece."""
+
+CAP_MARGIN = 0.99
+"""A part solves only the peak loads below this fraction of what its punch's pressure cap can
+carry, H·A (dimensionless); the heavier ones (at soft H under the smallest punch) cannot be
+solved by the cap model and are stored as rows flagged ``bulk_yield``, not solved
+(:func:`bulk_yield_rows`)."""
 
 PLACEMENT_SEEDS = "indentation_seed + punch index"
 """How a piece's parameters say punch k's placement seed is drawn (protocol.placement_seed + k):
@@ -511,14 +528,21 @@ def run_part(
     surf, gen = surface_for(st, part.surface, seeds[part.realisation], device)
     t0 = time.perf_counter()
     k, d, h = part.punch, st.protocol.punch_diameters[part.punch], part.hardness
+    loads = tuple(st.protocol.peak_loads)
+    carried = tuple(f for f in loads if f < CAP_MARGIN * h * math.pi * d * d / 4)
     protocol = st.protocol.replace(
         punch_diameters=(d,),
+        peak_loads=carried or loads[:1],
         placements=placements,
         placement_seed=st.protocol.placement_seed + k,
         refine_max=refine_of(st, d),
         elastic=math.isinf(h),
         face=face_spec(st, face_of(st, part.face), k, d),
     )
+    use = reuse if reuses(st, part) else None
+    if use is not None and len(carried) < len(loads):  # the elastic rows of the loads solved
+        keep = [i for i, f in enumerate(use["peak_load_N"]) if f in carried]
+        use = {c: [v[i] for i in keep] for c, v in use.items()}
     with warnings.catch_warnings():  # the overlap is recorded per row (overlap_fraction)
         warnings.simplefilter("ignore", PlacementOverlapWarning)
         res = indent(
@@ -526,13 +550,15 @@ def run_part(
             protocol=protocol,
             material=material(st, h),
             solver=st.solver,
-            reuse=reuse if reuses(st, part) else None,
+            reuse=use,
             device=device,
         )
     cols = res.to_dict()
     cols["n_contact"] = cols["n_contact_pixels"]  # the pieces' name, kept
     cols["realisation"] = [part.realisation] * len(cols["peak_load_N"])
     rows = {c: np.asarray(cols[c]).tolist() for c in COLUMNS}
+    if len(carried) < len(loads):
+        rows = bulk_yield_rows(rows, loads, carried)
     windows, refined = [], {}
     for w in res.settings["punches"]:
         windows.append(
@@ -543,6 +569,8 @@ def run_part(
                 "window_px": w["window"][2:],
                 "n_punch_pixels": w["n_punch_pixels"],
                 "disk_Rt_m": w["disk_Rt_m"],
+                "local_plane_tilt_deg": w.get("local_plane_tilt_deg"),
+                "face_tilt_azimuth_deg": w.get("face_tilt_azimuth_deg"),
             }
         )
         for f, shape in w["refined_windows"].items():
@@ -565,6 +593,60 @@ def run_part(
             "reused_elastic_cycles": int(res.settings.get("reused_elastic_cycles", 0)),
         }
     )
+
+
+def bulk_yield_rows(
+    rows: dict[str, list], loads: tuple[float, ...], carried: tuple[float, ...]
+) -> dict[str, list]:
+    """A part's rows with a row per load its punch's cap cannot carry, flagged, not solved.
+
+    Parameters
+    ----------
+    rows : dict of str to list
+        The rows of the loads solved (:data:`COLUMNS`), placement-major, load fastest; when no
+        load was carried, the rows of the lightest load solved only for the placements.
+    loads : tuple of float
+        Every peak load of the stage (N).
+    carried : tuple of float
+        The loads solved (N).
+
+    Returns
+    -------
+    dict of str to list
+        Per placement, a row per load of ``loads`` in order: the solved ones as they were,
+        the others with the punch, placement and load, ``bulk_yield`` True, ``converged``,
+        ``resolved``, ``in_fit`` False and None (NaN) for every measured quantity.
+    """
+    keys = ("punch_diameter_m", "placement", "realisation", "centre_x_m", "centre_y_m",
+            "overlap_fraction", "n_punch_pixels", "pixel_size_m", "truncation_pixel_size_m")  # fmt: skip
+    flags = {"bulk_yield": True, "converged": False, "resolved": False, "area_resolved": False,
+             "saturated": False, "in_fit": False, "sub_window": False,
+             "resolution_note": "bulk-yield"}  # fmt: skip
+    out: dict[str, list] = {c: [] for c in rows}
+    n = len(rows["peak_load_N"])
+    for j in dict.fromkeys(rows["placement"]):
+        mine = [i for i in range(n) if rows["placement"][i] == j]
+        by_load = {rows["peak_load_N"][i]: i for i in mine}
+        for f in loads:
+            if f in carried and f in by_load:
+                for c in rows:
+                    out[c].append(rows[c][by_load[f]])
+                continue
+            i0 = mine[0]
+            for c in rows:
+                if c in keys:
+                    out[c].append(rows[c][i0])
+                elif c in flags:
+                    out[c].append(flags[c])
+                elif c == "peak_load_N":
+                    out[c].append(f)
+                elif c == "F_over_EA":
+                    out[c].append(rows[c][i0] * f / rows["peak_load_N"][i0])
+                elif c == "mean_pressure_Pa":
+                    out[c].append(rows[c][i0] * f / rows["peak_load_N"][i0])
+                else:
+                    out[c].append(None)
+    return out
 
 
 def load_part(path: Path, params: dict[str, Any]) -> dict[str, Any] | None:
@@ -686,7 +768,13 @@ def merge_parts(
             "seconds": {**sec, "surface_s": sum(gen.values())},
             "per_punch": per_punch,
             "device": next(iter(devices)) if len(devices) == 1 else sorted(devices),
-            "n_not_converged": int(sum(not c for c in rows["converged"])),
+            "n_not_converged": int(
+                sum(
+                    not c and not b
+                    for c, b in zip(rows["converged"], rows["bulk_yield"], strict=True)
+                )
+            ),
+            "n_bulk_yield": int(sum(bool(b) for b in rows["bulk_yield"])),
             "reused_elastic_cycles": n_reused,
             "n_parts": len(order),
         }

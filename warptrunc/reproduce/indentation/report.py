@@ -18,6 +18,7 @@ from ..store import STAGE_DOCS
 from ..style import fmt_value, new_figure, save_figure
 from .analysis import cells
 from .tables import (
+    _design,
     agreement_lines,
     cost_lines,
     face_lines,
@@ -101,7 +102,8 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
         design = _fig_design(stage, s)
         models = ["truncation", *[m for m in stage["models"][design] if (s, design, m) in fits]]
         for m in models:
-            xs_all = []
+            f = fits.get((s, design, m)) or {}
+            per = {g.get("punch_diameter_m"): g for g in f.get("per_punch", [])}
             for k, d in enumerate(stage["punches_m"]):
                 pts = sorted(
                     (v["F_over_EA"], v["E_c_over_E"])
@@ -111,7 +113,6 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
                 if not pts:
                     continue
                 x, y = np.array(pts).T
-                xs_all += list(x)
                 ax.loglog(
                     x,
                     y,
@@ -122,17 +123,17 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
                     ls="--" if m == "truncation" else "none",
                     lw=0.6,
                 )
-            f = fits.get((s, design, m))
-            if f and f["made"] and xs_all:
-                xx = np.geomspace(min(xs_all), max(xs_all), 20)
-                ax.loglog(
-                    xx,
-                    f["beta"] * xx ** f["alpha"],
-                    "-",
-                    color=colours[m],
-                    lw=1.2,
-                    label=f"{model_label(stage, m)}: α = {f['alpha']:.3f}, β = {f['beta']:.3g}",
-                )
+                g = per.get(d) or {}
+                if g.get("made"):  # the punch's own fit over its loads
+                    xx = np.geomspace(x.min(), x.max(), 20)
+                    ax.loglog(
+                        xx,
+                        g["beta"] * xx ** g["alpha"],
+                        "-",
+                        color=colours[m],
+                        lw=1.2,
+                        label=f"{model_label(stage, m)}, {d * 1e6:g} µm: α = {g['alpha']:.3f}",
+                    )
         ax.axhline(ana["smooth_Ec_over_E"], color="k", ls=":", lw=0.8, label="smooth punch: E*/E")
         for k, d in enumerate(stage["punches_m"]):
             ax.plot(
@@ -155,19 +156,27 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
         ax.set_axis_off()
     fig.suptitle(
         "Fig. 6 in silico: unloading stiffness of the contact models and Eq. 2 truncation on "
-        "resolved cells (geometric mean over indents; lines: fits)",
+        "resolved cells (geometric mean over indents; lines: each punch's fit over its loads)",
         fontsize=9,
     )
     names = [save_figure(fig, Path(out), "indentation_fig6.png")]
     fig, (ax,) = new_figure(1, 1, w=6.0, h=4.4)
     lo, hi = stage["depth_band_m"]
     for k, (s, v) in enumerate(ana["hardness"].items()):
-        pts = [(h, d) for h, d in zip(v["hardness_Pa"], v["depth_m"], strict=True) if d]
+        pts = [
+            (h, lo_, hi_)
+            for h, lo_, hi_ in zip(
+                v["hardness_Pa"], v["depth_min_m"], v["depth_max_m"], strict=True
+            )
+            if hi_
+        ]
         if pts:
-            x, y = np.array(pts).T
-            (ln,) = ax.loglog(x / 1e9, y * 1e6, "-" + MARKERS[k % len(MARKERS)], ms=4, label=s)
+            x, ylo, yhi = np.array(pts).T
+            (ln,) = ax.loglog(x / 1e9, yhi * 1e6, "-" + MARKERS[k % len(MARKERS)], ms=4, label=s)
+            ax.fill_between(x / 1e9, ylo * 1e6, yhi * 1e6, color=ln.get_color(), alpha=0.15, lw=0)
             if v["elastic_depth_m"]:
-                ax.axhline(v["elastic_depth_m"] * 1e6, color=ln.get_color(), ls=":", lw=0.8)
+                er = v.get("elastic_depth_range_m") or [None, v["elastic_depth_m"]]
+                ax.axhline(er[1] * 1e6, color=ln.get_color(), ls=":", lw=0.8)
     ax.axhspan(
         lo * 1e6,
         hi * 1e6,
@@ -177,8 +186,8 @@ def indentation_figures(stage: dict[str, Any], ana: dict[str, Any], out: str | P
     )
     ax.set(
         xlabel="hardness H (GPa)",
-        ylabel=f"depth at {max(stage['loads_N']) * 1e3:g} mN (µm)",
-        title="Punch depth at the largest load against H (sweep; dotted: H = ∞)",
+        ylabel=f"threshold depth at {max(stage['loads_N']) * 1e3:g} mN (µm)",
+        title="Deepest placement (band: min–max over placements) against H (sweep; dotted: H = ∞)",
     )
     hs = sorted(
         {h for v in ana["hardness"].values() for h in v["hardness_Pa"] if h and math.isfinite(h)}
@@ -313,7 +322,8 @@ def indentation_lines(
             " and ".join(
                 {
                     "elastic": "H = ∞",
-                    "depth-match": "the H of the sweep that best matches the paper's depth",
+                    "depth-match": "the one H of the sweep that best matches the paper's "
+                    "maximal depth over every surface",
                 }[m]
                 for m in stage["stats_requested"]
             )
@@ -349,6 +359,14 @@ def indentation_lines(
             if hs and mp["p_mean_Pa"] < hs[0]
             else ""
         )
+        + (
+            f". {ana['bulk_yield']['n_rows']} cells reach the bulk-yield pressure of the cap "
+            "model (" + ana["bulk_yield"]["criterion"] + ") and are flagged `bulk_yield`, left "
+            "out of the fits: there the alloy would sink in bulk, which a pressure cap does not "
+            "represent (those above H·A are not solved)"
+            if ana.get("bulk_yield", {}).get("n_rows")
+            else ""
+        )
         + ". H caps the pressure of each pixel, so the plastic area depends on the pixel size (the "
         "resolution table below).\n"
     )
@@ -356,22 +374,27 @@ def indentation_lines(
         L.append(
             f"The {max(stage['punches_m']) * 1e6:g} µm punch's placements cannot be kept apart on a "
             f"{stage['L_m'] * 1e3:g} mm map: they overlap by up to {100 * ana['max_overlap']:.0f} % of "
-            "its area (a 3 mm map would hold them apart).\n"
+            "its area (a 3 mm map, or fewer placements, would hold them apart).\n"
         )
     L.append(
         f"Solves not converged: {ana['not_converged']} of {ana['n_solved_rows']} cycles (left out of "
         "the fits and the comparisons, as are the cells not resolved).\n"
     )
     L.append(
-        "**Hardness as a question**: the punch depth at the largest load for each "
-        "H, beside the paper's ≈ 5 µm:\n"
+        "**Hardness as a question**: the punch's threshold depth at the largest load for each "
+        "H, its spread over the placements beside the paper's ≈ 5 µm:\n"
     )
     L += hardness_lines(stage, ana)
+    frac = [
+        f"{x['surface']} {model_label(stage, x['model'])} ({_design(stage, x['design'])}): "
+        f"{x['in_fit']}/{x['n_cells']}"
+        for x in ana.get("in_fit_fraction", [])
+    ]
     L.append(
-        "**E_c/E = β·[F/(E·A)]^α** per surface, design (realisations × placements per punch) and "
-        "model, least squares in log–log over the resolved cells (`in_fit`) only, with 95 % "
-        "intervals from a bootstrap over indents (`warptrunc.indent.fits`; none with one indent); a "
-        "fit needs 6 cells:\n"
+        "**E_c/E = β·[F/(E·A)]^α** per surface, design (realisations × placements per punch), "
+        "model and punch, over its loads: least squares in log–log over the resolved cells "
+        "(`in_fit`, the one rule: K converged over two halvings of the pixel) only. Cells in_fit "
+        "by that rule: " + ("; ".join(frac) if frac else "none") + ":\n"
     )
     L += fit_lines(stage, ana)
     L += agreement_lines(stage, ana)
@@ -424,6 +447,6 @@ def indentation_lines(
     L.append(
         "An elastic–plastic piece of the sweep takes from the sweep's elastic piece each unrefined "
         "punch's leading cycles whose elastic peak pressure stays below H (no pixel reaches the cap, "
-        "so the two solutions are one) and solves the rest.\n"
+        "so the two solutions are one) and solves the rest; a refined punch solves every cycle.\n"
     )
     return L

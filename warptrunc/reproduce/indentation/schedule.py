@@ -6,7 +6,8 @@ per task.
 
 The plan (:class:`Plan`) knows every piece of the stage as soon as it can: the hardness sweep
 (H = ∞ first), the elastic statistics and the face pieces from the start, the ``depth-match``
-statistics of a surface once its sweep is complete (:func:`stats_hardness`). A part is ready
+statistics of every surface once every sweep is complete (one H for the alloy:
+:func:`stats_hardness`). A part is ready
 when its piece is planned and, for a finite-H sweep part that reuses elastic cycles, when the
 elastic part of its punch is done. Finished parts are written by whoever ran them
 (:func:`~.pieces.compute_part`); the plan merges a piece when its last part arrives,
@@ -53,32 +54,40 @@ PieceKey = tuple[str, str, float, "str | None"]
 
 
 def stats_hardness(
-    st: IndentationStage, sweep_rows: dict[float, dict[str, list]]
+    st: IndentationStage, sweep_rows: dict[str, dict[float, dict[str, list]]]
 ) -> dict[str, Any]:
-    """The H values of one surface's statistics pieces, from its sweep.
+    """The H values of the statistics pieces, from the sweeps of every surface.
+
+    The paper's "maximal indentation depth … around 5 µm" (§ 4.1) is its maximum over all its
+    tests, not a per-surface target: the depth compared is, per H, the largest threshold depth
+    (from surface detection, :mod:`warptrunc.indent.depth`) at the largest load over every
+    surface, punch and placement of the sweep; one H (one alloy) is matched to it.
 
     Parameters
     ----------
     st : IndentationStage
         The stage.
     sweep_rows : dict
-        H (Pa; inf = elastic) → the rows of that H's sweep piece.
+        Surface → H (Pa; inf = elastic) → the rows of that H's sweep piece.
 
     Returns
     -------
     dict
         ``hardness``: the H values (Pa, inf = elastic) in the order of
-        ``IndentationStage.stats``; ``depths``: H → the median depth at the largest load on
-        the deepest punch (m); ``match``: :func:`~warptrunc.reproduce.indentation.rules.depth_match`
-        over the finite H values.
+        ``IndentationStage.stats``; ``depths``: H → the largest threshold depth at the largest
+        load over the surfaces (m); ``match``:
+        :func:`~warptrunc.reproduce.indentation.rules.depth_match` over the finite H values.
     """
     at = max(st.protocol.peak_loads)
-    depths = {}
-    for h, r in sweep_rows.items():
-        dd = depth_at_load(
-            r["punch_diameter_m"], r["peak_load_N"], r["displacement_m"], r["converged"], at
-        )["deepest"]
-        depths[h] = None if dd is None else dd["median"]
+    depths: dict[float, float | None] = {}
+    for rows in sweep_rows.values():
+        for h, r in rows.items():
+            col = r.get("threshold_depth_m") or r["displacement_m"]  # pieces before it: δ
+            dd = depth_at_load(r["punch_diameter_m"], r["peak_load_N"], col, r["converged"], at)
+            top = max((v["max"] for v in dd["per_punch"].values()), default=None)
+            if top is not None and (depths.get(h) is None or top > depths[h]):
+                depths[h] = top
+            depths.setdefault(h, None)
     finite = sorted(h for h in depths if math.isfinite(h))
     match = depth_match(finite, [depths[h] for h in finite], st.depth_target, st.depth_band)
     out: list[float] = []
@@ -154,15 +163,23 @@ class Plan:
         self._stats(key[0])
 
     def _stats(self, s: str) -> None:
-        """Plan the surface's depth-match statistics once its sweep is complete."""
-        if s in self.stats_done or "depth-match" not in self.st.stats:
+        """Plan the depth-match statistics of every surface once every sweep is complete (one
+        H for the alloy: :func:`stats_hardness`)."""
+        if self.stats_done or "depth-match" not in self.st.stats:
             return
-        rows = {h: self.stieces.get((s, "sweep", h, None)) for h in self.sweep}
-        if any(r is None for r in rows.values()):
+        rows = {
+            ss: {h: self.stieces.get((ss, "sweep", h, None)) for h in self.sweep}
+            for ss in self.st.surfaces
+        }
+        if any(r is None for v in rows.values() for r in v.values()):
             return
-        self.stats_done.add(s)
-        for h in stats_hardness(self.st, {h: r["rows"] for h, r in rows.items()})["hardness"]:
-            self._plan((s, "stats", h, None))
+        self.stats_done.update(self.st.surfaces)
+        found = stats_hardness(
+            self.st, {ss: {h: r["rows"] for h, r in v.items()} for ss, v in rows.items()}
+        )
+        for ss in self.st.surfaces:
+            for h in found["hardness"]:
+                self._plan((ss, "stats", h, None))
 
     # --- what runs --------------------------------------------------------------------------
 

@@ -39,38 +39,17 @@ KEEP = (
     "truncation_depth_m",
     "resolution_change",
     "area_change",
-    "resolved_stiffness",
+    "area_resolved",
+    "bulk_yield",
+    "sub_window",
+    "mean_pressure_Pa",
+    "stiffness_error_N_per_m",
+    "contact_area_error_m2",
+    "threshold_depth_m",
+    "resolution_note",
 )
 """Columns of the pieces kept in the stage's rows (with ``surface``, ``design``, ``model``,
 ``hardness_Pa``)."""
-
-
-def resolved_stiffness(st: IndentationStage, r: dict[str, list]) -> list[bool]:
-    """Per cell, the rule on K alone: converged, at least ``protocol.min_contact_pixels``
-    contact pixels and, where the cell was halved, K changed by less than
-    ``protocol.resolution_tol`` at the last halving (the contact area may still change).
-
-    Parameters
-    ----------
-    st : IndentationStage
-        The stage (tolerance, fewest contact pixels).
-    r : dict of str to list
-        A piece's rows (``converged``, ``n_contact``, ``resolution_change``, ``resolved``).
-
-    Returns
-    -------
-    list of bool
-        One per row; a cell never halved keeps its ``resolved`` (the contact-pixel rule).
-    """
-    tol, fewest = st.protocol.resolution_tol, st.protocol.min_contact_pixels
-    out = []
-    for i in range(len(r["converged"])):
-        dk, n = r["resolution_change"][i], r["n_contact"][i]
-        if dk is None or not math.isfinite(dk):
-            out.append(bool(r["resolved"][i]))
-        else:
-            out.append(bool(r["converged"][i]) and n is not None and n >= fewest and dk < tol)
-    return out
 
 
 def _append(
@@ -106,6 +85,7 @@ FACE_KEEP = (
     "pixel_size_m",
     "truncation_E_c_over_E",
     "truncation_depth_m",
+    "threshold_depth_m",
 )
 
 
@@ -168,7 +148,8 @@ def _face(s: str, label: str, h: float, rec: dict[str, Any]) -> dict[str, Any]:
         "model": model_name(h),
         "hardness_Pa": None if math.isinf(h) else h,
         "face": rec["params"]["face"],
-        "rows": {c: r[c] for c in FACE_KEEP},
+        "rows": {c: r.get(c, [None] * len(r["peak_load_N"])) for c in FACE_KEEP},
+        "local_plane_tilt_deg": [w.get("local_plane_tilt_deg") for w in rec["windows"]],
         "seconds": rec["seconds"],
         "n_not_converged": rec["n_not_converged"],
         "device": rec["device"],
@@ -223,7 +204,7 @@ def summary_from_pieces(
             hardness[name] = None if math.isinf(h) else h
             if name not in models[design]:
                 models[design].append(name)
-            r = {**rec["rows"], "resolved_stiffness": resolved_stiffness(st, rec["rows"])}
+            r = rec["rows"]
             _append(rows, s, design, name, hardness[name], r)
             if rec is trunc:
                 m = len(r["peak_load_N"])
@@ -241,7 +222,8 @@ def summary_from_pieces(
                         "displacement_m": r["truncation_depth_m"],
                         "plastic_area_m2": [None] * m,
                         "n_contact": [None] * m,
-                        "converged": [True] * m,
+                        "threshold_depth_m": [None] * m,
+                        "converged": [not b for b in r.get("bulk_yield", [False] * m)],
                     },
                 )
             timings.append(_timing(st, s, design, name, rec))

@@ -93,90 +93,119 @@ def _design(stage: dict[str, Any], design: str) -> str:
 
 @fill_doc(TABLE_DOCS)
 def hardness_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
-    """The depth at the largest load per H against the paper's ≈ 5 µm, and the H it allows.
+    """The threshold depth at the largest load per H, with its spread over the placements,
+    against the paper's ≈ 5 µm (its maximum over all tests), and the H it allows.
 
     {stage_ana}
 
     Returns
     -------
     list of str
-        Markdown lines: one table row per surface and a sentence per surface.
+        Markdown lines: one table row per surface, a row of the maximum over every surface, and
+        a sentence per surface.
     """
     lo, hi = stage["depth_band_m"]
     at = max(stage["loads_N"]) * 1e3
+    allh = ana.get("hardness_all") or {}
     hs = sorted({h for v in ana["hardness"].values() for h in v["hardness_Pa"]})
+
+    def span_of(rg: dict[str, Any]) -> str:
+        if rg["low"] is None:
+            return "none in the sweep"
+        out = " ∪ ".join(f"{a / 1e9:.3g}–{b / 1e9:.3g} GPa" for a, b in rg["intervals"])
+        return (
+            out
+            + (" (or softer)" if rg["open_below"] else "")
+            + (" (or harder)" if rg["open_above"] else "")
+        )
+
     L = [
         "| surface | punch | "
         + " | ".join(f"H = {h / 1e9:g} GPa" for h in hs)
-        + f" | H = ∞ | H with depth in {_um(lo, 'g')}–{_um(hi, 'g')} µm | H for {_um(stage['depth_target_m'], 'g')} µm | statistics at |",
-        "|---|---|" + "---|" * (len(hs) + 4),
+        + f" | H = ∞ | H with the deepest placement in {_um(lo, 'g')}–{_um(hi, 'g')} µm |",
+        "|---|---|" + "---|" * (len(hs) + 2),
     ]
     words = []
-    stats_h = {
-        (t["surface"]): t["model"]
-        for t in stage["timings"]
-        if t["design"] == "stats" and t["model"] != "elastic"
-    }
     for s, v in ana["hardness"].items():
-        dep = {
-            (d["model"]): d for d in ana["depths"] if d["surface"] == s and d["design"] == "sweep"
-        }
         cells = []
         for h in hs:
-            m = next((k for k, x in stage["hardness_Pa"].items() if x == h), None)
-            dd = (dep.get(m) or {}).get("deepest")
-            cells.append(
-                "—"
-                if dd is None
-                else _um(dd["median"])
-                if dd["n"] == 1
-                else f"{_um(dd['median'])} [{_um(dd['min'])}–{_um(dd['max'])}]"
-            )
-        el = (dep.get("elastic") or {}).get("deepest")
-        punch = next((d["deepest"]["punch_m"] for d in dep.values() if d.get("deepest")), None)
-        rg, mt = v["range"], v["match"]
-        if rg["low"] is None:
-            span = "none in the sweep"
-        else:
-            span = " ∪ ".join(f"{a / 1e9:.3g}–{b / 1e9:.3g} GPa" for a, b in rg["intervals"])
-            span += (" (or softer)" if rg["open_below"] else "") + (
-                " (or harder)" if rg["open_above"] else ""
-            )
-        st = stats_h.get(s)
+            k = v["hardness_Pa"].index(h) if h in v["hardness_Pa"] else None
+            a = None if k is None else v["depth_min_m"][k]
+            b = None if k is None else v["depth_max_m"][k]
+            cells.append("—" if a is None else _um(a) if a == b else f"{_um(a)}–{_um(b)}")
+        el = v.get("elastic_depth_range_m")
+        punch = next((p for p in v["punch_m"] if p is not None), None)
         L.append(
             f"| {s} | {'—' if punch is None else f'{punch * 1e6:g} µm'} | "
             + " | ".join(cells)
-            + f" | {'—' if el is None else _um(el['median'])} | {span} | "
-            f"{'—' if mt['H_target'] is None else _gpa(mt['H_target']) + ' GPa'} | "
-            f"{model_label(stage, st) if st else 'none'} |"
+            + " | "
+            + (
+                "—"
+                if not el or el[0] is None
+                else _um(el[0])
+                if el[0] == el[1]
+                else f"{_um(el[0])}–{_um(el[1])}"
+            )
+            + " | "
+            f"{span_of(v['range'])} |"
         )
-        deep = [x for x in v["depth_m"] if x is not None]
-        if rg["low"] is None and deep:
+        deep = [x for x in v["depth_max_m"] if x is not None]
+        if v["range"]["low"] is None and deep:
             side = "shallower" if max(deep) < lo else "deeper"
-            need = (
-                f"it would take H above {hs[-1] / 1e9:g} GPa"
-                if side == "deeper"
-                else f"a softer H than {hs[0] / 1e9:g} GPa would be needed, if any reaches it"
-            )
             words.append(
-                f"{s}: every H of the sweep gives a depth {side} than {_um(lo, 'g')}–{_um(hi, 'g')} µm "
-                f"({_um(min(deep))}–{_um(max(deep))} µm); no H in "
-                f"{hs[0] / 1e9:g}–{hs[-1] / 1e9:g} GPa reproduces the paper's depth on this surface "
-                f"({need})."
+                f"{s}: every H of the sweep gives a deepest placement {side} than "
+                f"{_um(lo, 'g')}–{_um(hi, 'g')} µm ("
+                + (
+                    f"{_um(min(deep))}"
+                    if min(deep) == max(deep)
+                    else f"{_um(min(deep))}–{_um(max(deep))}"
+                )
+                + " µm)."
             )
-        elif rg["low"] is not None:
-            words.append(
-                f"{s}: depths of {_um(lo, 'g')}–{_um(hi, 'g')} µm at {at:g} mN need H = {span}."
+    if allh.get("hardness_Pa"):
+        cells = []
+        for h in hs:
+            k = allh["hardness_Pa"].index(h) if h in allh["hardness_Pa"] else None
+            cells.append(
+                "—" if k is None else f"{_um(allh['max_depth_m'][k])} ({allh['surface'][k]})"
             )
+        L.append(
+            "| **every surface (largest)** | — | " + " | ".join(cells) + " | — | "
+            f"{span_of(allh['range'])} |"
+        )
+        mt = allh["match"]
+        words.append(
+            "Over every surface: the largest threshold depth at "
+            f"{at:g} mN lies in {_um(lo, 'g')}–{_um(hi, 'g')} µm for H = {span_of(allh['range'])}"
+            + (
+                f"; {_um(stage['depth_target_m'], 'g')} µm at H ≈ {_gpa(mt['H_target'])} GPa"
+                if mt.get("H_target") is not None
+                else ""
+            )
+            + (
+                f"; the statistics run at H = {_gpa(mt['H_match'])} GPa (the sweep's H nearest)."
+                if mt.get("H_match") is not None
+                else "; no H of the sweep reaches the band, so no elastic–plastic statistics."
+            )
+        )
     L.append("")
+    reading = next((v.get("reading") for v in ana["hardness"].values() if v.get("reading")), None)
     L.append(
-        f"Depth: the punch's approach δ from first touch (the highest pixel under the punch) at the "
-        f"largest load, {at:g} mN, on the punch that goes deepest (named), median [min–max] over the "
-        'sweep\'s indents, in µm; the paper: the maximal indentation depth "is around 5 µm" (§ 4.1), '
-        f"taken here as {_um(lo, 'g')}–{_um(hi, 'g')} µm. The H range joins the sweep's points by "
-        'straight lines in log H – log depth; "or softer/harder": the band is met at the sweep\'s '
-        "end, beyond which it says nothing. The statistics use the sweep's H nearest the one that "
-        "gives the target depth (none when no H of the sweep reaches the band).\n"
+        f"Depth: the punch's depth at the largest load, {at:g} mN, "
+        + (
+            "read as an indenter reads it, from surface detection (the approach at the "
+            "detection load subtracted: `warptrunc.indent.depth`), "
+            if reading == "from surface detection"
+            else "from first touch at the highest pixel under the punch, "
+        )
+        + "on the punch that goes deepest (named), min–max over the sweep's placements, in µm; "
+        'the paper: the maximal indentation depth "is around 5 µm" (§ 4.1) — its maximum over '
+        f"all its tests, taken here as {_um(lo, 'g')}–{_um(hi, 'g')} µm and compared with the "
+        "deepest placement, per surface and over every surface. The H ranges join the sweep's "
+        'points by straight lines in log H – log depth; "or softer/harder": the band is met at '
+        "the sweep's end, beyond which it says nothing. The statistics use one H for every "
+        "surface, the sweep's H nearest the one where the largest depth over every surface is "
+        "the target.\n"
     )
     L += [w + "\n" for w in words]
     return L
@@ -191,44 +220,58 @@ def _ci(f: dict[str, Any], key: str, fmt: str) -> str:
 
 @fill_doc(TABLE_DOCS)
 def fit_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
-    """α, β with 95 % intervals per surface × design × model.
+    """α, β with 95 % intervals per surface × design × model × punch, over loads, and the pooled
+    fit where the punches agree.
 
     {stage_ana}
 
     Returns
     -------
     list of str
-        Markdown lines of the table and the partial-unloading note.
+        Markdown lines of the table and its notes.
     """
     L = [
-        "| surface | design | model | α [95 %] | β [95 %] | cells | indents | α, β on K alone (cells) |",
-        "|---|---|---|---|---|---|---|---|",
+        "| surface | design | model | punch | α [95 %] | β [95 %] | loads | cells | indents | "
+        "α shift, K and A rule |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
-    dalpha = []
+    dalpha, refused = [], 0
     for f in ana["fits"]:
-        made = f["made"]
-        a = _ci(f, "alpha", ".3f") if made else "not made"
-        b = _ci(f, "beta", ".3g") if made else "—"
-        k = f.get("stiffness_rule") or {}
-        kk = (
-            f"{_ci(k, 'alpha', '.3f')}, {_ci(k, 'beta', '.3g')} ({k['n_points']})"
-            if k.get("made")
-            else f"not made ({k.get('n_points', 0)})"
+        lead = (
+            f"| {f['surface']} | {_design(stage, f['design'])} | {model_label(stage, f['model'])} |"
         )
-        L.append(
-            f"| {f['surface']} | {_design(stage, f['design'])} | {model_label(stage, f['model'])} | "
-            f"{a} | {b} | {f['n_points']} | {f['n_indents']} | {kk} |"
-        )
-        pa = f.get("partial") or {}
-        if made and pa.get("made"):
-            dalpha.append(abs(pa["alpha"] - f["alpha"]))
+        rows = [*f.get("per_punch", []), {**f.get("pooled", {"made": False}), "pooled": True}]
+        for g in rows:
+            d = g.get("punch_diameter_m")
+            who = "pooled" if g.get("pooled") else ("flat" if d is None else f"{d * 1e6:g} µm")
+            if not g.get("made"):
+                if g.get("pooled") and not any(x.get("made") for x in f.get("per_punch", [])):
+                    continue  # nothing fitted: the per-punch rows say why
+                refused += 1
+                L.append(f"{lead} {who} | not made: {g.get('reason', '')} | — | "
+                         f"{g.get('n_loads', '—')} | — | — | — |")  # fmt: skip
+                continue
+            shift = g.get("rule_shift_alpha")
+            L.append(
+                f"{lead} {who} | {_ci(g, 'alpha', '.3f')} | {_ci(g, 'beta', '.3g')} | "
+                f"{g['n_loads']} | {g['n_points']} | {g['n_indents']} | "
+                f"{'—' if shift is None or not math.isfinite(shift) else format(shift, '.3f')} |"
+            )
+        pa = {x.get("punch_diameter_m"): x for x in (f.get("partial") or {}).get("per_punch", [])}
+        for g in f.get("per_punch", []):
+            q = pa.get(g.get("punch_diameter_m"))
+            if g.get("made") and q and q.get("made"):
+                dalpha.append(abs(q["alpha"] - g["alpha"]))
     L.append("")
     L.append(
-        "No interval where each punch has a single indent (the bootstrap resamples indents within "
-        "each punch). α, β use the cells resolved by the refinement rule (K **and** the contact "
-        "area change by less than the tolerance when the pixel halves); the last column fits the "
-        "cells resolved on K alone (the contact area of a fractal surface keeps changing as finer "
-        "roughness is resolved, while K, the quantity fitted, converges).\n"
+        "A power law in the load, per punch: made only over at least three distinct peak loads "
+        "of that punch with cells in_fit (a slope between punch sizes at one load measures how K "
+        "scales with the punch, not with the load); the pooled fit over the punches only where "
+        "their 95 % intervals of α share a value. The intervals: a hierarchical bootstrap "
+        "(realisations first, then placements; `warptrunc.indent.fits`), spanning the fits "
+        "under both cell rules — K converged over two halvings of the pixel (the one rule) and "
+        "K with the contact area converged too; the last column is how far the second rule "
+        "moves α. None where a punch has a single indent.\n"
     )
     if dalpha:
         L.append(
@@ -421,21 +464,31 @@ def face_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
         + f"The sweep's indents of {f0['surface']} again, at {model_label(stage, f0['model'])}, with each "
         "face (`PunchFaceSpec.tilt_deg`, held fixed as the indenter's shaft holds it; "
         "`PunchFaceSpec.roughness`, a self-affine face of Hurst exponent 0.8 from 2 map pixels, or the finest its "
-        "punch's face grid holds, to the punch diameter), against the aligned smooth flat of the sweep; "
-        "truncation stays the sample's. A face **explains** the divergence when, with it, truncation "
+        "punch's face grid holds, to the punch diameter); a tilt marked *local* is relative to the "
+        "sample's least-squares plane under each placement (`PunchFaceSpec.tilt_reference`), its "
+        "azimuth turned from one placement to the next so that the placements average over it, and "
+        "is compared with the face at 0° local (aligned with the surface under it), the others with "
+        "the aligned smooth flat of the sweep"
+        + (
+            f" (the sample's own plane tilts by {f0['local_plane_tilt_deg_rms']:.3g}° rms under "
+            "the punches)"
+            if f0.get("local_plane_tilt_deg_rms")
+            else ""
+        )
+        + "; truncation stays the sample's. A face **explains** the divergence when, with it, truncation "
         f"leaves the {band} band of the model between the last cell inside and the first outside a "
         f"bracket that meets the paper's {lo:g}–{hi:g} % R_t′, while with the aligned flat it stays "
         "within the band beyond that range (the agreement walk above; ω in % of the map's R_t′).\n",
         f"| face | within {band} up to (% R_t′) | leaves at (% R_t′) | cells in / walked | "
-        "K / K of the aligned flat, median [range] | verdict |",
-        "|---|---|---|---|---|---|",
+        "K / K of the reference, median [range] | reference | verdict |",
+        "|---|---|---|---|---|---|---|",
     ]
     ref = f0["aligned"]
     if ref is not None:
         L.append(
             f"| aligned smooth flat (the sweep) | {fmt_value(ref['depth'], '.3g')} | "
             f"{'never' if ref['leaves_at'] is None else format(ref['leaves_at'], '.3g')} | "
-            f"{ref['n_in']} / {ref['n_cells']} | 1 | reference |"
+            f"{ref['n_in']} / {ref['n_cells']} | 1 | — | reference |"
         )
     for f in ana["faces"]:
         kr = f["K_over_aligned_range"]
@@ -443,7 +496,8 @@ def face_lines(stage: dict[str, Any], ana: dict[str, Any]) -> list[str]:
         L.append(
             f"| {f['label']} | {fmt_value(f['depth'], '.3g')} | "
             f"{'never' if f['leaves_at'] is None else format(f['leaves_at'], '.3g')} | "
-            f"{f['n_in']} / {f['n_cells']} | {ktxt} | {VERDICTS[f['verdict']].split(':')[0]} |"
+            f"{f['n_in']} / {f['n_cells']} | {ktxt} | {f.get('reference', '—')} | "
+            f"{VERDICTS[f['verdict']].split(':')[0]} |"
         )
     L.append("")
     for f in ana["faces"]:
