@@ -15,10 +15,15 @@ A generated map is --map-side per side (default 1 mm, the paper's simulated maps
 two placements of the 502.6 µm punch are apart there) unless --L is given, at the preset's or
 the defaults' pixel unless --n is given; --seeds indents several realisations. A cell (punch,
 placement, peak) is resolved when converged with at least --min-contact-pixels in contact;
-with --refine-max above 1 (default 1), a WM map's cell is solved again at half the pixel until
-its unloading stiffness and contact area change by less than --resolution-tol, up to
---refine-max. The fits use only the cells resolved, not saturated and converged (``in_fit``),
-at least 6, with 95 % intervals by a bootstrap over the indents. The defaults are a quick run
+with --refine-max 4 or more, a WM map's cell is solved again at half the pixel until the
+Richardson error of its unloading stiffness over the last two halvings is within
+--resolution-tol, up to --refine-max (a window larger than --max-window-pixels is cut to a
+sub-window that holds the contact). The fits are per punch over its loads (at least 3 with
+cells resolved, not saturated and converged: ``in_fit``; else no fit, with the reason), the
+pooled one only where the punches' α intervals agree, with 95 % intervals by a hierarchical
+bootstrap over realisations and placements spanning both cell rules. Depth is also read from
+surface detection at --detection-load (``threshold_depth_m``); cells at the bulk-yield pressure
+of the cap model are flagged (``bulk_yield``). The defaults are a quick run
 of the experiment (about a minute on two CPU cores at the defaults' 0.977 µm pixel); the
 paper's design, its ten loads, three placements and refined cells, is the indentation stage of
 ``warptrunc reproduce --profile paper``.
