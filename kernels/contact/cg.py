@@ -82,6 +82,34 @@ def fill_map_kernel(mask: wp.array2d(dtype=wp.uint8), value: wp.float64, x: wp.a
         x[iy, ix] = x.dtype(0.0)
 
 
+@wp.func
+def direction_at(
+    in_set: bool,
+    u: wp.array2d(dtype=Any),
+    h: wp.array2d(dtype=Any),
+    offset: wp.float64,
+    beta: wp.float64,
+    iy: int,
+    ix: int,
+    t: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    s_gt: wp.float64,
+) -> wp.float64:
+    """One pixel of a CG direction (shared with ``kernels/contact/plastic.py``): with c =
+    ``in_set``, t = c·(g + β·t) (PK Eq. 13) and mask = c; returns ``s_gt`` + c·g·t."""
+    tv = t.dtype(0.0)
+    m = wp.uint8(0)
+    acc = s_gt
+    if in_set:
+        g = u[iy, ix] - h[iy, ix] - h.dtype(offset)
+        tv = g + t.dtype(beta) * t[iy, ix]
+        acc = s_gt + wp.float64(g) * wp.float64(tv)
+        m = wp.uint8(1)
+    t[iy, ix] = tv
+    mask[iy, ix] = m
+    return acc
+
+
 @wp.kernel
 def cg_direction_kernel(
     q: wp.array2d(dtype=Any),
@@ -102,17 +130,31 @@ def cg_direction_kernel(
     i, n, step, iy, ix, sy, sx = lane_start(lane, stride, chunk, h.shape[0] * nx, nx)
     s_gt = wp.float64(0.0)
     while i < n:
-        tv = t.dtype(0.0)
-        m = wp.uint8(0)
-        if q[iy, ix] > q.dtype(0.0):
-            g = u[iy, ix] - h[iy, ix] - h.dtype(offset)
-            tv = g + t.dtype(beta) * t[iy, ix]
-            s_gt += wp.float64(g) * wp.float64(tv)
-            m = wp.uint8(1)
-        t[iy, ix] = tv
-        mask[iy, ix] = m
+        s_gt = direction_at(q[iy, ix] > q.dtype(0.0), u, h, offset, beta, iy, ix, t, mask, s_gt)
         i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 0] = s_gt
+
+
+@wp.func
+def fold_step(
+    sums: wp.array2d(dtype=wp.float64),
+    n_c: wp.float64,
+    inv_n: wp.float64,
+    fallback: wp.float64,
+) -> wp.float64:
+    """The CG step τ = Σ c·g·t / (t·K·t) (PK Eq. 15) from the folded rows of columns 0
+    (Σ c·g·t) and 1 (N·t·K·t) of the lane partials; ``fallback`` without a CG set or curvature
+    (shared with ``kernels/contact/plastic.py``)."""
+    s_gt = wp.float64(0.0)
+    t_k_t = wp.float64(0.0)
+    for k in range(sums.shape[0]):
+        s_gt += sums[k, 0]
+        t_k_t += sums[k, 1]
+    t_k_t = t_k_t * inv_n
+    step = fallback
+    if n_c > wp.float64(0.0) and t_k_t > wp.float64(0.0):
+        step = s_gt / t_k_t
+    return step
 
 
 @wp.kernel
@@ -125,16 +167,58 @@ def step_length_kernel(
     """One thread: the CG step τ = Σ c·g·t / (t·K·t) from the folded rows of columns 0 (Σ c·g·t)
     and 1 (N·t·K·t) of the lane partials (PK Eq. 15); τ = 0 without a CG set or curvature. Kept on
     the device, so that the force update follows without a host round trip."""
-    s_gt = wp.float64(0.0)
-    t_k_t = wp.float64(0.0)
-    for k in range(sums.shape[0]):
-        s_gt += sums[k, 0]
-        t_k_t += sums[k, 1]
-    t_k_t = t_k_t * inv_n
-    step = wp.float64(0.0)
-    if n_c > wp.float64(0.0) and t_k_t > wp.float64(0.0):
-        step = s_gt / t_k_t
-    tau[0] = step
+    tau[0] = fold_step(sums, n_c, inv_n, wp.float64(0.0))
+
+
+@wp.func
+def store_force(
+    changed: bool,
+    m: wp.uint8,
+    q_lin: Any,
+    qv: Any,
+    iy: int,
+    ix: int,
+    q: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    lin: wp.array2d(dtype=Any),
+) -> int:
+    """One pixel of a force update (shared with ``kernels/contact/plastic.py``): q = ``qv``;
+    where the projection ``changed`` it, mask = ``m`` with bit 2 and lin = ``q_lin``. Returns 1
+    where changed, else 0."""
+    c = int(0)
+    if changed:
+        mask[iy, ix] = m | wp.uint8(4)
+        lin[iy, ix] = q_lin
+        c = 1
+    q[iy, ix] = qv
+    return c
+
+
+@wp.func
+def store_update_partials(
+    lane: int,
+    n_nc: wp.float64,
+    n_clamp: wp.float64,
+    max_viol: wp.float64,
+    total: wp.float64,
+    tau: wp.float64,
+    count: int,
+    part: wp.array2d(dtype=wp.float64),
+    lane_count: wp.array[wp.int32],
+):
+    """A lane's part[lane, 2:8] of a force update, [n changing sides, n clamped, largest
+    violation, Σ q, τ (lane 0; 0 on the others, so that the column sums to τ), n changed], and
+    lane_count[lane] = n changed (shared with ``kernels/contact/plastic.py``)."""
+    part[lane, 2] = n_nc
+    part[lane, 3] = n_clamp
+    part[lane, 4] = max_viol
+    part[lane, 5] = total
+    if lane == 0:
+        part[lane, 6] = tau
+    else:
+        part[lane, 6] = wp.float64(0.0)
+    part[lane, 7] = wp.float64(count)
+    lane_count[lane] = count
 
 
 @wp.kernel
@@ -175,8 +259,9 @@ def update_force_kernel(
         qv = q[iy, ix]
         if (int(m) & 1) != 0:
             qv = qv - q.dtype(tau) * t[iy, ix]
+        q_lin = qv
+        changed = False
         if qv <= zero:
-            q_lin = qv
             changed = qv < zero
             max_tens = wp.max(max_tens, -wp.float64(qv))
             if qv < zero:
@@ -190,23 +275,10 @@ def update_force_kernel(
                     m = m | wp.uint8(2)
                 else:
                     qv = -q.dtype(tau) * g
-            if changed:
-                mask[iy, ix] = m | wp.uint8(4)
-                lin[iy, ix] = q_lin
-                count += 1
-        q[iy, ix] = qv
+        count += store_force(changed, m, q_lin, qv, iy, ix, q, mask, lin)
         total += wp.float64(qv)
         i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
-    part[lane, 2] = n_nc
-    part[lane, 3] = n_zero
-    part[lane, 4] = max_tens
-    part[lane, 5] = total
-    if lane == 0:
-        part[lane, 6] = tau
-    else:
-        part[lane, 6] = wp.float64(0.0)
-    part[lane, 7] = wp.float64(count)
-    lane_count[lane] = count
+    store_update_partials(lane, n_nc, n_zero, max_tens, total, tau, count, part, lane_count)
 
 
 @wp.kernel
@@ -311,6 +383,44 @@ def direct_sum(
     return acc
 
 
+@wp.func
+def advance_at(
+    r: wp.array2d(dtype=Any),
+    linear: int,
+    tau: wp.float64,
+    scale: wp.float64,
+    table: wp.array2d(dtype=Any),
+    periodic: int,
+    index: wp.array[wp.int32],
+    value: wp.array[wp.float64],
+    n_changes: int,
+    iy: int,
+    ix: int,
+    nx: int,
+    u: wp.array2d(dtype=Any),
+) -> wp.float64:
+    """One pixel of the new displacement of ``advance_kernel`` (shared with
+    ``kernels/contact/plastic.py``): ``linear == 0``: u ← r; else u ← scale·(u − τ·r) + the
+    listed corrections. Returns abs(Δu) (m)."""
+    uo = u[iy, ix]
+    un = r[iy, ix]
+    if linear != 0:
+        acc = direct_sum(
+            scale * (wp.float64(uo) - tau * wp.float64(un)),
+            table,
+            periodic,
+            index,
+            value,
+            n_changes,
+            iy,
+            ix,
+            nx,
+        )
+        un = u.dtype(acc)
+    u[iy, ix] = un
+    return wp.abs(wp.float64(un) - wp.float64(uo))
+
+
 @wp.kernel
 def advance_kernel(
     r: wp.array2d(dtype=Any),
@@ -347,24 +457,11 @@ def advance_kernel(
     s_gap = wp.float64(0.0)
     s_q = wp.float64(0.0)
     while i < n:
-        uo = u[iy, ix]
-        un = r[iy, ix]
-        if linear != 0:
-            acc = direct_sum(
-                scale * (wp.float64(uo) - tau * wp.float64(un)),
-                table,
-                periodic,
-                index,
-                value,
-                n_changes,
-                iy,
-                ix,
-                nx,
-            )
-            un = u.dtype(acc)
-        u[iy, ix] = un
-        du_max = wp.max(du_max, wp.abs(wp.float64(un) - wp.float64(uo)))
-        g = wp.float64(un) - wp.float64(h[iy, ix]) - offset
+        du = advance_at(
+            r, linear, tau, scale, table, periodic, index, value, n_changes, iy, ix, nx, u
+        )
+        du_max = wp.max(du_max, du)
+        g = wp.float64(u[iy, ix]) - wp.float64(h[iy, ix]) - offset
         s_gap += g
         qv = q[iy, ix]
         if qv > q.dtype(0.0):

@@ -15,8 +15,8 @@ from typing import Any
 
 import warp as wp
 
-from .cg import direct_sum
 from ..lanes import declare_overloads, lane_next, lane_start
+from .cg import advance_at, direction_at, fold_step, store_force, store_update_partials
 
 wp.set_module_options({"enable_backward": False})
 
@@ -77,16 +77,9 @@ def capped_direction_kernel(
     s_gt = wp.float64(0.0)
     cap = q.dtype(hf)
     while i < n:
-        tv = t.dtype(0.0)
-        m = wp.uint8(0)
         qv = q[iy, ix]
-        if qv > q.dtype(0.0) and qv < cap:
-            g = u[iy, ix] - h[iy, ix] - h.dtype(offset)
-            tv = g + t.dtype(beta) * t[iy, ix]
-            s_gt += wp.float64(g) * wp.float64(tv)
-            m = wp.uint8(1)
-        t[iy, ix] = tv
-        mask[iy, ix] = m
+        in_set = qv > q.dtype(0.0) and qv < cap
+        s_gt = direction_at(in_set, u, h, offset, beta, iy, ix, t, mask, s_gt)
         i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
     part[lane, 0] = s_gt
 
@@ -102,16 +95,7 @@ def capped_step_kernel(
     """One thread: τ = Σ c·g·t / (t·K·t) (PK Eq. 15) from the folded columns 0 and 1; without a
     CG set or curvature τ = ``fallback`` (m⁻¹·N: the inverse self-influence of a pixel), so that
     pixels at the cap or at zero force can still change sides."""
-    s_gt = wp.float64(0.0)
-    t_k_t = wp.float64(0.0)
-    for k in range(sums.shape[0]):
-        s_gt += sums[k, 0]
-        t_k_t += sums[k, 1]
-    t_k_t = t_k_t * inv_n
-    step = fallback
-    if n_c > wp.float64(0.0) and t_k_t > wp.float64(0.0):
-        step = s_gt / t_k_t
-    tau[0] = step
+    tau[0] = fold_step(sums, n_c, inv_n, fallback)
 
 
 @wp.kernel
@@ -180,23 +164,10 @@ def capped_update_kernel(
                 n_nc += wp.float64(1.0)
                 changed = True
                 qv = wp.max(cap - q.dtype(tau) * g, half)
-        if changed:
-            mask[iy, ix] = m | wp.uint8(4)
-            lin[iy, ix] = q_lin
-            count += 1
-        q[iy, ix] = qv
+        count += store_force(changed, m, q_lin, qv, iy, ix, q, mask, lin)
         total += wp.float64(qv)
         i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
-    part[lane, 2] = n_nc
-    part[lane, 3] = n_clamp
-    part[lane, 4] = max_viol
-    part[lane, 5] = total
-    if lane == 0:
-        part[lane, 6] = tau
-    else:
-        part[lane, 6] = wp.float64(0.0)
-    part[lane, 7] = wp.float64(count)
-    lane_count[lane] = count
+    store_update_partials(lane, n_nc, n_clamp, max_viol, total, tau, count, part, lane_count)
 
 
 @wp.kernel
@@ -234,25 +205,13 @@ def capped_advance_kernel(
     s_gap = wp.float64(0.0)
     s_q = wp.float64(0.0)
     cap = q.dtype(hf)
+    one = wp.float64(1.0)
     while i < n:
-        uo = u[iy, ix]
-        un = r[iy, ix]
-        if linear != 0:
-            acc = direct_sum(
-                wp.float64(uo) - tau * wp.float64(un),
-                table,
-                periodic,
-                index,
-                value,
-                n_changes,
-                iy,
-                ix,
-                nx,
-            )
-            un = u.dtype(acc)
-        u[iy, ix] = un
-        du_max = wp.max(du_max, wp.abs(wp.float64(un) - wp.float64(uo)))
-        g = wp.float64(un) - wp.float64(h[iy, ix]) - offset
+        du = advance_at(
+            r, linear, tau, one, table, periodic, index, value, n_changes, iy, ix, nx, u
+        )
+        du_max = wp.max(du_max, du)
+        g = wp.float64(u[iy, ix]) - wp.float64(h[iy, ix]) - offset
         s_gap += g
         qv = q[iy, ix]
         s_q += wp.float64(qv)
