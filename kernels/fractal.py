@@ -108,6 +108,28 @@ def box_count_kernel(
     count[j, c] = n
 
 
+@wp.func
+def squared_differences(
+    z: wp.array2d[wp.float32],
+    iy: int,
+    ix: int,
+    sy: int,
+    sx: int,
+    n: int,
+    dy: int,
+    dx: int,
+) -> wp.float64:
+    """Σ over the n pixels p_j = (iy + j·sy, ix + j·sx) of (z(p_j + (dy, dx)) − z(p_j))² (m²),
+    in the order of j."""
+    acc = wp.float64(0.0)
+    for j in range(n):
+        y = iy + j * sy
+        x = ix + j * sx
+        d = wp.float64(z[y + dy, x + dx]) - wp.float64(z[y, x])
+        acc += d * d
+    return acc
+
+
 @wp.kernel
 def structure_function_kernel(
     z: wp.array2d[wp.float32],
@@ -123,13 +145,9 @@ def structure_function_kernel(
     acc = wp.float64(0.0)
     if along_x != 0:
         if ix + tau < nx:
-            for iy in range(ny):
-                d = wp.float64(z[iy, ix + tau]) - wp.float64(z[iy, ix])
-                acc += d * d
+            acc = squared_differences(z, 0, ix, 1, 0, ny, 0, tau)
     else:
-        for iy in range(ny - tau):
-            d = wp.float64(z[iy + tau, ix]) - wp.float64(z[iy, ix])
-            acc += d * d
+        acc = squared_differences(z, 0, ix, 1, 0, ny - tau, tau, 0)
     out[k, ix] = acc
 
 
@@ -147,13 +165,9 @@ def structure_function_rows_kernel(
     nx = z.shape[1]
     acc = wp.float64(0.0)
     if along_x != 0:
-        for ix in range(nx - tau):
-            d = wp.float64(z[iy, ix + tau]) - wp.float64(z[iy, ix])
-            acc += d * d
+        acc = squared_differences(z, iy, 0, 0, 1, nx - tau, 0, tau)
     elif iy + tau < ny:
-        for ix in range(nx):
-            d = wp.float64(z[iy + tau, ix]) - wp.float64(z[iy, ix])
-            acc += d * d
+        acc = squared_differences(z, iy, 0, 0, 1, nx, tau, 0)
     out[k, iy] = acc
 
 
