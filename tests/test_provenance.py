@@ -246,14 +246,19 @@ def test_describe_and_calibrate_take_input(form, tmp_path, capsys):
     capsys.readouterr()
 
 
-def test_input_given_twice_or_missing_is_one_line(tmp_path, capsys):
+def test_input_given_twice_is_one_line(tmp_path, capsys):
     a, b = tmp_path / "a.npy", tmp_path / "b.npy"
     for f in (a, b):
         np.save(f, np.zeros((4, 4)))
     assert main(["describe", str(a), "--input", str(b)]) == 2
     assert "give the height map once, as FILE or --input FILE" in capsys.readouterr().err
-    assert main(["describe"]) == 2
-    assert "the height map is missing: give FILE or --input FILE" in capsys.readouterr().err
+
+
+def test_describe_without_a_file_describes_the_generated_surface(capsys):
+    assert main(["describe", "--n", "64", "--device", "cpu"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("WM surface, D = 2.5: 64×64 pixels")
+    assert "h′_rms" in out and "h″_rms" in out
 
 
 @pytest.mark.parametrize(
