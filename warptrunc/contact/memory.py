@@ -35,6 +35,7 @@ def memory_terms(
     algorithm: str = "bccg",
     fft_plan: str = "pruned",
     device: wp.DeviceLike = None,
+    adhesion: bool = False,
 ) -> dict[str, int]:
     """The model of a solver's peak device memory, term by term (bytes).
 
@@ -57,6 +58,9 @@ def memory_terms(
     device : str or warp Device, optional
         A CUDA device: cuFFT's work area is the one cuFFT asks for the plans
         (``ElasticHalfSpace.cufft_work_bytes``) instead of the estimate.
+    adhesion : bool, optional
+        An adhesion law (:class:`~warptrunc.contact.adhesion.Adhesion`): two more maps, the
+        law's forces and the original heights.
 
     Returns
     -------
@@ -68,7 +72,8 @@ def memory_terms(
         offsets and the list of changed forces; ``"stiffness solve"``: the one more map
         Barber's punch needs (its residual; its unknown reuses q_lin's map). The peak is
         their sum, reached during :meth:`~warptrunc.contact.ContactSolver.punch_stiffness`;
-        a solve needs all but the last term.
+        a solve needs all but the last term; with ``adhesion`` also ``"adhesion"``: the law's
+        pixel forces and the original heights (two maps; the effective heights are h's map).
     """
     ny, nx = shape
     item = np.dtype(dtype).itemsize
@@ -82,6 +87,8 @@ def memory_terms(
     terms["stiffness solve"] = ny * nx * item
     if algorithm == "bccg":
         terms["bccg residual"] = ny * nx * item
+    if adhesion:
+        terms["adhesion"] = 2 * ny * nx * item
     return terms
 
 
@@ -96,6 +103,7 @@ def memory_bytes(
     fft_plan: str = "pruned",
     device: wp.DeviceLike = None,
     devices: int = 1,
+    adhesion: bool = False,
 ) -> int:
     """Peak device memory of a solver and its stiffness solve (bytes; per device when spread).
 
@@ -122,6 +130,8 @@ def memory_bytes(
         count, ≥ 1, default 1). Above 1: the bytes of one device, JAX's buffers included
         (:func:`~warptrunc.contact.sharded.grid.sharded_memory_bytes`; ``cuda``,
         ``algorithm``, ``fft_plan`` and ``device`` do not apply).
+    adhesion : bool, optional
+        With an adhesion law (one device only): two more maps (:func:`memory_terms`).
 
     Returns
     -------
@@ -131,22 +141,36 @@ def memory_bytes(
         free boundary, large maps: float32 4 (kernel spectrum) + 4 (table) + 16 (work
         spectrum) + ≤ 2 (cuFFT work area, estimated) + 20 (maps) + 1 (mask) + 4 (stiffness
         solve) + 4 (BCCG's residual) ≈ 55 B; float64 ≈ 109 B; periodic float32 ≈ 1 + 4 + 4
-        + ≤ 0.5 + 20 + 1 + 4 + 4 ≈ 38.5 B. Without BCCG (``algorithm="pk"``) one map less.
+        + ≤ 0.5 + 20 + 1 + 4 + 4 ≈ 38.5 B. Without BCCG (``algorithm="pk"``) one map less;
+        with adhesion two more (+ 8 B per pixel in float32, + 16 in float64).
     """
     if isinstance(devices, bool) or not isinstance(devices, int | np.integer) or devices < 1:
         raise ValueError(f"devices must be an integer ≥ 1, got {devices!r}")
     if devices > 1:
+        if adhesion:
+            raise ValueError("adhesion runs on one device: give devices=1")
         from .sharded.grid import sharded_memory_bytes
 
         return sharded_memory_bytes(shape, substrate, dtype, int(devices))
     terms = memory_terms(
-        shape, substrate, dtype, cuda=cuda, algorithm=algorithm, fft_plan=fft_plan, device=device
+        shape,
+        substrate,
+        dtype,
+        cuda=cuda,
+        algorithm=algorithm,
+        fft_plan=fft_plan,
+        device=device,
+        adhesion=adhesion,
     )
     return int(sum(terms.values()))
 
 
 def fft_plan_that_fits(
-    device: wp.context.Device, shape: tuple[int, int], settings: SolverSettings
+    device: wp.context.Device,
+    shape: tuple[int, int],
+    settings: SolverSettings,
+    *,
+    adhesion: bool = False,
 ) -> str:
     """The half-space's cuFFT plans for a solver of a map of ``shape`` on ``device``, checked
     against the free memory.
@@ -159,6 +183,8 @@ def fft_plan_that_fits(
         Map size (ny, nx) (pixels).
     settings : SolverSettings
         Its ``substrate``, ``dtype``, ``algorithm`` and ``fft_plan`` are read.
+    adhesion : bool, optional
+        With an adhesion law (its two more maps).
 
     Returns
     -------
@@ -185,6 +211,7 @@ def fft_plan_that_fits(
             algorithm=settings.algorithm,
             fft_plan=p,
             device=device if cuda else None,
+            adhesion=adhesion,
         )
 
     free = free_memory_bytes(device)

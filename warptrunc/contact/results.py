@@ -25,9 +25,10 @@ class ContactState:
     load: float
     """Normal load F = Σ pixel forces (N)."""
     n_contact: int
-    """Pixels in contact (pressure p > 0), those at the hardness included."""
+    """Pixels in contact (pressure p > 0), those at the hardness included; with adhesion the
+    repulsive contact: the pixels where the gap is closed and the wall's reaction is positive."""
     contact_area: float
-    """Real contact area A_c = n_contact·dx·dy (m²)."""
+    """Real contact area A_c = n_contact·dx·dy (m²); with adhesion the repulsive area."""
     n_plastic: int
     """Pixels at the pressure cap (p = H); 0 for an elastic solve (H = inf). For a solve with
     the plastic state frozen, the pixels where p ≥ H."""
@@ -49,6 +50,17 @@ class ContactState:
     ``forcetol``."""
     converged: bool
     """The solve met every stopping criterion before ``maxiter``."""
+    adhesive_force: float = 0.0
+    """Sum of the adhesion law's pixel forces (N, ≤ 0: tensile; included in ``load``); 0
+    without adhesion."""
+    n_attractive: int = 0
+    """Pixels out of contact within the law's range and pulled by it (gap below h₀ or ρ); 0
+    without adhesion."""
+    attractive_area: float = 0.0
+    """Attractive area n_attractive·dx·dy (m²)."""
+    n_adhesion_updates: int = 0
+    """Updates of the law's forces in the solve (each a non-adhesive solve on the effective
+    heights, :mod:`warptrunc.contact.iteration.adhesive`); 0 without adhesion."""
 
     def to_dict(self) -> dict[str, Any]:
         """One row, SI units in the names.
@@ -59,7 +71,8 @@ class ContactState:
             ``depth_m`` (m), ``load_N`` (N), ``n_contact``, ``contact_area_m2`` (m²),
             ``n_plastic``, ``plastic_area_m2`` (m²), ``plastic_volume_m3`` (m³), ``mean_gap_m``
             (m), ``n_iterations``, ``n_convolutions``, ``residual_m`` (m),
-            ``max_tensile_force_N`` (N), ``converged``.
+            ``max_tensile_force_N`` (N), ``converged``, ``adhesive_force_N`` (N),
+            ``n_attractive``, ``attractive_area_m2`` (m²), ``n_adhesion_updates``.
         """
         return {
             "depth_m": self.depth,
@@ -75,6 +88,10 @@ class ContactState:
             "residual_m": self.residual,
             "max_tensile_force_N": self.max_tensile_force,
             "converged": self.converged,
+            "adhesive_force_N": self.adhesive_force,
+            "n_attractive": self.n_attractive,
+            "attractive_area_m2": self.attractive_area,
+            "n_adhesion_updates": self.n_adhesion_updates,
         }
 
 
@@ -118,8 +135,16 @@ class ContactCurve:
     plastic_volume: np.ndarray = field(default_factory=lambda: np.zeros(0))
     """(m,) float64 volume removed by plastic flow up to the row, Σ plastic displacement·dx·dy
     (m³)."""
+    adhesive_force: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """(m,) float64 sum of the adhesion law's pixel forces (N, ≤ 0; part of ``load``; all 0
+    without adhesion)."""
+    n_attractive: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    """(m,) int64 pixels out of contact within the law's range (all 0 without adhesion)."""
+    attractive_area: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """(m,) float64 attractive area n_attractive × pixel area (m²)."""
     pressure: np.ndarray | None = None
-    """(m, ny, nx) float64 contact pressure (Pa), with ``maps=True``; else None."""
+    """(m, ny, nx) float64 contact pressure (Pa; with adhesion the whole traction, tensile
+    negative), with ``maps=True``; else None."""
     gap: np.ndarray | None = None
     """(m, ny, nx) float64 gap (m), with ``maps=True``; else None."""
     settings: dict[str, Any] = field(default_factory=dict)
@@ -137,7 +162,9 @@ class ContactCurve:
             ``load_N`` (N), ``n_contact`` (pixels), ``area_m2`` (m²), ``stiffness_N_per_m``
             (N/m), ``mean_gap_m`` (m), ``n_iterations``, ``n_convolutions``, ``residual_m``
             (m), ``max_tensile_force_N`` (N), ``converged``, ``solve_time_s`` (s), and
-            ``n_plastic``, ``plastic_area_m2`` (m²), ``plastic_volume_m3`` (m³).
+            ``n_plastic``, ``plastic_area_m2`` (m²), ``plastic_volume_m3`` (m³); with an
+            adhesion law (``settings["adhesion"]``) also ``adhesive_force_N`` (N),
+            ``n_attractive`` and ``attractive_area_m2`` (m²).
         """
 
         return {
@@ -156,4 +183,13 @@ class ContactCurve:
             "n_plastic": self.n_plastic,
             "plastic_area_m2": self.plastic_area,
             "plastic_volume_m3": self.plastic_volume,
+            **(
+                {
+                    "adhesive_force_N": self.adhesive_force,
+                    "n_attractive": self.n_attractive,
+                    "attractive_area_m2": self.attractive_area,
+                }
+                if self.settings.get("adhesion")
+                else {}
+            ),
         }

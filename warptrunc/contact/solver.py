@@ -49,6 +49,9 @@ projection below ``forcetol`` (N); the relative change of the total force below 
 position steady (load control).
 
 Elastic–perfectly-plastic contact (``hardness`` H < inf): :mod:`warptrunc.contact.iteration.plastic`.
+Adhesive contact (an :class:`~warptrunc.contact.adhesion.Adhesion` law):
+:mod:`warptrunc.contact.iteration.adhesive`, a fixed point on the law's forces whose every step
+is the non-adhesive solve above on the effective heights.
 """
 
 from __future__ import annotations
@@ -66,7 +69,9 @@ from .._support.validate import check_height_map, check_range, pair
 from ..kernels.contact import cg as _k
 from ..material import Material
 from ..params import check_value
+from .adhesion import Adhesion
 from .halfspace import DTYPES, ElasticHalfSpace
+from .iteration.adhesive import AdhesiveSolves
 from .iteration.bccg import BCCGSolves
 from .iteration.bccg_device import DeviceLoopSolves
 from .iteration.loop import SolveLoop
@@ -99,7 +104,13 @@ def default_pentol(heights: np.ndarray) -> float:
 
 @fill_doc(SHARED_DOCS)
 class ContactSolver(
-    SolveLoop, CappedSolves, BCCGSolves, DeviceLoopSolves, PKSolves, PunchStiffness
+    SolveLoop,
+    CappedSolves,
+    BCCGSolves,
+    DeviceLoopSolves,
+    PKSolves,
+    PunchStiffness,
+    AdhesiveSolves,
 ):
     """A rough map (the rigid indenter) on an elastic half-space; solves keep a warm start.
 
@@ -110,7 +121,7 @@ class ContactSolver(
     The iterations are base classes of the solver, each in its module of
     :mod:`warptrunc.contact.iteration` (``SolveLoop``: what the loops share; ``PKSolves``,
     ``BCCGSolves``, ``DeviceLoopSolves``, ``CappedSolves``: the loops; ``PunchStiffness``:
-    Barber's punch), rather than objects the solver holds, because every one of them reads and
+    Barber's punch; ``AdhesiveSolves``: the adhesive solve over them), rather than objects the solver holds, because every one of them reads and
     writes the solver's device maps (forces, displacements, direction, mask, lane reductions)
     in every iteration, and because :class:`~warptrunc.contact.sharded.ShardedContactSolver`
     replaces some of them (the BCCG iteration, its sums and warm start, the plastic flow, the
@@ -131,6 +142,12 @@ class ContactSolver(
         pixels, k within 3e-5 (relative); about 0.6× the time on the CPU.
     hardness : float
         Hardness H (Pa), the local pressure cap, in (0, inf]; ``inf`` (default): elastic.
+    adhesion : Adhesion, optional
+        The interaction law between the surfaces (:class:`~warptrunc.contact.adhesion.Adhesion`;
+        default None: ``Adhesion()``, non-adhesive, the solver without any change). An adhesive
+        law keeps its forces between solves, so a sequence of solves is an approach–retract
+        history (:mod:`warptrunc.contact.iteration.adhesive`); it needs H = inf, one device and
+        ``load_control="offset"``.
     {warp_device_obj}
     devices : list, int or "auto", optional
         Spread the map over several devices
@@ -144,7 +161,8 @@ class ContactSolver(
     Raises
     ------
     ValueError
-        Non-finite or non-2-D heights, parameters out of range.
+        Non-finite or non-2-D heights, parameters out of range; an adhesion law with a finite
+        hardness, over several devices or with ``load_control="secant"``.
     MemoryError
         When the estimated memory (:meth:`memory_bytes`) exceeds the device's free memory,
         before anything is allocated.
@@ -155,6 +173,12 @@ class ContactSolver(
             from .sharded.devices import solver_class
 
             cls = solver_class(cls, devices, args, kwargs)
+            law = kwargs.get("adhesion")
+            if cls is not ContactSolver and isinstance(law, Adhesion) and law.active:
+                raise ValueError(
+                    f"adhesion ({law.law}) runs on one device: the adhesive solve is not "
+                    f"spread over several (devices={devices!r}); give one device"
+                )
         return super().__new__(cls)
 
     def __init__(
@@ -165,15 +189,34 @@ class ContactSolver(
         *,
         settings: SolverSettings | None = None,
         hardness: float = math.inf,
+        adhesion: Adhesion | None = None,
         device: wp.DeviceLike = None,
         devices: Any = None,
     ) -> None:
+        if adhesion is None:
+            adhesion = Adhesion()
+        elif not isinstance(adhesion, Adhesion):
+            raise ValueError(f"adhesion must be an Adhesion, got {type(adhesion).__name__}")
+        self.adhesion = adhesion
+        """The interaction law (:class:`~warptrunc.contact.adhesion.Adhesion`)."""
         if settings is None:
             settings = SolverSettings()
         elif not isinstance(settings, SolverSettings):
             raise ValueError(f"settings must be a SolverSettings, got {type(settings).__name__}")
         self.settings = settings
         self.hardness = float(check_value(Material, "hardness", hardness))
+        if adhesion.active and math.isfinite(self.hardness):
+            raise ValueError(
+                f"adhesion ({adhesion.law}) with a finite hardness ({self.hardness:g} Pa) is not "
+                "solved: the pressure cap bounds the wall's reaction, and the plastic flow "
+                "changes the heights the adhesive solve pulls on; give hardness = inf"
+            )
+        if adhesion.active and settings.load_control == "secant":
+            raise ValueError(
+                f"adhesion ({adhesion.law}) finds the approach of a load inside each "
+                "non-adhesive solve (load_control='offset'): the secant assumes a load that "
+                "grows with the approach, which an adhesive curve does not"
+            )
         check_height_map(heights)
         h = np.asarray(heights, dtype=np.float64)
         dx, dy = pair("pixel_size", pixel_size)
@@ -246,6 +289,8 @@ class ContactSolver(
         self.lin = wp.zeros(
             h.shape, dtype=sc, device=dev
         )  # q before the projection, where it acted
+        if self.adhesion.active:
+            self._allocate_adhesion(h_dev)
         lanes = self.hs.reduction.lanes
         self.lane_count = wp.zeros(lanes, dtype=wp.int32, device=dev)
         self.lane_offset = wp.zeros(lanes, dtype=wp.int32, device=dev)
@@ -262,7 +307,7 @@ class ContactSolver(
         """The cuFFT plans of a map of ``shape`` on this device, or MemoryError before anything
         is allocated (:func:`~warptrunc.contact.memory.fft_plan_that_fits`; the solver over
         several devices checks each device's share instead)."""
-        return fft_plan_that_fits(self.device, shape, settings)
+        return fft_plan_that_fits(self.device, shape, settings, adhesion=self.adhesion.active)
 
     # --- one solve ---------------------------------------------------------------------------
 
@@ -305,6 +350,10 @@ class ContactSolver(
         """
         if (depth is None) == (load is None):
             raise ValueError("give exactly one of depth (m) and load (N)")
+        if self.adhesion.active:  # any finite approach or load, tensile ones too
+            if depth is None:
+                return self._solve_adhesive(None, check_range("load", load, unit="N"))
+            return self._solve_adhesive(check_range("depth", depth, unit="m"), None)
         if load is not None:
             load = check_range("load", load, 0.0, unit="N")
         else:
@@ -368,11 +417,14 @@ class ContactSolver(
         return self._h0.astype(np.float64) - self.h.numpy().astype(np.float64)
 
     def reset(self) -> None:
-        """Forget the solution and the plastic state: original heights, zero forces."""
+        """Forget the solution, the plastic state and the adhesive forces: original heights,
+        zero forces."""
         if self._h0 is not None:
             self.h.assign(self._h0)
         for a in (self.q_buf, self.t_buf, self.u, self.mask, self.lin):
             a.zero_()
+        if self.adhesion.active:
+            self._reset_adhesion()
         self.offset = 0.0
         self.plastic_volume = 0.0
         self._depth = None
@@ -427,8 +479,11 @@ class ContactSolver(
         float
             max(q)/(dx·dy) (Pa), 0 without contact; a synchronisation point (one number is
             read back). Below the hardness H no pixel is capped: that solution is also the
-            elastic–perfectly-plastic one.
+            elastic–perfectly-plastic one. With adhesion the largest whole traction (the
+            wall's reaction plus the law's), not below 0.
         """
+        if self.adhesion.active:
+            return max(0.0, float(self.maps()[0].max()))
         red = self.hs.reduction
         red.launch(_k.max_force_kernel, self.shape[0] * self.shape[1], [self.q], [])
         dx, dy = self.pixel_size
@@ -442,10 +497,14 @@ class ContactSolver(
         Returns
         -------
         pressure : (ny, nx) ndarray of float64
-            Pressure (Pa): the pixel forces (N) divided by the pixel area dx·dy (m²).
+            Pressure (Pa): the pixel forces (N) divided by the pixel area dx·dy (m²); with
+            adhesion the whole traction, the wall's reaction plus the law's (tensile
+            negative).
         gap : (ny, nx) ndarray of float64
             Gap (m): displacement u minus heights h minus the rigid offset of the last solve,
-            u − h − offset (ContactMechanics' sign).
+            u − h − offset (ContactMechanics' sign; with adhesion u and h are the wall's
+            displacement and the effective heights, whose difference is the gap of the whole
+            traction).
         """
         sc = DTYPES[self.dtype][0]
         out = []
@@ -456,6 +515,8 @@ class ContactSolver(
             )
             out.append(dst.numpy().astype(np.float64))  # sync point
         q, u = out
+        if self.adhesion.active:
+            q = self._adhesive_pressure(q)
         h = self.h.numpy().astype(np.float64)
         dx, dy = self.pixel_size
         return q / (dx * dy), u - h - self.offset

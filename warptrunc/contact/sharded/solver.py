@@ -69,6 +69,9 @@ class ShardedContactSolver(ContactSolver):
         ``direct_max`` and ``fft_plan`` are not used (module docstring).
     hardness : float
         Hardness H (Pa), in (0, inf].
+    adhesion : Adhesion, optional
+        Only a non-adhesive one (None, or ``Adhesion()``): the adhesive solve runs on one
+        device.
     device : str or warp Device, optional
         Unused (the Warp device of the one-device solver); kept for the shared signature.
     devices : list, int or "auto"
@@ -80,7 +83,7 @@ class ShardedContactSolver(ContactSolver):
     ------
     ValueError
         A bad ``devices`` (the message names the value and what is allowed), ny not a multiple
-        of the device count, ``algorithm="pk"``.
+        of the device count, ``algorithm="pk"``, an adhesion law.
     ImportError
         Without JAX.
     MemoryError
@@ -95,10 +98,14 @@ class ShardedContactSolver(ContactSolver):
         *,
         settings: Any = None,
         hardness: float = math.inf,
+        adhesion: Any = None,
         device: Any = None,
         devices: Any = 2,
     ) -> None:
         from .devices import choose_devices, mark_spread
+
+        if adhesion is not None and adhesion.active:
+            raise ValueError(f"adhesion ({adhesion.law}) runs on one device: give one device")
 
         shape = np.shape(heights)
         self._jax_devices = choose_devices(devices, shape, settings, device)
