@@ -40,6 +40,7 @@ def timeit(fn: Callable[[], object], repeats: int, sync: Callable[[], object]) -
         ts.append(time.perf_counter() - t0)
     return statistics.median(ts)
 
+
 RECORDS = ROOT / "benchmarks" / "records"
 """The folder of the run records (``benchmarks/records/``; its README lists every record)."""
 
@@ -73,7 +74,20 @@ def record_name(what: str, device: str | None, suffix: str = ".json") -> str:
     return f"{what}_{machine_token(device)}_{commit}{suffix}"
 
 
-__all__ = ["RECORDS", "ROOT", "git_commit", "machine_token", "record_name", "timeit"]
+def cpu_name() -> str:
+    """The CPU model (/proc/cpuinfo), else platform.processor()."""
+    import platform
+
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor()
+
+
+__all__ = ["RECORDS", "ROOT", "cpu_name", "git_commit", "machine_token", "record_name", "timeit"]
 
 
 def bench_parser(description: str | None) -> argparse.ArgumentParser:

@@ -66,6 +66,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from _common import cpu_name
 
 E_STAR = 1.0  # Pa
 P_MEAN = 0.05 * E_STAR  # Pa
@@ -120,17 +121,21 @@ def summarize(p: np.ndarray, gap: np.ndarray) -> dict:
 # --- the solvers -----------------------------------------------------------------------------
 
 
-def solve_tamaas(h: np.ndarray, tol: float) -> dict:
-    """One cold tamaas PolonskyKeerRey solve (periodic, float64) at mean pressure P_MEAN."""
+def tamaas_solve(
+    h: np.ndarray, size: float, modulus: float, pressure: float, tol: float, max_iter: int
+) -> dict:
+    """One cold tamaas PolonskyKeerRey solve (periodic, float64) of heights ``h`` (m) on a square
+    of side ``size`` (m) at mean pressure ``pressure`` (Pa), stopped after ``max_iter``
+    iterations (not converged): its summary, time (s), error and convergence."""
     import tamaas as tm
 
     n = h.shape[0]
-    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
-    model.E, model.nu = E_STAR, 0.0
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [size, size], [n, n])
+    model.E, model.nu = modulus, 0.0
     solver = tm.PolonskyKeerRey(model, h, tol)
-    solver.max_iter = 3000  # a stalled solve stops (not converged)
+    solver.max_iter = max_iter
     t0 = time.perf_counter()
-    solver.solve(P_MEAN)
+    solver.solve(pressure)
     t = time.perf_counter() - t0
     p = np.array(model.traction)
     res = summarize(p, np.array(model.displacement) - h)
@@ -141,25 +146,34 @@ def solve_tamaas(h: np.ndarray, tol: float) -> dict:
     return {**res, "time_s": t, "converged": bool(err < 2 * tol), "error": err}
 
 
-def solve_cm(h: np.ndarray, substrate: str, pentol: float) -> dict:
-    """One cold ContactMechanics solve (Polonsky–Keer CG, float64) at mean pressure P_MEAN."""
+def contactmechanics_solve(
+    h: np.ndarray,
+    size: float,
+    modulus: float,
+    force: float,
+    pentol: float,
+    forcetol: float,
+    periodic: bool,
+) -> dict:
+    """One cold ContactMechanics solve (Polonsky–Keer CG, float64) of heights ``h`` (m) on a
+    square of side ``size`` (m) at total force ``force`` (N): its summary, time (s),
+    convergence and iterations."""
     from ContactMechanics import FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace
     from ContactMechanics.Optimization import constrained_conjugate_gradients
     from SurfaceTopography import Topography
 
     n = h.shape[0]
     ht = np.ascontiguousarray(h.T)  # ContactMechanics: x first
-    periodic = substrate == "periodic"
-    topo = Topography(ht, physical_sizes=(1.0, 1.0), periodic=periodic)
+    topo = Topography(ht, physical_sizes=(size, size), periodic=periodic)
     cls = PeriodicFFTElasticHalfSpace if periodic else FreeFFTElasticHalfSpace
-    hs = cls(ht.shape, E_STAR, (1.0, 1.0))
+    hs = cls(ht.shape, modulus, (size, size))
     t0 = time.perf_counter()
     r = constrained_conjugate_gradients(
         hs,
         topo,
-        external_force=P_MEAN,
+        external_force=force,
         pentol=pentol,
-        forcetol=1e-5 * E_STAR / n**2,
+        forcetol=forcetol,
         maxiter=100000,
     )
     t = time.perf_counter() - t0
@@ -169,21 +183,14 @@ def solve_cm(h: np.ndarray, substrate: str, pentol: float) -> dict:
     return {**res, "time_s": t, "converged": bool(r.success), "iterations": int(r.nit)}
 
 
-def solve_warptrunc(
-    h: np.ndarray, substrate: str, dtype: str, pentol: float | None, device: str
-) -> dict:
-    """One cold warptrunc ContactSolver solve at mean pressure P_MEAN (``pentol`` None: the
-    default tolerance)."""
+def warptrunc_solve(s, load: float) -> dict:
+    """One timed solve of a warptrunc ContactSolver ``s`` at total load ``load`` (N), the device
+    synchronised on both sides: its summary, time (s), convergence and iterations."""
     import warp as wp
 
-    from warptrunc.contact import ContactSolver, SolverSettings
-
-    n = h.shape[0]
-    st = SolverSettings(substrate=substrate, dtype=dtype, pentol=pentol, maxiter=2000)
-    s = ContactSolver(h, 1.0 / n, E_STAR, settings=st, device=device)
     wp.synchronize_device(s.device)
     t0 = time.perf_counter()
-    state = s.solve(load=P_MEAN)
+    state = s.solve(load=load)
     wp.synchronize_device(s.device)
     t = time.perf_counter() - t0
     p, gap = s.maps()
@@ -193,6 +200,32 @@ def solve_warptrunc(
         "converged": bool(state.converged),
         "iterations": int(state.n_iterations),
     }
+
+
+def solve_tamaas(h: np.ndarray, tol: float) -> dict:
+    """One cold tamaas PolonskyKeerRey solve (periodic, float64) at mean pressure P_MEAN."""
+    # a stalled solve stops after 3000 iterations (not converged)
+    return tamaas_solve(h, 1.0, E_STAR, P_MEAN, tol, 3000)
+
+
+def solve_cm(h: np.ndarray, substrate: str, pentol: float) -> dict:
+    """One cold ContactMechanics solve (Polonsky–Keer CG, float64) at mean pressure P_MEAN."""
+    n = h.shape[0]
+    forcetol = 1e-5 * E_STAR / n**2
+    return contactmechanics_solve(h, 1.0, E_STAR, P_MEAN, pentol, forcetol, substrate == "periodic")
+
+
+def solve_warptrunc(
+    h: np.ndarray, substrate: str, dtype: str, pentol: float | None, device: str
+) -> dict:
+    """One cold warptrunc ContactSolver solve at mean pressure P_MEAN (``pentol`` None: the
+    default tolerance)."""
+    from warptrunc.contact import ContactSolver, SolverSettings
+
+    n = h.shape[0]
+    st = SolverSettings(substrate=substrate, dtype=dtype, pentol=pentol, maxiter=2000)
+    s = ContactSolver(h, 1.0 / n, E_STAR, settings=st, device=device)
+    return warptrunc_solve(s, P_MEAN)
 
 
 # --- matched accuracy ------------------------------------------------------------------------
@@ -311,17 +344,6 @@ def run_worker(
     if ref is None:
         return tried[0], tried
     return chosen_of(tried, len(tols)), tried
-
-
-def cpu_name() -> str:
-    """The CPU model (/proc/cpuinfo), else platform.processor()."""
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor()
 
 
 def versions() -> dict:

@@ -46,8 +46,13 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from _common import git_commit, record_name  # noqa: E402
-from benchmark_peers import cpu_name, summarize, versions  # noqa: E402
+from _common import cpu_name, git_commit, record_name  # noqa: E402
+from benchmark_peers import (  # noqa: E402
+    contactmechanics_solve,
+    tamaas_solve,
+    versions,
+    warptrunc_solve,
+)
 
 TOLERANCES = {
     "warptrunc": {"default": None, "tight": 1e-10},  # × rms height
@@ -81,42 +86,10 @@ def solve(kind: str, h: np.ndarray, L: float, E: float, p: float, tol: float | N
     n = h.shape[0]
     rms = float(np.std(h))
     if kind == "tamaas":
-        import tamaas as tm
-
-        model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [L, L], [n, n])
-        model.E, model.nu = E, 0.0
-        solver = tm.PolonskyKeerRey(model, h, tol)
-        solver.max_iter = 20000
-        t0 = time.perf_counter()
-        solver.solve(p)
-        t = time.perf_counter() - t0
-        err = float(solver.computeError())
-        res = summarize(np.array(model.traction), np.array(model.displacement) - h)
-        return {**res, "time_s": t, "error": err, "converged": bool(err < 2 * tol)}
+        return tamaas_solve(h, L, E, p, tol, 20000)
     if kind == "contactmechanics":
-        from ContactMechanics import PeriodicFFTElasticHalfSpace
-        from ContactMechanics.Optimization import constrained_conjugate_gradients
-        from SurfaceTopography import Topography
-
-        ht = np.ascontiguousarray(h.T)  # ContactMechanics: x first
-        topo = Topography(ht, physical_sizes=(L, L), periodic=True)
-        hs = PeriodicFFTElasticHalfSpace(ht.shape, E, (L, L))
-        t0 = time.perf_counter()
-        r = constrained_conjugate_gradients(
-            hs,
-            topo,
-            external_force=p * L * L,
-            pentol=tol * rms,
-            forcetol=1e-5 * E * (L / n) ** 2,
-            maxiter=100000,
-        )
-        t = time.perf_counter() - t0
-        f = np.asarray(r.jac)
-        u = np.asarray(r.x)[:n, :n]
-        res = summarize(f.T, (u - ht - r.offset).T)
-        return {**res, "time_s": t, "converged": bool(r.success), "iterations": int(r.nit)}
-    import warp as wp
-
+        forcetol = 1e-5 * E * (L / n) ** 2
+        return contactmechanics_solve(h, L, E, p * L * L, tol * rms, forcetol, True)
     from warptrunc.contact import ContactSolver, SolverSettings
 
     st = SolverSettings(
@@ -126,18 +99,7 @@ def solve(kind: str, h: np.ndarray, L: float, E: float, p: float, tol: float | N
         maxiter=20000,
     )
     s = ContactSolver(h, L / n, E, settings=st, device="cpu")
-    t0 = time.perf_counter()
-    state = s.solve(load=p * L * L)
-    wp.synchronize_device(s.device)
-    t = time.perf_counter() - t0
-    pm, gap = s.maps()
-    return {
-        **summarize(pm, gap),
-        "time_s": t,
-        "converged": bool(state.converged),
-        "iterations": int(state.n_iterations),
-        "pentol_m": s.pentol,
-    }
+    return {**warptrunc_solve(s, p * L * L), "pentol_m": s.pentol}
 
 
 def worker_main(argv: list[str]) -> None:

@@ -250,6 +250,8 @@ def main(argv: list[str] | None = None) -> dict:
 
     wp.config.quiet = True
     dev = wp.get_device(args.device)
+    from _common import cpu_name
+
     from warptrunc._support.provenance import git_commit
 
     med = {k: statistics.median(v) for k, v in times.items()}
@@ -258,7 +260,7 @@ def main(argv: list[str] | None = None) -> dict:
         "date": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
         "commit": git_commit(),
         "device": args.device,
-        "device_name": dev.name if dev.is_cuda else platform_cpu(),
+        "device_name": dev.name if dev.is_cuda else cpu_name(),
         "cpu_cores": os.cpu_count(),
         "warp": wp.config.version,
         "n": args.n,
@@ -276,19 +278,6 @@ def main(argv: list[str] | None = None) -> dict:
     (args.out / name).write_text(json.dumps(rec, indent=1))
     print(table(rec))
     return rec
-
-
-def platform_cpu() -> str:
-    """The CPU model (/proc/cpuinfo), else platform.processor()."""
-    import platform
-
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor()
 
 
 def table(rec: dict) -> str:
