@@ -87,7 +87,32 @@ def cpu_name() -> str:
     return platform.processor()
 
 
-__all__ = ["RECORDS", "ROOT", "cpu_name", "git_commit", "machine_token", "record_name", "timeit"]
+def machine_fields(device) -> dict:
+    """The head of a run record: the device, its name, Warp's version, the commit and the
+    platform (``device``, ``device_name``, ``warp``, ``commit``, ``platform``)."""
+    import platform
+
+    import warp as wp
+
+    return {
+        "device": str(device),
+        "device_name": wp.get_device(device).name,
+        "warp": wp.config.version,
+        "commit": git_commit(),
+        "platform": platform.platform(),
+    }
+
+
+__all__ = [
+    "RECORDS",
+    "ROOT",
+    "cpu_name",
+    "git_commit",
+    "machine_fields",
+    "machine_token",
+    "record_name",
+    "timeit",
+]
 
 
 def bench_parser(description: str | None) -> argparse.ArgumentParser:

@@ -33,7 +33,6 @@ import argparse
 import gc
 import json
 import os
-import platform
 import resource
 import statistics
 import time
@@ -43,7 +42,7 @@ from pathlib import Path
 import numpy as np
 import scipy.fft
 import warp as wp
-from _common import git_commit
+from _common import git_commit, machine_fields
 
 import warptrunc
 from warptrunc.contact import ContactSolver, SolverSettings, default_pentol, influence_spectrum
@@ -300,11 +299,7 @@ def main(argv: list[str] | None = None) -> int:
         free_pools(dev)
     if a.json:
         doc = {
-            "device": str(dev),
-            "device_name": name,
-            "warp": wp.config.version,
-            "commit": git_commit(),
-            "platform": platform.platform(),
+            **machine_fields(dev),
             "cpu_count": os.cpu_count(),
             "surface": "wm_surface(D=2.5, Wr=100 µm, L=1 mm, Rt=10 µm, seed=0)",
             "fractions_of_Rt": FRACTIONS,

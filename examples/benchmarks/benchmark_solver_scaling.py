@@ -30,7 +30,6 @@ import argparse
 import gc
 import json
 import os
-import platform
 import statistics
 import time
 from pathlib import Path
@@ -38,7 +37,7 @@ from pathlib import Path
 import numpy as np
 import scipy.fft
 import warp as wp
-from _common import git_commit
+from _common import git_commit, machine_fields
 
 import warptrunc
 from warptrunc.contact import ContactSolver, SolverSettings
@@ -345,11 +344,7 @@ def main(argv: list[str] | None = None) -> int:
         print(stopped, flush=True)
     if a.out is not None:
         doc = {
-            "device": str(dev),
-            "device_name": name,
-            "warp": wp.config.version,
-            "commit": git_commit(),
-            "platform": platform.platform(),
+            **machine_fields(dev),
             "surface": "wm_surface(D=2.5, Wr=100 µm, L=1 mm, Rt=10 µm), free boundary",
             "Wc_m": wc.get("Wc"),
             "cold_fraction_of_Rt": COLD,
