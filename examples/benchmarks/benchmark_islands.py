@@ -266,28 +266,17 @@ def run_case(n: int, device, args) -> dict:
     depths = TruncationSettings(
         increments=args.increments, max_depth_fraction=args.max_depth_fraction
     )
-    res["warp_island_curve_counts_s"] = guarded(
-        res,
-        "curve_counts",
-        lambda: timeit(
-            lambda: island_curve(
-                s, truncation=depths, settings=IslandSettings(statistics=False), device=device
+    for what, settings, repeats in (
+        ("counts", IslandSettings(statistics=False), rep),
+        ("statistics", IslandSettings(snapshots=None), max(1, rep // 2)),
+    ):
+        res[f"warp_island_curve_{what}_s"] = guarded(
+            res,
+            f"curve_{what}",
+            lambda st=settings, k=repeats: timeit(
+                lambda: island_curve(s, truncation=depths, settings=st, device=device), k, sync
             ),
-            rep,
-            sync,
-        ),
-    )
-    res["warp_island_curve_statistics_s"] = guarded(
-        res,
-        "curve_statistics",
-        lambda: timeit(
-            lambda: island_curve(
-                s, truncation=depths, settings=IslandSettings(snapshots=None), device=device
-            ),
-            max(1, rep // 2),
-            sync,
-        ),
-    )
+        )
     return res
 
 

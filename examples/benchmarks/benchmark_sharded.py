@@ -314,6 +314,19 @@ def solve(args) -> None:
     emit(args.jsonl, rec)
 
 
+def step_rows(rows: list[dict], step: str, ident: tuple, width: int):
+    """The rows of ``step`` in order; a row with an error is printed as one line instead (its
+    ``ident`` fields, (key, width) pairs, and the error's first ``width`` characters)."""
+    for r in rows:
+        if r.get("step") != step:
+            continue
+        if "error" in r:
+            head = " ".join(f"{r.get(k, '?'):>{w}}" for k, w in ident)
+            print(f"{head}  ERROR {r['error'][:width]} {r.get('args', '')}")
+            continue
+        yield r
+
+
 def report(args) -> None:
     """The table of the JSON lines, and sharded_summary.json beside them."""
     rows = [json.loads(x) for x in args.jsonl.read_text().splitlines() if x.strip()]
@@ -322,15 +335,7 @@ def report(args) -> None:
         f"{'n':>6} {'substrate':>9} {'dtype':>8} {'load':>9} {'depth':>9} {'k':>9} "
         f"{'px':>4} {'pass':>5}"
     )
-    for r in rows:
-        if r.get("step") != "check":
-            continue
-        if "error" in r:
-            print(
-                f"{r.get('n', '?'):>6} {r.get('substrate', '?'):>9} {r.get('dtype', '?'):>8}"
-                f"  ERROR {r['error'][:60]} {r.get('args', '')}"
-            )
-            continue
+    for r in step_rows(rows, "check", (("n", 6), ("substrate", 9), ("dtype", 8)), 60):
         print(
             f"{r['n']:>6} {r['substrate']:>9} {r['dtype']:>8} {r['load_rel']:9.1e} "
             f"{r['depth_rel']:9.1e} {r['stiffness_rel']:9.1e} {r['pixels_differ']:>4} "
@@ -342,15 +347,7 @@ def report(args) -> None:
         f"{'warm s':>7} {'it':>4} {'ms/it':>7} {'ms/conv':>8} {'/floor':>6} {'peak GB':>8} "
         f"{'model GB':>8}"
     )
-    for r in rows:
-        if r.get("step") != "solve":
-            continue
-        if "error" in r:
-            print(
-                f"{r.get('n', '?'):>6} {r.get('ndev', '?'):>3} {r.get('dtype', '?'):>8}"
-                f"  ERROR {r['error'][:70]} {r.get('args', '')}"
-            )
-            continue
+    for r in step_rows(rows, "solve", (("n", 6), ("ndev", 3), ("dtype", 8)), 70):
         w = r["warm"]
         print(
             f"{r['n']:>6} {r['ndev']:>3} {r['dtype']:>8} {r['floor_ms']:9.1f} "

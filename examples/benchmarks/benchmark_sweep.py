@@ -296,35 +296,10 @@ def main(argv=None) -> int:
 
     results = Runs()
     for n in args.n:
-        if "kernel" in args.runs:
-            results.append(
-                dict(
-                    n=n,
-                    run="kernel",
-                    workers=0,
-                    wall_s=kernel_loop(
-                        n, args.cases, str(dev), args.increments, args.bem_fractions
-                    ),
-                )
-            )
-        if "batch" in args.runs:
-            results.append(
-                dict(
-                    n=n,
-                    run="batch",
-                    workers=0,
-                    wall_s=batch_loop(n, args.cases, str(dev), args.increments, args.bem_fractions),
-                )
-            )
-        if "inproc" in args.runs:
-            results.append(
-                dict(
-                    n=n,
-                    run="inproc",
-                    workers=0,
-                    wall_s=inprocess(n, args.cases, str(dev), args.increments, args.bem_fractions),
-                )
-            )
+        for run, loop in (("kernel", kernel_loop), ("batch", batch_loop), ("inproc", inprocess)):
+            if run in args.runs:
+                wall = loop(n, args.cases, str(dev), args.increments, args.bem_fractions)
+                results.append(dict(n=n, run=run, workers=0, wall_s=wall))
         if "workers" in args.runs:
             for w in args.workers:
                 pin = args.pin_cores if args.pin_cores is not None else str(dev) == "cpu"
