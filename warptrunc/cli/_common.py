@@ -575,6 +575,17 @@ def add_overwrite(p: Any, what: str) -> None:
     shared_option(p, "--overwrite", action="store_true", help=f"replace {what}")
 
 
+def refuse_unconverged(name: str, status: int) -> int:
+    """Say on stderr that ``warptrunc NAME`` exits ``status`` because a solve did not converge
+    (without ``--accept-unconverged``); returns ``status``."""
+    print(
+        f"warptrunc {name}: exit {status}: not every solve converged "
+        "(--accept-unconverged to exit 0)",
+        file=sys.stderr,
+    )
+    return status
+
+
 def add_accept_unconverged(p: Any, status: int) -> None:
     """``--accept-unconverged``: exit 0 even when a solve did not converge (else ``status``)."""
     shared_option(

@@ -34,6 +34,7 @@ from ._common import (
     add_warnings,
     material_from_args,
     prepare_devices,
+    refuse_unconverged,
     slope_line,
     surface_from_args,
     truncation_from_args,
@@ -176,10 +177,5 @@ def run(args: argparse.Namespace) -> int:
         )
     print(f"wrote {args.out}/{files}")
     if not sm["all_converged"] and not args.accept_unconverged:
-        print(
-            f"warptrunc {NAME}: exit {EXIT_NOT_CONVERGED}: not every solve converged "
-            "(--accept-unconverged to exit 0)",
-            file=sys.stderr,
-        )
-        return EXIT_NOT_CONVERGED
+        return refuse_unconverged(NAME, EXIT_NOT_CONVERGED)
     return 0

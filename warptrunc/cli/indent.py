@@ -67,6 +67,7 @@ from ._common import (
     generate_surface,
     prepare_devices,
     read_input,
+    refuse_unconverged,
     slope_line,
     spec_from_args,
 )
@@ -207,12 +208,7 @@ def run(args: argparse.Namespace) -> int:
         )
         print(f"WARNING: {n_bad} cycles did not converge (flagged in indent.csv)", file=sys.stderr)
         if not args.accept_unconverged:
-            print(
-                f"warptrunc {NAME}: exit {EXIT_NOT_CONVERGED}: not every solve converged "
-                "(--accept-unconverged to exit 0)",
-                file=sys.stderr,
-            )
-            return EXIT_NOT_CONVERGED
+            return refuse_unconverged(NAME, EXIT_NOT_CONVERGED)
     return 0
 
 
