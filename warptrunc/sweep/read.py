@@ -29,6 +29,16 @@ __all__ = [
     "load_curves",
 ]
 
+_ORIGIN = (
+    "device",
+    "device_name",
+    "host",
+    "finished_utc",
+    "warptrunc_version",
+    "git_commit",
+)
+"""The columns that say where, when and by which version a case ran (strings)."""
+
 CASE_COLUMNS = (
     "case_id",
     "case_index",
@@ -84,12 +94,7 @@ CASE_COLUMNS = (
     "warnings",
     "error",
     "seconds",
-    "device",
-    "device_name",
-    "host",
-    "finished_utc",
-    "warptrunc_version",
-    "git_commit",
+    *_ORIGIN,
 )
 """Columns of ``cases.parquet``, in order; units in the names (SI).
 
@@ -158,12 +163,7 @@ _STR = (
     "fit_error",
     "warnings",
     "error",
-    "device",
-    "device_name",
-    "host",
-    "finished_utc",
-    "warptrunc_version",
-    "git_commit",
+    *_ORIGIN,
     "bem_error",
 )
 MANIFEST_KEY = b"warptrunc.parts"
