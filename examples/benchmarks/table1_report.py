@@ -30,14 +30,10 @@ from pathlib import Path
 
 import numpy as np
 
-from warptrunc.calibrate import (
-    CalibrationError,
-    CalibrationSettings,
-    CalibrationTarget,
-    calibrate,
-)
+from warptrunc.calibrate import CalibrationError, CalibrationSettings, calibrate
 from warptrunc.fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
 from warptrunc.reproduce.paper import TABLE1
+from warptrunc.reproduce.study import table1_targets
 from warptrunc.wm import wm_surface
 
 UM = 1e-6
@@ -52,73 +48,60 @@ def _options(height_scaling):
 def report(n, L, seeds, rtol, methods, device, progress, height_scaling=DEFAULT_HEIGHT_SCALING):
     rows = []
     opts = _options(height_scaling)
-    for name, (Rt, rrms, wr, *d_paper) in PAPER.items():
-        wr_m = 2 * L if wr is None else wr * UM
-        paper_d = dict(zip(METHODS, d_paper, strict=True))
-        for m in methods:
-            row = {
-                "surface": name,
-                "matched": m,
-                "Wr_m": wr_m,
-                "paper_Rt_m": Rt * UM,
-                "paper_Rrms_m": rrms * UM,
-                "height_scaling": height_scaling,
-            }
-            row.update({f"paper_D_{k}": v for k, v in paper_d.items()})
-            target = CalibrationTarget(
-                D=paper_d[m],
-                method=m,
-                Rrms=rrms * UM,
-                Rt=Rt * UM,
-                Wr=wr_m,
-                L=L,
-                n=n,
-                source=f"Table 1 {name}",
-                method_options=opts.get(m, {}),
-            )
-            t0 = time.perf_counter()
-            try:
-                settings = CalibrationSettings(seeds=seeds, rtol=rtol)
-                cal = calibrate(target, settings=settings, progress=progress, device=device)
-            except CalibrationError as exc:
-                row.update(
-                    status="out of reach",
-                    message=str(exc),
-                    eval_D_in=exc.d_in,
-                    eval_D_out=exc.d_out,
-                )
-                rows.append(row)
-                print(f"{name:7s} D_{m}: {exc}")
-                continue
-            except ValueError as exc:  # e.g. a fit range with too few scales on small maps
-                row.update(status="error", message=str(exc))
-                rows.append(row)
-                print(f"{name:7s} D_{m}: {exc}")
-                continue
-            fits = [
-                fractal_dimensions(
-                    wm_surface(cal.D_in, wr_m, L=L, n=n, Rt=cal.Rt, seed=s, device=device),
-                    options=opts,
-                    device=device,
-                )
-                for s in seeds
-            ]
+    for name, paper_d, target in table1_targets(methods, n, L, opts):
+        m, wr_m = target.method, target.Wr
+        row = {
+            "surface": name,
+            "matched": m,
+            "Wr_m": wr_m,
+            "paper_Rt_m": target.Rt,
+            "paper_Rrms_m": target.Rrms,
+            "height_scaling": height_scaling,
+        }
+        row.update({f"paper_D_{k}": v for k, v in paper_d.items()})
+        t0 = time.perf_counter()
+        try:
+            settings = CalibrationSettings(seeds=seeds, rtol=rtol)
+            cal = calibrate(target, settings=settings, progress=progress, device=device)
+        except CalibrationError as exc:
             row.update(
-                status="ok",
-                D_in=cal.D_in,
-                Rt_m=cal.Rt,
-                Rrms_m=cal.Rrms,
-                iterations=cal.iterations,
-                seconds=time.perf_counter() - t0,
-                **{f"D_{k}": float(np.mean([f[k].D for f in fits])) for k in METHODS},
-                **{f"D_{k}_std": float(np.std([f[k].D for f in fits])) for k in METHODS},
+                status="out of reach",
+                message=str(exc),
+                eval_D_in=exc.d_in,
+                eval_D_out=exc.d_out,
             )
             rows.append(row)
-            print(
-                f"{name:7s} D_{m}: D_in = {cal.D_in:.3f}, R_t' = {cal.Rt / UM:.4g} µm → "
-                + ", ".join(f"D_{k} = {row[f'D_{k}']:.3f}" for k in METHODS)
-                + f", R_rms = {cal.Rrms / UM:.4g} µm ({cal.iterations} evaluations)"
+            print(f"{name:7s} D_{m}: {exc}")
+            continue
+        except ValueError as exc:  # e.g. a fit range with too few scales on small maps
+            row.update(status="error", message=str(exc))
+            rows.append(row)
+            print(f"{name:7s} D_{m}: {exc}")
+            continue
+        fits = [
+            fractal_dimensions(
+                wm_surface(cal.D_in, wr_m, L=L, n=n, Rt=cal.Rt, seed=s, device=device),
+                options=opts,
+                device=device,
             )
+            for s in seeds
+        ]
+        row.update(
+            status="ok",
+            D_in=cal.D_in,
+            Rt_m=cal.Rt,
+            Rrms_m=cal.Rrms,
+            iterations=cal.iterations,
+            seconds=time.perf_counter() - t0,
+            **{f"D_{k}": float(np.mean([f[k].D for f in fits])) for k in METHODS},
+            **{f"D_{k}_std": float(np.std([f[k].D for f in fits])) for k in METHODS},
+        )
+        rows.append(row)
+        print(
+            f"{name:7s} D_{m}: D_in = {cal.D_in:.3f}, R_t' = {cal.Rt / UM:.4g} µm → "
+            + ", ".join(f"D_{k} = {row[f'D_{k}']:.3f}" for k in METHODS)
+            + f", R_rms = {cal.Rrms / UM:.4g} µm ({cal.iterations} evaluations)"
+        )
     return rows
 
 

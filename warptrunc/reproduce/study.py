@@ -130,17 +130,33 @@ def stage_fig5(p: Profile, device) -> dict[str, Any]:
     return {"inputs": kw, "max_depth_fraction": 0.5, "loads": LOADS, "rows": rows}
 
 
-def stage_table1(p: Profile, device) -> dict[str, Any]:
-    """Table 1: calibrate D_in and R_t' of each simulated surface; D_out by the four methods."""
+def table1_targets(methods, n: int, L: float, method_options: dict | None = None):
+    """The calibration targets of Table 1's simulated surfaces, one per surface and method.
 
-    L = p.table1_n * UM
-    seeds = tuple(range(p.table1_seeds))
-    rows = []
+    Parameters
+    ----------
+    methods : sequence of str
+        Fractal methods whose D is matched (keys of :data:`warptrunc.fractal.METHODS`).
+    n : int
+        Pixels per side of the calibration surfaces.
+    L : float
+        Their side (m); W_r = 2·L for Ps, whose W_r is "≫ the scan" in Table 1.
+    method_options : dict, optional
+        Options of each method (method → dict); default none.
+
+    Yields
+    ------
+    name : str
+        The surface's name in Table 1.
+    paper_d : dict of str to float
+        The paper's D by method (dimensionless).
+    target : CalibrationTarget
+        The paper's D of the method, R_rms and R_t (m) on n² pixels over ``L``.
+    """
     for name, (Rt, rrms, wr, *d_paper) in TABLE1.items():
         wr_m = 2 * L if wr is None else wr * UM
         paper_d = dict(zip(METHODS, d_paper, strict=True))
-        for m in p.table1_methods:
-            row: dict[str, Any] = {"surface": name, "matched": m, "Wr_m": wr_m}
+        for m in methods:
             target = CalibrationTarget(
                 D=paper_d[m],
                 method=m,
@@ -148,33 +164,47 @@ def stage_table1(p: Profile, device) -> dict[str, Any]:
                 Rt=Rt * UM,
                 Wr=wr_m,
                 L=L,
-                n=p.table1_n,
+                n=n,
                 source=f"Table 1 {name}",
+                method_options=(method_options or {}).get(m, {}),
             )
-            try:
-                settings = CalibrationSettings(seeds=seeds, rtol=p.table1_rtol)
-                cal = calibrate(target, settings=settings, progress=True, device=device)
-            except (CalibrationError, ValueError) as exc:
-                row.update(status="not reached", message=str(exc))
-                rows.append(row)
-                continue
-            ds = [
-                _fractal(
-                    wm_surface(cal.D_in, wr_m, L=L, n=p.table1_n, Rt=cal.Rt, seed=s, device=device),
-                    device,
-                )
-                for s in seeds
-            ]
-            row.update(
-                status="ok",
-                D_in=cal.D_in,
-                Rt_m=cal.Rt,
-                Rrms_m=cal.Rrms,
-                iterations=cal.iterations,
-                D_out={k: float(np.mean([d[k]["D"] for d in ds])) for k in METHODS},
-                D_options={k: ds[0][k]["options"] for k in METHODS},
-            )
+            yield name, paper_d, target
+
+
+def stage_table1(p: Profile, device) -> dict[str, Any]:
+    """Table 1: calibrate D_in and R_t' of each simulated surface; D_out by the four methods."""
+
+    L = p.table1_n * UM
+    seeds = tuple(range(p.table1_seeds))
+    rows = []
+    for name, _, target in table1_targets(p.table1_methods, p.table1_n, L):
+        row: dict[str, Any] = {"surface": name, "matched": target.method, "Wr_m": target.Wr}
+        try:
+            settings = CalibrationSettings(seeds=seeds, rtol=p.table1_rtol)
+            cal = calibrate(target, settings=settings, progress=True, device=device)
+        except (CalibrationError, ValueError) as exc:
+            row.update(status="not reached", message=str(exc))
             rows.append(row)
+            continue
+        ds = [
+            _fractal(
+                wm_surface(
+                    cal.D_in, target.Wr, L=L, n=p.table1_n, Rt=cal.Rt, seed=s, device=device
+                ),
+                device,
+            )
+            for s in seeds
+        ]
+        row.update(
+            status="ok",
+            D_in=cal.D_in,
+            Rt_m=cal.Rt,
+            Rrms_m=cal.Rrms,
+            iterations=cal.iterations,
+            D_out={k: float(np.mean([d[k]["D"] for d in ds])) for k in METHODS},
+            D_options={k: ds[0][k]["options"] for k in METHODS},
+        )
+        rows.append(row)
     return {"n": p.table1_n, "L_m": L, "seeds": list(seeds), "rows": rows}
 
 
@@ -459,32 +489,14 @@ def _stage_call(
         "increments": t.increments,
         "max_depth_fraction": t.max_depth_fraction,
     }  # the groups' stored keys
+    group = ("n", "seeds", "L", "Wr", "increments", "max_depth_fraction")  # both groups' surfaces
     keys = {
         "asperity": ("asperity_n", "asperity_increments"),
         "fig5": ("fig5_sizes", "fig5_seeds", "fig5_increments"),
         "table1": ("table1_n", "table1_seeds", "table1_methods", "table1_rtol"),
         "islands": ("islands_n", "islands_L", "islands_seeds", "islands_increments"),
-        "group1": (
-            "n",
-            "seeds",
-            "L",
-            "Wr",
-            "increments",
-            "max_depth_fraction",
-            "group1_delta",
-            "fractal_on_group1",
-            "late_fit_fraction",
-        ),
-        "group2": (
-            "n",
-            "seeds",
-            "L",
-            "Wr",
-            "increments",
-            "max_depth_fraction",
-            "group2_D",
-            "late_fit_fraction",
-        ),
+        "group1": (*group, "group1_delta", "fractal_on_group1", "late_fit_fraction"),
+        "group2": (*group, "group2_D", "late_fit_fraction"),
     }
     base = {k: full[k] for k in keys.get(name, ())}
     if name in ("fig5", "group1", "group2"):  # stages written before hold E_c/E* (changelog)
