@@ -129,6 +129,25 @@ class BCCGSolves:
         del kq
         return float(self.hs.reduction.read((True,))[0])
 
+    def _bccg_start(self, offset: float, load: float | None, hf: float) -> float:
+        """The start of a BCCG solve (both loops): the warm start at ``offset`` (m) projected
+        onto the box [0, ``hf``] (N per pixel), scaled to ``load`` (N) in load control, then
+        u = K·q afresh; returns Σ q (N; four convolutions in all)."""
+        self._warm_start(offset)  # then projected onto the box
+        wp.launch(
+            _kb.clamp_force_kernel,
+            dim=self.shape,
+            inputs=[wp.float64(hf)],
+            outputs=[self.q],
+            device=self.device,
+        )
+        total = float(self._sums(offset)[3])  # Σ q (N)
+        if load is not None:
+            self._scale_to_load(load, total)
+            total = float(load)
+        self._exact_u()
+        return total
+
     def _solve_bccg(self, offset: float, load: float | None, cap: float | None) -> dict[str, Any]:
         """One solve at ``offset`` (m; the start in load control) or at ``load`` (N), with the
         force cap ``cap`` (N per pixel; None: elastic). Returns the info dict of the default
@@ -144,19 +163,7 @@ class BCCGSolves:
         r_buf, z_old = self._bccg_maps()
         pc_above = self._precondition_above()
         periodic = int(self.substrate == "periodic")
-        self._warm_start(offset)  # then projected onto the box
-        wp.launch(
-            _kb.clamp_force_kernel,
-            dim=self.shape,
-            inputs=[wp.float64(hf)],
-            outputs=[self.q],
-            device=dev,
-        )
-        total = float(self._sums(offset)[3])  # Σ q (N)
-        if load_control:
-            self._scale_to_load(load, total)
-            total = float(load)
-        self._exact_u()
+        total = self._bccg_start(offset, load, hf)
         n_transforms = 4
         self.t.zero_()
         z_old.zero_()

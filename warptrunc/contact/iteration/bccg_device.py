@@ -248,26 +248,13 @@ class DeviceLoopSolves:
     ) -> dict[str, Any]:
         """:meth:`~warptrunc.contact.iteration.bccg.BCCGSolves._solve_bccg` with one read-back per
         iteration (module docstring); same arguments and info dict."""
-        dev = self.device
         n_map = self.shape[0] * self.shape[1]
         hf = _HUGE if cap is None else float(cap)
         load_control = load is not None
         _, z_old = self._bccg_maps()
         pc_above = self._precondition_above()
         s = self._loop_scalars()
-        self._warm_start(offset)  # then projected onto the box
-        wp.launch(
-            _kb.clamp_force_kernel,
-            dim=self.shape,
-            inputs=[wp.float64(hf)],
-            outputs=[self.q],
-            device=dev,
-        )
-        total = float(self._sums(offset)[3])  # Σ q (N)
-        if load_control:
-            self._scale_to_load(load, total)
-            total = float(load)
-        self._exact_u()
+        total = self._bccg_start(offset, load, hf)
         s.zero_()
         self._set_scalars(
             s,
