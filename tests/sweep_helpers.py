@@ -6,10 +6,25 @@ reproduce-on-workers tests."""
 from warptrunc.sweep import RUN_COLUMNS, SweepOptions
 from warptrunc.sweep.curves import part_files, part_rows
 
-__all__ = ["OPTS", "case_ids_on_disk", "results_only", "two_worker_client"]
+__all__ = ["OPTS", "OPTS_CLI", "case_ids_on_disk", "results_only", "two_worker_client"]
 
 OPTS = SweepOptions(n=64, increments=60, max_depth_fraction=0.3, min_pixels=(1, 20))
 """The options of the small sweeps of the tests (64², 60 increments to 0.3·R_t, two fit ranges)."""
+
+OPTS_CLI = [
+    "--increments",
+    "60",
+    "--max-depth-fraction",
+    "0.3",
+    "--min-pixels",
+    "1",
+    "20",
+    "--device",
+    "cpu",
+    "--no-progress",
+]
+"""OPTS's truncation and fit ranges as options of ``warptrunc sweep``, on the CPU without
+progress bars (the grid size is the caller's: ``--n 64`` is OPTS's)."""
 
 
 def results_only(df):

@@ -16,7 +16,7 @@ import pytest
 pd = pytest.importorskip("pandas")
 pytest.importorskip("pyarrow")
 
-from sweep_helpers import OPTS, case_ids_on_disk, results_only  # noqa: E402
+from sweep_helpers import OPTS, OPTS_CLI, case_ids_on_disk, results_only  # noqa: E402
 
 from warptrunc.sweep import (  # noqa: E402
     CURVE_COLUMNS,
@@ -556,16 +556,7 @@ KILL_ARGS = [
     "0-2",
     "--n",
     "128",
-    "--increments",
-    "60",
-    "--max-depth-fraction",
-    "0.3",
-    "--min-pixels",
-    "1",
-    "20",
-    "--device",
-    "cpu",
-    "--no-progress",
+    *OPTS_CLI,
 ]
 
 

@@ -17,7 +17,7 @@ pytest.importorskip("distributed")
 pd = pytest.importorskip("pandas")
 pytest.importorskip("pyarrow")
 
-from sweep_helpers import OPTS, results_only  # noqa: E402
+from sweep_helpers import OPTS, OPTS_CLI, results_only  # noqa: E402
 
 import warptrunc.sweep.cluster as cl  # noqa: E402
 from warptrunc.sweep import SweepGrid, load, run_sweep  # noqa: E402
@@ -185,16 +185,7 @@ def test_one_cluster_for_every_group_of_a_sweep(tmp_path, monkeypatch, capsys):
             "10",
             "--n",
             "64",
-            "--increments",
-            "60",
-            "--max-depth-fraction",
-            "0.3",
-            "--min-pixels",
-            "1",
-            "20",
-            "--device",
-            "cpu",
-            "--no-progress",
+            *OPTS_CLI,
             "--workers",
             "auto",
             "--out",

@@ -12,7 +12,7 @@ import pytest
 pd = pytest.importorskip("pandas")
 pytest.importorskip("pyarrow")
 
-from sweep_helpers import OPTS, case_ids_on_disk, results_only  # noqa: E402
+from sweep_helpers import OPTS, OPTS_CLI, case_ids_on_disk, results_only  # noqa: E402
 
 from warptrunc.sweep import SweepGrid, load, load_curves, run_sweep  # noqa: E402
 from warptrunc.sweep.curves import part_files, part_rows  # noqa: E402
@@ -155,16 +155,7 @@ def test_earlier_layout_refused_with_the_reason(tmp_path):
                 "0-1",
                 "--n",
                 "64",
-                "--increments",
-                "60",
-                "--max-depth-fraction",
-                "0.3",
-                "--min-pixels",
-                "1",
-                "20",
-                "--device",
-                "cpu",
-                "--no-progress",
+                *OPTS_CLI,
                 "--overwrite",
                 "--out",
                 str(out),
