@@ -16,6 +16,7 @@ import warp as wp
 from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_range
 from ..material import Material
+from .adhesion import Adhesion
 from .results import ContactCurve
 from .settings import CurveSettings, SolverSettings
 from .solver import ContactSolver
@@ -33,6 +34,7 @@ def solve_contact(
     material: Material | None = None,
     settings: SolverSettings | None = None,
     curve: CurveSettings | None = None,
+    adhesion: Adhesion | None = None,
     progress: bool = False,
     device: wp.DeviceLike = None,
     devices: Any = None,
@@ -63,6 +65,13 @@ def solve_contact(
         The stiffness method of each row (Barber's punch, the central difference, none) and
         whether the pressure and gap maps are kept (:class:`~warptrunc.contact.CurveSettings`;
         default ``CurveSettings()``: Barber, no maps).
+    adhesion : Adhesion, optional
+        The interaction law between the surfaces (:class:`~warptrunc.contact.adhesion.Adhesion`;
+        default None: non-adhesive). With a law the rows are an approach–retract history:
+        depths (or loads) may rise and fall, and be negative (the flat above first touch, a
+        tensile load); :func:`~warptrunc.contact.hysteresis.force_approach` reads the cycle.
+        Barber's stiffness is then that of the repulsive contact at a fixed area; the central
+        difference is refused.
     progress : bool
         Report the rows on stderr (a bar on a terminal, else lines).
     {warp_device_obj}
@@ -78,7 +87,7 @@ def solve_contact(
     ------
     ValueError
         Bad heights (NaN/inf, not 2-D), parameters out of range, neither or both of depths/loads,
-        or the central difference with a finite hardness.
+        or the central difference with a finite hardness or with adhesion.
     MemoryError
         The solver would not fit the device's free memory (checked before allocating).
 
@@ -109,8 +118,15 @@ def solve_contact(
     values = np.atleast_1d(np.asarray(depths if loads is None else loads, dtype=np.float64))
     if values.size == 0:
         raise ValueError(f"at least one {key} is needed, got none")
-    for v in values:
-        check_range(key, v, 0.0, unit="m" if key == "depth" else "N")
+    adhesion = Adhesion() if adhesion is None else adhesion
+    for v in values:  # with adhesion any finite approach or load: the surfaces pull
+        check_range(key, v, None if adhesion.active else 0.0, unit="m" if key == "depth" else "N")
+    if stiffness == "central" and adhesion.active:
+        raise ValueError(
+            'the central difference (CurveSettings(stiffness="central")) solves at δ(1 ± h), '
+            "which moves an adhesive contact along its hysteresis; with adhesion use "
+            '"barber" (the stiffness at a fixed contact area) or "none"'
+        )
     hardness = material.hardness
     if stiffness == "central" and math.isfinite(hardness):
         raise ValueError(
@@ -124,6 +140,7 @@ def solve_contact(
         material.contact_modulus,
         settings=settings,
         hardness=hardness,
+        adhesion=adhesion,
         device=device,
         devices=devices,
     )
@@ -177,6 +194,7 @@ def solve_contact(
         "pixel_size_m": [dx, dy],
         "control": "displacement" if key == "depth" else "load",
         "hardness_Pa": hardness if math.isfinite(hardness) else None,
+        "adhesion": adhesion.to_dict() if adhesion.active else None,
     }
     return ContactCurve(
         depth=col("depth"),
@@ -194,6 +212,9 @@ def solve_contact(
         n_plastic=col("n_plastic", np.int64),
         plastic_area=col("plastic_area"),
         plastic_volume=col("plastic_volume"),
+        adhesive_force=col("adhesive_force"),
+        n_attractive=col("n_attractive", np.int64),
+        attractive_area=col("attractive_area"),
         pressure=np.stack(p_maps) if curve.maps else None,
         gap=np.stack(g_maps) if curve.maps else None,
         settings=record,

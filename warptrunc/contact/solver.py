@@ -489,6 +489,17 @@ class ContactSolver(
         dx, dy = self.pixel_size
         return float(red.read((True,))[0]) / (dx * dy)
 
+    def contact_map(self) -> np.ndarray:
+        """The contact set of the current solution, copied to the host as booleans.
+
+        Returns
+        -------
+        (ny, nx) ndarray of bool
+            Pixels with a positive force (with adhesion: a positive reaction of the wall, the
+            repulsive contact); a synchronisation point.
+        """
+        return self.q.numpy() > 0
+
     def maps(self) -> tuple[np.ndarray, np.ndarray]:
         """Copy the pressure and gap maps of the current solution to the host.
 

@@ -140,33 +140,31 @@ class AdhesiveSolves:
         dh_last: float | None = None
         loose = 1.0  # the tolerance of the next non-adhesive solve, in units of pentol
         n_att = 0.0
+        final = False  # the forces have settled: one last solve at the full tolerance
         for _ in range(self.maxiter):
             if load is not None and not load - s_a > 0.0:
                 separated = True  # the law's forces hold more than the load: no wall contact
                 break
-            with self._tolerances(loose):
+            with self._tolerances(1.0 if final else loose):
                 info = self._solve_elastic(depth, None if load is None else load - s_a)
             n_it += info["n_iterations"]
             n_conv += info["n_convolutions"]
+            if final:
+                conv = bool(info["converged"])
+                break
             dh, s_a, n_att = self._update_law()
             n_updates += 1
-            exact = loose == 1.0
             if dh == 0.0:  # no force changed: the state is the solution
-                if exact:
+                if loose == 1.0:
                     conv = bool(info["converged"])
                     break
-                loose = 1.0  # solve once more at the full tolerance
+                final = True
                 continue
             n_conv += 1.0
             rate = 0.0 if not dh_last else min(RATE_CAP, dh / dh_last)
             dh_last = dh
-            if dh * max(1.0, rate / (1.0 - rate)) < tol:
-                if exact and info["converged"]:
-                    conv = True
-                    break
-                loose = 1.0
-            else:
-                loose = max(1.0, INEXACT * dh / tol)
+            final = dh * max(1.0, rate / (1.0 - rate)) < tol
+            loose = max(1.0, INEXACT * dh / tol)
         self._adhesive_sum = float(s_a)
         if not info:
             info = self._separated(self.offset)
@@ -201,9 +199,17 @@ class AdhesiveSolves:
     def _separated(self, offset: float) -> dict[str, Any]:
         """The info dict of a load-controlled solve whose load the law's forces hold without
         any wall contact (not converged: there is no equilibrium with a contact)."""
-        info = self._iteration_info(offset, 0.0, math.nan, 0, 0, math.inf, 0.0, False)
-        info["n_contact"] = 0
-        return info
+        return {
+            "depth": offset + self.h_max,
+            "load": 0.0,
+            "mean_gap": math.nan,
+            "n_iterations": 0,
+            "n_convolutions": 0.0,
+            "residual": math.inf,
+            "max_tensile_force": 0.0,
+            "converged": False,
+            "n_contact": 0,
+        }
 
     def _adhesive_pressure(self, q: np.ndarray) -> np.ndarray:
         """The whole traction's pixel forces (N): the wall's ``q`` plus the law's forces."""
