@@ -8,7 +8,8 @@ cross-check of truncation analysis against it (:func:`bem_check`).
 What lives where:
 
 - ``settings``: the parameter objects (:class:`SolverSettings`, :class:`CurveSettings`,
-  :class:`BemCheckSettings`; no Warp, the command-line parsers import them);
+  :class:`BemCheckSettings`; no Warp, the command-line parsers import them); ``adhesion``:
+  the interaction law of adhesive contact (:class:`Adhesion`, no Warp either);
 - ``solver``: the solver object, :class:`ContactSolver` (its state and public methods);
   ``iteration``: the iterations it runs (what the loops share, Polonsky–Keer, BCCG with its
   scalar steps on the host or on the device, the capped solves and the plastic flow, Barber's
@@ -17,6 +18,7 @@ What lives where:
   influence table, padded transforms, lane reductions);
 - ``sharded``: one contact problem spread over several devices (JAX), the same solver;
 - ``curve``: contact curves, :func:`solve_contact`; ``results``: their result objects;
+  ``hysteresis``: the force–approach cycle of an adhesive curve (:func:`force_approach`);
 - ``check``, ``runs``: the bem-check and its two elastic solvers (warptrunc's, ContactMechanics').
 
 Every public name is importable from ``warptrunc.contact`` (imported on first use).
@@ -27,16 +29,20 @@ from .._support.exports import lazy_exports
 __all__, __getattr__, __dir__ = lazy_exports(
     __name__,
     {
+        "ADHESION_LAWS": ".adhesion",
+        "Adhesion": ".adhesion",
         "BemCheckSettings": ".settings",
         "ContactCurve": ".results",
         "ContactSolver": ".solver",
         "ContactState": ".results",
         "CurveSettings": ".settings",
         "ElasticHalfSpace": ".halfspace",
+        "ForceApproachCycle": ".hysteresis",
         "STIFFNESS_METHODS": ".settings",
         "SUBSTRATES": ".influence",
         "SolverSettings": ".settings",
         "default_pentol": ".solver",
+        "force_approach": ".hysteresis",
         "influence_spectrum": ".influence",
         "influence_table": ".influence",
         "solve_contact": ".curve",
