@@ -21,12 +21,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_helpers import CALIBRATE_CLI, QUICK_CALIBRATION, RENDER_CLI, SMALL, compare_cli, sweep_cli
 
 from warptrunc._support.outputs import staged_outputs, store_rollback
 from warptrunc.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
-SMALL = ["--n", "64", "--Rt", "1e-6", "--Wr", "20e-6", "--L", "1e-4"]
 
 
 def _has(mod: str) -> bool:
@@ -67,75 +67,28 @@ def commands(scan: Path, out: Path) -> dict[str, list[str]]:
         "islands": ["islands", *SMALL, "--increments", "50", "--out", out / "islands"],
         "generate": ["generate", "--n", "256", "-o", out / "surface.npz"],
         "calibrate": [
-            "calibrate",
-            "--D",
-            "2.4",
-            "--Rrms",
-            "1e-7",
-            "--Rt",
-            "1e-6",
-            "--Wr",
-            "2e-5",
-            "--L",
-            "1e-4",
-            "--n",
-            "32",
+            *CALIBRATE_CLI,
             "--n-out",
             "128",
-            "--seeds",
-            "0",
-            "--max-iter",
-            "2",
-            "--rtol",
-            "0.9",
-            "--no-progress",
+            *QUICK_CALIBRATION,
             "--out",
             out / "cal",
         ],
     }
     if _has("pyarrow"):
         cmds["sweep"] = [
-            "sweep",
-            "--D",
-            "2.3",
-            "2.5",
-            "--delta",
-            "0.01",
-            "--n",
-            "64",
-            "--min-pixels",
-            "1",
-            "--no-progress",
+            *sweep_cli("2.3", "2.5"),
             "--out",
             out / "sweep",
         ]
         cmds["compare"] = [
-            "compare",
-            "--D",
-            "2.3",
-            "--size-ratios",
-            "1",
-            "--pixels-per-wr",
-            "16",
-            "--refine-ratio",
-            "none",
-            "--seeds",
-            "0",
-            "--fractions",
-            "0.1",
-            "0.2",
-            "--no-progress",
-            "--no-plot",
+            *compare_cli("2.3", "16", "0"),
             "--out",
             out / "compare",
         ]
     if _has("pyvista"):
         cmds["render"] = [
-            "render",
-            "--n",
-            "32",
-            "--depth-fractions",
-            "0.3",
+            *RENDER_CLI,
             "--size",
             "120",
             "100",

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_helpers import sweep_cli
 
 from warptrunc._support.messages import MAX_MESSAGE_CHARS
 from warptrunc._support.validate import MAX_INCREMENTS, MAX_SEEDS
@@ -184,18 +185,7 @@ def test_a_topothesy_that_makes_heights_overflow_is_refused(tmp_path, capsys):
 
 # --- damaged store files -----------------------------------------------------------------------
 
-SWEEP = [
-    "sweep",
-    "--D",
-    "2.3",
-    "--delta",
-    "0.01",
-    "--n",
-    "32",
-    "--min-pixels",
-    "1",
-    "--no-progress",
-]
+SWEEP = sweep_cli("2.3", n="32")
 
 
 @pytest.fixture

@@ -20,6 +20,7 @@ import time
 from pathlib import Path
 
 import pytest
+from cli_helpers import INDENT_CLI, compare_cli
 
 from warptrunc._support.outputs import kept_stores, store_rollback
 from warptrunc.cli import _interrupted_text
@@ -30,44 +31,8 @@ COMMANDS = {
     "analyze": ["analyze", "--n", "512"],
     "bem-check": ["bem-check", "--n", "128", "--no-progress"],
     "islands": ["islands", "--n", "256", "--no-progress"],
-    "compare": [
-        "compare",
-        "--D",
-        "2.3",
-        "--size-ratios",
-        "1",
-        "--pixels-per-wr",
-        "32",
-        "--refine-ratio",
-        "none",
-        "--seeds",
-        "0-3",
-        "--fractions",
-        "0.1",
-        "0.2",
-        "--no-progress",
-        "--no-plot",
-    ],
-    "indent": [
-        "indent",
-        "--n",
-        "64",
-        "--L",
-        "0.4e-3",
-        "--Rt",
-        "2e-6",
-        "--punch-diameters",
-        "1.5e-4",
-        "--peak-loads",
-        "1e-3",
-        "4e-3",
-        "1.6e-2",
-        "--placements",
-        "2",
-        "--no-progress",
-        "--refine-max",
-        "2",
-    ],
+    "compare": compare_cli("2.3", "32", "0-3"),
+    "indent": INDENT_CLI,
 }
 
 # Python's own SIGINT handler in the child: a shell's background job (`bash .ci/run &`) starts

@@ -12,6 +12,7 @@ import sys
 
 import numpy as np
 import pytest
+from cli_helpers import RENDER_CLI
 
 import warptrunc
 
@@ -51,11 +52,7 @@ def test_generate_prints_only_its_result(tmp_path):
 def test_render_prints_only_its_result(tmp_path):
     pytest.importorskip("pyvista")
     r = cli(
-        "render",
-        "--n",
-        32,
-        "--depth-fractions",
-        0.3,
+        *RENDER_CLI,
         "--size",
         200,
         160,

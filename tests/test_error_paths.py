@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_helpers import sweep_cli
 
 from warptrunc.io import read_height_map
 
@@ -79,17 +80,7 @@ def test_a_file_size_limit_names_the_file(argv, named, tmp_path):
 def test_a_sweep_under_a_file_size_limit_names_its_part(tmp_path):
     pytest.importorskip("pyarrow")
     argv = [
-        "sweep",
-        "--D",
-        "2.3",
-        "2.5",
-        "--delta",
-        "0.01",
-        "--n",
-        "64",
-        "--min-pixels",
-        "1",
-        "--no-progress",
+        *sweep_cli("2.3", "2.5"),
         "--out",
         "sw",
     ]

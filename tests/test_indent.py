@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 import pytest
-from cli_helpers import assert_refused_in_one_line
+from cli_helpers import INDENT_CLI, assert_refused_in_one_line
 
 import warptrunc
 from warptrunc.cli import main
@@ -535,26 +535,7 @@ def test_large_hardness_is_the_elastic_solution():
 
 # --- the command line ---------------------------------------------------------------------------
 
-CLI = [
-    "indent",
-    "--n",
-    "64",
-    "--L",
-    "0.4e-3",
-    "--Rt",
-    "2e-6",
-    "--punch-diameters",
-    "1.5e-4",
-    "--peak-loads",
-    "1e-3",
-    "4e-3",
-    "1.6e-2",
-    "--placements",
-    "2",
-    "--no-progress",
-    "--refine-max",
-    "2",
-]
+CLI = INDENT_CLI
 
 
 def test_cli_writes_csv_json_and_figure(tmp_path, capsys):

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_helpers import CALIBRATE_CLI, QUICK_CALIBRATION, RENDER_CLI, SMALL, sweep_cli
 
 from warptrunc import __version__, resolve_device
 from warptrunc._support.provenance import provenance
@@ -27,7 +28,6 @@ KEYS = {
     "python_version",
     "warp_version",
 }
-SMALL = ["--n", "64", "--Rt", "1e-6", "--Wr", "20e-6", "--L", "1e-4"]
 
 
 def check(p: dict, argv: list[str] | None = None) -> None:
@@ -120,26 +120,8 @@ def test_every_command_output_carries_provenance(tmp_path, capsys):
     )
     check(json.loads((tmp_path / "b" / "bem.json").read_text())["provenance"], b)
     c = run(
-        "calibrate",
-        "--D",
-        2.4,
-        "--Rrms",
-        1e-7,
-        "--Rt",
-        1e-6,
-        "--Wr",
-        2e-5,
-        "--L",
-        1e-4,
-        "--n",
-        32,
-        "--seeds",
-        0,
-        "--max-iter",
-        2,
-        "--rtol",
-        0.9,
-        "--no-progress",
+        *CALIBRATE_CLI,
+        *QUICK_CALIBRATION,
         "--no-surface",
         "--device",
         "cpu",
@@ -156,16 +138,7 @@ def test_every_command_output_carries_provenance(tmp_path, capsys):
 def test_sweep_store_carries_the_provenance_of_the_run_that_made_it(tmp_path, capsys):
     pytest.importorskip("pyarrow")
     argv = run(
-        "sweep",
-        "--D",
-        2.3,
-        "--delta",
-        0.01,
-        "--n",
-        32,
-        "--min-pixels",
-        1,
-        "--no-progress",
+        *sweep_cli("2.3", n="32"),
         "--device",
         "cpu",
         "--out",
@@ -179,11 +152,7 @@ def test_sweep_store_carries_the_provenance_of_the_run_that_made_it(tmp_path, ca
 def test_render_json_carries_provenance(tmp_path, capsys):
     pytest.importorskip("pyvista")
     argv = run(
-        "render",
-        "--n",
-        32,
-        "--depth-fractions",
-        0.3,
+        *RENDER_CLI,
         "--size",
         120,
         100,
@@ -225,13 +194,7 @@ def test_describe_and_calibrate_take_input(form, tmp_path, capsys):
                 "1e-6",
                 "--method",
                 "box",
-                "--seeds",
-                "0",
-                "--max-iter",
-                "2",
-                "--rtol",
-                "0.9",
-                "--no-progress",
+                *QUICK_CALIBRATION,
                 "--no-surface",
                 "--n",
                 "32",

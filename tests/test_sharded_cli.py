@@ -29,7 +29,7 @@ if len(jax.devices("cpu")) < 2:
     # tests/conftest.py sets the flag before any module imports JAX: never skip silently
     raise RuntimeError("JAX was started with one host device before this module (XLA_FLAGS)")
 
-from cli_helpers import assert_refused_in_one_line  # noqa: E402
+from cli_helpers import assert_refused_in_one_line, compare_cli  # noqa: E402
 
 from warptrunc.cli import main  # noqa: E402
 
@@ -63,24 +63,7 @@ def test_compare_devices(tmp_path, capsys):
     map equal the one-device solver's; the rows name both devices."""
     import pandas as pd
 
-    args = [
-        "compare",
-        "--D",
-        "2.5",
-        "--size-ratios",
-        "1",
-        "--pixels-per-wr",
-        "64",
-        "--refine-ratio",
-        "none",
-        "--seeds",
-        "0",
-        "--fractions",
-        "0.1",
-        "0.2",
-        "--no-plot",
-        "--no-progress",
-    ]
+    args = compare_cli("2.5", "64", "0")
     one, two = (
         pd.concat(pd.read_parquet(p) for p in sorted((o / "cases").glob("*.parquet")))
         for o in run_both(tmp_path, capsys, args)

@@ -13,11 +13,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_helpers import CALIBRATE_CLI, QUICK_CALIBRATION, RENDER_CLI, SMALL, sweep_cli
 
 from warptrunc._support.outputs import read_json, staged_output, strict_json
 from warptrunc.cli import main
-
-SMALL = ["--n", "64", "--Rt", "1e-6", "--Wr", "20e-6", "--L", "1e-4"]
 
 
 def strict_load(path: Path):
@@ -54,16 +53,7 @@ def every_command(tmp_path_factory):
     assert run("islands", *SMALL, "--increments", 20, "--no-plot", "--out", root / "islands") == 0
     assert (
         run(
-            "sweep",
-            "--D",
-            2.3,
-            "--delta",
-            0.01,
-            "--n",
-            64,
-            "--min-pixels",
-            1,
-            "--no-progress",
+            *sweep_cli("2.3"),
             "--out",
             root / "sweep",
         )
@@ -71,26 +61,8 @@ def every_command(tmp_path_factory):
     )
     assert (
         run(
-            "calibrate",
-            "--D",
-            2.4,
-            "--Rrms",
-            1e-7,
-            "--Rt",
-            1e-6,
-            "--Wr",
-            2e-5,
-            "--L",
-            1e-4,
-            "--n",
-            32,
-            "--seeds",
-            0,
-            "--max-iter",
-            2,
-            "--rtol",
-            0.9,
-            "--no-progress",
+            *CALIBRATE_CLI,
+            *QUICK_CALIBRATION,
             "--out",
             root / "calibrate",
         )
@@ -101,11 +73,7 @@ def every_command(tmp_path_factory):
 
         assert (
             run(
-                "render",
-                "--n",
-                32,
-                "--depth-fractions",
-                0.3,
+                *RENDER_CLI,
                 "--size",
                 120,
                 100,
@@ -142,16 +110,7 @@ def test_sweep_resumes_a_store_with_null_e_flat(every_command, capsys):
     # null in sweep.json means inf: the same command resumes instead of reporting a conflict
     assert (
         run(
-            "sweep",
-            "--D",
-            2.3,
-            "--delta",
-            0.01,
-            "--n",
-            64,
-            "--min-pixels",
-            1,
-            "--no-progress",
+            *sweep_cli("2.3"),
             "--out",
             every_command / "sweep",
         )
