@@ -62,7 +62,19 @@ def _check_calibrate(out: Path) -> None:
 
 def _check_islands(out: Path) -> None:
     assert "n_islands" in _csv_header(out / "islands_seed0.csv")
-    assert _json(out / "summary.json")["seeds"]
+    summary = _json(out / "summary.json")
+    assert summary["seeds"]
+    assert len(summary["seeds"]) == 2
+    assert (out / "island_number.png").exists() and (out / "slit_islands.png").exists()
+
+
+def _check_figures(out: Path) -> None:
+    for f in ("height_map.png", "area_fraction.png", "stiffness_load.png", "alpha_vs_D.png"):
+        assert (out / f).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def _check_render(out: Path) -> None:
+    assert (out / "truncation.png").exists() and (out / "surface.vti").exists()
 
 
 def _check_fractal(out: Path) -> None:
@@ -107,6 +119,7 @@ EXAMPLES: dict[str, Example] = {
         outputs=("challenge.json", "challenge.png"), check=_check_challenge
     ),
     "contact_islands": Example(
+        args=("--quick", "--seeds", "2"),
         outputs=("islands_seed0.csv", "summary.json", "island_number.png", "slit_islands.png"),
         check=_check_islands,
     ),
@@ -117,7 +130,8 @@ EXAMPLES: dict[str, Example] = {
             "stiffness_load.png",
             "alpha_vs_D.png",
             "psd.png",
-        )
+        ),
+        check=_check_figures,
     ),
     "indentation": Example(
         outputs=("indent.csv", "indent.json", "indent.png"), check=_check_indentation
@@ -134,6 +148,7 @@ EXAMPLES: dict[str, Example] = {
     "render_truncated_section": Example(
         outputs=("truncation.png", "truncation_top.png", "surface.vti", "render.json"),
         needs=("pyvista",),
+        check=_check_render,
     ),
     "stream_islands": Example(
         outputs=("stream_islands.json", "island_sizes.png"), check=_check_stream

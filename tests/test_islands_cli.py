@@ -6,7 +6,6 @@ would (subprocesses), checked against scipy.ndimage.label."""
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,7 +21,6 @@ from warptrunc.islands import (
     island_curve,
 )
 
-ROOT = Path(__file__).resolve().parents[1]
 PNG = b"\x89PNG\r\n\x1a\n"
 COLUMNS = (
     "depth_m",
@@ -154,27 +152,3 @@ def test_figures_from_python(tmp_path):
     assert len(fig.axes[0].lines) >= 4
     fig = plot.slit_islands(c, path=tmp_path / "b.png")
     assert (tmp_path / "b.png").read_bytes()[:8] == PNG
-
-
-def test_example_runs(tmp_path):
-    r = subprocess.run(
-        [
-            sys.executable,
-            str(ROOT / "examples" / "contact_islands.py"),
-            "--quick",
-            "--no-show",
-            "--device",
-            "cpu",
-            "--seeds",
-            "2",
-            "--out",
-            str(tmp_path),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert r.returncode == 0, r.stderr
-    summary = json.loads((tmp_path / "summary.json").read_text())
-    assert len(summary["seeds"]) == 2
-    assert (tmp_path / "island_number.png").exists() and (tmp_path / "slit_islands.png").exists()

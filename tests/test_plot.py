@@ -6,9 +6,6 @@ Figures are pyplot-free (Agg). The data drawn is read back from the artists and 
 quantities computed here from the inputs (masks, area fractions, analytic power laws).
 """
 
-import subprocess
-import sys
-from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -18,8 +15,6 @@ from warptrunc import from_heights, plot, truncate
 from warptrunc.stiffness import fit_power_law, stiffness_curve
 from warptrunc.sweep import SweepTable
 from warptrunc.wm import wm_surface
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def _pixels(fig):
@@ -194,25 +189,6 @@ def test_alpha_vs_D_from_summary_and_from_table():
     np.testing.assert_allclose(fig.axes[0].containers[0].lines[0].get_ydata(), [0.5])
     with pytest.raises(ValueError, match="min_pixels = 100"):
         plot.alpha_vs_D(summary, min_pixels=100)
-
-
-def test_figures_example_runs_quick(tmp_path):
-    r = subprocess.run(
-        [
-            sys.executable,
-            str(ROOT / "examples" / "figures.py"),
-            "--quick",
-            "--no-show",
-            "--out",
-            str(tmp_path),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert r.returncode == 0, r.stderr
-    for f in ("height_map.png", "area_fraction.png", "stiffness_load.png", "alpha_vs_D.png"):
-        assert (tmp_path / f).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def _drawn_ticklabels(ax, axis):

@@ -11,7 +11,6 @@ an orthographic camera. Tests that draw need pyvista and skip cleanly without it
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -26,8 +25,6 @@ from warptrunc.render import (
     pool_blocks,
 )
 from warptrunc.wm import wm_surface
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def _ref_pool(a, f, how):
@@ -463,22 +460,3 @@ def test_cli_render_writes_picture_animation_vtk_and_json(tmp_path):
     ref = [_ref_mask(z, f * (np.float64(z.max()) - np.float64(z.min()))).mean() for f in (0.2, 0.4)]
     np.testing.assert_allclose(info["picture"]["area_fraction"], ref, rtol=0, atol=0)
     assert info["picture"]["image_width"] == 600 and len(info["animation"]["depth_m"]) == 3
-
-
-def test_example_runs_quick(tmp_path):
-    pytest.importorskip("pyvista")
-    r = subprocess.run(
-        [
-            sys.executable,
-            str(ROOT / "examples" / "render_truncated_section.py"),
-            "--quick",
-            "--no-show",
-            "--out",
-            str(tmp_path),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert r.returncode == 0, r.stderr
-    assert (tmp_path / "truncation.png").exists() and (tmp_path / "surface.vti").exists()
