@@ -97,7 +97,7 @@ def retract(n, width, lam, law, top, step, bottom=-1.3, dtype="float64"):
     retraction's rows (Δ̄, P̄, contact pixels) and the solver."""
     h, dx, adh = sphere(n, width, lam, law)
     s = ContactSolver(
-        h, dx, E_STAR, adhesion=adh, settings=SolverSettings(dtype=dtype), device="cpu"
+        h, dx, E_STAR, settings=SolverSettings(dtype=dtype, adhesion=adh), device="cpu"
     )
     assert adh.maugis_parameter(R, E_STAR) == pytest.approx(lam, rel=1e-12)
     for d in (-0.6, top):
@@ -163,7 +163,11 @@ def test_zero_work_is_the_non_adhesive_solver_bit_for_bit(substrate, dtype, law)
     st = SolverSettings(substrate=substrate, dtype=dtype)
     plain = ContactSolver(h, dx, 70e9, settings=st, device="cpu")
     zero = ContactSolver(
-        h, dx, 70e9, settings=st, adhesion=Adhesion(law, work=0.0, range=1e-9), device="cpu"
+        h,
+        dx,
+        70e9,
+        settings=st.replace(adhesion=Adhesion(law, work=0.0, range=1e-9)),
+        device="cpu",
     )
     for kw in ({"depth": 1e-6}, {"depth": 2e-6}, {"load": 5.0}, {"depth": 1e-6}):
         a, b = plain.solve(**kw), zero.solve(**kw)
@@ -179,23 +183,23 @@ def test_zero_work_is_the_non_adhesive_solver_bit_for_bit(substrate, dtype, law)
 
 def test_adhesion_refusals_name_the_reason():
     h, dx = _wm_map(32)
-    law = Adhesion("maugis", work=0.05, range=2e-9)
+    law = SolverSettings(adhesion=Adhesion("maugis", work=0.05, range=2e-9))
     with pytest.raises(ValueError, match="hardness"):
-        ContactSolver(h, dx, 70e9, hardness=1e9, adhesion=law, device="cpu")
+        ContactSolver(h, dx, 70e9, hardness=1e9, settings=law, device="cpu")
     with pytest.raises(ValueError, match="secant"):
-        ContactSolver(
-            h, dx, 70e9, settings=SolverSettings(load_control="secant"), adhesion=law,
-            device="cpu",
-        )  # fmt: skip
+        ContactSolver(h, dx, 70e9, settings=law.replace(load_control="secant"), device="cpu")
     with pytest.raises(ValueError, match="central difference"):
         solve_contact(
-            h, [1e-6], pixel_size=dx, adhesion=law, curve=CurveSettings(stiffness="central"),
+            h, [1e-6], pixel_size=dx, settings=law, curve=CurveSettings(stiffness="central"),
             device="cpu",
         )  # fmt: skip
     with pytest.raises(ValueError, match="one device"):
         memory_bytes((64, 64), adhesion=True, devices=2)
     with pytest.raises(ValueError, match="Adhesion"):
-        ContactSolver(h, dx, 70e9, adhesion="maugis", device="cpu")
+        SolverSettings(adhesion="maugis")
+    # a dict of the law's fields (as SolverSettings.to_dict writes it) is the law
+    assert SolverSettings(**law.to_dict()) == law
+    assert "adhesion" not in SolverSettings().to_dict()
 
 
 @pytest.mark.parametrize("dtype", ["float64", "float32"])
@@ -259,7 +263,7 @@ def test_force_approach_cycle_jumps_in_and_out():
         np.concatenate([up, down]) * DELTA,
         pixel_size=dx,
         material=Material(E=E_STAR, nu=0.0),
-        adhesion=adh,
+        settings=SolverSettings(adhesion=adh),
         curve=CurveSettings(stiffness="none"),
         device="cpu",
     )
@@ -290,8 +294,8 @@ def test_force_approach_cycle_jumps_in_and_out():
 def test_load_control_follows_the_displacement_controlled_state():
     # the state reached at an approach, solved again at its load from the same history
     h, dx, adh = sphere(64, 4.0, 0.5, "maugis")
-    a = ContactSolver(h, dx, E_STAR, adhesion=adh, device="cpu")
-    b = ContactSolver(h, dx, E_STAR, adhesion=adh, device="cpu")
+    a = ContactSolver(h, dx, E_STAR, settings=SolverSettings(adhesion=adh), device="cpu")
+    b = ContactSolver(h, dx, E_STAR, settings=SolverSettings(adhesion=adh), device="cpu")
     for d in (-0.6, 0.3):
         a.solve(d * DELTA)
         b.solve(d * DELTA)
@@ -340,8 +344,9 @@ def test_rough_periodic_surface_against_tamaas(work, tamaas_tol):
         h,
         1.0 / n,
         1.0,
-        settings=SolverSettings(substrate="periodic"),
-        adhesion=Adhesion("exponential", work=work, range=rho),
+        settings=SolverSettings(
+            substrate="periodic", adhesion=Adhesion("exponential", work=work, range=rho)
+        ),
         device="cpu",
     )
     st = s.solve(load=load_ref)
@@ -367,8 +372,8 @@ def test_adhesive_solve_on_the_gpu_equals_the_cpu(dtype):
     h, dx, adh = sphere(128, 4.5, 0.5, "maugis")
     out = []
     for dev in ("cpu", "cuda:0"):
-        s = ContactSolver(h, dx, E_STAR, settings=SolverSettings(dtype=dtype), adhesion=adh,
-                          device=dev)  # fmt: skip
+        st = SolverSettings(dtype=dtype, adhesion=adh)
+        s = ContactSolver(h, dx, E_STAR, settings=st, device=dev)
         states = [s.solve(d * DELTA) for d in (-0.6, 0.3, -0.3)]
         out.append((states, s.maps()))
     (a, (pa, ga)), (b, (pb, gb)) = out

@@ -22,6 +22,7 @@ import argparse
 import sys
 
 from .._support.outputs import staged_output
+from ..contact.adhesion import Adhesion
 from ..contact.settings import ELASTIC_TRUNCATION, BemCheckSettings, SolverSettings
 from ..params import add_options, from_args
 from ._common import (
@@ -73,6 +74,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
             "ContactMechanics' (fixed for the whole check)"
         },
     )
+    add_options(p, Adhesion, title="adhesion (the BEM side, warptrunc's solver; default: none)")
     add_devices(s, "the elastic cross-check (warptrunc solver)")
     add_accept_unconverged(s, EXIT_NOT_CONVERGED)
     add_run_outputs(p, "bem", "skip the PNG")
@@ -86,7 +88,8 @@ def run(args: argparse.Namespace) -> int:
     """Run the comparison and write the outputs."""
     check = from_args(BemCheckSettings, args)
     truncation = truncation_from_args(args, ELASTIC_TRUNCATION.to_dict())
-    settings = from_args(SolverSettings, args)
+    settings = from_args(SolverSettings, args, adhesion=from_args(Adhesion, args))
+    adhesion = settings.adhesion
     from ..contact.check import bem_check, require_bem
     from ..plot.bem import plot_bem_check
     from ..slope import slope_warnings
@@ -97,6 +100,13 @@ def run(args: argparse.Namespace) -> int:
         except ImportError as exc:
             print(f"warptrunc {NAME}: error: {exc}", file=sys.stderr)
             return 2
+    if adhesion.active and check.solver != "warptrunc":
+        print(
+            f"warptrunc {NAME}: error: --adhesion {adhesion.law} needs --solver warptrunc "
+            "(ContactMechanics' solver here is not adhesive)",
+            file=sys.stderr,
+        )
+        return 2
     if args.devices not in (None, 1) and check.solver != "warptrunc":
         print(
             f"warptrunc {NAME}: error: --devices {args.devices} needs --solver warptrunc "
@@ -153,6 +163,12 @@ def run(args: argparse.Namespace) -> int:
         f"A'/A_BEM {_rng(sm['area_ratio'])}; "
         f"{sm['time_per_solve_s']:.3g} s per solve\n" + slope_line(slope).rstrip("\n")
     )
+    if adhesion.active:
+        print(
+            f"adhesion: {adhesion.law}, w = {adhesion.work:g} J/m², range {adhesion.range:g} m "
+            f"(peak stress {adhesion.peak_stress:.4g} Pa); F_BEM includes the law's pull, "
+            "A_BEM is the repulsive contact, truncation is not adhesive"
+        )
     kappa = sm.get("kappa") or {}
     if kappa.get("bem") is not None:
         print(

@@ -34,6 +34,7 @@ import sys
 from pathlib import Path
 
 from ..compare.design import MapStudy, StudyDesign
+from ..contact.adhesion import Adhesion
 from ..contact.settings import ELASTIC_TRUNCATION, SolverSettings
 from ..params import add_options, from_args
 from ._common import (
@@ -82,6 +83,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         m, only=("increments", "beta_prime", "connectivity"), defaults=ELASTIC_TRUNCATION.to_dict()
     )
     add_options(m, SolverSettings, only=SOLVER_FIELDS)
+    add_options(p, Adhesion, title="adhesion (the elastic route; default: none)")
     add_devices(m, "the elastic route")
     add_device(p)
     add_out(p, "compare")
@@ -94,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study and write the summary."""
     design = from_args(StudyDesign, args)
     truncation = truncation_from_args(args, ELASTIC_TRUNCATION.to_dict())
-    settings = from_args(SolverSettings, args)
+    settings = from_args(SolverSettings, args, adhesion=from_args(Adhesion, args))
     from .._support.outputs import staged_outputs, strict_json
     from .._support.provenance import provenance
     from ..compare.study import compare_study, summarize

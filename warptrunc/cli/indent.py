@@ -53,6 +53,7 @@ import warnings
 
 from .._support.outputs import staged_output
 from .._support.provenance import provenance
+from ..contact.adhesion import Adhesion
 from ..contact.settings import SolverSettings
 from ..indent.face import PunchFaceSpec
 from ..indent.maps import IndentMaps
@@ -98,6 +99,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         title="contact solver (free half-space on each punch's window)",
         exclude=("substrate",),
     )
+    add_options(
+        p, Adhesion, title="adhesion of the punch face and the surface (needs --hardness inf)"
+    )
     add_devices(
         p,
         "the indentation cycles (each punch window; rows of its floor added where N "
@@ -133,7 +137,9 @@ def run(args: argparse.Namespace) -> int:
         material = from_args(Material, args, defaults=MATERIAL_DEFAULTS)
         face = from_args(PunchFaceSpec, args, prefix=FACE)
         protocol = from_args(IndentProtocol, args, face=face)
-        solver = from_args(SolverSettings, args, substrate="free")
+        solver = from_args(
+            SolverSettings, args, substrate="free", adhesion=from_args(Adhesion, args)
+        )
         if args.devices not in (None, 1) and solver.algorithm != "bccg":
             raise ValueError(
                 f"--devices {args.devices} spreads only --algorithm bccg (the "

@@ -214,7 +214,9 @@ def compare_models(
     settings : SolverSettings, optional
         The elastic solver's precision, substrate, tolerances and iteration limit
         (:class:`~warptrunc.contact.SolverSettings`; default ``SolverSettings()``, the free
-        half-space).
+        half-space). With an adhesive ``settings.adhesion`` the elastic route's load is the
+        whole traction's, its area the repulsive contact and its stiffness Barber's at a fixed
+        contact area; the truncation routes are not adhesive.
     progress : bool
         Report the elastic solves on stderr (a bar on a terminal, else lines).
     device : str, optional

@@ -148,8 +148,12 @@ def _pixels(v: float) -> int:
 def _settings(
     fractions: Any, material: Material, truncation: TruncationSettings, settings: SolverSettings
 ) -> dict[str, Any]:
-    """The record of ``study.json``: what makes two stores of the same study."""
+    """The record of ``study.json``: what makes two stores of the same study (the adhesion
+    law only when there is one, so that the stores of non-adhesive studies stay as they
+    were)."""
+    law = settings.adhesion
     return {
+        **({"adhesion": law.to_dict()} if law.active else {}),
         "fractions": [float(f) for f in fractions],
         "material": asdict(material),
         "E_star_Pa": material.contact_modulus,

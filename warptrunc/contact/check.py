@@ -272,7 +272,13 @@ def bem_check(
         displacement of a periodic half-space is undefined and ContactMechanics gives that mode
         the stiffness of the lowest non-zero wavevector, so there F(δ) and k depend on that
         convention while F against A_BEM does not. The absolute force tolerance is
-        ``pressure_tol·E*·dx·dy`` (N); ``pentol`` None: rms height/(10·mean n).
+        ``pressure_tol·E*·dx·dy`` (N); ``pentol`` None: rms height/(10·mean n). An adhesive
+        ``settings.adhesion`` (:class:`~warptrunc.contact.adhesion.Adhesion`) is solved by
+        warptrunc's solver only: the BEM load is then the whole
+        traction's (the law's pull included), the BEM area the repulsive contact, and Barber's
+        stiffness that of the repulsive contact at a fixed area; the solves must approach
+        monotonically (with the central difference, δ_i(1 + h) < δ_(i+1)(1 − h)), as the
+        adhesive contact is a loading history. Truncation is not adhesive.
     progress : bool
         Report the solves on stderr (a bar on a terminal, else lines).
     device : str, optional
@@ -290,7 +296,8 @@ def bem_check(
     Raises
     ------
     ValueError
-        A depth not below R_t of the map.
+        A depth not below R_t of the map; an adhesion law with ContactMechanics, or with
+        approaches that go back.
     ImportError
         ``solver="contactmechanics"`` without the ``bem`` extra.
     MemoryError
@@ -311,6 +318,12 @@ def bem_check(
     truncation = ELASTIC_TRUNCATION if truncation is None else truncation
     material = Material() if material is None else material
     settings = SolverSettings() if settings is None else settings
+    adhesion = settings.adhesion
+    if adhesion.active and check.solver != "warptrunc":
+        raise ValueError(
+            f"adhesion ({adhesion.law}) is solved by warptrunc's solver only, got solver "
+            f"{check.solver!r}"
+        )
     if check.solver == "contactmechanics":
         require_bem()  # fail early, before the truncation part
     increments, beta_prime = truncation.increments, truncation.beta_prime
@@ -318,6 +331,14 @@ def bem_check(
 
     Rt = float(surface.Rt)
     d = check.approaches(Rt)
+    if adhesion.active and check.stiffness == "central":
+        order = np.stack([d * (1 - check.fd_step), d, d * (1 + check.fd_step)], axis=1).ravel()
+        if np.any(np.diff(order) <= 0):
+            raise ValueError(
+                "with adhesion the solves must approach monotonically (a loading history): "
+                f"the central difference's δ(1 ± {check.fd_step:g}) of successive approaches "
+                "overlap; space the approaches wider, lower fd_step, or take stiffness barber"
+            )
     contact_modulus = material.contact_modulus
     slope = slope_record(surface, limit=settings.slope_limit)  # the half-space's small-slope regime
 
@@ -346,6 +367,7 @@ def bem_check(
     settings = {
         **extra,
         "substrate": substrate,
+        "adhesion": adhesion.to_dict() if adhesion.active else None,
         "padding": _PADDING[substrate],
         "contact_modulus_Pa": contact_modulus,
         "material": asdict(material),

@@ -16,7 +16,6 @@ import warp as wp
 from .._support.docs import SHARED_DOCS, fill_doc
 from .._support.validate import check_range
 from ..material import Material
-from .adhesion import Adhesion
 from .results import ContactCurve
 from .settings import CurveSettings, SolverSettings
 from .solver import ContactSolver
@@ -34,7 +33,6 @@ def solve_contact(
     material: Material | None = None,
     settings: SolverSettings | None = None,
     curve: CurveSettings | None = None,
-    adhesion: Adhesion | None = None,
     progress: bool = False,
     device: wp.DeviceLike = None,
     devices: Any = None,
@@ -59,19 +57,18 @@ def solve_contact(
         rows are a loading history: each solve starts from the plastic state the previous ones
         left (see :mod:`warptrunc.contact.iteration.plastic`).
     settings : SolverSettings, optional
-        Precision, substrate, tolerances and iteration limits of the solver
-        (:class:`~warptrunc.contact.SolverSettings`; default ``SolverSettings()``).
+        Precision, substrate, interaction law, tolerances and iteration limits of the solver
+        (:class:`~warptrunc.contact.SolverSettings`; default ``SolverSettings()``). With an
+        adhesive ``settings.adhesion`` (:class:`~warptrunc.contact.adhesion.Adhesion`) the
+        rows are an approach–retract history: depths (or loads) may rise and fall, and be
+        negative (the flat above first touch, a tensile load);
+        :func:`~warptrunc.contact.hysteresis.force_approach` reads the cycle. Barber's
+        stiffness is then that of the repulsive contact at a fixed area; the central
+        difference is refused.
     curve : CurveSettings, optional
         The stiffness method of each row (Barber's punch, the central difference, none) and
         whether the pressure and gap maps are kept (:class:`~warptrunc.contact.CurveSettings`;
         default ``CurveSettings()``: Barber, no maps).
-    adhesion : Adhesion, optional
-        The interaction law between the surfaces (:class:`~warptrunc.contact.adhesion.Adhesion`;
-        default None: non-adhesive). With a law the rows are an approach–retract history:
-        depths (or loads) may rise and fall, and be negative (the flat above first touch, a
-        tensile load); :func:`~warptrunc.contact.hysteresis.force_approach` reads the cycle.
-        Barber's stiffness is then that of the repulsive contact at a fixed area; the central
-        difference is refused.
     progress : bool
         Report the rows on stderr (a bar on a terminal, else lines).
     {warp_device_obj}
@@ -118,7 +115,7 @@ def solve_contact(
     values = np.atleast_1d(np.asarray(depths if loads is None else loads, dtype=np.float64))
     if values.size == 0:
         raise ValueError(f"at least one {key} is needed, got none")
-    adhesion = Adhesion() if adhesion is None else adhesion
+    adhesion = settings.adhesion
     for v in values:  # with adhesion any finite approach or load: the surfaces pull
         check_range(key, v, None if adhesion.active else 0.0, unit="m" if key == "depth" else "N")
     if stiffness == "central" and adhesion.active:
@@ -140,7 +137,6 @@ def solve_contact(
         material.contact_modulus,
         settings=settings,
         hardness=hardness,
-        adhesion=adhesion,
         device=device,
         devices=devices,
     )

@@ -166,11 +166,7 @@ def memory_bytes(
 
 
 def fft_plan_that_fits(
-    device: wp.context.Device,
-    shape: tuple[int, int],
-    settings: SolverSettings,
-    *,
-    adhesion: bool = False,
+    device: wp.context.Device, shape: tuple[int, int], settings: SolverSettings
 ) -> str:
     """The half-space's cuFFT plans for a solver of a map of ``shape`` on ``device``, checked
     against the free memory.
@@ -182,9 +178,8 @@ def fft_plan_that_fits(
     shape : (int, int)
         Map size (ny, nx) (pixels).
     settings : SolverSettings
-        Its ``substrate``, ``dtype``, ``algorithm`` and ``fft_plan`` are read.
-    adhesion : bool, optional
-        With an adhesion law (its two more maps).
+        Its ``substrate``, ``dtype``, ``algorithm``, ``fft_plan`` and ``adhesion`` (an adhesive
+        law holds two more maps) are read.
 
     Returns
     -------
@@ -211,7 +206,7 @@ def fft_plan_that_fits(
             algorithm=settings.algorithm,
             fft_plan=p,
             device=device if cuda else None,
-            adhesion=adhesion,
+            adhesion=settings.adhesion.active,
         )
 
     free = free_memory_bytes(device)

@@ -15,12 +15,13 @@ No Warp here: the command-line parsers import this module.
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from ..params import Parameters, check_fields, param, param_like
 from ..slope import SMALL_SLOPE_LIMIT
 from ..truncation.settings import TruncationSettings
+from .adhesion import Adhesion
 
 __all__ = [
     "BEM_SOLVERS",
@@ -66,6 +67,11 @@ class SolverSettings(Parameters):
     (:mod:`warptrunc.indent`) take 2 % at every size, where always preconditioning costs more
     convolutions than it saves (``warptrunc.contact.iteration.bccg.PRECONDITION_LARGE``; the
     measurements behind the rule: ``guide/performance.md``).
+
+    ``adhesion`` is the interaction law the solver solves with, a parameter object of its own
+    (:class:`~warptrunc.contact.adhesion.Adhesion`, the command-line options ``--adhesion``,
+    ``--work``, ``--range``), as the substrate is the half-space it solves on; the default
+    ``Adhesion()`` is non-adhesive, and :meth:`to_dict` lists it only when it is adhesive.
 
     Examples
     --------
@@ -163,12 +169,34 @@ class SolverSettings(Parameters):
         gt=0.0,
         sweep=False,
     )
+    adhesion: Adhesion = field(default=Adhesion())
+    """The interaction law between the surfaces (:class:`~warptrunc.contact.adhesion.Adhesion`;
+    a dict of its fields is accepted); default non-adhesive."""
 
     def __post_init__(self) -> None:
         for name in ("direct_max", "precondition_above"):
             if isinstance(getattr(self, name), str) and getattr(self, name) == "auto":
                 object.__setattr__(self, name, None)
+        if isinstance(self.adhesion, dict):
+            object.__setattr__(self, "adhesion", Adhesion(**self.adhesion))
+        if not isinstance(self.adhesion, Adhesion):
+            raise ValueError(f"adhesion must be an Adhesion, got {type(self.adhesion).__name__}")
         check_fields(self)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields (SI), the adhesion law as a dict of its own when it is adhesive.
+
+        Returns
+        -------
+        dict
+            One entry per field; ``adhesion`` only with an adhesive law (so that the records
+            of non-adhesive solves stay as they were).
+        """
+        out = super().to_dict()
+        law = out.pop("adhesion")
+        if law.active:
+            out["adhesion"] = law.to_dict()
+        return out
 
 
 @dataclass(frozen=True)

@@ -136,18 +136,16 @@ class ContactSolver(
     contact_modulus : float
         Contact modulus E* (Pa).
     settings : SolverSettings, optional
-        Precision, substrate, tolerances and iteration limits
-        (:class:`~warptrunc.contact.SolverSettings`; default ``SolverSettings()``). Measured
+        Precision, substrate, interaction law, tolerances and iteration limits
+        (:class:`~warptrunc.contact.SolverSettings`; default ``SolverSettings()``). An adhesive
+        ``settings.adhesion`` (:class:`~warptrunc.contact.adhesion.Adhesion`) keeps its forces
+        between solves, so a sequence of solves is an approach–retract history
+        (:mod:`warptrunc.contact.iteration.adhesive`); it needs H = inf, one device and
+        ``load_control="offset"``. Measured
         float32 against float64 on D = 2.5 WM maps of 128²–512²: F within 5e-7, the same contact
         pixels, k within 3e-5 (relative); about 0.6× the time on the CPU.
     hardness : float
         Hardness H (Pa), the local pressure cap, in (0, inf]; ``inf`` (default): elastic.
-    adhesion : Adhesion, optional
-        The interaction law between the surfaces (:class:`~warptrunc.contact.adhesion.Adhesion`;
-        default None: ``Adhesion()``, non-adhesive, the solver without any change). An adhesive
-        law keeps its forces between solves, so a sequence of solves is an approach–retract
-        history (:mod:`warptrunc.contact.iteration.adhesive`); it needs H = inf, one device and
-        ``load_control="offset"``.
     {warp_device_obj}
     devices : list, int or "auto", optional
         Spread the map over several devices
@@ -173,7 +171,7 @@ class ContactSolver(
             from .sharded.devices import solver_class
 
             cls = solver_class(cls, devices, args, kwargs)
-            law = kwargs.get("adhesion")
+            law = getattr(kwargs.get("settings"), "adhesion", None)
             if cls is not ContactSolver and isinstance(law, Adhesion) and law.active:
                 raise ValueError(
                     f"adhesion ({law.law}) runs on one device: the adhesive solve is not "
@@ -189,21 +187,17 @@ class ContactSolver(
         *,
         settings: SolverSettings | None = None,
         hardness: float = math.inf,
-        adhesion: Adhesion | None = None,
         device: wp.DeviceLike = None,
         devices: Any = None,
     ) -> None:
-        if adhesion is None:
-            adhesion = Adhesion()
-        elif not isinstance(adhesion, Adhesion):
-            raise ValueError(f"adhesion must be an Adhesion, got {type(adhesion).__name__}")
-        self.adhesion = adhesion
-        """The interaction law (:class:`~warptrunc.contact.adhesion.Adhesion`)."""
         if settings is None:
             settings = SolverSettings()
         elif not isinstance(settings, SolverSettings):
             raise ValueError(f"settings must be a SolverSettings, got {type(settings).__name__}")
         self.settings = settings
+        self.adhesion = adhesion = settings.adhesion
+        """The interaction law (``settings.adhesion``, an
+        :class:`~warptrunc.contact.adhesion.Adhesion`)."""
         self.hardness = float(check_value(Material, "hardness", hardness))
         if adhesion.active and math.isfinite(self.hardness):
             raise ValueError(
@@ -307,7 +301,7 @@ class ContactSolver(
         """The cuFFT plans of a map of ``shape`` on this device, or MemoryError before anything
         is allocated (:func:`~warptrunc.contact.memory.fft_plan_that_fits`; the solver over
         several devices checks each device's share instead)."""
-        return fft_plan_that_fits(self.device, shape, settings, adhesion=self.adhesion.active)
+        return fft_plan_that_fits(self.device, shape, settings)
 
     # --- one solve ---------------------------------------------------------------------------
 

@@ -221,8 +221,12 @@ def indent(
         (E = 70 GPa, ν = 0.33, H = 1.0 GPa) against diamond (E_i = 1141 GPa, ν_i = 0.07).
         ``hardness = inf``: elastic.
     solver : SolverSettings, optional
-        Contact-solver settings (precision, tolerances, iteration limit); default the
-        solver's, with the penetration tolerance of each disk's heights.
+        Contact-solver settings (precision, tolerances, iteration limit, interaction law);
+        default the solver's, with the penetration tolerance of each disk's heights. An
+        adhesive ``solver.adhesion`` (:class:`~warptrunc.contact.adhesion.Adhesion`, the punch
+        face's adhesion to the surface) needs ``hardness = inf``: the pressure cap and the
+        plastic flow are not solved with adhesion (ValueError); the loads are then the whole
+        traction's and Barber's stiffness that of the repulsive contact at a fixed area.
     reuse : IndentationResult or dict, optional
         An elastic run (``hardness = inf``) of the same surface, punches, placements, seed,
         peak loads, unloading fraction, E* and solver settings, or its ``to_dict()`` columns
@@ -282,6 +286,13 @@ def indent(
     solver = SolverSettings() if solver is None else solver
     if not isinstance(solver, SolverSettings):
         raise ValueError(f"solver must be a SolverSettings, got {type(solver).__name__}")
+    law = solver.adhesion
+    if law.active and math.isfinite(hardness):
+        raise ValueError(
+            f"adhesion ({law.law}) with a finite hardness ({hardness:g} Pa) is not solved: the "
+            "pressure cap bounds the wall's reaction, and the plastic flow changes the heights "
+            "the adhesive solve pulls on; give hardness = inf (--hardness inf)"
+        )
     elastic = protocol.elastic
     dev = resolve_device(device)
     z, (dx, dy), _info, _params = maps[0]

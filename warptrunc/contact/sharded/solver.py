@@ -65,13 +65,11 @@ class ShardedContactSolver(ContactSolver):
     contact_modulus : float
         Contact modulus E* (Pa).
     settings : SolverSettings, optional
-        As for :class:`~warptrunc.contact.ContactSolver`; ``algorithm`` must be ``"bccg"``;
-        ``direct_max`` and ``fft_plan`` are not used (module docstring).
+        As for :class:`~warptrunc.contact.ContactSolver`; ``algorithm`` must be ``"bccg"`` and
+        ``adhesion`` non-adhesive (the adhesive solve runs on one device); ``direct_max`` and
+        ``fft_plan`` are not used (module docstring).
     hardness : float
         Hardness H (Pa), in (0, inf].
-    adhesion : Adhesion, optional
-        Only a non-adhesive one (None, or ``Adhesion()``): the adhesive solve runs on one
-        device.
     device : str or warp Device, optional
         Unused (the Warp device of the one-device solver); kept for the shared signature.
     devices : list, int or "auto"
@@ -98,14 +96,14 @@ class ShardedContactSolver(ContactSolver):
         *,
         settings: Any = None,
         hardness: float = math.inf,
-        adhesion: Any = None,
         device: Any = None,
         devices: Any = 2,
     ) -> None:
         from .devices import choose_devices, mark_spread
 
-        if adhesion is not None and adhesion.active:
-            raise ValueError(f"adhesion ({adhesion.law}) runs on one device: give one device")
+        law = getattr(settings, "adhesion", None)
+        if law is not None and law.active:
+            raise ValueError(f"adhesion ({law.law}) runs on one device: give one device")
 
         shape = np.shape(heights)
         self._jax_devices = choose_devices(devices, shape, settings, device)
