@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from import_helpers import modules_after
 
 ROOT = Path(__file__).resolve().parents[1]
 HEAVY = (
@@ -25,19 +26,10 @@ HEAVY = (
     "SurfaceTopography",
     "tqdm",
 )
-REPORT = f"import sys; print(sorted({{m.split('.')[0] for m in sys.modules}} & set({HEAVY!r})))"
 
 
 def _loaded(code: str, cwd: Path) -> str:
-    r = subprocess.run(
-        [sys.executable, "-c", f"{code}\n{REPORT}"],
-        cwd=cwd,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert r.returncode == 0, r.stderr
-    return r.stdout.strip().splitlines()[-1]
+    return str(sorted(modules_after(code, cwd) & set(HEAVY)))
 
 
 @pytest.mark.parametrize(
@@ -79,16 +71,7 @@ def test_help_and_import_load_no_warp(code):
     """``import warptrunc`` and ``warptrunc --help`` import neither Warp nor NumPy (public
     names load on first use), so the help answers at once; building one sub-command's parser
     loads only what that sub-command's module imports (Warp, for ``generate``)."""
-    check = "import sys; print(sorted({m.split('.')[0] for m in sys.modules} & {'warp', 'numpy'}))"
-    r = subprocess.run(
-        [sys.executable, "-c", f"{code}\n{check}"],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert r.returncode == 0, r.stderr
-    loaded = r.stdout.strip().splitlines()[-1]
+    loaded = str(sorted(modules_after(code, ROOT) & {"warp", "numpy"}))
     expect = "['numpy', 'warp']" if "generate" in code else "[]"
     assert loaded == expect
 

@@ -7,12 +7,10 @@ nothing imported by other tests counts); matplotlib only when figures are drawn,
 figure process (``warptrunc.plot._worker``), which loads no Warp either; the parser of
 ``analyze`` loads no Warp, so that process starts before Warp's import."""
 
-import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from import_helpers import modules_after
 
 ROOT = Path(__file__).resolve().parents[1]
 UNUSED = (
@@ -27,19 +25,6 @@ UNUSED = (
 )
 
 
-def _loaded(code: str, cwd: Path) -> set[str]:
-    report = "import sys, json; print(json.dumps(sorted({m.split('.')[0] for m in sys.modules})))"
-    r = subprocess.run(
-        [sys.executable, "-c", f"{code}\n{report}"],
-        cwd=cwd,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert r.returncode == 0, r.stderr
-    return set(json.loads(r.stdout.strip().splitlines()[-1]))
-
-
 @pytest.mark.parametrize(
     "code",
     [
@@ -50,7 +35,7 @@ def _loaded(code: str, cwd: Path) -> set[str]:
     ids=["package", "analyze-path", "figure-modules"],
 )
 def test_import_loads_nothing_unused(code):
-    loaded = _loaded(code, ROOT)
+    loaded = modules_after(code, ROOT)
     assert not loaded & set(UNUSED), sorted(loaded & set(UNUSED))
     assert "matplotlib" not in loaded
 
@@ -61,7 +46,7 @@ def test_analyze_with_figures_loads_nothing_unused(tmp_path):
         f"assert main(['analyze', '--n', '128', '--out', {str(tmp_path / 'o')!r},"
         " '--device', 'cpu']) == 0"
     )
-    loaded = _loaded(code, tmp_path)
+    loaded = modules_after(code, tmp_path)
     assert not loaded & set(UNUSED), sorted(loaded & set(UNUSED))
     assert "matplotlib" not in loaded  # the figures were drawn by the figure process
     assert (tmp_path / "o" / "stiffness.png").exists()
@@ -69,7 +54,7 @@ def test_analyze_with_figures_loads_nothing_unused(tmp_path):
 
 def test_analyze_parser_loads_no_warp():
     code = "import warptrunc.cli.analyze as a, argparse\na.add_arguments(argparse.ArgumentParser())"
-    assert "warp" not in _loaded(code, ROOT)
+    assert "warp" not in modules_after(code, ROOT)
 
 
 def test_figure_process_loads_nothing_unused(tmp_path):
@@ -89,6 +74,6 @@ def test_figure_process_loads_nothing_unused(tmp_path):
         "f = N(alpha=0.5, beta=1.0, r2=1.0, F_over_EA_min=1e-8, F_over_EA_max=1e-6)\n"
         "assert png_bytes('stiffness_load', (s, f), {'title': 'R$_t$'})[:4] == b'\\x89PNG'\n"
     )
-    loaded = _loaded(code, tmp_path)
+    loaded = modules_after(code, tmp_path)
     assert "matplotlib" in loaded
     assert not loaded & {"warp", *UNUSED}, sorted(loaded & {"warp", *UNUSED})
