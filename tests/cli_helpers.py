@@ -3,6 +3,9 @@
 """Small command lines and checks of the command line shared by the tests (not a test
 module)."""
 
+import subprocess
+import sys
+
 from warptrunc.cli import main
 
 __all__ = [
@@ -13,6 +16,7 @@ __all__ = [
     "SMALL",
     "assert_refused_in_one_line",
     "compare_cli",
+    "run_cli",
     "sweep_cli",
 ]
 
@@ -63,6 +67,19 @@ INDENT_CLI = [
 
 RENDER_CLI = ["render", "--n", "32", "--depth-fractions", "0.3"]
 """``warptrunc render`` of one section of a 32² map (the image size is the caller's)."""
+
+
+def run_cli(*args, cwd=None, env=None) -> subprocess.CompletedProcess:
+    """``python -m warptrunc ARGS`` as a user runs it: a subprocess in ``cwd`` with ``env``
+    (default: this one's), its output captured as text, stopped after 300 s."""
+    return subprocess.run(
+        [sys.executable, "-m", "warptrunc", *map(str, args)],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        timeout=300,
+        env=env,
+    )
 
 
 def sweep_cli(*D: str, n: str = "64") -> list[str]:

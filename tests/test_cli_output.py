@@ -7,12 +7,10 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
-from cli_helpers import RENDER_CLI
+from cli_helpers import RENDER_CLI, run_cli
 
 import warptrunc
 
@@ -22,14 +20,7 @@ NOTICES = ("CUDA driver", "bad X server", "vtkXOpenGLRenderWindow", "Warp CUDA w
 def cli(*args, cwd, env_extra=None):
     env = {k: v for k, v in os.environ.items() if k != "WARPTRUNC_VERBOSE"}
     env.update(env_extra or {})
-    return subprocess.run(
-        [sys.executable, "-m", "warptrunc", *map(str, args)],
-        capture_output=True,
-        text=True,
-        cwd=cwd,
-        timeout=300,
-        env=env,
-    )
+    return run_cli(*args, cwd=cwd, env=env)
 
 
 def _no_cuda_driver() -> bool:

@@ -4,12 +4,11 @@
 would (subprocesses), checked against scipy.ndimage.label."""
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 import scipy.ndimage as ndi
+from cli_helpers import run_cli
 
 import warptrunc
 from warptrunc import plot
@@ -39,12 +38,7 @@ COLUMNS = (
 
 
 def cli(*args):
-    return subprocess.run(
-        [sys.executable, "-m", "warptrunc", "islands", *map(str, args)],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    return run_cli("islands", *args)
 
 
 def test_islands_cli_on_a_height_map(tmp_path):

@@ -6,12 +6,11 @@ WM surfaces and clean real scans, D outside (2, 3), fits not worth reading, the 
 
 import json
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_helpers import run_cli
 
 import warptrunc as wt
 from warptrunc import plausibility as pl
@@ -140,19 +139,7 @@ def test_repeated_passes_find_a_spike_population_one_pass_misses():
 
 def test_spikes_report_counts_one_pass(spiky_map, tmp_path):
     """``analyze --spikes report``: the spikes reported as one pass finds them, the map kept."""
-    r = _cli(
-        "analyze",
-        "--input",
-        spiky_map / "spiky.npz",
-        "--no-plot",
-        "--out",
-        tmp_path / "r",
-        "--device",
-        "cpu",
-        "--spikes",
-        "report",
-        cwd=tmp_path,
-    )
+    r = _analyze(spiky_map / "spiky.npz", tmp_path / "r", "--spikes", "report", cwd=tmp_path)
     assert r.returncode == 2  # the spike alone is in contact at 0.1·R_t: nothing to fit
     assert "warning: spikes: 1 spike pixel(s) (first at iy=40, ix=200)" in r.stderr
     assert "reported, not masked" in r.stderr and "auto_spikes_masked" not in r.stderr
@@ -255,14 +242,23 @@ def test_report_prints_one_line_each(capsys):
 
 
 def _cli(*args, cwd):
-    r = subprocess.run(
-        [sys.executable, "-m", "warptrunc", *map(str, args)],
+    return run_cli(*args, cwd=cwd)
+
+
+def _analyze(height_map, out, *extra, cwd):
+    """``warptrunc analyze --input MAP --no-plot --out OUT --device cpu EXTRA`` in ``cwd``."""
+    return _cli(
+        "analyze",
+        "--input",
+        height_map,
+        "--no-plot",
+        "--out",
+        out,
+        "--device",
+        "cpu",
+        *extra,
         cwd=cwd,
-        capture_output=True,
-        text=True,
-        timeout=300,
     )
-    return r
 
 
 @pytest.fixture(scope="module")
@@ -277,17 +273,7 @@ def spiky_map(tmp_path_factory):
 
 
 def test_analyze_flags_and_fits_a_spiky_map(spiky_map, tmp_path):
-    r = _cli(
-        "analyze",
-        "--input",
-        spiky_map / "spiky.npz",
-        "--no-plot",
-        "--out",
-        tmp_path / "a",
-        "--device",
-        "cpu",
-        cwd=tmp_path,
-    )
+    r = _analyze(spiky_map / "spiky.npz", tmp_path / "a", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert "warning: auto_spikes_masked: 1 spike pixel(s) (first at iy=40, ix=200;" in r.stderr
     info = json.loads((tmp_path / "a" / "fit.json").read_text())
@@ -302,35 +288,13 @@ def test_analyze_flags_and_fits_a_spiky_map(spiky_map, tmp_path):
     fit = fit_power_law(stiffness_curve(wt.truncate(s, 200, max_depth_fraction=0.1)))
     assert abs(info["alpha"] - fit.alpha) < 1e-3
     # the legacy range on the same map: ω_max = 0.1·R_t of the spike touches the spike alone
-    r = _cli(
-        "analyze",
-        "--input",
-        spiky_map / "spiky.npz",
-        "--no-plot",
-        "--out",
-        tmp_path / "b",
-        "--device",
-        "cpu",
-        "--fit-range",
-        "legacy",
-        cwd=tmp_path,
-    )
+    r = _analyze(spiky_map / "spiky.npz", tmp_path / "b", "--fit-range", "legacy", cwd=tmp_path)
     assert r.returncode == 2 and "only 0 increments in the fit range" in r.stderr
     assert "warning: spikes: 1 spike pixel(s) (first at iy=40, ix=200)" in r.stderr
 
 
 def test_analyze_on_a_clean_map_keeps_the_legacy_range(spiky_map, tmp_path):
-    r = _cli(
-        "analyze",
-        "--input",
-        spiky_map / "clean.npz",
-        "--no-plot",
-        "--out",
-        tmp_path / "a",
-        "--device",
-        "cpu",
-        cwd=tmp_path,
-    )
+    r = _analyze(spiky_map / "clean.npz", tmp_path / "a", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert not [ln for ln in r.stderr.splitlines() if ln.startswith("warning:")], r.stderr
     info = json.loads((tmp_path / "a" / "fit.json").read_text())
