@@ -49,13 +49,13 @@ from warptrunc._support.provenance import provenance
 from warptrunc.calibrate import (
     CalibrationError,
     CalibrationSettings,
-    CalibrationTarget,
     calibrate,
 )
 from warptrunc.descriptors import surface_statistics
 from warptrunc.fractal import fractal_dimension
 from warptrunc.presets import TABLE1_TRI
 from warptrunc.reproduce.paper import TABLE1, TABLE1_SD
+from warptrunc.reproduce.study import table1_target
 from warptrunc.wm import wm_surface
 
 UM = 1e-6
@@ -129,18 +129,8 @@ def _summary(name, method, D_in, Rt, Wr, ds, rms, rtol, bounds, reach):
 
 def calibrate_vs(name, n, L, seeds, rtol, bounds, device):
     """Fig. 4 loop on D_vs and R_rms for one Table 1 surface; its record."""
-    Rt_p, Rrms_p, wr, *d_paper = TABLE1[name]
-    Wr = 2 * L if wr is None else wr * UM
-    target = CalibrationTarget(
-        D=d_paper[2],
-        method="vs",
-        Rrms=Rrms_p * UM,
-        Rt=Rt_p * UM,
-        Wr=Wr,
-        L=L,
-        n=n,
-        source=f"Table 1 {name}",
-    )
+    target = table1_target(name, "vs", n, L)
+    Wr = target.Wr
     t0, w0 = time.process_time(), time.perf_counter()
     try:
         settings = CalibrationSettings(seeds=seeds, rtol=rtol, D_bounds=bounds)

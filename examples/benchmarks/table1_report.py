@@ -33,7 +33,7 @@ import numpy as np
 from warptrunc.calibrate import CalibrationError, CalibrationSettings, calibrate
 from warptrunc.fractal import DEFAULT_HEIGHT_SCALING, HEIGHT_SCALINGS, METHODS, fractal_dimensions
 from warptrunc.reproduce.paper import TABLE1
-from warptrunc.reproduce.study import table1_targets
+from warptrunc.reproduce.study import calibration_fields, table1_targets
 from warptrunc.wm import wm_surface
 
 UM = 1e-6
@@ -88,10 +88,7 @@ def report(n, L, seeds, rtol, methods, device, progress, height_scaling=DEFAULT_
         ]
         row.update(
             status="ok",
-            D_in=cal.D_in,
-            Rt_m=cal.Rt,
-            Rrms_m=cal.Rrms,
-            iterations=cal.iterations,
+            **calibration_fields(cal),
             seconds=time.perf_counter() - t0,
             **{f"D_{k}": float(np.mean([f[k].D for f in fits])) for k in METHODS},
             **{f"D_{k}_std": float(np.std([f[k].D for f in fits])) for k in METHODS},

@@ -130,6 +130,59 @@ def stage_fig5(p: Profile, device) -> dict[str, Any]:
     return {"inputs": kw, "max_depth_fraction": 0.5, "loads": LOADS, "rows": rows}
 
 
+def table1_target(
+    name: str, method: str, n: int, L: float, options: dict | None = None
+) -> CalibrationTarget:
+    """The calibration target of one Table 1 surface and fractal method.
+
+    Parameters
+    ----------
+    name : str
+        The surface's name in Table 1 (a key of :data:`warptrunc.reproduce.paper.TABLE1`).
+    method : str
+        The fractal method whose D is matched (a key of :data:`warptrunc.fractal.METHODS`).
+    n : int
+        Pixels per side of the calibration surfaces.
+    L : float
+        Their side (m); W_r = 2·L for Ps, whose W_r is "≫ the scan" in Table 1.
+    options : dict, optional
+        The method's options; default none.
+
+    Returns
+    -------
+    CalibrationTarget
+        The paper's D of the method, R_rms and R_t (m) on n² pixels over ``L``.
+    """
+    Rt, rrms, wr, *d_paper = TABLE1[name]
+    return CalibrationTarget(
+        D=dict(zip(METHODS, d_paper, strict=True))[method],
+        method=method,
+        Rrms=rrms * UM,
+        Rt=Rt * UM,
+        Wr=2 * L if wr is None else wr * UM,
+        L=L,
+        n=n,
+        source=f"Table 1 {name}",
+        method_options=options or {},
+    )
+
+
+def calibration_fields(cal: Any) -> dict[str, Any]:
+    """The row fields of a calibration result: D_in, R_t' and R_rms (m) reached, evaluations.
+
+    Parameters
+    ----------
+    cal : Calibration
+        The result of :func:`warptrunc.calibrate.calibrate`.
+
+    Returns
+    -------
+    dict
+        ``D_in``, ``Rt_m``, ``Rrms_m``, ``iterations``.
+    """
+    return {"D_in": cal.D_in, "Rt_m": cal.Rt, "Rrms_m": cal.Rrms, "iterations": cal.iterations}
+
+
 def table1_targets(methods, n: int, L: float, method_options: dict | None = None):
     """The calibration targets of Table 1's simulated surfaces, one per surface and method.
 
@@ -140,7 +193,7 @@ def table1_targets(methods, n: int, L: float, method_options: dict | None = None
     n : int
         Pixels per side of the calibration surfaces.
     L : float
-        Their side (m); W_r = 2·L for Ps, whose W_r is "≫ the scan" in Table 1.
+        Their side (m).
     method_options : dict, optional
         Options of each method (method → dict); default none.
 
@@ -151,24 +204,12 @@ def table1_targets(methods, n: int, L: float, method_options: dict | None = None
     paper_d : dict of str to float
         The paper's D by method (dimensionless).
     target : CalibrationTarget
-        The paper's D of the method, R_rms and R_t (m) on n² pixels over ``L``.
+        :func:`table1_target` of the surface and method.
     """
-    for name, (Rt, rrms, wr, *d_paper) in TABLE1.items():
-        wr_m = 2 * L if wr is None else wr * UM
+    for name, (_, _, _, *d_paper) in TABLE1.items():
         paper_d = dict(zip(METHODS, d_paper, strict=True))
         for m in methods:
-            target = CalibrationTarget(
-                D=paper_d[m],
-                method=m,
-                Rrms=rrms * UM,
-                Rt=Rt * UM,
-                Wr=wr_m,
-                L=L,
-                n=n,
-                source=f"Table 1 {name}",
-                method_options=(method_options or {}).get(m, {}),
-            )
-            yield name, paper_d, target
+            yield name, paper_d, table1_target(name, m, n, L, (method_options or {}).get(m))
 
 
 def stage_table1(p: Profile, device) -> dict[str, Any]:
@@ -197,10 +238,7 @@ def stage_table1(p: Profile, device) -> dict[str, Any]:
         ]
         row.update(
             status="ok",
-            D_in=cal.D_in,
-            Rt_m=cal.Rt,
-            Rrms_m=cal.Rrms,
-            iterations=cal.iterations,
+            **calibration_fields(cal),
             D_out={k: float(np.mean([d[k]["D"] for d in ds])) for k in METHODS},
             D_options={k: ds[0][k]["options"] for k in METHODS},
         )
