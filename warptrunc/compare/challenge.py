@@ -42,7 +42,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..material import Material
-from ..params import Parameters, check_fields, param
+from ..params import Parameters, check_fields, param, param_like
 from ..presets import CHALLENGE, CHALLENGE_MATERIAL
 from ..selfaffine import SelfAffineSpec
 
@@ -112,7 +112,7 @@ class ChallengeSettings(Parameters):
         le=1 << 16,
         sweep=False,
     )
-    seed: int = param(0, "seed of the random phases", kind="int", ge=0, le=2**32 - 1, sweep=False)
+    seed: int = param_like(SelfAffineSpec, "seed")
     short_cutoff: float | None = param(
         None,
         "shortest wavelength λ_s of the generated surface; none = the challenge's 0.1 µm, or "
