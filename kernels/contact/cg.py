@@ -171,6 +171,24 @@ def step_length_kernel(
 
 
 @wp.func
+def stepped_force(
+    q: wp.array2d(dtype=Any),
+    t: wp.array2d(dtype=Any),
+    mask: wp.array2d(dtype=wp.uint8),
+    tau: wp.float64,
+    iy: int,
+    ix: int,
+):
+    """A pixel's mask and its force after the CG step, q − τ·t on the CG set (mask bit 0), else
+    q (shared with ``kernels/contact/plastic.py``): ``m, qv``."""
+    m = mask[iy, ix]
+    qv = q[iy, ix]
+    if (int(m) & 1) != 0:
+        qv = qv - q.dtype(tau) * t[iy, ix]
+    return m, qv
+
+
+@wp.func
 def store_force(
     changed: bool,
     m: wp.uint8,
@@ -255,10 +273,7 @@ def update_force_kernel(
     zero = q.dtype(0.0)
     count = int(0)
     while i < n:
-        m = mask[iy, ix]
-        qv = q[iy, ix]
-        if (int(m) & 1) != 0:
-            qv = qv - q.dtype(tau) * t[iy, ix]
+        m, qv = stepped_force(q, t, mask, tau, iy, ix)
         q_lin = qv
         changed = False
         if qv <= zero:

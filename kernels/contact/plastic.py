@@ -16,7 +16,14 @@ from typing import Any
 import warp as wp
 
 from ..lanes import declare_overloads, lane_next, lane_start
-from .cg import advance_at, direction_at, fold_step, store_force, store_update_partials
+from .cg import (
+    advance_at,
+    direction_at,
+    fold_step,
+    stepped_force,
+    store_force,
+    store_update_partials,
+)
 
 wp.set_module_options({"enable_backward": False})
 
@@ -136,10 +143,7 @@ def capped_update_kernel(
     half = q.dtype(wp.float64(0.5) * hf)
     count = int(0)
     while i < n:
-        m = mask[iy, ix]
-        qv = q[iy, ix]
-        if (int(m) & 1) != 0:
-            qv = qv - q.dtype(tau) * t[iy, ix]
+        m, qv = stepped_force(q, t, mask, tau, iy, ix)
         q_lin = qv
         changed = False
         if qv <= zero:
