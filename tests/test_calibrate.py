@@ -25,6 +25,8 @@ from warptrunc.wm import wm_surface
 
 L = 1e-3
 WR = L / 8
+TARGET = ["--Rrms", "2e-6", "--Rt", "15e-6", "--Wr", str(WR), "--L", str(L)]
+"""R_rms, R_t, W_r and L of the command-line calibrations."""
 
 
 def _scan(D=2.45, seed=42, n=128, Rt=300e-6):
@@ -178,14 +180,7 @@ def test_cli_calibrate_typed_targets(tmp_path, capsys):
             "sp",
             "--D",
             "2.4",
-            "--Rrms",
-            "2e-6",
-            "--Rt",
-            "15e-6",
-            "--Wr",
-            str(WR),
-            "--L",
-            str(L),
+            *TARGET,
             "--n",
             "128",
             "--seeds",
@@ -248,14 +243,7 @@ def test_cli_calibrate_d_bounds(tmp_path, capsys):
         "vs",
         "--D",
         "2.70",
-        "--Rrms",
-        "2e-6",
-        "--Rt",
-        "15e-6",
-        "--Wr",
-        str(WR),
-        "--L",
-        str(L),
+        *TARGET,
         "--n",
         "64",
         "--seeds",

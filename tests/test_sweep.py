@@ -211,6 +211,24 @@ def test_fractal_methods_and_relative_fit_range(tmp_path):
         SweepOptions(min_pixels_fraction=(1.5,))
 
 
+def _one_case(increments: int) -> list[str]:
+    """``warptrunc sweep`` options of one 64² case (D = 2.5, δ = 0.01) with ``increments``, on
+    the CPU without progress bars."""
+    return [
+        "--D",
+        "2.5",
+        "--delta",
+        "0.01",
+        "--n",
+        "64",
+        "--increments",
+        str(increments),
+        "--device",
+        "cpu",
+        "--no-progress",
+    ]
+
+
 def test_cli_fractal_and_fraction_options(tmp_path, capsys):
     from warptrunc.cli import main
 
@@ -218,17 +236,7 @@ def test_cli_fractal_and_fraction_options(tmp_path, capsys):
     rc = main(
         [
             "sweep",
-            "--D",
-            "2.5",
-            "--delta",
-            "0.01",
-            "--n",
-            "64",
-            "--increments",
-            "30",
-            "--device",
-            "cpu",
-            "--no-progress",
+            *_one_case(30),
             "--fractal",
             "vs",
             "sp",
@@ -615,17 +623,7 @@ def test_cli_killed_then_resumed_equals_uninterrupted(tmp_path, reference, sig):
 def test_cli_refuses_other_grid(tmp_path):
     out = tmp_path / "run"
     args = [
-        "--D",
-        "2.5",
-        "--delta",
-        "0.01",
-        "--n",
-        "64",
-        "--increments",
-        "20",
-        "--device",
-        "cpu",
-        "--no-progress",
+        *_one_case(20),
         "--out",
         str(out),
     ]
