@@ -436,6 +436,29 @@ def advance_at(
     return wp.abs(wp.float64(un) - wp.float64(uo))
 
 
+@wp.func
+def store_advance_partials(
+    lane: int,
+    du_max: wp.float64,
+    n_c: wp.float64,
+    s_g: wp.float64,
+    s_gg: wp.float64,
+    viol: wp.float64,
+    s_gap: wp.float64,
+    s_q: wp.float64,
+    part: wp.array2d(dtype=wp.float64),
+):
+    """A lane's part[lane, 0:7] of a displacement advance, [max abs(Δu), n in the CG set, Σ c·g,
+    Σ c·g², largest violation, Σ g, Σ q] (shared with ``kernels/contact/plastic.py``)."""
+    part[lane, 0] = du_max
+    part[lane, 1] = n_c
+    part[lane, 2] = s_g
+    part[lane, 3] = s_gg
+    part[lane, 4] = viol
+    part[lane, 5] = s_gap
+    part[lane, 6] = s_q
+
+
 @wp.kernel
 def advance_kernel(
     r: wp.array2d(dtype=Any),
@@ -487,13 +510,7 @@ def advance_kernel(
         if (int(mask[iy, ix]) & 1) != 0:
             pen = wp.max(pen, -g)
         i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
-    part[lane, 0] = du_max
-    part[lane, 1] = n_c
-    part[lane, 2] = s_g
-    part[lane, 3] = s_gg
-    part[lane, 4] = pen
-    part[lane, 5] = s_gap
-    part[lane, 6] = s_q
+    store_advance_partials(lane, du_max, n_c, s_g, s_gg, pen, s_gap, s_q, part)
 
 
 @wp.kernel

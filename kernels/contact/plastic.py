@@ -21,6 +21,7 @@ from .cg import (
     direction_at,
     fold_step,
     stepped_force,
+    store_advance_partials,
     store_force,
     store_update_partials,
 )
@@ -228,13 +229,7 @@ def capped_advance_kernel(
         if (int(mask[iy, ix]) & 1) != 0:
             viol = wp.max(viol, -g)
         i, iy, ix = lane_next(i, iy, ix, step, sy, sx, nx)
-    part[lane, 0] = du_max
-    part[lane, 1] = n_c
-    part[lane, 2] = s_g
-    part[lane, 3] = s_gg
-    part[lane, 4] = viol
-    part[lane, 5] = s_gap
-    part[lane, 6] = s_q
+    store_advance_partials(lane, du_max, n_c, s_g, s_gg, viol, s_gap, s_q, part)
 
 
 @wp.kernel
