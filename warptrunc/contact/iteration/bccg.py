@@ -286,16 +286,23 @@ class BCCGSolves:
             return self._punch_cg(x, res, n_set, rtol)  # a small set: plain CG
         scratch, _ = self._bccg_maps()  # the last z (unused here, a kernel output)
         d = self.t
-        z = hs.apply(res, inverse=True)
-        red.launch(_kb.bccg_dot_kernel, n_map, [z, res, d, self.mask], [])
-        rz = float(red.read((False, False))[1])  # sync point
-        red.launch(
-            _kb.bccg_direction_kernel,
-            n_map,
-            [z, wp.float64(0.0), wp.float64(0.0), self.mask, res],
-            [d, scratch],
-        )
-        del z
+
+        def direction(rz_old: float | None) -> float:
+            """z = c·K⁻¹·c·res, d ← z + β·d with β = rz/rz_old (0 at the start); returns
+            rz = Σ res·z."""
+            z = hs.apply(res, inverse=True)
+            red.launch(_kb.bccg_dot_kernel, n_map, [z, res, d, self.mask], [])
+            rz = float(red.read((False, False))[1])  # sync point
+            beta = 0.0 if rz_old is None else rz / rz_old
+            red.launch(
+                _kb.bccg_direction_kernel,
+                n_map,
+                [z, wp.float64(0.0), wp.float64(beta), self.mask, res],
+                [d, scratch],
+            )
+            return rz
+
+        rz = direction(None)
         k, it, ok = 0.0, 0, False
         for it in range(1, self.maxiter + 1):  # noqa: B007
             kd = hs.apply(self.t_buf, energy_column=0)
@@ -309,15 +316,5 @@ class BCCGSolves:
             if math.sqrt(rr_new / n_set) < rtol:
                 ok = True
                 break
-            z = hs.apply(res, inverse=True)
-            red.launch(_kb.bccg_dot_kernel, n_map, [z, res, d, self.mask], [])
-            rz_new = float(red.read((False, False))[1])  # sync point
-            red.launch(
-                _kb.bccg_direction_kernel,
-                n_map,
-                [z, wp.float64(0.0), wp.float64(rz_new / rz), self.mask, res],
-                [d, scratch],
-            )
-            del z
-            rz = rz_new
+            rz = direction(rz)
         return float(k), it, ok
