@@ -106,7 +106,8 @@ def test_record_of_a_wm_map_has_both_methods_and_the_warning(device):
     (w,) = slope_warnings(rec)
     assert w.code == "slope"
     cpu = slope_record(wm_surface(D=2.9, Wr=L / 8, L=L, n=256, Rt=20e-6, seed=0, device="cpu"))
-    assert rec["slope_rms"] == pytest.approx(cpu["slope_rms"], rel=1e-12)  # same on every device
+    # the same map on every device to float32 rounding (the GPU's tile product sums in another order)
+    assert rec["slope_rms"] == pytest.approx(cpu["slope_rms"], rel=1e-6)
     # a streamed map has no map: the spectrum alone
     only = slope_record(params=s.to_dict())
     assert only["method"] == "spectrum" and only["finite_differences"] is None

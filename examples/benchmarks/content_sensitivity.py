@@ -33,7 +33,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import RECORDS, record_name  # noqa: E402
+from _common import RECORDS, record_name
 
 WCS = (2e-3 / 1024, 1e-3 / 1024, 0.5e-3 / 1024, 0.2e-3 / 1024)
 
@@ -65,6 +65,20 @@ def main(argv=None) -> int:
 
     dev = wt.resolve_device(args.device)
     rows = []
+    args.out.mkdir(parents=True, exist_ok=True)
+    path = args.out / record_name("content_sensitivity", str(dev))
+
+    def write() -> None:  # after every row: a run stopped by its time limit keeps what it did
+        doc = {
+            "title": "sensitivity of the reported numbers to the content cut-off W_c",
+            "source": "examples/benchmarks/content_sensitivity.py",
+            "device": str(dev),
+            "device_name": getattr(dev, "name", str(dev)),
+            "argv": sys.argv[1:] if argv is None else list(argv),
+            "rows": rows,
+        }
+        path.write_text(json.dumps(doc, indent=1, default=lambda v: None if v != v else v) + "\n")
+
     for name in args.presets:
         for wc in args.wc:
             spec = TABLE1[name].replace(n=args.n, L=args.L, Wc=wc)
@@ -125,18 +139,8 @@ def main(argv=None) -> int:
                     f"  depth {row['depth_m'] * 1e6:.4g} µm  K_el {row['elastic_K_N_per_m']:.4g}"
                 )
             print(msg + f"  ({row['seconds']:.1f} s)", flush=True)
+            write()
             del s
-    args.out.mkdir(parents=True, exist_ok=True)
-    path = args.out / record_name("content_sensitivity", str(dev))
-    doc = {
-        "title": "sensitivity of the reported numbers to the content cut-off W_c",
-        "source": "examples/benchmarks/content_sensitivity.py",
-        "device": str(dev),
-        "device_name": getattr(dev, "name", str(dev)),
-        "argv": sys.argv[1:] if argv is None else list(argv),
-        "rows": rows,
-    }
-    path.write_text(json.dumps(doc, indent=1, default=lambda v: None if v != v else v) + "\n")
     print(f"wrote {path}")
     return 0 if all(math.isfinite(r["alpha"]) for r in rows) else 1
 
