@@ -10,7 +10,9 @@ Launched by ``warptrunc.contact.iteration.adhesive`` (``ContactSolver`` with an
 whole traction ``q + a``. Array layouts, the lane walk and the partials array ``part`` are
 those of ``kernels/contact/cg.py``. Laws (``law``): 1 Maugis–Dugdale, ``a = −σ₀·dx·dy`` where
 ``g < h₀`` (σ₀ = w/h₀), else 0; 2 exponential, ``a = −(w/ρ)·exp(−g/ρ)·dx·dy``; gaps below 0
-(the round-off of a closed gap) count as 0. ``work_area`` is w·dx·dy (J), ``length`` is h₀ or
+(the round-off of a closed gap) count as 0, and so does the gap of a pixel the wall pushes
+(q > 0: closed, its u − h − offset within the solve's tolerance of 0, which the law must not
+read: for ρ near the tolerance it would make the forces of the contact jitter). ``work_area`` is w·dx·dy (J), ``length`` is h₀ or
 ρ (m). Float32 and float64 instances of every kernel (``wp.overload``); reductions are float64.
 """
 
@@ -65,6 +67,8 @@ def adhesive_force_kernel(
     s_old = wp.float64(0.0)
     while i < n:
         g = wp.float64(u[iy, ix]) - wp.float64(h[iy, ix]) - offset
+        if q[iy, ix] > q.dtype(0.0):
+            g = wp.float64(0.0)  # the wall pushes: the gap is closed (u − h − offset is within pentol of 0)
         old = wp.float64(a[iy, ix])
         new = wp.float64(a.dtype(law_force(law, g, work_area, length)))
         a[iy, ix] = a.dtype(new)
