@@ -64,7 +64,7 @@ def commands(scan: Path, out: Path) -> dict[str, list[str]]:
             "--out",
             out / "describe",
         ],
-        "islands": ["islands", *SMALL, "--increments", "50", "--out", out / "islands"],
+        "islands": ["islands", *SMALL, "--increments", "50", "--no-progress", "--out", out / "islands"],
         "generate": ["generate", "--n", "256", "-o", out / "surface.npz"],
         "calibrate": [
             *CALIBRATE_CLI,

@@ -28,7 +28,7 @@ from warptrunc.cli import _interrupted_text
 ROOT = Path(__file__).resolve().parents[1]
 
 COMMANDS = {
-    "analyze": ["analyze", "--n", "512"],
+    "analyze": ["analyze", "--n", "4096"],
     "bem-check": ["bem-check", "--n", "128", "--no-progress"],
     "islands": ["islands", "--n", "256", "--no-progress"],
     "compare": compare_cli("2.3", "32", "0-3"),

@@ -27,9 +27,29 @@ sys.exit(main(sys.argv[1:]))
 """
 
 
-def _limited(argv: list[str], cwd: Path) -> subprocess.CompletedProcess:
+def _limited(
+    argv: list[str], cwd: Path, *, warm: bool = True, env: dict | None = None
+) -> subprocess.CompletedProcess:
+    """``argv`` under a 4000-byte file-size limit; ``warm``: run once without it first (in a
+    folder of its own), so that Warp's kernels of the command are compiled and cached and the
+    limit meets the command's outputs, not the kernel cache."""
     path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)
-    env = {**os.environ, "PYTHONPATH": path, "WARPTRUNC_DEVICE": "cpu", "MPLBACKEND": "Agg"}
+    env = {
+        **os.environ,
+        "PYTHONPATH": path,
+        "WARPTRUNC_DEVICE": "cpu",
+        "MPLBACKEND": "Agg",
+        **(env or {}),
+    }
+    if warm:
+        (cwd / "warm").mkdir()
+        subprocess.run(
+            [sys.executable, "-m", "warptrunc", *argv],
+            capture_output=True,
+            env=env,
+            cwd=cwd / "warm",
+            timeout=300,
+        )
     return subprocess.run(
         [sys.executable, "-c", LIMITED, *argv],
         capture_output=True,
@@ -75,6 +95,17 @@ def test_a_file_size_limit_names_the_file(argv, named, tmp_path):
     line = _error_line(_limited(argv, tmp_path))
     assert "File too large" in line and "ulimit -f" in line, line
     assert line.endswith(f": {named}"), line
+
+
+def test_a_kernel_cache_under_a_file_size_limit_is_named(tmp_path):
+    # an empty kernel cache: the command's first act under the limit is to compile a kernel
+    cache = tmp_path / "kernels"
+    argv = ["generate", "--n", "64", "-o", "s.npz"]
+    r = _limited(argv, tmp_path, warm=False, env={"WARP_CACHE_PATH": str(cache)})
+    line = _error_line(r)
+    assert "File too large" in line and "writing Warp's kernel cache under" in line, line
+    assert str(cache.name) in line, line
+    assert not (tmp_path / "s.npz").exists()
 
 
 def test_a_sweep_under_a_file_size_limit_names_its_part(tmp_path):

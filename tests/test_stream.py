@@ -165,6 +165,12 @@ def test_cli_stream_equals_in_memory(tmp_path, capsys):
     assert fa.pop("path") == "in-memory" and fb.pop("path") == "streamed"
     assert fb.pop("streaming") == {"band_rows": 24, "n_bands": 5, "reason": "--stream given"}
     assert fa.pop("provenance")["command"] != fb.pop("provenance")["command"]  # the runs differ
+    # a streamed map is never held whole: its slope is the spectrum's, the in-memory map's the
+    # finite differences' at the pixel, beside the same spectrum
+    sa, sb = fa["surface"].pop("slope"), fb["surface"].pop("slope")
+    assert sa["method"] == "finite differences" and sb["method"] == "spectrum"
+    assert sb["finite_differences"] is None and sa["spectrum"] == sb["spectrum"]
+    assert sb["slope_rms"] == sb["spectrum"]["slope_rms"]
     assert fa == fb
 
 

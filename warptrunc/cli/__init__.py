@@ -265,8 +265,9 @@ def _error_text(exc: BaseException, out: object = None) -> str:
 
     An error of the file system names its file (``File too large: 'out/fit.json'``); one
     that carries no file name names the command's output ``out`` when there is one
-    (``File too large, writing under 'sweep'``). A file-size limit (EFBIG) says where such a
-    limit comes from.
+    (``File too large, writing under 'sweep'``), or Warp's kernel cache when the error came
+    from compiling a kernel there (``$WARP_CACHE_PATH``). A file-size limit (EFBIG) says where
+    such a limit comes from.
     """
     from .._support.messages import one_line, show
 
@@ -279,10 +280,31 @@ def _error_text(exc: BaseException, out: object = None) -> str:
             why += " (over a file-size limit: the shell's ulimit -f, or the file system's)"
         if exc.filename is not None:
             return one_line(f"{why}: {show(exc.filename)}")
+        cache = _warp_cache_dir(exc)
+        if cache is not None:
+            return one_line(f"{why}, writing Warp's kernel cache under {show(cache)}")
         if out is not None:
             return one_line(f"{why}, writing under {show(out)}")
         return one_line(why)
     return msg or type(exc).__name__
+
+
+def _warp_cache_dir(exc: BaseException) -> str | None:
+    """Warp's kernel cache folder when ``exc`` was raised inside Warp's module loading (a
+    kernel compiled and written there), else None."""
+    tb = exc.__traceback__
+    last = None
+    while tb is not None:
+        last = tb.tb_frame.f_code.co_filename
+        tb = tb.tb_next
+    if last is None or f"{os.sep}warp{os.sep}" not in last:
+        return None
+    try:
+        import warp as wp
+
+        return str(wp.config.kernel_cache_dir or "") or None
+    except Exception:
+        return None
 
 
 if __name__ == "__main__":

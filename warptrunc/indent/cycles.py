@@ -148,7 +148,6 @@ def run_cycles(
     elastic: dict[str, np.ndarray] | None = None,
     approach: Any = None,
     step: Any = None,
-    detection: bool = True,
     boxes: bool = False,
     device: Any = None,
     devices: Any = None,
@@ -182,11 +181,6 @@ def run_cycles(
         fewer).
     step : callable, optional
         Called once per cycle (a progress bar's ``update``).
-    detection : bool
-        Solve at the protocol's ``detection_load`` F_s before the first cycle solved (loading
-        monotonically: F_s is below every peak) and give its approach δ(F_s) as
-        ``detection_displacement`` (:mod:`warptrunc.indent.depth`); when every cycle is copied
-        from ``elastic``, its value there. False, or no ``detection_load``: NaN.
     boxes : bool
         Also return, per peak, the bounding boxes of the contact and of the pixels near it
         (``contact_box``, ``near_box``: (m, 4) int64 (iy0, ix0, iy1, ix1) in window pixels,
@@ -206,7 +200,9 @@ def run_cycles(
         largest contact pressure (Pa), Barber's unloading stiffness and the partial-unloading
         secant (N/m), the approach after the partial unloading (m), the constrained-CG
         iterations of the peak solve, whether every solve of the cycle converged and the
-        approach at the detection load (m, the same at every peak).
+        approach at the protocol's ``detection_load`` F_s (m, the same at every peak; solved
+        before the first cycle solved, loading monotonically, or copied from ``elastic`` when
+        every cycle is; NaN without a ``detection_load``: :mod:`warptrunc.indent.depth`).
     """
     loads = np.asarray(protocol.peak_loads, dtype=np.float64)
     hardness = material.hardness
@@ -288,7 +284,7 @@ def run_cycles(
             out[c].append(b)
         if step is not None:
             step()
-    f_s = protocol.detection_load if detection else None
+    f_s = protocol.detection_load
     det = math.nan
     if f_s is not None and cs is None and elastic is not None:
         det = float(np.asarray(elastic.get("detection_displacement", [math.nan]))[0])
