@@ -577,6 +577,7 @@ the rows left out)."""
 
 BEM_TABLE = "bem_table_cpu_2026-11-23.json"
 
+
 def preset_slopes() -> str:
     """The D_vs presets' content and h′_rms (``warptrunc.presets.CALIBRATION``)."""
     from warptrunc.presets import CALIBRATION, TABLE1
@@ -607,8 +608,207 @@ def preset_slopes() -> str:
     )
 
 
+# -- the contact-mechanics challenge ---------------------------------------------------------
+
+
+def _g(x: float | None, fmt: str = ".3g") -> str:
+    return "–" if x is None else format(x, fmt)
+
+
+def challenge_study(folders: list[str]) -> str:
+    """``warptrunc challenge``: per grid, the grid study, κ and the slope of K(p)."""
+    header = [
+        "grid (N → 2N)",
+        "λ_s (µm)",
+        "h′_rms",
+        "a_r moves (N → 2N)",
+        "ū moves",
+        "κ BEM",
+        "κ Persson",
+        "κ GW",
+        "κ BGT",
+        "d ln K/d ln p: BEM",
+        "Persson",
+        "GW",
+        "truncation",
+    ]
+    body, names, machine = [], [], []
+    for folder in folders:
+        name = f"{folder}/challenge.json"
+        d = load(name)
+        g, k, sl = d["grid_study"], d["kappa"], d["stiffness_slope"]
+        grid = f"{g['n'][0]}² → {g['n'][1]}²" if g else f"{d['surface']['grid'][0]}²"
+        lam = d["surface"]["params"].get("short_cutoff")
+        body.append(
+            [
+                grid,
+                _g(None if lam is None else lam * 1e6),
+                _g(d["slope_rms"]),
+                "–" if not g else f"{100 * g['max_change_area_fraction']:.1f} %",
+                "–" if not g else f"{100 * g['max_change_mean_gap']:.2f} %",
+                _g(k.get("bem")),
+                _g(k.get("persson")),
+                _g(k.get("gw")),
+                _g(k.get("bgt")),
+                _g(sl.get("bem")),
+                _g(sl.get("persson")),
+                _g(sl.get("gw")),
+                _g(sl.get("truncation")),
+            ]
+        )
+        names.append(name)
+        prov = d.get("provenance", {})
+        machine.append(f"{prov.get('device') or 'cpu'}, `{_short(prov.get('git_commit'))}`")
+    k0 = load(names[0])["kappa"]
+    note = (
+        f"\nκ = a_r E* h′_rms/p, the mean over the loads with a_r ≤ {k0['max_area_fraction']:g} "
+        f"and ≥ {k0['min_contact_pixels']} contact pixels on the finer grid, h′_rms of the map's "
+        f"spectrum; the limits are √(8/π) = {k0['persson_limit']:.3f} (Persson) and "
+        f"√(2π) = {k0['bgt_limit']:.3f} (BGT). The slopes are fitted over the same loads; "
+        '"moves" is the largest relative change of a_r and of ū over those loads when the '
+        "pixel is halved on the same content.\n"
+    )
+    return _md_table(header, body) + note + _source(names, "; ".join(machine))
+
+
+def challenge_curves(folder: str) -> str:
+    """``warptrunc challenge``: a_r, ū and K against p/E* on the finer grid, every model."""
+    name = f"{folder}/challenge.json"
+    d = load(name)
+    c = d["columns"]
+    header = [
+        "p/E*",
+        "a_r BEM",
+        "Persson",
+        "GW",
+        "BGT",
+        "truncation",
+        "ū BEM (µm)",
+        "Persson",
+        "K BEM (MPa/µm)",
+        "Persson",
+        "GW",
+    ]
+    body = []
+    for i, x in enumerate(c["pressure_over_contact_modulus"]):
+        tr = c["truncation_area_fraction"][i]
+        body.append(
+            [
+                f"{x:.3g}",
+                _g(c["bem_area_fraction"][i], ".4g"),
+                _g(c["persson_area_fraction"][i], ".4g"),
+                _g(c["gw_area_fraction"][i], ".4g"),
+                _g(c["bgt_area_fraction"][i], ".4g"),
+                "–" if tr is None or not c["truncation_resolved"][i] else f"{tr:.4g}",
+                _g(c["bem_mean_gap_m"][i] * 1e6, ".4g"),
+                _g(c["persson_mean_gap_m"][i] * 1e6, ".4g"),
+                _g(c["bem_stiffness_Pa_per_m"][i] * 1e-12, ".3g"),
+                _g(c["persson_stiffness_Pa_per_m"][i] * 1e-12, ".3g"),
+                _g(c["gw_stiffness_Pa_per_m"][i] * 1e-12, ".3g"),
+            ]
+        )
+    prov = d.get("provenance", {})
+    g = d["grid_study"]
+    grid = f"{g['n'][1]}²" if g else f"{d['surface']['grid'][0]}²"
+    note = (
+        f"\nThe finer grid ({grid}); truncation's a_r where resolved (at least 10 truncated "
+        'pixels), "–" where Eq. 2 reaches the whole map before the load.\n'
+    )
+    return (
+        _md_table(header, body)
+        + note
+        + _source([name], f"{prov.get('device') or 'cpu'}, `{_short(prov.get('git_commit'))}`")
+    )
+
+
+def challenge_peers(name: str) -> str:
+    """``challenge_peers.py``: a_r and ū of each solver at each load, against warptrunc's."""
+    d = load(name)
+    header = [
+        "p/E*",
+        "solver",
+        "a_r",
+        "ū (µm)",
+        "a_r vs warptrunc",
+        "ū vs warptrunc",
+        "vs own tight: a_r, ū",
+        "time (s)",
+    ]
+    body = []
+    for row in d["loads"]:
+        for key, res in row["solves"].items():
+            a = row["agreement"][key]
+            if res.get("timed_out"):
+                body.append(
+                    [
+                        f"{row['pressure_over_E_star']:g}",
+                        key,
+                        "timed out",
+                        "",
+                        "",
+                        "",
+                        "",
+                        _s(res["time_s"]),
+                    ]
+                )
+                continue
+            body.append(
+                [
+                    f"{row['pressure_over_E_star']:g}",
+                    key,
+                    f"{res['area_fraction']:.6g}",
+                    f"{res['mean_gap_m'] * 1e6:.7g}",
+                    f"{a['area_vs_warptrunc']:.1e}",
+                    f"{a['gap_vs_warptrunc']:.1e}",
+                    f"{a['area_vs_own_tight']:.1e}, {a['gap_vs_own_tight']:.1e}",
+                    _s(res["time_s"]),
+                ]
+            )
+    s = d["surface"]
+    note = (
+        f"\n{d['n']}² ({s['pixel_m'] * 1e9:.3g} nm pixels, λ_s = {s['short_cutoff_pixels']:.3g} "
+        f"pixels, h′_rms = {s['slope_rms']:.3g}), periodic; {d['rule']} ({d['match']:g}). "
+        '"vs warptrunc": relative to warptrunc\'s tight solve. Times on a shared machine, '
+        "with other work running: not a benchmark.\n"
+    )
+    return (
+        _md_table(header, body)
+        + note
+        + _source(
+            [name],
+            f"{d['cpu']} ({d['cpu_cores']} cores), {_commit(d.get('commit'), name)}, {d['date'][:10]}",
+        )
+    )
+
+
+def content_sensitivity(name: str) -> str:
+    """The reported numbers of the D_vs presets against the content cut-off W_c (one record)."""
+    doc = load(name)
+    rows = []
+    for r in doc["rows"]:
+        rows.append(
+            [
+                r["preset"],
+                f"{r['Wc_m'] * 1e6:.3g}",
+                f"{r['slope_rms']:.3g}",
+                f"{r['alpha']:.3f}",
+                f"{r['beta']:.3g}",
+                f"{r['K_N_per_m'] / 1e6:.3g}",
+                f"{r['contact_area_m2'] * 1e12:.4g}",
+                f"{r['depth_m'] * 1e6:.3g}",
+                f"{r['elastic_K_N_per_m'] / 1e6:.3g}",
+            ]
+        )
+    header = ["preset", "W_c (µm)", "h′_rms at 97.7 nm", "α", "β", "K (MN/m)",
+              "A (µm²)", "depth (µm)", "K elastic (MN/m)"]  # fmt: skip
+    return _md_table(header, rows) + (
+        f"\n{doc['notes']} {_source([name], doc.get('device_name', ''))}\n"
+    )
+
+
 TABLES: dict[str, Callable[[], str]] = {
     "preset_slopes": preset_slopes,
+    "content_sensitivity": lambda: content_sensitivity("content_sensitivity_h200_73a5742.json"),
     "solver_scaling": lambda: solver_scaling("solver_scaling_h200x4_6af94f0.json"),
     "peers_cpu": lambda: peers(["peers_cpu_e2af04c.json"]),
     "peers_gpu": lambda: peers(["peers_h100x4_ec597f6.json", "peers_h200x4_6af94f0.json"]),
