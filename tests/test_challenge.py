@@ -21,6 +21,7 @@ import pytest
 from warptrunc.compare.challenge import (
     ChallengeSettings,
     challenge_c0,
+    challenge_patch_spec,
     challenge_spec,
     challenge_study,
     gw_patch_area_density,
@@ -66,6 +67,28 @@ def test_the_same_content_on_a_grid_twice_as_fine_is_the_same_surface(device):
     b = self_affine_surface(spec.replace(n=128), device=device)
     assert a.params["C0_m4"] == b.params["C0_m4"]
     np.testing.assert_allclose(b.heights[::2, ::2], a.heights, rtol=0, atol=1e-6 * a.heights.std())
+
+
+def test_a_patch_at_the_challenges_pixel_has_the_challenges_spectrum(device):
+    # the patch's periodogram, mode by mode, against the challenge's C(q) = C₀ (q/q_r)^−2(1+H)
+    # (float64 NumPy; the generator draws each mode at its spectrum's amplitude)
+    n = 128
+    s = self_affine_surface(challenge_patch_spec(n), device=device)
+    side = n * CHALLENGE.L / CHALLENGE.n
+    assert s.dx == pytest.approx(CHALLENGE.L / CHALLENGE.n, rel=1e-12)
+    h = np.asarray(s.heights, dtype=np.float64)
+    power = np.abs(np.fft.fft2(h)) ** 2 / n**4  # mean square height per mode (m²)
+    m = np.fft.fftfreq(n, 1.0 / n)
+    q = 2 * math.pi / side * np.hypot(m[:, None], m[None, :])
+    band = (q > 0) & (q <= 2 * math.pi / CHALLENGE.short_cutoff * (1 - 1e-9))
+    band &= (np.abs(m)[:, None] < n // 2) & (np.abs(m)[None, :] < n // 2)
+    q_r = 2 * math.pi / CHALLENGE.rolloff
+    c = challenge_c0() * (np.where(q > 0, q, q_r) / q_r) ** (-2 * (1 + CHALLENGE.hurst))
+    expect = c * (2 * math.pi / side) ** 2  # C(q) times the area of one mode in q-space
+    assert np.allclose(power[band], expect[band], rtol=1e-4)
+    assert power[~band & (q > 0)].max() < 1e-8 * expect[band].min()
+    with pytest.raises(ValueError, match="at least 64"):
+        challenge_patch_spec(32)
 
 
 def test_spec_refuses_content_the_grid_cannot_hold():

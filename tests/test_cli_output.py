@@ -93,3 +93,16 @@ def test_describe_json_names_the_convention_of_each_d(tmp_path, scaling):
     tri = fractal_dimension(s, "tri", height_scaling=scaling, device="cpu").D
     assert d["D_tri"] == pytest.approx(tri, abs=1e-12)
     assert np.isfinite(d["D_vs"]) and np.isfinite(d["D_sp"])
+
+
+def test_verbose_in_process_leaves_the_environment_as_it_was(tmp_path, monkeypatch):
+    # main() called from a script or a test: --verbose must not outlive its command (a later
+    # child process would inherit WARPTRUNC_VERBOSE and print Warp's notices)
+    from warptrunc.cli import main
+
+    monkeypatch.delenv("WARPTRUNC_VERBOSE", raising=False)
+    assert main(["generate", "--n", "32", "-o", str(tmp_path / "s.npz"), "--verbose"]) == 0
+    assert "WARPTRUNC_VERBOSE" not in os.environ
+    monkeypatch.setenv("WARPTRUNC_VERBOSE", "0")
+    assert main(["generate", "--n", "32", "-o", str(tmp_path / "t.npz"), "--verbose"]) == 0
+    assert os.environ["WARPTRUNC_VERBOSE"] == "0"

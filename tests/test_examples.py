@@ -102,6 +102,18 @@ def _check_stream(out: Path) -> None:
     assert _json(out / "stream_islands.json")["equal_to_in_memory"] is True
 
 
+def _check_adhesion(out: Path) -> None:
+    d = _json(out / "adhesion.json")
+    assert d["all_converged"] and d["adhesion"]["law"] == "exponential"
+    assert 0.5 < d["range_over_pixel"] < 1.0  # the law resolved: the challenge's own pixel
+    assert d["pull_off_pressure_over_E_star"] < 0  # the flat pulls before it lets go
+    with open(out / "adhesion.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    for r in rows:  # attraction only lowers the load at an approach (same surface, same δ)
+        assert float(r["p_over_E_star"]) <= float(r["p_over_E_star_non_adhesive"]) + 1e-12
+    assert {r["branch"] for r in rows} == {"loading", "unloading"}
+
+
 EXAMPLES: dict[str, Example] = {
     "quickstart": Example(
         ("--n", "128"), ("curve.csv", "fit.json", "stiffness.png"), check=_check_quickstart
@@ -114,6 +126,9 @@ EXAMPLES: dict[str, Example] = {
             "psd.png",
         ),
         check=_check_calibrate,
+    ),
+    "adhesive_challenge": Example(
+        outputs=("adhesion.csv", "adhesion.json", "adhesion.png"), check=_check_adhesion
     ),
     "contact_challenge": Example(
         outputs=("challenge.json", "challenge.png"), check=_check_challenge
@@ -227,6 +242,23 @@ def test_solver_scaling_benchmark_runs_quick(tmp_path):
         assert row["converged"] and row["cold_iterations"] > 0
         # Warp's allocation tracker against the model, on the CPU (no cuFFT work area)
         assert abs(row["peak_bytes"] / row["memory_model_bytes"] - 1) < 0.1
+
+
+def test_adhesion_benchmark_runs_on_the_cpu(tmp_path):
+    """The adhesion benchmark at 64² on the CPU: both laws solved, converged, their rows and the
+    ratio of warm times written; attraction adds tensile load at the same approach."""
+    script = BENCHMARKS_DIR / "benchmark_adhesion.py"
+    r = _run(script, "--device", "cpu", "--n", "64", "--out", str(tmp_path), timeout=300)
+    assert r.returncode == 0, r.stderr[-4000:]
+    (path,) = tmp_path.glob("adhesion_*.json")
+    rows = _json(path)["rows"]
+    assert [(row["n"], row["law"]) for row in rows] == [(64, "non-adhesive"), (64, "exponential")]
+    plain, adh = rows
+    assert plain["converged"] and adh["converged"]
+    assert adh["pressure_over_E_star"] < plain["pressure_over_E_star"]
+    assert adh["attractive_area_fraction"] > 0 == plain["attractive_area_fraction"]
+    assert adh["warm_ratio_adhesive_over_non_adhesive"] > 0
+    assert adh["memory_bytes"] > plain["memory_bytes"]
 
 
 @pytest.fixture

@@ -203,8 +203,10 @@ def _main(argv: list[str]) -> int:
         print(f"warptrunc {_command_in(argv)}: error: {_error_text(exc)}", file=sys.stderr)
         return 2
 
+    verbose_before = os.environ.get("WARPTRUNC_VERBOSE")
     if getattr(args, "verbose", False):
-        os.environ["WARPTRUNC_VERBOSE"] = "1"  # read by warptrunc._support.device.is_verbose
+        # read by warptrunc._support.device.is_verbose, here and in the command's child processes
+        os.environ["WARPTRUNC_VERBOSE"] = "1"
     from .._support.progress import silence_progress
     from .._support.provenance import set_command
 
@@ -232,6 +234,10 @@ def _main(argv: list[str]) -> int:
     finally:
         set_command(None)
         silence_progress(False)
+        if verbose_before is None:  # the caller's process as it was (main() called in-process)
+            os.environ.pop("WARPTRUNC_VERBOSE", None)
+        else:
+            os.environ["WARPTRUNC_VERBOSE"] = verbose_before
 
 
 def _xla_out_of_memory(exc: BaseException) -> MemoryError | None:

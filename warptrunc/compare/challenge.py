@@ -61,6 +61,7 @@ __all__ = [
     "SOURCE",
     "ChallengeSettings",
     "ChallengeStudy",
+    "challenge_patch_spec",
     "challenge_c0",
     "challenge_spec",
     "challenge_study",
@@ -242,6 +243,50 @@ def challenge_spec(
     # the generator's C₀ = s² L²/(2π)² with h_rms = s √Σf²: the rms height that gives c0 here
     s = 2 * math.pi * math.sqrt(c0) / CHALLENGE.L
     return spec.replace(rms_slope=None, rms_height=s * math.sqrt(s0))
+
+
+def challenge_patch_spec(n: int = 512, *, seed: int = 0) -> SelfAffineSpec:
+    """A periodic n² patch of the challenge's surface at the challenge's own pixel.
+
+    The adhesive variant's range ρ = 2.071 nm is about the challenge's pixel (3.05 nm); on a
+    coarser grid of the full 100 µm side one pixel spans a hundred ranges and the law is not
+    resolved. This patch keeps the pixel and the spectrum and gives up the long wavelengths:
+    side L_p = n·L/32768 (1.5625 µm at 512²), λ_s = 0.1 µm, and C(q) the challenge's (its C₀,
+    :func:`challenge_c0`) at every mode the patch holds (wavelengths from L_p down to λ_s, all
+    below the roll-off λ_r = 20 µm, so on the power-law branch).
+
+    Parameters
+    ----------
+    n : int
+        Pixels per side (count), at least 64 (λ_s = 0.1 µm is 33 pixels, and the patch must hold
+        wavelengths above it).
+    seed : int
+        Seed of the random phases.
+
+    Returns
+    -------
+    SelfAffineSpec
+        ``L`` = n·3.05 nm, ``n``, the challenge's Hurst exponent and λ_s, no roll-off (it lies
+        beyond the side), the scale as
+        ``rms_height`` (the rms height of the patch's modes of the challenge's C(q); its h′_rms is
+        below 1, the modes longer than L_p being gone).
+
+    Raises
+    ------
+    ValueError
+        ``n`` below 64.
+    """
+    n = int(n)
+    if n < 64:
+        raise ValueError(f"n must be at least 64 pixels for a patch that holds λ_s, got {n}")
+    side = n * CHALLENGE.L / CHALLENGE.n
+    spec = CHALLENGE.replace(n=n, L=side, seed=seed, rolloff=None)
+    # the generator's shape is f = (q/q_L)^−(1+H) with q_L = 2π/L_p here; the challenge's C(q)
+    # is C₀ (q/q_r)^−2(1+H) = C₀ (q_r/q_L)^2(1+H) f²: its plateau on the patch's shape
+    q_r, q_l = 2 * math.pi / CHALLENGE.rolloff, 2 * math.pi / side
+    c0 = challenge_c0() * (q_r / q_l) ** (2 * (1 + CHALLENGE.hurst))
+    s = 2 * math.pi * math.sqrt(c0) / side
+    return spec.replace(rms_slope=None, rms_height=s * math.sqrt(_mode_sums(spec)[0]))
 
 
 def challenge_c0() -> float:
