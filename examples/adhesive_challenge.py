@@ -19,8 +19,8 @@ What it shows
     one pixel, and the law would act pixel by pixel, not as a field: a grid-dependent answer.
     This example keeps the pixel and takes a periodic patch of 512² pixels (1.5625 µm) with the
     challenge's spectrum C(q) on the wavelengths the patch holds (1.56 µm down to 0.1 µm; the
-    longer ones, and with them most of the rms height, are gone): h_rms = 0.054 µm instead of
-    0.78 µm, h′_rms 0.83 instead of 1 (``challenge_patch_spec``). Loads are per unit nominal
+    longer ones, and with them most of the rms height, are gone): h_rms = 0.099 µm instead of
+    0.78 µm, h′_rms 0.90 instead of 1 (``challenge_patch_spec``). Loads are per unit nominal
     area (p = F/A₀), so the patch reads as a piece of the interface.
 
 Key steps

@@ -91,6 +91,22 @@ def test_a_patch_at_the_challenges_pixel_has_the_challenges_spectrum(device):
         challenge_patch_spec(32)
 
 
+@pytest.mark.parametrize("n", [512, 8192])  # λ_r = 20 µm beyond the patch, and inside it
+def test_a_patch_holds_the_challenges_mean_square_height_of_its_modes(n):
+    # Σ C(q_m)(2π/L_p)² over the patch's modes (C₀, plateau below q_r, power law above, zero
+    # past λ_s; NumPy float64) is the rms height the spec gives the generator
+    side = n * CHALLENGE.L / CHALLENGE.n
+    k = int(side / CHALLENGE.short_cutoff) + 1
+    m = np.arange(-k, k + 1, dtype=np.float64)
+    q = 2 * math.pi / side * np.hypot(m[:, None], m[None, :])
+    q_r, q_s = 2 * math.pi / CHALLENGE.rolloff, 2 * math.pi / CHALLENGE.short_cutoff
+    with np.errstate(divide="ignore"):
+        c = challenge_c0() * np.where(q < q_r, 1.0, (q / q_r) ** (-2 * (1 + CHALLENGE.hurst)))
+    inside = (q > 0) & (q <= q_s * (1 + 1e-9))
+    expect = math.sqrt(float((c[inside] * (2 * math.pi / side) ** 2).sum()))
+    assert challenge_patch_spec(n).rms_height == pytest.approx(expect, rel=1e-9)
+
+
 def test_spec_refuses_content_the_grid_cannot_hold():
     with pytest.raises(ValueError, match="at least the challenge"):
         challenge_spec(4096, short_cutoff=0.05e-6)

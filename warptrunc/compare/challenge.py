@@ -252,8 +252,9 @@ def challenge_patch_spec(n: int = 512, *, seed: int = 0) -> SelfAffineSpec:
     coarser grid of the full 100 µm side one pixel spans a hundred ranges and the law is not
     resolved. This patch keeps the pixel and the spectrum and gives up the long wavelengths:
     side L_p = n·L/32768 (1.5625 µm at 512²), λ_s = 0.1 µm, and C(q) the challenge's (its C₀,
-    :func:`challenge_c0`) at every mode the patch holds (wavelengths from L_p down to λ_s, all
-    below the roll-off λ_r = 20 µm, so on the power-law branch).
+    :func:`challenge_c0`) at every mode the patch holds (wavelengths from L_p down to λ_s: on
+    the power-law branch below the roll-off λ_r = 20 µm, and the plateau above it once
+    L_p > λ_r, from 6554² on).
 
     Parameters
     ----------
@@ -266,8 +267,8 @@ def challenge_patch_spec(n: int = 512, *, seed: int = 0) -> SelfAffineSpec:
     Returns
     -------
     SelfAffineSpec
-        ``L`` = n·3.05 nm, ``n``, the challenge's Hurst exponent and λ_s, no roll-off (it lies
-        beyond the side), the scale as
+        ``L`` = n·3.05 nm, ``n``, the challenge's Hurst exponent and λ_s, its roll-off where the
+        patch holds it (else none), the scale as
         ``rms_height`` (the rms height of the patch's modes of the challenge's C(q); its h′_rms is
         below 1, the modes longer than L_p being gone).
 
@@ -280,11 +281,14 @@ def challenge_patch_spec(n: int = 512, *, seed: int = 0) -> SelfAffineSpec:
     if n < 64:
         raise ValueError(f"n must be at least 64 pixels for a patch that holds λ_s, got {n}")
     side = n * CHALLENGE.L / CHALLENGE.n
-    spec = CHALLENGE.replace(n=n, L=side, seed=seed, rolloff=None)
-    # the generator's shape is f = (q/q_L)^−(1+H) with q_L = 2π/L_p here; the challenge's C(q)
-    # is C₀ (q/q_r)^−2(1+H) = C₀ (q_r/q_L)^2(1+H) f²: its plateau on the patch's shape
-    q_r, q_l = 2 * math.pi / CHALLENGE.rolloff, 2 * math.pi / side
-    c0 = challenge_c0() * (q_r / q_l) ** (2 * (1 + CHALLENGE.hurst))
+    c0 = challenge_c0()
+    if side > CHALLENGE.rolloff:  # the patch holds the roll-off: the challenge's shape as it is
+        spec = CHALLENGE.replace(n=n, L=side, seed=seed)
+    else:
+        # no roll-off inside the patch: the generator's shape is f = (q/q_L)^−(1+H), q_L = 2π/L_p;
+        # the challenge's C(q) = C₀ (q/q_r)^−2(1+H) is C₀ (q_r/q_L)^2(1+H) f²
+        spec = CHALLENGE.replace(n=n, L=side, seed=seed, rolloff=None)
+        c0 *= (side / CHALLENGE.rolloff) ** (2 * (1 + CHALLENGE.hurst))
     s = 2 * math.pi * math.sqrt(c0) / side
     return spec.replace(rms_slope=None, rms_height=s * math.sqrt(_mode_sums(spec)[0]))
 
