@@ -615,8 +615,9 @@ def _g(x: float | None, fmt: str = ".3g") -> str:
     return "–" if x is None else format(x, fmt)
 
 
-def challenge_study(folders: list[str]) -> str:
-    """``warptrunc challenge``: per grid, the grid study, κ and the slope of K(p)."""
+def challenge_study(records: list[str]) -> str:
+    """``warptrunc challenge``: per grid, the grid study, κ and the slope of K(p); each record a
+    ``challenge.json``."""
     header = [
         "grid (N → 2N)",
         "λ_s (µm)",
@@ -633,8 +634,7 @@ def challenge_study(folders: list[str]) -> str:
         "truncation",
     ]
     body, names, machine = [], [], []
-    for folder in folders:
-        name = f"{folder}/challenge.json"
+    for name in records:
         d = load(name)
         g, k, sl = d["grid_study"], d["kappa"], d["stiffness_slope"]
         grid = f"{g['n'][0]}² → {g['n'][1]}²" if g else f"{d['surface']['grid'][0]}²"
@@ -671,9 +671,9 @@ def challenge_study(folders: list[str]) -> str:
     return _md_table(header, body) + note + _source(names, "; ".join(machine))
 
 
-def challenge_curves(folder: str) -> str:
-    """``warptrunc challenge``: a_r, ū and K against p/E* on the finer grid, every model."""
-    name = f"{folder}/challenge.json"
+def challenge_curves(name: str) -> str:
+    """``warptrunc challenge``: a_r, ū and K against p/E* on the finer grid, every model (a
+    ``challenge.json`` record)."""
     d = load(name)
     c = d["columns"]
     header = [
@@ -806,7 +806,39 @@ def content_sensitivity(name: str) -> str:
     )
 
 
+def adhesion(name: str) -> str:
+    """``benchmark_adhesion.py``: the adhesive and the non-adhesive solve of one surface."""
+    d = load(name)
+    header = ["N", "law", "set-up (s)", "cold (s)", "warm (s)", "iterations", "converged",
+              "a_r", "attractive a_r", "p/E*", "peak pool (GB)", "memory_bytes (GB)"]  # fmt: skip
+    body = []
+    for r in d["rows"]:
+        peak = r.get("peak_pool_bytes")
+        body.append(
+            [
+                f"{r['n']}²",
+                r["law"],
+                _s(r["setup_s"]),
+                _s(r["cold_s"]),
+                _s(r["warm_s"]),
+                str(r["n_iterations"]),
+                "yes" if r["converged"] else "no",
+                f"{r['area_fraction']:.4g}",
+                f"{r['attractive_area_fraction']:.4g}",
+                f"{r['pressure_over_E_star']:.3g}",
+                "–" if peak is None else f"{peak / 1e9:.2f}",
+                f"{r['memory_bytes'] / 1e9:.2f}",
+            ]
+        )
+    note = f"\n{d['notes']}\n" if d.get("notes") else "\n"
+    machine = f"{d.get('device_name', d.get('device'))}, {_commit(d.get('commit'), name)}"
+    return _md_table(header, body) + note + _source([name], machine)
+
+
 TABLES: dict[str, Callable[[], str]] = {
+    "adhesion": lambda: adhesion("adhesion_h200_12026d7_partial.json"),
+    "challenge_study": lambda: challenge_study(["challenge_4096_h200_73a5742.json"]),
+    "challenge_curves": lambda: challenge_curves("challenge_4096_h200_73a5742.json"),
     "preset_slopes": preset_slopes,
     "content_sensitivity": lambda: content_sensitivity("content_sensitivity_h200_73a5742.json"),
     "solver_scaling": lambda: solver_scaling("solver_scaling_h200x4_6af94f0.json"),
