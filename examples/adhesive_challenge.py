@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """The contact-mechanics challenge's adhesive problem on a patch at its own pixel
-=================================================================================
+==============================================================================
 
 What it shows
     The adhesive variant of the contact-mechanics challenge (Müser et al., Tribol. Lett. 65, 118

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """The contact-mechanics challenge: elastic contact beside Persson, GW, BGT and truncation
-======================================================================================
+=======================================================================================
 
 What it shows
     The problem of the contact-mechanics challenge (Müser et al., Tribol. Lett. 65, 118 (2017)):

@@ -6,11 +6,11 @@ The boundary-element solver of :mod:`warptrunc.contact` (and every elastic numbe
 assumes small surface slopes. This module measures them:
 
 - :func:`slope_statistics` of a height map, by finite differences at the map's own pixel:
-  h′_rms = √⟨|∇h|²⟩ (forward differences along x and y, dimensionless) and
+  h′_rms = √⟨‖∇h‖²⟩ (forward differences along x and y, dimensionless) and
   h″_rms = √⟨(∇²h)²⟩ (the five-point Laplacian on the interior pixels, 1/m), with the rms slope
   per decade of wavelength from the map's periodogram;
 - :func:`wm_slope_statistics` of a Weierstrass–Mandelbrot surface from its terms (the spectrum
-  is known): each term A·cos(k·x + α) contributes A²k²/2 to ⟨|∇h|²⟩ and A²k⁴/2 to ⟨(∇²h)²⟩,
+  is known): each term A·cos(k·x + α) contributes A²k²/2 to ⟨‖∇h‖²⟩ and A²k⁴/2 to ⟨(∇²h)²⟩,
   i.e. the moments m₂ and m₄ of its line spectrum;
 - :func:`check_slope`: a :class:`~warptrunc.plausibility.PlausibilityWarning` when h′_rms exceeds
   :data:`SMALL_SLOPE_LIMIT`.
@@ -58,7 +58,7 @@ class SlopeStatistics:
     h_rms: float
     """Rms height about the mean, √⟨(h − h̄)²⟩ (m)."""
     slope_rms: float
-    """h′_rms = √⟨|∇h|²⟩ over both axes (dimensionless)."""
+    """h′_rms = √⟨‖∇h‖²⟩ over both axes (dimensionless)."""
     curvature_rms: float
     """h″_rms = √⟨(∇²h)²⟩ (1/m); NaN where the map has fewer than 3 pixels a side."""
     method: str
@@ -139,11 +139,11 @@ def slope_statistics(surface: Any, *, per_decade: bool = True, device: Any = Non
     (ny − 1, nx) pixel pairs; h″_rms² = ⟨(∇²h)²⟩ with the five-point Laplacian
     (h[i, j+1] − 2h[i, j] + h[i, j−1])/dx² + (h[i+1, j] − 2h[i, j] + h[i−1, j])/dy² on the
     interior pixels. The sums run in float64 on the surface's device, row by row
-    (``warptrunc.kernels.slope``). The per-decade values come from the periodogram |ĥ(q)|² of the
+    (``warptrunc.kernels.slope``). The per-decade values come from the periodogram ∣ĥ(q)∣² of the
     map with its mean removed and a Hann window (so that the jump between opposite edges of a map
     that is not periodic does not leak into the short wavelengths), normalised by the window's
-    mean square: the slope content of wavevector q is q²|ĥ(q)|²/N² (Parseval), summed over the q
-    whose wavelength 2π/|q| lies in each decade.
+    mean square: the slope content of wavevector q is q²∣ĥ(q)∣²/N² (Parseval), summed over the q
+    whose wavelength 2π/‖q‖ lies in each decade.
     """
     import warp as wp
 
@@ -213,8 +213,8 @@ def wm_slope_statistics(terms: Any, scale: float) -> SlopeStatistics:
     Notes
     -----
     The surface is h = scale·Σ_t w_t[cos α_t − cos(k_t·x + α_t)]; over an area holding many
-    periods of every term, ⟨h²⟩ − ⟨h⟩² → Σ_t A_t²/2, ⟨|∇h|²⟩ → Σ_t A_t²|k_t|²/2 and
-    ⟨(∇²h)²⟩ → Σ_t A_t²|k_t|⁴/2 with A_t = scale·w_t (cross terms average out for distinct
+    periods of every term, ⟨h²⟩ − ⟨h⟩² → Σ_t A_t²/2, ⟨‖∇h‖²⟩ → Σ_t A_t²‖k_t‖²/2 and
+    ⟨(∇²h)²⟩ → Σ_t A_t²‖k_t‖⁴/2 with A_t = scale·w_t (cross terms average out for distinct
     wavevectors). A finite map holds the longest terms for a few periods only, so its finite
     differences (:func:`slope_statistics`) differ from these by the sampling of those terms.
     """

@@ -186,7 +186,7 @@ class CalibrationSettings(Parameters):
         check_fields(self)
 
     def method_options(self) -> dict[str, Any]:
-        """The options of :attr:`method` (its height convention for ``"tri"`` and ``"box"``).
+        """The options of ``method`` (its height convention for ``"tri"`` and ``"box"``).
 
         Returns
         -------

@@ -212,7 +212,7 @@ def challenge_spec(
 
     Notes
     -----
-    On a grid that holds every mode of the band (|m| ≤ L/λ_s = 1000 for the challenge, all
+    On a grid that holds every mode of the band (‖m‖ ≤ L/λ_s = 1000 for the challenge, all
     inside a grid of 2048² or more) the discrete spectrum, and with the same seed the map, is
     the same surface on every grid: the 2048² map is the 32768² one sampled at 16 times the
     pixel (to the FFT's round-off). A given ``short_cutoff`` keeps the content fixed as the grid
@@ -299,7 +299,7 @@ def challenge_c0() -> float:
     Returns
     -------
     float
-        s² L²/(2π)² with s = 1/√(Σ_m |q_m|² f(q_m)²) over the integer wavenumbers m of the band
+        s² L²/(2π)² with s = 1/√(Σ_m ‖q_m‖² f(q_m)²) over the integer wavenumbers m of the band
         (f the spectrum's shape, 1 on the plateau), the normalisation of
         :func:`~warptrunc.selfaffine.self_affine_surface` on any grid that holds every mode.
     """
@@ -308,7 +308,7 @@ def challenge_c0() -> float:
 
 
 def _mode_sums(spec: SelfAffineSpec) -> tuple[float, float]:
-    """(Σ f², Σ |q|² f²) over the modes of ``spec``'s grid (float64, NumPy), as the generator
+    """(Σ f², Σ ‖q‖² f²) over the modes of ``spec``'s grid (float64, NumPy), as the generator
     sums them: the shape f of ``warptrunc.kernels.selfaffine``, the Nyquist rows and columns of
     an even grid left out. Only the wavenumbers up to the short cut-off are visited."""
     g = spec.grid()
@@ -405,7 +405,7 @@ def read_challenge_surface(
 
 
 def spectral_slope_rms(z: np.ndarray, dx: float, dy: float | None = None) -> float:
-    """h′_rms = √⟨|∇h|²⟩ of a periodic map by its discrete Fourier transform (dimensionless).
+    """h′_rms = √⟨‖∇h‖²⟩ of a periodic map by its discrete Fourier transform (dimensionless).
 
     Parameters
     ----------
@@ -417,7 +417,7 @@ def spectral_slope_rms(z: np.ndarray, dx: float, dy: float | None = None) -> flo
     Returns
     -------
     float
-        √(Σ_q |q|² |ĥ_q|²)/(nx·ny) over the modes below the Nyquist wavenumbers (an even grid's
+        √(Σ_q ‖q‖² ∣ĥ_q∣²)/(nx·ny) over the modes below the Nyquist wavenumbers (an even grid's
         Nyquist lines carry no gradient of a real map).
     """
     z = np.asarray(z, dtype=np.float64)
@@ -575,7 +575,7 @@ class ChallengeStudy:
     truncation_stiffness: np.ndarray
     """(m,) Eq. 2's k'/A₀ = dp/dω (Pa/m)."""
     truncation_resolved: np.ndarray
-    """(m,) bool: at least :data:`TRUNCATION_MIN_PIXELS` truncated pixels and 10 depth
+    """(m,) bool: at least ``TRUNCATION_MIN_PIXELS`` truncated pixels and 10 depth
     increments below ω."""
     contact_modulus: float
     """E* (Pa)."""
@@ -592,7 +592,7 @@ class ChallengeStudy:
     the fine one at every second pixel, to float32 round-off); empty without one."""
     kappa: dict[str, Any] = field(default_factory=dict)
     """Small-load κ = a_r E* h′_rms/p: ``bem`` (mean over the loads with a_r ≤
-    :data:`SMALL_LOAD_AREA_FRACTION` and ≥ :data:`MIN_CONTACT_PIXELS` contact pixels), ``bem_range``,
+    ``SMALL_LOAD_AREA_FRACTION`` and ≥ :data:`MIN_CONTACT_PIXELS` contact pixels), ``bem_range``,
     ``persson``, ``gw``, ``bgt`` at the same loads, ``persson_limit`` √(8/π), ``bgt_limit`` √(2π)."""
     stiffness_slope: dict[str, Any] = field(default_factory=dict)
     """d ln K/d ln p fitted over the same loads: ``bem``, ``persson``, ``gw``, ``bgt``,

@@ -7,10 +7,10 @@ energy per unit area φ(g) = −∫_g^∞ σ (J/m²), whose depth at contact is 
 w = −φ(0):
 
 - ``"maugis"``: Maugis–Dugdale's cohesive zone, σ = σ₀ = w/h₀ for g < h₀ and 0 beyond
-  (φ = −w·(1 − g/h₀) below h₀); the law of Maugis (1992) and of tamaas'
+  (φ = −w·(1 − g/h₀) below h₀); the law of Maugis (1992) [1]_ and of tamaas'
   ``MaugisAdhesionFunctional``;
 - ``"exponential"``: σ = (w/ρ)·exp(−g/ρ) (φ = −w·exp(−g/ρ)); the law of the
-  contact-mechanics challenge (Müser et al. 2017) and of tamaas'
+  contact-mechanics challenge (Müser et al. 2017) [2]_ and of tamaas'
   ``ExponentialAdhesionFunctional``;
 - ``"none"`` (default): non-adhesive contact, the solver of :mod:`warptrunc.contact.solver`
   unchanged.

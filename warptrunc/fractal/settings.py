@@ -115,7 +115,7 @@ class FractalSettings(Parameters):
         -------
         dict of str to dict
             ``{"tri": {"height_scaling": ...}, "box": {...}, "vs": {"axis": ...},
-            "sp": {"kind": ...}}``, restricted to :attr:`methods`.
+            "sp": {"kind": ...}}``, restricted to ``methods``.
         """
         every = {
             "tri": height_options("tri", self.height_scaling),

@@ -185,7 +185,7 @@ def run_cycles(
         Also return, per peak, the bounding boxes of the contact and of the pixels near it
         (``contact_box``, ``near_box``: (m, 4) int64 (iy0, ix0, iy1, ix1) in window pixels,
         inclusive, -1 where none or unknown): near = the disk's pixels whose gap is within
-        :func:`gap_margin` of contact, the set a sub-window at a finer pixel must hold
+        ``gap_margin`` of contact, the set a sub-window at a finer pixel must hold
         (:mod:`warptrunc.indent.refine`). A copied elastic cycle takes the boxes of
         ``elastic`` when it has them.
     {warp_device_obj}

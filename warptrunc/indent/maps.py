@@ -65,14 +65,14 @@ class IndentMaps(Parameters):
         spec : WMSpec
             The surface (a preset, or the generation parameters).
         keep_n : bool
-            Keep ``spec.n`` on the map of side :attr:`map_side` (else the pixel of ``spec`` is
+            Keep ``spec.n`` on the map of side ``map_side`` (else the pixel of ``spec`` is
             kept and ``n`` scaled with the side).
 
         Returns
         -------
         list of WMSpec
-            One per seed of :attr:`seeds` (``spec.seed`` alone when None), each of side
-            :attr:`map_side` (``spec.L`` when None). E.g. the preset GB300s: 1 mm over 10240
+            One per seed of ``seeds`` (``spec.seed`` alone when None), each of side
+            ``map_side`` (``spec.L`` when None). E.g. the preset GB300s: 1 mm over 10240
             pixels (its 97.7 nm); ``WMSpec()``: 1 mm over 1024 (its 0.977 µm).
         """
         side = self.map_side

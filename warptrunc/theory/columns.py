@@ -178,14 +178,14 @@ def kappa_record(
     apparent_area : float
         A₀ (m²).
     pixel_area : float, optional
-        The map's pixel area (m²): solves with fewer than :data:`KAPPA_MIN_PIXELS` contact
+        The map's pixel area (m²): solves with fewer than ``KAPPA_MIN_PIXELS`` contact
         pixels are left out (a contact of a few pixels does not resolve its area).
 
     Returns
     -------
     dict
-        ``bem``: the mean κ of the solves with 0 < A/A₀ ≤ :data:`KAPPA_MAX_AREA_FRACTION`
-        (and at least :data:`KAPPA_MIN_PIXELS` contact pixels, given ``pixel_area``; None
+        ``bem``: the mean κ of the solves with 0 < A/A₀ ≤ ``KAPPA_MAX_AREA_FRACTION``
+        (and at least ``KAPPA_MIN_PIXELS`` contact pixels, given ``pixel_area``; None
         when there is none), ``bem_range`` (min, max), ``n_solves``, ``min_pixels``; ``persson`` and
         ``gw``: the theories' κ at the same pressures (mean); ``persson_limit`` √(8/π) and
         ``bgt_limit`` √(2π), the small-load limits (all dimensionless); ``max_area_fraction``;

@@ -210,7 +210,7 @@ def nayak_summits(psd: IsotropicPSD, *, magnification: float | None = None) -> S
     )
 
 
-_X_TABLE = 40.0  # |x| range of the tabulated Gaussian tails; beyond it the asymptotes
+_X_TABLE = 40.0  # ∣x∣ range of the tabulated Gaussian tails; beyond it the asymptotes
 
 
 @functools.cache
@@ -226,7 +226,7 @@ def _gauss_table(k: float) -> CubicSpline:
 def _gauss_tail(k: float, x: np.ndarray) -> np.ndarray:
     """F_k(x) = ∫_x^∞ (z − x)^k φ(z) dz for the standard normal φ:
     Γ(k + 1) e^(−x²/4) D_(−k−1)(x)/√(2π) (parabolic cylinder function); F₀ = Φ(−x). Beyond
-    |x| = 40: 0 above, |x|^k (1 + k(k − 1)/(2x²)) below (the moments of Z − x)."""
+    ∣x∣ = 40: 0 above, ∣x∣^k (1 + k(k − 1)/(2x²)) below (the moments of Z − x)."""
     x = np.asarray(x, dtype=np.float64)
     if k == 0:
         return ndtr(-x)
@@ -370,9 +370,9 @@ def bgt_summit_weights(m2: float, m4: float, curvature: np.ndarray) -> dict[floa
     -----
     For a Gaussian isotropic surface the gradient (h_x, h_y) is independent of the height and
     the Hessian; (h, s) with s = −(h_xx + h_yy)/2 is bivariate normal with Var s = 2m₄/3,
-    Cov(h, s) = m₂, and r = |((h_xx − h_yy)/2, h_xy)| is Rayleigh with σ_r² = m₄/3,
+    Cov(h, s) = m₂, and r = ‖((h_xx − h_yy)/2, h_xy)‖ is Rayleigh with σ_r² = m₄/3,
     independent of (h, s). Rice's formula gives the density of maxima,
-    n = p(∇h = 0) p(h, s) p(r) |det H| over s > r, with p(∇h = 0) = 1/(2πm₂) and
+    n = p(∇h = 0) p(h, s) p(r) ∣det H∣ over s > r, with p(∇h = 0) = 1/(2πm₂) and
     det H = κ₁κ₂ = s² − r². The r-integral is a Kummer function:
     ∫₀^s (s² − r²)^β (r/σ_r²) e^(−r²/(2σ_r²)) dr = (2σ_r²)^β a^(β+1) ₁F₁(1; β + 2; −a)/(β + 1),
     a = s²/(2σ_r²), β = 1 − c; for c = 0 it is σ_r²(t² − 2 + 2e^(−t²/2)), t = s/σ_r, Nayak's

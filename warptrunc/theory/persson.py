@@ -19,7 +19,7 @@ Notation
 q₀ is the smallest wavevector of the spectrum, q₁ = ζ q₀ the largest used (ζ the
 magnification) and
 
-    S(q) = π ∫_{q₀}^{q} q′³ C(q′) dq′ = ⟨|∇h|²⟩_q / 2,
+    S(q) = π ∫_{q₀}^{q} q′³ C(q′) dq′ = ⟨‖∇h‖²⟩_q / 2,
 
 half the mean square slope of the roughness up to q; t(q) = √S(q) = 1/w(q) with Persson's
 w(q) = (π ∫ q′³ C dq′)^(−1/2).
@@ -75,7 +75,7 @@ class PerssonCurve:
     contact_modulus: float
     """E* (Pa)."""
     slope_rms: float
-    """h′_rms = √⟨|∇h|²⟩ of the spectrum up to q₁ (dimensionless): the theory is a small-slope
+    """h′_rms = √⟨‖∇h‖²⟩ of the spectrum up to q₁ (dimensionless): the theory is a small-slope
     theory, so well below 1."""
     h_rms: float
     """Rms height of the spectrum up to q₁ (m)."""
@@ -127,7 +127,7 @@ class PressureDistribution:
     area_fraction: float
     """A/A₀ (dimensionless)."""
     stress_variance: float
-    """⟨σ²⟩ of full contact, E*² ⟨|∇h|²⟩/4 = 2G (Pa²)."""
+    """⟨σ²⟩ of full contact, E*² ⟨‖∇h‖²⟩/4 = 2G (Pa²)."""
     slope_rms: float
     """h′_rms up to q₁ (dimensionless)."""
     magnification: float
@@ -414,7 +414,7 @@ def persson_contact(
 
         A/A₀ = erf(p / (2√G)),  G(ζ) = (π/4) E*² ∫_{q₀}^{ζq₀} q³ C(q) dq = E*² S/4,
 
-    i.e. A/A₀ = erf(p/√(2V)) with V = 2G = E*² ⟨|∇h|²⟩/4 the variance of the pressure in full
+    i.e. A/A₀ = erf(p/√(2V)) with V = 2G = E*² ⟨‖∇h‖²⟩/4 the variance of the pressure in full
     contact (V = ¼ E*² ∫ d²q q² C). As p → 0, A/A₀ → κ p/(E* h′_rms) with κ = √(8/π)
     (``area_fraction_small_load``); numerical contact mechanics finds κ ≈ 2 (Hyun et al.
     2004), so this form underestimates the area at small loads by about 20 %.

@@ -24,8 +24,8 @@ The other conventions in use, for the same surface:
 - the one-sided profile PSD C₁(f) (m³) of a line scan is another quantity (a projection of the
   2-D spectrum), not a rescaling.
 
-The isotropic moments μ_k = ∫ d²q |q|^k C(q) = 2π ∫ q^(k+1) C(q) dq give μ₀ = ⟨h²⟩,
-μ₂ = ⟨|∇h|²⟩ and μ₄ = ⟨(∇²h)²⟩; Nayak's profile moments (one direction) are m₀ = μ₀,
+The isotropic moments μ_k = ∫ d²q ‖q‖^k C(q) = 2π ∫ q^(k+1) C(q) dq give μ₀ = ⟨h²⟩,
+μ₂ = ⟨‖∇h‖²⟩ and μ₄ = ⟨(∇²h)²⟩; Nayak's profile moments (one direction) are m₀ = μ₀,
 m₂ = μ₂/2 = ⟨(∂h/∂x)²⟩ and m₄ = 3μ₄/8 = ⟨(∂²h/∂x²)²⟩.
 
 Between its samples C(q) is a power law (a straight line in log–log; a straight line where a
@@ -97,7 +97,7 @@ def self_affine_moment_per_c0(spec: Any, k: float) -> float:
     spec : SelfAffineSpec
         The spectrum (:class:`~warptrunc.selfaffine.SelfAffineSpec`).
     k : float
-        Order: 0 (⟨h²⟩), 2 (⟨|∇h|²⟩), 4 (⟨(∇²h)²⟩) (dimensionless).
+        Order: 0 (⟨h²⟩), 2 (⟨‖∇h‖²⟩), 4 (⟨(∇²h)²⟩) (dimensionless).
 
     Returns
     -------
@@ -271,10 +271,10 @@ class IsotropicPSD:
         Notes
         -----
         Eq. 4 as :func:`warptrunc.wm_surface` evaluates it is h = s Σ_{m,n} γ^((D−3)n)
-        [cos α_mn − cos(k_mn·x + α_mn)] with |k_mn| = q_n = q₀γⁿ, q₀ = 2π/W_r, along the M
+        [cos α_mn − cos(k_mn·x + α_mn)] with ‖k_mn‖ = q_n = q₀γⁿ, q₀ = 2π/W_r, along the M
         directions πm/M, and s the height scale (m). Over the random phases its spectrum is a
         set of lines: ring n carries the variance σ_n² = M s² γ^(2(D−3)n)/2 on the circle
-        |q| = q_n. Spreading each ring over its share of ln q, [q_n γ^(−1/2), q_n γ^(1/2)]
+        ‖q‖ = q_n. Spreading each ring over its share of ln q, [q_n γ^(−1/2), q_n γ^(1/2)]
         (the continuous spectrum of the WM function, Berry & Lewis 1980), gives
 
             C(q) = M s² (q/q₀)^(−2H) / (4π q² ln γ),  H = 3 − D,
@@ -282,7 +282,7 @@ class IsotropicPSD:
         on [q₀γ^(−1/2), q_{n_max} γ^(1/2)], zero outside: a self-affine spectrum with no
         roll-off. Its moments differ from the line sums Σ_n σ_n² q_n^k by the factor
         sinh(a_k)/a_k, a_k = (k − 2H) ln γ/2 (for γ = 1.5, H = 0.5: +0.7 % for ⟨h²⟩ and
-        ⟨|∇h|²⟩, +6.3 % for ⟨(∇²h)²⟩); :func:`warptrunc.slope.wm_slope_statistics` gives the
+        ⟨‖∇h‖²⟩, +6.3 % for ⟨(∇²h)²⟩); :func:`warptrunc.slope.wm_slope_statistics` gives the
         line sums themselves.
 
         References
@@ -414,7 +414,7 @@ class IsotropicPSD:
         Parameters
         ----------
         k : float
-            Order: 0 gives ⟨h²⟩ (m²), 2 gives ⟨|∇h|²⟩ (dimensionless), 4 gives ⟨(∇²h)²⟩ (1/m²),
+            Order: 0 gives ⟨h²⟩ (m²), 2 gives ⟨‖∇h‖²⟩ (dimensionless), 4 gives ⟨(∇²h)²⟩ (1/m²),
             from the wavevectors up to each q.
 
         Returns
@@ -446,7 +446,7 @@ class IsotropicPSD:
 
     @property
     def m2(self) -> float:
-        """Nayak's m₂ = ⟨(∂h/∂x)²⟩ = ⟨|∇h|²⟩/2, per direction (dimensionless)."""
+        """Nayak's m₂ = ⟨(∂h/∂x)²⟩ = ⟨‖∇h‖²⟩/2, per direction (dimensionless)."""
         return self.moment(2) / 2
 
     @property
@@ -461,7 +461,7 @@ class IsotropicPSD:
 
     @property
     def slope_rms(self) -> float:
-        """Rms slope h′_rms = √⟨|∇h|²⟩ (dimensionless)."""
+        """Rms slope h′_rms = √⟨‖∇h‖²⟩ (dimensionless)."""
         return math.sqrt(self.moment(2))
 
     @property

@@ -380,10 +380,10 @@ def stream_reason(
     Parameters
     ----------
     source : Surface, WMSpec, WMTerms or mapping
-        A height map in memory, or a WM surface to generate (as :func:`as_wm_spec` takes it).
+        A height map in memory, or a WM surface to generate (as ``as_wm_spec`` takes it).
     stream : {"auto", True, False}
         Generate a WM surface by row bands (True), whole (False), or by bands only when the map
-        needs more than half of the free device or host memory ("auto", :func:`fits`).
+        needs more than half of the free device or host memory ("auto", ``fits``).
     device : str or warp.context.Device, optional
         Warp device the map would be made on; :func:`warptrunc.resolve_device`'s choice when
         None.

@@ -4,7 +4,7 @@
 :class:`~warptrunc.contact.ContactSolver` with the law's tractions between the surfaces.
 
 The problem. The traction on a pixel is the wall's reaction r ≥ 0 (where the gap is closed)
-plus the law's force a(g) ≤ 0 at the pixel's gap g (Maugis–Dugdale: −σ₀·dx·dy below h₀;
+plus the law's force a(g) ≤ 0 at the pixel's gap g (Maugis–Dugdale [1]_: −σ₀·dx·dy below h₀;
 exponential: −(w/ρ)·exp(−g/ρ)·dx·dy); the gap is g = K·(r + a) − h − offset ≥ 0 with
 r·g = 0. Equilibria are the stationary points of the total energy ½·p·K·p − p·(h + offset) +
 Σ φ(g)·dx·dy over the admissible gaps; the energy is not convex (φ is concave), so a contact
@@ -32,7 +32,7 @@ is the spectral radius of K·diag(−∂a/∂g), below 1 where the energy's Hess
 K⁻¹ + diag(∂a/∂g) is positive); for Maugis–Dugdale it stops exactly, when the cohesive zone
 stops changing. It reuses the non-adhesive solver unchanged — its preconditioner, its
 free-boundary transforms pruned to the map, its float32 path, its GPU kernels — where a
-minimisation in the gap (Rey, Anciaux & Molinari 2017, tamaas' ``PolonskyKeerRey`` with an
+minimisation in the gap (Rey, Anciaux & Molinari 2017 [2]_, tamaas' ``PolonskyKeerRey`` with an
 adhesion functional) needs K⁻¹ on the map, which the free (zero-padded) half-space does not
 have without a solve over the padded grid (ContactEngineering's ``Adhesion`` minimises over
 the padded displacements instead). The cost: one convolution per update and a warm-started
@@ -42,7 +42,7 @@ The state the solver keeps between solves: q holds the wall's reaction r (so the
 is q > 0: the repulsive contact), u = K·r, ``adh`` the law's forces a and h the effective
 heights h − K·a (the original heights are ``h_surface``); the gap u − h − offset is the whole
 traction's. The pressure of :meth:`~warptrunc.contact.ContactSolver.maps` is (r + a)/(dx·dy),
-the load Σr + Σa. Barber's punch (:meth:`~warptrunc.contact.ContactSolver.punch_stiffness`)
+the load Σr + Σa. Barber's punch [3]_ (:meth:`~warptrunc.contact.ContactSolver.punch_stiffness`)
 takes the repulsive contact set: with adhesion it is the stiffness at a fixed contact area (the
 unloading stiffness 2E*a of a circular contact), not dF/dδ along an adhesive curve, whose
 contact edge moves with the adhesive stresses.

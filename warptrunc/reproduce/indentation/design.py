@@ -69,7 +69,7 @@ class IndentationStage(Parameters):
     ------
     ValueError
         A field out of its range (the message names it), a face surface that is not one of
-        :attr:`surfaces`, a face hardness that is not one of :attr:`hardness`, a depth band
+        ``surfaces``, a face hardness that is not one of :attr:`hardness`, a depth band
         that does not bracket its target, or a protocol without punches or placements.
     """
 
@@ -112,8 +112,8 @@ class IndentationStage(Parameters):
     stats: tuple[str, ...] = field(default=STATS_MODELS)
     """Models of the statistics pieces: ``"elastic"`` (H = ∞) and ``"depth-match"`` (one H for
     every surface: the H of the sweep whose largest threshold depth at the largest load, over
-    every surface, punch and placement, is nearest :attr:`depth_target`, when the sweep reaches
-    :attr:`depth_band`; none otherwise — the paper's ≈ 5 µm is its maximum over all tests).
+    every surface, punch and placement, is nearest ``depth_target``, when the sweep reaches
+    ``depth_band``; none otherwise — the paper's ≈ 5 µm is its maximum over all tests).
     Empty: no statistics pieces."""
     depth_target: float = param(
         5e-6,
@@ -198,7 +198,7 @@ class IndentationStage(Parameters):
     """The experiment (:class:`~warptrunc.indent.IndentProtocol`): the paper's punches and ten
     loads, 3 placements per punch in the sweep (seed 0 + punch index), 10 % unloading, 1000
     truncation increments, the cells judged by their contact pixels (``refine_max`` 1: above
-    1 the windows of :attr:`refine_punches` are generated again at pixel/2 … pixel/refine_max
+    1 the windows of ``refine_punches`` are generated again at pixel/2 … pixel/refine_max
     until resolved; the fits, the agreement depths and the tracking rule use the cells
     ``in_fit`` either way)."""
     solver: SolverSettings = field(default=SolverSettings(maxiter=1000))

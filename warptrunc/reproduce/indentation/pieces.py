@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """The stored units of work of the ``indentation`` stage: pieces and their parts.
 
-A **piece** is a surface × design × hardness H (:mod:`.design`): its parameters
+A **piece** is a surface × design × hardness H (:mod:`warptrunc.reproduce.indentation.design`): its parameters
 (:func:`piece_params`), its file ``<surface>__<design>__<model>.json`` under ``OUT/indentation``
 (written atomically), and its rows. A **part** is one punch × one realisation of a piece, the
 unit of work that runs in this process or on a Dask worker: punch k of

@@ -283,7 +283,7 @@ class Plan:
         return sum(r is not None for r in self.stieces.values()), len(self.stieces)
 
     def parts_left(self) -> int:
-        """Parts of the planned pieces not done yet, and :attr:`extra_parts`: the total of the
+        """Parts of the planned pieces not done yet, and ``extra_parts``: the total of the
         progress report (it grows when a surface's sweep plans its depth-match pieces).
 
         Returns

@@ -21,7 +21,7 @@ again; the stage file ``stages/indentation.json`` holds the summary, recomputed 
 the same surface sampled at the stage's pixel size and at half of it (same phases and cut-off
 W_c).
 
-The section of ``report.md`` and its figures are in :mod:`.report`; the numbers come from
+The section of ``report.md`` and its figures are in :mod:`warptrunc.reproduce.indentation.report`; the numbers come from
 :func:`~.analysis.analyse_indentation`.
 """
 
