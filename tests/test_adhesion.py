@@ -364,7 +364,7 @@ def test_rough_periodic_surface_against_tamaas(work, tamaas_tol):
 
 @pytest.mark.gpu
 @pytest.mark.parametrize("dtype", ["float64", "float32"])
-def test_adhesive_solve_on_the_gpu_equals_the_cpu(dtype):
+def test_adhesive_solve_on_cuda_equals_the_cpu(dtype):
     want = os.environ.get("WARPTRUNC_TEST_DEVICES")
     if wp.get_cuda_device_count() == 0 or (want and "cuda:0" not in want):
         pytest.skip("needs a CUDA device")
