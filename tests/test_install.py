@@ -34,7 +34,7 @@ OPTIONAL = {
     "cupyx": "gpu",
     "dask_cuda": None,  # --workers: dask-cuda's LocalCUDACluster where installed, else LocalCluster
     "imageio": None,  # MP4 animations only; the error names pip install imageio imageio-ffmpeg
-    "jax": "distributed",  # ContactSolver(..., devices=n): one problem over several devices
+    "jax": "distributed",  # contact_solver(..., devices=n): one problem over several devices
     "tomli": None,  # Python 3.10 only: a base dependency with a marker
 }
 """Third-party modules that the base install may lack, and the extra that brings each."""

@@ -52,18 +52,8 @@ face, ``__init__.py``): 0 support (helpers, parameter declarations, kernels), 1 
 their analysis, the contact solver), 2 studies (commands' computations, their figures), 3
 commands. A new top-level package or module names its floor here."""
 
-CIRCLES = {
-    frozenset(
-        {
-            "warptrunc.contact.solver",
-            "warptrunc.contact.sharded.devices",
-            "warptrunc.contact.sharded.solver",
-        }
-    ),
-}
-"""Module circles kept on purpose: ``ContactSolver(..., devices=n)`` constructs its subclass
-``ShardedContactSolver`` (imported inside ``ContactSolver.__new__``), so that a solve spread
-over devices is still a ``ContactSolver``."""
+CIRCLES: set[frozenset[str]] = set()
+"""Module circles kept on purpose: none."""
 
 
 def _folders() -> list[Path]:

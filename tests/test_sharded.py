@@ -1,6 +1,6 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
-"""The contact solver spread over two devices (``ContactSolver(..., devices=2)``,
+"""The contact solver spread over two devices (``contact_solver(..., devices=2)``,
 :mod:`warptrunc.contact.sharded`) equals the one-device solver.
 
 Two host devices (XLA's ``--xla_force_host_platform_device_count=2``, set below before JAX is
@@ -32,7 +32,13 @@ if len(jax.devices("cpu")) < 2:
     # tests/conftest.py sets the flag before any module imports JAX: never skip silently
     raise RuntimeError("JAX was started with one host device before this module (XLA_FLAGS)")
 
-from warptrunc.contact import ContactSolver, SolverSettings, influence_spectrum  # noqa: E402
+from warptrunc.contact import (  # noqa: E402
+    Adhesion,
+    ContactSolver,
+    SolverSettings,
+    contact_solver,
+    influence_spectrum,
+)
 from warptrunc.contact.sharded import ShardedContactSolver  # noqa: E402
 from warptrunc.contact.sharded.fft import slab_layout  # noqa: E402
 from warptrunc.contact.sharded.grid import devices_needed  # noqa: E402
@@ -134,7 +140,7 @@ def test_elastic_equals_one_device(substrate, dtype):
     the one-device solver."""
     st = SolverSettings(substrate=substrate, dtype=dtype)
     one = ContactSolver(H256, DX, E, device="cpu", settings=st.replace(direct_max=0))
-    two = ContactSolver(H256, DX, E, devices=2, settings=st)
+    two = contact_solver(H256, DX, E, devices=2, settings=st)
     assert isinstance(two, ShardedContactSolver)
     tol = TOL[dtype]
     a, b = one.solve(load=LOAD), two.solve(load=LOAD)
@@ -168,7 +174,7 @@ def test_capped_equals_one_device(substrate, dtype, load_control):
     hardness = 2e-2 * E
     direct = st.replace(direct_max=0)
     one = ContactSolver(H256, DX, E, device="cpu", hardness=hardness, settings=direct)
-    two = ContactSolver(H256, DX, E, devices=["cpu:0", "cpu:1"], hardness=hardness, settings=st)
+    two = contact_solver(H256, DX, E, devices=["cpu:0", "cpu:1"], hardness=hardness, settings=st)
     tol = TOL[dtype]
     peak = None
     for load in (LOAD, 0.5 * LOAD):
@@ -193,7 +199,7 @@ def test_blocked_columns_equal_one_device(monkeypatch):
 
     monkeypatch.setattr(sf, "BLOCKS_ABOVE", 0)
     one = ContactSolver(H256, DX, E, device="cpu", settings=SolverSettings(direct_max=0))
-    two = ContactSolver(H256, DX, E, devices=2)
+    two = contact_solver(H256, DX, E, devices=2)
     assert two.hs.layout.blocks == sf.COLUMN_BLOCKS
     a, b = one.solve(load=LOAD), two.solve(load=LOAD)
     assert rel(a.depth, b.depth) < 1e-9 and a.n_iterations == b.n_iterations
@@ -203,7 +209,7 @@ def test_default_direct_max_agrees():
     """Against the one-device solver's defaults (direct summation of a few forces), the same
     answer to round-off here too (free, float64)."""
     one = ContactSolver(H256, DX, E, device="cpu")
-    two = ContactSolver(H256, DX, E, devices=2)
+    two = contact_solver(H256, DX, E, devices=2)
     a, b = one.solve(load=LOAD), two.solve(load=LOAD)
     assert rel(a.depth, b.depth) < 1e-9
 
@@ -213,7 +219,7 @@ def test_devices_argument():
     assert type(ContactSolver(H256[:64, :64], DX, E, devices=1)) is ContactSolver
     assert type(ContactSolver(H256[:64, :64], DX, E, devices=["cpu:0"])) is ContactSolver
     assert type(ContactSolver(H256[:64, :64], DX, E, devices="auto")) is ContactSolver  # fits
-    two = ContactSolver(H256[:64, :64], DX, E, devices=jax.devices("cpu")[:2])
+    two = contact_solver(H256[:64, :64], DX, E, devices=jax.devices("cpu")[:2])
     assert type(two) is ShardedContactSolver and len(two.hs.devices) == 2
     bad = [
         (0, "count ≥ 1, got 0"),
@@ -225,11 +231,17 @@ def test_devices_argument():
     ]
     for value, match in bad:
         with pytest.raises(ValueError, match=match):
-            ContactSolver(H256[:64, :64], DX, E, devices=value)
+            contact_solver(H256[:64, :64], DX, E, devices=value)
+    # the one-device class refuses several devices and names the function that spreads
+    with pytest.raises(ValueError, match=r"spreads the map over several devices.*contact_solver"):
+        ContactSolver(H256[:64, :64], DX, E, devices=2)
+    with pytest.raises(ValueError, match="runs on one device"):
+        law = Adhesion("maugis", work=0.05, range=2e-9)
+        contact_solver(H256[:64, :64], DX, E, devices=2, settings=SolverSettings(adhesion=law))
     with pytest.raises(ValueError, match="must divide ny; got 2"):
-        ContactSolver(H256[:63, :64], DX, E, devices=2)
+        contact_solver(H256[:63, :64], DX, E, devices=2)
     with pytest.raises(ValueError, match=r"settings\.algorithm must be 'bccg'"):
-        ContactSolver(H256[:64, :64], DX, E, devices=2, settings=SolverSettings(algorithm="pk"))
+        contact_solver(H256[:64, :64], DX, E, devices=2, settings=SolverSettings(algorithm="pk"))
 
 
 def test_auto_spreads_what_does_not_fit(monkeypatch):
@@ -240,7 +252,7 @@ def test_auto_spreads_what_does_not_fit(monkeypatch):
     h = H256[:64, :64]
     assert type(ContactSolver(h, DX, E, devices="auto")) is ContactSolver
     monkeypatch.setattr(support, "free_memory_bytes", lambda device: 1000)
-    two = ContactSolver(h, DX, E, devices="auto")
+    two = contact_solver(h, DX, E, devices="auto")
     assert type(two) is ShardedContactSolver and len(two.hs.devices) == 2
     assert two.solve(load=1e-3 * LOAD).converged
 
@@ -449,7 +461,7 @@ def test_blocked_rows_equal_one_device(monkeypatch):
     monkeypatch.setattr(sg, "FFT_ELEMENTS_MAX", 1 << 12)
     assert sg.row_blocks(128, 512) == 16 and sg.row_blocks(100, 512) == 20
     one = ContactSolver(H256, DX, E, device="cpu", settings=SolverSettings(direct_max=0))
-    two = ContactSolver(H256, DX, E, devices=2)
+    two = contact_solver(H256, DX, E, devices=2)
     assert two.hs.layout.blocks > 1
     a, b = one.solve(load=LOAD), two.solve(load=LOAD)
     assert rel(a.depth, b.depth) < 1e-9 and a.n_iterations == b.n_iterations

@@ -25,7 +25,7 @@ pytestmark = pytest.mark.timeout(300)
 SCRIPT = r"""
 import json, sys
 import numpy as np
-from warptrunc.contact import ContactSolver, SolverSettings
+from warptrunc.contact import ContactSolver, SolverSettings, contact_solver
 from warptrunc.contact.sharded import ShardedContactSolver
 
 n, dx, E = 128, 1e-6, 1e9
@@ -37,7 +37,7 @@ h = np.fft.irfft2(spec, s=(n, n))
 h = h / h.std() * 1e-6
 load = 5e-4 * E * (n * dx) ** 2
 import jax
-two = ContactSolver(h, dx, E, devices=2)
+two = contact_solver(h, dx, E, devices=2)
 assert isinstance(two, ShardedContactSolver) and jax.process_count() == 2
 b = two.solve(load=load)
 one = ContactSolver(h, dx, E, device="cpu", settings=SolverSettings(direct_max=0))

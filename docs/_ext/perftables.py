@@ -839,6 +839,7 @@ TABLES: dict[str, Callable[[], str]] = {
     "adhesion": lambda: adhesion("adhesion_h200_12026d7_partial.json"),
     "challenge_study": lambda: challenge_study(["challenge_4096_h200_73a5742.json"]),
     "challenge_curves": lambda: challenge_curves("challenge_4096_h200_73a5742.json"),
+    "challenge_peers": lambda: challenge_peers("challenge_peers_cpu_0b47f80.json"),
     "preset_slopes": preset_slopes,
     "content_sensitivity": lambda: content_sensitivity("content_sensitivity_h200_73a5742.json"),
     "solver_scaling": lambda: solver_scaling("solver_scaling_h200x4_6af94f0.json"),

@@ -127,7 +127,7 @@ def check(args) -> None:
     """2 devices against 1 (module docstring)."""
     import jax
 
-    from warptrunc.contact import ContactSolver, SolverSettings
+    from warptrunc.contact import ContactSolver, SolverSettings, contact_solver
 
     h = surface(args.n, args.maps).astype(np.float64)
     dx = L / args.n
@@ -146,7 +146,7 @@ def check(args) -> None:
                 st = SolverSettings(substrate=substrate, dtype=dtype)
                 t = time.perf_counter()
                 one = ContactSolver(h, dx, E, device=args.device, settings=st.replace(direct_max=0))
-                two = ContactSolver(h, dx, E, devices=jax.devices()[:2], settings=st)
+                two = contact_solver(h, dx, E, devices=jax.devices()[:2], settings=st)
                 rec["setup_s"] = time.perf_counter() - t
                 out = {}
                 for name, solver in (("one", one), ("two", two)):
@@ -230,7 +230,7 @@ def solve(args) -> None:
         "maxiter": args.maxiter,
     }
     try:
-        from warptrunc.contact import ContactSolver, SolverSettings
+        from warptrunc.contact import ContactSolver, SolverSettings, contact_solver
 
         t = time.perf_counter()
         h = surface(args.n, args.maps)
@@ -265,7 +265,7 @@ def solve(args) -> None:
             import jax
 
             devices = jax.devices()[: args.ndev]
-            solver = ContactSolver(h, dx, E, devices=devices, **kw)
+            solver = contact_solver(h, dx, E, devices=devices, **kw)
             rec["devices"] = device_names()[: args.ndev]
 
             def sync():

@@ -222,7 +222,7 @@ def compare_models(
     device : str, optional
         Warp device of all three routes.
     devices : int, "auto" or list, optional
-        Spread the elastic solves over several devices (``ContactSolver(..., devices=...)``;
+        Spread the elastic solves over several devices (``contact_solver(..., devices=...)``;
         JAX); default None: ``device`` alone.
 
     Returns

@@ -206,7 +206,7 @@ def compare_study(
         each written by its worker into ``out`` (a filesystem the workers share); ``device``
         is then the tasks' device (None: each worker's pinned GPU). Default: in this process.
     devices : int, "auto" or list, optional
-        Spread each elastic solve over several devices (``ContactSolver(..., devices=...)``;
+        Spread each elastic solve over several devices (``contact_solver(..., devices=...)``;
         JAX); default None: ``device`` alone. Not with ``client`` (ValueError).
 
     Returns

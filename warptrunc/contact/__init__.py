@@ -11,6 +11,7 @@ What lives where:
   :class:`BemCheckSettings`; no Warp, the command-line parsers import them); ``adhesion``:
   the interaction law of adhesive contact (:class:`Adhesion`, no Warp either);
 - ``solver``: the solver object, :class:`ContactSolver` (its state and public methods);
+  ``factory``: :func:`contact_solver`, the solver on one device or spread over several;
   ``iteration``: the iterations it runs (what the loops share, Polonsky–Keer, BCCG with its
   scalar steps on the host or on the device, the capped solves and the plastic flow, Barber's
   punch); ``memory``: its memory model and the check against the free memory;
@@ -41,6 +42,7 @@ __all__, __getattr__, __dir__ = lazy_exports(
         "STIFFNESS_METHODS": ".settings",
         "SUBSTRATES": ".influence",
         "SolverSettings": ".settings",
+        "contact_solver": ".factory",
         "default_pentol": ".solver",
         "force_approach": ".hysteresis",
         "influence_spectrum": ".influence",

@@ -284,7 +284,7 @@ def bem_check(
     device : str, optional
         Warp device for the truncation part and warptrunc's solver.
     devices : int, "auto" or list, optional
-        Spread warptrunc's solver over several devices (``ContactSolver(..., devices=...)``;
+        Spread warptrunc's solver over several devices (``contact_solver(..., devices=...)``;
         JAX); default None: ``device`` alone. When spread, the surface's device copies are
         released after the truncation part (:meth:`~warptrunc.Surface.release_device_copies`;
         its heights stay on the host), so that the solve has the GPUs' memory.

@@ -18,7 +18,7 @@ from .._support.validate import check_range
 from ..material import Material
 from .results import ContactCurve
 from .settings import CurveSettings, SolverSettings
-from .solver import ContactSolver
+from .factory import contact_solver
 
 __all__ = ["solve_contact"]
 
@@ -73,7 +73,7 @@ def solve_contact(
         Report the rows on stderr (a bar on a terminal, else lines).
     {warp_device_obj}
     devices : int, "auto" or list, optional
-        Spread the solver over several devices (``ContactSolver(..., devices=...)``,
+        Spread the solver over several devices (``contact_solver(..., devices=...)``,
         :class:`~warptrunc.contact.sharded.ShardedContactSolver`; JAX); default None: one.
 
     Returns
@@ -131,7 +131,7 @@ def solve_contact(
             f'(hardness = inf); with a finite hardness ({hardness:g} Pa) use "barber" (the '
             'unloading stiffness) or "none"'
         )
-    solver = ContactSolver(
+    solver = contact_solver(
         heights,
         pixel_size,
         material.contact_modulus,

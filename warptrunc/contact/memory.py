@@ -126,7 +126,7 @@ def memory_bytes(
     device : str or warp Device, optional
         A CUDA device: cuFFT's work area as cuFFT asks for it, instead of the estimate.
     devices : int, optional
-        Devices the map is spread over (``ContactSolver(..., devices=n)``; dimensionless
+        Devices the map is spread over (``contact_solver(..., devices=n)``; dimensionless
         count, ≥ 1, default 1). Above 1: the bytes of one device, JAX's buffers included
         (:func:`~warptrunc.contact.sharded.grid.sharded_memory_bytes`; ``cuda``,
         ``algorithm``, ``fft_plan`` and ``device`` do not apply).

@@ -22,7 +22,8 @@ from .._support.docs import fill_doc
 from ..material import Material
 from .results import ContactState
 from .settings import BemCheckSettings, SolverSettings
-from .solver import ContactSolver, default_pentol
+from .factory import contact_solver
+from .solver import default_pentol
 
 __all__ = [
     "EXTRA_HINT",
@@ -282,7 +283,7 @@ def run_warptrunc(
     device : str or warp.context.Device or None
         Warp device of the solver.
     devices : int, "auto" or list, optional
-        Spread the solver over several devices (``ContactSolver(..., devices=...)``,
+        Spread the solver over several devices (``contact_solver(..., devices=...)``,
         :class:`~warptrunc.contact.sharded.ShardedContactSolver`; JAX); default None: one.
 
     Returns
@@ -315,7 +316,7 @@ def run_warptrunc(
 
     stiffness, fd_step, dtype = check.stiffness, check.fd_step, settings.dtype
     pentol, pentol_note = pentol_or_default(surface.heights, settings.pentol)
-    solver = ContactSolver(
+    solver = contact_solver(
         surface.heights,
         (surface.dx, surface.dy),
         material.contact_modulus,

@@ -56,7 +56,6 @@ is the non-adhesive solve above on the effective heights.
 
 from __future__ import annotations
 
-import inspect
 import math
 from typing import Any
 
@@ -69,7 +68,6 @@ from .._support.validate import check_height_map, check_range, pair
 from ..kernels.contact import cg as _k
 from ..material import Material
 from ..params import check_value
-from .adhesion import Adhesion
 from .halfspace import DTYPES, ElasticHalfSpace
 from .iteration.adhesive import AdhesiveSolves
 from .iteration.bccg import BCCGSolves
@@ -148,36 +146,21 @@ class ContactSolver(
         Hardness H (Pa), the local pressure cap, in (0, inf]; ``inf`` (default): elastic.
     {warp_device_obj}
     devices : list, int or "auto", optional
-        Spread the map over several devices
-        (:class:`~warptrunc.contact.sharded.ShardedContactSolver`, which this then returns;
-        JAX, ``warptrunc[distributed]``): JAX
-        devices or their names (``["cuda:0", "cuda:1"]``), a count (the first N devices of
-        JAX's default backend), or ``"auto"``: this device when the solver fits it, else the
-        fewest devices that fit (:func:`~warptrunc.contact.sharded.devices.choose_devices`).
-        None (default), one device or a list of one: the one-device solver.
+        One device given as a list of one or a count of 1, or ``"auto"`` where the solver fits
+        this device (:func:`~warptrunc.contact.sharded.devices.choose_devices`). A map spread
+        over several devices is a :class:`~warptrunc.contact.sharded.ShardedContactSolver`,
+        made by :func:`~warptrunc.contact.factory.contact_solver` (which picks this class or
+        that one); here such ``devices`` are refused. None (default): ``device``.
 
     Raises
     ------
     ValueError
-        Non-finite or non-2-D heights, parameters out of range; an adhesion law with a finite
-        hardness, over several devices or with ``load_control="secant"``.
+        Non-finite or non-2-D heights, parameters out of range; ``devices`` that name several
+        devices; an adhesion law with a finite hardness or with ``load_control="secant"``.
     MemoryError
         When the estimated memory (:meth:`memory_bytes`) exceeds the device's free memory,
         before anything is allocated.
     """
-
-    def __new__(cls, *args: Any, devices: Any = None, **kwargs: Any) -> ContactSolver:
-        if cls is ContactSolver and devices is not None:  # spread over several devices?
-            from .sharded.devices import solver_class
-
-            cls = solver_class(cls, devices, args, kwargs)
-            law = getattr(kwargs.get("settings"), "adhesion", None)
-            if cls is not ContactSolver and isinstance(law, Adhesion) and law.active:
-                raise ValueError(
-                    f"adhesion ({law.law}) runs on one device: the adhesive solve is not "
-                    f"spread over several (devices={devices!r}); give one device"
-                )
-        return super().__new__(cls)
 
     def __init__(
         self,
@@ -226,9 +209,17 @@ class ContactSolver(
         self.load_control = settings.load_control
         self.maxiter = settings.maxiter
         self.refresh = settings.refresh
-        if devices is not None:  # one device (several: ShardedContactSolver, from __new__)
-            from .sharded.devices import single_device
+        if devices is not None:  # one device (several: contact_solver, ShardedContactSolver)
+            from .sharded.devices import choose_devices, single_device
 
+            if type(self) is ContactSolver and choose_devices(
+                devices, np.shape(heights), settings, device
+            ):
+                raise ValueError(
+                    f"devices={devices!r} spreads the map over several devices: make the solver "
+                    "with warptrunc.contact.contact_solver(..., devices=...), which returns a "
+                    "ShardedContactSolver for several devices and this class for one"
+                )
             device = single_device(devices, device)
         self.device = resolve_device(device)
         direct_max = settings.direct_max
@@ -526,8 +517,3 @@ class ContactSolver(
         dx, dy = self.pixel_size
         return q / (dx * dy), u - h - self.offset
 
-
-# the signature of the constructor is __init__'s (``__new__`` only picks the class)
-ContactSolver.__signature__ = inspect.signature(ContactSolver.__init__).replace(
-    parameters=list(inspect.signature(ContactSolver.__init__).parameters.values())[1:]
-)

@@ -241,7 +241,7 @@ def indent(
     {warp_device_obj}
     devices : int, "auto" or list, optional
         Spread each contact solve (every punch window's cycles) over several devices
-        (``ContactSolver(..., devices=...)``; JAX); default None: ``device`` alone. A window
+        (``contact_solver(..., devices=...)``; JAX); default None: ``device`` alone. A window
         whose rows a device count does not divide gets rows of its floor added (no contact
         there: the same solution; :func:`~warptrunc.indent.cycles.make_solver`).
 

@@ -34,6 +34,7 @@ import numpy as np
 from .._support.docs import SHARED_DOCS, fill_doc
 from ..contact.iteration.bccg import PRECONDITION_ABOVE
 from ..contact.settings import SolverSettings
+from ..contact.factory import contact_solver
 from ..contact.solver import ContactSolver
 from ..material import Material
 from .protocol import IndentProtocol
@@ -63,7 +64,7 @@ def make_solver(
         Solver settings; a finite punch needs the free half-space.
     {warp_device_obj}
     devices : int, "auto" or list, optional
-        Spread the solver over several devices (``ContactSolver(..., devices=...)``; JAX);
+        Spread the solver over several devices (``contact_solver(..., devices=...)``; JAX);
         default None: ``device`` alone. When a count (or a list) does not divide the window's
         rows, rows at the window's floor are added below it: they never touch (an approach
         that deep is refused), so on the free half-space the solution is the same.
@@ -109,7 +110,7 @@ def make_solver(
     if n_dev > 1 and heights.shape[0] % n_dev:  # row slabs: whole rows of the floor below
         extra = n_dev - heights.shape[0] % n_dev
         heights = np.vstack([heights, np.full((extra, heights.shape[1]), window.floor)])
-    return ContactSolver(
+    return contact_solver(
         heights,
         window.pixel_size,
         material.contact_modulus,

@@ -70,7 +70,7 @@ def solve_placement(
     device : warp.context.Device, optional
         Resolved Warp device.
     devices : int, "auto" or list, optional
-        Spread each contact solve over several devices (``ContactSolver(..., devices=...)``;
+        Spread each contact solve over several devices (``contact_solver(..., devices=...)``;
         JAX); default None: ``device`` alone.
 
     Returns

@@ -84,7 +84,7 @@ def compute_case(
     {warp_device}
     devices : int, "auto" or list, optional
         Spread the elastic solves (``bem_fractions``) over several devices
-        (``ContactSolver(..., devices=...)``; JAX); default None: ``device`` alone.
+        (``contact_solver(..., devices=...)``; JAX); default None: ``device`` alone.
 
     Returns
     -------

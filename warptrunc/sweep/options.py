@@ -254,7 +254,7 @@ class SweepExecution(Parameters):
     into the store themselves: the store must be on a filesystem that every worker shares."""
     devices: int | str | tuple | None = None
     """Spread each elastic solve (``bem_fractions``) over several devices
-    (``ContactSolver(..., devices=...)``; JAX): a count, ``"auto"`` or a sequence; None: the
+    (``contact_solver(..., devices=...)``; JAX): a count, ``"auto"`` or a sequence; None: the
     case's device alone. With ``workers`` or ``scheduler``, a count G: each worker takes G
     devices of its own and spreads its solves over them (:mod:`warptrunc.sweep.groups`;
     ``workers="auto"`` is then the devices present divided by G)."""

@@ -234,7 +234,7 @@ def elastic_record(
         ``bem_fractions`` (f, dimensionless), material, β', increments.
     {warp_device}
     devices : int, "auto" or list, optional
-        Spread the elastic solver over several devices (``ContactSolver(..., devices=...)``;
+        Spread the elastic solver over several devices (``contact_solver(..., devices=...)``;
         JAX); default None: ``device`` alone.
 
     Returns

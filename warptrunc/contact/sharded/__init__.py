@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 warptrunc developers
 # SPDX-License-Identifier: MIT
 """One contact problem spread over several devices (JAX): :class:`ShardedContactSolver`, which
-``ContactSolver(..., devices=...)`` returns.
+``contact_solver(..., devices=...)`` returns.
 
 ``solver``: the solver (a :class:`~warptrunc.contact.ContactSolver` whose map lies in row slabs
 over the devices); ``devices``: which devices a solve runs on and the per-device memory check;

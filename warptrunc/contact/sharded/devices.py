@@ -21,7 +21,6 @@ __all__ = [
     "choose_devices",
     "out_of_memory",
     "single_device",
-    "solver_class",
     "spread_in_use",
 ]
 
@@ -312,32 +311,3 @@ def single_device(devices: Any, device: Any) -> Any:
     if getattr(d, "platform", "") == "gpu":
         return f"cuda:{getattr(d, 'local_hardware_id', None) or d.id}"
     return "cpu"
-
-
-def solver_class(base: type, devices: Any, args: tuple, kwargs: dict[str, Any]) -> type:
-    """``base`` (:class:`~warptrunc.contact.ContactSolver`) or, for two or more devices,
-    :class:`~warptrunc.contact.sharded.ShardedContactSolver` (``ContactSolver.__new__``).
-
-    Parameters
-    ----------
-    base : type
-        The one-device solver class.
-    devices : None, int, "auto" or list
-        The ``devices`` argument (:func:`choose_devices`).
-    args : tuple
-        The solver's positional arguments (heights first).
-    kwargs : dict
-        Its keyword arguments.
-
-    Returns
-    -------
-    type
-        The class to make.
-    """
-    heights = args[0] if args else kwargs.get("heights")
-    found = choose_devices(devices, np.shape(heights), kwargs.get("settings"), kwargs.get("device"))
-    if found is None:
-        return base
-    from .solver import ShardedContactSolver  # imports no JAX
-
-    return ShardedContactSolver

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """One contact problem over several devices: :class:`ShardedContactSolver`.
 
-``ContactSolver(..., devices=[...])`` (or ``devices=N``, ``devices="auto"``) returns one when the
+``contact_solver(..., devices=[...])`` (or ``devices=N``, ``devices="auto"``) returns one when the
 map is spread over two or more devices, so every entry point that takes a
 :class:`~warptrunc.contact.ContactSolver` takes it (it *is* one: a subclass). A subclass rather
 than a branch inside the one-device solver because the state lives elsewhere (JAX arrays in row
@@ -54,7 +54,7 @@ def _is_free(jnp, q, g, hf):
 
 class ShardedContactSolver(ContactSolver):
     """A :class:`~warptrunc.contact.ContactSolver` whose map is split in row slabs over several
-    JAX devices (module docstring); made by ``ContactSolver(..., devices=...)``.
+    JAX devices (module docstring); made by ``contact_solver(..., devices=...)``.
 
     Parameters
     ----------
