@@ -77,13 +77,7 @@ def contact_solver(
         from .sharded.devices import choose_devices
 
         if choose_devices(devices, np.shape(heights), settings, device) is not None:
-            law = getattr(settings, "adhesion", None)
-            if law is not None and law.active:
-                raise ValueError(
-                    f"adhesion ({law.law}) runs on one device: the adhesive solve is not "
-                    f"spread over several (devices={devices!r}); give one device"
-                )
-            from .sharded.solver import ShardedContactSolver
+            from .sharded.solver import ShardedContactSolver  # it refuses an adhesion law
 
             return ShardedContactSolver(heights, pixel_size, contact_modulus, **kw)
     return ContactSolver(heights, pixel_size, contact_modulus, **kw)
