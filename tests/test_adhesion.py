@@ -253,6 +253,7 @@ def test_pull_off_at_large_tabor_parameter_is_jkr():
 # --- the force–approach cycle ----------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_force_approach_cycle_jumps_in_and_out():
     # the exponential law at λ = 3 (μ = 2.7), 64² over 4ℓ: a JKR-like cycle
     h, dx, adh = sphere(64, 4.0, 3.0, "exponential")

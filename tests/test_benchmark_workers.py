@@ -18,6 +18,7 @@ pytest.importorskip("pyarrow")
 SCRIPT = Path(__file__).resolve().parents[1] / "examples" / "benchmarks" / "benchmark_workers.py"
 
 
+@pytest.mark.slow
 @pytest.mark.timeout(300)
 def test_benchmark_workers_cpu_two_workers_rows_equal_in_process(tmp_path):
     r = subprocess.run(

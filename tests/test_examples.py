@@ -244,6 +244,7 @@ def test_solver_scaling_benchmark_runs_quick(tmp_path):
         assert abs(row["peak_bytes"] / row["memory_model_bytes"] - 1) < 0.1
 
 
+@pytest.mark.slow
 def test_adhesion_benchmark_runs_on_the_cpu(tmp_path):
     """The adhesion benchmark at 64² on the CPU: both laws solved, converged, their rows and the
     ratio of warm times written; attraction adds tensile load at the same approach."""
